@@ -1,0 +1,24 @@
+"""tmm: the course-project calculator for Theory of Machines and Mechanisms.
+
+Python API (SPEC 4)::
+
+    import tmm_cli
+    task = tmm_cli.load_task("task.yaml")   # or a dict of the same shape
+    results = tmm_cli.run(task)             # the results.json dict; no file output
+"""
+from .errors import StageError, TaskError
+from .task import Task, load_task
+
+__version__ = "0.1.0"
+
+
+def run(task, **kwargs):
+    """Run every stage whose section is present; return the results.json dict."""
+    from .pipeline import run as _run
+
+    if not isinstance(task, Task):
+        task = load_task(task)
+    return _run(task, **kwargs)
+
+
+__all__ = ["load_task", "run", "Task", "TaskError", "StageError", "__version__"]

@@ -1,0 +1,46 @@
+"""Exceptions of tmm.
+
+* :class:`TaskError` -- the task file is invalid (CLI exit code 2). Carries the file,
+  line, column and the field path so the message can point at the exact spot.
+* :class:`StageError` -- a valid task cannot be computed (CLI exit code 3): a group
+  does not assemble, a position is singular... Carries the stage and the position.
+"""
+from __future__ import annotations
+
+
+class TaskError(Exception):
+    """Invalid task input. ``issues`` is a list of (field, line, column, message)."""
+
+    def __init__(self, message: str, *, file: str | None = None,
+                 issues: list[tuple[str, int | None, int | None, str]] | None = None):
+        self.file = file
+        self.issues = issues or []
+        self.message = message
+        super().__init__(self.render())
+
+    def render(self) -> str:
+        where = self.file or "<task>"
+        if not self.issues:
+            return f"{where}: {self.message}"
+        lines = []
+        for field, line, col, msg in self.issues:
+            loc = where
+            if line is not None:
+                loc += f":{line}"
+                if col is not None:
+                    loc += f":{col}"
+            lines.append(f"{loc}: field '{field}': {msg}" if field else f"{loc}: {msg}")
+        return "\n".join(lines)
+
+
+class StageError(Exception):
+    """A stage failed on valid input (e.g. the mechanism does not assemble)."""
+
+    def __init__(self, stage: str, message: str, position: str | float | None = None):
+        self.stage = stage
+        self.message = message
+        self.position = position
+        text = f"stage '{stage}' failed"
+        if position is not None:
+            text += f" at {position}" if isinstance(position, str) else f" at crank angle {position:.6g} deg"
+        super().__init__(f"{text}: {message}")

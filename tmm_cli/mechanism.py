@@ -1,0 +1,270 @@
+"""The internal model of a planar linkage, built once from the task's `mechanism`.
+
+Links are numbered 1..n in the order of the task file (ground = 0). Every point is
+stored in the local frame of each link that carries it:
+
+* bar ``points: [P, Q]``: origin at P, u-axis from P to Q, v to the left; ``extra``
+  points are given in that frame;
+* slider ``slider: P``: origin at its pin P, u-axis along its guide.
+
+A point name shared by two links (or by a link and ``ground``) is a revolute pair;
+a point shared by k bodies is a compound hinge of k - 1 pairs (each with the first
+body). Each slider adds one prismatic pair with its guide's link (0 = a fixed guide).
+A moving guide on link L is the line through L's origin along L's u-axis, turned by
+``guide.angle`` and shifted by ``guide.offset`` to the left, so a slider can itself
+carry a guide (RPP / PRP groups).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from .task import MechanismSection, Task
+
+
+@dataclass(frozen=True)
+class Guide:
+    link: str | None                   # None: fixed (ground)
+    point: tuple[float, float] | None  # fixed guide: a global point on the line
+    angle: float                       # deg: absolute (fixed) or relative to the guide link's u-axis
+    offset: float                      # m, moving guide: shift to the left of the link's u-axis
+
+
+@dataclass(frozen=True)
+class Link:
+    name: str
+    index: int
+    kind: str                                   # 'bar' | 'slider'
+    local: dict[str, tuple[float, float]]       # points on the link, local frame
+    mass: float
+    J: float
+    com: tuple[float, float]
+    guide: Guide | None = None
+    length: float | None = None
+
+    @property
+    def origin(self) -> str:
+        return next(iter(self.local))
+
+
+@dataclass(frozen=True)
+class Joint:
+    kind: str               # 'R' | 'P'
+    a: int                  # link index, a < b, 0 = ground
+    b: int
+    point: str | None       # R: the shared point; P: None
+    slider: int | None = None   # P: index of the slider (block)
+
+    @property
+    def name(self) -> str:
+        return f"{self.kind}{self.a}{self.b}" + (f"({self.point})" if self.point else "")
+
+
+@dataclass
+class Mechanism:
+    ground: dict[str, tuple[float, float]]
+    links: list[Link]
+    joints: list[Joint]
+    drive: int
+    owner: dict[str, list[int]]
+    assembly: dict[str, tuple[float, float]] = field(default_factory=dict)
+
+    def link(self, key: str | int) -> Link:
+        if isinstance(key, int):
+            return self.links[key - 1]
+        for lk in self.links:
+            if lk.name == key:
+                return lk
+        raise KeyError(key)
+
+    def index(self, name: str) -> int:
+        return self.link(name).index
+
+    @property
+    def n(self) -> int:
+        return len(self.links)
+
+    @property
+    def crank(self) -> Link:
+        return self.links[self.drive - 1]
+
+    @property
+    def crank_pivot(self) -> str:
+        """The crank's ground pivot."""
+        return next(p for p in self.crank.local if 0 in self.owner.get(p, []))
+
+    @property
+    def crank_pin(self) -> str:
+        """The point of the crank that defines its angle (the other end of the bar)."""
+        piv = self.crank_pivot
+        return next(p for p in self.crank.local if p != piv and p != f"S{self.drive}")
+
+    @property
+    def com_names(self) -> dict[int, str]:
+        """Name under which each link's centre of mass is reported (S<i>)."""
+        return {lk.index: f"S{lk.index}" for lk in self.links}
+
+    def all_points(self) -> list[str]:
+        names = list(self.ground)
+        for lk in self.links:
+            for p in lk.local:
+                if p not in names:
+                    names.append(p)
+        for i, s in self.com_names.items():
+            if s not in names:
+                names.append(s)
+        return names
+
+    def structure_info(self) -> dict:
+        """Links and pairs as plain data (a results.json extension for the report)."""
+        return {
+            "links": [{"name": lk.name, "index": lk.index, "kind": lk.kind,
+                       "points": [p for p in lk.local], "com": f"S{lk.index}",
+                       "guide": (None if lk.guide is None else
+                                 {"link": lk.guide.link, "angle": lk.guide.angle,
+                                  "offset": lk.guide.offset,
+                                  "point": list(lk.guide.point) if lk.guide.point else None})}
+                      for lk in self.links],
+            "joints": [{"kind": j.kind, "a": j.a, "b": j.b, "point": j.point, "slider": j.slider}
+                       for j in self.joints],
+            "ground": {k: list(v) for k, v in self.ground.items()},
+        }
+
+
+def build_mechanism(task: Task) -> Mechanism:
+    """Check the references of ``task.mechanism`` and build the internal model.
+    Raises TaskError (naming the field and its line) on inconsistent input."""
+    sec: MechanismSection = task.mechanism
+    assert sec is not None
+    P = ("mechanism",)
+    names = list(sec.links)
+    index = {n: i + 1 for i, n in enumerate(names)}
+    for g in sec.ground:
+        if g in index:
+            raise task.error(P + ("ground", g), f"'{g}' is both a ground point and a link name")
+    owner: dict[str, list[int]] = {g: [0] for g in sec.ground}
+    links: list[Link] = []
+    # first pass: bars (their frames are known from lengths)
+    for name, spec in sec.links.items():
+        i = index[name]
+        lp = P + ("links", name)
+        if spec.kind == "bar":
+            p, q = spec.points
+            local = {p: (0.0, 0.0), q: (float(spec.length), 0.0)}
+            for en, (u, v) in spec.extra.items():
+                if en in local:
+                    raise task.error(lp + ("extra", en), f"extra point '{en}' repeats a point of the link")
+                local[en] = (float(u), float(v))
+        else:
+            local = {spec.slider: (0.0, 0.0)}
+            if spec.extra:
+                for en, (u, v) in spec.extra.items():
+                    local[en] = (float(u), float(v))
+        for pt in local:
+            owner.setdefault(pt, [])
+            if i not in owner[pt]:
+                owner[pt].append(i)
+        links.append(Link(name=name, index=i, kind=spec.kind, local=local, mass=spec.mass, J=spec.J,
+                          com=(0.0, 0.0), guide=None, length=spec.length))
+    # points used by no link
+    for g in sec.ground:
+        if owner[g] == [0]:
+            raise task.error(P + ("ground", g), f"ground point '{g}' is used by no link")
+    # drive link
+    drive_name = task.drive.link
+    if drive_name not in index:
+        raise task.error(("drive", "link"), _unknown_link(drive_name, names))
+    drive = index[drive_name]
+    dspec = sec.links[drive_name]
+    if dspec.kind != "bar":
+        raise task.error(("drive", "link"), f"the drive link '{drive_name}' must be a bar (a crank), not a slider")
+    if not any(0 in owner[p] for p in dspec.points):
+        raise task.error(("drive", "link"), f"the drive link '{drive_name}' has no ground pivot: one of its points "
+                         f"{dspec.points} must be listed under mechanism.ground")
+    # second pass: sliders' guides, centres of mass
+    final: list[Link] = []
+    for lk in links:
+        spec = sec.links[lk.name]
+        lp = P + ("links", lk.name)
+        guide = None
+        if spec.kind == "slider":
+            g = spec.guide
+            if g.link is not None:
+                if g.link not in index:
+                    raise task.error(lp + ("guide", "link"), _unknown_link(g.link, names))
+                if g.link == lk.name:
+                    raise task.error(lp + ("guide", "link"), "a slider cannot slide on itself")
+                guide = Guide(link=g.link, point=None, angle=float(g.angle or 0.0), offset=float(g.offset))
+            else:
+                if isinstance(g.through, str):
+                    if g.through not in sec.ground:
+                        raise task.error(lp + ("guide", "through"),
+                                         f"'{g.through}' is not a ground point (fixed guides pass through "
+                                         f"ground points or [x, y])")
+                    pt = sec.ground[g.through]
+                else:
+                    pt = g.through
+                guide = Guide(link=None, point=(float(pt[0]), float(pt[1])), angle=float(g.angle), offset=0.0)
+        # centre of mass
+        if spec.com is None:
+            if lk.index == drive:
+                piv = next(p for p in lk.local if 0 in owner[p])
+                com = lk.local[piv]
+            elif spec.kind == "bar":
+                com = (float(spec.length) / 2, 0.0)
+            else:
+                com = (0.0, 0.0)
+        elif isinstance(spec.com, str):
+            if spec.com not in lk.local:
+                raise task.error(lp + ("com",), f"'{spec.com}' is not a point of link '{lk.name}' "
+                                 f"(its points: {', '.join(lk.local)})")
+            com = lk.local[spec.com]
+        else:
+            com = (float(spec.com[0]), float(spec.com[1]))
+        final.append(Link(name=lk.name, index=lk.index, kind=lk.kind, local=lk.local, mass=lk.mass, J=lk.J,
+                          com=com, guide=guide, length=lk.length))
+    links = final
+    # joints
+    joints: list[Joint] = []
+    for pt, owners in owner.items():
+        if len(owners) < 2:
+            continue
+        first = min(owners)
+        for o in sorted(owners):
+            if o != first:
+                joints.append(Joint("R", first, o, pt))
+    for lk in links:
+        if lk.kind == "slider":
+            gi = 0 if lk.guide.link is None else index[lk.guide.link]
+            a, b = sorted((gi, lk.index))
+            joints.append(Joint("P", a, b, None, slider=lk.index))
+    # every moving link must be connected to something
+    for lk in links:
+        if not any(lk.index in (j.a, j.b) for j in joints):
+            raise task.error(P + ("links", lk.name), f"link '{lk.name}' shares no point with any other link or "
+                             f"the ground")
+    # a point named in assembly must exist
+    for pt in sec.assembly:
+        if pt not in owner:
+            raise task.error(P + ("assembly", pt), f"assembly hint for unknown point '{pt}'")
+    # S<i> names must not collide with user point names carried by other links
+    for lk in links:
+        s = f"S{lk.index}"
+        if s in owner and owner[s] != [lk.index]:
+            raise task.error(P + ("links", lk.name), f"point name '{s}' is reserved for the centre of mass of "
+                             f"link {lk.index}")
+    return Mechanism(ground={k: (float(v[0]), float(v[1])) for k, v in sec.ground.items()},
+                     links=links, joints=joints, drive=drive, owner=owner,
+                     assembly={k: (float(v[0]), float(v[1])) for k, v in sec.assembly.items()})
+
+
+def _unknown_link(name: str, names: list[str]) -> str:
+    import difflib
+    close = difflib.get_close_matches(name, names, n=1)
+    hint = f"; did you mean '{close[0]}'?" if close else f"; links: {', '.join(names)}"
+    return f"no link named '{name}'{hint}"
+
+
+def rotate(u: float, v: float, ang: float) -> tuple[float, float]:
+    c, s = math.cos(ang), math.sin(ang)
+    return (c * u - s * v, s * u + c * v)

@@ -1,0 +1,512 @@
+"""The task model: one variant of the course project, validated once.
+
+Pydantic models for every section of SPEC 1. Quantities are converted to SI floats
+(angles in degrees) at validation. Unknown keys are errors with a "did you mean".
+:func:`load_task` reads a YAML file (or a dict) and raises :class:`TaskError` naming
+the file, line, column and field of every problem.
+"""
+from __future__ import annotations
+
+import difflib
+import re
+from pathlib import Path
+from typing import Any, Literal, Union
+
+from pydantic import (BaseModel, ConfigDict, Field, PrivateAttr, ValidationError,
+                      field_validator, model_validator)
+
+from .errors import TaskError
+from .units import (Angle, AngularSpeed, Area, Density, Force, ForceOrPressure, Inertia,
+                    Length, Mass, MomentQ, Ratio)
+
+Point2 = tuple[float, float]
+
+_UNKNOWN = re.compile(r"unknown key '([^']+)'")
+
+
+class _Model(BaseModel):
+    """Base: unknown keys are errors with a suggestion."""
+
+    model_config = ConfigDict(extra="forbid", populate_by_name=True, frozen=False)
+
+    @model_validator(mode="before")
+    @classmethod
+    def _unknown_keys(cls, data: Any) -> Any:
+        if isinstance(data, dict):
+            allowed: list[str] = []
+            for name, f in cls.model_fields.items():
+                allowed.append(f.alias or name)
+            for key in data:
+                if not isinstance(key, str):
+                    raise ValueError(f"unknown key '{key}' (keys are names; "
+                                     f"allowed: {', '.join(allowed)})")
+                if key not in allowed:
+                    close = difflib.get_close_matches(key, allowed, n=1, cutoff=0.6)
+                    hint = f"; did you mean '{close[0]}'?" if close else f"; allowed: {', '.join(allowed)}"
+                    raise ValueError(f"unknown key '{key}'{hint}")
+        return data
+
+
+def _pair(v: Any, what: str = "coordinates") -> Any:
+    if isinstance(v, (list, tuple)) and len(v) != 2:
+        raise ValueError(f"expected two {what} [x, y], got {len(v)} values")
+    return v
+
+
+LengthPair = tuple[Length, Length]
+
+
+# ---------------------------------------------------------------- mechanism
+class GuideSpec(_Model):
+    """The line a slider translates along: fixed ({through, angle}) or on a link."""
+
+    through: Union[str, LengthPair, None] = Field(None, description="fixed guide: a point name or [x, y] on the line")
+    angle: Angle | None = Field(None, description="deg: from +x (fixed guide) or relative to the guide link (moving)")
+    link: str | None = Field(None, description="moving guide (slotted link): the link carrying the guide")
+    offset: Length = Field(0.0, description="moving guide: perpendicular shift to the left of the link's axis, m")
+
+    @model_validator(mode="after")
+    def _kind(self):
+        if self.link is None and self.through is None:
+            raise ValueError("a guide needs `through` (fixed guide) or `link` (moving guide)")
+        if self.link is not None and self.through is not None:
+            raise ValueError("a guide is either fixed (`through`) or on a link (`link`), not both")
+        if self.link is None and self.angle is None:
+            raise ValueError("a fixed guide needs `angle` (deg from +x)")
+        return self
+
+
+class LinkSpec(_Model):
+    """A bar link (``points: [P, Q]``, ``length``) or a slider (``slider: P``, ``guide``)."""
+
+    points: list[str] | None = Field(None, description="bar: its two pair points [P, Q]")
+    length: Length | None = Field(None, description="bar: |PQ|, m")
+    extra: dict[str, LengthPair] = Field(default_factory=dict, description="extra points in local [u, v], m")
+    slider: str | None = Field(None, description="slider: its pin point")
+    guide: GuideSpec | None = None
+    mass: Mass = Field(0.0, ge=0)
+    J: Inertia = Field(0.0, ge=0, description="moment of inertia about the centre of mass, kg*m^2")
+    com: Union[str, LengthPair, None] = Field(None, description="centre of mass: local [u, v] or a point name")
+
+    @field_validator("points")
+    @classmethod
+    def _two_points(cls, v):
+        if v is not None and len(v) != 2:
+            raise ValueError(f"a bar has exactly two points [P, Q], got {len(v)}")
+        if v is not None and v[0] == v[1]:
+            raise ValueError("the two points of a bar must differ")
+        return v
+
+    @model_validator(mode="after")
+    def _kind(self):
+        if self.slider is None and self.points is None:
+            raise ValueError("a link needs `points: [P, Q]` (bar) or `slider: P` (block)")
+        if self.slider is not None and self.points is not None:
+            raise ValueError("a link is either a bar (`points`) or a slider (`slider`), not both")
+        if self.points is not None and self.length is None:
+            raise ValueError("a bar link needs `length`")
+        if self.length is not None and self.length <= 0:
+            raise ValueError("`length` must be positive")
+        if self.slider is not None and self.guide is None:
+            raise ValueError("a slider needs a `guide`")
+        if self.slider is not None and self.length is not None:
+            raise ValueError("a slider has no `length`")
+        return self
+
+    @property
+    def kind(self) -> str:
+        return "slider" if self.slider is not None else "bar"
+
+
+class MechanismSection(_Model):
+    ground: dict[str, LengthPair] = Field(..., description="fixed pivots: name -> [x, y], m")
+    links: dict[str, LinkSpec] = Field(..., description="moving links, numbered 1..n in this order")
+    assembly: dict[str, LengthPair] = Field(default_factory=dict,
+                                            description="rough coordinates of moving points at crank angle 0 deg")
+
+    @field_validator("links")
+    @classmethod
+    def _nonempty(cls, v):
+        if not v:
+            raise ValueError("at least one link is needed")
+        return v
+
+
+class DriveSection(_Model):
+    link: str
+    speed: AngularSpeed = Field(..., gt=0, description="mean angular speed (rad/s; or '50 rpm')")
+    direction: Literal["ccw", "cw"] = "ccw"
+    cycle: Literal[360, 720] = 360
+
+    @property
+    def sign(self) -> float:
+        return 1.0 if self.direction == "ccw" else -1.0
+
+    @property
+    def omega1(self) -> float:
+        return self.sign * self.speed
+
+
+class PositionsSection(_Model):
+    count: int = Field(12, ge=2, le=3600)
+    zero: Union[Literal["extreme"], Angle] = "extreme"
+    output: str | None = None
+    working: Literal["forward", "backward"] = "forward"
+    extra: list[Angle] = Field(default_factory=list)
+
+
+# ---------------------------------------------------------------- loads
+class DiagramSpec(_Model):
+    s: list[Ratio] | None = Field(None, description="relative stroke s/H in [0, 1]")
+    phi: list[Angle] | None = Field(None, description="crank angle over the cycle, deg")
+    value: list[ForceOrPressure]
+
+    @model_validator(mode="after")
+    def _axes(self):
+        x = self.s if self.s is not None else self.phi
+        if (self.s is None) == (self.phi is None):
+            raise ValueError("a diagram needs exactly one abscissa: `s` (relative stroke) or `phi` (crank angle)")
+        if len(x) != len(self.value):
+            raise ValueError(f"abscissa and `value` differ in length ({len(x)} vs {len(self.value)})")
+        if len(x) < 2:
+            raise ValueError("a diagram needs at least two points")
+        if any(b < a for a, b in zip(x, x[1:])):
+            raise ValueError("the abscissa must be non-decreasing")
+        if self.s is not None and (min(self.s) < 0 or max(self.s) > 1):
+            raise ValueError("relative stroke `s` must lie in [0, 1]")
+        return self
+
+
+class ForceSpec(_Model):
+    on: str = Field(..., description="the link the load acts on")
+    kind: Literal["resistance", "driving"] | None = None
+    stroke: Literal["working", "idle", "both"] = "working"
+    magnitude: ForceOrPressure | None = None
+    diagram: DiagramSpec | None = None
+    area: Area | None = Field(None, gt=0)
+    at: Union[str, LengthPair, None] = None
+    direction: Angle | None = None
+    moment: MomentQ | None = None
+
+    @model_validator(mode="after")
+    def _what(self):
+        given = [k for k in ("magnitude", "diagram", "moment") if getattr(self, k) is not None]
+        if len(given) != 1:
+            raise ValueError("a load needs exactly one of `magnitude`, `diagram` (a force) or `moment` (a couple)"
+                             + (f"; got {', '.join(given)}" if given else ""))
+        if self.diagram is not None and self.diagram.phi is not None and self.kind is not None:
+            pass
+        return self
+
+
+class LoadsSection(_Model):
+    gravity: bool = False
+    forces: list[ForceSpec] = Field(default_factory=list)
+
+
+class FrictionSpec(_Model):
+    pin_radius: Length = Field(..., gt=0)
+    f: float = Field(..., ge=0, le=1)
+
+
+class KinetostaticsSection(_Model):
+    positions: Union[Literal["all"], list[int]] = "all"
+    inertia: bool = True
+    balance: str | None = None
+    friction: FrictionSpec | None = None
+    motion: Union[Literal["constant"], Literal[True]] = "constant"
+
+
+# ---------------------------------------------------------------- flywheel
+class ShapeSpec(_Model):
+    type: Literal["disk", "rim"] = "disk"
+    density: Density = Field(7800.0, gt=0)
+    width_ratio: Ratio = Field(0.1, gt=0)
+
+
+class FlywheelSection(_Model):
+    delta: Ratio = Field(..., gt=0, lt=1)
+    constant: Literal["driving", "resistance"] = "driving"
+    method: Literal["energy-mass", "merzalov", "exact"] = "energy-mass"
+    resolution: int = Field(360, ge=12, le=100000)
+    shape: ShapeSpec = Field(default_factory=ShapeSpec)
+    reduced_J: Inertia = Field(0.0, ge=0, description="extra constant reduced inertia (rotor, gears), kg*m^2")
+
+
+# ---------------------------------------------------------------- cam
+class PhasesSpec(_Model):
+    rise: Angle = Field(..., gt=0)
+    far_dwell: Angle = Field(0.0, ge=0)
+    return_: Angle = Field(..., alias="return", gt=0)
+    near_dwell: Angle | None = Field(None, ge=0)
+
+    @model_validator(mode="after")
+    def _sum(self):
+        used = self.rise + self.far_dwell + self.return_
+        if self.near_dwell is None:
+            if used > 360 + 1e-9:
+                raise ValueError(f"rise + far_dwell + return = {used:g} deg exceeds 360")
+            self.near_dwell = max(0.0, 360.0 - used)
+        elif abs(used + self.near_dwell - 360) > 1e-6:
+            raise ValueError(f"phases sum to {used + self.near_dwell:g} deg, not 360")
+        return self
+
+
+LawName = Literal["constant_velocity", "parabolic", "cosine", "sine", "poly345",
+                  "linear_decreasing", "trapezoidal"]
+
+
+class LawsSpec(_Model):
+    rise: LawName = "cosine"
+    return_: LawName = Field("cosine", alias="return")
+
+
+class LimitsSpec(_Model):
+    rise: Angle = Field(..., gt=0, lt=90)
+    return_: Angle = Field(..., alias="return", gt=0, lt=90)
+
+
+class CamSection(_Model):
+    follower: Literal["translating", "rocker"] = "translating"
+    stroke: float = Field(..., gt=0, description="m (translating) or deg (rocker)")
+    rocker_length: Length | None = Field(None, gt=0)
+    offset: Union[Literal["auto"], Length] = 0.0
+    phases: PhasesSpec
+    laws: LawsSpec = Field(default_factory=LawsSpec)
+    pressure_angle: Union[LimitsSpec, Angle, None] = None
+    transmission_angle: Union[LimitsSpec, Angle, None] = None
+    swing: Literal["with", "against", "auto"] = "auto"
+    roller: Union[Literal["auto"], Length] = "auto"
+    rotation: Literal["ccw", "cw"] = "ccw"
+    speed: AngularSpeed | None = Field(None, gt=0)
+
+    @field_validator("stroke", mode="before")
+    @classmethod
+    def _stroke(cls, v, info):
+        # the unit depends on the follower: checked after, here accept numbers and unit strings
+        return v
+
+    @model_validator(mode="before")
+    @classmethod
+    def _stroke_units(cls, data):
+        if isinstance(data, dict) and isinstance(data.get("stroke"), str):
+            from .units import convert
+            kind = "angle" if data.get("follower") == "rocker" else "length"
+            data = dict(data)
+            data["stroke"] = convert(data["stroke"], kind)
+        return data
+
+    @model_validator(mode="after")
+    def _limits(self):
+        if self.pressure_angle is not None and self.transmission_angle is not None:
+            raise ValueError("give `pressure_angle` or `transmission_angle`, not both")
+        lim = self.pressure_angle
+        if lim is None and self.transmission_angle is not None:
+            t = self.transmission_angle
+            if isinstance(t, LimitsSpec):
+                lim = LimitsSpec(rise=90 - t.rise, **{"return": 90 - t.return_})
+            else:
+                lim = 90 - t
+        if lim is None:
+            lim = 30.0 if self.follower == "translating" else 45.0
+        if not isinstance(lim, LimitsSpec):
+            if not 0 < lim < 90:
+                raise ValueError("the allowed pressure angle must lie in (0, 90) deg")
+            lim = LimitsSpec(rise=lim, **{"return": lim})
+        self.pressure_angle = lim
+        if self.follower == "rocker":
+            if self.rocker_length is None:
+                raise ValueError("a rocker follower needs `rocker_length`")
+            if self.offset not in (0.0, "auto"):
+                raise ValueError("`offset` is for a translating follower")
+            if self.stroke >= 180:
+                raise ValueError("a rocker swing (`stroke`, deg) must be below 180")
+        return self
+
+
+# ---------------------------------------------------------------- gears
+class GearsSection(_Model):
+    m: Length = Field(..., gt=0, description="module (give '3 mm')")
+    z: tuple[int, int]
+    x: Union[Literal["auto"], tuple[float, float]] = (0.0, 0.0)
+    alpha: Angle = Field(20.0, gt=0, lt=45)
+    ha: float = Field(1.0, gt=0)
+    c: float = Field(0.25, ge=0)
+    rule: Literal["no_undercut", "equal_sliding", "table"] = "equal_sliding"
+
+    @field_validator("z")
+    @classmethod
+    def _z(cls, v):
+        if min(v) < 5:
+            raise ValueError("tooth numbers must be at least 5")
+        return v
+
+
+class PlanetarySection(_Model):
+    scheme: str
+    ratio: float
+    satellites: int = Field(3, ge=1, le=12)
+    tolerance: Ratio = Field(0.05, gt=0)
+    m: Length | None = Field(None, gt=0)
+    z_min: int = Field(17, ge=5)
+    z_max: int = Field(150, ge=10)
+
+    @field_validator("ratio")
+    @classmethod
+    def _ratio(cls, v):
+        if v == 0:
+            raise ValueError("the ratio cannot be zero")
+        return v
+
+
+class StudentSpec(BaseModel):
+    model_config = ConfigDict(extra="allow")
+    name: str | None = None
+    group: str | None = None
+
+
+class Task(_Model):
+    schema_: Literal["tmm/1"] = Field(..., alias="schema")
+    title: str = ""
+    variant: Union[int, str, None] = None
+    student: StudentSpec | None = None
+    mechanism: MechanismSection | None = None
+    drive: DriveSection | None = None
+    positions: PositionsSection | None = None
+    loads: LoadsSection | None = None
+    kinetostatics: KinetostaticsSection | None = None
+    flywheel: FlywheelSection | None = None
+    cam: CamSection | None = None
+    gears: GearsSection | None = None
+    planetary: PlanetarySection | None = None
+    answers: dict[str, float] = Field(default_factory=dict)
+    tolerance: dict[str, Ratio] = Field(default_factory=dict)
+
+    _file: str | None = PrivateAttr(None)
+    _marks: dict = PrivateAttr(default_factory=dict)
+
+    @field_validator("schema_", mode="before")
+    @classmethod
+    def _schema(cls, v):
+        if v != "tmm/1":
+            raise ValueError(f"unsupported schema {v!r}; this tool reads 'tmm/1'")
+        return v
+
+    @model_validator(mode="after")
+    def _sections(self):
+        needs_mech = [s for s in ("drive", "positions", "loads", "kinetostatics", "flywheel")
+                      if getattr(self, s) is not None]
+        if self.mechanism is not None and self.drive is None:
+            raise ValueError("a `mechanism` needs a `drive` section (link, speed, direction)")
+        if self.mechanism is None and needs_mech:
+            raise ValueError(f"section(s) {', '.join(needs_mech)} need a `mechanism`")
+        if self.flywheel is not None and self.loads is None:
+            raise ValueError("`flywheel` needs `loads` (the forces whose work it evens out)")
+        return self
+
+    # --------------------------------------------------------------------
+    @property
+    def file(self) -> str | None:
+        return self._file
+
+    @property
+    def name(self) -> str:
+        return Path(self._file).stem if self._file else (self.title or "task")
+
+    def line_of(self, path: tuple) -> tuple[int | None, int | None]:
+        """(line, column) of a field path, or of its nearest given ancestor."""
+        p = tuple(path)
+        while p:
+            if p in self._marks:
+                return self._marks[p]
+            p = p[:-1]
+        return self._marks.get((), (None, None))
+
+    def error(self, path: tuple, message: str) -> TaskError:
+        """A TaskError pointing at a field of this task (used by later checks)."""
+        line, col = self.line_of(path)
+        return TaskError(message, file=self._file, issues=[(_dotted(path), line, col, message)])
+
+
+def _dotted(path) -> str:
+    out = ""
+    for p in path:
+        if isinstance(p, int):
+            out += f"[{p}]"
+        else:
+            out += ("." if out else "") + str(p)
+    return out
+
+
+_MSG_CLEAN = [
+    (re.compile(r"^Value error, "), ""),
+    (re.compile(r"^Assertion failed, "), ""),
+]
+
+
+def _issue_from_error(err: dict, marks: dict) -> tuple[str, int | None, int | None, str]:
+    loc = [p for p in err["loc"]]
+    # pydantic puts union member / validator tags into loc: drop the non-field ones
+    clean: list = []
+    for p in loc:
+        if isinstance(p, str) and (p.startswith("function-") or p in ("literal['extreme']", "literal['auto']",
+                                                                      "literal['all']", "literal['constant']")
+                                   or p.startswith("tuple[") or p.startswith("literal[") or p == "str"
+                                   or p == "list[int]" or p == "LimitsSpec" or p == "float" or p == "bool"
+                                   or p.endswith("-after]") or p.endswith("-before]")):
+            continue
+        clean.append(p)
+    msg = err["msg"]
+    for rx, rep in _MSG_CLEAN:
+        msg = rx.sub(rep, msg)
+    m = _UNKNOWN.search(msg)
+    if m:
+        clean.append(m.group(1))
+    if err["type"] == "missing":
+        msg = "required field is missing"
+    elif err["type"] == "literal_error":
+        msg = f"{msg}; got {err.get('input')!r}"
+    path = tuple(clean)
+    if path and path[0] == "schema_":
+        path = ("schema",) + path[1:]
+    # map `return_` back to the YAML spelling
+    path = tuple("return" if p == "return_" else p for p in path)
+    line = col = None
+    p = path
+    while True:
+        if p in marks:
+            line, col = marks[p]
+            break
+        if not p:
+            break
+        p = p[:-1]
+    return _dotted(path), line, col, msg
+
+
+def load_task(source: Union[str, Path, dict], *, text: str | None = None) -> Task:
+    """Read and validate a task. ``source`` is a path to a YAML file or a dict of the
+    same shape. Raises :class:`TaskError` with file, line and field of every problem."""
+    if isinstance(source, dict):
+        data, marks, file = source, {}, None
+    else:
+        from .yamlload import load_yaml
+        file = str(source)
+        data, marks = load_yaml(source, text=text)
+    if not isinstance(data, dict):
+        raise TaskError("the task file must be a mapping of sections (schema: tmm/1, ...)", file=file,
+                        issues=[("", 1, 1, "the task file must be a mapping of sections (schema: tmm/1, ...)")])
+    try:
+        task = Task.model_validate(data)
+    except ValidationError as exc:
+        issues = []
+        seen = set()
+        for err in exc.errors(include_url=False):
+            issue = _issue_from_error(err, marks)
+            if issue[0:1] + issue[3:] in seen:
+                continue
+            seen.add(issue[0:1] + issue[3:])
+            issues.append(issue)
+        raise TaskError("invalid task", file=file, issues=issues) from None
+    task._file = file
+    task._marks = marks
+    return task

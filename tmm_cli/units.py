@@ -1,0 +1,130 @@
+"""Quantities with units for the task model.
+
+A number is taken in the field's base unit (SI, angles in degrees). A string carries
+its own unit and is converted with pint (``"300 mm"``, ``"50 rpm"``, ``"20 deg"``).
+Dimensionless fields also accept fractions (``1/18``). pint is imported only when a
+string with a unit is met, so plain-number tasks validate fast.
+"""
+from __future__ import annotations
+
+import math
+import re
+from fractions import Fraction
+from functools import lru_cache
+from typing import Annotated, Any
+
+from pydantic import BeforeValidator
+
+# field kind -> (pint unit the value is converted to, words for messages)
+KINDS: dict[str, tuple[str, str]] = {
+    "length": ("m", "a length (m, mm, cm...)"),
+    "mass": ("kg", "a mass (kg, g, t)"),
+    "inertia": ("kg*m**2", "a moment of inertia (kg*m^2)"),
+    "angle": ("degree", "an angle (deg, rad)"),
+    "speed": ("rad/s", "an angular speed (rad/s, rpm)"),
+    "force": ("N", "a force (N, kN)"),
+    "moment": ("N*m", "a moment of force (N*m)"),
+    "pressure": ("Pa", "a pressure (Pa, kPa, MPa, bar)"),
+    "area": ("m**2", "an area (m^2, mm^2, cm^2)"),
+    "density": ("kg/m**3", "a density (kg/m^3)"),
+    "force_or_pressure": ("", "a force (N) or, with `area`, a pressure (Pa)"),
+    "dimensionless": ("", "a plain number or a fraction such as 1/18"),
+}
+
+_FRACTION = re.compile(r"^\s*([-+]?\d+(?:\.\d*)?)\s*/\s*(\d+(?:\.\d*)?)\s*$")
+
+
+@lru_cache(maxsize=1)
+def ureg():
+    import pint  # lazy: ~0.3 s import
+
+    reg = pint.UnitRegistry(cache_folder=":auto:")
+    return reg
+
+
+def _as_float(x: Any) -> float:
+    if isinstance(x, bool):
+        raise ValueError("expected a number, got a boolean")
+    v = float(x)
+    if not math.isfinite(v):
+        raise ValueError("expected a finite number")
+    return v
+
+
+def convert(value: Any, kind: str) -> float:
+    """Convert a task value of the given field kind to a float in the base unit."""
+    unit, words = KINDS[kind]
+    if isinstance(value, bool) or value is None:
+        raise ValueError(f"expected {words}, got {value!r}")
+    if isinstance(value, (int, float)):
+        return _as_float(value)
+    if not isinstance(value, str):
+        raise ValueError(f"expected {words}, got {type(value).__name__}")
+    text = value.strip()
+    m = _FRACTION.match(text)
+    if m:
+        den = float(m.group(2))
+        if den == 0:
+            raise ValueError("division by zero in a fraction")
+        return float(m.group(1)) / den
+    try:
+        return _as_float(text)
+    except ValueError:
+        pass
+    if kind in ("dimensionless", "force_or_pressure"):
+        if kind == "force_or_pressure":
+            # a force or a pressure: accept either dimension, converted to SI
+            q = _parse(text, words)
+            for target in ("N", "Pa"):
+                try:
+                    return _as_float(q.to(target).magnitude)
+                except Exception:
+                    continue
+            raise ValueError(f"'{text}' is not {words}")
+        raise ValueError(f"expected {words}, got '{text}'")
+    q = _parse(text, words)
+    try:
+        return _as_float(q.to(unit).magnitude)
+    except Exception:
+        raise ValueError(f"'{text}' is not {words}: its unit does not convert to {unit.replace('**', '^')}") from None
+
+
+def _parse(text: str, words: str):
+    import pint
+
+    reg = ureg()
+    try:
+        q = reg.Quantity(text)
+    except (pint.errors.UndefinedUnitError, pint.errors.DefinitionSyntaxError) as exc:
+        raise ValueError(f"unknown unit in '{text}' ({exc}); expected {words}") from None
+    except Exception:
+        raise ValueError(f"cannot read '{text}' as {words}") from None
+    if not isinstance(q, reg.Quantity):
+        q = reg.Quantity(q)
+    return q
+
+
+def fraction_text(x: float) -> str:
+    """1/18 for 0.0555..., used in reports."""
+    f = Fraction(x).limit_denominator(1000)
+    if f.numerator == 1 and abs(float(f) - x) < 1e-12:
+        return f"1/{f.denominator}"
+    return f"{x:g}"
+
+
+def _q(kind: str):
+    return BeforeValidator(lambda v: convert(v, kind))
+
+
+Length = Annotated[float, _q("length")]
+Mass = Annotated[float, _q("mass")]
+Inertia = Annotated[float, _q("inertia")]
+Angle = Annotated[float, _q("angle")]
+AngularSpeed = Annotated[float, _q("speed")]
+Force = Annotated[float, _q("force")]
+MomentQ = Annotated[float, _q("moment")]
+Pressure = Annotated[float, _q("pressure")]
+Area = Annotated[float, _q("area")]
+Density = Annotated[float, _q("density")]
+Ratio = Annotated[float, _q("dimensionless")]
+ForceOrPressure = Annotated[float, _q("force_or_pressure")]
