@@ -1,0 +1,178 @@
+"""The context object handed to every report section's ``build(ctx)``."""
+from __future__ import annotations
+
+import csv
+import io
+import math
+import os
+import tempfile
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from . import figures
+from .i18n import translate
+
+
+def templates_dir() -> Path:
+    """Templates: ``tmm_cli/templates`` in an installed wheel, else ``<repo>/templates``."""
+    pkg = Path(__file__).resolve().parent.parent / "templates"
+    if pkg.is_dir():
+        return pkg
+    return Path(__file__).resolve().parents[2] / "templates"
+
+
+def _atomic_write(path: Path, data: bytes | str) -> None:
+    try:
+        from tmm_cli.io import atomic_write
+    except ImportError:  # the shared helper not present (stand-alone use of the report)
+        atomic_write = None
+    if atomic_write is not None:
+        atomic_write(path, data)
+        return
+    path = Path(path)
+    raw = data.encode("utf-8") if isinstance(data, str) else data
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix="." + path.name, suffix=".tmp")
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(raw)
+        os.replace(tmp, path)
+    except BaseException:
+        try:
+            os.unlink(tmp)
+        except OSError:
+            pass
+        raise
+
+
+def fmt(x: Any, digits: int = 4) -> str:
+    """Number for a table: `digits` significant digits, no exponent for
+    1e-4 <= |x| < 1e7, '—' for None/NaN, '-0' shown as '0'."""
+    if x is None:
+        return "—"
+    if isinstance(x, bool):
+        return str(x).lower()
+    if isinstance(x, int):
+        return str(x)
+    try:
+        v = float(x)
+    except (TypeError, ValueError):
+        return str(x)
+    if not math.isfinite(v):
+        return "—"
+    if v == 0:
+        return "0"
+    a = abs(v)
+    if a < 1e-4 or a >= 1e7:
+        return f"{v:.{max(digits - 1, 0)}e}"
+    decimals = max(digits - 1 - int(math.floor(math.log10(a))), 0)
+    s = f"{v:.{decimals}f}"
+    if float(s) == 0:
+        return "0"
+    return s
+
+
+def fmt_fixed(x: Any, decimals: int = 2) -> str:
+    """Number with a fixed count of decimals (plan lengths in mm, angles)."""
+    if x is None:
+        return "—"
+    try:
+        v = float(x)
+    except (TypeError, ValueError):
+        return str(x)
+    if not math.isfinite(v):
+        return "—"
+    s = f"{v:.{decimals}f}"
+    if float(s) == 0:
+        s = f"{0.0:.{decimals}f}"
+    return s
+
+
+@dataclass
+class ReportContext:
+    """What a section sees.
+
+    results  -- the results.json dict (the only source of numbers)
+    task     -- the validated Task (names, task data); may be None
+    lang     -- 'en' | 'ru'
+    out_dir  -- directory of the report; CSV/figure files go beside it
+    env      -- the Jinja environment over templates/
+    written  -- paths of the files written so far (returned by render)
+    """
+    results: dict
+    task: Any
+    lang: str
+    out_dir: Path
+    env: Any
+    written: list[Path] = field(default_factory=list)
+    figures = figures
+
+    # -- text
+    def t(self, key: str, **kw) -> str:
+        return translate(key, self.lang, **kw)
+
+    @staticmethod
+    def fmt(x: Any, digits: int = 4) -> str:
+        return fmt(x, digits)
+
+    @staticmethod
+    def fmt_fixed(x: Any, decimals: int = 2) -> str:
+        return fmt_fixed(x, decimals)
+
+    def sense(self, w: float | None, tiny: float = 1e-9) -> str:
+        """Sense of rotation in words: ccw for w > 0, cw for w < 0."""
+        if w is None or not math.isfinite(w) or abs(w) <= tiny:
+            return self.t("common.none")
+        return self.t("common.ccw") if w > 0 else self.t("common.cw")
+
+    # -- templates / figures
+    def render(self, template: str, **kw) -> str:
+        kw.setdefault("t", self.t)
+        kw.setdefault("fmt", fmt)
+        kw.setdefault("fmt_fixed", fmt_fixed)
+        kw.setdefault("lang", self.lang)
+        kw.setdefault("results", self.results)
+        kw.setdefault("task", self.task)
+        return self.env.get_template(template).render(**kw)
+
+    def svg(self, fig):
+        """matplotlib figure -> inline SVG (markup-safe), closes the figure."""
+        from markupsafe import Markup
+        return Markup(figures.svg(fig))
+
+    # -- files beside the report
+    def write_file(self, name: str, data: bytes | str) -> Path:
+        path = Path(self.out_dir) / name
+        path.parent.mkdir(parents=True, exist_ok=True)
+        _atomic_write(path, data)
+        if path not in self.written:
+            self.written.append(path)
+        return path
+
+    def write_csv(self, name: str, header: list[str], rows) -> Path:
+        """CSV (comma, UTF-8, full float precision; None -> empty cell)."""
+        buf = io.StringIO()
+        w = csv.writer(buf, lineterminator="\n")
+        w.writerow(header)
+        for row in rows:
+            w.writerow(["" if v is None else (repr(float(v)) if isinstance(v, float) else v)
+                        for v in row])
+        return self.write_file(name, buf.getvalue())
+
+    # -- common look-ups
+    def link_names(self) -> list[str]:
+        """Link names in task order (index 1..n)."""
+        links = (self.results.get("structure") or {}).get("links")
+        if links:
+            return [l["name"] for l in sorted(links, key=lambda l: l["index"])]
+        mech = getattr(self.task, "mechanism", None)
+        if mech is not None and getattr(mech, "links", None):
+            return list(mech.links.keys())
+        kin = self.results.get("kinematics") or []
+        return list(kin[0]["links"].keys()) if kin else []
+
+    def link_index(self, name: str) -> int:
+        try:
+            return self.link_names().index(name) + 1
+        except ValueError:
+            return 0
