@@ -13,7 +13,7 @@ from fractions import Fraction
 from functools import lru_cache
 from typing import Annotated, Any
 
-from pydantic import BeforeValidator
+from pydantic import BeforeValidator, WithJsonSchema
 
 # field kind -> (pint unit the value is converted to, words for messages)
 KINDS: dict[str, tuple[str, str]] = {
@@ -116,15 +116,29 @@ def _q(kind: str):
     return BeforeValidator(lambda v: convert(v, kind))
 
 
-Length = Annotated[float, _q("length")]
-Mass = Annotated[float, _q("mass")]
-Inertia = Annotated[float, _q("inertia")]
-Angle = Annotated[float, _q("angle")]
-AngularSpeed = Annotated[float, _q("speed")]
-Force = Annotated[float, _q("force")]
-MomentQ = Annotated[float, _q("moment")]
-Pressure = Annotated[float, _q("pressure")]
-Area = Annotated[float, _q("area")]
-Density = Annotated[float, _q("density")]
-Ratio = Annotated[float, _q("dimensionless")]
-ForceOrPressure = Annotated[float, _q("force_or_pressure")]
+def _schema(kind: str) -> WithJsonSchema:
+    unit, words = KINDS[kind]
+    base = unit.replace("**", "^") or "1"
+    return WithJsonSchema({"anyOf": [
+        {"type": "number", "description": f"in {base}" if unit != "degree" else "in degrees"},
+        {"type": "string", "description": f"{words} with its unit, e.g. '{_EXAMPLES.get(kind, '')}'"
+         if kind != "dimensionless" else "a fraction such as '1/18'"}]})
+
+
+_EXAMPLES = {"length": "300 mm", "mass": "2.5 kg", "inertia": "0.15 kg*m^2", "angle": "20 deg",
+             "speed": "50 rpm", "force": "3 kN", "moment": "10 N*m", "pressure": "10 MPa",
+             "area": "78.5 cm^2", "density": "7800 kg/m^3", "force_or_pressure": "3 kN"}
+
+
+Length = Annotated[float, _q("length"), _schema("length")]
+Mass = Annotated[float, _q("mass"), _schema("mass")]
+Inertia = Annotated[float, _q("inertia"), _schema("inertia")]
+Angle = Annotated[float, _q("angle"), _schema("angle")]
+AngularSpeed = Annotated[float, _q("speed"), _schema("speed")]
+Force = Annotated[float, _q("force"), _schema("force")]
+MomentQ = Annotated[float, _q("moment"), _schema("moment")]
+Pressure = Annotated[float, _q("pressure"), _schema("pressure")]
+Area = Annotated[float, _q("area"), _schema("area")]
+Density = Annotated[float, _q("density"), _schema("density")]
+Ratio = Annotated[float, _q("dimensionless"), _schema("dimensionless")]
+ForceOrPressure = Annotated[float, _q("force_or_pressure"), _schema("force_or_pressure")]

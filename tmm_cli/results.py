@@ -1,0 +1,73 @@
+"""The results file (SPEC 3): JSON with plain numbers, NaN/inf never written."""
+from __future__ import annotations
+
+import json
+import math
+import re
+from typing import Any
+
+
+def clean(obj: Any) -> Any:
+    """Plain JSON types: numpy scalars/arrays to Python, NaN and inf to None."""
+    if isinstance(obj, dict):
+        return {str(k): clean(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [clean(v) for v in obj]
+    if isinstance(obj, bool) or obj is None or isinstance(obj, str):
+        return obj
+    if isinstance(obj, int):
+        return obj
+    if isinstance(obj, float):
+        return obj if math.isfinite(obj) else None
+    tolist = getattr(obj, "tolist", None)
+    if tolist is not None:
+        return clean(tolist())
+    if hasattr(obj, "to_dict"):
+        return clean(obj.to_dict())
+    return str(obj)
+
+
+def dumps(results: dict) -> str:
+    return json.dumps(clean(results), indent=1, ensure_ascii=False, allow_nan=False) + "\n"
+
+
+_TOKEN = re.compile(r"([^.\[\]]+)|\[(-?\d+)\]")
+
+
+def parse_path(path: str) -> list[str | int]:
+    """'kinematics[2].points.B.v' -> ['kinematics', 2, 'points', 'B', 'v']."""
+    out: list[str | int] = []
+    pos = 0
+    for m in _TOKEN.finditer(path):
+        if m.start() != pos and path[pos:m.start()] != ".":
+            raise KeyError(f"bad path '{path}' near '{path[pos:m.start()]}'")
+        out.append(m.group(1) if m.group(1) is not None else int(m.group(2)))
+        pos = m.end()
+    if pos != len(path) or not out:
+        raise KeyError(f"bad path '{path}'")
+    return out
+
+
+def lookup(results: dict, path: str) -> Any:
+    """The value at a path into results.json. In lists of position entries
+    (kinematics, kinetostatics) `[i]` selects the entry whose `index` is i;
+    elsewhere it is the list index."""
+    cur: Any = results
+    for tok in parse_path(path):
+        if isinstance(tok, int):
+            if not isinstance(cur, list):
+                raise KeyError(f"'{path}': [{tok}] applied to a non-list")
+            if cur and isinstance(cur[0], dict) and "index" in cur[0]:
+                hit = [e for e in cur if e.get("index") == tok]
+                if not hit:
+                    raise KeyError(f"'{path}': no entry with index {tok}")
+                cur = hit[0]
+            else:
+                if not -len(cur) <= tok < len(cur):
+                    raise KeyError(f"'{path}': index {tok} out of range")
+                cur = cur[tok]
+        else:
+            if not isinstance(cur, dict) or tok not in cur:
+                raise KeyError(f"'{path}': no key '{tok}'")
+            cur = cur[tok]
+    return cur
