@@ -135,9 +135,9 @@ def validate(
     for f in task_files:
         try:
             task = _load(f)
-            if task.mechanism is not None and not no_assembly:
+            if task.mechanism is not None:
                 from .validation import check_feasible
-                check_feasible(task)
+                check_feasible(task, assembly=not no_assembly)
             typer.echo(f"{f}: ok")
         except TaskError as exc:
             _err(f"error: invalid task\n{exc.render()}")

@@ -68,9 +68,11 @@ def convert(value: Any, kind: str) -> float:
             raise ValueError("division by zero in a fraction")
         return float(m.group(1)) / den
     try:
-        return _as_float(text)
+        plain = float(text)
     except ValueError:
-        pass
+        plain = None
+    if plain is not None:
+        return _as_float(plain)
     if kind in ("dimensionless", "force_or_pressure"):
         if kind == "force_or_pressure":
             # a force or a pressure: accept either dimension, converted to SI

@@ -1,0 +1,129 @@
+"""Bad input: every kind gets a clear message naming file, line and field, exit 2,
+and no traceback (SPEC 2; issue 2: at least ten kinds)."""
+from __future__ import annotations
+
+import subprocess
+import sys
+import textwrap
+
+import pytest
+from typer.testing import CliRunner
+
+from tmm_cli.cli import app
+
+runner = CliRunner()
+
+GOOD_MECH = """\
+schema: tmm/1
+title: slider-crank
+mechanism:
+  ground: {O: [0, 0]}
+  links:
+    crank: {points: [O, A], length: 0.1, mass: 1}
+    rod: {points: [A, B], length: 0.4, mass: 2}
+    slider: {slider: B, guide: {through: O, angle: 0}, mass: 3}
+drive: {link: crank, speed: 100 rpm}
+"""
+
+
+def _validate(tmp_path, text, name="task.yaml", extra=()):
+    f = tmp_path / name
+    f.write_text(textwrap.dedent(text), encoding="utf-8")
+    res = runner.invoke(app, ["validate", *extra, str(f)])
+    return res, str(f)
+
+
+# (description, task text, expected line, expected fragments of the message)
+CASES = [
+    ("missing required field", GOOD_MECH.replace("drive: {link: crank, speed: 100 rpm}", "drive: {link: crank}"),
+     9, ["drive.speed", "required field is missing"]),
+    ("wrong unit", GOOD_MECH.replace("length: 0.4,", "length: 5 kg,"),
+     7, ["mechanism.links.rod.length", "is not a length"]),
+    ("unknown key with suggestion", GOOD_MECH.replace("mass: 2}", "mas: 2}"),
+     7, ["mechanism.links.rod.mas", "did you mean 'mass'"]),
+    ("unknown section", GOOD_MECH + "flywhel: {delta: 1/18}\n",
+     10, ["flywhel", "did you mean 'flywheel'"]),
+    ("bad enum value", GOOD_MECH.replace("speed: 100 rpm}", "speed: 100 rpm, direction: left}"),
+     9, ["drive.direction", "'ccw' or 'cw'"]),
+    ("negative mass", GOOD_MECH.replace("mass: 3}", "mass: -3}"),
+     8, ["mechanism.links.slider.mass", "greater than or equal to 0"]),
+    ("unknown unit", GOOD_MECH.replace("length: 0.1,", "length: 10 furlongz,"),
+     6, ["mechanism.links.crank.length", "unknown unit"]),
+    ("bad schema version", GOOD_MECH.replace("schema: tmm/1", "schema: tmm/9"),
+     1, ["schema", "unsupported schema"]),
+    ("drive link unknown", GOOD_MECH.replace("link: crank,", "link: crnk,"),
+     9, ["drive.link", "did you mean 'crank'"]),
+    ("point used by no link", GOOD_MECH.replace("ground: {O: [0, 0]}", "ground: {O: [0, 0], O2: [1, 1]}"),
+     4, ["mechanism.ground.O2", "used by no link"]),
+    ("bar without length", GOOD_MECH.replace("{points: [A, B], length: 0.4, mass: 2}", "{points: [A, B], mass: 2}"),
+     7, ["mechanism.links.rod", "needs `length`"]),
+    ("flywheel without loads", GOOD_MECH + "flywheel: {delta: 1/18}\n",
+     1, ["flywheel` needs `loads"]),
+    ("delta as a bad fraction", GOOD_MECH + "loads: {gravity: true}\nflywheel: {delta: 1/0}\n",
+     11, ["flywheel.delta", "division by zero"]),
+    ("cam phases over 360", "schema: tmm/1\ncam:\n  stroke: 0.02\n  phases: {rise: 200, far_dwell: 50, return: 200}\n",
+     4, ["cam.phases", "exceeds 360"]),
+    ("diagram lengths differ", GOOD_MECH + "loads:\n  forces:\n    - on: slider\n      diagram: {s: [0, 1], value: [1, 2, 3]}\n",
+     13, ["loads.forces[0].diagram", "differ in length"]),
+    ("guide through a non-ground point", GOOD_MECH.replace("through: O,", "through: A,"),
+     8, ["mechanism.links.slider.guide.through", "not a ground point"]),
+    ("duplicate key", GOOD_MECH.replace("title: slider-crank", "title: a\ntitle: b"),
+     3, ["duplicate key 'title'"]),
+    ("YAML syntax error", GOOD_MECH.replace("{O: [0, 0]}", "{O: [0, 0]"),
+     None, ["YAML syntax error"]),
+    ("com names a foreign point", GOOD_MECH.replace("mass: 2}", "mass: 2, com: O}"),
+     7, ["mechanism.links.rod.com", "not a point of link 'rod'"]),
+    ("not a mapping", "- just\n- a list\n", 1, ["must be a mapping"]),
+]
+
+
+@pytest.mark.parametrize("desc,text,line,frags", CASES, ids=[c[0] for c in CASES])
+def test_bad_input(tmp_path, desc, text, line, frags):
+    res, f = _validate(tmp_path, text, extra=("--no-assembly",))
+    assert res.exit_code == 2, (desc, res.output)
+    out = res.output
+    assert "Traceback" not in out
+    assert f in out, out
+    if line is not None:
+        assert f"{f}:{line}:" in out, out
+    for fr in frags:
+        assert fr in out, (fr, out)
+
+
+def test_missing_file(tmp_path):
+    res = runner.invoke(app, ["validate", str(tmp_path / "nope.yaml")])
+    assert res.exit_code == 2
+    assert "file not found" in res.output
+
+
+def test_real_process_exit_code_and_no_traceback(tmp_path):
+    f = tmp_path / "bad.yaml"
+    f.write_text(GOOD_MECH.replace("mass: 2}", "mas: 2}"), encoding="utf-8")
+    p = subprocess.run([sys.executable, "-m", "tmm_cli", "run", str(f), "--out", str(tmp_path / "o")],
+                       capture_output=True, text=True)
+    assert p.returncode == 2
+    assert "Traceback" not in p.stderr + p.stdout
+    assert f"{f}:7:" in p.stderr
+    assert not (tmp_path / "o").exists()  # nothing written for an invalid task
+
+
+def test_yaml_12_keys_stay_strings(tmp_path):
+    """`on:` must stay the key 'on' (YAML 1.1 would make it True); `yes` stays a string."""
+    from tmm_cli.yamlload import load_yaml
+    data, marks = load_yaml("x.yaml", text="on: yes\noff: no\nt: true\nf: False\nn: 1:30\nx: 0o17\n")
+    assert data == {"on": "yes", "off": "no", "t": True, "f": False, "n": "1:30", "x": 15}
+    assert marks[("off",)] == (2, 1)
+
+
+def test_force_on_key_parses(tmp_path):
+    from tmm_cli import load_task
+    t = load_task(tmp_path / "x.yaml" if False else {
+        "schema": "tmm/1",
+        "mechanism": {"ground": {"O": [0, 0]}, "links": {
+            "crank": {"points": ["O", "A"], "length": 0.1},
+            "rod": {"points": ["A", "B"], "length": 0.4},
+            "slider": {"slider": "B", "guide": {"through": "O", "angle": 0}}}},
+        "drive": {"link": "crank", "speed": "60 rpm"},
+        "loads": {"forces": [{"on": "slider", "kind": "resistance", "magnitude": "3 kN"}]}})
+    assert t.loads.forces[0].on == "slider"
+    assert t.loads.forces[0].magnitude == 3000.0
