@@ -1,0 +1,53 @@
+"""Every example in tasks/ validates and runs through the whole pipeline (CI runs them
+all), and its results obey the cross-checks that must hold for any task."""
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import pytest
+
+import tmm_cli
+
+TASKS = sorted((Path(__file__).resolve().parents[1] / "tasks").glob("*.yaml"))
+
+
+def _finite_numbers(obj, path="$"):
+    if isinstance(obj, dict):
+        for k, v in obj.items():
+            yield from _finite_numbers(v, f"{path}.{k}")
+    elif isinstance(obj, list):
+        for i, v in enumerate(obj):
+            yield from _finite_numbers(v, f"{path}[{i}]")
+    elif isinstance(obj, float):
+        yield path, obj
+
+
+@pytest.mark.parametrize("path", TASKS, ids=[p.stem for p in TASKS])
+def test_example_runs(path):
+    task = tmm_cli.load_task(path)
+    res = tmm_cli.run(task)
+    assert res["schema"] == "tmm-results/1"
+    json.dumps(res, allow_nan=False)          # plain JSON, no NaN anywhere
+    for where, x in _finite_numbers(res):
+        assert math.isfinite(x), where
+    if task.mechanism is not None:
+        st = res["structure"]
+        assert st["W"] == 3 * st["n"] - 2 * st["p5"] - st["p4"] == 1
+        kin = res["kinematics"]
+        count = (task.positions.count if task.positions else 12)
+        assert [e["index"] for e in kin[:count]] == list(range(count))
+        # every point and every link at every position
+        names = set(kin[0]["points"])
+        for e in kin:
+            assert set(e["points"]) == names
+            assert 0 <= e["phi"] < 360
+    if "kinetostatics" in res:
+        for e in res["kinetostatics"]:
+            if e.get("near_singular") or e.get("balancing_moment") is None:
+                continue
+            mk, mz, mv = e["balancing_moment"], e["zhukovsky_moment"], e["virtual_power_moment"]
+            scale = max(abs(mk), 1e-6)
+            assert abs(mz - mk) <= 1e-7 * scale + 1e-9, (path.name, e["index"])
+            assert abs(mv - mk) <= 1e-7 * scale + 1e-9, (path.name, e["index"])
