@@ -1,0 +1,228 @@
+"""The admissible region of cam centres and the point of it nearest to ``B0``.
+
+The region is the intersection of the half-planes ``n(phi) . O <= c(phi)`` (one pair per
+cam angle on the rise and on the return, see :mod:`.geometry`), a convex set.  The
+smallest cam is its point nearest to the lowest roller-centre position ``B0``: a
+least-distance problem with a continuum of linear constraints.  It is solved exactly by
+an exchange method:
+
+1. the constraints on a grid of 361 points per phase form a least-distance program, solved
+   exactly by Lawson & Hanson's reduction to non-negative least squares (LDP via NNLS);
+2. at that centre every local minimum of the continuous slack ``c(phi) - n(phi) . O`` is
+   located to machine precision by a vectorised bracketing search, the violated
+   tangent lines are added and step 1 is repeated, until no line is violated by more
+   than 1e-13 of the stroke.
+
+At the solution the active constraints are the tangent lines of the graphical method
+(the lines through the points D of the ``s - ds/dphi`` diagram at the allowed pressure
+angle); they are returned for the drawing.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import nnls
+
+from .geometry import Geometry
+from .motion import FAR_DWELL, NEAR_DWELL, Motion
+
+GRID = 361
+TOL = 1e-13
+
+
+@dataclass(frozen=True)
+class Family:
+    phase: int         # RISE, RETURN, NEAR_DWELL, FAR_DWELL
+    side: int          # +1 / -1
+    tan: float         # tan of the allowed pressure angle
+
+
+@dataclass
+class Tangent:
+    """One active constraint line at the solution."""
+    phase: int
+    side: int
+    x: float           # phase fraction
+    n: np.ndarray      # unit normal of the line
+    c: float
+    D: np.ndarray      # the point of the s - ds/dphi diagram the line passes through
+
+
+def rows(motion: Motion, geom: Geometry, k, side, tan, x):
+    s, s1, _, _ = motion.phase_mixed(k, x)
+    return geom.lines(s, s1, tan, side)
+
+
+def zoom(func, lo, hi, m: int = 33, rounds: int = 12):
+    """Vectorised bracketing search for minima of ``func`` on [lo_i, hi_i] (one per row).
+
+    ``func(grid)`` takes an array (k, m) of abscissae and returns values of the same shape.
+    Each round keeps the two grid cells around the row's minimum, shrinking the bracket
+    by (m - 1)/2; 12 rounds of 33 points reach 1e-14 of the initial width.  Returns the
+    abscissae and the values of the minima.
+    """
+    lo = np.asarray(lo, dtype=float).copy()
+    hi = np.asarray(hi, dtype=float).copy()
+    t = np.linspace(0.0, 1.0, m)
+    rows_ = np.arange(lo.size)
+    for _ in range(rounds):
+        grid = lo[:, None] + (hi - lo)[:, None] * t
+        vals = func(grid)
+        j = np.argmin(vals, axis=1)
+        lo = grid[rows_, np.maximum(j - 1, 0)]
+        hi = grid[rows_, np.minimum(j + 1, m - 1)]
+    grid = lo[:, None] + (hi - lo)[:, None] * t
+    vals = func(grid)
+    j = np.argmin(vals, axis=1)
+    return grid[rows_, j], vals[rows_, j]
+
+
+def local_minima(v: np.ndarray) -> np.ndarray:
+    """Indices of local minima of a sampled function (ends included)."""
+    left = np.concatenate([[np.inf], v[:-1]])
+    right = np.concatenate([v[1:], [np.inf]])
+    return np.nonzero((v <= left) & (v < right))[0]
+
+
+def ldp(N: np.ndarray, c: np.ndarray, P0: np.ndarray) -> np.ndarray | None:
+    """The point nearest to P0 with N @ O <= c (Lawson & Hanson LDP via NNLS); None if empty."""
+    b = c - N @ P0
+    E = np.vstack([-N.T, -b[None, :]])
+    f = np.array([0.0, 0.0, 1.0])
+    u, _ = nnls(E, f, maxiter=50 * E.shape[1])
+    r = E @ u - f
+    if np.linalg.norm(r) < 1e-12 or abs(r[2]) < 1e-300:
+        return None
+    return P0 - r[:2] / r[2]
+
+
+class _Problem:
+    def __init__(self, motion: Motion, geom: Geometry, families: list[Family], grid: int = GRID):
+        self.motion, self.geom, self.families = motion, geom, families
+        segs, ks, sds, tns, xs = [], [], [], [], []
+        pos = 0
+        for f in families:
+            x = np.array([0.0]) if f.phase in (NEAR_DWELL, FAR_DWELL) else np.linspace(0, 1, grid)
+            segs.append((pos, pos + x.size))
+            pos += x.size
+            ks.append(np.full(x.size, f.phase))
+            sds.append(np.full(x.size, f.side))
+            tns.append(np.full(x.size, f.tan))
+            xs.append(x)
+        self.segs = segs
+        self.k, self.side, self.tan, self.x = (np.concatenate(a) for a in (ks, sds, tns, xs))
+        self.N, self.c, self.D = rows(motion, geom, self.k, self.side, self.tan, self.x)
+
+    def refine(self, value_fn, values: np.ndarray, threshold: float):
+        """Continuous local minima of value_fn near the sampled local minima below threshold."""
+        cand_f, cand_lo, cand_hi = [], [], []
+        for fi, (a, b) in enumerate(self.segs):
+            v = values[a:b]
+            if b - a == 1:
+                if v[0] < threshold:
+                    cand_f.append(fi)
+                    cand_lo.append(0.0)
+                    cand_hi.append(0.0)
+                continue
+            x = self.x[a:b]
+            for j in local_minima(v):
+                if v[j] < threshold:
+                    cand_f.append(fi)
+                    cand_lo.append(x[max(j - 1, 0)])
+                    cand_hi.append(x[min(j + 1, b - a - 1)])
+        if not cand_f:
+            return []
+        fams = [self.families[i] for i in cand_f]
+        k = np.array([f.phase for f in fams])[:, None]
+        sd = np.array([f.side for f in fams], dtype=float)[:, None]
+        tn = np.array([f.tan for f in fams])[:, None]
+
+        def fn(grid):
+            kk = np.broadcast_to(k, grid.shape)
+            n, c, D = rows(self.motion, self.geom, kk.ravel(), np.broadcast_to(sd, grid.shape).ravel(),
+                           np.broadcast_to(tn, grid.shape).ravel(), grid.ravel())
+            return value_fn(n, c).reshape(grid.shape)
+
+        xs, vals = zoom(fn, np.array(cand_lo), np.array(cand_hi))
+        out = []
+        n, c, D = rows(self.motion, self.geom, k.ravel(), sd.ravel(), tn.ravel(), xs)
+        for i, f in enumerate(fams):
+            out.append((f, float(xs[i]), float(vals[i]), n[i], float(c[i]), D[i]))
+        return out
+
+
+def nearest(motion: Motion, geom: Geometry, families: list[Family], P0=(0.0, 0.0),
+            scale: float = 1.0) -> tuple[np.ndarray, list[Tangent]] | None:
+    """Admissible cam centre nearest to P0 (exact), with the active tangent lines.
+
+    ``scale`` is a length of the problem (stroke or rocker length) for the tolerances.
+    Returns None when the region is empty.
+    """
+    P0 = np.asarray(P0, dtype=float)
+    prob = _Problem(motion, geom, families)
+    N, c = prob.N, prob.c
+    extra_N, extra_c = [], []
+    O = None
+    cand = []
+    for _ in range(40):
+        NN = np.vstack([N] + extra_N) if extra_N else N
+        cc = np.concatenate([c] + extra_c) if extra_c else c
+        O = ldp(NN, cc / scale, P0 / scale)
+        if O is None:
+            return None
+        O = O * scale
+        slack = c - N @ O
+        cand = prob.refine(lambda n, cc_: cc_ - n @ O, slack, threshold=1e-3 * scale)
+        viol = [e for e in cand if e[2] < -TOL * scale]
+        if not viol:
+            break
+        extra_N.append(np.array([e[3] for e in viol]))
+        extra_c.append(np.array([e[4] for e in viol]))
+    tangents = [Tangent(f.phase, f.side, x, n, cval, D)
+                for (f, x, v, n, cval, D) in cand if v < 1e-9 * scale]
+    return O, tangents
+
+
+def highest_on_vertical(motion: Motion, geom: Geometry, families: list[Family], x0: float,
+                        scale: float = 1.0) -> tuple[np.ndarray, list[Tangent]]:
+    """Admissible centre on the line x = x0 nearest to B0 (translating follower, given offset).
+
+    Every normal has n_y = sin(theta_max) > 0, so the admissible part of the line is
+    y <= min_phi (c - n_x x0) / n_y: a one-dimensional minimum over the continuous phi.
+    """
+    prob = _Problem(motion, geom, families)
+
+    def yb(n, c):
+        return (c - n[:, 0] * x0) / n[:, 1]
+
+    vals = yb(prob.N, prob.c)
+    cand = prob.refine(yb, vals, threshold=float(np.min(vals)) + 1e-3 * scale)
+    y = min(e[2] for e in cand)
+    O = np.array([x0, y])
+    tangents = [Tangent(f.phase, f.side, x, n, cval, D)
+                for (f, x, v, n, cval, D) in cand if v < y + 1e-9 * scale]
+    return O, tangents
+
+
+def max_angle(motion: Motion, geom: Geometry, phase: int, O) -> tuple[float, float]:
+    """Maximum pressure angle (rad) over a phase and the fraction where it occurs."""
+    O = np.asarray(O, dtype=float)
+    if phase in (NEAR_DWELL, FAR_DWELL):
+        s, s1, _, _ = motion.phase(phase, np.array([0.0]))
+        th, _ = geom.pressure_angle(s, s1, O)
+        return float(th[0]), 0.0
+    x = np.linspace(0, 1, GRID)
+
+    def neg(xg):
+        s, s1, _, _ = motion.phase(phase, xg)
+        th, _ = geom.pressure_angle(s, s1, O)
+        return -th
+
+    v = neg(x[None, :])[0]
+    idx = local_minima(v)
+    lo = x[np.maximum(idx - 1, 0)]
+    hi = x[np.minimum(idx + 1, x.size - 1)]
+    xs, vals = zoom(neg, lo, hi)
+    j = int(np.argmin(vals))
+    return float(-vals[j]), float(xs[j])

@@ -1,0 +1,461 @@
+"""Cam mechanism synthesis: smallest cam from the allowed pressure angles, profile.
+
+Entry point :func:`synthesize` takes any object with the attributes of the task's ``cam``
+section (SI floats, angles in degrees; see ``docs/ARCHITECTURE.md``) and returns a
+:class:`CamResult` whose ``to_dict()`` is the results.json ``cam`` section.
+
+Method (METHODS 5; Artobolevsky, Popov & Timofeev, Frolov):
+
+* the motion laws give s, ds/dphi, d2s/dphi2 over the cycle (:mod:`.laws`, :mod:`.motion`);
+* the pressure-angle limits on the rise and on the return define half-planes of
+  admissible cam centres bounded by the tangent lines of the ``s - ds/dphi`` diagram
+  (:mod:`.geometry`); the smallest cam is the point of their intersection nearest to the
+  lowest roller-centre position ``B0``, found exactly (:mod:`.region`).  A translating
+  follower with a given offset keeps the cam centre on that line; ``offset: auto``
+  frees it (best offset); a rocker's pivot is fixed relative to B0 and the cam centre
+  gives the centre distance, for ``swing: auto`` both senses are solved and the smaller
+  cam kept;
+* the profile follows by inverted motion (:mod:`.profile`).
+
+Conventions of the results: lengths in metres, angles in degrees.  Frame of the points:
+cam centre O at the origin, the cam's frame coinciding with the fixed frame at phi = 0;
+the roller centre starts the rise moving in +y (translating follower: its axis is
+vertical, x = offset * (+1 for a ccw cam, -1 for cw)).  ``offset`` is positive on the side
+that lowers the rise pressure angle (SPEC).  For a rocker, ``s`` is the rocker's turn from
+its initial position in degrees, ``ds`` = dpsi/dphi (rad/rad), ``d2s`` in 1/rad, and with
+a speed ``v``, ``a``, ``jerk`` are the rocker's angular velocity (rad/s), acceleration and
+jerk.
+
+Design choices (documented in the report):
+
+* ``r0_design``: r0 rounded up to a whole millimetre;
+* roller ``auto``: r_r = min(0.7 rho_min, 0.4 r0), the lower (safer) ends of the course
+  rules r_r <= (0.7..0.8) rho_min and r_r <= (0.4..0.5) r0, not rounded;
+* the dwells must satisfy the larger of the two allowed pressure angles (on the dwells
+  the follower does not move; for laws that start and end with zero velocity these
+  constraints coincide with those at the ends of the rise and return);
+* the geometry reported (max pressure angle, rho_min, profile) is that of the exact
+  minimum cam (r0, offset, centre distance as reported), so the maximum pressure angle
+  equals the allowed one where that limit is active.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import StageError
+from .geometry import Geometry, J
+from .laws import LAW_NAMES
+from .motion import FAR_DWELL, NEAR_DWELL, RETURN, RISE, Motion
+from .profile import Profile
+from .region import Family, Tangent, highest_on_vertical, max_angle, nearest, rows
+
+STAGE = "cam"
+_PHASE_NAMES = {RISE: "rise", RETURN: "return", NEAR_DWELL: "near_dwell", FAR_DWELL: "far_dwell"}
+ROLLER_RULE = "min(0.7*rho_min, 0.4*r0)"
+R0_DESIGN_RULE = "r0 rounded up to a whole millimetre"
+
+_IMPACT_TEXT = {
+    "rigid": "rigid impact (jump of velocity, infinite acceleration)",
+    "soft": "soft impact (finite jump of acceleration)",
+}
+
+
+def _f(v):
+    """Plain float or None (no NaN/inf in results)."""
+    if v is None:
+        return None
+    v = float(v)
+    return v if math.isfinite(v) else None
+
+
+def _pts(a: np.ndarray) -> list[list[float]]:
+    return [[float(p[0]), float(p[1])] for p in np.asarray(a)]
+
+
+@dataclass
+class CamResult:
+    follower: str
+    rotation: str
+    swing: str | None
+    stroke: float                      # m | deg
+    rocker_length: float | None
+    phases: dict
+    allowed: dict                      # allowed pressure angles, deg
+    r0: float
+    offset: float | None
+    center_distance: float | None
+    psi0: float | None                 # rocker: angle O-A-B0, deg
+    roller: float
+    roller_given: bool
+    max_pressure_angle: float          # deg
+    max_pressure_angle_rise: float
+    max_pressure_angle_return: float
+    max_pressure_angle_phi: float
+    rho_min: float
+    rho_min_phi: float
+    laws: dict
+    impacts: list
+    phi: np.ndarray                    # deg grid
+    s: np.ndarray
+    ds: np.ndarray
+    d2s: np.ndarray
+    d3s: np.ndarray
+    speed: float | None
+    pressure_angle: np.ndarray         # deg, magnitude
+    pitch: np.ndarray                  # (N, 2)
+    working: np.ndarray                # (N, 2)
+    construction: dict
+    alternatives: dict
+    warnings: list = field(default_factory=list)
+    # internals for export / tests (not serialised)
+    motion: Motion | None = None
+    geometry: Geometry | None = None
+    O_design: np.ndarray | None = None
+
+    @property
+    def r0_design(self) -> float:
+        return math.ceil(self.r0 * 1000.0 - 1e-9) / 1000.0
+
+    @property
+    def profile(self) -> Profile:
+        return Profile(self.motion, self.geometry, self.O_design)
+
+    def to_dict(self) -> dict:
+        rocker = self.follower == "rocker"
+        conv = math.degrees if rocker else (lambda v: v)
+        w = self.speed
+        d = {
+            "r0": _f(self.r0),
+            "offset": _f(self.offset) if self.offset is not None else None,
+            "center_distance": _f(self.center_distance) if self.center_distance is not None else None,
+            "roller": _f(self.roller),
+            "max_pressure_angle": _f(self.max_pressure_angle),
+            "rho_min": _f(self.rho_min),
+            "r0_design": _f(self.r0_design),
+            "r0_design_rule": R0_DESIGN_RULE,
+            "roller_rule": "given" if self.roller_given else ROLLER_RULE,
+            "follower": self.follower,
+            "rotation": self.rotation,
+            "swing": self.swing,
+            "stroke": _f(self.stroke),
+            "rocker_length": _f(self.rocker_length),
+            "psi0": _f(self.psi0),
+            "phases": dict(self.phases),
+            "pressure_angle_allowed": dict(self.allowed),
+            "max_pressure_angle_rise": _f(self.max_pressure_angle_rise),
+            "max_pressure_angle_return": _f(self.max_pressure_angle_return),
+            "max_pressure_angle_phi": _f(self.max_pressure_angle_phi),
+            "rho_min_phi": _f(self.rho_min_phi),
+            "laws": self.laws,
+            "impacts": self.impacts,
+            "phi": [float(v) for v in self.phi],
+            "s": [float(conv(v)) for v in self.s],
+            "ds": [float(v) for v in self.ds],
+            "d2s": [float(v) for v in self.d2s],
+            "speed": _f(w),
+            "v": [float(v * w) for v in self.ds] if w else None,
+            "a": [float(v * w * w) for v in self.d2s] if w else None,
+            "jerk": [float(v * w ** 3) for v in self.d3s] if w else None,
+            "pressure_angle": [float(v) for v in self.pressure_angle],
+            "pitch_profile": _pts(self.pitch),
+            "working_profile": _pts(self.working),
+            "construction": self.construction,
+            "alternatives": self.alternatives,
+            "warnings": list(self.warnings),
+        }
+        return d
+
+
+# ---------------------------------------------------------------------- helpers
+def _get(spec, name, default=None):
+    return getattr(spec, name, default)
+
+
+def _limits(spec) -> tuple[float, float]:
+    pa = _get(spec, "pressure_angle")
+    if pa is None:
+        rise = ret = 30.0 if _get(spec, "follower", "translating") == "translating" else 45.0
+    elif isinstance(pa, (int, float)):
+        rise = ret = float(pa)
+    else:
+        rise, ret = float(pa.rise), float(pa.return_)
+    for name, v in (("rise", rise), ("return", ret)):
+        if not 0.0 < v < 90.0:
+            raise StageError(STAGE, f"allowed pressure angle on the {name} must lie in (0, 90) deg, got {v:g}")
+    return rise, ret
+
+
+def _families(motion: Motion, th_rise: float, th_ret: float) -> list[Family]:
+    tr, td = math.tan(math.radians(th_rise)), math.tan(math.radians(th_ret))
+    fams = [Family(RISE, +1, tr), Family(RISE, -1, tr), Family(RETURN, +1, td), Family(RETURN, -1, td)]
+    tdw = math.tan(math.radians(max(th_rise, th_ret)))
+    if motion.near_dwell > 1e-12:
+        fams += [Family(NEAR_DWELL, +1, tdw), Family(NEAR_DWELL, -1, tdw)]
+    if motion.far_dwell > 1e-12:
+        fams += [Family(FAR_DWELL, +1, tdw), Family(FAR_DWELL, -1, tdw)]
+    return fams
+
+
+def _law_info(motion: Motion, which: int, speed: float | None, rocker: bool) -> dict:
+    law = motion.law_rise if which == RISE else motion.law_return
+    P = motion.rise if which == RISE else motion.ret
+    ds_max = motion.h * law.cv / P
+    d2s_max = motion.h * law.ca / P ** 2 if law.ca is not None else None
+    info = {
+        "name": law.name, "title": law.title_en, "title_ru": law.title_ru,
+        "cv": law.cv, "ca": law.ca, "impact": law.impact,
+        "ds_max": ds_max, "d2s_max": d2s_max,
+        "v_max": ds_max * speed if speed else None,
+        "a_max": d2s_max * speed ** 2 if (speed and d2s_max is not None) else None,
+    }
+    return info
+
+
+def _solve(motion, geom, fams, offset, scale):
+    if geom.kind == "translating" and offset != "auto":
+        x0 = -geom.sigma * float(offset)
+        return highest_on_vertical(motion, geom, fams, x0, scale)
+    sol = nearest(motion, geom, fams, (0.0, 0.0), scale)
+    if sol is None:
+        raise StageError(STAGE, "no cam centre satisfies the allowed pressure angles "
+                                "(the admissible region is empty); increase the allowed "
+                                "pressure angle, the phase angles or the rocker length")
+    return sol
+
+
+def _region_polygon(motion, geom, fams, O, box):
+    """Admissible region clipped to ``box`` = (xmin, ymin, xmax, ymax), as a polygon."""
+    from scipy.spatial import HalfspaceIntersection
+
+    ks, sds, tns, xs = [], [], [], []
+    for f in fams:
+        x = np.linspace(0, 1, 181) if f.phase in (RISE, RETURN) else np.array([0.0])
+        ks.append(np.full(x.size, f.phase))
+        sds.append(np.full(x.size, f.side))
+        tns.append(np.full(x.size, f.tan))
+        xs.append(x)
+    N, c, _ = rows(motion, geom, np.concatenate(ks), np.concatenate(sds), np.concatenate(tns),
+                   np.concatenate(xs))
+    xmin, ymin, xmax, ymax = box
+    N = np.vstack([N, [[-1, 0], [1, 0], [0, -1], [0, 1]]])
+    c = np.concatenate([c, [-xmin, xmax, -ymin, ymax]])
+    # an interior point: the Chebyshev centre (largest inscribed circle) by a tiny LP
+    from scipy.optimize import linprog
+
+    norms = np.hypot(N[:, 0], N[:, 1])
+    res = linprog([0, 0, -1], A_ub=np.column_stack([N, norms]), b_ub=c,
+                  bounds=[(None, None), (None, None), (0, None)], method="highs")
+    if not res.success or res.x[2] <= 0:
+        return []
+    hs = HalfspaceIntersection(np.column_stack([N, -c]), res.x[:2])
+    P = hs.intersections
+    ctr = P.mean(axis=0)
+    order = np.argsort(np.arctan2(P[:, 1] - ctr[1], P[:, 0] - ctr[0]))
+    P = P[order]
+    keep = [0] + [i for i in range(1, len(P)) if np.hypot(*(P[i] - P[i - 1])) > 1e-12 * (xmax - xmin)]
+    return P[keep]
+
+
+def _construction(motion, geom, fams, O, tangents: list[Tangent], scale):
+    """Data of the graphical construction in the output frame (O at the origin)."""
+    out = {"B0": _pts((np.zeros(2) - O)[None])[0], "O": [0.0, 0.0],
+           "A": _pts((geom.A - O)[None])[0] if geom.A is not None else None}
+    pts = []
+    for ph, name in ((RISE, "rise"), (RETURN, "return")):
+        P = motion.rise if ph == RISE else motion.ret
+        x = np.linspace(0, 1, max(2, int(round(math.degrees(P))) + 1))
+        s, s1, _, _ = motion.phase(ph, x)
+        B, D, w = geom.pole_point(s, s1)
+        out[f"B_{name}"] = _pts(B - O)
+        out[f"D_{name}"] = _pts(D - O)
+        out[f"phi_{name}"] = [float(v) for v in np.degrees(motion.starts[0 if ph == RISE else 2] + x * P)]
+        pts.append(B - O)
+        pts.append(D - O)
+    lines = []
+    for t in tangents:
+        direction = J(t.n[None])[0]
+        start = motion.starts[{RISE: 0, FAR_DWELL: 1, RETURN: 2, NEAR_DWELL: 3}[t.phase]]
+        span = {RISE: motion.rise, RETURN: motion.ret}.get(t.phase, 0.0)
+        lines.append({"phase": _PHASE_NAMES[t.phase], "side": t.side,
+                      "phi": float(math.degrees(start + t.x * span) % 360.0),
+                      "point": _pts((t.D - O)[None])[0], "normal": _pts(t.n[None])[0],
+                      "direction": _pts(direction[None])[0]})
+    out["tangents"] = lines
+    allp = np.vstack(pts + [np.zeros((1, 2)), -O[None]])
+    lo, hi = allp.min(axis=0), allp.max(axis=0)
+    pad = 0.3 * max(hi - lo)
+    lo, hi = lo - pad, hi + pad
+    lo[1] = min(lo[1], -pad)
+    poly = _region_polygon(motion, geom, fams, O, (lo[0] + O[0], lo[1] + O[1], hi[0] + O[0], hi[1] + O[1]))
+    out["region"] = _pts(np.asarray(poly) - O) if len(poly) else []
+    out["box"] = [float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1])]
+    return out
+
+
+# ---------------------------------------------------------------------- main
+def synthesize(spec) -> CamResult:
+    """Synthesise the smallest cam and its profile from a cam task section (see module doc)."""
+    follower = _get(spec, "follower", "translating")
+    if follower not in ("translating", "rocker"):
+        raise StageError(STAGE, f"unknown follower {follower!r}")
+    rocker = follower == "rocker"
+    rotation = _get(spec, "rotation", "ccw")
+    sigma = 1 if rotation == "ccw" else -1
+    stroke = float(spec.stroke)
+    if not stroke > 0:
+        raise StageError(STAGE, "the stroke must be positive")
+    laws = spec.laws
+    for nm in (laws.rise, laws.return_):
+        if nm not in LAW_NAMES:
+            raise StageError(STAGE, f"unknown motion law {nm!r}")
+    if rocker:
+        l = _get(spec, "rocker_length")
+        if l is None or not l > 0:
+            raise StageError(STAGE, "a rocker follower needs a positive rocker_length")
+        l = float(l)
+        h = math.radians(stroke)
+        scale = l
+    else:
+        l = None
+        h = stroke
+        scale = stroke
+    motion = Motion.from_spec(h, spec.phases, laws)
+    if motion.rise <= 0 or motion.ret <= 0:
+        raise StageError(STAGE, "the rise and return phases must be positive")
+    total = math.degrees(motion.rise + motion.far_dwell + motion.ret + motion.near_dwell)
+    if abs(total - 360.0) > 1e-6:
+        raise StageError(STAGE, f"the phases sum to {total:g} deg, not 360")
+    th_rise, th_ret = _limits(spec)
+    fams = _families(motion, th_rise, th_ret)
+    offset_in = _get(spec, "offset", 0.0)
+    if offset_in is None:
+        offset_in = 0.0
+    warnings: list[str] = []
+    alternatives: dict = {}
+
+    # ---- smallest cam
+    if rocker:
+        swing_in = _get(spec, "swing", "auto") or "auto"
+        options = ("with", "against") if swing_in == "auto" else (swing_in,)
+        best = None
+        for sw in options:
+            tau = sigma if sw == "with" else -sigma
+            geom = Geometry("rocker", sigma, tau, l)
+            try:
+                O, tang = _solve(motion, geom, fams, "auto", scale)
+            except StageError:
+                if len(options) == 1:
+                    raise
+                alternatives[sw] = None
+                continue
+            r0 = float(np.hypot(*O))
+            alternatives[sw] = {"r0": r0, "center_distance": float(np.hypot(*(O - geom.A)))}
+            if best is None or r0 < best[0] * (1 - 1e-12):
+                best = (r0, sw, geom, O, tang)
+        if best is None:
+            raise StageError(STAGE, "no cam centre satisfies the allowed pressure angles for "
+                                    "either swing sense")
+        r0, swing, geom, O, tang = best
+        if swing_in == "auto" and len([a for a in alternatives.values() if a]) == 2:
+            other = "against" if swing == "with" else "with"
+            warnings.append(f"swing auto: the rocker turns {swing} the cam on the rise "
+                            f"(r0 = {r0 * 1000:.3f} mm; {other}: "
+                            f"{alternatives[other]['r0'] * 1000:.3f} mm)")
+        center_distance = float(np.hypot(*(O - geom.A)))
+        offset = None
+        v1, v2 = O - geom.A, -geom.A        # A->O and A->B0
+        psi0 = math.degrees(math.acos(np.clip(np.dot(v1, v2) / (np.linalg.norm(v1) * l), -1, 1)))
+    else:
+        geom = Geometry("translating", sigma)
+        O, tang = _solve(motion, geom, fams, offset_in, scale)
+        r0 = float(np.hypot(*O))
+        swing = None
+        center_distance = None
+        psi0 = None
+        offset = -sigma * float(O[0])
+        if offset_in != "auto":
+            offset = float(offset_in)
+    if not r0 > 1e-12 * scale:
+        raise StageError(STAGE, "degenerate cam: zero base radius")
+
+    # ---- pressure angles
+    th = {}
+    for ph in (RISE, RETURN):
+        th[ph] = max_angle(motion, geom, ph, O)
+    dwell_max = 0.0
+    for ph, span in ((NEAR_DWELL, motion.near_dwell), (FAR_DWELL, motion.far_dwell)):
+        if span > 1e-12:
+            dwell_max = max(dwell_max, max_angle(motion, geom, ph, O)[0])
+    th_max_rise = math.degrees(th[RISE][0])
+    th_max_ret = math.degrees(th[RETURN][0])
+    if th_max_rise >= th_max_ret:
+        th_max_phi = math.degrees(th[RISE][1] * motion.rise)
+    else:
+        th_max_phi = math.degrees(motion.starts[2] + th[RETURN][1] * motion.ret)
+    th_max = max(th_max_rise, th_max_ret, math.degrees(dwell_max))
+
+    # ---- profile
+    prof = Profile(motion, geom, O)
+    if prof.min_speed() <= 1e-9 * scale:
+        raise StageError(STAGE, "the pitch profile has a cusp (its tangent vanishes)")
+    rho_min, rho_phi = prof.rho_min()
+    roller_in = _get(spec, "roller", "auto")
+    if roller_in is None or roller_in == "auto":
+        roller = min(0.7 * rho_min, 0.4 * r0)
+        roller_given = False
+    else:
+        roller = float(roller_in)
+        roller_given = True
+        if not roller > 0:
+            raise StageError(STAGE, "the roller radius must be positive")
+        if roller >= rho_min:
+            raise StageError(STAGE, f"the roller (r = {roller * 1000:.3f} mm) undercuts the profile: "
+                                    f"minimum radius of curvature of the pitch profile "
+                                    f"{rho_min * 1000:.3f} mm at phi = {rho_phi:.2f} deg")
+        if roller >= r0:
+            raise StageError(STAGE, f"the roller (r = {roller * 1000:.3f} mm) is not smaller than "
+                                    f"the base radius r0 = {r0 * 1000:.3f} mm")
+        if roller > 0.8 * rho_min:
+            warnings.append(f"roller radius {roller * 1000:.3f} mm exceeds 0.8 rho_min = "
+                            f"{0.8 * rho_min * 1000:.3f} mm (course rule)")
+        if roller > 0.5 * r0:
+            warnings.append(f"roller radius {roller * 1000:.3f} mm exceeds 0.5 r0 = "
+                            f"{0.5 * r0 * 1000:.3f} mm (course rule)")
+
+    # ---- grid values
+    phi = np.arange(0.0, 360.0, 1.0)
+    phr = np.radians(phi)
+    s, s1, s2, s3 = motion.evaluate(phr)
+    pa, _ = geom.pressure_angle(s, s1, O)
+    pitch, _, _ = prof.pitch(phr)
+    working = prof.working(phr, roller)
+
+    # ---- laws and impacts
+    speed = _get(spec, "speed")
+    speed = float(speed) if speed else None
+    laws_info = {"rise": _law_info(motion, RISE, speed, rocker),
+                 "return": _law_info(motion, RETURN, speed, rocker)}
+    impacts = motion.boundaries()
+    for e in impacts:
+        if e["kind"] != "none":
+            warnings.append(f"{_IMPACT_TEXT[e['kind']]} at phi = {e['phi']:.4g} deg ({e['where']})")
+
+    construction = _construction(motion, geom, fams, O, tang, scale)
+    phases = {"rise": math.degrees(motion.rise), "far_dwell": math.degrees(motion.far_dwell),
+              "return": math.degrees(motion.ret), "near_dwell": math.degrees(motion.near_dwell)}
+    return CamResult(
+        follower=follower, rotation=rotation, swing=swing, stroke=stroke, rocker_length=l,
+        phases=phases, allowed={"rise": th_rise, "return": th_ret},
+        r0=r0, offset=offset, center_distance=center_distance, psi0=psi0,
+        roller=roller, roller_given=roller_given,
+        max_pressure_angle=th_max, max_pressure_angle_rise=th_max_rise,
+        max_pressure_angle_return=th_max_ret, max_pressure_angle_phi=th_max_phi,
+        rho_min=rho_min, rho_min_phi=rho_phi, laws=laws_info, impacts=impacts,
+        phi=phi, s=s, ds=s1, d2s=s2, d3s=s3, speed=speed,
+        pressure_angle=np.degrees(pa), pitch=pitch, working=working,
+        construction=construction, alternatives=alternatives, warnings=warnings,
+        motion=motion, geometry=geom, O_design=O,
+    )
