@@ -1,0 +1,199 @@
+"""The gears stage: ``analyze(spec) -> GearResult`` (SPEC `gears`, METHODS 6).
+
+``spec`` is any object with ``m`` (metres), ``z`` (two ints), ``x`` (two floats or
+'auto'), ``alpha`` (deg, default 20), ``ha`` (1), ``c`` (0.25) and optionally ``rule``
+(shift rule for ``x: auto``, see :mod:`shifts`; default equal_sliding), ``sa_min``
+(tip thickness limit as a fraction of m, default 0.25) and ``rho_f`` (rack fillet
+coefficient, default c/(1 - sin alpha) = 0.38 for the standard rack).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import StageError
+from . import shifts as _shifts
+from .geometry import ABSOLUTE_EPS, COURSE_EPS, DEFAULT_SA_MIN, checks, lowest_radius, pair, sliding
+from .tooth import Wheel
+
+STAGE = "gears"
+
+
+def _f(v):
+    """Plain float, None for non-finite."""
+    v = float(v)
+    return v if math.isfinite(v) else None
+
+
+@dataclass
+class GearResult:
+    m: float
+    z: tuple[int, int]
+    x: tuple[float, float]
+    alpha: float
+    ha: float
+    c: float
+    rho_f: float
+    sa_min: float
+    rule: str | None
+    geo: dict
+    rho_l: tuple[float, float]            # real boundary curvature radii (undercut-aware)
+    r_l: tuple[float, float]              # radii where the real involutes begin
+    checks: dict
+    sliding: dict
+    contour: dict
+    warnings: list[str] = field(default_factory=list)
+
+    def wheels(self) -> tuple[Wheel, Wheel]:
+        """The two rack-generated wheels (for drawing and export)."""
+        g = self.geo
+        return (Wheel(self.m, self.z[0], self.x[0], self.alpha, self.ha, self.c, g["ra1"], self.rho_f),
+                Wheel(self.m, self.z[1], self.x[1], self.alpha, self.ha, self.c, g["ra2"], self.rho_f))
+
+    def to_dict(self) -> dict:
+        g = self.geo
+        two = lambda k: [_f(g[k + "1"]), _f(g[k + "2"])]  # noqa: E731
+        ch = self.checks
+        rp = [_f(lowest_radius(g["rb1"], g["rho_p1"])), _f(lowest_radius(g["rb2"], g["rho_p2"]))]
+        return {
+            "aw": _f(g["aw"]), "alpha_w": _f(math.degrees(g["alpha_w"])), "y": _f(g["y"]),
+            "dy": _f(g["dy"]), "r": two("r"), "rb": two("rb"), "rw": two("rw"), "ra": two("ra"),
+            "rf": two("rf"), "s": two("s"), "sa": two("sa"), "eps_alpha": _f(g["eps"]),
+            "x_min": two("x_min"),
+            "checks": {"undercut": [bool(v) for v in ch["undercut"]],
+                       "sharpening": [bool(v) for v in ch["sharpening"]],
+                       "contact_ratio_low": bool(ch["contact_ratio_low"]),
+                       "interference": bool(any(ch["interference"]))},
+            # extras
+            "m": self.m, "z": list(self.z), "x": [float(v) for v in self.x], "alpha": self.alpha,
+            "ha": self.ha, "c": self.c, "rho_f": self.rho_f, "sa_min": self.sa_min, "rule": self.rule,
+            "a": _f(g["a"]), "inv_alpha": _f(math.tan(math.radians(self.alpha)) - math.radians(self.alpha)),
+            "inv_alpha_w": _f(g["inv_alpha_w"]), "h": _f(g["h1"]), "p": _f(g["p"]), "pb": _f(g["pb"]),
+            "e": two("e"), "sb": two("sb"), "sw": two("sw"),
+            "alpha_a": [_f(math.degrees(g["alpha_a1"])), _f(math.degrees(g["alpha_a2"]))],
+            "x_min_exact": two("x_min_exact"),
+            "line_of_action": {"N1N2": _f(g["N1N2"]), "N1P": _f(g["N1P"]), "N1B1": _f(g["N1B1"]),
+                               "N1B2": _f(g["N1B2"]), "B1B2": _f(g["ga"]),
+                               "arc_of_action_w": _f(g["ga"] / math.cos(g["alpha_w"]))},
+            "lowest_active": {"rho_p": [_f(g["rho_p1"]), _f(g["rho_p2"])], "r_p": rp},
+            "involute_start": {"rho_l": [_f(v) for v in self.rho_l], "r_l": [_f(v) for v in self.r_l]},
+            "checks_detail": {"interference": [bool(v) for v in ch["interference"]],
+                              "contact_ratio_below_absolute": bool(ch["contact_ratio_below_absolute"]),
+                              "eps_course_min": COURSE_EPS, "eps_absolute_min": ABSOLUTE_EPS,
+                              "sa_limit": self.sa_min * self.m},
+            "sliding": self.sliding,
+            "blocking_contour": self.contour,
+            "warnings": list(self.warnings),
+        }
+
+
+def _get(spec, name, default):
+    v = getattr(spec, name, default)
+    return default if v is None else v
+
+
+def _sliding_table(g, z1, z2, n=21):
+    L = float(g["N1N2"])
+    pts = np.linspace(0.0, L, n)
+    marks = {"N1": 0.0, "B1": float(g["N1B1"]), "P": float(g["N1P"]), "B2": float(g["N1B2"]), "N2": L}
+    xs = np.unique(np.concatenate([pts, [v for v in marks.values() if 0.0 <= v <= L]]))
+    l1, l2 = sliding(xs, L, z1, z2)
+    lb1, _ = sliding(marks["B1"], L, z1, z2)
+    _, lb2 = sliding(marks["B2"], L, z1, z2)
+    return {"X": [float(v) for v in xs], "lambda1": [_f(v) for v in l1], "lambda2": [_f(v) for v in l2],
+            "marks": {k: _f(v) for k, v in marks.items()},
+            "lambda1_max": _f(lb1), "lambda2_max": _f(lb2),
+            "convention": "X from N1 along N1N2; lambda1 = 1 - (N1N2 - X) z1 / (X z2), "
+                          "lambda2 = 1 - X z2 / ((N1N2 - X) z1)"}
+
+
+def _contour_dict(bc, chosen):
+    return {"x1_range": [float(bc["x1"][0]), float(bc["x1"][-1])],
+            "x2_range": [float(bc["x2"][0]), float(bc["x2"][-1])],
+            "lines": bc["lines"], "chosen": [float(chosen[0]), float(chosen[1])],
+            "admissible_fraction": float(np.mean(bc["ok"])),
+            "chosen_admissible": None}
+
+
+def analyze(spec) -> GearResult:
+    """Geometry, checks, sliding and blocking contour of the pair described by ``spec``."""
+    m = float(spec.m)
+    z1, z2 = (int(v) for v in spec.z)
+    alpha = float(_get(spec, "alpha", 20.0))
+    ha = float(_get(spec, "ha", 1.0))
+    c = float(_get(spec, "c", 0.25))
+    sa_min = float(_get(spec, "sa_min", DEFAULT_SA_MIN))
+    rule = _get(spec, "rule", "equal_sliding")
+    al = math.radians(alpha)
+    rho_f = _get(spec, "rho_f", None)
+    rho_f = c / (1.0 - math.sin(al)) if rho_f is None else float(rho_f)
+    if m <= 0 or min(z1, z2) < 3:
+        raise StageError(STAGE, f"invalid module or tooth numbers (m = {m}, z = [{z1}, {z2}])")
+    if rho_f * (1.0 - math.sin(al)) > c + 1e-12:
+        raise StageError(STAGE, f"rack fillet rho_f* = {rho_f} does not fit in the clearance c* = {c}")
+    warnings: list[str] = []
+    bc = None
+    xv = spec.x
+    if isinstance(xv, str):
+        if xv != "auto":
+            raise StageError(STAGE, f"x must be two numbers or 'auto', not {xv!r}")
+        if rule not in _shifts.RULES:
+            raise StageError(STAGE, f"unknown shift rule {rule!r}")
+        bc = _shifts.blocking_contour(m, z1, z2, alpha, ha, c, sa_min, rho_f)
+        x1, x2, notes = _shifts.choose(rule, m, z1, z2, alpha, ha, c, sa_min, rho_f, contour=bc)
+        warnings += notes
+    else:
+        x1, x2 = (float(v) for v in xv)
+        rule = None
+    g = pair(m, z1, z2, x1, x2, alpha, ha, c, rho_f)
+    g = {k: (float(v) if np.ndim(v) == 0 and not isinstance(v, (bool, np.bool_)) else v)
+         for k, v in g.items()}
+    if not bool(g["valid"]):
+        raise StageError(STAGE, f"no mesh angle: inv alpha_w = {g['inv_alpha_w']:.6g} <= 0 "
+                                f"(the shift sum x1 + x2 = {x1 + x2:.4g} is too negative)")
+    for i in (1, 2):
+        if g[f"rf{i}"] <= 0:
+            raise StageError(STAGE, f"wheel {i}: root radius rf = {g[f'rf{i}']:.6g} m is not positive")
+    w1 = Wheel(m, z1, x1, alpha, ha, c, g["ra1"], rho_f)
+    w2 = Wheel(m, z2, x2, alpha, ha, c, g["ra2"], rho_f)
+    rl, rhol = [], []
+    for w in (w1, w2):
+        fl = w.flank(n_fillet=200, n_involute=4)
+        rl.append(fl.r_involute_start)
+        rhol.append(math.sqrt(max(fl.r_involute_start ** 2 - w.rb ** 2, 0.0)))
+    ch = checks(g, m, sa_min, rho_l_true=rhol, x=(x1, x2))
+    zz = (z1, z2)
+    xx = (x1, x2)
+    for i in (0, 1):
+        n = i + 1
+        if ch["undercut"][i]:
+            warnings.append(f"gears: wheel {n} (z = {zz[i]}) is undercut: x{n} = {xx[i]:.4g} < "
+                            f"x_min = {g[f'x_min{n}']:.4g}")
+        if ch["sharpening"][i]:
+            warnings.append(f"gears: wheel {n} tip is too thin: sa = {g[f'sa{n}'] * 1e3:.4g} mm < "
+                            f"{sa_min:g} m = {sa_min * m * 1e3:.4g} mm"
+                            + (" (pointed tooth)" if g[f"sa{n}"] <= 0 else ""))
+        if ch["interference"][i]:
+            other = 2 - i
+            warnings.append(f"gears: interference: the tip of wheel {other} reaches wheel {n} below "
+                            f"the start of its involute (rho_p = {g[f'rho_p{n}'] * 1e3:.4g} mm < "
+                            f"rho_l = {rhol[i] * 1e3:.4g} mm)")
+    if ch["contact_ratio_low"]:
+        warnings.append(f"gears: contact ratio eps_alpha = {g['eps']:.4g} < {COURSE_EPS} (course minimum)")
+    if ch["contact_ratio_below_absolute"]:
+        warnings.append(f"gears: contact ratio eps_alpha = {g['eps']:.4g} < {ABSOLUTE_EPS} (absolute minimum)"
+                        + ("; the mesh is not continuous (eps < 1)" if g["eps"] < 1 else ""))
+    if bc is None:
+        lo1 = min(x1 - 0.3, max(min(g["x_min1"], 0.0), -1.0) - 0.3)
+        lo2 = min(x2 - 0.3, max(min(g["x_min2"], 0.0), -1.0) - 0.3)
+        bc = _shifts.blocking_contour(m, z1, z2, alpha, ha, c, sa_min, rho_f,
+                                      x1_range=(lo1, max(1.5, x1 + 0.3)),
+                                      x2_range=(lo2, max(1.5, x2 + 0.3)))
+    cdict = _contour_dict(bc, (x1, x2))
+    cdict["chosen_admissible"] = not any(
+        [*ch["undercut"], *ch["sharpening"], ch["contact_ratio_low"], *ch["interference"]])
+    return GearResult(m=m, z=(z1, z2), x=(x1, x2), alpha=alpha, ha=ha, c=c, rho_f=rho_f, sa_min=sa_min,
+                      rule=rule, geo=g, rho_l=(rhol[0], rhol[1]), r_l=(rl[0], rl[1]), checks=ch,
+                      sliding=_sliding_table(g, z1, z2), contour=cdict, warnings=warnings)

@@ -1,0 +1,170 @@
+"""Geometry of an external spur involute pair cut by a rack (GOST 16532-70, rack GOST 13755-81).
+
+All formulas are the standard ones of GOST 16532-70 as given in Popov & Timofeev,
+"Курсовое проектирование по ТММ" (2002) and Frolov (ed.), "Теория механизмов и машин"
+(ch. on involute gearing); symbols as there (m module, z teeth, x shift coefficients,
+alpha profile angle of the rack, ha* addendum, c* clearance coefficients):
+
+  inv aw = inv a + 2 (x1 + x2) tan a / (z1 + z2)          mesh (working pressure) angle
+  a = m (z1 + z2) / 2,  aw = a cos a / cos aw              reference / working centre distance
+  y = (aw - a) / m,  dy = x1 + x2 - y                      centre-distance and tip-reduction coeff.
+  r = m z / 2,  rb = r cos a,  rw = rb / cos aw           reference, base, pitch (working) radii
+  rf = r - (ha + c - x) m,  ra = r + (ha + x - dy) m       root and tip radii;  h = ra - rf
+  p = pi m,  pb = p cos a                                  pitch and base pitch
+  s = m (pi/2 + 2 x tan a),  e = p - s                     tooth / space on the reference circle
+  sb = 2 rb (s / (2 r) + inv a)                           tooth on the base circle
+  sa = 2 ra (s / (2 r) + inv a - inv aa),  cos aa = rb/ra  tooth on the tip circle
+  eps = [z1 (tan aa1 - tan aw) + z2 (tan aa2 - tan aw)] / (2 pi) = B1B2 / pb
+
+Line of action N1N2 = aw sin aw (N1, N2 the tangency points with the base circles);
+its active part B1B2: B2 (where the tip circle of wheel 1 cuts it) at N1B2 = rb1 tan aa1,
+B1 at N2B1 = rb2 tan aa2.  The lowest active point of wheel 1 is B1 (radius of curvature
+rho_p1 = N1N2 - N2B1), of wheel 2 B2 (rho_p2 = N1N2 - N1B2).
+
+Boundary point of the involute (where the rack's straight edge ends, its fillet of radius
+rho_f begins): rho_l = r sin a - h_l / sin a with h_l = (ha + c - x) m - rho_f (1 - sin a)
+(= (ha - x) m for the full fillet rho_f = c m / (1 - sin a), 0.38 m for the standard rack).
+
+Checks (True = defect present):
+  undercut      x < x_min, x_min = ha (z_min - z) / z_min with the course value of z_min:
+                2 ha / sin^2 a rounded to an integer as the textbooks do (17 for a = 20 deg,
+                ha = 1; 14 for ha = 0.8), METHODS 6.  The exact limit
+                x_min_exact = (h_l / m) - z sin^2 a / 2 is reported beside it.
+  sharpening    sa < k m, k = 0.25 by default (METHODS: 0.25..0.3 m; 0.4 m is the usual
+                value for case-hardened teeth: pass ``sa_min=0.4``).
+  contact ratio eps < 1.2 (course minimum); eps < 1.1 (absolute minimum) adds a second warning.
+  interference  the tip of one wheel reaches the other below the start of its involute
+                (rho_p < rho_l, with rho_l of the real, possibly undercut, tooth; B beyond N
+                is included since then rho_p < 0 <= rho_l).
+
+Specific sliding (Popov & Timofeev): with X the distance of the contact point from N1 along
+N1N2 = g, rho1 = X, rho2 = g - X, u21 = z1/z2:
+  lambda1 = 1 - rho2 u21 / rho1,  lambda2 = 1 - rho1 / (rho2 u21).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .involute import ainv, inv
+
+COURSE_EPS = 1.2
+ABSOLUTE_EPS = 1.1
+DEFAULT_SA_MIN = 0.25
+
+
+def rack_fillet(alpha_rad: float, c: float) -> float:
+    """Largest rack tip fillet radius coefficient c*/(1 - sin a) (0.38 for GOST 13755)."""
+    return c / (1.0 - math.sin(alpha_rad))
+
+
+def z_min_course(alpha_rad: float, ha: float) -> int:
+    """Smallest tooth number without undercut, 2 ha / sin^2 a rounded as in the textbooks."""
+    return int(round(2.0 * ha / math.sin(alpha_rad) ** 2))
+
+
+def x_min_course(z, alpha_rad: float, ha: float):
+    """Course minimum shift ha (z_min - z) / z_min (METHODS 6: ha (17 - z)/17 at 20 deg)."""
+    zm = z_min_course(alpha_rad, ha)
+    return ha * (zm - np.asarray(z, dtype=float)) / zm
+
+
+def pair(m, z1, z2, x1, x2, alpha_deg=20.0, ha=1.0, c=0.25, rho_f=None):
+    """All closed-form quantities of the pair; arguments may be numpy arrays (broadcast).
+
+    ``rho_f`` is the rack fillet coefficient (default the full fillet c/(1 - sin a)).
+    Entries where the mesh angle does not exist (inv aw <= 0) are NaN; callers check
+    ``valid``.  Returns a dict of arrays (or floats).
+    """
+    al = math.radians(alpha_deg)
+    if rho_f is None:
+        rho_f = rack_fillet(al, c)
+    z1 = np.asarray(z1, float)
+    z2 = np.asarray(z2, float)
+    x1 = np.asarray(x1, float)
+    x2 = np.asarray(x2, float)
+    xs = x1 + x2
+    inv_aw = inv(al) + 2.0 * xs * math.tan(al) / (z1 + z2)
+    valid = np.asarray(inv_aw > 0)
+    aw_ang = ainv(np.where(valid, inv_aw, inv(al)))
+    aw_ang = np.where(valid, aw_ang, np.nan)
+    a = m * (z1 + z2) / 2.0
+    aw = a * math.cos(al) / np.cos(aw_ang)
+    y = (aw - a) / m
+    dy = xs - y
+    out = {"valid": valid, "alpha": al, "inv_alpha_w": inv_aw, "alpha_w": aw_ang, "a": a,
+           "aw": aw, "y": y, "dy": dy, "p": math.pi * m, "pb": math.pi * m * math.cos(al)}
+    tan_aw = np.tan(aw_ang)
+    for i, (z, x) in enumerate(((z1, x1), (z2, x2)), start=1):
+        r = m * z / 2.0
+        rb = r * math.cos(al)
+        rw = rb / np.cos(aw_ang)
+        rf = r - (ha + c - x) * m
+        ra = r + (ha + x - dy) * m
+        s = m * (math.pi / 2.0 + 2.0 * x * math.tan(al))
+        psi0 = s / (2.0 * r) + inv(al)                    # half angle of the tooth at rb
+        aa = np.arccos(np.clip(rb / ra, -1.0, 1.0))
+        sa = 2.0 * ra * (psi0 - inv(aa))
+        sw = 2.0 * rw * (psi0 - inv(np.where(valid, aw_ang, al)))
+        h_l = (ha + c - x) * m - rho_f * m * (1.0 - math.sin(al))
+        rho_l = r * math.sin(al) - h_l / math.sin(al)
+        out.update({f"r{i}": r, f"rb{i}": rb, f"rw{i}": rw, f"rf{i}": rf, f"ra{i}": ra,
+                    f"h{i}": ra - rf, f"s{i}": s, f"e{i}": math.pi * m - s,
+                    f"sb{i}": 2.0 * rb * psi0, f"sw{i}": sw, f"alpha_a{i}": aa, f"sa{i}": sa,
+                    f"rho_l{i}": rho_l, f"x_min{i}": x_min_course(z, al, ha),
+                    f"x_min_exact{i}": h_l / m - z * math.sin(al) ** 2 / 2.0,
+                    f"NB{i}": rb * np.tan(aa)})
+    g = aw * np.sin(aw_ang)                                # N1N2
+    out["N1N2"] = g
+    out["N1P"] = out["rb1"] * tan_aw
+    out["N1B2"] = out["NB1"]
+    out["N2B1"] = out["NB2"]
+    out["N1B1"] = g - out["NB2"]
+    out["rho_p1"] = g - out["NB2"]                         # curvature radius at lowest point, 1
+    out["rho_p2"] = g - out["NB1"]
+    out["ga"] = out["NB1"] + out["NB2"] - g               # B1B2
+    out["eps"] = (z1 * (np.tan(out["alpha_a1"]) - tan_aw)
+                  + z2 * (np.tan(out["alpha_a2"]) - tan_aw)) / (2.0 * math.pi)
+    out["h"] = out["h1"]
+    return out
+
+
+def lowest_radius(rb, rho):
+    """Radius of the involute point with curvature radius rho (rho may be negative: beyond N)."""
+    return np.sqrt(rb * rb + rho * rho)
+
+
+def sliding(x, g, z1, z2):
+    """Specific sliding (lambda1, lambda2) at distance x from N1 on N1N2 = g.
+
+    Infinite values (at N1 for lambda1, N2 for lambda2) come back as None in lists; as
+    +-inf in arrays here.
+    """
+    x = np.asarray(x, float)
+    u21 = z1 / z2
+    rho1 = x
+    rho2 = g - x
+    with np.errstate(divide="ignore", invalid="ignore"):
+        l1 = np.where(rho1 != 0, 1.0 - rho2 * u21 / np.where(rho1 != 0, rho1, 1.0), -np.inf)
+        l2 = np.where(rho2 != 0, 1.0 - rho1 / (np.where(rho2 != 0, rho2, 1.0) * u21), -np.inf)
+    return l1, l2
+
+
+def checks(geo, m, sa_min=DEFAULT_SA_MIN, rho_l_true=None, x=(0.0, 0.0)):
+    """Defect flags (True = defect) from a :func:`pair` dict (arrays allowed).
+
+    ``rho_l_true`` overrides the closed-form boundary curvature radius (for undercut teeth
+    the involute starts higher, where the trochoidal fillet cuts it).
+    """
+    x1, x2 = (np.asarray(v, float) for v in x)
+    tol = 1e-12
+    rl1 = np.maximum(geo["rho_l1"], 0.0) if rho_l_true is None else rho_l_true[0]
+    rl2 = np.maximum(geo["rho_l2"], 0.0) if rho_l_true is None else rho_l_true[1]
+    return {
+        "undercut": [x1 < geo["x_min1"] - tol, x2 < geo["x_min2"] - tol],
+        "sharpening": [geo["sa1"] < sa_min * m * (1 - tol), geo["sa2"] < sa_min * m * (1 - tol)],
+        "contact_ratio_low": geo["eps"] < COURSE_EPS - tol,
+        "contact_ratio_below_absolute": geo["eps"] < ABSOLUTE_EPS - tol,
+        "interference": [geo["rho_p1"] < rl1 - tol * m, geo["rho_p2"] < rl2 - tol * m],
+    }

@@ -1,0 +1,64 @@
+"""The involute function and its inverse.
+
+``inv(a) = tan(a) - a`` (a in radians) and ``ainv(v)``, the angle whose involute is v.
+
+The inverse is solved by Newton's method on f(a) = tan a - a - v, f'(a) = tan^2 a.
+f is increasing and convex on (0, pi/2), so Newton's iteration started from any point
+*above* the root decreases monotonically to it.  Two upper bounds of the root are used
+for the start: (3v)^(1/3) (because tan a - a >= a^3/3) and atan(v + pi/2) (because
+tan a = v + a < v + pi/2); their minimum is close to the root for small and large v.
+Near a = 0 the involute is evaluated by its Maclaurin series to avoid the cancellation
+in tan a - a, so the inverse is accurate to ~1e-15 rad over the useful range
+(tested to 1e-12 over 1..60 deg).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+# Maclaurin series of tan(a) - a = sum c_k a^(2k+1), k >= 1
+_SERIES = (1.0 / 3.0, 2.0 / 15.0, 17.0 / 315.0, 62.0 / 2835.0, 1382.0 / 155925.0,
+           21844.0 / 6081075.0, 929569.0 / 638512875.0)
+_SMALL = 0.05  # below this |a| the series (error < 1e-19 relative) replaces tan(a) - a
+
+
+def inv(a):
+    """Involute function tan(a) - a, a in radians (scalar or array)."""
+    a = np.asarray(a, dtype=float)
+    a2 = a * a
+    series = np.zeros_like(a)
+    for coef in reversed(_SERIES):
+        series = series * a2 + coef
+    series = series * a2 * a
+    with np.errstate(invalid="ignore", over="ignore"):
+        direct = np.tan(a) - a
+    out = np.where(np.abs(a) < _SMALL, series, direct)
+    return out if out.ndim else float(out)
+
+
+def ainv(v, tol: float = 1e-15, maxiter: int = 60):
+    """Inverse involute: the angle a in [0, pi/2) with inv(a) = v (v >= 0).
+
+    Vectorised; raises ValueError for negative or non-finite v.
+    """
+    v = np.asarray(v, dtype=float)
+    if not np.all(np.isfinite(v)) or np.any(v < 0):
+        raise ValueError("the inverse involute needs a finite non-negative argument")
+    a = np.minimum(np.cbrt(3.0 * v), np.arctan(v + np.pi / 2))
+    for _ in range(maxiter):
+        t = np.tan(a)
+        fp = t * t
+        f = inv(a) - v
+        with np.errstate(divide="ignore", invalid="ignore"):
+            step = np.where(fp > 0, f / np.where(fp > 0, fp, 1.0), 0.0)
+        a_new = np.maximum(a - step, 0.0)
+        done = np.all(np.abs(a_new - a) <= tol * np.maximum(1.0, a_new))
+        a = a_new
+        if done:
+            break
+    return a if a.ndim else float(a)
+
+
+def deg(a):
+    """Radians to degrees, returning a plain float for scalars."""
+    out = np.degrees(a)
+    return float(out) if np.ndim(out) == 0 else out

@@ -1,0 +1,359 @@
+"""Synthesis of simple planetary gears: tooth numbers for a required ratio i_1H.
+
+Convention: i_1H = omega_1 / omega_H (input: central wheel 1; output: carrier H; the
+other central wheel is fixed), signed: positive when 1 and H turn the same way.
+Wheels are numbered as in Popov & Timofeev: central wheel 1, satellite 2 (single row)
+or the double satellite 2-3 (two rows), fixed central wheel 3 (single row) or 4.
+All wheels have the same module, zero shifts, ha* = 1.  Willis' formula for the fixed
+wheel: i_1H = 1 - i_1F^(H), i_1F^(H) the ratio with the carrier held.
+
+Schemes (the report draws them)::
+
+  A  single row (James):   1 --ext-- 2 --int-- 3 (fixed ring)
+        i_1H = 1 + z3/z1                 coaxial: z1 + 2 z2 = z3
+  B  two rows, ext + int:  1 --ext-- 2 ==(2-3 one block)== 3 --int-- 4 (fixed ring)
+        i_1H = 1 + z2 z4 / (z1 z3)       coaxial: z1 + z2 = z4 - z3
+  C  two rows, ext + ext:  1 --ext-- 2 == 3 --ext-- 4 (fixed sun)
+        i_1H = 1 - z2 z4 / (z1 z3)       coaxial: z1 + z2 = z4 + z3
+  D  two rows, int + int:  1 (ring) --int-- 2 == 3 --int-- 4 (fixed ring)
+        i_1H = 1 - z2 z4 / (z1 z3)       coaxial: z1 - z2 = z4 - z3
+
+Half sections above the axis (### fixed to the frame, [n] a wheel, H the carrier arm
+holding the satellite axle ``o``)::
+
+  A   ###[3]###          B   #########[4]#       C   [2]  [3]            D   [1]    ###[4]###
+        [2]-o-H                 [2][3]-o-H             o-----o-H                [2][3]-o-H
+      ==[1]==                 ==[1]==              ==[1]==  ##[4]##          (1 and 4 rings)
+  ----axis----           ----axis----          ----axis---------     ----axis----------
+
+Conditions for every candidate (Popov & Timofeev, "Курсовое проектирование по ТММ",
+ch. «Синтез планетарных механизмов»):
+  * ratio:       |i - i_req| <= tolerance |i_req|;
+  * coaxiality:  equal centre distances of the two meshes (equations above);
+  * assembly with k equally spaced satellites: (i_1H z1 / k)(1 + k p) is an integer for
+    some integer p >= 0 (the textbook form; p is reported; for a single row it reduces to
+    (z1 + z3)/k integer).  Proof of sufficiency: carrying a satellite by 2 pi (1 + k p)/k
+    turns wheel 1 by a whole number of its pitches;
+  * adjacency:   (tip circles of neighbouring satellites do not touch)
+                 2 a_w sin(pi/k) > d_a(largest satellite rim) = m (z_sat + 2 ha*);
+  * no undercut / interference with zero shifts (ha* = 1): an external wheel in external
+    mesh z >= z_min = 17; an external wheel in internal mesh z >= 20; an internal wheel
+    z >= 85; in every internal mesh z_internal - z_external >= 8.
+Candidates are ranked by size (the diameter of the smallest circle holding the pitch
+circles, in modules: A, B: z_ring; C: max(z1 + 2 z2, z4 + 2 z3); D: max(z1, z4)), then by
+the sum of teeth, then by |ratio error|.
+
+Velocity (Kutzbach) plan: the radial line through the axis and the satellite centre is
+the y axis (m); each link is a straight line of tangential velocity v(y) through its
+instantaneous centre: wheel 1 and the carrier through the axis (y = 0), the satellite
+through its contact with the fixed wheel (v = 0).  From v of the contact 1-2 (omega1 r1)
+the satellite line gives the velocity of its centre and hence omega_H; omega1/omega_H from
+the plan is compared with Willis' formula.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from fractions import Fraction
+
+import numpy as np
+
+from ..errors import StageError
+
+STAGE = "planetary"
+
+SCHEMES = {
+    "A": {"name": "single row: sun - satellite - fixed ring", "wheels": ("z1", "z2", "z3"),
+          "meshes": (("z1", "z2", "ext"), ("z2", "z3", "int"))},
+    "B": {"name": "two rows, double satellite: external + internal mesh",
+          "wheels": ("z1", "z2", "z3", "z4"), "meshes": (("z1", "z2", "ext"), ("z3", "z4", "int"))},
+    "C": {"name": "two rows, double satellite: two external meshes",
+          "wheels": ("z1", "z2", "z3", "z4"), "meshes": (("z1", "z2", "ext"), ("z3", "z4", "ext"))},
+    "D": {"name": "two rows, double satellite: two internal meshes",
+          "wheels": ("z1", "z2", "z3", "z4"), "meshes": (("z2", "z1", "int"), ("z3", "z4", "int"))},
+}
+ALIASES = {"a": "A", "b": "B", "c": "C", "d": "D", "single": "A", "james": "A"}
+
+Z_EXT = 17          # external wheel in external mesh (ha* = 1, x = 0)
+Z_EXT_IN_INT = 20   # external wheel in internal mesh
+Z_INT = 85          # internal wheel
+Z_DIFF = 8          # z_internal - z_external in an internal mesh
+HA = 1.0
+
+
+def scheme_key(name: str) -> str:
+    key = str(name).strip()
+    key = ALIASES.get(key.lower(), key.upper())
+    if key not in SCHEMES:
+        raise StageError(STAGE, f"unknown planetary scheme {name!r}; known: {', '.join(SCHEMES)}")
+    return key
+
+
+def ratio_exact(scheme: str, z: dict) -> Fraction:
+    """Willis' ratio i_1H as an exact fraction."""
+    if scheme == "A":
+        return 1 + Fraction(z["z3"], z["z1"])
+    if scheme == "B":
+        return 1 + Fraction(z["z2"] * z["z4"], z["z1"] * z["z3"])
+    return 1 - Fraction(z["z2"] * z["z4"], z["z1"] * z["z3"])
+
+
+def centre_distances(scheme: str, z: dict) -> tuple[float, float]:
+    """Centre distances (in modules) of the two meshes (equal when coaxial)."""
+    if scheme == "A":
+        return (z["z1"] + z["z2"]) / 2, (z["z3"] - z["z2"]) / 2
+    if scheme == "B":
+        return (z["z1"] + z["z2"]) / 2, (z["z4"] - z["z3"]) / 2
+    if scheme == "C":
+        return (z["z1"] + z["z2"]) / 2, (z["z4"] + z["z3"]) / 2
+    return (z["z1"] - z["z2"]) / 2, (z["z4"] - z["z3"]) / 2
+
+
+def satellites_of(scheme: str, z: dict) -> list[int]:
+    return [z["z2"]] if scheme == "A" else [z["z2"], z["z3"]]
+
+
+def assembly_p(scheme: str, z: dict, k: int, pmax: int | None = None):
+    """Smallest p >= 0 with (i_1H z1 / k)(1 + k p) integer, or None."""
+    q = ratio_exact(scheme, z) * z["z1"] / k
+    pmax = pmax if pmax is not None else q.denominator + 1
+    for p in range(pmax + 1):
+        if (q * (1 + k * p)).denominator == 1:
+            return p
+    return None
+
+
+def undercut_ok(scheme: str, z: dict, z_min: int = Z_EXT) -> list[str]:
+    """List of violated tooth-number limits (empty when none)."""
+    bad = []
+    for a, b, kind in SCHEMES[scheme]["meshes"]:
+        za, zb = z[a], z[b]
+        if kind == "ext":
+            for name, v in ((a, za), (b, zb)):
+                if v < z_min:
+                    bad.append(f"{name} = {v} < {z_min}")
+        else:                                   # a: external wheel, b: internal wheel
+            if za < max(Z_EXT_IN_INT, z_min):
+                bad.append(f"{a} = {za} < {max(Z_EXT_IN_INT, z_min)} (external wheel in internal mesh)")
+            if zb < Z_INT:
+                bad.append(f"{b} = {zb} < {Z_INT} (internal wheel)")
+            if zb - za < Z_DIFF:
+                bad.append(f"{b} - {a} = {zb - za} < {Z_DIFF}")
+    return bad
+
+
+def adjacency_margin(scheme: str, z: dict, k: int) -> float:
+    """2 a_w sin(pi/k) - max satellite tip diameter, in modules (> 0 required)."""
+    aw = centre_distances(scheme, z)[0]
+    if k == 1:
+        return math.inf
+    return 2 * abs(aw) * math.sin(math.pi / k) - (max(satellites_of(scheme, z)) + 2 * HA)
+
+
+def size_key(scheme: str, z: dict) -> float:
+    if scheme in ("A",):
+        return z["z3"]
+    if scheme == "B":
+        return z["z4"]
+    if scheme == "C":
+        return max(z["z1"] + 2 * z["z2"], z["z4"] + 2 * z["z3"])
+    return max(z["z1"], z["z4"])
+
+
+def verify(scheme: str, z: dict, k: int, required: float, tolerance: float, z_min: int = Z_EXT) -> dict:
+    """All conditions of one candidate (used by the search and reported)."""
+    i = ratio_exact(scheme, z)
+    a1, a2 = centre_distances(scheme, z)
+    p = assembly_p(scheme, z, k)
+    err = (float(i) - required) / required
+    return {"ratio": float(i), "ratio_error": err, "ratio_ok": abs(err) <= tolerance * (1 + 1e-12),
+            "coaxial": a1 == a2 and a1 > 0, "assembly_p": p, "assembly": p is not None,
+            "adjacency_margin": adjacency_margin(scheme, z, k),
+            "adjacency": adjacency_margin(scheme, z, k) > 0,
+            "undercut_violations": undercut_ok(scheme, z, z_min),
+            "undercut": not undercut_ok(scheme, z, z_min)}
+
+
+def _all_ok(v: dict) -> bool:
+    return v["ratio_ok"] and v["coaxial"] and v["assembly"] and v["adjacency"] and v["undercut"]
+
+
+def _assembly_vec(num, den, k):
+    """Vectorised textbook assembly test: exists p >= 0 with num (1 + k p) / (k den) integer.
+
+    k den | num (1 + k p) needs k | num (gcd(k, 1 + k p) = 1); with n' = num / k and
+    d' = den / gcd(n', den), k p = -1 (mod d') is solvable iff gcd(k, d') = 1.
+    """
+    num = np.abs(num)
+    ok = num % k == 0
+    n1 = num // k
+    d1 = den // np.gcd(n1, den)
+    return ok & (np.gcd(k, d1) == 1)
+
+
+def _candidates(scheme, req, tol, k, z_min, z_max):
+    """Vectorised enumeration of tooth numbers meeting every condition; rows of an int array
+    (z1, z2, z3[, z4]) sorted by size, teeth and ratio error."""
+    lo, hi = req - tol * abs(req), req + tol * abs(req)
+    zext = int(z_min)
+    zin_ext = max(Z_EXT_IN_INT, zext)
+    sinpk = math.sin(math.pi / k) if k > 1 else None
+    rows = []
+    if scheme == "A":
+        z1 = np.arange(zext, z_max + 1)[:, None]
+        z3 = np.arange(Z_INT, z_max + 1)[None, :]
+        z1, z3 = np.broadcast_arrays(z1, z3)
+        z2 = (z3 - z1) // 2
+        i = 1 + z3 / z1
+        ok = (i >= lo) & (i <= hi) & ((z3 - z1) % 2 == 0) & (z2 >= zin_ext) & (z3 - z2 >= Z_DIFF)
+        ok &= _assembly_vec(z1 + z3, np.ones_like(z1), k)
+        if sinpk is not None:
+            ok &= (z1 + z2) * sinpk > z2 + 2 * HA
+        z1, z2, z3 = z1[ok], z2[ok], z3[ok]
+        arr = np.stack([z1, z2, z3], axis=1)
+        size = z3
+        err = np.abs(1 + z3 / z1 - req)
+        order = np.lexsort((err, arr.sum(axis=1), size))
+        return arr[order]
+    zlo = min(zext, zin_ext)
+    zs = np.arange(zlo, z_max + 1)
+    Z2, Z3 = np.meshgrid(zs, zs, indexing="ij")
+    for z1 in range(zlo, z_max + 1):
+        if scheme == "B":
+            z4 = z1 + Z2 + Z3
+            num = z1 * Z3 + Z2 * z4
+            i = 1 + Z2 * z4 / (z1 * Z3)
+            ok = (z1 >= zext) & (Z2 >= zext) & (Z3 >= zin_ext) & (z4 >= Z_INT) & (z4 - Z3 >= Z_DIFF)
+            aw = z1 + Z2
+        elif scheme == "C":
+            z4 = z1 + Z2 - Z3
+            num = z1 * Z3 - Z2 * z4
+            i = 1 - Z2 * z4 / (z1 * Z3)
+            ok = (z1 >= zext) & (Z2 >= zext) & (Z3 >= zext) & (z4 >= zext)
+            aw = z1 + Z2
+        else:
+            z4 = z1 - Z2 + Z3
+            num = z1 * Z3 - Z2 * z4
+            i = 1 - Z2 * z4 / (z1 * Z3)
+            ok = ((z1 >= Z_INT) & (Z2 >= zin_ext) & (z1 - Z2 >= Z_DIFF) & (Z3 >= zin_ext)
+                  & (z4 >= Z_INT) & (z4 - Z3 >= Z_DIFF))
+            aw = z1 - Z2
+        ok &= (i >= lo) & (i <= hi) & (z4 <= z_max) & (num != 0)
+        if sinpk is not None:
+            ok &= aw * sinpk > np.maximum(Z2, Z3) + 2 * HA
+        if not ok.any():
+            continue
+        ok &= _assembly_vec(num, Z3, k)
+        if ok.any():
+            rows.append(np.stack([np.full(ok.sum(), z1), Z2[ok], Z3[ok], z4[ok]], axis=1))
+    if not rows:
+        return np.zeros((0, 4), dtype=int)
+    arr = np.concatenate(rows)
+    z1, z2, z3, z4 = arr.T
+    if scheme == "B":
+        size = z4
+        i = 1 + z2 * z4 / (z1 * z3)
+    elif scheme == "C":
+        size = np.maximum(z1 + 2 * z2, z4 + 2 * z3)
+        i = 1 - z2 * z4 / (z1 * z3)
+    else:
+        size = np.maximum(z1, z4)
+        i = 1 - z2 * z4 / (z1 * z3)
+    order = np.lexsort((np.abs(i - req), arr.sum(axis=1), size))
+    return arr[order]
+
+
+def velocity_plan(scheme: str, z: dict, m: float, omega1: float = 1.0) -> dict:
+    """Kutzbach plan: radial positions y (m) and tangential velocities v (m/s) of the key points.
+
+    Returns the points, the lines of the links (v = k (y - y0)) and i_1H from the plan.
+    """
+    r = {k: m * v / 2 for k, v in z.items()}
+    a = centre_distances(scheme, z)[0] * m
+    if scheme == "A":
+        y12, yF = r["z1"], r["z3"]                 # contact with 1, contact with the fixed wheel
+    elif scheme == "B":
+        y12, yF = r["z1"], a + r["z3"]
+    elif scheme == "C":
+        y12, yF = r["z1"], a - r["z3"]
+    else:
+        y12, yF = r["z1"], a + r["z3"]
+    v12 = omega1 * y12                             # wheel 1: line through the axis
+    # satellite: v(y) linear, zero at yF, v12 at y12
+    slope_sat = v12 / (y12 - yF)
+    v_centre = slope_sat * (a - yF)
+    omega_h = v_centre / a
+    omega_sat = slope_sat                           # absolute angular velocity of the satellite
+    pts = [{"name": "O", "y": 0.0, "v": 0.0}, {"name": "A (1-2)", "y": y12, "v": v12},
+           {"name": "C (centre of 2)", "y": a, "v": v_centre}, {"name": "F (fixed contact)", "y": yF, "v": 0.0}]
+    return {"omega1": omega1, "omega_H": omega_h, "omega_satellite": omega_sat,
+            "ratio": omega1 / omega_h if omega_h != 0 else None, "points": pts,
+            "lines": {"1": {"y0": 0.0, "slope": omega1}, "H": {"y0": 0.0, "slope": omega_h},
+                      "satellite": {"y0": yF, "slope": slope_sat}},
+            "tan_psi_1": omega1, "tan_psi_H": omega_h}
+
+
+@dataclass
+class PlanetaryResult:
+    scheme: str
+    required: float
+    tolerance: float
+    satellites: int
+    m: float
+    z: dict
+    checks: dict
+    candidates: list
+    plan: dict
+    warnings: list = field(default_factory=list)
+
+    def to_dict(self) -> dict:
+        radii = {k: self.m * v / 2 for k, v in self.z.items()}
+        return {"z": dict(self.z), "ratio": self.checks["ratio"], "ratio_error": self.checks["ratio_error"],
+                "scheme": self.scheme, "scheme_name": SCHEMES[self.scheme]["name"],
+                "required": self.required, "tolerance": self.tolerance, "satellites": self.satellites,
+                "m": self.m, "r": radii, "aw": centre_distances(self.scheme, self.z)[0] * self.m,
+                "ratio_willis": self.checks["ratio"], "ratio_plan": self.plan["ratio"],
+                "checks": {k: v for k, v in self.checks.items() if k not in ("ratio", "ratio_error")},
+                "candidates": self.candidates, "velocity_plan": self.plan, "warnings": list(self.warnings)}
+
+
+def synthesize_planetary(spec) -> PlanetaryResult:
+    """Tooth numbers for ``spec`` (scheme, ratio, satellites, tolerance, optional m, z_min, z_max)."""
+    scheme = scheme_key(spec.scheme)
+    req = float(spec.ratio)
+    if req == 0 or not math.isfinite(req):
+        raise StageError(STAGE, "the required ratio must be a non-zero number")
+    k = int(getattr(spec, "satellites", 3) or 3)
+    tol = float(getattr(spec, "tolerance", 0.05) or 0.05)
+    m = getattr(spec, "m", None)
+    m = 0.001 if m is None else float(m)
+    z_min = getattr(spec, "z_min", None) or Z_EXT
+    z_max = getattr(spec, "z_max", None) or 150
+    n_keep = int(getattr(spec, "candidates", 10) or 10)
+    if scheme in ("A", "B") and req <= 1:
+        raise StageError(STAGE, f"scheme {scheme} gives i_1H > 1 only (required {req:g})")
+    arr = _candidates(scheme, req, tol, k, int(z_min), int(z_max))
+    names = SCHEMES[scheme]["wheels"]
+    found = []
+    for row in arr[: max(n_keep, 1)]:
+        z = {n: int(v) for n, v in zip(names, row)}
+        v = verify(scheme, z, k, req, tol, int(z_min))
+        if not _all_ok(v):                      # the vectorised filter and verify() disagree
+            raise StageError(STAGE, f"internal inconsistency for candidate {z}: {v}")
+        found.append((size_key(scheme, z), sum(z.values()), z, v))
+    if not found:
+        raise StageError(STAGE, f"no tooth numbers for scheme {scheme} give i_1H = {req:g} within "
+                                f"{tol:.3g} with {k} satellites (z in [{z_min}, {z_max}])")
+    z, v = found[0][2], found[0][3]
+    cands = [{"z": dict(t[2]), "ratio": t[3]["ratio"], "ratio_error": t[3]["ratio_error"], "size": t[0],
+              "teeth": t[1], "assembly_p": t[3]["assembly_p"]} for t in found]
+    plan = velocity_plan(scheme, z, m)
+    warnings = []
+    if plan["ratio"] is not None and abs(plan["ratio"] - v["ratio"]) > 1e-9 * max(1.0, abs(v["ratio"])):
+        warnings.append(f"planetary: velocity plan ratio {plan['ratio']:.6g} differs from Willis' "
+                        f"{v['ratio']:.6g}")
+    checks = dict(v)
+    checks["adjacency_margin"] = float(checks["adjacency_margin"]) if math.isfinite(
+        checks["adjacency_margin"]) else None
+    return PlanetaryResult(scheme=scheme, required=req, tolerance=tol, satellites=k, m=m, z=dict(z),
+                           checks=checks, candidates=cands, plan=plan, warnings=warnings)
