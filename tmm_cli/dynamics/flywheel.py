@@ -1,0 +1,329 @@
+"""The flywheel on arrays: works, speed fluctuation and the three methods (METHODS 4).
+
+Everything here works on one steady cycle sampled at nodes ``q`` (rad), the crank
+rotation from position 0 in the direction of motion, ``q[0] = 0``, ``q[-1]`` = the
+cycle (2 pi or 4 pi).  A node may appear twice with the same ``q`` (left and right
+limits of a load that jumps there): the trapezoid over that zero-width interval adds
+nothing, so the works are exact for loads that are piecewise linear between nodes.
+
+Reduced moments are signed *along the motion* (positive = driving).  Reduced inertia
+is split (METHODS 4) into the constant part ``J_const`` (crank, rotor, gears, any link
+whose reduced inertia is constant) and the variable part ``J_var(q)`` of the other
+links, so ``J_red = J_const + J_var``.  ``J_n`` is the constant reduced inertia needed
+(the constant part that, added to ``J_var``, gives the required delta), and the
+flywheel is ``J_fly = J_n - J_const``.
+
+Kinetic energy at q: ``T(q) = T0 + dT(q)`` with ``dT = A_d - A_c``, the exact first
+integral of the equation of motion ``J omega domega/dq + J' omega^2/2 = M_red``;
+``omega = sqrt(2 T / (J_n + J_var))``.
+
+Methods (METHODS 4; where METHODS is silent: Artobolevsky, "Teoriya mekhanizmov i
+mashin", ch. on the motion of a machine; Popov & Timofeev; Frolov):
+
+* energy-mass, exact analytic form: ``omega_max,min = omega_m (1 +/- delta/2)``,
+  ``a = max(dT - J_var omega_max^2/2)``, ``b = min(dT - J_var omega_min^2/2)``,
+  ``J_n = (a - b)/(omega_m^2 delta)``.  On the same nodes this *is* the exact steady
+  motion with mean (omega_max + omega_min)/2 = omega_m: if T0 = J_n omega_max^2/2 - a
+  then max omega = omega_max and min omega = omega_min exactly.
+* Wittenbauer's graphical tangents (tan psi = (mu_J/mu_T) omega_m^2 (1 +/- delta)/2)
+  drop the delta^2/4 term: ``|J_n,W - J_n| <= (max J_var - min J_var) delta/8``.
+* Merzalov: ``T_II = J_var omega_m^2/2``, ``dT_I = dT - T_II``,
+  ``J_n = (max dT_I - min dT_I)/(omega_m^2 delta)``; it neglects the smoothing done
+  by the links of variable inertia: ``min J_var <= J_n,M - J_n <= max J_var``.
+* exact: the steady motion is integrated (energy form) for a trial J_n, T0 is found so
+  that (omega_max + omega_min)/2 = omega_m, and J_n is found by root finding so that the
+  achieved (omega_max - omega_min)/omega_m equals delta.  This is an independent
+  numerical route to the energy-mass result (they agree to the root tolerance).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq
+
+from ..errors import StageError
+
+STAGE = "dynamics"
+_TINY = 1e-300
+
+
+def cumtrapz(q: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """Cumulative trapezoid, 0 at q[0] (zero-width intervals add nothing)."""
+    q = np.asarray(q, float)
+    y = np.asarray(y, float)
+    out = np.zeros_like(y)
+    if y.size > 1:
+        out[1:] = np.cumsum(0.5 * (y[1:] + y[:-1]) * np.diff(q))
+    return out
+
+
+# ------------------------------------------------------------------ works
+@dataclass
+class CycleWork:
+    """Works over the cycle.  M_d is the reduced moment of the driving side (along the
+    motion), M_c of the resistance side (positive when it resists); dT = A_d - A_c."""
+    q: np.ndarray
+    M_given: np.ndarray       # reduced moment of the task's loads (+ gravity), along the motion
+    M_constant: float         # the constant reduced moment (signed along the motion)
+    M_red: np.ndarray         # M_given + M_constant
+    M_d: np.ndarray
+    M_c: np.ndarray
+    A_d: np.ndarray
+    A_c: np.ndarray
+    dT: np.ndarray
+    A_given: float            # work of the given loads over the cycle
+    constant: str             # 'driving' | 'resistance'
+
+
+def cycle_work(q: np.ndarray, M_given: np.ndarray, constant: str = "driving") -> CycleWork:
+    """The constant reduced moment from zero net work over the steady cycle and the
+    works A_d, A_c, dT (trapezoid on the nodes).
+
+    constant='driving' (motor-driven machine): the given loads are the resistance side,
+    M_d = M_constant.  constant='resistance' (engine): the given loads are the driving
+    side, M_c = -M_constant.
+    """
+    q = np.asarray(q, float)
+    M_given = np.asarray(M_given, float)
+    if q.ndim != 1 or q.size < 2 or q.shape != M_given.shape:
+        raise StageError(STAGE, "the cycle needs at least two nodes with one moment each")
+    if not np.all(np.isfinite(M_given)):
+        raise StageError(STAGE, "the reduced moment of the loads is not finite")
+    if np.any(np.diff(q) < 0) or q[-1] <= q[0]:
+        raise StageError(STAGE, "cycle nodes must be non-decreasing over a positive span")
+    A_g = cumtrapz(q, M_given)
+    span = q[-1] - q[0]
+    Mc = -A_g[-1] / span
+    M_red = M_given + Mc
+    dT = A_g + Mc * (q - q[0])
+    # exact zero at the end (removes the rounding of the cumulative sum)
+    dT[-1] = 0.0 if abs(dT[-1]) <= 1e-12 * max(np.max(np.abs(A_g)), _TINY) else dT[-1]
+    ones = np.ones_like(q)
+    if constant == "driving":
+        M_d, M_c = Mc * ones, -M_given
+        A_d, A_c = Mc * (q - q[0]), -A_g
+    elif constant == "resistance":
+        M_d, M_c = M_given, -Mc * ones
+        A_d, A_c = A_g, -Mc * (q - q[0])
+    else:
+        raise StageError(STAGE, f"unknown constant moment kind {constant!r}")
+    return CycleWork(q=q, M_given=M_given, M_constant=float(Mc), M_red=M_red, M_d=M_d, M_c=M_c,
+                     A_d=A_d, A_c=A_c, dT=dT, A_given=float(A_g[-1]), constant=constant)
+
+
+# ------------------------------------------------------------------ methods
+def _check(dT, J_var, omega_m, delta):
+    dT = np.asarray(dT, float)
+    J_var = np.broadcast_to(np.asarray(J_var, float), dT.shape)
+    if not (omega_m > 0 and math.isfinite(omega_m)):
+        raise StageError(STAGE, f"the mean speed must be positive (got {omega_m})")
+    if not (0 < delta < 1):
+        raise StageError(STAGE, f"delta must lie in (0, 1) (got {delta})")
+    if not (np.all(np.isfinite(dT)) and np.all(np.isfinite(J_var))):
+        raise StageError(STAGE, "kinetic energy change or reduced inertia is not finite")
+    return dT, J_var
+
+
+def energy_mass(dT, J_var, omega_m: float, delta: float) -> tuple[float, float, float]:
+    """Exact analytic energy-mass (Wittenbauer) method: (J_n, a, b), METHODS 4."""
+    dT, J_var = _check(dT, J_var, omega_m, delta)
+    wmax = omega_m * (1 + delta / 2)
+    wmin = omega_m * (1 - delta / 2)
+    a = float(np.max(dT - J_var * wmax**2 / 2))
+    b = float(np.min(dT - J_var * wmin**2 / 2))
+    return (a - b) / (omega_m**2 * delta), a, b
+
+
+def wittenbauer(dT, J_var, omega_m: float, delta: float) -> tuple[float, float, float]:
+    """The graphical Wittenbauer construction: tangents of slope
+    omega_m^2 (1 +/- delta)/2 in the (J, dT) plane -> (J_n, a, b)."""
+    dT, J_var = _check(dT, J_var, omega_m, delta)
+    a = float(np.max(dT - J_var * omega_m**2 * (1 + delta) / 2))
+    b = float(np.min(dT - J_var * omega_m**2 * (1 - delta) / 2))
+    return (a - b) / (omega_m**2 * delta), a, b
+
+
+def merzalov(dT, J_var, omega_m: float, delta: float) -> tuple[float, np.ndarray, np.ndarray]:
+    """Merzalov's method: (J_n, dT_I, T_II) with T_II = J_var omega_m^2/2, METHODS 4."""
+    dT, J_var = _check(dT, J_var, omega_m, delta)
+    T_II = J_var * omega_m**2 / 2
+    dT_I = dT - T_II
+    return float(np.max(dT_I) - np.min(dT_I)) / (omega_m**2 * delta), dT_I, T_II
+
+
+# ------------------------------------------------------------------ steady motion
+def _omega(T0, dT, J):
+    return np.sqrt(np.maximum(2.0 * (T0 + dT), 0.0) / J)
+
+
+def steady_T0(dT, J_tot, omega_m: float) -> float | None:
+    """T0 such that (max omega + min omega)/2 = omega_m for omega = sqrt(2 (T0 + dT)/J_tot).
+    None when no such T0 exists (the speed would reach zero: delta >= 2)."""
+    dT = np.asarray(dT, float)
+    J_tot = np.asarray(J_tot, float)
+    jmax = float(np.max(J_tot))
+    u_lo = -float(np.min(dT))
+    u_hi = omega_m**2 * jmax / 2 + u_lo
+
+    def g(u):
+        w = _omega(u, dT, J_tot)
+        return 0.5 * (float(np.max(w)) + float(np.min(w))) - omega_m
+
+    g_lo = g(u_lo)
+    if g_lo > 0:
+        return None
+    if g_lo == 0:
+        return u_lo
+    if g(u_hi) < 0:   # rounding only: u_hi makes min omega >= omega_m
+        u_hi *= 1 + 1e-12
+    scale = max(abs(u_hi), abs(u_lo), _TINY)
+    return float(brentq(g, u_lo, u_hi, xtol=1e-15 * scale, rtol=8.9e-16, maxiter=400))
+
+
+@dataclass
+class Motion:
+    """Steady motion with constant reduced inertia J_n + J_var (along the motion)."""
+    T0: float
+    omega: np.ndarray         # |omega1|(q), rad/s
+    omega_max: float
+    omega_min: float
+    delta: float              # (omega_max - omega_min)/omega_m, omega_m = their mean
+
+
+def steady_motion(dT, J_var, J_n: float, omega_m: float) -> Motion:
+    """The periodic steady motion for the constant reduced inertia J_n, its mean speed
+    (omega_max + omega_min)/2 equal to omega_m."""
+    dT = np.asarray(dT, float)
+    J_tot = J_n + np.broadcast_to(np.asarray(J_var, float), dT.shape)
+    rng = float(np.max(dT) - np.min(dT))
+    if float(np.min(J_tot)) <= 0:
+        if float(np.max(np.abs(J_tot))) == 0 and rng == 0:
+            w = np.full_like(dT, omega_m)   # nothing moves, nothing changes: uniform
+            return Motion(T0=0.0, omega=w, omega_max=omega_m, omega_min=omega_m, delta=0.0)
+        raise StageError(STAGE, "the total reduced moment of inertia is not positive over the cycle "
+                                "(give link masses / moments of inertia or a flywheel)")
+    T0 = steady_T0(dT, J_tot, omega_m)
+    if T0 is None:
+        raise StageError(STAGE, "the machine stops within the cycle at this mean speed: "
+                                "the flywheel is far too light (speed fluctuation >= 200 %)")
+    w = _omega(T0, dT, J_tot)
+    wmax, wmin = float(np.max(w)), float(np.min(w))
+    wm = 0.5 * (wmax + wmin)
+    return Motion(T0=T0, omega=w, omega_max=wmax, omega_min=wmin, delta=(wmax - wmin) / wm)
+
+
+def achieved_delta(dT, J_var, J_n: float, omega_m: float) -> float:
+    """Speed fluctuation of the steady motion with constant reduced inertia J_n
+    (2.0 when the machine would stop, i.e. delta >= 2)."""
+    dT = np.asarray(dT, float)
+    J_tot = J_n + np.broadcast_to(np.asarray(J_var, float), dT.shape)
+    if float(np.min(J_tot)) <= 0:
+        return 2.0
+    T0 = steady_T0(dT, J_tot, omega_m)
+    if T0 is None:
+        return 2.0
+    w = _omega(T0, dT, J_tot)
+    wmax, wmin = float(np.max(w)), float(np.min(w))
+    return (wmax - wmin) / (0.5 * (wmax + wmin))
+
+
+def exact_flywheel(dT, J_var, omega_m: float, delta: float, guess: float | None = None) -> float:
+    """J_n for which the integrated steady motion has exactly the required delta
+    (root finding on J_n; T0 from the mean-speed condition at every trial).
+
+    When even the lightest feasible inertia (J_n -> -min J_var) keeps the fluctuation
+    below delta, that lower limit is returned (no flywheel is needed)."""
+    dT, J_var = _check(dT, J_var, omega_m, delta)
+    jv_min = float(np.min(J_var))
+    rng = float(np.max(dT) - np.min(dT))
+    scale = max(abs(guess or 0.0), float(np.max(np.abs(J_var))),
+                rng / (omega_m**2 * delta), _TINY)
+    lower = -jv_min            # J_n must exceed this (positive total inertia)
+
+    def h(J):
+        return achieved_delta(dT, J_var, J, omega_m) - delta
+
+    lo_lim = lower + 1e-12 * scale
+    if h(lo_lim) <= 0:
+        return lower
+    x0 = guess if (guess is not None and math.isfinite(guess) and guess > lo_lim) else lower + scale
+    step = 1e-7 * scale
+    lo, hi = max(x0 - step, lo_lim), x0 + step
+    h_lo, h_hi = h(lo), h(hi)
+    for _ in range(200):
+        if h_lo > 0 and h_hi <= 0:
+            break
+        if h_lo <= 0:      # lo too heavy already: move down
+            hi, h_hi = lo, h_lo
+            step *= 4
+            lo = max(lo - step, lo_lim)
+            h_lo = h(lo)
+        else:              # hi too light: move up
+            lo, h_lo = hi, h_hi
+            step *= 4
+            hi = hi + step
+            h_hi = h(hi)
+    else:
+        raise StageError(STAGE, "could not bracket the flywheel for the required delta")
+    if h_hi == 0:
+        return hi
+    return float(brentq(h, lo, hi, xtol=1e-14 * scale, rtol=1e-13, maxiter=400))
+
+
+# ------------------------------------------------------------------ size
+# Rim (peripheral) speed limits commonly quoted in TMM / machine-design textbooks
+# (e.g. Artobolevsky, TMM, on flywheel design; Frolov et al.): cast iron about 30 m/s,
+# steel about 70 m/s.  The material is guessed from the density.
+RIM_SPEED_CAST_IRON = 30.0
+RIM_SPEED_STEEL = 70.0
+
+
+@dataclass
+class FlywheelSize:
+    diameter: float
+    width: float
+    mass: float
+    rim_speed: float
+    thickness: float | None
+    warnings: list[str]
+
+
+def size(J: float, shape: str, density: float, width_ratio: float, omega_max: float,
+         lang_warn: bool = True) -> FlywheelSize:
+    """Flywheel dimensions for the moment of inertia J.
+
+    disk: solid disk, J = m D^2/8, width b = psi_b D, m = rho pi D^2/4 b, so
+          D = (32 J/(pi rho psi_b))^(1/5); rim speed = omega_max D/2.
+    rim:  thin rim of mean diameter D, J ~ m D^2/4, square section b = h = psi_b D
+          (METHODS gives only psi_b; the square section is the usual textbook choice),
+          m = rho pi D b h, so D = (4 J/(pi rho psi_b^2))^(1/5);
+          rim speed at the outer radius omega_max (D + h)/2.
+    """
+    warns: list[str] = []
+    if not (J > 0 and math.isfinite(J)):
+        return FlywheelSize(0.0, 0.0, 0.0, 0.0, 0.0 if shape == "rim" else None, warns)
+    psi = float(width_ratio)
+    rho = float(density)
+    if shape == "disk":
+        D = (32.0 * J / (math.pi * rho * psi)) ** 0.2
+        b = psi * D
+        m = rho * math.pi * D**2 / 4 * b
+        h = None
+        v = abs(omega_max) * D / 2
+    elif shape == "rim":
+        D = (4.0 * J / (math.pi * rho * psi**2)) ** 0.2
+        b = h = psi * D
+        m = rho * math.pi * D * b * h
+        v = abs(omega_max) * (D + h) / 2
+    else:
+        raise StageError(STAGE, f"unknown flywheel shape {shape!r}")
+    if v > RIM_SPEED_STEEL:
+        warns.append(f"flywheel rim speed {v:.1f} m/s exceeds about {RIM_SPEED_STEEL:.0f} m/s, "
+                     "the usual limit even for steel flywheels: move the flywheel to a faster shaft "
+                     "or change its shape")
+    elif v > RIM_SPEED_CAST_IRON and rho < 7500:
+        warns.append(f"flywheel rim speed {v:.1f} m/s exceeds about {RIM_SPEED_CAST_IRON:.0f} m/s, "
+                     "the usual limit for cast iron: make it of steel")
+    return FlywheelSize(D, b, m, v, h, warns)
