@@ -47,7 +47,8 @@ def _atomic_write(path: Path, data: bytes | str) -> None:
 
 def fmt(x: Any, digits: int = 4) -> str:
     """Number for a table: `digits` significant digits, no exponent for
-    1e-4 <= |x| < 1e7, '—' for None/NaN, '-0' shown as '0'."""
+    1e-4 <= |x| < 1e7, '—' for None/NaN, '0' for |x| < 1e-10 (round-off of an
+    exact zero in SI units) and '-0'."""
     if x is None:
         return "—"
     if isinstance(x, bool):
@@ -60,9 +61,9 @@ def fmt(x: Any, digits: int = 4) -> str:
         return str(x)
     if not math.isfinite(v):
         return "—"
-    if v == 0:
-        return "0"
     a = abs(v)
+    if a < 1e-10:      # round-off of an exact zero (a dead-centre velocity ...)
+        return "0"
     if a < 1e-4 or a >= 1e7:
         return f"{v:.{max(digits - 1, 0)}e}"
     decimals = max(digits - 1 - int(math.floor(math.log10(a))), 0)

@@ -14,6 +14,7 @@ import re
 import numpy as np
 
 MM = 1.0 / 25.4  # inch per mm
+_SUBS = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
 
 _STYLE = {
     "font.family": "DejaVu Sans",
@@ -166,20 +167,36 @@ def arrow(ax, p, q, color="k", lw=1.0, head=None, z=4, style="-|>", ls="-"):
                                  linestyle=ls, shrinkA=0, shrinkB=0, zorder=z))
 
 
-def place_labels(anchors, extent: float, avoid=(), step: float | None = None):
+def _seg_dist(c, segs):
+    """Distance from point c to the nearest of the segments (array (k, 2, 2))."""
+    if segs is None or not len(segs):
+        return np.inf
+    a, b = segs[:, 0], segs[:, 1]
+    d = b - a
+    L2 = np.maximum((d * d).sum(axis=1), 1e-300)
+    t = np.clip(((c - a) * d).sum(axis=1) / L2, 0.0, 1.0)
+    q = a + d * t[:, None]
+    return float(np.sqrt(((q - c) ** 2).sum(axis=1)).min())
+
+
+def place_labels(anchors, extent: float, avoid=(), step: float | None = None, segments=None,
+                 boxes=()):
     """Greedy label placement.
 
     anchors: list of (x, y, preferred_direction (dx, dy) or None).
-    Returns list of (x, y) label positions: each label is put at one of 12
-    candidate directions around its anchor, the one farthest from the already
-    placed labels and the `avoid` points, preferring `preferred_direction`.
+    Returns list of (x, y) label positions: each label is put at one of 16
+    candidate directions around its anchor (two distances), the one farthest
+    from the already placed labels, the `avoid` points and the `segments`
+    (lines of the drawing), preferring `preferred_direction`; never inside one
+    of the `boxes` (centre, u-axis unit vector, half width, half height).
     """
     if step is None:
         step = 0.045 * extent
     placed: list[np.ndarray] = []
     avoid = [np.asarray(a, float) for a in avoid]
+    segs = np.asarray(segments, float).reshape(-1, 2, 2) if segments is not None and len(segments) else None
     out = []
-    dirs = [np.array([math.cos(t), math.sin(t)]) for t in np.linspace(0, 2 * math.pi, 12, endpoint=False)]
+    dirs = [np.array([math.cos(t), math.sin(t)]) for t in np.linspace(0, 2 * math.pi, 16, endpoint=False)]
     for (x, y, pref) in anchors:
         c = np.array([x, y], float)
         best = None
@@ -189,16 +206,213 @@ def place_labels(anchors, extent: float, avoid=(), step: float | None = None):
             n = math.hypot(*pref)
             if n > 0:
                 pv = np.array(pref, float) / n
-        for mult in (1.0, 1.6):
+        for mult in (1.0, 1.5, 2.1):
             for d in dirs:
                 cand = c + d * step * mult
-                others = placed + avoid
-                dmin = min((float(np.linalg.norm(cand - o)) for o in others), default=extent)
-                score = min(dmin, 2.5 * step) - 0.3 * step * (mult - 1)
+                if any(abs(float((cand - bc) @ bu)) < hw + 0.5 * step and
+                       abs(float((cand - bc) @ np.array([-bu[1], bu[0]]))) < hh + 0.4 * step
+                       for (bc, bu, hw, hh) in boxes):
+                    continue
+                dl = min((float(np.linalg.norm(cand - o)) for o in placed), default=9 * step)
+                da = min((float(np.linalg.norm(cand - o)) for o in avoid), default=9 * step)
+                ds = _seg_dist(cand, segs)
+                score = min(dl, 2.2 * step) + min(da, 1.2 * step) + min(ds, 0.8 * step) \
+                    - 0.35 * step * (mult - 1)
                 if pv is not None:
-                    score += 0.35 * step * float(d @ pv)
+                    score += 0.5 * step * float(d @ pv)
                 if score > best_score:
                     best_score, best = score, cand
+        if best is None:
+            best = c + dirs[4] * step * 2.5
         placed.append(best)
         out.append((float(best[0]), float(best[1])))
+    return out
+
+
+# ---------------------------------------------------------------- linkage
+def _pxy(entry, p):
+    d = entry["points"][p]
+    return np.array([float(d["x"]), float(d["y"])])
+
+
+def mechanism_extent(entries, names=None) -> tuple[np.ndarray, np.ndarray]:
+    """Bounding box (min xy, max xy) of the points over the entries."""
+    xs = []
+    for e in entries:
+        for p, d in e["points"].items():
+            if names is None or p in names:
+                xs.append((float(d["x"]), float(d["y"])))
+    a = np.array(xs) if xs else np.zeros((1, 2))
+    return a.min(axis=0), a.max(axis=0)
+
+
+def slider_ranges(entries, geom) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+    """For each slider on a fixed guide: the extreme pin positions along its guide."""
+    out = {}
+    for j in geom.joints:
+        if j.kind != "P" or j.a != 0:
+            continue
+        s = geom.link(j.b)
+        if s is None or not s.points:
+            continue
+        pin = s.points[0]
+        pts = np.array([_pxy(e, pin) for e in entries if pin in e["points"]])
+        if not len(pts):
+            continue
+        ang = math.radians(float(entries[0]["links"][s.name]["angle"] or 0.0))
+        u = np.array([math.cos(ang), math.sin(ang)])
+        t = pts @ u
+        out[s.name] = (pts[int(np.argmin(t))], pts[int(np.argmax(t))])
+    return out
+
+
+def fit_axes(ax, lo, hi, width_mm, height_mm, margin_mm=6.0):
+    """Set equal-aspect limits so that the box lo..hi fills a width_mm x height_mm
+    axes with a margin; returns the scale (data units per paper mm)."""
+    lo = np.asarray(lo, float)
+    hi = np.asarray(hi, float)
+    span = np.maximum(hi - lo, 1e-12)
+    unit = max(span[0] / max(width_mm - 2 * margin_mm, 1.0), span[1] / max(height_mm - 2 * margin_mm, 1.0))
+    c = (lo + hi) / 2
+    ax.set_xlim(c[0] - unit * width_mm / 2, c[0] + unit * width_mm / 2)
+    ax.set_ylim(c[1] - unit * height_mm / 2, c[1] + unit * height_mm / 2)
+    ax.set_aspect("equal", adjustable="box")
+    return unit
+
+
+def figure_for_box(lo, hi, width_mm, min_h=40.0, max_h=150.0, margin_mm=8.0):
+    """A figure filled by one equal-aspect axes showing lo..hi; returns (fig, ax, unit)."""
+    span = np.maximum(np.asarray(hi, float) - np.asarray(lo, float), 1e-12)
+    h = float(np.clip((width_mm - 2 * margin_mm) * span[1] / span[0] + 2 * margin_mm, min_h, max_h))
+    fig, ax = new_figure(width_mm, h)
+    fig.subplots_adjust(0, 0, 1, 1)
+    unit = fit_axes(ax, lo, hi, width_mm, h, margin_mm)
+    ax.axis("off")
+    return fig, ax, unit
+
+
+def draw_mechanism(ax, geom, entry, unit: float, *, labels=True, numbers=True,
+                   color="k", lw=1.5, light=False, ranges=None, label_fs=8):
+    """Draw the linkage of one kinematics entry on `ax` (data units: metres).
+
+    unit: metres per paper millimetre (sets pivot/block/label sizes).
+    light: thin grey drawing (for the overlaid positions of the positions plan).
+    ranges: output of slider_ranges() so fixed guides cover the whole stroke.
+    Returns a list of (label, xy) placed, for the caller's bookkeeping.
+    """
+    size = 50.0 * unit
+    from matplotlib.patches import Polygon
+    P = entry["points"]
+    jr = 1.1 * unit
+    ground_size = 2.2 * unit
+    bh = 5.5 * unit
+    bw = 9.0 * unit
+    lwl = 0.6 if light else lw
+    col = "0.55" if light else color
+    anchors = []       # (text, xy, pref dir)
+    avoid = []
+    segs = []
+    boxes = []
+    # bars
+    for l in geom.links:
+        if l.kind != "bar":
+            continue
+        pts = [p for p in l.points if p in P]
+        if len(pts) < 2:
+            continue
+        xy = np.array([_pxy(entry, p) for p in pts])
+        c = xy.mean(axis=0)
+        main = xy[:2]
+        d = main[1] - main[0]
+        n = np.linalg.norm(d)
+        u = d / n if n > 0 else np.array([1.0, 0.0])
+        off = [abs(float(np.cross(u, x - main[0]))) for x in xy]
+        if len(xy) > 2 and max(off) > 0.02 * size:
+            # a body link: a closed outline through its points (convex hull order)
+            ang = np.arctan2(xy[:, 1] - c[1], xy[:, 0] - c[0])
+            poly = xy[np.argsort(ang)]
+            ax.add_patch(Polygon(poly, closed=True, facecolor="none" if light else "0.93",
+                                 edgecolor=col, lw=lwl, zorder=2))
+            segs.extend([(poly[k], poly[(k + 1) % len(poly)]) for k in range(len(poly))])
+        else:
+            t = (xy - main[0]) @ u
+            a0, a1 = main[0] + u * t.min(), main[0] + u * t.max()
+            ax.plot([a0[0], a1[0]], [a0[1], a1[1]], color=col, lw=lwl, zorder=2,
+                    solid_capstyle="round")
+            segs.append((a0, a1))
+        if numbers and not light:
+            nrm = np.array([-u[1], u[0]])
+            mid = (main[0] + main[1]) / 2
+            anchors.append((str(l.index), mid, nrm, True))
+    # sliders and guides
+    for j in geom.joints:
+        if j.kind != "P":
+            continue
+        la, lb = geom.link(j.a), geom.link(j.b)
+        s = lb if (lb is not None and lb.kind == "slider") else la
+        if s is None or not s.points or s.points[0] not in P:
+            continue
+        pin = _pxy(entry, s.points[0])
+        ang = float(entry["links"][s.name]["angle"] or 0.0)
+        a = math.radians(ang)
+        u = np.array([math.cos(a), math.sin(a)])
+        v = np.array([-u[1], u[0]])
+        if j.a == 0 and not light:
+            lo, hi = (ranges or {}).get(s.name, (pin, pin))
+            t0 = float((lo - pin) @ u) - bw
+            t1 = float((hi - pin) @ u) + bw
+            g0, g1 = pin + u * t0, pin + u * t1
+            ax.plot([g0[0], g1[0]], [g0[1], g1[1]], color=col, lw=0.5, ls=(0, (8, 2, 1, 2)), zorder=1)
+            draw_hatch(ax, g0 - v * bh / 2, g1 - v * bh / 2, 0.35 * bh, -v, lw=0.8, color=col)
+            segs.append((g0 - v * bh * 0.7, g1 - v * bh * 0.7))
+        draw_block(ax, pin, ang, bw * (0.8 if light else 1.0), bh * (0.8 if light else 1.0),
+                   color=col, lw=lwl * 0.8, face="none" if light else "white")
+        boxes.append((pin, u, bw / 2, bh / 2))
+        for sgn in (-1, 1):
+            segs.append((pin - u * bw / 2 + sgn * v * bh / 2, pin + u * bw / 2 + sgn * v * bh / 2))
+        if numbers and not light:
+            anchors.append((str(s.index), pin, v, True))
+    # revolute pairs and ground pivots
+    done = set()
+    for j in geom.joints:
+        if j.kind != "R" or not j.point or j.point not in P or j.point in done:
+            continue
+        done.add(j.point)
+        xy = _pxy(entry, j.point)
+        if j.point in geom.ground and not light:
+            draw_ground(ax, xy, ground_size, color=col)
+            segs.append((xy + np.array([-1.6, -3.5]) * ground_size, xy + np.array([1.6, -3.5]) * ground_size))
+            segs.append((xy, xy + np.array([0, -3.5]) * ground_size))
+        draw_joint(ax, xy, jr * (0.7 if light else 1.0), color=col, lw=lwl * 0.6)
+        avoid.append(xy)
+    # centres of mass
+    for l in geom.links:
+        if l.com and l.com in P and not light:
+            xy = _pxy(entry, l.com)
+            if any(np.linalg.norm(xy - _pxy(entry, p)) < 1e-9 for p in l.points if p in P):
+                continue
+            ax.plot([xy[0]], [xy[1]], marker="o", ms=2.5, color=col, zorder=6)
+            anchors.append((l.com, xy, None, False))
+    if labels and not light:
+        for p in sorted(done | {q for l in geom.links for q in l.points if q in P}):
+            xy = _pxy(entry, p)
+            anchors.insert(0, (p, xy, None, False))
+    if not anchors:
+        return []
+    pos = place_labels([(a[1][0], a[1][1], a[2]) for a in anchors], size,
+                       avoid=avoid + [a[1] for a in anchors], step=3.6 * unit, segments=segs,
+                       boxes=boxes)
+    out = []
+    seen = set()
+    for (text, xy, _, is_num), (x, y) in zip(anchors, pos):
+        if (text, is_num) in seen:
+            continue
+        seen.add((text, is_num))
+        if is_num:
+            ax.text(x, y, text, fontsize=label_fs - 1, ha="center", va="center", zorder=7,
+                    bbox=dict(boxstyle="circle,pad=0.15", fc="white", ec="0.3", lw=0.5))
+        else:
+            ax.text(x, y, text.translate(_SUBS), fontsize=label_fs, ha="center", va="center",
+                    zorder=7, style="italic")
+        out.append((text, (x, y)))
     return out
