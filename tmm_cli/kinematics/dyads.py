@@ -1,0 +1,215 @@
+"""Closed-form positions of every class-II group (dyad), vectorised over positions.
+
+A dyad has links A, B (in the reading order of :mod:`tmm_cli.structure`), an external
+pair of A, the pair A-B and an external pair of B. An external pair leaves its link one
+freedom:
+
+* revolute at a known point P: the link turns about P (its angle is unknown);
+* prismatic: the link's angle is known and its origin moves along a known line
+  (o = base + s e).
+
+The pair A-B closes the group:
+
+=========  ===================================  ==============================
+ type      equations                              solution (closures)
+=========  ===================================  ==============================
+ RRR       |C - P1| = l_A, |C - P3| = l_B          circle/circle (sigma = +-1)
+ RRP, PRR  |C - P1| = l_A, C on a line             circle/line (sigma = +-1)
+ PRP       C on two lines                         line/line (unique)
+ RPR       the guide through one pivot keeps      psi = delta - asin(c/rho)
+           distance c from the other pivot        (sigma = +-1)
+ RPP, PPR  angles known, one translation          linear (unique)
+=========  ===================================  ==============================
+
+Closure sign conventions (the documented default is sigma = +1):
+
+* RRR: sigma = +1 puts the middle joint C to the left of the directed line from the
+  external joint of A to that of B (counter-clockwise triangle P1, P3, C);
+* RRP / PRR: sigma = +1 takes the intersection farther along the guide direction
+  (e.g. the slider of a slider-crank on a guide at 0 deg to the right of the crank);
+* RPR: sigma = +1 is the closure in which the slider's pivot lies ahead of the guide
+  link's pivot along the guide direction (the crank pin on the slotted link between
+  its pivot and its free end, as drawn for a shaper).
+
+``margin`` (length units) is >= 0 where the group assembles: RRR:
+min(l_A + l_B - d, d - |l_A - l_B|); circle/line: l - (distance of the centre from
+the line); RPR: rho - |c|; the linear cases: |sin| of the angle between the lines.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .state import PCon, RCon, State, cross, dot, left, unit
+
+
+def _atan2(v):
+    return np.arctan2(v[..., 1], v[..., 0])
+
+
+def _rot(th, u):
+    c, s = np.cos(th), np.sin(th)
+    return np.stack([c * u[0] - s * u[1], s * u[0] + c * u[1]], axis=-1)
+
+
+class DyadPlan:
+    """How to close one class-II group in closed form."""
+
+    def __init__(self, A: int, B: int, e1, mid, e2):
+        self.A, self.B = A, B
+        self.e1, self.mid, self.e2 = e1, mid, e2
+        self.kind = e1.kind + mid.kind + e2.kind
+        self.two_closures = self.kind in ("RRR", "RRP", "PRR", "RPR")
+        if self.kind == "PPP":
+            raise ValueError("a PPP group (three prismatic pairs) has no definite position")
+        if mid.kind == "R":
+            for X in (A, B):
+                ext = e1 if X == A else e2
+                if ext.kind == "R":
+                    v = np.asarray(mid.local(X)) - np.asarray(ext.local(X))
+                    if np.hypot(*v) < 1e-12:
+                        raise ValueError("the two pairs of a link of the group coincide")
+
+    # ------------------------------------------------------------------
+    @staticmethod
+    def _ext(X: int, con, st: State):
+        """The one freedom an external pair leaves to link X."""
+        if isinstance(con, RCon):
+            K = con.j if con.i == X else con.i
+            return ("R", st.point(K, con.local(K)), np.asarray(con.local(X)))
+        # prismatic
+        if con.s == X:
+            th = st.th[con.g] + con.a
+            e = unit(th)
+            base = st.o[con.g] + con.c0 * left(e)
+        else:
+            th = st.th[con.s] - con.a
+            e = unit(st.th[con.s])
+            base = st.o[con.s] - con.c0 * left(e)
+        return ("P", th, base, e)
+
+    @staticmethod
+    def _pose_from_point(p, u, th):
+        return p - _rot(th, u)
+
+    def solve(self, st: State, sigma: float = 1.0) -> np.ndarray:
+        """Set the poses of A and B in ``st``; return the assembly margin (N,)."""
+        A, B = self.A, self.B
+        ea = self._ext(A, self.e1, st)
+        eb = self._ext(B, self.e2, st)
+        mid = self.mid
+        if isinstance(mid, RCon):
+            uAC = np.asarray(mid.local(A))
+            uBC = np.asarray(mid.local(B))
+            if ea[0] == "R" and eb[0] == "R":
+                return self._rrr(st, ea, eb, uAC, uBC, sigma)
+            if ea[0] == "R" and eb[0] == "P":
+                return self._rrp(st, A, B, ea, eb, uAC, uBC, sigma)
+            if ea[0] == "P" and eb[0] == "R":
+                return self._rrp(st, B, A, eb, ea, uBC, uAC, sigma)
+            return self._prp(st, ea, eb, uAC, uBC)
+        # internal prismatic pair
+        if ea[0] == "R" and eb[0] == "R":
+            return self._rpr(st, ea, eb, sigma)
+        if ea[0] == "R":
+            return self._rpp(st, A, B, ea, eb)
+        return self._rpp(st, B, A, eb, ea)
+
+    # ------------------------------------------------------------------
+    def _rrr(self, st, ea, eb, uAC, uBC, sigma):
+        A, B = self.A, self.B
+        _, P1, uA1 = ea
+        _, P3, uB3 = eb
+        vA = uAC - uA1
+        vB = uBC - uB3
+        lA = float(np.hypot(*vA))
+        lB = float(np.hypot(*vB))
+        D = P3 - P1
+        d = np.hypot(D[:, 0], D[:, 1])
+        margin = np.minimum(lA + lB - d, d - abs(lA - lB))
+        ds = np.where(d > 1e-300, d, 1e-300)
+        cg = np.clip((lA ** 2 + d ** 2 - lB ** 2) / (2 * lA * ds), -1.0, 1.0)
+        beta = _atan2(D)
+        C = P1 + lA * unit(beta + sigma * np.arccos(cg))
+        thA = _atan2(C - P1) - np.arctan2(vA[1], vA[0])
+        thB = _atan2(C - P3) - np.arctan2(vB[1], vB[0])
+        st.set_pose(A, self._pose_from_point(P1, uA1, thA), thA)
+        st.set_pose(B, self._pose_from_point(P3, uB3, thB), thB)
+        return margin
+
+    def _rrp(self, st, X, Y, ex, ey, uXC, uYC, sigma):
+        """X turns about P1, Y translates on a line: circle/line."""
+        _, P1, uX1 = ex
+        _, thY, bY, eY = ey
+        vX = uXC - uX1
+        lX = float(np.hypot(*vX))
+        c0 = bY + _rot(thY, uYC)
+        w = c0 - P1
+        h = cross(w, eY)
+        margin = lX - np.abs(h)
+        s = -dot(w, eY) + sigma * np.sqrt(np.maximum(lX ** 2 - h ** 2, 0.0))
+        C = c0 + s[:, None] * eY
+        thX = _atan2(C - P1) - np.arctan2(vX[1], vX[0])
+        st.set_pose(X, self._pose_from_point(P1, uX1, thX), thX)
+        st.set_pose(Y, bY + s[:, None] * eY, np.broadcast_to(thY, (st.N,)).copy())
+        return margin
+
+    def _prp(self, st, ea, eb, uAC, uBC):
+        A, B = self.A, self.B
+        _, thA, bA, eA = ea
+        _, thB, bB, eB = eb
+        cA = bA + _rot(thA, uAC)
+        cB = bB + _rot(thB, uBC)
+        den = cross(eA, eB)
+        margin = np.abs(den) - 1e-9
+        dd = np.where(np.abs(den) > 1e-300, den, 1e-300)
+        Dl = cB - cA
+        sA = cross(Dl, eB) / dd
+        sB = cross(Dl, eA) / dd
+        st.set_pose(A, bA + sA[:, None] * eA, np.broadcast_to(thA, (st.N,)).copy())
+        st.set_pose(B, bB + sB[:, None] * eB, np.broadcast_to(thB, (st.N,)).copy())
+        return margin
+
+    def _rpr(self, st, ea, eb, sigma):
+        mid: PCon = self.mid
+        A = self.A
+        s_, g_ = mid.s, mid.g
+        (_, PA, uA), (_, PB, uB) = ea, eb
+        if s_ == A:
+            Sp, us, G, ug = PA, uA, PB, uB
+        else:
+            Sp, us, G, ug = PB, uB, PA, uA
+        c = mid.c0 + float(us[1]) - float(np.dot(mid.na, ug))
+        D = Sp - G
+        rho = np.hypot(D[:, 0], D[:, 1])
+        margin = rho - abs(c)
+        rs = np.where(rho > 1e-300, rho, 1e-300)
+        asn = np.arcsin(np.clip(c / rs, -1.0, 1.0))
+        delta = _atan2(D)
+        psi = delta - asn if sigma > 0 else delta - np.pi + asn
+        th_s = psi
+        th_g = psi - mid.a
+        st.set_pose(s_, self._pose_from_point(Sp, us, th_s), th_s)
+        st.set_pose(g_, self._pose_from_point(G, ug, th_g), th_g)
+        return margin
+
+    def _rpp(self, st, X, Y, ex, ey):
+        """X turns about a known point, Y translates with a known angle; the pair X-Y
+        is prismatic, so X's angle follows from Y's and Y's shift is linear."""
+        mid: PCon = self.mid
+        _, pX, uX = ex
+        _, thY, bY, eY = ey
+        thX = thY + mid.a if X == mid.s else thY - mid.a
+        thX = np.broadcast_to(thX, (st.N,)).copy()
+        oX = self._pose_from_point(pX, uX, thX)
+        th_g = thX if X == mid.g else thY
+        n = left(unit(th_g + mid.a))
+        den = dot(n, eY)
+        margin = np.abs(den) - 1e-9
+        dd = np.where(np.abs(den) > 1e-300, den, 1e-300)
+        if Y == mid.s:
+            t = (mid.c0 - dot(n, bY - oX)) / dd
+        else:
+            t = (dot(n, oX - bY) - mid.c0) / dd
+        st.set_pose(X, oX, thX)
+        st.set_pose(Y, bY + t[:, None] * eY, np.broadcast_to(thY, (st.N,)).copy())
+        return margin

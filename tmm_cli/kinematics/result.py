@@ -1,0 +1,106 @@
+"""KinematicsResult: positions and exact derivatives of every point and link."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+
+def _f(x) -> float:
+    v = float(x)
+    return v if np.isfinite(v) else 0.0
+
+
+def angle_deg(rad) -> np.ndarray:
+    """Angle in degrees in [0, 360)."""
+    d = np.mod(np.degrees(np.asarray(rad, float)), 360.0)
+    return np.where(d >= 360.0 - 1e-11, 0.0, d)
+
+
+@dataclass
+class KinematicsResult:
+    """Kinematics of the linkage at N crank positions (see docs/ARCHITECTURE.md).
+
+    ``d1``/``d2`` are the first and second derivatives with respect to the crank angle
+    phi (rad, ccw): the analogues (transfer functions) of velocity and acceleration.
+    Real velocities and accelerations: vel = d1 omega1, acc = d2 omega1^2 + d1 eps1.
+    """
+    phi: np.ndarray
+    omega1: float | np.ndarray
+    eps1: float | np.ndarray
+    pos: dict[str, np.ndarray]
+    d1: dict[str, np.ndarray]
+    d2: dict[str, np.ndarray]
+    angle: dict[str, np.ndarray]
+    a1: dict[str, np.ndarray]
+    a2: dict[str, np.ndarray]
+    warnings: list[str] = field(default_factory=list)
+    points: list[str] = field(default_factory=list)      # report order
+    links: list[str] = field(default_factory=list)
+    singular: np.ndarray | None = None                  # (N,) bool: velocity equations singular
+
+    # ---------------------------------------------------------------
+    def _w(self):
+        w = np.asarray(self.omega1, float)
+        return w if w.ndim == 0 else w.reshape(-1)
+
+    def _e(self):
+        e = np.asarray(self.eps1, float)
+        return e if e.ndim == 0 else e.reshape(-1)
+
+    def vel(self, p: str) -> np.ndarray:
+        w = self._w()
+        return self.d1[p] * (w if w.ndim == 0 else w[:, None])
+
+    def acc(self, p: str) -> np.ndarray:
+        w, e = self._w(), self._e()
+        w2 = w ** 2 if w.ndim == 0 else (w ** 2)[:, None]
+        e2 = e if e.ndim == 0 else e[:, None]
+        return self.d2[p] * w2 + self.d1[p] * e2
+
+    def omega(self, link: str) -> np.ndarray:
+        return self.a1[link] * self._w()
+
+    def epsilon(self, link: str) -> np.ndarray:
+        return self.a2[link] * self._w() ** 2 + self.a1[link] * self._e()
+
+    # ---------------------------------------------------------------
+    def to_entries(self, index=None) -> list[dict]:
+        """results.json ``kinematics`` entries, one per position.
+
+        ``index``: the position numbers (sequence of N ints; default 0..N-1).
+        Per point: x, y, vx, vy, v, ax, ay, a and the analogues vqx, vqy, vq (= dr/dphi,
+        m/rad), aqx, aqy, aq (= d2r/dphi2); per link: angle (deg, [0, 360)), omega,
+        epsilon, i = dtheta/dphi (= omega_i/omega1), iq2 = d2theta/dphi2."""
+        N = len(self.phi)
+        idx = list(range(N)) if index is None else [int(i) for i in index]
+        if len(idx) != N:
+            raise ValueError(f"to_entries: {len(idx)} indices for {N} positions")
+        phi = angle_deg(np.radians(self.phi))
+        V = {p: self.vel(p) for p in self.points}
+        Acc = {p: self.acc(p) for p in self.points}
+        Om = {lk: np.broadcast_to(self.omega(lk), (N,)) for lk in self.links}
+        Ep = {lk: np.broadcast_to(self.epsilon(lk), (N,)) for lk in self.links}
+        Ang = {lk: angle_deg(self.angle[lk]) for lk in self.links}
+        out = []
+        for k in range(N):
+            pts = {}
+            for p in self.points:
+                x, y = self.pos[p][k]
+                vx, vy = V[p][k]
+                ax, ay = Acc[p][k]
+                qx, qy = self.d1[p][k]
+                rx, ry = self.d2[p][k]
+                pts[p] = {"x": _f(x), "y": _f(y), "vx": _f(vx), "vy": _f(vy), "v": _f(np.hypot(vx, vy)),
+                          "ax": _f(ax), "ay": _f(ay), "a": _f(np.hypot(ax, ay)),
+                          "vqx": _f(qx), "vqy": _f(qy), "vq": _f(np.hypot(qx, qy)),
+                          "aqx": _f(rx), "aqy": _f(ry), "aq": _f(np.hypot(rx, ry))}
+            lks = {}
+            for lk in self.links:
+                lks[lk] = {"angle": _f(Ang[lk][k]), "omega": _f(Om[lk][k]), "epsilon": _f(Ep[lk][k]),
+                           "i": _f(self.a1[lk][k]), "iq2": _f(self.a2[lk][k])}
+            e = {"index": idx[k], "phi": _f(phi[k]), "points": pts, "links": lks}
+            if self.singular is not None and bool(self.singular[k]):
+                e["singular"] = True
+            out.append(e)
+        return out

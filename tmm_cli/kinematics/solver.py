@@ -1,0 +1,575 @@
+"""Kinematics of a crank-driven planar linkage, group by group (METHODS 2).
+
+Positions: every class-II group in closed form (:mod:`.dyads`), any other group
+(class III and higher) by Newton's method on its loop-closure equations
+(:mod:`.newton`), marched continuously over the cycle. Velocities and accelerations:
+exact derivatives -- a linear solve per group and position (vectorised), never finite
+differences.
+
+Assembly (which closure of each group): ``mech.assembly`` gives rough coordinates of
+moving points at crank angle 0 deg; each group takes the closure whose hinted points
+are nearest to them and keeps it (a dyad keeps its closure sign, a Newton group is
+followed continuously). Without hints a dyad takes its documented default closure
+(sigma = +1, see :mod:`.dyads`); a group of class III or higher takes, among the
+solutions found from a fixed set of starting guesses, the one whose points have the
+largest mean y (the "upper" closure), with a warning suggesting hints. If a group does
+not assemble at 0 deg the closure is chosen at the first crank angle where it does.
+
+Singular positions: where a group's velocity equations are singular (its links
+collinear: a toggle of the group, or a change point), velocities and accelerations
+there are the limit by continuity, taken as the mean of the values at crank angles
++-1e-6 deg, and a warning is issued.
+"""
+from __future__ import annotations
+
+import math
+import weakref
+
+import numpy as np
+from scipy.optimize import brentq
+
+from ..errors import StageError
+from ..mechanism import Mechanism
+from ..structure import Group, analyze
+from . import newton as nw
+from .dyads import DyadPlan
+from .result import KinematicsResult
+from .state import PCon, RCon, State, left, unit
+
+MARCH_STEP = 1.0          # deg, the Newton groups' path over the cycle
+CONT_DELTA = 1e-6         # deg, singular positions: mean of +-CONT_DELTA
+DYAD_TYPES = ("RRR", "RRP", "PRR", "RPR", "PRP", "RPP", "PPR")
+
+
+class _NewtonPlan:
+    def __init__(self, cons):
+        self.cons = cons
+
+
+class Solver:
+    """The kinematic model of one mechanism: groups, closures, paths (cached)."""
+
+    def __init__(self, mech: Mechanism):
+        self.mech = mech
+        self.struct = analyze(mech)
+        if self.struct.idle:
+            raise StageError("kinematics", f"link(s) {', '.join(self.struct.idle)} have an idle degree of freedom "
+                                           f"(a single pair); their position is undefined")
+        self.groups: list[Group] = self.struct.groups
+        crank = mech.crank
+        self.piv = mech.crank_pivot
+        self.pin = mech.crank_pin
+        self.cp = np.array(crank.local[self.piv], float)
+        cq = np.array(crank.local[self.pin], float)
+        self.alpha0 = math.atan2(cq[1] - self.cp[1], cq[0] - self.cp[0])
+        self.pivot = np.array(mech.ground[self.piv], float)
+        sizes = [lk.length or 0.0 for lk in mech.links]
+        for lk in mech.links:
+            sizes += [math.hypot(*u) for u in lk.local.values()]
+        g = np.array(list(mech.ground.values()), float)
+        if len(g) > 1:
+            sizes.append(float(np.ptp(g, axis=0).max()))
+        self.L = max(max(sizes), 1e-6)
+        self.tol = 1e-9 * self.L
+        self.plans = []
+        for grp in self.groups:
+            cons = [self._con(j) for j in grp.joints]
+            if grp.klass == 2 and len(grp.links) == 2 and grp.type in DYAD_TYPES:
+                try:
+                    self.plans.append(DyadPlan(grp.links[0], grp.links[1], *cons))
+                except ValueError as exc:
+                    raise StageError("kinematics", f"{grp.describe()}: {exc}") from None
+            else:
+                if grp.type == "PPP":
+                    raise StageError("kinematics", f"{grp.describe()}: a PPP group has no definite position")
+                self.plans.append(_NewtonPlan(cons))
+            self.plans[-1].cons = cons
+        self._sigma: dict[int, float] = {}
+        self._path: dict[int, tuple] = {}
+        self.warnings: list[str] = []
+
+    # ------------------------------------------------------------------ model
+    def local(self, b: int, p: str):
+        if b == 0:
+            return self.mech.ground[p]
+        return self.mech.link(b).local[p]
+
+    def _con(self, j):
+        if j.kind == "R":
+            return RCon(j.a, j.b, self.local(j.a, j.point), self.local(j.b, j.point), j.point, j)
+        s = j.slider
+        g = j.a if j.b == s else j.b
+        gd = self.mech.link(s).guide
+        a = math.radians(gd.angle)
+        if g == 0:
+            c0 = -math.sin(a) * gd.point[0] + math.cos(a) * gd.point[1]
+        else:
+            c0 = gd.offset
+        return PCon(s, g, a, c0, j)
+
+    def _crank(self, st: State, phi: np.ndarray) -> None:
+        th = phi - self.alpha0
+        c, s = np.cos(th), np.sin(th)
+        u0, u1 = self.cp
+        ru = np.stack([c * u0 - s * u1, s * u0 + c * u1], axis=-1)
+        jru = np.stack([-ru[:, 1], ru[:, 0]], axis=-1)
+        d = self.mech.drive
+        st.set_pose(d, self.pivot - ru, th)
+        st.set_d1(d, -jru, np.ones_like(phi))
+        st.set_d2(d, ru, np.zeros_like(phi))
+
+    # ------------------------------------------------------------------ run
+    def run(self, phi: np.ndarray, upto: int | None = None, derivs: bool = True, strict: bool = True,
+            fallback: bool = True) -> State:
+        """Poses (and derivatives) of every body at crank angles ``phi`` (rad)."""
+        phi = np.asarray(phi, float).reshape(-1)
+        N = len(phi)
+        st = State(N)
+        st.margins = {}
+        st.sing = {}
+        self._crank(st, phi)
+        upto = len(self.groups) if upto is None else upto
+        for gi in range(upto):
+            plan = self.plans[gi]
+            if isinstance(plan, DyadPlan):
+                sigma = self.sigma(gi) if plan.two_closures else 1.0
+                m = plan.solve(st, sigma)
+            else:
+                m = self._newton_vector(gi, st, phi)
+            st.margins[gi] = m
+            bad = ~(m >= -self.tol)
+            if strict and bad.any():
+                raise self._assembly_error(gi, np.degrees(phi[bad]))
+            if derivs:
+                st.sing[gi] = nw.derivatives(plan.cons, self.groups[gi].links, st)
+        if derivs and fallback and st.sing:
+            self._continuity(st, phi, upto)
+        return st
+
+    def _continuity(self, st: State, phi: np.ndarray, upto: int) -> None:
+        sing = np.zeros(st.N, bool)
+        for gi, s in st.sing.items():
+            if s.any():
+                sing |= s
+                ang = ", ".join(f"{a:.6g}" for a in np.unique(np.round(np.degrees(phi[s]) % 360, 6))[:8])
+                msg = (f"{self.groups[gi].describe()}: the velocity equations are singular at crank angle(s) "
+                       f"{ang} deg (the group's links are collinear: a toggle or change point); velocities and "
+                       f"accelerations there are the limit by continuity (mean of the values at "
+                       f"+-{CONT_DELTA:g} deg)")
+                if msg not in self.warnings:
+                    self.warnings.append(msg)
+        if not sing.any():
+            return
+        idx = np.nonzero(sing)[0]
+        h = math.radians(CONT_DELTA)
+        sp = self.run(phi[idx] + h, upto=upto, strict=False, fallback=False)
+        sm = self.run(phi[idx] - h, upto=upto, strict=False, fallback=False)
+        for b in list(st.o1):
+            if b == 0:
+                continue
+            for name in ("o1", "th1", "o2", "th2"):
+                arr = getattr(st, name)[b].copy()
+                arr[idx] = 0.5 * (getattr(sp, name)[b] + getattr(sm, name)[b])
+                getattr(st, name)[b] = arr
+        st.singular = sing
+
+    # ------------------------------------------------------------------ closures
+    def _hints(self, gi: int) -> list[tuple[int, str, np.ndarray]]:
+        out = []
+        for b in self.groups[gi].links:
+            for p, u in self.mech.link(b).local.items():
+                if p in self.mech.assembly:
+                    out.append((b, p, np.array(self.mech.assembly[p], float)))
+        return out
+
+    def _ref_angle(self, gi: int) -> float:
+        """Crank angle (rad) where the closure of group gi is chosen: 0, or the first
+        angle on a 0.25-deg scan where the group assembles."""
+        st = self.run(np.array([0.0]), upto=gi + 1, derivs=False, strict=False)
+        if all(st.margins[k][0] >= -self.tol for k in range(gi + 1)):
+            return 0.0
+        grid = np.radians(np.arange(0.0, 360.0, 0.25))
+        st = self.run(grid, upto=gi + 1, derivs=False, strict=False)
+        ok = np.ones(len(grid), bool)
+        for k in range(gi + 1):
+            ok &= st.margins[k] >= -self.tol
+        if not ok.any():
+            raise self._assembly_error(gi, np.array([0.0]), whole=True)
+        ang = float(grid[np.argmax(ok)])
+        self.warnings.append(f"{self.groups[gi].describe()} does not assemble at crank angle 0 deg; its closure "
+                             f"was chosen at {math.degrees(ang):.6g} deg (assembly hints refer to 0 deg)")
+        return ang
+
+    def sigma(self, gi: int) -> float:
+        if gi in self._sigma:
+            return self._sigma[gi]
+        self._sigma[gi] = 1.0          # provisional (used by the scans below)
+        hints = self._hints(gi)
+        if not hints:
+            return 1.0
+        ang = self._ref_angle(gi)
+        plan = self.plans[gi]
+        best, best_d = 1.0, None
+        scores = {}
+        for sg in (1.0, -1.0):
+            st = self.run(np.array([ang]), upto=gi, derivs=False, strict=False)
+            plan.solve(st, sg)
+            d = sum(float(np.sum((st.point(b, self.mech.link(b).local[p])[0] - h) ** 2)) for b, p, h in hints)
+            scores[sg] = d
+            if best_d is None or d < best_d - 1e-15:
+                best, best_d = sg, d
+        self._sigma[gi] = best
+        return best
+
+    # ------------------------------------------------------------------ Newton groups
+    def _newton_start(self, gi: int, st1: State) -> np.ndarray:
+        """Poses of group gi at one position (st1, N = 1): from the hints, else the
+        'upper' solution among those found from fixed starting guesses."""
+        grp = self.groups[gi]
+        cons = self.plans[gi].cons
+        links = grp.links
+        hints = self._hints(gi)
+        known_pts: dict[str, np.ndarray] = {}
+        for c in cons:
+            if isinstance(c, RCon):
+                for b in (c.i, c.j):
+                    if b not in links:
+                        known_pts[c.point] = st1.point(b, c.local(b))[0]
+        est = dict(known_pts)
+        for b, p, h in hints:
+            est.setdefault(p, h)
+        centre = np.mean(list(est.values()), axis=0) if est else self.pivot
+        q0 = []
+        for b in links:
+            loc = self.mech.link(b).local
+            pts = [(p, loc[p]) for p in loc if p in est]
+            if len(pts) >= 2:
+                (p1, u1), (p2, u2) = pts[0], pts[1]
+                v = est[p2] - est[p1]
+                th = math.atan2(v[1], v[0]) - math.atan2(u2[1] - u1[1], u2[0] - u1[0])
+            else:
+                th = 0.0
+            if pts:
+                p1, u1 = pts[0]
+                c, s = math.cos(th), math.sin(th)
+                o = est[p1] - np.array([c * u1[0] - s * u1[1], s * u1[0] + c * u1[1]])
+            else:
+                o = centre
+            q0 += [o[0], o[1], th]
+        q0 = np.array([q0])
+        if hints:
+            q, conv = nw.newton(cons, links, st1.take(np.array([0])), q0, self.L)
+            if conv[0]:
+                return q[0]
+        # multi-start
+        rng = np.random.default_rng(12345)
+        S = 400
+        stm = st1.take(np.zeros(S, int))
+        Q = np.repeat(q0, S, axis=0)
+        Q[:, 2::3] = rng.uniform(-np.pi, np.pi, (S, len(links)))
+        Q[:, 0::3] += rng.normal(0, 0.5 * self.L, (S, len(links)))
+        Q[:, 1::3] += rng.normal(0, 0.5 * self.L, (S, len(links)))
+        q, conv = nw.newton(cons, links, stm, Q, self.L, maxit=60)
+        if not conv.any():
+            raise StageError("kinematics", f"{grp.describe()} could not be assembled at crank angle "
+                                           f"{math.degrees(float(self._phi_of(st1))):.6g} deg: no solution of its "
+                                           f"loop-closure equations was found; check the dimensions",
+                             position=float(math.degrees(self._phi_of(st1))))
+        sols = q[conv]
+        nw.set_q(stm, links, q)
+        pts = []
+        for b in links:
+            for p, u in self.mech.link(b).local.items():
+                pts.append((b, p, np.asarray(u)))
+        P = np.stack([stm.point(b, u)[conv] for b, p, u in pts], axis=1)   # (S', npts, 2)
+        if hints:
+            H = {p: h for b, p, h in hints}
+            score = np.zeros(len(sols))
+            for k, (b, p, u) in enumerate(pts):
+                if p in H:
+                    score += np.sum((P[:, k] - H[p]) ** 2, axis=1)
+            k = int(np.argmin(score))
+        else:
+            my = P[:, :, 1].mean(axis=1)
+            mx = P[:, :, 0].mean(axis=1)
+            key = np.round(my / self.L, 9) * 1e3 + mx / self.L * 1e-6
+            k = int(np.argmax(key))
+            self.warnings.append(f"{grp.describe()}: no assembly hints; the closure with the highest mean y of "
+                                 f"its points was taken (give mechanism.assembly to choose another)")
+        return sols[k]
+
+    def _phi_of(self, st: State) -> float:
+        d = self.mech.drive
+        return float(st.th[d][0] + self.alpha0)
+
+    def path(self, gi: int):
+        """Group gi's poses and their derivatives on a 1-deg grid over one turn,
+        marched continuously from crank angle 0 (Newton with a second-order predictor
+        and step halving)."""
+        if gi in self._path:
+            return self._path[gi]
+        grp = self.groups[gi]
+        cons = self.plans[gi].cons
+        links = grp.links
+        h = math.radians(MARCH_STEP)
+        K = int(round(360.0 / MARCH_STEP))
+        grid = np.arange(K + 1) * h
+        st = self.run(grid, upto=gi, derivs=True, strict=True)
+        q = self._newton_start(gi, st.take(np.array([0])))
+
+        def at(phi_val, q_guess):
+            s1 = self.run(np.array([phi_val]), upto=gi, derivs=True, strict=True)
+            qq, conv = nw.newton(cons, links, s1, q_guess[None, :], self.L, maxit=12)
+            if not conv[0]:
+                return None, None, None
+            nw.derivatives(cons, links, s1)
+            return qq[0], self._qd(s1, links, 1)[0], self._qd(s1, links, 2)[0]
+
+        def march(q_start, sign):
+            qs, q1s = [q_start], []
+            s0 = self.run(np.array([0.0]), upto=gi, derivs=True, strict=True)
+            nw.set_q(s0, links, q_start[None, :])
+            nw.derivatives(cons, links, s0)
+            qc, q1, q2 = q_start, self._qd(s0, links, 1)[0], self._qd(s0, links, 2)[0]
+            q1s.append(q1)
+            phi_c = 0.0
+            for k in range(1, K + 1):
+                target = sign * k * h
+                while True:
+                    step = target - phi_c
+                    ok = False
+                    while abs(step) > 1e-9:
+                        guess = qc + q1 * step + 0.5 * q2 * step ** 2
+                        qn, q1n, q2n = at(phi_c + step, guess)
+                        if qn is not None and np.max(np.abs(qn[2::3] - guess[2::3])) < 0.3:
+                            ok = True
+                            break
+                        step *= 0.5
+                    if not ok:
+                        return qs, q1s, phi_c
+                    qc, q1, q2, phi_c = qn, q1n, q2n, phi_c + step
+                    if abs(phi_c - target) < 1e-12:
+                        break
+                qs.append(qc)
+                q1s.append(q1)
+            return qs, q1s, None
+
+        qs, q1s, fail = march(q, +1.0)
+        if fail is not None:
+            qb, _, fail_b = march(q, -1.0)
+            a = math.degrees(fail) % 360
+            b = (math.degrees(fail_b) % 360) if fail_b is not None else a
+            raise StageError("kinematics", f"{grp.describe()} does not assemble for crank angles "
+                                           f"{a:.6g}..{b:.6g} deg: the loop-closure equations of the group "
+                                           f"have no solution continuing the motion there (its links reach a "
+                                           f"limit position)", position=a)
+        self._path[gi] = (grid, np.array(qs), np.array(q1s))
+        return self._path[gi]
+
+    @staticmethod
+    def _qd(st: State, links, order: int) -> np.ndarray:
+        oo = st.o1 if order == 1 else st.o2
+        tt = st.th1 if order == 1 else st.th2
+        return np.concatenate([np.concatenate([oo[b], tt[b][:, None]], axis=1) for b in links], axis=1)
+
+    def _newton_vector(self, gi: int, st: State, phi: np.ndarray) -> np.ndarray:
+        grid, Q, Q1 = self.path(gi)
+        h = grid[1] - grid[0]
+        ph = np.mod(phi, 2 * np.pi)
+        k = np.minimum((ph / h).astype(int), len(grid) - 2)
+        t = ((ph - grid[k]) / h)[:, None]
+        h00 = 2 * t ** 3 - 3 * t ** 2 + 1
+        h10 = t ** 3 - 2 * t ** 2 + t
+        h01 = -2 * t ** 3 + 3 * t ** 2
+        h11 = t ** 3 - t ** 2
+        q0 = h00 * Q[k] + h10 * h * Q1[k] + h01 * Q[k + 1] + h11 * h * Q1[k + 1]
+        links = self.groups[gi].links
+        q, conv = nw.newton(self.plans[gi].cons, links, st, q0, self.L, maxit=20)
+        drift = np.max(np.abs(q[:, 2::3] - q0[:, 2::3]), axis=1)
+        conv &= drift < 0.3
+        return np.where(conv, self.L, -self.L)
+
+    # ------------------------------------------------------------------ errors
+    def _margin_at(self, gi: int, phi_deg: float) -> float:
+        st = self.run(np.radians([phi_deg]), upto=gi + 1, derivs=False, strict=False)
+        return float(st.margins[gi][0]) + self.tol
+
+    def bad_intervals(self, gi: int, step: float = 0.25) -> list[tuple[float, float]]:
+        """Crank-angle intervals (deg) where dyad gi does not assemble, edges to 1e-10 deg."""
+        grid = np.arange(0.0, 360.0, step)
+        st = self.run(np.radians(grid), upto=gi + 1, derivs=False, strict=False)
+        m = st.margins[gi]
+        ok_prev = np.ones(len(grid), bool)
+        for k in range(gi):
+            ok_prev &= st.margins[k] >= -self.tol
+        bad = (m < -self.tol) & ok_prev
+        if not bad.any():
+            return []
+        if bad.all():
+            return [(0.0, 360.0)]
+        # rotate so that the scan starts at a good point
+        start = int(np.argmin(bad))
+        order = (np.arange(len(grid)) + start) % len(grid)
+        ang = grid[order] + np.where(order < start, 360.0, 0.0)
+        b = bad[order]
+        out = []
+        k = 0
+        n = len(grid)
+        while k < n:
+            if b[k]:
+                j = k
+                while j + 1 < n and b[j + 1]:
+                    j += 1
+                lo_a, lo_b = ang[k - 1], ang[k]
+                hi_a = ang[j]
+                hi_b = ang[j + 1] if j + 1 < n else ang[0] + 360.0
+                f = lambda x: self._margin_at(gi, x % 360.0)
+                try:
+                    e1 = brentq(f, lo_a, lo_b, xtol=1e-11)
+                except ValueError:
+                    e1 = lo_b
+                try:
+                    e2 = brentq(f, hi_a, hi_b, xtol=1e-11)
+                except ValueError:
+                    e2 = hi_a
+                out.append((e1 % 360.0, e2 % 360.0))
+                k = j + 1
+            else:
+                k += 1
+        return out
+
+    def _reason(self, gi: int, phi_deg: float) -> str:
+        plan = self.plans[gi]
+        grp = self.groups[gi]
+        if not isinstance(plan, DyadPlan):
+            return "no solution of its loop-closure equations"
+        st = self.run(np.radians([phi_deg]), upto=gi, derivs=False, strict=False)
+        kind = plan.kind
+        e1, mid, e2 = plan.e1, plan.mid, plan.e2
+        nm = lambda b: self.mech.link(b).name
+        A, B = plan.A, plan.B
+        if kind == "RRR":
+            P1 = st.point(e1.j if e1.i == A else e1.i, e1.local(e1.j if e1.i == A else e1.i))[0]
+            P3 = st.point(e2.j if e2.i == B else e2.i, e2.local(e2.j if e2.i == B else e2.i))[0]
+            d = float(np.hypot(*(P3 - P1)))
+            lA = float(np.hypot(*(np.asarray(mid.local(A)) - e1.local(A))))
+            lB = float(np.hypot(*(np.asarray(mid.local(B)) - e2.local(B))))
+            pa, pb, pc = e1.point, e2.point, mid.point
+            if d > lA + lB:
+                return (f"|{pa}{pb}| = {d:.6g} m > |{pa}{pc}| + |{pc}{pb}| = {lA:.6g} + {lB:.6g} m "
+                        f"(links {nm(A)} and {nm(B)} cannot reach)")
+            return f"|{pa}{pb}| = {d:.6g} m < ||{pa}{pc}| - |{pc}{pb}|| = |{lA:.6g} - {lB:.6g}| m"
+        if kind in ("RRP", "PRR"):
+            X = A if kind == "RRP" else B
+            ext = e1 if X == A else e2
+            lX = float(np.hypot(*(np.asarray(mid.local(X)) - ext.local(X))))
+            return (f"the distance from {ext.point} to the line along which {mid.point} must move exceeds "
+                    f"|{ext.point}{mid.point}| = {lX:.6g} m (link {nm(X)} is too short)")
+        if kind == "RPR":
+            return (f"the guide of the prismatic pair {nm(mid.s)}/{nm(mid.g)} must keep its offset from the "
+                    f"pivot {e1.point if mid.s == A else e2.point}, which is closer to {e2.point if mid.s == A else e1.point} "
+                    f"than that offset")
+        return "the guides of the group are parallel (the prismatic pairs lock)"
+
+    def _assembly_error(self, gi: int, bad_deg: np.ndarray, whole: bool = False) -> StageError:
+        grp = self.groups[gi]
+        pos = float(np.mod(bad_deg[0], 360.0))
+        if whole:
+            return StageError("kinematics", f"{grp.describe()} does not assemble at any crank angle",
+                              position=pos)
+        try:
+            iv = self.bad_intervals(gi)
+        except StageError:
+            iv = []
+        if not iv:
+            lo, hi = float(np.min(np.mod(bad_deg, 360))), float(np.max(np.mod(bad_deg, 360)))
+            iv = [(lo, hi)]
+        mid_deg = iv[0][0] + ((iv[0][1] - iv[0][0]) % 360.0) / 2
+        reason = self._reason(gi, mid_deg % 360.0)
+        ivs = ", ".join(f"{a:.6f}..{b:.6f}" for a, b in iv)
+        return StageError("kinematics", f"{grp.describe()} does not assemble for crank angles {ivs} deg: "
+                                        f"{reason}", position=pos)
+
+
+# ---------------------------------------------------------------------- cache
+_CACHE: dict[int, tuple] = {}
+
+
+def get_solver(mech: Mechanism) -> Solver:
+    key = id(mech)
+    hit = _CACHE.get(key)
+    if hit is not None and hit[0]() is mech:
+        return hit[1]
+    s = Solver(mech)
+    try:
+        ref = weakref.ref(mech, lambda _r, k=key: _CACHE.pop(k, None))
+    except TypeError:
+        return s
+    _CACHE[key] = (ref, s)
+    return s
+
+
+def _unwrap_sorted(th: np.ndarray, order: np.ndarray) -> np.ndarray:
+    out = th.copy()
+    out[order] = np.unwrap(th[order])
+    return out
+
+
+def solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
+    """Kinematics at crank angles ``phi_deg`` (deg; the direction of the vector from
+    the crank's ground pivot to its pin, from +x ccw). ``omega1`` and ``eps1`` (rad/s,
+    rad/s^2, ccw positive) may be scalars or arrays of shape (N,)."""
+    solver = get_solver(mech)
+    phi_deg = np.atleast_1d(np.asarray(phi_deg, float)).reshape(-1)
+    nwarn = len(solver.warnings)
+    st = solver.run(np.radians(phi_deg))
+    N = len(phi_deg)
+    order = np.argsort(phi_deg, kind="stable")
+    for b in range(1, mech.n + 1):
+        st.th[b] = _unwrap_sorted(np.asarray(st.th[b], float), order)
+    pos, d1, d2 = {}, {}, {}
+    names = mech.all_points()
+    for p, xy in mech.ground.items():
+        pos[p] = np.broadcast_to(np.array(xy, float), (N, 2)).copy()
+        d1[p] = np.zeros((N, 2))
+        d2[p] = np.zeros((N, 2))
+    for lk in mech.links:
+        for p, u in lk.local.items():
+            if p in pos:
+                continue
+            pos[p], d1[p], d2[p] = st.point_d(lk.index, u)
+    for i, s in mech.com_names.items():
+        if s in pos and s not in mech.link(i).local:
+            continue
+        pos[s], d1[s], d2[s] = st.point_d(i, mech.link(i).com)
+    angle, a1, a2 = {}, {}, {}
+    for lk in mech.links:
+        angle[lk.name] = np.asarray(st.th[lk.index], float)
+        a1[lk.name] = np.broadcast_to(np.asarray(st.th1[lk.index], float), (N,)).copy()
+        a2[lk.name] = np.broadcast_to(np.asarray(st.th2[lk.index], float), (N,)).copy()
+    w = np.asarray(omega1, float)
+    e = np.asarray(eps1, float)
+    for nm_, v in (("omega1", w), ("eps1", e)):
+        if v.ndim and v.shape != (N,):
+            raise ValueError(f"{nm_} must be a scalar or an array of shape ({N},), got {v.shape}")
+    warnings = list(dict.fromkeys(solver.warnings))
+    sing = getattr(st, "singular", None)
+    return KinematicsResult(phi=phi_deg, omega1=omega1 if w.ndim == 0 else w, eps1=eps1 if e.ndim == 0 else e,
+                            pos=pos, d1=d1, d2=d2, angle=angle, a1=a1, a2=a2, warnings=warnings,
+                            points=[p for p in names if p in pos], links=[lk.name for lk in mech.links],
+                            singular=sing)
+
+
+def check_assembly(mech: Mechanism, n: int = 720) -> list[str]:
+    """Feasibility for ``tmm validate``: does the linkage assemble through the whole
+    cycle? Raises StageError('kinematics', ...) naming the group and the crank-angle
+    interval where it does not; returns the warnings (singular positions, closures)."""
+    solver = get_solver(mech)
+    phi = np.arange(n) * (360.0 / n)
+    solver.run(np.radians(phi))
+    for gi, plan in enumerate(solver.plans):
+        if isinstance(plan, DyadPlan):
+            iv = solver.bad_intervals(gi)
+            if iv:
+                raise solver._assembly_error(gi, np.array([iv[0][0]]))
+    return list(dict.fromkeys(solver.warnings))

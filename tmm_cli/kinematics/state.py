@@ -1,0 +1,208 @@
+"""Poses of links over a batch of crank positions, and the lower-pair constraints.
+
+Every body b (0 = ground) has a pose: the global position ``o[b]`` (N, 2) of its local
+origin and the angle ``th[b]`` (N,) of its local u-axis, plus the first and second
+derivatives of both with respect to the crank angle phi (rad): ``o1, th1, o2, th2``.
+A point with local coordinates u is at ``o + R(th) u``.
+
+Constraints (two equations each) of a pair between bodies i and j:
+
+* revolute at a point with local coordinates u_i, u_j:
+  ``o_i + R_i u_i - o_j - R_j u_j = 0``;
+* prismatic between a slider s and the body g carrying its guide (g = 0: a fixed
+  guide): ``th_s - th_g - a = 0`` and ``n(psi) . (o_s - o_g) - c0 = 0`` with
+  psi = th_g + a the guide direction, n its left normal, c0 = n(a) . w where w is a
+  point of the guide line in g's frame (a fixed guide: its global point; a moving
+  guide: c0 = offset).
+
+Each constraint gives its value, its Jacobian blocks d/d(o_x, o_y, th) per body, and
+``gamma``: the part of its second derivative quadratic in the first derivatives, so
+that, with q the poses, d2 Phi/dphi2 = sum_b block_b q_b'' + gamma. For the guide this
+term holds -psi'^2 n.d - 2 psi' e.d' (e the guide direction, d = o_s - o_g): the
+Coriolis term of a slider on a moving guide.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+
+class State:
+    """Poses and their phi-derivatives of all bodies at N positions."""
+
+    def __init__(self, N: int):
+        self.N = N
+        z2 = np.zeros((N, 2))
+        z1 = np.zeros(N)
+        self.o = {0: z2}
+        self.th = {0: z1}
+        self.o1 = {0: z2}
+        self.th1 = {0: z1}
+        self.o2 = {0: z2}
+        self.th2 = {0: z1}
+        self._cs: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+
+    def set_pose(self, b: int, o: np.ndarray, th: np.ndarray) -> None:
+        self.o[b] = o
+        self.th[b] = th
+        self._cs.pop(b, None)
+
+    def set_d1(self, b, o1, th1):
+        self.o1[b] = o1
+        self.th1[b] = th1
+
+    def set_d2(self, b, o2, th2):
+        self.o2[b] = o2
+        self.th2[b] = th2
+
+    def cs(self, b: int):
+        if b not in self._cs:
+            t = self.th[b]
+            self._cs[b] = (np.cos(t), np.sin(t))
+        return self._cs[b]
+
+    def rot(self, b: int, u) -> np.ndarray:
+        """R(th_b) u -> (N, 2)."""
+        c, s = self.cs(b)
+        u0, u1 = float(u[0]), float(u[1])
+        return np.stack([c * u0 - s * u1, s * u0 + c * u1], axis=-1)
+
+    def point(self, b: int, u) -> np.ndarray:
+        return self.o[b] + self.rot(b, u)
+
+    def point_d(self, b: int, u):
+        """Position, first and second phi-derivatives of a point fixed on body b."""
+        ru = self.rot(b, u)
+        jru = np.stack([-ru[:, 1], ru[:, 0]], axis=-1)
+        t1 = self.th1[b][:, None]
+        t2 = self.th2[b][:, None]
+        p = self.o[b] + ru
+        d1 = self.o1[b] + t1 * jru
+        d2 = self.o2[b] + t2 * jru - t1 ** 2 * ru
+        return p, d1, d2
+
+    def take(self, idx) -> "State":
+        """A State restricted to positions ``idx`` (index array or slice)."""
+        sub = State.__new__(State)
+        for name in ("o", "th", "o1", "th1", "o2", "th2"):
+            setattr(sub, name, {b: v[idx] for b, v in getattr(self, name).items()})
+        sub.N = len(sub.th[0])
+        sub._cs = {}
+        return sub
+
+
+def unit(ang):
+    return np.stack([np.cos(ang), np.sin(ang)], axis=-1)
+
+
+def left(v):
+    return np.stack([-v[..., 1], v[..., 0]], axis=-1)
+
+
+def cross(a, b):
+    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+
+
+def dot(a, b):
+    return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1]
+
+
+def wrap(a):
+    return (a + np.pi) % (2 * np.pi) - np.pi
+
+
+class RCon:
+    """Revolute pair between bodies i and j at a point (local u_i, u_j)."""
+    kind = "R"
+    m = 2
+
+    def __init__(self, i, j, ui, uj, point, joint=None):
+        self.i, self.j = i, j
+        self.ui = np.asarray(ui, float)
+        self.uj = np.asarray(uj, float)
+        self.point = point
+        self.joint = joint
+        self.bodies = (i, j)
+
+    def local(self, b):
+        return self.ui if b == self.i else self.uj
+
+    def value(self, st: State) -> np.ndarray:
+        return st.point(self.i, self.ui) - st.point(self.j, self.uj)
+
+    def blocks(self, st: State) -> dict:
+        out = {}
+        for b, u, sg in ((self.i, self.ui, 1.0), (self.j, self.uj, -1.0)):
+            if b == 0:
+                continue
+            ru = st.rot(b, u)
+            blk = np.zeros((st.N, 2, 3))
+            blk[:, 0, 0] = sg
+            blk[:, 1, 1] = sg
+            blk[:, 0, 2] = -sg * ru[:, 1]
+            blk[:, 1, 2] = sg * ru[:, 0]
+            out[b] = blk
+        return out
+
+    def gamma(self, st: State) -> np.ndarray:
+        g = np.zeros((st.N, 2))
+        for b, u, sg in ((self.i, self.ui, 1.0), (self.j, self.uj, -1.0)):
+            if b == 0:
+                continue
+            g -= sg * st.th1[b][:, None] ** 2 * st.rot(b, u)
+        return g
+
+
+class PCon:
+    """Prismatic pair: slider s on the guide carried by body g (0 = fixed guide)."""
+    kind = "P"
+    m = 2
+
+    def __init__(self, s, g, a, c0, joint=None):
+        self.s, self.g = s, g
+        self.a = float(a)          # rad: guide direction relative to g (absolute if g = 0)
+        self.c0 = float(c0)        # n(a) . w, w a point of the guide in g's frame
+        self.joint = joint
+        self.bodies = (s, g)
+        self.na = np.array([-math.sin(self.a), math.cos(self.a)])
+
+    def psi(self, st):
+        return st.th[self.g] + self.a
+
+    def value(self, st: State) -> np.ndarray:
+        psi = self.psi(st)
+        n = left(unit(psi))
+        d = st.o[self.s] - st.o[self.g]
+        return np.stack([wrap(st.th[self.s] - psi), dot(n, d) - self.c0], axis=-1)
+
+    def blocks(self, st: State) -> dict:
+        psi = self.psi(st)
+        e = unit(psi)
+        n = left(e)
+        d = st.o[self.s] - st.o[self.g]
+        out = {}
+        bs = np.zeros((st.N, 2, 3))
+        bs[:, 0, 2] = 1.0
+        bs[:, 1, 0] = n[:, 0]
+        bs[:, 1, 1] = n[:, 1]
+        out[self.s] = bs
+        if self.g != 0:
+            bg = np.zeros((st.N, 2, 3))
+            bg[:, 0, 2] = -1.0
+            bg[:, 1, 0] = -n[:, 0]
+            bg[:, 1, 1] = -n[:, 1]
+            bg[:, 1, 2] = -dot(e, d)
+            out[self.g] = bg
+        return out
+
+    def gamma(self, st: State) -> np.ndarray:
+        psi = self.psi(st)
+        e = unit(psi)
+        n = left(e)
+        d = st.o[self.s] - st.o[self.g]
+        d1 = st.o1[self.s] - st.o1[self.g]
+        w = st.th1[self.g]
+        g = np.zeros((st.N, 2))
+        g[:, 1] = -w ** 2 * dot(n, d) - 2.0 * w * dot(e, d1)
+        return g
