@@ -1,11 +1,232 @@
-"""placeholder replaced below"""
-from dataclasses import dataclass
+"""Positions of the course project (METHODS 0; SPEC ``positions``).
+
+The output link (``positions.output``, default the last link) has a coordinate s:
+
+* a slider on a fixed guide: the position of its pin along the guide direction,
+  measured from the guide's point (m);
+* a slider on a moving guide: its pin's coordinate along the guide, measured from
+  the origin of the link carrying the guide (m);
+* a bar: its angle, ccw positive (deg, continuous).
+
+Its extreme positions are the roots of the analogue ds/dphi over one crank turn:
+bracketed on a 0.5-deg scan and refined by Brent's method to 1e-10 deg; the global
+minimum and maximum are the two extremes. The working stroke moves the output toward
+increasing s (``working: forward``, it starts at the minimum) or decreasing s
+(``backward``, it starts at the maximum). Position 0 is the extreme where the working
+stroke begins (``zero: extreme``) or the given crank angle; ``count`` positions follow
+every 360/count deg in the drive direction (cw: decreasing crank angle), then the
+user's ``extra`` angles, then the second extreme (end of the working stroke), then any
+angles the pipeline adds (``extra_added``, e.g. load switch points). An angle already
+in the list (within 1e-9 deg) is not repeated. All angles are in [0, 360).
+
+K = working-stroke crank angle / idle-stroke crank angle = (180 + theta)/(180 - theta).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.optimize import brentq
+
+from ..errors import StageError
+from ..mechanism import Mechanism
+from .solver import solve
+
+SCAN_STEP = 0.5       # deg
+XTOL = 1e-11          # deg
+
+
+def _output_coordinate(mech: Mechanism, name: str):
+    """(kind, f) with f(phi_deg array) -> (s, ds/dphi) (s in m or deg; ds per rad)."""
+    lk = mech.link(name)
+    if lk.kind == "slider":
+        pin = lk.origin
+        g = lk.guide
+        if g.link is None:
+            a = math.radians(g.angle)
+            e = np.array([math.cos(a), math.sin(a)])
+            p0 = np.array(g.point, float)
+
+            def f(phi):
+                k = solve(mech, phi)
+                return (k.pos[pin] - p0) @ e, k.d1[pin] @ e
+            return "slider", f
+        carrier = mech.link(g.link)
+        a = math.radians(g.angle)
+        org = carrier.origin
+
+        def f(phi):
+            k = solve(mech, phi)
+            psi = k.angle[carrier.name] + a
+            e = np.stack([np.cos(psi), np.sin(psi)], axis=-1)
+            n = np.stack([-e[:, 1], e[:, 0]], axis=-1)
+            d = k.pos[pin] - k.pos[org]
+            dd = k.d1[pin] - k.d1[org]
+            s = np.sum(e * d, axis=1)
+            ds = k.a1[carrier.name] * np.sum(n * d, axis=1) + np.sum(e * dd, axis=1)
+            return s, ds
+        return "slider", f
+
+    def f(phi):
+        k = solve(mech, phi)
+        return np.degrees(k.angle[name]), k.a1[name]
+    return "rocker", f
 
 
 @dataclass
 class PositionsResult:
-    pass
+    phi: np.ndarray                  # reported crank angles, deg in [0, 360)
+    index: np.ndarray                # position numbers
+    kinds: list[str]                 # 'grid' | 'extra' | 'extreme' | 'added' per position
+    phi0: float
+    extreme: list[float] | None      # [start, end] of the working stroke, deg
+    working_stroke_angle: float | None
+    idle_stroke_angle: float | None
+    K: float | None
+    theta: float | None              # angle of overlap (180 (K-1)/(K+1)), deg
+    output: str
+    output_kind: str                 # 'slider' (s in m) | 'rocker' (angle in deg)
+    H: float | None                  # stroke: m (slider) or deg (rocker)
+    s_extreme: list[float] | None    # output coordinate at [start, end]
+    count: int
+    direction: str                   # 'ccw' | 'cw'
+    sign: float
+    working: str
+    extreme_index: int | None = None  # index of the position at the end of the working stroke
+    _f: object = field(default=None, repr=False)
+
+    def output_value(self, phi_deg) -> tuple[np.ndarray, np.ndarray]:
+        """(s, ds/dphi) of the output at crank angles phi_deg (s: m or deg)."""
+        return self._f(np.atleast_1d(np.asarray(phi_deg, float)))
+
+    def stroke_state(self, phi_deg) -> tuple[np.ndarray, np.ndarray]:
+        """For each crank angle: 'working' or 'idle', and s_rel in [0, 1], the output's
+        displacement from the start of the current stroke relative to the stroke H.
+        At the start extreme the working stroke applies, at the end extreme the idle."""
+        if self.extreme is None:
+            raise StageError("positions", f"the output link '{self.output}' has no extreme positions (it turns "
+                                          f"fully), so stroke-based loads cannot be placed")
+        phi = np.atleast_1d(np.asarray(phi_deg, float))
+        rel = np.mod((phi - self.extreme[0]) * self.sign, 360.0)
+        rel = np.where(rel > 360.0 - 1e-9, 0.0, rel)
+        working = rel < self.working_stroke_angle - 1e-9
+        s, _ = self.output_value(phi)
+        s0, s1 = self.s_extreme
+        if self.output_kind == "rocker":
+            mid = 0.5 * (s0 + s1)
+            s = mid + (np.mod(s - mid + 180.0, 360.0) - 180.0)
+        span = s1 - s0
+        if abs(span) < 1e-300:
+            srel = np.zeros_like(s)
+        else:
+            srel = np.where(working, (s - s0) / span, (s - s1) / (-span))
+        srel = np.clip(srel, 0.0, 1.0) + 0.0
+        return np.where(working, "working", "idle"), srel
+
+    def to_dict(self) -> dict:
+        def f(x):
+            return None if x is None else float(x)
+        return {"phi0": float(self.phi0),
+                "extreme": None if self.extreme is None else [float(x) for x in self.extreme],
+                "working_stroke_angle": f(self.working_stroke_angle),
+                "idle_stroke_angle": f(self.idle_stroke_angle),
+                "K": f(self.K), "theta": f(self.theta), "output": self.output,
+                "output_kind": self.output_kind, "H": f(self.H),
+                "s_extreme": None if self.s_extreme is None else [float(x) for x in self.s_extreme],
+                "count": int(self.count), "direction": self.direction,
+                "phi": [float(x) for x in self.phi], "index": [int(i) for i in self.index],
+                "kinds": list(self.kinds), "extreme_index": self.extreme_index}
 
 
-def find_positions(mech, positions_section, drive_section, extra_added=()):
-    raise RuntimeError("not yet")
+def _extremes(f, period=None) -> list[tuple[float, float]]:
+    """(phi, s) of every root of ds/dphi over [0, 360); ``period`` (a rocker: 360 deg)
+    makes s continuous with the scan."""
+    grid = np.arange(0.0, 360.0, SCAN_STEP)
+    s, ds = f(grid)
+    out = []
+    g = lambda x: float(f(np.array([x % 360.0]))[1][0])
+    n = len(grid)
+    for k in range(n):
+        a, b = grid[k], grid[k] + SCAN_STEP
+        fa = ds[k]
+        fb = ds[(k + 1) % n]
+        if fa == 0.0:
+            out.append(a)
+        elif fa * fb < 0:
+            out.append(brentq(g, a, b, xtol=XTOL, rtol=1e-15, maxiter=200) % 360.0)
+    res = []
+    for r in out:
+        if all(abs(((r - q) + 180) % 360 - 180) > 1e-7 for q, _ in res):
+            v = float(f(np.array([r]))[0][0])
+            if period:
+                near = float(s[int(round(r / SCAN_STEP)) % n])
+                v += period * round((near - v) / period)
+            res.append((r, v))
+    return res
+
+
+def find_positions(mech: Mechanism, positions_section=None, drive_section=None,
+                   extra_added=()) -> PositionsResult:
+    """The reported crank positions and the output's extremes (see module docstring)."""
+    from ..task import PositionsSection
+    sec = positions_section if positions_section is not None else PositionsSection()
+    direction = getattr(drive_section, "direction", "ccw") if drive_section is not None else "ccw"
+    sign = 1.0 if direction == "ccw" else -1.0
+    out_name = sec.output or mech.links[-1].name
+    try:
+        mech.link(out_name)
+    except KeyError:
+        raise StageError("positions", f"positions.output: no link named '{out_name}'") from None
+    kind, f = _output_coordinate(mech, out_name)
+    ext = _extremes(f, 360.0 if kind == "rocker" else None)
+    extreme = wsa = isa = K = theta = H = s_ext = None
+    if len(ext) >= 2:
+        i_min = min(range(len(ext)), key=lambda i: ext[i][1])
+        i_max = max(range(len(ext)), key=lambda i: ext[i][1])
+        if sec.working == "forward":
+            start, end = ext[i_min], ext[i_max]
+        else:
+            start, end = ext[i_max], ext[i_min]
+        extreme = [start[0], end[0]]
+        s_ext = [start[1], end[1]]
+        wsa = float(np.mod((end[0] - start[0]) * sign, 360.0))
+        isa = 360.0 - wsa
+        K = wsa / isa if isa > 0 else None
+        theta = 180.0 * (K - 1) / (K + 1) if K is not None else None
+        H = abs(end[1] - start[1])
+    if sec.zero == "extreme":
+        if extreme is None:
+            raise StageError("positions", f"the output link '{out_name}' has no extreme positions (it turns fully "
+                                          f"or stands still); give positions.zero as a crank angle in degrees")
+        phi0 = extreme[0]
+    else:
+        phi0 = float(sec.zero) % 360.0
+    count = int(sec.count)
+    phis = [(phi0 + sign * k * 360.0 / count) % 360.0 for k in range(count)]
+    kinds = ["grid"] * count
+    extreme_index = None
+
+    def add(a, kd):
+        a = float(a) % 360.0
+        if a >= 360.0 - 1e-12:
+            a = 0.0
+        for i, q in enumerate(phis):
+            if abs(((a - q) + 180.0) % 360.0 - 180.0) <= 1e-9:
+                return i
+        phis.append(a)
+        kinds.append(kd)
+        return len(phis) - 1
+
+    for a in sec.extra:
+        phis.append(float(a) % 360.0)
+        kinds.append("extra")
+    if extreme is not None:
+        extreme_index = add(extreme[1], "extreme")
+    for a in extra_added:
+        add(a, "added")
+    phis_arr = np.array([0.0 if x >= 360.0 - 1e-12 else x for x in phis])
+    return PositionsResult(phi=phis_arr, index=np.arange(len(phis_arr)), kinds=kinds, phi0=float(phi0),
+                           extreme=extreme, working_stroke_angle=wsa, idle_stroke_angle=isa, K=K, theta=theta,
+                           output=out_name, output_kind=kind, H=H, s_extreme=s_ext, count=count,
+                           direction=direction, sign=sign, working=sec.working, extreme_index=extreme_index, _f=f)
