@@ -292,7 +292,8 @@ def evaluate(mech, loads_section, kin, positions=None, *, inertia: bool = True) 
             out.couples.append(AppliedCouple(lk.index, name, M, sp.kind or "load"))
             out.info.append({"name": name, "link": lk.name, "type": "moment", "kind": sp.kind or "load",
                              "stroke": sp.stroke if (sp.kind or stroke_given) else "cycle",
-                             "active": active, "value": M, "x": None})
+                             "active": active, "value": M, "x": None, "abscissa": None,
+                             "curve": {"x": [0.0, 1.0], "value": [float(sp.moment)] * 2}})
             continue
         # point of application
         at = sp.at if sp.at is not None else (f"S{lk.index}" if f"S{lk.index}" in kin.pos else lk.com)
@@ -355,8 +356,16 @@ def evaluate(mech, loads_section, kin, positions=None, *, inertia: bool = True) 
                          "stroke": stroke_label, "active": active,
                          "abscissa": "phi" if (sp.diagram is not None and sp.diagram.phi is not None) else "s",
                          "x": x if x is not None else s_rel, "value": mag,
-                         "diagram_value": np.where(active, val, 0.0)})
+                         "diagram_value": np.where(active, val, 0.0), "curve": _curve(sp, scale)})
     return out
+
+
+def _curve(sp, scale: float) -> dict:
+    """The load's diagram as given (abscissa s/H or phi from position 0), in N."""
+    if sp.diagram is not None:
+        xs = sp.diagram.phi if sp.diagram.phi is not None else sp.diagram.s
+        return {"x": [float(v) for v in xs], "value": [float(v) * scale for v in sp.diagram.value]}
+    return {"x": [0.0, 1.0], "value": [float(sp.magnitude) * scale] * 2}
 
 
 # ------------------------------------------------------------------ switch angles

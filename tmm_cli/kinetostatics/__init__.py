@@ -1,0 +1,14 @@
+"""Kinetostatics (METHODS 3): reactions in the pairs and the balancing moment, by
+three methods (group by group, Zhukovsky's lever / virtual power, the matrix of all
+equilibrium equations), singular positions of the chosen balance link, friction and
+the instantaneous efficiency.
+
+Public API::
+
+    analyze(mech, structure, kin, loads, section, *, indices=None, crank_inertia=0.0)
+        -> KinetostaticsResult          # .to_dict(): {"entries": [...], "singular": [...], ...}
+    find_singular(mech, structure, balance) -> list[float]   # crank angles, deg
+"""
+from .analysis import KinetostaticsResult, analyze, balance_index, find_singular, singular_function
+
+__all__ = ["analyze", "find_singular", "KinetostaticsResult", "balance_index", "singular_function"]

@@ -1,0 +1,400 @@
+"""Kinetostatic analysis: ``analyze`` (per position) and ``find_singular`` (over a turn).
+
+Sign conventions (stated in the report): R_ij is the force of link i on link j, keyed
+``R<i><j>`` with i < j (R_ji = -R_ij); moments ccw positive; the balancing moment M_b
+is the couple the drive applies to the balance link to keep the prescribed motion;
+P_b = M_b / l is the balancing force at the end of the balance link's arm l (the crank:
+l = l_OA at the crank pin), perpendicular to it; on a slider the balancing force acts
+along its guide (positive along the guide direction).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import StageError, TaskError
+from ..loads import AppliedCouple, Loads, evaluate
+from .equations import Geometry, geometry, load_vector, scaled_det
+from .solve import (COND_MAX, balance_lever, balance_rate, friction_loads, group_by_group, lever_moments,
+                    matrix_method, powers, unit_balance_q)
+
+NEAR_DEG = 1.0
+
+
+def balance_index(mech, section) -> int:
+    name = getattr(section, "balance", None) if section is not None else None
+    if name is None:
+        return mech.drive
+    try:
+        return mech.link(name).index
+    except KeyError:
+        import difflib
+        names = [lk.name for lk in mech.links]
+        close = difflib.get_close_matches(name, names, n=1)
+        hint = f"; did you mean '{close[0]}'?" if close else f"; links: {', '.join(names)}"
+        raise TaskError(f"kinetostatics.balance: no link named '{name}'{hint}") from None
+
+
+def _num(v) -> float | None:
+    if v is None:
+        return None
+    v = float(v)
+    return v if math.isfinite(v) else None
+
+
+@dataclass
+class KinetostaticsResult:
+    index: list[int]
+    phi: np.ndarray
+    balance: str
+    balance_kind: str                      # 'moment' | 'force'
+    arm: float | None
+    M_b: np.ndarray                        # group-by-group balancing moment (or force)
+    M_matrix: np.ndarray
+    M_zhukovsky: np.ndarray
+    M_virtual: np.ndarray
+    reactions: np.ndarray                  # (N, 2p) group by group
+    reactions_matrix: np.ndarray
+    ok: np.ndarray                         # (N,) not singular to working precision
+    near: np.ndarray                       # (N,) within 1 deg of a singular angle
+    singular: list[float]
+    mech: object = None
+    geo: Geometry | None = None
+    loads: Loads | None = None
+    efficiency: np.ndarray | None = None
+    friction_power: np.ndarray | None = None
+    friction_pairs: np.ndarray | None = None
+    driving_power: np.ndarray | None = None
+    groups: list[list[int]] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
+    cond: np.ndarray | None = None
+
+    # ------------------------------------------------------------------
+    def discrepancy(self) -> np.ndarray:
+        tiny = 1e-9 * self._scale()
+        return np.abs(self.M_zhukovsky - self.M_b) / np.maximum(np.abs(self.M_b), tiny)
+
+    def _scale(self) -> np.ndarray:
+        """A moment scale per position: sum |F| Lc + sum |M| of the loads."""
+        s = np.zeros(len(self.phi))
+        Lc = self.geo.Lc if self.geo is not None else 1.0
+        if self.loads is not None:
+            for f in self.loads.forces:
+                s += np.linalg.norm(f.F, axis=1) * Lc
+            for c in self.loads.couples:
+                s += np.abs(c.M)
+        if self.balance_kind == "force":
+            s = s / Lc
+        return np.maximum(s, 1e-300)
+
+    def reaction(self, key: str, i: int) -> dict:
+        mech = self.mech
+        for k, j in enumerate(mech.joints):
+            if f"R{j.a}{j.b}" == key:
+                return self._reaction(k, i)
+        raise KeyError(key)
+
+    def _reaction(self, k: int, i: int) -> dict:
+        j = self.mech.joints[k]
+        x = self.reactions[i, 2 * k:2 * k + 2]
+        p = self.geo.jpoint[k][i]
+        if not self.ok[i] or not np.all(np.isfinite(x)):
+            d = {"x": None, "y": None, "R": None, "point": [float(p[0]), float(p[1])]}
+            if j.kind == "P":
+                d.update(N=None, M=None, offset=None)
+            return d
+        if j.kind == "R":
+            return {"x": float(x[0]), "y": float(x[1]), "R": float(math.hypot(x[0], x[1])),
+                    "point": [float(p[0]), float(p[1])]}
+        e = self.geo.jdir[k][i]
+        nv = np.array([-e[1], e[0]])
+        N, M = float(x[0]), float(x[1])
+        F = N * nv
+        scale = max(float(np.max(np.abs(np.nan_to_num(self.reactions[i])))), 1e-300)
+        if abs(N) > 1e-12 * scale:
+            off = M / N
+            pt = [float(p[0] + off * e[0]), float(p[1] + off * e[1])]
+        else:
+            off, pt = None, None
+        return {"x": float(F[0]), "y": float(F[1]), "R": abs(N), "N": N, "M": M, "offset": off,
+                "point": pt, "pin": [float(p[0]), float(p[1])]}
+
+    def to_dict(self) -> dict:
+        mech = self.mech
+        disc = self.discrepancy()
+        entries = []
+        names = {lk.index: lk.name for lk in mech.links}
+        names[0] = "ground"
+        jkeys = [f"R{j.a}{j.b}" for j in mech.joints]
+        xm = self.reactions_matrix
+        vel_of = {f.name: self.geo.point_vel(f.link, f.point) for f in self.loads.forces}
+        for i, idx in enumerate(self.index):
+            ok = bool(self.ok[i])
+            mb = _num(self.M_b[i]) if ok else None
+            e: dict = {"index": int(idx), "phi": float(self.phi[i] % 360.0)}
+            if self.balance_kind == "moment":
+                e["balancing_moment"] = mb
+                e["balancing_force"] = (mb / self.arm) if (mb is not None and self.arm) else None
+                e["zhukovsky_moment"] = _num(self.M_zhukovsky[i]) if ok else None
+                e["virtual_power_moment"] = _num(self.M_virtual[i]) if ok else None
+                e["matrix_moment"] = _num(self.M_matrix[i]) if ok else None
+            else:
+                e["balancing_moment"] = None
+                e["balancing_force"] = mb
+                e["zhukovsky_moment"] = None
+                e["virtual_power_moment"] = None
+                e["matrix_moment"] = None
+                e["zhukovsky_force"] = _num(self.M_zhukovsky[i]) if ok else None
+                e["virtual_power_force"] = _num(self.M_virtual[i]) if ok else None
+                e["matrix_force"] = _num(self.M_matrix[i]) if ok else None
+            e["discrepancy"] = _num(disc[i]) if ok else None
+            e["reactions"] = {jkeys[k]: self._reaction(k, i) for k in range(len(mech.joints))}
+            if ok:
+                a, b = self.reactions[i], xm[i]
+                e["matrix_discrepancy"] = _num(np.max(np.abs(a - b)) / max(np.max(np.abs(b)), 1e-300))
+            else:
+                e["matrix_discrepancy"] = None
+            inert = {lk.name: {"Fx": 0.0, "Fy": 0.0, "M": 0.0} for lk in mech.links}
+            loads_out, couples_out = [], []
+            for f in self.loads.forces:
+                F = f.F[i]
+                if f.kind == "inertia":
+                    inert[names[f.link]]["Fx"] += float(F[0])
+                    inert[names[f.link]]["Fy"] += float(F[1])
+                v = vel_of[f.name][i]
+                loads_out.append({"name": f.name, "link": names[f.link], "kind": f.kind,
+                                  "point": [float(f.point[i, 0]), float(f.point[i, 1])],
+                                  "F": [float(F[0]), float(F[1])], "v": [float(v[0]), float(v[1])]})
+            for c in self.loads.couples:
+                if c.kind == "inertia":
+                    inert[names[c.link]]["M"] += float(c.M[i])
+                couples_out.append({"name": c.name, "link": names[c.link], "kind": c.kind,
+                                    "M": float(c.M[i]), "omega": float(self.geo.omega(c.link)[i])})
+            e["inertia"] = inert
+            e["loads"] = loads_out
+            e["couples"] = couples_out
+            e["diagram"] = {d["name"]: {"link": d["link"], "kind": d["kind"], "stroke": d["stroke"],
+                                        "active": bool(np.asarray(d["active"])[i]),
+                                        "x": (None if d.get("x") is None else float(np.asarray(d["x"])[i])),
+                                        "value": float(np.asarray(d["value"])[i])}
+                            for d in self.loads.info}
+            if self.efficiency is not None:
+                e["efficiency"] = _num(self.efficiency[i]) if ok else None
+                e["friction_power"] = _num(self.friction_power[i]) if ok else None
+                e["driving_power"] = _num(self.driving_power[i]) if ok else None
+                e["friction_pairs"] = {jkeys[k]: (_num(self.friction_pairs[i, k]) if ok else None)
+                                       for k in range(len(mech.joints))}
+            else:
+                e["efficiency"] = None
+            e["near_singular"] = bool(self.near[i] or not ok)
+            entries.append(e)
+        return {
+            "entries": entries,
+            "singular": [float(a) for a in self.singular],
+            "warnings": list(self.warnings),
+            "balance": self.balance,
+            "balance_kind": self.balance_kind,
+            "arm": self.arm,
+            "convention": "R_ij = force of link i on link j (i < j), R_ji = -R_ij; moments ccw positive",
+            "groups": [[names[l] for l in g] for g in self.groups],
+            "joints": [{"key": jkeys[k], "kind": j.kind, "a": j.a, "b": j.b, "point": j.point,
+                        "slider": j.slider} for k, j in enumerate(mech.joints)],
+            "load_diagrams": [{"name": d["name"], "link": d["link"], "kind": d["kind"], "type": d["type"],
+                               "stroke": d["stroke"], "abscissa": d.get("abscissa"), "curve": d.get("curve")}
+                              for d in self.loads.info],
+        }
+
+
+def _with_inertia(mech, kin, loads: Loads | None, inertia: bool, crank_inertia: float) -> Loads:
+    n = len(np.atleast_1d(kin.phi))
+    if loads is None:
+        loads = Loads(phi=np.atleast_1d(np.asarray(kin.phi, float)))
+    has = any(f.kind == "inertia" for f in loads.forces) or any(c.kind == "inertia" for c in loads.couples)
+    forces = [f for f in loads.forces if inertia or f.kind != "inertia"]
+    couples = [c for c in loads.couples if inertia or c.kind != "inertia"]
+    if inertia and not has:
+        extra = evaluate(mech, None, kin, None, inertia=True)
+        forces += extra.forces
+        couples += extra.couples
+    if crank_inertia:
+        e1 = np.broadcast_to(np.asarray(getattr(kin, "eps1", 0.0), float), (n,)).astype(float)
+        couples.append(AppliedCouple(mech.drive, "Mfly", -float(crank_inertia) * e1, "inertia"))
+    return Loads(loads.phi, forces, couples, loads.info)
+
+
+def analyze(mech, structure, kin, loads, section, *, indices=None, crank_inertia: float = 0.0,
+            solver=None, singular: list[float] | None = None) -> KinetostaticsResult:
+    """Kinetostatic analysis at the positions ``indices`` (rows of ``kin``; default all).
+
+    ``loads``: a :class:`~tmm_cli.loads.Loads` at the positions of ``kin`` (inertia loads
+    are added here when ``section.inertia`` and absent, dropped when not wanted);
+    ``crank_inertia``: an extra constant moment of inertia on the drive link (the
+    flywheel) whose couple -J eps1 is added; ``kin`` may carry arrays omega1, eps1.
+    ``solver``: the kinematics function for the singular positions (default
+    ``tmm_cli.kinematics.solve``); ``singular``: give the singular angles to skip the search.
+    """
+    phi_all = np.atleast_1d(np.asarray(kin.phi, float))
+    rows = np.arange(len(phi_all)) if indices is None else np.asarray(list(indices), int)
+    b = balance_index(mech, section)
+    blk = mech.link(b)
+    inertia = True if section is None else bool(getattr(section, "inertia", True))
+    lds = _with_inertia(mech, kin, loads, inertia, crank_inertia).select(rows)
+    geo = geometry(mech, kin, rows)
+    N = geo.n_pos
+    q = load_vector(mech, geo, lds)
+    qU = unit_balance_q(mech, geo, b) if b != mech.drive else None
+
+    def solve_groups(qq):
+        xL, M1L = group_by_group(mech, structure, geo, qq)
+        if qU is None:
+            return xL, M1L, np.ones(N)
+        xU, M1U = group_by_group(mech, structure, geo, qU)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            Mb = -M1L / M1U
+        return xL + Mb[:, None] * xU, Mb, M1U
+
+    fr = getattr(section, "friction", None) if section is not None else None
+    loss = None
+    if fr is not None and fr.f > 0:
+        x, Mb, M1U = solve_groups(q)
+        for _ in range(200):
+            ff, fc, loss = friction_loads(mech, geo, x, fr.f, fr.pin_radius)
+            qf = q + load_vector(mech, geo, Loads(lds.phi, ff, fc))
+            x_new, Mb, M1U = solve_groups(qf)
+            change = np.nanmax(np.abs(x_new - x)) if np.any(np.isfinite(x_new)) else 0.0
+            x = x_new
+            if not change > 1e-12 * max(float(np.nanmax(np.abs(x))) if np.any(np.isfinite(x)) else 1.0, 1e-300):
+                break
+        ff, fc, loss = friction_loads(mech, geo, x, fr.f, fr.pin_radius)
+        lds = Loads(lds.phi, lds.forces + ff, lds.couples + fc, lds.info)
+        q = load_vector(mech, geo, lds)
+    x, Mb, M1U = solve_groups(q)
+    xm, Mm, cond, _det = matrix_method(mech, geo, q, b)
+    lever = lever_moments(mech, geo, lds)
+    blev = balance_lever(mech, geo, b)
+    P, each = powers(mech, geo, lds)
+    rate = balance_rate(mech, geo, b)
+    Lc = geo.Lc
+    unit = 1.0 if blk.kind != "slider" else Lc
+    with np.errstate(divide="ignore", invalid="ignore"):
+        Mzh = -lever / blev
+        Mvp = -P / rate
+    w1 = np.abs(geo.omega1)
+    ok = (cond < COND_MAX) & np.isfinite(Mb) & np.all(np.isfinite(x), axis=1) \
+        & (np.abs(M1U) > 1e-12 * unit) & (np.abs(rate) > 1e-12 * w1 * unit)
+    # singular crank angles of the balance link over one turn
+    warnings: list[str] = []
+    if singular is None:
+        singular = find_singular(mech, structure, blk.name, solver=solver)
+    sing = np.asarray(singular, float)
+    phi = phi_all[rows]
+    if sing.size:
+        d = np.abs((phi[:, None] % 360.0) - sing[None, :]) % 360.0
+        d = np.minimum(d, 360.0 - d)
+        near = np.min(d, axis=1) <= NEAR_DEG
+    else:
+        near = np.zeros(N, bool)
+    for i in np.nonzero(~ok)[0]:
+        warnings.append(f"kinetostatics: position {int(rows[i])} (phi = {phi[i] % 360:.4f} deg) is singular for "
+                        f"the balance link '{blk.name}': no finite balancing {('moment' if blk.kind != 'slider' else 'force')}")
+    eff = fpow = dpow = None
+    if loss is not None:
+        fpow = loss.sum(axis=1)
+        dpow = np.maximum(Mb * rate, 0.0)
+        items = list(lds.forces) + list(lds.couples)
+        for it, pw in zip(items, each):
+            if it.kind in ("driving", "load"):
+                dpow = dpow + np.maximum(pw, 0.0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            eff = np.where(dpow > 1e-12 * np.maximum(fpow, 1e-300), 1.0 - fpow / dpow, np.nan)
+    arm = None
+    if blk.kind != "slider":
+        arm = float(blk.length) if blk.length else None
+        if b == mech.drive:
+            p0 = np.asarray(blk.local[mech.crank_pivot], float)
+            p1 = np.asarray(blk.local[mech.crank_pin], float)
+            arm = float(np.hypot(*(p1 - p0)))
+    from .solve import _group_links
+    return KinetostaticsResult(
+        index=[int(r) for r in rows], phi=phi, balance=blk.name,
+        balance_kind="force" if blk.kind == "slider" else "moment", arm=arm,
+        M_b=Mb, M_matrix=Mm, M_zhukovsky=Mzh, M_virtual=Mvp, reactions=x, reactions_matrix=xm,
+        ok=ok, near=near, singular=list(singular), mech=mech, geo=geo, loads=lds,
+        efficiency=eff, friction_power=fpow, friction_pairs=loss, driving_power=dpow,
+        groups=_group_links(mech, structure) + [[mech.drive]], warnings=warnings, cond=cond)
+
+
+def _kin_solver(solver):
+    if solver is not None:
+        return solver
+    from .. import kinematics
+    return kinematics.solve
+
+
+def singular_function(mech, balance: int, solver=None, grid=None):
+    """The scaled determinant of the equilibrium system as a function of the crank angle."""
+    solve = _kin_solver(solver)
+
+    def f(phi_deg: np.ndarray) -> np.ndarray:
+        kin = solve(mech, np.atleast_1d(np.asarray(phi_deg, float)), 1.0)
+        return scaled_det(mech, geometry(mech, kin), balance)
+    return f
+
+
+def find_singular(mech, structure=None, balance=None, *, solver=None, n_grid: int = 720) -> list[float]:
+    """Crank angles in [0, 360) where the equilibrium equations are singular for the
+    balance link (name or index; default the drive link): the roots of the scaled
+    determinant of A(phi), bracketed on a grid of ``n_grid`` points and refined by
+    Brent's method to 1e-9 deg; touching (double) roots by a bounded minimisation."""
+    from scipy.optimize import brentq, minimize_scalar
+
+    if balance is None:
+        b = mech.drive
+    elif isinstance(balance, int):
+        b = balance
+    else:
+        b = mech.link(balance).index
+    solve = _kin_solver(solver)
+    grid = np.linspace(0.0, 360.0, n_grid + 1)
+    try:
+        kin = solve(mech, grid, 1.0)
+        f = scaled_det(mech, geometry(mech, kin), b)
+    except ValueError as exc:
+        raise StageError("kinetostatics", str(exc)) from exc
+    fmax = float(np.max(np.abs(f)))
+    if not np.isfinite(fmax) or fmax == 0.0:
+        raise StageError("kinetostatics", "the equilibrium equations are singular at every position "
+                         "(passive constraints?)")
+
+    def F(phi, start):
+        k = solve(mech, np.array([start, phi]), 1.0)
+        return float(scaled_det(mech, geometry(mech, k), b)[-1]) / fmax
+
+    g = f / fmax
+    roots: list[float] = []
+    for i in range(n_grid):
+        a0, a1 = grid[i], grid[i + 1]
+        if g[i] == 0.0:
+            roots.append(a0)
+        elif g[i] * g[i + 1] < 0:
+            roots.append(brentq(F, a0, a1, args=(a0,), xtol=1e-10, rtol=4 * np.finfo(float).eps))
+    # touching zeros: local minima of |g| without a sign change
+    ag = np.abs(g)
+    for i in range(1, n_grid):
+        if ag[i] < ag[i - 1] and ag[i] <= ag[i + 1] and ag[i] < 1e-3 and g[i - 1] * g[i + 1] > 0 \
+                and g[i - 1] * g[i] > 0:
+            res = minimize_scalar(lambda t: abs(F(t, grid[i - 1])), bounds=(grid[i - 1], grid[i + 1]),
+                                  method="bounded", options={"xatol": 1e-10})
+            if res.fun < 1e-9:
+                roots.append(float(res.x))
+    out: list[float] = []
+    for r in sorted(float(r) % 360.0 for r in roots):
+        if r >= 360.0 - 1e-12:
+            r = 0.0
+        if not out or abs(r - out[-1]) > 1e-7:
+            out.append(r)
+    if len(out) > 1 and abs(out[0] + 360.0 - out[-1]) <= 1e-7:
+        out.pop()
+    return out

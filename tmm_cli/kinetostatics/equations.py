@@ -1,0 +1,200 @@
+"""Equilibrium equations of the links (d'Alembert), vectorised over positions.
+
+Three equations per moving link i (rows ``3(i-1) .. 3(i-1)+2``):
+sum Fx = 0, sum Fy = 0, sum of moments about the link's origin O_i = 0 (ccw positive).
+
+Unknowns (columns): two per pair in the order of ``mech.joints``:
+
+* revolute pair (a, b), a < b: R_ab = (x, y), the force of link a on link b, acting
+  at the pair's point (so link a feels -R_ab there);
+* prismatic pair (a, b): N_ab, the normal force of a on b along n = e rotated +90 deg
+  (e: unit vector of the guide direction, the slider's u-axis), acting at the
+  slider's pin, and M_ab, the couple of a on b about the pin; the force N n then acts
+  on the guide line at the distance ``M / N`` from the pin along e (its point of
+  action);
+
+and optionally one balancing unknown: a couple on a bar link, or a force along the
+guide acting at the pin of a slider.
+
+The equations read ``A x + q = 0`` where ``q`` holds the applied loads
+(sum F, sum of moments about O_i).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..loads import Loads, _get
+
+
+def cross(r: np.ndarray, f: np.ndarray) -> np.ndarray:
+    return r[..., 0] * f[..., 1] - r[..., 1] * f[..., 0]
+
+
+def rot90(r: np.ndarray) -> np.ndarray:
+    return np.stack([-r[..., 1], r[..., 0]], axis=-1)
+
+
+@dataclass
+class Geometry:
+    """Positions and velocity analogues needed by the equations, at N positions."""
+    n_pos: int
+    origin: dict[int, np.ndarray]          # link -> (N,2) position of its origin O_i
+    d1o: dict[int, np.ndarray]             # link -> (N,2) dO_i/dphi
+    a1: dict[int, np.ndarray]              # link -> (N,) dtheta_i/dphi
+    a2: dict[int, np.ndarray]
+    jpoint: list[np.ndarray]               # joint -> (N,2): pair point (R) or slider pin (P)
+    jdir: list[np.ndarray | None]          # joint -> (N,2) unit guide direction e (P) or None
+    omega1: np.ndarray                     # (N,)
+    eps1: np.ndarray                       # (N,)
+    Lc: float                              # length scale of the mechanism
+
+    def point_d1(self, link: int, p: np.ndarray) -> np.ndarray:
+        """dr/dphi of the material point of ``link`` now at ``p`` (N,2); ground: 0."""
+        if link == 0:
+            return np.zeros_like(p)
+        return self.d1o[link] + self.a1[link][:, None] * rot90(p - self.origin[link])
+
+    def point_vel(self, link: int, p: np.ndarray) -> np.ndarray:
+        return self.point_d1(link, p) * self.omega1[:, None]
+
+    def omega(self, link: int) -> np.ndarray:
+        if link == 0:
+            return np.zeros(self.n_pos)
+        return self.a1[link] * self.omega1
+
+
+def length_scale(mech) -> float:
+    """A characteristic length: the largest link length (or ground-point spread)."""
+    L = [abs(lk.length) for lk in mech.links if lk.length]
+    g = np.array(list(mech.ground.values()), float) if mech.ground else np.zeros((1, 2))
+    spread = float(np.max(np.ptp(g, axis=0))) if len(g) > 1 else 0.0
+    return max(L + [spread, 1e-3])
+
+
+def geometry(mech, kin, rows=None) -> Geometry:
+    phi = np.atleast_1d(np.asarray(kin.phi, float))
+    rows = np.arange(len(phi)) if rows is None else np.asarray(rows, int)
+    N = len(rows)
+
+    def sel(a):
+        return np.asarray(a, float)[rows]
+
+    origin, d1o, a1, a2 = {}, {}, {}, {}
+    for lk in mech.links:
+        o = lk.origin
+        origin[lk.index] = sel(kin.pos[o])
+        d1o[lk.index] = sel(kin.d1[o])
+        a1[lk.index] = sel(_get(kin.a1, lk))
+        a2[lk.index] = sel(_get(kin.a2, lk))
+    jpoint, jdir = [], []
+    for j in mech.joints:
+        if j.kind == "R":
+            jpoint.append(sel(kin.pos[j.point]))
+            jdir.append(None)
+        else:
+            s = mech.link(j.slider)
+            jpoint.append(sel(kin.pos[s.origin]))
+            th = sel(_get(kin.angle, s))
+            jdir.append(np.stack([np.cos(th), np.sin(th)], axis=-1))
+    w = np.broadcast_to(np.asarray(kin.omega1, float), phi.shape)[rows].astype(float)
+    e = np.broadcast_to(np.asarray(getattr(kin, "eps1", 0.0), float), phi.shape)[rows].astype(float)
+    return Geometry(N, origin, d1o, a1, a2, jpoint, jdir, w, e, length_scale(mech))
+
+
+def joint_coeffs(geo: Geometry, joint, jidx: int) -> dict[int, np.ndarray]:
+    """link -> (N, 3, 2): contribution of the two unknowns of pair ``jidx`` to the
+    three equations of each of its (moving) links."""
+    N = geo.n_pos
+    p = geo.jpoint[jidx]
+    out = {}
+    for link, sg in ((joint.b, 1.0), (joint.a, -1.0)):
+        if link == 0:
+            continue
+        r = p - geo.origin[link]
+        c = np.zeros((N, 3, 2))
+        if joint.kind == "R":
+            c[:, 0, 0] = sg
+            c[:, 1, 1] = sg
+            c[:, 2, 0] = -sg * r[:, 1]
+            c[:, 2, 1] = sg * r[:, 0]
+        else:
+            nv = rot90(geo.jdir[jidx])
+            c[:, 0, 0] = sg * nv[:, 0]
+            c[:, 1, 0] = sg * nv[:, 1]
+            c[:, 2, 0] = sg * cross(r, nv)
+            c[:, 2, 1] = sg
+        out[link] = c
+    return out
+
+
+def balance_coeffs(mech, geo: Geometry, link: int) -> np.ndarray:
+    """(N, 3): a unit balancing couple on a bar, or a unit force along the guide at the
+    pin of a slider, in the equations of ``link``."""
+    N = geo.n_pos
+    c = np.zeros((N, 3))
+    lk = mech.link(link)
+    if lk.kind == "slider":
+        j = next(k for k, jj in enumerate(mech.joints) if jj.kind == "P" and jj.slider == link)
+        e = geo.jdir[j]
+        c[:, 0] = e[:, 0]
+        c[:, 1] = e[:, 1]
+        c[:, 2] = cross(geo.jpoint[j] - geo.origin[link], e)
+    else:
+        c[:, 2] = 1.0
+    return c
+
+
+def load_vector(mech, geo: Geometry, loads: Loads) -> np.ndarray:
+    """(N, n+1, 3): sum of the applied forces and of their moments about O_i, per link
+    (row 0, the ground, is left zero)."""
+    q = np.zeros((geo.n_pos, mech.n + 1, 3))
+    for f in loads.forces:
+        if f.link == 0:
+            continue
+        q[:, f.link, 0] += f.F[:, 0]
+        q[:, f.link, 1] += f.F[:, 1]
+        q[:, f.link, 2] += cross(f.point - geo.origin[f.link], f.F)
+    for c in loads.couples:
+        if c.link == 0:
+            continue
+        q[:, c.link, 2] += c.M
+    return q
+
+
+def full_matrix(mech, geo: Geometry, balance: int) -> np.ndarray:
+    """A (N, 3n, 2p+1): all equations of all links in all pair unknowns and the
+    balancing unknown (last column)."""
+    n, p = mech.n, len(mech.joints)
+    A = np.zeros((geo.n_pos, 3 * n, 2 * p + 1))
+    for k, j in enumerate(mech.joints):
+        for link, c in joint_coeffs(geo, j, k).items():
+            A[:, 3 * (link - 1):3 * link, 2 * k:2 * k + 2] += c
+    A[:, 3 * (balance - 1):3 * balance, 2 * p] += balance_coeffs(mech, geo, balance)
+    return A
+
+
+def scaling(mech, Lc: float, balance: int) -> tuple[np.ndarray, np.ndarray]:
+    """Row and column scale factors making the entries of A dimensionless and O(1):
+    moment rows / Lc, moment unknowns * Lc."""
+    n, p = mech.n, len(mech.joints)
+    rs = np.ones(3 * n)
+    rs[2::3] = 1.0 / Lc
+    cs = np.ones(2 * p + 1)
+    for k, j in enumerate(mech.joints):
+        if j.kind == "P":
+            cs[2 * k + 1] = Lc
+    if mech.link(balance).kind != "slider":
+        cs[2 * p] = Lc
+    return rs, cs
+
+
+def scaled_det(mech, geo: Geometry, balance: int) -> np.ndarray:
+    """det of the scaled full matrix, (N,). Its roots are the singular positions."""
+    A = full_matrix(mech, geo, balance)
+    if A.shape[1] != A.shape[2]:
+        raise ValueError(f"the equilibrium system is not square ({A.shape[1]} equations, "
+                         f"{A.shape[2]} unknowns)")
+    rs, cs = scaling(mech, geo.Lc, balance)
+    return np.linalg.det(A * rs[None, :, None] * cs[None, None, :])

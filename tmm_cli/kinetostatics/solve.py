@@ -1,0 +1,228 @@
+"""The three force analyses of a linkage position by position (vectorised):
+
+* group by group (METHODS 3; Artobolevsky, Popov & Timofeev): from the last attached
+  Assur group to the crank, each group's 3 equations per link in its unknown pair
+  reactions, the reactions from later groups moved to the right-hand side; then the
+  crank with the moment the drive applies to it. A balance link other than the crank
+  is handled by superposition (the equations are linear): the group-by-group solution
+  for the loads (L) and for a unit balancing couple / force (U) give the crank's
+  moments M1(L), M1(U); with no drive moment on the crank, M_b = -M1(L) / M1(U) and
+  every reaction is R(L) + M_b R(U);
+* the matrix method: all equations of all links in one system A(phi) x = -q(phi),
+  scaled to O(1) entries, batched solve;
+* Zhukovsky's lever: forces moved to the velocity plan turned by +90 deg (point of
+  a force -> the end of rot90(v)), moments of all forces about the pole, couples as
+  force pairs at two points of their link; and the virtual-power balance
+  M_b omega_b + sum F.v + sum M omega = 0.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import StageError
+from ..loads import AppliedCouple, AppliedForce, Loads
+from .equations import (Geometry, balance_coeffs, cross, full_matrix, joint_coeffs, load_vector,
+                        rot90, scaling)
+
+COND_MAX = 1e11          # scaled condition number beyond which a position is singular
+
+
+def _group_links(mech, structure) -> list[list[int]]:
+    out = []
+    for g in structure.groups:
+        out.append([l if isinstance(l, int) else mech.index(l) for l in g.links])
+    return out
+
+
+def _safe_solve(A: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Batched solve; rows whose matrix is singular get NaN and ok = False."""
+    N = A.shape[0]
+    try:
+        x = np.linalg.solve(A, b[..., None])[..., 0]
+        ok = np.all(np.isfinite(x), axis=1)
+        return x, ok
+    except np.linalg.LinAlgError:
+        x = np.full(b.shape[:1] + (A.shape[2],), np.nan)
+        ok = np.zeros(N, bool)
+        for i in range(N):
+            try:
+                x[i] = np.linalg.solve(A[i], b[i])
+                ok[i] = np.all(np.isfinite(x[i]))
+            except np.linalg.LinAlgError:
+                pass
+        return x, ok
+
+
+def group_by_group(mech, structure, geo: Geometry, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Reactions x (N, 2p) and the moment on the drive link (N,) for the loads q
+    (N, n+1, 3), solving group by group from the last group to the crank."""
+    N, p = geo.n_pos, len(mech.joints)
+    x = np.full((N, 2 * p), np.nan)
+    coeffs = [joint_coeffs(geo, j, k) for k, j in enumerate(mech.joints)]
+    solved: set[int] = set()
+    steps = [(links, False) for links in reversed(_group_links(mech, structure))]
+    steps.append(([mech.drive], True))
+    covered = set(l for links, _ in steps for l in links)
+    missing = [lk.name for lk in mech.links if lk.index not in covered]
+    if missing:
+        raise StageError("kinetostatics", f"links {missing} belong to no Assur group")
+    M1 = np.full(N, np.nan)
+    for links, is_crank in steps:
+        rows = {l: i for i, l in enumerate(links)}
+        unknown = [k for k, j in enumerate(mech.joints)
+                   if (j.a in rows or j.b in rows) and j.a not in solved and j.b not in solved]
+        ncol = 2 * len(unknown) + (1 if is_crank else 0)
+        if ncol != 3 * len(links):
+            names = [mech.link(l).name for l in links]
+            raise StageError("kinetostatics", f"group {names} is not statically determinate "
+                             f"({3 * len(links)} equations, {ncol} unknown reaction components)")
+        A = np.zeros((N, 3 * len(links), ncol))
+        b = np.zeros((N, 3 * len(links)))
+        for l, i in rows.items():
+            b[:, 3 * i:3 * i + 3] = -q[:, l, :]
+        for c, k in enumerate(unknown):
+            for l, cf in coeffs[k].items():
+                if l in rows:
+                    A[:, 3 * rows[l]:3 * rows[l] + 3, 2 * c:2 * c + 2] = cf
+        if is_crank:
+            A[:, 3 * rows[mech.drive] + 2, -1] = 1.0
+        # known reactions of the later groups on this group's links
+        for k, j in enumerate(mech.joints):
+            if k in unknown:
+                continue
+            for l, cf in coeffs[k].items():
+                if l in rows and (j.a in solved or j.b in solved):
+                    b[:, 3 * rows[l]:3 * rows[l] + 3] -= np.einsum("nij,nj->ni", cf, x[:, 2 * k:2 * k + 2])
+        sol, _ = _safe_solve(A, b)
+        for c, k in enumerate(unknown):
+            x[:, 2 * k:2 * k + 2] = sol[:, 2 * c:2 * c + 2]
+        if is_crank:
+            M1 = sol[:, -1]
+        solved.update(links)
+    return x, M1
+
+
+def unit_balance_q(mech, geo: Geometry, balance: int) -> np.ndarray:
+    q = np.zeros((geo.n_pos, mech.n + 1, 3))
+    q[:, balance, :] = balance_coeffs(mech, geo, balance)
+    return q
+
+
+def matrix_method(mech, geo: Geometry, q: np.ndarray, balance: int
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """All equations at once: (reactions (N, 2p), balancing unknown (N,), scaled
+    condition number (N,), scaled determinant (N,))."""
+    A = full_matrix(mech, geo, balance)
+    n, p = mech.n, len(mech.joints)
+    if A.shape[1] != A.shape[2]:
+        raise StageError("kinetostatics", f"the equilibrium system is not square ({A.shape[1]} equations, "
+                         f"{A.shape[2]} unknowns): W must be 1 with no passive constraints")
+    rs, cs = scaling(mech, geo.Lc, balance)
+    As = A * rs[None, :, None] * cs[None, None, :]
+    b = -q[:, 1:, :].reshape(geo.n_pos, 3 * n) * rs[None, :]
+    sv = np.linalg.svd(As, compute_uv=False)
+    cond = np.where(sv[:, -1] > 0, sv[:, 0] / np.maximum(sv[:, -1], 1e-300), np.inf)
+    det = np.linalg.det(As)
+    y, ok = _safe_solve(As, b)
+    xx = y * cs[None, :]
+    xx[~ok] = np.nan
+    return xx[:, :2 * p], xx[:, 2 * p], cond, det
+
+
+def _pair_lever(geo: Geometry, link: int, M: np.ndarray) -> np.ndarray:
+    """Zhukovsky-lever moment of a couple M on ``link``: replaced by the pair of forces
+    -F at O_i and F = (M / l) n at the point O_i + l u (u: any unit vector fixed on the
+    link, here the direction O_i -> O_i + l x, rotated with it), n = rot90(u)."""
+    if link == 0:
+        return np.zeros(geo.n_pos)
+    l = geo.Lc
+    # a material point of the link at distance l from O_i along the current x axis
+    u = np.tile([1.0, 0.0], (geo.n_pos, 1))
+    pA = geo.origin[link]
+    pB = pA + l * u
+    F = (M / l)[:, None] * rot90(u)
+    vA = geo.point_vel(link, pA)
+    vB = geo.point_vel(link, pB)
+    return cross(rot90(vB), F) + cross(rot90(vA), -F)
+
+
+def lever_moments(mech, geo: Geometry, loads: Loads) -> np.ndarray:
+    """Sum of the moments about the pole of the loads moved to the turned velocity plan."""
+    tot = np.zeros(geo.n_pos)
+    for f in loads.forces:
+        if f.link == 0:
+            continue
+        v = geo.point_vel(f.link, f.point)
+        tot += cross(rot90(v), f.F)
+    for c in loads.couples:
+        tot += _pair_lever(geo, c.link, c.M)
+    return tot
+
+
+def balance_lever(mech, geo: Geometry, balance: int) -> np.ndarray:
+    """Lever moment of a unit balancing couple (bar) or unit force along the guide (slider)."""
+    lk = mech.link(balance)
+    if lk.kind == "slider":
+        j = next(k for k, jj in enumerate(mech.joints) if jj.kind == "P" and jj.slider == balance)
+        v = geo.point_vel(balance, geo.jpoint[j])
+        return cross(rot90(v), geo.jdir[j])
+    return _pair_lever(geo, balance, np.ones(geo.n_pos))
+
+
+def powers(mech, geo: Geometry, loads: Loads) -> tuple[np.ndarray, list[np.ndarray]]:
+    """Total power of the loads, and the power of each force / couple (same order as
+    loads.forces + loads.couples)."""
+    each = []
+    for f in loads.forces:
+        each.append(np.einsum("ij,ij->i", f.F, geo.point_vel(f.link, f.point)) if f.link else
+                    np.zeros(geo.n_pos))
+    for c in loads.couples:
+        each.append(c.M * geo.omega(c.link))
+    tot = np.sum(each, axis=0) if each else np.zeros(geo.n_pos)
+    return tot, each
+
+
+def balance_rate(mech, geo: Geometry, balance: int) -> np.ndarray:
+    """omega_b (bar) or the pin velocity along the guide (slider): the factor of the
+    balancing unknown in the virtual power."""
+    lk = mech.link(balance)
+    if lk.kind == "slider":
+        j = next(k for k, jj in enumerate(mech.joints) if jj.kind == "P" and jj.slider == balance)
+        return np.einsum("ij,ij->i", geo.point_vel(balance, geo.jpoint[j]), geo.jdir[j])
+    return geo.omega(balance)
+
+
+# ------------------------------------------------------------------ friction
+def friction_loads(mech, geo: Geometry, x: np.ndarray, f: float, r_pin: float
+                   ) -> tuple[list[AppliedForce], list[AppliedCouple], np.ndarray]:
+    """Friction loads from the reactions x (N, 2p): a pin friction couple f r |R| against
+    the relative rotation, a slider friction force f |N| against the relative sliding;
+    also the friction power lost in each pair (N, p), >= 0."""
+    N = geo.n_pos
+    forces, couples = [], []
+    loss = np.zeros((N, len(mech.joints)))
+    xs = np.nan_to_num(x)
+    for k, j in enumerate(mech.joints):
+        if j.kind == "R":
+            Rm = np.hypot(xs[:, 2 * k], xs[:, 2 * k + 1])
+            wrel = geo.omega(j.b) - geo.omega(j.a)
+            sg = np.sign(wrel)
+            Mf = f * r_pin * Rm
+            couples.append(AppliedCouple(j.b, f"Mf{j.a}{j.b}", -Mf * sg, "friction"))
+            if j.a:
+                couples.append(AppliedCouple(j.a, f"Mf{j.b}{j.a}", Mf * sg, "friction"))
+            loss[:, k] = Mf * np.abs(wrel)
+        else:
+            s = j.slider
+            g = j.a if j.b == s else j.b
+            p = geo.jpoint[k]
+            e = geo.jdir[k]
+            vrel = np.einsum("ij,ij->i", geo.point_vel(s, p) - geo.point_vel(g, p), e)
+            sg = np.sign(vrel)
+            Ff = f * np.abs(xs[:, 2 * k])
+            F = -(Ff * sg)[:, None] * e
+            forces.append(AppliedForce(s, f"Ff{g}{s}", p, F, "friction"))
+            if g:
+                forces.append(AppliedForce(g, f"Ff{s}{g}", p, -F, "friction"))
+            loss[:, k] = Ff * np.abs(vrel)
+    return forces, couples, loss
