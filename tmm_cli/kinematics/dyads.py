@@ -213,3 +213,107 @@ class DyadPlan:
         st.set_pose(X, oX, thX)
         st.set_pose(Y, bY + t[:, None] * eY, np.broadcast_to(thY, (st.N,)).copy())
         return margin
+
+
+class _MidApply:
+    """block_X . (ox, oy, th) of the pair A-B, without materialising the blocks."""
+
+    def __init__(self, con, st: State):
+        self.con = con
+        if isinstance(con, RCon):
+            self.ru = {b: st.rot(b, con.local(b)) for b in con.bodies if b != 0}
+        else:
+            psi = st.th[con.g] + con.a
+            self.e = unit(psi)
+            self.n = left(self.e)
+            self.ed = dot(self.e, st.o[con.s] - st.o[con.g])
+
+    def __call__(self, X, ox, oy, t):
+        c = self.con
+        if isinstance(c, RCon):
+            ru = self.ru[X]
+            sg = 1.0 if X == c.i else -1.0
+            return sg * (ox - t * ru[:, 1]), sg * (oy + t * ru[:, 0])
+        nv = self.n[:, 0] * ox + self.n[:, 1] * oy
+        if X == c.s:
+            return t, nv
+        return -t, -nv - self.ed * t
+
+
+def dyad_derivatives(plan: DyadPlan, st: State) -> np.ndarray:
+    """Exact phi-derivatives of a dyad's poses (set in ``st``) by a 2x2 linear solve.
+
+    Each link keeps one free scalar lambda after its external pair (its angle about a
+    known point, or its shift s along a known line), so its pose derivatives are
+    affine in lambda': (o', th') = U lambda' + V, (o'', th'') = U lambda'' + W; the
+    pair A-B then gives two linear equations (Cramer's rule, vectorised). Returns the
+    mask of positions where the 2x2 system is singular."""
+    A, B = plan.A, plan.B
+    N = st.N
+    zero = np.zeros(N)
+    one = np.ones(N)
+    info = {}
+    for X, ext in ((A, plan.e1), (B, plan.e2)):
+        if isinstance(ext, RCon):
+            K = ext.j if ext.i == X else ext.i
+            _, P1, P2 = st.point_d(K, ext.local(K))
+            ru = st.rot(X, ext.local(X))
+            U = (ru[:, 1], -ru[:, 0], one)              # -J R u
+            V = (P1[:, 0], P1[:, 1], zero)
+            info[X] = ("R", U, V, (P2, ru))
+        else:
+            K = ext.g if ext.s == X else ext.s
+            sgn = 1.0 if ext.s == X else -1.0        # Q = o_K + sgn c0 n(psi)
+            psi = st.th[ext.g] + ext.a if ext.s == X else st.th[ext.s]
+            e = unit(psi)
+            n = left(e)
+            w1 = st.th1[K]
+            w2 = st.th2[K]
+            cc = sgn * ext.c0
+            Q = st.o[K] + cc * n
+            Q1 = st.o1[K] - cc * w1[:, None] * e
+            Q2 = st.o2[K] - cc * (w2[:, None] * e + (w1 ** 2)[:, None] * n)
+            s = dot(e, st.o[X] - Q)
+            U = (e[:, 0], e[:, 1], zero)
+            V = (Q1[:, 0] + s * w1 * n[:, 0], Q1[:, 1] + s * w1 * n[:, 1], w1)
+            info[X] = ("P", U, V, (Q2, e, n, s, w1, w2))
+    ap = _MidApply(plan.mid, st)
+    cA = ap(A, *info[A][1])
+    cB = ap(B, *info[B][1])
+    det = cA[0] * cB[1] - cA[1] * cB[0]
+    nn = np.hypot(cA[0], cA[1]) * np.hypot(cB[0], cB[1])
+    sing = ~(np.abs(det) >= 1e-10 * nn)
+    if sing.any():
+        det = np.where(sing, np.where(det >= 0, 1.0, -1.0) * np.maximum(nn, 1e-300) * 1e-10, det)
+    inv = 1.0 / det
+
+    def solve2(r0, r1):
+        return (r0 * cB[1] - r1 * cB[0]) * inv, (cA[0] * r1 - cA[1] * r0) * inv
+
+    vA = ap(A, *info[A][2])
+    vB = ap(B, *info[B][2])
+    l1 = dict(zip((A, B), solve2(-(vA[0] + vB[0]), -(vA[1] + vB[1]))))
+    Wd = {}
+    for X in (A, B):
+        kind, U, V, extra = info[X]
+        lx = l1[X]
+        st.set_d1(X, np.stack([U[0] * lx + V[0], U[1] * lx + V[1]], axis=-1), U[2] * lx + V[2])
+        if kind == "R":
+            P2, ru = extra
+            l2 = lx * lx
+            Wd[X] = (P2[:, 0] + l2 * ru[:, 0], P2[:, 1] + l2 * ru[:, 1], zero)
+        else:
+            Q2, e, n, s, w1, w2 = extra
+            a = 2 * lx * w1 + s * w2
+            b = s * w1 * w1
+            Wd[X] = (Q2[:, 0] + a * n[:, 0] - b * e[:, 0], Q2[:, 1] + a * n[:, 1] - b * e[:, 1], w2)
+    gam = plan.mid.gamma(st)
+    wA = ap(A, *Wd[A])
+    wB = ap(B, *Wd[B])
+    l2 = dict(zip((A, B), solve2(-(wA[0] + wB[0] + gam[:, 0]), -(wA[1] + wB[1] + gam[:, 1]))))
+    for X in (A, B):
+        U = info[X][1]
+        W = Wd[X]
+        lx = l2[X]
+        st.set_d2(X, np.stack([U[0] * lx + W[0], U[1] * lx + W[1]], axis=-1), U[2] * lx + W[2])
+    return sing

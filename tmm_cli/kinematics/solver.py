@@ -32,7 +32,7 @@ from ..errors import StageError
 from ..mechanism import Mechanism
 from ..structure import Group, analyze
 from . import newton as nw
-from .dyads import DyadPlan
+from .dyads import DyadPlan, dyad_derivatives
 from .result import KinematicsResult
 from .state import PCon, RCon, State, left, unit
 
@@ -141,7 +141,10 @@ class Solver:
             if strict and bad.any():
                 raise self._assembly_error(gi, np.degrees(phi[bad]))
             if derivs:
-                st.sing[gi] = nw.derivatives(plan.cons, self.groups[gi].links, st)
+                if isinstance(plan, DyadPlan):
+                    st.sing[gi] = dyad_derivatives(plan, st)
+                else:
+                    st.sing[gi] = nw.derivatives(plan.cons, self.groups[gi].links, st)
         if derivs and fallback and st.sing:
             self._continuity(st, phi, upto)
         return st

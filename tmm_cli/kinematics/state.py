@@ -66,7 +66,14 @@ class State:
         """R(th_b) u -> (N, 2)."""
         c, s = self.cs(b)
         u0, u1 = float(u[0]), float(u[1])
-        return np.stack([c * u0 - s * u1, s * u0 + c * u1], axis=-1)
+        out = np.empty((self.N, 2))
+        if u1 == 0.0:
+            np.multiply(c, u0, out=out[:, 0])
+            np.multiply(s, u0, out=out[:, 1])
+        else:
+            out[:, 0] = c * u0 - s * u1
+            out[:, 1] = s * u0 + c * u1
+        return out
 
     def point(self, b: int, u) -> np.ndarray:
         return self.o[b] + self.rot(b, u)
@@ -74,12 +81,17 @@ class State:
     def point_d(self, b: int, u):
         """Position, first and second phi-derivatives of a point fixed on body b."""
         ru = self.rot(b, u)
-        jru = np.stack([-ru[:, 1], ru[:, 0]], axis=-1)
-        t1 = self.th1[b][:, None]
-        t2 = self.th2[b][:, None]
+        rx, ry = ru[:, 0], ru[:, 1]
+        t1 = self.th1[b]
+        t2 = self.th2[b]
+        t11 = t1 * t1
         p = self.o[b] + ru
-        d1 = self.o1[b] + t1 * jru
-        d2 = self.o2[b] + t2 * jru - t1 ** 2 * ru
+        d1 = self.o1[b].copy()
+        d1[:, 0] -= t1 * ry
+        d1[:, 1] += t1 * rx
+        d2 = self.o2[b].copy()
+        d2[:, 0] -= t2 * ry + t11 * rx
+        d2[:, 1] += t2 * rx - t11 * ry
         return p, d1, d2
 
     def take(self, idx) -> "State":
@@ -93,11 +105,18 @@ class State:
 
 
 def unit(ang):
-    return np.stack([np.cos(ang), np.sin(ang)], axis=-1)
+    ang = np.asarray(ang, float)
+    out = np.empty(ang.shape + (2,))
+    np.cos(ang, out=out[..., 0])
+    np.sin(ang, out=out[..., 1])
+    return out
 
 
 def left(v):
-    return np.stack([-v[..., 1], v[..., 0]], axis=-1)
+    out = np.empty(v.shape)
+    np.negative(v[..., 1], out=out[..., 0])
+    out[..., 1] = v[..., 0]
+    return out
 
 
 def cross(a, b):
