@@ -160,18 +160,35 @@ class Wheel:
                                np.full(len(rr_tip), 3)]).astype(int)
         return Flank(r=r, psi=psi, kind=kind, r_involute_start=float(r_start),
                      undercut=bool(undercut), pointed=bool(pointed), r_tip=float(r_tip),
-                     half_space_root=half, extra={"rho_l_closed": rho_l})
+                     half_space_root=half, extra={"rho_l_closed": rho_l, "t_end": float(t_end)})
 
     def psi_tooth(self, r):
-        """Half angle of the real tooth at radius r (min of involute and fillet), for rf<=r<=ra."""
-        fl = self.flank(n_fillet=400, n_involute=10)
-        r = np.asarray(r, float)
-        sel = fl.kind == 1
+        """Half angle of the real tooth at radius r (min of involute and fillet), rf <= r <= tip.
+
+        On the fillet the rack position t with |E(t)| = r is found by vectorised bisection
+        (the radius grows monotonically with t along the generating branch), so the value is
+        exact to rounding, not interpolated.
+        """
+        fl = self.flank(n_fillet=8, n_involute=4)
+        r = np.atleast_1d(np.asarray(r, float))
         out = np.where(r >= fl.r_involute_start, self.psi_involute(np.maximum(r, self.rb)), np.nan)
-        if sel.any():
-            fil = np.interp(r, fl.r[sel], fl.psi[sel])
-            out = np.where(r < fl.r_involute_start, fil, out)
-        return out
+        t0, t1, _ = self._fillet_t_range()
+        if fl.undercut:
+            t1 = fl.extra["t_end"]
+        lo = np.full_like(r, t0)
+        hi = np.full_like(r, t1)
+        r_lo = self.fillet_polar(t0)[0]
+        increasing = self.fillet_polar(t1)[0] >= r_lo
+        for _ in range(80):
+            mid = 0.5 * (lo + hi)
+            rm = self.fillet_polar(mid)[0]
+            below = (rm < r) if increasing else (rm > r)
+            lo = np.where(below, mid, lo)
+            hi = np.where(below, hi, mid)
+        fil = self.fillet_polar(0.5 * (lo + hi))[1]
+        fil = np.where(r <= self.rf, fl.half_space_root, fil)
+        out = np.where(r < fl.r_involute_start, fil, out)
+        return out if out.size > 1 or np.ndim(out) == 0 else out
 
     # --- outlines ------------------------------------------------------------------------------
     def tooth_outline(self, axis_angle=math.pi / 2, centre=(0.0, 0.0), **kw):
