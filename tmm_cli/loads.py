@@ -378,6 +378,8 @@ def switch_angles(mech, loads_section, positions) -> list[float]:
 
     out: list[float] = []
     phi0 = float(getattr(positions, "phi0", 0.0))
+    ext = getattr(positions, "extreme", None)
+    start = float(ext[0]) if ext else phi0          # the working stroke begins here
     sign = _drive_sign(positions)
     cycle = float(getattr(positions, "cycle", None) or 360.0)
     wa = getattr(positions, "working_stroke_angle", None)
@@ -405,7 +407,7 @@ def switch_angles(mech, loads_section, positions) -> list[float]:
             eps = 1e-7
 
             def s_at(t):
-                wk, s = stroke_states(positions, np.array([(phi0 + sign * t) % 360.0]))
+                wk, s = stroke_states(positions, np.array([(start + sign * t) % 360.0]))
                 return float(s[0])
 
             for x in jumps:
@@ -413,7 +415,7 @@ def switch_angles(mech, loads_section, positions) -> list[float]:
                     t = brentq(lambda t: s_at(t) - x, lo + eps, hi - eps, xtol=1e-12, rtol=1e-14)
                 except ValueError:
                     continue
-                out.append((phi0 + sign * t) % 360.0)
+                out.append((start + sign * t) % 360.0)
     res = []
     for a in sorted(out):
         a = 0.0 if a >= 360.0 - 1e-12 else a

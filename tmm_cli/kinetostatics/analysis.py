@@ -122,6 +122,10 @@ class KinetostaticsResult:
                 "point": pt, "pin": [float(p[0]), float(p[1])]}
 
     def to_dict(self) -> dict:
+        with np.errstate(all="ignore"):
+            return self._to_dict()
+
+    def _to_dict(self) -> dict:
         mech = self.mech
         disc = self.discrepancy()
         entries = []
@@ -178,7 +182,7 @@ class KinetostaticsResult:
             e["diagram"] = {d["name"]: {"link": d["link"], "kind": d["kind"], "stroke": d["stroke"],
                                         "active": bool(np.asarray(d["active"])[i]),
                                         "x": (None if d.get("x") is None else float(np.asarray(d["x"])[i])),
-                                        "value": float(np.asarray(d["value"])[i])}
+                                        "value": float(np.asarray(d["value"])[i]) + 0.0}
                             for d in self.loads.info}
             if self.efficiency is not None:
                 e["efficiency"] = _num(self.efficiency[i]) if ok else None
@@ -235,6 +239,14 @@ def analyze(mech, structure, kin, loads, section, *, indices=None, crank_inertia
     ``solver``: the kinematics function for the singular positions (default
     ``tmm_cli.kinematics.solve``); ``singular``: give the singular angles to skip the search.
     """
+    with np.errstate(all="ignore"):
+        return _analyze(mech, structure, kin, loads, section, indices=indices, crank_inertia=crank_inertia,
+                        solver=solver, singular=singular)
+
+
+def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inertia: float = 0.0,
+             solver=None, singular: list[float] | None = None) -> KinetostaticsResult:
+    """See :func:`analyze`."""
     phi_all = np.atleast_1d(np.asarray(kin.phi, float))
     rows = np.arange(len(phi_all)) if indices is None else np.asarray(list(indices), int)
     b = balance_index(mech, section)
@@ -302,10 +314,13 @@ def analyze(mech, structure, kin, loads, section, *, indices=None, crank_inertia
     eff = fpow = dpow = None
     if loss is not None:
         fpow = loss.sum(axis=1)
+        # driving power: the sum of the positive powers of all loads except friction,
+        # the balancing moment included (Artobolevsky: driving forces do positive work);
+        # since their total equals the friction loss, 0 <= eta <= 1
         dpow = np.maximum(Mb * rate, 0.0)
         items = list(lds.forces) + list(lds.couples)
         for it, pw in zip(items, each):
-            if it.kind in ("driving", "load"):
+            if it.kind != "friction":
                 dpow = dpow + np.maximum(pw, 0.0)
         with np.errstate(divide="ignore", invalid="ignore"):
             eff = np.where(dpow > 1e-12 * np.maximum(fpow, 1e-300), 1.0 - fpow / dpow, np.nan)
