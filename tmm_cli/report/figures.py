@@ -326,7 +326,7 @@ def draw_mechanism(ax, geom, entry, unit: float, *, labels=True, numbers=True,
         d = main[1] - main[0]
         n = np.linalg.norm(d)
         u = d / n if n > 0 else np.array([1.0, 0.0])
-        off = [abs(float(np.cross(u, x - main[0]))) for x in xy]
+        off = [abs(float(u[0] * (x - main[0])[1] - u[1] * (x - main[0])[0])) for x in xy]
         if len(xy) > 2 and max(off) > 0.02 * size:
             # a body link: a closed outline through its points (convex hull order)
             ang = np.arctan2(xy[:, 1] - c[1], xy[:, 0] - c[0])

@@ -149,6 +149,9 @@ def draw_plan(ax, plan, title, unit_txt, width_mm, height_mm):
                 else "0.25")
     ax.plot([0], [0], marker="o", ms=2.5, color="k", zorder=6)
     ax.set_title(f"{title}, μ = {plan.mu:g} {unit_txt}", fontsize=7.5, pad=3)
+    from matplotlib.ticker import MaxNLocator
+    ax.xaxis.set_major_locator(MaxNLocator(5))
+    ax.yaxis.set_major_locator(MaxNLocator(5))
     ax.tick_params(labelsize=5.5, length=2, pad=1)
     ax.grid(True, lw=0.25, color="0.85")
     for s in ax.spines.values():
