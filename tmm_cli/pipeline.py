@@ -168,14 +168,27 @@ def _select(spec, positions, task: Task) -> list[int]:
 
 
 def _curve(kinematics, mech, positions, omega1, n: int) -> dict:
-    """s, v, a of the output link over one turn from position 0 (kinematic diagrams)."""
+    """s, v, a of the output link over one turn from position 0 (kinematic diagrams):
+    a slider's displacement along its guide from position 0 (m), velocity and
+    acceleration along the guide; a rocker's angle from position 0 (deg), omega, epsilon."""
     import numpy as np
 
     sign = 1.0 if omega1 > 0 else -1.0
     turn = np.linspace(0.0, 360.0, n)
     phi = np.mod(positions.phi0 + sign * turn, 360.0)
     kin = kinematics.solve(mech, phi, omega1)
-    s, v, a = positions.output_motion(kin)
-    return {"turn": turn.tolist(), "phi": phi.tolist(), "s": np.asarray(s).tolist(),
-            "v": np.asarray(v).tolist(), "a": np.asarray(a).tolist(),
-            "quantity": positions.output_kind}
+    out = mech.link(positions.output)
+    s, _ = positions.output_value(phi)
+    s0, _ = positions.output_value([positions.phi0])
+    s = np.asarray(s, float) - float(s0[0])
+    if positions.output_kind == "slider":
+        ang = np.asarray(kin.angle[out.name])
+        u = np.stack([np.cos(ang), np.sin(ang)], axis=1)
+        v = np.einsum("ij,ij->i", kin.vel(out.origin), u)
+        a = np.einsum("ij,ij->i", kin.acc(out.origin), u)
+    else:
+        s = np.mod(s + 180.0, 360.0) - 180.0
+        v = np.asarray(kin.omega(out.name)) * np.ones_like(phi)
+        a = np.asarray(kin.epsilon(out.name)) * np.ones_like(phi)
+    return {"turn": turn.tolist(), "phi": phi.tolist(), "s": s.tolist(), "v": v.tolist(),
+            "a": a.tolist(), "quantity": positions.output_kind}
