@@ -54,12 +54,13 @@ def rows(motion: Motion, geom: Geometry, k, side, tan, x):
     return geom.lines(s, s1, tan, side)
 
 
-def zoom(func, lo, hi, m: int = 33, rounds: int = 12):
+def zoom(func, lo, hi, m: int = 65, rounds: int = 8):
     """Vectorised bracketing search for minima of ``func`` on [lo_i, hi_i] (one per row).
 
     ``func(grid)`` takes an array (k, m) of abscissae and returns values of the same shape.
     Each round keeps the two grid cells around the row's minimum, shrinking the bracket
-    by (m - 1)/2; 12 rounds of 33 points reach 1e-14 of the initial width.  Returns the
+    by (m - 1)/2; 8 rounds of 65 points reach 1e-12 of the initial bracket (itself two
+    grid cells of 1/360 of a phase).  Returns the
     abscissae and the values of the minima.
     """
     lo = np.asarray(lo, dtype=float).copy()

@@ -242,15 +242,29 @@ def _region_polygon(motion, geom, fams, O, box):
     xmin, ymin, xmax, ymax = box
     N = np.vstack([N, [[-1, 0], [1, 0], [0, -1], [0, 1]]])
     c = np.concatenate([c, [-xmin, xmax, -ymin, ymax]])
-    # an interior point: the Chebyshev centre (largest inscribed circle) by a tiny LP
-    from scipy.optimize import linprog
+    # an interior point: step from the optimum O against the active normals (cheap);
+    # otherwise the Chebyshev centre (largest inscribed circle) by a small LP
+    interior = None
+    slack0 = c - N @ O
+    active = N[np.argsort(slack0)[:4]]
+    if len(active):
+        d = active.sum(axis=0)
+        if np.hypot(*d) > 1e-9:
+            for step in (0.05, 0.01, 0.002):
+                cand = O - step * (xmax - xmin) * d / np.hypot(*d)
+                if np.all(c - N @ cand > 1e-12 * (xmax - xmin)):
+                    interior = cand
+                    break
+    if interior is None:
+        from scipy.optimize import linprog
 
-    norms = np.hypot(N[:, 0], N[:, 1])
-    res = linprog([0, 0, -1], A_ub=np.column_stack([N, norms]), b_ub=c,
-                  bounds=[(None, None), (None, None), (0, None)], method="highs")
-    if not res.success or res.x[2] <= 0:
-        return []
-    hs = HalfspaceIntersection(np.column_stack([N, -c]), res.x[:2])
+        norms = np.hypot(N[:, 0], N[:, 1])
+        res = linprog([0, 0, -1], A_ub=np.column_stack([N, norms]), b_ub=c,
+                      bounds=[(None, None), (None, None), (0, None)], method="highs")
+        if not res.success or res.x[2] <= 0:
+            return []
+        interior = res.x[:2]
+    hs = HalfspaceIntersection(np.column_stack([N, -c]), interior)
     P = hs.intersections
     ctr = P.mean(axis=0)
     order = np.argsort(np.arctan2(P[:, 1] - ctr[1], P[:, 0] - ctr[0]))
