@@ -21,6 +21,7 @@ from .solve import (COND_MAX, balance_lever, balance_rate, friction_loads, group
                     matrix_method, powers, unit_balance_q)
 
 NEAR_DEG = 1.0
+DETAIL_MAX = 400        # positions up to which to_dict lists every applied load
 
 
 def balance_index(mech, section) -> int:
@@ -90,109 +91,150 @@ class KinetostaticsResult:
         return np.maximum(s, 1e-300)
 
     def reaction(self, key: str, i: int) -> dict:
-        mech = self.mech
-        for k, j in enumerate(mech.joints):
-            if f"R{j.a}{j.b}" == key:
-                return self._reaction(k, i)
-        raise KeyError(key)
+        """The reaction ``R<i><j>`` at row i, as in results.json."""
+        keys = [f"R{j.a}{j.b}" for j in self.mech.joints]
+        return self._reactions_table()[keys.index(key)][i]
 
-    def _reaction(self, k: int, i: int) -> dict:
-        j = self.mech.joints[k]
-        x = self.reactions[i, 2 * k:2 * k + 2]
-        p = self.geo.jpoint[k][i]
-        if not self.ok[i] or not np.all(np.isfinite(x)):
-            d = {"x": None, "y": None, "R": None, "point": [float(p[0]), float(p[1])]}
-            if j.kind == "P":
-                d.update(N=None, M=None, offset=None)
-            return d
-        if j.kind == "R":
-            return {"x": float(x[0]), "y": float(x[1]), "R": float(math.hypot(x[0], x[1])),
-                    "point": [float(p[0]), float(p[1])]}
-        e = self.geo.jdir[k][i]
-        nv = np.array([-e[1], e[0]])
-        N, M = float(x[0]), float(x[1])
-        F = N * nv
-        scale = max(float(np.max(np.abs(np.nan_to_num(self.reactions[i])))), 1e-300)
-        if abs(N) > 1e-12 * scale:
-            off = M / N
-            pt = [float(p[0] + off * e[0]), float(p[1] + off * e[1])]
-        else:
-            off, pt = None, None
-        return {"x": float(F[0]), "y": float(F[1]), "R": abs(N), "N": N, "M": M, "offset": off,
-                "point": pt, "pin": [float(p[0]), float(p[1])]}
+    def _reactions_table(self) -> list[list[dict]]:
+        """Per pair, per position: the results.json reaction dicts (vectorised)."""
+        N = len(self.phi)
+        ok = self.ok & np.all(np.isfinite(self.reactions), axis=1)
+        okl = ok.tolist()
+        scale = np.maximum(np.max(np.abs(np.nan_to_num(self.reactions)), axis=1), 1e-300)
+        out = []
+        for k, j in enumerate(self.mech.joints):
+            x = self.reactions[:, 2 * k]
+            y = self.reactions[:, 2 * k + 1]
+            p = self.geo.jpoint[k]
+            pl = p.tolist()
+            col = []
+            if j.kind == "R":
+                xs, ys, Rs = x.tolist(), y.tolist(), np.hypot(x, y).tolist()
+                for i in range(N):
+                    if okl[i]:
+                        col.append({"x": xs[i], "y": ys[i], "R": Rs[i], "point": pl[i]})
+                    else:
+                        col.append({"x": None, "y": None, "R": None, "point": pl[i]})
+            else:
+                e = self.geo.jdir[k]
+                nx, ny = -e[:, 1], e[:, 0]
+                N_, M_ = x, y
+                has = np.abs(N_) > 1e-12 * scale
+                off = np.where(has, M_ / np.where(has, N_, 1.0), 0.0)
+                pt = p + off[:, None] * e
+                Fx, Fy, R = (N_ * nx).tolist(), (N_ * ny).tolist(), np.abs(N_).tolist()
+                Nl, Ml, offl, ptl, hasl = N_.tolist(), M_.tolist(), off.tolist(), pt.tolist(), has.tolist()
+                for i in range(N):
+                    if okl[i]:
+                        col.append({"x": Fx[i] + 0.0, "y": Fy[i] + 0.0, "R": R[i], "N": Nl[i], "M": Ml[i],
+                                    "offset": offl[i] if hasl[i] else None,
+                                    "point": ptl[i] if hasl[i] else None, "pin": pl[i]})
+                    else:
+                        col.append({"x": None, "y": None, "R": None, "N": None, "M": None, "offset": None,
+                                    "point": None, "pin": pl[i]})
+            out.append(col)
+        return out
 
-    def to_dict(self) -> dict:
+    def to_dict(self, detail: bool | None = None) -> dict:
+        """{"entries": [...] (the results.json ``kinetostatics`` list), "singular": [...],
+        "warnings": [...], + info keys}. ``detail``: include per position the applied
+        loads with their points and velocities (``loads``, ``couples``: the report's force
+        plans and Zhukovsky lever); default: when there are at most 400 positions."""
+        if detail is None:
+            detail = len(self.phi) <= DETAIL_MAX
         with np.errstate(all="ignore"):
-            return self._to_dict()
+            return self._to_dict(detail)
 
-    def _to_dict(self) -> dict:
+    def _to_dict(self, detail: bool = True) -> dict:
         mech = self.mech
-        disc = self.discrepancy()
-        entries = []
+        N = len(self.phi)
         names = {lk.index: lk.name for lk in mech.links}
         names[0] = "ground"
         jkeys = [f"R{j.a}{j.b}" for j in mech.joints]
-        xm = self.reactions_matrix
-        vel_of = {f.name: self.geo.point_vel(f.link, f.point) for f in self.loads.forces}
+
+        def L(a, mask=True):
+            a = np.asarray(a, float)
+            good = np.isfinite(a) & (self.ok if mask else True)
+            return np.where(good, a, np.nan).tolist(), good.tolist()
+
+        def val(pair, i):
+            v, g = pair
+            return v[i] if g[i] else None
+
+        mb = L(self.M_b)
+        bf = L(self.M_b / self.arm) if (self.balance_kind == "moment" and self.arm) else None
+        mz, mv, mm = L(self.M_zhukovsky), L(self.M_virtual), L(self.M_matrix)
+        disc = L(self.discrepancy())
+        a, b = self.reactions, self.reactions_matrix
+        mdisc = L(np.max(np.abs(a - b), axis=1) / np.maximum(np.max(np.abs(b), axis=1), 1e-300))
+        table = self._reactions_table()
+        phil = (self.phi % 360.0).tolist()
+        near = (self.near | ~self.ok).tolist()
+        # loads
+        finfo = []
+        inert_f = {lk.name: np.zeros((N, 2)) for lk in mech.links}
+        inert_m = {lk.name: np.zeros(N) for lk in mech.links}
+        for f in self.loads.forces:
+            if detail:
+                v = self.geo.point_vel(f.link, f.point)
+                finfo.append((f.name, names[f.link], f.kind, f.point.tolist(), f.F.tolist(), v.tolist()))
+            if f.kind == "inertia" and f.link:
+                inert_f[names[f.link]] += f.F
+        cinfo = []
+        for c in self.loads.couples:
+            if detail:
+                cinfo.append((c.name, names[c.link], c.kind, c.M.tolist(), self.geo.omega(c.link).tolist()))
+            if c.kind == "inertia" and c.link:
+                inert_m[names[c.link]] += c.M
+        inert = {k: (inert_f[k][:, 0].tolist(), inert_f[k][:, 1].tolist(), inert_m[k].tolist())
+                 for k in inert_f}
+        dinfo = []
+        for d in self.loads.info:
+            act = np.broadcast_to(np.asarray(d["active"], bool), (N,)).tolist()
+            xs = None if d.get("x") is None else np.asarray(d["x"], float).tolist()
+            vs = (np.asarray(d["value"], float) + 0.0).tolist()
+            dinfo.append((d["name"], d["link"], d["kind"], d["stroke"], act, xs, vs))
+        fr = None
+        if self.efficiency is not None:
+            fr = (L(self.efficiency), L(self.friction_power), L(self.driving_power),
+                  [L(self.friction_pairs[:, k]) for k in range(len(mech.joints))])
+        entries = []
         for i, idx in enumerate(self.index):
-            ok = bool(self.ok[i])
-            mb = _num(self.M_b[i]) if ok else None
-            e: dict = {"index": int(idx), "phi": float(self.phi[i] % 360.0)}
+            e: dict = {"index": int(idx), "phi": phil[i]}
             if self.balance_kind == "moment":
-                e["balancing_moment"] = mb
-                e["balancing_force"] = (mb / self.arm) if (mb is not None and self.arm) else None
-                e["zhukovsky_moment"] = _num(self.M_zhukovsky[i]) if ok else None
-                e["virtual_power_moment"] = _num(self.M_virtual[i]) if ok else None
-                e["matrix_moment"] = _num(self.M_matrix[i]) if ok else None
+                e["balancing_moment"] = val(mb, i)
+                e["balancing_force"] = val(bf, i) if bf else None
+                e["zhukovsky_moment"] = val(mz, i)
+                e["virtual_power_moment"] = val(mv, i)
+                e["matrix_moment"] = val(mm, i)
             else:
                 e["balancing_moment"] = None
-                e["balancing_force"] = mb
-                e["zhukovsky_moment"] = None
-                e["virtual_power_moment"] = None
-                e["matrix_moment"] = None
-                e["zhukovsky_force"] = _num(self.M_zhukovsky[i]) if ok else None
-                e["virtual_power_force"] = _num(self.M_virtual[i]) if ok else None
-                e["matrix_force"] = _num(self.M_matrix[i]) if ok else None
-            e["discrepancy"] = _num(disc[i]) if ok else None
-            e["reactions"] = {jkeys[k]: self._reaction(k, i) for k in range(len(mech.joints))}
-            if ok:
-                a, b = self.reactions[i], xm[i]
-                e["matrix_discrepancy"] = _num(np.max(np.abs(a - b)) / max(np.max(np.abs(b)), 1e-300))
-            else:
-                e["matrix_discrepancy"] = None
-            inert = {lk.name: {"Fx": 0.0, "Fy": 0.0, "M": 0.0} for lk in mech.links}
-            loads_out, couples_out = [], []
-            for f in self.loads.forces:
-                F = f.F[i]
-                if f.kind == "inertia":
-                    inert[names[f.link]]["Fx"] += float(F[0])
-                    inert[names[f.link]]["Fy"] += float(F[1])
-                v = vel_of[f.name][i]
-                loads_out.append({"name": f.name, "link": names[f.link], "kind": f.kind,
-                                  "point": [float(f.point[i, 0]), float(f.point[i, 1])],
-                                  "F": [float(F[0]), float(F[1])], "v": [float(v[0]), float(v[1])]})
-            for c in self.loads.couples:
-                if c.kind == "inertia":
-                    inert[names[c.link]]["M"] += float(c.M[i])
-                couples_out.append({"name": c.name, "link": names[c.link], "kind": c.kind,
-                                    "M": float(c.M[i]), "omega": float(self.geo.omega(c.link)[i])})
-            e["inertia"] = inert
-            e["loads"] = loads_out
-            e["couples"] = couples_out
-            e["diagram"] = {d["name"]: {"link": d["link"], "kind": d["kind"], "stroke": d["stroke"],
-                                        "active": bool(np.asarray(d["active"])[i]),
-                                        "x": (None if d.get("x") is None else float(np.asarray(d["x"])[i])),
-                                        "value": float(np.asarray(d["value"])[i]) + 0.0}
-                            for d in self.loads.info}
-            if self.efficiency is not None:
-                e["efficiency"] = _num(self.efficiency[i]) if ok else None
-                e["friction_power"] = _num(self.friction_power[i]) if ok else None
-                e["driving_power"] = _num(self.driving_power[i]) if ok else None
-                e["friction_pairs"] = {jkeys[k]: (_num(self.friction_pairs[i, k]) if ok else None)
-                                       for k in range(len(mech.joints))}
+                e["balancing_force"] = val(mb, i)
+                e["zhukovsky_moment"] = e["virtual_power_moment"] = e["matrix_moment"] = None
+                e["zhukovsky_force"] = val(mz, i)
+                e["virtual_power_force"] = val(mv, i)
+                e["matrix_force"] = val(mm, i)
+            e["discrepancy"] = val(disc, i)
+            e["matrix_discrepancy"] = val(mdisc, i)
+            e["reactions"] = {jkeys[k]: table[k][i] for k in range(len(jkeys))}
+            e["inertia"] = {k: {"Fx": v[0][i] + 0.0, "Fy": v[1][i] + 0.0, "M": v[2][i] + 0.0}
+                            for k, v in inert.items()}
+            if detail:
+                e["loads"] = [{"name": n, "link": lk, "kind": kd, "point": p[i], "F": F[i], "v": v[i]}
+                              for n, lk, kd, p, F, v in finfo]
+                e["couples"] = [{"name": n, "link": lk, "kind": kd, "M": M[i], "omega": w[i]}
+                                for n, lk, kd, M, w in cinfo]
+            e["diagram"] = {n: {"link": lk, "kind": kd, "stroke": sk, "active": act[i],
+                                "x": None if xs is None else xs[i], "value": vs[i]}
+                            for n, lk, kd, sk, act, xs, vs in dinfo}
+            if fr is not None:
+                e["efficiency"] = val(fr[0], i)
+                e["friction_power"] = val(fr[1], i)
+                e["driving_power"] = val(fr[2], i)
+                e["friction_pairs"] = {jkeys[k]: val(fr[3][k], i) for k in range(len(jkeys))}
             else:
                 e["efficiency"] = None
-            e["near_singular"] = bool(self.near[i] or not ok)
+            e["near_singular"] = bool(near[i])
             entries.append(e)
         return {
             "entries": entries,
