@@ -199,7 +199,8 @@ def solve_cycle(q: np.ndarray, M_given: np.ndarray, J_links: dict[str, np.ndarra
         J = float(primary)
     motion = fw.steady_motion(work.dT, J_var, J_const + J, omega_m)
     J_tot = J_const + J + J_var
-    eps = (work.M_red - dJ_var * motion.omega**2 / 2) / J_tot
+    num = work.M_red - dJ_var * motion.omega**2 / 2
+    eps = np.divide(num, J_tot, out=np.zeros_like(num), where=J_tot > 0)
     if not np.all(np.isfinite(eps)):
         raise StageError(STAGE, "angular acceleration of the crank is not finite")
 

@@ -176,8 +176,14 @@ def steady_T0(dT, J_tot, omega_m: float) -> float | None:
         return None
     if g_lo == 0:
         return u_lo
-    if g(u_hi) < 0:   # rounding only: u_hi makes min omega >= omega_m
-        u_hi *= 1 + 1e-12
+    span = max(u_hi - u_lo, abs(u_lo), 1e-300)
+    for _ in range(60):   # u_hi makes min omega >= omega_m; only rounding can spoil it
+        if g(u_hi) >= 0:
+            break
+        u_hi = u_hi + span
+        span *= 2
+    else:
+        return None
     scale = max(abs(u_hi), abs(u_lo), _TINY)
     return float(brentq(g, u_lo, u_hi, xtol=1e-15 * scale, rtol=8.9e-16, maxiter=400))
 
@@ -241,6 +247,8 @@ def exact_flywheel(dT, J_var, omega_m: float, delta: float, guess: float | None 
     scale = max(abs(guess or 0.0), float(np.max(np.abs(J_var))),
                 rng / (omega_m**2 * delta), _TINY)
     lower = -jv_min            # J_n must exceed this (positive total inertia)
+    if rng == 0 and float(np.ptp(J_var)) == 0:
+        return lower           # nothing fluctuates: any inertia keeps omega constant
 
     def h(J):
         return achieved_delta(dT, J_var, J, omega_m) - delta
