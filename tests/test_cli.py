@@ -1,0 +1,204 @@
+"""The command line end to end: run, check, batch, schema, new; exit codes; atomic
+and partial output. Reference values here are closed forms written out below."""
+from __future__ import annotations
+
+import csv
+import json
+import math
+import os
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+import tmm_cli
+from tmm_cli.cli import app
+
+runner = CliRunner()
+ROOT = Path(__file__).resolve().parents[1]
+
+GEARS = """\
+schema: tmm/1
+title: zero-shift pair
+student: {name: A. Student, group: MM-1}
+gears: {m: 4 mm, z: [14, 30], x: [0, 0]}
+"""
+# zero-shift pair: a_w = m (z1 + z2) / 2 = 4 * 44 / 2 = 88 mm; r1 = m z1 / 2 = 28 mm
+AW = 0.088
+R1 = 0.028
+
+SLIDER_CRANK = """\
+schema: tmm/1
+title: slider-crank
+mechanism:
+  ground: {O: [0, 0]}
+  links:
+    crank: {points: [O, A], length: 0.1}
+    rod: {points: [A, B], length: 0.4}
+    slider: {slider: B, guide: {through: O, angle: 0}}
+drive: {link: crank, speed: 10 rad/s}
+"""
+
+
+def _write(tmp_path, name, text):
+    p = tmp_path / name
+    p.write_text(text, encoding="utf-8")
+    return p
+
+
+def test_run_json_only(tmp_path):
+    f = _write(tmp_path, "g.yaml", GEARS)
+    res = runner.invoke(app, ["run", str(f), "--format", "json", "--out", str(tmp_path / "o"), "--quiet"])
+    assert res.exit_code == 0, res.output
+    data = json.loads((tmp_path / "o" / "results.json").read_text())
+    assert data["schema"] == "tmm-results/1"
+    assert data["gears"]["aw"] == pytest.approx(AW, rel=1e-12)
+    assert data["gears"]["r"][0] == pytest.approx(R1, rel=1e-12)
+    assert "mechanism" not in data and "kinematics" not in data   # only what the task asks for
+    assert not (tmm_cli.run(tmm_cli.load_task(f)) != data)          # CLI == Python API
+    assert not any(p.name.endswith(".tmp") for p in (tmp_path / "o").iterdir())
+
+
+def test_default_out_dir(tmp_path, monkeypatch):
+    f = _write(tmp_path, "variant7.yaml", GEARS)
+    monkeypatch.chdir(tmp_path)
+    res = runner.invoke(app, ["run", str(f), "--format", "json", "--quiet"])
+    assert res.exit_code == 0, res.output
+    assert (tmp_path / "out" / "variant7" / "results.json").exists()
+
+
+def test_check_exit_codes(tmp_path):
+    good = _write(tmp_path, "good.yaml", GEARS + f"answers: {{gears.aw: {AW * 1.01}, 'gears.r[0]': {R1}}}\n")
+    res = runner.invoke(app, ["check", str(good)])
+    assert res.exit_code == 0, res.output
+    assert "2 of 2 answers within tolerance" in res.output
+    bad = _write(tmp_path, "bad.yaml", GEARS + f"answers: {{gears.aw: {AW * 1.2}}}\n"
+                 "tolerance: {default: 0.05}\n")
+    res = runner.invoke(app, ["check", str(bad)])
+    assert res.exit_code == 1, res.output
+    assert "wrong" in res.output
+    # answers from a separate file override the task's
+    ans = _write(tmp_path, "ans.yaml", f"answers:\n  gears.aw: {AW}\n")
+    res = runner.invoke(app, ["check", str(bad), "--answers", str(ans), "--out", str(tmp_path / "c")])
+    assert res.exit_code == 0, res.output
+    rows = list(csv.DictReader((tmp_path / "c" / "check.csv").open()))
+    assert rows[0]["quantity"] == "gears.aw" and rows[0]["verdict"] == "ok"
+
+
+def test_check_without_answers_is_invalid(tmp_path):
+    f = _write(tmp_path, "g.yaml", GEARS)
+    res = runner.invoke(app, ["check", str(f)])
+    assert res.exit_code == 2
+    assert "no answers" in res.output
+
+
+def test_batch(tmp_path):
+    d = tmp_path / "group"
+    d.mkdir()
+    _write(d, "v1.yaml", GEARS + f"answers: {{gears.aw: {AW}}}\n")
+    _write(d, "v2.yaml", GEARS + f"answers: {{gears.aw: {AW * 1.5}}}\n")
+    _write(d, "v3.yaml", GEARS.replace("m: 4 mm", "m: 4 kg"))
+    _write(d, "v4.yaml", SLIDER_CRANK.replace("length: 0.4", "length: 0.05"))   # does not assemble
+    res = runner.invoke(app, ["batch", str(d), "--out", str(tmp_path / "b")])
+    rows = {Path(r["file"]).stem: r for r in csv.DictReader((tmp_path / "b" / "summary.csv").open())}
+    assert rows["v1"]["status"] == "ok"
+    assert rows["v2"]["status"] == "wrong" and "gears.aw" in rows["v2"]["message"]
+    assert rows["v3"]["status"] == "invalid" and "v3.yaml:4" in rows["v3"]["message"]
+    assert rows["v4"]["status"] == "failed" and "kinematics" in rows["v4"]["message"]
+    assert rows["v1"]["student"] == "A. Student" and rows["v1"]["group"] == "MM-1"
+    assert res.exit_code == 3           # the worst variant: a stage failed
+    html = (tmp_path / "b" / "summary.html").read_text()
+    assert html.count("<tr") == 5
+    assert (tmp_path / "b" / "v1" / "results.json").exists()
+
+
+def test_batch_parallel_matches_serial(tmp_path):
+    d = tmp_path / "g"
+    d.mkdir()
+    for i, z in enumerate((12, 17, 25)):
+        _write(d, f"v{i}.yaml", GEARS.replace("z: [14, 30]", f"z: [{z}, 40]"))
+    r1 = runner.invoke(app, ["batch", str(d / "*.yaml"), "--out", str(tmp_path / "s")])
+    r2 = runner.invoke(app, ["batch", str(d), "--out", str(tmp_path / "p"), "--jobs", "2"])
+    assert r1.exit_code == r2.exit_code == 0, r1.output + r2.output
+    for i in range(3):
+        a = json.loads((tmp_path / "s" / f"v{i}" / "results.json").read_text())
+        b = json.loads((tmp_path / "p" / f"v{i}" / "results.json").read_text())
+        assert a == b
+
+
+def test_stage_failure_keeps_partial_results(tmp_path):
+    # crank 0.1 and rod 0.05: |AB| can never reach the guide at most angles -> kinematics fails
+    f = _write(tmp_path, "sc.yaml", SLIDER_CRANK.replace("length: 0.4", "length: 0.05"))
+    res = runner.invoke(app, ["run", str(f), "--out", str(tmp_path / "o"), "--format", "json"])
+    assert res.exit_code == 3
+    assert "stage 'kinematics' failed" in res.output and "crank angle" in res.output
+    assert "Traceback" not in res.output
+    data = json.loads((tmp_path / "o" / "results.json").read_text())
+    assert data["structure"]["W"] == 1          # computed before the failure, kept
+    assert data["error"]["stage"] == "kinematics"
+    res = runner.invoke(app, ["validate", str(f)])
+    assert res.exit_code == 3
+
+
+def test_schema_and_new(tmp_path):
+    res = runner.invoke(app, ["schema"])
+    assert res.exit_code == 0
+    s = json.loads(res.output)
+    for sec in ("mechanism", "drive", "positions", "loads", "kinetostatics", "flywheel", "cam", "gears",
+                "planetary", "answers", "tolerance"):
+        assert sec in s["properties"], sec
+    assert s["additionalProperties"] is False
+    for kind in ("linkage", "cam", "gears", "full"):
+        res = runner.invoke(app, ["new", kind])
+        assert res.exit_code == 0
+        f = _write(tmp_path, f"{kind}.yaml", res.output)
+        assert runner.invoke(app, ["validate", str(f)]).exit_code == 0
+    assert runner.invoke(app, ["new", "spaceship"]).exit_code == 2
+
+
+def test_help_mentions_every_command():
+    res = runner.invoke(app, ["--help"])
+    for cmd in ("run", "validate", "check", "batch", "schema", "new"):
+        assert cmd in res.output
+    res = runner.invoke(app, ["run", "--help"])
+    for opt in ("--out", "--format", "--lang"):
+        assert opt in res.output
+
+
+def test_atomic_write_keeps_old_file_on_failure(tmp_path, monkeypatch):
+    from tmm_cli.io import atomic_write
+    p = tmp_path / "results.json"
+    atomic_write(p, "old")
+
+    def boom(*a, **k):
+        raise OSError("disk full")
+    monkeypatch.setattr(os, "replace", boom)
+    with pytest.raises(OSError):
+        atomic_write(p, "new")
+    assert p.read_text() == "old"
+    assert [x.name for x in tmp_path.iterdir()] == ["results.json"]
+
+
+def test_slider_crank_numbers_against_closed_form():
+    """One position of a central slider-crank checked by hand: phi = 90 deg,
+    r = 0.1, l = 0.4, omega = 10 rad/s: x_B = sqrt(l^2 - r^2); v_B = -r omega (1 + 0)
+    since at 90 deg the rod's angular velocity is zero... written out below."""
+    t = tmm_cli.load_task({**__import__("yaml").safe_load(SLIDER_CRANK),
+                           "positions": {"zero": 0.0, "count": 4}})
+    res = tmm_cli.run(t)
+    e = [k for k in res["kinematics"] if k["index"] == 1][0]      # phi = 90 deg
+    assert e["phi"] == pytest.approx(90.0)
+    r, l, w = 0.1, 0.4, 10.0
+    xb = math.sqrt(l * l - r * r)
+    # loop: r cos(phi) + l cos(beta) = x, r sin(phi) + l sin(beta) = 0 (central)
+    # at phi = 90: sin(beta) = -r/l; d/dt: -r w + l cos(beta) beta' ... (y-eq): r w cos(phi) + l cos(beta) w2 = 0 -> w2 = 0
+    # x-eq: v = -r w sin(phi) - l sin(beta) w2 = -r w
+    # accel (y-eq): -r w^2 sin(phi) + l cos(beta) e2 - l sin(beta) w2^2 = 0 -> e2 = r w^2 / (l cos beta)
+    cb = math.sqrt(1 - (r / l) ** 2)
+    e2 = r * w * w / (l * cb)
+    # x-eq: a = -r w^2 cos(phi) - l cos(beta) w2^2 - l sin(beta) e2 = -l*(-r/l)*e2 = r e2
+    assert e["points"]["B"]["x"] == pytest.approx(xb, rel=1e-12)
+    assert e["points"]["B"]["vx"] == pytest.approx(-r * w, rel=1e-12)
+    assert e["links"]["rod"]["omega"] == pytest.approx(0.0, abs=1e-12)
+    assert e["links"]["rod"]["epsilon"] == pytest.approx(e2, rel=1e-12)
+    assert e["points"]["B"]["ax"] == pytest.approx(r * e2, rel=1e-12)
