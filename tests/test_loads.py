@@ -176,3 +176,17 @@ def test_interp_matches_numpy_without_jumps(xp, fp, x):
 
 def test_interp_takes_the_value_after_a_jump():
     assert interp_right(np.array([0.5, 0.5 - 1e-12, 0.4999]), [0, 0.5, 0.5, 1], [0, 0, 9, 9]).tolist() == [9, 9, 0]
+
+
+def test_720_degree_indicator_diagram_turns():
+    """Cycle 720: reported angles (in [0, 360)) are the first turn after position 0,
+    unwrapped angles phi0 + q with q in [360, 720) the second."""
+    from tmm_cli.loads import cycle_angle
+    assert cycle_angle([180.0, 90.0, 180.0 + 500.0, 179.0], 180.0, 1.0, 720.0).tolist() == \
+        pytest.approx([0.0, 270.0, 500.0, 359.0])
+    assert cycle_angle([170.0, 180.0 - 400.0], 180.0, -1.0, 720.0).tolist() == pytest.approx([10.0, 400.0])
+    phi = np.array([180.0, 180.0 + 450.0])
+    mech, kin, sec = _setup({"forces": [{"on": "slider", "diagram": {"phi": [0, 360, 720],
+                                                                     "value": [100, 100, 820]}}]}, phi)
+    F = _force(evaluate(mech, sec, kin, CentricPositions(), inertia=False), "F1")
+    assert F.F[:, 0].tolist() == pytest.approx([100.0, 100 + 720 * 90 / 360])

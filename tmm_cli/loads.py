@@ -24,7 +24,9 @@ over the positions of ``kin``:
     analogue d2r/dphi2 . e, since v = 0 there).
   - a ``phi``-diagram is the signed force along e over the crank angle of the cycle
     **measured from position 0** (phi_rel = (phi - phi0) * sign(omega1) mod cycle, so
-    an engine's indicator diagram starts at its TDC = position 0). Between the given
+    an engine's indicator diagram starts at its TDC = position 0; for a 720-deg cycle
+    the reported positions are read in the first turn after position 0 and unwrapped
+    angles phi0 + sign*q, q in [360, 720), in the second: see cycle_angle). Between the given
     abscissae the value is interpolated linearly, beyond them it is held constant.
     ``stroke`` and ``kind`` do not change a phi-diagram (the sign is in the diagram).
   - a force with no ``kind`` and a ``magnitude`` or an ``s``-diagram is a signed force
@@ -226,8 +228,33 @@ def _length_scale(mech) -> float:
     return max(L + [1e-3])
 
 
-def evaluate(mech, loads_section, kin, positions=None, *, inertia: bool = True) -> Loads:
-    """Per-position loads of the mechanism (see the module docstring)."""
+def _cycle(loads_section, positions, cycle) -> float:
+    if cycle:
+        return float(cycle)
+    c = getattr(positions, "cycle", None)
+    if c:
+        return float(c)
+    for sp in getattr(loads_section, "forces", []) or []:
+        if sp.diagram is not None and sp.diagram.phi is not None and max(sp.diagram.phi) > 360.0 + 1e-9:
+            return 720.0
+    return 360.0
+
+
+def cycle_angle(phi, phi0: float, sign: float, cycle: float) -> np.ndarray:
+    """Crank rotation from position 0 along the motion, in [0, cycle). Angles at or
+    after phi0 (along the motion, unwrapped: phi0 + sign*q) give q mod cycle; angles
+    numerically before phi0 (the reported positions are in [0, 360)) are read in the
+    first turn: q mod 360."""
+    q = (np.asarray(phi, float) - phi0) * sign
+    q = np.where(q < 0, np.mod(q, 360.0), np.mod(q, cycle))
+    return np.where(q > cycle - _SNAP, 0.0, q)
+
+
+def evaluate(mech, loads_section, kin, positions=None, *, inertia: bool = True,
+             cycle: float | None = None) -> Loads:
+    """Per-position loads of the mechanism (see the module docstring). ``cycle``: 360 or
+    720 deg (default: ``positions.cycle`` if present, else 720 when a phi-diagram reaches
+    beyond 360 deg, else 360)."""
     phi = np.atleast_1d(np.asarray(kin.phi, float))
     n = len(phi)
     w, e = _w(kin, n)
@@ -263,7 +290,7 @@ def evaluate(mech, loads_section, kin, positions=None, *, inertia: bool = True) 
         working, s_rel = np.ones(n, bool), np.zeros(n)
     phi0 = float(getattr(positions, "phi0", 0.0)) if positions is not None else 0.0
     sign = _drive_sign(positions, kin) if positions is not None else (1.0 if w[0] >= 0 else -1.0)
-    cycle = float(getattr(positions, "cycle", None) or 360.0)
+    cycle = _cycle(loads_section, positions, cycle)
     for k, sp in enumerate(specs, start=1):
         try:
             lk = mech.link(sp.on)
@@ -322,8 +349,7 @@ def evaluate(mech, loads_section, kin, positions=None, *, inertia: bool = True) 
         # magnitude (signed along e)
         x = None
         if sp.diagram is not None and sp.diagram.phi is not None:
-            rel = np.mod((phi - phi0) * sign, cycle)
-            rel[rel > cycle - _SNAP] = 0.0
+            rel = cycle_angle(phi, phi0, sign, cycle)
             val = interp_right(rel, sp.diagram.phi, sp.diagram.value) * scale
             x = rel
             mag = val
@@ -381,7 +407,7 @@ def switch_angles(mech, loads_section, positions) -> list[float]:
     ext = getattr(positions, "extreme", None)
     start = float(ext[0]) if ext else phi0          # the working stroke begins here
     sign = _drive_sign(positions)
-    cycle = float(getattr(positions, "cycle", None) or 360.0)
+    cycle = _cycle(loads_section, positions, None)
     wa = getattr(positions, "working_stroke_angle", None)
     for sp in getattr(loads_section, "forces", []) or []:
         d = sp.diagram
