@@ -1,0 +1,58 @@
+"""Cam report section: en/ru HTML, figures, files beside the report."""
+import math
+from pathlib import Path
+
+import pytest
+
+import tmm_cli
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+@pytest.fixture(scope="module")
+def central():
+    task = tmm_cli.load_task({
+        "schema": "tmm/1", "title": "central cam",
+        "cam": {"follower": "translating", "stroke": "30 mm", "offset": 0,
+                "phases": {"rise": 90, "far_dwell": 30, "return": 90},
+                "laws": {"rise": "cosine", "return": "cosine"}, "pressure_angle": 30,
+                "rotation": "ccw", "speed": "100 rpm"}})
+    return task, tmm_cli.run(task)
+
+
+def test_pipeline_section_matches_closed_form(central):
+    _, res = central
+    h, P, t = 0.03, math.pi / 2, math.tan(math.radians(30))
+    A = h * math.pi / (2 * P * t)
+    assert res["cam"]["r0"] == pytest.approx(math.sqrt(A * A + h * h / 4) - h / 2, rel=1e-10)
+    assert res["cam"]["speed"] == pytest.approx(100 * math.pi / 30)
+    assert "warnings" not in res["cam"] or isinstance(res["cam"]["warnings"], list)
+
+
+@pytest.mark.parametrize("lang,word", [("en", "Cam mechanism"), ("ru", "Кулачковый механизм")])
+def test_html_section(central, tmp_path, lang, word):
+    from tmm_cli.report import render
+
+    task, res = central
+    paths = render(res, task, tmp_path, {"html"}, lang)
+    html = (tmp_path / "report.html").read_text(encoding="utf-8")
+    assert 'id="cam"' in html and word in html
+    assert html.count("<svg") >= 4 and "figure failed" not in html
+    # r0 in mm with 6 significant digits, as computed from the closed form above
+    h, P, t = 0.03, math.pi / 2, math.tan(math.radians(30))
+    A = h * math.pi / (2 * P * t)
+    r0_mm = (math.sqrt(A * A + h * h / 4) - h / 2) * 1000
+    assert f"{r0_mm:.4f}" in html
+    names = {p.name for p in paths}
+    assert {"cam_profile.csv", "cam_motion.csv", "cam_profile.dxf"} <= names
+    rows = (tmp_path / "cam_profile.csv").read_text().splitlines()
+    assert len(rows) == 361
+
+
+@pytest.mark.parametrize("name", ["cam_translating", "cam_offset", "cam_rocker"])
+def test_example_tasks_run(name):
+    res = tmm_cli.run(tmm_cli.load_task(ROOT / "tasks" / f"{name}.yaml"))
+    c = res["cam"]
+    assert c["r0"] > 0 and c["roller"] < c["rho_min"]
+    assert c["max_pressure_angle_rise"] <= c["pressure_angle_allowed"]["rise"] + 1e-9
+    assert c["max_pressure_angle_return"] <= c["pressure_angle_allowed"]["return"] + 1e-9

@@ -1,0 +1,371 @@
+"""Report section 'cam': motion diagrams with scales, the s - ds/dphi diagram with the
+tangent lines and the admissible region of cam centres, the cam profile to scale (base
+circle, pitch and working profiles, follower and roller every 30 deg), the pressure-angle
+diagram and the tables; the profile exported beside the report as CSV and DXF.
+
+Reads only ``results['cam']`` (see tmm_cli/cam/synthesis.py for its keys)."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+I18N = {
+    "en": {
+        "cam.title": "Cam mechanism",
+        "cam.summary": "Main dimensions (smallest cam for the allowed pressure angles)",
+        "cam.follower": "Follower", "cam.translating": "translating roller follower",
+        "cam.rocker": "rocking roller follower (rocker)",
+        "cam.rotation": "Cam rotation",
+        "cam.r0": "Minimum base radius of the pitch profile r0 (exact)",
+        "cam.r0_design": "Design base radius (r0 rounded up to a whole mm)",
+        "cam.offset": "Offset e (positive: lowers the rise pressure angle)",
+        "cam.center_distance": "Centre distance a_w = O A",
+        "cam.psi0": "Initial rocker angle O-A-B0",
+        "cam.swing": "Rocker turns on the rise",
+        "cam.swing_with": "with the cam", "cam.swing_against": "against the cam",
+        "cam.roller": "Roller radius r_r",
+        "cam.roller_rule": "r_r = min(0.7 rho_min, 0.4 r0) (course rule r_r <= 0.7..0.8 rho_min, <= 0.4..0.5 r0)",
+        "cam.roller_given": "given in the task",
+        "cam.theta_allowed": "Allowed pressure angle (rise / return)",
+        "cam.theta_max": "Maximum pressure angle (rise / return)",
+        "cam.rho_min": "Minimum radius of curvature of the pitch profile (convex part)",
+        "cam.laws": "Motion laws",
+        "cam.phase": "Phase", "cam.rise": "rise", "cam.return": "return",
+        "cam.far_dwell": "far dwell", "cam.near_dwell": "near dwell",
+        "cam.law": "Law", "cam.angle": "Angle, deg",
+        "cam.cv": "velocity coefficient", "cam.ca": "acceleration coefficient",
+        "cam.impact": "impacts", "cam.impact_rigid": "rigid", "cam.impact_soft": "soft",
+        "cam.impact_none": "none",
+        "cam.diagrams": "Motion diagrams",
+        "cam.diagrams_caption": "Displacement, velocity and acceleration analogues of the follower over the "
+                                "cam angle; the scales are those of the printed figure",
+        "cam.construction": "Smallest cam: the s - ds/dphi diagram",
+        "cam.construction_caption": "Follower positions B, the points D (ds/dphi laid off turned by 90 deg in the "
+                                    "direction of rotation), the tangent lines at the allowed pressure angle and "
+                                    "the admissible region of cam centres (shaded); O is its point nearest to B0",
+        "cam.profile": "Cam profile",
+        "cam.profile_caption": "Base circle r0, pitch profile (dashed), working profile (solid), follower and "
+                               "roller every 30 deg by inverted motion; scale {scale}",
+        "cam.pressure": "Pressure angle",
+        "cam.pressure_caption": "Pressure angle over the cycle and the allowed values",
+        "cam.table": "Follower motion and profile (every 15 deg)",
+        "cam.files": "Profile and motion tables",
+        "cam.method": "r0 is computed exactly: the admissible region of cam centres is the intersection of the "
+                      "half-planes bounded by the tangent lines of the s - ds/dphi diagram at the allowed pressure "
+                      "angle (one pair per cam angle), and O is its point nearest to the lowest follower position B0.",
+        "cam.scales": "Scales",
+    },
+    "ru": {
+        "cam.title": "Кулачковый механизм",
+        "cam.summary": "Основные размеры (наименьший кулачок при допустимых углах давления)",
+        "cam.follower": "Толкатель", "cam.translating": "поступательно движущийся роликовый толкатель",
+        "cam.rocker": "качающийся роликовый толкатель (коромысло)",
+        "cam.rotation": "Вращение кулачка",
+        "cam.r0": "Минимальный радиус центрового профиля r0 (точно)",
+        "cam.r0_design": "Принятый радиус (r0, округлённый вверх до целого мм)",
+        "cam.offset": "Эксцентриситет e (положительный уменьшает угол давления на подъёме)",
+        "cam.center_distance": "Межосевое расстояние a_w = O A",
+        "cam.psi0": "Начальный угол коромысла O-A-B0",
+        "cam.swing": "Коромысло при подъёме поворачивается",
+        "cam.swing_with": "в сторону вращения кулачка", "cam.swing_against": "против вращения кулачка",
+        "cam.roller": "Радиус ролика r_r",
+        "cam.roller_rule": "r_r = min(0,7 rho_min, 0,4 r0) (по правилу r_r <= (0,7..0,8) rho_min, <= (0,4..0,5) r0)",
+        "cam.roller_given": "задан",
+        "cam.theta_allowed": "Допустимый угол давления (подъём / опускание)",
+        "cam.theta_max": "Наибольший угол давления (подъём / опускание)",
+        "cam.rho_min": "Минимальный радиус кривизны центрового профиля (выпуклая часть)",
+        "cam.laws": "Законы движения",
+        "cam.phase": "Фаза", "cam.rise": "подъём (удаление)", "cam.return": "опускание (возвращение)",
+        "cam.far_dwell": "дальнее стояние", "cam.near_dwell": "ближнее стояние",
+        "cam.law": "Закон", "cam.angle": "Угол, град",
+        "cam.cv": "коэффициент скорости", "cam.ca": "коэффициент ускорения",
+        "cam.impact": "удары", "cam.impact_rigid": "жёсткие", "cam.impact_soft": "мягкие",
+        "cam.impact_none": "нет",
+        "cam.diagrams": "Кинематические диаграммы",
+        "cam.diagrams_caption": "Перемещение, аналоги скорости и ускорения толкателя по углу поворота кулачка; "
+                                "масштабы — масштабы напечатанного рисунка",
+        "cam.construction": "Наименьший кулачок: диаграмма s - ds/dphi",
+        "cam.construction_caption": "Положения толкателя B, точки D (аналог скорости, повёрнутый на 90° в сторону "
+                                    "вращения кулачка), касательные под допустимым углом давления и область "
+                                    "допустимых положений центра кулачка (заливка); O — ближайшая к B0 её точка",
+        "cam.profile": "Профиль кулачка",
+        "cam.profile_caption": "Начальная окружность r0, центровой (штрих) и действительный (сплошной) профили, "
+                               "толкатель и ролик через 30° методом обращения движения; масштаб {scale}",
+        "cam.pressure": "Угол давления",
+        "cam.pressure_caption": "Угол давления за цикл и допустимые значения",
+        "cam.table": "Движение толкателя и профиль (через 15°)",
+        "cam.files": "Таблицы профиля и движения",
+        "cam.method": "r0 вычислен точно: область допустимых положений центра кулачка — пересечение "
+                      "полуплоскостей, ограниченных касательными к диаграмме s - ds/dphi под допустимым углом "
+                      "давления (по паре на каждый угол поворота), O — её точка, ближайшая к нижнему положению "
+                      "толкателя B0.",
+        "cam.scales": "Масштабы",
+    },
+}
+
+MM = 1e3
+PHASE_COLORS = {"rise": "#e8f0fb", "far_dwell": "#f4f4f4", "return": "#fbeee8", "near_dwell": "#ffffff"}
+
+
+def _units(c):
+    """(factor, unit) of s, ds/dphi, d2s/dphi2 for the tables and diagrams."""
+    if c["follower"] == "rocker":
+        return (1.0, "deg"), (1.0, "rad/rad"), (1.0, "1/rad")
+    return (MM, "mm"), (MM, "mm/rad"), (MM, "mm/rad²")
+
+
+def _phase_spans(c):
+    ph = c["phases"]
+    a = 0.0
+    out = []
+    for k in ("rise", "far_dwell", "return", "near_dwell"):
+        out.append((k, a, a + ph[k]))
+        a += ph[k]
+    return out
+
+
+def _nice_limits(fp, lo, hi, axes_mm):
+    """Axis limits whose span is a nice scale (units per paper mm) times the axes length."""
+    lo, hi = min(lo, 0.0), max(hi, 0.0)
+    span = max(hi - lo, 1e-12) * 1.08
+    mu = fp.nice_scale(span / axes_mm)
+    total = mu * axes_mm
+    pad = (total - (hi - lo)) / 2
+    return lo - pad, hi + pad, mu
+
+
+def diagrams_figure(ctx, c):
+    fp = ctx.figures
+    (ks, us), (kv, uv), (ka, ua) = _units(c)
+    phi = np.asarray(c["phi"] + [360.0])
+    series = [(np.asarray(c["s"] + c["s"][:1]) * ks, "s, " + us),
+              (np.asarray(c["ds"] + c["ds"][:1]) * kv, "ds/dφ, " + uv),
+              (np.asarray(c["d2s"] + c["d2s"][:1]) * ka, "d²s/dφ², " + ua)]
+    W, H = 170.0, 150.0
+    fig, axes = fp.new_figure(W, H, nrows=3, sharex=True)
+    left, right, bottom, top, gap = 0.12, 0.97, 0.08, 0.98, 0.05
+    fig.subplots_adjust(left=left, right=right, bottom=bottom, top=top, hspace=gap * 3)
+    ax_w_mm = (right - left) * W
+    ax_h_mm = (top - bottom) * H / 3 * (1 - gap)
+    mu_phi = fp.nice_scale(360.0 / ax_w_mm)
+    scales = [("μφ", f"{ctx.fmt(mu_phi)} deg/mm")]
+    for ax, (y, lab) in zip(axes, series):
+        for k, a, b in _phase_spans(c):
+            if b > a:
+                ax.axvspan(a, b, color=PHASE_COLORS[k], lw=0)
+        ax.plot(phi, y, color="k", lw=1.0)
+        ax.axhline(0, color="0.5", lw=0.5)
+        lo, hi, mu = _nice_limits(fp, float(np.min(y)), float(np.max(y)), ax_h_mm)
+        ax.set_ylim(lo, hi)
+        ax.set_ylabel(lab)
+        ax.grid(True, lw=0.3)
+        scales.append((lab.split(",")[0], f"{ctx.fmt(mu)} {lab.split(', ')[1]}/mm"))
+    axes[-1].set_xlim(0, mu_phi * ax_w_mm)
+    axes[-1].set_xlabel("φ, deg")
+    for x in range(0, 361, 30):
+        for ax in axes:
+            ax.axvline(x, color="0.85", lw=0.3)
+    return fig, scales
+
+
+def _clip_line(p, d, box):
+    """Segment of the line p + t d inside the box (xmin, ymin, xmax, ymax)."""
+    xmin, ymin, xmax, ymax = box
+    ts = []
+    for i, (lo, hi) in enumerate(((xmin, xmax), (ymin, ymax))):
+        if abs(d[i]) > 1e-15:
+            ts += [(lo - p[i]) / d[i], (hi - p[i]) / d[i]]
+    ts = sorted(ts)
+    if len(ts) < 4:
+        return None
+    a, b = ts[1], ts[2]
+    return np.array([p + a * d, p + b * d])
+
+
+def construction_figure(ctx, c):
+    fp = ctx.figures
+    k = c["construction"]
+    box = k["box"]
+    lo, hi = np.array(box[:2]) * MM, np.array(box[2:]) * MM
+    fig, ax, unit = fp.figure_for_box(lo, hi, 150.0, min_h=60, max_h=150)
+    reg = np.asarray(k.get("region") or [])
+    if len(reg) >= 3:
+        ax.fill(reg[:, 0] * MM, reg[:, 1] * MM, color="#cfe8cf", lw=0, zorder=0)
+    for name, col in (("rise", "tab:blue"), ("return", "tab:red")):
+        B = np.asarray(k[f"B_{name}"]) * MM
+        D = np.asarray(k[f"D_{name}"]) * MM
+        ax.plot(B[:, 0], B[:, 1], color="0.3", lw=0.8)
+        ax.plot(D[:, 0], D[:, 1], color=col, lw=1.2, label=ctx.t(f"cam.{name}"))
+        step = max(1, len(B) // 8)
+        for b, d in zip(B[::step], D[::step]):
+            ax.plot([b[0], d[0]], [b[1], d[1]], color=col, lw=0.4)
+    for tline in k["tangents"]:
+        seg = _clip_line(np.asarray(tline["point"]) * MM, np.asarray(tline["direction"]), (*lo, *hi))
+        if seg is not None:
+            col = "tab:blue" if tline["phase"] == "rise" else ("tab:red" if tline["phase"] == "return" else "0.4")
+            ax.plot(seg[:, 0], seg[:, 1], color=col, lw=0.8, ls="--")
+    O = np.zeros(2)
+    B0 = np.asarray(k["B0"]) * MM
+    ax.plot(*O, "ko", ms=3)
+    ax.annotate("O", O, textcoords="offset points", xytext=(4, -8), fontsize=8)
+    ax.plot(*B0, "ko", ms=2.5)
+    ax.annotate("B0", B0, textcoords="offset points", xytext=(4, -8), fontsize=8)
+    ax.plot([O[0], B0[0]], [O[1], B0[1]], color="k", lw=0.6)
+    if k.get("A") is not None:
+        A = np.asarray(k["A"]) * MM
+        fp.draw_ground(ax, A, 3 * unit * MM / MM)
+        ax.plot(*A, "ko", ms=3)
+        ax.annotate("A", A, textcoords="offset points", xytext=(4, 4), fontsize=8)
+        ax.plot([A[0], B0[0]], [A[1], B0[1]], color="0.3", lw=0.8)
+    ax.legend(loc="upper right", fontsize=7, frameon=False)
+    return fig
+
+
+def profile_figure(ctx, c):
+    fp = ctx.figures
+    pitch = np.asarray(c["pitch_profile"]) * MM
+    work = np.asarray(c["working_profile"]) * MM
+    r0, rr = c["r0"] * MM, c["roller"] * MM
+    sigma = 1.0 if c["rotation"] == "ccw" else -1.0
+    k = c["construction"]
+    rocker = c["follower"] == "rocker"
+    pts = [pitch]
+    A = np.asarray(k["A"]) * MM if rocker else None
+    angs = np.radians(np.arange(0, 360, 30))
+    if rocker:
+        c_, s_ = np.cos(-sigma * angs), np.sin(-sigma * angs)
+        A_inv = np.column_stack([c_ * A[0] - s_ * A[1], s_ * A[0] + c_ * A[1]])
+        pts.append(A_inv)
+    allp = np.vstack(pts)
+    lo, hi = allp.min(axis=0) - rr, allp.max(axis=0) + rr
+    fig, ax, unit = fp.figure_for_box(lo, hi, 150.0, min_h=80, max_h=170)
+    th = np.linspace(0, 2 * np.pi, 361)
+    ax.plot(r0 * np.cos(th), r0 * np.sin(th), color="0.5", lw=0.6, ls="-.")
+    ax.plot(*np.vstack([pitch, pitch[:1]]).T, color="k", lw=0.8, ls="--")
+    ax.plot(*np.vstack([work, work[:1]]).T, color="k", lw=1.6)
+    ax.plot(0, 0, "k+", ms=8)
+    ax.annotate("O", (0, 0), textcoords="offset points", xytext=(4, 4), fontsize=8)
+    for i, a in enumerate(angs):
+        idx = int(round(math.degrees(a))) % len(pitch)
+        B = pitch[idx]
+        ax.plot(B[0] + rr * np.cos(th), B[1] + rr * np.sin(th), color="tab:blue", lw=0.5)
+        if rocker:
+            Ai = A_inv[i]
+            ax.plot([Ai[0], B[0]], [Ai[1], B[1]], color="tab:blue", lw=0.5)
+            ax.plot(*Ai, "o", color="tab:blue", ms=1.5)
+        else:
+            u = np.array([-math.sin(-sigma * a), math.cos(-sigma * a)])
+            ax.plot([B[0], B[0] + u[0] * 0.6 * r0], [B[1], B[1] + u[1] * 0.6 * r0], color="tab:blue", lw=0.5)
+        ax.annotate(str(i), B, textcoords="offset points", xytext=(3, 3), fontsize=6, color="tab:blue")
+    # direction of rotation
+    arc = np.linspace(0.15, 0.75, 20) * sigma
+    rr_ = 0.35 * r0
+    ax.plot(rr_ * np.cos(arc), rr_ * np.sin(arc), color="k", lw=0.6)
+    ax.annotate("", xy=(rr_ * math.cos(arc[-1]), rr_ * math.sin(arc[-1])),
+                xytext=(rr_ * math.cos(arc[-3]), rr_ * math.sin(arc[-3])),
+                arrowprops=dict(arrowstyle="-|>", lw=0.6, color="k"))
+    return fig, unit
+
+
+def pressure_figure(ctx, c):
+    fp = ctx.figures
+    fig, ax = fp.new_figure(170, 60)
+    fig.subplots_adjust(left=0.1, right=0.97, bottom=0.2, top=0.95)
+    phi = np.asarray(c["phi"] + [360.0])
+    th = np.asarray(c["pressure_angle"] + c["pressure_angle"][:1])
+    for k, a, b in _phase_spans(c):
+        if b > a:
+            ax.axvspan(a, b, color=PHASE_COLORS[k], lw=0)
+    ax.plot(phi, th, color="k")
+    spans = {k: (a, b) for k, a, b in _phase_spans(c)}
+    for k, col in (("rise", "tab:blue"), ("return", "tab:red")):
+        a, b = spans[k]
+        ax.plot([a, b], [c["pressure_angle_allowed"][k]] * 2, color=col, ls="--", lw=0.8)
+    ax.set_xlim(0, 360)
+    ax.set_ylim(0, max(c["pressure_angle_allowed"].values()) * 1.15)
+    ax.set_xlabel("φ, deg")
+    ax.set_ylabel("θ, deg")
+    ax.grid(True, lw=0.3)
+    return fig
+
+
+def build(ctx) -> str | None:
+    c = (ctx.results or {}).get("cam")
+    if not c:
+        return None
+    f, t = ctx.fmt, ctx.t
+    rocker = c["follower"] == "rocker"
+    (ks, us), (kv, uv), (ka, ua) = _units(c)
+    rows = [(t("cam.follower"), t("cam.rocker") if rocker else t("cam.translating")),
+            (t("cam.rotation"), t("common.ccw") if c["rotation"] == "ccw" else t("common.cw")),
+            (t("cam.theta_allowed") + ", deg",
+             f"{f(c['pressure_angle_allowed']['rise'])} / {f(c['pressure_angle_allowed']['return'])}"),
+            (t("cam.r0") + ", mm", f(c["r0"] * MM, 6)),
+            (t("cam.r0_design") + ", mm", f(c["r0_design"] * MM, 6))]
+    if rocker:
+        rows += [(t("cam.center_distance") + ", mm", f(c["center_distance"] * MM, 6)),
+                 (t("cam.psi0") + ", deg", f(c["psi0"], 5)),
+                 (t("cam.swing"), t("cam.swing_" + c["swing"]))]
+    else:
+        rows.append((t("cam.offset") + ", mm", f(c["offset"] * MM, 6)))
+    rows += [(t("cam.theta_max") + ", deg",
+              f"{f(c['max_pressure_angle_rise'], 5)} / {f(c['max_pressure_angle_return'], 5)}"),
+             (t("cam.rho_min") + ", mm", f(c["rho_min"] * MM, 6)),
+             (t("cam.roller") + ", mm",
+              f"{f(c['roller'] * MM, 5)} ({t('cam.roller_given') if c['roller_rule'] == 'given' else t('cam.roller_rule')})")]
+    law_rows = []
+    for k in ("rise", "return"):
+        L = c["laws"][k]
+        law_rows.append((t(f"cam.{k}"), L["title_ru"] if ctx.lang == "ru" else L["title"],
+                         f(c["phases"][k], 5), f(L["cv"], 5), f(L["ca"], 5) if L["ca"] is not None else "∞",
+                         f(L["ds_max"] * kv, 5), f(L["d2s_max"] * ka, 5) if L["d2s_max"] is not None else "∞",
+                         t("cam.impact_" + L["impact"])))
+    law_header = [t("cam.phase"), t("cam.law"), t("cam.angle"), t("cam.cv"), t("cam.ca"),
+                  f"max ds/dφ, {uv}", f"max d²s/dφ², {ua}", t("cam.impact")]
+    table_rows = []
+    for i in range(0, len(c["phi"]), 15):
+        p = c["pitch_profile"][i]
+        table_rows.append((f(c["phi"][i], 4), f(c["s"][i] * ks, 5), f(c["ds"][i] * kv, 5),
+                           f(c["d2s"][i] * ka, 5), f(c["pressure_angle"][i], 4),
+                           f(p[0] * MM, 5), f(p[1] * MM, 5)))
+    table_header = ["φ, deg", f"s, {us}", f"ds/dφ, {uv}", f"d²s/dφ², {ua}", "θ, deg", "x, mm", "y, mm"]
+    figs = []
+    scales = []
+    try:
+        fig, scales = diagrams_figure(ctx, c)
+        figs.append((ctx.svg(fig), t("cam.diagrams_caption")))
+    except Exception as exc:  # a drawing problem must not lose the tables
+        figs.append((f"<p class='warn'>figure failed: {exc}</p>", t("cam.diagrams_caption")))
+    for fn, cap in ((construction_figure, "cam.construction_caption"),):
+        try:
+            figs.append((ctx.svg(fn(ctx, c)), t(cap)))
+        except Exception as exc:
+            figs.append((f"<p class='warn'>figure failed: {exc}</p>", t(cap)))
+    try:
+        fig, unit = profile_figure(ctx, c)
+        scale = f"μl = {f(unit, 4)} mm/mm" if abs(unit - 1) > 1e-9 else "1:1"
+        figs.append((ctx.svg(fig), t("cam.profile_caption", scale=scale)))
+    except Exception as exc:
+        figs.append((f"<p class='warn'>figure failed: {exc}</p>", t("cam.profile_caption", scale="")))
+    try:
+        figs.append((ctx.svg(pressure_figure(ctx, c)), t("cam.pressure_caption")))
+    except Exception as exc:
+        figs.append((f"<p class='warn'>figure failed: {exc}</p>", t("cam.pressure_caption")))
+    files = []
+    try:
+        from tmm_cli.cam.export import profile_csv_rows, profile_dxf
+        header, prow = profile_csv_rows(c)
+        files.append(ctx.write_csv("cam_profile.csv", header, prow).name)
+        mhead = ["phi_deg", "s", "ds_dphi", "d2s_dphi2", "pressure_angle_deg"]
+        mrows = zip(c["phi"], c["s"], c["ds"], c["d2s"], c["pressure_angle"])
+        if c.get("v"):
+            mhead += ["v", "a"]
+            mrows = zip(c["phi"], c["s"], c["ds"], c["d2s"], c["pressure_angle"], c["v"], c["a"])
+        files.append(ctx.write_csv("cam_motion.csv", mhead, mrows).name)
+        files.append(ctx.write_file("cam_profile.dxf", profile_dxf(c)).name)
+    except Exception:  # exports are extras
+        pass
+    return ctx.render("sections/cam.html.j2", rows=rows, law_header=law_header, law_rows=law_rows,
+                      table_header=table_header, table_rows=table_rows, figs=figs, scales=scales,
+                      files=files, method=t("cam.method"))
