@@ -332,7 +332,11 @@ class GearsSection(_Model):
     alpha: Angle = Field(20.0, gt=0, lt=45)
     ha: float = Field(1.0, gt=0)
     c: float = Field(0.25, ge=0)
-    rule: Literal["no_undercut", "equal_sliding", "table"] = "equal_sliding"
+    rule: Literal["no_undercut", "equal_sliding", "table"] = Field(
+        "equal_sliding", description="how `x: auto` chooses the shifts")
+    sa_min: float = Field(0.25, gt=0, lt=1, description="least tip thickness as a fraction of m "
+                                                         "(0.25 common, 0.4 hardened teeth)")
+    rho_f: float | None = Field(None, ge=0, description="rack fillet radius / m (default c/(1 - sin alpha))")
 
     @field_validator("z")
     @classmethod
@@ -350,6 +354,7 @@ class PlanetarySection(_Model):
     m: Length | None = Field(None, gt=0)
     z_min: int = Field(17, ge=5)
     z_max: int = Field(150, ge=10)
+    candidates: int = Field(10, ge=1, le=100, description="how many ranked candidate sets to list")
 
     @field_validator("ratio")
     @classmethod
