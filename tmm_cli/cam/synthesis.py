@@ -456,6 +456,12 @@ def synthesize(spec) -> CamResult:
     for e in impacts:
         if e["kind"] != "none":
             warnings.append(f"{_IMPACT_TEXT[e['kind']]} at phi = {e['phi']:.4g} deg ({e['where']})")
+    corners = [e for e in impacts if e["kind"] == "rigid"]
+    if corners:
+        warnings.append("the pitch profile has corners where the velocity jumps (phi = "
+                        + ", ".join(f"{e['phi']:.4g}" for e in corners)
+                        + " deg): the working profile has sharp edges there; rho_min and the "
+                          "roller rule refer to the smooth parts")
 
     construction = _construction(motion, geom, fams, O, tang, scale)
     phases = {"rise": math.degrees(motion.rise), "far_dwell": math.degrees(motion.far_dwell),
