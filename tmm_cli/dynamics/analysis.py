@@ -30,7 +30,7 @@ from . import flywheel as fw
 from .reduce import Sample, sample as sample_mech
 
 STAGE = "dynamics"
-EPS_DEG = 1e-7                         # one-sided evaluation offset at a jump, deg
+EPS_DEG = 1e-5   # one-sided evaluation offset at a jump, deg (coarser than the loads' 1e-9 snapping)
 ACCURACY_RESOLUTIONS = (12, 24, 36, 72, 180, 360, 3600)
 METHODS = ("energy-mass", "merzalov", "exact")
 
@@ -546,18 +546,36 @@ def analyze(mech, kin_fn, loads_fn, section, drive, *, phi0: float = 0.0, switch
                            phi0=phi0, sign=sign, accuracy=accuracy)
 
 
+class _WithCycle:
+    """The positions seen by the loads, carrying the drive's cycle (for phi-diagrams over
+    720 deg) when the PositionsResult has none."""
+
+    def __init__(self, positions, cycle: float):
+        self._p = positions
+        self.cycle = cycle
+
+    def __getattr__(self, name):
+        return getattr(self._p, name)
+
+
 def analyze_task(mech, task, positions, *, accuracy: bool = True) -> DynamicsResult:
     """The pipeline's call: kinematics.solve and loads.evaluate(inertia=False) over the
-    dynamics grid, switch angles from loads.switch_angles."""
+    dynamics grid; inserted into the grid: the switch angles of loads.switch_angles and
+    both extreme positions of the output (where stroke loads start and stop)."""
     from .. import kinematics, loads as loads_mod
     omega1 = task.drive.omega1
+    cycle = float(task.drive.cycle)
+    pos_l = positions
+    if getattr(positions, "cycle", None) in (None, 0):
+        pos_l = _WithCycle(positions, cycle)
 
     def kin_fn(phi):
         return kinematics.solve(mech, np.asarray(phi, float), omega1)
 
     def loads_fn(kin):
-        return loads_mod.evaluate(mech, task.loads, kin, positions, inertia=False)
+        return loads_mod.evaluate(mech, task.loads, kin, pos_l, inertia=False)
 
-    sw = list(loads_mod.switch_angles(mech, task.loads, positions))
+    sw = list(loads_mod.switch_angles(mech, task.loads, pos_l))
+    sw += [float(x) for x in (getattr(positions, "extreme", None) or [])]
     return analyze(mech, kin_fn, loads_fn, task.flywheel, task.drive, phi0=float(positions.phi0),
                    switch_angles=sw, accuracy=accuracy)
