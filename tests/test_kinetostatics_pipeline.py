@@ -205,3 +205,16 @@ def test_pipeline_slider_crank_matches_closed_form_kinematics():
         assert a["balancing_moment"] == pytest.approx(b["balancing_moment"], rel=1e-7, abs=1e-7)
         for k in ("R01", "R12", "R23", "R03"):
             assert a["reactions"][k]["R"] == pytest.approx(b["reactions"][k]["R"], rel=1e-7, abs=1e-7)
+
+
+def test_true_motion_with_the_flywheel_gives_the_constant_driving_moment():
+    """With omega(phi), eps(phi) of the steady motion and the flywheel's couple -J eps1 on
+    the crank, the balancing moment of a motor-driven machine must equal the constant
+    driving moment found by the dynamics stage (equation of motion <=> d'Alembert)."""
+    d = copy.deepcopy(SIX)
+    d["flywheel"] = {"delta": 0.05, "constant": "driving"}
+    d["kinetostatics"] = {"motion": True}
+    r = tmm_cli.run(d, kinematics_curve=0)
+    Mc = r["flywheel"]["M_constant"]
+    for e in r["kinetostatics"]:
+        assert e["balancing_moment"] == pytest.approx(Mc, rel=1e-5)
