@@ -445,3 +445,14 @@ def test_flywheel_size(shape):
     faster = fw.size(J, shape, 7800.0, psi, 2000.0)
     assert any("steel" in w for w in faster.warnings)
     assert fw.size(J, shape, 7800.0, psi, 1.0).warnings == []
+
+
+def test_accuracy_table_includes_the_chosen_resolution():
+    """A resolution finer than 3600 becomes the reference row; a coarse one gets a warning."""
+    r = analyze_sampler(smooth_sampler(), section(delta=0.05, resolution=5000), 10.0)
+    acc = r.accuracy
+    assert acc["reference_resolution"] == 5000 and acc["rows"][-1]["resolution"] == 5000
+    assert acc["err_J"] == 0.0
+    r = analyze_sampler(smooth_sampler(), section(delta=0.05, resolution=13), 10.0)
+    assert any(x["resolution"] == 13 for x in r.accuracy["rows"])
+    assert r.accuracy["err_J"] > 0.01 and any("resolution" in w for w in r.warnings)

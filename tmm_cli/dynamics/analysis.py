@@ -493,13 +493,9 @@ def analyze_sampler(sampler: Sampler, section, omega_m: float, *, cycle: float =
     acc = None
     if accuracy:
         acc = accuracy_table(sampler, section, omega_m, cycle, switch_q,
-                             known={resolution: c} if resolution in ACCURACY_RESOLUTIONS else None)
-        here = next((r for r in acc["rows"] if r["resolution"] == resolution), None)
-        if here is None:
-            ref = next(r for r in acc["rows"] if r["reference"])
-            err = _rel(c.J_fly[c.method], ref["J"])
-        else:
-            err = here["err_J"]
+                             resolutions=tuple(sorted(set(ACCURACY_RESOLUTIONS) | {resolution})),
+                             known={resolution: c})
+        err = next(r for r in acc["rows"] if r["resolution"] == resolution)["err_J"]
         acc["resolution"] = resolution
         acc["err_J"] = _f(err)
         if err is not None and err > 0.01 and resolution < acc["reference_resolution"]:
