@@ -26,7 +26,8 @@ def test_section_renders(tmp_path, shaper, lang, word):
     html = (tmp_path / "report.html").read_text(encoding="utf-8")
     assert 'id="kinetostatics"' in html and word in html
     assert html.count("<svg") >= 12            # a free-body figure per grid position at least
-    rows = list(csv.DictReader(open(tmp_path / "kinetostatics.csv", encoding="utf-8")))
+    with open(tmp_path / "kinetostatics.csv", encoding="utf-8") as fh:
+        rows = list(csv.DictReader(fh))
     assert len(rows) == len(r["kinetostatics"])
     for row, e in zip(rows, r["kinetostatics"]):
         assert int(row["index"]) == e["index"]
