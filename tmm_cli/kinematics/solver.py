@@ -23,7 +23,6 @@ there are the limit by continuity, taken as the mean of the values at crank angl
 from __future__ import annotations
 
 import math
-import weakref
 
 import numpy as np
 from scipy.optimize import brentq
@@ -495,20 +494,14 @@ class Solver:
 
 
 # ---------------------------------------------------------------------- cache
-_CACHE: dict[int, tuple] = {}
-
-
 def get_solver(mech: Mechanism) -> Solver:
-    key = id(mech)
-    hit = _CACHE.get(key)
-    if hit is not None and hit[0]() is mech:
-        return hit[1]
-    s = Solver(mech)
-    try:
-        ref = weakref.ref(mech, lambda _r, k=key: _CACHE.pop(k, None))
-    except TypeError:
-        return s
-    _CACHE[key] = (ref, s)
+    """The (cached) kinematic model of ``mech``: closures and paths are computed once
+    per Mechanism object (kept in its instance ``__dict__``; the Mechanism must not
+    be changed after the first solve)."""
+    s = mech.__dict__.get("_kinematics_solver")
+    if s is None:
+        s = Solver(mech)
+        mech.__dict__["_kinematics_solver"] = s
     return s
 
 
