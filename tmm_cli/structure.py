@@ -146,7 +146,7 @@ def _longest_cycle(nodes: list[int], edges: list[Joint]) -> int:
             if k in used_edges:
                 continue
             if w == start and length >= 1:
-                best = max(best, length + 1 if length + 1 >= 2 else 0)
+                best = max(best, length + 1)
             elif w not in used_nodes and w > start:
                 dfs(start, w, used_nodes | {w}, used_edges | {k}, length + 1)
 
