@@ -166,3 +166,24 @@ def test_balancing_moment_equals_constant_driving_moment(direction):
     Mb = np.array([x["balancing_moment"] for x in entries])
     sgn = 1.0 if direction == "ccw" else -1.0
     assert Mb == pytest.approx(np.full(Mb.size, sgn * r.cycle.work.M_constant), rel=1e-6, abs=1e-6)
+
+
+def test_balancing_moment_720_cycle_positions_off_zero():
+    """720-deg cycle, position 0 at phi0 = 180 deg: the reported angles 0..150 deg are read
+    as the loads module reads them (first turn), so M_b = M_constant there too."""
+    from tmm_cli import kinetostatics, loads as loads_mod, structure
+    loads = {"forces": [{"on": "slider", "diagram": {"phi": [0, 100, 180, 400, 720],
+                                                     "value": [2000, 800, 0, -300, 0]}}]}
+    task, mech, pos = slider_crank(loads, flywheel={"delta": "1/50", "constant": "resistance"},
+                                   cycle=720)
+    assert pos.phi0 == pytest.approx(180.0)
+    r = dynamics.analyze_task(mech, task, pos, accuracy=False)
+    phi = np.asarray(pos.phi, float)
+    w, e = r.motion_at(phi)
+    kin = kinematics.solve(mech, phi, w, e)
+    lds = loads_mod.evaluate(mech, task.loads, kin, pos, inertia=True)
+    st = structure.analyze(mech, task=task)
+    res = kinetostatics.analyze(mech, st, kin, lds, tmm_cli.task.KinetostaticsSection(),
+                                crank_inertia=r.J_fly)
+    Mb = np.array([x["balancing_moment"] for x in res.to_dict()["entries"]])
+    assert Mb == pytest.approx(np.full(Mb.size, r.cycle.work.M_constant), rel=1e-6, abs=1e-6)

@@ -263,6 +263,7 @@ class DynamicsResult:
     q_deg: np.ndarray
     side: np.ndarray
     sampler: Sampler | None = field(default=None, repr=False)
+    map_cycle: float | None = None   # how motion_at reads crank angles (default: the cycle)
 
     # ---- the numbers
     @property
@@ -281,12 +282,15 @@ class DynamicsResult:
 
     # ---- the steady motion at arbitrary crank angles
     def _q_of(self, phi) -> np.ndarray:
-        return np.mod(self.sign * (np.asarray(phi, float) - self.phi0), self.cycle_deg)
+        c = self.map_cycle or self.cycle_deg
+        return np.mod(self.sign * (np.asarray(phi, float) - self.phi0), c)
 
     def motion_at(self, phi) -> tuple[np.ndarray, np.ndarray]:
         """(omega1, epsilon1), signed (ccw positive), of the steady motion with the
-        chosen flywheel at absolute crank angles phi (deg; for a 720-deg cycle phi is
-        read as phi0 + rotation, mod 720).  With a sampler the reduced moment and inertia
+        chosen flywheel at absolute crank angles phi (deg), read as the rotation
+        sign*(phi - phi0) mod `map_cycle`: the cycle, or, from analyze_task, the cycle the
+        loads module uses for the same positions (360 when the positions carry none: the
+        first turn of a 720-deg cycle), so that the loads at these positions match.  With a sampler the reduced moment and inertia
         are evaluated exactly at phi (so eps satisfies the equation of motion exactly
         there and the balancing moment of kinetostatics equals the constant driving
         moment); only dT is interpolated (cubic Hermite with slope M_red)."""
@@ -573,5 +577,8 @@ def analyze_task(mech, task, positions, *, accuracy: bool = True) -> DynamicsRes
 
     sw = list(loads_mod.switch_angles(mech, task.loads, pos_l))
     sw += [float(x) for x in (getattr(positions, "extreme", None) or [])]
-    return analyze(mech, kin_fn, loads_fn, task.flywheel, task.drive, phi0=float(positions.phi0),
-                   switch_angles=sw, accuracy=accuracy)
+    res = analyze(mech, kin_fn, loads_fn, task.flywheel, task.drive, phi0=float(positions.phi0),
+                  switch_angles=sw, accuracy=accuracy)
+    # read crank angles in motion_at as loads.evaluate reads them for these positions
+    res.map_cycle = float(getattr(positions, "cycle", None) or 360.0)
+    return res
