@@ -27,7 +27,7 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.optimize import brentq
+from ..lazy import brentq
 
 from ..errors import StageError
 from ..mechanism import Mechanism

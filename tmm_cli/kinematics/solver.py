@@ -25,7 +25,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.optimize import brentq
+from ..lazy import brentq
 
 from ..errors import StageError
 from ..mechanism import Mechanism
