@@ -67,9 +67,10 @@ def print_check(rows: list[dict], source) -> None:
 
     con = _console()
     t = Table(title=f"check: {source}")
-    for c, j in (("quantity", "left"), ("student", "right"), ("reference", "right"),
+    t.add_column("quantity", overflow="fold", min_width=24)
+    for c, j in (("student", "right"), ("reference", "right"),
                  ("rel. error", "right"), ("tolerance", "right"), ("verdict", "left")):
-        t.add_column(c, justify=j)
+        t.add_column(c, justify=j, no_wrap=True)
     for r in rows:
         v = r["verdict"]
         style = {"ok": "green", "wrong": "red"}.get(v, "yellow")
