@@ -7,7 +7,7 @@ and no algorithm with the tool.
   distance equation, each slider one "pin on the guide line" equation; extra points
   of a bar are derived from its two points.  The whole system is solved by Newton's
   method (numerical Jacobian), marching from the user's assembly guess at crank angle
-  0 in 2-degree steps (so the closure is followed continuously).
+  0 in 4-degree steps (so the closure is followed continuously).
 * Velocities / accelerations: 9-point (8th order) central differences of the
   positions in the crank angle (h = 0.01 rad), times dphi/dt = +-omega1.
 * Forces: one global Newton-Euler system (3 equations per moving link, all pair
@@ -96,11 +96,11 @@ class Linkage:
         self._cache = {}
         hints = self.task["mechanism"]["assembly"]
         x0 = np.concatenate([np.array(hints[p], float) for p in self.unknown])
-        self._grid = {}  # phi (deg, int multiple of 2) -> solution
+        self._grid = {}  # phi (deg, int multiple of 4) -> solution
         x = self._newton(x0, 0.0)
         self._grid[0] = x
-        for k in range(1, 181):
-            x = self._newton(x, math.radians(2 * k))
+        for k in range(1, 91):
+            x = self._newton(x, math.radians(4 * k))
             self._grid[k] = x
 
     # --- geometry -----------------------------------------------------------
@@ -152,11 +152,12 @@ class Linkage:
         x = np.array(x, float)
         for it in range(60):
             f = self._resid(x, phi)
-            J = np.empty((len(f), len(x)))
-            for k in range(len(x)):
-                e = np.zeros_like(x)
-                e[k] = 1e-7
-                J[:, k] = (self._resid(x + e, phi) - self._resid(x - e, phi)) / 2e-7
+            if it < 2:  # then the chord method (converges fast enough from here)
+                J = np.empty((len(f), len(x)))
+                for k in range(len(x)):
+                    e = np.zeros_like(x)
+                    e[k] = 1e-7
+                    J[:, k] = (self._resid(x + e, phi) - self._resid(x - e, phi)) / 2e-7
             dx = np.linalg.solve(J, -f)
             x = x + dx
             if np.max(np.abs(dx)) < 1e-15 and it > 1:
@@ -166,7 +167,7 @@ class Linkage:
 
     def solve(self, phi_deg):
         phi_deg = float(phi_deg) % 360.0
-        k = int(round(phi_deg / 2.0)) % 180
+        k = int(round(phi_deg / 4.0)) % 90
         return self._newton(self._grid[k], math.radians(phi_deg))
 
     def state(self, phi_deg):
@@ -235,18 +236,26 @@ class Linkage:
         self._cache[key] = (pts, links)
         return pts, links
 
-    def coord(self, name, phi_deg):
-        """Output coordinate: slider displacement along its (fixed) guide, or link angle."""
-        P, ang = self.state(phi_deg)
+    def _coord_x(self, name, x, phi_deg):
+        P, ang = self._state_x(x, math.radians(phi_deg))
         l = self.links[name]
         if "points" in l:
             return math.radians(ang[name])
         T, u = self.guide_line(P, name)
         return float((P[l["slider"]] - T) @ u)
 
+    def coord(self, name, phi_deg):
+        """Output coordinate: slider displacement along its (fixed) guide, or link angle."""
+        return self._coord_x(name, self.solve(phi_deg), phi_deg)
+
     def coord_rate(self, name, phi_deg):
         """d(coord)/d(phi) by the 8th-order stencil."""
-        vals = np.array([self.coord(name, phi_deg + math.degrees(o * H)) for o in OFFS])
+        x0 = self.solve(phi_deg)
+        vals = []
+        for o in OFFS:
+            p = phi_deg + math.degrees(o * H)
+            vals.append(self._coord_x(name, self._newton(x0, math.radians(p)), p))
+        vals = np.array(vals)
         if "points" in self.links[name]:
             vals = vals[4] + np.array([math.atan2(math.sin(v - vals[4]), math.cos(v - vals[4])) for v in vals])
         return float(D1 @ vals / H)
@@ -279,7 +288,8 @@ class Linkage:
     def forces(self, phi_deg, balance=None, inertia=True, gravity=False, ext=None):
         """Newton-Euler solution at one crank angle.
 
-        ext(phi_deg, pts, links) -> list of (link name, point name, force xy, couple).
+        ext(phi_deg, pts, links) -> list of (link name, point name or (xy, vxy), force xy,
+        couple).
         Returns dict with 'Mb' (or 'Pb'), reactions {'Rij': (x, y)} and the virtual
         power value of the balancing unknown.
         """
@@ -301,7 +311,10 @@ class Linkage:
                 loads.append((n, P[S], -m * a, -J * lk[n][2], vel[S]))
         if ext:
             for (n, p, F, M) in ext(phi_deg, pts, lk):
-                loads.append((n, P[p], np.array(F, float), M, vel[p]))
+                if isinstance(p, str):
+                    loads.append((n, P[p], np.array(F, float), M, vel[p]))
+                else:  # (position, velocity) of the point of application
+                    loads.append((n, np.array(p[0], float), np.array(F, float), M, np.array(p[1], float)))
         rev, pri = self.pairs()
         nl = len(self.names)
         cols = []

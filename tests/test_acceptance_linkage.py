@@ -234,6 +234,19 @@ def slider_crank_dead_centres(r, l, through, angle):
     return wrap360(phi_far), wrap360(phi_near), float((B_far - T) @ u), float((B_near - T) @ u)
 
 
+def sc_expected(task):
+    """(phi0, phi1, working stroke angle) of a slider-crank task from the closed form."""
+    g = task["mechanism"]["links"]
+    r, l = g["crank"]["length"], g["rod"]["length"]
+    gd = g["slider"]["guide"]
+    phi_far, phi_near, s_far, s_near = slider_crank_dead_centres(r, l, gd["through"], gd["angle"])
+    fwd = task["positions"].get("working", "forward") == "forward"
+    # forward: the working stroke goes toward increasing s, so it starts at the minimum s
+    phi0, phi1 = (phi_near, phi_far) if fwd == (s_near < s_far) else (phi_far, phi_near)
+    sign = 1.0 if task["drive"].get("direction", "ccw") == "ccw" else -1.0
+    return phi0, phi1, wrap360(sign * (phi1 - phi0))
+
+
 R_SC, L_SC = 0.1, 0.4
 CENTRAL = slider_crank(R_SC, L_SC, [0, 0], 0, [0.5, 0], extra=[37.5])
 OFFSET = slider_crank(0.12, 0.42, [0, -0.04], 0, [0.5, -0.04], extra=[200.5])
@@ -287,10 +300,7 @@ def test_slider_crank_positions_and_kinematics(task):
     # the reference solver agrees with the closed form (its own check)
     assert abs(L.coord_rate("slider", phi_far)) < 1e-9 and abs(L.coord_rate("slider", phi_near)) < 1e-9
     assert L.coord("slider", phi_far) == pytest.approx(s_far, abs=1e-12)
-    fwd = task["positions"]["working"] == "forward"
-    # forward: the working stroke goes toward increasing s, so it starts at the minimum s
-    phi0, phi1 = (phi_near, phi_far) if fwd == (s_near < s_far) else (phi_far, phi_near)
-    working = wrap360(L.sign * (phi1 - phi0))
+    phi0, phi1, working = sc_expected(task)
     K = working / (360.0 - working)  # (180 + theta)/(180 - theta), theta = working - 180
     check_positions(res, phi0, phi1, working, K=K)
     check_kinematics(res, L, phi0, 12, task["positions"]["extra"], phi1=phi1)
@@ -458,7 +468,10 @@ def test_sixbar_positions_match_spec_section3(six):
 
 
 def test_sixbar_forward_starts_at_the_other_extreme():
-    res = run(sixbar(working="forward"))
+    """Defaults: output = the last link (the slider), working = forward."""
+    task = sixbar(working="forward")
+    del task["positions"]["output"], task["positions"]["working"]
+    res = run(task)
     phi_ext, phi_fold = sixbar_rocker_toggles()
     check_positions(res, phi_fold, phi_ext, wrap360(phi_ext - phi_fold))
 
@@ -469,22 +482,28 @@ def test_sixbar_kinematics(six):
     check_kinematics(res, L, phi_ext, 12, [120.686], phi1=phi_fold)
 
 
-@pytest.mark.parametrize("balance", ["crank", "rocker", "slider"])
-def test_sixbar_gravity_balance(balance):
+@pytest.mark.parametrize("balance,inertia", [
+    ("crank", False), ("rocker", False), ("slider", False), ("rod", False), ("link4", False),
+    ("crank", True), ("slider", True)])
+def test_sixbar_gravity_balance(balance, inertia):
     """Six-bar under gravity only (inertia: false).  The balancing moment on the crank,
-    then on the rocker, then a balancing force on the slider: each against the
-    reference's Newton-Euler system (itself checked by virtual work), reactions too
-    (determined uniquely).  Singular: none for the crank; the toggles for the rocker;
-    zeros of v_D for the slider (which are the same toggles here)."""
-    task = sixbar(balance=balance)
+    then on the rocker, then a balancing force on the slider (and on the couplers rod,
+    link4): each against the reference's Newton-Euler system (itself checked by virtual
+    work), reactions too (determined uniquely).  Singular: none for the crank; the
+    toggles for the rocker; zeros of v_D for the slider (the same toggles here); zeros
+    of the coupler's omega for rod / link4 (root finding)."""
+    task = sixbar(balance=balance, inertia=inertia)
     res, L = run(task), Linkage(task)
     if balance == "crank":
         sing = []
     else:
         sing = rate_roots(L, balance)
-        assert sing == pytest.approx(sorted(sixbar_rocker_toggles()), abs=1e-8)
-    ref = check_kinetostatics(res, L, balance, sing, inertia=False, gravity=True)
-    if sing:
+        if balance in ("rocker", "slider"):
+            assert sing == pytest.approx(sorted(sixbar_rocker_toggles()), abs=1e-8)
+    if balance == "rod":  # SPEC 3 quotes "singular": [120.686, 334.097] (and extra 120.686)
+        assert [round(a, 3) for a in sorted(res["singular"])] == [120.686, 334.097]
+    ref = check_kinetostatics(res, L, balance, sing, inertia=inertia, gravity=True)
+    if balance in ("rocker", "slider"):  # positions 0 and 12 are exactly singular
         check_exact_singular_not_huge(res, ref, sing)
     if balance == "crank":
         # METHODS 3: P_b = M_b / l_OA at the crank pin
@@ -504,14 +523,15 @@ def test_slider_crank_inertia_and_resistance(task):
     task["loads"] = {"forces": [{"on": "slider", "kind": "resistance", "stroke": "working", "magnitude": 2000}]}
     task["kinetostatics"] = {"inertia": True}
     res, L = run(task), Linkage(task)
-    pos = res["positions"]
-    ext = stroke_load(L, pos["phi0"], pos["working_stroke_angle"], 2000.0, "slider", +1)
+    phi0, phi1, working = sc_expected(task)
+    ext = stroke_load(L, phi0, working, 2000.0, "slider", +1)
     ref = check_kinetostatics(res, L, "crank", [], inertia=True, gravity=False, ext=ext)
     # the load really is there on the working stroke and absent on the idle stroke
     with_load = [e for e, r in ref.values() if ext(e["phi"], *L.kin(e["phi"]))]
     assert 0 < len(with_load) < len(ref)
-    # position 0 carries the working-stroke load (SPEC loads)
-    assert ext(pos["phi0"], *L.kin(pos["phi0"]))
+    # position 0 carries the working-stroke load, the second extreme does not (SPEC loads)
+    assert ext(phi0, *L.kin(phi0)) and not ext(phi1, *L.kin(phi1))
+    assert any(abs(angdiff(e["phi"], phi1)) < DEG_TOL for e, r in ref.values())
 
 
 def test_slider_crank_balance_on_coupler():
@@ -523,8 +543,8 @@ def test_slider_crank_balance_on_coupler():
                      "forces": [{"on": "slider", "kind": "resistance", "stroke": "working", "magnitude": 2000}]}
     task["kinetostatics"] = {"inertia": True, "balance": "rod"}
     res, L = run(task), Linkage(task)
-    pos = res["positions"]
-    ext = stroke_load(L, pos["phi0"], pos["working_stroke_angle"], 2000.0, "slider", +1)
+    phi0, _, working = sc_expected(task)
+    ext = stroke_load(L, phi0, working, 2000.0, "slider", +1)
     ref = check_kinetostatics(res, L, "rod", [90.0, 270.0], inertia=True, gravity=True, ext=ext)
     check_exact_singular_not_huge(res, ref, [90.0, 270.0])
 
@@ -537,10 +557,9 @@ def test_slider_crank_resistance_diagram_vs_relative_stroke():
     task["loads"] = {"forces": [{"on": "slider", "kind": "resistance", "stroke": "working", "diagram": diag}]}
     task["kinetostatics"] = {"inertia": True}
     res, L = run(task), Linkage(task)
-    pos = res["positions"]
-    phi0, work = pos["phi0"], pos["working_stroke_angle"]
+    phi0, phi1, work = sc_expected(task)
     s0 = L.coord("slider", phi0)
-    Hs = abs(L.coord("slider", pos["extreme"][1]) - s0)
+    Hs = abs(L.coord("slider", phi1) - s0)
 
     def ext(phi, pts, lk):
         d = wrap360(L.sign * (phi - phi0))
@@ -552,6 +571,50 @@ def test_slider_crank_resistance_diagram_vs_relative_stroke():
         return [("slider", "B", np.array([-np.interp(srel, diag["s"], diag["value"]), 0.0]), 0.0)]
 
     check_kinetostatics(res, L, "crank", [], inertia=True, ext=ext)
+
+
+def test_force_on_a_bar_with_direction_and_point_and_a_couple():
+    """A force on a bar link: constant phi-diagram, `direction` 100 deg, applied at local
+    [u, v] = [0.1, 0.02] of the rod; a constant couple of 10 N*m (ccw) on the rod on both
+    strokes.  Extra angles outside [0, 360) are reported wrapped (SPEC: all angles in
+    results are in [0, 360))."""
+    task = slider_crank(0.1, 0.4, [0, 0], 0, [0.5, 0], masses=True, extra=[-30.0, 370.0])
+    task["loads"] = {"gravity": True, "forces": [
+        {"on": "rod", "diagram": {"phi": [0, 360], "value": [150, 150]}, "direction": 100, "at": [0.1, 0.02]},
+        {"on": "rod", "moment": 10, "stroke": "both"}]}
+    task["kinetostatics"] = {"inertia": True}
+    res, L = run(task), Linkage(task)
+    assert [round(e["phi"], 9) for e in res["kinematics"] if e["index"] in (12, 13)] == [330.0, 10.0]
+    F = 150.0 * np.array([math.cos(math.radians(100)), math.sin(math.radians(100))])
+
+    def ext(phi, pts, lk):
+        A, B = np.array(pts["A"][:2]), np.array(pts["B"][:2])
+        u = (B - A) / np.hypot(*(B - A))
+        p = A + 0.1 * u + 0.02 * np.array([-u[1], u[0]])
+        w = lk["rod"][1]
+        v = np.array(pts["A"][2:4]) + w * np.array([-(p - A)[1], (p - A)[0]])
+        return [("rod", (p, v), F, 10.0)]
+
+    check_kinetostatics(res, L, "crank", [], inertia=True, gravity=True, ext=ext)
+
+
+def test_links_numbered_in_the_order_listed():
+    """SPEC: links are numbered 1..n in the order listed, whatever the drive link; R<i><j>
+    and S<i> follow that numbering (here slider = 1, rod = 2, crank = 3)."""
+    base = slider_crank(0.12, 0.42, [0, -0.04], 0, [0.5, -0.04], masses=True, extra=[95.0])
+    lk = base["mechanism"]["links"]
+    base["mechanism"]["links"] = {"slider": lk["slider"], "rod": lk["rod"], "crank": lk["crank"]}
+    base["loads"] = {"gravity": True, "forces": [
+        {"on": "slider", "kind": "resistance", "stroke": "working", "magnitude": 900}]}
+    base["kinetostatics"] = {"inertia": True}
+    res, L = run(base), Linkage(base)
+    assert L.names == ["slider", "rod", "crank"]
+    phi0, phi1, working = sc_expected(base)
+    check_positions(res, phi0, phi1, working)
+    ext = stroke_load(L, phi0, working, 900.0, "slider", +1)
+    ref = check_kinetostatics(res, L, "crank", [], inertia=True, gravity=True, ext=ext)
+    assert set(next(iter(ref.values()))[1]["reactions"]) == {"R01", "R03", "R12", "R23"}
+    check_kinematics(res, L, phi0, 12, [95.0], phi1=phi1)
 
 
 # ---------------------------------------------------------------------------------
@@ -601,11 +664,56 @@ def test_shaper_positions_and_kinematics():
         assert e["links"]["block"]["omega"] == pytest.approx(e["links"]["lever"]["omega"], abs=1e-9)
 
 
+@pytest.mark.parametrize("guide", [{"offset": 0.02}, {"offset": -0.015}, {"angle": 3.0}],
+                         ids=["offset_left", "offset_right", "turned"])
+def test_shaper_moving_guide_offset_and_angle(guide):
+    """SPEC: moving guide with `offset` (perpendicular; positive to the left of P->Q like
+    the local v axis) or `angle` (relative, deg; the line through P turned ccw)."""
+    task = shaper(kinetostatics=True)
+    task["mechanism"]["links"]["block"]["guide"].update(guide)
+    res, L = run(task), Linkage(task)
+    roots = rate_roots(L, "ram")
+    assert len(roots) == 2
+    s = [L.coord("ram", p) for p in roots]
+    phi0, phi1 = (roots[0], roots[1]) if s[0] > s[1] else (roots[1], roots[0])  # backward
+    working = wrap360(phi1 - phi0)
+    check_positions(res, phi0, phi1, working, K=working / (360 - working))
+    check_kinematics(res, L, phi0, 12, [100.0], phi1=phi1)
+    ext = stroke_load(L, phi0, working, 1500.0, "ram", -1)
+    check_kinetostatics(res, L, "crank", [], inertia=True, gravity=True, ext=ext)
+
+
+def test_inverted_slider_crank_PRR():
+    """Rotating guide on the crank itself (block slides along O->A), rod O3-B: a PRR dyad.
+    Position 0 given as a crank angle (`zero: 15`), 8 positions, speed as a number (rad/s)."""
+    task = {
+        "schema": "tmm/1",
+        "mechanism": {
+            "ground": {"O": [0, 0], "O3": [0.1, 0.0]},
+            "links": {
+                "crank": {"points": ["O", "A"], "length": 0.12, "mass": 1.0, "J": 0.002},
+                "block": {"slider": "B", "guide": {"link": "crank"}, "mass": 0.4, "J": 0.0001},
+                "rod": {"points": ["O3", "B"], "length": 0.25, "mass": 1.1, "J": 0.006},
+            },
+            "assembly": {"B": [0.35, 0.0]},
+        },
+        "drive": {"link": "crank", "speed": 15.0, "direction": "ccw"},  # rad/s
+        "positions": {"zero": 15, "count": 8, "extra": [77.0]},
+        "loads": {"gravity": True},
+        "kinetostatics": {"inertia": True},
+    }
+    res, L = run(task), Linkage(task)
+    assert [g["type"] for g in res["structure"]["groups"]] == ["PRR"]
+    close_deg(res["positions"]["phi0"], 15.0)
+    check_kinematics(res, L, 15.0, 8, [77.0])
+    check_kinetostatics(res, L, "crank", [], inertia=True, gravity=True)
+
+
 def test_shaper_kinetostatics():
     task = shaper(kinetostatics=True)
     res, L = run(task), Linkage(task)
-    pos = res["positions"]
-    ext = stroke_load(L, pos["phi0"], pos["working_stroke_angle"], 1500.0, "ram", -1)
+    beta = math.degrees(math.asin(R_SH / D_SH))
+    ext = stroke_load(L, 360.0 - beta, 180.0 + 2 * beta, 1500.0, "ram", -1)
     check_kinetostatics(res, L, "crank", [], inertia=True, gravity=True, ext=ext)
 
 
@@ -652,3 +760,17 @@ def test_class3_kinetostatics():
     task = triad(kinetostatics=True)
     res, L = run(task), Linkage(task)
     check_kinetostatics(res, L, "crank", [], inertia=True, gravity=True)
+
+
+def test_kinetostatics_positions_list():
+    """`kinetostatics.positions` as a list of position numbers: only those entries."""
+    task = triad(kinetostatics=True)
+    task["kinetostatics"]["positions"] = [0, 3, 7, 12]
+    res, L = run(task), Linkage(task)
+    ks = res["kinetostatics"]
+    assert [e["index"] for e in ks] == [0, 3, 7, 12]
+    kin = by_index(res["kinematics"])
+    for e in ks:
+        close_deg(e["phi"], kin[e["index"]]["phi"])
+        r = L.forces(e["phi"], inertia=True, gravity=True)
+        close(e["balancing_moment"], r["bal"], 1.0, f"kinetostatics[{e['index']}].balancing_moment")
