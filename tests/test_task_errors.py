@@ -127,3 +127,36 @@ def test_force_on_key_parses(tmp_path):
         "loads": {"forces": [{"on": "slider", "kind": "resistance", "magnitude": "3 kN"}]}})
     assert t.loads.forces[0].on == "slider"
     assert t.loads.forces[0].magnitude == 3000.0
+
+
+FOURBAR = """\
+schema: tmm/1
+mechanism:
+  ground: {O: [0, 0], C: [0.3, 0]}
+  links:
+    crank: {points: [O, A], length: 0.1}
+    rod: {points: [A, B], length: 0.3}
+    rocker: {points: [C, B], length: 0.2}
+drive: {link: crank, speed: 10}
+"""
+
+
+@pytest.mark.parametrize("desc,text,line,frags", [
+    # a brace A-C makes the four-bar rigid: n = 4, p5 = 6 -> W = 3*4 - 2*6 = 0
+    ("W = 0", FOURBAR.replace("drive:", "    brace: {points: [A, C], length: 0.25}\ndrive:"), 2,
+     ["field 'mechanism'", "W = 0", "3*4 - 2*6"]),
+    # a five-bar O-A-B-D-C: n = 4, p5 = 5 -> W = 2
+    ("W = 2", FOURBAR.replace("rocker: {points: [C, B], length: 0.2}",
+                              "rod2: {points: [B, D], length: 0.3}\n    rocker: {points: [C, D], length: 0.2}")
+     .replace("C: [0.3, 0]", "C: [0.5, 0]"), 2, ["W = 2", "needs 2 inputs"]),
+    # |OC| = 1 m but rod + rocker = 0.4 m and crank 0.1 m: no crank angle assembles
+    ("impossible dimensions", FOURBAR.replace("C: [0.3, 0]", "C: [1.0, 0]"), 6,
+     ["mechanism.links.rod", "impossible dimensions", "cannot reach"]),
+], ids=["W=0", "W=2", "never assembles"])
+def test_infeasible_linkage_is_invalid(tmp_path, desc, text, line, frags):
+    res, f = _validate(tmp_path, text)
+    assert res.exit_code == 2, res.output
+    assert f"{f}:{line}:" in res.output
+    for fr in frags:
+        assert fr in res.output, (fr, res.output)
+    assert "Traceback" not in res.output

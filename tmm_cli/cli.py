@@ -232,10 +232,18 @@ def new(kind: str = typer.Argument(..., metavar="KIND", help="linkage | cam | ge
 
 def main() -> None:
     try:
-        app()
+        app(standalone_mode=True)
     except KeyboardInterrupt:
         _err("interrupted")
         sys.exit(130)
+    except SystemExit:
+        raise
+    except Exception as exc:  # a defect of ours: say so plainly, still no traceback
+        _err(f"error: internal error ({type(exc).__name__}: {exc}); please report it with the task file. "
+             f"Run `python -m tmm_cli ...` with TMM_DEBUG=1 for the traceback.")
+        if __import__("os").environ.get("TMM_DEBUG"):
+            raise
+        sys.exit(EXIT_STAGE)
 
 
 if __name__ == "__main__":

@@ -94,6 +94,11 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int) -> No
     warnings.extend(getattr(st, "warnings", []) or [])
 
     say("positions")
+    from .validation import impossible_dimensions
+    try:
+        kinematics.check_assembly(mech)
+    except StageError as err:
+        raise impossible_dimensions(task, err) or err
     pos_section = task.positions or PositionsSection()
     extra_added: list[float] = []
     if task.loads is not None:

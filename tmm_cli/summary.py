@@ -67,10 +67,11 @@ def print_check(rows: list[dict], source) -> None:
 
     con = _console()
     t = Table(title=f"check: {source}")
-    t.add_column("quantity", overflow="fold", min_width=24)
+    t.add_column("quantity", overflow="fold", min_width=16)
     for c, j in (("student", "right"), ("reference", "right"),
-                 ("rel. error", "right"), ("tolerance", "right"), ("verdict", "left")):
+                 ("rel. error", "right"), ("tolerance", "right")):
         t.add_column(c, justify=j, no_wrap=True)
+    t.add_column("verdict", overflow="fold", min_width=7)
     for r in rows:
         v = r["verdict"]
         style = {"ok": "green", "wrong": "red"}.get(v, "yellow")

@@ -477,8 +477,10 @@ class Solver:
         grp = self.groups[gi]
         pos = float(np.mod(bad_deg[0], 360.0))
         if whole:
-            return StageError("kinematics", f"{grp.describe()} does not assemble at any crank angle",
-                              position=pos)
+            err = StageError("kinematics", f"{grp.describe()} does not assemble at any crank angle",
+                             position=pos)
+            err.never_assembles = [self.mech.link(i).name for i in grp.links_sorted]
+            return err
         try:
             iv = self.bad_intervals(gi)
         except StageError:
@@ -489,8 +491,12 @@ class Solver:
         mid_deg = iv[0][0] + ((iv[0][1] - iv[0][0]) % 360.0) / 2
         reason = self._reason(gi, mid_deg % 360.0)
         ivs = ", ".join(f"{a:.6f}..{b:.6f}" for a, b in iv)
-        return StageError("kinematics", f"{grp.describe()} does not assemble for crank angles {ivs} deg: "
-                                        f"{reason}", position=pos)
+        err = StageError("kinematics", f"{grp.describe()} does not assemble for crank angles {ivs} deg: "
+                                       f"{reason}", position=pos)
+        if sum((b - a) % 360.0 or (360.0 if b > a else 0.0) for a, b in iv) >= 360.0 - 1e-6:
+            # no crank angle at all: the dimensions are impossible, an invalid task
+            err.never_assembles = [self.mech.link(i).name for i in grp.links_sorted]
+        return err
 
 
 # ---------------------------------------------------------------------- cache
