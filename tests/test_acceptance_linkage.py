@@ -40,6 +40,17 @@ def run(task):
     return tmm_cli.run(tmm_cli.load_task(copy.deepcopy(task)))
 
 
+_REFS = {}
+
+
+def ref_linkage(task):
+    """The independent reference for a task (cached by mechanism and drive)."""
+    key = json.dumps([task["mechanism"], task["drive"]])  # link order matters
+    if key not in _REFS:
+        _REFS[key] = Linkage(copy.deepcopy(task))
+    return _REFS[key]
+
+
 def by_index(entries):
     return {e["index"]: e for e in entries}
 
@@ -256,7 +267,7 @@ INCLINED = slider_crank(0.1, 0.35, [0.02, 0.03], 150, [-0.3, 0.2], working="back
 
 @pytest.fixture(scope="module")
 def central():
-    return run(CENTRAL), Linkage(CENTRAL)
+    return run(CENTRAL), ref_linkage(CENTRAL)
 
 
 def test_central_slider_crank_structure(central):
@@ -292,7 +303,7 @@ def test_central_slider_crank_kinematics(central):
 
 @pytest.mark.parametrize("task", [OFFSET, OFFSET_CW, INCLINED], ids=["offset", "offset_cw", "inclined_backward"])
 def test_slider_crank_positions_and_kinematics(task):
-    res, L = run(task), Linkage(task)
+    res, L = run(task), ref_linkage(task)
     g = task["mechanism"]["links"]
     r, l = g["crank"]["length"], g["rod"]["length"]
     gd = g["slider"]["guide"]
@@ -357,16 +368,19 @@ def fourbar_toggles():
     return phi_ext, phi_fold, psi_ext, psi_fold
 
 
-@pytest.mark.parametrize("direction", ["ccw", "cw"])
-def test_fourbar_positions_and_kinematics(direction):
+@pytest.mark.parametrize("direction,working", [("ccw", "forward"), ("cw", "forward"), ("ccw", "backward")])
+def test_fourbar_positions_and_kinematics(direction, working):
     task = fourbar(direction)
-    res, L = run(task), Linkage(task)
+    task["positions"]["working"] = working
+    res, L = run(task), ref_linkage(task)
     assert res["structure"]["groups"][0]["type"] == "RRR"
     phi_ext, phi_fold, psi_ext, psi_fold = fourbar_toggles()
     # own check: the reference solver is on that closure and agrees with the cosine rule
     assert sorted(rate_roots(L, "rocker")) == pytest.approx(sorted([phi_ext, phi_fold]), abs=1e-8)
     # forward = rocker turning ccw: the stroke starts at the clockwise-most rocker angle
     phi0, phi1 = (phi_fold, phi_ext) if angdiff(psi_ext, psi_fold) > 0 else (phi_ext, phi_fold)
+    if working == "backward":
+        phi0, phi1 = phi1, phi0
     working = wrap360(L.sign * (phi1 - phi0))
     check_positions(res, phi0, phi1, working, K=working / (360 - working))
     check_kinematics(res, L, phi0, 12, [50.0], phi1=phi1)
@@ -380,7 +394,7 @@ def test_fourbar_balance_on_rocker_singular_angles():
     phi_ext, phi_fold, _, _ = fourbar_toggles()
     extra = [phi_ext + 0.5, phi_fold - 0.6, phi_ext - 1.5, 50.0]
     task = fourbar(balance="rocker", extra=extra)
-    res, L = run(task), Linkage(task)
+    res, L = run(task), ref_linkage(task)
     ref = check_kinetostatics(res, L, "rocker", [phi_ext, phi_fold], inertia=True, gravity=True)
     flagged = {e["index"] for e in res["kinetostatics"] if e.get("near_singular")}
     assert {12, 13} <= flagged and 14 not in flagged and {12, 13, 14} <= set(ref)
@@ -404,7 +418,7 @@ def check_exact_singular_not_huge(res, ref, singular):
 # ---------------------------------------------------------------------------------
 # SPEC's six-bar (section 1 mechanism, section 3 positions)
 # ---------------------------------------------------------------------------------
-def sixbar(balance=None, inertia=False, working="backward", hint_B=(0.9, 0.6)):
+def sixbar(balance=None, inertia=False, working="backward", hint_B=(0.9, 0.6), hint_D=(0.5, 1.4)):
     t = {
         "schema": "tmm/1",
         "mechanism": {
@@ -416,7 +430,7 @@ def sixbar(balance=None, inertia=False, working="backward", hint_B=(0.9, 0.6)):
                 "link4": {"points": ["K", "D"], "length": 0.86},
                 "slider": {"slider": "D", "guide": {"through": "O1", "angle": 90}, "mass": 20},
             },
-            "assembly": {"B": list(hint_B), "D": [0.5, 1.4]},
+            "assembly": {"B": list(hint_B), "D": list(hint_D)},
         },
         "drive": {"link": "crank", "speed": "50 rpm", "direction": "ccw"},
         "positions": {"output": "slider", "working": working, "extra": [120.686]},
@@ -439,7 +453,7 @@ def sixbar_rocker_toggles():
 
 @pytest.fixture(scope="module")
 def six():
-    return run(sixbar()), Linkage(sixbar())
+    return run(sixbar()), ref_linkage(sixbar())
 
 
 def test_sixbar_structure(six):
@@ -482,6 +496,27 @@ def test_sixbar_kinematics(six):
     check_kinematics(res, L, phi_ext, 12, [120.686], phi1=phi_fold)
 
 
+def test_sixbar_other_closures():
+    """The hint picks the closure of each group: D below K, and B on the other side (the
+    rocker toggles mirrored about O-O1)."""
+    task = sixbar(hint_D=(0.5, -0.4))
+    res, L = run(task), ref_linkage(task)
+    phi_ext, phi_fold = sixbar_rocker_toggles()
+    assert L.state(0.0)[0]["D"][1] < 0
+    check_positions(res, phi_ext, phi_fold, phi_fold - phi_ext)
+    check_kinematics(res, L, phi_ext, 12, [120.686], phi1=phi_fold)
+    task = sixbar(hint_B=(0.0, 0.8), working="forward")
+    res, L = run(task), ref_linkage(task)
+    th = math.degrees(math.atan2(0.37, 0.5))
+    m_ext, m_fold = wrap360(2 * th - phi_ext), wrap360(2 * th - phi_fold)  # mirror images
+    roots = rate_roots(L, "slider")
+    assert roots == pytest.approx(sorted([m_ext, m_fold]), abs=1e-8)
+    lo = m_ext if L.coord("slider", m_ext) < L.coord("slider", m_fold) else m_fold
+    hi = m_fold if lo == m_ext else m_ext
+    check_positions(res, lo, hi, wrap360(hi - lo))
+    check_kinematics(res, L, lo, 12, [120.686], phi1=hi)
+
+
 @pytest.mark.parametrize("balance,inertia", [
     ("crank", False), ("rocker", False), ("slider", False), ("rod", False), ("link4", False),
     ("crank", True), ("slider", True)])
@@ -493,7 +528,7 @@ def test_sixbar_gravity_balance(balance, inertia):
     toggles for the rocker; zeros of v_D for the slider (the same toggles here); zeros
     of the coupler's omega for rod / link4 (root finding)."""
     task = sixbar(balance=balance, inertia=inertia)
-    res, L = run(task), Linkage(task)
+    res, L = run(task), ref_linkage(task)
     if balance == "crank":
         sing = []
     else:
@@ -522,7 +557,7 @@ def test_slider_crank_inertia_and_resistance(task):
     task = copy.deepcopy(task)
     task["loads"] = {"forces": [{"on": "slider", "kind": "resistance", "stroke": "working", "magnitude": 2000}]}
     task["kinetostatics"] = {"inertia": True}
-    res, L = run(task), Linkage(task)
+    res, L = run(task), ref_linkage(task)
     phi0, phi1, working = sc_expected(task)
     ext = stroke_load(L, phi0, working, 2000.0, "slider", +1)
     ref = check_kinetostatics(res, L, "crank", [], inertia=True, gravity=False, ext=ext)
@@ -542,7 +577,7 @@ def test_slider_crank_balance_on_coupler():
     task["loads"] = {"gravity": True,
                      "forces": [{"on": "slider", "kind": "resistance", "stroke": "working", "magnitude": 2000}]}
     task["kinetostatics"] = {"inertia": True, "balance": "rod"}
-    res, L = run(task), Linkage(task)
+    res, L = run(task), ref_linkage(task)
     phi0, _, working = sc_expected(task)
     ext = stroke_load(L, phi0, working, 2000.0, "slider", +1)
     ref = check_kinetostatics(res, L, "rod", [90.0, 270.0], inertia=True, gravity=True, ext=ext)
@@ -556,7 +591,7 @@ def test_slider_crank_resistance_diagram_vs_relative_stroke():
     diag = {"s": [0, 0.3, 0.7, 1], "value": [0, 2500, 2500, 400]}
     task["loads"] = {"forces": [{"on": "slider", "kind": "resistance", "stroke": "working", "diagram": diag}]}
     task["kinetostatics"] = {"inertia": True}
-    res, L = run(task), Linkage(task)
+    res, L = run(task), ref_linkage(task)
     phi0, phi1, work = sc_expected(task)
     s0 = L.coord("slider", phi0)
     Hs = abs(L.coord("slider", phi1) - s0)
@@ -583,7 +618,7 @@ def test_force_on_a_bar_with_direction_and_point_and_a_couple():
         {"on": "rod", "diagram": {"phi": [0, 360], "value": [150, 150]}, "direction": 100, "at": [0.1, 0.02]},
         {"on": "rod", "moment": 10, "stroke": "both"}]}
     task["kinetostatics"] = {"inertia": True}
-    res, L = run(task), Linkage(task)
+    res, L = run(task), ref_linkage(task)
     assert [round(e["phi"], 9) for e in res["kinematics"] if e["index"] in (12, 13)] == [330.0, 10.0]
     F = 150.0 * np.array([math.cos(math.radians(100)), math.sin(math.radians(100))])
 
@@ -607,7 +642,7 @@ def test_links_numbered_in_the_order_listed():
     base["loads"] = {"gravity": True, "forces": [
         {"on": "slider", "kind": "resistance", "stroke": "working", "magnitude": 900}]}
     base["kinetostatics"] = {"inertia": True}
-    res, L = run(base), Linkage(base)
+    res, L = run(base), ref_linkage(base)
     assert L.names == ["slider", "rod", "crank"]
     phi0, phi1, working = sc_expected(base)
     check_positions(res, phi0, phi1, working)
@@ -651,7 +686,7 @@ def test_shaper_positions_and_kinematics():
     """Slotted lever extremes: the lever is tangent to the crank circle, sin(beta) = r/d;
     ccw crank, the long (slow) stroke from phi = -beta to 180 + beta moves the ram to -x."""
     task = shaper()
-    res, L = run(task), Linkage(task)
+    res, L = run(task), ref_linkage(task)
     types = [g["type"] for g in res["structure"]["groups"]]
     assert types == ["RPR", "RRP"]
     beta = math.degrees(math.asin(R_SH / D_SH))
@@ -671,7 +706,7 @@ def test_shaper_moving_guide_offset_and_angle(guide):
     the local v axis) or `angle` (relative, deg; the line through P turned ccw)."""
     task = shaper(kinetostatics=True)
     task["mechanism"]["links"]["block"]["guide"].update(guide)
-    res, L = run(task), Linkage(task)
+    res, L = run(task), ref_linkage(task)
     roots = rate_roots(L, "ram")
     assert len(roots) == 2
     s = [L.coord("ram", p) for p in roots]
@@ -702,7 +737,7 @@ def test_inverted_slider_crank_PRR():
         "loads": {"gravity": True},
         "kinetostatics": {"inertia": True},
     }
-    res, L = run(task), Linkage(task)
+    res, L = run(task), ref_linkage(task)
     assert [g["type"] for g in res["structure"]["groups"]] == ["PRR"]
     close_deg(res["positions"]["phi0"], 15.0)
     check_kinematics(res, L, 15.0, 8, [77.0])
@@ -711,7 +746,7 @@ def test_inverted_slider_crank_PRR():
 
 def test_shaper_kinetostatics():
     task = shaper(kinetostatics=True)
-    res, L = run(task), Linkage(task)
+    res, L = run(task), ref_linkage(task)
     beta = math.degrees(math.asin(R_SH / D_SH))
     ext = stroke_load(L, 360.0 - beta, 180.0 + 2 * beta, 1500.0, "ram", -1)
     check_kinetostatics(res, L, "crank", [], inertia=True, gravity=True, ext=ext)
@@ -746,7 +781,7 @@ def triad(kinetostatics=False):
 
 def test_class3_structure_and_kinematics():
     task = triad()
-    res, L = run(task), Linkage(task)
+    res, L = run(task), ref_linkage(task)
     st = res["structure"]
     assert (st["n"], st["p5"], st["W"], st["class"]) == (5, 7, 1, 3)
     assert len(st["groups"]) == 1
@@ -758,7 +793,7 @@ def test_class3_structure_and_kinematics():
 
 def test_class3_kinetostatics():
     task = triad(kinetostatics=True)
-    res, L = run(task), Linkage(task)
+    res, L = run(task), ref_linkage(task)
     check_kinetostatics(res, L, "crank", [], inertia=True, gravity=True)
 
 
@@ -766,7 +801,7 @@ def test_kinetostatics_positions_list():
     """`kinetostatics.positions` as a list of position numbers: only those entries."""
     task = triad(kinetostatics=True)
     task["kinetostatics"]["positions"] = [0, 3, 7, 12]
-    res, L = run(task), Linkage(task)
+    res, L = run(task), ref_linkage(task)
     ks = res["kinetostatics"]
     assert [e["index"] for e in ks] == [0, 3, 7, 12]
     kin = by_index(res["kinematics"])
