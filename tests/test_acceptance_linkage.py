@@ -296,8 +296,7 @@ def test_central_slider_crank_kinematics(central):
         dx = -R_SC * s - R_SC**2 * s * c / root
         close(e["points"]["B"]["x"], x, 1.0, "x_B closed form")
         close(e["points"]["B"]["vx"], w * dx, 1.0, "v_B closed form")
-        close(e["links"]["slider"]["angle"] if e["links"]["slider"]["angle"] < 180 else
-              e["links"]["slider"]["angle"] - 360, 0.0, 1.0, "slider angle = guide angle")
+        close_deg(e["links"]["slider"]["angle"], 0.0, "slider angle = guide angle")
         assert e["links"]["slider"]["omega"] == pytest.approx(0.0, abs=1e-12)
 
 
