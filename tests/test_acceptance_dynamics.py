@@ -473,6 +473,15 @@ def test_engine_flywheel_720_cycle():
     check_flywheel(fw, exp, ref["J_const"], om, d, ref["M_c"], 5e-5)
     got = achieved_delta(ref["dT"], ref["Jvar"], ref["J_const"] + fw["J_energy_mass"], om)
     assert got == pytest.approx(d, rel=5e-5)
+    # the default resolution (360 positions over the 720-deg cycle): the 1e-3 acceptance,
+    # and the delta the tool's flywheel really gives (own integration) within 1e-3 too
+    task = copy.deepcopy(ENGINE)
+    del task["flywheel"]["resolution"]
+    fw = run(task)["flywheel"]
+    assert fw["J_energy_mass"] == pytest.approx(exp["J_fly"], rel=1e-3)
+    assert fw["J_merzalov"] == pytest.approx(exp["J_merz"], rel=1e-3)
+    got = achieved_delta(ref["dT"], ref["Jvar"], ref["J_const"] + fw["J_energy_mass"], om)
+    assert got == pytest.approx(d, rel=1e-3)
 
 
 # --------------------------------------------------------------------------------------
