@@ -275,16 +275,35 @@ def test_plan_segments_closed_form(results, task, i):
     assert abs(float(t_vec @ ab)) <= 1e-9 * (1 + np.linalg.norm(t_vec))
 
 
-def test_angular_sense_words(html_ru):
+def _table_after(html, heading):
+    """The rows (lists of cell texts) of the first table after `heading`."""
+    part = html.split(heading, 1)[1].split("</table>", 1)[0]
+    rows = []
+    for tr in re.findall(r"<tr>(.*?)</tr>", part, re.S):
+        rows.append([re.sub(r"<[^>]+>", "", c).strip() for c in re.findall(r"<t[dh][^>]*>(.*?)</t[dh]>", tr, re.S)])
+    return rows
+
+
+def test_angular_sense_marks(html_ru):
+    """omega and epsilon of the rod in the summary tables: value of the closed form and
+    its sense (↺ ccw for positive, ↻ cw for negative), explained in words below."""
     html = html_ru
+    w_rows = _table_after(html, "Угловые скорости звеньев, рад/с")
+    e_rows = _table_after(html, "Угловые ускорения звеньев, рад/с²")
+    hdr = w_rows[0]
+    col = hdr.index("2 (rod)")
+    assert "3 (slider)" not in hdr            # a slider on a fixed guide does not turn
+    for wr, er in zip(w_rows[1:], e_rows[1:]):
+        s = slider_crank_state(float(wr[1]))
+        for txt, x in ((wr[col], s["db"]), (er[col], s["ddb"])):
+            assert txt.split()[0] == fmt(x)
+            if abs(x) > 1e-9:
+                assert txt.endswith("↺" if x > 0 else "↻")
+            else:                                   # a dead centre: no sense
+                assert txt == fmt(x)
     # position 1: phi = 210 deg, omega2 = -r w cos(210)/(l cos beta) > 0 -> ccw
-    s = slider_crank_state(210.0)
-    assert s["db"] > 0
-    block = html.split("Положение 1, φ = 210.00°")[1].split("Положение 2,")[0]
-    row = block.split("2 (rod)")[1].split("</tr>")[0]
-    assert fmt(s["db"]) in row and "против часовой стрелки" in row
-    # epsilon2 at 210 deg: sign by the closed form
-    assert ("по часовой стрелке" if s["ddb"] < 0 else "против часовой стрелки") in row.split(fmt(s["db"]))[1]
+    assert slider_crank_state(210.0)["db"] > 0 and w_rows[2][col].endswith("↺")
+    assert "↺ — против часовой стрелки" in html and "↻ — по часовой стрелке" in html
 
 
 def test_coriolis_slotted_lever():

@@ -52,7 +52,7 @@ from . import sections as _sections
 __all__ = ["render", "render_html", "make_env"]
 
 
-_NUM = re.compile(r"^[−+-]?(\d+(\.\d*)?|\.\d+)([eE][−+-]?\d+)?$")
+_NUM = re.compile(r"^[−+-]?(\d+(\.\d*)?|\.\d+)([eE][−+-]?\d+)?( [↺↻])?$")
 
 
 def _is_numeric(value) -> bool:
@@ -89,7 +89,9 @@ def render_html(results: dict, task, out_dir: Path, lang: str = "en") -> tuple[s
     for name, mod in _sections.available():
         frag = mod.build(ctx)
         if frag:
-            parts.append({"name": name, "html": Markup(frag)})
+            m = _H2.search(frag)
+            head = re.sub(r"<[^>]+>", "", m.group(1)).strip() if m else ctx.t(f"{name}.title")
+            parts.append({"name": name, "html": Markup(frag), "title": Markup(head)})
     css_path = templates_dir() / "base.css"
     css = css_path.read_text(encoding="utf-8") if css_path.exists() else ""
     title = getattr(task, "title", None) if task is not None else None
@@ -101,6 +103,7 @@ def render_html(results: dict, task, out_dir: Path, lang: str = "en") -> tuple[s
     return html, ctx
 
 
+_H2 = re.compile(r"<h2\b[^>]*>(.*?)</h2>", re.S)
 _SVG = re.compile(r"<svg\b.*?</svg>", re.S)
 _W = re.compile(r'\bwidth="([0-9.]+)pt"')
 

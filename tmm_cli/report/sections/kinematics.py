@@ -20,16 +20,20 @@ from markupsafe import Markup
 from ..plans import build_plan, crank_pin, geometry, plan_label, scales
 
 I18N = {
-    "en": {"kin.unit_v": "(m/s)/mm", "kin.unit_a": "(m/s²)/mm", "kin.unit_l": "m/mm",
+    "en": {"kin.si_v": "m/s", "kin.si_a": "m/s²", "kin.mm": "mm", "kin.unit_v": "(m/s)/mm", "kin.unit_a": "(m/s²)/mm", "kin.unit_l": "m/mm",
            "kin.plan_axis": "mm on the plan", "kin.output": "Output link",
            "kin.s_unit": "s, m", "kin.v_unit": "v, m/s", "kin.a_unit": "a, m/s²",
            "kin.psi_unit": "ψ, deg", "kin.w_unit": "ω, rad/s", "kin.e_unit": "ε, rad/s²",
-           "kin.formula_w": "ω = v_rel / l", "kin.csv_note": "All numbers: kinematics.csv, plans.csv."},
-    "ru": {"kin.unit_v": "м/(с·мм)", "kin.unit_a": "м/(с²·мм)", "kin.unit_l": "м/мм",
+           "kin.formula_w": "ω = v_rel / l",
+           "kin.sense_note": "↺ counter-clockwise (positive), ↻ clockwise (negative).",
+           "kin.table_angles": "Angles of the links, ° (from the x axis, counter-clockwise)", "kin.csv_note": "All numbers: kinematics.csv, plans.csv."},
+    "ru": {"kin.si_v": "м/с", "kin.si_a": "м/с²", "kin.mm": "мм", "kin.unit_v": "м/(с·мм)", "kin.unit_a": "м/(с²·мм)", "kin.unit_l": "м/мм",
            "kin.plan_axis": "мм на плане", "kin.output": "Выходное звено",
            "kin.s_unit": "s, м", "kin.v_unit": "v, м/с", "kin.a_unit": "a, м/с²",
            "kin.psi_unit": "ψ, град", "kin.w_unit": "ω, рад/с", "kin.e_unit": "ε, рад/с²",
-           "kin.formula_w": "ω = v_отн / l", "kin.csv_note": "Все числа: kinematics.csv, plans.csv."},
+           "kin.formula_w": "ω = v_отн / l",
+           "kin.sense_note": "↺ — против часовой стрелки (положительные), ↻ — по часовой стрелке (отрицательные).",
+           "kin.table_angles": "Углы звеньев, ° (от оси x против часовой стрелки)", "kin.csv_note": "Все числа: kinematics.csv, plans.csv."},
 }
 
 COLORS = {"abs": "k", "rel": "0.35", "n": "#1f5fbf", "t": "#c0392b", "k": "#1e8449", "r": "#8e44ad"}
@@ -49,6 +53,13 @@ def _rotation_sign(ctx, geom, entries) -> float:
         w = entries[0]["links"].get(l.name, {}).get("omega") or 1.0
         return 1.0 if w >= 0 else -1.0
     return 1.0
+
+
+def _sense_mark(x, tiny: float = 1e-9) -> str:
+    """↺ for a counter-clockwise (positive) value, ↻ for a clockwise one."""
+    if x is None or not math.isfinite(float(x)) or abs(float(x)) <= tiny:
+        return ""
+    return "↺" if x > 0 else "↻"
 
 
 def _grid_count(ctx, entries) -> int:
@@ -105,69 +116,90 @@ def positions_svg(ctx, geom, entries, grid):
     return ctx.svg(fig)
 
 
-def draw_plan(ax, plan, title, unit_txt, width_mm, height_mm):
+PLAN_W, PLAN_H = 170.0, 86.0        # mm: the two plans side by side
+_NICE_BARS = (5.0, 10.0, 20.0, 25.0, 50.0, 100.0, 200.0)
+
+
+def draw_plan(cv, plan, box, title, unit_txt, si_unit="m/s", mm="mm"):
+    """One plan inside box = (x0, y0, w, h) mm of the canvas `cv`.
+
+    The plan's coordinates are millimetres at its scale mu (the segment table's
+    lengths); the drawing is that plan reduced by a factor k <= 1 to fit the box,
+    with a scale bar of a round number of plan millimetres.  Returns k."""
     from .. import figures as F
+    x0, y0, w, h = box
+    top = 11.0                          # title and scale lines
+    bar_h = 7.0                         # the scale bar at the bottom
     pts = plan.pts
     xy = np.array(list(pts.values()))
     lo, hi = xy.min(axis=0), xy.max(axis=0)
-    span = max(float((hi - lo).max()), 10.0)
-    c = (lo + hi) / 2
-    lo2, hi2 = np.minimum(lo, c - span * 0.12), np.maximum(hi, c + span * 0.12)
-    unit = F.fit_axes(ax, lo2, hi2, width_mm, height_mm, margin_mm=7.0)
+    span = np.maximum(hi - lo, 1e-9)
+    m = 6.0
+    k = min(1.0, (w - 2 * m) / span[0], (h - top - bar_h - 2 * m) / span[1])
+    c = np.array([x0 + w / 2, y0 + bar_h + (h - top - bar_h) / 2]) - (lo + hi) / 2 * k
+
+    def M(p):
+        return c + np.asarray(p, float) * k
+
     segs = []
     for v in plan.vecs:
-        p, q = pts[v.start], pts[v.end]
+        p, q = M(pts[v.start]), M(pts[v.end])
         segs.append((p, q))
-        if np.linalg.norm(q - p) < 0.2:
+        if np.hypot(*(q - p)) < 0.15:
             continue
         if v.kind == "abs":
-            F.arrow(ax, p, q, color=COLORS["abs"], lw=1.1, head=7, z=5)
+            cv.arrow(p, q, COLORS["abs"], 0.45, head=2.4, z=4)
         elif v.kind == "rel":
-            F.arrow(ax, p, q, color=COLORS["rel"], lw=0.7, head=5, z=4)
+            cv.arrow(p, q, COLORS["rel"], 0.35, head=2.0, z=3)
         else:
-            F.arrow(ax, p, q, color=COLORS[v.kind], lw=0.9, head=6, z=4,
-                    ls="--" if v.kind in ("n", "k") else "-")
-    # labels: merge coincident points
+            cv.arrow(p, q, COLORS[v.kind], 0.4, head=2.1, z=3,
+                     dash="1.6 0.8" if v.kind in ("n", "k") else None)
+    # labels: coincident points share one label
     groups: list[tuple[np.ndarray, list[str]]] = []
     for name, p in pts.items():
+        q = M(p)
         for g in groups:
-            if np.linalg.norm(g[0] - p) < 1.2 * unit:
+            if np.hypot(*(g[0] - q)) < 1.0:
                 g[1].append(name)
                 break
         else:
-            groups.append((p, [name]))
+            groups.append((q, [name]))
+    pole = M(np.zeros(2))
     anchors = []
-    for p, names in groups:
-        d = p / (np.linalg.norm(p) or 1.0)
-        anchors.append((p[0], p[1], tuple(d) if np.linalg.norm(p) > 0 else (-1.0, -1.0)))
-    pos = F.place_labels(anchors, span, avoid=[g[0] for g in groups], step=3.2 * unit,
-                         segments=segs)
-    for (p, names), (x, y) in zip(groups, pos):
+    for q, names in groups:
+        d = q - pole
+        anchors.append((q[0], q[1], tuple(d) if np.hypot(*d) > 0.5 else (-1.0, -1.0)))
+    pos = F.place_labels(anchors, 60.0, avoid=[g[0] for g in groups], step=2.6, segments=segs)
+    for (q, names), (x, y) in zip(groups, pos):
         names = sorted(names, key=lambda s: (s != plan.pole, s))
-        ax.text(x, y, ", ".join(names), fontsize=7.5, style="italic", ha="center", va="center",
-                zorder=8, color="k" if plan.pole in names or not names[0].startswith(("n", "k"))
-                else "0.25")
-    ax.plot([0], [0], marker="o", ms=2.5, color="k", zorder=6)
-    ax.set_title(f"{title}, μ = {plan.mu:g} {unit_txt}", fontsize=7.5, pad=3)
-    from matplotlib.ticker import MaxNLocator
-    ax.xaxis.set_major_locator(MaxNLocator(5))
-    ax.yaxis.set_major_locator(MaxNLocator(5))
-    ax.tick_params(labelsize=5.5, length=2, pad=1)
-    ax.grid(True, lw=0.25, color="0.85")
-    for s in ax.spines.values():
-        s.set_linewidth(0.4)
-        s.set_color("0.6")
+        x = min(max(x, x0 + 3), x0 + w - 3)
+        y = min(max(y, y0 + bar_h), y0 + h - top)
+        aux = plan.pole not in names and names[0].startswith(("n", "k"))
+        cv.text(x, y, ", ".join(names), size=7, italic=True, color="#444" if aux else "#000", halo=True)
+    cv.dot(pole, 0.6, z=6)
+    # title, scale, scale bar
+    cv.text(x0 + 1.5, y0 + h - 3.2, title, size=7, anchor="start", bold=True)
+    cv.text(x0 + 1.5, y0 + h - 7.2, "μ", size=6.5, anchor="start", sub=plan.kind,
+            after=f" = {plan.mu:g} {unit_txt}")
+    bar = next((b for b in _NICE_BARS if b * k >= 12.0), _NICE_BARS[-1])
+    bx, by = x0 + 2.0, y0 + 2.5
+    cv.polyline([(bx, by + 0.8), (bx, by), (bx + bar * k, by), (bx + bar * k, by + 0.8)], "#000", 0.3)
+    cv.text(bx + bar * k + 1.5, by + 0.3, f"{bar:g} {mm} = {float(f'{bar * plan.mu:.6g}'):g} {si_unit}",
+            size=6, anchor="start")
+    return k
 
 
 def plans_svg(ctx, vplan, aplan):
-    from .. import figures as F
-    W, H = 170.0, 82.0
-    fig = F.plt().figure(figsize=(W * F.MM, H * F.MM))
-    ax1 = fig.add_axes([0.045, 0.07, 0.43, 0.85])
-    ax2 = fig.add_axes([0.545, 0.07, 0.43, 0.85])
-    draw_plan(ax1, vplan, ctx.t("kin.velocity_plan"), ctx.t("kin.unit_v"), W * 0.43, H * 0.85)
-    draw_plan(ax2, aplan, ctx.t("kin.acceleration_plan"), ctx.t("kin.unit_a"), W * 0.43, H * 0.85)
-    return ctx.svg(fig)
+    from ..svgdraw import Canvas
+    from markupsafe import Markup as _M
+    cv = Canvas(PLAN_W, PLAN_H)
+    half = PLAN_W / 2
+    draw_plan(cv, vplan, (0, 0, half - 1, PLAN_H), ctx.t("kin.velocity_plan"), ctx.t("kin.unit_v"),
+              ctx.t("kin.si_v"), ctx.t("kin.mm"))
+    draw_plan(cv, aplan, (half + 1, 0, half - 1, PLAN_H), ctx.t("kin.acceleration_plan"), ctx.t("kin.unit_a"),
+              ctx.t("kin.si_a"), ctx.t("kin.mm"))
+    cv.line((half, 1), (half, PLAN_H - 1), "#bbb", 0.2, z=0)
+    return _M(cv.to_svg())
 
 
 def output_series(ctx, geom, entries, out_name):
@@ -286,13 +318,21 @@ def build(ctx) -> str | None:
               [ctx.fmt(e["points"][p]["v"]) for p in moving_pts] for e in entries]
     a_rows = [[str(e["index"]), ctx.fmt_fixed(e["phi"], 2)] +
               [ctx.fmt(e["points"][p]["a"]) for p in moving_pts] for e in entries]
-    hdr_l = [ctx.t("common.position"), "φ, °"] + [f"{l.index} ({l.name})" for l in geom.links]
+    # angular quantities: links that turn (a slider on a fixed guide never does)
+    def turns(n):
+        return any(abs(float(e["links"][n].get(k) or 0.0)) > 1e-12 for e in entries for k in ("omega", "epsilon"))
+    rot_links = [l for l in geom.links if turns(l.name)]
+    hdr_l = [ctx.t("common.position"), "φ, °"] + [f"{l.index} ({l.name})" for l in rot_links]
+
+    def signed(x):
+        return f"{ctx.fmt(x)} {_sense_mark(x)}".rstrip()
     w_rows = [[str(e["index"]), ctx.fmt_fixed(e["phi"], 2)] +
-              [Markup(f"{ctx.fmt(e['links'][n]['omega'])}<br><small>{ctx.sense(e['links'][n]['omega'])}</small>")
-               for n in link_names] for e in entries]
+              [signed(e["links"][l.name]["omega"]) for l in rot_links] for e in entries]
     e_rows = [[str(e["index"]), ctx.fmt_fixed(e["phi"], 2)] +
-              [Markup(f"{ctx.fmt(e['links'][n]['epsilon'])}<br><small>{ctx.sense(e['links'][n]['epsilon'])}</small>")
-               for n in link_names] for e in entries]
+              [signed(e["links"][l.name]["epsilon"]) for l in rot_links] for e in entries]
+    hdr_ang = [ctx.t("common.position"), "φ, °"] + [f"{l.index} ({l.name})" for l in geom.links]
+    ang_rows = [[str(e["index"]), ctx.fmt_fixed(e["phi"], 2)] +
+                [ctx.fmt_fixed(e["links"][l.name].get("angle"), 2) for l in geom.links] for e in entries]
 
     # plans of every position
     positions = []
@@ -307,15 +347,8 @@ def build(ctx) -> str | None:
                 plan_csv.append([e["index"], e["phi"], kind, seg,
                                  sym.replace("<sub>", "_").replace("</sub>", "").replace("<sup>", "^").replace("</sup>", ""),
                                  float(mm), float(val)])
-        ang_rows = []
-        for l in geom.links:
-            d = e["links"].get(l.name, {})
-            ang_rows.append((f"{l.index} ({l.name})", ctx.fmt_fixed(d.get("angle"), 2),
-                             ctx.fmt(d.get("omega")), ctx.sense(d.get("omega")),
-                             ctx.fmt(d.get("epsilon")), ctx.sense(d.get("epsilon"))))
         positions.append({"index": e["index"], "phi": ctx.fmt_fixed(e["phi"], 2),
-                          "fig": plans_svg(ctx, vp, ap), "vrows": vrows, "arows": arows,
-                          "ang_rows": ang_rows})
+                          "fig": plans_svg(ctx, vp, ap), "vrows": vrows, "arows": arows})
 
     # diagrams
     out_name = res_pos.get("output") or getattr(getattr(ctx.task, "positions", None), "output", None) \
@@ -354,5 +387,6 @@ def build(ctx) -> str | None:
                       pos_rows=pos_rows, scale_rows=scale_rows, lengths=lengths,
                       fig_positions=positions_svg(ctx, geom, entries, grid), n_grid=len(grid),
                       hdr_pts=hdr_pts, v_rows=v_rows, a_rows=a_rows, hdr_l=hdr_l,
-                      w_rows=w_rows, e_rows=e_rows, positions=positions, fig_diagrams=diag,
+                      w_rows=w_rows, e_rows=e_rows, hdr_ang=hdr_ang, ang_rows=ang_rows,
+                      sense_note=ctx.t("kin.sense_note"), positions=positions, fig_diagrams=diag,
                       out_name=out_name, dense=curve is not None)

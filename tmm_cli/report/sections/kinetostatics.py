@@ -1,16 +1,30 @@
 """Report section 'kinetostatics' (METHODS 3): conventions, the load diagrams with the
-positions marked, per position the free-body diagram of every Assur group and of the
-crank with loads and reactions to scale (mu_F), their force polygons and Zhukovsky's
-lever (velocity plan turned by 90 deg) with the forces at the ends of the turned
-velocities and their arms; tables of loads, reactions, balancing moment by the three
-methods, efficiency; M_b and the reactions over the cycle. Writes
-``kinetostatics.csv`` beside the report. Reads numbers only from results.
+positions marked, tables of the balancing moment by the three methods, the reactions,
+the loads of every position and the efficiency, M_b and the reactions over the cycle,
+and for every position one page of drawings, one row per Assur group (from the last
+group to the crank, as the groups are solved):
+
+* left, the group detached from the mechanism, drawn to a length scale mu_l, with every
+  load and the reactions of the removed links at their points of application (the
+  arrows give direction and point, their length is not to scale);
+* right, its force polygon to scale mu_F (N/mm): the vectors head to tail, loads first,
+  then the reactions; it closes because the group is in equilibrium;
+* last row, Zhukovsky's lever: the velocity plan turned by 90 deg with the loads moved
+  parallel to themselves to the ends of the turned velocities, their arms h about the
+  pole, and the balancing force P_b at the crank pin.
+
+Force names as the course writes them (Popov & Timofeev; Frolov): R_ij reaction of
+link i on link j, G_i weight, Phi_i inertia force, M_Phi_i moment of the inertia
+couple, F_f (F_тр) friction.  Writes ``kinetostatics.csv`` beside the report.  Reads
+numbers only from results.
 """
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
+from markupsafe import Markup, escape
 
 I18N = {
     "en": {"kst.title": "Kinetostatics", "kst.convention": "Sign convention",
@@ -20,7 +34,10 @@ I18N = {
                             "P_b = M_b / l is the balancing force at the end of its arm l. A prismatic pair's "
                             "normal force N acts along the guide normal (the guide direction turned +90°) at the "
                             "distance x = M/N from the slider's pin.",
+           "kst.names": "Names in the drawings: G — weight, Φ — inertia force, M_Φ — moment of the inertia "
+                        "couple, F_f and M_f — friction force and moment, R_ij — reaction.",
            "kst.balance": "Balance link", "kst.arm": "arm l, m", "kst.singular": "Singular positions",
+           "kst.bk_moment": "balancing moment", "kst.bk_force": "balancing force",
            "kst.singular_none": "none: the equilibrium equations are regular over the whole turn",
            "kst.singular_text": "crank angles where the equations are singular for this balance link (deg)",
            "kst.diagrams": "Load diagrams", "kst.mb_table": "Balancing moment by three methods",
@@ -31,16 +48,31 @@ I18N = {
            "kst.fmx": "P_b (matrix), N",
            "kst.reactions": "Reactions in the pairs, N", "kst.cycle": "Balancing moment and reactions over the cycle",
            "kst.position_n": "Position {i}, φ = {phi:.2f}°", "kst.loads": "Loads",
-           "kst.name": "Load", "kst.kind": "kind", "kst.fbd_caption": "Free-body diagrams of the groups "
-           "(solved from the last group to the crank), force polygons (scale μF = {mu} N/mm) and "
-           "Zhukovsky's lever on the velocity plan turned by 90° (μv = {mv} (m/s)/mm).",
+           "kst.loads_table": "Loads of the positions",
+           "kst.loads_note": "|F| in N, couples M in N·m (ccw positive). Constant: {const}.",
+           "kst.name": "Load", "kst.kind": "kind",
+           "kst.fbd_caption": "Left: the groups detached from the mechanism (scale μl) with the loads and the "
+                              "reactions of the removed links at their points; the arrows show direction and "
+                              "point of application, not magnitude. Right: the force polygons to scale μF. "
+                              "Bottom: Zhukovsky's lever — the velocity plan turned by 90° with the forces "
+                              "moved to the ends of the turned velocities.",
            "kst.lever": "Zhukovsky lever", "kst.polygon": "force polygon", "kst.group": "group",
+           "kst.group_links": "Group {k}: links {links}", "kst.crank_row": "Input link {i} ({name})",
+           "kst.links_of": "link {i}",
            "kst.crank": "crank", "kst.pair": "pair", "kst.prismatic": "N, N; x = M/N, m",
            "kst.csv_note": "All numbers: kinetostatics.csv.", "kst.rotation": "crank rotation from position 0, deg",
            "kst.null": "— : singular to working precision (no finite value).",
            "kst.s_axis": "s/H", "kst.phi_axis": "φ from position 0, deg", "kst.force_axis": "F, N",
            "kst.moment_axis": "M, N·m", "kst.efficiency": "Instantaneous efficiency η = 1 − P_f / P_d",
-           "kst.pf": "P_f, W", "kst.pd": "P_d, W"},
+           "kst.pf": "P_f, W", "kst.pd": "P_d, W", "kst.unit_F": "N/mm", "kst.unit_l": "m/mm",
+           "kst.unit_v": "(m/s)/mm", "kst.N": "N", "kst.Nm": "N·m",
+           "kst.mb_groups": "M_b by the groups", "kst.mb_lever": "M_b by the lever",
+           "kst.pb_lever": "P_b (lever)", "kst.lever_eq": "P_b·h_b = Σ F_i·h_i (+ Σ M_i ω_i / ω_1)",
+           "kst.f_friction": "f", "kst.sub_b": "b",
+           "kind.resistance": "resistance", "kind.driving": "driving", "kind.load": "load",
+           "kind.gravity": "gravity", "kind.inertia": "inertia", "kind.friction": "friction",
+           "stroke.working": "working stroke", "stroke.idle": "idle stroke", "stroke.both": "both strokes",
+           "stroke.cycle": "whole cycle"},
     "ru": {"kst.title": "Кинетостатика", "kst.convention": "Правило знаков",
            "kst.conv_text": "R_ij — сила, с которой звено i действует на звено j (i < j; R_ji = −R_ij); "
                             "моменты и пары сил положительны против часовой стрелки. Уравновешивающий момент M_b — "
@@ -48,7 +80,10 @@ I18N = {
                             "движения; P_b = M_b / l — уравновешивающая сила на конце плеча l. Нормальная сила N "
                             "поступательной пары направлена по нормали к направляющей (направление направляющей, "
                             "повёрнутое на +90°) и приложена на расстоянии x = M/N от шарнира ползуна.",
+           "kst.names": "Обозначения на чертежах: G — сила тяжести, Φ — сила инерции, M_Φ — момент пары сил "
+                        "инерции, F_тр и M_тр — сила и момент трения, R_ij — реакция.",
            "kst.balance": "Звено приведения", "kst.arm": "плечо l, м", "kst.singular": "Особые положения",
+           "kst.bk_moment": "уравновешивающий момент", "kst.bk_force": "уравновешивающая сила",
            "kst.singular_none": "нет: уравнения равновесия невырождены на всём обороте",
            "kst.singular_text": "углы кривошипа, при которых уравнения вырождены для этого звена (град)",
            "kst.diagrams": "Диаграммы нагрузок", "kst.mb_table": "Уравновешивающий момент тремя методами",
@@ -60,21 +95,43 @@ I18N = {
            "kst.reactions": "Реакции в кинематических парах, Н",
            "kst.cycle": "Уравновешивающий момент и реакции за цикл",
            "kst.position_n": "Положение {i}, φ = {phi:.2f}°", "kst.loads": "Нагрузки",
-           "kst.name": "Нагрузка", "kst.kind": "вид", "kst.fbd_caption": "Группы Ассура с нагрузками и "
-           "реакциями (расчёт от последней группы к кривошипу), планы сил (масштаб μF = {mu} Н/мм) и "
-           "рычаг Жуковского на повёрнутом на 90° плане скоростей (μv = {mv} м/(с·мм)).",
+           "kst.loads_table": "Нагрузки в положениях механизма",
+           "kst.loads_note": "|F| в Н, моменты пар M в Н·м (против часовой стрелки — положительные). "
+                             "Постоянные: {const}.",
+           "kst.name": "Нагрузка", "kst.kind": "вид",
+           "kst.fbd_caption": "Слева — группы, отсоединённые от механизма (масштаб μl), с нагрузками и реакциями "
+                              "отброшенных звеньев в точках приложения; стрелки показывают направление и точку "
+                              "приложения, а не величину. Справа — планы сил в масштабе μF. Внизу — рычаг "
+                              "Жуковского: повёрнутый на 90° план скоростей с силами, перенесёнными в концы "
+                              "повёрнутых скоростей.",
            "kst.lever": "Рычаг Жуковского", "kst.polygon": "план сил", "kst.group": "группа",
+           "kst.group_links": "Группа {k}: звенья {links}", "kst.crank_row": "Входное звено {i} ({name})",
+           "kst.links_of": "звено {i}",
            "kst.crank": "кривошип", "kst.pair": "пара", "kst.prismatic": "N, Н; x = M/N, м",
            "kst.csv_note": "Все числа: kinetostatics.csv.", "kst.rotation": "поворот кривошипа от положения 0, град",
            "kst.null": "— : вырождено с рабочей точностью (конечного значения нет).",
            "kst.s_axis": "s/H", "kst.phi_axis": "φ от положения 0, град", "kst.force_axis": "F, Н",
            "kst.moment_axis": "M, Н·м", "kst.efficiency": "Мгновенный КПД η = 1 − P_тр / P_дв",
-           "kst.pf": "P_тр, Вт", "kst.pd": "P_дв, Вт"},
+           "kst.pf": "P_тр, Вт", "kst.pd": "P_дв, Вт", "kst.unit_F": "Н/мм", "kst.unit_l": "м/мм",
+           "kst.unit_v": "м/(с·мм)", "kst.N": "Н", "kst.Nm": "Н·м",
+           "kst.mb_groups": "M_b по группам", "kst.mb_lever": "M_b по рычагу",
+           "kst.pb_lever": "P_b (рычаг)", "kst.lever_eq": "P_b·h_b = Σ F_i·h_i (+ Σ M_i ω_i / ω_1)",
+           "kst.f_friction": "тр", "kst.sub_b": "b",
+           "kind.resistance": "сопротивление", "kind.driving": "движущая", "kind.load": "нагрузка",
+           "kind.gravity": "сила тяжести", "kind.inertia": "сила инерции", "kind.friction": "трение",
+           "stroke.working": "рабочий ход", "stroke.idle": "холостой ход", "stroke.both": "оба хода",
+           "stroke.cycle": "весь цикл"},
 }
 
-KIND_COLOR = {"resistance": "#c0392b", "driving": "#1e8449", "load": "#8e44ad", "gravity": "#7f8c8d",
-              "inertia": "#1f5fbf", "friction": "#d68910", "reaction": "k"}
-MAX_FIG_POSITIONS = 12       # free-body figures for at most this many positions (time, size)
+KIND_COLOR = {"resistance": "#c0392b", "driving": "#1e8449", "load": "#8e44ad", "gravity": "#6b7b7c",
+              "inertia": "#1f5fbf", "friction": "#b9770e", "reaction": "#000", "balance": "#117a65"}
+MAX_FIG_POSITIONS = 24       # pages of drawings for at most this many positions (time, size)
+ROW_H = 72.0                 # mm: one row (a group's diagram + its polygon)
+GROUP_W = 90.0               # mm: width of a group's diagram
+CRANK_W = 50.0               # mm: the input link's diagram in the last row
+POLY_W_CRANK = 52.0          # mm: its polygon; the lever takes the rest
+FIG_W = 170.0                # mm
+PAGE_H = 245.0               # mm of drawings per page at most
 
 
 def _xy(d):
@@ -86,34 +143,43 @@ def _links(results):
     return {l["name"]: l for l in st.get("links") or []}
 
 
-def _draw_links(ax, kin_e, links, names, lw=1.6):
-    pts = kin_e["points"]
-    for n in names:
-        lk = links.get(n)
-        if lk is None:
-            continue
-        ps = [p for p in lk["points"] if p in pts]
-        if lk["kind"] == "slider":
-            if ps:
-                c = _xy(pts[ps[0]])
-                ax.plot([c[0]], [c[1]], "s", ms=9, mfc="white", mec="k", zorder=4)
-            continue
-        xy = np.array([_xy(pts[p]) for p in ps])
-        if len(xy) >= 3:
-            ax.fill(xy[:, 0], xy[:, 1], fc="0.92", ec="k", lw=lw, zorder=2)
-        elif len(xy) == 2:
-            ax.plot(xy[:, 0], xy[:, 1], "k-", lw=lw, zorder=2)
-        for p in xy:
-            ax.plot([p[0]], [p[1]], "o", ms=3.5, mfc="white", mec="k", zorder=5)
+# ----------------------------------------------------------------- names
+def label_parts(name: str, lang: str = "en") -> tuple[str, str]:
+    """A load/reaction name of the results -> (symbol, subscript) as the course
+    writes it: 'R12' -> ('R', '12'); 'G2' -> ('G', '2'); 'Fi2' -> ('Φ', '2');
+    'Mi2' -> ('M', 'Φ2'); 'Ff03' -> ('F', 'тр03' | 'f03'); 'F1' -> ('F', '1')."""
+    if "\u0000" in name:                 # already split: 'M\0b' -> ('M', 'b')
+        a, b = name.split("\u0000", 1)
+        return a, b
+    fr = "тр" if lang == "ru" else "f"
+    m = re.fullmatch(r"(Fi|Mi|Ff|Mf|[A-Za-z])(\d+)", name)
+    if not m:
+        return name, ""
+    head, num = m.groups()
+    if head == "Fi":
+        return "Φ", num
+    if head == "Mi":
+        return "M", "Φ" + num
+    if head in ("Ff", "Mf"):
+        return head[0], fr + num
+    return head, num
 
 
-def _group_forces(e, info, group_idx: set[int], links_by_index):
-    """Forces on a group: its loads and the reactions of the bodies outside it."""
+def label_html(name: str, lang: str = "en") -> Markup:
+    s, sub = label_parts(name, lang)
+    return Markup(f"{escape(s)}<sub>{escape(sub)}</sub>") if sub else Markup(escape(s))
+
+
+# ----------------------------------------------------------------- forces of a group
+def group_forces(e: dict, info: dict, group_idx: set[int], index_by_name: dict, arm_link: int | None = None):
+    """Forces on the links ``group_idx`` in position entry ``e``: their loads, then the
+    reactions of the links outside the group (R_ji = -R_ij), then, for a balancing
+    force on a slider of the group, P_b along its guide.  -> [(name, point (2,), F (2,), kind)]."""
     out = []
     for f in e.get("loads", []):
-        li = links_by_index.get(f["link"])
+        li = index_by_name.get(f["link"])
         if li in group_idx:
-            out.append((f["name"], np.array(f["point"]), np.array(f["F"]), f["kind"]))
+            out.append((f["name"], np.array(f["point"], float), np.array(f["F"], float), f["kind"]))
     for j in info["joints"]:
         a, b = j["a"], j["b"]
         if (a in group_idx) == (b in group_idx):
@@ -121,111 +187,355 @@ def _group_forces(e, info, group_idx: set[int], links_by_index):
         r = e["reactions"][j["key"]]
         if r.get("x") is None:
             continue
-        F = np.array([r["x"], r["y"]])
+        F = np.array([r["x"], r["y"]], float)
         pt = r.get("point") or r.get("pin")
         if b in group_idx:
-            out.append((f"R{a}{b}", np.array(pt), F, "reaction"))
+            out.append((f"R{a}{b}", np.array(pt, float), F, "reaction"))
         else:
-            out.append((f"R{b}{a}", np.array(pt), -F, "reaction"))
+            out.append((f"R{b}{a}", np.array(pt, float), -F, "reaction"))
     return out
 
 
-def _fig_position(ctx, e, kin_e, info, links, mu_v):
-    """One axes in paper millimetres: row 1 the free-body diagrams (groups from the last
-    to the crank) with the forces at mu_F, row 2 their force polygons, right the lever."""
+def group_couples(e: dict, group_names: set[str]):
+    return [(c["name"], c["link"], float(c["M"]), c["kind"]) for c in e.get("couples", [])
+            if c["link"] in group_names and c.get("M") is not None and abs(float(c["M"])) > 0]
+
+
+def polygon(forces, rel_tol: float = 1e-9):
+    """The force polygon: nonzero forces head to tail, loads first, then reactions.
+    -> (vectors [(name, F, kind)], tips (k+1, 2)) in N; tips[-1] ~ 0 (equilibrium)."""
+    Fmax = max((float(np.hypot(*F)) for _, _, F, _ in forces), default=0.0)
+    keep = [(n, F, k) for n, _, F, k in forces if float(np.hypot(*F)) > rel_tol * Fmax]
+    keep.sort(key=lambda t: t[2] == "reaction")           # stable: loads, then reactions
+    tips = np.cumsum([np.zeros(2)] + [F for _, F, _ in keep], axis=0)
+    return keep, tips
+
+
+# ----------------------------------------------------------------- drawing
+def _arrow_len(F, Fmax):
+    return 5.5 + 7.5 * math.sqrt(min(float(np.hypot(*F)) / Fmax, 1.0)) if Fmax > 0 else 9.0
+
+
+def _labels(cv, items, step, segments, avoid, lang, size=7.0, box=None):
+    """items: (anchor xy, preferred dir, name, color); kept inside box."""
     from .. import figures
-    plt = figures.plt()
+    if not items:
+        return
+    pos = figures.place_labels([(a[0], a[1], d) for a, d, _, _ in items], 10 * step, avoid=avoid,
+                               step=step, segments=segments)
+    if box is not None:
+        pos = _clamp(pos, box)
+    for (a, d, name, col), (x, y) in zip(items, pos):
+        s, sub = label_parts(name, lang)
+        cv.text(x, y, s, size=size, color=col, italic=True, sub=sub or None, halo=True)
+
+
+def _fbd_panel(ctx, cv, box, kin_e, links, names, forces, couples, title):
+    """Free-body diagram of the links `names` inside box = (x0, y0, w, h) (mm)."""
+    from .. import figures
+    x0, y0, w, h = box
+    P = kin_e["points"]
+    pts_names = [p for n in names for p in links[n]["points"] if p in P]
+    xy = np.array([_xy(P[p]) for p in pts_names] + [f[1] for f in forces])
+    lo, hi = xy.min(axis=0), xy.max(axis=0)
+    span = np.maximum(hi - lo, 1e-9)
+    m = 11.0                                           # room for the arrows
+    mu_l = figures.nice_scale(max(span[0] / (w - 2 * m), span[1] / (h - TITLE_H - 2 * m), 1e-9))
+    c_box = (lo + hi) / 2
+    c_pan = np.array([x0 + w / 2, y0 + (h - TITLE_H) / 2])
+
+    def M(p):
+        return c_pan + (np.asarray(p, float) - c_box) / mu_l
+
+    segs, avoid = [], []
+    for n in names:
+        lk = links[n]
+        ps = [p for p in lk["points"] if p in P]
+        if lk["kind"] == "slider":
+            if ps:
+                ang = float(kin_e["links"][n]["angle"] or 0.0)
+                c = M(_xy(P[ps[0]]))
+                cv.block(c, ang, 8.0, 4.6, width=0.35, z=4)
+                u = np.array([math.cos(math.radians(ang)), math.sin(math.radians(ang))])
+                cv.line(c - u * 9, c + u * 9, "#777", 0.2, dash="2 0.6 0.4 0.6", z=1)
+                segs.append((c - u * 4, c + u * 4))
+            continue
+        q = np.array([M(_xy(P[p])) for p in ps])
+        if len(q) >= 3 and _area(q) > 1.0:
+            order = np.argsort(np.arctan2(q[:, 1] - q[:, 1].mean(), q[:, 0] - q[:, 0].mean()))
+            cv.polygon(q[order], "#e8e8e8", z=2, stroke="#000", width=0.5)
+            segs.extend((q[order][k], q[order][(k + 1) % len(q)]) for k in range(len(q)))
+        elif len(q) >= 2:
+            d = q[1] - q[0]
+            u = d / (np.hypot(*d) or 1.0)
+            t = (q - q[0]) @ u
+            a, b = q[0] + u * t.min(), q[0] + u * t.max()
+            cv.line(a, b, "#000", 0.6, z=2)
+            segs.append((a, b))
+        for p in q:
+            cv.circle(p, 0.8, width=0.3, z=5)
+            avoid.append(p)
+    # centres of mass
+    for n in names:
+        s = f"S{links[n]['index']}"
+        if s in P and links[n]["kind"] != "slider":
+            c = M(_xy(P[s]))
+            cv.dot(c, 0.55, z=6)
+    # point names
+    Fmax = max((float(np.hypot(*F)) for _, _, F, _ in forces), default=0.0)
+    items = []
+    for p in dict.fromkeys(pts_names):
+        items.append((M(_xy(P[p])), None, p, "#555"))
+    arrows = []
+    for name, pt, F, kind in forces:
+        nF = float(np.hypot(*F))
+        if nF <= 1e-9 * max(Fmax, 1e-300):
+            continue
+        a = M(pt)
+        u = F / nF
+        b = a + u * _arrow_len(F, Fmax)
+        col = KIND_COLOR.get(kind, "#000")
+        cv.arrow(a, b, col, 0.45 if kind == "reaction" else 0.4, head=2.2, z=3)
+        segs.append((a, b))
+        arrows.append((b + u * 0.6, tuple(u), name, col))
+    for name, link, Mv, kind in couples:
+        lk = links.get(link)
+        if lk is None:
+            continue
+        s = f"S{lk['index']}"
+        c = M(_xy(P[s])) if s in P else M(np.mean([_xy(P[p]) for p in lk["points"] if p in P], axis=0))
+        col = KIND_COLOR.get(kind, "#000")
+        cv.moment(c, 3.2, Mv, col, 0.35, z=3)
+        arrows.append((c + np.array([0.0, 4.2]), (0.0, 1.0), name, col))
+    _labels(cv, arrows, 2.6, segs, avoid, ctx.lang, box=box)
+    # point letters (upright, grey, small), after the force labels had their choice
+    for a, _, p, col in items:
+        d = np.array([-1.0, 1.0]) / math.sqrt(2)
+        mm = re.fullmatch(r"(.*?)(\d+)", p)
+        head, sub = (mm.group(1), mm.group(2)) if mm and mm.group(1) else (p, None)
+        cv.text(a[0] + d[0] * 2.2, a[1] + d[1] * 2.2, head, size=6, color="#555", sub=sub)
+    _title(cv, box, title, f"μl = {mu_l:g} {ctx.t('kst.unit_l')}")
+    return mu_l
+
+
+TITLE_H = 11.0               # mm at the top of a panel: its title and scale
+
+
+def _title(cv, box, title, scale):
+    x0, y0, w, h = box
+    cv.text(x0 + 1.5, y0 + h - 3.2, title[:1].upper() + title[1:], size=7, anchor="start", bold=True)
+    sym, rest = scale.split(" = ", 1)          # 'μF = 400 N/mm' -> μ with subscript F
+    cv.text(x0 + 1.5, y0 + h - 7.2, sym[0], size=6.5, anchor="start", sub=sym[1:], after=f" = {rest}")
+
+
+def _clamp(pos, box, pad=2.5):
+    """Keep label centres inside the panel box (x0, y0, w, h) below its title."""
+    x0, y0, w, h = box
+    return [(min(max(x, x0 + pad + 1), x0 + w - pad - 1), min(max(y, y0 + pad), y0 + h - TITLE_H))
+            for x, y in pos]
+
+
+def _area(q):
+    x, y = q[:, 0], q[:, 1]
+    return 0.5 * abs(float(np.dot(x, np.roll(y, 1)) - np.dot(y, np.roll(x, 1))))
+
+
+def _polygon_panel(ctx, cv, box, forces):
+    """The force polygon to scale inside box; returns (mu_F, drawn tips in mm)."""
+    from .. import figures
+    x0, y0, w, h = box
+    vecs, tips = polygon(forces)
+    if not vecs:
+        return None, None
+    lo, hi = tips.min(axis=0), tips.max(axis=0)
+    span = np.maximum(hi - lo, 1e-12)
+    m = 8.0
+    mu_F = figures.nice_scale(max(span[0] / (w - 2 * m), span[1] / (h - TITLE_H - 2 * m)))
+    c = np.array([x0 + w / 2, y0 + (h - TITLE_H) / 2]) - (lo + hi) / 2 / mu_F
+    T = c + tips / mu_F
+    segs = list(zip(T[:-1], T[1:]))
+    items = []
+    for (name, F, kind), a, b in zip(vecs, T[:-1], T[1:]):
+        col = KIND_COLOR.get(kind, "#000")
+        cv.arrow(a, b, col, 0.45, head=2.4, z=3)
+        d = b - a
+        L = float(np.hypot(*d))
+        nrm = np.array([-d[1], d[0]]) / (L or 1.0)
+        items.append(((a + b) / 2, tuple(nrm), name, col))
+    cv.dot(T[0], 0.6, z=6)
+    _labels(cv, items, 2.8, segs, [T[0]], ctx.lang, box=box)
+    _title(cv, box, ctx.t("kst.polygon"), f"μF = {mu_F:g} {ctx.t('kst.unit_F')}")
+    return mu_F, T
+
+
+def _point_name(kin_e, xy, tol=1e-9):
+    for p, d in kin_e["points"].items():
+        if math.hypot(float(d["x"]) - xy[0], float(d["y"]) - xy[1]) <= tol * (1 + math.hypot(*xy)):
+            return p
+    return None
+
+
+def _lever_panel(ctx, cv, box, e, kin_e, pin, omega1, balance_kind):
+    """Zhukovsky's lever: the velocity plan turned by +90 deg (ends rot90(v)/mu_v, mu_v
+    a nice scale for this position), the loads moved to the ends of the turned
+    velocities with their arms about the pole, P_b at the crank pin; M_b below."""
+    from .. import figures
+    from ..plans import plan_label
+    x0, y0, w, h = box
+    P = kin_e["points"]
+    text_h = 13.0
+    vel = {}
+    for p, d in P.items():
+        v = np.array([float(d.get("vx") or 0.0), float(d.get("vy") or 0.0)])
+        if np.hypot(*v) > 1e-12:
+            vel[p] = np.array([-v[1], v[0]])           # turned by +90 deg
+    loads = [f for f in e.get("loads", []) if float(np.hypot(*f["F"])) > 0]
+    turned = list(vel.values()) + [np.array([-f["v"][1], f["v"][0]], float) for f in loads]
+    T = np.array(turned + [np.zeros(2)])
+    lo, hi = T.min(axis=0), T.max(axis=0)
+    span = np.maximum(hi - lo, 1e-12)
+    m = 10.0
+    mu_v = figures.nice_scale(max(span[0] / (w - 2 * m), span[1] / (h - TITLE_H - text_h - 2 * m)))
+    c = np.array([x0 + w / 2, y0 + text_h + (h - TITLE_H - text_h) / 2])
+    pole = c - (lo + hi) / 2 / mu_v
+
+    def end(tv):
+        return pole + np.asarray(tv, float) / mu_v
+
+    segs, avoid, items = [], [pole], []
+    ends = {}
+    for p, tv in vel.items():
+        q = end(tv)
+        ends[p] = q
+        cv.line(pole, q, "#9a9a9a", 0.3, z=1)
+        segs.append((pole, q))
+        cv.dot(q, 0.45, "#555", z=5)
+    Fmax = max((float(np.hypot(*f["F"])) for f in loads), default=0.0)
+    arrows = []
+    for f in loads:
+        F = np.asarray(f["F"], float)
+        q = end(np.array([-f["v"][1], f["v"][0]], float))
+        nF = float(np.hypot(*F))
+        u = F / nF
+        col = KIND_COLOR.get(f["kind"], "#000")
+        b = q + u * (5.0 + 6.0 * math.sqrt(nF / Fmax))
+        cv.arrow(q, b, col, 0.4, head=1.9, z=3)
+        segs.append((q, b))
+        foot = q + u * float(np.dot(pole - q, u))      # arm h: pole to the line of action
+        if float(np.hypot(*(foot - pole))) > 1.0:
+            cv.line(pole, foot, col, 0.2, dash="0.8 0.6", z=1)
+        arrows.append((b + u * 0.6, tuple(u), f["name"], col))
+    # the balancing force at the crank pin: its power P_b . v_A = M_b omega_1
+    Mb = e.get("balancing_moment")
+    if pin and pin in P and Mb is not None and balance_kind == "moment" and omega1:
+        vA = np.array([float(P[pin]["vx"]), float(P[pin]["vy"])])
+        if np.hypot(*vA) > 0 and Mb != 0:
+            Pb = (float(Mb) * float(omega1) / float(vA @ vA)) * vA
+            q = end(np.array([-vA[1], vA[0]]))
+            u = Pb / np.hypot(*Pb)
+            b = q + u * 10.0
+            col = KIND_COLOR["balance"]
+            cv.arrow(q, b, col, 0.5, head=2.2, z=3)
+            segs.append((q, b))
+            arrows.append((b + u * 0.6, tuple(u), "P\u0000b", col))
+    cv.dot(pole, 0.7, z=6)
+    pos = figures.place_labels([(a[0], a[1], d) for a, d, _, _ in arrows], 30, avoid=avoid,
+                               step=2.6, segments=segs)
+    pos = _clamp(pos, box)
+    for (a, d, name, col), (x, y) in zip(arrows, pos):
+        s, sub = label_parts(name, ctx.lang)
+        cv.text(x, y, s, size=6.5, color=col, italic=True, sub=sub or None, halo=True)
+    # letters of the turned plan (merged where ends coincide) and the pole
+    groups: list[tuple[np.ndarray, list[str]]] = []
+    for p, q in ends.items():
+        for g in groups:
+            if np.hypot(*(g[0] - q)) < 1.2:
+                g[1].append(p)
+                break
+        else:
+            groups.append((q, [p]))
+    for q, names in groups:
+        dd = q - pole
+        dd = dd / (np.hypot(*dd) or 1.0)
+        cv.text(q[0] + dd[0] * 2.2, q[1] + dd[1] * 2.2, ", ".join(plan_label(p) for p in names), size=5.5,
+                color="#555", italic=True)
+    cv.text(pole[0] - 1.8, pole[1] - 1.8, "p", size=7, italic=True)
+    _title(cv, box, ctx.t("kst.lever"), f"μv = {mu_v:g} {ctx.t('kst.unit_v')}")
+    # the balancing moment by the lever and by the groups
+    if balance_kind == "moment":
+        lines = [f"{ctx.t('kst.mb_lever')} = {ctx.fmt(e.get('zhukovsky_moment'), 5)} {ctx.t('kst.Nm')}",
+                 f"{ctx.t('kst.mb_groups')} = {ctx.fmt(e.get('balancing_moment'), 5)} {ctx.t('kst.Nm')}"]
+    else:
+        lines = [f"{ctx.t('kst.fzh')} = {ctx.fmt(e.get('zhukovsky_force'), 5)}",
+                 f"{ctx.t('kst.fb')} = {ctx.fmt(e.get('balancing_force'), 5)}"]
+    if e.get("discrepancy") is not None:
+        lines.append(f"Δ = {ctx.fmt(100.0 * e['discrepancy'], 2)} %")
+    yy = y0 + text_h - 2.5
+    for s in lines:
+        cv.text(x0 + 1, yy, s, size=6.5, anchor="start")
+        yy -= 3.8
+    return mu_v
+
+
+def position_figures(ctx, e, kin_e, info, links, pin=None, omega1=None):
+    """The drawings of one position: a list of SVG strings (one per page), and the
+    data drawn: [{'group': [...], 'mu_l', 'mu_F', 'tips' (mm), 'vectors'}]."""
+    from ..svgdraw import Canvas
     index_by_name = {n: l["index"] for n, l in links.items()}
     groups = [list(g) for g in info["groups"]]
     order = list(reversed(groups[:-1])) + [groups[-1]]
-    ncol = len(order) + 1
-    W, H = 180.0, 100.0
-    cw, rh = W / ncol, H / 2
-    fig = plt.figure(figsize=(W * figures.MM, H * figures.MM))
-    ax = fig.add_axes([0, 0, 1, 1])
-    ax.set_xlim(0, W)
-    ax.set_ylim(0, H)
-    ax.set_aspect("equal")
-    ax.set_axis_off()
-    allF = [np.linalg.norm(f["F"]) for f in e.get("loads", [])]
-    allF += [r["R"] for r in e["reactions"].values() if r.get("R") is not None]
-    Fmax = max(allF + [1e-9])
-    mu_F = figures.nice_scale(Fmax / 16.0)          # N per mm: the largest force <= 16 mm
-
-    def arrow(p, q, kind, label):
-        col = KIND_COLOR.get(kind, "k")
-        figures.arrow(ax, p, q, color=col, lw=0.7, head=4)
-        ax.text(q[0], q[1], label, fontsize=5, color=col)
-
-    for c, g in enumerate(order):
+    rows = []
+    for k, g in enumerate(order):
         gi = {index_by_name[n] for n in g}
-        forces = _group_forces(e, info, gi, index_by_name)
-        pts = np.array([_xy(kin_e["points"][p]) for n in g for p in links[n]["points"] if p in kin_e["points"]])
-        lo, hi = pts.min(axis=0), pts.max(axis=0)
-        span = np.maximum(hi - lo, 1e-6)
-        k = min((cw - 22) / span[0], (rh - 22) / span[1])      # mm per metre, room for arrows
-        centre = np.array([c * cw + cw / 2, rh + rh / 2 - 2])
-
-        def m(p):
-            return centre + (np.asarray(p, float) - (lo + hi) / 2) * k
-        for n in g:
-            lk = links[n]
-            ps = [m(_xy(kin_e["points"][p])) for p in lk["points"] if p in kin_e["points"]]
-            if lk["kind"] == "slider":
-                if ps:
-                    figures.draw_block(ax, ps[0], float(kin_e["links"][n]["angle"] or 0.0), 7, 4, lw=0.8)
-                continue
-            xy = np.array(ps)
-            if len(xy) >= 3:
-                ax.fill(xy[:, 0], xy[:, 1], fc="0.92", ec="k", lw=1.0, zorder=2)
-            elif len(xy) == 2:
-                ax.plot(xy[:, 0], xy[:, 1], "k-", lw=1.2, zorder=2)
-            for p in xy:
-                ax.plot([p[0]], [p[1]], "o", ms=2.5, mfc="white", mec="k", zorder=5)
-        for name, p, F, kind in forces:
-            p0 = m(p)
-            arrow(p0, p0 + F / mu_F, kind, name)
-        title = (ctx.t("kst.crank") if c == len(order) - 1 else ctx.t("kst.group")) + " " + \
-            ",".join(str(index_by_name[n]) for n in g)
-        ax.text(c * cw + 2, H - 4, title, fontsize=6.5)
-        # force polygon: head to tail, closes to zero
-        vecs = [F for _, _, F, _ in forces]
-        tips = np.cumsum([np.zeros(2)] + vecs, axis=0)
-        plo, phi_ = tips.min(axis=0), tips.max(axis=0)
-        mu_p = figures.nice_scale(max(float(np.max(phi_ - plo)), 1e-9) / (min(cw, rh) - 14))
-        pc = np.array([c * cw + cw / 2, rh / 2]) - (plo + phi_) / 2 / mu_p
-        for (name, _, F, kind), a, b in zip(forces, tips[:-1], tips[1:]):
-            arrow(pc + a / mu_p, pc + b / mu_p, kind, name)
-        ax.text(c * cw + 2, rh - 4, f"{ctx.t('kst.polygon')}, μF = {mu_p:g} N/mm", fontsize=5.5)
-    # Zhukovsky lever: velocity plan turned by +90 deg, forces at the ends of rot90(v)
-    x0 = (ncol - 1) * cw
-    ends, items = [np.zeros(2)], []
-    for f in e.get("loads", []):
-        v = np.array(f["v"])
-        F = np.array(f["F"])
-        if np.linalg.norm(F) == 0:
-            continue
-        end = np.array([-v[1], v[0]]) / mu_v
-        items.append((f, end, F))
-        ends.append(end)
-    E = np.array(ends)
-    elo, ehi = E.min(axis=0), E.max(axis=0)
-    sc = min(1.0, (cw - 16) / max(ehi[0] - elo[0], 1e-9), (H - 30) / max(ehi[1] - elo[1], 1e-9))
-    pole = np.array([x0 + cw / 2, H / 2]) - (elo + ehi) / 2 * sc
-    for f, end, F in items:
-        col = KIND_COLOR.get(f["kind"], "k")
-        q = pole + end * sc
-        ax.plot([pole[0], q[0]], [pole[1], q[1]], color="0.7", lw=0.5)
-        nF = F / np.linalg.norm(F)
-        foot = q - nF * float(np.dot(q - pole, nF))           # arm h: pole to the line of action
-        ax.plot([pole[0], foot[0]], [pole[1], foot[1]], ls=":", color=col, lw=0.5)
-        arrow(q, q + F / mu_F, f["kind"], f["name"])
-    ax.plot([pole[0]], [pole[1]], "ko", ms=2.5)
-    ax.text(pole[0] + 1, pole[1] + 1, "p", fontsize=6)
-    ax.text(x0 + 2, H - 4, ctx.t("kst.lever"), fontsize=6.5)
-    return ctx.svg(fig), mu_F
+        forces = group_forces(e, info, gi, index_by_name)
+        # a balancing force on a slider of this group (balance_kind == 'force')
+        if info.get("balance_kind") == "force" and info.get("balance") in g and e.get("balancing_force") is not None:
+            bl = links[info["balance"]]
+            pnt = kin_e["points"][bl["points"][0]]
+            ang = math.radians(float(kin_e["links"][bl["name"]]["angle"] or 0.0))
+            Fb = float(e["balancing_force"]) * np.array([math.cos(ang), math.sin(ang)])
+            forces.append(("P\u0000b", _xy(pnt), Fb, "balance"))
+        couples = group_couples(e, set(g))
+        if k == len(order) - 1 and info.get("balance_kind") == "moment" and e.get("balancing_moment") is not None:
+            couples.append(("M\u0000b", g[0], float(e["balancing_moment"]), "balance"))
+        if k == len(order) - 1:
+            title = ctx.t("kst.crank_row", i=index_by_name[g[0]], name=g[0])
+        else:
+            title = ctx.t("kst.group_links", k=len(order) - 1 - k,
+                          links=", ".join(str(index_by_name[n]) for n in g))
+        rows.append((g, forces, couples, title))
+    # pages of rows: each group (diagram | polygon); the last row: the input link's
+    # diagram | its polygon | Zhukovsky's lever
+    figs, drawn = [], []
+    start = 0
+    n = len(rows)
+    per_page = max(1, int(PAGE_H // ROW_H))
+    while start < n:
+        stop = min(n, start + per_page)
+        H = (stop - start) * ROW_H
+        cv = Canvas(FIG_W, H)
+        for r in range(start, stop):
+            y = H - (r - start + 1) * ROW_H
+            g, forces, couples, title = rows[r]
+            last = r == n - 1
+            wd, wp = (CRANK_W, POLY_W_CRANK) if last else (GROUP_W, FIG_W - GROUP_W)
+            mu_l = _fbd_panel(ctx, cv, (0, y, wd, ROW_H), kin_e, links, g, forces, couples, title)
+            mu_F, T = _polygon_panel(ctx, cv, (wd + 1, y, wp - 1, ROW_H), forces)
+            drawn.append({"group": g, "mu_l": mu_l, "mu_F": mu_F, "tips": T, "vectors": polygon(forces)[0]})
+            cv.line((wd, y + 1), (wd, y + ROW_H - 1), "#bbb", 0.2, z=0)
+            if r > start:
+                cv.line((0, y + ROW_H), (FIG_W, y + ROW_H), "#bbb", 0.2, z=0)
+            if last:
+                xl = wd + wp
+                cv.line((xl, y + 1), (xl, y + ROW_H - 1), "#bbb", 0.2, z=0)
+                _lever_panel(ctx, cv, (xl + 1, y, FIG_W - xl - 1, ROW_H), e, kin_e, pin, omega1,
+                             info.get("balance_kind"))
+        figs.append(Markup(cv.to_svg()))
+        start = stop
+    return figs, drawn
 
 
+# ----------------------------------------------------------------- graphs
 def _diagrams_fig(ctx, info, entries, grid_n):
     from .. import figures
     ld = [d for d in info.get("load_diagrams", []) if d.get("type") == "force" and d.get("curve")]
@@ -246,11 +556,19 @@ def _diagrams_fig(ctx, info, entries, grid_n):
             ys.append(abs(val) if d["abscissa"] == "s" and d["kind"] in ("resistance", "driving") else val)
             labels.append(str(e["index"]))
         ax.plot(xs, ys, "o", ms=3.5, color="#c0392b")
+        placed = []
         for x, y, l in zip(xs, ys, labels):
-            ax.annotate(l, (x, y), fontsize=6, xytext=(2, 3), textcoords="offset points")
+            # stagger labels of positions that fall on the same spot (e.g. s/H = 1 twice)
+            k = sum(1 for (px, py) in placed if abs(px - x) < 0.02 * (max(xs) - min(xs) + 1e-9))
+            placed.append((x, y))
+            ax.annotate(l, (x, y), fontsize=6.5, xytext=(2 + 7 * k, 3), textcoords="offset points")
         ax.set_xlabel(ctx.t("kst.s_axis") if d["abscissa"] == "s" else ctx.t("kst.phi_axis"))
         ax.set_ylabel(ctx.t("kst.force_axis"))
-        ax.set_title(f"{d['name']}: {d['link']} ({d['kind']}, {d['stroke']})", fontsize=8)
+        s, sub = label_parts(d["name"], ctx.lang)
+        kind = ctx.t(f"kind.{d['kind']}") if d.get("kind") else ""
+        stroke = ctx.t(f"stroke.{d['stroke']}") if d.get("stroke") else ""
+        extra = ", ".join(x for x in (kind, stroke) if x and not x.startswith(("kind.", "stroke.")))
+        ax.set_title(f"${s}_{{{sub}}}$: {d['link']}" + (f" ({extra})" if extra else ""), fontsize=8)
         ax.grid(True, lw=0.3)
     fig.tight_layout()
     return ctx.svg(fig)
@@ -266,30 +584,35 @@ def _cycle_fig(ctx, entries, phi0, sign, info):
     if len(rows) < 2:
         return None
     key = "balancing_moment" if info["balance_kind"] == "moment" else "balancing_force"
-    fig, (a1, a2) = figures.new_figure(170, 110, nrows=2, sharex=True)
+    fig, (a1, a2) = figures.new_figure(170, 120, nrows=2, sharex=True)
     q = [r[0] for r in rows]
     a1.plot(q, [np.nan if r[1][key] is None else r[1][key] for r in rows], "k.-")
     a1.set_ylabel(ctx.t("kst.moment_axis") if key == "balancing_moment" else ctx.t("kst.force_axis"))
     a1.grid(True, lw=0.3)
-    a1.set_title("M_b" if key == "balancing_moment" else "P_b", fontsize=8)
+    a1.axhline(0, color="0.5", lw=0.5)
+    a1.set_title("$M_b$" if key == "balancing_moment" else "$P_b$", fontsize=8)
     for j in info["joints"]:
         vals = [np.nan if r[1]["reactions"][j["key"]]["R"] is None else r[1]["reactions"][j["key"]]["R"]
                 for r in rows]
-        a2.plot(q, vals, ".-", label=j["key"], lw=0.8)
-    a2.legend(ncol=6, fontsize=6)
-    a2.set_ylabel("|R|, N")
+        a2.plot(q, vals, ".-", label=f"$R_{{{j['key'][1:]}}}$", lw=0.8, ms=3)
+    a2.legend(ncol=1, fontsize=6.5, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)
+    a2.set_ylabel("|R|, " + ctx.t("kst.N"))
     a2.set_xlabel(ctx.t("kst.rotation"))
+    a2.set_xticks(np.arange(0, 361, 30))
+    a2.set_xlim(0, 360)
     a2.grid(True, lw=0.3)
-    fig.tight_layout()
+    fig.subplots_adjust(left=0.1, right=0.9, top=0.95, bottom=0.1, hspace=0.15)
     return ctx.svg(fig)
 
 
+# ----------------------------------------------------------------- section
 def build(ctx) -> str | None:
     entries = ctx.results.get("kinetostatics")
     info = ctx.results.get("kinetostatics_info")
     if not entries or not info:
         return None
     fmt = ctx.fmt
+    lang = ctx.lang
     links = _links(ctx.results)
     kin = {k["index"]: k for k in ctx.results.get("kinematics") or []}
     pos = ctx.results.get("positions") or {}
@@ -299,29 +622,37 @@ def build(ctx) -> str | None:
     # balancing moment table
     if force_bal:
         hdr = [ctx.t("kst.position"), "φ, °", ctx.t("kst.fb"), ctx.t("kst.fzh"), ctx.t("kst.fvp"),
-               ctx.t("kst.fmx"), ctx.t("kst.disc"), ctx.t("kst.eff"), ctx.t("kst.near")]
+               ctx.t("kst.fmx"), ctx.t("kst.disc")]
         keys = ("balancing_force", "zhukovsky_force", "virtual_power_force", "matrix_force")
     else:
         hdr = [ctx.t("kst.position"), "φ, °", ctx.t("kst.mb"), ctx.t("kst.zh"), ctx.t("kst.vp"), ctx.t("kst.mx"),
-               ctx.t("kst.pb"), ctx.t("kst.disc"), ctx.t("kst.eff"), ctx.t("kst.near")]
+               ctx.t("kst.pb"), ctx.t("kst.disc")]
         keys = ("balancing_moment", "zhukovsky_moment", "virtual_power_moment", "matrix_moment", "balancing_force")
+    has_eff = any(e.get("efficiency") is not None for e in entries)
+    has_near = any(e.get("near_singular") for e in entries)
+    if has_near:
+        hdr.append(ctx.t("kst.near"))
     mb_rows = []
     csv_rows = []
     for e in entries:
         disc = None if e.get("discrepancy") is None else 100.0 * e["discrepancy"]
-        mb_rows.append([e["index"], ctx.fmt_fixed(e["phi"], 2)] + [fmt(e.get(k), 6) for k in keys]
-                       + [fmt(disc, 2), fmt(e.get("efficiency"), 4), "✓" if e.get("near_singular") else ""])
-        row = [e["index"], e["phi"]] + [e.get(k) for k in keys] + [e.get("discrepancy"), e.get("efficiency")]
+        row = [e["index"], ctx.fmt_fixed(e["phi"], 2)] + [fmt(e.get(k), 6) for k in keys] + [fmt(disc, 2)]
+        if has_near:
+            row.append("✓" if e.get("near_singular") else "")
+        mb_rows.append(row)
+        crow = [e["index"], e["phi"]] + [e.get(k) for k in keys] + [e.get("discrepancy"), e.get("efficiency")]
         for j in info["joints"]:
             r = e["reactions"][j["key"]]
-            row += [r.get("x"), r.get("y"), r.get("R")]
-        csv_rows.append(row)
+            crow += [r.get("x"), r.get("y"), r.get("R")]
+        csv_rows.append(crow)
     csv_hdr = ["index", "phi"] + list(keys) + ["discrepancy", "efficiency"]
     for j in info["joints"]:
         csv_hdr += [f"{j['key']}_x", f"{j['key']}_y", f"{j['key']}_R"]
     ctx.write_csv("kinetostatics.csv", csv_hdr, csv_rows)
     # reactions table
-    r_hdr = [ctx.t("kst.position")] + [j["key"] for j in info["joints"]]
+    r_hdr = [ctx.t("kst.position")] + [label_html(j["key"], lang) + Markup(", N" if lang == "en" else ", Н")
+                                       if j["kind"] == "R" else
+                                       label_html(j["key"], lang) + Markup(": N; x") for j in info["joints"]]
     r_rows = []
     for e in entries:
         row = [e["index"]]
@@ -329,38 +660,95 @@ def build(ctx) -> str | None:
             r = e["reactions"][j["key"]]
             if j["kind"] == "P":
                 off = r.get("offset")
-                row.append(f"{fmt(r.get('N'), 5)}; x = {fmt(off, 4)}" if r.get("N") is not None else "—")
+                row.append(f"{fmt(r.get('N'), 5)}; {fmt(off, 3)}" if r.get("N") is not None else "—")
             else:
                 row.append(fmt(r.get("R"), 5))
         r_rows.append(row)
     # friction table
     eff_rows = None
-    if any(e.get("friction_power") is not None for e in entries):
+    if has_eff:
         eff_rows = [[e["index"], ctx.fmt_fixed(e["phi"], 2), fmt(e.get("friction_power"), 5),
                      fmt(e.get("driving_power"), 5), fmt(e.get("efficiency"), 4)] for e in entries]
-    # per position figures and load tables
+    # loads of every position in one table: the varying loads by position, the constant ones below
+    loads_hdr, loads_rows, const = _loads_table(ctx, entries)
+    # per position drawings
+    from ..plans import crank_pin, geometry
+    geom = geometry(ctx.results, ctx.task)
+    geom_pin = crank_pin(geom) if geom is not None else None
     positions = []
-    vmax = 0.0
-    for e in entries:
-        for f in e.get("loads", []):
-            vmax = max(vmax, math.hypot(*f["v"]))
-    from .. import figures
-    mu_v = figures.nice_scale(vmax / 50.0) if vmax > 0 else 1.0
     for e in entries[:MAX_FIG_POSITIONS]:
         if "loads" not in e or e["index"] not in kin:
             continue
+        ke = kin[e["index"]]
+        w1 = None
+        if geom is not None:
+            dl = geom.link(geom.drive)
+            if dl is not None and dl.name in ke["links"]:
+                w1 = ke["links"][dl.name].get("omega")
         if e.get("balancing_moment") is None and e.get("balancing_force") is None:
-            fig, mu_F = None, None
+            figs = []
         else:
-            fig, mu_F = _fig_position(ctx, e, kin[e["index"]], info, links, mu_v)
-        lrows = [[f["name"], f["link"], f["kind"], fmt(f["F"][0], 5), fmt(f["F"][1], 5),
-                  fmt(math.hypot(*f["F"]), 5), ""] for f in e["loads"]]
-        lrows += [[c["name"], c["link"], c["kind"], "", "", "", fmt(c["M"], 5)] for c in e.get("couples", [])]
-        positions.append({"index": e["index"], "phi": e["phi"], "fig": fig, "mu_F": mu_F, "rows": lrows,
-                          "caption": ctx.t("kst.fbd_caption", mu=f"{mu_F:g}" if mu_F else "—", mv=f"{mu_v:g}")})
+            figs, _ = position_figures(ctx, e, ke, info, links, geom_pin, w1)
+        positions.append({"index": e["index"], "phi": e["phi"], "figs": figs})
     sing = ctx.results.get("singular") or []
+    bk = ctx.t("kst.bk_moment") if info["balance_kind"] == "moment" else ctx.t("kst.bk_force")
     return ctx.render("sections/kinetostatics.html.j2", info=info, mb_hdr=hdr, mb_rows=mb_rows,
                       r_hdr=r_hdr, r_rows=r_rows, eff_rows=eff_rows, positions=positions,
+                      balance_text=f"{info['balance']} ({bk})",
+                      loads_hdr=loads_hdr, loads_rows=loads_rows,
+                      loads_note=ctx.t("kst.loads_note", const=const or "—"),
+                      fbd_caption=ctx.t("kst.fbd_caption"),
                       fig_diagrams=_diagrams_fig(ctx, info, entries, len(entries)),
                       fig_cycle=_cycle_fig(ctx, entries, phi0, sign, info),
                       singular=", ".join(ctx.fmt_fixed(s, 6) for s in sing))
+
+
+def _loads_table(ctx, entries):
+    """Header, rows (one per position) of the loads that vary, and the text of the
+    constant ones ('G₁ = 14.72 N, ...')."""
+    lang = ctx.lang
+    with_loads = [e for e in entries if "loads" in e]
+    if not with_loads:
+        return None, None, ""
+    fnames, cnames = [], []
+    fval: dict[str, list] = {}
+    cval: dict[str, list] = {}
+    for e in with_loads:
+        for f in e["loads"]:
+            if f["name"] not in fval:
+                fnames.append(f["name"])
+                fval[f["name"]] = []
+            fval[f["name"]].append(float(np.hypot(*f["F"])))
+        for c in e.get("couples", []):
+            if c["name"] not in cval:
+                cnames.append(c["name"])
+                cval[c["name"]] = []
+            cval[c["name"]].append(None if c.get("M") is None else float(c["M"]))
+    n = len(with_loads)
+
+    def constant(vals):
+        v = [x for x in vals if x is not None]
+        return len(v) == n and (max(v) - min(v)) <= 1e-9 * max(1.0, max(abs(x) for x in v))
+
+    const_parts, fcols, ccols = [], [], []
+    N = "N" if lang == "en" else "Н"
+    Nm = "N·m" if lang == "en" else "Н·м"
+    for nm in fnames:
+        if constant(fval[nm]):
+            if fval[nm][0] > 0:
+                const_parts.append(Markup(f"{label_html(nm, lang)} = {ctx.fmt(fval[nm][0], 5)} {N}"))
+        else:
+            fcols.append(nm)
+    for nm in cnames:
+        if constant(cval[nm]):
+            if cval[nm][0]:
+                const_parts.append(Markup(f"{label_html(nm, lang)} = {ctx.fmt(cval[nm][0], 5)} {Nm}"))
+        else:
+            ccols.append(nm)
+    hdr = [ctx.t("kst.position"), "φ, °"] + [label_html(nm, lang) for nm in fcols] + \
+        [label_html(nm, lang) for nm in ccols]
+    rows = []
+    for k, e in enumerate(with_loads):
+        rows.append([e["index"], ctx.fmt_fixed(e["phi"], 2)] + [ctx.fmt(fval[nm][k], 4) for nm in fcols]
+                    + [ctx.fmt(cval[nm][k], 4) for nm in ccols])
+    return hdr, rows, Markup(", ").join(const_parts)

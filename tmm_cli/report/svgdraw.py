@@ -1,0 +1,216 @@
+"""A small direct SVG writer for the report's per-position drawings (velocity and
+acceleration plans, free-body diagrams of the Assur groups, force polygons,
+Zhukovsky's lever).
+
+Why not matplotlib: a plan drawn by matplotlib costs ~0.1 s to make and, painted
+by weasyprint's Python SVG renderer, ~0.1 s more (every axis tick is a separate
+path and text).  Here a drawing is a handful of merged paths (one per stroke
+style), filled arrow heads merged per colour and one <text> per label: made in
+milliseconds and painted several times faster.
+
+Coordinates are millimetres on paper, origin at the bottom left, y up (as in
+the drawings of the course); the SVG is emitted with width/height in pt so the
+figure prints at its real size.
+"""
+from __future__ import annotations
+
+import math
+from html import escape
+
+import numpy as np
+
+PT_PER_MM = 72.0 / 25.4
+FONT = "DejaVu Sans"
+SUB_DIGITS = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
+
+
+def _f(x: float) -> str:
+    s = f"{x:.2f}".rstrip("0").rstrip(".")
+    return "0" if s in ("-0", "") else s
+
+
+class Canvas:
+    """A drawing of width_mm x height_mm; see the module docstring."""
+
+    def __init__(self, width_mm: float, height_mm: float):
+        self.w = float(width_mm)
+        self.h = float(height_mm)
+        self._strokes: dict[tuple, list[str]] = {}   # style -> path data pieces
+        self._fills: dict[tuple, list[str]] = {}
+        self._items: list[tuple[int, str]] = []       # (z, element) drawn after the paths of lower z
+        self._order: list[tuple] = []
+
+    # ------------------------------------------------------------ geometry
+    def _y(self, y: float) -> float:
+        return self.h - y
+
+    def _pd(self, pts, closed=False) -> str:
+        pts = [(float(p[0]), float(p[1])) for p in pts]
+        s = "M" + " L".join(f"{_f(x)} {_f(self._y(y))}" for x, y in pts)
+        return s + ("Z" if closed else "")
+
+    # ------------------------------------------------------------ primitives
+    def polyline(self, pts, color="#000", width=0.25, dash=None, z=1, closed=False):
+        """A stroked polyline (mm); merged with every other of the same style."""
+        key = ("s", z, color, round(width, 3), dash)
+        if key not in self._strokes:
+            self._strokes[key] = []
+            self._order.append(key)
+        self._strokes[key].append(self._pd(pts, closed))
+
+    def line(self, p, q, color="#000", width=0.25, dash=None, z=1):
+        self.polyline([p, q], color, width, dash, z)
+
+    def polygon(self, pts, fill="#000", z=2, stroke=None, width=0.2):
+        """A filled polygon (merged per fill colour); optional outline."""
+        key = ("f", z, fill)
+        if key not in self._fills:
+            self._fills[key] = []
+            self._order.append(key)
+        self._fills[key].append(self._pd(pts, True))
+        if stroke:
+            self.polyline(pts, stroke, width, z=z, closed=True)
+
+    def circle(self, c, r, stroke="#000", fill="#fff", width=0.25, z=5):
+        self._items.append((z, f'<circle cx="{_f(c[0])}" cy="{_f(self._y(c[1]))}" r="{_f(r)}" '
+                               f'fill="{fill}" stroke="{stroke}" stroke-width="{_f(width)}"/>'))
+
+    def dot(self, c, r=0.5, color="#000", z=6):
+        self.circle(c, r, stroke="none", fill=color, width=0, z=z)
+
+    def arrow(self, p, q, color="#000", width=0.3, head=2.2, head_w=None, dash=None, z=3):
+        """Vector p -> q with a filled head of length `head` mm (shortened for
+        short vectors); nothing for a zero vector."""
+        p = np.asarray(p, float)
+        q = np.asarray(q, float)
+        d = q - p
+        L = float(np.hypot(*d))
+        if L < 1e-9:
+            return
+        u = d / L
+        hl = min(head, 0.45 * L) if L < 2.2 * head else head
+        hw = (head_w if head_w is not None else 0.36 * head) * hl / head
+        base = q - u * hl
+        n = np.array([-u[1], u[0]])
+        self.polyline([p, base + u * 0.1 * hl], color, width, dash, z)
+        self.polygon([q, base + n * hw, base - n * hw], color, z + 1)
+
+    def text(self, x, y, s, size=7.0, color="#000", anchor="middle", italic=False, bold=False,
+             sub: str | None = None, sup: str | None = None, z=8, vcenter=True, halo=False,
+             after: str | None = None):
+        """A label at (x, y) mm; size in pt.  vcenter: (x, y) is the middle of the
+        text height (else the baseline).  sub/sup: a smaller lowered/raised tail
+        (M + sub 'Φ2' -> M_Φ2); after: normal text after the sub/sup ('μ' 'F' ' = 5 N/mm')."""
+        fs = size / PT_PER_MM
+        yb = self._y(y) + (0.35 * fs if vcenter else 0.0)
+        attrs = [f'x="{_f(x)}"', f'y="{_f(yb)}"', f'font-size="{_f(fs)}"']
+        if anchor != "start":
+            attrs.append(f'text-anchor="{anchor}"')
+        if color != "#000":
+            attrs.append(f'fill="{color}"')
+        if italic:
+            attrs.append('font-style="italic"')
+        if bold:
+            attrs.append('font-weight="bold"')
+        body = escape(s)
+        if sub:
+            body += f'<tspan dy="{_f(0.3 * fs)}" font-size="{_f(0.72 * fs)}">{escape(sub)}</tspan>'
+        elif sup:
+            body += f'<tspan dy="{_f(-0.4 * fs)}" font-size="{_f(0.72 * fs)}">{escape(sup)}</tspan>'
+        if after and (sub or sup):
+            body += f'<tspan dy="{_f(-0.3 * fs if sub else 0.4 * fs)}" font-size="{_f(fs)}">{escape(after)}</tspan>'
+        elif after:
+            body += escape(after)
+        el = f'<text {" ".join(attrs)}>{body}</text>'
+        if halo:
+            # a white box under the label keeps it readable over lines
+            w = 0.6 * fs * (len(s) + 0.72 * len(sub or sup or "")) + 0.6
+            x0 = x - w / 2 if anchor == "middle" else (x - w if anchor == "end" else x)
+            self._items.append((z - 1, f'<rect x="{_f(x0 - 0.3)}" y="{_f(self._y(y) - 0.62 * fs)}" '
+                                       f'width="{_f(w)}" height="{_f(1.24 * fs)}" fill="#fff"/>'))
+        self._items.append((z, el))
+
+    def hatch(self, p, q, outward, depth=1.2, step=1.6, color="#000", width=0.25, z=1):
+        """A ground line p-q hatched on the side `outward` (fixed link)."""
+        p = np.asarray(p, float)
+        q = np.asarray(q, float)
+        o = np.asarray(outward, float)
+        o = o / (np.hypot(*o) or 1.0)
+        self.line(p, q, color, width * 1.4, z=z)
+        L = float(np.hypot(*(q - p)))
+        if L <= 0:
+            return
+        t = (q - p) / L
+        n = max(2, int(L / step))
+        for s in np.linspace(0, L, n + 1)[1:]:
+            a = p + t * s
+            self.line(a, a + o * depth - t * depth, color, width * 0.8, z=z)
+
+    def ground(self, c, size=1.6, color="#000", width=0.25, z=1):
+        """A fixed pivot: a triangle under the joint on a hatched base."""
+        c = np.asarray(c, float)
+        h = 1.7 * size
+        self.polyline([c + (-size, -h), c, c + (size, -h)], color, width, z=z)
+        self.hatch(c + (-1.6 * size, -h), c + (1.6 * size, -h), (0, -1), depth=0.7 * size,
+                   step=0.9 * size, color=color, width=width, z=z)
+
+    def block(self, c, angle_deg, w=7.0, h=4.0, color="#000", width=0.3, fill="#fff", z=4):
+        """A slider block centred at c, its long side along angle_deg."""
+        a = math.radians(angle_deg)
+        u = np.array([math.cos(a), math.sin(a)])
+        v = np.array([-u[1], u[0]])
+        c = np.asarray(c, float)
+        pts = [c + u * w / 2 + v * h / 2, c - u * w / 2 + v * h / 2,
+               c - u * w / 2 - v * h / 2, c + u * w / 2 - v * h / 2]
+        self.polygon(pts, fill, z)
+        self.polyline(pts, color, width, z=z, closed=True)
+
+    def moment(self, c, r, M, color="#000", width=0.3, z=3):
+        """A couple M (ccw positive) as a 3/4 circular arrow of radius r around c."""
+        if M == 0 or not math.isfinite(M):
+            return
+        sgn = 1.0 if M > 0 else -1.0
+        t = np.linspace(math.radians(200), math.radians(200) + sgn * math.radians(260), 24)
+        pts = [np.asarray(c, float) + r * np.array([math.cos(a), math.sin(a)]) for a in t]
+        self.polyline(pts[:-2], color, width, z=z)
+        self.arrow(pts[-3], pts[-1] + (pts[-1] - pts[-2]) * 0.5, color, width, head=1.8, z=z)
+
+    # ------------------------------------------------------------ output
+    def to_svg(self) -> str:
+        out = [f'<svg xmlns="http://www.w3.org/2000/svg" class="fig" width="{self.w * PT_PER_MM:.1f}pt" '
+               f'height="{self.h * PT_PER_MM:.1f}pt" viewBox="0 0 {_f(self.w)} {_f(self.h)}" '
+               f'font-family="{FONT}">']
+        layers: dict[int, list[str]] = {}
+        for key in self._order:
+            if key[0] == "s":
+                _, z, color, width, dash = key
+                da = f' stroke-dasharray="{dash}"' if dash else ""
+                el = (f'<path d="{" ".join(self._strokes[key])}" fill="none" stroke="{color}" '
+                      f'stroke-width="{_f(width) if width >= 0.01 else width}"{da} '
+                      f'stroke-linejoin="round" stroke-linecap="round"/>')
+            else:
+                _, z, fill = key
+                el = f'<path d="{" ".join(self._fills[key])}" fill="{fill}" stroke="none"/>'
+            layers.setdefault(z, []).append(el)
+        for z, el in self._items:
+            layers.setdefault(z, []).append(el)
+        for z in sorted(layers):
+            out.extend(layers[z])
+        out.append("</svg>")
+        return "\n".join(out)
+
+
+def sub_label(name: str) -> tuple[str, str | None]:
+    """'R12' -> ('R₁₂', None); 'Fi2' -> ('Φ₂', None); 'Mi2' -> ('M', 'Φ2'): the
+    names of the course (R_ij, G_i, Φ_i inertia force, M_Φi inertia moment,
+    F_i external force, M_i external couple)."""
+    import re
+    m = re.fullmatch(r"([A-Za-z]+?)(i?)(\d+)", name)
+    if not m:
+        return name, None
+    head, inertia, num = m.groups()
+    if inertia and head == "F":
+        return "Φ" + num.translate(SUB_DIGITS), None
+    if inertia and head == "M":
+        return "M", "Φ" + num
+    return head + num.translate(SUB_DIGITS), None
