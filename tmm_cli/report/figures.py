@@ -171,12 +171,22 @@ def _seg_dist(c, segs):
     """Distance from point c to the nearest of the segments (array (k, 2, 2))."""
     if segs is None or not len(segs):
         return np.inf
+    return float(_seg_dists(np.asarray(c, float)[None, :], segs)[0])
+
+
+def _seg_dists(C, segs):
+    """Distances from each of the points C (m, 2) to the nearest segment (k, 2, 2)."""
     a, b = segs[:, 0], segs[:, 1]
     d = b - a
     L2 = np.maximum((d * d).sum(axis=1), 1e-300)
-    t = np.clip(((c - a) * d).sum(axis=1) / L2, 0.0, 1.0)
-    q = a + d * t[:, None]
-    return float(np.sqrt(((q - c) ** 2).sum(axis=1)).min())
+    rel = C[:, None, :] - a[None, :, :]                                  # (m, k, 2)
+    t = np.clip((rel * d[None]).sum(axis=2) / L2[None], 0.0, 1.0)         # (m, k)
+    q = rel - d[None] * t[:, :, None]
+    return np.sqrt((q * q).sum(axis=2)).min(axis=1)
+
+
+_DIRS = np.array([[math.cos(t), math.sin(t)] for t in np.linspace(0, 2 * math.pi, 16, endpoint=False)])
+_MULTS = (1.0, 1.5, 2.1)
 
 
 def place_labels(anchors, extent: float, avoid=(), step: float | None = None, segments=None,
@@ -185,46 +195,48 @@ def place_labels(anchors, extent: float, avoid=(), step: float | None = None, se
 
     anchors: list of (x, y, preferred_direction (dx, dy) or None).
     Returns list of (x, y) label positions: each label is put at one of 16
-    candidate directions around its anchor (two distances), the one farthest
+    candidate directions around its anchor (three distances), the one farthest
     from the already placed labels, the `avoid` points and the `segments`
     (lines of the drawing), preferring `preferred_direction`; never inside one
     of the `boxes` (centre, u-axis unit vector, half width, half height).
+    Vectorised over the candidates (numpy).
     """
     if step is None:
         step = 0.045 * extent
-    placed: list[np.ndarray] = []
-    avoid = [np.asarray(a, float) for a in avoid]
+    avoid_a = np.asarray([np.asarray(a, float) for a in avoid], float).reshape(-1, 2)
     segs = np.asarray(segments, float).reshape(-1, 2, 2) if segments is not None and len(segments) else None
+    offs = np.concatenate([_DIRS * step * m for m in _MULTS])             # (48, 2)
+    mult = np.repeat(np.array(_MULTS), len(_DIRS))
+    dirs = np.tile(_DIRS, (len(_MULTS), 1))
+    # distance of the candidates of every anchor to the drawing's segments
+    placed = np.empty((0, 2))
     out = []
-    dirs = [np.array([math.cos(t), math.sin(t)]) for t in np.linspace(0, 2 * math.pi, 16, endpoint=False)]
+    big = 9 * step
     for (x, y, pref) in anchors:
         c = np.array([x, y], float)
-        best = None
-        best_score = -1e300
-        pv = None
+        cand = c + offs
+        ok = np.ones(len(cand), bool)
+        for (bc, bu, hw, hh) in boxes:
+            bc = np.asarray(bc, float)
+            bu = np.asarray(bu, float)
+            bv = np.array([-bu[1], bu[0]])
+            r = cand - bc
+            ok &= ~((np.abs(r @ bu) < hw + 0.5 * step) & (np.abs(r @ bv) < hh + 0.4 * step))
+        dl = np.sqrt(((cand[:, None, :] - placed[None]) ** 2).sum(axis=2)).min(axis=1) if len(placed) \
+            else np.full(len(cand), big)
+        da = np.sqrt(((cand[:, None, :] - avoid_a[None]) ** 2).sum(axis=2)).min(axis=1) if len(avoid_a) \
+            else np.full(len(cand), big)
+        ds = _seg_dists(cand, segs) if segs is not None else np.full(len(cand), np.inf)
+        score = np.minimum(dl, 2.2 * step) + np.minimum(da, 1.2 * step) + np.minimum(ds, 0.8 * step) \
+            - 0.35 * step * (mult - 1)
         if pref is not None:
             n = math.hypot(*pref)
             if n > 0:
-                pv = np.array(pref, float) / n
-        for mult in (1.0, 1.5, 2.1):
-            for d in dirs:
-                cand = c + d * step * mult
-                if any(abs(float((cand - bc) @ bu)) < hw + 0.5 * step and
-                       abs(float((cand - bc) @ np.array([-bu[1], bu[0]]))) < hh + 0.4 * step
-                       for (bc, bu, hw, hh) in boxes):
-                    continue
-                dl = min((float(np.linalg.norm(cand - o)) for o in placed), default=9 * step)
-                da = min((float(np.linalg.norm(cand - o)) for o in avoid), default=9 * step)
-                ds = _seg_dist(cand, segs)
-                score = min(dl, 2.2 * step) + min(da, 1.2 * step) + min(ds, 0.8 * step) \
-                    - 0.35 * step * (mult - 1)
-                if pv is not None:
-                    score += 0.5 * step * float(d @ pv)
-                if score > best_score:
-                    best_score, best = score, cand
-        if best is None:
-            best = c + dirs[4] * step * 2.5
-        placed.append(best)
+                score = score + 0.5 * step * (dirs @ (np.asarray(pref, float) / n))
+        score = np.where(ok, score, -np.inf)
+        k = int(np.argmax(score))
+        best = cand[k] if np.isfinite(score[k]) else c + _DIRS[4] * step * 2.5
+        placed = np.vstack([placed, best])
         out.append((float(best[0]), float(best[1])))
     return out
 

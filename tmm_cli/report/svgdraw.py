@@ -123,11 +123,12 @@ class Canvas:
             body += escape(after)
         el = f'<text {" ".join(attrs)}>{body}</text>'
         if halo:
-            # a white box under the label keeps it readable over lines
+            # a white box under the label keeps it readable over lines (merged into one path)
             w = 0.6 * fs * (len(s) + 0.72 * len(sub or sup or "")) + 0.6
             x0 = x - w / 2 if anchor == "middle" else (x - w if anchor == "end" else x)
-            self._items.append((z - 1, f'<rect x="{_f(x0 - 0.3)}" y="{_f(self._y(y) - 0.62 * fs)}" '
-                                       f'width="{_f(w)}" height="{_f(1.24 * fs)}" fill="#fff"/>'))
+            yc = y if vcenter else y + 0.35 * fs
+            self.polygon([(x0 - 0.3, yc - 0.62 * fs), (x0 + w - 0.3, yc - 0.62 * fs),
+                          (x0 + w - 0.3, yc + 0.62 * fs), (x0 - 0.3, yc + 0.62 * fs)], "#fff", z=z - 1)
         self._items.append((z, el))
 
     def hatch(self, p, q, outward, depth=1.2, step=1.6, color="#000", width=0.25, z=1):
