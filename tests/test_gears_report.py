@@ -7,7 +7,8 @@ import pytest
 from tmm_cli.gears import analyze, synthesize_planetary
 
 
-@pytest.mark.parametrize("lang,word", [("en", "Region of (x1, x2)"), ("ru", "Область (x1, x2)")])
+@pytest.mark.parametrize("lang,word", [("en", "Region of (x<sub>1</sub>, x<sub>2</sub>)"),
+                                       ("ru", "Область (x<sub>1</sub>, x<sub>2</sub>)")])
 def test_sections_render(tmp_path: Path, lang, word):
     from tmm_cli.report import render_html
 
@@ -20,3 +21,17 @@ def test_sections_render(tmp_path: Path, lang, word):
     assert "z1 = 18, z2 = 45, z3 = 108" in html
     names = {q.name for q in ctx.written}
     assert {"gears_outline.dxf", "gears_wheel1_outline.csv", "gears_sliding.csv"} <= names
+
+
+def test_ru_symbols_and_words(tmp_path: Path):
+    """In Russian the gear tables name the quantities in words with their course symbols
+    (a_w, alpha_w, eps_alpha as subscripts), no raw identifiers are left."""
+    from tmm_cli.report import render_html
+
+    g = analyze(NS(m=0.003, z=(12, 42), x=(0.63, 0.67))).to_dict()
+    html, _ = render_html({"schema": "tmm-results/1", "gears": g, "warnings": []}, None, tmp_path, "ru")
+    for text in ("межосевое расстояние, a<sub>w</sub>, мм", "угол зацепления, α<sub>w</sub>",
+                 "коэффициент перекрытия, ε<sub>α</sub>", "радиус основной окружности, r<sub>b</sub>, мм"):
+        assert text in html, text
+    for raw in ("eps_alpha", "alpha_w", "x_min", "a_w,"):
+        assert raw not in html, raw

@@ -19,7 +19,22 @@ I18N = {
            "gears.defect": "defect", "gears.ok": "ok", "gears.undercut": "Undercut (x < x_min)",
            "gears.sharpening": "Tip sharpening (s_a < {k} m)", "gears.contact": "Contact ratio eps_alpha < 1.2",
            "gears.interference": "Interference (tip with fillet)", "gears.pair": "Pair",
-           "gears.rule": "Shifts chosen by the rule: {rule}", "gears.files": "Tooth outlines"},
+           "gears.rule": "Shifts chosen by the rule: {rule}", "gears.files": "Tooth outlines",
+           "gears.mm": "mm", "gears.deg": "°", "gears.lines": "Line of action",
+           "gears.undercut_l": "undercut", "gears.sharpening_l": "tip sharpening",
+           "gears.contact_ratio_l": "ε_α = 1.2", "gears.interference_l": "interference",
+           "g.aw": "centre distance", "g.alpha_w": "working pressure angle", "g.inv": "involute of α_w",
+           "g.y": "centre distance modification coefficient", "g.dy": "addendum reduction coefficient",
+           "g.eps": "contact ratio", "g.p": "circular pitch", "g.pb": "base pitch", "g.h": "tooth height",
+           "g.x": "shift coefficient", "g.x_min": "least shift without undercut", "g.r": "pitch radius",
+           "g.rb": "base radius", "g.rw": "rolling (operating pitch) radius", "g.ra": "tip radius",
+           "g.rf": "root radius", "g.s": "tooth thickness on the pitch circle",
+           "g.e": "space width on the pitch circle", "g.sa": "tooth thickness on the tip circle",
+           "g.sb": "tooth thickness on the base circle", "g.N1N2": "line of action (theoretical)",
+           "g.N1P": "from N₁ to the pitch point", "g.N1B1": "from N₁ to the start of the active part",
+           "g.N1B2": "from N₁ to the end of the active part", "g.B1B2": "active part of the line of action",
+           "g.arc_of_action_w": "arc of action on the rolling circle", "g.rule.equal_sliding":
+           "equal specific sliding at the ends of the active part"},
     "ru": {"gears.title": "Эвольвентная прямозубая передача", "gears.geometry": "Геометрия (ГОСТ 16532-70)",
            "gears.checks": "Проверки качества", "gears.wheel": "Колесо", "gears.mesh": "Картина зацепления",
            "gears.mesh_caption": "Зацепление при a_w: начальные (штрих), основные окружности, окружности вершин "
@@ -32,10 +47,39 @@ I18N = {
            "gears.defect": "дефект", "gears.ok": "норма", "gears.undercut": "Подрез (x < x_min)",
            "gears.sharpening": "Заострение (s_a < {k} m)", "gears.contact": "Коэффициент перекрытия eps_alpha < 1.2",
            "gears.interference": "Интерференция (вершина с переходной кривой)", "gears.pair": "Передача",
-           "gears.rule": "Смещения выбраны по правилу: {rule}", "gears.files": "Профили зубьев"},
+           "gears.rule": "Смещения выбраны по правилу: {rule}", "gears.files": "Профили зубьев",
+           "gears.mm": "мм", "gears.deg": "°", "gears.lines": "Линия зацепления",
+           "gears.undercut_l": "подрез", "gears.sharpening_l": "заострение",
+           "gears.contact_ratio_l": "ε_α = 1,2", "gears.interference_l": "интерференция",
+           "g.aw": "межосевое расстояние", "g.alpha_w": "угол зацепления", "g.inv": "инволюта угла зацепления",
+           "g.y": "коэффициент воспринимаемого смещения", "g.dy": "коэффициент уравнительного смещения",
+           "g.eps": "коэффициент перекрытия", "g.p": "шаг по делительной окружности", "g.pb": "основной шаг",
+           "g.h": "высота зуба", "g.x": "коэффициент смещения",
+           "g.x_min": "наименьший коэффициент смещения без подреза", "g.r": "радиус делительной окружности",
+           "g.rb": "радиус основной окружности", "g.rw": "радиус начальной окружности",
+           "g.ra": "радиус окружности вершин", "g.rf": "радиус окружности впадин",
+           "g.s": "толщина зуба по делительной окружности", "g.e": "ширина впадины по делительной окружности",
+           "g.sa": "толщина зуба по окружности вершин", "g.sb": "толщина зуба по основной окружности",
+           "g.N1N2": "теоретическая линия зацепления", "g.N1P": "от N₁ до полюса зацепления",
+           "g.N1B1": "от N₁ до начала активной линии", "g.N1B2": "от N₁ до конца активной линии",
+           "g.B1B2": "активная линия зацепления", "g.arc_of_action_w": "дуга зацепления по начальной окружности",
+           "g.rule.equal_sliding": "равенство удельных скольжений на концах активной линии"},
 }
 
 MM = 1e3
+
+
+def _symbols(text: str):
+    """Course symbols written with subscripts: x_min, eps_alpha, s_a, a_w, N1N2, B1B2."""
+    import re
+    from markupsafe import Markup, escape
+    h = str(escape(text))
+    h = h.replace("eps_alpha", "ε<sub>α</sub>").replace("x_min", "x<sub>min</sub>")
+    h = re.sub(r"\b([sa])_([aw])\b", r"\1<sub>\2</sub>", h)
+    h = re.sub(r"\b([NB])([12])([NB]|\b)", lambda m: f"{m.group(1)}<sub>{m.group(2)}</sub>{m.group(3)}", h)
+    h = re.sub(r"([NB])<sub>([12])</sub>([NB])([12])", r"\1<sub>\2</sub>\3<sub>\4</sub>", h)
+    h = re.sub(r"\(x([12]), x([12])\)", r"(x<sub>\1</sub>, x<sub>\2</sub>)", h)
+    return Markup(h)
 
 
 def _wheels(g):
@@ -71,11 +115,12 @@ def mesh_figure(ctx, g):
     ax.plot([pts["B1"][0] * MM, pts["B2"][0] * MM], [pts["B1"][1] * MM, pts["B2"][1] * MM], color="tab:red", lw=2.5)
     for name, p in pts.items():
         ax.plot(p[0] * MM, p[1] * MM, "o", ms=2.5, color="tab:red" if name.startswith("B") else "tab:blue")
-        ax.annotate(name, (p[0] * MM, p[1] * MM), textcoords="offset points", xytext=(3, 3), fontsize=7)
+        ax.annotate(f"${name[0]}_{{{name[1:]}}}$" if name[1:].isdigit() else name, (p[0] * MM, p[1] * MM),
+                    textcoords="offset points", xytext=(3, 3), fontsize=7)
     ax.set_xlim(-span * MM, span * MM)
     ax.set_ylim((g["rw"][0] - span * 0.75) * MM, (g["rw"][0] + span * 0.75) * MM)
     ax.set_aspect("equal")
-    ax.set_xlabel("mm")
+    ax.set_xlabel(ctx.t("gears.mm"))
     return fig
 
 
@@ -90,7 +135,9 @@ def contour_figure(ctx, g):
         col = next(v for k, v in colors.items() if name.startswith(k))
         for seg in segs:
             a = np.asarray(seg)
-            ax.plot(a[:, 0], a[:, 1], color=col, lw=1.0, label=None if name in seen else name)
+            kind = next(k for k in ("undercut", "sharpening", "contact_ratio", "interference") if name.startswith(k))
+            lab = ctx.t(f"gears.{kind}_l") + (f" {name.rsplit('_', 1)[-1]}" if name[-1:].isdigit() else "")
+            ax.plot(a[:, 0], a[:, 1], color=col, lw=1.0, label=None if name in seen else lab)
             seen.add(name)
     # the admissible region, re-evaluated on a coarse grid for shading
     from tmm_cli.gears.shifts import blocking_contour
@@ -100,8 +147,8 @@ def contour_figure(ctx, g):
     ax.plot(*bc["chosen"], "ko", ms=4)
     ax.set_xlim(*bc["x1_range"])
     ax.set_ylim(*bc["x2_range"])
-    ax.set_xlabel("x1")
-    ax.set_ylabel("x2")
+    ax.set_xlabel("$x_1$")
+    ax.set_ylabel("$x_2$")
     ax.legend(loc="upper right", fontsize=6)
     ax.grid(True, lw=0.3)
     return fig
@@ -112,17 +159,17 @@ def sliding_figure(ctx, g):
     sl = g["sliding"]
     fig, ax = fp.new_figure(150, 80)
     X = np.array(sl["X"]) * MM
-    for key, col, lab in (("lambda1", "tab:blue", "λ1"), ("lambda2", "tab:red", "λ2")):
+    for key, col, lab in (("lambda1", "tab:blue", "$\\lambda_1$"), ("lambda2", "tab:red", "$\\lambda_2$")):
         v = np.array([np.nan if y is None else y for y in sl[key]], float)
         v = np.clip(v, -5, 1.5)
         ax.plot(X, v, color=col, label=lab)
     for name, x in sl["marks"].items():
         if x is not None:
             ax.axvline(x * MM, color="0.6", lw=0.5)
-            ax.annotate(name, (x * MM, 1.3), fontsize=7)
+            ax.annotate(f"${name[0]}_{{{name[1:]}}}$" if name[1:].isdigit() else name, (x * MM, 1.3), fontsize=7)
     ax.axvspan(sl["marks"]["B1"] * MM, sl["marks"]["B2"] * MM, color="0.9")
     ax.set_ylim(-5, 1.5)
-    ax.set_xlabel("N1X, mm")
+    ax.set_xlabel(f"$N_1X$, {ctx.t('gears.mm')}")
     ax.legend(fontsize=7)
     ax.grid(True, lw=0.3)
     return fig
@@ -134,17 +181,36 @@ def build(ctx) -> str | None:
         return None
     f = ctx.fmt
     t = ctx.t
-    rows = [("a_w, mm", f(g["aw"] * MM, 6), "", ""), ("alpha_w, deg", f(g["alpha_w"], 6), "", ""),
-            ("inv alpha_w", f(g["inv_alpha_w"], 6), "", ""), ("y", f(g["y"], 6), "", ""),
-            ("Δy", f(g["dy"], 6), "", ""), ("eps_alpha", f(g["eps_alpha"], 5), "", ""),
-            ("p, mm", f(g["p"] * MM, 6), "", ""), ("p_b, mm", f(g["pb"] * MM, 6), "", ""),
-            ("h, mm", f(g["h"] * MM, 6), "", "")]
-    per = [("x", "x", 1), ("x_min", "x_min", 1), ("r, mm", "r", MM), ("r_b, mm", "rb", MM),
-           ("r_w, mm", "rw", MM), ("r_a, mm", "ra", MM), ("r_f, mm", "rf", MM), ("s, mm", "s", MM),
-           ("e, mm", "e", MM), ("s_a, mm", "sa", MM), ("s_b, mm", "sb", MM)]
-    wheel_rows = [(lab, f(g[k][0] * sc, 6), f(g[k][1] * sc, 6)) for lab, k, sc in per]
+    from markupsafe import Markup
+    mm, deg = t("gears.mm"), t("gears.deg")
+
+    def sym(html, unit=""):
+        return Markup(html + (f", {unit}" if unit else ""))
+
+    def row(key, html, value, unit=""):
+        return (Markup(f"{t(key)}, ") + sym(html, unit), value)
+    rows = [row("g.aw", "a<sub>w</sub>", f(g["aw"] * MM, 6), mm),
+            row("g.alpha_w", "α<sub>w</sub>", f(g["alpha_w"], 6), deg),
+            row("g.inv", "inv α<sub>w</sub>", f(g["inv_alpha_w"], 6)),
+            row("g.y", "y", f(g["y"], 6)), row("g.dy", "Δy", f(g["dy"], 6)),
+            row("g.eps", "ε<sub>α</sub>", f(g["eps_alpha"], 5)),
+            row("g.p", "p", f(g["p"] * MM, 6), mm), row("g.pb", "p<sub>b</sub>", f(g["pb"] * MM, 6), mm),
+            row("g.h", "h", f(g["h"] * MM, 6), mm)]
+    per = [("g.x", "x", "x", 1, ""), ("g.x_min", "x<sub>min</sub>", "x_min", 1, ""),
+           ("g.r", "r", "r", MM, mm), ("g.rb", "r<sub>b</sub>", "rb", MM, mm),
+           ("g.rw", "r<sub>w</sub>", "rw", MM, mm), ("g.ra", "r<sub>a</sub>", "ra", MM, mm),
+           ("g.rf", "r<sub>f</sub>", "rf", MM, mm), ("g.s", "s", "s", MM, mm), ("g.e", "e", "e", MM, mm),
+           ("g.sa", "s<sub>a</sub>", "sa", MM, mm), ("g.sb", "s<sub>b</sub>", "sb", MM, mm)]
+    wheel_rows = [(Markup(f"{t(key)}, ") + sym(html, unit), f(g[k][0] * sc, 6), f(g[k][1] * sc, 6))
+                  for key, html, k, sc, unit in per]
     la = g["line_of_action"]
-    la_rows = [(k + ", mm", f(v * MM, 6)) for k, v in la.items() if v is not None]
+
+    def seg_html(k):
+        return "".join(f"{c}<sub>{n}</sub>" if n else c for c, n in
+                       __import__("re").findall(r"([A-Za-z])(\d*)", k)) if k[:1] in "NB" else k
+    la_rows = [((Markup(f"{t('g.' + k)}, ") + sym(seg_html(k), mm)) if k[:1] in "NB" else
+                (Markup(f"{t('g.' + k)}, ") + sym("", mm)[2:]) if not t("g." + k).startswith("g.")
+                else k + ", " + mm, f(v * MM, 6)) for k, v in la.items() if v is not None]
     ch = g["checks"]
     yes, no = t("gears.defect"), t("gears.ok")
     check_rows = [(t("gears.undercut"), yes if ch["undercut"][0] else no, yes if ch["undercut"][1] else no),
@@ -152,11 +218,12 @@ def build(ctx) -> str | None:
                    yes if ch["sharpening"][1] else no),
                   (t("gears.contact"), yes if ch["contact_ratio_low"] else no, ""),
                   (t("gears.interference"), *(yes if v else no for v in g["checks_detail"]["interference"]))]
+    check_rows = [(_symbols(r[0]),) + tuple(r[1:]) for r in check_rows]
     figs = []
     for fn, cap in ((mesh_figure, "gears.mesh_caption"), (contour_figure, "gears.contour_caption"),
                     (sliding_figure, "gears.sliding_caption")):
         try:
-            figs.append((ctx.svg(fn(ctx, g)), t(cap)))
+            figs.append((ctx.svg(fn(ctx, g)), _symbols(t(cap))))
         except Exception as exc:  # a drawing problem must not lose the tables
             figs.append((f"<p class='warn'>figure failed: {exc}</p>", t(cap)))
     files = []
@@ -173,7 +240,10 @@ def build(ctx) -> str | None:
                                    zip(sl["X"], sl["lambda1"], sl["lambda2"])).name)
     except Exception:  # exports are extras
         pass
-    rule = t("gears.rule", rule=g["rule"]) if g.get("rule") else None
+    rule_name = t(f"g.rule.{g['rule']}") if g.get("rule") else None
+    if rule_name and rule_name.startswith("g.rule."):
+        rule_name = g["rule"]
+    rule = t("gears.rule", rule=rule_name) if g.get("rule") else None
     return ctx.render("sections/gears.html.j2", rows=[r[:2] for r in rows], wheel_rows=wheel_rows,
                       la_rows=la_rows, check_rows=check_rows, figs=figs, files=files, rule=rule,
                       warnings=g.get("warnings", []))

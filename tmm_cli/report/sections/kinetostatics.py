@@ -259,6 +259,12 @@ def _fbd_panel(ctx, cv, box, kin_e, links, names, forces, couples, title):
                 u = np.array([math.cos(math.radians(ang)), math.sin(math.radians(ang))])
                 cv.line(c - u * 9, c + u * 9, "#777", 0.2, dash="2 0.6 0.4 0.6", z=1)
                 segs.append((c - u * 4, c + u * 4))
+                for p in ps[1:]:                       # a slider carrying other points (a yoke)
+                    q = M(_xy(P[p]))
+                    cv.line(c, q, "#000", 0.6, z=2)
+                    segs.append((c, q))
+                    cv.circle(q, 0.8, width=0.3, z=5)
+                    avoid.append(q)
             continue
         q = np.array([M(_xy(P[p])) for p in ps])
         if len(q) >= 3 and _area(q) > 1.0:

@@ -11,7 +11,9 @@ I18N = {
            "plan.checks": "Conditions", "plan.candidates": "Best candidates",
            "plan.size": "Size (modules)", "plan.sketch": "Scheme (half section) and velocity plan",
            "plan.coaxial": "coaxiality", "plan.assembly": "assembly (p = {p})",
-           "plan.adjacency": "adjacency (margin {m} modules)", "plan.undercut": "no undercut"},
+           "plan.adjacency": "adjacency (margin {m} modules)", "plan.undercut": "no undercut",
+           "plan.v_axis": "v, m/s (ω₁ = 1 rad/s)", "plan.mm": "mm", "plan.carrier": "carrier H",
+           "plan.satellite": "satellite"},
     "ru": {"plan.title": "Синтез планетарного механизма", "plan.scheme": "Схема {s}: {name}",
            "plan.z": "Числа зубьев", "plan.ratio": "Передаточное отношение i_1H (Виллис)",
            "plan.required": "Требуемое", "plan.error": "Погрешность",
@@ -19,7 +21,13 @@ I18N = {
            "plan.candidates": "Лучшие варианты", "plan.size": "Габарит (модулей)",
            "plan.sketch": "Схема (полуразрез) и план линейных скоростей",
            "plan.coaxial": "соосность", "plan.assembly": "сборка (p = {p})",
-           "plan.adjacency": "соседство (запас {m} модуля)", "plan.undercut": "отсутствие подреза"},
+           "plan.adjacency": "соседство (запас {m} модуля)", "plan.undercut": "отсутствие подреза",
+           "plan.v_axis": "v, м/с (ω₁ = 1 рад/с)", "plan.mm": "мм", "plan.carrier": "водило H",
+           "plan.satellite": "сателлит",
+           "plan.scheme_A": "однорядный: солнечное колесо — сателлит — неподвижное корончатое колесо",
+           "plan.scheme_B": "двухрядный с двойным сателлитом: внешнее и внутреннее зацепления",
+           "plan.scheme_C": "двухрядный с двойным сателлитом: два внешних зацепления",
+           "plan.scheme_D": "двухрядный с двойным сателлитом: два внутренних зацепления"},
 }
 
 
@@ -54,7 +62,7 @@ def figure(ctx, p):
     ax.plot([2.2, 2.2, 0.4], [0, a * 1e3, a * 1e3], "k-", lw=1.0)
     ax.annotate("H", (2.25, a * 0.5e3))
     ax.set_xlim(-0.5, 2.6)
-    ax.set_ylabel("mm")
+    ax.set_ylabel(ctx.t("plan.mm"))
     ax.set_xticks([])
     vp = p["velocity_plan"]
     for pt in vp["points"]:
@@ -64,9 +72,10 @@ def figure(ctx, p):
     ys = np.array([0, max(pt["y"] for pt in vp["points"])])
     for name, ln in vp["lines"].items():
         yy = np.linspace(0, ys[1], 20)
-        av.plot(ln["slope"] * (yy - ln["y0"]), yy * 1e3, label=name)
+        lab = {"H": ctx.t("plan.carrier"), "satellite": ctx.t("plan.satellite")}.get(name, name)
+        av.plot(ln["slope"] * (yy - ln["y0"]), yy * 1e3, label=lab)
     av.axvline(0, color="k", lw=0.6)
-    av.set_xlabel("v, m/s (omega1 = 1 rad/s)")
+    av.set_xlabel(ctx.t("plan.v_axis"))
     av.legend(fontsize=6)
     return fig
 
@@ -77,9 +86,16 @@ def build(ctx) -> str | None:
         return None
     f, t = ctx.fmt, ctx.t
     ch = p.get("checks", {})
-    info = [(t("plan.scheme", s=p.get("scheme", ""), name=p.get("scheme_name", "")), ""),
+    from markupsafe import Markup, escape
+    sname = t(f"plan.scheme_{p.get('scheme', '')}")
+    if sname.startswith("plan.scheme_"):
+        sname = p.get("scheme_name", "")
+
+    def sym(text):
+        return Markup(str(escape(text)).replace("i_1H", "i<sub>1H</sub>"))
+    info = [(t("plan.scheme", s=p.get("scheme", ""), name=sname), ""),
             (t("plan.z"), ", ".join(f"{k} = {v}" for k, v in p["z"].items())),
-            (t("plan.required"), f(p.get("required"), 6)), (t("plan.ratio"), f(p["ratio"], 6)),
+            (t("plan.required"), f(p.get("required"), 6)), (sym(t("plan.ratio")), f(p["ratio"], 6)),
             (t("plan.error"), f"{100 * p['ratio_error']:.3f} %"),
             (t("plan.plan_ratio"), f(p.get("ratio_plan"), 6))]
     conds = [(t("plan.coaxial"), bool(ch.get("coaxial"))),
@@ -93,4 +109,5 @@ def build(ctx) -> str | None:
         fig = ctx.svg(figure(ctx, p))
     except Exception as exc:  # the tables matter more than the picture
         fig = f"<p class='warn'>figure failed: {exc}</p>"
-    return ctx.render("sections/planetary.html.j2", info=info, conds=conds, cands=cands, fig=fig)
+    return ctx.render("sections/planetary.html.j2", info=info, conds=conds, cands=cands, fig=fig,
+                      ratio_head=sym(t("plan.ratio")))

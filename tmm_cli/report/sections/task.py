@@ -1,8 +1,18 @@
-"""Report section 'task': title, variant, student and the task data table."""
+"""Report section 'task': title, variant, student and the task data.
+
+The mechanism is shown as an instructor writes the data of a variant: a table of
+the fixed points, a table of the links (points, length, mass, moment of inertia,
+centre of mass, guide) and the assembly hints; every other section of the task
+file as 'parameter — value with its unit' (SI, angles in degrees, as the task
+model stores them).  Lists of numbers are written '0; 0.7; 0.9', coordinates
+'(0.5, 0.37) m'."""
 from __future__ import annotations
 
 import math
+import re
 from typing import Any
+
+from markupsafe import Markup, escape
 
 I18N = {
     "en": {"task.sec.mechanism": "Mechanism", "task.sec.drive": "Drive",
@@ -10,16 +20,126 @@ I18N = {
            "task.sec.kinetostatics": "Kinetostatics", "task.sec.flywheel": "Flywheel",
            "task.sec.cam": "Cam mechanism", "task.sec.gears": "Gears",
            "task.sec.planetary": "Planetary gear", "task.sec.answers": "Answers",
-           "task.sec.tolerance": "Tolerance"},
+           "task.sec.tolerance": "Tolerance", "task.ground": "Fixed points (ground)",
+           "task.links": "Links", "task.assembly": "Assembly hints (approximate positions of the joints)",
+           "task.point": "Point", "task.points": "Points", "task.length": "l, m", "task.mass": "m, kg",
+           "task.J": "J_S, kg·m²", "task.com": "S (centre of mass), m", "task.guide": "Guide, other",
+           "task.guide_word": "guide",
+           "task.com_mid": "middle", "task.slider_on": "slider {p}",
+           "task.guide_through": "through {p}", "task.guide_link": "along link {l}",
+           "task.guide_angle": "at {a}°", "task.guide_offset": "offset {o} m",
+           "task.extra": "other points: {p}"},
     "ru": {"task.sec.mechanism": "Механизм", "task.sec.drive": "Привод",
            "task.sec.positions": "Положения", "task.sec.loads": "Нагрузки",
            "task.sec.kinetostatics": "Кинетостатика", "task.sec.flywheel": "Маховик",
            "task.sec.cam": "Кулачковый механизм", "task.sec.gears": "Зубчатая передача",
            "task.sec.planetary": "Планетарный механизм", "task.sec.answers": "Ответы",
-           "task.sec.tolerance": "Допуски"},
+           "task.sec.tolerance": "Допуски", "task.ground": "Неподвижные точки (стойка)",
+           "task.links": "Звенья", "task.assembly": "Начальная сборка (приближённые положения шарниров)",
+           "task.point": "Точка", "task.points": "Точки", "task.length": "l, м", "task.mass": "m, кг",
+           "task.J": "J_S, кг·м²", "task.com": "S (центр масс), м", "task.guide": "Направляющая, прочее",
+           "task.guide_word": "направляющая",
+           "task.com_mid": "середина", "task.slider_on": "ползун {p}",
+           "task.guide_through": "через {p}", "task.guide_link": "по звену {l}",
+           "task.guide_angle": "под углом {a}°", "task.guide_offset": "смещение {o} м",
+           "task.extra": "другие точки: {p}"},
 }
 
 _META = ("schema", "schema_", "title", "variant", "student")
+
+# names of the task file's parameters (by the key without list indices) and of its word values
+PARAMS = {
+    "en": {"drive.link": "input link", "drive.speed": "angular speed ω₁", "drive.direction": "sense of rotation",
+           "drive.cycle": "cycle", "positions.count": "number of positions", "positions.zero": "position 0",
+           "positions.output": "output link", "positions.working": "working stroke",
+           "positions.extra": "extra crank angles", "loads.gravity": "weights of the links",
+           "loads.forces.on": "link", "loads.forces.kind": "kind", "loads.forces.stroke": "stroke",
+           "loads.forces.diagram.s": "diagram: s/H", "loads.forces.diagram.phi": "diagram: φ",
+           "loads.forces.diagram.value": "diagram: value", "loads.forces.at": "point of application",
+           "loads.forces.area": "piston area", "loads.forces.magnitude": "magnitude",
+           "kinetostatics.positions": "positions", "kinetostatics.inertia": "inertia loads",
+           "kinetostatics.balance": "balance link", "kinetostatics.motion": "motion of the crank",
+           "kinetostatics.friction.f": "friction coefficient f",
+           "kinetostatics.friction.pin_radius": "pin radius",
+           "flywheel.delta": "coefficient of speed fluctuation δ", "flywheel.constant": "constant moment",
+           "flywheel.method": "method", "flywheel.resolution": "points per cycle",
+           "flywheel.shape.type": "flywheel shape", "flywheel.shape.density": "density ρ",
+           "flywheel.shape.width_ratio": "width ratio b/D", "flywheel.reduced_J": "added reduced inertia",
+           "cam.follower": "follower", "cam.stroke": "stroke h", "cam.rocker_length": "rocker length",
+           "cam.offset": "offset e", "cam.phases.rise": "rise angle φ_r", "cam.phases.far_dwell": "far dwell",
+           "cam.phases.return": "return angle φ_ret", "cam.phases.near_dwell": "near dwell",
+           "cam.laws.rise": "law of the rise", "cam.laws.return": "law of the return",
+           "cam.pressure_angle.rise": "allowed pressure angle, rise",
+           "cam.pressure_angle.return": "allowed pressure angle, return", "cam.swing": "rocker pivot distance",
+           "cam.roller": "roller radius", "cam.rotation": "cam rotation", "cam.speed": "cam speed",
+           "gears.m": "module m", "gears.z": "numbers of teeth z₁; z₂", "gears.x": "shift coefficients x₁; x₂",
+           "gears.alpha": "pressure angle α", "gears.ha": "addendum coefficient h*a",
+           "gears.c": "clearance coefficient c*", "gears.rule": "rule for the shifts",
+           "gears.sa_min": "least top land s_a/m", "planetary.scheme": "scheme",
+           "planetary.ratio": "required ratio u₁H", "planetary.satellites": "number of satellites k",
+           "planetary.tolerance": "tolerance of the ratio", "planetary.m": "module m",
+           "planetary.z_min": "least number of teeth", "planetary.z_max": "largest number of teeth",
+           "planetary.candidates": "candidates listed"},
+    "ru": {"drive.link": "входное звено", "drive.speed": "угловая скорость ω₁",
+           "drive.direction": "направление вращения", "drive.cycle": "цикл", "positions.count": "число положений",
+           "positions.zero": "нулевое положение", "positions.output": "выходное звено",
+           "positions.working": "рабочий ход", "positions.extra": "дополнительные углы кривошипа",
+           "loads.gravity": "силы тяжести звеньев", "loads.forces.on": "звено", "loads.forces.kind": "вид",
+           "loads.forces.stroke": "ход", "loads.forces.diagram.s": "диаграмма: s/H",
+           "loads.forces.diagram.phi": "диаграмма: φ", "loads.forces.diagram.value": "диаграмма: значение",
+           "loads.forces.at": "точка приложения", "loads.forces.area": "площадь поршня",
+           "loads.forces.magnitude": "величина", "kinetostatics.positions": "положения",
+           "kinetostatics.inertia": "силы инерции", "kinetostatics.balance": "звено приведения",
+           "kinetostatics.motion": "движение кривошипа", "kinetostatics.friction.f": "коэффициент трения f",
+           "kinetostatics.friction.pin_radius": "радиус цапфы",
+           "flywheel.delta": "коэффициент неравномерности δ", "flywheel.constant": "постоянный момент",
+           "flywheel.method": "метод", "flywheel.resolution": "точек на цикл",
+           "flywheel.shape.type": "форма маховика", "flywheel.shape.density": "плотность ρ",
+           "flywheel.shape.width_ratio": "отношение b/D", "flywheel.reduced_J": "доп. приведённый момент инерции",
+           "cam.follower": "толкатель", "cam.stroke": "ход h", "cam.rocker_length": "длина коромысла",
+           "cam.offset": "эксцентриситет e", "cam.phases.rise": "фаза удаления φ_у",
+           "cam.phases.far_dwell": "дальнее стояние", "cam.phases.return": "фаза возвращения φ_в",
+           "cam.phases.near_dwell": "ближнее стояние", "cam.laws.rise": "закон удаления",
+           "cam.laws.return": "закон возвращения", "cam.pressure_angle.rise": "допустимый угол давления, удаление",
+           "cam.pressure_angle.return": "допустимый угол давления, возвращение",
+           "cam.swing": "межосевое расстояние коромысла", "cam.roller": "радиус ролика",
+           "cam.rotation": "вращение кулачка", "cam.speed": "угловая скорость кулачка",
+           "gears.m": "модуль m", "gears.z": "числа зубьев z₁; z₂", "gears.x": "коэффициенты смещения x₁; x₂",
+           "gears.alpha": "угол профиля α", "gears.ha": "коэффициент высоты головки h*a",
+           "gears.c": "коэффициент радиального зазора c*", "gears.rule": "правило выбора смещений",
+           "gears.sa_min": "наименьшая толщина вершины s_a/m", "planetary.scheme": "схема",
+           "planetary.ratio": "требуемое передаточное отношение u₁H", "planetary.satellites": "число сателлитов k",
+           "planetary.tolerance": "допуск передаточного отношения", "planetary.m": "модуль m",
+           "planetary.z_min": "наименьшее число зубьев", "planetary.z_max": "наибольшее число зубьев",
+           "planetary.candidates": "число вариантов"},
+}
+WORDS = {"ru": {"ccw": "против часовой стрелки", "cw": "по часовой стрелке", "true": "да", "false": "нет",
+                "extreme": "крайнее положение", "forward": "прямой", "backward": "обратный",
+                "resistance": "сопротивление", "driving": "движущая", "working": "рабочий", "idle": "холостой",
+                "both": "оба", "constant": "постоянное", "all": "все", "disk": "диск", "rim": "обод",
+                "energy-mass": "энергомасс (Виттенбауэр)", "merzalov": "Мерцалова", "auto": "авто",
+                "rocker": "коромысло", "translating": "поступательный", "equal_sliding": "равное скольжение",
+                "true_motion": "истинное", "linear_decreasing": "линейно убывающее ускорение",
+                "parabolic": "параболический", "poly345": "полином 3-4-5", "cosine": "косинусоидальный",
+                "sine": "синусоидальный", "uniform": "равномерный"},
+         "en": {"ccw": "counter-clockwise", "cw": "clockwise", "true": "yes", "false": "no",
+                "extreme": "extreme position", "energy-mass": "energy-mass (Wittenbauer)",
+                "linear_decreasing": "linearly decreasing acceleration", "poly345": "polynomial 3-4-5",
+                "equal_sliding": "equal specific sliding"}}
+
+# units of the task model's numbers (SI; angles in degrees) by the key's last part
+_UNITS = {
+    "en": {"length": "m", "mass": "kg", "J": "kg·m²", "speed": "rad/s", "angle": "°", "offset": "m",
+           "density": "kg/m³", "pin_radius": "m", "rocker_length": "m", "area": "m²", "at": "m",
+           "through": "m", "m": "m", "alpha": "°", "rise": "°", "far_dwell": "°", "return": "°",
+           "near_dwell": "°", "cycle": "°", "reduced_J": "kg·m²", "magnitude": "N", "phi": "°",
+           "moment": "N·m", "width": "m", "base_radius": "m", "roller_radius": "m", "extra": "°"},
+    "ru": {"length": "м", "mass": "кг", "J": "кг·м²", "speed": "рад/с", "angle": "°", "offset": "м",
+           "density": "кг/м³", "pin_radius": "м", "rocker_length": "м", "area": "м²", "at": "м",
+           "through": "м", "m": "м", "alpha": "°", "rise": "°", "far_dwell": "°", "return": "°",
+           "near_dwell": "°", "cycle": "°", "reduced_J": "кг·м²", "magnitude": "Н", "phi": "°",
+           "moment": "Н·м", "width": "м", "base_radius": "м", "roller_radius": "м", "extra": "°"},
+}
 
 
 def _dump(task) -> dict:
@@ -27,7 +147,7 @@ def _dump(task) -> dict:
         return {}
     if hasattr(task, "model_dump"):
         try:
-            return task.model_dump(exclude_none=True)
+            return task.model_dump(exclude_none=True, by_alias=True)
         except TypeError:
             return task.model_dump()
     if isinstance(task, dict):
@@ -35,15 +155,46 @@ def _dump(task) -> dict:
     return {}
 
 
-def _value(v: Any, fmt) -> str:
+def num(v: float) -> str:
+    """A task number as written: 6 significant digits, no trailing zeros."""
     if isinstance(v, bool):
         return "true" if v else "false"
-    if isinstance(v, (int, float)):
-        return fmt(v, 6) if isinstance(v, float) and math.isfinite(v) else str(v)
+    if isinstance(v, int):
+        return str(v)
+    if not math.isfinite(v):
+        return str(v)
+    if v == 0:
+        return "0"
+    if 1e-4 <= abs(v) < 1e10:
+        import numpy as np
+        s = np.format_float_positional(float(f"{v:.6g}"), trim="-")
+    else:
+        mant, ex = f"{v:.5e}".split("e")
+        s = f"{mant.rstrip('0').rstrip('.')}·10{str(int(ex)).translate(_SUP)}"
+    return s.replace("-", "−")
+
+
+_SUP = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
+
+
+def _is_num(x) -> bool:
+    return isinstance(x, (int, float)) and not isinstance(x, bool)
+
+
+def _value(v: Any, unit: str = "") -> str:
+    """A leaf value in words: coordinates '(0.5, 0.37) m', a list '0; 0.7; 0.9',
+    names 'O, A', a number with its unit."""
+    u = f" {unit}" if unit else ""
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if _is_num(v):
+        return num(v) + ("" if unit == "°" else " ") + unit if unit else num(v)
     if isinstance(v, (list, tuple)):
-        if all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in v):
-            return "(" + ", ".join(_value(x, fmt) for x in v) + ")"
-        return "[" + ", ".join(_value(x, fmt) for x in v) + "]"
+        if len(v) == 2 and all(_is_num(x) for x in v) and unit in ("m", "м"):
+            return f"({num(v[0])}, {num(v[1])}){u}"
+        if all(_is_num(x) for x in v):
+            return "; ".join(num(x) for x in v) + (u if v else "")
+        return ", ".join(str(x) for x in v)
     return str(v)
 
 
@@ -59,11 +210,95 @@ def flatten(d: Any, prefix: str = "") -> list[tuple[str, Any]]:
                 out.extend(flatten(v, key))
             elif isinstance(v, (list, tuple)) and any(isinstance(x, dict) for x in v):
                 for i, x in enumerate(v):
-                    out.extend(flatten(x, f"{key}[{i}]") if isinstance(x, dict)
-                               else [(f"{key}[{i}]", x)])
+                    out.extend(flatten(x, f"{key}[{i + 1}]") if isinstance(x, dict)
+                               else [(f"{key}[{i + 1}]", x)])
             else:
                 out.append((key, v))
     return out
+
+
+def _unit(key: str, lang: str, context: dict | None = None) -> str:
+    units = _UNITS.get(lang, _UNITS["en"])
+    last = key.split(".")[-1].split("[")[0]
+    if last == "value" and ".diagram" in key:
+        # a load diagram's ordinate: N, or Pa for a pressure (the force has an area)
+        return ("Pa" if lang == "en" else "Па") if (context or {}).get("area") else \
+            ("N" if lang == "en" else "Н")
+    if last == "s" and ".diagram" in key:
+        return ""
+    if last == "stroke" and isinstance((context or {}).get("stroke"), (int, float)):
+        return units["angle"] if (context or {}).get("follower") == "rocker" else units["length"]
+    if last == "m" and not key.startswith(("gears", "planetary")):
+        return ""
+    return units.get(last, "")
+
+
+def _rows(key: str, sec: Any, lang: str) -> list[tuple[str, str]]:
+    if not isinstance(sec, dict):
+        return [(key, _value(sec))]
+    rows = []
+    for k, v in flatten(sec):
+        ctx = dict(sec)
+        # the dicts holding this leaf (for the units of a force with an area, a cam's stroke)
+        parts = k.replace("]", "").split(".")
+        node: Any = sec
+        for p in parts[:-1]:
+            name, _, idx = p.partition("[")
+            node = node.get(name) if isinstance(node, dict) else None
+            if idx and isinstance(node, list):
+                node = node[int(idx) - 1]
+            if isinstance(node, dict):
+                ctx.update(node)
+        plain = re.sub(r"\[\d+\]", "", f"{key}.{k}")
+        label = PARAMS.get(lang, {}).get(plain) or k.replace(".", " · ")
+        idx = re.findall(r"\[(\d+)\]", k)
+        if idx and plain in PARAMS.get(lang, {}):
+            label = f"{label} [{', '.join(idx)}]"
+        val = _value(v, _unit(f"{key}.{k}", lang, ctx))
+        if isinstance(v, (str, bool)):
+            val = WORDS.get(lang, {}).get(val, val)
+        rows.append((label, val))
+    return rows
+
+
+def _mechanism(ctx, mech: dict):
+    """(ground rows, link rows, assembly text) of the mechanism section."""
+    t = ctx.t
+    ground = [(p, num(xy[0]), num(xy[1])) for p, xy in (mech.get("ground") or {}).items()]
+    links = []
+    for i, (name, spec) in enumerate((mech.get("links") or {}).items(), start=1):
+        pts = list(spec.get("points") or [])
+        other = []
+        if spec.get("slider"):
+            pts = [spec["slider"]]
+        g = spec.get("guide") or {}
+        if g:
+            gd = []
+            if g.get("link"):
+                gd.append(t("task.guide_link", l=g["link"]))
+            if g.get("through") is not None:
+                th = g["through"]
+                gd.append(t("task.guide_through", p=_value(th, "m" if ctx.lang == "en" else "м")
+                            if not isinstance(th, str) else th))
+            if g.get("angle") is not None and not g.get("link"):
+                gd.append(t("task.guide_angle", a=num(g["angle"])))
+            elif g.get("angle") is not None and g.get("angle") != 0:
+                gd.append(t("task.guide_angle", a=num(g["angle"])))
+            if g.get("offset"):
+                gd.append(t("task.guide_offset", o=num(g["offset"])))
+            other.append(t("task.guide_word") + " " + ", ".join(gd))
+        if spec.get("extra"):
+            other.append(t("task.extra", p=", ".join(f"{p} ({num(xy[0])}, {num(xy[1])})"
+                                                     for p, xy in spec["extra"].items())))
+        com = spec.get("com")
+        com_txt = f"({num(com[0])}, {num(com[1])})" if isinstance(com, (list, tuple)) else \
+            (str(com) if com else "")
+        links.append((str(i), name, ", ".join(pts), num(spec["length"]) if spec.get("length") is not None else "",
+                       num(spec["mass"]) if spec.get("mass") is not None else "",
+                       num(spec["J"]) if spec.get("J") is not None else "", com_txt, "; ".join(other)))
+    m = "m" if ctx.lang == "en" else "м"
+    assembly = ", ".join(f"{p} ({num(xy[0])}, {num(xy[1])})" for p, xy in (mech.get("assembly") or {}).items())
+    return ground, links, (assembly + f" {m}") if assembly else ""
 
 
 def build(ctx) -> str | None:
@@ -89,14 +324,18 @@ def build(ctx) -> str | None:
                 info.append((str(k), str(v)))
     elif student:
         info.append((ctx.t("task.student"), str(student)))
+    mech = None
     groups = []
     for key, sec in data.items():
         if key in _META or sec in (None, {}, []):
             continue
-        rows = [(k, _value(v, ctx.fmt)) for k, v in flatten(sec)] if isinstance(sec, dict) \
-            else [(key, _value(sec, ctx.fmt))]
+        if key == "mechanism" and isinstance(sec, dict):
+            mech = _mechanism(ctx, sec)
+            continue
+        rows = _rows(key, sec, ctx.lang)
         if rows:
             groups.append({"title": ctx.t(f"task.sec.{key}"), "rows": rows})
-    if not info and not groups:
+    if not info and not groups and mech is None:
         return None
-    return ctx.render("sections/task.html.j2", info=info, groups=groups)
+    return ctx.render("sections/task.html.j2", info=info, groups=groups, mech=mech,
+                      J_head=Markup(str(escape(ctx.t("task.J"))).replace("J_S", "J<sub>S</sub>")))
