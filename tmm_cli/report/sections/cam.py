@@ -108,11 +108,23 @@ MM = 1e3
 PHASE_COLORS = {"rise": "#e8f0fb", "far_dwell": "#f4f4f4", "return": "#fbeee8", "near_dwell": "#ffffff"}
 
 
-def _units(c):
+def _loc(lang: str, text: str) -> str:
+    """Units in the report's language: deg -> °, and in Russian mm -> мм, rad -> рад."""
+    import re
+    text = re.sub(r"(?<![A-Za-z])deg(?![A-Za-z])", "°", text)
+    if lang == "ru":
+        text = re.sub(r"(?<![A-Za-z])mm(?![A-Za-z])", "мм", text)
+        text = re.sub(r"(?<![A-Za-z])rad(?![A-Za-z])", "рад", text)
+    return text
+
+
+def _units(c, lang: str = "en"):
     """(factor, unit) of s, ds/dphi, d2s/dphi2 for the tables and diagrams."""
     if c["follower"] == "rocker":
-        return (1.0, "deg"), (1.0, "rad/rad"), (1.0, "1/rad")
-    return (MM, "mm"), (MM, "mm/rad"), (MM, "mm/rad²")
+        out = (1.0, "deg"), (1.0, "rad/rad"), (1.0, "1/rad")
+    else:
+        out = (MM, "mm"), (MM, "mm/rad"), (MM, "mm/rad²")
+    return tuple((k, _loc(lang, u)) for k, u in out)
 
 
 def _phase_spans(c):
@@ -137,7 +149,7 @@ def _nice_limits(fp, lo, hi, axes_mm):
 
 def diagrams_figure(ctx, c):
     fp = ctx.figures
-    (ks, us), (kv, uv), (ka, ua) = _units(c)
+    (ks, us), (kv, uv), (ka, ua) = _units(c, ctx.lang)
     phi = np.asarray(c["phi"] + [360.0])
     series = [(np.asarray(c["s"] + c["s"][:1]) * ks, "s, " + us),
               (np.asarray(c["ds"] + c["ds"][:1]) * kv, "ds/dφ, " + uv),
@@ -149,7 +161,7 @@ def diagrams_figure(ctx, c):
     ax_w_mm = (right - left) * W
     ax_h_mm = (top - bottom) * H / 3 * (1 - gap)
     mu_phi = fp.nice_scale(360.0 / ax_w_mm)
-    scales = [("μφ", f"{ctx.fmt(mu_phi)} deg/mm")]
+    scales = [("μφ", _loc(ctx.lang, f"{ctx.fmt(mu_phi)} deg/mm"))]
     for ax, (y, lab) in zip(axes, series):
         for k, a, b in _phase_spans(c):
             if b > a:
@@ -160,9 +172,9 @@ def diagrams_figure(ctx, c):
         ax.set_ylim(lo, hi)
         ax.set_ylabel(lab)
         ax.grid(True, lw=0.3)
-        scales.append((lab.split(",")[0], f"{ctx.fmt(mu)} {lab.split(', ')[1]}/mm"))
+        scales.append((lab.split(",")[0], _loc(ctx.lang, f"{ctx.fmt(mu)} {lab.split(', ')[1]}/mm")))
     axes[-1].set_xlim(0, mu_phi * ax_w_mm)
-    axes[-1].set_xlabel("φ, deg")
+    axes[-1].set_xlabel(_loc(ctx.lang, "φ, deg"))
     for x in range(0, 361, 30):
         for ax in axes:
             ax.axvline(x, color="0.85", lw=0.3)
@@ -284,8 +296,8 @@ def pressure_figure(ctx, c):
         ax.plot([a, b], [c["pressure_angle_allowed"][k]] * 2, color=col, ls="--", lw=0.8)
     ax.set_xlim(0, 360)
     ax.set_ylim(0, max(c["pressure_angle_allowed"].values()) * 1.15)
-    ax.set_xlabel("φ, deg")
-    ax.set_ylabel("θ, deg")
+    ax.set_xlabel(_loc(ctx.lang, "φ, deg"))
+    ax.set_ylabel(_loc(ctx.lang, "θ, deg"))
     ax.grid(True, lw=0.3)
     return fig
 
@@ -296,23 +308,23 @@ def build(ctx) -> str | None:
         return None
     f, t = ctx.fmt, ctx.t
     rocker = c["follower"] == "rocker"
-    (ks, us), (kv, uv), (ka, ua) = _units(c)
+    (ks, us), (kv, uv), (ka, ua) = _units(c, ctx.lang)
     rows = [(t("cam.follower"), t("cam.rocker") if rocker else t("cam.translating")),
             (t("cam.rotation"), t("common.ccw") if c["rotation"] == "ccw" else t("common.cw")),
-            (t("cam.theta_allowed") + ", deg",
+            (_loc(ctx.lang, t("cam.theta_allowed") + ", deg"),
              f"{f(c['pressure_angle_allowed']['rise'])} / {f(c['pressure_angle_allowed']['return'])}"),
-            (t("cam.r0") + ", mm", f(c["r0"] * MM, 6)),
-            (t("cam.r0_design") + ", mm", f(c["r0_design"] * MM, 6))]
+            (_loc(ctx.lang, t("cam.r0") + ", mm"), f(c["r0"] * MM, 6)),
+            (_loc(ctx.lang, t("cam.r0_design") + ", mm"), f(c["r0_design"] * MM, 6))]
     if rocker:
-        rows += [(t("cam.center_distance") + ", mm", f(c["center_distance"] * MM, 6)),
-                 (t("cam.psi0") + ", deg", f(c["psi0"], 5)),
+        rows += [(_loc(ctx.lang, t("cam.center_distance") + ", mm"), f(c["center_distance"] * MM, 6)),
+                 (_loc(ctx.lang, t("cam.psi0") + ", deg"), f(c["psi0"], 5)),
                  (t("cam.swing"), t("cam.swing_" + c["swing"]))]
     else:
-        rows.append((t("cam.offset") + ", mm", f(c["offset"] * MM, 6)))
-    rows += [(t("cam.theta_max") + ", deg",
+        rows.append((_loc(ctx.lang, t("cam.offset") + ", mm"), f(c["offset"] * MM, 6)))
+    rows += [(_loc(ctx.lang, t("cam.theta_max") + ", deg"),
               f"{f(c['max_pressure_angle_rise'], 5)} / {f(c['max_pressure_angle_return'], 5)}"),
-             (t("cam.rho_min") + ", mm", f(c["rho_min"] * MM, 6)),
-             (t("cam.roller") + ", mm",
+             (_loc(ctx.lang, t("cam.rho_min") + ", mm"), f(c["rho_min"] * MM, 6)),
+             (_loc(ctx.lang, t("cam.roller") + ", mm"),
               f"{f(c['roller'] * MM, 5)} ({t('cam.roller_given') if c['roller_rule'] == 'given' else t('cam.roller_rule')})")]
     law_rows = []
     for k in ("rise", "return"):
@@ -329,7 +341,8 @@ def build(ctx) -> str | None:
         table_rows.append((f(c["phi"][i], 4), f(c["s"][i] * ks, 5), f(c["ds"][i] * kv, 5),
                            f(c["d2s"][i] * ka, 5), f(c["pressure_angle"][i], 4),
                            f(p[0] * MM, 5), f(p[1] * MM, 5)))
-    table_header = ["φ, deg", f"s, {us}", f"ds/dφ, {uv}", f"d²s/dφ², {ua}", "θ, deg", "x, mm", "y, mm"]
+    table_header = [_loc(ctx.lang, h) for h in
+                    ["φ, deg", f"s, {us}", f"ds/dφ, {uv}", f"d²s/dφ², {ua}", "θ, deg", "x, mm", "y, mm"]]
     figs = []
     scales = []
     try:
@@ -344,7 +357,7 @@ def build(ctx) -> str | None:
             figs.append((f"<p class='warn'>figure failed: {exc}</p>", t(cap)))
     try:
         fig, unit = profile_figure(ctx, c)
-        scale = f"μl = {f(unit, 4)} mm/mm" if abs(unit - 1) > 1e-9 else "1:1"
+        scale = _loc(ctx.lang, f"μl = {f(unit, 4)} mm/mm") if abs(unit - 1) > 1e-9 else "1:1"
         figs.append((ctx.svg(fig), t("cam.profile_caption", scale=scale)))
     except Exception as exc:
         figs.append((f"<p class='warn'>figure failed: {exc}</p>", t("cam.profile_caption", scale="")))

@@ -28,6 +28,7 @@ I18N = {
            "dyn.const_links": "links of constant reduced inertia",
            "dyn.diagrams": "Reduced moments, works, kinetic energy and reduced inertia",
            "dyn.phi_axis": "crank rotation from position 0, deg",
+           "dyn.witt_x": "J_red, mm (μ_J = {mu} kg·m²/mm)", "dyn.witt_y": "ΔT, mm (μ_T = {mu} J/mm)",
            "dyn.M_axis": "M, N·m", "dyn.A_axis": "A, J", "dyn.T_axis": "ΔT, J", "dyn.J_axis": "J_red, kg·m²",
            "dyn.Md": "M_d (driving)", "dyn.Mc": "M_c (resistance)", "dyn.Ad": "A_d", "dyn.Ac": "A_c",
            "dyn.dT": "ΔT = A_d − A_c", "dyn.Jred": "J_red", "dyn.Jvar": "J_var",
@@ -71,6 +72,7 @@ I18N = {
            "dyn.const_links": "звенья с постоянным приведённым моментом инерции",
            "dyn.diagrams": "Приведённые моменты, работы, кинетическая энергия и приведённый момент инерции",
            "dyn.phi_axis": "поворот кривошипа от положения 0, град",
+           "dyn.witt_x": "J_пр, мм (μ_J = {mu} кг·м²/мм)", "dyn.witt_y": "ΔT, мм (μ_T = {mu} Дж/мм)",
            "dyn.M_axis": "M, Н·м", "dyn.A_axis": "A, Дж", "dyn.T_axis": "ΔT, Дж", "dyn.J_axis": "J_пр, кг·м²",
            "dyn.Md": "M_д (движущий)", "dyn.Mc": "M_с (сопротивления)", "dyn.Ad": "A_д", "dyn.Ac": "A_с",
            "dyn.dT": "ΔT = A_д − A_с", "dyn.Jred": "J_пр", "dyn.Jvar": "J_перем",
@@ -176,8 +178,8 @@ def _wittenbauer(ctx, d):
     ax.axhline(0, color="0.6", lw=0.5)
     ax.axvline(0, color="0.3", lw=0.6)
     ax.set_aspect("equal", adjustable="datalim")
-    ax.set_xlabel(f"J_red, mm (μ_J = {muJ:g} kg·m²/mm)")
-    ax.set_ylabel(f"ΔT, mm (μ_T = {muT:g} J/mm)")
+    ax.set_xlabel(ctx.t("dyn.witt_x", mu=f"{muJ:g}"))
+    ax.set_ylabel(ctx.t("dyn.witt_y", mu=f"{muT:g}"))
     ax.grid(True, lw=0.3, alpha=0.5)
     ax.legend(loc="best")
     fig.tight_layout()

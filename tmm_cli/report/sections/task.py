@@ -57,6 +57,7 @@ PARAMS = {
            "loads.forces.diagram.s": "diagram: s/H", "loads.forces.diagram.phi": "diagram: φ",
            "loads.forces.diagram.value": "diagram: value", "loads.forces.at": "point of application",
            "loads.forces.area": "piston area", "loads.forces.magnitude": "magnitude",
+           "loads.forces.direction": "direction", "loads.forces.moment": "moment of the couple",
            "kinetostatics.positions": "positions", "kinetostatics.inertia": "inertia loads",
            "kinetostatics.balance": "balance link", "kinetostatics.motion": "motion of the crank",
            "kinetostatics.friction.f": "friction coefficient f",
@@ -88,7 +89,8 @@ PARAMS = {
            "loads.forces.stroke": "ход", "loads.forces.diagram.s": "диаграмма: s/H",
            "loads.forces.diagram.phi": "диаграмма: φ", "loads.forces.diagram.value": "диаграмма: значение",
            "loads.forces.at": "точка приложения", "loads.forces.area": "площадь поршня",
-           "loads.forces.magnitude": "величина", "kinetostatics.positions": "положения",
+           "loads.forces.magnitude": "величина", "loads.forces.direction": "направление",
+           "loads.forces.moment": "момент пары", "kinetostatics.positions": "положения",
            "kinetostatics.inertia": "силы инерции", "kinetostatics.balance": "звено приведения",
            "kinetostatics.motion": "движение кривошипа", "kinetostatics.friction.f": "коэффициент трения f",
            "kinetostatics.friction.pin_radius": "радиус цапфы",
@@ -113,6 +115,7 @@ PARAMS = {
            "planetary.z_min": "наименьшее число зубьев", "planetary.z_max": "наибольшее число зубьев",
            "planetary.candidates": "число вариантов"},
 }
+ITEMS = {"en": {"forces": "force", "couples": "couple"}, "ru": {"forces": "сила", "couples": "пара"}}
 WORDS = {"ru": {"ccw": "против часовой стрелки", "cw": "по часовой стрелке", "true": "да", "false": "нет",
                 "extreme": "крайнее положение", "forward": "прямой", "backward": "обратный",
                 "resistance": "сопротивление", "driving": "движущая", "working": "рабочий", "idle": "холостой",
@@ -133,12 +136,12 @@ _UNITS = {
            "density": "kg/m³", "pin_radius": "m", "rocker_length": "m", "area": "m²", "at": "m",
            "through": "m", "m": "m", "alpha": "°", "rise": "°", "far_dwell": "°", "return": "°",
            "near_dwell": "°", "cycle": "°", "reduced_J": "kg·m²", "magnitude": "N", "phi": "°",
-           "moment": "N·m", "width": "m", "base_radius": "m", "roller_radius": "m", "extra": "°"},
+           "moment": "N·m", "width": "m", "direction": "°", "base_radius": "m", "roller_radius": "m", "extra": "°"},
     "ru": {"length": "м", "mass": "кг", "J": "кг·м²", "speed": "рад/с", "angle": "°", "offset": "м",
            "density": "кг/м³", "pin_radius": "м", "rocker_length": "м", "area": "м²", "at": "м",
            "through": "м", "m": "м", "alpha": "°", "rise": "°", "far_dwell": "°", "return": "°",
            "near_dwell": "°", "cycle": "°", "reduced_J": "кг·м²", "magnitude": "Н", "phi": "°",
-           "moment": "Н·м", "width": "м", "base_radius": "м", "roller_radius": "м", "extra": "°"},
+           "moment": "Н·м", "width": "м", "direction": "°", "base_radius": "м", "roller_radius": "м", "extra": "°"},
 }
 
 
@@ -224,6 +227,8 @@ def _unit(key: str, lang: str, context: dict | None = None) -> str:
         # a load diagram's ordinate: N, or Pa for a pressure (the force has an area)
         return ("Pa" if lang == "en" else "Па") if (context or {}).get("area") else \
             ("N" if lang == "en" else "Н")
+    if last == "magnitude" and (context or {}).get("area"):
+        return "Pa" if lang == "en" else "Па"
     if last == "s" and ".diagram" in key:
         return ""
     if last == "stroke" and isinstance((context or {}).get("stroke"), (int, float)):
@@ -251,9 +256,10 @@ def _rows(key: str, sec: Any, lang: str) -> list[tuple[str, str]]:
                 ctx.update(node)
         plain = re.sub(r"\[\d+\]", "", f"{key}.{k}")
         label = PARAMS.get(lang, {}).get(plain) or k.replace(".", " · ")
-        idx = re.findall(r"\[(\d+)\]", k)
+        idx = re.findall(r"(\w+)\[(\d+)\]", k)
         if idx and plain in PARAMS.get(lang, {}):
-            label = f"{label} [{', '.join(idx)}]"
+            item = ITEMS.get(lang, {}).get(idx[-1][0], idx[-1][0])
+            label = f"{item} {idx[-1][1]}: {label}"
         val = _value(v, _unit(f"{key}.{k}", lang, ctx))
         if isinstance(v, (str, bool)):
             val = WORDS.get(lang, {}).get(val, val)
