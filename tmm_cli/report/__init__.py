@@ -79,28 +79,42 @@ def make_env():
     return env
 
 
-def render_html(results: dict, task, out_dir: Path, lang: str = "en") -> tuple[str, ReportContext]:
-    """Build the HTML text (sections may write CSV files into out_dir)."""
+def _context(results: dict, task, out_dir: Path, lang: str) -> ReportContext:
+    return ReportContext(results=results, task=task, lang=lang if lang in ("en", "ru") else "en",
+                         out_dir=Path(out_dir), env=make_env())
+
+
+def _build(ctx: ReportContext, names) -> dict[str, str | None]:
+    """HTML fragments of the sections `names` (None for an absent section)."""
+    mods = dict(_sections.available())
+    return {name: (mods[name].build(ctx) if name in mods else None) for name in names}
+
+
+def _assemble(ctx: ReportContext, frags: dict[str, str | None]) -> str:
     from markupsafe import Markup
-    env = make_env()
-    ctx = ReportContext(results=results, task=task, lang=lang if lang in ("en", "ru") else "en",
-                        out_dir=Path(out_dir), env=env)
     parts = []
-    for name, mod in _sections.available():
-        frag = mod.build(ctx)
+    for name, _ in _sections.available():
+        frag = frags.get(name)
         if frag:
             m = _H2.search(frag)
             head = re.sub(r"<[^>]+>", "", m.group(1)).strip() if m else ctx.t(f"{name}.title")
             parts.append({"name": name, "html": Markup(frag), "title": Markup(head)})
     css_path = templates_dir() / "base.css"
     css = css_path.read_text(encoding="utf-8") if css_path.exists() else ""
+    task = ctx.task
     title = getattr(task, "title", None) if task is not None else None
-    html = ctx.render("report.html.j2", sections=parts, css=Markup(css),
+    return ctx.render("report.html.j2", sections=parts, css=Markup(css),
                       title=title or ctx.t("report.title"),
                       variant=getattr(task, "variant", None) if task is not None else None,
-                      warnings=results.get("warnings") or [],
+                      warnings=ctx.results.get("warnings") or [],
                       date=_dt.date.today().isoformat())
-    return html, ctx
+
+
+def render_html(results: dict, task, out_dir: Path, lang: str = "en") -> tuple[str, ReportContext]:
+    """Build the HTML text (sections may write CSV files into out_dir)."""
+    ctx = _context(results, task, out_dir, lang)
+    frags = _build(ctx, [name for name, _ in _sections.available()])
+    return _assemble(ctx, frags), ctx
 
 
 _H2 = re.compile(r"<h2\b[^>]*>(.*?)</h2>", re.S)
@@ -125,24 +139,128 @@ def _svg_as_images(html: str) -> str:
     return _SVG.sub(repl, html)
 
 
+def _pdf_bytes(html: str, out_dir: Path) -> bytes:
+    import logging
+    import weasyprint
+    for name in ("weasyprint", "fontTools"):
+        logging.getLogger(name).setLevel(logging.ERROR)
+    return weasyprint.HTML(string=_svg_as_images(html), base_url=str(out_dir)).write_pdf()
+
+
+# sections the helper process builds while the main process builds the others
+HELPER_SECTIONS = ("kinetostatics",)
+
+
+def _helper(conn, results, task, out_dir, lang, names, pdf):
+    """The second process: build `names`, send (fragments, written paths); import
+    weasyprint meanwhile idle, then receive the whole HTML and send the PDF bytes."""
+    try:
+        ctx = _context(results, task, out_dir, lang)
+        frags = _build(ctx, names)
+        conn.send(("frags", frags, [str(p) for p in ctx.written]))
+        if pdf:
+            import weasyprint  # noqa: F401  (the import overlaps the main process' work)
+            msg = conn.recv()
+            if msg is not None:
+                conn.send(("pdf", _pdf_bytes(msg, out_dir)))
+    except BaseException as exc:          # reported to the main process, which then works alone
+        try:
+            conn.send(("error", f"{type(exc).__name__}: {exc}"))
+        except Exception:
+            pass
+    finally:
+        conn.close()
+
+
+def _workers_wanted() -> bool:
+    """Use a second process (fork) unless TMM_REPORT_JOBS=1 or fork is unavailable."""
+    import multiprocessing
+    import os
+    if os.environ.get("TMM_REPORT_JOBS", "").strip() == "1":
+        return False
+    if "fork" not in multiprocessing.get_all_start_methods():
+        return False
+    return (os.cpu_count() or 1) >= 2
+
+
+def _finish(ctx, proc, conn, formats, all_names, helper_names, out_dir) -> list[Path]:
+    """Build the sections not given to the helper, assemble, write html/pdf."""
+    want_pdf = "pdf" in formats
+    frags = _build(ctx, [n for n in all_names if proc is None or n not in helper_names])
+    helper_ok = False
+    if proc is not None:
+        try:
+            msg = conn.recv()
+            if msg[0] == "frags":
+                frags.update(msg[1])
+                ctx.written.extend(Path(p) for p in msg[2] if Path(p) not in ctx.written)
+                helper_ok = True
+        except (EOFError, OSError):
+            pass
+        if not helper_ok:
+            frags.update(_build(ctx, helper_names))
+    html = _assemble(ctx, frags)
+    written = list(ctx.written)
+    if "html" in formats:
+        written.append(ctx.write_file("report.html", html))
+    if want_pdf:
+        pdf = None
+        if proc is not None and helper_ok:
+            try:
+                conn.send(html)
+                msg = conn.recv()
+                if msg[0] == "pdf":
+                    pdf = msg[1]
+            except (EOFError, OSError):
+                pdf = None
+        if pdf is None:
+            pdf = _pdf_bytes(html, out_dir)
+        written.append(ctx.write_file("report.pdf", pdf))
+    return written
+
+
 def render(results: dict, task, out_dir: Path, formats: set[str], lang: str = "en") -> list[Path]:
-    """Write report.html and/or report.pdf (+ CSV tables) into out_dir; return the paths."""
+    """Write report.html and/or report.pdf (+ CSV tables) into out_dir; return the paths.
+
+    With two cores the work is split over two processes: a helper (forked) builds
+    the kinetostatics section (the heaviest drawings) and imports weasyprint while
+    the main process builds the other sections; the helper then lays out and paints
+    the PDF.  Any failure of the helper falls back to doing everything here."""
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     formats = {f.lower() for f in formats}
     if not formats & {"html", "pdf"}:
         return []
-    html, ctx = render_html(results, task, out_dir, lang)
-    written = list(ctx.written)
-    if "html" in formats:
-        written.append(ctx.write_file("report.html", html))
-    if "pdf" in formats:
-        import logging
-        import weasyprint
-        for name in ("weasyprint", "fontTools"):
-            logging.getLogger(name).setLevel(logging.ERROR)
-        pdf = weasyprint.HTML(string=_svg_as_images(html), base_url=str(out_dir)).write_pdf()
-        written.append(ctx.write_file("report.pdf", pdf))
+    want_pdf = "pdf" in formats
+    ctx = _context(results, task, out_dir, lang)
+    all_names = [name for name, _ in _sections.available()]
+    helper_names = [n for n in HELPER_SECTIONS if n in all_names and results.get(n)]
+    proc = conn = None
+    if (helper_names or want_pdf) and _workers_wanted():
+        try:
+            import multiprocessing
+            from . import figures
+            figures.plt()                      # matplotlib imported once, shared by the fork
+            mp = multiprocessing.get_context("fork")
+            conn, child = mp.Pipe()
+            proc = mp.Process(target=_helper, args=(child, results, task, out_dir, ctx.lang, helper_names,
+                                                    want_pdf), daemon=True)
+            proc.start()
+            child.close()
+        except Exception:
+            proc = conn = None
+    try:
+        written = _finish(ctx, proc, conn, formats, all_names, helper_names, out_dir)
+    finally:
+        if proc is not None:
+            try:
+                conn.close()
+            except OSError:
+                pass
+            proc.join(timeout=5)
+            if proc.is_alive():
+                proc.terminate()
+                proc.join(timeout=5)
     # unique, in write order
     seen, out = set(), []
     for p in written:
