@@ -110,3 +110,28 @@ def test_label_parts():
     assert lp("Fi2") == ("Φ", "2") and lp("Mi3") == ("M", "Φ3")
     assert lp("Ff03", "ru") == ("F", "тр03") and lp("Mf12", "en") == ("M", "f12")
     assert lp("F1") == ("F", "1") and lp("Pres") == ("Pres", "")
+
+
+def test_loads_table_inertia_forces(case):
+    """The merged loads table: |Phi_i| = m_i a_Si (d'Alembert) from the task's masses and
+    the kinematics' accelerations of the centres of mass, for every position."""
+    task, r, kst, ctx = case
+    hdr, rows, const = kst._loads_table(ctx, r["kinetostatics"])
+    names = [re.sub(r"<[^>]+>", "", str(h)) for h in hdr]
+    kin = {k["index"]: k for k in r["kinematics"]}
+    masses = {i + 1: spec.mass for i, spec in enumerate(task.mechanism.links.values())}
+    checked = 0
+    for i, m in masses.items():
+        col = f"Φ{i}"
+        if col not in names or not m:
+            continue
+        c = names.index(col)
+        for row in rows:
+            a = kin[row[0]]["points"][f"S{i}"]["a"]
+            assert row[c] == ctx.fmt(m * a, 4), (col, row[0])
+            checked += 1
+    assert checked >= 2 * len(rows)
+    # the weights m g (g = 9.81 m/s², tmm_cli/loads.py) are constant: listed once below the table
+    for i, m in masses.items():
+        if m:
+            assert f"G<sub>{i}</sub> = {ctx.fmt(m * 9.81, 5)}" in str(const), i

@@ -239,7 +239,7 @@ def _fbd_panel(ctx, cv, box, kin_e, links, names, forces, couples, title):
     xy = np.array([_xy(P[p]) for p in pts_names] + [f[1] for f in forces])
     lo, hi = xy.min(axis=0), xy.max(axis=0)
     span = np.maximum(hi - lo, 1e-9)
-    m = 11.0                                           # room for the arrows
+    m = 11.0 if w > 60 else 15.0                       # room for the arrows
     mu_l = figures.nice_scale(max(span[0] / (w - 2 * m), span[1] / (h - TITLE_H - 2 * m), 1e-9))
     c_box = (lo + hi) / 2
     c_pan = np.array([x0 + w / 2, y0 + (h - TITLE_H) / 2])
@@ -658,7 +658,8 @@ def build(ctx) -> str | None:
     # reactions table
     r_hdr = [ctx.t("kst.position")] + [label_html(j["key"], lang) + Markup(", N" if lang == "en" else ", Н")
                                        if j["kind"] == "R" else
-                                       label_html(j["key"], lang) + Markup(": N; x") for j in info["joints"]]
+                                       label_html(j["key"], lang) + Markup(": N, N; x, m" if lang == "en" else ": N, Н; x, м")
+                                       for j in info["joints"]]
     r_rows = []
     for e in entries:
         row = [e["index"]]
@@ -702,7 +703,8 @@ def build(ctx) -> str | None:
                       r_hdr=r_hdr, r_rows=r_rows, eff_rows=eff_rows, positions=positions,
                       balance_text=f"{info['balance']} ({bk})",
                       loads_hdr=loads_hdr, loads_rows=loads_rows,
-                      loads_note=ctx.t("kst.loads_note", const=const or "—"),
+                      loads_note=Markup(escape(ctx.t("kst.loads_note", const="\u0001"))).replace(
+                          "\u0001", const or "—"),
                       fbd_caption=ctx.t("kst.fbd_caption"),
                       fig_diagrams=_diagrams_fig(ctx, info, entries, len(entries)),
                       fig_cycle=_cycle_fig(ctx, entries, phi0, sign, info),
