@@ -21,7 +21,6 @@ import numpy as np
 
 PT_PER_MM = 72.0 / 25.4
 FONT = "DejaVu Sans"
-SUB_DIGITS = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
 
 
 def _f(x: float) -> str:
@@ -200,18 +199,3 @@ class Canvas:
         out.append("</svg>")
         return "\n".join(out)
 
-
-def sub_label(name: str) -> tuple[str, str | None]:
-    """'R12' -> ('R₁₂', None); 'Fi2' -> ('Φ₂', None); 'Mi2' -> ('M', 'Φ2'): the
-    names of the course (R_ij, G_i, Φ_i inertia force, M_Φi inertia moment,
-    F_i external force, M_i external couple)."""
-    import re
-    m = re.fullmatch(r"([A-Za-z]+?)(i?)(\d+)", name)
-    if not m:
-        return name, None
-    head, inertia, num = m.groups()
-    if inertia and head == "F":
-        return "Φ" + num.translate(SUB_DIGITS), None
-    if inertia and head == "M":
-        return "M", "Φ" + num
-    return head + num.translate(SUB_DIGITS), None
