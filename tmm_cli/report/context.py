@@ -4,12 +4,11 @@ from __future__ import annotations
 import csv
 import io
 import math
-import os
-import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from ..io import atomic_write
 from . import figures
 from .i18n import translate
 
@@ -20,29 +19,6 @@ def templates_dir() -> Path:
     if pkg.is_dir():
         return pkg
     return Path(__file__).resolve().parents[2] / "templates"
-
-
-def _atomic_write(path: Path, data: bytes | str) -> None:
-    try:
-        from tmm_cli.io import atomic_write
-    except ImportError:  # the shared helper not present (stand-alone use of the report)
-        atomic_write = None
-    if atomic_write is not None:
-        atomic_write(path, data)
-        return
-    path = Path(path)
-    raw = data.encode("utf-8") if isinstance(data, str) else data
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix="." + path.name, suffix=".tmp")
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(raw)
-        os.replace(tmp, path)
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
-        raise
 
 
 def fmt(x: Any, digits: int = 4) -> str:
@@ -145,7 +121,7 @@ class ReportContext:
     def write_file(self, name: str, data: bytes | str) -> Path:
         path = Path(self.out_dir) / name
         path.parent.mkdir(parents=True, exist_ok=True)
-        _atomic_write(path, data)
+        atomic_write(path, data)
         if path not in self.written:
             self.written.append(path)
         return path
