@@ -202,3 +202,22 @@ def test_slider_crank_numbers_against_closed_form():
     assert e["links"]["rod"]["omega"] == pytest.approx(0.0, abs=1e-12)
     assert e["links"]["rod"]["epsilon"] == pytest.approx(e2, rel=1e-12)
     assert e["points"]["B"]["ax"] == pytest.approx(r * e2, rel=1e-12)
+
+
+def test_every_task_field_is_documented():
+    from tmm_cli.task import field_docs
+    docs = field_docs()
+    missing = [p for p, _, text in docs if not text]
+    assert not missing, missing
+    paths = {p for p, _, _ in docs}
+    for p in ("flywheel.delta", "mechanism.links.<name>.guide.offset", "loads.forces[i].diagram.s",
+              "cam.phases.return", "planetary.tolerance", "kinetostatics.friction.pin_radius"):
+        assert p in paths, p
+
+
+def test_fields_command():
+    res = runner.invoke(app, ["fields", "flywheel"], env={"COLUMNS": "200"})
+    assert res.exit_code == 0
+    assert "flywheel.delta" in res.output and "coefficient of speed fluctuation" in res.output
+    assert "cam.stroke" not in res.output
+    assert runner.invoke(app, ["fields", "nonsense"]).exit_code == 2

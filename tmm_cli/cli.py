@@ -20,6 +20,8 @@ app = typer.Typer(
           "structural analysis, 12-position kinematics with velocity and acceleration plans, "
           "kinetostatics with the Zhukovsky lever, the flywheel by the energy-mass method, cam "
           "synthesis, involute gears and planetary synthesis - from one YAML task file.\n\n"
+          "Start with `tmm new full` (a commented task), `tmm fields` (every task-file field) and "
+          "`tmm run TASK.yaml`.\n\n"
           "Exit codes: 0 success; 1 answers outside tolerance; 2 invalid task; 3 a stage failed."),
     no_args_is_help=True,
     add_completion=False,
@@ -215,6 +217,28 @@ def schema(
         atomic_write(out, text + "\n")
     else:
         typer.echo(text)
+
+
+@app.command()
+def fields(section: Optional[str] = typer.Argument(None, help="only this section, e.g. flywheel")):
+    """List every task-file field: its path, default and meaning (units: SI base units,
+    angles in degrees; a string may carry its own unit, e.g. '300 mm', '50 rpm')."""
+    from rich.console import Console
+    from rich.table import Table
+
+    from .task import field_docs
+    rows = [r for r in field_docs() if section is None or r[0] == section or r[0].startswith(section + ".")
+            or r[0].startswith(section + "[")]
+    if not rows:
+        _err(f"error: no section or field '{section}'")
+        raise typer.Exit(EXIT_INVALID)
+    t = Table(title="tmm task file fields (schema tmm/1)")
+    t.add_column("field", overflow="fold")
+    t.add_column("default", overflow="fold")
+    t.add_column("meaning", overflow="fold")
+    for path, default, text in rows:
+        t.add_row(path, default, text)
+    Console().print(t)
 
 
 STARTERS = ("linkage", "cam", "gears", "full")

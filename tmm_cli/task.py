@@ -515,3 +515,125 @@ def load_task(source: Union[str, Path, dict], *, text: str | None = None) -> Tas
     task._file = file
     task._marks = marks
     return task
+
+
+# ---------------------------------------------------------------- field documentation
+# One line per field, shown by `tmm fields` and in the JSON Schema (`tmm schema`).
+_DOCS: dict[type, dict[str, str]] = {
+    Task: {
+        "schema_": "required: tmm/1",
+        "title": "free text, shown in the report",
+        "variant": "the variant number or name (free)",
+        "student": "free metadata shown in the report: {name, group}",
+        "mechanism": "a planar linkage with lower pairs (the linkage stages run when present)",
+        "drive": "the input link (crank): link, speed, direction, cycle",
+        "positions": "the reported crank positions",
+        "loads": "gravity, forces and couples (kinetostatics and flywheel)",
+        "kinetostatics": "force analysis: reactions, balancing moment, Zhukovsky lever, singular positions",
+        "flywheel": "the flywheel by the energy-mass method (also Merzalov and exact)",
+        "cam": "cam mechanism synthesis (runs on its own)",
+        "gears": "external spur involute pair with profile shift (runs on its own)",
+        "planetary": "planetary gear synthesis (runs on its own)",
+        "answers": "a student's numbers: path into results.json -> value (tmm check / tmm batch)",
+        "tolerance": "relative tolerances: {default: 0.05, <path or prefix>: ...}",
+    },
+    StudentSpec: {"name": "the student's name", "group": "the student's group"},
+    LinkSpec: {"mass": "mass, kg", "guide": "slider: the line it translates along (fixed or on a link)"},
+    DriveSection: {"link": "the crank (a bar with a ground pivot)",
+                   "direction": "ccw | cw",
+                   "cycle": "360, or 720 for machines whose cycle takes two turns (four-stroke engines)"},
+    PositionsSection: {
+        "count": "number of equally spaced positions (default 12)",
+        "zero": "extreme (position 0 = the extreme position that starts the working stroke) or a crank angle, deg",
+        "output": "the link whose extreme positions are used (default: the last link)",
+        "working": "forward | backward: the working stroke moves the output toward increasing | decreasing coordinate",
+        "extra": "additional crank angles, deg (indices count, count+1, ...)",
+    },
+    LoadsSection: {"gravity": "true: g = 9.81 m/s^2 along -y on every link with mass",
+                   "forces": "list of forces and couples"},
+    ForceSpec: {
+        "kind": "resistance (against the motion) | driving (along it); none: a signed force",
+        "stroke": "working | idle | both (default working)",
+        "magnitude": "constant force, N (or a pressure with `area`)",
+        "diagram": "{s: [...], value: [...]} over the relative stroke, or {phi: [...], value: [...]} over the "
+                   "crank angle from position 0",
+        "area": "piston area, m^2: the values are pressures, force = p * area",
+        "at": "point of application: a point name or local [u, v] (default the centre of mass)",
+        "direction": "deg from +x: the line of a force on a bar link (sliders: along the guide)",
+        "moment": "a couple, N*m, ccw positive",
+    },
+    DiagramSpec: {"value": "force (N) or pressure (Pa, with `area`) at each abscissa"},
+    KinetostaticsSection: {
+        "positions": "all | list of position numbers",
+        "inertia": "include d'Alembert inertia loads (default true)",
+        "balance": "link carrying the balancing moment (a slider: a balancing force); default the drive link",
+        "friction": "{pin_radius, f}: friction in the pairs and the instantaneous efficiency",
+        "motion": "constant (omega1 = const) | true: omega(phi), epsilon(phi) of the steady motion with the flywheel",
+    },
+    FrictionSpec: {"pin_radius": "radius of the pins, m", "f": "friction coefficient"},
+    FlywheelSection: {
+        "delta": "coefficient of speed fluctuation, e.g. 1/18",
+        "constant": "driving (motor-driven machine) | resistance (engine): the constant reduced moment",
+        "method": "energy-mass | merzalov | exact: the primary J (all three are computed)",
+        "resolution": "crank positions used for the integration (default 360)",
+        "shape": "{type: disk | rim, density, width_ratio}",
+    },
+    ShapeSpec: {"type": "disk | rim", "density": "kg/m^3 (default 7800)",
+                "width_ratio": "b / D (default 0.1)"},
+    CamSection: {
+        "follower": "translating | rocker",
+        "rocker_length": "rocker follower: its length, m",
+        "offset": "translating: eccentricity, m (positive lowers the rise pressure angle) or auto",
+        "phases": "{rise, far_dwell, return[, near_dwell]}, deg; near dwell = the rest",
+        "laws": "{rise, return}: constant_velocity, parabolic, cosine, sine, poly345, linear_decreasing, trapezoidal",
+        "pressure_angle": "allowed maximum, deg, or {rise, return}",
+        "transmission_angle": "alternatively the allowed minimum transmission angle (90 - pressure angle)",
+        "swing": "rocker: with | against (the rocker turns with or against the cam on the rise) | auto",
+        "roller": "roller radius, m, or auto (min(0.7 rho_min, 0.4 r0))",
+        "rotation": "ccw | cw: the cam's rotation",
+        "speed": "optional cam speed (rad/s or rpm) for real velocities and accelerations",
+    },
+    PhasesSpec: {"rise": "rise phase, deg", "far_dwell": "far dwell, deg", "return_": "return phase, deg",
+                 "near_dwell": "near dwell, deg (default: 360 - the others)"},
+    LawsSpec: {"rise": "motion law of the rise", "return_": "motion law of the return"},
+    LimitsSpec: {"rise": "on the rise, deg", "return_": "on the return, deg"},
+    GearsSection: {"z": "tooth numbers [z1, z2]", "x": "profile shift coefficients [x1, x2] or auto",
+                   "alpha": "profile angle of the basic rack, deg (default 20)",
+                   "ha": "addendum coefficient ha* (default 1)", "c": "clearance coefficient c* (default 0.25)"},
+    PlanetarySection: {"scheme": "A | B | C | D (see the README)", "ratio": "required i_1H (signed)",
+                       "satellites": "number of satellites", "tolerance": "allowed relative ratio error",
+                       "m": "module for the drawing, m (default 1 mm)",
+                       "z_min": "least tooth number of an external wheel", "z_max": "largest tooth number"},
+}
+for _model, _fields in _DOCS.items():
+    for _name, _text in _fields.items():
+        _model.model_fields[_name].description = _text
+    _model.model_rebuild(force=True)
+
+
+def field_docs(model: type = Task, prefix: str = "") -> list[tuple[str, str, str]]:
+    """(dotted path, default, description) of every task-file field, for `tmm fields`."""
+    import typing
+
+    from pydantic_core import PydanticUndefined
+
+    out = []
+    for name, f in model.model_fields.items():
+        key = f.alias or name
+        if f.is_required():
+            default = "required"
+        elif f.default is PydanticUndefined or f.default is None:
+            default = "-"
+        else:
+            default = str(f.default)
+        path = prefix + key
+        out.append((path, default, f.description or ""))
+        subs = []
+        for a in typing.get_args(f.annotation) or (f.annotation,):
+            for b in typing.get_args(a) or (a,):
+                if isinstance(b, type) and issubclass(b, BaseModel) and b is not StudentSpec and b not in subs:
+                    subs.append(b)
+        for sub in subs:
+            sub_prefix = path + (".<name>." if sub is LinkSpec else "[i]." if sub is ForceSpec else ".")
+            out.extend(field_docs(sub, sub_prefix))
+    return out
