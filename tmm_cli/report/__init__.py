@@ -200,6 +200,7 @@ def _finish(ctx, proc, conn, formats, all_names, helper_names, out_dir) -> list[
         if not helper_ok:
             frags.update(_build(ctx, helper_names))
     html = _assemble(ctx, frags)
+    _write_figures(ctx, html)
     written = list(ctx.written)
     if "html" in formats:
         written.append(ctx.write_file("report.html", html))
@@ -217,6 +218,30 @@ def _finish(ctx, proc, conn, formats, all_names, helper_names, out_dir) -> list[
             pdf = _pdf_bytes(html, out_dir)
         written.append(ctx.write_file("report.pdf", pdf))
     return written
+
+
+_FIGURE = re.compile(r"<figure\b.*?(<svg\b.*?</svg>)(.*?)</figure>", re.S)
+_CAPTION = re.compile(r"<figcaption[^>]*>(.*?)</figcaption>", re.S)
+_TAGS = re.compile(r"<[^>]+>")
+
+
+def _write_figures(ctx, html: str) -> None:
+    """Every figure of the report also as a file beside it: figures/fig-NN.svg, with
+    figures/index.csv giving each number its caption (for students' own documents)."""
+    import html as _html
+
+    rows = []
+    for k, m in enumerate(_FIGURE.finditer(html), start=1):
+        svg = m.group(1)
+        if "xmlns=" not in svg[:300]:
+            svg = svg.replace("<svg", '<svg xmlns="http://www.w3.org/2000/svg"', 1)
+        name = f"figures/fig-{k:02d}.svg"
+        ctx.write_file(name, '<?xml version="1.0" encoding="utf-8"?>\n' + svg + "\n")
+        cap = _CAPTION.search(m.group(2))
+        text = " ".join(_html.unescape(_TAGS.sub("", cap.group(1))).split()) if cap else ""
+        rows.append([name, text])
+    if rows:
+        ctx.write_csv("figures/index.csv", ["file", "caption"], rows)
 
 
 def render(results: dict, task, out_dir: Path, formats: set[str], lang: str = "en") -> list[Path]:
