@@ -44,6 +44,8 @@ from __future__ import annotations
 
 import datetime as _dt
 import re
+
+from .i18n import translate_warning
 from pathlib import Path
 
 from .context import ReportContext, templates_dir
@@ -106,7 +108,7 @@ def _assemble(ctx: ReportContext, frags: dict[str, str | None]) -> str:
     return ctx.render("report.html.j2", sections=parts, css=Markup(css),
                       title=title or ctx.t("report.title"),
                       variant=getattr(task, "variant", None) if task is not None else None,
-                      warnings=ctx.results.get("warnings") or [],
+                      warnings=[translate_warning(w, ctx.lang) for w in ctx.results.get("warnings") or []],
                       date=_dt.date.today().isoformat())
 
 

@@ -255,3 +255,59 @@ def translate(key: str, lang: str, **kw) -> str:
         except (KeyError, IndexError, ValueError):
             pass
     return text
+
+
+# ---------------------------------------------------------------- stage warnings
+# The stages write their warnings in English (results.json is language-neutral);
+# the Russian report translates the known forms, phrase by phrase, and leaves the
+# numbers as they are. An unknown warning is shown as written.
+_PHASES_RU = {"near_dwell": "ближний выстой", "rise": "удаление", "far_dwell": "дальний выстой",
+              "return": "возвращение"}
+_WARNINGS_RU: list[tuple[str, str]] = [
+    (r"^soft impact \(finite jump of acceleration\) at phi = (\S+) deg \((.+)\)$",
+     "мягкий удар (конечный скачок ускорения) при φ = {0}° ({1})"),
+    (r"^rigid impact \(jump of velocity, infinite acceleration\) at phi = (\S+) deg \((.+)\)$",
+     "жёсткий удар (скачок скорости, бесконечное ускорение) при φ = {0}° ({1})"),
+    (r"^swing auto: the rocker turns (with|against) the cam on the rise \(r0 = (\S+) mm; (with|against): (\S+) mm\)$",
+     "выбор направления: коромысло на удалении вращается {0} (r0 = {1} мм; {2}: {3} мм)"),
+    (r"^gears: wheel (\d) \(z = (\d+)\) is undercut: x\d = (\S+) < x_min = (\S+)$",
+     "зубчатая передача: колесо {0} (z = {1}) подрезано: x{0} = {2} < x_min = {3}"),
+    (r"^gears: wheel (\d) tip is too thin: sa = (\S+) mm < (\S+) m = (\S+) mm( \(pointed tooth\))?$",
+     "зубчатая передача: вершина зуба колеса {0} слишком тонкая: s_a = {1} мм < {2} m = {3} мм{_pointed}"),
+    (r"^gears: contact ratio eps_alpha = (\S+) < (\S+) \(course minimum\)$",
+     "зубчатая передача: коэффициент перекрытия ε_α = {0} < {1} (минимум курсового проекта)"),
+    (r"^gears: contact ratio eps_alpha = (\S+) < (\S+) \(absolute minimum\)(.*)$",
+     "зубчатая передача: коэффициент перекрытия ε_α = {0} < {1} (абсолютный минимум){_cont}"),
+    (r"^gears: interference: the tip of wheel (\d) reaches wheel (\d) below the start of its involute (.*)$",
+     "зубчатая передача: интерференция: вершина зуба колеса {0} заходит на колесо {1} ниже начала "
+     "эвольвенты {2}"),
+    (r"^no flywheel is needed: (.*)$", "маховик не нужен: {0}"),
+    (r"^roller radius (\S+) mm exceeds 0\.8 rho_min = (\S+) mm \(course rule\)$",
+     "радиус ролика {0} мм больше 0,8 ρ_min = {1} мм (правило курсового проекта)"),
+    (r"^roller radius (\S+) mm exceeds 0\.5 r0 = (\S+) mm \(course rule\)$",
+     "радиус ролика {0} мм больше 0,5 r0 = {1} мм (правило курсового проекта)"),
+    (r"^flywheel: at resolution (\d+) J differs by (\S+) % from the converged value; raise `flywheel.resolution`$",
+     "маховик: при {0} положениях J отличается на {1} % от сходящегося значения; увеличьте "
+     "`flywheel.resolution`"),
+]
+
+
+def translate_warning(text, lang: str):
+    """A stage warning in the report's language (known forms only; numbers kept)."""
+    import re
+
+    if lang != "ru" or not isinstance(text, str):
+        return text
+    for pattern, ru in _WARNINGS_RU:
+        m = re.match(pattern, text)
+        if not m:
+            continue
+        g = [x if x is not None else "" for x in m.groups()]
+        if pattern.startswith("^swing"):
+            g[0] = {"with": "в сторону вращения кулачка", "against": "против вращения кулачка"}[g[0]]
+            g[2] = {"with": "в сторону вращения", "against": "против вращения"}[g[2]]
+        g = [" / ".join(_PHASES_RU.get(p, p) for p in x.split("/")) if "/" in x or x in _PHASES_RU else x
+             for x in g]
+        return ru.format(*g, _pointed=" (заострение)" if len(g) > 4 and g[4] else "",
+                         _cont="; зацепление прерывается (ε < 1)" if len(g) > 2 and "not continuous" in g[2] else "")
+    return text

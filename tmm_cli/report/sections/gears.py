@@ -7,6 +7,8 @@ import math
 
 import numpy as np
 
+from ..i18n import translate_warning
+
 I18N = {
     "en": {"gears.title": "Involute spur gearing", "gears.geometry": "Geometry (GOST 16532-70)",
            "gears.checks": "Quality checks", "gears.wheel": "Wheel", "gears.mesh": "The mesh",
@@ -246,4 +248,4 @@ def build(ctx) -> str | None:
     rule = t("gears.rule", rule=rule_name) if g.get("rule") else None
     return ctx.render("sections/gears.html.j2", rows=[r[:2] for r in rows], wheel_rows=wheel_rows,
                       la_rows=la_rows, check_rows=check_rows, figs=figs, files=files, rule=rule,
-                      warnings=g.get("warnings", []))
+                      warnings=[translate_warning(w, ctx.lang) for w in g.get("warnings", [])])
