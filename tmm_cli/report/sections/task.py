@@ -261,6 +261,10 @@ def _rows(key: str, sec: Any, lang: str) -> list[tuple[str, str]]:
             item = ITEMS.get(lang, {}).get(idx[-1][0], idx[-1][0])
             label = f"{item} {idx[-1][1]}: {label}"
         val = _value(v, _unit(f"{key}.{k}", lang, ctx))
+        if plain == "flywheel.delta" and isinstance(v, float):
+            from ...units import fraction_text
+            frac = fraction_text(v)
+            val = f"{frac} = {_value(v)}" if frac.startswith("1/") else val
         if isinstance(v, (str, bool)):
             val = WORDS.get(lang, {}).get(val, val)
         rows.append((label, val))
