@@ -1,0 +1,18 @@
+"""Machines with two degrees of freedom (METHODS 7): the rotary impact mechanism.
+
+A rotor O-O1 turns about the fixed point O; a striker O1-M is hinged to it at O1
+(a double pendulum).  Its motion follows Lagrange's equations of the second kind in
+the generalised coordinates phi (rotor) and psi (striker relative to the rotor);
+the dynamic reactions in O and O1 follow from the theorem on the motion of the centre
+of mass of each link (after V.V. Voronkin, reference/rotary-impact-mechanism-ocr.txt).
+
+* :class:`Dof2Section` -- the task section ``dof2:`` (spec.py);
+* :func:`analyze` ``(section) -> Dof2Result``; ``Dof2Result.to_dict()`` is the
+  results.json section ``dof2`` (analysis.py);
+* model.py -- the equations (mass matrix, accelerations, reactions, energy).
+"""
+from .analysis import Dof2Result, analyze, centrifugal_pendulum
+from .model import Params
+from .spec import Dof2Section
+
+__all__ = ["Dof2Section", "Dof2Result", "analyze", "centrifugal_pendulum", "Params"]
