@@ -103,6 +103,17 @@ def load_yaml(source: str | Path, *, text: str | None = None) -> tuple[Any, dict
         col = mark.column + 1 if mark else None
         raise TaskError("YAML syntax error", file=file,
                         issues=[("", line, col, f"YAML syntax error: {exc.problem or exc.context}")]) from None
+    except yaml.reader.ReaderError as exc:
+        # a character YAML does not allow (a NUL, a control character): the reader gives
+        # its offset in the text, not a mark, so count the lines up to it
+        pos = max(0, min(int(exc.position), len(text)))
+        line = text.count("\n", 0, pos) + 1
+        col = pos - (text.rfind("\n", 0, pos) + 1) + 1
+        ch = exc.character
+        code = ord(ch) if isinstance(ch, str) else int(ch)
+        what = f"#x{code:04x}"
+        raise TaskError("YAML error", file=file, issues=[(
+            "", line, col, f"YAML error: character {what} is not allowed in a YAML file ({exc.reason})")]) from None
     except yaml.YAMLError as exc:
-        raise TaskError(f"YAML error: {exc}", file=file) from None
+        raise TaskError("YAML error", file=file, issues=[("", 1, 1, f"YAML error: {exc}")]) from None
     return data, marks
