@@ -58,7 +58,7 @@ CASES = [
     ("bar without length", GOOD_MECH.replace("{points: [A, B], length: 0.4, mass: 2}", "{points: [A, B], mass: 2}"),
      7, ["mechanism.links.rod", "needs `length`"]),
     ("flywheel without loads", GOOD_MECH + "flywheel: {delta: 1/18}\n",
-     1, ["flywheel` needs `loads"]),
+     10, ["field 'flywheel'", "flywheel` needs `loads"]),
     ("delta as a bad fraction", GOOD_MECH + "loads: {gravity: true}\nflywheel: {delta: 1/0}\n",
      11, ["flywheel.delta", "division by zero"]),
     ("cam phases over 360", "schema: tmm/1\ncam:\n  stroke: 0.02\n  phases: {rise: 200, far_dwell: 50, return: 200}\n",

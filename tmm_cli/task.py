@@ -10,24 +10,35 @@ from __future__ import annotations
 import difflib
 import re
 from pathlib import Path
-from typing import Any, Literal, Union
+from typing import Annotated, Any, Literal, Union
 
 from pydantic import (BaseModel, ConfigDict, Field, PrivateAttr, ValidationError,
                       field_validator, model_validator)
 
 from .errors import TaskError
 from .units import (Angle, AngularSpeed, Area, Density, Force, ForceOrPressure, Inertia,
-                    Length, Mass, MomentQ, Ratio)
+                    Length, Mass, MomentQ, Number, Ratio)
 
 Point2 = tuple[float, float]
 
 _UNKNOWN = re.compile(r"unknown key '([^']+)'")
 
 
+class FieldValueError(ValueError):
+    """A model-level validation error that belongs to a field (a section missing or
+    inconsistent with another): ``field`` is the path, relative to the model, that the
+    message should point at (so the message names a field and its line)."""
+
+    def __init__(self, field: tuple, message: str):
+        super().__init__(message)
+        self.field = tuple(field)
+
+
 class _Model(BaseModel):
     """Base: unknown keys are errors with a suggestion."""
 
-    model_config = ConfigDict(extra="forbid", populate_by_name=True, frozen=False)
+    # allow_inf_nan=False: a plain float field rejects .inf, .nan, 'inf' and '1e400'
+    model_config = ConfigDict(extra="forbid", populate_by_name=True, frozen=False, allow_inf_nan=False)
 
     @model_validator(mode="before")
     @classmethod
@@ -268,7 +279,7 @@ class LimitsSpec(_Model):
 
 class CamSection(_Model):
     follower: Literal["translating", "rocker"] = "translating"
-    stroke: float = Field(..., gt=0, description="m (translating) or deg (rocker)")
+    stroke: Number = Field(..., gt=0, description="m (translating) or deg (rocker)")
     rocker_length: Length | None = Field(None, gt=0)
     offset: Union[Literal["auto"], Length] = 0.0
     phases: PhasesSpec
@@ -328,15 +339,15 @@ class CamSection(_Model):
 class GearsSection(_Model):
     m: Length = Field(..., gt=0, description="module (give '3 mm')")
     z: tuple[int, int]
-    x: Union[Literal["auto"], tuple[float, float]] = (0.0, 0.0)
+    x: Union[Literal["auto"], tuple[Number, Number]] = (0.0, 0.0)
     alpha: Angle = Field(20.0, gt=0, lt=45)
-    ha: float = Field(1.0, gt=0)
-    c: float = Field(0.25, ge=0)
+    ha: Number = Field(1.0, gt=0)
+    c: Number = Field(0.25, ge=0)
     rule: Literal["no_undercut", "equal_sliding", "table"] = Field(
         "equal_sliding", description="how `x: auto` chooses the shifts")
     sa_min: float = Field(0.25, gt=0, lt=1, description="least tip thickness as a fraction of m "
                                                          "(0.25 common, 0.4 hardened teeth)")
-    rho_f: float | None = Field(None, ge=0, description="rack fillet radius / m (default c/(1 - sin alpha))")
+    rho_f: Number | None = Field(None, ge=0, description="rack fillet radius / m (default c/(1 - sin alpha))")
 
     @field_validator("z")
     @classmethod
@@ -346,14 +357,19 @@ class GearsSection(_Model):
         return v
 
 
+PLANETARY_SCHEMES = ("A", "B", "C", "D")
+PLANETARY_ALIASES = {"a": "A", "b": "B", "c": "C", "d": "D", "single": "A", "james": "A"}
+
+
 class PlanetarySection(_Model):
     scheme: str
-    ratio: float
+    ratio: Number
     satellites: int = Field(3, ge=1, le=12)
     tolerance: Ratio = Field(0.05, gt=0)
     m: Length | None = Field(None, gt=0)
     z_min: int = Field(17, ge=5)
-    z_max: int = Field(150, ge=10)
+    # the candidate search grows as z_max^3 (schemes B, C: 0.5 s at 300, a minute at 1000)
+    z_max: int = Field(150, ge=10, le=300)
     candidates: int = Field(10, ge=1, le=100, description="how many ranked candidate sets to list")
 
     @field_validator("ratio")
@@ -362,6 +378,23 @@ class PlanetarySection(_Model):
         if v == 0:
             raise ValueError("the ratio cannot be zero")
         return v
+
+    @field_validator("scheme")
+    @classmethod
+    def _scheme(cls, v):
+        # an unknown scheme is an invalid task (exit 2), not a failed stage. The names are
+        # those of tmm_cli.gears.planetary (SCHEMES, ALIASES; a test keeps the two equal),
+        # copied so that validating a task does not import the gears package (~1 s)
+        key = str(v).strip()
+        if PLANETARY_ALIASES.get(key.lower(), key.upper()) not in PLANETARY_SCHEMES:
+            raise ValueError(f"unknown planetary scheme {v!r}; known: {', '.join(PLANETARY_SCHEMES)}")
+        return v
+
+    @model_validator(mode="after")
+    def _z_range(self):
+        if self.z_min > self.z_max:
+            raise FieldValueError(("z_min",), f"z_min = {self.z_min} exceeds z_max = {self.z_max}")
+        return self
 
 
 class StudentSpec(BaseModel):
@@ -385,7 +418,7 @@ class Task(_Model):
     gears: GearsSection | None = None
     planetary: PlanetarySection | None = None
     answers: dict[str, float] = Field(default_factory=dict)
-    tolerance: dict[str, Ratio] = Field(default_factory=dict)
+    tolerance: dict[str, Annotated[Ratio, Field(ge=0)]] = Field(default_factory=dict)
 
     _file: str | None = PrivateAttr(None)
     _marks: dict = PrivateAttr(default_factory=dict)
@@ -402,11 +435,11 @@ class Task(_Model):
         needs_mech = [s for s in ("drive", "positions", "loads", "kinetostatics", "flywheel")
                       if getattr(self, s) is not None]
         if self.mechanism is not None and self.drive is None:
-            raise ValueError("a `mechanism` needs a `drive` section (link, speed, direction)")
+            raise FieldValueError(("mechanism",), "a `mechanism` needs a `drive` section (link, speed, direction)")
         if self.mechanism is None and needs_mech:
-            raise ValueError(f"section(s) {', '.join(needs_mech)} need a `mechanism`")
+            raise FieldValueError((needs_mech[0],), f"section(s) {', '.join(needs_mech)} need a `mechanism`")
         if self.flywheel is not None and self.loads is None:
-            raise ValueError("`flywheel` needs `loads` (the forces whose work it evens out)")
+            raise FieldValueError(("flywheel",), "`flywheel` needs `loads` (the forces whose work it evens out)")
         return self
 
     # --------------------------------------------------------------------
@@ -426,6 +459,22 @@ class Task(_Model):
                 return self._marks[p]
             p = p[:-1]
         return self._marks.get((), (None, None))
+
+    def locate(self, err: TaskError) -> TaskError:
+        """``err`` with this task's file and the line of each issue's field filled in (for a
+        TaskError raised by a stage, which knows the field but not the file)."""
+        if err.file is not None and all(line is not None for _, line, _, _ in err.issues):
+            return err
+        from .results import parse_path
+        issues = []
+        for fld, line, col, msg in err.issues:
+            if line is None and fld:
+                try:
+                    line, col = self.line_of(tuple(parse_path(fld)))
+                except KeyError:
+                    pass
+            issues.append((fld, line, col, msg))
+        return TaskError(err.message, file=err.file or self._file, issues=issues)
 
     def error(self, path: tuple, message: str) -> TaskError:
         """A TaskError pointing at a field of this task (used by later checks)."""
@@ -467,6 +516,9 @@ def _issue_from_error(err: dict, marks: dict) -> tuple[str, int | None, int | No
     m = _UNKNOWN.search(msg)
     if m:
         clean.append(m.group(1))
+    cause = (err.get("ctx") or {}).get("error")
+    if isinstance(cause, FieldValueError):
+        clean.extend(cause.field)
     if err["type"] == "missing":
         msg = "required field is missing"
     elif err["type"] == "literal_error":

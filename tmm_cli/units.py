@@ -13,7 +13,7 @@ from fractions import Fraction
 from functools import lru_cache
 from typing import Annotated, Any
 
-from pydantic import BeforeValidator, WithJsonSchema
+from pydantic import AfterValidator, BeforeValidator, WithJsonSchema
 
 # field kind -> (pint unit the value is converted to, words for messages)
 KINDS: dict[str, tuple[str, str]] = {
@@ -30,6 +30,11 @@ KINDS: dict[str, tuple[str, str]] = {
     "force_or_pressure": ("", "a force (N) or, with `area`, a pressure (Pa)"),
     "dimensionless": ("", "a plain number or a fraction such as 1/18"),
 }
+
+# No quantity of a course task comes near 1e12 in its base unit (m, kg, N, Pa, rad/s, deg...);
+# a larger value is a typo or an overflow waiting to happen (its square or cube in a stage
+# would leave the float range), so it is rejected at the field that holds it.
+LIMIT = 1e12
 
 _FRACTION = re.compile(r"^\s*([-+]?\d+(?:\.\d*)?)\s*/\s*(\d+(?:\.\d*)?)\s*$")
 
@@ -48,6 +53,15 @@ def _as_float(x: Any) -> float:
     v = float(x)
     if not math.isfinite(v):
         raise ValueError("expected a finite number")
+    return check_magnitude(v)
+
+
+def check_magnitude(v: float) -> float:
+    """``v`` if it is finite and |v| <= LIMIT, else a ValueError naming the limit."""
+    if not math.isfinite(v):
+        raise ValueError("expected a finite number")
+    if abs(v) > LIMIT:
+        raise ValueError(f"{v:g} is out of range: |value| must not exceed {LIMIT:g} (in the field's base unit)")
     return v
 
 
@@ -66,7 +80,7 @@ def convert(value: Any, kind: str) -> float:
         den = float(m.group(2))
         if den == 0:
             raise ValueError("division by zero in a fraction")
-        return float(m.group(1)) / den
+        return _as_float(float(m.group(1)) / den)
     try:
         plain = float(text)
     except ValueError:
@@ -144,3 +158,5 @@ Area = Annotated[float, _q("area"), _schema("area")]
 Density = Annotated[float, _q("density"), _schema("density")]
 Ratio = Annotated[float, _q("dimensionless"), _schema("dimensionless")]
 ForceOrPressure = Annotated[float, _q("force_or_pressure"), _schema("force_or_pressure")]
+# a plain number (no unit), finite and within LIMIT
+Number = Annotated[float, AfterValidator(check_magnitude)]
