@@ -296,7 +296,7 @@ def evaluate(mech, loads_section, kin, positions=None, *, inertia: bool = True,
             lk = mech.link(sp.on)
         except KeyError:
             names = ", ".join(l.name for l in mech.links)
-            raise TaskError(f"loads.forces[{k - 1}].on: no link named '{sp.on}' (links: {names})") from None
+            raise _field_error(f"loads.forces[{k - 1}].on", f"no link named '{sp.on}' (links: {names})") from None
         stroke_given = "stroke" in sp.model_fields_set
         if sp.kind is None and not stroke_given:
             active = np.ones(n, bool)
@@ -325,8 +325,8 @@ def evaluate(mech, loads_section, kin, positions=None, *, inertia: bool = True,
         # point of application
         at = sp.at if sp.at is not None else (f"S{lk.index}" if f"S{lk.index}" in kin.pos else lk.com)
         if isinstance(at, str) and at not in kin.pos and at not in lk.local:
-            raise TaskError(f"loads.forces[{k - 1}].at: '{at}' is not a point of link '{lk.name}' "
-                            f"(its points: {', '.join(lk.local)})")
+            raise _field_error(f"loads.forces[{k - 1}].at", f"'{at}' is not a point of link '{lk.name}' "
+                               f"(its points: {', '.join(lk.local)})")
         p, d1, d2 = point_motion(kin, lk, at)
         # line of action
         if sp.direction is not None:
@@ -345,7 +345,7 @@ def evaluate(mech, loads_section, kin, positions=None, *, inertia: bool = True,
                 raise StageError("loads", f"the point of load {k} on '{lk.name}' does not move: give `direction`")
             ev = vv / nv[:, None]
         else:
-            raise TaskError(f"loads.forces[{k - 1}]: a force on the bar '{lk.name}' needs `direction` (deg)")
+            raise _field_error(f"loads.forces[{k - 1}]", f"a force on the bar '{lk.name}' needs `direction` (deg)")
         # magnitude (signed along e)
         x = None
         if sp.diagram is not None and sp.diagram.phi is not None:
@@ -452,3 +452,8 @@ def switch_angles(mech, loads_section, positions) -> list[float]:
 
 __all__ = ["AppliedForce", "AppliedCouple", "Loads", "evaluate", "switch_angles", "point_motion",
            "interp_right", "stroke_states", "G"]
+
+
+def _field_error(field: str, message: str) -> TaskError:
+    """A TaskError naming its field; the pipeline adds the file and line (Task.locate)."""
+    return TaskError(message, issues=[(field, None, None, message)])

@@ -253,9 +253,44 @@ def build_mechanism(task: Task) -> Mechanism:
         if s in owner and owner[s] != [lk.index]:
             raise task.error(P + ("links", lk.name), f"point name '{s}' is reserved for the centre of mass of "
                              f"link {lk.index}")
+    _check_references(task, names, owner, links)
     return Mechanism(ground={k: (float(v[0]), float(v[1])) for k, v in sec.ground.items()},
                      links=links, joints=joints, drive=drive, owner=owner,
                      assembly={k: (float(v[0]), float(v[1])) for k, v in sec.assembly.items()})
+
+
+def _check_references(task: Task, names: list[str], owner: dict[str, list[int]], links: list[Link]) -> None:
+    """Names used by the other linkage sections (positions, loads, kinetostatics) must
+    exist: an unknown name is an invalid task (exit 2) found by `tmm validate` too, not a
+    stage failure discovered in the middle of a run."""
+    by_name = {lk.name: lk for lk in links}
+    pos = task.positions
+    if pos is not None and pos.output is not None and pos.output not in by_name:
+        raise task.error(("positions", "output"), _unknown_link(pos.output, names))
+    ks = task.kinetostatics
+    if ks is not None:
+        if ks.balance is not None and ks.balance not in by_name:
+            raise task.error(("kinetostatics", "balance"), _unknown_link(ks.balance, names))
+        if ks.motion is True and task.flywheel is None:
+            raise task.error(("kinetostatics", "motion"), "`motion: true` needs a `flywheel` section "
+                             "(the steady motion comes from the flywheel)")
+    if task.loads is None:
+        return
+    points = set(owner) | {f"S{lk.index}" for lk in links}
+    for k, sp in enumerate(task.loads.forces):
+        fp = ("loads", "forces", k)
+        lk = by_name.get(sp.on)
+        if lk is None:
+            raise task.error(fp + ("on",), _unknown_link(sp.on, names))
+        if sp.moment is not None:
+            continue
+        if isinstance(sp.at, str) and sp.at not in points:
+            raise task.error(fp + ("at",), f"'{sp.at}' is not a point of the mechanism "
+                             f"(the points of link '{lk.name}': {', '.join(lk.local)})")
+        phi_diagram = sp.diagram is not None and sp.diagram.phi is not None
+        if sp.direction is None and lk.kind != "slider" and (sp.kind is None or phi_diagram):
+            raise task.error(fp, f"a force on the bar '{lk.name}' needs `direction` (deg from +x); "
+                             f"only a resistance/driving force over a stroke takes the direction of motion")
 
 
 def _unknown_link(name: str, names: list[str]) -> str:

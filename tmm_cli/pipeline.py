@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from typing import Any, Callable
 
-from .errors import StageError
+from .errors import StageError, TaskError
 from .task import PositionsSection, Task
 
 SCHEMA = "tmm-results/1"
@@ -73,6 +73,9 @@ def run(task: Task, *, progress: Callable[[str], None] | None = None,
         results["error"] = {"stage": err.stage, "message": err.message,
                             "position": err.position}
         raise PartialResults(err, results) from err
+    except TaskError as err:
+        # a stage found an invalid field: name the file and the field's line (SPEC 2)
+        raise task.locate(err) from None
     # de-duplicate warnings, keep order
     seen = set()
     results["warnings"] = [w for w in warnings if not (w in seen or seen.add(w))]
