@@ -35,7 +35,16 @@ def balance_index(mech, section) -> int:
         names = [lk.name for lk in mech.links]
         close = difflib.get_close_matches(name, names, n=1)
         hint = f"; did you mean '{close[0]}'?" if close else f"; links: {', '.join(names)}"
-        raise TaskError(f"kinetostatics.balance: no link named '{name}'{hint}") from None
+        msg = f"no link named '{name}'{hint}"
+        raise TaskError(msg, issues=[("kinetostatics.balance", None, None, msg)]) from None
+
+
+def _finite_list(a) -> list:
+    """``a.tolist()`` with every NaN / inf as None (results.json never holds them)."""
+    a = np.asarray(a, float)
+    if np.all(np.isfinite(a)):
+        return a.tolist()
+    return np.where(np.isfinite(a), a, None).tolist()
 
 
 def _num(v) -> float | None:
@@ -177,13 +186,15 @@ class KinetostaticsResult:
         for f in self.loads.forces:
             if detail:
                 v = self.geo.point_vel(f.link, f.point)
-                finfo.append((f.name, names[f.link], f.kind, f.point.tolist(), f.F.tolist(), v.tolist()))
+                finfo.append((f.name, names[f.link], f.kind, _finite_list(f.point), _finite_list(f.F),
+                              _finite_list(v)))
             if f.kind == "inertia" and f.link:
                 inert_f[names[f.link]] += f.F
         cinfo = []
         for c in self.loads.couples:
             if detail:
-                cinfo.append((c.name, names[c.link], c.kind, c.M.tolist(), self.geo.omega(c.link).tolist()))
+                cinfo.append((c.name, names[c.link], c.kind, _finite_list(c.M),
+                              _finite_list(self.geo.omega(c.link))))
             if c.kind == "inertia" and c.link:
                 inert_m[names[c.link]] += c.M
         inert = {k: (inert_f[k][:, 0].tolist(), inert_f[k][:, 1].tolist(), inert_m[k].tolist())
@@ -191,8 +202,8 @@ class KinetostaticsResult:
         dinfo = []
         for d in self.loads.info:
             act = np.broadcast_to(np.asarray(d["active"], bool), (N,)).tolist()
-            xs = None if d.get("x") is None else np.asarray(d["x"], float).tolist()
-            vs = (np.asarray(d["value"], float) + 0.0).tolist()
+            xs = None if d.get("x") is None else _finite_list(d["x"])
+            vs = _finite_list(np.asarray(d["value"], float) + 0.0)
             dinfo.append((d["name"], d["link"], d["kind"], d["stroke"], act, xs, vs))
         fr = None
         if self.efficiency is not None:
@@ -311,20 +322,35 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
 
     fr = getattr(section, "friction", None) if section is not None else None
     loss = None
+    locked = np.zeros(N, bool)
     if fr is not None and fr.f > 0:
         x, Mb, M1U = solve_groups(q)
+        finite0 = np.all(np.isfinite(x), axis=1)
+        row_change = np.zeros(N)
         for _ in range(200):
             ff, fc, loss = friction_loads(mech, geo, x, fr.f, fr.pin_radius)
             qf = q + load_vector(mech, geo, Loads(lds.phi, ff, fc))
             x_new, Mb, M1U = solve_groups(qf)
-            change = np.nanmax(np.abs(x_new - x)) if np.any(np.isfinite(x_new)) else 0.0
+            row_change = np.max(np.abs(x_new - x), axis=1)
+            change = np.nanmax(row_change) if np.any(np.isfinite(row_change)) else 0.0
             x = x_new
             if not change > 1e-12 * max(float(np.nanmax(np.abs(x))) if np.any(np.isfinite(x)) else 1.0, 1e-300):
                 break
+        # self-locking: where the fixed-point iteration of the friction loads diverges (the
+        # friction the reactions cause grows faster than the reactions), no finite solution
+        # exists; those positions are flagged and left without numbers, never filled with
+        # the 1e300-sized iterates (Artobolevsky: self-braking, eta <= 0)
+        row_scale = np.max(np.abs(np.where(np.isfinite(x), x, 0.0)), axis=1)
+        locked = finite0 & ~(row_change <= 1e-8 * np.maximum(row_scale, 1e-300))
+        if np.any(locked):
+            x[locked] = np.nan
         ff, fc, loss = friction_loads(mech, geo, x, fr.f, fr.pin_radius)
         lds = Loads(lds.phi, lds.forces + ff, lds.couples + fc, lds.info)
         q = load_vector(mech, geo, lds)
     x, Mb, M1U = solve_groups(q)
+    if np.any(locked):
+        x[locked] = np.nan
+        Mb = np.where(locked, np.nan, Mb)
     xm, Mm, cond, _det = matrix_method(mech, geo, q, b)
     lever = lever_moments(mech, geo, lds)
     blev = balance_lever(mech, geo, b)
@@ -350,7 +376,11 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
         near = np.min(d, axis=1) <= NEAR_DEG
     else:
         near = np.zeros(N, bool)
-    for i in np.nonzero(~ok)[0]:
+    for i in np.nonzero(locked)[0]:
+        warnings.append(f"kinetostatics: position {int(rows[i])} (phi = {phi[i] % 360:.4f} deg) is self-locking with "
+                        f"friction f = {fr.f:g}, pin radius {fr.pin_radius:g} m: the friction loads grow without "
+                        f"bound, no finite balancing {('moment' if blk.kind != 'slider' else 'force')}")
+    for i in np.nonzero(~ok & ~locked)[0]:
         warnings.append(f"kinetostatics: position {int(rows[i])} (phi = {phi[i] % 360:.4f} deg) is singular for "
                         f"the balance link '{blk.name}': no finite balancing {('moment' if blk.kind != 'slider' else 'force')}")
     eff = fpow = dpow = None

@@ -201,7 +201,9 @@ def friction_loads(mech, geo: Geometry, x: np.ndarray, f: float, r_pin: float
     N = geo.n_pos
     forces, couples = [], []
     loss = np.zeros((N, len(mech.joints)))
-    xs = np.nan_to_num(x)
+    # a singular position's reactions are not finite: no friction there (nan_to_num would turn
+    # an infinite reaction into 1.8e308 and the friction couples into inf)
+    xs = np.where(np.isfinite(x), x, 0.0)
     for k, j in enumerate(mech.joints):
         if j.kind == "R":
             Rm = np.hypot(xs[:, 2 * k], xs[:, 2 * k + 1])
