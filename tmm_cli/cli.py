@@ -48,6 +48,17 @@ def _fail_stage(exc: StageError, file: str | None = None) -> "typer.Exit":
     return typer.Exit(EXIT_STAGE)
 
 
+def _fail_write(exc: OSError) -> "typer.Exit":
+    """The output folder or a file in it cannot be written (--out names a file, no
+    permission, disk full): the writing stage failed, exit 3, no traceback."""
+    where = exc.filename if exc.filename is not None else ""
+    reason = exc.strerror or str(exc)
+    if isinstance(exc, (FileExistsError, NotADirectoryError)):
+        reason += " (a file is in the way of the output folder)"
+    _err(f"error: stage 'output' failed: cannot write {where}: {reason}")
+    return typer.Exit(EXIT_STAGE)
+
+
 def _load(path: Path):
     from .task import load_task
     return load_task(path)
@@ -110,7 +121,10 @@ def run(
         # keep what was computed: the partial results are written, the failure is named
         from .io import atomic_write
         from .results import dumps
-        atomic_write(out / "results.json", dumps(exc.partial))
+        try:
+            atomic_write(out / "results.json", dumps(exc.partial))
+        except OSError as wexc:
+            raise _fail_write(wexc)
         raise _fail_stage(exc, task.file)
     except StageError as exc:
         raise _fail_stage(exc, task.file)
@@ -120,6 +134,8 @@ def run(
         paths = write_outputs(task, results, out, formats, lang)
     except StageError as exc:
         raise _fail_stage(exc, task.file)
+    except OSError as exc:
+        raise _fail_write(exc)
     if not quiet:
         from .summary import print_summary
         print_summary(results, paths)
@@ -179,8 +195,11 @@ def check(
         from .check import rows_csv
         from .io import atomic_write
         from .results import dumps
-        atomic_write(out / "check.csv", rows_csv(rows))
-        atomic_write(out / "results.json", dumps(results))
+        try:
+            atomic_write(out / "check.csv", rows_csv(rows))
+            atomic_write(out / "results.json", dumps(results))
+        except OSError as exc:
+            raise _fail_write(exc)
     raise typer.Exit(EXIT_OK if all(r["verdict"] == "ok" for r in rows) else EXIT_ANSWERS)
 
 
@@ -197,7 +216,10 @@ def batch(
     of the variants' codes (0 all pass, 1 some answers wrong, 2 some invalid, 3 some failed)."""
     from .batch import run_batch
     formats = _parse_formats(format)
-    code = run_batch(source, out, jobs=jobs, formats=formats, lang=lang)
+    try:
+        code = run_batch(source, out, jobs=jobs, formats=formats, lang=lang)
+    except OSError as exc:
+        raise _fail_write(exc)
     raise typer.Exit(code)
 
 
@@ -214,7 +236,10 @@ def schema(
     text = json.dumps(s, indent=2, ensure_ascii=False)
     if out:
         from .io import atomic_write
-        atomic_write(out, text + "\n")
+        try:
+            atomic_write(out, text + "\n")
+        except OSError as exc:
+            raise _fail_write(exc)
     else:
         typer.echo(text)
 
