@@ -29,6 +29,8 @@ from .motion import FAR_DWELL, NEAR_DWELL, Motion
 
 GRID = 361
 TOL = 1e-13
+LDP_TOL = 1e-9     # accepted constraint violation of an LDP solution (scaled units)
+MAX_ROUNDS = 40
 
 
 @dataclass(frozen=True)
@@ -91,11 +93,21 @@ def ldp(N: np.ndarray, c: np.ndarray, P0: np.ndarray) -> np.ndarray | None:
     b = c - N @ P0
     E = np.vstack([-N.T, -b[None, :]])
     f = np.array([0.0, 0.0, 1.0])
-    u, _ = nnls(E, f, maxiter=50 * E.shape[1])
+    try:
+        u, _ = nnls(E, f, maxiter=50 * E.shape[1])
+    except RuntimeError:          # NNLS did not converge: treat as no (reliable) solution
+        return None
     r = E @ u - f
     if np.linalg.norm(r) < 1e-12 or abs(r[2]) < 1e-300:
         return None
-    return P0 - r[:2] / r[2]
+    O = P0 - r[:2] / r[2]
+    # Near-empty regions (the infimum escapes to infinity) give a tiny residual and a
+    # far, inaccurate point that violates the constraints: accept only a feasible point.
+    if not np.all(np.isfinite(O)):
+        return None
+    if float(np.max(N @ O - c)) > LDP_TOL * max(1.0, float(np.linalg.norm(O))):
+        return None
+    return O
 
 
 class _Problem:
@@ -158,7 +170,8 @@ def nearest(motion: Motion, geom: Geometry, families: list[Family], P0=(0.0, 0.0
     """Admissible cam centre nearest to P0 (exact), with the active tangent lines.
 
     ``scale`` is a length of the problem (stroke or rocker length) for the tolerances.
-    Returns None when the region is empty.
+    Returns None when the region is empty, or when no admissible point can be found to
+    the tolerance (the region recedes to infinity: the exchange does not converge).
     """
     P0 = np.asarray(P0, dtype=float)
     prob = _Problem(motion, geom, families)
@@ -166,7 +179,7 @@ def nearest(motion: Motion, geom: Geometry, families: list[Family], P0=(0.0, 0.0
     extra_N, extra_c = [], []
     O = None
     cand = []
-    for _ in range(40):
+    for _ in range(MAX_ROUNDS):
         NN = np.vstack([N] + extra_N) if extra_N else N
         cc = np.concatenate([c] + extra_c) if extra_c else c
         O = ldp(NN, cc / scale, P0 / scale)
@@ -180,6 +193,14 @@ def nearest(motion: Motion, geom: Geometry, families: list[Family], P0=(0.0, 0.0
             break
         extra_N.append(np.array([e[3] for e in viol]))
         extra_c.append(np.array([e[4] for e in viol]))
+    else:
+        # no convergence within MAX_ROUNDS: accept a centre whose remaining violation is at
+        # the level of the LDP's rounding (a stalled exchange); a larger one means the centre
+        # keeps moving away (the region is empty, its infimum at infinity): never return a
+        # point that violates the limits
+        worst = min(e[2] for e in cand)
+        if worst < -LDP_TOL * max(scale, float(np.linalg.norm(O))):
+            return None
     tangents = [Tangent(f.phase, f.side, x, n, cval, D)
                 for (f, x, v, n, cval, D) in cand if v < 1e-9 * scale]
     return O, tangents

@@ -57,6 +57,12 @@ _PHASE_NAMES = {RISE: "rise", RETURN: "return", NEAR_DWELL: "near_dwell", FAR_DW
 ROLLER_RULE = "min(0.7*rho_min, 0.4*r0)"
 R0_DESIGN_RULE = "r0 rounded up to a whole millimetre"
 
+_HINT = ("increase the allowed pressure angle, the phase angles or the rocker length, "
+         "or reduce the swing")
+# accepted excess of the computed maximum pressure angle over the allowed one, deg (the
+# region is solved to 1e-13 of the stroke; a larger excess means no valid centre was found)
+PA_TOL_DEG = 1e-6
+
 _IMPACT_TEXT = {
     "rigid": "rigid impact (jump of velocity, infinite acceleration)",
     "soft": "soft impact (finite jump of acceleration)",
@@ -188,6 +194,17 @@ def _limits(spec) -> tuple[float, float]:
     return rise, ret
 
 
+def _rocker_hint(swing: float, th_rise: float, th_ret: float) -> str:
+    """With dwells at both ends the rocker's velocity turns through the swing while the cam
+    centre is seen from B0 and from the far position in nearly one direction when far away:
+    the best maximum pressure angle then tends to half the swing (found by brute force over
+    cam centres as well), so smaller limits leave the region empty."""
+    if min(th_rise, th_ret) <= swing / 2:
+        return (f" (a rocker swinging {swing:g} deg usually needs allowed pressure angles above "
+                f"half the swing, {swing / 2:g} deg)")
+    return ""
+
+
 def _families(motion: Motion, th_rise: float, th_ret: float) -> list[Family]:
     tr, td = math.tan(math.radians(th_rise)), math.tan(math.radians(th_ret))
     fams = [Family(RISE, +1, tr), Family(RISE, -1, tr), Family(RETURN, +1, td), Family(RETURN, -1, td)]
@@ -221,8 +238,7 @@ def _solve(motion, geom, fams, offset, scale):
     sol = nearest(motion, geom, fams, (0.0, 0.0), scale)
     if sol is None:
         raise StageError(STAGE, "no cam centre satisfies the allowed pressure angles "
-                                "(the admissible region is empty); increase the allowed "
-                                "pressure angle, the phase angles or the rocker length")
+                                "(the admissible region is empty); " + _HINT)
     return sol
 
 
@@ -360,9 +376,9 @@ def synthesize(spec) -> CamResult:
             geom = Geometry("rocker", sigma, tau, l)
             try:
                 O, tang = _solve(motion, geom, fams, "auto", scale)
-            except StageError:
+            except StageError as err:
                 if len(options) == 1:
-                    raise
+                    raise StageError(STAGE, err.message + _rocker_hint(stroke, th_rise, th_ret)) from None
                 alternatives[sw] = None
                 continue
             r0 = float(np.hypot(*O))
@@ -371,7 +387,8 @@ def synthesize(spec) -> CamResult:
                 best = (r0, sw, geom, O, tang)
         if best is None:
             raise StageError(STAGE, "no cam centre satisfies the allowed pressure angles for "
-                                    "either swing sense")
+                                    "either swing sense (the admissible region is empty); " + _HINT
+                             + _rocker_hint(stroke, th_rise, th_ret))
         r0, swing, geom, O, tang = best
         if swing_in == "auto" and len([a for a in alternatives.values() if a]) == 2:
             other = "against" if swing == "with" else "with"
@@ -410,6 +427,12 @@ def synthesize(spec) -> CamResult:
     else:
         th_max_phi = math.degrees(motion.starts[2] + th[RETURN][1] * motion.ret)
     th_max = max(th_max_rise, th_max_ret, math.degrees(dwell_max))
+    # never report a centre that violates the limits (a numerically lost region)
+    for name, got, lim in (("rise", th_max_rise, th_rise), ("return", th_max_ret, th_ret),
+                           ("dwells", math.degrees(dwell_max), max(th_rise, th_ret))):
+        if not got <= lim + PA_TOL_DEG:
+            raise StageError(STAGE, f"no cam centre found that keeps the pressure angle on the {name} "
+                                    f"within {lim:g} deg (best found: {got:.6g} deg); " + _HINT)
 
     # ---- profile
     prof = Profile(motion, geom, O)
