@@ -156,14 +156,29 @@ def analyze(spec) -> GearResult:
     for i in (1, 2):
         if g[f"rf{i}"] <= 0:
             raise StageError(STAGE, f"wheel {i}: root radius rf = {g[f'rf{i}']:.6g} m is not positive")
+        if g[f"ra{i}"] <= g[f"rf{i}"]:
+            raise StageError(STAGE, f"wheel {i}: the tip circle ra = {g[f'ra{i}']:.6g} m is not above the "
+                                    f"root circle rf = {g[f'rf{i}']:.6g} m (no tooth)")
     w1 = Wheel(m, z1, x1, alpha, ha, c, g["ra1"], rho_f)
     w2 = Wheel(m, z2, x2, alpha, ha, c, g["ra2"], rho_f)
-    rl, rhol = [], []
-    for w in (w1, w2):
+    rl, rhol, no_involute = [], [], []
+    for i, (w, z, x) in enumerate(((w1, z1, x1), (w2, z2, x2)), start=1):
         fl = w.flank(n_fillet=200, n_involute=4)
+        if fl.r_involute_start >= fl.r_tip:
+            # the GOST formulas (s_a, eps_alpha, the line of action) assume an involute flank:
+            # their values are formal here; the wheel is flagged (interference) and warned about
+            where = ("its tip circle lies inside the base circle" if w.ra <= w.rb else
+                     "its involute would begin at r = %.6g mm, above the tip r = %.6g mm%s"
+                     % (fl.r_involute_start * 1e3, fl.r_tip * 1e3,
+                        " (pointed on the fillet)" if fl.pointed else ""))
+            warnings.append(f"gears: wheel {i} (z = {z}, x = {x:g}) has no involute flank: {where}; "
+                            f"the pair cannot mesh properly (s_a and eps_alpha are formal values)")
+            no_involute.append(i - 1)
         rl.append(fl.r_involute_start)
         rhol.append(math.sqrt(max(fl.r_involute_start ** 2 - w.rb ** 2, 0.0)))
     ch = checks(g, m, sa_min, rho_l_true=rhol, x=(x1, x2))
+    for i in no_involute:      # the other wheel's tip necessarily meets it off the involute
+        ch["interference"][i] = np.True_
     zz = (z1, z2)
     xx = (x1, x2)
     for i in (0, 1):

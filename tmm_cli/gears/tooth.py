@@ -138,21 +138,45 @@ class Wheel:
         # involute from r_start to ra, sampled uniformly in the roll angle (dense near rb)
         psi_ra = float(self.psi_involute(ra))
         pointed = psi_ra <= 0.0
-        if pointed:
-            r_tip = brentq(lambda r: float(self.psi_involute(r)), max(r_start, rb), ra, xtol=1e-15)
+        r_lo = max(r_start, rb)
+        if r_lo >= ra or float(self.psi_involute(r_lo)) <= 0.0:
+            # no involute on the tooth: the tip circle (ra < rb, or a large shift with the
+            # involute starting above ra) or the point where the flanks meet lies below the
+            # start of the involute.  The flank is the fillet alone, cut at the tip circle or
+            # where it reaches the tooth axis (psi = 0).
+            keep = rr_f <= ra
+            rr_f, pp_f = rr_f[keep], pp_f[keep]
+            neg = np.nonzero(pp_f <= 0.0)[0]
+            if neg.size:
+                k = int(neg[0])
+                if k == 0:
+                    r_tip = float(rr_f[0])
+                else:
+                    r0_, r1_, p0_, p1_ = rr_f[k - 1], rr_f[k], pp_f[k - 1], pp_f[k]
+                    r_tip = float(r0_ + (r1_ - r0_) * p0_ / (p0_ - p1_))
+                rr_f, pp_f = np.append(rr_f[:k], r_tip), np.append(pp_f[:k], 0.0)
+                pointed = True
+            else:
+                r_tip = ra
+                pointed = False
+            rr_i = pp_i = np.zeros(0)
         else:
-            r_tip = ra
-        e0 = math.sqrt(max(r_start * r_start - rb * rb, 0.0))
-        e1 = math.sqrt(max(r_tip * r_tip - rb * rb, 0.0))
-        ee = np.linspace(e0, e1, max(n_involute, 2))
-        rr_i = np.sqrt(rb * rb + ee * ee)
-        pp_i = self.psi_involute(rr_i)
+            if pointed:
+                r_tip = brentq(lambda r: float(self.psi_involute(r)), r_lo, ra, xtol=1e-15)
+            else:
+                r_tip = ra
+            e0 = math.sqrt(max(r_start * r_start - rb * rb, 0.0))
+            e1 = math.sqrt(max(r_tip * r_tip - rb * rb, 0.0))
+            ee = np.linspace(e0, e1, max(n_involute, 2))
+            rr_i = np.sqrt(rb * rb + ee * ee)
+            pp_i = self.psi_involute(rr_i)
         # root circle: from the space centre (pi/z from the axis) to where the fillet starts
         half = math.pi / self.z
         pp_root = np.linspace(half, pp_f[0], max(n_root, 2)) if len(pp_f) else np.array([half])
         rr_root = np.full_like(pp_root, self.rf)
-        # tip circle: from the involute end to the axis
-        pp_tip = np.linspace(pp_i[-1], 0.0, max(n_tip, 2))
+        # tip circle: from the involute (or fillet) end to the axis
+        last = pp_i[-1] if len(pp_i) else (pp_f[-1] if len(pp_f) else pp_root[-1])
+        pp_tip = np.linspace(last, 0.0, max(n_tip, 2))
         rr_tip = np.full_like(pp_tip, r_tip)
         r = np.concatenate([rr_root, rr_f, rr_i, rr_tip])
         psi = np.concatenate([pp_root, pp_f, pp_i, pp_tip])
