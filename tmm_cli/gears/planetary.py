@@ -317,6 +317,22 @@ class PlanetaryResult:
                 "candidates": self.candidates, "velocity_plan": self.plan, "warnings": list(self.warnings)}
 
 
+def _no_candidates_hint(scheme: str, req: float, tol: float, z_min: int, z_max: int) -> str:
+    """Why the search may have found nothing, and what to change."""
+    if z_max < z_min:
+        return f"z_max = {z_max} is below z_min = {z_min}"
+    if scheme in ("A", "B", "D") and z_max < Z_INT:
+        return f"scheme {scheme} has an internal wheel, which needs z >= {Z_INT}: raise z_max"
+    if scheme == "A":
+        # i = 1 + z3/z1 with z1 >= z_min, z3 <= z_max and z3 >= Z_INT
+        lo, hi = 1 + Z_INT / z_max, 1 + z_max / z_min
+        if req + tol * abs(req) < lo or req - tol * abs(req) > hi:
+            return (f"scheme A gives 1 + z3/z1 only between {lo:.4g} and {hi:.4g} with these tooth "
+                    f"limits: choose another scheme (B for larger ratios) or change z_min, z_max")
+    return ("widen the tolerance or z_min..z_max, use fewer satellites (adjacency), "
+            "or choose another scheme")
+
+
 def synthesize_planetary(spec) -> PlanetaryResult:
     """Tooth numbers for ``spec`` (scheme, ratio, satellites, tolerance, optional m, z_min, z_max)."""
     scheme = scheme_key(spec.scheme)
@@ -343,7 +359,8 @@ def synthesize_planetary(spec) -> PlanetaryResult:
         found.append((size_key(scheme, z), sum(z.values()), z, v))
     if not found:
         raise StageError(STAGE, f"no tooth numbers for scheme {scheme} give i_1H = {req:g} within "
-                                f"{tol:.3g} with {k} satellites (z in [{z_min}, {z_max}])")
+                                f"{tol:.3g} with {k} satellites (z in [{z_min}, {z_max}]); "
+                                + _no_candidates_hint(scheme, req, tol, int(z_min), int(z_max)))
     z, v = found[0][2], found[0][3]
     cands = [{"z": dict(t[2]), "ratio": t[3]["ratio"], "ratio_error": t[3]["ratio_error"], "size": t[0],
               "teeth": t[1], "assembly_p": t[3]["assembly_p"]} for t in found]
