@@ -197,6 +197,15 @@ def solve_cycle(q: np.ndarray, M_given: np.ndarray, J_links: dict[str, np.ndarra
                             f"for delta = {delta:.6g} ({method}); J = 0")
     else:
         J = float(primary)
+        if primary <= 1e-12 * scale:
+            J = 0.0
+            if float(np.ptp(work.dT)) == 0.0 and float(np.ptp(J_var)) == 0.0:
+                why = ("the loads do no work over any part of the cycle and the reduced inertia is "
+                       "constant, so the speed does not fluctuate")
+            else:
+                why = (f"the machine's own constant reduced inertia {J_const:.6g} kg*m^2 equals the "
+                       f"{J_n[method]:.6g} kg*m^2 needed for delta = {delta:.6g} ({method})")
+            warnings.append(f"no flywheel is needed: {why}; J = 0")
     motion = fw.steady_motion(work.dT, J_var, J_const + J, omega_m)
     J_tot = J_const + J + J_var
     num = work.M_red - dJ_var * motion.omega**2 / 2
@@ -227,7 +236,7 @@ def _f(x):
     if x is None:
         return None
     x = float(x)
-    return x if math.isfinite(x) else None
+    return x + 0.0 if math.isfinite(x) else None     # + 0.0: no negative zero in the results
 
 
 def _l(a):
@@ -318,8 +327,12 @@ class DynamicsResult:
             J_var = np.interp(qr, c.q, c.J_var)
             dJ = np.interp(qr, c.q, c.dJ_var)
         J_tot = c.J_const + c.J + J_var
-        w = np.sqrt(np.maximum(2 * (c.motion.T0 + dT), 0.0) / J_tot)
-        eps = (M - dJ * w**2 / 2) / J_tot
+        pos = J_tot > 0
+        Js = np.where(pos, J_tot, 1.0)
+        # no inertia at all (massless links, no flywheel): steady_motion allows this only
+        # when nothing changes over the cycle, and then the motion is uniform at omega_m
+        w = np.where(pos, np.sqrt(np.maximum(2 * (c.motion.T0 + dT), 0.0) / Js), c.omega_m)
+        eps = np.where(pos, (M - dJ * w**2 / 2) / Js, 0.0)
         return self.sign * w, self.sign * eps
 
     def omega_of(self, phi) -> np.ndarray:
