@@ -221,6 +221,9 @@ def test_negative_shift_undercut_wheel():
     m=st.sampled_from([0.001, 0.0025, 0.004, 0.01]),
 )
 def test_property_random_pairs(z1, z2, x1, x2, m):
+    al = math.radians(20.0)
+    # a mesh exists only while inv alpha_w = inv alpha + 2 tan alpha (x1 + x2)/(z1 + z2) > 0
+    assume(inv(al) + 2 * math.tan(al) * (x1 + x2) / (z1 + z2) > 1e-6)
     e = gost(m, [z1, z2], [x1, x2])
     assume(min(e["sa"]) > 0.05 * m and e["eps_alpha"] > 1.0)
     res = run(gear_task(m, [z1, z2], [x1, x2]))
@@ -242,6 +245,16 @@ def test_property_random_pairs(z1, z2, x1, x2, m):
         margin = min(p - l for p, l in zip(e["rho_p"], e["rho_l"]))
         if abs(margin) > 1e-6 * m:
             assert ch["interference"] is (margin < 0)
+
+
+def test_no_mesh_angle_is_a_clear_stage_error():
+    """z = 12/12 with x1 + x2 = -0.5: inv alpha_w = inv 20 deg + 2 tan 20 deg (-0.5)/24
+    = 0.014904 - 0.015165 < 0, no working pressure angle exists."""
+    al = math.radians(20.0)
+    assert inv(al) + 2 * math.tan(al) * (-0.5) / 24 < 0
+    with pytest.raises(tmm_cli.StageError) as e:
+        run(gear_task(0.001, [12, 12], [-0.25, -0.25]))
+    assert e.value.stage == "gears" and "inv alpha_w" in e.value.message
 
 
 # --------------------------------------------------------------------------------------

@@ -69,6 +69,12 @@ def run(task: Task, *, progress: Callable[[str], None] | None = None,
             res = _stage("planetary")(gears.synthesize_planetary)(task.planetary)
             results["planetary"] = res.to_dict()
             warnings.extend(results["planetary"].pop("warnings", []) or [])
+        if task.dof2 is not None:
+            say("dof2")
+            from . import dof2
+            res = _stage("dof2")(dof2.analyze)(task.dof2)
+            results["dof2"] = res.to_dict()
+            warnings.extend(results["dof2"].get("warnings", []) or [])
     except StageError as err:
         results["error"] = {"stage": err.stage, "message": err.message,
                             "position": err.position}

@@ -403,6 +403,9 @@ class StudentSpec(BaseModel):
     group: str | None = None
 
 
+from .dof2.spec import Dof2Section  # noqa: E402  (after _Model: dof2.spec imports it)
+
+
 class Task(_Model):
     schema_: Literal["tmm/1"] = Field(..., alias="schema")
     title: str = ""
@@ -417,6 +420,8 @@ class Task(_Model):
     cam: CamSection | None = None
     gears: GearsSection | None = None
     planetary: PlanetarySection | None = None
+    dof2: Dof2Section | None = Field(None, description="a machine with two degrees of freedom: rotor + hinged "
+                                                       "striker (METHODS 7; runs on its own)")
     answers: dict[str, float] = Field(default_factory=dict)
     tolerance: dict[str, Annotated[Ratio, Field(ge=0)]] = Field(default_factory=dict)
 
