@@ -221,3 +221,19 @@ def test_fields_command():
     assert "flywheel.delta" in res.output and "coefficient of speed fluctuation" in res.output
     assert "cam.stroke" not in res.output
     assert runner.invoke(app, ["fields", "nonsense"]).exit_code == 2
+
+
+@pytest.mark.parametrize("text,field", [
+    ("answers: [1, 2]\n", "answers"),
+    ("answers: {gears.aw: 1}\ntolerance: {default: abc}\n", "tolerance.default"),
+    ("answers: {gears.aw: .inf}\n", "answers.gears.aw"),
+    ("answers: {gears.aw: 1}\ntolerance: {default: -1}\n", "tolerance.default"),
+    ("answers: {'gears..aw': 1}\n", "answers.gears..aw"),
+])
+def test_bad_answers_file(tmp_path, text, field):
+    task = _write(tmp_path, "g.yaml", GEARS)
+    ans = _write(tmp_path, "a.yaml", text)
+    res = runner.invoke(app, ["check", str(task), "--answers", str(ans)])
+    assert res.exit_code == 2, res.output
+    assert f"{ans}:" in res.output and f"field '{field}'" in res.output
+    assert "Traceback" not in res.output

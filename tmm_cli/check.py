@@ -25,7 +25,7 @@ def load_answers(task, answers_file: Path | None) -> tuple[dict[str, float], dic
         if "answers" in data:
             unknown = set(data) - {"answers", "tolerance"}
             if unknown:
-                k = sorted(unknown)[0]
+                k = sorted(map(str, unknown))[0]
                 line, col = marks.get((k,), (None, None))
                 raise TaskError("unknown key", file=str(answers_file),
                                 issues=[(k, line, col, f"unknown key '{k}'; an answers file holds "
@@ -34,24 +34,44 @@ def load_answers(task, answers_file: Path | None) -> tuple[dict[str, float], dic
             base = ("answers",)
         else:
             raw_a, raw_t, base = data, {}, ()
-        ans = {}
-        for k, v in raw_a.items():
-            line, col = marks.get(base + (k,), (None, None))
-            if isinstance(v, bool) or not isinstance(v, (int, float)):
-                raise TaskError("invalid answer", file=str(answers_file),
-                                issues=[(f"answers.{k}", line, col, f"expected a number, got {v!r}")])
-            ans[str(k)] = float(v)
-        tol = {str(k): float(v) for k, v in raw_t.items()}
+        for what, raw, b in (("answers", raw_a, base), ("tolerance", raw_t, ("tolerance",))):
+            if not isinstance(raw, dict):
+                line, col = marks.get(b, (None, None))
+                raise TaskError("invalid answers file", file=str(answers_file),
+                                issues=[(what, line, col, f"expected a mapping of paths to numbers, "
+                                                          f"got {type(raw).__name__}")])
+        ans = {str(k): _number(v, answers_file, marks, base + (k,), f"answers.{k}", positive=False)
+               for k, v in raw_a.items()}
+        tol = {str(k): _number(v, answers_file, marks, ("tolerance", k), f"tolerance.{k}", positive=True)
+               for k, v in raw_t.items()}
     for k in ans:
         try:
             parse_path(k)
         except KeyError as exc:
-            raise task.error(("answers", k), str(exc).strip("'\""))
+            if answers_file is None:
+                raise task.error(("answers", k), str(exc).strip("'\""))
+            line, col = marks.get(base + (k,), (None, None))
+            raise TaskError("invalid answers file", file=str(answers_file),
+                            issues=[(f"answers.{k}", line, col, str(exc).strip("'\""))])
     if not ans:
         src = answers_file or task.file
         raise TaskError("no answers to check: add an `answers:` section (paths into results.json) "
                         "or give --answers FILE", file=str(src) if src else None)
     return ans, tol
+
+
+def _number(v, file, marks, path, field: str, *, positive: bool) -> float:
+    """A finite number (a tolerance: also >= 0) from an answers file, or a TaskError."""
+    import math
+    line, col = marks.get(path, (None, None))
+    ok = isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(float(v))
+    if ok and positive and float(v) < 0:
+        ok = False
+    if not ok:
+        want = "a non-negative number (relative tolerance)" if positive else "a finite number"
+        raise TaskError("invalid answers file", file=str(file), issues=[(field, line, col,
+                                                                          f"expected {want}, got {v!r}")])
+    return float(v)
 
 
 def tolerance_for(key: str, tol: dict[str, float]) -> float:
