@@ -73,3 +73,4 @@ def test_clean_no_nan():
     d = clean({"a": np.float64("nan"), "b": np.arange(3), "c": [float("inf"), 1.5], "d": np.int64(4)})
     assert d == {"a": None, "b": [0, 1, 2], "c": [None, 1.5], "d": 4}
     assert "NaN" not in dumps({"x": float("nan")})
+    assert dumps({"x": -0.0, "y": np.float64(-0.0)}) == '{\n "x": 0.0,\n "y": 0.0\n}\n'

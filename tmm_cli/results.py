@@ -18,7 +18,7 @@ def clean(obj: Any) -> Any:
     if isinstance(obj, int):
         return obj
     if isinstance(obj, float):
-        return obj if math.isfinite(obj) else None
+        return obj + 0.0 if math.isfinite(obj) else None      # + 0.0: no "-0.0" in the file
     tolist = getattr(obj, "tolist", None)
     if tolist is not None:
         return clean(tolist())
