@@ -117,6 +117,31 @@ PARAMS = {
            "planetary.z_min": "наименьшее число зубьев", "planetary.z_max": "наибольшее число зубьев",
            "planetary.candidates": "число вариантов"},
 }
+PARAMS["en"].update({
+    "dof2.rotor.length": "rotor length l = OO₁", "dof2.rotor.mass": "rotor mass m₁",
+    "dof2.rotor.com": "rotor centre of mass OS₁", "dof2.rotor.J": "rotor J_S1", "dof2.rotor.J_O": "rotor J_O",
+    "dof2.striker.length": "striker length O₁M", "dof2.striker.com": "striker centre of mass l_c = O₁C",
+    "dof2.striker.mass": "striker mass m₂", "dof2.striker.J": "striker J_C", "dof2.gravity": "gravity",
+    "dof2.drive.moment": "driving moment", "dof2.drive.speed": "rotor speed held ω₁",
+    "dof2.drive.direction": "sense of rotation", "dof2.initial.phi": "initial φ₀",
+    "dof2.initial.psi": "initial ψ₀", "dof2.initial.omega": "initial ω₀", "dof2.initial.psi_dot": "initial dψ/dt",
+    "dof2.t_end": "duration", "dof2.turns": "turns", "dof2.t_max": "longest time", "dof2.samples": "samples",
+    "dof2.impact.phi": "rotor angle at the hit", "dof2.impact.stop": "stop at the hit",
+})
+PARAMS["ru"].update({
+    "dof2.rotor.length": "длина ротора l = OO₁", "dof2.rotor.mass": "масса ротора m₁",
+    "dof2.rotor.com": "центр масс ротора OS₁", "dof2.rotor.J": "момент инерции ротора J_S1",
+    "dof2.rotor.J_O": "момент инерции ротора J_O", "dof2.striker.length": "длина ударника O₁M",
+    "dof2.striker.com": "центр масс ударника l_c = O₁C", "dof2.striker.mass": "масса ударника m₂",
+    "dof2.striker.J": "момент инерции ударника J_C", "dof2.gravity": "силы тяжести",
+    "dof2.drive.moment": "движущий момент", "dof2.drive.speed": "поддерживаемая скорость ротора ω₁",
+    "dof2.drive.direction": "направление вращения", "dof2.initial.phi": "начальный угол φ₀",
+    "dof2.initial.psi": "начальный угол ψ₀", "dof2.initial.omega": "начальная скорость ω₀",
+    "dof2.initial.psi_dot": "начальная скорость dψ/dt", "dof2.t_end": "продолжительность",
+    "dof2.turns": "число оборотов", "dof2.t_max": "наибольшее время", "dof2.samples": "число точек",
+    "dof2.impact.phi": "угол ротора в момент удара", "dof2.impact.stop": "остановка при ударе",
+})
+
 ITEMS = {"en": {"forces": "force", "couples": "couple"}, "ru": {"forces": "сила", "couples": "пара"}}
 WORDS = {"ru": {"ccw": "против часовой стрелки", "cw": "по часовой стрелке", "true": "да", "false": "нет",
                 "extreme": "крайнее положение", "forward": "прямой", "backward": "обратный",
