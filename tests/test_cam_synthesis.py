@@ -16,15 +16,9 @@ from hypothesis import given, settings, strategies as st
 from tmm_cli.cam import synthesize
 from tmm_cli.cam.laws import LAWS
 from tmm_cli.errors import StageError
+from cam_spec import spec  # noqa: E402  (shared cam section builder)
 
 
-def spec(**kw):
-    d = dict(follower="translating", stroke=0.03, rocker_length=None, offset=0.0,
-             phases=NS(rise=90, far_dwell=30, return_=90, near_dwell=150),
-             laws=NS(rise="cosine", return_="cosine"), pressure_angle=NS(rise=30, return_=30),
-             swing="auto", roller="auto", rotation="ccw", speed=None)
-    d.update(kw)
-    return NS(**d)
 
 
 # ------------------------------------------------------------------ closed forms

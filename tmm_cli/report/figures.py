@@ -146,12 +146,9 @@ def draw_block(ax, xy, angle_deg: float, w: float, h: float, color="k", lw=0.9,
                face="white", z=4):
     """A slider block (rectangle w along the guide x h), centred at xy."""
     from matplotlib.patches import Polygon
-    a = math.radians(angle_deg)
-    u = np.array([math.cos(a), math.sin(a)])
-    v = np.array([-u[1], u[0]])
-    c = np.asarray(xy, float)
-    pts = [c + u * w / 2 + v * h / 2, c - u * w / 2 + v * h / 2,
-           c - u * w / 2 - v * h / 2, c + u * w / 2 - v * h / 2]
+
+    from .svgdraw import block_corners
+    pts = block_corners(xy, angle_deg, w, h)
     ax.add_patch(Polygon(pts, closed=True, facecolor=face, edgecolor=color, lw=lw, zorder=z))
 
 

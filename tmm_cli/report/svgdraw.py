@@ -28,6 +28,17 @@ def _f(x: float) -> str:
     return "0" if s in ("-0", "") else s
 
 
+
+def block_corners(c, angle_deg: float, w: float, h: float) -> list[np.ndarray]:
+    """The four corners of a slider block w (along angle_deg) x h centred at c,
+    shared by the matplotlib drawings and the direct-SVG ones."""
+    a = math.radians(angle_deg)
+    u = np.array([math.cos(a), math.sin(a)])
+    v = np.array([-u[1], u[0]])
+    c = np.asarray(c, float)
+    return [c + u * w / 2 + v * h / 2, c - u * w / 2 + v * h / 2,
+            c - u * w / 2 - v * h / 2, c + u * w / 2 - v * h / 2]
+
 class Canvas:
     """A drawing of width_mm x height_mm; see the module docstring."""
 
@@ -156,12 +167,7 @@ class Canvas:
 
     def block(self, c, angle_deg, w=7.0, h=4.0, color="#000", width=0.3, fill="#fff", z=4):
         """A slider block centred at c, its long side along angle_deg."""
-        a = math.radians(angle_deg)
-        u = np.array([math.cos(a), math.sin(a)])
-        v = np.array([-u[1], u[0]])
-        c = np.asarray(c, float)
-        pts = [c + u * w / 2 + v * h / 2, c - u * w / 2 + v * h / 2,
-               c - u * w / 2 - v * h / 2, c + u * w / 2 - v * h / 2]
+        pts = block_corners(c, angle_deg, w, h)
         self.polygon(pts, fill, z)
         self.polyline(pts, color, width, z=z, closed=True)
 
