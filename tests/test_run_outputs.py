@@ -202,3 +202,15 @@ def test_linkage_that_does_not_assemble_does_not_stop_cam_and_gears(tmp_path):
     ids = re.findall(r'<section class="section[^"]*" id="([^"]+)"', html)
     assert ids[:6] == ["task", "structure", "kinematics-failed", "cam", "gears", "planetary-failed"]
     assert (out / "report.pdf").read_bytes().startswith(b"%PDF-")
+
+
+def test_failure_box_in_russian(tmp_path):
+    out = tmp_path / "o"
+    f = task_file(tmp_path, GEARS, PLANETARY_IMPOSSIBLE)
+    res = runner.invoke(app, ["run", str(f), "--out", str(out), "--format", "html", "--lang", "ru", "-q"])
+    assert res.exit_code == 3
+    html = (out / "report.html").read_text(encoding="utf-8")
+    box = html.split('id="planetary-failed"', 1)[1].split("</section>", 1)[0]
+    assert "Синтез планетарного механизма — не рассчитано" in box
+    assert "Этап «planetary» не выполнен" in box and "раздела «planetary»" in box
+    assert 'id="gears"' in html
