@@ -73,18 +73,24 @@ def _parse_formats(text: str) -> set[str]:
     return fm
 
 
-def write_outputs(task, results: dict, out: Path, formats: set[str], lang: str) -> list[Path]:
-    """results.json and the reports, each written atomically."""
-    from .io import atomic_write
+def write_outputs(task, results: dict, out: Path, formats: set[str], lang: str,
+                  notes: list[str] | None = None) -> list[Path]:
+    """results.json and the reports, each written atomically; the run's manifest in
+    `out` then lists them, and the files of the previous run into `out` that were not
+    written again are removed (tmm_cli.io.Manifest).  `notes` receives one line per
+    output skipped (the PDF where its engine cannot run)."""
+    from .io import Manifest, atomic_write
     from .results import dumps
 
+    manifest = Manifest(out)
     written = []
     if "json" in formats or True:  # results.json is always written: the reports are made from it
         written.append(atomic_write(out / "results.json", dumps(results)))
     rep = formats & {"html", "pdf"}
     if rep:
         from .report import render
-        written.extend(render(results, task, out, rep, lang))
+        written.extend(render(results, task, out, rep, lang, notes=notes))
+    manifest.commit(written)
     return written
 
 
@@ -115,27 +121,30 @@ def run(
     if not quiet:
         def progress(stage: str) -> None:
             _err(f"  {stage}...")
+    failure = None
     try:
         results = run_pipeline(task, progress=progress)
     except PartialResults as exc:
-        # keep what was computed: the partial results are written, the failure is named
-        from .io import atomic_write
-        from .results import dumps
-        try:
-            atomic_write(out / "results.json", dumps(exc.partial))
-        except OSError as wexc:
-            raise _fail_write(wexc)
-        raise _fail_stage(exc, task.file)
+        # keep what was computed: results.json and the report with every computed
+        # section and, in place of a failed one, what failed; then exit 3
+        results, failure = exc.partial, exc
     except StageError as exc:
         raise _fail_stage(exc, task.file)
     except TaskError as exc:
         raise _fail_task(exc)
+    notes: list[str] = []
     try:
-        paths = write_outputs(task, results, out, formats, lang)
+        paths = write_outputs(task, results, out, formats, lang, notes=notes)
     except StageError as exc:
-        raise _fail_stage(exc, task.file)
+        raise _fail_stage(failure or exc, task.file)
     except OSError as exc:
         raise _fail_write(exc)
+    for note in notes:
+        _err(f"warning: {note}")
+    if failure is not None:
+        for e in results.get("errors", [])[1:]:
+            _err(f"error: {task.file}: {StageError(e['stage'], e['message'], e['position'])}")
+        raise _fail_stage(failure, task.file)
     if not quiet:
         from .summary import print_summary
         print_summary(results, paths)

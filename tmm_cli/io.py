@@ -1,9 +1,43 @@
-"""Atomic file output: nothing is ever left half-written."""
+"""File output: atomic writes with ordinary permissions, and the manifest by which a
+run owns the files it wrote in its output folder.
+
+- ``atomic_write`` writes through a temporary file ``.NAME.XXXXXXXX.tmp`` in the same
+  folder and ``os.replace``s it into place, so readers see the old or the new file,
+  never half of one.  The file gets the mode an ordinary new file gets (0666 less the
+  umask: 0644 under umask 022), not the 0600 of a bare temporary file.
+- ``Manifest`` lists in ``.tmm-manifest.json`` the files a run wrote.  The next run
+  into the same folder removes the files of the previous run that it does not write
+  again (a drawing of a section since removed, a figure whose number is gone) and
+  never touches a file it did not write: a listed file is removed only while its size
+  and modification time are still those recorded (a file the user replaced or edited
+  stays).  Temporary files of our naming left by a killed run are removed too.
+"""
 from __future__ import annotations
 
+import json
 import os
+import re
 import tempfile
+import time
 from pathlib import Path
+
+MANIFEST = ".tmm-manifest.json"
+# mkstemp(prefix=".NAME.", suffix=".tmp"): eight random characters
+_TMP = re.compile(r"^\.(?P<name>.+)\.[a-z0-9_]{8}\.tmp$")
+
+
+def file_mode() -> int:
+    """The mode of an ordinary new file under the current umask (0o666 & ~umask)."""
+    try:
+        with open("/proc/self/status", encoding="ascii") as fh:
+            for line in fh:
+                if line.startswith("Umask:"):
+                    return 0o666 & ~int(line.split()[1], 8)
+    except (OSError, ValueError, IndexError):
+        pass
+    mask = os.umask(0o022)          # no /proc: read it by setting it (and put it back)
+    os.umask(mask)
+    return 0o666 & ~mask
 
 
 def atomic_write(path: str | os.PathLike, data: bytes | str, encoding: str = "utf-8") -> Path:
@@ -14,6 +48,8 @@ def atomic_write(path: str | os.PathLike, data: bytes | str, encoding: str = "ut
     raw = data.encode(encoding) if isinstance(data, str) else data
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     try:
+        if hasattr(os, "fchmod"):
+            os.fchmod(fd, file_mode())
         with os.fdopen(fd, "wb") as fh:
             fh.write(raw)
             fh.flush()
@@ -26,3 +62,109 @@ def atomic_write(path: str | os.PathLike, data: bytes | str, encoding: str = "ut
             pass
         raise
     return path
+
+
+def _stamp(path: Path) -> list[int] | None:
+    try:
+        st = path.stat()
+    except OSError:
+        return None
+    return [st.st_size, st.st_mtime_ns]
+
+
+class Manifest:
+    """What one run writes into ``folder``.  Create it when the run starts, then
+    ``commit(paths)`` with every file the run wrote: files the previous run listed
+    and this run did not write are removed (if unchanged since), stale temporary
+    files of our naming are removed, and the new list is written atomically.
+
+        man = Manifest(out)
+        written = [...]                 # the run's atomic_write(...) paths
+        removed = man.commit(written)
+    """
+
+    def __init__(self, folder: str | os.PathLike):
+        self.folder = Path(folder)
+        self.started = time.time()
+
+    @property
+    def path(self) -> Path:
+        return self.folder / MANIFEST
+
+    def previous(self) -> dict[str, list[int] | None]:
+        """{relative path: [size, mtime_ns]} of the last run's files ({} if none or unreadable)."""
+        try:
+            data = json.loads(self.path.read_text(encoding="utf-8"))
+            files = data["files"]
+        except (OSError, ValueError, KeyError, TypeError):
+            return {}
+        if not isinstance(files, dict):
+            return {}
+        return {k: v for k, v in files.items() if isinstance(k, str)}
+
+    def _relative(self, p: str | os.PathLike) -> str | None:
+        """The path inside the folder, as 'a/b.csv', or None if it lies outside."""
+        root = os.path.abspath(self.folder)
+        full = os.path.abspath(p if os.path.isabs(p) else os.path.join(root, p))
+        rel = os.path.relpath(full, root)
+        if rel.startswith("..") or os.path.isabs(rel) or rel == ".":
+            return None
+        return Path(rel).as_posix()
+
+    def commit(self, written) -> list[Path]:
+        """Record ``written``; remove what the previous run wrote and this one did not.
+        Returns the removed paths."""
+        now: dict[str, list[int] | None] = {}
+        for p in written:
+            rel = self._relative(p)
+            if rel is not None and rel != MANIFEST:
+                now[rel] = _stamp(self.folder / rel)
+        removed: list[Path] = []
+        for rel, stamp in self.previous().items():
+            if rel in now or self._relative(rel) != rel:
+                continue                      # written again, or not a plain path inside
+            f = self.folder / rel
+            if f.is_symlink() or not f.is_file() or stamp is None or _stamp(f) != list(stamp):
+                continue                      # gone, replaced or changed since: not ours now
+            try:
+                f.unlink()
+                removed.append(f)
+            except OSError:
+                continue
+            self._prune(f.parent)
+        dirs = {self.folder} | {(self.folder / r).parent for r in list(now) + list(self.previous())
+                                if self._relative(r) == r}
+        removed += self.remove_stale_temps(dirs)
+        atomic_write(self.path, json.dumps({"schema": "tmm-manifest/1", "files": now}, indent=1,
+                                           sort_keys=True) + "\n")
+        return removed
+
+    def _prune(self, d: Path) -> None:
+        """Remove folders (inside ours) emptied by the removal."""
+        root = self.folder.resolve()
+        while d.resolve() != root and root in d.resolve().parents:
+            try:
+                d.rmdir()
+            except OSError:
+                return
+            d = d.parent
+
+    def remove_stale_temps(self, dirs) -> list[Path]:
+        """Temporary files ``.NAME.XXXXXXXX.tmp`` (atomic_write's) in ``dirs`` older
+        than this run: left by a run that was killed while writing."""
+        out = []
+        for d in dirs:
+            try:
+                entries = list(os.scandir(d))
+            except OSError:
+                continue
+            for e in entries:
+                if not _TMP.match(e.name) or not e.is_file(follow_symlinks=False):
+                    continue
+                try:
+                    if e.stat(follow_symlinks=False).st_mtime < self.started - 1.0:
+                        os.unlink(e.path)
+                        out.append(Path(e.path))
+                except OSError:
+                    continue
+        return out

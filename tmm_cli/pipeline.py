@@ -40,51 +40,60 @@ def run(task: Task, *, progress: Callable[[str], None] | None = None,
         kinematics_curve: int = 361) -> dict[str, Any]:
     """Compute every stage present in ``task``; return the results dict.
 
-    On a StageError the error is re-raised as :class:`PartialResults` whose
-    ``partial`` holds every section computed before the failure.
+    The independent parts (the linkage chain, cam, gears, planetary, dof2) each run
+    even when another fails; a part stops at its first StageError.  If any part
+    failed, :class:`PartialResults` is raised (for the first failure) whose
+    ``partial`` holds every section computed, with ``error`` (the first failure) and
+    ``errors`` (all of them: stage, message, position).
     """
     results: dict[str, Any] = {"schema": SCHEMA, "task": {"title": task.title, "variant": task.variant,
                                                           "file": task.file}}
     warnings: list[str] = []
     results["warnings"] = warnings
     say = progress or (lambda s: None)
+    # independent parts: a failure of one is recorded and the others still run
+    errors: list[StageError] = []
+
+    def part(fn) -> None:
+        try:
+            fn()
+        except StageError as err:
+            errors.append(err)
+
+    def simple(name, module, func, section, keep_warnings=False):
+        """A stage of one section: results[name] = module.func(section).to_dict()."""
+        def go():
+            import importlib
+            say(name)
+            fn = getattr(importlib.import_module(f".{module}", __package__), func)
+            results[name] = _stage(name)(fn)(section).to_dict()
+            extra = results[name].get("warnings") if keep_warnings else results[name].pop("warnings", [])
+            warnings.extend(extra or [])
+        return go
+
     try:
         if task.mechanism is not None:
-            _linkage(task, results, warnings, say, kinematics_curve)
+            part(lambda: _linkage(task, results, warnings, say, kinematics_curve))
         if task.cam is not None:
-            say("cam")
-            from . import cam
-            res = _stage("cam")(cam.synthesize)(task.cam)
-            results["cam"] = res.to_dict()
-            warnings.extend(results["cam"].pop("warnings", []) or [])
+            part(simple("cam", "cam", "synthesize", task.cam))
         if task.gears is not None:
-            say("gears")
-            from . import gears
-            res = _stage("gears")(gears.analyze)(task.gears)
-            results["gears"] = res.to_dict()
-            warnings.extend(results["gears"].pop("warnings", []) or [])
+            part(simple("gears", "gears", "analyze", task.gears))
         if task.planetary is not None:
-            say("planetary")
-            from . import gears
-            res = _stage("planetary")(gears.synthesize_planetary)(task.planetary)
-            results["planetary"] = res.to_dict()
-            warnings.extend(results["planetary"].pop("warnings", []) or [])
+            part(simple("planetary", "gears", "synthesize_planetary", task.planetary))
         if task.dof2 is not None:
-            say("dof2")
-            from . import dof2
-            res = _stage("dof2")(dof2.analyze)(task.dof2)
-            results["dof2"] = res.to_dict()
-            warnings.extend(results["dof2"].get("warnings", []) or [])
-    except StageError as err:
-        results["error"] = {"stage": err.stage, "message": err.message,
-                            "position": err.position}
-        raise PartialResults(err, results) from err
+            part(simple("dof2", "dof2", "analyze", task.dof2, keep_warnings=True))
     except TaskError as err:
         # a stage found an invalid field: name the file and the field's line (SPEC 2)
         raise task.locate(err) from None
     # de-duplicate warnings, keep order
     seen = set()
     results["warnings"] = [w for w in warnings if not (w in seen or seen.add(w))]
+    if errors:
+        # `error`: the first failure (as before); `errors`: every independent part that failed
+        results["errors"] = [{"stage": e.stage, "message": e.message, "position": e.position}
+                             for e in errors]
+        results["error"] = results["errors"][0]
+        raise PartialResults(errors[0], results) from errors[0]
     return results
 
 

@@ -51,7 +51,7 @@ from pathlib import Path
 from .context import ReportContext, templates_dir
 from . import sections as _sections
 
-__all__ = ["render", "render_html", "make_env"]
+__all__ = ["render", "render_html", "make_env", "PdfSkipped"]
 
 
 _NUM = re.compile(r"^[−+-]?(\d+(\.\d*)?|\.\d+)([eE][−+-]?\d+)?( [↺↻])?$")
@@ -94,9 +94,17 @@ def _build(ctx: ReportContext, names) -> dict[str, str | None]:
 
 def _assemble(ctx: ReportContext, frags: dict[str, str | None]) -> str:
     from markupsafe import Markup
+    from . import failure
+    boxes: dict[str | None, list[str]] = {}
+    for err in failure.failures(ctx.results):
+        boxes.setdefault(failure.placement(err)[0], []).append(failure.box(ctx, err))
     parts = []
     for name, _ in _sections.available():
         frag = frags.get(name)
+        # a failed stage: in its section's place, what failed, where and what to change
+        extra = boxes.pop(name, []) + (boxes.pop(None, []) if name == "task" else [])
+        if extra:
+            frag = "\n".join(([frag] if frag else []) + extra)
         if frag:
             m = _H2.search(frag)
             head = re.sub(r"<[^>]+>", "", m.group(1)).strip() if m else ctx.t(f"{name}.title")
@@ -141,9 +149,30 @@ def _svg_as_images(html: str) -> str:
     return _SVG.sub(repl, html)
 
 
+class PdfSkipped(Exception):
+    """The PDF engine cannot run on this machine (weasyprint or the system libraries
+    it loads, Pango and GObject, are missing): everything else is still written."""
+
+
+def _weasyprint():
+    """Import weasyprint; PdfSkipped with a one-line reason if it cannot be used."""
+    try:
+        import weasyprint
+    except (ImportError, OSError) as exc:
+        first = (str(exc).strip().splitlines() or [type(exc).__name__])[0]
+        if isinstance(exc, OSError):
+            hint = ("the PDF engine (weasyprint) cannot load the system libraries it needs: "
+                    f"{first}; install Pango (Debian/Ubuntu: apt-get install libpango-1.0-0 "
+                    "libpangoft2-1.0-0)")
+        else:
+            hint = f"the PDF engine (weasyprint) is not installed: {first}"
+        raise PdfSkipped(hint) from None
+    return weasyprint
+
+
 def _pdf_bytes(html: str, out_dir: Path) -> bytes:
     import logging
-    import weasyprint
+    weasyprint = _weasyprint()
     for name in ("weasyprint", "fontTools"):
         logging.getLogger(name).setLevel(logging.ERROR)
     return weasyprint.HTML(string=_svg_as_images(html), base_url=str(out_dir)).write_pdf()
@@ -161,7 +190,7 @@ def _helper(conn, results, task, out_dir, lang, names, pdf):
         frags = _build(ctx, names)
         conn.send(("frags", frags, [str(p) for p in ctx.written]))
         if pdf:
-            import weasyprint  # noqa: F401  (the import overlaps the main process' work)
+            _weasyprint()  # the import overlaps the main process' work
             msg = conn.recv()
             if msg is not None:
                 conn.send(("pdf", _pdf_bytes(msg, out_dir)))
@@ -185,7 +214,7 @@ def _workers_wanted() -> bool:
     return (os.cpu_count() or 1) >= 2
 
 
-def _finish(ctx, proc, conn, formats, all_names, helper_names, out_dir) -> list[Path]:
+def _finish(ctx, proc, conn, formats, all_names, helper_names, out_dir, notes=None) -> list[Path]:
     """Build the sections not given to the helper, assemble, write html/pdf."""
     want_pdf = "pdf" in formats
     frags = _build(ctx, [n for n in all_names if proc is None or n not in helper_names])
@@ -216,9 +245,15 @@ def _finish(ctx, proc, conn, formats, all_names, helper_names, out_dir) -> list[
                     pdf = msg[1]
             except (EOFError, OSError):
                 pdf = None
-        if pdf is None:
-            pdf = _pdf_bytes(html, out_dir)
-        written.append(ctx.write_file("report.pdf", pdf))
+        try:
+            if pdf is None:
+                pdf = _pdf_bytes(html, out_dir)
+        except PdfSkipped as exc:
+            if notes is None:
+                raise
+            notes.append(f"report.pdf skipped: {exc}")
+        else:
+            written.append(ctx.write_file("report.pdf", pdf))
     return written
 
 
@@ -246,8 +281,13 @@ def _write_figures(ctx, html: str) -> None:
         ctx.write_csv("figures/index.csv", ["file", "caption"], rows)
 
 
-def render(results: dict, task, out_dir: Path, formats: set[str], lang: str = "en") -> list[Path]:
+def render(results: dict, task, out_dir: Path, formats: set[str], lang: str = "en",
+           notes: list[str] | None = None) -> list[Path]:
     """Write report.html and/or report.pdf (+ CSV tables) into out_dir; return the paths.
+
+    If the PDF engine cannot run here, ``notes`` (when given) receives one line
+    saying that report.pdf was skipped and why, and the rest is written; without
+    ``notes`` the PdfSkipped exception propagates.
 
     With two cores the work is split over two processes: a helper (forked) builds
     the kinetostatics section (the heaviest drawings) and imports weasyprint while
@@ -277,7 +317,7 @@ def render(results: dict, task, out_dir: Path, formats: set[str], lang: str = "e
         except Exception:
             proc = conn = None
     try:
-        written = _finish(ctx, proc, conn, formats, all_names, helper_names, out_dir)
+        written = _finish(ctx, proc, conn, formats, all_names, helper_names, out_dir, notes)
     finally:
         if proc is not None:
             try:

@@ -28,6 +28,33 @@ def _f(x: float) -> str:
     return "0" if s in ("-0", "") else s
 
 
+def _w(x: float) -> str:
+    """A stroke width: plain decimal digits (no exponent, which CSS numbers lack)."""
+    s = f"{x:.2f}" if x >= 0.01 else f"{x:.6f}"
+    s = s.rstrip("0").rstrip(".")
+    return "0" if s in ("-0", "") else s
+
+
+_HEX = frozenset("0123456789abcdef")
+
+
+def css_color(c) -> str:
+    """Any colour our drawings are given (a matplotlib-style spec as well: 'k', '0.35',
+    'tab:blue', an RGB tuple) as a valid SVG 1.1 / CSS colour: '#rrggbb' or 'none'.
+    Browsers draw nothing for colours such as 'k' or '0.35' (weasyprint tolerates
+    them), so every colour is converted here, at the writer."""
+    s = c.strip().lower() if isinstance(c, str) else None
+    if s == "none":
+        return s
+    if s and s[0] == "#" and len(s) in (4, 7) and set(s[1:]) <= _HEX:
+        return s if len(s) == 7 else "#" + "".join(ch * 2 for ch in s[1:])
+    from matplotlib.colors import to_hex   # the rare other spellings
+    try:
+        return to_hex(c, keep_alpha=False)
+    except ValueError:
+        raise ValueError(f"not a colour: {c!r}") from None
+
+
 
 def block_corners(c, angle_deg: float, w: float, h: float) -> list[np.ndarray]:
     """The four corners of a slider block w (along angle_deg) x h centred at c,
@@ -62,7 +89,7 @@ class Canvas:
     # ------------------------------------------------------------ primitives
     def polyline(self, pts, color="#000", width=0.25, dash=None, z=1, closed=False):
         """A stroked polyline (mm); merged with every other of the same style."""
-        key = ("s", z, color, round(width, 3), dash)
+        key = ("s", z, css_color(color), round(width, 3), dash)
         if key not in self._strokes:
             self._strokes[key] = []
             self._order.append(key)
@@ -73,7 +100,7 @@ class Canvas:
 
     def polygon(self, pts, fill="#000", z=2, stroke=None, width=0.2):
         """A filled polygon (merged per fill colour); optional outline."""
-        key = ("f", z, fill)
+        key = ("f", z, css_color(fill))
         if key not in self._fills:
             self._fills[key] = []
             self._order.append(key)
@@ -83,7 +110,8 @@ class Canvas:
 
     def circle(self, c, r, stroke="#000", fill="#fff", width=0.25, z=5):
         self._items.append((z, f'<circle cx="{_f(c[0])}" cy="{_f(self._y(c[1]))}" r="{_f(r)}" '
-                               f'fill="{fill}" stroke="{stroke}" stroke-width="{_f(width)}"/>'))
+                               f'fill="{css_color(fill)}" stroke="{css_color(stroke)}" '
+                               f'stroke-width="{_w(width)}"/>'))
 
     def dot(self, c, r=0.5, color="#000", z=6):
         self.circle(c, r, stroke="none", fill=color, width=0, z=z)
@@ -116,7 +144,8 @@ class Canvas:
         attrs = [f'x="{_f(x)}"', f'y="{_f(yb)}"', f'font-size="{_f(fs)}"']
         if anchor != "start":
             attrs.append(f'text-anchor="{anchor}"')
-        if color != "#000":
+        color = css_color(color)
+        if color != "#000000":
             attrs.append(f'fill="{color}"')
         if italic:
             attrs.append('font-style="italic"')
@@ -192,7 +221,7 @@ class Canvas:
                 _, z, color, width, dash = key
                 da = f' stroke-dasharray="{dash}"' if dash else ""
                 el = (f'<path d="{" ".join(self._strokes[key])}" fill="none" stroke="{color}" '
-                      f'stroke-width="{_f(width) if width >= 0.01 else width}"{da} '
+                      f'stroke-width="{_w(width)}"{da} '
                       f'stroke-linejoin="round" stroke-linecap="round"/>')
             else:
                 _, z, fill = key

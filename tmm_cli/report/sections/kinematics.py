@@ -36,7 +36,7 @@ I18N = {
            "kin.table_angles": "Углы звеньев, ° (от оси x против часовой стрелки)", "kin.csv_note": "Все числа: kinematics.csv, plans.csv."},
 }
 
-COLORS = {"abs": "k", "rel": "0.35", "n": "#1f5fbf", "t": "#c0392b", "k": "#1e8449", "r": "#8e44ad"}
+COLORS = {"abs": "#000000", "rel": "#595959", "n": "#1f5fbf", "t": "#c0392b", "k": "#1e8449", "r": "#8e44ad"}
 
 
 def _pxy(e, p):

@@ -1,0 +1,151 @@
+"""The report in a real browser: headless Chromium (the system's, driven by
+playwright) draws every figure of report.html with as much ink as the PDF shows.
+
+A figure whose colours a browser does not accept (stroke="k", fill="0.35": weasyprint
+tolerates them) loses its lines in the browser only; this test sees it.  For each
+figure the ink is the mean darkness (0 white .. 1 black) of its pixels: in the
+browser a screenshot of the <svg> element in report.html, in the PDF the same SVG
+put through the report's own PDF path (an <img> painted by weasyprint) on a page of
+the figure's size, rasterised by pdftoppm.  Measured on the examples: the two agree
+within 0.92..1.01; a plan without its black and grey vectors has a ratio 0.37..0.78.
+
+Needs Chromium (Debian: apt-get install chromium), pdftoppm (poppler-utils) and the
+playwright package (pip install -e '.[test]'); `.ci/run` installs them.  Where the
+browser cannot be installed or launched the test is skipped, saying which part is
+missing."""
+from __future__ import annotations
+
+import io
+import os
+import re
+import shutil
+import subprocess
+from pathlib import Path
+
+import pytest
+
+import tmm_cli
+
+ROOT = Path(__file__).resolve().parents[1]
+# every writer of figures: linkage plans and force drawings (svgdraw), Coriolis plans,
+# matplotlib diagrams, cam, gears, planetary and dof2 figures
+TASKS = ["engine_slider_crank", "shaper_slotted_lever", "cam_rocker", "gears_shifted", "planetary_A",
+         "impact_rotor"]
+BAND = (0.85, 1.15)        # browser ink / PDF ink, per figure
+DPI = 192                  # the PDF raster; the browser draws at device scale 2 (192 dpi)
+ARGS = ["--no-sandbox", "--disable-gpu", "--disable-background-networking", "--disable-component-update",
+        "--no-first-run", "--disable-sync"]
+
+
+def _chromium() -> str | None:
+    env = os.environ.get("TMM_CHROMIUM")
+    if env:
+        return env
+    for name in ("chromium", "chromium-browser", "google-chrome"):
+        path = shutil.which(name)
+        if path:
+            return path
+    return None
+
+
+@pytest.fixture(scope="module")
+def browser():
+    try:
+        from playwright.sync_api import Error, sync_playwright
+    except ImportError:
+        pytest.skip("browser test skipped: the playwright package is missing (pip install -e '.[test]')")
+    exe = _chromium()
+    if exe is None:
+        pytest.skip("browser test skipped: no Chromium found (Debian/Ubuntu: apt-get install chromium; "
+                    "or set TMM_CHROMIUM to a Chromium executable)")
+    if not shutil.which("pdftoppm"):
+        pytest.skip("browser test skipped: pdftoppm is missing (Debian/Ubuntu: apt-get install poppler-utils)")
+    try:
+        import weasyprint  # noqa: F401
+    except (ImportError, OSError) as exc:
+        pytest.skip(f"browser test skipped: the PDF engine cannot run here ({exc})")
+    pw = sync_playwright().start()
+    try:
+        b = pw.chromium.launch(executable_path=exe, args=ARGS)
+    except Error as exc:
+        pw.stop()
+        first = (str(exc).strip().splitlines() or ["?"])[0]
+        pytest.skip(f"browser test skipped: Chromium ({exe}) cannot be launched here: {first}")
+    yield b
+    b.close()
+    pw.stop()
+
+
+def _ink(png) -> float:
+    """Mean darkness of an image: 0 all white, 1 all black."""
+    import numpy as np
+    from PIL import Image
+    im = Image.open(io.BytesIO(png) if isinstance(png, bytes) else png)
+    a = np.asarray(im.convert("L"), dtype=float)
+    return float((255.0 - a).mean() / 255.0)
+
+
+_SIZE = re.compile(r'width="([0-9.]+)pt"\s+height="([0-9.]+)pt"')
+
+
+def pdf_inks(svgs: list[str], tmp: Path) -> list[float]:
+    """Each SVG painted by the report's PDF path on a page of its own size."""
+    import weasyprint
+    from tmm_cli.report import _svg_as_images
+    css, body = [], []
+    for k, s in enumerate(svgs):
+        w, h = _SIZE.search(s[:500]).groups()
+        css.append(f"@page p{k} {{ size: {w}pt {h}pt; margin: 0 }} "
+                   f".p{k} {{ page: p{k}; width: {w}pt; height: {h}pt }}")
+        body.append(f'<div class="p{k}">{s}</div>')
+    html = ("<html><head><style>body { margin: 0 } div { break-after: page; overflow: hidden } "
+            "img { display: block; width: 100% !important; height: 100% } " + " ".join(css) +
+            "</style></head><body>" + "".join(body) + "</body></html>")
+    (tmp / "figs.pdf").write_bytes(weasyprint.HTML(string=_svg_as_images(html)).write_pdf())
+    subprocess.run(["pdftoppm", "-r", str(DPI), "-png", str(tmp / "figs.pdf"), str(tmp / "pg")], check=True)
+    pages = sorted(tmp.glob("pg-*.png"), key=lambda p: int(re.search(r"-(\d+)\.png$", p.name).group(1)))
+    return [_ink(p) for p in pages]
+
+
+def browser_inks(browser, html: Path) -> list[float]:
+    page = browser.new_page(device_scale_factor=DPI / 96, viewport={"width": 1000, "height": 800})
+    try:
+        page.goto(html.resolve().as_uri())
+        return [_ink(el.screenshot()) for el in page.query_selector_all("figure svg")]
+    finally:
+        page.close()
+
+
+@pytest.mark.parametrize("name", TASKS)
+def test_browser_draws_what_the_pdf_shows(browser, name, tmp_path):
+    from tmm_cli.cli import write_outputs
+    task = tmm_cli.load_task(ROOT / "tasks" / f"{name}.yaml")
+    write_outputs(task, tmm_cli.run(task), tmp_path, {"html"}, "en")
+    html = tmp_path / "report.html"
+    svgs = re.findall(r"<svg\b.*?</svg>", html.read_text(encoding="utf-8"), re.S)
+    b = browser_inks(browser, html)
+    (tmp_path / "pdf").mkdir()
+    p = pdf_inks(svgs, tmp_path / "pdf")
+    assert len(svgs) == len(b) == len(p) > 0
+    bad = [f"figure {k}: browser ink {bi:.4f}, PDF ink {pi:.4f} (ratio {bi / pi:.2f})"
+           for k, (bi, pi) in enumerate(zip(b, p), start=1)
+           if not (pi > 0.002 and BAND[0] <= bi / pi <= BAND[1])]
+    assert not bad, "\n".join(bad)
+
+
+def test_the_comparison_sees_lines_a_browser_drops(browser, tmp_path):
+    """The test itself: a plan written with matplotlib colour names (the defect) has
+    the same ink in the PDF but loses its lines in the browser."""
+    from tmm_cli.report.svgdraw import Canvas
+    cv = Canvas(80, 40)
+    for k in range(6):
+        cv.arrow((5, 5 + 5 * k), (75, 8 + 5 * k), "#000000", 0.45)
+    good = cv.to_svg()
+    broken = good.replace('stroke="#000000"', 'stroke="k"').replace('fill="#000000"', 'fill="k"')
+    html = tmp_path / "r.html"
+    html.write_text(f"<html><body><figure>{good}</figure><figure>{broken}</figure></body></html>")
+    b = browser_inks(browser, html)
+    p = pdf_inks([good, broken], tmp_path)
+    assert BAND[0] <= b[0] / p[0] <= BAND[1]
+    assert p[1] == pytest.approx(p[0], rel=0.05)       # weasyprint draws the broken one
+    assert b[1] / p[1] < BAND[0]                        # the browser does not

@@ -1,0 +1,69 @@
+"""A failed stage in the report: in place of the section that could not be computed,
+a box saying what failed, where, and what to change in the task file; the
+sections that were computed stay in the report.
+
+The failures are results.json's ``errors`` (every independent part that failed:
+stage, message, position), or its single ``error`` in older results."""
+from __future__ import annotations
+
+from .i18n import register
+
+# stage of a StageError -> (report section it replaces, its title key, the task-file section to change)
+STAGES = {
+    "structure": ("structure", "struct.title", "mechanism"),
+    "positions": ("kinematics", "kin.title", "mechanism"),
+    "kinematics": ("kinematics", "kin.title", "mechanism"),
+    "loads": ("kinetostatics", "kst.title", "loads"),
+    "kinetostatics": ("kinetostatics", "kst.title", "kinetostatics"),
+    "dynamics": ("dynamics", "dyn.title", "flywheel"),
+    "flywheel": ("dynamics", "dyn.title", "flywheel"),
+    "cam": ("cam", "cam.title", "cam"),
+    "gears": ("gears", "gears.title", "gears"),
+    "planetary": ("planetary", "plan.title", "planetary"),
+    "dof2": ("dof2", "dof2.title", "dof2"),
+}
+# a linkage that fails stops the sections after it in its chain
+CHAIN = ("structure", "kinematics", "kinetostatics", "dynamics")
+
+I18N = {
+    "en": {"fail.title": "not computed",
+           "fail.what": "Stage “{stage}” failed{where}: {message}",
+           "fail.where": " at position {position}",
+           "fail.change": "What to change: the data of section “{section}” of the task file "
+                          "(see the message above), then run tmm again. The other sections of this "
+                          "report were computed; this one and those that depend on it are missing.",
+           "fail.exit": "tmm exited with code 3 (a stage failed on a valid task)."},
+    "ru": {"fail.title": "не рассчитано",
+           "fail.what": "Этап «{stage}» не выполнен{where}: {message}",
+           "fail.where": " в положении {position}",
+           "fail.change": "Что изменить: данные раздела «{section}» файла задания (см. сообщение "
+                          "выше), затем снова запустить tmm. Остальные разделы отчёта рассчитаны; "
+                          "нет только этого раздела и зависящих от него.",
+           "fail.exit": "tmm завершился с кодом 3 (этап расчёта не выполнен для корректного задания)."},
+}
+register(I18N)
+
+
+def failures(results: dict) -> list[dict]:
+    errs = results.get("errors")
+    if not errs and results.get("error"):
+        errs = [results["error"]]
+    return [e for e in errs or [] if isinstance(e, dict)]
+
+
+def placement(err: dict) -> tuple[str | None, str, str]:
+    """(report section replaced or None, title key, task-file section) of a failure."""
+    stage = str(err.get("stage") or "")
+    return STAGES.get(stage, (None, "report.title", stage or "?"))
+
+
+def box(ctx, err: dict) -> str:
+    """The HTML fragment shown in place of the failed section."""
+    section, title_key, task_section = placement(err)
+    pos = err.get("position")
+    where = ctx.t("fail.where", position=pos) if pos not in (None, "") else ""
+    return ctx.render("sections/failure.html.j2", sid=f"{section or 'stage'}-failed",
+                      title=ctx.t(title_key) if section else str(err.get("stage")),
+                      what=ctx.t("fail.what", stage=err.get("stage"), where=where,
+                                 message=err.get("message") or ""),
+                      change=ctx.t("fail.change", section=task_section))
