@@ -12,6 +12,7 @@ students do: mu = v_A / pa with pa = 100 mm rounded *up* to a nice value
 """
 from __future__ import annotations
 
+import html
 import math
 
 import numpy as np
@@ -290,9 +291,9 @@ def build(ctx) -> str | None:
                             ctx.fmt_fixed(L / mu_l, 1)))
     scale_rows = [
         (Markup(f"μ<sub>l</sub> — {ctx.t('kin.mu_l')}"), f"{mu_l:g} {ctx.t('kin.unit_l')}"),
-        (Markup(f"μ<sub>v</sub> = v<sub>{pin}</sub>/p{plan_label(pin)} — {ctx.t('kin.mu_v')}"),
+        (Markup("μ<sub>v</sub> = v<sub>{}</sub>/p{} — {}").format(pin, plan_label(pin), ctx.t('kin.mu_v')),
          Markup(f"{ctx.fmt(vA)} / {ctx.fmt_fixed(vA / mu_v, 2)} → {mu_v:g} {ctx.t('kin.unit_v')}")),
-        (Markup(f"μ<sub>a</sub> = a<sub>{pin}</sub>/π{plan_label(pin)} — {ctx.t('kin.mu_a')}"),
+        (Markup("μ<sub>a</sub> = a<sub>{}</sub>/π{} — {}").format(pin, plan_label(pin), ctx.t('kin.mu_a')),
          Markup(f"{ctx.fmt(aA)} / {ctx.fmt_fixed(aA / mu_a, 2)} → {mu_a:g} {ctx.t('kin.unit_a')}")),
     ]
     pos_rows = []
@@ -345,7 +346,8 @@ def build(ctx) -> str | None:
         for kind, pl in (("v", vp), ("a", ap)):
             for sym, seg, mm, val in pl.rows():
                 plan_csv.append([e["index"], e["phi"], kind, seg,
-                                 sym.replace("<sub>", "_").replace("</sub>", "").replace("<sup>", "^").replace("</sup>", ""),
+                                 html.unescape(sym.replace("<sub>", "_").replace("</sub>", "")
+                                               .replace("<sup>", "^").replace("</sup>", "")),
                                  float(mm), float(val)])
         positions.append({"index": e["index"], "phi": ctx.fmt_fixed(e["phi"], 2),
                           "fig": plans_svg(ctx, vp, ap), "vrows": vrows, "arows": arows})
