@@ -14,7 +14,7 @@ import pytest
 from typer.testing import CliRunner
 
 from tmm_cli.cli import app
-from tmm_cli.yamlload import MAX_ALIAS_NODES, MAX_BYTES, MAX_DEPTH
+from tmm_cli.yamlload import MAX_BYTES, MAX_DEPTH, MAX_NODES
 
 runner = CliRunner()
 
@@ -40,10 +40,10 @@ def _billion_laughs(levels: int = 9, width: int = 10) -> str:
 
 
 def test_alias_bomb_refused_fast_with_the_alias_line(tmp_path):
-    # 10 ** 10 strings once expanded; under 1 KB on disk. The alias that passes the bound:
-    # a3 stands for 1 + 10 * (1 + 10 * (1 + 10 * 11)) = 11111 nodes, so the running total
-    # (1 * 11 from lol1's 10 aliases of 11 nodes, 10 * 111, 10 * 1111, then a3's 11111s)
-    # passes 100000 inside line 6 (lol4).
+    # 10 ** 10 strings once expanded; under 1 KB on disk. Nodes as the reader counts them
+    # (each alias with the nodes it stands for): root 1, `schema: tmm/1` 2, lol0 1 + 11,
+    # lol1 2 + 10 * 11, lol2 2 + 10 * 111, lol3 2 + 10 * 1111 -> 12351 after line 5; on
+    # line 6 the first alias *a3 brings 11111 more: 23464 > 20000, refused there.
     text = _billion_laughs()
     assert len(text) < 1024
     f = _write(tmp_path, text)
@@ -52,24 +52,38 @@ def test_alias_bomb_refused_fast_with_the_alias_line(tmp_path):
                           text=True, timeout=60)
     elapsed = time.perf_counter() - t0
     assert proc.returncode == 2, proc.stderr
-    assert f"{f}:6:" in proc.stderr and "field 'lol4[" in proc.stderr
-    assert f"more than {MAX_ALIAS_NODES} nodes" in proc.stderr and "'*a3'" in proc.stderr
+    assert f"{f}:6:" in proc.stderr and "field 'lol4[0]'" in proc.stderr
+    assert f"more than {MAX_NODES} values" in proc.stderr and "'*a3' alone stands for 11111" in proc.stderr
     assert "internal error" not in proc.stderr and "Traceback" not in proc.stderr
     assert elapsed < 5  # the interpreter start-up included; the refusal itself is milliseconds
 
 
-def test_alias_bound_counts_expanded_nodes():
+def _alias_text(n: int, k: int, pad: int) -> str:
+    return ("base: &b [" + ", ".join(["1"] * n) + "]\n" + "pad: [" + ", ".join(["2"] * pad) + "]\n"
+            + "use: [" + ", ".join(["*b"] * k) + "]\n")
+
+
+def test_node_bound_counts_alias_contents():
     from tmm_cli.errors import TaskError
     from tmm_cli.yamlload import load_yaml
-    # a list of n scalars is n + 1 nodes; k aliases of it bring in k * (n + 1)
-    n = 999
-    base = "base: &b [" + ", ".join(["1"] * n) + "]\n"
-    ok_k = MAX_ALIAS_NODES // (n + 1)          # exactly at the bound: accepted
-    data, _ = load_yaml("t.yaml", text=base + "use: [" + ", ".join(["*b"] * ok_k) + "]\n")
-    assert len(data["use"]) == ok_k and len(data["use"][0]) == n
+    # nodes: root 1; base key 1, list 1 + n; pad key 1, list 1 + pad; use key 1, list 1,
+    # k aliases of n + 1 nodes each: 7 + n + pad + k (n + 1)
+    n, k = 999, 18
+    pad = MAX_NODES - 7 - n - k * (n + 1)
+    data, _ = load_yaml("t.yaml", text=_alias_text(n, k, pad))      # exactly at the bound
+    assert len(data["use"]) == k and len(data["use"][0]) == n and len(data["pad"]) == pad
     with pytest.raises(TaskError) as ei:
-        load_yaml("t.yaml", text=base + "use: [" + ", ".join(["*b"] * (ok_k + 1)) + "]\n")
-    assert ei.value.issues[0][1] == 2  # the line of the alias
+        load_yaml("t.yaml", text=_alias_text(n, k, pad + 1))
+    field, line, _, msg = ei.value.issues[0]
+    assert (field, line) == (f"use[{k - 1}]", 3) and "alias '*b'" in msg
+
+
+def test_many_plain_values_refused_quickly(tmp_path):
+    f = _write(tmp_path, "schema: tmm/1\ntitle: [" + ", ".join(["1"] * 60000) + "]\n")
+    t0 = time.perf_counter()
+    code, out = _validate(f)
+    assert code == 2 and f"more than {MAX_NODES} values" in out and "field 'title[" in out
+    assert time.perf_counter() - t0 < 10
 
 
 @pytest.mark.parametrize("text, line, field", [
@@ -155,6 +169,10 @@ def test_oversized_file_is_refused(tmp_path):
     f = _write(tmp_path, GEARS + "# " + "x" * MAX_BYTES + "\n")
     code, out = _validate(f)
     assert code == 2 and f"larger than {MAX_BYTES // 1024} KiB" in out
+    _write(tmp_path, GEARS + "# " + "x" * (MAX_BYTES - len(GEARS) - 3) + "\n")  # exactly MAX_BYTES: read
+    assert (tmp_path / "task.yaml").stat().st_size == MAX_BYTES
+    code, out = _validate(tmp_path / "task.yaml")
+    assert code == 0, out
 
 
 @pytest.mark.parametrize("encoding, bom", [("utf-8", codecs.BOM_UTF8), ("utf-16-le", codecs.BOM_UTF16_LE),

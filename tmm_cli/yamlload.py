@@ -9,9 +9,9 @@ Duplicate keys are errors.
 Limits on input (a task is a small hand-written file; anything far beyond is hostile or
 broken and is refused as an invalid task, exit 2, with the line): the file must be a
 regular file of at most :data:`MAX_BYTES`; mappings and lists nest at most
-:data:`MAX_DEPTH` deep; aliases (``*name``) may bring in at most
-:data:`MAX_ALIAS_NODES` nodes in all, and an alias may not refer to the node that
-contains it; an integer must fit a float. The text may be UTF-8 (with or without a BOM)
+:data:`MAX_DEPTH` deep; the document holds at most :data:`MAX_NODES` nodes with
+every alias (``*name``) counted as the nodes it brings in, and an alias may not refer to
+the node that contains it; an integer must fit a float. The text may be UTF-8 (with or without a BOM)
 or UTF-16/UTF-32 with a BOM.
 """
 from __future__ import annotations
@@ -28,9 +28,10 @@ import yaml
 from .errors import TaskError
 
 
-MAX_BYTES = 1 << 20          # 1 MiB: the largest course task is a few kB
+MAX_BYTES = 256 << 10        # 256 KiB: the largest course task is a few kB
 MAX_DEPTH = 64               # nesting of mappings and lists (a task needs about 6)
-MAX_ALIAS_NODES = 100_000    # nodes that aliases may bring in, counted with their contents
+MAX_NODES = 20_000           # values, keys, lists and mappings in all, aliases counted with their
+                             # contents (a task has a few hundred; 3600 positions listed fit)
 
 
 class _Refused(Exception):
@@ -51,7 +52,7 @@ class _Loader12(yaml.SafeLoader):
     def __init__(self, stream):
         super().__init__(stream)
         self._sizes: dict[int, int] = {}   # id(node) -> nodes it stands for, aliases expanded
-        self._alias_nodes = 0
+        self._nodes = 0      # nodes of the document as aliases would expand it
         self._depth = 0
         self._path: list = []  # the field path of the node being composed (for messages)
 
@@ -71,13 +72,18 @@ class _Loader12(yaml.SafeLoader):
                     raise _Refused(event.start_mark,
                                    f"alias '*{event.anchor}' refers to the node that contains it "
                                    f"(a recursive alias)", self._field(index))
-                self._alias_nodes += size
-                if self._alias_nodes > MAX_ALIAS_NODES:
+                self._nodes += size
+                if self._nodes > MAX_NODES:
                     raise _Refused(event.start_mark,
-                                   f"aliases bring in more than {MAX_ALIAS_NODES} nodes "
+                                   f"aliases bring the file to more than {MAX_NODES} values "
                                    f"(alias '*{event.anchor}' alone stands for {size}); "
                                    f"write the values out or use fewer aliases", self._field(index))
             return super().compose_node(parent, index)
+        self._nodes += 1
+        if self._nodes > MAX_NODES:
+            raise _Refused(self.peek_event().start_mark,
+                           f"more than {MAX_NODES} values (keys, numbers, lists...): a task has a few hundred",
+                           self._field(index)[:6])
         self._depth += 1
         if self._depth > MAX_DEPTH:
             raise _Refused(self.peek_event().start_mark,
