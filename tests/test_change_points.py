@@ -65,7 +65,8 @@ def _run(tmp_path, text):
     f = tmp_path / "task.yaml"
     f.write_text(text, encoding="utf-8")
     task = tmm_cli.load_task(f)
-    return tmm_cli.run(task)
+    from tmm_cli.results import clean
+    return clean(tmm_cli.run(task))   # as written to results.json (NaN -> null)
 
 
 def _cp_warnings(res):
@@ -156,3 +157,22 @@ def test_circle_zeros_closed_forms():
     # no zero: 2 + sin
     g, F = make(lambda p: 2.0 + np.sin(np.radians(p)))
     assert circle_zeros(grid, g, F) == []
+
+
+def test_curve_of_the_output_leaves_out_values_without_a_limit(tmp_path):
+    # ground 0.2, crank 0.1, coupler 0.3, rocker 0.2 (s + l = 0.4 = p + q): at phi = 0 the
+    # pin A = (0.1, 0) is 0.1 = b - c from O3, coupler and rocker fold onto the ground line;
+    # it is also the rocker's extreme position, so position 0 and the curve start there
+    text = (LIMIT.replace("O3: [0.30, 0]", "O3: [0.20, 0]")
+            .replace("coupler: {points: [A, B], length: 0.20", "coupler: {points: [A, B], length: 0.30")
+            .replace("B: [0.2, 0.19]", "B: [0.25, 0.19]"))
+    res = _run(tmp_path, text)
+    ws = _cp_warnings(res)
+    assert len(ws) == 1 and ws[0].startswith("change point at crank angle 0.000000 deg")
+    assert abs(res["positions"]["phi0"]) < 1e-5
+    c = res["kinematics_curve"]
+    assert c["a"][0] is None and c["a"][-1] is None
+    finite = [abs(x) for x in c["a"] if x is not None]
+    assert len(finite) == len(c["a"]) - 2 and max(finite) < 1e3   # |eps| of the rocker stays ~400 rad/s^2
+    e0 = res["kinematics"][0]
+    assert e0["near_singular"] is True and e0["links"]["rocker"]["epsilon"] is None

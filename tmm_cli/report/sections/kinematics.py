@@ -220,8 +220,10 @@ def output_series(ctx, geom, entries, out_name):
     name = l.name if l is not None else out_name
     a0 = float(e0["links"][name]["angle"] or 0.0)
     psi = [((float(e["links"][name]["angle"] or 0.0) - a0 + 180.0) % 360.0) - 180.0 for e in entries]
-    w = [float(e["links"][name]["omega"] or 0.0) for e in entries]
-    eps = [float(e["links"][name]["epsilon"] or 0.0) for e in entries]
+    # null next to a change point (no finite limit): not drawn
+    w = [math.nan if e["links"][name]["omega"] is None else float(e["links"][name]["omega"]) for e in entries]
+    eps = [math.nan if e["links"][name]["epsilon"] is None else float(e["links"][name]["epsilon"])
+           for e in entries]
     return "rotating", psi, w, eps
 
 
