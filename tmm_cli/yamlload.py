@@ -237,7 +237,7 @@ _BOMS = ((codecs.BOM_UTF32_LE, "utf-32"), (codecs.BOM_UTF32_BE, "utf-32"),
          (codecs.BOM_UTF8, "utf-8-sig"), (codecs.BOM_UTF16_LE, "utf-16"), (codecs.BOM_UTF16_BE, "utf-16"))
 
 
-def read_text(source: str | Path, what: str = "task file") -> str:
+def read_text(source: str | Path) -> str:
     """The text of a YAML file: a regular file (not a folder, FIFO or device, checked before
     it is opened) of at most MAX_BYTES, decoded from UTF-8 or, by its BOM, UTF-16/32."""
     file = str(source)
@@ -251,19 +251,19 @@ def read_text(source: str | Path, what: str = "task file") -> str:
         kind = ("a folder" if stat.S_ISDIR(st.st_mode) else "a FIFO (named pipe)" if stat.S_ISFIFO(st.st_mode)
                 else "a device" if stat.S_ISCHR(st.st_mode) or stat.S_ISBLK(st.st_mode)
                 else "a socket" if stat.S_ISSOCK(st.st_mode) else "not a regular file")
-        raise TaskError(f"not a regular file ({kind}): a {what} must be a YAML text file", file=file)
+        raise TaskError(f"not a regular file ({kind}): give a YAML text file", file=file)
     try:
         # O_NONBLOCK: should the path be swapped for a FIFO after the check, open does not hang
         fd = os.open(source, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
         with os.fdopen(fd, "rb") as fh:
             if not stat.S_ISREG(os.fstat(fh.fileno()).st_mode):
-                raise TaskError(f"not a regular file: a {what} must be a YAML text file", file=file)
+                raise TaskError("not a regular file: give a YAML text file", file=file)
             raw = fh.read(MAX_BYTES + 1)
     except OSError as exc:
         raise TaskError(f"cannot read: {exc.strerror}", file=file) from None
     if len(raw) > MAX_BYTES:
-        raise TaskError(f"the file is larger than {MAX_BYTES // 1024} KiB: a {what} is a small text file",
-                        file=file)
+        raise TaskError(f"the file is larger than {MAX_BYTES // 1024} KiB: a task (or answers) file is a "
+                        f"small text file", file=file)
     encoding = "utf-8"
     for bom, enc in _BOMS:
         if raw.startswith(bom):
