@@ -46,7 +46,11 @@ def atomic_write(path: str | os.PathLike, data: bytes | str, encoding: str = "ut
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     raw = data.encode(encoding) if isinstance(data, str) else data
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    except OSError as exc:  # the error names the file asked for, not the temporary one
+        from .safepath import target_error
+        raise target_error(exc, path) from exc
     try:
         if hasattr(os, "fchmod"):
             os.fchmod(fd, file_mode())
@@ -55,11 +59,14 @@ def atomic_write(path: str | os.PathLike, data: bytes | str, encoding: str = "ut
             fh.flush()
             os.fsync(fh.fileno())
         os.replace(tmp, path)
-    except BaseException:
+    except BaseException as exc:
         try:
             os.unlink(tmp)
         except OSError:
             pass
+        if isinstance(exc, OSError):
+            from .safepath import target_error
+            raise target_error(exc, path) from exc
         raise
     return path
 

@@ -213,5 +213,10 @@ def _curve(kinematics, mech, positions, omega1, n: int) -> dict:
         s = np.mod(s + 180.0, 360.0) - 180.0
         v = np.asarray(kin.omega(out.name)) * np.ones_like(phi)
         a = np.asarray(kin.epsilon(out.name)) * np.ones_like(phi)
+    # next to a change point a value without a finite limit is left out (null), not drawn
+    vk, ak = ((f"v:{out.origin}", f"a:{out.origin}") if positions.output_kind == "slider"
+              else (f"omega:{out.name}", f"epsilon:{out.name}"))
+    v = np.where(kin.undefined.get(vk, False), np.nan, v)
+    a = np.where(kin.undefined.get(ak, False), np.nan, a)
     return {"turn": turn.tolist(), "phi": phi.tolist(), "s": s.tolist(), "v": v.tolist(),
             "a": a.tolist(), "quantity": positions.output_kind}

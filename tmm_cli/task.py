@@ -338,7 +338,7 @@ class CamSection(_Model):
 # ---------------------------------------------------------------- gears
 class GearsSection(_Model):
     m: Length = Field(..., gt=0, description="module (give '3 mm')")
-    z: tuple[int, int]
+    z: tuple[Annotated[int, Field(le=10**12)], Annotated[int, Field(le=10**12)]]  # the 1e12 limit on values
     x: Union[Literal["auto"], tuple[Number, Number]] = (0.0, 0.0)
     alpha: Angle = Field(20.0, gt=0, lt=45)
     ha: Number = Field(1.0, gt=0)
@@ -367,7 +367,7 @@ class PlanetarySection(_Model):
     satellites: int = Field(3, ge=1, le=12)
     tolerance: Ratio = Field(0.05, gt=0)
     m: Length | None = Field(None, gt=0)
-    z_min: int = Field(17, ge=5)
+    z_min: int = Field(17, ge=5, le=300)
     # the candidate search grows as z_max^3 (schemes B, C: 0.5 s at 300, a minute at 1000)
     z_max: int = Field(150, ge=10, le=300)
     candidates: int = Field(10, ge=1, le=100, description="how many ranked candidate sets to list")

@@ -5,10 +5,21 @@ become booleans (so the key ``on:`` of a force would turn into ``True``). SPEC 1
 requires YAML 1.2 booleans: only ``true``/``false`` (any case form the 1.2 core
 schema allows). Sexagesimal numbers (``1:30``) and other 1.1-only forms stay strings.
 Duplicate keys are errors.
+
+Limits on input (a task is a small hand-written file; anything far beyond is hostile or
+broken and is refused as an invalid task, exit 2, with the line): the file must be a
+regular file of at most :data:`MAX_BYTES`; mappings and lists nest at most
+:data:`MAX_DEPTH` deep; the document holds at most :data:`MAX_NODES` nodes with
+every alias (``*name``) counted as the nodes it brings in, and an alias may not refer to
+the node that contains it; an integer must fit a float. The text may be UTF-8 (with or without a BOM)
+or UTF-16/UTF-32 with a BOM.
 """
 from __future__ import annotations
 
+import codecs
+import os
 import re
+import stat
 from pathlib import Path
 from typing import Any
 
@@ -17,8 +28,83 @@ import yaml
 from .errors import TaskError
 
 
+MAX_BYTES = 256 << 10        # 256 KiB: the largest course task is a few kB
+MAX_DEPTH = 64               # nesting of mappings and lists (a task needs about 6)
+MAX_NODES = 20_000           # values, keys, lists and mappings in all, aliases counted with their
+                             # contents (a task has a few hundred; 3600 positions listed fit)
+
+
+class _Refused(Exception):
+    """A limit of the reader was passed at ``mark``: becomes a TaskError with the line."""
+
+    def __init__(self, mark, message: str, field: tuple = ()):
+        super().__init__(message)
+        self.mark = mark
+        self.message = message
+        self.field = field
+
+
 class _Loader12(yaml.SafeLoader):
-    """SafeLoader with the YAML 1.2 core-schema resolvers for bool, int and float."""
+    """SafeLoader with the YAML 1.2 core-schema resolvers for bool, int and float, and
+    the limits above enforced while the node graph is composed (before anything is
+    expanded, so an alias bomb costs nothing)."""
+
+    def __init__(self, stream):
+        super().__init__(stream)
+        self._sizes: dict[int, int] = {}   # id(node) -> nodes it stands for, aliases expanded
+        self._nodes = 0      # nodes of the document as aliases would expand it
+        self._depth = 0
+        self._path: list = []  # the field path of the node being composed (for messages)
+
+    def _field(self, index) -> tuple:
+        here = tuple(p for p in self._path if p is not None)
+        if isinstance(index, yaml.ScalarNode):
+            return here + (index.value,)
+        return here + (index,) if isinstance(index, int) else here
+
+    def compose_node(self, parent, index):
+        if self.check_event(yaml.AliasEvent):
+            event = self.peek_event()
+            target = self.anchors.get(event.anchor)
+            if target is not None:
+                size = self._sizes.get(id(target))
+                if size is None:  # anchored node still being composed: it contains itself
+                    raise _Refused(event.start_mark,
+                                   f"alias '*{event.anchor}' refers to the node that contains it "
+                                   f"(a recursive alias)", self._field(index))
+                self._nodes += size
+                if self._nodes > MAX_NODES:
+                    raise _Refused(event.start_mark,
+                                   f"aliases bring the file to more than {MAX_NODES} values "
+                                   f"(alias '*{event.anchor}' alone stands for {size}); "
+                                   f"write the values out or use fewer aliases", self._field(index))
+            return super().compose_node(parent, index)
+        self._nodes += 1
+        if self._nodes > MAX_NODES:
+            raise _Refused(self.peek_event().start_mark,
+                           f"more than {MAX_NODES} values (keys, numbers, lists...): a task has a few hundred",
+                           self._field(index)[:6])
+        self._depth += 1
+        if self._depth > MAX_DEPTH:
+            raise _Refused(self.peek_event().start_mark,
+                           f"mappings and lists nest more than {MAX_DEPTH} deep", self._field(index)[:6])
+        self._path.append(None if parent is None else
+                          index.value if isinstance(index, yaml.ScalarNode) else
+                          index if isinstance(index, int) else None)
+        try:
+            node = super().compose_node(parent, index)
+        finally:
+            self._depth -= 1
+            self._path.pop()
+        size = 1
+        if isinstance(node, yaml.MappingNode):
+            for k, v in node.value:
+                size += self._sizes.get(id(k), 1) + self._sizes.get(id(v), 1)
+        elif isinstance(node, yaml.SequenceNode):
+            for v in node.value:
+                size += self._sizes.get(id(v), 1)
+        self._sizes[id(node)] = size
+        return node
 
 
 # drop every implicit resolver for bool/int/float and install the 1.2 core ones
@@ -41,11 +127,21 @@ _Loader12.add_implicit_resolver(
 
 def _construct_int(loader, node):
     text = loader.construct_scalar(node)
-    if text.startswith("0o"):
-        return int(text[2:], 8)
-    if text.startswith("0x"):
-        return int(text[2:], 16)
-    return int(text)
+    digits = len(text.lstrip("+-"))
+    try:
+        if digits > 400:  # past any float (and past Python's 4300-digit conversion limit)
+            raise OverflowError
+        if text.startswith("0o"):
+            value = int(text[2:], 8)
+        elif text.startswith("0x"):
+            value = int(text[2:], 16)
+        else:
+            value = int(text)
+        float(value)
+    except OverflowError:
+        raise _Refused(node.start_mark, f"integer of {digits} digits is out of range "
+                                        f"(a number must fit a float, |x| < 1.8e308)") from None
+    return value
 
 
 _Loader12.add_constructor("tag:yaml.org,2002:int", _construct_int)
@@ -53,12 +149,27 @@ _Loader12.add_constructor("tag:yaml.org,2002:int", _construct_int)
 Path_ = tuple  # a field path: tuple of str keys / int indices
 
 
-def _walk(node: yaml.Node, path: tuple, marks: dict, file: str | None) -> None:
+def _key(loader: _Loader12, knode: yaml.Node) -> Any:
+    """A mapping key as the task sees it: a scalar as constructed (``~`` is None, so it is
+    found again when a message names the key ``None``), anything else as text."""
+    if isinstance(knode, yaml.ScalarNode):
+        k = loader.construct_object(knode)
+        return k if isinstance(k, str) else str(k)
+    return str(knode.value)
+
+
+def _walk(node: yaml.Node, path: tuple, marks: dict, file: str | None, loader: _Loader12) -> None:
     marks[path] = (node.start_mark.line + 1, node.start_mark.column + 1)
+    if isinstance(node, yaml.ScalarNode) and node.tag == "tag:yaml.org,2002:int":
+        try:
+            loader.construct_object(node)  # an integer out of range is named with its field
+        except _Refused as exc:
+            exc.field = path
+            raise
     if isinstance(node, yaml.MappingNode):
         seen: dict[Any, int] = {}
         for knode, vnode in node.value:
-            key = knode.value if isinstance(knode, yaml.ScalarNode) else str(knode.value)
+            key = _key(loader, knode)
             if key in seen:
                 raise TaskError("duplicate key", file=file, issues=[(
                     ".".join(map(str, path + (key,))), knode.start_mark.line + 1,
@@ -66,12 +177,19 @@ def _walk(node: yaml.Node, path: tuple, marks: dict, file: str | None) -> None:
                     f"duplicate key '{key}' (first given on line {seen[key]})")])
             seen[key] = knode.start_mark.line + 1
             marks[path + (key,)] = (knode.start_mark.line + 1, knode.start_mark.column + 1)
-            _walk(vnode, path + (key,), marks, file)
+            _walk(vnode, path + (key,), marks, file, loader)
             # the key's line is more useful than the value's for messages
             marks[path + (key,)] = (knode.start_mark.line + 1, knode.start_mark.column + 1)
     elif isinstance(node, yaml.SequenceNode):
         for i, item in enumerate(node.value):
-            _walk(item, path + (i,), marks, file)
+            _walk(item, path + (i,), marks, file, loader)
+
+
+def _dotted(path: tuple) -> str:
+    out = ""
+    for p in path:
+        out += f"[{p}]" if isinstance(p, int) else ("." if out else "") + str(p)
+    return out
 
 
 def load_yaml(source: str | Path, *, text: str | None = None) -> tuple[Any, dict]:
@@ -79,24 +197,20 @@ def load_yaml(source: str | Path, *, text: str | None = None) -> tuple[Any, dict
     (tuple of keys and indices) to ``(line, column)``, 1-based."""
     file = str(source)
     if text is None:
-        try:
-            text = Path(source).read_text(encoding="utf-8")
-        except FileNotFoundError:
-            raise TaskError("file not found", file=file) from None
-        except UnicodeDecodeError as exc:
-            raise TaskError(f"not a UTF-8 text file ({exc.reason})", file=file) from None
-        except OSError as exc:
-            raise TaskError(f"cannot read: {exc.strerror}", file=file) from None
+        text = read_text(source)
     try:
         loader = _Loader12(text)
         try:
             node = loader.get_single_node()
             marks: dict = {}
             if node is not None:
-                _walk(node, (), marks, file)
+                _walk(node, (), marks, file, loader)
             data = loader.construct_document(node) if node is not None else None
         finally:
             loader.dispose()
+    except _Refused as exc:
+        raise TaskError("refused", file=file, issues=[(
+            _dotted(exc.field), exc.mark.line + 1, exc.mark.column + 1, exc.message)]) from None
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         line = mark.line + 1 if mark else None
@@ -117,3 +231,50 @@ def load_yaml(source: str | Path, *, text: str | None = None) -> tuple[Any, dict
     except yaml.YAMLError as exc:
         raise TaskError("YAML error", file=file, issues=[("", 1, 1, f"YAML error: {exc}")]) from None
     return data, marks
+
+
+_BOMS = ((codecs.BOM_UTF32_LE, "utf-32"), (codecs.BOM_UTF32_BE, "utf-32"),
+         (codecs.BOM_UTF8, "utf-8-sig"), (codecs.BOM_UTF16_LE, "utf-16"), (codecs.BOM_UTF16_BE, "utf-16"))
+
+
+def read_text(source: str | Path) -> str:
+    """The text of a YAML file: a regular file (not a folder, FIFO or device, checked before
+    it is opened) of at most MAX_BYTES, decoded from UTF-8 or, by its BOM, UTF-16/32."""
+    file = str(source)
+    try:
+        st = os.stat(source)
+    except FileNotFoundError:
+        raise TaskError("file not found", file=file) from None
+    except OSError as exc:
+        raise TaskError(f"cannot read: {exc.strerror}", file=file) from None
+    if not stat.S_ISREG(st.st_mode):
+        kind = ("a folder" if stat.S_ISDIR(st.st_mode) else "a FIFO (named pipe)" if stat.S_ISFIFO(st.st_mode)
+                else "a device" if stat.S_ISCHR(st.st_mode) or stat.S_ISBLK(st.st_mode)
+                else "a socket" if stat.S_ISSOCK(st.st_mode) else "not a regular file")
+        raise TaskError(f"not a regular file ({kind}): give a YAML text file", file=file)
+    try:
+        # O_NONBLOCK: should the path be swapped for a FIFO after the check, open does not hang
+        fd = os.open(source, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+        with os.fdopen(fd, "rb") as fh:
+            if not stat.S_ISREG(os.fstat(fh.fileno()).st_mode):
+                raise TaskError("not a regular file: give a YAML text file", file=file)
+            raw = fh.read(MAX_BYTES + 1)
+    except OSError as exc:
+        raise TaskError(f"cannot read: {exc.strerror}", file=file) from None
+    if len(raw) > MAX_BYTES:
+        raise TaskError(f"the file is larger than {MAX_BYTES // 1024} KiB: a task (or answers) file is a "
+                        f"small text file", file=file)
+    encoding = "utf-8"
+    for bom, enc in _BOMS:
+        if raw.startswith(bom):
+            encoding = enc
+            break
+    try:
+        text = raw.decode(encoding)
+    except UnicodeDecodeError as exc:
+        line = raw.count(b"\n", 0, exc.start) + 1
+        name = "UTF-8" if encoding == "utf-8" else encoding.upper().replace("-SIG", "")
+        raise TaskError("not a text file", file=file, issues=[(
+            "", line, None, f"not a {name} text file ({exc.reason} at byte {exc.start}); "
+                            f"save it as UTF-8")]) from None
+    return text.lstrip("\ufeff")

@@ -282,6 +282,8 @@ def dyad_derivatives(plan: DyadPlan, st: State) -> np.ndarray:
     cB = ap(B, *info[B][1])
     det = cA[0] * cB[1] - cA[1] * cB[0]
     nn = np.hypot(cA[0], cA[1]) * np.hypot(cB[0], cB[1])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        st.last_det = np.where(nn > 0, det / np.maximum(nn, 1e-300), 0.0)  # sine of the angle between the columns
     sing = ~(np.abs(det) >= 1e-10 * nn)
     if sing.any():
         det = np.where(sing, np.where(det >= 0, 1.0, -1.0) * np.maximum(nn, 1e-300) * 1e-10, det)

@@ -75,6 +75,7 @@ class BatchedInverse:
         self.cs = np.empty((N, M))
         self.inv = np.empty_like(A)
         self.sing = np.zeros(N, bool)
+        self.det = np.zeros(N)   # signed determinant of the equilibrated matrix
         for s in range(0, N, CHUNK):
             a = A[s:s + CHUNK]
             rn = np.sqrt(np.einsum("nij,nij->ni", a, a))
@@ -83,7 +84,9 @@ class BatchedInverse:
             cn = np.sqrt(np.einsum("nij,nij->nj", a, a))
             cn[cn == 0] = 1.0
             a = a / cn[:, None, :]
-            det = np.abs(np.linalg.det(a))
+            sdet = np.linalg.det(a)
+            self.det[s:s + CHUNK] = sdet
+            det = np.abs(sdet)
             sg = ~(det >= SINGULAR)
             if sg.any():
                 inv = np.empty_like(a)
@@ -120,6 +123,7 @@ def derivatives(cons, links, st: State) -> np.ndarray:
     q2 = -inv.apply(b2)
     for k, b in enumerate(links):
         st.set_d2(b, q2[:, 3 * k:3 * k + 2].copy(), q2[:, 3 * k + 2].copy())
+    st.last_det = inv.det
     return inv.sing
 
 

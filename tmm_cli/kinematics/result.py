@@ -38,6 +38,8 @@ class KinematicsResult:
     points: list[str] = field(default_factory=list)      # report order
     links: list[str] = field(default_factory=list)
     singular: np.ndarray | None = None                  # (N,) bool: velocity equations singular
+    near: np.ndarray | None = None                      # (N,) bool: within 1 deg of a change point
+    undefined: dict[str, np.ndarray] = field(default_factory=dict)  # 'v:P', 'a:P', 'omega:L', 'epsilon:L'
 
     # ---------------------------------------------------------------
     def _w(self):
@@ -63,6 +65,20 @@ class KinematicsResult:
 
     def epsilon(self, link: str) -> np.ndarray:
         return self.a2[link] * self._w() ** 2 + self.a1[link] * self._e()
+
+    _NULLED = {"v": ("vx", "vy", "v", "vqx", "vqy", "vq"), "a": ("ax", "ay", "a", "aqx", "aqy", "aq"),
+               "omega": ("omega", "i"), "epsilon": ("epsilon", "iq2")}
+
+    def _null(self, e: dict, k: int) -> None:
+        """Null the values of entry ``e`` (position k) that have no finite limit there."""
+        for key, mask in self.undefined.items():
+            if not mask[k]:
+                continue
+            what, name = key.split(":", 1)
+            target = e["points"].get(name) if what in ("v", "a") else e["links"].get(name)
+            if target is not None:
+                for f in self._NULLED[what]:
+                    target[f] = None
 
     # ---------------------------------------------------------------
     def to_entries(self, index=None) -> list[dict]:
@@ -102,5 +118,8 @@ class KinematicsResult:
             e = {"index": idx[k], "phi": _f(phi[k]), "points": pts, "links": lks}
             if self.singular is not None and bool(self.singular[k]):
                 e["singular"] = True
+            if self.near is not None and bool(self.near[k]):
+                e["near_singular"] = True
+                self._null(e, k)
             out.append(e)
         return out

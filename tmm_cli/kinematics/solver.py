@@ -126,6 +126,7 @@ class Solver:
         st = State(N)
         st.margins = {}
         st.sing = {}
+        st.gdet = {}     # group -> normalised signed determinant of its velocity equations
         self._crank(st, phi)
         upto = len(self.groups) if upto is None else upto
         for gi in range(upto):
@@ -144,6 +145,7 @@ class Solver:
                     st.sing[gi] = dyad_derivatives(plan, st)
                 else:
                     st.sing[gi] = nw.derivatives(plan.cons, self.groups[gi].links, st)
+                st.gdet[gi] = st.last_det
         if derivs and fallback and st.sing:
             self._continuity(st, phi, upto)
         return st
@@ -520,7 +522,60 @@ def _unwrap_sorted(th: np.ndarray, order: np.ndarray) -> np.ndarray:
 def solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
     """Kinematics at crank angles ``phi_deg`` (deg; the direction of the vector from
     the crank's ground pivot to its pin, from +x ccw). ``omega1`` and ``eps1`` (rad/s,
-    rad/s^2, ccw positive) may be scalars or arrays of shape (N,)."""
+    rad/s^2, ccw positive) may be scalars or arrays of shape (N,). Positions next to a
+    change point of the linkage are marked (see :mod:`.changepoints`)."""
+    from . import changepoints as cpm
+    res = _solve(mech, phi_deg, omega1, eps1)
+    solver = get_solver(mech)
+    cps = cpm.change_points(solver)
+    if not cps:
+        return res
+    for cp in cps:
+        msg = cpm.warning(cp)
+        if msg not in solver.warnings:
+            solver.warnings.append(msg)
+    res.warnings = list(dict.fromkeys(solver.warnings))
+    near = cpm.distance_deg(res.phi, [c.phi for c in cps]) <= cpm.NEAR_DEG
+    if near.any():
+        res.near = near
+        res.undefined = _blown_up(mech, solver, res, near)
+    return res
+
+
+def _blown_up(mech: Mechanism, solver: Solver, res: KinematicsResult, near: np.ndarray) -> dict[str, np.ndarray]:
+    """Masks of the values without a finite limit at positions next to a change point:
+    keys 'v:P', 'a:P' (point P), 'omega:L', 'epsilon:L' (link L). A value is so when its
+    analogue (d/dphi, d2/dphi2) exceeds BLOWUP times its largest magnitude over the rest
+    of the cycle (sampled away from every change point)."""
+    from . import changepoints as cpm
+    ref = solver.__dict__.get("_cp_reference")
+    if ref is None:
+        grid = np.arange(0.0, 360.0, 0.5)
+        grid = grid[cpm.distance_deg(grid, [c.phi for c in cpm.change_points(solver)]) > cpm.NEAR_DEG]
+        k = _solve(mech, grid, 1.0, 0.0)
+        ref = ({p: (float(np.max(np.hypot(*k.d1[p].T))), float(np.max(np.hypot(*k.d2[p].T)))) for p in k.points},
+               {lk: (float(np.max(np.abs(k.a1[lk]))), float(np.max(np.abs(k.a2[lk])))) for lk in k.links})
+        solver.__dict__["_cp_reference"] = ref
+    pts, lks = ref
+    floor_p = 1e-6 * max([max(v) for v in pts.values()] + [1e-300])
+    floor_l = 1e-6 * max([max(v) for v in lks.values()] + [1e-300])
+    out: dict[str, np.ndarray] = {}
+    for p in res.points:
+        if p not in pts:
+            continue
+        m1, m2 = pts[p]
+        v_bad = near & ~(np.hypot(*res.d1[p].T) <= cpm.BLOWUP * m1 + floor_p)
+        a_bad = near & (v_bad | ~(np.hypot(*res.d2[p].T) <= cpm.BLOWUP * m2 + floor_p))
+        out[f"v:{p}"], out[f"a:{p}"] = v_bad, a_bad
+    for lk in res.links:
+        m1, m2 = lks[lk]
+        w_bad = near & ~(np.abs(res.a1[lk]) <= cpm.BLOWUP * m1 + floor_l)
+        e_bad = near & (w_bad | ~(np.abs(res.a2[lk]) <= cpm.BLOWUP * m2 + floor_l))
+        out[f"omega:{lk}"], out[f"epsilon:{lk}"] = w_bad, e_bad
+    return {k: v for k, v in out.items() if v.any()}
+
+
+def _solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
     solver = get_solver(mech)
     phi_deg = np.atleast_1d(np.asarray(phi_deg, float)).reshape(-1)
     nwarn = len(solver.warnings)

@@ -368,6 +368,11 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
     warnings: list[str] = []
     if singular is None:
         singular = find_singular(mech, structure, blk.name, solver=solver)
+        if solver is None:  # a change point of the linkage is singular for every balance link
+            from ..kinematics.changepoints import change_points, distance_deg
+            from ..kinematics.solver import get_solver
+            extra = [c.phi for c in change_points(get_solver(mech))]
+            singular = sorted(list(singular) + [a for a in extra if distance_deg([a], singular)[0] > 1e-6])
     sing = np.asarray(singular, float)
     phi = phi_all[rows]
     if sing.size:
@@ -435,8 +440,6 @@ def find_singular(mech, structure=None, balance=None, *, solver=None, n_grid: in
     balance link (name or index; default the drive link): the roots of the scaled
     determinant of A(phi), bracketed on a grid of ``n_grid`` points and refined by
     Brent's method to 1e-9 deg; touching (double) roots by a bounded minimisation."""
-    from scipy.optimize import brentq, minimize_scalar
-
     if balance is None:
         b = mech.drive
     elif isinstance(balance, int):
@@ -459,29 +462,5 @@ def find_singular(mech, structure=None, balance=None, *, solver=None, n_grid: in
         k = solve(mech, np.array([start, phi]), 1.0)
         return float(scaled_det(mech, geometry(mech, k), b)[-1]) / fmax
 
-    g = f / fmax
-    roots: list[float] = []
-    for i in range(n_grid):
-        a0, a1 = grid[i], grid[i + 1]
-        if g[i] == 0.0:
-            roots.append(a0)
-        elif g[i] * g[i + 1] < 0:
-            roots.append(brentq(F, a0, a1, args=(a0,), xtol=1e-10, rtol=4 * np.finfo(float).eps))
-    # touching zeros: local minima of |g| without a sign change
-    ag = np.abs(g)
-    for i in range(1, n_grid):
-        if ag[i] < ag[i - 1] and ag[i] <= ag[i + 1] and ag[i] < 1e-3 and g[i - 1] * g[i + 1] > 0 \
-                and g[i - 1] * g[i] > 0:
-            res = minimize_scalar(lambda t: abs(F(t, grid[i - 1])), bounds=(grid[i - 1], grid[i + 1]),
-                                  method="bounded", options={"xatol": 1e-10})
-            if res.fun < 1e-9:
-                roots.append(float(res.x))
-    out: list[float] = []
-    for r in sorted(float(r) % 360.0 for r in roots):
-        if r >= 360.0 - 1e-12:
-            r = 0.0
-        if not out or abs(r - out[-1]) > 1e-7:
-            out.append(r)
-    if len(out) > 1 and abs(out[0] + 360.0 - out[-1]) <= 1e-7:
-        out.pop()
-    return out
+    from ..kinematics.changepoints import circle_zeros
+    return circle_zeros(grid, f / fmax, F)

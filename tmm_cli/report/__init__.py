@@ -182,16 +182,54 @@ def _pdf_bytes(html: str, out_dir: Path) -> bytes:
 HELPER_SECTIONS = ("kinetostatics",)
 
 
-def _helper(conn, results, task, out_dir, lang, names, pdf):
+PR_SET_PDEATHSIG = 1  # <linux/prctl.h>
+
+
+def _die_with_parent(parent_pid: int, parent_end) -> None:
+    """In the forked helper: end when the main process ends, however it ends (killed by a
+    scheduler, by a timeout, by the out-of-memory killer). On Linux the kernel sends the
+    helper SIGKILL when its parent dies (prctl PR_SET_PDEATHSIG); everywhere the helper
+    drops its inherited copy of the main process' end of the pipe (so the pipe reports
+    EOF once the main process is gone) and _recv_from checks the parent while it waits."""
+    import os
+    import signal
+    import sys
+    if sys.platform.startswith("linux"):
+        try:
+            import ctypes
+            libc = ctypes.CDLL(None, use_errno=True)
+            libc.prctl(PR_SET_PDEATHSIG, int(signal.SIGKILL), 0, 0, 0)
+        except (OSError, AttributeError):
+            pass
+    try:
+        parent_end.close()
+    except OSError:
+        pass
+    if os.getppid() != parent_pid:  # the parent died before the request took effect
+        os._exit(0)
+
+
+def _recv_from(conn, parent_pid: int, poll: float = 0.5):
+    """conn.recv(), but the helper exits as soon as its parent is gone."""
+    import os
+    while not conn.poll(poll):
+        if os.getppid() != parent_pid:
+            os._exit(0)
+    return conn.recv()
+
+
+def _helper(conn, results, task, out_dir, lang, names, pdf, parent_pid=None, parent_end=None):
     """The second process: build `names`, send (fragments, written paths); import
     weasyprint meanwhile idle, then receive the whole HTML and send the PDF bytes."""
+    if parent_pid is not None:
+        _die_with_parent(parent_pid, parent_end)
     try:
         ctx = _context(results, task, out_dir, lang)
         frags = _build(ctx, names)
         conn.send(("frags", frags, [str(p) for p in ctx.written]))
         if pdf:
             _weasyprint()  # the import overlaps the main process' work
-            msg = conn.recv()
+            msg = _recv_from(conn, parent_pid) if parent_pid is not None else conn.recv()
             if msg is not None:
                 conn.send(("pdf", _pdf_bytes(msg, out_dir)))
     except BaseException as exc:          # reported to the main process, which then works alone
@@ -306,12 +344,13 @@ def render(results: dict, task, out_dir: Path, formats: set[str], lang: str = "e
     if (helper_names or want_pdf) and _workers_wanted():
         try:
             import multiprocessing
+            import os
             from . import figures
             figures.plt()                      # matplotlib imported once, shared by the fork
             mp = multiprocessing.get_context("fork")
             conn, child = mp.Pipe()
             proc = mp.Process(target=_helper, args=(child, results, task, out_dir, ctx.lang, helper_names,
-                                                    want_pdf), daemon=True)
+                                                    want_pdf, os.getpid(), conn), daemon=True)
             proc.start()
             child.close()
         except Exception:
@@ -328,6 +367,9 @@ def render(results: dict, task, out_dir: Path, formats: set[str], lang: str = "e
             if proc.is_alive():
                 proc.terminate()
                 proc.join(timeout=5)
+            if proc.is_alive():
+                proc.kill()
+                proc.join()
     # unique, in write order
     seen, out = set(), []
     for p in written:

@@ -119,8 +119,8 @@ class ReportContext:
 
     # -- files beside the report
     def write_file(self, name: str, data: bytes | str) -> Path:
-        path = Path(self.out_dir) / name
-        path.parent.mkdir(parents=True, exist_ok=True)
+        from ..safepath import inside
+        path = inside(self.out_dir, name)  # never through a linked folder inside out_dir
         atomic_write(path, data)
         if path not in self.written:
             self.written.append(path)

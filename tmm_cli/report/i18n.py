@@ -264,6 +264,13 @@ def translate(key: str, lang: str, **kw) -> str:
 _PHASES_RU = {"near_dwell": "ближний выстой", "rise": "удаление", "far_dwell": "дальний выстой",
               "return": "возвращение"}
 _WARNINGS_RU: list[tuple[str, str]] = [
+    (r"^change point at crank angle (\S+) deg: group (\S+) \(links (.+?)\): the velocity equations are singular "
+     r"there .*?Positions within (\S+) deg are marked near_singular; a value there more than (\S+) times .*$",
+     "особое положение (точка бифуркации) при φ = {0}°: группа {1} (звенья {2}): уравнения скоростей вырождены "
+     "(звенья группы на одной прямой, как у шарнирного четырёхзвенника на границе условия Грасгофа "
+     "s + l = p + q); механизм может перейти на другую ветвь, скорости и ускорения скачут. Положения ближе "
+     "{3}° отмечены (near_singular); значение, более чем в {4} раз превышающее наибольшее в остальной части "
+     "цикла, не имеет конечного предела и не выводится"),
     (r"^soft impact \(finite jump of acceleration\) at phi = (\S+) deg \((.+)\)$",
      "мягкий удар (конечный скачок ускорения) при φ = {0}° ({1})"),
     (r"^rigid impact \(jump of velocity, infinite acceleration\) at phi = (\S+) deg \((.+)\)$",

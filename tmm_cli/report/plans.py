@@ -31,7 +31,9 @@ def plan_label(name: str) -> str:
 
 
 def sub_html(sym: str, sub: str) -> str:
-    return f"{sym}<sub>{sub}</sub>"
+    """``sym<sub>sub</sub>`` as HTML text; both parts (point names) are escaped."""
+    from markupsafe import escape
+    return f"{escape(sym)}<sub>{escape(sub)}</sub>"
 
 
 @dataclass

@@ -12,6 +12,7 @@ students do: mu = v_A / pa with pa = 100 mm rounded *up* to a nice value
 """
 from __future__ import annotations
 
+import html
 import math
 
 import numpy as np
@@ -219,8 +220,10 @@ def output_series(ctx, geom, entries, out_name):
     name = l.name if l is not None else out_name
     a0 = float(e0["links"][name]["angle"] or 0.0)
     psi = [((float(e["links"][name]["angle"] or 0.0) - a0 + 180.0) % 360.0) - 180.0 for e in entries]
-    w = [float(e["links"][name]["omega"] or 0.0) for e in entries]
-    eps = [float(e["links"][name]["epsilon"] or 0.0) for e in entries]
+    # null next to a change point (no finite limit): not drawn
+    w = [math.nan if e["links"][name]["omega"] is None else float(e["links"][name]["omega"]) for e in entries]
+    eps = [math.nan if e["links"][name]["epsilon"] is None else float(e["links"][name]["epsilon"])
+           for e in entries]
     return "rotating", psi, w, eps
 
 
@@ -290,9 +293,9 @@ def build(ctx) -> str | None:
                             ctx.fmt_fixed(L / mu_l, 1)))
     scale_rows = [
         (Markup(f"μ<sub>l</sub> — {ctx.t('kin.mu_l')}"), f"{mu_l:g} {ctx.t('kin.unit_l')}"),
-        (Markup(f"μ<sub>v</sub> = v<sub>{pin}</sub>/p{plan_label(pin)} — {ctx.t('kin.mu_v')}"),
+        (Markup("μ<sub>v</sub> = v<sub>{}</sub>/p{} — {}").format(pin, plan_label(pin), ctx.t('kin.mu_v')),
          Markup(f"{ctx.fmt(vA)} / {ctx.fmt_fixed(vA / mu_v, 2)} → {mu_v:g} {ctx.t('kin.unit_v')}")),
-        (Markup(f"μ<sub>a</sub> = a<sub>{pin}</sub>/π{plan_label(pin)} — {ctx.t('kin.mu_a')}"),
+        (Markup("μ<sub>a</sub> = a<sub>{}</sub>/π{} — {}").format(pin, plan_label(pin), ctx.t('kin.mu_a')),
          Markup(f"{ctx.fmt(aA)} / {ctx.fmt_fixed(aA / mu_a, 2)} → {mu_a:g} {ctx.t('kin.unit_a')}")),
     ]
     pos_rows = []
@@ -345,7 +348,8 @@ def build(ctx) -> str | None:
         for kind, pl in (("v", vp), ("a", ap)):
             for sym, seg, mm, val in pl.rows():
                 plan_csv.append([e["index"], e["phi"], kind, seg,
-                                 sym.replace("<sub>", "_").replace("</sub>", "").replace("<sup>", "^").replace("</sup>", ""),
+                                 html.unescape(sym.replace("<sub>", "_").replace("</sub>", "")
+                                               .replace("<sup>", "^").replace("</sup>", "")),
                                  float(mm), float(val)])
         positions.append({"index": e["index"], "phi": ctx.fmt_fixed(e["phi"], 2),
                           "fig": plans_svg(ctx, vp, ap), "vrows": vrows, "arows": arows})

@@ -1,0 +1,178 @@
+"""Issue 10, item 7: change points of any linkage are found, warned about with the crank
+angle, and the positions next to them are flagged (values without a finite limit null).
+
+Closed forms used: a four-bar with crank a, coupler b, rocker c, ground d is at a change
+point when its four links are collinear. With a = 0.1, b = c = 0.2, d = 0.3 (s + l =
+0.1 + 0.3 = p + q = 0.2 + 0.2: the Grashof limit) the crank pin at phi = 180 deg is
+A = (-0.1, 0), |A O3| = 0.4 = b + c: coupler and rocker lie along the ground line, the
+only crank angle where that happens (at phi = 0, |A O3| = 0.2 < b + c and > |b - c|).
+A deltoid (kite) with a = d = 0.1 and b = c = 0.25 has its crank pin on the rocker pivot
+at phi = 0 (A = O3): coupler and rocker coincide, a change point."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from tmm_cli.kinematics.changepoints import NEAR_DEG, circle_zeros
+
+LIMIT = """\
+schema: tmm/1
+title: Four-bar on the Grashof limit
+mechanism:
+  ground:
+    O: [0, 0]
+    O3: [0.30, 0]
+  links:
+    crank:   {points: [O, A], length: 0.10, mass: 1.0, J: 0.001}
+    coupler: {points: [A, B], length: 0.20, mass: 2.0, J: 0.02}
+    rocker:  {points: [O3, B], length: 0.20, mass: 1.5, J: 0.01}
+  assembly: {B: [0.2, 0.19]}
+drive: {link: crank, speed: 120 rpm, direction: ccw}
+positions:
+  count: 12
+  zero: extreme
+  output: rocker
+loads:
+  gravity: true
+  forces:
+    - {on: rocker, kind: resistance, stroke: working, moment: 30}
+kinetostatics:
+  positions: all
+  balance: crank
+"""
+
+DELTOID = """\
+schema: tmm/1
+title: Deltoid four-bar
+mechanism:
+  ground:
+    O: [0, 0]
+    O3: [0.10, 0]
+  links:
+    crank:   {points: [O, A], length: 0.10}
+    coupler: {points: [A, B], length: 0.25}
+    rocker:  {points: [O3, B], length: 0.25}
+  assembly: {B: [0.1, 0.25]}
+drive: {link: crank, speed: 120 rpm, direction: ccw}
+positions: {count: 12, zero: 0, output: rocker}
+"""
+
+
+def _run(tmp_path, text):
+    import tmm_cli
+    f = tmp_path / "task.yaml"
+    f.write_text(text, encoding="utf-8")
+    task = tmm_cli.load_task(f)
+    from tmm_cli.results import clean
+    return clean(tmm_cli.run(task))   # as written to results.json (NaN -> null)
+
+
+def _cp_warnings(res):
+    return [w for w in res["warnings"] if w.startswith("change point at crank angle")]
+
+
+def test_grashof_limit_change_point_at_the_extreme(tmp_path):
+    res = _run(tmp_path, LIMIT)
+    ws = _cp_warnings(res)
+    assert len(ws) == 1 and ws[0].startswith("change point at crank angle 180.000000 deg: group II(2,3)")
+    # the rocker's extreme position at the change point is added as an extra position
+    ext = [e for e in res["kinematics"] if abs(e["phi"] - 180.0) < 1e-3]
+    assert ext, [e["phi"] for e in res["kinematics"]]
+    for e in ext:
+        assert e["near_singular"] is True
+        assert e["links"]["rocker"]["epsilon"] is None and e["points"]["B"]["a"] is None
+    far = [e for e in res["kinematics"] if min(abs(e["phi"] - 180.0), 360 - abs(e["phi"] - 180.0)) > NEAR_DEG]
+    assert len(far) == len(res["kinematics"]) - len(ext)
+    for e in far:
+        assert "near_singular" not in e
+        assert all(isinstance(e["links"][lk]["epsilon"], float) for lk in e["links"])
+    # kinetostatics: the change point is singular, the position next to it flagged
+    assert any(abs(a - 180.0) < 1e-6 for a in res["singular"])
+    ks = {e["index"]: e for e in res["kinetostatics"]}
+    for e in ext:
+        assert ks[e["index"]]["near_singular"] is True
+
+
+def test_grashof_limit_values_kept_near_but_not_at_the_change_point(tmp_path):
+    # 2 deg before the change point the values are finite and of the cycle's size
+    import tmm_cli
+    from tmm_cli.kinematics import solve
+    from tmm_cli.mechanism import build_mechanism
+    f = tmp_path / "task.yaml"
+    f.write_text(LIMIT, encoding="utf-8")
+    mech = build_mechanism(tmm_cli.load_task(f))
+    k = solve(mech, [178.0, 179.5, 180.0 + 1.6e-6], 1.0)
+    assert not k.near[0] and k.near[1] and k.near[2]
+    assert "epsilon:rocker" in k.undefined and k.undefined["epsilon:rocker"].tolist() == [False, False, True]
+    # the rocker's analogue i = omega3/omega1 at 178 deg against the closed form of the
+    # four-bar: i = a sin(phi - theta2) / (c sin(theta3 - theta2))
+    a, c = 0.1, 0.2
+    th2, th3 = float(k.angle["coupler"][0]), float(k.angle["rocker"][0])   # rad
+    phi = math.radians(178.0)
+    assert float(k.a1["rocker"][0]) == pytest.approx(a * math.sin(phi - th2) / (c * math.sin(th3 - th2)), rel=1e-9)
+
+
+def test_deltoid_change_point_and_branch_jump(tmp_path):
+    res = _run(tmp_path, DELTOID)
+    ws = _cp_warnings(res)
+    assert len(ws) == 1 and ws[0].startswith("change point at crank angle 0.000000 deg")
+    e0 = res["kinematics"][0]
+    assert e0["phi"] == 0.0 and e0["near_singular"] is True
+    assert all("near_singular" not in e for e in res["kinematics"][1:])
+    # the rocker's curve jumps by 180 deg across the change point (the kite folds on one
+    # side, A B and O3 B along the ground line; it opens on the other) - the warning says so
+    import tmm_cli
+    from tmm_cli.kinematics import solve
+    from tmm_cli.mechanism import build_mechanism
+    mech = build_mechanism(tmm_cli.load_task(tmp_path / "task.yaml"))
+    k = solve(mech, [359.99, 0.01], 1.0)
+    jump = math.degrees(float(k.angle["rocker"][0] - k.angle["rocker"][1])) % 360.0
+    assert jump == pytest.approx(180.0, abs=0.02)
+    assert k.near.tolist() == [True, True]
+
+
+def test_regular_crank_rocker_has_no_change_point(tmp_path):
+    text = LIMIT.replace("O3: [0.30, 0]", "O3: [0.29, 0]")   # s + l = 0.39 < p + q = 0.40
+    res = _run(tmp_path, text)
+    assert _cp_warnings(res) == []
+    assert all("near_singular" not in e for e in res["kinematics"])
+
+
+def test_circle_zeros_closed_forms():
+    grid = np.linspace(0.0, 360.0, 721)
+
+    def make(f):
+        return f(grid) / np.max(np.abs(f(grid))), (lambda phi, start: float(f(np.array([phi]))[0]) /
+                                                     float(np.max(np.abs(f(grid)))))
+    # crossing zeros of sin(phi - 37.3): 37.3 and 217.3
+    g, F = make(lambda p: np.sin(np.radians(p - 37.3)))
+    assert circle_zeros(grid, g, F) == pytest.approx([37.3, 217.3], abs=1e-8)
+    # a touching zero of 1 + cos(phi - 100.7) at 280.7 (a V-shaped |.| touching zero too)
+    g, F = make(lambda p: 1.0 + np.cos(np.radians(p - 100.7)))
+    assert circle_zeros(grid, g, F) == pytest.approx([280.7], abs=1e-4)
+    g, F = make(lambda p: np.abs(np.sin(np.radians(p - 123.45) / 2.0)))
+    assert circle_zeros(grid, g, F) == pytest.approx([123.45], abs=1e-7)
+    # no zero: 2 + sin
+    g, F = make(lambda p: 2.0 + np.sin(np.radians(p)))
+    assert circle_zeros(grid, g, F) == []
+
+
+def test_curve_of_the_output_leaves_out_values_without_a_limit(tmp_path):
+    # ground 0.2, crank 0.1, coupler 0.3, rocker 0.2 (s + l = 0.4 = p + q): at phi = 0 the
+    # pin A = (0.1, 0) is 0.1 = b - c from O3, coupler and rocker fold onto the ground line;
+    # it is also the rocker's extreme position, so position 0 and the curve start there
+    text = (LIMIT.replace("O3: [0.30, 0]", "O3: [0.20, 0]")
+            .replace("coupler: {points: [A, B], length: 0.20", "coupler: {points: [A, B], length: 0.30")
+            .replace("B: [0.2, 0.19]", "B: [0.25, 0.19]"))
+    res = _run(tmp_path, text)
+    ws = _cp_warnings(res)
+    assert len(ws) == 1 and ws[0].startswith("change point at crank angle 0.000000 deg")
+    assert abs(res["positions"]["phi0"]) < 1e-5
+    c = res["kinematics_curve"]
+    assert c["a"][0] is None and c["a"][-1] is None
+    finite = [abs(x) for x in c["a"] if x is not None]
+    assert len(finite) == len(c["a"]) - 2 and max(finite) < 1e3   # |eps| of the rocker stays ~400 rad/s^2
+    e0 = res["kinematics"][0]
+    assert e0["near_singular"] is True and e0["links"]["rocker"]["epsilon"] is None

@@ -1,0 +1,121 @@
+"""Change points of a linkage: crank angles where a group's velocity equations are singular.
+
+A group's velocity (and acceleration) equations J(phi) q' = b(phi) are singular where the
+determinant of J vanishes: the group's links are collinear. Where this happens inside the
+cycle of a linkage that turns all the way round, the mechanism is at a change point
+(Artobolevsky, ch. on four-bar linkages: a four-bar on the Grashof limit s + l = p + q -
+a parallelogram, an antiparallelogram, a deltoid - and its relatives): its links can
+leave the point along either branch, and a velocity or acceleration may jump or grow
+without bound there. They are found on every group, not only on known linkages:
+
+* the normalised determinant of each group (the sine of the angle between the columns
+  of a dyad's 2x2 system; the determinant of the row/column-equilibrated matrix of a
+  larger group) is sampled over one turn (``N_GRID`` points);
+* a sign change is refined by Brent's method, a touching zero (a local minimum of |det|
+  that does not change sign, as at the extended position of a crank-rocker on the
+  Grashof limit) by a bounded minimisation, both to about 1e-9 deg.
+
+Positions within ``NEAR_DEG`` of a change point are marked ``near_singular`` in the
+results; there a velocity or acceleration whose magnitude exceeds ``BLOWUP`` times its
+largest value elsewhere in the cycle (farther than ``NEAR_DEG`` from every change point)
+has no finite limit and is reported as null.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+N_GRID = 720        # samples of each group's determinant over one turn
+NEAR_DEG = 1.0      # positions this close to a change point are flagged (as in kinetostatics)
+BLOWUP = 10.0       # a value this many times its largest value elsewhere in the cycle: null
+TOUCH_GRID = 1e-3   # |det| / max|det| below this at a local minimum: look for a touching zero
+TOUCH_ZERO = 1e-9   # ... and accept it when the refined minimum is below this
+
+
+def circle_zeros(grid: np.ndarray, g: np.ndarray, F) -> list[float]:
+    """Zeros in [0, 360) of a function of the crank angle, given its values ``g`` on
+    ``grid`` (0..360 deg, normalised so that max |g| = 1; NaN where it is undefined) and ``F(phi, start)`` its value
+    at ``phi`` evaluated continuously from ``start`` (a grid point next to ``phi``).
+    Sign changes are refined by Brent's method to 1e-10 deg; touching (double) zeros,
+    local minima of |g| without a sign change, by a bounded minimisation."""
+    from scipy.optimize import brentq, minimize_scalar
+
+    n = len(grid) - 1
+    roots: list[float] = []
+    for i in range(n):
+        a0, a1 = grid[i], grid[i + 1]
+        if g[i] == 0.0:
+            roots.append(a0)
+        elif g[i] * g[i + 1] < 0:  # (False where either is NaN: a group that does not assemble there)
+            try:
+                roots.append(brentq(F, a0, a1, args=(a0,), xtol=1e-10, rtol=4 * np.finfo(float).eps))
+            except ValueError:  # F does not change sign as sampled: no root to refine
+                pass
+    ag = np.abs(g)
+    for i in range(1, n):
+        if ag[i] < ag[i - 1] and ag[i] <= ag[i + 1] and ag[i] < TOUCH_GRID and g[i - 1] * g[i + 1] > 0 \
+                and g[i - 1] * g[i] > 0:
+            res = minimize_scalar(lambda t: abs(F(t, grid[i - 1])), bounds=(grid[i - 1], grid[i + 1]),
+                                  method="bounded", options={"xatol": 1e-10})
+            if res.fun < TOUCH_ZERO:
+                roots.append(float(res.x))
+    out: list[float] = []
+    for r in sorted(float(r) % 360.0 for r in roots):
+        if r >= 360.0 - 1e-12:
+            r = 0.0
+        if not out or abs(r - out[-1]) > 1e-7:
+            out.append(r)
+    if len(out) > 1 and abs(out[0] + 360.0 - out[-1]) <= 1e-7:
+        out.pop()
+    return out
+
+
+@dataclass(frozen=True)
+class ChangePoint:
+    phi: float          # crank angle, deg in [0, 360)
+    group: int          # index of the group in the solver's order
+    describe: str       # "group II(2,3) (links coupler, rocker)"
+
+
+def change_points(solver) -> list[ChangePoint]:
+    """Every change point of the solver's linkage over one turn (cached on the solver)."""
+    cached = solver.__dict__.get("_change_points")
+    if cached is not None:
+        return cached
+    grid = np.linspace(0.0, 360.0, N_GRID + 1)
+    st = solver.run(np.radians(grid), strict=False, fallback=False)
+    found: list[ChangePoint] = []
+    for gi, det in st.gdet.items():
+        d = np.where(st.margins[gi] >= -solver.tol, np.asarray(det, float), np.nan)
+        fmax = float(np.nanmax(np.abs(d))) if np.isfinite(d).any() else 0.0
+        if not np.isfinite(fmax) or fmax == 0.0:
+            continue
+
+        def F(phi, start, gi=gi, fmax=fmax):
+            s = solver.run(np.radians(np.array([start, phi])), upto=gi + 1, strict=False, fallback=False)
+            return float(s.gdet[gi][-1]) / fmax
+
+        for phi in circle_zeros(grid, d / fmax, F):
+            found.append(ChangePoint(phi, gi, solver.groups[gi].describe()))
+    found.sort(key=lambda c: c.phi)
+    solver.__dict__["_change_points"] = found
+    return found
+
+
+def distance_deg(phi_deg, angles) -> np.ndarray:
+    """Distance (deg, on the circle) from each of ``phi_deg`` to the nearest of ``angles``."""
+    phi = np.atleast_1d(np.asarray(phi_deg, float)) % 360.0
+    a = np.asarray(list(angles), float)
+    if a.size == 0:
+        return np.full(phi.shape, np.inf)
+    d = np.abs(phi[:, None] - a[None, :]) % 360.0
+    return np.min(np.minimum(d, 360.0 - d), axis=1)
+
+
+def warning(cp: ChangePoint) -> str:
+    return (f"change point at crank angle {cp.phi:.6f} deg: {cp.describe}: the velocity equations are "
+            f"singular there (the group's links are collinear, as in a four-bar on the Grashof limit "
+            f"s + l = p + q); the linkage may switch branch and its velocities and accelerations jump. "
+            f"Positions within {NEAR_DEG:g} deg are marked near_singular; a value there more than "
+            f"{BLOWUP:g} times its largest elsewhere in the cycle has no finite limit and is null")
