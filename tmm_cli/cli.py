@@ -1,4 +1,4 @@
-"""The `tmm` command line (SPEC 2).
+"""The `tmm` command line (README, *Commands*).
 
 Exit codes: 0 success; 1 answers outside tolerance; 2 invalid task (file, line and
 field named, no traceback); 3 a stage failed on valid input (stage and position named).
@@ -90,7 +90,7 @@ def write_outputs(task, results: dict, out: Path, formats: set[str], lang: str) 
 
 @app.command()
 def run(
-    task_file: Path = typer.Argument(..., metavar="TASK.yaml", help="the task file (SPEC 1)"),
+    task_file: Path = typer.Argument(..., metavar="TASK.yaml", help="the task file (README: The task file)"),
     out: Optional[Path] = typer.Option(None, "--out", "-o", help="output folder (default: out/<task name>/)"),
     format: str = typer.Option("json,html,pdf", "--format", "-f",
                                help="comma-separated outputs: json, html, pdf (results.json is always written)"),

@@ -1,12 +1,12 @@
 """Loads on the links of a linkage, evaluated at the computed positions.
 
 ``evaluate(mech, loads_section, kin, positions, *, inertia=True) -> Loads`` turns
-the task's ``loads`` section (SPEC 1) into per-position applied forces (link,
+the task's ``loads`` section (README, *loads*) into per-position applied forces (link,
 point of application, force vector) and couples (link, moment), all (N,)-arrays
 over the positions of ``kin``:
 
 * gravity (``gravity: true``): G_i = m_i g along -y at S_i, g = 9.81 m/s^2;
-* inertia loads (d'Alembert, METHODS 3): F_in = -m a_S at S_i, M_in = -J_S eps_i;
+* inertia loads (d'Alembert, docs/methods.md §3.1): F_in = -m a_S at S_i, M_in = -J_S eps_i;
 * task forces. A force acts along the guide of a slider (unit vector e along the
   guide direction) or along ``direction`` (deg from +x, absolute) on any link; a bar
   with a resistance/driving force and no ``direction`` gets the force along the
@@ -41,7 +41,7 @@ over the positions of ``kin``:
   ``switch_angles(mech, loads_section, positions)`` gives the crank angles of such
   jumps inside a stroke, which the pipeline adds as extra positions.
 
-All of this follows METHODS 3 and, where it is silent, Artobolevsky's and Popov's
+All of this follows docs/methods.md §3.1 and, where it is silent, Artobolevsky's and Popov's
 textbooks (force of production resistance acting against the motion of the
 working member over the working stroke given by its diagram over the stroke).
 """

@@ -1,5 +1,5 @@
 """The pipeline: run every stage whose section is present, in order, and assemble
-the results.json dict (SPEC 3). Stages are pure functions; this module only wires
+the results.json dict (README, *results.json*). Stages are pure functions; this module only wires
 them together. Nothing here writes files.
 """
 from __future__ import annotations
@@ -80,7 +80,7 @@ def run(task: Task, *, progress: Callable[[str], None] | None = None,
                             "position": err.position}
         raise PartialResults(err, results) from err
     except TaskError as err:
-        # a stage found an invalid field: name the file and the field's line (SPEC 2)
+        # a stage found an invalid field: name the file and the field's line (exit 2)
         raise task.locate(err) from None
     # de-duplicate warnings, keep order
     seen = set()

@@ -1,4 +1,4 @@
-"""Structural analysis of a planar linkage (METHODS 1).
+"""Structural analysis of a planar linkage (docs/methods.md §1).
 
 * Chebyshev's formula W = 3n - 2 p5 - p4 (n moving links, p5 lower pairs: one per
   :class:`~tmm_cli.mechanism.Joint`, p4 = 0 higher pairs).

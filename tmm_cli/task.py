@@ -1,6 +1,6 @@
 """The task model: one variant of the course project, validated once.
 
-Pydantic models for every section of SPEC 1. Quantities are converted to SI floats
+Pydantic models for every section of the task file (README, *The task file*). Quantities are converted to SI floats
 (angles in degrees) at validation. Unknown keys are errors with a "did you mean".
 :func:`load_task` reads a YAML file (or a dict) and raises :class:`TaskError` naming
 the file, line, column and field of every problem.
@@ -421,7 +421,7 @@ class Task(_Model):
     gears: GearsSection | None = None
     planetary: PlanetarySection | None = None
     dof2: Dof2Section | None = Field(None, description="a machine with two degrees of freedom: rotor + hinged "
-                                                       "striker (METHODS 7; runs on its own)")
+                                                       "striker (docs/methods.md §7; runs on its own)")
     answers: dict[str, float] = Field(default_factory=dict)
     tolerance: dict[str, Annotated[Ratio, Field(ge=0)]] = Field(default_factory=dict)
 

@@ -1,8 +1,8 @@
 """YAML reading with YAML 1.2 booleans and a map of field paths to line numbers.
 
 PyYAML's default resolver follows YAML 1.1, where ``on``, ``off``, ``yes``, ``no``
-become booleans (so the key ``on:`` of a force would turn into ``True``). SPEC 1
-requires YAML 1.2 booleans: only ``true``/``false`` (any case form the 1.2 core
+become booleans (so the key ``on:`` of a force would turn into ``True``). The task
+file uses YAML 1.2 booleans: only ``true``/``false`` (any case form the 1.2 core
 schema allows). Sexagesimal numbers (``1:30``) and other 1.1-only forms stay strings.
 Duplicate keys are errors.
 """

@@ -1,4 +1,4 @@
-"""Positions of the course project (METHODS 0; SPEC ``positions``).
+"""Positions of the course project (docs/methods.md §0; task section ``positions``).
 
 The output link (``positions.output``, default the last link) has a coordinate s:
 
