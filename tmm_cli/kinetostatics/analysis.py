@@ -459,20 +459,46 @@ def find_singular(mech, structure=None, balance=None, *, solver=None, n_grid: in
         k = solve(mech, np.array([start, phi]), 1.0)
         return float(scaled_det(mech, geometry(mech, k), b)[-1]) / fmax
 
-    g = f / fmax
-    roots: list[float] = []
-    for i in range(n_grid):
-        a0, a1 = grid[i], grid[i + 1]
-        if g[i] == 0.0:
-            roots.append(a0)
-        elif g[i] * g[i + 1] < 0:
+    return cycle_roots(F, grid, f / fmax)
+
+
+ZERO_TOL = 1e-13   # |scaled determinant| / max below which a grid value is a root
+
+
+def cycle_roots(F, grid: np.ndarray, g: np.ndarray, *, zero_tol: float = ZERO_TOL) -> list[float]:
+    """Roots in [0, 360) of a function of the crank angle that is periodic over the turn.
+
+    ``grid``: n + 1 angles from 0 to 360 (deg), ``g``: its values there (scaled to a
+    maximum of about 1), ``F(phi, start)``: the same function evaluated at ``phi`` after
+    following the motion from ``start``. The cycle is periodic: the value at 360 deg is
+    the one at 0 deg, so the interval that ends at 360 is bracketed with g(0), and a grid
+    value within ``zero_tol`` of zero is a root (at 0/360 the two round-off values may
+    differ in sign, as +1e-17 and -1e-17: neither a sign test nor an exact-zero test
+    sees such a root). Sign changes are refined by Brent's method to 1e-10 deg; touching
+    (double) roots, local minima of |g| without a sign change, by a bounded minimisation
+    (docs/methods.md §3.2)."""
+    from scipy.optimize import brentq, minimize_scalar
+
+    grid = np.asarray(grid, float)
+    n = grid.size - 1
+    step = grid[1] - grid[0]
+    gp = np.asarray(g, float)[:n]           # one period: the value at 360 is the one at 0
+    zero = np.abs(gp) <= zero_tol
+    roots: list[float] = [float(grid[i]) for i in np.flatnonzero(zero)]
+    for i in range(n):
+        j = (i + 1) % n
+        if not zero[i] and not zero[j] and gp[i] * gp[j] < 0:
+            a0, a1 = grid[i], grid[i + 1]
             roots.append(brentq(F, a0, a1, args=(a0,), xtol=1e-10, rtol=4 * np.finfo(float).eps))
-    # touching zeros: local minima of |g| without a sign change
-    ag = np.abs(g)
-    for i in range(1, n_grid):
-        if ag[i] < ag[i - 1] and ag[i] <= ag[i + 1] and ag[i] < 1e-3 and g[i - 1] * g[i + 1] > 0 \
-                and g[i - 1] * g[i] > 0:
-            res = minimize_scalar(lambda t: abs(F(t, grid[i - 1])), bounds=(grid[i - 1], grid[i + 1]),
+    # touching zeros: local minima of |g| without a sign change (around 0 deg as well)
+    ag = np.abs(gp)
+    for i in range(n):
+        im, ip = (i - 1) % n, (i + 1) % n
+        if zero[i] or not (ag[i] < ag[im] and ag[i] <= ag[ip] and ag[i] < 1e-3):
+            continue
+        if gp[im] * gp[ip] > 0 and gp[im] * gp[i] > 0:
+            lo = grid[i] - step
+            res = minimize_scalar(lambda t: abs(F(t, lo)), bounds=(lo, grid[i] + step),
                                   method="bounded", options={"xatol": 1e-10})
             if res.fun < 1e-9:
                 roots.append(float(res.x))
