@@ -45,7 +45,7 @@ def run(task: Task, *, progress: Callable[[str], None] | None = None,
     """
     results: dict[str, Any] = {"schema": SCHEMA, "task": {"title": task.title, "variant": task.variant,
                                                           "file": task.file}}
-    warnings: list[str] = []
+    warnings: list[str] = list(task.input_warnings)
     results["warnings"] = warnings
     say = progress or (lambda s: None)
     try:

@@ -207,6 +207,12 @@ class ForceSpec(_Model):
                              + (f"; got {', '.join(given)}" if given else ""))
         if self.diagram is not None and self.diagram.phi is not None and self.kind is not None:
             pass
+        for name in ("magnitude", "moment"):
+            v = getattr(self, name)
+            if self.kind is not None and v is not None and v < 0:
+                raise FieldValueError((name,), f"`{name}` of a `kind: {self.kind}` load is its size and must "
+                                      f"not be negative (got {v:g}); the sense comes from `kind` "
+                                      f"({'against' if self.kind == 'resistance' else 'along'} the motion)")
         return self
 
 
@@ -427,6 +433,7 @@ class Task(_Model):
 
     _file: str | None = PrivateAttr(None)
     _marks: dict = PrivateAttr(default_factory=dict)
+    _input_warnings: list = PrivateAttr(default_factory=list)
 
     @field_validator("schema_", mode="before")
     @classmethod
@@ -451,6 +458,12 @@ class Task(_Model):
     @property
     def file(self) -> str | None:
         return self._file
+
+    @property
+    def input_warnings(self) -> list[str]:
+        """Warnings about valid but doubtful values (a plain number probably meant in
+        rpm or mm), found when the task was read."""
+        return list(self._input_warnings)
 
     @property
     def name(self) -> str:
@@ -545,6 +558,27 @@ def _issue_from_error(err: dict, marks: dict) -> tuple[str, int | None, int | No
     return _dotted(path), line, col, msg
 
 
+def _decimal_comma_issues(issues: list, file: str | None, text: str | None) -> list:
+    """An issue on a line holding a number with a decimal comma (``[0,38, 0,12]``, very
+    common in the course's countries) says so: 'use a decimal point: 0.38'."""
+    if file is None and text is None:
+        return issues
+    from .yamlload import decimal_comma_hint
+    try:
+        lines = (text if text is not None else Path(file).read_text(encoding="utf-8")).splitlines()
+    except (OSError, UnicodeDecodeError):
+        return issues
+    out, hinted = [], set()
+    for fld, line, col, msg in issues:
+        hint = decimal_comma_hint(lines[line - 1]) if line and 0 < line <= len(lines) else None
+        if hint is None:
+            out.append((fld, line, col, msg))
+        elif line not in hinted:        # one message per line: the split number's pieces
+            hinted.add(line)            # give several errors
+            out.append((fld, line, col, hint))
+    return out
+
+
 def load_task(source: Union[str, Path, dict], *, text: str | None = None) -> Task:
     """Read and validate a task. ``source`` is a path to a YAML file or a dict of the
     same shape. Raises :class:`TaskError` with file, line and field of every problem."""
@@ -568,9 +602,12 @@ def load_task(source: Union[str, Path, dict], *, text: str | None = None) -> Tas
                 continue
             seen.add(issue[0:1] + issue[3:])
             issues.append(issue)
+        issues = _decimal_comma_issues(issues, file, text)
         raise TaskError("invalid task", file=file, issues=issues) from None
     task._file = file
     task._marks = marks
+    from .input_notices import plain_number_warnings
+    task._input_warnings = plain_number_warnings(Task, data)
     return task
 
 

@@ -74,6 +74,28 @@ def _walk(node: yaml.Node, path: tuple, marks: dict, file: str | None) -> None:
             _walk(item, path + (i,), marks, file)
 
 
+def _tab_indented_line(text: str) -> int | None:
+    """The first line (1-based) whose indentation holds a tab, or None."""
+    for i, line in enumerate(text.splitlines(), 1):
+        indent = line[:len(line) - len(line.lstrip(" \t"))]
+        if "\t" in indent and line.strip():
+            return i
+    return None
+
+
+_DECIMAL_COMMA = re.compile(r"(?<![\w.,])(-?\d+),(\d+)(?![\d.])")
+
+
+def decimal_comma_hint(line: str) -> str | None:
+    """'use a decimal point: 0.38' when a line (outside its comment) holds a number
+    written with a decimal comma such as ``0,38``, else None."""
+    m = _DECIMAL_COMMA.search(line.split("#", 1)[0])
+    if m is None:
+        return None
+    return (f"use a decimal point: {m.group(1)}.{m.group(2)} (YAML reads '{m.group(0)}' as two "
+            f"numbers or as text)")
+
+
 def load_yaml(source: str | Path, *, text: str | None = None) -> tuple[Any, dict]:
     """Read a YAML file. Returns ``(data, marks)`` where ``marks`` maps a field path
     (tuple of keys and indices) to ``(line, column)``, 1-based."""
@@ -98,6 +120,11 @@ def load_yaml(source: str | Path, *, text: str | None = None) -> tuple[Any, dict
         finally:
             loader.dispose()
     except yaml.MarkedYAMLError as exc:
+        tab = _tab_indented_line(text)
+        if tab is not None:
+            raise TaskError("YAML syntax error", file=file, issues=[(
+                "", tab, 1, "use spaces for indentation: this line is indented with a tab, "
+                            "which YAML does not allow")]) from None
         mark = exc.problem_mark or exc.context_mark
         line = mark.line + 1 if mark else None
         col = mark.column + 1 if mark else None
