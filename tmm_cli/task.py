@@ -192,6 +192,7 @@ class ForceSpec(_Model):
     on: str = Field(..., description="the link the load acts on")
     kind: Literal["resistance", "driving"] | None = None
     stroke: Literal["working", "idle", "both"] = "working"
+    working: Literal["forward", "backward"] | None = None
     magnitude: ForceOrPressure | None = None
     diagram: DiagramSpec | None = None
     area: Area | None = Field(None, gt=0)
@@ -648,6 +649,8 @@ _DOCS: dict[type, dict[str, str]] = {
     ForceSpec: {
         "kind": "resistance (against the motion) | driving (along it); none: a signed force",
         "stroke": "working | idle | both (default working)",
+        "working": "a load on a slider: forward | backward, the sense of that slider's own working stroke along "
+                   "its guide (default positions.working); every loaded slider has its own stroke",
         "magnitude": "constant force, N (or a pressure with `area`)",
         "diagram": "{s: [...], value: [...]} over the relative stroke, or {phi: [...], value: [...]} over the "
                    "crank angle from position 0",
