@@ -110,6 +110,13 @@ def test_plain_length_above_10_m_is_warned_about():
     assert _warnings(SIXBAR) == []
 
 
+def test_plain_gear_module_in_metres_is_warned_about():
+    w = _warnings("schema: tmm/1\ngears: {m: 3, z: [12, 42]}\n")
+    assert len(w) == 1 and "gears.m" in w[0] and "'3 mm'" in w[0]
+    assert _warnings("schema: tmm/1\ngears: {m: 3 mm, z: [12, 42]}\n") == []
+    assert _warnings("schema: tmm/1\ngears: {m: 0.003, z: [12, 42]}\n") == []
+
+
 def test_plain_number_warnings_reach_results():
     import yaml
     task = yaml.safe_load(SIXBAR.replace("speed: 5,", "speed: 100,"))

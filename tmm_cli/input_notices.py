@@ -19,6 +19,7 @@ from .task import _dotted
 # plain numbers above these (in the base unit) get a warning
 SPEED_PLAIN_MAX = 50.0      # rad/s (~480 rpm)
 LENGTH_PLAIN_MAX = 10.0     # m
+MODULE_PLAIN_MAX = 0.1      # m: a gear module (field `m`) is a few millimetres
 
 _KIND_BY_DESCRIPTION = {"in m": "length", "in rad/s": "speed"}
 
@@ -42,7 +43,8 @@ def _message(kind: str, value: float, path: tuple) -> str | None:
         rpm = abs(value) * 30.0 / math.pi
         return (f"{field}: the plain number {value:g} is read as {value:g} rad/s ({rpm:.0f} rpm); "
                 f"if you meant rpm, write '{value:g} rpm'")
-    if kind == "length" and abs(value) > LENGTH_PLAIN_MAX:
+    limit = MODULE_PLAIN_MAX if path and path[-1] == "m" else LENGTH_PLAIN_MAX
+    if kind == "length" and abs(value) > limit:
         return (f"{field}: the plain number {value:g} is read as {value:g} m; if you meant millimetres, "
                 f"write '{value:g} mm'")
     return None
