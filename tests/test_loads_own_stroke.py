@@ -94,6 +94,17 @@ def test_own_extremes_are_added_as_positions(results):
         assert any(abs(p - a) < 1e-7 for p in phis), (a, phis)
 
 
+def test_own_stroke_is_reported(results):
+    st = results["positions"]["strokes"]
+    assert list(st) == ["piston2"]                  # piston 1 is the output: positions.extreme
+    p2 = st["piston2"]
+    assert p2["extreme"] == pytest.approx([PHI_OUT, PHI_IN], abs=1e-7)
+    assert p2["s_extreme"] == pytest.approx([Y_OUT, Y_IN], abs=1e-9)
+    assert p2["H"] == pytest.approx(H2, abs=1e-9)
+    assert p2["working"] == "backward"
+    assert p2["working_stroke_angle"] == pytest.approx(PHI_IN - PHI_OUT, abs=1e-7)
+
+
 def test_each_piston_follows_its_own_stroke(results):
     entries = results["kinetostatics"]
     assert len(entries) == 14

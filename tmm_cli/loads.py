@@ -272,6 +272,25 @@ def load_stroke(positions, lk, sp, k: int):
     return positions.stroke_for(lk.name, working)
 
 
+def slider_strokes(mech, loads_section, positions) -> dict:
+    """The own strokes of the loaded sliders other than the output (name -> Stroke; a
+    slider loaded in both senses: 'name (forward)' and 'name (backward)'), for the results."""
+    found = []
+    for k, sp in enumerate(getattr(loads_section, "forces", []) or []):
+        try:
+            lk = mech.link(sp.on)
+        except KeyError:
+            continue
+        if not (_stroke_dependent(sp) and lk.kind == "slider" and hasattr(positions, "stroke_for")):
+            continue
+        st = load_stroke(positions, lk, sp, k)
+        if (st.link, st.working) != (positions.output, positions.working) and \
+                all((s.link, s.working) != (st.link, st.working) for s in found):
+            found.append(st)
+    names = [s.link for s in found]
+    return {(s.link if names.count(s.link) == 1 else f"{s.link} ({s.working})"): s for s in found}
+
+
 def evaluate(mech, loads_section, kin, positions=None, *, inertia: bool = True,
              cycle: float | None = None) -> Loads:
     """Per-position loads of the mechanism (see the module docstring). ``cycle``: 360 or

@@ -117,6 +117,10 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int) -> No
     positions = _stage("positions")(kinematics.find_positions)(mech, pos_section, task.drive,
                                                                 extra_added=extra_added)
     results["positions"] = positions.to_dict()
+    if task.loads is not None:      # each loaded slider's own stroke (docs/methods.md §3.3)
+        strokes = loads_mod.slider_strokes(mech, task.loads, positions)
+        if strokes:
+            results["positions"]["strokes"] = {k: s.to_dict() for k, s in strokes.items()}
 
     say("kinematics")
     omega1 = task.drive.omega1
