@@ -69,6 +69,12 @@ def test_decimal_comma(tmp_path, line, bad, good, lineno):
     assert "Tuple should have" not in res.output and "unknown key" not in res.output
 
 
+def test_compact_list_is_not_taken_for_decimal_commas(tmp_path):
+    res, _ = _validate(tmp_path, "schema: tmm/1\ngears:\n  m: 3 mm\n  z: [12,42,7]\n")
+    assert res.exit_code == 2
+    assert "decimal point" not in res.output and "at most 2 items" in res.output
+
+
 def test_decimal_comma_with_a_unit_is_not_read_as_thousands(tmp_path):
     # pint alone reads '3,5 mm' as 35 mm: a silently wrong module
     res, f = _validate(tmp_path, "schema: tmm/1\ngears:\n  m: 3,5 mm\n  z: [12, 42]\n")

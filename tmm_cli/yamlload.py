@@ -89,9 +89,12 @@ _DECIMAL_COMMA = re.compile(r"(?<![\w.,])(-?\d+),(\d+)(?![\d.])")
 def decimal_comma_hint(line: str) -> str | None:
     """'use a decimal point: 0.38' when a line (outside its comment) holds a number
     written with a decimal comma such as ``0,38``, else None."""
-    m = _DECIMAL_COMMA.search(line.split("#", 1)[0])
+    code = line.split("#", 1)[0]
+    m = _DECIMAL_COMMA.search(code)
     if m is None:
         return None
+    if ("[" in code or "{" in code) and not re.search(r",\s", code):
+        return None     # a compact list such as [12,42,7]: commas without spaces throughout
     return (f"use a decimal point: {m.group(1)}.{m.group(2)} (YAML reads '{m.group(0)}' as two "
             f"numbers or as text)")
 
