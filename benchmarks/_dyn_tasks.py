@@ -1,4 +1,4 @@
-"""Task dicts shared by the dynamics benchmarks: the forging machine of the SPEC with a
+"""Task dicts shared by the dynamics benchmarks: the forging machine of tasks/forging_sixbar.yaml with a
 resistance diagram over the working stroke (motor-driven, constant driving moment)."""
 from __future__ import annotations
 

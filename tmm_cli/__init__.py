@@ -1,6 +1,6 @@
 """tmm: the course-project calculator for Theory of Machines and Mechanisms.
 
-Python API (SPEC 4)::
+Python API (README, *Commands*)::
 
     import tmm_cli
     task = tmm_cli.load_task("task.yaml")   # or a dict of the same shape

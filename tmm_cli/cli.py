@@ -1,4 +1,4 @@
-"""The `tmm` command line (SPEC 2).
+"""The `tmm` command line (README, *Commands*).
 
 Exit codes: 0 success; 1 answers outside tolerance; 2 invalid task (file, line and
 field named, no traceback); 3 a stage failed on valid input (stage and position named).
@@ -23,7 +23,7 @@ app = typer.Typer(
           "Start with `tmm new full` (a commented task), `tmm fields` (every task-file field) and "
           "`tmm run TASK.yaml`.\n\n"
           "Exit codes: 0 success; 1 answers outside tolerance; 2 invalid task; 3 a stage failed."),
-    no_args_is_help=True,
+    invoke_without_command=True,
     add_completion=False,
     pretty_exceptions_enable=False,
     rich_markup_mode=None,
@@ -31,6 +31,23 @@ app = typer.Typer(
 
 EXIT_OK, EXIT_ANSWERS, EXIT_INVALID, EXIT_STAGE = 0, 1, 2, 3
 FORMATS = {"json", "html", "pdf"}
+
+
+def _version(value: bool) -> None:
+    if value:
+        from . import __version__
+        typer.echo(f"tmm {__version__}")
+        raise typer.Exit(EXIT_OK)
+
+
+@app.callback()
+def _root(ctx: typer.Context,
+          version: bool = typer.Option(False, "--version", callback=_version, is_eager=True,
+                                       help="print the version and exit")) -> None:
+    # `tmm` with no command: the help, and success (it is what the user asked for)
+    if ctx.invoked_subcommand is None:
+        typer.echo(ctx.get_help())
+        raise typer.Exit(EXIT_OK)
 
 
 def _err(msg: str) -> None:
@@ -96,7 +113,7 @@ def write_outputs(task, results: dict, out: Path, formats: set[str], lang: str,
 
 @app.command()
 def run(
-    task_file: Path = typer.Argument(..., metavar="TASK.yaml", help="the task file (SPEC 1)"),
+    task_file: Path = typer.Argument(..., metavar="TASK.yaml", help="the task file (README: The task file)"),
     out: Optional[Path] = typer.Option(None, "--out", "-o", help="output folder (default: out/<task name>/)"),
     format: str = typer.Option("json,html,pdf", "--format", "-f",
                                help="comma-separated outputs: json, html, pdf (results.json is always written)"),
@@ -270,8 +287,9 @@ def fields(section: Optional[str] = typer.Argument(None, help="only this section
     t.add_column("field", overflow="fold")
     t.add_column("default", overflow="fold")
     t.add_column("meaning", overflow="fold")
+    from rich.markup import escape      # '[x, y]' in a meaning is text, not Rich markup
     for path, default, text in rows:
-        t.add_row(path, default, text)
+        t.add_row(escape(path), escape(default), escape(text))
     Console().print(t)
 
 

@@ -1,12 +1,12 @@
 """Loads on the links of a linkage, evaluated at the computed positions.
 
 ``evaluate(mech, loads_section, kin, positions, *, inertia=True) -> Loads`` turns
-the task's ``loads`` section (SPEC 1) into per-position applied forces (link,
+the task's ``loads`` section (README, *loads*) into per-position applied forces (link,
 point of application, force vector) and couples (link, moment), all (N,)-arrays
 over the positions of ``kin``:
 
 * gravity (``gravity: true``): G_i = m_i g along -y at S_i, g = 9.81 m/s^2;
-* inertia loads (d'Alembert, METHODS 3): F_in = -m a_S at S_i, M_in = -J_S eps_i;
+* inertia loads (d'Alembert, docs/methods.md §3.1): F_in = -m a_S at S_i, M_in = -J_S eps_i;
 * task forces. A force acts along the guide of a slider (unit vector e along the
   guide direction) or along ``direction`` (deg from +x, absolute) on any link; a bar
   with a resistance/driving force and no ``direction`` gets the force along the
@@ -41,7 +41,7 @@ over the positions of ``kin``:
   ``switch_angles(mech, loads_section, positions)`` gives the crank angles of such
   jumps inside a stroke, which the pipeline adds as extra positions.
 
-All of this follows METHODS 3 and, where it is silent, Artobolevsky's and Popov's
+All of this follows docs/methods.md §3.1 and, where it is silent, Artobolevsky's and Popov's
 textbooks (force of production resistance acting against the motion of the
 working member over the working stroke given by its diagram over the stroke).
 """
@@ -250,6 +250,47 @@ def cycle_angle(phi, phi0: float, sign: float, cycle: float) -> np.ndarray:
     return np.where(q > cycle - _SNAP, 0.0, q)
 
 
+def _stroke_dependent(sp) -> bool:
+    """A load that depends on a stroke: a `kind` or a `stroke`, and not a phi diagram."""
+    return ((sp.kind is not None or "stroke" in sp.model_fields_set)
+            and not (sp.diagram is not None and sp.diagram.phi is not None))
+
+
+def load_stroke(positions, lk, sp, k: int):
+    """The stroke a stroke-dependent load follows (docs/methods.md §3.3): a slider's own
+    (its extremes, stroke H and working sense: the load's `working`, default
+    positions.working, along its own guide); for a bar, the output's. ``positions``
+    without ``stroke_for`` (a bare stand-in) is the stroke itself."""
+    working = getattr(sp, "working", None)
+    if lk.kind != "slider":
+        if working is not None:
+            raise _field_error(f"loads.forces[{k}].working", f"`working` sets the stroke of a slider; "
+                                                            f"'{lk.name}' is not a slider")
+        return positions
+    if not hasattr(positions, "stroke_for"):
+        return positions
+    return positions.stroke_for(lk.name, working)
+
+
+def slider_strokes(mech, loads_section, positions) -> dict:
+    """The own strokes of the loaded sliders other than the output (name -> Stroke; a
+    slider loaded in both senses: 'name (forward)' and 'name (backward)'), for the results."""
+    found = []
+    for k, sp in enumerate(getattr(loads_section, "forces", []) or []):
+        try:
+            lk = mech.link(sp.on)
+        except KeyError:
+            continue
+        if not (_stroke_dependent(sp) and lk.kind == "slider" and hasattr(positions, "stroke_for")):
+            continue
+        st = load_stroke(positions, lk, sp, k)
+        if (st.link, st.working) != (positions.output, positions.working) and \
+                all((s.link, s.working) != (st.link, st.working) for s in found):
+            found.append(st)
+    names = [s.link for s in found]
+    return {(s.link if names.count(s.link) == 1 else f"{s.link} ({s.working})"): s for s in found}
+
+
 def evaluate(mech, loads_section, kin, positions=None, *, inertia: bool = True,
              cycle: float | None = None) -> Loads:
     """Per-position loads of the mechanism (see the module docstring). ``cycle``: 360 or
@@ -279,15 +320,10 @@ def evaluate(mech, loads_section, kin, positions=None, *, inertia: bool = True,
     if loads_section is None:
         return out
     specs = list(getattr(loads_section, "forces", []) or [])
-    need_stroke = any(
-        (sp.kind is not None or "stroke" in sp.model_fields_set)
-        and not (sp.diagram is not None and sp.diagram.phi is not None) for sp in specs)
-    if need_stroke:
-        if positions is None:
-            raise StageError("loads", "loads given over a stroke need the positions (extreme positions)")
-        working, s_rel = stroke_states(positions, phi)
-    else:
-        working, s_rel = np.ones(n, bool), np.zeros(n)
+    need_stroke = any(_stroke_dependent(sp) for sp in specs)
+    if need_stroke and positions is None:
+        raise StageError("loads", "loads given over a stroke need the positions (extreme positions)")
+    no_stroke = (np.ones(n, bool), np.zeros(n))
     phi0 = float(getattr(positions, "phi0", 0.0)) if positions is not None else 0.0
     sign = _drive_sign(positions, kin) if positions is not None else (1.0 if w[0] >= 0 else -1.0)
     cycle = _cycle(loads_section, positions, cycle)
@@ -298,6 +334,10 @@ def evaluate(mech, loads_section, kin, positions=None, *, inertia: bool = True,
             names = ", ".join(l.name for l in mech.links)
             raise _field_error(f"loads.forces[{k - 1}].on", f"no link named '{sp.on}' (links: {names})") from None
         stroke_given = "stroke" in sp.model_fields_set
+        if need_stroke and _stroke_dependent(sp):
+            working, s_rel = stroke_states(load_stroke(positions, lk, sp, k - 1), phi)
+        else:
+            working, s_rel = no_stroke
         if sp.kind is None and not stroke_given:
             active = np.ones(n, bool)
         elif sp.stroke == "both":
@@ -396,20 +436,35 @@ def _curve(sp, scale: float) -> dict:
 
 # ------------------------------------------------------------------ switch angles
 def switch_angles(mech, loads_section, positions) -> list[float]:
-    """Crank angles in [0, 360) where a task load jumps inside a stroke (a repeated
-    abscissa of an s- or phi-diagram), found to 1e-9 deg."""
+    """Crank angles in [0, 360) where a task load switches: where it jumps inside a stroke
+    (a repeated abscissa of an s- or phi-diagram), found to 1e-9 deg, and the extreme
+    positions of every slider other than the output that carries a stroke-dependent load
+    (where its own strokes begin and end, docs/methods.md §3.3)."""
     if loads_section is None:
         return []
     from scipy.optimize import brentq
 
     out: list[float] = []
     phi0 = float(getattr(positions, "phi0", 0.0))
-    ext = getattr(positions, "extreme", None)
-    start = float(ext[0]) if ext else phi0          # the working stroke begins here
     sign = _drive_sign(positions)
     cycle = _cycle(loads_section, positions, None)
-    wa = getattr(positions, "working_stroke_angle", None)
-    for sp in getattr(loads_section, "forces", []) or []:
+    output_ext = [float(a) for a in (getattr(positions, "extreme", None) or [])]
+    for k, sp in enumerate(getattr(loads_section, "forces", []) or []):
+        src = positions
+        if _stroke_dependent(sp) and mech is not None:
+            try:
+                lk = mech.link(sp.on)
+            except KeyError:
+                lk = None
+            if lk is not None:
+                src = load_stroke(positions, lk, sp, k)
+        ext = getattr(src, "extreme", None)
+        start = float(ext[0]) if ext else phi0          # the working stroke begins here
+        wa = getattr(src, "working_stroke_angle", None)
+        if src is not positions and ext:
+            # a slider's own extremes: its load switches there (stroke, s/H from 0)
+            out.extend(float(a) for a in ext
+                       if all(abs(((a - b) + 180.0) % 360.0 - 180.0) > 1e-9 for b in output_ext))
         d = sp.diagram
         if d is None:
             continue
@@ -432,8 +487,8 @@ def switch_angles(mech, loads_section, positions) -> list[float]:
             lo, hi = (0.0, float(wa)) if stroke == "working" else (float(wa), 360.0)
             eps = 1e-7
 
-            def s_at(t):
-                wk, s = stroke_states(positions, np.array([(start + sign * t) % 360.0]))
+            def s_at(t, src=src, start=start):
+                wk, s = stroke_states(src, np.array([(start + sign * t) % 360.0]))
                 return float(s[0])
 
             for x in jumps:

@@ -1,5 +1,5 @@
 """The pipeline: run every stage whose section is present, in order, and assemble
-the results.json dict (SPEC 3). Stages are pure functions; this module only wires
+the results.json dict (README, *results.json*). Stages are pure functions; this module only wires
 them together. Nothing here writes files.
 """
 from __future__ import annotations
@@ -48,7 +48,7 @@ def run(task: Task, *, progress: Callable[[str], None] | None = None,
     """
     results: dict[str, Any] = {"schema": SCHEMA, "task": {"title": task.title, "variant": task.variant,
                                                           "file": task.file}}
-    warnings: list[str] = []
+    warnings: list[str] = list(task.input_warnings)
     results["warnings"] = warnings
     say = progress or (lambda s: None)
     # independent parts: a failure of one is recorded and the others still run
@@ -83,7 +83,7 @@ def run(task: Task, *, progress: Callable[[str], None] | None = None,
         if task.dof2 is not None:
             part(simple("dof2", "dof2", "analyze", task.dof2, keep_warnings=True))
     except TaskError as err:
-        # a stage found an invalid field: name the file and the field's line (SPEC 2)
+        # a stage found an invalid field: name the file and the field's line (exit 2)
         raise task.locate(err) from None
     # de-duplicate warnings, keep order
     seen = set()
@@ -126,6 +126,10 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int) -> No
     positions = _stage("positions")(kinematics.find_positions)(mech, pos_section, task.drive,
                                                                 extra_added=extra_added)
     results["positions"] = positions.to_dict()
+    if task.loads is not None:      # each loaded slider's own stroke (docs/methods.md §3.3)
+        strokes = loads_mod.slider_strokes(mech, task.loads, positions)
+        if strokes:
+            results["positions"]["strokes"] = {k: s.to_dict() for k, s in strokes.items()}
 
     say("kinematics")
     omega1 = task.drive.omega1

@@ -1,4 +1,4 @@
-"""The results file (SPEC 3): JSON with plain numbers, NaN/inf never written."""
+"""The results file (README, *results.json*; docs/methods.md §8): JSON with plain numbers, NaN/inf never written."""
 from __future__ import annotations
 
 import json

@@ -1,4 +1,4 @@
-"""Structural analysis of a planar linkage (METHODS 1).
+"""Structural analysis of a planar linkage (docs/methods.md §1).
 
 * Chebyshev's formula W = 3n - 2 p5 - p4 (n moving links, p5 lower pairs: one per
   :class:`~tmm_cli.mechanism.Joint`, p4 = 0 higher pairs).
@@ -113,6 +113,31 @@ def _fail(task, msg: str):
     if task is not None:
         return task.error(("mechanism",), msg)
     return StageError("structure", msg)
+
+
+def _pair_points(lk) -> list[str]:
+    """The points of a link that are meant as pairs: a bar's two ``points``, a slider's pin
+    (a link's ``local`` lists them first, then its ``extra`` points)."""
+    return list(lk.local)[:2 if lk.kind == "bar" else 1]
+
+
+def _lonely_pair_points(mech: Mechanism) -> list[tuple[str, str]]:
+    """(link name, message) for every pair point that only one link uses -- a typo such as
+    ``[E, D]`` for ``[C, D]``: 'point E is used by link4 only: a pair needs two links --
+    did you mean C?' (C: a point of another link that no second link uses either)."""
+    import difflib
+
+    def lonely_of(lk, points):
+        return [p for p in points if mech.owner.get(p, []) == [lk.index]]
+
+    out = []
+    for lk in mech.links:
+        for p in lonely_of(lk, _pair_points(lk)):
+            others = [q for o in mech.links if o.index != lk.index for q in lonely_of(o, o.local)]
+            guess = difflib.get_close_matches(p, others, n=1, cutoff=0.5) or (others if len(others) == 1 else [])
+            hint = f" — did you mean {guess[0]}?" if guess else ""
+            out.append((lk.name, f"point {p} is used by {lk.name} only: a pair needs two links{hint}"))
+    return out
 
 
 def _connected(nodes: set[int], edges: list[Joint]) -> bool:
@@ -272,6 +297,13 @@ def analyze(mech: Mechanism, task=None) -> StructureResult:
                        f"attached to the crank '{names[drive]}' (passive constraints and idle freedoms "
                        f"cancel in Chebyshev's formula?)")
         why.extend(w for w in warnings if "passive" in w and w not in why)
+        lonely = _lonely_pair_points(mech)
+        if lonely:      # a typo in a point name: say that first, the count follows from it
+            (first_link, _), *_ = lonely
+            msg = "; ".join([m for _, m in lonely] + why)
+            if task is not None:
+                raise task.error(("mechanism", "links", first_link), msg)
+            raise StageError("structure", msg)
         raise _fail(task, "; ".join(why))
 
     klass = max([1] + [g.klass for g in groups])

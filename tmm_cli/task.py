@@ -1,6 +1,6 @@
 """The task model: one variant of the course project, validated once.
 
-Pydantic models for every section of SPEC 1. Quantities are converted to SI floats
+Pydantic models for every section of the task file (README, *The task file*). Quantities are converted to SI floats
 (angles in degrees) at validation. Unknown keys are errors with a "did you mean".
 :func:`load_task` reads a YAML file (or a dict) and raises :class:`TaskError` naming
 the file, line, column and field of every problem.
@@ -192,6 +192,7 @@ class ForceSpec(_Model):
     on: str = Field(..., description="the link the load acts on")
     kind: Literal["resistance", "driving"] | None = None
     stroke: Literal["working", "idle", "both"] = "working"
+    working: Literal["forward", "backward"] | None = None
     magnitude: ForceOrPressure | None = None
     diagram: DiagramSpec | None = None
     area: Area | None = Field(None, gt=0)
@@ -207,6 +208,12 @@ class ForceSpec(_Model):
                              + (f"; got {', '.join(given)}" if given else ""))
         if self.diagram is not None and self.diagram.phi is not None and self.kind is not None:
             pass
+        for name in ("magnitude", "moment"):
+            v = getattr(self, name)
+            if self.kind is not None and v is not None and v < 0:
+                raise FieldValueError((name,), f"`{name}` of a `kind: {self.kind}` load is its size and must "
+                                      f"not be negative (got {v:g}); the sense comes from `kind` "
+                                      f"({'against' if self.kind == 'resistance' else 'along'} the motion)")
         return self
 
 
@@ -421,12 +428,13 @@ class Task(_Model):
     gears: GearsSection | None = None
     planetary: PlanetarySection | None = None
     dof2: Dof2Section | None = Field(None, description="a machine with two degrees of freedom: rotor + hinged "
-                                                       "striker (METHODS 7; runs on its own)")
+                                                       "striker (docs/methods.md §7; runs on its own)")
     answers: dict[str, float] = Field(default_factory=dict)
     tolerance: dict[str, Annotated[Ratio, Field(ge=0)]] = Field(default_factory=dict)
 
     _file: str | None = PrivateAttr(None)
     _marks: dict = PrivateAttr(default_factory=dict)
+    _input_warnings: list = PrivateAttr(default_factory=list)
 
     @field_validator("schema_", mode="before")
     @classmethod
@@ -451,6 +459,12 @@ class Task(_Model):
     @property
     def file(self) -> str | None:
         return self._file
+
+    @property
+    def input_warnings(self) -> list[str]:
+        """Warnings about valid but doubtful values (a plain number probably meant in
+        rpm or mm), found when the task was read."""
+        return list(self._input_warnings)
 
     @property
     def name(self) -> str:
@@ -545,6 +559,27 @@ def _issue_from_error(err: dict, marks: dict) -> tuple[str, int | None, int | No
     return _dotted(path), line, col, msg
 
 
+def _decimal_comma_issues(issues: list, file: str | None, text: str | None) -> list:
+    """An issue on a line holding a number with a decimal comma (``[0,38, 0,12]``, very
+    common in the course's countries) says so: 'use a decimal point: 0.38'."""
+    if file is None and text is None:
+        return issues
+    from .yamlload import decimal_comma_hint
+    try:
+        lines = (text if text is not None else Path(file).read_text(encoding="utf-8")).splitlines()
+    except (OSError, UnicodeDecodeError):
+        return issues
+    out, hinted = [], set()
+    for fld, line, col, msg in issues:
+        hint = decimal_comma_hint(lines[line - 1]) if line and 0 < line <= len(lines) else None
+        if hint is None:
+            out.append((fld, line, col, msg))
+        elif line not in hinted:        # one message per line: the split number's pieces
+            hinted.add(line)            # give several errors
+            out.append((fld, line, col, hint))
+    return out
+
+
 def load_task(source: Union[str, Path, dict], *, text: str | None = None) -> Task:
     """Read and validate a task. ``source`` is a path to a YAML file or a dict of the
     same shape. Raises :class:`TaskError` with file, line and field of every problem."""
@@ -568,9 +603,12 @@ def load_task(source: Union[str, Path, dict], *, text: str | None = None) -> Tas
                 continue
             seen.add(issue[0:1] + issue[3:])
             issues.append(issue)
+        issues = _decimal_comma_issues(issues, file, text)
         raise TaskError("invalid task", file=file, issues=issues) from None
     task._file = file
     task._marks = marks
+    from .input_notices import plain_number_warnings
+    task._input_warnings = plain_number_warnings(Task, data)
     return task
 
 
@@ -611,6 +649,8 @@ _DOCS: dict[type, dict[str, str]] = {
     ForceSpec: {
         "kind": "resistance (against the motion) | driving (along it); none: a signed force",
         "stroke": "working | idle | both (default working)",
+        "working": "a load on a slider: forward | backward, the sense of that slider's own working stroke along "
+                   "its guide (default positions.working); every loaded slider has its own stroke",
         "magnitude": "constant force, N (or a pressure with `area`)",
         "diagram": "{s: [...], value: [...]} over the relative stroke, or {phi: [...], value: [...]} over the "
                    "crank angle from position 0",

@@ -65,6 +65,9 @@ def check_magnitude(v: float) -> float:
     return v
 
 
+_DECIMAL_COMMA = re.compile(r"([-+]?\d+),(\d+)(?![\d,])")
+
+
 def convert(value: Any, kind: str) -> float:
     """Convert a task value of the given field kind to a float in the base unit."""
     unit, words = KINDS[kind]
@@ -75,6 +78,9 @@ def convert(value: Any, kind: str) -> float:
     if not isinstance(value, str):
         raise ValueError(f"expected {words}, got {type(value).__name__}")
     text = value.strip()
+    comma = _DECIMAL_COMMA.match(text)
+    if comma:   # pint would read '3,5 mm' as 35 mm
+        raise ValueError(f"use a decimal point: {comma.group(1)}.{comma.group(2)}, not '{comma.group(0)}'")
     m = _FRACTION.match(text)
     if m:
         den = float(m.group(2))

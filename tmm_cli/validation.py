@@ -22,10 +22,50 @@ def check_feasible(task, assembly: bool = True) -> None:
         raise impossible_dimensions(task, err) or err
 
 
+MM_RATIO = (50.0, 5000.0)     # a length this many times the others was meant in mm
+
+
+def millimetre_suspects(task) -> list[tuple[tuple, str]]:
+    """(field path, message) for each length of the linkage (a bar's length, a ground
+    point's distance from the crank's pivot) that is 100-1000 times the others, i.e.
+    probably meant in millimetres and given as a plain number in metres."""
+    import statistics
+
+    sec = task.mechanism
+    items: list[tuple[tuple, str, float]] = []
+    for name, spec in sec.links.items():
+        if spec.kind == "bar" and spec.length:
+            items.append((("mechanism", "links", name, "length"), f"the length of '{name}'", float(spec.length)))
+    ground = list(sec.ground.items())
+    if len(ground) > 1:
+        x0, y0 = ground[0][1]
+        for g, (x, y) in ground[1:]:
+            d = ((x - x0) ** 2 + (y - y0) ** 2) ** 0.5
+            if d > 0:
+                items.append((("mechanism", "ground", g), f"ground point {g} (at {d:g} m from {ground[0][0]})", d))
+    out = []
+    for k, (path, what, v) in enumerate(items):
+        others = [w for j, (_, _, w) in enumerate(items) if j != k]
+        if len(others) < 2:
+            continue
+        ratio = v / statistics.median(others)
+        if MM_RATIO[0] <= ratio <= MM_RATIO[1]:
+            out.append((path, f"{what}, {v:g} m, is {ratio:.0f} times the other lengths "
+                              f"({min(others):g}..{max(others):g} m): probably meant in millimetres "
+                              f"(write '{v:g} mm')"))
+    return out
+
+
 def impossible_dimensions(task, err):
     """A kinematics StageError for a group that assembles at no crank angle at all means
     the dimensions are impossible: that is an invalid task (exit 2), pointing at the
-    group's first link. Returns the TaskError, or None for a partial failure."""
+    group's first link. So is a linkage that does not assemble because one length is
+    100-1000 times the others (meant in millimetres): the message says so and points at
+    that length. Returns the TaskError, or None for a partial failure."""
+    mm = millimetre_suspects(task)
+    if mm:
+        path, msg = mm[0]
+        return task.error(path, f"{msg}; the linkage does not assemble: {err.message}")
     names = getattr(err, "never_assembles", None)
     if not names:
         return None

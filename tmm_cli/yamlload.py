@@ -1,8 +1,8 @@
 """YAML reading with YAML 1.2 booleans and a map of field paths to line numbers.
 
 PyYAML's default resolver follows YAML 1.1, where ``on``, ``off``, ``yes``, ``no``
-become booleans (so the key ``on:`` of a force would turn into ``True``). SPEC 1
-requires YAML 1.2 booleans: only ``true``/``false`` (any case form the 1.2 core
+become booleans (so the key ``on:`` of a force would turn into ``True``). The task
+file uses YAML 1.2 booleans: only ``true``/``false`` (any case form the 1.2 core
 schema allows). Sexagesimal numbers (``1:30``) and other 1.1-only forms stay strings.
 Duplicate keys are errors.
 
@@ -192,6 +192,31 @@ def _dotted(path: tuple) -> str:
     return out
 
 
+def _tab_indented_line(text: str) -> int | None:
+    """The first line (1-based) whose indentation holds a tab, or None."""
+    for i, line in enumerate(text.splitlines(), 1):
+        indent = line[:len(line) - len(line.lstrip(" \t"))]
+        if "\t" in indent and line.strip():
+            return i
+    return None
+
+
+_DECIMAL_COMMA = re.compile(r"(?<![\w.,])(-?\d+),(\d+)(?![\d.])")
+
+
+def decimal_comma_hint(line: str) -> str | None:
+    """'use a decimal point: 0.38' when a line (outside its comment) holds a number
+    written with a decimal comma such as ``0,38``, else None."""
+    code = line.split("#", 1)[0]
+    m = _DECIMAL_COMMA.search(code)
+    if m is None:
+        return None
+    if ("[" in code or "{" in code) and not re.search(r",\s", code):
+        return None     # a compact list such as [12,42,7]: commas without spaces throughout
+    return (f"use a decimal point: {m.group(1)}.{m.group(2)} (YAML reads '{m.group(0)}' as two "
+            f"numbers or as text)")
+
+
 def load_yaml(source: str | Path, *, text: str | None = None) -> tuple[Any, dict]:
     """Read a YAML file. Returns ``(data, marks)`` where ``marks`` maps a field path
     (tuple of keys and indices) to ``(line, column)``, 1-based."""
@@ -212,6 +237,11 @@ def load_yaml(source: str | Path, *, text: str | None = None) -> tuple[Any, dict
         raise TaskError("refused", file=file, issues=[(
             _dotted(exc.field), exc.mark.line + 1, exc.mark.column + 1, exc.message)]) from None
     except yaml.MarkedYAMLError as exc:
+        tab = _tab_indented_line(text)
+        if tab is not None:
+            raise TaskError("YAML syntax error", file=file, issues=[(
+                "", tab, 1, "use spaces for indentation: this line is indented with a tab, "
+                            "which YAML does not allow")]) from None
         mark = exc.problem_mark or exc.context_mark
         line = mark.line + 1 if mark else None
         col = mark.column + 1 if mark else None

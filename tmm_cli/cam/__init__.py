@@ -1,4 +1,4 @@
-"""Cam mechanism stage (METHODS 5): motion laws, smallest cam, profile by inverted motion.
+"""Cam mechanism stage (docs/methods.md §5): motion laws, smallest cam, profile by inverted motion.
 
 Public API::
 

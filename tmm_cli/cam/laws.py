@@ -1,4 +1,4 @@
-"""Follower motion laws of a cam mechanism (METHODS 5).
+"""Follower motion laws of a cam mechanism (docs/methods.md §5).
 
 Every law is a dimensionless function of the phase fraction ``x`` in [0, 1]:
 ``f(x)`` goes from 0 to 1 and its derivatives ``f'``, ``f''``, ``f'''`` are taken

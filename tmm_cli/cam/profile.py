@@ -1,4 +1,4 @@
-"""Cam profile by inverted motion (METHODS 5).
+"""Cam profile by inverted motion (docs/methods.md §5).
 
 The whole mechanism is given the rotation -omega of the cam: the cam stands still and
 the frame with the follower turns about O by -phi (phi in the direction of rotation).

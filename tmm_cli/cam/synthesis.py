@@ -4,7 +4,7 @@ Entry point :func:`synthesize` takes any object with the attributes of the task'
 section (SI floats, angles in degrees; see ``docs/ARCHITECTURE.md``) and returns a
 :class:`CamResult` whose ``to_dict()`` is the results.json ``cam`` section.
 
-Method (METHODS 5; Artobolevsky, Popov & Timofeev, Frolov):
+Method (docs/methods.md §5; Artobolevsky, Popov & Timofeev, Frolov):
 
 * the motion laws give s, ds/dphi, d2s/dphi2 over the cycle (:mod:`.laws`, :mod:`.motion`);
 * the pressure-angle limits on the rise and on the return define half-planes of
@@ -21,7 +21,7 @@ Conventions of the results: lengths in metres, angles in degrees.  Frame of the 
 cam centre O at the origin, the cam's frame coinciding with the fixed frame at phi = 0;
 the roller centre starts the rise moving in +y (translating follower: its axis is
 vertical, x = offset * (+1 for a ccw cam, -1 for cw)).  ``offset`` is positive on the side
-that lowers the rise pressure angle (SPEC).  For a rocker, ``s`` is the rocker's turn from
+that lowers the rise pressure angle (docs/methods.md §5).  For a rocker, ``s`` is the rocker's turn from
 its initial position in degrees, ``ds`` = dpsi/dphi (rad/rad), ``d2s`` in 1/rad, and with
 a speed ``v``, ``a``, ``jerk`` are the rocker's angular velocity (rad/s), acceleration and
 jerk.

@@ -1,10 +1,10 @@
-"""Machines with two degrees of freedom (METHODS 7): the rotary impact mechanism.
+"""Machines with two degrees of freedom (docs/methods.md §7): the rotary impact mechanism.
 
 A rotor O-O1 turns about the fixed point O; a striker O1-M is hinged to it at O1
 (a double pendulum).  Its motion follows Lagrange's equations of the second kind in
 the generalised coordinates phi (rotor) and psi (striker relative to the rotor);
 the dynamic reactions in O and O1 follow from the theorem on the motion of the centre
-of mass of each link (after V.V. Voronkin, reference/rotary-impact-mechanism-ocr.txt).
+of mass of each link (after V.V. Voronkin, docs/methods.md §10).
 
 * :class:`Dof2Section` -- the task section ``dof2:`` (spec.py);
 * :func:`analyze` ``(section) -> Dof2Result``; ``Dof2Result.to_dict()`` is the

@@ -1,6 +1,6 @@
-"""Equations of motion and dynamic reactions of the rotary impact mechanism (METHODS 7).
+"""Equations of motion and dynamic reactions of the rotary impact mechanism (docs/methods.md §7).
 
-Derivation (re-derived after V.V. Voronkin, reference/rotary-impact-mechanism-ocr.txt;
+Derivation (re-derived after V.V. Voronkin, docs/methods.md §10;
 Lagrange's equations of the second kind as in Artobolevsky's and Frolov's textbooks).
 Generalised coordinates q = (phi, psi); theta = phi + psi is the absolute angle of
 the striker (direction O1 -> M).  With e(a) = (cos a, sin a) and n(a) = (-sin a, cos a):
@@ -41,7 +41,7 @@ import numpy as np
 
 from ..errors import StageError
 
-G_ACC = 9.81  # m/s^2, as in loads (SPEC 1: g = 9.81 along -y)
+G_ACC = 9.81  # m/s^2, as in loads (docs/methods.md §3.1: g = 9.81 along -y)
 
 
 @dataclass(frozen=True)

@@ -1,16 +1,16 @@
-"""The task section ``dof2:`` -- a machine with two degrees of freedom (METHODS 7):
+"""The task section ``dof2:`` -- a machine with two degrees of freedom (docs/methods.md §7):
 the rotary impact mechanism (a rotor O-O1 turning about the fixed point O with a
 striker hinged at O1), which is also a double pendulum.
 
-Conventions (SPEC: SI units, angles in degrees, ccw positive):
+Conventions (docs/methods.md §8: SI units, angles in degrees, ccw positive):
 
 * ``phi`` -- the rotor angle: the direction O -> O1 from +x, ccw.
 * ``psi`` -- the striker angle relative to the rotor: the direction O1 -> M
   minus the direction O -> O1 (so ``psi = 0`` is the striker stretched out along
   the rotor, the stable position of the centrifugal pendulum).  The paper
-  (reference/rotary-impact-mechanism-ocr.txt, V.V. Voronkin) measures its psi_i
+  (V.V. Voronkin, docs/methods.md §10) measures its psi_i
   from the direction O1 -> O: psi_paper = psi - 180 deg.
-* Link numbers for the reactions (SPEC 3): ground 0, rotor 1, striker 2.
+* Link numbers for the reactions (docs/methods.md §7): ground 0, rotor 1, striker 2.
 
 Example::
 
@@ -196,7 +196,7 @@ class ImpactSpec(_Model):
 
 
 class Dof2Section(_Model):
-    """A machine with two degrees of freedom: rotor + hinged striker (METHODS 7)."""
+    """A machine with two degrees of freedom: rotor + hinged striker (docs/methods.md §7)."""
 
     rotor: RotorSpec = Field(..., description="link 1: {length, mass, com, J or J_O}")
     striker: StrikerSpec = Field(..., description="link 2: {length (to M), com (l_c), mass, J (about C)}")

@@ -1,4 +1,4 @@
-"""Dynamics of the machine and the flywheel (METHODS 4).
+"""Dynamics of the machine and the flywheel (docs/methods.md §4).
 
 Public API:
     analyze(mech, kin_fn, loads_fn, section, drive, *, phi0=0.0, switch_angles=(), accuracy=True)

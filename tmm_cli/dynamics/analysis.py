@@ -32,7 +32,7 @@ from .reduce import Sample, sample as sample_mech
 STAGE = "dynamics"
 EPS_DEG = 1e-5   # one-sided evaluation offset at a jump, deg (coarser than the loads' 1e-9 snapping)
 ACCURACY_RESOLUTIONS = (12, 24, 36, 72, 180, 360, 3600)
-METHODS = ("energy-mass", "merzalov", "exact")
+FLYWHEEL_METHODS = ("energy-mass", "merzalov", "exact")
 
 Sampler = Callable[[np.ndarray, np.ndarray], Sample]
 """sampler(q_deg, side) -> Sample: reduced quantities at the cycle angles q_deg (deg of
@@ -147,9 +147,9 @@ def solve_cycle(q: np.ndarray, M_given: np.ndarray, J_links: dict[str, np.ndarra
     link named 'mechanism'); J_extra: constant reduced inertia given in the task
     (flywheel.reduced_J); dJ_links: d/dq of each link's J_red (else finite differences).
     A link whose reduced inertia varies by less than const_tol of its maximum goes to
-    J_const (METHODS 4: crank, rotor, gears), the rest to J_var.
+    J_const (docs/methods.md §4: crank, rotor, gears), the rest to J_var.
     """
-    if method not in METHODS:
+    if method not in FLYWHEEL_METHODS:
         raise StageError(STAGE, f"unknown method {method!r}")
     q = np.asarray(q, float)
     if isinstance(J_links, np.ndarray) or not isinstance(J_links, dict):

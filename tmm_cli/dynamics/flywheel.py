@@ -1,4 +1,4 @@
-"""The flywheel on arrays: works, speed fluctuation and the three methods (METHODS 4).
+"""The flywheel on arrays: works, speed fluctuation and the three methods (docs/methods.md §4).
 
 Everything here works on one steady cycle sampled at nodes ``q`` (rad), the crank
 rotation from position 0 in the direction of motion, ``q[0] = 0``, ``q[-1]`` = the
@@ -7,7 +7,7 @@ limits of a load that jumps there): the trapezoid over that zero-width interval 
 nothing, so the works are exact for loads that are piecewise linear between nodes.
 
 Reduced moments are signed *along the motion* (positive = driving).  Reduced inertia
-is split (METHODS 4) into the constant part ``J_const`` (crank, rotor, gears, any link
+is split (docs/methods.md §4) into the constant part ``J_const`` (crank, rotor, gears, any link
 whose reduced inertia is constant) and the variable part ``J_var(q)`` of the other
 links, so ``J_red = J_const + J_var``.  ``J_n`` is the constant reduced inertia needed
 (the constant part that, added to ``J_var``, gives the required delta), and the
@@ -17,7 +17,7 @@ Kinetic energy at q: ``T(q) = T0 + dT(q)`` with ``dT = A_d - A_c``, the exact fi
 integral of the equation of motion ``J omega domega/dq + J' omega^2/2 = M_red``;
 ``omega = sqrt(2 T / (J_n + J_var))``.
 
-Methods (METHODS 4; where METHODS is silent: Artobolevsky, "Teoriya mekhanizmov i
+Methods (docs/methods.md §4; where it is silent: Artobolevsky, "Teoriya mekhanizmov i
 mashin", ch. on the motion of a machine; Popov & Timofeev; Frolov):
 
 * energy-mass, exact analytic form: ``omega_max,min = omega_m (1 +/- delta/2)``,
@@ -127,7 +127,7 @@ def _check(dT, J_var, omega_m, delta):
 
 
 def energy_mass(dT, J_var, omega_m: float, delta: float) -> tuple[float, float, float]:
-    """Exact analytic energy-mass (Wittenbauer) method: (J_n, a, b), METHODS 4."""
+    """Exact analytic energy-mass (Wittenbauer) method: (J_n, a, b), docs/methods.md §4."""
     dT, J_var = _check(dT, J_var, omega_m, delta)
     wmax = omega_m * (1 + delta / 2)
     wmin = omega_m * (1 - delta / 2)
@@ -146,7 +146,7 @@ def wittenbauer(dT, J_var, omega_m: float, delta: float) -> tuple[float, float, 
 
 
 def merzalov(dT, J_var, omega_m: float, delta: float) -> tuple[float, np.ndarray, np.ndarray]:
-    """Merzalov's method: (J_n, dT_I, T_II) with T_II = J_var omega_m^2/2, METHODS 4."""
+    """Merzalov's method: (J_n, dT_I, T_II) with T_II = J_var omega_m^2/2, docs/methods.md §4."""
     dT, J_var = _check(dT, J_var, omega_m, delta)
     T_II = J_var * omega_m**2 / 2
     dT_I = dT - T_II
@@ -305,7 +305,7 @@ def size(J: float, shape: str, density: float, width_ratio: float, omega_max: fl
     disk: solid disk, J = m D^2/8, width b = psi_b D, m = rho pi D^2/4 b, so
           D = (32 J/(pi rho psi_b))^(1/5); rim speed = omega_max D/2.
     rim:  thin rim of mean diameter D, J ~ m D^2/4, square section b = h = psi_b D
-          (METHODS gives only psi_b; the square section is the usual textbook choice),
+          (the course gives only psi_b; the square section is the usual textbook choice),
           m = rho pi D b h, so D = (4 J/(pi rho psi_b^2))^(1/5);
           rim speed at the outer radius omega_max (D + h)/2.
     """

@@ -1,4 +1,4 @@
-"""Reduced (to the crank) moment of forces and moment of inertia, METHODS 4.
+"""Reduced (to the crank) moment of forces and moment of inertia, docs/methods.md §4.
 
 With the analogues (kinematic transfer functions) ``d1_P = dr_P/dphi`` and
 ``a1_i = dtheta_i/dphi`` (phi = crank angle, ccw, rad):

@@ -1,4 +1,4 @@
-"""The gears stage: ``analyze(spec) -> GearResult`` (SPEC `gears`, METHODS 6).
+"""The gears stage: ``analyze(spec) -> GearResult`` (task section `gears`, docs/methods.md §6).
 
 ``spec`` is any object with ``m`` (metres), ``z`` (two ints), ``x`` (two floats or
 'auto'), ``alpha`` (deg, default 20), ``ha`` (1), ``c`` (0.25) and optionally ``rule``

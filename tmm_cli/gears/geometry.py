@@ -28,9 +28,9 @@ rho_f begins): rho_l = r sin a - h_l / sin a with h_l = (ha + c - x) m - rho_f (
 Checks (True = defect present):
   undercut      x < x_min, x_min = ha (z_min - z) / z_min with the course value of z_min:
                 2 ha / sin^2 a rounded to an integer as the textbooks do (17 for a = 20 deg,
-                ha = 1; 14 for ha = 0.8), METHODS 6.  The exact limit
+                ha = 1; 14 for ha = 0.8), docs/methods.md §6.  The exact limit
                 x_min_exact = (h_l / m) - z sin^2 a / 2 is reported beside it.
-  sharpening    sa < k m, k = 0.25 by default (METHODS: 0.25..0.3 m; 0.4 m is the usual
+  sharpening    sa < k m, k = 0.25 by default (docs/methods.md §6: 0.25..0.3 m; 0.4 m is the usual
                 value for case-hardened teeth: pass ``sa_min=0.4``).
   contact ratio eps < 1.2 (course minimum); eps < 1.1 (absolute minimum) adds a second warning.
   interference  the tip of one wheel reaches the other below the start of its involute
@@ -65,7 +65,7 @@ def z_min_course(alpha_rad: float, ha: float) -> int:
 
 
 def x_min_course(z, alpha_rad: float, ha: float):
-    """Course minimum shift ha (z_min - z) / z_min (METHODS 6: ha (17 - z)/17 at 20 deg)."""
+    """Course minimum shift ha (z_min - z) / z_min (docs/methods.md §6: ha (17 - z)/17 at 20 deg)."""
     zm = z_min_course(alpha_rad, ha)
     return ha * (zm - np.asarray(z, dtype=float)) / zm
 

@@ -1,4 +1,4 @@
-"""Kinematics of planar linkages (METHODS 0 and 2).
+"""Kinematics of planar linkages (docs/methods.md §0 and §2).
 
 Public API (docs/ARCHITECTURE.md)::
 

@@ -33,30 +33,47 @@ TOUCH_GRID = 1e-3   # |det| / max|det| below this at a local minimum: look for a
 TOUCH_ZERO = 1e-9   # ... and accept it when the refined minimum is below this
 
 
-def circle_zeros(grid: np.ndarray, g: np.ndarray, F) -> list[float]:
-    """Zeros in [0, 360) of a function of the crank angle, given its values ``g`` on
-    ``grid`` (0..360 deg, normalised so that max |g| = 1; NaN where it is undefined) and ``F(phi, start)`` its value
-    at ``phi`` evaluated continuously from ``start`` (a grid point next to ``phi``).
+ZERO_TOL = 1e-13    # |g| at or below this on the grid is a root (round-off of an exact zero)
+
+
+def circle_zeros(grid: np.ndarray, g: np.ndarray, F, *, zero_tol: float = ZERO_TOL) -> list[float]:
+    """Zeros in [0, 360) of a function of the crank angle that is periodic over the turn.
+
+    ``grid``: n + 1 angles from 0 to 360 deg; ``g``: the values there, normalised so
+    that max |g| = 1 (NaN where the function is undefined, e.g. a group that does not
+    assemble); ``F(phi, start)``: the value at ``phi`` evaluated continuously from
+    ``start`` (a grid point next to ``phi``). The value at 360 deg is the one at 0 deg,
+    so the interval that ends at 360 is bracketed with g(0), and a grid value within
+    ``zero_tol`` of zero is a root (at 0/360 the two round-off values may differ in sign,
+    as +1e-17 and -1e-17: neither a sign test nor an exact-zero test sees such a root).
     Sign changes are refined by Brent's method to 1e-10 deg; touching (double) zeros,
-    local minima of |g| without a sign change, by a bounded minimisation."""
+    local minima of |g| without a sign change (around 0 deg as well), by a bounded
+    minimisation (docs/methods.md §3.2)."""
     from scipy.optimize import brentq, minimize_scalar
 
-    n = len(grid) - 1
-    roots: list[float] = []
+    grid = np.asarray(grid, float)
+    n = grid.size - 1
+    step = grid[1] - grid[0]
+    gp = np.asarray(g, float)[:n]           # one period: the value at 360 is the one at 0
+    with np.errstate(invalid="ignore"):
+        zero = np.abs(gp) <= zero_tol      # (False where NaN)
+    roots: list[float] = [float(grid[i]) for i in np.flatnonzero(zero)]
     for i in range(n):
-        a0, a1 = grid[i], grid[i + 1]
-        if g[i] == 0.0:
-            roots.append(a0)
-        elif g[i] * g[i + 1] < 0:  # (False where either is NaN: a group that does not assemble there)
+        j = (i + 1) % n
+        if not zero[i] and not zero[j] and gp[i] * gp[j] < 0:   # False where either is NaN
+            a0, a1 = grid[i], grid[i + 1]
             try:
                 roots.append(brentq(F, a0, a1, args=(a0,), xtol=1e-10, rtol=4 * np.finfo(float).eps))
             except ValueError:  # F does not change sign as sampled: no root to refine
                 pass
-    ag = np.abs(g)
-    for i in range(1, n):
-        if ag[i] < ag[i - 1] and ag[i] <= ag[i + 1] and ag[i] < TOUCH_GRID and g[i - 1] * g[i + 1] > 0 \
-                and g[i - 1] * g[i] > 0:
-            res = minimize_scalar(lambda t: abs(F(t, grid[i - 1])), bounds=(grid[i - 1], grid[i + 1]),
+    ag = np.abs(gp)
+    for i in range(n):
+        im, ip = (i - 1) % n, (i + 1) % n
+        if zero[i] or not (ag[i] < ag[im] and ag[i] <= ag[ip] and ag[i] < TOUCH_GRID):
+            continue
+        if gp[im] * gp[ip] > 0 and gp[im] * gp[i] > 0:
+            lo = grid[i] - step
+            res = minimize_scalar(lambda t: abs(F(t, lo)), bounds=(lo, grid[i] + step),
                                   method="bounded", options={"xatol": 1e-10})
             if res.fun < TOUCH_ZERO:
                 roots.append(float(res.x))

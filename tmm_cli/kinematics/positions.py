@@ -1,4 +1,4 @@
-"""Positions of the course project (METHODS 0; SPEC ``positions``).
+"""Positions of the course project (docs/methods.md §0; task section ``positions``).
 
 The output link (``positions.output``, default the last link) has a coordinate s:
 
@@ -75,6 +75,72 @@ def _output_coordinate(mech: Mechanism, name: str):
 
 
 @dataclass
+class Stroke:
+    """The stroke of one link with extreme positions (the output, or any slider that
+    carries a stroke-dependent load, docs/methods.md §3.3): its extreme crank angles
+    [start, end] of the working stroke, its coordinate there, the working-stroke crank
+    angle and the sense of the drive."""
+    link: str
+    kind: str                        # 'slider' (s in m) | 'rocker' (angle in deg)
+    extreme: list[float]             # [start, end] of the working stroke, deg
+    s_extreme: list[float]           # coordinate at [start, end]
+    working_stroke_angle: float      # deg of crank rotation
+    sign: float                      # +1 ccw drive, -1 cw
+    working: str                     # 'forward' | 'backward'
+    _f: object = field(default=None, repr=False)
+
+    @property
+    def H(self) -> float:
+        return abs(self.s_extreme[1] - self.s_extreme[0])
+
+    def stroke_state(self, phi_deg) -> tuple[np.ndarray, np.ndarray]:
+        """For each crank angle: 'working' or 'idle', and s_rel in [0, 1], the link's
+        displacement from the start of the current stroke relative to the stroke H.
+        At the start extreme the working stroke applies, at the end extreme the idle."""
+        phi = np.atleast_1d(np.asarray(phi_deg, float))
+        rel = np.mod((phi - self.extreme[0]) * self.sign, 360.0)
+        rel = np.where(rel > 360.0 - 1e-9, 0.0, rel)
+        working = rel < self.working_stroke_angle - 1e-9
+        s, _ = self._f(phi)
+        s0, s1 = self.s_extreme
+        if self.kind == "rocker":
+            mid = 0.5 * (s0 + s1)
+            s = mid + (np.mod(s - mid + 180.0, 360.0) - 180.0)
+        span = s1 - s0
+        if abs(span) < 1e-300:
+            srel = np.zeros_like(s)
+        else:
+            srel = np.where(working, (s - s0) / span, (s - s1) / (-span))
+        srel = np.clip(srel, 0.0, 1.0) + 0.0
+        return np.where(working, "working", "idle"), srel
+
+    def to_dict(self) -> dict:
+        return {"extreme": [float(x) for x in self.extreme], "s_extreme": [float(x) for x in self.s_extreme],
+                "H": float(self.H), "working": self.working,
+                "working_stroke_angle": float(self.working_stroke_angle)}
+
+
+def _working_stroke(ext: list[tuple[float, float]], working: str, sign: float):
+    """(start, end, working-stroke crank angle) from the extremes (phi, s) of a link."""
+    i_min = min(range(len(ext)), key=lambda i: ext[i][1])
+    i_max = max(range(len(ext)), key=lambda i: ext[i][1])
+    start, end = (ext[i_min], ext[i_max]) if working == "forward" else (ext[i_max], ext[i_min])
+    return start, end, float(np.mod((end[0] - start[0]) * sign, 360.0))
+
+
+def link_stroke(mech: Mechanism, name: str, working: str, sign: float) -> Stroke | None:
+    """The stroke of link ``name`` (its own extremes, working toward increasing
+    coordinate for ``forward``), or None when it has no two extreme positions."""
+    kind, f = _output_coordinate(mech, name)
+    ext = _extremes(f, 360.0 if kind == "rocker" else None)
+    if len(ext) < 2:
+        return None
+    start, end, wsa = _working_stroke(ext, working, sign)
+    return Stroke(link=name, kind=kind, extreme=[start[0], end[0]], s_extreme=[start[1], end[1]],
+                  working_stroke_angle=wsa, sign=sign, working=working, _f=f)
+
+
+@dataclass
 class PositionsResult:
     phi: np.ndarray                  # reported crank angles, deg in [0, 360)
     index: np.ndarray                # position numbers
@@ -95,34 +161,44 @@ class PositionsResult:
     working: str
     extreme_index: int | None = None  # index of the position at the end of the working stroke
     _f: object = field(default=None, repr=False)
+    _mech: object = field(default=None, repr=False)
+    _strokes: dict = field(default_factory=dict, repr=False)
 
     def output_value(self, phi_deg) -> tuple[np.ndarray, np.ndarray]:
         """(s, ds/dphi) of the output at crank angles phi_deg (s: m or deg)."""
         return self._f(np.atleast_1d(np.asarray(phi_deg, float)))
 
+    def output_stroke(self) -> Stroke:
+        """The output link's stroke (positions.output, positions.working)."""
+        if self.extreme is None:
+            raise StageError("positions", f"the output link '{self.output}' has no extreme positions (it turns "
+                                          f"fully), so stroke-based loads cannot be placed")
+        return Stroke(link=self.output, kind=self.output_kind, extreme=list(self.extreme),
+                      s_extreme=list(self.s_extreme), working_stroke_angle=self.working_stroke_angle,
+                      sign=self.sign, working=self.working, _f=self._f)
+
     def stroke_state(self, phi_deg) -> tuple[np.ndarray, np.ndarray]:
         """For each crank angle: 'working' or 'idle', and s_rel in [0, 1], the output's
         displacement from the start of the current stroke relative to the stroke H.
         At the start extreme the working stroke applies, at the end extreme the idle."""
-        if self.extreme is None:
-            raise StageError("positions", f"the output link '{self.output}' has no extreme positions (it turns "
-                                          f"fully), so stroke-based loads cannot be placed")
-        phi = np.atleast_1d(np.asarray(phi_deg, float))
-        rel = np.mod((phi - self.extreme[0]) * self.sign, 360.0)
-        rel = np.where(rel > 360.0 - 1e-9, 0.0, rel)
-        working = rel < self.working_stroke_angle - 1e-9
-        s, _ = self.output_value(phi)
-        s0, s1 = self.s_extreme
-        if self.output_kind == "rocker":
-            mid = 0.5 * (s0 + s1)
-            s = mid + (np.mod(s - mid + 180.0, 360.0) - 180.0)
-        span = s1 - s0
-        if abs(span) < 1e-300:
-            srel = np.zeros_like(s)
-        else:
-            srel = np.where(working, (s - s0) / span, (s - s1) / (-span))
-        srel = np.clip(srel, 0.0, 1.0) + 0.0
-        return np.where(working, "working", "idle"), srel
+        return self.output_stroke().stroke_state(phi_deg)
+
+    def stroke_for(self, name: str, working: str | None = None) -> Stroke:
+        """The stroke of link ``name``: the output's own for the output link (unless
+        another ``working`` sense is asked for); for any other link its own extreme
+        positions and stroke, working in the sense ``working`` along its own coordinate
+        (default: ``positions.working``), docs/methods.md §3.3."""
+        working = working or self.working
+        if name == self.output and working == self.working:
+            return self.output_stroke()
+        key = (name, working)
+        if key not in self._strokes:
+            st = link_stroke(self._mech, name, working, self.sign) if self._mech is not None else None
+            if st is None:
+                raise StageError("positions", f"link '{name}' carries a load over its stroke but has no extreme "
+                                              f"positions, so the load cannot be placed")
+            self._strokes[key] = st
+        return self._strokes[key]
 
     def to_dict(self) -> dict:
         def f(x):
@@ -182,15 +258,9 @@ def find_positions(mech: Mechanism, positions_section=None, drive_section=None,
     ext = _extremes(f, 360.0 if kind == "rocker" else None)
     extreme = wsa = isa = K = theta = H = s_ext = None
     if len(ext) >= 2:
-        i_min = min(range(len(ext)), key=lambda i: ext[i][1])
-        i_max = max(range(len(ext)), key=lambda i: ext[i][1])
-        if sec.working == "forward":
-            start, end = ext[i_min], ext[i_max]
-        else:
-            start, end = ext[i_max], ext[i_min]
+        start, end, wsa = _working_stroke(ext, sec.working, sign)
         extreme = [start[0], end[0]]
         s_ext = [start[1], end[1]]
-        wsa = float(np.mod((end[0] - start[0]) * sign, 360.0))
         isa = 360.0 - wsa
         K = wsa / isa if isa > 0 else None
         theta = 180.0 * (K - 1) / (K + 1) if K is not None else None
@@ -229,4 +299,5 @@ def find_positions(mech: Mechanism, positions_section=None, drive_section=None,
     return PositionsResult(phi=phis_arr, index=np.arange(len(phis_arr)), kinds=kinds, phi0=float(phi0),
                            extreme=extreme, working_stroke_angle=wsa, idle_stroke_angle=isa, K=K, theta=theta,
                            output=out_name, output_kind=kind, H=H, s_extreme=s_ext, count=count,
-                           direction=direction, sign=sign, working=sec.working, extreme_index=extreme_index, _f=f)
+                           direction=direction, sign=sign, working=sec.working, extreme_index=extreme_index, _f=f,
+                           _mech=mech)

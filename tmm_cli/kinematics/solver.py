@@ -1,4 +1,4 @@
-"""Kinematics of a crank-driven planar linkage, group by group (METHODS 2).
+"""Kinematics of a crank-driven planar linkage, group by group (docs/methods.md §2).
 
 Positions: every class-II group in closed form (:mod:`.dyads`), any other group
 (class III and higher) by Newton's method on its loop-closure equations

@@ -1,4 +1,4 @@
-"""Kinetostatics (METHODS 3): reactions in the pairs and the balancing moment, by
+"""Kinetostatics (docs/methods.md §3): reactions in the pairs and the balancing moment, by
 three methods (group by group, Zhukovsky's lever / virtual power, the matrix of all
 equilibrium equations), singular positions of the chosen balance link, friction and
 the instantaneous efficiency.

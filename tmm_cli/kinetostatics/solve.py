@@ -1,6 +1,6 @@
 """The three force analyses of a linkage position by position (vectorised):
 
-* group by group (METHODS 3; Artobolevsky, Popov & Timofeev): from the last attached
+* group by group (docs/methods.md §3; Artobolevsky, Popov & Timofeev): from the last attached
   Assur group to the crank, each group's 3 equations per link in its unknown pair
   reactions, the reactions from later groups moved to the right-hand side; then the
   crank with the moment the drive applies to it. A balance link other than the crank

@@ -1,4 +1,4 @@
-"""Report section 'dof2' (METHODS 7): a machine with two degrees of freedom, the rotary
+"""Report section 'dof2' (docs/methods.md §7): a machine with two degrees of freedom, the rotary
 impact mechanism (rotor O-O1 + striker hinged at O1).  The scheme (at t = 0 and at the
 hit, with the paths of O1 and M), the parameters, the equations of motion (Lagrange's
 equations of the second kind), phi(t) and psi(t), the speeds, the dynamic reactions in

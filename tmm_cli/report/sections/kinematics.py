@@ -4,7 +4,7 @@ tables, tables of velocities/accelerations and angular velocities (with their
 sense in words), kinematic diagrams of the output link.  Writes
 ``kinematics.csv`` and ``plans.csv`` beside the report.
 
-Follows METHODS.md section 2; plan notation as in Artobolevsky / Popov &
+Follows docs/methods.md §2; plan notation as in Artobolevsky / Popov &
 Timofeev (pole p and pi, lower-case point letters, n - end of a normal
 component, k - end of the Coriolis acceleration).  Scales are chosen as
 students do: mu = v_A / pa with pa = 100 mm rounded *up* to a nice value

@@ -1,4 +1,4 @@
-"""Report section 'kinetostatics' (METHODS 3): conventions, the load diagrams with the
+"""Report section 'kinetostatics' (docs/methods.md §3): conventions, the load diagrams with the
 positions marked, tables of the balancing moment by the three methods, the reactions,
 the loads of every position and the efficiency, M_b and the reactions over the cycle,
 and for every position one page of drawings, one row per Assur group (from the last

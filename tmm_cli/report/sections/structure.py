@@ -1,7 +1,7 @@
 """Report section 'structure': Chebyshev's formula, the kinematic scheme at
 position 0, links and pairs, Assur groups, structure formula, class.
 
-Follows METHODS.md section 1 (Artobolevsky's classification)."""
+Follows docs/methods.md §1 (Artobolevsky's classification)."""
 from __future__ import annotations
 
 import numpy as np

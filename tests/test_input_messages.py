@@ -1,0 +1,177 @@
+"""Messages that send the user the right way: typos in point names, decimal commas, tabs,
+plain numbers probably meant in rpm or mm, a negative size of a resistance, and the
+command line's --version, bare `tmm` and `tmm fields`."""
+from __future__ import annotations
+
+import json
+import textwrap
+
+import pytest
+from typer.testing import CliRunner
+
+import tmm_cli
+from tmm_cli.cli import app
+
+runner = CliRunner()
+
+SIXBAR = """\
+schema: tmm/1
+mechanism:
+  ground:
+    O: [0, 0]
+    O1: [0.50, 0.37]
+  links:
+    crank:  {points: [O, A],  length: 0.15}
+    rod:    {points: [A, B],  length: 0.97}
+    rocker: {points: [O1, B], length: 0.66, extra: {C: [0.25, 0]}}
+    link4:  {points: [C, D],  length: 0.86}
+    slider: {slider: D, guide: {through: O1, angle: 90}}
+  assembly: {B: [0.9, 0.6]}
+drive: {link: crank, speed: 5, direction: ccw}
+"""
+
+
+def _validate(tmp_path, text):
+    f = tmp_path / "task.yaml"
+    f.write_text(textwrap.dedent(text), encoding="utf-8")
+    res = runner.invoke(app, ["validate", str(f)])
+    return res, str(f)
+
+
+def test_the_sixbar_itself_is_valid(tmp_path):
+    res, _ = _validate(tmp_path, SIXBAR)
+    assert res.exit_code == 0, res.output
+
+
+def test_point_used_by_one_link_is_named_before_the_dof_count(tmp_path):
+    res, f = _validate(tmp_path, SIXBAR.replace("points: [C, D]", "points: [E, D]"))
+    assert res.exit_code == 2
+    out = res.output
+    assert f"{f}:10:" in out and "mechanism.links.link4" in out
+    expected = "point E is used by link4 only: a pair needs two links — did you mean C?"
+    assert expected in out
+    assert out.index(expected) < out.index("W = 3")
+    assert "Traceback" not in out
+
+
+@pytest.mark.parametrize("line, bad, good, lineno", [
+    ("    O1: [0.50, 0.37]", "    O1: [0,50, 0,37]", "0.50", 5),          # four numbers, not two
+    ("    crank:  {points: [O, A],  length: 0.15}", "    crank:  {points: [O, A],  length: 0,15}",
+     "0.15", 7),                                                          # 'length: 0' and a key '15'
+    ("drive: {link: crank, speed: 5, direction: ccw}",
+     "drive:\n  link: crank\n  speed: 5,5 rad/s\n  direction: ccw", "5.5", 15),   # text
+])
+def test_decimal_comma(tmp_path, line, bad, good, lineno):
+    res, f = _validate(tmp_path, SIXBAR.replace(line, bad))
+    assert res.exit_code == 2, res.output
+    assert f"{f}:{lineno}:" in res.output
+    assert f"use a decimal point: {good}" in res.output
+    assert "Tuple should have" not in res.output and "unknown key" not in res.output
+
+
+def test_compact_list_is_not_taken_for_decimal_commas(tmp_path):
+    res, _ = _validate(tmp_path, "schema: tmm/1\ngears:\n  m: 3 mm\n  z: [12,42,7]\n")
+    assert res.exit_code == 2
+    assert "decimal point" not in res.output and "at most 2 items" in res.output
+
+
+def test_decimal_comma_with_a_unit_is_not_read_as_thousands(tmp_path):
+    # pint alone reads '3,5 mm' as 35 mm: a silently wrong module
+    res, f = _validate(tmp_path, "schema: tmm/1\ngears:\n  m: 3,5 mm\n  z: [12, 42]\n")
+    assert res.exit_code == 2
+    assert f"{f}:3:" in res.output and "gears.m" in res.output and "use a decimal point: 3.5" in res.output
+
+
+@pytest.mark.parametrize("text, line", [
+    ("schema: tmm/1\ngears:\n\tm: 3 mm\n\tz: [12, 42]\n", 3),
+    ("schema: tmm/1\ngears:\n  m: 3 mm\n \t z: [12, 42]\n", 4),
+])
+def test_tab_in_indentation(tmp_path, text, line):
+    res, f = _validate(tmp_path, text)
+    assert res.exit_code == 2
+    assert f"{f}:{line}:" in res.output
+    assert "use spaces for indentation" in res.output
+    assert "cannot start any token" not in res.output
+
+
+def _warnings(text: str) -> list[str]:
+    import yaml
+    return tmm_cli.load_task(yaml.safe_load(text)).input_warnings
+
+
+def test_plain_speed_probably_meant_in_rpm_is_warned_about():
+    w = _warnings(SIXBAR.replace("speed: 5,", "speed: 60,"))
+    assert len(w) == 1
+    assert "drive.speed" in w[0] and "60 rad/s" in w[0] and "573 rpm" in w[0] and "'60 rpm'" in w[0]
+    # 60 rad/s * 30/pi = 572.96 rpm
+    assert _warnings(SIXBAR.replace("speed: 5,", "speed: 50,")) == []
+    assert _warnings(SIXBAR.replace("speed: 5,", "speed: 600 rpm,")) == []
+
+
+def test_plain_length_above_10_m_is_warned_about():
+    w = _warnings(SIXBAR.replace("length: 0.97}", "length: 970}").replace("O1: [0.50, 0.37]", "O1: [500, 370]"))
+    assert any("mechanism.links.rod.length" in x and "970 m" in x and "'970 mm'" in x for x in w)
+    assert any("mechanism.ground.O1[0]" in x and "'500 mm'" in x for x in w)
+    assert _warnings(SIXBAR.replace("length: 0.97}", "length: 970 mm}")) == []
+    assert _warnings(SIXBAR) == []
+
+
+def test_plain_gear_module_in_metres_is_warned_about():
+    w = _warnings("schema: tmm/1\ngears: {m: 3, z: [12, 42]}\n")
+    assert len(w) == 1 and "gears.m" in w[0] and "'3 mm'" in w[0]
+    assert _warnings("schema: tmm/1\ngears: {m: 3 mm, z: [12, 42]}\n") == []
+    assert _warnings("schema: tmm/1\ngears: {m: 0.003, z: [12, 42]}\n") == []
+
+
+def test_plain_number_warnings_reach_results():
+    import yaml
+    task = yaml.safe_load(SIXBAR.replace("speed: 5,", "speed: 100,"))
+    r = tmm_cli.run(tmm_cli.load_task(task), kinematics_curve=0)
+    assert any("drive.speed" in w and "'100 rpm'" in w for w in r["warnings"])
+
+
+def test_length_meant_in_millimetres_is_named(tmp_path):
+    res, f = _validate(tmp_path, SIXBAR.replace("length: 0.97}", "length: 100}"))
+    assert res.exit_code == 2
+    assert f"{f}:8:" in res.output and "mechanism.links.rod.length" in res.output
+    # 100 / median(0.15, 0.66, 0.86, |OO1| = 0.6220) = 100 / 0.641 = 156
+    assert "is 156 times the other lengths" in res.output
+    assert "probably meant in millimetres" in res.output and "'100 mm'" in res.output
+
+
+@pytest.mark.parametrize("field, value", [("magnitude", "-3000"), ("moment", "-20")])
+def test_negative_size_of_a_resistance_is_invalid(tmp_path, field, value):
+    text = SIXBAR + f"loads:\n  forces:\n    - on: slider\n      kind: resistance\n      {field}: {value}\n"
+    if field == "moment":
+        text = text.replace("on: slider", "on: rocker")
+    res, f = _validate(tmp_path, text)
+    assert res.exit_code == 2, res.output
+    assert f"{f}:18:" in res.output and f"loads.forces[0].{field}" in res.output
+    assert "must not be negative" in res.output
+    ok, _ = _validate(tmp_path, text.replace(f"{field}: -", f"{field}: "))
+    assert ok.exit_code == 0, ok.output
+
+
+def test_negative_signed_force_without_kind_stays_valid(tmp_path):
+    text = SIXBAR + "loads:\n  forces:\n    - on: slider\n      magnitude: -3000\n"
+    res, _ = _validate(tmp_path, text)
+    assert res.exit_code == 0, res.output
+
+
+def test_version():
+    res = runner.invoke(app, ["--version"])
+    assert res.exit_code == 0
+    assert res.output.strip() == f"tmm {tmm_cli.__version__}"
+
+
+def test_bare_tmm_prints_help_and_succeeds():
+    res = runner.invoke(app, [])
+    assert res.exit_code == 0
+    assert "Usage" in res.output and "run" in res.output and "validate" in res.output
+
+
+def test_fields_keep_square_brackets():
+    res = runner.invoke(app, ["fields", "mechanism"], env={"COLUMNS": "250"})
+    assert res.exit_code == 0
+    assert "name -> [x, y], m" in res.output
+    assert "[u, v]" in res.output

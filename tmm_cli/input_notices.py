@@ -1,0 +1,98 @@
+"""Warnings about values that are valid but probably not what the user meant.
+
+A plain number is in the base unit of its field (m, rad/s). For a field whose everyday
+unit differs from the base unit, a plain number far above what a course task holds is
+most likely in the everyday unit: ``speed: 60`` meant as 60 rpm is read as 60 rad/s
+(573 rpm), ``length: 100`` meant as 100 mm is read as 100 m. Such values are computed
+as written, with a warning that suggests the unit string.
+"""
+from __future__ import annotations
+
+import math
+import typing
+from typing import Any
+
+from pydantic import BaseModel
+
+from .task import _dotted
+
+# plain numbers above these (in the base unit) get a warning
+SPEED_PLAIN_MAX = 50.0      # rad/s (~480 rpm)
+LENGTH_PLAIN_MAX = 10.0     # m
+MODULE_PLAIN_MAX = 0.1      # m: a gear module (field `m`) is a few millimetres
+
+_KIND_BY_DESCRIPTION = {"in m": "length", "in rad/s": "speed"}
+
+
+def _kind(metadata) -> str | None:
+    """'length' or 'speed' for an annotation made by tmm_cli.units (its JSON Schema
+    says the base unit of a plain number), else None."""
+    for m in metadata:
+        schema = getattr(m, "json_schema", None)
+        if isinstance(schema, dict):
+            for alt in schema.get("anyOf", []):
+                kind = _KIND_BY_DESCRIPTION.get(alt.get("description", ""))
+                if kind:
+                    return kind
+    return None
+
+
+def _message(kind: str, value: float, path: tuple) -> str | None:
+    field = _dotted(path)
+    if kind == "speed" and abs(value) > SPEED_PLAIN_MAX:
+        rpm = abs(value) * 30.0 / math.pi
+        return (f"{field}: the plain number {value:g} is read as {value:g} rad/s ({rpm:.0f} rpm); "
+                f"if you meant rpm, write '{value:g} rpm'")
+    limit = MODULE_PLAIN_MAX if path and path[-1] == "m" else LENGTH_PLAIN_MAX
+    if kind == "length" and abs(value) > limit:
+        return (f"{field}: the plain number {value:g} is read as {value:g} m; if you meant millimetres, "
+                f"write '{value:g} mm'")
+    return None
+
+
+def _walk(ann, raw: Any, path: tuple, out: list[str]) -> None:
+    origin = typing.get_origin(ann)
+    if origin is typing.Annotated:
+        base, *meta = typing.get_args(ann)
+        kind = _kind(meta)
+        if kind is not None:
+            if isinstance(raw, (int, float)) and not isinstance(raw, bool) and math.isfinite(raw):
+                msg = _message(kind, float(raw), path)
+                if msg:
+                    out.append(msg)
+            return
+        _walk(base, raw, path, out)
+    elif isinstance(ann, type) and issubclass(ann, BaseModel):
+        if not isinstance(raw, dict):
+            return
+        for name, f in ann.model_fields.items():
+            key = f.alias or name
+            if key in raw:
+                sub = typing.Annotated[(f.annotation, *f.metadata)] if f.metadata else f.annotation
+                _walk(sub, raw[key], path + (key,), out)
+    elif origin in (typing.Union, getattr(__import__("types"), "UnionType", None)):
+        for arg in typing.get_args(ann):
+            before = len(out)
+            _walk(arg, raw, path, out)
+            if len(out) > before:
+                return
+    elif origin in (list, tuple) and isinstance(raw, (list, tuple)):
+        args = typing.get_args(ann)
+        for i, item in enumerate(raw):
+            arg = args[0] if (origin is list or (len(args) == 2 and args[1] is Ellipsis)) else \
+                (args[i] if i < len(args) else None)
+            if arg is not None:
+                _walk(arg, item, path + (i,), out)
+    elif origin is dict and isinstance(raw, dict):
+        args = typing.get_args(ann)
+        if len(args) == 2:
+            for k, v in raw.items():
+                _walk(args[1], v, path + (k,), out)
+
+
+def plain_number_warnings(model_type: type[BaseModel], data: dict) -> list[str]:
+    """Warnings for plain numbers in ``data`` (the task as read) whose field's everyday
+    unit differs from its base unit and whose value is implausible in the base unit."""
+    out: list[str] = []
+    _walk(model_type, data, (), out)
+    return out
