@@ -217,7 +217,22 @@ class LoadsSection(_Model):
 
 class FrictionSpec(_Model):
     pin_radius: Length = Field(..., gt=0)
-    f: float = Field(..., ge=0, le=1)
+    f: float | None = Field(None, ge=0, le=1)
+    f_pin: float | None = Field(None, ge=0, le=1)
+    f_slide: float | None = Field(None, ge=0, le=1)
+
+    @model_validator(mode="after")
+    def _coefficients(self):
+        """`f` is the shorthand for both; alone, a missing one of f_pin / f_slide is 0."""
+        if self.f is not None:
+            if self.f_pin is not None or self.f_slide is not None:
+                raise ValueError("give `f` (both kinds of pair) or `f_pin` / `f_slide`, not both")
+            self.f_pin = self.f_slide = self.f
+        elif self.f_pin is None and self.f_slide is None:
+            raise ValueError("give the friction coefficient `f`, or `f_pin` and/or `f_slide`")
+        self.f_pin = self.f_pin or 0.0
+        self.f_slide = self.f_slide or 0.0
+        return self
 
 
 class KinetostaticsSection(_Model):
@@ -624,10 +639,13 @@ _DOCS: dict[type, dict[str, str]] = {
         "positions": "all | list of position numbers",
         "inertia": "include d'Alembert inertia loads (default true)",
         "balance": "link carrying the balancing moment (a slider: a balancing force); default the drive link",
-        "friction": "{pin_radius, f}: friction in the pairs and the instantaneous efficiency",
+        "friction": "{pin_radius, f} or {pin_radius, f_pin, f_slide}: friction in the pairs and the instantaneous efficiency",
         "motion": "constant (omega1 = const) | true: omega(phi), epsilon(phi) of the steady motion with the flywheel",
     },
-    FrictionSpec: {"pin_radius": "radius of the pins, m", "f": "friction coefficient"},
+    FrictionSpec: {"pin_radius": "radius of the pins, m",
+                   "f": "friction coefficient of every pair (shorthand for f_pin = f_slide = f)",
+                   "f_pin": "friction coefficient of the revolute pairs (couple f_pin r |R|; default 0)",
+                   "f_slide": "friction coefficient of the prismatic pairs (force f_slide |N|; default 0)"},
     FlywheelSection: {
         "delta": "coefficient of speed fluctuation, e.g. 1/18",
         "constant": "driving (motor-driven machine) | resistance (engine): the constant reduced moment",
