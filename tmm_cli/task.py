@@ -293,7 +293,7 @@ class LimitsSpec(_Model):
 
 
 class CamSection(_Model):
-    follower: Literal["translating", "rocker"] = "translating"
+    follower: Literal["translating", "rocker", "flat", "knife"] = "translating"
     stroke: Number = Field(..., gt=0, description="m (translating) or deg (rocker)")
     rocker_length: Length | None = Field(None, gt=0)
     offset: Union[Literal["auto"], Length] = 0.0
@@ -305,6 +305,10 @@ class CamSection(_Model):
     roller: Union[Literal["auto"], Length] = "auto"
     rotation: Literal["ccw", "cw"] = "ccw"
     speed: AngularSpeed | None = Field(None, gt=0)
+    r0: Union[Literal["auto"], Length] = "auto"
+    center_distance: Length | None = Field(None, gt=0)
+    rho_min_allowed: Length = Field(0.0, ge=0)
+    divisions: int = Field(8, ge=1, le=360)
 
     @field_validator("stroke", mode="before")
     @classmethod
@@ -334,7 +338,7 @@ class CamSection(_Model):
             else:
                 lim = 90 - t
         if lim is None:
-            lim = 30.0 if self.follower == "translating" else 45.0
+            lim = 45.0 if self.follower == "rocker" else 30.0
         if not isinstance(lim, LimitsSpec):
             if not 0 < lim < 90:
                 raise ValueError("the allowed pressure angle must lie in (0, 90) deg")
@@ -347,6 +351,8 @@ class CamSection(_Model):
                 raise ValueError("`offset` is for a translating follower")
             if self.stroke >= 180:
                 raise ValueError("a rocker swing (`stroke`, deg) must be below 180")
+        from .cam.chosen import check_section
+        check_section(self, self.model_fields_set)
         return self
 
 
@@ -656,7 +662,13 @@ _DOCS: dict[type, dict[str, str]] = {
     ShapeSpec: {"type": "disk | rim", "density": "kg/m^3 (default 7800)",
                 "width_ratio": "b / D (default 0.1)"},
     CamSection: {
-        "follower": "translating | rocker",
+        "follower": "translating | rocker (roller followers) | flat (flat-faced translating) | "
+                    "knife (knife-edge translating, no roller)",
+        "r0": "auto: the least base radius | a chosen base radius, m: the profile is built on it and the "
+              "pressure angle checked",
+        "center_distance": "rocker with a chosen r0: the distance from the cam centre to the rocker pivot, m",
+        "rho_min_allowed": "flat: least radius of curvature of the profile, m (default 0)",
+        "divisions": "parts of the rise and of the return in the division-point table (default 8)",
         "rocker_length": "rocker follower: its length, m",
         "offset": "translating: eccentricity, m (positive lowers the rise pressure angle) or auto",
         "phases": "{rise, far_dwell, return[, near_dwell]}, deg; near dwell = the rest",
