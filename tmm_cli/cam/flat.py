@@ -25,7 +25,7 @@ import numpy as np
 
 from .motion import FAR_DWELL, NEAR_DWELL, RETURN, RISE, Motion
 from .profile import rot
-from .region import GRID, local_minima, zoom
+from .region import phase_min
 
 
 def cycle_max(motion: Motion, fn) -> tuple[float, float]:
@@ -46,18 +46,14 @@ def cycle_max(motion: Motion, fn) -> tuple[float, float]:
             if v > best:
                 best, where = v, math.degrees(start)
             continue
-        x = np.linspace(0, 1, GRID)
 
         def neg(xg, ph=ph):
             s, s1, s2, _ = motion.phase(ph, xg)
             return -fn(s, s1, s2)
 
-        vals = neg(x[None, :])[0]
-        idx = local_minima(vals)
-        xs, vv = zoom(neg, x[np.maximum(idx - 1, 0)], x[np.minimum(idx + 1, x.size - 1)])
-        j = int(np.argmin(vv))
-        if -vv[j] > best:
-            best, where = float(-vv[j]), math.degrees(start + xs[j] * span)
+        xj, vj = phase_min(neg)
+        if -vj > best:
+            best, where = -vj, math.degrees(start + xj * span)
     return best, where % 360.0
 
 
