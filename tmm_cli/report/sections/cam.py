@@ -79,6 +79,8 @@ I18N = {
         "cam.construction_scale": "equal scales μs = μds/dφ = {mu} mm/mm (M {label})",
         "cam.profile_flat_caption": "Base circle r0 and the cam profile (solid), the follower's face every 30 deg "
                                     "by inverted motion; scale {scale}",
+        "cam.profile_knife_caption": "Base circle r0, the cam profile (solid) and the knife-edge follower every "
+                                     "30 deg by inverted motion; scale {scale}",
     },
     "ru": {
         "cam.title": "Кулачковый механизм",
@@ -149,6 +151,8 @@ I18N = {
         "cam.construction_scale": "равные масштабы μs = μds/dφ = {mu} мм/мм (М {label})",
         "cam.profile_flat_caption": "Начальная окружность r0 и профиль кулачка (сплошной), тарелка толкателя "
                                     "через 30° методом обращения движения; масштаб {scale}",
+        "cam.profile_knife_caption": "Начальная окружность r0, профиль кулачка (сплошной) и острый толкатель "
+                                     "через 30° методом обращения движения; масштаб {scale}",
     },
 }
 
@@ -281,7 +285,7 @@ def construction_figure(ctx, c):
         ax.plot([A[0], B0[0]], [A[1], B0[1]], color="0.3", lw=0.8)
     _diagram_axes(ax, B0, lo, hi, ctx)
     ax.set_title(ctx.t("cam.construction_title"), fontsize=9, y=0.97, va="top")
-    ax.legend(loc="upper right", fontsize=7, frameon=False)
+    ax.legend(loc="lower left", fontsize=7, frameon=False)
     return fig, unit, label
 
 
@@ -478,7 +482,8 @@ def _render(ctx, c, rows, method):
             figs.append((ctx.svg(fig), cap))
         except Exception as exc:
             figs.append((f"<p class='warn'>figure failed: {exc}</p>", cap))
-    pcap = "cam.profile_flat_caption" if flat else "cam.profile_caption"
+    pcap = {"flat": "cam.profile_flat_caption", "knife": "cam.profile_knife_caption"}.get(c["follower"],
+                                                                                          "cam.profile_caption")
     try:
         fig, unit, label = profile_figure(ctx, c)
         scale = f"M {label}" + _loc(ctx.lang, f" (μl = {f(unit, 4)} mm/mm)")
