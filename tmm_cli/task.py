@@ -226,7 +226,8 @@ class FrictionSpec(_Model):
         """`f` is the shorthand for both; alone, a missing one of f_pin / f_slide is 0."""
         if self.f is not None:
             if self.f_pin is not None or self.f_slide is not None:
-                raise ValueError("give `f` (both kinds of pair) or `f_pin` / `f_slide`, not both")
+                raise FieldValueError(("f_pin" if self.f_pin is not None else "f_slide",),
+                                      "give `f` (both kinds of pair) or `f_pin` / `f_slide`, not both")
             self.f_pin = self.f_slide = self.f
         elif self.f_pin is None and self.f_slide is None:
             raise ValueError("give the friction coefficient `f`, or `f_pin` and/or `f_slide`")
