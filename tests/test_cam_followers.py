@@ -156,11 +156,13 @@ def test_chosen_size_violating_the_allowed_angle_names_excess_and_where():
     assert f"{run(TRANS, offset=e)['r0'] * 1000:.3f} mm" in msg
 
 
-@pytest.mark.parametrize("kw", [dict(offset=0.05, r0=0.03), dict(offset="auto", r0=0.05), dict(r0=-0.01),
-                                dict(center_distance=0.1, r0=0.05)])
-def test_chosen_size_bad_input_is_a_task_error(kw):
-    with pytest.raises(TaskError):
+@pytest.mark.parametrize("kw,field", [(dict(offset=0.05, r0=0.03), "cam.r0"), (dict(offset="auto", r0=0.05), "cam.offset"),
+                                      (dict(r0=-0.01), "cam.r0"), (dict(center_distance=0.1, r0=0.05), "cam.center_distance"),
+                                      (dict(follower="knife", roller=0.004), "cam.roller")])
+def test_chosen_size_bad_input_is_a_task_error(kw, field):
+    with pytest.raises(TaskError) as e:
         run(TRANS, **kw)
+    assert f"'{field}'" in str(e.value)
 
 
 ROCKER = {"schema": "tmm/1", "cam": {

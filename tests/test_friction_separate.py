@@ -98,7 +98,7 @@ def test_bad_combinations_are_task_errors(fric, tmp_path):
     p.write_text(yaml.safe_dump(src))
     with pytest.raises(TaskError) as e:
         load_task(p)
-    assert "friction" in str(e.value)
+    assert "kinetostatics.friction" in str(e.value)
 
 
 def _kst_task() -> str:
