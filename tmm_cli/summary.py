@@ -47,6 +47,9 @@ def print_summary(results: dict, paths: list[Path]) -> None:
     cam = results.get("cam")
     if cam:
         t.add_row("cam r0, m", _f(cam.get("r0")))
+        if cam.get("r0_given"):
+            t.add_row("cam r0_min, m", _f(cam.get("r0_min")))
+            t.add_row("cam max pressure angle, deg", _f(cam.get("max_pressure_angle")))
     g = results.get("gears")
     if g:
         t.add_row("gears a_w, m", _f(g.get("aw")))

@@ -224,7 +224,23 @@ class LoadsSection(_Model):
 
 class FrictionSpec(_Model):
     pin_radius: Length = Field(..., gt=0)
-    f: float = Field(..., ge=0, le=1)
+    f: float | None = Field(None, ge=0, le=1)
+    f_pin: float | None = Field(None, ge=0, le=1)
+    f_slide: float | None = Field(None, ge=0, le=1)
+
+    @model_validator(mode="after")
+    def _coefficients(self):
+        """`f` is the shorthand for both; alone, a missing one of f_pin / f_slide is 0."""
+        if self.f is not None:
+            if self.f_pin is not None or self.f_slide is not None:
+                raise FieldValueError(("f_pin" if self.f_pin is not None else "f_slide",),
+                                      "give `f` (both kinds of pair) or `f_pin` / `f_slide`, not both")
+            self.f_pin = self.f_slide = self.f
+        elif self.f_pin is None and self.f_slide is None:
+            raise ValueError("give the friction coefficient `f`, or `f_pin` and/or `f_slide`")
+        self.f_pin = self.f_pin or 0.0
+        self.f_slide = self.f_slide or 0.0
+        return self
 
 
 class KinetostaticsSection(_Model):
@@ -285,7 +301,7 @@ class LimitsSpec(_Model):
 
 
 class CamSection(_Model):
-    follower: Literal["translating", "rocker"] = "translating"
+    follower: Literal["translating", "rocker", "flat", "knife"] = "translating"
     stroke: Number = Field(..., gt=0, description="m (translating) or deg (rocker)")
     rocker_length: Length | None = Field(None, gt=0)
     offset: Union[Literal["auto"], Length] = 0.0
@@ -297,6 +313,10 @@ class CamSection(_Model):
     roller: Union[Literal["auto"], Length] = "auto"
     rotation: Literal["ccw", "cw"] = "ccw"
     speed: AngularSpeed | None = Field(None, gt=0)
+    r0: Union[Literal["auto"], Length] = "auto"
+    center_distance: Length | None = Field(None, gt=0)
+    rho_min_allowed: Length = Field(0.0, ge=0)
+    divisions: int = Field(8, ge=1, le=360)
 
     @field_validator("stroke", mode="before")
     @classmethod
@@ -326,7 +346,7 @@ class CamSection(_Model):
             else:
                 lim = 90 - t
         if lim is None:
-            lim = 30.0 if self.follower == "translating" else 45.0
+            lim = 45.0 if self.follower == "rocker" else 30.0
         if not isinstance(lim, LimitsSpec):
             if not 0 < lim < 90:
                 raise ValueError("the allowed pressure angle must lie in (0, 90) deg")
@@ -339,6 +359,8 @@ class CamSection(_Model):
                 raise ValueError("`offset` is for a translating follower")
             if self.stroke >= 180:
                 raise ValueError("a rocker swing (`stroke`, deg) must be below 180")
+        from .cam.chosen import check_section
+        check_section(self, self.model_fields_set)
         return self
 
 
@@ -664,10 +686,13 @@ _DOCS: dict[type, dict[str, str]] = {
         "positions": "all | list of position numbers",
         "inertia": "include d'Alembert inertia loads (default true)",
         "balance": "link carrying the balancing moment (a slider: a balancing force); default the drive link",
-        "friction": "{pin_radius, f}: friction in the pairs and the instantaneous efficiency",
+        "friction": "{pin_radius, f} or {pin_radius, f_pin, f_slide}: friction in the pairs and the instantaneous efficiency",
         "motion": "constant (omega1 = const) | true: omega(phi), epsilon(phi) of the steady motion with the flywheel",
     },
-    FrictionSpec: {"pin_radius": "radius of the pins, m", "f": "friction coefficient"},
+    FrictionSpec: {"pin_radius": "radius of the pins, m",
+                   "f": "friction coefficient of every pair (shorthand for f_pin = f_slide = f)",
+                   "f_pin": "friction coefficient of the revolute pairs (couple f_pin r |R|; default 0)",
+                   "f_slide": "friction coefficient of the prismatic pairs (force f_slide |N|; default 0)"},
     FlywheelSection: {
         "delta": "coefficient of speed fluctuation, e.g. 1/18",
         "constant": "driving (motor-driven machine) | resistance (engine): the constant reduced moment",
@@ -678,7 +703,13 @@ _DOCS: dict[type, dict[str, str]] = {
     ShapeSpec: {"type": "disk | rim", "density": "kg/m^3 (default 7800)",
                 "width_ratio": "b / D (default 0.1)"},
     CamSection: {
-        "follower": "translating | rocker",
+        "follower": "translating | rocker (roller followers) | flat (flat-faced translating) | "
+                    "knife (knife-edge translating, no roller)",
+        "r0": "auto: the least base radius | a chosen base radius, m: the profile is built on it and the "
+              "pressure angle checked",
+        "center_distance": "rocker with a chosen r0: the distance from the cam centre to the rocker pivot, m",
+        "rho_min_allowed": "flat: least radius of curvature of the profile, m (default 0)",
+        "divisions": "parts of the rise and of the return in the division-point table (default 8)",
         "rocker_length": "rocker follower: its length, m",
         "offset": "translating: eccentricity, m (positive lowers the rise pressure angle) or auto",
         "phases": "{rise, far_dwell, return[, near_dwell]}, deg; near dwell = the rest",

@@ -22,7 +22,7 @@ import numpy as np
 
 from .geometry import Geometry, J
 from .motion import FAR_DWELL, NEAR_DWELL, RETURN, RISE, Motion
-from .region import GRID, local_minima, zoom
+from .region import GRID, phase_min
 
 
 def rot(v: np.ndarray, ang: np.ndarray) -> np.ndarray:
@@ -93,17 +93,13 @@ class Profile:
             start, span = spans[ph]
             if span <= 0:
                 continue
-            x = np.linspace(0, 1, GRID)
 
             def neg(xg, ph=ph):
                 return -self.curvature_phase(ph, xg)[0]
 
-            v = neg(x[None, :])[0]
-            idx = local_minima(v)
-            xs, vals = zoom(neg, x[np.maximum(idx - 1, 0)], x[np.minimum(idx + 1, x.size - 1)])
-            j = int(np.argmin(vals))
-            if -vals[j] > best:
-                best, where = float(-vals[j]), math.degrees(start + xs[j] * span)
+            xj, vj = phase_min(neg)
+            if -vj > best:
+                best, where = -vj, math.degrees(start + xj * span)
         if best <= 0:
             return math.inf, where
         return 1.0 / best, where % 360.0

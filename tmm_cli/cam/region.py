@@ -234,17 +234,22 @@ def max_angle(motion: Motion, geom: Geometry, phase: int, O) -> tuple[float, flo
         s, s1, _, _ = motion.phase(phase, np.array([0.0]))
         th, _ = geom.pressure_angle(s, s1, O)
         return float(th[0]), 0.0
-    x = np.linspace(0, 1, GRID)
 
     def neg(xg):
         s, s1, _, _ = motion.phase(phase, xg)
         th, _ = geom.pressure_angle(s, s1, O)
         return -th
 
-    v = neg(x[None, :])[0]
+    x, v = phase_min(neg)
+    return float(-v), float(x)
+
+
+def phase_min(func) -> tuple[float, float]:
+    """Minimum of ``func`` (vectorised over rows of fractions) on the closed phase [0, 1]:
+    sampled on the grid, every local minimum refined by :func:`zoom`; (fraction, value)."""
+    x = np.linspace(0, 1, GRID)
+    v = func(x[None, :])[0]
     idx = local_minima(v)
-    lo = x[np.maximum(idx - 1, 0)]
-    hi = x[np.minimum(idx + 1, x.size - 1)]
-    xs, vals = zoom(neg, lo, hi)
+    xs, vals = zoom(func, x[np.maximum(idx - 1, 0)], x[np.minimum(idx + 1, x.size - 1)])
     j = int(np.argmin(vals))
-    return float(-vals[j]), float(xs[j])
+    return float(xs[j]), float(vals[j])

@@ -46,6 +46,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import StageError
+from . import chosen, flat
+from .division import division_table
 from .geometry import Geometry, J
 from .laws import LAW_NAMES
 from .motion import FAR_DWELL, NEAR_DWELL, RETURN, RISE, Motion
@@ -116,6 +118,7 @@ class CamResult:
     construction: dict
     alternatives: dict
     warnings: list = field(default_factory=list)
+    extra: dict = field(default_factory=dict)     # follower- and size-specific keys (flat, chosen r0)
     # internals for export / tests (not serialised)
     motion: Motion | None = None
     geometry: Geometry | None = None
@@ -172,6 +175,7 @@ class CamResult:
             "alternatives": self.alternatives,
             "warnings": list(self.warnings),
         }
+        d.update(self.extra)
         return d
 
 
@@ -329,7 +333,7 @@ def _construction(motion, geom, fams, O, tangents: list[Tangent], scale):
 def synthesize(spec) -> CamResult:
     """Synthesise the smallest cam and its profile from a cam task section (see module doc)."""
     follower = _get(spec, "follower", "translating")
-    if follower not in ("translating", "rocker"):
+    if follower not in ("translating", "rocker", "knife", "flat"):
         raise StageError(STAGE, f"unknown follower {follower!r}")
     rocker = follower == "rocker"
     rotation = _get(spec, "rotation", "ccw")
@@ -359,6 +363,11 @@ def synthesize(spec) -> CamResult:
     if abs(total - 360.0) > 1e-6:
         raise StageError(STAGE, f"the phases sum to {total:g} deg, not 360")
     th_rise, th_ret = _limits(spec)
+    r0_in = _get(spec, "r0", "auto")
+    r0_chosen = None if r0_in in (None, "auto") else float(r0_in)
+    divisions = int(_get(spec, "divisions", 8) or 8)
+    if follower == "flat":
+        return _flat(spec, motion, stroke, r0_chosen, divisions)
     fams = _families(motion, th_rise, th_ret)
     offset_in = _get(spec, "offset", 0.0)
     if offset_in is None:
@@ -390,7 +399,12 @@ def synthesize(spec) -> CamResult:
                                     "either swing sense (the admissible region is empty); " + _HINT
                              + _rocker_hint(stroke, th_rise, th_ret))
         r0, swing, geom, O, tang = best
-        if swing_in == "auto" and len([a for a in alternatives.values() if a]) == 2:
+        if r0_chosen is not None:
+            swing, geom, O, tang = _chosen_rocker(spec, motion, best, options, sigma, l, fams, scale,
+                                                  th_rise, th_ret, r0_chosen)
+            r0 = r0_chosen
+            alternatives = {}
+        if r0_chosen is None and swing_in == "auto" and len([a for a in alternatives.values() if a]) == 2:
             other = "against" if swing == "with" else "with"
             warnings.append(f"swing auto: the rocker turns {swing} the cam on the rise "
                             f"(r0 = {r0 * 1000:.3f} mm; {other}: "
@@ -403,6 +417,10 @@ def synthesize(spec) -> CamResult:
         geom = Geometry("translating", sigma)
         O, tang = _solve(motion, geom, fams, offset_in, scale)
         r0 = float(np.hypot(*O))
+        if r0_chosen is not None:
+            r0_min = r0
+            r0 = r0_chosen
+            O = chosen.centre(geom, r0, offset_in, None)
         swing = None
         center_distance = None
         psi0 = None
@@ -411,6 +429,15 @@ def synthesize(spec) -> CamResult:
             offset = float(offset_in)
     if not r0 > 1e-12 * scale:
         raise StageError(STAGE, "degenerate cam: zero base radius")
+    if r0_chosen is None:
+        r0_min = r0
+    elif rocker:
+        r0_min = chosen.r0_min_on_circle(motion, geom, center_distance, th_rise, th_ret, scale)
+    if r0_chosen is not None:
+        worst, got = chosen.excess(motion, geom, O, th_rise, th_ret)
+        if worst > PA_TOL_DEG:
+            raise chosen.violation(r0, worst, got, motion, th_rise, th_ret, r0_min,
+                                   "centre distance" if rocker else "offset")
 
     # ---- pressure angles
     th = {}
@@ -440,7 +467,9 @@ def synthesize(spec) -> CamResult:
         raise StageError(STAGE, "the pitch profile has a cusp (its tangent vanishes)")
     rho_min, rho_phi = prof.rho_min()
     roller_in = _get(spec, "roller", "auto")
-    if roller_in is None or roller_in == "auto":
+    if follower == "knife":
+        roller, roller_given = 0.0, False
+    elif roller_in is None or roller_in == "auto":
         roller = min(0.7 * rho_min, 0.4 * r0)
         roller_given = False
     else:
@@ -471,14 +500,7 @@ def synthesize(spec) -> CamResult:
     working = prof.working(phr, roller)
 
     # ---- laws and impacts
-    speed = _get(spec, "speed")
-    speed = float(speed) if speed else None
-    laws_info = {"rise": _law_info(motion, RISE, speed, rocker),
-                 "return": _law_info(motion, RETURN, speed, rocker)}
-    impacts = motion.boundaries()
-    for e in impacts:
-        if e["kind"] != "none":
-            warnings.append(f"{_IMPACT_TEXT[e['kind']]} at phi = {e['phi']:.4g} deg ({e['where']})")
+    speed, laws_info, impacts, phases = _laws_impacts(spec, motion, rocker, warnings)
     corners = [e for e in impacts if e["kind"] == "rigid"]
     if corners:
         warnings.append("the pitch profile has corners where the velocity jumps (phi = "
@@ -487,8 +509,9 @@ def synthesize(spec) -> CamResult:
                           "roller rule refer to the smooth parts")
 
     construction = _construction(motion, geom, fams, O, tang, scale)
-    phases = {"rise": math.degrees(motion.rise), "far_dwell": math.degrees(motion.far_dwell),
-              "return": math.degrees(motion.ret), "near_dwell": math.degrees(motion.near_dwell)}
+    extra = {"r0_min": _f(r0_min), "r0_given": r0_chosen is not None,
+             "division_table": division_table(motion, divisions, rocker,
+                                              lambda s, s1: geom.pressure_angle(s, s1, O)[0])}
     return CamResult(
         follower=follower, rotation=rotation, swing=swing, stroke=stroke, rocker_length=l,
         phases=phases, allowed={"rise": th_rise, "return": th_ret},
@@ -499,6 +522,82 @@ def synthesize(spec) -> CamResult:
         rho_min=rho_min, rho_min_phi=rho_phi, laws=laws_info, impacts=impacts,
         phi=phi, s=s, ds=s1, d2s=s2, d3s=s3, speed=speed,
         pressure_angle=np.degrees(pa), pitch=pitch, working=working,
-        construction=construction, alternatives=alternatives, warnings=warnings,
+        construction=construction, alternatives=alternatives, warnings=warnings, extra=extra,
         motion=motion, geometry=geom, O_design=O,
+    )
+
+
+def _laws_impacts(spec, motion, rocker, warnings):
+    """Speed, the laws' coefficients, the impacts (with their warnings) and the phase angles."""
+    speed = _get(spec, "speed")
+    speed = float(speed) if speed else None
+    laws_info = {"rise": _law_info(motion, RISE, speed, rocker),
+                 "return": _law_info(motion, RETURN, speed, rocker)}
+    impacts = motion.boundaries()
+    for e in impacts:
+        if e["kind"] != "none":
+            warnings.append(f"{_IMPACT_TEXT[e['kind']]} at phi = {e['phi']:.4g} deg ({e['where']})")
+    phases = {"rise": math.degrees(motion.rise), "far_dwell": math.degrees(motion.far_dwell),
+              "return": math.degrees(motion.ret), "near_dwell": math.degrees(motion.near_dwell)}
+    return speed, laws_info, impacts, phases
+
+
+def _chosen_rocker(spec, motion, best, options, sigma, l, fams, scale, th_rise, th_ret, r0):
+    """Rocker on a chosen r0 and centre distance: the swing sense (for auto: the one with the
+    smaller pressure-angle excess) and its cam centre."""
+    a = float(_get(spec, "center_distance"))
+    cands = []
+    for sw in options:
+        tau = sigma if sw == "with" else -sigma
+        geom = Geometry("rocker", sigma, tau, l)
+        O = chosen.centre(geom, r0, None, a)
+        cands.append((chosen.excess(motion, geom, O, th_rise, th_ret)[0], sw, geom, O))
+    worst, sw, geom, O = min(cands, key=lambda c: c[0])
+    tang = best[4] if best[1] == sw else _solve(motion, geom, fams, "auto", scale)[1]
+    return sw, geom, O, tang
+
+
+def _flat(spec, motion: Motion, stroke: float, r0_chosen: float | None, divisions: int) -> CamResult:
+    """Flat-faced translating follower (see :mod:`.flat`)."""
+    rotation = _get(spec, "rotation", "ccw")
+    sigma = 1 if rotation == "ccw" else -1
+    rigid = [e for e in motion.boundaries() if e["kind"] == "rigid"]
+    if rigid:
+        raise StageError(STAGE, "a flat-faced follower needs a motion law without velocity jumps: the "
+                                "profile would have a corner at phi = "
+                                + ", ".join(f"{e['phi']:.4g}" for e in rigid)
+                                + " deg; choose another law (cosine, sine, poly345, ...)")
+    rho_allowed = float(_get(spec, "rho_min_allowed", 0.0) or 0.0)
+    margin, margin_phi = flat.convexity_margin(motion)
+    r0_min = rho_allowed + margin
+    if r0_chosen is None:
+        r0 = r0_min
+    else:
+        r0 = r0_chosen
+        if r0 - margin < rho_allowed - 1e-12 * stroke:
+            raise StageError(STAGE, f"the chosen base radius r0 = {r0 * 1000:.3f} mm gives the profile a "
+                                    f"least radius of curvature r0 + s + d2s/dphi2 = {(r0 - margin) * 1000:.3f} mm "
+                                    f"at phi = {margin_phi:.2f} deg, below the allowed "
+                                    f"{rho_allowed * 1000:.3f} mm; the least r0 is {r0_min * 1000:.3f} mm")
+    if not r0 > 1e-12 * stroke:
+        raise StageError(STAGE, "degenerate cam: zero base radius (give `rho_min_allowed`)")
+    warnings: list[str] = []
+    speed, laws_info, impacts, phases = _laws_impacts(spec, motion, False, warnings)
+    w_span, w_sym = flat.face_widths(motion)
+    phi = np.arange(0.0, 360.0, 1.0)
+    phr = np.radians(phi)
+    s, s1, s2, s3 = motion.evaluate(phr)
+    prof = flat.profile(motion, r0, sigma, phr)
+    extra = {"r0_min": _f(r0_min), "r0_given": r0_chosen is not None, "rho_min_allowed": rho_allowed,
+             "face_width": _f(w_span), "face_width_symmetric": _f(w_sym),
+             "division_table": division_table(motion, divisions, False, None)}
+    return CamResult(
+        follower="flat", rotation=rotation, swing=None, stroke=stroke, rocker_length=None,
+        phases=phases, allowed=dict(zip(("rise", "return"), _limits(spec))), r0=r0, offset=0.0, center_distance=None,
+        psi0=None, roller=0.0, roller_given=False, max_pressure_angle=0.0, max_pressure_angle_rise=0.0,
+        max_pressure_angle_return=0.0, max_pressure_angle_phi=0.0,
+        rho_min=r0 - margin, rho_min_phi=margin_phi, laws=laws_info, impacts=impacts,
+        phi=phi, s=s, ds=s1, d2s=s2, d3s=s3, speed=speed, pressure_angle=np.zeros_like(phi),
+        pitch=prof, working=prof, construction=None, alternatives={}, warnings=warnings, extra=extra,
+        motion=motion, geometry=None, O_design=np.array([0.0, -r0]),
     )

@@ -323,12 +323,12 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
     fr = getattr(section, "friction", None) if section is not None else None
     loss = None
     locked = np.zeros(N, bool)
-    if fr is not None and fr.f > 0:
+    if fr is not None and (fr.f_pin > 0 or fr.f_slide > 0):
         x, Mb, M1U = solve_groups(q)
         finite0 = np.all(np.isfinite(x), axis=1)
         row_change = np.zeros(N)
         for _ in range(200):
-            ff, fc, loss = friction_loads(mech, geo, x, fr.f, fr.pin_radius)
+            ff, fc, loss = friction_loads(mech, geo, x, fr.f_pin, fr.pin_radius, fr.f_slide)
             qf = q + load_vector(mech, geo, Loads(lds.phi, ff, fc))
             x_new, Mb, M1U = solve_groups(qf)
             row_change = np.max(np.abs(x_new - x), axis=1)
@@ -344,7 +344,7 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
         locked = finite0 & ~(row_change <= 1e-8 * np.maximum(row_scale, 1e-300))
         if np.any(locked):
             x[locked] = np.nan
-        ff, fc, loss = friction_loads(mech, geo, x, fr.f, fr.pin_radius)
+        ff, fc, loss = friction_loads(mech, geo, x, fr.f_pin, fr.pin_radius, fr.f_slide)
         lds = Loads(lds.phi, lds.forces + ff, lds.couples + fc, lds.info)
         q = load_vector(mech, geo, lds)
     x, Mb, M1U = solve_groups(q)
@@ -383,7 +383,7 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
         near = np.zeros(N, bool)
     for i in np.nonzero(locked)[0]:
         warnings.append(f"kinetostatics: position {int(rows[i])} (phi = {phi[i] % 360:.4f} deg) is self-locking with "
-                        f"friction f = {fr.f:g}, pin radius {fr.pin_radius:g} m: the friction loads grow without "
+                        f"friction f_pin = {fr.f_pin:g}, f_slide = {fr.f_slide:g}, pin radius {fr.pin_radius:g} m: the friction loads grow without "
                         f"bound, no finite balancing {('moment' if blk.kind != 'slider' else 'force')}")
     for i in np.nonzero(~ok & ~locked)[0]:
         warnings.append(f"kinetostatics: position {int(rows[i])} (phi = {phi[i] % 360:.4f} deg) is singular for "

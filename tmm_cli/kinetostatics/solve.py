@@ -193,11 +193,13 @@ def balance_rate(mech, geo: Geometry, balance: int) -> np.ndarray:
 
 
 # ------------------------------------------------------------------ friction
-def friction_loads(mech, geo: Geometry, x: np.ndarray, f: float, r_pin: float
+def friction_loads(mech, geo: Geometry, x: np.ndarray, f: float, r_pin: float, f_slide: float | None = None
                    ) -> tuple[list[AppliedForce], list[AppliedCouple], np.ndarray]:
     """Friction loads from the reactions x (N, 2p): a pin friction couple f r |R| against
-    the relative rotation, a slider friction force f |N| against the relative sliding;
-    also the friction power lost in each pair (N, p), >= 0."""
+    the relative rotation, a slider friction force f_slide |N| (f_slide defaults to f)
+    against the relative sliding; also the friction power lost in each pair (N, p), >= 0."""
+    if f_slide is None:
+        f_slide = f
     N = geo.n_pos
     forces, couples = [], []
     loss = np.zeros((N, len(mech.joints)))
@@ -221,7 +223,7 @@ def friction_loads(mech, geo: Geometry, x: np.ndarray, f: float, r_pin: float
             e = geo.jdir[k]
             vrel = np.einsum("ij,ij->i", geo.point_vel(s, p) - geo.point_vel(g, p), e)
             sg = np.sign(vrel)
-            Ff = f * np.abs(xs[:, 2 * k])
+            Ff = f_slide * np.abs(xs[:, 2 * k])
             F = -(Ff * sg)[:, None] * e
             forces.append(AppliedForce(s, f"Ff{g}{s}", p, F, "friction"))
             if g:

@@ -95,6 +95,47 @@ def nice_scale(value: float, series=NICE_SERIES) -> float:
     return float(f"{10.0 ** (k + 1):.12g}")
 
 
+# standard drawing scales (GOST 2.302): enlargements n:1 and reductions 1:n, as model mm per paper mm
+GOST_ENLARGEMENTS = (100.0, 50.0, 40.0, 20.0, 10.0, 5.0, 4.0, 2.5, 2.0)
+GOST_REDUCTIONS = (1.0, 2.0, 2.5, 4.0, 5.0, 10.0, 15.0, 20.0, 25.0, 40.0, 50.0, 75.0, 100.0, 200.0, 400.0,
+                   500.0, 800.0, 1000.0)
+
+
+def drawing_scale(unit: float) -> tuple[float, str]:
+    """Smallest standard drawing scale (GOST 2.302) whose model mm per paper mm is >= unit:
+    (model mm per paper mm, label such as '1:2.5' or '2:1').
+
+    >>> drawing_scale(1.7)
+    (2.0, '1:2')
+    >>> drawing_scale(0.3)
+    (0.4, '2.5:1')
+    """
+    for n in GOST_ENLARGEMENTS:
+        if 1.0 / n >= unit * (1 - 1e-12):
+            return 1.0 / n, f"{n:g}:1"
+    for n in GOST_REDUCTIONS:
+        if n >= unit * (1 - 1e-12):
+            return n, f"1:{n:g}"
+    n = nice_scale(unit)
+    return n, f"1:{n:g}"
+
+
+def figure_at_scale(lo, hi, unit: float, margin_mm: float = 8.0):
+    """A figure sized so that the box lo..hi (model mm) is drawn at ``unit`` model mm per paper mm
+    with the given margin; one equal-aspect axes without frame; returns (fig, ax)."""
+    lo = np.asarray(lo, float)
+    hi = np.asarray(hi, float)
+    w, h = (hi - lo) / unit + 2 * margin_mm
+    fig, ax = new_figure(float(w), float(h))
+    fig.subplots_adjust(0, 0, 1, 1)
+    c = (lo + hi) / 2
+    ax.set_xlim(c[0] - unit * w / 2, c[0] + unit * w / 2)
+    ax.set_ylim(c[1] - unit * h / 2, c[1] + unit * h / 2)
+    ax.set_aspect("equal", adjustable="box")
+    ax.axis("off")
+    return fig, ax
+
+
 # ---------------------------------------------------------------- primitives
 def draw_ground(ax, xy, size: float, angle_deg: float = -90.0, lw=0.8, color="k"):
     """A fixed pivot: small triangle ending in a hatched base, pointing away

@@ -55,6 +55,32 @@ I18N = {
                       "half-planes bounded by the tangent lines of the s - ds/dphi diagram at the allowed pressure "
                       "angle (one pair per cam angle), and O is its point nearest to the lowest follower position B0.",
         "cam.scales": "Scales",
+        "cam.flat": "flat-faced translating follower", "cam.knife": "knife-edge translating follower",
+        "cam.r0_chosen": "Chosen base radius r0 (the profile is built on it)",
+        "cam.r0_min": "Least base radius for the allowed pressure angle (same offset / centre distance)",
+        "cam.r0_flat": "Least base radius for a convex profile r0 = max(rho_min_allowed - s - d²s/dφ²)",
+        "cam.rho_allowed": "Allowed least radius of curvature of the profile",
+        "cam.rho_flat": "Least radius of curvature of the profile r0 + s + d²s/dφ²",
+        "cam.face_width": "Face width: span of the contact points max(ds/dφ) - min(ds/dφ)",
+        "cam.face_sym": "Face width, symmetric about the axis: 2 max|ds/dφ|",
+        "cam.theta_flat": "Pressure angle (face perpendicular to the motion)",
+        "cam.flat_method": "For a flat-faced follower the pressure angle is zero and the size is limited by "
+                           "the convexity of the profile: its radius of curvature is r0 + s + d²s/dφ², so "
+                           "r0 = max(rho_min_allowed - s - d²s/dφ²) over the cycle; the profile is the envelope "
+                           "of the face in the inverted motion, the contact point lying ds/dφ from the "
+                           "follower's axis along the face.",
+        "cam.chosen_method": "The profile is built on the chosen base radius; the pressure angle over the cycle "
+                             "is computed exactly for it and checked against the allowed one.",
+        "cam.division": "Values at the division points of the phases",
+        "cam.division_caption": "Each phase divided into {n} equal parts; at the ends of a phase the values "
+                                "are those of its own law (d²s/dφ² may jump there)",
+        "cam.construction_title": "s – ds/dφ diagram",
+        "cam.construction_chosen": "the cam is built on the chosen centre O instead",
+        "cam.construction_scale": "equal scales μs = μds/dφ = {mu} mm/mm (M {label})",
+        "cam.profile_flat_caption": "Base circle r0 and the cam profile (solid), the follower's face every 30 deg "
+                                    "by inverted motion; scale {scale}",
+        "cam.profile_knife_caption": "Base circle r0, the cam profile (solid) and the knife-edge follower every "
+                                     "30 deg by inverted motion; scale {scale}",
     },
     "ru": {
         "cam.title": "Кулачковый механизм",
@@ -101,6 +127,32 @@ I18N = {
                       "давления (по паре на каждый угол поворота), O — её точка, ближайшая к нижнему положению "
                       "толкателя B0.",
         "cam.scales": "Масштабы",
+        "cam.flat": "поступательно движущийся тарельчатый толкатель",
+        "cam.knife": "поступательно движущийся острый толкатель",
+        "cam.r0_chosen": "Принятый радиус r0 (профиль построен на нём)",
+        "cam.r0_min": "Наименьший радиус при допустимом угле давления (тот же эксцентриситет / межосевое расстояние)",
+        "cam.r0_flat": "Наименьший радиус при выпуклом профиле r0 = max(rho_min_доп - s - d²s/dφ²)",
+        "cam.rho_allowed": "Допустимый наименьший радиус кривизны профиля",
+        "cam.rho_flat": "Наименьший радиус кривизны профиля r0 + s + d²s/dφ²",
+        "cam.face_width": "Ширина тарелки: размах точек касания max(ds/dφ) - min(ds/dφ)",
+        "cam.face_sym": "Ширина тарелки, симметричной относительно оси: 2 max|ds/dφ|",
+        "cam.theta_flat": "Угол давления (тарелка перпендикулярна движению)",
+        "cam.flat_method": "У тарельчатого толкателя угол давления равен нулю, и размер кулачка ограничен "
+                           "выпуклостью профиля: радиус кривизны профиля r0 + s + d²s/dφ², поэтому "
+                           "r0 = max(rho_min_доп - s - d²s/dφ²) за цикл; профиль — огибающая положений тарелки "
+                           "в обращённом движении, точка касания отстоит от оси толкателя на ds/dφ.",
+        "cam.chosen_method": "Профиль построен на принятом радиусе; угол давления за цикл вычислен для него точно "
+                             "и сравнён с допустимым.",
+        "cam.division": "Значения в точках деления фаз",
+        "cam.division_caption": "Каждая фаза разделена на {n} равных частей; на концах фазы — значения её "
+                                "собственного закона (d²s/dφ² там может иметь скачок)",
+        "cam.construction_title": "Диаграмма s – ds/dφ",
+        "cam.construction_chosen": "кулачок построен на принятом центре O",
+        "cam.construction_scale": "равные масштабы μs = μds/dφ = {mu} мм/мм (М {label})",
+        "cam.profile_flat_caption": "Начальная окружность r0 и профиль кулачка (сплошной), тарелка толкателя "
+                                    "через 30° методом обращения движения; масштаб {scale}",
+        "cam.profile_knife_caption": "Начальная окружность r0, профиль кулачка (сплошной) и острый толкатель "
+                                     "через 30° методом обращения движения; масштаб {scale}",
     },
 }
 
@@ -200,7 +252,8 @@ def construction_figure(ctx, c):
     k = c["construction"]
     box = k["box"]
     lo, hi = np.array(box[:2]) * MM, np.array(box[2:]) * MM
-    fig, ax, unit = fp.figure_for_box(lo, hi, 150.0, min_h=60, max_h=150)
+    unit, label = fp.drawing_scale(max((hi - lo)[0] / 134.0, (hi - lo)[1] / 134.0))
+    fig, ax = fp.figure_at_scale(lo, hi, unit)
     reg = np.asarray(k.get("region") or [])
     if len(reg) >= 3:
         ax.fill(reg[:, 0] * MM, reg[:, 1] * MM, color="#cfe8cf", lw=0, zorder=0)
@@ -230,8 +283,21 @@ def construction_figure(ctx, c):
         ax.plot(*A, "ko", ms=3)
         ax.annotate("A", A, textcoords="offset points", xytext=(4, 4), fontsize=8)
         ax.plot([A[0], B0[0]], [A[1], B0[1]], color="0.3", lw=0.8)
-    ax.legend(loc="upper right", fontsize=7, frameon=False)
-    return fig
+    _diagram_axes(ax, B0, lo, hi, ctx)
+    ax.set_title(ctx.t("cam.construction_title"), fontsize=9, y=0.97, va="top")
+    ax.legend(loc="lower left", fontsize=7, frameon=False)
+    return fig, unit, label
+
+
+def _diagram_axes(ax, B0, lo, hi, ctx):
+    """Axes of the s - ds/dphi diagram through B0: s along the follower's rise, ds/dphi across."""
+    kw = dict(arrowprops=dict(arrowstyle="-|>", lw=0.6, color="k"))
+    ax.annotate("", xy=(hi[0] - 0.02 * (hi[0] - lo[0]), B0[1]), xytext=(lo[0], B0[1]), **kw)
+    ax.annotate("", xy=(B0[0], hi[1] - 0.02 * (hi[1] - lo[1])), xytext=(B0[0], lo[1]), **kw)
+    ax.annotate(_loc(ctx.lang, "ds/dφ, mm"), (hi[0], B0[1]), textcoords="offset points", xytext=(-4, 4),
+                ha="right", fontsize=7)
+    ax.annotate(_loc(ctx.lang, "s, mm"), (B0[0], hi[1]), textcoords="offset points", xytext=(4, -10),
+                fontsize=7)
 
 
 def profile_figure(ctx, c):
@@ -249,19 +315,38 @@ def profile_figure(ctx, c):
         c_, s_ = np.cos(-sigma * angs), np.sin(-sigma * angs)
         A_inv = np.column_stack([c_ * A[0] - s_ * A[1], s_ * A[0] + c_ * A[1]])
         pts.append(A_inv)
+    flat = c["follower"] == "flat"
+    half = 0.5 * c.get("face_width_symmetric", 0.0) * MM * 1.1 if flat else 0.0
+    if flat:
+        pts.append(pitch + half)
+        pts.append(pitch - half)
     allp = np.vstack(pts)
     lo, hi = allp.min(axis=0) - rr, allp.max(axis=0) + rr
-    fig, ax, unit = fp.figure_for_box(lo, hi, 150.0, min_h=80, max_h=170)
+    unit, label = fp.drawing_scale(max((hi - lo)[0] / 134.0, (hi - lo)[1] / 154.0))
+    fig, ax = fp.figure_at_scale(lo, hi, unit)
     th = np.linspace(0, 2 * np.pi, 361)
     ax.plot(r0 * np.cos(th), r0 * np.sin(th), color="0.5", lw=0.6, ls="-.")
-    ax.plot(*np.vstack([pitch, pitch[:1]]).T, color="k", lw=0.8, ls="--")
+    if rr > 0:
+        ax.plot(*np.vstack([pitch, pitch[:1]]).T, color="k", lw=0.8, ls="--")
     ax.plot(*np.vstack([work, work[:1]]).T, color="k", lw=1.6)
     ax.plot(0, 0, "k+", ms=8)
     ax.annotate("O", (0, 0), textcoords="offset points", xytext=(4, 4), fontsize=8)
     for i, a in enumerate(angs):
         idx = int(round(math.degrees(a))) % len(pitch)
         B = pitch[idx]
-        ax.plot(B[0] + rr * np.cos(th), B[1] + rr * np.sin(th), color="tab:blue", lw=0.5)
+        if flat:
+            # the face: perpendicular to the follower's axis through the contact point
+            u = np.array([-math.sin(-sigma * a), math.cos(-sigma * a)])
+            n = np.array([u[1], -u[0]])
+            foot = B - np.dot(B, n) * n
+            ax.plot([foot[0] - half * n[0], foot[0] + half * n[0]], [foot[1] - half * n[1], foot[1] + half * n[1]],
+                    color="tab:blue", lw=0.6)
+            ax.plot([foot[0], foot[0] + u[0] * 0.4 * r0], [foot[1], foot[1] + u[1] * 0.4 * r0],
+                    color="tab:blue", lw=0.5)
+            ax.annotate(str(i), foot, textcoords="offset points", xytext=(3, 3), fontsize=6, color="tab:blue")
+            continue
+        if rr > 0:
+            ax.plot(B[0] + rr * np.cos(th), B[1] + rr * np.sin(th), color="tab:blue", lw=0.5)
         if rocker:
             Ai = A_inv[i]
             ax.plot([Ai[0], B[0]], [Ai[1], B[1]], color="tab:blue", lw=0.5)
@@ -277,7 +362,7 @@ def profile_figure(ctx, c):
     ax.annotate("", xy=(rr_ * math.cos(arc[-1]), rr_ * math.sin(arc[-1])),
                 xytext=(rr_ * math.cos(arc[-3]), rr_ * math.sin(arc[-3])),
                 arrowprops=dict(arrowstyle="-|>", lw=0.6, color="k"))
-    return fig, unit
+    return fig, unit, label
 
 
 def pressure_figure(ctx, c):
@@ -308,13 +393,14 @@ def build(ctx) -> str | None:
         return None
     f, t = ctx.fmt, ctx.t
     rocker = c["follower"] == "rocker"
-    (ks, us), (kv, uv), (ka, ua) = _units(c, ctx.lang)
-    rows = [(t("cam.follower"), t("cam.rocker") if rocker else t("cam.translating")),
+    knife = c["follower"] == "knife"
+    if c["follower"] == "flat":
+        return _build_flat(ctx, c)
+    rows = [(t("cam.follower"), t("cam." + c["follower"])),
             (t("cam.rotation"), t("common.ccw") if c["rotation"] == "ccw" else t("common.cw")),
             (_loc(ctx.lang, t("cam.theta_allowed") + ", deg"),
              f"{f(c['pressure_angle_allowed']['rise'])} / {f(c['pressure_angle_allowed']['return'])}"),
-            (_loc(ctx.lang, t("cam.r0") + ", mm"), f(c["r0"] * MM, 6)),
-            (_loc(ctx.lang, t("cam.r0_design") + ", mm"), f(c["r0_design"] * MM, 6))]
+            *_size_rows(ctx, c)]
     if rocker:
         rows += [(_loc(ctx.lang, t("cam.center_distance") + ", mm"), f(c["center_distance"] * MM, 6)),
                  (_loc(ctx.lang, t("cam.psi0") + ", deg"), f(c["psi0"], 5)),
@@ -323,9 +409,45 @@ def build(ctx) -> str | None:
         rows.append((_loc(ctx.lang, t("cam.offset") + ", mm"), f(c["offset"] * MM, 6)))
     rows += [(_loc(ctx.lang, t("cam.theta_max") + ", deg"),
               f"{f(c['max_pressure_angle_rise'], 5)} / {f(c['max_pressure_angle_return'], 5)}"),
-             (_loc(ctx.lang, t("cam.rho_min") + ", mm"), f(c["rho_min"] * MM, 6)),
-             (_loc(ctx.lang, t("cam.roller") + ", mm"),
-              f"{f(c['roller'] * MM, 5)} ({t('cam.roller_given') if c['roller_rule'] == 'given' else t('cam.roller_rule')})")]
+             (_loc(ctx.lang, t("cam.rho_min") + ", mm"), f(c["rho_min"] * MM, 6))]
+    if not knife:
+        rows.append((_loc(ctx.lang, t("cam.roller") + ", mm"),
+                     f"{f(c['roller'] * MM, 5)} ({t('cam.roller_given') if c['roller_rule'] == 'given' else t('cam.roller_rule')})"))
+    return _render(ctx, c, rows, t("cam.method") + (" " + t("cam.chosen_method") if c.get("r0_given") else ""))
+
+
+def _size_rows(ctx, c):
+    """Rows of the base radius: the exact least one, or the chosen one beside the least."""
+    f, t = ctx.fmt, ctx.t
+    if c.get("r0_given"):
+        return [(_loc(ctx.lang, t("cam.r0_chosen") + ", mm"), f(c["r0"] * MM, 6)),
+                (_loc(ctx.lang, t("cam.r0_min") + ", mm"), f(c["r0_min"] * MM, 6) if c["r0_min"] is not None else "—")]
+    return [(_loc(ctx.lang, t("cam.r0") + ", mm"), f(c["r0"] * MM, 6)),
+            (_loc(ctx.lang, t("cam.r0_design") + ", mm"), f(c["r0_design"] * MM, 6))]
+
+
+def _build_flat(ctx, c):
+    f, t = ctx.fmt, ctx.t
+    rows = [(t("cam.follower"), t("cam.flat")),
+            (t("cam.rotation"), t("common.ccw") if c["rotation"] == "ccw" else t("common.cw")),
+            (_loc(ctx.lang, t("cam.rho_allowed") + ", mm"), f(c["rho_min_allowed"] * MM, 6))]
+    if c.get("r0_given"):
+        rows += [(_loc(ctx.lang, t("cam.r0_chosen") + ", mm"), f(c["r0"] * MM, 6)),
+                 (_loc(ctx.lang, t("cam.r0_flat") + ", mm"), f(c["r0_min"] * MM, 6))]
+    else:
+        rows += [(_loc(ctx.lang, t("cam.r0_flat") + ", mm"), f(c["r0"] * MM, 6)),
+                 (_loc(ctx.lang, t("cam.r0_design") + ", mm"), f(c["r0_design"] * MM, 6))]
+    rows += [(_loc(ctx.lang, t("cam.rho_flat") + ", mm"), f(c["rho_min"] * MM, 6)),
+             (_loc(ctx.lang, t("cam.face_width") + ", mm"), f(c["face_width"] * MM, 6)),
+             (_loc(ctx.lang, t("cam.face_sym") + ", mm"), f(c["face_width_symmetric"] * MM, 6)),
+             (_loc(ctx.lang, t("cam.theta_flat") + ", deg"), "0")]
+    return _render(ctx, c, rows, t("cam.flat_method"))
+
+
+def _render(ctx, c, rows, method):
+    f, t = ctx.fmt, ctx.t
+    flat = c["follower"] == "flat"
+    (ks, us), (kv, uv), (ka, ua) = _units(c, ctx.lang)
     law_rows = []
     for k in ("rise", "return"):
         L = c["laws"][k]
@@ -350,21 +472,34 @@ def build(ctx) -> str | None:
         figs.append((ctx.svg(fig), t("cam.diagrams_caption")))
     except Exception as exc:  # a drawing problem must not lose the tables
         figs.append((f"<p class='warn'>figure failed: {exc}</p>", t("cam.diagrams_caption")))
-    for fn, cap in ((construction_figure, "cam.construction_caption"),):
+    if c.get("construction"):
+        cap = t("cam.construction_caption")
         try:
-            figs.append((ctx.svg(fn(ctx, c)), t(cap)))
+            fig, unit, label = construction_figure(ctx, c)
+            if c.get("r0_given"):
+                cap += "; " + t("cam.construction_chosen")
+            cap += "; " + t("cam.construction_scale", mu=f(unit, 4), label=label)
+            figs.append((ctx.svg(fig), cap))
         except Exception as exc:
-            figs.append((f"<p class='warn'>figure failed: {exc}</p>", t(cap)))
+            figs.append((f"<p class='warn'>figure failed: {exc}</p>", cap))
+    pcap = {"flat": "cam.profile_flat_caption", "knife": "cam.profile_knife_caption"}.get(c["follower"],
+                                                                                          "cam.profile_caption")
     try:
-        fig, unit = profile_figure(ctx, c)
-        scale = _loc(ctx.lang, f"μl = {f(unit, 4)} mm/mm") if abs(unit - 1) > 1e-9 else "1:1"
-        figs.append((ctx.svg(fig), t("cam.profile_caption", scale=scale)))
+        fig, unit, label = profile_figure(ctx, c)
+        scale = f"M {label}" + _loc(ctx.lang, f" (μl = {f(unit, 4)} mm/mm)")
+        figs.append((ctx.svg(fig), t(pcap, scale=scale)))
     except Exception as exc:
-        figs.append((f"<p class='warn'>figure failed: {exc}</p>", t("cam.profile_caption", scale="")))
-    try:
-        figs.append((ctx.svg(pressure_figure(ctx, c)), t("cam.pressure_caption")))
-    except Exception as exc:
-        figs.append((f"<p class='warn'>figure failed: {exc}</p>", t("cam.pressure_caption")))
+        figs.append((f"<p class='warn'>figure failed: {exc}</p>", t(pcap, scale="")))
+    if not flat:
+        try:
+            figs.append((ctx.svg(pressure_figure(ctx, c)), t("cam.pressure_caption")))
+        except Exception as exc:
+            figs.append((f"<p class='warn'>figure failed: {exc}</p>", t("cam.pressure_caption")))
+    div = c.get("division_table") or []
+    div_rows = [(t(f"cam.{r['phase']}"), r["k"], f(r["phi"], 5), f(r["s"] * ks, 5), f(r["ds"] * kv, 5),
+                 f(r["d2s"] * ka, 5), f(r["pressure_angle"], 4)) for r in div]
+    div_header = [t("cam.phase"), "k"] + table_header[:5]
+    n = sum(1 for r in div if r["phase"] == "rise") - 1
     files = []
     try:
         from tmm_cli.cam.export import profile_csv_rows, profile_dxf
@@ -381,4 +516,5 @@ def build(ctx) -> str | None:
         pass
     return ctx.render("sections/cam.html.j2", rows=rows, law_header=law_header, law_rows=law_rows,
                       table_header=table_header, table_rows=table_rows, figs=figs, scales=scales,
-                      files=files, method=t("cam.method"))
+                      files=files, method=method, div_header=div_header, div_rows=div_rows,
+                      div_caption=t("cam.division_caption", n=n))
