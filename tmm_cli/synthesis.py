@@ -116,6 +116,32 @@ def slider_crank_lambda(H: float, theta: float, lam: float) -> tuple[float, floa
     return r, lam * r, e
 
 
+def _reach(H: float, r: float, l: float) -> float:
+    """4 l r - H^2: >= 0 when the foot of the perpendicular from O to the guide lies
+    outside B1B2 (the angle at B1 is not acute), so that the folded extreme B1 of the
+    mechanism (B ahead of A along the guide) is the point of the construction. Below
+    zero the equations hold for a triangle whose B1 lies behind the foot, and the
+    mechanism built from those lengths has another stroke and K."""
+    return 4.0 * l * r - H * H
+
+
+def _e_reach(H: float, theta: float) -> float:
+    """The largest offset (m) with _reach >= 0 (0 when none): a scan of (0, e_max) and
+    Brent's method on the sign change."""
+    from scipy.optimize import brentq
+
+    e_max = H / (2.0 * math.tan(math.radians(theta) / 2.0))
+    f = lambda e: _reach(H, *slider_crank_offset(H, theta, e))
+    xs = [e_max * k / 2000.0 for k in range(1, 2000)]
+    last = None
+    for a, b in zip(xs, xs[1:]):
+        if f(a) >= 0.0 > f(b):
+            last = (a, b)
+    if last is None:
+        return e_max if f(xs[-1]) >= 0.0 else 0.0
+    return brentq(f, *last, xtol=1e-16, rtol=1e-15, maxiter=500)
+
+
 def _gamma_offset(H: float, theta: float, e: float) -> float:
     r, l = slider_crank_offset(H, theta, e)
     return math.degrees(math.acos(min(1.0, (r + e) / l)))
@@ -128,7 +154,10 @@ def slider_crank_gamma(H: float, theta: float, gamma: float) -> list[tuple[float
     from scipy.optimize import brentq, minimize_scalar
 
     th = math.radians(theta)
-    e_max = H / (2.0 * math.tan(th / 2.0))
+    e_max = _e_reach(H, theta)
+    if e_max <= 0.0:
+        raise SynthesisImpossible(
+            f"synthesis.K: no offset slider-crank reaches K = {K_of_theta(theta):.6g} with stroke H: lower K")
     lo, hi = e_max * 1e-12, e_max * (1.0 - 1e-12)
     best = minimize_scalar(lambda e: -_gamma_offset(H, theta, e), bounds=(lo, hi), method="bounded",
                            options={"xatol": e_max * 1e-13})
@@ -175,12 +204,17 @@ def _slider_crank(sec, direction: str) -> Design:
             solutions = [{"crank": q[0], "rod": q[1], "offset": q[2], "gamma_min": float(sec.gamma_min),
                           "chosen": k == 0} for k, q in enumerate(roots)]
             r, l, e = roots[0]
-        if l - r < e * (1.0 + 1e-12):
+        if _reach(H, r, l) < 0.0:
+            lam_max = 1.0 / math.tan(math.radians(theta) / 2.0) ** 2
             raise SynthesisImpossible(
-                f"synthesis: the crank cannot turn fully (rod - crank = {l - r:.6g} m is below the offset "
-                f"{e:.6g} m, so l - r >= e fails): "
-                + ("lower e" if sec.e is not None else "raise lambda" if sec.lambda_ is not None else "relax gamma_min")
-                + " or lower K")
+                "synthesis." + ("e" if sec.e is not None else "lambda") + ": with these H, K and "
+                + (f"e = {e:.6g} m" if sec.e is not None else f"lambda = {float(sec.lambda_):.6g}")
+                + " the folded extreme position falls behind the foot of the perpendicular from the crank axis "
+                  "to the guide (4 l_OA l_AB < H^2), so no slider-crank has them: "
+                + (f"lower e (at most {_e_reach(H, theta):.6g} m)" if sec.e is not None
+                   else f"lower lambda (at most cot^2(theta/2) = {lam_max:.6g})") + " or K")
+        # the crank then always turns fully: by the law of sines in O B1 B2,
+        # H = (l + r) sin(theta)/sin(B1) >= (l + r) sin(theta), so l - r = H e/((l + r) sin(theta)) >= e
     m = 1.0 if direction == "ccw" else -1.0
     yg = -m * e
     xb = r + math.sqrt(l * l - yg * yg)
