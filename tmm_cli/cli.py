@@ -153,6 +153,8 @@ def validate(
     for f in task_files:
         try:
             task = _load(f)
+            if task._synthesis_error is not None:
+                raise task._synthesis_error
             if task.mechanism is not None:
                 from .validation import check_feasible
                 check_feasible(task, assembly=not no_assembly)
