@@ -268,11 +268,11 @@ def fields(section: Optional[str] = typer.Argument(None, help="only this section
     Console().print(t)
 
 
-STARTERS = ("linkage", "cam", "gears", "full")
+STARTERS = ("linkage", "cam", "gears", "full", "synthesis")
 
 
 @app.command()
-def new(kind: str = typer.Argument(..., metavar="KIND", help="linkage | cam | gears | full")):
+def new(kind: str = typer.Argument(..., metavar="KIND", help="linkage | cam | gears | full | synthesis")):
     """Print a commented starter task of the given kind."""
     if kind not in STARTERS:
         _err(f"error: unknown kind '{kind}'; choose from {', '.join(STARTERS)}")

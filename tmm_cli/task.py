@@ -788,6 +788,45 @@ for _model, _fields in _DOCS.items():
         _model.model_fields[_name].description = _text
     _model.model_rebuild(force=True)
 
+# the lever synthesis and the drive speed from the output
+_DOCS_SYNTHESIS: dict[type, dict[str, str]] = {
+    Task: {"synthesis": "design the lever mechanism from K and the stroke; replaces `mechanism` (the generated "
+                        "links: crank, rod, slider | crank, coupler, rocker | crank, block, rocker[, blockC, ram])"},
+    SynthesisSection: {
+        "type": "slider_crank | offset_slider_crank | crank_rocker | slotted_lever | shaper",
+        "H": "stroke of the slider or ram, m (slider-cranks, shaper)",
+        "psi": "swing of the rocker, deg (crank_rocker)",
+        "K": "coefficient of mean speed increase K = (180 + theta)/(180 - theta) (or give theta)",
+        "theta": "angle theta, deg (instead of K)",
+        "lambda_": "slider-cranks: l_AB/l_OA (one of lambda, e, gamma_min)",
+        "e": "offset_slider_crank: offset of the guide from the crank axis, m",
+        "gamma_min": "slider-cranks: the least transmission angle over the cycle, deg",
+        "rocker": "crank_rocker: l_O1B, m; slotted lever/shaper: slotted-link length (default 1.5 (frame + crank); "
+                  "shaper H/(2 sin(psi/2)))",
+        "frame": "crank_rocker, slotted lever, shaper: the distance OO1 between the fixed pivots, m",
+        "guide_height": "shaper: the ram guide above O1, m (default H/(2 tan(psi/2)): the ram stroke is "
+                        "2 guide_height tan(psi/2))",
+        "links": "mass properties of the generated links: {name: {mass, J, com}}",
+    },
+    SynthesisLinkSpec: {"mass": "mass, kg"},
+    DriveSection: {
+        "speed": "the crank's mean angular speed (rad/s; or '50 rpm'); or one of the two below",
+        "mean_output_speed": "the output's mean speed over the cycle (m/s; a rocker: rad/s or '12 deg/s'): "
+                             "omega1 = pi V/H",
+        "working_stroke_speed": "the output's mean speed over the working stroke: omega1 = 2 pi V/(H (1 + 1/K))",
+    },
+    PositionsSection: {
+        "output": "the link whose extreme positions are used (default: the last link; with `synthesis` the "
+                  "output: slider, rocker, ram)",
+        "working": "forward | backward: the working stroke moves the output toward increasing | decreasing "
+                   "coordinate (with `synthesis` default: the slow stroke)",
+    },
+}
+for _model, _fields in _DOCS_SYNTHESIS.items():
+    for _name, _text in _fields.items():
+        _model.model_fields[_name].description = _text
+    _model.model_rebuild(force=True)
+
 
 def field_docs(model: type = Task, prefix: str = "") -> list[tuple[str, str, str]]:
     """(dotted path, default, description) of every task-file field, for `tmm fields`."""
@@ -812,6 +851,6 @@ def field_docs(model: type = Task, prefix: str = "") -> list[tuple[str, str, str
                 if isinstance(b, type) and issubclass(b, BaseModel) and b is not StudentSpec and b not in subs:
                     subs.append(b)
         for sub in subs:
-            sub_prefix = path + (".<name>." if sub is LinkSpec else "[i]." if sub is ForceSpec else ".")
+            sub_prefix = path + (".<name>." if sub in (LinkSpec, SynthesisLinkSpec) else "[i]." if sub is ForceSpec else ".")
             out.extend(field_docs(sub, sub_prefix))
     return out
