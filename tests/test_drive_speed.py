@@ -103,8 +103,8 @@ def test_same_kinematics_as_the_equivalent_speed():
 
 
 @pytest.mark.parametrize("drive,field", [
-    ({}, "drive"),
-    ({"speed": 10, "mean_output_speed": 0.5}, "drive"),
+    ({}, "drive.speed"),
+    ({"speed": 10, "mean_output_speed": 0.5}, "drive.mean_output_speed"),
     ({"mean_output_speed": "3 kg"}, "drive.mean_output_speed"),
     ({"working_stroke_speed": -1}, "drive.working_stroke_speed"),
 ])

@@ -155,9 +155,12 @@ class DriveSection(_Model):
     def _one_speed(self):
         from .drive_speed import check_output_speed
         given = [k for k in ("speed", "mean_output_speed", "working_stroke_speed") if getattr(self, k) is not None]
-        if len(given) != 1:
-            raise ValueError("a drive needs exactly one of `speed` (the crank's), `mean_output_speed` or "
-                             "`working_stroke_speed` (the output's)" + (f"; got {', '.join(given)}" if given else ""))
+        if not given:
+            raise FieldValueError(("speed",), "required field is missing: the crank's `speed`, or the output's "
+                                              "`mean_output_speed` or `working_stroke_speed`")
+        if len(given) > 1:
+            raise FieldValueError((given[1],), f"give exactly one of `speed` (the crank's), `mean_output_speed` or "
+                                               f"`working_stroke_speed` (the output's); got {', '.join(given)}")
         if given[0] != "speed":
             try:
                 check_output_speed(getattr(self, given[0]))
