@@ -22,7 +22,8 @@ I18N = {
            "syn.type.offset_slider_crank": "offset slider-crank", "syn.type.crank_rocker": "crank-rocker four-bar",
            "syn.type.slotted_lever": "slotted-lever (quick-return) mechanism",
            "syn.type.shaper": "slotted-lever shaper with the ram", "syn.forward": "forward",
-           "syn.backward": "backward", "syn.method": "K = (180° + θ)/(180° − θ); the link lengths follow from "
+           "syn.backward": "backward", "syn.side.far": "far from O1", "syn.side.near": "near O1",
+           "syn.method": "K = (180° + θ)/(180° − θ); the link lengths follow from "
            "the extreme positions of the output seen from the crank axis under θ (Artobolevsky); H, K, θ, ψ and "
            "γ_min below are found by analysing the designed mechanism."},
     "ru": {"syn.title": "Синтез рычажного механизма",
@@ -39,6 +40,7 @@ I18N = {
            "syn.type.crank_rocker": "кривошипно-коромысловый шарнирный четырёхзвенник",
            "syn.type.slotted_lever": "кулисный механизм", "syn.type.shaper": "кулисный механизм строгального станка",
            "syn.forward": "прямой", "syn.backward": "обратный",
+           "syn.side.far": "дальняя от O1", "syn.side.near": "ближняя к O1",
            "syn.method": "K = (180° + θ)/(180° − θ); длины звеньев найдены по крайним положениям выходного "
            "звена, видимым из оси кривошипа под углом θ (Артоболевский); H, K, θ, ψ и γ_min ниже получены "
            "анализом спроектированного механизма."},
@@ -231,7 +233,7 @@ def build(ctx) -> str | None:
     info.append((t("syn.working", o=out), t(f"syn.{r['working']}")))
     sols = []
     for s in r.get("solutions") or []:
-        sols.append([s.get("side", "")] + [f(s[k], 6) for k in r["lengths"] if k in s]
+        sols.append([t(f"syn.side.{s['side']}") if s.get("side") else ""] + [f(s[k], 6) for k in r["lengths"] if k in s]
                     + [f(s["gamma_min"], 6), t("syn.chosen") if s.get("chosen") else ""])
     sol_head = ([t("syn.side")] + [_LEN.get(lang, _LEN["en"]).get(k, k) for k in r["lengths"]
                                    if r.get("solutions") and k in r["solutions"][0]] + ["γ_min, °", ""])
