@@ -148,7 +148,7 @@ def test_schema_and_new(tmp_path):
                 "planetary", "answers", "tolerance"):
         assert sec in s["properties"], sec
     assert s["additionalProperties"] is False
-    for kind in ("linkage", "cam", "gears", "full"):
+    for kind in ("linkage", "cam", "gears", "full", "synthesis"):
         res = runner.invoke(app, ["new", kind])
         assert res.exit_code == 0
         f = _write(tmp_path, f"{kind}.yaml", res.output)

@@ -179,6 +179,8 @@ def validate(
     for f in task_files:
         try:
             task = _load(f)
+            if task._synthesis_error is not None:
+                raise task._synthesis_error
             if task.mechanism is not None:
                 from .validation import check_feasible
                 check_feasible(task, assembly=not no_assembly)
@@ -293,13 +295,13 @@ def fields(section: Optional[str] = typer.Argument(None, help="only this section
     Console().print(t)
 
 
-STARTERS = ("linkage", "cam", "gears", "full")
+STARTERS = ("linkage", "cam", "gears", "full", "synthesis")
 STARTERS += ("cam_rocker", "cam_flat", "cam_knife")      # one starter for each cam follower
 
 
 @app.command()
 def new(kind: str = typer.Argument(..., metavar="KIND", help="linkage | cam | cam_rocker | cam_flat | cam_knife | "
-                                                            "gears | full")):
+                                                            "gears | full | synthesis")):
     """Print a commented starter task of the given kind."""
     if kind not in STARTERS:
         _err(f"error: unknown kind '{kind}'; choose from {', '.join(STARTERS)}")

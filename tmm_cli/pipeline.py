@@ -72,6 +72,9 @@ def run(task: Task, *, progress: Callable[[str], None] | None = None,
         return go
 
     try:
+        if task.synthesis is not None and task._synthesis_error is not None:
+            say("synthesis")
+            raise task._synthesis_error
         if task.mechanism is not None:
             part(lambda: _linkage(task, results, warnings, say, kinematics_curve))
         if task.cam is not None:
@@ -130,9 +133,18 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int) -> No
         strokes = loads_mod.slider_strokes(mech, task.loads, positions)
         if strokes:
             results["positions"]["strokes"] = {k: s.to_dict() for k, s in strokes.items()}
+    if task.synthesis is not None:
+        say("synthesis")
+        from .synthesis import analyse
+        results["synthesis"] = _stage("synthesis")(analyse)(task._design, mech, task.drive.direction)
+
+    # the crank speed: given, or from the output's speed with the stroke and K just found
+    from . import drive_speed
+    omega1, source = drive_speed.resolve(task, positions)
+    task = drive_speed.with_speed(task, omega1)
+    results["drive"] = drive_speed.result(omega1, source)
 
     say("kinematics")
-    omega1 = task.drive.omega1
     phi = np.asarray(positions.phi, dtype=float)
     kin = _stage("kinematics")(kinematics.solve)(mech, phi, omega1)
     results["kinematics"] = kin.to_entries(list(positions.index))

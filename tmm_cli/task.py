@@ -145,9 +145,28 @@ class MechanismSection(_Model):
 
 class DriveSection(_Model):
     link: str
-    speed: AngularSpeed = Field(..., gt=0, description="mean angular speed (rad/s; or '50 rpm')")
+    speed: AngularSpeed | None = Field(None, gt=0, description="mean angular speed (rad/s; or '50 rpm')")
+    mean_output_speed: Union[Number, str, None] = None
+    working_stroke_speed: Union[Number, str, None] = None
     direction: Literal["ccw", "cw"] = "ccw"
     cycle: Literal[360, 720] = 360
+
+    @model_validator(mode="after")
+    def _one_speed(self):
+        from .drive_speed import check_output_speed
+        given = [k for k in ("speed", "mean_output_speed", "working_stroke_speed") if getattr(self, k) is not None]
+        if not given:
+            raise FieldValueError(("speed",), "required field is missing: the crank's `speed`, or the output's "
+                                              "`mean_output_speed` or `working_stroke_speed`")
+        if len(given) > 1:
+            raise FieldValueError((given[1],), f"give exactly one of `speed` (the crank's), `mean_output_speed` or "
+                                               f"`working_stroke_speed` (the output's); got {', '.join(given)}")
+        if given[0] != "speed":
+            try:
+                check_output_speed(getattr(self, given[0]))
+            except ValueError as exc:
+                raise FieldValueError((given[0],), str(exc)) from None
+        return self
 
     @property
     def sign(self) -> float:
@@ -155,6 +174,9 @@ class DriveSection(_Model):
 
     @property
     def omega1(self) -> float:
+        if self.speed is None:
+            raise ValueError("the crank speed follows from the output's speed: resolve it first "
+                             "(tmm_cli.drive_speed.resolve)")
         return self.sign * self.speed
 
 
@@ -426,6 +448,74 @@ class PlanetarySection(_Model):
         return self
 
 
+# ---------------------------------------------------------------- synthesis
+class SynthesisLinkSpec(_Model):
+    """Mass properties of a generated link."""
+    mass: Mass = Field(0.0, ge=0)
+    J: Inertia = Field(0.0, ge=0, description="moment of inertia about the centre of mass, kg*m^2")
+    com: Union[str, LengthPair, None] = Field(None, description="centre of mass: local [u, v] or a point name")
+
+
+SYNTHESIS_INPUTS = {  # type -> (required, exactly-one-of groups, optional)
+    "slider_crank": (("H",), (("lambda_", "gamma_min"),), ("K", "theta")),
+    "offset_slider_crank": (("H",), (("K", "theta"), ("e", "lambda_", "gamma_min")), ()),
+    "crank_rocker": (("psi", "rocker", "frame"), (("K", "theta"),), ()),
+    "slotted_lever": (("frame",), (("K", "theta"),), ("rocker",)),
+    "shaper": (("H", "frame"), (("K", "theta"),), ("rocker", "guide_height")),
+}
+
+
+class SynthesisSection(_Model):
+    type: Literal["slider_crank", "offset_slider_crank", "crank_rocker", "slotted_lever", "shaper"]
+    H: Length | None = Field(None, gt=0)
+    psi: Angle | None = Field(None, gt=0, lt=180)
+    K: Ratio | None = Field(None, gt=0)
+    theta: Angle | None = Field(None, gt=-180, lt=180)
+    lambda_: Ratio | None = Field(None, alias="lambda", gt=1)
+    e: Length | None = Field(None, gt=0)
+    gamma_min: Angle | None = Field(None, gt=0, lt=90)
+    rocker: Length | None = Field(None, gt=0)
+    frame: Length | None = Field(None, gt=0)
+    guide_height: Length | None = Field(None, gt=0)
+    links: dict[str, SynthesisLinkSpec] = Field(default_factory=dict)
+
+    @model_validator(mode="after")
+    def _inputs(self):
+        required, groups, optional = SYNTHESIS_INPUTS[self.type]
+        spell = lambda k: "lambda" if k == "lambda_" else k
+        for k in required:
+            if getattr(self, k) is None:
+                raise FieldValueError((spell(k),), f"type {self.type} needs `{spell(k)}`")
+        allowed = set(required) | set(optional) | {k for g in groups for k in g}
+        for k in ("H", "psi", "K", "theta", "lambda_", "e", "gamma_min", "rocker", "frame", "guide_height"):
+            if getattr(self, k) is not None and k not in allowed:
+                hint = "; use type offset_slider_crank" if self.type == "slider_crank" and k == "e" else ""
+                raise FieldValueError((spell(k),), f"type {self.type} does not take `{spell(k)}`{hint}")
+        for g in groups:
+            given = [k for k in g if getattr(self, k) is not None]
+            if len(given) != 1:
+                names = ", ".join(f"`{spell(k)}`" for k in g)
+                raise FieldValueError((spell((given or g)[-1]),),
+                                      f"type {self.type} needs exactly one of {names}"
+                                      + (f"; got {', '.join(spell(k) for k in given)}" if given else ""))
+        if self.type == "slider_crank":
+            th = self.theta if self.theta is not None else (180.0 * (self.K - 1) / (self.K + 1)
+                                                            if self.K is not None else 0.0)
+            if abs(th) > 1e-12:
+                raise FieldValueError(("K" if self.K is not None else "theta",),
+                                      "a central slider_crank has K = 1 (theta = 0): for K != 1 use type "
+                                      "offset_slider_crank")
+        from .synthesis import LINKS
+        for name in self.links:
+            if name not in LINKS[self.type]:
+                import difflib
+                close = difflib.get_close_matches(name, LINKS[self.type], n=1)
+                raise FieldValueError(("links", name), f"type {self.type} generates no link '{name}'"
+                                      + (f"; did you mean '{close[0]}'?" if close else "")
+                                      + f" (links: {', '.join(LINKS[self.type])})")
+        return self
+
+
 class StudentSpec(BaseModel):
     model_config = ConfigDict(extra="allow")
     name: str | None = None
@@ -441,6 +531,7 @@ class Task(_Model):
     variant: Union[int, str, None] = None
     student: StudentSpec | None = None
     mechanism: MechanismSection | None = None
+    synthesis: SynthesisSection | None = None
     drive: DriveSection | None = None
     positions: PositionsSection | None = None
     loads: LoadsSection | None = None
@@ -457,6 +548,8 @@ class Task(_Model):
     _file: str | None = PrivateAttr(None)
     _marks: dict = PrivateAttr(default_factory=dict)
     _input_warnings: list = PrivateAttr(default_factory=list)
+    _design: Any = PrivateAttr(None)             # synthesis.Design of the generated mechanism
+    _synthesis_error: Any = PrivateAttr(None)    # SynthesisImpossible, raised by the pipeline (exit 3)
 
     @field_validator("schema_", mode="before")
     @classmethod
@@ -466,12 +559,43 @@ class Task(_Model):
         return v
 
     @model_validator(mode="after")
+    def _synthesise(self):
+        """`synthesis` generates the `mechanism` (and the defaults of positions.output and
+        positions.working) before the other checks, so they see the generated links. An
+        impossible synthesis is kept for the pipeline (exit 3), not raised here."""
+        if self.synthesis is None:
+            return self
+        if "mechanism" in self.model_fields_set:
+            raise FieldValueError(("synthesis",), "`synthesis` generates the mechanism: give either `synthesis` "
+                                  "or `mechanism`, not both")
+        from .synthesis import SynthesisImpossible, design
+        if self.drive is None:
+            raise FieldValueError(("synthesis",), "`synthesis` needs a `drive` section (link: crank, speed, direction)")
+        try:
+            d = design(self.synthesis, self.drive.direction)
+        except SynthesisImpossible as exc:
+            self._synthesis_error = exc
+            return self
+        self._design = d
+        self.mechanism = MechanismSection.model_validate(d.mechanism)
+        pos = self.positions if self.positions is not None else PositionsSection()
+        upd = {}
+        if "output" not in pos.model_fields_set:
+            upd["output"] = d.output
+        if "working" not in pos.model_fields_set:
+            upd["working"] = d.working
+        if upd:
+            self.positions = pos.model_copy(update=upd)
+            self.positions.__pydantic_fields_set__ = set(pos.model_fields_set)
+        return self
+
+    @model_validator(mode="after")
     def _sections(self):
         needs_mech = [s for s in ("drive", "positions", "loads", "kinetostatics", "flywheel")
                       if getattr(self, s) is not None]
         if self.mechanism is not None and self.drive is None:
             raise FieldValueError(("mechanism",), "a `mechanism` needs a `drive` section (link, speed, direction)")
-        if self.mechanism is None and needs_mech:
+        if self.mechanism is None and needs_mech and self._synthesis_error is None:
             raise FieldValueError((needs_mech[0],), f"section(s) {', '.join(needs_mech)} need a `mechanism`")
         if self.flywheel is not None and self.loads is None:
             raise FieldValueError(("flywheel",), "`flywheel` needs `loads` (the forces whose work it evens out)")
@@ -738,6 +862,45 @@ for _model, _fields in _DOCS.items():
         _model.model_fields[_name].description = _text
     _model.model_rebuild(force=True)
 
+# the lever synthesis and the drive speed from the output
+_DOCS_SYNTHESIS: dict[type, dict[str, str]] = {
+    Task: {"synthesis": "design the lever mechanism from K and the stroke; replaces `mechanism` (the generated "
+                        "links: crank, rod, slider | crank, coupler, rocker | crank, block, rocker[, blockC, ram])"},
+    SynthesisSection: {
+        "type": "slider_crank | offset_slider_crank | crank_rocker | slotted_lever | shaper",
+        "H": "stroke of the slider or ram, m (slider-cranks, shaper)",
+        "psi": "swing of the rocker, deg (crank_rocker)",
+        "K": "coefficient of mean speed increase K = (180 + theta)/(180 - theta) (or give theta)",
+        "theta": "angle theta, deg (instead of K)",
+        "lambda_": "slider-cranks: l_AB/l_OA (one of lambda, e, gamma_min)",
+        "e": "offset_slider_crank: offset of the guide from the crank axis, m",
+        "gamma_min": "slider-cranks: the least transmission angle over the cycle, deg",
+        "rocker": "crank_rocker: l_O1B, m; slotted lever/shaper: slotted-link length (default 1.5 (frame + crank); "
+                  "shaper H/(2 sin(psi/2)))",
+        "frame": "crank_rocker, slotted lever, shaper: the distance OO1 between the fixed pivots, m",
+        "guide_height": "shaper: the ram guide above O1, m (default H/(2 tan(psi/2)): the ram stroke is "
+                        "2 guide_height tan(psi/2))",
+        "links": "mass properties of the generated links: {name: {mass, J, com}}",
+    },
+    SynthesisLinkSpec: {"mass": "mass, kg"},
+    DriveSection: {
+        "speed": "the crank's mean angular speed (rad/s; or '50 rpm'); or one of the two below",
+        "mean_output_speed": "the output's mean speed over the cycle (m/s; a rocker: rad/s or '12 deg/s'): "
+                             "omega1 = pi V/H",
+        "working_stroke_speed": "the output's mean speed over the working stroke: omega1 = 2 pi V/(H (1 + 1/K))",
+    },
+    PositionsSection: {
+        "output": "the link whose extreme positions are used (default: the last link; with `synthesis` the "
+                  "output: slider, rocker, ram)",
+        "working": "forward | backward: the working stroke moves the output toward increasing | decreasing "
+                   "coordinate (with `synthesis` default: the slow stroke)",
+    },
+}
+for _model, _fields in _DOCS_SYNTHESIS.items():
+    for _name, _text in _fields.items():
+        _model.model_fields[_name].description = _text
+    _model.model_rebuild(force=True)
+
 
 def field_docs(model: type = Task, prefix: str = "") -> list[tuple[str, str, str]]:
     """(dotted path, default, description) of every task-file field, for `tmm fields`."""
@@ -762,6 +925,6 @@ def field_docs(model: type = Task, prefix: str = "") -> list[tuple[str, str, str
                 if isinstance(b, type) and issubclass(b, BaseModel) and b is not StudentSpec and b not in subs:
                     subs.append(b)
         for sub in subs:
-            sub_prefix = path + (".<name>." if sub is LinkSpec else "[i]." if sub is ForceSpec else ".")
+            sub_prefix = path + (".<name>." if sub in (LinkSpec, SynthesisLinkSpec) else "[i]." if sub is ForceSpec else ".")
             out.extend(field_docs(sub, sub_prefix))
     return out

@@ -10,7 +10,7 @@ from types import ModuleType
 
 from .. import i18n
 
-ORDER = ("task", "structure", "kinematics", "kinetostatics", "dynamics", "cam", "gears",
+ORDER = ("task", "synthesis", "structure", "kinematics", "kinetostatics", "dynamics", "cam", "gears",
          "planetary", "dof2")
 
 

@@ -150,6 +150,33 @@ PARAMS["ru"].update({
     "dof2.impact.phi": "угол ротора в момент удара", "dof2.impact.stop": "остановка при ударе",
 })
 
+# the lever synthesis and the drive speed from the output
+PARAMS["en"].update({
+    "synthesis.type": "type", "synthesis.H": "stroke H", "synthesis.psi": "rocker swing ψ",
+    "synthesis.K": "coefficient of mean speed increase K", "synthesis.theta": "angle θ",
+    "synthesis.lambda": "λ = l_AB/l_OA", "synthesis.e": "offset e", "synthesis.gamma_min": "least transmission angle γ_min",
+    "synthesis.rocker": "rocker (slotted link) length", "synthesis.frame": "frame l_OO1",
+    "synthesis.guide_height": "ram guide above O1",
+    "drive.mean_output_speed": "mean speed of the output over the cycle",
+    "drive.working_stroke_speed": "mean speed of the output over the working stroke",
+})
+PARAMS["ru"].update({
+    "synthesis.type": "тип", "synthesis.H": "ход H", "synthesis.psi": "угол размаха коромысла ψ",
+    "synthesis.K": "коэффициент изменения средней скорости K", "synthesis.theta": "угол θ",
+    "synthesis.lambda": "λ = l_AB/l_OA", "synthesis.e": "дезаксиал e",
+    "synthesis.gamma_min": "наименьший угол передачи γ_min",
+    "synthesis.rocker": "длина коромысла (кулисы)", "synthesis.frame": "стойка l_OO1",
+    "synthesis.guide_height": "направляющая ползуна над O1",
+    "drive.mean_output_speed": "средняя скорость выходного звена за цикл",
+    "drive.working_stroke_speed": "средняя скорость выходного звена на рабочем ходе",
+})
+for _name in ("crank", "rod", "slider", "coupler", "rocker", "block", "blockC", "ram"):
+    for _k, _en, _ru in (("mass", "mass", "масса"), ("J", "J_S", "J_S"), ("com", "centre of mass", "центр масс")):
+        PARAMS["en"][f"synthesis.links.{_name}.{_k}"] = f"{_name}: {_en}"
+        PARAMS["ru"][f"synthesis.links.{_name}.{_k}"] = f"{_name}: {_ru}"
+I18N["en"]["task.sec.synthesis"] = "Synthesis"
+I18N["ru"]["task.sec.synthesis"] = "Синтез"
+
 ITEMS = {"en": {"forces": "force", "couples": "couple"}, "ru": {"forces": "сила", "couples": "пара"}}
 WORDS = {"ru": {"ccw": "против часовой стрелки", "cw": "по часовой стрелке", "true": "да", "false": "нет",
                 "extreme": "крайнее положение", "forward": "прямой", "backward": "обратный",
@@ -180,6 +207,11 @@ _UNITS = {
            "moment": "Н·м", "width": "м", "direction": "°", "base_radius": "м", "roller_radius": "м", "extra": "°",
            "r0": "м", "center_distance": "м", "rho_min_allowed": "м"},
 }
+
+
+for _lang, _u in (("en", "m"), ("ru", "м")):   # synthesis fields
+    _UNITS[_lang].update({"H": _u, "e": _u, "frame": _u, "guide_height": _u, "rocker": _u, "psi": "°", "theta": "°",
+                          "gamma_min": "°"})
 
 
 def _dump(task) -> dict:

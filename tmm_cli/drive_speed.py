@@ -1,0 +1,96 @@
+"""The crank speed from the output's speed (`drive.mean_output_speed` |
+`drive.working_stroke_speed`), the course's formulas (Popov & Timofeev; Frolov).
+
+Over one turn of the crank the output travels its stroke H forward and back, so its
+mean speed over the cycle is V = 2 H n1/60 = H omega1/pi:  omega1 = pi V / H.
+The working stroke takes the crank angle phi_w = 2 pi K/(K + 1) = 2 pi/(1 + 1/K), so
+V_w = H omega1/phi_w and
+omega1 = V_w phi_w / H = 2 pi V_w / (H (1 + 1/K)).  At K = 1 both give pi V/H.
+A rocker output: H is its swing psi (rad) and V an angular speed (rad/s; '12 deg/s').
+
+The positions stage gives H and K; the kinematics then runs at the resolved omega1.
+"""
+from __future__ import annotations
+
+import math
+
+SOURCES = ("speed", "mean_output_speed", "working_stroke_speed")
+
+
+def check_output_speed(value) -> tuple[float, str | None]:
+    """(magnitude in m/s or rad/s, 'linear' | 'angular' | None for a plain number).
+    Raises ValueError for a value that is neither a linear nor an angular speed, or
+    not positive."""
+    from .units import _parse, check_magnitude
+
+    if isinstance(value, bool):
+        raise ValueError("expected a speed (m/s for a slider, rad/s or deg/s for a rocker), got a boolean")
+    if isinstance(value, (int, float)):
+        v, kind = check_magnitude(float(value)), None
+    else:
+        q = _parse(str(value).strip(), "a speed (m/s, rad/s, deg/s)")
+        v = kind = None
+        for unit, k in (("m/s", "linear"), ("rad/s", "angular")):
+            try:
+                v, kind = float(q.to(unit).magnitude), k
+                break
+            except Exception:
+                continue
+        if kind is None:
+            raise ValueError(f"'{value}' is not a speed: give m/s (a slider) or rad/s, deg/s (a rocker)")
+        v = check_magnitude(v)
+    if not v > 0:
+        raise ValueError(f"the output speed must be positive, got {value!r}")
+    return v, kind
+
+
+def omega_from_mean(V: float, H: float) -> float:
+    """|omega1| (rad/s) from the output's mean speed over the cycle V and stroke H."""
+    return math.pi * V / H
+
+
+def omega_from_working(V_w: float, H: float, K: float) -> float:
+    """|omega1| (rad/s) from the output's mean speed over the working stroke."""
+    return 2.0 * math.pi * V_w / (H * (1.0 + 1.0 / K))
+
+
+def resolve(task, positions) -> tuple[float, str]:
+    """(omega1 signed rad/s, source) of ``task.drive``; ``positions`` (a PositionsResult)
+    gives the output's stroke and K when the speed is the output's."""
+    drive = task.drive
+    if drive.speed is not None:
+        return drive.sign * float(drive.speed), "speed"
+    source = "mean_output_speed" if drive.mean_output_speed is not None else "working_stroke_speed"
+    V, kind = check_output_speed(getattr(drive, source))
+    field = ("drive", source)
+    if positions.H is None or not positions.H > 0:
+        raise task.error(field, f"the output '{positions.output}' has no stroke (no extreme positions), "
+                                f"so the crank speed cannot follow from its speed: give drive.speed")
+    rocker = positions.output_kind == "rocker"
+    if kind == ("linear" if rocker else "angular"):
+        want = "an angular speed (rad/s, deg/s)" if rocker else "a linear speed (m/s)"
+        raise task.error(field, f"the output '{positions.output}' is a {'rocker' if rocker else 'slider'}: "
+                                f"its speed is {want}")
+    H = math.radians(positions.H) if rocker else float(positions.H)
+    if source == "mean_output_speed":
+        w = omega_from_mean(V, H)
+    else:
+        if positions.K is None:
+            raise task.error(field, "the working stroke is not defined (no extreme positions): give drive.speed")
+        w = omega_from_working(V, H, float(positions.K))
+    return drive.sign * w, source
+
+
+def with_speed(task, omega: float):
+    """A copy of ``task`` whose drive has ``speed`` = |omega| (the rest of the pipeline
+    reads drive.speed / drive.omega1)."""
+    if task.drive.speed is not None:
+        return task
+    drive = task.drive.model_copy(update={"speed": abs(float(omega))})
+    return task.model_copy(update={"drive": drive})
+
+
+def result(omega: float, source: str) -> dict:
+    """results.json `drive`: omega (rad/s, signed), n (rpm), source."""
+    return {"omega": float(omega), "n": abs(float(omega)) * 30.0 / math.pi, "source": source}
+

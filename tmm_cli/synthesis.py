@@ -1,0 +1,470 @@
+"""Metric synthesis of lever mechanisms from the coefficient of mean speed increase K
+(Artobolevsky, ch. "Синтез рычажных механизмов"; Popov & Timofeev, the course-project
+collection).
+
+Pure functions. :func:`design` turns a ``synthesis`` section into the link lengths and
+the generated ``mechanism`` section (a dict, as a task would write it); it raises
+:class:`SynthesisImpossible` naming the requirement to relax. :func:`analyse` runs the
+generated mechanism through the kinematics (extreme positions, transmission angle
+over the cycle) and gives the ``synthesis`` results.
+
+K = (180 + theta)/(180 - theta); theta = 180 (K - 1)/(K + 1), the angle between the
+crank's positions at the two extremes of the output, less 180 deg.
+
+* slider-crank (central or offset, guide y = -e, B to the right of O): the extreme
+  points B1 (folded, |OB1| = l - r) and B2 (extended, |OB2| = l + r), |B1B2| = H, seen
+  from O under theta:  l^2 - r^2 = H e / sin(theta),  r^2 = H^2/4 - (H e/2) tan(theta/2).
+  Given lambda = l/r instead of e:  r^2 = c H^2 / (4 (lambda^2 - 1 + c)), c = 1/sin^2(theta/2).
+  Transmission angle: 90 deg less the angle between the rod and the guide; the least
+  gamma_min = arccos((r + e)/l), crank perpendicular to the guide on the far side.
+* crank-rocker: C1, C2 on the rocker's circle (angle psi at O1); O on a circle through
+  C1, C2 whose chord is seen under theta, at `frame` from O1; |OC2| = b + a,
+  |OC1| = b - a. One solution on each side of the chord; the larger least transmission
+  angle (between the coupler and the rocker) wins.
+* slotted lever: psi = theta, crank r = frame sin(theta/2) (the crank is perpendicular to
+  the slotted link at its extremes). The shaper's ram, driven by a block C on the slotted
+  link at the height h of its guide, moves 2 h tan(psi/2): h = H/(2 tan(psi/2)).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from .errors import StageError
+
+STAGE = "synthesis"
+TYPES = ("slider_crank", "offset_slider_crank", "crank_rocker", "slotted_lever", "shaper")
+LINKS = {"slider_crank": ("crank", "rod", "slider"),
+         "offset_slider_crank": ("crank", "rod", "slider"),
+         "crank_rocker": ("crank", "coupler", "rocker"),
+         "slotted_lever": ("crank", "block", "rocker"),
+         "shaper": ("crank", "block", "rocker", "blockC", "ram")}
+OUTPUT = {"slider_crank": "slider", "offset_slider_crank": "slider", "crank_rocker": "rocker",
+          "slotted_lever": "rocker", "shaper": "ram"}
+
+
+class SynthesisImpossible(StageError):
+    """The requirements of the synthesis cannot be met (exit 3): the message names the
+    field to relax."""
+
+    def __init__(self, message: str):
+        super().__init__(STAGE, message)
+
+
+def theta_of_K(K: float) -> float:
+    return 180.0 * (K - 1.0) / (K + 1.0)
+
+
+def K_of_theta(theta: float) -> float:
+    return (180.0 + theta) / (180.0 - theta)
+
+
+@dataclass
+class Design:
+    type: str
+    lengths: dict[str, float]
+    mechanism: dict                      # the generated `mechanism` section
+    output: str                          # the output link
+    working: str                         # forward | backward: the slow stroke's sense
+    solutions: list[dict] = field(default_factory=list)
+    construction: dict = field(default_factory=dict)   # points of the drawing (m)
+
+
+# ---------------------------------------------------------------- inputs
+def _theta(sec) -> float:
+    return float(sec.theta) if sec.theta is not None else theta_of_K(float(sec.K if sec.K is not None else 1.0))
+
+
+def _mass(sec, name: str) -> dict:
+    spec = (sec.links or {}).get(name)
+    if spec is None:
+        return {}
+    out = {"mass": float(spec.mass), "J": float(spec.J)}
+    if spec.com is not None:
+        out["com"] = spec.com if isinstance(spec.com, str) else [float(spec.com[0]), float(spec.com[1])]
+    return out
+
+
+def _need_quick_return(theta: float, what: str) -> None:
+    if not theta > 0.0:
+        raise SynthesisImpossible(f"synthesis.K: {what} needs K > 1 (theta > 0); got K = "
+                                  f"{K_of_theta(theta):.6g} (theta = {theta:.6g} deg): raise K "
+                                  f"(K = 1: use type slider_crank)")
+    if theta >= 180.0:
+        raise SynthesisImpossible(f"synthesis.theta: theta = {theta:.6g} deg must be below 180 deg: lower K or theta")
+
+
+# ---------------------------------------------------------------- slider-crank
+def slider_crank_offset(H: float, theta: float, e: float) -> tuple[float, float]:
+    """(r, l) of the offset slider-crank with stroke H, angle theta (deg), offset e."""
+    th = math.radians(theta)
+    r2 = H * H / 4.0 - H * e / 2.0 * math.tan(th / 2.0)
+    if r2 <= 0.0:
+        raise SynthesisImpossible(
+            f"synthesis.e: the offset e = {e:.6g} m is too large for H and K: it must be below "
+            f"H/(2 tan(theta/2)) = {H / (2 * math.tan(th / 2)):.6g} m; lower e or K")
+    l2 = r2 + H * e / math.sin(th)
+    return math.sqrt(r2), math.sqrt(l2)
+
+
+def slider_crank_lambda(H: float, theta: float, lam: float) -> tuple[float, float, float]:
+    """(r, l, e) of the offset slider-crank with stroke H, angle theta and l/r = lam."""
+    th = math.radians(theta)
+    c = 1.0 / math.sin(th / 2.0) ** 2
+    r = math.sqrt(c * H * H / (4.0 * (lam * lam - 1.0 + c)))
+    e = (H * H / 4.0 - r * r) * 2.0 / (H * math.tan(th / 2.0))
+    return r, lam * r, e
+
+
+def _reach(H: float, r: float, l: float) -> float:
+    """4 l r - H^2: >= 0 when the foot of the perpendicular from O to the guide lies
+    outside B1B2 (the angle at B1 is not acute), so that the folded extreme B1 of the
+    mechanism (B ahead of A along the guide) is the point of the construction. Below
+    zero the equations hold for a triangle whose B1 lies behind the foot, and the
+    mechanism built from those lengths has another stroke and K."""
+    return 4.0 * l * r - H * H
+
+
+def _e_reach(H: float, theta: float) -> float:
+    """The largest offset (m) with _reach >= 0 (0 when none): a scan of (0, e_max) and
+    Brent's method on the sign change."""
+    from scipy.optimize import brentq
+
+    e_max = H / (2.0 * math.tan(math.radians(theta) / 2.0))
+    f = lambda e: _reach(H, *slider_crank_offset(H, theta, e))
+    xs = [e_max * k / 2000.0 for k in range(1, 2000)]
+    last = None
+    for a, b in zip(xs, xs[1:]):
+        if f(a) >= 0.0 > f(b):
+            last = (a, b)
+    if last is None:
+        return e_max if f(xs[-1]) >= 0.0 else 0.0
+    return brentq(f, *last, xtol=1e-16, rtol=1e-15, maxiter=500)
+
+
+def _gamma_offset(H: float, theta: float, e: float) -> float:
+    r, l = slider_crank_offset(H, theta, e)
+    return math.degrees(math.acos(min(1.0, (r + e) / l)))
+
+
+def slider_crank_gamma(H: float, theta: float, gamma: float) -> list[tuple[float, float, float]]:
+    """Every (r, l, e) of the offset slider-crank with stroke H, angle theta and least
+    transmission angle gamma (deg), smaller offset first. gamma(e) rises from 0 (e -> 0)
+    to a maximum and falls toward e_max = H/(2 tan(theta/2))."""
+    from scipy.optimize import brentq, minimize_scalar
+
+    th = math.radians(theta)
+    e_max = _e_reach(H, theta)
+    if e_max <= 0.0:
+        raise SynthesisImpossible(
+            f"synthesis.K: no offset slider-crank reaches K = {K_of_theta(theta):.6g} with stroke H: lower K")
+    lo, hi = e_max * 1e-12, e_max * (1.0 - 1e-12)
+    best = minimize_scalar(lambda e: -_gamma_offset(H, theta, e), bounds=(lo, hi), method="bounded",
+                           options={"xatol": e_max * 1e-13})
+    e_star, g_star = float(best.x), -float(best.fun)
+    if gamma > g_star:
+        raise SynthesisImpossible(
+            f"synthesis.gamma_min: gamma_min = {gamma:.6g} deg is too large for K = {K_of_theta(theta):.6g}: "
+            f"an offset slider-crank reaches at most {g_star:.4f} deg (offset {e_star:.6g} m); "
+            f"lower gamma_min or K")
+    out = []
+    for a, b in ((lo, e_star), (e_star, hi)):
+        fa, fb = _gamma_offset(H, theta, a) - gamma, _gamma_offset(H, theta, b) - gamma
+        if fa == 0.0:
+            e = a
+        elif fb == 0.0:
+            e = b
+        elif fa * fb < 0.0:
+            e = brentq(lambda x: _gamma_offset(H, theta, x) - gamma, a, b, xtol=1e-16, rtol=1e-15, maxiter=500)
+        else:
+            continue
+        r, l = slider_crank_offset(H, theta, e)
+        if all(abs(e - q[2]) > 1e-12 * e_max for q in out):
+            out.append((r, l, e))
+    return out
+
+
+def _slider_crank(sec, direction: str) -> Design:
+    H = float(sec.H)
+    solutions: list[dict] = []
+    if sec.type == "slider_crank":
+        theta, r = 0.0, H / 2.0
+        lam = float(sec.lambda_) if sec.lambda_ is not None else 1.0 / math.cos(math.radians(sec.gamma_min))
+        l, e = lam * r, 0.0
+    else:
+        theta = _theta(sec)
+        _need_quick_return(theta, "an offset slider-crank")
+        if sec.e is not None:
+            e = float(sec.e)
+            r, l = slider_crank_offset(H, theta, e)
+        elif sec.lambda_ is not None:
+            r, l, e = slider_crank_lambda(H, theta, float(sec.lambda_))
+        else:
+            roots = slider_crank_gamma(H, theta, float(sec.gamma_min))
+            solutions = [{"crank": q[0], "rod": q[1], "offset": q[2], "gamma_min": float(sec.gamma_min),
+                          "chosen": k == 0} for k, q in enumerate(roots)]
+            r, l, e = roots[0]
+        if _reach(H, r, l) < 0.0:
+            lam_max = 1.0 / math.tan(math.radians(theta) / 2.0) ** 2
+            raise SynthesisImpossible(
+                "synthesis." + ("e" if sec.e is not None else "lambda") + ": with these H, K and "
+                + (f"e = {e:.6g} m" if sec.e is not None else f"lambda = {float(sec.lambda_):.6g}")
+                + " the folded extreme position falls behind the foot of the perpendicular from the crank axis "
+                  "to the guide (4 l_OA l_AB < H^2), so no slider-crank has them: "
+                + (f"lower e (at most {_e_reach(H, theta):.6g} m)" if sec.e is not None
+                   else f"lower lambda (at most cot^2(theta/2) = {lam_max:.6g})") + " or K")
+        # the crank then always turns fully: by the law of sines in O B1 B2,
+        # H = (l + r) sin(theta)/sin(B1) >= (l + r) sin(theta), so l - r = H e/((l + r) sin(theta)) >= e
+    m = 1.0 if direction == "ccw" else -1.0
+    yg = -m * e
+    xb = r + math.sqrt(l * l - yg * yg)
+    mech = {"ground": {"O": [0.0, 0.0]},
+            "links": {"crank": {"points": ["O", "A"], "length": r, **_mass(sec, "crank")},
+                      "rod": {"points": ["A", "B"], "length": l, **_mass(sec, "rod")},
+                      "slider": {"slider": "B", "guide": {"through": [0.0, yg], "angle": 0.0},
+                                 **_mass(sec, "slider")}},
+            "assembly": {"B": [xb, yg]}}
+    x1, x2 = math.sqrt((l - r) ** 2 - e * e), math.sqrt((l + r) ** 2 - e * e)
+    cons = {"O": [0.0, 0.0], "B1": [x1, yg], "B2": [x2, yg], "guide_y": yg,
+            "circle": _circle3((0.0, 0.0), (x1, yg), (x2, yg))}
+    return Design(sec.type, {"crank": r, "rod": l, "offset": e}, mech, "slider", "forward", solutions, cons)
+
+
+def _circle3(p, q, s) -> dict | None:
+    """The circle through three points: {centre, radius} (None when collinear)."""
+    ax, ay = p
+    bx, by = q
+    cx, cy = s
+    d = 2.0 * (ax * (by - cy) + bx * (cy - ay) + cx * (ay - by))
+    if abs(d) < 1e-300:
+        return None
+    ux = ((ax * ax + ay * ay) * (by - cy) + (bx * bx + by * by) * (cy - ay) + (cx * cx + cy * cy) * (ay - by)) / d
+    uy = ((ax * ax + ay * ay) * (cx - bx) + (bx * bx + by * by) * (ax - cx) + (cx * cx + cy * cy) * (bx - ax)) / d
+    return {"centre": [ux, uy], "radius": math.hypot(ax - ux, ay - uy)}
+
+
+# ---------------------------------------------------------------- crank-rocker
+def _fourbar_gamma(a: float, b: float, c: float, d: float) -> float:
+    """Least transmission angle (deg) of a crank-rocker: at the crank along the frame line."""
+    out = 90.0
+    for diag in (d - a, d + a):
+        cm = (b * b + c * c - diag * diag) / (2.0 * b * c)
+        mu = math.degrees(math.acos(max(-1.0, min(1.0, cm))))
+        out = min(out, mu, 180.0 - mu)
+    return out
+
+
+def crank_rocker_solutions(psi: float, theta: float, c: float, d: float) -> list[dict]:
+    """Crank-rocker candidates for swing psi, angle theta (deg), rocker c and frame d.
+    Each: lengths a, b, c, d, gamma_min and the points O, O1, C1, C2 in the rocker's frame
+    (O1 at the origin, the chord C1C2 horizontal above it)."""
+    ps, th = math.radians(psi), math.radians(theta)
+    h0, w = c * math.cos(ps / 2.0), c * math.sin(ps / 2.0)
+    P, Q = (w, h0), (-w, h0)
+    R = w / math.sin(th)
+    out = []
+    for side, yc in (("far", h0 + w / math.tan(th)), ("near", h0 - w / math.tan(th))):
+        if abs(yc) < 1e-300:
+            continue
+        y = (d * d + yc * yc - R * R) / (2.0 * yc)
+        if y * y > d * d:
+            continue
+        x = math.sqrt(d * d - y * y)
+        if (side == "far") != (y > h0):
+            continue                      # on the other arc the chord is seen under 180 - theta
+        dP, dQ = math.hypot(x - P[0], y - P[1]), math.hypot(x - Q[0], y - Q[1])
+        C2, C1 = (P, Q) if dP > dQ else (Q, P)
+        s2, s1 = max(dP, dQ), min(dP, dQ)
+        a, b = (s2 - s1) / 2.0, (s2 + s1) / 2.0
+        # both extremes on one side of the line O O1 (one assembly branch)
+        cr = lambda p: x * p[1] - y * p[0]
+        if cr(C1) * cr(C2) <= 0.0:
+            continue
+        L = sorted((a, b, c, d))
+        if not (a == L[0] and L[0] + L[3] < L[1] + L[2]):
+            continue
+        out.append({"side": side, "crank": a, "coupler": b, "rocker": c, "frame": d,
+                    "gamma_min": _fourbar_gamma(a, b, c, d), "O": [x, y], "C1": list(C1), "C2": list(C2)})
+    return out
+
+
+def _crank_rocker(sec, direction: str) -> Design:
+    theta = _theta(sec)
+    _need_quick_return(theta, "a crank-rocker")
+    psi, c, d = float(sec.psi), float(sec.rocker), float(sec.frame)
+    sols = crank_rocker_solutions(psi, theta, c, d)
+    if not sols:
+        raise SynthesisImpossible(
+            f"synthesis: no crank-rocker has psi = {psi:.6g} deg, K = {K_of_theta(theta):.6g}, rocker "
+            f"{c:.6g} m and frame {d:.6g} m (the crank pivot circle at `frame` from O1 misses the circle "
+            f"seeing the rocker's chord under theta, or the crank cannot turn): change frame or rocker, "
+            f"or lower psi or K")
+    best = max(range(len(sols)), key=lambda k: sols[k]["gamma_min"])
+    s = sols[best]
+    a, b = s["crank"], s["coupler"]
+    # to the task frame: O at the origin, O1 at [d, 0]
+    ox, oy = s["O"]
+    rho = math.atan2(-oy, -ox)
+    cs, sn = math.cos(-rho), math.sin(-rho)
+
+    def tf(p, flip=1.0):
+        x, y = p[0] - ox, p[1] - oy
+        return [cs * x - sn * y, flip * (sn * x + cs * y)]
+
+    C1, C2 = tf(s["C1"]), tf(s["C2"])
+    n2 = math.hypot(*C2)
+    A2 = [a * C2[0] / n2, a * C2[1] / n2]
+    orient = (d - A2[0]) * (C2[1] - A2[1]) + A2[1] * (C2[0] - A2[0])   # (O1 - A) x (B - A)
+    if orient < 0.0:                       # the generated branch has B above the frame line at crank angle 0
+        C1, C2 = [C1[0], -C1[1]], [C2[0], -C2[1]]
+    sign = 1.0 if direction == "ccw" else -1.0
+    phi_e = math.degrees(math.atan2(C2[1], C2[0]))
+    phi_f = math.degrees(math.atan2(C1[1], C1[0])) + 180.0
+    beta2 = math.atan2(C2[1], C2[0] - d)
+    beta1 = math.atan2(C1[1], C1[0] - d)
+    dbeta = (beta2 - beta1 + math.pi) % (2 * math.pi) - math.pi
+    f_to_e_slow = ((phi_e - phi_f) * sign) % 360.0 > 180.0
+    working = "forward" if (dbeta > 0) == f_to_e_slow else "backward"
+    bx = a + (d - a) / 2.0 + (b * b - c * c) / (2.0 * (d - a))     # B at crank angle 0, above the frame
+    by = math.sqrt(max(b * b - (bx - a) ** 2, 0.0))
+    mech = {"ground": {"O": [0.0, 0.0], "O1": [d, 0.0]},
+            "links": {"crank": {"points": ["O", "A"], "length": a, **_mass(sec, "crank")},
+                      "coupler": {"points": ["A", "B"], "length": b, **_mass(sec, "coupler")},
+                      "rocker": {"points": ["O1", "B"], "length": c, **_mass(sec, "rocker")}},
+            "assembly": {"B": [bx, by]}}
+    solutions = [{k: v for k, v in q.items() if k in ("side", "crank", "coupler", "rocker", "frame", "gamma_min")}
+                 | {"chosen": k == best} for k, q in enumerate(sols)]
+    cons = {"O": [0.0, 0.0], "O1": [d, 0.0], "C1": C1, "C2": C2, "circle": _circle3((0.0, 0.0), C1, C2)}
+    return Design("crank_rocker", {"crank": a, "coupler": b, "rocker": c, "frame": d}, mech, "rocker",
+                  working, solutions, cons)
+
+
+# ---------------------------------------------------------------- slotted lever, shaper
+def _slotted(sec, direction: str) -> Design:
+    theta = _theta(sec)
+    _need_quick_return(theta, "a slotted-lever mechanism")
+    f = float(sec.frame)
+    r = f * math.sin(math.radians(theta) / 2.0)
+    m = 1.0 if direction == "ccw" else -1.0
+    half = math.radians(theta) / 2.0
+    lengths = {"crank": r}
+    if sec.type == "shaper":
+        H = float(sec.H)
+        h_need = H / (2.0 * math.tan(half))
+        L = float(sec.rocker) if sec.rocker is not None else H / (2.0 * math.sin(half))
+        h = float(sec.guide_height) if sec.guide_height is not None else h_need
+        if abs(h - h_need) > 1e-9 * max(h, h_need):
+            raise SynthesisImpossible(
+                f"synthesis.guide_height: with the swing psi = theta = {theta:.6g} deg a ram guide at "
+                f"{h:.6g} m above O1 gives the stroke 2 guide_height tan(psi/2) = {2 * h * math.tan(half):.6g} m, "
+                f"not H = {H:.6g} m: omit guide_height (then {h_need:.6g} m) or change H")
+        if L < h / math.cos(half) * (1.0 - 1e-12):
+            raise SynthesisImpossible(
+                f"synthesis.rocker: the slotted link ({L:.6g} m) does not reach the ram guide at its extreme "
+                f"positions (needs guide_height/cos(psi/2) = {h / math.cos(half):.6g} m): lengthen it")
+    else:
+        L = float(sec.rocker) if sec.rocker is not None else 1.5 * (f + r)
+    if L < (f + r) * (1.0 - 1e-12):
+        raise SynthesisImpossible(
+            f"synthesis.rocker: the slotted link ({L:.6g} m) is shorter than frame + crank = {f + r:.6g} m, "
+            f"the farthest reach of the block: lengthen it" + (" (raise H)" if sec.type == "shaper" else "")
+            + " or shorten frame")
+    lengths.update({"rocker": L, "frame": f})
+    links = {"crank": {"points": ["O", "A"], "length": r, **_mass(sec, "crank")},
+             "block": {"slider": "A", "guide": {"link": "rocker"}, **_mass(sec, "block")},
+             "rocker": {"points": ["O1", "B"], "length": L, **_mass(sec, "rocker")}}
+    assembly = {"A": [r, 0.0]}
+    A1 = [-r * math.cos(half), m * r * math.sin(half)]
+    A2 = [r * math.cos(half), m * r * math.sin(half)]
+    cons = {"O": [0.0, 0.0], "O1": [0.0, -m * f], "A1": A1, "A2": A2,
+            "B1": [-L * math.sin(half), m * (L * math.cos(half) - f)],
+            "B2": [L * math.sin(half), m * (L * math.cos(half) - f)]}
+    output, working = "rocker", ("forward" if direction == "ccw" else "backward")
+    if sec.type == "shaper":
+        lengths["guide_height"] = h
+        links["blockC"] = {"slider": "C", "guide": {"link": "rocker"}, **_mass(sec, "blockC")}
+        links["ram"] = {"slider": "C", "guide": {"through": [0.0, m * (h - f)], "angle": 0.0}, **_mass(sec, "ram")}
+        assembly["C"] = [r * h / f, m * (h - f)]
+        cons["guide_y"] = m * (h - f)
+        cons["C1"] = [-h * math.tan(half), m * (h - f)]
+        cons["C2"] = [h * math.tan(half), m * (h - f)]
+        output, working = "ram", "backward"
+    mech = {"ground": {"O": [0.0, 0.0], "O1": [0.0, -m * f]}, "links": links, "assembly": assembly}
+    return Design(sec.type, lengths, mech, output, working, [], cons)
+
+
+def design(sec, direction: str = "ccw") -> Design:
+    """The link lengths and the generated mechanism of a ``synthesis`` section for the
+    drive's direction (ccw | cw). Raises SynthesisImpossible."""
+    if sec.type in ("slider_crank", "offset_slider_crank"):
+        return _slider_crank(sec, direction)
+    if sec.type == "crank_rocker":
+        return _crank_rocker(sec, direction)
+    return _slotted(sec, direction)
+
+
+# ---------------------------------------------------------------- analysis of the generated mechanism
+def transmission_angle(typ: str, kin) -> "object":
+    """Transmission angle (deg) at each position of a kinematics result of a generated
+    mechanism: slider-crank 90 - (rod, guide); crank-rocker the acute angle between the
+    coupler and the rocker; slotted lever 90 (the block presses normal to the slot, which
+    moves normal to itself); shaper: at the ram, 90 - (normal of the slotted link, guide)."""
+    import numpy as np
+
+    if typ in ("slider_crank", "offset_slider_crank"):
+        return 90.0 - np.degrees(np.arcsin(np.abs(np.sin(kin.angle["rod"]))))
+    if typ == "crank_rocker":
+        return np.degrees(np.arcsin(np.minimum(1.0, np.abs(np.sin(kin.angle["coupler"] - kin.angle["rocker"])))))
+    if typ == "shaper":
+        return np.degrees(np.arcsin(np.minimum(1.0, np.abs(np.sin(kin.angle["rocker"])))))
+    return np.full(np.shape(kin.angle["rocker"]), 90.0)
+
+
+def least_transmission(typ: str, mech) -> tuple[float, float]:
+    """(gamma_min deg, crank angle deg) over the cycle: a 0.5-deg scan refined by a
+    bounded Brent search to 1e-10 deg."""
+    import numpy as np
+    from scipy.optimize import minimize_scalar
+
+    from .kinematics import solve
+
+    grid = np.arange(0.0, 360.0, 0.5)
+    g = transmission_angle(typ, solve(mech, grid))
+    k = int(np.argmin(g))
+    if np.ptp(g) < 1e-12:
+        return float(g[k]), float(grid[k])
+    f = lambda x: float(transmission_angle(typ, solve(mech, np.array([x % 360.0])))[0])
+    res = minimize_scalar(f, bounds=(grid[k] - 0.5, grid[k] + 0.5), method="bounded", options={"xatol": 1e-10})
+    x, v = (float(res.x) % 360.0, float(res.fun)) if res.fun <= g[k] else (float(grid[k]), float(g[k]))
+    return v, x
+
+
+def analyse(d: Design, mech, direction: str = "ccw") -> dict:
+    """The `synthesis` results: the generated mechanism ``mech`` (built from
+    ``d.mechanism``) analysed: its extreme positions (H, K, theta, psi) and its least
+    transmission angle over the cycle; with the construction and gamma(phi) for the report."""
+    import numpy as np
+
+    from .kinematics import find_positions, solve
+    from .task import DriveSection, PositionsSection
+
+    drive = DriveSection.model_construct(link="crank", direction=direction)
+    pos = find_positions(mech, PositionsSection(output=d.output, working=d.working), drive)
+    H = psi = None
+    if pos.output_kind == "slider":
+        H = float(pos.H)
+        if d.type == "shaper":
+            psi = float(find_positions(mech, PositionsSection(output="rocker"), drive).H)
+    else:
+        psi = float(pos.H)
+    gmin, gphi = least_transmission(d.type, mech)
+    curve = np.arange(0.0, 360.0 + 1e-9, 5.0)
+    sign = 1.0 if direction == "ccw" else -1.0
+    phis = np.mod(pos.phi0 + sign * curve, 360.0)
+    gam = transmission_angle(d.type, solve(mech, phis))
+    return {"type": d.type, "lengths": dict(d.lengths), "H": H, "K": float(pos.K), "theta": float(pos.theta),
+            "psi": psi, "gamma_min": gmin, "working": d.working, "solutions": list(d.solutions),
+            "mechanism": d.mechanism, "output": d.output, "gamma_min_phi": gphi,
+            "extreme": [float(x) for x in pos.extreme],
+            "construction": d.construction,
+            "transmission": {"turn": curve.tolist(), "phi": phis.tolist(), "gamma": np.asarray(gam).tolist()}}
