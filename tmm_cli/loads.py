@@ -395,9 +395,11 @@ def _curve(sp, scale: float) -> dict:
 
 
 # ------------------------------------------------------------------ switch angles
-def switch_angles(mech, loads_section, positions) -> list[float]:
+def switch_angles(mech, loads_section, positions, kinks: bool = False) -> list[float]:
     """Crank angles in [0, 360) where a task load jumps inside a stroke (a repeated
-    abscissa of an s- or phi-diagram), found to 1e-9 deg."""
+    abscissa of an s- or phi-diagram), found to 1e-9 deg; with kinks=True also where its
+    diagram's slope changes (every inner abscissa: the breakpoints of a piecewise
+    quadrature)."""
     if loads_section is None:
         return []
     from scipy.optimize import brentq
@@ -416,6 +418,8 @@ def switch_angles(mech, loads_section, positions) -> list[float]:
         xs = d.phi if d.phi is not None else d.s
         jumps = [xs[i] for i in range(len(xs) - 1)
                  if xs[i + 1] == xs[i] and d.value[i + 1] != d.value[i]]
+        if kinks:
+            jumps = sorted(set(jumps) | {float(x) for x in xs[1:-1]})
         if d.phi is not None:
             for x in jumps:
                 if 0 < x % cycle:

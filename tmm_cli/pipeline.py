@@ -132,7 +132,8 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int) -> No
     if task.flywheel is not None:
         say("dynamics")
         from . import dynamics, loads as loads_mod
-        dyn = _stage("dynamics")(dynamics.analyze_task)(mech, task, positions)
+        # the accuracy table (timed) runs only in `tmm study` / `tmm run --study`
+        dyn = _stage("dynamics")(dynamics.analyze_task)(mech, task, positions, accuracy=False)
         results["flywheel"] = dyn.to_dict()
         warnings.extend(results["flywheel"].pop("warnings", []) or [])
 
