@@ -96,6 +96,8 @@ def run(
                                help="comma-separated outputs: json, html, pdf (results.json is always written)"),
     lang: str = typer.Option("en", "--lang", "-l", help="report language: en | ru"),
     quiet: bool = typer.Option(False, "--quiet", "-q", help="no progress and summary on the terminal"),
+    study: bool = typer.Option(False, "--study", help="also write study.json and study.html: "
+                                                      "accuracy against computing time per stage"),
 ):
     """Run every stage present in the task; write results.json and the report(s).
 
@@ -136,9 +138,42 @@ def run(
         raise _fail_stage(exc, task.file)
     except OSError as exc:
         raise _fail_write(exc)
+    if study:
+        paths = list(paths) + _write_study(task, out, progress)
     if not quiet:
         from .summary import print_summary
         print_summary(results, paths)
+
+
+def _write_study(task, out: Path, progress=None, repeat: int = 3) -> list:
+    from . import study as study_mod
+    try:
+        st, trap = study_mod.run_study(task, progress=progress, repeat=repeat)
+        return study_mod.write(st, out, trap)
+    except StageError as exc:
+        raise _fail_stage(exc, task.file)
+    except OSError as exc:
+        raise _fail_write(exc)
+
+
+@app.command("study")
+def study_cmd(
+    task_file: Path = typer.Argument(..., metavar="TASK.yaml", help="the task file"),
+    out: Optional[Path] = typer.Option(None, "--out", "-o", help="output folder (default: out/<task name>/)"),
+    repeat: int = typer.Option(3, "--repeat", help="timed repeats per row (the best is kept)", min=1, max=50),
+):
+    """Accuracy against computing time: for each stage present, sweep the setting that
+    trades time for accuracy (flywheel resolution, curve points, dof2 rtol, planetary
+    z_max); write study.json (errors against a converged reference, measured convergence
+    order, times) and study.html (tables and log-log plots)."""
+    try:
+        task = _load(task_file)
+    except TaskError as exc:
+        raise _fail_task(exc)
+    out = out or Path("out") / task.name
+    paths = _write_study(task, out, lambda s: _err(f"  {s}..."), repeat)
+    for p in paths:
+        typer.echo(str(p))
 
 
 @app.command()
