@@ -82,6 +82,11 @@ def run(task: Task, *, progress: Callable[[str], None] | None = None,
     except TaskError as err:
         # a stage found an invalid field: name the file and the field's line (SPEC 2)
         raise task.locate(err) from None
+    # the hand method's own error (reading the drawings to 0.5 mm; 12-position flywheel)
+    from .graphical import graphical_error
+    ge = graphical_error(results)
+    if ge is not None:
+        results["graphical_error"] = ge
     # de-duplicate warnings, keep order
     seen = set()
     results["warnings"] = [w for w in warnings if not (w in seen or seen.add(w))]
