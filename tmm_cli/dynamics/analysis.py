@@ -34,6 +34,8 @@ EPS_DEG = 1e-5   # one-sided evaluation offset at a jump, deg (coarser than the 
 ACCURACY_RESOLUTIONS = (12, 24, 36, 72, 180, 360, 3600)
 METHODS = ("energy-mass", "merzalov", "exact")
 GAUSS_DEFAULT = 2   # Gauss-Legendre points per grid interval for the works (order 4)
+CHECK_BELOW = 180   # a coarser grid is checked against twice its positions ...
+TARGET_REL = 1e-6   # ... and a warning given when J_n moves by more than this
 
 Sampler = Callable[[np.ndarray, np.ndarray], Sample]
 """sampler(q_deg, side) -> Sample: reduced quantities at the cycle angles q_deg (deg of
@@ -594,6 +596,14 @@ def analyze_sampler(sampler: Sampler, section, omega_m: float, *, cycle: float =
     warnings = list(c.warnings) + list(sz.warnings)
     hand = hand_row(sampler, section, omega_m, cycle, switch_q, c, resolution)
     acc = None
+    if not accuracy and resolution < CHECK_BELOW:
+        # a coarse grid: its error estimated against twice the positions (cheap here)
+        c2 = _run_grid(sampler, section, omega_m, cycle, 2 * resolution, switch_q)[0]
+        est = _rel(c.J_n[c.method], c2.J_n[c2.method])
+        if est is not None and est > TARGET_REL:
+            warnings.append(f"flywheel: at resolution {resolution} J_n differs by {est:.2g} (relative) from "
+                            f"its value at {2 * resolution} positions, more than {TARGET_REL:g}; raise "
+                            f"`flywheel.resolution`")
     if accuracy:
         acc = accuracy_table(sampler, section, omega_m, cycle, switch_q,
                              resolutions=tuple(sorted(set(ACCURACY_RESOLUTIONS) | {resolution})),
