@@ -180,3 +180,22 @@ def test_graphical_error_and_tolerance():
     h = d["flywheel"]["hand"]
     assert tol["flywheel.J"] == pytest.approx(abs(h["J"] / d["flywheel"]["J"] - 1), rel=1e-9)
     assert 0.01 < tol["flywheel.J"] < 0.2
+
+
+def test_cli_study_and_run_study(tmp_path):
+    o = tmp_path / "p"
+    subprocess.run([sys.executable, "-m", "tmm_cli", "study", "tasks/planetary_A.yaml", "-o", str(o),
+                    "--repeat", "1"], check=True, capture_output=True)
+    st = json.loads((o / "study.json").read_text())
+    assert set(st) == {"planetary"} and st["planetary"]["setting"] == "z_max"
+    assert st["planetary"]["order"] is None        # a search, not a discretisation
+    assert st["planetary"]["reference"]["setting"] == 150
+    o = tmp_path / "d"
+    subprocess.run([sys.executable, "-m", "tmm_cli", "run", "tasks/impact_rotor.yaml", "-f", "json",
+                    "-o", str(o), "-q", "--study"], check=True)
+    st = json.loads((o / "study.json").read_text())
+    d = st["dof2"]
+    assert d["setting"] == "rtol" and d["reference"]["setting"] == 1e-12
+    # an adaptive integrator's error is proportional to its tolerance: order about 1
+    assert 0.7 <= d["order"] <= 1.5
+    assert "time_ms" not in (o / "results.json").read_text()
