@@ -191,8 +191,11 @@ def test_cli_study_and_run_study(tmp_path):
     assert st["planetary"]["order"] is None        # a search, not a discretisation
     assert st["planetary"]["reference"]["setting"] == 150
     o = tmp_path / "d"
-    subprocess.run([sys.executable, "-m", "tmm_cli", "run", "tasks/impact_rotor.yaml", "-f", "json",
+    subprocess.run([sys.executable, "-m", "tmm_cli", "run", "tasks/impact_rotor.yaml", "-f", "json,html",
                     "-o", str(o), "-q", "--study"], check=True)
+    # the report carries the study section (tables and SVG plots); results.json does not
+    html = (o / "report.html").read_text()
+    assert "Accuracy against computing time" in html and "rtol" in html
     st = json.loads((o / "study.json").read_text())
     d = st["dof2"]
     assert d["setting"] == "rtol" and d["reference"]["setting"] == 1e-12

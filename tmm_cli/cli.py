@@ -73,8 +73,10 @@ def _parse_formats(text: str) -> set[str]:
     return fm
 
 
-def write_outputs(task, results: dict, out: Path, formats: set[str], lang: str) -> list[Path]:
-    """results.json and the reports, each written atomically."""
+def write_outputs(task, results: dict, out: Path, formats: set[str], lang: str,
+                  study: tuple[dict, dict] | None = None) -> list[Path]:
+    """results.json and the reports, each written atomically; study: (study, trapezoid)
+    of `tmm_cli.study.run_study`, shown in the reports (not in results.json)."""
     from .io import atomic_write
     from .results import dumps
 
@@ -84,7 +86,8 @@ def write_outputs(task, results: dict, out: Path, formats: set[str], lang: str) 
     rep = formats & {"html", "pdf"}
     if rep:
         from .report import render
-        written.extend(render(results, task, out, rep, lang))
+        shown = results if study is None else {**results, "study": study[0], "study_trapezoid": study[1]}
+        written.extend(render(shown, task, out, rep, lang))
     return written
 
 
@@ -132,28 +135,29 @@ def run(
         raise _fail_stage(exc, task.file)
     except TaskError as exc:
         raise _fail_task(exc)
+    st = None
+    if study:
+        st = _run_study(task, progress)
     try:
-        paths = write_outputs(task, results, out, formats, lang)
+        paths = write_outputs(task, results, out, formats, lang, st)
+        if st is not None:
+            from . import study as study_mod
+            paths = list(paths) + study_mod.write(st[0], out, st[1])
     except StageError as exc:
         raise _fail_stage(exc, task.file)
     except OSError as exc:
         raise _fail_write(exc)
-    if study:
-        paths = list(paths) + _write_study(task, out, progress)
     if not quiet:
         from .summary import print_summary
         print_summary(results, paths)
 
 
-def _write_study(task, out: Path, progress=None, repeat: int = 3) -> list:
+def _run_study(task, progress=None, repeat: int = 3) -> tuple[dict, dict]:
     from . import study as study_mod
     try:
-        st, trap = study_mod.run_study(task, progress=progress, repeat=repeat)
-        return study_mod.write(st, out, trap)
+        return study_mod.run_study(task, progress=progress, repeat=repeat)
     except StageError as exc:
         raise _fail_stage(exc, task.file)
-    except OSError as exc:
-        raise _fail_write(exc)
 
 
 @app.command("study")
@@ -171,7 +175,12 @@ def study_cmd(
     except TaskError as exc:
         raise _fail_task(exc)
     out = out or Path("out") / task.name
-    paths = _write_study(task, out, lambda s: _err(f"  {s}..."), repeat)
+    st, trap = _run_study(task, lambda s: _err(f"  {s}..."), repeat)
+    from . import study as study_mod
+    try:
+        paths = study_mod.write(st, out, trap)
+    except OSError as exc:
+        raise _fail_write(exc)
     for p in paths:
         typer.echo(str(p))
 
