@@ -23,9 +23,9 @@ Stages and settings:
   max |v|, max |a| read off the curve (maxima at the points: order 2);
 * dof2: the integrator's `rtol` (DOP853); values the final speeds and angle;
 * planetary: `z_max` of the search; value the best ratio found and its error.
-Kinetostatics, the cam profile and the gear blocking contour are computed at the
-positions or at fixed analytic grids whose size is not a task setting; they are not
-swept (the study says so in the report).
+Not swept, as no task setting trades time for accuracy there: kinetostatics (solved
+exactly at the task's positions), the cam (r0 and rho_min refined over continuous cam
+angle) and the gear blocking contour (a fixed internal grid); the report says so.
 """
 from __future__ import annotations
 
@@ -277,8 +277,9 @@ def _fmt(v) -> str:
 
 STAGE_TITLES = {"flywheel": "Flywheel (Gauss-Legendre works, extrema located)", "curves": "Output curves s, v, a",
                 "dof2": "Two-degree-of-freedom motion (DOP853)", "planetary": "Planetary search"}
-NOT_SWEPT = ("Not swept: kinetostatics (computed at the task's positions, exactly), the cam profile "
-             "and the gear blocking contour (fixed analytic grids, not task settings).")
+NOT_SWEPT = ("Not swept (no setting trades time for accuracy there): kinetostatics is solved exactly at "
+             "the task's positions; the cam's r0 and rho_min are refined over continuous cam angle; the gear "
+             "blocking contour is traced on a fixed internal grid.")
 
 
 def html_section(study: dict, trapezoid: dict | None = None) -> str:
