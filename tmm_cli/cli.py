@@ -91,11 +91,14 @@ def _parse_formats(text: str) -> set[str]:
 
 
 def write_outputs(task, results: dict, out: Path, formats: set[str], lang: str,
-                  notes: list[str] | None = None) -> list[Path]:
+                  notes: list[str] | None = None,
+                  study: tuple[dict, dict] | None = None) -> list[Path]:
     """results.json and the reports, each written atomically; the run's manifest in
     `out` then lists them, and the files of the previous run into `out` that were not
     written again are removed (tmm_cli.io.Manifest).  `notes` receives one line per
-    output skipped (the PDF where its engine cannot run)."""
+    output skipped (the PDF where its engine cannot run).  study: (study, trapezoid) of
+    `tmm_cli.study.run_study`, shown in the reports and written as study.json/study.html
+    (never in results.json)."""
     from .io import Manifest, atomic_write
     from .results import dumps
 
@@ -106,7 +109,11 @@ def write_outputs(task, results: dict, out: Path, formats: set[str], lang: str,
     rep = formats & {"html", "pdf"}
     if rep:
         from .report import render
-        written.extend(render(results, task, out, rep, lang, notes=notes))
+        shown = results if study is None else {**results, "study": study[0], "study_trapezoid": study[1]}
+        written.extend(render(shown, task, out, rep, lang, notes=notes))
+    if study is not None:
+        from . import study as study_mod
+        written.extend(study_mod.write(study[0], out, study[1]))
     manifest.commit(written)
     return written
 
@@ -119,6 +126,8 @@ def run(
                                help="comma-separated outputs: json, html, pdf (results.json is always written)"),
     lang: str = typer.Option("en", "--lang", "-l", help="report language: en | ru"),
     quiet: bool = typer.Option(False, "--quiet", "-q", help="no progress and summary on the terminal"),
+    study: bool = typer.Option(False, "--study", help="also write study.json and study.html: "
+                                                      "accuracy against computing time per stage"),
 ):
     """Run every stage present in the task; write results.json and the report(s).
 
@@ -149,9 +158,10 @@ def run(
         raise _fail_stage(exc, task.file)
     except TaskError as exc:
         raise _fail_task(exc)
+    st = _run_study(task, progress) if study else None
     notes: list[str] = []
     try:
-        paths = write_outputs(task, results, out, formats, lang, notes=notes)
+        paths = write_outputs(task, results, out, formats, lang, notes=notes, study=st)
     except StageError as exc:
         raise _fail_stage(failure or exc, task.file)
     except OSError as exc:
@@ -165,6 +175,39 @@ def run(
     if not quiet:
         from .summary import print_summary
         print_summary(results, paths)
+
+
+def _run_study(task, progress=None, repeat: int = 3) -> tuple[dict, dict]:
+    from . import study as study_mod
+    try:
+        return study_mod.run_study(task, progress=progress, repeat=repeat)
+    except StageError as exc:
+        raise _fail_stage(exc, task.file)
+
+
+@app.command("study")
+def study_cmd(
+    task_file: Path = typer.Argument(..., metavar="TASK.yaml", help="the task file"),
+    out: Optional[Path] = typer.Option(None, "--out", "-o", help="output folder (default: out/<task name>/)"),
+    repeat: int = typer.Option(3, "--repeat", help="timed repeats per row (the best is kept)", min=1, max=50),
+):
+    """Accuracy against computing time: for each stage present, sweep the setting that
+    trades time for accuracy (flywheel resolution, curve points, dof2 rtol, planetary
+    z_max); write study.json (errors against a converged reference, measured convergence
+    order, times) and study.html (tables and log-log plots)."""
+    try:
+        task = _load(task_file)
+    except TaskError as exc:
+        raise _fail_task(exc)
+    out = out or Path("out") / task.name
+    st, trap = _run_study(task, lambda s: _err(f"  {s}..."), repeat)
+    from . import study as study_mod
+    try:
+        paths = study_mod.write(st, out, trap)
+    except OSError as exc:
+        raise _fail_write(exc)
+    for p in paths:
+        typer.echo(str(p))
 
 
 @app.command()

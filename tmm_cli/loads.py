@@ -435,15 +435,15 @@ def _curve(sp, scale: float) -> dict:
 
 
 # ------------------------------------------------------------------ switch angles
-def switch_angles(mech, loads_section, positions) -> list[float]:
+def switch_angles(mech, loads_section, positions, kinks: bool = False) -> list[float]:
     """Crank angles in [0, 360) where a task load switches: where it jumps inside a stroke
     (a repeated abscissa of an s- or phi-diagram), found to 1e-9 deg, and the extreme
     positions of every slider other than the output that carries a stroke-dependent load
-    (where its own strokes begin and end, docs/methods.md §3.3)."""
+    (where its own strokes begin and end, docs/methods.md §3.3); with kinks=True also
+    where a diagram's slope changes (every inner abscissa: the breakpoints of a piecewise
+    quadrature)."""
     if loads_section is None:
         return []
-    from scipy.optimize import brentq
-
     out: list[float] = []
     phi0 = float(getattr(positions, "phi0", 0.0))
     sign = _drive_sign(positions)
@@ -471,6 +471,8 @@ def switch_angles(mech, loads_section, positions) -> list[float]:
         xs = d.phi if d.phi is not None else d.s
         jumps = [xs[i] for i in range(len(xs) - 1)
                  if xs[i + 1] == xs[i] and d.value[i + 1] != d.value[i]]
+        if kinks:
+            jumps = sorted(set(jumps) | {float(x) for x in xs[1:-1]})
         if d.phi is not None:
             for x in jumps:
                 if 0 < x % cycle:
@@ -485,24 +487,54 @@ def switch_angles(mech, loads_section, positions) -> list[float]:
             strokes = ["working", "idle"] if sp.stroke == "both" else [sp.stroke]
         for stroke in strokes:
             lo, hi = (0.0, float(wa)) if stroke == "working" else (float(wa), 360.0)
-            eps = 1e-7
-
-            def s_at(t, src=src, start=start):
-                wk, s = stroke_states(src, np.array([(start + sign * t) % 360.0]))
-                return float(s[0])
-
-            for x in jumps:
-                try:
-                    t = brentq(lambda t: s_at(t) - x, lo + eps, hi - eps, xtol=1e-12, rtol=1e-14)
-                except ValueError:
-                    continue
-                out.append((start + sign * t) % 360.0)
+            for t in _stroke_roots(src, start, sign, lo + 1e-7, hi - 1e-7, jumps):
+                if t is not None:
+                    out.append((start + sign * t) % 360.0)
     res = []
     for a in sorted(out):
         a = 0.0 if a >= 360.0 - 1e-12 else a
         if not res or abs(a - res[-1]) > 1e-9:
             res.append(float(a))
     return res
+
+
+def _stroke_roots(positions, start: float, sign: float, lo: float, hi: float, targets,
+                  n: int = 257, passes: int = 3) -> list[float | None]:
+    """Crank rotations t in [lo, hi] (deg from `start` along the motion, within one stroke,
+    where s/H is monotonic) at which s/H equals each target: all targets at once, by
+    vectorised scans (n points, then n points in every bracket, `passes` times: the
+    bracket shrinks to (hi - lo)/(n - 1)^(passes + 1), about 1e-7 deg) and a final linear
+    interpolation in the bracket (error ~ curvature x bracket^2, below 1e-12 deg).
+    None for a target the stroke does not reach."""
+    tg = np.asarray([float(x) for x in targets])
+    if tg.size == 0:
+        return []
+
+    def s_of(t):
+        return stroke_states(positions, np.mod(start + sign * t, 360.0))[1]
+
+    t = np.linspace(lo, hi, n)[None, :].repeat(tg.size, 0)
+    sv = s_of(t.ravel()).reshape(t.shape)
+    found = np.ones(tg.size, bool)
+    a = np.zeros(tg.size)
+    b = np.zeros(tg.size)
+    sa = np.zeros(tg.size)
+    sb = np.zeros(tg.size)
+    for it in range(passes + 1):
+        d = sv - tg[:, None]
+        hit = (d[:, :-1] * d[:, 1:]) <= 0
+        found &= hit.any(axis=1)
+        i = np.argmax(hit, axis=1)
+        r = np.arange(tg.size)
+        a, b = t[r, i], t[r, i + 1]
+        sa, sb = sv[r, i], sv[r, i + 1]
+        if it == passes:
+            break
+        t = a[:, None] + (b - a)[:, None] * np.linspace(0.0, 1.0, n)[None, :]
+        sv = s_of(t.ravel()).reshape(t.shape)
+    den = np.where(sb != sa, sb - sa, 1.0)
+    root = np.where(sb != sa, a + (tg - sa) / den * (b - a), a)
+    return [float(x) if ok else None for x, ok in zip(root, found)]
 
 
 __all__ = ["AppliedForce", "AppliedCouple", "Loads", "evaluate", "switch_angles", "point_motion",

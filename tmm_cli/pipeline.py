@@ -88,6 +88,11 @@ def run(task: Task, *, progress: Callable[[str], None] | None = None,
     except TaskError as err:
         # a stage found an invalid field: name the file and the field's line (exit 2)
         raise task.locate(err) from None
+    # the hand method's own error (reading the drawings to 0.5 mm; 12-position flywheel)
+    from .graphical import graphical_error
+    ge = graphical_error(results)
+    if ge is not None:
+        results["graphical_error"] = ge
     # de-duplicate warnings, keep order
     seen = set()
     results["warnings"] = [w for w in warnings if not (w in seen or seen.add(w))]
@@ -157,7 +162,8 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int) -> No
     if task.flywheel is not None:
         say("dynamics")
         from . import dynamics, loads as loads_mod
-        dyn = _stage("dynamics")(dynamics.analyze_task)(mech, task, positions)
+        # the accuracy table (timed) runs only in `tmm study` / `tmm run --study`
+        dyn = _stage("dynamics")(dynamics.analyze_task)(mech, task, positions, accuracy=False)
         results["flywheel"] = dyn.to_dict()
         warnings.extend(results["flywheel"].pop("warnings", []) or [])
 

@@ -285,6 +285,7 @@ class FlywheelSection(_Model):
     constant: Literal["driving", "resistance"] = "driving"
     method: Literal["energy-mass", "merzalov", "exact"] = "energy-mass"
     resolution: int = Field(360, ge=12, le=100000)
+    quadrature: int = Field(2, ge=0, le=8, description="Gauss-Legendre points per interval (0: trapezoid)")
     shape: ShapeSpec = Field(default_factory=ShapeSpec)
     reduced_J: Inertia = Field(0.0, ge=0, description="extra constant reduced inertia (rotor, gears), kg*m^2")
 
@@ -822,6 +823,7 @@ _DOCS: dict[type, dict[str, str]] = {
         "constant": "driving (motor-driven machine) | resistance (engine): the constant reduced moment",
         "method": "energy-mass | merzalov | exact: the primary J (all three are computed)",
         "resolution": "crank positions used for the integration (default 360)",
+        "quadrature": "Gauss-Legendre points per interval for the works (default 2; 0: trapezoid)",
         "shape": "{type: disk | rim, density, width_ratio}",
     },
     ShapeSpec: {"type": "disk | rim", "density": "kg/m^3 (default 7800)",

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Callable
 
 import numpy as np
@@ -33,6 +33,9 @@ STAGE = "dynamics"
 EPS_DEG = 1e-5   # one-sided evaluation offset at a jump, deg (coarser than the loads' 1e-9 snapping)
 ACCURACY_RESOLUTIONS = (12, 24, 36, 72, 180, 360, 3600)
 FLYWHEEL_METHODS = ("energy-mass", "merzalov", "exact")
+GAUSS_DEFAULT = 2   # Gauss-Legendre points per grid interval for the works (order 4)
+CHECK_BELOW = 180   # a coarser grid is checked against twice its positions ...
+TARGET_REL = 1e-6   # ... and a warning given when J_n moves by more than this
 
 Sampler = Callable[[np.ndarray, np.ndarray], Sample]
 """sampler(q_deg, side) -> Sample: reduced quantities at the cycle angles q_deg (deg of
@@ -106,6 +109,8 @@ class CycleResult:
     epsilon: np.ndarray            # d|omega|/dt along the motion, rad/s^2
     M_by_kind: dict[str, np.ndarray]
     warnings: list[str]
+    J_var_min: float = 0.0         # extremes of J_var over the cycle (nodes and the located
+    J_var_max: float = 0.0         # extrema between them)
 
     @property
     def J_n_primary(self) -> float:
@@ -133,12 +138,26 @@ def _dq_numeric(q: np.ndarray, y: np.ndarray) -> np.ndarray:
     return np.interp(q, uq, d)
 
 
+def _extrema_between_nodes(q, dT, M_red, J_var, dJ_var, omega_m, delta) -> np.ndarray:
+    """Crank angles (rad) between the nodes where the energy functions of the methods,
+    dT - J_var omega^2/2 at omega_max, omega_min and omega_m, have their maxima and minima
+    (Hermite critical points, see `flywheel.hermite_critical`)."""
+    out = []
+    for w in (omega_m * (1 + delta / 2), omega_m * (1 - delta / 2), omega_m):
+        c = w * w / 2
+        out.append(fw.hermite_critical(q, dT - J_var * c, M_red - dJ_var * c))
+        if not np.any(J_var):
+            break
+    return np.unique(np.concatenate(out))
+
+
 def solve_cycle(q: np.ndarray, M_given: np.ndarray, J_links: dict[str, np.ndarray] | np.ndarray,
                 *, omega_m: float, delta: float, constant: str = "driving",
                 method: str = "energy-mass", J_extra: float = 0.0,
                 dJ_links: dict[str, np.ndarray | None] | None = None,
                 M_by_kind: dict[str, np.ndarray] | None = None,
-                const_tol: float = 1e-9) -> CycleResult:
+                const_tol: float = 1e-9, increments: np.ndarray | None = None,
+                refine: bool = True, polish: Callable | None = None) -> CycleResult:
     """The whole flywheel calculation on arrays.
 
     q: nodes (rad) from 0 to the cycle, non-decreasing (duplicates at jumps);
@@ -148,6 +167,12 @@ def solve_cycle(q: np.ndarray, M_given: np.ndarray, J_links: dict[str, np.ndarra
     (flywheel.reduced_J); dJ_links: d/dq of each link's J_red (else finite differences).
     A link whose reduced inertia varies by less than const_tol of its maximum goes to
     J_const (docs/methods.md §4: crank, rotor, gears), the rest to J_var.
+    increments: the integrals of M_given over every interval of q (else the trapezoid);
+    refine: locate the extrema of the energy functions between the nodes (critical points
+    of their cubic Hermite interpolants with the exact slopes M_red - J_var' omega^2/2)
+    and include them in the maxima and minima of every method (the hand calculation:
+    False, the extrema at the nodes); polish(points, work, const_links) -> (dT, J_var)
+    evaluates these two exactly at the located points (else: the Hermite interpolants).
     """
     if method not in FLYWHEEL_METHODS:
         raise StageError(STAGE, f"unknown method {method!r}")
@@ -155,7 +180,7 @@ def solve_cycle(q: np.ndarray, M_given: np.ndarray, J_links: dict[str, np.ndarra
     if isinstance(J_links, np.ndarray) or not isinstance(J_links, dict):
         J_links = {"mechanism": np.broadcast_to(np.asarray(J_links, float), q.shape).copy()}
     warnings: list[str] = []
-    work = fw.cycle_work(q, M_given, constant)
+    work = fw.cycle_work(q, M_given, constant, increments)
     n = q.size
     J_const = float(J_extra)
     J_var = np.zeros(n)
@@ -181,10 +206,21 @@ def solve_cycle(q: np.ndarray, M_given: np.ndarray, J_links: dict[str, np.ndarra
         dJ_var = dJ_var + np.broadcast_to(np.asarray(d, float), (n,))
     J_red = J_const + J_var
 
-    Jn_em, a, b = fw.energy_mass(work.dT, J_var, omega_m, delta)
-    Jn_w, a_w, b_w = fw.wittenbauer(work.dT, J_var, omega_m, delta)
-    Jn_m, dT_I, T_II = fw.merzalov(work.dT, J_var, omega_m, delta)
-    Jn_ex = fw.exact_flywheel(work.dT, J_var, omega_m, delta, guess=Jn_em)
+    dTx, Jx = work.dT, J_var
+    if refine:
+        ext = _extrema_between_nodes(q, work.dT, work.M_red, J_var, dJ_var, omega_m, delta)
+        if ext.size:
+            if polish is not None:
+                dTe, Je = polish(ext, work, const_links)
+            else:
+                dTe, Je = fw.hermite_at(q, work.dT, work.M_red, ext), fw.hermite_at(q, J_var, dJ_var, ext)
+            dTx = np.concatenate([work.dT, dTe])
+            Jx = np.concatenate([J_var, Je])
+    Jn_em, a, b = fw.energy_mass(dTx, Jx, omega_m, delta)
+    Jn_w, a_w, b_w = fw.wittenbauer(dTx, Jx, omega_m, delta)
+    Jn_m, dT_I, T_II = fw.merzalov(dTx, Jx, omega_m, delta)
+    dT_I, T_II = dT_I[:n], T_II[:n]
+    Jn_ex = fw.exact_flywheel(dTx, Jx, omega_m, delta, guess=Jn_em)
     J_n = {"energy-mass": Jn_em, "merzalov": Jn_m, "exact": Jn_ex, "wittenbauer": Jn_w}
     J_fly = {k: v - J_const for k, v in J_n.items()}
     primary = J_fly[method]
@@ -206,7 +242,8 @@ def solve_cycle(q: np.ndarray, M_given: np.ndarray, J_links: dict[str, np.ndarra
                 why = (f"the machine's own constant reduced inertia {J_const:.6g} kg*m^2 equals the "
                        f"{J_n[method]:.6g} kg*m^2 needed for delta = {delta:.6g} ({method})")
             warnings.append(f"no flywheel is needed: {why}; J = 0")
-    motion = fw.steady_motion(work.dT, J_var, J_const + J, omega_m)
+    motion = fw.steady_motion(dTx, Jx, J_const + J, omega_m)
+    motion = replace(motion, omega=motion.omega[:n])
     J_tot = J_const + J + J_var
     num = work.M_red - dJ_var * motion.omega**2 / 2
     eps = np.divide(num, J_tot, out=np.zeros_like(num), where=J_tot > 0)
@@ -227,7 +264,7 @@ def solve_cycle(q: np.ndarray, M_given: np.ndarray, J_links: dict[str, np.ndarra
                        omega_m=float(omega_m), delta=float(delta), method=method, J_n=J_n,
                        a=a, b=b, a_w=a_w, b_w=b_w, dT_I=dT_I, T_II=T_II, J_fly=J_fly, J=J,
                        motion=motion, epsilon=eps, M_by_kind=dict(M_by_kind or {}),
-                       warnings=warnings)
+                       warnings=warnings, J_var_min=float(np.min(Jx)), J_var_max=float(np.max(Jx)))
 
 
 # ------------------------------------------------------------------ result
@@ -241,20 +278,6 @@ def _f(x):
 
 def _l(a):
     return [_f(v) for v in np.asarray(a, float).ravel()]
-
-
-def _hermite(qn: np.ndarray, y: np.ndarray, dy: np.ndarray, x: np.ndarray) -> np.ndarray:
-    """Cubic Hermite interpolation on nodes with duplicates (one-sided slopes)."""
-    x = np.asarray(x, float)
-    i = np.clip(np.searchsorted(qn, x, side="right") - 1, 0, qn.size - 2)
-    h = qn[i + 1] - qn[i]
-    hs = np.where(h > 0, h, 1.0)
-    t = np.where(h > 0, (x - qn[i]) / hs, 0.0)
-    h00 = 2 * t**3 - 3 * t**2 + 1
-    h10 = t**3 - 2 * t**2 + t
-    h01 = -2 * t**3 + 3 * t**2
-    h11 = t**3 - t**2
-    return h00 * y[i] + h10 * h * dy[i] + h01 * y[i + 1] + h11 * h * dy[i + 1]
 
 
 @dataclass
@@ -273,6 +296,8 @@ class DynamicsResult:
     side: np.ndarray
     sampler: Sampler | None = field(default=None, repr=False)
     map_cycle: float | None = None   # how motion_at reads crank angles (default: the cycle)
+    hand: dict | None = None         # the 12-position hand method beside the accurate result
+    quadrature_points: int = GAUSS_DEFAULT
 
     # ---- the numbers
     @property
@@ -307,7 +332,7 @@ class DynamicsResult:
         c = self.cycle
         q = self._q_of(phi)
         qr = np.deg2rad(q)
-        dT = _hermite(c.q, c.work.dT, c.work.M_red, qr)
+        dT = fw.hermite_at(c.q, c.work.dT, c.work.M_red, qr)
         if self.sampler is not None:
             s = self.sampler(q, np.zeros_like(q))
             M = s.M_given + c.work.M_constant
@@ -376,8 +401,8 @@ class DynamicsResult:
             "J_n_methods": {k: _f(v) for k, v in c.J_n.items()},
             "J_fly_primary": _f(c.J_fly[c.method]),
             "J_extra": _f(c.J_extra),
-            "J_var_min": _f(np.min(c.J_var)),
-            "J_var_max": _f(np.max(c.J_var)),
+            "J_var_min": _f(c.J_var_min),
+            "J_var_max": _f(c.J_var_max),
             "constant_links": list(c.const_links),
             "energy_mass": {"a": _f(c.a), "b": _f(c.b),
                             "omega_max": _f(c.omega_m * (1 + c.delta / 2)),
@@ -407,21 +432,75 @@ class DynamicsResult:
                 "omega": _l(self.sign * m.omega),
                 "epsilon": _l(self.sign * c.epsilon),
             },
+            "quadrature": _quadrature_of(self),
+            "hand": self.hand,
             "accuracy": self.accuracy,
             "warnings": list(self.warnings),
         }
         return d
 
 
+def _quadrature_of(r: "DynamicsResult") -> str:
+    n = r.quadrature_points
+    return "trapezoid" if n == 0 else f"gauss-legendre {n} points per interval"
+
+
 # ------------------------------------------------------------------ drivers
+def _split(s: Sample, n: int) -> tuple[Sample, Sample]:
+    """A Sample over n + m angles as (the first n, the other m)."""
+    def cut(a, sl):
+        return None if a is None else np.asarray(a)[sl]
+
+    def part(sl):
+        return Sample(M_by_kind={k: cut(v, sl) for k, v in s.M_by_kind.items()},
+                      M_given=cut(s.M_given, sl),
+                      J_links={k: cut(v, sl) for k, v in s.J_links.items()},
+                      dJ_links={k: cut(v, sl) for k, v in (s.dJ_links or {}).items()},
+                      J_links_total=cut(s.J_links_total, sl), dJ_total=cut(s.dJ_total, sl))
+    return part(slice(0, n)), part(slice(n, None))
+
+
 def _run_grid(sampler: Sampler, section, omega_m: float, cycle: float, resolution: int,
-              switch_q, insert: bool = True) -> tuple[CycleResult, np.ndarray, np.ndarray]:
+              switch_q, insert: bool = True, gauss: int | None = None
+              ) -> tuple[CycleResult, np.ndarray, np.ndarray]:
+    """The flywheel on the grid.  gauss: Gauss-Legendre points per interval for the works
+    (default: the section's `quadrature`; 0: the trapezoid on the nodes and the extrema
+    at the nodes, as by hand; insert=False implies 0)."""
     q_deg, side = grid(resolution, cycle, switch_q, insert)
-    s = sampler(q_deg, side)
-    res = solve_cycle(np.deg2rad(q_deg), s.M_given, s.J_links, omega_m=omega_m,
+    n_g = int(getattr(section, "quadrature", GAUSS_DEFAULT)) if gauss is None else int(gauss)
+    if not insert:
+        n_g = 0
+    inc = None
+    if n_g > 0:
+        xg = fw.gauss_points(q_deg, n_g).ravel()
+        s, sg = _split(sampler(np.concatenate([q_deg, xg]),
+                               np.concatenate([side, np.zeros(xg.size)])), q_deg.size)
+        inc = fw.gauss_increments(np.deg2rad(q_deg), sg.M_given, n_g)
+    else:
+        s = sampler(q_deg, side)
+    qr = np.deg2rad(q_deg)
+
+    def polish(ext, work, const_links):
+        """dT and J_var exactly at the located extrema (rad): the sampler there and the
+        Gauss rule from the interval's left node."""
+        i = np.clip(np.searchsorted(qr, ext, side="right") - 1, 0, qr.size - 2)
+        xg = (q_deg[i][:, None] + (np.rad2deg(ext) - q_deg[i])[:, None] * fw.gauss_legendre(n_g)[0])
+        se, sg2 = _split(sampler(np.concatenate([np.rad2deg(ext), xg.ravel()]),
+                                 np.zeros(ext.size * (1 + n_g))), ext.size)
+        h = ext - qr[i]
+        dT = work.dT[i] + h * (sg2.M_given.reshape(-1, n_g) @ fw.gauss_legendre(n_g)[1]) \
+            + work.M_constant * h
+        Jv = np.zeros(ext.size)
+        for k, v in se.J_links.items():
+            if k not in const_links:
+                Jv = Jv + v
+        return dT, Jv
+
+    res = solve_cycle(qr, s.M_given, s.J_links, omega_m=omega_m,
                       delta=float(section.delta), constant=section.constant,
                       method=section.method, J_extra=float(getattr(section, "reduced_J", 0.0)),
-                      dJ_links=s.dJ_links, M_by_kind=s.M_by_kind)
+                      dJ_links=s.dJ_links, M_by_kind=s.M_by_kind, increments=inc,
+                      refine=n_g > 0, polish=polish if n_g > 0 else None)
     return res, q_deg, side
 
 
@@ -432,6 +511,29 @@ def _rel(x, ref):
     if den == 0:
         return 0.0 if x == 0 else None
     return abs(x - ref) / den
+
+
+def hand_row(sampler: Sampler, section, omega_m: float, cycle: float, switch_q,
+             ref: CycleResult, ref_resolution: int) -> dict:
+    """The course's hand method: 12 positions every 30 deg (24 over 720 deg), the trapezoid
+    of the works, no inserted jump points, the extrema at the positions; beside the
+    accurate result `ref` (deterministic: no timing)."""
+    n_hand = int(round(cycle / 30.0))
+    hand = _run_grid(sampler, section, omega_m, cycle, n_hand, switch_q, insert=False)[0]
+    J_ref = ref.J_fly[ref.method]
+    return {"method": "hand: trapezoid over the positions", "positions": n_hand, "step": 30.0,
+            "J_energy_mass": _f(hand.J_fly["energy-mass"]), "J_merzalov": _f(hand.J_fly["merzalov"]),
+            "J_exact": _f(hand.J_fly["exact"]), "J": _f(hand.J_fly[hand.method]),
+            "M_constant": _f(hand.work.M_constant), "J_const": _f(hand.J_const),
+            "J_n": _f(hand.J_n[hand.method]),
+            "err_J": _f(_rel(hand.J_fly[hand.method], J_ref)),
+            "err_J_n": _f(_rel(hand.J_n[hand.method], ref.J_n[ref.method])),
+            "err_M_constant": _f(_rel(hand.work.M_constant, ref.work.M_constant)),
+            "delta_true": _f(fw.achieved_delta(ref.work.dT, ref.J_var,
+                                               ref.J_const + max(hand.J_fly[hand.method], 0.0),
+                                               omega_m)),
+            "accurate": {"resolution": int(ref_resolution), "J": _f(J_ref),
+                         "J_n": _f(ref.J_n[ref.method]), "M_constant": _f(ref.work.M_constant)}}
 
 
 def accuracy_table(sampler: Sampler, section, omega_m: float, cycle: float = 360.0,
@@ -474,22 +576,7 @@ def accuracy_table(sampler: Sampler, section, omega_m: float, cycle: float = 360
                      "err_omega_min": _f(_rel(mo.omega_min, ref.motion.omega_min)),
                      "delta_true": _f(d_true), "time_ms": _f(times[r]),
                      "reference": r == ref_r})
-    n_hand = int(round(cycle / 30.0))
-    t0 = time.perf_counter()
-    hand = _run_grid(sampler, section, omega_m, cycle, n_hand, switch_q, insert=False)[0]
-    t_hand = (time.perf_counter() - t0) * 1e3
-    hd = {"positions": n_hand, "step": 30.0,
-          "J_energy_mass": _f(hand.J_fly["energy-mass"]), "J_merzalov": _f(hand.J_fly["merzalov"]),
-          "J_exact": _f(hand.J_fly["exact"]), "J": _f(hand.J_fly[hand.method]),
-          "M_constant": _f(hand.work.M_constant), "J_const": _f(hand.J_const),
-          "J_n": _f(hand.J_n[hand.method]),
-          "err_J": _f(_rel(hand.J_fly[hand.method], J_ref)),
-          "delta_true": _f(fw.achieved_delta(ref.work.dT, ref.J_var,
-                                             ref.J_const + max(hand.J_fly[hand.method], 0.0),
-                                             omega_m)),
-          "time_ms": _f(t_hand),
-          "accurate": {"resolution": ref_r, "J": _f(J_ref),
-                       "M_constant": _f(ref.work.M_constant)}}
+    hd = hand_row(sampler, section, omega_m, cycle, switch_q, ref, ref_r)
     return {"method": ref.method, "reference_resolution": ref_r, "rows": rows, "hand": hd}
 
 
@@ -507,7 +594,16 @@ def analyze_sampler(sampler: Sampler, section, omega_m: float, *, cycle: float =
     shp = {"type": shape.type, "density": float(shape.density), "width_ratio": float(shape.width_ratio)}
     sz = fw.size(c.J, shp["type"], shp["density"], shp["width_ratio"], c.motion.omega_max)
     warnings = list(c.warnings) + list(sz.warnings)
+    hand = hand_row(sampler, section, omega_m, cycle, switch_q, c, resolution)
     acc = None
+    if not accuracy and resolution < CHECK_BELOW:
+        # a coarse grid: its error estimated against twice the positions (cheap here)
+        c2 = _run_grid(sampler, section, omega_m, cycle, 2 * resolution, switch_q)[0]
+        est = _rel(c.J_n[c.method], c2.J_n[c2.method])
+        if est is not None and est > TARGET_REL:
+            warnings.append(f"flywheel: at resolution {resolution} J_n differs by {est:.2g} (relative) from "
+                            f"its value at {2 * resolution} positions, more than {TARGET_REL:g}; raise "
+                            f"`flywheel.resolution`")
     if accuracy:
         acc = accuracy_table(sampler, section, omega_m, cycle, switch_q,
                              resolutions=tuple(sorted(set(ACCURACY_RESOLUTIONS) | {resolution})),
@@ -520,7 +616,8 @@ def analyze_sampler(sampler: Sampler, section, omega_m: float, *, cycle: float =
                             f"converged value; raise `flywheel.resolution`")
     return DynamicsResult(cycle=c, cycle_deg=float(cycle), resolution=resolution, phi0=float(phi0),
                           sign=float(sign), constant=section.constant, shape=shp, size=sz,
-                          accuracy=acc, warnings=warnings, q_deg=q_deg, side=side, sampler=sampler)
+                          accuracy=acc, warnings=warnings, q_deg=q_deg, side=side, sampler=sampler,
+                          hand=hand, quadrature_points=int(getattr(section, "quadrature", GAUSS_DEFAULT)))
 
 
 def mechanism_sampler(mech, kin_fn, loads_fn, *, phi0: float, sign: float) -> Sampler:
@@ -574,7 +671,9 @@ class _WithCycle:
 def analyze_task(mech, task, positions, *, accuracy: bool = True) -> DynamicsResult:
     """The pipeline's call: kinematics.solve and loads.evaluate(inertia=False) over the
     dynamics grid; inserted into the grid: the switch angles of loads.switch_angles and
-    both extreme positions of the output (where stroke loads start and stop)."""
+    both extreme positions of the output (where stroke loads start and stop) and the
+    kinks of the load diagrams (so that every grid interval is smooth and the Gauss rule
+    keeps its order)."""
     from .. import kinematics, loads as loads_mod
     omega1 = task.drive.omega1
     cycle = float(task.drive.cycle)
@@ -588,7 +687,7 @@ def analyze_task(mech, task, positions, *, accuracy: bool = True) -> DynamicsRes
     def loads_fn(kin):
         return loads_mod.evaluate(mech, task.loads, kin, pos_l, inertia=False)
 
-    sw = list(loads_mod.switch_angles(mech, task.loads, pos_l))
+    sw = list(loads_mod.switch_angles(mech, task.loads, pos_l, kinks=True))
     sw += [float(x) for x in (getattr(positions, "extreme", None) or [])]
     res = analyze(mech, kin_fn, loads_fn, task.flywheel, task.drive, phi0=float(positions.phi0),
                   switch_angles=sw, accuracy=accuracy)

@@ -49,6 +49,86 @@ STAGE = "dynamics"
 _TINY = 1e-300
 
 
+def gauss_legendre(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Nodes (on [0, 1]) and weights (summing to 1) of the n-point Gauss-Legendre rule:
+    exact for polynomials of degree 2n - 1, error O(h^(2n)) on smooth integrands."""
+    x, w = np.polynomial.legendre.leggauss(int(n))
+    return (x + 1.0) / 2.0, w / 2.0
+
+
+def gauss_points(q: np.ndarray, n: int) -> np.ndarray:
+    """The n Gauss-Legendre points inside every interval of positive width of the
+    non-decreasing nodes q, interval by interval (shape (intervals, n))."""
+    q = np.asarray(q, float)
+    a, h = q[:-1], np.diff(q)
+    x, _ = gauss_legendre(n)
+    pos = h > 0
+    return a[pos, None] + h[pos, None] * x[None, :]
+
+
+def gauss_increments(q: np.ndarray, y_gauss: np.ndarray, n: int) -> np.ndarray:
+    """Integral of y over every interval of q from its values at `gauss_points(q, n)`
+    (zero-width intervals: 0)."""
+    q = np.asarray(q, float)
+    h = np.diff(q)
+    _, w = gauss_legendre(n)
+    out = np.zeros(h.size)
+    pos = h > 0
+    out[pos] = h[pos] * (np.asarray(y_gauss, float).reshape(-1, int(n)) @ w)
+    return out
+
+
+def hermite_critical(q: np.ndarray, y: np.ndarray, dy: np.ndarray) -> np.ndarray:
+    """Interior critical points of the piecewise cubic Hermite interpolant of (y, dy) on
+    the nodes q: in every interval of positive width where dy changes sign, the root of the
+    cubic's derivative (a quadratic) inside it.  At a maximum or minimum of a smooth y the
+    cubic's extremum value is within O(h^4) of the true one."""
+    q = np.asarray(q, float)
+    y = np.asarray(y, float)
+    dy = np.asarray(dy, float)
+    h = np.diff(q)
+    s0, s1 = dy[:-1], dy[1:]
+    idx = np.nonzero((h > 0) & (s0 * s1 < 0))[0]
+    if idx.size == 0:
+        return np.zeros(0)
+    hh = h[idx]
+    p0, p1 = y[idx], y[idx + 1]
+    m0, m1 = s0[idx] * hh, s1[idx] * hh
+    # p(t) = h00 p0 + h10 m0 + h01 p1 + h11 m1; p'(t) = A t^2 + B t + C
+    A = 6 * p0 + 3 * m0 - 6 * p1 + 3 * m1
+    B = -6 * p0 - 4 * m0 + 6 * p1 - 2 * m1
+    C = m0
+    t = np.full(idx.size, 0.5)
+    lin = np.abs(A) <= 1e-14 * (np.abs(B) + np.abs(C))
+    t[lin] = -C[lin] / np.where(B[lin] != 0, B[lin], 1.0)
+    qa = ~lin
+    if np.any(qa):
+        disc = np.sqrt(np.maximum(B[qa] ** 2 - 4 * A[qa] * C[qa], 0.0))
+        qq = -0.5 * (B[qa] + np.copysign(disc, B[qa]))     # stable quadratic formula
+        r1 = qq / np.where(A[qa] != 0, A[qa], 1.0)
+        r2 = C[qa] / np.where(qq != 0, qq, 1.0)
+        # p'(0) and p'(1) differ in sign: exactly one root lies in [0, 1]
+        t[qa] = np.where(np.abs(r1 - 0.5) <= np.abs(r2 - 0.5), r1, r2)
+    t = np.clip(t, 0.0, 1.0)
+    return q[idx] + t * hh
+
+
+def hermite_at(q: np.ndarray, y: np.ndarray, dy: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """The cubic Hermite interpolant of (y, dy) on the non-decreasing nodes q (duplicates:
+    one-sided limits) at the points x."""
+    q = np.asarray(q, float)
+    x = np.asarray(x, float)
+    i = np.clip(np.searchsorted(q, x, side="right") - 1, 0, q.size - 2)
+    h = q[i + 1] - q[i]
+    hs = np.where(h > 0, h, 1.0)
+    t = np.where(h > 0, (x - q[i]) / hs, 0.0)
+    h00 = 2 * t**3 - 3 * t**2 + 1
+    h10 = t**3 - 2 * t**2 + t
+    h01 = -2 * t**3 + 3 * t**2
+    h11 = t**3 - t**2
+    return h00 * y[i] + h10 * h * dy[i] + h01 * y[i + 1] + h11 * h * dy[i + 1]
+
+
 def cumtrapz(q: np.ndarray, y: np.ndarray) -> np.ndarray:
     """Cumulative trapezoid, 0 at q[0] (zero-width intervals add nothing)."""
     q = np.asarray(q, float)
@@ -77,9 +157,11 @@ class CycleWork:
     constant: str             # 'driving' | 'resistance'
 
 
-def cycle_work(q: np.ndarray, M_given: np.ndarray, constant: str = "driving") -> CycleWork:
+def cycle_work(q: np.ndarray, M_given: np.ndarray, constant: str = "driving",
+               increments: np.ndarray | None = None) -> CycleWork:
     """The constant reduced moment from zero net work over the steady cycle and the
-    works A_d, A_c, dT (trapezoid on the nodes).
+    works A_d, A_c, dT (trapezoid on the nodes, or the given per-interval integrals of
+    M_given, e.g. `gauss_increments`).
 
     constant='driving' (motor-driven machine): the given loads are the resistance side,
     M_d = M_constant.  constant='resistance' (engine): the given loads are the driving
@@ -93,7 +175,13 @@ def cycle_work(q: np.ndarray, M_given: np.ndarray, constant: str = "driving") ->
         raise StageError(STAGE, "the reduced moment of the loads is not finite")
     if np.any(np.diff(q) < 0) or q[-1] <= q[0]:
         raise StageError(STAGE, "cycle nodes must be non-decreasing over a positive span")
-    A_g = cumtrapz(q, M_given)
+    if increments is None:
+        A_g = cumtrapz(q, M_given)
+    else:
+        inc = np.asarray(increments, float)
+        if inc.shape != (q.size - 1,) or not np.all(np.isfinite(inc)):
+            raise StageError(STAGE, "the works of the loads over the cycle are not finite")
+        A_g = np.concatenate([[0.0], np.cumsum(inc)])
     span = q[-1] - q[0]
     Mc = -A_g[-1] / span
     M_red = M_given + Mc

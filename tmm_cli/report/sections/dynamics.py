@@ -265,7 +265,7 @@ def build(ctx) -> str | None:
                          f(x.get("omega_max"), 7), f(x.get("err_omega_max"), 2),
                          f(x.get("omega_min"), 7), f(x.get("err_omega_min"), 2),
                          f(x.get("delta_true"), 5), f(x.get("time_ms"), 3)))
-    hand = acc.get("hand")
+    hand = d.get("hand") or acc.get("hand")
     hand_text = None
     if hand:
         err = hand.get("err_J")

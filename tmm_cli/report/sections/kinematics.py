@@ -298,6 +298,13 @@ def build(ctx) -> str | None:
         (Markup("μ<sub>a</sub> = a<sub>{}</sub>/π{} — {}").format(pin, plan_label(pin), ctx.t('kin.mu_a')),
          Markup(f"{ctx.fmt(aA)} / {ctx.fmt_fixed(aA / mu_a, 2)} → {mu_a:g} {ctx.t('kin.unit_a')}")),
     ]
+    rel = [r for e in ((ctx.results.get("graphical_error") or {}).get("plans") or {}).get("positions", [])
+           for d in e["points"].values() for r in d.values() if r is not None]
+    if rel:
+        scale_rows.append((ctx.t("kin.reading"),
+                           ctx.t("kin.reading_val", ev=f"{0.5 * mu_v:g}", ea=f"{0.5 * mu_a:g}",
+                                 med=ctx.fmt_fixed(100 * float(np.median(rel)), 2),
+                                 top=ctx.fmt_fixed(100 * max(rel), 1))))
     pos_rows = []
     if res_pos:
         pos_rows.append((ctx.t("kin.phi0"), ctx.fmt_fixed(res_pos.get("phi0"), 3) + "°"))
