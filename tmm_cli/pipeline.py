@@ -69,6 +69,16 @@ def run(task: Task, *, progress: Callable[[str], None] | None = None,
             res = _stage("planetary")(gears.synthesize_planetary)(task.planetary)
             results["planetary"] = res.to_dict()
             warnings.extend(results["planetary"].pop("warnings", []) or [])
+        if task.drive_train is not None:
+            say("drive_train")
+            from .gears import train
+            res = _stage("drive_train")(train.analyze)(task.drive_train, task.drive)
+            results["drive_train"] = res.to_dict()
+            warnings.extend(results["drive_train"].pop("warnings", []) or [])
+            if task.flywheel is not None and "flywheel" in results:
+                moved = train.motor_shaft(results["drive_train"], results["flywheel"], task.flywheel.constant)
+                results["flywheel"].update(moved["flywheel"])
+                results["drive_train"]["motor_power"] = moved["motor_power"]
         if task.dof2 is not None:
             say("dof2")
             from . import dof2
