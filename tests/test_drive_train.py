@@ -268,3 +268,25 @@ def test_example_given_teeth():
     assert d["ratio"] == pytest.approx(u, rel=1e-12)
     assert d["shafts"][0] == pytest.approx(960 * 2 * math.pi / 60)
     assert "candidates" in d and d["candidates"][0]["z"] == [[19, 40, 26, 85], [18, 54]]
+
+
+# ---------------------------------------------------------------- report
+@pytest.mark.parametrize("lang,title,plan", [("en", "Gear drive", "Angular-velocity plan"),
+                                             ("ru", "Зубчатый привод", "План угловых скоростей")])
+def test_report_section(tmp_path, lang, title, plan):
+    import re
+
+    from tmm_cli.report import render_html
+
+    task = load_task(ROOT / "tasks" / "planetary_pair_given.yaml")
+    res = run(task)
+    html, _ = render_html(res, task, tmp_path, lang)
+    sec = html[html.index('id="drive_train"'):]
+    sec = sec[:sec.index("</section>")]
+    assert title in sec and plan in sec and "figure failed" not in sec
+    assert sec.count("<svg") == 2
+    # every stage row: the analytic ratio and the one read off the plan agree to 1e-9
+    diffs = re.findall(r"<td[^>]*>(\d\.\de[-+]\d\d)</td>", sec)
+    assert len(diffs) == len(res["drive_train"]["stages"])
+    assert all(float(x) <= 1e-9 for x in diffs)
+    assert "7.8825911" in sec                                 # u1H = 1 + 40*85/(19*26) = 7.88259109

@@ -11,7 +11,7 @@ from types import ModuleType
 from .. import i18n
 
 ORDER = ("task", "structure", "kinematics", "kinetostatics", "dynamics", "cam", "gears",
-         "planetary", "dof2")
+         "planetary", "drive_train", "dof2")
 
 
 def load(name: str) -> ModuleType | None:
