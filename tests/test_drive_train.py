@@ -290,3 +290,14 @@ def test_report_section(tmp_path, lang, title, plan):
     assert len(diffs) == len(res["drive_train"]["stages"])
     assert all(float(x) <= 1e-9 for x in diffs)
     assert "7.8825911" in sec                                 # u1H = 1 + 40*85/(19*26) = 7.88259109
+
+
+def test_chosen_pair_respects_tooth_limit():
+    # |u| = 0.5 for a chosen external pair: z2 = 0.5 * 17 -> 8 or 9 teeth, below z_min_external = 17
+    with pytest.raises(PartialResults, match=r"stage 0 \(pair\).*z_min_external = 17"):
+        _train(ratio=3, stages=[{"type": "pair", "ratio": -0.5}, {"type": "pair"}])
+    d = _train(ratio=-7.5, stages=[{"type": "pair", "ratio": -1.5}, {"type": "pair", "internal": True}])
+    # the own ratio -1.5: z1 = 17, z2 = round(25.5) = 26 (ties to even) -> u = -26/17;
+    # the rest -7.5 / -1.5 = 5 to the internal pair: z1 = 20, z2 = 100 -> U = -26/17 * 5 = -7.647 (+1.96 %)
+    assert d["stages"][0]["z"] == [17, 26] and d["stages"][1]["z"] == [20, 100]
+    assert d["ratio"] == pytest.approx(-26 / 17 * 5) and d["ratio_error"] == pytest.approx((-130 / 17 + 7.5) / -7.5)

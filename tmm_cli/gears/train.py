@@ -206,6 +206,9 @@ def analyze(spec, drive=None) -> TrainResult:
             if (u > 0) != bool(st.internal):
                 raise StageError(STAGE, f"stage {i}: a{'n internal' if st.internal else 'n external'} pair "
                                         f"cannot give u = {u:.6g} (sign)")
+            if not st.internal and z2 < lim.external:
+                raise StageError(STAGE, f"stage {i} (pair): u = {u:.6g} needs z2 = {z2} < z_min_external = "
+                                        f"{lim.external}; give the stage its own `ratio` (|u| >= 1) or its z")
             if z2 > zmax or z2 < 5:
                 raise StageError(STAGE, f"stage {i} (pair): u = {u:.6g} needs z2 = {z2} outside [5, z_max = "
                                         f"{zmax}]; raise z_max or give the stage's z or ratio")
