@@ -25,7 +25,8 @@ I18N = {
            "train.scheme": "Kinematic scheme of the train and the linear-velocity picture",
            "train.plan": "Angular-velocity plan: ω_i = μ_ω · x_i, u = x_in / x_out",
            "train.split": "Share of the stages without tooth numbers", "train.yes": "yes", "train.no": "no",
-           "task.sec.drive_train": "Gear drive"},
+           "task.sec.drive_train": "Gear drive", "train.c.coaxial": "coaxiality", "train.c.assembly": "assembly",
+           "train.c.adjacency": "adjacency", "train.c.undercut": "tooth limits"},
     "ru": {"train.title": "Зубчатый привод", "train.stage": "Ступень", "train.kind": "Вид",
            "train.z": "Числа зубьев", "train.ratio": "Передаточное отношение u (аналитически)",
            "train.ratio_plan": "u по плану", "train.diff": "|разность|", "train.pair": "внешнее зацепление",
@@ -46,7 +47,9 @@ I18N = {
            "train.scheme": "Кинематическая схема привода и картина линейных скоростей",
            "train.plan": "План угловых скоростей: ω_i = μ_ω · x_i, u = x_вх / x_вых",
            "train.split": "Разбивка передаточного отношения по ступеням без чисел зубьев",
-           "train.yes": "да", "train.no": "нет", "task.sec.drive_train": "Зубчатый привод"},
+           "train.yes": "да", "train.no": "нет", "task.sec.drive_train": "Зубчатый привод",
+           "train.c.coaxial": "соосность", "train.c.assembly": "сборка", "train.c.adjacency": "соседство",
+           "train.c.undercut": "ограничения чисел зубьев"},
 }
 
 FRAME = 170.0        # mm: the width of the page's figure
@@ -235,7 +238,7 @@ def build(ctx) -> str | None:
         shafts.append((t("train.input") if i == 0 else t("train.out_of", i=i - 1), f(w, 6),
                        f(abs(w) * 30 / math.pi, 6), ctx.sense(w)))
     sats = [(i, f(s["omega_carrier"], 6), f(s["omega_satellite"], 6), f(s["omega_satellite_rel"], 6),
-             ", ".join(f"{k}: {t('train.yes') if v else t('train.no')}" for k, v in s["checks"].items()))
+             ", ".join(f"{t('train.c.' + k)}: {t('train.yes') if v else t('train.no')}" for k, v in s["checks"].items()))
             for i, s in enumerate(d["stages"]) if s["type"] == "planetary"]
     cands = [(" | ".join("/".join(str(v) for v in z) for z in c["z"]), f(c["ratio"], 6),
               "—" if c.get("ratio_error") is None else _pct(c["ratio_error"]), c["size"])
