@@ -169,7 +169,7 @@ def test_tooth_limits_are_fields():
 def test_split_equal_share_and_pair_rule():
     # u = -100 over a pair (free, external) and scheme A (free): |u|^(1/2) = 10 each, the sign to the pair
     # z2 nearest to 10 * 17 = 170 -- beyond z_max = 150 is an error naming the stage and z_max
-    with pytest.raises(PartialResults, match=r"stage 0 \(pair\).*z2 = 170.*z_max = 150"):
+    with pytest.raises(PartialResults, match=r"stage 0 \(stages\[0\], pair\).*z2 = 170.*z_max = 150"):
         _train(ratio=-100, stages=[{"type": "pair"}, {"type": "planetary", "scheme": "A"}])
     d = _train(ratio=-100, z_max=200, stages=[{"type": "pair"}, {"type": "planetary", "scheme": "A"}])
     assert [s["ratio"] for s in d["split"]] == pytest.approx([-10.0, 10.0])
@@ -294,7 +294,7 @@ def test_report_section(tmp_path, lang, title, plan):
 
 def test_chosen_pair_respects_tooth_limit():
     # |u| = 0.5 for a chosen external pair: z2 = 0.5 * 17 -> 8 or 9 teeth, below z_min_external = 17
-    with pytest.raises(PartialResults, match=r"stage 0 \(pair\).*z_min_external = 17"):
+    with pytest.raises(PartialResults, match=r"stage 0 \(stages\[0\], pair\).*z_min_external = 17"):
         _train(ratio=3, stages=[{"type": "pair", "ratio": -0.5}, {"type": "pair"}])
     d = _train(ratio=-7.5, stages=[{"type": "pair", "ratio": -1.5}, {"type": "pair", "internal": True}])
     # the own ratio -1.5: z1 = 17, z2 = round(25.5) = 26 (ties to even) -> u = -26/17;

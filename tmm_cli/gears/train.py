@@ -26,6 +26,8 @@ from ..errors import StageError, TaskError
 from . import planetary as pl
 
 STAGE = "drive_train"
+CONDITION = {"coaxial": "coaxiality", "assembly": "assembly", "adjacency": "adjacency",
+             "undercut": "tooth-limit (undercut)"}
 KEEP = 400        # per free planetary stage: candidates carried into the whole-train ranking
 
 
@@ -158,8 +160,8 @@ def analyze(spec, drive=None) -> TrainResult:
         else:
             for name, (ok, why) in planetary_checks(st.kind, st.z, k, lim, zmax).items():
                 if not ok:
-                    raise _err(path, f"stage {i} (planetary {st.kind}, z = {list(st.z)}): {name} "
-                                     f"condition violated: {why}")
+                    raise _err(path, f"stage {i} (planetary {st.kind}, z = {list(st.z)}): "
+                                     f"{CONDITION[name]} condition violated: {why}")
         given_u[i] = stage_ratio(st.kind, st.z, st.internal)
     free = [i for i, st in enumerate(specs) if st.z is None]
     if free and req is None and any(specs[i].ratio is None for i in free):
@@ -204,18 +206,18 @@ def analyze(spec, drive=None) -> TrainResult:
             if st.internal:
                 z2 = max(z2, z1 + lim.difference, lim.internal)
             if (u > 0) != bool(st.internal):
-                raise StageError(STAGE, f"stage {i}: a{'n internal' if st.internal else 'n external'} pair "
+                raise StageError(STAGE, f"stage {i} (stages[{i}]): a{'n internal' if st.internal else 'n external'} pair "
                                         f"cannot give u = {u:.6g} (sign)")
             if not st.internal and z2 < lim.external:
-                raise StageError(STAGE, f"stage {i} (pair): u = {u:.6g} needs z2 = {z2} < z_min_external = "
+                raise StageError(STAGE, f"stage {i} (stages[{i}], pair): u = {u:.6g} needs z2 = {z2} < z_min_external = "
                                         f"{lim.external}; give the stage its own `ratio` (|u| >= 1) or its z")
             if z2 > zmax or z2 < 5:
-                raise StageError(STAGE, f"stage {i} (pair): u = {u:.6g} needs z2 = {z2} outside [5, z_max = "
+                raise StageError(STAGE, f"stage {i} (stages[{i}], pair): u = {u:.6g} needs z2 = {z2} outside [5, z_max = "
                                         f"{zmax}]; raise z_max or give the stage's z or ratio")
             options.append([[z1, z2]])
             continue
         if st.kind in ("A", "B") and u <= 1:
-            raise StageError(STAGE, f"stage {i} (planetary {st.kind}) gives u > 1 only, its share is "
+            raise StageError(STAGE, f"stage {i} (stages[{i}], planetary {st.kind}) gives u > 1 only, its share is "
                                     f"u = {u:.6g}: give the stage a `ratio`, or use scheme C or D")
         found, best = pl.search(st.kind, u, tol, k, lim, zmax, "ratio_error" if spec.rank == "ratio_error"
                                 else "size", KEEP, STAGE)
@@ -227,7 +229,7 @@ def analyze(spec, drive=None) -> TrainResult:
             near = pl.nearest_ratio(st.kind, u, k, lim, zmax)
             near_txt = (f"the nearest feasible ratio is {near:.6g} ({(near - u) / u:+.3%})" if near is not None
                         else "no tooth set meets the conditions at all")
-            raise StageError(STAGE, f"stage {i} (planetary {st.kind}): no tooth numbers give u = {u:.6g} within "
+            raise StageError(STAGE, f"stage {i} (stages[{i}], planetary {st.kind}): no tooth numbers give u = {u:.6g} within "
                                     f"tolerance {tol:g} with {k} satellites; {near_txt}; relax `tolerance`, "
                                     f"`satellites`, `z_max` or the tooth limits (z_min_external = {lim.external}, "
                                     f"z_min_internal = {lim.internal}, z_min_satellite_in_internal = "
