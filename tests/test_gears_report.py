@@ -2,6 +2,7 @@
 from pathlib import Path
 from types import SimpleNamespace as NS
 
+import numpy as np
 import pytest
 
 from tmm_cli.gears import analyze, synthesize_planetary
@@ -35,3 +36,32 @@ def test_ru_symbols_and_words(tmp_path: Path):
         assert text in html, text
     for raw in ("eps_alpha", "alpha_w", "x_min", "a_w,"):
         assert raw not in html, raw
+
+
+def test_mesh_labels_do_not_overlap_and_contour_styles_distinct():
+    """B1 lies close to N1 on a shifted pinion (z = 12): the label boxes of N1, N2, B1, B2 and P
+    must not intersect; every check of the blocking contour has its own colour and line style."""
+    from tmm_cli.report.sections import gears as sec
+
+    for z, x in (((12, 42), (0.63, 0.67)), ((14, 30), (0.0, 0.0)), ((17, 17), (0.0, 0.0)), ((10, 60), (0.5, 0.2))):
+        g = analyze(NS(m=0.003, z=z, x=x)).to_dict()
+        pts = sec.line_points(g)
+        la = g["line_of_action"]
+        # the points lie on the line at the (signed) distances reported from N1
+        u = (pts["N2"] - pts["N1"]) / la["N1N2"]
+        for name in ("N2", "B1", "B2", "P"):
+            v = pts[name] - pts["N1"]
+            assert float(v @ u) == pytest.approx(la["N1" + name], abs=1e-12)
+            assert abs(float(v[0] * u[1] - v[1] * u[0])) < 1e-12
+        boxes = sec.label_boxes(g, pts, 4.0 * g["m"] * 3)
+        for i, (_, _, a) in enumerate(boxes):
+            for _, _, b in boxes[i + 1:]:
+                assert not (a[0] < b[2] and b[0] < a[2] and a[1] < b[3] and b[1] < a[3])
+        # the arc of action on the rolling circle: its length rw * angle = B1B2 * rw / rb
+        for i in (0, 1):
+            t0, t1 = sec.action_arc(g, i)
+            assert (t1 - t0) * g["rb"][i] == pytest.approx(la["B1B2"])
+        names = list(g["blocking_contour"]["lines"])
+        st = sec.contour_styles(names)
+        assert len({c for c, _ in st.values()}) == len(names)
+        assert len({str(ls) for _, ls in st.values()}) == len(names)

@@ -15,7 +15,7 @@ from tmm_cli.report import render_html
 from tmm_cli.report import i18n, sections
 
 ROOT = Path(__file__).resolve().parents[1]
-TASKS = ("forging_sixbar", "cam_rocker", "gears_shifted", "planetary_A")
+TASKS = ("forging_sixbar", "cam_rocker", "gears_shifted", "planetary_A", "planetary_pair_given")
 
 
 @pytest.fixture(scope="module")

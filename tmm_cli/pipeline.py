@@ -83,6 +83,8 @@ def run(task: Task, *, progress: Callable[[str], None] | None = None,
             part(simple("gears", "gears", "analyze", task.gears))
         if task.planetary is not None:
             part(simple("planetary", "gears", "synthesize_planetary", task.planetary))
+        if task.drive_train is not None:
+            part(lambda: _drive_train(task, results, warnings, say))
         if task.dof2 is not None:
             part(simple("dof2", "dof2", "analyze", task.dof2, keep_warnings=True))
     except TaskError as err:
@@ -103,6 +105,25 @@ def run(task: Task, *, progress: Callable[[str], None] | None = None,
         results["error"] = results["errors"][0]
         raise PartialResults(errors[0], results) from errors[0]
     return results
+
+
+def _drive_train(task: Task, results: dict, warnings: list, say) -> None:
+    """The compound gear drive; with a flywheel, the flywheel moved to the motor shaft."""
+    from .gears import train
+
+    say("drive_train")
+    drive = task.drive
+    if drive is not None and drive.speed is None and "drive" in results:
+        # the crank speed was found from the output's speed (results `drive`)
+        drive = drive.model_copy(update={"speed": abs(float(results["drive"]["omega"]))})
+    res = _stage("drive_train")(train.analyze)(task.drive_train, drive)
+    results["drive_train"] = res.to_dict()
+    warnings.extend(results["drive_train"].pop("warnings", []) or [])
+    if task.flywheel is not None and "flywheel" in results:
+        moved = train.motor_shaft(results["drive_train"], results["flywheel"], task.flywheel.constant)
+        results["flywheel"].update(moved["flywheel"])
+        if moved["motor_power"] is not None:
+            results["drive_train"].update(motor_power=moved["motor_power"], motor_power_computed=True)
 
 
 def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int) -> None:

@@ -58,6 +58,12 @@ def print_summary(results: dict, paths: list[Path]) -> None:
     if pl:
         t.add_row("planetary z", ", ".join(f"{k}={v}" for k, v in (pl.get("z") or {}).items()))
         t.add_row("planetary ratio", _f(pl.get("ratio")))
+    dt = results.get("drive_train")
+    if dt:
+        t.add_row("drive train z", " | ".join("/".join(str(v) for v in s["z"]) for s in dt.get("stages", [])))
+        t.add_row("drive train ratio", _f(dt.get("ratio")))
+        if dt.get("motor_power_computed"):
+            t.add_row("motor power, W", _f(dt.get("motor_power")))
     con.print(t)
     for w in results.get("warnings", []):
         con.print(f"[yellow]warning:[/yellow] {w}")

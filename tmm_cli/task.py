@@ -423,6 +423,11 @@ class PlanetarySection(_Model):
     # the candidate search grows as z_max^3 (schemes B, C: 0.5 s at 300, a minute at 1000)
     z_max: int = Field(150, ge=10, le=300)
     candidates: int = Field(10, ge=1, le=100, description="how many ranked candidate sets to list")
+    rank: Literal["size", "ratio_error"] = "size"
+    z_min_external: int | None = Field(None, ge=5)
+    z_min_internal: int = Field(85, ge=5)
+    z_min_satellite_in_internal: int | None = Field(None, ge=5)
+    internal_minus_external_min: int = Field(8, ge=1)
 
     @field_validator("ratio")
     @classmethod
@@ -517,6 +522,10 @@ class SynthesisSection(_Model):
         return self
 
 
+from .trainspec import DOCS as _TRAIN_DOCS  # noqa: E402  (after _Model: trainspec imports it)
+from .trainspec import DriveTrainSection, TrainStageSpec  # noqa: E402
+
+
 class StudentSpec(BaseModel):
     model_config = ConfigDict(extra="allow")
     name: str | None = None
@@ -541,6 +550,7 @@ class Task(_Model):
     cam: CamSection | None = None
     gears: GearsSection | None = None
     planetary: PlanetarySection | None = None
+    drive_train: DriveTrainSection | None = None
     dof2: Dof2Section | None = Field(None, description="a machine with two degrees of freedom: rotor + hinged "
                                                        "striker (docs/methods.md §7; runs on its own)")
     answers: dict[str, float] = Field(default_factory=dict)
@@ -776,6 +786,7 @@ _DOCS: dict[type, dict[str, str]] = {
         "cam": "cam mechanism synthesis (runs on its own)",
         "gears": "external spur involute pair with profile shift (runs on its own)",
         "planetary": "planetary gear synthesis (runs on its own)",
+        "drive_train": "compound gear drive from the motor: ordinary pairs and planetary stages, given or chosen",
         "answers": "a student's numbers: path into results.json -> value (tmm check / tmm batch)",
         "tolerance": "relative tolerances: {default: 0.05, <path or prefix>: ...}",
     },
@@ -857,8 +868,15 @@ _DOCS: dict[type, dict[str, str]] = {
     PlanetarySection: {"scheme": "A | B | C | D (see the README)", "ratio": "required i_1H (signed)",
                        "satellites": "number of satellites", "tolerance": "allowed relative ratio error",
                        "m": "module for the drawing, m (default 1 mm)",
-                       "z_min": "least tooth number of an external wheel", "z_max": "largest tooth number"},
+                       "z_min": "least tooth number of an external wheel", "z_max": "largest tooth number",
+                       "rank": "size | ratio_error: the ranking key of the candidates",
+                       "z_min_external": "least teeth of an external wheel in an external mesh (default z_min)",
+                       "z_min_internal": "least teeth of an internal (ring) wheel",
+                       "z_min_satellite_in_internal": "least teeth of an external wheel meshing a ring "
+                                                      "(default max(20, z_min))",
+                       "internal_minus_external_min": "least z_ring - z_pinion in an internal mesh"},
 }
+_DOCS.update(_TRAIN_DOCS)
 for _model, _fields in _DOCS.items():
     for _name, _text in _fields.items():
         _model.model_fields[_name].description = _text
@@ -927,6 +945,6 @@ def field_docs(model: type = Task, prefix: str = "") -> list[tuple[str, str, str
                 if isinstance(b, type) and issubclass(b, BaseModel) and b is not StudentSpec and b not in subs:
                     subs.append(b)
         for sub in subs:
-            sub_prefix = path + (".<name>." if sub in (LinkSpec, SynthesisLinkSpec) else "[i]." if sub is ForceSpec else ".")
+            sub_prefix = path + (".<name>." if sub in (LinkSpec, SynthesisLinkSpec) else "[i]." if sub in (ForceSpec, TrainStageSpec) else ".")
             out.extend(field_docs(sub, sub_prefix))
     return out

@@ -79,6 +79,22 @@ Z_EXT_IN_INT = 20   # external wheel in internal mesh
 Z_INT = 85          # internal wheel
 Z_DIFF = 8          # z_internal - z_external in an internal mesh
 HA = 1.0
+RANKS = ("size", "ratio_error")
+
+
+@dataclass(frozen=True)
+class Limits:
+    """Tooth-number limits (zero shifts, ha* = 1): external wheel in an external mesh, internal
+    (ring) wheel, external wheel meshing a ring, least z_ring - z_pinion of an internal mesh."""
+    external: int = Z_EXT
+    internal: int = Z_INT
+    satellite_in_internal: int = Z_EXT_IN_INT
+    difference: int = Z_DIFF
+
+    @classmethod
+    def of(cls, z_min: int = Z_EXT) -> "Limits":
+        """tmm/1 `planetary` with only z_min: an external wheel meshing a ring takes max(20, z_min)."""
+        return cls(external=z_min, satellite_in_internal=max(Z_EXT_IN_INT, z_min))
 
 
 def scheme_key(name: str) -> str:
@@ -123,22 +139,27 @@ def assembly_p(scheme: str, z: dict, k: int, pmax: int | None = None):
     return None
 
 
-def undercut_ok(scheme: str, z: dict, z_min: int = Z_EXT) -> list[str]:
-    """List of violated tooth-number limits (empty when none)."""
+def _limits(z_min) -> Limits:
+    return z_min if isinstance(z_min, Limits) else Limits.of(int(z_min))
+
+
+def undercut_ok(scheme: str, z: dict, z_min: "int | Limits" = Z_EXT) -> list[str]:
+    """List of violated tooth-number limits (empty when none); ``z_min`` an int (tmm/1) or Limits."""
+    lim = _limits(z_min)
     bad = []
     for a, b, kind in SCHEMES[scheme]["meshes"]:
         za, zb = z[a], z[b]
         if kind == "ext":
             for name, v in ((a, za), (b, zb)):
-                if v < z_min:
-                    bad.append(f"{name} = {v} < {z_min}")
+                if v < lim.external:
+                    bad.append(f"{name} = {v} < {lim.external}")
         else:                                   # a: external wheel, b: internal wheel
-            if za < max(Z_EXT_IN_INT, z_min):
-                bad.append(f"{a} = {za} < {max(Z_EXT_IN_INT, z_min)} (external wheel in internal mesh)")
-            if zb < Z_INT:
-                bad.append(f"{b} = {zb} < {Z_INT} (internal wheel)")
-            if zb - za < Z_DIFF:
-                bad.append(f"{b} - {a} = {zb - za} < {Z_DIFF}")
+            if za < lim.satellite_in_internal:
+                bad.append(f"{a} = {za} < {lim.satellite_in_internal} (external wheel in internal mesh)")
+            if zb < lim.internal:
+                bad.append(f"{b} = {zb} < {lim.internal} (internal wheel)")
+            if zb - za < lim.difference:
+                bad.append(f"{b} - {a} = {zb - za} < {lim.difference}")
     return bad
 
 
@@ -160,7 +181,8 @@ def size_key(scheme: str, z: dict) -> float:
     return max(z["z1"], z["z4"])
 
 
-def verify(scheme: str, z: dict, k: int, required: float, tolerance: float, z_min: int = Z_EXT) -> dict:
+def verify(scheme: str, z: dict, k: int, required: float, tolerance: float,
+           z_min: "int | Limits" = Z_EXT) -> dict:
     """All conditions of one candidate (used by the search and reported)."""
     i = ratio_exact(scheme, z)
     a1, a2 = centre_distances(scheme, z)
@@ -191,12 +213,21 @@ def _assembly_vec(num, den, k):
     return ok & (np.gcd(k, d1) == 1)
 
 
-def _candidates(scheme, req, tol, k, z_min, z_max):
+def _order(size, teeth, err, rank):
+    """Row order: ``size`` -- size, teeth, |error|; ``ratio_error`` -- |error|, size, teeth."""
+    if rank == "ratio_error":
+        return np.lexsort((teeth, size, np.round(err, 12)))
+    return np.lexsort((err, teeth, size))
+
+
+def _candidates(scheme, req, tol, k, z_min, z_max, rank="size"):
     """Vectorised enumeration of tooth numbers meeting every condition; rows of an int array
-    (z1, z2, z3[, z4]) sorted by size, teeth and ratio error."""
+    (z1, z2, z3[, z4]) sorted by ``rank`` (size, teeth and ratio error by default)."""
     lo, hi = req - tol * abs(req), req + tol * abs(req)
-    zext = int(z_min)
-    zin_ext = max(Z_EXT_IN_INT, zext)
+    lim = _limits(z_min)
+    zext = int(lim.external)
+    zin_ext = int(lim.satellite_in_internal)
+    Z_INT, Z_DIFF = int(lim.internal), int(lim.difference)  # noqa: N806  (the limits in force)
     sinpk = math.sin(math.pi / k) if k > 1 else None
     rows = []
     if scheme == "A":
@@ -205,7 +236,8 @@ def _candidates(scheme, req, tol, k, z_min, z_max):
         z1, z3 = np.broadcast_arrays(z1, z3)
         z2 = (z3 - z1) // 2
         i = 1 + z3 / z1
-        ok = (i >= lo) & (i <= hi) & ((z3 - z1) % 2 == 0) & (z2 >= zin_ext) & (z3 - z2 >= Z_DIFF)
+        ok = ((i >= lo) & (i <= hi) & ((z3 - z1) % 2 == 0) & (z2 >= max(zin_ext, zext))
+              & (z3 - z2 >= Z_DIFF))
         ok &= _assembly_vec(z1 + z3, np.ones_like(z1), k)
         if sinpk is not None:
             ok &= (z1 + z2) * sinpk > z2 + 2 * HA
@@ -213,8 +245,7 @@ def _candidates(scheme, req, tol, k, z_min, z_max):
         arr = np.stack([z1, z2, z3], axis=1)
         size = z3
         err = np.abs(1 + z3 / z1 - req)
-        order = np.lexsort((err, arr.sum(axis=1), size))
-        return arr[order]
+        return arr[_order(size, arr.sum(axis=1), err, rank)]
     zlo = min(zext, zin_ext)
     zs = np.arange(zlo, z_max + 1)
     Z2, Z3 = np.meshgrid(zs, zs, indexing="ij")
@@ -259,8 +290,7 @@ def _candidates(scheme, req, tol, k, z_min, z_max):
     else:
         size = np.maximum(z1, z4)
         i = 1 - z2 * z4 / (z1 * z3)
-    order = np.lexsort((np.abs(i - req), arr.sum(axis=1), size))
-    return arr[order]
+    return arr[_order(size, arr.sum(axis=1), np.abs(i - req), rank)]
 
 
 def velocity_plan(scheme: str, z: dict, m: float, omega1: float = 1.0) -> dict:
@@ -305,10 +335,13 @@ class PlanetaryResult:
     candidates: list
     plan: dict
     warnings: list = field(default_factory=list)
+    best_ratio_error: float | None = None
+    rank: str = "size"
 
     def to_dict(self) -> dict:
         radii = {k: self.m * v / 2 for k, v in self.z.items()}
-        return {"z": dict(self.z), "ratio": self.checks["ratio"], "ratio_error": self.checks["ratio_error"],
+        return {"z": dict(self.z), "z_list": [self.z[n] for n in SCHEMES[self.scheme]["wheels"]],
+                "best_ratio_error": self.best_ratio_error, "rank": self.rank, "ratio": self.checks["ratio"], "ratio_error": self.checks["ratio_error"],
                 "scheme": self.scheme, "scheme_name": SCHEMES[self.scheme]["name"],
                 "required": self.required, "tolerance": self.tolerance, "satellites": self.satellites,
                 "m": self.m, "r": radii, "aw": centre_distances(self.scheme, self.z)[0] * self.m,
@@ -333,8 +366,52 @@ def _no_candidates_hint(scheme: str, req: float, tol: float, z_min: int, z_max: 
             "or choose another scheme")
 
 
+def spec_limits(spec) -> Limits:
+    """The tooth limits of a `planetary` or `drive_train` section (tmm/1 `z_min` kept)."""
+    ext = getattr(spec, "z_min_external", None) or getattr(spec, "z_min", None) or Z_EXT
+    sat = getattr(spec, "z_min_satellite_in_internal", None)
+    return Limits(external=int(ext), internal=int(getattr(spec, "z_min_internal", None) or Z_INT),
+                  satellite_in_internal=int(sat) if sat is not None else max(Z_EXT_IN_INT, int(ext)),
+                  difference=int(getattr(spec, "internal_minus_external_min", None) or Z_DIFF))
+
+
+def ratios_of(scheme: str, arr: np.ndarray) -> np.ndarray:
+    """Willis' i_1H of every row (z1, z2, z3[, z4]) of ``arr``."""
+    arr = np.asarray(arr, dtype=float)
+    if scheme == "A":
+        return 1 + arr[:, 2] / arr[:, 0]
+    q = arr[:, 1] * arr[:, 3] / (arr[:, 0] * arr[:, 2])
+    return 1 + q if scheme == "B" else 1 - q
+
+
+def search(scheme: str, req: float, tol: float, k: int, limits: Limits, z_max: int, rank: str = "size",
+           keep: int = 10, stage: str = STAGE) -> tuple[list, float | None]:
+    """Ranked feasible tooth numbers (every condition checked again by :func:`verify`) and the
+    smallest |ratio error| among all feasible sets (None when there is none)."""
+    arr = _candidates(scheme, req, tol, k, limits, int(z_max), rank)
+    names = SCHEMES[scheme]["wheels"]
+    best = float(np.min(np.abs(ratios_of(scheme, arr) - req)) / abs(req)) if len(arr) else None
+    found = []
+    for row in arr[: max(keep, 1)]:
+        z = {n: int(v) for n, v in zip(names, row)}
+        v = verify(scheme, z, k, req, tol, limits)
+        if not _all_ok(v):                      # the vectorised filter and verify() disagree
+            raise StageError(stage, f"internal inconsistency for candidate {z}: {v}")
+        found.append({"z": z, "ratio": v["ratio"], "ratio_error": v["ratio_error"],
+                      "size": size_key(scheme, z), "teeth": sum(z.values()),
+                      "assembly_p": v["assembly_p"], "checks": v})
+    return found, best
+
+
+def nearest_ratio(scheme: str, req: float, k: int, limits: Limits, z_max: int) -> float | None:
+    """The ratio nearest to ``req`` that meets every condition but the tolerance (None: no set)."""
+    arr = _candidates(scheme, req, 1e6, k, limits, int(z_max), "ratio_error")
+    return float(ratios_of(scheme, arr[:1])[0]) if len(arr) else None
+
+
 def synthesize_planetary(spec) -> PlanetaryResult:
-    """Tooth numbers for ``spec`` (scheme, ratio, satellites, tolerance, optional m, z_min, z_max)."""
+    """Tooth numbers for ``spec`` (scheme, ratio, satellites, tolerance, optional m, tooth limits,
+    z_max, rank)."""
     scheme = scheme_key(spec.scheme)
     req = float(spec.ratio)
     if req == 0 or not math.isfinite(req):
@@ -343,27 +420,21 @@ def synthesize_planetary(spec) -> PlanetaryResult:
     tol = float(getattr(spec, "tolerance", 0.05) or 0.05)
     m = getattr(spec, "m", None)
     m = 0.001 if m is None else float(m)
-    z_min = getattr(spec, "z_min", None) or Z_EXT
+    limits = spec_limits(spec)
+    z_min = limits.external
     z_max = getattr(spec, "z_max", None) or 150
     n_keep = int(getattr(spec, "candidates", 10) or 10)
+    rank = getattr(spec, "rank", None) or "size"
     if scheme in ("A", "B") and req <= 1:
         raise StageError(STAGE, f"scheme {scheme} gives i_1H > 1 only (required {req:g})")
-    arr = _candidates(scheme, req, tol, k, int(z_min), int(z_max))
-    names = SCHEMES[scheme]["wheels"]
-    found = []
-    for row in arr[: max(n_keep, 1)]:
-        z = {n: int(v) for n, v in zip(names, row)}
-        v = verify(scheme, z, k, req, tol, int(z_min))
-        if not _all_ok(v):                      # the vectorised filter and verify() disagree
-            raise StageError(STAGE, f"internal inconsistency for candidate {z}: {v}")
-        found.append((size_key(scheme, z), sum(z.values()), z, v))
+    found, best = search(scheme, req, tol, k, limits, int(z_max), rank, n_keep)
     if not found:
         raise StageError(STAGE, f"no tooth numbers for scheme {scheme} give i_1H = {req:g} within "
                                 f"{tol:.3g} with {k} satellites (z in [{z_min}, {z_max}]); "
                                 + _no_candidates_hint(scheme, req, tol, int(z_min), int(z_max)))
-    z, v = found[0][2], found[0][3]
-    cands = [{"z": dict(t[2]), "ratio": t[3]["ratio"], "ratio_error": t[3]["ratio_error"], "size": t[0],
-              "teeth": t[1], "assembly_p": t[3]["assembly_p"]} for t in found]
+    z, v = found[0]["z"], found[0]["checks"]
+    cands = [{key: c[key] for key in ("z", "ratio", "ratio_error", "size", "teeth", "assembly_p")}
+             for c in found]
     plan = velocity_plan(scheme, z, m)
     warnings = []
     if plan["ratio"] is not None and abs(plan["ratio"] - v["ratio"]) > 1e-9 * max(1.0, abs(v["ratio"])):
@@ -373,4 +444,5 @@ def synthesize_planetary(spec) -> PlanetaryResult:
     checks["adjacency_margin"] = float(checks["adjacency_margin"]) if math.isfinite(
         checks["adjacency_margin"]) else None
     return PlanetaryResult(scheme=scheme, required=req, tolerance=tol, satellites=k, m=m, z=dict(z),
-                           checks=checks, candidates=cands, plan=plan, warnings=warnings)
+                           checks=checks, candidates=cands, plan=plan, warnings=warnings,
+                           best_ratio_error=best, rank=rank)

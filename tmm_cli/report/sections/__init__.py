@@ -11,7 +11,7 @@ from types import ModuleType
 from .. import i18n
 
 ORDER = ("task", "synthesis", "structure", "kinematics", "kinetostatics", "dynamics", "cam", "gears",
-         "planetary", "dof2", "study")
+         "planetary", "drive_train", "dof2", "study")
 
 
 def load(name: str) -> ModuleType | None:

@@ -13,7 +13,7 @@ I18N = {
            "plan.coaxial": "coaxiality", "plan.assembly": "assembly (p = {p})",
            "plan.adjacency": "adjacency (margin {m} modules)", "plan.undercut": "no undercut",
            "plan.v_axis": "v, m/s (ω₁ = 1 rad/s)", "plan.mm": "mm", "plan.carrier": "carrier H",
-           "plan.satellite": "satellite"},
+           "plan.satellite": "satellite", "plan.best": "Smallest |error| of all feasible sets"},
     "ru": {"plan.title": "Синтез планетарного механизма", "plan.scheme": "Схема {s}: {name}",
            "plan.z": "Числа зубьев", "plan.ratio": "Передаточное отношение i_1H (Виллис)",
            "plan.required": "Требуемое", "plan.error": "Погрешность",
@@ -23,7 +23,7 @@ I18N = {
            "plan.coaxial": "соосность", "plan.assembly": "сборка (p = {p})",
            "plan.adjacency": "соседство (запас {m} модуля)", "plan.undercut": "отсутствие подреза",
            "plan.v_axis": "v, м/с (ω₁ = 1 рад/с)", "plan.mm": "мм", "plan.carrier": "водило H",
-           "plan.satellite": "сателлит",
+           "plan.satellite": "сателлит", "plan.best": "Наименьшая |погрешность| среди допустимых наборов",
            "plan.scheme_A": "однорядный: солнечное колесо — сателлит — неподвижное корончатое колесо",
            "plan.scheme_B": "двухрядный с двойным сателлитом: внешнее и внутреннее зацепления",
            "plan.scheme_C": "двухрядный с двойным сателлитом: два внешних зацепления",
@@ -97,6 +97,8 @@ def build(ctx) -> str | None:
             (t("plan.z"), ", ".join(f"{k} = {v}" for k, v in p["z"].items())),
             (t("plan.required"), f(p.get("required"), 6)), (sym(t("plan.ratio")), f(p["ratio"], 6)),
             (t("plan.error"), f"{100 * p['ratio_error']:.3f} %"),
+            *([(t("plan.best"), f"{100 * p['best_ratio_error']:.3f} %")] if p.get("best_ratio_error") is not None
+              else []),
             (t("plan.plan_ratio"), f(p.get("ratio_plan"), 6))]
     conds = [(t("plan.coaxial"), bool(ch.get("coaxial"))),
              (t("plan.assembly", p=ch.get("assembly_p")), bool(ch.get("assembly"))),

@@ -1,0 +1,321 @@
+"""Compound gear drive (``drive_train``): ordinary pairs and planetary stages in series.
+
+Stage ratio u = omega_in / omega_out (input wheel first; Artobolevsky, Popov & Timofeev):
+external pair u = -z2/z1, internal pair u = +z2/z1, planetary stages (input central wheel 1,
+output carrier H, the last wheel fixed) by Willis' formula (:mod:`.planetary`).  The overall
+ratio is the product; shaft i+1 turns at omega_i / u_i.  Satellite (Willis, carrier held):
+omega_2 - omega_H = -(z1/z2)(omega_1 - omega_H) for schemes A, B, C, + for D (ring 1).
+
+Synthesis of stages without ``z``: the stages with a ``ratio`` of their own keep it; the others
+share u_free = ratio / (product of the given ratios) equally in magnitude, the sign going to the
+first free stage able to take it (an external pair is negative, an internal pair and the
+schemes A, B positive, C and D either).  A free pair takes z1 = least teeth and the nearest z2;
+a free planetary stage is searched over every tooth set meeting the conditions of
+:mod:`.planetary`.  Whole trains are ranked by ``ratio_error`` (|error|, size) or ``size``
+(largest stage size, sum of teeth, |error|).
+"""
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import dataclass, field
+from fractions import Fraction
+
+
+from ..errors import StageError, TaskError
+from . import planetary as pl
+
+STAGE = "drive_train"
+CONDITION = {"coaxial": "coaxiality", "assembly": "assembly", "adjacency": "adjacency",
+             "undercut": "tooth-limit (undercut)"}
+KEEP = 400        # per free planetary stage: candidates carried into the whole-train ranking
+
+
+def stage_ratio(kind: str, z: list[int], internal: bool = False) -> float:
+    """u = omega_in/omega_out of one stage (pair or planetary scheme letter)."""
+    return float(_exact(kind, z, internal))
+
+
+def _exact(kind: str, z, internal: bool = False) -> Fraction:
+    if kind == "pair":
+        return (1 if internal else -1) * Fraction(int(z[1]), int(z[0]))
+    return pl.ratio_exact(kind, _zdict(kind, z))
+
+
+def _zdict(kind: str, z) -> dict:
+    return {n: int(v) for n, v in zip(pl.SCHEMES[kind]["wheels"], z)}
+
+
+def satellite_speeds(kind: str, z, omega_in: float, omega_h: float) -> tuple[float, float]:
+    """(absolute, relative to the carrier) angular speed of the satellite (the block 2-3)."""
+    rel = (1.0 if kind == "D" else -1.0) * z[0] / z[1] * (omega_in - omega_h)
+    return omega_h + rel, rel
+
+
+def stage_size(kind: str, z) -> int:
+    return max(z) if kind == "pair" else int(pl.size_key(kind, _zdict(kind, z)))
+
+
+def planetary_checks(kind: str, z, k: int, limits: pl.Limits, z_max: int) -> dict:
+    """The conditions of a planetary stage with given z (ratio excluded): name -> (ok, detail)."""
+    zd = _zdict(kind, z)
+    a1, a2 = pl.centre_distances(kind, zd)
+    p = pl.assembly_p(kind, zd, k)
+    margin = pl.adjacency_margin(kind, zd, k)
+    bad = pl.undercut_ok(kind, zd, limits) + [f"{n} = {v} > z_max = {z_max}" for n, v in zd.items() if v > z_max]
+    return {"coaxial": (a1 == a2 and a1 > 0, f"centre distances {2 * a1:g} and {2 * a2:g} teeth differ"),
+            "assembly": (p is not None, f"{k} equally spaced satellites cannot be assembled "
+                                        f"(u z1 (1 + k p)/k is never whole)"),
+            "adjacency": (margin > 0, f"neighbouring satellites overlap: 2 a_w/m sin(pi/k) - (z_s + 2) = "
+                                      f"{margin:.4g} <= 0"),
+            "undercut": (not bad, "tooth limits: " + "; ".join(bad))}
+
+
+@dataclass
+class TrainResult:
+    ratio: float
+    required: float | None
+    shafts: list
+    stages: list
+    candidates: list
+    best_ratio_error: float | None
+    motor_direction: str
+    input_source: str
+    tolerance: float
+    efficiency: float
+    rank: str
+    split: list
+    plan: dict
+    synthesised: bool
+    motor_power: float | None = None
+    warnings: list = field(default_factory=list)
+
+    def to_dict(self) -> dict:
+        d = {"ratio": self.ratio}
+        if self.required is not None:
+            d.update(required=self.required, ratio_error=(self.ratio - self.required) / self.required,
+                     best_ratio_error=self.best_ratio_error)
+        d.update(shafts=list(self.shafts), stages=[dict(s) for s in self.stages],
+                 candidates=[dict(c) for c in self.candidates],
+                 # 0 where no power is computed (no flywheel, or a resistance constant), as
+                 # the results format fixes; motor_power_computed tells the two apart
+                 motor_power=0.0 if self.motor_power is None else self.motor_power,
+                 motor_power_computed=self.motor_power is not None,
+                 motor_direction=self.motor_direction, input=self.input_source, tolerance=self.tolerance,
+                 efficiency=self.efficiency, rank=self.rank, split=list(self.split),
+                 synthesised=self.synthesised, velocity_plan=self.plan, warnings=list(self.warnings))
+        return d
+
+
+def _err(path, msg) -> TaskError:
+    return TaskError(msg, issues=[(path, None, None, msg)])
+
+
+def _can_take(kind: str, sign: int) -> bool:
+    if kind == "pair":
+        return True          # the pair kind (internal or not) is fixed below
+    return sign > 0 or kind in ("C", "D")
+
+
+def _free_signs(specs, free, sign_needed):
+    """Signs of the free stages: fixed by their kind, the remaining sign to the first C/D stage."""
+    signs = {}
+    for i in free:
+        st = specs[i]
+        signs[i] = (1 if st.internal else -1) if st.kind == "pair" else 1
+    prod = math.prod(signs.values()) if signs else 1
+    if prod != sign_needed:
+        for i in free:
+            if specs[i].kind in ("C", "D"):
+                signs[i] = -signs[i]
+                return signs
+        return None
+    return signs
+
+
+def required_ratio(spec, drive) -> tuple[float | None, str]:
+    """The required overall ratio: given, or +-motor_speed/drive.speed; and how it was found."""
+    if spec.ratio is not None:
+        return float(spec.ratio), "given"
+    if spec.motor_speed is not None and drive is not None:
+        return float(spec.motor_speed) / float(drive.speed), "motor"
+    return None, "none"
+
+
+def analyze(spec, drive=None) -> TrainResult:
+    """The drive train of a ``drive_train`` section; ``drive`` the task's `drive` (or None)."""
+    lim = pl.spec_limits(spec)
+    k, tol, zmax = int(spec.satellites), float(spec.tolerance), int(spec.z_max)
+    specs = list(spec.stages)
+    req, req_src = required_ratio(spec, drive)
+    warnings = []
+    # ---- given stages: their ratios and checks (exit 2 on a broken given planetary stage)
+    given_u = {}
+    for i, st in enumerate(specs):
+        path = f"drive_train.stages[{i}].z"
+        if st.z is None:
+            continue
+        if st.kind == "pair":
+            if not st.internal and min(st.z) < lim.external:
+                warnings.append(f"drive_train: stage {i}: a wheel of {min(st.z)} teeth < {lim.external} "
+                                f"is undercut without a profile shift")
+            if st.internal and st.z[1] <= st.z[0]:
+                raise _err(path, f"stage {i}: an internal pair needs the ring z2 > z1 (got {st.z})")
+        else:
+            for name, (ok, why) in planetary_checks(st.kind, st.z, k, lim, zmax).items():
+                if not ok:
+                    raise _err(path, f"stage {i} (planetary {st.kind}, z = {list(st.z)}): "
+                                     f"{CONDITION[name]} condition violated: {why}")
+        given_u[i] = stage_ratio(st.kind, st.z, st.internal)
+    free = [i for i, st in enumerate(specs) if st.z is None]
+    if free and req is None and any(specs[i].ratio is None for i in free):
+        raise _err("drive_train.ratio", "stages without z need the required `ratio` "
+                                        "(or `motor_speed` with a `drive` section)")
+    # sign of the required ratio when it comes from the speeds
+    if req_src == "motor":
+        if spec.motor_direction is not None and drive is not None:
+            req *= (1 if spec.motor_direction == drive.direction else -1)
+        else:
+            natural = math.prod(1 if u > 0 else -1 for u in given_u.values()) if given_u else 1
+            for i in free:
+                st = specs[i]
+                natural *= (1 if st.internal else -1) if st.kind == "pair" else (
+                    1 if st.ratio is None else int(math.copysign(1, st.ratio)))
+            req *= natural
+    # ---- targets of the free stages
+    targets = {i: float(specs[i].ratio) for i in free if specs[i].ratio is not None}
+    split = []
+    shared = [i for i in free if i not in targets]
+    if shared:
+        u_free = req / math.prod(list(given_u.values()) + list(targets.values()))
+        mag = abs(u_free) ** (1.0 / len(shared))
+        signs = _free_signs(specs, shared, 1 if u_free > 0 else -1)
+        if signs is None:
+            raise StageError(STAGE, f"the free stages {shared} cannot give the sign of u = {u_free:.6g}: "
+                                    f"external pairs turn the sense, internal pairs and schemes A, B keep it; "
+                                    f"make a pair internal/external or use scheme C or D")
+        targets.update({i: signs[i] * mag for i in shared})
+    split = [{"stage": i, "ratio": targets[i]} for i in sorted(targets)]
+    # ---- candidate lists per stage
+    options = []
+    best_per_stage = {}
+    for i, st in enumerate(specs):
+        if st.z is not None:
+            options.append([list(st.z)])
+            continue
+        u = targets[i]
+        if st.kind == "pair":
+            z1 = lim.satellite_in_internal if st.internal else lim.external
+            z2 = int(round(abs(u) * z1))
+            if st.internal:
+                z2 = max(z2, z1 + lim.difference, lim.internal)
+            if (u > 0) != bool(st.internal):
+                raise StageError(STAGE, f"stage {i} (stages[{i}]): a{'n internal' if st.internal else 'n external'} pair "
+                                        f"cannot give u = {u:.6g} (sign)")
+            if not st.internal and z2 < lim.external:
+                raise StageError(STAGE, f"stage {i} (stages[{i}], pair): u = {u:.6g} needs z2 = {z2} < z_min_external = "
+                                        f"{lim.external}; give the stage its own `ratio` (|u| >= 1) or its z")
+            if z2 > zmax or z2 < 5:
+                raise StageError(STAGE, f"stage {i} (stages[{i}], pair): u = {u:.6g} needs z2 = {z2} outside [5, z_max = "
+                                        f"{zmax}]; raise z_max or give the stage's z or ratio")
+            options.append([[z1, z2]])
+            continue
+        if st.kind in ("A", "B") and u <= 1:
+            raise StageError(STAGE, f"stage {i} (stages[{i}], planetary {st.kind}) gives u > 1 only, its share is "
+                                    f"u = {u:.6g}: give the stage a `ratio`, or use scheme C or D")
+        found, best = pl.search(st.kind, u, tol, k, lim, zmax, "ratio_error" if spec.rank == "ratio_error"
+                                else "size", KEEP, STAGE)
+        if spec.rank == "size" and len(found) == KEEP:          # add the most accurate ones too
+            more, _ = pl.search(st.kind, u, tol, k, lim, zmax, "ratio_error", KEEP // 4, STAGE)
+            seen = {tuple(c["z"].values()) for c in found}
+            found += [c for c in more if tuple(c["z"].values()) not in seen]
+        if not found:
+            near = pl.nearest_ratio(st.kind, u, k, lim, zmax)
+            near_txt = (f"the nearest feasible ratio is {near:.6g} ({(near - u) / u:+.3%})" if near is not None
+                        else "no tooth set meets the conditions at all")
+            raise StageError(STAGE, f"stage {i} (stages[{i}], planetary {st.kind}): no tooth numbers give u = {u:.6g} within "
+                                    f"tolerance {tol:g} with {k} satellites; {near_txt}; relax `tolerance`, "
+                                    f"`satellites`, `z_max` or the tooth limits (z_min_external = {lim.external}, "
+                                    f"z_min_internal = {lim.internal}, z_min_satellite_in_internal = "
+                                    f"{lim.satellite_in_internal}), or give the stage its own `ratio`")
+        best_per_stage[i] = best
+        options.append([list(c["z"].values()) for c in found])
+    # ---- whole trains
+    kinds = [(st.kind, st.internal) for st in specs]
+    rows = []
+    for combo in itertools.product(*options):
+        u = float(math.prod(_exact(kd, z, it) for (kd, it), z in zip(kinds, combo)))
+        size = max(stage_size(kd, z) for (kd, _), z in zip(kinds, combo))
+        teeth = sum(sum(z) for z in combo)
+        err = (u - req) / req if req is not None else 0.0
+        rows.append((combo, u, err, size, teeth))
+    if spec.rank == "ratio_error":
+        rows.sort(key=lambda r: (round(abs(r[2]), 12), r[3], r[4]))
+    else:
+        rows.sort(key=lambda r: (r[3], r[4], abs(r[2])))
+    chosen = rows[0]
+    best = min(abs(r[2]) for r in rows) if req is not None else None
+    cands = [{"z": [list(z) for z in r[0]], "ratio": r[1], "ratio_error": r[2] if req is not None else None,
+              "size": r[3], "teeth": r[4]} for r in rows[: int(spec.candidates)]]
+    if req is not None and abs(chosen[2]) > tol * (1 + 1e-12):
+        if free:
+            raise StageError(STAGE, f"the chosen train gives u = {chosen[1]:.6g}, {chosen[2]:+.3%} from the required "
+                                    f"{req:.6g} (tolerance {tol:g}); give the stages their own `ratio` or relax "
+                                    f"`tolerance`")
+        warnings.append(f"drive_train: the train's ratio {chosen[1]:.6g} misses the required {req:.6g} by "
+                        f"{chosen[2]:+.3%} (tolerance {tol:g})")
+    u_total = chosen[1]
+    # ---- input speed and sense
+    if spec.motor_speed is not None:
+        if spec.motor_direction is not None:
+            mdir = spec.motor_direction
+        elif drive is not None:
+            mdir = drive.direction if u_total > 0 else ("cw" if drive.direction == "ccw" else "ccw")
+        else:
+            mdir = "ccw"
+        w0, src = (1.0 if mdir == "ccw" else -1.0) * float(spec.motor_speed), "motor"
+        if drive is not None:
+            out_dir = "ccw" if w0 / u_total > 0 else "cw"
+            if out_dir != drive.direction:
+                warnings.append(f"drive_train: the output shaft turns {out_dir}, the drive link {drive.direction}")
+    elif drive is not None:
+        w0, src = u_total * drive.omega1, "drive"
+        mdir = "ccw" if w0 > 0 else "cw"
+    else:
+        w0, src, mdir = 1.0, "unit", "ccw"
+    shafts = [w0]
+    stages = []
+    for i, ((kd, it), z) in enumerate(zip(kinds, chosen[0])):
+        u = stage_ratio(kd, z, it)
+        w_in, w_out = shafts[-1], shafts[-1] / u
+        shafts.append(w_out)
+        if kd == "pair":
+            stages.append({"type": "pair", "z": list(z), "internal": bool(it), "ratio": u,
+                           "omega_in": w_in, "omega_out": w_out, "given": specs[i].z is not None})
+        else:
+            sat, rel = satellite_speeds(kd, z, w_in, w_out)
+            chk = planetary_checks(kd, z, k, lim, zmax)
+            stages.append({"type": "planetary", "scheme": kd, "z": list(z), "ratio": u, "omega_in": w_in,
+                           "omega_out": w_out, "omega_carrier": w_out, "omega_satellite": sat,
+                           "omega_satellite_rel": rel, "checks": {n: bool(v[0]) for n, v in chk.items()},
+                           "given": specs[i].z is not None,
+                           "assembly_p": pl.assembly_p(kd, _zdict(kd, z), k)})
+    from .trainplan import velocity_plans
+    plan = velocity_plans(stages, shafts)
+    return TrainResult(ratio=u_total, required=req, shafts=shafts, stages=stages, candidates=cands,
+                       best_ratio_error=best, motor_direction=mdir, input_source=src, tolerance=tol,
+                       efficiency=float(spec.efficiency), rank=spec.rank, split=split, plan=plan,
+                       synthesised=bool(free), warnings=warnings)
+
+
+def motor_shaft(train: dict, flywheel: dict, constant: str) -> dict:
+    """The flywheel moved to the motor shaft (J/u^2, J_n/u^2), GD^2 = 4 g J (N*m^2), and the motor's
+    power M_constant * omega_m / efficiency (a driving constant moment only)."""
+    u2 = train["ratio"] ** 2
+    out = {"J_motor_shaft": flywheel["J"] / u2, "J_n_motor_shaft": flywheel["J_n"] / u2}
+    out["GD2_motor_shaft"] = 4 * 9.80665 * out["J_motor_shaft"]
+    power = abs(flywheel["M_constant"] * flywheel["omega_m"]) / train["efficiency"] if constant == "driving" else None
+    return {"flywheel": out, "motor_power": power}
+
+
+__all__ = ["analyze", "TrainResult", "stage_ratio", "satellite_speeds", "motor_shaft", "planetary_checks"]

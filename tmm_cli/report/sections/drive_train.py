@@ -1,0 +1,260 @@
+"""Report section 'drive_train': the stages with their ratios and speeds, the candidates, the
+motor and the flywheel on its shaft, and three drawings made directly in SVG -- the kinematic
+scheme of the train, the linear-velocity picture beside it (same length scale) and the
+angular-velocity plan, whose segments give every ratio, compared with the analytic one."""
+from __future__ import annotations
+
+import math
+
+I18N = {
+    "en": {"train.title": "Gear drive", "train.stage": "Stage", "train.kind": "Kind",
+           "train.z": "Tooth numbers", "train.ratio": "Ratio u (analytic)", "train.ratio_plan": "u from the plan",
+           "train.diff": "|difference|", "train.pair": "external pair", "train.pair_int": "internal pair",
+           "train.planetary": "planetary, scheme {s}", "train.overall": "Overall ratio U",
+           "train.required": "Required ratio", "train.error": "Ratio error",
+           "train.best": "Smallest |error| of all feasible choices", "train.shafts": "Shaft speeds",
+           "train.shaft": "Shaft", "train.omega": "ω, rad/s", "train.rpm": "n, rpm", "train.sense": "Sense",
+           "train.input": "input (motor)", "train.out_of": "output of stage {i}",
+           "train.satellites": "Satellites (carrier speed, absolute and relative speed of the satellite)",
+           "train.omega_h": "ω_H, rad/s", "train.omega_sat": "ω_sat, rad/s", "train.omega_rel": "ω_sat − ω_H, rad/s",
+           "train.checks": "Conditions", "train.candidates": "Candidate trains (rank: {r})",
+           "train.size": "Size (teeth)", "train.motor": "Motor and flywheel",
+           "train.power": "Motor power P = M_c ω_m / η, W", "train.J": "Flywheel on the crank shaft J, kg·m²",
+           "train.J_motor": "The same on the motor shaft J/U², kg·m²",
+           "train.Jn_motor": "J_n/U² on the motor shaft, kg·m²", "train.GD2": "GD² = 4gJ on the motor shaft, N·m²",
+           "train.scheme": "Kinematic scheme of the train and the linear-velocity picture",
+           "train.plan": "Angular-velocity plan: ω_i = μ_ω · x_i, u = x_in / x_out",
+           "train.split": "Share of the stages without tooth numbers", "train.yes": "yes", "train.no": "no",
+           "task.sec.drive_train": "Gear drive", "train.c.coaxial": "coaxiality", "train.c.assembly": "assembly",
+           "train.c.adjacency": "adjacency", "train.c.undercut": "tooth limits"},
+    "ru": {"train.title": "Зубчатый привод", "train.stage": "Ступень", "train.kind": "Вид",
+           "train.z": "Числа зубьев", "train.ratio": "Передаточное отношение u (аналитически)",
+           "train.ratio_plan": "u по плану", "train.diff": "|разность|", "train.pair": "внешнее зацепление",
+           "train.pair_int": "внутреннее зацепление", "train.planetary": "планетарная, схема {s}",
+           "train.overall": "Общее передаточное отношение U", "train.required": "Требуемое",
+           "train.error": "Погрешность", "train.best": "Наименьшая |погрешность| среди допустимых вариантов",
+           "train.shafts": "Угловые скорости валов", "train.shaft": "Вал", "train.omega": "ω, рад/с",
+           "train.rpm": "n, об/мин", "train.sense": "Направление", "train.input": "входной (двигатель)",
+           "train.out_of": "выходной вал ступени {i}",
+           "train.satellites": "Сателлиты (водило, абсолютная и относительная скорость сателлита)",
+           "train.omega_h": "ω_H, рад/с", "train.omega_sat": "ω_сат, рад/с",
+           "train.omega_rel": "ω_сат − ω_H, рад/с", "train.checks": "Условия",
+           "train.candidates": "Варианты привода (ранжирование: {r})", "train.size": "Габарит (зубьев)",
+           "train.motor": "Двигатель и маховик", "train.power": "Мощность двигателя P = M_c ω_m / η, Вт",
+           "train.J": "Маховик на валу кривошипа J, кг·м²", "train.J_motor": "Тот же на валу двигателя J/U², кг·м²",
+           "train.Jn_motor": "J_n/U² на валу двигателя, кг·м²",
+           "train.GD2": "Маховой момент GD² = 4gJ на валу двигателя, Н·м²",
+           "train.scheme": "Кинематическая схема привода и картина линейных скоростей",
+           "train.plan": "План угловых скоростей: ω_i = μ_ω · x_i, u = x_вх / x_вых",
+           "train.split": "Разбивка передаточного отношения по ступеням без чисел зубьев",
+           "train.yes": "да", "train.no": "нет", "task.sec.drive_train": "Зубчатый привод",
+           "train.c.coaxial": "соосность", "train.c.assembly": "сборка", "train.c.adjacency": "соседство",
+           "train.c.undercut": "ограничения чисел зубьев"},
+}
+
+FRAME = 170.0        # mm: the width of the page's figure
+STEP = 22.0          # mm between the stages of the scheme
+
+
+def _colors():
+    return ["#1f4e9c", "#c0392b", "#1e8449", "#7d3c98", "#d35400", "#117a65", "#884400", "#34495e"]
+
+
+def scheme_and_picture(d: dict, lang_t) -> str:
+    """The kinematic scheme (left) and the linear-velocity picture (right) on one length scale."""
+    from ..svgdraw import Canvas
+    vp = d["velocity_plan"]
+    mu_l, mu_v = vp["mu_l"], vp["mu_v"]
+    st = d["stages"]
+    ys = [0.0] + [p["y"] for p in vp["points"]] + [a["y"] for a in vp["axes"]]
+    radii = []
+    for s, a in zip(st, vp["axes"]):
+        if s["type"] == "pair":
+            radii.append(a["y"] - vp["module"] * s["z"][0] / 2)
+    ys += radii
+    y_lo, y_hi = min(ys), max(ys)
+    w_scheme = 16 + STEP * len(st) + 14
+    vmax = max([abs(p["v"]) for p in vp["points"]] + [1e-300]) / mu_v
+    w_pic = 2 * vmax + 24
+    k = min(1.0, FRAME / (w_scheme + w_pic))                    # fit the page: one factor for both
+    H = (y_hi - y_lo) / mu_l * k + 22
+    c = Canvas(w_scheme * k + w_pic * k, H)
+
+    def Y(y):
+        return 12 + (y - y_lo) / mu_l * k
+
+    def r_mm(z):
+        return vp["module"] * z / 2 / mu_l * k
+    x = 8 * k
+    col = _colors()
+
+    def wheel(xw, y_a, y_b, color):
+        """A wheel in the scheme: its pitch diameter, short strokes at both ends."""
+        c.line((xw, y_a), (xw, y_b), color=color, width=0.7)
+        for yy in (y_a, y_b):
+            c.line((xw - 1.2, yy), (xw + 1.2, yy), color=color, width=0.7)
+    c.text(x, H - 4, "μ", sub="l", after=f" = {mu_l / k:.3g} m/mm", anchor="start", size=6.5)
+    y_shaft = Y(0.0)
+    c.line((2, y_shaft), (x + 6 * k, y_shaft), width=0.5)               # motor shaft
+    c.text(2, y_shaft + 2.2, "M", anchor="start", size=6.5)
+    x_prev = x
+    for i, (s, a) in enumerate(zip(st, vp["axes"])):
+        xs = x + (i + 0.6) * STEP * k
+        yc = Y(a["y"])
+        c.line((x_prev, yc), (xs + 3 * k, yc), width=0.5)              # the input shaft of the stage
+        color = col[i % len(col)]
+        z = s["z"]
+        if s["type"] == "pair":
+            r1, r2 = r_mm(z[0]), r_mm(z[1])
+            wheel(xs, yc - r1, yc + r1, color)
+            yc2 = yc - r1 + r2 if s["internal"] else yc + r1 + r2
+            if s["internal"]:
+                wheel(xs + 2 * k, yc2 - r2, yc2 + r2, color)
+                for yy in (yc2 - r2, yc2 + r2):
+                    c.line((xs - 1 * k, yy), (xs + 2 * k, yy), color=color, width=0.7)
+            else:
+                wheel(xs, yc2 - r2, yc2 + r2, color)
+            c.text(xs - 2.5, yc + r1 * 0.5, str(z[0]), size=5.5, color=color, anchor="end")
+            c.text(xs - 2.5, yc2 + r2 * 0.5, str(z[1]), size=5.5, color=color, anchor="end")
+            c.line((xs, yc2), (xs + STEP * k * 0.7, yc2), width=0.5)
+            x_prev = xs
+        else:
+            sch = s["scheme"]
+            zd = dict(zip(("z1", "z2", "z3", "z4"), z))
+            rr = {kk: r_mm(v) for kk, v in zd.items()}
+            aw_mm = {"A": (zd["z1"] + zd["z2"]), "B": (zd["z1"] + zd["z2"]), "C": (zd["z1"] + zd["z2"]),
+                     "D": (zd["z1"] - zd["z2"])}[sch] * vp["module"] / 2 / mu_l * k
+            for sgn in (1,):                          # the half above the axis, as on the sheet
+                ys_ = yc + sgn * aw_mm
+                if sch == "D":
+                    c.line((xs, yc + sgn * rr["z1"]), (xs, yc + sgn * rr["z1"] - sgn * 2), color=color, width=0.7)
+                    c.line((xs - 3 * k, yc + sgn * rr["z1"]), (xs, yc + sgn * rr["z1"]), color=color, width=0.7)
+                wheel(xs, ys_ - rr["z2"], ys_ + rr["z2"], color)                               # satellite 2
+                if sch == "A":
+                    c.hatch((xs - 1.5, yc + sgn * rr["z3"]), (xs + 1.5, yc + sgn * rr["z3"]), (0, sgn),
+                            color=color)
+                else:
+                    x3 = xs + 5 * k
+                    c.line((xs, ys_), (x3, ys_), width=0.5)
+                    wheel(x3, ys_ - rr["z3"], ys_ + rr["z3"], color)
+                    if sch in ("B", "D"):
+                        c.hatch((x3 - 1.5, yc + sgn * rr["z4"]), (x3 + 1.5, yc + sgn * rr["z4"]), (0, sgn),
+                                color=color)
+                    else:
+                        c.hatch((x3 + 1, yc + sgn * 0.8), (x3 + 1, yc + sgn * rr["z4"]), (1, 0), color=color)
+                        c.line((x3, yc + sgn * 0.8), (x3, yc + sgn * rr["z4"]), color=color, width=0.7)
+                # carrier H: from the output shaft up to the satellite axle
+                xh = xs + (9 if sch != "A" else 5) * k
+                c.line((xh, yc), (xh, ys_), width=0.6)
+                c.line((xs - 2 * k, ys_), (xh, ys_), width=0.6)
+            if sch != "D":
+                wheel(xs, yc, yc + rr["z1"], color)                                                # sun 1
+            c.text(xs - 2.5, yc + aw_mm, sch, size=6, color=color, anchor="end", bold=True)
+            c.text(xs + (10 if sch != "A" else 6) * k + 1, yc + aw_mm / 2, "H", size=6, anchor="start")
+            c.line((xs + (9 if sch != "A" else 5) * k, yc), (xs + STEP * k * 0.7, yc), width=0.5)
+            x_prev = xs
+    # the linear-velocity picture
+    x0 = w_scheme * k + vmax * k + 10 * k
+    c.line((x0, Y(y_lo) - 4), (x0, Y(y_hi) + 4), width=0.3)
+    c.text(x0, Y(y_hi) + 7, "y", size=6.5, italic=True)
+    c.text(x0 + vmax * k, 4, "μ", sub="v", after=f" = {mu_v / k:.3g} (m/s)/mm", anchor="end", size=6.5)
+    for p in vp["points"]:
+        yy = Y(p["y"])
+        c.line((w_scheme * k - 4, yy), (x0, yy), color="#999", width=0.15, dash="0.8,0.8")
+        xv = x0 + p["v"] / mu_v * k
+        c.line((x0, yy), (xv, yy), color="#555", width=0.25)
+        c.dot((xv, yy), 0.5)
+        c.text(xv + (2 if p["v"] >= 0 else -2), yy - 2, p["name"], size=5, anchor="start" if p["v"] >= 0 else "end",
+               color="#555")
+    for j, ln in enumerate(vp["links"]):
+        # draw each line over the y range of the points of its stage
+        pts_y = [Y(ln["y0"])] + [Y(p["y"]) for p in vp["points"]
+                                 if abs(ln["slope"] * (p["y"] - ln["y0"]) - p["v"]) <= 1e-9 * (abs(p["v"]) + 1e-12)]
+        y_a, y_b = min(pts_y), max(pts_y)
+        if y_b - y_a < 2:
+            y_b = y_a + 8
+        pa = (x0 + ln["slope"] * ((y_a - 12) / k * mu_l + y_lo - ln["y0"]) / mu_v * k, y_a)
+        pb = (x0 + ln["slope"] * ((y_b - 12) / k * mu_l + y_lo - ln["y0"]) / mu_v * k, y_b)
+        color = col[(ln["stage"] + 1) % len(col)] if ln["stage"] >= 0 else "#000"
+        c.line(pa, pb, color=color, width=0.45, dash="2,1" if ln.get("satellite") else None)
+        c.text(pb[0] + 1.5, pb[1] + 1.5, ln["name"], size=6, color=color, anchor="start", halo=True)
+    return c.to_svg()
+
+
+def angular_plan(d: dict) -> str:
+    from ..svgdraw import Canvas
+    vp = d["velocity_plan"]
+    rays = vp["rays"]
+    xs = [r["x"] for r in rays] + [0.0]
+    k = min(1.0, (FRAME - 30) / max(max(xs) - min(xs), 1e-9))
+    Hh = vp["H"] * k
+    x_lo = min(xs) * k
+    c = Canvas((max(xs) - min(xs)) * k + 30, Hh + 24)
+    px, py = 15 - x_lo, 8.0
+    c.dot((px, py), 0.7)
+    c.text(px - 2.5, py, "P", size=6.5, anchor="end", italic=True)
+    c.line((15 - 4, py + Hh), (15 + (max(xs) - min(xs)) * k + 4, py + Hh), width=0.3)
+    c.line((px, py), (px, py + Hh), color="#999", width=0.2, dash="1,1")
+    col = _colors()
+    used = []
+    for r in rays:
+        q = (px + r["x"] * k, py + Hh)
+        color = col[(r["stage"] + 1) % len(col)] if r["stage"] >= 0 else "#000"
+        c.line((px, py), q, color=color, width=0.4, dash="2,1" if r["satellite"] else None)
+        lift = 2.5 + 3.2 * sum(1 for u in used if abs(u - q[0]) < 6)
+        used.append(q[0])
+        c.text(q[0], q[1] + lift, r["name"], size=6, color=color, halo=True)
+    c.text(15 + (max(xs) - min(xs)) * k, 4, "H = " + f"{vp['H'] * k:.0f} mm, μ", sub="ω",
+           after=f" = {vp['mu_omega'] / k:.4g} (rad/s)/mm", anchor="end", size=6.5)
+    return c.to_svg()
+
+
+def _pct(x) -> str:
+    s = f"{100 * x:.3f} %"
+    return s[1:] if s.startswith("-0.000") else s
+
+
+def build(ctx) -> str | None:
+    d = (ctx.results or {}).get("drive_train")
+    if not d:
+        return None
+    from markupsafe import Markup
+    f, t = ctx.fmt, ctx.t
+    vp = d["velocity_plan"]
+    rows = []
+    for i, (s, pr) in enumerate(zip(d["stages"], vp["stages"])):
+        kind = (t("train.pair_int") if s.get("internal") else t("train.pair")) if s["type"] == "pair" \
+            else t("train.planetary", s=s["scheme"])
+        rows.append((i, kind, " / ".join(str(v) for v in s["z"]), f(s["ratio"], 8), f(pr["ratio_plan"], 8),
+                     f"{abs(pr['ratio_plan'] - s['ratio']):.1e}"))
+    info = [(t("train.overall"), f(d["ratio"], 8))]
+    if d.get("required") is not None:
+        info += [(t("train.required"), f(d["required"], 6)), (t("train.error"), _pct(d["ratio_error"])),
+                 (t("train.best"), _pct(d["best_ratio_error"]))]
+    if d.get("split"):
+        info.append((t("train.split"), "; ".join(f"{s['stage']}: {f(s['ratio'], 5)}" for s in d["split"])))
+    shafts = []
+    for i, w in enumerate(d["shafts"]):
+        shafts.append((t("train.input") if i == 0 else t("train.out_of", i=i - 1), f(w, 6),
+                       f(abs(w) * 30 / math.pi, 6), ctx.sense(w)))
+    sats = [(i, f(s["omega_carrier"], 6), f(s["omega_satellite"], 6), f(s["omega_satellite_rel"], 6),
+             ", ".join(f"{t('train.c.' + k)}: {t('train.yes') if v else t('train.no')}" for k, v in s["checks"].items()))
+            for i, s in enumerate(d["stages"]) if s["type"] == "planetary"]
+    cands = [(" | ".join("/".join(str(v) for v in z) for z in c["z"]), f(c["ratio"], 6),
+              "—" if c.get("ratio_error") is None else _pct(c["ratio_error"]), c["size"])
+             for c in d.get("candidates", [])] if d.get("synthesised") else []
+    motor = []
+    fw = (ctx.results or {}).get("flywheel") or {}
+    if "J_motor_shaft" in fw:
+        motor = [(t("train.J"), f(fw["J"], 5)), (t("train.J_motor"), f(fw["J_motor_shaft"], 5)),
+                 (t("train.Jn_motor"), f(fw["J_n_motor_shaft"], 5)), (t("train.GD2"), f(fw["GD2_motor_shaft"], 5))]
+        if d.get("motor_power_computed"):
+            motor.insert(0, (t("train.power"), f(d["motor_power"], 5)))
+    figs = []
+    for maker, cap in ((lambda: scheme_and_picture(d, t), t("train.scheme")), (lambda: angular_plan(d), t("train.plan"))):
+        try:
+            figs.append((Markup(maker()), cap))
+        except Exception as exc:  # the tables matter more than the picture
+            figs.append((Markup(f"<p class='warn'>figure failed: {exc}</p>"), cap))
+    return ctx.render("sections/drive_train.html.j2", info=info, rows=rows, shafts=shafts, sats=sats,
+                      cands=cands, motor=motor, figs=figs, rank=d.get("rank", "size"))
