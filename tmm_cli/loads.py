@@ -400,7 +400,7 @@ def switch_angles(mech, loads_section, positions) -> list[float]:
     abscissa of an s- or phi-diagram), found to 1e-9 deg."""
     if loads_section is None:
         return []
-    from scipy.optimize import brentq
+    from .lazy import brentq
 
     out: list[float] = []
     phi0 = float(getattr(positions, "phi0", 0.0))

@@ -435,7 +435,7 @@ def find_singular(mech, structure=None, balance=None, *, solver=None, n_grid: in
     balance link (name or index; default the drive link): the roots of the scaled
     determinant of A(phi), bracketed on a grid of ``n_grid`` points and refined by
     Brent's method to 1e-9 deg; touching (double) roots by a bounded minimisation."""
-    from scipy.optimize import brentq, minimize_scalar
+    from ..lazy import brentq, minimize_scalar
 
     if balance is None:
         b = mech.drive
