@@ -111,3 +111,18 @@ def test_results_text_is_json_readable_and_deterministic():
     assert '"a": [1.0, 2.5, null]' in text and '  "c": [\n   [1, 2],' in text
     assert '"g": "ω"' in text and '"i": 0.0' in text
     assert json.loads(dumps({"x": float("nan")})) == {"x": None}
+
+
+def test_unwrap_is_numpys():
+    from tmm_cli.kinematics.solver import _unwrap, _unwrap_sorted
+    rng = np.random.default_rng(3)
+    for n in (1, 2, 5, 36, 400):
+        for scale in (0.01, 1.0, 5.0):
+            x = rng.uniform(-10, 10, n) * scale
+            assert np.array_equal(_unwrap(x), np.unwrap(x))
+            order = np.argsort(rng.uniform(size=n))
+            want = x.copy()
+            want[order] = np.unwrap(x[order])
+            assert np.array_equal(_unwrap_sorted(x, order), want)
+    x = np.array([0.0, np.pi, 0.0, -np.pi, 3 * np.pi, 2.0])      # the ambiguous jumps of +-pi
+    assert np.array_equal(_unwrap(x), np.unwrap(x))
