@@ -1,9 +1,159 @@
-"""Heavy scientific imports on first use (scipy.optimize costs ~0.3 s to import,
-which `tmm validate` and JSON-only runs should not pay unless they need it)."""
+"""Scalar root finding and bounded minimisation without importing scipy.
+
+``scipy.optimize`` costs 0.3-0.6 s to import, more than a whole JSON run computes;
+the stages only need two scalar routines from it, so they are written out here,
+step for step as scipy does them (Brent 1973, "Algorithms for Minimization without
+Derivatives", ch. 4 and 5): the same iterates, hence the same results.
+
+* ``brentq(f, a, b, args=(), xtol=2e-12, rtol=4*eps, maxiter=100)`` - the zero of
+  ``f`` in ``[a, b]`` (``f(a)``, ``f(b)`` of opposite signs); a transcription of
+  scipy's C ``brentq`` (Brent's method with inverse quadratic extrapolation).
+* ``minimize_scalar(f, bounds=(a, b), method="bounded", options={"xatol": ...})`` -
+  Brent's bounded minimiser (scipy's ``_minimize_scalar_bounded``), returning an
+  object with ``x``, ``fun``, ``success``, ``nfev``.
+"""
 from __future__ import annotations
 
+import math
+from types import SimpleNamespace
 
-def brentq(*args, **kwargs):
-    """scipy.optimize.brentq, imported on first call."""
-    from scipy.optimize import brentq as _brentq
-    return _brentq(*args, **kwargs)
+_EPS = 2.220446049250313e-16
+
+
+def brentq(f, a, b, args=(), xtol=2e-12, rtol=4 * _EPS, maxiter=100, full_output=False, disp=True):
+    """The zero of f in [a, b] by Brent's method (scipy.optimize.brentq's algorithm)."""
+    if xtol <= 0:
+        raise ValueError(f"xtol too small ({xtol:g} <= 0)")
+    if rtol < 4 * _EPS:
+        raise ValueError(f"rtol too small ({rtol:g} < {4 * _EPS:g})")
+    xpre, xcur = float(a), float(b)
+    xblk = fblk = spre = scur = 0.0
+    fpre = float(f(xpre, *args))
+    fcur = float(f(xcur, *args))
+    if fpre == 0:
+        return xpre
+    if fcur == 0:
+        return xcur
+    if math.copysign(1.0, fpre) == math.copysign(1.0, fcur):
+        raise ValueError("f(a) and f(b) must have different signs")
+    for _ in range(int(maxiter)):
+        if fpre != 0 and fcur != 0 and math.copysign(1.0, fpre) != math.copysign(1.0, fcur):
+            xblk, fblk = xpre, fpre
+            spre = scur = xcur - xpre
+        if abs(fblk) < abs(fcur):
+            xpre, xcur, xblk = xcur, xblk, xcur
+            fpre, fcur, fblk = fcur, fblk, fcur
+        delta = (xtol + rtol * abs(xcur)) / 2
+        sbis = (xblk - xcur) / 2
+        if fcur == 0 or abs(sbis) < delta:
+            return xcur
+        if abs(spre) > delta and abs(fcur) < abs(fpre):
+            if xpre == xblk:                      # interpolate
+                stry = -fcur * (xcur - xpre) / (fcur - fpre)
+            else:                                 # extrapolate
+                dpre = (fpre - fcur) / (xpre - xcur)
+                dblk = (fblk - fcur) / (xblk - xcur)
+                stry = -fcur * (fblk * dblk - fpre * dpre) / (dblk * dpre * (fblk - fpre))
+            if 2 * abs(stry) < min(abs(spre), 3 * abs(sbis) - delta):
+                spre, scur = scur, stry           # good short step
+            else:
+                spre = scur = sbis                # bisect
+        else:
+            spre = scur = sbis                    # bisect
+        xpre, fpre = xcur, fcur
+        if abs(scur) > delta:
+            xcur += scur
+        else:
+            xcur += delta if sbis > 0 else -delta
+        fcur = float(f(xcur, *args))
+    if disp:
+        raise RuntimeError(f"brentq: failed to converge after {maxiter} iterations, value is {xcur}")
+    return xcur
+
+
+def minimize_scalar(func, bounds, args=(), method="bounded", options=None):
+    """Brent's bounded minimiser of a scalar function (scipy's ``method="bounded"``)."""
+    if method != "bounded":
+        raise ValueError("only method='bounded' is provided")
+    opts = dict(options or {})
+    xatol = float(opts.get("xatol", 1e-5))
+    maxfun = int(opts.get("maxiter", 500))
+    x1, x2 = (float(v) for v in bounds)
+    if not (math.isfinite(x1) and math.isfinite(x2)):
+        raise ValueError("Optimization bounds must be finite scalars.")
+    if x1 > x2:
+        raise ValueError("The lower bound exceeds the upper bound.")
+    flag = 0
+    sqrt_eps = math.sqrt(2.2e-16)
+    golden_mean = 0.5 * (3.0 - math.sqrt(5.0))
+    a, b = x1, x2
+    fulc = a + golden_mean * (b - a)
+    nfc, xf = fulc, fulc
+    rat = e = 0.0
+    x = xf
+    fx = func(x, *args)
+    num = 1
+    fu = math.inf
+    ffulc = fnfc = fx
+    xm = 0.5 * (a + b)
+    tol1 = sqrt_eps * abs(xf) + xatol / 3.0
+    tol2 = 2.0 * tol1
+    while abs(xf - xm) > (tol2 - 0.5 * (b - a)):
+        golden = 1
+        if abs(e) > tol1:                          # parabolic fit
+            golden = 0
+            r = (xf - nfc) * (fx - ffulc)
+            q = (xf - fulc) * (fx - fnfc)
+            p = (xf - fulc) * q - (xf - nfc) * r
+            q = 2.0 * (q - r)
+            if q > 0.0:
+                p = -p
+            q = abs(q)
+            r = e
+            e = rat
+            if abs(p) < abs(0.5 * q * r) and p > q * (a - xf) and p < q * (b - xf):
+                rat = (p + 0.0) / q
+                x = xf + rat
+                if (x - a) < tol2 or (b - x) < tol2:
+                    si = _sign(xm - xf) + ((xm - xf) == 0)
+                    rat = tol1 * si
+            else:
+                golden = 1
+        if golden:                                 # golden-section step
+            e = (a - xf) if xf >= xm else (b - xf)
+            rat = golden_mean * e
+        si = _sign(rat) + (rat == 0)
+        x = xf + si * max(abs(rat), tol1)
+        fu = func(x, *args)
+        num += 1
+        if fu <= fx:
+            if x >= xf:
+                a = xf
+            else:
+                b = xf
+            fulc, ffulc = nfc, fnfc
+            nfc, fnfc = xf, fx
+            xf, fx = x, fu
+        else:
+            if x < xf:
+                a = x
+            else:
+                b = x
+            if fu <= fnfc or nfc == xf:
+                fulc, ffulc = nfc, fnfc
+                nfc, fnfc = x, fu
+            elif fu <= ffulc or fulc == xf or fulc == nfc:
+                fulc, ffulc = x, fu
+        xm = 0.5 * (a + b)
+        tol1 = sqrt_eps * abs(xf) + xatol / 3.0
+        tol2 = 2.0 * tol1
+        if num >= maxfun:
+            flag = 1
+            break
+    if math.isnan(xf) or math.isnan(fx) or math.isnan(fu):
+        flag = 2
+    return SimpleNamespace(x=xf, fun=fx, status=flag, success=flag == 0, nfev=num, nit=num)
+
+
+def _sign(v: float) -> float:
+    return 0.0 if v == 0 else math.copysign(1.0, v)

@@ -9,16 +9,25 @@ from typing import Any
 
 def clean(obj: Any) -> Any:
     """Plain JSON types: numpy scalars/arrays to Python, NaN and inf to None."""
+    t = type(obj)
+    if t is float:                                            # the common cases first
+        return obj + 0.0 if math.isfinite(obj) else None      # + 0.0: no "-0.0" in the file
+    if t is dict:
+        return {k if type(k) is str else str(k): clean(v) for k, v in obj.items()}
+    if t is list:
+        return [clean(v) for v in obj]
+    if t is str or t is int or obj is None or t is bool:
+        return obj
     if isinstance(obj, dict):
         return {str(k): clean(v) for k, v in obj.items()}
     if isinstance(obj, (list, tuple)):
         return [clean(v) for v in obj]
-    if isinstance(obj, bool) or obj is None or isinstance(obj, str):
+    if isinstance(obj, bool) or isinstance(obj, str):
         return obj
     if isinstance(obj, int):
         return obj
     if isinstance(obj, float):
-        return obj + 0.0 if math.isfinite(obj) else None      # + 0.0: no "-0.0" in the file
+        return obj + 0.0 if math.isfinite(obj) else None
     tolist = getattr(obj, "tolist", None)
     if tolist is not None:
         return clean(tolist())
@@ -27,8 +36,45 @@ def clean(obj: Any) -> Any:
     return str(obj)
 
 
+_ENC = json.JSONEncoder(ensure_ascii=False, allow_nan=False)
+
+
 def dumps(results: dict) -> str:
-    return json.dumps(clean(results), indent=1, ensure_ascii=False, allow_nan=False) + "\n"
+    """The results file's text, deterministic: the sections and their entries (one
+    position, one joint...) one key a line, indented by one space a level; anything
+    deeper, and any array of plain values, on one line by json's C encoder
+    (``indent=`` would send the whole file through the pure-Python encoder)."""
+    out: list[str] = []
+    _emit(clean(results), 0, out)
+    out.append("\n")
+    return "".join(out)
+
+
+_ONE_LINE_DEPTH = 3
+
+
+def _emit(obj, level: int, out: list[str]) -> None:
+    if level >= _ONE_LINE_DEPTH:
+        out.append(_ENC.encode(obj))
+    elif type(obj) is dict and obj:
+        pad = "\n" + " " * (level + 1)
+        first = True
+        out.append("{")
+        for k, v in obj.items():
+            out.append(pad if first else "," + pad)
+            first = False
+            out.append(_ENC.encode(k) + ": ")
+            _emit(v, level + 1, out)
+        out.append("\n" + " " * level + "}")
+    elif type(obj) is list and any(type(v) is dict or type(v) is list for v in obj):
+        pad = "\n" + " " * (level + 1)
+        out.append("[")
+        for i, v in enumerate(obj):
+            out.append(pad if i == 0 else "," + pad)
+            _emit(v, level + 1, out)
+        out.append("\n" + " " * level + "]")
+    else:
+        out.append(_ENC.encode(obj))
 
 
 _TOKEN = re.compile(r"([^.\[\]]+)|\[(-?\d+)\]")

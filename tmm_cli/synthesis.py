@@ -128,7 +128,7 @@ def _reach(H: float, r: float, l: float) -> float:
 def _e_reach(H: float, theta: float) -> float:
     """The largest offset (m) with _reach >= 0 (0 when none): a scan of (0, e_max) and
     Brent's method on the sign change."""
-    from scipy.optimize import brentq
+    from .lazy import brentq
 
     e_max = H / (2.0 * math.tan(math.radians(theta) / 2.0))
     f = lambda e: _reach(H, *slider_crank_offset(H, theta, e))
@@ -151,7 +151,7 @@ def slider_crank_gamma(H: float, theta: float, gamma: float) -> list[tuple[float
     """Every (r, l, e) of the offset slider-crank with stroke H, angle theta and least
     transmission angle gamma (deg), smaller offset first. gamma(e) rises from 0 (e -> 0)
     to a maximum and falls toward e_max = H/(2 tan(theta/2))."""
-    from scipy.optimize import brentq, minimize_scalar
+    from .lazy import brentq, minimize_scalar
 
     th = math.radians(theta)
     e_max = _e_reach(H, theta)
@@ -424,7 +424,7 @@ def least_transmission(typ: str, mech) -> tuple[float, float]:
     """(gamma_min deg, crank angle deg) over the cycle: a 0.5-deg scan refined by a
     bounded Brent search to 1e-10 deg."""
     import numpy as np
-    from scipy.optimize import minimize_scalar
+    from .lazy import minimize_scalar
 
     from .kinematics import solve
 

@@ -11,8 +11,17 @@ of mass of each link (after V.V. Voronkin, docs/methods.md §10).
   results.json section ``dof2`` (analysis.py);
 * model.py -- the equations (mass matrix, accelerations, reactions, energy).
 """
-from .analysis import Dof2Result, analyze, centrifugal_pendulum
-from .model import Params
 from .spec import Dof2Section
+
+# the task model imports Dof2Section; the analysis (numpy) loads on first use
+_LAZY = {"Dof2Result": "analysis", "analyze": "analysis", "centrifugal_pendulum": "analysis",
+         "Params": "model"}
+
+
+def __getattr__(name):
+    if name in _LAZY:
+        import importlib
+        return getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 __all__ = ["Dof2Section", "Dof2Result", "analyze", "centrifugal_pendulum", "Params"]

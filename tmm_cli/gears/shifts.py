@@ -26,7 +26,7 @@ admissible grid point is taken instead and a warning says so.
 from __future__ import annotations
 
 import numpy as np
-from scipy.optimize import brentq
+from ..lazy import brentq
 
 from .geometry import COURSE_EPS, pair, sliding
 

@@ -26,7 +26,7 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.optimize import brentq
+from ..lazy import brentq
 
 from .geometry import rack_fillet
 from .involute import inv

@@ -513,9 +513,38 @@ def get_solver(mech: Mechanism) -> Solver:
     return s
 
 
-def _unwrap_sorted(th: np.ndarray, order: np.ndarray) -> np.ndarray:
+def _unwrap(p: np.ndarray) -> np.ndarray:
+    """np.unwrap(p) of a 1-D array (period 2 pi), the same operations without its
+    generic-axis overhead (most of the fixed cost of a small solve)."""
+    up = p.copy()
+    if len(p) < 2:
+        return up
+    dd = p[1:] - p[:-1]
+    big = np.abs(dd) >= math.pi
+    if not big.any():                      # no jump: the correction is zero everywhere
+        up[1:] = p[1:] + 0.0
+        return up
+    ddmod = np.mod(dd + math.pi, 2.0 * math.pi) - math.pi
+    ddmod[(ddmod == -math.pi) & (dd > 0)] = math.pi
+    corr = ddmod - dd
+    corr[~big] = 0.0
+    up[1:] = p[1:] + np.cumsum(corr)
+    return up
+
+
+def _unwrap_sorted(th: np.ndarray, order: np.ndarray | None) -> np.ndarray:
+    """th unwrapped along increasing crank angle (order: argsort, None if sorted)."""
+    if order is None:
+        return _unwrap(th)
     out = th.copy()
-    out[order] = np.unwrap(th[order])
+    out[order] = _unwrap(th[order])
+    return out
+
+
+def _vector(v, N: int) -> np.ndarray:
+    """A fresh float array of shape (N,) holding v (an array of that shape or a scalar)."""
+    out = np.empty(N)
+    out[:] = v
     return out
 
 
@@ -581,13 +610,14 @@ def _solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
     nwarn = len(solver.warnings)
     st = solver.run(np.radians(phi_deg))
     N = len(phi_deg)
-    order = np.argsort(phi_deg, kind="stable")
+    order = None if N < 2 or bool(np.all(phi_deg[1:] >= phi_deg[:-1])) else np.argsort(phi_deg, kind="stable")
     for b in range(1, mech.n + 1):
         st.th[b] = _unwrap_sorted(np.asarray(st.th[b], float), order)
     pos, d1, d2 = {}, {}, {}
     names = mech.all_points()
     for p, xy in mech.ground.items():
-        pos[p] = np.broadcast_to(np.array(xy, float), (N, 2)).copy()
+        pos[p] = np.empty((N, 2))
+        pos[p][:] = xy
         d1[p] = np.zeros((N, 2))
         d2[p] = np.zeros((N, 2))
     for lk in mech.links:
@@ -602,8 +632,8 @@ def _solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
     angle, a1, a2 = {}, {}, {}
     for lk in mech.links:
         angle[lk.name] = np.asarray(st.th[lk.index], float)
-        a1[lk.name] = np.broadcast_to(np.asarray(st.th1[lk.index], float), (N,)).copy()
-        a2[lk.name] = np.broadcast_to(np.asarray(st.th2[lk.index], float), (N,)).copy()
+        a1[lk.name] = _vector(st.th1[lk.index], N)
+        a2[lk.name] = _vector(st.th2[lk.index], N)
     w = np.asarray(omega1, float)
     e = np.asarray(eps1, float)
     for nm_, v in (("omega1", w), ("eps1", e)):

@@ -18,6 +18,7 @@ import math
 import numpy as np
 from markupsafe import Markup
 
+from ..course import course_entries, grid_count
 from ..plans import build_plan, crank_pin, geometry, plan_label, scales
 
 I18N = {
@@ -64,14 +65,13 @@ def _sense_mark(x, tiny: float = 1e-9) -> str:
 
 
 def _grid_count(ctx, entries) -> int:
-    c = getattr(getattr(ctx.task, "positions", None), "count", None)
-    if isinstance(c, int) and c > 0:
-        return min(c, len(entries))
-    return len(entries)
+    return grid_count(ctx.task, len(entries))
 
 
 # ----------------------------------------------------------------- figures
-def positions_svg(ctx, geom, entries, grid):
+def positions_svg(ctx, geom, entries, grid, fine=None):
+    """The plan of positions: the mechanism at the `grid` positions, trajectories as
+    periodic splines through them -- or, given a `fine` grid, through its points."""
     from .. import figures as F
     lo, hi = F.mechanism_extent(entries)
     fig, ax, unit = F.figure_for_box(lo, hi, 165.0, min_h=60.0, max_h=150.0, margin_mm=10.0)
@@ -92,11 +92,14 @@ def positions_svg(ctx, geom, entries, grid):
         xy = np.array([_pxy(e, p) for e in grid])
         if np.ptp(xy, axis=0).max() < 1e-9 or len(xy) < 3:
             continue
-        t = np.arange(len(xy) + 1, dtype=float)
-        closed = np.vstack([xy, xy[:1]])
-        tt = np.linspace(0, len(xy), 40 * len(xy))
-        cs = CubicSpline(t, closed, bc_type="periodic")
-        c = cs(tt)
+        if fine is not None:
+            c = np.array([_pxy(e, p) for e in fine + fine[:1]])
+        else:
+            t = np.arange(len(xy) + 1, dtype=float)
+            closed = np.vstack([xy, xy[:1]])
+            tt = np.linspace(0, len(xy), 40 * len(xy))
+            cs = CubicSpline(t, closed, bc_type="periodic")
+            c = cs(tt)
         is_com = p.startswith("S")
         ax.plot(c[:, 0], c[:, 1], lw=0.7 if is_com else 0.5, ls="-" if is_com else "--",
                 color="#1f5fbf" if is_com else "0.5", zorder=1)
@@ -227,7 +230,9 @@ def output_series(ctx, geom, entries, out_name):
     return "rotating", psi, w, eps
 
 
-def diagrams_svg(ctx, geom, entries, phase, out_name, curve):
+def diagrams_svg(ctx, geom, entries, phase, out_name, curve, marks=None):
+    """s, v, a (or psi, omega, epsilon) of the output link over the cycle; dots at the
+    positions (at those of the boolean mask `marks` only, for a fine grid)."""
     from scipy.interpolate import CubicSpline
     from .. import figures as F
     kind, s, v, a = output_series(ctx, geom, entries, out_name)
@@ -237,6 +242,7 @@ def diagrams_svg(ctx, geom, entries, phase, out_name, curve):
     order = np.argsort(phase)
     ph = np.asarray(phase)[order]
     keep = np.concatenate([[True], np.diff(ph) > 1e-9])
+    dots = keep if marks is None else keep & np.asarray(marks, bool)[order]
     for ax, ys, lab in zip(axes, (s, v, a), units):
         y = np.asarray(ys)[order][keep]
         x = ph[keep]
@@ -244,11 +250,14 @@ def diagrams_svg(ctx, geom, entries, phase, out_name, curve):
             key = {0: "s", 1: "v", 2: "a"}[[s, v, a].index(ys)]
             cx = np.asarray(curve["phase"])
             ax.plot(cx, np.asarray(curve[key], float), color="#1f5fbf", lw=1.0)
+        elif marks is not None:             # a fine grid is its own curve
+            ax.plot(np.append(x, x[0] + 360.0), np.append(y, y[0]), color="#1f5fbf", lw=1.0)
         elif len(x) >= 3:
             cs = CubicSpline(np.append(x, x[0] + 360.0), np.append(y, y[0]), bc_type="periodic")
             tt = np.linspace(x[0], x[0] + 360.0, 721)
             ax.plot(tt % 360.0 if x[0] > 0 else tt, cs(tt), color="#1f5fbf", lw=1.0)
-        ax.plot(x, y, ls="none", marker="o", ms=2.5, color="k", clip_on=False, zorder=5)
+        ax.plot(ph[dots], np.asarray(ys)[order][dots], ls="none", marker="o", ms=2.5, color="k",
+                clip_on=False, zorder=5)
         ax.axhline(0, color="0.5", lw=0.5)
         ax.set_ylabel(lab)
         ax.grid(True, lw=0.3, color="0.85")
@@ -270,6 +279,10 @@ def build(ctx) -> str | None:
     res_pos = ctx.results.get("positions") or {}
     n_grid = _grid_count(ctx, entries)
     grid = entries[:n_grid]
+    # a fine grid: plans and tables for the course positions, the grid as curves
+    shown = course_entries(entries, n_grid)
+    shown_grid = [e for e in shown[:len(shown) - (len(entries) - n_grid)]]
+    fine = grid if len(shown_grid) < n_grid else None
     sgn = _rotation_sign(ctx, geom, entries)
     phi0 = res_pos.get("phi0", grid[0]["phi"])
     phase = [((float(e["phi"]) - float(phi0)) * sgn) % 360.0 for e in entries]
@@ -325,9 +338,9 @@ def build(ctx) -> str | None:
     link_names = [l.name for l in geom.links]
     hdr_pts = [ctx.t("common.position"), "φ, °"] + moving_pts
     v_rows = [[str(e["index"]), ctx.fmt_fixed(e["phi"], 2)] +
-              [ctx.fmt(e["points"][p]["v"]) for p in moving_pts] for e in entries]
+              [ctx.fmt(e["points"][p]["v"]) for p in moving_pts] for e in shown]
     a_rows = [[str(e["index"]), ctx.fmt_fixed(e["phi"], 2)] +
-              [ctx.fmt(e["points"][p]["a"]) for p in moving_pts] for e in entries]
+              [ctx.fmt(e["points"][p]["a"]) for p in moving_pts] for e in shown]
     # angular quantities: links that turn (a slider on a fixed guide never does)
     def turns(n):
         return any(abs(float(e["links"][n].get(k) or 0.0)) > 1e-12 for e in entries for k in ("omega", "epsilon"))
@@ -337,17 +350,17 @@ def build(ctx) -> str | None:
     def signed(x):
         return f"{ctx.fmt(x)} {_sense_mark(x)}".rstrip()
     w_rows = [[str(e["index"]), ctx.fmt_fixed(e["phi"], 2)] +
-              [signed(e["links"][l.name]["omega"]) for l in rot_links] for e in entries]
+              [signed(e["links"][l.name]["omega"]) for l in rot_links] for e in shown]
     e_rows = [[str(e["index"]), ctx.fmt_fixed(e["phi"], 2)] +
-              [signed(e["links"][l.name]["epsilon"]) for l in rot_links] for e in entries]
+              [signed(e["links"][l.name]["epsilon"]) for l in rot_links] for e in shown]
     hdr_ang = [ctx.t("common.position"), "φ, °"] + [f"{l.index} ({l.name})" for l in geom.links]
     ang_rows = [[str(e["index"]), ctx.fmt_fixed(e["phi"], 2)] +
-                [ctx.fmt_fixed(e["links"][l.name].get("angle"), 2) for l in geom.links] for e in entries]
+                [ctx.fmt_fixed(e["links"][l.name].get("angle"), 2) for l in geom.links] for e in shown]
 
-    # plans of every position
+    # plans of every (course) position
     positions = []
     plan_csv = []
-    for e in entries:
+    for e in shown:
         vp = build_plan("v", e, geom, mu_v)
         ap = build_plan("a", e, geom, mu_a)
         vrows = [(Markup(sym), seg, ctx.fmt_fixed(mm, 1), ctx.fmt(val)) for sym, seg, mm, val in vp.rows()]
@@ -373,7 +386,11 @@ def build(ctx) -> str | None:
         for k in ("phase", "s", "v", "a"):
             if k in curve:
                 curve[k] = list(np.asarray(curve[k], float)[o])
-    diag, _ = diagrams_svg(ctx, geom, entries, phase, out_name, curve)
+    marks = None
+    if fine is not None:
+        ids = {id(e) for e in shown}
+        marks = [id(e) in ids for e in entries]
+    diag, _ = diagrams_svg(ctx, geom, entries, phase, out_name, curve, marks)
 
     # CSV
     header = ["index", "phi"]
@@ -396,7 +413,7 @@ def build(ctx) -> str | None:
 
     return ctx.render("sections/kinematics.html.j2",
                       pos_rows=pos_rows, scale_rows=scale_rows, lengths=lengths,
-                      fig_positions=positions_svg(ctx, geom, entries, grid), n_grid=len(grid),
+                      fig_positions=positions_svg(ctx, geom, entries, shown_grid, fine), n_grid=len(shown_grid),
                       hdr_pts=hdr_pts, v_rows=v_rows, a_rows=a_rows, hdr_l=hdr_l,
                       w_rows=w_rows, e_rows=e_rows, hdr_ang=hdr_ang, ang_rows=ang_rows,
                       sense_note=ctx.t("kin.sense_note"), positions=positions, fig_diagrams=diag,

@@ -592,7 +592,9 @@ def _cycle_fig(ctx, entries, phi0, sign, info):
     key = "balancing_moment" if info["balance_kind"] == "moment" else "balancing_force"
     fig, (a1, a2) = figures.new_figure(170, 120, nrows=2, sharex=True)
     q = [r[0] for r in rows]
-    a1.plot(q, [np.nan if r[1][key] is None else r[1][key] for r in rows], "k.-")
+    from ..course import COURSE_MAX
+    dot = "" if len(rows) > COURSE_MAX else "."      # a fine grid: curves without a dot a position
+    a1.plot(q, [np.nan if r[1][key] is None else r[1][key] for r in rows], f"k{dot}-")
     a1.set_ylabel(ctx.t("kst.moment_axis") if key == "balancing_moment" else ctx.t("kst.force_axis"))
     a1.grid(True, lw=0.3)
     a1.axhline(0, color="0.5", lw=0.5)
@@ -600,7 +602,7 @@ def _cycle_fig(ctx, entries, phi0, sign, info):
     for j in info["joints"]:
         vals = [np.nan if r[1]["reactions"][j["key"]]["R"] is None else r[1]["reactions"][j["key"]]["R"]
                 for r in rows]
-        a2.plot(q, vals, ".-", label=f"$R_{{{j['key'][1:]}}}$", lw=0.8, ms=3)
+        a2.plot(q, vals, f"{dot}-", label=f"$R_{{{j['key'][1:]}}}$", lw=0.8, ms=3)
     a2.legend(ncol=1, fontsize=6.5, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)
     a2.set_ylabel("|R|, " + ctx.t("kst.N"))
     a2.set_xlabel(ctx.t("kst.rotation"))
@@ -638,14 +640,19 @@ def build(ctx) -> str | None:
     has_near = any(e.get("near_singular") for e in entries)
     if has_near:
         hdr.append(ctx.t("kst.near"))
+    # a fine grid: tables and drawings of the course positions (report/course.py), CSV in full
+    from ..course import course_entries, grid_count
+    shown = course_entries(entries, grid_count(ctx.task, len(entries)))
+    shown_ids = {id(e) for e in shown}
     mb_rows = []
     csv_rows = []
     for e in entries:
         disc = None if e.get("discrepancy") is None else 100.0 * e["discrepancy"]
-        row = [e["index"], ctx.fmt_fixed(e["phi"], 2)] + [fmt(e.get(k), 6) for k in keys] + [fmt(disc, 2)]
-        if has_near:
-            row.append("✓" if e.get("near_singular") else "")
-        mb_rows.append(row)
+        if id(e) in shown_ids:
+            row = [e["index"], ctx.fmt_fixed(e["phi"], 2)] + [fmt(e.get(k), 6) for k in keys] + [fmt(disc, 2)]
+            if has_near:
+                row.append("✓" if e.get("near_singular") else "")
+            mb_rows.append(row)
         crow = [e["index"], e["phi"]] + [e.get(k) for k in keys] + [e.get("discrepancy"), e.get("efficiency")]
         for j in info["joints"]:
             r = e["reactions"][j["key"]]
@@ -661,7 +668,7 @@ def build(ctx) -> str | None:
                                        label_html(j["key"], lang) + Markup(": N, N; x, m" if lang == "en" else ": N, Н; x, м")
                                        for j in info["joints"]]
     r_rows = []
-    for e in entries:
+    for e in shown:
         row = [e["index"]]
         for j in info["joints"]:
             r = e["reactions"][j["key"]]
@@ -675,15 +682,15 @@ def build(ctx) -> str | None:
     eff_rows = None
     if has_eff:
         eff_rows = [[e["index"], ctx.fmt_fixed(e["phi"], 2), fmt(e.get("friction_power"), 5),
-                     fmt(e.get("driving_power"), 5), fmt(e.get("efficiency"), 4)] for e in entries]
+                     fmt(e.get("driving_power"), 5), fmt(e.get("efficiency"), 4)] for e in shown]
     # loads of every position in one table: the varying loads by position, the constant ones below
-    loads_hdr, loads_rows, const = _loads_table(ctx, entries)
+    loads_hdr, loads_rows, const = _loads_table(ctx, shown)
     # per position drawings
     from ..plans import crank_pin, geometry
     geom = geometry(ctx.results, ctx.task)
     geom_pin = crank_pin(geom) if geom is not None else None
     positions = []
-    for e in entries[:MAX_FIG_POSITIONS]:
+    for e in shown[:MAX_FIG_POSITIONS]:
         if "loads" not in e or e["index"] not in kin:
             continue
         ke = kin[e["index"]]
@@ -706,7 +713,7 @@ def build(ctx) -> str | None:
                       loads_note=Markup(escape(ctx.t("kst.loads_note", const="\u0001"))).replace(
                           "\u0001", const or "—"),
                       fbd_caption=ctx.t("kst.fbd_caption"),
-                      fig_diagrams=_diagrams_fig(ctx, info, entries, len(entries)),
+                      fig_diagrams=_diagrams_fig(ctx, info, shown, len(entries)),
                       fig_cycle=_cycle_fig(ctx, entries, phi0, sign, info),
                       singular=", ".join(ctx.fmt_fixed(s, 6) for s in sing))
 

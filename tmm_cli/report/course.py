@@ -1,0 +1,42 @@
+"""Which positions the report draws and tabulates one by one.
+
+A course project works on 12 (or 24) positions of the crank plus a few named ones
+(extreme positions, the positions asked for by angle).  A task may compute a fine
+grid (``positions.count: 3600``) for smooth curves; the report then still draws the
+plans and the per-position tables for the course positions only -- 12 grid positions
+spread evenly over the cycle from the zero position, plus every named extra -- and
+shows the fine grid as curves (the diagrams) and in full in the CSV files beside it.
+"""
+from __future__ import annotations
+
+COURSE_MAX = 24     # grids up to this many positions are shown in full
+COURSE_N = 12       # a finer grid shows this many of its positions
+
+
+def course_indices(n_grid: int, n_total: int) -> list[int]:
+    """Indices (into the results list) of the positions shown one by one: the whole
+    grid if it has at most COURSE_MAX positions, else COURSE_N evenly spread grid
+    positions (the first one included); then the named extras after the grid."""
+    n_grid = max(0, min(int(n_grid), int(n_total)))
+    if n_grid <= COURSE_MAX:
+        grid = list(range(n_grid))
+    else:
+        grid = sorted({round(k * n_grid / COURSE_N) for k in range(COURSE_N)})
+    return grid + list(range(n_grid, int(n_total)))
+
+
+def course_entries(entries: list, n_grid: int) -> list:
+    """The entries at course_indices (all of them for a course-sized grid)."""
+    idx = course_indices(n_grid, len(entries))
+    if len(idx) == len(entries):
+        return entries
+    return [entries[i] for i in idx]
+
+
+def grid_count(task, n_entries: int) -> int:
+    """The number of grid positions among n_entries (task.positions.count), the
+    rest being named extras."""
+    c = getattr(getattr(task, "positions", None), "count", None)
+    if isinstance(c, int) and c > 0:
+        return min(c, n_entries)
+    return n_entries
