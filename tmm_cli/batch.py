@@ -375,7 +375,8 @@ def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = froz
                    "variant": "" if s["variant"] is None else s["variant"], "status": s["status"],
                    "code": set_code(s["status"]), "message": s["message"] + note, "answers": n,
                    "score": round(c.get("ok", 0) / n, 4) if n else 0, "feedback": s.get("feedback", []),
-                   "per_path": {r["path"]: r["status"] for r in s["rows"]}, "rows": s["rows"], **c}
+                   "per_path": {r["path"]: r["status"] for r in s["rows"]}, "rows": s["rows"],
+                   **{k: c.get(k, 0) for k in STATUSES}}
             rows.append(row)
             check_rows.extend(s["rows"])
     for i, s in enumerate(sets or []):
