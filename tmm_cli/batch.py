@@ -64,7 +64,7 @@ def find_tasks(source: str) -> tuple[list[tuple[Path, str | None]], list[Path]]:
     if p.is_dir():
         cands = sorted(set(p.glob("*.yaml")) | set(p.glob("*.yml")))
     else:
-        cands = sorted(Path(f) for f in glob.glob(source, recursive=True))
+        cands = sorted(Path(f) for f in glob.glob(source, recursive=True, include_hidden=True))
     out, skipped = [], []
     for f in cands:
         why = _not_regular(f)
@@ -168,8 +168,11 @@ def _set_message(rows, status, aset) -> str:
     return (f"{status}: " + ", ".join(bad[:6]) + (" ..." if len(bad) > 6 else "")) if bad else ""
 
 
-def _child(conn, memory_mb, args) -> None:
-    """The worker process: limit its address space, run one variant, send the outcome."""
+def _child(result_file: str, memory_mb, args) -> None:
+    """The worker process: limit its address space, run one variant, leave the outcome in
+    ``result_file`` (a file, not a pipe: nothing can block between a dying worker and
+    the batch)."""
+    import pickle
     try:
         if memory_mb:
             import resource
@@ -180,14 +183,15 @@ def _child(conn, memory_mb, args) -> None:
         res = {"task": None, "written": [], "sets": [], "code": 3, "status": "failed",
                "message": f"out of memory: the variant needs more than the --memory limit of {memory_mb} MB"}
     try:
-        conn.send(res)
-    except Exception as exc:       # an outcome that cannot be sent (pickling, memory)
-        try:
-            conn.send({"task": None, "written": [], "sets": [], "code": 3, "status": "failed",
-                       "message": f"internal error: the worker could not report: {type(exc).__name__}"})
-        except Exception:
-            pass
-    conn.close()
+        data = pickle.dumps(res)
+    except Exception as exc:       # an outcome that cannot be pickled
+        data = pickle.dumps({"task": None, "written": [], "sets": [], "code": 3, "status": "failed",
+                             "message": f"internal error: the worker could not report: {type(exc).__name__}"})
+    tmp = result_file + ".part"
+    with open(tmp, "wb") as fh:
+        fh.write(data)
+    os.replace(tmp, result_file)
+    os._exit(0)                    # no atexit handlers or inherited threads of the parent
 
 
 def _death(exitcode: int | None, memory_mb) -> str:
@@ -208,57 +212,51 @@ def run_all(jobs_args: list[tuple], *, jobs: int, timeout: float, memory_mb: int
     import multiprocessing as mp
     from multiprocessing.connection import wait
 
+    import pickle
+    import shutil
+    import tempfile
+
     ctx = mp.get_context("fork")
     results: list[dict | None] = [None] * len(jobs_args)
     pending = list(range(len(jobs_args)))
-    running: dict[int, tuple] = {}          # i -> (proc, conn, t0)
+    running: dict[int, tuple] = {}          # i -> (proc, result file, t0)
+    tmpdir = tempfile.mkdtemp(prefix="tmm-batch-")
 
-    def finish(i, res):
-        results[i] = res
-        on_done(i, res)
+    def failed(message):
+        return {"task": None, "written": [], "sets": [], "code": 3, "status": "failed", "message": message}
 
     try:
         while pending or running:
             while pending and len(running) < max(1, jobs):
                 i = pending.pop(0)
-                parent, child = ctx.Pipe(duplex=False)
-                proc = ctx.Process(target=_child, args=(child, memory_mb, jobs_args[i]), daemon=False)
+                rf = os.path.join(tmpdir, f"{i}.pickle")
+                proc = ctx.Process(target=_child, args=(rf, memory_mb, jobs_args[i]), daemon=False)
                 proc.start()
-                child.close()
-                running[i] = (proc, parent, time.monotonic())
+                running[i] = (proc, rf, time.monotonic())
             now = time.monotonic()
             left = min(t0 + timeout - now for _, _, t0 in running.values()) if timeout else None
-            waitables = [c for _, c, _ in running.values()] + [p.sentinel for p, _, _ in running.values()]
-            wait(waitables, timeout=None if left is None else max(0.0, left))
+            wait([p.sentinel for p, _, _ in running.values()], timeout=None if left is None else max(0.0, left))
             now = time.monotonic()
-            for i, (proc, conn, t0) in list(running.items()):
+            for i, (proc, rf, t0) in list(running.items()):
                 res = None
-                if conn.poll():
-                    try:
-                        res = conn.recv()
-                    except (EOFError, OSError):
-                        res = None
-                    if res is not None:
-                        proc.join()
-                elif not proc.is_alive():
+                if not proc.is_alive():
                     proc.join()
-                    res = {"task": None, "written": [], "sets": [], "code": 3, "status": "failed",
-                           "message": _death(proc.exitcode, memory_mb)}
+                    try:
+                        with open(rf, "rb") as fh:
+                            res = pickle.load(fh)
+                    except (OSError, EOFError, pickle.UnpicklingError):
+                        res = failed(_death(proc.exitcode, memory_mb))
                 elif timeout and now - t0 > timeout:
                     _kill(proc)
-                    res = {"task": None, "written": [], "sets": [], "code": 3, "status": "failed",
-                           "message": f"time limit exceeded: the variant ran longer than --timeout {timeout:g} s"}
-                if res is None and not proc.is_alive() and not conn.poll():
-                    proc.join()
-                    res = {"task": None, "written": [], "sets": [], "code": 3, "status": "failed",
-                           "message": _death(proc.exitcode, memory_mb)}
+                    res = failed(f"time limit exceeded: the variant ran longer than --timeout {timeout:g} s")
                 if res is not None:
-                    conn.close()
                     del running[i]
-                    finish(i, res)
+                    results[i] = res
+                    on_done(i, res)
     finally:
-        for proc, conn, _ in running.values():
+        for proc, _, _ in running.values():
             _kill(proc)
+        shutil.rmtree(tmpdir, ignore_errors=True)
     return results  # type: ignore[return-value]
 
 

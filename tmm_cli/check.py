@@ -160,9 +160,11 @@ def _mark(marks, key, default=(None, None)):
     return marks.get(key, default)
 
 
-def load_answers_file(path: Path) -> AnswerSet:
+def load_answers_file(path: Path, keep_errors: bool = False) -> AnswerSet:
     """One student's answers file (YAML): `answers`, optional `student`, `variant`,
-    `tolerance`. Raises TaskError naming the file, line and field."""
+    `tolerance`. Raises TaskError naming the file, line and field; with ``keep_errors``
+    an invalid answer or path is kept as the set's error (the set still names its
+    student and variant)."""
     from .yamlload import load_yaml
     path = Path(path)
     if not path.is_file():
@@ -193,16 +195,20 @@ def load_answers_file(path: Path) -> AnswerSet:
     for k, v in (data.get("answers") or {}).items():
         k = str(k)
         line, col = _mark(marks, ("answers", k))
+        err = None
         try:
             parse_path(k)
-        except KeyError as exc:
-            raise TaskError("invalid answers file", file=str(path),
-                            issues=[(f"answers.{k}", line, col, str(exc).strip("'\""))]) from None
-        try:
             aset.answers[k] = answer_value(v, k)
+        except KeyError as exc:
+            err = TaskError("invalid answers file", file=str(path),
+                            issues=[(f"answers.{k}", line, col, str(exc).strip("'\""))])
         except ValueError as exc:
-            raise TaskError("invalid answer", file=str(path),
-                            issues=[(f"answers.{k}", line, col, f"invalid answer: {exc}")]) from None
+            err = TaskError("invalid answer", file=str(path),
+                            issues=[(f"answers.{k}", line, col, f"invalid answer: {exc}")])
+        if err is not None:
+            if not keep_errors:
+                raise err
+            aset.error = aset.error or err.render()
     if data.get("tolerance") is not None:
         aset.tolerance = {}
         for k, v in data["tolerance"].items():
@@ -218,7 +224,7 @@ def load_answers_dir(folder: Path) -> list[AnswerSet]:
     files = sorted(set(Path(folder).glob("*.yaml")) | set(Path(folder).glob("*.yml")))
     for f in files:
         try:
-            sets.append(load_answers_file(f))
+            sets.append(load_answers_file(f, keep_errors=True))
         except TaskError as exc:
             sets.append(AnswerSet(source=str(f), stem=f.stem, error=exc.render().replace("\n", "; ")))
     return sets

@@ -90,7 +90,8 @@ def read_table(path: str | Path) -> tuple[list[str], list[tuple[int, dict[str, s
         except UnicodeDecodeError:
             raise TableError(str(path), None, "not a UTF-8 text table") from None
     first = text.split("\n", 1)[0]
-    sep = ";" if first.count(";") > first.count(",") else ","
+    # a ";" outside quotes in the header line means ";" (headers like "l, mm" hold commas)
+    sep = ";" if ";" in re.sub(r'"[^"]*"', "", first) else ","
     reader = csv.reader(io.StringIO(text, newline=""), delimiter=sep)
     header: list[str] | None = None
     rows: list[tuple[int, dict[str, str], str | None]] = []

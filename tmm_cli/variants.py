@@ -118,7 +118,7 @@ def make_variants(template: Path, table: Path, out: Path) -> tuple[int, list[dic
         key = str(cell_value(raw))
         if key in seen:
             raise TaskError("duplicate variant", file=str(table),
-                            issues=[("variant", line, None, f"variant {raw} already on line {seen[key]}")])
+                            issues=[("variant", line, None, f"duplicate variant {raw}: already on line {seen[key]}")])
         seen[key] = line
     units = {n: u for n, (_, u) in cols.items()}
     report, messages, code = [], [], 0
@@ -136,10 +136,8 @@ def make_variants(template: Path, table: Path, out: Path) -> tuple[int, list[dic
             target = Path(out) / f"{name}.yaml"
             status, msg = "written", ""
             try:
-                if bad:
-                    raise TaskError(bad, file=f"{table}:{line}")
-                if raw_v == "":
-                    raise TaskError("empty `variant` cell", file=f"{table}:{line}")
+                if bad or raw_v == "":
+                    raise _RowError(bad or "empty `variant` cell")
                 cells = {n: cell_value(row.get(h, "")) for n, (h, _) in cols.items()}
                 task = substitute(data, cells, units)
                 if "variant" not in data:       # after schema and title, as in a hand-written task
@@ -153,7 +151,7 @@ def make_variants(template: Path, table: Path, out: Path) -> tuple[int, list[dic
             except BaseException as exc:
                 if isinstance(exc, KeyboardInterrupt):
                     raise
-                c, _, m = classify(exc)
+                c, _, m = (2, "invalid", str(exc)) if isinstance(exc, _RowError) else classify(exc)
                 status, msg, code = "invalid", _strip_file(m, target), max(code, 2)
                 _remove_generated(target)
                 messages.append(f"{table}:{line}: variant {raw_v or '?'}: {msg}")
@@ -162,6 +160,10 @@ def make_variants(template: Path, table: Path, out: Path) -> tuple[int, list[dic
             advance()
     atomic_write(Path(out) / "variants.csv", csv_text(["line", "variant", "file", "status", "message"], report))
     return code, report, messages
+
+
+class _RowError(ValueError):
+    """A table row that cannot make a task (malformed, no variant)."""
 
 
 def _strip_file(msg: str, target: Path) -> str:
