@@ -421,3 +421,14 @@ def test_instructor_loop_end_to_end(tmp_path):
     fb = list((tmp_path / "graded" / "02").glob("feedback-*.html"))
     assert fb and "маховик" in fb[0].read_text()                  # the step a wrong J depends on
     assert (tmp_path / "graded" / "01" / "report.html").exists()
+
+
+def test_write_failure_of_a_variant_is_named_not_an_internal_error():
+    from tmm_cli.errors import StageError, TaskError
+    from tmm_cli.orchestrate import classify
+    code, status, msg = classify(PermissionError(13, "Permission denied", "/o/v1/results.json"))
+    assert (code, status) == (3, "failed") and msg == ("stage 'output' failed: cannot write /o/v1/results.json: "
+                                                       "Permission denied")
+    assert "internal error" not in msg
+    assert classify(TaskError("bad", file="t.yaml"))[:2] == (2, "invalid")
+    assert classify(StageError("kinematics", "x"))[:2] == (3, "failed")
