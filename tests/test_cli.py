@@ -76,13 +76,13 @@ def test_check_exit_codes(tmp_path):
                  "tolerance: {default: 0.05}\n")
     res = runner.invoke(app, ["check", str(bad)])
     assert res.exit_code == 1, res.output
-    assert "wrong" in res.output
+    assert "outside" in res.output
     # answers from a separate file override the task's
     ans = _write(tmp_path, "ans.yaml", f"answers:\n  gears.aw: {AW}\n")
     res = runner.invoke(app, ["check", str(bad), "--answers", str(ans), "--out", str(tmp_path / "c")])
     assert res.exit_code == 0, res.output
     rows = list(csv.DictReader((tmp_path / "c" / "check.csv").open()))
-    assert rows[0]["quantity"] == "gears.aw" and rows[0]["verdict"] == "ok"
+    assert rows[0]["path"] == "gears.aw" and rows[0]["status"] == "ok"
 
 
 def test_check_without_answers_is_invalid(tmp_path):
@@ -102,13 +102,15 @@ def test_batch(tmp_path):
     res = runner.invoke(app, ["batch", str(d), "--out", str(tmp_path / "b")])
     rows = {Path(r["file"]).stem: r for r in csv.DictReader((tmp_path / "b" / "summary.csv").open())}
     assert rows["v1"]["status"] == "ok"
-    assert rows["v2"]["status"] == "wrong" and "gears.aw" in rows["v2"]["message"]
+    assert rows["v2"]["status"] == "outside" and "gears.aw" in rows["v2"]["message"]
+    assert rows["v2"]["gears.aw"] == "outside" and rows["v1"]["gears.aw"] == "ok"
     assert rows["v3"]["status"] == "invalid" and "v3.yaml:4" in rows["v3"]["message"]
     assert rows["v4"]["status"] == "failed" and "kinematics" in rows["v4"]["message"]
     assert rows["v1"]["student"] == "A. Student" and rows["v1"]["group"] == "MM-1"
     assert res.exit_code == 3           # the worst variant: a stage failed
     html = (tmp_path / "b" / "summary.html").read_text()
     assert html.count("<tr") == 5
+    assert (tmp_path / "b" / "v1" / "check.csv").exists() and (tmp_path / "b" / "check.csv").exists()
     assert (tmp_path / "b" / "v1" / "results.json").exists()
 
 

@@ -1,144 +1,434 @@
-"""`tmm batch`: run and check many variants; one failure never stops the rest."""
+"""`tmm batch`: run and grade many variants; one variant never stops the rest.
+
+Each variant runs in its own process (forked, one at a time per job slot) with a time
+limit (``--timeout``) and an address-space limit (``--memory``, RLIMIT_AS). A worker that
+dies (a signal, the out-of-memory killer), overruns its time or its memory becomes one
+``failed`` row with the reason; the batch goes on and always writes summary.csv,
+summary.html and check.csv. Every variant writes into its own sanitised, unique folder
+inside ``--out``; a manifest (``.tmm-batch.json``) lists what the batch wrote, so the
+next batch removes the files of variants that are gone and nothing else.
+"""
 from __future__ import annotations
 
-import csv
 import glob
-import html
-import io
+import json
+import os
+import re
+import signal
+import stat
 import time
-from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
-from .errors import StageError, TaskError
+from .check import STATUSES, AnswerSet, set_code
 
-CODES = {"ok": 0, "wrong": 1, "invalid": 2, "failed": 3}
-FIELDS = ["file", "title", "variant", "student", "group", "status", "answers", "correct", "worst_quantity",
-          "worst_error", "seconds", "message"]
+SUMMARY_FIELDS = ["student", "group", "variant", "file", "status", "score", "answers", "ok", "outside", "sign",
+                  "missing", "unknown_path", "not_computed", "message"]
+RESERVED = {"summary.csv", "summary.html", "check.csv", "feedback", ".tmm-batch.json"}
+MANIFEST = ".tmm-batch.json"
+DEFAULT_TIMEOUT = 120.0
+DEFAULT_MEMORY_MB = 4096
 
 
-def find_tasks(source: str) -> list[Path]:
+# ------------------------------------------------------------------ inputs
+def _not_regular(p: Path) -> str | None:
+    """Why a path named like a task file is not one, or None."""
+    try:
+        st = os.stat(p)
+    except FileNotFoundError:
+        return "a dangling symbolic link" if os.path.islink(p) else "no such file"
+    except OSError as exc:
+        return f"cannot be read: {exc.strerror or exc}"
+    if stat.S_ISDIR(st.st_mode):
+        return "a directory, not a task file"
+    if stat.S_ISFIFO(st.st_mode):
+        return "a FIFO (named pipe), not a task file"
+    if not stat.S_ISREG(st.st_mode):
+        return "not a regular file"
+    return None
+
+
+def _looks_like_answers(p: Path) -> bool:
+    """An answers file in the group folder (no `schema:`, an `answers:` key) is not a variant."""
+    try:
+        with open(p, "rb") as fh:
+            head = fh.read(65536).decode("utf-8", "replace")
+    except OSError:
+        return False
+    return (re.search(r"^answers\s*:", head, re.M) is not None
+            and re.search(r"^schema\s*:", head, re.M) is None)
+
+
+def find_tasks(source: str) -> tuple[list[tuple[Path, str | None]], list[Path]]:
+    """([(task file, reason it cannot be a task or None)], [answers files skipped])."""
     p = Path(source)
     if p.is_dir():
-        files = sorted(list(p.glob("*.yaml")) + list(p.glob("*.yml")))
+        cands = sorted(set(p.glob("*.yaml")) | set(p.glob("*.yml")))
     else:
-        files = sorted(Path(f) for f in glob.glob(source, recursive=True))
-    return [f for f in files if f.is_file()]
+        cands = sorted(Path(f) for f in glob.glob(source, recursive=True, include_hidden=True))
+    out, skipped = [], []
+    for f in cands:
+        why = _not_regular(f)
+        if why is None and _looks_like_answers(f):
+            skipped.append(f)
+            continue
+        out.append((f, why))
+    return out, skipped
 
 
-def one(path: Path, out: Path, formats: set[str], lang: str) -> dict:
-    """Run one variant; never raises. Returns its summary row."""
-    from .check import check_task, rows_csv
+def folder_names(files: list[Path]) -> list[str]:
+    """A unique, safe folder name per task file: its stem with anything but letters,
+    digits, '.', '_' and '-' replaced, no leading dot, never a name of the batch's own
+    files; a clash (v1.yaml and v1.yml, a/v2.yaml and b/v2.yaml) gets -2, -3..."""
+    used: set[str] = set()
+    names = []
+    for f in files:
+        base = re.sub(r"[^\w.-]", "_", f.stem).lstrip(".") or "task"
+        if base.lower() in RESERVED or base.lower().startswith("summary."):
+            base = "v_" + base
+        name, k = base, 2
+        while name.lower() in used:
+            name, k = f"{base}-{k}", k + 1
+        used.add(name.lower())
+        names.append(name)
+    return names
+
+
+# ------------------------------------------------------------------ one variant (in the worker)
+def work(path: Path, out: Path, folder: str, formats: set[str], lang: str, sets: list[AnswerSet] | None,
+         tol_override: dict | None, quantities: str | None) -> dict:
+    """Run, write and grade one variant. Never raises: errors become the outcome."""
+    from .check import check_csv, counts, grade, set_status, task_answer_set, tolerances
     from .io import atomic_write
-    from .results import dumps
+    from .orchestrate import classify, prepare, process
 
-    t0 = time.perf_counter()
-    row = {k: "" for k in FIELDS}
-    row["file"] = str(path)
-    vout = out / path.stem
+    vout = out / folder
+    res: dict = {"task": None, "written": [], "sets": [], "code": 0, "status": "ok", "message": ""}
     try:
-        from .pipeline import PartialResults, run
-        from .task import load_task
-        task = load_task(path)
-        row["title"] = task.title
-        row["variant"] = "" if task.variant is None else str(task.variant)
-        if task.student is not None:
-            row["student"] = task.student.name or ""
-            row["group"] = task.student.group or ""
+        task = prepare(path, stage_errors=False)
+        st = task.student
+        res["task"] = {"title": task.title, "variant": task.variant, "name": task.name,
+                       "student": (st.name or "") if st else "", "group": (st.group or "") if st else ""}
         try:
-            results = run(task)
-        except PartialResults as exc:
-            atomic_write(vout / "results.json", dumps(exc.partial))
+            task, results, written = process(path, vout, formats, lang, task=task)
+        except BaseException as exc:
+            # a failed stage: results.json and the report were written with what was computed
+            partial = getattr(exc, "written", None)
+            if partial:
+                res["written"] = [str(Path(p).relative_to(out)) for p in partial if _inside(p, out)]
+            elif (vout / "results.json").exists():
+                res["written"].append(str(Path(folder) / "results.json"))
             raise
-        from .cli import write_outputs
-        write_outputs(task, results, vout, formats, lang)
-        if task.answers:
-            rows = check_task(results, dict(task.answers), dict(task.tolerance))
-            atomic_write(vout / "check.csv", rows_csv(rows))
-            ok = [r for r in rows if r["verdict"] == "ok"]
-            row["answers"], row["correct"] = len(rows), len(ok)
-            errs = [r for r in rows if r["rel_error"] is not None]
-            if errs:
-                worst = max(errs, key=lambda r: r["rel_error"] / max(r["tolerance"], 1e-300))
-                row["worst_quantity"], row["worst_error"] = worst["quantity"], f"{worst['rel_error']:.4g}"
-            row["status"] = "ok" if len(ok) == len(rows) else "wrong"
-            if row["status"] == "wrong":
-                bad = [r["quantity"] for r in rows if r["verdict"] != "ok"]
-                row["message"] = "outside tolerance: " + ", ".join(bad)
+        res["written"] = [str(Path(p).relative_to(out)) for p in written if _inside(p, out)]
+        if sets is None:
+            own = task_answer_set(task)
+            mine = [(-1, own)] if own else []
         else:
-            row["status"] = "ok"
-            row["message"] = "computed (no answers to check)"
-    except TaskError as exc:
-        row["status"], row["message"] = "invalid", exc.render().replace("\n", "; ")
-    except StageError as exc:
-        row["status"], row["message"] = "failed", str(exc)
-    except Exception as exc:  # one broken variant must not stop the batch
-        row["status"], row["message"] = "failed", f"internal error: {type(exc).__name__}: {exc}"
-    row["seconds"] = f"{time.perf_counter() - t0:.2f}"
-    return row
+            mine = [(i, s) for i, s in enumerate(sets) if s.matches(task)]
+        all_rows = []
+        for i, aset in mine:
+            if aset.error:
+                res["sets"].append({"index": i, "status": "invalid", "message": aset.error, "rows": [],
+                                    "student": aset.student, "group": aset.group, "variant": aset.variant})
+                continue
+            required = None
+            if quantities:
+                from .forms import expand
+                required = expand(quantities, results, strict=False)
+            rows = grade(results, aset, tolerances(task, tol_override), required)
+            all_rows.extend(rows)
+            sst = set_status(rows)
+            res["sets"].append({"index": i, "status": sst, "rows": rows, "counts": counts(rows),
+                                "student": aset.student, "group": aset.group,
+                                "variant": aset.variant if aset.variant is not None else task.variant,
+                                "message": _set_message(rows, sst, aset)})
+        if mine:
+            atomic_write(vout / "check.csv", check_csv(all_rows))
+            res["written"].append(str(Path(folder) / "check.csv"))
+            from .feedback import write_feedback
+            for s in res["sets"]:
+                if s["rows"]:
+                    p = write_feedback(task, s, vout, lang, pdf="pdf" in formats)
+                    s["feedback"] = [str(Path(x).relative_to(out)) for x in p]
+                    res["written"].extend(s["feedback"])
+    except BaseException as exc:  # one broken variant must not stop the batch
+        if isinstance(exc, KeyboardInterrupt):
+            raise
+        res["code"], res["status"], res["message"] = classify(exc)
+    return res
 
 
-def _one_star(args):
-    return one(*args)
+def _inside(p, out: Path) -> bool:
+    try:
+        Path(p).relative_to(out)
+        return True
+    except ValueError:
+        return False
 
 
-def summary_csv(rows: list[dict]) -> str:
-    buf = io.StringIO()
-    w = csv.DictWriter(buf, fieldnames=FIELDS, lineterminator="\n")
-    w.writeheader()
-    for r in rows:
-        w.writerow(r)
-    return buf.getvalue()
+def _set_message(rows, status, aset) -> str:
+    if status == "no_answers":
+        return f"no answers in {Path(aset.source).name}"
+    bad = [r["path"] for r in rows if r["status"] not in ("ok",)]
+    return (f"{status}: " + ", ".join(bad[:6]) + (" ..." if len(bad) > 6 else "")) if bad else ""
 
 
-def summary_html(rows: list[dict], source: str) -> str:
-    colour = {"ok": "#dff0d8", "wrong": "#fcf8e3", "invalid": "#f2dede", "failed": "#f2dede"}
-    head = "".join(f"<th>{html.escape(f)}</th>" for f in FIELDS)
-    body = []
-    for r in rows:
-        cells = "".join(f"<td>{html.escape(str(r[f]))}</td>" for f in FIELDS)
-        body.append(f'<tr style="background:{colour.get(r["status"], "#fff")}">{cells}</tr>')
-    counts = {s: sum(r["status"] == s for r in rows) for s in CODES}
-    stat = ", ".join(f"{k}: {v}" for k, v in counts.items())
-    return ("<!DOCTYPE html><html><head><meta charset='utf-8'><title>tmm batch summary</title>"
-            "<style>body{font-family:sans-serif}table{border-collapse:collapse;font-size:13px}"
-            "td,th{border:1px solid #999;padding:3px 6px;text-align:left}</style></head><body>"
-            f"<h1>tmm batch: {html.escape(source)}</h1><p>{len(rows)} variants; {stat}</p>"
-            f"<table><tr>{head}</tr>{''.join(body)}</table></body></html>\n")
+def _child(result_file: str, memory_mb, args) -> None:
+    """The worker process: limit its address space, run one variant, leave the outcome in
+    ``result_file`` (a file, not a pipe: nothing can block between a dying worker and
+    the batch)."""
+    import pickle
+    try:
+        if memory_mb:
+            import resource
+            lim = int(memory_mb) * 1024 * 1024
+            resource.setrlimit(resource.RLIMIT_AS, (lim, lim))
+        res = work(*args)
+    except MemoryError:
+        res = {"task": None, "written": [], "sets": [], "code": 3, "status": "failed",
+               "message": f"out of memory: the variant needs more than the --memory limit of {memory_mb} MB"}
+    try:
+        data = pickle.dumps(res)
+    except Exception as exc:       # an outcome that cannot be pickled
+        data = pickle.dumps({"task": None, "written": [], "sets": [], "code": 3, "status": "failed",
+                             "message": f"internal error: the worker could not report: {type(exc).__name__}"})
+    tmp = result_file + ".part"
+    with open(tmp, "wb") as fh:
+        fh.write(data)
+    os.replace(tmp, result_file)
+    os._exit(0)                    # no atexit handlers or inherited threads of the parent
 
 
-def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = frozenset({"json"}),
-              lang: str = "en") -> int:
+def _death(exitcode: int | None, memory_mb) -> str:
+    if exitcode is not None and exitcode < 0:
+        sig = -exitcode
+        try:
+            name = signal.Signals(sig).name
+        except ValueError:
+            name = f"signal {sig}"
+        extra = " (killed: e.g. by the out-of-memory killer)" if sig == signal.SIGKILL else ""
+        return f"the worker died of {name}{extra}"
+    return f"the worker exited with code {exitcode} without a result (memory limit {memory_mb} MB?)"
+
+
+def run_all(jobs_args: list[tuple], *, jobs: int, timeout: float, memory_mb: int | None, on_done) -> list[dict]:
+    """Run each job in its own forked process, at most ``jobs`` at once; return the
+    outcomes in order. ``on_done(i, outcome)`` is called as each finishes."""
+    import multiprocessing as mp
+    from multiprocessing.connection import wait
+
+    import pickle
+    import shutil
+    import tempfile
+
+    ctx = mp.get_context("fork")
+    results: list[dict | None] = [None] * len(jobs_args)
+    pending = list(range(len(jobs_args)))
+    running: dict[int, tuple] = {}          # i -> (proc, result file, t0)
+    tmpdir = tempfile.mkdtemp(prefix="tmm-batch-")
+
+    def failed(message):
+        return {"task": None, "written": [], "sets": [], "code": 3, "status": "failed", "message": message}
+
+    try:
+        while pending or running:
+            while pending and len(running) < max(1, jobs):
+                i = pending.pop(0)
+                rf = os.path.join(tmpdir, f"{i}.pickle")
+                proc = ctx.Process(target=_child, args=(rf, memory_mb, jobs_args[i]), daemon=False)
+                proc.start()
+                running[i] = (proc, rf, time.monotonic())
+            now = time.monotonic()
+            left = min(t0 + timeout - now for _, _, t0 in running.values()) if timeout else None
+            wait([p.sentinel for p, _, _ in running.values()], timeout=None if left is None else max(0.0, left))
+            now = time.monotonic()
+            for i, (proc, rf, t0) in list(running.items()):
+                res = None
+                if not proc.is_alive():
+                    proc.join()
+                    try:
+                        with open(rf, "rb") as fh:
+                            res = pickle.load(fh)
+                    except (OSError, EOFError, pickle.UnpicklingError):
+                        res = failed(_death(proc.exitcode, memory_mb))
+                elif timeout and now - t0 > timeout:
+                    _kill(proc)
+                    res = failed(f"time limit exceeded: the variant ran longer than --timeout {timeout:g} s")
+                if res is not None:
+                    del running[i]
+                    results[i] = res
+                    on_done(i, res)
+    finally:
+        for proc, _, _ in running.values():
+            _kill(proc)
+        shutil.rmtree(tmpdir, ignore_errors=True)
+    return results  # type: ignore[return-value]
+
+
+def _kill(proc) -> None:
+    """End a worker and the report helper it may have forked (its own process group is
+    not used: the helper exits when its parent's pipe closes)."""
+    if proc.is_alive():
+        proc.kill()
+    proc.join(5)
+
+
+# ------------------------------------------------------------------ manifest
+def _read_manifest(out: Path) -> set[str]:
+    try:
+        data = json.loads((out / MANIFEST).read_text(encoding="utf-8"))
+        files = data.get("files", []) if isinstance(data, dict) else []
+        return {f for f in files if isinstance(f, str)}
+    except (OSError, ValueError):
+        return set()
+
+
+def _remove_stale(out: Path, old: set[str], new: set[str]) -> list[str]:
+    """Remove files a previous batch wrote that this one did not (variants that are gone),
+    then their folders if empty. Only paths inside ``out``, only regular files."""
+    removed = []
+    root = out.resolve()
+    for rel in sorted(old - new):
+        p = out / rel
+        try:
+            if ".." in Path(rel).parts or Path(rel).is_absolute():
+                continue
+            if not p.resolve().is_relative_to(root) or p.is_symlink() or not p.is_file():
+                continue
+            p.unlink()
+            removed.append(rel)
+        except OSError:
+            continue
+        d = p.parent
+        while d != out and d.is_relative_to(out):
+            try:
+                d.rmdir()
+            except OSError:
+                break
+            d = d.parent
+    return removed
+
+
+# ------------------------------------------------------------------ the batch
+def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = frozenset({"json"}), lang: str = "en",
+              answers: Path | None = None, tolerance: Path | None = None, quantities: str | None = None,
+              timeout: float = DEFAULT_TIMEOUT, memory_mb: int | None = DEFAULT_MEMORY_MB) -> int:
     from rich.console import Console
-    from rich.progress import Progress
 
+    from .check import CHECK_FIELDS, load_sources, load_tolerance_file
+    from .errors import TaskError
     from .io import atomic_write
+    from .tables import csv_text
 
-    con = Console(stderr=True)
-    files = find_tasks(source)
-    if not files:
-        con.print(f"error: no task files match '{source}'")
+    con = Console(stderr=True, highlight=False)
+    found, skipped = find_tasks(source)
+    if not found:
+        con.print(f"error: no task files match '{source}'", markup=False)
+        return 2
+    try:
+        sets = load_sources(answers) if answers is not None else None
+        tol_override = load_tolerance_file(tolerance) if tolerance is not None else None
+    except TaskError as exc:
+        con.print(f"error: invalid answers\n{exc.render()}", markup=False)
         return 2
     out.mkdir(parents=True, exist_ok=True)
-    rows: list[dict] = []
-    with Progress(console=con, transient=True) as prog:
-        bar = prog.add_task("variants", total=len(files))
-        if jobs > 1:
-            with ProcessPoolExecutor(max_workers=jobs) as ex:
-                for row in ex.map(_one_star, [(f, out, set(formats), lang) for f in files]):
-                    rows.append(row)
-                    prog.advance(bar)
-        else:
-            for f in files:
-                rows.append(one(f, out, set(formats), lang))
-                prog.advance(bar)
-    atomic_write(out / "summary.csv", summary_csv(rows))
-    atomic_write(out / "summary.html", summary_html(rows, source))
-    from rich.table import Table
-    t = Table(title=f"tmm batch: {len(rows)} variants")
-    for c in ("file", "status", "answers", "correct", "message"):
-        t.add_column(c)
+    old_files = _read_manifest(out)
+    files = [f for f, _ in found]
+    folders = folder_names(files)
+    runnable = [k for k, (f, why) in enumerate(found) if why is None]
+    outcomes: dict[int, dict] = {}
+    for k, (f, why) in enumerate(found):
+        if why is not None:
+            outcomes[k] = {"task": None, "written": [], "sets": [], "code": 2, "status": "invalid",
+                           "message": f"{f}: {why}"}
+    args = [(found[k][0], out, folders[k], set(formats), lang, sets, tol_override, quantities) for k in runnable]
+    with _progress(con, len(args), "variants") as advance:
+        def done(i, res):
+            advance()
+        res_list = run_all(args, jobs=jobs, timeout=timeout, memory_mb=memory_mb, on_done=done)
+    for k, res in zip(runnable, res_list):
+        outcomes[k] = res
+
+    # no_answers fails (exit 1) only when answers were expected
+    expected = sets is not None or any(o.get("sets") for o in outcomes.values())
+    rows, check_rows, written = [], [], set()
+    matched: set[int] = set()
+    for k in range(len(found)):
+        res, f, folder = outcomes[k], files[k], folders[k]
+        written.update(res.get("written", []))
+        t = res.get("task") or {}
+        base = {"student": t.get("student", ""), "group": t.get("group", ""),
+                "variant": "" if t.get("variant") is None else t.get("variant"), "file": str(f),
+                "folder": folder}
+        note = "" if folder == f.stem else f" (results in {folder}/)"
+        if res["status"] != "ok":
+            rows.append({**base, "status": res["status"], "message": res["message"] + note, "code": res["code"]})
+            continue
+        if not res["sets"]:
+            st = "no_answers" if expected else "ok"
+            rows.append({**base, "status": st, "code": 1 if expected else 0,
+                         "message": ("nobody answered this variant" if expected else "computed (no answers to check)")
+                         + note})
+            continue
+        for s in res["sets"]:
+            matched.add(s["index"])
+            c = s.get("counts") or {}
+            n = sum(c.values())
+            row = {**base, "student": s["student"] or base["student"], "group": s["group"] or base["group"],
+                   "variant": "" if s["variant"] is None else s["variant"], "status": s["status"],
+                   "code": set_code(s["status"]), "message": s["message"] + note, "answers": n,
+                   "score": round(c.get("ok", 0) / n, 4) if n else 0, "feedback": s.get("feedback", []),
+                   "per_path": {r["path"]: r["status"] for r in s["rows"]}, "rows": s["rows"],
+                   **{k: c.get(k, 0) for k in STATUSES}}
+            rows.append(row)
+            check_rows.extend(s["rows"])
+    for i, s in enumerate(sets or []):
+        if i not in matched:
+            why = s.error or (f"answers for variant {s.variant}: no task of this variant" if s.variant not in (None, "")
+                              else f"answers file '{Path(s.source).name}': no task of this name or variant")
+            rows.append({"student": s.student, "group": s.group, "variant": "" if s.variant is None else s.variant,
+                         "file": s.source, "folder": "", "status": "invalid", "code": 2, "message": why})
     for r in rows:
-        t.add_row(r["file"], r["status"], str(r["answers"]), str(r["correct"]), r["message"][:80])
-    Console().print(t)
-    Console().print(f"wrote {out / 'summary.csv'} and {out / 'summary.html'}")
-    return max(CODES.get(r["status"], 3) for r in rows)
+        if "answers" not in r:
+            r.update({"answers": 0, "score": 0, **{s: 0 for s in STATUSES}})
+    paths = []
+    for r in rows:
+        for p in r.get("per_path", {}):
+            if p not in paths:
+                paths.append(p)
+    for r in rows:
+        for p in paths:
+            r[p] = r.get("per_path", {}).get(p, "")
+    atomic_write(out / "summary.csv", csv_text(SUMMARY_FIELDS + paths, rows))
+    atomic_write(out / "check.csv", csv_text(CHECK_FIELDS, check_rows))
+    from .summary import summary_html
+    atomic_write(out / "summary.html", summary_html(rows, paths, source, lang))
+    written.update({"summary.csv", "summary.html", "check.csv"})
+    removed = _remove_stale(out, old_files, written)
+    atomic_write(out / MANIFEST, json.dumps({"files": sorted(written)}, indent=1) + "\n")
+    from .summary import print_batch
+    print_batch(rows, out, skipped, removed)
+    return max((r["code"] for r in rows), default=0)
+
+
+class _progress:
+    """A rich progress bar with the count and the time left (on stderr; nothing when
+    stderr is not a terminal)."""
+
+    def __init__(self, con, total: int, what: str):
+        self.con, self.total, self.what = con, total, what
+
+    def __enter__(self):
+        from rich.progress import (BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn,
+                                   TimeRemainingColumn)
+        self.prog = Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(),
+                             TimeElapsedColumn(), TextColumn("left"), TimeRemainingColumn(),
+                             console=self.con, transient=True)
+        self.prog.__enter__()
+        self.bar = self.prog.add_task(self.what, total=self.total)
+        return lambda n=1: self.prog.advance(self.bar, n)
+
+    def __exit__(self, *exc):
+        return self.prog.__exit__(*exc)
+
+
+progress = _progress

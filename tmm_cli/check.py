@@ -1,120 +1,457 @@
-"""`tmm check`: compare a student's answers with the computed results."""
+"""Grading: students' answers against the computed results (`tmm check`, `tmm batch`).
+
+Answers come from a task's own `answers` section, one answers file (YAML), a folder of
+them, or one CSV with a row per student. Values may carry units. Each answer gets a
+status: ok, sign (right magnitude, wrong sign), outside, missing, unknown_path (with
+"did you mean") or not_computed; an answer set gets no_answers, ok or its worst status.
+"""
 from __future__ import annotations
 
-import csv
-import io
+import difflib
 import math
+import re
+from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 from .errors import TaskError
 from .results import lookup, parse_path
 
 DEFAULT_TOLERANCE = 0.05
+# results in degrees: differences are taken modulo 360 into [-180, 180)
+ANGLE_KEYS = {"phi", "phi0", "extreme", "angle", "working_stroke_angle", "alpha_w", "theta", "psi",
+              "gamma_min", "pressure_angle", "max_pressure_angle", "singular"}
+# top-level result sections: a path into one the task did not compute is not_computed
+SECTIONS = {"structure", "positions", "kinematics", "kinematics_curve", "kinetostatics", "kinetostatics_info",
+            "singular", "flywheel", "cam", "gears", "planetary", "drive_train", "synthesis", "dof2"}
+STATUSES = ("ok", "outside", "sign", "missing", "unknown_path", "not_computed")
+SET_ORDER = ("outside", "sign", "missing", "unknown_path", "not_computed")
+CHECK_FIELDS = ["student", "group", "variant", "path", "answer", "reference", "error", "tolerance", "status",
+                "note"]
 
 
-def load_answers(task, answers_file: Path | None) -> tuple[dict[str, float], dict[str, float]]:
-    """The answers and tolerances: from --answers FILE (a YAML mapping with `answers`
-    and optional `tolerance`, or a bare mapping path -> value) or from the task."""
-    ans = dict(task.answers)
-    tol = dict(task.tolerance)
-    if answers_file is not None:
-        from .yamlload import load_yaml
-        data, marks = load_yaml(answers_file)
-        if not isinstance(data, dict):
-            raise TaskError("expected a mapping of answers", file=str(answers_file))
-        if "answers" in data:
-            unknown = set(data) - {"answers", "tolerance"}
-            if unknown:
-                k = sorted(map(str, unknown))[0]
-                line, col = marks.get((k,), (None, None))
-                raise TaskError("unknown key", file=str(answers_file),
-                                issues=[(k, line, col, f"unknown key '{k}'; an answers file holds "
-                                                       f"`answers` and `tolerance`")])
-            raw_a, raw_t = data.get("answers") or {}, data.get("tolerance") or {}
-            base = ("answers",)
-        else:
-            raw_a, raw_t, base = data, {}, ()
-        for what, raw, b in (("answers", raw_a, base), ("tolerance", raw_t, ("tolerance",))):
-            if not isinstance(raw, dict):
-                line, col = marks.get(b, (None, None))
-                raise TaskError("invalid answers file", file=str(answers_file),
-                                issues=[(what, line, col, f"expected a mapping of paths to numbers, "
-                                                          f"got {type(raw).__name__}")])
-        ans = {str(k): _number(v, answers_file, marks, base + (k,), f"answers.{k}", positive=False)
-               for k, v in raw_a.items()}
-        tol = {str(k): _number(v, answers_file, marks, ("tolerance", k), f"tolerance.{k}", positive=True)
-               for k, v in raw_t.items()}
-    for k in ans:
-        try:
-            parse_path(k)
-        except KeyError as exc:
-            if answers_file is None:
-                raise task.error(("answers", k), str(exc).strip("'\""))
-            line, col = marks.get(base + (k,), (None, None))
-            raise TaskError("invalid answers file", file=str(answers_file),
-                            issues=[(f"answers.{k}", line, col, str(exc).strip("'\""))])
-    if not ans:
-        src = answers_file or task.file
-        raise TaskError("no answers to check: add an `answers:` section (paths into results.json) "
-                        "or give --answers FILE", file=str(src) if src else None)
-    return ans, tol
+# ------------------------------------------------------------------ tolerances
+@dataclass(frozen=True)
+class Tol:
+    rel: float = DEFAULT_TOLERANCE
+    abs: float = 0.0
+    plain: bool = True            # a plain number: absolute for a zero reference
+
+    @property
+    def text(self) -> str:
+        if self.plain:
+            return f"{self.rel:g}"
+        parts = ([f"rel {self.rel:g}"] if self.rel else []) + ([f"abs {self.abs:g}"] if self.abs else [])
+        return " ".join(parts) or "0"
 
 
-def _number(v, file, marks, path, field: str, *, positive: bool) -> float:
-    """A finite number (a tolerance: also >= 0) from an answers file, or a TaskError."""
-    import math
-    line, col = marks.get(path, (None, None))
-    ok = isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(float(v))
-    if ok and positive and float(v) < 0:
-        ok = False
-    if not ok:
-        want = "a non-negative number (relative tolerance)" if positive else "a finite number"
-        raise TaskError("invalid answers file", file=str(file), issues=[(field, line, col,
-                                                                          f"expected {want}, got {v!r}")])
-    return float(v)
+def parse_tolerance(v, where: str, line=None, col=None, file=None) -> Tol:
+    """A tolerance entry: a non-negative number (relative) or {rel: R, abs: A}."""
+    def bad(msg):
+        return TaskError("invalid tolerance", file=file, issues=[(where, line, col, msg)])
+
+    def num(x, what):
+        ok = isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(float(x)) and x >= 0
+        if not ok:
+            raise bad(f"expected a non-negative number ({what}), got {x!r}")
+        return float(x)
+
+    if isinstance(v, Tol):
+        return v
+    if hasattr(v, "model_dump"):          # the task's ToleranceSpec
+        v = v.model_dump()
+    if isinstance(v, dict):
+        extra = set(map(str, v)) - {"rel", "abs"}
+        if extra:
+            raise bad(f"unknown key '{sorted(extra)[0]}'; a tolerance mapping holds `rel` and `abs`")
+        return Tol(rel=num(v.get("rel", 0), "relative"), abs=num(v.get("abs", 0), "absolute"), plain=False)
+    return Tol(rel=num(v, "relative tolerance"))
 
 
-def tolerance_for(key: str, tol: dict[str, float]) -> float:
+def tolerance_for(key: str, tol: dict) -> Any:
+    """The tolerance entry for a path: the path itself, else its longest prefix, else
+    `default`, else 0.05. Returns what the mapping holds (a number or a Tol)."""
     if key in tol:
         return tol[key]
-    # a tolerance may be given for a section or a prefix ("flywheel", "kinematics")
     best, best_len = tol.get("default", DEFAULT_TOLERANCE), -1
     for k, v in tol.items():
-        if k != "default" and key.startswith(k) and len(k) > best_len:
+        if k != "default" and (key.startswith(k + ".") or key.startswith(k + "[")) and len(k) > best_len:
             best, best_len = v, len(k)
     return best
 
 
-def check_task(results: dict, answers: dict[str, float], tol: dict[str, float]) -> list[dict]:
-    """One row per answer: quantity, student, reference, rel_error, tolerance, verdict.
-    The relative error is |student - reference| / |reference|; for a zero reference
-    the absolute error is compared with the tolerance."""
-    rows = []
-    for key, student in answers.items():
-        t = tolerance_for(key, tol)
+# ------------------------------------------------------------------ answer sets
+@dataclass
+class AnswerSet:
+    source: str                                   # file, or file:line of a CSV row
+    answers: dict[str, Any] = field(default_factory=dict)   # path -> float | None (missing)
+    student: str = ""
+    group: str = ""
+    variant: Any = None
+    stem: str | None = None
+    tolerance: dict | None = None
+    error: str | None = None                      # an invalid answers file / row
+
+    def matches(self, task) -> bool:
+        tv = task.variant
+        if self.variant is not None and str(self.variant) != "":
+            return tv is not None and _same(self.variant, tv)
+        return self.stem is not None and (self.stem == task.name or (tv is not None and _same(self.stem, tv)))
+
+
+def _same(a, b) -> bool:
+    sa, sb = str(a).strip(), str(b).strip()
+    if sa == sb:
+        return True
+    try:
+        return float(sa) == float(sb)
+    except ValueError:
+        return sa.lstrip("v0") == sb.lstrip("v0") and sa.lstrip("v0") != ""
+
+
+def answer_value(v, path: str):
+    """A student's value in the path's unit (SI, angles in degrees): None when empty.
+    Raises ValueError with the reason for anything that is not a number."""
+    if v is None:
+        return None
+    if isinstance(v, bool):
+        return float(v)
+    if isinstance(v, (int, float)):
+        x = float(v)
+        if not math.isfinite(x):
+            raise ValueError(f"not a finite number: {v!r}")
+        return x
+    s = str(v).strip()
+    if s == "":
+        return None
+    from .tables import cell_value
+    c = cell_value(s)
+    if isinstance(c, (int, float)):
+        return float(c)
+    from .units import ureg
+    reg = ureg()
+    try:
+        q = reg.Quantity(s.replace("^", "**"))
+    except Exception:
+        raise ValueError(f"not a number: {s!r}") from None
+    if not hasattr(q, "magnitude") or not isinstance(q.magnitude, (int, float)):
+        raise ValueError(f"not a number: {s!r}")
+    try:
+        if _is_angle(path) and q.dimensionless:
+            x = float(q.to("degree").magnitude) if not q.unitless else float(q.magnitude)
+        else:
+            x = float(q.to_base_units().magnitude)
+    except Exception as exc:
+        raise ValueError(f"cannot read {s!r}: {exc}") from None
+    if not math.isfinite(x):
+        raise ValueError(f"not a finite number: {s!r}")
+    return x
+
+
+def _is_angle(path: str) -> bool:
+    try:
+        toks = [t for t in parse_path(path) if isinstance(t, str)]
+    except KeyError:
+        return False
+    return bool(toks) and toks[-1] in ANGLE_KEYS
+
+
+def _mark(marks, key, default=(None, None)):
+    return marks.get(key, default)
+
+
+def load_answers_file(path: Path, keep_errors: bool = False) -> AnswerSet:
+    """One student's answers file (YAML): `answers`, optional `student`, `variant`,
+    `tolerance`. Raises TaskError naming the file, line and field; with ``keep_errors``
+    an invalid answer or path is kept as the set's error (the set still names its
+    student and variant)."""
+    from .yamlload import load_yaml
+    path = Path(path)
+    if not path.is_file():
+        raise TaskError("not a regular file (an answers file is a YAML file with `answers:`)", file=str(path))
+    try:
+        data, marks = load_yaml(path)
+    except TaskError:
+        data, marks = None, {}
+    if not isinstance(data, dict) or "answers" not in data:
+        # never echo the file's content: it may be anything
+        raise TaskError("not an answers file (a YAML file with an `answers:` mapping of result paths to "
+                        "values)", file=str(path))
+    unknown = set(map(str, data)) - {"answers", "tolerance", "student", "variant", "schema", "title"}
+    if unknown:
+        k = sorted(unknown)[0]
+        line, col = _mark(marks, (k,))
+        raise TaskError("unknown key", file=str(path), issues=[(k, line, col, f"unknown key '{k}'; an answers "
+                        f"file holds `answers`, `tolerance`, `student` and `variant`")])
+    for key in ("answers", "tolerance", "student"):
+        raw = data.get(key)
+        if raw is not None and not isinstance(raw, dict):
+            line, col = _mark(marks, (key,))
+            raise TaskError("invalid answers file", file=str(path), issues=[(key, line, col, f"expected a mapping, "
+                                                                              f"got {type(raw).__name__}")])
+    aset = AnswerSet(source=str(path), stem=path.stem, variant=data.get("variant"))
+    st = data.get("student") or {}
+    aset.student, aset.group = str(st.get("name") or ""), str(st.get("group") or "")
+    for k, v in (data.get("answers") or {}).items():
+        k = str(k)
+        line, col = _mark(marks, ("answers", k))
+        err = None
         try:
-            ref = lookup(results, key)
+            parse_path(k)
+            aset.answers[k] = answer_value(v, k)
         except KeyError as exc:
-            rows.append({"quantity": key, "student": student, "reference": None, "rel_error": None,
-                         "tolerance": t, "verdict": "missing", "note": str(exc).strip("'\"")})
+            err = TaskError("invalid answers file", file=str(path),
+                            issues=[(f"answers.{k}", line, col, str(exc).strip("'\""))])
+        except ValueError as exc:
+            err = TaskError("invalid answer", file=str(path),
+                            issues=[(f"answers.{k}", line, col, f"invalid answer: {exc}")])
+        if err is not None:
+            if not keep_errors:
+                raise err
+            aset.error = aset.error or err.render()
+    if data.get("tolerance") is not None:
+        aset.tolerance = {}
+        for k, v in data["tolerance"].items():
+            line, col = _mark(marks, ("tolerance", k))
+            aset.tolerance[str(k)] = parse_tolerance(v, f"tolerance.{k}", line, col, str(path))
+    return aset
+
+
+def load_answers_dir(folder: Path) -> list[AnswerSet]:
+    """Every *.yaml / *.yml in the folder: one answer set each (a file that cannot be
+    read becomes a set with its error)."""
+    sets = []
+    files = sorted(set(Path(folder).glob("*.yaml")) | set(Path(folder).glob("*.yml")))
+    for f in files:
+        try:
+            sets.append(load_answers_file(f, keep_errors=True))
+        except TaskError as exc:
+            sets.append(AnswerSet(source=str(f), stem=f.stem, error=exc.render().replace("\n", "; ")))
+    return sets
+
+
+def load_answers_csv(path: Path) -> list[AnswerSet]:
+    """One row per student: student, group, variant, then one column per path."""
+    from .tables import TableError, read_table
+    try:
+        header, rows = read_table(path)
+    except TableError as exc:
+        raise TaskError(exc.message, file=str(path), issues=[("", exc.line, None, exc.message)] if exc.line else None)
+    if "variant" not in header:
+        raise TaskError("an answers table needs a `variant` column (and `student`, `group`, then one column "
+                        "per result path)", file=str(path))
+    paths = [h for h in header if h not in ("student", "group", "variant") and h]
+    for p in paths:
+        try:
+            parse_path(p)
+        except KeyError as exc:
+            raise TaskError("invalid answers table", file=str(path),
+                            issues=[(p, 1, header.index(p) + 1, f"column '{p}': {str(exc)}")]) from None
+    sets = []
+    for line, row, bad in rows:
+        from .tables import cell_value
+        v = cell_value(row.get("variant", ""))
+        aset = AnswerSet(source=f"{path}:{line}", student=row.get("student", "").strip(),
+                         group=row.get("group", "").strip(), variant=None if v == "" else v)
+        if bad:
+            aset.error = f"{path}:{line}: {bad}"
+        for p in paths:
+            try:
+                aset.answers[p] = answer_value(row.get(p, ""), p)
+            except ValueError as exc:
+                aset.error = aset.error or f"{path}:{line}: column '{p}': invalid answer: {exc}"
+        sets.append(aset)
+    return sets
+
+
+def load_sources(path: Path) -> list[AnswerSet]:
+    """--answers FILE | DIR | CSV."""
+    path = Path(path)
+    if path.is_dir():
+        return load_answers_dir(path)
+    if not path.exists():
+        raise TaskError("no such file or folder", file=str(path))
+    if path.suffix.lower() == ".csv":
+        return load_answers_csv(path)
+    return [load_answers_file(path)]
+
+
+def task_answer_set(task) -> AnswerSet | None:
+    """The task's own `answers` section as a set (None when it has none)."""
+    if not task.answers:
+        return None
+    st = task.student
+    return AnswerSet(source=task.file or task.name, answers={k: float(v) for k, v in task.answers.items()},
+                     student=(st.name or "") if st else "", group=(st.group or "") if st else "",
+                     variant=task.variant, stem=task.name)
+
+
+def load_tolerance_file(path: Path) -> dict:
+    """--tolerance FILE: a YAML mapping (or one with a `tolerance:` key) path -> tolerance."""
+    from .yamlload import load_yaml
+    path = Path(path)
+    if not path.is_file():
+        raise TaskError("not a regular file (a tolerance file is a YAML mapping)", file=str(path))
+    try:
+        data, marks = load_yaml(path)
+    except TaskError:
+        data, marks = None, {}
+    base = ()
+    if isinstance(data, dict) and isinstance(data.get("tolerance"), dict):
+        data, base = data["tolerance"], ("tolerance",)
+    if not isinstance(data, dict):
+        raise TaskError("not a tolerance file (a YAML mapping of result paths or prefixes to tolerances)",
+                        file=str(path))
+    out = {}
+    for k, v in data.items():
+        line, col = _mark(marks, base + (k,))
+        out[str(k)] = parse_tolerance(v, str(k), line, col, str(path))
+    return out
+
+
+def tolerances(task, override: dict | None = None, student: dict | None = None) -> dict:
+    """The task's `tolerance`, then --tolerance FILE per key, then (check with one FILE)
+    the student's file."""
+    tol = {str(k): parse_tolerance(v, f"tolerance.{k}") for k, v in (task.tolerance or {}).items()}
+    tol.update(override or {})
+    tol.update(student or {})
+    return tol
+
+
+# ------------------------------------------------------------------ results paths
+def leaf_paths(results: dict) -> list[tuple[str, Any]]:
+    """Every path to a number, bool or string in results (position lists by [index])."""
+    out: list[tuple[str, Any]] = []
+
+    def walk(o, p):
+        if isinstance(o, dict):
+            for k, v in o.items():
+                walk(v, f"{p}.{k}" if p else str(k))
+        elif isinstance(o, list):
+            by_index = bool(o) and all(isinstance(e, dict) and "index" in e for e in o)
+            for i, v in enumerate(o):
+                walk(v, f"{p}[{v['index'] if by_index else i}]")
+        elif o is None or isinstance(o, (bool, int, float, str)):
+            if o is not None:
+                out.append((p, o))
+    walk(results, "")
+    return out
+
+
+def did_you_mean(path: str, results: dict, leaves: list[str] | None = None) -> str:
+    cands = leaves if leaves is not None else [p for p, v in leaf_paths(results)
+                                               if isinstance(v, (int, float))]
+    sec = path.split(".")[0].split("[")[0]
+    near = [c for c in cands if c.split(".")[0].split("[")[0] == sec] or cands
+    hit = difflib.get_close_matches(path, near, n=1, cutoff=0.5)
+    return f"did you mean '{hit[0]}'?" if hit else "no such path in the results"
+
+
+# ------------------------------------------------------------------ grading
+def compare(student: float, ref: float, tol: Tol, angle: bool) -> tuple[str, float, str]:
+    """(status, error, kind of error: 'rel' | 'abs')."""
+    def diff(a):
+        d = a - ref
+        return (d + 180.0) % 360.0 - 180.0 if angle else d
+    d = abs(diff(student))
+    if ref == 0 and tol.plain:
+        bound, kind = tol.rel, "abs"
+    else:
+        rel_b = tol.rel * abs(ref)
+        bound, kind = (rel_b, "rel") if rel_b >= tol.abs and ref != 0 else (tol.abs, "abs")
+    err = d / abs(ref) if kind == "rel" else d
+    slack = 1e-12 * max(1.0, abs(ref))
+    if d <= bound + slack:
+        return "ok", err, kind
+    if ref != 0 and abs(diff(-student)) <= bound + slack:
+        return "sign", err, kind
+    return "outside", err, kind
+
+
+def grade(results: dict, aset: AnswerSet, tol: dict, required: list[str] | None = None) -> list[dict]:
+    """One row (CHECK_FIELDS) per answer of the set and per required path it lacks."""
+    paths = list(aset.answers) + [p for p in (required or []) if p not in aset.answers]
+    leaves = None
+    rows = []
+    for p in paths:
+        val = aset.answers.get(p)
+        t = tolerance_for(p, tol)
+        t = t if isinstance(t, Tol) else parse_tolerance(t, p)
+        row = {"student": aset.student, "group": aset.group, "variant": "" if aset.variant is None else aset.variant,
+               "path": p, "answer": val, "reference": None, "error": None, "tolerance": t.text, "status": "",
+               "note": ""}
+        rows.append(row)
+        try:
+            ref = lookup(results, p)
+        except KeyError as exc:
+            sec = p.split(".")[0].split("[")[0]
+            if sec not in results and sec in SECTIONS:
+                row["status"], row["note"] = "not_computed", f"the task has no '{sec}' stage"
+            else:
+                if leaves is None:
+                    leaves = [q for q, v in leaf_paths(results) if isinstance(v, (int, float))]
+                row["status"] = "unknown_path"
+                row["note"] = f"{str(exc).strip(chr(34) + chr(39))}; {did_you_mean(p, results, leaves)}"
+            continue
+        if ref is None:
+            row["status"], row["note"] = "not_computed", "no value in the results (singular or not computed)"
             continue
         if isinstance(ref, bool):
             ref = float(ref)
-        if not isinstance(ref, (int, float)) or ref is None or not math.isfinite(ref):
-            rows.append({"quantity": key, "student": student, "reference": ref, "rel_error": None,
-                         "tolerance": t, "verdict": "missing", "note": "not a number in the results"})
+        if not isinstance(ref, (int, float)):
+            if leaves is None:
+                leaves = [q for q, v in leaf_paths(results) if isinstance(v, (int, float))]
+            row["status"] = "unknown_path"
+            row["note"] = f"not a number but a {type(ref).__name__}; {did_you_mean(p, results, leaves)}"
             continue
-        err = abs(student - ref) / abs(ref) if ref != 0 else abs(student - ref)
-        rows.append({"quantity": key, "student": student, "reference": float(ref), "rel_error": err,
-                     "tolerance": t, "verdict": "ok" if err <= t else "wrong", "note": ""})
+        row["reference"] = float(ref)
+        if val is None:
+            row["status"], row["note"] = "missing", "no value given"
+            continue
+        status, err, kind = compare(float(val), float(ref), t, _is_angle(p))
+        row["status"], row["error"] = status, err
+        if status == "sign":
+            row["note"] = "right magnitude, wrong sign"
+        elif kind == "abs" and status != "ok":
+            row["note"] = "absolute error"
     return rows
 
 
-def rows_csv(rows: list[dict]) -> str:
-    buf = io.StringIO()
-    w = csv.DictWriter(buf, fieldnames=["quantity", "student", "reference", "rel_error", "tolerance",
-                                        "verdict", "note"], lineterminator="\n")
-    w.writeheader()
+def set_status(rows: list[dict]) -> str:
+    if not rows or all(r["answer"] is None for r in rows):
+        return "no_answers"
+    present = {r["status"] for r in rows}
+    if present <= {"ok"}:
+        return "ok"
+    for s in SET_ORDER:
+        if s in present:
+            return s
+    return "ok"
+
+
+def set_code(status: str) -> int:
+    """The exit code of an answer set's status (not_computed alone does not fail)."""
+    return {"ok": 0, "not_computed": 0, "invalid": 2, "failed": 3}.get(status, 1)
+
+
+def counts(rows: list[dict]) -> dict[str, int]:
+    return {s: sum(r["status"] == s for r in rows) for s in STATUSES}
+
+
+def check_csv(rows: list[dict]) -> str:
+    from .tables import csv_text
+    return csv_text(CHECK_FIELDS, rows)
+
+
+def check_task(results: dict, answers: dict[str, float], tol: dict) -> list[dict]:
+    """Grade plain answers (path -> number) with a tolerance mapping: the rows of
+    :func:`grade` with `quantity`, `student` (the value), `rel_error` and `verdict` too."""
+    rows = grade(results, AnswerSet(source="", answers=dict(answers)), tol)
     for r in rows:
-        w.writerow(r)
-    return buf.getvalue()
+        r["quantity"], r["rel_error"], r["verdict"] = r["path"], r["error"], r["status"]
+    return rows
+
+
+def short(text: str, n: int) -> str:
+    text = re.sub(r"\s+", " ", str(text))
+    return text if len(text) <= n else text[: n - 1] + "…"

@@ -68,17 +68,15 @@ def _fail_stage(exc: StageError, file: str | None = None) -> "typer.Exit":
 def _fail_write(exc: OSError) -> "typer.Exit":
     """The output folder or a file in it cannot be written (--out names a file, no
     permission, disk full): the writing stage failed, exit 3, no traceback."""
-    where = exc.filename if exc.filename is not None else ""
-    reason = exc.strerror or str(exc)
-    if isinstance(exc, (FileExistsError, NotADirectoryError)):
-        reason += " (a file is in the way of the output folder)"
-    _err(f"error: stage 'output' failed: cannot write {where}: {reason}")
+    from .orchestrate import write_error_text
+    _err(f"error: {write_error_text(exc)}")
     return typer.Exit(EXIT_STAGE)
 
 
 def _load(path: Path):
-    from .task import load_task
-    return load_task(path)
+    """Load and validate a task as every command does (exit 2 / 3 the same everywhere)."""
+    from .orchestrate import prepare
+    return prepare(path)
 
 
 def _parse_formats(text: str) -> set[str]:
@@ -93,29 +91,9 @@ def _parse_formats(text: str) -> set[str]:
 def write_outputs(task, results: dict, out: Path, formats: set[str], lang: str,
                   notes: list[str] | None = None,
                   study: tuple[dict, dict] | None = None) -> list[Path]:
-    """results.json and the reports, each written atomically; the run's manifest in
-    `out` then lists them, and the files of the previous run into `out` that were not
-    written again are removed (tmm_cli.io.Manifest).  `notes` receives one line per
-    output skipped (the PDF where its engine cannot run).  study: (study, trapezoid) of
-    `tmm_cli.study.run_study`, shown in the reports and written as study.json/study.html
-    (never in results.json)."""
-    from .io import Manifest, atomic_write
-    from .results import dumps
-
-    manifest = Manifest(out)
-    written = []
-    if "json" in formats or True:  # results.json is always written: the reports are made from it
-        written.append(atomic_write(out / "results.json", dumps(results)))
-    rep = formats & {"html", "pdf"}
-    if rep:
-        from .report import render
-        shown = results if study is None else {**results, "study": study[0], "study_trapezoid": study[1]}
-        written.extend(render(shown, task, out, rep, lang, notes=notes))
-    if study is not None:
-        from . import study as study_mod
-        written.extend(study_mod.write(study[0], out, study[1]))
-    manifest.commit(written)
-    return written
+    """results.json and the reports (tmm_cli.orchestrate.write_outputs)."""
+    from .orchestrate import write_outputs as write
+    return write(task, results, out, formats, lang, notes=notes, study=study)
 
 
 @app.command()
@@ -136,42 +114,33 @@ def run(
     formats = _parse_formats(format)
     if lang not in ("en", "ru"):
         raise typer.BadParameter("--lang must be en or ru")
-    try:
-        task = _load(task_file)
-    except TaskError as exc:
-        raise _fail_task(exc)
-    out = out or Path("out") / task.name
-    from .pipeline import PartialResults, run as run_pipeline
-
+    from .orchestrate import process
+    from .pipeline import PartialResults
     progress = None
     if not quiet:
         def progress(stage: str) -> None:
             _err(f"  {stage}...")
     failure = None
-    try:
-        results = run_pipeline(task, progress=progress)
-    except PartialResults as exc:
-        # keep what was computed: results.json and the report with every computed
-        # section and, in place of a failed one, what failed; then exit 3
-        results, failure = exc.partial, exc
-    except StageError as exc:
-        raise _fail_stage(exc, task.file)
-    except TaskError as exc:
-        raise _fail_task(exc)
-    st = _run_study(task, progress) if study else None
     notes: list[str] = []
     try:
-        paths = write_outputs(task, results, out, formats, lang, notes=notes, study=st)
+        task, results, paths = process(task_file, lambda t: out or Path("out") / t.name, formats, lang,
+                                       progress=progress, study=study, notes=notes)
+    except PartialResults as exc:
+        # results.json and the report were written with every computed section and, in
+        # place of a failed one, what failed; then exit 3
+        failure, results = exc, exc.partial
+    except TaskError as exc:
+        raise _fail_task(exc)
     except StageError as exc:
-        raise _fail_stage(failure or exc, task.file)
+        raise _fail_stage(exc, str(task_file))
     except OSError as exc:
         raise _fail_write(exc)
     for note in notes:
         _err(f"warning: {note}")
     if failure is not None:
         for e in results.get("errors", [])[1:]:
-            _err(f"error: {task.file}: {StageError(e['stage'], e['message'], e['position'])}")
-        raise _fail_stage(failure, task.file)
+            _err(f"error: {task_file}: {StageError(e['stage'], e['message'], e['position'])}")
+        raise _fail_stage(failure, str(task_file))
     if not quiet:
         from .summary import print_summary
         print_summary(results, paths)
@@ -221,12 +190,8 @@ def validate(
     code = EXIT_OK
     for f in task_files:
         try:
-            task = _load(f)
-            if task._synthesis_error is not None:
-                raise task._synthesis_error
-            if task.mechanism is not None:
-                from .validation import check_feasible
-                check_feasible(task, assembly=not no_assembly)
+            from .orchestrate import prepare
+            prepare(f, assembly=not no_assembly)
             typer.echo(f"{f}: ok")
         except TaskError as exc:
             _err(f"error: invalid task\n{exc.render()}")
@@ -241,37 +206,74 @@ def validate(
 def check(
     task_file: Path = typer.Argument(..., metavar="TASK.yaml"),
     answers: Optional[Path] = typer.Option(None, "--answers", "-a",
-                                           help="a YAML file with `answers:` (and optional `tolerance:`); "
-                                                "default: the task's own `answers` section"),
+                                           help="answers: a YAML file with `answers:`, a folder of them, or a CSV "
+                                                "with a row per student (student, group, variant, one column per "
+                                                "path); default: the task's own `answers` section"),
     out: Optional[Path] = typer.Option(None, "--out", "-o", help="also write check.csv / results.json here"),
+    tolerance: Optional[Path] = typer.Option(None, "--tolerance", "-t",
+                                             help="a YAML file of tolerances per path or prefix (overrides the "
+                                                  "task's): 0.05 (relative) or {rel: 0.02, abs: 0.5}"),
+    quantities: Optional[str] = typer.Option(None, "--quantities", "-q",
+                                             help="required quantities: result paths and presets, comma-separated "
+                                                  "(a required path not answered is missing)"),
 ):
-    """Compare a student's answers with the computed results: a table of quantity,
-    student value, reference, relative error and verdict. Exit 1 if any answer is
-    outside its tolerance."""
-    from .check import check_task, load_answers
+    """Compare a student's answers with the computed results: path, answer, reference,
+    error and status (ok, sign, outside, missing, unknown_path, not_computed). Exit 1 if
+    any answer is not ok (or there are none), 2 invalid input, 3 a stage failed."""
+    from .check import (check_csv, grade, load_sources, load_tolerance_file, set_code, set_status,
+                        task_answer_set, tolerances)
+    from .orchestrate import compute, prepare
+    from .pipeline import PartialResults
     try:
-        task = _load(task_file)
-        ans, tol = load_answers(task, answers)
+        task = prepare(task_file, stage_errors=False)
+        tol_override = load_tolerance_file(tolerance) if tolerance is not None else None
+        single = answers is not None and answers.is_file() and answers.suffix.lower() != ".csv"
+        if answers is None:
+            own = task_answer_set(task)
+            if own is None:
+                raise TaskError("no answers to check: add an `answers:` section (paths into results.json) "
+                                "or give --answers FILE", file=str(task_file))
+            sets = [own]
+        else:
+            sets = load_sources(answers)
+            if not single:
+                sets = [a for a in sets if a.matches(task)]
+        for a in sets:
+            if a.error:
+                raise TaskError(a.error)
     except TaskError as exc:
         raise _fail_task(exc)
-    from .pipeline import PartialResults, run as run_pipeline
     try:
-        results = run_pipeline(task)
+        results = compute(task)
     except (PartialResults, StageError) as exc:
-        raise _fail_stage(exc, task.file)
-    rows = check_task(results, ans, tol)
+        raise _fail_stage(exc, str(task_file))
+    except TaskError as exc:
+        raise _fail_task(exc)
+    required = None
+    if quantities:
+        from .forms import expand
+        try:
+            required = expand(quantities, results)
+        except TaskError as exc:
+            raise _fail_task(exc)
     from .summary import print_check
-    print_check(rows, task_file)
+    if not sets:
+        _err(f"no answers for variant {task.variant if task.variant is not None else task.name} in {answers}")
+    code, all_rows = (EXIT_ANSWERS if not sets else EXIT_OK), []
+    for a in sets:
+        rows = grade(results, a, tolerances(task, tol_override, a.tolerance if single else None), required)
+        print_check(rows, a.source)
+        all_rows.extend(rows)
+        code = max(code, set_code(set_status(rows)))
     if out:
-        from .check import rows_csv
         from .io import atomic_write
         from .results import dumps
         try:
-            atomic_write(out / "check.csv", rows_csv(rows))
+            atomic_write(out / "check.csv", check_csv(all_rows))
             atomic_write(out / "results.json", dumps(results))
         except OSError as exc:
             raise _fail_write(exc)
-    raise typer.Exit(EXIT_OK if all(r["verdict"] == "ok" for r in rows) else EXIT_ANSWERS)
+    raise typer.Exit(code)
 
 
 @app.command()
@@ -280,17 +282,142 @@ def batch(
     out: Path = typer.Option(..., "--out", "-o", help="output folder: <out>/<variant>/ and summary files"),
     jobs: int = typer.Option(1, "--jobs", "-j", min=1, help="variants computed in parallel (processes)"),
     format: str = typer.Option("json", "--format", "-f", help="outputs per variant: json, html, pdf"),
-    lang: str = typer.Option("en", "--lang", "-l", help="report language: en | ru"),
+    lang: str = typer.Option("en", "--lang", "-l", help="report and summary language: en | ru"),
+    answers: Optional[Path] = typer.Option(None, "--answers", "-a",
+                                           help="students' answers: a YAML file, a folder of them, or a CSV; "
+                                                "default: each task's own `answers`"),
+    tolerance: Optional[Path] = typer.Option(None, "--tolerance", "-t", help="a YAML file of tolerances"),
+    quantities: Optional[str] = typer.Option(None, "--quantities", "-q",
+                                             help="required quantities: result paths and presets"),
+    timeout: float = typer.Option(120.0, "--timeout", min=0,
+                                  help="seconds one variant may run (0 = no limit); over it: a failed row"),
+    memory: int = typer.Option(4096, "--memory", min=0,
+                               help="MB of address space per variant (0 = no limit); over it: a failed row"),
 ):
-    """Run and check many variants; one failing variant never stops the rest.
-    Writes summary.csv and summary.html (one row per variant). Exit code: the worst
-    of the variants' codes (0 all pass, 1 some answers wrong, 2 some invalid, 3 some failed)."""
+    """Run and grade many variants; one failing variant never stops the rest.
+    Writes summary.csv, summary.html and check.csv (and <out>/<variant>/...). Exit code:
+    the worst of the rows (0 all ok, 1 some answers wrong or missing, 2 some invalid,
+    3 some failed)."""
     from .batch import run_batch
     formats = _parse_formats(format)
+    if lang not in ("en", "ru"):
+        raise typer.BadParameter("--lang must be en or ru")
     try:
-        code = run_batch(source, out, jobs=jobs, formats=formats, lang=lang)
+        code = run_batch(source, out, jobs=jobs, formats=formats, lang=lang, answers=answers, tolerance=tolerance,
+                         quantities=quantities, timeout=timeout, memory_mb=memory or None)
     except OSError as exc:
         raise _fail_write(exc)
+    raise typer.Exit(code)
+
+
+@app.command()
+def variants(
+    template: Path = typer.Argument(..., metavar="TEMPLATE.yaml", help="a task file with {column} placeholders"),
+    table: Path = typer.Argument(..., metavar="TABLE.csv", help="one row per variant; a `variant` column"),
+    out: Path = typer.Option(..., "--out", "-o", help="folder for <variant>.yaml and variants.csv"),
+):
+    """Write one validated task per table row (DIR/<variant>.yaml) and DIR/variants.csv.
+    A row whose task is invalid or does not assemble over the cycle is reported as
+    TABLE:<line>: variant <v>: <reason> and not written. Exit 0 when every row is
+    written, else 2."""
+    from .variants import make_variants
+    try:
+        code, report, messages = make_variants(template, table, out)
+    except TaskError as exc:
+        raise _fail_task(exc)
+    except OSError as exc:
+        raise _fail_write(exc)
+    for m in messages:
+        _err(m)
+    n = sum(r["status"] == "written" for r in report)
+    _err(f"wrote {n} of {len(report)} variants to {out} (and {out / 'variants.csv'})")
+    raise typer.Exit(code)
+
+
+@app.command()
+def paths(
+    task_file: Path = typer.Argument(..., metavar="TASK.yaml"),
+    prefix: Optional[str] = typer.Option(None, "--prefix", "-p", help="only paths starting with this"),
+    format: str = typer.Option("text", "--format", "-f", help="text (PATH<TAB>VALUE) | json"),
+):
+    """Run the task and list every result path with its value (the paths `answers`,
+    `--quantities` and tolerances use)."""
+    from .check import leaf_paths
+    from .orchestrate import compute, prepare
+    from .pipeline import PartialResults
+    if format not in ("text", "json"):
+        raise typer.BadParameter("--format must be text or json")
+    try:
+        task = prepare(task_file, stage_errors=False)
+        results = compute(task)
+    except TaskError as exc:
+        raise _fail_task(exc)
+    except (PartialResults, StageError) as exc:
+        raise _fail_stage(exc, str(task_file))
+    leaves = [(p, v) for p, v in leaf_paths(results) if prefix is None or p.startswith(prefix)]
+    if format == "json":
+        typer.echo(json.dumps(dict(leaves), indent=1, ensure_ascii=False))
+    else:
+        def txt(v):
+            return json.dumps(v) if isinstance(v, bool) else (repr(v) if isinstance(v, float) else str(v))
+        sys.stdout.write("".join(f"{p}\t{txt(v)}\n" for p, v in leaves))
+
+
+@app.command()
+def form(
+    source: Path = typer.Argument(..., metavar="TASK_OR_DIR", help="a task file or a folder of them"),
+    quantities: str = typer.Option(..., "--quantities", "-q",
+                                   help="result paths and presets, comma-separated: positions, kinematics, "
+                                        "kinetostatics, flywheel, cam, gears, planetary, drive_train, synthesis"),
+    out: Path = typer.Option(Path("forms"), "--out", "-o", help="output folder (default: forms/)"),
+    lang: str = typer.Option("en", "--lang", "-l", help="language of the comments: en | ru"),
+):
+    """Write per task a blank answer form NAME.form.yaml and an answer key NAME.key.yaml,
+    and for the set form.csv and key.csv."""
+    from .batch import find_tasks
+    from .forms import expand, form_text, forms_csv
+    from .io import atomic_write
+    from .orchestrate import classify, compute, prepare
+    from .results import lookup
+    if lang not in ("en", "ru"):
+        raise typer.BadParameter("--lang must be en or ru")
+    if source.is_dir():
+        found, _ = find_tasks(str(source))
+        files = [f for f, why in found if why is None]
+    else:
+        files = [source]
+    code, frows, krows, all_paths = EXIT_OK, [], [], []
+    for f in files:
+        try:
+            task = prepare(f, stage_errors=False)
+            results = compute(task)
+            qp = expand(quantities, results)
+            atomic_write(out / f"{task.name}.form.yaml", form_text(task, qp, None, lang))
+            atomic_write(out / f"{task.name}.key.yaml", form_text(task, qp, results, lang))
+        except TaskError as exc:
+            _err(f"error: {exc.render() if exc.file else f'{f}: {exc.render()}'}")
+            code = max(code, EXIT_INVALID)
+            continue
+        except BaseException as exc:
+            if isinstance(exc, KeyboardInterrupt):
+                raise
+            c, _, msg = classify(exc)
+            _err(f"error: {f}: {msg}")
+            code = max(code, c)
+            continue
+        all_paths += [p for p in qp if p not in all_paths]
+        v = task.variant if task.variant is not None else task.name
+        frows.append({"student": "", "group": "", "variant": v})
+        krow = {"student": "", "group": "", "variant": v}
+        for p in qp:
+            krow[p] = lookup(results, p)
+        krows.append(krow)
+    try:
+        atomic_write(out / "form.csv", forms_csv(frows, all_paths))
+        atomic_write(out / "key.csv", forms_csv(krows, all_paths))
+    except OSError as exc:
+        raise _fail_write(exc)
+    _err(f"wrote {len(frows)} form(s) and key(s) to {out}")
     raise typer.Exit(code)
 
 

@@ -146,16 +146,10 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int) -> No
         kinematics.check_assembly(mech)
     except StageError as err:
         raise impossible_dimensions(task, err) or err
-    pos_section = task.positions or PositionsSection()
-    extra_added: list[float] = []
-    if task.loads is not None:
-        from . import loads as loads_mod
-        pos0 = _stage("positions")(kinematics.find_positions)(mech, pos_section, task.drive)
-        extra_added = list(loads_mod.switch_angles(mech, task.loads, pos0))
-    positions = _stage("positions")(kinematics.find_positions)(mech, pos_section, task.drive,
-                                                                extra_added=extra_added)
+    positions = find_positions(task, mech)
     results["positions"] = positions.to_dict()
     if task.loads is not None:      # each loaded slider's own stroke (docs/methods.md §3.3)
+        from . import loads as loads_mod
         strokes = loads_mod.slider_strokes(mech, task.loads, positions)
         if strokes:
             results["positions"]["strokes"] = {k: s.to_dict() for k, s in strokes.items()}
@@ -217,6 +211,26 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int) -> No
             warnings.extend(kd.get("warnings", []) or [])
         else:
             results["singular"] = list(getattr(res, "singular", []))
+
+
+def find_positions(task: Task, mech):
+    """The positions of the cycle (the grid, the extra and extreme angles, the load
+    switch points), as the pipeline computes them; also used by validation."""
+    from . import kinematics
+    pos_section = task.positions or PositionsSection()
+    extra_added: list[float] = []
+    if task.loads is not None:
+        from . import loads as loads_mod
+        pos0 = _stage("positions")(kinematics.find_positions)(mech, pos_section, task.drive)
+        extra_added = list(loads_mod.switch_angles(mech, task.loads, pos0))
+    return _stage("positions")(kinematics.find_positions)(mech, pos_section, task.drive,
+                                                           extra_added=extra_added)
+
+
+def check_selection(task: Task, mech) -> None:
+    """A TaskError when `kinetostatics.positions` names a position the cycle does not have."""
+    if task.kinetostatics is not None and task.kinetostatics.positions != "all":
+        _select(task.kinetostatics.positions, find_positions(task, mech), task)
 
 
 def _select(spec, positions, task: Task) -> list[int]:

@@ -71,22 +71,137 @@ def print_summary(results: dict, paths: list[Path]) -> None:
         con.print(f"wrote {p}")
 
 
+STATUS_STYLE = {"ok": "green", "sign": "magenta", "outside": "red", "missing": "yellow",
+                "unknown_path": "yellow", "not_computed": "cyan", "no_answers": "yellow", "invalid": "red",
+                "failed": "red"}
+
+
+def _short_path(p: str, n: int = 30) -> str:
+    """A result path shortened for an 80-column terminal: 'kinematics[1].points.B.v' ->
+    'kin[1].B.v'."""
+    s = (p.replace("kinematics", "kin").replace("kinetostatics", "kst").replace(".points.", ".")
+         .replace(".links.", ".").replace(".reactions.", "."))
+    return s if len(s) <= n else "…" + s[-(n - 1):]
+
+
 def print_check(rows: list[dict], source) -> None:
+    """The graded answers of one set: path, answer, reference, error, status; fits 80 columns."""
     from rich.table import Table
 
+    from .check import counts
+
     con = _console()
-    t = Table(title=f"check: {source}")
-    t.add_column("quantity", overflow="fold", min_width=16)
-    for c, j in (("student", "right"), ("reference", "right"),
-                 ("rel. error", "right"), ("tolerance", "right")):
-        t.add_column(c, justify=j, no_wrap=True)
-    t.add_column("verdict", overflow="fold", min_width=7)
+    who = " ".join(x for x in (rows[0].get("student"), rows[0].get("group")) if x) if rows else ""
+    t = Table(title=f"check: {Path(str(source)).name}" + (f" - {who}" if who else ""), title_justify="left")
+    t.add_column("quantity", overflow="fold", max_width=26)
+    for c in ("answer", "reference", "error", "tol."):
+        t.add_column(c, justify="right", no_wrap=True)
+    t.add_column("status", overflow="fold", max_width=22)
     for r in rows:
-        v = r["verdict"]
-        style = {"ok": "green", "wrong": "red"}.get(v, "yellow")
-        err = "-" if r["rel_error"] is None else f"{100 * r['rel_error']:.2f} %"
-        t.add_row(r["quantity"], _f(r["student"]), _f(r["reference"]), err, f"{100 * r['tolerance']:.1f} %",
-                  f"[{style}]{v}[/{style}]" + (f" ({r['note']})" if r.get("note") else ""))
+        st = r["status"]
+        err = "-" if r["error"] is None else (f"{100 * r['error']:.2f} %" if r["note"] != "absolute error"
+                                              and "abs" not in r["tolerance"] else _f(r["error"], 3))
+        style = STATUS_STYLE.get(st, "white")
+        note = f" {r['note']}" if r["note"] and st in ("unknown_path", "sign") else ""
+        t.add_row(_short_path(r["path"], 26), _f(r["answer"]), _f(r["reference"]), err, r["tolerance"],
+                  f"[{style}]{st}[/{style}]" + note.replace("[", "\\["))
     con.print(t)
-    n_ok = sum(r["verdict"] == "ok" for r in rows)
-    con.print(f"{n_ok} of {len(rows)} answers within tolerance")
+    c = counts(rows)
+    con.print(f"{c['ok']} of {len(rows)} answers within tolerance" + "".join(f", {v} {k}" for k, v in c.items() if v and k != "ok"))
+
+
+def print_batch(rows: list[dict], out: Path, skipped=(), removed=()) -> None:
+    """The batch table (student, variant, status, score, message), 80 columns wide."""
+    from rich.table import Table
+    from rich.text import Text
+
+    con = _console()
+    t = Table(title=f"tmm batch: {len(rows)} rows", title_justify="left")
+    t.add_column("student / file", overflow="fold", max_width=22)
+    t.add_column("var.", no_wrap=True, max_width=6)
+    t.add_column("status", no_wrap=True)
+    t.add_column("score", justify="right", no_wrap=True)
+    t.add_column("message", overflow="fold", max_width=32)
+    for r in rows:
+        who = r.get("student") or Path(str(r.get("file", ""))).name
+        st = r["status"]
+        score = f"{100 * float(r['score']):.0f} %" if r.get("answers") else "-"
+        t.add_row(Text(str(who)), Text(str(r.get("variant", ""))), Text(st, style=STATUS_STYLE.get(st, "")),
+                  score, Text(str(r.get("message", ""))[:200]))
+    con.print(t)
+    if skipped:
+        con.print(f"skipped {len(skipped)} answers file(s) among the tasks: "
+                  + ", ".join(Path(s).name for s in list(skipped)[:5]), markup=False)
+    if removed:
+        con.print(f"removed {len(removed)} file(s) of variants that are gone", markup=False)
+    con.print(f"wrote {out / 'summary.csv'}, summary.html and check.csv", markup=False)
+
+
+I18N = {
+    "en": {"title": "tmm batch", "student": "student", "group": "group", "variant": "variant", "status": "status",
+           "score": "score", "message": "message", "files": "files", "report": "report", "check": "check",
+           "feedback": "feedback", "rows": "rows", "legend": "Legend",
+           "ok": "ok", "outside": "outside tolerance", "sign": "sign error", "missing": "missing",
+           "unknown_path": "unknown path", "not_computed": "not computed", "no_answers": "no answers",
+           "invalid": "invalid", "failed": "failed"},
+    "ru": {"title": "tmm: сводка по группе", "student": "студент", "group": "группа", "variant": "вариант",
+           "status": "статус", "score": "балл", "message": "сообщение", "files": "файлы", "report": "отчёт",
+           "check": "проверка", "feedback": "разбор", "rows": "строк", "legend": "Обозначения",
+           "ok": "верно", "outside": "вне допуска", "sign": "ошибка знака", "missing": "нет ответа",
+           "unknown_path": "неизвестная величина", "not_computed": "не вычислено", "no_answers": "нет ответов",
+           "invalid": "ошибка в задании", "failed": "не рассчитано"},
+}
+COLOURS = {"ok": "#c8e6c9", "outside": "#ffcdd2", "sign": "#e1bee7", "missing": "#fff9c4",
+           "unknown_path": "#ffe0b2", "not_computed": "#e0e0e0", "no_answers": "#fff9c4", "invalid": "#ef9a9a",
+           "failed": "#ef9a9a"}
+
+
+def summary_html(rows: list[dict], paths: list[str], source: str, lang: str = "en") -> str:
+    """summary.html: students x quantities, a colour per status, the score, links to each
+    variant's report, check file and feedback. Every user string is escaped."""
+    import html
+    from urllib.parse import quote
+
+    T = I18N.get(lang, I18N["en"])
+    e = lambda x: html.escape(str(x), quote=True)  # noqa: E731
+    head = "".join(f"<th>{e(T[c])}</th>" for c in ("student", "group", "variant", "status", "score"))
+    head += "".join(f'<th class="q" title="{e(p)}">{e(_short_path(p, 18))}</th>' for p in paths)
+    head += f"<th>{e(T['files'])}</th><th>{e(T['message'])}</th>"
+    body = []
+    for r in rows:
+        st = r["status"]
+        score = f"{100 * float(r['score']):.0f} %" if r.get("answers") else "–"
+        cells = [e(r.get("student", "")), e(r.get("group", "")), e(r.get("variant", "")),
+                 f'<span class="st">{e(T.get(st, st))}</span>', e(score)]
+        tds = "".join(f"<td>{c}</td>" for c in cells[:3])
+        tds += f'<td style="background:{COLOURS.get(st, "#fff")}">{cells[3]}</td><td>{cells[4]}</td>'
+        for p in paths:
+            ps = r.get(p, "")
+            tds += (f'<td class="m" style="background:{COLOURS.get(ps, "#fff")}" title="{e(p)}: {e(T.get(ps, ps))}">'
+                    f'{e(_mark(ps))}</td>')
+        links = []
+        folder = r.get("folder") or ""
+        if folder:
+            for name, label in (("report.html", "report"), ("check.csv", "check")):
+                links.append(f'<a href="{e(quote(folder))}/{name}">{e(T[label])}</a>')
+        for fb in r.get("feedback", []) or []:
+            if fb.endswith(".html"):
+                links.append(f'<a href="{e(quote(fb))}">{e(T["feedback"])}</a>')
+        tds += f"<td>{' '.join(links)}</td><td class='msg'>{e(r.get('message', ''))}</td>"
+        body.append(f"<tr>{tds}</tr>")
+    legend = " ".join(f'<span class="lg" style="background:{c}">{e(_mark(s))} {e(T.get(s, s))}</span>'
+                      for s, c in COLOURS.items())
+    return ("<!DOCTYPE html><html><head><meta charset='utf-8'>"
+            f"<title>{e(T['title'])}</title>"
+            "<style>body{font-family:sans-serif;margin:1em}table{border-collapse:collapse;font-size:13px}"
+            "td,th{border:1px solid #999;padding:3px 6px;text-align:left}th.q{writing-mode:vertical-rl;"
+            "transform:rotate(180deg);font-weight:normal;font-size:11px}td.m{text-align:center}"
+            ".lg{padding:2px 6px;margin-right:4px;border:1px solid #999}.msg{font-size:11px;max-width:30em}</style>"
+            f"</head><body><h1>{e(T['title'])}: {e(source)}</h1><p>{len(rows)} {e(T['rows'])}</p>"
+            f"<p>{e(T['legend'])}: {legend}</p>"
+            f"<table><tr>{head}</tr>{''.join(body)}</table></body></html>\n")
+
+
+def _mark(status: str) -> str:
+    return {"ok": "✓", "outside": "✗", "sign": "±", "missing": "–", "unknown_path": "?",
+            "not_computed": "·", "no_answers": "–", "invalid": "!", "failed": "!"}.get(status, "")

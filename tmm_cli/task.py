@@ -526,6 +526,12 @@ from .trainspec import DOCS as _TRAIN_DOCS  # noqa: E402  (after _Model: trainsp
 from .trainspec import DriveTrainSection, TrainStageSpec  # noqa: E402
 
 
+class ToleranceSpec(_Model):
+    """A tolerance as {rel: R, abs: A}: passes when |student - reference| <= max(A, R |reference|)."""
+    rel: Annotated[float, Field(ge=0, allow_inf_nan=False)] = 0.0
+    abs: Annotated[float, Field(ge=0, allow_inf_nan=False)] = 0.0
+
+
 class StudentSpec(BaseModel):
     model_config = ConfigDict(extra="allow")
     name: str | None = None
@@ -554,7 +560,7 @@ class Task(_Model):
     dof2: Dof2Section | None = Field(None, description="a machine with two degrees of freedom: rotor + hinged "
                                                        "striker (docs/methods.md §7; runs on its own)")
     answers: dict[str, float] = Field(default_factory=dict)
-    tolerance: dict[str, Annotated[Ratio, Field(ge=0)]] = Field(default_factory=dict)
+    tolerance: dict[str, Union[Annotated[Ratio, Field(ge=0)], ToleranceSpec]] = Field(default_factory=dict)
 
     _file: str | None = PrivateAttr(None)
     _marks: dict = PrivateAttr(default_factory=dict)
@@ -788,9 +794,10 @@ _DOCS: dict[type, dict[str, str]] = {
         "planetary": "planetary gear synthesis (runs on its own)",
         "drive_train": "compound gear drive from the motor: ordinary pairs and planetary stages, given or chosen",
         "answers": "a student's numbers: path into results.json -> value (tmm check / tmm batch)",
-        "tolerance": "relative tolerances: {default: 0.05, <path or prefix>: ...}",
+        "tolerance": "tolerances per path or prefix: {default: 0.05, <path or prefix>: 0.02 or {rel: R, abs: A}}",
     },
     StudentSpec: {"name": "the student's name", "group": "the student's group"},
+    ToleranceSpec: {"rel": "relative tolerance (fraction of |reference|)", "abs": "absolute tolerance, in the unit of the path"},
     LinkSpec: {"mass": "mass, kg", "guide": "slider: the line it translates along (fixed or on a link)"},
     DriveSection: {"link": "the crank (a bar with a ground pivot)",
                    "direction": "ccw | cw",

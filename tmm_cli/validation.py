@@ -1,7 +1,7 @@
 """`tmm validate`: checks beyond the schema."""
 from __future__ import annotations
 
-from .errors import StageError
+from .errors import StageError, TaskError
 
 
 def check_feasible(task, assembly: bool = True) -> None:
@@ -20,6 +20,11 @@ def check_feasible(task, assembly: bool = True) -> None:
         kinematics.check_assembly(mech)
     except StageError as err:
         raise impossible_dimensions(task, err) or err
+    from .pipeline import check_selection
+    try:
+        check_selection(task, mech)
+    except TaskError as err:
+        raise task.locate(err) from None
 
 
 MM_RATIO = (50.0, 5000.0)     # a length this many times the others was meant in mm

@@ -1,8 +1,6 @@
 """The context object handed to every report section's ``build(ctx)``."""
 from __future__ import annotations
 
-import csv
-import io
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -128,13 +126,8 @@ class ReportContext:
 
     def write_csv(self, name: str, header: list[str], rows) -> Path:
         """CSV (comma, UTF-8, full float precision; None -> empty cell)."""
-        buf = io.StringIO()
-        w = csv.writer(buf, lineterminator="\n")
-        w.writerow(header)
-        for row in rows:
-            w.writerow(["" if v is None else (repr(float(v)) if isinstance(v, float) else v)
-                        for v in row])
-        return self.write_file(name, buf.getvalue())
+        from tmm_cli.tables import csv_text
+        return self.write_file(name, csv_text(header, rows))
 
     # -- common look-ups
     def link_names(self) -> list[str]:

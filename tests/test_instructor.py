@@ -1,0 +1,434 @@
+"""The instructor's loop: variant tables, answer forms, grading, feedback, and the
+robustness of `tmm batch` (isolated workers, folders, manifest, CSV injection)."""
+from __future__ import annotations
+
+import csv
+import json
+import math
+import os
+import shutil
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from tmm_cli.check import AnswerSet, Tol, answer_value, compare, grade, parse_tolerance, set_status
+from tmm_cli.cli import app
+from tmm_cli.tables import cell_value, csv_text, read_table, safe_cell
+
+runner = CliRunner()
+ROOT = Path(__file__).resolve().parent.parent
+EX = ROOT / "examples" / "instructor"
+
+GEARS = """schema: tmm/1
+title: gears
+variant: {v}
+gears: {{m: 4 mm, z: [14, 30], x: [0.3, 0.1]}}
+"""
+
+
+def _write(d: Path, name: str, text: str) -> Path:
+    p = d / name
+    p.parent.mkdir(parents=True, exist_ok=True)
+    p.write_text(text, encoding="utf-8")
+    return p
+
+
+def _csv(path: Path) -> list[dict]:
+    with open(path, encoding="utf-8", newline="") as fh:
+        return list(csv.DictReader(fh))
+
+
+# ------------------------------------------------------------------ tables and CSV
+def test_cells_decimal_comma_and_text():
+    assert cell_value("0,12") == 0.12 and cell_value("-1,5") == -1.5 and cell_value(" 07 ") == 7
+    assert cell_value("1e3") == 1000.0 and cell_value("abc") == "abc" and cell_value("") == ""
+
+
+def test_read_table_semicolons_bom_and_line_numbers(tmp_path):
+    p = tmp_path / "t.csv"
+    p.write_bytes("variant;l, mm\r\n1;0,5\r\n\r\n\"2\";\"3,25\"\r\n3;1;9\r\n".encode("utf-8-sig"))
+    header, rows = read_table(p)
+    assert header == ["variant", "l, mm"]
+    assert [(ln, r["l, mm"], bad) for ln, r, bad in rows][:2] == [(2, "0,5", None), (4, "3,25", None)]
+    assert rows[2][0] == 5 and "malformed row" in rows[2][2]
+
+
+@pytest.mark.parametrize("text,out", [("=HYPERLINK(\"x\")", "'=HYPERLINK(\"x\")"), ("@SUM(A1)", "'@SUM(A1)"),
+                                      ("+1+2 x", "'+1+2 x"), ("-cmd", "'-cmd"), ("\tx", "'\tx"),
+                                      ("\rx", "'\rx"), ("-1.5", "-1.5"), ("plain", "plain")])
+def test_formula_cells_neutralised(text, out):
+    assert safe_cell(text) == out
+    assert safe_cell(-2.5) == "-2.5" and safe_cell(-3) == -3 and safe_cell(None) == ""
+
+
+def test_csv_text_header_and_rows_neutralised():
+    text = csv_text(["=a", "b"], [["@x", -1.0], {"=a": 1, "b": "+y"}])
+    rows = list(csv.reader(text.splitlines()))
+    assert rows == [["'=a", "b"], ["'@x", "-1.0"], ["1", "'+y"]]
+
+
+# ------------------------------------------------------------------ grading (hand values)
+def test_compare_relative_absolute_angles_and_sign():
+    # |9.1 - 10| / 10 = 0.09 within 0.1
+    assert compare(9.1, 10.0, Tol(rel=0.1), False)[:2] == ("ok", pytest.approx(0.09))
+    # sign: -10.2 is 2 % from -10... the student wrote +10.2 for a reference of -10
+    assert compare(10.2, -10.0, Tol(rel=0.05), False)[0] == "sign"
+    assert compare(11.0, 10.0, Tol(rel=0.05), False)[0] == "outside"
+    # zero reference with a plain number: absolute 0.001 <= 0.05
+    assert compare(0.001, 0.0, Tol(rel=0.05), False) == ("ok", 0.001, "abs")
+    # {rel, abs}: bound = max(0.5, 0.02 * 246) = 4.92 deg
+    t = parse_tolerance({"rel": 0.02, "abs": 0.5}, "x")
+    assert compare(250.0, 246.0, t, True)[0] == "ok" and compare(251.0, 246.0, t, True)[0] == "outside"
+    # angles modulo 360: 359 vs 1 differ by 2 deg, not 358
+    st, err, kind = compare(359.0, 1.0, Tol(rel=0.0, abs=2.5, plain=False), True)
+    assert st == "ok" and err == pytest.approx(2.0) and kind == "abs"
+    assert compare(3.0, 1.0, Tol(rel=0.0, abs=1.5, plain=False), True)[0] == "outside"
+    # 359 deg is -1 deg: for a reference of 1 deg that is the sign error
+    assert compare(359.0, 1.0, Tol(rel=0.0, abs=1.5, plain=False), True)[0] == "sign"
+    # the issue's case: phi0 = 246 deg, 12 deg off, abs 0.5 -> outside
+    assert compare(258.0, 246.0, parse_tolerance({"abs": 0.5}, "x"), True)[0] == "outside"
+
+
+def test_answer_values_with_units():
+    assert answer_value("283 kg*m^2", "flywheel.J") == pytest.approx(283.0)
+    assert answer_value("12 deg", "positions.phi0") == pytest.approx(12.0)
+    assert answer_value("0.5 rad", "positions.phi0") == pytest.approx(0.5 * 180 / math.pi)
+    assert answer_value("50 rpm", "kinematics[1].links.crank.omega") == pytest.approx(50 * 2 * math.pi / 60)
+    assert answer_value("120 mm", "gears.aw") == pytest.approx(0.12)
+    assert answer_value("3,5", "gears.aw") == 3.5 and answer_value("", "x") is None and answer_value(None, "x") is None
+    for bad in ("abc", "12 apples", float("nan")):
+        with pytest.raises(ValueError):
+            answer_value(bad, "gears.aw")
+
+
+def test_grade_statuses():
+    res = {"structure": {"W": 1}, "flywheel": {"J": 10.0, "delta": None}, "positions": {"phi0": 246.0}}
+    aset = AnswerSet(source="a", answers={"structure.W": 1, "flywheel.J": -10.1, "flywheel.JJ": 3,
+                                          "flywheel.delta": 0.1, "gears.aw": 0.1, "positions.phi0": None})
+    rows = {r["path"]: r for r in grade(res, aset, {}, required=["structure.W", "positions.H"])}
+    assert rows["structure.W"]["status"] == "ok"
+    assert rows["flywheel.J"]["status"] == "sign"
+    assert rows["flywheel.JJ"]["status"] == "unknown_path" and "did you mean 'flywheel.J'" in rows["flywheel.JJ"]["note"]
+    assert rows["flywheel.delta"]["status"] == "not_computed"
+    assert rows["gears.aw"]["status"] == "not_computed"
+    assert rows["positions.phi0"]["status"] == "missing"
+    assert rows["positions.H"]["status"] == "unknown_path"
+    assert set_status(list(rows.values())) == "sign"
+    assert set_status(grade(res, AnswerSet(source="b", answers={"flywheel.J": None}), {})) == "no_answers"
+
+
+# ------------------------------------------------------------------ variants
+def test_shipped_example_writes_30_valid_tasks(tmp_path):
+    res = runner.invoke(app, ["variants", str(EX / "press_template.yaml"), str(EX / "press_variants.csv"),
+                              "--out", str(tmp_path / "v")])
+    assert res.exit_code == 0, res.output
+    rows = _csv(tmp_path / "v" / "variants.csv")
+    assert len(rows) == 30 and {r["status"] for r in rows} == {"written"}
+    import yaml
+    t7 = yaml.safe_load((tmp_path / "v" / "07.yaml").read_text())
+    table = {r["variant"]: r for _, r, _ in read_table(EX / "press_variants.csv")[1]}
+    assert t7["variant"] == 7 and t7["title"] == "Crank press, variant 7"
+    assert t7["mechanism"]["links"]["rod"]["length"] == f"{table['07']['l_AB, mm']} mm"
+    assert t7["drive"]["speed"] == f"{table['07']['n [rpm]']} rpm"
+    assert t7["flywheel"]["delta"] == cell_value(table["07"]["delta"])
+
+
+TEMPLATE = """schema: tmm/1
+title: "Variant {variant} {{literal}}"
+mechanism:
+  ground: {O: [0, 0]}
+  links:
+    crank: {points: [O, A], length: "{a}"}
+    rod: {points: [A, B], length: "{b}"}
+    slider: {slider: B, guide: {through: [0, 0], angle: 0}}
+  assembly: {B: [0.3, 0]}
+drive: {link: crank, speed: "{n}", direction: ccw}
+"""
+
+
+def test_variants_bad_rows_are_reported_and_others_written(tmp_path):
+    tpl = _write(tmp_path, "tpl.yaml", TEMPLATE)
+    tab = _write(tmp_path, "tab.csv", "variant;a, mm;b [mm];n\n1;100;300;10\n2;100;50;10\n3;100;300;10;7\n"
+                                      "4;100;300;ten rpm\n5;80;250;12,5\n")
+    res = runner.invoke(app, ["variants", str(tpl), str(tab), "--out", str(tmp_path / "o")])
+    assert res.exit_code == 2
+    err = res.output
+    assert f"{tab}:3: variant 2: stage 'kinematics' failed" in err          # rod shorter than the crank
+    assert f"{tab}:4: variant 3: malformed row" in err
+    assert f"{tab}:5: variant 4: " in err and "drive.speed" in err
+    assert sorted(p.name for p in (tmp_path / "o").glob("*.yaml")) == ["1.yaml", "5.yaml"]
+    rep = {r["variant"]: r for r in _csv(tmp_path / "o" / "variants.csv")}
+    assert rep["1"]["status"] == "written" and rep["2"]["status"] == "invalid" and rep["3"]["line"] == "4"
+    import yaml
+    t = yaml.safe_load((tmp_path / "o" / "5.yaml").read_text())
+    assert t["title"] == "Variant 5 {literal}" and t["variant"] == 5
+    assert t["mechanism"]["links"]["crank"]["length"] == "80 mm" and t["drive"]["speed"] == 12.5
+
+
+@pytest.mark.parametrize("table,what", [("variant,a\n1,2\n", "placeholder {b} names no column"),
+                                        ("a,b,n\n1,2,3\n", "needs a `variant` column"),
+                                        ("variant,a,b,n\n1,1,2,3\n01,1,2,3\n", "duplicate variant")])
+def test_variants_errors_before_anything_is_written(tmp_path, table, what):
+    tpl = _write(tmp_path, "tpl.yaml", TEMPLATE)
+    tab = _write(tmp_path, "tab.csv", table)
+    res = runner.invoke(app, ["variants", str(tpl), str(tab), "--out", str(tmp_path / "o")])
+    assert res.exit_code == 2 and what in res.output, res.output
+    assert not (tmp_path / "o").exists()
+    if "placeholder" in what:
+        assert f"{tpl}:" in res.output and "mechanism.links.rod.length" in res.output
+
+
+# ------------------------------------------------------------------ paths, form, check
+def test_paths_lists_every_leaf(tmp_path):
+    t = _write(tmp_path, "g.yaml", GEARS.format(v=3))
+    res = runner.invoke(app, ["paths", str(t), "--format", "json"])
+    assert res.exit_code == 0, res.output
+    d = json.loads(res.output)
+    rj = tmp_path / "r"
+    assert runner.invoke(app, ["run", str(t), "--out", str(rj), "--format", "json", "-q"]).exit_code == 0
+    results = json.loads((rj / "results.json").read_text())
+    assert d["gears.aw"] == results["gears"]["aw"] and d["gears.r[1]"] == results["gears"]["r"][1]
+    res = runner.invoke(app, ["paths", str(t), "--prefix", "gears.r["])
+    lines = res.output.strip().splitlines()
+    assert lines == [f"gears.r[0]\t{results['gears']['r'][0]!r}", f"gears.r[1]\t{results['gears']['r'][1]!r}"]
+
+
+def test_form_and_key(tmp_path):
+    t = _write(tmp_path, "g7.yaml", GEARS.format(v=7))
+    res = runner.invoke(app, ["form", str(t), "--quantities", "gears.aw,planetary", "--out", str(tmp_path / "f")])
+    assert res.exit_code == 2 and "preset 'planetary'" in res.output
+    res = runner.invoke(app, ["form", str(t), "--quantities", "gears.ww", "--out", str(tmp_path / "f")])
+    assert res.exit_code == 2 and "did you mean 'gears.aw'" in res.output
+    res = runner.invoke(app, ["form", str(t), "--quantities", "gears,gears.aw", "--out", str(tmp_path / "f"),
+                              "--lang", "ru"])
+    assert res.exit_code == 0, res.output
+    import yaml
+    form = yaml.safe_load((tmp_path / "f" / "g7.form.yaml").read_text())
+    key = yaml.safe_load((tmp_path / "f" / "g7.key.yaml").read_text())
+    assert form["variant"] == 7 and form["student"] == {"name": "", "group": ""}
+    assert set(form["answers"]) == set(key["answers"]) and all(v is None for v in form["answers"].values())
+    assert "межосевое расстояние" in (tmp_path / "f" / "g7.form.yaml").read_text()
+    kc = _csv(tmp_path / "f" / "key.csv")
+    assert list(kc[0])[:3] == ["student", "group", "variant"] and float(kc[0]["gears.aw"]) == key["answers"]["gears.aw"]
+    # the key graded against the task is all ok
+    res = runner.invoke(app, ["check", str(t), "--answers", str(tmp_path / "f" / "g7.key.yaml")])
+    assert res.exit_code == 0, res.output
+
+
+def test_check_answer_sources_and_messages(tmp_path):
+    t = _write(tmp_path, "g.yaml", GEARS.format(v=4))
+    d = tmp_path / "ans"
+    key = tmp_path / "k"
+    assert runner.invoke(app, ["form", str(t), "-q", "gears.aw,gears.alpha_w", "--out", str(key)]).exit_code == 0
+    import yaml
+    ref = yaml.safe_load((key / "g.key.yaml").read_text())["answers"]
+    _write(d, "ivanov.yaml", f"variant: 4\nstudent: {{name: Ivanov, group: MM-1}}\nanswers:\n"
+                             f"  gears.aw: \"{ref['gears.aw'] * 1000} mm\"\n  gears.alpha_w: {-ref['gears.alpha_w']}\n")
+    _write(d, "other.yaml", "variant: 5\nanswers: {gears.aw: 1}\n")
+    res = runner.invoke(app, ["check", str(t), "--answers", str(d), "--out", str(tmp_path / "c")])
+    assert res.exit_code == 1, res.output
+    rows = _csv(tmp_path / "c" / "check.csv")
+    assert list(rows[0]) == ["student", "group", "variant", "path", "answer", "reference", "error", "tolerance",
+                             "status", "note"]
+    assert [(r["student"], r["path"], r["status"]) for r in rows] == [("Ivanov", "gears.aw", "ok"),
+                                                                     ("Ivanov", "gears.alpha_w", "sign")]
+    # CSV: one row per student, decimal commas; another variant's row is not this task's
+    tab = _write(tmp_path, "a.csv", f"student;group;variant;gears.aw\nPetrov;MM-2;4;{str(ref['gears.aw']).replace('.', ',')}\n"
+                                    "Sidorov;MM-2;9;1\n")
+    res = runner.invoke(app, ["check", str(t), "--answers", str(tab)])
+    assert res.exit_code == 0 and "Petrov" in res.output and "Sidorov" not in res.output, res.output
+    # a non-YAML file: said to be no answers file, its content never echoed
+    junk = _write(tmp_path, "junk.txt", "SECRET-FIRST-LINE: [unclosed\n\x07binary")
+    res = runner.invoke(app, ["check", str(t), "--answers", str(junk)])
+    assert res.exit_code == 2 and "not an answers file" in res.output and "SECRET" not in res.output
+    # a non-numeric answer: an invalid answer with file, line and field
+    bad = _write(tmp_path, "bad.yaml", "answers:\n  gears.aw: twelve\n")
+    res = runner.invoke(app, ["check", str(t), "--answers", str(bad)])
+    assert res.exit_code == 2 and f"{bad}:2" in res.output and "invalid answer" in res.output
+    assert "outside" not in res.output
+    # an unknown path: exit 1 with "did you mean"
+    up = _write(tmp_path, "up.yaml", "answers:\n  gears.a_w: 1\n")
+    res = runner.invoke(app, ["check", str(t), "--answers", str(up), "--out", str(tmp_path / "u")])
+    assert res.exit_code == 1
+    r = _csv(tmp_path / "u" / "check.csv")[0]
+    assert r["status"] == "unknown_path" and "did you mean 'gears.aw'" in r["note"]
+    # --tolerance FILE with an absolute tolerance on the angle
+    tol = _write(tmp_path, "tol.yaml", "gears.alpha_w: {abs: 0.01}\n")
+    near = _write(tmp_path, "near.yaml", f"answers:\n  gears.alpha_w: {ref['gears.alpha_w'] + 0.05}\n")
+    assert runner.invoke(app, ["check", str(t), "--answers", str(near)]).exit_code == 0
+    assert runner.invoke(app, ["check", str(t), "--answers", str(near), "--tolerance", str(tol)]).exit_code == 1
+
+
+def test_positions_out_of_range_is_invalid_in_every_command(tmp_path):
+    text = (ROOT / "tasks" / "press_offset_slider_crank.yaml").read_text().replace("positions: all",
+                                                                                   "positions: [0, 99]")
+    t = _write(tmp_path / "g", "p.yaml", text + "answers: {structure.W: 1}\n")
+    for cmd in (["validate", str(t)], ["run", str(t), "--format", "json", "--out", str(tmp_path / "r")],
+                ["check", str(t)]):
+        res = runner.invoke(app, cmd)
+        assert res.exit_code == 2, (cmd, res.output)
+        assert "kinetostatics.positions" in res.output and "position 99 does not exist" in res.output
+    res = runner.invoke(app, ["batch", str(tmp_path / "g"), "--out", str(tmp_path / "b")])
+    assert res.exit_code == 2
+    assert _csv(tmp_path / "b" / "summary.csv")[0]["status"] == "invalid"
+
+
+# ------------------------------------------------------------------ batch robustness
+def test_batch_folders_are_unique_and_inside_out(tmp_path):
+    src = tmp_path / "src"
+    for name in ("...yaml", "v1.yaml", "v1.yml", "a/v2.yaml", "b/v2.yaml", "summary.csv.yaml"):
+        _write(src, name, GEARS.format(v=1))
+    out = tmp_path / "out"
+    res = runner.invoke(app, ["batch", str(src) + "/**/*.y*ml", "--out", str(out)])
+    assert res.exit_code == 0, res.output
+    rows = _csv(out / "summary.csv")
+    assert len(rows) == 6 and all(r["status"] == "ok" for r in rows)
+    results = sorted(p.parent.name for p in out.rglob("results.json"))
+    assert len(results) == 6 and len(set(results)) == 6
+    assert all(p.resolve().is_relative_to(out.resolve()) for p in out.rglob("*"))
+    assert not (tmp_path / "results.json").exists() and (out / "summary.csv").is_file()
+    assert "summary.csv" not in results
+
+
+def test_batch_rows_for_what_is_not_a_task_file(tmp_path):
+    src = tmp_path / "src"
+    _write(src, "ok.yaml", GEARS.format(v=1))
+    (src / "dir.yaml").mkdir()
+    os.mkfifo(src / "fifo.yaml")
+    os.symlink(src / "nowhere", src / "dangling.yaml")
+    res = runner.invoke(app, ["batch", str(src), "--out", str(tmp_path / "o")])
+    rows = {Path(r["file"]).name: r for r in _csv(tmp_path / "o" / "summary.csv")}
+    assert rows["ok.yaml"]["status"] == "ok"
+    assert "directory" in rows["dir.yaml"]["message"] and "FIFO" in rows["fifo.yaml"]["message"]
+    assert "dangling" in rows["dangling.yaml"]["message"]
+    assert {rows[k]["status"] for k in ("dir.yaml", "fifo.yaml", "dangling.yaml")} == {"invalid"}
+    assert res.exit_code == 2
+
+
+def test_batch_removes_only_its_own_stale_folders(tmp_path):
+    src = tmp_path / "src"
+    for v in (1, 2):
+        _write(src, f"v{v}.yaml", GEARS.format(v=v))
+    out = tmp_path / "o"
+    assert runner.invoke(app, ["batch", str(src), "--out", str(out)]).exit_code == 0
+    (out / "mine").mkdir()
+    (out / "mine" / "notes.txt").write_text("keep")
+    (out / "v1" / "notes.txt").write_text("keep too")
+    (src / "v2.yaml").unlink()
+    (src / "v1.yaml").unlink()
+    _write(src, "v3.yaml", GEARS.format(v=3))
+    assert runner.invoke(app, ["batch", str(src), "--out", str(out)]).exit_code == 0
+    assert not (out / "v2").exists()                                   # gone with its variant
+    assert (out / "v1" / "notes.txt").read_text() == "keep too"        # not written by tmm: kept
+    assert not (out / "v1" / "results.json").exists()
+    assert (out / "mine" / "notes.txt").exists() and (out / "v3" / "results.json").exists()
+
+
+def test_batch_survives_dead_slow_and_greedy_workers(tmp_path, monkeypatch):
+    import signal
+    import time
+
+    import tmm_cli.batch as b
+    real = b.work
+
+    def work(path, *a):
+        name = Path(path).stem
+        if name == "killed":
+            os.kill(os.getpid(), signal.SIGKILL)
+        if name == "slow":
+            time.sleep(60)
+        if name == "greedy":
+            x = bytearray(3 * 1024 ** 3)                          # 3 GB over a 1.5 GB limit
+            return {"never": len(x)}
+        return real(path, *a)
+
+    monkeypatch.setattr(b, "work", work)                          # the forked workers see it
+    src = tmp_path / "src"
+    for name in ("killed", "slow", "greedy", "good1", "good2"):
+        _write(src, f"{name}.yaml", GEARS.format(v=1))
+    vm = int(open("/proc/self/status").read().split("VmSize:")[1].split()[0]) // 1024
+    t0 = time.monotonic()
+    res = runner.invoke(app, ["batch", str(src), "--out", str(tmp_path / "o"), "--jobs", "2", "--timeout", "4",
+                              "--memory", str(vm + 1500)])
+    assert time.monotonic() - t0 < 40
+    rows = {Path(r["file"]).stem: r for r in _csv(tmp_path / "o" / "summary.csv")}
+    assert rows["good1"]["status"] == rows["good2"]["status"] == "ok"
+    assert rows["killed"]["status"] == "failed" and "SIGKILL" in rows["killed"]["message"]
+    assert rows["slow"]["status"] == "failed" and "time limit" in rows["slow"]["message"]
+    assert rows["greedy"]["status"] == "failed" and "memory" in rows["greedy"]["message"]
+    assert res.exit_code == 3 and (tmp_path / "o" / "summary.html").exists()
+    assert "BrokenProcessPool" not in res.output
+
+
+HOSTILE = "<script>alert(1)</script><img src=x onerror=alert(2)>"
+
+
+def test_summary_html_escapes_every_user_string_and_csv_neutralised(tmp_path):
+    src = tmp_path / "src"
+    _write(src, "h.yaml", f"schema: tmm/1\ntitle: '=HYPERLINK(\"http://x\")'\nvariant: '{HOSTILE}'\n"
+                          f"student: {{name: '@SUM(A1) {HOSTILE}', group: '{HOSTILE}'}}\n"
+                          "gears: {m: 4 mm, z: [14, 30]}\nanswers: {gears.aw: 1, 'gears.r[0]': 0.028}\n")
+    res = runner.invoke(app, ["batch", str(src), "--out", str(tmp_path / "o"), "--lang", "ru"])
+    assert res.exit_code == 1, res.output
+    html = (tmp_path / "o" / "summary.html").read_text()
+    assert "<script" not in html and "<img" not in html and "&lt;script&gt;" in html
+    assert "вне допуска" in html                                        # in the report language
+    for f in [tmp_path / "o" / "summary.csv", tmp_path / "o" / "check.csv"] + list((tmp_path / "o").glob("*/*.html")):
+        text = f.read_text()
+        assert "<script" not in text or f.suffix == ".csv"
+    rows = _csv(tmp_path / "o" / "summary.csv")
+    assert rows[0]["student"].startswith("'@SUM") and rows[0]["score"] == "0.5"
+    for r in _csv(tmp_path / "o" / "check.csv"):
+        assert r["student"].startswith("'@")
+
+
+# ------------------------------------------------------------------ the whole loop (README)
+def test_instructor_loop_end_to_end(tmp_path):
+    """template + table -> tasks -> forms -> filled answers -> graded summary and feedback,
+    with the bad inputs: a malformed row, an answers file for an unknown variant, a
+    non-numeric answer."""
+    tab = tmp_path / "table.csv"
+    lines = (EX / "press_variants.csv").read_text(encoding="utf-8-sig").splitlines()
+    tab.write_text("\n".join(lines[:4] + ["04;90;300;20;3;5;22;60;12;0,05;extra"]) + "\n", encoding="utf-8")
+    res = runner.invoke(app, ["variants", str(EX / "press_template.yaml"), str(tab), "--out", str(tmp_path / "tasks")])
+    assert res.exit_code == 2 and f"{tab}:5: variant 04: malformed row" in res.output
+    res = runner.invoke(app, ["form", str(tmp_path / "tasks"), "-q", "positions,flywheel.J,kinetostatics",
+                              "--out", str(tmp_path / "forms")])
+    assert res.exit_code == 0, res.output
+    import yaml
+    ans = tmp_path / "answers"
+    ans.mkdir()
+    for v in ("01", "02", "03"):
+        key = yaml.safe_load((tmp_path / "forms" / f"{v}.key.yaml").read_text())
+        key["student"] = {"name": f"Student {v}", "group": "MM-21"}
+        if v == "02":
+            key["answers"]["flywheel.J"] *= 1.3                   # a wrong flywheel
+        if v == "03":
+            key["answers"]["positions.K"] = "a lot"               # non-numeric
+        (ans / f"s{v}.yaml").write_text(yaml.safe_dump(key))
+    (ans / "ghost.yaml").write_text("variant: 77\nanswers: {flywheel.J: 1}\n")
+    res = runner.invoke(app, ["batch", str(tmp_path / "tasks"), "--out", str(tmp_path / "graded"),
+                              "--answers", str(ans), "--format", "json,html", "--lang", "ru"])
+    assert res.exit_code == 2, res.output
+    rows = _csv(tmp_path / "graded" / "summary.csv")
+    by = {r["student"] or r["file"]: r for r in rows}
+    assert by["Student 01"]["status"] == "ok" and by["Student 01"]["score"] == "1.0"
+    assert by["Student 02"]["status"] == "outside" and by["Student 02"]["flywheel.J"] == "outside"
+    assert by["Student 03"]["status"] == "invalid" and "positions.K" in by["Student 03"]["message"]
+    ghost = [r for r in rows if r["variant"] == "77"][0]
+    assert ghost["status"] == "invalid" and "no task of this variant" in ghost["message"]
+    fb = list((tmp_path / "graded" / "02").glob("feedback-*.html"))
+    assert fb and "маховик" in fb[0].read_text()                  # the step a wrong J depends on
+    assert (tmp_path / "graded" / "01" / "report.html").exists()
+
+
+def test_write_failure_of_a_variant_is_named_not_an_internal_error():
+    from tmm_cli.errors import StageError, TaskError
+    from tmm_cli.orchestrate import classify
+    code, status, msg = classify(PermissionError(13, "Permission denied", "/o/v1/results.json"))
+    assert (code, status) == (3, "failed") and msg == ("stage 'output' failed: cannot write /o/v1/results.json: "
+                                                       "Permission denied")
+    assert "internal error" not in msg
+    assert classify(TaskError("bad", file="t.yaml"))[:2] == (2, "invalid")
+    assert classify(StageError("kinematics", "x"))[:2] == (3, "failed")

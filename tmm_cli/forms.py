@@ -1,0 +1,169 @@
+"""`tmm paths` and `tmm form`: the result paths of a task, and answer forms and keys.
+
+A quantity list is comma-separated result paths and presets. A preset is a list of
+path patterns: ``*`` stands for one name (a point, a link, a reaction), ``[*]`` for
+every element of a list, ``**`` for every number below a section. Presets never fail
+on a task that has their section; a preset or a path the task's results lack is an
+error naming it (with "did you mean").
+"""
+from __future__ import annotations
+
+import json
+import re
+from pathlib import Path
+
+from .errors import TaskError
+
+PRESETS: dict[str, list[str]] = {
+    "positions": ["positions.phi0", "positions.working_stroke_angle", "positions.idle_stroke_angle",
+                  "positions.K", "positions.theta", "positions.H"],
+    "kinematics": ["kinematics[1].points.*.v", "kinematics[1].points.*.a",
+                   "kinematics[1].links.*.omega", "kinematics[1].links.*.epsilon"],
+    "kinetostatics": ["kinetostatics[1].balancing_moment", "kinetostatics[1].zhukovsky_moment",
+                      "kinetostatics[1].reactions.*.R"],
+    "flywheel": ["flywheel.J", "flywheel.delta", "flywheel.omega_max", "flywheel.omega_min",
+                 "flywheel.M_constant", "flywheel.diameter", "flywheel.width", "flywheel.mass"],
+    "cam": ["cam.r0", "cam.offset", "cam.center_distance", "cam.max_pressure_angle", "cam.rho_min"],
+    "gears": ["gears.aw", "gears.alpha_w", "gears.y", "gears.dy", "gears.eps_alpha", "gears.r[*]",
+              "gears.rb[*]", "gears.rw[*]", "gears.ra[*]", "gears.rf[*]", "gears.s[*]", "gears.sa[*]"],
+    "planetary": ["planetary.z.*", "planetary.ratio", "planetary.ratio_error"],
+    "drive_train": ["drive_train.**"],
+    "synthesis": ["synthesis.**"],
+}
+
+# course notation and unit of a result key: (symbol, unit, English, Russian)
+NOTATION: dict[str, tuple[str, str, str, str]] = {
+    "v": ("v", "m/s", "velocity", "скорость"), "a": ("a", "m/s^2", "acceleration", "ускорение"),
+    "omega": ("ω", "rad/s", "angular velocity", "угловая скорость"),
+    "epsilon": ("ε", "rad/s^2", "angular acceleration", "угловое ускорение"),
+    "phi0": ("φ0", "deg", "crank angle of the first extreme position", "угол крайнего положения"),
+    "working_stroke_angle": ("φ_w", "deg", "working stroke angle", "угол рабочего хода"),
+    "idle_stroke_angle": ("φ_i", "deg", "idle stroke angle", "угол холостого хода"),
+    "K": ("K", "", "coefficient of mean speed increase", "коэффициент изменения средней скорости"),
+    "theta": ("θ", "deg", "angle between the extreme positions", "угол перекрытия"),
+    "H": ("H", "m or deg", "stroke of the output link", "ход выходного звена"),
+    "balancing_moment": ("M_b", "N*m", "balancing moment", "уравновешивающий момент"),
+    "zhukovsky_moment": ("M_b(Zh)", "N*m", "balancing moment by the Zhukovsky lever",
+                         "уравновешивающий момент по рычагу Жуковского"),
+    "R": ("R", "N", "reaction", "реакция"),
+    "J": ("J_fly", "kg*m^2", "flywheel moment of inertia", "момент инерции маховика"),
+    "delta": ("δ", "", "coefficient of speed fluctuation", "коэффициент неравномерности"),
+    "omega_max": ("ω_max", "rad/s", "largest crank speed", "наибольшая угловая скорость"),
+    "omega_min": ("ω_min", "rad/s", "smallest crank speed", "наименьшая угловая скорость"),
+    "M_constant": ("M_c", "N*m", "constant moment", "постоянный момент"),
+    "diameter": ("D", "m", "flywheel diameter", "диаметр маховика"),
+    "width": ("b", "m", "flywheel width", "ширина маховика"), "mass": ("m", "kg", "mass", "масса"),
+    "r0": ("r0", "m", "base circle radius", "радиус начальной шайбы"),
+    "offset": ("e", "m", "offset", "эксцентриситет"),
+    "center_distance": ("a_w", "m", "cam centre distance", "межосевое расстояние кулачка"),
+    "max_pressure_angle": ("ϑ_max", "deg", "largest pressure angle", "наибольший угол давления"),
+    "rho_min": ("ρ_min", "m", "smallest radius of curvature", "наименьший радиус кривизны"),
+    "aw": ("a_w", "m", "centre distance", "межосевое расстояние"),
+    "alpha_w": ("α_w", "deg", "working pressure angle", "угол зацепления"),
+    "y": ("y", "", "centre distance modification coefficient", "коэффициент воспринимаемого смещения"),
+    "dy": ("Δy", "", "tip reduction coefficient", "коэффициент уравнительного смещения"),
+    "eps_alpha": ("ε_α", "", "contact ratio", "коэффициент перекрытия"),
+    "r": ("r", "m", "pitch radius", "радиус делительной окружности"),
+    "rb": ("r_b", "m", "base radius", "радиус основной окружности"),
+    "rw": ("r_w", "m", "rolling radius", "радиус начальной окружности"),
+    "ra": ("r_a", "m", "tip radius", "радиус окружности вершин"),
+    "rf": ("r_f", "m", "root radius", "радиус окружности впадин"),
+    "s": ("s", "m", "pitch tooth thickness", "толщина зуба по делительной окружности"),
+    "sa": ("s_a", "m", "tip tooth thickness", "толщина зуба по окружности вершин"),
+    "ratio": ("i", "", "ratio", "передаточное отношение"),
+    "ratio_error": ("Δi", "", "ratio error (fraction)", "погрешность передаточного отношения"),
+    "z1": ("z1", "", "teeth", "число зубьев"), "z2": ("z2", "", "teeth", "число зубьев"),
+    "z3": ("z3", "", "teeth", "число зубьев"), "z4": ("z4", "", "teeth", "число зубьев"),
+}
+
+
+def notation(path: str, lang: str = "en") -> str:
+    """'ω, rad/s — angular velocity' for a path, from its last name ('' when unknown)."""
+    names = re.findall(r"[A-Za-z_][A-Za-z0-9_]*", path)
+    key = names[-1] if names else ""
+    if key not in NOTATION and re.fullmatch(r"R\d+", key or ""):
+        key = "R"
+    n = NOTATION.get(key)
+    if not n:
+        return ""
+    sym, unit, en, ru = n
+    return f"{sym}{', ' + unit if unit else ''} — {ru if lang == 'ru' else en}"
+
+
+def _pattern(p: str) -> re.Pattern:
+    out = re.escape(p).replace(r"\*\*", "@@").replace(r"\[\*\]", r"\[\d+\]").replace(r"\*", r"[^.\[\]]+")
+    return re.compile("^" + out.replace("@@", r"[^\[\]]+") + "$")
+
+
+def numeric_leaves(results: dict) -> list[tuple[str, float]]:
+    from .check import leaf_paths
+    return [(p, v) for p, v in leaf_paths(results)
+            if isinstance(v, (int, float)) and not isinstance(v, bool)]
+
+
+def expand(quantities: str | list[str], results: dict, *, strict: bool = True) -> list[str]:
+    """Result paths of a quantity list for one task's results. With ``strict`` a path or a
+    preset the results lack is a TaskError naming it (with "did you mean")."""
+    from .check import did_you_mean
+    from .results import lookup, parse_path
+    items = quantities.split(",") if isinstance(quantities, str) else list(quantities)
+    leaves = numeric_leaves(results)
+    names = [p for p, _ in leaves]
+    out: list[str] = []
+    for raw in (i.strip() for i in items):
+        if not raw:
+            continue
+        if raw in PRESETS:
+            got = [p for pat in PRESETS[raw] for rx in (_pattern(pat),) for p in names if rx.match(p)]
+            if not got and strict:
+                raise TaskError(f"preset '{raw}': the task's results have none of its quantities (is its "
+                                f"section in the task?)")
+            out.extend(g for g in got if g not in out)
+            continue
+        try:
+            parse_path(raw)
+            v = lookup(results, raw)
+            if strict and (isinstance(v, (dict, list)) or v is None):
+                raise KeyError(f"'{raw}' holds no number")
+        except KeyError as exc:
+            if strict:
+                raise TaskError(f"quantity '{raw}' is not in the results: {str(exc).strip(chr(39))}; "
+                                f"{did_you_mean(raw, results, names)} (presets: {', '.join(PRESETS)})") from None
+        if raw not in out:
+            out.append(raw)
+    return out
+
+
+def yaml_key(path: str) -> str:
+    return json.dumps(path, ensure_ascii=False)
+
+
+def form_text(task, paths: list[str], results: dict | None, lang: str) -> str:
+    """The blank form (results None) or the key (results given) as commented YAML."""
+    from .results import lookup
+    key = results is not None
+    head = {"en": ("Answer key" if key else "Answer form"), "ru": ("Ключ ответов" if key else "Бланк ответов")}[lang]
+    lines = [f"# {head}: {task.title or task.name}".rstrip(),
+             "# " + ("values in SI units, angles in degrees; a value may carry its unit, e.g. \"12 deg\""
+                     if lang == "en" else "значения в единицах СИ, углы в градусах; можно с единицей, "
+                                          "например \"12 deg\""),
+             f"variant: {json.dumps(task.variant if task.variant is not None else task.name, ensure_ascii=False)}",
+             'student: {name: "", group: ""}', "answers:"]
+    width = max((len(yaml_key(p)) for p in paths), default=0) + 2
+    for p in paths:
+        val = ""
+        if key:
+            try:
+                v = lookup(results, p)
+                val = "" if v is None else (repr(float(v)) if isinstance(v, float) else json.dumps(v))
+            except KeyError:
+                val = ""
+        note = notation(p, lang)
+        entry = f"  {yaml_key(p)}: {val}"
+        lines.append(entry.ljust(width + 4 + len(val)) + (f"  # {note}" if note else ""))
+    return "\n".join(lines) + "\n"
+
+
+def forms_csv(rows: list[dict], paths: list[str]) -> str:
+    from .tables import csv_text
+    return csv_text(["student", "group", "variant"] + paths, rows)

@@ -1,0 +1,124 @@
+"""One path from a task file to its outputs, shared by `run`, `validate`, `check`,
+`batch`, `variants`, `paths` and `form`:
+
+    prepare (load + validate over the whole cycle) -> compute -> write (partial results
+    on a failed stage) -> (check)
+
+and one mapping from what went wrong to an exit code, a status and a message, so every
+command gives the same answer for the same task.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Callable
+
+from .errors import StageError, TaskError
+
+EXIT_OK, EXIT_ANSWERS, EXIT_INVALID, EXIT_STAGE = 0, 1, 2, 3
+
+
+def prepare(path: str | Path, *, assembly: bool = True, text: str | None = None, stage_errors: bool = True):
+    """The task, loaded and validated as `tmm validate` does: the schema, the references,
+    the positions named by other sections, and (with ``assembly``) that the linkage
+    assembles at every crank angle. Raises TaskError (exit 2) or StageError (exit 3)."""
+    from .task import load_task
+    task = load_task(Path(path), text=text)
+    if task._synthesis_error is not None and stage_errors:
+        raise task._synthesis_error      # requirements a lever synthesis cannot meet (exit 3)
+    if task.mechanism is not None:
+        from .validation import check_feasible
+        try:
+            check_feasible(task, assembly=assembly)
+        except StageError:
+            if stage_errors:
+                raise
+            # a valid task that cannot be computed everywhere: compute() meets the same
+            # failure and keeps the sections computed before it (partial results)
+    return task
+
+
+def compute(task, progress: Callable[[str], None] | None = None) -> dict:
+    """The results dict. Raises TaskError, StageError or PartialResults (a StageError
+    with the sections computed before the failure)."""
+    from .pipeline import run
+    return run(task, progress=progress)
+
+
+def write_outputs(task, results: dict, out: Path, formats: set[str], lang: str, *,
+                  notes: list[str] | None = None, study: tuple[dict, dict] | None = None) -> list[Path]:
+    """results.json (always: the reports are made from it) and the reports, each written
+    atomically; the run's manifest in ``out`` then lists them, and the files of the
+    previous run into ``out`` that were not written again are removed
+    (:class:`tmm_cli.io.Manifest`). ``notes`` receives one line per output skipped (the
+    PDF where its engine cannot run). ``study``: (study, trapezoid) of
+    ``tmm_cli.study.run_study``, shown in the reports and written as study.json and
+    study.html (never in results.json)."""
+    from .io import Manifest, atomic_write
+    from .results import dumps
+
+    out = Path(out)
+    manifest = Manifest(out)
+    written = [atomic_write(out / "results.json", dumps(results))]
+    rep = set(formats) & {"html", "pdf"}
+    if rep:
+        from .report import render
+        shown = results if study is None else {**results, "study": study[0], "study_trapezoid": study[1]}
+        written.extend(render(shown, task, out, rep, lang, notes=notes))
+    if study is not None:
+        from . import study as study_mod
+        written.extend(study_mod.write(study[0], out, study[1]))
+    manifest.commit(written)
+    return written + [manifest.path]     # the manifest too: a batch removes the whole folder
+
+
+def process(path: str | Path, out, formats: set[str], lang: str, *,
+            progress: Callable[[str], None] | None = None, task=None, study: bool = False,
+            notes: list[str] | None = None):
+    """prepare -> compute -> write. Returns (task, results, written paths). On a failed
+    stage every independent section is still computed, and results.json and the reports
+    are written with them and, in place of the failed part, what failed; then the
+    PartialResults is re-raised (its ``written`` the paths). ``out`` None: nothing is
+    written; a callable: out(task) gives the folder. ``study``: also the accuracy study
+    (``tmm run --study``)."""
+    from .pipeline import PartialResults
+    task = task if task is not None else prepare(path, stage_errors=False)
+    folder = out(task) if callable(out) else out
+    failure = None
+    try:
+        results = compute(task, progress)
+    except PartialResults as exc:
+        results, failure = exc.partial, exc
+    st = None
+    if study and failure is None:
+        from . import study as study_mod
+        st = study_mod.run_study(task, progress=progress, repeat=3)
+    written = (write_outputs(task, results, folder, formats, lang, notes=notes, study=st)
+               if folder is not None else [])
+    if failure is not None:
+        failure.written = written
+        raise failure
+    return task, results, written
+
+
+def classify(exc: BaseException) -> tuple[int, str, str]:
+    """(exit code, batch status, one-line message) of what went wrong."""
+    if isinstance(exc, TaskError):
+        return EXIT_INVALID, "invalid", exc.render()
+    if isinstance(exc, StageError):
+        return EXIT_STAGE, "failed", str(exc)
+    if isinstance(exc, OSError):
+        return EXIT_STAGE, "failed", write_error_text(exc)
+    if isinstance(exc, MemoryError):
+        return EXIT_STAGE, "failed", "out of memory (the per-variant memory limit was reached)"
+    if isinstance(exc, RecursionError):
+        return EXIT_STAGE, "failed", "internal error: recursion too deep"
+    return EXIT_STAGE, "failed", f"internal error: {type(exc).__name__}: {exc}"
+
+
+def write_error_text(exc: OSError) -> str:
+    """stage 'output' failed: cannot write FILE: reason."""
+    where = exc.filename if exc.filename is not None else ""
+    reason = exc.strerror or str(exc) or type(exc).__name__
+    if isinstance(exc, (FileExistsError, NotADirectoryError)):
+        reason += " (a file is in the way of the output folder)"
+    return f"stage 'output' failed: cannot write {where}: {reason}"

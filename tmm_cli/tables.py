@@ -1,0 +1,114 @@
+"""CSV in and out, one way for the whole tool.
+
+* :func:`csv_text` writes every CSV tmm produces (summary, check, forms, report tables):
+  a text cell that a spreadsheet would take for a formula (it begins with ``=``, ``+``,
+  ``-``, ``@``, a tab or a carriage return) gets a leading ``'``; numbers stay numbers.
+* :func:`read_table` reads a table an instructor typed or exported: ``,`` or ``;``
+  separators (detected from the header line), optional quotes, UTF-8 with or without a
+  BOM; :func:`cell_value` reads ``0,12`` and ``-1,5`` as decimal-comma numbers.
+"""
+from __future__ import annotations
+
+import csv
+import io
+import math
+import re
+from pathlib import Path
+
+FORMULA_START = ("=", "+", "-", "@", "\t", "\r")
+_NUMBER = re.compile(r"^[-+]?(\d+([.,]\d*)?|[.,]\d+)([eE][-+]?\d+)?$")
+
+
+def safe_cell(v):
+    """A CSV cell that no spreadsheet evaluates: numbers (and number-like text) as they
+    are, None empty, other text beginning with a formula character prefixed with '."""
+    if v is None:
+        return ""
+    if isinstance(v, bool):
+        return str(v).lower()
+    if isinstance(v, int):
+        return v
+    if isinstance(v, float):
+        return repr(v) if math.isfinite(v) else ""
+    s = str(v)
+    if s.startswith(FORMULA_START) and not _NUMBER.match(s.strip()):
+        return "'" + s
+    return s
+
+
+def csv_text(header: list[str], rows) -> str:
+    """A CSV (comma, UTF-8, full float precision) of ``rows`` (lists, or dicts keyed by
+    the header); every cell through :func:`safe_cell`, the header too."""
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow([safe_cell(h) for h in header])
+    for r in rows:
+        vals = [r.get(h) for h in header] if isinstance(r, dict) else list(r)
+        w.writerow([safe_cell(v) for v in vals])
+    return buf.getvalue()
+
+
+def cell_value(text: str):
+    """A table cell: an int or float when it reads as a number (decimal comma allowed),
+    else the stripped text ('' for an empty cell)."""
+    s = text.strip()
+    if _NUMBER.match(s):
+        t = s.replace(",", ".")
+        try:
+            if re.fullmatch(r"[-+]?\d+", t):
+                return int(t)
+            x = float(t)
+            if math.isfinite(x):
+                return x
+        except ValueError:
+            pass
+    return s
+
+
+class TableError(ValueError):
+    """A table that cannot be read at all (line number and reason)."""
+
+    def __init__(self, file: str, line: int | None, message: str):
+        self.file, self.line, self.message = file, line, message
+        super().__init__(f"{file}:{line}: {message}" if line else f"{file}: {message}")
+
+
+def read_table(path: str | Path) -> tuple[list[str], list[tuple[int, dict[str, str], str | None]]]:
+    """(header, rows): each row its line number in the file (header = line 1), a
+    mapping column -> raw text, and the reason it is malformed (more cells than the
+    header has columns) or None. Blank lines are skipped."""
+    path = Path(path)
+    try:
+        raw = path.read_bytes()
+    except OSError as exc:
+        raise TableError(str(path), None, f"cannot read: {exc.strerror or exc}") from None
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        try:
+            text = raw.decode("cp1251")       # a Russian Excel "CSV (разделители - запятые)"
+        except UnicodeDecodeError:
+            raise TableError(str(path), None, "not a UTF-8 text table") from None
+    first = text.split("\n", 1)[0]
+    # a ";" outside quotes in the header line means ";" (headers like "l, mm" hold commas)
+    sep = ";" if ";" in re.sub(r'"[^"]*"', "", first) else ","
+    reader = csv.reader(io.StringIO(text, newline=""), delimiter=sep)
+    header: list[str] | None = None
+    rows: list[tuple[int, dict[str, str], str | None]] = []
+    prev = 0
+    for cells in reader:
+        start, prev = prev + 1, reader.line_num
+        if not any(c.strip() for c in cells):
+            continue
+        if header is None:
+            header = [c.strip() for c in cells]
+            if start != 1:
+                raise TableError(str(path), start, "the header must be the first line")
+            continue
+        bad = None
+        if len(cells) > len(header):
+            bad = f"malformed row: {len(cells)} cells but the header has {len(header)} columns"
+        rows.append((start, {h: (cells[i] if i < len(cells) else "") for i, h in enumerate(header)}, bad))
+    if header is None:
+        raise TableError(str(path), None, "empty table (no header line)")
+    return header, rows
