@@ -134,7 +134,7 @@ def work(path: Path, out: Path, folder: str, formats: set[str], lang: str, sets:
             if quantities:
                 from .forms import expand
                 required = expand(quantities, results, strict=False)
-            rows = grade(results, aset, tolerances(task, tol_override), required)
+            rows = grade(results, aset, tolerances(task, tol_override, results=results), required)
             all_rows.extend(rows)
             sst = set_status(rows)
             res["sets"].append({"index": i, "status": sst, "rows": rows, "counts": counts(rows),

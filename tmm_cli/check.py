@@ -45,8 +45,12 @@ class Tol:
         return " ".join(parts) or "0"
 
 
+GRAPHICAL = "graphical"   # the tolerance of a hand solution: the error of reading the drawings
+
+
 def parse_tolerance(v, where: str, line=None, col=None, file=None) -> Tol:
-    """A tolerance entry: a non-negative number (relative) or {rel: R, abs: A}."""
+    """A tolerance entry: a non-negative number (relative), {rel: R, abs: A}, or
+    ``graphical`` (kept as the string; `tolerances` expands it with the results)."""
     def bad(msg):
         return TaskError("invalid tolerance", file=file, issues=[(where, line, col, msg)])
 
@@ -56,7 +60,7 @@ def parse_tolerance(v, where: str, line=None, col=None, file=None) -> Tol:
             raise bad(f"expected a non-negative number ({what}), got {x!r}")
         return float(x)
 
-    if isinstance(v, Tol):
+    if isinstance(v, Tol) or v == GRAPHICAL:
         return v
     if hasattr(v, "model_dump"):          # the task's ToleranceSpec
         v = v.model_dump()
@@ -309,12 +313,27 @@ def load_tolerance_file(path: Path) -> dict:
     return out
 
 
-def tolerances(task, override: dict | None = None, student: dict | None = None) -> dict:
+def tolerances(task, override: dict | None = None, student: dict | None = None,
+               results: dict | None = None) -> dict:
     """The task's `tolerance`, then --tolerance FILE per key, then (check with one FILE)
-    the student's file."""
-    tol = {str(k): parse_tolerance(v, f"tolerance.{k}") for k, v in (task.tolerance or {}).items()}
-    tol.update(override or {})
-    tol.update(student or {})
+    the student's file. A key whose tolerance is ``graphical`` (``default`` or a path or
+    prefix) gives every path under it that a student reads off a drawing the relative
+    error of reading it to 0.5 mm at the report's scales (the 12-position integration for
+    the flywheel: `tmm_cli.graphical.graphical_tolerance`); its other paths keep the
+    default."""
+    raw = {str(k): v for k, v in (task.tolerance or {}).items()}
+    raw.update(override or {})
+    raw.update(student or {})
+    tol = {k: parse_tolerance(v, f"tolerance.{k}") for k, v in raw.items() if v != GRAPHICAL}
+    hand = [k for k, v in raw.items() if v == GRAPHICAL]
+    if hand:
+        from .graphical import graphical_tolerance
+        est = graphical_tolerance(results or {})
+        for k in sorted(hand, key=len, reverse=True):       # the longest prefix first
+            for path, rel in est.items():
+                under = k == "default" or path == k or path.startswith(k + ".") or path.startswith(k + "[")
+                if under and path not in tol:
+                    tol[path] = Tol(rel=abs(float(rel)))
     return tol
 
 

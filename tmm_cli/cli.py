@@ -261,7 +261,7 @@ def check(
         _err(f"no answers for variant {task.variant if task.variant is not None else task.name} in {answers}")
     code, all_rows = (EXIT_ANSWERS if not sets else EXIT_OK), []
     for a in sets:
-        rows = grade(results, a, tolerances(task, tol_override, a.tolerance if single else None), required)
+        rows = grade(results, a, tolerances(task, tol_override, a.tolerance if single else None, results), required)
         print_check(rows, a.source)
         all_rows.extend(rows)
         code = max(code, set_code(set_status(rows)))

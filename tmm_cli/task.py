@@ -560,7 +560,8 @@ class Task(_Model):
     dof2: Dof2Section | None = Field(None, description="a machine with two degrees of freedom: rotor + hinged "
                                                        "striker (docs/methods.md §7; runs on its own)")
     answers: dict[str, float] = Field(default_factory=dict)
-    tolerance: dict[str, Union[Annotated[Ratio, Field(ge=0)], ToleranceSpec]] = Field(default_factory=dict)
+    tolerance: dict[str, Union[Literal["graphical"], Annotated[Ratio, Field(ge=0)], ToleranceSpec]] = \
+        Field(default_factory=dict)
 
     _file: str | None = PrivateAttr(None)
     _marks: dict = PrivateAttr(default_factory=dict)
@@ -794,7 +795,8 @@ _DOCS: dict[type, dict[str, str]] = {
         "planetary": "planetary gear synthesis (runs on its own)",
         "drive_train": "compound gear drive from the motor: ordinary pairs and planetary stages, given or chosen",
         "answers": "a student's numbers: path into results.json -> value (tmm check / tmm batch)",
-        "tolerance": "tolerances per path or prefix: {default: 0.05, <path or prefix>: 0.02 or {rel: R, abs: A}}",
+        "tolerance": "tolerances per path or prefix: {default: 0.05, <path or prefix>: 0.02 or {rel: R, abs: A} or "
+                     "graphical (the error of reading the drawings to 0.5 mm)}",
     },
     StudentSpec: {"name": "the student's name", "group": "the student's group"},
     ToleranceSpec: {"rel": "relative tolerance (fraction of |reference|)", "abs": "absolute tolerance, in the unit of the path"},
