@@ -168,6 +168,42 @@ def run(
 
 
 @app.command()
+def sheets(
+    task_file: Path = typer.Argument(..., metavar="TASK.yaml", help="the task file"),
+    out: Optional[Path] = typer.Option(None, "--out", "-o", help="output folder (default: out/<task name>/)"),
+    format: str = typer.Option("pdf,svg,dxf", "--format", "-f", help="comma-separated: pdf, svg, dxf"),
+    lang: str = typer.Option("en", "--lang", "-l", help="sheet language: en | ru"),
+):
+    """The A1 drawing sheets (frame, ГОСТ 2.104 title block, standard scales) as PDF, SVG and DXF.
+
+    Example: tmm sheets tasks/forging_sixbar.yaml --out out/forging --format pdf,dxf
+    """
+    fm = {f.strip().lower() for f in format.split(",") if f.strip()}
+    if not fm or fm - {"pdf", "svg", "dxf"}:
+        raise typer.BadParameter("choose from pdf, svg, dxf (comma-separated)")
+    if lang not in ("en", "ru"):
+        raise typer.BadParameter("--lang must be en or ru")
+    try:
+        task = _load(task_file)
+    except TaskError as exc:
+        raise _fail_task(exc)
+    from .pipeline import run as run_pipeline
+    from .sheets import build_sheets, write_sheets
+    try:
+        results = run_pipeline(task)
+    except StageError as exc:
+        raise _fail_stage(exc, task.file)
+    try:
+        paths = write_sheets(build_sheets(results, task, lang), out or Path("out") / task.name, fm)
+    except OSError as exc:
+        raise _fail_write(exc)
+    if not paths:
+        _err("note: no sheets: the task has no mechanism (kinematics) to draw")
+    for p in paths:
+        typer.echo(str(p))
+
+
+@app.command()
 def validate(
     task_files: List[Path] = typer.Argument(..., metavar="TASK.yaml...", help="one or more task files"),
     no_assembly: bool = typer.Option(False, "--no-assembly", help="schema only: skip the check that the "

@@ -74,7 +74,7 @@ def draw_frame(cv, *, title: str, sheet_title: str, variant, student: str, group
     h = 2.5
     for c, s in zip(cols, (T["ch"], T["sh"], T["doc"], T["sign"], T["date"])):
         fit_text(cv, c + 0.7, by + 27.5, s, h, 1.0 + (cols[cols.index(c) + 1] - c) - 2.4)
-    rows = [(T["dev"], student), (T["chk"], ""), (T["tcn"], ""), ("", ""), (T["ncn"], ""), (T["apr"], "")]
+    rows = [(T["dev"], student), (T["chk"], ""), (T["tcn"], ""), (T["ncn"], ""), (T["apr"], "")]
     for k, (lab, val) in enumerate(rows):
         y = by + 22.5 - 5 * k
         fit_text(cv, bx + 0.7, y, lab, h, 15.6)

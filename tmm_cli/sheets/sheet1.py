@@ -111,8 +111,9 @@ def draw_mechanism(cv, geom, entries, course: list[int], box, lang="en") -> dict
         tip = Oc + 0.45 * r * np.array([math.cos(a), math.sin(a)])
         cv.arrow(tip - 0.01 * np.array([-math.sin(a), math.cos(a)]),
                  tip + 2.5 * np.array([-math.sin(a), math.cos(a)]), width=0.35, head=2.5)
-        cv.mtext(*(Oc + 0.45 * r * np.array([math.cos(math.radians(70)), math.sin(math.radians(70))]) * 1.35),
-                 "ω", 3.5, anchor="middle", sub="1")
+        wq = Oc + 0.45 * r * 1.35 * np.array([math.cos(math.radians(70)), math.sin(math.radians(70))])
+        cv.mtext(wq[0], wq[1], "ω", 3.5, anchor="middle", sub="1")
+        labels_at.append(wq)
         for e in entries:
             if e.get("index") is None or e["index"] > 11 and len(entries) > 12 and e["index"] not in course:
                 continue
