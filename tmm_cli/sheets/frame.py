@@ -55,7 +55,8 @@ def draw_frame(cv, *, title: str, sheet_title: str, variant, student: str, group
     # left part: 65 mm, 11 rows of 5 mm; columns 7, 10, 23, 15, 10
     cols = [bx, bx + 7, bx + 17, bx + 40, bx + 55, bx + 65]
     for c in cols[1:]:
-        cv.line((c, by), (c, by + TB_H), width=0.7 if c == cols[-1] else 0.5)
+        # the names of the signing rows span the first two columns
+        cv.line((c, by + 25 if c == cols[1] else by), (c, by + TB_H), width=0.7 if c == cols[-1] else 0.5)
     for k in range(1, 11):
         y = by + 5 * k
         cv.layer = "contour" if k in (6, 8) else "thin"

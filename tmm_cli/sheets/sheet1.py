@@ -8,6 +8,7 @@ import math
 import numpy as np
 
 from .frame import FRAME, length_scale, std_mu
+from .graph import draw_graph
 
 TXT = {
     "en": {"scheme": "Kinematic scheme", "plans": "Plans, position {i}", "vplan": "Velocity plan",
@@ -190,23 +191,13 @@ def draw_diagrams(cv, results, geom, box, lang="en") -> dict:
         mu = std_mu(ym / (rowh / 2 - 8.0))
         ax0 = x0 + 14.0
         yc = y0 + h - 10.0 - rowh * (k + 0.5)
-        cv.layer = "dimensions"
-        cv.arrow((ax0, yc), (ax0 + 360.0 / mu_phi + 10, yc), width=0.3, head=2.5)
-        cv.arrow((ax0, yc - rowh / 2 + 3), (ax0, yc + rowh / 2 - 3), width=0.3, head=2.5)
-        cv.mtext(ax0 + 360.0 / mu_phi + 12, yc - 3.5, "φ", 3.5)
-        cv.mtext(ax0 - 2, yc + rowh / 2 - 4, sym, 3.5, anchor="end", italic=True)
-        cv.mtext(ax0 + 3, yc + rowh / 2 - 4, "μ", 2.5, sub=sym,
-                 after=f" = {mu:g} {unit}/{TXT[lang]['mm']},  μ  = {mu_phi:g} °/{TXT[lang]['mm']}")
-        for i in range(0, 13):
-            xt = ax0 + 30.0 * i / mu_phi
-            cv.line((xt, yc - 1.0), (xt, yc + 1.0), width=0.25)
-            if i < 12:
-                cv.mtext(xt + 1.5, yc - 3.0, str(i), 2.5, anchor="start")
-        cv.layer = "contour"
-        pts = np.c_[ax0 + phase / mu_phi, yc + y / mu]
-        good = np.isfinite(pts[:, 1])
-        cv.polyline(pts[good], color="#1f5fbf", width=0.6)
-        out[key] = {"mu": mu, "pts": pts[good], "values": y[good]}
+        mm = TXT[lang]["mm"]
+        pts, = draw_graph(cv, (ax0, yc), [(phase, y, "#1f5fbf")], mu_phi, mu, x_len=360.0 / mu_phi,
+                          y_up=rowh / 2 - 3, y_down=rowh / 2 - 3, x_sym="φ", y_sym=sym,
+                          mu_text=f"μ{sym} = {mu:g} {unit}/{mm},  μφ = {mu_phi:g} °/{mm}",
+                          ticks=[(30.0 * i, str(i) if i < 12 else "") for i in range(13)])
+        good = np.isfinite(y)
+        out[key] = {"mu": mu, "pts": pts, "values": y[good]}
     out["mu_phi"] = mu_phi
     return out
 
