@@ -5,17 +5,19 @@ from __future__ import annotations
 
 from pathlib import Path
 
-SHEETS = {"en": {1: "Kinematics"}, "ru": {1: "Кинематический анализ"}}
+SHEETS = {"en": {1: "Kinematics", 3: "Dynamics"}, "ru": {1: "Кинематический анализ", 3: "Динамический анализ"}}
 
 
 def build_sheets(results: dict, task, lang: str = "en") -> list[tuple]:
     """[(PrimCanvas, info)] for each sheet whose section the results have."""
-    from . import sheet1
+    from . import sheet1, sheet3
     from .frame import SHEET_H, SHEET_W, draw_frame
     from .prims import PrimCanvas
     makers = []
     if results.get("kinematics") and results.get("structure"):
         makers.append((1, sheet1.build))
+    if (results.get("flywheel") or {}).get("arrays"):
+        makers.append((3, sheet3.build))
     out = []
     student = getattr(getattr(task, "student", None), "name", None) or ""
     group = getattr(getattr(task, "student", None), "group", None) or getattr(task, "group", None) or ""
@@ -33,15 +35,14 @@ def build_sheets(results: dict, task, lang: str = "en") -> list[tuple]:
 
 
 def write_sheets(sheets: list[tuple], out: Path, formats: set[str]) -> list[Path]:
-    """sheet-<n>.svg / sheet-<n>.dxf per sheet and sheets.pdf (all pages), atomically."""
+    """sheet-<n>.svg / sheet-<n>.dxf per sheet (n: its number in the title block) and sheets.pdf (all pages), atomically."""
     from ..io import atomic_write
     from .frame import SHEET_H, SHEET_W
     from .writers import to_dxf, to_pdf, to_svg
     out = Path(out)
     written = []
     svgs = [to_svg(cv) for cv, _ in sheets]
-    for (cv, info), svg in zip(sheets, svgs):
-        n = info["number"]
+    for n, ((cv, info), svg) in enumerate(zip(sheets, svgs), start=1):
         if "svg" in formats:
             written.append(atomic_write(out / f"sheet-{n}.svg", svg))
         if "dxf" in formats:
