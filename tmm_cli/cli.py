@@ -30,7 +30,7 @@ app = typer.Typer(
 )
 
 EXIT_OK, EXIT_ANSWERS, EXIT_INVALID, EXIT_STAGE = 0, 1, 2, 3
-FORMATS = {"json", "html", "pdf"}
+FORMATS = {"json", "html", "pdf", "sheets"}
 
 
 def _version(value: bool) -> None:
@@ -86,7 +86,7 @@ def _parse_formats(text: str) -> set[str]:
     bad = fm - FORMATS
     if bad or not fm:
         raise typer.BadParameter(f"unknown format(s) {', '.join(sorted(bad)) or '(none)'}; "
-                                 f"choose from json, html, pdf (comma-separated)")
+                                 f"choose from json, html, pdf, sheets (comma-separated)")
     return fm
 
 
@@ -107,6 +107,9 @@ def write_outputs(task, results: dict, out: Path, formats: set[str], lang: str,
     if rep:
         from .report import render
         written.extend(render(results, task, out, rep, lang, notes=notes))
+    if "sheets" in formats:   # the A1 drawing sheets (README, Drawing sheets)
+        from .sheets import build_sheets, write_sheets
+        written.extend(write_sheets(build_sheets(results, task, lang), out / "sheets", {"pdf", "svg", "dxf"}))
     manifest.commit(written)
     return written
 
@@ -116,7 +119,8 @@ def run(
     task_file: Path = typer.Argument(..., metavar="TASK.yaml", help="the task file (README: The task file)"),
     out: Optional[Path] = typer.Option(None, "--out", "-o", help="output folder (default: out/<task name>/)"),
     format: str = typer.Option("json,html,pdf", "--format", "-f",
-                               help="comma-separated outputs: json, html, pdf (results.json is always written)"),
+                               help="comma-separated outputs: json, html, pdf, sheets (the A1 drawing sheets in "
+                                    "sheets/; results.json is always written)"),
     lang: str = typer.Option("en", "--lang", "-l", help="report language: en | ru"),
     quiet: bool = typer.Option(False, "--quiet", "-q", help="no progress and summary on the terminal"),
 ):
