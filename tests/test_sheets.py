@@ -129,11 +129,9 @@ def _boxes(cv):
     return [(p, p.box()) for p in cv.prims if isinstance(p, Text)]
 
 
-@pytest.mark.parametrize("lang", ["en", "ru"])
-def test_texts_do_not_collide_or_leave_the_frame(forging, lang):
-    _, sheets = forging
+def _check_texts(sheets):
     x0f, y0f, x1f, y1f = FRAME
-    for cv, _ in sheets[lang]:
+    for cv, _ in sheets:
         boxes = _boxes(cv)
         for p, (x0, y0, x1, y1) in boxes:
             assert x0f <= x0 and x1 <= x1f and y0f <= y0 and y1 <= y1f, p.plain
@@ -143,6 +141,30 @@ def test_texts_do_not_collide_or_leave_the_frame(forging, lang):
                 b = boxes[j][1]
                 overlap = min(a[2], b[2]) - max(a[0], b[0]) > 1e-6 and min(a[3], b[3]) - max(a[1], b[1]) > 1e-6
                 assert not overlap, (boxes[i][0].plain, boxes[j][0].plain)
+
+
+@pytest.mark.parametrize("lang", ["en", "ru"])
+def test_texts_do_not_collide_or_leave_the_frame(forging, lang):
+    _check_texts(forging[1][lang])
+
+
+@pytest.mark.parametrize("name", ["press_offset_slider_crank", "crank_rocker_fourbar", "shaper_slotted_ram"])
+def test_other_linkages(name):
+    """An extra position next to a grid one (press), a rocker output (ψ, ω, ε), a slotted lever."""
+    import io
+    import ezdxf
+    from tmm_cli.pipeline import run
+    from tmm_cli.sheets import build_sheets
+    from tmm_cli.task import load_task
+    task = load_task(ROOT / "tasks" / f"{name}.yaml")
+    sheets = build_sheets(run(task), task, "ru")
+    assert sheets
+    _check_texts(sheets)
+    for cv, info in sheets:
+        assert not ezdxf.read(io.StringIO(to_dxf(cv).decode())).audit().has_errors
+        for key in ("s", "v", "a"):
+            if "diagrams" in info:
+                assert _mantissa_ok(info["diagrams"][key]["mu"])
 
 
 def test_title_block(forging):

@@ -101,7 +101,7 @@ def draw_mechanism(cv, geom, entries, course: list[int], box, lang="en") -> dict
     from ..report.plans import crank_pin
     pin = crank_pin(geom)
     O = next((j.point for j in geom.joints if j.kind == "R" and j.a == 0 and j.b == geom.drive), None)
-    labels_at = []
+    labels_at, numbers = [], []
     if pin and O:
         Oc = M(_xy(entries[0], O))
         r = float(np.hypot(*(M(_xy(entries[0], pin)) - Oc)))
@@ -115,14 +115,21 @@ def draw_mechanism(cv, geom, entries, course: list[int], box, lang="en") -> dict
         wq = Oc + 0.45 * r * 1.35 * np.array([math.cos(math.radians(70)), math.sin(math.radians(70))])
         cv.mtext(wq[0], wq[1], "ω", 3.5, anchor="middle", sub="1")
         labels_at.append(wq)
+        numbers.append("ω1")
         for e in entries:
             if e.get("index") is None or e["index"] > 11 and len(entries) > 12 and e["index"] not in course:
                 continue
             d = M(_xy(e, pin)) - Oc
             d = d / (np.hypot(*d) or 1.0)
+            s = str(e["index"])
             q = Oc + d * (r + 5.0)
+            # an extra position next to a grid one: its number further out
+            while any(abs(q[0] - p[0]) < 0.3 * 3.5 * (len(s) + len(t)) + 0.5 and abs(q[1] - p[1]) < 4.0
+                      for p, t in zip(labels_at, numbers)):
+                q = q + d * 4.0
             labels_at.append(q)
-            cv.mtext(q[0], q[1], str(e["index"]), 3.5, anchor="middle")
+            numbers.append(s)
+            cv.mtext(q[0], q[1], s, 3.5, anchor="middle")
     # point names at the first course position
     e = main[0]
     names = [p for p in e["points"] if not p.startswith("S")]

@@ -29,7 +29,7 @@ def build(cv, results, task, lang="en") -> dict:
             ("A", [("A_d", "#7a1f1f"), ("A_c", "#1f5fbf")], T["J"]),
             ("ΔT", [("dT", "#000")], T["J"])]
     box_h = (y1f - y0f - 20.0) / 3
-    info = {"mu_phi": mu_phi, "graphs": {}}
+    info = {"mu_phi": mu_phi, "graphs": {}, "scale": "—"}   # diagrams only: no length scale
     cv.mtext(x0f + 5, y1f - 6, T["title"], 5.0, bold=True)
     for k, (sym, keys, unit) in enumerate(rows):
         ys = [np.asarray(a[key], float) for key, _ in keys]
