@@ -210,3 +210,35 @@ def test_dynamics_sheet(forging):
     assert min(y - sb * x) == pytest.approx(b, rel=1e-9)
     fw = res["flywheel"]
     assert sa == pytest.approx(fw["energy_mass"]["omega_max"] ** 2 / 2)
+
+
+@pytest.mark.parametrize("name", ["cam_offset", "cam_rocker", "cam_flat"])
+def test_cam_sheet(name, tmp_path):
+    import ezdxf
+    from tmm_cli.pipeline import run
+    from tmm_cli.report.figures import GOST_ENLARGEMENTS, GOST_REDUCTIONS
+    from tmm_cli.sheets import build_sheets, write_sheets
+    from tmm_cli.task import load_task
+    task = load_task(ROOT / "tasks" / f"{name}.yaml")
+    res = run(task)
+    sheets = build_sheets(res, task, "en")
+    assert [i["number"] for _, i in sheets] == [4]
+    cv, info = sheets[0]
+    _check_texts(sheets)
+    unit = info["unit"]
+    assert any(abs(unit - n) < 1e-12 for n in GOST_REDUCTIONS) or any(
+        abs(unit - 1 / n) < 1e-12 for n in GOST_ENLARGEMENTS)
+    assert info["title_block"]["scale"] == info["scale"]
+    # a pitch-profile point lies r / unit mm from the cam's centre (r in model mm)
+    r = math.hypot(*info["pitch"][7]) * 1000.0
+    assert math.hypot(*(info["pitch_pts"][7] - info["O"])) == pytest.approx(r / unit, rel=1e-12)
+    # the base circle r0 is drawn at r0 / unit
+    circles = [p.r for p in cv.prims if isinstance(p, Circle)]
+    assert any(abs(rc - res["cam"]["r0"] * 1000.0 / unit) < 1e-9 for rc in circles)
+    for g in info["graphs"].values():
+        assert _mantissa_ok(g["mu"])
+        assert abs(g["pts"][:, 1] - g["origin"][1] - g["values"] / g["mu"]).max() < 1e-9
+    paths = write_sheets(sheets, tmp_path, {"dxf"})
+    doc = ezdxf.readfile(paths[0])
+    assert not doc.audit().has_errors
+    assert len(doc.modelspace().query("LWPOLYLINE[layer=='contour']")) >= 4   # the profile and 3 curves

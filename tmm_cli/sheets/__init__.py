@@ -5,12 +5,13 @@ from __future__ import annotations
 
 from pathlib import Path
 
-SHEETS = {"en": {1: "Kinematics", 3: "Dynamics"}, "ru": {1: "Кинематический анализ", 3: "Динамический анализ"}}
+SHEETS = {"en": {1: "Kinematics", 3: "Dynamics", 4: "Cam mechanism"},
+          "ru": {1: "Кинематический анализ", 3: "Динамический анализ", 4: "Кулачковый механизм"}}
 
 
 def build_sheets(results: dict, task, lang: str = "en") -> list[tuple]:
     """[(PrimCanvas, info)] for each sheet whose section the results have."""
-    from . import sheet1, sheet3
+    from . import sheet1, sheet3, sheet4
     from .frame import SHEET_H, SHEET_W, draw_frame
     from .prims import PrimCanvas
     makers = []
@@ -18,6 +19,8 @@ def build_sheets(results: dict, task, lang: str = "en") -> list[tuple]:
         makers.append((1, sheet1.build))
     if (results.get("flywheel") or {}).get("arrays"):
         makers.append((3, sheet3.build))
+    if (results.get("cam") or {}).get("working_profile"):
+        makers.append((4, sheet4.build))
     out = []
     student = getattr(getattr(task, "student", None), "name", None) or ""
     group = getattr(getattr(task, "student", None), "group", None) or getattr(task, "group", None) or ""
