@@ -242,3 +242,35 @@ def test_cam_sheet(name, tmp_path):
     doc = ezdxf.readfile(paths[0])
     assert not doc.audit().has_errors
     assert len(doc.modelspace().query("LWPOLYLINE[layer=='contour']")) >= 4   # the profile and 3 curves
+
+
+@pytest.mark.parametrize("name", ["gears_shifted", "gears_zero"])
+def test_gear_sheet(name, tmp_path):
+    import ezdxf
+    from tmm_cli.pipeline import run
+    from tmm_cli.report.figures import GOST_ENLARGEMENTS, GOST_REDUCTIONS
+    from tmm_cli.sheets import build_sheets, write_sheets
+    from tmm_cli.task import load_task
+    task = load_task(ROOT / "tasks" / f"{name}.yaml")
+    res = run(task)
+    g = res["gears"]
+    sheets = build_sheets(res, task, "ru")
+    assert [i["number"] for _, i in sheets] == [5]
+    cv, info = sheets[0]
+    _check_texts(sheets)
+    unit = info["unit"]
+    assert any(abs(unit - n) < 1e-12 for n in GOST_REDUCTIONS) or any(
+        abs(unit - 1 / n) < 1e-12 for n in GOST_ENLARGEMENTS)
+    # the circles at r / unit; the centres aw / unit apart; N1N2 on the sheet = N1N2 / unit
+    circles = sorted(p.r for p in cv.prims if isinstance(p, Circle) and p.r > 2.0)
+    want = sorted(g[k][i] * 1000.0 / unit for k in ("rw", "r", "rb", "ra", "rf") for i in (0, 1))
+    assert circles == pytest.approx(want, rel=1e-12)
+    pts = info["points"]
+    assert math.hypot(*(pts["N2"] - pts["N1"])) == pytest.approx(g["line_of_action"]["N1N2"] * 1000 / unit,
+                                                                 rel=1e-9)
+    # N1 is the foot of the perpendicular from O1 on the line of action: O1N1 = rb1
+    M = info["M"]
+    assert math.hypot(*(pts["N1"] - M((0.0, 0.0)))) == pytest.approx(g["rb"][0] * 1000 / unit, rel=1e-9)
+    doc = ezdxf.readfile(write_sheets(sheets, tmp_path, {"dxf"})[0])
+    assert not doc.audit().has_errors
+    assert len(doc.modelspace().query("CIRCLE[layer=='thin']")) == 10

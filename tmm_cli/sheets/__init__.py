@@ -5,13 +5,14 @@ from __future__ import annotations
 
 from pathlib import Path
 
-SHEETS = {"en": {1: "Kinematics", 3: "Dynamics", 4: "Cam mechanism"},
-          "ru": {1: "Кинематический анализ", 3: "Динамический анализ", 4: "Кулачковый механизм"}}
+SHEETS = {"en": {1: "Kinematics", 3: "Dynamics", 4: "Cam mechanism", 5: "Gear mesh"},
+          "ru": {1: "Кинематический анализ", 3: "Динамический анализ", 4: "Кулачковый механизм",
+                 5: "Зубчатое зацепление"}}
 
 
 def build_sheets(results: dict, task, lang: str = "en") -> list[tuple]:
     """[(PrimCanvas, info)] for each sheet whose section the results have."""
-    from . import sheet1, sheet3, sheet4
+    from . import sheet1, sheet3, sheet4, sheet5
     from .frame import SHEET_H, SHEET_W, draw_frame
     from .prims import PrimCanvas
     makers = []
@@ -21,6 +22,8 @@ def build_sheets(results: dict, task, lang: str = "en") -> list[tuple]:
         makers.append((3, sheet3.build))
     if (results.get("cam") or {}).get("working_profile"):
         makers.append((4, sheet4.build))
+    if (results.get("gears") or {}).get("line_of_action"):
+        makers.append((5, sheet5.build))
     out = []
     student = getattr(getattr(task, "student", None), "name", None) or ""
     group = getattr(getattr(task, "student", None), "group", None) or getattr(task, "group", None) or ""

@@ -90,6 +90,18 @@ def _wheels(g):
             for i in (0, 1)]
 
 
+def action_points(g, c2):
+    """N1, N2, B1, B2, P on the line of action (m), wheel 1 at the origin, wheel 2 at c2."""
+    awa = math.radians(g["alpha_w"])
+    P = np.array([0.0, g["rw"][0]])
+    d = np.array([math.cos(awa), -math.sin(awa)])
+    la = g["line_of_action"]
+    s_n1 = -(P @ d)
+    sg = math.copysign(1.0, (np.array(c2) - P) @ d - s_n1)
+    return {name: P + (s_n1 + sg * q) * d for name, q in
+            (("N1", 0.0), ("N2", la["N1N2"]), ("B1", la["N1B1"]), ("B2", la["N1B2"]), ("P", la["N1P"]))}
+
+
 def mesh_figure(ctx, g):
     from tmm_cli.gears import mesh_layout
     fp = ctx.figures
@@ -105,14 +117,7 @@ def mesh_figure(ctx, g):
         for rad, st in ((g["rw"][i], "--"), (g["rb"][i], "-."), (g["ra"][i], ":"), (g["rf"][i], ":"),
                         (g["r"][i], (0, (1, 3)))):
             ax.plot((c[0] + rad * np.cos(th)) * MM, (c[1] + rad * np.sin(th)) * MM, ls=st, lw=0.6, color="0.4")
-    awa = math.radians(g["alpha_w"])
-    P = np.array([0.0, g["rw"][0]])
-    d = np.array([math.cos(awa), -math.sin(awa)])
-    la = g["line_of_action"]
-    s_n1 = -(P @ d)
-    sg = math.copysign(1.0, (np.array(c2) - P) @ d - s_n1)
-    pts = {name: P + (s_n1 + sg * q) * d for name, q in
-           (("N1", 0.0), ("N2", la["N1N2"]), ("B1", la["N1B1"]), ("B2", la["N1B2"]), ("P", la["N1P"]))}
+    pts = action_points(g, c2)
     ax.plot([pts["N1"][0] * MM, pts["N2"][0] * MM], [pts["N1"][1] * MM, pts["N2"][1] * MM], color="tab:blue", lw=0.8)
     ax.plot([pts["B1"][0] * MM, pts["B2"][0] * MM], [pts["B1"][1] * MM, pts["B2"][1] * MM], color="tab:red", lw=2.5)
     for name, p in pts.items():
