@@ -212,23 +212,32 @@ def test_dynamics_sheet(forging):
     assert sa == pytest.approx(fw["energy_mass"]["omega_max"] ** 2 / 2)
 
 
-@pytest.mark.parametrize("name", ["cam_offset", "cam_rocker", "cam_flat"])
-def test_cam_sheet(name, tmp_path):
-    import ezdxf
+def _only_sheet(name, number, lang):
+    """(results, canvas, info) of the one sheet of an example task, its labels and its
+    ГОСТ 2.302 length scale checked."""
     from tmm_cli.pipeline import run
     from tmm_cli.report.figures import GOST_ENLARGEMENTS, GOST_REDUCTIONS
-    from tmm_cli.sheets import build_sheets, write_sheets
+    from tmm_cli.sheets import build_sheets
     from tmm_cli.task import load_task
     task = load_task(ROOT / "tasks" / f"{name}.yaml")
     res = run(task)
-    sheets = build_sheets(res, task, "en")
-    assert [i["number"] for _, i in sheets] == [4]
+    sheets = build_sheets(res, task, lang)
+    assert [i["number"] for _, i in sheets] == [number]
     cv, info = sheets[0]
     _check_texts(sheets)
     unit = info["unit"]
     assert any(abs(unit - n) < 1e-12 for n in GOST_REDUCTIONS) or any(
         abs(unit - 1 / n) < 1e-12 for n in GOST_ENLARGEMENTS)
     assert info["title_block"]["scale"] == info["scale"]
+    return res, cv, info
+
+
+@pytest.mark.parametrize("name", ["cam_offset", "cam_rocker", "cam_flat"])
+def test_cam_sheet(name, tmp_path):
+    import ezdxf
+    from tmm_cli.sheets import write_sheets
+    res, cv, info = _only_sheet(name, 4, "en")
+    unit = info["unit"]
     # a pitch-profile point lies r / unit mm from the cam's centre (r in model mm)
     r = math.hypot(*info["pitch"][7]) * 1000.0
     assert math.hypot(*(info["pitch_pts"][7] - info["O"])) == pytest.approx(r / unit, rel=1e-12)
@@ -238,7 +247,7 @@ def test_cam_sheet(name, tmp_path):
     for g in info["graphs"].values():
         assert _mantissa_ok(g["mu"])
         assert abs(g["pts"][:, 1] - g["origin"][1] - g["values"] / g["mu"]).max() < 1e-9
-    paths = write_sheets(sheets, tmp_path, {"dxf"})
+    paths = write_sheets([(cv, info)], tmp_path, {"dxf"})
     doc = ezdxf.readfile(paths[0])
     assert not doc.audit().has_errors
     assert len(doc.modelspace().query("LWPOLYLINE[layer=='contour']")) >= 4   # the profile and 3 curves
@@ -247,20 +256,10 @@ def test_cam_sheet(name, tmp_path):
 @pytest.mark.parametrize("name", ["gears_shifted", "gears_zero"])
 def test_gear_sheet(name, tmp_path):
     import ezdxf
-    from tmm_cli.pipeline import run
-    from tmm_cli.report.figures import GOST_ENLARGEMENTS, GOST_REDUCTIONS
-    from tmm_cli.sheets import build_sheets, write_sheets
-    from tmm_cli.task import load_task
-    task = load_task(ROOT / "tasks" / f"{name}.yaml")
-    res = run(task)
+    from tmm_cli.sheets import write_sheets
+    res, cv, info = _only_sheet(name, 5, "ru")
     g = res["gears"]
-    sheets = build_sheets(res, task, "ru")
-    assert [i["number"] for _, i in sheets] == [5]
-    cv, info = sheets[0]
-    _check_texts(sheets)
     unit = info["unit"]
-    assert any(abs(unit - n) < 1e-12 for n in GOST_REDUCTIONS) or any(
-        abs(unit - 1 / n) < 1e-12 for n in GOST_ENLARGEMENTS)
     # the circles at r / unit; the centres aw / unit apart; N1N2 on the sheet = N1N2 / unit
     circles = sorted(p.r for p in cv.prims if isinstance(p, Circle) and p.r > 2.0)
     want = sorted(g[k][i] * 1000.0 / unit for k in ("rw", "r", "rb", "ra", "rf") for i in (0, 1))
@@ -271,6 +270,6 @@ def test_gear_sheet(name, tmp_path):
     # N1 is the foot of the perpendicular from O1 on the line of action: O1N1 = rb1
     M = info["M"]
     assert math.hypot(*(pts["N1"] - M((0.0, 0.0)))) == pytest.approx(g["rb"][0] * 1000 / unit, rel=1e-9)
-    doc = ezdxf.readfile(write_sheets(sheets, tmp_path, {"dxf"})[0])
+    doc = ezdxf.readfile(write_sheets([(cv, info)], tmp_path, {"dxf"})[0])
     assert not doc.audit().has_errors
     assert len(doc.modelspace().query("CIRCLE[layer=='thin']")) == 10
