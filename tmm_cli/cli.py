@@ -202,7 +202,7 @@ def sheets(
     except OSError as exc:
         raise _fail_write(exc)
     if not paths:
-        _err("note: no sheets: the task has no mechanism (kinematics) to draw")
+        _err("note: no sheets: the task has no linkage, cam or gear pair to draw")
     for p in paths:
         typer.echo(str(p))
 
