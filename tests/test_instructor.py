@@ -432,3 +432,21 @@ def test_write_failure_of_a_variant_is_named_not_an_internal_error():
     assert "internal error" not in msg
     assert classify(TaskError("bad", file="t.yaml"))[:2] == (2, "invalid")
     assert classify(StageError("kinematics", "x"))[:2] == (3, "failed")
+
+
+def test_memory_limit_counts_what_a_variant_adds(tmp_path):
+    """A forked worker starts with the parent's address space: a parent that has mapped more
+    than --memory (a long test run, a notebook) must not fail every variant."""
+    import mmap
+    big = mmap.mmap(-1, 5 * 1024 ** 3)          # 5 GB mapped (not touched) in the parent
+    try:
+        src = tmp_path / "tasks"
+        src.mkdir()
+        (src / "v1.yaml").write_text((ROOT / "tasks" / "gears_zero.yaml").read_text(encoding="utf-8"),
+                                     encoding="utf-8")
+        res = runner.invoke(app, ["batch", str(src), "--out", str(tmp_path / "o"), "--format", "json",
+                                  "--memory", "1024"])
+        assert res.exit_code == 0, res.output
+        assert ",ok," in (tmp_path / "o" / "summary.csv").read_text(encoding="utf-8")
+    finally:
+        big.close()

@@ -172,6 +172,16 @@ def _set_message(rows, status, aset) -> str:
     return (f"{status}: " + ", ".join(bad[:6]) + (" ..." if len(bad) > 6 else "")) if bad else ""
 
 
+def _address_space() -> int:
+    """Bytes of virtual memory this process has mapped now (0 where it cannot be read)."""
+    try:
+        with open("/proc/self/statm", encoding="ascii") as fh:
+            import os
+            return int(fh.read().split()[0]) * os.sysconf("SC_PAGE_SIZE")
+    except (OSError, ValueError, IndexError):
+        return 0
+
+
 def _child(result_file: str, memory_mb, args) -> None:
     """The worker process: limit its address space, run one variant, leave the outcome in
     ``result_file`` (a file, not a pipe: nothing can block between a dying worker and
@@ -180,7 +190,9 @@ def _child(result_file: str, memory_mb, args) -> None:
     try:
         if memory_mb:
             import resource
-            lim = int(memory_mb) * 1024 * 1024
+            # the limit is what the variant may add: a forked worker starts with the
+            # parent's address space (a large one in a long-lived parent, e.g. a test run)
+            lim = int(memory_mb) * 1024 * 1024 + _address_space()
             resource.setrlimit(resource.RLIMIT_AS, (lim, lim))
         res = work(*args)
     except MemoryError:

@@ -30,7 +30,7 @@ app = typer.Typer(
 )
 
 EXIT_OK, EXIT_ANSWERS, EXIT_INVALID, EXIT_STAGE = 0, 1, 2, 3
-FORMATS = {"json", "html", "pdf"}
+FORMATS = {"json", "html", "pdf", "sheets"}
 
 
 def _version(value: bool) -> None:
@@ -84,7 +84,7 @@ def _parse_formats(text: str) -> set[str]:
     bad = fm - FORMATS
     if bad or not fm:
         raise typer.BadParameter(f"unknown format(s) {', '.join(sorted(bad)) or '(none)'}; "
-                                 f"choose from json, html, pdf (comma-separated)")
+                                 f"choose from json, html, pdf, sheets (comma-separated)")
     return fm
 
 
@@ -101,7 +101,8 @@ def run(
     task_file: Path = typer.Argument(..., metavar="TASK.yaml", help="the task file (README: The task file)"),
     out: Optional[Path] = typer.Option(None, "--out", "-o", help="output folder (default: out/<task name>/)"),
     format: str = typer.Option("json,html,pdf", "--format", "-f",
-                               help="comma-separated outputs: json, html, pdf (results.json is always written)"),
+                               help="comma-separated outputs: json, html, pdf, sheets (the A1 drawing sheets in "
+                                    "sheets/; results.json is always written)"),
     lang: str = typer.Option("en", "--lang", "-l", help="report language: en | ru"),
     quiet: bool = typer.Option(False, "--quiet", "-q", help="no progress and summary on the terminal"),
     study: bool = typer.Option(False, "--study", help="also write study.json and study.html: "
@@ -175,6 +176,42 @@ def study_cmd(
         paths = study_mod.write(st, out, trap)
     except OSError as exc:
         raise _fail_write(exc)
+    for p in paths:
+        typer.echo(str(p))
+
+
+@app.command()
+def sheets(
+    task_file: Path = typer.Argument(..., metavar="TASK.yaml", help="the task file"),
+    out: Optional[Path] = typer.Option(None, "--out", "-o", help="output folder (default: out/<task name>/)"),
+    format: str = typer.Option("pdf,svg,dxf", "--format", "-f", help="comma-separated: pdf, svg, dxf"),
+    lang: str = typer.Option("en", "--lang", "-l", help="sheet language: en | ru"),
+):
+    """The A1 drawing sheets (frame, ГОСТ 2.104 title block, standard scales) as PDF, SVG and DXF.
+
+    Example: tmm sheets tasks/forging_sixbar.yaml --out out/forging --format pdf,dxf
+    """
+    fm = {f.strip().lower() for f in format.split(",") if f.strip()}
+    if not fm or fm - {"pdf", "svg", "dxf"}:
+        raise typer.BadParameter("choose from pdf, svg, dxf (comma-separated)")
+    if lang not in ("en", "ru"):
+        raise typer.BadParameter("--lang must be en or ru")
+    try:
+        task = _load(task_file)
+    except TaskError as exc:
+        raise _fail_task(exc)
+    from .pipeline import run as run_pipeline
+    from .sheets import build_sheets, write_sheets
+    try:
+        results = run_pipeline(task)
+    except StageError as exc:
+        raise _fail_stage(exc, task.file)
+    try:
+        paths = write_sheets(build_sheets(results, task, lang), out or Path("out") / task.name, fm)
+    except OSError as exc:
+        raise _fail_write(exc)
+    if not paths:
+        _err("note: no sheets: the task has no linkage, cam or gear pair to draw")
     for p in paths:
         typer.echo(str(p))
 

@@ -67,6 +67,9 @@ def write_outputs(task, results: dict, out: Path, formats: set[str], lang: str, 
     if study is not None:
         from . import study as study_mod
         written.extend(study_mod.write(study[0], out, study[1]))
+    if "sheets" in formats:   # the A1 drawing sheets (README, Drawing sheets)
+        from .sheets import build_sheets, write_sheets
+        written.extend(write_sheets(build_sheets(results, task, lang), out / "sheets", {"pdf", "svg", "dxf"}))
     manifest.commit(written)
     return written + [manifest.path]     # the manifest too: a batch removes the whole folder
 

@@ -110,13 +110,17 @@ def scale_text(k: float) -> str:
 
 def line_points(g) -> dict:
     """N1, N2, B1, B2 and the pole P on the line of action (m, wheel 1 at the origin, P above it)."""
+    return action_points(g, (0.0, g["aw"]))
+
+
+def action_points(g, c2) -> dict:
+    """N1, N2, B1, B2, P on the line of action (m), wheel 1 at the origin, wheel 2 at c2."""
     awa = math.radians(g["alpha_w"])
     P = np.array([0.0, g["rw"][0]])
     d = np.array([math.cos(awa), -math.sin(awa)])
     la = g["line_of_action"]
     s_n1 = -(P @ d)
-    c2 = np.array([0.0, g["aw"]])
-    sg = math.copysign(1.0, (c2 - P) @ d - s_n1)
+    sg = math.copysign(1.0, (np.array(c2) - P) @ d - s_n1)
     return {name: P + (s_n1 + sg * q) * d for name, q in
             (("N1", 0.0), ("N2", la["N1N2"]), ("B1", la["N1B1"]), ("B2", la["N1B2"]), ("P", la["N1P"]))}
 

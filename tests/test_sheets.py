@@ -1,0 +1,277 @@
+"""The A1 drawing sheets: DXF that re-reads, true-size plans, standard scales,
+labels that neither collide nor leave the frame, the title block."""
+from __future__ import annotations
+
+import math
+from collections import Counter
+from pathlib import Path
+
+import pytest
+
+from tmm_cli.sheets.frame import FRAME, std_mu
+from tmm_cli.sheets.prims import Arc, Circle, Line, Polyline, PrimCanvas, Text
+from tmm_cli.sheets.writers import dxf_entities, to_dxf
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+@pytest.fixture(scope="module")
+def forging():
+    from tmm_cli.pipeline import run
+    from tmm_cli.sheets import build_sheets
+    from tmm_cli.task import load_task
+    task = load_task(ROOT / "tasks" / "forging_sixbar.yaml")
+    res = run(task)
+    return res, {lang: build_sheets(res, task, lang) for lang in ("en", "ru")}
+
+
+def _mantissa_ok(mu: float) -> bool:
+    k = math.floor(math.log10(mu) + 1e-12)
+    return any(abs(mu - m * 10.0 ** k) <= 1e-9 * mu for m in (1, 2, 2.5, 4, 5))
+
+
+def test_std_mu_series():
+    # smallest of 1, 2, 2.5, 4, 5 x 10^k not below the value
+    assert std_mu(0.0123) == 0.02
+    assert std_mu(0.021) == 0.025
+    assert std_mu(0.3) == 0.4
+    assert std_mu(4.5) == 5.0
+    assert std_mu(0.05) == 0.05
+
+
+@pytest.mark.parametrize("k", [0, 1])
+def test_dxf_rereads_with_layers_and_counts(forging, tmp_path, k):
+    import ezdxf
+    _, sheets = forging
+    cv, _ = sheets["ru"][k]
+    path = tmp_path / "s.dxf"
+    path.write_bytes(to_dxf(cv))
+    doc = ezdxf.readfile(path)
+    auditor = doc.audit()
+    assert not auditor.has_errors
+    assert doc.header["$INSUNITS"] == 4
+    assert {"contour", "thin", "dimensions", "text"} <= {l.dxf.name for l in doc.layers}
+    want = Counter()
+    for p in dxf_entities(cv):
+        if isinstance(p, Line):
+            want["LINE"] += 1
+        elif isinstance(p, Polyline):
+            want["SOLID" if p.fill and len(p.pts) in (3, 4) else "LWPOLYLINE"] += 1
+        elif isinstance(p, Circle):
+            want["CIRCLE"] += 1
+        elif isinstance(p, Arc):
+            want["ARC"] += 1
+        elif isinstance(p, Text):
+            want["TEXT"] += 1
+    got = Counter(e.dxftype() for e in doc.modelspace())
+    assert got == want
+    assert want["TEXT"] > 50 and want["LINE"] > 50 and want["LWPOLYLINE"] >= 4
+    if k == 0:
+        assert want["ARC"] >= 1 and want["CIRCLE"] >= 1
+    # every text on the text layer, the frame on the contour layer
+    texts = list(doc.modelspace().query("TEXT"))
+    assert all(t.dxf.layer == "text" for t in texts)
+    assert any("Вариант 7" == t.dxf.text for t in texts)
+    layers = {e.dxf.layer for e in doc.modelspace()}
+    assert layers == {"contour", "thin", "dimensions", "text"}
+
+
+def test_primitive_kinds_each_written():
+    import ezdxf
+    cv = PrimCanvas(100, 100)
+    cv.layer = "contour"
+    cv.line((0, 0), (10, 0))
+    cv.arc((50, 50), 10, 0, 90)
+    cv.circle((20, 20), 3)
+    cv.polyline([(0, 0), (1, 1), (2, 0)])
+    cv.mtext(5, 5, "ab", 3.5)
+    import io
+    doc = ezdxf.read(io.StringIO(to_dxf(cv).decode()))
+    arc = doc.modelspace().query("ARC")[0]
+    assert (arc.dxf.radius, arc.dxf.start_angle, arc.dxf.end_angle) == (10, 0, 90)
+    t = doc.modelspace().query("TEXT")[0]
+    assert t.dxf.height == pytest.approx(0.7 * 3.5)
+    assert [e.dxftype() for e in doc.modelspace()] == ["LINE", "ARC", "CIRCLE", "LWPOLYLINE", "TEXT"]
+
+
+def test_plans_at_true_scale_and_standard_scales(forging):
+    res, sheets = forging
+    _, info = sheets["en"][0]
+    from tmm_cli.report.figures import GOST_ENLARGEMENTS, GOST_REDUCTIONS
+    unit = info["mechanism"]["unit"]
+    assert any(abs(unit - n) < 1e-12 for n in GOST_REDUCTIONS) or any(
+        abs(unit - 1 / n) < 1e-12 for n in GOST_ENLARGEMENTS)
+    assert info["mechanism"]["mu_l"] == pytest.approx(unit / 1000)
+    assert info["plans"]
+    for i, plans in info["plans"].items():
+        for kind in ("v", "a"):
+            d = plans[kind]
+            assert d["k"] == 1.0          # drawn at its own scale, not reduced to fit
+            assert _mantissa_ok(d["mu"])
+            plan = d["plan"]
+            for v in plan.vecs:
+                assert plan.length_mm(v) == pytest.approx(v.value / d["mu"], rel=1e-9, abs=1e-9)
+    # the crank-pin velocity: v_A = omega1 * OA = 5.236 * 0.15 (50 rpm, 0.15 m)
+    i0 = next(iter(info["plans"]))
+    pv = info["plans"][i0]["v"]
+    va = next(v for v in pv["plan"].vecs if v.end == "a" and v.kind == "abs")
+    assert va.value == pytest.approx(50 * 2 * math.pi / 60 * 0.15, rel=1e-9)
+    assert pv["plan"].length_mm(va) == pytest.approx(0.7853981633974483 / pv["mu"], rel=1e-9)
+    for key in ("s", "v", "a"):
+        d = info["diagrams"][key]
+        assert _mantissa_ok(d["mu"])
+        y0 = d["pts"][:, 1] - d["values"] / d["mu"]
+        assert max(y0) - min(y0) < 1e-9            # every point at value / mu from its axis
+    assert _mantissa_ok(info["diagrams"]["mu_phi"])
+
+
+def _boxes(cv):
+    return [(p, p.box()) for p in cv.prims if isinstance(p, Text)]
+
+
+def _check_texts(sheets):
+    x0f, y0f, x1f, y1f = FRAME
+    for cv, _ in sheets:
+        boxes = _boxes(cv)
+        for p, (x0, y0, x1, y1) in boxes:
+            assert x0f <= x0 and x1 <= x1f and y0f <= y0 and y1 <= y1f, p.plain
+        for i in range(len(boxes)):
+            a = boxes[i][1]
+            for j in range(i + 1, len(boxes)):
+                b = boxes[j][1]
+                overlap = min(a[2], b[2]) - max(a[0], b[0]) > 1e-6 and min(a[3], b[3]) - max(a[1], b[1]) > 1e-6
+                assert not overlap, (boxes[i][0].plain, boxes[j][0].plain)
+
+
+@pytest.mark.parametrize("lang", ["en", "ru"])
+def test_texts_do_not_collide_or_leave_the_frame(forging, lang):
+    _check_texts(forging[1][lang])
+
+
+@pytest.mark.parametrize("name", ["press_offset_slider_crank", "crank_rocker_fourbar", "shaper_slotted_ram"])
+def test_other_linkages(name):
+    """An extra position next to a grid one (press), a rocker output (ψ, ω, ε), a slotted lever."""
+    import io
+    import ezdxf
+    from tmm_cli.pipeline import run
+    from tmm_cli.sheets import build_sheets
+    from tmm_cli.task import load_task
+    task = load_task(ROOT / "tasks" / f"{name}.yaml")
+    sheets = build_sheets(run(task), task, "ru")
+    assert sheets
+    _check_texts(sheets)
+    for cv, info in sheets:
+        assert not ezdxf.read(io.StringIO(to_dxf(cv).decode())).audit().has_errors
+        for key in ("s", "v", "a"):
+            if "diagrams" in info:
+                assert _mantissa_ok(info["diagrams"][key]["mu"])
+
+
+def test_title_block(forging):
+    _, sheets = forging
+    tb = sheets["ru"][0][1]["title_block"]
+    assert tb["title"] == "Horizontal forging machine"
+    assert tb["variant"] == 7
+    assert (tb["sheet"], tb["sheets"]) == (1, len(sheets["ru"]))
+    assert tb["scale"] == sheets["ru"][0][1]["mechanism"]["scale"]
+    texts = {p.plain for p in sheets["ru"][0][0].prims if isinstance(p, Text)}
+    assert {"Вариант 7", "Лист 1", f"Листов {tb['sheets']}", tb["scale"], "TMM.7.01", "Разраб."} <= texts
+
+
+def test_cli_sheets_writes_files(tmp_path):
+    from typer.testing import CliRunner
+    from tmm_cli.cli import app
+    r = CliRunner().invoke(app, ["sheets", str(ROOT / "tasks" / "forging_sixbar.yaml"), "--out", str(tmp_path),
+                                 "--format", "svg,dxf"])
+    assert r.exit_code == 0, r.output
+    assert (tmp_path / "sheet-1.svg").read_text().count("<text") > 50
+    assert (tmp_path / "sheet-1.dxf").stat().st_size > 10000
+    assert not (tmp_path / "sheets.pdf").exists()
+
+
+def test_dynamics_sheet(forging):
+    res, sheets = forging
+    dyn = [info for _, info in sheets["en"] if info["number"] == 3]
+    assert len(dyn) == 1
+    info = dyn[0]
+    assert info["title_block"]["sheet"] == 2 and info["title_block"]["sheets"] == 2
+    for sym, g in info["graphs"].items():
+        assert _mantissa_ok(g["mu"])
+        for pts, vals in zip(g["pts"], g["values"]):
+            assert abs(pts[:, 1] - g["origin"][1] - vals / g["mu"]).max() < 1e-9
+    em = info["energy_mass"]
+    assert _mantissa_ok(em["mu_T"]) and _mantissa_ok(em["mu_J"])
+    # the tangents touch the drawn diagram and leave it on one side:
+    # max(ΔT - J ω_max²/2) = a, min(ΔT - J ω_min²/2) = b, here measured on the sheet in mm
+    (a, sa), (b, sb) = em["tangents"]
+    x = (em["pts"][:, 0] - em["origin"][0]) * em["mu_J"]
+    y = (em["pts"][:, 1] - em["origin"][1]) * em["mu_T"]
+    # (a, b come from the extrema located between the grid's nodes, so the drawn polygon,
+    # through the nodes, lies on the inner side and within the grid's own second-order gap)
+    assert max(y - sa * x) <= a + 1e-9 * abs(a) and max(y - sa * x) == pytest.approx(a, rel=1e-4)
+    assert min(y - sb * x) >= b - 1e-9 * abs(b) and min(y - sb * x) == pytest.approx(b, rel=1e-4)
+    fw = res["flywheel"]
+    assert sa == pytest.approx(fw["energy_mass"]["omega_max"] ** 2 / 2)
+
+
+def _only_sheet(name, number, lang):
+    """(results, canvas, info) of the one sheet of an example task, its labels and its
+    ГОСТ 2.302 length scale checked."""
+    from tmm_cli.pipeline import run
+    from tmm_cli.report.figures import GOST_ENLARGEMENTS, GOST_REDUCTIONS
+    from tmm_cli.sheets import build_sheets
+    from tmm_cli.task import load_task
+    task = load_task(ROOT / "tasks" / f"{name}.yaml")
+    res = run(task)
+    sheets = build_sheets(res, task, lang)
+    assert [i["number"] for _, i in sheets] == [number]
+    cv, info = sheets[0]
+    _check_texts(sheets)
+    unit = info["unit"]
+    assert any(abs(unit - n) < 1e-12 for n in GOST_REDUCTIONS) or any(
+        abs(unit - 1 / n) < 1e-12 for n in GOST_ENLARGEMENTS)
+    assert info["title_block"]["scale"] == info["scale"]
+    return res, cv, info
+
+
+@pytest.mark.parametrize("name", ["cam_offset", "cam_rocker", "cam_flat"])
+def test_cam_sheet(name, tmp_path):
+    import ezdxf
+    from tmm_cli.sheets import write_sheets
+    res, cv, info = _only_sheet(name, 4, "en")
+    unit = info["unit"]
+    # a pitch-profile point lies r / unit mm from the cam's centre (r in model mm)
+    r = math.hypot(*info["pitch"][7]) * 1000.0
+    assert math.hypot(*(info["pitch_pts"][7] - info["O"])) == pytest.approx(r / unit, rel=1e-12)
+    # the base circle r0 is drawn at r0 / unit
+    circles = [p.r for p in cv.prims if isinstance(p, Circle)]
+    assert any(abs(rc - res["cam"]["r0"] * 1000.0 / unit) < 1e-9 for rc in circles)
+    for g in info["graphs"].values():
+        assert _mantissa_ok(g["mu"])
+        assert abs(g["pts"][:, 1] - g["origin"][1] - g["values"] / g["mu"]).max() < 1e-9
+    paths = write_sheets([(cv, info)], tmp_path, {"dxf"})
+    doc = ezdxf.readfile(paths[0])
+    assert not doc.audit().has_errors
+    assert len(doc.modelspace().query("LWPOLYLINE[layer=='contour']")) >= 4   # the profile and 3 curves
+
+
+@pytest.mark.parametrize("name", ["gears_shifted", "gears_zero"])
+def test_gear_sheet(name, tmp_path):
+    import ezdxf
+    from tmm_cli.sheets import write_sheets
+    res, cv, info = _only_sheet(name, 5, "ru")
+    g = res["gears"]
+    unit = info["unit"]
+    # the circles at r / unit; the centres aw / unit apart; N1N2 on the sheet = N1N2 / unit
+    circles = sorted(p.r for p in cv.prims if isinstance(p, Circle) and p.r > 2.0)
+    want = sorted(g[k][i] * 1000.0 / unit for k in ("rw", "r", "rb", "ra", "rf") for i in (0, 1))
+    assert circles == pytest.approx(want, rel=1e-12)
+    pts = info["points"]
+    assert math.hypot(*(pts["N2"] - pts["N1"])) == pytest.approx(g["line_of_action"]["N1N2"] * 1000 / unit,
+                                                                 rel=1e-9)
+    # N1 is the foot of the perpendicular from O1 on the line of action: O1N1 = rb1
+    M = info["M"]
+    assert math.hypot(*(pts["N1"] - M((0.0, 0.0)))) == pytest.approx(g["rb"][0] * 1000 / unit, rel=1e-9)
+    doc = ezdxf.readfile(write_sheets([(cv, info)], tmp_path, {"dxf"})[0])
+    assert not doc.audit().has_errors
+    assert len(doc.modelspace().query("CIRCLE[layer=='thin']")) == 10

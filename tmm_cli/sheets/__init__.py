@@ -1,0 +1,58 @@
+"""The drawing sheets of the course project (A1, ГОСТ 2.301/2.104/2.302) as SVG, PDF and
+DXF: `tmm sheets TASK` (README, *Drawing sheets*).  A sheet is one list of primitives in
+mm (tmm_cli.sheets.prims) written two ways (tmm_cli.sheets.writers)."""
+from __future__ import annotations
+
+from pathlib import Path
+
+SHEETS = {"en": {1: "Kinematics", 3: "Dynamics", 4: "Cam mechanism", 5: "Gear mesh"},
+          "ru": {1: "Кинематический анализ", 3: "Динамический анализ", 4: "Кулачковый механизм",
+                 5: "Зубчатое зацепление"}}
+
+
+def build_sheets(results: dict, task, lang: str = "en") -> list[tuple]:
+    """[(PrimCanvas, info)] for each sheet whose section the results have."""
+    from . import sheet1, sheet3, sheet4, sheet5
+    from .frame import SHEET_H, SHEET_W, draw_frame
+    from .prims import PrimCanvas
+    makers = []
+    if results.get("kinematics") and results.get("structure"):
+        makers.append((1, sheet1.build))
+    if (results.get("flywheel") or {}).get("arrays"):
+        makers.append((3, sheet3.build))
+    if (results.get("cam") or {}).get("working_profile"):
+        makers.append((4, sheet4.build))
+    if (results.get("gears") or {}).get("line_of_action"):
+        makers.append((5, sheet5.build))
+    out = []
+    student = getattr(getattr(task, "student", None), "name", None) or ""
+    group = getattr(getattr(task, "student", None), "group", None) or getattr(task, "group", None) or ""
+    meta = results.get("task") or {}
+    for n, (num, make) in enumerate(makers, start=1):
+        cv = PrimCanvas(SHEET_W, SHEET_H)
+        info = make(cv, results, task, lang)
+        info["title_block"] = draw_frame(cv, title=meta.get("title") or getattr(task, "title", "") or "",
+                                         sheet_title=SHEETS[lang][num], variant=meta.get("variant", ""),
+                                         student=student, group=str(group), n=n, total=len(makers),
+                                         scale=info.get("scale", ""), lang=lang)
+        info["number"] = num
+        out.append((cv, info))
+    return out
+
+
+def write_sheets(sheets: list[tuple], out: Path, formats: set[str]) -> list[Path]:
+    """sheet-<n>.svg / sheet-<n>.dxf per sheet (n: its number in the title block) and sheets.pdf (all pages), atomically."""
+    from ..io import atomic_write
+    from .frame import SHEET_H, SHEET_W
+    from .writers import to_dxf, to_pdf, to_svg
+    out = Path(out)
+    written = []
+    svgs = [to_svg(cv) for cv, _ in sheets]
+    for n, ((cv, info), svg) in enumerate(zip(sheets, svgs), start=1):
+        if "svg" in formats:
+            written.append(atomic_write(out / f"sheet-{n}.svg", svg))
+        if "dxf" in formats:
+            written.append(atomic_write(out / f"sheet-{n}.dxf", to_dxf(cv)))
+    if "pdf" in formats and svgs:
+        written.append(atomic_write(out / "sheets.pdf", to_pdf(svgs, SHEET_W, SHEET_H)))
+    return written

@@ -1,0 +1,98 @@
+"""The A1 sheet: the frame (ГОСТ 2.301/2.104: 20 mm on the left for binding, 5 mm on
+the other sides) and the title block of ГОСТ 2.104 form 1 (185 x 55 mm), the scales
+of the course's drawings (ГОСТ 2.302 for lengths, 1, 2, 2.5, 4, 5 x 10^k for the others)."""
+from __future__ import annotations
+
+from ..report.figures import drawing_scale, nice_scale
+
+SHEET_W, SHEET_H = 841.0, 594.0
+FRAME = (20.0, 5.0, SHEET_W - 5.0, SHEET_H - 5.0)        # x0, y0, x1, y1
+TB_W, TB_H = 185.0, 55.0
+MU_SERIES = (1.0, 2.0, 2.5, 4.0, 5.0, 10.0)
+
+
+def std_mu(value: float) -> float:
+    """The smallest scale factor >= value from 1, 2, 2.5, 4, 5 x 10^k."""
+    return nice_scale(value, MU_SERIES)
+
+
+def length_scale(model_mm_per_paper_mm: float) -> tuple[float, str]:
+    """The ГОСТ 2.302 drawing scale for a length drawing: (model mm per paper mm, '1:5')."""
+    return drawing_scale(model_mm_per_paper_mm)
+
+
+def fit_text(cv, x, y, s, h, max_w, anchor="start", **kw):
+    """A label of height h mm, made smaller when it would be wider than max_w."""
+    if s:
+        h = min(h, max_w / (0.6 * len(s)))
+        cv.mtext(x, y, s, h, anchor=anchor, **kw)
+
+
+TB_TEXT = {
+    "en": {"dev": "Drawn", "chk": "Checked", "tcn": "T.contr.", "ncn": "N.contr.", "apr": "Approved",
+           "ch": "Rev.", "sh": "Sheet", "doc": "Doc. No.", "sign": "Sign.", "date": "Date",
+           "lit": "Lit.", "mass": "Mass", "scale": "Scale", "sheet": "Sheet", "sheets": "Sheets",
+           "variant": "Variant", "course": "Course project, TMM"},
+    "ru": {"dev": "Разраб.", "chk": "Пров.", "tcn": "Т.контр.", "ncn": "Н.контр.", "apr": "Утв.",
+           "ch": "Изм.", "sh": "Лист", "doc": "№ докум.", "sign": "Подп.", "date": "Дата",
+           "lit": "Лит.", "mass": "Масса", "scale": "Масштаб", "sheet": "Лист", "sheets": "Листов",
+           "variant": "Вариант", "course": "Курсовой проект по ТММ"},
+}
+
+
+def draw_frame(cv, *, title: str, sheet_title: str, variant, student: str, group: str,
+               n: int, total: int, scale: str, lang: str = "en") -> dict:
+    """The frame and the title block; returns the title block's fields as written."""
+    T = TB_TEXT[lang]
+    x0, y0, x1, y1 = FRAME
+    cv.layer = "thin"
+    cv.polyline([(0, 0), (SHEET_W, 0), (SHEET_W, SHEET_H), (0, SHEET_H)], width=0.18, closed=True)
+    cv.layer = "contour"
+    cv.polyline([(x0, y0), (x1, y0), (x1, y1), (x0, y1)], width=0.7, closed=True)
+    # title block, form 1: bottom right corner of the frame
+    bx, by = x1 - TB_W, y0
+    cv.polyline([(bx, by), (x1, by), (x1, by + TB_H), (bx, by + TB_H)], width=0.7, closed=True)
+    # left part: 65 mm, 11 rows of 5 mm; columns 7, 10, 23, 15, 10
+    cols = [bx, bx + 7, bx + 17, bx + 40, bx + 55, bx + 65]
+    for c in cols[1:]:
+        # the names of the signing rows span the first two columns
+        cv.line((c, by + 25 if c == cols[1] else by), (c, by + TB_H), width=0.7 if c == cols[-1] else 0.5)
+    for k in range(1, 11):
+        y = by + 5 * k
+        cv.layer = "contour" if k in (6, 8) else "thin"
+        cv.line((bx, y), (cols[-1], y), width=0.5 if k in (6, 8) else 0.18)
+    cv.layer = "contour"
+    # right part: designation 120 x 15 on top; title 70 x 40; lit./mass/scale; sheet n of N; group
+    rx = bx + 65
+    cv.line((rx, by + 40), (x1, by + 40), width=0.5)
+    cv.line((rx + 70, by), (rx + 70, by + 40), width=0.5)
+    for y in (by + 15, by + 20, by + 35):
+        cv.line((rx + 70, y), (x1, y), width=0.5)
+    for x in (rx + 85, rx + 102):
+        cv.line((x, by + 20), (x, by + 40), width=0.5)
+    cv.line((rx + 105, by + 15), (rx + 105, by + 20), width=0.5)
+    # texts
+    h = 2.5
+    for c, s in zip(cols, (T["ch"], T["sh"], T["doc"], T["sign"], T["date"])):
+        fit_text(cv, c + 0.7, by + 27.5, s, h, 1.0 + (cols[cols.index(c) + 1] - c) - 2.4)
+    rows = [(T["dev"], student), (T["chk"], ""), (T["tcn"], ""), (T["ncn"], ""), (T["apr"], "")]
+    for k, (lab, val) in enumerate(rows):
+        y = by + 22.5 - 5 * k
+        fit_text(cv, bx + 0.7, y, lab, h, 15.6)
+        fit_text(cv, bx + 17.7, y, val, h, 21.6)
+    code = f"TMM.{variant}.{n:02d}" if variant not in (None, "") else f"TMM.{n:02d}"
+    fit_text(cv, rx + 60, by + 47.5, code, 7.0, 116, anchor="middle")
+    fit_text(cv, rx + 35, by + 28, title, 5.0, 66, anchor="middle")
+    fit_text(cv, rx + 35, by + 20, sheet_title, 3.5, 66, anchor="middle")
+    fit_text(cv, rx + 35, by + 12, f"{T['variant']} {variant}" if variant not in (None, "") else "", 3.5, 66,
+             anchor="middle")
+    fit_text(cv, rx + 35, by + 5, T["course"], 2.5, 66, anchor="middle")
+    fit_text(cv, rx + 77.5, by + 37.5, T["lit"], h, 13, anchor="middle")
+    fit_text(cv, rx + 93.5, by + 37.5, T["mass"], h, 15, anchor="middle")
+    fit_text(cv, rx + 111, by + 37.5, T["scale"], h, 16, anchor="middle")
+    fit_text(cv, rx + 111, by + 27.5, scale, 3.5, 16, anchor="middle")
+    fit_text(cv, rx + 71, by + 17.5, f"{T['sheet']} {n}", h, 32)
+    fit_text(cv, rx + 106, by + 17.5, f"{T['sheets']} {total}", h, 13)
+    fit_text(cv, rx + 95, by + 7.5, group, 3.5, 46, anchor="middle")
+    return {"title": title, "sheet_title": sheet_title, "variant": variant, "student": student,
+            "group": group, "sheet": n, "sheets": total, "scale": scale, "code": code}

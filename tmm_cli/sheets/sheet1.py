@@ -1,0 +1,227 @@
+"""Sheet 1: the mechanism in its positions, the velocity and acceleration plans of the
+course positions (drawn by the report's own plan code at the sheet's scale) and the
+output's s, v, a diagrams."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .frame import FRAME, length_scale, std_mu
+from .graph import draw_graph
+
+TXT = {
+    "en": {"scheme": "Kinematic scheme", "plans": "Plans, position {i}", "vplan": "Velocity plan",
+           "aplan": "Acceleration plan", "diagrams": "Diagrams of the output", "pos": "position",
+           "unit_v": "(m/s)/mm", "unit_a": "(m/s²)/mm", "mm": "mm"},
+    "ru": {"scheme": "Кинематическая схема", "plans": "Планы, положение {i}", "vplan": "План скоростей",
+           "aplan": "План ускорений", "diagrams": "Диаграммы выходного звена", "pos": "положение",
+           "unit_v": "(м/с)/мм", "unit_a": "(м/с²)/мм", "mm": "мм"},
+}
+UNITS = {"en": {"m": "m", "m/s": "m/s", "m/s²": "m/s²", "rad": "rad", "rad/s": "rad/s", "rad/s²": "rad/s²",
+                "deg": "°"},
+         "ru": {"m": "м", "m/s": "м/с", "m/s²": "м/с²", "rad": "рад", "rad/s": "рад/с", "rad/s²": "рад/с²",
+                "deg": "°"}}
+
+
+def _xy(e, p):
+    d = e["points"][p]
+    return np.array([float(d["x"]), float(d["y"])])
+
+
+def course_positions(results: dict) -> list[int]:
+    """The positions whose plans go on the sheet: the most loaded position of the
+    kinetostatics (largest |balancing moment|) and the first one computed; without
+    kinetostatics the first position after the start."""
+    kst = [k for k in results.get("kinetostatics") or [] if k.get("balancing_moment") is not None]
+    kin = {e["index"] for e in results.get("kinematics") or []}
+    out = []
+    if kst:
+        out.append(max(kst, key=lambda k: abs(float(k["balancing_moment"])))["index"])
+        if kst[0]["index"] not in out:
+            out.append(kst[0]["index"])
+    else:
+        out.append(1 if 1 in kin else min(kin))
+    return [i for i in out if i in kin][:2]
+
+
+def draw_mechanism(cv, geom, entries, course: list[int], box, lang="en") -> dict:
+    """Every position thin, the course positions as contour lines, at a ГОСТ scale
+    fitting box = (x0, y0, w, h) mm.  Returns {'unit', 'scale', 'mu_l'}."""
+    from ..report.figures import place_labels
+    x0, y0, w, h = box
+    pts = np.array([_xy(e, p) for e in entries for p in e["points"]]) * 1000.0
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    span = np.maximum(hi - lo, 1.0)
+    unit, label = length_scale(max(span[0] / (w - 30), span[1] / (h - 40)))
+    c0 = np.array([x0 + w / 2, y0 + (h - 12) / 2]) - (lo + hi) / 2 / unit
+
+    def M(p):
+        return c0 + np.asarray(p, float) * 1000.0 / unit
+
+    main = [e for e in entries if e["index"] in course] or entries[:1]
+    grid = [e for e in entries if e not in main]
+    segs = []
+    for e in grid + main:
+        thick = e in main
+        cv.layer = "contour" if thick else "thin"
+        for l in geom.links:
+            if l.kind != "bar" or len(l.points) < 2:
+                continue
+            ps = [M(_xy(e, p)) for p in l.points if p in e["points"]]
+            for q in ps[1:]:
+                cv.line(ps[0], q, width=0.7 if thick else 0.2)
+                if thick:
+                    segs.append((ps[0], q))
+            if len(ps) > 2:
+                cv.line(ps[1], ps[2], width=0.7 if thick else 0.2)
+        for l in geom.links:
+            if l.kind == "slider" and l.points[0] in e["points"]:
+                ang = float(e["links"][l.name]["angle"] or 0.0)
+                cv.block(M(_xy(e, l.points[0])), ang, 10.0, 6.0, width=0.7 if thick else 0.2)
+        if thick:
+            for p in e["points"]:
+                if p not in geom.ground and not p.startswith("S"):
+                    cv.circle(M(_xy(e, p)), 1.2, width=0.5)
+    cv.layer = "contour"
+    for g in sorted(geom.ground):
+        if g in entries[0]["points"]:
+            cv.ground(M(_xy(entries[0], g)), size=3.0, width=0.5)
+            cv.circle(M(_xy(entries[0], g)), 1.2, width=0.5)
+    # guides of the sliders: dash-dot centre lines over the stroke
+    cv.layer = "thin"
+    for l in geom.links:
+        if l.kind == "slider":
+            ps = np.array([M(_xy(e, l.points[0])) for e in entries])
+            ang = math.radians(float(entries[0]["links"][l.name]["angle"] or 0.0))
+            u = np.array([math.cos(ang), math.sin(ang)])
+            t = (ps - ps[0]) @ u
+            cv.line(ps[0] + u * (t.min() - 12), ps[0] + u * (t.max() + 12), width=0.2, dash="6 1.5 1 1.5")
+    # the crank pin's circle, the position numbers and the direction of rotation
+    from ..report.plans import crank_pin
+    pin = crank_pin(geom)
+    O = next((j.point for j in geom.joints if j.kind == "R" and j.a == 0 and j.b == geom.drive), None)
+    labels_at, numbers = [], []
+    if pin and O:
+        Oc = M(_xy(entries[0], O))
+        r = float(np.hypot(*(M(_xy(entries[0], pin)) - Oc)))
+        cv.circle(Oc, r, fill=None, width=0.2)
+        cv.layer = "dimensions"
+        cv.arc(Oc, 0.45 * r, 20.0, 120.0, width=0.35)
+        a = math.radians(120.0)
+        tip = Oc + 0.45 * r * np.array([math.cos(a), math.sin(a)])
+        cv.arrow(tip - 0.01 * np.array([-math.sin(a), math.cos(a)]),
+                 tip + 2.5 * np.array([-math.sin(a), math.cos(a)]), width=0.35, head=2.5)
+        wq = Oc + 0.45 * r * 1.35 * np.array([math.cos(math.radians(70)), math.sin(math.radians(70))])
+        cv.mtext(wq[0], wq[1], "ω", 3.5, anchor="middle", sub="1")
+        labels_at.append(wq)
+        numbers.append("ω1")
+        for e in entries:
+            if e.get("index") is None or e["index"] > 11 and len(entries) > 12 and e["index"] not in course:
+                continue
+            d = M(_xy(e, pin)) - Oc
+            d = d / (np.hypot(*d) or 1.0)
+            s = str(e["index"])
+            q = Oc + d * (r + 5.0)
+            # an extra position next to a grid one: its number further out
+            while any(abs(q[0] - p[0]) < 0.3 * 3.5 * (len(s) + len(t)) + 0.5 and abs(q[1] - p[1]) < 4.0
+                      for p, t in zip(labels_at, numbers)):
+                q = q + d * 4.0
+            labels_at.append(q)
+            numbers.append(s)
+            cv.mtext(q[0], q[1], s, 3.5, anchor="middle")
+    # point names at the first course position
+    e = main[0]
+    names = [p for p in e["points"] if not p.startswith("S")]
+    anchors = [(*M(_xy(e, p)), None) for p in names]
+    pos = place_labels(anchors, 60.0, avoid=[a[:2] for a in anchors] + labels_at, step=5.0,
+                       segments=[(a, b) for a, b in segs])
+    for p, (x, y) in zip(names, pos):
+        cv.mtext(x, y, p[0], 3.5, anchor="middle", italic=True, sub=p[1:] or None)
+    cv.mtext(x0 + 2, y0 + h - 4, TXT[lang]["scheme"], 5.0, bold=True)
+    mu_l = unit / 1000.0
+    cv.mtext(x0 + 2, y0 + h - 11, "μ", 3.5, sub="l", after=f" = {mu_l:g} {UNITS[lang]['m']}/{TXT[lang]['mm']}"
+             f"   (M {label})")
+    return {"unit": unit, "scale": label, "mu_l": mu_l}
+
+
+PLAN_BOX_W, PLAN_BOX_H = 200.0, 140.0
+
+
+def draw_plans(cv, geom, entry, box, lang="en") -> dict:
+    """The velocity and acceleration plans of one position side by side, each at a
+    standard μ that fits its half of box at true size (the report's draw_plan)."""
+    from ..report.plans import build_plan
+    from ..report.sections.kinematics import draw_plan
+    x0, y0, w, h = box
+    T = TXT[lang]
+    U = UNITS[lang]
+    out = {}
+    cv.layer = "thin"
+    for k, (kind, title, unit_txt, si) in enumerate((("v", T["vplan"], T["unit_v"], U["m/s"]),
+                                                     ("a", T["aplan"], T["unit_a"], U["m/s²"]))):
+        bx = (x0 + k * w / 2, y0, w / 2 - 2, h)
+        p1 = build_plan(kind, entry, geom, 1.0)
+        xy = np.array(list(p1.pts.values()))
+        span = np.maximum(xy.max(axis=0) - xy.min(axis=0), 1e-12)
+        mu = std_mu(max(span[0] / (bx[2] - 12.0), span[1] / (bx[3] - 30.0)))
+        plan = build_plan(kind, entry, geom, mu)
+        scale = draw_plan(cv, plan, bx, f"{title} ({T['pos']} {entry['index']})", unit_txt, si, T["mm"])
+        out[kind] = {"plan": plan, "mu": mu, "k": scale}
+    return out
+
+
+def draw_diagrams(cv, results, geom, box, lang="en") -> dict:
+    """The output's s, v, a (or ψ, ω, ε) over the crank turn from the start position,
+    each at a standard μ; the φ axis at μφ = 1 °/mm (360 mm)."""
+    x0, y0, w, h = box
+    kc = results.get("kinematics_curve") or {}
+    pos = results.get("positions") or {}
+    if not kc.get("phi"):
+        return {}
+    phi0 = float(pos.get("phi0", 0.0))
+    sgn = -1.0 if pos.get("direction") == "cw" else 1.0
+    phase = (np.asarray(kc["phi"], float) - phi0) * sgn % 360.0
+    o = np.argsort(phase, kind="stable")
+    phase = phase[o]
+    U = UNITS[lang]
+    slider = kc.get("quantity") == "slider"
+    keys = (("s", "s", U["m"]), ("v", "v", U["m/s"]), ("a", "a", U["m/s²"])) if slider else \
+        (("s", "ψ", U["deg"]), ("v", "ω", U["rad/s"]), ("a", "ε", U["rad/s²"]))
+    mu_phi = 1.0
+    rowh = (h - 10.0) / 3
+    out = {}
+    cv.mtext(x0 + 2, y0 + h - 4, TXT[lang]["diagrams"], 5.0, bold=True)
+    for k, (key, sym, unit) in enumerate(keys):
+        y = np.asarray(kc[key], float)[o]
+        ym = float(np.nanmax(np.abs(y))) or 1.0
+        mu = std_mu(ym / (rowh / 2 - 8.0))
+        ax0 = x0 + 14.0
+        yc = y0 + h - 10.0 - rowh * (k + 0.5)
+        mm = TXT[lang]["mm"]
+        pts, = draw_graph(cv, (ax0, yc), [(phase, y, "#1f5fbf")], mu_phi, mu, x_len=360.0 / mu_phi,
+                          y_up=rowh / 2 - 3, y_down=rowh / 2 - 3, x_sym="φ", y_sym=sym,
+                          mu_text=f"μ{sym} = {mu:g} {unit}/{mm},  μφ = {mu_phi:g} °/{mm}",
+                          ticks=[(30.0 * i, str(i) if i < 12 else "") for i in range(13)])
+        good = np.isfinite(y)
+        out[key] = {"mu": mu, "pts": pts, "values": y[good]}
+    out["mu_phi"] = mu_phi
+    return out
+
+
+def build(cv, results, task, lang="en") -> dict:
+    from ..report.plans import geometry
+    entries = results.get("kinematics") or []
+    geom = geometry(results, task)
+    fx0, fy0, fx1, fy1 = FRAME
+    course = course_positions(results)
+    info = {"mechanism": draw_mechanism(cv, geom, entries, course, (fx0 + 3, 300.0, 400.0, fy1 - 300.0 - 3),
+                                        lang)}
+    info["plans"] = {}
+    by_index = {e["index"]: e for e in entries}
+    for k, i in enumerate(course):
+        info["plans"][i] = draw_plans(cv, geom, by_index[i], (430.0, 445.0 - 145.0 * k, 2 * PLAN_BOX_W,
+                                                               PLAN_BOX_H), lang)
+    info["diagrams"] = draw_diagrams(cv, results, geom, (fx0 + 3, fy0 + 3, 400.0, 290.0), lang)
+    info["scale"] = info["mechanism"]["scale"]
+    return info

@@ -1,0 +1,79 @@
+"""Sheet 3: the dynamics - the reduced moments, the works, the change of kinetic
+energy over the cycle, the reduced moment of inertia and the energy-mass diagram
+(Wittenbauer) with its tangents at ψmax, ψmin, each at a standard μ."""
+from __future__ import annotations
+
+import numpy as np
+
+from .frame import FRAME, std_mu
+from .graph import draw_graph
+
+TXT = {
+    "en": {"title": "Dynamics: reduced moments, works, kinetic energy", "em": "Energy-mass diagram",
+           "mm": "mm", "Nm": "N·m", "J": "J", "kgm2": "kg·m²", "jred": "Reduced moment of inertia"},
+    "ru": {"title": "Динамика: приведённые моменты, работы, кинетическая энергия", "em": "Диаграмма энергомасс",
+           "mm": "мм", "Nm": "Н·м", "J": "Дж", "kgm2": "кг·м²", "jred": "Приведённый момент инерции"},
+}
+
+
+def build(cv, results, task, lang="en") -> dict:
+    f = results["flywheel"]
+    a = f["arrays"]
+    T = TXT[lang]
+    mm = T["mm"]
+    x0f, y0f, x1f, y1f = FRAME
+    phi = np.asarray(a["phi_cycle"], float)
+    mu_phi = 1.0
+    ticks = [(30.0 * i, f"{30 * i}" if i < 12 else "") for i in range(13)]
+    rows = [("M", [("M_d", "#7a1f1f"), ("M_c", "#1f5fbf"), ("M_red", "#000")], T["Nm"]),
+            ("A", [("A_d", "#7a1f1f"), ("A_c", "#1f5fbf")], T["J"]),
+            ("ΔT", [("dT", "#000")], T["J"])]
+    box_h = (y1f - y0f - 20.0) / 3
+    info = {"mu_phi": mu_phi, "graphs": {}, "scale": "—"}   # diagrams only: no length scale
+    cv.mtext(x0f + 5, y1f - 6, T["title"], 5.0, bold=True)
+    for k, (sym, keys, unit) in enumerate(rows):
+        ys = [np.asarray(a[key], float) for key, _ in keys]
+        hi = max(0.0, *(float(np.nanmax(y)) for y in ys))
+        lo = min(0.0, *(float(np.nanmin(y)) for y in ys))
+        mu = std_mu(max(hi - lo, 1e-12) / (box_h - 22.0))
+        top = y1f - 14.0 - k * box_h
+        yc = top - 6.0 - hi / mu
+        pts = draw_graph(cv, (x0f + 20.0, yc), [(phi, y, c) for y, (_, c) in zip(ys, keys)], mu_phi, mu,
+                         x_len=360.0 / mu_phi, y_up=hi / mu + 5.0, y_down=-lo / mu + 3.0, x_sym="φ",
+                         y_sym=sym, mu_text=f"μ{sym} = {mu:g} {unit}/{mm},  μφ = {mu_phi:g} °/{mm}",
+                         ticks=ticks)
+        # the names of the curves at their right ends
+        ends = sorted(((p[-1][1], key) for p, (key, _) in zip(pts, keys)), reverse=True)
+        last = None
+        for yv, key in ends:
+            yy = yv if last is None else min(yv, last - 4.0)
+            cv.mtext(x0f + 20.0 + 360.0 / mu_phi + 4.0, yy, key.replace("_", " "), 2.5)
+            last = yy
+        info["graphs"][sym] = {"mu": mu, "pts": pts, "origin": (x0f + 20.0, yc),
+                               "values": [y for y in ys]}
+    # energy-mass diagram: ΔT against the variable part of the reduced moment of inertia,
+    # the one the tangents' intercepts a, b of the flywheel stage refer to
+    dT = np.asarray(a["dT"], float)
+    J = np.asarray(a["J_var"], float)
+    em = f.get("energy_mass") or {}
+    bx0, by0, bw, bh = 430.0, 80.0, 380.0, y1f - 80.0 - 10.0
+    mu_T = std_mu((float(dT.max()) - min(0.0, float(dT.min()))) / (bh - 40.0))
+    mu_J = std_mu(float(J.max()) / (bw - 60.0))
+    origin = (bx0 + 20.0, by0 + 15.0 - min(0.0, float(dT.min())) / mu_T)
+    cv.mtext(bx0 + 5, y1f - 6, T["em"], 5.0, bold=True)
+    pts, = draw_graph(cv, origin, [(J, dT, "#000")], mu_J, mu_T, x_len=float(J.max()) / mu_J + 10.0,
+                      y_up=float(dT.max()) / mu_T + 12.0, y_down=-min(0.0, float(dT.min())) / mu_T + 5.0,
+                      x_sym="J", y_sym="ΔT",
+                      mu_text=f"μT = {mu_T:g} {T['J']}/{mm},  μJ = {mu_J:g} {T['kgm2']}/{mm}")
+    info["energy_mass"] = {"mu_T": mu_T, "mu_J": mu_J, "pts": pts, "origin": origin}
+    # the tangents: ΔT = a + J ω_max²/2 and ΔT = b + J ω_min²/2 (Popov & Timofeev)
+    if em.get("a") is not None and em.get("omega_max"):
+        cv.layer = "thin"
+        jj = np.array([0.0, float(J.max()) * 1.05])
+        for c, w, name in ((em["a"], em["omega_max"], "a"), (em["b"], em["omega_min"], "b")):
+            yy = float(c) + jj * float(w) ** 2 / 2.0
+            q = np.c_[origin[0] + jj / mu_J, origin[1] + yy / mu_T]
+            cv.line(q[0], q[1], width=0.3, dash="4 1.5")
+            cv.mtext(q[0][0] - 2.0, q[0][1], name, 3.5, anchor="end", italic=True)
+            info["energy_mass"].setdefault("tangents", []).append((float(c), float(w) ** 2 / 2.0))
+    return info

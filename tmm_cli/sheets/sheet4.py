@@ -1,0 +1,84 @@
+"""Sheet 4: the cam - its pitch and working profiles with the base circle at a ГОСТ 2.302
+scale, and the follower's motion law s(φ), ds/dφ, d²s/dφ² at standard μ."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .frame import FRAME, length_scale, std_mu
+from .graph import draw_graph
+
+TXT = {"en": {"profile": "Cam profile", "law": "Motion law of the follower", "mm": "mm", "m": "m"},
+       "ru": {"profile": "Профиль кулачка", "law": "Закон движения толкателя", "mm": "мм", "m": "м"}}
+
+
+def build(cv, results, task, lang="en") -> dict:
+    c = results["cam"]
+    T = TXT[lang]
+    mm = T["mm"]
+    x0f, y0f, x1f, y1f = FRAME
+    info = {}
+    # --- the motion law: three diagrams over the cam turn, μφ = 1 °/mm
+    phi = np.asarray(c["phi"], float)
+    rocker = c.get("follower") == "rocker"
+    units = ("°", f"1/{mm}", f"1/{mm}") if rocker else (T["m"], T["m"], T["m"])
+    syms = ("ψ", "dψ/dφ", "d²ψ/dφ²") if rocker else ("s", "ds/dφ", "d²s/dφ²")
+    box_h = (y1f - y0f - 20.0) / 3
+    cv.mtext(x0f + 5, y1f - 6, T["law"], 5.0, bold=True)
+    info["graphs"] = {}
+    ticks = [(30.0 * i, f"{30 * i}" if i < 12 else "") for i in range(13)]
+    for k, (key, sym, unit) in enumerate(zip(("s", "ds", "d2s"), syms, units)):
+        y = np.asarray(c[key], float)
+        hi, lo = max(0.0, float(np.nanmax(y))), min(0.0, float(np.nanmin(y)))
+        mu = std_mu(max(hi - lo, 1e-12) / (box_h - 22.0))
+        yc = y1f - 20.0 - k * box_h - hi / mu
+        per = "" if unit.startswith("1/") else f"/{mm}"
+        pts, = draw_graph(cv, (x0f + 20.0, yc), [(np.append(phi, 360.0), np.append(y, y[0]), "#1f5fbf")],
+                          1.0, mu, x_len=360.0, y_up=hi / mu + 5.0, y_down=-lo / mu + 3.0, x_sym="φ",
+                          y_sym=sym, mu_text=f"μ = {mu:g} {unit}{per},  μφ = 1 °/{mm}", ticks=ticks)
+        info["graphs"][key] = {"mu": mu, "pts": pts, "origin": (x0f + 20.0, yc),
+                               "values": np.append(y, y[0])}
+    # --- the profile: centre of the cam in the middle of the right half
+    pitch = np.asarray(c["pitch_profile"], float)
+    work = np.asarray(c["working_profile"], float)
+    roller = float(c.get("roller") or 0.0)
+    R = float(np.hypot(pitch[:, 0], pitch[:, 1]).max()) + roller
+    bx0, by0, bw, bh = 440.0, 70.0, x1f - 440.0 - 5.0, y1f - 70.0 - 5.0
+    unit, label = length_scale(2 * R * 1000.0 / (min(bw, bh) - 50.0))
+    O = np.array([bx0 + bw / 2, by0 + (bh - 20.0) / 2])
+
+    def M(p):
+        return O + np.asarray(p, float) * 1000.0 / unit
+
+    cv.mtext(bx0 + 5, y1f - 6, T["profile"], 5.0, bold=True)
+    mu_l = unit / 1000.0
+    cv.mtext(bx0 + 5, y1f - 13, "μ", 3.5, sub="l", after=f" = {mu_l:g} {T['m']}/{mm}   (M {label})")
+    cv.layer = "contour"
+    cv.polyline([M(p) for p in work], width=0.7, closed=True)
+    cv.layer = "thin"
+    if roller > 0:
+        cv.polyline([M(p) for p in pitch], width=0.25, closed=True, dash="6 1.5 1 1.5")
+        cv.circle(M(pitch[0]), roller * 1000.0 / unit, fill=None, width=0.5)
+    r0 = float(c["r0"]) * 1000.0 / unit
+    cv.circle(O, r0, fill=None, width=0.25)
+    cv.layer = "dimensions"
+    ext = R * 1000.0 / unit + 8.0
+    cv.line(O - (ext, 0), O + (ext, 0), width=0.2, dash="6 1.5 1 1.5")
+    cv.line(O - (0, ext), O + (0, ext), width=0.2, dash="6 1.5 1 1.5")
+    ccw = c.get("rotation", "ccw") == "ccw"
+    a0, a1 = (200.0, 250.0) if ccw else (250.0, 200.0)
+    rr = 0.3 * r0
+    cv.arc(O, rr, min(a0, a1), max(a0, a1), width=0.35)
+    t = math.radians(a1)
+    tip = O + rr * np.array([math.cos(t), math.sin(t)])
+    tan = np.array([-math.sin(t), math.cos(t)]) * (1.0 if ccw else -1.0)
+    cv.arrow(tip - 0.01 * tan, tip + 2.5 * tan, width=0.35, head=2.5)
+    wq = O + 1.5 * rr * np.array([math.cos(math.radians(225)), math.sin(math.radians(225))])
+    cv.mtext(wq[0], wq[1] - 3.0, "ω", 3.5, anchor="middle")
+    cv.mtext(O[0] + r0 * 0.72 + 2.0, O[1] - r0 * 0.72 - 2.0, "r₀", 3.5, italic=True)
+    cv.layer = "contour"
+    cv.circle(O, 1.2, width=0.5)
+    info.update({"unit": unit, "scale": label, "mu_l": mu_l, "O": O, "pitch_pts": [M(p) for p in pitch],
+                 "pitch": pitch})
+    return info

@@ -1,0 +1,67 @@
+"""Sheet 5: the gear mesh - both whole wheels with their pitch, rolling, base, tip and root
+circles, teeth at the mesh (the report's tooth outline), the line of action N1N2 with the
+active part B1B2 and the pole P, at a ГОСТ 2.302 scale."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .frame import FRAME, length_scale
+
+TXT = {"en": {"mesh": "Gear mesh", "m": "m", "mm": "mm"}, "ru": {"mesh": "Зубчатое зацепление", "m": "м", "mm": "мм"}}
+TEETH = 5          # teeth drawn of each wheel, centred on the mesh
+
+
+def build(cv, results, task, lang="en") -> dict:
+    from ..gears import mesh_layout
+    from ..report.figures import place_labels
+    from ..report.sections.gears import _wheels, action_points
+    g = results["gears"]
+    T = TXT[lang]
+    x0f, y0f, x1f, y1f = FRAME
+    w1, w2 = _wheels(g)
+    (c1, a1), (c2, a2) = mesh_layout((w1, w2), g["aw"], 0.0)
+    # the whole wheels: wheel 1 at the origin, wheel 2 above it at aw
+    box = (x0f + 10.0, y0f + 65.0, x1f - x0f - 20.0, y1f - y0f - 95.0)
+    ra1, ra2 = g["ra"]
+    lo = np.array([-max(ra1, ra2), -ra1])
+    hi = np.array([max(ra1, ra2), g["aw"] + ra2])
+    unit, label = length_scale(max((hi - lo)[0] * 1000.0 / box[2], (hi - lo)[1] * 1000.0 / box[3]))
+    O = np.array([box[0] + box[2] / 2, box[1] + box[3] / 2]) - (lo + hi) / 2 * 1000.0 / unit
+
+    def M(p):
+        return O + np.asarray(p, float) * 1000.0 / unit
+
+    cv.mtext(x0f + 5, y1f - 6, T["mesh"], 5.0, bold=True)
+    mu_l = unit / 1000.0
+    cv.mtext(x0f + 5, y1f - 13, "μ", 3.5, sub="l", after=f" = {mu_l:g} {T['m']}/{T['mm']}   (M {label})")
+    cv.mtext(x0f + 5, y1f - 19, f"m = {g['m'] * 1000:g} {T['mm']},  z = {g['z'][0]}, {g['z'][1]},  "
+             f"x = {g['x'][0]:g}, {g['x'][1]:g},  αw = {g['alpha_w']:.3f}°,  aw = {g['aw'] * 1000:.3f} {T['mm']},  "
+             f"εα = {g['eps_alpha']:.3f}", 3.5)
+    drawn = {}
+    for i, (c, ax_ang, w) in enumerate(((c1, a1, w1), (c2, a2, w2))):
+        cv.layer = "contour"
+        X, Y = w.outline(axis_angle=ax_ang, teeth=TEETH, centre=c)
+        cv.polyline([M(p) for p in zip(X, Y)], width=0.7)
+        cv.layer = "thin"
+        for key in ("rw", "r", "rb", "ra", "rf"):
+            R = g[key][i] * 1000.0 / unit
+            cv.circle(M(c), R, fill=None, width=0.25)
+            drawn[(i, key)] = R
+    cv.layer = "dimensions"
+    pts = {k: M(v) for k, v in action_points(g, c2).items()}
+    cv.line(pts["N1"], pts["N2"], width=0.3)
+    cv.line(pts["B1"], pts["B2"], width=1.0)
+    for p in pts.values():
+        cv.circle(p, 0.8, width=0.3)
+    names = list(pts) + ["O1", "O2"]
+    anchors = [(*pts[k], None) for k in pts] + [(*M(c1), (1.0, -1.0)), (*M(c2), (1.0, -1.0))]
+    pos = place_labels(anchors, 60.0, avoid=[a[:2] for a in anchors], step=5.0,
+                       segments=[(pts["N1"], pts["N2"])])
+    for name, (x, y) in zip(names, pos):
+        cv.mtext(x, y, name[0], 3.5, anchor="middle", italic=True, sub=name[1:] or None)
+    cv.layer = "contour"
+    for c in (c1, c2):
+        cv.circle(M(c), 1.2, width=0.5)
+    return {"unit": unit, "scale": label, "mu_l": mu_l, "points": pts, "M": M, "drawn": drawn}
