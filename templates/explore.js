@@ -91,14 +91,14 @@
   }
   function fill(k) {
     while (table.firstChild) table.removeChild(table.firstChild);
-    row([L["explore.point"], "v, m/s", "a, m/s²"], true);
+    row([L["explore.point"], L["explore.v"], L["explore.a"]], true);
     movers.forEach(function (p) {
       var q = D.points[p];
       var v = fin(q.vx[k]) && fin(q.vy[k]) ? Math.hypot(q.vx[k], q.vy[k]) : null;
       var a = fin(q.ax[k]) && fin(q.ay[k]) ? Math.hypot(q.ax[k], q.ay[k]) : null;
       row([p, num(v), num(a)]).dataset.point = p;
     });
-    row([L["explore.link"], "ω, 1/s", "ε, 1/s²"], true);
+    row([L["explore.link"], L["explore.w"], L["explore.e"]], true);
     Object.keys(D.links).forEach(function (l) {
       row([l, num(D.links[l].omega[k]), num(D.links[l].epsilon[k])]).dataset.link = l;
     });

@@ -17,12 +17,14 @@ I18N = {
            "explore.angle": "Crank turn from position 0", "explore.mech": "Mechanism",
            "explore.vplan": "Velocity plan", "explore.aplan": "Acceleration plan",
            "explore.point": "Point", "explore.link": "Link", "explore.pos": "position",
+           "explore.v": "v, m/s", "explore.a": "a, m/s²", "explore.w": "ω, 1/s", "explore.e": "ε, 1/s²",
            "explore.hint": "Drag the slider (the marks are the course positions: the slider snaps to them "
                            "within 3°) or press Play. Values at the angle shown."},
     "ru": {"explore.title": "Механизм в движении", "explore.play": "Пуск", "explore.pause": "Пауза",
            "explore.angle": "Поворот кривошипа от положения 0", "explore.mech": "Механизм",
            "explore.vplan": "План скоростей", "explore.aplan": "План ускорений",
            "explore.point": "Точка", "explore.link": "Звено", "explore.pos": "положение",
+           "explore.v": "v, м/с", "explore.a": "a, м/с²", "explore.w": "ω, 1/с", "explore.e": "ε, 1/с²",
            "explore.hint": "Передвиньте ползунок (метки — положения проекта: ползунок притягивается к ним "
                            "в пределах 3°) или нажмите «Пуск». Значения для показанного угла."},
 }
