@@ -37,7 +37,17 @@
     if (text !== undefined) e.textContent = text;
     svg.appendChild(e); return e;
   }
-  function clear(svg) { while (svg.firstChild) svg.removeChild(svg.firstChild); }
+  // the drawings are made here (none in the HTML source: the report's figure tools see only its own figures)
+  function canvas(id) {
+    var box = document.getElementById(id), svg = box.firstChild;
+    if (!svg) {
+      svg = document.createElementNS(NS, "svg");
+      svg.setAttribute("width", box.dataset.w); svg.setAttribute("height", box.dataset.h);
+      box.appendChild(svg);
+    }
+    while (svg.firstChild) svg.removeChild(svg.firstChild);
+    return svg;
+  }
   function mapper(svg, x0, x1, y0, y1) {
     var W = +svg.getAttribute("width"), H = +svg.getAttribute("height"), pad = 22;
     var s = Math.min((W - 2 * pad) / Math.max(x1 - x0, 1e-12), (H - 2 * pad) / Math.max(y1 - y0, 1e-12));
@@ -45,7 +55,7 @@
     return function (x, y) { return [W / 2 + (x - cx) * s, H / 2 - (y - cy) * s]; };
   }
   function drawMech(k) {
-    var svg = document.getElementById("ex-mech"); clear(svg);
+    var svg = canvas("ex-mech");
     var f = mapper(svg, ME[0], ME[1], ME[2], ME[3]);
     function P(p) { return f(D.points[p].x[k], D.points[p].y[k]); }
     D.shapes.forEach(function (sh) {
@@ -65,7 +75,7 @@
       el(svg, "text", {x: c[0] + 5, y: c[1] - 5, "font-size": 11}, p); });
   }
   function drawPlan(id, kx, ky, M, k, letter) {
-    var svg = document.getElementById(id); clear(svg);
+    var svg = canvas(id);
     // the scale of this position's plan (as on the sheet), at least 1/20 of the largest over the turn
     var m = 0;
     movers.forEach(function (p) { var a = D.points[p][kx][k], b = D.points[p][ky][k];

@@ -71,6 +71,7 @@ def test_file_self_contained_and_small(run):
     start = html.index('id="explore"')
     widget = html[start:html.index("</section>", start)]
     assert not re.search(r"""(src|href)\s*=\s*["']?https?:""", widget)
+    assert "<svg" not in widget        # drawn by the script: the report's figure tools see only figures
     data = re.search(r'<script type="application/json" id="ex-data">(.*?)</script>', widget, re.S).group(1)
     d = json.loads(data)
     assert len(d["turn"]) == 360 and d["step"] == 1.0
