@@ -31,9 +31,10 @@ I18N = {
 
 
 def data_json(data: dict) -> str:
-    """JSON safe inside <script>: '</' and '<!--' cannot end or open anything."""
+    """JSON safe inside <script>: no '<', '>' or '&' at all (written as \\u003c ...), so
+    user text (point and link names) can neither end the element nor open a tag."""
     s = json.dumps(data, separators=(",", ":"), ensure_ascii=True, allow_nan=False)
-    return s.replace("</", "<\\/").replace("<!--", "<\\u0021--")
+    return s.replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")
 
 
 def fragment(ctx) -> str | None:
