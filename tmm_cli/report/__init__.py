@@ -272,7 +272,8 @@ def _finish(ctx, proc, conn, formats, all_names, helper_names, out_dir, notes=No
     _write_figures(ctx, html)
     written = list(ctx.written)
     if "html" in formats:
-        written.append(ctx.write_file("report.html", html))
+        from . import explore   # the slider widget: report.html only, not the PDF
+        written.append(ctx.write_file("report.html", explore.inject(ctx, html)))
     if want_pdf:
         pdf = None
         if proc is not None and helper_ok:

@@ -1,0 +1,138 @@
+(function () {
+  "use strict";
+  var D = JSON.parse(document.getElementById("ex-data").textContent);
+  var L = JSON.parse(document.getElementById("ex-labels").textContent);
+  var NS = "http://www.w3.org/2000/svg";
+  var n = D.turn.length, step = D.step, SNAP = 3.0;
+  var slider = document.getElementById("ex-angle");
+  var play = document.getElementById("ex-play");
+  var out = document.getElementById("ex-readout");
+  var table = document.getElementById("ex-table");
+  var names = Object.keys(D.points);
+  var movers = names.filter(function (p) { return D.ground.indexOf(p) < 0; });
+  slider.max = String(n - 1);
+  var marks = D.positions.map(function (m) { return {index: m.index, k: Math.round(m.turn / step) % n}; });
+  var dl = document.getElementById("ex-marks");
+  marks.forEach(function (m) { var o = document.createElement("option"); o.value = m.k; o.label = String(m.index); dl.appendChild(o); });
+
+  function fin(v) { return v !== null && v !== undefined && isFinite(v); }
+  function num(v) { return fin(v) ? Number(v).toPrecision(4).replace(/^(-?\d+\.\d*?)0+e/, "$1e") : "—"; }
+  function extent(xs, ys) {
+    var x0 = Infinity, x1 = -Infinity, y0 = Infinity, y1 = -Infinity;
+    for (var i = 0; i < xs.length; i++) { if (!fin(xs[i]) || !fin(ys[i])) continue;
+      x0 = Math.min(x0, xs[i]); x1 = Math.max(x1, xs[i]); y0 = Math.min(y0, ys[i]); y1 = Math.max(y1, ys[i]); }
+    return [x0, x1, y0, y1];
+  }
+  // fixed scales over the whole turn, so the drawing moves and does not rescale
+  var mx = [], my = [];
+  names.forEach(function (p) { mx = mx.concat(D.points[p].x); my = my.concat(D.points[p].y); });
+  var ME = extent(mx, my);
+  function vmax(kx, ky) { var m = 0; movers.forEach(function (p) { var a = D.points[p][kx], b = D.points[p][ky];
+    for (var i = 0; i < n; i++) if (fin(a[i]) && fin(b[i])) m = Math.max(m, Math.hypot(a[i], b[i])); }); return m || 1; }
+  var VM = vmax("vx", "vy"), AM = vmax("ax", "ay");
+
+  function el(svg, tag, attrs, text) {
+    var e = document.createElementNS(NS, tag);
+    for (var k in attrs) e.setAttribute(k, attrs[k]);
+    if (text !== undefined) e.textContent = text;
+    svg.appendChild(e); return e;
+  }
+  // the drawings are made here (none in the HTML source: the report's figure tools see only its own figures)
+  function canvas(id) {
+    var box = document.getElementById(id), svg = box.firstChild;
+    if (!svg) {
+      svg = document.createElementNS(NS, "svg");
+      svg.setAttribute("width", box.dataset.w); svg.setAttribute("height", box.dataset.h);
+      box.appendChild(svg);
+    }
+    while (svg.firstChild) svg.removeChild(svg.firstChild);
+    return svg;
+  }
+  function mapper(svg, x0, x1, y0, y1) {
+    var W = +svg.getAttribute("width"), H = +svg.getAttribute("height"), pad = 22;
+    var s = Math.min((W - 2 * pad) / Math.max(x1 - x0, 1e-12), (H - 2 * pad) / Math.max(y1 - y0, 1e-12));
+    var cx = (x0 + x1) / 2, cy = (y0 + y1) / 2;
+    return function (x, y) { return [W / 2 + (x - cx) * s, H / 2 - (y - cy) * s]; };
+  }
+  function drawMech(k) {
+    var svg = canvas("ex-mech");
+    var f = mapper(svg, ME[0], ME[1], ME[2], ME[3]);
+    function P(p) { return f(D.points[p].x[k], D.points[p].y[k]); }
+    D.shapes.forEach(function (sh) {
+      if (sh.kind === "slider") {
+        var c = P(sh.origin);
+        el(svg, "rect", {x: c[0] - 9, y: c[1] - 6, width: 18, height: 12, fill: "#fff", stroke: "#000", "stroke-width": 1.5});
+      } else if (sh.points.length >= 2) {
+        var pts = sh.points.map(function (p) { return P(p).join(","); });
+        if (sh.points.length > 2) pts.push(pts[0]);
+        el(svg, "polyline", {points: pts.join(" "), fill: sh.points.length > 2 ? "#eef" : "none", stroke: "#000", "stroke-width": 2});
+      }
+    });
+    D.ground.forEach(function (g) { var c = P(g);
+      el(svg, "path", {d: "M" + c[0] + "," + c[1] + " l-7,11 h14 z", fill: "none", stroke: "#000"}); });
+    names.forEach(function (p) { if (p.charAt(0) === "S") return; var c = P(p);
+      el(svg, "circle", {cx: c[0], cy: c[1], r: 3, fill: "#fff", stroke: "#000"});
+      el(svg, "text", {x: c[0] + 5, y: c[1] - 5, "font-size": 11}, p); });
+  }
+  function drawPlan(id, kx, ky, M, k, letter) {
+    var svg = canvas(id);
+    // the scale of this position's plan (as on the sheet), at least 1/20 of the largest over the turn
+    var m = 0;
+    movers.forEach(function (p) { var a = D.points[p][kx][k], b = D.points[p][ky][k];
+      if (fin(a) && fin(b)) m = Math.max(m, Math.hypot(a, b)); });
+    m = Math.max(m, M / 20);
+    var f = mapper(svg, -m, m, -m, m);
+    var o = f(0, 0);
+    el(svg, "circle", {cx: o[0], cy: o[1], r: 2.5, fill: "#000"});
+    el(svg, "text", {x: o[0] - 12, y: o[1] + 12, "font-size": 11}, letter);
+    movers.forEach(function (p) {
+      var a = D.points[p][kx][k], b = D.points[p][ky][k];
+      if (!fin(a) || !fin(b)) return;
+      var e = f(a, b), grey = p.charAt(0) === "S";
+      el(svg, "line", {x1: o[0], y1: o[1], x2: e[0], y2: e[1], stroke: grey ? "#888" : "#000", "stroke-width": grey ? 1 : 1.6});
+      el(svg, "circle", {cx: e[0], cy: e[1], r: 1.8, fill: grey ? "#888" : "#000"});
+      el(svg, "text", {x: e[0] + 3, y: e[1] - 3, "font-size": 10, fill: grey ? "#666" : "#000"}, p.toLowerCase());
+    });
+  }
+  function row(cells, th) {
+    var tr = document.createElement("tr");
+    cells.forEach(function (c) { var td = document.createElement(th ? "th" : "td"); td.textContent = c; tr.appendChild(td); });
+    table.appendChild(tr); return tr;
+  }
+  function fill(k) {
+    while (table.firstChild) table.removeChild(table.firstChild);
+    row([L["explore.point"], L["explore.v"], L["explore.a"]], true);
+    movers.forEach(function (p) {
+      var q = D.points[p];
+      var v = fin(q.vx[k]) && fin(q.vy[k]) ? Math.hypot(q.vx[k], q.vy[k]) : null;
+      var a = fin(q.ax[k]) && fin(q.ay[k]) ? Math.hypot(q.ax[k], q.ay[k]) : null;
+      row([p, num(v), num(a)]).dataset.point = p;
+    });
+    row([L["explore.link"], L["explore.w"], L["explore.e"]], true);
+    Object.keys(D.links).forEach(function (l) {
+      row([l, num(D.links[l].omega[k]), num(D.links[l].epsilon[k])]).dataset.link = l;
+    });
+  }
+  function show(k) {
+    k = ((k % n) + n) % n;
+    slider.value = String(k);
+    var m = marks.filter(function (x) { return x.k === k; })[0];
+    out.textContent = num(D.turn[k]) + "°  (φ = " + Number(D.phi[k]).toFixed(2) + "°)" +
+      (m ? "  — " + L["explore.pos"] + " " + m.index : "");
+    out.dataset.k = String(k);
+    drawMech(k); drawPlan("ex-vplan", "vx", "vy", VM, k, "p"); drawPlan("ex-aplan", "ax", "ay", AM, k, "π"); fill(k);
+  }
+  function snapped(k) {
+    var best = null, bd = SNAP / step + 1e-9;
+    marks.forEach(function (m) { var d = Math.abs(m.k - k); d = Math.min(d, n - d); if (d <= bd) { bd = d; best = m.k; } });
+    return best === null ? k : best;
+  }
+  slider.addEventListener("input", function () { show(snapped(+slider.value)); });
+  var timer = null;
+  play.addEventListener("click", function () {
+    if (timer) { clearInterval(timer); timer = null; play.textContent = L["explore.play"]; return; }
+    play.textContent = L["explore.pause"];
+    timer = setInterval(function () { show(+slider.value + 1); }, 40);
+  });
+  show(0);
+})();

@@ -1,0 +1,158 @@
+"""The explorable mechanism in report.html (tmm_cli.report.explore): a crank-angle slider
+that moves the linkage and redraws it, its plans and the table of v, a, omega, epsilon.
+
+Checked in a real browser (headless Chromium through playwright; skipped like
+tests/test_browser.py where it cannot run): moving the slider changes the drawing; the
+values shown at three angles equal an independent solve of the kinematics at exactly
+those crank angles (and, for the crank pin, v_A = omega1 r, a_A = omega1^2 r) to the
+four digits shown; the slider snaps to the course positions, whose values equal
+results.json; the widget is hidden in print and absent from the PDF's HTML; the file is
+self-contained and under 2 MB."""
+from __future__ import annotations
+
+import json
+import math
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from test_browser import browser  # noqa: F401  (the launch helper and its skip logic)
+
+ROOT = Path(__file__).resolve().parents[1]
+TASK = ROOT / "tasks" / "forging_sixbar.yaml"
+
+
+@pytest.fixture(scope="module")
+def run(tmp_path_factory):
+    out = tmp_path_factory.mktemp("explore")
+    subprocess.run([sys.executable, "-m", "tmm_cli", "run", str(TASK), "-o", str(out), "--format", "html"],
+                   check=True, capture_output=True, cwd=ROOT)
+    return out
+
+
+@pytest.fixture(scope="module")
+def page(browser, run):  # noqa: F811
+    pg = browser.new_page(viewport={"width": 1300, "height": 900})
+    errors = []
+    pg.on("pageerror", lambda e: errors.append(str(e)))
+    pg.goto((run / "report.html").as_uri())
+    assert errors == []
+    yield pg
+    pg.close()
+
+
+def _shown(pg) -> dict[str, tuple[float, float]]:
+    rows = pg.eval_on_selector_all(
+        "#ex-table tr[data-point], #ex-table tr[data-link]",
+        "rs => rs.map(r => [r.dataset.point || r.dataset.link, r.cells[1].textContent, r.cells[2].textContent])")
+    return {n: (float(a), float(b)) for n, a, b in rows if a != "—" and b != "—"}
+
+
+def _close(shown: float, true: float) -> bool:
+    """Equal to the 4 significant digits displayed: half a unit of the last digit, plus the
+    rounding of the embedded data to 7 significant digits (a double rounding)."""
+    if abs(true) < 1e-9:
+        return abs(shown) < 1e-9
+    half = 0.5 * 10 ** (math.floor(math.log10(abs(true))) - 3)
+    return abs(shown - true) <= half + 5e-7 * abs(true) + 1e-12
+
+
+def _set(pg, k: int) -> None:
+    pg.locator("#ex-angle").fill(str(k))
+
+
+def test_file_self_contained_and_small(run):
+    html = (run / "report.html").read_text(encoding="utf-8")
+    assert len(html.encode("utf-8")) < 2_000_000
+    start = html.index('id="explore"')
+    widget = html[start:html.index("</section>", start)]
+    assert not re.search(r"""(src|href)\s*=\s*["']?https?:""", widget)
+    assert "<svg" not in widget        # drawn by the script: the report's figure tools see only figures
+    data = re.search(r'<script type="application/json" id="ex-data">(.*?)</script>', widget, re.S).group(1)
+    d = json.loads(data)
+    assert len(d["turn"]) == 360 and d["step"] == 1.0
+    assert [m["index"] for m in d["positions"]] == list(range(12))
+
+
+def test_json_cannot_close_the_script():
+    from tmm_cli.report.explore import data_json
+    s = data_json({"a": "</script><!--x"})
+    assert "<" not in s and ">" not in s and "&" not in s
+    assert json.loads(s) == {"a": "</script><!--x"}
+
+
+def test_values_at_three_angles_equal_an_independent_solve(page, run):
+    from tmm_cli.kinematics import solve
+    from tmm_cli.mechanism import build_mechanism
+    from tmm_cli.task import load_task
+    res = json.loads((run / "results.json").read_text())
+    task = load_task(TASK)
+    mech = build_mechanism(task)
+    w = res["drive"]["omega"]
+    phi0 = res["positions"]["phi0"]
+    sign = 1.0 if w > 0 else -1.0
+    before = page.inner_html("#ex-mech")
+    for turn in (47, 133, 250):
+        _set(page, turn)
+        assert page.inner_html("#ex-mech") != before           # the drawing moved
+        before = page.inner_html("#ex-mech")
+        phi = (phi0 + sign * turn) % 360.0
+        kin = solve(mech, np.array([phi]), w)
+        shown = _shown(page)
+        for p in kin.points:
+            if p in mech.ground:
+                continue
+            v = float(np.hypot(*kin.vel(p)[0]))
+            a = float(np.hypot(*kin.acc(p)[0]))
+            assert _close(shown[p][0], v) and _close(shown[p][1], a), (turn, p, shown[p], v, a)
+        for link in kin.links:
+            om = float(np.broadcast_to(kin.omega(link), (1,))[0])
+            ep = float(np.broadcast_to(kin.epsilon(link), (1,))[0])
+            assert _close(shown[link][0], om) and _close(shown[link][1], ep), (turn, link, shown[link], om, ep)
+        # the crank pin by hand: v_A = |omega1| r, a_A = omega1^2 r (constant crank speed)
+        rA = math.hypot(*(np.asarray(kin.pos["A"][0]) - np.asarray(kin.pos["O"][0])))
+        assert _close(shown["A"][0], abs(w) * rA) and _close(shown["A"][1], w * w * rA)
+
+
+def test_snaps_to_course_positions_with_results_json_values(page, run):
+    res = json.loads((run / "results.json").read_text())
+    _set(page, 32)                      # within 3 deg of position 1 (turn 30)
+    assert page.input_value("#ex-angle") == "30"
+    assert page.text_content("#ex-readout").rstrip().endswith("1")
+    entry = next(e for e in res["kinematics"] if e["index"] == 1)
+    shown = _shown(page)
+    for p, q in entry["points"].items():
+        if p in shown:
+            assert _close(shown[p][0], q["v"]) and _close(shown[p][1], q["a"]), (p, shown[p], q)
+    for name, q in entry["links"].items():
+        assert _close(shown[name][0], q["omega"]) and _close(shown[name][1], q["epsilon"])
+    _set(page, 35)                      # 5 deg away: no snap
+    assert page.input_value("#ex-angle") == "35"
+    _set(page, 358)                     # across 360: snaps to position 0
+    assert page.input_value("#ex-angle") == "0"
+
+
+def test_play_moves_and_pause_stops(page):
+    _set(page, 100)
+    page.click("#ex-play")
+    page.wait_for_function("document.getElementById('ex-angle').value !== '100'", timeout=5000)
+    page.click("#ex-play")
+    k = page.input_value("#ex-angle")
+    page.wait_for_timeout(300)
+    assert page.input_value("#ex-angle") == k
+
+
+def test_hidden_in_print_and_absent_from_the_pdf_html(page, run):
+    page.emulate_media(media="print")
+    assert not page.is_visible("#explore")
+    page.emulate_media(media="screen")
+    assert page.is_visible("#explore")
+    from tmm_cli.report import render_html
+    from tmm_cli.task import load_task
+    res = json.loads((run / "results.json").read_text())
+    html, _ = render_html(res, load_task(TASK), run / "pdfhtml")
+    assert 'id="ex-data"' not in html
