@@ -56,7 +56,7 @@ PARAMS_UK = {
     "synthesis.K": "коефіцієнт зміни середньої швидкості K", "synthesis.theta": "кут θ",
     "synthesis.lambda": "λ = l_AB/l_OA", "synthesis.e": "дезаксіал e",
     "synthesis.gamma_min": "найменший кут передачі γ_min",
-    "synthesis.rocker": "довжина коромисла (куліси)", "synthesis.frame": "стояк l_OO1",
+    "synthesis.rocker": "довжина коромисла (куліси)", "synthesis.frame": "стійка l_OO1",
     "synthesis.guide_height": "напрямна повзуна над O1",
     "drive.mean_output_speed": "середня швидкість вихідної ланки за цикл",
     "drive.working_stroke_speed": "середня швидкість вихідної ланки на робочому ході",
