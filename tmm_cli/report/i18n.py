@@ -11,6 +11,7 @@ simpler, by defining a module-level ``I18N = {"en": {...}, "ru": {...}}`` in
 
 Russian terms follow the standard course books (Artobolevsky; Popov &
 Timofeev; Frolov): «план скоростей», «план ускорений», «группа Ассура», ...
+The Ukrainian table (``uk``) lives in :mod:`tmm_cli.report.i18n_uk`.
 """
 from __future__ import annotations
 
