@@ -103,18 +103,18 @@ def run(
     format: str = typer.Option("json,html,pdf", "--format", "-f",
                                help="comma-separated outputs: json, html, pdf, sheets (the A1 drawing sheets in "
                                     "sheets/; results.json is always written)"),
-    lang: str = typer.Option("en", "--lang", "-l", help="report language: en | ru"),
+    lang: str = typer.Option("en", "--lang", "-l", help="report language: en | ru | uk"),
     quiet: bool = typer.Option(False, "--quiet", "-q", help="no progress and summary on the terminal"),
     study: bool = typer.Option(False, "--study", help="also write study.json and study.html: "
                                                       "accuracy against computing time per stage"),
 ):
     """Run every stage present in the task; write results.json and the report(s).
 
-    Example: tmm run tasks/engine_slider_crank.yaml --out out/engine --lang ru
+    Example: tmm run tasks/engine_slider_crank.yaml --out out/engine --lang ru (or uk)
     """
     formats = _parse_formats(format)
-    if lang not in ("en", "ru"):
-        raise typer.BadParameter("--lang must be en or ru")
+    if lang not in ("en", "ru", "uk"):
+        raise typer.BadParameter("--lang must be en, ru or uk")
     from .orchestrate import process
     from .pipeline import PartialResults
     progress = None
@@ -319,7 +319,7 @@ def batch(
     out: Path = typer.Option(..., "--out", "-o", help="output folder: <out>/<variant>/ and summary files"),
     jobs: int = typer.Option(1, "--jobs", "-j", min=1, help="variants computed in parallel (processes)"),
     format: str = typer.Option("json", "--format", "-f", help="outputs per variant: json, html, pdf"),
-    lang: str = typer.Option("en", "--lang", "-l", help="report and summary language: en | ru"),
+    lang: str = typer.Option("en", "--lang", "-l", help="report and summary language: en | ru | uk"),
     answers: Optional[Path] = typer.Option(None, "--answers", "-a",
                                            help="students' answers: a YAML file, a folder of them, or a CSV; "
                                                 "default: each task's own `answers`"),
@@ -337,8 +337,8 @@ def batch(
     3 some failed)."""
     from .batch import run_batch
     formats = _parse_formats(format)
-    if lang not in ("en", "ru"):
-        raise typer.BadParameter("--lang must be en or ru")
+    if lang not in ("en", "ru", "uk"):
+        raise typer.BadParameter("--lang must be en, ru or uk")
     try:
         code = run_batch(source, out, jobs=jobs, formats=formats, lang=lang, answers=answers, tolerance=tolerance,
                          quantities=quantities, timeout=timeout, memory_mb=memory or None)

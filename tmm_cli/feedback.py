@@ -1,6 +1,6 @@
 """A one-page feedback per student (HTML, and PDF when asked): their value, the
 reference, the error, the verdict, and for a wrong value the step of the course
-project it comes from and the steps that step depends on. English or Russian."""
+project it comes from and the steps that step depends on. English, Russian or Ukrainian."""
 from __future__ import annotations
 
 import html
@@ -56,6 +56,32 @@ TEXT = {
            "error": "ошибка", "verdict": "оценка", "step": "что проверить", "score": "Балл",
            "depends": "зависит от", "ok": "верно", "outside": "вне допуска", "sign": "ошибка знака",
            "missing": "нет ответа", "unknown_path": "неизвестная величина", "not_computed": "не вычислено"},
+    "uk": {"title": "Розбір відповідей", "student": "Студент", "group": "Група", "variant": "Варіант",
+           "task": "Завдання", "quantity": "величина", "value": "ваша відповідь", "reference": "еталон",
+           "error": "похибка", "verdict": "оцінка", "step": "що перевірити", "score": "Бал",
+           "depends": "залежить від", "ok": "правильно", "outside": "поза допуском", "sign": "помилка знака",
+           "missing": "немає відповіді", "unknown_path": "невідома величина", "not_computed": "не обчислено"},
+}
+
+# section -> (step uk, depends on uk)
+STEPS_UK = {
+    "structure": ("структурний аналіз (формула Чебишова, групи Ассура)", ""),
+    "positions": ("плани положень: крайні положення вихідної ланки, K і хід", "довжини ланок"),
+    "kinematics": ("плани швидкостей і прискорень у цьому положенні", "план положень (кути ланок)"),
+    "kinetostatics": ("кінетостатика за групами Ассура і важіль Жуковського",
+                      "план прискорень (сили інерції) і навантаження в цьому положенні"),
+    "singular": ("особливі положення силового розрахунку", "плани положень"),
+    "flywheel": ("маховик за методом енергомас (зведені моменти й момент інерції)",
+                 "аналоги швидкостей у всіх положеннях (зведений момент інерції) і навантаження"),
+    "cam": ("синтез кулачка: мінімальний радіус за допустимим кутом тиску",
+            "закон руху штовхача (аналоги швидкості й прискорення)"),
+    "gears": ("геометрія евольвентного зачеплення: α_w за inv α_w, потім радіуси й товщини",
+              "модуль, числа зубів і коефіцієнти зміщення"),
+    "planetary": ("добір чисел зубів планетарної передачі (Вілліс, співвісність, складання, сусідство)",
+                  "задане передаточне відношення"),
+    "drive_train": ("передаточне відношення і швидкості привода", "ступені привода"),
+    "synthesis": ("синтез важільного механізму за K і ходом", "задані K і хід"),
+    "dof2": ("машина з двома ступенями вільності (рівняння Лагранжа)", "початковий стан"),
 }
 
 
@@ -66,9 +92,11 @@ def step_for(path: str, lang: str) -> str:
     if not s:
         return ""
     step, dep = (s[1], s[3]) if lang == "ru" else (s[0], s[2])
+    if lang == "uk" and sec in STEPS_UK:
+        step, dep = STEPS_UK[sec]
     m = re.match(r"^\w+\[(\d+)\]", path)
     if m and sec in ("kinematics", "kinetostatics"):
-        step += f" ({'положение' if lang == 'ru' else 'position'} {m.group(1)})"
+        step += f" ({ {'ru': 'положение', 'uk': 'положення'}.get(lang, 'position')} {m.group(1)})"
     return step + (f"; {TEXT[lang]['depends']}: {dep}" if dep else "")
 
 

@@ -150,6 +150,12 @@ I18N = {
            "ok": "верно", "outside": "вне допуска", "sign": "ошибка знака", "missing": "нет ответа",
            "unknown_path": "неизвестная величина", "not_computed": "не вычислено", "no_answers": "нет ответов",
            "invalid": "ошибка в задании", "failed": "не рассчитано"},
+    "uk": {"title": "tmm: зведення по групі", "student": "студент", "group": "група", "variant": "варіант",
+           "status": "статус", "score": "бал", "message": "повідомлення", "files": "файли", "report": "звіт",
+           "check": "перевірка", "feedback": "розбір", "rows": "рядків", "legend": "Позначення",
+           "ok": "правильно", "outside": "поза допуском", "sign": "помилка знака", "missing": "немає відповіді",
+           "unknown_path": "невідома величина", "not_computed": "не обчислено", "no_answers": "немає відповідей",
+           "invalid": "помилка в завданні", "failed": "не розраховано"},
 }
 COLOURS = {"ok": "#c8e6c9", "outside": "#ffcdd2", "sign": "#e1bee7", "missing": "#fff9c4",
            "unknown_path": "#ffe0b2", "not_computed": "#e0e0e0", "no_answers": "#fff9c4", "invalid": "#ef9a9a",

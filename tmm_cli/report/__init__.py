@@ -82,7 +82,7 @@ def make_env():
 
 
 def _context(results: dict, task, out_dir: Path, lang: str) -> ReportContext:
-    return ReportContext(results=results, task=task, lang=lang if lang in ("en", "ru") else "en",
+    return ReportContext(results=results, task=task, lang=lang if lang in ("en", "ru", "uk") else "en",
                          out_dir=Path(out_dir), env=make_env())
 
 

@@ -11,10 +11,11 @@ simpler, by defining a module-level ``I18N = {"en": {...}, "ru": {...}}`` in
 
 Russian terms follow the standard course books (Artobolevsky; Popov &
 Timofeev; Frolov): «план скоростей», «план ускорений», «группа Ассура», ...
+The Ukrainian table (``uk``) lives in :mod:`tmm_cli.report.i18n_uk`.
 """
 from __future__ import annotations
 
-LANGS = ("en", "ru")
+LANGS = ("en", "ru", "uk")
 
 STRINGS: dict[str, dict[str, str]] = {
     "en": {
@@ -240,6 +241,10 @@ STRINGS: dict[str, dict[str, str]] = {
     },
 }
 
+from .i18n_uk import UK as _UK  # noqa: E402  (the Ukrainian table lives in its own module)
+
+STRINGS["uk"] = dict(_UK)
+
 
 def register(table: dict[str, dict[str, str]]) -> None:
     """Merge ``{lang: {key: text}}`` into the tables (later registrations win)."""
@@ -305,22 +310,60 @@ _WARNINGS_RU: list[tuple[str, str]] = [
 ]
 
 
+_PHASES_UK = {"near_dwell": "ближнє стояння", "rise": "віддалення", "far_dwell": "дальнє стояння",
+              "return": "повернення"}
+# the Ukrainian form of each Russian template above (keyed by the Russian text)
+_WARNINGS_UK = dict(zip([ru for _, ru in _WARNINGS_RU[:13]], [
+    "особливе положення (точка біфуркації) при φ = {0}°: група {1} (ланки {2}): рівняння швидкостей вироджені "
+    "(ланки групи на одній прямій, як у шарнірного чотириланковика на межі умови Грасгофа s + l = p + q); "
+    "механізм може перейти на іншу гілку, швидкості й прискорення стрибають. Положення ближче {3}° позначено "
+    "(near_singular); значення, що більш ніж у {4} раз перевищує найбільше в решті циклу, не має скінченної "
+    "границі й не виводиться",
+    "м'який удар (скінченний стрибок прискорення) при φ = {0}° ({1})",
+    "жорсткий удар (стрибок швидкості, нескінченне прискорення) при φ = {0}° ({1})",
+    "вибір напрямку: коромисло на віддаленні обертається {0} (r0 = {1} мм; {2}: {3} мм)",
+    "зубчаста передача: колесо {0} (z = {1}) підрізане: x{0} = {2} < x_min = {3}",
+    "зубчаста передача: вершина зуба колеса {0} надто тонка: s_a = {1} мм < {2} m = {3} мм{_pointed}",
+    "зубчаста передача: коефіцієнт перекриття ε_α = {0} < {1} (мінімум курсового проєкту)",
+    "зубчаста передача: коефіцієнт перекриття ε_α = {0} < {1} (абсолютний мінімум){_cont}",
+    "зубчаста передача: інтерференція: вершина зуба колеса {0} заходить на колесо {1} нижче початку "
+    "евольвенти {2}",
+    "маховик не потрібен: {0}",
+    "радіус ролика {0} мм більший за 0,8 ρ_min = {1} мм (правило курсового проєкту)",
+    "радіус ролика {0} мм більший за 0,5 r0 = {1} мм (правило курсового проєкту)",
+    "маховик: при {0} положеннях J відрізняється на {1} % від збіжного значення; збільште "
+    "`flywheel.resolution`"]))
+# language -> (templates by the Russian text or None for Russian itself, phases, words)
+_WARNING_TABLES = {
+    "ru": (None, _PHASES_RU, {"swing_cam": {"with": "в сторону вращения кулачка", "against": "против вращения кулачка"},
+                              "swing": {"with": "в сторону вращения", "against": "против вращения"},
+                              "pointed": " (заострение)", "cont": "; зацепление прерывается (ε < 1)"}),
+    "uk": (_WARNINGS_UK, _PHASES_UK, {"swing_cam": {"with": "в бік обертання кулачка", "against": "проти обертання кулачка"},
+                                      "swing": {"with": "в бік обертання", "against": "проти обертання"},
+                                      "pointed": " (загострення)", "cont": "; зачеплення переривається (ε < 1)"}),
+}
+
+
 def translate_warning(text, lang: str):
     """A stage warning in the report's language (known forms only; numbers kept)."""
     import re
 
-    if lang != "ru" or not isinstance(text, str):
+    if lang not in _WARNING_TABLES or not isinstance(text, str):
         return text
+    templates, phases, words = _WARNING_TABLES[lang]
     for pattern, ru in _WARNINGS_RU:
         m = re.match(pattern, text)
         if not m:
             continue
+        ru = ru if templates is None else templates.get(ru)
+        if ru is None:
+            return text
         g = [x if x is not None else "" for x in m.groups()]
         if pattern.startswith("^swing"):
-            g[0] = {"with": "в сторону вращения кулачка", "against": "против вращения кулачка"}[g[0]]
-            g[2] = {"with": "в сторону вращения", "against": "против вращения"}[g[2]]
-        g = [" / ".join(_PHASES_RU.get(p, p) for p in x.split("/")) if "/" in x or x in _PHASES_RU else x
+            g[0] = words["swing_cam"][g[0]]
+            g[2] = words["swing"][g[2]]
+        g = [" / ".join(phases.get(p, p) for p in x.split("/")) if "/" in x or x in phases else x
              for x in g]
-        return ru.format(*g, _pointed=" (заострение)" if len(g) > 4 and g[4] else "",
-                         _cont="; зацепление прерывается (ε < 1)" if len(g) > 2 and "not continuous" in g[2] else "")
+        return ru.format(*g, _pointed=words["pointed"] if len(g) > 4 and g[4] else "",
+                         _cont=words["cont"] if len(g) > 2 and "not continuous" in g[2] else "")
     return text

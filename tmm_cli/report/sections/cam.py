@@ -164,10 +164,22 @@ def _loc(lang: str, text: str) -> str:
     """Units in the report's language: deg -> °, and in Russian mm -> мм, rad -> рад."""
     import re
     text = re.sub(r"(?<![A-Za-z])deg(?![A-Za-z])", "°", text)
-    if lang == "ru":
+    if lang in ("ru", "uk"):
         text = re.sub(r"(?<![A-Za-z])mm(?![A-Za-z])", "мм", text)
         text = re.sub(r"(?<![A-Za-z])rad(?![A-Za-z])", "рад", text)
     return text
+
+
+# law titles in Ukrainian (results.json carries the English and Russian ones)
+_LAW_UK = {"constant_velocity": "стала швидкість", "parabolic": "параболічний (стале прискорення)",
+           "cosine": "косинусоїдальний", "sine": "синусоїдальний", "poly345": "поліном 3-4-5",
+           "linear_decreasing": "лінійно спадне прискорення", "trapezoidal": "трапецієподібне прискорення"}
+
+
+def _law_title(L: dict, lang: str) -> str:
+    if lang == "uk":
+        return _LAW_UK.get(L.get("name"), L["title"])
+    return L["title_ru"] if lang == "ru" else L["title"]
 
 
 def _units(c, lang: str = "en"):
@@ -451,7 +463,7 @@ def _render(ctx, c, rows, method):
     law_rows = []
     for k in ("rise", "return"):
         L = c["laws"][k]
-        law_rows.append((t(f"cam.{k}"), L["title_ru"] if ctx.lang == "ru" else L["title"],
+        law_rows.append((t(f"cam.{k}"), _law_title(L, ctx.lang),
                          f(c["phases"][k], 5), f(L["cv"], 5), f(L["ca"], 5) if L["ca"] is not None else "∞",
                          f(L["ds_max"] * kv, 5), f(L["d2s_max"] * ka, 5) if L["d2s_max"] is not None else "∞",
                          t("cam.impact_" + L["impact"])))

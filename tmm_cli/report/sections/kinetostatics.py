@@ -151,7 +151,7 @@ def label_parts(name: str, lang: str = "en") -> tuple[str, str]:
     if "\u0000" in name:                 # already split: 'M\0b' -> ('M', 'b')
         a, b = name.split("\u0000", 1)
         return a, b
-    fr = "тр" if lang == "ru" else "f"
+    fr = "тр" if lang in ("ru", "uk") else "f"
     m = re.fullmatch(r"(Fi|Mi|Ff|Mf|[A-Za-z])(\d+)", name)
     if not m:
         return name, ""

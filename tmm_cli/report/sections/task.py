@@ -213,6 +213,10 @@ for _lang, _u in (("en", "m"), ("ru", "м")):   # synthesis fields
     _UNITS[_lang].update({"H": _u, "e": _u, "frame": _u, "guide_height": _u, "rocker": _u, "psi": "°", "theta": "°",
                           "gamma_min": "°"})
 
+from .task_uk import add_uk as _add_uk  # noqa: E402
+
+_add_uk(PARAMS, ITEMS, WORDS, _UNITS)
+
 
 def _dump(task) -> dict:
     if task is None:
