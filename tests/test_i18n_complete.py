@@ -31,9 +31,10 @@ def test_report_strings_complete(lang):
 def test_section_tables_complete(lang):
     _register_all()
     mods = [m for _n, m in sections.available() if m is not None]
+    import tmm_cli.report.explore as explore
     import tmm_cli.report.failure as failure
     assert mods
-    for mod in mods + [failure]:
+    for mod in mods + [failure, explore]:
         table = getattr(mod, "I18N", None)
         if not table:
             continue
