@@ -27,6 +27,13 @@ from .units import AngularSpeed, Number, Ratio
 Z_COUNT = {"pair": 2, "A": 3, "B": 4, "C": 4, "D": 4}
 
 
+
+def _nonzero_ratio(v):
+    """A required ratio (of a stage or the train) may have either sign but not be zero."""
+    if v is not None and v == 0:
+        raise ValueError("the ratio cannot be zero")
+    return v
+
 class TrainStageSpec(_Model):
     type: Literal["pair", "planetary"]
     z: list[int] | None = None
@@ -44,12 +51,7 @@ class TrainStageSpec(_Model):
             raise ValueError(f"unknown planetary scheme {v!r}; known: {', '.join(PLANETARY_SCHEMES)}")
         return key
 
-    @field_validator("ratio")
-    @classmethod
-    def _ratio(cls, v):
-        if v is not None and v == 0:
-            raise ValueError("the ratio cannot be zero")
-        return v
+    _ratio = field_validator("ratio")(classmethod(lambda cls, v: _nonzero_ratio(v)))
 
     @model_validator(mode="after")
     def _shape(self):
@@ -93,12 +95,7 @@ class DriveTrainSection(_Model):
     candidates: int = Field(10, ge=1, le=100)
     stages: list[TrainStageSpec] = Field(..., min_length=1)
 
-    @field_validator("ratio")
-    @classmethod
-    def _ratio(cls, v):
-        if v is not None and v == 0:
-            raise ValueError("the ratio cannot be zero")
-        return v
+    _ratio = field_validator("ratio")(classmethod(lambda cls, v: _nonzero_ratio(v)))
 
     @model_validator(mode="after")
     def _limits(self):
