@@ -16,7 +16,12 @@
   marks.forEach(function (m) { var o = document.createElement("option"); o.value = m.k; o.label = String(m.index); dl.appendChild(o); });
 
   function fin(v) { return v !== null && v !== undefined && isFinite(v); }
-  function num(v) { return fin(v) ? Number(v).toPrecision(4).replace(/^(-?\d+\.\d*?)0+e/, "$1e") : "—"; }
+  // round-off of an exact zero (|v| < 1e-10) is shown as 0, as in the report's tables
+  function num(v) {
+    if (!fin(v)) return "—";
+    if (Math.abs(v) < 1e-10) return "0";
+    return Number(v).toPrecision(4).replace(/^(-?\d+\.\d*?)0+e/, "$1e");
+  }
   function extent(xs, ys) {
     var x0 = Infinity, x1 = -Infinity, y0 = Infinity, y1 = -Infinity;
     for (var i = 0; i < xs.length; i++) { if (!fin(xs[i]) || !fin(ys[i])) continue;

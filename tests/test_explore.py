@@ -156,3 +156,12 @@ def test_hidden_in_print_and_absent_from_the_pdf_html(page, run):
     res = json.loads((run / "results.json").read_text())
     html, _ = render_html(res, load_task(TASK), run / "pdfhtml")
     assert 'id="ex-data"' not in html
+
+
+def test_round_off_zero_shown_as_zero(page):
+    """At position 0 of the forging machine the slider is at rest (v_D = 0 exactly in
+    theory, ~1e-16 in floating point): the table shows 0, as the report's tables do."""
+    _set(page, 0)
+    cells = page.eval_on_selector_all("#ex-table td", "cs => cs.map(c => c.textContent)")
+    assert not [c for c in cells if re.fullmatch(r"-?[\d.]+e-1\d", c.strip())], cells
+    assert _shown(page)["D"][0] == 0.0

@@ -22,7 +22,7 @@ def forging():
     from tmm_cli.task import load_task
     task = load_task(ROOT / "tasks" / "forging_sixbar.yaml")
     res = run(task)
-    return res, {lang: build_sheets(res, task, lang) for lang in ("en", "ru")}
+    return res, {lang: build_sheets(res, task, lang) for lang in ("en", "ru", "uk")}
 
 
 def _mantissa_ok(mu: float) -> bool:
@@ -143,9 +143,21 @@ def _check_texts(sheets):
                 assert not overlap, (boxes[i][0].plain, boxes[j][0].plain)
 
 
-@pytest.mark.parametrize("lang", ["en", "ru"])
+@pytest.mark.parametrize("lang", ["en", "ru", "uk"])
 def test_texts_do_not_collide_or_leave_the_frame(forging, lang):
     _check_texts(forging[1][lang])
+
+
+def test_sheet_texts_in_every_language():
+    """Every sheet table has the keys of English in ru and uk; the Ukrainian sheets carry no
+    Russian-only letter (ы, э, ъ, ё)."""
+    import importlib
+    for name, attr in (("", "SHEETS"), (".frame", "TB_TEXT"), (".sheet1", "TXT"), (".sheet1", "UNITS"),
+                       (".sheet3", "TXT"), (".sheet4", "TXT"), (".sheet5", "TXT")):
+        table = getattr(importlib.import_module("tmm_cli.sheets" + name), attr)
+        for lang in ("ru", "uk"):
+            assert set(table["en"]) == set(table[lang]), (name, attr, lang)
+        assert not any(set(str(v)) & set("ыэъёЫЭЪЁ") for v in table["uk"].values()), (name, attr)
 
 
 @pytest.mark.parametrize("name", ["press_offset_slider_crank", "crank_rocker_fourbar", "shaper_slotted_ram"])

@@ -185,7 +185,7 @@ def sheets(
     task_file: Path = typer.Argument(..., metavar="TASK.yaml", help="the task file"),
     out: Optional[Path] = typer.Option(None, "--out", "-o", help="output folder (default: out/<task name>/)"),
     format: str = typer.Option("pdf,svg,dxf", "--format", "-f", help="comma-separated: pdf, svg, dxf"),
-    lang: str = typer.Option("en", "--lang", "-l", help="sheet language: en | ru"),
+    lang: str = typer.Option("en", "--lang", "-l", help="sheet language: en | ru | uk"),
 ):
     """The A1 drawing sheets (frame, ГОСТ 2.104 title block, standard scales) as PDF, SVG and DXF.
 
@@ -194,8 +194,8 @@ def sheets(
     fm = {f.strip().lower() for f in format.split(",") if f.strip()}
     if not fm or fm - {"pdf", "svg", "dxf"}:
         raise typer.BadParameter("choose from pdf, svg, dxf (comma-separated)")
-    if lang not in ("en", "ru"):
-        raise typer.BadParameter("--lang must be en or ru")
+    if lang not in ("en", "ru", "uk"):
+        raise typer.BadParameter("--lang must be en, ru or uk")
     try:
         task = _load(task_file)
     except TaskError as exc:

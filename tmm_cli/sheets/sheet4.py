@@ -10,7 +10,8 @@ from .frame import FRAME, length_scale, std_mu
 from .graph import draw_graph
 
 TXT = {"en": {"profile": "Cam profile", "law": "Motion law of the follower", "mm": "mm", "m": "m"},
-       "ru": {"profile": "Профиль кулачка", "law": "Закон движения толкателя", "mm": "мм", "m": "м"}}
+       "ru": {"profile": "Профиль кулачка", "law": "Закон движения толкателя", "mm": "мм", "m": "м"},
+       "uk": {"profile": "Профіль кулачка", "law": "Закон руху штовхача", "mm": "мм", "m": "м"}}
 
 
 def build(cv, results, task, lang="en") -> dict:

@@ -9,7 +9,8 @@ import numpy as np
 
 from .frame import FRAME, length_scale
 
-TXT = {"en": {"mesh": "Gear mesh", "m": "m", "mm": "mm"}, "ru": {"mesh": "Зубчатое зацепление", "m": "м", "mm": "мм"}}
+TXT = {"en": {"mesh": "Gear mesh", "m": "m", "mm": "mm"}, "ru": {"mesh": "Зубчатое зацепление", "m": "м", "mm": "мм"},
+       "uk": {"mesh": "Зубчасте зачеплення", "m": "м", "mm": "мм"}}
 TEETH = 5          # teeth drawn of each wheel, centred on the mesh
 
 
