@@ -1,7 +1,7 @@
 """File output: atomic writes with ordinary permissions, and the manifest by which a
 run owns the files it wrote in its output folder.
 
-- ``atomic_write`` writes through a temporary file ``.NAME.XXXXXXXX.tmp`` in the same
+- ``atomic_write`` writes through a temporary file ``.NAME.<random>.tmp`` in the same
   folder and ``os.replace``s it into place, so readers see the old or the new file,
   never half of one.  The file gets the mode an ordinary new file gets (0666 less the
   umask: 0644 under umask 022), not the 0600 of a bare temporary file.
@@ -157,7 +157,7 @@ class Manifest:
             d = d.parent
 
     def remove_stale_temps(self, dirs) -> list[Path]:
-        """Temporary files ``.NAME.XXXXXXXX.tmp`` (atomic_write's) in ``dirs`` older
+        """Temporary files ``.NAME.<random>.tmp`` (atomic_write's) in ``dirs`` older
         than this run: left by a run that was killed while writing."""
         out = []
         for d in dirs:
