@@ -6,27 +6,19 @@ from __future__ import annotations
 
 import re
 from html import unescape
-from pathlib import Path
 
 import pytest
 
-import tmm_cli
-from tmm_cli.report import render_html
 from tmm_cli.report import i18n, sections
 
-ROOT = Path(__file__).resolve().parents[1]
+from report_langs import render_pairs
+
 TASKS = ("forging_sixbar", "cam_rocker", "gears_shifted", "planetary_A", "planetary_pair_given")
 
 
 @pytest.fixture(scope="module")
 def reports(tmp_path_factory):
-    out = {}
-    for name in TASKS:
-        task = tmm_cli.load_task(ROOT / "tasks" / f"{name}.yaml")
-        r = tmm_cli.run(task, kinematics_curve=0)
-        d = tmp_path_factory.mktemp(name)
-        out[name] = (render_html(r, task, d, "ru")[0], render_html(r, task, d, "en")[0], r)
-    return out
+    return render_pairs(tmp_path_factory, TASKS, "ru")
 
 
 def _visible(html: str) -> str:

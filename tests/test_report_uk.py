@@ -6,15 +6,13 @@ from __future__ import annotations
 
 import re
 from html import unescape
-from pathlib import Path
 
 import pytest
 
-import tmm_cli
-from tmm_cli.report import render_html
 from tmm_cli.report import i18n, sections
 
-ROOT = Path(__file__).resolve().parents[1]
+from report_langs import render_pairs
+
 TASKS = ("forging_sixbar", "cam_rocker", "gears_shifted", "planetary_A", "planetary_pair_given",
          "synthesis_crank_rocker", "impact_rotor")
 # Russian words that Ukrainian writes otherwise (as whole words; not 'при', 'для', 'по', 'сила',
@@ -27,13 +25,7 @@ RUSSIAN_WORDS = ("звено", "звенья", "ползун", "коромысл
 
 @pytest.fixture(scope="module")
 def reports(tmp_path_factory):
-    out = {}
-    for name in TASKS:
-        task = tmm_cli.load_task(ROOT / "tasks" / f"{name}.yaml")
-        r = tmm_cli.run(task, kinematics_curve=0)
-        d = tmp_path_factory.mktemp(name)
-        out[name] = (render_html(r, task, d, "uk")[0], render_html(r, task, d, "en")[0])
-    return out
+    return render_pairs(tmp_path_factory, TASKS, "uk")
 
 
 def _visible(html: str) -> str:
@@ -60,7 +52,7 @@ def _english_phrases() -> list[str]:
 
 @pytest.mark.parametrize("name", TASKS)
 def test_no_english_left(reports, name):
-    uk, en = reports[name]
+    uk, en, _ = reports[name]
     body = _visible(uk)
     left = [p for p in _english_phrases() if p in body]
     assert not left, left
