@@ -73,15 +73,17 @@ def svg(fig) -> str:
 
 
 # ---------------------------------------------------------------- scales
-NICE_SERIES = (1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0)
+# the course's scale factors μ (velocity, acceleration, force, moment, work, inertia, the
+# diagrams' ordinates): 1, 2, 2.5, 4, 5 x 10^k, the same series as the sheets
+NICE_SERIES = (1.0, 2.0, 2.5, 4.0, 5.0, 10.0)
 
 
 def nice_scale(value: float, series=NICE_SERIES) -> float:
-    """Smallest 'nice' number >= value from series x 10^k (scale factors as
+    """Smallest standard number >= value from series x 10^k (scale factors as
     students choose them: mu = v_A / pa rounded up, so pa <= its target).
 
     >>> nice_scale(0.012566)
-    0.015
+    0.02
     """
     if not (value > 0 and math.isfinite(value)):
         return 1.0

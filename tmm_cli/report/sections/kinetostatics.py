@@ -129,7 +129,6 @@ MAX_FIG_POSITIONS = 24       # pages of drawings for at most this many positions
 ROW_H = 72.0                 # mm: one row (a group's diagram + its polygon)
 GROUP_W = 90.0               # mm: width of a group's diagram
 CRANK_W = 50.0               # mm: the input link's diagram in the last row
-POLY_W_CRANK = 52.0          # mm: its polygon; the lever takes the rest
 FIG_W = 170.0                # mm
 PAGE_H = 245.0               # mm of drawings per page at most
 
@@ -240,7 +239,9 @@ def _fbd_panel(ctx, cv, box, kin_e, links, names, forces, couples, title):
     lo, hi = xy.min(axis=0), xy.max(axis=0)
     span = np.maximum(hi - lo, 1e-9)
     m = 11.0 if w > 60 else 15.0                       # room for the arrows
-    mu_l = figures.nice_scale(max(span[0] / (w - 2 * m), span[1] / (h - TITLE_H - 2 * m), 1e-9))
+    # a ГОСТ 2.302 length scale (1:1, 1:2, 1:2.5, 1:4, 1:5, 1:10, ...), stated as μl in m/mm
+    mu_l = figures.drawing_scale(1000.0 * max(span[0] / (w - 2 * m), span[1] / (h - TITLE_H - 2 * m), 1e-9))[0] \
+        / 1000.0
     c_box = (lo + hi) / 2
     c_pan = np.array([x0 + w / 2, y0 + (h - TITLE_H) / 2])
 
@@ -483,10 +484,9 @@ def _lever_panel(ctx, cv, box, e, kin_e, pin, omega1, balance_kind):
     return mu_v
 
 
-def position_figures(ctx, e, kin_e, info, links, pin=None, omega1=None):
-    """The drawings of one position: a list of SVG strings (one per page), and the
-    data drawn: [{'group': [...], 'mu_l', 'mu_F', 'tips' (mm), 'vectors'}]."""
-    from ..svgdraw import Canvas
+def position_rows(ctx, e, kin_e, info, links):
+    """The groups of one position as they are solved, the last one first and the input
+    link last: [(link names, forces, couples, title)] (shared by the report and sheet 2)."""
     index_by_name = {n: l["index"] for n, l in links.items()}
     groups = [list(g) for g in info["groups"]]
     order = list(reversed(groups[:-1])) + [groups[-1]]
@@ -510,32 +510,56 @@ def position_figures(ctx, e, kin_e, info, links, pin=None, omega1=None):
             title = ctx.t("kst.group_links", k=len(order) - 1 - k,
                           links=", ".join(str(index_by_name[n]) for n in g))
         rows.append((g, forces, couples, title))
-    # pages of rows: each group (diagram | polygon); the last row: the input link's
-    # diagram | its polygon | Zhukovsky's lever
+    return rows
+
+
+def drive_omega(geom, kin_e):
+    """The angular velocity of the input link in one kinematics entry (None without it)."""
+    if geom is None:
+        return None
+    dl = geom.link(geom.drive)
+    if dl is not None and dl.name in kin_e["links"]:
+        return kin_e["links"][dl.name].get("omega")
+    return None
+
+
+LEVER_H = 100.0              # mm: Zhukovsky's lever, a row of its own under the groups
+
+
+def position_figures(ctx, e, kin_e, info, links, pin=None, omega1=None):
+    """The drawings of one position: a list of SVG strings (one per page), and the
+    data drawn: [{'group': [...], 'mu_l', 'mu_F', 'tips' (mm), 'vectors'}] and, last,
+    {'lever': mu_v}."""
+    from ..svgdraw import Canvas
+    rows = position_rows(ctx, e, kin_e, info, links)
+    # pages of rows: each group (diagram | polygon), the input link's diagram | its
+    # polygon, then Zhukovsky's lever over the whole width
+    heights = [ROW_H] * len(rows) + [LEVER_H]
     figs, drawn = [], []
     start = 0
-    n = len(rows)
-    per_page = max(1, int(PAGE_H // ROW_H))
+    n = len(heights)
     while start < n:
-        stop = min(n, start + per_page)
-        H = (stop - start) * ROW_H
+        stop, H = start, 0.0
+        while stop < n and (stop == start or H + heights[stop] <= PAGE_H):
+            H += heights[stop]
+            stop += 1
         cv = Canvas(FIG_W, H)
+        y = H
         for r in range(start, stop):
-            y = H - (r - start + 1) * ROW_H
+            y -= heights[r]
+            if r > start:
+                cv.line((0, y + heights[r]), (FIG_W, y + heights[r]), "#bbb", 0.2, z=0)
+            if r == len(rows):
+                mu_v = _lever_panel(ctx, cv, (0, y, FIG_W, LEVER_H), e, kin_e, pin, omega1,
+                                    info.get("balance_kind"))
+                drawn.append({"lever": mu_v})
+                continue
             g, forces, couples, title = rows[r]
-            last = r == n - 1
-            wd, wp = (CRANK_W, POLY_W_CRANK) if last else (GROUP_W, FIG_W - GROUP_W)
+            wd = CRANK_W if r == len(rows) - 1 else GROUP_W
             mu_l = _fbd_panel(ctx, cv, (0, y, wd, ROW_H), kin_e, links, g, forces, couples, title)
-            mu_F, T = _polygon_panel(ctx, cv, (wd + 1, y, wp - 1, ROW_H), forces)
+            mu_F, T = _polygon_panel(ctx, cv, (wd + 1, y, FIG_W - wd - 1, ROW_H), forces)
             drawn.append({"group": g, "mu_l": mu_l, "mu_F": mu_F, "tips": T, "vectors": polygon(forces)[0]})
             cv.line((wd, y + 1), (wd, y + ROW_H - 1), "#bbb", 0.2, z=0)
-            if r > start:
-                cv.line((0, y + ROW_H), (FIG_W, y + ROW_H), "#bbb", 0.2, z=0)
-            if last:
-                xl = wd + wp
-                cv.line((xl, y + 1), (xl, y + ROW_H - 1), "#bbb", 0.2, z=0)
-                _lever_panel(ctx, cv, (xl + 1, y, FIG_W - xl - 1, ROW_H), e, kin_e, pin, omega1,
-                             info.get("balance_kind"))
         figs.append(Markup(cv.to_svg()))
         start = stop
     return figs, drawn
@@ -694,11 +718,7 @@ def build(ctx) -> str | None:
         if "loads" not in e or e["index"] not in kin:
             continue
         ke = kin[e["index"]]
-        w1 = None
-        if geom is not None:
-            dl = geom.link(geom.drive)
-            if dl is not None and dl.name in ke["links"]:
-                w1 = ke["links"][dl.name].get("omega")
+        w1 = drive_omega(geom, ke)
         if e.get("balancing_moment") is None and e.get("balancing_force") is None:
             figs = []
         else:
