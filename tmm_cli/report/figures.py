@@ -227,10 +227,28 @@ def _seg_dists(C, segs):
 
 _DIRS = np.array([[math.cos(t), math.sin(t)] for t in np.linspace(0, 2 * math.pi, 16, endpoint=False)])
 _MULTS = (1.0, 1.5, 2.1)
+_FAR = (3.0, 4.2, 5.8, 8.0, 11.0)          # rings tried when a label box finds no room nearer
+
+
+def text_size(s: str, size_mm: float, sub: str | None = None) -> tuple[float, float]:
+    """(width, height) mm of a label of font size size_mm (a subscript counted full
+    width): the box the drawings keep clear, and the one the tests check."""
+    return 0.6 * size_mm * (len(s) + len(sub or "")) + 0.6, 1.15 * size_mm
+
+
+def _hit(cand, half, taken):
+    """For the candidate centres (m, 2) of a box of half sizes `half`: does it overlap one
+    of the boxes `taken` (k, 4: x0, y0, x1, y1)?"""
+    if not len(taken):
+        return np.zeros(len(cand), bool)
+    t = np.asarray(taken, float)
+    return ((np.abs(cand[:, None, 0] - (t[None, :, 0] + t[None, :, 2]) / 2) < half[0] + (t[None, :, 2] - t[None, :, 0]) / 2)
+            & (np.abs(cand[:, None, 1] - (t[None, :, 1] + t[None, :, 3]) / 2) < half[1] + (t[None, :, 3] - t[None, :, 1]) / 2)
+            ).any(axis=1)
 
 
 def place_labels(anchors, extent: float, avoid=(), step: float | None = None, segments=None,
-                 boxes=()):
+                 boxes=(), sizes=None, taken=(), bounds=None):
     """Greedy label placement.
 
     anchors: list of (x, y, preferred_direction (dx, dy) or None).
@@ -239,20 +257,25 @@ def place_labels(anchors, extent: float, avoid=(), step: float | None = None, se
     from the already placed labels, the `avoid` points and the `segments`
     (lines of the drawing), preferring `preferred_direction`; never inside one
     of the `boxes` (centre, u-axis unit vector, half width, half height).
+    With `sizes` [(w, h)] the labels are boxes: a label never overlaps another placed
+    one nor one of `taken` (x0, y0, x1, y1), and stays inside `bounds` (x0, y0, x1, y1);
+    when no place near its anchor is free it moves further out (rings up to 11 steps),
+    and it is appended to `taken` (the caller's list) once placed.
     Vectorised over the candidates (numpy).
     """
     if step is None:
         step = 0.045 * extent
     avoid_a = np.asarray([np.asarray(a, float) for a in avoid], float).reshape(-1, 2)
     segs = np.asarray(segments, float).reshape(-1, 2, 2) if segments is not None and len(segments) else None
-    offs = np.concatenate([_DIRS * step * m for m in _MULTS])             # (48, 2)
-    mult = np.repeat(np.array(_MULTS), len(_DIRS))
-    dirs = np.tile(_DIRS, (len(_MULTS), 1))
-    # distance of the candidates of every anchor to the drawing's segments
+    mults = _MULTS + (_FAR if sizes is not None else ())
+    offs = np.concatenate([_DIRS * step * m for m in mults])
+    mult = np.repeat(np.array(mults), len(_DIRS))
+    dirs = np.tile(_DIRS, (len(mults), 1))
+    taken = taken if isinstance(taken, list) else list(taken)
     placed = np.empty((0, 2))
     out = []
     big = 9 * step
-    for (x, y, pref) in anchors:
+    for k_a, (x, y, pref) in enumerate(anchors):
         c = np.array([x, y], float)
         cand = c + offs
         ok = np.ones(len(cand), bool)
@@ -262,6 +285,17 @@ def place_labels(anchors, extent: float, avoid=(), step: float | None = None, se
             bv = np.array([-bu[1], bu[0]])
             r = cand - bc
             ok &= ~((np.abs(r @ bu) < hw + 0.5 * step) & (np.abs(r @ bv) < hh + 0.4 * step))
+        half = None
+        if sizes is not None:
+            half = np.asarray(sizes[k_a], float) / 2
+            free = ~_hit(cand, half, taken)
+            if bounds is not None:
+                free &= (cand[:, 0] - half[0] >= bounds[0]) & (cand[:, 0] + half[0] <= bounds[2]) \
+                    & (cand[:, 1] - half[1] >= bounds[1]) & (cand[:, 1] + half[1] <= bounds[3])
+            if (ok & free).any():
+                ok &= free
+            elif free.any():
+                ok = free
         dl = np.sqrt(((cand[:, None, :] - placed[None]) ** 2).sum(axis=2)).min(axis=1) if len(placed) \
             else np.full(len(cand), big)
         da = np.sqrt(((cand[:, None, :] - avoid_a[None]) ** 2).sum(axis=2)).min(axis=1) if len(avoid_a) \
@@ -277,6 +311,8 @@ def place_labels(anchors, extent: float, avoid=(), step: float | None = None, se
         k = int(np.argmax(score))
         best = cand[k] if np.isfinite(score[k]) else c + _DIRS[4] * step * 2.5
         placed = np.vstack([placed, best])
+        if half is not None:
+            taken.append((best[0] - half[0], best[1] - half[1], best[0] + half[0], best[1] + half[1]))
         out.append((float(best[0]), float(best[1])))
     return out
 

@@ -169,27 +169,38 @@ def draw_plan(cv, plan, box, title, unit_txt, si_unit="m/s", mm="mm"):
         else:
             groups.append((q, [name]))
     pole = M(np.zeros(2))
-    anchors = []
-    for q, names in groups:
-        d = q - pole
-        anchors.append((q[0], q[1], tuple(d) if np.hypot(*d) > 0.5 else (-1.0, -1.0)))
-    pos = F.place_labels(anchors, 60.0, avoid=[g[0] for g in groups], step=2.6, segments=segs)
-    for (q, names), (x, y) in zip(groups, pos):
-        names = sorted(names, key=lambda s: (s != plan.pole, s))
-        x = min(max(x, x0 + 3), x0 + w - 3)
-        y = min(max(y, y0 + bar_h), y0 + h - top)
-        aux = plan.pole not in names and names[0].startswith(("n", "k"))
-        cv.text(x, y, ", ".join(names), size=7, italic=True, color="#444" if aux else "#000", halo=True)
-    cv.dot(pole, 0.6, z=6)
-    # title, scale, scale bar
-    cv.text(x0 + 1.5, y0 + h - 3.2, title, size=7, anchor="start", bold=True)
+    # title, scale, scale bar first: the point labels keep clear of them
+    from ..svgdraw import PT_PER_MM
+    taken = []
+
+    def fixed(x, y, text, pt, **kw):
+        cv.text(x, y, text, size=pt, **kw)
+        tw, th = F.text_size(text, pt / PT_PER_MM)
+        taken.append((x, y - th / 2, x + tw, y + th / 2))
+
+    fixed(x0 + 1.5, y0 + h - 3.2, title, 7, anchor="start", bold=True)
     cv.text(x0 + 1.5, y0 + h - 7.2, "μ", size=6.5, anchor="start", sub=plan.kind,
             after=f" = {plan.mu:g} {unit_txt}")
+    tw, th = F.text_size(f"μ{plan.kind} = {plan.mu:g} {unit_txt}", 6.5 / PT_PER_MM)
+    taken.append((x0 + 1.5, y0 + h - 7.2 - th / 2, x0 + 1.5 + tw, y0 + h - 7.2 + th / 2))
     bar = next((b for b in _NICE_BARS if b * k >= 12.0), _NICE_BARS[-1])
     bx, by = x0 + 2.0, y0 + 2.5
     cv.polyline([(bx, by + 0.8), (bx, by), (bx + bar * k, by), (bx + bar * k, by + 0.8)], "#000", 0.3)
-    cv.text(bx + bar * k + 1.5, by + 0.3, f"{bar:g} {mm} = {float(f'{bar * plan.mu:.6g}'):g} {si_unit}",
-            size=6, anchor="start")
+    fixed(bx + bar * k + 1.5, by + 0.3, f"{bar:g} {mm} = {float(f'{bar * plan.mu:.6g}'):g} {si_unit}", 6,
+          anchor="start")
+    taken.append((bx, by - 0.5, bx + bar * k, by + 1.0))
+    anchors, texts, sizes = [], [], []
+    for q, names in groups:
+        d = q - pole
+        anchors.append((q[0], q[1], tuple(d) if np.hypot(*d) > 0.5 else (-1.0, -1.0)))
+        texts.append(", ".join(sorted(names, key=lambda s: (s != plan.pole, s))))
+        sizes.append(F.text_size(texts[-1], 7 / PT_PER_MM))
+    pos = F.place_labels(anchors, 60.0, avoid=[g[0] for g in groups], step=2.6, segments=segs, sizes=sizes,
+                         taken=taken, bounds=(x0 + 0.5, y0 + 0.5, x0 + w - 0.5, y0 + h - 0.5))
+    for (q, names), text, (x, y) in zip(groups, texts, pos):
+        aux = plan.pole not in names and min(names, key=lambda s: (s != plan.pole, s)).startswith(("n", "k"))
+        cv.text(x, y, text, size=7, italic=True, color="#444" if aux else "#000", halo=True)
+    cv.dot(pole, 0.6, z=6)
     return k
 
 
