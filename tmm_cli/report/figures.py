@@ -380,12 +380,13 @@ def figure_for_box(lo, hi, width_mm, min_h=40.0, max_h=150.0, margin_mm=8.0):
 
 
 def draw_mechanism(ax, geom, entry, unit: float, *, labels=True, numbers=True,
-                   color="k", lw=1.5, light=False, ranges=None, label_fs=8):
+                   color="k", lw=1.5, light=False, ranges=None, label_fs=8, taken=()):
     """Draw the linkage of one kinematics entry on `ax` (data units: metres).
 
     unit: metres per paper millimetre (sets pivot/block/label sizes).
     light: thin grey drawing (for the overlaid positions of the positions plan).
     ranges: output of slider_ranges() so fixed guides cover the whole stroke.
+    taken: boxes (x0, y0, x1, y1, data units) of texts already there: the labels keep clear.
     Returns a list of (label, xy) placed, for the caller's bookkeeping.
     """
     size = 50.0 * unit
@@ -487,9 +488,12 @@ def draw_mechanism(ax, geom, entry, unit: float, *, labels=True, numbers=True,
             anchors.insert(0, (p, xy, None, False))
     if not anchors:
         return []
+    fs_mm = label_fs * 25.4 / 72.0
+    sizes = [tuple(unit * np.array(text_size("00" if a[3] else a[0], fs_mm * (0.95 if a[3] else 1.0))))
+             for a in anchors]
     pos = place_labels([(a[1][0], a[1][1], a[2]) for a in anchors], size,
                        avoid=avoid + [a[1] for a in anchors], step=3.6 * unit, segments=segs,
-                       boxes=boxes)
+                       boxes=boxes, sizes=sizes, taken=list(taken))
     out = []
     seen = set()
     for (text, xy, _, is_num), (x, y) in zip(anchors, pos):

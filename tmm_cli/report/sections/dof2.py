@@ -233,6 +233,7 @@ def plots(ctx, d):
             ax.axvline(d["impact"]["t"], color="C3", lw=0.6, ls="--")
     for ax in (a1, a2):
         ax.grid(True, lw=0.3, color="0.85")
+    fig.tight_layout()                    # the axis labels inside the figure
     out["angles"] = ctx.svg(fig)
 
     fig, ax = fp.new_figure(170, 70)
@@ -243,6 +244,7 @@ def plots(ctx, d):
     ax.set_ylabel(t("dof2.w_axis"))
     ax.grid(True, lw=0.3, color="0.85")
     ax.legend(fontsize=6)
+    fig.tight_layout()                    # the axis labels inside the figure
     out["speeds"] = ctx.svg(fig)
 
     R = d["reactions"]
@@ -259,6 +261,7 @@ def plots(ctx, d):
     a2.legend(fontsize=6)
     for ax in (a1, a2):
         ax.grid(True, lw=0.3, color="0.85")
+    fig.tight_layout()                    # the axis labels inside the figure
     out["reactions"] = ctx.svg(fig)
 
     E = d["energy"]
@@ -274,6 +277,7 @@ def plots(ctx, d):
     a2.legend(fontsize=6)
     for ax in (a1, a2):
         ax.grid(True, lw=0.3, color="0.85")
+    fig.tight_layout()                    # the axis labels inside the figure
     out["energy"] = ctx.svg(fig)
     return out
 

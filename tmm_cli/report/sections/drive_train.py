@@ -71,6 +71,10 @@ def scheme_and_picture(d: dict, lang_t) -> str:
     for s, a in zip(st, vp["axes"]):
         if s["type"] == "pair":
             radii.append(a["y"] - vp["module"] * s["z"][0] / 2)
+        else:          # a planetary stage: the top of its satellites (their labels stay on the canvas)
+            z = s["z"]
+            aw = (z[0] + z[1] if s["scheme"] != "D" else z[0] - z[1]) * vp["module"] / 2
+            radii.append(a["y"] + aw + vp["module"] * max(z[1], z[2] if len(z) > 2 else 0) / 2)
     ys += radii
     y_lo, y_hi = min(ys), max(ys)
     w_scheme = 16 + STEP * len(st) + 14
@@ -189,20 +193,22 @@ def angular_plan(d: dict) -> str:
     k = min(1.0, (FRAME - 30) / max(max(xs) - min(xs), 1e-9))
     Hh = vp["H"] * k
     x_lo = min(xs) * k
-    c = Canvas((max(xs) - min(xs)) * k + 30, Hh + 24)
+    # ray names stacked where rays end close together: the canvas leaves room for the stack
+    used, lifts = [], []
+    for r in rays:
+        lifts.append(2.5 + 3.2 * sum(1 for u in used if abs(u - r["x"] * k) < 6))
+        used.append(r["x"] * k)
+    c = Canvas((max(xs) - min(xs)) * k + 30, Hh + 14 + max(lifts + [10.0]) + 2.0)
     px, py = 15 - x_lo, 8.0
     c.dot((px, py), 0.7)
     c.text(px - 2.5, py, "P", size=6.5, anchor="end", italic=True)
     c.line((15 - 4, py + Hh), (15 + (max(xs) - min(xs)) * k + 4, py + Hh), width=0.3)
     c.line((px, py), (px, py + Hh), color="#999", width=0.2, dash="1,1")
     col = _colors()
-    used = []
-    for r in rays:
+    for r, lift in zip(rays, lifts):
         q = (px + r["x"] * k, py + Hh)
         color = col[(r["stage"] + 1) % len(col)] if r["stage"] >= 0 else "#000"
         c.line((px, py), q, color=color, width=0.4, dash="2,1" if r["satellite"] else None)
-        lift = 2.5 + 3.2 * sum(1 for u in used if abs(u - q[0]) < 6)
-        used.append(q[0])
         c.text(q[0], q[1] + lift, r["name"], size=6, color=color, halo=True)
     c.text(15 + (max(xs) - min(xs)) * k, 4, "H = " + f"{vp['H'] * k:.0f} mm, μ", sub="ω",
            after=f" = {vp['mu_omega'] / k:.4g} (rad/s)/mm", anchor="end", size=6.5)

@@ -266,6 +266,7 @@ def sliding_figure(ctx, g):
     ax.set_xlabel(f"$N_1X$, {ctx.t('gears.mm')}")
     ax.legend(fontsize=7)
     ax.grid(True, lw=0.3)
+    fig.tight_layout()                    # the axis label inside the figure
     return fig
 
 

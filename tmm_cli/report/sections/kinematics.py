@@ -78,13 +78,29 @@ def positions_svg(ctx, geom, entries, grid, fine=None):
     ranges = F.slider_ranges(entries, geom)
     for e in grid[1:]:
         F.draw_mechanism(ax, geom, e, unit, light=True)
-    F.draw_mechanism(ax, geom, grid[0], unit, ranges=ranges, lw=1.3)
+    # the position numbers at the crank pin first: the point names keep clear of them
+    numbers = []
+    pin = crank_pin(geom)
+    if pin is not None:
+        O = None
+        for j in geom.joints:
+            if j.kind == "R" and j.a == 0 and j.b == geom.drive:
+                O = _pxy(grid[0], j.point)
+        for k, e in enumerate(grid):
+            a = _pxy(e, pin)
+            d = a - O if O is not None else np.array([0.0, 1.0])
+            d = d / (np.linalg.norm(d) or 1.0)
+            q = a + d * 3.5 * unit
+            numbers.append((q, str(e.get("index", k))))
+    fs_mm = 6.5 * 25.4 / 72.0
+    taken = [(q[0] - w / 2, q[1] - h / 2, q[0] + w / 2, q[1] + h / 2) for q, s in numbers
+             for w, h in [tuple(unit * np.array(F.text_size(s, fs_mm)))]]
+    F.draw_mechanism(ax, geom, grid[0], unit, ranges=ranges, lw=1.3, taken=taken)
     # trajectories: periodic splines through the grid positions
     from scipy.interpolate import CubicSpline
     traced = [l.com for l in geom.links if l.com] + [p for l in geom.links if l.kind == "bar"
                                                      for p in l.points]
     seen = set()
-    pin = crank_pin(geom)
     for p in traced:
         if p in seen or p in geom.ground or p not in grid[0]["points"]:
             continue
@@ -105,18 +121,8 @@ def positions_svg(ctx, geom, entries, grid, fine=None):
                 color="#1f5fbf" if is_com else "0.5", zorder=1)
         ax.plot(xy[:, 0], xy[:, 1], ls="none", marker="o", ms=1.6,
                 color="#1f5fbf" if is_com else "0.4", zorder=2)
-    if pin is not None:
-        O = None
-        for j in geom.joints:
-            if j.kind == "R" and j.a == 0 and j.b == geom.drive:
-                O = _pxy(grid[0], j.point)
-        for k, e in enumerate(grid):
-            a = _pxy(e, pin)
-            d = a - O if O is not None else np.array([0.0, 1.0])
-            d = d / (np.linalg.norm(d) or 1.0)
-            q = a + d * 3.5 * unit
-            ax.text(q[0], q[1], str(e.get("index", k)), fontsize=6.5, color="#7a1f1f",
-                    ha="center", va="center", zorder=8)
+    for q, s in numbers:
+        ax.text(q[0], q[1], s, fontsize=6.5, color="#7a1f1f", ha="center", va="center", zorder=8)
     return ctx.svg(fig)
 
 

@@ -605,6 +605,7 @@ def _diagrams_fig(ctx, info, entries, grid_n):
     if not ld:
         return None
     fig, axes = figures.new_figure(170, 55 * len(ld), nrows=len(ld), squeeze=False)
+    marks = []
     for ax, d in zip(axes[:, 0], ld):
         cur = d["curve"]
         ax.plot(cur["x"], cur["value"], "k-", lw=1.0)
@@ -619,12 +620,7 @@ def _diagrams_fig(ctx, info, entries, grid_n):
             ys.append(abs(val) if d["abscissa"] == "s" and d["kind"] in ("resistance", "driving") else val)
             labels.append(str(e["index"]))
         ax.plot(xs, ys, "o", ms=3.5, color="#c0392b")
-        placed = []
-        for x, y, l in zip(xs, ys, labels):
-            # stagger labels of positions that fall on the same spot (e.g. s/H = 1 twice)
-            k = sum(1 for (px, py) in placed if abs(px - x) < 0.02 * (max(xs) - min(xs) + 1e-9))
-            placed.append((x, y))
-            ax.annotate(l, (x, y), fontsize=6.5, xytext=(2 + 7 * k, 3), textcoords="offset points")
+        marks.append((ax, xs, ys, labels))
         ax.set_xlabel(ctx.t("kst.s_axis") if d["abscissa"] == "s" else ctx.t("kst.phi_axis"))
         ax.set_ylabel(ctx.t("kst.force_axis"))
         s, sub = label_parts(d["name"], ctx.lang)
@@ -634,6 +630,23 @@ def _diagrams_fig(ctx, info, entries, grid_n):
         ax.set_title(f"${s}_{{{sub}}}$: {d['link']}" + (f" ({extra})" if extra else ""), fontsize=8)
         ax.grid(True, lw=0.3)
     fig.tight_layout()
+    # the position numbers next to their points, none over another (positions that fall on
+    # one spot, e.g. s/H = 1 twice, side by side): placed in paper points once the layout is set
+    for ax, xs, ys, labels in marks:
+        fig_pt = ax.transData.transform(np.c_[xs, ys]) * 72.0 / fig.dpi if xs else []
+        placed = []
+        x_lo, y_lo = ax.bbox.x0 * 72.0 / fig.dpi, ax.bbox.y0 * 72.0 / fig.dpi
+        x_hi, y_hi = ax.bbox.x1 * 72.0 / fig.dpi, ax.bbox.y1 * 72.0 / fig.dpi
+        for (px, py), x, y, l in zip(fig_pt, xs, ys, labels):
+            w, h = 6.5 * 0.62 * len(l) + 1.0, 7.5
+            for dx, dy in sorted(((sx * (2 + 7.5 * i) - (w if sx < 0 else 0), dy) for i in range(10) for sx in (1, -1)
+                                  for dy in (3, -10, 10, -17, 17, -24)), key=lambda o: math.hypot(*o)):
+                b = (px + dx, py + dy, px + dx + w, py + dy + h)
+                if b[0] >= x_lo and b[2] <= x_hi and b[1] >= y_lo and b[3] <= y_hi and not any(
+                        b[0] < q[2] and q[0] < b[2] and b[1] < q[3] and q[1] < b[3] for q in placed):
+                    break
+            placed.append(b)
+            ax.annotate(l, (x, y), fontsize=6.5, xytext=(dx, dy), textcoords="offset points", va="bottom")
     return ctx.svg(fig)
 
 
