@@ -72,6 +72,23 @@ def svg(fig) -> str:
     return text
 
 
+_NAME_OK = re.compile(r"[^a-z0-9-]+")
+
+
+def named(svg_text, name: str):
+    """The SVG with its file name beside the report: figures/<name>.svg (content and
+    position, e.g. 'plans-pos02', 'lever-pos02', 'cam-profile'), kept as a data-name
+    attribute of the root element until the report writes its figure files."""
+    from markupsafe import Markup
+    name = _NAME_OK.sub("-", str(name).lower()).strip("-") or "figure"
+    return Markup(re.sub(r"<svg\b", f'<svg data-name="{name}"', str(svg_text), count=1))
+
+
+def pos_name(kind: str, index) -> str:
+    """'plans', 2 -> 'plans-pos02'."""
+    return f"{kind}-pos{int(index):02d}"
+
+
 # ---------------------------------------------------------------- scales
 # the course's scale factors μ (velocity, acceleration, force, moment, work, inertia, the
 # diagrams' ordinates): 1, 2, 2.5, 4, 5 x 10^k, the same series as the sheets

@@ -481,7 +481,7 @@ def _render(ctx, c, rows, method):
     scales = []
     try:
         fig, scales = diagrams_figure(ctx, c)
-        figs.append((ctx.svg(fig), t("cam.diagrams_caption")))
+        figs.append((ctx.svg(fig, "cam-motion-law"), t("cam.diagrams_caption")))
     except Exception as exc:  # a drawing problem must not lose the tables
         figs.append((f"<p class='warn'>figure failed: {exc}</p>", t("cam.diagrams_caption")))
     if c.get("construction"):
@@ -491,7 +491,7 @@ def _render(ctx, c, rows, method):
             if c.get("r0_given"):
                 cap += "; " + t("cam.construction_chosen")
             cap += "; " + t("cam.construction_scale", mu=f(unit, 4), label=label)
-            figs.append((ctx.svg(fig), cap))
+            figs.append((ctx.svg(fig, "cam-construction"), cap))
         except Exception as exc:
             figs.append((f"<p class='warn'>figure failed: {exc}</p>", cap))
     pcap = {"flat": "cam.profile_flat_caption", "knife": "cam.profile_knife_caption"}.get(c["follower"],
@@ -499,12 +499,12 @@ def _render(ctx, c, rows, method):
     try:
         fig, unit, label = profile_figure(ctx, c)
         scale = f"M {label}" + _loc(ctx.lang, f" (μl = {f(unit, 4)} mm/mm)")
-        figs.append((ctx.svg(fig), t(pcap, scale=scale)))
+        figs.append((ctx.svg(fig, "cam-profile"), t(pcap, scale=scale)))
     except Exception as exc:
         figs.append((f"<p class='warn'>figure failed: {exc}</p>", t(pcap, scale="")))
     if not flat:
         try:
-            figs.append((ctx.svg(pressure_figure(ctx, c)), t("cam.pressure_caption")))
+            figs.append((ctx.svg(pressure_figure(ctx, c), "cam-pressure-angle"), t("cam.pressure_caption")))
         except Exception as exc:
             figs.append((f"<p class='warn'>figure failed: {exc}</p>", t("cam.pressure_caption")))
     div = c.get("division_table") or []

@@ -234,7 +234,7 @@ def plots(ctx, d):
     for ax in (a1, a2):
         ax.grid(True, lw=0.3, color="0.85")
     fig.tight_layout()                    # the axis labels inside the figure
-    out["angles"] = ctx.svg(fig)
+    out["angles"] = ctx.svg(fig, "dof2-angles")
 
     fig, ax = fp.new_figure(170, 70)
     ax.plot(tt, _arr(d["omega"]), "k", lw=1.0, label=t("dof2.w1"))
@@ -245,7 +245,7 @@ def plots(ctx, d):
     ax.grid(True, lw=0.3, color="0.85")
     ax.legend(fontsize=6)
     fig.tight_layout()                    # the axis labels inside the figure
-    out["speeds"] = ctx.svg(fig)
+    out["speeds"] = ctx.svg(fig, "dof2-speeds")
 
     R = d["reactions"]
     fig, (a1, a2) = fp.new_figure(170, 100, nrows=2, sharex=True)
@@ -262,7 +262,7 @@ def plots(ctx, d):
     for ax in (a1, a2):
         ax.grid(True, lw=0.3, color="0.85")
     fig.tight_layout()                    # the axis labels inside the figure
-    out["reactions"] = ctx.svg(fig)
+    out["reactions"] = ctx.svg(fig, "dof2-reactions")
 
     E = d["energy"]
     fig, (a1, a2) = fp.new_figure(170, 90, nrows=2, sharex=True, gridspec_kw={"height_ratios": [2, 1]})
@@ -278,7 +278,7 @@ def plots(ctx, d):
     for ax in (a1, a2):
         ax.grid(True, lw=0.3, color="0.85")
     fig.tight_layout()                    # the axis labels inside the figure
-    out["energy"] = ctx.svg(fig)
+    out["energy"] = ctx.svg(fig, "dof2-energy")
     return out
 
 
@@ -344,7 +344,7 @@ def build(ctx) -> str | None:
     f, t = ctx.fmt, ctx.t
     try:
         fig, step = sketch(ctx, d)
-        fig_sketch, sketch_cap = ctx.svg(fig), t("dof2.sketch_caption", mm=f(step))
+        fig_sketch, sketch_cap = ctx.svg(fig, "dof2-sketch"), t("dof2.sketch_caption", mm=f(step))
     except Exception as exc:  # the tables matter more than the picture
         fig_sketch, sketch_cap = f"<p class='warn'>figure failed: {exc}</p>", None
     try:

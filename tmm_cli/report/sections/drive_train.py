@@ -257,9 +257,11 @@ def build(ctx) -> str | None:
         if d.get("motor_power_computed"):
             motor.insert(0, (t("train.power"), f(d["motor_power"], 5)))
     figs = []
-    for maker, cap in ((lambda: scheme_and_picture(d, t), t("train.scheme")), (lambda: angular_plan(d), t("train.plan"))):
+    from .. import figures
+    for maker, cap, name in ((lambda: scheme_and_picture(d, t), t("train.scheme"), "train-scheme"),
+                             (lambda: angular_plan(d), t("train.plan"), "train-angular-plan")):
         try:
-            figs.append((Markup(maker()), cap))
+            figs.append((figures.named(maker(), name), cap))
         except Exception as exc:  # the tables matter more than the picture
             figs.append((Markup(f"<p class='warn'>figure failed: {exc}</p>"), cap))
     return ctx.render("sections/drive_train.html.j2", info=info, rows=rows, shafts=shafts, sats=sats,

@@ -140,7 +140,7 @@ def _diagrams(ctx, d, q):
         ax.set_xlabel(ctx.t("dyn.phi_axis"))
         ax.set_xticks(np.arange(0, q[-1] + 1, 60 if q[-1] <= 360 else 120))
     fig.tight_layout()
-    return ctx.svg(fig)
+    return ctx.svg(fig, "dynamics-diagrams")
 
 
 def _wittenbauer(ctx, d):
@@ -189,7 +189,7 @@ def _wittenbauer(ctx, d):
     Jw = (k - l_) / (wm**2 * delta)
     cap = ctx.t("dyn.witt_caption", muJ=f"{muJ:g}", muT=f"{muT:g}", pmax=pmax, pmin=pmin, kl=kl,
                 J=ctx.fmt(Jw, 5))
-    return ctx.svg(fig), cap
+    return ctx.svg(fig, "energy-mass"), cap
 
 
 def _motion(ctx, d, q):
@@ -216,7 +216,7 @@ def _motion(ctx, d, q):
         ax.set_xlim(0, q[-1])
     a2.set_xticks(np.arange(0, q[-1] + 1, 30 if q[-1] <= 360 else 60))
     fig.tight_layout()
-    return ctx.svg(fig)
+    return ctx.svg(fig, "motion")
 
 
 def build(ctx) -> str | None:

@@ -319,7 +319,7 @@ def build(ctx) -> str | None:
     for fn, cap in ((mesh_figure, "gears.mesh_caption"), (sliding_figure, "gears.sliding_caption"),
                     (contour_figure, "gears.contour_caption")):
         try:
-            figs.append((ctx.svg(fn(ctx, g)), _symbols(t(cap))))
+            figs.append((ctx.svg(fn(ctx, g), "gear-" + fn.__name__.replace("_figure", "")), _symbols(t(cap))))
         except Exception as exc:  # a drawing problem must not lose the tables
             figs.append((f"<p class='warn'>figure failed: {exc}</p>", t(cap)))
     files = []

@@ -123,7 +123,7 @@ def positions_svg(ctx, geom, entries, grid, fine=None):
                 color="#1f5fbf" if is_com else "0.4", zorder=2)
     for q, s in numbers:
         ax.text(q[0], q[1], s, fontsize=6.5, color="#7a1f1f", ha="center", va="center", zorder=8)
-    return ctx.svg(fig)
+    return ctx.svg(fig, "positions")
 
 
 PLAN_W, PLAN_H = 170.0, 86.0        # mm: the two plans side by side
@@ -282,7 +282,7 @@ def diagrams_svg(ctx, geom, entries, phase, out_name, curve, marks=None):
     axes[-1].set_xticks(np.arange(0, 361, 30))
     axes[-1].set_xlabel(ctx.t("kin.phi_axis"))
     fig.subplots_adjust(left=0.1, right=0.98, top=0.98, bottom=0.08, hspace=0.12)
-    return ctx.svg(fig), kind
+    return ctx.svg(fig, "output-diagrams"), kind
 
 
 # ----------------------------------------------------------------- section
@@ -375,6 +375,7 @@ def build(ctx) -> str | None:
                 [ctx.fmt_fixed(e["links"][l.name].get("angle"), 2) for l in geom.links] for e in shown]
 
     # plans of every (course) position
+    from .. import figures as F
     positions = []
     plan_csv = []
     for e in shown:
@@ -389,7 +390,7 @@ def build(ctx) -> str | None:
                                                .replace("<sup>", "^").replace("</sup>", "")),
                                  float(mm), float(val)])
         positions.append({"index": e["index"], "phi": ctx.fmt_fixed(e["phi"], 2),
-                          "fig": plans_svg(ctx, vp, ap), "vrows": vrows, "arows": arows})
+                          "fig": F.named(plans_svg(ctx, vp, ap), F.pos_name("plans", e["index"])), "vrows": vrows, "arows": arows})
 
     # diagrams
     out_name = res_pos.get("output") or getattr(getattr(ctx.task, "positions", None), "output", None) \

@@ -556,45 +556,41 @@ def drive_omega(geom, kin_e):
     return None
 
 
-LEVER_H = 100.0              # mm: Zhukovsky's lever, a row of its own under the groups
+LEVER_H = 110.0              # mm: Zhukovsky's lever, a figure of its own under the groups
 
 
 def position_figures(ctx, e, kin_e, info, links, pin=None, omega1=None):
-    """The drawings of one position: a list of SVG strings (one per page), and the
-    data drawn: [{'group': [...], 'mu_l', 'mu_F', 'tips' (mm), 'vectors'}] and, last,
-    {'lever': mu_v}."""
+    """The drawings of one position: a list of SVG strings (the groups, one page each at
+    most, named groups-posNN; then Zhukovsky's lever over the whole width, lever-posNN),
+    and the data drawn: [{'group': [...], 'mu_l', 'mu_F', 'tips' (mm), 'vectors'}] and,
+    last, {'lever': mu_v}."""
+    from .. import figures
     from ..svgdraw import Canvas
     rows = position_rows(ctx, e, kin_e, info, links)
-    # pages of rows: each group (diagram | polygon), the input link's diagram | its
-    # polygon, then Zhukovsky's lever over the whole width
-    heights = [ROW_H] * len(rows) + [LEVER_H]
     figs, drawn = [], []
     start = 0
-    n = len(heights)
+    n = len(rows)
+    per_page = max(1, int(PAGE_H // ROW_H))
     while start < n:
-        stop, H = start, 0.0
-        while stop < n and (stop == start or H + heights[stop] <= PAGE_H):
-            H += heights[stop]
-            stop += 1
+        stop = min(n, start + per_page)
+        H = (stop - start) * ROW_H
         cv = Canvas(FIG_W, H)
-        y = H
         for r in range(start, stop):
-            y -= heights[r]
+            y = H - (r - start + 1) * ROW_H
             if r > start:
-                cv.line((0, y + heights[r]), (FIG_W, y + heights[r]), "#bbb", 0.2, z=0)
-            if r == len(rows):
-                mu_v = _lever_panel(ctx, cv, (0, y, FIG_W, LEVER_H), e, kin_e, pin, omega1,
-                                    info.get("balance_kind"))
-                drawn.append({"lever": mu_v})
-                continue
+                cv.line((0, y + ROW_H), (FIG_W, y + ROW_H), "#bbb", 0.2, z=0)
             g, forces, couples, title = rows[r]
-            wd = CRANK_W if r == len(rows) - 1 else GROUP_W
+            wd = CRANK_W if r == n - 1 else GROUP_W
             mu_l = _fbd_panel(ctx, cv, (0, y, wd, ROW_H), kin_e, links, g, forces, couples, title)
             mu_F, T = _polygon_panel(ctx, cv, (wd + 1, y, FIG_W - wd - 1, ROW_H), forces)
             drawn.append({"group": g, "mu_l": mu_l, "mu_F": mu_F, "tips": T, "vectors": polygon(forces)[0]})
             cv.line((wd, y + 1), (wd, y + ROW_H - 1), "#bbb", 0.2, z=0)
-        figs.append(Markup(cv.to_svg()))
+        figs.append(figures.named(cv.to_svg(), figures.pos_name("groups", e["index"])))
         start = stop
+    cv = Canvas(FIG_W, LEVER_H)
+    mu_v = _lever_panel(ctx, cv, (0, 0, FIG_W, LEVER_H), e, kin_e, pin, omega1, info.get("balance_kind"))
+    drawn.append({"lever": mu_v})
+    figs.append(figures.named(cv.to_svg(), figures.pos_name("lever", e["index"])))
     return figs, drawn
 
 
@@ -647,7 +643,7 @@ def _diagrams_fig(ctx, info, entries, grid_n):
                     break
             placed.append(b)
             ax.annotate(l, (x, y), fontsize=6.5, xytext=(dx, dy), textcoords="offset points", va="bottom")
-    return ctx.svg(fig)
+    return ctx.svg(fig, "load-diagrams")
 
 
 def _cycle_fig(ctx, entries, phi0, sign, info):
@@ -680,7 +676,7 @@ def _cycle_fig(ctx, entries, phi0, sign, info):
     a2.set_xlim(0, 360)
     a2.grid(True, lw=0.3)
     fig.subplots_adjust(left=0.1, right=0.9, top=0.95, bottom=0.1, hspace=0.15)
-    return ctx.svg(fig)
+    return ctx.svg(fig, "balancing-cycle")
 
 
 # ----------------------------------------------------------------- section

@@ -108,7 +108,7 @@ def build(ctx) -> str | None:
     cands = [(", ".join(str(v) for v in c["z"].values()), f(c["ratio"], 6),
               f"{100 * c['ratio_error']:.3f} %", c["size"]) for c in p.get("candidates", [])]
     try:
-        fig = ctx.svg(figure(ctx, p))
+        fig = ctx.svg(figure(ctx, p), "planetary-scheme")
     except Exception as exc:  # the tables matter more than the picture
         fig = f"<p class='warn'>figure failed: {exc}</p>"
     return ctx.render("sections/planetary.html.j2", info=info, conds=conds, cands=cands, fig=fig,
