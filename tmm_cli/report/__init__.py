@@ -268,8 +268,7 @@ def _finish(ctx, proc, conn, formats, all_names, helper_names, out_dir, notes=No
             pass
         if not helper_ok:
             frags.update(_build(ctx, helper_names))
-    html = _assemble(ctx, frags)
-    _write_figures(ctx, html)
+    html = _write_figures(ctx, _assemble(ctx, frags))
     written = list(ctx.written)
     if "html" in formats:
         from . import explore   # the slider widget: report.html only, not the PDF
@@ -303,12 +302,13 @@ _HEADING = re.compile(r"<h[2-4]\b[^>]*>(.*?)</h[2-4]>", re.S)
 _DATA_NAME = re.compile(r'^<svg\b[^>]*?\sdata-name="([a-z0-9-]+)"')
 
 
-def _write_figures(ctx, html: str) -> None:
+def _write_figures(ctx, html: str) -> str:
     """Every figure of the report also as a file beside it, named by its content and
     position (figures/plans-pos02.svg, figures/lever-pos02.svg, figures/cam-profile.svg;
     a figure without a name: fig-NN.svg, NN its number in the report), with
     figures/index.csv giving each file its caption in the report's language (the
-    figure's caption, else the heading it stands under)."""
+    figure's caption, else the heading it stands under).  Returns the HTML without the
+    figures' file names (data-name attributes)."""
     import html as _html
 
     def plain(s):
@@ -338,6 +338,7 @@ def _write_figures(ctx, html: str) -> None:
         rows.append([path, text])
     if rows:
         ctx.write_csv("figures/index.csv", ["file", "caption"], rows)
+    return re.sub(r'(<svg\b[^>]*?) data-name="[a-z0-9-]+"', r"\1", html)
 
 
 def render(results: dict, task, out_dir: Path, formats: set[str], lang: str = "en",
