@@ -114,6 +114,64 @@ def nice_scale(value: float, series=NICE_SERIES) -> float:
     return float(f"{10.0 ** (k + 1):.12g}")
 
 
+def std_axis(ax, lo: float, hi: float, axis: str = "y", pad: float = 0.04, zero: bool = True) -> float:
+    """Limits of one axis of a graph whose span is a standard μ (nice_scale, units per paper
+    mm) times the axis' length on the paper (the axes as laid out now: call it after
+    tight_layout / subplots_adjust), the values lo..hi (and 0 when `zero`) centred in it;
+    returns μ."""
+    if zero:
+        lo, hi = min(lo, 0.0), max(hi, 0.0)
+    if not (math.isfinite(lo) and math.isfinite(hi)):
+        lo, hi = 0.0, 1.0
+    fig = ax.figure
+    pos = ax.get_position()
+    length = (pos.width * fig.get_figwidth() if axis == "x" else pos.height * fig.get_figheight()) * 25.4
+    span = max(hi - lo, 1e-12 * max(abs(lo), abs(hi), 1e-300)) * (1 + 2 * pad)
+    mu = nice_scale(span / length)
+    extra = (mu * length - (hi - lo)) / 2
+    (ax.set_xlim if axis == "x" else ax.set_ylim)(lo - extra, hi + extra)
+    return mu
+
+
+def std_graph(fig, axes, mm: str = "mm", x_axis=None, x_sym: str = "φ", x_unit: str = "°",
+              tight: bool = True, zero: bool = True) -> dict:
+    """Every graph of the figure at standard scales, stated in the course's form: each
+    axes' ordinate (its label 'M, N·m' gives the symbol and unit) at μ over its data,
+    the title 'μM = 20 (N·m)/mm' at its top right; `x_axis`: the axes whose abscissa
+    (shared, from 0) gets μφ too, stated after its label.  The layout is made
+    (tight_layout) with the titles in place, then the limits are set; `zero`: the ordinate
+    axes include 0.  Returns {symbol: μ}."""
+    axes = [ax for ax in axes if ", " in ax.get_ylabel()]
+    for ax in axes:
+        ax.set_title("μ = 0.0025 (N·m)/mm", loc="right", fontsize=7, pad=2)
+    if x_axis is not None:
+        x_axis.set_xlabel(f"{x_axis.get_xlabel()};  μ{x_sym} = 2.5 {x_unit}/{mm}")
+    if tight:
+        fig.tight_layout()
+    out = {}
+    for ax in axes:
+        sym, unit = ax.get_ylabel().split(", ", 1)
+        sym = sym.replace("$", "").strip("|").split("_")[0]
+        lo, hi = ax.dataLim.y0, ax.dataLim.y1
+        mu = std_axis(ax, lo, hi, zero=zero)
+        out[sym] = mu
+        ax.set_title(mu_text(sym, mu, unit, mm), loc="right", fontsize=7, pad=2)
+    if x_axis is not None:
+        lo, hi = x_axis.dataLim.x0, x_axis.dataLim.x1
+        mu = std_axis(x_axis, min(lo, 0.0), hi, axis="x", pad=0.0)
+        x_axis.set_xlim(0.0, float(np.ptp(x_axis.get_xlim())))
+        label = x_axis.get_xlabel().rsplit(";  μ", 1)[0]
+        x_axis.set_xlabel(f"{label};  {mu_text(x_sym, mu, x_unit, mm)}")
+        out[x_sym] = mu
+    return out
+
+
+def mu_text(sym: str, mu: float, unit: str, mm: str = "mm") -> str:
+    """The scale in the course's form: 'μs = 0.002 m/mm', 'μv = 0.05 (m/s)/mm'."""
+    u = f"({unit})" if "/" in unit and not unit.startswith("(") else unit
+    return f"μ{sym} = {mu:g} {u}/{mm}"
+
+
 # standard drawing scales (GOST 2.302): enlargements n:1 and reductions 1:n, as model mm per paper mm
 GOST_ENLARGEMENTS = (100.0, 50.0, 40.0, 20.0, 10.0, 5.0, 4.0, 2.5, 2.0)
 GOST_REDUCTIONS = (1.0, 2.0, 2.5, 4.0, 5.0, 10.0, 15.0, 20.0, 25.0, 40.0, 50.0, 75.0, 100.0, 200.0, 400.0,
@@ -385,13 +443,23 @@ def fit_axes(ax, lo, hi, width_mm, height_mm, margin_mm=6.0):
     return unit
 
 
-def figure_for_box(lo, hi, width_mm, min_h=40.0, max_h=150.0, margin_mm=8.0):
-    """A figure filled by one equal-aspect axes showing lo..hi; returns (fig, ax, unit)."""
+def figure_for_box(lo, hi, width_mm, min_h=40.0, max_h=150.0, margin_mm=8.0, lang="en"):
+    """A figure filled by one equal-aspect axes showing lo..hi (metres) at the largest
+    ГОСТ 2.302 scale that fits, stated at its top left ('μl = 0.005 m/mm (M 1:5)');
+    returns (fig, ax, unit: metres per paper mm)."""
     span = np.maximum(np.asarray(hi, float) - np.asarray(lo, float), 1e-12)
     h = float(np.clip((width_mm - 2 * margin_mm) * span[1] / span[0] + 2 * margin_mm, min_h, max_h))
     fig, ax = new_figure(width_mm, h)
     fig.subplots_adjust(0, 0, 1, 1)
     unit = fit_axes(ax, lo, hi, width_mm, h, margin_mm)
+    model, label = drawing_scale(unit * 1000.0)
+    unit = model / 1000.0
+    c = (np.asarray(lo, float) + np.asarray(hi, float)) / 2
+    ax.set_xlim(c[0] - unit * width_mm / 2, c[0] + unit * width_mm / 2)
+    ax.set_ylim(c[1] - unit * h / 2, c[1] + unit * h / 2)
+    m, mm = ("м", "мм") if lang in ("ru", "uk") else ("m", "mm")
+    ax.text(0.01, 0.99, f"{mu_text('l', unit, m, mm)}  (M {label})", transform=ax.transAxes, ha="left",
+            va="top", fontsize=7)
     ax.axis("off")
     return fig, ax, unit
 

@@ -201,16 +201,6 @@ def _phase_spans(c):
     return out
 
 
-def _nice_limits(fp, lo, hi, axes_mm):
-    """Axis limits whose span is a nice scale (units per paper mm) times the axes length."""
-    lo, hi = min(lo, 0.0), max(hi, 0.0)
-    span = max(hi - lo, 1e-12) * 1.08
-    mu = fp.nice_scale(span / axes_mm)
-    total = mu * axes_mm
-    pad = (total - (hi - lo)) / 2
-    return lo - pad, hi + pad, mu
-
-
 def diagrams_figure(ctx, c):
     fp = ctx.figures
     (ks, us), (kv, uv), (ka, ua) = _units(c, ctx.lang)
@@ -223,7 +213,6 @@ def diagrams_figure(ctx, c):
     left, right, bottom, top, gap = 0.12, 0.97, 0.08, 0.98, 0.05
     fig.subplots_adjust(left=left, right=right, bottom=bottom, top=top, hspace=gap * 3)
     ax_w_mm = (right - left) * W
-    ax_h_mm = (top - bottom) * H / 3 * (1 - gap)
     mu_phi = fp.nice_scale(360.0 / ax_w_mm)
     scales = [("μφ", _loc(ctx.lang, f"{ctx.fmt(mu_phi)} deg/mm"))]
     for ax, (y, lab) in zip(axes, series):
@@ -232,8 +221,7 @@ def diagrams_figure(ctx, c):
                 ax.axvspan(a, b, color=PHASE_COLORS[k], lw=0)
         ax.plot(phi, y, color="k", lw=1.0)
         ax.axhline(0, color="0.5", lw=0.5)
-        lo, hi, mu = _nice_limits(fp, float(np.min(y)), float(np.max(y)), ax_h_mm)
-        ax.set_ylim(lo, hi)
+        mu = fp.std_axis(ax, float(np.min(y)), float(np.max(y)), pad=0.04)
         ax.set_ylabel(lab)
         ax.grid(True, lw=0.3)
         scales.append((lab.split(",")[0], _loc(ctx.lang, f"{ctx.fmt(mu)} {lab.split(', ')[1]}/mm")))

@@ -74,7 +74,8 @@ def positions_svg(ctx, geom, entries, grid, fine=None):
     periodic splines through them -- or, given a `fine` grid, through its points."""
     from .. import figures as F
     lo, hi = F.mechanism_extent(entries)
-    fig, ax, unit = F.figure_for_box(lo, hi, 165.0, min_h=60.0, max_h=150.0, margin_mm=10.0)
+    fig, ax, unit = F.figure_for_box(lo, hi, 165.0, min_h=60.0, max_h=150.0, margin_mm=10.0,
+                                        lang=ctx.lang)
     ranges = F.slider_ranges(entries, geom)
     for e in grid[1:]:
         F.draw_mechanism(ax, geom, e, unit, light=True)
@@ -281,7 +282,8 @@ def diagrams_svg(ctx, geom, entries, phase, out_name, curve, marks=None):
         ax.set_xlim(0, 360)
     axes[-1].set_xticks(np.arange(0, 361, 30))
     axes[-1].set_xlabel(ctx.t("kin.phi_axis"))
-    fig.subplots_adjust(left=0.1, right=0.98, top=0.98, bottom=0.08, hspace=0.12)
+    # every axis at a standard scale μ, stated in the course's form (μs = 0.002 m/mm)
+    F.std_graph(fig, axes, ctx.t("kin.mm"), x_axis=axes[-1])
     return ctx.svg(fig, "output-diagrams"), kind
 
 

@@ -625,7 +625,7 @@ def _diagrams_fig(ctx, info, entries, grid_n):
         extra = ", ".join(x for x in (kind, stroke) if x and not x.startswith(("kind.", "stroke.")))
         ax.set_title(f"${s}_{{{sub}}}$: {d['link']}" + (f" ({extra})" if extra else ""), fontsize=8)
         ax.grid(True, lw=0.3)
-    fig.tight_layout()
+    figures.std_graph(fig, axes[:, 0], ctx.t("kin.mm"))          # μF
     # the position numbers next to their points, none over another (positions that fall on
     # one spot, e.g. s/H = 1 twice, side by side): placed in paper points once the layout is set
     for ax, xs, ys, labels in marks:
@@ -675,7 +675,8 @@ def _cycle_fig(ctx, entries, phi0, sign, info):
     a2.set_xticks(np.arange(0, 361, 30))
     a2.set_xlim(0, 360)
     a2.grid(True, lw=0.3)
-    fig.subplots_adjust(left=0.1, right=0.9, top=0.95, bottom=0.1, hspace=0.15)
+    fig.subplots_adjust(left=0.1, right=0.9, top=0.93, bottom=0.1, hspace=0.3)
+    figures.std_graph(fig, (a1, a2), ctx.t("kin.mm"), x_axis=a2, tight=False)      # μM, μR, μφ
     return ctx.svg(fig, "balancing-cycle")
 
 
