@@ -1,5 +1,6 @@
 """Labels of the report's figures, every figure of every example task (tasks/*.yaml):
-no two text boxes intersect and none lies outside its figure.
+no two text boxes intersect and none lies outside its figure; every scale the report
+states (μl, μv, μa, μF, μM, ... = value) is from the standard series.
 
 The boxes are measured, not taken from the placement code: the texts of the drawings
 tmm draws itself (the SVG canvas: plans, groups, force polygons, the lever, the gear
@@ -8,6 +9,9 @@ font size high), the texts of the matplotlib figures are measured by matplotlib'
 renderer (tick labels only where their tick is within the axis).  One report per task."""
 from __future__ import annotations
 
+import html as html_mod
+import math
+import re
 from pathlib import Path
 
 import pytest
@@ -82,6 +86,30 @@ def problems(figs) -> list:
     return out
 
 
+_MU = re.compile(r"μ\s?([^\s=()<>;,]{1,8})\s?=\s?([0-9]+(?:\.[0-9]+)?(?:e[-+]?[0-9]+)?)\b")
+
+
+def stated_scales(html: str) -> list[tuple[str, float]]:
+    """Every 'μX = number' the report states (in its text, tables and figures)."""
+    text = " ".join(re.sub(r"<[^>]+>", "", html_mod.unescape(html)).split())
+    return [(sym, float(v)) for sym, v in _MU.findall(text)]
+
+
+def standard(sym: str, mu: float) -> bool:
+    """1, 2, 2.5, 4, 5 x 10^k; a length scale also 1.5 and 7.5 x 10^k (ГОСТ 2.302: 1:15, 1:75)."""
+    k = math.floor(math.log10(mu) + 1e-12)
+    m = round(mu / 10 ** k, 9)
+    return m in (1, 2, 2.5, 4, 5) or (sym == "l" and m in (1.5, 7.5))
+
+
+def test_the_scale_reader():
+    html = ('<text>μ<tspan dy="1">v</tspan><tspan> = 0.02 (m/s)/mm</tspan></text> <p>μs = 0.004 m/mm; '
+            'μF = 2.5e+03 N/mm, μl = 0.015 m/mm, μφ = 3 °/mm</p>')
+    got = stated_scales(html)
+    assert got == [("v", 0.02), ("s", 0.004), ("F", 2500.0), ("l", 0.015), ("φ", 3.0)]
+    assert [standard(s, m) for s, m in got] == [True, True, True, True, False]
+
+
 def test_the_checker_sees_a_collision_and_a_label_outside():
     figs = [("drawing", 50.0, 20.0, [("R12", (1.0, 1.0, 6.0, 3.0)), ("G2", (5.0, 2.0, 8.0, 4.0)),
                                      ("Φ3", (48.0, 5.0, 52.0, 7.0))])]
@@ -100,3 +128,10 @@ def test_no_label_collides_or_leaves_its_figure(name, tmp_path, monkeypatch):
     render(res, task, tmp_path, {"html"}, "ru" if name.startswith(("forging", "shaper")) else "en")
     assert figs
     assert problems(figs) == []
+    # every scale the report states is a standard one
+    html = (tmp_path / "report.html").read_text(encoding="utf-8")
+    scales = stated_scales(html)
+    assert [(s, m) for s, m in scales if not standard(s, m)] == []
+    if res.get("kinematics") and res.get("structure"):
+        syms = {s for s, _ in scales}
+        assert {"l", "v", "a", "φ"} <= syms, syms          # the mechanism, the plans, the diagrams

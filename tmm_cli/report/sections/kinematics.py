@@ -128,15 +128,15 @@ def positions_svg(ctx, geom, entries, grid, fine=None):
 
 
 PLAN_W, PLAN_H = 170.0, 86.0        # mm: the two plans side by side
-_NICE_BARS = (5.0, 10.0, 20.0, 25.0, 50.0, 100.0, 200.0)
 
 
 def draw_plan(cv, plan, box, title, unit_txt, si_unit="m/s", mm="mm"):
     """One plan inside box = (x0, y0, w, h) mm of the canvas `cv`.
 
     The plan's coordinates are millimetres at its scale mu (the segment table's
-    lengths); the drawing is that plan reduced by a factor k <= 1 to fit the box,
-    with a scale bar of a round number of plan millimetres.  Returns k."""
+    lengths); the drawing is that plan reduced by a factor k <= 1 to fit the box, so
+    that it stands at a standard scale mu / k (1, 2, 2.5, 4, 5 x 10^k), the one stated,
+    with a 20 mm scale bar.  Returns k."""
     from .. import figures as F
     x0, y0, w, h = box
     top = 11.0                          # title and scale lines
@@ -147,6 +147,8 @@ def draw_plan(cv, plan, box, title, unit_txt, si_unit="m/s", mm="mm"):
     span = np.maximum(hi - lo, 1e-9)
     m = 6.0
     k = min(1.0, (w - 2 * m) / span[0], (h - top - bar_h - 2 * m) / span[1])
+    mu_drawn = F.nice_scale(plan.mu / k)      # reduced to fit: still at a standard μ, the one stated
+    k = plan.mu / mu_drawn
     c = np.array([x0 + w / 2, y0 + bar_h + (h - top - bar_h) / 2]) - (lo + hi) / 2 * k
 
     def M(p):
@@ -187,15 +189,15 @@ def draw_plan(cv, plan, box, title, unit_txt, si_unit="m/s", mm="mm"):
 
     fixed(x0 + 1.5, y0 + h - 3.2, title, 7, anchor="start", bold=True)
     cv.text(x0 + 1.5, y0 + h - 7.2, "μ", size=6.5, anchor="start", sub=plan.kind,
-            after=f" = {plan.mu:g} {unit_txt}")
-    tw, th = F.text_size(f"μ{plan.kind} = {plan.mu:g} {unit_txt}", 6.5 / PT_PER_MM)
+            after=f" = {mu_drawn:g} {unit_txt}")
+    tw, th = F.text_size(f"μ{plan.kind} = {mu_drawn:g} {unit_txt}", 6.5 / PT_PER_MM)
     taken.append((x0 + 1.5, y0 + h - 7.2 - th / 2, x0 + 1.5 + tw, y0 + h - 7.2 + th / 2))
-    bar = next((b for b in _NICE_BARS if b * k >= 12.0), _NICE_BARS[-1])
+    bar = 20.0                               # mm of the drawing, at the stated scale
     bx, by = x0 + 2.0, y0 + 2.5
-    cv.polyline([(bx, by + 0.8), (bx, by), (bx + bar * k, by), (bx + bar * k, by + 0.8)], "#000", 0.3)
-    fixed(bx + bar * k + 1.5, by + 0.3, f"{bar:g} {mm} = {float(f'{bar * plan.mu:.6g}'):g} {si_unit}", 6,
+    cv.polyline([(bx, by + 0.8), (bx, by), (bx + bar, by), (bx + bar, by + 0.8)], "#000", 0.3)
+    fixed(bx + bar + 1.5, by + 0.3, f"{bar:g} {mm} = {float(f'{bar * mu_drawn:.6g}'):g} {si_unit}", 6,
           anchor="start")
-    taken.append((bx, by - 0.5, bx + bar * k, by + 1.0))
+    taken.append((bx, by - 0.5, bx + bar, by + 1.0))
     anchors, texts, sizes = [], [], []
     for q, names in groups:
         d = q - pole
