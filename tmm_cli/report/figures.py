@@ -158,7 +158,20 @@ def std_graph(fig, axes, mm: str = "mm", x_axis=None, x_sym: str = "φ", x_unit:
         ax.set_title(mu_text(sym, mu, unit, mm), loc="right", fontsize=7, pad=2)
     if x_axis is not None:
         lo, hi = x_axis.dataLim.x0, x_axis.dataLim.x1
-        mu = std_axis(x_axis, min(lo, 0.0), hi, axis="x", pad=0.0)
+        lo = min(lo, 0.0)
+        # the next smaller standard μ, when the axes can grow into the right margin to hold it
+        fw = fig.get_figwidth() * 25.4
+        pos = x_axis.get_position()
+        L = pos.width * fw
+        up = nice_scale((hi - lo) / L)
+        down = max((c for c in (nice_scale(up * f) for f in (0.4, 0.5, 0.6, 0.8, 0.9)) if c < up), default=up)
+        grow = (hi - lo) / down - L
+        if 0 < grow <= (1.0 - pos.x1) * fw - 1.5:
+            for ax in fig.axes:
+                p = ax.get_position()
+                if abs(p.x1 - pos.x1) < 1e-6:
+                    ax.set_position([p.x0, p.y0, p.width + grow / fw, p.height])
+        mu = std_axis(x_axis, lo, hi, axis="x", pad=0.0)
         x_axis.set_xlim(0.0, float(np.ptp(x_axis.get_xlim())))
         label = x_axis.get_xlabel().rsplit(";  μ", 1)[0]
         x_axis.set_xlabel(f"{label};  {mu_text(x_sym, mu, x_unit, mm)}")
