@@ -33,7 +33,8 @@ PRESETS: dict[str, list[str]] = {
 
 # course notation and unit of a result key: (symbol, unit, English, Russian, Ukrainian)
 NOTATION: dict[str, tuple[str, str, str, str, str]] = {
-    "v": ("v", "m/s", "velocity", "скорость", "швидкість"), "a": ("a", "m/s^2", "acceleration", "ускорение", "прискорення"),
+    "v": ("v", "m/s", "velocity", "скорость", "швидкість"),
+    "a": ("a", "m/s^2", "acceleration", "ускорение", "прискорення"),
     "omega": ("ω", "rad/s", "angular velocity", "угловая скорость", "кутова швидкість"),
     "epsilon": ("ε", "rad/s^2", "angular acceleration", "угловое ускорение", "кутове прискорення"),
     "phi0": ("φ0", "deg", "crank angle of the first extreme position", "угол крайнего положения", "кут крайнього положення"),
@@ -44,7 +45,8 @@ NOTATION: dict[str, tuple[str, str, str, str, str]] = {
     "H": ("H", "m or deg", "stroke of the output link", "ход выходного звена", "хід вихідної ланки"),
     "balancing_moment": ("M_b", "N*m", "balancing moment", "уравновешивающий момент", "зрівноважувальний момент"),
     "zhukovsky_moment": ("M_b(Zh)", "N*m", "balancing moment by the Zhukovsky lever",
-                         "уравновешивающий момент по рычагу Жуковского"),
+                         "уравновешивающий момент по рычагу Жуковского",
+                         "зрівноважувальний момент за важелем Жуковського"),
     "R": ("R", "N", "reaction", "реакция", "реакція"),
     "J": ("J_fly", "kg*m^2", "flywheel moment of inertia", "момент инерции маховика", "момент інерції маховика"),
     "delta": ("δ", "", "coefficient of speed fluctuation", "коэффициент неравномерности", "коефіцієнт нерівномірності ходу"),
@@ -52,7 +54,8 @@ NOTATION: dict[str, tuple[str, str, str, str, str]] = {
     "omega_min": ("ω_min", "rad/s", "smallest crank speed", "наименьшая угловая скорость", "найменша кутова швидкість"),
     "M_constant": ("M_c", "N*m", "constant moment", "постоянный момент", "сталий момент"),
     "diameter": ("D", "m", "flywheel diameter", "диаметр маховика", "діаметр маховика"),
-    "width": ("b", "m", "flywheel width", "ширина маховика", "ширина маховика"), "mass": ("m", "kg", "mass", "масса", "маса"),
+    "width": ("b", "m", "flywheel width", "ширина маховика", "ширина маховика"),
+    "mass": ("m", "kg", "mass", "масса", "маса"),
     "r0": ("r0", "m", "base circle radius", "радиус начальной шайбы", "радіус початкової шайби"),
     "offset": ("e", "m", "offset", "эксцентриситет", "ексцентриситет"),
     "center_distance": ("a_w", "m", "cam centre distance", "межосевое расстояние кулачка", "міжосьова відстань кулачка"),
@@ -71,9 +74,12 @@ NOTATION: dict[str, tuple[str, str, str, str, str]] = {
     "s": ("s", "m", "pitch tooth thickness", "толщина зуба по делительной окружности", "товщина зуба по ділильному колу"),
     "sa": ("s_a", "m", "tip tooth thickness", "толщина зуба по окружности вершин", "товщина зуба по колу вершин"),
     "ratio": ("i", "", "ratio", "передаточное отношение", "передаточне відношення"),
-    "ratio_error": ("Δi", "", "ratio error (fraction)", "погрешность передаточного отношения"),
-    "z1": ("z1", "", "teeth", "число зубьев", "число зубів"), "z2": ("z2", "", "teeth", "число зубьев", "число зубів"),
-    "z3": ("z3", "", "teeth", "число зубьев", "число зубів"), "z4": ("z4", "", "teeth", "число зубьев", "число зубів"),
+    "ratio_error": ("Δi", "", "ratio error (fraction)", "погрешность передаточного отношения",
+                    "похибка передаточного відношення"),
+    "z1": ("z1", "", "teeth", "число зубьев", "число зубів"),
+    "z2": ("z2", "", "teeth", "число зубьев", "число зубів"),
+    "z3": ("z3", "", "teeth", "число зубьев", "число зубів"),
+    "z4": ("z4", "", "teeth", "число зубьев", "число зубів"),
 }
 
 
