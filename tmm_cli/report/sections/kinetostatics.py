@@ -244,7 +244,7 @@ def _fbd_panel(ctx, cv, box, kin_e, links, names, forces, couples, title):
     pts_names = [p for n in names for p in links[n]["points"] if p in P]
     xy = np.array([_xy(P[p]) for p in pts_names] + [f[1] for f in forces])
     lo, hi = xy.min(axis=0), xy.max(axis=0)
-    span = np.maximum(hi - lo, 1e-9)
+    span = np.maximum(hi - lo, 0.02)     # a group all in one point (a block on a block): at 20 mm
     m = 11.0 if w > 60 else 15.0                       # room for the arrows
     # a ГОСТ 2.302 length scale (1:1, 1:2, 1:2.5, 1:4, 1:5, 1:10, ...), stated as μl in m/mm
     mu_l = figures.drawing_scale(1000.0 * max(span[0] / (w - 2 * m), span[1] / (h - TITLE_H - 2 * m), 1e-9))[0] \
