@@ -107,7 +107,9 @@ def cli(repeat: int, report: bool) -> None:
     w = {k: [x for x, _ in v] for k, v in res.items()}
     c = {k: [x for _, x in v] for k, v in res.items()}
     _ratio_line("run --format json / import floor (wall)", w["json"], w["floor"], 2.0)
+    _ratio_line("run --format json / import floor (cpu)", c["json"], c["floor"], 2.0)
     _ratio_line("validate / import floor (wall)", w["validate"], w["floor"], 2.0)
+    _ratio_line("validate / import floor (cpu)", c["validate"], c["floor"], 2.0)
     if report:
         _ratio_line("report html+pdf / json run (wall)", w["report"], w["json"], 4.0)
         _ratio_line("report html+pdf / json run (cpu)", c["report"], c["json"], None)
