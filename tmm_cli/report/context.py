@@ -135,9 +135,6 @@ class ReportContext:
         links = (self.results.get("structure") or {}).get("links")
         if links:
             return [l["name"] for l in sorted(links, key=lambda l: l["index"])]
-        mech = getattr(self.task, "mechanism", None)
-        if mech is not None and getattr(mech, "links", None):
-            return list(mech.links.keys())
         kin = self.results.get("kinematics") or []
         return list(kin[0]["links"].keys()) if kin else []
 
