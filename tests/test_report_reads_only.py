@@ -80,9 +80,9 @@ def test_report_imports_no_stage_computation():
 
 def test_the_import_check_sees_a_stage_import(tmp_path):
     """The check above finds a relative import of a stage (as the report once had)."""
-    tree = ast.parse("from ..kinematics.explore import explore_grid\nfrom tmm_cli.gears import Wheel\n")
+    tree = ast.parse("from ..linkage.kinematics.explore import explore_grid\nfrom tmm_cli.gears import Wheel\n")
     found = [m for _, m, _ in _imports(tree, ["tmm_cli", "report"])]
-    assert found == ["tmm_cli.kinematics.explore", "tmm_cli.gears"]
+    assert found == ["tmm_cli.linkage.kinematics.explore", "tmm_cli.gears"]
     assert not set(found) & set(ALLOWED)
 
 

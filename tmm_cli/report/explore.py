@@ -6,7 +6,7 @@ HTML only: ``inject(ctx, html)`` adds the widget (templates ``explore.html.j2`` 
 ``explore.js``, the data as JSON in a ``<script type="application/json">``) to the
 HTML text written to report.html; the PDF is made from the HTML without it.  The
 data are the results' ``kinematics_explore`` (made by the pipeline with the stage
-function ``tmm_cli.kinematics.explore.explore_grid``)."""
+function ``tmm_cli.linkage.kinematics.explore.explore_grid``)."""
 from __future__ import annotations
 
 import json
