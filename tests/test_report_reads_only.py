@@ -157,7 +157,7 @@ def test_a_failing_figure_is_an_error(tmp_path, monkeypatch, section, func, sour
 # ------------------------------------------------------------------ the task is not read
 _IDS = re.compile(r'\b(id|xlink:href|href|clip-path)="[^"]*"|url\(#[^)]*\)')
 
-READER_TASKS = ["shaper_slotted_lever", "cam_rocker", "gears_auto", "planetary_A", "press_drive_train",
+READER_TASKS = ["forging_sixbar", "shaper_slotted_lever", "cam_rocker", "gears_auto", "planetary_A", "press_drive_train",
                 "impact_rotor", "synthesis_crank_rocker"]
 
 
