@@ -223,7 +223,7 @@ def test_gears_region_is_the_admissible_set(x):
 
 def test_results_hold_the_driving_link_and_the_fine_grid():
     task, _ = _task_results("forging_sixbar")
-    r = tmm_cli.run(task, kinematics_curve=0)
+    r = tmm_cli.run(task, kinematics_curve=0, explore=True)
     assert r["structure"]["drive_link"] == task.drive.link
     ex = r["kinematics_explore"]
     assert len(ex["turn"]) == 360 and ex["step"] == 1.0
@@ -242,12 +242,29 @@ def test_the_widget_shows_the_results_grid(tmp_path):
 
     from tmm_cli.report import _context, explore
     task, _ = _task_results("crank_rocker_fourbar")
-    r = tmm_cli.run(task, kinematics_curve=0)
+    r = tmm_cli.run(task, kinematics_curve=0, explore=True)
     frag = explore.fragment(_context(r, None, tmp_path, "en"))
     data = re.search(r'<script type="application/json" id="ex-data">(.*?)</script>', frag, re.S).group(1)
     assert json.loads(data) == json.loads(json.dumps(r["kinematics_explore"]))
     r.pop("kinematics_explore")
     assert explore.fragment(_context(r, task, tmp_path, "en")) is None
+
+
+def test_the_fine_grid_is_made_for_the_html_report_only(tmp_path):
+    """A JSON run neither computes nor writes the widget's grid; an HTML run draws the
+    widget from it, and its results.json is the JSON run's, byte for byte."""
+    from typer.testing import CliRunner
+
+    from tmm_cli.cli import app
+    task_file = str(ROOT / "tasks" / "crank_rocker_fourbar.yaml")
+    runner = CliRunner()
+    for fmt in ("json", "json,html"):
+        res = runner.invoke(app, ["run", task_file, "--out", str(tmp_path / fmt), "--format", fmt, "--quiet"])
+        assert res.exit_code == 0, res.output
+    a = (tmp_path / "json" / "results.json").read_bytes()
+    assert a == (tmp_path / "json,html" / "results.json").read_bytes()
+    assert b"kinematics_explore" not in a
+    assert 'id="ex-data"' in (tmp_path / "json,html" / "report.html").read_text()
 
 
 def test_wittenbauer_caption_reads_the_result(tmp_path):

@@ -37,12 +37,13 @@ def _stage(name: str):
 
 
 def run(task: Task, *, progress: Callable[[str], None] | None = None,
-        kinematics_curve: int = 361, explore: bool = True) -> dict[str, Any]:
+        kinematics_curve: int = 361, explore: bool = False) -> dict[str, Any]:
     """Compute every stage present in ``task``; return the results dict.
 
     ``kinematics_curve``: points of the output link's curve over one turn (0: none);
-    ``explore``: the kinematics at every degree of the turn (``kinematics_explore``, the
-    mechanism in motion of report.html).
+    ``explore``: also the kinematics at every degree of the turn (``kinematics_explore``,
+    the mechanism in motion of report.html; made only for an HTML report and never
+    written to results.json, see :func:`tmm_cli.orchestrate.write_outputs`).
 
     The independent parts (the linkage chain, cam, gears, planetary, dof2) each run
     even when another fails; a part stops at its first StageError.  If any part
