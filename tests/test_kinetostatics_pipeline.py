@@ -176,8 +176,11 @@ def test_shaper_cutting_force_switch_positions_and_efficiency():
         assert abs(d["value"]) == pytest.approx(3000.0 if d["x"] < 0.5 else 0.0)
     for e in r["kinetostatics"]:
         if e["efficiency"] is not None:
-            assert 0.0 < e["efficiency"] <= 1.0
-            assert e["efficiency"] == pytest.approx(1 - e["friction_power"] / e["driving_power"], rel=1e-12)
+            # 0 <= eta <= 1; eta = 0 (to round-off) where no useful load acts: at the idle
+            # stroke's end all the driving power goes to friction (position 12 here)
+            assert -1e-12 <= e["efficiency"] <= 1.0
+            assert e["efficiency"] == pytest.approx(1 - e["friction_power"] / e["driving_power"], rel=1e-12,
+                                                    abs=1e-12)
 
 
 def test_pipeline_slider_crank_matches_closed_form_kinematics():

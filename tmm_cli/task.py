@@ -38,7 +38,8 @@ class _Model(BaseModel):
     """Base: unknown keys are errors with a suggestion."""
 
     # allow_inf_nan=False: a plain float field rejects .inf, .nan, 'inf' and '1e400'
-    model_config = ConfigDict(extra="forbid", populate_by_name=True, frozen=False, allow_inf_nan=False)
+    model_config = ConfigDict(extra="forbid", populate_by_name=True, frozen=False, allow_inf_nan=False,
+                              defer_build=True)
 
     @model_validator(mode="before")
     @classmethod
@@ -533,7 +534,7 @@ class ToleranceSpec(_Model):
 
 
 class StudentSpec(BaseModel):
-    model_config = ConfigDict(extra="allow")
+    model_config = ConfigDict(extra="allow", defer_build=True)
     name: str | None = None
     group: str | None = None
 
@@ -889,7 +890,6 @@ _DOCS.update(_TRAIN_DOCS)
 for _model, _fields in _DOCS.items():
     for _name, _text in _fields.items():
         _model.model_fields[_name].description = _text
-    _model.model_rebuild(force=True)
 
 # the lever synthesis and the drive speed from the output
 _DOCS_SYNTHESIS: dict[type, dict[str, str]] = {
@@ -928,7 +928,6 @@ _DOCS_SYNTHESIS: dict[type, dict[str, str]] = {
 for _model, _fields in _DOCS_SYNTHESIS.items():
     for _name, _text in _fields.items():
         _model.model_fields[_name].description = _text
-    _model.model_rebuild(force=True)
 
 
 def field_docs(model: type = Task, prefix: str = "") -> list[tuple[str, str, str]]:

@@ -116,15 +116,13 @@ class KinetostaticsResult:
             y = self.reactions[:, 2 * k + 1]
             p = self.geo.jpoint[k]
             pl = p.tolist()
-            col = []
             if j.kind == "R":
                 xs, ys, Rs = x.tolist(), y.tolist(), np.hypot(x, y).tolist()
-                for i in range(N):
-                    if okl[i]:
-                        col.append({"x": xs[i], "y": ys[i], "R": Rs[i], "point": pl[i]})
-                    else:
-                        col.append({"x": None, "y": None, "R": None, "point": pl[i]})
+                col = [{"x": a, "y": b_, "R": r, "point": pt} if good else
+                       {"x": None, "y": None, "R": None, "point": pt}
+                       for a, b_, r, pt, good in zip(xs, ys, Rs, pl, okl)]
             else:
+                col = []
                 e = self.geo.jdir[k]
                 nx, ny = -e[:, 1], e[:, 0]
                 N_, M_ = x, y
@@ -197,8 +195,12 @@ class KinetostaticsResult:
                               _finite_list(self.geo.omega(c.link))))
             if c.kind == "inertia" and c.link:
                 inert_m[names[c.link]] += c.M
-        inert = {k: (inert_f[k][:, 0].tolist(), inert_f[k][:, 1].tolist(), inert_m[k].tolist())
-                 for k in inert_f}
+        inert_keys = list(inert_f)
+        # per position, the links' inertia dicts (built column by column, then zipped)
+        inert_rows = list(zip(*[[{"Fx": fx + 0.0, "Fy": fy + 0.0, "M": m + 0.0} for fx, fy, m in
+                                 zip(inert_f[k][:, 0].tolist(), inert_f[k][:, 1].tolist(), inert_m[k].tolist())]
+                                for k in inert_keys])) if inert_keys else [()] * N
+        reaction_rows = list(zip(*table)) if table else [()] * N
         dinfo = []
         for d in self.loads.info:
             act = np.broadcast_to(np.asarray(d["active"], bool), (N,)).tolist()
@@ -227,9 +229,8 @@ class KinetostaticsResult:
                 e["matrix_force"] = val(mm, i)
             e["discrepancy"] = val(disc, i)
             e["matrix_discrepancy"] = val(mdisc, i)
-            e["reactions"] = {jkeys[k]: table[k][i] for k in range(len(jkeys))}
-            e["inertia"] = {k: {"Fx": v[0][i] + 0.0, "Fy": v[1][i] + 0.0, "M": v[2][i] + 0.0}
-                            for k, v in inert.items()}
+            e["reactions"] = dict(zip(jkeys, reaction_rows[i]))
+            e["inertia"] = dict(zip(inert_keys, inert_rows[i]))
             if detail:
                 e["loads"] = [{"name": n, "link": lk, "kind": kd, "point": p[i], "F": F[i], "v": v[i]}
                               for n, lk, kd, p, F, v in finfo]
@@ -351,7 +352,7 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
     if np.any(locked):
         x[locked] = np.nan
         Mb = np.where(locked, np.nan, Mb)
-    xm, Mm, cond, _det = matrix_method(mech, geo, q, b)
+    xm, Mm, cond, _ = matrix_method(mech, geo, q, b, with_det=False)
     lever = lever_moments(mech, geo, lds)
     blev = balance_lever(mech, geo, b)
     P, each = powers(mech, geo, lds)
