@@ -590,7 +590,7 @@ class Task(_Model):
         if self.drive is None:
             raise FieldValueError(("synthesis",), "`synthesis` needs a `drive` section (link: crank, speed, direction)")
         try:
-            d = design(self.synthesis, self.drive.direction)
+            d = design(self.synthesis, self.drive.sign)
         except SynthesisImpossible as exc:
             self._synthesis_error = exc
             return self

@@ -53,7 +53,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import StageError, TaskError
+from ..errors import StageError, field_error
 
 G = 9.81
 _SNAP = 1e-9          # s/H or deg: abscissae this close to a jump are put on it
@@ -105,13 +105,6 @@ class Loads:
 
 
 # ------------------------------------------------------------------ kinematics access
-def _get(d: dict, lk) -> np.ndarray:
-    for key in (lk.name, lk.index, str(lk.index)):
-        if key in d:
-            return np.asarray(d[key], dtype=float)
-    raise KeyError(f"kinematics has no entry for link '{lk.name}'")
-
-
 def _rot90(r: np.ndarray) -> np.ndarray:
     return np.stack([-r[..., 1], r[..., 0]], axis=-1)
 
@@ -128,9 +121,9 @@ def point_motion(kin, lk, at) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         at = lk.local[at]
     u, v = float(at[0]), float(at[1])
     o = lk.origin
-    th = _get(kin.angle, lk)
-    a1 = _get(kin.a1, lk)
-    a2 = _get(kin.a2, lk)
+    th = np.asarray(kin.angle[lk.name], float)
+    a1 = np.asarray(kin.a1[lk.name], float)
+    a2 = np.asarray(kin.a2[lk.name], float)
     c, s = np.cos(th), np.sin(th)
     r = np.stack([c * u - s * v, s * u + c * v], axis=-1)
     jr = _rot90(r)
@@ -142,12 +135,8 @@ def point_motion(kin, lk, at) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 def _w(kin, n: int) -> tuple[np.ndarray, np.ndarray]:
     w = np.broadcast_to(np.asarray(kin.omega1, float), (n,)).astype(float)
-    e = np.broadcast_to(np.asarray(getattr(kin, "eps1", 0.0), float), (n,)).astype(float)
+    e = np.broadcast_to(np.asarray(kin.eps1, float), (n,)).astype(float)
     return w, e
-
-
-def com_point(lk):
-    return lk.com
 
 
 # ------------------------------------------------------------------ diagrams
@@ -196,22 +185,6 @@ def stroke_states(positions, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return work, s
 
 
-def _drive_sign(positions, kin=None) -> float:
-    sg = getattr(positions, "sign", None)
-    if sg in (1, -1, 1.0, -1.0):
-        return float(sg)
-    if kin is not None:
-        w = np.asarray(kin.omega1, float).ravel()
-        if w.size and w[0] != 0:
-            return 1.0 if w[0] > 0 else -1.0
-    ext = getattr(positions, "extreme", None)
-    wa = getattr(positions, "working_stroke_angle", None)
-    if ext is not None and wa is not None and len(ext) == 2:
-        d = (ext[1] - ext[0] - wa) % 360.0
-        return 1.0 if min(d, 360 - d) < 1e-3 else -1.0
-    return 1.0
-
-
 # ------------------------------------------------------------------ evaluate
 def _motion_sign(d1e: np.ndarray, d2e: np.ndarray, w: np.ndarray, scale: float) -> np.ndarray:
     """Sign of the velocity along e; at rest the sign of the motion about to begin."""
@@ -226,18 +199,6 @@ def _motion_sign(d1e: np.ndarray, d2e: np.ndarray, w: np.ndarray, scale: float) 
 def _length_scale(mech) -> float:
     L = [abs(lk.length) for lk in mech.links if lk.length]
     return max(L + [1e-3])
-
-
-def _cycle(loads_section, positions, cycle) -> float:
-    if cycle:
-        return float(cycle)
-    c = getattr(positions, "cycle", None)
-    if c:
-        return float(c)
-    for sp in getattr(loads_section, "forces", []) or []:
-        if sp.diagram is not None and sp.diagram.phi is not None and max(sp.diagram.phi) > 360.0 + 1e-9:
-            return 720.0
-    return 360.0
 
 
 def cycle_angle(phi, phi0: float, sign: float, cycle: float) -> np.ndarray:
@@ -261,10 +222,10 @@ def load_stroke(positions, lk, sp, k: int):
     (its extremes, stroke H and working sense: the load's `working`, default
     positions.working, along its own guide); for a bar, the output's. ``positions``
     without ``stroke_for`` (a bare stand-in) is the stroke itself."""
-    working = getattr(sp, "working", None)
+    working = sp.working
     if lk.kind != "slider":
         if working is not None:
-            raise _field_error(f"loads.forces[{k}].working", f"`working` sets the stroke of a slider; "
+            raise field_error(f"loads.forces[{k}].working", f"`working` sets the stroke of a slider; "
                                                             f"'{lk.name}' is not a slider")
         return positions
     if not hasattr(positions, "stroke_for"):
@@ -276,11 +237,8 @@ def slider_strokes(mech, loads_section, positions) -> dict:
     """The own strokes of the loaded sliders other than the output (name -> Stroke; a
     slider loaded in both senses: 'name (forward)' and 'name (backward)'), for the results."""
     found = []
-    for k, sp in enumerate(getattr(loads_section, "forces", []) or []):
-        try:
-            lk = mech.link(sp.on)
-        except KeyError:
-            continue
+    for k, sp in enumerate(loads_section.forces):
+        lk = mech.link(sp.on)
         if not (_stroke_dependent(sp) and lk.kind == "slider" and hasattr(positions, "stroke_for")):
             continue
         st = load_stroke(positions, lk, sp, k)
@@ -291,17 +249,42 @@ def slider_strokes(mech, loads_section, positions) -> dict:
     return {(s.link if names.count(s.link) == 1 else f"{s.link} ({s.working})"): s for s in found}
 
 
-def evaluate(mech, loads_section, kin, positions=None, *, inertia: bool = True,
-             cycle: float | None = None) -> Loads:
-    """Per-position loads of the mechanism (see the module docstring). ``cycle``: 360 or
-    720 deg (default: ``positions.cycle`` if present, else 720 when a phi-diagram reaches
-    beyond 360 deg, else 360)."""
+def evaluate(linkage, kin, *, inertia: bool = True) -> Loads:
+    """The loads on the links at the crank angles of ``kin`` (the module docstring).
+
+    Parameters
+    ----------
+    linkage : Linkage
+        The mechanism, its ``loads`` section (None: gravity and inertia only), the
+        positions (position 0, the strokes) and the drive (sense of rotation, cycle).
+    kin : KinematicsResult
+        The kinematics at the crank angles (deg) where the loads are wanted.
+    inertia : bool
+        Add the inertia loads F_in = -m a_S (N), M_in = -J_S eps (N*m).
+
+    Returns
+    -------
+    Loads
+        Per position: forces (N) at their points (m), couples (N*m, ccw positive), and the
+        diagram value of every task load (``info``).
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*, kinetostatics: d'Alembert's inertia
+    forces; Popov, the force of production resistance over the working stroke given by
+    its diagram; docs/methods.md §3.1.
+    """
+    return evaluate_on(linkage.mechanism, linkage.loads, kin, linkage.positions, sign=linkage.drive.sign,
+                       cycle=linkage.drive.cycle, inertia=inertia)
+
+
+def link_loads(mech, kin, *, gravity: bool, inertia: bool) -> Loads:
+    """Gravity (``gravity``) and the inertia loads (``inertia``) of every link at the crank
+    angles of ``kin``: G_i = m_i g at S_i (N); F_in = -m_i a_Si (N), M_in = -J_Si eps_i (N*m)."""
     phi = np.atleast_1d(np.asarray(kin.phi, float))
     n = len(phi)
     w, e = _w(kin, n)
     out = Loads(phi=phi)
-    Lc = _length_scale(mech)
-    gravity = bool(getattr(loads_section, "gravity", False)) if loads_section is not None else False
     for lk in mech.links:
         sname = f"S{lk.index}"
         if (gravity and lk.mass > 0) or (inertia and (lk.mass > 0 or lk.J > 0)):
@@ -315,24 +298,32 @@ def evaluate(mech, loads_section, kin, positions=None, *, inertia: bool = True,
             out.forces.append(AppliedForce(lk.index, f"Fi{lk.index}", p, -lk.mass * a, "inertia",
                                            lk.com, sname))
         if inertia and lk.J > 0:
-            eps = _get(kin.a2, lk) * w ** 2 + _get(kin.a1, lk) * e
+            eps = np.asarray(kin.a2[lk.name], float) * w ** 2 + np.asarray(kin.a1[lk.name], float) * e
             out.couples.append(AppliedCouple(lk.index, f"Mi{lk.index}", -lk.J * eps, "inertia"))
+    return out
+
+
+def evaluate_on(mech, loads_section, kin, positions, *, sign: float, cycle: float,
+                inertia: bool = True) -> Loads:
+    """:func:`evaluate` on its parts: ``positions`` (a PositionsResult, or a stand-in with
+    ``phi0`` and ``stroke_state``; None when no load depends on a stroke), ``sign`` (+1 ccw,
+    -1 cw) and ``cycle`` (360 or 720 deg: how phi-diagrams are read)."""
+    out = link_loads(mech, kin, gravity=loads_section is not None and loads_section.gravity, inertia=inertia)
+    phi = out.phi
+    n = len(phi)
+    w, e = _w(kin, n)
+    Lc = _length_scale(mech)
     if loads_section is None:
         return out
-    specs = list(getattr(loads_section, "forces", []) or [])
+    specs = list(loads_section.forces)
     need_stroke = any(_stroke_dependent(sp) for sp in specs)
     if need_stroke and positions is None:
         raise StageError("loads", "loads given over a stroke need the positions (extreme positions)")
     no_stroke = (np.ones(n, bool), np.zeros(n))
-    phi0 = float(getattr(positions, "phi0", 0.0)) if positions is not None else 0.0
-    sign = _drive_sign(positions, kin) if positions is not None else (1.0 if w[0] >= 0 else -1.0)
-    cycle = _cycle(loads_section, positions, cycle)
+    phi0 = float(positions.phi0) if positions is not None else 0.0
+    cycle = float(cycle)
     for k, sp in enumerate(specs, start=1):
-        try:
-            lk = mech.link(sp.on)
-        except KeyError:
-            names = ", ".join(l.name for l in mech.links)
-            raise _field_error(f"loads.forces[{k - 1}].on", f"no link named '{sp.on}' (links: {names})") from None
+        lk = mech.link(sp.on)       # links, points and directions of the loads: checked by build_mechanism
         stroke_given = "stroke" in sp.model_fields_set
         if need_stroke and _stroke_dependent(sp):
             working, s_rel = stroke_states(load_stroke(positions, lk, sp, k - 1), phi)
@@ -350,8 +341,8 @@ def evaluate(mech, loads_section, kin, positions=None, *, inertia: bool = True,
         if sp.moment is not None:
             M = np.full(n, float(sp.moment))
             if sp.kind is not None:
-                a1 = _get(kin.a1, lk)
-                a2 = _get(kin.a2, lk)
+                a1 = np.asarray(kin.a1[lk.name], float)
+                a2 = np.asarray(kin.a2[lk.name], float)
                 sg = _motion_sign(a1, a2, w, 1.0)
                 M = abs(float(sp.moment)) * sg * (1.0 if sp.kind == "driving" else -1.0)
             M = np.where(active, M, 0.0)
@@ -364,18 +355,15 @@ def evaluate(mech, loads_section, kin, positions=None, *, inertia: bool = True,
             continue
         # point of application
         at = sp.at if sp.at is not None else (f"S{lk.index}" if f"S{lk.index}" in kin.pos else lk.com)
-        if isinstance(at, str) and at not in kin.pos and at not in lk.local:
-            raise _field_error(f"loads.forces[{k - 1}].at", f"'{at}' is not a point of link '{lk.name}' "
-                               f"(its points: {', '.join(lk.local)})")
         p, d1, d2 = point_motion(kin, lk, at)
         # line of action
         if sp.direction is not None:
             ang = math.radians(float(sp.direction))
             ev = np.tile([math.cos(ang), math.sin(ang)], (n, 1))
         elif lk.kind == "slider":
-            th = _get(kin.angle, lk)
+            th = np.asarray(kin.angle[lk.name], float)
             ev = np.stack([np.cos(th), np.sin(th)], axis=-1)
-        elif sp.kind is not None and not (sp.diagram is not None and sp.diagram.phi is not None):
+        else:       # a resistance/driving force over a stroke on a bar: along the velocity
             vv = d1 * np.sign(w)[:, None]
             nv = np.linalg.norm(vv, axis=1)
             rest = nv <= 1e-9 * Lc
@@ -384,8 +372,6 @@ def evaluate(mech, loads_section, kin, positions=None, *, inertia: bool = True,
             if np.any(nv == 0):
                 raise StageError("loads", f"the point of load {k} on '{lk.name}' does not move: give `direction`")
             ev = vv / nv[:, None]
-        else:
-            raise _field_error(f"loads.forces[{k - 1}]", f"a force on the bar '{lk.name}' needs `direction` (deg)")
         # magnitude (signed along e)
         x = None
         if sp.diagram is not None and sp.diagram.phi is not None:
@@ -435,32 +421,27 @@ def _curve(sp, scale: float) -> dict:
 
 
 # ------------------------------------------------------------------ switch angles
-def switch_angles(mech, loads_section, positions, kinks: bool = False) -> list[float]:
+def switch_angles(mech, loads_section, positions, *, sign: float, cycle: float,
+                  kinks: bool = False) -> list[float]:
     """Crank angles in [0, 360) where a task load switches: where it jumps inside a stroke
     (a repeated abscissa of an s- or phi-diagram), found to 1e-9 deg, and the extreme
     positions of every slider other than the output that carries a stroke-dependent load
     (where its own strokes begin and end, docs/methods.md §3.3); with kinks=True also
     where a diagram's slope changes (every inner abscissa: the breakpoints of a piecewise
-    quadrature)."""
+    quadrature).  ``sign``: +1 ccw, -1 cw; ``cycle``: 360 or 720 deg."""
     if loads_section is None:
         return []
     out: list[float] = []
-    phi0 = float(getattr(positions, "phi0", 0.0))
-    sign = _drive_sign(positions)
-    cycle = _cycle(loads_section, positions, None)
-    output_ext = [float(a) for a in (getattr(positions, "extreme", None) or [])]
-    for k, sp in enumerate(getattr(loads_section, "forces", []) or []):
+    phi0 = float(positions.phi0)
+    cycle = float(cycle)
+    output_ext = [float(a) for a in (positions.extreme or [])]
+    for k, sp in enumerate(loads_section.forces):
         src = positions
         if _stroke_dependent(sp) and mech is not None:
-            try:
-                lk = mech.link(sp.on)
-            except KeyError:
-                lk = None
-            if lk is not None:
-                src = load_stroke(positions, lk, sp, k)
-        ext = getattr(src, "extreme", None)
+            src = load_stroke(positions, mech.link(sp.on), sp, k)
+        ext = src.extreme
         start = float(ext[0]) if ext else phi0          # the working stroke begins here
-        wa = getattr(src, "working_stroke_angle", None)
+        wa = src.working_stroke_angle
         if src is not positions and ext:
             # a slider's own extremes: its load switches there (stroke, s/H from 0)
             out.extend(float(a) for a in ext
@@ -537,10 +518,5 @@ def _stroke_roots(positions, start: float, sign: float, lo: float, hi: float, ta
     return [float(x) if ok else None for x, ok in zip(root, found)]
 
 
-__all__ = ["AppliedForce", "AppliedCouple", "Loads", "evaluate", "switch_angles", "point_motion",
-           "interp_right", "stroke_states", "G"]
-
-
-def _field_error(field: str, message: str) -> TaskError:
-    """A TaskError naming its field; the pipeline adds the file and line (Task.locate)."""
-    return TaskError(message, issues=[(field, None, None, message)])
+__all__ = ["AppliedForce", "AppliedCouple", "Loads", "evaluate", "evaluate_on", "link_loads", "switch_angles",
+           "slider_strokes", "load_stroke", "point_motion", "interp_right", "stroke_states", "cycle_angle", "G"]

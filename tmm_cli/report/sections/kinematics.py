@@ -47,9 +47,9 @@ def _pxy(e, p):
 
 
 def _rotation_sign(ctx, geom, entries) -> float:
-    d = getattr(getattr(ctx.task, "drive", None), "direction", None)
-    if d in ("ccw", "cw"):
-        return 1.0 if d == "ccw" else -1.0
+    w = (ctx.results.get("drive") or {}).get("omega")     # signed: the sense of rotation
+    if w:
+        return 1.0 if w > 0 else -1.0
     l = geom.link(geom.drive)
     if l is not None and entries:
         w = entries[0]["links"].get(l.name, {}).get("omega") or 1.0
