@@ -195,6 +195,9 @@ def test_pipeline_slider_crank_matches_closed_form_kinematics():
         phi0, sign, extreme, working_stroke_angle = r["positions"]["phi0"], 1.0, r["positions"]["extreme"], \
             r["positions"]["working_stroke_angle"]
 
+        def stroke_for(self, name, working=None):     # a slider's own stroke: here the same
+            return self
+
         def stroke_state(self, p):
             return np.full(np.shape(p), "working"), np.zeros(np.shape(p))
 

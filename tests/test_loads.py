@@ -24,6 +24,9 @@ class CentricPositions:
     working_stroke_angle = 180.0
     sign = 1.0
 
+    def stroke_for(self, name, working=None):     # a slider's own stroke: here the same
+        return self
+
     def stroke_state(self, phi):
         phi = np.mod(np.asarray(phi, float), 360.0)
         x = R * np.cos(np.radians(phi)) + np.sqrt(L ** 2 - (R * np.sin(np.radians(phi))) ** 2)
