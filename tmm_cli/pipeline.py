@@ -38,6 +38,7 @@ def run(task: Task, *, progress: Callable[[str], None] | None = None,
     say = progress or (lambda s: None)
     # independent parts: a failure of one is recorded and the others still run
     errors: list[StageError] = []
+    built: dict = {}        # parts of the linkage context other parts read (the Drive)
 
     def part(fn) -> None:
         try:
@@ -59,7 +60,7 @@ def run(task: Task, *, progress: Callable[[str], None] | None = None,
             say("synthesis")
             raise task._synthesis_error
         if task.mechanism is not None:
-            part(lambda: _linkage(task, results, warnings, say, kinematics_curve))
+            part(lambda: _linkage(task, results, warnings, say, kinematics_curve, built))
         if task.cam is not None:
             part(simple("cam", "cam", "synthesize", task.cam))
         if task.gears is not None:
@@ -67,7 +68,7 @@ def run(task: Task, *, progress: Callable[[str], None] | None = None,
         if task.planetary is not None:
             part(simple("planetary", "gears", "synthesize_planetary", task.planetary))
         if task.drive_train is not None:
-            part(lambda: _drive_train(task, results, warnings, say))
+            part(lambda: _drive_train(task, results, warnings, say, built.get("drive", task.drive)))
         if task.dof2 is not None:
             part(simple("dof2", "dof2", "analyze", task.dof2, keep_warnings=True))
     except TaskError as err:
@@ -90,15 +91,12 @@ def run(task: Task, *, progress: Callable[[str], None] | None = None,
     return results
 
 
-def _drive_train(task: Task, results: dict, warnings: list, say) -> None:
-    """The compound gear drive; with a flywheel, the flywheel moved to the motor shaft."""
+def _drive_train(task: Task, results: dict, warnings: list, say, drive) -> None:
+    """The compound gear drive (``drive``: the linkage's Drive, or the task's `drive`
+    section when there is no linkage); with a flywheel, the flywheel moved to the motor shaft."""
     from .gears import train
 
     say("drive_train")
-    drive = task.drive
-    if drive is not None and drive.speed is None and "drive" in results:
-        # the crank speed was found from the output's speed (results `drive`)
-        drive = drive.model_copy(update={"speed": abs(float(results["drive"]["omega"]))})
     put(results, warnings, "drive_train", _stage("drive_train")(train.analyze)(task.drive_train, drive))
     if task.flywheel is not None and "flywheel" in results:
         moved = train.motor_shaft(results["drive_train"], results["flywheel"], task.flywheel.constant)
@@ -121,7 +119,7 @@ def put(results: dict, warnings: list, name: str | None, res, *, keep_warnings: 
     warnings.extend(res.warnings)
 
 
-def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int) -> None:
+def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, built: dict) -> None:
     """The linkage chain: its context (structure, positions, the crank speed), then
     kinematics, dynamics (``flywheel``) and kinetostatics."""
     from .linkage import dynamics, kinematics, kinetostatics, structure
@@ -150,7 +148,7 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int) -> No
         if strokes:
             results["positions"]["strokes"] = {k: s.to_dict() for k, s in strokes.items()}
     # the crank speed: given, or from the output's speed with the stroke and K just found
-    drive = resolve(task.drive, positions)
+    drive = built["drive"] = resolve(task.drive, positions)
     linkage = Linkage(mechanism=mech, structure=st, drive=drive, positions=positions, loads=task.loads)
     if task.synthesis is not None:
         say("synthesis")
