@@ -71,9 +71,10 @@ class DynamicsResult:
     def motion_at(self, phi) -> tuple[np.ndarray, np.ndarray]:
         """(omega1, epsilon1), signed (ccw positive), of the steady motion with the
         chosen flywheel at absolute crank angles phi (deg), read as the rotation
-        sign*(phi - phi0) mod `map_cycle`: the cycle, or, from analyze_task, the cycle the
-        loads module uses for the same positions (360 when the positions carry none: the
-        first turn of a 720-deg cycle), so that the loads at these positions match.  With a sampler the reduced moment and inertia
+        sign*(phi - phi0) mod `map_cycle`: the cycle, or, from `analysis.analyze`, 360 (the
+        reported positions are the first turn after position 0 of a 720-deg cycle, as the
+        loads read them), so that the loads at these positions match.  With a sampler the
+        reduced moment and inertia
         are evaluated exactly at phi (so eps satisfies the equation of motion exactly
         there and the balancing moment of kinetostatics equals the constant driving
         moment); only dT is interpolated (cubic Hermite with slope M_red)."""
