@@ -16,8 +16,8 @@ import pytest
 
 import tmm_cli
 from tmm_cli.linkage import structure
-from tmm_cli.linkage.kinetostatics import analyze
-from tmm_cli.linkage.loads import evaluate
+from tmm_cli.linkage.kinetostatics import equilibrium
+from tmm_cli.linkage.loads import evaluate_on
 from tmm_cli.task import KinetostaticsSection, LoadsSection
 
 from test_kinetostatics_closedform import mech_of, slider_crank_kin, slider_crank_task
@@ -198,12 +198,15 @@ def test_pipeline_slider_crank_matches_closed_form_kinematics():
         phi0, sign, extreme, working_stroke_angle = r["positions"]["phi0"], 1.0, r["positions"]["extreme"], \
             r["positions"]["working_stroke_angle"]
 
+        def stroke_for(self, name, working=None):     # a slider's own stroke: here the same
+            return self
+
         def stroke_state(self, p):
             return np.full(np.shape(p), "working"), np.zeros(np.shape(p))
 
-    lds = evaluate(mech, LoadsSection.model_validate(d["loads"]), kin, Pos())
-    ref = analyze(mech, structure.analyze(mech), kin, lds, KinetostaticsSection(),
-                  solver=lambda m, p, w: slider_crank_kin(p, omega1=w)).to_dict()["entries"]
+    lds = evaluate_on(mech, LoadsSection.model_validate(d["loads"]), kin, Pos(), sign=1.0, cycle=360.0)
+    ref = equilibrium(mech, structure.analyze(mech), kin, lds, KinetostaticsSection(),
+                  solver=lambda m, p, w: slider_crank_kin(p, omega1=w)).to_dict()["kinetostatics"]
     for a, b in zip(r["kinetostatics"], ref):
         assert a["balancing_moment"] == pytest.approx(b["balancing_moment"], rel=1e-7, abs=1e-7)
         for k in ("R01", "R12", "R23", "R03"):

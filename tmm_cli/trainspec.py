@@ -20,7 +20,7 @@ from typing import Literal
 
 from pydantic import Field, field_validator, model_validator
 
-from .task import PLANETARY_ALIASES, PLANETARY_SCHEMES, FieldValueError, _Model
+from .modelbase import PLANETARY_ALIASES, PLANETARY_SCHEMES, FieldValueError, _Model
 from .units import AngularSpeed, Number, Ratio
 
 # tooth numbers of each stage kind, in the order of the `z` list

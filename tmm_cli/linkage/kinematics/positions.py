@@ -300,18 +300,36 @@ def _roots_in_brackets(f, a, b, *, ds_of, grid, maxiter: int = 100) -> np.ndarra
     return x
 
 
-def find_positions(mech: Mechanism, positions_section=None, drive_section=None,
-                   extra_added=()) -> PositionsResult:
-    """The reported crank positions and the output's extremes (see module docstring)."""
+def find_positions(mech: Mechanism, positions_section, sign: float, extra_added=()) -> PositionsResult:
+    """The reported crank positions and the output's extreme positions.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The linkage.
+    positions_section : PositionsSection or None
+        The task's ``positions`` (``count``, ``zero``, ``output``, ``working``, ``extra``;
+        None: the defaults).
+    sign : float
+        Sense of rotation of the crank, +1.0 ccw, -1.0 cw (``Drive.sign``).
+    extra_added : sequence of float
+        Crank angles (deg) the tool adds as positions (where a load switches).
+
+    Returns
+    -------
+    PositionsResult
+        ``phi`` (deg in [0, 360)), ``phi0``, ``extreme`` (deg), ``H`` (m, or deg for a
+        rocker output), ``K``, ``theta`` (deg) and the stroke state of the output.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: extreme (dead) positions and the
+    coefficient of the mean speed K = (180 + theta)/(180 - theta); module docstring.
+    """
     from ...task import PositionsSection
     sec = positions_section if positions_section is not None else PositionsSection()
-    direction = getattr(drive_section, "direction", "ccw") if drive_section is not None else "ccw"
-    sign = 1.0 if direction == "ccw" else -1.0
-    out_name = sec.output or mech.links[-1].name
-    try:
-        mech.link(out_name)
-    except KeyError:
-        raise StageError("positions", f"positions.output: no link named '{out_name}'") from None
+    direction = "ccw" if sign > 0 else "cw"
+    out_name = sec.output or mech.links[-1].name      # a name the task model checked
     kind, f = _output_coordinate(mech, out_name)
     ext = _extremes(f, 360.0 if kind == "rocker" else None)
     extreme = wsa = isa = K = theta = H = s_ext = None
