@@ -264,13 +264,8 @@ def build(ctx) -> str | None:
                  (t("train.Jn_motor"), f(fw["J_n_motor_shaft"], 5)), (t("train.GD2"), f(fw["GD2_motor_shaft"], 5))]
         if d.get("motor_power_computed"):
             motor.insert(0, (t("train.power"), f(d["motor_power"], 5)))
-    figs = []
     from .. import figures
-    for maker, cap, name in ((lambda: scheme_and_picture(d, t), t("train.scheme"), "train-scheme"),
-                             (lambda: angular_plan(d), t("train.plan"), "train-angular-plan")):
-        try:
-            figs.append((figures.named(maker(), name), cap))
-        except Exception as exc:  # the tables matter more than the picture
-            figs.append((Markup(f"<p class='warn'>figure failed: {exc}</p>"), cap))
+    figs = [(figures.named(scheme_and_picture(d, t), "train-scheme"), t("train.scheme")),
+            (figures.named(angular_plan(d), "train-angular-plan"), t("train.plan"))]
     return ctx.render("sections/drive_train.html.j2", info=info, rows=rows, shafts=shafts, sats=sats,
                       cands=cands, motor=motor, figs=figs, rank=d.get("rank", "size"))
