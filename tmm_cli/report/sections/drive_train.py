@@ -232,7 +232,6 @@ def build(ctx) -> str | None:
     d = (ctx.results or {}).get("drive_train")
     if not d:
         return None
-    from markupsafe import Markup
     f, t = ctx.fmt, ctx.t
     vp = d["velocity_plan"]
     rows = []
