@@ -23,7 +23,7 @@ def test_every_figure_is_valid_svg(path, tmp_path):
     write_outputs(task, results, tmp_path, {"html"}, "en")
     html = (tmp_path / "report.html").read_text(encoding="utf-8")
     inline = re.findall(r"<svg\b.*?</svg>", html, re.S)
-    files = sorted((tmp_path / "figures").glob("fig-*.svg"))
+    files = sorted((tmp_path / "figures").glob("*.svg"))
     assert inline and len(files) == len(inline)
     bad = []
     for k, svg in enumerate(inline, start=1):

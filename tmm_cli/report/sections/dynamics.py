@@ -139,8 +139,8 @@ def _diagrams(ctx, d, q):
     for ax in (a3, a4):
         ax.set_xlabel(ctx.t("dyn.phi_axis"))
         ax.set_xticks(np.arange(0, q[-1] + 1, 60 if q[-1] <= 360 else 120))
-    fig.tight_layout()
-    return ctx.svg(fig)
+    ctx.figures.std_graph(fig, (a1, a2, a3, a4), ctx.t("kin.mm"), x_axis=a3)     # μM, μA, μT, μJ, μφ
+    return ctx.svg(fig, "dynamics-diagrams")
 
 
 def _wittenbauer(ctx, d):
@@ -189,7 +189,7 @@ def _wittenbauer(ctx, d):
     # J = kl mu_T / (omega_m^2 delta): the stage's value of the construction
     cap = ctx.t("dyn.witt_caption", muJ=f"{muJ:g}", muT=f"{muT:g}", pmax=pmax, pmin=pmin, kl=kl,
                 J=ctx.fmt(d.get("J_wittenbauer"), 5))
-    return ctx.svg(fig), cap
+    return ctx.svg(fig, "energy-mass"), cap
 
 
 def _motion(ctx, d, q):
@@ -215,8 +215,8 @@ def _motion(ctx, d, q):
         ax.grid(True, lw=0.3, alpha=0.5)
         ax.set_xlim(0, q[-1])
     a2.set_xticks(np.arange(0, q[-1] + 1, 30 if q[-1] <= 360 else 60))
-    fig.tight_layout()
-    return ctx.svg(fig)
+    ctx.figures.std_graph(fig, (a1, a2), ctx.t("kin.mm"), x_axis=a2, zero=False)   # μω, με, μφ
+    return ctx.svg(fig, "motion")
 
 
 def build(ctx) -> str | None:
