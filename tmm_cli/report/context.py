@@ -111,8 +111,11 @@ class ReportContext:
         return self.env.get_template(template).render(**kw)
 
     def svg(self, fig):
-        """matplotlib figure -> inline SVG (markup-safe), closes the figure."""
+        """A figure -> inline SVG (markup-safe): a chart of svgchart (written directly)
+        or a matplotlib figure (closed)."""
         from markupsafe import Markup
+        if hasattr(fig, "to_svg"):
+            return Markup(fig.to_svg())
         return Markup(figures.svg(fig))
 
     # -- files beside the report
