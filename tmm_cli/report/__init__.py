@@ -149,7 +149,7 @@ def _pdf_bytes(html: str, lang: str = "en") -> bytes:
 
 
 # sections the helper process builds while the main process builds the others
-HELPER_SECTIONS = ("kinetostatics",)
+HELPER_SECTIONS = ("kinetostatics", "dynamics")
 
 
 PR_SET_PDEATHSIG = 1  # <linux/prctl.h>
@@ -305,8 +305,9 @@ def render(results: dict, task, out_dir: Path, formats: set[str], lang: str = "e
     ``notes`` the PdfSkipped exception propagates.
 
     With two cores the work is split over two processes: a helper (forked) builds
-    the kinetostatics section (the heaviest drawings) while the main process builds
-    the other sections; the helper then compiles the PDF while the main process
+    the kinetostatics and dynamics sections (their drawings are direct SVG: the helper
+    needs no matplotlib) while the main process imports matplotlib and builds the
+    other sections; the helper then compiles the PDF while the main process
     writes report.html.  Any failure of the helper falls back to doing everything here."""
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -322,8 +323,6 @@ def render(results: dict, task, out_dir: Path, formats: set[str], lang: str = "e
         try:
             import multiprocessing
             import os
-            from . import figures
-            figures.plt()                      # matplotlib imported once, shared by the fork
             mp = multiprocessing.get_context("fork")
             conn, child = mp.Pipe()
             proc = mp.Process(target=_helper, args=(child, results, task, out_dir, ctx.lang, helper_names,

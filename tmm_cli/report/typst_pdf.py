@@ -303,9 +303,18 @@ class _Writer:
                 nhead += 1
             else:
                 break
+        # columns whose body cells are all numbers (or empty) are right-aligned as a whole:
+        # a plain cell is cheaper to lay out than a table.cell with its own alignment
+        right = [True] * ncols
+        for _, r in rows[nhead:]:
+            for j, c in enumerate(r[:ncols]):
+                if c.tag != "td" or ("num" not in c.classes and c.text().strip()):
+                    right[j] = False
+        if not rows[nhead:]:
+            right = [False] * ncols
         cells = []
         for i, (head, r) in enumerate(rows):
-            for c in r:
+            for j, c in enumerate(r):
                 body = self.inline(c).strip()
                 args = []
                 span = int(c.attrs.get("colspan") or 1)
@@ -320,17 +329,24 @@ class _Writer:
                     else:
                         args.append('fill: rgb("#eeeeee"), align: center')
                         body = f"#strong[{body}]"
-                elif "num" in c.classes:
+                elif "num" in c.classes and not (j < ncols and right[j]):
                     args.append("align: right")
-                cell = f"[{body}]"
-                cells.append(f"table.cell({', '.join(args)}){cell}" if args else cell)
+                if body.startswith('#"') and body.endswith('"') and body.count('#"') == 1:
+                    cell = body[1:]                 # a plain string: no markup to parse
+                else:
+                    cell = f"[{body}]"
+                cells.append(f"table.cell({', '.join(args)}){cell if cell[0] == '[' else f'[#{cell}]'}"
+                             if args else cell)
         head_cells = sum(len(r) for _, r in rows[:nhead])
         size = "7.5pt" if compact else "8.5pt"
         inset = "(x: 1.2mm, y: 0.8mm)" if compact else "(x: 1.8mm, y: 1.05mm)"
         cols = self.widths(rows[nhead:], ncols) if wide else str(ncols)
         header = f"table.header({', '.join(cells[:head_cells])}), " if head_cells else ""
         body = ", ".join(cells[head_cells:])
-        tbl = f"#table(columns: {cols}, inset: {inset}, {header}{body})"
+        align = ""
+        if any(right):
+            align = "align: (" + ", ".join("right" if x else "left" for x in right) + ",), "
+        tbl = f"#table(columns: {cols}, inset: {inset}, {align}{header}{body})"
         if caption:
             tbl = f"#cap[{caption}]\n{tbl}"
         return f"#block(above: 1.5mm, below: 3mm, width: {'100%' if wide else 'auto'})[#text(size: {size})[{tbl}]]"
