@@ -2,9 +2,8 @@
 acceleration plans, free-body diagrams of the Assur groups, force polygons,
 Zhukovsky's lever).
 
-Why not matplotlib: a plan drawn by matplotlib costs ~0.1 s to make and, painted
-by weasyprint's Python SVG renderer, ~0.1 s more (every axis tick is a separate
-path and text).  Here a drawing is a handful of merged paths (one per stroke
+Why not matplotlib: a plan drawn by matplotlib costs ~0.1 s to make, and its SVG
+has a separate path and text for every axis tick.  Here a drawing is a handful of merged paths (one per stroke
 style), filled arrow heads merged per colour and one <text> per label: made in
 milliseconds and painted several times faster.
 
