@@ -28,8 +28,8 @@ FORGING = {
 
 def prepare(task_path: str | None = None):
     import tmm_cli
-    from tmm_cli import kinematics
-    from tmm_cli.mechanism import build_mechanism
+    from tmm_cli.linkage import kinematics
+    from tmm_cli.linkage.mechanism import build_mechanism
     task = tmm_cli.load_task(task_path if task_path else FORGING)
     if task.flywheel is None:
         raise SystemExit(f"{task_path}: no `flywheel` section")

@@ -26,7 +26,8 @@ from _dyn_tasks import prepare  # noqa: E402
 
 
 def one(path):
-    from tmm_cli import dynamics, study
+    from tmm_cli import study
+    from tmm_cli.linkage import dynamics
     task, mech, pos = prepare(path)
     ref = study.flywheel_values(task, mech, pos, 2880)
     ref2 = study.flywheel_values(task, mech, pos, 5760)

@@ -37,8 +37,13 @@ def _stage(name: str):
 
 
 def run(task: Task, *, progress: Callable[[str], None] | None = None,
-        kinematics_curve: int = 361) -> dict[str, Any]:
+        kinematics_curve: int = 361, explore: bool = False) -> dict[str, Any]:
     """Compute every stage present in ``task``; return the results dict.
+
+    ``kinematics_curve``: points of the output link's curve over one turn (0: none);
+    ``explore``: also the kinematics at every degree of the turn (``kinematics_explore``,
+    the mechanism in motion of report.html; made only for an HTML report and never
+    written to results.json, see :func:`tmm_cli.orchestrate.write_outputs`).
 
     The independent parts (the linkage chain, cam, gears, planetary, dof2) each run
     even when another fails; a part stops at its first StageError.  If any part
@@ -76,7 +81,7 @@ def run(task: Task, *, progress: Callable[[str], None] | None = None,
             say("synthesis")
             raise task._synthesis_error
         if task.mechanism is not None:
-            part(lambda: _linkage(task, results, warnings, say, kinematics_curve))
+            part(lambda: _linkage(task, results, warnings, say, kinematics_curve, explore))
         if task.cam is not None:
             part(simple("cam", "cam", "synthesize", task.cam))
         if task.gears is not None:
@@ -126,11 +131,11 @@ def _drive_train(task: Task, results: dict, warnings: list, say) -> None:
             results["drive_train"].update(motor_power=moved["motor_power"], motor_power_computed=True)
 
 
-def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int) -> None:
+def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explore: bool) -> None:
     import numpy as np
 
-    from . import kinematics, structure
-    from .mechanism import build_mechanism
+    from .linkage import kinematics, structure
+    from .linkage.mechanism import build_mechanism
 
     say("structure")
     mech = build_mechanism(task)
@@ -149,17 +154,17 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int) -> No
     positions = find_positions(task, mech)
     results["positions"] = positions.to_dict()
     if task.loads is not None:      # each loaded slider's own stroke (docs/methods.md §3.3)
-        from . import loads as loads_mod
+        from .linkage import loads as loads_mod
         strokes = loads_mod.slider_strokes(mech, task.loads, positions)
         if strokes:
             results["positions"]["strokes"] = {k: s.to_dict() for k, s in strokes.items()}
     if task.synthesis is not None:
         say("synthesis")
-        from .synthesis import analyse
+        from .linkage.synthesis import analyse
         results["synthesis"] = _stage("synthesis")(analyse)(task._design, mech, task.drive.direction)
 
     # the crank speed: given, or from the output's speed with the stroke and K just found
-    from . import drive_speed
+    from .linkage import drive_speed
     omega1, source = drive_speed.resolve(task, positions)
     task = drive_speed.with_speed(task, omega1)
     results["drive"] = drive_speed.result(omega1, source)
@@ -172,11 +177,17 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int) -> No
     # a dense curve of the output link for the kinematic diagrams of the report
     if curve_n:
         results["kinematics_curve"] = _curve(kinematics, mech, positions, omega1, curve_n)
+    if explore:
+        # every point and link at each degree of the turn: the mechanism in motion of report.html
+        from .linkage.kinematics.explore import explore_grid
+        grid = _stage("kinematics")(explore_grid)(task, results)
+        if grid is not None:
+            results["kinematics_explore"] = grid
 
     dyn = None
     if task.flywheel is not None:
         say("dynamics")
-        from . import dynamics, loads as loads_mod
+        from .linkage import dynamics, loads as loads_mod
         # the accuracy table (timed) runs only in `tmm study` / `tmm run --study`
         dyn = _stage("dynamics")(dynamics.analyze_task)(mech, task, positions, accuracy=False)
         results["flywheel"] = dyn.to_dict()
@@ -184,7 +195,7 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int) -> No
 
     if task.kinetostatics is not None:
         say("kinetostatics")
-        from . import kinetostatics, loads as loads_mod
+        from .linkage import kinetostatics, loads as loads_mod
         ks = task.kinetostatics
         sel = _select(ks.positions, positions, task)
         kin_k = kin
@@ -216,11 +227,11 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int) -> No
 def find_positions(task: Task, mech):
     """The positions of the cycle (the grid, the extra and extreme angles, the load
     switch points), as the pipeline computes them; also used by validation."""
-    from . import kinematics
+    from .linkage import kinematics
     pos_section = task.positions or PositionsSection()
     extra_added: list[float] = []
     if task.loads is not None:
-        from . import loads as loads_mod
+        from .linkage import loads as loads_mod
         pos0 = _stage("positions")(kinematics.find_positions)(mech, pos_section, task.drive)
         extra_added = list(loads_mod.switch_angles(mech, task.loads, pos0))
     return _stage("positions")(kinematics.find_positions)(mech, pos_section, task.drive,

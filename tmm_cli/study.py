@@ -116,15 +116,15 @@ def _patched(module, name: str, value):
 
 # ------------------------------------------------------------------ stages
 def _linkage(task):
-    from . import kinematics
-    from .mechanism import build_mechanism
+    from .linkage import kinematics
+    from .linkage.mechanism import build_mechanism
     mech = build_mechanism(task)
     pos = kinematics.find_positions(mech, task.positions, task.drive)
     return mech, pos
 
 
 def flywheel_values(task, mech, pos, resolution: int, quadrature: int | None = None) -> dict:
-    from . import dynamics
+    from .linkage import dynamics
     upd = {"resolution": int(resolution)}
     if quadrature is not None:
         upd["quadrature"] = int(quadrature)
@@ -141,7 +141,7 @@ def study_flywheel(task, mech, pos, quadrature: int | None = None, repeat: int =
 
 
 def curve_values(task, mech, pos, n: int) -> dict:
-    from . import kinematics
+    from .linkage import kinematics
     from .pipeline import _curve
     c = _curve(kinematics, mech, pos, task.drive.omega1, int(n))
     s, v, a = (np.asarray(c[k], float) for k in ("s", "v", "a"))
