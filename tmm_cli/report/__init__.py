@@ -222,7 +222,8 @@ def _workers_wanted() -> bool:
     return (os.cpu_count() or 1) >= 2
 
 
-def _finish(ctx, proc, conn, formats, all_names, helper_names, out_dir, notes=None) -> list[Path]:
+def _finish(ctx, proc, conn, formats, all_names, helper_names, out_dir, notes=None,
+            helper_pdf=False) -> list[Path]:
     """Build the sections not given to the helper, assemble, write html/pdf."""
     want_pdf = "pdf" in formats
     frags = _build(ctx, [n for n in all_names if proc is None or n not in helper_names])
@@ -240,7 +241,7 @@ def _finish(ctx, proc, conn, formats, all_names, helper_names, out_dir, notes=No
             frags.update(_build(ctx, helper_names))
     html = _assemble(ctx, frags)
     sent = False
-    if want_pdf and proc is not None and helper_ok:
+    if want_pdf and helper_pdf and proc is not None and helper_ok:
         try:
             conn.send(html)            # the helper compiles the PDF meanwhile
             sent = True
@@ -319,20 +320,26 @@ def render(results: dict, task, out_dir: Path, formats: set[str], lang: str = "e
     all_names = [name for name, _ in _sections.available()]
     helper_names = [n for n in HELPER_SECTIONS if n in all_names and results.get(n)]
     proc = conn = None
-    if (helper_names or want_pdf) and _workers_wanted():
+    # Typst's compiler runs thread pools: a process forked after this one has used Typst
+    # would wait for them for ever, so the helper compiles the PDF only where Typst has not
+    # been loaded here yet (a `tmm run`); in a process that already made a PDF (tests, a
+    # long-lived caller) this process compiles it
+    import sys
+    helper_pdf = want_pdf and "typst" not in sys.modules
+    if (helper_names or helper_pdf) and _workers_wanted():
         try:
             import multiprocessing
             import os
             mp = multiprocessing.get_context("fork")
             conn, child = mp.Pipe()
             proc = mp.Process(target=_helper, args=(child, results, task, out_dir, ctx.lang, helper_names,
-                                                    want_pdf, os.getpid(), conn), daemon=True)
+                                                    helper_pdf, os.getpid(), conn), daemon=True)
             proc.start()
             child.close()
         except OSError:                    # no second process here: everything in this one
             proc = conn = None
     try:
-        written = _finish(ctx, proc, conn, formats, all_names, helper_names, out_dir, notes)
+        written = _finish(ctx, proc, conn, formats, all_names, helper_names, out_dir, notes, helper_pdf)
     finally:
         if proc is not None:
             try:
