@@ -130,8 +130,8 @@ def test_typst_translation_keeps_every_text_and_figure():
             f"<figure class='fig'>{fig.to_svg()}<figcaption>Рис</figcaption></figure></section></body></html>")
     src, files = to_typst(html, "ru")
     assert len(files) == 1 and next(iter(files.values())).startswith(b"<svg")
-    for s in ('#"Кинематика"', '#sub[#"A"]', '#" = 1 \\"q\\" \\\\ #x"', '#"Таблица"', '#"1.5"',
-              '#"текст"', '#"Рис"', "table.header("):
+    for s in ('#"Кинематика"', '#sub[#"A"]', '#" = 1 \\"q\\" \\\\ #x"', '#"Таблица"', ', "1.5", "текст")',
+              '#"Рис"', "table.header(", "align: (right, left,)"):
         assert s in src, s
     assert "p{}" not in src                               # style sheets are not text
 
