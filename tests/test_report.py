@@ -174,9 +174,9 @@ from tmm_cli.report.context import fmt  # noqa: E402
 from tmm_cli.report.plans import build_plan, geometry, scales  # noqa: E402
 
 
-def _weasyprint_ok():
+def _pdf_ok():
     try:
-        import weasyprint  # noqa: F401
+        import typst  # noqa: F401
         return True
     except Exception:
         return False
@@ -199,9 +199,9 @@ def html_en(results, task, tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def rendered_ru(results, task, tmp_path_factory):
-    """One full render (html + pdf when weasyprint works) in Russian."""
+    """One full render (html + pdf when the PDF engine works) in Russian."""
     out = tmp_path_factory.mktemp("ru")
-    formats = {"html", "pdf"} if _weasyprint_ok() else {"html"}
+    formats = {"html", "pdf"} if _pdf_ok() else {"html"}
     return out, render(results, task, out, formats, "ru")
 
 
@@ -400,7 +400,7 @@ def test_nice_scale_property(x):
 
 def pdf_page_count(data: bytes) -> int:
     """Page objects (/Type /Page) of a PDF, also those inside compressed object
-    streams (weasyprint writes them there: a search of the raw bytes finds none)."""
+    streams (PDF writers may put them there: a search of the raw bytes finds none)."""
     import zlib
     chunks, view = [data], memoryview(data)
     for m in re.finditer(rb"stream\r?\n", data):
@@ -411,7 +411,7 @@ def pdf_page_count(data: bytes) -> int:
     return sum(len(re.findall(rb"/Type\s*/Page\b", c)) for c in chunks)
 
 
-@pytest.mark.skipif(not _weasyprint_ok(), reason="weasyprint not usable")
+@pytest.mark.skipif(not _pdf_ok(), reason="the PDF engine (typst) is not installed")
 def test_pdf(rendered_ru, tmp_path):
     out, paths = rendered_ru
     pdf = out / "report.pdf"

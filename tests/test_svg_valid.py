@@ -1,6 +1,6 @@
-"""Every figure of every example task is valid SVG 1.1 / CSS: a browser draws what
-weasyprint draws (a colour such as stroke="k" or fill="0.35" is dropped by browsers,
-which then draw no line).  The figures are read by an XML parser and every value is
+"""Every figure of every example task is valid SVG 1.1 / CSS: a browser and the PDF
+engine draw the same (a colour such as stroke="k" or fill="0.35" is dropped by browsers
+and by Typst, which then draw no line).  The figures are read by an XML parser and every value is
 checked with the grammar written out in svg_check.py."""
 from __future__ import annotations
 

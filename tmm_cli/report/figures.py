@@ -146,7 +146,7 @@ def std_graph(fig, axes, mm: str = "mm", x_axis=None, x_sym: str = "φ", x_unit:
         ax.set_title("μ = 0.0025 (N·m)/mm", loc="right", fontsize=7, pad=2)
     if x_axis is not None:
         x_axis.set_xlabel(f"{x_axis.get_xlabel()};  μ{x_sym} = 2.5 {x_unit}/{mm}")
-    if tight:
+    if tight or hasattr(fig, "to_svg"):    # an svgchart figure lays itself out with the titles
         fig.tight_layout()
     out = {}
     for ax in axes:
@@ -166,7 +166,9 @@ def std_graph(fig, axes, mm: str = "mm", x_axis=None, x_sym: str = "φ", x_unit:
         up = nice_scale((hi - lo) / L)
         down = max((c for c in (nice_scale(up * f) for f in (0.4, 0.5, 0.6, 0.8, 0.9)) if c < up), default=up)
         grow = (hi - lo) / down - L
-        if 0 < grow <= (1.0 - pos.x1) * fw - 1.5:
+        # (only into free paper: not when another graph stands to the right)
+        right_free = not any(o.get_position().x0 >= pos.x1 - 1e-6 for o in fig.axes)
+        if right_free and 0 < grow <= (1.0 - pos.x1) * fw - 1.5:
             for ax in fig.axes:
                 p = ax.get_position()
                 if abs(p.x1 - pos.x1) < 1e-6:

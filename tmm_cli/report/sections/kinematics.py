@@ -98,7 +98,7 @@ def positions_svg(ctx, geom, entries, grid, fine=None):
              for w, h in [tuple(unit * np.array(F.text_size(s, fs_mm)))]]
     F.draw_mechanism(ax, geom, grid[0], unit, ranges=ranges, lw=1.3, taken=taken)
     # trajectories: periodic splines through the grid positions
-    from scipy.interpolate import CubicSpline
+    from ..svgchart import periodic_spline
     traced = [l.com for l in geom.links if l.com] + [p for l in geom.links if l.kind == "bar"
                                                      for p in l.points]
     seen = set()
@@ -115,8 +115,7 @@ def positions_svg(ctx, geom, entries, grid, fine=None):
             t = np.arange(len(xy) + 1, dtype=float)
             closed = np.vstack([xy, xy[:1]])
             tt = np.linspace(0, len(xy), 40 * len(xy))
-            cs = CubicSpline(t, closed, bc_type="periodic")
-            c = cs(tt)
+            c = periodic_spline(t, closed, tt)
         is_com = p.startswith("S")
         ax.plot(c[:, 0], c[:, 1], lw=0.7 if is_com else 0.5, ls="-" if is_com else "--",
                 color="#1f5fbf" if is_com else "0.5", zorder=1)
@@ -253,12 +252,12 @@ def output_series(ctx, geom, entries, out_name):
 def diagrams_svg(ctx, geom, entries, phase, out_name, curve, marks=None):
     """s, v, a (or psi, omega, epsilon) of the output link over the cycle; dots at the
     positions (at those of the boolean mask `marks` only, for a fine grid)."""
-    from scipy.interpolate import CubicSpline
     from .. import figures as F
     kind, s, v, a = output_series(ctx, geom, entries, out_name)
     units = ([ctx.t("kin.s_unit"), ctx.t("kin.v_unit"), ctx.t("kin.a_unit")] if kind == "slider"
              else [ctx.t("kin.psi_unit"), ctx.t("kin.w_unit"), ctx.t("kin.e_unit")])
-    fig, axes = F.new_figure(165.0, 150.0, nrows=3, sharex=True)
+    from ..svgchart import periodic_spline, subplots
+    fig, axes = subplots(165.0, 150.0, nrows=3, sharex=True)
     order = np.argsort(phase)
     ph = np.asarray(phase)[order]
     keep = np.concatenate([[True], np.diff(ph) > 1e-9])
@@ -273,9 +272,10 @@ def diagrams_svg(ctx, geom, entries, phase, out_name, curve, marks=None):
         elif marks is not None:             # a fine grid is its own curve
             ax.plot(np.append(x, x[0] + 360.0), np.append(y, y[0]), color="#1f5fbf", lw=1.0)
         elif len(x) >= 3:
-            cs = CubicSpline(np.append(x, x[0] + 360.0), np.append(y, y[0]), bc_type="periodic")
             tt = np.linspace(x[0], x[0] + 360.0, 721)
-            ax.plot(tt % 360.0 if x[0] > 0 else tt, cs(tt), color="#1f5fbf", lw=1.0)
+            ax.plot(tt % 360.0 if x[0] > 0 else tt,
+                    periodic_spline(np.append(x, x[0] + 360.0), np.append(y, y[0]), tt),
+                    color="#1f5fbf", lw=1.0)
         ax.plot(ph[dots], np.asarray(ys)[order][dots], ls="none", marker="o", ms=2.5, color="k",
                 clip_on=False, zorder=5)
         ax.axhline(0, color="0.5", lw=0.5)

@@ -596,11 +596,12 @@ def position_figures(ctx, e, kin_e, info, links, pin=None, omega1=None):
 
 # ----------------------------------------------------------------- graphs
 def _diagrams_fig(ctx, info, entries, grid_n):
-    from .. import figures
     ld = [d for d in info.get("load_diagrams", []) if d.get("type") == "force" and d.get("curve")]
     if not ld:
         return None
-    fig, axes = figures.new_figure(170, 55 * len(ld), nrows=len(ld), squeeze=False)
+    from .. import figures
+    from ..svgchart import subplots
+    fig, axes = subplots(170, 55 * len(ld), nrows=len(ld), squeeze=False)
     marks = []
     for ax, d in zip(axes[:, 0], ld):
         cur = d["curve"]
@@ -647,7 +648,6 @@ def _diagrams_fig(ctx, info, entries, grid_n):
 
 
 def _cycle_fig(ctx, entries, phi0, sign, info):
-    from .. import figures
     rows = []
     for e in entries:
         q = ((e["phi"] - phi0) * sign) % 360.0
@@ -656,7 +656,9 @@ def _cycle_fig(ctx, entries, phi0, sign, info):
     if len(rows) < 2:
         return None
     key = "balancing_moment" if info["balance_kind"] == "moment" else "balancing_force"
-    fig, (a1, a2) = figures.new_figure(170, 120, nrows=2, sharex=True)
+    from .. import figures
+    from ..svgchart import subplots
+    fig, (a1, a2) = subplots(170, 120, nrows=2, sharex=True)
     q = [r[0] for r in rows]
     from ..course import COURSE_MAX
     dot = "" if len(rows) > COURSE_MAX else "."      # a fine grid: curves without a dot a position
