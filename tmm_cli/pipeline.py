@@ -247,14 +247,15 @@ def _select(spec, positions, task: Task) -> list[int]:
     return rows
 
 
-def _curve(kinematics, mech, positions, omega1, n: int) -> dict:
+def _curve(kinematics, mech, positions, omega1, n: int, turn=None) -> dict:
     """s, v, a of the output link over one turn from position 0 (kinematic diagrams):
     a slider's displacement along its guide from position 0 (m), velocity and
-    acceleration along the guide; a rocker's angle from position 0 (deg), omega, epsilon."""
+    acceleration along the guide; a rocker's angle from position 0 (deg), omega, epsilon.
+    n equal steps, or at the angles `turn` (deg from position 0) when given."""
     import numpy as np
 
     sign = 1.0 if omega1 > 0 else -1.0
-    turn = np.linspace(0.0, 360.0, n)
+    turn = np.linspace(0.0, 360.0, n) if turn is None else np.asarray(turn, float)
     phi = np.mod(positions.phi0 + sign * turn, 360.0)
     kin = kinematics.solve(mech, phi, omega1)
     out = mech.link(positions.output)

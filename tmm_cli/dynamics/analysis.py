@@ -634,6 +634,26 @@ def mechanism_sampler(mech, kin_fn, loads_fn, *, phi0: float, sign: float) -> Sa
     return sampler
 
 
+def switch_q(switch_angles, phi0: float, sign: float, cycle: float) -> list[float]:
+    """Absolute crank angles (deg) where a load jumps as cycle angles q (deg from position 0
+    along the motion; for a 720-deg cycle in both turns)."""
+    sw = []
+    for s in switch_angles or ():
+        qs = (sign * (float(s) - phi0)) % 360.0
+        sw.append(qs)
+        if cycle == 720:
+            sw.append(qs + 360.0)
+    return sw
+
+
+def task_switch_angles(mech, task, positions) -> list[float]:
+    """The absolute crank angles (deg) a task's grid must hold as breakpoints: the load
+    jumps and kinks (loads.switch_angles) and both extreme positions of the output."""
+    from .. import loads as loads_mod
+    sw = list(loads_mod.switch_angles(mech, task.loads, positions, kinks=True))
+    return sw + [float(x) for x in (getattr(positions, "extreme", None) or [])]
+
+
 def analyze(mech, kin_fn, loads_fn, section, drive, *, phi0: float = 0.0, switch_angles=(),
             accuracy: bool = True) -> DynamicsResult:
     """The dynamics stage of a linkage.
@@ -645,12 +665,7 @@ def analyze(mech, kin_fn, loads_fn, section, drive, *, phi0: float = 0.0, switch
     for a 720-deg cycle they are inserted in both turns)."""
     sign = 1.0 if getattr(drive, "direction", "ccw") == "ccw" else -1.0
     cycle = float(getattr(drive, "cycle", 360) or 360)
-    sw = []
-    for s in switch_angles or ():
-        qs = (sign * (float(s) - phi0)) % 360.0
-        sw.append(qs)
-        if cycle == 720:
-            sw.append(qs + 360.0)
+    sw = switch_q(switch_angles, phi0, sign, cycle)
     sampler = mechanism_sampler(mech, kin_fn, loads_fn, phi0=phi0, sign=sign)
     return analyze_sampler(sampler, section, float(drive.speed), cycle=cycle, switch_q=sw,
                            phi0=phi0, sign=sign, accuracy=accuracy)
@@ -687,8 +702,7 @@ def analyze_task(mech, task, positions, *, accuracy: bool = True) -> DynamicsRes
     def loads_fn(kin):
         return loads_mod.evaluate(mech, task.loads, kin, pos_l, inertia=False)
 
-    sw = list(loads_mod.switch_angles(mech, task.loads, pos_l, kinks=True))
-    sw += [float(x) for x in (getattr(positions, "extreme", None) or [])]
+    sw = task_switch_angles(mech, task, pos_l)
     res = analyze(mech, kin_fn, loads_fn, task.flywheel, task.drive, phi0=float(positions.phi0),
                   switch_angles=sw, accuracy=accuracy)
     # read crank angles in motion_at as loads.evaluate reads them for these positions
