@@ -161,7 +161,7 @@ def flywheel_values(task, mech, pos, resolution: int, quadrature: int | None = N
 
 
 def study_flywheel(task, mech, pos, quadrature: int | None = None, repeat: int = 3) -> dict:
-    settings = [12, 18, 24, 36, 48, 72, 96, 144, 180, 360]
+    settings = sorted({12, 18, 24, 36, 48, 72, 96, 144, 180, 360, int(task.flywheel.resolution)})
     refs = [2880, 5760, 11520] if quadrature != 0 else [23040, 46080]
     out = sweep("resolution", lambda r: flywheel_values(task, mech, pos, r, quadrature),
                 settings, refs, repeat=repeat, stage="flywheel")
@@ -350,8 +350,8 @@ def study_cam(task, repeat: int = 3) -> dict:
     fine = 0.01
     check = {"setting": fine, "difference": _cam_error(r, cam_values(r, fine)),
              "sampling": abs(polygon.polygon_deviation(r, 1.0, sub=64) / max(rows[4]["deviation"], 1e-300) - 1)}
-    ref = {"deviation": 0.0, "rho_min": r.rho_min if math.isfinite(r.rho_min) else None, "setting": 0.0,
-           "check": check}
+    ref = {"deviation": 0.0, "rho_min": r.rho_min if math.isfinite(r.rho_min) else None, "r0": r.r0,
+           "setting": 0.0, "check": check}
     order = fit_order(settings, [x["error"] for x in rows], inverse=True)
     orders = {"deviation": fit_order(settings, [x["deviation"] / r.r0 for x in rows], inverse=True)}
     if ref["rho_min"]:     # a rho_min on a dwell (an arc) is exact: its errors are rounding
@@ -375,12 +375,13 @@ def study_gears(task, repeat: int = 3) -> dict:
     for n in settings:
         bc, t = _timed(lambda: shifts.blocking_contour(*args, *rng, n=n), repeat if n <= 161 else 1)
         dev = shifts.contour_deviation(bc, *args)
-        rows.append({"setting": n, "deviation": max(dev.values()), "error": max(dev.values()),
+        rows.append({"setting": n, "deviation_x": max(dev.values()), "error": max(dev.values()),
                      "time_ms": round(t, 3)})
     bc = shifts.blocking_contour(*args, *rng, n=161)
     d1 = max(shifts.contour_deviation(bc, *args, tol=1e-13).values())
     d2 = max(shifts.contour_deviation(bc, *args, tol=1e-15).values())
-    ref = {"deviation": 0.0, "setting": 0, "check": {"setting": "bisection to 1e-15 at 161", "difference": abs(d1 - d2)}}
+    ref = {"deviation_x": 0.0, "setting": 0,
+           "check": {"setting": 1e-15, "grid": 161, "difference": abs(d1 - d2)}}
     return {"setting": "grid", "reference": ref, "rows": rows,
             "order": fit_order([n - 1 for n in settings], [r["error"] for r in rows]),
             "theory": THEORY["gears"]}
@@ -507,62 +508,81 @@ def svg_loglog(series: list[tuple[str, list[float], list[float]]], xlabel: str,
     return "\n".join(o)
 
 
-def _fmt(v) -> str:
+def _fmt(v, key: str = "") -> str:
     if v is None:
         return "—"
+    if isinstance(v, float) and (key.startswith(("err", "deviation")) or key == "time_ms"):
+        return f"{v:.3g}"
     if isinstance(v, float):
         return f"{v:.3g}" if (abs(v) < 1e-3 or abs(v) >= 1e6) and v != 0 else f"{v:.10g}"
     return str(v)
 
 
-STAGE_TITLES = {"flywheel": "Flywheel (Gauss-Legendre works, extrema located)", "curves": "Output curves s, v, a",
-                "dof2": "Two-degree-of-freedom motion (DOP853)", "planetary": "Planetary search"}
-NOT_SWEPT = ("Not swept (no setting trades time for accuracy there): kinetostatics is solved exactly at "
-             "the task's positions; the cam's r0 and rho_min are refined over continuous cam angle; the gear "
-             "blocking contour is traced on a fixed internal grid.")
-
-
-def html_section(study: dict, trapezoid: dict | None = None) -> str:
-    """A report section: per stage the table, the measured order and a log-log plot."""
+def html_section(study: dict, trapezoid: dict | None = None, lang: str = "en") -> str:
+    """A report section in `lang`: per stage the table, the measured and the theoretical
+    order and a log-log plot (texts: tmm_cli/report/sections/study.py, I18N)."""
     import html as h
-    parts = ["<section><h2>Accuracy against computing time</h2>",
-             "<p>Each row: the setting, the values, the largest relative error against the "
-             "reference (itself computed again at a finer setting: they agree to "
-             f"{REF_TOL:g}) and the computing time (best of repeats).</p>"]
+    from .report import i18n
+    from .report.sections import study as sec
+    i18n.register(sec.I18N)
+
+    def t(key, **kw):
+        return i18n.translate(f"study.{key}", lang, **kw)
+
+    def col(k):
+        key = f"study.col.{k}"
+        return i18n.translate(key, lang) if key in i18n.STRINGS["en"] else k
+
+    parts = [f"<section><h2>{h.escape(t('title'))}</h2>", f"<p>{h.escape(t('intro', tol=f'{REF_TOL:g}'))}</p>"]
     for stage, d in study.items():
         rows = d["rows"]
         keys = [k for k in rows[0] if k not in ("setting", "error", "time_ms")]
-        parts.append(f"<h3>{h.escape(STAGE_TITLES.get(stage, stage))}</h3>")
-        order = d.get("order")
+        parts.append(f"<h3>{h.escape(t('stage.' + stage))}</h3>")
         ref = d["reference"]
-        txt = f"setting <code>{h.escape(d['setting'])}</code>; reference at {_fmt(ref['setting'])}: " + \
-            ", ".join(f"{k} = {_fmt(ref[k])}" for k in keys)
-        txt += f"; measured order {order}" if order is not None else "; no convergence order"
+        txt = [t("note." + stage)]
+        rv = ", ".join(f"{col(k)} = {_fmt(ref[k])}" for k in ref if k not in ("setting", "check", "converged"))
+        txt.append(t("reference_exact" if ref["setting"] == 0 else "reference", setting=_fmt(ref["setting"]),
+                     values=rv))
+        chk = ref.get("check")
+        if isinstance(chk, dict):
+            key = f"study.check.{stage}"
+            txt.append(i18n.translate(key if key in i18n.STRINGS["en"] else "study.check", lang,
+                                      setting=_fmt(chk.get("setting")), diff=_fmt(chk.get("difference"), "err")))
+        if ref.get("converged") is False:
+            txt.append(t("not_converged"))
+        order, theory = d.get("order"), d.get("theory")
+        txt.append(t("order", order=order) if order is not None else t("no_order"))
+        if theory is not None:
+            txt.append(t("theory", theory=theory))
         tr = (trapezoid or {}).get(stage)
         if tr:
-            txt += f" (the trapezoid on the same grids: order {tr['order']})"
-        parts.append(f"<p>{txt}.</p>")
-        head = "".join(f"<th>{h.escape(k)}</th>" for k in ["setting", *keys, "error", "time, ms"])
-        body = "".join("<tr>" + "".join(f"<td>{_fmt(r[k])}</td>" for k in ["setting", *keys, "error", "time_ms"])
+            txt.append(t("trapezoid", order=tr["order"]))
+        parts.append("<p>" + h.escape(" ".join(x[0].upper() + x[1:].rstrip(".") + "." for x in txt if x)) + "</p>")
+        head = "".join(f"<th>{h.escape(x)}</th>" for x in [col(d["setting"]), *map(col, keys), t("error"), t("time")])
+        body = "".join("<tr>" + "".join(f"<td>{_fmt(r[k], k)}</td>" for k in ["setting", *keys, "error", "time_ms"])
                        + "</tr>" for r in rows)
         parts.append(f"<table><tr>{head}</tr>{body}</table>")
-        series = [(stage, [r["setting"] for r in rows], [r["error"] for r in rows])]
+        xs = [r["setting"] for r in rows]
+        series = [(t("series." + stage), xs, [r["error"] for r in rows])]
         if tr:
-            series.append(("trapezoid", [r["setting"] for r in tr["rows"]], [r["error"] for r in tr["rows"]]))
-        parts.append(svg_loglog(series, d["setting"]))
-    parts.append(f"<p>{NOT_SWEPT}</p></section>")
+            series.append((t("series.trapezoid"), [r["setting"] for r in tr["rows"]], [r["error"] for r in tr["rows"]]))
+        parts.append(svg_loglog(series, col(d["setting"]), t("axis")))
+    parts.append("</section>")
     return "\n".join(parts)
 
 
-def write(study: dict, out, trapezoid: dict | None = None) -> list:
-    """study.json and study.html (the section as a page) in the folder `out`."""
+def write(study: dict, out, trapezoid: dict | None = None, lang: str = "en") -> list:
+    """study.json and study.html (the section as a page, in `lang`) in the folder `out`."""
     import json
     from pathlib import Path
     from .io import atomic_write
     out = Path(out)
-    page = ("<!DOCTYPE html><html><head><meta charset='utf-8'><title>Accuracy study</title>"
+    from .report.i18n import translate
+    section = html_section(study, trapezoid, lang)        # registers the texts
+    page = (f"<!DOCTYPE html><html lang='{lang}'><head><meta charset='utf-8'><title>"
+            f"{translate('study.title', lang)}</title>"
             "<style>body{font-family:sans-serif;max-width:60em;margin:1em auto}table{border-collapse:collapse}"
             "td,th{border:1px solid #999;padding:2px 6px;text-align:right}</style></head><body>"
-            + html_section(study, trapezoid) + "</body></html>")
+            + section + "</body></html>")
     return [atomic_write(out / "study.json", json.dumps(study, indent=1, allow_nan=False)),
             atomic_write(out / "study.html", page)]
