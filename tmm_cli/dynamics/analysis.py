@@ -446,18 +446,70 @@ def _quadrature_of(r: "DynamicsResult") -> str:
 
 
 # ------------------------------------------------------------------ drivers
-def _split(s: Sample, n: int) -> tuple[Sample, Sample]:
-    """A Sample over n + m angles as (the first n, the other m)."""
-    def cut(a, sl):
+def _take(s: Sample, sl) -> Sample:
+    """The Sample at the angles `sl` (a slice or an index array) of s."""
+    def cut(a):
         return None if a is None else np.asarray(a)[sl]
 
-    def part(sl):
-        return Sample(M_by_kind={k: cut(v, sl) for k, v in s.M_by_kind.items()},
-                      M_given=cut(s.M_given, sl),
-                      J_links={k: cut(v, sl) for k, v in s.J_links.items()},
-                      dJ_links={k: cut(v, sl) for k, v in (s.dJ_links or {}).items()},
-                      J_links_total=cut(s.J_links_total, sl), dJ_total=cut(s.dJ_total, sl))
-    return part(slice(0, n)), part(slice(n, None))
+    return Sample(M_by_kind={k: cut(v) for k, v in s.M_by_kind.items()}, M_given=cut(s.M_given),
+                  J_links={k: cut(v) for k, v in s.J_links.items()},
+                  dJ_links={k: cut(v) for k, v in (s.dJ_links or {}).items()},
+                  J_links_total=cut(s.J_links_total), dJ_total=cut(s.dJ_total))
+
+
+def _split(s: Sample, n: int) -> tuple[Sample, Sample]:
+    """A Sample over n + m angles as (the first n, the other m)."""
+    return _take(s, slice(0, n)), _take(s, slice(n, None))
+
+
+def _concat(a: Sample, b: Sample) -> Sample:
+    """The Samples a and b over their angles one after the other."""
+    def cat(x, y):
+        return None if x is None or y is None else np.concatenate([np.asarray(x), np.asarray(y)])
+
+    return Sample(M_by_kind={k: cat(v, b.M_by_kind.get(k)) for k, v in a.M_by_kind.items()},
+                  M_given=cat(a.M_given, b.M_given),
+                  J_links={k: cat(v, b.J_links.get(k)) for k, v in a.J_links.items()},
+                  dJ_links={k: cat(v, (b.dJ_links or {}).get(k)) for k, v in (a.dJ_links or {}).items()},
+                  J_links_total=cat(a.J_links_total, b.J_links_total), dJ_total=cat(a.dJ_total, b.dJ_total))
+
+
+class _Reuse:
+    """A sampler that keeps its first sample: a later call at angles all among those
+    (the hand method's positions are nodes of the default grid) is answered from it."""
+
+    def __init__(self, sampler: Sampler, extra=None):
+        self.sampler = sampler
+        self.index: dict | None = None
+        self.sample: Sample | None = None
+        self.extra = extra       # (q, side) sampled with the first call, kept for later ones
+
+    def __call__(self, q_deg, side):
+        q = np.asarray(q_deg, float)
+        sd = np.asarray(side, float)
+        if self.index is None and self.extra is not None:
+            n = q.size
+            (qx, sx), self.extra = self.extra, None
+            self(np.concatenate([q, qx]), np.concatenate([sd, sx]))
+            return _take(self.sample, slice(0, n))
+        if self.index is not None:
+            idx = [self.index.get((a, b)) for a, b in zip(q.tolist(), sd.tolist())]
+            miss = np.array([i is None for i in idx])
+            if miss.all():
+                return self.sampler(q, sd)
+            if not miss.any():
+                return _take(self.sample, np.asarray(idx, int))
+            # the sample kept, then the angles not among them; put back in the asked order
+            known = np.array([-1 if i is None else i for i in idx])
+            both = _concat(_take(self.sample, known[~miss]), self.sampler(q[miss], sd[miss]))
+            order = np.empty(q.size, int)
+            order[np.flatnonzero(~miss)] = np.arange(int((~miss).sum()))
+            order[np.flatnonzero(miss)] = int((~miss).sum()) + np.arange(int(miss.sum()))
+            return _take(both, order)
+        out = self.sampler(q, sd)
+        self.index = {key: i for i, key in enumerate(zip(q.tolist(), sd.tolist()))}
+        self.sample = out
+        return out
 
 
 def _run_grid(sampler: Sampler, section, omega_m: float, cycle: float, resolution: int,
@@ -513,12 +565,17 @@ def _rel(x, ref):
     return abs(x - ref) / den
 
 
+def hand_positions(cycle: float) -> int:
+    """The hand method's positions: every 30 deg of the cycle (12, or 24 over 720 deg)."""
+    return int(round(cycle / 30.0))
+
+
 def hand_row(sampler: Sampler, section, omega_m: float, cycle: float, switch_q,
              ref: CycleResult, ref_resolution: int) -> dict:
     """The course's hand method: 12 positions every 30 deg (24 over 720 deg), the trapezoid
     of the works, no inserted jump points, the extrema at the positions; beside the
     accurate result `ref` (deterministic: no timing)."""
-    n_hand = int(round(cycle / 30.0))
+    n_hand = hand_positions(cycle)
     hand = _run_grid(sampler, section, omega_m, cycle, n_hand, switch_q, insert=False)[0]
     J_ref = ref.J_fly[ref.method]
     return {"method": "hand: trapezoid over the positions", "positions": n_hand, "step": 30.0,
@@ -589,6 +646,8 @@ def analyze_sampler(sampler: Sampler, section, omega_m: float, *, cycle: float =
     if cycle not in (360, 720, 360.0, 720.0):
         raise StageError(STAGE, f"the cycle must be 360 or 720 deg (got {cycle})")
     resolution = int(section.resolution)
+    given = sampler          # the hand method's positions are sampled with the grid's
+    sampler = _Reuse(sampler, grid(hand_positions(cycle), cycle, switch_q, insert=False))
     c, q_deg, side = _run_grid(sampler, section, omega_m, cycle, resolution, switch_q)
     shape = section.shape
     shp = {"type": shape.type, "density": float(shape.density), "width_ratio": float(shape.width_ratio)}
@@ -616,7 +675,7 @@ def analyze_sampler(sampler: Sampler, section, omega_m: float, *, cycle: float =
                             f"converged value; raise `flywheel.resolution`")
     return DynamicsResult(cycle=c, cycle_deg=float(cycle), resolution=resolution, phi0=float(phi0),
                           sign=float(sign), constant=section.constant, shape=shp, size=sz,
-                          accuracy=acc, warnings=warnings, q_deg=q_deg, side=side, sampler=sampler,
+                          accuracy=acc, warnings=warnings, q_deg=q_deg, side=side, sampler=given,
                           hand=hand, quadrature_points=int(getattr(section, "quadrature", GAUSS_DEFAULT)))
 
 
