@@ -27,12 +27,10 @@ FORGING = {
 
 
 def prepare(task_path: str | None = None):
+    """(task with the crank speed resolved, mechanism, positions) as the pipeline has them."""
     import tmm_cli
-    from tmm_cli import kinematics
-    from tmm_cli.mechanism import build_mechanism
+    from tmm_cli import study
     task = tmm_cli.load_task(task_path if task_path else FORGING)
     if task.flywheel is None:
         raise SystemExit(f"{task_path}: no `flywheel` section")
-    mech = build_mechanism(task)
-    pos = kinematics.find_positions(mech, task.positions, task.drive)
-    return task, mech, pos
+    return study._linkage(task)

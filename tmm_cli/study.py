@@ -25,8 +25,9 @@ Stages and settings (the rule, its theoretical order):
 * curves: `points` of the output's s, v, a curves over a turn; the curves drawn through
   them (linear interpolation: 2) against the exact kinematics at `KST_EVAL` angles; error:
   the largest deviation relative to the curve's largest value (s: the stroke);
-* kinetostatics: `positions` per turn (equal steps plus the load jumps and kinks and the
-  extreme positions, each jump as both one-sided limits); the diagrams of M_b and of the
+* kinetostatics: `positions` per turn (equal steps plus the load jumps and kinks, the
+  extreme positions and, with friction, the reversals of the pairs' relative motion and
+  the sign changes of the sliders' normal forces, each as both one-sided limits); the diagrams of M_b and of the
   reactions drawn through them (linear interpolation: 2) against the exact solution at
   `KST_EVAL` angles; error: the largest deviation over the cycle relative to the diagram's
   largest value;
@@ -237,6 +238,29 @@ class KinetostaticDiagrams:
         # the exact diagrams at KST_EVAL angles strictly inside the grid cells (off every jump)
         self.q_eval = (np.arange(KST_EVAL) + 0.5) * self.cycle / KST_EVAL
         self.exact = self.at(self.q_eval, np.zeros(KST_EVAL))
+        if getattr(task.kinetostatics, "friction", None) is not None:
+            # a slider's friction f |N| has a kink where its normal force N changes sign
+            self.switch = sorted(self.switch + self.normal_zeros())
+
+    def normal_zeros(self, tol: float = 1e-9) -> list[float]:
+        """Cycle angles q (deg) where a prismatic pair's normal force changes sign: sign
+        changes at the KST_EVAL angles, each refined by bisection to `tol` deg."""
+        cols = [1 + 2 * k for k, j in enumerate(self.mech.joints) if j.kind == "P"]
+        out: list[float] = []
+        q = self.q_eval
+        for c in cols:
+            v = self.exact[:, c]
+            i = np.flatnonzero(np.isfinite(v[:-1]) & np.isfinite(v[1:]) & (np.sign(v[:-1]) * np.sign(v[1:]) < 0))
+            if i.size == 0:
+                continue
+            lo, hi, flo = q[i], q[i + 1], v[i]
+            for _ in range(int(np.ceil(np.log2((q[1] - q[0]) / tol)))):
+                mid = 0.5 * (lo + hi)
+                fm = self.at(mid, np.zeros(mid.size))[:, c]
+                left = np.sign(fm) == np.sign(flo)
+                lo, flo, hi = np.where(left, mid, lo), np.where(left, fm, flo), np.where(left, hi, mid)
+            out.extend(float(x) for x in 0.5 * (lo + hi))
+        return out
 
     def _relative(self, q) -> np.ndarray:
         from .kinetostatics.equations import geometry
