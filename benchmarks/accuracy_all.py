@@ -32,7 +32,8 @@ DEFAULT = {"curves": 361, "cam": 1.0, "gears": 161, "dof2": 1e-10}
 
 
 def flywheel_row(path):
-    from tmm_cli import dynamics, study
+    from tmm_cli import study
+    from tmm_cli.linkage import dynamics
     task, mech, pos = prepare(path)
     ref = study.flywheel_values(task, mech, pos, 2880)
     ref2 = study.flywheel_values(task, mech, pos, 5760)

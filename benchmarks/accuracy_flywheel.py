@@ -18,7 +18,7 @@ from _dyn_tasks import prepare  # noqa: E402
 
 
 def main() -> None:
-    from tmm_cli import dynamics
+    from tmm_cli.linkage import dynamics
     task, mech, pos = prepare(sys.argv[1] if len(sys.argv) > 1 else None)
     r = dynamics.analyze_task(mech, task, pos, accuracy=True)
     acc = r.to_dict()["accuracy"]

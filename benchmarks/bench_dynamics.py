@@ -31,8 +31,8 @@ def median_ms(fn, repeat=7) -> float:
 
 
 def main() -> None:
-    from tmm_cli import dynamics
-    from tmm_cli.dynamics import flywheel as fw
+    from tmm_cli.linkage import dynamics
+    from tmm_cli.linkage.dynamics import flywheel as fw
     task, mech, pos = prepare(sys.argv[1] if len(sys.argv) > 1 else None)
     res = task.flywheel.resolution
     rows = [(f"full dynamics, {res} positions (no accuracy table)",

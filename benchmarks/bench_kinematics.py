@@ -15,8 +15,8 @@ import numpy as np
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from tmm_cli.kinematics import solve  # noqa: E402
-from tmm_cli.mechanism import build_mechanism  # noqa: E402
+from tmm_cli.linkage.kinematics import solve  # noqa: E402
+from tmm_cli.linkage.mechanism import build_mechanism  # noqa: E402
 from tmm_cli.task import load_task  # noqa: E402
 
 

@@ -18,10 +18,11 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from tmm_cli import kinematics, load_task, structure  # noqa: E402
-from tmm_cli.kinetostatics import analyze, find_singular  # noqa: E402
-from tmm_cli.loads import evaluate  # noqa: E402
-from tmm_cli.mechanism import build_mechanism  # noqa: E402
+from tmm_cli import load_task  # noqa: E402
+from tmm_cli.linkage import kinematics, structure  # noqa: E402
+from tmm_cli.linkage.kinetostatics import analyze, find_singular  # noqa: E402
+from tmm_cli.linkage.loads import evaluate  # noqa: E402
+from tmm_cli.linkage.mechanism import build_mechanism  # noqa: E402
 
 SIX = {"schema": "tmm/1", "mechanism": {
     "ground": {"O": [0, 0], "C": [0.28, 0]},

@@ -9,7 +9,7 @@ interleaved (A, B, A, B, ...), each repeated (>= 5 times); medians and the sprea
 * with --report: the whole report (HTML + PDF) against the JSON run of the same task
   (target <= 4x; absolute wall and CPU printed too), and the HTML report of a
   3600-position grid against the 12-position task (target <= 2x);
-* the kinematics core (tmm_cli.kinematics.solve) against a hand-written numpy closed
+* the kinematics core (tmm_cli.linkage.kinematics.solve) against a hand-written numpy closed
   form of the same central slider-crank and four-bar, N = 36 ... 36000 (target <= 3x at
   N >= 3600), and the fixed cost per call.
 
@@ -179,8 +179,8 @@ def _time_calls(fn, n_calls: int) -> float:
 
 
 def kinematics(repeat: int) -> None:
-    from tmm_cli.kinematics import solve
-    from tmm_cli.mechanism import build_mechanism
+    from tmm_cli.linkage.kinematics import solve
+    from tmm_cli.linkage.mechanism import build_mechanism
     from tmm_cli.task import load_task
     cases = [("slider-crank", build_mechanism(load_task(SLIDER_CRANK)), slider_crank_closed, "B", "rod"),
              ("four-bar", build_mechanism(load_task(FOUR_BAR)), four_bar_closed, "B", "rocker")]

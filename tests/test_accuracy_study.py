@@ -22,8 +22,8 @@ from types import SimpleNamespace as NS
 import numpy as np
 import pytest
 
-from tmm_cli.dynamics import EPS_DEG, Sample, analyze_sampler
-from tmm_cli.dynamics import flywheel as fw
+from tmm_cli.linkage.dynamics import EPS_DEG, Sample, analyze_sampler
+from tmm_cli.linkage.dynamics import flywheel as fw
 
 R, L, F, J0, WM = 0.1, 0.35, 2000.0, 0.05, 20.0
 

@@ -15,7 +15,7 @@ import math
 import numpy as np
 import pytest
 
-from tmm_cli.kinematics.changepoints import NEAR_DEG, circle_zeros
+from tmm_cli.linkage.kinematics.changepoints import NEAR_DEG, circle_zeros
 
 LIMIT = """\
 schema: tmm/1
@@ -98,8 +98,8 @@ def test_grashof_limit_change_point_at_the_extreme(tmp_path):
 def test_grashof_limit_values_kept_near_but_not_at_the_change_point(tmp_path):
     # 2 deg before the change point the values are finite and of the cycle's size
     import tmm_cli
-    from tmm_cli.kinematics import solve
-    from tmm_cli.mechanism import build_mechanism
+    from tmm_cli.linkage.kinematics import solve
+    from tmm_cli.linkage.mechanism import build_mechanism
     f = tmp_path / "task.yaml"
     f.write_text(LIMIT, encoding="utf-8")
     mech = build_mechanism(tmm_cli.load_task(f))
@@ -124,8 +124,8 @@ def test_deltoid_change_point_and_branch_jump(tmp_path):
     # the rocker's curve jumps by 180 deg across the change point (the kite folds on one
     # side, A B and O3 B along the ground line; it opens on the other) - the warning says so
     import tmm_cli
-    from tmm_cli.kinematics import solve
-    from tmm_cli.mechanism import build_mechanism
+    from tmm_cli.linkage.kinematics import solve
+    from tmm_cli.linkage.mechanism import build_mechanism
     mech = build_mechanism(tmm_cli.load_task(tmp_path / "task.yaml"))
     k = solve(mech, [359.99, 0.01], 1.0)
     jump = math.degrees(float(k.angle["rocker"][0] - k.angle["rocker"][1])) % 360.0

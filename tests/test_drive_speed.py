@@ -9,10 +9,10 @@ import pytest
 from typer.testing import CliRunner
 
 from tmm_cli.cli import app
-from tmm_cli.drive_speed import omega_from_mean, omega_from_working
+from tmm_cli.linkage.drive_speed import omega_from_mean, omega_from_working
 from tmm_cli.errors import TaskError
-from tmm_cli.kinematics import solve
-from tmm_cli.mechanism import build_mechanism
+from tmm_cli.linkage.kinematics import solve
+from tmm_cli.linkage.mechanism import build_mechanism
 from tmm_cli.pipeline import run
 from tmm_cli.task import load_task
 

@@ -11,7 +11,7 @@ Independent references used here:
   J omega domega/dq + J' omega^2/2 = M (a different route from the energy form);
 * the bounds min J_var <= J_n(Merzalov) - J_n(exact) <= max J_var and
   |J_n(Wittenbauer tangents) - J_n(exact)| <= (max J_var - min J_var) delta/8
-  derived in tmm_cli/dynamics/flywheel.py's docstring (checked on random fields).
+  derived in tmm_cli/linkage/dynamics/flywheel.py's docstring (checked on random fields).
 """
 from __future__ import annotations
 
@@ -23,8 +23,8 @@ import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from tmm_cli.dynamics import EPS_DEG, Sample, analyze_sampler, grid, solve_cycle
-from tmm_cli.dynamics import flywheel as fw
+from tmm_cli.linkage.dynamics import EPS_DEG, Sample, analyze_sampler, grid, solve_cycle
+from tmm_cli.linkage.dynamics import flywheel as fw
 from tmm_cli.errors import StageError
 
 SPEC_KEYS = {"J", "J_energy_mass", "J_merzalov", "J_exact", "J_n", "J_const", "delta_achieved",
@@ -331,7 +331,7 @@ def test_convergence_order_of_the_rules_with_jumps_inserted():
     sec = section(delta=0.05, resolution=360)
     ref = analyze_sampler(jumpy, section(delta=0.05, resolution=4000, quadrature=3), 10.0,
                           switch_q=(100.0, 250.0), accuracy=False).cycle.J_n["exact"]
-    from tmm_cli.dynamics.analysis import _run_grid
+    from tmm_cli.linkage.dynamics.analysis import _run_grid
     for n_g, res, band in ((0, [36, 72, 144, 288, 576], (1.6, 2.6)),
                            (1, [36, 72, 144, 288, 576], (1.6, 2.6)),
                            (2, [36, 72, 144, 288, 576], (3.5, 4.5)),

@@ -17,8 +17,8 @@ import numpy as np
 import pytest
 
 import tmm_cli
-from tmm_cli import dynamics, kinematics
-from tmm_cli.mechanism import build_mechanism
+from tmm_cli.linkage import dynamics, kinematics
+from tmm_cli.linkage.mechanism import build_mechanism
 
 R, L = 0.1, 0.4
 
@@ -109,7 +109,7 @@ def test_jump_inside_stroke_on_the_grid():
     """s-diagram 0 then 3000 N from mid-stroke: work 3000 H/2 per cycle.  The jump angle
     (from loads.switch_angles) is a double node of the grid; the trapezoid error of the
     smooth rest falls as h^2."""
-    from tmm_cli import loads as loads_mod
+    from tmm_cli.linkage import loads as loads_mod
     loads = {"forces": [{"on": "slider", "kind": "resistance",
                          "diagram": {"s": [0, 0.5, 0.5, 1], "value": [0, 0, 3000, 3000]}}]}
     exact = 3000 * R / (2 * np.pi)
@@ -150,7 +150,7 @@ def test_engine_720_cycle_phi_diagram():
 @pytest.mark.parametrize("direction", ["ccw", "cw"])
 def test_balancing_moment_equals_constant_driving_moment(direction):
     """Kinetostatics with the steady motion: M_b = M_constant (signed) at every position."""
-    from tmm_cli import kinetostatics, loads as loads_mod, structure
+    from tmm_cli.linkage import kinetostatics, loads as loads_mod, structure
     task, mech, pos = slider_crank({"gravity": True, "forces": [
         {"on": "slider", "kind": "resistance",
          "diagram": {"s": [0, 0.3, 1], "value": [500, 2500, 2500]}}]}, direction=direction)
@@ -171,7 +171,7 @@ def test_balancing_moment_equals_constant_driving_moment(direction):
 def test_balancing_moment_720_cycle_positions_off_zero():
     """720-deg cycle, position 0 at phi0 = 180 deg: the reported angles 0..150 deg are read
     as the loads module reads them (first turn), so M_b = M_constant there too."""
-    from tmm_cli import kinetostatics, loads as loads_mod, structure
+    from tmm_cli.linkage import kinetostatics, loads as loads_mod, structure
     loads = {"forces": [{"on": "slider", "diagram": {"phi": [0, 100, 180, 400, 720],
                                                      "value": [2000, 800, 0, -300, 0]}}]}
     task, mech, pos = slider_crank(loads, flywheel={"delta": "1/50", "constant": "resistance"},

@@ -11,7 +11,7 @@ from types import SimpleNamespace as NS
 import numpy as np
 import pytest
 
-from tmm_cli.dynamics import EPS_DEG, Sample, analyze_sampler
+from tmm_cli.linkage.dynamics import EPS_DEG, Sample, analyze_sampler
 
 
 def _results():

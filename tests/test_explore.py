@@ -86,8 +86,8 @@ def test_json_cannot_close_the_script():
 
 
 def test_values_at_three_angles_equal_an_independent_solve(page, run):
-    from tmm_cli.kinematics import solve
-    from tmm_cli.mechanism import build_mechanism
+    from tmm_cli.linkage.kinematics import solve
+    from tmm_cli.linkage.mechanism import build_mechanism
     from tmm_cli.task import load_task
     res = json.loads((run / "results.json").read_text())
     task = load_task(TASK)

@@ -9,10 +9,10 @@ from hypothesis import strategies as st
 from scipy.optimize import fsolve
 
 from tmm_cli.errors import StageError
-from tmm_cli.kinematics import check_assembly, solve
-from tmm_cli.kinematics import newton as nw
-from tmm_cli.kinematics.solver import get_solver
-from tmm_cli.mechanism import build_mechanism
+from tmm_cli.linkage.kinematics import check_assembly, solve
+from tmm_cli.linkage.kinematics import newton as nw
+from tmm_cli.linkage.kinematics.solver import get_solver
+from tmm_cli.linkage.mechanism import build_mechanism
 from tmm_cli.task import load_task
 
 TASKS = Path(__file__).resolve().parent.parent / "tasks"

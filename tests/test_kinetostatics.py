@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from tmm_cli import structure
-from tmm_cli.kinetostatics import analyze, find_singular
-from tmm_cli.loads import evaluate
+from tmm_cli.linkage import structure
+from tmm_cli.linkage.kinetostatics import analyze, find_singular
+from tmm_cli.linkage.loads import evaluate
 from tmm_cli.task import KinetostaticsSection, LoadsSection
 
 from test_kinetostatics_closedform import (FB, SC, four_bar_kin, four_bar_task, mech_of, slider_crank_kin,

@@ -1,5 +1,5 @@
 """Closed-form kinematics of a slider-crank and a four-bar, written independently of
-tmm_cli.kinematics, shaped like a KinematicsResult; used by the loads and
+tmm_cli.linkage.kinematics, shaped like a KinematicsResult; used by the loads and
 kinetostatics tests. The tests in this file check the closed forms themselves
 against central finite differences (so a typo in a derivative cannot pass)."""
 from __future__ import annotations
@@ -10,7 +10,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pytest
 
-from tmm_cli.mechanism import build_mechanism
+from tmm_cli.linkage.mechanism import build_mechanism
 from tmm_cli.task import load_task
 
 

@@ -15,9 +15,9 @@ import numpy as np
 import pytest
 
 import tmm_cli
-from tmm_cli import structure
-from tmm_cli.kinetostatics import analyze
-from tmm_cli.loads import evaluate
+from tmm_cli.linkage import structure
+from tmm_cli.linkage.kinetostatics import analyze
+from tmm_cli.linkage.loads import evaluate
 from tmm_cli.task import KinetostaticsSection, LoadsSection
 
 from test_kinetostatics_closedform import mech_of, slider_crank_kin, slider_crank_task

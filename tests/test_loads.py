@@ -1,4 +1,4 @@
-"""Loads (tmm_cli/loads.py) against hand values on a centric slider-crank whose
+"""Loads (tmm_cli/linkage/loads.py) against hand values on a centric slider-crank whose
 extreme positions are known exactly (crank angles 0 and 180 deg)."""
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from tmm_cli.loads import G, evaluate, interp_right, switch_angles
+from tmm_cli.linkage.loads import G, evaluate, interp_right, switch_angles
 from tmm_cli.task import LoadsSection
 
 from test_kinetostatics_closedform import mech_of, slider_crank_kin, slider_crank_task
@@ -184,7 +184,7 @@ def test_interp_takes_the_value_after_a_jump():
 def test_720_degree_indicator_diagram_turns():
     """Cycle 720: reported angles (in [0, 360)) are the first turn after position 0,
     unwrapped angles phi0 + q with q in [360, 720) the second."""
-    from tmm_cli.loads import cycle_angle
+    from tmm_cli.linkage.loads import cycle_angle
     assert cycle_angle([180.0, 90.0, 180.0 + 500.0, 179.0], 180.0, 1.0, 720.0).tolist() == \
         pytest.approx([0.0, 270.0, 500.0, 359.0])
     assert cycle_angle([170.0, 180.0 - 400.0], 180.0, -1.0, 720.0).tolist() == pytest.approx([10.0, 400.0])

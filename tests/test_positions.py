@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from tmm_cli.errors import StageError
-from tmm_cli.kinematics import find_positions
-from tmm_cli.mechanism import build_mechanism
+from tmm_cli.linkage.kinematics import find_positions
+from tmm_cli.linkage.mechanism import build_mechanism
 from tmm_cli.task import load_task
 
 TASKS = Path(__file__).resolve().parent.parent / "tasks"

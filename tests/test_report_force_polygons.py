@@ -131,7 +131,7 @@ def test_loads_table_inertia_forces(case):
             assert row[c] == ctx.fmt(m * a, 4), (col, row[0])
             checked += 1
     assert checked >= 2 * len(rows)
-    # the weights m g (g = 9.81 m/s², tmm_cli/loads.py) are constant: listed once below the table
+    # the weights m g (g = 9.81 m/s², tmm_cli/linkage/loads.py) are constant: listed once below the table
     for i, m in masses.items():
         if m:
             assert f"G<sub>{i}</sub> = {ctx.fmt(m * 9.81, 5)}" in str(const), i

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import tmm_cli
-from tmm_cli.kinematics.changepoints import circle_zeros
+from tmm_cli.linkage.kinematics.changepoints import circle_zeros
 
 GRID = np.linspace(0.0, 360.0, 721)
 

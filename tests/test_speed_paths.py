@@ -114,7 +114,7 @@ def test_results_text_is_json_readable_and_deterministic():
 
 
 def test_unwrap_is_numpys():
-    from tmm_cli.kinematics.solver import _unwrap, _unwrap_sorted
+    from tmm_cli.linkage.kinematics.solver import _unwrap, _unwrap_sorted
     rng = np.random.default_rng(3)
     for n in (1, 2, 5, 36, 400):
         for scale in (0.01, 1.0, 5.0):

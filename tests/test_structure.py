@@ -4,8 +4,8 @@ from pathlib import Path
 import pytest
 
 from tmm_cli.errors import StageError, TaskError
-from tmm_cli.mechanism import build_mechanism
-from tmm_cli.structure import analyze
+from tmm_cli.linkage.mechanism import build_mechanism
+from tmm_cli.linkage.structure import analyze
 from tmm_cli.task import load_task
 
 TASKS = Path(__file__).resolve().parent.parent / "tasks"

@@ -11,8 +11,8 @@ from typer.testing import CliRunner
 
 from tmm_cli.cli import app
 from tmm_cli.errors import StageError, TaskError
-from tmm_cli.mechanism import build_mechanism
-from tmm_cli.synthesis import K_of_theta, analyse, theta_of_K
+from tmm_cli.linkage.mechanism import build_mechanism
+from tmm_cli.linkage.synthesis import K_of_theta, analyse, theta_of_K
 from tmm_cli.task import load_task
 
 TASKS = Path(__file__).resolve().parent.parent / "tasks"

@@ -129,8 +129,8 @@ def _drive_train(task: Task, results: dict, warnings: list, say) -> None:
 def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int) -> None:
     import numpy as np
 
-    from . import kinematics, structure
-    from .mechanism import build_mechanism
+    from .linkage import kinematics, structure
+    from .linkage.mechanism import build_mechanism
 
     say("structure")
     mech = build_mechanism(task)
@@ -149,17 +149,17 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int) -> No
     positions = find_positions(task, mech)
     results["positions"] = positions.to_dict()
     if task.loads is not None:      # each loaded slider's own stroke (docs/methods.md §3.3)
-        from . import loads as loads_mod
+        from .linkage import loads as loads_mod
         strokes = loads_mod.slider_strokes(mech, task.loads, positions)
         if strokes:
             results["positions"]["strokes"] = {k: s.to_dict() for k, s in strokes.items()}
     if task.synthesis is not None:
         say("synthesis")
-        from .synthesis import analyse
+        from .linkage.synthesis import analyse
         results["synthesis"] = _stage("synthesis")(analyse)(task._design, mech, task.drive.direction)
 
     # the crank speed: given, or from the output's speed with the stroke and K just found
-    from . import drive_speed
+    from .linkage import drive_speed
     omega1, source = drive_speed.resolve(task, positions)
     task = drive_speed.with_speed(task, omega1)
     results["drive"] = drive_speed.result(omega1, source)
@@ -176,7 +176,7 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int) -> No
     dyn = None
     if task.flywheel is not None:
         say("dynamics")
-        from . import dynamics, loads as loads_mod
+        from .linkage import dynamics, loads as loads_mod
         # the accuracy table (timed) runs only in `tmm study` / `tmm run --study`
         dyn = _stage("dynamics")(dynamics.analyze_task)(mech, task, positions, accuracy=False)
         results["flywheel"] = dyn.to_dict()
@@ -184,7 +184,7 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int) -> No
 
     if task.kinetostatics is not None:
         say("kinetostatics")
-        from . import kinetostatics, loads as loads_mod
+        from .linkage import kinetostatics, loads as loads_mod
         ks = task.kinetostatics
         sel = _select(ks.positions, positions, task)
         kin_k = kin
@@ -216,11 +216,11 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int) -> No
 def find_positions(task: Task, mech):
     """The positions of the cycle (the grid, the extra and extreme angles, the load
     switch points), as the pipeline computes them; also used by validation."""
-    from . import kinematics
+    from .linkage import kinematics
     pos_section = task.positions or PositionsSection()
     extra_added: list[float] = []
     if task.loads is not None:
-        from . import loads as loads_mod
+        from .linkage import loads as loads_mod
         pos0 = _stage("positions")(kinematics.find_positions)(mech, pos_section, task.drive)
         extra_added = list(loads_mod.switch_angles(mech, task.loads, pos0))
     return _stage("positions")(kinematics.find_positions)(mech, pos_section, task.drive,

@@ -142,8 +142,8 @@ def _patched(module, name: str, value):
 # ------------------------------------------------------------------ stages
 def _linkage(task):
     """(task with the crank speed resolved, mechanism, positions) as the pipeline has them."""
-    from . import drive_speed
-    from .mechanism import build_mechanism
+    from .linkage import drive_speed
+    from .linkage.mechanism import build_mechanism
     from .pipeline import find_positions
     mech = build_mechanism(task)
     pos = find_positions(task, mech)
@@ -152,7 +152,7 @@ def _linkage(task):
 
 
 def flywheel_values(task, mech, pos, resolution: int, quadrature: int | None = None) -> dict:
-    from . import dynamics
+    from .linkage import dynamics
     upd = {"resolution": int(resolution)}
     if quadrature is not None:
         upd["quadrature"] = int(quadrature)
@@ -179,7 +179,7 @@ def _interp_errors(q, v: np.ndarray, qe, ex: np.ndarray) -> np.ndarray:
 
 def curve_values(task, mech, pos, n: int, turn=None) -> np.ndarray:
     """(points, 3): s, v, a of the output over a turn at n equal steps (or at `turn`)."""
-    from . import kinematics
+    from .linkage import kinematics
     from .pipeline import _curve
     c = _curve(kinematics, mech, pos, task.drive.omega1, int(n), turn)
     return np.column_stack([np.asarray(c[k], float) for k in ("s", "v", "a")])
@@ -220,8 +220,8 @@ class KinetostaticDiagrams:
     the error of the diagrams drawn through N positions (see the module docstring)."""
 
     def __init__(self, task, mech, pos):
-        from . import kinematics, structure
-        from .dynamics import analysis as dyn
+        from .linkage import kinematics, structure
+        from .linkage.dynamics import analysis as dyn
         self.task, self.mech, self.pos = task, mech, pos
         self.cycle = float(task.drive.cycle)
         self.pos_l = pos if getattr(pos, "cycle", None) not in (None, 0) else dyn._WithCycle(pos, self.cycle)
@@ -263,8 +263,8 @@ class KinetostaticDiagrams:
         return out
 
     def _relative(self, q) -> np.ndarray:
-        from .kinetostatics.equations import geometry
-        from .kinetostatics.solve import relative_motion
+        from .linkage.kinetostatics.equations import geometry
+        from .linkage.kinetostatics.solve import relative_motion
         phi = self.phi0 + self.sign * np.asarray(q, float)
         kin = self._kin.solve(self.mech, phi, self.task.drive.omega1)
         return relative_motion(self.mech, geometry(self.mech, kin))
@@ -294,8 +294,8 @@ class KinetostaticDiagrams:
     def at(self, q, side) -> np.ndarray:
         """(positions, 1 + 2 * pairs): M_b and the reaction components at cycle angles q (deg),
         one-sided (side -1 / +1) at the jumps."""
-        from . import kinetostatics, loads as loads_mod
-        from .dynamics import EPS_DEG
+        from .linkage import kinetostatics, loads as loads_mod
+        from .linkage.dynamics import EPS_DEG
         phi = self.phi0 + self.sign * (np.asarray(q, float) + np.asarray(side, float) * EPS_DEG)
         kin = self._kin.solve(self.mech, phi, self.task.drive.omega1)
         ks = self.task.kinetostatics
@@ -305,7 +305,7 @@ class KinetostaticDiagrams:
         return np.column_stack([np.asarray(res.M_b, float), np.asarray(res.reactions, float)])
 
     def grid(self, n: int):
-        from .dynamics import grid
+        from .linkage.dynamics import grid
         return grid(int(n), self.cycle, self.switch)
 
     def errors(self, n: int, values: np.ndarray | None = None, q_eval=None, exact=None) -> dict:

@@ -153,7 +153,7 @@ class DriveSection(_Model):
 
     @model_validator(mode="after")
     def _one_speed(self):
-        from .drive_speed import check_output_speed
+        from .linkage.drive_speed import check_output_speed
         given = [k for k in ("speed", "mean_output_speed", "working_stroke_speed") if getattr(self, k) is not None]
         if not given:
             raise FieldValueError(("speed",), "required field is missing: the crank's `speed`, or the output's "
@@ -176,7 +176,7 @@ class DriveSection(_Model):
     def omega1(self) -> float:
         if self.speed is None:
             raise ValueError("the crank speed follows from the output's speed: resolve it first "
-                             "(tmm_cli.drive_speed.resolve)")
+                             "(tmm_cli.linkage.drive_speed.resolve)")
         return self.sign * self.speed
 
 
@@ -511,7 +511,7 @@ class SynthesisSection(_Model):
                 raise FieldValueError(("K" if self.K is not None else "theta",),
                                       "a central slider_crank has K = 1 (theta = 0): for K != 1 use type "
                                       "offset_slider_crank")
-        from .synthesis import LINKS
+        from .linkage.synthesis import LINKS
         for name in self.links:
             if name not in LINKS[self.type]:
                 import difflib
@@ -586,7 +586,7 @@ class Task(_Model):
         if "mechanism" in self.model_fields_set:
             raise FieldValueError(("synthesis",), "`synthesis` generates the mechanism: give either `synthesis` "
                                   "or `mechanism`, not both")
-        from .synthesis import SynthesisImpossible, design
+        from .linkage.synthesis import SynthesisImpossible, design
         if self.drive is None:
             raise FieldValueError(("synthesis",), "`synthesis` needs a `drive` section (link: crank, speed, direction)")
         try:

@@ -8,12 +8,12 @@ def check_feasible(task, assembly: bool = True) -> None:
     """Raise TaskError / StageError if the task's linkage cannot be computed:
     bad references between points, links and guides; W != 1; and (with
     ``assembly``) a crank angle where some group does not assemble."""
-    from .mechanism import build_mechanism
+    from .linkage.mechanism import build_mechanism
 
     mech = build_mechanism(task)
     if not assembly:
         return
-    from . import kinematics, structure
+    from .linkage import kinematics, structure
 
     structure.analyze(mech, task=task)
     try:

@@ -5,7 +5,7 @@ acceleration plans and a table of v, a, omega, epsilon for the angle shown.
 HTML only: ``inject(ctx, html)`` adds the widget (templates ``explore.html.j2`` and
 ``explore.js``, the data as JSON in a ``<script type="application/json">``) to the
 HTML text written to report.html; the PDF is made from the HTML without it.  The
-data come from the stage function ``tmm_cli.kinematics.explore.explore_grid``."""
+data come from the stage function ``tmm_cli.linkage.kinematics.explore.explore_grid``."""
 from __future__ import annotations
 
 import json
@@ -45,7 +45,7 @@ def data_json(data: dict) -> str:
 
 
 def fragment(ctx) -> str | None:
-    from ..kinematics.explore import explore_grid
+    from ..linkage.kinematics.explore import explore_grid
     if ctx.task is None or not ctx.results.get("kinematics"):
         return None
     try:

@@ -21,7 +21,7 @@ def check_output_speed(value) -> tuple[float, str | None]:
     """(magnitude in m/s or rad/s, 'linear' | 'angular' | None for a plain number).
     Raises ValueError for a value that is neither a linear nor an angular speed, or
     not positive."""
-    from .units import _parse, check_magnitude
+    from ..units import _parse, check_magnitude
 
     if isinstance(value, bool):
         raise ValueError("expected a speed (m/s for a slider, rad/s or deg/s for a rocker), got a boolean")

@@ -27,9 +27,9 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from ..lazy import brentq
+from ...lazy import brentq
 
-from ..errors import StageError
+from ...errors import StageError
 from ..mechanism import Mechanism
 from .solver import solve
 
@@ -251,7 +251,7 @@ def _extremes(f, period=None) -> list[tuple[float, float]]:
 def find_positions(mech: Mechanism, positions_section=None, drive_section=None,
                    extra_added=()) -> PositionsResult:
     """The reported crank positions and the output's extremes (see module docstring)."""
-    from ..task import PositionsSection
+    from ...task import PositionsSection
     sec = positions_section if positions_section is not None else PositionsSection()
     direction = getattr(drive_section, "direction", "ccw") if drive_section is not None else "ccw"
     sign = 1.0 if direction == "ccw" else -1.0

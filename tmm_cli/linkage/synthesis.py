@@ -30,7 +30,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from .errors import StageError
+from ..errors import StageError
 
 STAGE = "synthesis"
 TYPES = ("slider_crank", "offset_slider_crank", "crank_rocker", "slotted_lever", "shaper")
@@ -128,7 +128,7 @@ def _reach(H: float, r: float, l: float) -> float:
 def _e_reach(H: float, theta: float) -> float:
     """The largest offset (m) with _reach >= 0 (0 when none): a scan of (0, e_max) and
     Brent's method on the sign change."""
-    from .lazy import brentq
+    from ..lazy import brentq
 
     e_max = H / (2.0 * math.tan(math.radians(theta) / 2.0))
     f = lambda e: _reach(H, *slider_crank_offset(H, theta, e))
@@ -151,7 +151,7 @@ def slider_crank_gamma(H: float, theta: float, gamma: float) -> list[tuple[float
     """Every (r, l, e) of the offset slider-crank with stroke H, angle theta and least
     transmission angle gamma (deg), smaller offset first. gamma(e) rises from 0 (e -> 0)
     to a maximum and falls toward e_max = H/(2 tan(theta/2))."""
-    from .lazy import brentq, minimize_scalar
+    from ..lazy import brentq, minimize_scalar
 
     th = math.radians(theta)
     e_max = _e_reach(H, theta)
@@ -424,7 +424,7 @@ def least_transmission(typ: str, mech) -> tuple[float, float]:
     """(gamma_min deg, crank angle deg) over the cycle: a 0.5-deg scan refined by a
     bounded Brent search to 1e-10 deg."""
     import numpy as np
-    from .lazy import minimize_scalar
+    from ..lazy import minimize_scalar
 
     from .kinematics import solve
 
@@ -446,7 +446,7 @@ def analyse(d: Design, mech, direction: str = "ccw") -> dict:
     import numpy as np
 
     from .kinematics import find_positions, solve
-    from .task import DriveSection, PositionsSection
+    from ..task import DriveSection, PositionsSection
 
     drive = DriveSection.model_construct(link="crank", direction=direction)
     pos = find_positions(mech, PositionsSection(output=d.output, working=d.working), drive)

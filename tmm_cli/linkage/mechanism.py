@@ -19,7 +19,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from .task import MechanismSection, Task
+from ..task import MechanismSection, Task
 
 
 @dataclass(frozen=True)

@@ -53,7 +53,7 @@ from typing import Any
 
 import numpy as np
 
-from .errors import StageError, TaskError
+from ..errors import StageError, TaskError
 
 G = 9.81
 _SNAP = 1e-9          # s/H or deg: abscissae this close to a jump are put on it

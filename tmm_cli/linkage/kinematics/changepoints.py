@@ -49,7 +49,7 @@ def circle_zeros(grid: np.ndarray, g: np.ndarray, F, *, zero_tol: float = ZERO_T
     Sign changes are refined by Brent's method to 1e-10 deg; touching (double) zeros,
     local minima of |g| without a sign change (around 0 deg as well), by a bounded
     minimisation (docs/methods.md §3.2)."""
-    from ..lazy import brentq, minimize_scalar
+    from ...lazy import brentq, minimize_scalar
 
     grid = np.asarray(grid, float)
     n = grid.size - 1

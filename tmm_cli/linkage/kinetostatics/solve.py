@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import StageError
+from ...errors import StageError
 from ..loads import AppliedCouple, AppliedForce, Loads
 from .equations import (Geometry, balance_coeffs, cross, full_matrix, joint_coeffs, load_vector,
                         rot90, scaling)

@@ -42,9 +42,9 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from ..lazy import brentq
+from ...lazy import brentq
 
-from ..errors import StageError
+from ...errors import StageError
 
 STAGE = "dynamics"
 _TINY = 1e-300

@@ -1,7 +1,7 @@
 """Structural analysis of a planar linkage (docs/methods.md §1).
 
 * Chebyshev's formula W = 3n - 2 p5 - p4 (n moving links, p5 lower pairs: one per
-  :class:`~tmm_cli.mechanism.Joint`, p4 = 0 higher pairs).
+  :class:`~tmm_cli.linkage.mechanism.Joint`, p4 = 0 higher pairs).
 * Assur decomposition. The class-I mechanism I(0, crank) is the ground and the
   crank; the remaining links are split into Assur groups (structural groups with
   zero mobility, 3k = 2p, no smaller group inside) by a search from the crank
@@ -42,7 +42,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from itertools import combinations
 
-from .errors import StageError
+from ..errors import StageError
 from .mechanism import Joint, Mechanism
 
 _ROMAN = {1: "I", 2: "II", 3: "III", 4: "IV", 5: "V", 6: "VI", 7: "VII", 8: "VIII"}

@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import StageError
+from ...errors import StageError
 
 STAGE = "dynamics"
 

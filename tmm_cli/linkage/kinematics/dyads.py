@@ -1,6 +1,6 @@
 """Closed-form positions of every class-II group (dyad), vectorised over positions.
 
-A dyad has links A, B (in the reading order of :mod:`tmm_cli.structure`), an external
+A dyad has links A, B (in the reading order of :mod:`tmm_cli.linkage.structure`), an external
 pair of A, the pair A-B and an external pair of B. An external pair leaves its link one
 freedom:
 

@@ -25,7 +25,7 @@ from typing import Callable
 
 import numpy as np
 
-from ..errors import StageError
+from ...errors import StageError
 from . import flywheel as fw
 from .reduce import Sample, sample as sample_mech
 

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import StageError, TaskError
+from ...errors import StageError, TaskError
 from ..loads import AppliedCouple, Loads, evaluate
 from .equations import Geometry, geometry, load_vector, scaled_det
 from .solve import (COND_MAX, balance_lever, balance_rate, friction_loads, group_by_group, lever_moments,
@@ -285,12 +285,12 @@ def analyze(mech, structure, kin, loads, section, *, indices=None, crank_inertia
             solver=None, singular: list[float] | None = None) -> KinetostaticsResult:
     """Kinetostatic analysis at the positions ``indices`` (rows of ``kin``; default all).
 
-    ``loads``: a :class:`~tmm_cli.loads.Loads` at the positions of ``kin`` (inertia loads
+    ``loads``: a :class:`~tmm_cli.linkage.loads.Loads` at the positions of ``kin`` (inertia loads
     are added here when ``section.inertia`` and absent, dropped when not wanted);
     ``crank_inertia``: an extra constant moment of inertia on the drive link (the
     flywheel) whose couple -J eps1 is added; ``kin`` may carry arrays omega1, eps1.
     ``solver``: the kinematics function for the singular positions (default
-    ``tmm_cli.kinematics.solve``); ``singular``: give the singular angles to skip the search.
+    ``tmm_cli.linkage.kinematics.solve``); ``singular``: give the singular angles to skip the search.
     """
     with np.errstate(all="ignore"):
         return _analyze(mech, structure, kin, loads, section, indices=indices, crank_inertia=crank_inertia,

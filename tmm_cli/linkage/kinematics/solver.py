@@ -25,9 +25,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from ..lazy import brentq
+from ...lazy import brentq
 
-from ..errors import StageError
+from ...errors import StageError
 from ..mechanism import Mechanism
 from ..structure import Group, analyze
 from . import newton as nw
