@@ -28,7 +28,8 @@ I18N = {
                              "largest |v| and |a|",
         "study.note.kinetostatics": "The diagrams drawn through the positions (equal steps plus the load jumps "
                                     "and kinks, the extreme positions and, with friction, the reversals of the "
-                                    "relative motion in the pairs) against the exact solution; error: the largest "
+                                    "relative motion in the pairs and the sign changes of the sliders' normal "
+                                    "forces) against the exact solution; error: the largest "
                                     "deviation relative to the largest |M_b| and the largest reaction",
         "study.note.dof2": "The final speeds and angle of the integration (DOP853)",
         "study.note.cam": "The profile as a polygon: its largest deviation from the exact working profile "
@@ -92,7 +93,7 @@ I18N = {
                              "погрешность — наибольшее отклонение, отнесённое к ходу и к наибольшим |v| и |a|",
         "study.note.kinetostatics": "Диаграммы, проведённые через положения (равный шаг, а также скачки и изломы "
                                     "нагрузок, крайние положения и, при трении, смены направления относительного "
-                                    "движения в парах), против точного решения; погрешность — наибольшее "
+                                    "движения в парах и смены знака нормальной силы в ползунах), против точного решения; погрешность — наибольшее "
                                     "отклонение, отнесённое к наибольшему |M_b| и к наибольшей реакции",
         "study.note.dof2": "Конечные скорости и угол интегрирования (DOP853)",
         "study.note.cam": "Профиль как многоугольник: наибольшее отклонение от точного действительного профиля "
@@ -156,7 +157,7 @@ I18N = {
                              "найбільше відхилення, віднесене до ходу та до найбільших |v| і |a|",
         "study.note.kinetostatics": "Діаграми, проведені через положення (рівний крок, а також стрибки та злами "
                                     "навантажень, крайні положення і, з тертям, зміни напрямку відносного руху в "
-                                    "парах), проти точного розв'язку; похибка — найбільше відхилення, віднесене "
+                                    "парах і зміни знака нормальної сили в повзунах), проти точного розв'язку; похибка — найбільше відхилення, віднесене "
                                     "до найбільшого |M_b| і до найбільшої реакції",
         "study.note.dof2": "Кінцеві швидкості та кут інтегрування (DOP853)",
         "study.note.cam": "Профіль як багатокутник: найбільше відхилення від точного дійсного профілю "
