@@ -137,3 +137,19 @@ def test_study_section_in_every_language():
                 assert text.split("{")[0][:30] not in html, (lang, key)
         assert html.count("<tr>") == en.count("<tr>")
     assert i18n.translate("study.title", "ru") == sec.I18N["ru"]["study.title"]
+
+
+def test_cli_study_lang(tmp_path):
+    import json
+    import subprocess
+    import sys
+    from tmm_cli.report.sections import study as sec
+    subprocess.run([sys.executable, "-m", "tmm_cli", "study", "tasks/cam_knife.yaml", "-o", str(tmp_path),
+                    "--repeat", "1", "--lang", "uk"], check=True, capture_output=True)
+    html = (tmp_path / "study.html").read_text()
+    assert sec.I18N["uk"]["study.stage.cam"] in html and "lang='uk'" in html
+    st = json.loads((tmp_path / "study.json").read_text())
+    assert st["cam"]["setting"] == "step" and st["cam"]["theory"] == 2
+    bad = subprocess.run([sys.executable, "-m", "tmm_cli", "study", "tasks/cam_knife.yaml", "-o", str(tmp_path),
+                          "--lang", "de"], capture_output=True, text=True)
+    assert bad.returncode == 2 and "Traceback" not in bad.stderr

@@ -27,10 +27,11 @@ Stages and settings (the rule, its theoretical order):
   the largest deviation relative to the curve's largest value (s: the stroke);
 * kinetostatics: `positions` per turn (equal steps plus the load jumps and kinks, the
   extreme positions and, with friction, the reversals of the pairs' relative motion and
-  the sign changes of the sliders' normal forces, each as both one-sided limits); the diagrams of M_b and of the
-  reactions drawn through them (linear interpolation: 2) against the exact solution at
-  `KST_EVAL` angles; error: the largest deviation over the cycle relative to the diagram's
-  largest value;
+  the sign changes of the sliders' normal forces, each as both one-sided limits); the
+  diagrams of M_b and of the reactions drawn through them (linear interpolation: 2)
+  against the exact solution at `KST_EVAL` angles (at the constant crank speed, also for
+  `motion: true`); error: the largest deviation over the cycle relative to the largest
+  |M_b| and the largest reaction;
 * dof2: the integrator's `rtol` (DOP853); values the final speeds and angle (error
   proportional to the tolerance: 1);
 * cam: the profile's angular `step` (deg; `tmm_cli.cam.polygon`): the polygon's deviation
@@ -349,12 +350,13 @@ def study_kinetostatics(task, mech, pos, repeat: int = 3) -> dict:
 
 def cam_values(result, step: float) -> dict:
     from .cam import polygon
-    return {"deviation": polygon.polygon_deviation(result, step), "rho_min": polygon.polygon_rho_min(result, step)}
+    rho = polygon.polygon_rho_min(result, step)
+    return {"deviation": polygon.polygon_deviation(result, step), "rho_min": rho if math.isfinite(rho) else None}
 
 
 def _cam_error(result, vals: dict) -> float:
     e = vals["deviation"] / result.r0
-    if math.isfinite(result.rho_min) and math.isfinite(vals["rho_min"]):
+    if math.isfinite(result.rho_min) and vals["rho_min"] is not None:
         e = max(e, _rel(vals["rho_min"], result.rho_min))
     return e
 
@@ -379,8 +381,8 @@ def study_cam(task, repeat: int = 3) -> dict:
     order = fit_order(settings, [x["error"] for x in rows], inverse=True)
     orders = {"deviation": fit_order(settings, [x["deviation"] / r.r0 for x in rows], inverse=True)}
     if ref["rho_min"]:     # a rho_min on a dwell (an arc) is exact: its errors are rounding
-        orders["rho_min"] = fit_order(settings, [_rel(x["rho_min"], r.rho_min) for x in rows], floor=1e-9,
-                                      inverse=True)
+        orders["rho_min"] = fit_order(settings, [None if x["rho_min"] is None else _rel(x["rho_min"], r.rho_min)
+                                                 for x in rows], floor=1e-9, inverse=True)
     return {"setting": "step", "reference": ref, "rows": rows, "order": order, "orders": orders,
             "theory": THEORY["cam"]}
 

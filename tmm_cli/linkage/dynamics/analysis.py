@@ -475,8 +475,9 @@ def _concat(a: Sample, b: Sample) -> Sample:
 
 
 class _Reuse:
-    """A sampler that keeps its first sample: a later call at angles all among those
-    (the hand method's positions are nodes of the default grid) is answered from it."""
+    """A sampler that keeps its first sample, taken together with the angles `extra` (the
+    hand method's positions): a later call is answered from it at the angles it holds and
+    by the sampler at the others (one kinematics call fewer; the same values)."""
 
     def __init__(self, sampler: Sampler, extra=None):
         self.sampler = sampler
