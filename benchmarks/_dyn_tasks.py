@@ -27,10 +27,10 @@ FORGING = {
 
 
 def prepare(task_path: str | None = None):
-    """(task with the crank speed resolved, mechanism, positions) as the pipeline has them."""
+    """(task, linkage) of a task with a `flywheel` section."""
     import tmm_cli
-    from tmm_cli import study
+    from tmm_cli.linkage.context import build
     task = tmm_cli.load_task(task_path if task_path else FORGING)
     if task.flywheel is None:
         raise SystemExit(f"{task_path}: no `flywheel` section")
-    return study._linkage(task)
+    return task, build(task)

@@ -35,20 +35,20 @@ DEFAULT = {"curves": 361, "cam": 1.0, "gears": 161, "dof2": 1e-10}
 def flywheel_row(path):
     from tmm_cli import study
     from tmm_cli.linkage import dynamics
-    task, mech, pos = prepare(path)
-    ref = study.flywheel_values(task, mech, pos, 2880)
-    ref2 = study.flywheel_values(task, mech, pos, 5760)
+    task, linkage = prepare(path)
+    ref = study.flywheel_values(task, linkage, 2880)
+    ref2 = study.flywheel_values(task, linkage, 5760)
     check = max(abs(ref[k] / ref2[k] - 1) for k in ref)
     cpu = []
     for _ in range(5):
         t0 = time.process_time()
-        r = dynamics.analyze_task(mech, task, pos, accuracy=False)
+        r = dynamics.analyze(linkage, task.flywheel, accuracy=False)
         cpu.append((time.process_time() - t0) * 1e3)
     c = r.cycle
     errs = {m: abs(c.J_n[m] / ref2[k] - 1) for m, k in
             (("energy-mass", "J_n"), ("merzalov", "J_n_merzalov"), ("exact", "J_n_exact"))}
-    fly = study.study_flywheel(task, mech, pos, repeat=1)
-    trap = study.study_flywheel(task, mech, pos, quadrature=0, repeat=1)
+    fly = study.study_flywheel(task, linkage, repeat=1)
+    trap = study.study_flywheel(task, linkage, quadrature=0, repeat=1)
     return {"title": task.title, "delta": task.flywheel.delta, "J_n": ref2["J_n"], "ref_check": check,
             "resolution": task.flywheel.resolution, "errors": errs, "cpu_ms": statistics.median(cpu),
             "hand": r.hand["err_J_n"], "hand_positions": r.hand["positions"],
@@ -60,13 +60,13 @@ def claims(paths) -> list[tuple[str, float, float, bool]]:
     """(claim, worst value over the example tasks, bound, holds)."""
     import tmm_cli
     from tmm_cli.pipeline import run
-    from tmm_cli import study
     mb, em_ex, witt, merz, ext = 0.0, 0.0, 0.0, 0.0, True
     for p in paths:
         task = tmm_cli.load_task(p)
         if task.mechanism is not None:
             # the extreme positions bracket a root of the output's analogue ds/dphi to 1e-10 deg
-            _, _, pos = study._linkage(task)
+            from tmm_cli.linkage.context import build
+            pos = build(task).positions
             for e in pos.extreme or []:
                 lo, hi = pos._f(np.array([e - 1e-10, e + 1e-10]))[1]
                 ext &= bool(lo * hi <= 0)

@@ -23,6 +23,7 @@ import pytest
 import tmm_cli
 from tmm_cli import study
 from tmm_cli.cam import polygon
+from tmm_cli.linkage.context import build
 
 
 def _cam(name):
@@ -93,8 +94,7 @@ def test_blocking_contour_deviation():
 def test_kinetostatic_diagrams_match_the_pipeline_and_friction_reversals():
     from tmm_cli.pipeline import run
     task = tmm_cli.load_task("tasks/engine_slider_crank.yaml")
-    t, mech, pos = study._linkage(task)
-    d = study.KinetostaticDiagrams(t, mech, pos)
+    d = study.KinetostaticDiagrams(build(task), task.kinetostatics)
     # the guide is vertical: the rod stops turning (its pin friction reverses) with the crank
     # horizontal, 0 and 180 deg; the piston stops (its guide friction reverses) at the dead
     # centres, 90 and 270 deg
@@ -116,9 +116,9 @@ def test_kinetostatic_diagrams_match_the_pipeline_and_friction_reversals():
 @pytest.mark.parametrize("name", ["forging_sixbar", "scotch_yoke_pump"])
 def test_kinetostatics_and_curves_orders(name):
     task = tmm_cli.load_task(f"tasks/{name}.yaml")
-    t, mech, pos = study._linkage(task)
-    k = study.study_kinetostatics(t, mech, pos, repeat=1)
-    c = study.study_curves(t, mech, pos, repeat=1)
+    linkage = build(task)
+    k = study.study_kinetostatics(task, linkage, repeat=1)
+    c = study.study_curves(linkage, repeat=1)
     assert k["order"] == pytest.approx(2.0, abs=0.25) and c["order"] == pytest.approx(2.0, abs=0.25)
     # the errors are measured on a fine enough set of angles (the check)
     assert k["reference"]["check"]["difference"] < 0.02 and c["reference"]["check"]["difference"] < 0.02

@@ -141,31 +141,19 @@ def _patched(module, name: str, value):
 
 
 # ------------------------------------------------------------------ stages
-def _linkage(task):
-    """(task with the crank speed resolved, mechanism, positions) as the pipeline has them."""
-    from .linkage import drive_speed
-    from .linkage.mechanism import build_mechanism
-    from .pipeline import find_positions
-    mech = build_mechanism(task)
-    pos = find_positions(task, mech)
-    omega1, _ = drive_speed.resolve(task, pos)
-    return drive_speed.with_speed(task, omega1), mech, pos
-
-
-def flywheel_values(task, mech, pos, resolution: int, quadrature: int | None = None) -> dict:
+def flywheel_values(task, linkage, resolution: int, quadrature: int | None = None) -> dict:
     from .linkage import dynamics
     upd = {"resolution": int(resolution)}
     if quadrature is not None:
         upd["quadrature"] = int(quadrature)
-    t = task.model_copy(update={"flywheel": task.flywheel.model_copy(update=upd)})
-    c = dynamics.analyze_task(mech, t, pos, accuracy=False).cycle
+    c = dynamics.analyze(linkage, task.flywheel.model_copy(update=upd), accuracy=False).cycle
     return {"J_n": c.J_n[c.method], "J_n_merzalov": c.J_n["merzalov"], "J_n_exact": c.J_n["exact"]}
 
 
-def study_flywheel(task, mech, pos, quadrature: int | None = None, repeat: int = 3) -> dict:
+def study_flywheel(task, linkage, quadrature: int | None = None, repeat: int = 3) -> dict:
     settings = sorted({12, 18, 24, 36, 48, 72, 96, 144, 180, 360, int(task.flywheel.resolution)})
     refs = [2880, 5760, 11520] if quadrature != 0 else [23040, 46080]
-    out = sweep("resolution", lambda r: flywheel_values(task, mech, pos, r, quadrature),
+    out = sweep("resolution", lambda r: flywheel_values(task, linkage, r, quadrature),
                 settings, refs, repeat=repeat, stage="flywheel")
     if quadrature == 0:
         out["theory"] = 2
@@ -178,21 +166,20 @@ def _interp_errors(q, v: np.ndarray, qe, ex: np.ndarray) -> np.ndarray:
     return np.array([np.nanmax(np.abs(np.interp(qe, q, v[:, k]) - ex[:, k])) for k in range(v.shape[1])])
 
 
-def curve_values(task, mech, pos, n: int, turn=None) -> np.ndarray:
+def curve_values(linkage, n: int, turn=None) -> np.ndarray:
     """(points, 3): s, v, a of the output over a turn at n equal steps (or at `turn`)."""
-    from .linkage import kinematics
-    from .pipeline import _curve
-    c = _curve(kinematics, mech, pos, task.drive.omega1, int(n), turn)
-    return np.column_stack([np.asarray(c[k], float) for k in ("s", "v", "a")])
+    from .linkage.kinematics import output_curve
+    c = output_curve(linkage, int(n), turn)
+    return np.column_stack([np.asarray(x, float) for x in (c.s, c.v, c.a)])
 
 
-def study_curves(task, mech, pos, repeat: int = 3) -> dict:
+def study_curves(linkage, repeat: int = 3) -> dict:
     """The s, v, a diagrams drawn through n points over a turn (linear interpolation)
     against the exact kinematics at KST_EVAL angles; error: the largest deviation relative
     to each curve's largest value (s: its range)."""
     settings = [13, 25, 37, 73, 145, 361, 721, 1441]
     qe = (np.arange(KST_EVAL) + 0.5) * 360.0 / KST_EVAL
-    ex = curve_values(task, mech, pos, 0, qe)
+    ex = curve_values(linkage, 0, qe)
     scale = np.array([np.ptp(ex[:, 0]), *np.nanmax(np.abs(ex[:, 1:]), axis=0)])
 
     def errs(v, qe=qe, ex=ex, n=None):
@@ -202,13 +189,13 @@ def study_curves(task, mech, pos, repeat: int = 3) -> dict:
 
     rows = []
     for n in settings:
-        v, t = _timed(lambda: curve_values(task, mech, pos, n), repeat)
+        v, t = _timed(lambda: curve_values(linkage, n), repeat)
         e = errs(v, n=n)
         rows.append({"setting": n, **e, "error": max(e.values()), "time_ms": round(t, 3)})
     n0 = 361                        # the report's curves (pipeline.run's kinematics_curve)
     q2 = (np.arange(2 * KST_EVAL) + 0.5) * 360.0 / (2 * KST_EVAL)
-    v0 = curve_values(task, mech, pos, n0)
-    e1, e2 = errs(v0, n=n0), errs(v0, q2, curve_values(task, mech, pos, 0, q2), n=n0)
+    v0 = curve_values(linkage, n0)
+    e1, e2 = errs(v0, n=n0), errs(v0, q2, curve_values(linkage, 0, q2), n=n0)
     diff = max(abs(e1[k] - e2[k]) / max(e2[k], 1e-300) for k in e1)
     ref = {"stroke": float(scale[0]), "v_max": float(scale[1]), "a_max": float(scale[2]),
            "setting": KST_EVAL, "check": {"setting": 2 * KST_EVAL, "points": n0, "difference": diff}}
@@ -220,26 +207,22 @@ class KinetostaticDiagrams:
     """M_b and the reactions over the cycle at any positions (constant crank speed), and
     the error of the diagrams drawn through N positions (see the module docstring)."""
 
-    def __init__(self, task, mech, pos):
-        from .linkage import kinematics, structure
-        from .linkage.dynamics import analysis as dyn
-        self.task, self.mech, self.pos = task, mech, pos
-        self.cycle = float(task.drive.cycle)
-        self.pos_l = pos if getattr(pos, "cycle", None) not in (None, 0) else dyn._WithCycle(pos, self.cycle)
-        self.sign = 1.0 if task.drive.omega1 > 0 else -1.0
-        self.phi0 = float(pos.phi0)
-        self.switch = dyn.switch_q(dyn.task_switch_angles(mech, task, self.pos_l), self.phi0, self.sign,
-                                   self.cycle)
-        self.st = structure.analyze(mech, task=task)
+    def __init__(self, linkage, section):
+        from .linkage.dynamics import analysis as dyn, cycle
+        self.linkage, self.section = linkage, section
+        self.mech = linkage.mechanism
+        self.cycle = float(linkage.drive.cycle)
+        self.sign = float(linkage.drive.sign)
+        self.phi0 = float(linkage.positions.phi0)
+        self.switch = cycle.switch_q(dyn.grid_switch_angles(linkage), self.phi0, self.sign, self.cycle)
         self.singular = None       # found by the first analysis, then reused
-        self._kin = kinematics
-        if getattr(task.kinetostatics, "friction", None) is not None:
+        if section.friction is not None:
             # friction changes sign where a pair's relative motion reverses: breakpoints too
             self.switch = sorted(self.switch + self.reversals())
         # the exact diagrams at KST_EVAL angles strictly inside the grid cells (off every jump)
         self.q_eval = (np.arange(KST_EVAL) + 0.5) * self.cycle / KST_EVAL
         self.exact = self.at(self.q_eval, np.zeros(KST_EVAL))
-        if getattr(task.kinetostatics, "friction", None) is not None:
+        if section.friction is not None:
             # a slider's friction f |N| has a kink where its normal force N changes sign
             self.switch = sorted(self.switch + self.normal_zeros())
 
@@ -266,8 +249,9 @@ class KinetostaticDiagrams:
     def _relative(self, q) -> np.ndarray:
         from .linkage.kinetostatics.equations import geometry
         from .linkage.kinetostatics.solve import relative_motion
+        from .linkage.kinematics import solve
         phi = self.phi0 + self.sign * np.asarray(q, float)
-        kin = self._kin.solve(self.mech, phi, self.task.drive.omega1)
+        kin = solve(self.mech, phi, self.linkage.drive.omega)
         return relative_motion(self.mech, geometry(self.mech, kin))
 
     def reversals(self, n: int = 1440, tol: float = 1e-9) -> list[float]:
@@ -297,11 +281,12 @@ class KinetostaticDiagrams:
         one-sided (side -1 / +1) at the jumps."""
         from .linkage import kinetostatics, loads as loads_mod
         from .linkage.dynamics import EPS_DEG
+        from .linkage.kinematics import solve
         phi = self.phi0 + self.sign * (np.asarray(q, float) + np.asarray(side, float) * EPS_DEG)
-        kin = self._kin.solve(self.mech, phi, self.task.drive.omega1)
-        ks = self.task.kinetostatics
-        lds = loads_mod.evaluate(self.mech, self.task.loads, kin, self.pos_l, inertia=ks.inertia)
-        res = kinetostatics.analyze(self.mech, self.st, kin, lds, ks, singular=self.singular)
+        kin = solve(self.mech, phi, self.linkage.drive.omega)
+        ks = self.section
+        lds = loads_mod.evaluate(self.linkage, kin, inertia=ks.inertia)
+        res = kinetostatics.equilibrium(self.mech, self.linkage.structure, kin, lds, ks, singular=self.singular)
         self.singular = list(res.singular)
         return np.column_stack([np.asarray(res.M_b, float), np.asarray(res.reactions, float)])
 
@@ -325,8 +310,8 @@ class KinetostaticDiagrams:
                 "err_R": float(np.max(dev[1:]) / sr) if sr > 0 else 0.0}
 
 
-def study_kinetostatics(task, mech, pos, repeat: int = 3) -> dict:
-    d = KinetostaticDiagrams(task, mech, pos)
+def study_kinetostatics(task, linkage, repeat: int = 3) -> dict:
+    d = KinetostaticDiagrams(linkage, task.kinetostatics)
     settings = [12, 24, 36, 72, 144, 360, 720]
     rows = []
     for n in settings:
@@ -451,18 +436,19 @@ def run_study(task, progress: Callable[[str], None] | None = None, repeat: int =
     out: dict = {}
     extra: dict = {}
     if task.mechanism is not None:
-        task_l, mech, pos = _linkage(task)
+        from .linkage.context import build
+        linkage = build(task)
         say("study: curves")
-        out["curves"] = study_curves(task_l, mech, pos, repeat)
+        out["curves"] = study_curves(linkage, repeat)
         if task.flywheel is not None:
             say("study: flywheel")
-            out["flywheel"] = study_flywheel(task_l, mech, pos, repeat=repeat)
-            tr = study_flywheel(task_l, mech, pos, quadrature=0, repeat=1)
+            out["flywheel"] = study_flywheel(task, linkage, repeat=repeat)
+            tr = study_flywheel(task, linkage, quadrature=0, repeat=1)
             extra["flywheel"] = {"rows": [{k: r[k] for k in ("setting", "J_n", "error")}
                                           for r in tr["rows"]], "order": tr["order"], "theory": 2}
         if task.kinetostatics is not None:
             say("study: kinetostatics")
-            out["kinetostatics"] = study_kinetostatics(task_l, mech, pos, repeat)
+            out["kinetostatics"] = study_kinetostatics(task, linkage, repeat)
     if task.cam is not None:
         say("study: cam")
         out["cam"] = study_cam(task, repeat)
