@@ -171,7 +171,7 @@ def slotted_results(count=12):
 from tmm_cli.report import render, render_html  # noqa: E402
 from tmm_cli.report import figures as F  # noqa: E402
 from tmm_cli.report.context import fmt  # noqa: E402
-from tmm_cli.report.plans import build_plan, geometry, scales  # noqa: E402
+from tmm_cli.plans import build_plan, geometry, scales  # noqa: E402
 
 
 def _pdf_ok():

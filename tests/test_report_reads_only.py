@@ -33,6 +33,8 @@ ALLOWED = {
     "tmm_cli.cam.export": "file formats (CSV, DXF) of results['cam']",
     "tmm_cli.gears.drawing": "tooth outlines drawn from results['gears'] (the stage's drawing data)",
     "tmm_cli.study": "the tables of the accuracy study (its own results)",
+    "tmm_cli.plans": "the velocity and acceleration plans constructed from results' numbers",
+    "tmm_cli.scales": "the standard series of the scale factors μ",
 }
 # (file, function) where a broad except is allowed, and why
 BROAD_EXCEPT_OK = {

@@ -175,7 +175,7 @@ def _set_message(rows, status, aset) -> str:
 # the modules a variant's sections need (imported once in the batch, before the workers fork)
 _SECTION_MODULES = {"mechanism": ("linkage.mechanism", "linkage.structure", "linkage.kinematics",
                                   "linkage.kinematics.changepoints", "linkage.loads", "linkage.kinetostatics",
-                                  "linkage.dynamics", "linkage.drive_speed", "graphical", "report.plans"),
+                                  "linkage.dynamics", "linkage.drive_speed", "graphical", "plans"),
                     "synthesis": ("linkage.synthesis",), "cam": ("cam",), "gears": ("gears",),
                     "planetary": ("gears",), "drive_train": ("gears", "gears.train"), "dof2": ("dof2",)}
 _SECTION_MODULES["synthesis"] += _SECTION_MODULES["mechanism"]

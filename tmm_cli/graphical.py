@@ -1,7 +1,7 @@
 """The hand method's own error: what a student reading the drawings may be off by.
 
 * Plans of velocities and accelerations, drawn at the scales the report chooses
-  (mu_v, mu_a: the crank pin's vector about 100 mm long, `report.plans.scales`): a
+  (mu_v, mu_a: the crank pin's vector about 100 mm long, `tmm_cli.plans.scales`): a
   segment read to +/- READ_MM is off by READ_MM mu, i.e. relatively READ_MM mu / value
   for a point's velocity or acceleration, READ_MM mu_v / (|omega| l) for a link's omega
   read off the relative velocity segment (l: the distance of two of its points),
@@ -36,7 +36,7 @@ def _plans(results: dict) -> dict | None:
     kin = results.get("kinematics") or []
     if not kin:
         return None
-    from .report.plans import geometry, scales
+    from .plans import geometry, scales
     geom = geometry(results)
     if geom is None:
         return None

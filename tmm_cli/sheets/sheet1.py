@@ -103,7 +103,7 @@ def draw_mechanism(cv, geom, entries, course: list[int], box, lang="en") -> dict
             t = (ps - ps[0]) @ u
             cv.line(ps[0] + u * (t.min() - 12), ps[0] + u * (t.max() + 12), width=0.2, dash="6 1.5 1 1.5")
     # the crank pin's circle, the position numbers and the direction of rotation
-    from ..report.plans import crank_pin
+    from ..plans import crank_pin
     pin = crank_pin(geom)
     O = next((j.point for j in geom.joints if j.kind == "R" and j.a == 0 and j.b == geom.drive), None)
     labels_at, numbers = [], []
@@ -156,7 +156,7 @@ PLAN_BOX_W, PLAN_BOX_H = 200.0, 140.0
 def draw_plans(cv, geom, entry, box, lang="en") -> dict:
     """The velocity and acceleration plans of one position side by side, each at a
     standard μ that fits its half of box at true size (the report's draw_plan)."""
-    from ..report.plans import build_plan
+    from ..plans import build_plan
     from ..report.sections.kinematics import draw_plan
     x0, y0, w, h = box
     T = TXT[lang]
@@ -215,7 +215,7 @@ def draw_diagrams(cv, results, geom, box, lang="en") -> dict:
 
 
 def build(cv, results, task, lang="en") -> dict:
-    from ..report.plans import geometry
+    from ..plans import geometry
     entries = results.get("kinematics") or []
     geom = geometry(results, task)
     fx0, fy0, fx1, fy1 = FRAME

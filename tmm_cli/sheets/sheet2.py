@@ -26,7 +26,7 @@ def positions(results: dict) -> list[int]:
 
 def build(cv, results, task, lang="en") -> dict:
     from ..report.context import ReportContext
-    from ..report.plans import crank_pin, geometry
+    from ..plans import crank_pin, geometry
     from ..report.sections import load
     K = load("kinetostatics")        # registers its texts in the three languages
     ctx = ReportContext(results=results, task=task, lang=lang, out_dir=Path("."), env=None)

@@ -19,7 +19,7 @@ import numpy as np
 from markupsafe import Markup
 
 from ..course import course_entries, grid_count
-from ..plans import build_plan, crank_pin, geometry, plan_label, scales
+from ...plans import build_plan, crank_pin, geometry, plan_label, scales
 
 I18N = {
     "en": {"kin.si_v": "m/s", "kin.si_a": "m/s²", "kin.mm": "mm", "kin.unit_v": "(m/s)/mm", "kin.unit_a": "(m/s²)/mm", "kin.unit_l": "m/mm",

@@ -405,7 +405,7 @@ def _lever_panel(ctx, cv, box, e, kin_e, pin, omega1, balance_kind):
     a nice scale for this position), the loads moved to the ends of the turned
     velocities with their arms about the pole, P_b at the crank pin; M_b below."""
     from .. import figures
-    from ..plans import plan_label
+    from ...plans import plan_label
     from ..svgdraw import PT_PER_MM
     x0, y0, w, h = box
     P = kin_e["points"]
@@ -755,7 +755,7 @@ def build(ctx) -> str | None:
     # loads of every position in one table: the varying loads by position, the constant ones below
     loads_hdr, loads_rows, const = _loads_table(ctx, shown)
     # per position drawings
-    from ..plans import crank_pin, geometry
+    from ...plans import crank_pin, geometry
     geom = geometry(ctx.results)
     geom_pin = crank_pin(geom) if geom is not None else None
     positions = []

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..plans import geometry
+from ...plans import geometry
 
 ROMAN = {1: "I", 2: "II", 3: "III", 4: "IV", 5: "V", 6: "VI"}
 

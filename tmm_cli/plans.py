@@ -1,5 +1,6 @@
-"""Geometry of the mechanism as the report sees it, and the velocity /
-acceleration plans (pure numpy; drawn by the kinematics section).
+"""Geometry of the mechanism as the results give it, and the velocity /
+acceleration plans (pure numpy, from results only: drawn by the report and the sheets,
+measured by the hand-method error, tmm_cli.graphical).
 
 The plans are built from the results only (exact point velocities and
 accelerations, link omega/epsilon), the way the course draws them
@@ -327,7 +328,7 @@ def scales(entries: list[dict], geom: Geometry, pa_mm: float = 100.0):
 
     v_A, a_A: the largest crank-pin velocity/acceleration over the entries
     (constant for a crank at constant speed)."""
-    from .figures import nice_scale
+    from .scales import nice_scale
     pin = crank_pin(geom)
     if pin is None:
         return 1.0, 1.0, 0.0, 0.0
