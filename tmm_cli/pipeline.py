@@ -184,23 +184,11 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int) -> No
 
     if task.kinetostatics is not None:
         say("kinetostatics")
-        from .linkage import kinetostatics, loads as loads_mod
+        from .linkage import kinetostatics
         ks = task.kinetostatics
         sel = _select(ks.positions, positions, task)
-        kin_k = kin
-        crank_J = 0.0
-        if ks.motion is True:
-            if dyn is None:
-                raise task.error(("kinetostatics", "motion"), "`motion: true` needs a `flywheel` section "
-                                 "(the steady motion comes from the flywheel)")
-            w = dyn.omega_of(phi)
-            e = dyn.epsilon_of(phi)
-            kin_k = _stage("kinematics")(kinematics.solve)(mech, phi, w, e)
-            crank_J = float(dyn.J_fly) + float(task.flywheel.reduced_J)
-        lds = _stage("kinetostatics")(loads_mod.evaluate)(mech, task.loads, kin_k, positions,
-                                                           inertia=ks.inertia)
-        res = _stage("kinetostatics")(kinetostatics.analyze)(mech, st, kin_k, lds, ks, indices=sel,
-                                                             crank_inertia=crank_J)
+        res = _stage("kinetostatics")(kinetostatics.analyze_task)(mech, st, task, positions, phi, kin,
+                                                                  dyn=dyn, indices=sel)
         kd = res.to_dict()
         results["kinetostatics"] = kd["entries"] if isinstance(kd, dict) and "entries" in kd else kd
         if isinstance(kd, dict):

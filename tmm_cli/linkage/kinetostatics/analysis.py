@@ -418,6 +418,30 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
         groups=_group_links(mech, structure) + [[mech.drive]], warnings=warnings, cond=cond)
 
 
+def analyze_task(mech, structure, task, positions, phi_deg, kin, *, dyn=None, indices=None,
+                 singular: list[float] | None = None) -> KinetostaticsResult:
+    """The kinetostatics of ``task`` at the crank angles ``phi_deg`` (deg), as the pipeline
+    runs it: the loads of ``task.loads`` (stroke states from ``positions``), the motion
+    of ``task.kinetostatics.motion`` (constant crank speed: ``kin`` as given, solved at
+    ``phi_deg``; ``true``: the flywheel's steady motion ``dyn`` with the flywheel and
+    ``flywheel.reduced_J`` inertia couple on the crank).  ``indices``: the rows to
+    analyse; ``singular``: the singular angles when already known (skips the search).
+    Used by the pipeline at the reported positions and by the report's crank-angle
+    widget at a fine grid."""
+    from .. import kinematics
+    ks = task.kinetostatics
+    phi = np.atleast_1d(np.asarray(phi_deg, float))
+    crank_J = 0.0
+    if ks.motion is True:
+        if dyn is None:
+            raise task.error(("kinetostatics", "motion"), "`motion: true` needs a `flywheel` section "
+                             "(the steady motion comes from the flywheel)")
+        kin = kinematics.solve(mech, phi, dyn.omega_of(phi), dyn.epsilon_of(phi))
+        crank_J = float(dyn.J_fly) + float(task.flywheel.reduced_J)
+    lds = evaluate(mech, task.loads, kin, positions, inertia=ks.inertia)
+    return analyze(mech, structure, kin, lds, ks, indices=indices, crank_inertia=crank_J, singular=singular)
+
+
 def _kin_solver(solver):
     if solver is not None:
         return solver
