@@ -147,6 +147,7 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int) -> No
     except StageError as err:
         raise impossible_dimensions(task, err) or err
     positions = find_positions(task, mech)
+    check_detail(task, positions)
     results["positions"] = positions.to_dict()
     if task.loads is not None:      # each loaded slider's own stroke (docs/methods.md §3.3)
         from .linkage import loads as loads_mod
@@ -216,9 +217,24 @@ def find_positions(task: Task, mech):
 
 
 def check_selection(task: Task, mech) -> None:
-    """A TaskError when `kinetostatics.positions` names a position the cycle does not have."""
-    if task.kinetostatics is not None and task.kinetostatics.positions != "all":
-        _select(task.kinetostatics.positions, find_positions(task, mech), task)
+    """A TaskError when `kinetostatics.positions` or `report.detail_position` names a
+    position the cycle does not have."""
+    sel = task.kinetostatics is not None and task.kinetostatics.positions != "all"
+    detail = task.report is not None and task.report.detail_position is not None
+    if sel or detail:
+        positions = find_positions(task, mech)
+        if sel:
+            _select(task.kinetostatics.positions, positions, task)
+        check_detail(task, positions)
+
+
+def check_detail(task: Task, positions) -> None:
+    """`report.detail_position` must be one of the positions (TaskError, exit 2)."""
+    n = task.report.detail_position if task.report is not None else None
+    idx = list(positions.index)
+    if n is not None and n not in idx:
+        raise task.error(("report", "detail_position"),
+                         f"position {n} does not exist (positions are {idx[0]}..{idx[-1]})")
 
 
 def _select(spec, positions, task: Task) -> list[int]:
