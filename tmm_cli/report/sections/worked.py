@@ -1,5 +1,5 @@
 """Report section 'worked': the working of one position written out step by step, as a
-student's explanatory note does (docs/methods.md §2.6, §3.8).
+student's explanatory note does (docs/methods.md §3.4).
 
 For the position ``report.detail_position`` of the task (default: the first
 working-stroke position after 0, ``default_detail``):
@@ -9,8 +9,8 @@ working-stroke position after 0, ``default_detail``):
   (v_B = v_A + v_BA, v_BA perpendicular to AB; v_D parallel to the guide), the
   segments of the plan and the values (v = segment * mu_v), omega = v_rel / l, and
   the other points of its links by similarity;
-* accelerations: the same with the normal (omega^2 l, along the link), tangential
-  (perpendicular, eps = a^t / l) and Coriolis (2 omega v_rel) components;
+* accelerations: the same with the normal (omega^2 l, along the link) and tangential
+  (perpendicular, eps = a^t / l) components;
 * kinetostatics: for each group from the last attached, the loads, the moment
   equation of each link about the group's inner pair (sum M_B = 0) giving the
   tangential component of the outer reaction, the force polygon giving the normal
@@ -26,9 +26,9 @@ same formulas as HTML with sub/superscripts in the PDF (weasyprint does not lay 
 MathML): each formula is written twice, ``.mml`` shown on screen, ``.mfb`` in print.
 
 Groups handled step by step: two links with a revolute inner pair whose outer pairs
-are revolute or a prismatic pair on a fixed guide (RRR, RRP), and the RPR group of a
-slotted lever (slider on a guide of the other link, Coriolis).  Other groups are
-given with their results (a note says so).
+are revolute or a prismatic pair on a fixed guide (RRR, RRP).  Other groups (a slider
+on a moving guide with its Coriolis term, class III) are given with their results (a
+note says so).
 """
 from __future__ import annotations
 
