@@ -9,8 +9,9 @@ working-stroke position after 0, ``default_detail``):
   (v_B = v_A + v_BA, v_BA perpendicular to AB; v_D parallel to the guide), the
   segments of the plan and the values (v = segment * mu_v), omega = v_rel / l, and
   the other points of its links by similarity;
-* accelerations: the same with the normal (omega^2 l, along the link) and tangential
-  (perpendicular, eps = a^t / l) components;
+* accelerations: the same with the normal (omega^2 l, along the link), tangential
+  (perpendicular, eps = a^t / l) and, on a slotted lever, Coriolis (2 omega v_rel) and
+  relative components;
 * kinetostatics: for each group from the last attached, the loads, the moment
   equation of each link about the group's inner pair (sum M_B = 0) giving the
   tangential component of the outer reaction, the force polygon giving the normal
@@ -26,9 +27,11 @@ same formulas as HTML with sub/superscripts in the PDF (weasyprint does not lay 
 MathML): each formula is written twice, ``.mml`` shown on screen, ``.mfb`` in print.
 
 Groups handled step by step: two links with a revolute inner pair whose outer pairs
-are revolute or a prismatic pair on a fixed guide (RRR, RRP).  Other groups (a slider
-on a moving guide with its Coriolis term, class III) are given with their results (a
-note says so).
+are revolute or a prismatic pair on a fixed guide (RRR, RRP) -- kinematics and
+kinetostatics; the slotted lever RPR (a block on the guide of a hinged link: the
+coincident point A3, v_A3 = v_A + v_A3A, the Coriolis a^k = 2 omega v_A3A and the
+relative a^r) -- kinematics.  Other groups (and the kinetostatics of RPR) are given with
+their results (a note says so).
 """
 from __future__ import annotations
 
@@ -61,6 +64,8 @@ I18N = {
            "worked.toward": "from {a} towards {b}",
            "worked.unsupported": "This group ({type}) is not written out step by step; its values are those "
                                  "of the tables above.",
+           "worked.unsupported_kst": "The equations of this group ({type}) are not written out step by step; its "
+                                     "reactions are those of the tables of the kinetostatics section.",
            "worked.loads": "Loads of the links: weights G = m·g, inertia forces Φ = m·a_S (opposite to a_S), "
                            "moments of the inertia couples M_Φ = J_S·ε (opposite to ε):",
            "worked.moment_eq": "Moment equation of link {link} about {p} (counter-clockwise positive); the "
@@ -101,6 +106,8 @@ I18N = {
            "worked.perp": "⊥", "worked.par": "∥", "worked.guide": "направляющей",
            "worked.toward": "от {a} к {b}",
            "worked.unsupported": "Эта группа ({type}) по шагам не расписана; её значения — в таблицах выше.",
+           "worked.unsupported_kst": "Уравнения этой группы ({type}) по шагам не расписаны; её реакции — в таблицах "
+                                     "раздела кинетостатики.",
            "worked.loads": "Нагрузки звеньев: силы тяжести G = m·g, силы инерции Φ = m·a_S (против a_S), "
                            "моменты пар сил инерции M_Φ = J_S·ε (против ε):",
            "worked.moment_eq": "Уравнение моментов звена {link} относительно {p} (против часовой стрелки — "
@@ -142,6 +149,8 @@ I18N = {
            "worked.perp": "⊥", "worked.par": "∥", "worked.guide": "напрямної",
            "worked.toward": "від {a} до {b}",
            "worked.unsupported": "Цю групу ({type}) за кроками не розписано; її значення — у таблицях вище.",
+           "worked.unsupported_kst": "Рівняння цієї групи ({type}) за кроками не розписано; її реакції — у таблицях "
+                                     "розділу кінетостатики.",
            "worked.loads": "Навантаження ланок: сили тяжіння G = m·g, сили інерції Φ = m·a_S (проти a_S), "
                            "моменти пар сил інерції M_Φ = J_S·ε (проти ε):",
            "worked.moment_eq": "Рівняння моментів ланки {link} відносно {p} (проти годинникової стрілки — "
@@ -496,11 +505,118 @@ class _Writer:
         return out
 
     def supported(self, G, inner, outer):
+        """RRR, RRP (fixed guide): velocities, accelerations and kinetostatics."""
         if len(G) != 2 or len(inner) != 1 or len(outer) != 2:
             return False
         if inner[0].kind == "R":
             return all(j.kind == "R" or j.a == 0 for j in outer)
         return False
+
+    def slotted(self, G, inner, outer):
+        """RPR (a block on a guide of the other link, both hinged outside): (block, guide
+        link, pin, the guide link's hinge) for the velocities and accelerations, else None."""
+        if len(G) != 2 or len(inner) != 1 or len(outer) != 2 or inner[0].kind != "P":
+            return None
+        if not all(j.kind == "R" for j in outer):
+            return None
+        j = inner[0]
+        s = self.geom.link(j.b) if self.geom.link(j.b).kind == "slider" else self.geom.link(j.a)
+        g = self.geom.link(j.a if s.index == j.b else j.b)
+        if s.kind != "slider" or g.kind != "bar" or not s.points:
+            return None
+        pin = s.points[0]
+        hinge = next((jj.point for jj in outer if g.index in (jj.a, jj.b)), None)
+        if hinge is None or not any(s.index in (jj.a, jj.b) and jj.point == pin for jj in outer):
+            return None
+        return s, g, pin, hinge
+
+    def coincident(self, g, pin, hinge):
+        """Velocity and acceleration of the guide link's point under the pin."""
+        w, e = self.w(g.name), self.e(g.name)
+        r = self.r(pin) - self.r(hinge)
+        v = self.v(hinge) + w * _rot(r)
+        a = self.a(hinge) + e * _rot(r) - w * w * r
+        return v, a
+
+    def slotted_velocity(self, G, sl):
+        num = self.num
+        s, g, pin, hinge = sl
+        c = f"{pin}{g.index}"
+        cl = plan_label(c)
+        vc, _ = self.coincident(g, pin, hinge)
+        self.p(self.t("worked.eq", p=c))
+        line = hinge + next(p for p in g.points if p != hinge)
+        self.f(vq("v", c), mo("="), vq("v", pin), mo("+"), vq("v", c, pin), mo(";"), vq("v", c, pin),
+               mo(self.t("worked.par")), mt(line))
+        extra = [mo(";"), vq("v", hinge), mo("="), ("mn", "0", "zero")] if hinge in self.geom.ground else []
+        self.f(vq("v", c), mo("="), vq("v", hinge), mo("+"), vq("v", c, hinge), mo(";"), vq("v", c, hinge),
+               mo(self.t("worked.perp")), mt(hinge + pin), *extra)
+        self.p(self.t("worked.measured"))
+        vcm = float(np.hypot(*vc))
+        vr = float(np.hypot(*(vc - self.v(pin))))
+        vh = float(np.hypot(*(vc - self.v(hinge))))
+        self.f(qty("v", c), mo("="), seg("p", cl), mo("·"), sb("μ", "v"), mo("="), num.mm(vcm / self.mu_v, f"svc:{c}"),
+               mo("·"), num.exact(self.mu_v, "mu_v"), mo("="), num(vcm, f"vc:{c}"), unit(self.u["m/s"]))
+        self.f(qty("v", c, pin), mo("="), seg(plan_label(pin), cl), mo("·"), sb("μ", "v"), mo("="),
+               num.mm(vr / self.mu_v, f"svcr:{c}:{pin}"), mo("·"), num.exact(self.mu_v, "mu_v"), mo("="),
+               num(vr, f"vcr:{c}:{pin}"), unit(self.u["m/s"]))
+        w = self.w(g.name)
+        self.f(self.omega_sym(g.index), mo("="), frac(qty("v", c, hinge), qty("l", hinge, pin)), mo("="),
+               frac(num(vh, f"vcr:{c}:{hinge}"), self.lval(hinge, pin)), mo("="), num(w, f"w:{g.name}"),
+               unit(self.u["1/s"] + ", " + self.sense(w)))
+        known = {g.index: hinge}
+        self.similar_velocity(G, pin, known)
+        return known
+
+    def slotted_acceleration(self, G, sl, known):
+        num = self.num
+        s, g, pin, hinge = sl
+        c = f"{pin}{g.index}"
+        cl = plan_label(c)
+        vc, ac = self.coincident(g, pin, hinge)
+        line = hinge + next(p for p in g.points if p != hinge)
+        w, e = self.w(g.name), self.e(g.name)
+        L = self.l(hinge, pin)
+        self.p(self.t("worked.eq", p=c))
+        self.f(vq("a", c), mo("="), vq("a", pin), mo("+"), vq("a", c, pin, sup="k"), mo("+"),
+               vq("a", c, pin, sup="r"), mo(";"), vq("a", c, pin, sup="k"), mo(self.t("worked.perp")), mt(line),
+               mo(";"), vq("a", c, pin, sup="r"), mo(self.t("worked.par")), mt(line))
+        first = [] if hinge in self.geom.ground else [vq("a", hinge), mo("+")]
+        self.f(vq("a", c), mo("="), *first, vq("a", c, hinge, sup="n"), mo("+"), vq("a", c, hinge, sup="τ"), mo(";"),
+               vq("a", c, hinge, sup="n"), mo(self.t("worked.par")), mt(hinge + pin),
+               words("(" + self.t("worked.toward", a=pin, b=hinge) + ")"), mo(";"),
+               vq("a", c, hinge, sup="τ"), mo(self.t("worked.perp")), mt(hinge + pin))
+        self.p(self.t("worked.measured"))
+        vr = float(np.hypot(*(vc - self.v(pin))))
+        ak = 2.0 * abs(w) * vr
+        kl = plan_label(pin) + "k"
+        self.f(qty("a", c, pin, sup="k"), mo("="), ("mn", "2", "const:2"), mo("·"), self.omega_sym(g.index), mo("·"),
+               qty("v", c, pin), mo("="), ("mn", "2", "const:2"), mo("·"), num(w, f"w:{g.name}"), mo("·"),
+               num(vr, f"vcr:{c}:{pin}"), mo("="), num(ak, f"ak:{c}:{pin}"), unit(self.u["m/s2"]), mo(";"),
+               seg(kl), mo("="), frac(num(ak, f"ak:{c}:{pin}"), num.exact(self.mu_a, "mu_a")), mo("="),
+               num.mm(ak / self.mu_a, f"sak:{c}:{pin}"), unit(self.u["mm"]))
+        an = w * w * L
+        nl = f"n{g.index}".translate(SUB)
+        self.f(qty("a", c, hinge, sup="n"), mo("="), sp(self.omega_sym(g.index), "2"), mo("·"), qty("l", hinge, pin),
+               mo("="), sp(num(w, f"w:{g.name}"), "2"), mo("·"), self.lval(hinge, pin), mo("="),
+               num(an, f"anc:{c}:{hinge}"), unit(self.u["m/s2"]), mo(";"), seg(self.alab(hinge), nl), mo("="),
+               frac(num(an, f"anc:{c}:{hinge}"), num.exact(self.mu_a, "mu_a")), mo("="),
+               num.mm(an / self.mu_a, f"sanc:{c}:{hinge}"), unit(self.u["mm"]))
+        at = abs(e) * L
+        self.f(qty("a", c, hinge, sup="τ"), mo("="), seg(nl, cl), mo("·"), sb("μ", "a"), mo("="),
+               num.mm(at / self.mu_a, f"satc:{c}:{hinge}"), mo("·"), num.exact(self.mu_a, "mu_a"), mo("="),
+               num(at, f"atc:{c}:{hinge}"), unit(self.u["m/s2"]), mo(";"), sb("ε", str(g.index)), mo("="),
+               frac(qty("a", c, hinge, sup="τ"), qty("l", hinge, pin)), mo("="),
+               frac(num(at, f"atc:{c}:{hinge}"), self.lval(hinge, pin)), mo("="), num(e, f"e:{g.name}"),
+               unit(self.u["1/s2"] + ", " + self.sense(e)))
+        ar = float(np.hypot(*(ac - self.a(pin) - 2.0 * w * _rot(vc - self.v(pin)))))
+        self.f(qty("a", c, pin, sup="r"), mo("="), seg("k", cl), mo("·"), sb("μ", "a"), mo("="),
+               num.mm(ar / self.mu_a, f"sar:{c}:{pin}"), mo("·"), num.exact(self.mu_a, "mu_a"), mo("="),
+               num(ar, f"ar:{c}:{pin}"), unit(self.u["m/s2"]))
+        acm = float(np.hypot(*ac))
+        self.f(qty("a", c), mo("="), seg("π", cl), mo("·"), sb("μ", "a"), mo("="), num.mm(acm / self.mu_a, f"sac:{c}"),
+               mo("·"), num.exact(self.mu_a, "mu_a"), mo("="), num(acm, f"ac:{c}"), unit(self.u["m/s2"]))
+        self.similar_acceleration(G, pin, known)
 
     def group_title(self, typ, G):
         """The heading of a group, its link numbers tagged (``data-k="idx:<link>"``)."""
@@ -665,6 +781,10 @@ class _Writer:
         self.f(qty("a", X), mo("="), seg("π", plan_label(X)), mo("·"), sb("μ", "a"), mo("="),
                num.mm(aX / self.mu_a, f"sa:{X}"), mo("·"), num.exact(self.mu_a, "mu_a"), mo("="),
                num(aX, f"a:{X}"), unit(self.u["m/s2"]))
+        self.similar_acceleration(G, X, known)
+
+    def similar_acceleration(self, G, X, known):
+        num = self.num
         rows = self.others(G, X, known)
         if rows:
             self.p(self.t("worked.similar_a"))
@@ -937,15 +1057,21 @@ class _Writer:
         known = {}
         for typ, G, inner, outer in groups:
             self.h(self.group_title(typ, G))
+            sl = self.slotted(G, inner, outer)
             if self.supported(G, inner, outer):
                 known[tuple(G)] = self.group_velocity(typ, G, inner, outer)
+            elif sl is not None:
+                known[tuple(G)] = self.slotted_velocity(G, sl)
             else:
                 self.p(self.t("worked.unsupported", type=typ))
         self.h(self.t("worked.acc"))
         self.crank_acceleration()
         for typ, G, inner, outer in groups:
             self.h(self.group_title(typ, G))
-            if tuple(G) in known:
+            sl = self.slotted(G, inner, outer)
+            if tuple(G) in known and sl is not None:
+                self.slotted_acceleration(G, sl, known[tuple(G)])
+            elif tuple(G) in known:
                 self.group_acceleration(typ, G, inner, outer, known[tuple(G)])
             else:
                 self.p(self.t("worked.unsupported", type=typ))
@@ -961,7 +1087,7 @@ class _Writer:
             if self.supported(G, inner, outer):
                 self.group_kinetostatics(ks, typ, G, inner, outer, later)
             else:
-                self.p(self.t("worked.unsupported", type=typ))
+                self.p(self.t("worked.unsupported_kst", type=typ))
             solved += G
         self.crank_kinetostatics(ks)
         self.lever(ks, info)
