@@ -191,6 +191,11 @@ class Expected:
             pt, F = self.force(a[0])
             d = pt - self.r(a[1])
             return abs(d[0] * F[1] - d[1] * F[0]) / float(np.hypot(*F)), False
+        if k in ("Rm", "Mr"):                       # a force by its moment about a point: sign(M) |F|, -M
+            pt, F = self.force(a[0])
+            d = pt - self.r(a[1])
+            m = d[0] * F[1] - d[1] * F[0]
+            return (math.copysign(float(np.hypot(*F)), m) if k == "Rm" else -m), True
         if k in ("Rt", "Rn", "Mt"):
             pt, F = self.force(a[0])
             X = self.r(a[1])
@@ -293,7 +298,8 @@ def test_every_number_of_the_section_is_a_result(browser, run):  # noqa: F811
 
 def test_slotted_lever_with_coriolis(browser, tmp_path):  # noqa: F811
     """The shaper's slotted lever (RPR): the coincident point A3 of the rocker, the
-    relative and Coriolis accelerations (a^k = 2 omega_3 v_A3A), at the default position."""
+    relative and Coriolis accelerations (a^k = 2 omega_3 v_A3A), the block's reaction on
+    the lever from the lever's moment equation about O1, at the default position."""
     from tmm_cli.report.sections.worked import default_detail
     task = ROOT / "tasks" / "shaper_slotted_lever.yaml"
     r = _run(task, tmp_path / "o")
@@ -301,7 +307,7 @@ def test_slotted_lever_with_coriolis(browser, tmp_path):  # noqa: F811
     res = json.loads((tmp_path / "o" / "results.json").read_text())
     _check_section(browser, tmp_path / "o", task, default_detail(res),
                    {"vc", "svc", "vcr", "svcr", "ak", "sak", "ar", "sar", "anc", "sanc", "atc", "satc", "ac",
-                    "sac", "Mb", "hl", "lev"})
+                    "sac", "Rm", "Mr", "h", "R", "Rt", "Rn", "Mb", "hl", "lev"})
 
 
 def test_the_print_version_has_the_same_numbers(browser, run):  # noqa: F811

@@ -66,6 +66,11 @@ I18N = {
                                  "of the tables above.",
            "worked.unsupported_kst": "The equations of this group ({type}) are not written out step by step; its "
                                      "reactions are those of the tables of the kinetostatics section.",
+           "worked.moment_eq_p": "Moment equation of link {link} about {p} (counter-clockwise positive): the "
+                                 "reaction {r} of the block is perpendicular to the guide, h is its arm:",
+           "worked.order_rpr": "Order: {r} from this moment equation, then the reaction on the block ({block}) "
+                               "from its force polygon, the reaction of the frame on {link} from the polygon of "
+                               "{link}:",
            "worked.loads": "Loads of the links: weights G = m·g, inertia forces Φ = m·a_S (opposite to a_S), "
                            "moments of the inertia couples M_Φ = J_S·ε (opposite to ε):",
            "worked.moment_eq": "Moment equation of link {link} about {p} (counter-clockwise positive); the "
@@ -108,6 +113,10 @@ I18N = {
            "worked.unsupported": "Эта группа ({type}) по шагам не расписана; её значения — в таблицах выше.",
            "worked.unsupported_kst": "Уравнения этой группы ({type}) по шагам не расписаны; её реакции — в таблицах "
                                      "раздела кинетостатики.",
+           "worked.moment_eq_p": "Уравнение моментов звена {link} относительно {p} (против часовой стрелки — "
+                                 "положительные): реакция {r} камня перпендикулярна направляющей, h — её плечо:",
+           "worked.order_rpr": "Порядок: {r} — из этого уравнения моментов, затем реакция на камень ({block}) — из "
+                               "его плана сил, реакция стойки на {link} — из плана сил звена {link}:",
            "worked.loads": "Нагрузки звеньев: силы тяжести G = m·g, силы инерции Φ = m·a_S (против a_S), "
                            "моменты пар сил инерции M_Φ = J_S·ε (против ε):",
            "worked.moment_eq": "Уравнение моментов звена {link} относительно {p} (против часовой стрелки — "
@@ -151,6 +160,10 @@ I18N = {
            "worked.unsupported": "Цю групу ({type}) за кроками не розписано; її значення — у таблицях вище.",
            "worked.unsupported_kst": "Рівняння цієї групи ({type}) за кроками не розписано; її реакції — у таблицях "
                                      "розділу кінетостатики.",
+           "worked.moment_eq_p": "Рівняння моментів ланки {link} відносно {p} (проти годинникової стрілки — "
+                                 "додатні): реакція {r} каменя перпендикулярна до напрямної, h — її плече:",
+           "worked.order_rpr": "Порядок: {r} — з цього рівняння моментів, потім реакція на камінь ({block}) — з "
+                               "його плану сил, реакція стояка на {link} — з плану сил ланки {link}:",
            "worked.loads": "Навантаження ланок: сили тяжіння G = m·g, сили інерції Φ = m·a_S (проти a_S), "
                            "моменти пар сил інерції M_Φ = J_S·ε (проти ε):",
            "worked.moment_eq": "Рівняння моментів ланки {link} відносно {p} (проти годинникової стрілки — "
@@ -984,6 +997,45 @@ class _Writer:
         self.f(self.vfsym(rin), mo("="), mo("−"), mo("("), *parts[:-1], mo(")"), mo(";"), self.fsym(rin), mo("="),
                num(np.hypot(*Fin), f"R:{rin}"), unit(self.u["N"]))
 
+    def slotted_kinetostatics(self, ks, G, sl, inner, outer, later):
+        """RPR: the reaction of the block on the guide link (perpendicular to the guide)
+        from the guide link's moment equation about its hinge, then the polygons of the
+        block and of the guide link."""
+        num = self.num
+        s, g, pin, hinge = sl
+        self.loads_block(ks, G)
+        _, rsg, pt, F = self.reaction_on(ks, inner[0], g.index)
+        forces = self.load_items(ks, g.name)
+        for jj in later:
+            if g.index in (jj.a, jj.b):
+                _, rn, p2, F2 = self.reaction_on(ks, jj, g.index)
+                forces.append((rn, p2, F2))
+        terms, total = self.moment_terms(forces, self.couples_of(ks, g.name), hinge)
+        m = _cross(pt - self.r(hinge), F)
+        Fm = float(np.hypot(*F))
+        h = abs(m) / Fm
+        self.p(self.pt("worked.moment_eq_p", link=("mn", str(g.index), f"idx:{g.name}"), p=hinge, r=rsg))
+        self.f(mi("Σ"), sb("M", hinge), mo("("), ("mn", str(g.index), f"idx:{g.name}"), mo(")"), mo("="),
+               self.fsym(rsg), mo("·"), sb("h", rsg[1:]), *terms, mo("="), ("mn", "0", "zero"), mo(";"),
+               vq("R", rsg[1:]), mo(self.t("worked.perp")), words(self.t("worked.guide")))
+        self.f(self.fsym(rsg), mo("="), mo("−"), frac(row(mi("Σ"), sb("M", hinge)), sb("h", rsg[1:])), mo("="),
+               frac(row(mo("−"), mo("("), num(total, f"Mr:{rsg}:{hinge}", signed=True), mo(")")),
+                    num(h, f"h:{rsg}:{hinge}")), mo("="), num(m / h, f"Rm:{rsg}:{hinge}", signed=True),
+               unit(self.u["N"]))
+        self.p(self.t("worked.order_rpr", r=rsg, block=str(s.name), link=str(g.name)))
+        for lk in (s, g):
+            own = [j for j in outer if lk.index in (j.a, j.b)][0]
+            _, rn, _, Fo = self.reaction_on(ks, own, lk.index)
+            parts = []
+            for name, _, _ in self.load_items(ks, lk.name):
+                parts += [self.vfsym(name), mo("+")]
+            for jj in later + [inner[0]]:
+                if lk.index in (jj.a, jj.b):
+                    _, r2, _, _ = self.reaction_on(ks, jj, lk.index)
+                    parts += [self.vfsym(r2), mo("+")]
+            self.f(self.vfsym(rn), mo("="), mo("−"), mo("("), *parts[:-1], mo(")"), mo(";"), self.fsym(rn), mo("="),
+                   num(np.hypot(*Fo), f"R:{rn}"), unit(self.u["N"]))
+
     def crank_kinetostatics(self, ks):
         num = self.num
         g = self.geom
@@ -1084,8 +1136,11 @@ class _Writer:
         for typ, G, inner, outer in reversed(groups):
             self.h(self.group_title(typ, G))
             later = [j for j in self.geom.joints if (j.a in G and j.b in solved) or (j.b in G and j.a in solved)]
+            sl = self.slotted(G, inner, outer)
             if self.supported(G, inner, outer):
                 self.group_kinetostatics(ks, typ, G, inner, outer, later)
+            elif sl is not None:
+                self.slotted_kinetostatics(ks, G, sl, inner, outer, later)
             else:
                 self.p(self.t("worked.unsupported_kst", type=typ))
             solved += G
