@@ -216,7 +216,8 @@ class Expected:
         if k == "Pbz":
             return ks["zhukovsky_moment"] / arm, True
         if k == "lev":
-            pin = "A"
+            crank = self.links[self.task.drive.link]
+            pin = next(q for q in crank["points"] if q not in self.task.mechanism.ground)
             return ks["zhukovsky_moment"] / arm * float(np.hypot(*self.v(pin))) / self.mu_v, True
         raise KeyError(key)
 
@@ -393,3 +394,41 @@ def test_section_in_russian_and_ukrainian(tmp_path, lang, word):
     sec = sec[:sec.index("</section>")]
     assert word in sec and "<math" in sec
     assert not re.search(r">[^<]*\b(the|of|from|and)\b[^<]*<", re.sub(r"<math.*?</math>", "", sec, flags=re.S))
+
+
+def _section_numbers(html: str) -> list[tuple[str, str]]:
+    """(key, text) of every tagged number of the print rendering (the HTML formulas)."""
+    return re.findall(r'<span class="mn" data-k="([^"]+)">([^<]*)</span>', html)
+
+
+@pytest.mark.parametrize("name", ["engine_slider_crank", "compressor_v_twin", "crank_rocker_fourbar",
+                                  "static_gravity", "press_offset_slider_crank", "motion"])
+def test_numbers_of_other_tasks(tmp_path, name):
+    """The same check without a browser on the HTML formulas (the PDF's) of other tasks:
+    a slider-crank, a V-twin (two groups on one crank), a four-bar, a static problem,
+    an offset press, and the forging machine with `motion: true` (inertia loads of the
+    flywheel's steady motion: their values only, the lever left to the tables)."""
+    from tmm_cli.pipeline import run as run_pipeline
+    from tmm_cli.report import _context, sections
+    from tmm_cli.report.sections import worked
+    from tmm_cli.task import load_task
+    if name == "motion":
+        path = tmp_path / "motion.yaml"
+        path.write_text(TASK.read_text(encoding="utf-8").replace("  balance: crank\n",
+                                                                 "  balance: crank\n  motion: true\n"))
+    else:
+        path = ROOT / "tasks" / f"{name}.yaml"
+    task = load_task(path)
+    res = run_pipeline(task, kinematics_curve=0)
+    sections.available()                      # the sections' text tables
+    html = worked.build(_context(res, task, tmp_path, "en"))
+    nums = _section_numbers(html)
+    d = dict(nums)
+    ex = Expected(res, task, int(d["pos"]), float(d["mu_v"]), float(d["mu_a"]))
+    bad = [(k, t, ex.value(k)[0]) for k, t in nums if not _close(t, *ex.value(k))]
+    assert not bad, bad[:10]
+    assert len(nums) > 60
+    kinds = {k.split(":")[0] for k, _ in nums}
+    if res.get("kinetostatics"):
+        assert {"Mb", "R", "h"} <= kinds
+        assert ("lev" in kinds) == (name != "motion")

@@ -71,6 +71,9 @@ I18N = {
            "worked.order_rpr": "Order: {r} from this moment equation, then the reaction on the block ({block}) "
                                "from its force polygon, the reaction of the frame on {link} from the polygon of "
                                "{link}:",
+           "worked.lever_motion": "With the steady motion of the flywheel (kinetostatics motion: true) the "
+                                   "lever is not written out here: its balancing moment is in the table of the "
+                                   "kinetostatics section.",
            "worked.loads": "Loads of the links: weights G = m·g, inertia forces Φ = m·a_S (opposite to a_S), "
                            "moments of the inertia couples M_Φ = J_S·ε (opposite to ε):",
            "worked.moment_eq": "Moment equation of link {link} about {p} (counter-clockwise positive); the "
@@ -117,6 +120,8 @@ I18N = {
                                  "положительные): реакция {r} камня перпендикулярна направляющей, h — её плечо:",
            "worked.order_rpr": "Порядок: {r} — из этого уравнения моментов, затем реакция на камень ({block}) — из "
                                "его плана сил, реакция стойки на {link} — из плана сил звена {link}:",
+           "worked.lever_motion": "При установившемся движении с маховиком (motion: true) рычаг здесь не "
+                                   "расписан: его уравновешивающий момент — в таблице раздела кинетостатики.",
            "worked.loads": "Нагрузки звеньев: силы тяжести G = m·g, силы инерции Φ = m·a_S (против a_S), "
                            "моменты пар сил инерции M_Φ = J_S·ε (против ε):",
            "worked.moment_eq": "Уравнение моментов звена {link} относительно {p} (против часовой стрелки — "
@@ -164,6 +169,8 @@ I18N = {
                                  "додатні): реакція {r} каменя перпендикулярна до напрямної, h — її плече:",
            "worked.order_rpr": "Порядок: {r} — з цього рівняння моментів, потім реакція на камінь ({block}) — з "
                                "його плану сил, реакція стояка на {link} — з плану сил ланки {link}:",
+           "worked.lever_motion": "При усталеному русі з маховиком (motion: true) важіль тут не розписано: його "
+                                   "зрівноважувальний момент — у таблиці розділу кінетостатики.",
            "worked.loads": "Навантаження ланок: сили тяжіння G = m·g, сили інерції Φ = m·a_S (проти a_S), "
                            "моменти пар сил інерції M_Φ = J_S·ε (проти ε):",
            "worked.moment_eq": "Рівняння моментів ланки {link} відносно {p} (проти годинникової стрілки — "
@@ -856,6 +863,10 @@ class _Writer:
     def loads_block(self, ks, G):
         num = self.num
         mech = getattr(self.ctx.task, "mechanism", None)
+        # with `motion: true` the inertia loads follow the flywheel's omega(phi), eps(phi), not the
+        # constant-speed accelerations of the kinematics: their values only, no substitution
+        ksec = getattr(self.ctx.task, "kinetostatics", None)
+        steady = getattr(ksec, "motion", "constant") is not True
         self.p(self.t("worked.loads"))
         for l in G:
             name = self.names[l]
@@ -869,7 +880,7 @@ class _Writer:
                     items += [self.fsym(f["name"]), mo("="), sb("m", str(l)), mo("·"), mi("g"), mo("="),
                               num(spec.mass, f"m:{name}"), mo("·"), num(9.81, "g"), mo("="),
                               num(Fm, f"F:{f['name']}"), mo(";")]
-                elif f["kind"] == "inertia" and spec is not None and Fm > 0:
+                elif f["kind"] == "inertia" and spec is not None and Fm > 0 and steady:
                     s = f"S{l}"
                     aS = float(np.hypot(*self.a(s))) if s in self.pts else None
                     if aS is None:
@@ -882,7 +893,7 @@ class _Writer:
             for c in ks.get("couples", []):
                 if c["link"] != name or not c.get("M"):
                     continue
-                if c["kind"] == "inertia" and spec is not None and spec.J:
+                if c["kind"] == "inertia" and spec is not None and spec.J and steady:
                     items += [self.fsym(c["name"]), mo("="), sb("J", f"S{l}"), mo("·"), sb("ε", str(l)), mo("="),
                               num(spec.J, f"J:{name}"), mo("·"), num(self.e(name), f"e:{name}"), mo("="),
                               num(c["M"], f"M:{c['name']}"), mo(";")]
@@ -1145,6 +1156,12 @@ class _Writer:
                 self.p(self.t("worked.unsupported_kst", type=typ))
             solved += G
         self.crank_kinetostatics(ks)
+        if getattr(getattr(self.ctx.task, "kinetostatics", None), "motion", "constant") is True:
+            # the lever needs the velocities of the steady motion, which results.json keeps
+            # only for the loads: its value is in the kinetostatics section's table
+            self.h(self.t("worked.lever"))
+            self.p(self.t("worked.lever_motion"))
+            return
         self.lever(ks, info)
 
 
