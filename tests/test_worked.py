@@ -432,3 +432,20 @@ def test_numbers_of_other_tasks(tmp_path, name):
     if res.get("kinetostatics"):
         assert {"Mb", "R", "h"} <= kinds
         assert ("lev" in kinds) == (name != "motion")
+
+
+def test_undefined_value_gives_a_note_not_a_crash(tmp_path):
+    """A null of results.json at the detail position (next to a change point) leaves the
+    section with a note saying so, and the report whole."""
+    import copy
+    from tmm_cli.pipeline import run as run_pipeline
+    from tmm_cli.report import _context, sections
+    from tmm_cli.report.sections import worked
+    from tmm_cli.task import load_task
+    task = load_task(TASK)
+    res = copy.deepcopy(run_pipeline(task, kinematics_curve=0))
+    entry = next(e for e in res["kinematics"] if e["index"] == 1)
+    entry["points"]["B"]["vx"] = entry["points"]["B"]["vy"] = None
+    sections.available()
+    html = worked.build(_context(res, task, tmp_path, "en"))
+    assert "cannot be written out" in html and "data-k=\"pos\">1<" in html

@@ -74,6 +74,9 @@ I18N = {
            "worked.lever_motion": "With the steady motion of the flywheel (kinetostatics motion: true) the "
                                    "lever is not written out here: its balancing moment is in the table of the "
                                    "kinetostatics section.",
+           "worked.undefined": "This position cannot be written out: a value it needs is undefined there (a "
+                                "singular or change point is next to it, results.json holds null). Choose another "
+                                "position with report: {detail_position: N}.",
            "worked.loads": "Loads of the links: weights G = m·g, inertia forces Φ = m·a_S (opposite to a_S), "
                            "moments of the inertia couples M_Φ = J_S·ε (opposite to ε):",
            "worked.moment_eq": "Moment equation of link {link} about {p} (counter-clockwise positive); the "
@@ -122,6 +125,9 @@ I18N = {
                                "его плана сил, реакция стойки на {link} — из плана сил звена {link}:",
            "worked.lever_motion": "При установившемся движении с маховиком (motion: true) рычаг здесь не "
                                    "расписан: его уравновешивающий момент — в таблице раздела кинетостатики.",
+           "worked.undefined": "Это положение нельзя расписать: нужное значение в нём не определено (рядом особое "
+                                "положение, в results.json — null). Выберите другое положение: report: "
+                                "{detail_position: N}.",
            "worked.loads": "Нагрузки звеньев: силы тяжести G = m·g, силы инерции Φ = m·a_S (против a_S), "
                            "моменты пар сил инерции M_Φ = J_S·ε (против ε):",
            "worked.moment_eq": "Уравнение моментов звена {link} относительно {p} (против часовой стрелки — "
@@ -171,6 +177,9 @@ I18N = {
                                "його плану сил, реакція стояка на {link} — з плану сил ланки {link}:",
            "worked.lever_motion": "При усталеному русі з маховиком (motion: true) важіль тут не розписано: його "
                                    "зрівноважувальний момент — у таблиці розділу кінетостатики.",
+           "worked.undefined": "Це положення не можна розписати: потрібне значення в ньому не визначене (поруч "
+                                "особливе положення, у results.json — null). Виберіть інше положення: report: "
+                                "{detail_position: N}.",
            "worked.loads": "Навантаження ланок: сили тяжіння G = m·g, сили інерції Φ = m·a_S (проти a_S), "
                            "моменти пар сил інерції M_Φ = J_S·ε (проти ε):",
            "worked.moment_eq": "Рівняння моментів ланки {link} відносно {p} (проти годинникової стрілки — "
@@ -1175,7 +1184,12 @@ def build(ctx) -> str | None:
     w = _Writer(ctx, n)
     if w.geom is None:
         return None
-    w.build()
+    try:
+        w.build()
+    except (TypeError, ValueError, ZeroDivisionError):
+        # a value of this position is undefined (null in results.json: next to a change
+        # point or a singular position): the working cannot be written with numbers
+        w.blocks = [("p", ctx.t("worked.undefined"))]
     num = w.num
     e = w.ke
     head = ("row", [mt(ctx.t("worked.position") + " "), num.exact(n, "pos"), mo(","), mi("φ"), mo("="),
