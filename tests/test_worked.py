@@ -449,3 +449,19 @@ def test_undefined_value_gives_a_note_not_a_crash(tmp_path):
     sections.available()
     html = worked.build(_context(res, task, tmp_path, "en"))
     assert "cannot be written out" in html and "data-k=\"pos\">1<" in html
+
+
+def test_position_without_kinetostatics_says_so(tmp_path):
+    """`kinetostatics.positions` without the detail position: the kinematics are written
+    out and a note says the kinetostatics was not computed there."""
+    from tmm_cli.pipeline import run as run_pipeline
+    from tmm_cli.report import _context, sections
+    from tmm_cli.report.sections import worked
+    from tmm_cli.task import load_task
+    path = tmp_path / "sel.yaml"
+    path.write_text(TASK.read_text(encoding="utf-8").replace("  positions: all\n", "  positions: [0, 3]\n"))
+    task = load_task(path)
+    res = run_pipeline(task, kinematics_curve=0)
+    sections.available()
+    html = worked.build(_context(res, task, tmp_path, "en"))
+    assert "was not computed at this position" in html and 'data-k="sv:B"' in html and "Mb" not in html

@@ -77,6 +77,9 @@ I18N = {
            "worked.undefined": "This position cannot be written out: a value it needs is undefined there (a "
                                 "singular or change point is next to it, results.json holds null). Choose another "
                                 "position with report: {detail_position: N}.",
+           "worked.kst_absent": "The kinetostatics was not computed at this position (kinetostatics.positions).",
+           "worked.kst_force": "The balance link is a slider (a balancing force): its equations are not written "
+                               "out step by step; the values are in the kinetostatics section.",
            "worked.loads": "Loads of the links: weights G = m·g, inertia forces Φ = m·a_S (opposite to a_S), "
                            "moments of the inertia couples M_Φ = J_S·ε (opposite to ε):",
            "worked.moment_eq": "Moment equation of link {link} about {p} (counter-clockwise positive); the "
@@ -128,6 +131,9 @@ I18N = {
            "worked.undefined": "Это положение нельзя расписать: нужное значение в нём не определено (рядом особое "
                                 "положение, в results.json — null). Выберите другое положение: report: "
                                 "{detail_position: N}.",
+           "worked.kst_absent": "Кинетостатика в этом положении не рассчитывалась (kinetostatics.positions).",
+           "worked.kst_force": "Звено приведения — ползун (уравновешивающая сила): его уравнения по шагам не "
+                               "расписаны; значения — в разделе кинетостатики.",
            "worked.loads": "Нагрузки звеньев: силы тяжести G = m·g, силы инерции Φ = m·a_S (против a_S), "
                            "моменты пар сил инерции M_Φ = J_S·ε (против ε):",
            "worked.moment_eq": "Уравнение моментов звена {link} относительно {p} (против часовой стрелки — "
@@ -180,6 +186,9 @@ I18N = {
            "worked.undefined": "Це положення не можна розписати: потрібне значення в ньому не визначене (поруч "
                                 "особливе положення, у results.json — null). Виберіть інше положення: report: "
                                 "{detail_position: N}.",
+           "worked.kst_absent": "Кінетостатику в цьому положенні не розраховано (kinetostatics.positions).",
+           "worked.kst_force": "Ланка зведення — повзун (зрівноважувальна сила): її рівняння за кроками не "
+                               "розписано; значення — у розділі кінетостатики.",
            "worked.loads": "Навантаження ланок: сили тяжіння G = m·g, сили інерції Φ = m·a_S (проти a_S), "
                            "моменти пар сил інерції M_Φ = J_S·ε (проти ε):",
            "worked.moment_eq": "Рівняння моментів ланки {link} відносно {p} (проти годинникової стрілки — "
@@ -1149,6 +1158,10 @@ class _Writer:
                 self.p(self.t("worked.unsupported", type=typ))
         kst = self.kst_setup()
         if kst is None:
+            info = self.ctx.results.get("kinetostatics_info") or {}
+            if self.ctx.results.get("kinetostatics"):
+                self.h(self.t("worked.kst"))
+                self.p(self.t("worked.kst_force" if info.get("balance_kind") == "force" else "worked.kst_absent"))
             return
         ks, info = kst
         self.h(self.t("worked.kst"))
