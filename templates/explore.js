@@ -119,7 +119,8 @@
     });
   }
   // ---- forces (kinetostatics): the force polygon of each group, Zhukovsky's lever, reactions, M_b
-  var F = D.forces || null, COL = D.colors || {};
+  var FE = document.getElementById("ex-forces");
+  var F = FE ? JSON.parse(FE.textContent) : null, COL = F ? F.colors : {};
   function label(svg, x, y, sym, sub, col) {
     var t = el(svg, "text", {x: x, y: y, "font-size": 11, "font-style": "italic", fill: col || "#000",
       "text-anchor": "middle"}, sym);

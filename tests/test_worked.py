@@ -177,7 +177,7 @@ class Expected:
             return (x if k == "at" else x / self.mu_a), False
         if k in ("vc", "svc", "vcr", "svcr", "ac", "sac", "ak", "sak", "ar", "sar", "anc", "sanc", "atc", "satc"):
             return self.slotted(k, a), False
-        if k == "m":
+        if k == "m":        # the task's inputs (results.json repeats them in structure.links)
             return float(self.task.mechanism.links[a[0]].mass), False
         if k == "J":
             return float(self.task.mechanism.links[a[0]].J), False
@@ -301,12 +301,12 @@ def test_slotted_lever_with_coriolis(browser, tmp_path):  # noqa: F811
     """The shaper's slotted lever (RPR): the coincident point A3 of the rocker, the
     relative and Coriolis accelerations (a^k = 2 omega_3 v_A3A), the block's reaction on
     the lever from the lever's moment equation about O1, at the default position."""
-    from tmm_cli.report.sections.worked import default_detail
+    from tmm_cli.pipeline import default_detail
     task = ROOT / "tasks" / "shaper_slotted_lever.yaml"
     r = _run(task, tmp_path / "o")
     assert r.returncode == 0, r.stderr
     res = json.loads((tmp_path / "o" / "results.json").read_text())
-    _check_section(browser, tmp_path / "o", task, default_detail(res),
+    _check_section(browser, tmp_path / "o", task, default_detail(res["positions"]),
                    {"vc", "svc", "vcr", "svcr", "ak", "sak", "ar", "sar", "anc", "sanc", "atc", "satc", "ac",
                     "sac", "Rm", "Mr", "h", "R", "Rt", "Rn", "Mb", "hl", "lev"})
 
@@ -359,13 +359,14 @@ def _working_by_velocity(res: dict) -> int:
                                   "shaper_slotted_lever"])
 def test_default_detail_position(name):
     from tmm_cli.pipeline import run as run_pipeline
-    from tmm_cli.report.sections.worked import default_detail
+    from tmm_cli.pipeline import default_detail
     from tmm_cli.task import load_task
     res = run_pipeline(load_task(ROOT / "tasks" / f"{name}.yaml"), kinematics_curve=0)
     assert res["positions"]["kinds"][0] == "grid" and "extreme_index" in res["positions"]
-    assert default_detail(res) == _working_by_velocity(res)
+    assert default_detail(res["positions"]) == _working_by_velocity(res)
+    assert res["positions"]["detail_position"] == default_detail(res["positions"])
     if name == "forging_sixbar":
-        assert default_detail(res) == 1
+        assert default_detail(res["positions"]) == 1
 
 
 @pytest.mark.parametrize("value,msg", [("40", "position 40 does not exist"), ("two", "valid integer"),

@@ -37,8 +37,13 @@ def _stage(name: str):
 
 
 def run(task: Task, *, progress: Callable[[str], None] | None = None,
-        kinematics_curve: int = 361) -> dict[str, Any]:
+        kinematics_curve: int = 361, explore: bool = False) -> dict[str, Any]:
     """Compute every stage present in ``task``; return the results dict.
+
+    ``kinematics_curve``: points of the output link's curve over one turn (0: none);
+    ``explore``: also the kinematics at every degree of the turn (``kinematics_explore``,
+    the mechanism in motion of report.html; made only for an HTML report and never
+    written to results.json, see :func:`tmm_cli.orchestrate.write_outputs`).
 
     The independent parts (the linkage chain, cam, gears, planetary, dof2) each run
     even when another fails; a part stops at its first StageError.  If any part
@@ -76,7 +81,7 @@ def run(task: Task, *, progress: Callable[[str], None] | None = None,
             say("synthesis")
             raise task._synthesis_error
         if task.mechanism is not None:
-            part(lambda: _linkage(task, results, warnings, say, kinematics_curve))
+            part(lambda: _linkage(task, results, warnings, say, kinematics_curve, explore))
         if task.cam is not None:
             part(simple("cam", "cam", "synthesize", task.cam))
         if task.gears is not None:
@@ -126,7 +131,7 @@ def _drive_train(task: Task, results: dict, warnings: list, say) -> None:
             results["drive_train"].update(motor_power=moved["motor_power"], motor_power_computed=True)
 
 
-def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int) -> None:
+def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explore: bool) -> None:
     import numpy as np
 
     from .linkage import kinematics, structure
@@ -149,6 +154,10 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int) -> No
     positions = find_positions(task, mech)
     check_detail(task, positions)
     results["positions"] = positions.to_dict()
+    # the position the report works step by step (report.detail_position, or the default)
+    detail = task.report.detail_position if task.report is not None else None
+    results["positions"]["detail_position"] = detail if detail is not None else \
+        default_detail(results["positions"])
     if task.loads is not None:      # each loaded slider's own stroke (docs/methods.md §3.3)
         from .linkage import loads as loads_mod
         strokes = loads_mod.slider_strokes(mech, task.loads, positions)
@@ -173,6 +182,12 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int) -> No
     # a dense curve of the output link for the kinematic diagrams of the report
     if curve_n:
         results["kinematics_curve"] = _curve(kinematics, mech, positions, omega1, curve_n)
+    if explore:
+        # every point and link at each degree of the turn: the mechanism in motion of report.html
+        from .linkage.kinematics.explore import explore_grid
+        grid = _stage("kinematics")(explore_grid)(task, results)
+        if grid is not None:
+            results["kinematics_explore"] = grid
 
     dyn = None
     if task.flywheel is not None:
@@ -200,6 +215,19 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int) -> No
             warnings.extend(kd.get("warnings", []) or [])
         else:
             results["singular"] = list(getattr(res, "singular", []))
+        results.setdefault("kinetostatics_info", {})["motion"] = "steady" if ks.motion is True else "constant"
+        if explore and "kinematics_explore" in results:
+            # the force polygons and the lever of the mechanism in motion (report.html only):
+            # the same analysis at the explore grid's crank angles
+            g = results["kinematics_explore"]
+            n = len(g["turn"])
+            phi_g = np.mod(positions.phi0 + g["sign"] * np.arange(n) * (360.0 / n), 360.0)
+            kin_g = _stage("kinematics")(kinematics.solve)(mech, phi_g, omega1)
+            res_g = _stage("kinetostatics")(kinetostatics.analyze_task)(
+                mech, st, task, positions, phi_g, kin_g, dyn=dyn, singular=results["singular"])
+            kg = res_g.to_dict(detail=True)
+            kg.pop("warnings", None)
+            results["kinetostatics_explore"] = kg
 
 
 def find_positions(task: Task, mech):
@@ -226,6 +254,27 @@ def check_selection(task: Task, mech) -> None:
         if sel:
             _select(task.kinetostatics.positions, positions, task)
         check_detail(task, positions)
+
+
+def default_detail(positions: dict) -> int | None:
+    """The first working-stroke position after 0 (results ``positions``): the first grid
+    position (index >= 1, in the order of the positions) whose crank angle lies strictly
+    inside the working stroke [extreme start, + working stroke angle] counted in the sense
+    of rotation; position 1 when the output has no extremes; None without positions."""
+    idx, phi = list(positions.get("index") or []), list(positions.get("phi") or [])
+    kinds = list(positions.get("kinds") or ["grid"] * len(idx))
+    grid = [(i, f) for i, f, k in zip(idx, phi, kinds) if k == "grid" and i >= 1]
+    if not grid:
+        return idx[0] if idx else None
+    ext, ws = positions.get("extreme"), positions.get("working_stroke_angle")
+    if not ext or ws is None:
+        return grid[0][0]
+    sign = 1.0 if positions.get("direction", "ccw") == "ccw" else -1.0
+    for i, f in grid:
+        turn = (sign * (float(f) - float(ext[0]))) % 360.0
+        if 1e-9 < turn < float(ws) - 1e-9:
+            return i
+    return grid[0][0]
 
 
 def check_detail(task: Task, positions) -> None:

@@ -120,6 +120,7 @@ class Mechanism:
         return {
             "links": [{"name": lk.name, "index": lk.index, "kind": lk.kind,
                        "points": [p for p in lk.local], "com": f"S{lk.index}",
+                       "mass": float(lk.mass), "J": float(lk.J),
                        "guide": (None if lk.guide is None else
                                  {"link": lk.guide.link, "angle": lk.guide.angle,
                                   "offset": lk.guide.offset,
@@ -128,6 +129,7 @@ class Mechanism:
             "joints": [{"kind": j.kind, "a": j.a, "b": j.b, "point": j.point, "slider": j.slider}
                        for j in self.joints],
             "ground": {k: list(v) for k, v in self.ground.items()},
+            "drive_link": self.crank.name,
         }
 
 

@@ -7,19 +7,22 @@ reactions of the removed links, as the report's drawings: sections/kinetostatics
 ``group_forces``) and Zhukovsky's lever (the velocity plan turned by +90 deg, each load
 at the end of its point's turned velocity, P_b at the crank pin), and in the table the
 reactions |R_ij| and the balancing moment M_b (or force P_b) by the groups and by the
-lever.  Those numbers come from the kinetostatics stage's ``analyze_task`` (the
-pipeline's own call) at the same fine grid.
+lever.  Those numbers are the results' ``kinetostatics_explore``: the kinetostatics
+stage's ``analyze_task`` (the pipeline's own call) at the same fine grid, made by the
+pipeline for the HTML report only.
 
 HTML only: ``inject(ctx, html)`` adds the widget (templates ``explore.html.j2`` and
 ``explore.js``, the data as JSON in a ``<script type="application/json">``) to the
 HTML text written to report.html; the PDF is made from the HTML without it.  The
-data come from the stage function ``tmm_cli.linkage.kinematics.explore.explore_grid``."""
+data are the results' ``kinematics_explore`` (made by the pipeline with the stage
+function ``tmm_cli.linkage.kinematics.explore.explore_grid``)."""
 from __future__ import annotations
 
 import json
 
 import numpy as np
 
+from ..tables import round_sig
 from .context import templates_dir
 
 I18N = {
@@ -67,8 +70,7 @@ def data_json(data: dict) -> str:
 
 
 def _vec_rows(items: dict, digits: int) -> list:
-    """name -> (kind, [F (2,) | None per row]) -> [{name, kind, x, y}] (rounded)."""
-    from ..linkage.kinematics.explore import round_sig
+    """name -> (kind, (symbol, subscript), [F (2,) | None per row]) -> [{name, sym, sub, kind, x, y}]."""
     out = []
     for name, (kind, sym, col) in items.items():
         arr = np.array([[np.nan, np.nan] if F is None else F for F in col], float)
@@ -77,62 +79,47 @@ def _vec_rows(items: dict, digits: int) -> list:
     return out
 
 
-def forces_grid(task, results: dict, phi, lang: str = "en") -> dict | None:
-    """The kinetostatics of the task at the crank angles ``phi`` (deg) for the widget:
-    per Assur group (from the last attached to the input link) the vectors of its force
-    polygon, the loads for Zhukovsky's lever (force and the velocity of its point), the
-    reactions and the balancing moment (force).  None without kinetostatics."""
-    if getattr(task, "kinetostatics", None) is None or not results.get("kinetostatics") \
-            or getattr(task, "mechanism", None) is None:
+def forces_grid(results: dict, lang: str = "en") -> dict | None:
+    """The widget's forces from the results' ``kinetostatics_explore`` (the kinetostatics
+    stage at the fine grid, made by the pipeline for the HTML report): per Assur group
+    (from the last attached to the input link) the vectors of its force polygon, the
+    loads for Zhukovsky's lever (force and the velocity of its point), the reactions and
+    the balancing moment (force).  None without them."""
+    d = results.get("kinetostatics_explore")
+    st = results.get("structure") or {}
+    if not d or not d.get("entries") or not st.get("links"):
         return None
-    from ..linkage import kinematics, kinetostatics, structure
-    from ..linkage.drive_speed import with_speed
-    from ..linkage.kinematics.explore import round_sig
-    from ..linkage.mechanism import build_mechanism
-    from ..pipeline import find_positions
     from .sections.kinetostatics import group_forces, label_parts
-    omega1 = float(results["drive"]["omega"])
-    task = with_speed(task, omega1)
-    mech = build_mechanism(task)
-    st = structure.analyze(mech)
-    positions = find_positions(task, mech)
-    dyn = None
-    if task.kinetostatics.motion is True and task.flywheel is not None:
-        from ..linkage import dynamics
-        dyn = dynamics.analyze_task(mech, task, positions, accuracy=False)
-    phi = np.asarray(phi, float)
-    kin = kinematics.solve(mech, phi, omega1)
-    res = kinetostatics.analyze_task(mech, st, task, positions, phi, kin, dyn=dyn,
-                                     singular=results.get("singular"))
-    d = res.to_dict(detail=True)
     entries = d["entries"]
     N = len(entries)
-    index_by_name = {lk.name: lk.index for lk in mech.links}
+    links = {l["name"]: l for l in st["links"]}
+    index_by_name = {n: l["index"] for n, l in links.items()}
     groups = [list(g) for g in d["groups"]]
     order = list(reversed(groups[:-1])) + [groups[-1]]
     force_bal = d["balance_kind"] == "force"
-    bjoint = None
-    if force_bal:
-        bi = index_by_name[d["balance"]]
-        bjoint = next(k for k, j in enumerate(mech.joints) if j.kind == "P" and j.slider == bi)
+    guide = None
+    if force_bal:               # a balancing force along a fixed guide (its direction is constant)
+        g = links[d["balance"]].get("guide") or {}
+        if g.get("link") is None and g.get("angle") is not None:
+            a = np.radians(float(g["angle"]))
+            guide = np.array([np.cos(a), np.sin(a)])
     out_groups = []
     for k, g in enumerate(order):
         gi = {index_by_name[n] for n in g}
         items: dict = {}
         for i, e in enumerate(entries):
             fs = group_forces(e, d, gi, index_by_name)
-            if force_bal and d["balance"] in g and e.get("balancing_force") is not None:
-                fs.append(("P\u0000b", None, float(e["balancing_force"]) * res.geo.jdir[bjoint][i], "balance"))
+            if guide is not None and d["balance"] in g and e.get("balancing_force") is not None:
+                fs.append(("P\u0000b", None, float(e["balancing_force"]) * guide, "balance"))
             for name, _, F, kind in fs:
                 if name not in items:
                     items[name] = (kind, label_parts(name, lang), [None] * N)
                 items[name][2][i] = F
         # the polygon's order: loads, then reactions (as the report's drawings)
         items = dict(sorted(items.items(), key=lambda t: t[1][0] == "reaction"))
-        last = k == len(order) - 1
-        out_groups.append({"links": [index_by_name[n] for n in g], "crank": last,
+        out_groups.append({"links": [index_by_name[n] for n in g], "crank": k == len(order) - 1,
                            "vecs": _vec_rows(items, 5)})
-    lever = {}
+    lever: dict = {}
     for i, e in enumerate(entries):
         for f in e.get("loads", []):
             if f["name"] not in lever:
@@ -149,43 +136,34 @@ def forces_grid(task, results: dict, phi, lang: str = "en") -> dict | None:
     zkey = "zhukovsky_force" if force_bal else "zhukovsky_moment"
     reactions = []
     for j in d["joints"]:
-        R = [e["reactions"][j["key"]]["R"] for e in entries]
-        reactions.append({"key": j["key"], "sym": label_parts(j["key"], lang)[0],
-                          "sub": label_parts(j["key"], lang)[1],
-                          "R": round_sig([np.nan if r is None else r for r in R])})
+        sym, sub = label_parts(j["key"], lang)
+        reactions.append({"key": j["key"], "sym": sym, "sub": sub,
+                          "R": round_sig([e["reactions"][j["key"]]["R"] for e in entries])})
     pin = None
-    drive = mech.link(mech.drive)
-    if not force_bal and d["balance"] == drive.name:
-        pin = mech.crank_pin
+    drive = links.get(st.get("drive_link"))
+    ground = set(st.get("ground") or {})
+    if not force_bal and drive is not None and d["balance"] == drive["name"]:
+        pin = next((p for p in drive["points"] if p not in ground), None)
     return {"kind": "force" if force_bal else "moment", "balance": d["balance"], "pin": pin,
-            "omega1": omega1, "groups": out_groups, "lever": lev, "reactions": reactions,
-            "Mb": round_sig([np.nan if e[key] is None else e[key] for e in entries]),
-            "Mzh": round_sig([np.nan if e[zkey] is None else e[zkey] for e in entries])}
+            "omega1": float(results["drive"]["omega"]), "groups": out_groups, "lever": lev,
+            "reactions": reactions, "Mb": round_sig([e[key] for e in entries]),
+            "Mzh": round_sig([e[zkey] for e in entries])}
 
 
 def fragment(ctx) -> str | None:
-    from ..linkage.kinematics.explore import explore_grid
-    if ctx.task is None or not ctx.results.get("kinematics"):
-        return None
-    try:
-        data = explore_grid(ctx.task, ctx.results)
-    except Exception:          # the static report stays whole if the dense grid cannot be made
-        return None
-    if not data:
-        return None
-    try:
-        forces = forces_grid(ctx.task, ctx.results, data["phi"], ctx.lang)
-    except Exception:          # the kinematics stay shown if the forces cannot be made
-        forces = None
-    if forces:
-        from .sections.kinetostatics import KIND_COLOR
-        data["forces"] = forces
-        data["colors"] = KIND_COLOR
-    tr = I18N.get(ctx.lang, I18N["en"])
     from markupsafe import Markup
+    data = ctx.results.get("kinematics_explore")
+    if not data:                # no linkage, or results made without the fine grid
+        return None
+    forces = forces_grid(ctx.results, ctx.lang)
+    fdata = None
+    if forces:                  # a script element of its own: ex-data is the results' grid as it is
+        from .sections.kinetostatics import KIND_COLOR
+        fdata = Markup(data_json({**forces, "colors": KIND_COLOR}))
+    tr = I18N.get(ctx.lang, I18N["en"])
     js = (templates_dir() / "explore.js").read_text(encoding="utf-8")
     return ctx.render("explore.html.j2", tr=tr, data=Markup(data_json(data)),
-                      labels=Markup(data_json(tr)), forces=forces, js=Markup(js.replace("</", "<\\/")))
+                      labels=Markup(data_json(tr)), forces=forces, fdata=fdata, js=Markup(js.replace("</", "<\\/")))
 
 
 def inject(ctx, html: str) -> str:

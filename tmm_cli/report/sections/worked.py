@@ -1,8 +1,9 @@
 """Report section 'worked': the working of one position written out step by step, as a
 student's explanatory note does (docs/methods.md §3.4).
 
-For the position ``report.detail_position`` of the task (default: the first
-working-stroke position after 0, ``default_detail``):
+For the position ``positions.detail_position`` of the results (the task's
+``report.detail_position``, default the first working-stroke position after 0: chosen by
+the pipeline, ``tmm_cli.pipeline.default_detail``):
 
 * velocities: the crank pin v_A = omega_1 l_OA and the scale mu_v = v_A / pa; for each
   Assur group (in the order of attachment) the vector equations of its inner point
@@ -19,8 +20,8 @@ working-stroke position after 0, ``default_detail``):
 * Zhukovsky's lever: the moment equation about the pole with each arm (mm on the
   plan turned by 90 deg), P_b and M_b.
 
-Every number is either a value of results.json at that position, an input of the
-task (masses, moments of inertia), or computed here from those by the formula
+Every number is either a value of results.json at that position (the masses and
+moments of inertia are its ``structure.links``), or computed here from those by the formula
 written next to it; each carries ``data-k`` naming what it is, so that a test can
 recompute it (tests/test_worked.py).  Formulas are MathML in report.html and the
 same formulas as HTML with sub/superscripts in the PDF (weasyprint does not lay out
@@ -423,33 +424,11 @@ def seg(*pts):
     return mt("".join(pts))
 
 
-# ====================================================================== default position
-def default_detail(results: dict) -> int | None:
-    """The first working-stroke position after 0: the first grid position (index >= 1,
-    in the order of the positions) whose crank angle lies strictly inside the working
-    stroke [extreme start, + working stroke angle] counted in the sense of rotation;
-    position 1 when the task has no extremes; None without positions."""
-    pos = results.get("positions") or {}
-    idx, phi = list(pos.get("index") or []), list(pos.get("phi") or [])
-    kinds = list(pos.get("kinds") or ["grid"] * len(idx))
-    grid = [(i, f) for i, f, k in zip(idx, phi, kinds) if k == "grid" and i >= 1]
-    if not grid:
-        return idx[0] if idx else None
-    ext, ws = pos.get("extreme"), pos.get("working_stroke_angle")
-    if not ext or ws is None:
-        return grid[0][0]
-    sign = 1.0 if pos.get("direction", "ccw") == "ccw" else -1.0
-    for i, f in grid:
-        turn = (sign * (float(f) - float(ext[0]))) % 360.0
-        if 1e-9 < turn < float(ws) - 1e-9:
-            return i
-    return grid[0][0]
-
-
 def detail_position(ctx) -> int | None:
-    rep = getattr(ctx.task, "report", None) if ctx.task is not None else None
-    n = getattr(rep, "detail_position", None) if rep is not None else None
-    return n if n is not None else default_detail(ctx.results)
+    """The position to write out: results ``positions.detail_position`` (the task's
+    ``report.detail_position`` or the first working-stroke position after 0, chosen by
+    the pipeline: ``tmm_cli.pipeline.default_detail``)."""
+    return (ctx.results.get("positions") or {}).get("detail_position")
 
 
 # ====================================================================== the section
@@ -461,7 +440,7 @@ class _Writer:
         self.num = Num(ctx)
         self.n = n
         res = ctx.results
-        self.geom = plan_geometry(res, ctx.task)
+        self.geom = plan_geometry(res, None)
         kin = res.get("kinematics") or []
         self.ke = next(e for e in kin if e["index"] == n)
         self.mu_v, self.mu_a, _, _ = scales(kin, self.geom)
@@ -880,40 +859,40 @@ class _Writer:
 
     def loads_block(self, ks, G):
         num = self.num
-        mech = getattr(self.ctx.task, "mechanism", None)
+        links = {l["name"]: l for l in (self.ctx.results.get("structure") or {}).get("links") or []}
         # with `motion: true` the inertia loads follow the flywheel's omega(phi), eps(phi), not the
         # constant-speed accelerations of the kinematics: their values only, no substitution
-        ksec = getattr(self.ctx.task, "kinetostatics", None)
-        steady = getattr(ksec, "motion", "constant") is not True
+        steady = (self.ctx.results.get("kinetostatics_info") or {}).get("motion") != "steady"
         self.p(self.t("worked.loads"))
         for l in G:
             name = self.names[l]
-            spec = mech.links.get(name) if mech is not None else None
+            spec = links.get(name)
+            mass, J = (spec.get("mass"), spec.get("J")) if spec else (None, None)
             items = []
             for f in ks["loads"]:
                 if f["link"] != name:
                     continue
                 Fm = float(np.hypot(*f["F"]))
-                if f["kind"] == "gravity" and spec is not None and Fm > 0:
+                if f["kind"] == "gravity" and mass and Fm > 0:
                     items += [self.fsym(f["name"]), mo("="), sb("m", str(l)), mo("·"), mi("g"), mo("="),
-                              num(spec.mass, f"m:{name}"), mo("·"), num(9.81, "g"), mo("="),
+                              num(mass, f"m:{name}"), mo("·"), num(9.81, "g"), mo("="),
                               num(Fm, f"F:{f['name']}"), mo(";")]
-                elif f["kind"] == "inertia" and spec is not None and Fm > 0 and steady:
+                elif f["kind"] == "inertia" and mass and Fm > 0 and steady:
                     s = f"S{l}"
                     aS = float(np.hypot(*self.a(s))) if s in self.pts else None
                     if aS is None:
                         continue
                     items += [self.fsym(f["name"]), mo("="), sb("m", str(l)), mo("·"), qty("a", s), mo("="),
-                              num(spec.mass, f"m:{name}"), mo("·"), num(aS, f"a:{s}"), mo("="),
+                              num(mass, f"m:{name}"), mo("·"), num(aS, f"a:{s}"), mo("="),
                               num(Fm, f"F:{f['name']}"), mo(";")]
                 elif Fm > 0:
                     items += [self.fsym(f["name"]), mo("="), num(Fm, f"F:{f['name']}"), mo(";")]
             for c in ks.get("couples", []):
                 if c["link"] != name or not c.get("M"):
                     continue
-                if c["kind"] == "inertia" and spec is not None and spec.J and steady:
+                if c["kind"] == "inertia" and J and steady:
                     items += [self.fsym(c["name"]), mo("="), sb("J", f"S{l}"), mo("·"), sb("ε", str(l)), mo("="),
-                              num(spec.J, f"J:{name}"), mo("·"), num(self.e(name), f"e:{name}"), mo("="),
+                              num(J, f"J:{name}"), mo("·"), num(self.e(name), f"e:{name}"), mo("="),
                               num(c["M"], f"M:{c['name']}"), mo(";")]
                 else:
                     items += [self.fsym(c["name"]), mo("="), num(c["M"], f"M:{c['name']}"), mo(";")]
@@ -1178,7 +1157,7 @@ class _Writer:
                 self.p(self.t("worked.unsupported_kst", type=typ))
             solved += G
         self.crank_kinetostatics(ks)
-        if getattr(getattr(self.ctx.task, "kinetostatics", None), "motion", "constant") is True:
+        if info.get("motion") == "steady":
             # the lever needs the velocities of the steady motion, which results.json keeps
             # only for the loads: its value is in the kinetostatics section's table
             self.h(self.t("worked.lever"))
@@ -1189,7 +1168,7 @@ class _Writer:
 
 def build(ctx) -> str | None:
     kin = ctx.results.get("kinematics") or []
-    if not kin or ctx.task is None or getattr(ctx.task, "mechanism", None) is None:
+    if not kin or not (ctx.results.get("structure") or {}).get("links"):
         return None
     n = detail_position(ctx)
     if n is None or not any(e["index"] == n for e in kin):
