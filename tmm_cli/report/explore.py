@@ -8,7 +8,7 @@ reactions of the removed links, as the report's drawings: sections/kinetostatics
 at the end of its point's turned velocity, P_b at the crank pin), and in the table the
 reactions |R_ij| and the balancing moment M_b (or force P_b) by the groups and by the
 lever.  Those numbers are the results' ``kinetostatics_explore``: the kinetostatics
-stage's ``analyze_task`` (the pipeline's own call) at the same fine grid, made by the
+stage's ``analyze_at`` (the stage at other crank angles) at the same fine grid, made by the
 pipeline for the HTML report only.
 
 HTML only: ``inject(ctx, html)`` adds the widget (templates ``explore.html.j2`` and

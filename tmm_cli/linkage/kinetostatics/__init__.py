@@ -5,12 +5,17 @@ the instantaneous efficiency.
 
 Public API::
 
-    analyze(mech, structure, kin, loads, section, *, indices=None, crank_inertia=0.0)
-        -> KinetostaticsResult          # .to_dict(): {"entries": [...], "singular": [...], ...}
+    analyze(linkage, section, kin, *, motion=None) -> KinetostaticsResult     # the stage
+        # .to_dict(): {"kinetostatics": [...], "kinetostatics_info": {...}, "singular": [...]}
+    equilibrium(mech, structure, kin, loads, section, *, indices=None, crank_inertia=0.0)
+        -> KinetostaticsResult          # on given kinematics and loads
+    select_rows(spec, positions) -> list[int]                # kinetostatics.positions -> rows
+    analyze_at(linkage, section, phi_deg, *, motion=None, singular=None)
+        -> KinetostaticsResult          # the stage at other crank angles (the report's fine grid)
     find_singular(mech, structure, balance) -> list[float]   # crank angles, deg
-    analyze_task(mech, structure, task, positions, phi_deg, kin, *, dyn=None, indices=None,
-                 singular=None) -> KinetostaticsResult   # loads and motion of the task, as the pipeline
 """
-from .analysis import KinetostaticsResult, analyze, analyze_task, balance_index, find_singular, singular_function
+from .analysis import (KinetostaticsResult, analyze, analyze_at, balance_index, equilibrium, find_singular, select_rows,
+                       singular_function)
 
-__all__ = ["analyze", "analyze_task", "find_singular", "KinetostaticsResult", "balance_index", "singular_function"]
+__all__ = ["analyze", "analyze_at", "equilibrium", "select_rows", "find_singular", "KinetostaticsResult", "balance_index",
+           "singular_function"]
