@@ -118,6 +118,82 @@
       row([l, num(D.links[l].omega[k]), num(D.links[l].epsilon[k])]).dataset.link = l;
     });
   }
+  // ---- forces (kinetostatics): the force polygon of each group, Zhukovsky's lever, reactions, M_b
+  var FE = document.getElementById("ex-forces");
+  var F = FE ? JSON.parse(FE.textContent) : null, COL = F ? F.colors : {};
+  function label(svg, x, y, sym, sub, col) {
+    var t = el(svg, "text", {x: x, y: y, "font-size": 11, "font-style": "italic", fill: col || "#000",
+      "text-anchor": "middle"}, sym);
+    if (sub) { var s = document.createElementNS(NS, "tspan"); s.setAttribute("dy", "3");
+      s.setAttribute("font-size", "8"); s.textContent = sub; t.appendChild(s); }
+    return t;
+  }
+  function arrow(svg, a, b, col, w) {
+    el(svg, "line", {x1: a[0], y1: a[1], x2: b[0], y2: b[1], stroke: col, "stroke-width": w || 1.4});
+    var dx = b[0] - a[0], dy = b[1] - a[1], L = Math.hypot(dx, dy);
+    if (L < 1e-9) return;
+    var ux = dx / L, uy = dy / L, h = Math.min(7, L * 0.45);
+    el(svg, "path", {d: "M" + b[0] + "," + b[1] + " L" + (b[0] - h * ux - h * 0.35 * uy) + "," + (b[1] - h * uy + h * 0.35 * ux) +
+      " L" + (b[0] - h * ux + h * 0.35 * uy) + "," + (b[1] - h * uy - h * 0.35 * ux) + " z", fill: col});
+  }
+  function drawPolygon(gi, k) {
+    var g = F.groups[gi], svg = canvas("ex-poly-" + gi);
+    var vs = g.vecs.filter(function (v) { return fin(v.x[k]) && fin(v.y[k]); });
+    var Fm = 0; vs.forEach(function (v) { Fm = Math.max(Fm, Math.hypot(v.x[k], v.y[k])); });
+    vs = vs.filter(function (v) { return Math.hypot(v.x[k], v.y[k]) > 1e-9 * Fm; });
+    if (!vs.length) return;
+    var tips = [[0, 0]];
+    vs.forEach(function (v) { var t = tips[tips.length - 1]; tips.push([t[0] + v.x[k], t[1] + v.y[k]]); });
+    var e = extent(tips.map(function (t) { return t[0]; }), tips.map(function (t) { return t[1]; }));
+    var f = mapper(svg, e[0], e[1], e[2], e[3]);
+    vs.forEach(function (v, i) {
+      var a = f(tips[i][0], tips[i][1]), b = f(tips[i + 1][0], tips[i + 1][1]), col = COL[v.kind] || "#000";
+      arrow(svg, a, b, col, 1.4);
+      var dx = b[0] - a[0], dy = b[1] - a[1], L = Math.hypot(dx, dy) || 1;
+      label(svg, (a[0] + b[0]) / 2 - 9 * dy / L, (a[1] + b[1]) / 2 + 9 * dx / L + 4, v.sym, v.sub, col);
+    });
+    var o = f(0, 0); el(svg, "circle", {cx: o[0], cy: o[1], r: 2.5, fill: "#000"});
+  }
+  function drawLever(k) {
+    var svg = canvas("ex-lever");
+    var ends = [[0, 0]];
+    movers.forEach(function (p) { var q = D.points[p]; if (fin(q.vx[k]) && fin(q.vy[k])) ends.push([-q.vy[k], q.vx[k]]); });
+    F.lever.forEach(function (l) { if (fin(l.vx[k]) && fin(l.vy[k])) ends.push([-l.vy[k], l.vx[k]]); });
+    var e = extent(ends.map(function (t) { return t[0]; }), ends.map(function (t) { return t[1]; }));
+    var m = Math.max(e[1] - e[0], e[3] - e[2]) * 0.15 + 1e-9;
+    var f = mapper(svg, e[0] - m, e[1] + m, e[2] - m, e[3] + m), o = f(0, 0);
+    movers.forEach(function (p) { var q = D.points[p]; if (!fin(q.vx[k]) || !fin(q.vy[k])) return;
+      var b = f(-q.vy[k], q.vx[k]);
+      el(svg, "line", {x1: o[0], y1: o[1], x2: b[0], y2: b[1], stroke: "#aaa", "stroke-width": 1});
+      el(svg, "text", {x: b[0] + 3, y: b[1] - 3, "font-size": 9, fill: "#666"}, p.toLowerCase()); });
+    var Fm = 0; F.lever.forEach(function (l) { if (fin(l.x[k]) && fin(l.y[k])) Fm = Math.max(Fm, Math.hypot(l.x[k], l.y[k])); });
+    function force(at, Fx, Fy, col, sym, sub, len) {
+      var n = Math.hypot(Fx, Fy); if (!(n > 1e-9 * Fm)) return;
+      var a = f(at[0], at[1]), ux = Fx / n, uy = -Fy / n, b = [a[0] + ux * len, a[1] + uy * len];
+      arrow(svg, a, b, col, 1.3); label(svg, b[0] + 8 * ux, b[1] + 8 * uy + 4, sym, sub, col);
+    }
+    F.lever.forEach(function (l) {
+      if (!fin(l.x[k]) || !fin(l.vx[k])) return;
+      force([-l.vy[k], l.vx[k]], l.x[k], l.y[k], COL[l.kind] || "#000", l.sym, l.sub, 14 + 16 * Math.sqrt(Math.hypot(l.x[k], l.y[k]) / (Fm || 1)));
+    });
+    if (F.kind === "moment" && F.pin && fin(F.Mb[k])) {
+      var q = D.points[F.pin], vx = q.vx[k], vy = q.vy[k], v2 = vx * vx + vy * vy;
+      if (v2 > 0 && F.Mb[k] !== 0) { var c = F.Mb[k] * F.omega1 / v2; Fm = Math.max(Fm, 1e-300);
+        force([-vy, vx], c * vx, c * vy, COL.balance || "#117a65", "P", "b", 26); }
+    }
+    el(svg, "circle", {cx: o[0], cy: o[1], r: 2.5, fill: "#000"});
+    el(svg, "text", {x: o[0] - 12, y: o[1] + 12, "font-size": 11}, "p");
+  }
+  function fillForces(k) {
+    var h = row([L["explore.pair"], L["explore.R"], ""], true);
+    F.reactions.forEach(function (r) {
+      var tr = row(["", num(r.R[k]), ""]); tr.dataset.pair = r.key;
+      tr.cells[0].textContent = r.sym; var s = document.createElement("sub"); s.textContent = r.sub; tr.cells[0].appendChild(s);
+    });
+    row([F.kind === "moment" ? L["explore.mb"] : L["explore.pb"], L["explore.by_groups"], L["explore.by_lever"]], true);
+    var tr = row([F.kind === "moment" ? "M" : "P", num(F.Mb[k]), num(F.Mzh[k])]); tr.dataset.mb = "1";
+    var s = document.createElement("sub"); s.textContent = "b"; tr.cells[0].appendChild(s);
+  }
   function show(k) {
     k = ((k % n) + n) % n;
     slider.value = String(k);
@@ -126,6 +202,7 @@
       (m ? "  — " + L["explore.pos"] + " " + m.index : "");
     out.dataset.k = String(k);
     drawMech(k); drawPlan("ex-vplan", "vx", "vy", VM, k, "p"); drawPlan("ex-aplan", "ax", "ay", AM, k, "π"); fill(k);
+    if (F) { F.groups.forEach(function (g, i) { drawPolygon(i, k); }); drawLever(k); fillForces(k); }
   }
   function snapped(k) {
     var best = null, bd = SNAP / step + 1e-9;

@@ -165,3 +165,51 @@ def test_round_off_zero_shown_as_zero(page):
     cells = page.eval_on_selector_all("#ex-table td", "cs => cs.map(c => c.textContent)")
     assert not [c for c in cells if re.fullmatch(r"-?[\d.]+e-1\d", c.strip())], cells
     assert _shown(page)["D"][0] == 0.0
+
+
+def _forces_shown(pg) -> tuple[dict[str, float], tuple[float, float]]:
+    rows = pg.eval_on_selector_all(
+        "#ex-table tr[data-pair]", "rs => rs.map(r => [r.dataset.pair, r.cells[1].textContent])")
+    mb = pg.eval_on_selector("#ex-table tr[data-mb]", "r => [r.cells[1].textContent, r.cells[2].textContent]")
+    return {k: float(v) for k, v in rows}, (float(mb[0]), float(mb[1]))
+
+
+def _drawings(pg) -> list[str]:
+    return pg.eval_on_selector_all("[id^=ex-poly-], #ex-lever", "es => es.map(e => e.innerHTML)")
+
+
+def test_forces_at_three_course_positions_equal_results_json(page, run):
+    """Moving the slider to the course positions 2, 5 and 9: the reactions |R_ij| and the
+    balancing moment (by the groups and by Zhukovsky's lever) shown equal results.json
+    there, and the force polygons of the three groups and the lever are redrawn."""
+    res = json.loads((run / "results.json").read_text())
+    by_index = {e["index"]: e for e in res["kinetostatics"]}
+    assert page.eval_on_selector_all("[id^=ex-poly-]", "es => es.length") == 3     # (4,5), (2,3), crank
+    before = _drawings(page)
+    for turn, index in ((60, 2), (150, 5), (270, 9)):
+        _set(page, turn)
+        assert page.text_content("#ex-readout").rstrip().endswith(str(index))
+        now = _drawings(page)
+        assert all(a != b for a, b in zip(now, before)), turn      # every polygon and the lever moved
+        assert all("<line" in d for d in now)
+        before = now
+        e = by_index[index]
+        R, (mb, mzh) = _forces_shown(page)
+        assert set(R) == set(e["reactions"])
+        for key, r in e["reactions"].items():
+            assert _close(R[key], r["R"]), (index, key, R[key], r["R"])
+        assert _close(mb, e["balancing_moment"]) and _close(mzh, e["zhukovsky_moment"]), (index, mb, e)
+
+
+def test_polygon_closes_in_the_browser(page):
+    """The drawn force polygon closes: the end of its last vector is its start (the
+    group is in equilibrium), read from the drawn SVG of each group."""
+    _set(page, 100)
+    for gi in range(3):
+        lines = page.eval_on_selector_all(f"#ex-poly-{gi} line", "ls => ls.map(l => [+l.getAttribute('x1'), "
+                                          "+l.getAttribute('y1'), +l.getAttribute('x2'), +l.getAttribute('y2')])")
+        assert len(lines) >= 3
+        start, end = lines[0][:2], lines[-1][2:]
+        assert math.hypot(start[0] - end[0], start[1] - end[1]) < 0.5, (gi, start, end)
+        for a, b in zip(lines, lines[1:]):            # head to tail
+            assert math.hypot(a[2] - b[0], a[3] - b[1]) < 1e-6

@@ -39,7 +39,7 @@ def prepare(path: str | Path, *, assembly: bool = True, text: str | None = None,
 
 # drawing data made for the HTML report only: kept out of results.json (a JSON run
 # neither computes nor writes it; results.json is the same whatever the formats)
-REPORT_ONLY = ("kinematics_explore",)
+REPORT_ONLY = ("kinematics_explore", "kinetostatics_explore")
 
 
 def compute(task, progress: Callable[[str], None] | None = None, *, explore: bool = False) -> dict:

@@ -146,7 +146,12 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explo
         raise impossible_dimensions(task, err) or err
     positions = _stage("positions")(reported_positions)(mech, task.positions, task.loads, task.drive.sign,
                                                          float(task.drive.cycle))
+    check_detail(task, positions)
     results["positions"] = positions.to_dict()
+    # the position the report works step by step (report.detail_position, or the default)
+    detail = task.report.detail_position if task.report is not None else None
+    results["positions"]["detail_position"] = detail if detail is not None else \
+        default_detail(results["positions"])
     if task.loads is not None:      # each loaded slider's own stroke (docs/methods.md §3.3)
         from .linkage.loads import slider_strokes
         strokes = slider_strokes(mech, task.loads, positions)
@@ -186,4 +191,46 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explo
         say("kinetostatics")
         put(results, warnings, None,
             _stage("kinetostatics")(kinetostatics.analyze)(linkage, task.kinetostatics, kin, motion=dyn))
+        results.setdefault("kinetostatics_info", {})["motion"] = \
+            "steady" if task.kinetostatics.motion is True else "constant"
+        if explore and "kinematics_explore" in results:
+            # the force polygons and the lever of the mechanism in motion (report.html only):
+            # the same analysis at the explore grid's crank angles
+            import numpy as np
+            g = results["kinematics_explore"]
+            n = len(g["turn"])
+            phi_g = np.mod(positions.phi0 + g["sign"] * np.arange(n) * (360.0 / n), 360.0)
+            res_g = _stage("kinetostatics")(kinetostatics.analyze_at)(
+                linkage, task.kinetostatics, phi_g, motion=dyn, singular=results.get("singular"))
+            kg = res_g.to_dict(detail=True)
+            results["kinetostatics_explore"] = {"entries": kg["kinetostatics"], **kg["kinetostatics_info"]}
 
+
+def default_detail(positions: dict) -> int | None:
+    """The first working-stroke position after 0 (results ``positions``): the first grid
+    position (index >= 1, in the order of the positions) whose crank angle lies strictly
+    inside the working stroke [extreme start, + working stroke angle] counted in the sense
+    of rotation; position 1 when the output has no extremes; None without positions."""
+    idx, phi = list(positions.get("index") or []), list(positions.get("phi") or [])
+    kinds = list(positions.get("kinds") or ["grid"] * len(idx))
+    grid = [(i, f) for i, f, k in zip(idx, phi, kinds) if k == "grid" and i >= 1]
+    if not grid:
+        return idx[0] if idx else None
+    ext, ws = positions.get("extreme"), positions.get("working_stroke_angle")
+    if not ext or ws is None:
+        return grid[0][0]
+    sign = 1.0 if positions.get("direction", "ccw") == "ccw" else -1.0
+    for i, f in grid:
+        turn = (sign * (float(f) - float(ext[0]))) % 360.0
+        if 1e-9 < turn < float(ws) - 1e-9:
+            return i
+    return grid[0][0]
+
+
+def check_detail(task: Task, positions) -> None:
+    """`report.detail_position` must be one of the positions (TaskError, exit 2)."""
+    n = task.report.detail_position if task.report is not None else None
+    idx = list(positions.index)
+    if n is not None and n not in idx:
+        raise task.error(("report", "detail_position"),
+                         f"position {n} does not exist (positions are {idx[0]}..{idx[-1]})")

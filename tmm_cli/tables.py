@@ -3,6 +3,8 @@
 * :func:`csv_text` writes every CSV tmm produces (summary, check, forms, report tables):
   a text cell that a spreadsheet would take for a formula (it begins with ``=``, ``+``,
   ``-``, ``@``, a tab or a carriage return) gets a leading ``'``; numbers stay numbers.
+* :func:`round_sig` rounds numbers to significant digits for compact embedded data
+  (the report's mechanism in motion).
 * :func:`read_table` reads a table an instructor typed or exported: ``,`` or ``;``
   separators (detected from the header line), optional quotes, UTF-8 with or without a
   BOM; :func:`cell_value` reads ``0,12`` and ``-1,5`` as decimal-comma numbers.
@@ -114,3 +116,23 @@ def read_table(path: str | Path) -> tuple[list[str], list[tuple[int, dict[str, s
     if header is None:
         raise TableError(str(path), None, "empty table (no header line)")
     return header, rows
+
+
+def round_sig(values, digits: int = 7) -> list:
+    """Each value rounded to ``digits`` significant digits (a plain float; 0 as 0);
+    NaN, inf and None -> None."""
+    out = []
+    for v in values if isinstance(values, (list, tuple)) else _flat(values):
+        v = math.nan if v is None else float(v)
+        if not math.isfinite(v):
+            out.append(None)
+        elif v == 0.0:
+            out.append(0)
+        else:
+            out.append(float(f"{v:.{digits - 1}e}"))
+    return out
+
+
+def _flat(values):
+    """The values of an array (any shape) in order, without importing numpy here."""
+    return values.ravel().tolist() if hasattr(values, "ravel") else list(values)

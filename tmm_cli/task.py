@@ -239,6 +239,11 @@ class KinetostaticsSection(_Model):
     motion: Union[Literal["constant"], Literal[True]] = "constant"
 
 
+# ---------------------------------------------------------------- report
+class ReportSection(_Model):
+    detail_position: int | None = Field(None, ge=0, strict=True)
+
+
 # ---------------------------------------------------------------- flywheel
 class ShapeSpec(_Model):
     type: Literal["disk", "rim"] = "disk"
@@ -523,6 +528,7 @@ class Task(_Model):
     drive_train: DriveTrainSection | None = None
     dof2: Dof2Section | None = Field(None, description="a machine with two degrees of freedom: rotor + hinged "
                                                        "striker (docs/methods.md §7; runs on its own)")
+    report: ReportSection | None = None
     answers: dict[str, float] = Field(default_factory=dict)
     tolerance: dict[str, Union[Literal["graphical"], Annotated[Ratio, Field(ge=0)], ToleranceSpec]] = \
         Field(default_factory=dict)
@@ -579,6 +585,10 @@ class Task(_Model):
             raise FieldValueError(("mechanism",), "a `mechanism` needs a `drive` section (link, speed, direction)")
         if self.mechanism is None and needs_mech and self._synthesis_error is None:
             raise FieldValueError((needs_mech[0],), f"section(s) {', '.join(needs_mech)} need a `mechanism`")
+        if self.report is not None and self.report.detail_position is not None and self.mechanism is None \
+                and self._synthesis_error is None:
+            raise FieldValueError(("report", "detail_position"), "`detail_position` names a position of the "
+                                  "linkage: it needs a `mechanism` (or `synthesis`)")
         if self.flywheel is not None and self.loads is None:
             raise FieldValueError(("flywheel",), "`flywheel` needs `loads` (the forces whose work it evens out)")
         return self
@@ -758,6 +768,7 @@ _DOCS: dict[type, dict[str, str]] = {
         "gears": "external spur involute pair with profile shift (runs on its own)",
         "planetary": "planetary gear synthesis (runs on its own)",
         "drive_train": "compound gear drive from the motor: ordinary pairs and planetary stages, given or chosen",
+        "report": "what the report shows: {detail_position: N} (the position worked step by step)",
         "answers": "a student's numbers: path into results.json -> value (tmm check / tmm batch)",
         "tolerance": "tolerances per path or prefix: {default: 0.05, <path or prefix>: 0.02 or {rel: R, abs: A} or "
                      "graphical (the error of reading the drawings to 0.5 mm)}",
@@ -790,6 +801,9 @@ _DOCS: dict[type, dict[str, str]] = {
         "direction": "deg from +x: the line of a force on a bar link (sliders: along the guide)",
         "moment": "a couple, N*m, ccw positive",
     },
+    ReportSection: {"detail_position": "the position whose working the report writes out step by step (vector "
+                                        "equations, scales, segments, formulas with numbers; default: the first "
+                                        "working-stroke position after 0)"},
     DiagramSpec: {"value": "force (N) or pressure (Pa, with `area`) at each abscissa"},
     KinetostaticsSection: {
         "positions": "all | list of position numbers",

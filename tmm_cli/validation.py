@@ -27,14 +27,20 @@ def check_feasible(task, assembly: bool = True) -> None:
 
 
 def check_selection(task, mech) -> None:
-    """A TaskError when `kinetostatics.positions` names a position the cycle does not have."""
-    if task.kinetostatics is None or task.kinetostatics.positions == "all":
+    """A TaskError when `kinetostatics.positions` or `report.detail_position` names a
+    position the cycle does not have."""
+    sel = task.kinetostatics is not None and task.kinetostatics.positions != "all"
+    detail = task.report is not None and task.report.detail_position is not None
+    if not (sel or detail):
         return
     from .linkage.context import reported_positions
     from .linkage.kinetostatics import select_rows
+    from .pipeline import check_detail
     positions = guarded("positions")(reported_positions)(mech, task.positions, task.loads, task.drive.sign,
                                                         float(task.drive.cycle))
-    select_rows(task.kinetostatics.positions, positions)
+    if sel:
+        select_rows(task.kinetostatics.positions, positions)
+    check_detail(task, positions)
 
 
 MM_RATIO = (50.0, 5000.0)     # a length this many times the others was meant in mm

@@ -120,6 +120,7 @@ class Mechanism:
         return {
             "links": [{"name": lk.name, "index": lk.index, "kind": lk.kind,
                        "points": [p for p in lk.local], "com": f"S{lk.index}",
+                       "mass": float(lk.mass), "J": float(lk.J),
                        "guide": (None if lk.guide is None else
                                  {"link": lk.guide.link, "angle": lk.guide.angle,
                                   "offset": lk.guide.offset,

@@ -2,6 +2,15 @@
 moves the linkage through the turn and redraws the mechanism, its velocity and
 acceleration plans and a table of v, a, omega, epsilon for the angle shown.
 
+With kinetostatics, also the force polygon of each Assur group (loads first, then the
+reactions of the removed links, as the report's drawings: sections/kinetostatics.py
+``group_forces``) and Zhukovsky's lever (the velocity plan turned by +90 deg, each load
+at the end of its point's turned velocity, P_b at the crank pin), and in the table the
+reactions |R_ij| and the balancing moment M_b (or force P_b) by the groups and by the
+lever.  Those numbers are the results' ``kinetostatics_explore``: the kinetostatics
+stage's ``analyze_at`` (the stage at other crank angles) at the same fine grid, made by the
+pipeline for the HTML report only.
+
 HTML only: ``inject(ctx, html)`` adds the widget (templates ``explore.html.j2`` and
 ``explore.js``, the data as JSON in a ``<script type="application/json">``) to the
 HTML text written to report.html; the PDF is made from the HTML without it.  The
@@ -11,6 +20,9 @@ from __future__ import annotations
 
 import json
 
+import numpy as np
+
+from ..tables import round_sig
 from .context import templates_dir
 
 I18N = {
@@ -19,6 +31,10 @@ I18N = {
            "explore.vplan": "Velocity plan", "explore.aplan": "Acceleration plan",
            "explore.point": "Point", "explore.link": "Link", "explore.pos": "position",
            "explore.v": "v, m/s", "explore.a": "a, m/s²", "explore.w": "ω, 1/s", "explore.e": "ε, 1/s²",
+           "explore.polygon": "Force polygon", "explore.group": "group", "explore.crank": "input link",
+           "explore.lever": "Zhukovsky lever", "explore.pair": "Pair", "explore.R": "|R|, N",
+           "explore.mb": "M_b, N·m", "explore.pb": "P_b, N", "explore.by_groups": "by the groups",
+           "explore.by_lever": "by the lever",
            "explore.hint": "Drag the slider (the marks are the course positions: the slider snaps to them "
                            "within 3°) or press Play. Values at the angle shown."},
     "ru": {"explore.title": "Механизм в движении", "explore.play": "Пуск", "explore.pause": "Пауза",
@@ -26,6 +42,10 @@ I18N = {
            "explore.vplan": "План скоростей", "explore.aplan": "План ускорений",
            "explore.point": "Точка", "explore.link": "Звено", "explore.pos": "положение",
            "explore.v": "v, м/с", "explore.a": "a, м/с²", "explore.w": "ω, 1/с", "explore.e": "ε, 1/с²",
+           "explore.polygon": "План сил", "explore.group": "группа", "explore.crank": "входное звено",
+           "explore.lever": "Рычаг Жуковского", "explore.pair": "Пара", "explore.R": "|R|, Н",
+           "explore.mb": "M_b, Н·м", "explore.pb": "P_b, Н", "explore.by_groups": "по группам",
+           "explore.by_lever": "по рычагу",
            "explore.hint": "Передвиньте ползунок (метки — положения проекта: ползунок притягивается к ним "
                            "в пределах 3°) или нажмите «Пуск». Значения для показанного угла."},
     "uk": {"explore.title": "Механізм у русі", "explore.play": "Пуск", "explore.pause": "Пауза",
@@ -33,6 +53,10 @@ I18N = {
            "explore.vplan": "План швидкостей", "explore.aplan": "План прискорень",
            "explore.point": "Точка", "explore.link": "Ланка", "explore.pos": "положення",
            "explore.v": "v, м/с", "explore.a": "a, м/с²", "explore.w": "ω, 1/с", "explore.e": "ε, 1/с²",
+           "explore.polygon": "План сил", "explore.group": "група", "explore.crank": "вхідна ланка",
+           "explore.lever": "Важіль Жуковського", "explore.pair": "Пара", "explore.R": "|R|, Н",
+           "explore.mb": "M_b, Н·м", "explore.pb": "P_b, Н", "explore.by_groups": "за групами",
+           "explore.by_lever": "за важелем",
            "explore.hint": "Пересуньте повзунок (позначки — положення проєкту: повзунок притягується до них "
                            "у межах 3°) або натисніть «Пуск». Значення для показаного кута."},
 }
@@ -45,15 +69,101 @@ def data_json(data: dict) -> str:
     return s.replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")
 
 
+def _vec_rows(items: dict, digits: int) -> list:
+    """name -> (kind, (symbol, subscript), [F (2,) | None per row]) -> [{name, sym, sub, kind, x, y}]."""
+    out = []
+    for name, (kind, sym, col) in items.items():
+        arr = np.array([[np.nan, np.nan] if F is None else F for F in col], float)
+        out.append({"name": name, "sym": sym[0], "sub": sym[1], "kind": kind,
+                    "x": round_sig(arr[:, 0], digits), "y": round_sig(arr[:, 1], digits)})
+    return out
+
+
+def forces_grid(results: dict, lang: str = "en") -> dict | None:
+    """The widget's forces from the results' ``kinetostatics_explore`` (the kinetostatics
+    stage at the fine grid, made by the pipeline for the HTML report): per Assur group
+    (from the last attached to the input link) the vectors of its force polygon, the
+    loads for Zhukovsky's lever (force and the velocity of its point), the reactions and
+    the balancing moment (force).  None without them."""
+    d = results.get("kinetostatics_explore")
+    st = results.get("structure") or {}
+    if not d or not d.get("entries") or not st.get("links"):
+        return None
+    from .sections.kinetostatics import group_forces, label_parts
+    entries = d["entries"]
+    N = len(entries)
+    links = {l["name"]: l for l in st["links"]}
+    index_by_name = {n: l["index"] for n, l in links.items()}
+    groups = [list(g) for g in d["groups"]]
+    order = list(reversed(groups[:-1])) + [groups[-1]]
+    force_bal = d["balance_kind"] == "force"
+    guide = None
+    if force_bal:               # a balancing force along a fixed guide (its direction is constant)
+        g = links[d["balance"]].get("guide") or {}
+        if g.get("link") is None and g.get("angle") is not None:
+            a = np.radians(float(g["angle"]))
+            guide = np.array([np.cos(a), np.sin(a)])
+    out_groups = []
+    for k, g in enumerate(order):
+        gi = {index_by_name[n] for n in g}
+        items: dict = {}
+        for i, e in enumerate(entries):
+            fs = group_forces(e, d, gi, index_by_name)
+            if guide is not None and d["balance"] in g and e.get("balancing_force") is not None:
+                fs.append(("P\u0000b", None, float(e["balancing_force"]) * guide, "balance"))
+            for name, _, F, kind in fs:
+                if name not in items:
+                    items[name] = (kind, label_parts(name, lang), [None] * N)
+                items[name][2][i] = F
+        # the polygon's order: loads, then reactions (as the report's drawings)
+        items = dict(sorted(items.items(), key=lambda t: t[1][0] == "reaction"))
+        out_groups.append({"links": [index_by_name[n] for n in g], "crank": k == len(order) - 1,
+                           "vecs": _vec_rows(items, 5)})
+    lever: dict = {}
+    for i, e in enumerate(entries):
+        for f in e.get("loads", []):
+            if f["name"] not in lever:
+                lever[f["name"]] = (f["kind"], label_parts(f["name"], lang), [None] * N, [None] * N)
+            lever[f["name"]][2][i] = f["F"]
+            lever[f["name"]][3][i] = f["v"]
+    lev = []
+    for name, (kind, sym, F, v) in lever.items():
+        row = _vec_rows({name: (kind, sym, F)}, 5)[0]
+        vv = np.array([[np.nan, np.nan] if x is None else x for x in v], float)
+        row["vx"], row["vy"] = round_sig(vv[:, 0], 5), round_sig(vv[:, 1], 5)
+        lev.append(row)
+    key = "balancing_force" if force_bal else "balancing_moment"
+    zkey = "zhukovsky_force" if force_bal else "zhukovsky_moment"
+    reactions = []
+    for j in d["joints"]:
+        sym, sub = label_parts(j["key"], lang)
+        reactions.append({"key": j["key"], "sym": sym, "sub": sub,
+                          "R": round_sig([e["reactions"][j["key"]]["R"] for e in entries])})
+    pin = None
+    drive = links.get(st.get("drive_link"))
+    ground = set(st.get("ground") or {})
+    if not force_bal and drive is not None and d["balance"] == drive["name"]:
+        pin = next((p for p in drive["points"] if p not in ground), None)
+    return {"kind": "force" if force_bal else "moment", "balance": d["balance"], "pin": pin,
+            "omega1": float(results["drive"]["omega"]), "groups": out_groups, "lever": lev,
+            "reactions": reactions, "Mb": round_sig([e[key] for e in entries]),
+            "Mzh": round_sig([e[zkey] for e in entries])}
+
+
 def fragment(ctx) -> str | None:
+    from markupsafe import Markup
     data = ctx.results.get("kinematics_explore")
     if not data:                # no linkage, or results made without the fine grid
         return None
+    forces = forces_grid(ctx.results, ctx.lang)
+    fdata = None
+    if forces:                  # a script element of its own: ex-data is the results' grid as it is
+        from .sections.kinetostatics import KIND_COLOR
+        fdata = Markup(data_json({**forces, "colors": KIND_COLOR}))
     tr = I18N.get(ctx.lang, I18N["en"])
-    from markupsafe import Markup
     js = (templates_dir() / "explore.js").read_text(encoding="utf-8")
     return ctx.render("explore.html.j2", tr=tr, data=Markup(data_json(data)),
-                      labels=Markup(data_json(tr)), js=Markup(js.replace("</", "<\\/")))
+                      labels=Markup(data_json(tr)), forces=forces, fdata=fdata, js=Markup(js.replace("</", "<\\/")))
 
 
 def inject(ctx, html: str) -> str:

@@ -147,6 +147,13 @@ class _Writer:
                 out.append(f"#raw({_s(c.text())[1:]})")
             elif tag == "br":
                 out.append("#linebreak()")
+            elif tag == "span" and "mml" in c.classes:
+                continue        # the MathML copy of a worked formula (screen only): its HTML copy follows
+            elif tag == "span" and "frac" in c.classes:
+                num, den = (k for k in c.children if isinstance(k, _Node))
+                out.append(f"$display(frac(#[{self.inline(num)}], #[{self.inline(den)}]))$")
+            elif tag == "span" and "vec" in c.classes:
+                out.append(f"#overline[{self.inline(c)}]")
             elif tag == "span" and "formula" in c.classes:
                 out.append(f'#text(font: "DejaVu Serif", size: 11pt)[{self.inline(c)}]')
             elif tag == "img" and "data-svg" in c.attrs:

@@ -11,20 +11,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from ...tables import round_sig
+
 __all__ = ["explore_grid", "round_sig"]
-
-
-def round_sig(values, digits: int = 7) -> list:
-    """Round each value to ``digits`` significant digits; NaN/inf -> None."""
-    out = []
-    for v in np.asarray(values, float).ravel():
-        if not np.isfinite(v):
-            out.append(None)
-        elif v == 0.0:
-            out.append(0)
-        else:
-            out.append(float(f"{v:.{digits - 1}e}"))
-    return out
 
 
 def explore_grid(task, results: dict, step: float = 1.0) -> dict | None:

@@ -10,10 +10,12 @@ Public API::
     equilibrium(mech, structure, kin, loads, section, *, indices=None, crank_inertia=0.0)
         -> KinetostaticsResult          # on given kinematics and loads
     select_rows(spec, positions) -> list[int]                # kinetostatics.positions -> rows
+    analyze_at(linkage, section, phi_deg, *, motion=None, singular=None)
+        -> KinetostaticsResult          # the stage at other crank angles (the report's fine grid)
     find_singular(mech, structure, balance) -> list[float]   # crank angles, deg
 """
-from .analysis import (KinetostaticsResult, analyze, balance_index, equilibrium, find_singular, select_rows,
+from .analysis import (KinetostaticsResult, analyze, analyze_at, balance_index, equilibrium, find_singular, select_rows,
                        singular_function)
 
-__all__ = ["analyze", "equilibrium", "select_rows", "find_singular", "KinetostaticsResult", "balance_index",
+__all__ = ["analyze", "analyze_at", "equilibrium", "select_rows", "find_singular", "KinetostaticsResult", "balance_index",
            "singular_function"]

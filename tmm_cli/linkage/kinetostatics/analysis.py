@@ -472,6 +472,26 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
         groups=_group_links(mech, structure) + [[mech.drive]], warnings=warnings, cond=cond)
 
 
+def analyze_at(linkage, section, phi_deg, *, motion=None, singular: list[float] | None = None
+               ) -> KinetostaticsResult:
+    """The kinetostatics stage (:func:`analyze`) at the crank angles ``phi_deg`` (deg)
+    instead of the reported positions: the same loads (stroke states from
+    ``linkage.positions``) and motion (``motion: true``: the flywheel's omega1(phi),
+    eps1(phi) and crank couple).  ``singular``: the singular angles when known (skips
+    the search).  The report's mechanism in motion uses it at 360 angles."""
+    from ..kinematics import solve
+    phi = np.atleast_1d(np.asarray(phi_deg, float))
+    crank_J = 0.0
+    if section.motion is True:
+        kin = solve(linkage.mechanism, phi, motion.omega_of(phi), motion.epsilon_of(phi))
+        crank_J = motion.crank_inertia
+    else:
+        kin = solve(linkage.mechanism, phi, linkage.drive.omega)
+    lds = loads_mod.evaluate(linkage, kin, inertia=section.inertia)
+    return equilibrium(linkage.mechanism, linkage.structure, kin, lds, section, crank_inertia=crank_J,
+                       singular=singular)
+
+
 def _kin_solver(solver):
     if solver is not None:
         return solver
