@@ -41,7 +41,7 @@ import math
 import numpy as np
 from markupsafe import Markup, escape
 
-from ..plans import SUB, geometry as plan_geometry, plan_label, scales
+from ...plans import SUB, geometry as plan_geometry, plan_label, scales
 
 I18N = {
     "en": {"worked.title": "The working of one position, step by step",
