@@ -216,6 +216,22 @@ def test_form_and_key(tmp_path):
     assert res.exit_code == 0, res.output
 
 
+def test_form_in_ukrainian(tmp_path):
+    """`tmm form --lang uk`: the comments in Ukrainian course terms, no Russian or English left."""
+    import re
+    t = _write(tmp_path, "g8.yaml", GEARS.format(v=8))
+    res = runner.invoke(app, ["form", str(t), "--quantities", "gears", "--out", str(tmp_path / "f"), "--lang", "uk"])
+    assert res.exit_code == 0, res.output
+    text = (tmp_path / "f" / "g8.key.yaml").read_text()
+    assert text.startswith("# Ключ відповідей") and "значення в одиницях СІ" in text
+    assert "міжосьова відстань" in text and "радіус кола западин" in text and "кут зачеплення" in text
+    comments = " ".join(line.split("#", 1)[1] for line in text.splitlines() if "#" in line)
+    assert not re.search(r"[ыэъё]", comments), comments        # letters Russian has and Ukrainian lacks
+    assert not re.search(r"\b(radius|distance|angle|coefficient)\b", comments), comments
+    res = runner.invoke(app, ["form", str(t), "--quantities", "gears", "--out", str(tmp_path / "f"), "--lang", "de"])
+    assert res.exit_code == 2 and "en, ru or uk" in res.output
+
+
 def test_check_answer_sources_and_messages(tmp_path):
     t = _write(tmp_path, "g.yaml", GEARS.format(v=4))
     d = tmp_path / "ans"

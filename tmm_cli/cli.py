@@ -407,7 +407,7 @@ def form(
                                    help="result paths and presets, comma-separated: positions, kinematics, "
                                         "kinetostatics, flywheel, cam, gears, planetary, drive_train, synthesis"),
     out: Path = typer.Option(Path("forms"), "--out", "-o", help="output folder (default: forms/)"),
-    lang: str = typer.Option("en", "--lang", "-l", help="language of the comments: en | ru"),
+    lang: str = typer.Option("en", "--lang", "-l", help="language of the comments: en | ru | uk"),
 ):
     """Write per task a blank answer form NAME.form.yaml and an answer key NAME.key.yaml,
     and for the set form.csv and key.csv."""
@@ -416,8 +416,8 @@ def form(
     from .io import atomic_write
     from .orchestrate import classify, compute, prepare
     from .results import lookup
-    if lang not in ("en", "ru"):
-        raise typer.BadParameter("--lang must be en or ru")
+    if lang not in ("en", "ru", "uk"):
+        raise typer.BadParameter("--lang must be en, ru or uk")
     if source.is_dir():
         found, _ = find_tasks(str(source))
         files = [f for f, why in found if why is None]

@@ -31,49 +31,55 @@ PRESETS: dict[str, list[str]] = {
     "synthesis": ["synthesis.**"],
 }
 
-# course notation and unit of a result key: (symbol, unit, English, Russian)
-NOTATION: dict[str, tuple[str, str, str, str]] = {
-    "v": ("v", "m/s", "velocity", "скорость"), "a": ("a", "m/s^2", "acceleration", "ускорение"),
-    "omega": ("ω", "rad/s", "angular velocity", "угловая скорость"),
-    "epsilon": ("ε", "rad/s^2", "angular acceleration", "угловое ускорение"),
-    "phi0": ("φ0", "deg", "crank angle of the first extreme position", "угол крайнего положения"),
-    "working_stroke_angle": ("φ_w", "deg", "working stroke angle", "угол рабочего хода"),
-    "idle_stroke_angle": ("φ_i", "deg", "idle stroke angle", "угол холостого хода"),
-    "K": ("K", "", "coefficient of mean speed increase", "коэффициент изменения средней скорости"),
-    "theta": ("θ", "deg", "angle between the extreme positions", "угол перекрытия"),
-    "H": ("H", "m or deg", "stroke of the output link", "ход выходного звена"),
-    "balancing_moment": ("M_b", "N*m", "balancing moment", "уравновешивающий момент"),
+# course notation and unit of a result key: (symbol, unit, English, Russian, Ukrainian)
+NOTATION: dict[str, tuple[str, str, str, str, str]] = {
+    "v": ("v", "m/s", "velocity", "скорость", "швидкість"),
+    "a": ("a", "m/s^2", "acceleration", "ускорение", "прискорення"),
+    "omega": ("ω", "rad/s", "angular velocity", "угловая скорость", "кутова швидкість"),
+    "epsilon": ("ε", "rad/s^2", "angular acceleration", "угловое ускорение", "кутове прискорення"),
+    "phi0": ("φ0", "deg", "crank angle of the first extreme position", "угол крайнего положения", "кут крайнього положення"),
+    "working_stroke_angle": ("φ_w", "deg", "working stroke angle", "угол рабочего хода", "кут робочого ходу"),
+    "idle_stroke_angle": ("φ_i", "deg", "idle stroke angle", "угол холостого хода", "кут холостого ходу"),
+    "K": ("K", "", "coefficient of mean speed increase", "коэффициент изменения средней скорости", "коефіцієнт зміни середньої швидкості"),
+    "theta": ("θ", "deg", "angle between the extreme positions", "угол перекрытия", "кут перекриття"),
+    "H": ("H", "m or deg", "stroke of the output link", "ход выходного звена", "хід вихідної ланки"),
+    "balancing_moment": ("M_b", "N*m", "balancing moment", "уравновешивающий момент", "зрівноважувальний момент"),
     "zhukovsky_moment": ("M_b(Zh)", "N*m", "balancing moment by the Zhukovsky lever",
-                         "уравновешивающий момент по рычагу Жуковского"),
-    "R": ("R", "N", "reaction", "реакция"),
-    "J": ("J_fly", "kg*m^2", "flywheel moment of inertia", "момент инерции маховика"),
-    "delta": ("δ", "", "coefficient of speed fluctuation", "коэффициент неравномерности"),
-    "omega_max": ("ω_max", "rad/s", "largest crank speed", "наибольшая угловая скорость"),
-    "omega_min": ("ω_min", "rad/s", "smallest crank speed", "наименьшая угловая скорость"),
-    "M_constant": ("M_c", "N*m", "constant moment", "постоянный момент"),
-    "diameter": ("D", "m", "flywheel diameter", "диаметр маховика"),
-    "width": ("b", "m", "flywheel width", "ширина маховика"), "mass": ("m", "kg", "mass", "масса"),
-    "r0": ("r0", "m", "base circle radius", "радиус начальной шайбы"),
-    "offset": ("e", "m", "offset", "эксцентриситет"),
-    "center_distance": ("a_w", "m", "cam centre distance", "межосевое расстояние кулачка"),
-    "max_pressure_angle": ("ϑ_max", "deg", "largest pressure angle", "наибольший угол давления"),
-    "rho_min": ("ρ_min", "m", "smallest radius of curvature", "наименьший радиус кривизны"),
-    "aw": ("a_w", "m", "centre distance", "межосевое расстояние"),
-    "alpha_w": ("α_w", "deg", "working pressure angle", "угол зацепления"),
-    "y": ("y", "", "centre distance modification coefficient", "коэффициент воспринимаемого смещения"),
-    "dy": ("Δy", "", "tip reduction coefficient", "коэффициент уравнительного смещения"),
-    "eps_alpha": ("ε_α", "", "contact ratio", "коэффициент перекрытия"),
-    "r": ("r", "m", "pitch radius", "радиус делительной окружности"),
-    "rb": ("r_b", "m", "base radius", "радиус основной окружности"),
-    "rw": ("r_w", "m", "rolling radius", "радиус начальной окружности"),
-    "ra": ("r_a", "m", "tip radius", "радиус окружности вершин"),
-    "rf": ("r_f", "m", "root radius", "радиус окружности впадин"),
-    "s": ("s", "m", "pitch tooth thickness", "толщина зуба по делительной окружности"),
-    "sa": ("s_a", "m", "tip tooth thickness", "толщина зуба по окружности вершин"),
-    "ratio": ("i", "", "ratio", "передаточное отношение"),
-    "ratio_error": ("Δi", "", "ratio error (fraction)", "погрешность передаточного отношения"),
-    "z1": ("z1", "", "teeth", "число зубьев"), "z2": ("z2", "", "teeth", "число зубьев"),
-    "z3": ("z3", "", "teeth", "число зубьев"), "z4": ("z4", "", "teeth", "число зубьев"),
+                         "уравновешивающий момент по рычагу Жуковского",
+                         "зрівноважувальний момент за важелем Жуковського"),
+    "R": ("R", "N", "reaction", "реакция", "реакція"),
+    "J": ("J_fly", "kg*m^2", "flywheel moment of inertia", "момент инерции маховика", "момент інерції маховика"),
+    "delta": ("δ", "", "coefficient of speed fluctuation", "коэффициент неравномерности", "коефіцієнт нерівномірності ходу"),
+    "omega_max": ("ω_max", "rad/s", "largest crank speed", "наибольшая угловая скорость", "найбільша кутова швидкість"),
+    "omega_min": ("ω_min", "rad/s", "smallest crank speed", "наименьшая угловая скорость", "найменша кутова швидкість"),
+    "M_constant": ("M_c", "N*m", "constant moment", "постоянный момент", "сталий момент"),
+    "diameter": ("D", "m", "flywheel diameter", "диаметр маховика", "діаметр маховика"),
+    "width": ("b", "m", "flywheel width", "ширина маховика", "ширина маховика"),
+    "mass": ("m", "kg", "mass", "масса", "маса"),
+    "r0": ("r0", "m", "base circle radius", "радиус начальной шайбы", "радіус початкової шайби"),
+    "offset": ("e", "m", "offset", "эксцентриситет", "ексцентриситет"),
+    "center_distance": ("a_w", "m", "cam centre distance", "межосевое расстояние кулачка", "міжосьова відстань кулачка"),
+    "max_pressure_angle": ("ϑ_max", "deg", "largest pressure angle", "наибольший угол давления", "найбільший кут тиску"),
+    "rho_min": ("ρ_min", "m", "smallest radius of curvature", "наименьший радиус кривизны", "найменший радіус кривини"),
+    "aw": ("a_w", "m", "centre distance", "межосевое расстояние", "міжосьова відстань"),
+    "alpha_w": ("α_w", "deg", "working pressure angle", "угол зацепления", "кут зачеплення"),
+    "y": ("y", "", "centre distance modification coefficient", "коэффициент воспринимаемого смещения", "коефіцієнт сприйманого зміщення"),
+    "dy": ("Δy", "", "tip reduction coefficient", "коэффициент уравнительного смещения", "коефіцієнт зрівняльного зміщення"),
+    "eps_alpha": ("ε_α", "", "contact ratio", "коэффициент перекрытия", "коефіцієнт перекриття"),
+    "r": ("r", "m", "pitch radius", "радиус делительной окружности", "радіус ділильного кола"),
+    "rb": ("r_b", "m", "base radius", "радиус основной окружности", "радіус основного кола"),
+    "rw": ("r_w", "m", "rolling radius", "радиус начальной окружности", "радіус початкового кола"),
+    "ra": ("r_a", "m", "tip radius", "радиус окружности вершин", "радіус кола вершин"),
+    "rf": ("r_f", "m", "root radius", "радиус окружности впадин", "радіус кола западин"),
+    "s": ("s", "m", "pitch tooth thickness", "толщина зуба по делительной окружности", "товщина зуба по ділильному колу"),
+    "sa": ("s_a", "m", "tip tooth thickness", "толщина зуба по окружности вершин", "товщина зуба по колу вершин"),
+    "ratio": ("i", "", "ratio", "передаточное отношение", "передаточне відношення"),
+    "ratio_error": ("Δi", "", "ratio error (fraction)", "погрешность передаточного отношения",
+                    "похибка передаточного відношення"),
+    "z1": ("z1", "", "teeth", "число зубьев", "число зубів"),
+    "z2": ("z2", "", "teeth", "число зубьев", "число зубів"),
+    "z3": ("z3", "", "teeth", "число зубьев", "число зубів"),
+    "z4": ("z4", "", "teeth", "число зубьев", "число зубів"),
 }
 
 
@@ -86,8 +92,8 @@ def notation(path: str, lang: str = "en") -> str:
     n = NOTATION.get(key)
     if not n:
         return ""
-    sym, unit, en, ru = n
-    return f"{sym}{', ' + unit if unit else ''} — {ru if lang == 'ru' else en}"
+    sym, unit, en, ru, uk = n
+    return f"{sym}{', ' + unit if unit else ''} — {dict(en=en, ru=ru, uk=uk)[lang]}"
 
 
 def _pattern(p: str) -> re.Pattern:
@@ -138,15 +144,21 @@ def yaml_key(path: str) -> str:
     return json.dumps(path, ensure_ascii=False)
 
 
+FORM_NOTE = {
+    "en": 'values in SI units, angles in degrees; a value may carry its unit, e.g. "12 deg"',
+    "ru": 'значения в единицах СИ, углы в градусах; можно с единицей, например "12 deg"',
+    "uk": 'значення в одиницях СІ, кути в градусах; можна з одиницею, наприклад "12 deg"',
+}
+
+
 def form_text(task, paths: list[str], results: dict | None, lang: str) -> str:
     """The blank form (results None) or the key (results given) as commented YAML."""
     from .results import lookup
     key = results is not None
-    head = {"en": ("Answer key" if key else "Answer form"), "ru": ("Ключ ответов" if key else "Бланк ответов")}[lang]
+    head = {"en": ("Answer key" if key else "Answer form"), "ru": ("Ключ ответов" if key else "Бланк ответов"),
+            "uk": ("Ключ відповідей" if key else "Бланк відповідей")}[lang]
     lines = [f"# {head}: {task.title or task.name}".rstrip(),
-             "# " + ("values in SI units, angles in degrees; a value may carry its unit, e.g. \"12 deg\""
-                     if lang == "en" else "значения в единицах СИ, углы в градусах; можно с единицей, "
-                                          "например \"12 deg\""),
+             "# " + FORM_NOTE[lang],
              f"variant: {json.dumps(task.variant if task.variant is not None else task.name, ensure_ascii=False)}",
              'student: {name: "", group: ""}', "answers:"]
     width = max((len(yaml_key(p)) for p in paths), default=0) + 2
