@@ -283,9 +283,13 @@ def test_message_is_plain_data():
     assert Message("cam.profile_corners", phis=(0.0, np.float64(120.0))).params == {"phis": [0.0, 120.0]}
 
 
-def test_catalogue_files_only():
-    """A language is one file: the catalogues beside the module are exactly LANGS."""
+def test_catalogues_are_the_report_languages():
+    """A language is one catalogue file beside the module; the catalogues found are the
+    report's languages."""
+    from tmm_cli.report import i18n
+
     assert sorted(p.stem for p in Path(messages.__file__).parent.glob("*.yaml")) == sorted(LANGS)
+    assert LANGS == i18n.LANGS
 
 
 @pytest.fixture(scope="module")

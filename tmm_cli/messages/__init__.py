@@ -31,8 +31,9 @@ import string
 from pathlib import Path
 from typing import Any
 
-LANGS = ("en", "ru", "uk")
 _DIR = Path(__file__).resolve().parent
+# the languages: one catalogue file each, English first
+LANGS = ("en",) + tuple(sorted(p.stem for p in _DIR.glob("*.yaml") if p.stem != "en"))
 
 # a warning given as a plain string (not a Message): shown as written in every language
 PLAIN = "text"
