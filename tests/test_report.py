@@ -336,15 +336,19 @@ def test_slotted_report_renders(tmp_path):
     assert "slotted link" in html and html.count("<svg") == 3 + 4
 
 
-def test_geometry_fallback_from_task(results, task):
-    """Without the structure extension keys the links come from the task."""
+def test_geometry_from_the_results_only(results, task):
+    """The links, pairs and driving link come from results['structure'] alone: without its
+    'links' there is no geometry (and no drawing), whatever the task says."""
     r2 = dict(results)
     r2["structure"] = {k: v for k, v in results["structure"].items() if k not in ("links", "joints")}
-    g1, g2 = geometry(results, task), geometry(r2, task)
-    assert [(l.name, l.index, l.points, l.kind) for l in g1.links] == \
-        [(l.name, l.index, l.points, l.kind) for l in g2.links]
-    e = results["kinematics"][3]
-    assert build_plan("a", e, g1, 0.15).rows() == build_plan("a", e, g2, 0.15).rows()
+    assert geometry(r2, task) is None and geometry(r2) is None
+    g = geometry(results)
+    assert [(l.name, l.index, l.points, l.kind) for l in g.links] == \
+        [("crank", 1, ["O", "A"], "bar"), ("rod", 2, ["A", "B"], "bar"), ("slider", 3, ["B"], "slider")]
+    assert g.drive == 1 and g.order[1] == 0          # no 'drive_link' key: link 1 drives
+    r3 = dict(results)
+    r3["structure"] = {**results["structure"], "drive_link": "rod"}
+    assert geometry(r3).drive == 2
 
 
 def test_csv_tables(rendered_ru):

@@ -37,11 +37,17 @@ def prepare(path: str | Path, *, assembly: bool = True, text: str | None = None,
     return task
 
 
-def compute(task, progress: Callable[[str], None] | None = None) -> dict:
+# drawing data made for the HTML report only: kept out of results.json (a JSON run
+# neither computes nor writes it; results.json is the same whatever the formats)
+REPORT_ONLY = ("kinematics_explore",)
+
+
+def compute(task, progress: Callable[[str], None] | None = None, *, explore: bool = False) -> dict:
     """The results dict. Raises TaskError, StageError or PartialResults (a StageError
-    with the sections computed before the failure)."""
+    with the sections computed before the failure). ``explore``: also the data of the
+    HTML report's mechanism in motion (``kinematics_explore``)."""
     from .pipeline import run
-    return run(task, progress=progress)
+    return run(task, progress=progress, explore=explore)
 
 
 def write_outputs(task, results: dict, out: Path, formats: set[str], lang: str, *,
@@ -58,7 +64,8 @@ def write_outputs(task, results: dict, out: Path, formats: set[str], lang: str, 
 
     out = Path(out)
     manifest = Manifest(out)
-    written = [atomic_write(out / "results.json", dumps(results))]
+    written = [atomic_write(out / "results.json",
+                            dumps({k: v for k, v in results.items() if k not in REPORT_ONLY}))]
     rep = set(formats) & {"html", "pdf"}
     if rep:
         from .report import render
@@ -88,7 +95,7 @@ def process(path: str | Path, out, formats: set[str], lang: str, *,
     folder = out(task) if callable(out) else out
     failure = None
     try:
-        results = compute(task, progress)
+        results = compute(task, progress, explore="html" in formats)
     except PartialResults as exc:
         results, failure = exc.partial, exc
     st = None

@@ -37,8 +37,13 @@ def _stage(name: str):
 
 
 def run(task: Task, *, progress: Callable[[str], None] | None = None,
-        kinematics_curve: int = 361) -> dict[str, Any]:
+        kinematics_curve: int = 361, explore: bool = False) -> dict[str, Any]:
     """Compute every stage present in ``task``; return the results dict.
+
+    ``kinematics_curve``: points of the output link's curve over one turn (0: none);
+    ``explore``: also the kinematics at every degree of the turn (``kinematics_explore``,
+    the mechanism in motion of report.html; made only for an HTML report and never
+    written to results.json, see :func:`tmm_cli.orchestrate.write_outputs`).
 
     The independent parts (the linkage chain, cam, gears, planetary, dof2) each run
     even when another fails; a part stops at its first StageError.  If any part
@@ -77,7 +82,7 @@ def run(task: Task, *, progress: Callable[[str], None] | None = None,
             say("synthesis")
             raise task._synthesis_error
         if task.mechanism is not None:
-            part(lambda: _linkage(task, results, warnings, say, kinematics_curve))
+            part(lambda: _linkage(task, results, warnings, say, kinematics_curve, explore))
         if task.cam is not None:
             part(simple("cam", "cam", "synthesize", task.cam))
         if task.gears is not None:
@@ -130,7 +135,7 @@ def _drive_train(task: Task, results: dict, warnings: list, say) -> None:
             results["drive_train"].update(motor_power=moved["motor_power"], motor_power_computed=True)
 
 
-def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int) -> None:
+def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explore: bool) -> None:
     import numpy as np
 
     from .linkage import kinematics, structure
@@ -176,6 +181,12 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int) -> No
     # a dense curve of the output link for the kinematic diagrams of the report
     if curve_n:
         results["kinematics_curve"] = _curve(kinematics, mech, positions, omega1, curve_n)
+    if explore:
+        # every point and link at each degree of the turn: the mechanism in motion of report.html
+        from .linkage.kinematics.explore import explore_grid
+        grid = _stage("kinematics")(explore_grid)(task, results)
+        if grid is not None:
+            results["kinematics_explore"] = grid
 
     dyn = None
     if task.flywheel is not None:

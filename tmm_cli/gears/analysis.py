@@ -111,11 +111,14 @@ def _sliding_table(g, z1, z2, n=21):
 
 
 def _contour_dict(bc, chosen):
+    from .drawing import region_polygons
     return {"x1_range": [float(bc["x1"][0]), float(bc["x1"][-1])],
             "x2_range": [float(bc["x2"][0]), float(bc["x2"][-1])],
             "lines": bc["lines"], "chosen": [float(chosen[0]), float(chosen[1])],
             "admissible_fraction": float(np.mean(bc["ok"])),
-            "chosen_admissible": None}
+            "chosen_admissible": None,
+            # the admissible region (shaded in the report): polygons [outer ring, holes...]
+            "region": region_polygons(bc["x1"], bc["x2"], bc["ok"])}
 
 
 def analyze(spec) -> GearResult:

@@ -128,6 +128,7 @@ class Mechanism:
             "joints": [{"kind": j.kind, "a": j.a, "b": j.b, "point": j.point, "slider": j.slider}
                        for j in self.joints],
             "ground": {k: list(v) for k, v in self.ground.items()},
+            "drive_link": self.crank.name,
         }
 
 

@@ -235,7 +235,7 @@ def _helper(conn, results, task, out_dir, lang, names, pdf, parent_pid=None, par
     except BaseException as exc:          # reported to the main process, which then works alone
         try:
             conn.send(("error", f"{type(exc).__name__}: {exc}"))
-        except Exception:
+        except (OSError, ValueError):     # the pipe is gone: the main process works alone
             pass
     finally:
         conn.close()
@@ -354,7 +354,7 @@ def render(results: dict, task, out_dir: Path, formats: set[str], lang: str = "e
                                                     want_pdf, os.getpid(), conn), daemon=True)
             proc.start()
             child.close()
-        except Exception:
+        except OSError:                    # no second process here: everything in this one
             proc = conn = None
     try:
         written = _finish(ctx, proc, conn, formats, all_names, helper_names, out_dir, notes)

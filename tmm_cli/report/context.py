@@ -67,9 +67,10 @@ def fmt_fixed(x: Any, decimals: int = 2) -> str:
 class ReportContext:
     """What a section sees.
 
-    results  -- the results.json dict (the only source of numbers)
-    task     -- the validated Task (names, task data); may be None
-    lang     -- 'en' | 'ru'
+    results  -- the results.json dict: the only source of what the sections show and draw
+    task     -- the validated Task, read only for its own data table and text fields
+                (section 'task', the title); may be None
+    lang     -- 'en' | 'ru' | 'uk'
     out_dir  -- directory of the report; CSV/figure files go beside it
     env      -- the Jinja environment over templates/
     written  -- paths of the files written so far (returned by render)
@@ -135,9 +136,6 @@ class ReportContext:
         links = (self.results.get("structure") or {}).get("links")
         if links:
             return [l["name"] for l in sorted(links, key=lambda l: l["index"])]
-        mech = getattr(self.task, "mechanism", None)
-        if mech is not None and getattr(mech, "links", None):
-            return list(mech.links.keys())
         kin = self.results.get("kinematics") or []
         return list(kin[0]["links"].keys()) if kin else []
 

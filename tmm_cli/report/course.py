@@ -33,10 +33,10 @@ def course_entries(entries: list, n_grid: int) -> list:
     return [entries[i] for i in idx]
 
 
-def grid_count(task, n_entries: int) -> int:
-    """The number of grid positions among n_entries (task.positions.count), the
-    rest being named extras."""
-    c = getattr(getattr(task, "positions", None), "count", None)
+def grid_count(results: dict, n_entries: int) -> int:
+    """The number of grid positions among n_entries (results' ``positions.count``), the
+    rest being named extras; all of them when the results do not say."""
+    c = (results.get("positions") or {}).get("count")
     if isinstance(c, int) and c > 0:
         return min(c, n_entries)
     return n_entries

@@ -5,7 +5,8 @@ acceleration plans and a table of v, a, omega, epsilon for the angle shown.
 HTML only: ``inject(ctx, html)`` adds the widget (templates ``explore.html.j2`` and
 ``explore.js``, the data as JSON in a ``<script type="application/json">``) to the
 HTML text written to report.html; the PDF is made from the HTML without it.  The
-data come from the stage function ``tmm_cli.linkage.kinematics.explore.explore_grid``."""
+data are the results' ``kinematics_explore`` (made by the pipeline with the stage
+function ``tmm_cli.linkage.kinematics.explore.explore_grid``)."""
 from __future__ import annotations
 
 import json
@@ -45,14 +46,8 @@ def data_json(data: dict) -> str:
 
 
 def fragment(ctx) -> str | None:
-    from ..linkage.kinematics.explore import explore_grid
-    if ctx.task is None or not ctx.results.get("kinematics"):
-        return None
-    try:
-        data = explore_grid(ctx.task, ctx.results)
-    except Exception:          # the static report stays whole if the dense grid cannot be made
-        return None
-    if not data:
+    data = ctx.results.get("kinematics_explore")
+    if not data:                # no linkage, or results made without the fine grid
         return None
     tr = I18N.get(ctx.lang, I18N["en"])
     from markupsafe import Markup

@@ -75,53 +75,24 @@ class Geometry:
 
 
 def geometry(results: dict, task=None) -> Geometry | None:
-    """Links/joints from results['structure'] ('links', 'joints' extension keys),
-    else from task.mechanism.  None if neither is available."""
+    """Links, pairs, ground points and the driving link from results['structure'] (its
+    'links', 'joints', 'ground' and 'drive_link' keys); None without them.  ``task`` is not
+    read (the argument stays for old callers): the report draws what the results hold."""
     st = results.get("structure") or {}
+    if not st.get("links"):
+        return None
     kin = results.get("kinematics") or []
     pts0 = kin[0]["points"] if kin else {}
     links: list[LinkG] = []
     joints: list[JointG] = []
-    ground: set[str] = set()
-    mech = getattr(task, "mechanism", None) if task is not None else None
-    if st.get("links"):
-        for l in sorted(st["links"], key=lambda l: l["index"]):
-            links.append(LinkG(l["name"], int(l["index"]), [p for p in l.get("points", [])
-                                                            if not re.fullmatch(r"S\d+", p)],
-                               l.get("kind", "bar")))
-        for j in st.get("joints") or []:
-            joints.append(JointG(j.get("kind", "R"), int(j["a"]), int(j["b"]), j.get("point")))
-    elif mech is not None and getattr(mech, "links", None):
-        names = list(mech.links.keys())
-        for i, (name, spec) in enumerate(mech.links.items(), start=1):
-            if getattr(spec, "slider", None):
-                links.append(LinkG(name, i, [spec.slider], "slider"))
-            else:
-                pts = list(getattr(spec, "points", None) or []) + list((getattr(spec, "extra", None) or {}).keys())
-                links.append(LinkG(name, i, pts, "bar"))
-        gnames = set((getattr(mech, "ground", None) or {}).keys())
-        owners: dict[str, list[int]] = {}
-        for l in links:
-            for p in l.points:
-                owners.setdefault(p, []).append(l.index)
-        for p, own in owners.items():
-            if p in gnames:
-                own = [0] + own
-            for x in range(len(own)):
-                for y in range(x + 1, len(own)):
-                    joints.append(JointG("R", min(own[x], own[y]), max(own[x], own[y]), p))
-        for i, (name, spec) in enumerate(mech.links.items(), start=1):
-            g = getattr(spec, "guide", None)
-            if getattr(spec, "slider", None) and g is not None:
-                other = names.index(g.link) + 1 if getattr(g, "link", None) in names else 0
-                joints.append(JointG("P", min(other, i), max(other, i), None))
-    else:
-        return None
-    for j in joints:
-        if j.kind == "R" and j.a == 0 and j.point:
-            ground.add(j.point)
-    if mech is not None:
-        ground |= set((getattr(mech, "ground", None) or {}).keys())
+    for l in sorted(st["links"], key=lambda l: l["index"]):
+        links.append(LinkG(l["name"], int(l["index"]), [p for p in l.get("points", [])
+                                                        if not re.fullmatch(r"S\d+", p)],
+                           l.get("kind", "bar")))
+    for j in st.get("joints") or []:
+        joints.append(JointG(j.get("kind", "R"), int(j["a"]), int(j["b"]), j.get("point")))
+    ground = {j.point for j in joints if j.kind == "R" and j.a == 0 and j.point}
+    ground |= set(st.get("ground") or {})
     for l in links:
         s = f"S{l.index}"
         if s in pts0 and s not in l.points:
@@ -134,10 +105,7 @@ def geometry(results: dict, task=None) -> Geometry | None:
     # attach order from the Assur groups
     order = {0: -1}
     name_to_idx = {l.name: l.index for l in links}
-    drive = 1
-    dname = getattr(getattr(task, "drive", None), "link", None) if task is not None else None
-    if dname in name_to_idx:
-        drive = name_to_idx[dname]
+    drive = name_to_idx.get(st.get("drive_link"), 1)
     order[drive] = 0
     for k, g in enumerate(st.get("groups") or [], start=1):
         for ln in g.get("links", []):

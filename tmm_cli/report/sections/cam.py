@@ -481,55 +481,37 @@ def _render(ctx, c, rows, method):
                            f(p[0] * MM, 5), f(p[1] * MM, 5)))
     table_header = [_loc(ctx.lang, h) for h in
                     ["φ, deg", f"s, {us}", f"ds/dφ, {uv}", f"d²s/dφ², {ua}", "θ, deg", "x, mm", "y, mm"]]
-    figs = []
-    scales = []
-    try:
-        fig, scales = diagrams_figure(ctx, c)
-        figs.append((ctx.svg(fig), t("cam.diagrams_caption")))
-    except Exception as exc:  # a drawing problem must not lose the tables
-        figs.append((f"<p class='warn'>figure failed: {exc}</p>", t("cam.diagrams_caption")))
-    if c.get("construction"):
+    fig, scales = diagrams_figure(ctx, c)
+    figs = [(ctx.svg(fig), t("cam.diagrams_caption"))]
+    if c.get("construction"):           # the s - ds/dphi construction (not for a flat follower)
+        fig, unit, label = construction_figure(ctx, c)
         cap = t("cam.construction_caption")
-        try:
-            fig, unit, label = construction_figure(ctx, c)
-            if c.get("r0_given"):
-                cap += "; " + t("cam.construction_chosen")
-            cap += "; " + t("cam.construction_scale", mu=f(unit, 4), label=label)
-            figs.append((ctx.svg(fig), cap))
-        except Exception as exc:
-            figs.append((f"<p class='warn'>figure failed: {exc}</p>", cap))
+        if c.get("r0_given"):
+            cap += "; " + t("cam.construction_chosen")
+        cap += "; " + t("cam.construction_scale", mu=f(unit, 4), label=label)
+        figs.append((ctx.svg(fig), cap))
     pcap = {"flat": "cam.profile_flat_caption", "knife": "cam.profile_knife_caption"}.get(c["follower"],
                                                                                           "cam.profile_caption")
-    try:
-        fig, unit, label = profile_figure(ctx, c)
-        scale = f"M {label}" + _loc(ctx.lang, f" (μl = {f(unit, 4)} mm/mm)")
-        figs.append((ctx.svg(fig), t(pcap, scale=scale)))
-    except Exception as exc:
-        figs.append((f"<p class='warn'>figure failed: {exc}</p>", t(pcap, scale="")))
+    fig, unit, label = profile_figure(ctx, c)
+    scale = f"M {label}" + _loc(ctx.lang, f" (μl = {f(unit, 4)} mm/mm)")
+    figs.append((ctx.svg(fig), t(pcap, scale=scale)))
     if not flat:
-        try:
-            figs.append((ctx.svg(pressure_figure(ctx, c)), t("cam.pressure_caption")))
-        except Exception as exc:
-            figs.append((f"<p class='warn'>figure failed: {exc}</p>", t("cam.pressure_caption")))
+        figs.append((ctx.svg(pressure_figure(ctx, c)), t("cam.pressure_caption")))
     div = c.get("division_table") or []
     div_rows = [(t(f"cam.{r['phase']}"), r["k"], f(r["phi"], 5), f(r["s"] * ks, 5), f(r["ds"] * kv, 5),
                  f(r["d2s"] * ka, 5), f(r["pressure_angle"], 4)) for r in div]
     div_header = [t("cam.phase"), "k"] + table_header[:5]
     n = sum(1 for r in div if r["phase"] == "rise") - 1
-    files = []
-    try:
-        from tmm_cli.cam.export import profile_csv_rows, profile_dxf
-        header, prow = profile_csv_rows(c)
-        files.append(ctx.write_csv("cam_profile.csv", header, prow).name)
-        mhead = ["phi_deg", "s", "ds_dphi", "d2s_dphi2", "pressure_angle_deg"]
-        mrows = zip(c["phi"], c["s"], c["ds"], c["d2s"], c["pressure_angle"])
-        if c.get("v"):
-            mhead += ["v", "a"]
-            mrows = zip(c["phi"], c["s"], c["ds"], c["d2s"], c["pressure_angle"], c["v"], c["a"])
-        files.append(ctx.write_csv("cam_motion.csv", mhead, mrows).name)
-        files.append(ctx.write_file("cam_profile.dxf", profile_dxf(c)).name)
-    except Exception:  # exports are extras
-        pass
+    from tmm_cli.cam.export import profile_csv_rows, profile_dxf
+    header, prow = profile_csv_rows(c)
+    files = [ctx.write_csv("cam_profile.csv", header, prow).name]
+    mhead = ["phi_deg", "s", "ds_dphi", "d2s_dphi2", "pressure_angle_deg"]
+    mrows = zip(c["phi"], c["s"], c["ds"], c["d2s"], c["pressure_angle"])
+    if c.get("v"):
+        mhead += ["v", "a"]
+        mrows = zip(c["phi"], c["s"], c["ds"], c["d2s"], c["pressure_angle"], c["v"], c["a"])
+    files.append(ctx.write_csv("cam_motion.csv", mhead, mrows).name)
+    files.append(ctx.write_file("cam_profile.dxf", profile_dxf(c)).name)
     return ctx.render("sections/cam.html.j2", rows=rows, law_header=law_header, law_rows=law_rows,
                       table_header=table_header, table_rows=table_rows, figs=figs, scales=scales,
                       files=files, method=method, div_header=div_header, div_rows=div_rows,

@@ -338,15 +338,9 @@ def build(ctx) -> str | None:
     if not d:
         return None
     f, t = ctx.fmt, ctx.t
-    try:
-        fig, step = sketch(ctx, d)
-        fig_sketch, sketch_cap = ctx.svg(fig), t("dof2.sketch_caption", mm=f(step))
-    except Exception as exc:  # the tables matter more than the picture
-        fig_sketch, sketch_cap = f"<p class='warn'>figure failed: {exc}</p>", None
-    try:
-        figs = plots(ctx, d)
-    except Exception as exc:
-        figs = {k: f"<p class='warn'>figure failed: {exc}</p>" for k in ("angles", "speeds", "reactions", "energy")}
+    fig, step = sketch(ctx, d)
+    fig_sketch, sketch_cap = ctx.svg(fig), t("dof2.sketch_caption", mm=f(step))
+    figs = plots(ctx, d)
     imp = d.get("impact")
     impact_rows = _impact(ctx, imp) if imp else None
     impact_head = t("dof2.impact", phi=f(d["impact_phi"])) if d.get("impact_phi") is not None else None

@@ -250,11 +250,6 @@ def build(ctx) -> str | None:
                  (t("train.Jn_motor"), f(fw["J_n_motor_shaft"], 5)), (t("train.GD2"), f(fw["GD2_motor_shaft"], 5))]
         if d.get("motor_power_computed"):
             motor.insert(0, (t("train.power"), f(d["motor_power"], 5)))
-    figs = []
-    for maker, cap in ((lambda: scheme_and_picture(d, t), t("train.scheme")), (lambda: angular_plan(d), t("train.plan"))):
-        try:
-            figs.append((Markup(maker()), cap))
-        except Exception as exc:  # the tables matter more than the picture
-            figs.append((Markup(f"<p class='warn'>figure failed: {exc}</p>"), cap))
+    figs = [(Markup(scheme_and_picture(d, t)), t("train.scheme")), (Markup(angular_plan(d)), t("train.plan"))]
     return ctx.render("sections/drive_train.html.j2", info=info, rows=rows, shafts=shafts, sats=sats,
                       cands=cands, motor=motor, figs=figs, rank=d.get("rank", "size"))

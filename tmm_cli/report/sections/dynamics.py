@@ -186,9 +186,9 @@ def _wittenbauer(ctx, d):
     pmax = math.degrees(math.atan(muJ / muT * s_up))
     pmin = math.degrees(math.atan(muJ / muT * s_lo))
     kl = (k - l_) / muT
-    Jw = (k - l_) / (wm**2 * delta)
+    # J = kl mu_T / (omega_m^2 delta): the stage's value of the construction
     cap = ctx.t("dyn.witt_caption", muJ=f"{muJ:g}", muT=f"{muT:g}", pmax=pmax, pmin=pmin, kl=kl,
-                J=ctx.fmt(Jw, 5))
+                J=ctx.fmt(d.get("J_wittenbauer"), 5))
     return ctx.svg(fig), cap
 
 

@@ -87,9 +87,9 @@ def _symbols(text: str):
 
 
 def _wheels(g):
-    from tmm_cli.gears import Wheel
-    return [Wheel(g["m"], g["z"][i], g["x"][i], g["alpha"], g["ha"], g["c"], g["ra"][i], g.get("rho_f"))
-            for i in (0, 1)]
+    """The two wheels of the result (the drawing sheets draw them; the gears stage makes them)."""
+    from tmm_cli.gears.drawing import wheels
+    return list(wheels(g))
 
 
 SCALES = (50, 40, 20, 10, 5, 4, 2.5, 2, 1, 1 / 2, 1 / 2.5, 1 / 4, 1 / 5, 1 / 10)   # GOST 2.302
@@ -163,16 +163,15 @@ def _overlap(a, b) -> bool:
 
 
 def mesh_figure(ctx, g):
-    from tmm_cli.gears import mesh_layout
+    from tmm_cli.gears.drawing import mesh
     fp = ctx.figures
-    w1, w2 = _wheels(g)
-    aw = g["aw"]
+    wheels = mesh(g, teeth=3)         # the stage's tooth outlines of the result, in mesh
+    c2 = wheels[1]["centre"]
     fig, ax = fp.new_figure(170, 150)
-    (c1, a1), (c2, a2) = mesh_layout((w1, w2), aw, 0.0)
     th = np.linspace(0, 2 * np.pi, 721)
     span = 4.0 * g["m"] * 3
-    for (c, ax_ang, w, i) in ((c1, a1, w1, 0), (c2, a2, w2, 1)):
-        X, Y = w.outline(axis_angle=ax_ang, teeth=3, centre=c)
+    for i, w in enumerate(wheels):
+        c, X, Y = w["centre"], w["x"], w["y"]
         ax.plot(X * MM, Y * MM, color="k", lw=1.2)
         for rad, st in ((g["rw"][i], "--"), (g["rb"][i], "-."), (g["ra"][i], ":"), (g["rf"][i], ":"),
                         (g["r"][i], (0, (1, 3)))):
@@ -182,8 +181,8 @@ def mesh_figure(ctx, g):
     ax.plot([pts["B1"][0] * MM, pts["B2"][0] * MM], [pts["B1"][1] * MM, pts["B2"][1] * MM], color="tab:red", lw=2.5)
     # the working parts of the profiles: from the radius of the active point (B2 on wheel 1, B1 on
     # wheel 2: where the profile leaves / enters the contact) to the tip
-    for (c, ax_ang, w, i, b) in ((c1, a1, w1, 0, "B1"), (c2, a2, w2, 1, "B2")):
-        X, Y = w.outline(axis_angle=ax_ang, teeth=3, centre=c)
+    for i, (w, b) in enumerate(zip(wheels, ("B1", "B2"))):
+        c, X, Y = w["centre"], w["x"], w["y"]
         r_lo = float(np.hypot(*(pts[b] - np.asarray(c, float))))
         rr = np.hypot(X - c[0], Y - c[1])
         work = (rr >= r_lo - 1e-12) & (rr <= g["ra"][i] * (1 - 2e-3))      # the flanks, not the tip land
@@ -233,11 +232,12 @@ def contour_figure(ctx, g):
             lab = ctx.t(f"gears.{kind}_l") + (f" {name.rsplit('_', 1)[-1]}" if name[-1:].isdigit() else "")
             ax.plot(a[:, 0], a[:, 1], color=col, ls=ls, lw=1.1, label=None if name in seen else lab)
             seen.add(name)
-    # the admissible region, re-evaluated on a coarse grid for shading
-    from tmm_cli.gears.shifts import blocking_contour
-    b = blocking_contour(g["m"], g["z"][0], g["z"][1], g["alpha"], g["ha"], g["c"], g["sa_min"],
-                         g.get("rho_f"), tuple(bc["x1_range"]), tuple(bc["x2_range"]), n=81)
-    ax.contourf(b["x1"], b["x2"], b["ok"].astype(float), levels=[0.5, 1.5], colors=["#cfe8cf"])
+    # the admissible region (the stage's polygons: outer ring, then holes)
+    from matplotlib.patches import PathPatch
+    from matplotlib.path import Path
+    for rings in bc["region"]:
+        path = Path.make_compound_path(*(Path(np.asarray(r), closed=True) for r in rings))
+        ax.add_patch(PathPatch(path, facecolor="#cfe8cf", edgecolor="none", zorder=0))
     ax.plot(*bc["chosen"], "ko", ms=4)
     ax.set_xlim(*bc["x1_range"])
     ax.set_ylim(*bc["x2_range"])
@@ -317,24 +317,17 @@ def build(ctx) -> str | None:
     # the specific-sliding diagrams right under the mesh, as on the sheet
     for fn, cap in ((mesh_figure, "gears.mesh_caption"), (sliding_figure, "gears.sliding_caption"),
                     (contour_figure, "gears.contour_caption")):
-        try:
-            figs.append((ctx.svg(fn(ctx, g)), _symbols(t(cap))))
-        except Exception as exc:  # a drawing problem must not lose the tables
-            figs.append((f"<p class='warn'>figure failed: {exc}</p>", t(cap)))
+        figs.append((ctx.svg(fn(ctx, g)), _symbols(t(cap))))
+    from tmm_cli.gears.drawing import outline_csv, outline_dxf, outlines
     files = []
-    try:
-        from tmm_cli.gears import outline_csv, outline_dxf
-        polys = {}
-        for i, w in enumerate(_wheels(g)):
-            X, Y = w.outline(teeth=3)
-            files.append(ctx.write_file(f"gears_wheel{i + 1}_outline.csv", outline_csv(X, Y)).name)
-            polys[f"wheel{i + 1}"] = (X, Y + (g["aw"] if i else 0.0))
-        files.append(ctx.write_file("gears_outline.dxf", outline_dxf(polys)).name)
-        sl = g["sliding"]
-        files.append(ctx.write_csv("gears_sliding.csv", ["X_m", "lambda1", "lambda2"],
-                                   zip(sl["X"], sl["lambda1"], sl["lambda2"])).name)
-    except Exception:  # exports are extras
-        pass
+    polys = {}
+    for i, (X, Y) in enumerate(outlines(g, teeth=3)):
+        files.append(ctx.write_file(f"gears_wheel{i + 1}_outline.csv", outline_csv(X, Y)).name)
+        polys[f"wheel{i + 1}"] = (X, Y + (g["aw"] if i else 0.0))
+    files.append(ctx.write_file("gears_outline.dxf", outline_dxf(polys)).name)
+    sl = g["sliding"]
+    files.append(ctx.write_csv("gears_sliding.csv", ["X_m", "lambda1", "lambda2"],
+                               zip(sl["X"], sl["lambda1"], sl["lambda2"])).name)
     rule_name = t(f"g.rule.{g['rule']}") if g.get("rule") else None
     if rule_name and rule_name.startswith("g.rule."):
         rule_name = g["rule"]

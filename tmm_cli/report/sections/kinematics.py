@@ -47,7 +47,7 @@ def _pxy(e, p):
 
 
 def _rotation_sign(ctx, geom, entries) -> float:
-    d = getattr(getattr(ctx.task, "drive", None), "direction", None)
+    d = (ctx.results.get("positions") or {}).get("direction")
     if d in ("ccw", "cw"):
         return 1.0 if d == "ccw" else -1.0
     l = geom.link(geom.drive)
@@ -65,7 +65,7 @@ def _sense_mark(x, tiny: float = 1e-9) -> str:
 
 
 def _grid_count(ctx, entries) -> int:
-    return grid_count(ctx.task, len(entries))
+    return grid_count(ctx.results, len(entries))
 
 
 # ----------------------------------------------------------------- figures
@@ -273,7 +273,7 @@ def build(ctx) -> str | None:
     entries = ctx.results.get("kinematics") or []
     if not entries:
         return None
-    geom = geometry(ctx.results, ctx.task)
+    geom = geometry(ctx.results)
     if geom is None:
         return None
     res_pos = ctx.results.get("positions") or {}
@@ -375,8 +375,7 @@ def build(ctx) -> str | None:
                           "fig": plans_svg(ctx, vp, ap), "vrows": vrows, "arows": arows})
 
     # diagrams
-    out_name = res_pos.get("output") or getattr(getattr(ctx.task, "positions", None), "output", None) \
-        or geom.links[-1].name
+    out_name = res_pos.get("output") or geom.links[-1].name
     curve = None
     kc = ctx.results.get("kinematics_curve")
     if kc and kc.get("phi"):

@@ -642,7 +642,7 @@ def build(ctx) -> str | None:
         hdr.append(ctx.t("kst.near"))
     # a fine grid: tables and drawings of the course positions (report/course.py), CSV in full
     from ..course import course_entries, grid_count
-    shown = course_entries(entries, grid_count(ctx.task, len(entries)))
+    shown = course_entries(entries, grid_count(ctx.results, len(entries)))
     shown_ids = {id(e) for e in shown}
     mb_rows = []
     csv_rows = []
@@ -687,7 +687,7 @@ def build(ctx) -> str | None:
     loads_hdr, loads_rows, const = _loads_table(ctx, shown)
     # per position drawings
     from ..plans import crank_pin, geometry
-    geom = geometry(ctx.results, ctx.task)
+    geom = geometry(ctx.results)
     geom_pin = crank_pin(geom) if geom is not None else None
     positions = []
     for e in shown[:MAX_FIG_POSITIONS]:

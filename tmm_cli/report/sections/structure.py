@@ -39,7 +39,7 @@ def build(ctx) -> str | None:
     st = ctx.results.get("structure")
     if not st:
         return None
-    geom = geometry(ctx.results, ctx.task)
+    geom = geometry(ctx.results)
     entries = ctx.results.get("kinematics") or []
     n, p5, p4 = st.get("n"), st.get("p5"), st.get("p4", 0)
     W = st.get("W")
