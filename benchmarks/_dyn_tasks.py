@@ -27,12 +27,10 @@ FORGING = {
 
 
 def prepare(task_path: str | None = None):
+    """(task, linkage) of a task with a `flywheel` section."""
     import tmm_cli
-    from tmm_cli.linkage import kinematics
-    from tmm_cli.linkage.mechanism import build_mechanism
+    from tmm_cli.linkage.context import build
     task = tmm_cli.load_task(task_path if task_path else FORGING)
     if task.flywheel is None:
         raise SystemExit(f"{task_path}: no `flywheel` section")
-    mech = build_mechanism(task)
-    pos = kinematics.find_positions(mech, task.positions, task.drive)
-    return task, mech, pos
+    return task, build(task)

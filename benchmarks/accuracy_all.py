@@ -28,21 +28,21 @@ from _dyn_tasks import prepare  # noqa: E402
 def one(path):
     from tmm_cli import study
     from tmm_cli.linkage import dynamics
-    task, mech, pos = prepare(path)
-    ref = study.flywheel_values(task, mech, pos, 2880)
-    ref2 = study.flywheel_values(task, mech, pos, 5760)
+    task, linkage = prepare(path)
+    ref = study.flywheel_values(task, linkage, 2880)
+    ref2 = study.flywheel_values(task, linkage, 5760)
     check = max(abs(ref[k] / ref2[k] - 1) for k in ref)
     cpu = []
     for _ in range(5):
         t0 = time.process_time()
-        r = dynamics.analyze_task(mech, task, pos, accuracy=False)
+        r = dynamics.analyze(linkage, task.flywheel, accuracy=False)
         cpu.append((time.process_time() - t0) * 1e3)
     c = r.cycle
     errs = {m: abs(c.J_n[m] / ref2[k] - 1) for m, k in
             (("energy-mass", "J_n"), ("merzalov", "J_n_merzalov"), ("exact", "J_n_exact"))}
     hand = r.hand
-    fly = study.study_flywheel(task, mech, pos, repeat=1)
-    trap = study.study_flywheel(task, mech, pos, quadrature=0, repeat=1)
+    fly = study.study_flywheel(task, linkage, repeat=1)
+    trap = study.study_flywheel(task, linkage, quadrature=0, repeat=1)
     return {"title": task.title, "delta": task.flywheel.delta, "J_n": ref2["J_n"], "ref_check": check,
             "errors": errs, "cpu_ms": statistics.median(cpu), "hand": hand["err_J_n"],
             "order_gauss": fly["order"], "order_trapezoid": trap["order"],

@@ -19,8 +19,8 @@ from _dyn_tasks import prepare  # noqa: E402
 
 def main() -> None:
     from tmm_cli.linkage import dynamics
-    task, mech, pos = prepare(sys.argv[1] if len(sys.argv) > 1 else None)
-    r = dynamics.analyze_task(mech, task, pos, accuracy=True)
+    task, linkage = prepare(sys.argv[1] if len(sys.argv) > 1 else None)
+    r = dynamics.analyze(linkage, task.flywheel, accuracy=True)
     acc = r.to_dict()["accuracy"]
     print(f"task: {task.title}; method {acc['method']}; delta = {task.flywheel.delta:.6g}")
     print(f"{'positions':>9} {'J, kg*m^2':>14} {'err J':>10} {'omega_max':>11} {'err':>9} "

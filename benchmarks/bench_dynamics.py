@@ -33,15 +33,15 @@ def median_ms(fn, repeat=7) -> float:
 def main() -> None:
     from tmm_cli.linkage import dynamics
     from tmm_cli.linkage.dynamics import flywheel as fw
-    task, mech, pos = prepare(sys.argv[1] if len(sys.argv) > 1 else None)
+    task, linkage = prepare(sys.argv[1] if len(sys.argv) > 1 else None)
     res = task.flywheel.resolution
     rows = [(f"full dynamics, {res} positions (no accuracy table)",
-             median_ms(lambda: dynamics.analyze_task(mech, task, pos, accuracy=False)), 50.0),
+             median_ms(lambda: dynamics.analyze(linkage, task.flywheel, accuracy=False)), 50.0),
             ("full dynamics + accuracy table (12..3600 and the hand row)",
-             median_ms(lambda: dynamics.analyze_task(mech, task, pos, accuracy=True), 3), None)]
+             median_ms(lambda: dynamics.analyze(linkage, task.flywheel, accuracy=True), 3), None)]
     for n in (360, 3600):
         task_n = task.model_copy(update={"flywheel": task.flywheel.model_copy(update={"resolution": n})})
-        r = dynamics.analyze_task(mech, task_n, pos, accuracy=False)
+        r = dynamics.analyze(linkage, task_n.flywheel, accuracy=False)
         c = r.cycle
         rows.append((f"exact method alone, {c.q.size} nodes",
                      median_ms(lambda: fw.exact_flywheel(c.work.dT, c.J_var, c.omega_m, c.delta,

@@ -20,8 +20,8 @@ sys.path.insert(0, str(ROOT))
 
 from tmm_cli import load_task  # noqa: E402
 from tmm_cli.linkage import kinematics, structure  # noqa: E402
-from tmm_cli.linkage.kinetostatics import analyze, find_singular  # noqa: E402
-from tmm_cli.linkage.loads import evaluate  # noqa: E402
+from tmm_cli.linkage.kinetostatics import equilibrium, find_singular  # noqa: E402
+from tmm_cli.linkage.loads import evaluate_on  # noqa: E402
 from tmm_cli.linkage.mechanism import build_mechanism  # noqa: E402
 
 SIX = {"schema": "tmm/1", "mechanism": {
@@ -50,16 +50,16 @@ def main() -> None:
     task = load_task(SIX)
     mech = build_mechanism(task)
     st = structure.analyze(mech)
-    pos = kinematics.find_positions(mech, task.positions, task.drive)
+    pos = kinematics.find_positions(mech, task.positions, task.drive.sign)
     sing = find_singular(mech, st, "crank")
     rows = []
     for n, target in ((12, 0.020), (3600, 0.5)):
         phi = np.mod(pos.phi0 + np.arange(n) * 360.0 / n, 360.0)
-        kin = kinematics.solve(mech, phi, task.drive.omega1)
+        kin = kinematics.solve(mech, phi, task.drive.sign * task.drive.speed)
 
         def run():
-            lds = evaluate(mech, task.loads, kin, pos, inertia=True)
-            analyze(mech, st, kin, lds, task.kinetostatics, singular=sing).to_dict()
+            lds = evaluate_on(mech, task.loads, kin, pos, sign=task.drive.sign, cycle=task.drive.cycle, inertia=True)
+            equilibrium(mech, st, kin, lds, task.kinetostatics, singular=sing).to_dict()
         rows.append((f"loads + kinetostatics, {n} positions (+ to_dict)", best(run), target))
     rows.append(("singular positions, one turn (balance on the crank)",
                  best(lambda: find_singular(mech, st, "crank"), 3), None))

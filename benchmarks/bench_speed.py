@@ -11,9 +11,19 @@ interleaved (A, B, A, B, ...), each repeated (>= 5 times); medians and the sprea
   3600-position grid against the 12-position task (target <= 2x);
 * the kinematics core (tmm_cli.linkage.kinematics.solve) against a hand-written numpy closed
   form of the same central slider-crank and four-bar, N = 36 ... 36000 (target <= 3x at
-  N >= 3600), and the fixed cost per call.
+  N >= 3600), and the fixed cost per call;
+* with --batch: `tmm batch` of 300 variants of the forging machine (kinetostatics and
+  flywheel) with --jobs 2 --format json (target <= 15 s wall), interleaved with one JSON
+  run of the same task;
+* with --kinetostatics: loads + kinetostatics + the results entries at 36,000 positions of
+  the six-bar of bench_kinetostatics.py, each in a fresh process (target <= 1 s and
+  <= 200 MB peak), interleaved with the kinematics alone at the same positions.
 
-Run: python benchmarks/bench_speed.py [--report] [--repeat 5]
+The commands run as an installed tmm does: with the bytecode cache (pip compiles it at
+install), so a PYTHONDONTWRITEBYTECODE of the environment is dropped for them (the cache
+goes to a temporary PYTHONPYCACHEPREFIX).
+
+Run: python benchmarks/bench_speed.py [--report] [--batch] [--kinetostatics] [--repeat 5]
 """
 from __future__ import annotations
 
@@ -40,10 +50,14 @@ def _child_cpu() -> float:
     return r.ru_utime + r.ru_stime
 
 
+_ENV = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+_ENV["PYTHONPYCACHEPREFIX"] = os.path.join(tempfile.gettempdir(), "tmm-bench-pycache")
+
+
 def _run(cmd: list[str]) -> tuple[float, float]:
     """(wall, cpu) of one subprocess."""
     c0, t0 = _child_cpu(), time.perf_counter()
-    p = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT)
+    p = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT, env=_ENV)
     wall, cpu = time.perf_counter() - t0, _child_cpu() - c0
     if p.returncode != 0:
         raise SystemExit(f"{' '.join(cmd)} failed ({p.returncode}):\n{p.stderr[-2000:]}")
@@ -93,7 +107,9 @@ def cli(repeat: int, report: bool) -> None:
     w = {k: [x for x, _ in v] for k, v in res.items()}
     c = {k: [x for _, x in v] for k, v in res.items()}
     _ratio_line("run --format json / import floor (wall)", w["json"], w["floor"], 2.0)
+    _ratio_line("run --format json / import floor (cpu)", c["json"], c["floor"], 2.0)
     _ratio_line("validate / import floor (wall)", w["validate"], w["floor"], 2.0)
+    _ratio_line("validate / import floor (cpu)", c["validate"], c["floor"], 2.0)
     if report:
         _ratio_line("report html+pdf / json run (wall)", w["report"], w["json"], 4.0)
         _ratio_line("report html+pdf / json run (cpu)", c["report"], c["json"], None)
@@ -206,16 +222,100 @@ def kinematics(repeat: int) -> None:
                   f"[{min(r):.2f}-{max(r):.2f}]{tgt}")
 
 
+# ----------------------------------------------------------------- batch
+def batch(repeat: int, n: int) -> None:
+    """`tmm batch` of n variants (crank speed 40-69 rpm, upsetting force 10-20 kN) with
+    --jobs 2 --format json, interleaved with one JSON run of the task."""
+    py = [sys.executable, "-m", "tmm_cli"]
+    src = TASK.read_text(encoding="utf-8")
+    with tempfile.TemporaryDirectory() as tmp:
+        d = Path(tmp) / "variants"
+        d.mkdir()
+        for i in range(n):
+            f = 10 + i % 11
+            (d / f"v{i + 1:03d}.yaml").write_text(
+                src.replace("variant: 7", f"variant: {i + 1}").replace("speed: 50 rpm", f"speed: {40 + i % 30} rpm")
+                .replace("15 kN, 15 kN", f"{f} kN, {f} kN"), encoding="utf-8")
+        cmds = {"batch": py + ["batch", str(d), "--jobs", "2", "--format", "json", "--out", f"{tmp}/b"],
+                "json": py + ["run", str(TASK), "--format", "json", "--quiet", "--out", f"{tmp}/j"]}
+        res = _interleaved(cmds, repeat)
+    w = {k: [x for x, _ in v] for k, v in res.items()}
+    c = {k: [x for _, x in v] for k, v in res.items()}
+    print(f"batch of {n} variants, --jobs 2 --format json, {repeat} interleaved rounds; s: median [min-max]")
+    print(f"  batch      wall {_stat(w['batch'])}   cpu {_stat(c['batch'])}   "
+          f"(target <= 15 s wall) {'ok' if statistics.median(w['batch']) <= 15 else 'OVER'}")
+    print(f"  json run   wall {_stat(w['json'])}   cpu {_stat(c['json'])}")
+    print(f"  per variant: wall {statistics.median(w['batch']) / n * 1e3:.0f} ms, "
+          f"cpu {statistics.median(c['batch']) / n * 1e3:.0f} ms")
+    _ratio_line(f"batch of {n} / one json run (wall)", w["batch"], w["json"], None)
+
+
+# ----------------------------------------------------------------- kinetostatics at 36,000
+_KS_CODE = """
+import resource, sys, time
+sys.path.insert(0, {bench!r})
+import numpy as np
+from bench_kinetostatics import SIX
+from tmm_cli import load_task
+from tmm_cli.linkage import kinematics, structure
+from tmm_cli.linkage.kinetostatics import analyze, find_singular
+from tmm_cli.linkage.loads import evaluate
+from tmm_cli.linkage.mechanism import build_mechanism
+task = load_task(SIX); mech = build_mechanism(task); st = structure.analyze(mech)
+pos = kinematics.find_positions(mech, task.positions, task.drive)
+sing = find_singular(mech, st, "crank")
+phi = np.mod(pos.phi0 + np.arange({n}) * 360.0 / {n}, 360.0)
+base = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+t0, c0 = time.perf_counter(), time.process_time()
+kin = kinematics.solve(mech, phi, task.drive.omega1)
+if {full}:
+    lds = evaluate(mech, task.loads, kin, pos, inertia=True)
+    d = analyze(mech, st, kin, lds, task.kinetostatics, singular=sing).to_dict()
+print(time.perf_counter() - t0, time.process_time() - c0,
+      (resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - base) / 1024.0,
+      resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0)
+"""
+
+
+def kinetostatics_big(repeat: int, n: int = 36000) -> None:
+    out: dict[str, list[list[float]]] = {"kinetostatics": [], "kinematics": []}
+    for _ in range(repeat):
+        for name, full in (("kinetostatics", True), ("kinematics", False)):
+            code = _KS_CODE.format(bench=str(ROOT / "benchmarks"), n=n, full=full)
+            p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, env=_ENV,
+                               check=True)
+            out[name].append([float(x) for x in p.stdout.split()])
+    print(f"kinetostatics at {n} positions (six-bar with friction: loads, three methods, the results "
+          f"entries), {repeat} interleaved rounds, each in a fresh process")
+    for name, rows in out.items():
+        cols = list(zip(*rows))
+        print(f"  {name:14s} wall {_stat(list(cols[0]))} s   cpu {_stat(list(cols[1]))} s   "
+              f"peak memory added {_stat(list(cols[2]))} MB (process peak {statistics.median(cols[3]):.0f} MB)")
+    k = list(zip(*out["kinetostatics"]))
+    print(f"  target: <= 1 s {'ok' if statistics.median(k[1]) <= 1 else 'OVER'} (cpu), "
+          f"<= 200 MB {'ok' if statistics.median(k[3]) <= 200 else 'OVER'} (process peak)")
+    _ratio_line("kinetostatics / kinematics alone (cpu)", list(k[1]), [r[1] for r in out["kinematics"]], None)
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--report", action="store_true", help="also time the whole report (slow)")
+    ap.add_argument("--batch", action="store_true", help="also time a batch of 300 variants (slow)")
+    ap.add_argument("--variants", type=int, default=300)
+    ap.add_argument("--kinetostatics", action="store_true", help="also kinetostatics at 36,000 positions")
     ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--no-cli", action="store_true")
+    ap.add_argument("--no-kinematics", action="store_true")
     a = ap.parse_args()
     print(f"{os.cpu_count()} cores, load average {os.getloadavg()[0]:.2f}")
     if not a.no_cli:
         cli(max(5, a.repeat), a.report)
-    kinematics(max(5, a.repeat))
+    if a.batch:
+        batch(max(5, a.repeat), a.variants)
+    if a.kinetostatics:
+        kinetostatics_big(max(5, a.repeat))
+    if not a.no_kinematics:
+        kinematics(max(5, a.repeat))
 
 
 if __name__ == "__main__":

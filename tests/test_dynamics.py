@@ -331,7 +331,7 @@ def test_convergence_order_of_the_rules_with_jumps_inserted():
     sec = section(delta=0.05, resolution=360)
     ref = analyze_sampler(jumpy, section(delta=0.05, resolution=4000, quadrature=3), 10.0,
                           switch_q=(100.0, 250.0), accuracy=False).cycle.J_n["exact"]
-    from tmm_cli.linkage.dynamics.analysis import _run_grid
+    from tmm_cli.linkage.dynamics.cycle import run_grid
     for n_g, res, band in ((0, [36, 72, 144, 288, 576], (1.6, 2.6)),
                            (1, [36, 72, 144, 288, 576], (1.6, 2.6)),
                            (2, [36, 72, 144, 288, 576], (3.5, 4.5)),
@@ -347,7 +347,7 @@ def test_convergence_order_of_the_rules_with_jumps_inserted():
     res = [36, 72, 144, 288, 576]
     err_out = []
     for n in res:
-        co = _run_grid(jumpy, sec, 10.0, 360.0, n, (), insert=False)[0]
+        co = run_grid(jumpy, sec, 10.0, 360.0, n, (), insert=False)[0]
         err_out.append(abs(co.J_n["exact"] / ref - 1))
     p_out = _fit_slope(res, err_out)
     assert 0.6 <= p_out <= 1.4, (p_out, err_out)

@@ -43,8 +43,17 @@ def slider_crank(loads, flywheel=None, direction="ccw", speed="120 rpm", cycle=3
     }
     task = tmm_cli.load_task(d)
     mech = build_mechanism(task)
-    pos = kinematics.find_positions(mech, task.positions, task.drive)
+    pos = kinematics.find_positions(mech, task.positions, task.drive.sign)
     return task, mech, pos
+
+
+def linkage_of(task, mech, pos):
+    """The linkage context of the stages (tmm_cli.linkage.context)."""
+    from tmm_cli.linkage import structure
+    from tmm_cli.linkage.context import Linkage
+    from tmm_cli.linkage.drive_speed import resolve
+    return Linkage(mechanism=mech, structure=structure.analyze(mech, task=task),
+                   drive=resolve(task.drive, pos), positions=pos, loads=task.loads)
 
 
 def closed_form(phi):
@@ -62,7 +71,7 @@ def closed_form(phi):
 
 def test_reduced_inertia_and_moment_closed_form():
     task, mech, pos = slider_crank({"forces": [{"on": "slider", "magnitude": -500.0}]})
-    r = dynamics.analyze_task(mech, task, pos, accuracy=False)
+    r = dynamics.analyze(linkage_of(task, mech, pos), task.flywheel, accuracy=False)
     # nodes at jumps are evaluated EPS_DEG before/after the node (one-sided limits)
     phi = np.deg2rad(r.phi0 + r.q_deg + r.side * dynamics.EPS_DEG)
     J_cf, dxB = closed_form(phi)
@@ -83,7 +92,7 @@ def test_constant_force_over_working_stroke(direction):
     task, mech, pos = slider_crank({"forces": [{"on": "slider", "kind": "resistance",
                                                 "magnitude": 2000.0}]}, direction=direction)
     assert pos.H == pytest.approx(2 * R, rel=1e-9)
-    r = dynamics.analyze_task(mech, task, pos)
+    r = dynamics.analyze(linkage_of(task, mech, pos), task.flywheel)
     d = r.to_dict()
     # trapezoid on 1-deg steps of a smooth F dx/dphi: relative error ~ h^2/12 ~ 3e-5
     assert d["M_constant"] == pytest.approx(2000 * 2 * R / (2 * np.pi), rel=1e-4)
@@ -116,8 +125,8 @@ def test_jump_inside_stroke_on_the_grid():
     errs = []
     for res in (90, 360, 1440):
         task, mech, pos = slider_crank(loads, flywheel={"delta": "1/20", "resolution": res})
-        r = dynamics.analyze_task(mech, task, pos, accuracy=False)
-        sw = loads_mod.switch_angles(mech, task.loads, pos)
+        r = dynamics.analyze(linkage_of(task, mech, pos), task.flywheel, accuracy=False)
+        sw = loads_mod.switch_angles(mech, task.loads, pos, sign=task.drive.sign, cycle=task.drive.cycle)
         assert len(sw) == 1
         qs = (sw[0] - pos.phi0) % 360.0
         assert np.sum(np.abs(r.q_deg - qs) < 1e-9) == 2
@@ -136,7 +145,7 @@ def test_engine_720_cycle_phi_diagram():
                                                     "resolution": 720},
                                    cycle=720, working="backward")
     assert pos.phi0 == pytest.approx(0.0, abs=1e-9) or pos.phi0 == pytest.approx(360.0)
-    r = dynamics.analyze_task(mech, task, pos)
+    r = dynamics.analyze(linkage_of(task, mech, pos), task.flywheel)
     d = r.to_dict()
     assert d["cycle"] == 720.0
     assert d["arrays"]["phi_cycle"][-1] == 720.0
@@ -154,15 +163,15 @@ def test_balancing_moment_equals_constant_driving_moment(direction):
     task, mech, pos = slider_crank({"gravity": True, "forces": [
         {"on": "slider", "kind": "resistance",
          "diagram": {"s": [0, 0.3, 1], "value": [500, 2500, 2500]}}]}, direction=direction)
-    r = dynamics.analyze_task(mech, task, pos, accuracy=False)
+    r = dynamics.analyze(linkage_of(task, mech, pos), task.flywheel, accuracy=False)
     phi = np.asarray(pos.phi, float)
     w, e = r.motion_at(phi)
     kin = kinematics.solve(mech, phi, w, e)
-    lds = loads_mod.evaluate(mech, task.loads, kin, pos, inertia=True)
+    lds = loads_mod.evaluate(linkage_of(task, mech, pos), kin, inertia=True)
     st = structure.analyze(mech, task=task)
     ks = tmm_cli.task.KinetostaticsSection()
-    res = kinetostatics.analyze(mech, st, kin, lds, ks, crank_inertia=r.J_fly + task.flywheel.reduced_J)
-    entries = res.to_dict()["entries"]
+    res = kinetostatics.equilibrium(mech, st, kin, lds, ks, crank_inertia=r.J_fly + task.flywheel.reduced_J)
+    entries = res.to_dict()["kinetostatics"]
     Mb = np.array([x["balancing_moment"] for x in entries])
     sgn = 1.0 if direction == "ccw" else -1.0
     assert Mb == pytest.approx(np.full(Mb.size, sgn * r.cycle.work.M_constant), rel=1e-6, abs=1e-6)
@@ -177,13 +186,13 @@ def test_balancing_moment_720_cycle_positions_off_zero():
     task, mech, pos = slider_crank(loads, flywheel={"delta": "1/50", "constant": "resistance"},
                                    cycle=720)
     assert pos.phi0 == pytest.approx(180.0)
-    r = dynamics.analyze_task(mech, task, pos, accuracy=False)
+    r = dynamics.analyze(linkage_of(task, mech, pos), task.flywheel, accuracy=False)
     phi = np.asarray(pos.phi, float)
     w, e = r.motion_at(phi)
     kin = kinematics.solve(mech, phi, w, e)
-    lds = loads_mod.evaluate(mech, task.loads, kin, pos, inertia=True)
+    lds = loads_mod.evaluate(linkage_of(task, mech, pos), kin, inertia=True)
     st = structure.analyze(mech, task=task)
-    res = kinetostatics.analyze(mech, st, kin, lds, tmm_cli.task.KinetostaticsSection(),
+    res = kinetostatics.equilibrium(mech, st, kin, lds, tmm_cli.task.KinetostaticsSection(),
                                 crank_inertia=r.J_fly)
-    Mb = np.array([x["balancing_moment"] for x in res.to_dict()["entries"]])
+    Mb = np.array([x["balancing_moment"] for x in res.to_dict()["kinetostatics"]])
     assert Mb == pytest.approx(np.full(Mb.size, r.cycle.work.M_constant), rel=1e-6, abs=1e-6)

@@ -6,12 +6,12 @@ from __future__ import annotations
 
 import csv
 import re
-from types import SimpleNamespace as NS
 
 import numpy as np
 import pytest
 
 from tmm_cli.linkage.dynamics import EPS_DEG, Sample, analyze_sampler
+from tmm_cli.task import FlywheelSection
 
 
 def _results():
@@ -22,8 +22,8 @@ def _results():
         return Sample(M_by_kind={"resistance": M}, M_given=M,
                       J_links={"crank": np.full(q.shape, 0.05), "rod": Jv},
                       dJ_links={"crank": np.zeros(q.shape), "rod": -0.4 * np.sin(2 * x)})
-    sec = NS(delta=1 / 15, constant="driving", method="merzalov", resolution=360,
-             shape=NS(type="rim", density=7200.0, width_ratio=0.15), reduced_J=0.1)
+    sec = FlywheelSection(delta=1 / 15, constant="driving", method="merzalov", resolution=360,
+                          shape={"type": "rim", "density": 7200.0, "width_ratio": 0.15}, reduced_J=0.1)
     r = analyze_sampler(sampler, sec, 8.0, switch_q=(0.0, 90.0))
     return r, {"schema": "tmm-results/1", "flywheel": r.to_dict(), "warnings": []}
 

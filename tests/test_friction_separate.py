@@ -24,7 +24,7 @@ def test_slider_only_sliding_friction_closed_form():
                         {"inertia": False, "friction": {"pin_radius": 0.02, "f_slide": f}}, sc_solver)
     ux = math.sqrt(l ** 2 - r ** 2) / l
     T = -P / (ux - f * r / l)
-    ent = d["entries"][0]
+    ent = d["kinetostatics"][0]
     assert ent["balancing_moment"] == pytest.approx(-r * T * ux, rel=1e-12)
     assert ent["reactions"]["R03"]["R"] == pytest.approx(abs(T) * r / l, rel=1e-12)
     # the loss is all in the prismatic pair: f |N| |v_B|, v_B = r w1 at 90 deg (w1 = 10)
@@ -46,7 +46,7 @@ def test_pin_only_friction_closed_form():
     task = slider_crank_task(e=0.0, m2=0, J2=0, m3=0)
     mech, res, d = _run(task, kin, {"forces": [{"on": "slider", "magnitude": P}]},
                         {"inertia": False, "friction": {"pin_radius": rp, "f_pin": fp}}, sc_solver)
-    ent = d["entries"][0]
+    ent = d["kinetostatics"][0]
     A, B = kin.pos["A"][0], kin.pos["B"][0]
     w2 = kin.a1["rod"][0] * w1
     BA = B - A

@@ -10,8 +10,8 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from tmm_cli.linkage import structure
-from tmm_cli.linkage.kinetostatics import analyze, find_singular
-from tmm_cli.linkage.loads import evaluate
+from tmm_cli.linkage.kinetostatics import equilibrium, find_singular
+from tmm_cli.linkage.loads import evaluate_on
 from tmm_cli.task import KinetostaticsSection, LoadsSection
 
 from test_kinetostatics_closedform import (FB, SC, four_bar_kin, four_bar_task, mech_of, slider_crank_kin,
@@ -32,8 +32,8 @@ def _run(task, kin, loads, ks, solver, **kw):
     mech = mech_of(task)
     st_ = structure.analyze(mech)
     sec = LoadsSection.model_validate(loads) if loads is not None else None
-    lds = evaluate(mech, sec, kin, None, inertia=ks.get("inertia", True))
-    res = analyze(mech, st_, kin, lds, KinetostaticsSection.model_validate(ks), solver=solver, **kw)
+    lds = evaluate_on(mech, sec, kin, None, sign=1.0, cycle=360.0, inertia=ks.get("inertia", True))
+    res = equilibrium(mech, st_, kin, lds, KinetostaticsSection.model_validate(ks), solver=solver, **kw)
     return mech, res, res.to_dict()
 
 
@@ -48,7 +48,7 @@ def test_slider_crank_free_body_by_hand(phi):
     kin = slider_crank_kin([phi], omega1=w, eps1=eps)
     mech, res, d = _run(task, kin, {"gravity": True, "forces": [{"on": "slider", "magnitude": P}]}, {},
                         sc_solver)
-    ent = d["entries"][0]
+    ent = d["kinetostatics"][0]
     # --- the hand solution (Artobolevsky's order: group 2-3 first, then the crank) ---
     A, B, S2 = kin.pos["A"][0], kin.pos["B"][0], kin.pos["S2"][0]
     aB = kin.d2["B"][0] * w ** 2 + kin.d1["B"][0] * eps
@@ -97,7 +97,7 @@ def test_prismatic_point_of_action_by_hand():
     mech, res, d = _run(slider_crank_task(m2=0, J2=0, m3=0), kin,
                         {"forces": [{"on": "slider", "moment": 30.0}, {"on": "slider", "magnitude": 800}]},
                         {"inertia": False}, sc_solver)
-    r03 = d["entries"][0]["reactions"]["R03"]
+    r03 = d["kinetostatics"][0]["reactions"]["R03"]
     # slider: couple 30 + M03 = 0 (all forces through the pin) -> M03 = -30
     assert r03["M"] == pytest.approx(-30.0, rel=1e-12)
     assert r03["offset"] == pytest.approx(-30.0 / r03["N"], rel=1e-12)
@@ -116,7 +116,7 @@ def test_slider_friction_closed_form_at_90_deg():
                         {"inertia": False, "friction": {"pin_radius": 1e-12, "f": f}}, sc_solver)
     ux = math.sqrt(l ** 2 - r ** 2) / l
     T = -P / (ux - f * r / l)
-    ent = d["entries"][0]
+    ent = d["kinetostatics"][0]
     assert ent["balancing_moment"] == pytest.approx(-r * T * ux, rel=1e-9)
     assert ent["reactions"]["R03"]["R"] == pytest.approx(abs(T) * r / l, rel=1e-9)
     assert ent["efficiency"] == pytest.approx((ux - f * r / l) / ux, rel=1e-9)
@@ -135,7 +135,7 @@ def test_friction_losses_equal_the_extra_driving_power():
     mech, res, d = _run(task, kin, loads, {"friction": {"pin_radius": rp, "f": f}}, sc_solver)
     mech0, res0, d0 = _run(task, kin, loads, {}, sc_solver)
     om = {"crank": np.full(len(phi), w), "rod": kin.a1["rod"] * w, "slider": 0 * phi}
-    for i, (e, e0) in enumerate(zip(d["entries"], d0["entries"])):
+    for i, (e, e0) in enumerate(zip(d["kinetostatics"], d0["kinetostatics"])):
         rx = e["reactions"]
         loss = (f * rp * rx["R01"]["R"] * abs(om["crank"][i]) + f * rp * rx["R12"]["R"] * abs(om["rod"][i] - w)
                 + f * rp * rx["R23"]["R"] * abs(om["rod"][i]) + f * rx["R03"]["R"] * abs(kin.d1["B"][i, 0] * w))
@@ -157,7 +157,7 @@ def test_crank_inertia_adds_J_eps1_and_variable_speed_keeps_methods_equal():
     loads = {"forces": [{"on": "slider", "magnitude": -700}]}
     _, r0, d0 = _run(task, kin, loads, {}, sc_solver)
     _, r1, d1 = _run(task, kin, loads, {}, sc_solver, crank_inertia=2.5)
-    for i, (a, b) in enumerate(zip(d0["entries"], d1["entries"])):
+    for i, (a, b) in enumerate(zip(d0["kinetostatics"], d1["kinetostatics"])):
         assert b["balancing_moment"] - a["balancing_moment"] == pytest.approx(2.5 * eps[i], rel=1e-9, abs=1e-9)
         for e in (a, b):
             assert e["zhukovsky_moment"] == pytest.approx(e["balancing_moment"], rel=1e-9, abs=1e-9)
@@ -175,7 +175,7 @@ def test_four_bar_methods_agree(balance):
     kin = four_bar_kin(phi, omega1=15.0, eps1=3.0)
     ks = {} if balance is None else {"balance": balance}
     mech, res, d = _run(four_bar_task(), kin, FB_LOADS, ks, fb_solver)
-    for e in d["entries"]:
+    for e in d["kinetostatics"]:
         if e["near_singular"]:
             continue
         m = e["balancing_moment"]
@@ -190,7 +190,7 @@ def test_slider_balance_methods_agree():
     kin = slider_crank_kin(phi, omega1=8.0)
     mech, res, d = _run(slider_crank_task(m1=1.0, J1=0.01), kin, {"gravity": True, "forces": [
         {"on": "crank", "moment": 25.0}]}, {"balance": "slider"}, sc_solver)
-    for e in d["entries"]:
+    for e in d["kinetostatics"]:
         assert e["balancing_moment"] is None
         for key in ("zhukovsky_force", "virtual_power_force", "matrix_force"):
             assert e[key] == pytest.approx(e["balancing_force"], rel=1e-9)
@@ -206,7 +206,7 @@ def test_whole_mechanism_is_in_equilibrium(phi, P, dirn, M, balance, eps):
     loads = {"gravity": True, "forces": [{"on": "coupler", "magnitude": P, "direction": dirn, "at": [0.1, -0.02]},
                                          {"on": "rocker", "moment": M}]}
     mech, res, d = _run(four_bar_task(), kin, loads, {"balance": balance}, fb_solver, singular=[])
-    e = d["entries"][0]
+    e = d["kinetostatics"][0]
     if not res.ok[0] or abs(res.cond[0]) > 1e6:
         return
     Fs, Ms = np.zeros(2), 0.0
@@ -269,7 +269,7 @@ def test_at_and_near_a_singular_position_numbers_are_null_or_finite_and_flagged(
     kin = four_bar_kin(phi)
     mech, res, d = _run(four_bar_task(), kin, FB_LOADS, {"balance": "rocker"}, fb_solver)
     text = json.dumps(d, allow_nan=False)        # never NaN / inf
-    e0, e1, e2, e3 = d["entries"]
+    e0, e1, e2, e3 = d["kinetostatics"]
     assert e0["near_singular"] and e0["balancing_moment"] is None and e0["reactions"]["R12"]["x"] is None
     assert e3["near_singular"] and e3["balancing_moment"] is None
     assert e1["near_singular"] and e1["balancing_moment"] is not None

@@ -16,8 +16,8 @@ import pytest
 
 import tmm_cli
 from tmm_cli.linkage import structure
-from tmm_cli.linkage.kinetostatics import analyze
-from tmm_cli.linkage.loads import evaluate
+from tmm_cli.linkage.kinetostatics import equilibrium
+from tmm_cli.linkage.loads import evaluate_on
 from tmm_cli.task import KinetostaticsSection, LoadsSection
 
 from test_kinetostatics_closedform import mech_of, slider_crank_kin, slider_crank_task
@@ -176,8 +176,11 @@ def test_shaper_cutting_force_switch_positions_and_efficiency():
         assert abs(d["value"]) == pytest.approx(3000.0 if d["x"] < 0.5 else 0.0)
     for e in r["kinetostatics"]:
         if e["efficiency"] is not None:
-            assert 0.0 < e["efficiency"] <= 1.0
-            assert e["efficiency"] == pytest.approx(1 - e["friction_power"] / e["driving_power"], rel=1e-12)
+            # 0 <= eta <= 1; eta = 0 (to round-off) where no useful load acts: at the idle
+            # stroke's end all the driving power goes to friction (position 12 here)
+            assert -1e-12 <= e["efficiency"] <= 1.0
+            assert e["efficiency"] == pytest.approx(1 - e["friction_power"] / e["driving_power"], rel=1e-12,
+                                                    abs=1e-12)
 
 
 def test_pipeline_slider_crank_matches_closed_form_kinematics():
@@ -195,12 +198,15 @@ def test_pipeline_slider_crank_matches_closed_form_kinematics():
         phi0, sign, extreme, working_stroke_angle = r["positions"]["phi0"], 1.0, r["positions"]["extreme"], \
             r["positions"]["working_stroke_angle"]
 
+        def stroke_for(self, name, working=None):     # a slider's own stroke: here the same
+            return self
+
         def stroke_state(self, p):
             return np.full(np.shape(p), "working"), np.zeros(np.shape(p))
 
-    lds = evaluate(mech, LoadsSection.model_validate(d["loads"]), kin, Pos())
-    ref = analyze(mech, structure.analyze(mech), kin, lds, KinetostaticsSection(),
-                  solver=lambda m, p, w: slider_crank_kin(p, omega1=w)).to_dict()["entries"]
+    lds = evaluate_on(mech, LoadsSection.model_validate(d["loads"]), kin, Pos(), sign=1.0, cycle=360.0)
+    ref = equilibrium(mech, structure.analyze(mech), kin, lds, KinetostaticsSection(),
+                  solver=lambda m, p, w: slider_crank_kin(p, omega1=w)).to_dict()["kinetostatics"]
     for a, b in zip(r["kinetostatics"], ref):
         assert a["balancing_moment"] == pytest.approx(b["balancing_moment"], rel=1e-7, abs=1e-7)
         for k in ("R01", "R12", "R23", "R03"):

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from tmm_cli.linkage.loads import G, evaluate, interp_right, switch_angles
+from tmm_cli.linkage.loads import G, evaluate_on, interp_right, switch_angles
 from tmm_cli.task import LoadsSection
 
 from test_kinetostatics_closedform import mech_of, slider_crank_kin, slider_crank_task
@@ -23,6 +23,9 @@ class CentricPositions:
     extreme = [180.0, 0.0]
     working_stroke_angle = 180.0
     sign = 1.0
+
+    def stroke_for(self, name, working=None):     # a slider's own stroke: here the same
+        return self
 
     def stroke_state(self, phi):
         phi = np.mod(np.asarray(phi, float), 360.0)
@@ -46,7 +49,7 @@ def _force(lds, name):
 def test_gravity_and_inertia_hand_values():
     phi = np.array([30.0, 200.0])
     mech, kin, sec = _setup({"gravity": True}, phi, eps1=3.0)
-    lds = evaluate(mech, sec, kin, CentricPositions(), inertia=True)
+    lds = evaluate_on(mech, sec, kin, CentricPositions(), sign=1.0, cycle=360.0, inertia=True)
     # gravity: m g down at S2 (rod midpoint) and at B
     g2 = _force(lds, "G2")
     assert np.allclose(g2.F, [[0, -5.0 * G]] * 2)
@@ -80,7 +83,7 @@ def test_inertia_of_a_local_com_uses_rigid_body_formulas():
             d.pop("S2")          # force the rigid-body path in loads.point_motion
         return k
 
-    lds = evaluate(mech, None, kin_at(phi), None, inertia=True)
+    lds = evaluate_on(mech, None, kin_at(phi), None, sign=1.0, cycle=360.0, inertia=True)
     h = 1e-3
     ref = slider_crank_kin(phi, e=0.0, s2=(0.1, 0.03))
     kp, km = slider_crank_kin(phi + h, e=0.0, s2=(0.1, 0.03)), slider_crank_kin(phi - h, e=0.0, s2=(0.1, 0.03))
@@ -95,7 +98,7 @@ def test_resistance_on_working_stroke_and_extreme_positions():
     # 270: working stroke, moving +x; 0: start of the idle stroke: no load; 90: idle
     phi = np.array([180.0, 270.0, 0.0, 90.0])
     mech, kin, sec = _setup({"forces": [{"on": "slider", "kind": "resistance", "magnitude": 2000}]}, phi)
-    F = _force(evaluate(mech, sec, kin, CentricPositions(), inertia=False), "F1")
+    F = _force(evaluate_on(mech, sec, kin, CentricPositions(), sign=1.0, cycle=360.0, inertia=False), "F1")
     assert np.allclose(F.F, [[-2000, 0], [-2000, 0], [0, 0], [0, 0]])
     assert np.allclose(F.point, kin.pos["B"])
 
@@ -104,7 +107,7 @@ def test_driving_both_strokes_follows_the_motion():
     phi = np.array([0.0, 90.0, 180.0, 270.0])
     mech, kin, sec = _setup({"forces": [{"on": "slider", "kind": "driving", "stroke": "both",
                                          "magnitude": 500}]}, phi)
-    F = _force(evaluate(mech, sec, kin, CentricPositions(), inertia=False), "F1")
+    F = _force(evaluate_on(mech, sec, kin, CentricPositions(), sign=1.0, cycle=360.0, inertia=False), "F1")
     # 0: idle begins, moving -x; 90: moving -x; 180: working begins (+x); 270: +x
     assert np.allclose(F.F[:, 0], [-500, -500, 500, 500])
 
@@ -115,7 +118,7 @@ def test_s_diagram_with_pressure_and_area():
     mech, kin, sec = _setup({"forces": [{"on": "slider", "kind": "resistance",
                                          "diagram": {"s": [0, 1], "value": ["0 MPa", "1 MPa"]},
                                          "area": 0.001}]}, phi)
-    lds = evaluate(mech, sec, kin, CentricPositions(), inertia=False)
+    lds = evaluate_on(mech, sec, kin, CentricPositions(), sign=1.0, cycle=360.0, inertia=False)
     F = _force(lds, "F1")
     x = kin.pos["B"][:, 0]
     s = (x - (L - R)) / (2 * R)
@@ -131,12 +134,12 @@ def test_switch_angle_of_a_cutting_force_switched_on_mid_stroke():
     sec = LoadsSection.model_validate({"forces": [{"on": "slider", "kind": "resistance",
                                                    "diagram": {"s": [0, 0.5, 0.5, 1], "value": [0, 0, 900, 900]}}]})
     mech = mech_of(slider_crank_task(e=0.0))
-    ang = switch_angles(mech, sec, CentricPositions())
+    ang = switch_angles(mech, sec, CentricPositions(), sign=1.0, cycle=360.0)
     expect = 360.0 - math.degrees(math.acos(R / (2 * L)))
     assert len(ang) == 1 and abs(ang[0] - expect) < 1e-8
     # at the switch angle the value after the jump applies; just before it nothing
     kin = slider_crank_kin(np.array([ang[0], ang[0] - 0.01]), e=0.0)
-    F = _force(evaluate(mech, sec, kin, CentricPositions(), inertia=False), "F1")
+    F = _force(evaluate_on(mech, sec, kin, CentricPositions(), sign=1.0, cycle=360.0, inertia=False), "F1")
     assert F.F[0, 0] == pytest.approx(-900.0) and F.F[1, 0] == 0.0
 
 
@@ -144,7 +147,7 @@ def test_phi_diagram_is_measured_from_position_0_signed_along_the_guide():
     phi = np.array([180.0, 210.0, 225.0, 0.0])     # phi0 = 180: relative 0, 30, 45, 180
     mech, kin, sec = _setup({"forces": [{"on": "slider", "diagram": {"phi": [0, 30, 60, 360],
                                                                      "value": [0, -600, -900, 0]}}]}, phi)
-    F = _force(evaluate(mech, sec, kin, CentricPositions(), inertia=False), "F1")
+    F = _force(evaluate_on(mech, sec, kin, CentricPositions(), sign=1.0, cycle=360.0, inertia=False), "F1")
     assert np.allclose(F.F[:, 0], [0, -600, -750, -900 * (1 - 120 / 300)])
 
 
@@ -153,7 +156,7 @@ def test_force_with_direction_at_a_point_and_couples():
     mech, kin, sec = _setup({"forces": [{"on": "rod", "magnitude": 100, "direction": 90, "at": "B"},
                                         {"on": "rod", "moment": 7},
                                         {"on": "crank", "kind": "resistance", "moment": 4}]}, phi)
-    lds = evaluate(mech, sec, kin, CentricPositions(), inertia=False)
+    lds = evaluate_on(mech, sec, kin, CentricPositions(), sign=1.0, cycle=360.0, inertia=False)
     F = _force(lds, "F1")
     assert np.allclose(F.F, [[0, 100], [0, 100]]) and np.allclose(F.point, kin.pos["B"])
     m2 = next(c for c in lds.couples if c.name == "M2")
@@ -191,5 +194,5 @@ def test_720_degree_indicator_diagram_turns():
     phi = np.array([180.0, 180.0 + 450.0])
     mech, kin, sec = _setup({"forces": [{"on": "slider", "diagram": {"phi": [0, 360, 720],
                                                                      "value": [100, 100, 820]}}]}, phi)
-    F = _force(evaluate(mech, sec, kin, CentricPositions(), inertia=False), "F1")
+    F = _force(evaluate_on(mech, sec, kin, CentricPositions(), sign=1.0, cycle=720.0, inertia=False), "F1")
     assert F.F[:, 0].tolist() == pytest.approx([100.0, 100 + 720 * 90 / 360])

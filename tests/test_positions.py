@@ -32,7 +32,7 @@ H = math.sqrt((L + R) ** 2 - E ** 2) - math.sqrt((L - R) ** 2 - E ** 2)
 
 def test_offset_slider_crank_extremes_ccw():
     t, m = task(SC, {"O": [0, 0]}, {"extra": [33.0, 400.0]})
-    p = find_positions(m, t.positions, t.drive)
+    p = find_positions(m, t.positions, t.drive.sign)
     # forward working stroke starts at the minimum x (inner dead centre)
     assert p.extreme[0] == pytest.approx(PHI_IN, abs=1e-9)
     assert p.extreme[1] == pytest.approx(PHI_OUT, abs=1e-9)
@@ -57,7 +57,7 @@ def test_offset_slider_crank_extremes_ccw():
 
 def test_cw_backward():
     t, m = task(SC, {"O": [0, 0]}, {"working": "backward", "count": 8}, direction="cw")
-    p = find_positions(m, t.positions, t.drive, extra_added=[12.5, PHI_IN])
+    p = find_positions(m, t.positions, t.drive.sign, extra_added=[12.5, PHI_IN])
     assert p.extreme == [pytest.approx(PHI_OUT, abs=1e-9), pytest.approx(PHI_IN, abs=1e-9)]
     w = (PHI_OUT - PHI_IN) % 360.0                     # cw from the outer to the inner dead centre
     assert p.working_stroke_angle == pytest.approx(w, abs=1e-9)
@@ -68,7 +68,7 @@ def test_cw_backward():
 
 def test_stroke_state():
     t, m = task(SC, {"O": [0, 0]})
-    p = find_positions(m, t.positions, t.drive)
+    p = find_positions(m, t.positions, t.drive.sign)
     phi = np.array([PHI_IN, PHI_OUT, 90.0, 300.0])
     state, s = p.stroke_state(phi)
     assert list(state) == ["working", "idle", "idle", "working"]
@@ -83,7 +83,7 @@ def test_stroke_state():
 def test_fourbar_rocker_extremes():
     a, b, c, d = 0.08, 0.30, 0.22, 0.30
     t = load_task(TASKS / "crank_rocker_fourbar.yaml")
-    p = find_positions(build_mechanism(t), t.positions, t.drive)
+    p = find_positions(build_mechanism(t), t.positions, t.drive.sign)
 
     def crank_angle(s, flip):
         # B on the circle (O, s) and the circle (O3, c), upper closure; A along OB (+-)
@@ -106,7 +106,7 @@ def test_fourbar_rocker_extremes():
 def test_spec_forging_positions():
     # SPEC section 3 example: phi0 = 6.42, extreme [6.42, 164.19], working stroke 157.8
     t = load_task(TASKS / "forging_sixbar.yaml")
-    p = find_positions(build_mechanism(t), t.positions, t.drive)
+    p = find_positions(build_mechanism(t), t.positions, t.drive.sign)
     assert p.phi0 == pytest.approx(6.42, abs=0.005)
     assert p.extreme[1] == pytest.approx(164.19, abs=0.005)
     assert p.working_stroke_angle == pytest.approx(157.8, abs=0.05)
@@ -114,19 +114,19 @@ def test_spec_forging_positions():
 
 def test_explicit_zero_and_rotating_output():
     t, m = task(SC, {"O": [0, 0]}, {"zero": 10, "count": 4, "output": "crank"})
-    p = find_positions(m, t.positions, t.drive)
+    p = find_positions(m, t.positions, t.drive.sign)
     assert p.extreme is None and p.K is None
     assert np.allclose(p.phi, [10, 100, 190, 280])
     t, m = task(SC, {"O": [0, 0]}, {"output": "crank"})
     with pytest.raises(StageError, match="zero"):
-        find_positions(m, t.positions, t.drive)
+        find_positions(m, t.positions, t.drive.sign)
 
 
 def test_shaper_quick_return():
     # oscillating slotted link: extremes where OA is perpendicular to O1A;
     # theta = 2 asin(r/|OO1|) and the working stroke turns the crank 180 + theta
     t = load_task(TASKS / "shaper_slotted_lever.yaml")
-    p = find_positions(build_mechanism(t), t.positions, t.drive)
+    p = find_positions(build_mechanism(t), t.positions, t.drive.sign)
     th = 2 * math.degrees(math.asin(0.11 / 0.30))
     assert p.working_stroke_angle == pytest.approx(180 + th, abs=1e-8)
     assert p.K == pytest.approx((180 + th) / (180 - th))

@@ -126,3 +126,88 @@ def test_unwrap_is_numpys():
             assert np.array_equal(_unwrap_sorted(x, order), want)
     x = np.array([0.0, np.pi, 0.0, -np.pi, 3 * np.pi, 2.0])      # the ambiguous jumps of +-pi
     assert np.array_equal(_unwrap(x), np.unwrap(x))
+
+
+def _run_json(task: Path, out: Path, seed: str) -> bytes:
+    import os
+    env = {**os.environ, "PYTHONHASHSEED": seed}
+    subprocess.run([sys.executable, "-m", "tmm_cli", "run", str(task), "-f", "json", "-o", str(out), "-q"],
+                   check=True, cwd=ROOT, env=env, timeout=300)
+    return (out / "results.json").read_bytes()
+
+
+def test_results_json_identical_across_runs_and_hash_seeds(tmp_path):
+    """Two runs of one task (different string hashing, so set and dict orders built from
+    them could differ) write byte-identical results.json: no timings, no order of a set."""
+    task = ROOT / "tasks" / "forging_sixbar.yaml"          # kinematics, kinetostatics, flywheel
+    a = _run_json(task, tmp_path / "a", "1")
+    b = _run_json(task, tmp_path / "b", "2")
+    assert a == b
+    d = json.loads(a)
+    assert d["kinetostatics"] and d["flywheel"]["accuracy"] is None     # the accuracy study only when asked
+
+
+def test_batch_workers_start_warm_and_write_what_run_writes(tmp_path):
+    """`tmm batch` imports the variants' modules and builds the task validator once, before
+    the workers fork (no heavy module for a JSON batch); each variant's results.json is
+    byte-identical to `tmm run --format json` of the same file."""
+    src = (ROOT / "tasks" / "forging_sixbar.yaml").read_text(encoding="utf-8")
+    vdir = tmp_path / "v"
+    vdir.mkdir()
+    (vdir / "a.yaml").write_text(src, encoding="utf-8")
+    (vdir / "b.yaml").write_text(src.replace("speed: 50 rpm", "speed: 60 rpm"), encoding="utf-8")
+    (vdir / "c.yaml").write_text(src.replace("length: 0.15", "length: 1.5"), encoding="utf-8")  # cannot assemble
+    code = ("import sys\nfrom pathlib import Path\nfrom tmm_cli import batch\n"
+            f"batch.warm(sorted(Path({str(vdir)!r}).glob('*.yaml')), {{'json'}})\n"
+            "from tmm_cli.task import Task\n"
+            "print('BUILT', Task.__pydantic_complete__)\n"
+            "print('MODULES', ' '.join(sorted(sys.modules)))\n")
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, timeout=300)
+    assert p.returncode == 0, p.stderr
+    mods = set(p.stdout.split("MODULES ")[1].split())
+    assert "BUILT True" in p.stdout
+    assert {"tmm_cli.pipeline", "tmm_cli.linkage.kinetostatics", "tmm_cli.linkage.dynamics"} <= mods
+    assert not {m.split(".")[0] for m in mods} & set(HEAVY)
+    r = subprocess.run([sys.executable, "-m", "tmm_cli", "batch", str(vdir), "--jobs", "2", "-f", "json",
+                        "-o", str(tmp_path / "b")], capture_output=True, text=True, cwd=ROOT, timeout=600)
+    assert r.returncode == 3, r.stderr                      # c.yaml failed; the others still ran
+    for name in ("a", "b"):
+        want = _run_json(vdir / f"{name}.yaml", tmp_path / f"r{name}", "0")
+        got = json.loads((tmp_path / "b" / name / "results.json").read_bytes())
+        # the same numbers; only the task's file name differs (the batch reads the same file)
+        assert got == json.loads(want)
+    import csv
+    with open(tmp_path / "b" / "summary.csv", encoding="utf-8", newline="") as fh:
+        status = {Path(r["file"]).stem: r["status"] for r in csv.DictReader(fh)}
+    assert status == {"a": "ok", "b": "ok", "c": "failed"}
+
+
+def test_extremes_equal_brents_roots():
+    """The output's extremes (bracketed Newton on the exact second derivative, all brackets
+    at once) are the roots Brent's method finds on the same brackets, to 1e-10 deg."""
+    from tmm_cli import load_task
+    from tmm_cli.linkage.kinematics import positions as P
+    from tmm_cli.linkage.mechanism import build_mechanism
+    n = 0
+    for name in ("forging_sixbar", "engine_slider_crank", "shaper_slotted_lever", "crank_rocker_fourbar",
+                 "scotch_yoke_pump", "triad_class3", "press_offset_slider_crank"):
+        task = load_task(ROOT / "tasks" / f"{name}.yaml")
+        mech = build_mechanism(task)
+        out = task.positions.output or mech.links[-1].name
+        kind, f = P._output_coordinate(mech, out)
+        ext = P._extremes(f, 360.0 if kind == "rocker" else None)
+        grid = np.arange(0.0, 360.0, P.SCAN_STEP)
+        _, ds = f(grid)
+        g = lambda x: float(f(np.array([x % 360.0]))[1][0])  # noqa: E731
+        want = []
+        for k in range(len(grid)):
+            a, b = ds[k], ds[(k + 1) % len(grid)]
+            if a == 0.0:
+                want.append(grid[k])
+            elif a * b < 0:
+                want.append(lazy.brentq(g, grid[k], grid[k] + P.SCAN_STEP, xtol=1e-12, rtol=1e-15) % 360.0)
+        assert len(ext) == len(want) >= 2, name
+        for (r, s), w in zip(ext, want):
+            assert abs((r - w + 180.0) % 360.0 - 180.0) < 1e-10, (name, r, w)
+            n += 1
+    assert n >= 14

@@ -24,7 +24,14 @@ def design(syn, direction="ccw", drive=None):
                    "drive": drive or {"link": "crank", "speed": 10, "direction": direction}})
     if t._synthesis_error is not None:
         raise t._synthesis_error
-    return t, analyse(t._design, build_mechanism(t), direction)
+    from tmm_cli.linkage import kinematics, structure
+    from tmm_cli.linkage.context import Linkage
+    from tmm_cli.linkage.drive_speed import resolve
+    mech = build_mechanism(t)
+    pos = kinematics.find_positions(mech, t.positions, t.drive.sign)
+    linkage = Linkage(mechanism=mech, structure=structure.analyze(mech, task=t), drive=resolve(t.drive, pos),
+                      positions=pos, loads=t.loads)
+    return t, analyse(linkage, t._design)
 
 
 def test_spec_example_offset_slider_crank_by_hand():

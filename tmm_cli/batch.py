@@ -172,6 +172,50 @@ def _set_message(rows, status, aset) -> str:
     return (f"{status}: " + ", ".join(bad[:6]) + (" ..." if len(bad) > 6 else "")) if bad else ""
 
 
+# the modules a variant's sections need (imported once in the batch, before the workers fork)
+_SECTION_MODULES = {"mechanism": ("linkage.mechanism", "linkage.structure", "linkage.kinematics",
+                                  "linkage.kinematics.changepoints", "linkage.loads", "linkage.kinetostatics",
+                                  "linkage.dynamics", "linkage.drive_speed", "graphical", "report.plans"),
+                    "synthesis": ("linkage.synthesis",), "cam": ("cam",), "gears": ("gears",),
+                    "planetary": ("gears",), "drive_train": ("gears", "gears.train"), "dof2": ("dof2",)}
+_SECTION_MODULES["synthesis"] += _SECTION_MODULES["mechanism"]
+
+
+def warm(files: list[Path], formats) -> None:
+    """Do in the batch process, once, what every worker would otherwise repeat: import the
+    modules of the sections the task files have (a top-level key ``cam:`` etc.) and of the
+    outputs asked for, and build the task model's validator. The workers are forked from
+    this process (each variant still runs in its own process), so they start warm.
+    Anything that fails here is left to the variant that needs it."""
+    import gc
+    import importlib
+    sections: set[str] = set()
+    pattern = re.compile(r"^(" + "|".join(_SECTION_MODULES) + r")\s*:", re.M)
+    for f in files:
+        try:
+            with open(f, "rb") as fh:
+                sections.update(pattern.findall(fh.read(65536).decode("utf-8", "replace")))
+        except OSError:
+            pass
+    names = ["orchestrate", "pipeline", "validation", "yamlload", "input_notices", "results", "io", "check"]
+    for sec in sorted(sections):
+        names += _SECTION_MODULES[sec]
+    if set(formats) & {"html", "pdf"}:
+        names.append("report")
+    for name in dict.fromkeys(names):
+        try:
+            importlib.import_module(f"{__package__}.{name}")
+        except Exception:   # noqa: BLE001  (the variant that needs it reports the failure)
+            pass
+    try:
+        from .task import Task
+        Task.model_rebuild()
+    except Exception:   # noqa: BLE001
+        pass
+    gc.collect()
+    gc.freeze()         # the workers' collections leave the inherited objects (and their pages) alone
+
+
 def _address_space() -> int:
     """Bytes of virtual memory this process has mapped now (0 where it cannot be read)."""
     try:
@@ -353,10 +397,15 @@ def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = froz
             outcomes[k] = {"task": None, "written": [], "sets": [], "code": 2, "status": "invalid",
                            "message": f"{f}: {why}"}
     args = [(found[k][0], out, folders[k], set(formats), lang, sets, tol_override, quantities) for k in runnable]
+    warm([found[k][0] for k in runnable], formats)
     with _progress(con, len(args), "variants") as advance:
         def done(i, res):
             advance()
-        res_list = run_all(args, jobs=jobs, timeout=timeout, memory_mb=memory_mb, on_done=done)
+        try:
+            res_list = run_all(args, jobs=jobs, timeout=timeout, memory_mb=memory_mb, on_done=done)
+        finally:
+            import gc
+            gc.unfreeze()
     for k, res in zip(runnable, res_list):
         outcomes[k] = res
 

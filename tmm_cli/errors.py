@@ -44,3 +44,26 @@ class StageError(Exception):
         if position is not None:
             text += f" at {position}" if isinstance(position, str) else f" at crank angle {position:.6g} deg"
         super().__init__(f"{text}: {message}")
+
+
+def field_error(field: str, message: str) -> TaskError:
+    """A TaskError naming its field (dotted path, e.g. 'loads.forces[0].at') without the
+    file and line: the pipeline adds them (``Task.locate``)."""
+    return TaskError(message, issues=[(field, None, None, message)])
+
+
+def guarded(stage: str):
+    """Decorator: run a stage function, turning an unexpected numerical failure
+    (ArithmeticError, ValueError, IndexError, KeyError, RuntimeError, LinAlgError) into a
+    StageError of ``stage``."""
+    def deco(fn):
+        def wrapper(*a, **kw):
+            try:
+                return fn(*a, **kw)
+            except StageError:
+                raise
+            except (ArithmeticError, ValueError, IndexError, KeyError, RuntimeError,
+                    __import__("numpy").linalg.LinAlgError) as exc:
+                raise StageError(stage, f"{type(exc).__name__}: {exc}") from exc
+        return wrapper
+    return deco

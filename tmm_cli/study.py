@@ -115,43 +115,33 @@ def _patched(module, name: str, value):
 
 
 # ------------------------------------------------------------------ stages
-def _linkage(task):
-    from .linkage import kinematics
-    from .linkage.mechanism import build_mechanism
-    mech = build_mechanism(task)
-    pos = kinematics.find_positions(mech, task.positions, task.drive)
-    return mech, pos
-
-
-def flywheel_values(task, mech, pos, resolution: int, quadrature: int | None = None) -> dict:
+def flywheel_values(task, linkage, resolution: int, quadrature: int | None = None) -> dict:
     from .linkage import dynamics
     upd = {"resolution": int(resolution)}
     if quadrature is not None:
         upd["quadrature"] = int(quadrature)
-    t = task.model_copy(update={"flywheel": task.flywheel.model_copy(update=upd)})
-    c = dynamics.analyze_task(mech, t, pos, accuracy=False).cycle
+    c = dynamics.analyze(linkage, task.flywheel.model_copy(update=upd), accuracy=False).cycle
     return {"J_n": c.J_n[c.method], "J_n_merzalov": c.J_n["merzalov"], "J_n_exact": c.J_n["exact"]}
 
 
-def study_flywheel(task, mech, pos, quadrature: int | None = None, repeat: int = 3) -> dict:
+def study_flywheel(task, linkage, quadrature: int | None = None, repeat: int = 3) -> dict:
     settings = [12, 18, 24, 36, 48, 72, 96, 144, 180, 360]
     refs = [2880, 5760, 11520] if quadrature != 0 else [23040, 46080]
-    return sweep("resolution", lambda r: flywheel_values(task, mech, pos, r, quadrature),
+    return sweep("resolution", lambda r: flywheel_values(task, linkage, r, quadrature),
                  settings, refs, repeat=repeat)
 
 
-def curve_values(task, mech, pos, n: int) -> dict:
-    from .linkage import kinematics
-    from .pipeline import _curve
-    c = _curve(kinematics, mech, pos, task.drive.omega1, int(n))
-    s, v, a = (np.asarray(c[k], float) for k in ("s", "v", "a"))
+def curve_values(linkage, n: int) -> dict:
+    from .linkage.kinematics import output_curve
+    c = output_curve(linkage, int(n))
+    s, v, a = c.s, c.v, c.a
     return {"stroke": float(np.ptp(s)), "v_max": float(np.max(np.abs(v))),
             "a_max": float(np.max(np.abs(a)))}
 
 
-def study_curves(task, mech, pos, repeat: int = 3) -> dict:
+def study_curves(linkage, repeat: int = 3) -> dict:
     settings = [13, 25, 37, 73, 145, 361, 721, 1441]
-    return sweep("points", lambda n: curve_values(task, mech, pos, n), settings,
+    return sweep("points", lambda n: curve_values(linkage, n), settings,
                  [200001, 400001, 800001], repeat=repeat)
 
 
@@ -193,13 +183,14 @@ def run_study(task, progress: Callable[[str], None] | None = None, repeat: int =
     out: dict = {}
     extra: dict = {}
     if task.mechanism is not None:
-        mech, pos = _linkage(task)
+        from .linkage.context import build
+        linkage = build(task)
         say("study: curves")
-        out["curves"] = study_curves(task, mech, pos, repeat)
+        out["curves"] = study_curves(linkage, repeat)
         if task.flywheel is not None:
             say("study: flywheel")
-            out["flywheel"] = study_flywheel(task, mech, pos, repeat=repeat)
-            tr = study_flywheel(task, mech, pos, quadrature=0, repeat=1)
+            out["flywheel"] = study_flywheel(task, linkage, repeat=repeat)
+            tr = study_flywheel(task, linkage, quadrature=0, repeat=1)
             extra["flywheel"] = {"rows": [{k: r[k] for k in ("setting", "J_n", "error")}
                                           for r in tr["rows"]], "order": tr["order"]}
     if task.dof2 is not None:

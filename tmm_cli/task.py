@@ -7,7 +7,6 @@ the file, line, column and field of every problem.
 """
 from __future__ import annotations
 
-import difflib
 import re
 from pathlib import Path
 from typing import Annotated, Any, Literal, Union
@@ -16,46 +15,13 @@ from pydantic import (BaseModel, ConfigDict, Field, PrivateAttr, ValidationError
                       field_validator, model_validator)
 
 from .errors import TaskError
+from .modelbase import PLANETARY_ALIASES, PLANETARY_SCHEMES, FieldValueError, _Model
 from .units import (Angle, AngularSpeed, Area, Density, Force, ForceOrPressure, Inertia,
                     Length, Mass, MomentQ, Number, Ratio)
 
 Point2 = tuple[float, float]
 
 _UNKNOWN = re.compile(r"unknown key '([^']+)'")
-
-
-class FieldValueError(ValueError):
-    """A model-level validation error that belongs to a field (a section missing or
-    inconsistent with another): ``field`` is the path, relative to the model, that the
-    message should point at (so the message names a field and its line)."""
-
-    def __init__(self, field: tuple, message: str):
-        super().__init__(message)
-        self.field = tuple(field)
-
-
-class _Model(BaseModel):
-    """Base: unknown keys are errors with a suggestion."""
-
-    # allow_inf_nan=False: a plain float field rejects .inf, .nan, 'inf' and '1e400'
-    model_config = ConfigDict(extra="forbid", populate_by_name=True, frozen=False, allow_inf_nan=False)
-
-    @model_validator(mode="before")
-    @classmethod
-    def _unknown_keys(cls, data: Any) -> Any:
-        if isinstance(data, dict):
-            allowed: list[str] = []
-            for name, f in cls.model_fields.items():
-                allowed.append(f.alias or name)
-            for key in data:
-                if not isinstance(key, str):
-                    raise ValueError(f"unknown key '{key}' (keys are names; "
-                                     f"allowed: {', '.join(allowed)})")
-                if key not in allowed:
-                    close = difflib.get_close_matches(key, allowed, n=1, cutoff=0.6)
-                    hint = f"; did you mean '{close[0]}'?" if close else f"; allowed: {', '.join(allowed)}"
-                    raise ValueError(f"unknown key '{key}'{hint}")
-        return data
 
 
 def _pair(v: Any, what: str = "coordinates") -> Any:
@@ -409,8 +375,6 @@ class GearsSection(_Model):
         return v
 
 
-PLANETARY_SCHEMES = ("A", "B", "C", "D")
-PLANETARY_ALIASES = {"a": "A", "b": "B", "c": "C", "d": "D", "single": "A", "james": "A"}
 
 
 class PlanetarySection(_Model):
@@ -522,7 +486,7 @@ class SynthesisSection(_Model):
         return self
 
 
-from .trainspec import DOCS as _TRAIN_DOCS  # noqa: E402  (after _Model: trainspec imports it)
+from .trainspec import DOCS as _TRAIN_DOCS  # noqa: E402
 from .trainspec import DriveTrainSection, TrainStageSpec  # noqa: E402
 
 
@@ -533,12 +497,12 @@ class ToleranceSpec(_Model):
 
 
 class StudentSpec(BaseModel):
-    model_config = ConfigDict(extra="allow")
+    model_config = ConfigDict(extra="allow", defer_build=True)
     name: str | None = None
     group: str | None = None
 
 
-from .dof2.spec import Dof2Section  # noqa: E402  (after _Model: dof2.spec imports it)
+from .dof2.spec import Dof2Section  # noqa: E402
 
 
 class Task(_Model):
@@ -590,7 +554,7 @@ class Task(_Model):
         if self.drive is None:
             raise FieldValueError(("synthesis",), "`synthesis` needs a `drive` section (link: crank, speed, direction)")
         try:
-            d = design(self.synthesis, self.drive.direction)
+            d = design(self.synthesis, self.drive.sign)
         except SynthesisImpossible as exc:
             self._synthesis_error = exc
             return self
@@ -889,7 +853,6 @@ _DOCS.update(_TRAIN_DOCS)
 for _model, _fields in _DOCS.items():
     for _name, _text in _fields.items():
         _model.model_fields[_name].description = _text
-    _model.model_rebuild(force=True)
 
 # the lever synthesis and the drive speed from the output
 _DOCS_SYNTHESIS: dict[type, dict[str, str]] = {
@@ -928,7 +891,6 @@ _DOCS_SYNTHESIS: dict[type, dict[str, str]] = {
 for _model, _fields in _DOCS_SYNTHESIS.items():
     for _name, _text in _fields.items():
         _model.model_fields[_name].description = _text
-    _model.model_rebuild(force=True)
 
 
 def field_docs(model: type = Task, prefix: str = "") -> list[tuple[str, str, str]]:

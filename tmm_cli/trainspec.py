@@ -20,7 +20,7 @@ from typing import Literal
 
 from pydantic import Field, field_validator, model_validator
 
-from .task import PLANETARY_ALIASES, PLANETARY_SCHEMES, FieldValueError, _Model
+from .modelbase import PLANETARY_ALIASES, PLANETARY_SCHEMES, FieldValueError, _Model
 from .units import AngularSpeed, Number, Ratio
 
 # tooth numbers of each stage kind, in the order of the `z` list
@@ -89,7 +89,7 @@ class DriveTrainSection(_Model):
     z_min_internal: int = Field(85, ge=5)
     z_min_satellite_in_internal: int = Field(20, ge=5)
     internal_minus_external_min: int = Field(8, ge=1)
-    # the planetary search grows as z_max^3 (schemes B, C: 0.5 s at 300)
+    # the planetary search: under 0.1 s at z_max 300 for every scheme (benchmarks/bench_planetary.py)
     z_max: int = Field(150, ge=10, le=300)
     rank: Literal["size", "ratio_error"] = "size"
     candidates: int = Field(10, ge=1, le=100)

@@ -1,7 +1,7 @@
 """`tmm validate`: checks beyond the schema."""
 from __future__ import annotations
 
-from .errors import StageError, TaskError
+from .errors import StageError, TaskError, guarded
 
 
 def check_feasible(task, assembly: bool = True) -> None:
@@ -20,11 +20,21 @@ def check_feasible(task, assembly: bool = True) -> None:
         kinematics.check_assembly(mech)
     except StageError as err:
         raise impossible_dimensions(task, err) or err
-    from .pipeline import check_selection
     try:
         check_selection(task, mech)
     except TaskError as err:
         raise task.locate(err) from None
+
+
+def check_selection(task, mech) -> None:
+    """A TaskError when `kinetostatics.positions` names a position the cycle does not have."""
+    if task.kinetostatics is None or task.kinetostatics.positions == "all":
+        return
+    from .linkage.context import reported_positions
+    from .linkage.kinetostatics import select_rows
+    positions = guarded("positions")(reported_positions)(mech, task.positions, task.loads, task.drive.sign,
+                                                        float(task.drive.cycle))
+    select_rows(task.kinetostatics.positions, positions)
 
 
 MM_RATIO = (50.0, 5000.0)     # a length this many times the others was meant in mm

@@ -30,7 +30,7 @@ from typing import Annotated, Any, Literal
 
 from pydantic import BeforeValidator, Field, WithJsonSchema, field_validator, model_validator
 
-from ..task import _Model
+from ..modelbase import _Model
 from ..units import Angle, AngularSpeed, Inertia, Length, Mass, MomentQ, Ratio, ureg
 
 __all__ = ["Dof2Section", "RotorSpec", "StrikerSpec", "DriveSpec", "InitialSpec", "ImpactSpec", "Time"]

@@ -214,16 +214,104 @@ def _assembly_vec(num, den, k):
     return ok & (np.gcd(k, d1) == 1)
 
 
-def _order(size, teeth, err, rank):
-    """Row order: ``size`` -- size, teeth, |error|; ``ratio_error`` -- |error|, size, teeth."""
+def _order(size, teeth, err, rank, top=None):
+    """Row order: ``size`` -- size, teeth, |error|; ``ratio_error`` -- |error|, size, teeth.
+    ``top``: only the first ``top`` rows of that order (the same rows in the same order):
+    the rows whose first key is beyond the top-th smallest cannot be among them."""
+    first = np.round(err, 12) if rank == "ratio_error" else size
+    sub = None
+    if top is not None and 0 < top < len(first):
+        sub = np.flatnonzero(first <= np.partition(first, top - 1)[top - 1])
+        size, teeth, err, first = size[sub], teeth[sub], err[sub], first[sub]
     if rank == "ratio_error":
-        return np.lexsort((teeth, size, np.round(err, 12)))
-    return np.lexsort((err, teeth, size))
+        order = np.lexsort((teeth, size, first))
+    else:
+        order = np.lexsort((err, teeth, size))
+    return order if sub is None else sub[order[:top]]
 
 
-def _candidates(scheme, req, tol, k, z_min, z_max, rank="size"):
+def _pruned_ranges(scheme, z1, z2, lo, hi, z_max, lim: Limits, k, sinpk, z3min, z3max):
+    """For the two-row schemes and each pair (z1, z2) (arrays of one shape): the z3 in
+    first, first + step, ..., <= last that may meet the ratio window [lo, hi], the tooth limits on z3 and
+    z4 (z4 <= z_max) and the adjacency of the satellites (``sinpk`` = sin(pi / k), None for
+    one satellite), a superset of the z3 the conditions accept (they are checked after);
+    pairs that fail a condition of z1, z2 alone get an empty range.
+
+    For fixed z1, z2 the ratio is i = a + b / z3 (B: z4 = z1 + z2 + z3, i = 1 + c + c S / z3;
+    C: i = 1 + c - c S / z3; D: i = 1 - c - c S' / z3; c = z2 / z1, S = z1 + z2,
+    S' = z1 - z2), monotonic in z3, so the window is an interval of 1 / z3, widened by one
+    tooth each side against round-off; z4 and the adjacency bound z3 linearly. The
+    assembly condition needs k | num, and num = a_w (z3 + z2) (B) or a_w (z3 - z2) (C, D)
+    with a_w = z1 + z2 (B, C) or z1 - z2 (D): z3 = -+z2 (mod k / gcd(k, a_w)), the step."""
+    c = z2 / z1
+    ext, sat, ring, diff = lim.external, lim.satellite_in_internal, lim.internal, lim.difference
+    if scheme == "B":                                       # z4 = z1 + z2 + z3
+        a, b, aw = 1 + c, c * (z1 + z2), z1 + z2
+        z3lo = np.maximum(sat, np.maximum(ring, z2 + diff) - z1 - z2)
+        z3hi = z_max - z1 - z2
+        pair = (z1 >= ext) & (z2 >= ext)
+    elif scheme == "C":                                     # z4 = z1 + z2 - z3
+        a, b, aw = 1 + c, -c * (z1 + z2), z1 + z2
+        z3lo, z3hi = np.maximum(ext, z1 + z2 - z_max), z1 + z2 - ext
+        pair = (z1 >= ext) & (z2 >= ext)
+    else:                                                   # z4 = z1 - z2 + z3
+        a, b, aw = 1 - c, -c * (z1 - z2), z1 - z2
+        z3lo, z3hi = np.maximum(sat, ring - z1 + z2), z_max - z1 + z2
+        pair = (z1 >= ring) & (z2 >= sat) & (z1 - z2 >= diff)
+    if sinpk is not None:                                   # aw sin(pi/k) > max(z2, z3) + 2 ha
+        bound = aw * sinpk - 2 * HA
+        z3hi = np.minimum(z3hi, np.ceil(bound) + 1)
+        pair &= z2 < bound + 1
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t1, t2 = (lo - a) / b, (hi - a) / b                 # the window of 1 / z3 (b != 0)
+        tmin, tmax = np.minimum(t1, t2), np.maximum(t1, t2)
+        # z3 >= 1 / tmax (tmax > 0, else no z3 > 0); z3 <= 1 / tmin (tmin > 0, else unbounded)
+        rlo = np.where(tmax > 0, np.floor(1.0 / np.where(tmax > 0, tmax, 1.0)) - 1, np.inf)
+        rhi = np.where(tmin > 0, np.ceil(1.0 / np.where(tmin > 0, tmin, 1.0)) + 1, np.inf)
+    const = b == 0                                          # i = a for every z3
+    rlo = np.where(const, np.where((a >= lo) & (a <= hi), -np.inf, np.inf), rlo)
+    rhi = np.where(const | ~pair, np.inf, rhi)
+    rlo = np.where(pair, rlo, np.inf)
+    first = np.clip(np.maximum(z3lo, rlo), z3min, z3max + 1).astype(np.int64)
+    last = np.clip(np.minimum(z3hi, rhi), z3min - 1, z3max).astype(np.int64)
+    step = k // np.gcd(k, np.abs(aw))
+    first = first + ((-z2 if scheme == "B" else z2) - first) % step
+    return first, np.maximum(last, first - step), step
+
+
+def _pruned_blocks(scheme, zs, lo, hi, z_max, lim, k, sinpk, chunk=1_000_000):
+    """(z1, z2, z3) arrays, in the order of the full grid (z1, then z2, then z3), of the
+    triples :func:`_pruned_ranges` leaves, in blocks of whole z1 of about ``chunk`` rows."""
+    if not len(zs):
+        return
+    Z1, Z2 = np.meshgrid(zs, zs, indexing="ij")
+    first, last, step = _pruned_ranges(scheme, Z1, Z2, lo, hi, z_max, lim, k, sinpk, int(zs[0]), int(zs[-1]))
+    n = (last - first) // step + 1
+    per_z1 = n.sum(axis=1)
+    start = 0
+    while start < len(zs):
+        stop, acc = start, 0
+        while stop < len(zs) and (acc == 0 or acc + per_z1[stop] <= chunk):
+            acc += int(per_z1[stop])
+            stop += 1
+        if acc:
+            nn = n[start:stop].ravel()
+            z1 = np.repeat(Z1[start:stop].ravel(), nn)
+            z2 = np.repeat(Z2[start:stop].ravel(), nn)
+            st = np.repeat(step[start:stop].ravel(), nn)
+            within = np.arange(acc) - np.repeat(np.cumsum(nn) - nn, nn)
+            yield z1, z2, np.repeat(first[start:stop].ravel(), nn) + st * within
+        start = stop
+
+
+def _candidates(scheme, req, tol, k, z_min, z_max, rank="size", prune=True, top=None, best=False):
     """Vectorised enumeration of tooth numbers meeting every condition; rows of an int array
-    (z1, z2, z3[, z4]) sorted by ``rank`` (size, teeth and ratio error by default)."""
+    (z1, z2, z3[, z4]) sorted by ``rank`` (size, teeth and ratio error by default).
+    ``prune`` (two-row schemes): check the conditions only on the (z2, z3) the ratio window
+    and z_max leave for each z1, z2 (:func:`_pruned_ranges`); False: on the full grid (the
+    reference the tests compare with; the same rows in the same order). ``top``: only the
+    first ``top`` rows of the ranking (see :func:`_order`). ``best``: return (rows, the
+    smallest |ratio error| / |req| of all the rows, None when there are none)."""
     lo, hi = req - tol * abs(req), req + tol * abs(req)
     lim = _limits(z_min)
     zext = int(lim.external)
@@ -246,11 +334,15 @@ def _candidates(scheme, req, tol, k, z_min, z_max, rank="size"):
         arr = np.stack([z1, z2, z3], axis=1)
         size = z3
         err = np.abs(1 + z3 / z1 - req)
-        return arr[_order(size, arr.sum(axis=1), err, rank)]
+        return _ranked(scheme, arr, req, _order(size, arr.sum(axis=1), err, rank, top), best)
     zlo = min(zext, zin_ext)
     zs = np.arange(zlo, z_max + 1)
-    Z2, Z3 = np.meshgrid(zs, zs, indexing="ij")
-    for z1 in range(zlo, z_max + 1):
+    if prune:
+        blocks = _pruned_blocks(scheme, zs, lo, hi, z_max, lim, k, sinpk)
+    else:
+        G2, G3 = np.meshgrid(zs, zs, indexing="ij")
+        blocks = ((z1, G2, G3) for z1 in range(zlo, z_max + 1))
+    for z1, Z2, Z3 in blocks:
         if scheme == "B":
             z4 = z1 + Z2 + Z3
             num = z1 * Z3 + Z2 * z4
@@ -273,13 +365,16 @@ def _candidates(scheme, req, tol, k, z_min, z_max, rank="size"):
         ok &= (i >= lo) & (i <= hi) & (z4 <= z_max) & (num != 0)
         if sinpk is not None:
             ok &= aw * sinpk > np.maximum(Z2, Z3) + 2 * HA
-        if not ok.any():
+        sel = np.flatnonzero(ok)
+        if not len(sel):
             continue
-        ok &= _assembly_vec(num, Z3, k)
-        if ok.any():
-            rows.append(np.stack([np.full(ok.sum(), z1), Z2[ok], Z3[ok], z4[ok]], axis=1))
+        s2, s3, s4 = Z2.ravel()[sel], Z3.ravel()[sel], z4.ravel()[sel]
+        keep = _assembly_vec(num.ravel()[sel], s3, k)
+        if keep.any():
+            s1 = np.broadcast_to(z1, ok.shape).ravel()[sel]
+            rows.append(np.stack([s1[keep], s2[keep], s3[keep], s4[keep]], axis=1))
     if not rows:
-        return np.zeros((0, 4), dtype=int)
+        return _ranked(scheme, np.zeros((0, 4), dtype=int), req, slice(None), best)
     arr = np.concatenate(rows)
     z1, z2, z3, z4 = arr.T
     if scheme == "B":
@@ -291,7 +386,13 @@ def _candidates(scheme, req, tol, k, z_min, z_max, rank="size"):
     else:
         size = np.maximum(z1, z4)
         i = 1 - z2 * z4 / (z1 * z3)
-    return arr[_order(size, arr.sum(axis=1), np.abs(i - req), rank)]
+    return _ranked(scheme, arr, req, _order(size, arr.sum(axis=1), np.abs(i - req), rank, top), best)
+
+
+def _ranked(scheme, arr, req, order, best):
+    if not best:
+        return arr[order]
+    return arr[order], (float(np.min(np.abs(ratios_of(scheme, arr) - req)) / abs(req)) if len(arr) else None)
 
 
 def velocity_plan(scheme: str, z: dict, m: float, omega1: float = 1.0) -> dict:
@@ -389,9 +490,8 @@ def search(scheme: str, req: float, tol: float, k: int, limits: Limits, z_max: i
            keep: int = 10, stage: str = STAGE) -> tuple[list, float | None]:
     """Ranked feasible tooth numbers (every condition checked again by :func:`verify`) and the
     smallest |ratio error| among all feasible sets (None when there is none)."""
-    arr = _candidates(scheme, req, tol, k, limits, int(z_max), rank)
+    arr, best = _candidates(scheme, req, tol, k, limits, int(z_max), rank, top=max(keep, 1), best=True)
     names = SCHEMES[scheme]["wheels"]
-    best = float(np.min(np.abs(ratios_of(scheme, arr) - req)) / abs(req)) if len(arr) else None
     found = []
     for row in arr[: max(keep, 1)]:
         z = {n: int(v) for n, v in zip(names, row)}
@@ -406,7 +506,7 @@ def search(scheme: str, req: float, tol: float, k: int, limits: Limits, z_max: i
 
 def nearest_ratio(scheme: str, req: float, k: int, limits: Limits, z_max: int) -> float | None:
     """The ratio nearest to ``req`` that meets every condition but the tolerance (None: no set)."""
-    arr = _candidates(scheme, req, 1e6, k, limits, int(z_max), "ratio_error")
+    arr = _candidates(scheme, req, 1e6, k, limits, int(z_max), "ratio_error", top=1)
     return float(ratios_of(scheme, arr[:1])[0]) if len(arr) else None
 
 

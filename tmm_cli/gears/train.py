@@ -144,7 +144,9 @@ def required_ratio(spec, drive) -> tuple[float | None, str]:
 
 
 def analyze(spec, drive=None) -> TrainResult:
-    """The drive train of a ``drive_train`` section; ``drive`` the task's `drive` (or None)."""
+    """The drive train of a ``drive_train`` section; ``drive`` the crank's drive (the
+    linkage's Drive or the task's `drive` section: ``speed`` rad/s, ``sign``,
+    ``direction``), or None."""
     lim = pl.spec_limits(spec)
     k, tol, zmax = int(spec.satellites), float(spec.tolerance), int(spec.z_max)
     specs = list(spec.stages)
@@ -279,7 +281,7 @@ def analyze(spec, drive=None) -> TrainResult:
             if out_dir != drive.direction:
                 warnings.append(Message("drive_train.output_sense", output=out_dir, drive=drive.direction))
     elif drive is not None:
-        w0, src = u_total * drive.omega1, "drive"
+        w0, src = u_total * (drive.sign * drive.speed), "drive"
         mdir = "ccw" if w0 > 0 else "cw"
     else:
         w0, src, mdir = 1.0, "unit", "ccw"

@@ -8,11 +8,15 @@ V_w = H omega1/phi_w and
 omega1 = V_w phi_w / H = 2 pi V_w / (H (1 + 1/K)).  At K = 1 both give pi V/H.
 A rocker output: H is its swing psi (rad) and V an angular speed (rad/s; '12 deg/s').
 
-The positions stage gives H and K; the kinematics then runs at the resolved omega1.
+The positions stage gives H and K; :func:`resolve` returns the :class:`Drive` every later
+stage reads (kinematics, dynamics, kinetostatics run at its omega).
 """
 from __future__ import annotations
 
 import math
+
+from ..errors import field_error
+from .context import Drive
 
 SOURCES = ("speed", "mean_output_speed", "working_stroke_speed")
 
@@ -54,43 +58,51 @@ def omega_from_working(V_w: float, H: float, K: float) -> float:
     return 2.0 * math.pi * V_w / (H * (1.0 + 1.0 / K))
 
 
-def resolve(task, positions) -> tuple[float, str]:
-    """(omega1 signed rad/s, source) of ``task.drive``; ``positions`` (a PositionsResult)
-    gives the output's stroke and K when the speed is the output's."""
-    drive = task.drive
-    if drive.speed is not None:
-        return drive.sign * float(drive.speed), "speed"
-    source = "mean_output_speed" if drive.mean_output_speed is not None else "working_stroke_speed"
-    V, kind = check_output_speed(getattr(drive, source))
-    field = ("drive", source)
+def resolve(section, positions) -> Drive:
+    """The crank's mean motion: its speed given, or found from the output's speed.
+
+    Parameters
+    ----------
+    section : DriveSection
+        The task's ``drive``: ``link``, ``direction`` (its ``sign``), ``cycle`` and one of
+        ``speed`` (rad/s), ``mean_output_speed`` or ``working_stroke_speed`` (m/s for a
+        slider output; rad/s for a rocker).
+    positions : PositionsResult
+        The output's stroke ``H`` (m, or deg for a rocker) and the coefficient ``K``.
+
+    Returns
+    -------
+    Drive
+        ``omega`` (rad/s, signed: ccw positive), ``sign``, ``cycle`` (deg), ``source``.
+
+    References
+    ----------
+    Popov & Timofeev; Frolov, *Theory of Machines and Mechanisms*: the mean speed of the
+    output over the cycle V = H omega1/pi and over the working stroke
+    V_w = H omega1/phi_w with phi_w = 2 pi K/(K + 1) (module docstring).
+    """
+    def drive(omega: float, source: str) -> Drive:
+        return Drive(link=section.link, omega=section.sign * omega, sign=section.sign,
+                     cycle=float(section.cycle), source=source)
+
+    if section.speed is not None:
+        return drive(float(section.speed), "speed")
+    source = "mean_output_speed" if section.mean_output_speed is not None else "working_stroke_speed"
+    V, kind = check_output_speed(getattr(section, source))
+    field = f"drive.{source}"
     if positions.H is None or not positions.H > 0:
-        raise task.error(field, f"the output '{positions.output}' has no stroke (no extreme positions), "
-                                f"so the crank speed cannot follow from its speed: give drive.speed")
+        raise field_error(field, f"the output '{positions.output}' has no stroke (no extreme positions), "
+                                 f"so the crank speed cannot follow from its speed: give drive.speed")
     rocker = positions.output_kind == "rocker"
     if kind == ("linear" if rocker else "angular"):
         want = "an angular speed (rad/s, deg/s)" if rocker else "a linear speed (m/s)"
-        raise task.error(field, f"the output '{positions.output}' is a {'rocker' if rocker else 'slider'}: "
-                                f"its speed is {want}")
+        raise field_error(field, f"the output '{positions.output}' is a {'rocker' if rocker else 'slider'}: "
+                                 f"its speed is {want}")
     H = math.radians(positions.H) if rocker else float(positions.H)
     if source == "mean_output_speed":
         w = omega_from_mean(V, H)
     else:
         if positions.K is None:
-            raise task.error(field, "the working stroke is not defined (no extreme positions): give drive.speed")
+            raise field_error(field, "the working stroke is not defined (no extreme positions): give drive.speed")
         w = omega_from_working(V, H, float(positions.K))
-    return drive.sign * w, source
-
-
-def with_speed(task, omega: float):
-    """A copy of ``task`` whose drive has ``speed`` = |omega| (the rest of the pipeline
-    reads drive.speed / drive.omega1)."""
-    if task.drive.speed is not None:
-        return task
-    drive = task.drive.model_copy(update={"speed": abs(float(omega))})
-    return task.model_copy(update={"drive": drive})
-
-
-def result(omega: float, source: str) -> dict:
-    """results.json `drive`: omega (rad/s, signed), n (rpm), source."""
-    return {"omega": float(omega), "n": abs(float(omega)) * 30.0 / math.pi, "source": source}
-
+    return drive(w, source)

@@ -199,8 +199,26 @@ def _classify(S: list[int], ext: list[Joint], inner: list[Joint]) -> int:
 def analyze(mech: Mechanism, task=None) -> StructureResult:
     """Structural analysis of ``mech`` (see the module docstring for conventions).
 
-    Raises StageError('structure', ...) -- or ``task.error(('mechanism',), ...)``
-    when ``task`` is given -- if the crank cannot drive the linkage."""
+    Parameters
+    ----------
+    mech : Mechanism
+        The linkage (links, lower pairs, the crank).
+    task : Task or None
+        Given: a linkage the crank cannot drive is an invalid task (TaskError naming
+        ``mechanism`` and its line); None: a StageError('structure', ...).
+
+    Returns
+    -------
+    StructureResult
+        n (moving links), p5 (lower pairs), p4, the degree of freedom W = 3n - 2p5 - p4
+        (Chebyshev), the Assur groups in the order of attachment, their class and order,
+        the structural formula, passive constraints and idle links.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: Chebyshev's formula, Assur's
+    classification of structural groups.
+    """
     n = mech.n
     joints = list(mech.joints)
     p5 = len(joints)

@@ -184,7 +184,7 @@ def slider_crank_gamma(H: float, theta: float, gamma: float) -> list[tuple[float
     return out
 
 
-def _slider_crank(sec, direction: str) -> Design:
+def _slider_crank(sec, sign: float) -> Design:
     H = float(sec.H)
     solutions: list[dict] = []
     if sec.type == "slider_crank":
@@ -215,8 +215,7 @@ def _slider_crank(sec, direction: str) -> Design:
                    else f"lower lambda (at most cot^2(theta/2) = {lam_max:.6g})") + " or K")
         # the crank then always turns fully: by the law of sines in O B1 B2,
         # H = (l + r) sin(theta)/sin(B1) >= (l + r) sin(theta), so l - r = H e/((l + r) sin(theta)) >= e
-    m = 1.0 if direction == "ccw" else -1.0
-    yg = -m * e
+    yg = -sign * e
     xb = r + math.sqrt(l * l - yg * yg)
     mech = {"ground": {"O": [0.0, 0.0]},
             "links": {"crank": {"points": ["O", "A"], "length": r, **_mass(sec, "crank")},
@@ -288,7 +287,7 @@ def crank_rocker_solutions(psi: float, theta: float, c: float, d: float) -> list
     return out
 
 
-def _crank_rocker(sec, direction: str) -> Design:
+def _crank_rocker(sec, sign: float) -> Design:
     theta = _theta(sec)
     _need_quick_return(theta, "a crank-rocker")
     psi, c, d = float(sec.psi), float(sec.rocker), float(sec.frame)
@@ -317,7 +316,6 @@ def _crank_rocker(sec, direction: str) -> Design:
     orient = (d - A2[0]) * (C2[1] - A2[1]) + A2[1] * (C2[0] - A2[0])   # (O1 - A) x (B - A)
     if orient < 0.0:                       # the generated branch has B above the frame line at crank angle 0
         C1, C2 = [C1[0], -C1[1]], [C2[0], -C2[1]]
-    sign = 1.0 if direction == "ccw" else -1.0
     phi_e = math.degrees(math.atan2(C2[1], C2[0]))
     phi_f = math.degrees(math.atan2(C1[1], C1[0])) + 180.0
     beta2 = math.atan2(C2[1], C2[0] - d)
@@ -340,12 +338,12 @@ def _crank_rocker(sec, direction: str) -> Design:
 
 
 # ---------------------------------------------------------------- slotted lever, shaper
-def _slotted(sec, direction: str) -> Design:
+def _slotted(sec, sign: float) -> Design:
     theta = _theta(sec)
     _need_quick_return(theta, "a slotted-lever mechanism")
     f = float(sec.frame)
     r = f * math.sin(math.radians(theta) / 2.0)
-    m = 1.0 if direction == "ccw" else -1.0
+    m = sign
     half = math.radians(theta) / 2.0
     lengths = {"crank": r}
     if sec.type == "shaper":
@@ -379,7 +377,7 @@ def _slotted(sec, direction: str) -> Design:
     cons = {"O": [0.0, 0.0], "O1": [0.0, -m * f], "A1": A1, "A2": A2,
             "B1": [-L * math.sin(half), m * (L * math.cos(half) - f)],
             "B2": [L * math.sin(half), m * (L * math.cos(half) - f)]}
-    output, working = "rocker", ("forward" if direction == "ccw" else "backward")
+    output, working = "rocker", ("forward" if sign > 0 else "backward")
     if sec.type == "shaper":
         lengths["guide_height"] = h
         links["blockC"] = {"slider": "C", "guide": {"link": "rocker"}, **_mass(sec, "blockC")}
@@ -393,14 +391,39 @@ def _slotted(sec, direction: str) -> Design:
     return Design(sec.type, lengths, mech, output, working, [], cons)
 
 
-def design(sec, direction: str = "ccw") -> Design:
+def design(sec, sign: float) -> Design:
     """The link lengths and the generated mechanism of a ``synthesis`` section for the
-    drive's direction (ccw | cw). Raises SynthesisImpossible."""
+    drive's sense of rotation ``sign`` (+1 ccw, -1 cw; ``DriveSection.sign``).
+
+    Parameters
+    ----------
+    sec : SynthesisSection
+        The task's ``synthesis``: the type and the course's conditions (H in m, K or
+        theta in deg, lambda, e in m, gamma_min in deg, psi in deg...).
+    sign : float
+        Sense of rotation of the crank.
+
+    Returns
+    -------
+    Design
+        The link lengths (m), the generated ``mechanism`` section, the output link and its
+        working sense, the alternative solutions and the construction for the report.
+
+    Raises
+    ------
+    SynthesisImpossible
+        When no mechanism of the type meets the conditions.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: synthesis of lever mechanisms by
+    the coefficient of the mean speed K = (180 + theta)/(180 - theta); docs/methods.md.
+    """
     if sec.type in ("slider_crank", "offset_slider_crank"):
-        return _slider_crank(sec, direction)
+        return _slider_crank(sec, sign)
     if sec.type == "crank_rocker":
-        return _crank_rocker(sec, direction)
-    return _slotted(sec, direction)
+        return _crank_rocker(sec, sign)
+    return _slotted(sec, sign)
 
 
 # ---------------------------------------------------------------- analysis of the generated mechanism
@@ -439,27 +462,44 @@ def least_transmission(typ: str, mech) -> tuple[float, float]:
     return v, x
 
 
-def analyse(d: Design, mech, direction: str = "ccw") -> dict:
-    """The `synthesis` results: the generated mechanism ``mech`` (built from
-    ``d.mechanism``) analysed: its extreme positions (H, K, theta, psi) and its least
-    transmission angle over the cycle; with the construction and gamma(phi) for the report."""
+def analyse(linkage, d: Design) -> dict:
+    """The synthesis stage: the generated mechanism analysed.
+
+    Parameters
+    ----------
+    linkage : Linkage
+        The mechanism built from ``d.mechanism`` and the drive's sense of rotation.
+    d : Design
+        The design the task model made from the ``synthesis`` section (``Task._design``).
+
+    Returns
+    -------
+    dict
+        results.json ``synthesis``: the lengths (m), the stroke H (m) or swing psi (deg),
+        K, theta (deg), the least transmission angle gamma_min (deg) and where it occurs,
+        the extreme positions (deg), the construction and gamma(phi) for the report.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: extreme positions, the coefficient
+    of the mean speed, the transmission angle; docs/methods.md.
+    """
     import numpy as np
 
     from .kinematics import find_positions, solve
-    from ..task import DriveSection, PositionsSection
+    from ..task import PositionsSection
 
-    drive = DriveSection.model_construct(link="crank", direction=direction)
-    pos = find_positions(mech, PositionsSection(output=d.output, working=d.working), drive)
+    mech, sign = linkage.mechanism, linkage.drive.sign
+    pos = find_positions(mech, PositionsSection(output=d.output, working=d.working), sign)
     H = psi = None
     if pos.output_kind == "slider":
         H = float(pos.H)
         if d.type == "shaper":
-            psi = float(find_positions(mech, PositionsSection(output="rocker"), drive).H)
+            psi = float(find_positions(mech, PositionsSection(output="rocker"), sign).H)
     else:
         psi = float(pos.H)
     gmin, gphi = least_transmission(d.type, mech)
     curve = np.arange(0.0, 360.0 + 1e-9, 5.0)
-    sign = 1.0 if direction == "ccw" else -1.0
     phis = np.mod(pos.phi0 + sign * curve, 360.0)
     gam = transmission_angle(d.type, solve(mech, phis))
     return {"type": d.type, "lengths": dict(d.lengths), "H": H, "K": float(pos.K), "theta": float(pos.theta),

@@ -95,16 +95,9 @@ def reduced_moment(forces, couples) -> dict[str, np.ndarray]:
 
 
 # ------------------------------------------------------------------ adapters
-def _get(d, key):
-    if d is None:
-        return None
-    return d.get(key) if hasattr(d, "get") else None
-
-
 def inertia_from_kinematics(mech, kin) -> ReducedInertia:
     """ReducedInertia of the mechanism's links from a KinematicsResult."""
     masses, d1S, a1, d2S, a2 = {}, {}, {}, {}, {}
-    have2 = getattr(kin, "d2", None) is not None and getattr(kin, "a2", None) is not None
     for lk in mech.links:
         if lk.mass == 0 and lk.J == 0:
             continue
@@ -112,10 +105,10 @@ def inertia_from_kinematics(mech, kin) -> ReducedInertia:
         masses[lk.name] = (lk.mass, lk.J)
         d1S[lk.name] = kin.d1[s]
         a1[lk.name] = kin.a1[lk.name]
-        if have2 and _get(kin.d2, s) is not None and _get(kin.a2, lk.name) is not None:
+        if s in kin.d2 and lk.name in kin.a2:
             d2S[lk.name] = kin.d2[s]
             a2[lk.name] = kin.a2[lk.name]
-    return reduced_inertia(masses, d1S, a1, d2S if have2 else None, a2 if have2 else None)
+    return reduced_inertia(masses, d1S, a1, d2S, a2)
 
 
 def point_analogue(mech, kin, link_index: int, point: np.ndarray) -> np.ndarray:
@@ -132,11 +125,11 @@ def point_analogue(mech, kin, link_index: int, point: np.ndarray) -> np.ndarray:
 def moment_from_loads(mech, kin, loads) -> dict[str, np.ndarray]:
     """M_red per kind (per unit ccw crank rotation) of the Loads (inertia loads skipped)."""
     forces, couples = [], []
-    for f in getattr(loads, "forces", []) or []:
+    for f in loads.forces:
         if f.kind == "inertia" or f.link == 0:
             continue
         forces.append((f.kind, f.F, point_analogue(mech, kin, f.link, f.point)))
-    for c in getattr(loads, "couples", []) or []:
+    for c in loads.couples:
         if c.kind == "inertia" or c.link == 0:
             continue
         couples.append((c.kind, c.M, kin.a1[mech.link(c.link).name]))

@@ -2,12 +2,16 @@
 
 Public API (docs/ARCHITECTURE.md)::
 
+    analyze(linkage) -> KinematicsResult                 # the stage: at the reported positions
+    output_curve(linkage, n=361) -> OutputCurve          # the output's s, v, a over a turn
     solve(mech, phi_deg, omega1, eps1=0.0) -> KinematicsResult
-    find_positions(mech, positions_section, drive_section, extra_added=()) -> PositionsResult
+    find_positions(mech, positions_section, sign, extra_added=()) -> PositionsResult
     check_assembly(mech, n=720) -> list[str]
 """
 from .positions import PositionsResult, find_positions
 from .result import KinematicsResult
 from .solver import check_assembly, solve
+from .stage import OutputCurve, analyze, output_curve
 
-__all__ = ["solve", "KinematicsResult", "find_positions", "PositionsResult", "check_assembly"]
+__all__ = ["analyze", "output_curve", "OutputCurve", "solve", "KinematicsResult", "find_positions",
+           "PositionsResult", "check_assembly"]

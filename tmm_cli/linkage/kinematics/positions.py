@@ -9,7 +9,8 @@ The output link (``positions.output``, default the last link) has a coordinate s
 * a bar: its angle, ccw positive (deg, continuous).
 
 Its extreme positions are the roots of the analogue ds/dphi over one crank turn:
-bracketed on a 0.5-deg scan and refined by Brent's method to 1e-10 deg; the global
+bracketed on a 0.5-deg scan and refined (all brackets at once) by Newton's method on the
+exact second derivative, kept inside its bracket, to 1e-11 deg; the global
 minimum and maximum are the two extremes. The working stroke moves the output toward
 increasing s (``working: forward``, it starts at the minimum) or decreasing s
 (``backward``, it starts at the maximum). Position 0 is the extreme where the working
@@ -27,7 +28,6 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from ...lazy import brentq
 
 from ...errors import StageError
 from ..mechanism import Mechanism
@@ -38,7 +38,8 @@ XTOL = 1e-11          # deg
 
 
 def _output_coordinate(mech: Mechanism, name: str):
-    """(kind, f) with f(phi_deg array) -> (s, ds/dphi) (s in m or deg; ds per rad)."""
+    """(kind, f) with f(phi_deg array) -> (s, ds/dphi) (s in m or deg; ds per rad);
+    f(phi, second=True) -> (s, ds/dphi, d2s/dphi2) (per rad, per rad^2)."""
     lk = mech.link(name)
     if lk.kind == "slider":
         pin = lk.origin
@@ -48,29 +49,38 @@ def _output_coordinate(mech: Mechanism, name: str):
             e = np.array([math.cos(a), math.sin(a)])
             p0 = np.array(g.point, float)
 
-            def f(phi):
+            def f(phi, second=False):
                 k = solve(mech, phi)
-                return (k.pos[pin] - p0) @ e, k.d1[pin] @ e
+                out = (k.pos[pin] - p0) @ e, k.d1[pin] @ e
+                return out + (k.d2[pin] @ e,) if second else out
             return "slider", f
         carrier = mech.link(g.link)
         a = math.radians(g.angle)
         org = carrier.origin
 
-        def f(phi):
+        def f(phi, second=False):
             k = solve(mech, phi)
             psi = k.angle[carrier.name] + a
             e = np.stack([np.cos(psi), np.sin(psi)], axis=-1)
             n = np.stack([-e[:, 1], e[:, 0]], axis=-1)
             d = k.pos[pin] - k.pos[org]
             dd = k.d1[pin] - k.d1[org]
+            w = k.a1[carrier.name]
             s = np.sum(e * d, axis=1)
-            ds = k.a1[carrier.name] * np.sum(n * d, axis=1) + np.sum(e * dd, axis=1)
-            return s, ds
+            ds = w * np.sum(n * d, axis=1) + np.sum(e * dd, axis=1)
+            if not second:
+                return s, ds
+            # e' = w n, n' = -w e
+            ddd = k.d2[pin] - k.d2[org]
+            d2s = (k.a2[carrier.name] * np.sum(n * d, axis=1) - w * w * s
+                   + 2 * w * np.sum(n * dd, axis=1) + np.sum(e * ddd, axis=1))
+            return s, ds, d2s
         return "slider", f
 
-    def f(phi):
+    def f(phi, second=False):
         k = solve(mech, phi)
-        return np.degrees(k.angle[name]), k.a1[name]
+        out = np.degrees(k.angle[name]), k.a1[name]
+        return out + (k.a2[name],) if second else out
     return "rocker", f
 
 
@@ -220,40 +230,106 @@ def _extremes(f, period=None) -> list[tuple[float, float]]:
     makes s continuous with the scan."""
     grid = np.arange(0.0, 360.0, SCAN_STEP)
     s, ds = f(grid)
-    out = []
-    g = lambda x: float(f(np.array([x % 360.0]))[1][0])
     n = len(grid)
+    out = []                       # (scan index, root), in the order of the scan
+    lo, hi, at = [], [], []
     for k in range(n):
-        a, b = grid[k], grid[k] + SCAN_STEP
-        fa = ds[k]
-        fb = ds[(k + 1) % n]
+        fa, fb = ds[k], ds[(k + 1) % n]
         if fa == 0.0:
-            out.append(a)
+            out.append((k, grid[k]))
         elif fa * fb < 0:
-            out.append(brentq(g, a, b, xtol=XTOL, rtol=1e-15, maxiter=200) % 360.0)
+            lo.append(grid[k])
+            hi.append(grid[k] + SCAN_STEP)
+            at.append(k)
+    if lo:
+        roots = _roots_in_brackets(f, np.array(lo), np.array(hi), ds_of=ds, grid=grid)
+        out += [(k, float(r) % 360.0) for k, r in zip(at, roots)]
+    out = [r for _, r in sorted(out, key=lambda kr: kr[0])]
     res = []
     for r in out:
         if all(abs(((r - q) + 180) % 360 - 180) > 1e-7 for q, _ in res):
-            v = float(f(np.array([r]))[0][0])
+            res.append([r, None])
+    if res:
+        vals = f(np.array([r for r, _ in res]))[0]
+        for item, v in zip(res, vals):
+            v = float(v)
             if period:
-                near = float(s[int(round(r / SCAN_STEP)) % n])
+                near = float(s[int(round(item[0] / SCAN_STEP)) % n])
                 v += period * round((near - v) / period)
-            res.append((r, v))
-    return res
+            item[1] = v
+    return [(r, v) for r, v in res]
 
 
-def find_positions(mech: Mechanism, positions_section=None, drive_section=None,
-                   extra_added=()) -> PositionsResult:
-    """The reported crank positions and the output's extremes (see module docstring)."""
+def _roots_in_brackets(f, a, b, *, ds_of, grid, maxiter: int = 100) -> np.ndarray:
+    """The root of ds/dphi in each bracket [a_i, b_i] (deg, a sign change), all brackets
+    at once (one kinematics call per step): Newton's method on ds with the exact second
+    derivative, kept inside the bracket (a step that leaves it is a bisection), to XTOL
+    deg; a bracket narrowed to XTOL gives its end with the smaller |ds|."""
+    n = len(grid)
+    fa = np.array([ds_of[int(round(x / SCAN_STEP)) % n] for x in a])
+    fb = np.array([ds_of[int(round(x / SCAN_STEP)) % n] for x in b])
+    x = a - fa * (b - a) / (fb - fa)                        # the secant point to start
+    done = np.zeros(len(a), bool)
+    rad = math.pi / 180.0
+    for _ in range(maxiter):
+        act = np.flatnonzero(~done)
+        if not len(act):
+            break
+        _, g, dg = f(np.mod(x[act], 360.0), second=True)
+        for j, i in enumerate(act):
+            gi = float(g[j])
+            if gi == 0.0:
+                done[i] = True
+                continue
+            if (gi < 0) == (fa[i] < 0):
+                a[i], fa[i] = x[i], gi
+            else:
+                b[i], fb[i] = x[i], gi
+            step = gi / (float(dg[j]) * rad) if dg[j] != 0 else math.inf
+            xn = x[i] - step
+            if not (a[i] <= xn <= b[i]):
+                xn = 0.5 * (a[i] + b[i])
+                step = x[i] - xn
+            if b[i] - a[i] <= XTOL:
+                x[i] = a[i] if abs(fa[i]) < abs(fb[i]) else b[i]
+                done[i] = True
+                continue
+            x[i] = xn
+            if abs(step) <= XTOL:
+                done[i] = True
+    return x
+
+
+def find_positions(mech: Mechanism, positions_section, sign: float, extra_added=()) -> PositionsResult:
+    """The reported crank positions and the output's extreme positions.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The linkage.
+    positions_section : PositionsSection or None
+        The task's ``positions`` (``count``, ``zero``, ``output``, ``working``, ``extra``;
+        None: the defaults).
+    sign : float
+        Sense of rotation of the crank, +1.0 ccw, -1.0 cw (``Drive.sign``).
+    extra_added : sequence of float
+        Crank angles (deg) the tool adds as positions (where a load switches).
+
+    Returns
+    -------
+    PositionsResult
+        ``phi`` (deg in [0, 360)), ``phi0``, ``extreme`` (deg), ``H`` (m, or deg for a
+        rocker output), ``K``, ``theta`` (deg) and the stroke state of the output.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: extreme (dead) positions and the
+    coefficient of the mean speed K = (180 + theta)/(180 - theta); module docstring.
+    """
     from ...task import PositionsSection
     sec = positions_section if positions_section is not None else PositionsSection()
-    direction = getattr(drive_section, "direction", "ccw") if drive_section is not None else "ccw"
-    sign = 1.0 if direction == "ccw" else -1.0
-    out_name = sec.output or mech.links[-1].name
-    try:
-        mech.link(out_name)
-    except KeyError:
-        raise StageError("positions", f"positions.output: no link named '{out_name}'") from None
+    direction = "ccw" if sign > 0 else "cw"
+    out_name = sec.output or mech.links[-1].name      # a name the task model checked
     kind, f = _output_coordinate(mech, out_name)
     ext = _extremes(f, 360.0 if kind == "rocker" else None)
     extreme = wsa = isa = K = theta = H = s_ext = None

@@ -1,4 +1,6 @@
-"""Kinetostatic analysis: ``analyze`` (per position) and ``find_singular`` (over a turn).
+"""Kinetostatic analysis: ``analyze`` (the stage: a linkage at its positions),
+``equilibrium`` (per position, on given kinematics and loads) and ``find_singular``
+(over a turn).
 
 Sign conventions (stated in the report): R_ij is the force of link i on link j, keyed
 ``R<i><j>`` with i < j (R_ji = -R_ij); moments ccw positive; the balancing moment M_b
@@ -14,9 +16,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ...errors import StageError, TaskError
+from ...errors import StageError, field_error
 from ...messages import Message
-from ..loads import AppliedCouple, Loads, evaluate
+from .. import loads as loads_mod
+from ..loads import AppliedCouple, Loads
 from .equations import Geometry, geometry, load_vector, scaled_det
 from .solve import (COND_MAX, balance_lever, balance_rate, friction_loads, group_by_group, lever_moments,
                     matrix_method, powers, unit_balance_q)
@@ -26,18 +29,10 @@ DETAIL_MAX = 400        # positions up to which to_dict lists every applied load
 
 
 def balance_index(mech, section) -> int:
-    name = getattr(section, "balance", None) if section is not None else None
-    if name is None:
-        return mech.drive
-    try:
-        return mech.link(name).index
-    except KeyError:
-        import difflib
-        names = [lk.name for lk in mech.links]
-        close = difflib.get_close_matches(name, names, n=1)
-        hint = f"; did you mean '{close[0]}'?" if close else f"; links: {', '.join(names)}"
-        msg = f"no link named '{name}'{hint}"
-        raise TaskError(msg, issues=[("kinetostatics.balance", None, None, msg)]) from None
+    """Index of the balance link: ``section.balance`` (a name the task model checked), or
+    the drive link (also when ``section`` is None)."""
+    name = section.balance if section is not None else None
+    return mech.drive if name is None else mech.link(name).index
 
 
 def _finite_list(a) -> list:
@@ -117,15 +112,13 @@ class KinetostaticsResult:
             y = self.reactions[:, 2 * k + 1]
             p = self.geo.jpoint[k]
             pl = p.tolist()
-            col = []
             if j.kind == "R":
                 xs, ys, Rs = x.tolist(), y.tolist(), np.hypot(x, y).tolist()
-                for i in range(N):
-                    if okl[i]:
-                        col.append({"x": xs[i], "y": ys[i], "R": Rs[i], "point": pl[i]})
-                    else:
-                        col.append({"x": None, "y": None, "R": None, "point": pl[i]})
+                col = [{"x": a, "y": b_, "R": r, "point": pt} if good else
+                       {"x": None, "y": None, "R": None, "point": pt}
+                       for a, b_, r, pt, good in zip(xs, ys, Rs, pl, okl)]
             else:
+                col = []
                 e = self.geo.jdir[k]
                 nx, ny = -e[:, 1], e[:, 0]
                 N_, M_ = x, y
@@ -146,10 +139,12 @@ class KinetostaticsResult:
         return out
 
     def to_dict(self, detail: bool | None = None) -> dict:
-        """{"entries": [...] (the results.json ``kinetostatics`` list), "singular": [...],
-        "warnings": [...], + info keys}. ``detail``: include per position the applied
-        loads with their points and velocities (``loads``, ``couples``: the report's force
-        plans and Zhukovsky lever); default: when there are at most 400 positions."""
+        """The results.json sections of the stage: ``kinetostatics`` (one entry per
+        position), ``kinetostatics_info`` (balance link, conventions, groups, joints, the
+        load diagrams) and ``singular`` (crank angles, deg); the warnings are
+        ``self.warnings``. ``detail``: include per position the applied loads with their
+        points and velocities (``loads``, ``couples``: the report's force plans and
+        Zhukovsky lever); default: when there are at most 400 positions."""
         if detail is None:
             detail = len(self.phi) <= DETAIL_MAX
         with np.errstate(all="ignore"):
@@ -198,8 +193,12 @@ class KinetostaticsResult:
                               _finite_list(self.geo.omega(c.link))))
             if c.kind == "inertia" and c.link:
                 inert_m[names[c.link]] += c.M
-        inert = {k: (inert_f[k][:, 0].tolist(), inert_f[k][:, 1].tolist(), inert_m[k].tolist())
-                 for k in inert_f}
+        inert_keys = list(inert_f)
+        # per position, the links' inertia dicts (built column by column, then zipped)
+        inert_rows = list(zip(*[[{"Fx": fx + 0.0, "Fy": fy + 0.0, "M": m + 0.0} for fx, fy, m in
+                                 zip(inert_f[k][:, 0].tolist(), inert_f[k][:, 1].tolist(), inert_m[k].tolist())]
+                                for k in inert_keys])) if inert_keys else [()] * N
+        reaction_rows = list(zip(*table)) if table else [()] * N
         dinfo = []
         for d in self.loads.info:
             act = np.broadcast_to(np.asarray(d["active"], bool), (N,)).tolist()
@@ -228,9 +227,8 @@ class KinetostaticsResult:
                 e["matrix_force"] = val(mm, i)
             e["discrepancy"] = val(disc, i)
             e["matrix_discrepancy"] = val(mdisc, i)
-            e["reactions"] = {jkeys[k]: table[k][i] for k in range(len(jkeys))}
-            e["inertia"] = {k: {"Fx": v[0][i] + 0.0, "Fy": v[1][i] + 0.0, "M": v[2][i] + 0.0}
-                            for k, v in inert.items()}
+            e["reactions"] = dict(zip(jkeys, reaction_rows[i]))
+            e["inertia"] = dict(zip(inert_keys, inert_rows[i]))
             if detail:
                 e["loads"] = [{"name": n, "link": lk, "kind": kd, "point": p[i], "F": F[i], "v": v[i]}
                               for n, lk, kd, p, F, v in finfo]
@@ -248,10 +246,7 @@ class KinetostaticsResult:
                 e["efficiency"] = None
             e["near_singular"] = bool(near[i])
             entries.append(e)
-        return {
-            "entries": entries,
-            "singular": [float(a) for a in self.singular],
-            "warnings": list(self.warnings),
+        return {"kinetostatics": entries, "kinetostatics_info": {
             "balance": self.balance,
             "balance_kind": self.balance_kind,
             "arm": self.arm,
@@ -262,7 +257,7 @@ class KinetostaticsResult:
             "load_diagrams": [{"name": d["name"], "link": d["link"], "kind": d["kind"], "type": d["type"],
                                "stroke": d["stroke"], "abscissa": d.get("abscissa"), "curve": d.get("curve")}
                               for d in self.loads.info],
-        }
+        }, "singular": [float(a) for a in self.singular]}
 
 
 def _with_inertia(mech, kin, loads: Loads | None, inertia: bool, crank_inertia: float) -> Loads:
@@ -273,18 +268,77 @@ def _with_inertia(mech, kin, loads: Loads | None, inertia: bool, crank_inertia: 
     forces = [f for f in loads.forces if inertia or f.kind != "inertia"]
     couples = [c for c in loads.couples if inertia or c.kind != "inertia"]
     if inertia and not has:
-        extra = evaluate(mech, None, kin, None, inertia=True)
+        extra = loads_mod.link_loads(mech, kin, gravity=False, inertia=True)
         forces += extra.forces
         couples += extra.couples
     if crank_inertia:
-        e1 = np.broadcast_to(np.asarray(getattr(kin, "eps1", 0.0), float), (n,)).astype(float)
+        e1 = np.broadcast_to(np.asarray(kin.eps1, float), (n,)).astype(float)
         couples.append(AppliedCouple(mech.drive, "Mfly", -float(crank_inertia) * e1, "inertia"))
     return Loads(loads.phi, forces, couples, loads.info)
 
 
-def analyze(mech, structure, kin, loads, section, *, indices=None, crank_inertia: float = 0.0,
-            solver=None, singular: list[float] | None = None) -> KinetostaticsResult:
-    """Kinetostatic analysis at the positions ``indices`` (rows of ``kin``; default all).
+def select_rows(spec, positions) -> list[int]:
+    """Row numbers (into ``positions.phi``) of the positions ``kinetostatics.positions``
+    names ('all' or a list of position numbers); a TaskError for a position the cycle
+    does not have."""
+    idx = list(positions.index)
+    if spec == "all":
+        return list(range(len(idx)))
+    rows = []
+    for k, i in enumerate(spec):
+        if i not in idx:
+            raise field_error(f"kinetostatics.positions[{k}]",
+                              f"position {i} does not exist (positions are {idx[0]}..{idx[-1]})")
+        rows.append(idx.index(i))
+    return rows
+
+
+def analyze(linkage, section, kin, *, motion=None) -> KinetostaticsResult:
+    """The kinetostatics stage: reactions in the pairs and the balancing moment (or force)
+    at the positions ``section.positions``, by three methods.
+
+    Parameters
+    ----------
+    linkage : Linkage
+        The mechanism, its Assur groups, positions, loads and drive.
+    section : KinetostaticsSection
+        The task's ``kinetostatics``: ``positions``, ``inertia``, ``balance``,
+        ``friction`` (pin radius in m, coefficients), ``motion``.
+    kin : KinematicsResult
+        The kinematics at the reported positions (the kinematics stage, omega1 constant).
+    motion : DynamicsResult or None
+        With ``motion: true``: the steady motion with the flywheel, omega1(phi) (rad/s)
+        and epsilon1(phi) (rad/s^2); the flywheel and ``flywheel.reduced_J`` (kg*m^2) add
+        the couple -(J_fly + J_extra) epsilon1 on the crank.
+
+    Returns
+    -------
+    KinetostaticsResult
+        Per position: reactions R_ij (N), the balancing moment (N*m) or force (N) group by
+        group, by Zhukovsky's lever, by virtual power and by the matrix of all equations;
+        friction losses and the instantaneous efficiency; the singular crank angles (deg).
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: force analysis by Assur groups
+    (d'Alembert's principle), Zhukovsky's lever; docs/methods.md §3.
+    """
+    from ..kinematics import solve
+    rows = select_rows(section.positions, linkage.positions)
+    kin_k, crank_J = kin, 0.0
+    if section.motion is True:
+        phi = np.asarray(linkage.positions.phi, dtype=float)
+        kin_k = solve(linkage.mechanism, phi, motion.omega_of(phi), motion.epsilon_of(phi))
+        crank_J = motion.crank_inertia
+    lds = loads_mod.evaluate(linkage, kin_k, inertia=section.inertia)
+    return equilibrium(linkage.mechanism, linkage.structure, kin_k, lds, section, indices=rows,
+                       crank_inertia=crank_J)
+
+
+def equilibrium(mech, structure, kin, loads, section, *, indices=None, crank_inertia: float = 0.0,
+                solver=None, singular: list[float] | None = None) -> KinetostaticsResult:
+    """Kinetostatic analysis at the positions ``indices`` (rows of ``kin``; default all),
+    on given kinematics and loads.
 
     ``loads``: a :class:`~tmm_cli.linkage.loads.Loads` at the positions of ``kin`` (inertia loads
     are added here when ``section.inertia`` and absent, dropped when not wanted);
@@ -300,12 +354,12 @@ def analyze(mech, structure, kin, loads, section, *, indices=None, crank_inertia
 
 def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inertia: float = 0.0,
              solver=None, singular: list[float] | None = None) -> KinetostaticsResult:
-    """See :func:`analyze`."""
+    """See :func:`equilibrium`."""
     phi_all = np.atleast_1d(np.asarray(kin.phi, float))
     rows = np.arange(len(phi_all)) if indices is None else np.asarray(list(indices), int)
     b = balance_index(mech, section)
     blk = mech.link(b)
-    inertia = True if section is None else bool(getattr(section, "inertia", True))
+    inertia = True if section is None else bool(section.inertia)
     lds = _with_inertia(mech, kin, loads, inertia, crank_inertia).select(rows)
     geo = geometry(mech, kin, rows)
     N = geo.n_pos
@@ -321,7 +375,7 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
             Mb = -M1L / M1U
         return xL + Mb[:, None] * xU, Mb, M1U
 
-    fr = getattr(section, "friction", None) if section is not None else None
+    fr = section.friction if section is not None else None
     loss = None
     locked = np.zeros(N, bool)
     if fr is not None and (fr.f_pin > 0 or fr.f_slide > 0):
@@ -352,7 +406,7 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
     if np.any(locked):
         x[locked] = np.nan
         Mb = np.where(locked, np.nan, Mb)
-    xm, Mm, cond, _det = matrix_method(mech, geo, q, b)
+    xm, Mm, cond, _ = matrix_method(mech, geo, q, b, with_det=False)
     lever = lever_moments(mech, geo, lds)
     blev = balance_lever(mech, geo, b)
     P, each = powers(mech, geo, lds)

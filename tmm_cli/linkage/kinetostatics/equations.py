@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..loads import Loads, _get
+from ..loads import Loads
 
 
 def cross(r: np.ndarray, f: np.ndarray) -> np.ndarray:
@@ -86,8 +86,8 @@ def geometry(mech, kin, rows=None) -> Geometry:
         o = lk.origin
         origin[lk.index] = sel(kin.pos[o])
         d1o[lk.index] = sel(kin.d1[o])
-        a1[lk.index] = sel(_get(kin.a1, lk))
-        a2[lk.index] = sel(_get(kin.a2, lk))
+        a1[lk.index] = sel(kin.a1[lk.name])
+        a2[lk.index] = sel(kin.a2[lk.name])
     jpoint, jdir = [], []
     for j in mech.joints:
         if j.kind == "R":
@@ -96,10 +96,10 @@ def geometry(mech, kin, rows=None) -> Geometry:
         else:
             s = mech.link(j.slider)
             jpoint.append(sel(kin.pos[s.origin]))
-            th = sel(_get(kin.angle, s))
+            th = sel(kin.angle[s.name])
             jdir.append(np.stack([np.cos(th), np.sin(th)], axis=-1))
     w = np.broadcast_to(np.asarray(kin.omega1, float), phi.shape)[rows].astype(float)
-    e = np.broadcast_to(np.asarray(getattr(kin, "eps1", 0.0), float), phi.shape)[rows].astype(float)
+    e = np.broadcast_to(np.asarray(kin.eps1, float), phi.shape)[rows].astype(float)
     return Geometry(N, origin, d1o, a1, a2, jpoint, jdir, w, e, length_scale(mech))
 
 

@@ -55,9 +55,36 @@ def _safe_solve(A: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 def group_by_group(mech, structure, geo: Geometry, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Reactions x (N, 2p) and the moment on the drive link (N,) for the loads q
-    (N, n+1, 3), solving group by group from the last group to the crank."""
+    (N, n+1, 3), solving group by group from the last group to the crank. The groups'
+    matrices depend on the positions only: they are built and inverted once per
+    geometry (the friction iteration solves with many load vectors)."""
+    cached = geo.__dict__.get("_group_plan")
+    if cached is None or cached[0] is not structure or cached[1] is not mech:
+        cached = (structure, mech, _group_plan(mech, structure, geo))
+        geo.__dict__["_group_plan"] = cached
     N, p = geo.n_pos, len(mech.joints)
     x = np.full((N, 2 * p), np.nan)
+    M1 = np.full(N, np.nan)
+    for links, rows, unknown, known, inv, is_crank in cached[2]:
+        b = np.empty((N, 3 * len(links)))
+        for l, i in rows.items():
+            b[:, 3 * i:3 * i + 3] = -q[:, l, :]
+        # known reactions of the later groups on this group's links
+        for k, i, cf in known:
+            b[:, 3 * i:3 * i + 3] -= np.einsum("nij,nj->ni", cf, x[:, 2 * k:2 * k + 2])
+        sol = np.matmul(inv, b[..., None])[..., 0]
+        for c, k in enumerate(unknown):
+            x[:, 2 * k:2 * k + 2] = sol[:, 2 * c:2 * c + 2]
+        if is_crank:
+            M1 = sol[:, -1]
+    return x, M1
+
+
+def _group_plan(mech, structure, geo: Geometry) -> list[tuple]:
+    """Per group, from the last to the crank: (links, link -> block row, unknown joints,
+    [(known joint, block row, its coefficients)], the inverse of the group's matrix (N, m, m),
+    rows of a singular matrix NaN; whether it is the crank)."""
+    N = geo.n_pos
     coeffs = [joint_coeffs(geo, j, k) for k, j in enumerate(mech.joints)]
     solved: set[int] = set()
     steps = [(links, False) for links in reversed(_group_links(mech, structure))]
@@ -66,7 +93,7 @@ def group_by_group(mech, structure, geo: Geometry, q: np.ndarray) -> tuple[np.nd
     missing = [lk.name for lk in mech.links if lk.index not in covered]
     if missing:
         raise StageError("kinetostatics", f"links {missing} belong to no Assur group")
-    M1 = np.full(N, np.nan)
+    plan = []
     for links, is_crank in steps:
         rows = {l: i for i, l in enumerate(links)}
         unknown = [k for k, j in enumerate(mech.joints)
@@ -77,29 +104,31 @@ def group_by_group(mech, structure, geo: Geometry, q: np.ndarray) -> tuple[np.nd
             raise StageError("kinetostatics", f"group {names} is not statically determinate "
                              f"({3 * len(links)} equations, {ncol} unknown reaction components)")
         A = np.zeros((N, 3 * len(links), ncol))
-        b = np.zeros((N, 3 * len(links)))
-        for l, i in rows.items():
-            b[:, 3 * i:3 * i + 3] = -q[:, l, :]
         for c, k in enumerate(unknown):
             for l, cf in coeffs[k].items():
                 if l in rows:
                     A[:, 3 * rows[l]:3 * rows[l] + 3, 2 * c:2 * c + 2] = cf
         if is_crank:
             A[:, 3 * rows[mech.drive] + 2, -1] = 1.0
-        # known reactions of the later groups on this group's links
-        for k, j in enumerate(mech.joints):
-            if k in unknown:
-                continue
-            for l, cf in coeffs[k].items():
-                if l in rows and (j.a in solved or j.b in solved):
-                    b[:, 3 * rows[l]:3 * rows[l] + 3] -= np.einsum("nij,nj->ni", cf, x[:, 2 * k:2 * k + 2])
-        sol, _ = _safe_solve(A, b)
-        for c, k in enumerate(unknown):
-            x[:, 2 * k:2 * k + 2] = sol[:, 2 * c:2 * c + 2]
-        if is_crank:
-            M1 = sol[:, -1]
+        known = [(k, rows[l], cf) for k, j in enumerate(mech.joints) if k not in unknown
+                 for l, cf in coeffs[k].items() if l in rows and (j.a in solved or j.b in solved)]
+        plan.append((links, rows, unknown, known, _safe_inverse(A), is_crank))
         solved.update(links)
-    return x, M1
+    return plan
+
+
+def _safe_inverse(A: np.ndarray) -> np.ndarray:
+    """Batched inverse; a singular matrix's rows are NaN (its position gets NaN reactions)."""
+    try:
+        return np.linalg.inv(A)
+    except np.linalg.LinAlgError:
+        out = np.full(A.shape, np.nan)
+        for i in range(A.shape[0]):
+            try:
+                out[i] = np.linalg.inv(A[i])
+            except np.linalg.LinAlgError:
+                pass
+        return out
 
 
 def unit_balance_q(mech, geo: Geometry, balance: int) -> np.ndarray:
@@ -108,10 +137,10 @@ def unit_balance_q(mech, geo: Geometry, balance: int) -> np.ndarray:
     return q
 
 
-def matrix_method(mech, geo: Geometry, q: np.ndarray, balance: int
-                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+def matrix_method(mech, geo: Geometry, q: np.ndarray, balance: int, *, with_det: bool = True
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
     """All equations at once: (reactions (N, 2p), balancing unknown (N,), scaled
-    condition number (N,), scaled determinant (N,))."""
+    condition number (N,), scaled determinant (N,); None without ``with_det``)."""
     A = full_matrix(mech, geo, balance)
     n, p = mech.n, len(mech.joints)
     if A.shape[1] != A.shape[2]:
@@ -122,7 +151,7 @@ def matrix_method(mech, geo: Geometry, q: np.ndarray, balance: int
     b = -q[:, 1:, :].reshape(geo.n_pos, 3 * n) * rs[None, :]
     sv = np.linalg.svd(As, compute_uv=False)
     cond = np.where(sv[:, -1] > 0, sv[:, 0] / np.maximum(sv[:, -1], 1e-300), np.inf)
-    det = np.linalg.det(As)
+    det = np.linalg.det(As) if with_det else None
     y, ok = _safe_solve(As, b)
     xx = y * cs[None, :]
     xx[~ok] = np.nan

@@ -1,0 +1,323 @@
+"""The flywheel calculation over one cycle: the grid of crank angles, the sampler
+that evaluates the reduced quantities there, and the solution on the grid
+(docs/methods.md §4).
+
+The grid: ``resolution`` equal steps over the cycle (360 or 720 deg of crank rotation
+from position 0 in the direction of motion) plus every crank angle where a load
+jumps, inserted twice (left and right limits: the loads are evaluated EPS_DEG
+before and after it, the node keeps the exact angle), so the trapezoid of the works
+is exact for piecewise-linear loads and the extrema at the jumps are on the grid.
+The first node (position 0) carries the right limit, the last (one cycle later) the
+left limit.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from typing import Callable
+
+import numpy as np
+
+from ...errors import StageError
+from ...messages import Message
+from . import flywheel as fw
+from .reduce import Sample, sample as sample_mech
+
+STAGE = "dynamics"
+EPS_DEG = 1e-5   # one-sided evaluation offset at a jump, deg (coarser than the loads' 1e-9 snapping)
+FLYWHEEL_METHODS = ("energy-mass", "merzalov", "exact")
+GAUSS_DEFAULT = 2   # Gauss-Legendre points per grid interval for the works (order 4)
+
+Sampler = Callable[[np.ndarray, np.ndarray], Sample]
+"""sampler(q_deg, side) -> Sample: reduced quantities at the cycle angles q_deg (deg of
+crank rotation from position 0 along the motion), each evaluated at q + side*EPS_DEG
+(side -1: left limit, +1: right limit, 0: exactly)."""
+
+
+# ------------------------------------------------------------------ grid
+def grid(resolution: int, cycle: float, switch_q: tuple | list = (), insert: bool = True
+         ) -> tuple[np.ndarray, np.ndarray]:
+    """Nodes (q_deg, side) of the cycle: resolution + 1 equal steps over [0, cycle] and
+    the jump angles switch_q (deg, from position 0 along the motion) twice each.
+    With insert=False: the plain equal steps, every node evaluated exactly
+    (what a hand calculation over the positions does)."""
+    n = int(resolution)
+    if n < 2:
+        raise StageError(STAGE, f"resolution must be at least 2 (got {resolution})")
+    C = float(cycle)
+    q = np.linspace(0.0, C, n + 1)
+    if not insert:
+        return q, np.zeros_like(q)
+    side = np.zeros_like(q)
+    side[0], side[-1] = 1.0, -1.0
+    tol = 2 * EPS_DEG
+    sw = []
+    for s in switch_q:
+        s = float(s) % C
+        if s < tol or C - s < tol:
+            continue
+        if all(abs(s - t) >= tol for t in sw):
+            sw.append(s)
+    if sw:
+        sw = np.asarray(sorted(sw))
+        keep = np.ones(q.size, bool)
+        for s in sw:
+            keep &= ~((np.abs(q - s) < tol) & (side == 0))
+        q, side = q[keep], side[keep]
+        q = np.concatenate([q, sw, sw])
+        side = np.concatenate([side, -np.ones(sw.size), np.ones(sw.size)])
+        order = np.lexsort((side, q))
+        q, side = q[order], side[order]
+    return q, side
+
+
+# ------------------------------------------------------------------ array core
+@dataclass
+class CycleResult:
+    """The flywheel calculation on one grid (all arrays along the nodes q)."""
+    q: np.ndarray                  # rad
+    work: fw.CycleWork
+    J_links: dict[str, np.ndarray]
+    J_extra: float
+    J_red: np.ndarray              # total reduced inertia of the machine without flywheel
+    J_const: float
+    J_var: np.ndarray
+    dJ_var: np.ndarray             # dJ_var/dq
+    const_links: list[str]
+    omega_m: float
+    delta: float
+    method: str
+    J_n: dict[str, float]          # per method (+ 'wittenbauer')
+    a: float
+    b: float
+    a_w: float
+    b_w: float
+    dT_I: np.ndarray
+    T_II: np.ndarray
+    J_fly: dict[str, float]        # J_n - J_const per method
+    J: float                       # chosen flywheel (>= 0)
+    motion: fw.Motion
+    epsilon: np.ndarray            # d|omega|/dt along the motion, rad/s^2
+    M_by_kind: dict[str, np.ndarray]
+    warnings: list[str]
+    J_var_min: float = 0.0         # extremes of J_var over the cycle (nodes and the located
+    J_var_max: float = 0.0         # extrema between them)
+
+    @property
+    def J_n_primary(self) -> float:
+        return self.J_n[self.method]
+
+    @property
+    def J_total(self) -> np.ndarray:
+        """Reduced inertia of the machine with the chosen flywheel."""
+        return self.J_const + self.J + self.J_var
+
+
+def _dq_numeric(q: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """dy/dq by finite differences on the distinct nodes (fallback without d2/a2)."""
+    uq, first = np.unique(q, return_index=True)
+    if uq.size < 3:
+        return np.zeros_like(y)
+    # periodic central differences: the cycle closes (y[last] == y[first])
+    yu = y[first]
+    h = np.diff(uq)
+    d = np.empty_like(yu)
+    d[1:-1] = ((yu[2:] - yu[1:-1]) / h[1:] * h[:-1] + (yu[1:-1] - yu[:-2]) / h[:-1] * h[1:]) \
+        / (h[:-1] + h[1:])
+    end = ((yu[1] - yu[0]) / h[0] * h[-1] + (yu[-1] - yu[-2]) / h[-1] * h[0]) / (h[0] + h[-1])
+    d[0] = d[-1] = end
+    return np.interp(q, uq, d)
+
+
+def _extrema_between_nodes(q, dT, M_red, J_var, dJ_var, omega_m, delta) -> np.ndarray:
+    """Crank angles (rad) between the nodes where the energy functions of the methods,
+    dT - J_var omega^2/2 at omega_max, omega_min and omega_m, have their maxima and minima
+    (Hermite critical points, see `flywheel.hermite_critical`)."""
+    out = []
+    for w in (omega_m * (1 + delta / 2), omega_m * (1 - delta / 2), omega_m):
+        c = w * w / 2
+        out.append(fw.hermite_critical(q, dT - J_var * c, M_red - dJ_var * c))
+        if not np.any(J_var):
+            break
+    return np.unique(np.concatenate(out))
+
+
+def solve_cycle(q: np.ndarray, M_given: np.ndarray, J_links: dict[str, np.ndarray] | np.ndarray,
+                *, omega_m: float, delta: float, constant: str = "driving",
+                method: str = "energy-mass", J_extra: float = 0.0,
+                dJ_links: dict[str, np.ndarray | None] | None = None,
+                M_by_kind: dict[str, np.ndarray] | None = None,
+                const_tol: float = 1e-9, increments: np.ndarray | None = None,
+                refine: bool = True, polish: Callable | None = None) -> CycleResult:
+    """The whole flywheel calculation on arrays.
+
+    q: nodes (rad) from 0 to the cycle, non-decreasing (duplicates at jumps);
+    M_given: reduced moment of the given loads along the motion (N,);
+    J_links: reduced inertia per link (dict of (N,)) or one (N,) array (treated as one
+    link named 'mechanism'); J_extra: constant reduced inertia given in the task
+    (flywheel.reduced_J); dJ_links: d/dq of each link's J_red (else finite differences).
+    A link whose reduced inertia varies by less than const_tol of its maximum goes to
+    J_const (docs/methods.md §4: crank, rotor, gears), the rest to J_var.
+    increments: the integrals of M_given over every interval of q (else the trapezoid);
+    refine: locate the extrema of the energy functions between the nodes (critical points
+    of their cubic Hermite interpolants with the exact slopes M_red - J_var' omega^2/2)
+    and include them in the maxima and minima of every method (the hand calculation:
+    False, the extrema at the nodes); polish(points, work, const_links) -> (dT, J_var)
+    evaluates these two exactly at the located points (else: the Hermite interpolants).
+    """
+    if method not in FLYWHEEL_METHODS:
+        raise StageError(STAGE, f"unknown method {method!r}")
+    q = np.asarray(q, float)
+    if isinstance(J_links, np.ndarray) or not isinstance(J_links, dict):
+        J_links = {"mechanism": np.broadcast_to(np.asarray(J_links, float), q.shape).copy()}
+    warnings: list[str] = []
+    work = fw.cycle_work(q, M_given, constant, increments)
+    n = q.size
+    J_const = float(J_extra)
+    J_var = np.zeros(n)
+    dJ_var = np.zeros(n)
+    const_links: list[str] = []
+    numeric = []
+    for name, arr in J_links.items():
+        arr = np.broadcast_to(np.asarray(arr, float), (n,))
+        if not np.all(np.isfinite(arr)):
+            raise StageError(STAGE, f"reduced moment of inertia of '{name}' is not finite")
+        if float(np.min(arr)) < 0:
+            raise StageError(STAGE, f"reduced moment of inertia of '{name}' is negative")
+        top = float(np.max(arr))
+        if float(np.ptp(arr)) <= const_tol * top:
+            const_links.append(name)
+            J_const += float(np.mean(arr))
+            continue
+        J_var = J_var + arr
+        d = None if dJ_links is None else dJ_links.get(name)
+        if d is None:
+            numeric.append(name)
+            d = _dq_numeric(q, arr)
+        dJ_var = dJ_var + np.broadcast_to(np.asarray(d, float), (n,))
+    J_red = J_const + J_var
+
+    dTx, Jx = work.dT, J_var
+    if refine:
+        ext = _extrema_between_nodes(q, work.dT, work.M_red, J_var, dJ_var, omega_m, delta)
+        if ext.size:
+            if polish is not None:
+                dTe, Je = polish(ext, work, const_links)
+            else:
+                dTe, Je = fw.hermite_at(q, work.dT, work.M_red, ext), fw.hermite_at(q, J_var, dJ_var, ext)
+            dTx = np.concatenate([work.dT, dTe])
+            Jx = np.concatenate([J_var, Je])
+    Jn_em, a, b = fw.energy_mass(dTx, Jx, omega_m, delta)
+    Jn_w, a_w, b_w = fw.wittenbauer(dTx, Jx, omega_m, delta)
+    Jn_m, dT_I, T_II = fw.merzalov(dTx, Jx, omega_m, delta)
+    dT_I, T_II = dT_I[:n], T_II[:n]
+    Jn_ex = fw.exact_flywheel(dTx, Jx, omega_m, delta, guess=Jn_em)
+    J_n = {"energy-mass": Jn_em, "merzalov": Jn_m, "exact": Jn_ex, "wittenbauer": Jn_w}
+    J_fly = {k: v - J_const for k, v in J_n.items()}
+    primary = J_fly[method]
+    scale = max(J_const, float(np.max(J_red)), abs(J_n[method]), 1e-300)
+    if primary < 0:
+        J = 0.0
+        if primary < -1e-12 * scale:
+            warnings.append(Message("flywheel.not_needed_exceeds", J_const=J_const, J_needed=J_n[method],
+                                    delta=delta, method=method))
+    else:
+        J = float(primary)
+        if primary <= 1e-12 * scale:
+            J = 0.0
+            if float(np.ptp(work.dT)) == 0.0 and float(np.ptp(J_var)) == 0.0:
+                warnings.append(Message("flywheel.not_needed_no_work"))
+            else:
+                warnings.append(Message("flywheel.not_needed_equal", J_const=J_const, J_needed=J_n[method],
+                                        delta=delta, method=method))
+    motion = fw.steady_motion(dTx, Jx, J_const + J, omega_m)
+    motion = replace(motion, omega=motion.omega[:n])
+    J_tot = J_const + J + J_var
+    num = work.M_red - dJ_var * motion.omega**2 / 2
+    eps = np.divide(num, J_tot, out=np.zeros_like(num), where=J_tot > 0)
+    if not np.all(np.isfinite(eps)):
+        raise StageError(STAGE, "angular acceleration of the crank is not finite")
+
+    span_w = max(float(np.max(np.abs(work.A_d))), float(np.max(np.abs(work.A_c))), 1e-300)
+    if constant == "driving" and work.M_constant < -1e-12 * span_w:
+        warnings.append(Message("flywheel.net_positive_work", M=work.M_constant))
+    if constant == "resistance" and work.M_constant > 1e-12 * span_w:
+        warnings.append(Message("flywheel.net_negative_work", M=-work.M_constant))
+    return CycleResult(q=q, work=work, J_links=dict(J_links), J_extra=float(J_extra), J_red=J_red,
+                       J_const=J_const, J_var=J_var, dJ_var=dJ_var, const_links=const_links,
+                       omega_m=float(omega_m), delta=float(delta), method=method, J_n=J_n,
+                       a=a, b=b, a_w=a_w, b_w=b_w, dT_I=dT_I, T_II=T_II, J_fly=J_fly, J=J,
+                       motion=motion, epsilon=eps, M_by_kind=dict(M_by_kind or {}),
+                       warnings=warnings, J_var_min=float(np.min(Jx)), J_var_max=float(np.max(Jx)))
+
+
+# ------------------------------------------------------------------ the grid through a sampler
+def _split(s: Sample, n: int) -> tuple[Sample, Sample]:
+    """A Sample over n + m angles as (the first n, the other m)."""
+    def cut(a, sl):
+        return None if a is None else np.asarray(a)[sl]
+
+    def part(sl):
+        return Sample(M_by_kind={k: cut(v, sl) for k, v in s.M_by_kind.items()},
+                      M_given=cut(s.M_given, sl),
+                      J_links={k: cut(v, sl) for k, v in s.J_links.items()},
+                      dJ_links={k: cut(v, sl) for k, v in (s.dJ_links or {}).items()},
+                      J_links_total=cut(s.J_links_total, sl), dJ_total=cut(s.dJ_total, sl))
+    return part(slice(0, n)), part(slice(n, None))
+
+
+def run_grid(sampler: Sampler, section, omega_m: float, cycle: float, resolution: int,
+              switch_q, insert: bool = True, gauss: int | None = None
+              ) -> tuple[CycleResult, np.ndarray, np.ndarray]:
+    """The flywheel on the grid.  gauss: Gauss-Legendre points per interval for the works
+    (default: the section's `quadrature`; 0: the trapezoid on the nodes and the extrema
+    at the nodes, as by hand; insert=False implies 0)."""
+    q_deg, side = grid(resolution, cycle, switch_q, insert)
+    n_g = int(section.quadrature) if gauss is None else int(gauss)
+    if not insert:
+        n_g = 0
+    inc = None
+    if n_g > 0:
+        xg = fw.gauss_points(q_deg, n_g).ravel()
+        s, sg = _split(sampler(np.concatenate([q_deg, xg]),
+                               np.concatenate([side, np.zeros(xg.size)])), q_deg.size)
+        inc = fw.gauss_increments(np.deg2rad(q_deg), sg.M_given, n_g)
+    else:
+        s = sampler(q_deg, side)
+    qr = np.deg2rad(q_deg)
+
+    def polish(ext, work, const_links):
+        """dT and J_var exactly at the located extrema (rad): the sampler there and the
+        Gauss rule from the interval's left node."""
+        i = np.clip(np.searchsorted(qr, ext, side="right") - 1, 0, qr.size - 2)
+        xg = (q_deg[i][:, None] + (np.rad2deg(ext) - q_deg[i])[:, None] * fw.gauss_legendre(n_g)[0])
+        se, sg2 = _split(sampler(np.concatenate([np.rad2deg(ext), xg.ravel()]),
+                                 np.zeros(ext.size * (1 + n_g))), ext.size)
+        h = ext - qr[i]
+        dT = work.dT[i] + h * (sg2.M_given.reshape(-1, n_g) @ fw.gauss_legendre(n_g)[1]) \
+            + work.M_constant * h
+        Jv = np.zeros(ext.size)
+        for k, v in se.J_links.items():
+            if k not in const_links:
+                Jv = Jv + v
+        return dT, Jv
+
+    res = solve_cycle(qr, s.M_given, s.J_links, omega_m=omega_m,
+                      delta=float(section.delta), constant=section.constant,
+                      method=section.method, J_extra=float(section.reduced_J),
+                      dJ_links=s.dJ_links, M_by_kind=s.M_by_kind, increments=inc,
+                      refine=n_g > 0, polish=polish if n_g > 0 else None)
+    return res, q_deg, side
+
+
+def mechanism_sampler(mech, kin_fn, loads_fn, *, phi0: float, sign: float) -> Sampler:
+    """Sampler over a mechanism: kin_fn(phi_deg array) -> KinematicsResult at the absolute
+    crank angles phi0 + sign*(q + side*EPS_DEG) (unwrapped: they run monotonically over
+    the cycle and may leave [0, 360), beyond 360 deg for a 720-deg cycle), and
+    loads_fn(kin) -> Loads (external loads, no inertia)."""
+    def sampler(q_deg, side):
+        q_deg = np.asarray(q_deg, float)
+        phi = phi0 + sign * (q_deg + np.asarray(side, float) * EPS_DEG)
+        kin = kin_fn(phi)
+        loads = loads_fn(kin)
+        return sample_mech(mech, kin, loads, sign)
+    return sampler

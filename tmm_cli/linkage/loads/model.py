@@ -1,0 +1,53 @@
+"""The loads on the links: applied forces and couples per position (the data)."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+G = 9.81
+
+
+# ------------------------------------------------------------------ data
+@dataclass
+class AppliedForce:
+    link: int
+    name: str
+    point: np.ndarray          # (N, 2) position of the point of application
+    F: np.ndarray              # (N, 2)
+    kind: str                  # resistance | driving | load | gravity | inertia | friction
+    local: tuple[float, float] | None = None   # point in the link's local frame (if fixed on it)
+    point_name: str | None = None
+
+
+@dataclass
+class AppliedCouple:
+    link: int
+    name: str
+    M: np.ndarray              # (N,) ccw positive
+    kind: str
+
+
+@dataclass
+class Loads:
+    phi: np.ndarray
+    forces: list[AppliedForce] = field(default_factory=list)
+    couples: list[AppliedCouple] = field(default_factory=list)
+    info: list[dict] = field(default_factory=list)     # task loads: diagram values per position
+
+    def external(self) -> "Loads":
+        """The loads without the inertia loads."""
+        return Loads(self.phi, [f for f in self.forces if f.kind != "inertia"],
+                     [c for c in self.couples if c.kind != "inertia"], self.info)
+
+    def select(self, rows) -> "Loads":
+        """The loads at the positions ``rows`` only."""
+        rows = np.asarray(rows, dtype=int)
+        return Loads(np.asarray(self.phi)[rows],
+                     [replace(f, point=f.point[rows], F=f.F[rows]) for f in self.forces],
+                     [replace(c, M=c.M[rows]) for c in self.couples],
+                     [{k: (np.asarray(v)[rows] if isinstance(v, np.ndarray) else v) for k, v in d.items()}
+                      for d in self.info])
+
+    def __len__(self) -> int:
+        return len(self.phi)

@@ -1,0 +1,63 @@
+"""The stroke a load follows: the output's, or a loaded slider's own (docs/methods.md §3.3),
+and the stroke state (working / idle, s/H) at crank angles."""
+from __future__ import annotations
+
+import numpy as np
+
+from ...errors import field_error
+
+
+def stroke_states(positions, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(working: bool (N,), s/H (N,)) from ``positions.stroke_state`` (scalar or vector)."""
+    phi = np.asarray(phi, float)
+    try:
+        st, s = positions.stroke_state(phi)
+        st_arr = np.asarray(st)
+        s_arr = np.asarray(s, float)
+        if st_arr.shape == phi.shape and s_arr.shape == phi.shape:
+            return st_arr == "working", s_arr
+    except (TypeError, ValueError):
+        pass
+    work = np.zeros(phi.shape, bool)
+    s = np.zeros(phi.shape)
+    for k, p in enumerate(phi.ravel()):
+        stk, sk = positions.stroke_state(float(p))
+        work.ravel()[k] = stk == "working"
+        s.ravel()[k] = float(sk)
+    return work, s
+
+
+def stroke_dependent(sp) -> bool:
+    """A load that depends on a stroke: a `kind` or a `stroke`, and not a phi diagram."""
+    return ((sp.kind is not None or "stroke" in sp.model_fields_set)
+            and not (sp.diagram is not None and sp.diagram.phi is not None))
+
+
+def load_stroke(positions, lk, sp, k: int):
+    """The stroke a stroke-dependent load follows (docs/methods.md §3.3): a slider's own
+    (its extremes, stroke H and working sense: the load's `working`, default
+    positions.working, along its own guide: ``positions.stroke_for``); for a bar, the
+    output's (``positions`` itself)."""
+    working = sp.working
+    if lk.kind != "slider":
+        if working is not None:
+            raise field_error(f"loads.forces[{k}].working", f"`working` sets the stroke of a slider; "
+                                                            f"'{lk.name}' is not a slider")
+        return positions
+    return positions.stroke_for(lk.name, working)
+
+
+def slider_strokes(mech, loads_section, positions) -> dict:
+    """The own strokes of the loaded sliders other than the output (name -> Stroke; a
+    slider loaded in both senses: 'name (forward)' and 'name (backward)'), for the results."""
+    found = []
+    for k, sp in enumerate(loads_section.forces):
+        lk = mech.link(sp.on)
+        if not (stroke_dependent(sp) and lk.kind == "slider"):
+            continue
+        st = load_stroke(positions, lk, sp, k)
+        if (st.link, st.working) != (positions.output, positions.working) and \
+                all((s.link, s.working) != (st.link, st.working) for s in found):
+            found.append(st)
+    names = [s.link for s in found]
+    return {(s.link if names.count(s.link) == 1 else f"{s.link} ({s.working})"): s for s in found}

@@ -1,0 +1,48 @@
+"""The base of the task model's sections (tmm_cli/task.py, tmm_cli/trainspec.py,
+tmm_cli/dof2/spec.py): unknown keys are errors with a "did you mean", and a model-level
+error can name its field.  Kept apart from task.py so that the section modules and the
+task model import it without importing each other."""
+from __future__ import annotations
+
+import difflib
+from typing import Any
+
+from pydantic import BaseModel, ConfigDict, model_validator
+
+PLANETARY_SCHEMES = ("A", "B", "C", "D")
+PLANETARY_ALIASES = {"a": "A", "b": "B", "c": "C", "d": "D", "single": "A", "james": "A"}
+
+
+class FieldValueError(ValueError):
+    """A model-level validation error that belongs to a field (a section missing or
+    inconsistent with another): ``field`` is the path, relative to the model, that the
+    message should point at (so the message names a field and its line)."""
+
+    def __init__(self, field: tuple, message: str):
+        super().__init__(message)
+        self.field = tuple(field)
+
+
+class _Model(BaseModel):
+    """Base: unknown keys are errors with a suggestion."""
+
+    # allow_inf_nan=False: a plain float field rejects .inf, .nan, 'inf' and '1e400'
+    model_config = ConfigDict(extra="forbid", populate_by_name=True, frozen=False, allow_inf_nan=False,
+                              defer_build=True)
+
+    @model_validator(mode="before")
+    @classmethod
+    def _unknown_keys(cls, data: Any) -> Any:
+        if isinstance(data, dict):
+            allowed: list[str] = []
+            for name, f in cls.model_fields.items():
+                allowed.append(f.alias or name)
+            for key in data:
+                if not isinstance(key, str):
+                    raise ValueError(f"unknown key '{key}' (keys are names; "
+                                     f"allowed: {', '.join(allowed)})")
+                if key not in allowed:
+                    close = difflib.get_close_matches(key, allowed, n=1, cutoff=0.6)
+                    hint = f"; did you mean '{close[0]}'?" if close else f"; allowed: {', '.join(allowed)}"
+                    raise ValueError(f"unknown key '{key}'{hint}")
+        return data
