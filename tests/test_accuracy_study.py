@@ -118,22 +118,27 @@ def test_study_json_shape_and_orders(tmp_path):
     from tmm_cli import study
     task = tmm_cli.load_task("tasks/engine_slider_crank.yaml")
     st, trap = study.run_study(task, repeat=1)
-    assert set(st) == {"curves", "flywheel"}
+    assert set(st) == {"curves", "flywheel", "kinetostatics"}
     for stage, d in st.items():
-        assert set(d) == {"setting", "reference", "rows", "order"}
+        assert {"setting", "reference", "rows", "order", "theory"} <= set(d)
         assert "setting" in d["reference"]
+        chk = d["reference"]["check"]            # the reference is itself checked
+        assert chk["difference"] is not None and chk["setting"] is not None
         for r in d["rows"]:
             assert {"setting", "error", "time_ms"} <= set(r) and r["time_ms"] >= 0
-            vals = set(r) - {"setting", "error", "time_ms"}
-            assert vals == set(d["reference"]) - {"setting"}
     fly = st["flywheel"]
-    assert fly["setting"] == "resolution"
+    assert fly["setting"] == "resolution" and fly["theory"] == 4
+    assert set(fly["rows"][0]) - {"setting", "error", "time_ms"} == \
+        set(fly["reference"]) - {"setting", "check", "converged"}
     # Gauss-Legendre 2 points: order 4 (the coarse rows are pre-asymptotic); trapezoid 2
     assert 2.5 <= fly["order"] <= 5.0
     assert trap["flywheel"]["order"] < fly["order"]
-    # the default (360) within 1e-6 of the converged reference
-    assert next(r for r in fly["rows"] if r["setting"] == 360)["error"] <= 1e-6
-    assert 1.5 <= st["curves"]["order"] <= 3.0
+    # the task's setting (720 over this engine's 720-deg cycle) within 1e-6 of the reference
+    assert next(r for r in fly["rows"] if r["setting"] == 720)["error"] <= 1e-6
+    # linear interpolation of the diagrams: order 2 (the theoretical one)
+    for stage in ("curves", "kinetostatics"):
+        assert st[stage]["theory"] == 2
+        assert st[stage]["order"] == pytest.approx(2.0, abs=0.25), stage
     paths = study.write(st, tmp_path, trap)
     assert json.loads((tmp_path / "study.json").read_text()) == json.loads(json.dumps(st))
     html = (tmp_path / "study.html").read_text()

@@ -68,6 +68,15 @@ def test_csv_text_header_and_rows_neutralised():
     assert rows == [["'=a", "b"], ["'@x", "-1.0"], ["1", "'+y"]]
 
 
+def test_csv_text_floats_written_as_safe_cell_writes_them():
+    """Finite floats skip safe_cell (the fast path of long tables): the same text."""
+    vals = [1.0, -0.1, 1e-20, -2.5e300, 1e308, 0.30000000000000004, float("nan"), float("inf"),
+            -float("inf"), None, True, 3, "-x", "a,b"]
+    rows = list(csv.reader(csv_text(["h"] * len(vals), [vals]).splitlines()))
+    assert rows[1] == ["1.0", "-0.1", "1e-20", "-2.5e+300", "1e+308", "0.30000000000000004", "", "", "",
+                       "", "true", "3", "'-x", "a,b"]
+
+
 # ------------------------------------------------------------------ grading (hand values)
 def test_compare_relative_absolute_angles_and_sign():
     # |9.1 - 10| / 10 = 0.09 within 0.1

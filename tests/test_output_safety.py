@@ -44,7 +44,7 @@ def test_output_folder_itself_may_be_a_link(tmp_path):
     link.symlink_to(real, target_is_directory=True)
     res = _run(link)
     assert res.exit_code == 0, res.output
-    assert (real / "report.html").is_file() and (real / "figures" / "fig-01.svg").is_file()
+    assert (real / "report.html").is_file() and (real / "figures" / "gear-mesh.svg").is_file()
 
 
 def test_inside_refuses_leaving_the_folder(tmp_path):

@@ -19,12 +19,40 @@ def test_figures_beside_the_report(tmp_path):
     written = render(res, task, tmp_path, {"html"}, "en")
     html = (tmp_path / "report.html").read_text(encoding="utf-8")
     n_fig = len(re.findall(r"<figure\b", html))
-    files = sorted((tmp_path / "figures").glob("fig-*.svg"))
+    files = sorted((tmp_path / "figures").glob("*.svg"))
     assert n_fig > 0 and len(files) == n_fig
     for f in files:
         doc = xml.dom.minidom.parse(str(f))
         assert doc.documentElement.tagName == "svg"
         assert f in written
     rows = list(csv.DictReader((tmp_path / "figures" / "index.csv").open(encoding="utf-8")))
-    assert [r["file"] for r in rows] == [f"figures/{f.name}" for f in files]
+    assert sorted(r["file"] for r in rows) == [f"figures/{f.name}" for f in files]
+    # named by content, each with its caption
+    assert {r["file"] for r in rows} == {"figures/cam-motion-law.svg", "figures/cam-construction.svg",
+                                         "figures/cam-profile.svg", "figures/cam-pressure-angle.svg"}
+    assert all(r["caption"] for r in rows)
     assert not list(tmp_path.rglob("*.tmp"))
+
+
+def test_figure_files_named_by_content_and_position_with_captions_in_the_report_language(tmp_path):
+    """A linkage in Ukrainian: the plans and Zhukovsky's lever of every position, the groups,
+    the positions, each file listed in index.csv with a caption in Ukrainian."""
+    task = tmm_cli.load_task(ROOT / "tasks" / "crank_rocker_fourbar.yaml")
+    res = tmm_cli.run(task)
+    render(res, task, tmp_path, {"html"}, "uk")
+    rows = list(csv.DictReader((tmp_path / "figures" / "index.csv").open(encoding="utf-8")))
+    files = {r["file"] for r in rows}
+    html = (tmp_path / "report.html").read_text(encoding="utf-8")
+    assert len(rows) == len(re.findall(r"<figure\b", html)) == len(files)
+    idx = [e["index"] for e in res["kinetostatics"]]
+    for i in idx:
+        for kind in ("plans", "groups", "lever"):
+            assert f"figures/{kind}-pos{i:02d}.svg" in files
+    assert {"figures/scheme.svg", "figures/positions.svg"} <= files
+    assert not any(re.search(r"/fig-\d+", f) for f in files)
+    for r in rows:
+        assert r["caption"] and (tmp_path / r["file"]).is_file()
+        assert re.search("[а-яіїєґ]", r["caption"], re.I), r      # in Ukrainian
+        assert "data-name" not in (tmp_path / r["file"]).read_text(encoding="utf-8")
+    plans = next(r for r in rows if r["file"] == f"figures/plans-pos{idx[2]:02d}.svg")
+    assert plans["caption"].startswith(f"Положення {idx[2]},")

@@ -45,6 +45,10 @@ def expected_forces(r, e, group_names):
     return out
 
 
+def _mantissa(mu):
+    return round(mu / 10 ** math.floor(math.log10(mu) + 1e-12), 9)
+
+
 def test_polygons_close_and_match_the_results(case):
     task, r, kst, ctx = case
     info = r["kinetostatics_info"]
@@ -53,8 +57,9 @@ def test_polygons_close_and_match_the_results(case):
     checked = 0
     for e in r["kinetostatics"]:
         figs, drawn = kst.position_figures(ctx, e, kin[e["index"]], info, links, "A", None)
-        assert len(figs) == 1 and len(drawn) == len(info["groups"])
-        for d in drawn:
+        assert len(figs) in (1, 2) and len(drawn) == len(info["groups"]) + 1
+        assert _mantissa(drawn[-1]["lever"]) in (1, 2, 2.5, 4, 5)
+        for d in drawn[:-1]:
             exp = expected_forces(r, e, set(d["group"]))
             Fmax = max(np.hypot(*F) for _, F in exp)
             exp = {n: F for n, F in exp if np.hypot(*F) > 1e-9 * Fmax}
@@ -68,9 +73,13 @@ def test_polygons_close_and_match_the_results(case):
             assert np.hypot(*(T[-1] - T[0])) < 0.01
             # ... while being drawn large: its extent is at least a quarter of the panel (~60 mm)
             assert np.ptp(T, axis=0).max() > 15.0
-            # mu_F is a nice number: 1, 1.5, 2, 2.5, 3, 4, 5, 6, 8 x 10^k N/mm
-            mant = mu / 10 ** math.floor(math.log10(mu) + 1e-12)
-            assert min(abs(mant - s) for s in (1, 1.5, 2, 2.5, 3, 4, 5, 6, 8, 10)) < 1e-9
+            # mu_F from the standard series 1, 2, 2.5, 4, 5 x 10^k N/mm; mu_l a ГОСТ 2.302 scale
+            assert _mantissa(mu) in (1, 2, 2.5, 4, 5)
+            from tmm_cli.report.figures import GOST_ENLARGEMENTS, GOST_REDUCTIONS
+            unit = d["mu_l"] * 1000.0                  # model mm per paper mm
+            assert any(abs(unit - n) < 1e-9 * n for n in GOST_REDUCTIONS) or any(
+                abs(unit - 1 / n) < 1e-9 for n in GOST_ENLARGEMENTS) or (
+                unit > GOST_REDUCTIONS[-1] and _mantissa(unit) in (1, 2, 2.5, 4, 5))
             checked += 1
     assert checked >= 12 * len(info["groups"])
 
@@ -84,7 +93,7 @@ def test_drawings_name_the_forces_as_the_course(case):
     e = r["kinetostatics"][3]
     kin_e = next(k for k in r["kinematics"] if k["index"] == e["index"])
     figs, _ = kst.position_figures(ctx, e, kin_e, info, links, "A", None)
-    svg = str(figs[0])
+    svg = "".join(str(f) for f in figs)
     labels = {re.sub(r"<[^>]+>", "", m) for m in re.findall(r"<text[^>]*>(.*?)</text>", svg, re.S)}
     idx = {l["name"]: l["index"] for l in r["structure"]["links"]}
     group_of = {idx[n]: k for k, g in enumerate(info["groups"]) for n in g}

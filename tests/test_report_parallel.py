@@ -1,5 +1,5 @@
 """render() splits the work over two processes (a forked helper builds the kinetostatics
-section and paints the PDF); the report must not depend on it: the same HTML and CSV
+section and compiles the PDF); the report must not depend on it: the same HTML and CSV
 files with the helper, without it (TMM_REPORT_JOBS=1) and when the helper fails."""
 from __future__ import annotations
 
@@ -50,3 +50,30 @@ def test_helper_failure_falls_back(tmp_path, shaper, monkeypatch):
     monkeypatch.setattr(R, "_helper", broken)
     h, files = _render(tmp_path, task, r, "fail")
     assert 'id="kinetostatics"' in h and "kinetostatics.csv" in files
+
+
+def test_pdf_in_a_process_that_already_used_typst(tmp_path):
+    """Typst runs thread pools: a helper forked after the process compiled a PDF would wait
+    for ever inside Typst.  render() then compiles the PDF itself; both reports are written
+    (in a subprocess with a time limit, so that a hang fails instead of blocking)."""
+    pytest.importorskip("typst")
+    import subprocess
+    import sys
+    code = (
+        "import sys, tmm_cli, tmm_cli.report as R\n"
+        "from pathlib import Path\n"
+        f"task = tmm_cli.load_task(Path({str(ROOT / 'tasks' / 'engine_slider_crank.yaml')!r}))\n"
+        "r = tmm_cli.run(task, kinematics_curve=0)\n"
+        "out = Path(sys.argv[1])\n"
+        "R.render(r, task, out / '0', {'html', 'pdf'}, 'en')\n"
+        "print('typst' in sys.modules)\n"
+        "from tmm_cli.report.typst_pdf import pdf_bytes\n"
+        "pdf_bytes('<html><body><p>x</p></body></html>')\n"
+        "R.render(r, task, out / '1', {'html', 'pdf'}, 'en')\n")
+    p = subprocess.run([sys.executable, "-c", code, str(tmp_path)], capture_output=True, text=True,
+                       timeout=240, cwd=ROOT)
+    assert p.returncode == 0, p.stderr[-2000:]
+    assert p.stdout.strip() == "False"         # the first PDF was compiled by the helper
+    for k in ("0", "1"):
+        data = (tmp_path / k / "report.pdf").read_bytes()
+        assert data.startswith(b"%PDF-") and len(data) > 10_000

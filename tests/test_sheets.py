@@ -73,7 +73,7 @@ def test_dxf_rereads_with_layers_and_counts(forging, tmp_path, k):
     assert all(t.dxf.layer == "text" for t in texts)
     assert any("Вариант 7" == t.dxf.text for t in texts)
     layers = {e.dxf.layer for e in doc.modelspace()}
-    assert layers == {"contour", "thin", "dimensions", "text"}
+    assert layers == {"contour", "thin", "dimensions", "text"} if k == 0 else {"contour", "thin", "text"}
 
 
 def test_primitive_kinds_each_written():
@@ -153,7 +153,7 @@ def test_sheet_texts_in_every_language():
     Russian-only letter (ы, э, ъ, ё)."""
     import importlib
     for name, attr in (("", "SHEETS"), (".frame", "TB_TEXT"), (".sheet1", "TXT"), (".sheet1", "UNITS"),
-                       (".sheet3", "TXT"), (".sheet4", "TXT"), (".sheet5", "TXT")):
+                       (".sheet2", "TXT"), (".sheet3", "TXT"), (".sheet4", "TXT"), (".sheet5", "TXT")):
         table = getattr(importlib.import_module("tmm_cli.sheets" + name), attr)
         for lang in ("ru", "uk"):
             assert set(table["en"]) == set(table[lang]), (name, attr, lang)
@@ -206,7 +206,7 @@ def test_dynamics_sheet(forging):
     dyn = [info for _, info in sheets["en"] if info["number"] == 3]
     assert len(dyn) == 1
     info = dyn[0]
-    assert info["title_block"]["sheet"] == 2 and info["title_block"]["sheets"] == 2
+    assert info["title_block"]["sheet"] == 3 and info["title_block"]["sheets"] == 3
     for sym, g in info["graphs"].items():
         assert _mantissa_ok(g["mu"])
         for pts, vals in zip(g["pts"], g["values"]):
@@ -287,3 +287,76 @@ def test_gear_sheet(name, tmp_path):
     doc = ezdxf.readfile(write_sheets([(cv, info)], tmp_path, {"dxf"})[0])
     assert not doc.audit().has_errors
     assert len(doc.modelspace().query("CIRCLE[layer=='thin']")) == 10
+
+
+def _gost_length(mu_l: float) -> bool:
+    from tmm_cli.report.figures import GOST_ENLARGEMENTS, GOST_REDUCTIONS
+    unit = mu_l * 1000.0
+    return any(abs(unit - n) < 1e-9 * n for n in GOST_REDUCTIONS) or any(
+        abs(unit - 1 / n) < 1e-12 for n in GOST_ENLARGEMENTS)
+
+
+@pytest.mark.parametrize("lang", ["en", "ru", "uk"])
+def test_kinetostatics_sheet(forging, lang, tmp_path):
+    """Sheet 2: every group's polygon is its forces from results.json head to tail, each
+    |F| / μF mm long, closing; scales standard; DXF re-reads with the counts drawn."""
+    import ezdxf
+    import numpy as np
+    from tmm_cli.sheets import write_sheets
+    from tmm_cli.sheets.frame import TB_H, TB_W
+    from tmm_cli.sheets.sheet1 import course_positions
+    res, sheets = forging
+    cv, info = next((c, i) for c, i in sheets[lang] if i["number"] == 2)
+    assert info["title_block"]["sheet"] == 2
+    # the positions of the plans on sheet 1: the most loaded one and the first one
+    kst = res["kinetostatics"]
+    loaded = max(kst, key=lambda k: abs(k["balancing_moment"]))["index"]
+    assert list(info["positions"]) == course_positions(res) == [loaded, kst[0]["index"]]
+    info_k = res["kinetostatics_info"]
+    idx = {l["name"]: l["index"] for l in res["structure"]["links"]}
+    for i, p in info["positions"].items():
+        e = next(k for k in kst if k["index"] == i)
+        assert len(p["groups"]) == len(info_k["groups"])
+        for d in p["groups"]:
+            g = {idx[n] for n in d["group"]}
+            # the forces on the group, read from results.json here: its loads and the reactions
+            # of the pairs joining it to the rest (R_ij on j; R_ji = -R_ij)
+            want = {f["name"]: np.array(f["F"]) for f in e["loads"] if idx[f["link"]] in g}
+            for j in info_k["joints"]:
+                a, b = j["a"], j["b"]
+                r = e["reactions"][j["key"]]
+                if b in g and a not in g:
+                    want[f"R{a}{b}"] = np.array([r["x"], r["y"]])
+                elif a in g and b not in g:
+                    want[f"R{b}{a}"] = -np.array([r["x"], r["y"]])
+            Fmax = max(np.hypot(*F) for F in want.values())
+            want = {n: F for n, F in want.items() if np.hypot(*F) > 1e-9 * Fmax}
+            assert {n for n, _, _ in d["vectors"]} == set(want)
+            T, mu = d["tips"], d["mu_F"]
+            assert _mantissa_ok(mu) and _gost_length(d["mu_l"])
+            for (name, _, _), seg in zip(d["vectors"], np.diff(T, axis=0)):
+                assert np.hypot(*seg) == pytest.approx(np.hypot(*want[name]) / mu, rel=1e-9)
+                assert np.allclose(seg * mu, want[name], atol=1e-9 * Fmax)
+            assert np.hypot(*(T[-1] - T[0])) < 0.01          # the polygon closes (mm)
+            assert np.ptp(T, axis=0).max() > 40.0             # and is drawn large
+        assert _mantissa_ok(p["mu_v"])
+        # the lever: at least 280 mm wide, clear of the title block
+        lx, ly, lw, lh = p["lever_box"]
+        assert lw >= 280.0 and lh > 150.0
+        assert ly >= FRAME[1] + TB_H or lx + lw <= FRAME[2] - TB_W
+    texts = {t.plain for t in cv.prims if isinstance(t, Text)}
+    from tmm_cli.report.context import fmt
+    for e in (k for k in kst if k["index"] in info["positions"]):
+        assert any(fmt(e["balancing_moment"], 5) in t for t in texts)
+    _check_texts([(cv, info)])
+    path = write_sheets([(cv, info)], tmp_path, {"dxf"})[0]
+    doc = ezdxf.readfile(path)
+    assert not doc.audit().has_errors
+    want = Counter()
+    for p in dxf_entities(cv):
+        kind = {Line: "LINE", Circle: "CIRCLE", Arc: "ARC", Text: "TEXT"}.get(type(p))
+        if kind is None:
+            kind = "SOLID" if p.fill and len(p.pts) in (3, 4) else "LWPOLYLINE"
+        want[kind] += 1
+    assert Counter(e.dxftype() for e in doc.modelspace()) == want
+    assert want["SOLID"] > 40 and want["TEXT"] > 100      # arrow heads; labels

@@ -160,11 +160,18 @@ def study_cmd(
     task_file: Path = typer.Argument(..., metavar="TASK.yaml", help="the task file"),
     out: Optional[Path] = typer.Option(None, "--out", "-o", help="output folder (default: out/<task name>/)"),
     repeat: int = typer.Option(3, "--repeat", help="timed repeats per row (the best is kept)", min=1, max=50),
+    lang: str = typer.Option("en", "--lang", "-l", help="language of study.html: en | ru | uk"),
 ):
     """Accuracy against computing time: for each stage present, sweep the setting that
-    trades time for accuracy (flywheel resolution, curve points, dof2 rtol, planetary
-    z_max); write study.json (errors against a converged reference, measured convergence
-    order, times) and study.html (tables and log-log plots)."""
+    trades time for accuracy (flywheel resolution, curve points, kinetostatic positions,
+    dof2 rtol, cam profile step, blocking-contour grid, planetary z_max); write study.json
+    (errors against a converged reference, measured and theoretical convergence order,
+    times) and study.html (tables and log-log plots).
+
+    Example: tmm study tasks/forging_sixbar.yaml --out out/forging --lang ru
+    """
+    if lang not in ("en", "ru", "uk"):
+        raise typer.BadParameter("--lang must be en, ru or uk")
     try:
         task = _load(task_file)
     except TaskError as exc:
@@ -173,7 +180,7 @@ def study_cmd(
     st, trap = _run_study(task, lambda s: _err(f"  {s}..."), repeat)
     from . import study as study_mod
     try:
-        paths = study_mod.write(st, out, trap)
+        paths = study_mod.write(st, out, trap, lang)
     except OSError as exc:
         raise _fail_write(exc)
     for p in paths:
@@ -188,6 +195,10 @@ def sheets(
     lang: str = typer.Option("en", "--lang", "-l", help="sheet language: en | ru | uk"),
 ):
     """The A1 drawing sheets (frame, ГОСТ 2.104 title block, standard scales) as PDF, SVG and DXF.
+
+    Sheets: 1 kinematics (mechanism, plans, s-v-a diagrams), 2 kinetostatics (groups, force
+    polygons, Zhukovsky's lever of one or two positions), 3 dynamics, 4 cam, 5 gear mesh;
+    only those the task has.
 
     Example: tmm sheets tasks/forging_sixbar.yaml --out out/forging --format pdf,dxf
     """

@@ -73,7 +73,7 @@ def write_outputs(task, results: dict, out: Path, formats: set[str], lang: str, 
         written.extend(render(shown, task, out, rep, lang, notes=notes))
     if study is not None:
         from . import study as study_mod
-        written.extend(study_mod.write(study[0], out, study[1]))
+        written.extend(study_mod.write(study[0], out, study[1], lang))
     if "sheets" in formats:   # the A1 drawing sheets (README, Drawing sheets)
         from .sheets import build_sheets, write_sheets
         written.extend(write_sheets(build_sheets(results, task, lang), out / "sheets", {"pdf", "svg", "dxf"}))

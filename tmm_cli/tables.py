@@ -43,8 +43,10 @@ def csv_text(header: list[str], rows) -> str:
     w = csv.writer(buf, lineterminator="\n")
     w.writerow([safe_cell(h) for h in header])
     for r in rows:
-        vals = [r.get(h) for h in header] if isinstance(r, dict) else list(r)
-        w.writerow([safe_cell(v) for v in vals])
+        vals = [r.get(h) for h in header] if isinstance(r, dict) else r
+        # a finite float (v - v == 0: not nan, not inf) goes to the writer as it is (it
+        # writes repr, as safe_cell does): the long per-position tables are nearly all floats
+        w.writerow([v if type(v) is float and v - v == 0 else safe_cell(v) for v in vals])
     return buf.getvalue()
 
 

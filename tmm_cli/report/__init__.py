@@ -2,9 +2,10 @@
 
 ``render(results, task, out_dir, formats, lang) -> list[Path]`` renders one
 Jinja HTML source (``templates/report.html.j2``) with inline CSS and inline
-SVG figures to a self-contained ``report.html`` and, with weasyprint, to
-``report.pdf``.  The report reads numbers only from ``results``; the task
-gives names and the task-data table.
+SVG figures to a self-contained ``report.html`` and, translated to Typst markup
+(``typst_pdf``) and compiled in-process by the ``typst`` package, to
+``report.pdf``.  The report reads numbers only from ``results``; the task gives
+names and the task-data table.
 
 How to add a section (e.g. for the stage ``cam``)
 -------------------------------------------------
@@ -128,58 +129,27 @@ def render_html(results: dict, task, out_dir: Path, lang: str = "en") -> tuple[s
 
 
 _H2 = re.compile(r"<h2\b[^>]*>(.*?)</h2>", re.S)
-_SVG = re.compile(r"<svg\b.*?</svg>", re.S)
-_W = re.compile(r'\bwidth="([0-9.]+)pt"')
-
-
-def _svg_as_images(html: str) -> str:
-    """For weasyprint: inline <svg> -> <img src="data:image/svg+xml;base64,...">.
-
-    Same picture, but the SVG nodes stay out of the HTML style cascade:
-    about twice as fast to lay out and paint."""
-    import base64
-
-    def repl(m):
-        s = m.group(0)
-        w = _W.search(s[:400])
-        style = f' style="width:{w.group(1)}pt"' if w else ""
-        data = base64.b64encode(s.encode("utf-8")).decode("ascii")
-        return f'<img class="fig"{style} alt="" src="data:image/svg+xml;base64,{data}">'
-
-    return _SVG.sub(repl, html)
 
 
 class PdfSkipped(Exception):
-    """The PDF engine cannot run on this machine (weasyprint or the system libraries
-    it loads, Pango and GObject, are missing): everything else is still written."""
+    """The PDF engine (the typst package) cannot run on this machine: everything else
+    is still written."""
 
 
-def _weasyprint():
-    """Import weasyprint; PdfSkipped with a one-line reason if it cannot be used."""
+def _pdf_bytes(html: str, lang: str = "en") -> bytes:
+    """report.pdf from the report's HTML, compiled by Typst (see typst_pdf)."""
+    from . import typst_pdf
     try:
-        import weasyprint
+        import typst  # noqa: F401
     except (ImportError, OSError) as exc:
         first = (str(exc).strip().splitlines() or [type(exc).__name__])[0]
-        if isinstance(exc, OSError):
-            hint = ("the PDF engine (weasyprint) cannot load the system libraries it needs: "
-                    f"{first}; install Pango (Debian/Ubuntu: apt-get install libpango-1.0-0 "
-                    "libpangoft2-1.0-0)")
-        else:
-            hint = f"the PDF engine (weasyprint) is not installed: {first}"
-        raise PdfSkipped(hint) from None
-    return weasyprint
-
-
-def _pdf_bytes(html: str, out_dir: Path) -> bytes:
-    import logging
-    weasyprint = _weasyprint()
-    for name in ("weasyprint", "fontTools"):
-        logging.getLogger(name).setLevel(logging.ERROR)
-    return weasyprint.HTML(string=_svg_as_images(html), base_url=str(out_dir)).write_pdf()
+        raise PdfSkipped(f"the PDF engine (typst) is not installed: {first}; "
+                         "install it with: pip install typst") from None
+    return typst_pdf.pdf_bytes(html, lang)
 
 
 # sections the helper process builds while the main process builds the others
-HELPER_SECTIONS = ("kinetostatics",)
+HELPER_SECTIONS = ("kinetostatics", "dynamics")
 
 
 PR_SET_PDEATHSIG = 1  # <linux/prctl.h>
@@ -219,8 +189,9 @@ def _recv_from(conn, parent_pid: int, poll: float = 0.5):
 
 
 def _helper(conn, results, task, out_dir, lang, names, pdf, parent_pid=None, parent_end=None):
-    """The second process: build `names`, send (fragments, written paths); import
-    weasyprint meanwhile idle, then receive the whole HTML and send the PDF bytes."""
+    """The second process: build `names`, send (fragments, written paths), then receive
+    the whole HTML and send the PDF bytes (compiled while the main process writes
+    report.html and the figure files)."""
     if parent_pid is not None:
         _die_with_parent(parent_pid, parent_end)
     try:
@@ -228,10 +199,9 @@ def _helper(conn, results, task, out_dir, lang, names, pdf, parent_pid=None, par
         frags = _build(ctx, names)
         conn.send(("frags", frags, [str(p) for p in ctx.written]))
         if pdf:
-            _weasyprint()  # the import overlaps the main process' work
             msg = _recv_from(conn, parent_pid) if parent_pid is not None else conn.recv()
             if msg is not None:
-                conn.send(("pdf", _pdf_bytes(msg, out_dir)))
+                conn.send(("pdf", _pdf_bytes(msg, lang)))
     except BaseException as exc:          # reported to the main process, which then works alone
         try:
             conn.send(("error", f"{type(exc).__name__}: {exc}"))
@@ -252,7 +222,8 @@ def _workers_wanted() -> bool:
     return (os.cpu_count() or 1) >= 2
 
 
-def _finish(ctx, proc, conn, formats, all_names, helper_names, out_dir, notes=None) -> list[Path]:
+def _finish(ctx, proc, conn, formats, all_names, helper_names, out_dir, notes=None,
+            helper_pdf=False) -> list[Path]:
     """Build the sections not given to the helper, assemble, write html/pdf."""
     want_pdf = "pdf" in formats
     frags = _build(ctx, [n for n in all_names if proc is None or n not in helper_names])
@@ -268,17 +239,22 @@ def _finish(ctx, proc, conn, formats, all_names, helper_names, out_dir, notes=No
             pass
         if not helper_ok:
             frags.update(_build(ctx, helper_names))
-    html = _assemble(ctx, frags)
-    _write_figures(ctx, html)
+    html = _write_figures(ctx, _assemble(ctx, frags))
+    sent = False
+    if want_pdf and helper_pdf and proc is not None and helper_ok:
+        try:
+            conn.send(html)            # the helper compiles the PDF meanwhile
+            sent = True
+        except OSError:
+            pass
     written = list(ctx.written)
     if "html" in formats:
         from . import explore   # the slider widget: report.html only, not the PDF
         written.append(ctx.write_file("report.html", explore.inject(ctx, html)))
     if want_pdf:
         pdf = None
-        if proc is not None and helper_ok:
+        if sent:
             try:
-                conn.send(html)
                 msg = conn.recv()
                 if msg[0] == "pdf":
                     pdf = msg[1]
@@ -286,7 +262,7 @@ def _finish(ctx, proc, conn, formats, all_names, helper_names, out_dir, notes=No
                 pdf = None
         try:
             if pdf is None:
-                pdf = _pdf_bytes(html, out_dir)
+                pdf = _pdf_bytes(html, ctx.lang)
         except PdfSkipped as exc:
             if notes is None:
                 raise
@@ -299,25 +275,47 @@ def _finish(ctx, proc, conn, formats, all_names, helper_names, out_dir, notes=No
 _FIGURE = re.compile(r"<figure\b.*?(<svg\b.*?</svg>)(.*?)</figure>", re.S)
 _CAPTION = re.compile(r"<figcaption[^>]*>(.*?)</figcaption>", re.S)
 _TAGS = re.compile(r"<[^>]+>")
+_HEADING = re.compile(r"<h[2-4]\b[^>]*>(.*?)</h[2-4]>", re.S)
+_DATA_NAME = re.compile(r'^<svg\b[^>]*?\sdata-name="([a-z0-9-]+)"')
 
 
-def _write_figures(ctx, html: str) -> None:
-    """Every figure of the report also as a file beside it: figures/fig-NN.svg, with
-    figures/index.csv giving each number its caption (for students' own documents)."""
+def _write_figures(ctx, html: str) -> str:
+    """Every figure of the report also as a file beside it, named by its content and
+    position (figures/plans-pos02.svg, figures/lever-pos02.svg, figures/cam-profile.svg;
+    a figure without a name: fig-NN.svg, NN its number in the report), with
+    figures/index.csv giving each file its caption in the report's language (the
+    figure's caption, else the heading it stands under).  Returns the HTML without the
+    figures' file names (data-name attributes)."""
     import html as _html
 
-    rows = []
+    def plain(s):
+        return " ".join(_html.unescape(_TAGS.sub("", s)).split())
+
+    rows, used = [], set()
+    heads = [(m.start(), plain(m.group(1))) for m in _HEADING.finditer(html)]
     for k, m in enumerate(_FIGURE.finditer(html), start=1):
         svg = m.group(1)
+        dn = _DATA_NAME.match(svg)
+        stem = dn.group(1) if dn else f"fig-{k:02d}"
+        name, n = stem, 1
+        while name in used:
+            n += 1
+            name = f"{stem}-{n}"
+        used.add(name)
+        if dn:
+            svg = svg.replace(f' data-name="{stem}"', "", 1)
         if "xmlns=" not in svg[:300]:
             svg = svg.replace("<svg", '<svg xmlns="http://www.w3.org/2000/svg"', 1)
-        name = f"figures/fig-{k:02d}.svg"
-        ctx.write_file(name, '<?xml version="1.0" encoding="utf-8"?>\n' + svg + "\n")
+        path = f"figures/{name}.svg"
+        ctx.write_file(path, '<?xml version="1.0" encoding="utf-8"?>\n' + svg + "\n")
         cap = _CAPTION.search(m.group(2))
-        text = " ".join(_html.unescape(_TAGS.sub("", cap.group(1))).split()) if cap else ""
-        rows.append([name, text])
+        text = plain(cap.group(1)) if cap else ""
+        if not text:
+            text = next((h for at, h in reversed(heads) if at < m.start()), "")
+        rows.append([path, text])
     if rows:
         ctx.write_csv("figures/index.csv", ["file", "caption"], rows)
+    return re.sub(r'(<svg\b[^>]*?) data-name="[a-z0-9-]+"', r"\1", html)
 
 
 def render(results: dict, task, out_dir: Path, formats: set[str], lang: str = "en",
@@ -329,9 +327,10 @@ def render(results: dict, task, out_dir: Path, formats: set[str], lang: str = "e
     ``notes`` the PdfSkipped exception propagates.
 
     With two cores the work is split over two processes: a helper (forked) builds
-    the kinetostatics section (the heaviest drawings) and imports weasyprint while
-    the main process builds the other sections; the helper then lays out and paints
-    the PDF.  Any failure of the helper falls back to doing everything here."""
+    the kinetostatics and dynamics sections (their drawings are direct SVG: the helper
+    needs no matplotlib) while the main process imports matplotlib and builds the
+    other sections; the helper then compiles the PDF while the main process
+    writes report.html.  Any failure of the helper falls back to doing everything here."""
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     formats = {f.lower() for f in formats}
@@ -342,22 +341,26 @@ def render(results: dict, task, out_dir: Path, formats: set[str], lang: str = "e
     all_names = [name for name, _ in _sections.available()]
     helper_names = [n for n in HELPER_SECTIONS if n in all_names and results.get(n)]
     proc = conn = None
-    if (helper_names or want_pdf) and _workers_wanted():
+    # Typst's compiler runs thread pools: a process forked after this one has used Typst
+    # would wait for them for ever, so the helper compiles the PDF only where Typst has not
+    # been loaded here yet (a `tmm run`); in a process that already made a PDF (tests, a
+    # long-lived caller) this process compiles it
+    import sys
+    helper_pdf = want_pdf and "typst" not in sys.modules
+    if (helper_names or helper_pdf) and _workers_wanted():
         try:
             import multiprocessing
             import os
-            from . import figures
-            figures.plt()                      # matplotlib imported once, shared by the fork
             mp = multiprocessing.get_context("fork")
             conn, child = mp.Pipe()
             proc = mp.Process(target=_helper, args=(child, results, task, out_dir, ctx.lang, helper_names,
-                                                    want_pdf, os.getpid(), conn), daemon=True)
+                                                    helper_pdf, os.getpid(), conn), daemon=True)
             proc.start()
             child.close()
         except OSError:                    # no second process here: everything in this one
             proc = conn = None
     try:
-        written = _finish(ctx, proc, conn, formats, all_names, helper_names, out_dir, notes)
+        written = _finish(ctx, proc, conn, formats, all_names, helper_names, out_dir, notes, helper_pdf)
     finally:
         if proc is not None:
             try:

@@ -111,10 +111,13 @@ class ReportContext:
         kw.setdefault("task", self.task)
         return self.env.get_template(template).render(**kw)
 
-    def svg(self, fig):
-        """matplotlib figure -> inline SVG (markup-safe), closes the figure."""
+    def svg(self, fig, name: str | None = None):
+        """A figure -> inline SVG (markup-safe): a chart of svgchart (written directly)
+        or a matplotlib figure (closed); `name`: its file name in figures/
+        (figures.named)."""
         from markupsafe import Markup
-        return Markup(figures.svg(fig))
+        out = Markup(fig.to_svg()) if hasattr(fig, "to_svg") else Markup(figures.svg(fig))
+        return figures.named(out, name) if name else out
 
     # -- files beside the report
     def write_file(self, name: str, data: bytes | str) -> Path:

@@ -72,16 +72,35 @@ def svg(fig) -> str:
     return text
 
 
+_NAME_OK = re.compile(r"[^a-z0-9-]+")
+
+
+def named(svg_text, name: str):
+    """The SVG with its file name beside the report: figures/<name>.svg (content and
+    position, e.g. 'plans-pos02', 'lever-pos02', 'cam-profile'), kept as a data-name
+    attribute of the root element until the report writes its figure files."""
+    from markupsafe import Markup
+    name = _NAME_OK.sub("-", str(name).lower()).strip("-") or "figure"
+    return Markup(re.sub(r"<svg\b", f'<svg data-name="{name}"', str(svg_text), count=1))
+
+
+def pos_name(kind: str, index) -> str:
+    """'plans', 2 -> 'plans-pos02'."""
+    return f"{kind}-pos{int(index):02d}"
+
+
 # ---------------------------------------------------------------- scales
-NICE_SERIES = (1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0)
+# the course's scale factors μ (velocity, acceleration, force, moment, work, inertia, the
+# diagrams' ordinates): 1, 2, 2.5, 4, 5 x 10^k, the same series as the sheets
+NICE_SERIES = (1.0, 2.0, 2.5, 4.0, 5.0, 10.0)
 
 
 def nice_scale(value: float, series=NICE_SERIES) -> float:
-    """Smallest 'nice' number >= value from series x 10^k (scale factors as
+    """Smallest standard number >= value from series x 10^k (scale factors as
     students choose them: mu = v_A / pa rounded up, so pa <= its target).
 
     >>> nice_scale(0.012566)
-    0.015
+    0.02
     """
     if not (value > 0 and math.isfinite(value)):
         return 1.0
@@ -93,6 +112,79 @@ def nice_scale(value: float, series=NICE_SERIES) -> float:
             if cand >= value * (1 - 1e-12):
                 return cand
     return float(f"{10.0 ** (k + 1):.12g}")
+
+
+def std_axis(ax, lo: float, hi: float, axis: str = "y", pad: float = 0.04, zero: bool = True) -> float:
+    """Limits of one axis of a graph whose span is a standard μ (nice_scale, units per paper
+    mm) times the axis' length on the paper (the axes as laid out now: call it after
+    tight_layout / subplots_adjust), the values lo..hi (and 0 when `zero`) centred in it;
+    returns μ."""
+    if zero:
+        lo, hi = min(lo, 0.0), max(hi, 0.0)
+    if not (math.isfinite(lo) and math.isfinite(hi)):
+        lo, hi = 0.0, 1.0
+    fig = ax.figure
+    pos = ax.get_position()
+    length = (pos.width * fig.get_figwidth() if axis == "x" else pos.height * fig.get_figheight()) * 25.4
+    span = max(hi - lo, 1e-12 * max(abs(lo), abs(hi), 1e-300)) * (1 + 2 * pad)
+    mu = nice_scale(span / length)
+    extra = (mu * length - (hi - lo)) / 2
+    (ax.set_xlim if axis == "x" else ax.set_ylim)(lo - extra, hi + extra)
+    return mu
+
+
+def std_graph(fig, axes, mm: str = "mm", x_axis=None, x_sym: str = "φ", x_unit: str = "°",
+              tight: bool = True, zero: bool = True) -> dict:
+    """Every graph of the figure at standard scales, stated in the course's form: each
+    axes' ordinate (its label 'M, N·m' gives the symbol and unit) at μ over its data,
+    the title 'μM = 20 (N·m)/mm' at its top right; `x_axis`: the axes whose abscissa
+    (shared, from 0) gets μφ too, stated after its label.  The layout is made
+    (tight_layout) with the titles in place, then the limits are set; `zero`: the ordinate
+    axes include 0.  Returns {symbol: μ}."""
+    axes = [ax for ax in axes if ", " in ax.get_ylabel()]
+    for ax in axes:
+        ax.set_title("μ = 0.0025 (N·m)/mm", loc="right", fontsize=7, pad=2)
+    if x_axis is not None:
+        x_axis.set_xlabel(f"{x_axis.get_xlabel()};  μ{x_sym} = 2.5 {x_unit}/{mm}")
+    if tight or hasattr(fig, "to_svg"):    # an svgchart figure lays itself out with the titles
+        fig.tight_layout()
+    out = {}
+    for ax in axes:
+        sym, unit = ax.get_ylabel().split(", ", 1)
+        sym = sym.replace("$", "").strip("|").split("_")[0]
+        lo, hi = ax.dataLim.y0, ax.dataLim.y1
+        mu = std_axis(ax, lo, hi, zero=zero)
+        out[sym] = mu
+        ax.set_title(mu_text(sym, mu, unit, mm), loc="right", fontsize=7, pad=2)
+    if x_axis is not None:
+        lo, hi = x_axis.dataLim.x0, x_axis.dataLim.x1
+        lo = min(lo, 0.0)
+        # the next smaller standard μ, when the axes can grow into the right margin to hold it
+        fw = fig.get_figwidth() * 25.4
+        pos = x_axis.get_position()
+        L = pos.width * fw
+        up = nice_scale((hi - lo) / L)
+        down = max((c for c in (nice_scale(up * f) for f in (0.4, 0.5, 0.6, 0.8, 0.9)) if c < up), default=up)
+        grow = (hi - lo) / down - L
+        # (only into free paper: not when another graph stands to the right)
+        right_free = not any(o.get_position().x0 >= pos.x1 - 1e-6 for o in fig.axes)
+        if right_free and 0 < grow <= (1.0 - pos.x1) * fw - 1.5:
+            for ax in fig.axes:
+                p = ax.get_position()
+                if abs(p.x1 - pos.x1) < 1e-6:
+                    ax.set_position([p.x0, p.y0, p.width + grow / fw, p.height])
+        mu = std_axis(x_axis, lo, hi, axis="x", pad=0.0)
+        x_axis.set_xlim(0.0, float(np.ptp(x_axis.get_xlim())))
+        label = x_axis.get_xlabel().rsplit(";  μ", 1)[0]
+        x_axis.set_xlabel(f"{label};  {mu_text(x_sym, mu, x_unit, mm)}")
+        out[x_sym] = mu
+    return out
+
+
+def mu_text(sym: str, mu: float, unit: str, mm: str = "mm") -> str:
+    """The scale in the course's form: 'μs = 0.002 m/mm', 'μv = 0.05 (m/s)/mm'."""
+    u = f"({unit})" if "/" in unit and not unit.startswith("(") else unit
+    return f"μ{sym} = {mu:g} {u}/{mm}"
 
 
 # standard drawing scales (GOST 2.302): enlargements n:1 and reductions 1:n, as model mm per paper mm
@@ -225,10 +317,28 @@ def _seg_dists(C, segs):
 
 _DIRS = np.array([[math.cos(t), math.sin(t)] for t in np.linspace(0, 2 * math.pi, 16, endpoint=False)])
 _MULTS = (1.0, 1.5, 2.1)
+_FAR = (3.0, 4.2, 5.8, 8.0, 11.0)          # rings tried when a label box finds no room nearer
+
+
+def text_size(s: str, size_mm: float, sub: str | None = None) -> tuple[float, float]:
+    """(width, height) mm of a label of font size size_mm (a subscript counted full
+    width): the box the drawings keep clear, and the one the tests check."""
+    return 0.6 * size_mm * (len(s) + len(sub or "")) + 0.6, 1.15 * size_mm
+
+
+def _hit(cand, half, taken):
+    """For the candidate centres (m, 2) of a box of half sizes `half`: does it overlap one
+    of the boxes `taken` (k, 4: x0, y0, x1, y1)?"""
+    if not len(taken):
+        return np.zeros(len(cand), bool)
+    t = np.asarray(taken, float)
+    return ((np.abs(cand[:, None, 0] - (t[None, :, 0] + t[None, :, 2]) / 2) < half[0] + (t[None, :, 2] - t[None, :, 0]) / 2)
+            & (np.abs(cand[:, None, 1] - (t[None, :, 1] + t[None, :, 3]) / 2) < half[1] + (t[None, :, 3] - t[None, :, 1]) / 2)
+            ).any(axis=1)
 
 
 def place_labels(anchors, extent: float, avoid=(), step: float | None = None, segments=None,
-                 boxes=()):
+                 boxes=(), sizes=None, taken=(), bounds=None):
     """Greedy label placement.
 
     anchors: list of (x, y, preferred_direction (dx, dy) or None).
@@ -237,20 +347,25 @@ def place_labels(anchors, extent: float, avoid=(), step: float | None = None, se
     from the already placed labels, the `avoid` points and the `segments`
     (lines of the drawing), preferring `preferred_direction`; never inside one
     of the `boxes` (centre, u-axis unit vector, half width, half height).
+    With `sizes` [(w, h)] the labels are boxes: a label never overlaps another placed
+    one nor one of `taken` (x0, y0, x1, y1), and stays inside `bounds` (x0, y0, x1, y1);
+    when no place near its anchor is free it moves further out (rings up to 11 steps),
+    and it is appended to `taken` (the caller's list) once placed.
     Vectorised over the candidates (numpy).
     """
     if step is None:
         step = 0.045 * extent
     avoid_a = np.asarray([np.asarray(a, float) for a in avoid], float).reshape(-1, 2)
     segs = np.asarray(segments, float).reshape(-1, 2, 2) if segments is not None and len(segments) else None
-    offs = np.concatenate([_DIRS * step * m for m in _MULTS])             # (48, 2)
-    mult = np.repeat(np.array(_MULTS), len(_DIRS))
-    dirs = np.tile(_DIRS, (len(_MULTS), 1))
-    # distance of the candidates of every anchor to the drawing's segments
+    mults = _MULTS + (_FAR if sizes is not None else ())
+    offs = np.concatenate([_DIRS * step * m for m in mults])
+    mult = np.repeat(np.array(mults), len(_DIRS))
+    dirs = np.tile(_DIRS, (len(mults), 1))
+    taken = taken if isinstance(taken, list) else list(taken)
     placed = np.empty((0, 2))
     out = []
     big = 9 * step
-    for (x, y, pref) in anchors:
+    for k_a, (x, y, pref) in enumerate(anchors):
         c = np.array([x, y], float)
         cand = c + offs
         ok = np.ones(len(cand), bool)
@@ -260,6 +375,17 @@ def place_labels(anchors, extent: float, avoid=(), step: float | None = None, se
             bv = np.array([-bu[1], bu[0]])
             r = cand - bc
             ok &= ~((np.abs(r @ bu) < hw + 0.5 * step) & (np.abs(r @ bv) < hh + 0.4 * step))
+        half = None
+        if sizes is not None:
+            half = np.asarray(sizes[k_a], float) / 2
+            free = ~_hit(cand, half, taken)
+            if bounds is not None:
+                free &= (cand[:, 0] - half[0] >= bounds[0]) & (cand[:, 0] + half[0] <= bounds[2]) \
+                    & (cand[:, 1] - half[1] >= bounds[1]) & (cand[:, 1] + half[1] <= bounds[3])
+            if (ok & free).any():
+                ok &= free
+            elif free.any():
+                ok = free
         dl = np.sqrt(((cand[:, None, :] - placed[None]) ** 2).sum(axis=2)).min(axis=1) if len(placed) \
             else np.full(len(cand), big)
         da = np.sqrt(((cand[:, None, :] - avoid_a[None]) ** 2).sum(axis=2)).min(axis=1) if len(avoid_a) \
@@ -275,6 +401,8 @@ def place_labels(anchors, extent: float, avoid=(), step: float | None = None, se
         k = int(np.argmax(score))
         best = cand[k] if np.isfinite(score[k]) else c + _DIRS[4] * step * 2.5
         placed = np.vstack([placed, best])
+        if half is not None:
+            taken.append((best[0] - half[0], best[1] - half[1], best[0] + half[0], best[1] + half[1]))
         out.append((float(best[0]), float(best[1])))
     return out
 
@@ -330,24 +458,35 @@ def fit_axes(ax, lo, hi, width_mm, height_mm, margin_mm=6.0):
     return unit
 
 
-def figure_for_box(lo, hi, width_mm, min_h=40.0, max_h=150.0, margin_mm=8.0):
-    """A figure filled by one equal-aspect axes showing lo..hi; returns (fig, ax, unit)."""
+def figure_for_box(lo, hi, width_mm, min_h=40.0, max_h=150.0, margin_mm=8.0, lang="en"):
+    """A figure filled by one equal-aspect axes showing lo..hi (metres) at the largest
+    ГОСТ 2.302 scale that fits, stated at its top left ('μl = 0.005 m/mm (M 1:5)');
+    returns (fig, ax, unit: metres per paper mm)."""
     span = np.maximum(np.asarray(hi, float) - np.asarray(lo, float), 1e-12)
     h = float(np.clip((width_mm - 2 * margin_mm) * span[1] / span[0] + 2 * margin_mm, min_h, max_h))
     fig, ax = new_figure(width_mm, h)
     fig.subplots_adjust(0, 0, 1, 1)
     unit = fit_axes(ax, lo, hi, width_mm, h, margin_mm)
+    model, label = drawing_scale(unit * 1000.0)
+    unit = model / 1000.0
+    c = (np.asarray(lo, float) + np.asarray(hi, float)) / 2
+    ax.set_xlim(c[0] - unit * width_mm / 2, c[0] + unit * width_mm / 2)
+    ax.set_ylim(c[1] - unit * h / 2, c[1] + unit * h / 2)
+    m, mm = ("м", "мм") if lang in ("ru", "uk") else ("m", "mm")
+    ax.text(0.01, 0.99, f"{mu_text('l', unit, m, mm)}  (M {label})", transform=ax.transAxes, ha="left",
+            va="top", fontsize=7)
     ax.axis("off")
     return fig, ax, unit
 
 
 def draw_mechanism(ax, geom, entry, unit: float, *, labels=True, numbers=True,
-                   color="k", lw=1.5, light=False, ranges=None, label_fs=8):
+                   color="k", lw=1.5, light=False, ranges=None, label_fs=8, taken=()):
     """Draw the linkage of one kinematics entry on `ax` (data units: metres).
 
     unit: metres per paper millimetre (sets pivot/block/label sizes).
     light: thin grey drawing (for the overlaid positions of the positions plan).
     ranges: output of slider_ranges() so fixed guides cover the whole stroke.
+    taken: boxes (x0, y0, x1, y1, data units) of texts already there: the labels keep clear.
     Returns a list of (label, xy) placed, for the caller's bookkeeping.
     """
     size = 50.0 * unit
@@ -449,9 +588,12 @@ def draw_mechanism(ax, geom, entry, unit: float, *, labels=True, numbers=True,
             anchors.insert(0, (p, xy, None, False))
     if not anchors:
         return []
+    fs_mm = label_fs * 25.4 / 72.0
+    sizes = [tuple(unit * np.array(text_size("00" if a[3] else a[0], fs_mm * (0.95 if a[3] else 1.0))))
+             for a in anchors]
     pos = place_labels([(a[1][0], a[1][1], a[2]) for a in anchors], size,
                        avoid=avoid + [a[1] for a in anchors], step=3.6 * unit, segments=segs,
-                       boxes=boxes)
+                       boxes=boxes, sizes=sizes, taken=list(taken))
     out = []
     seen = set()
     for (text, xy, _, is_num), (x, y) in zip(anchors, pos):

@@ -2,9 +2,8 @@
 acceleration plans, free-body diagrams of the Assur groups, force polygons,
 Zhukovsky's lever).
 
-Why not matplotlib: a plan drawn by matplotlib costs ~0.1 s to make and, painted
-by weasyprint's Python SVG renderer, ~0.1 s more (every axis tick is a separate
-path and text).  Here a drawing is a handful of merged paths (one per stroke
+Why not matplotlib: a plan drawn by matplotlib costs ~0.1 s to make, and its SVG
+has a separate path and text for every axis tick.  Here a drawing is a handful of merged paths (one per stroke
 style), filled arrow heads merged per colour and one <text> per label: made in
 milliseconds and painted several times faster.
 
@@ -36,6 +35,9 @@ def _w(x: float) -> str:
 
 
 _HEX = frozenset("0123456789abcdef")
+# matplotlib's one-letter colours (as matplotlib.colors.to_hex gives them)
+_BASE = {"k": "#000000", "w": "#ffffff", "r": "#ff0000", "g": "#008000", "b": "#0000ff", "c": "#00bfbf",
+         "m": "#bf00bf", "y": "#bfbf00"}
 
 
 def css_color(c) -> str:
@@ -48,6 +50,10 @@ def css_color(c) -> str:
         return s
     if s and s[0] == "#" and len(s) in (4, 7) and set(s[1:]) <= _HEX:
         return s if len(s) == 7 else "#" + "".join(ch * 2 for ch in s[1:])
+    if s in _BASE:
+        return _BASE[s]
+    if s and s.replace(".", "", 1).isdigit() and 0.0 <= float(s) <= 1.0:     # a grey level
+        return "#" + f"{round(255 * float(s)):02x}" * 3
     from matplotlib.colors import to_hex   # the rare other spellings
     try:
         return to_hex(c, keep_alpha=False)

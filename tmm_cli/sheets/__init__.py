@@ -5,21 +5,23 @@ from __future__ import annotations
 
 from pathlib import Path
 
-SHEETS = {"en": {1: "Kinematics", 3: "Dynamics", 4: "Cam mechanism", 5: "Gear mesh"},
-          "ru": {1: "Кинематический анализ", 3: "Динамический анализ", 4: "Кулачковый механизм",
-                 5: "Зубчатое зацепление"},
-          "uk": {1: "Кінематичний аналіз", 3: "Динамічний аналіз", 4: "Кулачковий механізм",
-                 5: "Зубчасте зачеплення"}}
+SHEETS = {"en": {1: "Kinematics", 2: "Kinetostatics", 3: "Dynamics", 4: "Cam mechanism", 5: "Gear mesh"},
+          "ru": {1: "Кинематический анализ", 2: "Силовой анализ", 3: "Динамический анализ",
+                 4: "Кулачковый механизм", 5: "Зубчатое зацепление"},
+          "uk": {1: "Кінематичний аналіз", 2: "Силовий аналіз", 3: "Динамічний аналіз",
+                 4: "Кулачковий механізм", 5: "Зубчасте зачеплення"}}
 
 
 def build_sheets(results: dict, task, lang: str = "en") -> list[tuple]:
     """[(PrimCanvas, info)] for each sheet whose section the results have."""
-    from . import sheet1, sheet3, sheet4, sheet5
+    from . import sheet1, sheet2, sheet3, sheet4, sheet5
     from .frame import SHEET_H, SHEET_W, draw_frame
     from .prims import PrimCanvas
     makers = []
     if results.get("kinematics") and results.get("structure"):
         makers.append((1, sheet1.build))
+    if results.get("kinetostatics_info") and results.get("kinematics") and sheet2.positions(results):
+        makers.append((2, sheet2.build))
     if (results.get("flywheel") or {}).get("arrays"):
         makers.append((3, sheet3.build))
     if (results.get("cam") or {}).get("working_profile"):

@@ -17,12 +17,16 @@ def to_svg(cv: PrimCanvas) -> str:
 
 
 def to_pdf(svgs: list[str], w_mm: float, h_mm: float) -> bytes:
-    """One PDF page per sheet (weasyprint paints the SVG at its real size)."""
+    """One PDF page per sheet (weasyprint paints the SVG at its real size, each one an
+    image: the SVG stays out of the HTML style cascade, several times faster)."""
+    import base64
+
     from weasyprint import HTML
-    body = "".join(f'<div class="s">{s.split("?>", 1)[-1]}</div>' for s in svgs)
+    body = "".join(f'<img class="s" alt="" src="data:image/svg+xml;base64,'
+                   f'{base64.b64encode(s.encode("utf-8")).decode("ascii")}">' for s in svgs)
     html = (f"<html><head><style>@page {{ size: {w_mm:g}mm {h_mm:g}mm; margin: 0 }}"
-            f" body {{ margin: 0 }} .s {{ width: {w_mm:g}mm; height: {h_mm:g}mm; page-break-after: always;"
-            f" overflow: hidden }} .s svg {{ display: block }}</style></head><body>{body}</body></html>")
+            f" body {{ margin: 0 }} .s {{ width: {w_mm:g}mm; height: {h_mm:g}mm; display: block;"
+            f" page-break-after: always }}</style></head><body>{body}</body></html>")
     return HTML(string=html).write_pdf()
 
 

@@ -20,8 +20,9 @@ import numpy as np
 from ...errors import StageError
 from ...messages import Message
 from . import flywheel as fw
-from .convergence import ACCURACY_RESOLUTIONS, CHECK_BELOW, TARGET_REL, _rel, accuracy_table, hand_row
-from .cycle import STAGE, Sampler, mechanism_sampler, run_grid
+from .convergence import (ACCURACY_RESOLUTIONS, CHECK_BELOW, TARGET_REL, _rel, accuracy_table, hand_positions,
+                          hand_row)
+from .cycle import STAGE, Sampler, _Reuse, grid, mechanism_sampler, run_grid, switch_q
 from .result import DynamicsResult, _f
 
 
@@ -38,6 +39,8 @@ def analyze_sampler(sampler: Sampler, section, omega_m: float, *, cycle: float =
     if cycle not in (360, 720, 360.0, 720.0):
         raise StageError(STAGE, f"the cycle must be 360 or 720 deg (got {cycle})")
     resolution = int(section.resolution)
+    given = sampler          # the hand method's positions are sampled with the grid's
+    sampler = _Reuse(sampler, grid(hand_positions(cycle), cycle, switch_q, insert=False))
     c, q_deg, side = run_grid(sampler, section, omega_m, cycle, resolution, switch_q)
     shape = section.shape
     shp = {"type": shape.type, "density": float(shape.density), "width_ratio": float(shape.width_ratio)}
@@ -63,8 +66,18 @@ def analyze_sampler(sampler: Sampler, section, omega_m: float, *, cycle: float =
             warnings.append(Message("flywheel.resolution_error", resolution=resolution, percent=100 * err))
     return DynamicsResult(cycle=c, cycle_deg=float(cycle), resolution=resolution, phi0=float(phi0),
                           sign=float(sign), constant=section.constant, shape=shp, size=sz,
-                          accuracy=acc, warnings=warnings, q_deg=q_deg, side=side, sampler=sampler,
+                          accuracy=acc, warnings=warnings, q_deg=q_deg, side=side, sampler=given,
                           hand=hand, quadrature_points=int(section.quadrature), map_cycle=map_cycle)
+
+
+def grid_switch_angles(linkage) -> list[float]:
+    """The absolute crank angles (deg) the dynamics grid must hold as breakpoints: the load
+    jumps and kinks (loads.switch_angles) and both extreme positions of the output."""
+    from .. import loads as loads_mod
+    drive, positions = linkage.drive, linkage.positions
+    sw = list(loads_mod.switch_angles(linkage.mechanism, linkage.loads, positions, sign=drive.sign,
+                                      cycle=drive.cycle, kinks=True))
+    return sw + [float(x) for x in (positions.extreme or [])]
 
 
 def analyze(linkage, section, *, accuracy: bool = True) -> DynamicsResult:
@@ -114,14 +127,7 @@ def analyze(linkage, section, *, accuracy: bool = True) -> DynamicsResult:
     def loads_fn(kin):
         return loads_mod.evaluate(linkage, kin, inertia=False)
 
-    switch = list(loads_mod.switch_angles(mech, linkage.loads, positions, sign=sign, cycle=cycle, kinks=True))
-    switch += [float(x) for x in (positions.extreme or [])]
-    sw = []
-    for s in switch:
-        qs = (sign * (float(s) - phi0)) % 360.0
-        sw.append(qs)
-        if cycle == 720:
-            sw.append(qs + 360.0)
+    sw = switch_q(grid_switch_angles(linkage), phi0, sign, cycle)
     sampler = mechanism_sampler(mech, kin_fn, loads_fn, phi0=phi0, sign=sign)
     return analyze_sampler(sampler, section, drive.speed, cycle=cycle, switch_q=sw, phi0=phi0, sign=sign,
                            accuracy=accuracy, map_cycle=360.0)

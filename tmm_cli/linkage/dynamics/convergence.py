@@ -24,12 +24,17 @@ def _rel(x, ref):
     return abs(x - ref) / den
 
 
+def hand_positions(cycle: float) -> int:
+    """The hand method's positions: every 30 deg of the cycle (12, or 24 over 720 deg)."""
+    return int(round(cycle / 30.0))
+
+
 def hand_row(sampler: Sampler, section, omega_m: float, cycle: float, switch_q,
              ref: CycleResult, ref_resolution: int) -> dict:
     """The course's hand method: 12 positions every 30 deg (24 over 720 deg), the trapezoid
     of the works, no inserted jump points, the extrema at the positions; beside the
     accurate result `ref` (deterministic: no timing)."""
-    n_hand = int(round(cycle / 30.0))
+    n_hand = hand_positions(cycle)
     hand = run_grid(sampler, section, omega_m, cycle, n_hand, switch_q, insert=False)[0]
     J_ref = ref.J_fly[ref.method]
     return {"method": "hand: trapezoid over the positions", "positions": n_hand, "step": 30.0,

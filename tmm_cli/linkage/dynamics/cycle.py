@@ -251,18 +251,71 @@ def solve_cycle(q: np.ndarray, M_given: np.ndarray, J_links: dict[str, np.ndarra
 
 
 # ------------------------------------------------------------------ the grid through a sampler
-def _split(s: Sample, n: int) -> tuple[Sample, Sample]:
-    """A Sample over n + m angles as (the first n, the other m)."""
-    def cut(a, sl):
+def _take(s: Sample, sl) -> Sample:
+    """The Sample at the angles `sl` (a slice or an index array) of s."""
+    def cut(a):
         return None if a is None else np.asarray(a)[sl]
 
-    def part(sl):
-        return Sample(M_by_kind={k: cut(v, sl) for k, v in s.M_by_kind.items()},
-                      M_given=cut(s.M_given, sl),
-                      J_links={k: cut(v, sl) for k, v in s.J_links.items()},
-                      dJ_links={k: cut(v, sl) for k, v in (s.dJ_links or {}).items()},
-                      J_links_total=cut(s.J_links_total, sl), dJ_total=cut(s.dJ_total, sl))
-    return part(slice(0, n)), part(slice(n, None))
+    return Sample(M_by_kind={k: cut(v) for k, v in s.M_by_kind.items()}, M_given=cut(s.M_given),
+                  J_links={k: cut(v) for k, v in s.J_links.items()},
+                  dJ_links={k: cut(v) for k, v in (s.dJ_links or {}).items()},
+                  J_links_total=cut(s.J_links_total), dJ_total=cut(s.dJ_total))
+
+
+def _split(s: Sample, n: int) -> tuple[Sample, Sample]:
+    """A Sample over n + m angles as (the first n, the other m)."""
+    return _take(s, slice(0, n)), _take(s, slice(n, None))
+
+
+def _concat(a: Sample, b: Sample) -> Sample:
+    """The Samples a and b over their angles one after the other."""
+    def cat(x, y):
+        return None if x is None or y is None else np.concatenate([np.asarray(x), np.asarray(y)])
+
+    return Sample(M_by_kind={k: cat(v, b.M_by_kind.get(k)) for k, v in a.M_by_kind.items()},
+                  M_given=cat(a.M_given, b.M_given),
+                  J_links={k: cat(v, b.J_links.get(k)) for k, v in a.J_links.items()},
+                  dJ_links={k: cat(v, (b.dJ_links or {}).get(k)) for k, v in (a.dJ_links or {}).items()},
+                  J_links_total=cat(a.J_links_total, b.J_links_total), dJ_total=cat(a.dJ_total, b.dJ_total))
+
+
+class _Reuse:
+    """A sampler that keeps its first sample, taken together with the angles `extra` (the
+    hand method's positions): a later call is answered from it at the angles it holds and
+    by the sampler at the others (one kinematics call fewer; the same values)."""
+
+    def __init__(self, sampler: Sampler, extra=None):
+        self.sampler = sampler
+        self.index: dict | None = None
+        self.sample: Sample | None = None
+        self.extra = extra       # (q, side) sampled with the first call, kept for later ones
+
+    def __call__(self, q_deg, side):
+        q = np.asarray(q_deg, float)
+        sd = np.asarray(side, float)
+        if self.index is None and self.extra is not None:
+            n = q.size
+            (qx, sx), self.extra = self.extra, None
+            self(np.concatenate([q, qx]), np.concatenate([sd, sx]))
+            return _take(self.sample, slice(0, n))
+        if self.index is not None:
+            idx = [self.index.get((a, b)) for a, b in zip(q.tolist(), sd.tolist())]
+            miss = np.array([i is None for i in idx])
+            if miss.all():
+                return self.sampler(q, sd)
+            if not miss.any():
+                return _take(self.sample, np.asarray(idx, int))
+            # the sample kept, then the angles not among them; put back in the asked order
+            known = np.array([-1 if i is None else i for i in idx])
+            both = _concat(_take(self.sample, known[~miss]), self.sampler(q[miss], sd[miss]))
+            order = np.empty(q.size, int)
+            order[np.flatnonzero(~miss)] = np.arange(int((~miss).sum()))
+            order[np.flatnonzero(miss)] = int((~miss).sum()) + np.arange(int(miss.sum()))
+            return _take(both, order)
+        out = self.sampler(q, sd)
+        self.index = {key: i for i, key in enumerate(zip(q.tolist(), sd.tolist()))}
+        self.sample = out
+        return out
 
 
 def run_grid(sampler: Sampler, section, omega_m: float, cycle: float, resolution: int,
@@ -321,3 +374,15 @@ def mechanism_sampler(mech, kin_fn, loads_fn, *, phi0: float, sign: float) -> Sa
         loads = loads_fn(kin)
         return sample_mech(mech, kin, loads, sign)
     return sampler
+
+
+def switch_q(switch_angles, phi0: float, sign: float, cycle: float) -> list[float]:
+    """Absolute crank angles (deg) where a load jumps as cycle angles q (deg from position 0
+    along the motion; for a 720-deg cycle in both turns)."""
+    sw = []
+    for s in switch_angles or ():
+        qs = (sign * (float(s) - phi0)) % 360.0
+        sw.append(qs)
+        if cycle == 720:
+            sw.append(qs + 360.0)
+    return sw

@@ -37,6 +37,7 @@ mashin", ch. on the motion of a machine; Popov & Timofeev; Frolov):
 """
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -53,7 +54,13 @@ _TINY = 1e-300
 def gauss_legendre(n: int) -> tuple[np.ndarray, np.ndarray]:
     """Nodes (on [0, 1]) and weights (summing to 1) of the n-point Gauss-Legendre rule:
     exact for polynomials of degree 2n - 1, error O(h^(2n)) on smooth integrands."""
-    x, w = np.polynomial.legendre.leggauss(int(n))
+    x, w = _leggauss(int(n))
+    return x.copy(), w.copy()
+
+
+@functools.lru_cache(maxsize=8)
+def _leggauss(n: int) -> tuple[np.ndarray, np.ndarray]:
+    x, w = np.polynomial.legendre.leggauss(n)
     return (x + 1.0) / 2.0, w / 2.0
 
 

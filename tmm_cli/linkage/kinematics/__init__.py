@@ -3,7 +3,7 @@
 Public API (docs/ARCHITECTURE.md)::
 
     analyze(linkage) -> KinematicsResult                 # the stage: at the reported positions
-    output_curve(linkage, n=361) -> OutputCurve          # the output's s, v, a over a turn
+    output_curve(linkage, n=361, turn=None) -> OutputCurve   # the output's s, v, a over a turn
     solve(mech, phi_deg, omega1, eps1=0.0) -> KinematicsResult
     find_positions(mech, positions_section, sign, extra_added=()) -> PositionsResult
     check_assembly(mech, n=720) -> list[str]

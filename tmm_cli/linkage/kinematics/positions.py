@@ -39,7 +39,9 @@ XTOL = 1e-11          # deg
 
 def _output_coordinate(mech: Mechanism, name: str):
     """(kind, f) with f(phi_deg array) -> (s, ds/dphi) (s in m or deg; ds per rad);
-    f(phi, second=True) -> (s, ds/dphi, d2s/dphi2) (per rad, per rad^2)."""
+    f(phi, second=True) -> (s, ds/dphi, d2s/dphi2) (per rad, per rad^2);
+    ``f.from_kin(kin, second=False)`` gives the same from a kinematics result already
+    solved at phi."""
     lk = mech.link(name)
     if lk.kind == "slider":
         pin = lk.origin
@@ -49,39 +51,41 @@ def _output_coordinate(mech: Mechanism, name: str):
             e = np.array([math.cos(a), math.sin(a)])
             p0 = np.array(g.point, float)
 
-            def f(phi, second=False):
-                k = solve(mech, phi)
+            def of(k, second=False):
                 out = (k.pos[pin] - p0) @ e, k.d1[pin] @ e
                 return out + (k.d2[pin] @ e,) if second else out
-            return "slider", f
-        carrier = mech.link(g.link)
-        a = math.radians(g.angle)
-        org = carrier.origin
+        else:
+            carrier = mech.link(g.link)
+            a = math.radians(g.angle)
+            org = carrier.origin
 
-        def f(phi, second=False):
-            k = solve(mech, phi)
-            psi = k.angle[carrier.name] + a
-            e = np.stack([np.cos(psi), np.sin(psi)], axis=-1)
-            n = np.stack([-e[:, 1], e[:, 0]], axis=-1)
-            d = k.pos[pin] - k.pos[org]
-            dd = k.d1[pin] - k.d1[org]
-            w = k.a1[carrier.name]
-            s = np.sum(e * d, axis=1)
-            ds = w * np.sum(n * d, axis=1) + np.sum(e * dd, axis=1)
-            if not second:
-                return s, ds
-            # e' = w n, n' = -w e
-            ddd = k.d2[pin] - k.d2[org]
-            d2s = (k.a2[carrier.name] * np.sum(n * d, axis=1) - w * w * s
-                   + 2 * w * np.sum(n * dd, axis=1) + np.sum(e * ddd, axis=1))
-            return s, ds, d2s
-        return "slider", f
+            def of(k, second=False):
+                psi = k.angle[carrier.name] + a
+                e = np.stack([np.cos(psi), np.sin(psi)], axis=-1)
+                n = np.stack([-e[:, 1], e[:, 0]], axis=-1)
+                d = k.pos[pin] - k.pos[org]
+                dd = k.d1[pin] - k.d1[org]
+                w = k.a1[carrier.name]
+                s = np.sum(e * d, axis=1)
+                ds = w * np.sum(n * d, axis=1) + np.sum(e * dd, axis=1)
+                if not second:
+                    return s, ds
+                # e' = w n, n' = -w e
+                ddd = k.d2[pin] - k.d2[org]
+                d2s = (k.a2[carrier.name] * np.sum(n * d, axis=1) - w * w * s
+                       + 2 * w * np.sum(n * dd, axis=1) + np.sum(e * ddd, axis=1))
+                return s, ds, d2s
+        kind = "slider"
+    else:
+        def of(k, second=False):
+            out = np.degrees(k.angle[name]), k.a1[name]
+            return out + (k.a2[name],) if second else out
+        kind = "rocker"
 
     def f(phi, second=False):
-        k = solve(mech, phi)
-        out = np.degrees(k.angle[name]), k.a1[name]
-        return out + (k.a2[name],) if second else out
-    return "rocker", f
+        return of(solve(mech, phi), second)
+    f.from_kin = of
+    return kind, f
 
 
 @dataclass
@@ -103,15 +107,16 @@ class Stroke:
     def H(self) -> float:
         return abs(self.s_extreme[1] - self.s_extreme[0])
 
-    def stroke_state(self, phi_deg) -> tuple[np.ndarray, np.ndarray]:
+    def stroke_state(self, phi_deg, kin=None) -> tuple[np.ndarray, np.ndarray]:
         """For each crank angle: 'working' or 'idle', and s_rel in [0, 1], the link's
         displacement from the start of the current stroke relative to the stroke H.
-        At the start extreme the working stroke applies, at the end extreme the idle."""
+        At the start extreme the working stroke applies, at the end extreme the idle.
+        ``kin``: the kinematics already solved at these angles (not solved again)."""
         phi = np.atleast_1d(np.asarray(phi_deg, float))
         rel = np.mod((phi - self.extreme[0]) * self.sign, 360.0)
         rel = np.where(rel > 360.0 - 1e-9, 0.0, rel)
         working = rel < self.working_stroke_angle - 1e-9
-        s, _ = self._f(phi)
+        s, _ = self._f(phi) if kin is None else self._f.from_kin(kin)
         s0, s1 = self.s_extreme
         if self.kind == "rocker":
             mid = 0.5 * (s0 + s1)
@@ -187,11 +192,12 @@ class PositionsResult:
                       s_extreme=list(self.s_extreme), working_stroke_angle=self.working_stroke_angle,
                       sign=self.sign, working=self.working, _f=self._f)
 
-    def stroke_state(self, phi_deg) -> tuple[np.ndarray, np.ndarray]:
+    def stroke_state(self, phi_deg, kin=None) -> tuple[np.ndarray, np.ndarray]:
         """For each crank angle: 'working' or 'idle', and s_rel in [0, 1], the output's
         displacement from the start of the current stroke relative to the stroke H.
-        At the start extreme the working stroke applies, at the end extreme the idle."""
-        return self.output_stroke().stroke_state(phi_deg)
+        At the start extreme the working stroke applies, at the end extreme the idle.
+        ``kin``: the kinematics already solved at these angles."""
+        return self.output_stroke().stroke_state(phi_deg, kin)
 
     def stroke_for(self, name: str, working: str | None = None) -> Stroke:
         """The stroke of link ``name``: the output's own for the output link (unless

@@ -64,8 +64,9 @@ class OutputCurve:
                 "v": self.v.tolist(), "a": self.a.tolist(), "quantity": self.quantity}
 
 
-def output_curve(linkage: Linkage, n: int = 361) -> OutputCurve:
-    """s, v, a of the output link at ``n`` equal steps over one turn from position 0.
+def output_curve(linkage: Linkage, n: int = 361, turn=None) -> OutputCurve:
+    """s, v, a of the output link at ``n`` equal steps over one turn from position 0,
+    or at the angles ``turn`` when given.
 
     Parameters
     ----------
@@ -74,6 +75,9 @@ def output_curve(linkage: Linkage, n: int = 361) -> OutputCurve:
         omega (rad/s, signed) and sense of rotation.
     n : int
         Number of points over the turn, both ends included.
+    turn : array_like of float, optional
+        The angles (deg from position 0, in the sense of rotation) to evaluate at
+        instead of the ``n`` equal steps.
 
     Returns
     -------
@@ -86,7 +90,7 @@ def output_curve(linkage: Linkage, n: int = 361) -> OutputCurve:
     link (displacement, velocity and acceleration against the crank angle).
     """
     mech, positions, drive = linkage.mechanism, linkage.positions, linkage.drive
-    turn = np.linspace(0.0, 360.0, n)
+    turn = np.linspace(0.0, 360.0, n) if turn is None else np.asarray(turn, float)
     phi = np.mod(positions.phi0 + drive.sign * turn, 360.0)
     kin = solve(mech, phi, drive.omega)
     out = mech.link(positions.output)

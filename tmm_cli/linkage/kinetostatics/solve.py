@@ -222,6 +222,22 @@ def balance_rate(mech, geo: Geometry, balance: int) -> np.ndarray:
 
 
 # ------------------------------------------------------------------ friction
+def relative_motion(mech, geo: Geometry) -> np.ndarray:
+    """(N, pairs): per pair the relative motion friction acts against: a pin's relative
+    angular velocity omega_b - omega_a, a slider's relative sliding velocity along its guide
+    (the friction loads change sign where it does)."""
+    out = np.zeros((geo.n_pos, len(mech.joints)))
+    for k, j in enumerate(mech.joints):
+        if j.kind == "R":
+            out[:, k] = geo.omega(j.b) - geo.omega(j.a)
+        else:
+            s = j.slider
+            g = j.a if j.b == s else j.b
+            p = geo.jpoint[k]
+            out[:, k] = np.einsum("ij,ij->i", geo.point_vel(s, p) - geo.point_vel(g, p), geo.jdir[k])
+    return out
+
+
 def friction_loads(mech, geo: Geometry, x: np.ndarray, f: float, r_pin: float, f_slide: float | None = None
                    ) -> tuple[list[AppliedForce], list[AppliedCouple], np.ndarray]:
     """Friction loads from the reactions x (N, 2p): a pin friction couple f r |R| against
@@ -235,10 +251,11 @@ def friction_loads(mech, geo: Geometry, x: np.ndarray, f: float, r_pin: float, f
     # a singular position's reactions are not finite: no friction there (nan_to_num would turn
     # an infinite reaction into 1.8e308 and the friction couples into inf)
     xs = np.where(np.isfinite(x), x, 0.0)
+    rel = relative_motion(mech, geo)
     for k, j in enumerate(mech.joints):
         if j.kind == "R":
             Rm = np.hypot(xs[:, 2 * k], xs[:, 2 * k + 1])
-            wrel = geo.omega(j.b) - geo.omega(j.a)
+            wrel = rel[:, k]
             sg = np.sign(wrel)
             Mf = f * r_pin * Rm
             couples.append(AppliedCouple(j.b, f"Mf{j.a}{j.b}", -Mf * sg, "friction"))
@@ -250,7 +267,7 @@ def friction_loads(mech, geo: Geometry, x: np.ndarray, f: float, r_pin: float, f
             g = j.a if j.b == s else j.b
             p = geo.jpoint[k]
             e = geo.jdir[k]
-            vrel = np.einsum("ij,ij->i", geo.point_vel(s, p) - geo.point_vel(g, p), e)
+            vrel = rel[:, k]
             sg = np.sign(vrel)
             Ff = f_slide * np.abs(xs[:, 2 * k])
             F = -(Ff * sg)[:, None] * e

@@ -139,7 +139,7 @@ def evaluate_on(mech, loads_section, kin, positions, *, sign: float, cycle: floa
         lk = mech.link(sp.on)       # links, points and directions of the loads: checked by build_mechanism
         stroke_given = "stroke" in sp.model_fields_set
         if need_stroke and stroke_dependent(sp):
-            working, s_rel = stroke_states(load_stroke(positions, lk, sp, k - 1), phi)
+            working, s_rel = stroke_states(load_stroke(positions, lk, sp, k - 1), phi, kin)
         else:
             working, s_rel = no_stroke
         if sp.kind is None and not stroke_given:

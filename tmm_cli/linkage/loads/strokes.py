@@ -7,11 +7,12 @@ import numpy as np
 from ...errors import field_error
 
 
-def stroke_states(positions, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(working: bool (N,), s/H (N,)) from ``positions.stroke_state`` (scalar or vector)."""
+def stroke_states(positions, phi: np.ndarray, kin=None) -> tuple[np.ndarray, np.ndarray]:
+    """(working: bool (N,), s/H (N,)) from ``positions.stroke_state`` (scalar or vector;
+    ``kin``: the kinematics at phi, passed on so that it is not solved again)."""
     phi = np.asarray(phi, float)
     try:
-        st, s = positions.stroke_state(phi)
+        st, s = positions.stroke_state(phi) if kin is None else positions.stroke_state(phi, kin=kin)
         st_arr = np.asarray(st)
         s_arr = np.asarray(s, float)
         if st_arr.shape == phi.shape and s_arr.shape == phi.shape:

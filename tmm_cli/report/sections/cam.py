@@ -205,16 +205,6 @@ def _phase_spans(c):
     return out
 
 
-def _nice_limits(fp, lo, hi, axes_mm):
-    """Axis limits whose span is a nice scale (units per paper mm) times the axes length."""
-    lo, hi = min(lo, 0.0), max(hi, 0.0)
-    span = max(hi - lo, 1e-12) * 1.08
-    mu = fp.nice_scale(span / axes_mm)
-    total = mu * axes_mm
-    pad = (total - (hi - lo)) / 2
-    return lo - pad, hi + pad, mu
-
-
 def diagrams_figure(ctx, c):
     fp = ctx.figures
     (ks, us), (kv, uv), (ka, ua) = _units(c, ctx.lang)
@@ -227,7 +217,6 @@ def diagrams_figure(ctx, c):
     left, right, bottom, top, gap = 0.12, 0.97, 0.08, 0.98, 0.05
     fig.subplots_adjust(left=left, right=right, bottom=bottom, top=top, hspace=gap * 3)
     ax_w_mm = (right - left) * W
-    ax_h_mm = (top - bottom) * H / 3 * (1 - gap)
     mu_phi = fp.nice_scale(360.0 / ax_w_mm)
     scales = [("μφ", _loc(ctx.lang, f"{ctx.fmt(mu_phi)} deg/mm"))]
     for ax, (y, lab) in zip(axes, series):
@@ -236,8 +225,7 @@ def diagrams_figure(ctx, c):
                 ax.axvspan(a, b, color=PHASE_COLORS[k], lw=0)
         ax.plot(phi, y, color="k", lw=1.0)
         ax.axhline(0, color="0.5", lw=0.5)
-        lo, hi, mu = _nice_limits(fp, float(np.min(y)), float(np.max(y)), ax_h_mm)
-        ax.set_ylim(lo, hi)
+        mu = fp.std_axis(ax, float(np.min(y)), float(np.max(y)), pad=0.04)
         ax.set_ylabel(lab)
         ax.grid(True, lw=0.3)
         scales.append((lab.split(",")[0], _loc(ctx.lang, f"{ctx.fmt(mu)} {lab.split(', ')[1]}/mm")))
@@ -482,21 +470,21 @@ def _render(ctx, c, rows, method):
     table_header = [_loc(ctx.lang, h) for h in
                     ["φ, deg", f"s, {us}", f"ds/dφ, {uv}", f"d²s/dφ², {ua}", "θ, deg", "x, mm", "y, mm"]]
     fig, scales = diagrams_figure(ctx, c)
-    figs = [(ctx.svg(fig), t("cam.diagrams_caption"))]
+    figs = [(ctx.svg(fig, "cam-motion-law"), t("cam.diagrams_caption"))]
     if c.get("construction"):           # the s - ds/dphi construction (not for a flat follower)
         fig, unit, label = construction_figure(ctx, c)
         cap = t("cam.construction_caption")
         if c.get("r0_given"):
             cap += "; " + t("cam.construction_chosen")
         cap += "; " + t("cam.construction_scale", mu=f(unit, 4), label=label)
-        figs.append((ctx.svg(fig), cap))
+        figs.append((ctx.svg(fig, "cam-construction"), cap))
     pcap = {"flat": "cam.profile_flat_caption", "knife": "cam.profile_knife_caption"}.get(c["follower"],
                                                                                           "cam.profile_caption")
     fig, unit, label = profile_figure(ctx, c)
     scale = f"M {label}" + _loc(ctx.lang, f" (μl = {f(unit, 4)} mm/mm)")
-    figs.append((ctx.svg(fig), t(pcap, scale=scale)))
+    figs.append((ctx.svg(fig, "cam-profile"), t(pcap, scale=scale)))
     if not flat:
-        figs.append((ctx.svg(pressure_figure(ctx, c)), t("cam.pressure_caption")))
+        figs.append((ctx.svg(pressure_figure(ctx, c), "cam-pressure-angle"), t("cam.pressure_caption")))
     div = c.get("division_table") or []
     div_rows = [(t(f"cam.{r['phase']}"), r["k"], f(r["phi"], 5), f(r["s"] * ks, 5), f(r["ds"] * kv, 5),
                  f(r["d2s"] * ka, 5), f(r["pressure_angle"], 4)) for r in div]

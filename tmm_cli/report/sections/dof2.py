@@ -233,7 +233,8 @@ def plots(ctx, d):
             ax.axvline(d["impact"]["t"], color="C3", lw=0.6, ls="--")
     for ax in (a1, a2):
         ax.grid(True, lw=0.3, color="0.85")
-    out["angles"] = ctx.svg(fig)
+    fig.tight_layout()                    # the axis labels inside the figure
+    out["angles"] = ctx.svg(fig, "dof2-angles")
 
     fig, ax = fp.new_figure(170, 70)
     ax.plot(tt, _arr(d["omega"]), "k", lw=1.0, label=t("dof2.w1"))
@@ -243,7 +244,8 @@ def plots(ctx, d):
     ax.set_ylabel(t("dof2.w_axis"))
     ax.grid(True, lw=0.3, color="0.85")
     ax.legend(fontsize=6)
-    out["speeds"] = ctx.svg(fig)
+    fig.tight_layout()                    # the axis labels inside the figure
+    out["speeds"] = ctx.svg(fig, "dof2-speeds")
 
     R = d["reactions"]
     fig, (a1, a2) = fp.new_figure(170, 100, nrows=2, sharex=True)
@@ -259,7 +261,8 @@ def plots(ctx, d):
     a2.legend(fontsize=6)
     for ax in (a1, a2):
         ax.grid(True, lw=0.3, color="0.85")
-    out["reactions"] = ctx.svg(fig)
+    fig.tight_layout()                    # the axis labels inside the figure
+    out["reactions"] = ctx.svg(fig, "dof2-reactions")
 
     E = d["energy"]
     fig, (a1, a2) = fp.new_figure(170, 90, nrows=2, sharex=True, gridspec_kw={"height_ratios": [2, 1]})
@@ -274,7 +277,8 @@ def plots(ctx, d):
     a2.legend(fontsize=6)
     for ax in (a1, a2):
         ax.grid(True, lw=0.3, color="0.85")
-    out["energy"] = ctx.svg(fig)
+    fig.tight_layout()                    # the axis labels inside the figure
+    out["energy"] = ctx.svg(fig, "dof2-energy")
     return out
 
 
@@ -339,7 +343,7 @@ def build(ctx) -> str | None:
         return None
     f, t = ctx.fmt, ctx.t
     fig, step = sketch(ctx, d)
-    fig_sketch, sketch_cap = ctx.svg(fig), t("dof2.sketch_caption", mm=f(step))
+    fig_sketch, sketch_cap = ctx.svg(fig, "dof2-sketch"), t("dof2.sketch_caption", mm=f(step))
     figs = plots(ctx, d)
     imp = d.get("impact")
     impact_rows = _impact(ctx, imp) if imp else None

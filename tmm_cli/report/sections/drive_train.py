@@ -71,20 +71,28 @@ def scheme_and_picture(d: dict, lang_t) -> str:
     for s, a in zip(st, vp["axes"]):
         if s["type"] == "pair":
             radii.append(a["y"] - vp["module"] * s["z"][0] / 2)
+        else:          # a planetary stage: the top of its satellites (their labels stay on the canvas)
+            z = s["z"]
+            aw = (z[0] + z[1] if s["scheme"] != "D" else z[0] - z[1]) * vp["module"] / 2
+            radii.append(a["y"] + aw + vp["module"] * max(z[1], z[2] if len(z) > 2 else 0) / 2)
     ys += radii
     y_lo, y_hi = min(ys), max(ys)
     w_scheme = 16 + STEP * len(st) + 14
     vmax = max([abs(p["v"]) for p in vp["points"]] + [1e-300]) / mu_v
     w_pic = 2 * vmax + 24
     k = min(1.0, FRAME / (w_scheme + w_pic))                    # fit the page: one factor for both
-    H = (y_hi - y_lo) / mu_l * k + 22
+    # reduced to fit, the lengths and the velocities still at standard scales (the ones stated)
+    from .. import figures
+    kl = mu_l / figures.nice_scale(mu_l / k)
+    kv = mu_v / figures.nice_scale(mu_v / k)
+    H = (y_hi - y_lo) / mu_l * kl + 22
     c = Canvas(w_scheme * k + w_pic * k, H)
 
     def Y(y):
-        return 12 + (y - y_lo) / mu_l * k
+        return 12 + (y - y_lo) / mu_l * kl
 
     def r_mm(z):
-        return vp["module"] * z / 2 / mu_l * k
+        return vp["module"] * z / 2 / mu_l * kl
     x = 8 * k
     col = _colors()
 
@@ -93,7 +101,7 @@ def scheme_and_picture(d: dict, lang_t) -> str:
         c.line((xw, y_a), (xw, y_b), color=color, width=0.7)
         for yy in (y_a, y_b):
             c.line((xw - 1.2, yy), (xw + 1.2, yy), color=color, width=0.7)
-    c.text(x, H - 4, "μ", sub="l", after=f" = {mu_l / k:.3g} m/mm", anchor="start", size=6.5)
+    c.text(x, H - 4, "μ", sub="l", after=f" = {mu_l / kl:g} m/mm", anchor="start", size=6.5)
     y_shaft = Y(0.0)
     c.line((2, y_shaft), (x + 6 * k, y_shaft), width=0.5)               # motor shaft
     c.text(2, y_shaft + 2.2, "M", anchor="start", size=6.5)
@@ -123,7 +131,7 @@ def scheme_and_picture(d: dict, lang_t) -> str:
             zd = dict(zip(("z1", "z2", "z3", "z4"), z))
             rr = {kk: r_mm(v) for kk, v in zd.items()}
             aw_mm = {"A": (zd["z1"] + zd["z2"]), "B": (zd["z1"] + zd["z2"]), "C": (zd["z1"] + zd["z2"]),
-                     "D": (zd["z1"] - zd["z2"])}[sch] * vp["module"] / 2 / mu_l * k
+                     "D": (zd["z1"] - zd["z2"])}[sch] * vp["module"] / 2 / mu_l * kl
             for sgn in (1,):                          # the half above the axis, as on the sheet
                 ys_ = yc + sgn * aw_mm
                 if sch == "D":
@@ -157,11 +165,11 @@ def scheme_and_picture(d: dict, lang_t) -> str:
     x0 = w_scheme * k + vmax * k + 10 * k
     c.line((x0, Y(y_lo) - 4), (x0, Y(y_hi) + 4), width=0.3)
     c.text(x0, Y(y_hi) + 7, "y", size=6.5, italic=True)
-    c.text(x0 + vmax * k, 4, "μ", sub="v", after=f" = {mu_v / k:.3g} (m/s)/mm", anchor="end", size=6.5)
+    c.text(x0 + vmax * k, 4, "μ", sub="v", after=f" = {mu_v / kv:g} (m/s)/mm", anchor="end", size=6.5)
     for p in vp["points"]:
         yy = Y(p["y"])
         c.line((w_scheme * k - 4, yy), (x0, yy), color="#999", width=0.15, dash="0.8,0.8")
-        xv = x0 + p["v"] / mu_v * k
+        xv = x0 + p["v"] / mu_v * kv
         c.line((x0, yy), (xv, yy), color="#555", width=0.25)
         c.dot((xv, yy), 0.5)
         c.text(xv + (2 if p["v"] >= 0 else -2), yy - 2, p["name"], size=5, anchor="start" if p["v"] >= 0 else "end",
@@ -173,8 +181,8 @@ def scheme_and_picture(d: dict, lang_t) -> str:
         y_a, y_b = min(pts_y), max(pts_y)
         if y_b - y_a < 2:
             y_b = y_a + 8
-        pa = (x0 + ln["slope"] * ((y_a - 12) / k * mu_l + y_lo - ln["y0"]) / mu_v * k, y_a)
-        pb = (x0 + ln["slope"] * ((y_b - 12) / k * mu_l + y_lo - ln["y0"]) / mu_v * k, y_b)
+        pa = (x0 + ln["slope"] * ((y_a - 12) / kl * mu_l + y_lo - ln["y0"]) / mu_v * kv, y_a)
+        pb = (x0 + ln["slope"] * ((y_b - 12) / kl * mu_l + y_lo - ln["y0"]) / mu_v * kv, y_b)
         color = col[(ln["stage"] + 1) % len(col)] if ln["stage"] >= 0 else "#000"
         c.line(pa, pb, color=color, width=0.45, dash="2,1" if ln.get("satellite") else None)
         c.text(pb[0] + 1.5, pb[1] + 1.5, ln["name"], size=6, color=color, anchor="start", halo=True)
@@ -187,25 +195,31 @@ def angular_plan(d: dict) -> str:
     rays = vp["rays"]
     xs = [r["x"] for r in rays] + [0.0]
     k = min(1.0, (FRAME - 30) / max(max(xs) - min(xs), 1e-9))
+    from .. import figures
+    k = vp["mu_omega"] / figures.nice_scale(vp["mu_omega"] / k)     # reduced to a standard μω
     Hh = vp["H"] * k
     x_lo = min(xs) * k
-    c = Canvas((max(xs) - min(xs)) * k + 30, Hh + 24)
+    # ray names stacked where rays end close together: the canvas leaves room for the stack
+    used, lifts = [], []
+    for r in rays:
+        lifts.append(2.5 + 3.2 * sum(1 for u in used if abs(u - r["x"] * k) < 6))
+        used.append(r["x"] * k)
+    note = f"H = {vp['H'] * k:.0f} mm, μω = {vp['mu_omega'] / k:g} (rad/s)/mm"
+    c = Canvas(max((max(xs) - min(xs)) * k + 30, figures.text_size(note, 6.5 * 25.4 / 72.0)[0] + 6.0),
+               Hh + 14 + max(lifts + [10.0]) + 2.0)
     px, py = 15 - x_lo, 8.0
     c.dot((px, py), 0.7)
     c.text(px - 2.5, py, "P", size=6.5, anchor="end", italic=True)
     c.line((15 - 4, py + Hh), (15 + (max(xs) - min(xs)) * k + 4, py + Hh), width=0.3)
     c.line((px, py), (px, py + Hh), color="#999", width=0.2, dash="1,1")
     col = _colors()
-    used = []
-    for r in rays:
+    for r, lift in zip(rays, lifts):
         q = (px + r["x"] * k, py + Hh)
         color = col[(r["stage"] + 1) % len(col)] if r["stage"] >= 0 else "#000"
         c.line((px, py), q, color=color, width=0.4, dash="2,1" if r["satellite"] else None)
-        lift = 2.5 + 3.2 * sum(1 for u in used if abs(u - q[0]) < 6)
-        used.append(q[0])
         c.text(q[0], q[1] + lift, r["name"], size=6, color=color, halo=True)
-    c.text(15 + (max(xs) - min(xs)) * k, 4, "H = " + f"{vp['H'] * k:.0f} mm, μ", sub="ω",
-           after=f" = {vp['mu_omega'] / k:.4g} (rad/s)/mm", anchor="end", size=6.5)
+    c.text(2.0, 4, "H = " + f"{vp['H'] * k:.0f} mm, μ", sub="ω",
+           after=f" = {vp['mu_omega'] / k:g} (rad/s)/mm", anchor="start", size=6.5)
     return c.to_svg()
 
 
@@ -218,7 +232,6 @@ def build(ctx) -> str | None:
     d = (ctx.results or {}).get("drive_train")
     if not d:
         return None
-    from markupsafe import Markup
     f, t = ctx.fmt, ctx.t
     vp = d["velocity_plan"]
     rows = []
@@ -250,6 +263,8 @@ def build(ctx) -> str | None:
                  (t("train.Jn_motor"), f(fw["J_n_motor_shaft"], 5)), (t("train.GD2"), f(fw["GD2_motor_shaft"], 5))]
         if d.get("motor_power_computed"):
             motor.insert(0, (t("train.power"), f(d["motor_power"], 5)))
-    figs = [(Markup(scheme_and_picture(d, t)), t("train.scheme")), (Markup(angular_plan(d)), t("train.plan"))]
+    from .. import figures
+    figs = [(figures.named(scheme_and_picture(d, t), "train-scheme"), t("train.scheme")),
+            (figures.named(angular_plan(d), "train-angular-plan"), t("train.plan"))]
     return ctx.render("sections/drive_train.html.j2", info=info, rows=rows, shafts=shafts, sats=sats,
                       cands=cands, motor=motor, figs=figs, rank=d.get("rank", "size"))

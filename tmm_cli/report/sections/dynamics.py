@@ -117,8 +117,8 @@ def _pct(x, ref):
 
 
 def _diagrams(ctx, d, q):
-    plt = ctx.figures.plt()
-    fig, axes = plt.subplots(2, 2, figsize=(180 * ctx.figures.MM, 120 * ctx.figures.MM), sharex=True)
+    from ..svgchart import subplots
+    fig, axes = subplots(180, 120, nrows=2, ncols=2, sharex=True)
     (a1, a2), (a3, a4) = axes
     a1.plot(q, _arr(d, "M_d"), color="#1e8449", label=ctx.t("dyn.Md"))
     a1.plot(q, _arr(d, "M_c"), color="#c0392b", label=ctx.t("dyn.Mc"))
@@ -139,8 +139,8 @@ def _diagrams(ctx, d, q):
     for ax in (a3, a4):
         ax.set_xlabel(ctx.t("dyn.phi_axis"))
         ax.set_xticks(np.arange(0, q[-1] + 1, 60 if q[-1] <= 360 else 120))
-    fig.tight_layout()
-    return ctx.svg(fig)
+    ctx.figures.std_graph(fig, (a1, a2, a3, a4), ctx.t("kin.mm"), x_axis=a3)     # μM, μA, μT, μJ, μφ
+    return ctx.svg(fig, "dynamics-diagrams")
 
 
 def _wittenbauer(ctx, d):
@@ -165,8 +165,8 @@ def _wittenbauer(ctx, d):
     muT = ctx.figures.nice_scale(span_T / 110.0)
     x = J / muJ
     y = T / muT
-    plt = ctx.figures.plt()
-    fig, ax = plt.subplots(figsize=(120 * ctx.figures.MM, 150 * ctx.figures.MM))
+    from ..svgchart import subplots
+    fig, ax = subplots(120, 150)
     ax.plot(x, y, color="k", lw=1.0)
     xe = Jmax / muJ
     xs = np.array([0.0, xe])
@@ -189,7 +189,7 @@ def _wittenbauer(ctx, d):
     # J = kl mu_T / (omega_m^2 delta): the stage's value of the construction
     cap = ctx.t("dyn.witt_caption", muJ=f"{muJ:g}", muT=f"{muT:g}", pmax=pmax, pmin=pmin, kl=kl,
                 J=ctx.fmt(d.get("J_wittenbauer"), 5))
-    return ctx.svg(fig), cap
+    return ctx.svg(fig, "energy-mass"), cap
 
 
 def _motion(ctx, d, q):
@@ -197,8 +197,8 @@ def _motion(ctx, d, q):
     e = _arr(d, "epsilon")
     if w is None:
         return None
-    plt = ctx.figures.plt()
-    fig, (a1, a2) = plt.subplots(2, 1, figsize=(170 * ctx.figures.MM, 95 * ctx.figures.MM), sharex=True)
+    from ..svgchart import subplots
+    fig, (a1, a2) = subplots(170, 95, nrows=2, sharex=True)
     a1.plot(q, w, color="k")
     sg = -1.0 if d.get("direction") == "cw" else 1.0
     for key, ls in (("omega_max", "--"), ("omega_min", "--"), ("omega_m", ":")):
@@ -215,8 +215,8 @@ def _motion(ctx, d, q):
         ax.grid(True, lw=0.3, alpha=0.5)
         ax.set_xlim(0, q[-1])
     a2.set_xticks(np.arange(0, q[-1] + 1, 30 if q[-1] <= 360 else 60))
-    fig.tight_layout()
-    return ctx.svg(fig)
+    ctx.figures.std_graph(fig, (a1, a2), ctx.t("kin.mm"), x_axis=a2, zero=False)   # μω, με, μφ
+    return ctx.svg(fig, "motion")
 
 
 def build(ctx) -> str | None:

@@ -266,6 +266,7 @@ def sliding_figure(ctx, g):
     ax.set_xlabel(f"$N_1X$, {ctx.t('gears.mm')}")
     ax.legend(fontsize=7)
     ax.grid(True, lw=0.3)
+    fig.tight_layout()                    # the axis label inside the figure
     return fig
 
 
@@ -317,7 +318,7 @@ def build(ctx) -> str | None:
     # the specific-sliding diagrams right under the mesh, as on the sheet
     for fn, cap in ((mesh_figure, "gears.mesh_caption"), (sliding_figure, "gears.sliding_caption"),
                     (contour_figure, "gears.contour_caption")):
-        figs.append((ctx.svg(fn(ctx, g)), _symbols(t(cap))))
+        figs.append((ctx.svg(fn(ctx, g), "gear-" + fn.__name__.replace("_figure", "")), _symbols(t(cap))))
     from tmm_cli.gears.drawing import outline_csv, outline_dxf, outlines
     files = []
     polys = {}

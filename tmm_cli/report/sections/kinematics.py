@@ -74,17 +74,34 @@ def positions_svg(ctx, geom, entries, grid, fine=None):
     periodic splines through them -- or, given a `fine` grid, through its points."""
     from .. import figures as F
     lo, hi = F.mechanism_extent(entries)
-    fig, ax, unit = F.figure_for_box(lo, hi, 165.0, min_h=60.0, max_h=150.0, margin_mm=10.0)
+    fig, ax, unit = F.figure_for_box(lo, hi, 165.0, min_h=60.0, max_h=150.0, margin_mm=10.0,
+                                        lang=ctx.lang)
     ranges = F.slider_ranges(entries, geom)
     for e in grid[1:]:
         F.draw_mechanism(ax, geom, e, unit, light=True)
-    F.draw_mechanism(ax, geom, grid[0], unit, ranges=ranges, lw=1.3)
+    # the position numbers at the crank pin first: the point names keep clear of them
+    numbers = []
+    pin = crank_pin(geom)
+    if pin is not None:
+        O = None
+        for j in geom.joints:
+            if j.kind == "R" and j.a == 0 and j.b == geom.drive:
+                O = _pxy(grid[0], j.point)
+        for k, e in enumerate(grid):
+            a = _pxy(e, pin)
+            d = a - O if O is not None else np.array([0.0, 1.0])
+            d = d / (np.linalg.norm(d) or 1.0)
+            q = a + d * 3.5 * unit
+            numbers.append((q, str(e.get("index", k))))
+    fs_mm = 6.5 * 25.4 / 72.0
+    taken = [(q[0] - w / 2, q[1] - h / 2, q[0] + w / 2, q[1] + h / 2) for q, s in numbers
+             for w, h in [tuple(unit * np.array(F.text_size(s, fs_mm)))]]
+    F.draw_mechanism(ax, geom, grid[0], unit, ranges=ranges, lw=1.3, taken=taken)
     # trajectories: periodic splines through the grid positions
-    from scipy.interpolate import CubicSpline
+    from ..svgchart import periodic_spline
     traced = [l.com for l in geom.links if l.com] + [p for l in geom.links if l.kind == "bar"
                                                      for p in l.points]
     seen = set()
-    pin = crank_pin(geom)
     for p in traced:
         if p in seen or p in geom.ground or p not in grid[0]["points"]:
             continue
@@ -98,38 +115,27 @@ def positions_svg(ctx, geom, entries, grid, fine=None):
             t = np.arange(len(xy) + 1, dtype=float)
             closed = np.vstack([xy, xy[:1]])
             tt = np.linspace(0, len(xy), 40 * len(xy))
-            cs = CubicSpline(t, closed, bc_type="periodic")
-            c = cs(tt)
+            c = periodic_spline(t, closed, tt)
         is_com = p.startswith("S")
         ax.plot(c[:, 0], c[:, 1], lw=0.7 if is_com else 0.5, ls="-" if is_com else "--",
                 color="#1f5fbf" if is_com else "0.5", zorder=1)
         ax.plot(xy[:, 0], xy[:, 1], ls="none", marker="o", ms=1.6,
                 color="#1f5fbf" if is_com else "0.4", zorder=2)
-    if pin is not None:
-        O = None
-        for j in geom.joints:
-            if j.kind == "R" and j.a == 0 and j.b == geom.drive:
-                O = _pxy(grid[0], j.point)
-        for k, e in enumerate(grid):
-            a = _pxy(e, pin)
-            d = a - O if O is not None else np.array([0.0, 1.0])
-            d = d / (np.linalg.norm(d) or 1.0)
-            q = a + d * 3.5 * unit
-            ax.text(q[0], q[1], str(e.get("index", k)), fontsize=6.5, color="#7a1f1f",
-                    ha="center", va="center", zorder=8)
-    return ctx.svg(fig)
+    for q, s in numbers:
+        ax.text(q[0], q[1], s, fontsize=6.5, color="#7a1f1f", ha="center", va="center", zorder=8)
+    return ctx.svg(fig, "positions")
 
 
 PLAN_W, PLAN_H = 170.0, 86.0        # mm: the two plans side by side
-_NICE_BARS = (5.0, 10.0, 20.0, 25.0, 50.0, 100.0, 200.0)
 
 
 def draw_plan(cv, plan, box, title, unit_txt, si_unit="m/s", mm="mm"):
     """One plan inside box = (x0, y0, w, h) mm of the canvas `cv`.
 
     The plan's coordinates are millimetres at its scale mu (the segment table's
-    lengths); the drawing is that plan reduced by a factor k <= 1 to fit the box,
-    with a scale bar of a round number of plan millimetres.  Returns k."""
+    lengths); the drawing is that plan reduced by a factor k <= 1 to fit the box, so
+    that it stands at a standard scale mu / k (1, 2, 2.5, 4, 5 x 10^k), the one stated,
+    with a 20 mm scale bar.  Returns k."""
     from .. import figures as F
     x0, y0, w, h = box
     top = 11.0                          # title and scale lines
@@ -140,6 +146,8 @@ def draw_plan(cv, plan, box, title, unit_txt, si_unit="m/s", mm="mm"):
     span = np.maximum(hi - lo, 1e-9)
     m = 6.0
     k = min(1.0, (w - 2 * m) / span[0], (h - top - bar_h - 2 * m) / span[1])
+    mu_drawn = F.nice_scale(plan.mu / k)      # reduced to fit: still at a standard μ, the one stated
+    k = plan.mu / mu_drawn
     c = np.array([x0 + w / 2, y0 + bar_h + (h - top - bar_h) / 2]) - (lo + hi) / 2 * k
 
     def M(p):
@@ -169,27 +177,38 @@ def draw_plan(cv, plan, box, title, unit_txt, si_unit="m/s", mm="mm"):
         else:
             groups.append((q, [name]))
     pole = M(np.zeros(2))
-    anchors = []
+    # title, scale, scale bar first: the point labels keep clear of them
+    from ..svgdraw import PT_PER_MM
+    taken = []
+
+    def fixed(x, y, text, pt, **kw):
+        cv.text(x, y, text, size=pt, **kw)
+        tw, th = F.text_size(text, pt / PT_PER_MM)
+        taken.append((x, y - th / 2, x + tw, y + th / 2))
+
+    fixed(x0 + 1.5, y0 + h - 3.2, title, 7, anchor="start", bold=True)
+    cv.text(x0 + 1.5, y0 + h - 7.2, "μ", size=6.5, anchor="start", sub=plan.kind,
+            after=f" = {mu_drawn:g} {unit_txt}")
+    tw, th = F.text_size(f"μ{plan.kind} = {mu_drawn:g} {unit_txt}", 6.5 / PT_PER_MM)
+    taken.append((x0 + 1.5, y0 + h - 7.2 - th / 2, x0 + 1.5 + tw, y0 + h - 7.2 + th / 2))
+    bar = 20.0                               # mm of the drawing, at the stated scale
+    bx, by = x0 + 2.0, y0 + 2.5
+    cv.polyline([(bx, by + 0.8), (bx, by), (bx + bar, by), (bx + bar, by + 0.8)], "#000", 0.3)
+    fixed(bx + bar + 1.5, by + 0.3, f"{bar:g} {mm} = {float(f'{bar * mu_drawn:.6g}'):g} {si_unit}", 6,
+          anchor="start")
+    taken.append((bx, by - 0.5, bx + bar, by + 1.0))
+    anchors, texts, sizes = [], [], []
     for q, names in groups:
         d = q - pole
         anchors.append((q[0], q[1], tuple(d) if np.hypot(*d) > 0.5 else (-1.0, -1.0)))
-    pos = F.place_labels(anchors, 60.0, avoid=[g[0] for g in groups], step=2.6, segments=segs)
-    for (q, names), (x, y) in zip(groups, pos):
-        names = sorted(names, key=lambda s: (s != plan.pole, s))
-        x = min(max(x, x0 + 3), x0 + w - 3)
-        y = min(max(y, y0 + bar_h), y0 + h - top)
-        aux = plan.pole not in names and names[0].startswith(("n", "k"))
-        cv.text(x, y, ", ".join(names), size=7, italic=True, color="#444" if aux else "#000", halo=True)
+        texts.append(", ".join(sorted(names, key=lambda s: (s != plan.pole, s))))
+        sizes.append(F.text_size(texts[-1], 7 / PT_PER_MM))
+    pos = F.place_labels(anchors, 60.0, avoid=[g[0] for g in groups], step=2.6, segments=segs, sizes=sizes,
+                         taken=taken, bounds=(x0 + 0.5, y0 + 0.5, x0 + w - 0.5, y0 + h - 0.5))
+    for (q, names), text, (x, y) in zip(groups, texts, pos):
+        aux = plan.pole not in names and min(names, key=lambda s: (s != plan.pole, s)).startswith(("n", "k"))
+        cv.text(x, y, text, size=7, italic=True, color="#444" if aux else "#000", halo=True)
     cv.dot(pole, 0.6, z=6)
-    # title, scale, scale bar
-    cv.text(x0 + 1.5, y0 + h - 3.2, title, size=7, anchor="start", bold=True)
-    cv.text(x0 + 1.5, y0 + h - 7.2, "μ", size=6.5, anchor="start", sub=plan.kind,
-            after=f" = {plan.mu:g} {unit_txt}")
-    bar = next((b for b in _NICE_BARS if b * k >= 12.0), _NICE_BARS[-1])
-    bx, by = x0 + 2.0, y0 + 2.5
-    cv.polyline([(bx, by + 0.8), (bx, by), (bx + bar * k, by), (bx + bar * k, by + 0.8)], "#000", 0.3)
-    cv.text(bx + bar * k + 1.5, by + 0.3, f"{bar:g} {mm} = {float(f'{bar * plan.mu:.6g}'):g} {si_unit}",
-            size=6, anchor="start")
     return k
 
 
@@ -233,12 +252,12 @@ def output_series(ctx, geom, entries, out_name):
 def diagrams_svg(ctx, geom, entries, phase, out_name, curve, marks=None):
     """s, v, a (or psi, omega, epsilon) of the output link over the cycle; dots at the
     positions (at those of the boolean mask `marks` only, for a fine grid)."""
-    from scipy.interpolate import CubicSpline
     from .. import figures as F
     kind, s, v, a = output_series(ctx, geom, entries, out_name)
     units = ([ctx.t("kin.s_unit"), ctx.t("kin.v_unit"), ctx.t("kin.a_unit")] if kind == "slider"
              else [ctx.t("kin.psi_unit"), ctx.t("kin.w_unit"), ctx.t("kin.e_unit")])
-    fig, axes = F.new_figure(165.0, 150.0, nrows=3, sharex=True)
+    from ..svgchart import periodic_spline, subplots
+    fig, axes = subplots(165.0, 150.0, nrows=3, sharex=True)
     order = np.argsort(phase)
     ph = np.asarray(phase)[order]
     keep = np.concatenate([[True], np.diff(ph) > 1e-9])
@@ -253,9 +272,10 @@ def diagrams_svg(ctx, geom, entries, phase, out_name, curve, marks=None):
         elif marks is not None:             # a fine grid is its own curve
             ax.plot(np.append(x, x[0] + 360.0), np.append(y, y[0]), color="#1f5fbf", lw=1.0)
         elif len(x) >= 3:
-            cs = CubicSpline(np.append(x, x[0] + 360.0), np.append(y, y[0]), bc_type="periodic")
             tt = np.linspace(x[0], x[0] + 360.0, 721)
-            ax.plot(tt % 360.0 if x[0] > 0 else tt, cs(tt), color="#1f5fbf", lw=1.0)
+            ax.plot(tt % 360.0 if x[0] > 0 else tt,
+                    periodic_spline(np.append(x, x[0] + 360.0), np.append(y, y[0]), tt),
+                    color="#1f5fbf", lw=1.0)
         ax.plot(ph[dots], np.asarray(ys)[order][dots], ls="none", marker="o", ms=2.5, color="k",
                 clip_on=False, zorder=5)
         ax.axhline(0, color="0.5", lw=0.5)
@@ -264,8 +284,9 @@ def diagrams_svg(ctx, geom, entries, phase, out_name, curve, marks=None):
         ax.set_xlim(0, 360)
     axes[-1].set_xticks(np.arange(0, 361, 30))
     axes[-1].set_xlabel(ctx.t("kin.phi_axis"))
-    fig.subplots_adjust(left=0.1, right=0.98, top=0.98, bottom=0.08, hspace=0.12)
-    return ctx.svg(fig), kind
+    # every axis at a standard scale μ, stated in the course's form (μs = 0.002 m/mm)
+    F.std_graph(fig, axes, ctx.t("kin.mm"), x_axis=axes[-1])
+    return ctx.svg(fig, "output-diagrams"), kind
 
 
 # ----------------------------------------------------------------- section
@@ -358,6 +379,7 @@ def build(ctx) -> str | None:
                 [ctx.fmt_fixed(e["links"][l.name].get("angle"), 2) for l in geom.links] for e in shown]
 
     # plans of every (course) position
+    from .. import figures as F
     positions = []
     plan_csv = []
     for e in shown:
@@ -372,7 +394,7 @@ def build(ctx) -> str | None:
                                                .replace("<sup>", "^").replace("</sup>", "")),
                                  float(mm), float(val)])
         positions.append({"index": e["index"], "phi": ctx.fmt_fixed(e["phi"], 2),
-                          "fig": plans_svg(ctx, vp, ap), "vrows": vrows, "arows": arows})
+                          "fig": F.named(plans_svg(ctx, vp, ap), F.pos_name("plans", e["index"])), "vrows": vrows, "arows": arows})
 
     # diagrams
     out_name = res_pos.get("output") or geom.links[-1].name

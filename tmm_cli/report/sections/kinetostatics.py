@@ -129,7 +129,6 @@ MAX_FIG_POSITIONS = 24       # pages of drawings for at most this many positions
 ROW_H = 72.0                 # mm: one row (a group's diagram + its polygon)
 GROUP_W = 90.0               # mm: width of a group's diagram
 CRANK_W = 50.0               # mm: the input link's diagram in the last row
-POLY_W_CRANK = 52.0          # mm: its polygon; the lever takes the rest
 FIG_W = 170.0                # mm
 PAGE_H = 245.0               # mm of drawings per page at most
 
@@ -216,18 +215,25 @@ def _arrow_len(F, Fmax):
     return 5.5 + 7.5 * math.sqrt(min(float(np.hypot(*F)) / Fmax, 1.0)) if Fmax > 0 else 9.0
 
 
-def _labels(cv, items, step, segments, avoid, lang, size=7.0, box=None):
-    """items: (anchor xy, preferred dir, name, color); kept inside box."""
+def _labels(cv, items, step, segments, avoid, lang, size=7.0, box=None, taken=None, halo=True, italic=True):
+    """items: (anchor xy, preferred dir, name, color); each label a box clear of the others
+    and of `taken` (a list, extended), inside box below its title."""
     from .. import figures
+    from ..svgdraw import PT_PER_MM
     if not items:
         return
-    pos = figures.place_labels([(a[0], a[1], d) for a, d, _, _ in items], 10 * step, avoid=avoid,
-                               step=step, segments=segments)
+    parts = [label_parts(name, lang) for _, _, name, _ in items]
+    fs = size / PT_PER_MM
+    sizes = [figures.text_size(s, fs, sub) for s, sub in parts]
+    bounds = None
     if box is not None:
-        pos = _clamp(pos, box)
-    for (a, d, name, col), (x, y) in zip(items, pos):
-        s, sub = label_parts(name, lang)
-        cv.text(x, y, s, size=size, color=col, italic=True, sub=sub or None, halo=True)
+        x0, y0, w, h = box
+        bounds = (x0 + 0.5, y0 + 0.5, x0 + w - 0.5, y0 + h - TITLE_H + 1.0)
+    pos = figures.place_labels([(a[0], a[1], d) for a, d, _, _ in items], 10 * step, avoid=avoid,
+                               step=step, segments=segments, sizes=sizes,
+                               taken=taken if taken is not None else [], bounds=bounds)
+    for (a, d, name, col), (s, sub), (x, y) in zip(items, parts, pos):
+        cv.text(x, y, s, size=size, color=col, italic=italic, sub=sub or None, halo=halo)
 
 
 def _fbd_panel(ctx, cv, box, kin_e, links, names, forces, couples, title):
@@ -238,9 +244,11 @@ def _fbd_panel(ctx, cv, box, kin_e, links, names, forces, couples, title):
     pts_names = [p for n in names for p in links[n]["points"] if p in P]
     xy = np.array([_xy(P[p]) for p in pts_names] + [f[1] for f in forces])
     lo, hi = xy.min(axis=0), xy.max(axis=0)
-    span = np.maximum(hi - lo, 1e-9)
+    span = np.maximum(hi - lo, 0.02)     # a group all in one point (a block on a block): at 20 mm
     m = 11.0 if w > 60 else 15.0                       # room for the arrows
-    mu_l = figures.nice_scale(max(span[0] / (w - 2 * m), span[1] / (h - TITLE_H - 2 * m), 1e-9))
+    # a ГОСТ 2.302 length scale (1:1, 1:2, 1:2.5, 1:4, 1:5, 1:10, ...), stated as μl in m/mm
+    mu_l = figures.drawing_scale(1000.0 * max(span[0] / (w - 2 * m), span[1] / (h - TITLE_H - 2 * m), 1e-9))[0] \
+        / 1000.0
     c_box = (lo + hi) / 2
     c_pan = np.array([x0 + w / 2, y0 + (h - TITLE_H) / 2])
 
@@ -313,32 +321,31 @@ def _fbd_panel(ctx, cv, box, kin_e, links, names, forces, couples, title):
         col = KIND_COLOR.get(kind, "#000")
         cv.moment(c, 3.2, Mv, col, 0.35, z=3)
         arrows.append((c + np.array([0.0, 4.2]), (0.0, 1.0), name, col))
-    _labels(cv, arrows, 2.6, segs, avoid, ctx.lang, box=box)
-    # point letters (upright, grey, small), after the force labels had their choice
-    for a, _, p, col in items:
-        d = np.array([-1.0, 1.0]) / math.sqrt(2)
-        mm = re.fullmatch(r"(.*?)(\d+)", p)
-        head, sub = (mm.group(1), mm.group(2)) if mm and mm.group(1) else (p, None)
-        cv.text(a[0] + d[0] * 2.2, a[1] + d[1] * 2.2, head, size=6, color="#555", sub=sub)
-    _title(cv, box, title, f"μl = {mu_l:g} {ctx.t('kst.unit_l')}")
+    taken = _title(cv, box, title, f"μl = {mu_l:g} {ctx.t('kst.unit_l')}")
+    # point letters (upright, grey, small) next to their points, then the force names
+    _labels(cv, [(a, (-1.0, 1.0), p, col) for a, _, p, col in items], 1.6, segs, avoid, ctx.lang, size=6,
+            box=box, taken=taken, halo=False, italic=False)
+    _labels(cv, arrows, 2.6, segs, avoid, ctx.lang, box=box, taken=taken)
     return mu_l
 
 
 TITLE_H = 11.0               # mm at the top of a panel: its title and scale
 
 
-def _title(cv, box, title, scale):
+def _title(cv, box, title, scale) -> list:
+    """The panel's title and scale at its top left; returns their boxes (the labels keep clear)."""
+    from ..figures import text_size
+    from ..svgdraw import PT_PER_MM
     x0, y0, w, h = box
-    cv.text(x0 + 1.5, y0 + h - 3.2, title[:1].upper() + title[1:], size=7, anchor="start", bold=True)
+    title = title[:1].upper() + title[1:]
+    cv.text(x0 + 1.5, y0 + h - 3.2, title, size=7, anchor="start", bold=True)
     sym, rest = scale.split(" = ", 1)          # 'μF = 400 N/mm' -> μ with subscript F
     cv.text(x0 + 1.5, y0 + h - 7.2, sym[0], size=6.5, anchor="start", sub=sym[1:], after=f" = {rest}")
-
-
-def _clamp(pos, box, pad=2.5):
-    """Keep label centres inside the panel box (x0, y0, w, h) below its title."""
-    x0, y0, w, h = box
-    return [(min(max(x, x0 + pad + 1), x0 + w - pad - 1), min(max(y, y0 + pad), y0 + h - TITLE_H))
-            for x, y in pos]
+    out = []
+    for s, yc, pt in ((title, h - 3.2, 7), (scale, h - 7.2, 6.5)):
+        tw, th = text_size(s, pt / PT_PER_MM)
+        out.append((x0 + 1.5, y0 + yc - th / 2, x0 + 1.5 + tw, y0 + yc + th / 2))
+    return out
 
 
 def _area(q):
@@ -369,9 +376,21 @@ def _polygon_panel(ctx, cv, box, forces):
         nrm = np.array([-d[1], d[0]]) / (L or 1.0)
         items.append(((a + b) / 2, tuple(nrm), name, col))
     cv.dot(T[0], 0.6, z=6)
-    _labels(cv, items, 2.8, segs, [T[0]], ctx.lang, box=box)
-    _title(cv, box, ctx.t("kst.polygon"), f"μF = {mu_F:g} {ctx.t('kst.unit_F')}")
+    taken = _title(cv, box, ctx.t("kst.polygon"), f"μF = {mu_F:g} {ctx.t('kst.unit_F')}")
+    _labels(cv, items, 2.8, segs, [T[0]], ctx.lang, box=box, taken=taken)
     return mu_F, T
+
+
+def _clip_to(p, q, rect):
+    """The point of the segment p -> q where it leaves rect (x0, y0, x1, y1), or q inside it."""
+    d = q - p
+    t = 1.0
+    for i, (lo_, hi_) in enumerate(((rect[0], rect[2]), (rect[1], rect[3]))):
+        if d[i] > 1e-12:
+            t = min(t, (hi_ - p[i]) / d[i])
+        elif d[i] < -1e-12:
+            t = min(t, (lo_ - p[i]) / d[i])
+    return p + max(t, 0.0) * d
 
 
 def _point_name(kin_e, xy, tol=1e-9):
@@ -387,6 +406,7 @@ def _lever_panel(ctx, cv, box, e, kin_e, pin, omega1, balance_kind):
     velocities with their arms about the pole, P_b at the crank pin; M_b below."""
     from .. import figures
     from ..plans import plan_label
+    from ..svgdraw import PT_PER_MM
     x0, y0, w, h = box
     P = kin_e["points"]
     text_h = 13.0
@@ -397,7 +417,18 @@ def _lever_panel(ctx, cv, box, e, kin_e, pin, omega1, balance_kind):
             vel[p] = np.array([-v[1], v[0]])           # turned by +90 deg
     loads = [f for f in e.get("loads", []) if float(np.hypot(*f["F"])) > 0]
     turned = list(vel.values()) + [np.array([-f["v"][1], f["v"][0]], float) for f in loads]
+    # the feet of the arms h (the pole's projection on each line of action) stay inside too
+    feet = []
+    for f in loads:
+        tv = np.array([-f["v"][1], f["v"][0]], float)
+        u = np.asarray(f["F"], float) / float(np.hypot(*f["F"]))
+        feet.append(tv - u * float(tv @ u))
     T = np.array(turned + [np.zeros(2)])
+    lo, hi = T.min(axis=0), T.max(axis=0)
+    span = np.maximum(hi - lo, 1e-12)
+    # (a foot far outside the plan would shrink the lever: its arm is then drawn up to the edge)
+    near = [q for q in feet if np.all(q >= lo - 0.5 * span) and np.all(q <= hi + 0.5 * span)]
+    T = np.array(turned + near + [np.zeros(2)])
     lo, hi = T.min(axis=0), T.max(axis=0)
     span = np.maximum(hi - lo, 1e-12)
     m = 10.0
@@ -417,7 +448,7 @@ def _lever_panel(ctx, cv, box, e, kin_e, pin, omega1, balance_kind):
         segs.append((pole, q))
         cv.dot(q, 0.45, "#555", z=5)
     Fmax = max((float(np.hypot(*f["F"])) for f in loads), default=0.0)
-    arrows = []
+    arrows, arms = [], []
     for f in loads:
         F = np.asarray(f["F"], float)
         q = end(np.array([-f["v"][1], f["v"][0]], float))
@@ -428,8 +459,14 @@ def _lever_panel(ctx, cv, box, e, kin_e, pin, omega1, balance_kind):
         cv.arrow(q, b, col, 0.4, head=1.9, z=3)
         segs.append((q, b))
         foot = q + u * float(np.dot(pole - q, u))      # arm h: pole to the line of action
-        if float(np.hypot(*(foot - pole))) > 1.0:
+        foot = _clip_to(pole, foot, (x0 + 2, y0 + 2, x0 + w - 2, y0 + h - TITLE_H))
+        if float(np.hypot(*(foot - pole))) > 4.0:
             cv.line(pole, foot, col, 0.2, dash="0.8 0.6", z=1)
+            cv.line(q, foot, col, 0.15, dash="0.3 0.6", z=1)     # the line of action up to the foot
+            segs.append((pole, foot))
+            d = foot - pole
+            arms.append(((pole + foot) / 2, (-d[1], d[0]), "h\u0000" + "".join(label_parts(f["name"], ctx.lang)),
+                         col))
         arrows.append((b + u * 0.6, tuple(u), f["name"], col))
     # the balancing force at the crank pin: its power P_b . v_A = M_b omega_1
     Mb = e.get("balancing_moment")
@@ -445,28 +482,7 @@ def _lever_panel(ctx, cv, box, e, kin_e, pin, omega1, balance_kind):
             segs.append((q, b))
             arrows.append((b + u * 0.6, tuple(u), "P\u0000b", col))
     cv.dot(pole, 0.7, z=6)
-    pos = figures.place_labels([(a[0], a[1], d) for a, d, _, _ in arrows], 30, avoid=avoid,
-                               step=2.6, segments=segs)
-    pos = _clamp(pos, box)
-    for (a, d, name, col), (x, y) in zip(arrows, pos):
-        s, sub = label_parts(name, ctx.lang)
-        cv.text(x, y, s, size=6.5, color=col, italic=True, sub=sub or None, halo=True)
-    # letters of the turned plan (merged where ends coincide) and the pole
-    groups: list[tuple[np.ndarray, list[str]]] = []
-    for p, q in ends.items():
-        for g in groups:
-            if np.hypot(*(g[0] - q)) < 1.2:
-                g[1].append(p)
-                break
-        else:
-            groups.append((q, [p]))
-    for q, names in groups:
-        dd = q - pole
-        dd = dd / (np.hypot(*dd) or 1.0)
-        cv.text(q[0] + dd[0] * 2.2, q[1] + dd[1] * 2.2, ", ".join(plan_label(p) for p in names), size=5.5,
-                color="#555", italic=True)
-    cv.text(pole[0] - 1.8, pole[1] - 1.8, "p", size=7, italic=True)
-    _title(cv, box, ctx.t("kst.lever"), f"μv = {mu_v:g} {ctx.t('kst.unit_v')}")
+    taken = _title(cv, box, ctx.t("kst.lever"), f"μv = {mu_v:g} {ctx.t('kst.unit_v')}")
     # the balancing moment by the lever and by the groups
     if balance_kind == "moment":
         lines = [f"{ctx.t('kst.mb_lever')} = {ctx.fmt(e.get('zhukovsky_moment'), 5)} {ctx.t('kst.Nm')}",
@@ -479,14 +495,31 @@ def _lever_panel(ctx, cv, box, e, kin_e, pin, omega1, balance_kind):
     yy = y0 + text_h - 2.5
     for s in lines:
         cv.text(x0 + 1, yy, s, size=6.5, anchor="start")
+        tw, th = figures.text_size(s, 6.5 / PT_PER_MM)
+        taken.append((x0 + 1, yy - th / 2, x0 + 1 + tw, yy + th / 2))
         yy -= 3.8
+    # the pole, then the letters of the turned plan (merged where ends coincide), then the forces
+    cv.text(pole[0] - 1.8, pole[1] - 1.8, "p", size=7, italic=True)
+    tw, th = figures.text_size("p", 7 / PT_PER_MM)
+    taken.append((pole[0] - 1.8 - tw / 2, pole[1] - 1.8 - th / 2, pole[0] - 1.8 + tw / 2, pole[1] - 1.8 + th / 2))
+    groups: list[tuple[np.ndarray, list[str]]] = []
+    for p, q in ends.items():
+        for g in groups:
+            if np.hypot(*(g[0] - q)) < 1.2:
+                g[1].append(p)
+                break
+        else:
+            groups.append((q, [p]))
+    letters = [(q, tuple(q - pole), ", ".join(plan_label(p) for p in names) + "\u0000", "#555")
+               for q, names in groups]
+    _labels(cv, letters, 1.8, segs, avoid, ctx.lang, size=5.5, box=box, taken=taken, halo=False)
+    _labels(cv, arrows + arms, 2.6, segs, avoid, ctx.lang, size=6.5, box=box, taken=taken)
     return mu_v
 
 
-def position_figures(ctx, e, kin_e, info, links, pin=None, omega1=None):
-    """The drawings of one position: a list of SVG strings (one per page), and the
-    data drawn: [{'group': [...], 'mu_l', 'mu_F', 'tips' (mm), 'vectors'}]."""
-    from ..svgdraw import Canvas
+def position_rows(ctx, e, kin_e, info, links):
+    """The groups of one position as they are solved, the last one first and the input
+    link last: [(link names, forces, couples, title)] (shared by the report and sheet 2)."""
     index_by_name = {n: l["index"] for n, l in links.items()}
     groups = [list(g) for g in info["groups"]]
     order = list(reversed(groups[:-1])) + [groups[-1]]
@@ -510,8 +543,30 @@ def position_figures(ctx, e, kin_e, info, links, pin=None, omega1=None):
             title = ctx.t("kst.group_links", k=len(order) - 1 - k,
                           links=", ".join(str(index_by_name[n]) for n in g))
         rows.append((g, forces, couples, title))
-    # pages of rows: each group (diagram | polygon); the last row: the input link's
-    # diagram | its polygon | Zhukovsky's lever
+    return rows
+
+
+def drive_omega(geom, kin_e):
+    """The angular velocity of the input link in one kinematics entry (None without it)."""
+    if geom is None:
+        return None
+    dl = geom.link(geom.drive)
+    if dl is not None and dl.name in kin_e["links"]:
+        return kin_e["links"][dl.name].get("omega")
+    return None
+
+
+LEVER_H = 110.0              # mm: Zhukovsky's lever, a figure of its own under the groups
+
+
+def position_figures(ctx, e, kin_e, info, links, pin=None, omega1=None):
+    """The drawings of one position: a list of SVG strings (the groups, one page each at
+    most, named groups-posNN; then Zhukovsky's lever over the whole width, lever-posNN),
+    and the data drawn: [{'group': [...], 'mu_l', 'mu_F', 'tips' (mm), 'vectors'}] and,
+    last, {'lever': mu_v}."""
+    from .. import figures
+    from ..svgdraw import Canvas
+    rows = position_rows(ctx, e, kin_e, info, links)
     figs, drawn = [], []
     start = 0
     n = len(rows)
@@ -522,32 +577,32 @@ def position_figures(ctx, e, kin_e, info, links, pin=None, omega1=None):
         cv = Canvas(FIG_W, H)
         for r in range(start, stop):
             y = H - (r - start + 1) * ROW_H
-            g, forces, couples, title = rows[r]
-            last = r == n - 1
-            wd, wp = (CRANK_W, POLY_W_CRANK) if last else (GROUP_W, FIG_W - GROUP_W)
-            mu_l = _fbd_panel(ctx, cv, (0, y, wd, ROW_H), kin_e, links, g, forces, couples, title)
-            mu_F, T = _polygon_panel(ctx, cv, (wd + 1, y, wp - 1, ROW_H), forces)
-            drawn.append({"group": g, "mu_l": mu_l, "mu_F": mu_F, "tips": T, "vectors": polygon(forces)[0]})
-            cv.line((wd, y + 1), (wd, y + ROW_H - 1), "#bbb", 0.2, z=0)
             if r > start:
                 cv.line((0, y + ROW_H), (FIG_W, y + ROW_H), "#bbb", 0.2, z=0)
-            if last:
-                xl = wd + wp
-                cv.line((xl, y + 1), (xl, y + ROW_H - 1), "#bbb", 0.2, z=0)
-                _lever_panel(ctx, cv, (xl + 1, y, FIG_W - xl - 1, ROW_H), e, kin_e, pin, omega1,
-                             info.get("balance_kind"))
-        figs.append(Markup(cv.to_svg()))
+            g, forces, couples, title = rows[r]
+            wd = CRANK_W if r == n - 1 else GROUP_W
+            mu_l = _fbd_panel(ctx, cv, (0, y, wd, ROW_H), kin_e, links, g, forces, couples, title)
+            mu_F, T = _polygon_panel(ctx, cv, (wd + 1, y, FIG_W - wd - 1, ROW_H), forces)
+            drawn.append({"group": g, "mu_l": mu_l, "mu_F": mu_F, "tips": T, "vectors": polygon(forces)[0]})
+            cv.line((wd, y + 1), (wd, y + ROW_H - 1), "#bbb", 0.2, z=0)
+        figs.append(figures.named(cv.to_svg(), figures.pos_name("groups", e["index"])))
         start = stop
+    cv = Canvas(FIG_W, LEVER_H)
+    mu_v = _lever_panel(ctx, cv, (0, 0, FIG_W, LEVER_H), e, kin_e, pin, omega1, info.get("balance_kind"))
+    drawn.append({"lever": mu_v})
+    figs.append(figures.named(cv.to_svg(), figures.pos_name("lever", e["index"])))
     return figs, drawn
 
 
 # ----------------------------------------------------------------- graphs
 def _diagrams_fig(ctx, info, entries, grid_n):
-    from .. import figures
     ld = [d for d in info.get("load_diagrams", []) if d.get("type") == "force" and d.get("curve")]
     if not ld:
         return None
-    fig, axes = figures.new_figure(170, 55 * len(ld), nrows=len(ld), squeeze=False)
+    from .. import figures
+    from ..svgchart import subplots
+    fig, axes = subplots(170, 55 * len(ld), nrows=len(ld), squeeze=False)
+    marks = []
     for ax, d in zip(axes[:, 0], ld):
         cur = d["curve"]
         ax.plot(cur["x"], cur["value"], "k-", lw=1.0)
@@ -562,12 +617,7 @@ def _diagrams_fig(ctx, info, entries, grid_n):
             ys.append(abs(val) if d["abscissa"] == "s" and d["kind"] in ("resistance", "driving") else val)
             labels.append(str(e["index"]))
         ax.plot(xs, ys, "o", ms=3.5, color="#c0392b")
-        placed = []
-        for x, y, l in zip(xs, ys, labels):
-            # stagger labels of positions that fall on the same spot (e.g. s/H = 1 twice)
-            k = sum(1 for (px, py) in placed if abs(px - x) < 0.02 * (max(xs) - min(xs) + 1e-9))
-            placed.append((x, y))
-            ax.annotate(l, (x, y), fontsize=6.5, xytext=(2 + 7 * k, 3), textcoords="offset points")
+        marks.append((ax, xs, ys, labels))
         ax.set_xlabel(ctx.t("kst.s_axis") if d["abscissa"] == "s" else ctx.t("kst.phi_axis"))
         ax.set_ylabel(ctx.t("kst.force_axis"))
         s, sub = label_parts(d["name"], ctx.lang)
@@ -576,12 +626,28 @@ def _diagrams_fig(ctx, info, entries, grid_n):
         extra = ", ".join(x for x in (kind, stroke) if x and not x.startswith(("kind.", "stroke.")))
         ax.set_title(f"${s}_{{{sub}}}$: {d['link']}" + (f" ({extra})" if extra else ""), fontsize=8)
         ax.grid(True, lw=0.3)
-    fig.tight_layout()
-    return ctx.svg(fig)
+    figures.std_graph(fig, axes[:, 0], ctx.t("kin.mm"))          # μF
+    # the position numbers next to their points, none over another (positions that fall on
+    # one spot, e.g. s/H = 1 twice, side by side): placed in paper points once the layout is set
+    for ax, xs, ys, labels in marks:
+        fig_pt = ax.transData.transform(np.c_[xs, ys]) * 72.0 / fig.dpi if xs else []
+        placed = []
+        x_lo, y_lo = ax.bbox.x0 * 72.0 / fig.dpi, ax.bbox.y0 * 72.0 / fig.dpi
+        x_hi, y_hi = ax.bbox.x1 * 72.0 / fig.dpi, ax.bbox.y1 * 72.0 / fig.dpi
+        for (px, py), x, y, l in zip(fig_pt, xs, ys, labels):
+            w, h = 6.5 * 0.62 * len(l) + 1.0, 7.5
+            for dx, dy in sorted(((sx * (2 + 7.5 * i) - (w if sx < 0 else 0), dy) for i in range(10) for sx in (1, -1)
+                                  for dy in (3, -10, 10, -17, 17, -24)), key=lambda o: math.hypot(*o)):
+                b = (px + dx, py + dy, px + dx + w, py + dy + h)
+                if b[0] >= x_lo and b[2] <= x_hi and b[1] >= y_lo and b[3] <= y_hi and not any(
+                        b[0] < q[2] and q[0] < b[2] and b[1] < q[3] and q[1] < b[3] for q in placed):
+                    break
+            placed.append(b)
+            ax.annotate(l, (x, y), fontsize=6.5, xytext=(dx, dy), textcoords="offset points", va="bottom")
+    return ctx.svg(fig, "load-diagrams")
 
 
 def _cycle_fig(ctx, entries, phi0, sign, info):
-    from .. import figures
     rows = []
     for e in entries:
         q = ((e["phi"] - phi0) * sign) % 360.0
@@ -590,7 +656,9 @@ def _cycle_fig(ctx, entries, phi0, sign, info):
     if len(rows) < 2:
         return None
     key = "balancing_moment" if info["balance_kind"] == "moment" else "balancing_force"
-    fig, (a1, a2) = figures.new_figure(170, 120, nrows=2, sharex=True)
+    from .. import figures
+    from ..svgchart import subplots
+    fig, (a1, a2) = subplots(170, 120, nrows=2, sharex=True)
     q = [r[0] for r in rows]
     from ..course import COURSE_MAX
     dot = "" if len(rows) > COURSE_MAX else "."      # a fine grid: curves without a dot a position
@@ -609,8 +677,9 @@ def _cycle_fig(ctx, entries, phi0, sign, info):
     a2.set_xticks(np.arange(0, 361, 30))
     a2.set_xlim(0, 360)
     a2.grid(True, lw=0.3)
-    fig.subplots_adjust(left=0.1, right=0.9, top=0.95, bottom=0.1, hspace=0.15)
-    return ctx.svg(fig)
+    fig.subplots_adjust(left=0.1, right=0.9, top=0.93, bottom=0.1, hspace=0.3)
+    figures.std_graph(fig, (a1, a2), ctx.t("kin.mm"), x_axis=a2, tight=False)      # μM, μR, μφ
+    return ctx.svg(fig, "balancing-cycle")
 
 
 # ----------------------------------------------------------------- section
@@ -694,11 +763,7 @@ def build(ctx) -> str | None:
         if "loads" not in e or e["index"] not in kin:
             continue
         ke = kin[e["index"]]
-        w1 = None
-        if geom is not None:
-            dl = geom.link(geom.drive)
-            if dl is not None and dl.name in ke["links"]:
-                w1 = ke["links"][dl.name].get("omega")
+        w1 = drive_omega(geom, ke)
         if e.get("balancing_moment") is None and e.get("balancing_force") is None:
             figs = []
         else:

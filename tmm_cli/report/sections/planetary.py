@@ -107,6 +107,6 @@ def build(ctx) -> str | None:
     conds = [(k, t("common.yes") if v else t("common.no")) for k, v in conds]
     cands = [(", ".join(str(v) for v in c["z"].values()), f(c["ratio"], 6),
               f"{100 * c['ratio_error']:.3f} %", c["size"]) for c in p.get("candidates", [])]
-    fig = ctx.svg(figure(ctx, p))
+    fig = ctx.svg(figure(ctx, p), "planetary-scheme")
     return ctx.render("sections/planetary.html.j2", info=info, conds=conds, cands=cands, fig=fig,
                       ratio_head=sym(t("plan.ratio")))

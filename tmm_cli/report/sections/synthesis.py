@@ -239,5 +239,6 @@ def build(ctx) -> str | None:
                                    if r.get("solutions") and k in r["solutions"][0]] + ["γ_min, °", ""])
     svg, scale = construction_svg(r)
     return ctx.render("sections/synthesis.html.j2", info=info, lens=lens, sols=sols, sol_head=sol_head,
-                      fig=Markup(svg), fig_gamma=Markup(gamma_svg(r, t("syn.turn"))),
+                      fig=ctx.figures.named(svg, "synthesis-construction"),
+                      fig_gamma=ctx.figures.named(gamma_svg(r, t("syn.turn")), "synthesis-transmission-angle"),
                       scale=f(scale, 4))

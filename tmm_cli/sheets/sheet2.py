@@ -1,0 +1,76 @@
+"""Sheet 2: the kinetostatics of one or two positions - each structural group detached
+from the mechanism at a ГОСТ 2.302 length scale with its loads and reactions, its force
+polygon at a standard μF, the input link, and Zhukovsky's lever large enough to read
+every force and arm.  Drawn by the report's own panels (report/sections/kinetostatics)."""
+from __future__ import annotations
+
+from pathlib import Path
+
+from .frame import FRAME, TB_H, TB_W
+
+TXT = {"en": {"pos": "Position {i}, φ = {phi:.1f}°"},
+       "ru": {"pos": "Положение {i}, φ = {phi:.1f}°"},
+       "uk": {"pos": "Положення {i}, φ = {phi:.1f}°"}}
+COL_W = 130.0          # mm: the width of one group's column (its drawing above its polygon)
+LEVER_MIN_W = 280.0    # mm: the lever keeps at least this width
+HEAD = 9.0             # mm: the position's heading
+
+
+def positions(results: dict) -> list[int]:
+    """The positions of the sheet: the ones whose plans are on sheet 1."""
+    from .sheet1 import course_positions
+    kst = {k["index"] for k in results.get("kinetostatics") or []
+           if k.get("balancing_moment") is not None or k.get("balancing_force") is not None}
+    return [i for i in course_positions(results) if i in kst]
+
+
+def build(cv, results, task, lang="en") -> dict:
+    from ..report.context import ReportContext
+    from ..report.plans import crank_pin, geometry
+    from ..report.sections import load
+    K = load("kinetostatics")        # registers its texts in the three languages
+    ctx = ReportContext(results=results, task=task, lang=lang, out_dir=Path("."), env=None)
+    info_k = results["kinetostatics_info"]
+    links = K._links(results)
+    kin = {k["index"]: k for k in results.get("kinematics") or []}
+    kst = {k["index"]: k for k in results["kinetostatics"]}
+    geom = geometry(results, task)
+    pin = crank_pin(geom) if geom is not None else None
+    x0f, y0f, x1f, y1f = FRAME
+    course = positions(results)
+    band_h = (y1f - y0f) / max(len(course), 1)
+    out = {"positions": {}, "scale": "—"}
+    for k, i in enumerate(course):
+        e, ke = kst[i], kin[i]
+        top = y1f - k * band_h
+        bottom = top - band_h
+        cv.layer = "text"
+        cv.mtext(x0f + 4, top - 5.5, TXT[lang]["pos"].format(i=i, phi=float(e["phi"])), 5.0, bold=True)
+        rows = K.position_rows(ctx, e, ke, info_k, links)
+        n = len(rows)
+        col_w = min(COL_W, (x1f - x0f - LEVER_MIN_W) / n)
+        ph = (band_h - HEAD - 2.0) / 2           # a panel's height
+        drawn = []
+        for c, (g, forces, couples, title) in enumerate(rows):
+            x = x0f + c * col_w
+            y_up = top - HEAD - ph
+            cv.layer = "contour"          # the groups and their polygons: main lines
+            mu_l = K._fbd_panel(ctx, cv, (x + 1, y_up, col_w - 2, ph), ke, links, g, forces, couples, title)
+            mu_F, T = K._polygon_panel(ctx, cv, (x + 1, bottom + 1, col_w - 2, ph), forces)
+            drawn.append({"group": g, "mu_l": mu_l, "mu_F": mu_F, "tips": T, "vectors": K.polygon(forces)[0]})
+            cv.layer = "thin"
+            cv.line((x + col_w, bottom + 1), (x + col_w, top - HEAD), "#999", 0.18)
+        # the lever: the rest of the band, above the title block on the bottom band
+        lx = x0f + n * col_w + 1
+        lb = bottom + 1
+        if bottom - y0f < TB_H + 1 and lx + LEVER_MIN_W > x1f - TB_W:
+            lb = y0f + TB_H + 2
+        cv.layer = "thin"                 # the lever: the turned plan and the arms, thin lines
+        mu_v = K._lever_panel(ctx, cv, (lx, lb, x1f - lx - 1, top - HEAD - lb), e, ke, pin,
+                              K.drive_omega(geom, ke), info_k.get("balance_kind"))
+        if k:
+            cv.layer = "thin"
+            cv.line((x0f, top), (x1f, top), width=0.35)
+        out["positions"][i] = {"groups": drawn, "mu_v": mu_v, "entry": e,
+                               "lever_box": (lx, lb, x1f - lx - 1, top - HEAD - lb)}
+    return out
