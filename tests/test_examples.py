@@ -9,6 +9,7 @@ from pathlib import Path
 import pytest
 
 import tmm_cli
+from tmm_cli.messages import LANGS, PLAIN, catalogue, render
 
 TASKS = sorted((Path(__file__).resolve().parents[1] / "tasks").glob("*.yaml"))
 
@@ -30,6 +31,11 @@ def test_example_runs(path):
     res = tmm_cli.run(task)
     assert res["schema"] == "tmm-results/1"
     json.dumps(res, allow_nan=False)          # plain JSON, no NaN anywhere
+    # every warning as data: a catalogued code in every language, its English text the warning
+    assert [m["text"] for m in res["messages"]] == res["warnings"]
+    for m in res["messages"]:
+        assert m["code"] != PLAIN and all(m["code"] in catalogue(lang)["messages"] for lang in LANGS)
+        assert render(m["code"], m["params"], "en") == m["text"]
     for where, x in _finite_numbers(res):
         assert math.isfinite(x), where
     if task.mechanism is not None:

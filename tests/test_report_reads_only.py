@@ -35,6 +35,7 @@ ALLOWED = {
     "tmm_cli.study": "the tables of the accuracy study (its own results)",
     "tmm_cli.plans": "the velocity and acceleration plans constructed from results' numbers",
     "tmm_cli.scales": "the standard series of the scale factors μ",
+    "tmm_cli.messages": "the warnings' catalogues: results['messages'] rendered in the report's language",
 }
 # (file, function) where a broad except is allowed, and why
 BROAD_EXCEPT_OK = {

@@ -9,6 +9,7 @@ from html import unescape
 
 import pytest
 
+from tmm_cli.messages import render
 from tmm_cli.report import i18n, sections
 
 from report_langs import render_pairs
@@ -79,9 +80,7 @@ def test_headings_are_ukrainian(reports):
 
 
 def test_warnings_translated():
-    w = "gears: contact ratio eps_alpha = 1.05 < 1.2 (course minimum)"
-    assert i18n.translate_warning(w, "uk") == \
+    assert render("gears.contact_ratio_course", {"eps": 1.05, "limit": 1.2}, "uk") == \
         "зубчаста передача: коефіцієнт перекриття ε_α = 1.05 < 1.2 (мінімум курсового проєкту)"
-    w = "soft impact (finite jump of acceleration) at phi = 120 deg (rise/far_dwell)"
-    assert i18n.translate_warning(w, "uk") == \
+    assert render("cam.soft_impact", {"phi": 120.0, "where": "rise/far_dwell"}, "uk") == \
         "м'який удар (скінченний стрибок прискорення) при φ = 120° (віддалення / дальнє стояння)"

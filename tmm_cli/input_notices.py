@@ -14,6 +14,7 @@ from typing import Any
 
 from pydantic import BaseModel
 
+from .messages import Message
 from .task import _dotted
 
 # plain numbers above these (in the base unit) get a warning
@@ -41,12 +42,10 @@ def _message(kind: str, value: float, path: tuple) -> str | None:
     field = _dotted(path)
     if kind == "speed" and abs(value) > SPEED_PLAIN_MAX:
         rpm = abs(value) * 30.0 / math.pi
-        return (f"{field}: the plain number {value:g} is read as {value:g} rad/s ({rpm:.0f} rpm); "
-                f"if you meant rpm, write '{value:g} rpm'")
+        return Message("input.speed_plain", field=field, value=value, rpm=rpm)
     limit = MODULE_PLAIN_MAX if path and path[-1] == "m" else LENGTH_PLAIN_MAX
     if kind == "length" and abs(value) > limit:
-        return (f"{field}: the plain number {value:g} is read as {value:g} m; if you meant millimetres, "
-                f"write '{value:g} mm'")
+        return Message("input.length_plain", field=field, value=value)
     return None
 
 

@@ -40,6 +40,7 @@ def run(task: Task, *, progress: Callable[[str], None] | None = None,
                                                           "file": task.file}}
     warnings: list[str] = list(task.input_warnings)
     results["warnings"] = warnings
+    results["messages"] = []        # the warnings as data, filled in below
     say = progress or (lambda s: None)
     # independent parts: a failure of one is recorded and the others still run
     errors: list[StageError] = []
@@ -84,9 +85,12 @@ def run(task: Task, *, progress: Callable[[str], None] | None = None,
     ge = graphical_error(results)
     if ge is not None:
         results["graphical_error"] = ge
-    # de-duplicate warnings, keep order
+    # de-duplicate warnings, keep order; beside the English texts, their codes and parameters
+    from .messages import as_dict
     seen = set()
-    results["warnings"] = [w for w in warnings if not (w in seen or seen.add(w))]
+    unique = [w for w in warnings if not (w in seen or seen.add(w))]
+    results["warnings"] = [str(w) for w in unique]
+    results["messages"] = [as_dict(w) for w in unique]
     if errors:
         # `error`: the first failure (as before); `errors`: every independent part that failed
         results["errors"] = [{"stage": e.stage, "message": e.message, "position": e.position}

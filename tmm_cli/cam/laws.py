@@ -47,8 +47,7 @@ class Law:
     """A dimensionless motion law of one phase."""
 
     name: str
-    title_en: str
-    title_ru: str
+    title_en: str             # the report's title in each language: its catalogue, key cam.law.<name>
     func: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]
     cv: float                 # max |f'|
     ca: float | None          # max |f''| (None: infinite, constant velocity)
@@ -132,21 +131,18 @@ def _trapezoidal(x):
 
 
 LAWS: dict[str, Law] = {
-    "constant_velocity": Law("constant_velocity", "constant velocity", "постоянная скорость",
+    "constant_velocity": Law("constant_velocity", "constant velocity",
                              _constant_velocity, 1.0, None, "rigid", (), ()),
-    "parabolic": Law("parabolic", "parabolic (constant acceleration)",
-                     "параболический (равноускоренный)", _parabolic, 2.0, 4.0, "soft",
+    "parabolic": Law("parabolic", "parabolic (constant acceleration)", _parabolic, 2.0, 4.0, "soft",
                      (0.5,), (0.5,)),
-    "cosine": Law("cosine", "cosine (harmonic)", "косинусоидальный", _cosine,
+    "cosine": Law("cosine", "cosine (harmonic)", _cosine,
                   _PI / 2, _PI ** 2 / 2, "soft", (), ()),
-    "sine": Law("sine", "sine (cycloidal)", "синусоидальный", _sine, 2.0, 2 * _PI, "none", (), ()),
-    "poly345": Law("poly345", "polynomial 3-4-5", "полином 3-4-5", _poly345,
+    "sine": Law("sine", "sine (cycloidal)", _sine, 2.0, 2 * _PI, "none", (), ()),
+    "poly345": Law("poly345", "polynomial 3-4-5", _poly345,
                    1.875, 10 / math.sqrt(3), "none", (), ()),
     "linear_decreasing": Law("linear_decreasing", "linearly decreasing acceleration",
-                             "линейно убывающее ускорение", _linear_decreasing, 1.5, 6.0,
-                             "soft", (), ()),
-    "trapezoidal": Law("trapezoidal", "trapezoidal acceleration", "трапецеидальное ускорение",
-                       _trapezoidal, 2.0, _TRAP_A, "none",
+                             _linear_decreasing, 1.5, 6.0, "soft", (), ()),
+    "trapezoidal": Law("trapezoidal", "trapezoidal acceleration", _trapezoidal, 2.0, _TRAP_A, "none",
                        (_TRAP_B, 0.5 - _TRAP_B, 0.5, 0.5 + _TRAP_B, 1 - _TRAP_B), ()),
 }
 

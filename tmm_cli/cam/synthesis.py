@@ -46,6 +46,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import StageError
+from ..messages import Message
 from . import chosen, flat
 from .division import division_table
 from .geometry import Geometry, J
@@ -64,12 +65,6 @@ _HINT = ("increase the allowed pressure angle, the phase angles or the rocker le
 # accepted excess of the computed maximum pressure angle over the allowed one, deg (the
 # region is solved to 1e-13 of the stroke; a larger excess means no valid centre was found)
 PA_TOL_DEG = 1e-6
-
-_IMPACT_TEXT = {
-    "rigid": "rigid impact (jump of velocity, infinite acceleration)",
-    "soft": "soft impact (finite jump of acceleration)",
-}
-
 
 def _f(v):
     """Plain float or None (no NaN/inf in results)."""
@@ -226,7 +221,7 @@ def _law_info(motion: Motion, which: int, speed: float | None, rocker: bool) -> 
     ds_max = motion.h * law.cv / P
     d2s_max = motion.h * law.ca / P ** 2 if law.ca is not None else None
     info = {
-        "name": law.name, "title": law.title_en, "title_ru": law.title_ru,
+        "name": law.name, "title": law.title_en,
         "cv": law.cv, "ca": law.ca, "impact": law.impact,
         "ds_max": ds_max, "d2s_max": d2s_max,
         "v_max": ds_max * speed if speed else None,
@@ -406,9 +401,8 @@ def synthesize(spec) -> CamResult:
             alternatives = {}
         if r0_chosen is None and swing_in == "auto" and len([a for a in alternatives.values() if a]) == 2:
             other = "against" if swing == "with" else "with"
-            warnings.append(f"swing auto: the rocker turns {swing} the cam on the rise "
-                            f"(r0 = {r0 * 1000:.3f} mm; {other}: "
-                            f"{alternatives[other]['r0'] * 1000:.3f} mm)")
+            warnings.append(Message("cam.swing_auto", swing=swing, r0=r0 * 1000, other=other,
+                                    r0_other=alternatives[other]["r0"] * 1000))
         center_distance = float(np.hypot(*(O - geom.A)))
         offset = None
         v1, v2 = O - geom.A, -geom.A        # A->O and A->B0
@@ -485,11 +479,9 @@ def synthesize(spec) -> CamResult:
             raise StageError(STAGE, f"the roller (r = {roller * 1000:.3f} mm) is not smaller than "
                                     f"the base radius r0 = {r0 * 1000:.3f} mm")
         if roller > 0.8 * rho_min:
-            warnings.append(f"roller radius {roller * 1000:.3f} mm exceeds 0.8 rho_min = "
-                            f"{0.8 * rho_min * 1000:.3f} mm (course rule)")
+            warnings.append(Message("cam.roller_rho", roller=roller * 1000, limit=0.8 * rho_min * 1000))
         if roller > 0.5 * r0:
-            warnings.append(f"roller radius {roller * 1000:.3f} mm exceeds 0.5 r0 = "
-                            f"{0.5 * r0 * 1000:.3f} mm (course rule)")
+            warnings.append(Message("cam.roller_r0", roller=roller * 1000, limit=0.5 * r0 * 1000))
 
     # ---- grid values
     phi = np.arange(0.0, 360.0, 1.0)
@@ -503,10 +495,7 @@ def synthesize(spec) -> CamResult:
     speed, laws_info, impacts, phases = _laws_impacts(spec, motion, rocker, warnings)
     corners = [e for e in impacts if e["kind"] == "rigid"]
     if corners:
-        warnings.append("the pitch profile has corners where the velocity jumps (phi = "
-                        + ", ".join(f"{e['phi']:.4g}" for e in corners)
-                        + " deg): the working profile has sharp edges there; rho_min and the "
-                          "roller rule refer to the smooth parts")
+        warnings.append(Message("cam.profile_corners", phis=[e["phi"] for e in corners]))
 
     construction = _construction(motion, geom, fams, O, tang, scale)
     extra = {"r0_min": _f(r0_min), "r0_given": r0_chosen is not None,
@@ -536,7 +525,7 @@ def _laws_impacts(spec, motion, rocker, warnings):
     impacts = motion.boundaries()
     for e in impacts:
         if e["kind"] != "none":
-            warnings.append(f"{_IMPACT_TEXT[e['kind']]} at phi = {e['phi']:.4g} deg ({e['where']})")
+            warnings.append(Message("cam.rigid_impact" if e["kind"] == "rigid" else "cam.soft_impact", phi=e["phi"], where=e["where"]))
     phases = {"rise": math.degrees(motion.rise), "far_dwell": math.degrees(motion.far_dwell),
               "return": math.degrees(motion.ret), "near_dwell": math.degrees(motion.near_dwell)}
     return speed, laws_info, impacts, phases

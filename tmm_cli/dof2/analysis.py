@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import StageError
+from ..messages import Message
 from . import model
 from .model import Params
 
@@ -254,8 +255,7 @@ def analyze(section) -> Dof2Result:
             se = _evaluate(p, drive, moment, np.array(hits), sol.sol(np.array(hits)))
         impacts = [_event_state(p, se, i) for i in range(len(hits))]
     elif imp is not None:
-        warnings.append(f"dof2: the rotor does not reach the impact angle phi = {imp.phi:g} deg "
-                        f"within t = {t_final:g} s")
+        warnings.append(Message("dof2.no_impact", phi=imp.phi, t=t_final))
 
     # energy balance: T + V - W = const (W = work of the driving moment)
     E = s["T"] + s["V"] - s["W"]
@@ -268,9 +268,9 @@ def analyze(section) -> Dof2Result:
         exact_W = moment * (s["phi"] - phi0)
         energy["W_exact_error"] = float(np.max(np.abs(s["W"] - exact_W)))
     if rel > 1e-6:
-        warnings.append(f"dof2: the energy balance is off by {rel:.2g} of the energy (integration accuracy)")
+        warnings.append(Message("dof2.energy_balance", rel=rel))
     if drive == "moment" and np.any(np.diff(np.sign(s["w"][np.abs(s["w"]) > 0])) != 0):
-        warnings.append("dof2: the rotor reverses its direction of rotation")
+        warnings.append(Message("dof2.rotor_reverses"))
 
     return Dof2Result(params=p, drive=drive, moment=moment if drive == "moment" else None, omega1=omega1,
                       state=s, impacts=impacts, impact_phi=None if imp is None else float(imp.phi),

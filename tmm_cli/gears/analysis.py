@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import StageError
+from ..messages import Message
 from . import shifts as _shifts
 from .geometry import ABSOLUTE_EPS, COURSE_EPS, DEFAULT_SA_MIN, checks, lowest_radius, pair, sliding
 from .tooth import Wheel
@@ -170,12 +171,12 @@ def analyze(spec) -> GearResult:
         if fl.r_involute_start >= fl.r_tip:
             # the GOST formulas (s_a, eps_alpha, the line of action) assume an involute flank:
             # their values are formal here; the wheel is flagged (interference) and warned about
-            where = ("its tip circle lies inside the base circle" if w.ra <= w.rb else
-                     "its involute would begin at r = %.6g mm, above the tip r = %.6g mm%s"
-                     % (fl.r_involute_start * 1e3, fl.r_tip * 1e3,
-                        " (pointed on the fillet)" if fl.pointed else ""))
-            warnings.append(f"gears: wheel {i} (z = {z}, x = {x:g}) has no involute flank: {where}; "
-                            f"the pair cannot mesh properly (s_a and eps_alpha are formal values)")
+            if w.ra <= w.rb:
+                warnings.append(Message("gears.no_involute_inside_base", wheel=i, z=z, x=x))
+            else:
+                warnings.append(Message("gears.no_involute_pointed_fillet" if fl.pointed else
+                                        "gears.no_involute_above_tip", wheel=i, z=z, x=x,
+                                        r_start=fl.r_involute_start * 1e3, r_tip=fl.r_tip * 1e3))
             no_involute.append(i - 1)
         rl.append(fl.r_involute_start)
         rhol.append(math.sqrt(max(fl.r_involute_start ** 2 - w.rb ** 2, 0.0)))
@@ -187,22 +188,19 @@ def analyze(spec) -> GearResult:
     for i in (0, 1):
         n = i + 1
         if ch["undercut"][i]:
-            warnings.append(f"gears: wheel {n} (z = {zz[i]}) is undercut: x{n} = {xx[i]:.4g} < "
-                            f"x_min = {g[f'x_min{n}']:.4g}")
+            warnings.append(Message("gears.undercut", wheel=n, z=zz[i], x=xx[i], x_min=g[f"x_min{n}"]))
         if ch["sharpening"][i]:
-            warnings.append(f"gears: wheel {n} tip is too thin: sa = {g[f'sa{n}'] * 1e3:.4g} mm < "
-                            f"{sa_min:g} m = {sa_min * m * 1e3:.4g} mm"
-                            + (" (pointed tooth)" if g[f"sa{n}"] <= 0 else ""))
+            warnings.append(Message("gears.tip_pointed" if g[f"sa{n}"] <= 0 else "gears.tip_thin", wheel=n,
+                                    sa=g[f"sa{n}"] * 1e3, k=sa_min, limit=sa_min * m * 1e3))
         if ch["interference"][i]:
             other = 2 - i
-            warnings.append(f"gears: interference: the tip of wheel {other} reaches wheel {n} below "
-                            f"the start of its involute (rho_p = {g[f'rho_p{n}'] * 1e3:.4g} mm < "
-                            f"rho_l = {rhol[i] * 1e3:.4g} mm)")
+            warnings.append(Message("gears.interference", other=other, wheel=n, rho_p=g[f"rho_p{n}"] * 1e3,
+                                    rho_l=rhol[i] * 1e3))
     if ch["contact_ratio_low"]:
-        warnings.append(f"gears: contact ratio eps_alpha = {g['eps']:.4g} < {COURSE_EPS} (course minimum)")
+        warnings.append(Message("gears.contact_ratio_course", eps=g["eps"], limit=COURSE_EPS))
     if ch["contact_ratio_below_absolute"]:
-        warnings.append(f"gears: contact ratio eps_alpha = {g['eps']:.4g} < {ABSOLUTE_EPS} (absolute minimum)"
-                        + ("; the mesh is not continuous (eps < 1)" if g["eps"] < 1 else ""))
+        warnings.append(Message("gears.contact_ratio_broken" if g["eps"] < 1 else "gears.contact_ratio_absolute",
+                                eps=g["eps"], limit=ABSOLUTE_EPS))
     if bc is None:
         lo1 = min(x1 - 0.3, max(min(g["x_min1"], 0.0), -1.0) - 0.3)
         lo2 = min(x2 - 0.3, max(min(g["x_min2"], 0.0), -1.0) - 0.3)

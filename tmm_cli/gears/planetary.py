@@ -59,6 +59,7 @@ from fractions import Fraction
 import numpy as np
 
 from ..errors import StageError
+from ..messages import Message
 
 STAGE = "planetary"
 
@@ -538,8 +539,7 @@ def synthesize_planetary(spec) -> PlanetaryResult:
     plan = velocity_plan(scheme, z, m)
     warnings = []
     if plan["ratio"] is not None and abs(plan["ratio"] - v["ratio"]) > 1e-9 * max(1.0, abs(v["ratio"])):
-        warnings.append(f"planetary: velocity plan ratio {plan['ratio']:.6g} differs from Willis' "
-                        f"{v['ratio']:.6g}")
+        warnings.append(Message("planetary.plan_ratio", plan=plan["ratio"], willis=v["ratio"]))
     checks = dict(v)
     checks["adjacency_margin"] = float(checks["adjacency_margin"]) if math.isfinite(
         checks["adjacency_margin"]) else None

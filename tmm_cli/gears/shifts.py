@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import numpy as np
 from ..lazy import brentq
+from ..messages import Message
 
 from .geometry import COURSE_EPS, pair, sliding
 
@@ -140,15 +141,13 @@ def choose(rule, m, z1, z2, alpha=20.0, ha=1.0, c=0.25, sa_min=0.25, rho_f=None,
     bc = contour or blocking_contour(m, z1, z2, alpha, ha, c, sa_min, rho_f)
     ok = bc["ok"]
     if not ok.any():
-        notes.append(f"gears: no shifts satisfy every check (rule {rule} gives x = "
-                     f"[{x1:.4f}, {x2:.4f}], kept)")
+        notes.append(Message("gears.no_admissible_shifts", rule=rule, x1=x1, x2=x2))
         return x1, x2, notes
     X1, X2 = np.meshgrid(bc["x1"], bc["x2"])
     d = np.where(ok, (X1 - x1) ** 2 + (X2 - x2) ** 2, np.inf)
     k = np.unravel_index(np.argmin(d), d.shape)
     nx1, nx2 = float(X1[k]), float(X2[k])
-    notes.append(f"gears: rule {rule} gives x = [{x1:.4f}, {x2:.4f}] outside the blocking "
-                 f"contour; the nearest admissible point [{nx1:.4f}, {nx2:.4f}] is used")
+    notes.append(Message("gears.shifts_outside_contour", rule=rule, x1=x1, x2=x2, nx1=nx1, nx2=nx2))
     return nx1, nx2, notes
 
 

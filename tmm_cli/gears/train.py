@@ -23,6 +23,7 @@ from fractions import Fraction
 
 
 from ..errors import StageError, TaskError
+from ..messages import Message
 from . import planetary as pl
 
 STAGE = "drive_train"
@@ -159,8 +160,7 @@ def analyze(spec, drive=None) -> TrainResult:
             continue
         if st.kind == "pair":
             if not st.internal and min(st.z) < lim.external:
-                warnings.append(f"drive_train: stage {i}: a wheel of {min(st.z)} teeth < {lim.external} "
-                                f"is undercut without a profile shift")
+                warnings.append(Message("drive_train.undercut", stage=i, z=min(st.z), limit=lim.external))
             if st.internal and st.z[1] <= st.z[0]:
                 raise _err(path, f"stage {i}: an internal pair needs the ring z2 > z1 (got {st.z})")
         else:
@@ -264,8 +264,8 @@ def analyze(spec, drive=None) -> TrainResult:
             raise StageError(STAGE, f"the chosen train gives u = {chosen[1]:.6g}, {chosen[2]:+.3%} from the required "
                                     f"{req:.6g} (tolerance {tol:g}); give the stages their own `ratio` or relax "
                                     f"`tolerance`")
-        warnings.append(f"drive_train: the train's ratio {chosen[1]:.6g} misses the required {req:.6g} by "
-                        f"{chosen[2]:+.3%} (tolerance {tol:g})")
+        warnings.append(Message("drive_train.ratio_missed", ratio=chosen[1], required=req, error=chosen[2],
+                                tolerance=tol))
     u_total = chosen[1]
     # ---- input speed and sense
     if spec.motor_speed is not None:
@@ -279,7 +279,7 @@ def analyze(spec, drive=None) -> TrainResult:
         if drive is not None:
             out_dir = "ccw" if w0 / u_total > 0 else "cw"
             if out_dir != drive.direction:
-                warnings.append(f"drive_train: the output shaft turns {out_dir}, the drive link {drive.direction}")
+                warnings.append(Message("drive_train.output_sense", output=out_dir, drive=drive.direction))
     elif drive is not None:
         w0, src = u_total * (drive.sign * drive.speed), "drive"
         mdir = "ccw" if w0 > 0 else "cw"

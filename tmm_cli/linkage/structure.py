@@ -43,6 +43,7 @@ from dataclasses import dataclass, field
 from itertools import combinations
 
 from ..errors import StageError
+from ..messages import Message
 from .mechanism import Joint, Mechanism
 
 _ROMAN = {1: "I", 2: "II", 3: "III", 4: "IV", 5: "V", 6: "VI", 7: "VII", 8: "VIII"}
@@ -81,6 +82,10 @@ class Group:
     def describe(self) -> str:
         """e.g. ``group II(2,3) (links rod, rocker)``."""
         return f"group {self.label} (links {', '.join(self.names)})"
+
+    def message_params(self) -> dict:
+        """The group as warning parameters (tmm_cli.messages): its label and its links' names."""
+        return {"group": self.label, "links": list(self.names)}
 
     def to_dict(self) -> dict:
         return {"links": list(self.names), "indices": list(self.links), "class": self.klass,
@@ -231,7 +236,7 @@ def analyze(mech: Mechanism, task=None) -> StructureResult:
                 npairs[b] += 1
     idle = [names[i] for i in range(1, n + 1) if npairs[i] == 1 and i != mech.drive]
     for nm in idle:
-        warnings.append(f"link '{nm}' has a single pair: an idle (local) degree of freedom")
+        warnings.append(Message("structure.idle_link", link=nm))
 
     drive = mech.drive
     crank_ground = [j for j in joints if {j.a, j.b} == {0, drive}]
@@ -259,8 +264,8 @@ def analyze(mech: Mechanism, task=None) -> StructureResult:
                 if 2 * len(P) > 3 * k and _connected(set(S), inner):
                     extra = 2 * len(P) - 3 * k
                     passive = max(passive, extra)
-                    msg = (f"links {', '.join(names[i] for i in S)} carry {len(P)} pairs for "
-                           f"{3 * k} freedoms: {extra} passive (redundant) constraint(s)")
+                    msg = Message("structure.passive", links=[names[i] for i in S], pairs=len(P),
+                                  freedoms=3 * k, extra=extra)
                     if msg not in warnings:
                         warnings.append(msg)
         found = None

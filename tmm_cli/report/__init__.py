@@ -46,9 +46,9 @@ from __future__ import annotations
 import datetime as _dt
 import re
 
-from .i18n import translate_warning
 from pathlib import Path
 
+from ..messages import render_list
 from .context import ReportContext, templates_dir
 from . import sections as _sections
 
@@ -117,7 +117,7 @@ def _assemble(ctx: ReportContext, frags: dict[str, str | None]) -> str:
     return ctx.render("report.html.j2", sections=parts, css=Markup(css),
                       title=title or ctx.t("report.title"),
                       variant=getattr(task, "variant", None) if task is not None else None,
-                      warnings=[translate_warning(w, ctx.lang) for w in ctx.results.get("warnings") or []],
+                      warnings=render_list(ctx.results, ctx.lang),
                       date=_dt.date.today().isoformat())
 
 

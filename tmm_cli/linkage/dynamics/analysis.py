@@ -18,6 +18,7 @@ import math
 import numpy as np
 
 from ...errors import StageError
+from ...messages import Message
 from . import flywheel as fw
 from .convergence import (ACCURACY_RESOLUTIONS, CHECK_BELOW, TARGET_REL, _rel, accuracy_table, hand_positions,
                           hand_row)
@@ -52,9 +53,8 @@ def analyze_sampler(sampler: Sampler, section, omega_m: float, *, cycle: float =
         c2 = run_grid(sampler, section, omega_m, cycle, 2 * resolution, switch_q)[0]
         est = _rel(c.J_n[c.method], c2.J_n[c2.method])
         if est is not None and est > TARGET_REL:
-            warnings.append(f"flywheel: at resolution {resolution} J_n differs by {est:.2g} (relative) from "
-                            f"its value at {2 * resolution} positions, more than {TARGET_REL:g}; raise "
-                            f"`flywheel.resolution`")
+            warnings.append(Message("flywheel.coarse_resolution", resolution=resolution, rel=est,
+                                    doubled=2 * resolution, target=TARGET_REL))
     if accuracy:
         acc = accuracy_table(sampler, section, omega_m, cycle, switch_q,
                              resolutions=tuple(sorted(set(ACCURACY_RESOLUTIONS) | {resolution})),
@@ -63,8 +63,7 @@ def analyze_sampler(sampler: Sampler, section, omega_m: float, *, cycle: float =
         acc["resolution"] = resolution
         acc["err_J"] = _f(err)
         if err is not None and err > 0.01 and resolution < acc["reference_resolution"]:
-            warnings.append(f"flywheel: at resolution {resolution} J differs by {100 * err:.2g} % from the "
-                            f"converged value; raise `flywheel.resolution`")
+            warnings.append(Message("flywheel.resolution_error", resolution=resolution, percent=100 * err))
     return DynamicsResult(cycle=c, cycle_deg=float(cycle), resolution=resolution, phi0=float(phi0),
                           sign=float(sign), constant=section.constant, shape=shp, size=sz,
                           accuracy=acc, warnings=warnings, q_deg=q_deg, side=side, sampler=given,

@@ -18,6 +18,7 @@ from typing import Callable
 import numpy as np
 
 from ...errors import StageError
+from ...messages import Message
 from . import flywheel as fw
 from .reduce import Sample, sample as sample_mech
 
@@ -217,20 +218,17 @@ def solve_cycle(q: np.ndarray, M_given: np.ndarray, J_links: dict[str, np.ndarra
     if primary < 0:
         J = 0.0
         if primary < -1e-12 * scale:
-            warnings.append(f"no flywheel is needed: the machine's own constant reduced inertia "
-                            f"{J_const:.6g} kg*m^2 exceeds the {J_n[method]:.6g} kg*m^2 needed "
-                            f"for delta = {delta:.6g} ({method}); J = 0")
+            warnings.append(Message("flywheel.not_needed_exceeds", J_const=J_const, J_needed=J_n[method],
+                                    delta=delta, method=method))
     else:
         J = float(primary)
         if primary <= 1e-12 * scale:
             J = 0.0
             if float(np.ptp(work.dT)) == 0.0 and float(np.ptp(J_var)) == 0.0:
-                why = ("the loads do no work over any part of the cycle and the reduced inertia is "
-                       "constant, so the speed does not fluctuate")
+                warnings.append(Message("flywheel.not_needed_no_work"))
             else:
-                why = (f"the machine's own constant reduced inertia {J_const:.6g} kg*m^2 equals the "
-                       f"{J_n[method]:.6g} kg*m^2 needed for delta = {delta:.6g} ({method})")
-            warnings.append(f"no flywheel is needed: {why}; J = 0")
+                warnings.append(Message("flywheel.not_needed_equal", J_const=J_const, J_needed=J_n[method],
+                                        delta=delta, method=method))
     motion = fw.steady_motion(dTx, Jx, J_const + J, omega_m)
     motion = replace(motion, omega=motion.omega[:n])
     J_tot = J_const + J + J_var
@@ -241,13 +239,9 @@ def solve_cycle(q: np.ndarray, M_given: np.ndarray, J_links: dict[str, np.ndarra
 
     span_w = max(float(np.max(np.abs(work.A_d))), float(np.max(np.abs(work.A_c))), 1e-300)
     if constant == "driving" and work.M_constant < -1e-12 * span_w:
-        warnings.append(f"the given loads do net positive work over the cycle: the constant driving "
-                        f"moment is negative ({work.M_constant:.6g} N*m); is `constant: resistance` "
-                        f"(an engine) meant?")
+        warnings.append(Message("flywheel.net_positive_work", M=work.M_constant))
     if constant == "resistance" and work.M_constant > 1e-12 * span_w:
-        warnings.append(f"the given loads do net negative work over the cycle: the constant resistance "
-                        f"moment is negative ({-work.M_constant:.6g} N*m); is `constant: driving` "
-                        f"(a motor-driven machine) meant?")
+        warnings.append(Message("flywheel.net_negative_work", M=-work.M_constant))
     return CycleResult(q=q, work=work, J_links=dict(J_links), J_extra=float(J_extra), J_red=J_red,
                        J_const=J_const, J_var=J_var, dJ_var=dJ_var, const_links=const_links,
                        omega_m=float(omega_m), delta=float(delta), method=method, J_n=J_n,

@@ -45,6 +45,7 @@ import numpy as np
 from ...lazy import brentq
 
 from ...errors import StageError
+from ...messages import Message
 
 STAGE = "dynamics"
 _TINY = 1e-300
@@ -423,10 +424,7 @@ def size(J: float, shape: str, density: float, width_ratio: float, omega_max: fl
     else:
         raise StageError(STAGE, f"unknown flywheel shape {shape!r}")
     if v > RIM_SPEED_STEEL:
-        warns.append(f"flywheel rim speed {v:.1f} m/s exceeds about {RIM_SPEED_STEEL:.0f} m/s, "
-                     "the usual limit even for steel flywheels: move the flywheel to a faster shaft "
-                     "or change its shape")
+        warns.append(Message("flywheel.rim_speed_steel", v=v, limit=RIM_SPEED_STEEL))
     elif v > RIM_SPEED_CAST_IRON and rho < 7500:
-        warns.append(f"flywheel rim speed {v:.1f} m/s exceeds about {RIM_SPEED_CAST_IRON:.0f} m/s, "
-                     "the usual limit for cast iron: make it of steel")
+        warns.append(Message("flywheel.rim_speed_cast_iron", v=v, limit=RIM_SPEED_CAST_IRON))
     return FlywheelSize(D, b, m, v, h, warns)

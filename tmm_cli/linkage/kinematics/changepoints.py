@@ -26,6 +26,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ...messages import Message
+
 N_GRID = 720        # samples of each group's determinant over one turn
 NEAR_DEG = 1.0      # positions this close to a change point are flagged (as in kinetostatics)
 BLOWUP = 10.0       # a value this many times its largest value elsewhere in the cycle: null
@@ -130,9 +132,7 @@ def distance_deg(phi_deg, angles) -> np.ndarray:
     return np.min(np.minimum(d, 360.0 - d), axis=1)
 
 
-def warning(cp: ChangePoint) -> str:
-    return (f"change point at crank angle {cp.phi:.6f} deg: {cp.describe}: the velocity equations are "
-            f"singular there (the group's links are collinear, as in a four-bar on the Grashof limit "
-            f"s + l = p + q); the linkage may switch branch and its velocities and accelerations jump. "
-            f"Positions within {NEAR_DEG:g} deg are marked near_singular; a value there more than "
-            f"{BLOWUP:g} times its largest elsewhere in the cycle has no finite limit and is null")
+def warning(cp: ChangePoint, group) -> Message:
+    """The warning of change point ``cp`` of ``group`` (a structure.Group)."""
+    return Message("kinematics.change_point", phi=cp.phi, **group.message_params(), near=NEAR_DEG,
+                   blowup=BLOWUP)

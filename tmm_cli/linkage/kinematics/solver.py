@@ -28,6 +28,7 @@ import numpy as np
 from ...lazy import brentq
 
 from ...errors import StageError
+from ...messages import Message
 from ..mechanism import Mechanism
 from ..structure import Group, analyze
 from . import newton as nw
@@ -155,11 +156,9 @@ class Solver:
         for gi, s in st.sing.items():
             if s.any():
                 sing |= s
-                ang = ", ".join(f"{a:.6g}" for a in np.unique(np.round(np.degrees(phi[s]) % 360, 6))[:8])
-                msg = (f"{self.groups[gi].describe()}: the velocity equations are singular at crank angle(s) "
-                       f"{ang} deg (the group's links are collinear: a toggle or change point); velocities and "
-                       f"accelerations there are the limit by continuity (mean of the values at "
-                       f"+-{CONT_DELTA:g} deg)")
+                ang = np.unique(np.round(np.degrees(phi[s]) % 360, 6))[:8]
+                msg = Message("kinematics.singular_continuity", **self.groups[gi].message_params(),
+                              angles=ang, delta=CONT_DELTA)
                 if msg not in self.warnings:
                     self.warnings.append(msg)
         if not sing.any():
@@ -200,8 +199,8 @@ class Solver:
         if not ok.any():
             raise self._assembly_error(gi, np.array([0.0]), whole=True)
         ang = float(grid[np.argmax(ok)])
-        self.warnings.append(f"{self.groups[gi].describe()} does not assemble at crank angle 0 deg; its closure "
-                             f"was chosen at {math.degrees(ang):.6g} deg (assembly hints refer to 0 deg)")
+        self.warnings.append(Message("kinematics.closure_not_at_zero", **self.groups[gi].message_params(),
+                                     phi=math.degrees(ang)))
         return ang
 
     def sigma(self, gi: int) -> float:
@@ -298,8 +297,7 @@ class Solver:
             mx = P[:, :, 0].mean(axis=1)
             key = np.round(my / self.L, 9) * 1e3 + mx / self.L * 1e-6
             k = int(np.argmax(key))
-            self.warnings.append(f"{grp.describe()}: no assembly hints; the closure with the highest mean y of "
-                                 f"its points was taken (give mechanism.assembly to choose another)")
+            self.warnings.append(Message("kinematics.no_assembly_hints", **grp.message_params()))
         return sols[k]
 
     def _phi_of(self, st: State) -> float:
@@ -560,7 +558,7 @@ def solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
     if not cps:
         return res
     for cp in cps:
-        msg = cpm.warning(cp)
+        msg = cpm.warning(cp, solver.groups[cp.group])
         if msg not in solver.warnings:
             solver.warnings.append(msg)
     res.warnings = list(dict.fromkeys(solver.warnings))

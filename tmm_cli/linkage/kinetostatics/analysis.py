@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ...errors import StageError, field_error
+from ...messages import Message
 from .. import loads as loads_mod
 from ..loads import AppliedCouple, Loads
 from .equations import Geometry, geometry, load_vector, scaled_det
@@ -436,12 +437,12 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
     else:
         near = np.zeros(N, bool)
     for i in np.nonzero(locked)[0]:
-        warnings.append(f"kinetostatics: position {int(rows[i])} (phi = {phi[i] % 360:.4f} deg) is self-locking with "
-                        f"friction f_pin = {fr.f_pin:g}, f_slide = {fr.f_slide:g}, pin radius {fr.pin_radius:g} m: the friction loads grow without "
-                        f"bound, no finite balancing {('moment' if blk.kind != 'slider' else 'force')}")
+        warnings.append(Message("kinetostatics.self_locking", position=int(rows[i]), phi=phi[i] % 360,
+                                f_pin=fr.f_pin, f_slide=fr.f_slide, pin_radius=fr.pin_radius,
+                                balancing="moment" if blk.kind != "slider" else "force"))
     for i in np.nonzero(~ok & ~locked)[0]:
-        warnings.append(f"kinetostatics: position {int(rows[i])} (phi = {phi[i] % 360:.4f} deg) is singular for "
-                        f"the balance link '{blk.name}': no finite balancing {('moment' if blk.kind != 'slider' else 'force')}")
+        warnings.append(Message("kinetostatics.singular_balance", position=int(rows[i]), phi=phi[i] % 360,
+                                link=blk.name, balancing="moment" if blk.kind != "slider" else "force"))
     eff = fpow = dpow = None
     if loss is not None:
         fpow = loss.sum(axis=1)

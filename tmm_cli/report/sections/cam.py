@@ -81,6 +81,11 @@ I18N = {
                                     "by inverted motion; scale {scale}",
         "cam.profile_knife_caption": "Base circle r0, the cam profile (solid) and the knife-edge follower every "
                                      "30 deg by inverted motion; scale {scale}",
+        # the motion laws (cam/laws.py; results.json `cam.laws.*.name`)
+        "cam.law.constant_velocity": "constant velocity", "cam.law.parabolic": "parabolic (constant acceleration)",
+        "cam.law.cosine": "cosine (harmonic)", "cam.law.sine": "sine (cycloidal)",
+        "cam.law.poly345": "polynomial 3-4-5", "cam.law.linear_decreasing": "linearly decreasing acceleration",
+        "cam.law.trapezoidal": "trapezoidal acceleration",
     },
     "ru": {
         "cam.title": "Кулачковый механизм",
@@ -153,6 +158,10 @@ I18N = {
                                     "через 30° методом обращения движения; масштаб {scale}",
         "cam.profile_knife_caption": "Начальная окружность r0, профиль кулачка (сплошной) и острый толкатель "
                                      "через 30° методом обращения движения; масштаб {scale}",
+        "cam.law.constant_velocity": "постоянная скорость", "cam.law.parabolic": "параболический (равноускоренный)",
+        "cam.law.cosine": "косинусоидальный", "cam.law.sine": "синусоидальный", "cam.law.poly345": "полином 3-4-5",
+        "cam.law.linear_decreasing": "линейно убывающее ускорение",
+        "cam.law.trapezoidal": "трапецеидальное ускорение",
     },
 }
 
@@ -170,16 +179,11 @@ def _loc(lang: str, text: str) -> str:
     return text
 
 
-# law titles in Ukrainian (results.json carries the English and Russian ones)
-_LAW_UK = {"constant_velocity": "стала швидкість", "parabolic": "параболічний (стале прискорення)",
-           "cosine": "косинусоїдальний", "sine": "синусоїдальний", "poly345": "поліном 3-4-5",
-           "linear_decreasing": "лінійно спадне прискорення", "trapezoidal": "трапецієподібне прискорення"}
-
-
-def _law_title(L: dict, lang: str) -> str:
-    if lang == "uk":
-        return _LAW_UK.get(L.get("name"), L["title"])
-    return L["title_ru"] if lang == "ru" else L["title"]
+def _law_title(L: dict, t) -> str:
+    """A motion law's title in the report's language (results.json holds its name and English title)."""
+    key = f"cam.law.{L.get('name')}"
+    text = t(key)
+    return L["title"] if text == key else text
 
 
 def _units(c, lang: str = "en"):
@@ -451,7 +455,7 @@ def _render(ctx, c, rows, method):
     law_rows = []
     for k in ("rise", "return"):
         L = c["laws"][k]
-        law_rows.append((t(f"cam.{k}"), _law_title(L, ctx.lang),
+        law_rows.append((t(f"cam.{k}"), _law_title(L, t),
                          f(c["phases"][k], 5), f(L["cv"], 5), f(L["ca"], 5) if L["ca"] is not None else "∞",
                          f(L["ds_max"] * kv, 5), f(L["d2s_max"] * ka, 5) if L["d2s_max"] is not None else "∞",
                          t("cam.impact_" + L["impact"])))

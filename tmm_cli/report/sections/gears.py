@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 
-from ..i18n import translate_warning
+from ...messages import render_list
 
 I18N = {
     "en": {"gears.title": "Involute spur gearing", "gears.geometry": "Geometry (GOST 16532-70)",
@@ -335,4 +335,4 @@ def build(ctx) -> str | None:
     rule = t("gears.rule", rule=rule_name) if g.get("rule") else None
     return ctx.render("sections/gears.html.j2", rows=[r[:2] for r in rows], wheel_rows=wheel_rows,
                       la_rows=la_rows, check_rows=check_rows, figs=figs, files=files, rule=rule,
-                      warnings=[translate_warning(w, ctx.lang) for w in g.get("warnings", [])])
+                      warnings=render_list(g, ctx.lang))

@@ -1,0 +1,150 @@
+"""Warnings as data: a stable code, named parameters and one catalogue per language.
+
+A stage reports a warning as ``Message("cam.soft_impact", phi=140.0, where="far_dwell/return")``.
+The message *is* its English text (``Message`` is a ``str``, rendered from the English
+catalogue when it is made), so the stages and their tests handle warnings as strings;
+beside the text it carries ``code`` and ``params``.  The pipeline writes both forms to
+results.json: ``warnings`` (the English texts) and ``messages``
+(``{"code", "params", "text"}`` in the same order); a report renders ``messages``
+through the catalogue of its language (:func:`render_list`).
+
+The catalogues are one YAML file per language beside this module (``en.yaml``,
+``ru.yaml``, ``uk.yaml``)::
+
+    messages:                  # code -> template (str.format, parameters by name)
+      cam.soft_impact: "soft impact (finite jump of acceleration) at phi = {phi:.4g} deg ({where})"
+    terms:                     # word tables a template names as the format spec
+      phase: {rise: удаление, far_dwell: дальний выстой}
+
+A placeholder ``{where:phase}`` renders the parameter through the language's ``phase``
+table (each ``/``-separated part, joined by `` / ``; a list joined by ``, ``); any other
+spec is a Python format spec (a list parameter: each item formatted, joined by ``, ``).
+Parameters are plain JSON values (numbers in the unit the text shows).  Adding a
+language is adding its catalogue file (and its report table in
+:mod:`tmm_cli.report.i18n`); tests/test_messages.py checks that every code and
+placeholder of ``en.yaml`` exists in every other catalogue.
+"""
+from __future__ import annotations
+
+import functools
+import string
+from pathlib import Path
+from typing import Any
+
+_DIR = Path(__file__).resolve().parent
+# the languages: one catalogue file each, English first
+LANGS = ("en",) + tuple(sorted(p.stem for p in _DIR.glob("*.yaml") if p.stem != "en"))
+
+# a warning given as a plain string (not a Message): shown as written in every language
+PLAIN = "text"
+
+
+@functools.cache
+def catalogue(lang: str) -> dict:
+    """The catalogue of ``lang``: ``{"messages": {code: template}, "terms": {name: {word: text}}}``."""
+    import yaml
+
+    path = _DIR / f"{lang}.yaml"
+    data = yaml.load(path.read_text(encoding="utf-8"), Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
+    return {"messages": dict(data.get("messages") or {}), "terms": dict(data.get("terms") or {})}
+
+
+class _Formatter(string.Formatter):
+    """``str.format`` whose spec may name a word table of the catalogue; list values are
+    formatted item by item and joined by ``", "``."""
+
+    def __init__(self, terms: dict):
+        super().__init__()
+        self.terms = terms
+
+    def format_field(self, value: Any, spec: str) -> str:
+        table = self.terms.get(spec) if spec else None
+        if table is not None:
+            if isinstance(value, list):
+                return ", ".join(str(table.get(str(v), v)) for v in value)
+            return " / ".join(str(table.get(p, p)) for p in str(value).split("/"))
+        if isinstance(value, list):
+            return ", ".join(format(v, spec) for v in value)
+        return format(value, spec)
+
+
+def render(code: str, params: dict, lang: str = "en") -> str:
+    """The text of message ``code`` with ``params`` in ``lang`` (English when the language
+    or the code is unknown). Raises KeyError for a code no catalogue knows."""
+    cat = catalogue(lang if lang in LANGS else "en")
+    template = cat["messages"].get(code)
+    if template is None:
+        if lang == "en":
+            raise KeyError(f"unknown message code {code!r}")
+        return render(code, params, "en")
+    return _Formatter(cat["terms"]).format(template, **params)
+
+
+def _plain(value: Any) -> Any:
+    """A parameter as a plain JSON value (numpy scalars and arrays, tuples)."""
+    if value is None or type(value) in (str, bool, int, float):
+        return value
+    if isinstance(value, bool):
+        return bool(value)
+    for kind in (str, int, float):          # subclasses (numpy.float64, ...) as the plain type
+        if isinstance(value, kind):
+            return kind(value)
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    item = getattr(value, "tolist", None)
+    if item is not None:
+        return _plain(item())
+    return str(value)
+
+
+def _rebuild(code: str, params: dict) -> "Message":
+    return Message(code, **params)
+
+
+class Message(str):
+    """A warning: its English text (the string itself), ``code`` and ``params``."""
+
+    code: str
+    params: dict
+
+    def __new__(cls, code: str, /, **params: Any) -> "Message":
+        params = {k: _plain(v) for k, v in params.items()}
+        self = super().__new__(cls, render(code, params, "en"))
+        self.code = code
+        self.params = params
+        return self
+
+    def __reduce__(self):
+        return _rebuild, (self.code, self.params)
+
+    def to_dict(self) -> dict:
+        return {"code": self.code, "params": dict(self.params), "text": str(self)}
+
+
+def as_dict(warning: str) -> dict:
+    """The results.json ``messages`` entry of a warning (a plain string gets code ``text``)."""
+    if isinstance(warning, Message):
+        return warning.to_dict()
+    return {"code": PLAIN, "params": {"text": str(warning)}, "text": str(warning)}
+
+
+def localize(entry: dict, lang: str) -> str:
+    """A results.json ``messages`` entry in ``lang``; its English ``text`` when the entry
+    cannot be rendered (a code or parameter this version does not know)."""
+    try:
+        return render(entry["code"], entry.get("params") or {}, lang)
+    except (KeyError, IndexError, TypeError, ValueError, AttributeError):
+        return str(entry.get("text", ""))
+
+
+def render_list(section: dict, lang: str) -> list[str]:
+    """The warnings of a results dict (or one section of it) in ``lang``: its ``messages``
+    rendered through the catalogue, else (results written before messages existed) its
+    English ``warnings`` as they are."""
+    entries = section.get("messages")
+    if entries is not None:
+        return [localize(e, lang) for e in entries]
+    return [str(w) for w in section.get("warnings") or []]
+
+
+__all__ = ["LANGS", "Message", "as_dict", "catalogue", "localize", "render", "render_list"]
