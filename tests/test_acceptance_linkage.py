@@ -30,7 +30,7 @@ import numpy as np
 import pytest
 
 import tmm_cli
-from acceptance_util import G, Linkage, angdiff, rate_roots, wrap360
+from acceptance_util import Linkage, angdiff, rate_roots, wrap360
 
 RTOL = 1e-6
 DEG_TOL = 1e-6

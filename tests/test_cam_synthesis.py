@@ -137,7 +137,7 @@ def _admissible(kind, O, sigma, sp, tau=1, l=None, n=300):
             return np.stack([c * q[..., 0] - s_ * q[..., 1], s_ * q[..., 0] + c * q[..., 1]], axis=-1)
         phim = phis[0][0]
         phip = phis[2][0]
-        Qm, Q0, Qp = camframe(Bm, phim), camframe(B0, phi0), camframe(Bp, phip)
+        Qm, Qp = camframe(Bm, phim), camframe(Bp, phip)
         T = Qp - Qm
         with np.errstate(invalid="ignore", divide="ignore"):
             T /= np.linalg.norm(T, axis=-1, keepdims=True)

@@ -16,7 +16,6 @@ Independent references used here:
 from __future__ import annotations
 
 import json
-import math
 from types import SimpleNamespace as NS
 
 import numpy as np

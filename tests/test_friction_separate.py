@@ -40,7 +40,7 @@ def test_pin_only_friction_closed_form():
     against w2; on the crank at A the reaction of the first, at O against w1.
     Rod, moments about A: (B - A) x (-T) + C_A + C_B = 0 (solved for T_y by fixed point);
     crank, moments about O: A x (-T) - C_A - f_pin r |T| sgn(w1) + M_b = 0."""
-    r, l, fp, rp, P = SC["r"], SC["l"], 0.1, 0.01, 1000.0
+    fp, rp, P = 0.1, 0.01, 1000.0
     w1 = 10.0
     kin = slider_crank_kin([60.0], e=0.0)
     task = slider_crank_task(e=0.0, m2=0, J2=0, m3=0)

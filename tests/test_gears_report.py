@@ -2,7 +2,6 @@
 from pathlib import Path
 from types import SimpleNamespace as NS
 
-import numpy as np
 import pytest
 
 from tmm_cli.gears import analyze, synthesize_planetary

@@ -3,7 +3,6 @@ plain numbers probably meant in rpm or mm, a negative size of a resistance, and 
 command line's --version, bare `tmm` and `tmm fields`."""
 from __future__ import annotations
 
-import json
 import textwrap
 
 import pytest

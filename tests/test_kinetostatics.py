@@ -40,7 +40,7 @@ def _run(task, kin, loads, ks, solver, **kw):
 # ------------------------------------------------------------------ hand free-body solution
 @pytest.mark.parametrize("phi", [0.0, 37.0, 90.0, 151.0, 200.0, 333.0])
 def test_slider_crank_free_body_by_hand(phi):
-    r, l, e = SC["r"], SC["l"], SC["e"]
+    r = SC["r"]
     m1, J1, m2, J2, m3 = 1.2, 0.015, SC["m2"], SC["J2"], SC["m3"]
     w, eps = 12.0, 4.0
     P = 1500.0                                    # N along +x on the slider (no kind: signed)

@@ -75,7 +75,7 @@ def _task_files():
     for p in sorted((ROOT / "tasks").glob("*.yaml")):
         try:
             t = tmm_cli.load_task(p)
-        except Exception:
+        except tmm_cli.TaskError:
             continue
         if t.kinetostatics is not None:
             out.append(p)

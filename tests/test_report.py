@@ -6,7 +6,6 @@ import math
 import re
 import shutil
 import subprocess
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -178,7 +177,7 @@ def _pdf_ok():
     try:
         import typst  # noqa: F401
         return True
-    except Exception:
+    except ImportError:
         return False
 
 

@@ -244,7 +244,7 @@ def _child(result_file: str, memory_mb, args) -> None:
                "message": f"out of memory: the variant needs more than the --memory limit of {memory_mb} MB"}
     try:
         data = pickle.dumps(res)
-    except Exception as exc:       # an outcome that cannot be pickled
+    except Exception as exc:  # noqa: BLE001 - whatever fails to pickle, the worker still reports
         data = pickle.dumps({"task": None, "written": [], "sets": [], "code": 3, "status": "failed",
                              "message": f"internal error: the worker could not report: {type(exc).__name__}"})
     tmp = result_file + ".part"

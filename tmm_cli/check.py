@@ -136,7 +136,7 @@ def answer_value(v, path: str):
     reg = ureg()
     try:
         q = reg.Quantity(s.replace("^", "**"))
-    except Exception:
+    except Exception:  # noqa: BLE001 - pint's parser raises many kinds (tokenize, syntax, undefined unit)
         raise ValueError(f"not a number: {s!r}") from None
     if not hasattr(q, "magnitude") or not isinstance(q.magnitude, (int, float)):
         raise ValueError(f"not a number: {s!r}")
@@ -145,7 +145,7 @@ def answer_value(v, path: str):
             x = float(q.to("degree").magnitude) if not q.unitless else float(q.magnitude)
         else:
             x = float(q.to_base_units().magnitude)
-    except Exception as exc:
+    except Exception as exc:  # noqa: BLE001 - pint's conversion errors: dimensionality, offset units, types
         raise ValueError(f"cannot read {s!r}: {exc}") from None
     if not math.isfinite(x):
         raise ValueError(f"not a finite number: {s!r}")

@@ -16,7 +16,7 @@ from pydantic import (BaseModel, ConfigDict, Field, PrivateAttr, ValidationError
 
 from .errors import TaskError
 from .modelbase import PLANETARY_ALIASES, PLANETARY_SCHEMES, FieldValueError, _Model
-from .units import (Angle, AngularSpeed, Area, Density, Force, ForceOrPressure, Inertia,
+from .units import (Angle, AngularSpeed, Area, Density, ForceOrPressure, Inertia,
                     Length, Mass, MomentQ, Number, Ratio)
 
 Point2 = tuple[float, float]

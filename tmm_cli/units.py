@@ -103,14 +103,14 @@ def convert(value: Any, kind: str) -> float:
             for target in ("N", "Pa"):
                 try:
                     return _as_float(q.to(target).magnitude)
-                except Exception:
+                except Exception:  # noqa: BLE001 - pint: not this dimension, try the next
                     continue
             raise ValueError(f"'{text}' is not {words}")
         raise ValueError(f"expected {words}, got '{text}'")
     q = _parse(text, words)
     try:
         return _as_float(q.to(unit).magnitude)
-    except Exception:
+    except Exception:  # noqa: BLE001 - pint's conversion errors of any kind; the message names the unit
         raise ValueError(f"'{text}' is not {words}: its unit does not convert to {unit.replace('**', '^')}") from None
 
 
@@ -151,7 +151,7 @@ def _parse(text: str, words: str):
         q = reg.Quantity(text)
     except (pint.errors.UndefinedUnitError, pint.errors.DefinitionSyntaxError) as exc:
         raise ValueError(f"unknown unit in '{text}' ({exc}); expected {words}") from None
-    except Exception:
+    except Exception:  # noqa: BLE001 - the rest of pint's parser errors (tokenize, syntax, types)
         raise ValueError(f"cannot read '{text}' as {words}") from None
     if not isinstance(q, reg.Quantity):
         q = reg.Quantity(q)

@@ -51,11 +51,11 @@ def _time(value: Any) -> float:
             reg = ureg()
             try:
                 q = reg.Quantity(text)
-            except Exception:
+            except Exception:  # noqa: BLE001 - pint's parser raises many kinds; the message names the field
                 raise ValueError(f"cannot read '{text}' as {words}") from None
             try:
                 v = float(q.to("s").magnitude)
-            except Exception:
+            except Exception:  # noqa: BLE001 - pint's conversion errors of any kind
                 raise ValueError(f"'{text}' is not {words}: its unit does not convert to s") from None
     else:
         raise ValueError(f"expected {words}, got {type(value).__name__}")

@@ -38,7 +38,7 @@ def check_output_speed(value) -> tuple[float, str | None]:
             try:
                 v, kind = float(q.to(unit).magnitude), k
                 break
-            except Exception:
+            except Exception:  # noqa: BLE001 - pint: not this dimension, try the next
                 continue
         if kind is None:
             raise ValueError(f"'{value}' is not a speed: give m/s (a slider) or rad/s, deg/s (a rocker)")

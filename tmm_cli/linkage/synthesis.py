@@ -153,7 +153,6 @@ def slider_crank_gamma(H: float, theta: float, gamma: float) -> list[tuple[float
     to a maximum and falls toward e_max = H/(2 tan(theta/2))."""
     from ..lazy import brentq, minimize_scalar
 
-    th = math.radians(theta)
     e_max = _e_reach(H, theta)
     if e_max <= 0.0:
         raise SynthesisImpossible(

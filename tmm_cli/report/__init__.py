@@ -202,7 +202,7 @@ def _helper(conn, results, task, out_dir, lang, names, pdf, parent_pid=None, par
             msg = _recv_from(conn, parent_pid) if parent_pid is not None else conn.recv()
             if msg is not None:
                 conn.send(("pdf", _pdf_bytes(msg, lang)))
-    except BaseException as exc:          # reported to the main process, which then works alone
+    except BaseException as exc:  # noqa: BLE001 - reported to the main process, which then works alone
         try:
             conn.send(("error", f"{type(exc).__name__}: {exc}"))
         except (OSError, ValueError):     # the pipe is gone: the main process works alone

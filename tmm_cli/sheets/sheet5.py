@@ -3,7 +3,6 @@ circles, teeth at the mesh (the report's tooth outline), the line of action N1N2
 active part B1B2 and the pole P, at a ГОСТ 2.302 scale."""
 from __future__ import annotations
 
-import math
 
 import numpy as np
 

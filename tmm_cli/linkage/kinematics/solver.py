@@ -34,7 +34,7 @@ from ..structure import Group, analyze
 from . import newton as nw
 from .dyads import DyadPlan, dyad_derivatives
 from .result import KinematicsResult
-from .state import PCon, RCon, State, left, unit
+from .state import PCon, RCon, State
 
 MARCH_STEP = 1.0          # deg, the Newton groups' path over the cycle
 CONT_DELTA = 1e-6         # deg, singular positions: mean of +-CONT_DELTA
@@ -442,7 +442,6 @@ class Solver:
 
     def _reason(self, gi: int, phi_deg: float) -> str:
         plan = self.plans[gi]
-        grp = self.groups[gi]
         if not isinstance(plan, DyadPlan):
             return "no solution of its loop-closure equations"
         st = self.run(np.radians([phi_deg]), upto=gi, derivs=False, strict=False)
@@ -605,7 +604,6 @@ def _blown_up(mech: Mechanism, solver: Solver, res: KinematicsResult, near: np.n
 def _solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
     solver = get_solver(mech)
     phi_deg = np.atleast_1d(np.asarray(phi_deg, float)).reshape(-1)
-    nwarn = len(solver.warnings)
     st = solver.run(np.radians(phi_deg))
     N = len(phi_deg)
     order = None if N < 2 or bool(np.all(phi_deg[1:] >= phi_deg[:-1])) else np.argsort(phi_deg, kind="stable")

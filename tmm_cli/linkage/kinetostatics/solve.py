@@ -21,8 +21,7 @@ import numpy as np
 
 from ...errors import StageError
 from ..loads import AppliedCouple, AppliedForce, Loads
-from .equations import (Geometry, balance_coeffs, cross, full_matrix, joint_coeffs, load_vector,
-                        rot90, scaling)
+from .equations import (Geometry, balance_coeffs, cross, full_matrix, joint_coeffs, rot90, scaling)
 
 COND_MAX = 1e11          # scaled condition number beyond which a position is singular
 

@@ -356,7 +356,6 @@ def build(ctx) -> str | None:
         for p in l.points + ([l.com] if l.com else []):
             if p not in geom.ground and p not in moving_pts and p in entries[0]["points"]:
                 moving_pts.append(p)
-    link_names = [l.name for l in geom.links]
     hdr_pts = [ctx.t("common.position"), "φ, °"] + moving_pts
     v_rows = [[str(e["index"]), ctx.fmt_fixed(e["phi"], 2)] +
               [ctx.fmt(e["points"][p]["v"]) for p in moving_pts] for e in shown]

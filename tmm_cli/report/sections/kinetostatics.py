@@ -439,7 +439,7 @@ def _lever_panel(ctx, cv, box, e, kin_e, pin, omega1, balance_kind):
     def end(tv):
         return pole + np.asarray(tv, float) / mu_v
 
-    segs, avoid, items = [], [pole], []
+    segs, avoid = [], [pole]
     ends = {}
     for p, tv in vel.items():
         q = end(tv)

@@ -216,7 +216,6 @@ def build(ctx) -> str | None:
     r = (ctx.results or {}).get("synthesis")
     if not r:
         return None
-    from markupsafe import Markup
 
     f, t, lang = ctx.fmt, ctx.t, ctx.lang
     mu = "m" if lang == "en" else "м"

@@ -36,7 +36,6 @@ their results (a note says so).
 """
 from __future__ import annotations
 
-import math
 
 import numpy as np
 from markupsafe import Markup, escape
@@ -951,7 +950,7 @@ class _Writer:
             unknown_t.append((j, l, Y, rname, tsym, F, e, Rt, L))
         # the polygon
         self.p(self.t("worked.polygon"))
-        chain, results_n = [], []
+        chain = []
         for j, l, Y, rname, tsym, F, e, Rt, L in unknown_t[:1]:
             chain += [sbp(vec(mi("R")), rname[1:], "n"), mo("+"), sbp(vec(mi("R")), rname[1:], "τ"), mo("+")]
         for l in G:
@@ -1088,7 +1087,6 @@ class _Writer:
             total += m
             terms += [brk(), mo("+" if m > 0 else "−"), num(Fm, f"F:{f['name']}"), mo("·"),
                       num.mm(abs(m) / Fm, f"hl:{f['name']}")]
-        idx = {l.name: l.index for l in self.geom.links}
         for c in ks.get("couples", []):
             M, w = c.get("M"), c.get("omega")
             if not M or not w:
