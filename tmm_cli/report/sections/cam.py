@@ -388,6 +388,8 @@ def pressure_figure(ctx, c):
     ax.set_xlabel(_loc(ctx.lang, "φ, deg"))
     ax.set_ylabel(_loc(ctx.lang, "θ, deg"))
     ax.grid(True, lw=0.3)
+    # both axes at a standard scale, stated in the course's form (μθ, μφ)
+    fp.std_graph(fig, [ax], ctx.t("kin.mm"), x_axis=ax)
     return fig
 
 
