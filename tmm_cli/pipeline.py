@@ -180,9 +180,7 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explo
     if explore:
         # every point and link at each degree of the turn: the mechanism in motion of report.html
         from .linkage.kinematics.explore import explore_grid
-        grid = _stage("kinematics")(explore_grid)(task, results)
-        if grid is not None:
-            results["kinematics_explore"] = grid
+        results["kinematics_explore"] = _stage("kinematics")(explore_grid)(linkage)
 
     dyn = None
     if task.flywheel is not None:

@@ -1,8 +1,8 @@
 """Kinematics on a fine grid of crank angles for the explorable HTML report.
 
-``explore_grid(task, results, step=1.0)`` solves the linkage of ``task`` at every
-``step`` degrees of one crank turn, counted from position 0 in the sense of rotation,
-with the crank speed the pipeline used (``results["drive"]``), and returns compact
+``explore_grid(linkage, step=1.0)`` solves the linkage (its context,
+:class:`tmm_cli.linkage.context.Linkage`) at every ``step`` degrees of one crank turn,
+counted from position 0 in the sense of rotation, with the linkage's crank speed, and returns compact
 data: positions, velocities and accelerations of every point, omega and epsilon of
 every link, rounded to 7 significant digits (the table shows 4: one
 rounding of 7 digits changes a shown 4-digit value only when it ends in 5 within 5e-7) (None where a value has no finite limit,
@@ -16,18 +16,29 @@ from ...tables import round_sig
 __all__ = ["explore_grid", "round_sig"]
 
 
-def explore_grid(task, results: dict, step: float = 1.0) -> dict | None:
-    """Dense kinematics of the task's linkage (see module doc); None without a linkage."""
-    from ..mechanism import build_mechanism
+def explore_grid(linkage, step: float = 1.0) -> dict:
+    """Dense kinematics of the linkage (see module doc).
+
+    Parameters
+    ----------
+    linkage : tmm_cli.linkage.context.Linkage
+        The mechanism, its drive (omega in rad/s, signed; the sense of rotation) and
+        its positions (position 0 at ``positions.phi0``, deg).
+    step : float
+        Grid step, deg (at least 12 angles a turn).
+
+    Returns
+    -------
+    dict
+        ``turn`` (deg from position 0), ``phi`` (crank angle, deg), ``points``
+        (x, y m; vx, vy m/s; ax, ay m/s² of every point), ``links`` (omega rad/s,
+        epsilon rad/s²), ``shapes`` (what to draw), 7 significant digits.
+    """
     from .solver import solve
-    drive = results.get("drive") or {}
-    pos = results.get("positions") or {}
-    if getattr(task, "mechanism", None) is None or "omega" not in drive or "phi0" not in pos:
-        return None
-    mech = build_mechanism(task)
-    omega1 = float(drive["omega"])
-    sign = 1.0 if omega1 > 0 else -1.0
-    phi0 = float(pos["phi0"])
+    mech = linkage.mechanism
+    omega1 = float(linkage.drive.omega)
+    sign = float(linkage.drive.sign)
+    phi0 = float(linkage.positions.phi0)
     n = max(int(round(360.0 / step)), 12)
     turn = np.arange(n) * (360.0 / n)
     phi = np.mod(phi0 + sign * turn, 360.0)
@@ -61,11 +72,11 @@ def explore_grid(task, results: dict, step: float = 1.0) -> dict | None:
         shapes.append({"link": link.name, "kind": link.kind, "points": names,
                        "origin": link.origin if link.kind == "slider" else None})
     marks = []
-    for i, (k, ph) in enumerate(zip(pos.get("index", []), pos.get("phi", []))):
-        kinds = pos.get("kinds") or []
-        if i < len(kinds) and kinds[i] != "grid":
+    pos = linkage.positions
+    for k, ph, kind in zip(pos.index, pos.phi, pos.kinds):
+        if kind != "grid":
             continue
-        marks.append({"index": k, "turn": float(np.mod(sign * (float(ph) - phi0), 360.0))})
+        marks.append({"index": int(k), "turn": float(np.mod(sign * (float(ph) - phi0), 360.0))})
     return {"step": 360.0 / n, "phi0": phi0, "sign": sign, "turn": round_sig(turn),
             "phi": round_sig(phi), "points": points, "links": links, "shapes": shapes,
             "ground": sorted(mech.ground), "positions": marks}

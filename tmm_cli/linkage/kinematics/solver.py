@@ -636,7 +636,7 @@ def _solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
         if v.ndim and v.shape != (N,):
             raise ValueError(f"{nm_} must be a scalar or an array of shape ({N},), got {v.shape}")
     warnings = list(dict.fromkeys(solver.warnings))
-    sing = getattr(st, "singular", None)
+    sing = st.singular
     return KinematicsResult(phi=phi_deg, omega1=omega1 if w.ndim == 0 else w, eps1=eps1 if e.ndim == 0 else e,
                             pos=pos, d1=d1, d2=d2, angle=angle, a1=a1, a2=a2, warnings=warnings,
                             points=[p for p in names if p in pos], links=[lk.name for lk in mech.links],

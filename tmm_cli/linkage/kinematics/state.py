@@ -42,6 +42,9 @@ class State:
         self.o2 = {0: z2}
         self.th2 = {0: z1}
         self._cs: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+        # boolean mask of the positions where a group's velocity equations are singular
+        # (their derivatives the mean of the two sides), None where there are none
+        self.singular: np.ndarray | None = None
 
     def set_pose(self, b: int, o: np.ndarray, th: np.ndarray) -> None:
         self.o[b] = o
