@@ -255,18 +255,23 @@ def sliding_figure(ctx, g):
     X = np.array(sl["X"]) * MM
     for key, col, lab in (("lambda1", "tab:blue", "$\\lambda_1$"), ("lambda2", "tab:red", "$\\lambda_2$")):
         v = np.array([np.nan if y is None else y for y in sl[key]], float)
-        v = np.clip(v, -5, 1.5)
+        v = np.where((v < -5) | (v > 1.5), np.nan, v)     # drawn over -5 <= λ <= 1.5 only
         ax.plot(X, v, color=col, label=lab)
     for name, x in sl["marks"].items():
         if x is not None:
             ax.axvline(x * MM, color="0.6", lw=0.5)
-            ax.annotate(f"${name[0]}_{{{name[1:]}}}$" if name[1:].isdigit() else name, (x * MM, 1.3), fontsize=7)
+            # the point's name inside the top of the graph (the scale stands above it)
+            ax.annotate(f"${name[0]}_{{{name[1:]}}}$" if name[1:].isdigit() else name, (x * MM, 1.0),
+                        xycoords=("data", "axes fraction"), xytext=(2, -10), textcoords="offset points",
+                        fontsize=7)
     ax.axvspan(sl["marks"]["B1"] * MM, sl["marks"]["B2"] * MM, color="0.9")
     ax.set_ylim(-5, 1.5)
     ax.set_xlabel(f"$N_1X$, {ctx.t('gears.mm')}")
+    ax.set_ylabel("λ, 1")
     ax.legend(fontsize=7)
     ax.grid(True, lw=0.3)
-    fig.tight_layout()                    # the axis label inside the figure
+    # the ordinate at a standard scale μλ (1/mm), stated; laid out with the axis label inside
+    fp.std_graph(fig, [ax], ctx.t("kin.mm"))
     return fig
 
 
