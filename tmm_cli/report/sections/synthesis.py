@@ -180,17 +180,21 @@ def construction_svg(r: dict, w_mm: float = 165.0, h_mm: float = 100.0) -> tuple
     return cv.to_svg(), scale
 
 
-def gamma_svg(r: dict, t_turn: str, w_mm: float = 165.0, h_mm: float = 60.0) -> str:
-    """gamma over the cycle: a direct-SVG chart with the least value marked."""
+def gamma_svg(r: dict, t_turn: str, w_mm: float = 165.0, h_mm: float = 60.0, mm: str = "mm") -> str:
+    """gamma over the cycle: a direct-SVG chart with the least value marked, both axes at
+    a standard scale (μφ, μγ in °/mm from 1, 2, 2.5, 4, 5 x 10^k), stated."""
+    from ...scales import nice_scale
     from ..svgdraw import Canvas
 
     tr = r["transmission"]
     x = np.asarray(tr["turn"], float)
     g = np.asarray(tr["gamma"], float)
     cv = Canvas(w_mm, h_mm)
-    x0, y0, W, H = 14.0, 10.0, w_mm - 20.0, h_mm - 16.0
     gmax = 90.0
     gmin_axis = max(0.0, 10.0 * math.floor(min(g.min(), r["gamma_min"]) / 10.0) - 10.0)
+    mu_phi = nice_scale(360.0 / (w_mm - 20.0))          # deg per mm of paper
+    mu_g = nice_scale((gmax - gmin_axis) / (h_mm - 16.0))
+    x0, y0, W, H = 14.0, 10.0, 360.0 / mu_phi, (gmax - gmin_axis) / mu_g
 
     def m(u, v):
         return (x0 + u / 360.0 * W, y0 + (v - gmin_axis) / (gmax - gmin_axis) * H)
@@ -203,8 +207,9 @@ def gamma_svg(r: dict, t_turn: str, w_mm: float = 165.0, h_mm: float = 60.0) -> 
     for v in range(int(gmin_axis), 91, 10 if gmax - gmin_axis <= 60 else 20):
         cv.line((x0 - 1.2, m(0, v)[1]), (x0, m(0, v)[1]), "#000", 0.25)
         cv.text(x0 - 2.0, m(0, v)[1], str(v), size=6.5, anchor="end")
-    cv.text(x0 + W, y0 - 7.5, t_turn, size=6.5, anchor="end")
+    cv.text(x0 + W, y0 - 7.5, f"{t_turn};  μφ = {mu_phi:g} °/{mm}", size=6.5, anchor="end")
     cv.text(x0 + 2, y0 + H + 3, "γ, °", size=7, anchor="start", italic=True)
+    cv.text(x0 + 12, y0 + H + 3, f"μγ = {mu_g:g} °/{mm}", size=6.5, anchor="start")   # beside "γ, °"
     cv.polyline([m(u, v) for u, v in zip(x, g)], "#1f4e99", 0.45)
     gm = r["gamma_min"]
     cv.line(m(0, gm), m(360, gm), "#b00", 0.25, dash="2,1")
@@ -239,5 +244,5 @@ def build(ctx) -> str | None:
     svg, scale = construction_svg(r)
     return ctx.render("sections/synthesis.html.j2", info=info, lens=lens, sols=sols, sol_head=sol_head,
                       fig=ctx.figures.named(svg, "synthesis-construction"),
-                      fig_gamma=ctx.figures.named(gamma_svg(r, t("syn.turn")), "synthesis-transmission-angle"),
+                      fig_gamma=ctx.figures.named(gamma_svg(r, t("syn.turn"), mm=t("kin.mm")), "synthesis-transmission-angle"),
                       scale=f(scale, 4))
