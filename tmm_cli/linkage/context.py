@@ -112,12 +112,11 @@ def reported_positions(mech: "Mechanism", positions_section, loads_section, sign
         Crank rotation of the machine cycle, deg (360 or 720).
     """
     from .kinematics import find_positions
-    extra_added: list[float] = []
-    if loads_section is not None:
-        from .loads import switch_angles
-        pos0 = find_positions(mech, positions_section, sign)
-        extra_added = list(switch_angles(mech, loads_section, pos0, sign=sign, cycle=cycle))
-    return find_positions(mech, positions_section, sign, extra_added=extra_added)
+    pos0 = find_positions(mech, positions_section, sign)
+    if loads_section is None:
+        return pos0
+    from .loads import switch_angles
+    return pos0.with_added(switch_angles(mech, loads_section, pos0, sign=sign, cycle=cycle))
 
 
 def build(task) -> Linkage:
