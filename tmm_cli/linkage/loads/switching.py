@@ -118,8 +118,10 @@ def _stroke_roots_many(groups, s_many, n: int = 257, passes: int = 1) -> list[li
                        for k, t in zip(live, ts)])
         return [v.reshape(t.shape) for v, t in zip(vals, ts)]
 
-    ts = [np.linspace(groups[k][3], groups[k][4], n)[None, :].repeat(tgs[k].size, 0) for k in live]
-    svs = scan(ts)
+    # the first scan is the same for every target of a group: sampled once, one row a target
+    t1 = [np.linspace(groups[k][3], groups[k][4], n)[None, :] for k in live]
+    ts = [t.repeat(tgs[k].size, 0) for t, k in zip(t1, live)]
+    svs = [sv.repeat(tgs[k].size, 0) for sv, k in zip(scan(t1), live)]
     found = [np.ones(tgs[k].size, bool) for k in live]
     for it in range(passes + 1):
         brackets = []
