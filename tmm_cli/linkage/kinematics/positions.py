@@ -179,6 +179,8 @@ class PositionsResult:
     _mech: object = field(default=None, repr=False)
     _strokes: dict = field(default_factory=dict, repr=False)
     _phis: list | None = field(default=None, repr=False)     # the angles as added (before 360 -> 0)
+    _roots: dict = field(default_factory=dict, repr=False)   # crank angles where a stroke reaches an s/H
+    #                                                          (loads.switching), found once a task
 
     def with_added(self, extra_added) -> "PositionsResult":
         """These positions with the crank angles ``extra_added`` (deg, where a load

@@ -57,8 +57,18 @@ def switch_angles(mech, loads_section, positions, *, sign: float, cycle: float,
         for stroke in strokes:
             lo, hi = (0.0, float(wa)) if stroke == "working" else (float(wa), 360.0)
             groups.append((src, start, sign, lo + 1e-7, hi - 1e-7, jumps))
-    # every stroke's roots at once: one kinematics call per scan for all of them
-    for (_, start, sign_g, *_r), roots in zip(groups, _stroke_roots_many(groups, _s_many(mech))):
+    # every stroke's roots at once: one kinematics call per scan for all of them; a root the
+    # positions already found (the positions stage's jumps, asked again with the kinks) is
+    # not searched again
+    known = getattr(positions, "_roots", None)
+    known = {} if known is None else known
+    keys = [(_stroke_key(g[0]),) + tuple(float(x) for x in g[1:5]) for g in groups]
+    todo = [(src, start, sign_g, lo, hi, [x for x in tg if (key, float(x)) not in known])
+            for (src, start, sign_g, lo, hi, tg), key in zip(groups, keys)]
+    for g, key, roots in zip(todo, keys, _stroke_roots_many(todo, _s_many(mech))):
+        known.update(((key, float(x)), r) for x, r in zip(g[5], roots))
+    for (_, start, sign_g, _lo, _hi, tg), key in zip(groups, keys):
+        roots = [known[(key, float(x))] for x in tg]
         out.extend((start + sign_g * t) % 360.0 for t in roots if t is not None)
     res = []
     for a in sorted(out):
@@ -66,6 +76,13 @@ def switch_angles(mech, loads_section, positions, *, sign: float, cycle: float,
         if not res or abs(a - res[-1]) > 1e-9:
             res.append(float(a))
     return res
+
+
+def _stroke_key(src) -> tuple:
+    """What identifies a stroke (the output's, or a slider's own): its link, sense and
+    extremes."""
+    return (getattr(src, "link", None) or getattr(src, "output", None), getattr(src, "working", None),
+            tuple(float(a) for a in (src.extreme or ())), src.working_stroke_angle)
 
 
 def _s_many(mech):
