@@ -442,6 +442,10 @@ def test_instructor_loop_end_to_end(tmp_path):
     assert by["Student 03"]["status"] == "invalid" and "positions.K" in by["Student 03"]["message"]
     ghost = [r for r in rows if r["variant"] == "77"][0]
     assert ghost["status"] == "invalid" and "no task of this variant" in ghost["message"]
+    html = (tmp_path / "graded" / "summary.html").read_text(encoding="utf-8")
+    assert "ответы на вариант 77: задания этого варианта нет" in html        # the row texts in Russian
+    assert "вне допуска: flywheel.J" in html and "no task of this variant" not in html
+    assert "outside: flywheel.J" in by["Student 02"]["message"]             # summary.csv stays English
     fb = list((tmp_path / "graded" / "02").glob("feedback-*.html"))
     assert fb and "маховик" in fb[0].read_text()                  # the step a wrong J depends on
     assert (tmp_path / "graded" / "01" / "report.html").exists()
