@@ -478,3 +478,18 @@ def test_memory_limit_counts_what_a_variant_adds(tmp_path):
         assert ",ok," in (tmp_path / "o" / "summary.csv").read_text(encoding="utf-8")
     finally:
         big.close()
+
+
+def test_batch_stage_failure_in_the_summary_language(tmp_path):
+    """A variant whose stage fails: summary.csv keeps the English text of stderr, summary.html
+    shows the same failure in the batch's language."""
+    src = tmp_path / "src"
+    _write(src, "p.yaml", "schema: tmm/1\ntitle: p\nplanetary: {scheme: A, ratio: 1.2, satellites: 3, m: 2 mm}\n")
+    res = runner.invoke(app, ["batch", str(src), "--out", str(tmp_path / "o"), "--lang", "uk", "--format", "json"])
+    assert res.exit_code == 3, res.output
+    row = _csv(tmp_path / "o" / "summary.csv")[0]
+    assert row["status"] == "failed"
+    assert row["message"].startswith("stage 'planetary' failed: no tooth numbers for scheme A give i_1H = 1.2")
+    html = (tmp_path / "o" / "summary.html").read_text(encoding="utf-8")
+    assert "етап «planetary» не виконано: жоден набір чисел зубців схеми A не дає i_1H = 1.2" in html
+    assert "no tooth numbers" not in html

@@ -134,6 +134,10 @@ ENGLISH = [
     ('batch.worker_exit', {'code': 1, 'limit': None},
      'the worker exited with code 1 without a result (memory limit None MB?)'),
     ('batch.timeout', {'timeout': 4.0}, 'time limit exceeded: the variant ran longer than --timeout 4 s'),
+    ('batch.stage_failed', {'stage': 'cam', 'where': {'code': 'text', 'params': {'text': ''}, 'text': ''},
+                            'message': {'code': 'cam.fail.stroke', 'params': {}, 'text': 'the stroke must be positive'}},
+     "stage 'cam' failed: the stroke must be positive"),
+    ('batch.at_angle', {'angle': 123.4567891}, ' at crank angle 123.457 deg'),
     # the failures of a stage (StageError): the former f-strings of the stages
     ('cam.fail.pressure_range', {'phase': 'rise', 'value': 95.0},
      'allowed pressure angle on the rise must lie in (0, 90) deg, got 95'),

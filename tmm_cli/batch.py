@@ -155,7 +155,26 @@ def work(path: Path, out: Path, folder: str, formats: set[str], lang: str, sets:
         if isinstance(exc, KeyboardInterrupt):
             raise
         res["code"], res["status"], res["message"] = classify(exc)
+        coded = stage_failure_message(exc)
+        if coded is not None and str(coded) == res["message"]:
+            res["message_coded"] = coded            # the same text, in the report language too
     return res
+
+
+def stage_failure_message(exc: BaseException) -> Message | None:
+    """A StageError whose message is coded, as one coded message ("stage 'cam' failed at
+    ...: ..."), the text of ``str(exc)``; None for any other failure."""
+    from .errors import StageError
+    if not isinstance(exc, StageError) or getattr(exc.message, "code", None) is None:
+        return None
+    pos = exc.position
+    if pos is None:
+        where = Message("text", text="")
+    elif isinstance(pos, str):                 # (no stage gives a named position today)
+        where = Message("text", text=f" at {pos}")
+    else:
+        where = Message("batch.at_angle", angle=float(pos))
+    return Message("batch.stage_failed", stage=exc.stage, where=where, message=exc.message)
 
 
 def _inside(p, out: Path) -> bool:
@@ -427,7 +446,7 @@ def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = froz
         note = "" if folder == f.stem else Message("batch.results_in", folder=folder)
         if res["status"] != "ok":
             rows.append({**base, "status": res["status"], "message": res["message"] + note, "code": res["code"],
-                         "message_parts": [res["message"], note]})
+                         "message_parts": [res.get("message_coded", res["message"]), note]})
             continue
         if not res["sets"]:
             st = "no_answers" if expected else "ok"
