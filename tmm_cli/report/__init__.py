@@ -38,8 +38,8 @@ How to add a section (e.g. for the stage ``cam``)
 ``svg(fig)``, ``write_csv(name, header, rows)``, ``write_file(name, data)``,
 ``fmt``, ``fmt_fixed``, ``sense(omega)`` (cw/ccw in words), ``link_names()``,
 ``figures`` (helpers: ``new_figure``, ``nice_scale``, ``draw_ground``,
-``draw_block``, ``draw_joint``, ``arrow``, ``place_labels``, and
-``figures.draw_mechanism`` for the linkage).
+``draw_joint``, ``arrow``, ``place_labels``, and ``figures.figure_for_box`` +
+``figures.draw_mechanism`` for the linkage, drawn directly as SVG).
 """
 from __future__ import annotations
 
@@ -327,8 +327,7 @@ def render(results: dict, task, out_dir: Path, formats: set[str], lang: str = "e
     ``notes`` the PdfSkipped exception propagates.
 
     With two cores the work is split over two processes: a helper (forked) builds
-    the kinetostatics and dynamics sections (their drawings are direct SVG: the helper
-    needs no matplotlib) while the main process imports matplotlib and builds the
+    the kinetostatics and dynamics sections while the main process builds the
     other sections; the helper then compiles the PDF while the main process
     writes report.html.  Any failure of the helper falls back to doing everything here."""
     out_dir = Path(out_dir)
