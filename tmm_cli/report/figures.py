@@ -276,22 +276,32 @@ def arrow(ax, p, q, color="k", lw=1.0, head=None, z=4, style="-|>", ls="-"):
                                  linestyle=ls, shrinkA=0, shrinkB=0, zorder=z))
 
 
-def _seg_dist(c, segs):
-    """Distance from point c to the nearest of the segments (array (k, 2, 2))."""
-    if segs is None or not len(segs):
-        return np.inf
-    return float(_seg_dists(np.asarray(c, float)[None, :], segs)[0])
+class _Segments:
+    """Distances from points to the nearest of segments (k, 2, 2), the segments' parts
+    computed once (x and y apart: no reductions over a length-2 axis)."""
+
+    def __init__(self, segs):
+        a, b = segs[:, 0], segs[:, 1]
+        d = b - a
+        self.ax, self.ay = a[:, 0], a[:, 1]
+        self.dx, self.dy = d[:, 0], d[:, 1]
+        self.L2 = np.maximum(self.dx * self.dx + self.dy * self.dy, 1e-300)
+
+    def dists(self, cx, cy):
+        """Distance from each point (cx[i], cy[i]) to the nearest segment."""
+        rx = cx[:, None] - self.ax
+        ry = cy[:, None] - self.ay
+        t = np.clip((rx * self.dx + ry * self.dy) / self.L2, 0.0, 1.0)
+        qx = rx - self.dx * t
+        qy = ry - self.dy * t
+        return np.sqrt((qx * qx + qy * qy).min(axis=1))
 
 
-def _seg_dists(C, segs):
-    """Distances from each of the points C (m, 2) to the nearest segment (k, 2, 2)."""
-    a, b = segs[:, 0], segs[:, 1]
-    d = b - a
-    L2 = np.maximum((d * d).sum(axis=1), 1e-300)
-    rel = C[:, None, :] - a[None, :, :]                                  # (m, k, 2)
-    t = np.clip((rel * d[None]).sum(axis=2) / L2[None], 0.0, 1.0)         # (m, k)
-    q = rel - d[None] * t[:, :, None]
-    return np.sqrt((q * q).sum(axis=2)).min(axis=1)
+def _point_dists(cx, cy, px, py):
+    """Distance from each point (cx[i], cy[i]) to the nearest of the points (px, py)."""
+    dx = cx[:, None] - px
+    dy = cy[:, None] - py
+    return np.sqrt((dx * dx + dy * dy).min(axis=1))
 
 
 _DIRS = np.array([[math.cos(t), math.sin(t)] for t in np.linspace(0, 2 * math.pi, 16, endpoint=False)])
@@ -303,17 +313,6 @@ def text_size(s: str, size_mm: float, sub: str | None = None) -> tuple[float, fl
     """(width, height) mm of a label of font size size_mm (a subscript counted full
     width): the box the drawings keep clear, and the one the tests check."""
     return 0.6 * size_mm * (len(s) + len(sub or "")) + 0.6, 1.15 * size_mm
-
-
-def _hit(cand, half, taken):
-    """For the candidate centres (m, 2) of a box of half sizes `half`: does it overlap one
-    of the boxes `taken` (k, 4: x0, y0, x1, y1)?"""
-    if not len(taken):
-        return np.zeros(len(cand), bool)
-    t = np.asarray(taken, float)
-    return ((np.abs(cand[:, None, 0] - (t[None, :, 0] + t[None, :, 2]) / 2) < half[0] + (t[None, :, 2] - t[None, :, 0]) / 2)
-            & (np.abs(cand[:, None, 1] - (t[None, :, 1] + t[None, :, 3]) / 2) < half[1] + (t[None, :, 3] - t[None, :, 1]) / 2)
-            ).any(axis=1)
 
 
 def place_labels(anchors, extent: float, avoid=(), step: float | None = None, segments=None,
@@ -330,58 +329,80 @@ def place_labels(anchors, extent: float, avoid=(), step: float | None = None, se
     one nor one of `taken` (x0, y0, x1, y1), and stays inside `bounds` (x0, y0, x1, y1);
     when no place near its anchor is free it moves further out (rings up to 11 steps),
     and it is appended to `taken` (the caller's list) once placed.
-    Vectorised over the candidates (numpy).
+    Vectorised over the candidates (numpy); the distances are computed for the
+    admissible candidates only.
     """
     if step is None:
         step = 0.045 * extent
     avoid_a = np.asarray([np.asarray(a, float) for a in avoid], float).reshape(-1, 2)
+    avx, avy = avoid_a[:, 0].copy(), avoid_a[:, 1].copy()
     segs = np.asarray(segments, float).reshape(-1, 2, 2) if segments is not None and len(segments) else None
+    seg = _Segments(segs) if segs is not None else None
     mults = _MULTS + (_FAR if sizes is not None else ())
     offs = np.concatenate([_DIRS * step * m for m in mults])
-    mult = np.repeat(np.array(mults), len(_DIRS))
+    ring = 0.35 * step * (np.repeat(np.array(mults), len(_DIRS)) - 1)
     dirs = np.tile(_DIRS, (len(mults), 1))
     taken = taken if isinstance(taken, list) else list(taken)
-    placed = np.empty((0, 2))
+    # the taken boxes as centres and half sizes (x, y), grown as labels are placed
+    tb = np.asarray(taken, float).reshape(-1, 4)
+    nt = len(tb)
+    tcx, tcy, thx, thy = np.empty((4, nt + (len(anchors) if sizes is not None else 0)))
+    tcx[:nt], tcy[:nt] = (tb[:, 0] + tb[:, 2]) / 2, (tb[:, 1] + tb[:, 3]) / 2
+    thx[:nt], thy[:nt] = (tb[:, 2] - tb[:, 0]) / 2, (tb[:, 3] - tb[:, 1]) / 2
+    box_tests = [(np.asarray(bc, float), np.asarray(bu, float), np.array([-bu[1], bu[0]], float), hw, hh)
+                 for (bc, bu, hw, hh) in boxes]
+    plx, ply = np.empty((2, len(anchors)))
     out = []
     big = 9 * step
     for k_a, (x, y, pref) in enumerate(anchors):
         c = np.array([x, y], float)
         cand = c + offs
         ok = np.ones(len(cand), bool)
-        for (bc, bu, hw, hh) in boxes:
-            bc = np.asarray(bc, float)
-            bu = np.asarray(bu, float)
-            bv = np.array([-bu[1], bu[0]])
+        for bc, bu, bv, hw, hh in box_tests:
             r = cand - bc
             ok &= ~((np.abs(r @ bu) < hw + 0.5 * step) & (np.abs(r @ bv) < hh + 0.4 * step))
         half = None
         if sizes is not None:
             half = np.asarray(sizes[k_a], float) / 2
-            free = ~_hit(cand, half, taken)
+            cx, cy = cand[:, 0], cand[:, 1]
+            if nt:
+                free = ~((np.abs(cx[:, None] - tcx[:nt]) < half[0] + thx[:nt])
+                         & (np.abs(cy[:, None] - tcy[:nt]) < half[1] + thy[:nt])).any(axis=1)
+            else:
+                free = np.ones(len(cand), bool)
             if bounds is not None:
-                free &= (cand[:, 0] - half[0] >= bounds[0]) & (cand[:, 0] + half[0] <= bounds[2]) \
-                    & (cand[:, 1] - half[1] >= bounds[1]) & (cand[:, 1] + half[1] <= bounds[3])
+                free &= (cx - half[0] >= bounds[0]) & (cx + half[0] <= bounds[2]) \
+                    & (cy - half[1] >= bounds[1]) & (cy + half[1] <= bounds[3])
             if (ok & free).any():
                 ok &= free
             elif free.any():
                 ok = free
-        dl = np.sqrt(((cand[:, None, :] - placed[None]) ** 2).sum(axis=2)).min(axis=1) if len(placed) \
-            else np.full(len(cand), big)
-        da = np.sqrt(((cand[:, None, :] - avoid_a[None]) ** 2).sum(axis=2)).min(axis=1) if len(avoid_a) \
-            else np.full(len(cand), big)
-        ds = _seg_dists(cand, segs) if segs is not None else np.full(len(cand), np.inf)
-        score = np.minimum(dl, 2.2 * step) + np.minimum(da, 1.2 * step) + np.minimum(ds, 0.8 * step) \
-            - 0.35 * step * (mult - 1)
-        if pref is not None:
-            n = math.hypot(*pref)
-            if n > 0:
-                score = score + 0.5 * step * (dirs @ (np.asarray(pref, float) / n))
-        score = np.where(ok, score, -np.inf)
-        k = int(np.argmax(score))
-        best = cand[k] if np.isfinite(score[k]) else c + _DIRS[4] * step * 2.5
-        placed = np.vstack([placed, best])
+        idx = np.flatnonzero(ok)
+        best = None
+        if len(idx):
+            cs = cand[idx]
+            cx, cy = cs[:, 0], cs[:, 1]
+            dl = _point_dists(cx, cy, plx[:k_a], ply[:k_a]) if k_a else np.full(len(cs), big)
+            da = _point_dists(cx, cy, avx, avy) if len(avx) else np.full(len(cs), big)
+            ds = seg.dists(cx, cy) if seg is not None else np.full(len(cs), np.inf)
+            score = np.minimum(dl, 2.2 * step) + np.minimum(da, 1.2 * step) + np.minimum(ds, 0.8 * step) \
+                - ring[idx]
+            if pref is not None:
+                n = math.hypot(*pref)
+                if n > 0:
+                    score = score + 0.5 * step * (dirs[idx] @ (np.asarray(pref, float) / n))
+            k = int(np.argmax(score))
+            if np.isfinite(score[k]):
+                best = cs[k]
+        if best is None:
+            best = c + _DIRS[4] * step * 2.5
+        plx[k_a], ply[k_a] = best
         if half is not None:
-            taken.append((best[0] - half[0], best[1] - half[1], best[0] + half[0], best[1] + half[1]))
+            box = (best[0] - half[0], best[1] - half[1], best[0] + half[0], best[1] + half[1])
+            taken.append(box)
+            tcx[nt], tcy[nt] = (box[0] + box[2]) / 2, (box[1] + box[3]) / 2
+            thx[nt], thy[nt] = (box[2] - box[0]) / 2, (box[3] - box[1]) / 2
+            nt += 1
         out.append((float(best[0]), float(best[1])))
     return out
 
