@@ -88,11 +88,11 @@ def test_the_reader_is_html_parser_on_awkward_html():
                                        ("press_drive_train", "en")])
 def test_the_reader_on_reports(name, lang, tmp_path, monkeypatch):
     import tmm_cli
-    from tmm_cli.report import render_html, _write_figures
+    from tmm_cli.report import render_html, _figure_files
     monkeypatch.setenv("TMM_REPORT_JOBS", "1")
     task = tmm_cli.load_task(ROOT / "tasks" / f"{name}.yaml")
     html, ctx = render_html(tmm_cli.run(task), task, tmp_path, lang)
-    html = _write_figures(ctx, html)
+    html = _figure_files(ctx, html)[0]
     root, svgs = typst_pdf._parse(html)
     cut = typst_pdf._SVG.sub(lambda m: "<img>", html)
     import re
