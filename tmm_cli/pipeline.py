@@ -151,7 +151,7 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explo
     except StageError as err:
         raise impossible_dimensions(task, err) or err
     positions = _stage("positions")(reported_positions)(mech, task.positions, task.loads, task.drive.sign,
-                                                         float(task.drive.cycle))
+                                                         float(task.drive.cycle), kinks=task.flywheel is not None)
     check_detail(task, positions)
     results["positions"] = positions.to_dict()
     # the position the report works step by step (report.detail_position, or the default)

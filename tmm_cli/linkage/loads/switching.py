@@ -9,13 +9,15 @@ from .strokes import load_stroke, stroke_dependent, stroke_states
 
 
 def switch_angles(mech, loads_section, positions, *, sign: float, cycle: float,
-                  kinks: bool = False) -> list[float]:
+                  kinks: bool = False, roots: dict | None = None) -> list[float]:
     """Crank angles in [0, 360) where a task load switches: where it jumps inside a stroke
     (a repeated abscissa of an s- or phi-diagram), found to 1e-9 deg, and the extreme
     positions of every slider other than the output that carries a stroke-dependent load
     (where its own strokes begin and end, docs/methods.md §3.3); with kinks=True also
     where a diagram's slope changes (every inner abscissa: the breakpoints of a piecewise
-    quadrature).  ``sign``: +1 ccw, -1 cw; ``cycle``: 360 or 720 deg."""
+    quadrature).  ``sign``: +1 ccw, -1 cw; ``cycle``: 360 or 720 deg; ``roots``: the crank
+    rotations already found for this task's strokes (``PositionsResult._roots``), read
+    and added to, so that a root is searched once."""
     if loads_section is None:
         return []
     out: list[float] = []
@@ -23,10 +25,12 @@ def switch_angles(mech, loads_section, positions, *, sign: float, cycle: float,
     cycle = float(cycle)
     output_ext = [float(a) for a in (positions.extreme or [])]
     groups: list[tuple] = []       # (stroke, start, sign, lo, hi, targets) of the s-diagram jumps
+    names: list[tuple] = []        # per group: the stroke's link and sense (None: the output's)
     for k, sp in enumerate(loads_section.forces):
         src = positions
         if stroke_dependent(sp) and mech is not None:
             src = load_stroke(positions, mech.link(sp.on), sp, k)
+        name = None if src is positions else (src.link, src.working)
         ext = src.extreme
         start = float(ext[0]) if ext else phi0          # the working stroke begins here
         wa = src.working_stroke_angle
@@ -57,12 +61,12 @@ def switch_angles(mech, loads_section, positions, *, sign: float, cycle: float,
         for stroke in strokes:
             lo, hi = (0.0, float(wa)) if stroke == "working" else (float(wa), 360.0)
             groups.append((src, start, sign, lo + 1e-7, hi - 1e-7, jumps))
+            names.append(name)
     # every stroke's roots at once: one kinematics call per scan for all of them; a root the
     # positions already found (the positions stage's jumps, asked again with the kinks) is
     # not searched again
-    known = getattr(positions, "_roots", None)
-    known = {} if known is None else known
-    keys = [(_stroke_key(g[0]),) + tuple(float(x) for x in g[1:5]) for g in groups]
+    known = {} if roots is None else roots
+    keys = [(name,) + tuple(float(x) for x in g[1:5]) for name, g in zip(names, groups)]
     todo = [(src, start, sign_g, lo, hi, [x for x in tg if (key, float(x)) not in known])
             for (src, start, sign_g, lo, hi, tg), key in zip(groups, keys)]
     for g, key, roots in zip(todo, keys, _stroke_roots_many(todo, _s_many(mech))):
@@ -76,13 +80,6 @@ def switch_angles(mech, loads_section, positions, *, sign: float, cycle: float,
         if not res or abs(a - res[-1]) > 1e-9:
             res.append(float(a))
     return res
-
-
-def _stroke_key(src) -> tuple:
-    """What identifies a stroke (the output's, or a slider's own): its link, sense and
-    extremes."""
-    return (getattr(src, "link", None) or getattr(src, "output", None), getattr(src, "working", None),
-            tuple(float(a) for a in (src.extreme or ())), src.working_stroke_angle)
 
 
 def _s_many(mech):
