@@ -53,7 +53,6 @@ def added(task: str, repeat: int) -> tuple[float, float]:
 
 def phases(task: str) -> float:
     import ezdxf  # noqa: F401  (imported once, as in a run)
-    import weasyprint  # noqa: F401
 
     import tmm_cli
     from tmm_cli.sheets import build_sheets
