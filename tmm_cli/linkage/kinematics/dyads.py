@@ -39,7 +39,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .state import PCon, RCon, State, cross, dot, left, unit
+from .state import PCon, RCon, State, cross, dot, left, scale, unit
 
 
 def _atan2(v):
@@ -83,7 +83,9 @@ class DyadPlan:
         """The one freedom an external pair leaves to link X."""
         if isinstance(con, RCon):
             K = con.j if con.i == X else con.i
-            return ("R", st.point(K, con.local(K)), np.asarray(con.local(X)))
+            uK = con.local(K)
+            P = st.point_d(K, uK)[0] if K in st.th1 else st.point(K, uK)    # (shared with the derivatives)
+            return ("R", P, np.asarray(con.local(X)))
         # prismatic: ("P", angle th of X, base, direction e of the line, (cos th, sin th))
         if con.s == X:
             th, e = st.guide(con)
@@ -156,10 +158,10 @@ class DyadPlan:
         h = cross(w, eY)
         margin = lX - np.abs(h)
         s = -dot(w, eY) + sigma * np.sqrt(np.maximum(lX ** 2 - h ** 2, 0.0))
-        C = c0 + s[:, None] * eY
+        C = c0 + scale(s, eY)
         thX = _atan2(C - P1) - np.arctan2(vX[1], vX[0])
         self._set_from_point(st, X, P1, uX1, thX)
-        st.set_pose(Y, bY + s[:, None] * eY, np.broadcast_to(thY, (st.N,)).copy(), csY)
+        st.set_pose(Y, bY + scale(s, eY), np.broadcast_to(thY, (st.N,)).copy(), csY)
         return margin
 
     def _prp(self, st, ea, eb, uAC, uBC):
@@ -174,8 +176,8 @@ class DyadPlan:
         Dl = cB - cA
         sA = cross(Dl, eB) / dd
         sB = cross(Dl, eA) / dd
-        st.set_pose(A, bA + sA[:, None] * eA, np.broadcast_to(thA, (st.N,)).copy(), csA)
-        st.set_pose(B, bB + sB[:, None] * eB, np.broadcast_to(thB, (st.N,)).copy(), csB)
+        st.set_pose(A, bA + scale(sA, eA), np.broadcast_to(thA, (st.N,)).copy(), csA)
+        st.set_pose(B, bB + scale(sB, eB), np.broadcast_to(thB, (st.N,)).copy(), csB)
         return margin
 
     def _rpr(self, st, ea, eb, sigma):
@@ -221,7 +223,7 @@ class DyadPlan:
         else:
             t = (dot(n, oX - bY) - mid.c0) / dd
         st.set_pose(X, oX, thX, csX)
-        st.set_pose(Y, bY + t[:, None] * eY, np.broadcast_to(thY, (st.N,)).copy(), csY)
+        st.set_pose(Y, bY + scale(t, eY), np.broadcast_to(thY, (st.N,)).copy(), csY)
         return margin
 
 
@@ -256,6 +258,18 @@ class _MidApply:
         return -t, -nv - (self.ed if one else self.ed * t)
 
 
+def _length(info_X, cX, mid, N: int) -> np.ndarray:
+    """|cX|, the length of link X's column of the 2x2 system. A link sliding on a fixed
+    guide and jointed to the other by a revolute pair has the column +-(e - 0 r): its
+    length is |e|, the same at every position (np.hypot depends on |x|, |y| only), so
+    it is taken once when the column is finite."""
+    if info_X[0] == "P" and isinstance(mid, RCon):
+        e0, e1 = info_X[1][0], info_X[1][1]
+        if e0.strides == (0,) and e1.strides == (0,) and np.isfinite(cX[0]).all() and np.isfinite(cX[1]).all():
+            return np.broadcast_to(np.hypot(e0[:1], e1[:1]), (N,))
+    return np.hypot(cX[0], cX[1])
+
+
 def dyad_derivatives(plan: DyadPlan, st: State) -> np.ndarray:
     """Exact phi-derivatives of a dyad's poses (set in ``st``) by a 2x2 linear solve.
 
@@ -284,8 +298,8 @@ def dyad_derivatives(plan: DyadPlan, st: State) -> np.ndarray:
             w2 = st.th2[K]
             cc = sgn * ext.c0
             Q = st.o[K] + cc * n
-            Q1 = st.o1[K] - cc * w1[:, None] * e
-            Q2 = st.o2[K] - cc * (w2[:, None] * e + (w1 ** 2)[:, None] * n)
+            Q1 = st.o1[K] - scale(cc * w1, e)
+            Q2 = st.o2[K] - cc * (scale(w2, e) + scale(w1 ** 2, n))
             s = dot(e, st.o[X] - Q)
             U = (e[:, 0], e[:, 1], 0.0)
             V = (Q1[:, 0] + s * w1 * n[:, 0], Q1[:, 1] + s * w1 * n[:, 1], w1)
@@ -294,7 +308,7 @@ def dyad_derivatives(plan: DyadPlan, st: State) -> np.ndarray:
     cA = ap(A, *info[A][1])
     cB = ap(B, *info[B][1])
     det = cA[0] * cB[1] - cA[1] * cB[0]
-    nn = np.hypot(cA[0], cA[1]) * np.hypot(cB[0], cB[1])
+    nn = _length(info[A], cA, plan.mid, N) * _length(info[B], cB, plan.mid, N)
     with np.errstate(divide="ignore", invalid="ignore"):
         st.last_det = np.where(nn > 0, det / np.maximum(nn, 1e-300), 0.0)  # sine of the angle between the columns
     sing = ~(np.abs(det) >= 1e-10 * nn)

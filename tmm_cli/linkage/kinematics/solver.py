@@ -118,7 +118,10 @@ class Solver:
         o1[:, 0] = ru[:, 1]
         np.negative(ru[:, 0], out=o1[:, 1])
         d = self.mech.drive
-        st.set_pose(d, self.pivot - ru, th, (c, s))
+        o = np.empty_like(ru)
+        np.subtract(self.pivot[0], ru[:, 0], out=o[:, 0])
+        np.subtract(self.pivot[1], ru[:, 1], out=o[:, 1])
+        st.set_pose(d, o, th, (c, s))
         st.set_d1(d, o1, np.ones_like(phi))
         st.set_d2(d, ru, np.zeros_like(phi))
 
@@ -618,7 +621,8 @@ def _solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
     names = mech.all_points()
     for p, xy in mech.ground.items():
         pos[p] = np.empty((N, 2))
-        pos[p][:] = xy
+        pos[p][:, 0] = xy[0]
+        pos[p][:, 1] = xy[1]
         d1[p] = np.zeros((N, 2))
         d2[p] = np.zeros((N, 2))
     for lk in mech.links:

@@ -165,6 +165,15 @@ class State:
         return sub
 
 
+def scale(x, v):
+    """x[:, None] * v for x (N,) and v (N, 2), column by column (a broadcast over the
+    last axis of length 2 runs numpy's inner loop two elements at a time)."""
+    out = np.empty((len(x), 2))
+    np.multiply(x, v[:, 0], out=out[:, 0])
+    np.multiply(x, v[:, 1], out=out[:, 1])
+    return out
+
+
 def unit(ang):
     ang = np.asarray(ang, float)
     out = np.empty(ang.shape + (2,))
@@ -231,7 +240,7 @@ class RCon:
         for b, u, sg in ((self.i, self.ui, 1.0), (self.j, self.uj, -1.0)):
             if b == 0:
                 continue
-            g -= sg * st.th1[b][:, None] ** 2 * (st.rot(b, u) if ru is None else ru[b])
+            g -= scale(sg * st.th1[b] ** 2, st.rot(b, u) if ru is None else ru[b])
         return g
 
 
