@@ -161,7 +161,7 @@ class DyadPlan:
         C = c0 + scale(s, eY)
         thX = _atan2(C - P1) - np.arctan2(vX[1], vX[0])
         self._set_from_point(st, X, P1, uX1, thX)
-        st.set_pose(Y, bY + scale(s, eY), np.broadcast_to(thY, (st.N,)).copy(), csY)
+        st.set_pose(Y, bY + scale(s, eY), thY.copy(), csY)
         return margin
 
     def _prp(self, st, ea, eb, uAC, uBC):
@@ -176,8 +176,8 @@ class DyadPlan:
         Dl = cB - cA
         sA = cross(Dl, eB) / dd
         sB = cross(Dl, eA) / dd
-        st.set_pose(A, bA + scale(sA, eA), np.broadcast_to(thA, (st.N,)).copy(), csA)
-        st.set_pose(B, bB + scale(sB, eB), np.broadcast_to(thB, (st.N,)).copy(), csB)
+        st.set_pose(A, bA + scale(sA, eA), thA.copy(), csA)
+        st.set_pose(B, bB + scale(sB, eB), thB.copy(), csB)
         return margin
 
     def _rpr(self, st, ea, eb, sigma):
@@ -210,7 +210,7 @@ class DyadPlan:
         _, pX, uX = ex
         _, thY, bY, eY, csY = ey
         thX = thY + mid.a if X == mid.s else thY - mid.a
-        thX = np.broadcast_to(thX, (st.N,)).copy()
+        thX = thX.copy()
         csX = _cs(thX)
         oX = pX - _rot(csX, uX)
         th_g = thX if X == mid.g else thY
@@ -223,7 +223,7 @@ class DyadPlan:
         else:
             t = (dot(n, oX - bY) - mid.c0) / dd
         st.set_pose(X, oX, thX, csX)
-        st.set_pose(Y, bY + scale(t, eY), np.broadcast_to(thY, (st.N,)).copy(), csY)
+        st.set_pose(Y, bY + scale(t, eY), thY.copy(), csY)
         return margin
 
 

@@ -58,25 +58,27 @@ class State:
             self._csk.pop(b, None)
         else:
             self._csk[b] = cs
-        self._forget(b)
+        if self._pd:
+            self._forget(b)
         if self._gd:
             for k in [k for k, (g, _) in self._gd.items() if g == b]:
                 del self._gd[k]
 
     def _forget(self, b: int) -> None:
-        if self._pd:
-            for k in [k for k in self._pd if k[0] == b]:
-                del self._pd[k]
+        for k in [k for k in self._pd if k[0] == b]:
+            del self._pd[k]
 
     def set_d1(self, b, o1, th1):
         self.o1[b] = o1
         self.th1[b] = th1
-        self._forget(b)
+        if self._pd:
+            self._forget(b)
 
     def set_d2(self, b, o2, th2):
         self.o2[b] = o2
         self.th2[b] = th2
-        self._forget(b)
+        if self._pd:
+            self._forget(b)
 
     def guide(self, con) -> tuple[np.ndarray, np.ndarray]:
         """(psi, e) of prismatic pair ``con``: its guide's direction psi = th_g + a (N,)
@@ -144,12 +146,13 @@ class State:
         t2 = self.th2[b]
         t11 = t1 * t1
         p = self.o[b] + ru
-        d1 = self.o1[b].copy()
-        d1[:, 0] -= t1 * ry
-        d1[:, 1] += t1 * rx
-        d2 = self.o2[b].copy()
-        d2[:, 0] -= t2 * ry + t11 * rx
-        d2[:, 1] += t2 * rx - t11 * ry
+        o1, o2 = self.o1[b], self.o2[b]
+        d1 = np.empty((self.N, 2))
+        np.subtract(o1[:, 0], t1 * ry, out=d1[:, 0])
+        np.add(o1[:, 1], t1 * rx, out=d1[:, 1])
+        d2 = np.empty((self.N, 2))
+        np.subtract(o2[:, 0], t2 * ry + t11 * rx, out=d2[:, 0])
+        np.add(o2[:, 1], t2 * rx - t11 * ry, out=d2[:, 1])
         return p, d1, d2
 
     def take(self, idx) -> "State":
