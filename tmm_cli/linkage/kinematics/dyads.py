@@ -293,6 +293,12 @@ def dyad_derivatives(plan: DyadPlan, st: State) -> np.ndarray:
             K = ext.g if ext.s == X else ext.s
             sgn = 1.0 if ext.s == X else -1.0        # Q = o_K + sgn c0 n(psi)
             e = st.guide(ext)[1] if ext.s == X else unit(st.th[ext.s])
+            if K == 0:
+                # a fixed guide: Q', Q'', w1, w2 are zero, so V and W are (0, 0, 0) --
+                # as the general terms below evaluate them (+0 in every place, the data
+                # being finite), without the arithmetic
+                info[X] = ("P", (e[:, 0], e[:, 1], 0.0), (0.0, 0.0, st.th1[0]), None)
+                continue
             n = left(e)
             w1 = st.th1[K]
             w2 = st.th2[K]
@@ -340,6 +346,8 @@ def dyad_derivatives(plan: DyadPlan, st: State) -> np.ndarray:
             P2, ru = extra
             l2 = lx * lx
             Wd[X] = (P2[:, 0] + l2 * ru[:, 0], P2[:, 1] + l2 * ru[:, 1], 0.0)
+        elif extra is None:                     # on a fixed guide
+            Wd[X] = (0.0, 0.0, st.th2[0])
         else:
             Q2, e, n, s, w1, w2 = extra
             a = 2 * lx * w1 + s * w2
