@@ -293,7 +293,7 @@ def dyad_derivatives(plan: DyadPlan, st: State) -> np.ndarray:
             K = ext.g if ext.s == X else ext.s
             sgn = 1.0 if ext.s == X else -1.0        # Q = o_K + sgn c0 n(psi)
             e = st.guide(ext)[1] if ext.s == X else unit(st.th[ext.s])
-            if K == 0:
+            if K == 0 and ext.s == X:
                 # a fixed guide: Q', Q'', w1, w2 are zero, so V and W are (0, 0, 0) --
                 # as the general terms below evaluate them (+0 in every place, the data
                 # being finite), without the arithmetic
