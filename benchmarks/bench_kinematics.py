@@ -13,8 +13,10 @@
 * ``sixbar``: the six-bar of tasks/forging_sixbar.yaml at 10^5 positions: wall time, CPU
   time and the peak memory traced by tracemalloc (numpy arrays are traced). Targets:
   < 0.2 s, < 200 MB.
+* ``digest``: a digest of every output of ``solve`` on the linkage tasks (not timed): the
+  same before and after a change that must leave the results bit-identical.
 
-Run: python benchmarks/bench_kinematics.py [core|sixbar] [--repeat 7]
+Run: python benchmarks/bench_kinematics.py [core|sixbar|digest] [--repeat 7]
 """
 from __future__ import annotations
 
@@ -240,11 +242,45 @@ def sixbar(n: int = 100_000, repeat: int = 5) -> None:
           f"cpu best {min(cpus):.3f} s, peak traced memory {peak / 2**20:.1f} MB")
 
 
+def digest() -> None:
+    """A digest of every output of ``solve`` (positions, derivatives, angles, warnings, the
+    singular and near-change-point masks) for each linkage task of tasks/ and the two
+    linkages above, on four sets of angles (sorted, random unsorted, three, one): run it
+    before and after a change of the kinematics to see that no bit of its results moved."""
+    import glob
+    import hashlib
+    rng = np.random.default_rng(7)
+    grids = [np.arange(720) * 0.5, rng.uniform(0.0, 360.0, 500), np.array([0.0, 180.0, 359.999]), np.array([90.0])]
+    srcs = [(Path(f).name, f) for f in sorted(glob.glob(str(ROOT / "tasks" / "*.yaml")))]
+    for name, src in srcs + [("slider-crank", SLIDER_CRANK), ("four-bar", FOUR_BAR)]:
+        task = load_task(src)
+        if getattr(task, "mechanism", None) is None:
+            continue
+        mech = build_mechanism(task)
+        h = hashlib.sha256()
+        for g in grids:
+            try:
+                k = solve(mech, g, 2.0, 0.5)
+            except Exception as exc:  # noqa: BLE001 -- the error is part of the digest
+                h.update(repr(exc).encode())
+                continue
+            for d in (k.pos, k.d1, k.d2, k.angle, k.a1, k.a2, k.undefined):
+                for key in sorted(d):
+                    h.update(key.encode())
+                    h.update(np.ascontiguousarray(d[key]).tobytes())
+            h.update(repr(k.warnings).encode())
+            for mask in (k.singular, k.near):
+                h.update(b"-" if mask is None else mask.tobytes())
+        print(f"{name:36s} {h.hexdigest()[:24]}")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
-    ap.add_argument("what", nargs="*", default=["sixbar", "core"], choices=["sixbar", "core"])
+    ap.add_argument("what", nargs="*", default=["sixbar", "core"], choices=["sixbar", "core", "digest"])
     ap.add_argument("--repeat", type=int, default=7)
     a = ap.parse_args()
+    if "digest" in a.what:
+        digest()
     if "sixbar" in a.what:
         sixbar()
     if "core" in a.what:
