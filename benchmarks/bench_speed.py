@@ -26,7 +26,10 @@ The commands run as an installed tmm does: with the bytecode cache (pip compiles
 install), so a PYTHONDONTWRITEBYTECODE of the environment is dropped for them (the cache
 goes to a temporary PYTHONPYCACHEPREFIX).
 
-Run: python benchmarks/bench_speed.py [--report] [--batch] [--kinetostatics] [--repeat 5]
+* with --against DIR: the whole report and the JSON run of this checkout and of another
+  one (DIR: e.g. `git archive <commit> | tar -x -C DIR`), all four interleaved.
+
+Run: python benchmarks/bench_speed.py [--report] [--batch] [--kinetostatics] [--against DIR] [--repeat 5]
 """
 from __future__ import annotations
 
@@ -232,6 +235,44 @@ def kinetostatics_big(repeat: int, n: int = 36000) -> None:
     _ratio_line("kinetostatics / kinematics alone (cpu)", list(k[1]), [r[1] for r in out["kinematics"]], None)
 
 
+def against(repeat: int, base: Path) -> None:
+    """The whole report and the JSON run of this checkout against another checkout of tmm
+    (e.g. `git archive <commit> | tar -x -C DIR`), all four interleaved: the report's
+    change measured under the same load."""
+    py = [sys.executable, "-m", "tmm_cli"]
+    trees = {"this": ROOT, "base": Path(base).resolve()}
+
+    def run_in(tree: Path, args: list[str]) -> tuple[float, float]:
+        c0, t0 = _child_cpu(), time.perf_counter()
+        p = subprocess.run(py + args, capture_output=True, text=True, cwd=tree, env=_ENV)
+        if p.returncode != 0:
+            raise SystemExit(f"{tree}: {' '.join(args)} failed ({p.returncode}):\n{p.stderr[-2000:]}")
+        return time.perf_counter() - t0, _child_cpu() - c0
+
+    with tempfile.TemporaryDirectory() as tmp:
+        cmds = {}
+        for tag, tree in trees.items():
+            task = str(tree / "tasks" / TASK.name)
+            cmds[f"json {tag}"] = (tree, ["run", task, "--format", "json", "--quiet", "--out", f"{tmp}/j{tag}"])
+            cmds[f"report {tag}"] = (tree, ["run", task, "--quiet", "--out", f"{tmp}/r{tag}"])
+        out: dict[str, list[tuple[float, float]]] = {k: [] for k in cmds}
+        for tree, args in cmds.values():        # warm-up
+            run_in(tree, args)
+        for _ in range(repeat):
+            for k, (tree, args) in cmds.items():
+                out[k].append(run_in(tree, args))
+    print(f"this checkout against {trees['base']}, {TASK.name}, {repeat} interleaved rounds; wall / cpu in s")
+    for k, v in out.items():
+        print(f"  {k:12s} wall {_stat([w for w, _ in v])}   cpu {_stat([c for _, c in v])}")
+    for tag in trees:
+        for i, what in ((0, "wall"), (1, "cpu")):
+            _ratio_line(f"{tag}: report html+pdf / json run ({what})", [r[i] for r in out[f"report {tag}"]],
+                        [r[i] for r in out[f"json {tag}"]], 4.0)
+    for i, what in ((0, "wall"), (1, "cpu")):
+        _ratio_line(f"report: this / base ({what})", [r[i] for r in out["report this"]],
+                    [r[i] for r in out["report base"]], None)
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--report", action="store_true", help="also time the whole report (slow)")
@@ -241,6 +282,8 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--no-cli", action="store_true")
     ap.add_argument("--no-kinematics", action="store_true")
+    ap.add_argument("--against", metavar="DIR", help="also the report and JSON run of another checkout "
+                                                    "of tmm (DIR), interleaved with this one's")
     a = ap.parse_args()
     print(f"{os.cpu_count()} cores, load average {os.getloadavg()[0]:.2f}")
     if not a.no_cli:
@@ -249,6 +292,8 @@ def main() -> None:
         batch(max(5, a.repeat), a.variants)
     if a.kinetostatics:
         kinetostatics_big(max(5, a.repeat))
+    if a.against:
+        against(max(5, a.repeat), Path(a.against))
     if not a.no_kinematics:
         kinematics(max(5, a.repeat))
 
