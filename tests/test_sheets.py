@@ -404,3 +404,39 @@ def test_kinetostatics_sheet_wraps_many_groups():
             for x2, y2, w2, h2 in boxes[k + 1:]:
                 assert min(x + w, x2 + w2) - max(x, x2) <= 1e-6 or min(y + h, y2 + h2) - max(y, y2) <= 1e-6
     _check_texts([(cv, info)])
+
+
+def test_sheets_pdf_by_typst(forging, tmp_path):
+    """sheets.pdf: one A1 page per sheet, compiled by Typst (no weasyprint), the SVG of each
+    sheet drawn at its real size with its texts kept as text (every word of the sheet's
+    labels is on its page; a subscript joins the word before it)."""
+    import re
+    import shutil
+    import subprocess
+    import sys
+    from tmm_cli.sheets import write_sheets
+    _, sheets = forging
+    sh = sheets["ru"]
+    written = write_sheets(sh, tmp_path, {"pdf"})
+    pdf = tmp_path / "sheets.pdf"
+    assert written == [pdf] and pdf.read_bytes().startswith(b"%PDF")
+    if not (shutil.which("pdfinfo") and shutil.which("pdftotext")):
+        pytest.skip("poppler-utils not installed")
+    info = subprocess.run(["pdfinfo", str(pdf)], capture_output=True, text=True, check=True).stdout
+    assert int(re.search(r"Pages:\s+(\d+)", info).group(1)) == len(sh)
+    w, h = map(float, re.search(r"Page size:\s+([0-9.]+) x ([0-9.]+) pts", info).groups())
+    assert (w, h) == pytest.approx((841 * 72 / 25.4, 594 * 72 / 25.4), abs=0.1)
+    for k, (cv, info_k) in enumerate(sh, start=1):
+        page = subprocess.run(["pdftotext", "-f", str(k), "-l", str(k), str(pdf), "-"], capture_output=True,
+                              text=True, check=True).stdout
+        want = {wd for p in cv.prims if isinstance(p, Text) for wd in p.s.split()}
+        assert len(want) > 20 and [wd for wd in want if wd not in page] == []
+        assert f"Лист {k}" in page
+    code = ("import sys\nfrom pathlib import Path\nfrom tmm_cli.pipeline import run\n"
+            "from tmm_cli.sheets import build_sheets, write_sheets\nfrom tmm_cli.task import load_task\n"
+            f"t = load_task(Path({str(ROOT / 'tasks' / 'forging_sixbar.yaml')!r}))\n"
+            f"write_sheets(build_sheets(run(t), t, 'en'), Path({str(tmp_path / 'en')!r}), {{'pdf'}})\n"
+            "print('weasyprint' in sys.modules)\n")
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
+    assert p.returncode == 0, p.stderr
+    assert p.stdout.strip() == "False" and (tmp_path / "en" / "sheets.pdf").stat().st_size > 20000
