@@ -288,22 +288,27 @@ import numpy as np
 from bench_kinetostatics import SIX
 from tmm_cli import load_task
 from tmm_cli.linkage import kinematics, structure
-from tmm_cli.linkage.kinetostatics import analyze, find_singular
-from tmm_cli.linkage.loads import evaluate
+from tmm_cli.linkage.kinetostatics import equilibrium, find_singular
+from tmm_cli.linkage.loads import evaluate_on
 from tmm_cli.linkage.mechanism import build_mechanism
 task = load_task(SIX); mech = build_mechanism(task); st = structure.analyze(mech)
-pos = kinematics.find_positions(mech, task.positions, task.drive)
+pos = kinematics.find_positions(mech, task.positions, task.drive.sign)
 sing = find_singular(mech, st, "crank")
 phi = np.mod(pos.phi0 + np.arange({n}) * 360.0 / {n}, 360.0)
 base = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
 t0, c0 = time.perf_counter(), time.process_time()
-kin = kinematics.solve(mech, phi, task.drive.omega1)
+kin = kinematics.solve(mech, phi, task.drive.sign * task.drive.speed)
 if {full}:
-    lds = evaluate(mech, task.loads, kin, pos, inertia=True)
-    d = analyze(mech, st, kin, lds, task.kinetostatics, singular=sing).to_dict()
+    lds = evaluate_on(mech, task.loads, kin, pos, sign=task.drive.sign, cycle=task.drive.cycle, inertia=True)
+    res = equilibrium(mech, st, kin, lds, task.kinetostatics, singular=sing)
+    t1, c1 = time.perf_counter(), time.process_time()
+    d = res.to_dict()
+else:
+    t1, c1 = time.perf_counter(), time.process_time()
+    d = kin.to_entries()
 print(time.perf_counter() - t0, time.process_time() - c0,
       (resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - base) / 1024.0,
-      resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0)
+      resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0, time.process_time() - c1)
 """
 
 
