@@ -20,6 +20,8 @@ from __future__ import annotations
 
 import math
 
+from .results import Entries
+
 READ_MM = 0.5
 
 
@@ -29,7 +31,8 @@ def _rel(err_abs: float, value) -> float | None:
     v = abs(float(value))
     if not math.isfinite(v) or v <= err_abs:
         return None
-    return err_abs / v
+    r = err_abs / v + 0.0
+    return r if math.isfinite(r) else None
 
 
 def _plans(results: dict) -> dict | None:
@@ -42,7 +45,7 @@ def _plans(results: dict) -> dict | None:
         return None
     mu_v, mu_a, _, _ = scales(kin, geom)
     ev, ea = READ_MM * mu_v, READ_MM * mu_a
-    positions = []
+    positions = Entries()       # clean by construction (tmm_cli.results.Entries)
     for e in kin:
         pts = e.get("points") or {}
         p_out = {}

@@ -5,6 +5,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ...results import Entries
+
 
 def _rows(cols, n: int, flat: bool = False) -> list:
     """The columns (each (n,) or a scalar) as n rows of plain floats, a value that is
@@ -88,13 +90,15 @@ class KinematicsResult:
                     target[f] = None
 
     # ---------------------------------------------------------------
-    def to_entries(self, index=None) -> list[dict]:
+    def to_entries(self, index=None) -> Entries:
         """results.json ``kinematics`` entries, one per position.
 
         ``index``: the position numbers (sequence of N ints; default 0..N-1).
         Per point: x, y, vx, vy, v, ax, ay, a and the analogues vqx, vqy, vq (= dr/dphi,
         m/rad), aqx, aqy, aq (= d2r/dphi2); per link: angle (deg, [0, 360)), omega,
-        epsilon, i = dtheta/dphi (= omega_i/omega1), iq2 = d2theta/dphi2."""
+        epsilon, i = dtheta/dphi (= omega_i/omega1), iq2 = d2theta/dphi2. A list
+        (:class:`tmm_cli.results.Entries`) of clean values: a value that is not finite is
+        0.0, or None where it has no finite limit (``undefined``)."""
         N = len(self.phi)
         idx = list(range(N)) if index is None else [int(i) for i in index]
         if len(idx) != N:
@@ -115,8 +119,8 @@ class KinematicsResult:
         pnames, lnames = list(pts), list(lks)
         prow = zip(*pts.values()) if pnames else [()] * N
         lrow = zip(*lks.values()) if lnames else [()] * N
-        out = [{"index": i, "phi": f, "points": dict(zip(pnames, pr)), "links": dict(zip(lnames, lr))}
-               for i, f, pr, lr in zip(idx, _rows((phi,), N, flat=True), prow, lrow)]
+        out = Entries({"index": i, "phi": f, "points": dict(zip(pnames, pr)), "links": dict(zip(lnames, lr))}
+               for i, f, pr, lr in zip(idx, _rows((phi,), N, flat=True), prow, lrow))
         sing = [] if self.singular is None else np.flatnonzero(self.singular).tolist()
         for k in sing:
             out[k]["singular"] = True

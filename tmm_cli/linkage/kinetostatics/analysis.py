@@ -18,6 +18,7 @@ import numpy as np
 
 from ...errors import StageError, field_error
 from ...messages import Message
+from ...results import Entries
 from .. import loads as loads_mod
 from ..loads import AppliedCouple, Loads
 from .equations import Geometry, geometry, load_vector, scaled_det
@@ -36,8 +37,9 @@ def balance_index(mech, section) -> int:
 
 
 def _finite_list(a) -> list:
-    """``a.tolist()`` with every NaN / inf as None (results.json never holds them)."""
-    a = np.asarray(a, float)
+    """``a.tolist()`` with every NaN / inf as None and -0.0 as 0.0 (results.json never
+    holds them)."""
+    a = np.asarray(a, float) + 0.0
     if np.all(np.isfinite(a)):
         return a.tolist()
     return np.where(np.isfinite(a), a, None).tolist()
@@ -111,9 +113,9 @@ class KinetostaticsResult:
             x = self.reactions[:, 2 * k]
             y = self.reactions[:, 2 * k + 1]
             p = self.geo.jpoint[k]
-            pl = p.tolist()
+            pl = _finite_list(p)
             if j.kind == "R":
-                xs, ys, Rs = x.tolist(), y.tolist(), np.hypot(x, y).tolist()
+                xs, ys, Rs = (x + 0.0).tolist(), (y + 0.0).tolist(), np.hypot(x, y).tolist()
                 col = [{"x": a, "y": b_, "R": r, "point": pt} if good else
                        {"x": None, "y": None, "R": None, "point": pt}
                        for a, b_, r, pt, good in zip(xs, ys, Rs, pl, okl)]
@@ -126,7 +128,8 @@ class KinetostaticsResult:
                 off = np.where(has, M_ / np.where(has, N_, 1.0), 0.0)
                 pt = p + off[:, None] * e
                 Fx, Fy, R = (N_ * nx).tolist(), (N_ * ny).tolist(), np.abs(N_).tolist()
-                Nl, Ml, offl, ptl, hasl = N_.tolist(), M_.tolist(), off.tolist(), pt.tolist(), has.tolist()
+                Nl, Ml, offl, ptl, hasl = ((N_ + 0.0).tolist(), (M_ + 0.0).tolist(), (off + 0.0).tolist(),
+                                           _finite_list(pt), has.tolist())
                 for i in range(N):
                     if okl[i]:
                         col.append({"x": Fx[i] + 0.0, "y": Fy[i] + 0.0, "R": R[i], "N": Nl[i], "M": Ml[i],
@@ -160,7 +163,7 @@ class KinetostaticsResult:
         def L(a, mask=True):
             a = np.asarray(a, float)
             good = np.isfinite(a) & (self.ok if mask else True)
-            return np.where(good, a, np.nan).tolist(), good.tolist()
+            return np.where(good, a + 0.0, np.nan).tolist(), good.tolist()
 
         def val(pair, i):
             v, g = pair
@@ -173,7 +176,7 @@ class KinetostaticsResult:
         a, b = self.reactions, self.reactions_matrix
         mdisc = L(np.max(np.abs(a - b), axis=1) / np.maximum(np.max(np.abs(b), axis=1), 1e-300))
         table = self._reactions_table()
-        phil = (self.phi % 360.0).tolist()
+        phil = (self.phi % 360.0 + 0.0).tolist()
         near = (self.near | ~self.ok).tolist()
         # loads
         finfo = []
@@ -209,7 +212,7 @@ class KinetostaticsResult:
         if self.efficiency is not None:
             fr = (L(self.efficiency), L(self.friction_power), L(self.driving_power),
                   [L(self.friction_pairs[:, k]) for k in range(len(mech.joints))])
-        entries = []
+        entries = Entries()         # clean values by construction (tmm_cli.results.Entries)
         for i, idx in enumerate(self.index):
             e: dict = {"index": int(idx), "phi": phil[i]}
             if self.balance_kind == "moment":
