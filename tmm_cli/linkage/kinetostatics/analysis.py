@@ -165,10 +165,6 @@ class KinetostaticsResult:
             good = np.isfinite(a) & (self.ok if mask else True)
             return np.where(good, a + 0.0, np.nan).tolist(), good.tolist()
 
-        def val(pair, i):
-            v, g = pair
-            return v[i] if g[i] else None
-
         mb = L(self.M_b)
         bf = L(self.M_b / self.arm) if (self.balance_kind == "moment" and self.arm) else None
         mz, mv, mm = L(self.M_zhukovsky), L(self.M_virtual), L(self.M_matrix)
@@ -212,43 +208,45 @@ class KinetostaticsResult:
         if self.efficiency is not None:
             fr = (L(self.efficiency), L(self.friction_power), L(self.driving_power),
                   [L(self.friction_pairs[:, k]) for k in range(len(mech.joints))])
-        entries = Entries()         # clean values by construction (tmm_cli.results.Entries)
-        for i, idx in enumerate(self.index):
-            e: dict = {"index": int(idx), "phi": phil[i]}
-            if self.balance_kind == "moment":
-                e["balancing_moment"] = val(mb, i)
-                e["balancing_force"] = val(bf, i) if bf else None
-                e["zhukovsky_moment"] = val(mz, i)
-                e["virtual_power_moment"] = val(mv, i)
-                e["matrix_moment"] = val(mm, i)
-            else:
-                e["balancing_moment"] = None
-                e["balancing_force"] = val(mb, i)
-                e["zhukovsky_moment"] = e["virtual_power_moment"] = e["matrix_moment"] = None
-                e["zhukovsky_force"] = val(mz, i)
-                e["virtual_power_force"] = val(mv, i)
-                e["matrix_force"] = val(mm, i)
-            e["discrepancy"] = val(disc, i)
-            e["matrix_discrepancy"] = val(mdisc, i)
-            e["reactions"] = dict(zip(jkeys, reaction_rows[i]))
-            e["inertia"] = dict(zip(inert_keys, inert_rows[i]))
-            if detail:
-                e["loads"] = [{"name": n, "link": lk, "kind": kd, "point": p[i], "F": F[i], "v": v[i]}
-                              for n, lk, kd, p, F, v in finfo]
-                e["couples"] = [{"name": n, "link": lk, "kind": kd, "M": M[i], "omega": w[i]}
-                                for n, lk, kd, M, w in cinfo]
-            e["diagram"] = {n: {"link": lk, "kind": kd, "stroke": sk, "active": act[i],
-                                "x": None if xs is None else xs[i], "value": vs[i]}
-                            for n, lk, kd, sk, act, xs, vs in dinfo}
-            if fr is not None:
-                e["efficiency"] = val(fr[0], i)
-                e["friction_power"] = val(fr[1], i)
-                e["driving_power"] = val(fr[2], i)
-                e["friction_pairs"] = {jkeys[k]: val(fr[3][k], i) for k in range(len(jkeys))}
-            else:
-                e["efficiency"] = None
-            e["near_singular"] = bool(near[i])
-            entries.append(e)
+        # the entries column by column (one list of N values per key), then zipped
+        none = [None] * N
+
+        def V(pair):
+            v, g = pair
+            return [x if good else None for x, good in zip(v, g)]
+        cols: list[tuple[str, list]] = [("index", [int(i) for i in self.index]), ("phi", phil)]
+        if self.balance_kind == "moment":
+            cols += [("balancing_moment", V(mb)), ("balancing_force", V(bf) if bf else none),
+                     ("zhukovsky_moment", V(mz)), ("virtual_power_moment", V(mv)), ("matrix_moment", V(mm))]
+        else:
+            cols += [("balancing_moment", none), ("balancing_force", V(mb)), ("zhukovsky_moment", none),
+                     ("virtual_power_moment", none), ("matrix_moment", none), ("zhukovsky_force", V(mz)),
+                     ("virtual_power_force", V(mv)), ("matrix_force", V(mm))]
+        cols += [("discrepancy", V(disc)), ("matrix_discrepancy", V(mdisc)),
+                 ("reactions", [dict(zip(jkeys, r)) for r in reaction_rows]),
+                 ("inertia", [dict(zip(inert_keys, r)) for r in inert_rows])]
+        if detail:
+            fcols = [[{"name": n, "link": lk, "kind": kd, "point": pp, "F": FF, "v": vv} for pp, FF, vv in zip(p, F, v)]
+                     for n, lk, kd, p, F, v in finfo]
+            ccols = [[{"name": n, "link": lk, "kind": kd, "M": MM, "omega": ww} for MM, ww in zip(M, w)]
+                     for n, lk, kd, M, w in cinfo]
+            cols += [("loads", [list(r) for r in zip(*fcols)] if fcols else [[] for _ in range(N)]),
+                     ("couples", [list(r) for r in zip(*ccols)] if ccols else [[] for _ in range(N)])]
+        dcols = [[{"link": lk, "kind": kd, "stroke": sk, "active": ac, "x": x, "value": vv}
+                  for ac, x, vv in zip(act, none if xs is None else xs, vs)] for _, lk, kd, sk, act, xs, vs in dinfo]
+        dnames = [d[0] for d in dinfo]
+        cols.append(("diagram", [dict(zip(dnames, r)) for r in zip(*dcols)] if dcols else [{} for _ in range(N)]))
+        if fr is not None:
+            pcols = [V(c) for c in fr[3]]
+            cols += [("efficiency", V(fr[0])), ("friction_power", V(fr[1])), ("driving_power", V(fr[2])),
+                     ("friction_pairs", [dict(zip(jkeys, r)) for r in zip(*pcols)] if pcols
+                      else [{} for _ in range(N)])]
+        else:
+            cols.append(("efficiency", none))
+        cols.append(("near_singular", [bool(x) for x in near]))
+        keys = [k for k, _ in cols]
+        # clean values by construction (tmm_cli.results.Entries)
+        entries = Entries(dict(zip(keys, row)) for row in zip(*[c for _, c in cols]))
         return {"kinetostatics": entries, "kinetostatics_info": {
             "balance": self.balance,
             "balance_kind": self.balance_kind,
