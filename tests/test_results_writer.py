@@ -90,3 +90,28 @@ def test_fine_grid_with_friction():
 def test_one_line_is_the_encoders(value):
     assert _one_line(value) == _ENC.encode(value)
     assert json.loads(_one_line(clean(value))) == clean(value)
+
+
+def _csv_reference(header, rows) -> str:
+    """csv_text as the csv writer alone gives it (every cell through safe_cell)."""
+    import csv
+    import io
+    from tmm_cli.tables import safe_cell
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow([safe_cell(h) for h in header])
+    for r in rows:
+        vals = [r.get(h) for h in header] if isinstance(r, dict) else list(r)
+        w.writerow([safe_cell(v) for v in vals])
+    return buf.getvalue()
+
+
+def test_csv_number_rows_as_the_writer_gives_them():
+    import numpy as np
+    from tmm_cli.tables import csv_text
+    header = ["index", "phi", "a", "b"]
+    rows = [[0, 12.5, -0.0, 1e-05], (1, 1e16, -3, 2.5e-300), [2, None, 1.0, float("nan")],
+            [3, float("inf"), True, "text"], [4, "=1+2", "-1,5", ""], [5, np.float64(0.1), np.int64(3), 7],
+            {"index": 6, "phi": 0.25, "a": None, "b": 1.5}, iter([7, 0.5, 0.5, 0.5]), [], [8, "1e5", -1, 0]]
+    ref_rows = rows[:7] + [[7, 0.5, 0.5, 0.5]] + rows[8:]       # the iterator row, as a list
+    assert csv_text(header, rows) == _csv_reference(header, ref_rows)

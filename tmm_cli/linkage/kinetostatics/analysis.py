@@ -104,7 +104,6 @@ class KinetostaticsResult:
 
     def _reactions_table(self) -> list[list[dict]]:
         """Per pair, per position: the results.json reaction dicts (vectorised)."""
-        N = len(self.phi)
         ok = self.ok & np.all(np.isfinite(self.reactions), axis=1)
         okl = ok.tolist()
         scale = np.maximum(np.max(np.abs(np.nan_to_num(self.reactions)), axis=1), 1e-300)
@@ -120,24 +119,20 @@ class KinetostaticsResult:
                        {"x": None, "y": None, "R": None, "point": pt}
                        for a, b_, r, pt, good in zip(xs, ys, Rs, pl, okl)]
             else:
-                col = []
                 e = self.geo.jdir[k]
                 nx, ny = -e[:, 1], e[:, 0]
                 N_, M_ = x, y
                 has = np.abs(N_) > 1e-12 * scale
                 off = np.where(has, M_ / np.where(has, N_, 1.0), 0.0)
                 pt = p + off[:, None] * e
-                Fx, Fy, R = (N_ * nx).tolist(), (N_ * ny).tolist(), np.abs(N_).tolist()
+                Fx, Fy, R = (N_ * nx + 0.0).tolist(), (N_ * ny + 0.0).tolist(), np.abs(N_).tolist()
                 Nl, Ml, offl, ptl, hasl = ((N_ + 0.0).tolist(), (M_ + 0.0).tolist(), (off + 0.0).tolist(),
                                            _finite_list(pt), has.tolist())
-                for i in range(N):
-                    if okl[i]:
-                        col.append({"x": Fx[i] + 0.0, "y": Fy[i] + 0.0, "R": R[i], "N": Nl[i], "M": Ml[i],
-                                    "offset": offl[i] if hasl[i] else None,
-                                    "point": ptl[i] if hasl[i] else None, "pin": pl[i]})
-                    else:
-                        col.append({"x": None, "y": None, "R": None, "N": None, "M": None, "offset": None,
-                                    "point": None, "pin": pl[i]})
+                col = [{"x": fx, "y": fy, "R": r, "N": n_, "M": m_, "offset": o if h else None,
+                        "point": q if h else None, "pin": pin} if good else
+                       {"x": None, "y": None, "R": None, "N": None, "M": None, "offset": None, "point": None,
+                        "pin": pin}
+                       for fx, fy, r, n_, m_, o, q, h, pin, good in zip(Fx, Fy, R, Nl, Ml, offl, ptl, hasl, pl, okl)]
             out.append(col)
         return out
 
