@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 
-from .results import Entries
+from .results import Entries, bulk
 
 READ_MM = 0.5
 
@@ -90,7 +90,8 @@ def _flywheel(results: dict) -> dict | None:
 def graphical_error(results: dict) -> dict | None:
     """The block `graphical_error` of results.json (None when no stage drawn by hand)."""
     out: dict = {"reading_mm": READ_MM}
-    p = _plans(results)
+    with bulk():
+        p = _plans(results)
     if p is not None:
         out["plans"] = p
     f = _flywheel(results)

@@ -5,7 +5,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ...results import Entries
+from ...results import Entries, bulk
 
 
 def _rows(cols, n: int, flat: bool = False) -> list:
@@ -99,6 +99,11 @@ class KinematicsResult:
         epsilon, i = dtheta/dphi (= omega_i/omega1), iq2 = d2theta/dphi2. A list
         (:class:`tmm_cli.results.Entries`) of clean values: a value that is not finite is
         0.0, or None where it has no finite limit (``undefined``)."""
+        with bulk():
+            return self._entries(index)
+
+    def _entries(self, index) -> Entries:
+        """See :meth:`to_entries`."""
         N = len(self.phi)
         idx = list(range(N)) if index is None else [int(i) for i in index]
         if len(idx) != N:

@@ -18,7 +18,7 @@ import numpy as np
 
 from ...errors import StageError, field_error
 from ...messages import Message
-from ...results import Entries
+from ...results import Entries, bulk
 from .. import loads as loads_mod
 from ..loads import AppliedCouple, Loads
 from .equations import Geometry, geometry, load_vector, scaled_det
@@ -145,7 +145,7 @@ class KinetostaticsResult:
         Zhukovsky lever); default: when there are at most 400 positions."""
         if detail is None:
             detail = len(self.phi) <= DETAIL_MAX
-        with np.errstate(all="ignore"):
+        with np.errstate(all="ignore"), bulk():
             return self._to_dict(detail)
 
     def _to_dict(self, detail: bool = True) -> dict:
