@@ -28,8 +28,10 @@ goes to a temporary PYTHONPYCACHEPREFIX).
 
 * with --against DIR: the whole report and the JSON run of this checkout and of another
   one (DIR: e.g. `git archive <commit> | tar -x -C DIR`), all four interleaved.
+* with --scaling: `tmm run` of the task at 12 and at 3600 positions (made on the fly),
+  --format json and --format html, interleaved (target for HTML: 3600 <= 2x 12).
 
-Run: python benchmarks/bench_speed.py [--report] [--batch] [--kinetostatics] [--against DIR] [--repeat 5]
+Run: python benchmarks/bench_speed.py [--report] [--scaling] [--batch] [--kinetostatics] [--against DIR] [--repeat 5]
 """
 from __future__ import annotations
 
@@ -152,6 +154,29 @@ def report_scaling(repeat: int) -> None:
                 [y for _, y in out["12"]], 2.0)
 
 
+def scaling(repeat: int, n: int = 3600) -> None:
+    """`tmm run` of the task at its 12 positions and at ``n`` (the task with
+    `positions.count: n`, made on the fly), --format json and --format html, interleaved
+    (target for HTML: n positions <= 2x the 12)."""
+    tmm = [sys.executable, "-m", "tmm_cli", "run"]
+    with tempfile.TemporaryDirectory() as tmp:
+        fine = Path(tmp) / "fine.yaml"
+        fine.write_text(TASK.read_text(encoding="utf-8").replace("count: 12", f"count: {n}"), encoding="utf-8")
+        cmds = {}
+        for fmt in ("json", "html"):
+            for name, t in (("12", TASK), (str(n), fine)):
+                cmds[f"{fmt}{name}"] = tmm + [str(t), "--format", fmt, "--quiet", "--out", f"{tmp}/{fmt}{name}"]
+        res = _interleaved(cmds, repeat)
+    print(f"scaling, {TASK.name} at 12 and {n} positions, {repeat} interleaved rounds; wall / cpu in s: "
+          "median [min-max]")
+    for k, v in res.items():
+        print(f"  {k:10s} wall {_stat([w for w, _ in v])}   cpu {_stat([c for _, c in v])}")
+    for fmt, tgt in (("json", None), ("html", 2.0)):
+        for i, what in ((0, "wall"), (1, "cpu")):
+            _ratio_line(f"run --format {fmt} {n} positions / 12 ({what})", [x[i] for x in res[f"{fmt}{n}"]],
+                        [x[i] for x in res[f"{fmt}12"]], tgt)
+
+
 # ----------------------------------------------------------------- kinematics core
 def kinematics(repeat: int) -> None:
     """The kinematics core against the numpy closed form (and pylinkage when installed):
@@ -196,39 +221,49 @@ sys.path.insert(0, {bench!r})
 from bench_kinetostatics import SIX
 from tmm_cli import load_task
 from tmm_cli.linkage import kinematics, structure
-from tmm_cli.linkage.kinetostatics import analyze, find_singular
-from tmm_cli.linkage.loads import evaluate
+from tmm_cli.linkage.kinetostatics import equilibrium, find_singular
+from tmm_cli.linkage.loads import evaluate_on
 from tmm_cli.linkage.mechanism import build_mechanism
 task = load_task(SIX); mech = build_mechanism(task); st = structure.analyze(mech)
-pos = kinematics.find_positions(mech, task.positions, task.drive)
+pos = kinematics.find_positions(mech, task.positions, task.drive.sign)
 sing = find_singular(mech, st, "crank")
 phi = np.mod(pos.phi0 + np.arange({n}) * 360.0 / {n}, 360.0)
 base = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
 t0, c0 = time.perf_counter(), time.process_time()
-kin = kinematics.solve(mech, phi, task.drive.omega1)
+kin = kinematics.solve(mech, phi, task.drive.sign * task.drive.speed)
 if {full}:
-    lds = evaluate(mech, task.loads, kin, pos, inertia=True)
-    d = analyze(mech, st, kin, lds, task.kinetostatics, singular=sing).to_dict()
+    lds = evaluate_on(mech, task.loads, kin, pos, sign=task.drive.sign, cycle=task.drive.cycle, inertia=True)
+    res = equilibrium(mech, st, kin, lds, task.kinetostatics, singular=sing)
+    t1, c1 = time.perf_counter(), time.process_time()
+    d = res.to_dict()
+else:
+    t1, c1 = time.perf_counter(), time.process_time()
+    if {entries}:
+        d = kin.to_entries()
 print(time.perf_counter() - t0, time.process_time() - c0,
       (resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - base) / 1024.0,
-      resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0)
+      resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0, time.process_time() - c1)
 """
 
 
 def kinetostatics_big(repeat: int, n: int = 36000) -> None:
-    out: dict[str, list[list[float]]] = {"kinetostatics": [], "kinematics": []}
+    """Each in a fresh process, interleaved: the kinematics alone (solve), the kinematics
+    and its results entries, and loads + kinetostatics + its results entries."""
+    cases = (("kinematics", False, False), ("kinematics+entries", False, True),
+             ("kinetostatics", True, True))
+    out: dict[str, list[list[float]]] = {c[0]: [] for c in cases}
     for _ in range(repeat):
-        for name, full in (("kinetostatics", True), ("kinematics", False)):
-            code = _KS_CODE.format(bench=str(ROOT / "benchmarks"), n=n, full=full)
+        for name, full, entries in cases:
+            code = _KS_CODE.format(bench=str(ROOT / "benchmarks"), n=n, full=full, entries=entries)
             p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, env=_ENV,
                                check=True)
             out[name].append([float(x) for x in p.stdout.split()])
     print(f"kinetostatics at {n} positions (six-bar with friction: loads, three methods, the results "
-          f"entries), {repeat} interleaved rounds, each in a fresh process")
+          f"entries), {repeat} interleaved rounds, each in a fresh process; s and MB: median [min-max]")
     for name, rows in out.items():
         cols = list(zip(*rows))
-        print(f"  {name:14s} wall {_stat(list(cols[0]))} s   cpu {_stat(list(cols[1]))} s   "
-              f"peak memory added {_stat(list(cols[2]))} MB (process peak {statistics.median(cols[3]):.0f} MB)")
+        print(f"  {name:19s} wall {_stat(list(cols[0]))}   cpu {_stat(list(cols[1]))} (entries {_stat(list(cols[4]))})"
+              f"   peak added {_stat(list(cols[2]))} (process {statistics.median(cols[3]):.0f})")
     k = list(zip(*out["kinetostatics"]))
     print(f"  target: <= 1 s {'ok' if statistics.median(k[1]) <= 1 else 'OVER'} (cpu), "
           f"<= 200 MB {'ok' if statistics.median(k[3]) <= 200 else 'OVER'} (process peak)")
@@ -279,6 +314,8 @@ def main() -> None:
     ap.add_argument("--batch", action="store_true", help="also time a batch of 300 variants (slow)")
     ap.add_argument("--variants", type=int, default=300)
     ap.add_argument("--kinetostatics", action="store_true", help="also kinetostatics at 36,000 positions")
+    ap.add_argument("--scaling", action="store_true",
+                    help="also tmm run at 12 and 3600 positions, json and html, interleaved")
     ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--no-cli", action="store_true")
     ap.add_argument("--no-kinematics", action="store_true")
@@ -288,6 +325,8 @@ def main() -> None:
     print(f"{os.cpu_count()} cores, load average {os.getloadavg()[0]:.2f}")
     if not a.no_cli:
         cli(max(5, a.repeat), a.report)
+    if a.scaling:
+        scaling(max(5, a.repeat))
     if a.batch:
         batch(max(5, a.repeat), a.variants)
     if a.kinetostatics:
