@@ -201,6 +201,10 @@ _SECTION_MODULES = {"mechanism": ("linkage.mechanism", "linkage.structure", "lin
                     "synthesis": ("linkage.synthesis",), "cam": ("cam",), "gears": ("gears",),
                     "planetary": ("gears",), "drive_train": ("gears", "gears.train"), "dof2": ("dof2",)}
 _SECTION_MODULES["synthesis"] += _SECTION_MODULES["mechanism"]
+# modules outside tmm_cli the stages import on first use (numpy's `np.unique` imports
+# numpy.ma, the Gauss-Legendre nodes numpy.polynomial; the plans' scales): ~30 ms a variant
+_FIRST_USE = {"mechanism": ("numpy.ma", "numpy.polynomial.legendre", "tmm_cli.scales")}
+_FIRST_USE["synthesis"] = _FIRST_USE["mechanism"]
 
 
 def warm(files: list[Path], formats) -> None:
@@ -224,9 +228,12 @@ def warm(files: list[Path], formats) -> None:
         names += _SECTION_MODULES[sec]
     if set(formats) & {"html", "pdf"}:
         names.append("report")
-    for name in dict.fromkeys(names):
+    full = [f"{__package__}.{name}" for name in names]
+    for sec in sorted(sections):
+        full += _FIRST_USE.get(sec, ())
+    for name in dict.fromkeys(full):
         try:
-            importlib.import_module(f"{__package__}.{name}")
+            importlib.import_module(name)
         except Exception:   # noqa: BLE001  (the variant that needs it reports the failure)
             pass
     try:
@@ -241,7 +248,7 @@ def warm(files: list[Path], formats) -> None:
 def _address_space() -> int:
     """Bytes of virtual memory this process has mapped now (0 where it cannot be read)."""
     try:
-        with open("/proc/self/statm", encoding="ascii") as fh:
+        with open("/proc/self/statm", "rb") as fh:
             import os
             return int(fh.read().split()[0]) * os.sysconf("SC_PAGE_SIZE")
     except (OSError, ValueError, IndexError):

@@ -136,7 +136,9 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explo
     from .linkage.mechanism import build_mechanism
 
     say("structure")
-    mech = build_mechanism(task)
+    # the mechanism `validation.check_feasible` built and checked (taken once), or a new one
+    checked, task._checked_mechanism = task._checked_mechanism, None
+    mech = checked if checked is not None else build_mechanism(task)
     st = structure.analyze(mech, task=task)
     results["structure"] = {**st.to_dict(), **mech.structure_info()}
     warnings.extend(st.warnings)
@@ -144,11 +146,12 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explo
     say("positions")
     from .validation import impossible_dimensions
     try:
-        kinematics.check_assembly(mech)
+        if checked is None:
+            kinematics.check_assembly(mech)
     except StageError as err:
         raise impossible_dimensions(task, err) or err
     positions = _stage("positions")(reported_positions)(mech, task.positions, task.loads, task.drive.sign,
-                                                         float(task.drive.cycle))
+                                                         float(task.drive.cycle), kinks=task.flywheel is not None)
     check_detail(task, positions)
     results["positions"] = positions.to_dict()
     # the position the report works step by step (report.detail_position, or the default)

@@ -538,6 +538,8 @@ class Task(_Model):
     _input_warnings: list = PrivateAttr(default_factory=list)
     _design: Any = PrivateAttr(None)             # synthesis.Design of the generated mechanism
     _synthesis_error: Any = PrivateAttr(None)    # SynthesisImpossible, raised by the pipeline (exit 3)
+    _checked_mechanism: Any = PrivateAttr(None)  # the Mechanism `validation.check_feasible` assembled over
+    #                                              the cycle, taken (once) by the pipeline
 
     @field_validator("schema_", mode="before")
     @classmethod

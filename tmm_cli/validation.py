@@ -24,6 +24,9 @@ def check_feasible(task, assembly: bool = True) -> None:
         check_selection(task, mech)
     except TaskError as err:
         raise task.locate(err) from None
+    # the pipeline computes on this mechanism (its kinematic model already built and checked
+    # over the cycle) instead of building and checking it again
+    task._checked_mechanism = mech
 
 
 def check_selection(task, mech) -> None:

@@ -95,7 +95,7 @@ __all__ = ["Drive", "Linkage", "build", "reported_positions"]
 
 
 def reported_positions(mech: "Mechanism", positions_section, loads_section, sign: float,
-                       cycle: float) -> "PositionsResult":
+                       cycle: float, *, kinks: bool = False) -> "PositionsResult":
     """The positions of the cycle as every stage reports them: the task's grid, extra and
     extreme angles, and the crank angles where a load switches (added positions).
 
@@ -110,14 +110,19 @@ def reported_positions(mech: "Mechanism", positions_section, loads_section, sign
         Sense of rotation, +1.0 ccw, -1.0 cw (``DriveSection.sign``).
     cycle : float
         Crank rotation of the machine cycle, deg (360 or 720).
+    kinks : bool
+        Also find where the load diagrams kink (the breakpoints of the flywheel's
+        quadrature), in the same scans as the jumps: the dynamics stage then reads them
+        from the positions instead of scanning the strokes again.
     """
     from .kinematics import find_positions
-    extra_added: list[float] = []
-    if loads_section is not None:
-        from .loads import switch_angles
-        pos0 = find_positions(mech, positions_section, sign)
-        extra_added = list(switch_angles(mech, loads_section, pos0, sign=sign, cycle=cycle))
-    return find_positions(mech, positions_section, sign, extra_added=extra_added)
+    pos0 = find_positions(mech, positions_section, sign)
+    if loads_section is None:
+        return pos0
+    from .loads import switch_angles
+    if kinks:
+        switch_angles(mech, loads_section, pos0, sign=sign, cycle=cycle, kinks=True, roots=pos0._roots)
+    return pos0.with_added(switch_angles(mech, loads_section, pos0, sign=sign, cycle=cycle, roots=pos0._roots))
 
 
 def build(task) -> Linkage:

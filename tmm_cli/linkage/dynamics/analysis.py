@@ -76,7 +76,7 @@ def grid_switch_angles(linkage) -> list[float]:
     from .. import loads as loads_mod
     drive, positions = linkage.drive, linkage.positions
     sw = list(loads_mod.switch_angles(linkage.mechanism, linkage.loads, positions, sign=drive.sign,
-                                      cycle=drive.cycle, kinks=True))
+                                      cycle=drive.cycle, kinks=True, roots=positions._roots))
     return sw + [float(x) for x in (positions.extreme or [])]
 
 

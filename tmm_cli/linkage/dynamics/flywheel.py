@@ -254,18 +254,32 @@ def _omega(T0, dT, J):
     return np.sqrt(np.maximum(2.0 * (T0 + dT), 0.0) / J)
 
 
+def _omega_extremes(dT2: np.ndarray, J_tot: np.ndarray, buf: np.ndarray):
+    """T0 -> (max, min) of `_omega`(T0, dT, J_tot) given dT2 = 2 dT: the same numbers
+    (2 (T0 + dT) = 2 T0 + 2 dT exactly, and the square root, correctly rounded, keeps the
+    order, so the largest root is the root of the largest value), one pass fewer and no
+    array of speeds."""
+    def ext(T0):
+        np.add(dT2, 2.0 * T0, out=buf)
+        np.maximum(buf, 0.0, out=buf)
+        np.divide(buf, J_tot, out=buf)
+        return math.sqrt(buf.max()), math.sqrt(buf.min())
+    return ext
+
+
 def steady_T0(dT, J_tot, omega_m: float) -> float | None:
     """T0 such that (max omega + min omega)/2 = omega_m for omega = sqrt(2 (T0 + dT)/J_tot).
     None when no such T0 exists (the speed would reach zero: delta >= 2)."""
     dT = np.asarray(dT, float)
-    J_tot = np.asarray(J_tot, float)
+    J_tot = np.broadcast_to(np.asarray(J_tot, float), dT.shape)
     jmax = float(np.max(J_tot))
     u_lo = -float(np.min(dT))
     u_hi = omega_m**2 * jmax / 2 + u_lo
+    ext = _omega_extremes(2.0 * dT, J_tot, np.empty(dT.shape))
 
     def g(u):
-        w = _omega(u, dT, J_tot)
-        return 0.5 * (float(np.max(w)) + float(np.min(w))) - omega_m
+        wmax, wmin = ext(u)
+        return 0.5 * (wmax + wmin) - omega_m
 
     g_lo = g(u_lo)
     if g_lo > 0:
@@ -324,8 +338,7 @@ def achieved_delta(dT, J_var, J_n: float, omega_m: float) -> float:
     T0 = steady_T0(dT, J_tot, omega_m)
     if T0 is None:
         return 2.0
-    w = _omega(T0, dT, J_tot)
-    wmax, wmin = float(np.max(w)), float(np.min(w))
+    wmax, wmin = _omega_extremes(2.0 * dT, J_tot, np.empty(dT.shape))(T0)
     return (wmax - wmin) / (0.5 * (wmax + wmin))
 
 

@@ -20,7 +20,11 @@ def _f(x):
 
 
 def _l(a):
-    return [_f(v) for v in np.asarray(a, float).ravel()]
+    """Plain floats (None for non-finite, no negative zero), as `_f` gives them one by one."""
+    a = np.asarray(a, float).ravel()
+    if np.isfinite(a).all():
+        return (a + 0.0).tolist()
+    return [_f(v) for v in a]
 
 
 @dataclass

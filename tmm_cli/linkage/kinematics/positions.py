@@ -25,7 +25,7 @@ K = working-stroke crank angle / idle-stroke crank angle = (180 + theta)/(180 - 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -179,6 +179,20 @@ class PositionsResult:
     _f: object = field(default=None, repr=False)
     _mech: object = field(default=None, repr=False)
     _strokes: dict = field(default_factory=dict, repr=False)
+    _phis: list | None = field(default=None, repr=False)     # the angles as added (before 360 -> 0)
+    _roots: dict = field(default_factory=dict, repr=False)   # crank angles where a stroke reaches an s/H
+    #                                                          (loads.switching), found once a task
+
+    def with_added(self, extra_added) -> "PositionsResult":
+        """These positions with the crank angles ``extra_added`` (deg, where a load
+        switches) added as positions of kind 'added' (an angle within 1e-9 deg of a
+        position is that position): what `find_positions` gives with ``extra_added``,
+        without finding the extremes again."""
+        phis = list(self._phis if self._phis is not None else self.phi)
+        kinds = list(self.kinds)
+        for a in extra_added:
+            _add(phis, kinds, a, "added")
+        return replace(self, phi=_phi_array(phis), index=np.arange(len(phis)), kinds=kinds, _phis=phis)
 
     def output_value(self, phi_deg) -> tuple[np.ndarray, np.ndarray]:
         """(s, ds/dphi) of the output at crank angles phi_deg (s: m or deg)."""
@@ -356,28 +370,32 @@ def find_positions(mech: Mechanism, positions_section, sign: float, extra_added=
     phis = [(phi0 + sign * k * 360.0 / count) % 360.0 for k in range(count)]
     kinds = ["grid"] * count
     extreme_index = None
-
-    def add(a, kd):
-        a = float(a) % 360.0
-        if a >= 360.0 - 1e-12:
-            a = 0.0
-        for i, q in enumerate(phis):
-            if abs(((a - q) + 180.0) % 360.0 - 180.0) <= 1e-9:
-                return i
-        phis.append(a)
-        kinds.append(kd)
-        return len(phis) - 1
-
     for a in sec.extra:
         phis.append(float(a) % 360.0)
         kinds.append("extra")
     if extreme is not None:
-        extreme_index = add(extreme[1], "extreme")
-    for a in extra_added:
-        add(a, "added")
-    phis_arr = np.array([0.0 if x >= 360.0 - 1e-12 else x for x in phis])
-    return PositionsResult(phi=phis_arr, index=np.arange(len(phis_arr)), kinds=kinds, phi0=float(phi0),
+        extreme_index = _add(phis, kinds, extreme[1], "extreme")
+    base = PositionsResult(phi=_phi_array(phis), index=np.arange(len(phis)), kinds=kinds, phi0=float(phi0),
                            extreme=extreme, working_stroke_angle=wsa, idle_stroke_angle=isa, K=K, theta=theta,
                            output=out_name, output_kind=kind, H=H, s_extreme=s_ext, count=count,
                            direction=direction, sign=sign, working=sec.working, extreme_index=extreme_index, _f=f,
-                           _mech=mech)
+                           _mech=mech, _phis=phis)
+    return base.with_added(extra_added) if len(extra_added) else base
+
+
+def _add(phis: list, kinds: list, a, kd: str) -> int:
+    """Add the crank angle ``a`` (deg) of kind ``kd`` to the positions unless one lies
+    within 1e-9 deg of it; its index."""
+    a = float(a) % 360.0
+    if a >= 360.0 - 1e-12:
+        a = 0.0
+    for i, q in enumerate(phis):
+        if abs(((a - q) + 180.0) % 360.0 - 180.0) <= 1e-9:
+            return i
+    phis.append(a)
+    kinds.append(kd)
+    return len(phis) - 1
+
+
+def _phi_array(phis: list) -> np.ndarray:
+    return np.array([0.0 if x >= 360.0 - 1e-12 else x for x in phis])

@@ -9,13 +9,15 @@ from .strokes import load_stroke, stroke_dependent, stroke_states
 
 
 def switch_angles(mech, loads_section, positions, *, sign: float, cycle: float,
-                  kinks: bool = False) -> list[float]:
+                  kinks: bool = False, roots: dict | None = None) -> list[float]:
     """Crank angles in [0, 360) where a task load switches: where it jumps inside a stroke
     (a repeated abscissa of an s- or phi-diagram), found to 1e-9 deg, and the extreme
     positions of every slider other than the output that carries a stroke-dependent load
     (where its own strokes begin and end, docs/methods.md §3.3); with kinks=True also
     where a diagram's slope changes (every inner abscissa: the breakpoints of a piecewise
-    quadrature).  ``sign``: +1 ccw, -1 cw; ``cycle``: 360 or 720 deg."""
+    quadrature).  ``sign``: +1 ccw, -1 cw; ``cycle``: 360 or 720 deg; ``roots``: the crank
+    rotations already found for this task's strokes (``PositionsResult._roots``), read
+    and added to, so that a root is searched once."""
     if loads_section is None:
         return []
     out: list[float] = []
@@ -23,10 +25,12 @@ def switch_angles(mech, loads_section, positions, *, sign: float, cycle: float,
     cycle = float(cycle)
     output_ext = [float(a) for a in (positions.extreme or [])]
     groups: list[tuple] = []       # (stroke, start, sign, lo, hi, targets) of the s-diagram jumps
+    names: list[tuple] = []        # per group: the stroke's link and sense (None: the output's)
     for k, sp in enumerate(loads_section.forces):
         src = positions
         if stroke_dependent(sp) and mech is not None:
             src = load_stroke(positions, mech.link(sp.on), sp, k)
+        name = None if src is positions else (src.link, src.working)
         ext = src.extreme
         start = float(ext[0]) if ext else phi0          # the working stroke begins here
         wa = src.working_stroke_angle
@@ -57,8 +61,18 @@ def switch_angles(mech, loads_section, positions, *, sign: float, cycle: float,
         for stroke in strokes:
             lo, hi = (0.0, float(wa)) if stroke == "working" else (float(wa), 360.0)
             groups.append((src, start, sign, lo + 1e-7, hi - 1e-7, jumps))
-    # every stroke's roots at once: one kinematics call per scan for all of them
-    for (_, start, sign_g, *_r), roots in zip(groups, _stroke_roots_many(groups, _s_many(mech))):
+            names.append(name)
+    # every stroke's roots at once: one kinematics call per scan for all of them; a root the
+    # positions already found (the positions stage's jumps, asked again with the kinks) is
+    # not searched again
+    known = {} if roots is None else roots
+    keys = [(name,) + tuple(float(x) for x in g[1:5]) for name, g in zip(names, groups)]
+    todo = [(src, start, sign_g, lo, hi, [x for x in tg if (key, float(x)) not in known])
+            for (src, start, sign_g, lo, hi, tg), key in zip(groups, keys)]
+    for g, key, roots in zip(todo, keys, _stroke_roots_many(todo, _s_many(mech))):
+        known.update(((key, float(x)), r) for x, r in zip(g[5], roots))
+    for (_, start, sign_g, _lo, _hi, tg), key in zip(groups, keys):
+        roots = [known[(key, float(x))] for x in tg]
         out.extend((start + sign_g * t) % 360.0 for t in roots if t is not None)
     res = []
     for a in sorted(out):
@@ -118,8 +132,10 @@ def _stroke_roots_many(groups, s_many, n: int = 257, passes: int = 1) -> list[li
                        for k, t in zip(live, ts)])
         return [v.reshape(t.shape) for v, t in zip(vals, ts)]
 
-    ts = [np.linspace(groups[k][3], groups[k][4], n)[None, :].repeat(tgs[k].size, 0) for k in live]
-    svs = scan(ts)
+    # the first scan is the same for every target of a group: sampled once, one row a target
+    t1 = [np.linspace(groups[k][3], groups[k][4], n)[None, :] for k in live]
+    ts = [t.repeat(tgs[k].size, 0) for t, k in zip(t1, live)]
+    svs = [sv.repeat(tgs[k].size, 0) for sv, k in zip(scan(t1), live)]
     found = [np.ones(tgs[k].size, bool) for k in live]
     for it in range(passes + 1):
         brackets = []
