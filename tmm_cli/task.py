@@ -718,6 +718,26 @@ def _decimal_comma_issues(issues: list, file: str | None, text: str | None) -> l
     return out
 
 
+_VALIDATOR: Any = None
+
+
+def task_validator():
+    """The validator of :class:`Task` (what ``Task.model_validate`` runs): the model's own
+    once built, else the one cached by an earlier run (tmm_cli.schemacache), else the model's,
+    built now and cached for the next run."""
+    global _VALIDATOR
+    if Task.__pydantic_complete__:
+        return Task.__pydantic_validator__
+    if _VALIDATOR is None:
+        from . import schemacache
+        _VALIDATOR = schemacache.load(Task)
+        if _VALIDATOR is None:
+            Task.model_rebuild()
+            schemacache.save(Task)
+            return Task.__pydantic_validator__
+    return _VALIDATOR
+
+
 def load_task(source: Union[str, Path, dict], *, text: str | None = None) -> Task:
     """Read and validate a task. ``source`` is a path to a YAML file or a dict of the
     same shape. Raises :class:`TaskError` with file, line and field of every problem."""
@@ -731,7 +751,7 @@ def load_task(source: Union[str, Path, dict], *, text: str | None = None) -> Tas
         raise TaskError("the task file must be a mapping of sections (schema: tmm/1, ...)", file=file,
                         issues=[("", 1, 1, "the task file must be a mapping of sections (schema: tmm/1, ...)")])
     try:
-        task = Task.model_validate(data)
+        task = task_validator().validate_python(data)
     except ValidationError as exc:
         issues = []
         seen = set()

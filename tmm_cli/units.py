@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 import re
 from fractions import Fraction
-from functools import lru_cache
+from functools import lru_cache, partial
 from typing import Annotated, Any
 
 from pydantic import AfterValidator, BeforeValidator, WithJsonSchema
@@ -167,7 +167,8 @@ def fraction_text(x: float) -> str:
 
 
 def _q(kind: str):
-    return BeforeValidator(lambda v: convert(v, kind))
+    # a partial, not a closure: the task's validator can then be cached (tmm_cli.task)
+    return BeforeValidator(partial(convert, kind=kind))
 
 
 def _schema(kind: str) -> WithJsonSchema:
