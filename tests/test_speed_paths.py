@@ -25,7 +25,8 @@ def _imported_by(args: list[str], tmp_path: Path) -> set[str]:
             "try:\n    main()\nexcept SystemExit as e:\n    code = e.code\nelse:\n    code = 0\n"
             "print('MODULES', ' '.join(sorted({m.split('.')[0] for m in sys.modules}\n"
             "                                  | {m for m in sys.modules if m.startswith(('tmm_cli.report',\n"
-            "                                                                            'tmm_cli.commands'))})),\n"
+            "                                                                            'tmm_cli.commands',\n"
+            "                                                                            'numpy.ma'))})),\n"
             "      file=sys.stderr)\n"
             "sys.exit(code)\n")
     p = subprocess.run([sys.executable, "-c", code, *args], cwd=tmp_path, capture_output=True,
@@ -41,6 +42,7 @@ def test_json_run_imports_no_heavy_module(tmp_path):
     assert "numpy" in mods                       # the stages ran
     assert not mods & set(HEAVY), sorted(mods & set(HEAVY))
     assert not mods & set(CLI_APP), sorted(mods & set(CLI_APP))
+    assert "numpy.ma" not in mods                # np.unique's import (tmm_cli.lazy.unique)
     # the report package neither (the hand-method error reads tmm_cli.plans, not the report)
     assert not {m for m in mods if m.startswith("tmm_cli.report")}, sorted(mods)
     assert json.loads((tmp_path / "o" / "results.json").read_text())["kinetostatics"]
@@ -166,6 +168,21 @@ def test_results_text_is_json_readable_and_deterministic():
     assert '"a": [1.0, 2.5, null]' in text and '  "c": [\n   [1, 2],' in text
     assert '"g": "ω"' in text and '"i": 0.0' in text
     assert json.loads(dumps({"x": float("nan")})) == {"x": None}
+
+
+def test_unique_is_numpys():
+    rng = np.random.default_rng(5)
+    cases = [np.array([]), np.array([0.0, -0.0, 1.0]), np.array([-0.0, 0.0, 1.0]), np.array([1.0, -0.0, 0.0]),
+             np.array([np.nan, 1.0, np.nan, -np.inf, 1.0, np.inf]), np.array([3, 1, 3, 2]),
+             np.array([[2.0, 1.0], [1.0, 0.5]]), [0.25, 0.25, 0.1], np.array([1 + 1j, np.nan, 1 + 1j, complex(np.nan, 1)])]
+    for n in (1, 2, 7, 100, 5000):
+        x = np.round(rng.normal(size=n), 2)                 # many repeats
+        cases.append(np.concatenate([x, -x, np.zeros(3) * -1.0, [np.nan] * (n % 3)]))
+    for x in cases:
+        want, got = np.unique(x), lazy.unique(x)
+        assert got.dtype == want.dtype and got.shape == want.shape
+        assert np.array_equal(got, want, equal_nan=True), x
+        assert np.array_equal(np.signbit(got.real), np.signbit(want.real)), x   # -0.0 kept as numpy keeps it
 
 
 def test_unwrap_is_numpys():
