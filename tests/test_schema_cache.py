@@ -20,6 +20,7 @@ from tmm_cli.task import Task
 from tmm_cli.yamlload import load_yaml
 
 ROOT = Path(__file__).resolve().parents[1]
+_STAMP = schemacache._stamp
 EXAMPLES = sorted((ROOT / "tasks").glob("*.yaml")) + sorted((ROOT / "tmm_cli" / "starters").glob("*.yaml"))
 BAD = [None, True, "x", "-1 m", "3 kg", -1, 0, 1e400, "1e400", [], {}, [1, 2, 3], {"a": 1}, "1/0", "nan", 10**30]
 
@@ -27,11 +28,11 @@ BAD = [None, True, "x", "-1 m", "3 kg", -1, 0, 1e400, "1e400", [], {}, [1, 2, 3]
 @pytest.fixture()
 def cached(tmp_path, monkeypatch):
     """(the validator read back from a cache written now, pydantic's validator)."""
-    monkeypatch.setattr(schemacache, "_path", lambda model: tmp_path / "task-validator.pickle")
+    monkeypatch.setattr(schemacache, "_path", lambda model: tmp_path / f"{model.__name__}-validator.pickle")
     monkeypatch.setattr(sys, "dont_write_bytecode", False)
     Task.model_rebuild()
     schemacache.save(Task)
-    assert (tmp_path / "task-validator.pickle").exists()
+    assert (tmp_path / "Task-validator.pickle").exists()
     v = schemacache.load(Task)
     assert v is not None and v is not Task.__pydantic_validator__
     return v, Task.__pydantic_validator__
@@ -87,12 +88,17 @@ def test_cached_validator_is_pydantics(cached):
 
 
 def test_stale_or_broken_cache_is_not_used(cached, tmp_path, monkeypatch):
-    path = tmp_path / "task-validator.pickle"
-    stamp = schemacache._stamp()
-    monkeypatch.setattr(schemacache, "_stamp", lambda: stamp[:-1] + ((("tmm_cli.task", 0, 0),),))
+    path = tmp_path / "Task-validator.pickle"
+    stamp = schemacache._stamp(Task)
+    monkeypatch.setattr(schemacache, "_stamp", lambda model: stamp[:-1] + ((("tmm_cli.task", 0, 0),),))
     assert schemacache.load(Task) is None                          # a module of the model changed
-    monkeypatch.setattr(schemacache, "_stamp", lambda: stamp)
+    monkeypatch.setattr(schemacache, "_stamp", lambda model: stamp)
     assert schemacache.load(Task) is not None
+    (tmp_path / "MechanismSection-validator.pickle").write_bytes(path.read_bytes())
+    monkeypatch.setattr(schemacache, "_stamp", _STAMP)
+    from tmm_cli.task import MechanismSection
+    assert schemacache.load(MechanismSection) is None              # another model's validator
+    monkeypatch.setattr(schemacache, "_stamp", lambda model: stamp)
     path.write_bytes(path.read_bytes()[:-100])                     # cut short
     assert schemacache.load(Task) is None
     path.unlink()
@@ -131,15 +137,20 @@ def test_the_stamp_covers_the_model():
 
 def test_second_run_reads_the_cache(tmp_path):
     """With the bytecode cache on (an installed tmm), the first `tmm validate` writes the
-    cache, the second reads it: the same output, and pydantic's schema is not built."""
+    cache, the second reads it: the same output, and pydantic builds no validator (its
+    plugin loader, which imports importlib.metadata, is never reached) -- also for a
+    synthesis (the generated mechanism is validated as a MechanismSection), a cam and a
+    flywheel without `shape` (default sections)."""
     env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
     env["PYTHONPYCACHEPREFIX"] = str(tmp_path / "pycache")
     code = ("import sys\nfrom tmm_cli.cli import main\ntry:\n    main()\nfinally:\n"
-            "    from tmm_cli.task import Task\n    print('BUILT', Task.__pydantic_complete__, file=sys.stderr)\n")
-    task = str(ROOT / "tasks" / "forging_sixbar.yaml")
-    runs = [subprocess.run([sys.executable, "-c", code, "validate", task], capture_output=True, text=True,
+            "    print('BUILT', 'pydantic.plugin._loader' in sys.modules, file=sys.stderr)\n")
+    tasks = [str(ROOT / "tasks" / f"{n}.yaml") for n in ("forging_sixbar", "synthesis_shaper", "cam_translating",
+                                                          "press_drive_train")]
+    runs = [subprocess.run([sys.executable, "-c", code, "validate", *tasks], capture_output=True, text=True,
                            env=env, cwd=tmp_path, timeout=300) for _ in range(2)]
     assert [r.returncode for r in runs] == [0, 0]
-    assert runs[0].stdout == runs[1].stdout == f"{task}: ok\n"
-    assert "BUILT True" in runs[0].stderr and "BUILT False" in runs[1].stderr
-    assert list((tmp_path / "pycache").rglob("task-validator.*.pickle"))
+    assert runs[0].stdout == runs[1].stdout == "".join(f"{t}: ok\n" for t in tasks)
+    assert "BUILT True" in runs[0].stderr and "BUILT False" in runs[1].stderr, runs[1].stderr
+    assert {p.name.split("-")[0] for p in (tmp_path / "pycache").rglob("*-validator.*.pickle")} == \
+        {"task", "mechanismsection"}

@@ -36,14 +36,15 @@ def _path(model: type) -> Path:
     return pyc.with_name(f"{model.__name__.lower()}-validator.{sys.implementation.cache_tag}.pickle")
 
 
-def _stamp() -> tuple:
+def _stamp(model: type) -> tuple:
     import pydantic
     import pydantic_core
     files = []
     for name in MODULES:
         st = os.stat(sys.modules[name].__file__)
         files.append((name, st.st_mtime_ns, st.st_size))
-    return (_FORMAT, sys.version, pydantic.VERSION, pydantic_core.__version__, tuple(files))
+    return (_FORMAT, model.__module__, model.__qualname__, sys.version, pydantic.VERSION, pydantic_core.__version__,
+            tuple(files))
 
 
 def _strip(schema):
@@ -74,11 +75,31 @@ def same(a, b) -> bool:
     return a is b
 
 
+_LOADED: dict[type, object] = {}
+
+
+def validator(model: type):
+    """The validator of a model of the task (what ``model.model_validate`` runs): the
+    model's own once built, else the one cached by an earlier run, else the model's, built
+    now and cached for the next run."""
+    if model.__pydantic_complete__:
+        return model.__pydantic_validator__
+    v = _LOADED.get(model)
+    if v is None:
+        v = load(model)
+        if v is None:
+            model.model_rebuild()
+            save(model)
+            return model.__pydantic_validator__
+        _LOADED[model] = v
+    return v
+
+
 def load(model: type):
     """The model's validator from the cache, or None (no cache, or a stale one)."""
     try:
         with open(_path(model), "rb") as fh:
-            if pickle.load(fh) != _stamp():         # two pickles: the stamp, then the validator
+            if pickle.load(fh) != _stamp(model):         # two pickles: the stamp, then the validator
                 return None
             schema, config = pickle.load(fh)
         from pydantic_core import SchemaValidator
@@ -103,7 +124,7 @@ def save(model: type) -> None:
         path.parent.mkdir(parents=True, exist_ok=True)
         tmp = path.with_name(f"{path.name}.{os.getpid()}.tmp")
         with open(tmp, "wb") as fh:
-            pickle.dump(_stamp(), fh, protocol=pickle.HIGHEST_PROTOCOL)
+            pickle.dump(_stamp(model), fh, protocol=pickle.HIGHEST_PROTOCOL)
             fh.write(blob)
         os.replace(tmp, path)
     except Exception:  # noqa: BLE001 - a cache that cannot be written is no cache: the next run builds again
