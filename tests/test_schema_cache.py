@@ -25,17 +25,21 @@ EXAMPLES = sorted((ROOT / "tasks").glob("*.yaml")) + sorted((ROOT / "tmm_cli" / 
 BAD = [None, True, "x", "-1 m", "3 kg", -1, 0, 1e400, "1e400", [], {}, [1, 2, 3], {"a": 1}, "1/0", "nan", 10**30]
 
 
+def _cached(model, tmp_path, monkeypatch):
+    """(the validator read back from a cache written now, pydantic's validator)."""
+    monkeypatch.setattr(schemacache, "_path", lambda m: tmp_path / f"{m.__name__}-validator.pickle")
+    monkeypatch.setattr(sys, "dont_write_bytecode", False)
+    model.model_rebuild()
+    schemacache.save(model)
+    assert (tmp_path / f"{model.__name__}-validator.pickle").exists()
+    v = schemacache.load(model)
+    assert v is not None and v is not model.__pydantic_validator__
+    return v, model.__pydantic_validator__
+
+
 @pytest.fixture()
 def cached(tmp_path, monkeypatch):
-    """(the validator read back from a cache written now, pydantic's validator)."""
-    monkeypatch.setattr(schemacache, "_path", lambda model: tmp_path / f"{model.__name__}-validator.pickle")
-    monkeypatch.setattr(sys, "dont_write_bytecode", False)
-    Task.model_rebuild()
-    schemacache.save(Task)
-    assert (tmp_path / "Task-validator.pickle").exists()
-    v = schemacache.load(Task)
-    assert v is not None and v is not Task.__pydantic_validator__
-    return v, Task.__pydantic_validator__
+    return _cached(Task, tmp_path, monkeypatch)
 
 
 def _outcome(validator, data):
@@ -85,6 +89,27 @@ def test_cached_validator_is_pydantics(cached):
             assert a == b, (f.name, path)
             n += 1
     assert n > 2000
+
+
+@pytest.mark.parametrize("name", ["MechanismSection", "PositionsSection"])
+def test_cached_section_validators_are_pydantics(name, tmp_path, monkeypatch):
+    """The sections validated on their own (a synthesis's generated mechanism, its
+    positions): the same values and errors, on every mutation of the examples' sections."""
+    import tmm_cli.task as T
+    model = getattr(T, name)
+    mine, theirs = _cached(model, tmp_path, monkeypatch)
+    key = {"MechanismSection": "mechanism", "PositionsSection": "positions"}[name]
+    n = 0
+    for f in EXAMPLES:
+        data, _ = load_yaml(f)
+        if key not in data:
+            continue
+        assert _outcome(mine, data[key]) == _outcome(theirs, data[key]), f
+        for path, sub in _mutations(data[key]):
+            bad = _put(data[key], path, sub)
+            assert _outcome(mine, bad) == _outcome(theirs, bad), (f.name, path)
+            n += 1
+    assert n > 300
 
 
 def test_stale_or_broken_cache_is_not_used(cached, tmp_path, monkeypatch):

@@ -54,6 +54,20 @@ def test_validate_imports_no_heavy_module(tmp_path):
     assert not mods & set(CLI_APP), sorted(mods & set(CLI_APP))
 
 
+def test_validate_every_task_imports_no_heavy_module(tmp_path):
+    """Validation needs no scipy (a cam's region check), no pint (times, output speeds in
+    the fast units table), no Typer."""
+    mods = _imported_by(["validate", *sorted(str(p) for p in (ROOT / "tasks").glob("*.yaml"))], tmp_path)
+    assert not mods & set(HEAVY + CLI_APP), sorted(mods & set(HEAVY + CLI_APP))
+
+
+@pytest.mark.parametrize("name", ["gears_zero", "planetary_A", "synthesis_shaper", "press_drive_train",
+                                  "engine_slider_crank", "static_gravity"])
+def test_json_runs_import_no_heavy_module(name, tmp_path):
+    mods = _imported_by(["run", str(ROOT / "tasks" / f"{name}.yaml"), "-f", "json", "-q", "-o", "o"], tmp_path)
+    assert not mods & set(HEAVY + CLI_APP), sorted(mods & set(HEAVY + CLI_APP))
+
+
 def test_other_command_lines_build_the_typer_app(tmp_path):
     """--help, an option spelt `--format=json`, a bad value: the Typer app parses them."""
     task = str(ROOT / "tasks" / "forging_sixbar.yaml")
