@@ -7,7 +7,7 @@ Run:  python benchmarks/bench_sheets.py [repeat]        (budget: the sheets add 
    the sheets add to a run, in wall time and in CPU time (user + system of the run and
    its helper process: the cost itself, where a busy machine makes the wall time wait);
 2. in one warm process, the phases of the sheets: building the primitives, SVG, DXF
-   and the PDF (weasyprint), wall and CPU time (CPU time does not count the waits for
+   and the PDF (Typst), wall and CPU time (CPU time does not count the waits for
    a busy machine's other processes).
 """
 from __future__ import annotations
@@ -53,7 +53,6 @@ def added(task: str, repeat: int) -> tuple[float, float]:
 
 def phases(task: str) -> float:
     import ezdxf  # noqa: F401  (imported once, as in a run)
-    import weasyprint  # noqa: F401
 
     import tmm_cli
     from tmm_cli.sheets import build_sheets

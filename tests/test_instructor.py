@@ -442,6 +442,10 @@ def test_instructor_loop_end_to_end(tmp_path):
     assert by["Student 03"]["status"] == "invalid" and "positions.K" in by["Student 03"]["message"]
     ghost = [r for r in rows if r["variant"] == "77"][0]
     assert ghost["status"] == "invalid" and "no task of this variant" in ghost["message"]
+    html = (tmp_path / "graded" / "summary.html").read_text(encoding="utf-8")
+    assert "ответы на вариант 77: задания этого варианта нет" in html        # the row texts in Russian
+    assert "вне допуска: flywheel.J" in html and "no task of this variant" not in html
+    assert "outside: flywheel.J" in by["Student 02"]["message"]             # summary.csv stays English
     fb = list((tmp_path / "graded" / "02").glob("feedback-*.html"))
     assert fb and "маховик" in fb[0].read_text()                  # the step a wrong J depends on
     assert (tmp_path / "graded" / "01" / "report.html").exists()
@@ -474,3 +478,18 @@ def test_memory_limit_counts_what_a_variant_adds(tmp_path):
         assert ",ok," in (tmp_path / "o" / "summary.csv").read_text(encoding="utf-8")
     finally:
         big.close()
+
+
+def test_batch_stage_failure_in_the_summary_language(tmp_path):
+    """A variant whose stage fails: summary.csv keeps the English text of stderr, summary.html
+    shows the same failure in the batch's language."""
+    src = tmp_path / "src"
+    _write(src, "p.yaml", "schema: tmm/1\ntitle: p\nplanetary: {scheme: A, ratio: 1.2, satellites: 3, m: 2 mm}\n")
+    res = runner.invoke(app, ["batch", str(src), "--out", str(tmp_path / "o"), "--lang", "uk", "--format", "json"])
+    assert res.exit_code == 3, res.output
+    row = _csv(tmp_path / "o" / "summary.csv")[0]
+    assert row["status"] == "failed"
+    assert row["message"].startswith("stage 'planetary' failed: no tooth numbers for scheme A give i_1H = 1.2")
+    html = (tmp_path / "o" / "summary.html").read_text(encoding="utf-8")
+    assert "етап «planetary» не виконано: жоден набір чисел зубців схеми A не дає i_1H = 1.2" in html
+    assert "no tooth numbers" not in html

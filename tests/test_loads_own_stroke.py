@@ -156,3 +156,19 @@ def test_flywheel_grid_sees_both_pistons_switch():
     # 360-step grid is good to ~2e-5 here
     work = P1 * 2 * R + P2 * H2 / 2.0
     assert r["flywheel"]["M_constant"] == pytest.approx(work / (2 * math.pi), rel=1e-4)
+
+
+def test_load_diagrams_drawn_against_each_sliders_displacement(results, tmp_path):
+    """The report's load diagrams: abscissa the displacement s = (s/H)·H of the load's own
+    slider in m (not the normalised s/H), at a standard μs stated under the axis."""
+    from tmm_cli.report import render_html
+    from tmm_cli.report.sections.kinetostatics import _strokes
+
+    # piston 1 (the output, in line with O): H = 2R = 0.1 m; piston 2 its own H2 (by hand above)
+    assert _strokes(results["positions"]) == pytest.approx({"piston1": 2 * R, "piston2": H2}, abs=1e-9)
+    html, _ = render_html(results, tmm_cli.load_task(_task()), tmp_path, "en")
+    i = html.index('data-name="load-diagrams"')
+    svg = html[i:html.index("</svg>", i)]
+    assert "s/H" not in svg
+    # 0.1 m over an axis of 110-200 mm of paper: 0.1/L in (0.0005, 0.00091] -> the series' 0.001
+    assert svg.count("μs = 0.001 m/mm") == svg.count("F, N") >= 1

@@ -180,6 +180,25 @@ def test_failing_planetary_keeps_cam_gears_and_the_report(tmp_path):
     assert (out / "cam_profile.dxf").exists() and (out / "gears_outline.dxf").exists()
 
 
+@pytest.mark.parametrize("lang, words", [("ru", "ни один набор чисел зубьев схемы A не даёт i_1H = 1.2"),
+                                         ("uk", "жоден набір чисел зубців схеми A не дає i_1H = 1.2")])
+def test_stage_failure_in_the_report_language(tmp_path, lang, words):
+    """A stage's failure: English on stderr and in results.json `errors[].message` (with its
+    code and parameters beside it); the report's failure box in the report's language."""
+    out = tmp_path / "o"
+    f = task_file(tmp_path, PLANETARY_IMPOSSIBLE)
+    res = runner.invoke(app, ["run", str(f), "--out", str(out), "--format", "json,html", "--lang", lang])
+    assert res.exit_code == 3
+    assert "no tooth numbers for scheme A give i_1H = 1.2 within 0.05" in res.output
+    err = json.loads((out / "results.json").read_text())["errors"][0]
+    assert err["code"] == "planetary.fail.none_found" and err["params"]["scheme"] == "A"
+    assert err["message"].startswith("no tooth numbers for scheme A give i_1H = 1.2 within 0.05 with 3 satellites")
+    assert err["params"]["hint"]["code"].startswith("planetary.hint.")        # the hint: a message inside
+    box = (out / "report.html").read_text(encoding="utf-8").split('id="planetary-failed"', 1)[1]
+    box = box.split("</section>", 1)[0]
+    assert words in box and "no tooth numbers" not in box
+
+
 def test_linkage_that_does_not_assemble_does_not_stop_cam_and_gears(tmp_path):
     out = tmp_path / "o"
     linkage = ("mechanism:\n  ground: {O: [0, 0]}\n  links:\n    crank: {points: [O, A], length: 0.1}\n"

@@ -360,3 +360,83 @@ def test_kinetostatics_sheet(forging, lang, tmp_path):
         want[kind] += 1
     assert Counter(e.dxftype() for e in doc.modelspace()) == want
     assert want["SOLID"] > 40 and want["TEXT"] > 100      # arrow heads; labels
+
+
+def _chain(k: int) -> dict:
+    """A crank driving a chain of ``k`` <= 8 RRP dyads (rods 0.2 m), each slider on its own
+    guide, alternately horizontal (y = 0, 0.3, 0.55, 0.8) and vertical (x = 0.3, 0.55, 0.8,
+    1.05): k Assur groups of class II."""
+    guides = [(0, 0.0), (90, 0.3), (0, 0.3), (90, 0.55), (0, 0.55), (90, 0.8), (0, 0.8), (90, 1.05)]
+    near = [(0.25, 0), (0.3, 0.15), (0.45, 0.3), (0.55, 0.45), (0.7, 0.55), (0.8, 0.7), (0.95, 0.8), (1.05, 0.95)]
+    links = {"crank": {"points": ["O", "P0"], "length": 0.05}}
+    for i, (angle, at) in enumerate(guides[:k], start=1):
+        links[f"rod{i}"] = {"points": [f"P{i - 1}", f"P{i}"], "length": 0.2}
+        links[f"s{i}"] = {"slider": f"P{i}", "guide": {"through": [0, at] if angle == 0 else [at, 0], "angle": angle}}
+    assembly = {f"P{i}": list(p) for i, p in enumerate(near[:k], start=1)}
+    return {"schema": "tmm/1", "title": f"a chain of {k} dyads",
+            "mechanism": {"ground": {"O": [0, 0]}, "links": links, "assembly": assembly},
+            "drive": {"link": "crank", "speed": "100 rpm", "direction": "ccw"},
+            "positions": {"output": "s1", "working": "forward"},
+            "loads": {"forces": [{"on": f"s{k}", "kind": "resistance", "magnitude": 500}]},
+            "kinetostatics": {"inertia": False}}
+
+
+def test_kinetostatics_sheet_wraps_many_groups():
+    """Sheet 2 with more groups than fit side by side at MIN_COL_W: they wrap into rows;
+    every group's panels keep MIN_COL_W, stay inside their position's band and the frame,
+    and overlap neither each other nor the lever."""
+    from tmm_cli.pipeline import run
+    from tmm_cli.sheets import build_sheets, sheet2
+    from tmm_cli.task import load_task
+    assert sheet2.layout(4, 536.0) == (4, 1)                      # 4 x 130 mm fit in one row
+    assert sheet2.layout(9, 536.0) == (7, 2)                      # 536 // 70 = 7 columns, 2 rows
+    task = load_task(_chain(8))
+    res = run(task)
+    assert len(res["structure"]["groups"]) == 8
+    cv, info = next((c, i) for c, i in build_sheets(res, task, "en") if i["number"] == 2)
+    for p in info["positions"].values():
+        boxes = [d["box"] for d in p["groups"]]
+        assert len(boxes) == 9                                    # 8 groups and the input link
+        lx, ly, lw, lh = p["lever_box"]
+        for k, (x, y, w, h) in enumerate(boxes):
+            assert w >= sheet2.MIN_COL_W - 1e-9 and h > 100.0
+            assert FRAME[0] <= x and x + w <= lx and FRAME[1] <= y
+            for x2, y2, w2, h2 in boxes[k + 1:]:
+                assert min(x + w, x2 + w2) - max(x, x2) <= 1e-6 or min(y + h, y2 + h2) - max(y, y2) <= 1e-6
+    _check_texts([(cv, info)])
+
+
+def test_sheets_pdf_by_typst(forging, tmp_path):
+    """sheets.pdf: one A1 page per sheet, compiled by Typst (no weasyprint), the SVG of each
+    sheet drawn at its real size with its texts kept as text (every word of the sheet's
+    labels is on its page; a subscript joins the word before it)."""
+    import re
+    import shutil
+    import subprocess
+    import sys
+    from tmm_cli.sheets import write_sheets
+    _, sheets = forging
+    sh = sheets["ru"]
+    written = write_sheets(sh, tmp_path, {"pdf"})
+    pdf = tmp_path / "sheets.pdf"
+    assert written == [pdf] and pdf.read_bytes().startswith(b"%PDF")
+    if not (shutil.which("pdfinfo") and shutil.which("pdftotext")):
+        pytest.skip("poppler-utils not installed")
+    info = subprocess.run(["pdfinfo", str(pdf)], capture_output=True, text=True, check=True).stdout
+    assert int(re.search(r"Pages:\s+(\d+)", info).group(1)) == len(sh)
+    w, h = map(float, re.search(r"Page size:\s+([0-9.]+) x ([0-9.]+) pts", info).groups())
+    assert (w, h) == pytest.approx((841 * 72 / 25.4, 594 * 72 / 25.4), abs=0.1)
+    for k, (cv, info_k) in enumerate(sh, start=1):
+        page = subprocess.run(["pdftotext", "-f", str(k), "-l", str(k), str(pdf), "-"], capture_output=True,
+                              text=True, check=True).stdout
+        want = {wd for p in cv.prims if isinstance(p, Text) for wd in p.s.split()}
+        assert len(want) > 20 and [wd for wd in want if wd not in page] == []
+        assert f"Лист {k}" in page
+    code = ("import sys\nfrom pathlib import Path\nfrom tmm_cli.pipeline import run\n"
+            "from tmm_cli.sheets import build_sheets, write_sheets\nfrom tmm_cli.task import load_task\n"
+            f"t = load_task(Path({str(ROOT / 'tasks' / 'forging_sixbar.yaml')!r}))\n"
+            f"write_sheets(build_sheets(run(t), t, 'en'), Path({str(tmp_path / 'en')!r}), {{'pdf'}})\n"
+            "print('weasyprint' in sys.modules)\n")
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
+    assert p.returncode == 0, p.stderr
+    assert p.stdout.strip() == "False" and (tmp_path / "en" / "sheets.pdf").stat().st_size > 20000

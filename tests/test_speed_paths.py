@@ -20,7 +20,7 @@ HEAVY = ("scipy", "matplotlib", "weasyprint", "ezdxf", "pint", "jinja2")
 CLI_APP = ("typer", "click", "shellingham", "tmm_cli.commands")      # (rich: the summary)
 
 
-def _imported_by(args: list[str], tmp_path: Path) -> set[str]:
+def _imported_by(args: list[str], tmp_path: Path, env: dict | None = None) -> set[str]:
     code = ("import sys\nfrom tmm_cli.cli import main\n"
             "try:\n    main()\nexcept SystemExit as e:\n    code = e.code\nelse:\n    code = 0\n"
             "print('MODULES', ' '.join(sorted({m.split('.')[0] for m in sys.modules}\n"
@@ -29,8 +29,9 @@ def _imported_by(args: list[str], tmp_path: Path) -> set[str]:
             "                                                                            'numpy.ma'))})),\n"
             "      file=sys.stderr)\n"
             "sys.exit(code)\n")
+    import os
     p = subprocess.run([sys.executable, "-c", code, *args], cwd=tmp_path, capture_output=True,
-                       text=True, timeout=300)
+                       text=True, timeout=300, env={**os.environ, **(env or {})})
     assert p.returncode == 0, p.stderr
     line = [ln for ln in p.stderr.splitlines() if ln.startswith("MODULES ")][-1]
     return set(line.split()[1:])
@@ -46,6 +47,17 @@ def test_json_run_imports_no_heavy_module(tmp_path):
     # the report package neither (the hand-method error reads tmm_cli.plans, not the report)
     assert not {m for m in mods if m.startswith("tmm_cli.report")}, sorted(mods)
     assert json.loads((tmp_path / "o" / "results.json").read_text())["kinetostatics"]
+
+
+def test_linkage_html_report_imports_no_matplotlib(tmp_path):
+    """The linkage report draws every figure itself (the scheme, the plan of positions,
+    the plans, the diagrams): no matplotlib, in one process (no helper to hide it)."""
+    mods = _imported_by(["run", str(ROOT / "tasks" / "forging_sixbar.yaml"), "--format", "html",
+                         "-o", str(tmp_path / "o")], tmp_path, env={"TMM_REPORT_JOBS": "1"})
+    assert "tmm_cli.report.figures" in mods and "jinja2" in mods       # the report was made
+    assert "matplotlib" not in mods
+    html = (tmp_path / "o" / "report.html").read_text(encoding="utf-8")
+    assert 'μl = 0.01 m/mm  (M 1:10)' in html and 'μl = 0.015 m/mm  (M 1:15)' in html
 
 
 def test_validate_imports_no_heavy_module(tmp_path):

@@ -20,6 +20,7 @@ import time
 from pathlib import Path
 
 from .check import STATUSES, AnswerSet, set_code
+from .messages import Message
 
 SUMMARY_FIELDS = ["student", "group", "variant", "file", "status", "score", "answers", "ok", "outside", "sign",
                   "missing", "unknown_path", "not_computed", "message"]
@@ -154,7 +155,26 @@ def work(path: Path, out: Path, folder: str, formats: set[str], lang: str, sets:
         if isinstance(exc, KeyboardInterrupt):
             raise
         res["code"], res["status"], res["message"] = classify(exc)
+        coded = stage_failure_message(exc)
+        if coded is not None and str(coded) == res["message"]:
+            res["message_coded"] = coded            # the same text, in the report language too
     return res
+
+
+def stage_failure_message(exc: BaseException) -> Message | None:
+    """A StageError whose message is coded, as one coded message ("stage 'cam' failed at
+    ...: ..."), the text of ``str(exc)``; None for any other failure."""
+    from .errors import StageError
+    if not isinstance(exc, StageError) or getattr(exc.message, "code", None) is None:
+        return None
+    pos = exc.position
+    if pos is None:
+        where = Message("text", text="")
+    elif isinstance(pos, str):                 # (no stage gives a named position today)
+        where = Message("text", text=f" at {pos}")
+    else:
+        where = Message("batch.at_angle", angle=float(pos))
+    return Message("batch.stage_failed", stage=exc.stage, where=where, message=exc.message)
 
 
 def _inside(p, out: Path) -> bool:
@@ -167,9 +187,11 @@ def _inside(p, out: Path) -> bool:
 
 def _set_message(rows, status, aset) -> str:
     if status == "no_answers":
-        return f"no answers in {Path(aset.source).name}"
+        return Message("batch.set_no_answers", file=Path(aset.source).name)
     bad = [r["path"] for r in rows if r["status"] not in ("ok",)]
-    return (f"{status}: " + ", ".join(bad[:6]) + (" ..." if len(bad) > 6 else "")) if bad else ""
+    if not bad:
+        return ""
+    return Message("batch.set_not_ok" if len(bad) <= 6 else "batch.set_not_ok_more", status=status, paths=bad[:6])
 
 
 # the modules a variant's sections need (imported once in the batch, before the workers fork)
@@ -241,12 +263,12 @@ def _child(result_file: str, memory_mb, args) -> None:
         res = work(*args)
     except MemoryError:
         res = {"task": None, "written": [], "sets": [], "code": 3, "status": "failed",
-               "message": f"out of memory: the variant needs more than the --memory limit of {memory_mb} MB"}
+               "message": Message("batch.out_of_memory", limit=memory_mb)}
     try:
         data = pickle.dumps(res)
     except Exception as exc:  # noqa: BLE001 - whatever fails to pickle, the worker still reports
         data = pickle.dumps({"task": None, "written": [], "sets": [], "code": 3, "status": "failed",
-                             "message": f"internal error: the worker could not report: {type(exc).__name__}"})
+                             "message": Message("batch.no_report", error=type(exc).__name__)})
     tmp = result_file + ".part"
     with open(tmp, "wb") as fh:
         fh.write(data)
@@ -261,9 +283,10 @@ def _death(exitcode: int | None, memory_mb) -> str:
             name = signal.Signals(sig).name
         except ValueError:
             name = f"signal {sig}"
-        extra = " (killed: e.g. by the out-of-memory killer)" if sig == signal.SIGKILL else ""
-        return f"the worker died of {name}{extra}"
-    return f"the worker exited with code {exitcode} without a result (memory limit {memory_mb} MB?)"
+        if sig == signal.SIGKILL:
+            return Message("batch.worker_killed", signal=name)
+        return Message("batch.worker_signal", signal=name)
+    return Message("batch.worker_exit", code=exitcode, limit=memory_mb)
 
 
 def run_all(jobs_args: list[tuple], *, jobs: int, timeout: float, memory_mb: int | None, on_done) -> list[dict]:
@@ -308,7 +331,7 @@ def run_all(jobs_args: list[tuple], *, jobs: int, timeout: float, memory_mb: int
                         res = failed(_death(proc.exitcode, memory_mb))
                 elif timeout and now - t0 > timeout:
                     _kill(proc)
-                    res = failed(f"time limit exceeded: the variant ran longer than --timeout {timeout:g} s")
+                    res = failed(Message("batch.timeout", timeout=timeout))
                 if res is not None:
                     del running[i]
                     results[i] = res
@@ -420,15 +443,16 @@ def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = froz
         base = {"student": t.get("student", ""), "group": t.get("group", ""),
                 "variant": "" if t.get("variant") is None else t.get("variant"), "file": str(f),
                 "folder": folder}
-        note = "" if folder == f.stem else f" (results in {folder}/)"
+        note = "" if folder == f.stem else Message("batch.results_in", folder=folder)
         if res["status"] != "ok":
-            rows.append({**base, "status": res["status"], "message": res["message"] + note, "code": res["code"]})
+            rows.append({**base, "status": res["status"], "message": res["message"] + note, "code": res["code"],
+                         "message_parts": [res.get("message_coded", res["message"]), note]})
             continue
         if not res["sets"]:
             st = "no_answers" if expected else "ok"
+            msg = Message("batch.nobody_answered" if expected else "batch.no_answers_to_check")
             rows.append({**base, "status": st, "code": 1 if expected else 0,
-                         "message": ("nobody answered this variant" if expected else "computed (no answers to check)")
-                         + note})
+                         "message": msg + note, "message_parts": [msg, note]})
             continue
         for s in res["sets"]:
             matched.add(s["index"])
@@ -437,6 +461,7 @@ def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = froz
             row = {**base, "student": s["student"] or base["student"], "group": s["group"] or base["group"],
                    "variant": "" if s["variant"] is None else s["variant"], "status": s["status"],
                    "code": set_code(s["status"]), "message": s["message"] + note, "answers": n,
+                   "message_parts": [s["message"], note],
                    "score": round(c.get("ok", 0) / n, 4) if n else 0, "feedback": s.get("feedback", []),
                    "per_path": {r["path"]: r["status"] for r in s["rows"]}, "rows": s["rows"],
                    **{k: c.get(k, 0) for k in STATUSES}}
@@ -444,10 +469,11 @@ def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = froz
             check_rows.extend(s["rows"])
     for i, s in enumerate(sets or []):
         if i not in matched:
-            why = s.error or (f"answers for variant {s.variant}: no task of this variant" if s.variant not in (None, "")
-                              else f"answers file '{Path(s.source).name}': no task of this name or variant")
+            why = s.error or (Message("batch.no_task_of_variant", variant=s.variant) if s.variant not in (None, "")
+                              else Message("batch.no_task_of_name", file=Path(s.source).name))
             rows.append({"student": s.student, "group": s.group, "variant": "" if s.variant is None else s.variant,
-                         "file": s.source, "folder": "", "status": "invalid", "code": 2, "message": why})
+                         "file": s.source, "folder": "", "status": "invalid", "code": 2, "message": why,
+                         "message_parts": [why]})
     for r in rows:
         if "answers" not in r:
             r.update({"answers": 0, "score": 0, **{s: 0 for s in STATUSES}})

@@ -34,7 +34,9 @@ class TaskError(Exception):
 
 
 class StageError(Exception):
-    """A stage failed on valid input (e.g. the mechanism does not assemble)."""
+    """A stage failed on valid input (e.g. the mechanism does not assemble).  ``message``
+    is the English text; a coded one (a :class:`tmm_cli.messages.Message`) is shown in
+    the report's language too (:meth:`to_dict` gives its code and parameters)."""
 
     def __init__(self, stage: str, message: str, position: str | float | None = None):
         self.stage = stage
@@ -44,6 +46,15 @@ class StageError(Exception):
         if position is not None:
             text += f" at {position}" if isinstance(position, str) else f" at crank angle {position:.6g} deg"
         super().__init__(f"{text}: {message}")
+
+    def to_dict(self) -> dict:
+        """The results.json entry: stage, English message, position, and for a coded
+        message its ``code`` and ``params``."""
+        out = {"stage": self.stage, "message": str(self.message), "position": self.position}
+        code = getattr(self.message, "code", None)
+        if code is not None:
+            out.update(code=code, params=dict(self.message.params))
+        return out
 
 
 def field_error(field: str, message: str) -> TaskError:

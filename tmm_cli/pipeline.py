@@ -93,8 +93,7 @@ def run(task: Task, *, progress: Callable[[str], None] | None = None,
     results["messages"] = [as_dict(w) for w in unique]
     if errors:
         # `error`: the first failure (as before); `errors`: every independent part that failed
-        results["errors"] = [{"stage": e.stage, "message": e.message, "position": e.position}
-                             for e in errors]
+        results["errors"] = [e.to_dict() for e in errors]
         results["error"] = results["errors"][0]
         raise PartialResults(errors[0], results) from errors[0]
     return results

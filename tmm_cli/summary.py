@@ -146,16 +146,10 @@ I18N = {
            "invalid": "invalid", "failed": "failed"},
     "ru": {"title": "tmm: сводка по группе", "student": "студент", "group": "группа", "variant": "вариант",
            "status": "статус", "score": "балл", "message": "сообщение", "files": "файлы", "report": "отчёт",
-           "check": "проверка", "feedback": "разбор", "rows": "строк", "legend": "Обозначения",
-           "ok": "верно", "outside": "вне допуска", "sign": "ошибка знака", "missing": "нет ответа",
-           "unknown_path": "неизвестная величина", "not_computed": "не вычислено", "no_answers": "нет ответов",
-           "invalid": "ошибка в задании", "failed": "не рассчитано"},
+           "check": "проверка", "feedback": "разбор", "rows": "строк", "legend": "Обозначения"},
     "uk": {"title": "tmm: зведення по групі", "student": "студент", "group": "група", "variant": "варіант",
            "status": "статус", "score": "бал", "message": "повідомлення", "files": "файли", "report": "звіт",
-           "check": "перевірка", "feedback": "розбір", "rows": "рядків", "legend": "Позначення",
-           "ok": "правильно", "outside": "поза допуском", "sign": "помилка знака", "missing": "немає відповіді",
-           "unknown_path": "невідома величина", "not_computed": "не обчислено", "no_answers": "немає відповідей",
-           "invalid": "помилка в завданні", "failed": "не розраховано"},
+           "check": "перевірка", "feedback": "розбір", "rows": "рядків", "legend": "Позначення"},
 }
 COLOURS = {"ok": "#c8e6c9", "outside": "#ffcdd2", "sign": "#e1bee7", "missing": "#fff9c4",
            "unknown_path": "#ffe0b2", "not_computed": "#e0e0e0", "no_answers": "#fff9c4", "invalid": "#ef9a9a",
@@ -168,7 +162,11 @@ def summary_html(rows: list[dict], paths: list[str], source: str, lang: str = "e
     import html
     from urllib.parse import quote
 
-    T = I18N.get(lang, I18N["en"])
+    from .messages import catalogue, localize
+
+    T = dict(I18N.get(lang, I18N["en"]))
+    if lang != "en":                     # the status words: the catalogue's, as in the messages
+        T.update(catalogue(lang)["terms"].get("status", {}))
     e = lambda x: html.escape(str(x), quote=True)  # noqa: E731
     head = "".join(f"<th>{e(T[c])}</th>" for c in ("student", "group", "variant", "status", "score"))
     head += "".join(f'<th class="q" title="{e(p)}">{e(_short_path(p, 18))}</th>' for p in paths)
@@ -193,7 +191,7 @@ def summary_html(rows: list[dict], paths: list[str], source: str, lang: str = "e
         for fb in r.get("feedback", []) or []:
             if fb.endswith(".html"):
                 links.append(f'<a href="{e(quote(fb))}">{e(T["feedback"])}</a>')
-        tds += f"<td>{' '.join(links)}</td><td class='msg'>{e(r.get('message', ''))}</td>"
+        tds += f"<td>{' '.join(links)}</td><td class='msg'>{e(_message(r, lang, localize))}</td>"
         body.append(f"<tr>{tds}</tr>")
     legend = " ".join(f'<span class="lg" style="background:{c}">{e(_mark(s))} {e(T.get(s, s))}</span>'
                       for s, c in COLOURS.items())
@@ -206,6 +204,15 @@ def summary_html(rows: list[dict], paths: list[str], source: str, lang: str = "e
             f"</head><body><h1>{e(T['title'])}: {e(source)}</h1><p>{len(rows)} {e(T['rows'])}</p>"
             f"<p>{e(T['legend'])}: {legend}</p>"
             f"<table><tr>{head}</tr>{''.join(body)}</table></body></html>\n")
+
+
+def _message(row: dict, lang: str, localize) -> str:
+    """A row's message in ``lang``: its coded parts through the catalogue (an error's
+    text, uncoded, stays as written)."""
+    parts = row.get("message_parts")
+    if parts is None or lang == "en":
+        return str(row.get("message", ""))
+    return "".join(localize(p.to_dict(), lang) if hasattr(p, "to_dict") else str(p) for p in parts)
 
 
 def _mark(status: str) -> str:

@@ -20,6 +20,7 @@ import math
 import numpy as np
 
 from ..errors import StageError
+from ..messages import Message
 from .geometry import Geometry
 from .motion import FAR_DWELL, NEAR_DWELL, RETURN, RISE, Motion
 from .region import max_angle
@@ -129,8 +130,8 @@ def violation(r0: float, worst: float, got: dict, motion: Motion, th_rise: float
     start = motion.starts[{RISE: 0, FAR_DWELL: 1, RETURN: 2, NEAR_DWELL: 3}[ph]]
     span = {RISE: motion.rise, RETURN: motion.ret}.get(ph, 0.0)
     phi = math.degrees(start + x * span) % 360.0
-    tail = (f"; the least r0 with the same {what} is {r0_min * 1000:.3f} mm" if r0_min is not None
-            else f"; no base radius with the same {what} keeps the pressure angle within the allowed one")
-    return StageError(STAGE, f"the chosen base radius r0 = {r0 * 1000:.3f} mm gives a pressure angle of "
-                             f"{math.degrees(th):.2f} deg on the {names[ph]}, {worst:.2f} deg over the allowed "
-                             f"{lim[ph]:g} deg, largest at phi = {phi:.2f} deg" + tail)
+    common = dict(r0=r0 * 1000, theta=math.degrees(th), phase=names[ph], worst=worst, limit=lim[ph], phi=phi,
+                  what=what)
+    if r0_min is not None:
+        return StageError(STAGE, Message("cam.fail.chosen_pressure", r0_min=r0_min * 1000, **common))
+    return StageError(STAGE, Message("cam.fail.chosen_pressure_none", **common))

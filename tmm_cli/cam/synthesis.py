@@ -60,8 +60,6 @@ _PHASE_NAMES = {RISE: "rise", RETURN: "return", NEAR_DWELL: "near_dwell", FAR_DW
 ROLLER_RULE = "min(0.7*rho_min, 0.4*r0)"
 R0_DESIGN_RULE = "r0 rounded up to a whole millimetre"
 
-_HINT = ("increase the allowed pressure angle, the phase angles or the rocker length, "
-         "or reduce the swing")
 # accepted excess of the computed maximum pressure angle over the allowed one, deg (the
 # region is solved to 1e-13 of the stroke; a larger excess means no valid centre was found)
 PA_TOL_DEG = 1e-6
@@ -189,7 +187,7 @@ def _limits(spec) -> tuple[float, float]:
         rise, ret = float(pa.rise), float(pa.return_)
     for name, v in (("rise", rise), ("return", ret)):
         if not 0.0 < v < 90.0:
-            raise StageError(STAGE, f"allowed pressure angle on the {name} must lie in (0, 90) deg, got {v:g}")
+            raise StageError(STAGE, Message("cam.fail.pressure_range", phase=name, value=v))
     return rise, ret
 
 
@@ -199,9 +197,8 @@ def _rocker_hint(swing: float, th_rise: float, th_ret: float) -> str:
     the best maximum pressure angle then tends to half the swing (found by brute force over
     cam centres as well), so smaller limits leave the region empty."""
     if min(th_rise, th_ret) <= swing / 2:
-        return (f" (a rocker swinging {swing:g} deg usually needs allowed pressure angles above "
-                f"half the swing, {swing / 2:g} deg)")
-    return ""
+        return Message("cam.fail.rocker_hint", swing=swing, half=swing / 2)
+    return Message("text", text="")
 
 
 def _families(motion: Motion, th_rise: float, th_ret: float) -> list[Family]:
@@ -236,8 +233,7 @@ def _solve(motion, geom, fams, offset, scale):
         return highest_on_vertical(motion, geom, fams, x0, scale)
     sol = nearest(motion, geom, fams, (0.0, 0.0), scale)
     if sol is None:
-        raise StageError(STAGE, "no cam centre satisfies the allowed pressure angles "
-                                "(the admissible region is empty); " + _HINT)
+        raise StageError(STAGE, Message("cam.fail.no_region"))
     return sol
 
 
@@ -329,21 +325,21 @@ def synthesize(spec) -> CamResult:
     """Synthesise the smallest cam and its profile from a cam task section (see module doc)."""
     follower = _get(spec, "follower", "translating")
     if follower not in ("translating", "rocker", "knife", "flat"):
-        raise StageError(STAGE, f"unknown follower {follower!r}")
+        raise StageError(STAGE, Message("cam.fail.unknown_follower", follower=str(follower)))
     rocker = follower == "rocker"
     rotation = _get(spec, "rotation", "ccw")
     sigma = 1 if rotation == "ccw" else -1
     stroke = float(spec.stroke)
     if not stroke > 0:
-        raise StageError(STAGE, "the stroke must be positive")
+        raise StageError(STAGE, Message("cam.fail.stroke"))
     laws = spec.laws
     for nm in (laws.rise, laws.return_):
         if nm not in LAW_NAMES:
-            raise StageError(STAGE, f"unknown motion law {nm!r}")
+            raise StageError(STAGE, Message("cam.fail.unknown_law", law=str(nm)))
     if rocker:
         l = _get(spec, "rocker_length")
         if l is None or not l > 0:
-            raise StageError(STAGE, "a rocker follower needs a positive rocker_length")
+            raise StageError(STAGE, Message("cam.fail.rocker_length"))
         l = float(l)
         h = math.radians(stroke)
         scale = l
@@ -353,10 +349,10 @@ def synthesize(spec) -> CamResult:
         scale = stroke
     motion = Motion.from_spec(h, spec.phases, laws)
     if motion.rise <= 0 or motion.ret <= 0:
-        raise StageError(STAGE, "the rise and return phases must be positive")
+        raise StageError(STAGE, Message("cam.fail.phases_positive"))
     total = math.degrees(motion.rise + motion.far_dwell + motion.ret + motion.near_dwell)
     if abs(total - 360.0) > 1e-6:
-        raise StageError(STAGE, f"the phases sum to {total:g} deg, not 360")
+        raise StageError(STAGE, Message("cam.fail.phases_sum", total=total))
     th_rise, th_ret = _limits(spec)
     r0_in = _get(spec, "r0", "auto")
     r0_chosen = None if r0_in in (None, "auto") else float(r0_in)
@@ -382,7 +378,8 @@ def synthesize(spec) -> CamResult:
                 O, tang = _solve(motion, geom, fams, "auto", scale)
             except StageError as err:
                 if len(options) == 1:
-                    raise StageError(STAGE, err.message + _rocker_hint(stroke, th_rise, th_ret)) from None
+                    raise StageError(STAGE, Message("cam.fail.with_hint", first=err.message,
+                                                    hint=_rocker_hint(stroke, th_rise, th_ret))) from None
                 alternatives[sw] = None
                 continue
             r0 = float(np.hypot(*O))
@@ -390,9 +387,7 @@ def synthesize(spec) -> CamResult:
             if best is None or r0 < best[0] * (1 - 1e-12):
                 best = (r0, sw, geom, O, tang)
         if best is None:
-            raise StageError(STAGE, "no cam centre satisfies the allowed pressure angles for "
-                                    "either swing sense (the admissible region is empty); " + _HINT
-                             + _rocker_hint(stroke, th_rise, th_ret))
+            raise StageError(STAGE, Message("cam.fail.no_region_either", hint=_rocker_hint(stroke, th_rise, th_ret)))
         r0, swing, geom, O, tang = best
         if r0_chosen is not None:
             swing, geom, O, tang = _chosen_rocker(spec, motion, best, options, sigma, l, fams, scale,
@@ -422,7 +417,7 @@ def synthesize(spec) -> CamResult:
         if offset_in != "auto":
             offset = float(offset_in)
     if not r0 > 1e-12 * scale:
-        raise StageError(STAGE, "degenerate cam: zero base radius")
+        raise StageError(STAGE, Message("cam.fail.zero_r0"))
     if r0_chosen is None:
         r0_min = r0
     elif rocker:
@@ -452,13 +447,12 @@ def synthesize(spec) -> CamResult:
     for name, got, lim in (("rise", th_max_rise, th_rise), ("return", th_max_ret, th_ret),
                            ("dwells", math.degrees(dwell_max), max(th_rise, th_ret))):
         if not got <= lim + PA_TOL_DEG:
-            raise StageError(STAGE, f"no cam centre found that keeps the pressure angle on the {name} "
-                                    f"within {lim:g} deg (best found: {got:.6g} deg); " + _HINT)
+            raise StageError(STAGE, Message("cam.fail.pressure_exceeded", phase=name, limit=lim, got=got))
 
     # ---- profile
     prof = Profile(motion, geom, O)
     if prof.min_speed() <= 1e-9 * scale:
-        raise StageError(STAGE, "the pitch profile has a cusp (its tangent vanishes)")
+        raise StageError(STAGE, Message("cam.fail.cusp"))
     rho_min, rho_phi = prof.rho_min()
     roller_in = _get(spec, "roller", "auto")
     if follower == "knife":
@@ -470,14 +464,12 @@ def synthesize(spec) -> CamResult:
         roller = float(roller_in)
         roller_given = True
         if not roller > 0:
-            raise StageError(STAGE, "the roller radius must be positive")
+            raise StageError(STAGE, Message("cam.fail.roller_positive"))
         if roller >= rho_min:
-            raise StageError(STAGE, f"the roller (r = {roller * 1000:.3f} mm) undercuts the profile: "
-                                    f"minimum radius of curvature of the pitch profile "
-                                    f"{rho_min * 1000:.3f} mm at phi = {rho_phi:.2f} deg")
+            raise StageError(STAGE, Message("cam.fail.roller_undercut", roller=roller * 1000, rho=rho_min * 1000,
+                                            phi=rho_phi))
         if roller >= r0:
-            raise StageError(STAGE, f"the roller (r = {roller * 1000:.3f} mm) is not smaller than "
-                                    f"the base radius r0 = {r0 * 1000:.3f} mm")
+            raise StageError(STAGE, Message("cam.fail.roller_r0", roller=roller * 1000, r0=r0 * 1000))
         if roller > 0.8 * rho_min:
             warnings.append(Message("cam.roller_rho", roller=roller * 1000, limit=0.8 * rho_min * 1000))
         if roller > 0.5 * r0:
@@ -552,10 +544,7 @@ def _flat(spec, motion: Motion, stroke: float, r0_chosen: float | None, division
     sigma = 1 if rotation == "ccw" else -1
     rigid = [e for e in motion.boundaries() if e["kind"] == "rigid"]
     if rigid:
-        raise StageError(STAGE, "a flat-faced follower needs a motion law without velocity jumps: the "
-                                "profile would have a corner at phi = "
-                                + ", ".join(f"{e['phi']:.4g}" for e in rigid)
-                                + " deg; choose another law (cosine, sine, poly345, ...)")
+        raise StageError(STAGE, Message("cam.fail.flat_corner", phis=[e["phi"] for e in rigid]))
     rho_allowed = float(_get(spec, "rho_min_allowed", 0.0) or 0.0)
     margin, margin_phi = flat.convexity_margin(motion)
     r0_min = rho_allowed + margin
@@ -564,12 +553,10 @@ def _flat(spec, motion: Motion, stroke: float, r0_chosen: float | None, division
     else:
         r0 = r0_chosen
         if r0 - margin < rho_allowed - 1e-12 * stroke:
-            raise StageError(STAGE, f"the chosen base radius r0 = {r0 * 1000:.3f} mm gives the profile a "
-                                    f"least radius of curvature r0 + s + d2s/dphi2 = {(r0 - margin) * 1000:.3f} mm "
-                                    f"at phi = {margin_phi:.2f} deg, below the allowed "
-                                    f"{rho_allowed * 1000:.3f} mm; the least r0 is {r0_min * 1000:.3f} mm")
+            raise StageError(STAGE, Message("cam.fail.flat_r0", r0=r0 * 1000, rho=(r0 - margin) * 1000, phi=margin_phi,
+                                            allowed=rho_allowed * 1000, r0_min=r0_min * 1000))
     if not r0 > 1e-12 * stroke:
-        raise StageError(STAGE, "degenerate cam: zero base radius (give `rho_min_allowed`)")
+        raise StageError(STAGE, Message("cam.fail.zero_r0_flat"))
     warnings: list[str] = []
     speed, laws_info, impacts, phases = _laws_impacts(spec, motion, False, warnings)
     w_span, w_sym = flat.face_widths(motion)

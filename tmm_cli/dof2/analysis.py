@@ -221,15 +221,14 @@ def analyze(section) -> Dof2Result:
             sol = solve_ivp(rhs, (0.0, t_stop), y0, method="DOP853", rtol=RTOL, atol=ATOL, dense_output=True,
                             events=events or None)
     except _TooLong as exc:
-        raise StageError("dof2", f"the motion is too long to integrate to rtol {RTOL:g}: {MAX_NFEV} evaluations "
-                                 f"reached only t = {exc.args[0]:.4g} s of {t_stop:g} s (shorten t_end or turns)") from None
+        raise StageError("dof2", Message("dof2.fail.too_long", rtol=RTOL, nfev=MAX_NFEV, t=exc.args[0],
+                                         t_stop=t_stop)) from None
     if sol.status == -1:
-        raise StageError("dof2", f"the integration failed: {sol.message}")
+        raise StageError("dof2", Message("dof2.fail.integration", why=str(sol.message)))
     t_final = float(sol.t[-1])
     if turns_event is not None and sol.status != 1:
         turned = abs(sol.y[0, -1] - phi0) / (2 * math.pi)
-        raise StageError("dof2", f"the rotor makes only {turned:.4g} of the {float(section.turns):g} turns "
-                                 f"within t_max = {t_stop:g} s (give t_end, or a larger t_max or moment)")
+        raise StageError("dof2", Message("dof2.fail.turns", turned=turned, turns=float(section.turns), t_stop=t_stop))
     hits = []
     if impact_event is not None:
         k = events.index(impact_event)
@@ -238,7 +237,7 @@ def analyze(section) -> Dof2Result:
             t_final = hits[0]
             hits = hits[:1]
     if t_final <= 0:
-        raise StageError("dof2", "the duration of the motion is zero")
+        raise StageError("dof2", Message("dof2.fail.zero_duration"))
 
     t = np.linspace(0.0, t_final, int(section.samples))
     with np.errstate(all="ignore"):
@@ -246,7 +245,7 @@ def analyze(section) -> Dof2Result:
         Y[:, 0] = y0
         s = _evaluate(p, drive, moment, t, Y)
     if not all(np.all(np.isfinite(s[k])) for k in ("phi", "psi", "w", "pd", "wd", "pdd", "R01", "R12", "T")):
-        raise StageError("dof2", "the motion is not finite (check the masses and the moments of inertia)")
+        raise StageError("dof2", Message("dof2.fail.not_finite"))
 
     warnings: list[str] = []
     impacts: list[dict] = []

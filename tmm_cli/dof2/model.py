@@ -40,6 +40,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import StageError
+from ..messages import Message
 
 G_ACC = 9.81  # m/s^2, as in loads (docs/methods.md §3.1: g = 9.81 along -y)
 
@@ -81,12 +82,9 @@ class Params:
         """Raise StageError when the equations of motion are singular."""
         scale = self.a * self.d
         if self.d <= 0:
-            raise StageError("dof2", "the striker has no inertia about O1 (m2*l_c^2 + J_C = 0): "
-                                     "its motion is undetermined")
+            raise StageError("dof2", Message("dof2.fail.no_striker_inertia"))
         if not speed_held and self.a * self.d - self.b ** 2 <= 1e-12 * max(scale, 1e-300):
-            raise StageError("dof2", "the mass matrix is singular at psi = 0 or 180 deg: the rotor has no "
-                                     "moment of inertia about O and the striker is a point mass "
-                                     "(give the rotor J or J_O, or the striker J)")
+            raise StageError("dof2", Message("dof2.fail.singular_mass"))
 
 
 def mass_matrix(p: Params, psi):

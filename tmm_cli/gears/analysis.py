@@ -135,17 +135,17 @@ def analyze(spec) -> GearResult:
     rho_f = _get(spec, "rho_f", None)
     rho_f = c / (1.0 - math.sin(al)) if rho_f is None else float(rho_f)
     if m <= 0 or min(z1, z2) < 3:
-        raise StageError(STAGE, f"invalid module or tooth numbers (m = {m}, z = [{z1}, {z2}])")
+        raise StageError(STAGE, Message("gears.fail.invalid", m=m, z1=z1, z2=z2))
     if rho_f * (1.0 - math.sin(al)) > c + 1e-12:
-        raise StageError(STAGE, f"rack fillet rho_f* = {rho_f} does not fit in the clearance c* = {c}")
+        raise StageError(STAGE, Message("gears.fail.fillet", rho_f=rho_f, c=c))
     warnings: list[str] = []
     bc = None
     xv = spec.x
     if isinstance(xv, str):
         if xv != "auto":
-            raise StageError(STAGE, f"x must be two numbers or 'auto', not {xv!r}")
+            raise StageError(STAGE, Message("gears.fail.x_form", x=xv))
         if rule not in _shifts.RULES:
-            raise StageError(STAGE, f"unknown shift rule {rule!r}")
+            raise StageError(STAGE, Message("gears.fail.unknown_rule", rule=str(rule)))
         bc = _shifts.blocking_contour(m, z1, z2, alpha, ha, c, sa_min, rho_f)
         x1, x2, notes = _shifts.choose(rule, m, z1, z2, alpha, ha, c, sa_min, rho_f, contour=bc)
         warnings += notes
@@ -156,14 +156,12 @@ def analyze(spec) -> GearResult:
     g = {k: (float(v) if np.ndim(v) == 0 and not isinstance(v, (bool, np.bool_)) else v)
          for k, v in g.items()}
     if not bool(g["valid"]):
-        raise StageError(STAGE, f"no mesh angle: inv alpha_w = {g['inv_alpha_w']:.6g} <= 0 "
-                                f"(the shift sum x1 + x2 = {x1 + x2:.4g} is too negative)")
+        raise StageError(STAGE, Message("gears.fail.no_mesh_angle", inv=g["inv_alpha_w"], xsum=x1 + x2))
     for i in (1, 2):
         if g[f"rf{i}"] <= 0:
-            raise StageError(STAGE, f"wheel {i}: root radius rf = {g[f'rf{i}']:.6g} m is not positive")
+            raise StageError(STAGE, Message("gears.fail.root_radius", wheel=i, rf=g[f"rf{i}"]))
         if g[f"ra{i}"] <= g[f"rf{i}"]:
-            raise StageError(STAGE, f"wheel {i}: the tip circle ra = {g[f'ra{i}']:.6g} m is not above the "
-                                    f"root circle rf = {g[f'rf{i}']:.6g} m (no tooth)")
+            raise StageError(STAGE, Message("gears.fail.no_tooth", wheel=i, ra=g[f"ra{i}"], rf=g[f"rf{i}"]))
     w1 = Wheel(m, z1, x1, alpha, ha, c, g["ra1"], rho_f)
     w2 = Wheel(m, z2, x2, alpha, ha, c, g["ra2"], rho_f)
     rl, rhol, no_involute = [], [], []

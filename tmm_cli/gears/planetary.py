@@ -102,7 +102,7 @@ def scheme_key(name: str) -> str:
     key = str(name).strip()
     key = ALIASES.get(key.lower(), key.upper())
     if key not in SCHEMES:
-        raise StageError(STAGE, f"unknown planetary scheme {name!r}; known: {', '.join(SCHEMES)}")
+        raise StageError(STAGE, Message("planetary.fail.unknown_scheme", name=str(name), known=", ".join(SCHEMES)))
     return key
 
 
@@ -452,20 +452,18 @@ class PlanetaryResult:
                 "candidates": self.candidates, "velocity_plan": self.plan, "warnings": list(self.warnings)}
 
 
-def _no_candidates_hint(scheme: str, req: float, tol: float, z_min: int, z_max: int) -> str:
+def _no_candidates_hint(scheme: str, req: float, tol: float, z_min: int, z_max: int) -> Message:
     """Why the search may have found nothing, and what to change."""
     if z_max < z_min:
-        return f"z_max = {z_max} is below z_min = {z_min}"
+        return Message("planetary.hint.z_max_below", z_max=z_max, z_min=z_min)
     if scheme in ("A", "B", "D") and z_max < Z_INT:
-        return f"scheme {scheme} has an internal wheel, which needs z >= {Z_INT}: raise z_max"
+        return Message("planetary.hint.internal", scheme=scheme, z_int=Z_INT)
     if scheme == "A":
         # i = 1 + z3/z1 with z1 >= z_min, z3 <= z_max and z3 >= Z_INT
         lo, hi = 1 + Z_INT / z_max, 1 + z_max / z_min
         if req + tol * abs(req) < lo or req - tol * abs(req) > hi:
-            return (f"scheme A gives 1 + z3/z1 only between {lo:.4g} and {hi:.4g} with these tooth "
-                    f"limits: choose another scheme (B for larger ratios) or change z_min, z_max")
-    return ("widen the tolerance or z_min..z_max, use fewer satellites (adjacency), "
-            "or choose another scheme")
+            return Message("planetary.hint.scheme_a", lo=lo, hi=hi)
+    return Message("planetary.hint.general")
 
 
 def spec_limits(spec) -> Limits:
@@ -516,7 +514,7 @@ def synthesize_planetary(spec) -> PlanetaryResult:
     scheme = scheme_key(spec.scheme)
     req = float(spec.ratio)
     if req == 0 or not math.isfinite(req):
-        raise StageError(STAGE, "the required ratio must be a non-zero number")
+        raise StageError(STAGE, Message("planetary.fail.ratio_zero"))
     k = int(getattr(spec, "satellites", 3) or 3)
     tol = float(getattr(spec, "tolerance", 0.05) or 0.05)
     m = getattr(spec, "m", None)
@@ -527,12 +525,12 @@ def synthesize_planetary(spec) -> PlanetaryResult:
     n_keep = int(getattr(spec, "candidates", 10) or 10)
     rank = getattr(spec, "rank", None) or "size"
     if scheme in ("A", "B") and req <= 1:
-        raise StageError(STAGE, f"scheme {scheme} gives i_1H > 1 only (required {req:g})")
+        raise StageError(STAGE, Message("planetary.fail.below_one", scheme=scheme, required=req))
     found, best = search(scheme, req, tol, k, limits, int(z_max), rank, n_keep)
     if not found:
-        raise StageError(STAGE, f"no tooth numbers for scheme {scheme} give i_1H = {req:g} within "
-                                f"{tol:.3g} with {k} satellites (z in [{z_min}, {z_max}]); "
-                                + _no_candidates_hint(scheme, req, tol, int(z_min), int(z_max)))
+        raise StageError(STAGE, Message("planetary.fail.none_found", scheme=scheme, required=req, tol=tol, k=k,
+                                        z_min=z_min, z_max=z_max,
+                                        hint=_no_candidates_hint(scheme, req, tol, int(z_min), int(z_max))))
     z, v = found[0]["z"], found[0]["checks"]
     cands = [{key: c[key] for key in ("z", "ratio", "ratio_error", "size", "teeth", "assembly_p")}
              for c in found]

@@ -193,9 +193,7 @@ def analyze(spec, drive=None) -> TrainResult:
         mag = abs(u_free) ** (1.0 / len(shared))
         signs = _free_signs(specs, shared, 1 if u_free > 0 else -1)
         if signs is None:
-            raise StageError(STAGE, f"the free stages {shared} cannot give the sign of u = {u_free:.6g}: "
-                                    f"external pairs turn the sense, internal pairs and schemes A, B keep it; "
-                                    f"make a pair internal/external or use scheme C or D")
+            raise StageError(STAGE, Message("drive_train.fail.sign", stages=str(shared), u=u_free))
         targets.update({i: signs[i] * mag for i in shared})
     split = [{"stage": i, "ratio": targets[i]} for i in sorted(targets)]
     # ---- candidate lists per stage
@@ -212,19 +210,16 @@ def analyze(spec, drive=None) -> TrainResult:
             if st.internal:
                 z2 = max(z2, z1 + lim.difference, lim.internal)
             if (u > 0) != bool(st.internal):
-                raise StageError(STAGE, f"stage {i} (stages[{i}]): a{'n internal' if st.internal else 'n external'} pair "
-                                        f"cannot give u = {u:.6g} (sign)")
+                raise StageError(STAGE, Message("drive_train.fail.pair_sign", i=i, u=u,
+                                                kind="internal" if st.internal else "external"))
             if not st.internal and z2 < lim.external:
-                raise StageError(STAGE, f"stage {i} (stages[{i}], pair): u = {u:.6g} needs z2 = {z2} < z_min_external = "
-                                        f"{lim.external}; give the stage its own `ratio` (|u| >= 1) or its z")
+                raise StageError(STAGE, Message("drive_train.fail.pair_zmin", i=i, u=u, z2=z2, zmin=lim.external))
             if z2 > zmax or z2 < 5:
-                raise StageError(STAGE, f"stage {i} (stages[{i}], pair): u = {u:.6g} needs z2 = {z2} outside [5, z_max = "
-                                        f"{zmax}]; raise z_max or give the stage's z or ratio")
+                raise StageError(STAGE, Message("drive_train.fail.pair_zmax", i=i, u=u, z2=z2, zmax=zmax))
             options.append([[z1, z2]])
             continue
         if st.kind in ("A", "B") and u <= 1:
-            raise StageError(STAGE, f"stage {i} (stages[{i}], planetary {st.kind}) gives u > 1 only, its share is "
-                                    f"u = {u:.6g}: give the stage a `ratio`, or use scheme C or D")
+            raise StageError(STAGE, Message("drive_train.fail.below_one", i=i, kind=st.kind, u=u))
         found, best = pl.search(st.kind, u, tol, k, lim, zmax, "ratio_error" if spec.rank == "ratio_error"
                                 else "size", KEEP, STAGE)
         if spec.rank == "size" and len(found) == KEEP:          # add the most accurate ones too
@@ -233,13 +228,11 @@ def analyze(spec, drive=None) -> TrainResult:
             found += [c for c in more if tuple(c["z"].values()) not in seen]
         if not found:
             near = pl.nearest_ratio(st.kind, u, k, lim, zmax)
-            near_txt = (f"the nearest feasible ratio is {near:.6g} ({(near - u) / u:+.3%})" if near is not None
-                        else "no tooth set meets the conditions at all")
-            raise StageError(STAGE, f"stage {i} (stages[{i}], planetary {st.kind}): no tooth numbers give u = {u:.6g} within "
-                                    f"tolerance {tol:g} with {k} satellites; {near_txt}; relax `tolerance`, "
-                                    f"`satellites`, `z_max` or the tooth limits (z_min_external = {lim.external}, "
-                                    f"z_min_internal = {lim.internal}, z_min_satellite_in_internal = "
-                                    f"{lim.satellite_in_internal}), or give the stage its own `ratio`")
+            near_txt = (Message("drive_train.hint.nearest", near=near, rel=(near - u) / u) if near is not None
+                        else Message("drive_train.hint.none"))
+            raise StageError(STAGE, Message("drive_train.fail.none_found", i=i, kind=st.kind, u=u, tol=tol, k=k,
+                                            near=near_txt, ext=lim.external, int=lim.internal,
+                                            sat=lim.satellite_in_internal))
         best_per_stage[i] = best
         options.append([list(c["z"].values()) for c in found])
     # ---- whole trains
@@ -261,9 +254,7 @@ def analyze(spec, drive=None) -> TrainResult:
               "size": r[3], "teeth": r[4]} for r in rows[: int(spec.candidates)]]
     if req is not None and abs(chosen[2]) > tol * (1 + 1e-12):
         if free:
-            raise StageError(STAGE, f"the chosen train gives u = {chosen[1]:.6g}, {chosen[2]:+.3%} from the required "
-                                    f"{req:.6g} (tolerance {tol:g}); give the stages their own `ratio` or relax "
-                                    f"`tolerance`")
+            raise StageError(STAGE, Message("drive_train.fail.missed", u=chosen[1], err=chosen[2], req=req, tol=tol))
         warnings.append(Message("drive_train.ratio_missed", ratio=chosen[1], required=req, error=chosen[2],
                                 tolerance=tol))
     u_total = chosen[1]

@@ -53,11 +53,14 @@ class _Formatter(string.Formatter):
     """``str.format`` whose spec may name a word table of the catalogue; list values are
     formatted item by item and joined by ``", "``."""
 
-    def __init__(self, terms: dict):
+    def __init__(self, terms: dict, lang: str = "en"):
         super().__init__()
         self.terms = terms
+        self.lang = lang
 
     def format_field(self, value: Any, spec: str) -> str:
+        if isinstance(value, dict) and "code" in value:      # a message inside a message
+            return localize(value, self.lang)
         table = self.terms.get(spec) if spec else None
         if table is not None:
             if isinstance(value, list):
@@ -77,11 +80,13 @@ def render(code: str, params: dict, lang: str = "en") -> str:
         if lang == "en":
             raise KeyError(f"unknown message code {code!r}")
         return render(code, params, "en")
-    return _Formatter(cat["terms"]).format(template, **params)
+    return _Formatter(cat["terms"], lang if lang in LANGS else "en").format(template, **params)
 
 
 def _plain(value: Any) -> Any:
     """A parameter as a plain JSON value (numpy scalars and arrays, tuples)."""
+    if isinstance(value, Message):           # a message inside a message: kept as data
+        return value.to_dict()
     if value is None or type(value) in (str, bool, int, float):
         return value
     if isinstance(value, bool):
@@ -91,6 +96,8 @@ def _plain(value: Any) -> Any:
             return kind(value)
     if isinstance(value, (list, tuple)):
         return [_plain(v) for v in value]
+    if isinstance(value, dict):
+        return {str(k): _plain(v) for k, v in value.items()}
     item = getattr(value, "tolist", None)
     if item is not None:
         return _plain(item())

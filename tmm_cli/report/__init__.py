@@ -38,8 +38,8 @@ How to add a section (e.g. for the stage ``cam``)
 ``svg(fig)``, ``write_csv(name, header, rows)``, ``write_file(name, data)``,
 ``fmt``, ``fmt_fixed``, ``sense(omega)`` (cw/ccw in words), ``link_names()``,
 ``figures`` (helpers: ``new_figure``, ``nice_scale``, ``draw_ground``,
-``draw_block``, ``draw_joint``, ``arrow``, ``place_labels``, and
-``figures.draw_mechanism`` for the linkage).
+``draw_joint``, ``arrow``, ``place_labels``, and ``figures.figure_for_box`` +
+``figures.draw_mechanism`` for the linkage, drawn directly as SVG).
 """
 from __future__ import annotations
 
@@ -239,7 +239,7 @@ def _finish(ctx, proc, conn, formats, all_names, helper_names, out_dir, notes=No
             pass
         if not helper_ok:
             frags.update(_build(ctx, helper_names))
-    html = _write_figures(ctx, _assemble(ctx, frags))
+    html, figure_files = _figure_files(ctx, _assemble(ctx, frags))
     sent = False
     if want_pdf and helper_pdf and proc is not None and helper_ok:
         try:
@@ -247,6 +247,7 @@ def _finish(ctx, proc, conn, formats, all_names, helper_names, out_dir, notes=No
             sent = True
         except OSError:
             pass
+    figure_files()                     # the figures as files, while the helper compiles
     written = list(ctx.written)
     if "html" in formats:
         from . import explore   # the slider widget: report.html only, not the PDF
@@ -279,43 +280,46 @@ _HEADING = re.compile(r"<h[2-4]\b[^>]*>(.*?)</h[2-4]>", re.S)
 _DATA_NAME = re.compile(r'^<svg\b[^>]*?\sdata-name="([a-z0-9-]+)"')
 
 
-def _write_figures(ctx, html: str) -> str:
-    """Every figure of the report also as a file beside it, named by its content and
-    position (figures/plans-pos02.svg, figures/lever-pos02.svg, figures/cam-profile.svg;
-    a figure without a name: fig-NN.svg, NN its number in the report), with
-    figures/index.csv giving each file its caption in the report's language (the
-    figure's caption, else the heading it stands under).  Returns the HTML without the
-    figures' file names (data-name attributes)."""
+def _figure_files(ctx, html: str):
+    """(the HTML without the figures' file names (data-name attributes), a function that
+    writes every figure of the report as a file beside it), so the HTML can go to the PDF
+    while the files are written.  The files are named by their content and position
+    (figures/plans-pos02.svg, figures/lever-pos02.svg, figures/cam-profile.svg; a figure
+    without a name: fig-NN.svg, NN its number in the report), with figures/index.csv giving
+    each file its caption in the report's language (the figure's caption, else the
+    heading it stands under)."""
     import html as _html
 
     def plain(s):
         return " ".join(_html.unescape(_TAGS.sub("", s)).split())
 
-    rows, used = [], set()
-    heads = [(m.start(), plain(m.group(1))) for m in _HEADING.finditer(html)]
-    for k, m in enumerate(_FIGURE.finditer(html), start=1):
-        svg = m.group(1)
-        dn = _DATA_NAME.match(svg)
-        stem = dn.group(1) if dn else f"fig-{k:02d}"
-        name, n = stem, 1
-        while name in used:
-            n += 1
-            name = f"{stem}-{n}"
-        used.add(name)
-        if dn:
-            svg = svg.replace(f' data-name="{stem}"', "", 1)
-        if "xmlns=" not in svg[:300]:
-            svg = svg.replace("<svg", '<svg xmlns="http://www.w3.org/2000/svg"', 1)
-        path = f"figures/{name}.svg"
-        ctx.write_file(path, '<?xml version="1.0" encoding="utf-8"?>\n' + svg + "\n")
-        cap = _CAPTION.search(m.group(2))
-        text = plain(cap.group(1)) if cap else ""
-        if not text:
-            text = next((h for at, h in reversed(heads) if at < m.start()), "")
-        rows.append([path, text])
-    if rows:
-        ctx.write_csv("figures/index.csv", ["file", "caption"], rows)
-    return re.sub(r'(<svg\b[^>]*?) data-name="[a-z0-9-]+"', r"\1", html)
+    def write():
+        rows, used = [], set()
+        heads = [(m.start(), plain(m.group(1))) for m in _HEADING.finditer(html)]
+        for k, m in enumerate(_FIGURE.finditer(html), start=1):
+            svg = m.group(1)
+            dn = _DATA_NAME.match(svg)
+            stem = dn.group(1) if dn else f"fig-{k:02d}"
+            name, n = stem, 1
+            while name in used:
+                n += 1
+                name = f"{stem}-{n}"
+            used.add(name)
+            if dn:
+                svg = svg.replace(f' data-name="{stem}"', "", 1)
+            if "xmlns=" not in svg[:300]:
+                svg = svg.replace("<svg", '<svg xmlns="http://www.w3.org/2000/svg"', 1)
+            path = f"figures/{name}.svg"
+            ctx.write_file(path, '<?xml version="1.0" encoding="utf-8"?>\n' + svg + "\n")
+            cap = _CAPTION.search(m.group(2))
+            text = plain(cap.group(1)) if cap else ""
+            if not text:
+                text = next((h for at, h in reversed(heads) if at < m.start()), "")
+            rows.append([path, text])
+        if rows:
+            ctx.write_csv("figures/index.csv", ["file", "caption"], rows)
+
+    return re.sub(r'(<svg\b[^>]*?) data-name="[a-z0-9-]+"', r"\1", html), write
 
 
 def render(results: dict, task, out_dir: Path, formats: set[str], lang: str = "en",
@@ -327,8 +331,7 @@ def render(results: dict, task, out_dir: Path, formats: set[str], lang: str = "e
     ``notes`` the PdfSkipped exception propagates.
 
     With two cores the work is split over two processes: a helper (forked) builds
-    the kinetostatics and dynamics sections (their drawings are direct SVG: the helper
-    needs no matplotlib) while the main process imports matplotlib and builds the
+    the kinetostatics and dynamics sections while the main process builds the
     other sections; the helper then compiles the PDF while the main process
     writes report.html.  Any failure of the helper falls back to doing everything here."""
     out_dir = Path(out_dir)

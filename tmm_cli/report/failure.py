@@ -68,9 +68,13 @@ def box(ctx, err: dict) -> str:
     """The HTML fragment shown in place of the failed section."""
     section, title_key, task_section = placement(err)
     pos = err.get("position")
+    message = err.get("message") or ""
+    if err.get("code"):                 # a coded message: in the report's language
+        from ..messages import localize
+        message = localize({"code": err["code"], "params": err.get("params") or {}, "text": message}, ctx.lang)
     where = ctx.t("fail.where", position=pos) if pos not in (None, "") else ""
     return ctx.render("sections/failure.html.j2", sid=f"{section or 'stage'}-failed",
                       title=ctx.t(title_key) if section else str(err.get("stage")),
                       what=ctx.t("fail.what", stage=err.get("stage"), where=where,
-                                 message=err.get("message") or ""),
+                                 message=message),
                       change=ctx.t("fail.change", section=task_section))

@@ -1,6 +1,7 @@
-"""Figure helpers of the report: matplotlib (Agg) -> inline SVG, nice scales,
-and the drawing primitives of kinematic schemes (ground pivots with hatching,
-slider blocks, guides, joints, plan vectors with labels).
+"""Figure helpers of the report: matplotlib (Agg) -> inline SVG, nice scales, label
+placement, and the kinematic scheme of a linkage (ground pivots with hatching, slider
+blocks, guides, joints, link numbers) drawn directly as SVG (SchemeView: the linkage
+report imports no matplotlib); the cam, gear and two-DOF figures still use matplotlib.
 
 matplotlib is imported lazily (inside functions): importing this module is cheap.
 Text uses DejaVu Sans (ships with matplotlib, has Cyrillic and Greek).
@@ -12,6 +13,8 @@ import math
 import re
 
 import numpy as np
+
+from .svgdraw import PT_PER_MM
 
 MM = 1.0 / 25.4  # inch per mm
 _SUBS = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
@@ -210,60 +213,55 @@ def figure_at_scale(lo, hi, unit: float, margin_mm: float = 8.0):
 
 
 # ---------------------------------------------------------------- primitives
-def draw_ground(ax, xy, size: float, angle_deg: float = -90.0, lw=0.8, color="k"):
-    """A fixed pivot: small triangle ending in a hatched base, pointing away
-    from angle_deg (default: base below the pivot)."""
-    x, y = xy
+def _ground_lines(xy, size: float, angle_deg: float = -90.0):
+    """A fixed pivot's strokes: the two sides of its triangle (pivot -> base ends) and its
+    base line (to hatch), the outward direction."""
     a = math.radians(angle_deg)
     d = np.array([math.cos(a), math.sin(a)])      # from pivot towards the base
     nrm = np.array([-d[1], d[0]])
-    c = np.array([x, y])
+    c = np.asarray(xy, float)
     h = 1.6 * size
-    b1 = c + d * h + nrm * size
-    b2 = c + d * h - nrm * size
-    ax.plot([c[0], b1[0]], [c[1], b1[1]], color=color, lw=lw, zorder=3)
-    ax.plot([c[0], b2[0]], [c[1], b2[1]], color=color, lw=lw, zorder=3)
-    e1 = c + d * h + nrm * 1.6 * size
-    e2 = c + d * h - nrm * 1.6 * size
-    draw_hatch(ax, e1, e2, size * 0.7, d, lw=lw, color=color)
+    sides = [(c, c + d * h + nrm * size), (c, c + d * h - nrm * size)]
+    return sides, (c + d * h + nrm * 1.6 * size, c + d * h - nrm * 1.6 * size), d
 
 
-def draw_hatch(ax, p, q, depth, outward, lw=0.8, color="k", n=None):
-    """A ground line p-q with short hatch strokes on the side `outward`."""
+def _hatch_strokes(p, q, depth, outward, n=None):
+    """The short strokes hatching the line p-q on the side `outward`."""
     p = np.asarray(p, float)
     q = np.asarray(q, float)
     outward = np.asarray(outward, float)
     outward = outward / (np.linalg.norm(outward) or 1.0)
-    ax.plot([p[0], q[0]], [p[1], q[1]], color=color, lw=lw * 1.3, zorder=3)
     L = float(np.linalg.norm(q - p))
     if L <= 0:
-        return
+        return []
     t = (q - p) / L
     if n is None:
         n = max(3, int(L / depth * 1.2))
-    segs = []
-    for s in np.linspace(0, L, n + 1)[1:]:
-        a0 = p + t * s
-        a1 = a0 + outward * depth - t * depth
-        segs.append([a0, a1])
-    from matplotlib.collections import LineCollection
-    ax.add_collection(LineCollection(segs, colors=color, linewidths=lw * 0.7, zorder=3))
+    return [(p + t * s, p + t * s + outward * depth - t * depth) for s in np.linspace(0, L, n + 1)[1:]]
+
+
+def draw_ground(ax, xy, size: float, angle_deg: float = -90.0, lw=0.8, color="k"):
+    """A fixed pivot (matplotlib axes): small triangle ending in a hatched base, pointing
+    away from angle_deg (default: base below the pivot)."""
+    sides, (e1, e2), d = _ground_lines(xy, size, angle_deg)
+    for p, q in sides:
+        ax.plot([p[0], q[0]], [p[1], q[1]], color=color, lw=lw, zorder=3)
+    draw_hatch(ax, e1, e2, size * 0.7, d, lw=lw, color=color)
+
+
+def draw_hatch(ax, p, q, depth, outward, lw=0.8, color="k", n=None):
+    """A ground line p-q with short hatch strokes on the side `outward` (matplotlib axes)."""
+    ax.plot([p[0], q[0]], [p[1], q[1]], color=color, lw=lw * 1.3, zorder=3)
+    segs = _hatch_strokes(p, q, depth, outward, n)
+    if segs:
+        from matplotlib.collections import LineCollection
+        ax.add_collection(LineCollection(segs, colors=color, linewidths=lw * 0.7, zorder=3))
 
 
 def draw_joint(ax, xy, r: float, color="k", lw=0.8, z=5):
     """A revolute pair: small open circle."""
     from matplotlib.patches import Circle
     ax.add_patch(Circle(xy, r, facecolor="white", edgecolor=color, lw=lw, zorder=z))
-
-
-def draw_block(ax, xy, angle_deg: float, w: float, h: float, color="k", lw=0.9,
-               face="white", z=4):
-    """A slider block (rectangle w along the guide x h), centred at xy."""
-    from matplotlib.patches import Polygon
-
-    from .svgdraw import block_corners
-    pts = block_corners(xy, angle_deg, w, h)
-    ax.add_patch(Polygon(pts, closed=True, facecolor=face, edgecolor=color, lw=lw, zorder=z))
 
 
 def arrow(ax, p, q, color="k", lw=1.0, head=None, z=4, style="-|>", ls="-"):
@@ -278,22 +276,32 @@ def arrow(ax, p, q, color="k", lw=1.0, head=None, z=4, style="-|>", ls="-"):
                                  linestyle=ls, shrinkA=0, shrinkB=0, zorder=z))
 
 
-def _seg_dist(c, segs):
-    """Distance from point c to the nearest of the segments (array (k, 2, 2))."""
-    if segs is None or not len(segs):
-        return np.inf
-    return float(_seg_dists(np.asarray(c, float)[None, :], segs)[0])
+class _Segments:
+    """Distances from points to the nearest of segments (k, 2, 2), the segments' parts
+    computed once (x and y apart: no reductions over a length-2 axis)."""
+
+    def __init__(self, segs):
+        a, b = segs[:, 0], segs[:, 1]
+        d = b - a
+        self.ax, self.ay = a[:, 0], a[:, 1]
+        self.dx, self.dy = d[:, 0], d[:, 1]
+        self.L2 = np.maximum(self.dx * self.dx + self.dy * self.dy, 1e-300)
+
+    def dists(self, cx, cy):
+        """Distance from each point (cx[i], cy[i]) to the nearest segment."""
+        rx = cx[:, None] - self.ax
+        ry = cy[:, None] - self.ay
+        t = np.clip((rx * self.dx + ry * self.dy) / self.L2, 0.0, 1.0)
+        qx = rx - self.dx * t
+        qy = ry - self.dy * t
+        return np.sqrt((qx * qx + qy * qy).min(axis=1))
 
 
-def _seg_dists(C, segs):
-    """Distances from each of the points C (m, 2) to the nearest segment (k, 2, 2)."""
-    a, b = segs[:, 0], segs[:, 1]
-    d = b - a
-    L2 = np.maximum((d * d).sum(axis=1), 1e-300)
-    rel = C[:, None, :] - a[None, :, :]                                  # (m, k, 2)
-    t = np.clip((rel * d[None]).sum(axis=2) / L2[None], 0.0, 1.0)         # (m, k)
-    q = rel - d[None] * t[:, :, None]
-    return np.sqrt((q * q).sum(axis=2)).min(axis=1)
+def _point_dists(cx, cy, px, py):
+    """Distance from each point (cx[i], cy[i]) to the nearest of the points (px, py)."""
+    dx = cx[:, None] - px
+    dy = cy[:, None] - py
+    return np.sqrt((dx * dx + dy * dy).min(axis=1))
 
 
 _DIRS = np.array([[math.cos(t), math.sin(t)] for t in np.linspace(0, 2 * math.pi, 16, endpoint=False)])
@@ -305,17 +313,6 @@ def text_size(s: str, size_mm: float, sub: str | None = None) -> tuple[float, fl
     """(width, height) mm of a label of font size size_mm (a subscript counted full
     width): the box the drawings keep clear, and the one the tests check."""
     return 0.6 * size_mm * (len(s) + len(sub or "")) + 0.6, 1.15 * size_mm
-
-
-def _hit(cand, half, taken):
-    """For the candidate centres (m, 2) of a box of half sizes `half`: does it overlap one
-    of the boxes `taken` (k, 4: x0, y0, x1, y1)?"""
-    if not len(taken):
-        return np.zeros(len(cand), bool)
-    t = np.asarray(taken, float)
-    return ((np.abs(cand[:, None, 0] - (t[None, :, 0] + t[None, :, 2]) / 2) < half[0] + (t[None, :, 2] - t[None, :, 0]) / 2)
-            & (np.abs(cand[:, None, 1] - (t[None, :, 1] + t[None, :, 3]) / 2) < half[1] + (t[None, :, 3] - t[None, :, 1]) / 2)
-            ).any(axis=1)
 
 
 def place_labels(anchors, extent: float, avoid=(), step: float | None = None, segments=None,
@@ -332,58 +329,80 @@ def place_labels(anchors, extent: float, avoid=(), step: float | None = None, se
     one nor one of `taken` (x0, y0, x1, y1), and stays inside `bounds` (x0, y0, x1, y1);
     when no place near its anchor is free it moves further out (rings up to 11 steps),
     and it is appended to `taken` (the caller's list) once placed.
-    Vectorised over the candidates (numpy).
+    Vectorised over the candidates (numpy); the distances are computed for the
+    admissible candidates only.
     """
     if step is None:
         step = 0.045 * extent
     avoid_a = np.asarray([np.asarray(a, float) for a in avoid], float).reshape(-1, 2)
+    avx, avy = avoid_a[:, 0].copy(), avoid_a[:, 1].copy()
     segs = np.asarray(segments, float).reshape(-1, 2, 2) if segments is not None and len(segments) else None
+    seg = _Segments(segs) if segs is not None else None
     mults = _MULTS + (_FAR if sizes is not None else ())
     offs = np.concatenate([_DIRS * step * m for m in mults])
-    mult = np.repeat(np.array(mults), len(_DIRS))
+    ring = 0.35 * step * (np.repeat(np.array(mults), len(_DIRS)) - 1)
     dirs = np.tile(_DIRS, (len(mults), 1))
     taken = taken if isinstance(taken, list) else list(taken)
-    placed = np.empty((0, 2))
+    # the taken boxes as centres and half sizes (x, y), grown as labels are placed
+    tb = np.asarray(taken, float).reshape(-1, 4)
+    nt = len(tb)
+    tcx, tcy, thx, thy = np.empty((4, nt + (len(anchors) if sizes is not None else 0)))
+    tcx[:nt], tcy[:nt] = (tb[:, 0] + tb[:, 2]) / 2, (tb[:, 1] + tb[:, 3]) / 2
+    thx[:nt], thy[:nt] = (tb[:, 2] - tb[:, 0]) / 2, (tb[:, 3] - tb[:, 1]) / 2
+    box_tests = [(np.asarray(bc, float), np.asarray(bu, float), np.array([-bu[1], bu[0]], float), hw, hh)
+                 for (bc, bu, hw, hh) in boxes]
+    plx, ply = np.empty((2, len(anchors)))
     out = []
     big = 9 * step
     for k_a, (x, y, pref) in enumerate(anchors):
         c = np.array([x, y], float)
         cand = c + offs
         ok = np.ones(len(cand), bool)
-        for (bc, bu, hw, hh) in boxes:
-            bc = np.asarray(bc, float)
-            bu = np.asarray(bu, float)
-            bv = np.array([-bu[1], bu[0]])
+        for bc, bu, bv, hw, hh in box_tests:
             r = cand - bc
             ok &= ~((np.abs(r @ bu) < hw + 0.5 * step) & (np.abs(r @ bv) < hh + 0.4 * step))
         half = None
         if sizes is not None:
             half = np.asarray(sizes[k_a], float) / 2
-            free = ~_hit(cand, half, taken)
+            cx, cy = cand[:, 0], cand[:, 1]
+            if nt:
+                free = ~((np.abs(cx[:, None] - tcx[:nt]) < half[0] + thx[:nt])
+                         & (np.abs(cy[:, None] - tcy[:nt]) < half[1] + thy[:nt])).any(axis=1)
+            else:
+                free = np.ones(len(cand), bool)
             if bounds is not None:
-                free &= (cand[:, 0] - half[0] >= bounds[0]) & (cand[:, 0] + half[0] <= bounds[2]) \
-                    & (cand[:, 1] - half[1] >= bounds[1]) & (cand[:, 1] + half[1] <= bounds[3])
+                free &= (cx - half[0] >= bounds[0]) & (cx + half[0] <= bounds[2]) \
+                    & (cy - half[1] >= bounds[1]) & (cy + half[1] <= bounds[3])
             if (ok & free).any():
                 ok &= free
             elif free.any():
                 ok = free
-        dl = np.sqrt(((cand[:, None, :] - placed[None]) ** 2).sum(axis=2)).min(axis=1) if len(placed) \
-            else np.full(len(cand), big)
-        da = np.sqrt(((cand[:, None, :] - avoid_a[None]) ** 2).sum(axis=2)).min(axis=1) if len(avoid_a) \
-            else np.full(len(cand), big)
-        ds = _seg_dists(cand, segs) if segs is not None else np.full(len(cand), np.inf)
-        score = np.minimum(dl, 2.2 * step) + np.minimum(da, 1.2 * step) + np.minimum(ds, 0.8 * step) \
-            - 0.35 * step * (mult - 1)
-        if pref is not None:
-            n = math.hypot(*pref)
-            if n > 0:
-                score = score + 0.5 * step * (dirs @ (np.asarray(pref, float) / n))
-        score = np.where(ok, score, -np.inf)
-        k = int(np.argmax(score))
-        best = cand[k] if np.isfinite(score[k]) else c + _DIRS[4] * step * 2.5
-        placed = np.vstack([placed, best])
+        idx = np.flatnonzero(ok)
+        best = None
+        if len(idx):
+            cs = cand[idx]
+            cx, cy = cs[:, 0], cs[:, 1]
+            dl = _point_dists(cx, cy, plx[:k_a], ply[:k_a]) if k_a else np.full(len(cs), big)
+            da = _point_dists(cx, cy, avx, avy) if len(avx) else np.full(len(cs), big)
+            ds = seg.dists(cx, cy) if seg is not None else np.full(len(cs), np.inf)
+            score = np.minimum(dl, 2.2 * step) + np.minimum(da, 1.2 * step) + np.minimum(ds, 0.8 * step) \
+                - ring[idx]
+            if pref is not None:
+                n = math.hypot(*pref)
+                if n > 0:
+                    score = score + 0.5 * step * (dirs[idx] @ (np.asarray(pref, float) / n))
+            k = int(np.argmax(score))
+            if np.isfinite(score[k]):
+                best = cs[k]
+        if best is None:
+            best = c + _DIRS[4] * step * 2.5
+        plx[k_a], ply[k_a] = best
         if half is not None:
-            taken.append((best[0] - half[0], best[1] - half[1], best[0] + half[0], best[1] + half[1]))
+            box = (best[0] - half[0], best[1] - half[1], best[0] + half[0], best[1] + half[1])
+            taken.append(box)
+            tcx[nt], tcy[nt] = (box[0] + box[2]) / 2, (box[1] + box[3]) / 2
+            thx[nt], thy[nt] = (box[2] - box[0]) / 2, (box[3] - box[1]) / 2
+            nt += 1
         out.append((float(best[0]), float(best[1])))
     return out
 
@@ -425,44 +444,82 @@ def slider_ranges(entries, geom) -> dict[str, tuple[np.ndarray, np.ndarray]]:
     return out
 
 
-def fit_axes(ax, lo, hi, width_mm, height_mm, margin_mm=6.0):
-    """Set equal-aspect limits so that the box lo..hi fills a width_mm x height_mm
-    axes with a margin; returns the scale (data units per paper mm)."""
-    lo = np.asarray(lo, float)
-    hi = np.asarray(hi, float)
-    span = np.maximum(hi - lo, 1e-12)
-    unit = max(span[0] / max(width_mm - 2 * margin_mm, 1.0), span[1] / max(height_mm - 2 * margin_mm, 1.0))
-    c = (lo + hi) / 2
-    ax.set_xlim(c[0] - unit * width_mm / 2, c[0] + unit * width_mm / 2)
-    ax.set_ylim(c[1] - unit * height_mm / 2, c[1] + unit * height_mm / 2)
-    ax.set_aspect("equal", adjustable="box")
-    return unit
+class SchemeView:
+    """A drawing in model units (metres) on a direct-SVG canvas (svgdraw.Canvas): the
+    kinematic scheme and the plan of positions.  ``unit`` metres per paper mm; the model
+    point ``origin`` sits at the canvas' bottom left.  Line widths and font sizes in pt,
+    marker sizes as matplotlib's (``ms`` pt across, plus a 1 pt edge), so the drawings
+    look as they did when matplotlib drew them; ``to_svg`` writes the figure."""
+
+    def __init__(self, width_mm: float, height_mm: float, origin, unit: float):
+        from .svgdraw import Canvas
+        self.cv = Canvas(width_mm, height_mm)
+        self.origin = np.asarray(origin, float)
+        self.unit = float(unit)
+
+    def mm(self, xy) -> np.ndarray:
+        """Model point(s) -> paper mm."""
+        return (np.asarray(xy, float) - self.origin) / self.unit
+
+    def line(self, pts, color="#000", lw=1.0, dash=None, z=2):
+        """A polyline of model points; lw in pt; dash: (on, off, ...) in pt."""
+        da = " ".join(_num(d / PT_PER_MM) for d in dash) if dash else None
+        self.cv.polyline(self.mm(pts), color, lw / PT_PER_MM, da, z)
+
+    def polygon(self, pts, face="none", edge="#000", lw=1.0, z=2):
+        xy = self.mm(pts)
+        if face != "none":      # just under the outlines of its layer (they are merged per style)
+            self.cv.polygon(xy, face, z - 0.1)
+        self.cv.polyline(xy, edge, lw / PT_PER_MM, z=z, closed=True)
+
+    def circle(self, c, r, face="#fff", edge="#000", lw=1.0, z=5):
+        """A circle of model radius r."""
+        self.cv.circle(self.mm(c), r / self.unit, stroke=edge, fill=face, width=lw / PT_PER_MM, z=z)
+
+    def dot(self, c, ms=2.5, color="#000", z=6):
+        """A matplotlib 'o' marker of size ms."""
+        self.cv.dot(self.mm(c), (ms + 1.0) / PT_PER_MM / 2, color, z)
+
+    def text(self, xy, s, size=8.0, z=7, **kw):
+        x, y = self.mm(xy)
+        self.cv.text(float(x), float(y), s, size=size, z=z, **kw)
+
+    def to_svg(self) -> str:
+        return self.cv.to_svg()
+
+
+def _num(x: float) -> str:
+    return f"{x:.3f}".rstrip("0").rstrip(".") or "0"
 
 
 def figure_for_box(lo, hi, width_mm, min_h=40.0, max_h=150.0, margin_mm=8.0, lang="en"):
-    """A figure filled by one equal-aspect axes showing lo..hi (metres) at the largest
-    ГОСТ 2.302 scale that fits, stated at its top left ('μl = 0.005 m/mm (M 1:5)');
-    returns (fig, ax, unit: metres per paper mm)."""
-    span = np.maximum(np.asarray(hi, float) - np.asarray(lo, float), 1e-12)
+    """A drawing (SchemeView) showing lo..hi (metres), centred, at the largest ГОСТ 2.302
+    scale that leaves the margin, stated at its top left ('μl = 0.005 m/mm (M 1:5)');
+    returns (view, unit: metres per paper mm, the statement's box (x0, y0, x1, y1) in
+    metres: the labels keep clear of it)."""
+    lo = np.asarray(lo, float)
+    hi = np.asarray(hi, float)
+    span = np.maximum(hi - lo, 1e-12)
     h = float(np.clip((width_mm - 2 * margin_mm) * span[1] / span[0] + 2 * margin_mm, min_h, max_h))
-    fig, ax = new_figure(width_mm, h)
-    fig.subplots_adjust(0, 0, 1, 1)
-    unit = fit_axes(ax, lo, hi, width_mm, h, margin_mm)
-    model, label = drawing_scale(unit * 1000.0)
+    fit = max(span[0] / max(width_mm - 2 * margin_mm, 1.0), span[1] / max(h - 2 * margin_mm, 1.0))
+    model, label = drawing_scale(fit * 1000.0)
     unit = model / 1000.0
-    c = (np.asarray(lo, float) + np.asarray(hi, float)) / 2
-    ax.set_xlim(c[0] - unit * width_mm / 2, c[0] + unit * width_mm / 2)
-    ax.set_ylim(c[1] - unit * h / 2, c[1] + unit * h / 2)
+    c = (lo + hi) / 2
+    view = SchemeView(width_mm, h, c - unit * np.array([width_mm / 2, h / 2]), unit)
     m, mm = ("м", "мм") if lang in ("ru", "uk") else ("m", "mm")
-    ax.text(0.01, 0.99, f"{mu_text('l', unit, m, mm)}  (M {label})", transform=ax.transAxes, ha="left",
-            va="top", fontsize=7)
-    ax.axis("off")
-    return fig, ax, unit
+    title = f"{mu_text('l', unit, m, mm)}  (M {label})"
+    size = 7.0
+    fs = size / PT_PER_MM
+    x0, top = 0.01 * width_mm, 0.99 * h          # the text's top left, as matplotlib put it
+    view.cv.text(x0, top - 0.5 * fs, title, size=size, anchor="start", z=8)
+    w, th = text_size(title, fs)
+    box = tuple(float(v) for v in np.tile(view.origin, 2) + unit * np.array([x0, top - th, x0 + w, top]))
+    return view, unit, box
 
 
-def draw_mechanism(ax, geom, entry, unit: float, *, labels=True, numbers=True,
+def draw_mechanism(view: SchemeView, geom, entry, unit: float, *, labels=True, numbers=True,
                    color="k", lw=1.5, light=False, ranges=None, label_fs=8, taken=()):
-    """Draw the linkage of one kinematics entry on `ax` (data units: metres).
+    """Draw the linkage of one kinematics entry on `view` (model units: metres).
 
     unit: metres per paper millimetre (sets pivot/block/label sizes).
     light: thin grey drawing (for the overlaid positions of the positions plan).
@@ -471,7 +528,6 @@ def draw_mechanism(ax, geom, entry, unit: float, *, labels=True, numbers=True,
     Returns a list of (label, xy) placed, for the caller's bookkeeping.
     """
     size = 50.0 * unit
-    from matplotlib.patches import Polygon
     P = entry["points"]
     jr = 1.1 * unit
     ground_size = 2.2 * unit
@@ -501,14 +557,12 @@ def draw_mechanism(ax, geom, entry, unit: float, *, labels=True, numbers=True,
             # a body link: a closed outline through its points (convex hull order)
             ang = np.arctan2(xy[:, 1] - c[1], xy[:, 0] - c[0])
             poly = xy[np.argsort(ang)]
-            ax.add_patch(Polygon(poly, closed=True, facecolor="none" if light else "0.93",
-                                 edgecolor=col, lw=lwl, zorder=2))
+            view.polygon(poly, face="none" if light else "0.93", edge=col, lw=lwl, z=2)
             segs.extend([(poly[k], poly[(k + 1) % len(poly)]) for k in range(len(poly))])
         else:
             t = (xy - main[0]) @ u
             a0, a1 = main[0] + u * t.min(), main[0] + u * t.max()
-            ax.plot([a0[0], a1[0]], [a0[1], a1[1]], color=col, lw=lwl, zorder=2,
-                    solid_capstyle="round")
+            view.line([a0, a1], col, lwl, z=2)
             segs.append((a0, a1))
         if numbers and not light:
             nrm = np.array([-u[1], u[0]])
@@ -532,11 +586,12 @@ def draw_mechanism(ax, geom, entry, unit: float, *, labels=True, numbers=True,
             t0 = float((lo - pin) @ u) - bw
             t1 = float((hi - pin) @ u) + bw
             g0, g1 = pin + u * t0, pin + u * t1
-            ax.plot([g0[0], g1[0]], [g0[1], g1[1]], color=col, lw=0.5, ls=(0, (8, 2, 1, 2)), zorder=1)
-            draw_hatch(ax, g0 - v * bh / 2, g1 - v * bh / 2, 0.35 * bh, -v, lw=0.8, color=col)
+            view.line([g0, g1], col, 0.5, dash=(4.0, 1.0, 0.5, 1.0), z=1)     # dash-dot axis
+            _hatch(view, g0 - v * bh / 2, g1 - v * bh / 2, 0.35 * bh, -v, lw=0.8, color=col)
             segs.append((g0 - v * bh * 0.7, g1 - v * bh * 0.7))
-        draw_block(ax, pin, ang, bw * (0.8 if light else 1.0), bh * (0.8 if light else 1.0),
-                   color=col, lw=lwl * 0.8, face="none" if light else "white")
+        from .svgdraw import block_corners
+        view.polygon(block_corners(pin, ang, bw * (0.8 if light else 1.0), bh * (0.8 if light else 1.0)),
+                     face="none" if light else "#fff", edge=col, lw=lwl * 0.8, z=4)
         boxes.append((pin, u, bw / 2, bh / 2))
         for sgn in (-1, 1):
             segs.append((pin - u * bw / 2 + sgn * v * bh / 2, pin + u * bw / 2 + sgn * v * bh / 2))
@@ -550,10 +605,10 @@ def draw_mechanism(ax, geom, entry, unit: float, *, labels=True, numbers=True,
         done.add(j.point)
         xy = _pxy(entry, j.point)
         if j.point in geom.ground and not light:
-            draw_ground(ax, xy, ground_size, color=col)
+            _ground(view, xy, ground_size, color=col)
             segs.append((xy + np.array([-1.6, -3.5]) * ground_size, xy + np.array([1.6, -3.5]) * ground_size))
             segs.append((xy, xy + np.array([0, -3.5]) * ground_size))
-        draw_joint(ax, xy, jr * (0.7 if light else 1.0), color=col, lw=lwl * 0.6)
+        view.circle(xy, jr * (0.7 if light else 1.0), edge=col, lw=lwl * 0.6, z=5)
         avoid.append(xy)
     # centres of mass
     for l in geom.links:
@@ -561,7 +616,7 @@ def draw_mechanism(ax, geom, entry, unit: float, *, labels=True, numbers=True,
             xy = _pxy(entry, l.com)
             if any(np.linalg.norm(xy - _pxy(entry, p)) < 1e-9 for p in l.points if p in P):
                 continue
-            ax.plot([xy[0]], [xy[1]], marker="o", ms=2.5, color=col, zorder=6)
+            view.dot(xy, 2.5, col, z=6)
             anchors.append((l.com, xy, None, False))
     if labels and not light:
         for p in sorted(done | {q for l in geom.links for q in l.points if q in P}):
@@ -582,10 +637,26 @@ def draw_mechanism(ax, geom, entry, unit: float, *, labels=True, numbers=True,
             continue
         seen.add((text, is_num))
         if is_num:
-            ax.text(x, y, text, fontsize=label_fs - 1, ha="center", va="center", zorder=7,
-                    bbox=dict(boxstyle="circle,pad=0.15", fc="white", ec="0.3", lw=0.5))
+            # a link number in a thin circle (as matplotlib's circle box, pad 0.15 em)
+            fs = label_fs - 1
+            r = max(0.65 * fs, (0.6 * fs * len(text) + 0.3 * fs) / 2) / PT_PER_MM * unit
+            view.circle((x, y), r, face="#fff", edge="0.3", lw=0.5, z=7)
+            view.text((x, y), text, size=fs, z=7)
         else:
-            ax.text(x, y, text.translate(_SUBS), fontsize=label_fs, ha="center", va="center",
-                    zorder=7, style="italic")
+            view.text((x, y), text.translate(_SUBS), size=label_fs, z=7, italic=True)
         out.append((text, (x, y)))
     return out
+
+
+def _ground(view: SchemeView, xy, size: float, lw=0.8, color="k"):
+    """A fixed pivot (base below) on a SchemeView, as draw_ground draws it."""
+    sides, (e1, e2), d = _ground_lines(xy, size)
+    view.line([sides[0][1], sides[0][0], sides[1][1]], color, lw, z=3)
+    _hatch(view, e1, e2, size * 0.7, d, lw=lw, color=color)
+
+
+def _hatch(view: SchemeView, p, q, depth, outward, lw=0.8, color="k"):
+    """A hatched ground line on a SchemeView, as draw_hatch draws it."""
+    view.line([p, q], color, lw * 1.3, z=3)
+    for a0, a1 in _hatch_strokes(p, q, depth, outward):
+        view.line([a0, a1], color, lw * 0.7, z=3)

@@ -12,6 +12,7 @@ TXT = {"en": {"pos": "Position {i}, φ = {phi:.1f}°"},
        "ru": {"pos": "Положение {i}, φ = {phi:.1f}°"},
        "uk": {"pos": "Положення {i}, φ = {phi:.1f}°"}}
 COL_W = 130.0          # mm: the width of one group's column (its drawing above its polygon)
+MIN_COL_W = 70.0       # mm: narrower columns wrap into a second row of groups (many groups)
 LEVER_MIN_W = 280.0    # mm: the lever keeps at least this width
 HEAD = 9.0             # mm: the position's heading
 
@@ -22,6 +23,16 @@ def positions(results: dict) -> list[int]:
     kst = {k["index"] for k in results.get("kinetostatics") or []
            if k.get("balancing_moment") is not None or k.get("balancing_force") is not None}
     return [i for i in course_positions(results) if i in kst]
+
+
+def layout(n: int, width: float) -> tuple[int, int]:
+    """(columns, rows) of ``n`` group columns in ``width`` mm: one row while a column keeps
+    MIN_COL_W, else as many rows as it takes at the widest columns that fit."""
+    import math
+    if n * MIN_COL_W <= width:
+        return n, 1
+    ncol = max(1, int(width // MIN_COL_W))
+    return ncol, math.ceil(n / ncol)
 
 
 def build(cv, results, task, lang="en") -> dict:
@@ -48,20 +59,27 @@ def build(cv, results, task, lang="en") -> dict:
         cv.mtext(x0f + 4, top - 5.5, TXT[lang]["pos"].format(i=i, phi=float(e["phi"])), 5.0, bold=True)
         rows = K.position_rows(ctx, e, ke, info_k, links)
         n = len(rows)
-        col_w = min(COL_W, (x1f - x0f - LEVER_MIN_W) / n)
-        ph = (band_h - HEAD - 2.0) / 2           # a panel's height
+        ncol, nrow = layout(n, x1f - x0f - LEVER_MIN_W)
+        col_w = min(COL_W, (x1f - x0f - LEVER_MIN_W) / ncol)
+        row_h = (band_h - HEAD - 2.0) / nrow     # a row of groups: drawings above polygons
+        ph = row_h / 2                           # a panel's height
         drawn = []
         for c, (g, forces, couples, title) in enumerate(rows):
-            x = x0f + c * col_w
-            y_up = top - HEAD - ph
+            r, cc = divmod(c, ncol)
+            x = x0f + cc * col_w
+            row_top = top - HEAD - r * row_h
+            y_up, y_lo = row_top - ph, row_top - 2 * ph
             cv.layer = "contour"          # the groups and their polygons: main lines
             mu_l = K._fbd_panel(ctx, cv, (x + 1, y_up, col_w - 2, ph), ke, links, g, forces, couples, title)
-            mu_F, T = K._polygon_panel(ctx, cv, (x + 1, bottom + 1, col_w - 2, ph), forces)
-            drawn.append({"group": g, "mu_l": mu_l, "mu_F": mu_F, "tips": T, "vectors": K.polygon(forces)[0]})
+            mu_F, T = K._polygon_panel(ctx, cv, (x + 1, y_lo + 1, col_w - 2, ph - 1), forces)
+            drawn.append({"group": g, "mu_l": mu_l, "mu_F": mu_F, "tips": T, "vectors": K.polygon(forces)[0],
+                          "box": (x, y_lo, col_w, 2 * ph)})
             cv.layer = "thin"
-            cv.line((x + col_w, bottom + 1), (x + col_w, top - HEAD), "#999", 0.18)
+            cv.line((x + col_w, y_lo + 1), (x + col_w, row_top), "#999", 0.18)
+            if r and cc == 0:
+                cv.line((x0f, row_top), (x0f + ncol * col_w, row_top), "#999", 0.18)
         # the lever: the rest of the band, above the title block on the bottom band
-        lx = x0f + n * col_w + 1
+        lx = x0f + ncol * col_w + 1
         lb = bottom + 1
         if bottom - y0f < TB_H + 1 and lx + LEVER_MIN_W > x1f - TB_W:
             lb = y0f + TB_H + 2

@@ -17,17 +17,25 @@ def to_svg(cv: PrimCanvas) -> str:
 
 
 def to_pdf(svgs: list[str], w_mm: float, h_mm: float) -> bytes:
-    """One PDF page per sheet (weasyprint paints the SVG at its real size, each one an
-    image: the SVG stays out of the HTML style cascade, several times faster)."""
-    import base64
+    """One PDF page per sheet, each sheet's SVG drawn at its real size (vector, the texts
+    in DejaVu Sans) by Typst, the engine of report.pdf: ~10x faster than weasyprint
+    (which wrote them before) and no weasyprint import."""
+    import tempfile
+    from pathlib import Path
 
-    from weasyprint import HTML
-    body = "".join(f'<img class="s" alt="" src="data:image/svg+xml;base64,'
-                   f'{base64.b64encode(s.encode("utf-8")).decode("ascii")}">' for s in svgs)
-    html = (f"<html><head><style>@page {{ size: {w_mm:g}mm {h_mm:g}mm; margin: 0 }}"
-            f" body {{ margin: 0 }} .s {{ width: {w_mm:g}mm; height: {h_mm:g}mm; display: block;"
-            f" page-break-after: always }}</style></head><body>{body}</body></html>")
-    return HTML(string=html).write_pdf()
+    import typst
+
+    from ..report.typst_pdf import _font_dirs
+    with tempfile.TemporaryDirectory(prefix="tmm-sheets-") as tmp:
+        d = Path(tmp)
+        pages = []
+        for k, svg in enumerate(svgs, start=1):
+            (d / f"sheet-{k}.svg").write_text(svg, encoding="utf-8")
+            pages.append(f'#image("sheet-{k}.svg", width: {w_mm:g}mm, height: {h_mm:g}mm)')
+        src = (f"#set document(date: none)\n#set page(width: {w_mm:g}mm, height: {h_mm:g}mm, margin: 0pt)\n"
+               + "\n#pagebreak()\n".join(pages) + "\n")
+        (d / "sheets.typ").write_text(src, encoding="utf-8")
+        return typst.compile(str(d / "sheets.typ"), root=str(d), font_paths=_font_dirs(), pdf_tags=False)
 
 
 def dxf_entities(cv: PrimCanvas) -> list:

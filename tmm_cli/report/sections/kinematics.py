@@ -71,14 +71,15 @@ def _grid_count(ctx, entries) -> int:
 # ----------------------------------------------------------------- figures
 def positions_svg(ctx, geom, entries, grid, fine=None):
     """The plan of positions: the mechanism at the `grid` positions, trajectories as
-    periodic splines through them -- or, given a `fine` grid, through its points."""
+    periodic splines through them -- or, given a `fine` grid, through its points (at most
+    TRACE_POINTS of them, evenly spaced)."""
     from .. import figures as F
     lo, hi = F.mechanism_extent(entries)
-    fig, ax, unit = F.figure_for_box(lo, hi, 165.0, min_h=60.0, max_h=150.0, margin_mm=10.0,
-                                        lang=ctx.lang)
+    view, unit, title = F.figure_for_box(lo, hi, 165.0, min_h=60.0, max_h=150.0, margin_mm=10.0,
+                                         lang=ctx.lang)
     ranges = F.slider_ranges(entries, geom)
     for e in grid[1:]:
-        F.draw_mechanism(ax, geom, e, unit, light=True)
+        F.draw_mechanism(view, geom, e, unit, light=True)
     # the position numbers at the crank pin first: the point names keep clear of them
     numbers = []
     pin = crank_pin(geom)
@@ -96,11 +97,14 @@ def positions_svg(ctx, geom, entries, grid, fine=None):
     fs_mm = 6.5 * 25.4 / 72.0
     taken = [(q[0] - w / 2, q[1] - h / 2, q[0] + w / 2, q[1] + h / 2) for q, s in numbers
              for w, h in [tuple(unit * np.array(F.text_size(s, fs_mm)))]]
-    F.draw_mechanism(ax, geom, grid[0], unit, ranges=ranges, lw=1.3, taken=taken)
+    F.draw_mechanism(view, geom, grid[0], unit, ranges=ranges, lw=1.3, taken=taken + [title])
     # trajectories: periodic splines through the grid positions
     from ..svgchart import periodic_spline
     traced = [l.com for l in geom.links if l.com] + [p for l in geom.links if l.kind == "bar"
                                                      for p in l.points]
+    if fine is not None:
+        step = -(-len(fine) // TRACE_POINTS)            # every step-th point of a fine grid
+        fine = fine[::step]
     seen = set()
     for p in traced:
         if p in seen or p in geom.ground or p not in grid[0]["points"]:
@@ -117,13 +121,18 @@ def positions_svg(ctx, geom, entries, grid, fine=None):
             tt = np.linspace(0, len(xy), 40 * len(xy))
             c = periodic_spline(t, closed, tt)
         is_com = p.startswith("S")
-        ax.plot(c[:, 0], c[:, 1], lw=0.7 if is_com else 0.5, ls="-" if is_com else "--",
-                color="#1f5fbf" if is_com else "0.5", zorder=1)
-        ax.plot(xy[:, 0], xy[:, 1], ls="none", marker="o", ms=1.6,
-                color="#1f5fbf" if is_com else "0.4", zorder=2)
+        if is_com:
+            view.line(c, "#1f5fbf", 0.7, z=1)
+        else:                                          # matplotlib's '--' at lw 0.5
+            view.line(c, "0.5", 0.5, dash=(1.85, 0.8), z=1)
+        for q in xy:
+            view.dot(q, 1.6, "#1f5fbf" if is_com else "0.4", z=2)
     for q, s in numbers:
-        ax.text(q[0], q[1], s, fontsize=6.5, color="#7a1f1f", ha="center", va="center", zorder=8)
-    return ctx.svg(fig, "positions")
+        view.text(q, s, size=6.5, color="#7a1f1f", z=8)
+    return ctx.svg(view, "positions")
+
+
+TRACE_POINTS = 720      # at most this many points of a trajectory drawn from a fine grid
 
 
 PLAN_W, PLAN_H = 170.0, 86.0        # mm: the two plans side by side

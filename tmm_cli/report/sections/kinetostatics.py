@@ -62,7 +62,7 @@ I18N = {
            "kst.crank": "crank", "kst.pair": "pair", "kst.prismatic": "N, N; x = M/N, m",
            "kst.csv_note": "All numbers: kinetostatics.csv.", "kst.rotation": "crank rotation from position 0, deg",
            "kst.null": "— : singular to working precision (no finite value).",
-           "kst.s_axis": "s/H", "kst.phi_axis": "φ from position 0, deg", "kst.force_axis": "F, N",
+           "kst.s_axis": "s, m", "kst.s_unit": "m", "kst.phi_axis": "φ from position 0, deg", "kst.force_axis": "F, N",
            "kst.moment_axis": "M, N·m", "kst.efficiency": "Instantaneous efficiency η = 1 − P_f / P_d",
            "kst.pf": "P_f, W", "kst.pd": "P_d, W", "kst.unit_F": "N/mm", "kst.unit_l": "m/mm",
            "kst.unit_v": "(m/s)/mm", "kst.N": "N", "kst.Nm": "N·m",
@@ -110,7 +110,7 @@ I18N = {
            "kst.crank": "кривошип", "kst.pair": "пара", "kst.prismatic": "N, Н; x = M/N, м",
            "kst.csv_note": "Все числа: kinetostatics.csv.", "kst.rotation": "поворот кривошипа от положения 0, град",
            "kst.null": "— : вырождено с рабочей точностью (конечного значения нет).",
-           "kst.s_axis": "s/H", "kst.phi_axis": "φ от положения 0, град", "kst.force_axis": "F, Н",
+           "kst.s_axis": "s, м", "kst.s_unit": "м", "kst.phi_axis": "φ от положения 0, град", "kst.force_axis": "F, Н",
            "kst.moment_axis": "M, Н·м", "kst.efficiency": "Мгновенный КПД η = 1 − P_тр / P_дв",
            "kst.pf": "P_тр, Вт", "kst.pd": "P_дв, Вт", "kst.unit_F": "Н/мм", "kst.unit_l": "м/мм",
            "kst.unit_v": "м/(с·мм)", "kst.N": "Н", "kst.Nm": "Н·м",
@@ -603,15 +603,18 @@ def _diagrams_fig(ctx, info, entries, grid_n):
     from ..svgchart import subplots
     fig, axes = subplots(170, 55 * len(ld), nrows=len(ld), squeeze=False)
     marks = []
+    strokes = _strokes(ctx.results.get("positions") or {})
     for ax, d in zip(axes[:, 0], ld):
         cur = d["curve"]
-        ax.plot(cur["x"], cur["value"], "k-", lw=1.0)
+        # a stroke diagram's abscissa: the displacement s = (s/H)·H of its slider, in m
+        H = strokes.get(d["link"], 1.0) if d["abscissa"] == "s" else 1.0
+        ax.plot(np.asarray(cur["x"], float) * H, cur["value"], "k-", lw=1.0)
         xs, ys, labels = [], [], []
         for e in entries:
             dd = e.get("diagram", {}).get(d["name"])
             if not dd or dd.get("x") is None or not dd.get("active", True):
                 continue
-            xs.append(dd["x"])
+            xs.append(dd["x"] * H)
             val = dd.get("value")
             # the diagram value (magnitude for a stroke load, signed for a phi-diagram)
             ys.append(abs(val) if d["abscissa"] == "s" and d["kind"] in ("resistance", "driving") else val)
@@ -624,9 +627,20 @@ def _diagrams_fig(ctx, info, entries, grid_n):
         kind = ctx.t(f"kind.{d['kind']}") if d.get("kind") else ""
         stroke = ctx.t(f"stroke.{d['stroke']}") if d.get("stroke") else ""
         extra = ", ".join(x for x in (kind, stroke) if x and not x.startswith(("kind.", "stroke.")))
-        ax.set_title(f"${s}_{{{sub}}}$: {d['link']}" + (f" ({extra})" if extra else ""), fontsize=8)
+        ax.set_title(f"${s}_{{{sub}}}$: {d['link']}" + (f" ({extra})" if extra else ""), fontsize=8, loc="left")
         ax.grid(True, lw=0.3)
     figures.std_graph(fig, axes[:, 0], ctx.t("kin.mm"))          # μF
+    for ax, d in zip(axes[:, 0], ld):                               # μs (μφ) of each abscissa, from 0
+        sym, unit = ("s", ctx.t("kst.s_unit")) if d["abscissa"] == "s" else ("φ", "°")
+        lo, hi = min(ax.dataLim.x0, 0.0), ax.dataLim.x1
+        mu = figures.std_axis(ax, lo, hi, axis="x", pad=0.0)
+        # the axis as long as the stroke at that μ (as drawn on a sheet), not the whole width
+        p, fw = ax.get_position(), fig.get_figwidth() * 25.4
+        need = (hi - lo) / mu * 1.03
+        if need < p.width * fw:
+            ax.set_position([p.x0, p.y0, need / fw, p.height])
+        ax.set_xlim(0.0, need * mu if need < p.width * fw else float(np.ptp(ax.get_xlim())))
+        ax.set_xlabel(f"{ax.get_xlabel()};  {figures.mu_text(sym, mu, unit, ctx.t('kin.mm'))}")
     # the position numbers next to their points, none over another (positions that fall on
     # one spot, e.g. s/H = 1 twice, side by side): placed in paper points once the layout is set
     for ax, xs, ys, labels in marks:
@@ -645,6 +659,14 @@ def _diagrams_fig(ctx, info, entries, grid_n):
             placed.append(b)
             ax.annotate(l, (x, y), fontsize=6.5, xytext=(dx, dy), textcoords="offset points", va="bottom")
     return ctx.svg(fig, "load-diagrams")
+
+
+def _strokes(pos: dict) -> dict:
+    """{slider link: its stroke H, m}: the output's and each loaded slider's own."""
+    out = {name: float(st["H"]) for name, st in (pos.get("strokes") or {}).items() if st.get("H")}
+    if pos.get("output") and pos.get("H"):
+        out.setdefault(pos["output"], float(pos["H"]))
+    return out
 
 
 def _cycle_fig(ctx, entries, phi0, sign, info):
