@@ -579,7 +579,7 @@ class Task(_Model):
         self._design = d
         from .schemacache import validator
         self.mechanism = validator(MechanismSection).validate_python(d.mechanism)     # MechanismSection.model_validate
-        pos = self.positions if self.positions is not None else PositionsSection()
+        pos = self.positions if self.positions is not None else validator(PositionsSection).validate_python({})
         upd = {}
         if "output" not in pos.model_fields_set:
             upd["output"] = d.output

@@ -497,7 +497,8 @@ def analyse(linkage, d: Design) -> dict:
     if pos.output_kind == "slider":
         H = float(pos.H)
         if d.type == "shaper":
-            psi = float(find_positions(mech, PositionsSection(output="rocker"), sign).H)
+            psi = float(find_positions(mech, validator(PositionsSection).validate_python({"output": "rocker"}),
+                                       sign).H)
     else:
         psi = float(pos.H)
     gmin, gphi = least_transmission(d.type, mech)
