@@ -219,6 +219,30 @@ def test_linkage_that_does_not_assemble_does_not_stop_cam_and_gears(tmp_path):
     assert (out / "report.pdf").read_bytes().startswith(b"%PDF-")
 
 
+@pytest.mark.parametrize("lang, words", [
+    ("ru", "группа II(2,3) (звенья rod, slider) не собирается при углах кривошипа"),
+    ("uk", "група II(2,3) (ланки rod, slider) не складається при кутах кривошипа")])
+def test_linkage_failure_in_the_report_language(tmp_path, lang, words):
+    """A linkage that does not assemble over part of the cycle (rod 0.05 m on a 0.1 m
+    crank): the English sentence on stderr, its code in results.json, the report's box in
+    its language, with the reason (|AB| < crank) in that language too."""
+    out = tmp_path / "o"
+    linkage = ("mechanism:\n  ground: {O: [0, 0]}\n  links:\n    crank: {points: [O, A], length: 0.1}\n"
+               "    rod: {points: [A, B], length: 0.05}\n"
+               "    slider: {slider: B, guide: {through: O, angle: 0}}\n"
+               "drive: {link: crank, speed: 10 rad/s}\n")
+    res = runner.invoke(app, ["run", str(task_file(tmp_path, linkage)), "--out", str(out), "--format", "json,html",
+                              "--lang", lang, "-q"])
+    assert res.exit_code == 3
+    assert "group II(2,3) (links rod, slider) does not assemble for crank angles" in res.output
+    err = json.loads((out / "results.json").read_text())["errors"][0]
+    assert err["code"] == "kinematics.fail.intervals" and err["params"]["links"] == ["rod", "slider"]
+    assert err["params"]["reason"]["code"] == "kinematics.reason.rrp_short"
+    box = (out / "report.html").read_text(encoding="utf-8").split('id="kinematics-failed"', 1)[1]
+    box = box.split("</section>", 1)[0]
+    assert words in box and "does not assemble" not in box and "too short" not in box
+
+
 def test_failure_box_in_russian(tmp_path):
     out = tmp_path / "o"
     f = task_file(tmp_path, GEARS, PLANETARY_IMPOSSIBLE)

@@ -35,9 +35,9 @@ def analyze_sampler(sampler: Sampler, section, omega_m: float, *, cycle: float =
     crank; ``accuracy``: add the timed accuracy table; ``map_cycle``: how
     ``DynamicsResult.motion_at`` reads crank angles (default: the cycle)."""
     if not (omega_m > 0 and math.isfinite(omega_m)):
-        raise StageError(STAGE, f"the drive speed must be positive (got {omega_m})")
+        raise StageError(STAGE, Message("flywheel.fail.drive_speed", value=omega_m))
     if cycle not in (360, 720, 360.0, 720.0):
-        raise StageError(STAGE, f"the cycle must be 360 or 720 deg (got {cycle})")
+        raise StageError(STAGE, Message("flywheel.fail.cycle", value=cycle))
     resolution = int(section.resolution)
     given = sampler          # the hand method's positions are sampled with the grid's
     sampler = _Reuse(sampler, grid(hand_positions(cycle), cycle, switch_q, insert=False))

@@ -43,7 +43,7 @@ def grid(resolution: int, cycle: float, switch_q: tuple | list = (), insert: boo
     (what a hand calculation over the positions does)."""
     n = int(resolution)
     if n < 2:
-        raise StageError(STAGE, f"resolution must be at least 2 (got {resolution})")
+        raise StageError(STAGE, Message("flywheel.fail.resolution", value=resolution))
     C = float(cycle)
     q = np.linspace(0.0, C, n + 1)
     if not insert:
@@ -166,7 +166,7 @@ def solve_cycle(q: np.ndarray, M_given: np.ndarray, J_links: dict[str, np.ndarra
     evaluates these two exactly at the located points (else: the Hermite interpolants).
     """
     if method not in FLYWHEEL_METHODS:
-        raise StageError(STAGE, f"unknown method {method!r}")
+        raise StageError(STAGE, Message("flywheel.fail.method", method=str(method)))
     q = np.asarray(q, float)
     if isinstance(J_links, np.ndarray) or not isinstance(J_links, dict):
         J_links = {"mechanism": np.broadcast_to(np.asarray(J_links, float), q.shape).copy()}
@@ -181,9 +181,9 @@ def solve_cycle(q: np.ndarray, M_given: np.ndarray, J_links: dict[str, np.ndarra
     for name, arr in J_links.items():
         arr = np.broadcast_to(np.asarray(arr, float), (n,))
         if not np.all(np.isfinite(arr)):
-            raise StageError(STAGE, f"reduced moment of inertia of '{name}' is not finite")
+            raise StageError(STAGE, Message("flywheel.fail.J_not_finite", link=name))
         if float(np.min(arr)) < 0:
-            raise StageError(STAGE, f"reduced moment of inertia of '{name}' is negative")
+            raise StageError(STAGE, Message("flywheel.fail.J_negative", link=name))
         top = float(np.max(arr))
         if float(np.ptp(arr)) <= const_tol * top:
             const_links.append(name)
@@ -236,7 +236,7 @@ def solve_cycle(q: np.ndarray, M_given: np.ndarray, J_links: dict[str, np.ndarra
     num = work.M_red - dJ_var * motion.omega**2 / 2
     eps = np.divide(num, J_tot, out=np.zeros_like(num), where=J_tot > 0)
     if not np.all(np.isfinite(eps)):
-        raise StageError(STAGE, "angular acceleration of the crank is not finite")
+        raise StageError(STAGE, Message("flywheel.fail.eps_not_finite"))
 
     span_w = max(float(np.max(np.abs(work.A_d))), float(np.max(np.abs(work.A_c))), 1e-300)
     if constant == "driving" and work.M_constant < -1e-12 * span_w:

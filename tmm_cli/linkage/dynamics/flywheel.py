@@ -178,17 +178,17 @@ def cycle_work(q: np.ndarray, M_given: np.ndarray, constant: str = "driving",
     q = np.asarray(q, float)
     M_given = np.asarray(M_given, float)
     if q.ndim != 1 or q.size < 2 or q.shape != M_given.shape:
-        raise StageError(STAGE, "the cycle needs at least two nodes with one moment each")
+        raise StageError(STAGE, Message("flywheel.fail.nodes"))
     if not np.all(np.isfinite(M_given)):
-        raise StageError(STAGE, "the reduced moment of the loads is not finite")
+        raise StageError(STAGE, Message("flywheel.fail.M_not_finite"))
     if np.any(np.diff(q) < 0) or q[-1] <= q[0]:
-        raise StageError(STAGE, "cycle nodes must be non-decreasing over a positive span")
+        raise StageError(STAGE, Message("flywheel.fail.nodes_order"))
     if increments is None:
         A_g = cumtrapz(q, M_given)
     else:
         inc = np.asarray(increments, float)
         if inc.shape != (q.size - 1,) or not np.all(np.isfinite(inc)):
-            raise StageError(STAGE, "the works of the loads over the cycle are not finite")
+            raise StageError(STAGE, Message("flywheel.fail.works_not_finite"))
         A_g = np.concatenate([[0.0], np.cumsum(inc)])
     span = q[-1] - q[0]
     Mc = -A_g[-1] / span
@@ -204,7 +204,7 @@ def cycle_work(q: np.ndarray, M_given: np.ndarray, constant: str = "driving",
         M_d, M_c = M_given, -Mc * ones
         A_d, A_c = A_g, -Mc * (q - q[0])
     else:
-        raise StageError(STAGE, f"unknown constant moment kind {constant!r}")
+        raise StageError(STAGE, Message("flywheel.fail.constant", kind=str(constant)))
     return CycleWork(q=q, M_given=M_given, M_constant=float(Mc), M_red=M_red, M_d=M_d, M_c=M_c,
                      A_d=A_d, A_c=A_c, dT=dT, A_given=float(A_g[-1]), constant=constant)
 
@@ -214,11 +214,11 @@ def _check(dT, J_var, omega_m, delta):
     dT = np.asarray(dT, float)
     J_var = np.broadcast_to(np.asarray(J_var, float), dT.shape)
     if not (omega_m > 0 and math.isfinite(omega_m)):
-        raise StageError(STAGE, f"the mean speed must be positive (got {omega_m})")
+        raise StageError(STAGE, Message("flywheel.fail.mean_speed", value=omega_m))
     if not (0 < delta < 1):
-        raise StageError(STAGE, f"delta must lie in (0, 1) (got {delta})")
+        raise StageError(STAGE, Message("flywheel.fail.delta", value=delta))
     if not (np.all(np.isfinite(dT)) and np.all(np.isfinite(J_var))):
-        raise StageError(STAGE, "kinetic energy change or reduced inertia is not finite")
+        raise StageError(STAGE, Message("flywheel.fail.energy_not_finite"))
     return dT, J_var
 
 
@@ -304,12 +304,10 @@ def steady_motion(dT, J_var, J_n: float, omega_m: float) -> Motion:
         if float(np.max(np.abs(J_tot))) == 0 and rng == 0:
             w = np.full_like(dT, omega_m)   # nothing moves, nothing changes: uniform
             return Motion(T0=0.0, omega=w, omega_max=omega_m, omega_min=omega_m, delta=0.0)
-        raise StageError(STAGE, "the total reduced moment of inertia is not positive over the cycle "
-                                "(give link masses / moments of inertia or a flywheel)")
+        raise StageError(STAGE, Message("flywheel.fail.J_not_positive"))
     T0 = steady_T0(dT, J_tot, omega_m)
     if T0 is None:
-        raise StageError(STAGE, "the machine stops within the cycle at this mean speed: "
-                                "the flywheel is far too light (speed fluctuation >= 200 %)")
+        raise StageError(STAGE, Message("flywheel.fail.stops"))
     w = _omega(T0, dT, J_tot)
     wmax, wmin = float(np.max(w)), float(np.min(w))
     wm = 0.5 * (wmax + wmin)
@@ -370,7 +368,7 @@ def exact_flywheel(dT, J_var, omega_m: float, delta: float, guess: float | None 
             hi = hi + step
             h_hi = h(hi)
     else:
-        raise StageError(STAGE, "could not bracket the flywheel for the required delta")
+        raise StageError(STAGE, Message("flywheel.fail.bracket"))
     if h_hi == 0:
         return hi
     return float(brentq(h, lo, hi, xtol=1e-14 * scale, rtol=1e-13, maxiter=400))
@@ -422,7 +420,7 @@ def size(J: float, shape: str, density: float, width_ratio: float, omega_max: fl
         m = rho * math.pi * D * b * h
         v = abs(omega_max) * (D + h) / 2
     else:
-        raise StageError(STAGE, f"unknown flywheel shape {shape!r}")
+        raise StageError(STAGE, Message("flywheel.fail.shape", shape=str(shape)))
     if v > RIM_SPEED_STEEL:
         warns.append(Message("flywheel.rim_speed_steel", v=v, limit=RIM_SPEED_STEEL))
     elif v > RIM_SPEED_CAST_IRON and rho < 7500:

@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ...errors import StageError
+from ...messages import Message
 
 STAGE = "dynamics"
 
@@ -138,7 +139,7 @@ def moment_from_loads(mech, kin, loads) -> dict[str, np.ndarray]:
     for k in list(out):
         out[k] = np.broadcast_to(np.asarray(out[k], float), (n,)).copy()
         if not np.all(np.isfinite(out[k])):
-            raise StageError(STAGE, f"the reduced moment of the '{k}' loads is not finite")
+            raise StageError(STAGE, Message("flywheel.fail.kind_not_finite", kind=str(k)))
     return out
 
 

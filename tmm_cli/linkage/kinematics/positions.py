@@ -30,6 +30,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ...errors import StageError
+from ...messages import Message
 from ..mechanism import Mechanism
 from .solver import solve
 
@@ -186,8 +187,7 @@ class PositionsResult:
     def output_stroke(self) -> Stroke:
         """The output link's stroke (positions.output, positions.working)."""
         if self.extreme is None:
-            raise StageError("positions", f"the output link '{self.output}' has no extreme positions (it turns "
-                                          f"fully), so stroke-based loads cannot be placed")
+            raise StageError("positions", Message("positions.fail.output_turns", link=self.output))
         return Stroke(link=self.output, kind=self.output_kind, extreme=list(self.extreme),
                       s_extreme=list(self.s_extreme), working_stroke_angle=self.working_stroke_angle,
                       sign=self.sign, working=self.working, _f=self._f)
@@ -211,8 +211,7 @@ class PositionsResult:
         if key not in self._strokes:
             st = link_stroke(self._mech, name, working, self.sign) if self._mech is not None else None
             if st is None:
-                raise StageError("positions", f"link '{name}' carries a load over its stroke but has no extreme "
-                                              f"positions, so the load cannot be placed")
+                raise StageError("positions", Message("positions.fail.load_no_extremes", link=name))
             self._strokes[key] = st
         return self._strokes[key]
 
@@ -349,8 +348,7 @@ def find_positions(mech: Mechanism, positions_section, sign: float, extra_added=
         H = abs(end[1] - start[1])
     if sec.zero == "extreme":
         if extreme is None:
-            raise StageError("positions", f"the output link '{out_name}' has no extreme positions (it turns fully "
-                                          f"or stands still); give positions.zero as a crank angle in degrees")
+            raise StageError("positions", Message("positions.fail.no_zero", link=out_name))
         phi0 = extreme[0]
     else:
         phi0 = float(sec.zero) % 360.0

@@ -53,8 +53,7 @@ class Solver:
         self.mech = mech
         self.struct = analyze(mech)
         if self.struct.idle:
-            raise StageError("kinematics", f"link(s) {', '.join(self.struct.idle)} have an idle degree of freedom "
-                                           f"(a single pair); their position is undefined")
+            raise StageError("kinematics", Message("kinematics.fail.idle", links=list(self.struct.idle)))
         self.groups: list[Group] = self.struct.groups
         crank = mech.crank
         self.piv = mech.crank_pivot
@@ -81,7 +80,7 @@ class Solver:
                     raise StageError("kinematics", f"{grp.describe()}: {exc}") from None
             else:
                 if grp.type == "PPP":
-                    raise StageError("kinematics", f"{grp.describe()}: a PPP group has no definite position")
+                    raise StageError("kinematics", Message("kinematics.fail.ppp", **grp.message_params()))
                 self.plans.append(_NewtonPlan(cons))
             self.plans[-1].cons = cons
         self._sigma: dict[int, float] = {}
@@ -274,9 +273,8 @@ class Solver:
         Q[:, 1::3] += rng.normal(0, 0.5 * self.L, (S, len(links)))
         q, conv = nw.newton(cons, links, stm, Q, self.L, maxit=60)
         if not conv.any():
-            raise StageError("kinematics", f"{grp.describe()} could not be assembled at crank angle "
-                                           f"{math.degrees(float(self._phi_of(st1))):.6g} deg: no solution of its "
-                                           f"loop-closure equations was found; check the dimensions",
+            raise StageError("kinematics", Message("kinematics.fail.not_assembled", **grp.message_params(),
+                                                   phi=math.degrees(float(self._phi_of(st1)))),
                              position=float(math.degrees(self._phi_of(st1))))
         sols = q[conv]
         nw.set_q(stm, links, q)
@@ -361,10 +359,8 @@ class Solver:
             qb, _, fail_b = march(q, -1.0)
             a = math.degrees(fail) % 360
             b = (math.degrees(fail_b) % 360) if fail_b is not None else a
-            raise StageError("kinematics", f"{grp.describe()} does not assemble for crank angles "
-                                           f"{a:.6g}..{b:.6g} deg: the loop-closure equations of the group "
-                                           f"have no solution continuing the motion there (its links reach a "
-                                           f"limit position)", position=a)
+            raise StageError("kinematics", Message("kinematics.fail.limit_position", **grp.message_params(), a=a, b=b),
+                             position=a)
         self._path[gi] = (grid, np.array(qs), np.array(q1s))
         return self._path[gi]
 
@@ -440,10 +436,10 @@ class Solver:
                 k += 1
         return out
 
-    def _reason(self, gi: int, phi_deg: float) -> str:
+    def _reason(self, gi: int, phi_deg: float) -> Message:
         plan = self.plans[gi]
         if not isinstance(plan, DyadPlan):
-            return "no solution of its loop-closure equations"
+            return Message("kinematics.reason.no_solution")
         st = self.run(np.radians([phi_deg]), upto=gi, derivs=False, strict=False)
         kind = plan.kind
         e1, mid, e2 = plan.e1, plan.mid, plan.e2
@@ -457,27 +453,24 @@ class Solver:
             lB = float(np.hypot(*(np.asarray(mid.local(B)) - e2.local(B))))
             pa, pb, pc = e1.point, e2.point, mid.point
             if d > lA + lB:
-                return (f"|{pa}{pb}| = {d:.6g} m > |{pa}{pc}| + |{pc}{pb}| = {lA:.6g} + {lB:.6g} m "
-                        f"(links {nm(A)} and {nm(B)} cannot reach)")
-            return f"|{pa}{pb}| = {d:.6g} m < ||{pa}{pc}| - |{pc}{pb}|| = |{lA:.6g} - {lB:.6g}| m"
+                return Message("kinematics.reason.rrr_far", pa=pa, pb=pb, pc=pc, d=d, la=lA, lb=lB,
+                               link_a=nm(A), link_b=nm(B))
+            return Message("kinematics.reason.rrr_near", pa=pa, pb=pb, pc=pc, d=d, la=lA, lb=lB)
         if kind in ("RRP", "PRR"):
             X = A if kind == "RRP" else B
             ext = e1 if X == A else e2
             lX = float(np.hypot(*(np.asarray(mid.local(X)) - ext.local(X))))
-            return (f"the distance from {ext.point} to the line along which {mid.point} must move exceeds "
-                    f"|{ext.point}{mid.point}| = {lX:.6g} m (link {nm(X)} is too short)")
+            return Message("kinematics.reason.rrp_short", p=ext.point, q=mid.point, l=lX, link=nm(X))
         if kind == "RPR":
-            return (f"the guide of the prismatic pair {nm(mid.s)}/{nm(mid.g)} must keep its offset from the "
-                    f"pivot {e1.point if mid.s == A else e2.point}, which is closer to {e2.point if mid.s == A else e1.point} "
-                    f"than that offset")
-        return "the guides of the group are parallel (the prismatic pairs lock)"
+            return Message("kinematics.reason.rpr_offset", s=nm(mid.s), g=nm(mid.g),
+                           pivot=e1.point if mid.s == A else e2.point, other=e2.point if mid.s == A else e1.point)
+        return Message("kinematics.reason.parallel_guides")
 
     def _assembly_error(self, gi: int, bad_deg: np.ndarray, whole: bool = False) -> StageError:
         grp = self.groups[gi]
         pos = float(np.mod(bad_deg[0], 360.0))
         if whole:
-            err = StageError("kinematics", f"{grp.describe()} does not assemble at any crank angle",
-                             position=pos)
+            err = StageError("kinematics", Message("kinematics.fail.never", **grp.message_params()), position=pos)
             err.never_assembles = [self.mech.link(i).name for i in grp.links_sorted]
             return err
         try:
@@ -490,8 +483,8 @@ class Solver:
         mid_deg = iv[0][0] + ((iv[0][1] - iv[0][0]) % 360.0) / 2
         reason = self._reason(gi, mid_deg % 360.0)
         ivs = ", ".join(f"{a:.6f}..{b:.6f}" for a, b in iv)
-        err = StageError("kinematics", f"{grp.describe()} does not assemble for crank angles {ivs} deg: "
-                                       f"{reason}", position=pos)
+        err = StageError("kinematics", Message("kinematics.fail.intervals", **grp.message_params(), intervals=ivs,
+                                               reason=reason), position=pos)
         if sum((b - a) % 360.0 or (360.0 if b > a else 0.0) for a, b in iv) >= 360.0 - 1e-6:
             # no crank angle at all: the dimensions are impossible, an invalid task
             err.never_assembles = [self.mech.link(i).name for i in grp.links_sorted]

@@ -530,8 +530,7 @@ def find_singular(mech, structure=None, balance=None, *, solver=None, n_grid: in
         raise StageError("kinetostatics", str(exc)) from exc
     fmax = float(np.max(np.abs(f)))
     if not np.isfinite(fmax) or fmax == 0.0:
-        raise StageError("kinetostatics", "the equilibrium equations are singular at every position "
-                         "(passive constraints?)")
+        raise StageError("kinetostatics", Message("kinetostatics.fail.singular_everywhere"))
 
     def F(phi, start):
         k = solve(mech, np.array([start, phi]), 1.0)

@@ -20,6 +20,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...errors import StageError
+from ...messages import Message
 from ..loads import AppliedCouple, AppliedForce, Loads
 from .equations import (Geometry, balance_coeffs, cross, full_matrix, joint_coeffs, rot90, scaling)
 
@@ -91,7 +92,7 @@ def _group_plan(mech, structure, geo: Geometry) -> list[tuple]:
     covered = set(l for links, _ in steps for l in links)
     missing = [lk.name for lk in mech.links if lk.index not in covered]
     if missing:
-        raise StageError("kinetostatics", f"links {missing} belong to no Assur group")
+        raise StageError("kinetostatics", Message("kinetostatics.fail.no_group", links=str(missing)))
     plan = []
     for links, is_crank in steps:
         rows = {l: i for i, l in enumerate(links)}
@@ -100,8 +101,8 @@ def _group_plan(mech, structure, geo: Geometry) -> list[tuple]:
         ncol = 2 * len(unknown) + (1 if is_crank else 0)
         if ncol != 3 * len(links):
             names = [mech.link(l).name for l in links]
-            raise StageError("kinetostatics", f"group {names} is not statically determinate "
-                             f"({3 * len(links)} equations, {ncol} unknown reaction components)")
+            raise StageError("kinetostatics", Message("kinetostatics.fail.indeterminate", links=str(names),
+                                                      equations=3 * len(links), unknowns=ncol))
         A = np.zeros((N, 3 * len(links), ncol))
         for c, k in enumerate(unknown):
             for l, cf in coeffs[k].items():
@@ -143,8 +144,8 @@ def matrix_method(mech, geo: Geometry, q: np.ndarray, balance: int, *, with_det:
     A = full_matrix(mech, geo, balance)
     n, p = mech.n, len(mech.joints)
     if A.shape[1] != A.shape[2]:
-        raise StageError("kinetostatics", f"the equilibrium system is not square ({A.shape[1]} equations, "
-                         f"{A.shape[2]} unknowns): W must be 1 with no passive constraints")
+        raise StageError("kinetostatics", Message("kinetostatics.fail.not_square", equations=A.shape[1],
+                                                  unknowns=A.shape[2]))
     rs, cs = scaling(mech, geo.Lc, balance)
     As = A * rs[None, :, None] * cs[None, None, :]
     b = -q[:, 1:, :].reshape(geo.n_pos, 3 * n) * rs[None, :]

@@ -7,6 +7,7 @@ import math
 import numpy as np
 
 from ...errors import StageError
+from ...messages import Message
 from .diagrams import cycle_angle, diagram_curve, interp_right
 from .model import G, AppliedCouple, AppliedForce, Loads
 from .strokes import load_stroke, stroke_dependent, stroke_states
@@ -131,7 +132,7 @@ def evaluate_on(mech, loads_section, kin, positions, *, sign: float, cycle: floa
     specs = list(loads_section.forces)
     need_stroke = any(stroke_dependent(sp) for sp in specs)
     if need_stroke and positions is None:
-        raise StageError("loads", "loads given over a stroke need the positions (extreme positions)")
+        raise StageError("loads", Message("loads.fail.no_positions"))
     no_stroke = (np.ones(n, bool), np.zeros(n))
     phi0 = float(positions.phi0) if positions is not None else 0.0
     cycle = float(cycle)
@@ -183,7 +184,7 @@ def evaluate_on(mech, loads_section, kin, positions, *, sign: float, cycle: floa
             vv[rest] = d2[rest]
             nv = np.linalg.norm(vv, axis=1)
             if np.any(nv == 0):
-                raise StageError("loads", f"the point of load {k} on '{lk.name}' does not move: give `direction`")
+                raise StageError("loads", Message("loads.fail.point_still", k=k, link=lk.name))
             ev = vv / nv[:, None]
         # magnitude (signed along e)
         x = None
