@@ -1,10 +1,28 @@
-"""Benchmark: kinematics of the six-bar (tasks/forging_sixbar.yaml) at 10^5 positions.
+"""Benchmarks of the kinematics core (tmm_cli.linkage.kinematics.solve).
 
-Prints wall time, CPU time and the peak memory traced by tracemalloc (numpy arrays
-are traced). Targets: < 0.2 s, < 200 MB.
+* ``core``: against a hand-written numpy closed form of the same central slider-crank and
+  crank-rocker four-bar computing the same outputs (every point's position, first and
+  second derivative in the crank angle, every link's angle and its two derivatives:
+  the centres of mass S1-S3 and the ground points included), N = 36 ... 36000 positions
+  (issue 12 target: <= 3x at N >= 3600), and against pylinkage's numba solver
+  (``Linkage.step_fast_with_kinematics``: positions, velocities and accelerations of
+  the joints A and B only; less work than tmm's) when pylinkage and numba are
+  installed (``pip install .[bench]``; target: tmm faster at N >= 360). All three are
+  timed interleaved (tmm, closed form, pylinkage, tmm, ...), CPU time and wall time of
+  a batch of calls, medians and spread of the per-round ratios.
+* ``sixbar``: the six-bar of tasks/forging_sixbar.yaml at 10^5 positions: wall time, CPU
+  time and the peak memory traced by tracemalloc (numpy arrays are traced). Targets:
+  < 0.2 s, < 200 MB.
+* ``digest``: a digest of every output of ``solve`` on the linkage tasks (not timed): the
+  same before and after a change that must leave the results bit-identical.
+
+Run: python benchmarks/bench_kinematics.py [core|sixbar|digest] [--repeat 7]
 """
 from __future__ import annotations
 
+import argparse
+import math
+import statistics
 import sys
 import time
 import tracemalloc
@@ -20,7 +38,193 @@ from tmm_cli.linkage.mechanism import build_mechanism  # noqa: E402
 from tmm_cli.task import load_task  # noqa: E402
 
 
-def main(n: int = 100_000, repeat: int = 5) -> None:
+# ----------------------------------------------------------------- the two linkages
+SLIDER_CRANK = {"schema": "tmm/1", "mechanism": {
+    "ground": {"O": [0, 0]},
+    "links": {"crank": {"points": ["O", "A"], "length": 0.045},
+              "rod": {"points": ["A", "B"], "length": 0.170},
+              "piston": {"slider": "B", "guide": {"through": "O", "angle": 90}}},
+    "assembly": {"B": [0, 0.16]}},
+    "drive": {"link": "crank", "speed": "3000 rpm"}}
+FOUR_BAR = {"schema": "tmm/1", "mechanism": {
+    "ground": {"O": [0, 0], "O3": [0.30, 0]},
+    "links": {"crank": {"points": ["O", "A"], "length": 0.08},
+              "coupler": {"points": ["A", "B"], "length": 0.30},
+              "rocker": {"points": ["O3", "B"], "length": 0.22}},
+    "assembly": {"B": [0.33, 0.21]}},
+    "drive": {"link": "crank", "speed": "120 rpm"}}
+
+
+# ----------------------------------------------------------------- closed forms
+# Each returns what tmm's KinematicsResult holds: pos, d1, d2 of every point (N, 2 arrays)
+# and angle, a1, a2 of every link (N arrays), derivatives in the crank angle phi (rad).
+# The centres of mass are the links' midpoints (tmm's default), S1 the crank's pivot.
+
+def slider_crank_closed(phi_deg, r=0.045, l=0.170):
+    """Central slider-crank O-A-B, the piston B on the y axis (guide through O at 90 deg):
+    y_B = r sin(phi) + sqrt(l^2 - r^2 cos^2(phi)) and its two derivatives in phi."""
+    N = len(phi_deg)
+    f = np.radians(phi_deg)
+    c, s = np.cos(f), np.sin(f)
+    R = np.sqrt(l * l - (r * c) ** 2)
+    y = r * s + R
+    g = r * r * c * s / R
+    y1 = r * c + g                                           # dy/dphi
+    y2 = -r * s + r * r * (c * c - s * s) / R - g * g / R    # d2y/dphi2
+    A = np.stack([r * c, r * s], 1)
+    A1 = np.stack([-r * s, r * c], 1)
+    A2 = -A
+    z = np.zeros(N)
+    B, B1, B2 = np.stack([z, y], 1), np.stack([z, y1], 1), np.stack([z, y2], 1)
+    ux, uy = -r * c / l, (y - r * s) / l                   # unit vector A -> B
+    th = np.arctan2(uy, ux)                                # rod angle, in (0, pi)
+    th1 = (ux * (y1 - r * c) - uy * (r * s)) / l
+    th2 = (ux * (y2 + r * s) - uy * (r * c)) / l
+    O = np.zeros((N, 2))
+    pos = {"O": O, "A": A, "B": B, "S1": O, "S2": 0.5 * (A + B), "S3": B}
+    d1 = {"O": O, "A": A1, "B": B1, "S1": O, "S2": 0.5 * (A1 + B1), "S3": B1}
+    d2 = {"O": O, "A": A2, "B": B2, "S1": O, "S2": 0.5 * (A2 + B2), "S3": B2}
+    one = np.ones(N)
+    angle = {"crank": f, "rod": th, "piston": np.full(N, 0.5 * np.pi)}
+    a1 = {"crank": one, "rod": th1, "piston": z}
+    a2 = {"crank": z, "rod": th2, "piston": z}
+    return pos, d1, d2, angle, a1, a2
+
+
+def four_bar_closed(phi_deg, a=0.08, b=0.30, c=0.22, d=0.30):
+    """Crank-rocker O-A-B-O3 (O3 = (d, 0)), B to the left of the line A -> O3; the velocity
+    and acceleration equations of the loop A + b e(t2) = O3 + c e(t3) by Cramer's rule."""
+    N = len(phi_deg)
+    f = np.radians(phi_deg)
+    cf, sf = np.cos(f), np.sin(f)
+    A = np.stack([a * cf, a * sf], 1)
+    A1 = np.stack([-a * sf, a * cf], 1)
+    A2 = -A
+    ACx, ACy = d - A[:, 0], -A[:, 1]
+    L = np.hypot(ACx, ACy)
+    gam = np.arccos((b * b + L * L - c * c) / (2 * b * L))
+    t2 = np.arctan2(ACy, ACx) + gam                        # coupler angle
+    c2, s2 = np.cos(t2), np.sin(t2)
+    B = A + b * np.stack([c2, s2], 1)
+    t3 = np.arctan2(B[:, 1], B[:, 0] - d)                  # rocker angle
+    c3, s3 = np.cos(t3), np.sin(t3)
+    # A1 + w2 b (-s2, c2) = w3 c (-s3, c3)  ->  2x2 by Cramer
+    det = b * c * (c2 * s3 - s2 * c3)
+    rx, ry = -A1[:, 0], -A1[:, 1]
+    w2 = (rx * c * c3 + ry * c * s3) / det
+    w3 = (b * c2 * rx + b * s2 * ry) / det
+    B1 = np.stack([-c * w3 * s3, c * w3 * c3], 1)
+    # A2 + e2 b (-s2, c2) - w2^2 b (c2, s2) = e3 c (-s3, c3) - w3^2 c (c3, s3)
+    rx = -A2[:, 0] + w2 * w2 * b * c2 - w3 * w3 * c * c3
+    ry = -A2[:, 1] + w2 * w2 * b * s2 - w3 * w3 * c * s3
+    e2 = (rx * c * c3 + ry * c * s3) / det
+    e3 = (b * c2 * rx + b * s2 * ry) / det
+    B2 = np.stack([-c * e3 * s3 - c * w3 * w3 * c3, c * e3 * c3 - c * w3 * w3 * s3], 1)
+    O, O3 = np.zeros((N, 2)), np.tile([d, 0.0], (N, 1))
+    Z = np.zeros((N, 2))
+    pos = {"O": O, "O3": O3, "A": A, "B": B, "S1": O, "S2": 0.5 * (A + B), "S3": 0.5 * (O3 + B)}
+    d1 = {"O": Z, "O3": Z, "A": A1, "B": B1, "S1": Z, "S2": 0.5 * (A1 + B1), "S3": 0.5 * B1}
+    d2 = {"O": Z, "O3": Z, "A": A2, "B": B2, "S1": Z, "S2": 0.5 * (A2 + B2), "S3": 0.5 * B2}
+    angle = {"crank": f, "coupler": t2, "rocker": t3}
+    a1 = {"crank": np.ones(N), "coupler": w2, "rocker": w3}
+    a2 = {"crank": np.zeros(N), "coupler": e2, "rocker": e3}
+    return pos, d1, d2, angle, a1, a2
+
+
+def check_same(name: str, k, ref) -> None:
+    """tmm's result and the closed form hold the same outputs, to round-off."""
+    pos, d1, d2, angle, a1, a2 = ref
+    assert sorted(k.pos) == sorted(pos) and sorted(k.angle) == sorted(angle), f"{name}: not the same outputs"
+    for p in pos:
+        for what, mine, theirs in (("pos", k.pos, pos), ("d1", k.d1, d1), ("d2", k.d2, d2)):
+            err = np.max(np.abs(mine[p] - theirs[p]))
+            assert err < 1e-9, f"{name}: {what}[{p}] differs by {err:.3g}"
+    for lk in angle:
+        dth = np.mod(k.angle[lk] - angle[lk] + np.pi, 2 * np.pi) - np.pi
+        for what, err in (("angle", np.max(np.abs(dth))), ("a1", np.max(np.abs(k.a1[lk] - a1[lk]))),
+                          ("a2", np.max(np.abs(k.a2[lk] - a2[lk])))):
+            assert err < 1e-9, f"{name}: {what}[{lk}] differs by {err:.3g}"
+
+
+# ----------------------------------------------------------------- pylinkage (optional)
+def pylinkage_case(name: str, n: int):
+    """A callable running pylinkage's numba solver over n crank positions of one turn
+    (positions, velocities, accelerations of every joint), or None without pylinkage."""
+    try:
+        import numba  # noqa: F401
+        from pylinkage import Crank, Ground, Linkage, RRPDyad, RRRDyad
+    except ImportError:
+        return None
+    step = 2 * math.pi / n
+    O = Ground(0.0, 0.0, name="O")
+    if name == "slider-crank":
+        G = Ground(0.0, 1.0, name="G")
+        cr = Crank(anchor=O, radius=0.045, angular_velocity=step, name="A")
+        B = RRPDyad(cr.output, O, G, distance=0.170, x=0.0, y=0.2, name="B")
+        lk = Linkage([O, G, cr, B], name=name)
+    else:
+        O3 = Ground(0.30, 0.0, name="O3")
+        cr = Crank(anchor=O, radius=0.08, angular_velocity=step, name="A")
+        B = RRRDyad(cr.output, O3, distance1=0.30, distance2=0.22, x=0.33, y=0.21, name="B")
+        lk = Linkage([O, O3, cr, B], name=name)
+    lk.set_input_velocity(cr, omega=1.0, alpha=0.0)
+    run = lambda: lk.step_fast_with_kinematics(iterations=n)   # noqa: E731
+    pos, vel, acc = run()                                       # compiles (numba cache) and checks
+    ref = (slider_crank_closed if name == "slider-crank" else four_bar_closed)((np.arange(n) + 1.0) * 360.0 / n)
+    pos, vel, acc = run()
+    assert np.allclose(pos[:, 3], ref[0]["B"], atol=1e-9), f"pylinkage {name}: not the same assembly"
+    assert np.allclose(acc[:, 3], ref[2]["B"], atol=1e-8), f"pylinkage {name}: accelerations differ"
+    return run
+
+
+# ----------------------------------------------------------------- timing
+def _batch(fn, calls: int) -> tuple[float, float]:
+    """(wall, cpu) per call of ``calls`` calls."""
+    t0, c0 = time.perf_counter(), time.process_time()
+    for _ in range(calls):
+        fn()
+    return (time.perf_counter() - t0) / calls, (time.process_time() - c0) / calls
+
+
+def core(repeat: int = 7, sizes=(36, 360, 3600, 36000)) -> None:
+    cases = [("slider-crank", build_mechanism(load_task(SLIDER_CRANK)), slider_crank_closed),
+             ("four-bar", build_mechanism(load_task(FOUR_BAR)), four_bar_closed)]
+    have_pyl = pylinkage_case("four-bar", 36) is not None
+    print(f"kinematics core against the numpy closed form{' and pylinkage (numba)' if have_pyl else ''} "
+          f"of the same linkage, {repeat} interleaved rounds; per call, median [min-max] of the rounds"
+          + ("" if have_pyl else "; pylinkage/numba not installed (pip install .[bench])"))
+    for name, mech, closed in cases:
+        phi = np.linspace(0.0, 360.0, 3600, endpoint=False)
+        check_same(name, solve(mech, phi, 1.0), closed(phi))
+        for n in sizes:
+            phi = np.linspace(0.0, 360.0, n, endpoint=False)
+            calls = max(3, 40000 // n)
+            fns = {"tmm": lambda: solve(mech, phi, 1.0), "closed": lambda: closed(phi)}
+            pyl = pylinkage_case(name, n)
+            if pyl is not None:
+                fns["pylinkage"] = pyl
+            res = {k: [] for k in fns}
+            for _ in range(repeat):
+                for k, fn in fns.items():
+                    res[k].append(_batch(fn, calls))
+            cpu = {k: [c for _, c in v] for k, v in res.items()}
+            wall = {k: [w for w, _ in v] for k, v in res.items()}
+            line = f"  {name:12s} N={n:6d}  cpu ms: " + ", ".join(
+                f"{k} {statistics.median(v) * 1e3:.3f}" for k, v in cpu.items())
+            for other in [k for k in fns if k != "tmm"]:
+                rc = [a / b for a, b in zip(cpu["tmm"], cpu[other])]
+                rw = [a / b for a, b in zip(wall["tmm"], wall[other])]
+                tgt = ""
+                if other == "closed" and n >= 3600:
+                    tgt = " (<= 3 " + ("ok" if statistics.median(rc) <= 3 else "OVER") + ")"
+                if other == "pylinkage" and n >= 360:
+                    tgt = " (< 1 " + ("ok" if statistics.median(rc) < 1 else "OVER") + ")"
+                line += (f" | tmm/{other} cpu {statistics.median(rc):.2f} [{min(rc):.2f}-{max(rc):.2f}]"
+                         f" wall {statistics.median(rw):.2f}{tgt}")
+            print(line, flush=True)
+
+
+def sixbar(n: int = 100_000, repeat: int = 5) -> None:
     m = build_mechanism(load_task(ROOT / "tasks" / "forging_sixbar.yaml"))
     phi = np.linspace(0.0, 360.0, n, endpoint=False)
     solve(m, phi[:10], 5.236)                  # closures chosen once (cached per mechanism)
@@ -36,6 +240,51 @@ def main(n: int = 100_000, repeat: int = 5) -> None:
     tracemalloc.stop()
     print(f"kinematics six-bar, {n} positions: wall best {min(walls):.3f} s (median {np.median(walls):.3f} s), "
           f"cpu best {min(cpus):.3f} s, peak traced memory {peak / 2**20:.1f} MB")
+
+
+def digest() -> None:
+    """A digest of every output of ``solve`` (positions, derivatives, angles, warnings, the
+    singular and near-change-point masks) for each linkage task of tasks/ and the two
+    linkages above, on four sets of angles (sorted, random unsorted, three, one): run it
+    before and after a change of the kinematics to see that no bit of its results moved."""
+    import glob
+    import hashlib
+    rng = np.random.default_rng(7)
+    grids = [np.arange(720) * 0.5, rng.uniform(0.0, 360.0, 500), np.array([0.0, 180.0, 359.999]), np.array([90.0])]
+    srcs = [(Path(f).name, f) for f in sorted(glob.glob(str(ROOT / "tasks" / "*.yaml")))]
+    for name, src in srcs + [("slider-crank", SLIDER_CRANK), ("four-bar", FOUR_BAR)]:
+        task = load_task(src)
+        if getattr(task, "mechanism", None) is None:
+            continue
+        mech = build_mechanism(task)
+        h = hashlib.sha256()
+        for g in grids:
+            try:
+                k = solve(mech, g, 2.0, 0.5)
+            except Exception as exc:  # noqa: BLE001 -- the error is part of the digest
+                h.update(repr(exc).encode())
+                continue
+            for d in (k.pos, k.d1, k.d2, k.angle, k.a1, k.a2, k.undefined):
+                for key in sorted(d):
+                    h.update(key.encode())
+                    h.update(np.ascontiguousarray(d[key]).tobytes())
+            h.update(repr(k.warnings).encode())
+            for mask in (k.singular, k.near):
+                h.update(b"-" if mask is None else mask.tobytes())
+        print(f"{name:36s} {h.hexdigest()[:24]}")
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("what", nargs="*", default=["sixbar", "core"], choices=["sixbar", "core", "digest"])
+    ap.add_argument("--repeat", type=int, default=7)
+    a = ap.parse_args()
+    if "digest" in a.what:
+        digest()
+    if "sixbar" in a.what:
+        sixbar()
+    if "core" in a.what:
+        core(max(5, a.repeat))
 
 
 if __name__ == "__main__":

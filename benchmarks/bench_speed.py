@@ -12,8 +12,9 @@ interleaved (A, B, A, B, ...), each repeated (>= 5 times); medians and the sprea
   `tmm run --format html` (pipeline and results.json included) and the report alone
   (`report.render` in one process, the results computed beforehand);
 * the kinematics core (tmm_cli.linkage.kinematics.solve) against a hand-written numpy closed
-  form of the same central slider-crank and four-bar, N = 36 ... 36000 (target <= 3x at
-  N >= 3600), and the fixed cost per call;
+  form of the same central slider-crank and four-bar computing the same outputs, and against
+  pylinkage's numba solver when installed, N = 36 ... 36000 (targets: <= 3x the closed form
+  at N >= 3600, faster than pylinkage at N >= 360): bench_kinematics.core;
 * with --batch: `tmm batch` of 300 variants of the forging machine (kinetostatics and
   flywheel) with --jobs 2 --format json (target <= 15 s wall), interleaved with one JSON
   run of the same task;
@@ -25,7 +26,12 @@ The commands run as an installed tmm does: with the bytecode cache (pip compiles
 install), so a PYTHONDONTWRITEBYTECODE of the environment is dropped for them (the cache
 goes to a temporary PYTHONPYCACHEPREFIX).
 
-Run: python benchmarks/bench_speed.py [--report] [--batch] [--kinetostatics] [--repeat 5]
+* with --against DIR: the whole report and the JSON run of this checkout and of another
+  one (DIR: e.g. `git archive <commit> | tar -x -C DIR`), all four interleaved.
+* with --scaling: `tmm run` of the task at 12 and at 3600 positions (made on the fly),
+  --format json and --format html, interleaved (target for HTML: 3600 <= 2x 12).
+
+Run: python benchmarks/bench_speed.py [--report] [--scaling] [--batch] [--kinetostatics] [--against DIR] [--repeat 5]
                                       [--tasks engine_slider_crank,gears_zero]
 """
 from __future__ import annotations
@@ -40,7 +46,6 @@ import tempfile
 import time
 from pathlib import Path
 
-import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
@@ -158,107 +163,36 @@ def report_scaling(repeat: int) -> None:
                 [y for _, y in out["12"]], 2.0)
 
 
-# ----------------------------------------------------------------- kinematics core
-SLIDER_CRANK = {"schema": "tmm/1", "mechanism": {
-    "ground": {"O": [0, 0]},
-    "links": {"crank": {"points": ["O", "A"], "length": 0.045},
-              "rod": {"points": ["A", "B"], "length": 0.170},
-              "piston": {"slider": "B", "guide": {"through": "O", "angle": 90}}},
-    "assembly": {"B": [0, 0.16]}},
-    "drive": {"link": "crank", "speed": "3000 rpm"}}
-FOUR_BAR = {"schema": "tmm/1", "mechanism": {
-    "ground": {"O": [0, 0], "O3": [0.30, 0]},
-    "links": {"crank": {"points": ["O", "A"], "length": 0.08},
-              "coupler": {"points": ["A", "B"], "length": 0.30},
-              "rocker": {"points": ["O3", "B"], "length": 0.22}},
-    "assembly": {"B": [0.33, 0.21]}},
-    "drive": {"link": "crank", "speed": "120 rpm"}}
-
-
-def slider_crank_closed(phi_deg, r=0.045, l=0.170):
-    """Central slider-crank, guide along y through O: positions of A, B, the rod angle
-    and their first and second derivatives in phi (the same quantities tmm returns)."""
-    f = np.radians(phi_deg)
-    c, s = np.cos(f), np.sin(f)
-    R = np.sqrt(l * l - (r * c) ** 2)
-    y = r * s + R
-    g = r * r * c * s / R
-    y1 = r * c + g
-    y2 = -r * s + r * r * (c * c - s * s) / R - g * g / R
-    A, A1, A2 = np.stack([r * c, r * s], 1), np.stack([-r * s, r * c], 1), np.stack([-r * c, -r * s], 1)
-    ux, uy = -r * c / l, (y - r * s) / l
-    th = np.arctan2(uy, ux)
-    th1 = (ux * (y1 - r * c) - uy * (r * s)) / l
-    th2 = (ux * (y2 + r * s) - uy * (r * c)) / l
-    z = np.zeros_like(y)
-    return A, A1, A2, np.stack([z, y], 1), np.stack([z, y1], 1), np.stack([z, y2], 1), th, th1, th2
-
-
-def four_bar_closed(phi_deg, a=0.08, b=0.30, c=0.22, d=0.30):
-    """Crank-rocker O-A-B-O3 (O3 = (d, 0)), the assembly with B above the line A-O3."""
-    f = np.radians(phi_deg)
-    cf, sf = np.cos(f), np.sin(f)
-    A = np.stack([a * cf, a * sf], 1)
-    A1 = np.stack([-a * sf, a * cf], 1)
-    A2 = -A
-    AC = np.array([d, 0.0]) - A
-    L = np.hypot(AC[:, 0], AC[:, 1])
-    base = np.arctan2(AC[:, 1], AC[:, 0])
-    gam = np.arccos((b * b + L * L - c * c) / (2 * b * L))
-    t2 = base + gam                       # coupler angle (B to the left of A->O3)
-    B = A + b * np.stack([np.cos(t2), np.sin(t2)], 1)
-    t3 = np.arctan2(B[:, 1], B[:, 0] - d)
-    e2, e3 = np.stack([-np.sin(t2), np.cos(t2)], 1), np.stack([-np.sin(t3), np.cos(t3)], 1)
-    # A1 + w2 b e2 = w3 c e3  ->  2x2 by Cramer
-    det = -b * e2[:, 0] * c * e3[:, 1] + b * e2[:, 1] * c * e3[:, 0]
-    rx, ry = -A1[:, 0], -A1[:, 1]
-    w2 = (rx * (-c * e3[:, 1]) - ry * (-c * e3[:, 0])) / det
-    w3 = (b * e2[:, 0] * ry - b * e2[:, 1] * rx) / det
-    B1 = c * w3[:, None] * e3
-    u2 = np.stack([np.cos(t2), np.sin(t2)], 1)
-    u3 = np.stack([np.cos(t3), np.sin(t3)], 1)
-    # A2 + a2 b e2 - w2^2 b u2 = a3 c e3 - w3^2 c u3
-    rhs = -A2 + (w2 ** 2)[:, None] * b * u2 - (w3 ** 2)[:, None] * c * u3
-    rx, ry = rhs[:, 0], rhs[:, 1]
-    al2 = (rx * (-c * e3[:, 1]) - ry * (-c * e3[:, 0])) / det
-    al3 = (b * e2[:, 0] * ry - b * e2[:, 1] * rx) / det
-    B2 = c * al3[:, None] * e3 - c * (w3 ** 2)[:, None] * u3
-    return A, A1, A2, B, B1, B2, t2, w2, al2, t3, w3, al3
-
-
-def _time_calls(fn, n_calls: int) -> float:
-    t0 = time.perf_counter()
-    for _ in range(n_calls):
-        fn()
-    return (time.perf_counter() - t0) / n_calls
-
-
-def kinematics(repeat: int) -> None:
-    from tmm_cli.linkage.kinematics import solve
-    from tmm_cli.linkage.mechanism import build_mechanism
-    from tmm_cli.task import load_task
-    cases = [("slider-crank", build_mechanism(load_task(SLIDER_CRANK)), slider_crank_closed, "B", "rod"),
-             ("four-bar", build_mechanism(load_task(FOUR_BAR)), four_bar_closed, "B", "rocker")]
-    print(f"kinematics core vs numpy closed form, {repeat} interleaved rounds; time per call, "
+def scaling(repeat: int, n: int = 3600) -> None:
+    """`tmm run` of the task at its 12 positions and at ``n`` (the task with
+    `positions.count: n`, made on the fly), --format json and --format html, interleaved
+    (target for HTML: n positions <= 2x the 12)."""
+    tmm = [sys.executable, "-m", "tmm_cli", "run"]
+    with tempfile.TemporaryDirectory() as tmp:
+        fine = Path(tmp) / "fine.yaml"
+        fine.write_text(TASK.read_text(encoding="utf-8").replace("count: 12", f"count: {n}"), encoding="utf-8")
+        cmds = {}
+        for fmt in ("json", "html"):
+            for name, t in (("12", TASK), (str(n), fine)):
+                cmds[f"{fmt}{name}"] = tmm + [str(t), "--format", fmt, "--quiet", "--out", f"{tmp}/{fmt}{name}"]
+        res = _interleaved(cmds, repeat)
+    print(f"scaling, {TASK.name} at 12 and {n} positions, {repeat} interleaved rounds; wall / cpu in s: "
           "median [min-max]")
-    for name, mech, closed, pt, link in cases:
-        phi = np.linspace(0.0, 360.0, 3600, endpoint=False)
-        k = solve(mech, phi, 1.0)                 # same mechanism, same branch: check first
-        ref = closed(phi)
-        assert np.allclose(k.pos[pt], ref[3], atol=1e-9), f"{name}: not the same assembly"
-        assert np.allclose(k.d2[pt], ref[5], atol=1e-8), f"{name}: second derivatives differ"
-        for n in (36, 360, 3600, 36000):
-            phi = np.linspace(0.0, 360.0, n, endpoint=False)
-            calls = max(1, 20000 // n)
-            ts, tc = [], []
-            for _ in range(repeat):
-                ts.append(_time_calls(lambda: solve(mech, phi, 1.0), calls))
-                tc.append(_time_calls(lambda: closed(phi), calls))
-            r = [a / b for a, b in zip(ts, tc)]
-            tgt = " (target <= 3)" if n >= 3600 else ""
-            print(f"  {name:12s} N={n:6d}  tmm {statistics.median(ts) * 1e3:8.3f} ms   closed form "
-                  f"{statistics.median(tc) * 1e3:8.3f} ms   ratio {statistics.median(r):6.2f} "
-                  f"[{min(r):.2f}-{max(r):.2f}]{tgt}")
+    for k, v in res.items():
+        print(f"  {k:10s} wall {_stat([w for w, _ in v])}   cpu {_stat([c for _, c in v])}")
+    for fmt, tgt in (("json", None), ("html", 2.0)):
+        for i, what in ((0, "wall"), (1, "cpu")):
+            _ratio_line(f"run --format {fmt} {n} positions / 12 ({what})", [x[i] for x in res[f"{fmt}{n}"]],
+                        [x[i] for x in res[f"{fmt}12"]], tgt)
+
+
+# ----------------------------------------------------------------- kinematics core
+def kinematics(repeat: int) -> None:
+    """The kinematics core against the numpy closed form (and pylinkage when installed):
+    benchmarks/bench_kinematics.py."""
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    from bench_kinematics import core
+    core(repeat)
 
 
 # ----------------------------------------------------------------- batch
@@ -293,47 +227,94 @@ def batch(repeat: int, n: int) -> None:
 _KS_CODE = """
 import resource, sys, time
 sys.path.insert(0, {bench!r})
-import numpy as np
 from bench_kinetostatics import SIX
 from tmm_cli import load_task
 from tmm_cli.linkage import kinematics, structure
-from tmm_cli.linkage.kinetostatics import analyze, find_singular
-from tmm_cli.linkage.loads import evaluate
+from tmm_cli.linkage.kinetostatics import equilibrium, find_singular
+from tmm_cli.linkage.loads import evaluate_on
 from tmm_cli.linkage.mechanism import build_mechanism
 task = load_task(SIX); mech = build_mechanism(task); st = structure.analyze(mech)
-pos = kinematics.find_positions(mech, task.positions, task.drive)
+pos = kinematics.find_positions(mech, task.positions, task.drive.sign)
 sing = find_singular(mech, st, "crank")
 phi = np.mod(pos.phi0 + np.arange({n}) * 360.0 / {n}, 360.0)
 base = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
 t0, c0 = time.perf_counter(), time.process_time()
-kin = kinematics.solve(mech, phi, task.drive.omega1)
+kin = kinematics.solve(mech, phi, task.drive.sign * task.drive.speed)
 if {full}:
-    lds = evaluate(mech, task.loads, kin, pos, inertia=True)
-    d = analyze(mech, st, kin, lds, task.kinetostatics, singular=sing).to_dict()
+    lds = evaluate_on(mech, task.loads, kin, pos, sign=task.drive.sign, cycle=task.drive.cycle, inertia=True)
+    res = equilibrium(mech, st, kin, lds, task.kinetostatics, singular=sing)
+    t1, c1 = time.perf_counter(), time.process_time()
+    d = res.to_dict()
+else:
+    t1, c1 = time.perf_counter(), time.process_time()
+    if {entries}:
+        d = kin.to_entries()
 print(time.perf_counter() - t0, time.process_time() - c0,
       (resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - base) / 1024.0,
-      resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0)
+      resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0, time.process_time() - c1)
 """
 
 
 def kinetostatics_big(repeat: int, n: int = 36000) -> None:
-    out: dict[str, list[list[float]]] = {"kinetostatics": [], "kinematics": []}
+    """Each in a fresh process, interleaved: the kinematics alone (solve), the kinematics
+    and its results entries, and loads + kinetostatics + its results entries."""
+    cases = (("kinematics", False, False), ("kinematics+entries", False, True),
+             ("kinetostatics", True, True))
+    out: dict[str, list[list[float]]] = {c[0]: [] for c in cases}
     for _ in range(repeat):
-        for name, full in (("kinetostatics", True), ("kinematics", False)):
-            code = _KS_CODE.format(bench=str(ROOT / "benchmarks"), n=n, full=full)
+        for name, full, entries in cases:
+            code = _KS_CODE.format(bench=str(ROOT / "benchmarks"), n=n, full=full, entries=entries)
             p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, env=_ENV,
                                check=True)
             out[name].append([float(x) for x in p.stdout.split()])
     print(f"kinetostatics at {n} positions (six-bar with friction: loads, three methods, the results "
-          f"entries), {repeat} interleaved rounds, each in a fresh process")
+          f"entries), {repeat} interleaved rounds, each in a fresh process; s and MB: median [min-max]")
     for name, rows in out.items():
         cols = list(zip(*rows))
-        print(f"  {name:14s} wall {_stat(list(cols[0]))} s   cpu {_stat(list(cols[1]))} s   "
-              f"peak memory added {_stat(list(cols[2]))} MB (process peak {statistics.median(cols[3]):.0f} MB)")
+        print(f"  {name:19s} wall {_stat(list(cols[0]))}   cpu {_stat(list(cols[1]))} (entries {_stat(list(cols[4]))})"
+              f"   peak added {_stat(list(cols[2]))} (process {statistics.median(cols[3]):.0f})")
     k = list(zip(*out["kinetostatics"]))
     print(f"  target: <= 1 s {'ok' if statistics.median(k[1]) <= 1 else 'OVER'} (cpu), "
           f"<= 200 MB {'ok' if statistics.median(k[3]) <= 200 else 'OVER'} (process peak)")
     _ratio_line("kinetostatics / kinematics alone (cpu)", list(k[1]), [r[1] for r in out["kinematics"]], None)
+
+
+def against(repeat: int, base: Path) -> None:
+    """The whole report and the JSON run of this checkout against another checkout of tmm
+    (e.g. `git archive <commit> | tar -x -C DIR`), all four interleaved: the report's
+    change measured under the same load."""
+    py = [sys.executable, "-m", "tmm_cli"]
+    trees = {"this": ROOT, "base": Path(base).resolve()}
+
+    def run_in(tree: Path, args: list[str]) -> tuple[float, float]:
+        c0, t0 = _child_cpu(), time.perf_counter()
+        p = subprocess.run(py + args, capture_output=True, text=True, cwd=tree, env=_ENV)
+        if p.returncode != 0:
+            raise SystemExit(f"{tree}: {' '.join(args)} failed ({p.returncode}):\n{p.stderr[-2000:]}")
+        return time.perf_counter() - t0, _child_cpu() - c0
+
+    with tempfile.TemporaryDirectory() as tmp:
+        cmds = {}
+        for tag, tree in trees.items():
+            task = str(tree / "tasks" / TASK.name)
+            cmds[f"json {tag}"] = (tree, ["run", task, "--format", "json", "--quiet", "--out", f"{tmp}/j{tag}"])
+            cmds[f"report {tag}"] = (tree, ["run", task, "--quiet", "--out", f"{tmp}/r{tag}"])
+        out: dict[str, list[tuple[float, float]]] = {k: [] for k in cmds}
+        for tree, args in cmds.values():        # warm-up
+            run_in(tree, args)
+        for _ in range(repeat):
+            for k, (tree, args) in cmds.items():
+                out[k].append(run_in(tree, args))
+    print(f"this checkout against {trees['base']}, {TASK.name}, {repeat} interleaved rounds; wall / cpu in s")
+    for k, v in out.items():
+        print(f"  {k:12s} wall {_stat([w for w, _ in v])}   cpu {_stat([c for _, c in v])}")
+    for tag in trees:
+        for i, what in ((0, "wall"), (1, "cpu")):
+            _ratio_line(f"{tag}: report html+pdf / json run ({what})", [r[i] for r in out[f"report {tag}"]],
+                        [r[i] for r in out[f"json {tag}"]], 4.0)
+    for i, what in ((0, "wall"), (1, "cpu")):
+        _ratio_line(f"report: this / base ({what})", [r[i] for r in out["report this"]],
+                    [r[i] for r in out["report base"]], None)
 
 
 def main() -> None:
@@ -342,18 +323,26 @@ def main() -> None:
     ap.add_argument("--batch", action="store_true", help="also time a batch of 300 variants (slow)")
     ap.add_argument("--variants", type=int, default=300)
     ap.add_argument("--kinetostatics", action="store_true", help="also kinetostatics at 36,000 positions")
+    ap.add_argument("--scaling", action="store_true",
+                    help="also tmm run at 12 and 3600 positions, json and html, interleaved")
     ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--tasks", default="", help="more tasks (names in tasks/, comma-separated) for the floor ratios")
     ap.add_argument("--no-cli", action="store_true")
     ap.add_argument("--no-kinematics", action="store_true")
+    ap.add_argument("--against", metavar="DIR", help="also the report and JSON run of another checkout "
+                                                    "of tmm (DIR), interleaved with this one's")
     a = ap.parse_args()
     print(f"{os.cpu_count()} cores, load average {os.getloadavg()[0]:.2f}")
     if not a.no_cli:
         cli(max(5, a.repeat), a.report, [t for t in a.tasks.split(",") if t])
+    if a.scaling:
+        scaling(max(5, a.repeat))
     if a.batch:
         batch(max(5, a.repeat), a.variants)
     if a.kinetostatics:
         kinetostatics_big(max(5, a.repeat))
+    if a.against:
+        against(max(5, a.repeat), Path(a.against))
     if not a.no_kinematics:
         kinematics(max(5, a.repeat))
 

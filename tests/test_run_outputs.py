@@ -241,6 +241,8 @@ def test_linkage_failure_in_the_report_language(tmp_path, lang, words):
     box = (out / "report.html").read_text(encoding="utf-8").split('id="kinematics-failed"', 1)[1]
     box = box.split("</section>", 1)[0]
     assert words in box and "does not assemble" not in box and "too short" not in box
+    where = {"ru": "при угле кривошипа φ = 30.5°", "uk": "при куті кривошипа φ = 30.5°"}[lang]
+    assert where in box                       # the failure's crank angle (the first bad one found)
 
 
 def test_failure_box_in_russian(tmp_path):

@@ -20,19 +20,25 @@ from __future__ import annotations
 
 import math
 
+from .results import Entries, bulk
+
 READ_MM = 0.5
 
 
-def _rel(err_abs: float, value) -> float | None:
-    if value is None:
-        return None
-    v = abs(float(value))
-    if not math.isfinite(v) or v <= err_abs:
-        return None
-    return err_abs / v
+def _rel(err_abs: float, values) -> list:
+    """Per position, the relative reading error err_abs / |value|: None where the value
+    is None, not finite, or not larger than the reading error itself."""
+    import numpy as np
+    v = np.abs(np.array([math.nan if x is None else x for x in values], float))
+    with np.errstate(all="ignore"):
+        good = np.isfinite(v) & ~(v <= err_abs)
+        r = err_abs / np.where(good, v, 1.0) + 0.0
+    return np.where(good & np.isfinite(r), r, None).tolist()
 
 
 def _plans(results: dict) -> dict | None:
+    """The plans' reading errors at every position, column by column (the points and
+    links of the first entry: every entry of a run has the same)."""
     kin = results.get("kinematics") or []
     if not kin:
         return None
@@ -42,26 +48,33 @@ def _plans(results: dict) -> dict | None:
         return None
     mu_v, mu_a, _, _ = scales(kin, geom)
     ev, ea = READ_MM * mu_v, READ_MM * mu_a
-    positions = []
-    for e in kin:
-        pts = e.get("points") or {}
-        p_out = {}
-        for name, p in pts.items():
-            if name in geom.ground:
-                continue
-            p_out[name] = {"v": _rel(ev, p.get("v")), "a": _rel(ea, p.get("a"))}
-        l_out = {}
-        for lk in geom.links:
-            lv = (e.get("links") or {}).get(lk.name)
-            have = [q for q in lk.points if q in pts]
-            if lv is None or len(have) < 2 or lk.kind == "slider":
-                continue
-            P, Q = pts[have[0]], pts[have[1]]
-            ln = math.hypot(Q["x"] - P["x"], Q["y"] - P["y"])
-            om, ep = lv.get("omega"), lv.get("epsilon")
-            l_out[lk.name] = {"omega": None if om is None else _rel(ev, abs(om) * ln),
-                              "epsilon": None if ep is None else _rel(ea, abs(ep) * ln)}
-        positions.append({"index": e.get("index"), "points": p_out, "links": l_out})
+    pts0 = kin[0].get("points") or {}
+    lks0 = kin[0].get("links") or {}
+    P = [e.get("points") or {} for e in kin]
+    L = [e.get("links") or {} for e in kin]
+    pcols = {}
+    for name in pts0:
+        if name in geom.ground:
+            continue
+        col = [p.get(name) or {} for p in P]
+        pcols[name] = [{"v": v, "a": a} for v, a in zip(_rel(ev, [c.get("v") for c in col]),
+                                                       _rel(ea, [c.get("a") for c in col]))]
+    lcols = {}
+    for lk in geom.links:
+        have = [q for q in lk.points if q in pts0]
+        if lk.name not in lks0 or len(have) < 2 or lk.kind == "slider":
+            continue
+        ln = [math.hypot(p[have[1]]["x"] - p[have[0]]["x"], p[have[1]]["y"] - p[have[0]]["y"]) for p in P]
+        lv = [lo.get(lk.name) or {} for lo in L]
+        om = [None if c.get("omega") is None else abs(c["omega"]) * d for c, d in zip(lv, ln)]
+        ep = [None if c.get("epsilon") is None else abs(c["epsilon"]) * d for c, d in zip(lv, ln)]
+        lcols[lk.name] = [{"omega": o, "epsilon": x} for o, x in zip(_rel(ev, om), _rel(ea, ep))]
+    pn, lnm = list(pcols), list(lcols)
+    prow = zip(*pcols.values()) if pn else [()] * len(kin)
+    lrow = zip(*lcols.values()) if lnm else [()] * len(kin)
+    # clean by construction (tmm_cli.results.Entries)
+    positions = Entries({"index": e.get("index"), "points": dict(zip(pn, pr)), "links": dict(zip(lnm, lr))}
+                        for e, pr, lr in zip(kin, prow, lrow))
     return {"mu_v": mu_v, "mu_a": mu_a, "abs_v": ev, "abs_a": ea, "positions": positions}
 
 
@@ -77,7 +90,8 @@ def _flywheel(results: dict) -> dict | None:
 def graphical_error(results: dict) -> dict | None:
     """The block `graphical_error` of results.json (None when no stage drawn by hand)."""
     out: dict = {"reading_mm": READ_MM}
-    p = _plans(results)
+    with bulk():
+        p = _plans(results)
     if p is not None:
         out["plans"] = p
     f = _flywheel(results)

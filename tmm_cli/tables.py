@@ -44,12 +44,25 @@ def csv_text(header: list[str], rows) -> str:
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
     w.writerow([safe_cell(h) for h in header])
+    numbers = _NUMBERS_LINE.fullmatch
     for r in rows:
         vals = [r.get(h) for h in header] if isinstance(r, dict) else r
-        # a finite float (v - v == 0: not nan, not inf) goes to the writer as it is (it
-        # writes repr, as safe_cell does): the long per-position tables are nearly all floats
-        w.writerow([v if type(v) is float and v - v == 0 else safe_cell(v) for v in vals])
+        if type(vals) is not list and type(vals) is not tuple:
+            vals = list(vals)
+        # the long per-position tables are all numbers: a row whose every cell is a
+        # finite float or an int reads as digits, '.', 'e', signs and commas once joined
+        # (repr of anything else has a letter or a quote: None, nan, inf, True, 'text',
+        # np.float64(...)), and is then exactly what the writer gives (repr of a float,
+        # str of an int, nothing to quote)
+        line = ",".join(map(repr, vals))
+        if numbers(line):
+            buf.write(line + "\n")
+        else:
+            w.writerow([v if type(v) is float and v - v == 0 else safe_cell(v) for v in vals])
     return buf.getvalue()
+
+
+_NUMBERS_LINE = re.compile(r"[0-9.e+,-]*")
 
 
 def cell_value(text: str):

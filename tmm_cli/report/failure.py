@@ -29,6 +29,7 @@ I18N = {
     "en": {"fail.title": "not computed",
            "fail.what": "Stage “{stage}” failed{where}: {message}",
            "fail.where": " at position {position}",
+           "fail.where_angle": " at crank angle φ = {position}°",
            "fail.change": "What to change: the data of section “{section}” of the task file "
                           "(see the message above), then run tmm again. The other sections of this "
                           "report were computed; this one and those that depend on it are missing.",
@@ -36,6 +37,7 @@ I18N = {
     "ru": {"fail.title": "не рассчитано",
            "fail.what": "Этап «{stage}» не выполнен{where}: {message}",
            "fail.where": " в положении {position}",
+           "fail.where_angle": " при угле кривошипа φ = {position}°",
            "fail.change": "Что изменить: данные раздела «{section}» файла задания (см. сообщение "
                           "выше), затем снова запустить tmm. Остальные разделы отчёта рассчитаны; "
                           "нет только этого раздела и зависящих от него.",
@@ -43,6 +45,7 @@ I18N = {
     "uk": {"fail.title": "не розраховано",
            "fail.what": "Етап «{stage}» не виконано{where}: {message}",
            "fail.where": " у положенні {position}",
+           "fail.where_angle": " при куті кривошипа φ = {position}°",
            "fail.change": "Що змінити: дані розділу «{section}» файлу завдання (див. повідомлення "
                           "вище), потім знову запустити tmm. Інші розділи звіту розраховано; "
                           "немає лише цього розділу й залежних від нього.",
@@ -72,7 +75,12 @@ def box(ctx, err: dict) -> str:
     if err.get("code"):                 # a coded message: in the report's language
         from ..messages import localize
         message = localize({"code": err["code"], "params": err.get("params") or {}, "text": message}, ctx.lang)
-    where = ctx.t("fail.where", position=pos) if pos not in (None, "") else ""
+    if pos in (None, ""):
+        where = ""
+    elif isinstance(pos, (int, float)):          # a StageError's position: a crank angle, deg
+        where = ctx.t("fail.where_angle", position=f"{float(pos):.6g}")
+    else:
+        where = ctx.t("fail.where", position=pos)
     return ctx.render("sections/failure.html.j2", sid=f"{section or 'stage'}-failed",
                       title=ctx.t(title_key) if section else str(err.get("stage")),
                       what=ctx.t("fail.what", stage=err.get("stage"), where=where,

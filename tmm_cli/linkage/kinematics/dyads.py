@@ -39,16 +39,24 @@ from __future__ import annotations
 
 import numpy as np
 
-from .state import PCon, RCon, State, cross, dot, left, unit
+from .state import PCon, RCon, State, cross, dot, left, scale, unit
 
 
 def _atan2(v):
     return np.arctan2(v[..., 1], v[..., 0])
 
 
-def _rot(th, u):
-    c, s = np.cos(th), np.sin(th)
-    return np.stack([c * u[0] - s * u[1], s * u[0] + c * u[1]], axis=-1)
+def _cs(th):
+    return np.cos(th), np.sin(th)
+
+
+def _rot(cs, u):
+    """R(th) u (N, 2) from cs = (cos th, sin th)."""
+    c, s = cs
+    out = np.empty((len(c), 2))
+    np.subtract(c * u[0], s * u[1], out=out[:, 0])
+    np.add(s * u[0], c * u[1], out=out[:, 1])
+    return out
 
 
 class DyadPlan:
@@ -75,21 +83,24 @@ class DyadPlan:
         """The one freedom an external pair leaves to link X."""
         if isinstance(con, RCon):
             K = con.j if con.i == X else con.i
-            return ("R", st.point(K, con.local(K)), np.asarray(con.local(X)))
-        # prismatic
+            uK = con.local(K)
+            P = st.point_d(K, uK)[0] if K in st.th1 else st.point(K, uK)    # (shared with the derivatives)
+            return ("R", P, np.asarray(con.local(X)))
+        # prismatic: ("P", angle th of X, base, direction e of the line, (cos th, sin th))
         if con.s == X:
-            th = st.th[con.g] + con.a
-            e = unit(th)
+            th, e = st.guide(con)
             base = st.o[con.g] + con.c0 * left(e)
-        else:
-            th = st.th[con.s] - con.a
-            e = unit(st.th[con.s])
-            base = st.o[con.s] - con.c0 * left(e)
-        return ("P", th, base, e)
+            return ("P", th, base, e, (e[:, 0], e[:, 1]))
+        th = st.th[con.s] - con.a
+        e = unit(st.th[con.s])
+        base = st.o[con.s] - con.c0 * left(e)
+        return ("P", th, base, e, _cs(th))
 
     @staticmethod
-    def _pose_from_point(p, u, th):
-        return p - _rot(th, u)
+    def _set_from_point(st, X, p, u, th):
+        """Pose of X turned by th with its local point u at p."""
+        cs = _cs(th)
+        st.set_pose(X, p - _rot(cs, u), th, cs)
 
     def solve(self, st: State, sigma: float = 1.0) -> np.ndarray:
         """Set the poses of A and B in ``st``; return the assembly margin (N,)."""
@@ -132,41 +143,41 @@ class DyadPlan:
         C = P1 + lA * unit(beta + sigma * np.arccos(cg))
         thA = _atan2(C - P1) - np.arctan2(vA[1], vA[0])
         thB = _atan2(C - P3) - np.arctan2(vB[1], vB[0])
-        st.set_pose(A, self._pose_from_point(P1, uA1, thA), thA)
-        st.set_pose(B, self._pose_from_point(P3, uB3, thB), thB)
+        self._set_from_point(st, A, P1, uA1, thA)
+        self._set_from_point(st, B, P3, uB3, thB)
         return margin
 
     def _rrp(self, st, X, Y, ex, ey, uXC, uYC, sigma):
         """X turns about P1, Y translates on a line: circle/line."""
         _, P1, uX1 = ex
-        _, thY, bY, eY = ey
+        _, thY, bY, eY, csY = ey
         vX = uXC - uX1
         lX = float(np.hypot(*vX))
-        c0 = bY + _rot(thY, uYC)
+        c0 = bY + _rot(csY, uYC)
         w = c0 - P1
         h = cross(w, eY)
         margin = lX - np.abs(h)
         s = -dot(w, eY) + sigma * np.sqrt(np.maximum(lX ** 2 - h ** 2, 0.0))
-        C = c0 + s[:, None] * eY
+        C = c0 + scale(s, eY)
         thX = _atan2(C - P1) - np.arctan2(vX[1], vX[0])
-        st.set_pose(X, self._pose_from_point(P1, uX1, thX), thX)
-        st.set_pose(Y, bY + s[:, None] * eY, np.broadcast_to(thY, (st.N,)).copy())
+        self._set_from_point(st, X, P1, uX1, thX)
+        st.set_pose(Y, bY + scale(s, eY), thY.copy(), csY)
         return margin
 
     def _prp(self, st, ea, eb, uAC, uBC):
         A, B = self.A, self.B
-        _, thA, bA, eA = ea
-        _, thB, bB, eB = eb
-        cA = bA + _rot(thA, uAC)
-        cB = bB + _rot(thB, uBC)
+        _, thA, bA, eA, csA = ea
+        _, thB, bB, eB, csB = eb
+        cA = bA + _rot(csA, uAC)
+        cB = bB + _rot(csB, uBC)
         den = cross(eA, eB)
         margin = np.abs(den) - 1e-9
         dd = np.where(np.abs(den) > 1e-300, den, 1e-300)
         Dl = cB - cA
         sA = cross(Dl, eB) / dd
         sB = cross(Dl, eA) / dd
-        st.set_pose(A, bA + sA[:, None] * eA, np.broadcast_to(thA, (st.N,)).copy())
-        st.set_pose(B, bB + sB[:, None] * eB, np.broadcast_to(thB, (st.N,)).copy())
+        st.set_pose(A, bA + scale(sA, eA), thA.copy(), csA)
+        st.set_pose(B, bB + scale(sB, eB), thB.copy(), csB)
         return margin
 
     def _rpr(self, st, ea, eb, sigma):
@@ -188,8 +199,8 @@ class DyadPlan:
         psi = delta - asn if sigma > 0 else delta - np.pi + asn
         th_s = psi
         th_g = psi - mid.a
-        st.set_pose(s_, self._pose_from_point(Sp, us, th_s), th_s)
-        st.set_pose(g_, self._pose_from_point(G, ug, th_g), th_g)
+        self._set_from_point(st, s_, Sp, us, th_s)
+        self._set_from_point(st, g_, G, ug, th_g)
         return margin
 
     def _rpp(self, st, X, Y, ex, ey):
@@ -197,10 +208,11 @@ class DyadPlan:
         is prismatic, so X's angle follows from Y's and Y's shift is linear."""
         mid: PCon = self.mid
         _, pX, uX = ex
-        _, thY, bY, eY = ey
+        _, thY, bY, eY, csY = ey
         thX = thY + mid.a if X == mid.s else thY - mid.a
-        thX = np.broadcast_to(thX, (st.N,)).copy()
-        oX = self._pose_from_point(pX, uX, thX)
+        thX = thX.copy()
+        csX = _cs(thX)
+        oX = pX - _rot(csX, uX)
         th_g = thX if X == mid.g else thY
         n = left(unit(th_g + mid.a))
         den = dot(n, eY)
@@ -210,34 +222,52 @@ class DyadPlan:
             t = (mid.c0 - dot(n, bY - oX)) / dd
         else:
             t = (dot(n, oX - bY) - mid.c0) / dd
-        st.set_pose(X, oX, thX)
-        st.set_pose(Y, bY + t[:, None] * eY, np.broadcast_to(thY, (st.N,)).copy())
+        st.set_pose(X, oX, thX, csX)
+        st.set_pose(Y, bY + scale(t, eY), thY.copy(), csY)
         return margin
 
 
 class _MidApply:
-    """block_X . (ox, oy, th) of the pair A-B, without materialising the blocks."""
+    """block_X . (ox, oy, th) of the pair A-B, without materialising the blocks.
+
+    ``t`` may be the float 1.0 (the angle's coefficient of a link turning about a known
+    point: then t * r is r itself) or 0.0 (a link with a known angle)."""
 
     def __init__(self, con, st: State):
         self.con = con
+        self.ru = None
         if isinstance(con, RCon):
             self.ru = {b: st.rot(b, con.local(b)) for b in con.bodies if b != 0}
         else:
-            psi = st.th[con.g] + con.a
-            self.e = unit(psi)
+            self.e = st.guide(con)[1]
             self.n = left(self.e)
             self.ed = dot(self.e, st.o[con.s] - st.o[con.g])
 
     def __call__(self, X, ox, oy, t):
         c = self.con
+        one = isinstance(t, float) and t == 1.0
         if isinstance(c, RCon):
             ru = self.ru[X]
-            sg = 1.0 if X == c.i else -1.0
-            return sg * (ox - t * ru[:, 1]), sg * (oy + t * ru[:, 0])
+            r1, r0 = (ru[:, 1], ru[:, 0]) if one else (t * ru[:, 1], t * ru[:, 0])
+            if X == c.i:
+                return ox - r1, oy + r0
+            return np.negative(ox - r1), np.negative(oy + r0)
         nv = self.n[:, 0] * ox + self.n[:, 1] * oy
         if X == c.s:
             return t, nv
-        return -t, -nv - self.ed * t
+        return -t, -nv - (self.ed if one else self.ed * t)
+
+
+def _length(info_X, cX, mid, N: int) -> np.ndarray:
+    """|cX|, the length of link X's column of the 2x2 system. A link sliding on a fixed
+    guide and jointed to the other by a revolute pair has the column +-(e - 0 r): its
+    length is |e|, the same at every position (np.hypot depends on |x|, |y| only), so
+    it is taken once when the column is finite."""
+    if info_X[0] == "P" and isinstance(mid, RCon):
+        e0, e1 = info_X[1][0], info_X[1][1]
+        if e0.strides == (0,) and e1.strides == (0,) and np.isfinite(cX[0]).all() and np.isfinite(cX[1]).all():
+            return np.broadcast_to(np.hypot(e0[:1], e1[:1]), (N,))
+    return np.hypot(cX[0], cX[1])
 
 
 def dyad_derivatives(plan: DyadPlan, st: State) -> np.ndarray:
@@ -250,38 +280,41 @@ def dyad_derivatives(plan: DyadPlan, st: State) -> np.ndarray:
     mask of positions where the 2x2 system is singular."""
     A, B = plan.A, plan.B
     N = st.N
-    zero = np.zeros(N)
-    one = np.ones(N)
     info = {}
     for X, ext in ((A, plan.e1), (B, plan.e2)):
         if isinstance(ext, RCon):
             K = ext.j if ext.i == X else ext.i
             _, P1, P2 = st.point_d(K, ext.local(K))
             ru = st.rot(X, ext.local(X))
-            U = (ru[:, 1], -ru[:, 0], one)              # -J R u
-            V = (P1[:, 0], P1[:, 1], zero)
+            U = (ru[:, 1], -ru[:, 0], 1.0)              # -J R u, 1
+            V = (P1[:, 0], P1[:, 1], 0.0)
             info[X] = ("R", U, V, (P2, ru))
         else:
             K = ext.g if ext.s == X else ext.s
             sgn = 1.0 if ext.s == X else -1.0        # Q = o_K + sgn c0 n(psi)
-            psi = st.th[ext.g] + ext.a if ext.s == X else st.th[ext.s]
-            e = unit(psi)
+            e = st.guide(ext)[1] if ext.s == X else unit(st.th[ext.s])
+            if K == 0 and ext.s == X:
+                # a fixed guide: Q', Q'', w1, w2 are zero, so V and W are (0, 0, 0) --
+                # as the general terms below evaluate them (+0 in every place, the data
+                # being finite), without the arithmetic
+                info[X] = ("P", (e[:, 0], e[:, 1], 0.0), (0.0, 0.0, st.th1[0]), None)
+                continue
             n = left(e)
             w1 = st.th1[K]
             w2 = st.th2[K]
             cc = sgn * ext.c0
             Q = st.o[K] + cc * n
-            Q1 = st.o1[K] - cc * w1[:, None] * e
-            Q2 = st.o2[K] - cc * (w2[:, None] * e + (w1 ** 2)[:, None] * n)
+            Q1 = st.o1[K] - scale(cc * w1, e)
+            Q2 = st.o2[K] - cc * (scale(w2, e) + scale(w1 ** 2, n))
             s = dot(e, st.o[X] - Q)
-            U = (e[:, 0], e[:, 1], zero)
+            U = (e[:, 0], e[:, 1], 0.0)
             V = (Q1[:, 0] + s * w1 * n[:, 0], Q1[:, 1] + s * w1 * n[:, 1], w1)
             info[X] = ("P", U, V, (Q2, e, n, s, w1, w2))
     ap = _MidApply(plan.mid, st)
     cA = ap(A, *info[A][1])
     cB = ap(B, *info[B][1])
     det = cA[0] * cB[1] - cA[1] * cB[0]
-    nn = np.hypot(cA[0], cA[1]) * np.hypot(cB[0], cB[1])
+    nn = _length(info[A], cA, plan.mid, N) * _length(info[B], cB, plan.mid, N)
     with np.errstate(divide="ignore", invalid="ignore"):
         st.last_det = np.where(nn > 0, det / np.maximum(nn, 1e-300), 0.0)  # sine of the angle between the columns
     sing = ~(np.abs(det) >= 1e-10 * nn)
@@ -292,6 +325,15 @@ def dyad_derivatives(plan: DyadPlan, st: State) -> np.ndarray:
     def solve2(r0, r1):
         return (r0 * cB[1] - r1 * cB[0]) * inv, (cA[0] * r1 - cA[1] * r0) * inv
 
+    def pose_d(X, lx, W):
+        """(o, th) derivative U lx + W of link X."""
+        U = info[X][1]
+        o = np.empty((N, 2))
+        np.add(U[0] * lx, W[0], out=o[:, 0])
+        np.add(U[1] * lx, W[1], out=o[:, 1])
+        th = lx + W[2] if info[X][0] == "R" else U[2] * lx + W[2]      # R: U[2] = 1
+        return o, th
+
     vA = ap(A, *info[A][2])
     vB = ap(B, *info[B][2])
     l1 = dict(zip((A, B), solve2(-(vA[0] + vB[0]), -(vA[1] + vB[1]))))
@@ -299,23 +341,22 @@ def dyad_derivatives(plan: DyadPlan, st: State) -> np.ndarray:
     for X in (A, B):
         kind, U, V, extra = info[X]
         lx = l1[X]
-        st.set_d1(X, np.stack([U[0] * lx + V[0], U[1] * lx + V[1]], axis=-1), U[2] * lx + V[2])
+        st.set_d1(X, *pose_d(X, lx, V))
         if kind == "R":
             P2, ru = extra
             l2 = lx * lx
-            Wd[X] = (P2[:, 0] + l2 * ru[:, 0], P2[:, 1] + l2 * ru[:, 1], zero)
+            Wd[X] = (P2[:, 0] + l2 * ru[:, 0], P2[:, 1] + l2 * ru[:, 1], 0.0)
+        elif extra is None:                     # on a fixed guide
+            Wd[X] = (0.0, 0.0, st.th2[0])
         else:
             Q2, e, n, s, w1, w2 = extra
             a = 2 * lx * w1 + s * w2
             b = s * w1 * w1
             Wd[X] = (Q2[:, 0] + a * n[:, 0] - b * e[:, 0], Q2[:, 1] + a * n[:, 1] - b * e[:, 1], w2)
-    gam = plan.mid.gamma(st)
+    gam = plan.mid.gamma(st, ap.ru)
     wA = ap(A, *Wd[A])
     wB = ap(B, *Wd[B])
     l2 = dict(zip((A, B), solve2(-(wA[0] + wB[0] + gam[:, 0]), -(wA[1] + wB[1] + gam[:, 1]))))
     for X in (A, B):
-        U = info[X][1]
-        W = Wd[X]
-        lx = l2[X]
-        st.set_d2(X, np.stack([U[0] * lx + W[0], U[1] * lx + W[1]], axis=-1), U[2] * lx + W[2])
+        st.set_d2(X, *pose_d(X, l2[X], Wd[X]))
     return sing

@@ -5,10 +5,17 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ...results import Entries, bulk
 
-def _f(x) -> float:
-    v = float(x)
-    return v if np.isfinite(v) else 0.0
+
+def _rows(cols, n: int, flat: bool = False) -> list:
+    """The columns (each (n,) or a scalar) as n rows of plain floats, a value that is
+    not finite as 0.0 and -0.0 as 0.0 (``flat``: one column, its n values)."""
+    a = np.empty((n, len(cols)))
+    for j, c in enumerate(cols):
+        a[:, j] = c
+    a = np.where(np.isfinite(a), a, 0.0) + 0.0
+    return a[:, 0].tolist() if flat else a.tolist()
 
 
 def angle_deg(rad) -> np.ndarray:
@@ -66,6 +73,8 @@ class KinematicsResult:
     def epsilon(self, link: str) -> np.ndarray:
         return self.a2[link] * self._w() ** 2 + self.a1[link] * self._e()
 
+    _PKEYS = ("x", "y", "vx", "vy", "v", "ax", "ay", "a", "vqx", "vqy", "vq", "aqx", "aqy", "aq")
+    _LKEYS = ("angle", "omega", "epsilon", "i", "iq2")
     _NULLED = {"v": ("vx", "vy", "v", "vqx", "vqy", "vq"), "a": ("ax", "ay", "a", "aqx", "aqy", "aq"),
                "omega": ("omega", "i"), "epsilon": ("epsilon", "iq2")}
 
@@ -81,45 +90,47 @@ class KinematicsResult:
                     target[f] = None
 
     # ---------------------------------------------------------------
-    def to_entries(self, index=None) -> list[dict]:
+    def to_entries(self, index=None) -> Entries:
         """results.json ``kinematics`` entries, one per position.
 
         ``index``: the position numbers (sequence of N ints; default 0..N-1).
         Per point: x, y, vx, vy, v, ax, ay, a and the analogues vqx, vqy, vq (= dr/dphi,
         m/rad), aqx, aqy, aq (= d2r/dphi2); per link: angle (deg, [0, 360)), omega,
-        epsilon, i = dtheta/dphi (= omega_i/omega1), iq2 = d2theta/dphi2."""
+        epsilon, i = dtheta/dphi (= omega_i/omega1), iq2 = d2theta/dphi2. A list
+        (:class:`tmm_cli.results.Entries`) of clean values: a value that is not finite is
+        0.0, or None where it has no finite limit (``undefined``)."""
+        with bulk():
+            return self._entries(index)
+
+    def _entries(self, index) -> Entries:
+        """See :meth:`to_entries`."""
         N = len(self.phi)
         idx = list(range(N)) if index is None else [int(i) for i in index]
         if len(idx) != N:
             raise ValueError(f"to_entries: {len(idx)} indices for {N} positions")
         phi = angle_deg(np.radians(self.phi))
-        V = {p: self.vel(p) for p in self.points}
-        Acc = {p: self.acc(p) for p in self.points}
-        Om = {lk: np.broadcast_to(self.omega(lk), (N,)) for lk in self.links}
-        Ep = {lk: np.broadcast_to(self.epsilon(lk), (N,)) for lk in self.links}
-        Ang = {lk: angle_deg(self.angle[lk]) for lk in self.links}
-        out = []
-        for k in range(N):
-            pts = {}
-            for p in self.points:
-                x, y = self.pos[p][k]
-                vx, vy = V[p][k]
-                ax, ay = Acc[p][k]
-                qx, qy = self.d1[p][k]
-                rx, ry = self.d2[p][k]
-                pts[p] = {"x": _f(x), "y": _f(y), "vx": _f(vx), "vy": _f(vy), "v": _f(np.hypot(vx, vy)),
-                          "ax": _f(ax), "ay": _f(ay), "a": _f(np.hypot(ax, ay)),
-                          "vqx": _f(qx), "vqy": _f(qy), "vq": _f(np.hypot(qx, qy)),
-                          "aqx": _f(rx), "aqy": _f(ry), "aq": _f(np.hypot(rx, ry))}
-            lks = {}
-            for lk in self.links:
-                lks[lk] = {"angle": _f(Ang[lk][k]), "omega": _f(Om[lk][k]), "epsilon": _f(Ep[lk][k]),
-                           "i": _f(self.a1[lk][k]), "iq2": _f(self.a2[lk][k])}
-            e = {"index": idx[k], "phi": _f(phi[k]), "points": pts, "links": lks}
-            if self.singular is not None and bool(self.singular[k]):
-                e["singular"] = True
-            if self.near is not None and bool(self.near[k]):
-                e["near_singular"] = True
-                self._null(e, k)
-            out.append(e)
+        pts = {}
+        for p in self.points:                 # one (N, 14) block per point, rows as dicts
+            v, a, q, r = self.vel(p), self.acc(p), self.d1[p], self.d2[p]
+            x = self.pos[p]
+            cols = (x[:, 0], x[:, 1], v[:, 0], v[:, 1], np.hypot(v[:, 0], v[:, 1]),
+                    a[:, 0], a[:, 1], np.hypot(a[:, 0], a[:, 1]), q[:, 0], q[:, 1], np.hypot(q[:, 0], q[:, 1]),
+                    r[:, 0], r[:, 1], np.hypot(r[:, 0], r[:, 1]))
+            pts[p] = [dict(zip(self._PKEYS, row)) for row in _rows(cols, N)]
+        lks = {}
+        for lk in self.links:
+            cols = (angle_deg(self.angle[lk]), self.omega(lk), self.epsilon(lk), self.a1[lk], self.a2[lk])
+            lks[lk] = [dict(zip(self._LKEYS, row)) for row in _rows(cols, N)]
+        pnames, lnames = list(pts), list(lks)
+        prow = zip(*pts.values()) if pnames else [()] * N
+        lrow = zip(*lks.values()) if lnames else [()] * N
+        out = Entries({"index": i, "phi": f, "points": dict(zip(pnames, pr)), "links": dict(zip(lnames, lr))}
+               for i, f, pr, lr in zip(idx, _rows((phi,), N, flat=True), prow, lrow))
+        sing = [] if self.singular is None else np.flatnonzero(self.singular).tolist()
+        for k in sing:
+            out[k]["singular"] = True
+        near = [] if self.near is None else np.flatnonzero(self.near).tolist()
+        for k in near:
+            out[k]["near_singular"] = True
+            self._null(out[k], k)
         return out

@@ -110,11 +110,18 @@ class Solver:
         th = phi - self.alpha0
         c, s = np.cos(th), np.sin(th)
         u0, u1 = self.cp
-        ru = np.stack([c * u0 - s * u1, s * u0 + c * u1], axis=-1)
-        jru = np.stack([-ru[:, 1], ru[:, 0]], axis=-1)
+        ru = np.empty((len(th), 2))
+        np.subtract(c * u0, s * u1, out=ru[:, 0])
+        np.add(s * u0, c * u1, out=ru[:, 1])
+        o1 = np.empty_like(ru)                  # -J R u
+        o1[:, 0] = ru[:, 1]
+        np.negative(ru[:, 0], out=o1[:, 1])
         d = self.mech.drive
-        st.set_pose(d, self.pivot - ru, th)
-        st.set_d1(d, -jru, np.ones_like(phi))
+        o = np.empty_like(ru)
+        np.subtract(self.pivot[0], ru[:, 0], out=o[:, 0])
+        np.subtract(self.pivot[1], ru[:, 1], out=o[:, 1])
+        st.set_pose(d, o, th, (c, s))
+        st.set_d1(d, o1, np.ones_like(phi))
         st.set_d2(d, ru, np.zeros_like(phi))
 
     # ------------------------------------------------------------------ run
@@ -173,6 +180,7 @@ class Solver:
                 arr = getattr(st, name)[b].copy()
                 arr[idx] = 0.5 * (getattr(sp, name)[b] + getattr(sm, name)[b])
                 getattr(st, name)[b] = arr
+        st._pd.clear()                   # the points' derivatives change with the bodies'
         st.singular = sing
 
     # ------------------------------------------------------------------ closures
@@ -601,12 +609,13 @@ def _solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
     N = len(phi_deg)
     order = None if N < 2 or bool(np.all(phi_deg[1:] >= phi_deg[:-1])) else np.argsort(phi_deg, kind="stable")
     for b in range(1, mech.n + 1):
-        st.th[b] = _unwrap_sorted(np.asarray(st.th[b], float), order)
+        st.unwrap(b, _unwrap_sorted(np.asarray(st.th[b], float), order))
     pos, d1, d2 = {}, {}, {}
     names = mech.all_points()
     for p, xy in mech.ground.items():
         pos[p] = np.empty((N, 2))
-        pos[p][:] = xy
+        pos[p][:, 0] = xy[0]
+        pos[p][:, 1] = xy[1]
         d1[p] = np.zeros((N, 2))
         d2[p] = np.zeros((N, 2))
     for lk in mech.links:

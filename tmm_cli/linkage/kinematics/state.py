@@ -42,28 +42,77 @@ class State:
         self.o2 = {0: z2}
         self.th2 = {0: z1}
         self._cs: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+        self._csk: dict[int, tuple[np.ndarray, np.ndarray]] = {}   # given to set_pose
+        self._gd: dict[int, tuple] = {}       # id(PCon) -> (g, (psi, e)): guide directions
+        self._pd: dict[tuple, tuple] = {}     # (b, u) -> point_d(b, u)
         # boolean mask of the positions where a group's velocity equations are singular
         # (their derivatives the mean of the two sides), None where there are none
         self.singular: np.ndarray | None = None
 
-    def set_pose(self, b: int, o: np.ndarray, th: np.ndarray) -> None:
+    def set_pose(self, b: int, o: np.ndarray, th: np.ndarray, cs=None) -> None:
+        """Body b's pose; ``cs``: (cos th, sin th) when the caller has them already."""
         self.o[b] = o
         self.th[b] = th
         self._cs.pop(b, None)
+        if cs is None:
+            self._csk.pop(b, None)
+        else:
+            self._csk[b] = cs
+        if self._pd:
+            self._forget(b)
+        if self._gd:
+            for k in [k for k, (g, _) in self._gd.items() if g == b]:
+                del self._gd[k]
+
+    def _forget(self, b: int) -> None:
+        for k in [k for k in self._pd if k[0] == b]:
+            del self._pd[k]
 
     def set_d1(self, b, o1, th1):
         self.o1[b] = o1
         self.th1[b] = th1
+        if self._pd:
+            self._forget(b)
 
     def set_d2(self, b, o2, th2):
         self.o2[b] = o2
         self.th2[b] = th2
+        if self._pd:
+            self._forget(b)
+
+    def guide(self, con) -> tuple[np.ndarray, np.ndarray]:
+        """(psi, e) of prismatic pair ``con``: its guide's direction psi = th_g + a (N,)
+        and e = (cos psi, sin psi) (N, 2), computed once per pose of the carrier g. A
+        fixed guide (g = 0) has one direction: its cosine and sine are taken once and
+        broadcast (read-only)."""
+        hit = self._gd.get(id(con))
+        if hit is not None:
+            return hit[1]
+        if con.g == 0:
+            psi = np.full(self.N, 0.0 + con.a)            # = th_0 + a, th_0 = 0 everywhere
+            out = (psi, np.broadcast_to(unit(psi[:1]), (self.N, 2)))
+        else:
+            psi = self.th[con.g] + con.a
+            out = (psi, unit(psi))
+        self._gd[id(con)] = (con.g, out)
+        return out
 
     def cs(self, b: int):
+        """(cos th_b, sin th_b), taken when first asked for after the pose was set (and
+        kept when th_b is then unwrapped, see :meth:`unwrap`)."""
         if b not in self._cs:
-            t = self.th[b]
-            self._cs[b] = (np.cos(t), np.sin(t))
+            hit = self._csk.pop(b, None)
+            if hit is None:
+                t = self.th[b]
+                hit = (np.cos(t), np.sin(t))
+            self._cs[b] = hit
         return self._cs[b]
+
+    def unwrap(self, b: int, th: np.ndarray) -> None:
+        """Replace th_b by an unwrapped copy (the same angles, +- 2 pi k); the cosine and
+        sine already taken stay."""
+        self.th[b] = th
+        self._csk.pop(b, None)
 
     def rot(self, b: int, u) -> np.ndarray:
         """R(th_b) u -> (N, 2)."""
@@ -82,19 +131,28 @@ class State:
         return self.o[b] + self.rot(b, u)
 
     def point_d(self, b: int, u):
-        """Position, first and second phi-derivatives of a point fixed on body b."""
+        """Position, first and second phi-derivatives of a point fixed on body b
+        (computed once per pose and derivatives of b: the arrays are shared, read-only)."""
+        key = (b, float(u[0]), float(u[1]))
+        hit = self._pd.get(key)
+        if hit is None:
+            hit = self._pd[key] = self._point_d(b, u)
+        return hit
+
+    def _point_d(self, b: int, u):
         ru = self.rot(b, u)
         rx, ry = ru[:, 0], ru[:, 1]
         t1 = self.th1[b]
         t2 = self.th2[b]
         t11 = t1 * t1
         p = self.o[b] + ru
-        d1 = self.o1[b].copy()
-        d1[:, 0] -= t1 * ry
-        d1[:, 1] += t1 * rx
-        d2 = self.o2[b].copy()
-        d2[:, 0] -= t2 * ry + t11 * rx
-        d2[:, 1] += t2 * rx - t11 * ry
+        o1, o2 = self.o1[b], self.o2[b]
+        d1 = np.empty((self.N, 2))
+        np.subtract(o1[:, 0], t1 * ry, out=d1[:, 0])
+        np.add(o1[:, 1], t1 * rx, out=d1[:, 1])
+        d2 = np.empty((self.N, 2))
+        np.subtract(o2[:, 0], t2 * ry + t11 * rx, out=d2[:, 0])
+        np.add(o2[:, 1], t2 * rx - t11 * ry, out=d2[:, 1])
         return p, d1, d2
 
     def take(self, idx) -> "State":
@@ -104,7 +162,19 @@ class State:
             setattr(sub, name, {b: v[idx] for b, v in getattr(self, name).items()})
         sub.N = len(sub.th[0])
         sub._cs = {}
+        sub._csk = {}
+        sub._gd = {}
+        sub._pd = {}
         return sub
+
+
+def scale(x, v):
+    """x[:, None] * v for x (N,) and v (N, 2), column by column (a broadcast over the
+    last axis of length 2 runs numpy's inner loop two elements at a time)."""
+    out = np.empty((len(x), 2))
+    np.multiply(x, v[:, 0], out=out[:, 0])
+    np.multiply(x, v[:, 1], out=out[:, 1])
+    return out
 
 
 def unit(ang):
@@ -167,12 +237,13 @@ class RCon:
             out[b] = blk
         return out
 
-    def gamma(self, st: State) -> np.ndarray:
+    def gamma(self, st: State, ru: dict | None = None) -> np.ndarray:
+        """``ru``: R(th_b) u_b of the two bodies when the caller has them already."""
         g = np.zeros((st.N, 2))
         for b, u, sg in ((self.i, self.ui, 1.0), (self.j, self.uj, -1.0)):
             if b == 0:
                 continue
-            g -= sg * st.th1[b][:, None] ** 2 * st.rot(b, u)
+            g -= scale(sg * st.th1[b] ** 2, st.rot(b, u) if ru is None else ru[b])
         return g
 
 
@@ -218,9 +289,8 @@ class PCon:
             out[self.g] = bg
         return out
 
-    def gamma(self, st: State) -> np.ndarray:
-        psi = self.psi(st)
-        e = unit(psi)
+    def gamma(self, st: State, ru: dict | None = None) -> np.ndarray:
+        e = st.guide(self)[1]
         n = left(e)
         d = st.o[self.s] - st.o[self.g]
         d1 = st.o1[self.s] - st.o1[self.g]

@@ -18,6 +18,7 @@ import numpy as np
 
 from ...errors import StageError, field_error
 from ...messages import Message
+from ...results import Entries, bulk
 from .. import loads as loads_mod
 from ..loads import AppliedCouple, Loads
 from .equations import Geometry, geometry, load_vector, scaled_det
@@ -36,8 +37,9 @@ def balance_index(mech, section) -> int:
 
 
 def _finite_list(a) -> list:
-    """``a.tolist()`` with every NaN / inf as None (results.json never holds them)."""
-    a = np.asarray(a, float)
+    """``a.tolist()`` with every NaN / inf as None and -0.0 as 0.0 (results.json never
+    holds them)."""
+    a = np.asarray(a, float) + 0.0
     if np.all(np.isfinite(a)):
         return a.tolist()
     return np.where(np.isfinite(a), a, None).tolist()
@@ -102,7 +104,6 @@ class KinetostaticsResult:
 
     def _reactions_table(self) -> list[list[dict]]:
         """Per pair, per position: the results.json reaction dicts (vectorised)."""
-        N = len(self.phi)
         ok = self.ok & np.all(np.isfinite(self.reactions), axis=1)
         okl = ok.tolist()
         scale = np.maximum(np.max(np.abs(np.nan_to_num(self.reactions)), axis=1), 1e-300)
@@ -111,30 +112,27 @@ class KinetostaticsResult:
             x = self.reactions[:, 2 * k]
             y = self.reactions[:, 2 * k + 1]
             p = self.geo.jpoint[k]
-            pl = p.tolist()
+            pl = _finite_list(p)
             if j.kind == "R":
-                xs, ys, Rs = x.tolist(), y.tolist(), np.hypot(x, y).tolist()
+                xs, ys, Rs = (x + 0.0).tolist(), (y + 0.0).tolist(), np.hypot(x, y).tolist()
                 col = [{"x": a, "y": b_, "R": r, "point": pt} if good else
                        {"x": None, "y": None, "R": None, "point": pt}
                        for a, b_, r, pt, good in zip(xs, ys, Rs, pl, okl)]
             else:
-                col = []
                 e = self.geo.jdir[k]
                 nx, ny = -e[:, 1], e[:, 0]
                 N_, M_ = x, y
                 has = np.abs(N_) > 1e-12 * scale
                 off = np.where(has, M_ / np.where(has, N_, 1.0), 0.0)
                 pt = p + off[:, None] * e
-                Fx, Fy, R = (N_ * nx).tolist(), (N_ * ny).tolist(), np.abs(N_).tolist()
-                Nl, Ml, offl, ptl, hasl = N_.tolist(), M_.tolist(), off.tolist(), pt.tolist(), has.tolist()
-                for i in range(N):
-                    if okl[i]:
-                        col.append({"x": Fx[i] + 0.0, "y": Fy[i] + 0.0, "R": R[i], "N": Nl[i], "M": Ml[i],
-                                    "offset": offl[i] if hasl[i] else None,
-                                    "point": ptl[i] if hasl[i] else None, "pin": pl[i]})
-                    else:
-                        col.append({"x": None, "y": None, "R": None, "N": None, "M": None, "offset": None,
-                                    "point": None, "pin": pl[i]})
+                Fx, Fy, R = (N_ * nx + 0.0).tolist(), (N_ * ny + 0.0).tolist(), np.abs(N_).tolist()
+                Nl, Ml, offl, ptl, hasl = ((N_ + 0.0).tolist(), (M_ + 0.0).tolist(), (off + 0.0).tolist(),
+                                           _finite_list(pt), has.tolist())
+                col = [{"x": fx, "y": fy, "R": r, "N": n_, "M": m_, "offset": o if h else None,
+                        "point": q if h else None, "pin": pin} if good else
+                       {"x": None, "y": None, "R": None, "N": None, "M": None, "offset": None, "point": None,
+                        "pin": pin}
+                       for fx, fy, r, n_, m_, o, q, h, pin, good in zip(Fx, Fy, R, Nl, Ml, offl, ptl, hasl, pl, okl)]
             out.append(col)
         return out
 
@@ -147,7 +145,7 @@ class KinetostaticsResult:
         Zhukovsky lever); default: when there are at most 400 positions."""
         if detail is None:
             detail = len(self.phi) <= DETAIL_MAX
-        with np.errstate(all="ignore"):
+        with np.errstate(all="ignore"), bulk():
             return self._to_dict(detail)
 
     def _to_dict(self, detail: bool = True) -> dict:
@@ -160,11 +158,7 @@ class KinetostaticsResult:
         def L(a, mask=True):
             a = np.asarray(a, float)
             good = np.isfinite(a) & (self.ok if mask else True)
-            return np.where(good, a, np.nan).tolist(), good.tolist()
-
-        def val(pair, i):
-            v, g = pair
-            return v[i] if g[i] else None
+            return np.where(good, a + 0.0, np.nan).tolist(), good.tolist()
 
         mb = L(self.M_b)
         bf = L(self.M_b / self.arm) if (self.balance_kind == "moment" and self.arm) else None
@@ -173,7 +167,7 @@ class KinetostaticsResult:
         a, b = self.reactions, self.reactions_matrix
         mdisc = L(np.max(np.abs(a - b), axis=1) / np.maximum(np.max(np.abs(b), axis=1), 1e-300))
         table = self._reactions_table()
-        phil = (self.phi % 360.0).tolist()
+        phil = (self.phi % 360.0 + 0.0).tolist()
         near = (self.near | ~self.ok).tolist()
         # loads
         finfo = []
@@ -209,43 +203,45 @@ class KinetostaticsResult:
         if self.efficiency is not None:
             fr = (L(self.efficiency), L(self.friction_power), L(self.driving_power),
                   [L(self.friction_pairs[:, k]) for k in range(len(mech.joints))])
-        entries = []
-        for i, idx in enumerate(self.index):
-            e: dict = {"index": int(idx), "phi": phil[i]}
-            if self.balance_kind == "moment":
-                e["balancing_moment"] = val(mb, i)
-                e["balancing_force"] = val(bf, i) if bf else None
-                e["zhukovsky_moment"] = val(mz, i)
-                e["virtual_power_moment"] = val(mv, i)
-                e["matrix_moment"] = val(mm, i)
-            else:
-                e["balancing_moment"] = None
-                e["balancing_force"] = val(mb, i)
-                e["zhukovsky_moment"] = e["virtual_power_moment"] = e["matrix_moment"] = None
-                e["zhukovsky_force"] = val(mz, i)
-                e["virtual_power_force"] = val(mv, i)
-                e["matrix_force"] = val(mm, i)
-            e["discrepancy"] = val(disc, i)
-            e["matrix_discrepancy"] = val(mdisc, i)
-            e["reactions"] = dict(zip(jkeys, reaction_rows[i]))
-            e["inertia"] = dict(zip(inert_keys, inert_rows[i]))
-            if detail:
-                e["loads"] = [{"name": n, "link": lk, "kind": kd, "point": p[i], "F": F[i], "v": v[i]}
-                              for n, lk, kd, p, F, v in finfo]
-                e["couples"] = [{"name": n, "link": lk, "kind": kd, "M": M[i], "omega": w[i]}
-                                for n, lk, kd, M, w in cinfo]
-            e["diagram"] = {n: {"link": lk, "kind": kd, "stroke": sk, "active": act[i],
-                                "x": None if xs is None else xs[i], "value": vs[i]}
-                            for n, lk, kd, sk, act, xs, vs in dinfo}
-            if fr is not None:
-                e["efficiency"] = val(fr[0], i)
-                e["friction_power"] = val(fr[1], i)
-                e["driving_power"] = val(fr[2], i)
-                e["friction_pairs"] = {jkeys[k]: val(fr[3][k], i) for k in range(len(jkeys))}
-            else:
-                e["efficiency"] = None
-            e["near_singular"] = bool(near[i])
-            entries.append(e)
+        # the entries column by column (one list of N values per key), then zipped
+        none = [None] * N
+
+        def V(pair):
+            v, g = pair
+            return [x if good else None for x, good in zip(v, g)]
+        cols: list[tuple[str, list]] = [("index", [int(i) for i in self.index]), ("phi", phil)]
+        if self.balance_kind == "moment":
+            cols += [("balancing_moment", V(mb)), ("balancing_force", V(bf) if bf else none),
+                     ("zhukovsky_moment", V(mz)), ("virtual_power_moment", V(mv)), ("matrix_moment", V(mm))]
+        else:
+            cols += [("balancing_moment", none), ("balancing_force", V(mb)), ("zhukovsky_moment", none),
+                     ("virtual_power_moment", none), ("matrix_moment", none), ("zhukovsky_force", V(mz)),
+                     ("virtual_power_force", V(mv)), ("matrix_force", V(mm))]
+        cols += [("discrepancy", V(disc)), ("matrix_discrepancy", V(mdisc)),
+                 ("reactions", [dict(zip(jkeys, r)) for r in reaction_rows]),
+                 ("inertia", [dict(zip(inert_keys, r)) for r in inert_rows])]
+        if detail:
+            fcols = [[{"name": n, "link": lk, "kind": kd, "point": pp, "F": FF, "v": vv} for pp, FF, vv in zip(p, F, v)]
+                     for n, lk, kd, p, F, v in finfo]
+            ccols = [[{"name": n, "link": lk, "kind": kd, "M": MM, "omega": ww} for MM, ww in zip(M, w)]
+                     for n, lk, kd, M, w in cinfo]
+            cols += [("loads", [list(r) for r in zip(*fcols)] if fcols else [[] for _ in range(N)]),
+                     ("couples", [list(r) for r in zip(*ccols)] if ccols else [[] for _ in range(N)])]
+        dcols = [[{"link": lk, "kind": kd, "stroke": sk, "active": ac, "x": x, "value": vv}
+                  for ac, x, vv in zip(act, none if xs is None else xs, vs)] for _, lk, kd, sk, act, xs, vs in dinfo]
+        dnames = [d[0] for d in dinfo]
+        cols.append(("diagram", [dict(zip(dnames, r)) for r in zip(*dcols)] if dcols else [{} for _ in range(N)]))
+        if fr is not None:
+            pcols = [V(c) for c in fr[3]]
+            cols += [("efficiency", V(fr[0])), ("friction_power", V(fr[1])), ("driving_power", V(fr[2])),
+                     ("friction_pairs", [dict(zip(jkeys, r)) for r in zip(*pcols)] if pcols
+                      else [{} for _ in range(N)])]
+        else:
+            cols.append(("efficiency", none))
+        cols.append(("near_singular", [bool(x) for x in near]))
+        keys = [k for k, _ in cols]
+        # clean values by construction (tmm_cli.results.Entries)
+        entries = Entries(dict(zip(keys, row)) for row in zip(*[c for _, c in cols]))
         return {"kinetostatics": entries, "kinetostatics_info": {
             "balance": self.balance,
             "balance_kind": self.balance_kind,

@@ -25,6 +25,7 @@ from ..loads import AppliedCouple, AppliedForce, Loads
 from .equations import (Geometry, balance_coeffs, cross, full_matrix, joint_coeffs, rot90, scaling)
 
 COND_MAX = 1e11          # scaled condition number beyond which a position is singular
+CHUNK = 2048             # positions per block of the matrix method
 
 
 def _group_links(mech, structure) -> list[list[int]]:
@@ -147,14 +148,23 @@ def matrix_method(mech, geo: Geometry, q: np.ndarray, balance: int, *, with_det:
         raise StageError("kinetostatics", Message("kinetostatics.fail.not_square", equations=A.shape[1],
                                                   unknowns=A.shape[2]))
     rs, cs = scaling(mech, geo.Lc, balance)
-    As = A * rs[None, :, None] * cs[None, None, :]
-    b = -q[:, 1:, :].reshape(geo.n_pos, 3 * n) * rs[None, :]
-    sv = np.linalg.svd(As, compute_uv=False)
-    cond = np.where(sv[:, -1] > 0, sv[:, 0] / np.maximum(sv[:, -1], 1e-300), np.inf)
-    det = np.linalg.det(As) if with_det else None
-    y, ok = _safe_solve(As, b)
-    xx = y * cs[None, :]
-    xx[~ok] = np.nan
+    N, m = geo.n_pos, A.shape[2]
+    xx, cond = np.empty((N, m)), np.empty(N)
+    det = np.empty(N) if with_det else None
+    # in blocks of positions: the scaled matrices and LAPACK's work arrays of a fine grid
+    # stay small (each position is solved on its own, so the blocks change no number)
+    for i0 in range(0, N, CHUNK):
+        sl = slice(i0, min(i0 + CHUNK, N))
+        As = A[sl] * rs[None, :, None] * cs[None, None, :]
+        b = -q[sl, 1:, :].reshape(-1, 3 * n) * rs[None, :]
+        sv = np.linalg.svd(As, compute_uv=False)
+        cond[sl] = np.where(sv[:, -1] > 0, sv[:, 0] / np.maximum(sv[:, -1], 1e-300), np.inf)
+        if with_det:
+            det[sl] = np.linalg.det(As)
+        y, ok = _safe_solve(As, b)
+        y = y * cs[None, :]
+        y[~ok] = np.nan
+        xx[sl] = y
     return xx[:, :2 * p], xx[:, 2 * p], cond, det
 
 

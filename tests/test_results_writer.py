@@ -1,0 +1,117 @@
+"""The results file's writer: the per-position entries the stages build already clean
+(tmm_cli.results.Entries) are written without being cleaned again, so their builders
+must give exactly what clean() would: checked here by writing the same results with
+every Entries turned into a plain list (cleaned value by value)."""
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import pytest
+
+import tmm_cli
+from tmm_cli.results import Entries, _ENC, _one_line, clean, dumps
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _plain(obj):
+    """The same results with every Entries a plain list (deep copies)."""
+    if isinstance(obj, dict):
+        return {k: _plain(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_plain(v) for v in obj]
+    return obj
+
+
+def _entries_clean(obj, path="") -> None:
+    """Every value under an Entries is a plain clean JSON value."""
+    if isinstance(obj, dict):
+        for k, v in obj.items():
+            assert type(k) is str, path
+            _entries_clean(v, f"{path}.{k}")
+    elif isinstance(obj, list):
+        for i, v in enumerate(obj):
+            _entries_clean(v, f"{path}[{i}]")
+    elif type(obj) is float:
+        assert math.isfinite(obj), path
+        assert not (obj == 0.0 and math.copysign(1.0, obj) < 0), f"{path}: -0.0"
+    else:
+        assert obj is None or type(obj) in (int, bool, str), (path, type(obj))
+
+
+def _check(results: dict) -> None:
+    n = 0
+    for key, sec in results.items():
+        if type(sec) is Entries:
+            n += 1
+            _entries_clean(sec, key)
+    assert dumps(results) == dumps(_plain(results))
+    assert n, "no section built as Entries"
+
+
+@pytest.mark.parametrize("name", ["forging_sixbar", "shaper_slotted_ram", "engine_slider_crank",
+                                  "triad_class3", "static_gravity"])
+def test_entries_written_as_cleaned(name):
+    res = tmm_cli.run(tmm_cli.load_task(ROOT / "tasks" / f"{name}.yaml"))
+    _check(res)
+    g = res.get("graphical_error")
+    if g and "plans" in g:
+        assert type(g["plans"]["positions"]) is Entries
+        _entries_clean(g["plans"]["positions"])
+
+
+def test_entries_with_nulls_near_a_change_point(tmp_path):
+    """Values with no finite limit (None) and the near_singular flags."""
+    from test_change_points import LIMIT
+    f = tmp_path / "task.yaml"
+    f.write_text(LIMIT, encoding="utf-8")
+    try:
+        res = tmm_cli.run(tmm_cli.load_task(f))
+    except tmm_cli.StageError as exc:            # pragma: no cover - partial results still written
+        res = exc.partial
+    assert any(e.get("near_singular") for e in res["kinematics"])
+    assert any(e["points"]["B"]["a"] is None for e in res["kinematics"])
+    _check(res)
+
+
+def test_fine_grid_with_friction():
+    """A fine grid (no per-position loads) with friction in the pairs."""
+    text = (ROOT / "tasks" / "forging_sixbar.yaml").read_text(encoding="utf-8").replace("count: 12", "count: 500")
+    task = tmm_cli.load_task(ROOT / "tasks" / "forging_sixbar.yaml", text=text)
+    res = tmm_cli.run(task)
+    assert len(res["kinetostatics"]) >= 500
+    _check(res)
+
+
+@pytest.mark.parametrize("value", [0.0, 1.5, -2.25, 1e-05, 1e16, 1.0000000000000002, 123456789.123, 3, -7, True,
+                                   False, None, "S2", "μ ü \"q\"\n", [1.0, None], {"x": 1e-300, "y": [True]}])
+def test_one_line_is_the_encoders(value):
+    assert _one_line(value) == _ENC.encode(value)
+    assert json.loads(_one_line(clean(value))) == clean(value)
+
+
+def _csv_reference(header, rows) -> str:
+    """csv_text as the csv writer alone gives it (every cell through safe_cell)."""
+    import csv
+    import io
+    from tmm_cli.tables import safe_cell
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow([safe_cell(h) for h in header])
+    for r in rows:
+        vals = [r.get(h) for h in header] if isinstance(r, dict) else list(r)
+        w.writerow([safe_cell(v) for v in vals])
+    return buf.getvalue()
+
+
+def test_csv_number_rows_as_the_writer_gives_them():
+    import numpy as np
+    from tmm_cli.tables import csv_text
+    header = ["index", "phi", "a", "b"]
+    rows = [[0, 12.5, -0.0, 1e-05], (1, 1e16, -3, 2.5e-300), [2, None, 1.0, float("nan")],
+            [3, float("inf"), True, "text"], [4, "=1+2", "-1,5", ""], [5, np.float64(0.1), np.int64(3), 7],
+            {"index": 6, "phi": 0.25, "a": None, "b": 1.5}, iter([7, 0.5, 0.5, 0.5]), [], [8, "1e5", -1, 0]]
+    ref_rows = rows[:7] + [[7, 0.5, 0.5, 0.5]] + rows[8:]       # the iterator row, as a list
+    assert csv_text(header, rows) == _csv_reference(header, ref_rows)
