@@ -4,8 +4,8 @@ The machine may be shared and noisy, so every figure is a ratio of two things ti
 interleaved (A, B, A, B, ...), each repeated (>= 5 times); medians and the spread
 (min-max) are printed.
 
-* JSON run and `tmm validate` of tasks/forging_sixbar.yaml against the interpreter's
-  floor `python -c "import numpy, pydantic, yaml"` (target <= 2x);
+* JSON run and `tmm validate` of tasks/forging_sixbar.yaml (and of each task of --tasks)
+  against the interpreter's floor `python -c "import numpy, pydantic, yaml"` (target <= 2x);
 * with --report: the whole report (HTML + PDF) against the JSON run of the same task
   (target <= 4x; absolute wall and CPU printed too), and the HTML report of a
   3600-position grid against the 12-position task (target <= 2x): the whole
@@ -32,6 +32,7 @@ goes to a temporary PYTHONPYCACHEPREFIX).
   --format json and --format html, interleaved (target for HTML: 3600 <= 2x 12).
 
 Run: python benchmarks/bench_speed.py [--report] [--scaling] [--batch] [--kinetostatics] [--against DIR] [--repeat 5]
+                                      [--tasks engine_slider_crank,gears_zero]
 """
 from __future__ import annotations
 
@@ -93,13 +94,17 @@ def _ratio_line(name: str, num: list[float], den: list[float], target: float | N
     print(f"  {name:46s} ratio median {med:6.2f} [{min(ratios):.2f}-{max(ratios):.2f}] {tgt} {verdict}")
 
 
-def cli(repeat: int, report: bool) -> None:
+def cli(repeat: int, report: bool, tasks: list[str] = ()) -> None:
     py = [sys.executable]
     tmm = py + ["-m", "tmm_cli"]
     with tempfile.TemporaryDirectory() as tmp:
         cmds = {"floor": py + ["-c", "import numpy, pydantic, yaml"],
                 "validate": tmm + ["validate", str(TASK)],
                 "json": tmm + ["run", str(TASK), "--format", "json", "--quiet", "--out", f"{tmp}/j"]}
+        for name in tasks:
+            path = str(ROOT / "tasks" / f"{name}.yaml")
+            cmds[f"validate:{name}"] = tmm + ["validate", path]
+            cmds[f"json:{name}"] = tmm + ["run", path, "--format", "json", "--quiet", "--out", f"{tmp}/{name}"]
         if report:
             fine = Path(tmp) / "fine.yaml"
             fine.write_text(TASK.read_text(encoding="utf-8").replace("count: 12", "count: 3600"),
@@ -110,13 +115,17 @@ def cli(repeat: int, report: bool) -> None:
         res = _interleaved(cmds, repeat)
     print(f"command line, {TASK.name}, {repeat} interleaved rounds; wall / cpu in s: median [min-max]")
     for k, v in res.items():
-        print(f"  {k:10s} wall {_stat([w for w, _ in v])}   cpu {_stat([c for _, c in v])}")
+        print(f"  {k:10s} wall {_stat([x for x, _ in v])}   cpu {_stat([y for _, y in v])}")
     w = {k: [x for x, _ in v] for k, v in res.items()}
     c = {k: [x for _, x in v] for k, v in res.items()}
     _ratio_line("run --format json / import floor (wall)", w["json"], w["floor"], 2.0)
     _ratio_line("run --format json / import floor (cpu)", c["json"], c["floor"], 2.0)
     _ratio_line("validate / import floor (wall)", w["validate"], w["floor"], 2.0)
     _ratio_line("validate / import floor (cpu)", c["validate"], c["floor"], 2.0)
+    for name in tasks:
+        for what in ("json", "validate"):
+            _ratio_line(f"{what} {name} / import floor (wall)", w[f"{what}:{name}"], w["floor"], 2.0)
+            _ratio_line(f"{what} {name} / import floor (cpu)", c[f"{what}:{name}"], c["floor"], 2.0)
     if report:
         _ratio_line("report html+pdf / json run (wall)", w["report"], w["json"], 4.0)
         _ratio_line("report html+pdf / json run (cpu)", c["report"], c["json"], None)
@@ -317,6 +326,7 @@ def main() -> None:
     ap.add_argument("--scaling", action="store_true",
                     help="also tmm run at 12 and 3600 positions, json and html, interleaved")
     ap.add_argument("--repeat", type=int, default=5)
+    ap.add_argument("--tasks", default="", help="more tasks (names in tasks/, comma-separated) for the floor ratios")
     ap.add_argument("--no-cli", action="store_true")
     ap.add_argument("--no-kinematics", action="store_true")
     ap.add_argument("--against", metavar="DIR", help="also the report and JSON run of another checkout "
@@ -324,7 +334,7 @@ def main() -> None:
     a = ap.parse_args()
     print(f"{os.cpu_count()} cores, load average {os.getloadavg()[0]:.2f}")
     if not a.no_cli:
-        cli(max(5, a.repeat), a.report)
+        cli(max(5, a.repeat), a.report, [t for t in a.tasks.split(",") if t])
     if a.scaling:
         scaling(max(5, a.repeat))
     if a.batch:

@@ -16,13 +16,17 @@ from tmm_cli.results import clean, dumps
 
 ROOT = Path(__file__).resolve().parents[1]
 HEAVY = ("scipy", "matplotlib", "weasyprint", "ezdxf", "pint", "jinja2")
+# a plain `tmm run` / `tmm validate` never builds the Typer app (tmm_cli.cli, the fast path)
+CLI_APP = ("typer", "click", "shellingham", "tmm_cli.commands")      # (rich: the summary)
 
 
 def _imported_by(args: list[str], tmp_path: Path, env: dict | None = None) -> set[str]:
     code = ("import sys\nfrom tmm_cli.cli import main\n"
             "try:\n    main()\nexcept SystemExit as e:\n    code = e.code\nelse:\n    code = 0\n"
             "print('MODULES', ' '.join(sorted({m.split('.')[0] for m in sys.modules}\n"
-            "                                  | {m for m in sys.modules if m.startswith('tmm_cli.report')})),\n"
+            "                                  | {m for m in sys.modules if m.startswith(('tmm_cli.report',\n"
+            "                                                                            'tmm_cli.commands',\n"
+            "                                                                            'numpy.ma'))})),\n"
             "      file=sys.stderr)\n"
             "sys.exit(code)\n")
     import os
@@ -38,6 +42,8 @@ def test_json_run_imports_no_heavy_module(tmp_path):
                          "-o", str(tmp_path / "o")], tmp_path)
     assert "numpy" in mods                       # the stages ran
     assert not mods & set(HEAVY), sorted(mods & set(HEAVY))
+    assert not mods & set(CLI_APP), sorted(mods & set(CLI_APP))
+    assert "numpy.ma" not in mods                # np.unique's import (tmm_cli.lazy.unique)
     # the report package neither (the hand-method error reads tmm_cli.plans, not the report)
     assert not {m for m in mods if m.startswith("tmm_cli.report")}, sorted(mods)
     assert json.loads((tmp_path / "o" / "results.json").read_text())["kinetostatics"]
@@ -57,6 +63,67 @@ def test_linkage_html_report_imports_no_matplotlib(tmp_path):
 def test_validate_imports_no_heavy_module(tmp_path):
     mods = _imported_by(["validate", str(ROOT / "tasks" / "forging_sixbar.yaml")], tmp_path)
     assert not mods & set(HEAVY), sorted(mods & set(HEAVY))
+    assert not mods & set(CLI_APP), sorted(mods & set(CLI_APP))
+
+
+def test_validate_every_task_imports_no_heavy_module(tmp_path):
+    """Validation needs no scipy (a cam's region check), no pint (times, output speeds in
+    the fast units table), no Typer."""
+    mods = _imported_by(["validate", *sorted(str(p) for p in (ROOT / "tasks").glob("*.yaml"))], tmp_path)
+    assert not mods & set(HEAVY + CLI_APP), sorted(mods & set(HEAVY + CLI_APP))
+
+
+@pytest.mark.parametrize("name", ["gears_zero", "planetary_A", "synthesis_shaper", "press_drive_train",
+                                  "engine_slider_crank", "static_gravity"])
+def test_json_runs_import_no_heavy_module(name, tmp_path):
+    mods = _imported_by(["run", str(ROOT / "tasks" / f"{name}.yaml"), "-f", "json", "-q", "-o", "o"], tmp_path)
+    assert not mods & set(HEAVY + CLI_APP), sorted(mods & set(HEAVY + CLI_APP))
+
+
+def test_other_command_lines_build_the_typer_app(tmp_path):
+    """--help, an option spelt `--format=json`, a bad value: the Typer app parses them."""
+    task = str(ROOT / "tasks" / "forging_sixbar.yaml")
+    for args in (["run", "--help"], ["validate", "--help"], ["run", task, "--format=json", "-q", "-o", "o"]):
+        assert "tmm_cli.commands" in _imported_by(args, tmp_path), args
+
+
+def test_fast_path_answers_as_the_typer_app(tmp_path):
+    """The same exit code, stdout, stderr and results.json from the fast path (a
+    subprocess, `python -m tmm_cli`) as from the Typer app (CliRunner), on good and bad tasks."""
+    from typer.testing import CliRunner
+
+    from tmm_cli.cli import _fast, app
+    good = str(ROOT / "tasks" / "forging_sixbar.yaml")
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("schema: tmm/1\nmechanism:\n  ground: {O: [0, 0]}\n  linkz: {}\n", encoding="utf-8")
+    stuck = tmp_path / "stuck.yaml"          # valid, but the rod is too short to assemble anywhere
+    stuck.write_text(
+        "schema: tmm/1\nmechanism: {ground: {O: [0, 0]}, links: {crank: {points: [O, A], length: 0.1},\n"
+        "  rod: {points: [A, B], length: 0.05}, slider: {slider: B, guide: {through: O, angle: 0}}}}\n"
+        "drive: {link: crank, speed: 10}\n", encoding="utf-8")
+    lines = [["validate", good], ["validate", good, str(bad), str(stuck), "--no-assembly"],
+             ["validate", str(bad), good, str(stuck), str(tmp_path / "missing.yaml")],
+             ["run", good, "-f", "json", "-q", "-o", "{out}"], ["run", "-q", str(bad), "--format", "json", "--out", "{out}"],
+             ["run", str(stuck), "-f", "json", "-o", "{out}", "-l", "ru"],
+             ["run", good, "--format", "JSON", "-o", "{out}", "--quiet"]]
+    runner = CliRunner()
+    for k, line in enumerate(lines):
+        fast = [a.replace("{out}", str(tmp_path / f"f{k}")) for a in line]
+        slow = [a.replace("{out}", str(tmp_path / f"s{k}")) for a in line]
+        assert _fast(fast) is not None, line
+        p = subprocess.run([sys.executable, "-m", "tmm_cli", *fast], capture_output=True, text=True,
+                           cwd=tmp_path, timeout=300)
+        r = runner.invoke(app, slow)
+        assert p.returncode == r.exit_code, (line, p.stderr, r.stderr)
+        assert p.stdout == r.stdout.replace(f"s{k}", f"f{k}"), line
+        assert p.stderr == r.stderr.replace(f"s{k}", f"f{k}"), line
+        if line[0] == "run" and p.returncode != 2:
+            assert (tmp_path / f"f{k}" / "results.json").read_bytes() == \
+                (tmp_path / f"s{k}" / "results.json").read_bytes(), line
+    for line in (["run", good, "--format=json"], ["run", good, "-f", "xml"], ["run", good, "-l", "de"],
+                 ["run", good, "-qf", "json"], ["run", good, good], ["run", "--help"], ["validate"],
+                 ["run", good, "-o", ""], ["run", "--", good], ["check", good], ["--version"]):
+        assert _fast(line) is None, line
 
 
 @pytest.mark.parametrize("kind", sorted(units._FAST_UNITS))
@@ -127,6 +194,21 @@ def test_results_text_is_json_readable_and_deterministic():
     assert '"a": [1.0, 2.5, null]' in text and '  "c": [\n   [1, 2],' in text
     assert '"g": "ω"' in text and '"i": 0.0' in text
     assert json.loads(dumps({"x": float("nan")})) == {"x": None}
+
+
+def test_unique_is_numpys():
+    rng = np.random.default_rng(5)
+    cases = [np.array([]), np.array([0.0, -0.0, 1.0]), np.array([-0.0, 0.0, 1.0]), np.array([1.0, -0.0, 0.0]),
+             np.array([np.nan, 1.0, np.nan, -np.inf, 1.0, np.inf]), np.array([3, 1, 3, 2]),
+             np.array([[2.0, 1.0], [1.0, 0.5]]), [0.25, 0.25, 0.1], np.array([1 + 1j, np.nan, 1 + 1j, complex(np.nan, 1)])]
+    for n in (1, 2, 7, 100, 5000):
+        x = np.round(rng.normal(size=n), 2)                 # many repeats
+        cases.append(np.concatenate([x, -x, np.zeros(3) * -1.0, [np.nan] * (n % 3)]))
+    for x in cases:
+        want, got = np.unique(x), lazy.unique(x)
+        assert got.dtype == want.dtype and got.shape == want.shape
+        assert np.array_equal(got, want, equal_nan=True), x
+        assert np.array_equal(np.signbit(got.real), np.signbit(want.real)), x   # -0.0 kept as numpy keeps it
 
 
 def test_unwrap_is_numpys():

@@ -1,126 +1,86 @@
-"""The `tmm` command line (README, *Commands*).
+"""The `tmm` command line (README, *Commands*): the entry point.
 
 Exit codes: 0 success; 1 answers outside tolerance; 2 invalid task (file, line and
 field named, no traceback); 3 a stage failed on valid input (stage and position named).
+
+The commands, their options and --help are the Typer app of :mod:`tmm_cli.commands`
+(``tmm_cli.cli.app`` is that app). Building it costs more than validating a task, so
+:func:`main` runs the two commands a user repeats most, ``tmm run`` and ``tmm validate``,
+without it when their command line is a plain one (options given as ``--opt VALUE``,
+values that are valid): the same code (:func:`run_task`, :func:`validate_tasks`), the
+same output and exit code. Anything else (--help, an unknown or misspelt option, a
+bad value, a missing argument) goes to the Typer app, which says what is wrong.
 """
 from __future__ import annotations
 
-import json
+import re
 import sys
 from pathlib import Path
-from typing import List, Optional
-
-import typer
+from typing import Callable, Optional
 
 from .errors import StageError, TaskError
 
-app = typer.Typer(
-    name="tmm",
-    help=("Course-project calculator for the Theory of Machines and Mechanisms (TMM): "
-          "structural analysis, 12-position kinematics with velocity and acceleration plans, "
-          "kinetostatics with the Zhukovsky lever, the flywheel by the energy-mass method, cam "
-          "synthesis, involute gears and planetary synthesis - from one YAML task file.\n\n"
-          "Start with `tmm new full` (a commented task), `tmm fields` (every task-file field) and "
-          "`tmm run TASK.yaml`.\n\n"
-          "Exit codes: 0 success; 1 answers outside tolerance; 2 invalid task; 3 a stage failed."),
-    invoke_without_command=True,
-    add_completion=False,
-    pretty_exceptions_enable=False,
-    rich_markup_mode=None,
-)
-
 EXIT_OK, EXIT_ANSWERS, EXIT_INVALID, EXIT_STAGE = 0, 1, 2, 3
 FORMATS = {"json", "html", "pdf", "sheets"}
+LANGS = ("en", "ru", "uk")
+
+_ANSI = re.compile(r"\033\[[;?0-9]*[a-zA-Z]")     # click's: stripped when not a terminal
 
 
-def _version(value: bool) -> None:
-    if value:
-        from . import __version__
-        typer.echo(f"tmm {__version__}")
-        raise typer.Exit(EXIT_OK)
+def echo(message: str, err: bool = False) -> None:
+    """click.echo of a text line on a well-configured stream (what the fast path runs
+    with): the line and a newline, ANSI codes stripped unless a terminal, flushed."""
+    file = sys.stderr if err else sys.stdout
+    if file is None:
+        return
+    out = message + "\n"
+    try:
+        tty = file.isatty()
+    except Exception:  # noqa: BLE001 - click.isatty's: a stream without isatty is no terminal
+        tty = False
+    if not tty:
+        out = _ANSI.sub("", out)
+    file.write(out)
+    file.flush()
 
 
-@app.callback()
-def _root(ctx: typer.Context,
-          version: bool = typer.Option(False, "--version", callback=_version, is_eager=True,
-                                       help="print the version and exit")) -> None:
-    # `tmm` with no command: the help, and success (it is what the user asked for)
-    if ctx.invoked_subcommand is None:
-        typer.echo(ctx.get_help())
-        raise typer.Exit(EXIT_OK)
+Echo = Callable[..., None]
 
 
-def _err(msg: str) -> None:
-    typer.echo(msg, err=True)
+def fail_task(exc: TaskError, echo: Echo = echo) -> int:
+    echo(f"error: invalid task\n{exc.render()}", err=True)
+    return EXIT_INVALID
 
 
-def _fail_task(exc: TaskError) -> "typer.Exit":
-    _err(f"error: invalid task\n{exc.render()}")
-    return typer.Exit(EXIT_INVALID)
-
-
-def _fail_stage(exc: StageError, file: str | None = None) -> "typer.Exit":
+def fail_stage(exc: StageError, file: str | None = None, echo: Echo = echo) -> int:
     where = f"{file}: " if file else ""
-    _err(f"error: {where}{exc}")
-    return typer.Exit(EXIT_STAGE)
+    echo(f"error: {where}{exc}", err=True)
+    return EXIT_STAGE
 
 
-def _fail_write(exc: OSError) -> "typer.Exit":
+def fail_write(exc: OSError, echo: Echo = echo) -> int:
     """The output folder or a file in it cannot be written (--out names a file, no
     permission, disk full): the writing stage failed, exit 3, no traceback."""
     from .orchestrate import write_error_text
-    _err(f"error: {write_error_text(exc)}")
-    return typer.Exit(EXIT_STAGE)
+    echo(f"error: {write_error_text(exc)}", err=True)
+    return EXIT_STAGE
 
 
-def _load(path: Path):
-    """Load and validate a task as every command does (exit 2 / 3 the same everywhere)."""
-    from .orchestrate import prepare
-    return prepare(path)
-
-
-def _parse_formats(text: str) -> set[str]:
+def parse_formats(text: str) -> set[str] | None:
+    """The set of --format, or None when it names no format or an unknown one."""
     fm = {f.strip().lower() for f in text.split(",") if f.strip()}
-    bad = fm - FORMATS
-    if bad or not fm:
-        raise typer.BadParameter(f"unknown format(s) {', '.join(sorted(bad)) or '(none)'}; "
-                                 f"choose from json, html, pdf, sheets (comma-separated)")
-    return fm
+    return fm if fm and not fm - FORMATS else None
 
 
-def write_outputs(task, results: dict, out: Path, formats: set[str], lang: str,
-                  notes: list[str] | None = None,
-                  study: tuple[dict, dict] | None = None) -> list[Path]:
-    """results.json and the reports (tmm_cli.orchestrate.write_outputs)."""
-    from .orchestrate import write_outputs as write
-    return write(task, results, out, formats, lang, notes=notes, study=study)
-
-
-@app.command()
-def run(
-    task_file: Path = typer.Argument(..., metavar="TASK.yaml", help="the task file (README: The task file)"),
-    out: Optional[Path] = typer.Option(None, "--out", "-o", help="output folder (default: out/<task name>/)"),
-    format: str = typer.Option("json,html,pdf", "--format", "-f",
-                               help="comma-separated outputs: json, html, pdf, sheets (the A1 drawing sheets in "
-                                    "sheets/; results.json is always written)"),
-    lang: str = typer.Option("en", "--lang", "-l", help="report language: en | ru | uk"),
-    quiet: bool = typer.Option(False, "--quiet", "-q", help="no progress and summary on the terminal"),
-    study: bool = typer.Option(False, "--study", help="also write study.json and study.html: "
-                                                      "accuracy against computing time per stage"),
-):
-    """Run every stage present in the task; write results.json and the report(s).
-
-    Example: tmm run tasks/engine_slider_crank.yaml --out out/engine --lang ru (or uk)
-    """
-    formats = _parse_formats(format)
-    if lang not in ("en", "ru", "uk"):
-        raise typer.BadParameter("--lang must be en, ru or uk")
+def run_task(task_file: Path, out: Optional[Path], formats: set[str], lang: str, quiet: bool, study: bool,
+             echo: Echo = echo) -> int:
+    """`tmm run` with its options checked: compute, write, report; the exit code."""
     from .orchestrate import process
     from .pipeline import PartialResults
     progress = None
     if not quiet:
         def progress(stage: str) -> None:
-            _err(f"  {stage}...")
+            echo(f"  {stage}...", err=True)
     failure = None
     notes: list[str] = []
     try:
@@ -131,417 +91,178 @@ def run(
         # place of a failed one, what failed; then exit 3
         failure, results = exc, exc.partial
     except TaskError as exc:
-        raise _fail_task(exc)
+        return fail_task(exc, echo)
     except StageError as exc:
-        raise _fail_stage(exc, str(task_file))
+        return fail_stage(exc, str(task_file), echo)
     except OSError as exc:
-        raise _fail_write(exc)
+        return fail_write(exc, echo)
     for note in notes:
-        _err(f"warning: {note}")
+        echo(f"warning: {note}", err=True)
     if failure is not None:
         for e in results.get("errors", [])[1:]:
-            _err(f"error: {task_file}: {StageError(e['stage'], e['message'], e['position'])}")
-        raise _fail_stage(failure, str(task_file))
+            echo(f"error: {task_file}: {StageError(e['stage'], e['message'], e['position'])}", err=True)
+        return fail_stage(failure, str(task_file), echo)
     if not quiet:
         from .summary import print_summary
         print_summary(results, paths)
+    return EXIT_OK
 
 
-def _run_study(task, progress=None, repeat: int = 3) -> tuple[dict, dict]:
-    from . import study as study_mod
-    try:
-        return study_mod.run_study(task, progress=progress, repeat=repeat)
-    except StageError as exc:
-        raise _fail_stage(exc, task.file)
-
-
-@app.command("study")
-def study_cmd(
-    task_file: Path = typer.Argument(..., metavar="TASK.yaml", help="the task file"),
-    out: Optional[Path] = typer.Option(None, "--out", "-o", help="output folder (default: out/<task name>/)"),
-    repeat: int = typer.Option(3, "--repeat", help="timed repeats per row (the best is kept)", min=1, max=50),
-    lang: str = typer.Option("en", "--lang", "-l", help="language of study.html: en | ru | uk"),
-):
-    """Accuracy against computing time: for each stage present, sweep the setting that
-    trades time for accuracy (flywheel resolution, curve points, kinetostatic positions,
-    dof2 rtol, cam profile step, blocking-contour grid, planetary z_max); write study.json
-    (errors against a converged reference, measured and theoretical convergence order,
-    times) and study.html (tables and log-log plots).
-
-    Example: tmm study tasks/forging_sixbar.yaml --out out/forging --lang ru
-    """
-    if lang not in ("en", "ru", "uk"):
-        raise typer.BadParameter("--lang must be en, ru or uk")
-    try:
-        task = _load(task_file)
-    except TaskError as exc:
-        raise _fail_task(exc)
-    out = out or Path("out") / task.name
-    st, trap = _run_study(task, lambda s: _err(f"  {s}..."), repeat)
-    from . import study as study_mod
-    try:
-        paths = study_mod.write(st, out, trap, lang)
-    except OSError as exc:
-        raise _fail_write(exc)
-    for p in paths:
-        typer.echo(str(p))
-
-
-@app.command()
-def sheets(
-    task_file: Path = typer.Argument(..., metavar="TASK.yaml", help="the task file"),
-    out: Optional[Path] = typer.Option(None, "--out", "-o", help="output folder (default: out/<task name>/)"),
-    format: str = typer.Option("pdf,svg,dxf", "--format", "-f", help="comma-separated: pdf, svg, dxf"),
-    lang: str = typer.Option("en", "--lang", "-l", help="sheet language: en | ru | uk"),
-):
-    """The A1 drawing sheets (frame, ГОСТ 2.104 title block, standard scales) as PDF, SVG and DXF.
-
-    Sheets: 1 kinematics (mechanism, plans, s-v-a diagrams), 2 kinetostatics (groups, force
-    polygons, Zhukovsky's lever of one or two positions), 3 dynamics, 4 cam, 5 gear mesh;
-    only those the task has.
-
-    Example: tmm sheets tasks/forging_sixbar.yaml --out out/forging --format pdf,dxf
-    """
-    fm = {f.strip().lower() for f in format.split(",") if f.strip()}
-    if not fm or fm - {"pdf", "svg", "dxf"}:
-        raise typer.BadParameter("choose from pdf, svg, dxf (comma-separated)")
-    if lang not in ("en", "ru", "uk"):
-        raise typer.BadParameter("--lang must be en, ru or uk")
-    try:
-        task = _load(task_file)
-    except TaskError as exc:
-        raise _fail_task(exc)
-    from .pipeline import run as run_pipeline
-    from .sheets import build_sheets, write_sheets
-    try:
-        results = run_pipeline(task)
-    except StageError as exc:
-        raise _fail_stage(exc, task.file)
-    try:
-        paths = write_sheets(build_sheets(results, task, lang), out or Path("out") / task.name, fm)
-    except OSError as exc:
-        raise _fail_write(exc)
-    if not paths:
-        _err("note: no sheets: the task has no linkage, cam or gear pair to draw")
-    for p in paths:
-        typer.echo(str(p))
-
-
-@app.command()
-def validate(
-    task_files: List[Path] = typer.Argument(..., metavar="TASK.yaml...", help="one or more task files"),
-    no_assembly: bool = typer.Option(False, "--no-assembly", help="schema only: skip the check that the "
-                                                                  "linkage assembles over the whole cycle"),
-):
-    """Check task files: the schema, the references, and (for a linkage) that it
-    assembles at every crank angle of the cycle. Does not run the pipeline."""
+def validate_tasks(task_files: list[Path], no_assembly: bool, echo: Echo = echo) -> int:
+    """`tmm validate`: each file checked, `FILE: ok` or its errors; the exit code."""
     code = EXIT_OK
     for f in task_files:
         try:
             from .orchestrate import prepare
             prepare(f, assembly=not no_assembly)
-            typer.echo(f"{f}: ok")
+            echo(f"{f}: ok")
         except TaskError as exc:
-            _err(f"error: invalid task\n{exc.render()}")
+            echo(f"error: invalid task\n{exc.render()}", err=True)
             code = max(code, EXIT_INVALID) if code != EXIT_STAGE else code
         except StageError as exc:
-            _err(f"error: {f}: {exc}")
+            echo(f"error: {f}: {exc}", err=True)
             code = EXIT_STAGE if code == EXIT_OK else max(code, EXIT_STAGE)
-    raise typer.Exit(code)
+    return code
 
 
-@app.command()
-def check(
-    task_file: Path = typer.Argument(..., metavar="TASK.yaml"),
-    answers: Optional[Path] = typer.Option(None, "--answers", "-a",
-                                           help="answers: a YAML file with `answers:`, a folder of them, or a CSV "
-                                                "with a row per student (student, group, variant, one column per "
-                                                "path); default: the task's own `answers` section"),
-    out: Optional[Path] = typer.Option(None, "--out", "-o", help="also write check.csv / results.json here"),
-    tolerance: Optional[Path] = typer.Option(None, "--tolerance", "-t",
-                                             help="a YAML file of tolerances per path or prefix (overrides the "
-                                                  "task's): 0.05 (relative) or {rel: 0.02, abs: 0.5}"),
-    quantities: Optional[str] = typer.Option(None, "--quantities", "-q",
-                                             help="required quantities: result paths and presets, comma-separated "
-                                                  "(a required path not answered is missing)"),
-):
-    """Compare a student's answers with the computed results: path, answer, reference,
-    error and status (ok, sign, outside, missing, unknown_path, not_computed). Exit 1 if
-    any answer is not ok (or there are none), 2 invalid input, 3 a stage failed."""
-    from .check import (check_csv, grade, load_sources, load_tolerance_file, set_code, set_status,
-                        task_answer_set, tolerances)
-    from .orchestrate import compute, prepare
-    from .pipeline import PartialResults
+# ----------------------------------------------------------------- the fast path
+_RUN_VALUES = {"--out": "out", "-o": "out", "--format": "format", "-f": "format", "--lang": "lang", "-l": "lang"}
+_RUN_FLAGS = {"--quiet": "quiet", "-q": "quiet", "--study": "study"}
+
+
+def _plain_path(arg: str) -> bool:
+    """An argument Typer turns into Path(arg) without a word: not empty, no NUL, valid
+    UTF-8, and not an existing path it cannot read (Typer refuses that one)."""
+    import os
+    if not arg or "\x00" in arg:
+        return False
     try:
-        task = prepare(task_file, stage_errors=False)
-        tol_override = load_tolerance_file(tolerance) if tolerance is not None else None
-        single = answers is not None and answers.is_file() and answers.suffix.lower() != ".csv"
-        if answers is None:
-            own = task_answer_set(task)
-            if own is None:
-                raise TaskError("no answers to check: add an `answers:` section (paths into results.json) "
-                                "or give --answers FILE", file=str(task_file))
-            sets = [own]
+        arg.encode("utf-8")
+        return not os.path.exists(arg) or os.access(arg, os.R_OK)
+    except (UnicodeError, OSError, ValueError):
+        return False
+
+
+def _streams_plain() -> bool:
+    """stdout and stderr are text streams that click.echo writes to as they are (not
+    missing, not ASCII: click would re-wrap those)."""
+    import codecs
+    for s in (sys.stdout, sys.stderr):
+        enc = getattr(s, "encoding", None)
+        if s is None or not enc:
+            return False
+        try:
+            if codecs.lookup(enc).name == "ascii":
+                return False
+        except LookupError:
+            pass
+    return True
+
+
+def _fast(argv: list[str]) -> Callable[[], int] | None:
+    """The command of a plain `tmm run` / `tmm validate` command line, or None (the
+    Typer app then parses it)."""
+    if not argv or argv[0] not in ("run", "validate"):
+        return None
+    import os
+    if any(k.startswith("_") and k.endswith("_COMPLETE") for k in os.environ):   # shell completion
+        return None
+    if not _streams_plain():
+        return None
+    cmd, rest = argv[0], argv[1:]
+    opts: dict[str, object] = {}
+    args: list[str] = []
+    i = 0
+    while i < len(rest):
+        a = rest[i]
+        if a.startswith("-"):
+            if cmd == "run" and a in _RUN_FLAGS:
+                opts[_RUN_FLAGS[a]] = True
+            elif cmd == "run" and a in _RUN_VALUES and i + 1 < len(rest) and rest[i + 1] \
+                    and not rest[i + 1].startswith("-"):
+                opts[_RUN_VALUES[a]] = rest[i + 1]          # the last one counts, as in click
+                i += 1
+            elif cmd == "validate" and a == "--no-assembly":
+                opts["no_assembly"] = True
+            else:
+                return None                                 # --help, -x, --opt=value, '-', '--', ...
         else:
-            sets = load_sources(answers)
-            if not single:
-                sets = [a for a in sets if a.matches(task)]
-        for a in sets:
-            if a.error:
-                raise TaskError(a.error)
-    except TaskError as exc:
-        raise _fail_task(exc)
+            args.append(a)
+        i += 1
+    paths = args + ([str(opts["out"])] if "out" in opts else [])
+    if not args or not all(_plain_path(a) for a in paths):
+        return None
+    if cmd == "validate":
+        files = [Path(a) for a in args]
+        return lambda: validate_tasks(files, bool(opts.get("no_assembly")))
+    if len(args) != 1:
+        return None
+    formats = parse_formats(str(opts.get("format", "json,html,pdf")))
+    lang = str(opts.get("lang", "en"))
+    if formats is None or lang not in LANGS:
+        return None
+    out = Path(str(opts["out"])) if "out" in opts else None
+    task_file = Path(args[0])
+    return lambda: run_task(task_file, out, formats, lang, bool(opts.get("quiet")), bool(opts.get("study")))
+
+
+def _run_fast(command: Callable[[], int]) -> None:
+    """The command as the Typer app's standalone mode runs it: its exit code; Ctrl-C
+    exit 130; end of input 'Aborted!' exit 1; a closed pipe exit 1."""
+    import errno
     try:
-        results = compute(task)
-    except (PartialResults, StageError) as exc:
-        raise _fail_stage(exc, str(task_file))
-    except TaskError as exc:
-        raise _fail_task(exc)
-    required = None
-    if quantities:
-        from .forms import expand
-        try:
-            required = expand(quantities, results)
-        except TaskError as exc:
-            raise _fail_task(exc)
-    from .summary import print_check
-    if not sets:
-        _err(f"no answers for variant {task.variant if task.variant is not None else task.name} in {answers}")
-    code, all_rows = (EXIT_ANSWERS if not sets else EXIT_OK), []
-    for a in sets:
-        rows = grade(results, a, tolerances(task, tol_override, a.tolerance if single else None, results), required)
-        print_check(rows, a.source)
-        all_rows.extend(rows)
-        code = max(code, set_code(set_status(rows)))
-    if out:
-        from .io import atomic_write
-        from .results import dumps
-        try:
-            atomic_write(out / "check.csv", check_csv(all_rows))
-            atomic_write(out / "results.json", dumps(results))
-        except OSError as exc:
-            raise _fail_write(exc)
-    raise typer.Exit(code)
+        code = command()
+    except EOFError:
+        echo("", err=True)
+        echo("Aborted!", err=True)
+        sys.exit(1)
+    except KeyboardInterrupt:
+        sys.exit(130)
+    except OSError as e:
+        if e.errno != errno.EPIPE:
+            raise
+        from typer._click.utils import PacifyFlushWrapper
+        sys.stdout = PacifyFlushWrapper(sys.stdout)
+        sys.stderr = PacifyFlushWrapper(sys.stderr)
+        sys.exit(1)
+    sys.exit(code)
 
 
-@app.command()
-def batch(
-    source: str = typer.Argument(..., metavar="DIR_OR_GLOB", help="a folder of task files or a glob"),
-    out: Path = typer.Option(..., "--out", "-o", help="output folder: <out>/<variant>/ and summary files"),
-    jobs: int = typer.Option(1, "--jobs", "-j", min=1, help="variants computed in parallel (processes)"),
-    format: str = typer.Option("json", "--format", "-f", help="outputs per variant: json, html, pdf"),
-    lang: str = typer.Option("en", "--lang", "-l", help="report and summary language: en | ru | uk"),
-    answers: Optional[Path] = typer.Option(None, "--answers", "-a",
-                                           help="students' answers: a YAML file, a folder of them, or a CSV; "
-                                                "default: each task's own `answers`"),
-    tolerance: Optional[Path] = typer.Option(None, "--tolerance", "-t", help="a YAML file of tolerances"),
-    quantities: Optional[str] = typer.Option(None, "--quantities", "-q",
-                                             help="required quantities: result paths and presets"),
-    timeout: float = typer.Option(120.0, "--timeout", min=0,
-                                  help="seconds one variant may run (0 = no limit); over it: a failed row"),
-    memory: int = typer.Option(4096, "--memory", min=0,
-                               help="MB of address space per variant (0 = no limit); over it: a failed row"),
-):
-    """Run and grade many variants; one failing variant never stops the rest.
-    Writes summary.csv, summary.html and check.csv (and <out>/<variant>/...). Exit code:
-    the worst of the rows (0 all ok, 1 some answers wrong or missing, 2 some invalid,
-    3 some failed)."""
-    from .batch import run_batch
-    formats = _parse_formats(format)
-    if lang not in ("en", "ru", "uk"):
-        raise typer.BadParameter("--lang must be en, ru or uk")
-    try:
-        code = run_batch(source, out, jobs=jobs, formats=formats, lang=lang, answers=answers, tolerance=tolerance,
-                         quantities=quantities, timeout=timeout, memory_mb=memory or None)
-    except OSError as exc:
-        raise _fail_write(exc)
-    raise typer.Exit(code)
-
-
-@app.command()
-def variants(
-    template: Path = typer.Argument(..., metavar="TEMPLATE.yaml", help="a task file with {column} placeholders"),
-    table: Path = typer.Argument(..., metavar="TABLE.csv", help="one row per variant; a `variant` column"),
-    out: Path = typer.Option(..., "--out", "-o", help="folder for <variant>.yaml and variants.csv"),
-):
-    """Write one validated task per table row (DIR/<variant>.yaml) and DIR/variants.csv.
-    A row whose task is invalid or does not assemble over the cycle is reported as
-    TABLE:<line>: variant <v>: <reason> and not written. Exit 0 when every row is
-    written, else 2."""
-    from .variants import make_variants
-    try:
-        code, report, messages = make_variants(template, table, out)
-    except TaskError as exc:
-        raise _fail_task(exc)
-    except OSError as exc:
-        raise _fail_write(exc)
-    for m in messages:
-        _err(m)
-    n = sum(r["status"] == "written" for r in report)
-    _err(f"wrote {n} of {len(report)} variants to {out} (and {out / 'variants.csv'})")
-    raise typer.Exit(code)
-
-
-@app.command()
-def paths(
-    task_file: Path = typer.Argument(..., metavar="TASK.yaml"),
-    prefix: Optional[str] = typer.Option(None, "--prefix", "-p", help="only paths starting with this"),
-    format: str = typer.Option("text", "--format", "-f", help="text (PATH<TAB>VALUE) | json"),
-):
-    """Run the task and list every result path with its value (the paths `answers`,
-    `--quantities` and tolerances use)."""
-    from .check import leaf_paths
-    from .orchestrate import compute, prepare
-    from .pipeline import PartialResults
-    if format not in ("text", "json"):
-        raise typer.BadParameter("--format must be text or json")
-    try:
-        task = prepare(task_file, stage_errors=False)
-        results = compute(task)
-    except TaskError as exc:
-        raise _fail_task(exc)
-    except (PartialResults, StageError) as exc:
-        raise _fail_stage(exc, str(task_file))
-    leaves = [(p, v) for p, v in leaf_paths(results) if prefix is None or p.startswith(prefix)]
-    if format == "json":
-        typer.echo(json.dumps(dict(leaves), indent=1, ensure_ascii=False))
-    else:
-        def txt(v):
-            return json.dumps(v) if isinstance(v, bool) else (repr(v) if isinstance(v, float) else str(v))
-        sys.stdout.write("".join(f"{p}\t{txt(v)}\n" for p, v in leaves))
-
-
-@app.command()
-def form(
-    source: Path = typer.Argument(..., metavar="TASK_OR_DIR", help="a task file or a folder of them"),
-    quantities: str = typer.Option(..., "--quantities", "-q",
-                                   help="result paths and presets, comma-separated: positions, kinematics, "
-                                        "kinetostatics, flywheel, cam, gears, planetary, drive_train, synthesis"),
-    out: Path = typer.Option(Path("forms"), "--out", "-o", help="output folder (default: forms/)"),
-    lang: str = typer.Option("en", "--lang", "-l", help="language of the comments: en | ru | uk"),
-):
-    """Write per task a blank answer form NAME.form.yaml and an answer key NAME.key.yaml,
-    and for the set form.csv and key.csv."""
-    from .batch import find_tasks
-    from .forms import expand, form_text, forms_csv
-    from .io import atomic_write
-    from .orchestrate import classify, compute, prepare
-    from .results import lookup
-    if lang not in ("en", "ru", "uk"):
-        raise typer.BadParameter("--lang must be en, ru or uk")
-    if source.is_dir():
-        found, _ = find_tasks(str(source))
-        files = [f for f, why in found if why is None]
-    else:
-        files = [source]
-    code, frows, krows, all_paths = EXIT_OK, [], [], []
-    for f in files:
-        try:
-            task = prepare(f, stage_errors=False)
-            results = compute(task)
-            qp = expand(quantities, results)
-            atomic_write(out / f"{task.name}.form.yaml", form_text(task, qp, None, lang))
-            atomic_write(out / f"{task.name}.key.yaml", form_text(task, qp, results, lang))
-        except TaskError as exc:
-            _err(f"error: {exc.render() if exc.file else f'{f}: {exc.render()}'}")
-            code = max(code, EXIT_INVALID)
-            continue
-        except BaseException as exc:
-            if isinstance(exc, KeyboardInterrupt):
-                raise
-            c, _, msg = classify(exc)
-            _err(f"error: {f}: {msg}")
-            code = max(code, c)
-            continue
-        all_paths += [p for p in qp if p not in all_paths]
-        v = task.variant if task.variant is not None else task.name
-        frows.append({"student": "", "group": "", "variant": v})
-        krow = {"student": "", "group": "", "variant": v}
-        for p in qp:
-            krow[p] = lookup(results, p)
-        krows.append(krow)
-    try:
-        atomic_write(out / "form.csv", forms_csv(frows, all_paths))
-        atomic_write(out / "key.csv", forms_csv(krows, all_paths))
-    except OSError as exc:
-        raise _fail_write(exc)
-    _err(f"wrote {len(frows)} form(s) and key(s) to {out}")
-    raise typer.Exit(code)
-
-
-@app.command()
-def schema(
-    out: Optional[Path] = typer.Option(None, "--out", "-o", help="write to a file instead of stdout"),
-):
-    """Print the task file's JSON Schema (for editor completion: e.g. a
-    `# yaml-language-server: $schema=tmm.schema.json` line at the top of a task)."""
-    from .task import Task
-    s = Task.model_json_schema(by_alias=True)
-    s["$schema"] = "https://json-schema.org/draft/2020-12/schema"
-    s["title"] = "tmm task file (schema tmm/1)"
-    text = json.dumps(s, indent=2, ensure_ascii=False)
-    if out:
-        from .io import atomic_write
-        try:
-            atomic_write(out, text + "\n")
-        except OSError as exc:
-            raise _fail_write(exc)
-    else:
-        typer.echo(text)
-
-
-@app.command()
-def fields(section: Optional[str] = typer.Argument(None, help="only this section, e.g. flywheel")):
-    """List every task-file field: its path, default and meaning (units: SI base units,
-    angles in degrees; a string may carry its own unit, e.g. '300 mm', '50 rpm')."""
-    from rich.console import Console
-    from rich.table import Table
-
-    from .task import field_docs
-    rows = [r for r in field_docs() if section is None or r[0] == section or r[0].startswith(section + ".")
-            or r[0].startswith(section + "[")]
-    if not rows:
-        _err(f"error: no section or field '{section}'")
-        raise typer.Exit(EXIT_INVALID)
-    t = Table(title="tmm task file fields (schema tmm/1)")
-    t.add_column("field", overflow="fold")
-    t.add_column("default", overflow="fold")
-    t.add_column("meaning", overflow="fold")
-    from rich.markup import escape      # '[x, y]' in a meaning is text, not Rich markup
-    for path, default, text in rows:
-        t.add_row(escape(path), escape(default), escape(text))
-    Console().print(t)
-
-
-STARTERS = ("linkage", "cam", "gears", "full", "synthesis")
-STARTERS += ("cam_rocker", "cam_flat", "cam_knife")      # one starter for each cam follower
-
-
-@app.command()
-def new(kind: str = typer.Argument(..., metavar="KIND", help="linkage | cam | cam_rocker | cam_flat | cam_knife | "
-                                                            "gears | full | synthesis")):
-    """Print a commented starter task of the given kind."""
-    if kind not in STARTERS:
-        _err(f"error: unknown kind '{kind}'; choose from {', '.join(STARTERS)}")
-        raise typer.Exit(EXIT_INVALID)
-    from importlib.resources import files
-    typer.echo(files("tmm_cli.starters").joinpath(f"{kind}.yaml").read_text(encoding="utf-8"), nl=False)
+def _say(message: str) -> None:
+    """A message of :func:`main` on stderr: typer.echo once the Typer app is in use."""
+    typer = sys.modules.get("typer")
+    (typer.echo if typer is not None else echo)(message, err=True)
 
 
 def main() -> None:
     try:
+        command = _fast(sys.argv[1:])
+        if command is not None:
+            _run_fast(command)
+        from .commands import app
         app(standalone_mode=True)
     except KeyboardInterrupt:
-        _err("interrupted")
+        _say("interrupted")
         sys.exit(130)
     except SystemExit:
         raise
     except Exception as exc:  # a defect of ours: say so plainly, still no traceback
-        _err(f"error: internal error ({type(exc).__name__}: {exc}); please report it with the task file. "
+        _say(f"error: internal error ({type(exc).__name__}: {exc}); please report it with the task file. "
              f"Run `python -m tmm_cli ...` with TMM_DEBUG=1 for the traceback.")
         if __import__("os").environ.get("TMM_DEBUG"):
             raise
         sys.exit(EXIT_STAGE)
+
+
+def __getattr__(name: str):
+    """The Typer app and its commands (``from tmm_cli.cli import app``), built on first use."""
+    if name.startswith("__"):            # the import system's probes (__path__, ...)
+        raise AttributeError(name)
+    from . import commands
+    try:
+        return getattr(commands, name)
+    except AttributeError:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}") from None
 
 
 if __name__ == "__main__":

@@ -11,6 +11,8 @@ Derivatives", ch. 4 and 5): the same iterates, hence the same results.
 * ``minimize_scalar(f, bounds=(a, b), method="bounded", options={"xatol": ...})`` -
   Brent's bounded minimiser (scipy's ``_minimize_scalar_bounded``), returning an
   object with ``x``, ``fun``, ``success``, ``nfev``.
+* ``unique(a)`` - ``np.unique(a)`` (the sorted distinct values, NaNs counted once): numpy's
+  own function imports numpy.ma (~10 ms) to ask whether ``a`` is masked.
 """
 from __future__ import annotations
 
@@ -153,6 +155,30 @@ def minimize_scalar(func, bounds, args=(), method="bounded", options=None):
     if math.isnan(xf) or math.isnan(fx) or math.isnan(fu):
         flag = 2
     return SimpleNamespace(x=xf, fun=fx, status=flag, success=flag == 0, nfev=num, nit=num)
+
+
+def unique(a):
+    """``np.unique(a)`` without importing numpy.ma: numpy's ``_unique1d`` step for step
+    (sort a flattened copy, keep each value that differs from the one before; of the
+    NaNs sorted last, only the first)."""
+    import numpy as np
+
+    aux = np.array(a).ravel()           # a copy, as np.unique's flatten()
+    aux.sort()
+    mask = np.empty(aux.shape, dtype=bool)
+    mask[:1] = True
+    if aux.shape[0] > 0 and aux.dtype.kind in "cfmM" and np.isnan(aux[-1]):
+        if aux.dtype.kind == "c":
+            first_nan = np.searchsorted(np.isnan(aux), True, side="left")
+        else:
+            first_nan = np.searchsorted(aux, aux[-1], side="left")
+        if first_nan > 0:
+            mask[1:first_nan] = aux[1:first_nan] != aux[:first_nan - 1]
+        mask[first_nan] = True
+        mask[first_nan + 1:] = False
+    else:
+        mask[1:] = aux[1:] != aux[:-1]
+    return aux[mask]
 
 
 def _sign(v: float) -> float:

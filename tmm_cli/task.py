@@ -251,13 +251,18 @@ class ShapeSpec(_Model):
     width_ratio: Ratio = Field(0.1, gt=0)
 
 
+def _default_shape() -> ShapeSpec:
+    """ShapeSpec() (its defaults, which need no validation) without building its validator."""
+    return ShapeSpec.model_construct()
+
+
 class FlywheelSection(_Model):
     delta: Ratio = Field(..., gt=0, lt=1)
     constant: Literal["driving", "resistance"] = "driving"
     method: Literal["energy-mass", "merzalov", "exact"] = "energy-mass"
     resolution: int = Field(360, ge=12, le=100000)
     quadrature: int = Field(2, ge=0, le=8, description="Gauss-Legendre points per interval (0: trapezoid)")
-    shape: ShapeSpec = Field(default_factory=ShapeSpec)
+    shape: ShapeSpec = Field(default_factory=_default_shape)
     reduced_J: Inertia = Field(0.0, ge=0, description="extra constant reduced inertia (rotor, gears), kg*m^2")
 
 
@@ -289,6 +294,11 @@ class LawsSpec(_Model):
     return_: LawName = Field("cosine", alias="return")
 
 
+def _default_laws() -> LawsSpec:
+    """LawsSpec() (cosine rise and return) without building its validator."""
+    return LawsSpec.model_construct()
+
+
 class LimitsSpec(_Model):
     rise: Angle = Field(..., gt=0, lt=90)
     return_: Angle = Field(..., alias="return", gt=0, lt=90)
@@ -300,7 +310,7 @@ class CamSection(_Model):
     rocker_length: Length | None = Field(None, gt=0)
     offset: Union[Literal["auto"], Length] = 0.0
     phases: PhasesSpec
-    laws: LawsSpec = Field(default_factory=LawsSpec)
+    laws: LawsSpec = Field(default_factory=_default_laws)
     pressure_angle: Union[LimitsSpec, Angle, None] = None
     transmission_angle: Union[LimitsSpec, Angle, None] = None
     swing: Literal["with", "against", "auto"] = "auto"
@@ -344,7 +354,9 @@ class CamSection(_Model):
         if not isinstance(lim, LimitsSpec):
             if not 0 < lim < 90:
                 raise ValueError("the allowed pressure angle must lie in (0, 90) deg")
-            lim = LimitsSpec(rise=lim, **{"return": lim})
+            # checked just above as LimitsSpec would (an angle in (0, 90)): built without
+            # validating again, which would build LimitsSpec's own validator (~10 ms)
+            lim = LimitsSpec.model_construct(rise=lim, return_=lim)
         self.pressure_angle = lim
         if self.follower == "rocker":
             if self.rocker_length is None:
@@ -567,8 +579,9 @@ class Task(_Model):
             self._synthesis_error = exc
             return self
         self._design = d
-        self.mechanism = MechanismSection.model_validate(d.mechanism)
-        pos = self.positions if self.positions is not None else PositionsSection()
+        from .schemacache import validator
+        self.mechanism = validator(MechanismSection).validate_python(d.mechanism)     # MechanismSection.model_validate
+        pos = self.positions if self.positions is not None else validator(PositionsSection).validate_python({})
         upd = {}
         if "output" not in pos.model_fields_set:
             upd["output"] = d.output
@@ -733,7 +746,8 @@ def load_task(source: Union[str, Path, dict], *, text: str | None = None) -> Tas
         raise TaskError("the task file must be a mapping of sections (schema: tmm/1, ...)", file=file,
                         issues=[("", 1, 1, "the task file must be a mapping of sections (schema: tmm/1, ...)")])
     try:
-        task = Task.model_validate(data)
+        from .schemacache import validator
+        task = validator(Task).validate_python(data)
     except ValidationError as exc:
         issues = []
         seen = set()

@@ -51,7 +51,10 @@ class TrainStageSpec(_Model):
             raise ValueError(f"unknown planetary scheme {v!r}; known: {', '.join(PLANETARY_SCHEMES)}")
         return key
 
-    _ratio = field_validator("ratio")(classmethod(lambda cls, v: _nonzero_ratio(v)))
+    @field_validator("ratio")
+    @classmethod
+    def _ratio(cls, v):
+        return _nonzero_ratio(v)
 
     @model_validator(mode="after")
     def _shape(self):
@@ -95,7 +98,10 @@ class DriveTrainSection(_Model):
     candidates: int = Field(10, ge=1, le=100)
     stages: list[TrainStageSpec] = Field(..., min_length=1)
 
-    _ratio = field_validator("ratio")(classmethod(lambda cls, v: _nonzero_ratio(v)))
+    @field_validator("ratio")
+    @classmethod
+    def _ratio(cls, v):
+        return _nonzero_ratio(v)
 
     @model_validator(mode="after")
     def _limits(self):

@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 import re
 from fractions import Fraction
-from functools import lru_cache
+from functools import lru_cache, partial
 from typing import Annotated, Any
 
 from pydantic import AfterValidator, BeforeValidator, WithJsonSchema
@@ -29,6 +29,9 @@ KINDS: dict[str, tuple[str, str]] = {
     "density": ("kg/m**3", "a density (kg/m^3)"),
     "force_or_pressure": ("", "a force (N) or, with `area`, a pressure (Pa)"),
     "dimensionless": ("", "a plain number or a fraction such as 1/18"),
+    # read by their own fields (dof2's times, drive.mean_output_speed), here for the fast table
+    "time": ("s", "a time (s, ms, min)"),
+    "linear_speed": ("m/s", "a linear speed (m/s)"),
 }
 
 # No quantity of a course task comes near 1e12 in its base unit (m, kg, N, Pa, rad/s, deg...);
@@ -121,7 +124,9 @@ _FAST_UNITS: dict[str, dict[str, float]] = {
     "length": {"m": 1.0, "mm": 0.001, "cm": 0.01, "dm": 0.1, "km": 1000.0},
     "mass": {"kg": 1.0, "g": 0.001, "t": 1000.0},
     "angle": {"deg": 1.0, "degree": 1.0, "degrees": 1.0, "°": 1.0, "rad": 57.29577951308232},
-    "speed": {"rpm": 0.10471975511965977, "rad/s": 1.0, "1/s": 1.0},
+    "speed": {"rpm": 0.10471975511965977, "rad/s": 1.0, "1/s": 1.0, "deg/s": 0.017453292519943295},
+    "linear_speed": {"m/s": 1.0, "mm/s": 0.001, "cm/s": 0.01},
+    "time": {"s": 1.0, "ms": 0.001, "min": 60.0},
     "force": {"N": 1.0, "kN": 1000.0, "MN": 1000000.0},
     "moment": {"N*m": 1.0, "N m": 1.0, "N·m": 1.0, "kN*m": 1000.0, "kN m": 1000.0, "kN·m": 1000.0},
     "pressure": {"Pa": 1.0, "kPa": 1000.0, "MPa": 1000000.0, "GPa": 1000000000.0, "bar": 100000.0},
@@ -167,7 +172,8 @@ def fraction_text(x: float) -> str:
 
 
 def _q(kind: str):
-    return BeforeValidator(lambda v: convert(v, kind))
+    # a partial, not a closure: the task's validator can then be cached (tmm_cli.task)
+    return BeforeValidator(partial(convert, kind=kind))
 
 
 def _schema(kind: str) -> WithJsonSchema:

@@ -22,6 +22,7 @@ import math
 
 import numpy as np
 
+from ..lazy import unique
 from . import flat as _flat
 
 
@@ -45,7 +46,7 @@ def vertices(result, step_deg: float) -> tuple[np.ndarray, np.ndarray]:
     n = int(math.ceil(360.0 / step - 1e-9))
     grid = np.minimum(np.arange(n + 1) * step, 360.0)
     bounds = np.degrees(np.asarray(result.motion.starts, float))
-    phi = np.unique(np.concatenate([grid, bounds, [360.0]]))
+    phi = unique(np.concatenate([grid, bounds, [360.0]]))
     phi = phi[np.concatenate([[True], np.diff(phi) > 1e-9])]
     ph = np.searchsorted(bounds, 0.5 * (phi[:-1] + phi[1:]), side="right") - 1
     return phi, ph

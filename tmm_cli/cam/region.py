@@ -22,7 +22,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import nnls
 
 from .geometry import Geometry
 from .motion import FAR_DWELL, NEAR_DWELL, Motion
@@ -93,6 +92,7 @@ def ldp(N: np.ndarray, c: np.ndarray, P0: np.ndarray) -> np.ndarray | None:
     b = c - N @ P0
     E = np.vstack([-N.T, -b[None, :]])
     f = np.array([0.0, 0.0, 1.0])
+    from scipy.optimize import nnls      # lazy: scipy costs more to import than validating a task
     try:
         u, _ = nnls(E, f, maxiter=50 * E.shape[1])
     except RuntimeError:          # NNLS did not converge: treat as no (reliable) solution

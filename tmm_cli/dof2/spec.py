@@ -31,7 +31,7 @@ from typing import Annotated, Any, Literal
 from pydantic import BeforeValidator, Field, WithJsonSchema, field_validator, model_validator
 
 from ..modelbase import _Model
-from ..units import Angle, AngularSpeed, Inertia, Length, Mass, MomentQ, Ratio, ureg
+from ..units import Angle, AngularSpeed, Inertia, Length, Mass, MomentQ, Ratio, _fast, ureg
 
 __all__ = ["Dof2Section", "RotorSpec", "StrikerSpec", "DriveSpec", "InitialSpec", "ImpactSpec", "Time"]
 
@@ -48,6 +48,8 @@ def _time(value: Any) -> float:
         try:
             v = float(text)
         except ValueError:
+            v = _fast(text, "time")          # s, ms, min: pint's factors, without its registry
+        if v is None:
             reg = ureg()
             try:
                 q = reg.Quantity(text)

@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import StageError
+from ..lazy import unique
 from ..messages import Message
 from . import shifts as _shifts
 from .geometry import ABSOLUTE_EPS, COURSE_EPS, DEFAULT_SA_MIN, checks, lowest_radius, pair, sliding
@@ -99,7 +100,7 @@ def _sliding_table(g, z1, z2, n=21):
     L = float(g["N1N2"])
     pts = np.linspace(0.0, L, n)
     marks = {"N1": 0.0, "B1": float(g["N1B1"]), "P": float(g["N1P"]), "B2": float(g["N1B2"]), "N2": L}
-    xs = np.unique(np.concatenate([pts, [v for v in marks.values() if 0.0 <= v <= L]]))
+    xs = unique(np.concatenate([pts, [v for v in marks.values() if 0.0 <= v <= L]]))
     l1, l2 = sliding(xs, L, z1, z2)
     lb1, _ = sliding(marks["B1"], L, z1, z2)
     _, lb2 = sliding(marks["B2"], L, z1, z2)

@@ -25,21 +25,28 @@ def check_output_speed(value) -> tuple[float, str | None]:
     """(magnitude in m/s or rad/s, 'linear' | 'angular' | None for a plain number).
     Raises ValueError for a value that is neither a linear nor an angular speed, or
     not positive."""
-    from ..units import _parse, check_magnitude
+    from ..units import _fast, _parse, check_magnitude
 
     if isinstance(value, bool):
         raise ValueError("expected a speed (m/s for a slider, rad/s or deg/s for a rocker), got a boolean")
     if isinstance(value, (int, float)):
         v, kind = check_magnitude(float(value)), None
     else:
-        q = _parse(str(value).strip(), "a speed (m/s, rad/s, deg/s)")
+        text = str(value).strip()
         v = kind = None
-        for unit, k in (("m/s", "linear"), ("rad/s", "angular")):
-            try:
-                v, kind = float(q.to(unit).magnitude), k
+        for table, k in (("linear_speed", "linear"), ("speed", "angular")):    # the common units, pint's factors
+            v = _fast(text, table)
+            if v is not None:
+                kind = k
                 break
-            except Exception:  # noqa: BLE001 - pint: not this dimension, try the next
-                continue
+        if kind is None:
+            q = _parse(text, "a speed (m/s, rad/s, deg/s)")
+            for unit, k in (("m/s", "linear"), ("rad/s", "angular")):
+                try:
+                    v, kind = float(q.to(unit).magnitude), k
+                    break
+                except Exception:  # noqa: BLE001 - pint: not this dimension, try the next
+                    continue
         if kind is None:
             raise ValueError(f"'{value}' is not a speed: give m/s (a slider) or rad/s, deg/s (a rocker)")
         v = check_magnitude(v)

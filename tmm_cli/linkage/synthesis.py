@@ -486,15 +486,19 @@ def analyse(linkage, d: Design) -> dict:
     import numpy as np
 
     from .kinematics import find_positions, solve
+    from ..schemacache import validator
     from ..task import PositionsSection
 
     mech, sign = linkage.mechanism, linkage.drive.sign
-    pos = find_positions(mech, PositionsSection(output=d.output, working=d.working), sign)
+    # PositionsSection(output=..., working=...) by the cached validator (tmm_cli.schemacache)
+    pos = find_positions(mech, validator(PositionsSection).validate_python({"output": d.output, "working": d.working}),
+                         sign)
     H = psi = None
     if pos.output_kind == "slider":
         H = float(pos.H)
         if d.type == "shaper":
-            psi = float(find_positions(mech, PositionsSection(output="rocker"), sign).H)
+            psi = float(find_positions(mech, validator(PositionsSection).validate_python({"output": "rocker"}),
+                                       sign).H)
     else:
         psi = float(pos.H)
     gmin, gphi = least_transmission(d.type, mech)

@@ -18,6 +18,7 @@ from typing import Callable
 import numpy as np
 
 from ...errors import StageError
+from ...lazy import unique
 from ...messages import Message
 from . import flywheel as fw
 from .reduce import Sample, sample as sample_mech
@@ -138,7 +139,7 @@ def _extrema_between_nodes(q, dT, M_red, J_var, dJ_var, omega_m, delta) -> np.nd
         out.append(fw.hermite_critical(q, dT - J_var * c, M_red - dJ_var * c))
         if not np.any(J_var):
             break
-    return np.unique(np.concatenate(out))
+    return unique(np.concatenate(out))
 
 
 def solve_cycle(q: np.ndarray, M_given: np.ndarray, J_links: dict[str, np.ndarray] | np.ndarray,

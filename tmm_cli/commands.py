@@ -1,0 +1,483 @@
+"""The `tmm` commands: the Typer app (README, *Commands*); the entry point is
+:func:`tmm_cli.cli.main`.
+
+Exit codes: 0 success; 1 answers outside tolerance; 2 invalid task (file, line and
+field named, no traceback); 3 a stage failed on valid input (stage and position named).
+"""
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+from typing import List, Optional
+
+import typer
+
+from . import cli
+from .cli import EXIT_ANSWERS, EXIT_INVALID, EXIT_OK, EXIT_STAGE, FORMATS  # noqa: F401
+from .errors import StageError, TaskError
+
+app = typer.Typer(
+    name="tmm",
+    help=("Course-project calculator for the Theory of Machines and Mechanisms (TMM): "
+          "structural analysis, 12-position kinematics with velocity and acceleration plans, "
+          "kinetostatics with the Zhukovsky lever, the flywheel by the energy-mass method, cam "
+          "synthesis, involute gears and planetary synthesis - from one YAML task file.\n\n"
+          "Start with `tmm new full` (a commented task), `tmm fields` (every task-file field) and "
+          "`tmm run TASK.yaml`.\n\n"
+          "Exit codes: 0 success; 1 answers outside tolerance; 2 invalid task; 3 a stage failed."),
+    invoke_without_command=True,
+    add_completion=False,
+    pretty_exceptions_enable=False,
+    rich_markup_mode=None,
+)
+
+
+def _version(value: bool) -> None:
+    if value:
+        from . import __version__
+        typer.echo(f"tmm {__version__}")
+        raise typer.Exit(EXIT_OK)
+
+
+@app.callback()
+def _root(ctx: typer.Context,
+          version: bool = typer.Option(False, "--version", callback=_version, is_eager=True,
+                                       help="print the version and exit")) -> None:
+    # `tmm` with no command: the help, and success (it is what the user asked for)
+    if ctx.invoked_subcommand is None:
+        typer.echo(ctx.get_help())
+        raise typer.Exit(EXIT_OK)
+
+
+def _err(msg: str) -> None:
+    typer.echo(msg, err=True)
+
+
+def _fail_task(exc: TaskError) -> "typer.Exit":
+    return typer.Exit(cli.fail_task(exc, typer.echo))
+
+
+def _fail_stage(exc: StageError, file: str | None = None) -> "typer.Exit":
+    return typer.Exit(cli.fail_stage(exc, file, typer.echo))
+
+
+def _fail_write(exc: OSError) -> "typer.Exit":
+    """The output folder or a file in it cannot be written: exit 3, no traceback."""
+    return typer.Exit(cli.fail_write(exc, typer.echo))
+
+
+def _load(path: Path):
+    """Load and validate a task as every command does (exit 2 / 3 the same everywhere)."""
+    from .orchestrate import prepare
+    return prepare(path)
+
+
+def _parse_formats(text: str) -> set[str]:
+    fm = cli.parse_formats(text)
+    if fm is None:
+        bad = {f.strip().lower() for f in text.split(",") if f.strip()} - FORMATS
+        raise typer.BadParameter(f"unknown format(s) {', '.join(sorted(bad)) or '(none)'}; "
+                                 f"choose from json, html, pdf, sheets (comma-separated)")
+    return fm
+
+
+def write_outputs(task, results: dict, out: Path, formats: set[str], lang: str,
+                  notes: list[str] | None = None,
+                  study: tuple[dict, dict] | None = None) -> list[Path]:
+    """results.json and the reports (tmm_cli.orchestrate.write_outputs)."""
+    from .orchestrate import write_outputs as write
+    return write(task, results, out, formats, lang, notes=notes, study=study)
+
+
+@app.command()
+def run(
+    task_file: Path = typer.Argument(..., metavar="TASK.yaml", help="the task file (README: The task file)"),
+    out: Optional[Path] = typer.Option(None, "--out", "-o", help="output folder (default: out/<task name>/)"),
+    format: str = typer.Option("json,html,pdf", "--format", "-f",
+                               help="comma-separated outputs: json, html, pdf, sheets (the A1 drawing sheets in "
+                                    "sheets/; results.json is always written)"),
+    lang: str = typer.Option("en", "--lang", "-l", help="report language: en | ru | uk"),
+    quiet: bool = typer.Option(False, "--quiet", "-q", help="no progress and summary on the terminal"),
+    study: bool = typer.Option(False, "--study", help="also write study.json and study.html: "
+                                                      "accuracy against computing time per stage"),
+):
+    """Run every stage present in the task; write results.json and the report(s).
+
+    Example: tmm run tasks/engine_slider_crank.yaml --out out/engine --lang ru (or uk)
+    """
+    formats = _parse_formats(format)
+    if lang not in ("en", "ru", "uk"):
+        raise typer.BadParameter("--lang must be en, ru or uk")
+    code = cli.run_task(task_file, out, formats, lang, quiet, study, typer.echo)
+    if code != EXIT_OK:
+        raise typer.Exit(code)
+
+
+def _run_study(task, progress=None, repeat: int = 3) -> tuple[dict, dict]:
+    from . import study as study_mod
+    try:
+        return study_mod.run_study(task, progress=progress, repeat=repeat)
+    except StageError as exc:
+        raise _fail_stage(exc, task.file)
+
+
+@app.command("study")
+def study_cmd(
+    task_file: Path = typer.Argument(..., metavar="TASK.yaml", help="the task file"),
+    out: Optional[Path] = typer.Option(None, "--out", "-o", help="output folder (default: out/<task name>/)"),
+    repeat: int = typer.Option(3, "--repeat", help="timed repeats per row (the best is kept)", min=1, max=50),
+    lang: str = typer.Option("en", "--lang", "-l", help="language of study.html: en | ru | uk"),
+):
+    """Accuracy against computing time: for each stage present, sweep the setting that
+    trades time for accuracy (flywheel resolution, curve points, kinetostatic positions,
+    dof2 rtol, cam profile step, blocking-contour grid, planetary z_max); write study.json
+    (errors against a converged reference, measured and theoretical convergence order,
+    times) and study.html (tables and log-log plots).
+
+    Example: tmm study tasks/forging_sixbar.yaml --out out/forging --lang ru
+    """
+    if lang not in ("en", "ru", "uk"):
+        raise typer.BadParameter("--lang must be en, ru or uk")
+    try:
+        task = _load(task_file)
+    except TaskError as exc:
+        raise _fail_task(exc)
+    out = out or Path("out") / task.name
+    st, trap = _run_study(task, lambda s: _err(f"  {s}..."), repeat)
+    from . import study as study_mod
+    try:
+        paths = study_mod.write(st, out, trap, lang)
+    except OSError as exc:
+        raise _fail_write(exc)
+    for p in paths:
+        typer.echo(str(p))
+
+
+@app.command()
+def sheets(
+    task_file: Path = typer.Argument(..., metavar="TASK.yaml", help="the task file"),
+    out: Optional[Path] = typer.Option(None, "--out", "-o", help="output folder (default: out/<task name>/)"),
+    format: str = typer.Option("pdf,svg,dxf", "--format", "-f", help="comma-separated: pdf, svg, dxf"),
+    lang: str = typer.Option("en", "--lang", "-l", help="sheet language: en | ru | uk"),
+):
+    """The A1 drawing sheets (frame, ГОСТ 2.104 title block, standard scales) as PDF, SVG and DXF.
+
+    Sheets: 1 kinematics (mechanism, plans, s-v-a diagrams), 2 kinetostatics (groups, force
+    polygons, Zhukovsky's lever of one or two positions), 3 dynamics, 4 cam, 5 gear mesh;
+    only those the task has.
+
+    Example: tmm sheets tasks/forging_sixbar.yaml --out out/forging --format pdf,dxf
+    """
+    fm = {f.strip().lower() for f in format.split(",") if f.strip()}
+    if not fm or fm - {"pdf", "svg", "dxf"}:
+        raise typer.BadParameter("choose from pdf, svg, dxf (comma-separated)")
+    if lang not in ("en", "ru", "uk"):
+        raise typer.BadParameter("--lang must be en, ru or uk")
+    try:
+        task = _load(task_file)
+    except TaskError as exc:
+        raise _fail_task(exc)
+    from .pipeline import run as run_pipeline
+    from .sheets import build_sheets, write_sheets
+    try:
+        results = run_pipeline(task)
+    except StageError as exc:
+        raise _fail_stage(exc, task.file)
+    try:
+        paths = write_sheets(build_sheets(results, task, lang), out or Path("out") / task.name, fm)
+    except OSError as exc:
+        raise _fail_write(exc)
+    if not paths:
+        _err("note: no sheets: the task has no linkage, cam or gear pair to draw")
+    for p in paths:
+        typer.echo(str(p))
+
+
+@app.command()
+def validate(
+    task_files: List[Path] = typer.Argument(..., metavar="TASK.yaml...", help="one or more task files"),
+    no_assembly: bool = typer.Option(False, "--no-assembly", help="schema only: skip the check that the "
+                                                                  "linkage assembles over the whole cycle"),
+):
+    """Check task files: the schema, the references, and (for a linkage) that it
+    assembles at every crank angle of the cycle. Does not run the pipeline."""
+    raise typer.Exit(cli.validate_tasks(task_files, no_assembly, typer.echo))
+
+
+@app.command()
+def check(
+    task_file: Path = typer.Argument(..., metavar="TASK.yaml"),
+    answers: Optional[Path] = typer.Option(None, "--answers", "-a",
+                                           help="answers: a YAML file with `answers:`, a folder of them, or a CSV "
+                                                "with a row per student (student, group, variant, one column per "
+                                                "path); default: the task's own `answers` section"),
+    out: Optional[Path] = typer.Option(None, "--out", "-o", help="also write check.csv / results.json here"),
+    tolerance: Optional[Path] = typer.Option(None, "--tolerance", "-t",
+                                             help="a YAML file of tolerances per path or prefix (overrides the "
+                                                  "task's): 0.05 (relative) or {rel: 0.02, abs: 0.5}"),
+    quantities: Optional[str] = typer.Option(None, "--quantities", "-q",
+                                             help="required quantities: result paths and presets, comma-separated "
+                                                  "(a required path not answered is missing)"),
+):
+    """Compare a student's answers with the computed results: path, answer, reference,
+    error and status (ok, sign, outside, missing, unknown_path, not_computed). Exit 1 if
+    any answer is not ok (or there are none), 2 invalid input, 3 a stage failed."""
+    from .check import (check_csv, grade, load_sources, load_tolerance_file, set_code, set_status,
+                        task_answer_set, tolerances)
+    from .orchestrate import compute, prepare
+    from .pipeline import PartialResults
+    try:
+        task = prepare(task_file, stage_errors=False)
+        tol_override = load_tolerance_file(tolerance) if tolerance is not None else None
+        single = answers is not None and answers.is_file() and answers.suffix.lower() != ".csv"
+        if answers is None:
+            own = task_answer_set(task)
+            if own is None:
+                raise TaskError("no answers to check: add an `answers:` section (paths into results.json) "
+                                "or give --answers FILE", file=str(task_file))
+            sets = [own]
+        else:
+            sets = load_sources(answers)
+            if not single:
+                sets = [a for a in sets if a.matches(task)]
+        for a in sets:
+            if a.error:
+                raise TaskError(a.error)
+    except TaskError as exc:
+        raise _fail_task(exc)
+    try:
+        results = compute(task)
+    except (PartialResults, StageError) as exc:
+        raise _fail_stage(exc, str(task_file))
+    except TaskError as exc:
+        raise _fail_task(exc)
+    required = None
+    if quantities:
+        from .forms import expand
+        try:
+            required = expand(quantities, results)
+        except TaskError as exc:
+            raise _fail_task(exc)
+    from .summary import print_check
+    if not sets:
+        _err(f"no answers for variant {task.variant if task.variant is not None else task.name} in {answers}")
+    code, all_rows = (EXIT_ANSWERS if not sets else EXIT_OK), []
+    for a in sets:
+        rows = grade(results, a, tolerances(task, tol_override, a.tolerance if single else None, results), required)
+        print_check(rows, a.source)
+        all_rows.extend(rows)
+        code = max(code, set_code(set_status(rows)))
+    if out:
+        from .io import atomic_write
+        from .results import dumps
+        try:
+            atomic_write(out / "check.csv", check_csv(all_rows))
+            atomic_write(out / "results.json", dumps(results))
+        except OSError as exc:
+            raise _fail_write(exc)
+    raise typer.Exit(code)
+
+
+@app.command()
+def batch(
+    source: str = typer.Argument(..., metavar="DIR_OR_GLOB", help="a folder of task files or a glob"),
+    out: Path = typer.Option(..., "--out", "-o", help="output folder: <out>/<variant>/ and summary files"),
+    jobs: int = typer.Option(1, "--jobs", "-j", min=1, help="variants computed in parallel (processes)"),
+    format: str = typer.Option("json", "--format", "-f", help="outputs per variant: json, html, pdf"),
+    lang: str = typer.Option("en", "--lang", "-l", help="report and summary language: en | ru | uk"),
+    answers: Optional[Path] = typer.Option(None, "--answers", "-a",
+                                           help="students' answers: a YAML file, a folder of them, or a CSV; "
+                                                "default: each task's own `answers`"),
+    tolerance: Optional[Path] = typer.Option(None, "--tolerance", "-t", help="a YAML file of tolerances"),
+    quantities: Optional[str] = typer.Option(None, "--quantities", "-q",
+                                             help="required quantities: result paths and presets"),
+    timeout: float = typer.Option(120.0, "--timeout", min=0,
+                                  help="seconds one variant may run (0 = no limit); over it: a failed row"),
+    memory: int = typer.Option(4096, "--memory", min=0,
+                               help="MB of address space per variant (0 = no limit); over it: a failed row"),
+):
+    """Run and grade many variants; one failing variant never stops the rest.
+    Writes summary.csv, summary.html and check.csv (and <out>/<variant>/...). Exit code:
+    the worst of the rows (0 all ok, 1 some answers wrong or missing, 2 some invalid,
+    3 some failed)."""
+    from .batch import run_batch
+    formats = _parse_formats(format)
+    if lang not in ("en", "ru", "uk"):
+        raise typer.BadParameter("--lang must be en, ru or uk")
+    try:
+        code = run_batch(source, out, jobs=jobs, formats=formats, lang=lang, answers=answers, tolerance=tolerance,
+                         quantities=quantities, timeout=timeout, memory_mb=memory or None)
+    except OSError as exc:
+        raise _fail_write(exc)
+    raise typer.Exit(code)
+
+
+@app.command()
+def variants(
+    template: Path = typer.Argument(..., metavar="TEMPLATE.yaml", help="a task file with {column} placeholders"),
+    table: Path = typer.Argument(..., metavar="TABLE.csv", help="one row per variant; a `variant` column"),
+    out: Path = typer.Option(..., "--out", "-o", help="folder for <variant>.yaml and variants.csv"),
+):
+    """Write one validated task per table row (DIR/<variant>.yaml) and DIR/variants.csv.
+    A row whose task is invalid or does not assemble over the cycle is reported as
+    TABLE:<line>: variant <v>: <reason> and not written. Exit 0 when every row is
+    written, else 2."""
+    from .variants import make_variants
+    try:
+        code, report, messages = make_variants(template, table, out)
+    except TaskError as exc:
+        raise _fail_task(exc)
+    except OSError as exc:
+        raise _fail_write(exc)
+    for m in messages:
+        _err(m)
+    n = sum(r["status"] == "written" for r in report)
+    _err(f"wrote {n} of {len(report)} variants to {out} (and {out / 'variants.csv'})")
+    raise typer.Exit(code)
+
+
+@app.command()
+def paths(
+    task_file: Path = typer.Argument(..., metavar="TASK.yaml"),
+    prefix: Optional[str] = typer.Option(None, "--prefix", "-p", help="only paths starting with this"),
+    format: str = typer.Option("text", "--format", "-f", help="text (PATH<TAB>VALUE) | json"),
+):
+    """Run the task and list every result path with its value (the paths `answers`,
+    `--quantities` and tolerances use)."""
+    from .check import leaf_paths
+    from .orchestrate import compute, prepare
+    from .pipeline import PartialResults
+    if format not in ("text", "json"):
+        raise typer.BadParameter("--format must be text or json")
+    try:
+        task = prepare(task_file, stage_errors=False)
+        results = compute(task)
+    except TaskError as exc:
+        raise _fail_task(exc)
+    except (PartialResults, StageError) as exc:
+        raise _fail_stage(exc, str(task_file))
+    leaves = [(p, v) for p, v in leaf_paths(results) if prefix is None or p.startswith(prefix)]
+    if format == "json":
+        typer.echo(json.dumps(dict(leaves), indent=1, ensure_ascii=False))
+    else:
+        def txt(v):
+            return json.dumps(v) if isinstance(v, bool) else (repr(v) if isinstance(v, float) else str(v))
+        sys.stdout.write("".join(f"{p}\t{txt(v)}\n" for p, v in leaves))
+
+
+@app.command()
+def form(
+    source: Path = typer.Argument(..., metavar="TASK_OR_DIR", help="a task file or a folder of them"),
+    quantities: str = typer.Option(..., "--quantities", "-q",
+                                   help="result paths and presets, comma-separated: positions, kinematics, "
+                                        "kinetostatics, flywheel, cam, gears, planetary, drive_train, synthesis"),
+    out: Path = typer.Option(Path("forms"), "--out", "-o", help="output folder (default: forms/)"),
+    lang: str = typer.Option("en", "--lang", "-l", help="language of the comments: en | ru | uk"),
+):
+    """Write per task a blank answer form NAME.form.yaml and an answer key NAME.key.yaml,
+    and for the set form.csv and key.csv."""
+    from .batch import find_tasks
+    from .forms import expand, form_text, forms_csv
+    from .io import atomic_write
+    from .orchestrate import classify, compute, prepare
+    from .results import lookup
+    if lang not in ("en", "ru", "uk"):
+        raise typer.BadParameter("--lang must be en, ru or uk")
+    if source.is_dir():
+        found, _ = find_tasks(str(source))
+        files = [f for f, why in found if why is None]
+    else:
+        files = [source]
+    code, frows, krows, all_paths = EXIT_OK, [], [], []
+    for f in files:
+        try:
+            task = prepare(f, stage_errors=False)
+            results = compute(task)
+            qp = expand(quantities, results)
+            atomic_write(out / f"{task.name}.form.yaml", form_text(task, qp, None, lang))
+            atomic_write(out / f"{task.name}.key.yaml", form_text(task, qp, results, lang))
+        except TaskError as exc:
+            _err(f"error: {exc.render() if exc.file else f'{f}: {exc.render()}'}")
+            code = max(code, EXIT_INVALID)
+            continue
+        except BaseException as exc:
+            if isinstance(exc, KeyboardInterrupt):
+                raise
+            c, _, msg = classify(exc)
+            _err(f"error: {f}: {msg}")
+            code = max(code, c)
+            continue
+        all_paths += [p for p in qp if p not in all_paths]
+        v = task.variant if task.variant is not None else task.name
+        frows.append({"student": "", "group": "", "variant": v})
+        krow = {"student": "", "group": "", "variant": v}
+        for p in qp:
+            krow[p] = lookup(results, p)
+        krows.append(krow)
+    try:
+        atomic_write(out / "form.csv", forms_csv(frows, all_paths))
+        atomic_write(out / "key.csv", forms_csv(krows, all_paths))
+    except OSError as exc:
+        raise _fail_write(exc)
+    _err(f"wrote {len(frows)} form(s) and key(s) to {out}")
+    raise typer.Exit(code)
+
+
+@app.command()
+def schema(
+    out: Optional[Path] = typer.Option(None, "--out", "-o", help="write to a file instead of stdout"),
+):
+    """Print the task file's JSON Schema (for editor completion: e.g. a
+    `# yaml-language-server: $schema=tmm.schema.json` line at the top of a task)."""
+    from .task import Task
+    s = Task.model_json_schema(by_alias=True)
+    s["$schema"] = "https://json-schema.org/draft/2020-12/schema"
+    s["title"] = "tmm task file (schema tmm/1)"
+    text = json.dumps(s, indent=2, ensure_ascii=False)
+    if out:
+        from .io import atomic_write
+        try:
+            atomic_write(out, text + "\n")
+        except OSError as exc:
+            raise _fail_write(exc)
+    else:
+        typer.echo(text)
+
+
+@app.command()
+def fields(section: Optional[str] = typer.Argument(None, help="only this section, e.g. flywheel")):
+    """List every task-file field: its path, default and meaning (units: SI base units,
+    angles in degrees; a string may carry its own unit, e.g. '300 mm', '50 rpm')."""
+    from rich.console import Console
+    from rich.table import Table
+
+    from .task import field_docs
+    rows = [r for r in field_docs() if section is None or r[0] == section or r[0].startswith(section + ".")
+            or r[0].startswith(section + "[")]
+    if not rows:
+        _err(f"error: no section or field '{section}'")
+        raise typer.Exit(EXIT_INVALID)
+    t = Table(title="tmm task file fields (schema tmm/1)")
+    t.add_column("field", overflow="fold")
+    t.add_column("default", overflow="fold")
+    t.add_column("meaning", overflow="fold")
+    from rich.markup import escape      # '[x, y]' in a meaning is text, not Rich markup
+    for path, default, text in rows:
+        t.add_row(escape(path), escape(default), escape(text))
+    Console().print(t)
+
+
+STARTERS = ("linkage", "cam", "gears", "full", "synthesis")
+STARTERS += ("cam_rocker", "cam_flat", "cam_knife")      # one starter for each cam follower
+
+
+@app.command()
+def new(kind: str = typer.Argument(..., metavar="KIND", help="linkage | cam | cam_rocker | cam_flat | cam_knife | "
+                                                            "gears | full | synthesis")):
+    """Print a commented starter task of the given kind."""
+    if kind not in STARTERS:
+        _err(f"error: unknown kind '{kind}'; choose from {', '.join(STARTERS)}")
+        raise typer.Exit(EXIT_INVALID)
+    from importlib.resources import files
+    typer.echo(files("tmm_cli.starters").joinpath(f"{kind}.yaml").read_text(encoding="utf-8"), nl=False)
