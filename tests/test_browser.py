@@ -113,7 +113,10 @@ def browser_inks(browser, html: Path) -> list[float]:
     page = browser.new_page(device_scale_factor=DPI / 96, viewport={"width": 1000, "height": 800})
     try:
         page.goto(html.resolve().as_uri())
-        return [_ink(el.screenshot()) for el in page.query_selector_all("figure svg")]
+        # a figure's screenshot waits for it to be still; on a loaded CI machine that can take
+        # longer than playwright's 30 s default (no CSS animation needs to run for the ink)
+        return [_ink(el.screenshot(animations="disabled", timeout=180_000))
+                for el in page.query_selector_all("figure svg")]
     finally:
         page.close()
 
