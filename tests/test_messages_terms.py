@@ -1,0 +1,29 @@
+"""The Russian and Ukrainian catalogues use the course's terms, the same ones as the report's
+tables: Ukrainian 'число зубів' (not 'зубців'), 'положення центра обертання кулачка' for the
+cam centre sought in synthesis; and no message leaves a stage's limit in words a student
+cannot act on (a 'time exceeded' without the word for a limit)."""
+from __future__ import annotations
+
+from tmm_cli.messages import catalogue
+
+
+def _texts(lang):
+    return catalogue(lang)["messages"]
+
+
+def test_uk_number_of_teeth_as_in_the_report():
+    bad = {k: v for k, v in _texts("uk").items() if "зубц" in v}
+    assert not bad, bad
+
+
+def test_cam_centre_named_as_the_axis_position():
+    for lang, word in (("ru", "положение центра вращения кулачка"), ("uk", "положення центра обертання кулачка")):
+        for code in ("cam.fail.no_region", "cam.fail.no_region_either", "cam.fail.pressure_exceeded"):
+            assert word in _texts(lang)[code], (lang, code)
+
+
+def test_uk_stage_is_masculine():
+    """'ступінь' (a stage of a gear train) is masculine in Ukrainian: 'його z', 'його частка'."""
+    t = _texts("uk")
+    assert "його z" in t["drive_train.fail.pair_zmin"] and "її z" not in t["drive_train.fail.pair_zmin"]
+    assert "його частка" in t["drive_train.fail.below_one"]
