@@ -27,3 +27,25 @@ def test_uk_stage_is_masculine():
     t = _texts("uk")
     assert "його z" in t["drive_train.fail.pair_zmin"] and "її z" not in t["drive_train.fail.pair_zmin"]
     assert "його частка" in t["drive_train.fail.below_one"]
+
+
+def test_every_stage_has_a_name():
+    """A failure box and the batch summary name the failed stage in words ('Этап «кинематический
+    анализ» не выполнен'), never by its identifier: every stage a StageError names is in the
+    `stage` table of each catalogue."""
+    import re
+    from pathlib import Path
+
+    from tmm_cli.report import failure
+    root = Path(__file__).resolve().parents[1] / "tmm_cli"
+    stages = set(failure.STAGES)
+    for path in root.rglob("*.py"):
+        text = path.read_text(encoding="utf-8")
+        stages |= set(re.findall(r'StageError\(\s*"([a-z_0-9]+)"', text))
+        stages |= set(re.findall(r'^STAGE\s*=\s*"([a-z_0-9]+)"', text, re.M))
+    assert {"kinematics", "cam", "drive_train", "synthesis"} <= stages
+    for lang in ("ru", "uk"):
+        names = catalogue(lang)["terms"]["stage"]
+        assert stages <= set(names), (lang, sorted(stages - set(names)))
+        assert failure.stage_name("kinematics", lang) != "kinematics"
+    assert failure.stage_name("kinematics", "en") == "kinematics"

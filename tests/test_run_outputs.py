@@ -253,5 +253,5 @@ def test_failure_box_in_russian(tmp_path):
     html = (out / "report.html").read_text(encoding="utf-8")
     box = html.split('id="planetary-failed"', 1)[1].split("</section>", 1)[0]
     assert "Синтез планетарного механизма — не рассчитано" in box
-    assert "Этап «planetary» не выполнен" in box and "раздела «planetary»" in box
+    assert "Этап «синтез планетарного механизма» не выполнен" in box and "раздела «planetary»" in box
     assert 'id="gears"' in html
