@@ -49,3 +49,18 @@ def test_every_stage_has_a_name():
         assert stages <= set(names), (lang, sorted(stages - set(names)))
         assert failure.stage_name("kinematics", lang) != "kinematics"
     assert failure.stage_name("kinematics", "en") == "kinematics"
+
+
+def test_uk_drive_is_privid():
+    """Ukrainian 'привід', genitive 'приводу' (the Russian forms 'привод', 'привода' are not Ukrainian)."""
+    import re
+
+    from tmm_cli import feedback
+    from tmm_cli.report import i18n, sections
+    from tmm_cli.report.sections import task as task_section
+    for _name, _ in sections.available():
+        pass
+    texts = list(i18n.STRINGS["uk"].values()) + list(_texts("uk").values()) + \
+        list(task_section.PARAMS["uk"].values()) + [str(v) for v in feedback.STEPS_UK.values()]
+    bad = [t for t in texts if re.search(r"\b[Пп]ривода?\b", t)]
+    assert not bad, bad

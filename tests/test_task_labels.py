@@ -76,3 +76,12 @@ def test_drive_train_task_data_in_russian():
     assert ("ступень 1: вид", "зубчатая пара") in rows
     assert ("ступень 2: вид", "планетарная") in rows
     assert ("ступень 1: числа зубьев", "17; 34") in rows
+
+
+@pytest.mark.parametrize("lang, words", [("ru", "по отклонению передаточного отношения"),
+                                         ("uk", "за відхиленням передаточного відношення"),
+                                         ("en", "by the error of the ratio")])
+def test_drive_train_candidates_heading_in_words(lang, words):
+    from tmm_cli.report.sections.drive_train import rank_words
+    assert rank_words("ratio_error", lang) == words
+    assert rank_words("size", lang) != "size"

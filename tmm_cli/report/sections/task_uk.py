@@ -75,7 +75,7 @@ PARAMS_UK = {
     "drive_train.motor_direction": "напрямок обертання двигуна",
     "drive_train.ratio": "потрібне загальне передаточне відношення",
     "drive_train.tolerance": "допуск передаточного відношення",
-    "drive_train.efficiency": "ККД привода η", "drive_train.satellites": "кількість сателітів k",
+    "drive_train.efficiency": "ККД приводу η", "drive_train.satellites": "кількість сателітів k",
     "drive_train.z_min_external": "найменше число зубів колеса із зовнішніми зубами",
     "drive_train.z_min_internal": "найменше число зубів колеса з внутрішніми зубами",
     "drive_train.z_min_satellite_in_internal": "найменше число зубів сателіта у внутрішньому зачепленні",
