@@ -85,3 +85,11 @@ def test_drive_train_candidates_heading_in_words(lang, words):
     from tmm_cli.report.sections.drive_train import rank_words
     assert rank_words("ratio_error", lang) == words
     assert rank_words("size", lang) != "size"
+
+
+def test_synthesis_lengths_named_in_every_language():
+    """The synthesis section's link lengths (кривошип l_OA, …) exist in Ukrainian too, not English."""
+    from tmm_cli.report.sections import synthesis
+    for lang in ("ru", "uk"):
+        assert set(synthesis._LEN[lang]) == set(synthesis._LEN["en"]), lang
+    assert synthesis._LEN["uk"]["guide_height"] == "напрямна повзуна над O1"
