@@ -64,3 +64,14 @@ def test_uk_drive_is_privid():
         list(task_section.PARAMS["uk"].values()) + [str(v) for v in feedback.STEPS_UK.values()]
     bad = [t for t in texts if re.search(r"\b[Пп]ривода?\b", t)]
     assert not bad, bad
+
+
+def test_cam_phases_named_as_the_course_does():
+    """The cam's phases are удаление / возвращение (віддалення / повернення) everywhere in the
+    report, as in the task data and the messages — not подъём / опускание (підйом / опускання)."""
+    from tmm_cli.report import i18n, sections
+    for _name, _ in sections.available():
+        pass
+    for lang, bad in (("ru", ("подъём", "опускани")), ("uk", ("підйом", "опускан"))):
+        found = {k: v for k, v in i18n.STRINGS[lang].items() if k.startswith("cam.") and any(b in v for b in bad)}
+        assert not found, (lang, found)
