@@ -189,14 +189,9 @@ PARAMS["en"].update({
     "planetary.z_min_satellite_in_internal": "least number of teeth of a satellite in internal mesh",
     "planetary.internal_minus_external_min": "least difference of the numbers of teeth in internal mesh",
     "drive_train.motor_speed": "motor speed ω_m", "drive_train.motor_direction": "sense of rotation of the motor",
-    "drive_train.ratio": "required overall ratio", "drive_train.tolerance": "tolerance of the ratio",
-    "drive_train.efficiency": "efficiency of the drive η", "drive_train.satellites": "number of satellites k",
-    "drive_train.z_min_external": "least number of teeth of an external wheel",
-    "drive_train.z_min_internal": "least number of teeth of an internal wheel",
-    "drive_train.z_min_satellite_in_internal": "least number of teeth of a satellite in internal mesh",
-    "drive_train.internal_minus_external_min": "least difference of the numbers of teeth in internal mesh",
-    "drive_train.z_max": "largest number of teeth", "drive_train.rank": "order of the candidates",
-    "drive_train.candidates": "candidates listed", "drive_train.stages.type": "kind",
+    "drive_train.ratio": "required overall ratio",
+    "drive_train.efficiency": "efficiency of the drive η",
+    "drive_train.stages.type": "kind",
     "drive_train.stages.z": "numbers of teeth", "drive_train.stages.internal": "internal mesh",
     "drive_train.stages.scheme": "scheme", "drive_train.stages.ratio": "ratio",
 })
@@ -214,14 +209,9 @@ PARAMS["ru"].update({
     "planetary.internal_minus_external_min": "наименьшая разность чисел зубьев во внутреннем зацеплении",
     "drive_train.motor_speed": "угловая скорость двигателя ω_д",
     "drive_train.motor_direction": "направление вращения двигателя",
-    "drive_train.ratio": "требуемое общее передаточное отношение", "drive_train.tolerance": "допуск передаточного отношения",
-    "drive_train.efficiency": "КПД привода η", "drive_train.satellites": "число сателлитов k",
-    "drive_train.z_min_external": "наименьшее число зубьев колеса с внешними зубьями",
-    "drive_train.z_min_internal": "наименьшее число зубьев колеса с внутренними зубьями",
-    "drive_train.z_min_satellite_in_internal": "наименьшее число зубьев сателлита во внутреннем зацеплении",
-    "drive_train.internal_minus_external_min": "наименьшая разность чисел зубьев во внутреннем зацеплении",
-    "drive_train.z_max": "наибольшее число зубьев", "drive_train.rank": "порядок вариантов",
-    "drive_train.candidates": "число вариантов", "drive_train.stages.type": "вид",
+    "drive_train.ratio": "требуемое общее передаточное отношение",
+    "drive_train.efficiency": "КПД привода η",
+    "drive_train.stages.type": "вид",
     "drive_train.stages.z": "числа зубьев", "drive_train.stages.internal": "внутреннее зацепление",
     "drive_train.stages.scheme": "схема", "drive_train.stages.ratio": "передаточное отношение",
 })
@@ -288,6 +278,12 @@ for _lang, _u in (("en", "m"), ("ru", "м")):   # synthesis fields
 from .task_uk import add_uk as _add_uk  # noqa: E402
 
 _add_uk(PARAMS, ITEMS, WORDS, _UNITS)
+
+# a drive train's planetary stages are searched with the planetary gear's fields: the same names
+for _lang in PARAMS:
+    for _k in ("satellites", "z_min_external", "z_min_internal", "z_min_satellite_in_internal",
+               "internal_minus_external_min", "z_max", "rank", "candidates", "tolerance"):
+        PARAMS[_lang][f"drive_train.{_k}"] = PARAMS[_lang][f"planetary.{_k}"]
 
 
 def _dump(task) -> dict:
