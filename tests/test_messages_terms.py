@@ -75,3 +75,10 @@ def test_cam_phases_named_as_the_course_does():
     for lang, bad in (("ru", ("подъём", "опускани")), ("uk", ("підйом", "опускан"))):
         found = {k: v for k, v in i18n.STRINGS[lang].items() if k.startswith("cam.") and any(b in v for b in bad)}
         assert not found, (lang, found)
+
+
+def test_shift_rule_in_the_same_words_as_the_messages():
+    """The task data names the shift rule as the messages do: равенство удельных скольжений."""
+    from tmm_cli.report.sections import task as task_section
+    for lang in ("ru", "uk"):
+        assert task_section.WORDS[lang]["equal_sliding"] == catalogue(lang)["terms"]["shift_rule"]["equal_sliding"]
