@@ -1,5 +1,6 @@
-"""The kind of an Assur group as a Russian course writes it: В (вращательная), П (поступательная)
-pairs — 'ВВП', not the Latin 'RRP' — in the structure table and the worked position."""
+"""The kind of an Assur group as the Russian and Ukrainian courses write it: В/О (вращательная,
+обертальна), П (поступательная) pairs — 'ВВП', 'ООП', not the Latin 'RRP' — in the structure table
+and the worked position."""
 from __future__ import annotations
 
 import pytest
@@ -7,9 +8,12 @@ import pytest
 from tmm_cli.report.sections.structure import group_kind
 
 
-@pytest.mark.parametrize("typ, ru", [("RRR", "ВВВ"), ("RRP", "ВВП"), ("RPR", "ВПВ"), ("PRP", "ПВП")])
-def test_russian_letters(typ, ru):
+@pytest.mark.parametrize("typ, ru, uk", [("RRR", "ВВВ", "ООО"), ("RRP", "ВВП", "ООП"), ("RPR", "ВПВ", "ОПО"),
+                                         ("PRP", "ПВП", "ПОП")])
+def test_course_letters(typ, ru, uk):
+    """The letters of the kinematic pairs table: вращательная (В), обертальна (О), поступательная (П)."""
     assert group_kind(typ, "ru") == ru
+    assert group_kind(typ, "uk") == uk
     assert group_kind(typ, "en") == typ
 
 

@@ -9,13 +9,13 @@ import numpy as np
 from ...plans import geometry
 
 ROMAN = {1: "I", 2: "II", 3: "III", 4: "IV", 5: "V", 6: "VI"}
-# the kind of an Assur group by its pairs as the Russian course writes it: В (вращательная),
-# П (поступательная) — ВВП for RRP
-_PAIR_LETTERS = {"ru": str.maketrans("RP", "ВП")}
+# the kind of an Assur group by its pairs in the letters of the kinematic pairs table:
+# В (вращательная) / О (обертальна), П (поступательная, поступальна) — ВВП, ООП for RRP
+_PAIR_LETTERS = {"ru": str.maketrans("RP", "ВП"), "uk": str.maketrans("RP", "ОП")}
 
 
 def group_kind(typ, lang: str) -> str:
-    """'RRP' in the report's language: 'ВВП' in Russian; other kinds (and languages) as given."""
+    """'RRP' in the report's language: 'ВВП' in Russian, 'ООП' in Ukrainian; other kinds as given."""
     s = str(typ)
     table = _PAIR_LETTERS.get(lang)
     if table is None or not s or set(s) - set("RP"):
