@@ -181,7 +181,7 @@ def test_failing_planetary_keeps_cam_gears_and_the_report(tmp_path):
 
 
 @pytest.mark.parametrize("lang, words", [("ru", "ни один набор чисел зубьев схемы A не даёт i_1H = 1.2"),
-                                         ("uk", "жоден набір чисел зубців схеми A не дає i_1H = 1.2")])
+                                         ("uk", "жоден набір чисел зубів схеми A не дає i_1H = 1.2")])
 def test_stage_failure_in_the_report_language(tmp_path, lang, words):
     """A stage's failure: English on stderr and in results.json `errors[].message` (with its
     code and parameters beside it); the report's failure box in the report's language."""
@@ -253,5 +253,5 @@ def test_failure_box_in_russian(tmp_path):
     html = (out / "report.html").read_text(encoding="utf-8")
     box = html.split('id="planetary-failed"', 1)[1].split("</section>", 1)[0]
     assert "Синтез планетарного механизма — не рассчитано" in box
-    assert "Этап «planetary» не выполнен" in box and "раздела «planetary»" in box
+    assert "Этап «синтез планетарного механизма» не выполнен" in box and "раздела «planetary»" in box
     assert 'id="gears"' in html

@@ -79,7 +79,7 @@ STEPS_UK = {
               "модуль, числа зубів і коефіцієнти зміщення"),
     "planetary": ("добір чисел зубів планетарної передачі (Вілліс, співвісність, складання, сусідство)",
                   "задане передаточне відношення"),
-    "drive_train": ("передаточне відношення і швидкості привода", "ступені привода"),
+    "drive_train": ("передаточне відношення і швидкості приводу", "ступені приводу"),
     "synthesis": ("синтез важільного механізму за K і ходом", "задані K і хід"),
     "dof2": ("машина з двома ступенями вільності (рівняння Лагранжа)", "початковий стан"),
 }
@@ -125,7 +125,7 @@ def feedback_html(task, s: dict, lang: str = "en") -> str:
                    else f"{100 * r['error']:.2f} %")
         step = step_for(r["path"], lang) if st in ("outside", "sign") else (r["note"] if st == "unknown_path" else "")
         colour = {"ok": "#c8e6c9", "outside": "#ffcdd2", "sign": "#e1bee7", "missing": "#fff9c4"}.get(st, "#eee")
-        trs.append(f"<tr><td><code>{e(r['path'])}</code><br><small>{e(notation(r['path'], lang))}</small></td>"
+        trs.append(f"<tr><td><code>{e(r['path'])}</code><br><small>{e(notation(r['path'], lang, local_units=True))}</small></td>"
                    f"<td>{e(_num(r['answer']))}</td><td>{e(_num(r['reference']))}</td><td>{e(err)}</td>"
                    f"<td style='background:{colour}'>{e(T.get(st, st))}</td><td><small>{e(step)}</small></td></tr>")
     head = "".join(f"<th>{e(T[c])}</th>" for c in ("quantity", "value", "reference", "error", "verdict", "step"))

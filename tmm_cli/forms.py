@@ -82,8 +82,16 @@ NOTATION: dict[str, tuple[str, str, str, str, str]] = {
 }
 
 
-def notation(path: str, lang: str = "en") -> str:
-    """'ω, rad/s — angular velocity' for a path, from its last name ('' when unknown)."""
+# the units as a Russian or Ukrainian text writes them (the feedback page; a form keeps the units
+# an answer may be written in, which are the English ones)
+LOCAL_UNITS = {"m/s": "м/с", "m/s^2": "м/с²", "rad/s": "рад/с", "rad/s^2": "рад/с²", "deg": "°",
+               "m or deg": "м или °", "N*m": "Н·м", "N": "Н", "kg*m^2": "кг·м²", "m": "м", "kg": "кг"}
+LOCAL_UNITS_UK = {**LOCAL_UNITS, "m or deg": "м або °"}
+
+
+def notation(path: str, lang: str = "en", local_units: bool = False) -> str:
+    """'ω, rad/s — angular velocity' for a path, from its last name ('' when unknown);
+    ``local_units``: the unit as a text in ``lang`` writes it ('ω, рад/с — угловая скорость')."""
     names = re.findall(r"[A-Za-z_][A-Za-z0-9_]*", path)
     key = names[-1] if names else ""
     if key not in NOTATION and re.fullmatch(r"R\d+", key or ""):
@@ -92,6 +100,8 @@ def notation(path: str, lang: str = "en") -> str:
     if not n:
         return ""
     sym, unit, en, ru, uk = n
+    if local_units and lang != "en":
+        unit = (LOCAL_UNITS_UK if lang == "uk" else LOCAL_UNITS).get(unit, unit)
     return f"{sym}{', ' + unit if unit else ''} — {dict(en=en, ru=ru, uk=uk)[lang]}"
 
 

@@ -204,6 +204,33 @@ def _tab_indented_line(text: str) -> int | None:
 _DECIMAL_COMMA = re.compile(r"(?<![\w.,])(-?\d+),(\d+)(?![\d.])")
 
 
+def _indent_hint(text: str, line: int | None) -> str:
+    """A hint when a syntax error's line is indented unlike the content line before it,
+    which does not open a block (``positions:`` / `` count: 12`` / ``  zero: extreme``:
+    YAML reports the third line, the second is misindented); else ''."""
+    lines = text.splitlines()
+    if not line or line > len(lines):
+        return ""
+
+    def content(i: int) -> bool:
+        t = lines[i - 1].strip()
+        return bool(t) and not t.startswith("#")
+
+    def indent(i: int) -> int:
+        return len(lines[i - 1]) - len(lines[i - 1].lstrip(" "))
+
+    prev = line - 1
+    while prev >= 1 and not content(prev):
+        prev -= 1
+    if prev < 1 or not content(line) or indent(line) == indent(prev):
+        return ""
+    if indent(line) > indent(prev) and lines[prev - 1].split("#")[0].rstrip().endswith((":", "-")):
+        return ""
+    return (f"; check the indentation of lines {prev} and {line}: the keys of one section start in the "
+            f"same column (line {prev} starts in column {indent(prev) + 1}, line {line} in column "
+            f"{indent(line) + 1})")
+
+
 def decimal_comma_hint(line: str) -> str | None:
     """'use a decimal point: 0.38' when a line (outside its comment) holds a number
     written with a decimal comma such as ``0,38``, else None."""
@@ -246,7 +273,8 @@ def load_yaml(source: str | Path, *, text: str | None = None) -> tuple[Any, dict
         line = mark.line + 1 if mark else None
         col = mark.column + 1 if mark else None
         raise TaskError("YAML syntax error", file=file,
-                        issues=[("", line, col, f"YAML syntax error: {exc.problem or exc.context}")]) from None
+                        issues=[("", line, col, f"YAML syntax error: {exc.problem or exc.context}"
+                                 f"{_indent_hint(text, line)}")]) from None
     except yaml.reader.ReaderError as exc:
         # a character YAML does not allow (a NUL, a control character): the reader gives
         # its offset in the text, not a mark, so count the lines up to it

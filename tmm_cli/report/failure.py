@@ -67,6 +67,14 @@ def placement(err: dict) -> tuple[str | None, str, str]:
     return STAGES.get(stage, (None, "report.title", stage or "?"))
 
 
+def stage_name(stage, lang: str) -> str:
+    """A stage's name in the report's language (the catalogue's `stage` terms; English: the
+    stage's own name, as on stderr and in results.json)."""
+    from ..messages import catalogue
+    names = catalogue(lang)["terms"].get("stage") or {}
+    return str(names.get(str(stage), stage))
+
+
 def box(ctx, err: dict) -> str:
     """The HTML fragment shown in place of the failed section."""
     section, title_key, task_section = placement(err)
@@ -82,7 +90,7 @@ def box(ctx, err: dict) -> str:
     else:
         where = ctx.t("fail.where", position=pos)
     return ctx.render("sections/failure.html.j2", sid=f"{section or 'stage'}-failed",
-                      title=ctx.t(title_key) if section else str(err.get("stage")),
-                      what=ctx.t("fail.what", stage=err.get("stage"), where=where,
+                      title=ctx.t(title_key) if section else stage_name(err.get("stage"), ctx.lang),
+                      what=ctx.t("fail.what", stage=stage_name(err.get("stage"), ctx.lang), where=where,
                                  message=message),
                       change=ctx.t("fail.change", section=task_section))

@@ -267,4 +267,10 @@ def build(ctx) -> str | None:
     figs = [(figures.named(scheme_and_picture(d, t), "train-scheme"), t("train.scheme")),
             (figures.named(angular_plan(d), "train-angular-plan"), t("train.plan"))]
     return ctx.render("sections/drive_train.html.j2", info=info, rows=rows, shafts=shafts, sats=sats,
-                      cands=cands, motor=motor, figs=figs, rank=d.get("rank", "size"))
+                      cands=cands, motor=motor, figs=figs, rank=rank_words(d.get("rank", "size"), ctx.lang))
+
+
+def rank_words(rank: str, lang: str) -> str:
+    """The candidates' order in words ('по габариту'), as in the task data table."""
+    from .task import WORDS
+    return WORDS.get(lang, {}).get(rank, rank)

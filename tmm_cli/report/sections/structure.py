@@ -9,6 +9,18 @@ import numpy as np
 from ...plans import geometry
 
 ROMAN = {1: "I", 2: "II", 3: "III", 4: "IV", 5: "V", 6: "VI"}
+# the kind of an Assur group by its pairs in the letters of the kinematic pairs table:
+# В (вращательная) / О (обертальна), П (поступательная, поступальна) — ВВП, ООП for RRP
+_PAIR_LETTERS = {"ru": str.maketrans("RP", "ВП"), "uk": str.maketrans("RP", "ОП")}
+
+
+def group_kind(typ, lang: str) -> str:
+    """'RRP' in the report's language: 'ВВП' in Russian, 'ООП' in Ukrainian; other kinds as given."""
+    s = str(typ)
+    table = _PAIR_LETTERS.get(lang)
+    if table is None or not s or set(s) - set("RP"):
+        return s
+    return s.translate(table)
 
 
 def link_kind(geom, link) -> str:
@@ -74,7 +86,7 @@ def build(ctx) -> str | None:
         lk = ", ".join(f"{idx.get(x, x)} ({x})" for x in g.get("links", []))
         group_rows.append((f"{ctx.t('struct.group')} {k}", lk,
                            ROMAN.get(g.get("class"), str(g.get("class"))),
-                           str(g.get("order", "—")), str(g.get("type", "—"))))
+                           str(g.get("order", "—")), group_kind(g.get("type", "—"), ctx.lang)))
     klass = st.get("class")
     formula = str(st.get("formula", "")).replace("->", "→")
     return ctx.render("sections/structure.html.j2", st=st, formula=formula, n=n, p5=p5, p4=p4, W=W,

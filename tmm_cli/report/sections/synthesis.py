@@ -51,7 +51,10 @@ _LEN = {"en": {"crank": "crank l_OA", "rod": "connecting rod l_AB", "offset": "o
                "guide_height": "ram guide above O1"},
         "ru": {"crank": "кривошип l_OA", "rod": "шатун l_AB", "offset": "дезаксиал e",
                "coupler": "шатун l_AB", "rocker": "коромысло (кулиса) l_O1B", "frame": "стойка l_OO1",
-               "guide_height": "направляющая ползуна над O1"}}
+               "guide_height": "направляющая ползуна над O1"},
+        "uk": {"crank": "кривошип l_OA", "rod": "шатун l_AB", "offset": "дезаксіал e",
+               "coupler": "шатун l_AB", "rocker": "коромисло (куліса) l_O1B", "frame": "стійка l_OO1",
+               "guide_height": "напрямна повзуна над O1"}}
 _SCALES = (1, 2, 2.5, 4, 5, 10, 15, 20, 25, 40, 50, 75, 100, 200, 500, 1000)
 
 

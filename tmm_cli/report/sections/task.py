@@ -75,7 +75,7 @@ PARAMS = {
            "cam.phases.return": "return angle φ_ret", "cam.phases.near_dwell": "near dwell",
            "cam.laws.rise": "law of the rise", "cam.laws.return": "law of the return",
            "cam.pressure_angle.rise": "allowed pressure angle, rise",
-           "cam.pressure_angle.return": "allowed pressure angle, return", "cam.swing": "rocker pivot distance",
+           "cam.pressure_angle.return": "allowed pressure angle, return", "cam.swing": "rocker's turn on the rise",
            "cam.roller": "roller radius", "cam.rotation": "cam rotation", "cam.speed": "cam speed",
            "cam.r0": "base radius r0", "cam.center_distance": "cam-rocker centre distance",
            "cam.rho_min_allowed": "allowed least radius of curvature", "cam.divisions": "parts of a phase in the table",
@@ -112,7 +112,7 @@ PARAMS = {
            "cam.phases.near_dwell": "ближнее стояние", "cam.laws.rise": "закон удаления",
            "cam.laws.return": "закон возвращения", "cam.pressure_angle.rise": "допустимый угол давления, удаление",
            "cam.pressure_angle.return": "допустимый угол давления, возвращение",
-           "cam.swing": "межосевое расстояние коромысла", "cam.roller": "радиус ролика",
+           "cam.swing": "поворот коромысла на фазе удаления", "cam.roller": "радиус ролика",
            "cam.rotation": "вращение кулачка", "cam.speed": "угловая скорость кулачка",
            "cam.r0": "радиус начальной шайбы r0", "cam.center_distance": "межосевое расстояние кулачок-коромысло",
            "cam.rho_min_allowed": "допустимый наименьший радиус кривизны", "cam.divisions": "число частей фазы в таблице",
@@ -174,6 +174,47 @@ for _name in ("crank", "rod", "slider", "coupler", "rocker", "block", "blockC", 
     for _k, _en, _ru in (("mass", "mass", "масса"), ("J", "J_S", "J_S"), ("com", "centre of mass", "центр масс")):
         PARAMS["en"][f"synthesis.links.{_name}.{_k}"] = f"{_name}: {_en}"
         PARAMS["ru"][f"synthesis.links.{_name}.{_k}"] = f"{_name}: {_ru}"
+# the remaining fields: flywheel quadrature, the candidate search of a planetary gear and of a drive
+# train, the cam's transmission angle and rocker sense, the basic rack's fillet
+PARAMS["en"].update({
+    "flywheel.quadrature": "Gauss–Legendre points per interval",
+    "cam.pressure_angle": "allowed pressure angle", "cam.transmission_angle": "least allowed transmission angle",
+    "cam.transmission_angle.rise": "least allowed transmission angle, rise",
+    "cam.transmission_angle.return": "least allowed transmission angle, return",
+    "gears.rho_f": "fillet radius coefficient of the basic rack ρ*_f",
+    "loads.forces.working": "direction of the working stroke",
+    "planetary.rank": "order of the candidates",
+    "planetary.z_min_external": "least number of teeth of an external wheel",
+    "planetary.z_min_internal": "least number of teeth of an internal wheel",
+    "planetary.z_min_satellite_in_internal": "least number of teeth of a satellite in internal mesh",
+    "planetary.internal_minus_external_min": "least difference of the numbers of teeth in internal mesh",
+    "drive_train.motor_speed": "motor speed ω_m", "drive_train.motor_direction": "sense of rotation of the motor",
+    "drive_train.ratio": "required overall ratio",
+    "drive_train.efficiency": "efficiency of the drive η",
+    "drive_train.stages.type": "kind",
+    "drive_train.stages.z": "numbers of teeth", "drive_train.stages.internal": "internal mesh",
+    "drive_train.stages.scheme": "scheme", "drive_train.stages.ratio": "ratio",
+})
+PARAMS["ru"].update({
+    "flywheel.quadrature": "число точек Гаусса — Лежандра на интервал",
+    "cam.pressure_angle": "допустимый угол давления", "cam.transmission_angle": "наименьший допустимый угол передачи",
+    "cam.transmission_angle.rise": "наименьший допустимый угол передачи, удаление",
+    "cam.transmission_angle.return": "наименьший допустимый угол передачи, возвращение",
+    "gears.rho_f": "коэффициент радиуса переходной кривой исходного контура ρ*_f",
+    "loads.forces.working": "направление рабочего хода",
+    "planetary.rank": "порядок вариантов",
+    "planetary.z_min_external": "наименьшее число зубьев колеса с внешними зубьями",
+    "planetary.z_min_internal": "наименьшее число зубьев колеса с внутренними зубьями",
+    "planetary.z_min_satellite_in_internal": "наименьшее число зубьев сателлита во внутреннем зацеплении",
+    "planetary.internal_minus_external_min": "наименьшая разность чисел зубьев во внутреннем зацеплении",
+    "drive_train.motor_speed": "угловая скорость двигателя ω_д",
+    "drive_train.motor_direction": "направление вращения двигателя",
+    "drive_train.ratio": "требуемое общее передаточное отношение",
+    "drive_train.efficiency": "КПД привода η",
+    "drive_train.stages.type": "вид",
+    "drive_train.stages.z": "числа зубьев", "drive_train.stages.internal": "внутреннее зацепление",
+    "drive_train.stages.scheme": "схема", "drive_train.stages.ratio": "передаточное отношение",
+})
 I18N["en"]["task.sec.synthesis"] = "Synthesis"
 I18N["ru"]["task.sec.synthesis"] = "Синтез"
 
@@ -183,7 +224,7 @@ WORDS = {"ru": {"ccw": "против часовой стрелки", "cw": "по
                 "resistance": "сопротивление", "driving": "движущая", "working": "рабочий", "idle": "холостой",
                 "both": "оба", "constant": "постоянное", "all": "все", "disk": "диск", "rim": "обод",
                 "energy-mass": "энергомасс (Виттенбауэр)", "merzalov": "Мерцалова", "auto": "авто",
-                "rocker": "коромысло", "translating": "поступательный", "equal_sliding": "равное скольжение",
+                "rocker": "коромысло", "translating": "поступательный", "equal_sliding": "равенство удельных скольжений",
                 "true_motion": "истинное", "linear_decreasing": "линейно убывающее ускорение",
                 "parabolic": "параболический", "poly345": "полином 3-4-5", "cosine": "косинусоидальный",
                 "sine": "синусоидальный", "uniform": "равномерный"},
@@ -192,6 +233,25 @@ WORDS = {"ru": {"ccw": "против часовой стрелки", "cw": "по
                 "linear_decreasing": "linearly decreasing acceleration", "poly345": "polynomial 3-4-5",
                 "equal_sliding": "equal specific sliding"}}
 
+ITEMS["en"]["stages"] = "stage"
+ITEMS["ru"]["stages"] = "ступень"
+WORDS["ru"].update({
+    "flat": "тарельчатый", "knife": "остроконечный", "constant_velocity": "постоянной скорости",
+    "trapezoidal": "трапецеидальный", "with": "по вращению кулачка", "against": "против вращения кулачка",
+    "size": "по габариту", "ratio_error": "по отклонению передаточного отношения",
+    "pair": "зубчатая пара", "planetary": "планетарная", "exact": "точный", "no_undercut": "без подрезания",
+    "table": "по таблице", "slider_crank": "кривошипно-ползунный",
+    "offset_slider_crank": "дезаксиальный кривошипно-ползунный", "crank_rocker": "кривошипно-коромысловый",
+    "slotted_lever": "кулисный", "shaper": "кулисный (поперечно-строгальный станок)",
+})
+WORDS["en"].update({
+    "flat": "flat-faced", "knife": "knife-edge", "constant_velocity": "constant velocity",
+    "with": "with the cam", "against": "against the cam", "ratio_error": "by the error of the ratio",
+    "size": "by size", "pair": "gear pair", "no_undercut": "no undercut", "slider_crank": "slider-crank",
+    "offset_slider_crank": "offset slider-crank", "crank_rocker": "crank-rocker", "slotted_lever": "slotted lever",
+    "shaper": "slotted lever of a shaper",
+})
+
 # units of the task model's numbers (SI; angles in degrees) by the key's last part
 _UNITS = {
     "en": {"length": "m", "mass": "kg", "J": "kg·m²", "speed": "rad/s", "angle": "°", "offset": "m",
@@ -199,13 +259,15 @@ _UNITS = {
            "through": "m", "m": "m", "alpha": "°", "rise": "°", "far_dwell": "°", "return": "°",
            "near_dwell": "°", "cycle": "°", "reduced_J": "kg·m²", "magnitude": "N", "phi": "°",
            "moment": "N·m", "width": "m", "direction": "°", "base_radius": "m", "roller_radius": "m", "extra": "°",
-           "r0": "m", "center_distance": "m", "rho_min_allowed": "m"},
+           "r0": "m", "center_distance": "m", "rho_min_allowed": "m", "motor_speed": "rad/s",
+           "pressure_angle": "°", "transmission_angle": "°"},
     "ru": {"length": "м", "mass": "кг", "J": "кг·м²", "speed": "рад/с", "angle": "°", "offset": "м",
            "density": "кг/м³", "pin_radius": "м", "rocker_length": "м", "area": "м²", "at": "м",
            "through": "м", "m": "м", "alpha": "°", "rise": "°", "far_dwell": "°", "return": "°",
            "near_dwell": "°", "cycle": "°", "reduced_J": "кг·м²", "magnitude": "Н", "phi": "°",
            "moment": "Н·м", "width": "м", "direction": "°", "base_radius": "м", "roller_radius": "м", "extra": "°",
-           "r0": "м", "center_distance": "м", "rho_min_allowed": "м"},
+           "r0": "м", "center_distance": "м", "rho_min_allowed": "м", "motor_speed": "рад/с",
+           "pressure_angle": "°", "transmission_angle": "°"},
 }
 
 
@@ -216,6 +278,12 @@ for _lang, _u in (("en", "m"), ("ru", "м")):   # synthesis fields
 from .task_uk import add_uk as _add_uk  # noqa: E402
 
 _add_uk(PARAMS, ITEMS, WORDS, _UNITS)
+
+# a drive train's planetary stages are searched with the planetary gear's fields: the same names
+for _lang in PARAMS:
+    for _k in ("satellites", "z_min_external", "z_min_internal", "z_min_satellite_in_internal",
+               "internal_minus_external_min", "z_max", "rank", "candidates", "tolerance"):
+        PARAMS[_lang][f"drive_train.{_k}"] = PARAMS[_lang][f"planetary.{_k}"]
 
 
 def _dump(task) -> dict:

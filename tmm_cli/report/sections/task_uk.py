@@ -28,7 +28,7 @@ PARAMS_UK = {
     "cam.phases.near_dwell": "ближнє стояння", "cam.laws.rise": "закон віддалення",
     "cam.laws.return": "закон повернення", "cam.pressure_angle.rise": "допустимий кут тиску, віддалення",
     "cam.pressure_angle.return": "допустимий кут тиску, повернення",
-    "cam.swing": "міжосьова відстань коромисла", "cam.roller": "радіус ролика",
+    "cam.swing": "поворот коромисла на фазі віддалення", "cam.roller": "радіус ролика",
     "cam.rotation": "обертання кулачка", "cam.speed": "кутова швидкість кулачка",
     "cam.r0": "радіус початкової шайби r0", "cam.center_distance": "міжосьова відстань кулачок-коромисло",
     "cam.rho_min_allowed": "допустимий найменший радіус кривини",
@@ -60,18 +60,43 @@ PARAMS_UK = {
     "synthesis.guide_height": "напрямна повзуна над O1",
     "drive.mean_output_speed": "середня швидкість вихідної ланки за цикл",
     "drive.working_stroke_speed": "середня швидкість вихідної ланки на робочому ході",
+    "flywheel.quadrature": "кількість точок Гаусса — Лежандра на інтервал",
+    "cam.pressure_angle": "допустимий кут тиску", "cam.transmission_angle": "найменший допустимий кут передачі",
+    "cam.transmission_angle.rise": "найменший допустимий кут передачі, віддалення",
+    "cam.transmission_angle.return": "найменший допустимий кут передачі, повернення",
+    "gears.rho_f": "коефіцієнт радіуса перехідної кривої вихідного контуру ρ*_f",
+    "loads.forces.working": "напрямок робочого ходу",
+    "planetary.rank": "порядок варіантів",
+    "planetary.z_min_external": "найменше число зубів колеса із зовнішніми зубами",
+    "planetary.z_min_internal": "найменше число зубів колеса з внутрішніми зубами",
+    "planetary.z_min_satellite_in_internal": "найменше число зубів сателіта у внутрішньому зачепленні",
+    "planetary.internal_minus_external_min": "найменша різниця чисел зубів у внутрішньому зачепленні",
+    "drive_train.motor_speed": "кутова швидкість двигуна ω_д",
+    "drive_train.motor_direction": "напрямок обертання двигуна",
+    "drive_train.ratio": "потрібне загальне передаточне відношення",
+    "drive_train.efficiency": "ККД приводу η",
+    "drive_train.stages.type": "вид",
+    "drive_train.stages.z": "числа зубів", "drive_train.stages.internal": "внутрішнє зачеплення",
+    "drive_train.stages.scheme": "схема", "drive_train.stages.ratio": "передаточне відношення",
 }
 LINK_WORDS_UK = {"mass": "маса", "J": "J_S", "com": "центр мас"}
-ITEMS_UK = {"forces": "сила", "couples": "пара"}
+ITEMS_UK = {"forces": "сила", "couples": "пара", "stages": "ступінь"}
 WORDS_UK = {"ccw": "проти годинникової стрілки", "cw": "за годинниковою стрілкою", "true": "так", "false": "ні",
             "extreme": "крайнє положення", "forward": "прямий", "backward": "зворотний",
             "resistance": "опір", "driving": "рушійна", "working": "робочий", "idle": "холостий",
             "both": "обидва", "constant": "стале", "all": "усі", "disk": "диск", "rim": "обід",
             "energy-mass": "енергомас (Віттенбауер)", "merzalov": "Мерцалова", "auto": "авто",
-            "rocker": "коромисло", "translating": "поступальний", "equal_sliding": "рівне ковзання",
+            "rocker": "коромисло", "translating": "поступальний", "equal_sliding": "рівність питомих ковзань",
             "true_motion": "істинний", "linear_decreasing": "лінійно спадне прискорення",
             "parabolic": "параболічний", "poly345": "поліном 3-4-5", "cosine": "косинусоїдальний",
-            "sine": "синусоїдальний", "uniform": "рівномірний"}
+            "sine": "синусоїдальний", "uniform": "рівномірний",
+            "flat": "тарілчастий", "knife": "загострений", "constant_velocity": "сталої швидкості",
+            "trapezoidal": "трапецієподібний", "with": "за обертанням кулачка", "against": "проти обертання кулачка",
+            "size": "за габаритом", "ratio_error": "за відхиленням передаточного відношення",
+            "pair": "зубчаста пара", "planetary": "планетарна", "exact": "точний", "no_undercut": "без підрізання",
+            "table": "за таблицею", "slider_crank": "кривошипно-повзунний",
+            "offset_slider_crank": "дезаксіальний кривошипно-повзунний", "crank_rocker": "кривошипно-коромисловий",
+            "slotted_lever": "кулісний", "shaper": "кулісний (поперечно-стругальний верстат)"}
 
 
 def add_uk(params: dict, items: dict, words: dict, units: dict) -> None:

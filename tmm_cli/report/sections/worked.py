@@ -636,7 +636,8 @@ class _Writer:
 
     def group_title(self, typ, G):
         """The heading of a group, its link numbers tagged (``data-k="idx:<link>"``)."""
-        a, _, b = self.t("worked.group", type=typ, links="\u0001").partition("\u0001")
+        from .structure import group_kind
+        a, _, b = self.t("worked.group", type=group_kind(typ, self.ctx.lang), links="\u0001").partition("\u0001")
         nums = ", ".join(f'<span class="mn" data-k="idx:{escape(self.names[i])}">{i}</span>' for i in G)
         return Markup(escape(a)) + Markup(nums) + Markup(escape(b))
 

@@ -1,0 +1,41 @@
+"""The feedback page in Russian or Ukrainian writes the units as the course's texts do
+(кг·м², Н·м, °), not the English unit strings of the answer forms (kg*m^2, N*m, deg)."""
+from __future__ import annotations
+
+import string
+from types import SimpleNamespace
+
+import pytest
+
+from tmm_cli.feedback import feedback_html
+from tmm_cli.forms import NOTATION, notation
+
+ROWS = [{"path": "flywheel.J", "status": "ok", "answer": 58.46, "reference": 58.46, "error": 0.0,
+         "tolerance": "rel 0.01", "note": ""},
+        {"path": "kinetostatics[1].balancing_moment", "status": "sign", "answer": -1.19, "reference": 1.19,
+         "error": 2.0, "tolerance": "rel 0.01", "note": ""},
+        {"path": "positions.phi0", "status": "ok", "answer": 84.8, "reference": 84.8, "error": 0.0,
+         "tolerance": "rel 0.01", "note": ""}]
+
+
+@pytest.mark.parametrize("lang, words", [("ru", ["J_fly, кг·м² — момент инерции маховика", "M_b, Н·м —", "φ0, ° —"]),
+                                         ("uk", ["J_fly, кг·м² — момент інерції маховика", "M_b, Н·м —", "φ0, ° —"])])
+def test_feedback_units_in_the_page_language(lang, words):
+    task = SimpleNamespace(title="Crank press, variant 3", name="03")
+    page = feedback_html(task, {"rows": ROWS, "student": "Иванов", "group": "МТ-21", "variant": 3}, lang)
+    for w in words:
+        assert w in page, w
+    assert "kg*m^2" not in page and "N*m" not in page and ", deg —" not in page
+
+
+def test_every_unit_has_its_local_form():
+    units = {n[1] for n in NOTATION.values()} - {""}
+    for lang in ("ru", "uk"):
+        for key, n in NOTATION.items():
+            if n[1]:
+                local = notation(key, lang, local_units=True)
+                assert not any(c in string.ascii_letters for c in local.split(" — ")[0].split(", ", 1)[1]), \
+                    (lang, key, local)
+    # the forms keep the English units an answer may be written in
+    assert notation("flywheel.J", "ru") == "J_fly, kg*m^2 — момент инерции маховика"
+    assert units
