@@ -174,3 +174,15 @@ def test_fields_keep_square_brackets():
     assert res.exit_code == 0
     assert "name -> [x, y], m" in res.output
     assert "[u, v]" in res.output
+
+
+def test_validate_shows_the_plain_number_warnings(tmp_path):
+    """`tmm validate` says ok for a gear module given as a plain 3 (read as 3 m), and warns
+    about it on stderr, as `tmm run` does."""
+    f = tmp_path / "g.yaml"
+    f.write_text("schema: tmm/1\ngears: {m: 3, z: [12, 42]}\n", encoding="utf-8")
+    res = runner.invoke(app, ["validate", str(f)])
+    assert res.exit_code == 0 and f"{f}: ok" in res.output
+    assert f"warning: {f}: gears.m" in res.output and "'3 mm'" in res.output
+    f.write_text("schema: tmm/1\ngears: {m: 3 mm, z: [12, 42]}\n", encoding="utf-8")
+    assert "warning" not in runner.invoke(app, ["validate", str(f)]).output

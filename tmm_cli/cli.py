@@ -114,8 +114,10 @@ def validate_tasks(task_files: list[Path], no_assembly: bool, echo: Echo = echo)
     for f in task_files:
         try:
             from .orchestrate import prepare
-            prepare(f, assembly=not no_assembly)
+            task = prepare(f, assembly=not no_assembly)
             echo(f"{f}: ok")
+            for note in task.input_warnings:        # e.g. a plain number read as metres
+                echo(f"warning: {f}: {note}", err=True)
         except TaskError as exc:
             echo(f"error: invalid task\n{exc.render()}", err=True)
             code = max(code, EXIT_INVALID) if code != EXIT_STAGE else code
