@@ -1,9 +1,17 @@
 """`tmm batch`: run and grade many variants; one variant never stops the rest.
 
-Each variant runs in its own process (forked, one at a time per job slot) with a time
-limit (``--timeout``) and an address-space limit (``--memory``, RLIMIT_AS). A worker that
-dies (a signal, the out-of-memory killer), overruns its time or its memory becomes one
-``failed`` row with the reason; the batch goes on and always writes summary.csv,
+The variants run on a pool of ``--jobs`` worker processes forked from the batch process;
+each worker runs variants one at a time (the batch sends it a variant's index over a
+pipe, the worker leaves the outcome in a file and says so on a second pipe), with a time
+limit (``--timeout``) and an address-space limit (``--memory``, RLIMIT_AS: the worker's
+address space when the variant starts + the limit, so the limit is what one variant may
+add). A worker that dies (a signal, the out-of-memory killer) is replaced by a fresh
+fork, one that overruns its time is killed and replaced; its variant becomes one
+``failed`` row with the reason, a variant past its memory too. A worker also ends, and a fresh fork takes its
+place, after a variant that failed (out of memory, a stage's error), after
+``MAX_VARIANTS`` variants, and once its address space has grown by ``RECYCLE_GROWTH``
+over its start: what a variant leaves behind stays bounded and a failure's state never
+reaches the next variant. The batch goes on and always writes summary.csv,
 summary.html and check.csv. Every variant writes into its own sanitised, unique folder
 inside ``--out``; a manifest (``.tmm-batch.json``) lists what the batch wrote, so the
 next batch removes the files of variants that are gone and nothing else.
@@ -211,7 +219,7 @@ def warm(files: list[Path], formats) -> None:
     """Do in the batch process, once, what every worker would otherwise repeat: import the
     modules of the sections the task files have (a top-level key ``cam:`` etc.) and of the
     outputs asked for, and build the task model's validator. The workers are forked from
-    this process (each variant still runs in its own process), so they start warm.
+    this process, so they start warm.
     Anything that fails here is left to the variant that needs it."""
     import gc
     import importlib
@@ -359,9 +367,12 @@ class _Slot:
         self.retire = False
 
     def send(self, i: int) -> bool:
+        """Give the worker variant i; False when it is gone (then it gets a successor)."""
+        if not self.proc.is_alive():
+            return False
         try:
             os.write(self.task_w, b"%d\n" % i)
-        except OSError:                # the worker is gone (it reads nothing more)
+        except OSError:
             return False
         self.i, self.t0 = i, time.monotonic()
         return True
