@@ -569,6 +569,33 @@ def test_a_dying_slow_or_greedy_variant_in_a_long_run_fails_alone(tmp_path, monk
         assert (tmp_path / "o" / f).exists()
 
 
+def test_a_worker_is_replaced_after_max_variants_and_after_growing(tmp_path, monkeypatch):
+    """The pool's policy: a worker runs at most MAX_VARIANTS variants, and one whose address
+    space has grown by RECYCLE_GROWTH (here a variant that leaks 64 MB) is replaced."""
+    import tmm_cli.batch as b
+    monkeypatch.setattr(b, "MAX_VARIANTS", 3)
+    monkeypatch.setattr(b, "RECYCLE_GROWTH", 32 * 1024 ** 2)
+    kept = []
+
+    def misbehave(stem):
+        if stem.endswith("leaky"):
+            kept.append(bytearray(64 * 1024 ** 2))              # stays in the worker
+        return None
+
+    order = ["good", "good", "good", "good", "leaky", "good", "good"]
+    src = tmp_path / "src"
+    for k, kind in enumerate(order):
+        _write(src, f"v{k}_{kind}.yaml", GEARS.format(v=k + 1))
+    pids = _pid_logging_work(monkeypatch, tmp_path / "pids.log", misbehave)
+    res = runner.invoke(app, ["batch", str(src), "--out", str(tmp_path / "o"), "--jobs", "1", "--format", "json"])
+    assert res.exit_code == 0, res.output
+    assert [r["status"] for r in _csv(tmp_path / "o" / "summary.csv")] == ["ok"] * len(order)
+    p = [pids()[f"v{k}_{kind}"] for k, kind in enumerate(order)]
+    assert p[0] == p[1] == p[2] != p[3]                              # 3 variants, then a fresh worker
+    assert p[3] == p[4] != p[5]                                      # the leak ends its worker
+    assert p[5] == p[6]
+
+
 def test_batch_stage_failure_in_the_summary_language(tmp_path):
     """A variant whose stage fails: summary.csv keeps the English text of stderr, summary.html
     shows the same failure in the batch's language."""
