@@ -275,7 +275,8 @@ def _failed(message) -> dict:
 def _run_one(result_file: str, memory_mb, args) -> bool:
     """In a worker: limit what this variant may add to the address space, run it, leave
     the outcome in ``result_file`` (a file, not a pipe: nothing can block between a
-    dying worker and the batch). True when the variant ran out of memory."""
+    dying worker and the batch). True when the worker should end: the variant ran out of
+    memory or failed."""
     import pickle
     oom = False
     try:
