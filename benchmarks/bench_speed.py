@@ -27,7 +27,8 @@ install), so a PYTHONDONTWRITEBYTECODE of the environment is dropped for them (t
 goes to a temporary PYTHONPYCACHEPREFIX).
 
 * with --against DIR: the whole report and the JSON run of this checkout and of another
-  one (DIR: e.g. `git archive <commit> | tar -x -C DIR`), all four interleaved.
+  one (DIR: e.g. `git archive <commit> | tar -x -C DIR`), all four interleaved; with
+  --batch also the batch run by DIR, interleaved with this checkout's.
 * with --scaling: `tmm run` of the task at 12 and at 3600 positions (made on the fly),
   --format json and --format html, interleaved (target for HTML: 3600 <= 2x 12).
 
@@ -62,23 +63,25 @@ _ENV = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
 _ENV["PYTHONPYCACHEPREFIX"] = os.path.join(tempfile.gettempdir(), "tmm-bench-pycache")
 
 
-def _run(cmd: list[str]) -> tuple[float, float]:
-    """(wall, cpu) of one subprocess."""
+def _run(cmd: list[str], cwd: Path = ROOT) -> tuple[float, float]:
+    """(wall, cpu) of one subprocess (``python -m tmm_cli`` runs the checkout in ``cwd``)."""
     c0, t0 = _child_cpu(), time.perf_counter()
-    p = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT, env=_ENV)
+    p = subprocess.run(cmd, capture_output=True, text=True, cwd=cwd, env=_ENV)
     wall, cpu = time.perf_counter() - t0, _child_cpu() - c0
     if p.returncode != 0:
         raise SystemExit(f"{' '.join(cmd)} failed ({p.returncode}):\n{p.stderr[-2000:]}")
     return wall, cpu
 
 
-def _interleaved(cmds: dict[str, list[str]], repeat: int) -> dict[str, list[tuple[float, float]]]:
+def _interleaved(cmds: dict[str, list[str]], repeat: int,
+                 cwds: dict[str, Path] | None = None) -> dict[str, list[tuple[float, float]]]:
     out: dict[str, list[tuple[float, float]]] = {k: [] for k in cmds}
+    cwd = cwds or {}
     for k, c in cmds.items():        # one warm-up each (disk cache, pint/matplotlib caches)
-        _run(c)
+        _run(c, cwd.get(k, ROOT))
     for _ in range(repeat):
         for k, c in cmds.items():
-            out[k].append(_run(c))
+            out[k].append(_run(c, cwd.get(k, ROOT)))
     return out
 
 
@@ -196,9 +199,10 @@ def kinematics(repeat: int) -> None:
 
 
 # ----------------------------------------------------------------- batch
-def batch(repeat: int, n: int) -> None:
+def batch(repeat: int, n: int, base: Path | None = None) -> None:
     """`tmm batch` of n variants (crank speed 40-69 rpm, upsetting force 10-20 kN) with
-    --jobs 2 --format json, interleaved with one JSON run of the task."""
+    --jobs 2 --format json, interleaved with one JSON run of the task (and with the same
+    batch run by the checkout ``base``, when given)."""
     py = [sys.executable, "-m", "tmm_cli"]
     src = TASK.read_text(encoding="utf-8")
     with tempfile.TemporaryDirectory() as tmp:
@@ -211,13 +215,21 @@ def batch(repeat: int, n: int) -> None:
                 .replace("15 kN, 15 kN", f"{f} kN, {f} kN"), encoding="utf-8")
         cmds = {"batch": py + ["batch", str(d), "--jobs", "2", "--format", "json", "--out", f"{tmp}/b"],
                 "json": py + ["run", str(TASK), "--format", "json", "--quiet", "--out", f"{tmp}/j"]}
-        res = _interleaved(cmds, repeat)
+        cwds = {}
+        if base is not None:
+            cmds["batch base"] = py + ["batch", str(d), "--jobs", "2", "--format", "json", "--out", f"{tmp}/bb"]
+            cwds["batch base"] = Path(base).resolve()
+        res = _interleaved(cmds, repeat, cwds)
     w = {k: [x for x, _ in v] for k, v in res.items()}
     c = {k: [x for _, x in v] for k, v in res.items()}
     print(f"batch of {n} variants, --jobs 2 --format json, {repeat} interleaved rounds; s: median [min-max]")
     print(f"  batch      wall {_stat(w['batch'])}   cpu {_stat(c['batch'])}   "
           f"(target <= 15 s wall) {'ok' if statistics.median(w['batch']) <= 15 else 'OVER'}")
     print(f"  json run   wall {_stat(w['json'])}   cpu {_stat(c['json'])}")
+    if base is not None:
+        print(f"  batch of {Path(base).resolve()}   wall {_stat(w['batch base'])}   cpu {_stat(c['batch base'])}")
+        _ratio_line("batch: this / base (wall)", w["batch"], w["batch base"], None)
+        _ratio_line("batch: this / base (cpu)", c["batch"], c["batch base"], None)
     print(f"  per variant: wall {statistics.median(w['batch']) / n * 1e3:.0f} ms, "
           f"cpu {statistics.median(c['batch']) / n * 1e3:.0f} ms")
     _ratio_line(f"batch of {n} / one json run (wall)", w["batch"], w["json"], None)
@@ -338,7 +350,7 @@ def main() -> None:
     if a.scaling:
         scaling(max(5, a.repeat))
     if a.batch:
-        batch(max(5, a.repeat), a.variants)
+        batch(max(3, a.repeat), a.variants, Path(a.against) if a.against else None)
     if a.kinetostatics:
         kinetostatics_big(max(5, a.repeat))
     if a.against:

@@ -480,6 +480,122 @@ def test_memory_limit_counts_what_a_variant_adds(tmp_path):
         big.close()
 
 
+def _pid_logging_work(monkeypatch, log: Path, misbehave=None):
+    """Replace the batch's `work` (the forked workers see it) by one that logs
+    "<stem> <pid>" and runs the real work, unless ``misbehave(stem)`` acts first."""
+    import tmm_cli.batch as b
+    real = b.work
+
+    def work(path, *a):
+        with open(log, "a", encoding="utf-8") as fh:
+            fh.write(f"{Path(path).stem} {os.getpid()}\n")
+        if misbehave is not None:
+            out = misbehave(Path(path).stem)
+            if out is not None:
+                return out
+        return real(path, *a)
+
+    monkeypatch.setattr(b, "work", work)
+    return lambda: dict(line.split() for line in log.read_text(encoding="utf-8").splitlines())
+
+
+def test_a_worker_reused_across_variants_writes_what_a_fresh_one_writes(tmp_path, monkeypatch):
+    """One worker runs every variant in turn (--jobs 1): each results.json is byte-identical
+    to the one the variant writes alone in a batch of its own (a fresh worker)."""
+    names = ["forging_sixbar", "gears_zero", "cam_knife", "planetary_A", "engine_slider_crank",
+             "synthesis_slider_crank"]
+    src = tmp_path / "src"
+    for k, name in enumerate(names):
+        _write(src, f"{k}_{name}.yaml", (ROOT / "tasks" / f"{name}.yaml").read_text(encoding="utf-8"))
+    _write(src, "9_gears_again.yaml", GEARS.format(v=3))
+    pids = _pid_logging_work(monkeypatch, tmp_path / "pids.log")
+    res = runner.invoke(app, ["batch", str(src), "--out", str(tmp_path / "o"), "--jobs", "1", "--format", "json"])
+    assert res.exit_code == 0, res.output
+    assert len(set(pids().values())) == 1                     # all in one worker
+    for f in sorted(src.glob("*.yaml")):                       # the same file alone in a batch
+        alone = tmp_path / "alone" / f.stem
+        r = runner.invoke(app, ["batch", str(f), "--out", str(alone), "--format", "json"])
+        assert r.exit_code == 0, r.output
+        assert (tmp_path / "o" / f.stem / "results.json").read_bytes() == \
+            (alone / f.stem / "results.json").read_bytes(), f.stem
+    assert [r["status"] for r in _csv(tmp_path / "o" / "summary.csv")] == ["ok"] * (len(names) + 1)
+
+
+def test_a_dying_slow_or_greedy_variant_in_a_long_run_fails_alone(tmp_path, monkeypatch):
+    """In a long run on one worker, a variant that kills its worker, overruns --timeout or
+    --memory is that variant's failed row; the next variant runs in a fresh worker, and
+    the variants before and after write what they write without it."""
+    import signal
+    import time
+
+    def misbehave(stem):
+        if stem.endswith("killed"):
+            os.kill(os.getpid(), signal.SIGKILL)
+        if stem.endswith("slow"):
+            time.sleep(60)
+        if stem.endswith("greedy"):
+            x = bytearray(3 * 1024 ** 3)                          # 3 GB over a 1 GB limit
+            return {"never": len(x)}
+        return None
+
+    order = ["good", "good", "killed", "good", "slow", "good", "greedy", "good", "good"]
+    src = tmp_path / "src"
+    for k, kind in enumerate(order):
+        _write(src, f"v{k}_{kind}.yaml", GEARS.format(v=k + 1))
+    pids = _pid_logging_work(monkeypatch, tmp_path / "pids.log", misbehave)
+    t0 = time.monotonic()
+    res = runner.invoke(app, ["batch", str(src), "--out", str(tmp_path / "o"), "--jobs", "1", "--timeout", "3",
+                              "--memory", "1024", "--format", "json"])
+    assert time.monotonic() - t0 < 40
+    assert res.exit_code == 3, res.output
+    rows = {Path(r["file"]).stem: r for r in _csv(tmp_path / "o" / "summary.csv")}
+    assert [Path(r["file"]).stem for r in _csv(tmp_path / "o" / "summary.csv")] == sorted(rows)
+    assert rows["v2_killed"]["status"] == "failed" and "SIGKILL" in rows["v2_killed"]["message"]
+    assert rows["v4_slow"]["status"] == "failed" and "time limit" in rows["v4_slow"]["message"]
+    assert rows["v6_greedy"]["status"] == "failed" and "memory" in rows["v6_greedy"]["message"]
+    good = [s for s in rows if s.endswith("good")]
+    assert all(rows[s]["status"] == "ok" for s in good)
+    p = pids()
+    assert p["v0_good"] == p["v1_good"] == p["v2_killed"]           # one worker until it died
+    assert p["v3_good"] not in (p["v2_killed"], p["v0_good"]) and p["v3_good"] == p["v4_slow"]
+    assert p["v5_good"] != p["v4_slow"] and p["v5_good"] == p["v6_greedy"]
+    assert p["v7_good"] != p["v6_greedy"] and p["v7_good"] == p["v8_good"]
+    monkeypatch.undo()
+    for s in good:                                                   # nothing of one variant in another
+        alone = tmp_path / "alone" / s
+        assert runner.invoke(app, ["batch", str(src / f"{s}.yaml"), "--out", str(alone), "--format", "json"]).exit_code == 0
+        assert (tmp_path / "o" / s / "results.json").read_bytes() == (alone / s / "results.json").read_bytes()
+    for f in ("summary.html", "check.csv", ".tmm-batch.json"):
+        assert (tmp_path / "o" / f).exists()
+
+
+def test_a_worker_is_replaced_after_max_variants_and_after_growing(tmp_path, monkeypatch):
+    """The pool's policy: a worker runs at most MAX_VARIANTS variants, and one whose address
+    space has grown by RECYCLE_GROWTH (here a variant that leaks 64 MB) is replaced."""
+    import tmm_cli.batch as b
+    monkeypatch.setattr(b, "MAX_VARIANTS", 3)
+    monkeypatch.setattr(b, "RECYCLE_GROWTH", 32 * 1024 ** 2)
+    kept = []
+
+    def misbehave(stem):
+        if stem.endswith("leaky"):
+            kept.append(bytearray(64 * 1024 ** 2))              # stays in the worker
+        return None
+
+    order = ["good", "good", "good", "good", "leaky", "good", "good"]
+    src = tmp_path / "src"
+    for k, kind in enumerate(order):
+        _write(src, f"v{k}_{kind}.yaml", GEARS.format(v=k + 1))
+    pids = _pid_logging_work(monkeypatch, tmp_path / "pids.log", misbehave)
+    res = runner.invoke(app, ["batch", str(src), "--out", str(tmp_path / "o"), "--jobs", "1", "--format", "json"])
+    assert res.exit_code == 0, res.output
+    assert [r["status"] for r in _csv(tmp_path / "o" / "summary.csv")] == ["ok"] * len(order)
+    p = [pids()[f"v{k}_{kind}"] for k, kind in enumerate(order)]
+    assert p[0] == p[1] == p[2] != p[3]                              # 3 variants, then a fresh worker
+    assert p[3] == p[4] != p[5]                                      # the leak ends its worker
+    assert p[5] == p[6]
+
+
 def test_batch_stage_failure_in_the_summary_language(tmp_path):
     """A variant whose stage fails: summary.csv keeps the English text of stderr, summary.html
     shows the same failure in the batch's language."""

@@ -1,9 +1,17 @@
 """`tmm batch`: run and grade many variants; one variant never stops the rest.
 
-Each variant runs in its own process (forked, one at a time per job slot) with a time
-limit (``--timeout``) and an address-space limit (``--memory``, RLIMIT_AS). A worker that
-dies (a signal, the out-of-memory killer), overruns its time or its memory becomes one
-``failed`` row with the reason; the batch goes on and always writes summary.csv,
+The variants run on a pool of ``--jobs`` worker processes forked from the batch process;
+each worker runs variants one at a time (the batch sends it a variant's index over a
+pipe, the worker leaves the outcome in a file and says so on a second pipe), with a time
+limit (``--timeout``) and an address-space limit (``--memory``, RLIMIT_AS: the worker's
+address space when the variant starts + the limit, so the limit is what one variant may
+add). A worker that dies (a signal, the out-of-memory killer) is replaced by a fresh
+fork, one that overruns its time is killed and replaced; its variant becomes one
+``failed`` row with the reason, a variant past its memory too. A worker also ends, and a fresh fork takes its
+place, after a variant that failed (out of memory, a stage's error), after
+``MAX_VARIANTS`` variants, and once its address space has grown by ``RECYCLE_GROWTH``
+over its start: what a variant leaves behind stays bounded and a failure's state never
+reaches the next variant. The batch goes on and always writes summary.csv,
 summary.html and check.csv. Every variant writes into its own sanitised, unique folder
 inside ``--out``; a manifest (``.tmm-batch.json``) lists what the batch wrote, so the
 next batch removes the files of variants that are gone and nothing else.
@@ -211,7 +219,7 @@ def warm(files: list[Path], formats) -> None:
     """Do in the batch process, once, what every worker would otherwise repeat: import the
     modules of the sections the task files have (a top-level key ``cam:`` etc.) and of the
     outputs asked for, and build the task model's validator. The workers are forked from
-    this process (each variant still runs in its own process), so they start warm.
+    this process, so they start warm.
     Anything that fails here is left to the variant that needs it."""
     import gc
     import importlib
@@ -255,31 +263,74 @@ def _address_space() -> int:
         return 0
 
 
-def _child(result_file: str, memory_mb, args) -> None:
-    """The worker process: limit its address space, run one variant, leave the outcome in
-    ``result_file`` (a file, not a pipe: nothing can block between a dying worker and
-    the batch)."""
+# the worker pool: how long a worker lives
+MAX_VARIANTS = 100                 # a worker runs at most this many variants, then a fresh fork replaces it
+RECYCLE_GROWTH = 256 * 1024 ** 2   # ... or fewer, once its address space grew this much over its start
+
+
+def _failed(message) -> dict:
+    return {"task": None, "written": [], "sets": [], "code": 3, "status": "failed", "message": message}
+
+
+def _run_one(result_file: str, memory_mb, args) -> bool:
+    """In a worker: limit what this variant may add to the address space, run it, leave
+    the outcome in ``result_file`` (a file, not a pipe: nothing can block between a
+    dying worker and the batch). True when the worker should end: the variant ran out of
+    memory or failed."""
     import pickle
+    oom = False
     try:
         if memory_mb:
             import resource
-            # the limit is what the variant may add: a forked worker starts with the
-            # parent's address space (a large one in a long-lived parent, e.g. a test run)
+            # the limit is what the variant may add: the worker's address space now (the
+            # batch process's, inherited by the fork, and what earlier variants left) + --memory;
+            # only the soft limit, so the next variant can have its own
+            hard = resource.getrlimit(resource.RLIMIT_AS)[1]
             lim = int(memory_mb) * 1024 * 1024 + _address_space()
-            resource.setrlimit(resource.RLIMIT_AS, (lim, lim))
+            if hard != resource.RLIM_INFINITY:
+                lim = min(lim, hard)
+            resource.setrlimit(resource.RLIMIT_AS, (lim, hard))
         res = work(*args)
     except MemoryError:
-        res = {"task": None, "written": [], "sets": [], "code": 3, "status": "failed",
-               "message": Message("batch.out_of_memory", limit=memory_mb)}
+        oom = True
+        res = _failed(Message("batch.out_of_memory", limit=memory_mb))
     try:
         data = pickle.dumps(res)
     except Exception as exc:  # noqa: BLE001 - whatever fails to pickle, the worker still reports
-        data = pickle.dumps({"task": None, "written": [], "sets": [], "code": 3, "status": "failed",
-                             "message": Message("batch.no_report", error=type(exc).__name__)})
+        data = pickle.dumps(_failed(Message("batch.no_report", error=type(exc).__name__)))
     tmp = result_file + ".part"
     with open(tmp, "wb") as fh:
         fh.write(data)
     os.replace(tmp, result_file)
+    return oom or res.get("status") == "failed"
+
+
+def _worker(jobs_args, tmpdir: str, memory_mb, task_r: int, done_w: int, close: list[int]) -> None:
+    """A worker of the pool: read a variant's index from ``task_r``, run it, write its
+    outcome to ``tmpdir/<index>.pickle``, then "<index> <retire>" to ``done_w``; exit on
+    end of input, after ``MAX_VARIANTS`` variants, once its address space has grown by
+    ``RECYCLE_GROWTH``, or after a variant that failed (out of memory, a stage's error):
+    the batch then forks a fresh worker."""
+    for fd in close:                   # the batch's ends of every worker's pipes
+        try:
+            os.close(fd)
+        except OSError:
+            pass
+    start = _address_space()
+    buf = b""
+    for n in range(1, MAX_VARIANTS + 1):
+        while b"\n" not in buf:
+            chunk = os.read(task_r, 64)
+            if not chunk:
+                os._exit(0)
+            buf += chunk
+        line, buf = buf.split(b"\n", 1)
+        i = int(line)
+        retire = _run_one(os.path.join(tmpdir, f"{i}.pickle"), memory_mb, jobs_args[i])
+        retire = retire or n == MAX_VARIANTS or _address_space() - start > RECYCLE_GROWTH
+        os.write(done_w, b"%d %d\n" % (i, retire))      # a few bytes: never blocks
+        if retire:
+            break
     os._exit(0)                    # no atexit handlers or inherited threads of the parent
 
 
@@ -296,56 +347,150 @@ def _death(exitcode: int | None, memory_mb) -> str:
     return Message("batch.worker_exit", code=exitcode, limit=memory_mb)
 
 
-def run_all(jobs_args: list[tuple], *, jobs: int, timeout: float, memory_mb: int | None, on_done) -> list[dict]:
-    """Run each job in its own forked process, at most ``jobs`` at once; return the
-    outcomes in order. ``on_done(i, outcome)`` is called as each finishes."""
-    import multiprocessing as mp
-    from multiprocessing.connection import wait
+class _Slot:
+    """The batch's side of one worker: its process, the pipe it reads variants from, the
+    pipe it reports on, and the variant it runs (index, start time)."""
 
+    def __init__(self, ctx, jobs_args, tmpdir, memory_mb, parent_fds: set[int]):
+        task_r, self.task_w = os.pipe()
+        self.done_r, done_w = os.pipe()
+        os.set_blocking(self.done_r, False)
+        parent_fds.update((self.task_w, self.done_r))
+        self.proc = ctx.Process(target=_worker, args=(jobs_args, tmpdir, memory_mb, task_r, done_w,
+                                                      sorted(parent_fds)), daemon=False)
+        self.proc.start()
+        os.close(task_r)
+        os.close(done_w)
+        self.parent_fds = parent_fds
+        self.i: int | None = None
+        self.t0 = 0.0
+        self.buf = b""
+        self.retire = False
+
+    def send(self, i: int) -> bool:
+        """Give the worker variant i; False when it is gone (then it gets a successor)."""
+        if not self.proc.is_alive():
+            return False
+        try:
+            os.write(self.task_w, b"%d\n" % i)
+        except OSError:
+            return False
+        self.i, self.t0 = i, time.monotonic()
+        return True
+
+    def reports(self) -> list[tuple[int, bool]]:
+        """The "<index> <retire>" lines the worker has written and not yet read."""
+        while True:
+            try:
+                chunk = os.read(self.done_r, 4096)
+            except BlockingIOError:
+                break
+            except OSError:
+                break
+            if not chunk:
+                break
+            self.buf += chunk
+        *lines, self.buf = self.buf.split(b"\n")
+        return [(int(a), b == b"1") for a, b in (ln.split() for ln in lines if ln.strip())]
+
+    def close(self, kill: bool) -> None:
+        if kill:
+            _kill(self.proc)
+        for fd in (self.task_w, self.done_r):
+            try:
+                os.close(fd)
+            except OSError:
+                pass
+            self.parent_fds.discard(fd)
+        self.proc.join(5)
+        if self.proc.is_alive():
+            _kill(self.proc)
+
+
+def run_all(jobs_args: list[tuple], *, jobs: int, timeout: float, memory_mb: int | None, on_done) -> list[dict]:
+    """Run the jobs on a pool of at most ``jobs`` forked workers, each running variants
+    one at a time; return the outcomes in order. ``on_done(i, outcome)`` is called as
+    each finishes. A worker that dies or overruns ``timeout`` fails the variant it was
+    running, is replaced by a fresh fork, and the batch goes on."""
+    import multiprocessing as mp
     import pickle
     import shutil
     import tempfile
+    from multiprocessing.connection import wait
 
     ctx = mp.get_context("fork")
     results: list[dict | None] = [None] * len(jobs_args)
     pending = list(range(len(jobs_args)))
-    running: dict[int, tuple] = {}          # i -> (proc, result file, t0)
+    pending.reverse()                  # pop() from the end: the variants in order
+    slots: list[_Slot] = []
+    parent_fds: set[int] = set()
     tmpdir = tempfile.mkdtemp(prefix="tmm-batch-")
 
-    def failed(message):
-        return {"task": None, "written": [], "sets": [], "code": 3, "status": "failed", "message": message}
+    def load(i):
+        rf = os.path.join(tmpdir, f"{i}.pickle")
+        try:
+            with open(rf, "rb") as fh:
+                return pickle.load(fh)
+        except (OSError, EOFError, pickle.UnpicklingError):
+            return None
+        finally:
+            try:
+                os.unlink(rf)
+            except OSError:
+                pass
 
     try:
-        while pending or running:
-            while pending and len(running) < max(1, jobs):
-                i = pending.pop(0)
-                rf = os.path.join(tmpdir, f"{i}.pickle")
-                proc = ctx.Process(target=_child, args=(rf, memory_mb, jobs_args[i]), daemon=False)
-                proc.start()
-                running[i] = (proc, rf, time.monotonic())
+        while pending or any(s.i is not None for s in slots):
+            for s in slots:                                   # idle workers take the next variants
+                if s.i is None and not s.retire and pending:
+                    if s.send(pending[-1]):
+                        pending.pop()
+                    else:
+                        s.retire = True
+            for s in [s for s in slots if s.retire and s.i is None]:
+                s.close(kill=False)
+                slots.remove(s)
+            while pending and len(slots) < max(1, jobs):      # fresh workers for the rest
+                s = _Slot(ctx, jobs_args, tmpdir, memory_mb, parent_fds)
+                slots.append(s)
+                if s.send(pending[-1]):
+                    pending.pop()
+                else:
+                    s.retire = True
+                    break
+            busy = [s for s in slots if s.i is not None]
+            if not busy:
+                continue
             now = time.monotonic()
-            left = min(t0 + timeout - now for _, _, t0 in running.values()) if timeout else None
-            wait([p.sentinel for p, _, _ in running.values()], timeout=None if left is None else max(0.0, left))
+            left = min(s.t0 + timeout - now for s in busy) if timeout else None
+            wait([s.proc.sentinel for s in busy] + [s.done_r for s in busy],
+                 timeout=None if left is None else max(0.0, left))
             now = time.monotonic()
-            for i, (proc, rf, t0) in list(running.items()):
-                res = None
-                if not proc.is_alive():
-                    proc.join()
-                    try:
-                        with open(rf, "rb") as fh:
-                            res = pickle.load(fh)
-                    except (OSError, EOFError, pickle.UnpicklingError):
-                        res = failed(_death(proc.exitcode, memory_mb))
-                elif timeout and now - t0 > timeout:
-                    _kill(proc)
-                    res = failed(Message("batch.timeout", timeout=timeout))
+            for s in busy:
+                res, i = None, s.i
+                done = [r for k, r in s.reports() if k == i]
+                if done:
+                    res = load(i)
+                    if res is None:
+                        res = _failed(Message("batch.no_report", error="no result file"))
+                    s.retire = s.retire or done[0]
+                elif not s.proc.is_alive():
+                    s.proc.join()
+                    res = load(i)              # it may have died after writing its outcome
+                    if res is None:
+                        res = _failed(_death(s.proc.exitcode, memory_mb))
+                    s.retire = True
+                elif timeout and now - s.t0 > timeout:
+                    _kill(s.proc)
+                    res = _failed(Message("batch.timeout", timeout=timeout))
+                    s.retire = True
                 if res is not None:
-                    del running[i]
+                    s.i = None
                     results[i] = res
                     on_done(i, res)
     finally:
-        for proc, _, _ in running.values():
-            _kill(proc)
+        for s in slots:
+            s.close(kill=s.i is not None)
         shutil.rmtree(tmpdir, ignore_errors=True)
     return results  # type: ignore[return-value]
 
