@@ -133,3 +133,20 @@ def test_errors():
         synthesize_planetary(NS(scheme="A", ratio=0.5, satellites=3, tolerance=0.05))
     with pytest.raises(StageError):                       # 12 satellites never fit in scheme A
         synthesize_planetary(NS(scheme="A", ratio=4, satellites=12, tolerance=0.001))
+
+
+def test_scheme_a_hint_states_the_feasible_range():
+    """No set of scheme A meets the ratio: the hint gives the least and the greatest ratio of
+    the sets that meet every other condition. By hand, 3 satellites, z in [17, 150], z2 >= 20
+    (a satellite in internal mesh): i = 1 + z3/z1 with z3 = z1 + 2 z2 and (z1 + z3)/3 whole.
+    Least: z2 = 20, z3 as large as allowed: z3 = 150, z1 = 110 (260/3 not whole), so z3 = 149,
+    z1 = 109 (258/3 = 86): i = 1 + 149/109 = 2.36697. Greatest: z1 = 17, z3 = 17 + 2 z2 <= 150:
+    z3 = 149 (166/3 no), 147 (164/3 no), 145 (162/3 = 54): i = 1 + 145/17 = 9.52941."""
+    for ratio in (1.2, 12.0):
+        with pytest.raises(StageError) as e:
+            synthesize_planetary(NS(scheme="A", ratio=ratio, satellites=3, tolerance=0.05, m=0.002))
+        hint = e.value.message.params["hint"]
+        assert hint["code"] == "planetary.hint.scheme_a"
+        assert hint["params"]["lo"] == pytest.approx(1 + 149 / 109, rel=1e-12)
+        assert hint["params"]["hi"] == pytest.approx(1 + 145 / 17, rel=1e-12)
+        assert "only between 2.367 and 9.529" in str(e.value)

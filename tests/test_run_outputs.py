@@ -26,7 +26,7 @@ GEARS = "gears: {m: 4 mm, z: [14, 30], x: [0, 0]}\n"
 CAM = (ROOT / "tasks" / "cam_offset.yaml").read_text(encoding="utf-8").split("\ncam:", 1)[1]
 CAM = "cam:" + CAM
 # scheme A: i_1H = 1 + z3/z1 with z3 = z1 + 2 z2 and z2 >= 17 (no undercut), so z3/z1 > 34/150
-# and i_1H > 1.22 (tmm says: at least 1.567 within the tooth limits): 1.2 cannot be met
+# and i_1H > 2 (tmm says: at least 2.367 with the assembly condition): 1.2 cannot be met
 PLANETARY_IMPOSSIBLE = "planetary: {scheme: A, ratio: 1.2, satellites: 3, m: 2 mm}\n"
 
 

@@ -452,16 +452,20 @@ class PlanetaryResult:
                 "candidates": self.candidates, "velocity_plan": self.plan, "warnings": list(self.warnings)}
 
 
-def _no_candidates_hint(scheme: str, req: float, tol: float, z_min: int, z_max: int) -> Message:
+def _no_candidates_hint(scheme: str, req: float, tol: float, z_min: int, z_max: int,
+                        k: int = 3, limits: Limits | None = None) -> Message:
     """Why the search may have found nothing, and what to change."""
     if z_max < z_min:
         return Message("planetary.hint.z_max_below", z_max=z_max, z_min=z_min)
     if scheme in ("A", "B", "D") and z_max < Z_INT:
         return Message("planetary.hint.internal", scheme=scheme, z_int=Z_INT)
     if scheme == "A":
-        # i = 1 + z3/z1 with z1 >= z_min, z3 <= z_max and z3 >= Z_INT
-        lo, hi = 1 + Z_INT / z_max, 1 + z_max / z_min
-        if req + tol * abs(req) < lo or req - tol * abs(req) > hi:
+        # i = 1 + z3/z1: the least and the greatest ratio of the tooth sets that meet every
+        # condition (coaxiality, assembly, adjacency, the tooth limits) but the tolerance
+        limits = limits or Limits(external=z_min, internal=Z_INT, satellite_in_internal=max(Z_EXT_IN_INT, z_min),
+                                  difference=Z_DIFF)
+        lo, hi = nearest_ratio("A", 1.0, k, limits, z_max), nearest_ratio("A", 1e6, k, limits, z_max)
+        if lo is not None and (req + tol * abs(req) < lo or req - tol * abs(req) > hi):
             return Message("planetary.hint.scheme_a", lo=lo, hi=hi)
     return Message("planetary.hint.general")
 
@@ -530,7 +534,7 @@ def synthesize_planetary(spec) -> PlanetaryResult:
     if not found:
         raise StageError(STAGE, Message("planetary.fail.none_found", scheme=scheme, required=req, tol=tol, k=k,
                                         z_min=z_min, z_max=z_max,
-                                        hint=_no_candidates_hint(scheme, req, tol, int(z_min), int(z_max))))
+                                        hint=_no_candidates_hint(scheme, req, tol, int(z_min), int(z_max), k, limits)))
     z, v = found[0]["z"], found[0]["checks"]
     cands = [{key: c[key] for key in ("z", "ratio", "ratio_error", "size", "teeth", "assembly_p")}
              for c in found]
