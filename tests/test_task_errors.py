@@ -160,3 +160,18 @@ def test_infeasible_linkage_is_invalid(tmp_path, desc, text, line, frags):
     for fr in frags:
         assert fr in res.output, (fr, res.output)
     assert "Traceback" not in res.output
+
+
+@pytest.mark.parametrize("line, field", [("  pressure_angle: 0", "cam.pressure_angle"),
+                                         ("  transmission_angle: 90", "cam.transmission_angle")])
+def test_cam_limit_out_of_range_names_its_line(tmp_path, line, field):
+    """An allowed pressure angle outside (0, 90) deg (or a transmission angle of 90) points
+    at its own line and field, not at the `cam` section."""
+    text = ("schema: tmm/1\ncam:\n  follower: translating\n  stroke: 20 mm\n" + line + "\n"
+            "  phases: {rise: 120, far_dwell: 60, return: 120, near_dwell: 60}\n"
+            "  laws: {rise: cosine, return: cosine}\n")
+    f = tmp_path / "cam.yaml"
+    f.write_text(text, encoding="utf-8")
+    res = runner.invoke(app, ["validate", str(f)])
+    assert res.exit_code == 2
+    assert f"{f}:5:3: field '{field}': the allowed pressure angle must lie in (0, 90) deg" in res.output

@@ -74,3 +74,25 @@ def test_clean_no_nan():
     assert d == {"a": None, "b": [0, 1, 2], "c": [None, 1.5], "d": 4}
     assert "NaN" not in dumps({"x": float("nan")})
     assert dumps({"x": -0.0, "y": np.float64(-0.0)}) == '{\n "x": 0.0,\n "y": 0.0\n}\n'
+
+
+def test_pint_disk_cache_is_one_folder_per_installation(tmp_path, monkeypatch):
+    """pint's shared cache (`:auto:`) let one installation read another's parsed definitions,
+    with the other's file paths inside: removing a virtual environment broke every other
+    one's registry. tmm keeps one folder per pint installation, and none if it can't make it."""
+    from types import SimpleNamespace
+
+    import platformdirs
+
+    from tmm_cli.units import _pint_cache_folder
+
+    monkeypatch.setattr(platformdirs, "user_cache_path", lambda **kw: tmp_path / "cache" / kw["appname"])
+    a = _pint_cache_folder(SimpleNamespace(__file__="/venv-a/site-packages/pint/__init__.py", __version__="0.24"))
+    b = _pint_cache_folder(SimpleNamespace(__file__="/venv-b/site-packages/pint/__init__.py", __version__="0.24"))
+    c = _pint_cache_folder(SimpleNamespace(__file__="/venv-a/site-packages/pint/__init__.py", __version__="0.25"))
+    assert len({a, b, c}) == 3 and all(p.is_dir() and p.parent == tmp_path / "cache" / "pint" for p in (a, b, c))
+    assert a == _pint_cache_folder(SimpleNamespace(__file__="/venv-a/site-packages/pint/__init__.py",
+                                                   __version__="0.24"))
+    (tmp_path / "file").write_text("x")
+    monkeypatch.setattr(platformdirs, "user_cache_path", lambda **kw: tmp_path / "file" / "sub")
+    assert _pint_cache_folder(SimpleNamespace(__file__="/v/pint/__init__.py", __version__="0.24")) is None

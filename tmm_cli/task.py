@@ -353,7 +353,8 @@ class CamSection(_Model):
             lim = 45.0 if self.follower == "rocker" else 30.0
         if not isinstance(lim, LimitsSpec):
             if not 0 < lim < 90:
-                raise ValueError("the allowed pressure angle must lie in (0, 90) deg")
+                given = "pressure_angle" if self.pressure_angle is not None else "transmission_angle"
+                raise FieldValueError((given,), "the allowed pressure angle must lie in (0, 90) deg")
             # checked just above as LimitsSpec would (an angle in (0, 90)): built without
             # validating again, which would build LimitsSpec's own validator (~10 ms)
             lim = LimitsSpec.model_construct(rise=lim, return_=lim)

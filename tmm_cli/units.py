@@ -46,8 +46,28 @@ _FRACTION = re.compile(r"^\s*([-+]?\d+(?:\.\d*)?)\s*/\s*(\d+(?:\.\d*)?)\s*$")
 def ureg():
     import pint  # lazy: ~0.3 s import
 
-    reg = pint.UnitRegistry(cache_folder=":auto:")
-    return reg
+    return pint.UnitRegistry(cache_folder=_pint_cache_folder(pint))
+
+
+def _pint_cache_folder(pint):
+    """pint's disk cache of parsed definitions, one folder per pint installation: pint's own
+    shared folder (``:auto:``) serves the parse of one installation's definition files to
+    another whose files have the same content, with the first one's paths inside, so a
+    removed virtual environment broke the registry of every other one (FileNotFoundError
+    on its `@import`s). None (no disk cache, ~0.1 s more to parse) where no folder can be made."""
+    import hashlib
+    import os
+
+    import platformdirs
+
+    where = os.path.dirname(os.path.abspath(pint.__file__))
+    key = hashlib.sha1(f"{where}|{pint.__version__}".encode()).hexdigest()[:16]
+    folder = platformdirs.user_cache_path(appname="pint", appauthor=False) / f"tmm-{key}"
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError:
+        return None
+    return folder
 
 
 def _as_float(x: Any) -> float:
