@@ -464,8 +464,14 @@ def _no_candidates_hint(scheme: str, req: float, tol: float, z_min: int, z_max: 
         # condition (coaxiality, assembly, adjacency, the tooth limits) but the tolerance
         limits = limits or Limits(external=z_min, internal=Z_INT, satellite_in_internal=max(Z_EXT_IN_INT, z_min),
                                   difference=Z_DIFF)
-        lo, hi = nearest_ratio("A", 1.0, k, limits, z_max), nearest_ratio("A", 1e6, k, limits, z_max)
-        if lo is not None and (req + tol * abs(req) < lo or req - tol * abs(req) > hi):
+        def outside(n):
+            lo, hi = nearest_ratio("A", 1.0, n, limits, z_max), nearest_ratio("A", 1e6, n, limits, z_max)
+            return lo, hi, lo is not None and (req + tol * abs(req) < lo or req - tol * abs(req) > hi)
+
+        lo, hi, out = outside(k)
+        # out of reach with k satellites but not with one: their assembly or adjacency is the
+        # cause, which the general hint names; else the tooth limits are
+        if out and (k == 1 or outside(1)[2]):
             return Message("planetary.hint.scheme_a", lo=lo, hi=hi)
     return Message("planetary.hint.general")
 
