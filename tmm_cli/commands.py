@@ -62,6 +62,12 @@ def _fail_stage(exc: StageError, file: str | None = None) -> "typer.Exit":
     return typer.Exit(cli.fail_stage(exc, file, typer.echo))
 
 
+def _check_lang(lang: str) -> None:
+    """--lang: one of the report languages (a usage error otherwise)."""
+    if lang not in cli.LANGS:
+        raise typer.BadParameter(f"--lang must be {', '.join(cli.LANGS[:-1])} or {cli.LANGS[-1]}")
+
+
 def _fail_write(exc: OSError) -> "typer.Exit":
     """The output folder or a file in it cannot be written: exit 3, no traceback."""
     return typer.Exit(cli.fail_write(exc, typer.echo))
@@ -107,8 +113,7 @@ def run(
     Example: tmm run tasks/engine_slider_crank.yaml --out out/engine --lang ru (or uk)
     """
     formats = _parse_formats(format)
-    if lang not in ("en", "ru", "uk"):
-        raise typer.BadParameter("--lang must be en, ru or uk")
+    _check_lang(lang)
     code = cli.run_task(task_file, out, formats, lang, quiet, study, typer.echo)
     if code != EXIT_OK:
         raise typer.Exit(code)
@@ -137,8 +142,7 @@ def study_cmd(
 
     Example: tmm study tasks/forging_sixbar.yaml --out out/forging --lang ru
     """
-    if lang not in ("en", "ru", "uk"):
-        raise typer.BadParameter("--lang must be en, ru or uk")
+    _check_lang(lang)
     try:
         task = _load(task_file)
     except TaskError as exc:
@@ -172,8 +176,7 @@ def sheets(
     fm = {f.strip().lower() for f in format.split(",") if f.strip()}
     if not fm or fm - {"pdf", "svg", "dxf"}:
         raise typer.BadParameter("choose from pdf, svg, dxf (comma-separated)")
-    if lang not in ("en", "ru", "uk"):
-        raise typer.BadParameter("--lang must be en, ru or uk")
+    _check_lang(lang)
     try:
         task = _load(task_file)
     except TaskError as exc:
@@ -303,8 +306,7 @@ def batch(
     3 some failed)."""
     from .batch import run_batch
     formats = _parse_formats(format)
-    if lang not in ("en", "ru", "uk"):
-        raise typer.BadParameter("--lang must be en, ru or uk")
+    _check_lang(lang)
     try:
         code = run_batch(source, out, jobs=jobs, formats=formats, lang=lang, answers=answers, tolerance=tolerance,
                          quantities=quantities, timeout=timeout, memory_mb=memory or None)
@@ -382,8 +384,7 @@ def form(
     from .io import atomic_write
     from .orchestrate import classify, compute, prepare
     from .results import lookup
-    if lang not in ("en", "ru", "uk"):
-        raise typer.BadParameter("--lang must be en, ru or uk")
+    _check_lang(lang)
     if source.is_dir():
         found, _ = find_tasks(str(source))
         files = [f for f, why in found if why is None]
