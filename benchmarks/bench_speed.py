@@ -238,6 +238,7 @@ def batch(repeat: int, n: int, base: Path | None = None) -> None:
 # ----------------------------------------------------------------- kinetostatics at 36,000
 _KS_CODE = """
 import resource, sys, time
+import numpy as np
 sys.path.insert(0, {bench!r})
 from bench_kinetostatics import SIX
 from tmm_cli import load_task

@@ -22,8 +22,8 @@ from ...results import Entries, bulk
 from .. import loads as loads_mod
 from ..loads import AppliedCouple, Loads
 from .equations import Geometry, geometry, load_vector, scaled_det
-from .solve import (COND_MAX, balance_lever, balance_rate, friction_loads, group_by_group, lever_moments,
-                    matrix_method, powers, unit_balance_q)
+from .solve import (balance_lever, balance_rate, condition_numbers, friction_loads, group_by_group,
+                    lever_moments, matrix_method, powers, unit_balance_q)
 
 NEAR_DEG = 1.0
 DETAIL_MAX = 400        # positions up to which to_dict lists every applied load
@@ -77,7 +77,12 @@ class KinetostaticsResult:
     driving_power: np.ndarray | None = None
     groups: list[list[int]] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)
-    cond: np.ndarray | None = None
+
+    @property
+    def cond(self) -> np.ndarray:
+        """The 2-norm condition number of the matrix method's scaled system per position
+        (computed when asked: the stage only needs whether it is below COND_MAX)."""
+        return condition_numbers(self.mech, self.geo, self.mech.link(self.balance).index)
 
     # ------------------------------------------------------------------
     def discrepancy(self) -> np.ndarray:
@@ -402,7 +407,7 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
     if np.any(locked):
         x[locked] = np.nan
         Mb = np.where(locked, np.nan, Mb)
-    xm, Mm, cond, _ = matrix_method(mech, geo, q, b, with_det=False)
+    xm, Mm, well, _ = matrix_method(mech, geo, q, b, with_det=False)
     lever = lever_moments(mech, geo, lds)
     blev = balance_lever(mech, geo, b)
     P, each = powers(mech, geo, lds)
@@ -413,7 +418,7 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
         Mzh = -lever / blev
         Mvp = -P / rate
     w1 = np.abs(geo.omega1)
-    ok = (cond < COND_MAX) & np.isfinite(Mb) & np.all(np.isfinite(x), axis=1) \
+    ok = well & np.isfinite(Mb) & np.all(np.isfinite(x), axis=1) \
         & (np.abs(M1U) > 1e-12 * unit) & (np.abs(rate) > 1e-12 * w1 * unit)
     # singular crank angles of the balance link over one turn
     warnings: list[str] = []
@@ -466,7 +471,7 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
         M_b=Mb, M_matrix=Mm, M_zhukovsky=Mzh, M_virtual=Mvp, reactions=x, reactions_matrix=xm,
         ok=ok, near=near, singular=list(singular), mech=mech, geo=geo, loads=lds,
         efficiency=eff, friction_power=fpow, friction_pairs=loss, driving_power=dpow,
-        groups=_group_links(mech, structure) + [[mech.drive]], warnings=warnings, cond=cond)
+        groups=_group_links(mech, structure) + [[mech.drive]], warnings=warnings)
 
 
 def analyze_at(linkage, section, phi_deg, *, motion=None, singular: list[float] | None = None
