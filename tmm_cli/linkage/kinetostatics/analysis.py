@@ -404,6 +404,7 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
         lds = Loads(lds.phi, lds.forces + ff, lds.couples + fc, lds.info)
         q = load_vector(mech, geo, lds)
     x, Mb, M1U = solve_groups(q)
+    geo.__dict__.pop("_group_plan", None)      # the groups' inverses: not needed past here
     if np.any(locked):
         x[locked] = np.nan
         Mb = np.where(locked, np.nan, Mb)
