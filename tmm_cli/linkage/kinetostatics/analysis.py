@@ -160,10 +160,11 @@ class KinetostaticsResult:
         names[0] = "ground"
         jkeys = [f"R{j.a}{j.b}" for j in mech.joints]
 
-        def L(a, mask=True):
-            a = np.asarray(a, float)
-            good = np.isfinite(a) & (self.ok if mask else True)
-            return np.where(good, a + 0.0, np.nan).tolist(), good.tolist()
+        def L(a) -> list:
+            """The values where finite at a position not singular, else None (never -0.0)."""
+            a = np.asarray(a, float) + 0.0
+            good = np.isfinite(a) & self.ok
+            return a.tolist() if good.all() else np.where(good, a, None).tolist()
 
         mb = L(self.M_b)
         bf = L(self.M_b / self.arm) if (self.balance_kind == "moment" and self.arm) else None
@@ -210,19 +211,15 @@ class KinetostaticsResult:
                   [L(self.friction_pairs[:, k]) for k in range(len(mech.joints))])
         # the entries column by column (one list of N values per key), then zipped
         none = [None] * N
-
-        def V(pair):
-            v, g = pair
-            return [x if good else None for x, good in zip(v, g)]
         cols: list[tuple[str, list]] = [("index", [int(i) for i in self.index]), ("phi", phil)]
         if self.balance_kind == "moment":
-            cols += [("balancing_moment", V(mb)), ("balancing_force", V(bf) if bf else none),
-                     ("zhukovsky_moment", V(mz)), ("virtual_power_moment", V(mv)), ("matrix_moment", V(mm))]
+            cols += [("balancing_moment", mb), ("balancing_force", bf if bf is not None else none),
+                     ("zhukovsky_moment", mz), ("virtual_power_moment", mv), ("matrix_moment", mm)]
         else:
-            cols += [("balancing_moment", none), ("balancing_force", V(mb)), ("zhukovsky_moment", none),
-                     ("virtual_power_moment", none), ("matrix_moment", none), ("zhukovsky_force", V(mz)),
-                     ("virtual_power_force", V(mv)), ("matrix_force", V(mm))]
-        cols += [("discrepancy", V(disc)), ("matrix_discrepancy", V(mdisc)),
+            cols += [("balancing_moment", none), ("balancing_force", mb), ("zhukovsky_moment", none),
+                     ("virtual_power_moment", none), ("matrix_moment", none), ("zhukovsky_force", mz),
+                     ("virtual_power_force", mv), ("matrix_force", mm)]
+        cols += [("discrepancy", disc), ("matrix_discrepancy", mdisc),
                  ("reactions", [dict(zip(jkeys, r)) for r in reaction_rows]),
                  ("inertia", [dict(zip(inert_keys, r)) for r in inert_rows])]
         if detail:
@@ -237,13 +234,13 @@ class KinetostaticsResult:
         dnames = [d[0] for d in dinfo]
         cols.append(("diagram", [dict(zip(dnames, r)) for r in zip(*dcols)] if dcols else [{} for _ in range(N)]))
         if fr is not None:
-            pcols = [V(c) for c in fr[3]]
-            cols += [("efficiency", V(fr[0])), ("friction_power", V(fr[1])), ("driving_power", V(fr[2])),
+            pcols = fr[3]
+            cols += [("efficiency", fr[0]), ("friction_power", fr[1]), ("driving_power", fr[2]),
                      ("friction_pairs", [dict(zip(jkeys, r)) for r in zip(*pcols)] if pcols
                       else [{} for _ in range(N)])]
         else:
             cols.append(("efficiency", none))
-        cols.append(("near_singular", [bool(x) for x in near]))
+        cols.append(("near_singular", near))
         keys = [k for k, _ in cols]
         # clean values by construction (tmm_cli.results.Entries)
         entries = Entries(dict(zip(keys, row)) for row in zip(*[c for _, c in cols]))
