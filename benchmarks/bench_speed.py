@@ -20,7 +20,9 @@ interleaved (A, B, A, B, ...), each repeated (>= 5 times); medians and the sprea
   run of the same task;
 * with --kinetostatics: loads + kinetostatics + the results entries at 36,000 positions of
   the six-bar of bench_kinetostatics.py, each in a fresh process (target <= 1 s and
-  <= 200 MB peak), interleaved with the kinematics alone at the same positions.
+  <= 200 MB peak), interleaved with the kinematics alone at the same positions, and with
+  `tmm run --format json` of the six-bar at 3600 positions (the most `positions.count`
+  allows) and at 12, and the import floor (CPU and peak RSS of each process).
 
 The commands run as an installed tmm does: with the bytecode cache (pip compiles it at
 install), so a PYTHONDONTWRITEBYTECODE of the environment is dropped for them (the cache
@@ -238,6 +240,7 @@ def batch(repeat: int, n: int, base: Path | None = None) -> None:
 # ----------------------------------------------------------------- kinetostatics at 36,000
 _KS_CODE = """
 import resource, sys, time
+import numpy as np
 sys.path.insert(0, {bench!r})
 from bench_kinetostatics import SIX
 from tmm_cli import load_task
@@ -267,18 +270,59 @@ print(time.perf_counter() - t0, time.process_time() - c0,
 """
 
 
-def kinetostatics_big(repeat: int, n: int = 36000) -> None:
+def _run_peak(cmd: list[str]) -> tuple[float, float, float]:
+    """(wall, cpu, peak RSS in MB) of one subprocess (its own rusage, by wait4)."""
+    t0 = time.perf_counter()
+    p = subprocess.Popen(cmd, cwd=ROOT, env=_ENV, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    _, status, ru = os.wait4(p.pid, 0)
+    wall = time.perf_counter() - t0
+    err = p.stderr.read().decode(errors="replace")
+    p.stderr.close()
+    p.returncode = os.waitstatus_to_exitcode(status)
+    if p.returncode != 0:
+        raise SystemExit(f"{' '.join(cmd)} failed ({p.returncode}):\n{err[-2000:]}")
+    return wall, ru.ru_utime + ru.ru_stime, ru.ru_maxrss / 1024.0
+
+
+def _six_task(path: Path, count: int) -> Path:
+    """The six-bar of bench_kinetostatics.py as a task file at ``count`` positions (written
+    by a child process: this one stays small, as the peak RSS of a child it starts counts
+    this process's size at the start)."""
+    code = ("import sys, yaml; sys.path.insert(0, sys.argv[1]); from bench_kinetostatics import SIX; "
+            "open(sys.argv[2], 'w', encoding='utf-8').write(yaml.safe_dump({**SIX, 'positions': "
+            "{'count': int(sys.argv[3])}}, sort_keys=False))")
+    subprocess.run([sys.executable, "-c", code, str(ROOT / "benchmarks"), str(path), str(count)], check=True,
+                   cwd=ROOT, env=_ENV)
+    return path
+
+
+def kinetostatics_big(repeat: int, n: int = 36000, n_cli: int = 3600) -> None:
     """Each in a fresh process, interleaved: the kinematics alone (solve), the kinematics
-    and its results entries, and loads + kinetostatics + its results entries."""
+    and its results entries, and loads + kinetostatics + its results entries (in one
+    process, at ``n`` positions); and the command line, `tmm run --format json` of the
+    same six-bar at ``n_cli`` positions (a task's `positions.count` is at most 3600) and
+    at 12, against the import floor (peak RSS and CPU of each process)."""
     cases = (("kinematics", False, False), ("kinematics+entries", False, True),
              ("kinetostatics", True, True))
     out: dict[str, list[list[float]]] = {c[0]: [] for c in cases}
-    for _ in range(repeat):
-        for name, full, entries in cases:
-            code = _KS_CODE.format(bench=str(ROOT / "benchmarks"), n=n, full=full, entries=entries)
-            p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, env=_ENV,
-                               check=True)
-            out[name].append([float(x) for x in p.stdout.split()])
+    with tempfile.TemporaryDirectory() as tmp:
+        tmm = [sys.executable, "-m", "tmm_cli", "run"]
+        clis = {"floor": [sys.executable, "-c", "import numpy, pydantic, yaml"],
+                "cli json 12": tmm + [str(_six_task(Path(tmp) / "six12.yaml", 12)), "--format", "json",
+                                      "--quiet", "--out", f"{tmp}/o12"],
+                f"cli json {n_cli}": tmm + [str(_six_task(Path(tmp) / "six.yaml", n_cli)), "--format", "json",
+                                            "--quiet", "--out", f"{tmp}/o"]}
+        cli_out: dict[str, list[tuple[float, float, float]]] = {k: [] for k in clis}
+        for c in clis.values():                     # warm-up (bytecode and disk caches)
+            _run_peak(c)
+        for _ in range(repeat):
+            for name, full, entries in cases:
+                code = _KS_CODE.format(bench=str(ROOT / "benchmarks"), n=n, full=full, entries=entries)
+                p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT,
+                                   env=_ENV, check=True)
+                out[name].append([float(x) for x in p.stdout.split()])
+            for k, c in clis.items():
+                cli_out[k].append(_run_peak(c))
     print(f"kinetostatics at {n} positions (six-bar with friction: loads, three methods, the results "
           f"entries), {repeat} interleaved rounds, each in a fresh process; s and MB: median [min-max]")
     for name, rows in out.items():
@@ -289,6 +333,16 @@ def kinetostatics_big(repeat: int, n: int = 36000) -> None:
     print(f"  target: <= 1 s {'ok' if statistics.median(k[1]) <= 1 else 'OVER'} (cpu), "
           f"<= 200 MB {'ok' if statistics.median(k[3]) <= 200 else 'OVER'} (process peak)")
     _ratio_line("kinetostatics / kinematics alone (cpu)", list(k[1]), [r[1] for r in out["kinematics"]], None)
+    print(f"  the command line, the same six-bar, interleaved with the above; peak RSS of each process")
+    for name, rows in cli_out.items():
+        cols = list(zip(*rows))
+        print(f"  {name:19s} wall {_stat(list(cols[0]))}   cpu {_stat(list(cols[1]))}   peak RSS {_stat(list(cols[2]))}")
+    for name in clis:
+        if name != "floor":
+            _ratio_line(f"{name} / import floor (cpu)", [r[1] for r in cli_out[name]],
+                        [r[1] for r in cli_out["floor"]], None)
+    _ratio_line(f"cli json {n_cli} / 12 (cpu)", [r[1] for r in cli_out[f"cli json {n_cli}"]],
+                [r[1] for r in cli_out["cli json 12"]], None)
 
 
 def against(repeat: int, base: Path) -> None:

@@ -20,6 +20,7 @@ import re
 import tempfile
 import time
 from pathlib import Path
+from typing import Callable
 
 MANIFEST = ".tmm-manifest.json"
 # mkstemp(prefix=".NAME.", suffix=".tmp"): eight random characters
@@ -40,9 +41,12 @@ def file_mode() -> int:
     return 0o666 & ~mask
 
 
-def atomic_write(path: str | os.PathLike, data: bytes | str, encoding: str = "utf-8") -> Path:
+def atomic_write(path: str | os.PathLike, data: bytes | str | Callable[[Callable[[bytes], object]], None],
+                 encoding: str = "utf-8") -> Path:
     """Write ``data`` to ``path`` through a temporary file in the same folder and
-    ``os.replace`` it into place, so readers see either the old or the new file."""
+    ``os.replace`` it into place, so readers see either the old or the new file.
+    ``data`` may be a function given the temporary file's ``write`` (bytes), to write a
+    large file piece by piece."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     raw = data.encode(encoding) if isinstance(data, str) else data
@@ -55,7 +59,10 @@ def atomic_write(path: str | os.PathLike, data: bytes | str, encoding: str = "ut
         if hasattr(os, "fchmod"):
             os.fchmod(fd, file_mode())
         with os.fdopen(fd, "wb") as fh:
-            fh.write(raw)
+            if callable(raw):
+                raw(fh.write)
+            else:
+                fh.write(raw)
             fh.flush()
             os.fsync(fh.fileno())
         os.replace(tmp, path)
