@@ -91,6 +91,32 @@ def test_cached_validator_is_pydantics(cached):
     assert n > 2000
 
 
+def _strict(a, b) -> bool:
+    """Equal values of the same types, dict keys in the same order."""
+    if type(a) is not type(b):
+        return False
+    if isinstance(a, dict):
+        return list(a) == list(b) and all(_strict(a[k], b[k]) for k in a)
+    if isinstance(a, (list, tuple)):
+        return len(a) == len(b) and all(_strict(x, y) for x, y in zip(a, b))
+    return a == b or (a != a and b != b)
+
+
+def test_cached_serializer_is_pydantics(cached, monkeypatch):
+    """The report's dump of the task (the serializer made from the cached schema): the
+    very dict model_dump gives, on every example, with and without the report's options."""
+    mine, _ = cached
+    monkeypatch.setattr(Task, "__pydantic_complete__", False)      # as in a fresh process
+    monkeypatch.setattr(schemacache, "_SERIALIZERS", {})
+    ser = schemacache.serializer(Task)
+    assert ser is not Task.__pydantic_serializer__
+    for f in EXAMPLES:
+        data, _ = load_yaml(f)
+        t = mine.validate_python(data)
+        for kw in ({"exclude_none": True, "by_alias": True}, {}):
+            assert _strict(ser.to_python(t, **kw), t.model_dump(**kw)), (f.name, kw)
+
+
 @pytest.mark.parametrize("name", ["MechanismSection", "PositionsSection"])
 def test_cached_section_validators_are_pydantics(name, tmp_path, monkeypatch):
     """The sections validated on their own (a synthesis's generated mechanism, its

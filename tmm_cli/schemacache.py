@@ -95,15 +95,46 @@ def validator(model: type):
     return v
 
 
-def load(model: type):
-    """The model's validator from the cache, or None (no cache, or a stale one)."""
+_SERIALIZERS: dict[type, object] = {}
+
+
+def serializer(model: type):
+    """The serializer of a model of the task (what ``model_dump`` runs): the model's own
+    once built, else one made from the core schema cached by an earlier run (the same
+    schema the validator is made of), else the model's, built now and cached."""
+    if model.__pydantic_complete__:
+        return model.__pydantic_serializer__
+    s = _SERIALIZERS.get(model)
+    if s is None:
+        sc = _schema(model)
+        if sc is None:
+            model.model_rebuild()
+            save(model)
+            return model.__pydantic_serializer__
+        from pydantic_core import SchemaSerializer
+        s = _SERIALIZERS[model] = SchemaSerializer(*sc)
+    return s
+
+
+def _schema(model: type):
+    """(core schema, core config) of the model from the cache, or None (no cache, or a stale one)."""
     try:
         with open(_path(model), "rb") as fh:
             if pickle.load(fh) != _stamp(model):         # two pickles: the stamp, then the validator
                 return None
-            schema, config = pickle.load(fh)
+            return pickle.load(fh)
+    except Exception:  # noqa: BLE001 - a cache that cannot be read is no cache: pydantic builds the model
+        return None
+
+
+def load(model: type):
+    """The model's validator from the cache, or None (no cache, or a stale one)."""
+    sc = _schema(model)
+    if sc is None:
+        return None
+    try:
         from pydantic_core import SchemaValidator
-        return SchemaValidator(schema, config)
+        return SchemaValidator(*sc)
     except Exception:  # noqa: BLE001 - a cache that cannot be read is no cache: pydantic builds the validator
         return None
 

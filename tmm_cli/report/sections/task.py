@@ -291,6 +291,11 @@ def _dump(task) -> dict:
         return {}
     if hasattr(task, "model_dump"):
         try:
+            if hasattr(type(task), "__pydantic_complete__"):
+                # the model's serializer made from the cached schema (as its validator is):
+                # model_dump would build the whole model first (~40 ms)
+                from ...schemacache import serializer
+                return serializer(type(task)).to_python(task, exclude_none=True, by_alias=True)
             return task.model_dump(exclude_none=True, by_alias=True)
         except TypeError:
             return task.model_dump()
