@@ -45,6 +45,7 @@ class State:
         self._csk: dict[int, tuple[np.ndarray, np.ndarray]] = {}   # given to set_pose
         self._gd: dict[int, tuple] = {}       # id(PCon) -> (g, (psi, e)): guide directions
         self._pd: dict[tuple, tuple] = {}     # (b, u) -> point_d(b, u)
+        self._work: np.ndarray | None = None
         # boolean mask of the positions where a group's velocity equations are singular
         # (their derivatives the mean of the two sides), None where there are none
         self.singular: np.ndarray | None = None
@@ -79,6 +80,14 @@ class State:
         self.th2[b] = th2
         if self._pd:
             self._forget(b)
+
+    def release(self, b: int) -> None:
+        """Forget body b's origin and its derivatives and the cosine and sine of its
+        angle (kept: the angle and its derivatives); for a State whose points are all
+        taken, to hold less memory while the results are being built."""
+        for d in (self.o, self.o1, self.o2, self._cs, self._csk):
+            d.pop(b, None)
+        self._forget(b)
 
     def guide(self, con) -> tuple[np.ndarray, np.ndarray]:
         """(psi, e) of prismatic pair ``con``: its guide's direction psi = th_g + a (N,)
@@ -139,20 +148,48 @@ class State:
             hit = self._pd[key] = self._point_d(b, u)
         return hit
 
+    def work(self) -> np.ndarray:
+        """Scratch rows (5, N) for the temporaries of :meth:`_point_d` (one block per
+        State: no fresh allocation, and no fresh pages, per point)."""
+        w = self._work
+        if w is None:
+            w = self._work = np.empty((5, self.N))
+        return w
+
     def _point_d(self, b: int, u):
-        ru = self.rot(b, u)
-        rx, ry = ru[:, 0], ru[:, 1]
+        w = self.work()
+        rx, ry, t11, tmp, tmp2 = w
+        c, s = self.cs(b)
+        u0, u1 = float(u[0]), float(u[1])
+        if u1 == 0.0:                   # the same operations as rot()
+            np.multiply(c, u0, out=rx)
+            np.multiply(s, u0, out=ry)
+        else:
+            np.multiply(c, u0, out=rx)
+            np.multiply(s, u1, out=tmp)
+            np.subtract(rx, tmp, out=rx)
+            np.multiply(s, u0, out=ry)
+            np.multiply(c, u1, out=tmp)
+            np.add(ry, tmp, out=ry)
         t1 = self.th1[b]
         t2 = self.th2[b]
-        t11 = t1 * t1
-        p = self.o[b] + ru
-        o1, o2 = self.o1[b], self.o2[b]
-        d1 = np.empty((self.N, 2))
-        np.subtract(o1[:, 0], t1 * ry, out=d1[:, 0])
-        np.add(o1[:, 1], t1 * rx, out=d1[:, 1])
-        d2 = np.empty((self.N, 2))
-        np.subtract(o2[:, 0], t2 * ry + t11 * rx, out=d2[:, 0])
-        np.add(o2[:, 1], t2 * rx - t11 * ry, out=d2[:, 1])
+        np.multiply(t1, t1, out=t11)
+        o, o1, o2 = self.o[b], self.o1[b], self.o2[b]
+        p, d1, d2 = np.empty((self.N, 2)), np.empty((self.N, 2)), np.empty((self.N, 2))
+        np.add(o[:, 0], rx, out=p[:, 0])
+        np.add(o[:, 1], ry, out=p[:, 1])
+        np.multiply(t1, ry, out=tmp)
+        np.subtract(o1[:, 0], tmp, out=d1[:, 0])
+        np.multiply(t1, rx, out=tmp)
+        np.add(o1[:, 1], tmp, out=d1[:, 1])
+        np.multiply(t2, ry, out=tmp)
+        np.multiply(t11, rx, out=tmp2)
+        np.add(tmp, tmp2, out=tmp)
+        np.subtract(o2[:, 0], tmp, out=d2[:, 0])
+        np.multiply(t2, rx, out=tmp)
+        np.multiply(t11, ry, out=tmp2)
+        np.subtract(tmp, tmp2, out=tmp)
+        np.add(o2[:, 1], tmp, out=d2[:, 1])
         return p, d1, d2
 
     def take(self, idx) -> "State":
@@ -165,6 +202,7 @@ class State:
         sub._csk = {}
         sub._gd = {}
         sub._pd = {}
+        sub._work = None
         return sub
 
 
