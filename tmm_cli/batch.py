@@ -171,8 +171,11 @@ def work(path: Path, out: Path, folder: str, formats: set[str], lang: str, sets:
 
 def stage_failure_message(exc: BaseException) -> Message | None:
     """A StageError whose message is coded, as one coded message ("stage 'cam' failed at
-    ...: ..."), the text of ``str(exc)``; None for any other failure."""
-    from .errors import StageError
+    ...: ..."), the text of ``str(exc)``; an invalid task (TaskError) as its coded lines
+    (``TaskError.coded``); None for any other failure."""
+    from .errors import StageError, TaskError
+    if isinstance(exc, TaskError):
+        return exc.coded()
     if not isinstance(exc, StageError) or getattr(exc.message, "code", None) is None:
         return None
     pos = exc.position

@@ -17,8 +17,10 @@ The catalogues are one YAML file per language beside this module (``en.yaml``,
       phase: {rise: удаление, far_dwell: дальний выстой}
 
 A placeholder ``{where:phase}`` renders the parameter through the language's ``phase``
-table (each ``/``-separated part, joined by `` / ``; a list joined by ``, ``); any other
-spec is a Python format spec (a list parameter: each item formatted, joined by ``, ``).
+table (the whole value, else each ``/``-separated part, joined by `` / ``; a list joined by
+``, ``); the spec ``or`` joins a list as alternatives (``'a', 'b' or 'c'``, the word from the
+language's ``conj`` table); a list of messages is rendered one a line; any other spec is a
+Python format spec (a list parameter: each item formatted, joined by ``, ``).
 Parameters are plain JSON values (numbers in the unit the text shows).  Adding a
 language is adding its catalogue file (and its report table in
 :mod:`tmm_cli.report.i18n`); tests/test_messages.py checks that every code and
@@ -61,10 +63,18 @@ class _Formatter(string.Formatter):
     def format_field(self, value: Any, spec: str) -> str:
         if isinstance(value, dict) and "code" in value:      # a message inside a message
             return localize(value, self.lang)
+        if isinstance(value, list) and value and all(isinstance(v, dict) and "code" in v for v in value):
+            return "\n".join(localize(v, self.lang) for v in value)     # messages: one a line
+        if spec == "or" and isinstance(value, list):        # alternatives: 'a', 'b' or 'c'
+            word = self.terms.get("conj", {}).get("or", "or")
+            items = [str(v) for v in value]
+            return items[0] if len(items) == 1 else f"{', '.join(items[:-1])} {word} {items[-1]}"
         table = self.terms.get(spec) if spec else None
         if table is not None:
             if isinstance(value, list):
                 return ", ".join(str(table.get(str(v), v)) for v in value)
+            if str(value) in table:
+                return str(table[str(value)])
             return " / ".join(str(table.get(p, p)) for p in str(value).split("/"))
         if isinstance(value, list):
             return ", ".join(format(v, spec) for v in value)
