@@ -679,3 +679,45 @@ def test_batch_invalid_variants_in_the_summary_language(tmp_path, lang):
             assert f"{where}: поле «{field}»: " in html, name
         assert (ru if lang == "ru" else uk) in html, (name, lang)
         assert first not in html, name                               # no English line left
+
+
+def test_batch_resends_a_variant_whose_idle_worker_was_killed(tmp_path, monkeypatch):
+    """A worker killed from outside while idle, just as a variant is sent to it, never began
+    that variant: a fresh worker runs it (once). A variant that kills its own worker is not
+    run again: its row says the worker died."""
+    import signal
+
+    import tmm_cli.batch as b
+    real_work, real_send = b.work, b._Slot.send
+    runs = tmp_path / "runs.txt"
+
+    def work(path, *a):
+        with open(runs, "a") as fh:
+            fh.write(Path(path).stem + "\n")
+        if Path(path).stem == "crash":
+            os.kill(os.getpid(), signal.SIGKILL)
+        return real_work(path, *a)
+
+    sent = []
+
+    def send(self, i):
+        sent.append(i)
+        if len(sent) == 2:                      # the second variant: its worker waits idle for it
+            os.kill(self.proc.pid, signal.SIGSTOP)   # stopped: alive, but it will never read the index
+            ok = real_send(self, i)
+            os.kill(self.proc.pid, signal.SIGKILL)
+            return ok
+        return real_send(self, i)
+
+    monkeypatch.setattr(b, "work", work)
+    monkeypatch.setattr(b._Slot, "send", send)
+    src = tmp_path / "src"
+    for name in ("a1", "a2", "crash", "a4"):
+        _write(src, f"{name}.yaml", GEARS.format(v=1))
+    res = runner.invoke(app, ["batch", str(src), "--out", str(tmp_path / "o"), "--jobs", "1"])
+    rows = {Path(r["file"]).stem: r for r in _csv(tmp_path / "o" / "summary.csv")}
+    assert rows["a1"]["status"] == rows["a2"]["status"] == rows["a4"]["status"] == "ok", rows
+    assert rows["crash"]["status"] == "failed" and "SIGKILL" in rows["crash"]["message"]
+    assert sorted(runs.read_text().split()) == ["a1", "a2", "a4", "crash"]   # each run once
+    assert sent == [0, 1, 1, 2, 3]              # a2 sent twice: to the killed worker, then a fresh one
+    assert res.exit_code == 3
