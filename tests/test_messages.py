@@ -347,7 +347,7 @@ ENGLISH = [
      'the guide of the prismatic pair slider/rocker must keep its offset from the pivot C, which is closer to A than that offset'),
     ('kinematics.reason.parallel_guides', {},
      'the guides of the group are parallel (the prismatic pairs lock)'),
-    ('kinematics.fail.intervals', {'group': 'II(2,3)', 'links': ['rod', 'slider'], 'intervals': '95.123457..110.765432, 250.000000..265.500000', 'reason': {'code': 'kinematics.reason.rrr_far', 'params': {'pa': 'A', 'pb': 'D', 'pc': 'B', 'd': 0.51234567, 'la': 0.2, 'lb': 0.25, 'link_a': 'rod', 'link_b': 'rocker'}, 'text': '|AD| = 0.512346 m > |AB| + |BD| = 0.2 + 0.25 m (links rod and rocker cannot reach)'}},
+    ('kinematics.fail.intervals', {'group': 'II(2,3)', 'links': ['rod', 'slider'], 'intervals': [[95.1234567, 110.7654321], [250.0, 265.5]], 'reason': {'code': 'kinematics.reason.rrr_far', 'params': {'pa': 'A', 'pb': 'D', 'pc': 'B', 'd': 0.51234567, 'la': 0.2, 'lb': 0.25, 'link_a': 'rod', 'link_b': 'rocker'}, 'text': '|AD| = 0.512346 m > |AB| + |BD| = 0.2 + 0.25 m (links rod and rocker cannot reach)'}},
      'group II(2,3) (links rod, slider) does not assemble for crank angles 95.123457..110.765432, 250.000000..265.500000 deg: |AD| = 0.512346 m > |AB| + |BD| = 0.2 + 0.25 m (links rod and rocker cannot reach)'),
     ('positions.fail.output_turns', {'link': 'slider'},
      "the output link 'slider' has no extreme positions (it turns fully), so stroke-based loads cannot be placed"),
@@ -443,7 +443,7 @@ def test_catalogue_complete(lang):
         assert set(got) == set(want), (lang, code)
         for name, specs in got.items():
             for spec in specs:
-                assert spec in want[name] or spec in cat["terms"], (lang, code, name, spec)
+                assert spec in want[name] or spec in cat["terms"] or spec in messages.SPECS, (lang, code, name, spec)
     for other in OTHERS:
         terms = catalogue(other)["terms"]
         assert set(terms) == set(cat["terms"])
@@ -651,3 +651,17 @@ def test_task_error_coded_is_its_text_in_every_language(tmp_path):
     assert any("невідома одиниця вимірювання «rmp» у «90 rmp»" in x for x in uk)
     plain = TaskError("x", file="a.yaml", issues=[("f", 3, None, "a check with no code")])
     assert localize(plain.coded().to_dict(), "ru") == "a.yaml:3: поле «f»: a check with no code"
+
+
+def test_crank_angle_intervals_are_data_formatted_per_language():
+    """A group's failing intervals are [from, to] pairs in degrees: the English text keeps
+    its six decimals (stderr, results.json); Russian and Ukrainian show φ = a…b° to 0.1°,
+    finer where an interval is narrower than the rounding."""
+    reason = Message("kinematics.reason.no_solution")
+    m = Message("kinematics.fail.intervals", group="II(2,3)", links=["rod", "ram"], reason=reason,
+                intervals=[[37.46, 52.14], [350.0, 10.25], [120.012, 120.048]])
+    assert m.params["intervals"] == [[37.46, 52.14], [350.0, 10.25], [120.012, 120.048]]
+    assert "crank angles 37.460000..52.140000, 350.000000..10.250000, 120.012000..120.048000 deg:" in m
+    ru = render(m.code, m.params, "ru")
+    assert "при углах кривошипа φ = 37.5…52.1°, 350.0…10.2°, 120.01…120.05°: уравнения" in ru
+    assert "φ = 37.5…52.1°" in render(m.code, m.params, "uk")

@@ -19,8 +19,10 @@ The catalogues are one YAML file per language beside this module (``en.yaml``,
 A placeholder ``{where:phase}`` renders the parameter through the language's ``phase``
 table (the whole value, else each ``/``-separated part, joined by `` / ``; a list joined by
 ``, ``); the spec ``or`` joins a list as alternatives (``'a', 'b' or 'c'``, the word from the
-language's ``conj`` table); a list of messages is rendered one a line; any other spec is a
-Python format spec (a list parameter: each item formatted, joined by ``, ``).
+language's ``conj`` table); the spec ``angles`` shows crank-angle intervals ``[[a, b], ...]``
+as ``φ = 37.5…52.1°`` (:data:`SPECS`); a list of messages is rendered one a line; any other
+spec is a Python format spec (a list parameter: each item formatted -- an interval ``[a, b]``
+as ``a..b`` --, joined by ``, ``).
 Parameters are plain JSON values (numbers in the unit the text shows).  Adding a
 language is adding its catalogue file (and its report table in
 :mod:`tmm_cli.report.i18n`); tests/test_messages.py checks that every code and
@@ -39,6 +41,21 @@ LANGS = ("en",) + tuple(sorted(p.stem for p in _DIR.glob("*.yaml") if p.stem != 
 
 # a warning given as a plain string (not a Message): shown as written in every language
 PLAIN = "text"
+# format specs the formatter knows beside Python's and the word tables: `or` (alternatives)
+# and `angles` (crank-angle intervals [[from, to], ...] in degrees: "φ = 37.5…52.1°")
+SPECS = ("or", "angles")
+
+
+def _angles(intervals: list) -> str:
+    """Crank-angle intervals as "φ = 37.5…52.1°, 250.0…265.5°": to 0.1°, or finer (to
+    0.001°) where an interval would show the same number at both ends."""
+    out = []
+    for a, b in intervals:
+        d = 1
+        while d < 3 and f"{a:.{d}f}" == f"{b:.{d}f}":
+            d += 1
+        out.append(f"{a:.{d}f}…{b:.{d}f}°")
+    return "φ = " + ", ".join(out)
 
 
 @functools.cache
@@ -65,6 +82,8 @@ class _Formatter(string.Formatter):
             return localize(value, self.lang)
         if isinstance(value, list) and value and all(isinstance(v, dict) and "code" in v for v in value):
             return "\n".join(localize(v, self.lang) for v in value)     # messages: one a line
+        if spec == "angles" and isinstance(value, list):
+            return _angles(value)
         if spec == "or" and isinstance(value, list):        # alternatives: 'a', 'b' or 'c'
             word = self.terms.get("conj", {}).get("or", "or")
             items = [str(v) for v in value]
@@ -76,8 +95,9 @@ class _Formatter(string.Formatter):
             if str(value) in table:
                 return str(table[str(value)])
             return " / ".join(str(table.get(p, p)) for p in str(value).split("/"))
-        if isinstance(value, list):
-            return ", ".join(format(v, spec) for v in value)
+        if isinstance(value, list):                          # an interval [a, b]: a..b
+            return ", ".join(f"{format(v[0], spec)}..{format(v[1], spec)}" if isinstance(v, list) and len(v) == 2
+                             else format(v, spec) for v in value)
         return format(value, spec)
 
 
