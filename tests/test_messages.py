@@ -138,6 +138,34 @@ ENGLISH = [
                             'message': {'code': 'cam.fail.stroke', 'params': {}, 'text': 'the stroke must be positive'}},
      "stage 'cam' failed: the stroke must be positive"),
     ('batch.at_angle', {'angle': 123.4567891}, ' at crank angle 123.457 deg'),
+    # structure: a linkage the crank cannot drive (the former f-strings of linkage/structure.py)
+    ('structure.fail.reasons', {'reasons': [
+        {'code': 'structure.fail.lonely_point', 'params': {'point': 'C', 'link': 'rod', 'hint': {
+            'code': 'structure.fail.point_hint', 'params': {'point': 'B'}, 'text': 'x'}}, 'text': 'x'},
+        {'code': 'structure.fail.inputs', 'params': {'W': 3, 'n': 3, 'p5': 3, 'p4': 0}, 'text': 'x'},
+        {'code': 'structure.fail.idle', 'params': {'links': ['rod', 'ram']}, 'text': 'x'}]},
+     "point C is used by rod only: a pair needs two links — did you mean B?; W = 3: by Chebyshev's formula "
+     "W = 3*3 - 2*3 - 0 = 3; one crank cannot define the motion (n = 3, p5 = 3); the linkage needs 3 inputs; "
+     "idle degree(s) of freedom: link(s) rod, ram with a single pair"),
+    ('structure.fail.lonely_point', {'point': 'E', 'link': 'link4', 'hint': {'code': 'text', 'params': {'text': ''},
+                                                                          'text': ''}},
+     'point E is used by link4 only: a pair needs two links'),
+    ('structure.fail.point_hint', {'point': 'C'}, ' — did you mean C?'),
+    ('structure.fail.rigid', {'W': 0, 'n': 4, 'p5': 6, 'p4': 0},
+     "W = 0: by Chebyshev's formula W = 3n - 2p5 - p4 = 3*4 - 2*6 - 0 = 0, the linkage is a rigid structure "
+     "(n = 4 moving links, p5 = 6 lower pairs)"),
+    ('structure.fail.over_constrained', {'W': -1, 'n': 3, 'p5': 5, 'p4': 0},
+     "W = -1: by Chebyshev's formula W = 3n - 2p5 - p4 = 3*3 - 2*5 - 0 = -1, the linkage is an over-constrained "
+     "structure (n = 3 moving links, p5 = 5 lower pairs)"),
+    ('structure.fail.special_dimensions', {},
+     'it can move only thanks to special dimensions (passive constraints); remove the redundant link or pair'),
+    ('structure.fail.inputs', {'W': 2, 'n': 4, 'p5': 5, 'p4': 0},
+     "W = 2: by Chebyshev's formula W = 3*4 - 2*5 - 0 = 2; one crank cannot define the motion (n = 4, p5 = 5); "
+     "the linkage needs 2 inputs"),
+    ('structure.fail.idle', {'links': ['rod']}, 'idle degree(s) of freedom: link(s) rod with a single pair'),
+    ('structure.fail.no_groups', {'links': ['a', 'b'], 'crank': 'crank'},
+     "links a, b cannot be split into Assur groups attached to the crank 'crank' (passive constraints and idle "
+     "freedoms cancel in Chebyshev's formula?)"),
     # an invalid task (TaskError): the lines of `tmm run` on a broken task (stderr as before)
     ('input.issues', {'issues': [
         {'code': 'input.at_field', 'params': {'where': 't.yaml:12:29', 'field': 'mechanism.links.crank.lenght',

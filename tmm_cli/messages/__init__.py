@@ -19,8 +19,9 @@ The catalogues are one YAML file per language beside this module (``en.yaml``,
 A placeholder ``{where:phase}`` renders the parameter through the language's ``phase``
 table (the whole value, else each ``/``-separated part, joined by `` / ``; a list joined by
 ``, ``); the spec ``or`` joins a list as alternatives (``'a', 'b' or 'c'``, the word from the
-language's ``conj`` table); the spec ``angles`` shows crank-angle intervals ``[[a, b], ...]``
-as ``φ = 37.5…52.1°`` (:data:`SPECS`); a list of messages is rendered one a line; any other
+language's ``conj`` table); a list of messages is one a line, or with ``joined`` one line
+joined by ``; ``; the spec ``angles`` shows crank-angle intervals ``[[a, b], ...]``
+as ``φ = 37.5…52.1°`` (:data:`SPECS`); any other
 spec is a Python format spec (a list parameter: each item formatted -- an interval ``[a, b]``
 as ``a..b`` --, joined by ``, ``).
 Parameters are plain JSON values (numbers in the unit the text shows).  Adding a
@@ -42,8 +43,9 @@ LANGS = ("en",) + tuple(sorted(p.stem for p in _DIR.glob("*.yaml") if p.stem != 
 # a warning given as a plain string (not a Message): shown as written in every language
 PLAIN = "text"
 # format specs the formatter knows beside Python's and the word tables: `or` (alternatives)
-# and `angles` (crank-angle intervals [[from, to], ...] in degrees: "φ = 37.5…52.1°")
-SPECS = ("or", "angles")
+# `angles` (crank-angle intervals [[from, to], ...] in degrees: "φ = 37.5…52.1°") and
+# `joined` (a list of messages in one line, joined by "; "; without it: one a line)
+SPECS = ("or", "angles", "joined")
 
 
 def _angles(intervals: list) -> str:
@@ -81,7 +83,7 @@ class _Formatter(string.Formatter):
         if isinstance(value, dict) and "code" in value:      # a message inside a message
             return localize(value, self.lang)
         if isinstance(value, list) and value and all(isinstance(v, dict) and "code" in v for v in value):
-            return "\n".join(localize(v, self.lang) for v in value)     # messages: one a line
+            return ("; " if spec == "joined" else "\n").join(localize(v, self.lang) for v in value)
         if spec == "angles" and isinstance(value, list):
             return _angles(value)
         if spec == "or" and isinstance(value, list):        # alternatives: 'a', 'b' or 'c'
