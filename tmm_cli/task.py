@@ -15,6 +15,7 @@ from pydantic import (BaseModel, ConfigDict, Field, PrivateAttr, ValidationError
                       field_validator, model_validator)
 
 from .errors import TaskError
+from .messages import Message
 from .modelbase import PLANETARY_ALIASES, PLANETARY_SCHEMES, FieldValueError, _Model
 from .units import (Angle, AngularSpeed, Area, Density, ForceOrPressure, Inertia,
                     Length, Mass, MomentQ, Number, Ratio)
@@ -83,7 +84,7 @@ class LinkSpec(_Model):
         if self.points is not None and self.length is None:
             raise ValueError("a bar link needs `length`")
         if self.length is not None and self.length <= 0:
-            raise ValueError("`length` must be positive")
+            raise ValueError(Message("input.length_positive"))
         if self.slider is not None and self.guide is None:
             raise ValueError("a slider needs a `guide`")
         if self.slider is not None and self.length is not None:
@@ -166,7 +167,7 @@ class DiagramSpec(_Model):
         if (self.s is None) == (self.phi is None):
             raise ValueError("a diagram needs exactly one abscissa: `s` (relative stroke) or `phi` (crank angle)")
         if len(x) != len(self.value):
-            raise ValueError(f"abscissa and `value` differ in length ({len(x)} vs {len(self.value)})")
+            raise ValueError(Message("input.diagram_lengths", n_x=len(x), n_value=len(self.value)))
         if len(x) < 2:
             raise ValueError("a diagram needs at least two points")
         if any(b < a for a, b in zip(x, x[1:])):
@@ -558,7 +559,7 @@ class Task(_Model):
     @classmethod
     def _schema(cls, v):
         if v != "tmm/1":
-            raise ValueError(f"unsupported schema {v!r}; this tool reads 'tmm/1'")
+            raise ValueError(Message("input.schema", got=repr(v)))
         return v
 
     @model_validator(mode="after")
@@ -696,6 +697,7 @@ def _issue_from_error(err: dict, marks: dict) -> tuple[str, int | None, int | No
         msg = "required field is missing"
     elif err["type"] == "literal_error":
         msg = f"{msg}; got {err.get('input')!r}"
+    msg = _coded_issue(err, cause, msg)
     path = tuple(clean)
     if path and path[0] == "schema_":
         path = ("schema",) + path[1:]
@@ -711,6 +713,41 @@ def _issue_from_error(err: dict, marks: dict) -> tuple[str, int | None, int | No
             break
         p = p[:-1]
     return _dotted(path), line, col, msg
+
+
+# pydantic's error types a student meets, as catalogue codes (input.<type>) with the
+# parameters of pydantic's own message (its `ctx`)
+_PYDANTIC_CODES = {"int_parsing": (), "float_parsing": (), "bool_parsing": (), "int_from_float": (),
+                   "int_type": (), "float_type": (), "bool_type": (), "string_type": (), "dict_type": (),
+                   "list_type": (), "tuple_type": (), "finite_number": (), "model_type": ("class_name",),
+                   "greater_than": ("gt",), "greater_than_equal": ("ge",), "less_than": ("lt",),
+                   "less_than_equal": ("le",), "too_short": ("field_type", "min_length", "actual_length"),
+                   "too_long": ("field_type", "max_length", "actual_length")}
+
+
+def _coded_issue(err: dict, cause, msg: str) -> str:
+    """An issue's message ``msg`` as a coded Message with the same English text (a
+    validator's own coded message, or one of pydantic's error types); ``msg`` as it is
+    when it has no code, or the coded text would differ from it."""
+    kind, ctx = err["type"], err.get("ctx") or {}
+    coded = None
+    if cause is not None and cause.args and getattr(cause.args[0], "code", None):
+        coded = cause.args[0]
+    elif kind == "missing":
+        coded = Message("input.missing")
+    elif kind == "literal_error":
+        expected = str(ctx.get("expected", ""))
+        coded = Message("input.literal", expected=re.split(r", | or ", expected), got=repr(err.get("input")))
+    elif kind in _PYDANTIC_CODES and all(k in ctx for k in _PYDANTIC_CODES[kind]):
+        coded = Message(f"input.{kind}", **{k: _ctx_text(ctx[k]) for k in _PYDANTIC_CODES[kind]})
+    return coded if coded is not None and coded == msg else msg
+
+
+def _ctx_text(v) -> str:
+    """A value of pydantic's error context as its message shows it (0.0 as 0)."""
+    if isinstance(v, float) and v.is_integer():
+        return str(int(v))
+    return str(v)
 
 
 def _decimal_comma_issues(issues: list, file: str | None, text: str | None) -> list:
@@ -744,8 +781,8 @@ def load_task(source: Union[str, Path, dict], *, text: str | None = None) -> Tas
         file = str(source)
         data, marks = load_yaml(source, text=text)
     if not isinstance(data, dict):
-        raise TaskError("the task file must be a mapping of sections (schema: tmm/1, ...)", file=file,
-                        issues=[("", 1, 1, "the task file must be a mapping of sections (schema: tmm/1, ...)")])
+        msg = Message("input.not_mapping")
+        raise TaskError(msg, file=file, issues=[("", 1, 1, msg)])
     try:
         from .schemacache import validator
         task = validator(Task).validate_python(data)

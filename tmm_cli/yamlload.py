@@ -26,6 +26,7 @@ from typing import Any
 import yaml
 
 from .errors import TaskError
+from .messages import Message
 
 
 MAX_BYTES = 256 << 10        # 256 KiB: the largest course task is a few kB
@@ -174,7 +175,7 @@ def _walk(node: yaml.Node, path: tuple, marks: dict, file: str | None, loader: _
                 raise TaskError("duplicate key", file=file, issues=[(
                     ".".join(map(str, path + (key,))), knode.start_mark.line + 1,
                     knode.start_mark.column + 1,
-                    f"duplicate key '{key}' (first given on line {seen[key]})")])
+                    Message("input.duplicate_key", key=str(key), first=seen[key]))])
             seen[key] = knode.start_mark.line + 1
             marks[path + (key,)] = (knode.start_mark.line + 1, knode.start_mark.column + 1)
             _walk(vnode, path + (key,), marks, file, loader)
@@ -204,7 +205,7 @@ def _tab_indented_line(text: str) -> int | None:
 _DECIMAL_COMMA = re.compile(r"(?<![\w.,])(-?\d+),(\d+)(?![\d.])")
 
 
-def _indent_hint(text: str, line: int | None) -> str:
+def _indent_hint(text: str, line: int | None) -> Message | str:
     """A hint when a syntax error's line is indented unlike the content line before it,
     which does not open a block (``positions:`` / `` count: 12`` / ``  zero: extreme``:
     YAML reports the third line, the second is misindented); else ''."""
@@ -226,12 +227,10 @@ def _indent_hint(text: str, line: int | None) -> str:
         return ""
     if indent(line) > indent(prev) and lines[prev - 1].split("#")[0].rstrip().endswith((":", "-")):
         return ""
-    return (f"; check the indentation of lines {prev} and {line}: the keys of one section start in the "
-            f"same column (line {prev} starts in column {indent(prev) + 1}, line {line} in column "
-            f"{indent(line) + 1})")
+    return Message("input.indent_hint", prev=prev, line=line, col_prev=indent(prev) + 1, col_line=indent(line) + 1)
 
 
-def decimal_comma_hint(line: str) -> str | None:
+def decimal_comma_hint(line: str) -> Message | None:
     """'use a decimal point: 0.38' when a line (outside its comment) holds a number
     written with a decimal comma such as ``0,38``, else None."""
     code = line.split("#", 1)[0]
@@ -240,8 +239,7 @@ def decimal_comma_hint(line: str) -> str | None:
         return None
     if ("[" in code or "{" in code) and not re.search(r",\s", code):
         return None     # a compact list such as [12,42,7]: commas without spaces throughout
-    return (f"use a decimal point: {m.group(1)}.{m.group(2)} (YAML reads '{m.group(0)}' as two "
-            f"numbers or as text)")
+    return Message("input.decimal_comma", fixed=f"{m.group(1)}.{m.group(2)}", given=m.group(0))
 
 
 def load_yaml(source: str | Path, *, text: str | None = None) -> tuple[Any, dict]:
@@ -267,14 +265,14 @@ def load_yaml(source: str | Path, *, text: str | None = None) -> tuple[Any, dict
         tab = _tab_indented_line(text)
         if tab is not None:
             raise TaskError("YAML syntax error", file=file, issues=[(
-                "", tab, 1, "use spaces for indentation: this line is indented with a tab, "
-                            "which YAML does not allow")]) from None
+                "", tab, 1, Message("input.tab"))]) from None
         mark = exc.problem_mark or exc.context_mark
         line = mark.line + 1 if mark else None
         col = mark.column + 1 if mark else None
         raise TaskError("YAML syntax error", file=file,
-                        issues=[("", line, col, f"YAML syntax error: {exc.problem or exc.context}"
-                                 f"{_indent_hint(text, line)}")]) from None
+                        issues=[("", line, col, Message("input.yaml_syntax", problem=str(exc.problem or exc.context),
+                                                        hint=_indent_hint(text, line) or Message("text", text="")))
+                                ]) from None
     except yaml.reader.ReaderError as exc:
         # a character YAML does not allow (a NUL, a control character): the reader gives
         # its offset in the text, not a mark, so count the lines up to it

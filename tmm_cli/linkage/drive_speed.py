@@ -40,7 +40,7 @@ def check_output_speed(value) -> tuple[float, str | None]:
                 kind = k
                 break
         if kind is None:
-            q = _parse(text, "a speed (m/s, rad/s, deg/s)")
+            q = _parse(text, "output_speed")
             for unit, k in (("m/s", "linear"), ("rad/s", "angular")):
                 try:
                     v, kind = float(q.to(unit).magnitude), k

@@ -19,6 +19,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from ..messages import Message
 from ..task import MechanismSection, Task
 
 
@@ -200,9 +201,7 @@ def build_mechanism(task: Task) -> Mechanism:
             else:
                 if isinstance(g.through, str):
                     if g.through not in sec.ground:
-                        raise task.error(lp + ("guide", "through"),
-                                         f"'{g.through}' is not a ground point (fixed guides pass through "
-                                         f"ground points or [x, y])")
+                        raise task.error(lp + ("guide", "through"), Message("input.guide_through", point=g.through))
                     pt = sec.ground[g.through]
                 else:
                     pt = g.through
@@ -248,7 +247,7 @@ def build_mechanism(task: Task) -> Mechanism:
     # a point named in assembly must exist
     for pt in sec.assembly:
         if pt not in owner:
-            raise task.error(P + ("assembly", pt), f"assembly hint for unknown point '{pt}'")
+            raise task.error(P + ("assembly", pt), Message("input.assembly_point", point=pt))
     # S<i> names must not collide with user point names carried by other links
     for lk in links:
         s = f"S{lk.index}"
@@ -298,8 +297,9 @@ def _check_references(task: Task, names: list[str], owner: dict[str, list[int]],
 def _unknown_link(name: str, names: list[str]) -> str:
     import difflib
     close = difflib.get_close_matches(name, names, n=1)
-    hint = f"; did you mean '{close[0]}'?" if close else f"; links: {', '.join(names)}"
-    return f"no link named '{name}'{hint}"
+    if close:
+        return Message("input.no_link", name=name, hint=close[0])
+    return Message("input.no_link_list", name=name, links=names)
 
 
 def rotate(u: float, v: float, ang: float) -> tuple[float, float]:

@@ -490,7 +490,7 @@ class Solver:
             iv = [(lo, hi)]
         mid_deg = iv[0][0] + ((iv[0][1] - iv[0][0]) % 360.0) / 2
         reason = self._reason(gi, mid_deg % 360.0)
-        ivs = ", ".join(f"{a:.6f}..{b:.6f}" for a, b in iv)
+        ivs = [[float(a), float(b)] for a, b in iv]      # degrees; each language formats them
         err = StageError("kinematics", Message("kinematics.fail.intervals", **grp.message_params(), intervals=ivs,
                                                reason=reason), position=pos)
         if sum((b - a) % 360.0 or (360.0 if b > a else 0.0) for a, b in iv) >= 360.0 - 1e-6:
