@@ -179,8 +179,11 @@ def _pdf_bytes(html: str, lang: str = "en") -> bytes:
     return typst_pdf.pdf_bytes(html, lang)
 
 
-# sections the helper process builds while the main process builds the others
-HELPER_SECTIONS = ("kinetostatics", "dynamics")
+# sections the helper process builds while the main process builds the others (and then
+# the helper compiles the PDF): the kinetostatics takes about as long as all the others
+# together (the dynamics section, results key "flywheel", stays in the main process: with
+# it the helper would be the longer by more)
+HELPER_SECTIONS = ("kinetostatics",)
 
 
 PR_SET_PDEATHSIG = 1  # <linux/prctl.h>
@@ -362,8 +365,7 @@ def render(results: dict, task, out_dir: Path, formats: set[str], lang: str = "e
     ``notes`` the PdfSkipped exception propagates.
 
     With two cores the work is split over two processes: a helper (forked) builds
-    the kinetostatics and dynamics sections while the main process builds the
-    other sections; the helper then compiles the PDF while the main process
+    the kinetostatics section while the main process builds the other sections; the helper then compiles the PDF while the main process
     writes report.html.  Any failure of the helper falls back to doing everything here."""
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
