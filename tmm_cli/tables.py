@@ -134,16 +134,10 @@ def read_table(path: str | Path) -> tuple[list[str], list[tuple[int, dict[str, s
 def round_sig(values, digits: int = 7) -> list:
     """Each value rounded to ``digits`` significant digits (a plain float; 0 as 0);
     NaN, inf and None -> None."""
-    out = []
-    for v in values if isinstance(values, (list, tuple)) else _flat(values):
-        v = math.nan if v is None else float(v)
-        if not math.isfinite(v):
-            out.append(None)
-        elif v == 0.0:
-            out.append(0)
-        else:
-            out.append(float(f"{v:.{digits - 1}e}"))
-    return out
+    spec = f"%.{digits - 1}e"
+    fin = math.isfinite
+    return [None if v is None or not fin(w := float(v)) else (0 if w == 0.0 else float(spec % w))
+            for v in (values if isinstance(values, (list, tuple)) else _flat(values))]
 
 
 def _flat(values):

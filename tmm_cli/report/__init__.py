@@ -67,6 +67,36 @@ def _is_numeric(value) -> bool:
     return isinstance(value, str) and bool(_NUM.match(value.strip()))
 
 
+def _bytecode_cache():
+    """Jinja's compiled templates kept between runs like Python's bytecode: in the
+    templates' ``__pycache__`` (or under ``PYTHONPYCACHEPREFIX``), keyed by each template's
+    source and the Python version; none where bytecode is not written. A folder that
+    cannot be written is no cache (the templates are compiled as without one)."""
+    import sys
+    if sys.dont_write_bytecode:
+        return None
+    import os
+    import jinja2
+    from importlib.util import cache_from_source
+
+    class _Cache(jinja2.FileSystemBytecodeCache):
+        def load_bytecode(self, bucket):
+            try:
+                super().load_bytecode(bucket)
+            except Exception:  # noqa: BLE001 - an unreadable entry: compiled afresh
+                bucket.reset()
+
+        def dump_bytecode(self, bucket):
+            try:
+                os.makedirs(self.directory, exist_ok=True)
+                super().dump_bytecode(bucket)
+            except OSError:
+                pass
+
+    folder = os.path.dirname(cache_from_source(str(templates_dir() / "report.py")))
+    return _Cache(folder, "jinja-%s.cache")
+
+
 def make_env():
     import jinja2
     from .context import fmt, fmt_fixed
@@ -75,6 +105,7 @@ def make_env():
         autoescape=jinja2.select_autoescape(["html", "j2", "xml"], default_for_string=True,
                                             default=True),
         trim_blocks=True, lstrip_blocks=True, keep_trailing_newline=True,
+        bytecode_cache=_bytecode_cache(),
     )
     env.filters["fmt"] = fmt
     env.filters["fmt_fixed"] = fmt_fixed
@@ -148,8 +179,11 @@ def _pdf_bytes(html: str, lang: str = "en") -> bytes:
     return typst_pdf.pdf_bytes(html, lang)
 
 
-# sections the helper process builds while the main process builds the others
-HELPER_SECTIONS = ("kinetostatics", "dynamics")
+# sections the helper process builds while the main process builds the others (and then
+# the helper compiles the PDF): the kinetostatics takes about as long as all the others
+# together (the dynamics section, results key "flywheel", stays in the main process: with
+# it the helper would be the longer by more)
+HELPER_SECTIONS = ("kinetostatics",)
 
 
 PR_SET_PDEATHSIG = 1  # <linux/prctl.h>
@@ -331,8 +365,7 @@ def render(results: dict, task, out_dir: Path, formats: set[str], lang: str = "e
     ``notes`` the PdfSkipped exception propagates.
 
     With two cores the work is split over two processes: a helper (forked) builds
-    the kinetostatics and dynamics sections while the main process builds the
-    other sections; the helper then compiles the PDF while the main process
+    the kinetostatics section while the main process builds the other sections; the helper then compiles the PDF while the main process
     writes report.html.  Any failure of the helper falls back to doing everything here."""
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)

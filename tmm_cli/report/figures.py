@@ -291,7 +291,8 @@ class _Segments:
         """Distance from each point (cx[i], cy[i]) to the nearest segment."""
         rx = cx[:, None] - self.ax
         ry = cy[:, None] - self.ay
-        t = np.clip((rx * self.dx + ry * self.dy) / self.L2, 0.0, 1.0)
+        t = (rx * self.dx + ry * self.dy) / self.L2
+        np.minimum(np.maximum(t, 0.0, out=t), 1.0, out=t)        # np.clip(t, 0, 1), without its wrapper
         qx = rx - self.dx * t
         qy = ry - self.dy * t
         return np.sqrt((qx * qx + qy * qy).min(axis=1))
@@ -338,10 +339,7 @@ def place_labels(anchors, extent: float, avoid=(), step: float | None = None, se
     avx, avy = avoid_a[:, 0].copy(), avoid_a[:, 1].copy()
     segs = np.asarray(segments, float).reshape(-1, 2, 2) if segments is not None and len(segments) else None
     seg = _Segments(segs) if segs is not None else None
-    mults = _MULTS + (_FAR if sizes is not None else ())
-    offs = np.concatenate([_DIRS * step * m for m in mults])
-    ring = 0.35 * step * (np.repeat(np.array(mults), len(_DIRS)) - 1)
-    dirs = np.tile(_DIRS, (len(mults), 1))
+    offs, offx, offy, ring, dirs = _candidates(step, sizes is not None)
     taken = taken if isinstance(taken, list) else list(taken)
     # the taken boxes as centres and half sizes (x, y), grown as labels are placed
     tb = np.asarray(taken, float).reshape(-1, 4)
@@ -354,57 +352,96 @@ def place_labels(anchors, extent: float, avoid=(), step: float | None = None, se
     plx, ply = np.empty((2, len(anchors)))
     out = []
     big = 9 * step
+    ncand = len(offx)
+    every = np.arange(ncand)
+    lim_l, lim_a, lim_s = 2.2 * step, 1.2 * step, 0.8 * step
+    if bounds is not None:
+        bx0, by0, bx1, by1 = bounds
     for k_a, (x, y, pref) in enumerate(anchors):
-        c = np.array([x, y], float)
-        cand = c + offs
-        ok = np.ones(len(cand), bool)
-        for bc, bu, bv, hw, hh in box_tests:
-            r = cand - bc
-            ok &= ~((np.abs(r @ bu) < hw + 0.5 * step) & (np.abs(r @ bv) < hh + 0.4 * step))
+        # the candidates x + offx, y + offy (the same sums as (x, y) + offs)
+        cx, cy = x + offx, y + offy
+        ok = None
+        if box_tests:
+            cand = np.array([x, y], float) + offs
+            ok = np.ones(ncand, bool)
+            for bc, bu, bv, hw, hh in box_tests:
+                r = cand - bc
+                ok &= ~((np.abs(r @ bu) < hw + 0.5 * step) & (np.abs(r @ bv) < hh + 0.4 * step))
         half = None
         if sizes is not None:
             half = np.asarray(sizes[k_a], float) / 2
-            cx, cy = cand[:, 0], cand[:, 1]
+            h0, h1 = float(half[0]), float(half[1])
             if nt:
-                free = ~((np.abs(cx[:, None] - tcx[:nt]) < half[0] + thx[:nt])
-                         & (np.abs(cy[:, None] - tcy[:nt]) < half[1] + thy[:nt])).any(axis=1)
+                free = ~((np.abs(cx[:, None] - tcx[:nt]) < h0 + thx[:nt])
+                         & (np.abs(cy[:, None] - tcy[:nt]) < h1 + thy[:nt])).any(axis=1)
+                if bounds is not None:
+                    free &= (cx - h0 >= bx0) & (cx + h0 <= bx1) & (cy - h1 >= by0) & (cy + h1 <= by1)
+            elif bounds is not None:
+                free = (cx - h0 >= bx0) & (cx + h0 <= bx1) & (cy - h1 >= by0) & (cy + h1 <= by1)
             else:
-                free = np.ones(len(cand), bool)
-            if bounds is not None:
-                free &= (cx - half[0] >= bounds[0]) & (cx + half[0] <= bounds[2]) \
-                    & (cy - half[1] >= bounds[1]) & (cy + half[1] <= bounds[3])
-            if (ok & free).any():
-                ok &= free
-            elif free.any():
-                ok = free
-        idx = np.flatnonzero(ok)
+                free = None
+            if free is None:                   # every candidate free: the boxes' test may yield
+                if ok is not None and not ok.any():
+                    ok = None
+            else:
+                if ok is None:
+                    if free.any():
+                        ok = free
+                elif (ok & free).any():
+                    ok &= free
+                elif free.any():
+                    ok = free
+        if ok is None:
+            idx, sx, sy = every, cx, cy
+        else:
+            idx = np.flatnonzero(ok)
+            sx, sy = cx[idx], cy[idx]
         best = None
-        if len(idx):
-            cs = cand[idx]
-            cx, cy = cs[:, 0], cs[:, 1]
-            dl = _point_dists(cx, cy, plx[:k_a], ply[:k_a]) if k_a else np.full(len(cs), big)
-            da = _point_dists(cx, cy, avx, avy) if len(avx) else np.full(len(cs), big)
-            ds = seg.dists(cx, cy) if seg is not None else np.full(len(cs), np.inf)
-            score = np.minimum(dl, 2.2 * step) + np.minimum(da, 1.2 * step) + np.minimum(ds, 0.8 * step) \
-                - ring[idx]
+        n_ok = len(idx)
+        if n_ok:
+            dl = _point_dists(sx, sy, plx[:k_a], ply[:k_a]) if k_a else np.full(n_ok, big)
+            da = _point_dists(sx, sy, avx, avy) if len(avx) else np.full(n_ok, big)
+            ds = seg.dists(sx, sy) if seg is not None else np.full(n_ok, np.inf)
+            score = np.minimum(dl, lim_l) + np.minimum(da, lim_a) + np.minimum(ds, lim_s) - ring[idx]
             if pref is not None:
                 n = math.hypot(*pref)
                 if n > 0:
                     score = score + 0.5 * step * (dirs[idx] @ (np.asarray(pref, float) / n))
             k = int(np.argmax(score))
             if np.isfinite(score[k]):
-                best = cs[k]
+                best = (float(sx[k]), float(sy[k]))
         if best is None:
-            best = c + _DIRS[4] * step * 2.5
+            b = np.array([x, y], float) + _DIRS[4] * step * 2.5
+            best = (float(b[0]), float(b[1]))
         plx[k_a], ply[k_a] = best
         if half is not None:
-            box = (best[0] - half[0], best[1] - half[1], best[0] + half[0], best[1] + half[1])
+            box = (best[0] - h0, best[1] - h1, best[0] + h0, best[1] + h1)
             taken.append(box)
             tcx[nt], tcy[nt] = (box[0] + box[2]) / 2, (box[1] + box[3]) / 2
             thx[nt], thy[nt] = (box[2] - box[0]) / 2, (box[3] - box[1]) / 2
             nt += 1
-        out.append((float(best[0]), float(best[1])))
+        out.append(best)
     return out
+
+
+_CANDIDATES: dict[tuple[float, bool], tuple] = {}
+
+
+def _candidates(step: float, far: bool):
+    """(offsets (n, 2), their x, their y, ring penalty, unit directions) of the label
+    candidates around an anchor: 16 directions at each distance of _MULTS (and _FAR)."""
+    key = (step, far)
+    got = _CANDIDATES.get(key)
+    if got is None:
+        mults = _MULTS + (_FAR if far else ())
+        offs = np.concatenate([_DIRS * step * m for m in mults])
+        ring = 0.35 * step * (np.repeat(np.array(mults), len(_DIRS)) - 1)
+        dirs = np.tile(_DIRS, (len(mults), 1))
+        got = (offs, offs[:, 0].copy(), offs[:, 1].copy(), ring, dirs)
+        if len(_CANDIDATES) > 64:
+            _CANDIDATES.clear()
+        _CANDIDATES[key] = got
+    return got
 
 
 # ---------------------------------------------------------------- linkage

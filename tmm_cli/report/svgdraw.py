@@ -40,11 +40,25 @@ _BASE = {"k": "#000000", "w": "#ffffff", "r": "#ff0000", "g": "#008000", "b": "#
          "m": "#bf00bf", "y": "#bfbf00"}
 
 
+_CSS: dict[str, str] = {}        # the colours converted so far (a drawing uses a handful, thousands of times)
+
+
 def css_color(c) -> str:
     """Any colour our drawings are given (a matplotlib-style spec as well: 'k', '0.35',
     'tab:blue', an RGB tuple) as a valid SVG 1.1 / CSS colour: '#rrggbb' or 'none'.
     Browsers draw nothing for colours such as 'k' or '0.35' (weasyprint tolerates
     them), so every colour is converted here, at the writer."""
+    if isinstance(c, str):
+        got = _CSS.get(c)
+        if got is None:
+            got = _css_color(c)
+            if len(_CSS) < 4096:
+                _CSS[c] = got
+        return got
+    return _css_color(c)
+
+
+def _css_color(c) -> str:
     s = c.strip().lower() if isinstance(c, str) else None
     if s == "none":
         return s
@@ -88,8 +102,8 @@ class Canvas:
         return self.h - y
 
     def _pd(self, pts, closed=False) -> str:
-        pts = [(float(p[0]), float(p[1])) for p in pts]
-        s = "M" + " L".join(f"{_f(x)} {_f(self._y(y))}" for x, y in pts)
+        h = self.h
+        s = "M" + " L".join(f"{_f(float(p[0]))} {_f(h - float(p[1]))}" for p in pts)
         return s + ("Z" if closed else "")
 
     # ------------------------------------------------------------ primitives
