@@ -34,7 +34,7 @@ from ..structure import Group, analyze
 from . import newton as nw
 from .dyads import DyadPlan, dyad_derivatives
 from .result import KinematicsResult
-from .state import PCon, RCon, State
+from .state import WORK_ROWS_FROM, PCon, RCon, State
 
 MARCH_STEP = 1.0          # deg, the Newton groups' path over the cycle
 CONT_DELTA = 1e-6         # deg, singular positions: mean of +-CONT_DELTA
@@ -543,8 +543,8 @@ def _unwrap_sorted(th: np.ndarray, order: np.ndarray | None, inplace: bool = Fal
 def _fresh(v, N: int, seen: set) -> bool:
     """v is an (N,) float array of its own (not a view, not given to another output):
     it may be handed out (or changed in place) as it is."""
-    if (isinstance(v, np.ndarray) and v.shape == (N,) and v.dtype == np.float64 and v.base is None
-            and v.flags.writeable and id(v) not in seen):
+    if (type(v) is np.ndarray and v.base is None and id(v) not in seen and v.shape == (N,)
+            and v.dtype.char == "d" and v.flags.writeable):
         seen.add(id(v))
         return True
     return False
@@ -668,10 +668,14 @@ def _solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
         pos[p][:, 1] = y
         d1[p] = np.zeros((N, 2))
         d2[p] = np.zeros((N, 2))
-    for (p, b, u), gone in zip(moving, done):
-        pos[p], d1[p], d2[p] = st.point_d(b, u)
-        for g in gone:                     # no point of body g is left: its origin goes
-            st.release(g)
+    if N < WORK_ROWS_FROM:
+        for p, b, u in moving:
+            pos[p], d1[p], d2[p] = st.point_d(b, u)
+    else:                                  # many positions: hold less memory
+        for (p, b, u), gone in zip(moving, done):
+            pos[p], d1[p], d2[p] = st.point_d(b, u)
+            for g in gone:                 # no point of body g is left: its origin goes
+                st.release(g)
     angle, a1, a2 = {}, {}, {}
     for name, b in links:
         angle[name] = st.th[b]
