@@ -28,7 +28,7 @@ import math
 import numpy as np
 
 
-WORK_ROWS_FROM = 1024    # positions: from this many on, temporaries in scratch rows (memory, not calls)
+WORK_ROWS_FROM = 1024    # positions: from this many on, fewer temporaries (memory) rather than fewer calls
 
 
 class State:
@@ -48,7 +48,6 @@ class State:
         self._csk: dict[int, tuple[np.ndarray, np.ndarray]] = {}   # given to set_pose
         self._gd: dict[int, tuple] = {}       # id(PCon) -> (g, (psi, e)): guide directions
         self._pd: dict[tuple, tuple] = {}     # (b, u) -> point_d(b, u)
-        self._work: np.ndarray | None = None
         # boolean mask of the positions where a group's velocity equations are singular
         # (their derivatives the mean of the two sides), None where there are none
         self.singular: np.ndarray | None = None
@@ -151,14 +150,6 @@ class State:
             hit = self._pd[key] = self._point_d(b, u)
         return hit
 
-    def work(self) -> np.ndarray:
-        """Scratch rows (4, N) for the temporaries of :meth:`_point_d` at many positions
-        (one block per State: no fresh allocation, and no fresh pages, per point)."""
-        w = self._work
-        if w is None:
-            w = self._work = np.empty((4, self.N))
-        return w
-
     def _point_d(self, b: int, u):
         N = self.N
         u0, u1 = float(u[0]), float(u[1])
@@ -185,8 +176,8 @@ class State:
             np.subtract(o2[:, 0], t2 * ry + t11 * rx, out=d2[:, 0])
             np.add(o2[:, 1], t2 * rx - t11 * ry, out=d2[:, 1])
             return p, d1, d2
-        # many positions: the same operations, the temporaries in scratch rows
-        rx, ry, t11, tmp = self.work()
+        # many positions: the same operations, the temporaries in four scratch rows
+        rx, ry, t11, tmp = np.empty((4, N))
         c, s = self.cs(b)
         if u1 == 0.0:                   # as rot()
             np.multiply(c, u0, out=rx)
@@ -227,7 +218,6 @@ class State:
         sub._csk = {}
         sub._gd = {}
         sub._pd = {}
-        sub._work = None
         return sub
 
 
