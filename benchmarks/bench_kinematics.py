@@ -19,7 +19,8 @@
 * ``digest``: a digest of every output of ``solve`` on the linkage tasks (not timed): the
   same before and after a change that must leave the results bit-identical.
 
-Run: python benchmarks/bench_kinematics.py [core|sixbar|digest] [--repeat 7]
+Run: python benchmarks/bench_kinematics.py [core|sixbar|digest] [--repeat 7] [--sizes 12,360,3600]
+[--no-trim]
 """
 from __future__ import annotations
 
@@ -265,12 +266,14 @@ def sixbar(n: int = 100_000, repeat: int = 5) -> None:
 def digest() -> None:
     """A digest of every output of ``solve`` (positions, derivatives, angles, warnings, the
     singular and near-change-point masks) for each linkage task of tasks/ and the two
-    linkages above, on four sets of angles (sorted, random unsorted, three, one): run it
+    linkages above, on six sets of angles (sorted, random unsorted, three, one, and sorted and
+    unsorted sets of thousands, where the kinematics holds less memory): run it
     before and after a change of the kinematics to see that no bit of its results moved."""
     import glob
     import hashlib
     rng = np.random.default_rng(7)
-    grids = [np.arange(720) * 0.5, rng.uniform(0.0, 360.0, 500), np.array([0.0, 180.0, 359.999]), np.array([90.0])]
+    grids = [np.arange(720) * 0.5, rng.uniform(0.0, 360.0, 500), np.array([0.0, 180.0, 359.999]), np.array([90.0]),
+             np.arange(3600) * 0.1, rng.uniform(0.0, 360.0, 2000)]      # the last two: many positions
     srcs = [(Path(f).name, f) for f in sorted(glob.glob(str(ROOT / "tasks" / "*.yaml")))]
     for name, src in srcs + [("slider-crank", SLIDER_CRANK), ("four-bar", FOUR_BAR)]:
         task = load_task(src)
@@ -299,7 +302,15 @@ def main() -> None:
     ap.add_argument("what", nargs="*", default=["sixbar", "core"], choices=["sixbar", "core", "digest"])
     ap.add_argument("--repeat", type=int, default=7)
     ap.add_argument("--sizes", default="12,36,360,3600,36000", help="core: numbers of positions (comma-separated)")
+    ap.add_argument("--no-trim", action="store_true",
+                    help="glibc: keep freed memory in the process (mallopt M_TRIM_THRESHOLD, M_MMAP_THRESHOLD), "
+                         "for every side alike: the timings without the page faults")
     a = ap.parse_args()
+    if a.no_trim:
+        import ctypes
+        libc = ctypes.CDLL("libc.so.6")
+        libc.mallopt(-1, 256 << 20)            # M_TRIM_THRESHOLD
+        libc.mallopt(-3, 32 << 20)             # M_MMAP_THRESHOLD
     if "digest" in a.what:
         digest()
     if "sixbar" in a.what:

@@ -34,7 +34,7 @@ from ..structure import Group, analyze
 from . import newton as nw
 from .dyads import DyadPlan, dyad_derivatives
 from .result import KinematicsResult
-from .state import PCon, RCon, State
+from .state import WORK_ROWS_FROM, PCon, RCon, State
 
 MARCH_STEP = 1.0          # deg, the Newton groups' path over the cycle
 CONT_DELTA = 1e-6         # deg, singular positions: mean of +-CONT_DELTA
@@ -543,8 +543,8 @@ def _unwrap_sorted(th: np.ndarray, order: np.ndarray | None, inplace: bool = Fal
 def _fresh(v, N: int, seen: set) -> bool:
     """v is an (N,) float array of its own (not a view, not given to another output):
     it may be handed out (or changed in place) as it is."""
-    if (isinstance(v, np.ndarray) and v.shape == (N,) and v.dtype == np.float64 and v.base is None
-            and v.flags.writeable and id(v) not in seen):
+    if (type(v) is np.ndarray and v.base is None and id(v) not in seen and v.shape == (N,)
+            and v.dtype.char == "d" and v.flags.writeable):
         seen.add(id(v))
         return True
     return False
@@ -586,9 +586,11 @@ def _outputs(solver: Solver) -> tuple:
             moving = [(q, b, u) if q != s else (s, i, mech.link(i).com) for q, b, u in moving]
     names = mech.all_points()
     links = [(lk.name, lk.index) for lk in mech.links]
-    last = {b: k for k, (_, b, _) in enumerate(moving)}      # a body's last point
-    done = [[b for b, k in last.items() if k == j] for j in range(len(moving))]
-    hit = solver.__dict__["_outputs"] = (ground, moving, done, names, links)
+    # many positions: the points taken body by body, each body's origin released after
+    # its last point (the result's order stays that of ``moving``)
+    by_body = sorted(range(len(moving)), key=lambda k: moving[k][1])
+    done = [k == len(by_body) - 1 or moving[by_body[k + 1]][1] != moving[j][1] for k, j in enumerate(by_body)]
+    hit = solver.__dict__["_outputs"] = (ground, moving, list(zip(by_body, done)), names, links)
     return hit
 
 
@@ -668,10 +670,18 @@ def _solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
         pos[p][:, 1] = y
         d1[p] = np.zeros((N, 2))
         d2[p] = np.zeros((N, 2))
-    for (p, b, u), gone in zip(moving, done):
-        pos[p], d1[p], d2[p] = st.point_d(b, u)
-        for g in gone:                     # no point of body g is left: its origin goes
-            st.release(g)
+    if N < WORK_ROWS_FROM:
+        for p, b, u in moving:
+            pos[p], d1[p], d2[p] = st.point_d(b, u)
+    else:                                  # many positions: hold less memory
+        got = [None] * len(moving)
+        for k, last in done:
+            p, b, u = moving[k]
+            got[k] = st.point_d(b, u)
+            if last:                       # no point of body b is left: its origin goes
+                st.release(b)
+        for (p, _, _), g in zip(moving, got):
+            pos[p], d1[p], d2[p] = g
     angle, a1, a2 = {}, {}, {}
     for name, b in links:
         angle[name] = st.th[b]

@@ -28,6 +28,9 @@ import math
 import numpy as np
 
 
+WORK_ROWS_FROM = 1024    # positions: from this many on, fewer temporaries (memory) rather than fewer calls
+
+
 class State:
     """Poses and their phi-derivatives of all bodies at N positions."""
 
@@ -45,7 +48,6 @@ class State:
         self._csk: dict[int, tuple[np.ndarray, np.ndarray]] = {}   # given to set_pose
         self._gd: dict[int, tuple] = {}       # id(PCon) -> (g, (psi, e)): guide directions
         self._pd: dict[tuple, tuple] = {}     # (b, u) -> point_d(b, u)
-        self._work: np.ndarray | None = None
         # boolean mask of the positions where a group's velocity equations are singular
         # (their derivatives the mean of the two sides), None where there are none
         self.singular: np.ndarray | None = None
@@ -148,20 +150,36 @@ class State:
             hit = self._pd[key] = self._point_d(b, u)
         return hit
 
-    def work(self) -> np.ndarray:
-        """Scratch rows (5, N) for the temporaries of :meth:`_point_d` (one block per
-        State: no fresh allocation, and no fresh pages, per point)."""
-        w = self._work
-        if w is None:
-            w = self._work = np.empty((5, self.N))
-        return w
-
     def _point_d(self, b: int, u):
-        w = self.work()
-        rx, ry, t11, tmp, tmp2 = w
-        c, s = self.cs(b)
+        N = self.N
         u0, u1 = float(u[0]), float(u[1])
-        if u1 == 0.0:                   # the same operations as rot()
+        if b == 0:
+            # the ground: o = 0, th = 0 (cos 1, sin 0 exactly) and zero derivatives, so
+            # the general terms below are u + 0 and +0 -- the same values without them
+            p = np.empty((N, 2))
+            p[:, 0] = u0 + 0.0
+            p[:, 1] = u1 + 0.0
+            return p, np.zeros((N, 2)), np.zeros((N, 2))
+        t1 = self.th1[b]
+        t2 = self.th2[b]
+        o, o1, o2 = self.o[b], self.o1[b], self.o2[b]
+        if N < WORK_ROWS_FROM:
+            # few positions: the fewest numpy calls
+            ru = self.rot(b, u)
+            rx, ry = ru[:, 0], ru[:, 1]
+            t11 = t1 * t1
+            p = o + ru
+            d1 = np.empty((N, 2))
+            np.subtract(o1[:, 0], t1 * ry, out=d1[:, 0])
+            np.add(o1[:, 1], t1 * rx, out=d1[:, 1])
+            d2 = np.empty((N, 2))
+            np.subtract(o2[:, 0], t2 * ry + t11 * rx, out=d2[:, 0])
+            np.add(o2[:, 1], t2 * rx - t11 * ry, out=d2[:, 1])
+            return p, d1, d2
+        # many positions: the same operations, the temporaries in four scratch rows
+        rx, ry, t11, tmp = np.empty((4, N))
+        c, s = self.cs(b)
+        if u1 == 0.0:                   # as rot()
             np.multiply(c, u0, out=rx)
             np.multiply(s, u0, out=ry)
         else:
@@ -171,25 +189,23 @@ class State:
             np.multiply(s, u0, out=ry)
             np.multiply(c, u1, out=tmp)
             np.add(ry, tmp, out=ry)
-        t1 = self.th1[b]
-        t2 = self.th2[b]
         np.multiply(t1, t1, out=t11)
-        o, o1, o2 = self.o[b], self.o1[b], self.o2[b]
-        p, d1, d2 = np.empty((self.N, 2)), np.empty((self.N, 2)), np.empty((self.N, 2))
+        p, d1, d2 = np.empty((N, 2)), np.empty((N, 2)), np.empty((N, 2))
         np.add(o[:, 0], rx, out=p[:, 0])
         np.add(o[:, 1], ry, out=p[:, 1])
         np.multiply(t1, ry, out=tmp)
         np.subtract(o1[:, 0], tmp, out=d1[:, 0])
         np.multiply(t1, rx, out=tmp)
         np.add(o1[:, 1], tmp, out=d1[:, 1])
+        x, y = d2[:, 0], d2[:, 1]           # (their own place, before their values)
         np.multiply(t2, ry, out=tmp)
-        np.multiply(t11, rx, out=tmp2)
-        np.add(tmp, tmp2, out=tmp)
-        np.subtract(o2[:, 0], tmp, out=d2[:, 0])
+        np.multiply(t11, rx, out=x)
+        np.add(tmp, x, out=tmp)
+        np.subtract(o2[:, 0], tmp, out=x)
         np.multiply(t2, rx, out=tmp)
-        np.multiply(t11, ry, out=tmp2)
-        np.subtract(tmp, tmp2, out=tmp)
-        np.add(o2[:, 1], tmp, out=d2[:, 1])
+        np.multiply(t11, ry, out=y)
+        np.subtract(tmp, y, out=tmp)
+        np.add(o2[:, 1], tmp, out=y)
         return p, d1, d2
 
     def take(self, idx) -> "State":
@@ -202,7 +218,6 @@ class State:
         sub._csk = {}
         sub._gd = {}
         sub._pd = {}
-        sub._work = None
         return sub
 
 
