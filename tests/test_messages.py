@@ -221,6 +221,18 @@ ENGLISH = [
      'section(s) drive, loads need a `mechanism`'),
     ('input.flywheel_loads', {},
      '`flywheel` needs `loads` (the forces whose work it evens out)'),
+    # a student's answers file (the former texts of tmm_cli/check.py)
+    ('answers.not_answers_file', {},
+     'not an answers file (a YAML file with an `answers:` mapping of result paths to values)'),
+    ('answers.unknown_key', {'key': 'anwsers'},
+     "unknown key 'anwsers'; an answers file holds `answers`, `tolerance`, `student` and `variant`"),
+    ('answers.invalid', {'reason': {'code': 'answers.not_number', 'params': {'value': "'abc'"}, 'text': 'x'}},
+     "invalid answer: not a number: 'abc'"),
+    ('answers.invalid_cell', {'where': 'a.csv:3', 'column': 'flywheel.J',
+                              'reason': {'code': 'answers.not_finite', 'params': {'value': "'inf'"}, 'text': 'x'}},
+     "a.csv:3: column 'flywheel.J': invalid answer: not a finite number: 'inf'"),
+    ('answers.not_number', {'value': "'abc'"}, "not a number: 'abc'"),
+    ('answers.not_finite', {'value': 'inf'}, 'not a finite number: inf'),
     # an invalid task (TaskError): the lines of `tmm run` on a broken task (stderr as before)
     ('input.issues', {'issues': [
         {'code': 'input.at_field', 'params': {'where': 't.yaml:12:29', 'field': 'mechanism.links.crank.lenght',
