@@ -306,6 +306,13 @@ ENGLISH = [
     ('input.indent_hint', {'prev': 10, 'line': 11, 'col_prev': 5, 'col_line': 3},
      "; check the indentation of lines 10 and 11: the keys of one section start in the same column (line 10 "
      "starts in column 5, line 11 in column 3)"),
+    ('input.yaml_colon', {}, 'mapping values are not allowed here'),
+    ('input.yaml_end', {}, 'found unexpected end of stream'),
+    ('input.yaml_no_colon', {}, "could not find expected ':'"),
+    ('input.yaml_no_key', {}, 'did not find expected key'),
+    ('input.yaml_block_end', {'found': '<block mapping start>'}, "expected <block end>, but found '<block mapping start>'"),
+    ('input.yaml_flow', {'close': ']', 'got': '<stream end>'}, "expected ',' or ']', but got '<stream end>'"),
+    ('input.yaml_char', {'char': '@'}, "found character '@' that cannot start any token"),
     ('input.tab', {}, 'use spaces for indentation: this line is indented with a tab, which YAML does not allow'),
     ('input.duplicate_key', {'key': 'output', 'first': 20}, "duplicate key 'output' (first given on line 20)"),
     ('input.decimal_comma', {'fixed': '0.35', 'given': '0,35'},

@@ -96,7 +96,8 @@ class _Formatter(string.Formatter):
                 return ", ".join(str(table.get(str(v), v)) for v in value)
             if str(value) in table:
                 return str(table[str(value)])
-            return " / ".join(str(table.get(p, p)) for p in str(value).split("/"))
+            parts = str(value).split("/")
+            return " / ".join(str(table.get(p, p)) for p in parts) if any(p in table for p in parts) else str(value)
         if isinstance(value, list):                          # an interval [a, b]: a..b
             return ", ".join(f"{format(v[0], spec)}..{format(v[1], spec)}" if isinstance(v, list) and len(v) == 2
                              else format(v, spec) for v in value)
