@@ -742,3 +742,18 @@ def test_batch_invalid_answers_in_the_summary_language(tmp_path):
     assert f"{ans / 's1.yaml'}:3:11: поле «answers.gears.aw»: неверный ответ: это не число: 'twelve'" in html
     assert f"{ans / 's2.yaml'}: это не файл ответов" in html
     assert "invalid answer" not in html and "not an answers file" not in html
+
+
+def test_feedback_page_names_a_misspelt_path_in_its_language(tmp_path):
+    """A student's misspelt result path: check.csv's note keeps the English "did you mean";
+    the Russian feedback page gives the hint in Russian."""
+    from types import SimpleNamespace
+
+    from tmm_cli.check import grade
+    from tmm_cli.feedback import feedback_html
+    res = {"flywheel": {"J": 1.0, "delta": 0.1}}
+    rows = grade(res, AnswerSet(source="s.yaml", answers={"flywheel.JJ": 1.0, "flywheel.J": 1.0}), {})
+    assert str(rows[0]["note"]).endswith("; did you mean 'flywheel.J'?")
+    html = feedback_html(SimpleNamespace(title="t", name="t"), {"rows": rows, "student": "S"}, "ru")
+    assert "возможно, имелось в виду «flywheel.J»?" in html.replace("&laquo;", "«").replace("&raquo;", "»")
+    assert "did you mean" not in html

@@ -231,6 +231,13 @@ ENGLISH = [
     ('answers.invalid_cell', {'where': 'a.csv:3', 'column': 'flywheel.J',
                               'reason': {'code': 'answers.not_finite', 'params': {'value': "'inf'"}, 'text': 'x'}},
      "a.csv:3: column 'flywheel.J': invalid answer: not a finite number: 'inf'"),
+    ('answers.did_you_mean', {'path': 'flywheel.J'}, "did you mean 'flywheel.J'?"),
+    ('answers.no_such_path', {}, 'no such path in the results'),
+    ('answers.note_unknown_path', {'reason': "flywheel.JJ': no key 'JJ",
+                                   'hint': {'code': 'answers.did_you_mean', 'params': {'path': 'flywheel.J'}, 'text': 'x'}},
+     "flywheel.JJ': no key 'JJ; did you mean 'flywheel.J'?"),
+    ('answers.note_not_number', {'kind': 'list', 'hint': {'code': 'answers.no_such_path', 'params': {}, 'text': 'x'}},
+     'not a number but a list; no such path in the results'),
     ('answers.not_number', {'value': "'abc'"}, "not a number: 'abc'"),
     ('answers.not_finite', {'value': 'inf'}, 'not a finite number: inf'),
     # an invalid task (TaskError): the lines of `tmm run` on a broken task (stderr as before)

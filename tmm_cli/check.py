@@ -370,7 +370,7 @@ def did_you_mean(path: str, results: dict, leaves: list[str] | None = None) -> s
     sec = path.split(".")[0].split("[")[0]
     near = [c for c in cands if c.split(".")[0].split("[")[0] == sec] or cands
     hit = difflib.get_close_matches(path, near, n=1, cutoff=0.5)
-    return f"did you mean '{hit[0]}'?" if hit else "no such path in the results"
+    return Message("answers.did_you_mean", path=hit[0]) if hit else Message("answers.no_such_path")
 
 
 # ------------------------------------------------------------------ grading
@@ -417,7 +417,8 @@ def grade(results: dict, aset: AnswerSet, tol: dict, required: list[str] | None 
                 if leaves is None:
                     leaves = [q for q, v in leaf_paths(results) if isinstance(v, (int, float))]
                 row["status"] = "unknown_path"
-                row["note"] = f"{str(exc).strip(chr(34) + chr(39))}; {did_you_mean(p, results, leaves)}"
+                row["note"] = Message("answers.note_unknown_path", reason=str(exc).strip(chr(34) + chr(39)),
+                                      hint=did_you_mean(p, results, leaves))
             continue
         if ref is None:
             row["status"], row["note"] = "not_computed", "no value in the results (singular or not computed)"
@@ -428,7 +429,7 @@ def grade(results: dict, aset: AnswerSet, tol: dict, required: list[str] | None 
             if leaves is None:
                 leaves = [q for q, v in leaf_paths(results) if isinstance(v, (int, float))]
             row["status"] = "unknown_path"
-            row["note"] = f"not a number but a {type(ref).__name__}; {did_you_mean(p, results, leaves)}"
+            row["note"] = Message("answers.note_not_number", kind=type(ref).__name__, hint=did_you_mean(p, results, leaves))
             continue
         row["reference"] = float(ref)
         if val is None:
