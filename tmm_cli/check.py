@@ -15,7 +15,7 @@ from pathlib import Path
 from typing import Any
 
 from .errors import TaskError
-from .messages import Message
+from .messages import Message, as_message
 from .results import lookup, parse_path
 
 DEFAULT_TOLERANCE = 0.05
@@ -155,8 +155,7 @@ def answer_value(v, path: str):
 
 def _coded(exc: Exception) -> Message:
     """An exception's message as a Message (coded where the raiser coded it)."""
-    msg = exc.args[0] if exc.args else str(exc)
-    return msg if isinstance(msg, Message) else Message("text", text=str(exc))
+    return as_message(exc.args[0] if len(exc.args) == 1 else str(exc))
 
 
 def _is_angle(path: str) -> bool:

@@ -161,6 +161,11 @@ class Message(str):
         return {"code": self.code, "params": dict(self.params), "text": str(self)}
 
 
+def as_message(text: str) -> "Message":
+    """``text`` as a Message: itself when it is one (coded), else the plain ``text`` code."""
+    return text if isinstance(text, Message) else Message(PLAIN, text=str(text))
+
+
 def as_dict(warning: str) -> dict:
     """The results.json ``messages`` entry of a warning (a plain string gets code ``text``)."""
     if isinstance(warning, Message):
@@ -187,4 +192,4 @@ def render_list(section: dict, lang: str) -> list[str]:
     return [str(w) for w in section.get("warnings") or []]
 
 
-__all__ = ["LANGS", "Message", "as_dict", "catalogue", "localize", "render", "render_list"]
+__all__ = ["LANGS", "Message", "as_dict", "as_message", "catalogue", "localize", "render", "render_list"]
