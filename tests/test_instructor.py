@@ -721,3 +721,39 @@ def test_batch_resends_a_variant_whose_idle_worker_was_killed(tmp_path, monkeypa
     assert sorted(runs.read_text().split()) == ["a1", "a2", "a4", "crash"]   # each run once
     assert sent == [0, 1, 1, 2, 3]              # a2 sent twice: to the killed worker, then a fresh one
     assert res.exit_code == 3
+
+
+def test_batch_invalid_answers_in_the_summary_language(tmp_path):
+    """An answers file that is not one, and an answer that is not a number: summary.csv
+    keeps the English; summary.html (ru) shows both in Russian, with the file and field."""
+    from html import unescape
+    src, ans = tmp_path / "src", tmp_path / "ans"
+    _write(src, "v1.yaml", GEARS.format(v=1))
+    _write(ans, "s1.yaml", "student: {name: Ivanov}\nvariant: 1\nanswers: {gears.aw: twelve}\n")
+    _write(ans, "s2.yaml", "student: {name: Petrov}\nvariant: 1\nanswer: {gears.aw: 0.09}\n")
+    res = runner.invoke(app, ["batch", str(src), "--out", str(tmp_path / "o"), "--answers", str(ans), "--lang", "ru"])
+    assert res.exit_code == 2, res.output
+    rows = {r["student"] or Path(r["file"]).name: r for r in _csv(tmp_path / "o" / "summary.csv")}
+    assert rows["Ivanov"]["message"] == f"{ans / 's1.yaml'}:3:11: field 'answers.gears.aw': invalid answer: " \
+                                        "not a number: 'twelve'"
+    assert rows["s2.yaml"]["message"].endswith("s2.yaml: not an answers file (a YAML file with an `answers:` "
+                                               "mapping of result paths to values)")
+    html = unescape((tmp_path / "o" / "summary.html").read_text(encoding="utf-8"))
+    assert f"{ans / 's1.yaml'}:3:11: поле «answers.gears.aw»: неверный ответ: это не число: 'twelve'" in html
+    assert f"{ans / 's2.yaml'}: это не файл ответов" in html
+    assert "invalid answer" not in html and "not an answers file" not in html
+
+
+def test_feedback_page_names_a_misspelt_path_in_its_language(tmp_path):
+    """A student's misspelt result path: check.csv's note keeps the English "did you mean";
+    the Russian feedback page gives the hint in Russian."""
+    from types import SimpleNamespace
+
+    from tmm_cli.check import grade
+    from tmm_cli.feedback import feedback_html
+    res = {"flywheel": {"J": 1.0, "delta": 0.1}}
+    rows = grade(res, AnswerSet(source="s.yaml", answers={"flywheel.JJ": 1.0, "flywheel.J": 1.0}), {})
+    assert str(rows[0]["note"]).endswith("; did you mean 'flywheel.J'?")
+    html = feedback_html(SimpleNamespace(title="t", name="t"), {"rows": rows, "student": "S"}, "ru")
+    assert "возможно, имелось в виду «flywheel.J»?" in html.replace("&laquo;", "«").replace("&raquo;", "»")
+    assert "did you mean" not in html

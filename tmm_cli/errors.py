@@ -42,9 +42,7 @@ class TaskError(Exception):
         so a page in another language can show it; its English text is :meth:`render`'s.
         None when the two would differ."""
         from .messages import Message
-
-        def part(msg):
-            return msg if getattr(msg, "code", None) else Message("text", text=str(msg))
+        from .messages import as_message as part
 
         where = self.file or "<task>"
         if not self.issues:

@@ -46,11 +46,11 @@ class GuideSpec(_Model):
     @model_validator(mode="after")
     def _kind(self):
         if self.link is None and self.through is None:
-            raise ValueError("a guide needs `through` (fixed guide) or `link` (moving guide)")
+            raise ValueError(Message("input.guide_kind"))
         if self.link is not None and self.through is not None:
-            raise ValueError("a guide is either fixed (`through`) or on a link (`link`), not both")
+            raise ValueError(Message("input.guide_both"))
         if self.link is None and self.angle is None:
-            raise ValueError("a fixed guide needs `angle` (deg from +x)")
+            raise ValueError(Message("input.guide_angle"))
         return self
 
 
@@ -70,25 +70,25 @@ class LinkSpec(_Model):
     @classmethod
     def _two_points(cls, v):
         if v is not None and len(v) != 2:
-            raise ValueError(f"a bar has exactly two points [P, Q], got {len(v)}")
+            raise ValueError(Message("input.bar_points", n=len(v)))
         if v is not None and v[0] == v[1]:
-            raise ValueError("the two points of a bar must differ")
+            raise ValueError(Message("input.bar_same_points"))
         return v
 
     @model_validator(mode="after")
     def _kind(self):
         if self.slider is None and self.points is None:
-            raise ValueError("a link needs `points: [P, Q]` (bar) or `slider: P` (block)")
+            raise ValueError(Message("input.link_kind"))
         if self.slider is not None and self.points is not None:
-            raise ValueError("a link is either a bar (`points`) or a slider (`slider`), not both")
+            raise ValueError(Message("input.link_both"))
         if self.points is not None and self.length is None:
-            raise ValueError("a bar link needs `length`")
+            raise ValueError(Message("input.bar_length"))
         if self.length is not None and self.length <= 0:
             raise ValueError(Message("input.length_positive"))
         if self.slider is not None and self.guide is None:
-            raise ValueError("a slider needs a `guide`")
+            raise ValueError(Message("input.slider_guide"))
         if self.slider is not None and self.length is not None:
-            raise ValueError("a slider has no `length`")
+            raise ValueError(Message("input.slider_length"))
         return self
 
     @property
@@ -106,7 +106,7 @@ class MechanismSection(_Model):
     @classmethod
     def _nonempty(cls, v):
         if not v:
-            raise ValueError("at least one link is needed")
+            raise ValueError(Message("input.no_links"))
         return v
 
 
@@ -123,11 +123,9 @@ class DriveSection(_Model):
         from .linkage.drive_speed import check_output_speed
         given = [k for k in ("speed", "mean_output_speed", "working_stroke_speed") if getattr(self, k) is not None]
         if not given:
-            raise FieldValueError(("speed",), "required field is missing: the crank's `speed`, or the output's "
-                                              "`mean_output_speed` or `working_stroke_speed`")
+            raise FieldValueError(("speed",), Message("input.no_speed"))
         if len(given) > 1:
-            raise FieldValueError((given[1],), f"give exactly one of `speed` (the crank's), `mean_output_speed` or "
-                                               f"`working_stroke_speed` (the output's); got {', '.join(given)}")
+            raise FieldValueError((given[1],), Message("input.speed_one", given=given))
         if given[0] != "speed":
             try:
                 check_output_speed(getattr(self, given[0]))
@@ -165,15 +163,15 @@ class DiagramSpec(_Model):
     def _axes(self):
         x = self.s if self.s is not None else self.phi
         if (self.s is None) == (self.phi is None):
-            raise ValueError("a diagram needs exactly one abscissa: `s` (relative stroke) or `phi` (crank angle)")
+            raise ValueError(Message("input.diagram_axis"))
         if len(x) != len(self.value):
             raise ValueError(Message("input.diagram_lengths", n_x=len(x), n_value=len(self.value)))
         if len(x) < 2:
-            raise ValueError("a diagram needs at least two points")
+            raise ValueError(Message("input.diagram_short"))
         if any(b < a for a, b in zip(x, x[1:])):
-            raise ValueError("the abscissa must be non-decreasing")
+            raise ValueError(Message("input.diagram_order"))
         if self.s is not None and (min(self.s) < 0 or max(self.s) > 1):
-            raise ValueError("relative stroke `s` must lie in [0, 1]")
+            raise ValueError(Message("input.diagram_s"))
         return self
 
 
@@ -193,8 +191,7 @@ class ForceSpec(_Model):
     def _what(self):
         given = [k for k in ("magnitude", "diagram", "moment") if getattr(self, k) is not None]
         if len(given) != 1:
-            raise ValueError("a load needs exactly one of `magnitude`, `diagram` (a force) or `moment` (a couple)"
-                             + (f"; got {', '.join(given)}" if given else ""))
+            raise ValueError(Message("input.load_what_got", given=given) if given else Message("input.load_what"))
         if self.diagram is not None and self.diagram.phi is not None and self.kind is not None:
             pass
         for name in ("magnitude", "moment"):
@@ -223,10 +220,10 @@ class FrictionSpec(_Model):
         if self.f is not None:
             if self.f_pin is not None or self.f_slide is not None:
                 raise FieldValueError(("f_pin" if self.f_pin is not None else "f_slide",),
-                                      "give `f` (both kinds of pair) or `f_pin` / `f_slide`, not both")
+                                      Message("input.friction_both"))
             self.f_pin = self.f_slide = self.f
         elif self.f_pin is None and self.f_slide is None:
-            raise ValueError("give the friction coefficient `f`, or `f_pin` and/or `f_slide`")
+            raise ValueError(Message("input.friction_none"))
         self.f_pin = self.f_pin or 0.0
         self.f_slide = self.f_slide or 0.0
         return self
@@ -279,10 +276,10 @@ class PhasesSpec(_Model):
         used = self.rise + self.far_dwell + self.return_
         if self.near_dwell is None:
             if used > 360 + 1e-9:
-                raise ValueError(f"rise + far_dwell + return = {used:g} deg exceeds 360")
+                raise ValueError(Message("input.phases_over", used=used))
             self.near_dwell = max(0.0, 360.0 - used)
         elif abs(used + self.near_dwell - 360) > 1e-6:
-            raise ValueError(f"phases sum to {used + self.near_dwell:g} deg, not 360")
+            raise ValueError(Message("input.phases_sum", total=used + self.near_dwell))
         return self
 
 
@@ -390,7 +387,7 @@ class GearsSection(_Model):
     @classmethod
     def _z(cls, v):
         if min(v) < 5:
-            raise ValueError("tooth numbers must be at least 5")
+            raise ValueError(Message("input.z_min"))
         return v
 
 
@@ -599,15 +596,15 @@ class Task(_Model):
         needs_mech = [s for s in ("drive", "positions", "loads", "kinetostatics", "flywheel")
                       if getattr(self, s) is not None]
         if self.mechanism is not None and self.drive is None:
-            raise FieldValueError(("mechanism",), "a `mechanism` needs a `drive` section (link, speed, direction)")
+            raise FieldValueError(("mechanism",), Message("input.needs_drive"))
         if self.mechanism is None and needs_mech and self._synthesis_error is None:
-            raise FieldValueError((needs_mech[0],), f"section(s) {', '.join(needs_mech)} need a `mechanism`")
+            raise FieldValueError((needs_mech[0],), Message("input.needs_mechanism", sections=needs_mech))
         if self.report is not None and self.report.detail_position is not None and self.mechanism is None \
                 and self._synthesis_error is None:
             raise FieldValueError(("report", "detail_position"), "`detail_position` names a position of the "
                                   "linkage: it needs a `mechanism` (or `synthesis`)")
         if self.flywheel is not None and self.loads is None:
-            raise FieldValueError(("flywheel",), "`flywheel` needs `loads` (the forces whose work it evens out)")
+            raise FieldValueError(("flywheel",), Message("input.flywheel_loads"))
         return self
 
     # --------------------------------------------------------------------

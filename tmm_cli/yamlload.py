@@ -230,6 +230,28 @@ def _indent_hint(text: str, line: int | None) -> Message | str:
     return Message("input.indent_hint", prev=prev, line=line, col_prev=indent(prev) + 1, col_line=indent(line) + 1)
 
 
+_PROBLEMS = (re.compile(r"^expected <block end>, but found '(.*)'$"),
+             re.compile(r"^expected ',' or '(.)', but got '(.*)'$"),
+             re.compile(r"^found character '(.)' that cannot start any token$"))
+
+
+def _problem(text: str) -> Message | str:
+    """The problem pyyaml names, coded where it is one a student meets (an indentation
+    that ends a block, an unclosed bracket, a colon inside a value...); else as written."""
+    coded = {"mapping values are not allowed here": Message("input.yaml_colon"),
+             "found unexpected end of stream": Message("input.yaml_end"),
+             "could not find expected ':'": Message("input.yaml_no_colon"),
+             "did not find expected key": Message("input.yaml_no_key")}.get(text)
+    block, flow, char = (rx.match(text) for rx in _PROBLEMS)
+    if block:
+        coded = Message("input.yaml_block_end", found=block.group(1))
+    elif flow:
+        coded = Message("input.yaml_flow", close=flow.group(1), got=flow.group(2))
+    elif char:
+        coded = Message("input.yaml_char", char=char.group(1))
+    return coded if coded is not None and coded == text else text
+
+
 def decimal_comma_hint(line: str) -> Message | None:
     """'use a decimal point: 0.38' when a line (outside its comment) holds a number
     written with a decimal comma such as ``0,38``, else None."""
@@ -270,7 +292,7 @@ def load_yaml(source: str | Path, *, text: str | None = None) -> tuple[Any, dict
         line = mark.line + 1 if mark else None
         col = mark.column + 1 if mark else None
         raise TaskError("YAML syntax error", file=file,
-                        issues=[("", line, col, Message("input.yaml_syntax", problem=str(exc.problem or exc.context),
+                        issues=[("", line, col, Message("input.yaml_syntax", problem=_problem(str(exc.problem or exc.context)),
                                                         hint=_indent_hint(text, line) or Message("text", text="")))
                                 ]) from None
     except yaml.reader.ReaderError as exc:

@@ -96,7 +96,8 @@ class _Formatter(string.Formatter):
                 return ", ".join(str(table.get(str(v), v)) for v in value)
             if str(value) in table:
                 return str(table[str(value)])
-            return " / ".join(str(table.get(p, p)) for p in str(value).split("/"))
+            parts = str(value).split("/")
+            return " / ".join(str(table.get(p, p)) for p in parts) if any(p in table for p in parts) else str(value)
         if isinstance(value, list):                          # an interval [a, b]: a..b
             return ", ".join(f"{format(v[0], spec)}..{format(v[1], spec)}" if isinstance(v, list) and len(v) == 2
                              else format(v, spec) for v in value)
@@ -160,6 +161,11 @@ class Message(str):
         return {"code": self.code, "params": dict(self.params), "text": str(self)}
 
 
+def as_message(text: str) -> "Message":
+    """``text`` as a Message: itself when it is one (coded), else the plain ``text`` code."""
+    return text if isinstance(text, Message) else Message(PLAIN, text=str(text))
+
+
 def as_dict(warning: str) -> dict:
     """The results.json ``messages`` entry of a warning (a plain string gets code ``text``)."""
     if isinstance(warning, Message):
@@ -186,4 +192,4 @@ def render_list(section: dict, lang: str) -> list[str]:
     return [str(w) for w in section.get("warnings") or []]
 
 
-__all__ = ["LANGS", "Message", "as_dict", "catalogue", "localize", "render", "render_list"]
+__all__ = ["LANGS", "Message", "as_dict", "as_message", "catalogue", "localize", "render", "render_list"]
