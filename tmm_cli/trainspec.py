@@ -14,7 +14,7 @@ Example::
 Kept apart from :mod:`tmm_cli.gears` so that validating a task does not import the gears
 package.
 """
-from __future__ import annotations
+
 
 from typing import Literal
 

@@ -23,7 +23,7 @@ Example::
       samples: 401
       impact:  {phi: 270}
 """
-from __future__ import annotations
+
 
 import math
 from typing import Annotated, Any, Literal
