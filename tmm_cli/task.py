@@ -5,8 +5,8 @@ Pydantic models for every section of the task file (README, *The task file*). Qu
 :func:`load_task` reads a YAML file (or a dict) and raises :class:`TaskError` naming
 the file, line, column and field of every problem.
 """
-
-
+# annotations evaluated as written (no `from __future__ import annotations`): pydantic would
+# compile and evaluate every field's annotation string when the models are made
 import re
 from pathlib import Path
 from typing import Annotated, Any, Literal, Union
