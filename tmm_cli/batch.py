@@ -213,8 +213,8 @@ _SECTION_MODULES = {"mechanism": ("linkage.mechanism", "linkage.structure", "lin
                     "planetary": ("gears",), "drive_train": ("gears", "gears.train"), "dof2": ("dof2",)}
 _SECTION_MODULES["synthesis"] += _SECTION_MODULES["mechanism"]
 # modules outside tmm_cli the stages import on first use (numpy's `np.unique` imports
-# numpy.ma, the Gauss-Legendre nodes numpy.polynomial; the plans' scales): ~30 ms a variant
-_FIRST_USE = {"mechanism": ("numpy.ma", "numpy.polynomial.legendre", "tmm_cli.scales")}
+# numpy.ma; the plans' scales): ~30 ms a variant
+_FIRST_USE = {"mechanism": ("numpy.ma", "tmm_cli.scales")}
 _FIRST_USE["synthesis"] = _FIRST_USE["mechanism"]
 
 

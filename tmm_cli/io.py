@@ -17,14 +17,14 @@ from __future__ import annotations
 import json
 import os
 import re
-import tempfile
 import time
 from pathlib import Path
 from typing import Callable
 
 MANIFEST = ".tmm-manifest.json"
-# mkstemp(prefix=".NAME.", suffix=".tmp"): eight random characters
+# _mkstemp(path): ".NAME." eight random characters ".tmp" (the names tempfile.mkstemp gives)
 _TMP = re.compile(r"^\.(?P<name>.+)\.[a-z0-9_]{8}\.tmp$")
+_TMP_CHARS = "abcdefghijklmnopqrstuvwxyz0123456789_"
 
 
 def file_mode() -> int:
@@ -51,7 +51,7 @@ def atomic_write(path: str | os.PathLike, data: bytes | str | Callable[[Callable
     path.parent.mkdir(parents=True, exist_ok=True)
     raw = data.encode(encoding) if isinstance(data, str) else data
     try:
-        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+        fd, tmp = _mkstemp(path)
     except OSError as exc:  # the error names the file asked for, not the temporary one
         from .safepath import target_error
         raise target_error(exc, path) from exc
@@ -76,6 +76,23 @@ def atomic_write(path: str | os.PathLike, data: bytes | str | Callable[[Callable
             raise target_error(exc, path) from exc
         raise
     return path
+
+
+def _mkstemp(path: Path) -> tuple[int, str]:
+    """``tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)``: a new
+    file of mode 0600 (O_EXCL, no symlink followed) named ``.NAME.<8 random characters>.tmp``
+    next to ``path``, opened for writing; without importing tempfile (and shutil, bz2,
+    lzma: ~2.5 ms of a JSON run)."""
+    flags = os.O_RDWR | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_CLOEXEC", 0) \
+        | getattr(os, "O_BINARY", 0)
+    for _ in range(10000):                      # tempfile.TMP_MAX tries
+        tag = "".join(_TMP_CHARS[b % len(_TMP_CHARS)] for b in os.urandom(8))
+        name = os.path.abspath(os.path.join(path.parent, f".{path.name}.{tag}.tmp"))
+        try:
+            return os.open(name, flags, 0o600), name
+        except FileExistsError:
+            continue
+    raise FileExistsError(f"no unused temporary name for {path}")
 
 
 def _stamp(path: Path) -> list[int] | None:

@@ -5,8 +5,8 @@ Pydantic models for every section of the task file (README, *The task file*). Qu
 :func:`load_task` reads a YAML file (or a dict) and raises :class:`TaskError` naming
 the file, line, column and field of every problem.
 """
-from __future__ import annotations
-
+# annotations evaluated as written (no `from __future__ import annotations`): pydantic would
+# compile and evaluate every field's annotation string when the models are made
 import re
 from pathlib import Path
 from typing import Annotated, Any, Literal, Union
@@ -545,8 +545,10 @@ class Task(_Model):
         Field(default_factory=dict)
 
     _file: str | None = PrivateAttr(None)
-    _marks: dict = PrivateAttr(default_factory=dict)
-    _input_warnings: list = PrivateAttr(default_factory=list)
+    # factories written as lambdas: pydantic reads a factory's signature for every Task it
+    # makes, and the builtins' (dict, list) is parsed from text by tokenize (~5 ms, once)
+    _marks: dict = PrivateAttr(default_factory=lambda: {})
+    _input_warnings: list = PrivateAttr(default_factory=lambda: [])
     _design: Any = PrivateAttr(None)             # synthesis.Design of the generated mechanism
     _synthesis_error: Any = PrivateAttr(None)    # SynthesisImpossible, raised by the pipeline (exit 3)
     _checked_mechanism: Any = PrivateAttr(None)  # the Mechanism `validation.check_feasible` assembled over
