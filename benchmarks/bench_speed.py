@@ -333,7 +333,7 @@ def kinetostatics_big(repeat: int, n: int = 36000, n_cli: int = 3600) -> None:
     print(f"  target: <= 1 s {'ok' if statistics.median(k[1]) <= 1 else 'OVER'} (cpu), "
           f"<= 200 MB {'ok' if statistics.median(k[3]) <= 200 else 'OVER'} (process peak)")
     _ratio_line("kinetostatics / kinematics alone (cpu)", list(k[1]), [r[1] for r in out["kinematics"]], None)
-    print(f"  the command line, the same six-bar, interleaved with the above; peak RSS of each process")
+    print("  the command line, the same six-bar, interleaved with the above; peak RSS of each process")
     for name, rows in cli_out.items():
         cols = list(zip(*rows))
         print(f"  {name:19s} wall {_stat(list(cols[0]))}   cpu {_stat(list(cols[1]))}   peak RSS {_stat(list(cols[2]))}")
