@@ -7,9 +7,9 @@
   salt; rendered with a fixed salt they repeat from figure to figure (two axes of one size
   share a clip id), so each id is renamed by a hash of the whole figure: the same figure
   gets the same ids, different figures of one report different ones.
-- ``dxf_text(doc)``: an ezdxf document as DXF text without the random GUIDs and the clock
-  time ezdxf writes: the GUIDs are derived from the drawing itself (always the same), the
-  dates are ``source_date()``.
+- ``dxf_text(doc)``: an ezdxf document as DXF text without the random GUIDs, the clock
+  time and the hash-seed order of classes ezdxf writes: the GUIDs are derived from the
+  drawing itself (always the same), the dates are ``source_date()``.
 """
 from __future__ import annotations
 
@@ -68,6 +68,10 @@ def dxf_text(doc) -> str:
     local = when.replace(tzinfo=None) if when.tzinfo is _dt.timezone.utc else when.astimezone().replace(tzinfo=None)
     # "created by ezdxf <version> @ <time>" was stamped with the clock by ezdxf.new()
     doc.ezdxf_metadata()[CREATED_BY_EZDXF] = CONST_MARKER_STRING
+    # the CLASSES of the entity types in use come from a set (an order that follows string
+    # hashing, different in every process): added now, in the order of their names
+    doc.classes.add_required_classes(doc.dxfversion)
+    doc.classes.classes = dict(sorted(doc.classes.classes.items()))
     buf = io.StringIO()
     before = ezdxf.options.write_fixed_meta_data_for_testing
     ezdxf.options.write_fixed_meta_data_for_testing = True
