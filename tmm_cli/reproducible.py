@@ -1,6 +1,6 @@
 """Reproducible output files: two runs on the same task write the same bytes.
 
-- ``source_date()``: the date written into outputs (the report's footer, the DXF header):
+- ``source_date()``: the date written into outputs (the report's footer, the DXF header, a day):
   the time given by ``SOURCE_DATE_EPOCH`` (seconds since 1970, UTC; the reproducible-builds
   convention) when it is set, else now.
 - ``stable_svg_ids(svg)``: matplotlib names clip paths and markers by a hash of a random
@@ -9,7 +9,7 @@
   gets the same ids, different figures of one report different ones.
 - ``dxf_text(doc)``: an ezdxf document as DXF text without the random GUIDs, the clock
   time and the hash-seed order of classes ezdxf writes: the GUIDs are derived from the
-  drawing itself (always the same), the dates are ``source_date()``.
+  drawing itself (always the same), the dates are the day of ``source_date()``.
 """
 from __future__ import annotations
 
@@ -53,19 +53,17 @@ _DATE_VARS = ("$TDCREATE", "$TDUCREATE", "$TDUPDATE", "$TDUUPDATE")
 def dxf_text(doc) -> str:
     """The DXF text of an ezdxf document, the same for the same drawing: ezdxf's fixed
     metadata (its option for comparable files) with the GUIDs a hash of the drawing and the
-    creation/update dates ``source_date()`` (local dates: ``$TDU*`` are UTC)."""
+    creation/update dates the day of ``source_date()``."""
     import hashlib
     import io
     import uuid
 
     import ezdxf
+    from ezdxf.document import CONST_MARKER_STRING, CREATED_BY_EZDXF
     from ezdxf.tools.juliandate import juliandate
 
-    from ezdxf.document import CONST_MARKER_STRING, CREATED_BY_EZDXF
-
-    when = source_date()
-    utc = when.astimezone(_dt.timezone.utc).replace(tzinfo=None)
-    local = when.replace(tzinfo=None) if when.tzinfo is _dt.timezone.utc else when.astimezone().replace(tzinfo=None)
+    # the date of the run, as in the report's footer (a day: two runs of one day are identical)
+    day = _dt.datetime.combine(source_date().date(), _dt.time())
     # "created by ezdxf <version> @ <time>" was stamped with the clock by ezdxf.new()
     doc.ezdxf_metadata()[CREATED_BY_EZDXF] = CONST_MARKER_STRING
     # the CLASSES of the entity types in use come from a set (an order that follows string
@@ -84,9 +82,8 @@ def dxf_text(doc) -> str:
     guids = ("{" + str(uuid.UUID(bytes=hashlib.sha256(digest + bytes([k])).digest()[:16], version=4)).upper() + "}"
              for k in range(2))
     text = re.sub(re.escape(_CONST_GUID), lambda m: next(guids, _CONST_GUID), text)
-    dates = {"$TDCREATE": local, "$TDUPDATE": local, "$TDUCREATE": utc, "$TDUUPDATE": utc}
     for var in _DATE_VARS:
         text = re.sub(r"(\n\s*9\r?\n" + re.escape(var) + r"\r?\n\s*40\r?\n)[^\r\n]*",
-                      lambda m, v=var: m.group(1) + repr(juliandate(dates[v])), text, count=1)
-    text = text.replace(CONST_MARKER_STRING, f"{ezdxf.__version__} @ {utc.isoformat()}+00:00")
+                      lambda m: m.group(1) + repr(juliandate(day)), text, count=1)
+    text = text.replace(CONST_MARKER_STRING, f"{ezdxf.__version__} @ {day.isoformat()}+00:00")
     return text
