@@ -262,6 +262,12 @@ ENGLISH = [
      '`synthesis` needs a `drive` section (link: crank, speed, direction)'),
     ('input.detail_needs_mechanism', {},
      '`detail_position` names a position of the linkage: it needs a `mechanism` (or `synthesis`)'),
+    ('input.output_speed_bool', {},
+     'expected a speed (m/s for a slider, rad/s or deg/s for a rocker), got a boolean'),
+    ('input.output_speed_unit', {'value': '3 kg'},
+     "'3 kg' is not a speed: give m/s (a slider) or rad/s, deg/s (a rocker)"),
+    ('input.output_speed_positive', {'value': "'-0.3 m/s'"},
+     "the output speed must be positive, got '-0.3 m/s'"),
     # the linkage's references and sizes (the former texts of linkage/mechanism.py, validation.py)
     ('input.ground_is_link', {'name': 'O'},
      "'O' is both a ground point and a link name"),

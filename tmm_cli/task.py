@@ -130,7 +130,7 @@ class DriveSection(_Model):
             try:
                 check_output_speed(getattr(self, given[0]))
             except ValueError as exc:
-                raise FieldValueError((given[0],), str(exc)) from None
+                raise FieldValueError((given[0],), exc.args[0] if len(exc.args) == 1 else str(exc)) from None
         return self
 
     @property
