@@ -268,6 +268,10 @@ ENGLISH = [
      "'3 kg' is not a speed: give m/s (a slider) or rad/s, deg/s (a rocker)"),
     ('input.output_speed_positive', {'value': "'-0.3 m/s'"},
      "the output speed must be positive, got '-0.3 m/s'"),
+    ('input.load_negative_against', {'name': 'magnitude', 'kind': 'resistance', 'value': -12000.0},
+     '`magnitude` of a `kind: resistance` load is its size and must not be negative (got -12000); the sense comes from `kind` (against the motion)'),
+    ('input.load_negative_along', {'name': 'moment', 'kind': 'driving', 'value': -5.0},
+     '`moment` of a `kind: driving` load is its size and must not be negative (got -5); the sense comes from `kind` (along the motion)'),
     # the linkage's references and sizes (the former texts of linkage/mechanism.py, validation.py)
     ('input.ground_is_link', {'name': 'O'},
      "'O' is both a ground point and a link name"),

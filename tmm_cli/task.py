@@ -197,9 +197,9 @@ class ForceSpec(_Model):
         for name in ("magnitude", "moment"):
             v = getattr(self, name)
             if self.kind is not None and v is not None and v < 0:
-                raise FieldValueError((name,), f"`{name}` of a `kind: {self.kind}` load is its size and must "
-                                      f"not be negative (got {v:g}); the sense comes from `kind` "
-                                      f"({'against' if self.kind == 'resistance' else 'along'} the motion)")
+                raise FieldValueError((name,), Message("input.load_negative_against" if self.kind == "resistance"
+                                                       else "input.load_negative_along", name=name, kind=self.kind,
+                                                       value=v))
         return self
 
 
