@@ -4,7 +4,6 @@ error can name its field.  Kept apart from task.py so that the section modules a
 task model import it without importing each other."""
 from __future__ import annotations
 
-import difflib
 from typing import Any
 
 from pydantic import BaseModel, ConfigDict, model_validator
@@ -42,6 +41,7 @@ class _Model(BaseModel):
                     raise ValueError(f"unknown key '{key}' (keys are names; "
                                      f"allowed: {', '.join(allowed)})")
                 if key not in allowed:
+                    import difflib
                     close = difflib.get_close_matches(key, allowed, n=1, cutoff=0.6)
                     hint = f"; did you mean '{close[0]}'?" if close else f"; allowed: {', '.join(allowed)}"
                     raise ValueError(f"unknown key '{key}'{hint}")
