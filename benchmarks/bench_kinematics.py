@@ -9,19 +9,24 @@
   the joints A and B only; less work than tmm's) when pylinkage and numba are
   installed (``pip install .[bench]``; target: tmm faster at N >= 360). All three are
   timed interleaved (tmm, closed form, pylinkage, tmm, ...), CPU time and wall time of
-  a batch of calls, medians and spread of the per-round ratios.
+  a batch of calls, medians and spread of the per-round ratios, and the minor page faults
+  per call (memory the C library handed back to the system and took again: at N >= 3600
+  a large part of the time of both sides, and it depends on the process's allocation
+  history -- see the README).
 * ``sixbar``: the six-bar of tasks/forging_sixbar.yaml at 10^5 positions: wall time, CPU
   time and the peak memory traced by tracemalloc (numpy arrays are traced). Targets:
   < 0.2 s, < 200 MB.
 * ``digest``: a digest of every output of ``solve`` on the linkage tasks (not timed): the
   same before and after a change that must leave the results bit-identical.
 
-Run: python benchmarks/bench_kinematics.py [core|sixbar|digest] [--repeat 7]
+Run: python benchmarks/bench_kinematics.py [core|sixbar|digest] [--repeat 7] [--sizes 12,360,3600]
+[--no-trim]
 """
 from __future__ import annotations
 
 import argparse
 import math
+import resource
 import statistics
 import sys
 import time
@@ -57,8 +62,10 @@ FOUR_BAR = {"schema": "tmm/1", "mechanism": {
 
 # ----------------------------------------------------------------- closed forms
 # Each returns what tmm's KinematicsResult holds: pos, d1, d2 of every point (N, 2 arrays)
-# and angle, a1, a2 of every link (N arrays), derivatives in the crank angle phi (rad).
-# The centres of mass are the links' midpoints (tmm's default), S1 the crank's pivot.
+# and angle, a1, a2 of every link (N arrays), derivatives in the crank angle phi (rad), and
+# the mask of the positions where the velocity equations are singular (None where there
+# are none); and, as tmm does, it stops where the linkage does not assemble. The centres
+# of mass are the links' midpoints (tmm's default), S1 the crank's pivot.
 
 def slider_crank_closed(phi_deg, r=0.045, l=0.170):
     """Central slider-crank O-A-B, the piston B on the y axis (guide through O at 90 deg):
@@ -66,7 +73,11 @@ def slider_crank_closed(phi_deg, r=0.045, l=0.170):
     N = len(phi_deg)
     f = np.radians(phi_deg)
     c, s = np.cos(f), np.sin(f)
-    R = np.sqrt(l * l - (r * c) ** 2)
+    R2 = l * l - (r * c) ** 2
+    if not (R2 >= 0).all():                                 # tmm: an assembly error
+        raise ValueError("the slider-crank does not assemble")
+    R = np.sqrt(R2)
+    sing = ~(np.abs(R) >= 1e-10 * l)                        # tmm: the rod square to the guide
     y = r * s + R
     g = r * r * c * s / R
     y1 = r * c + g                                           # dy/dphi
@@ -88,7 +99,7 @@ def slider_crank_closed(phi_deg, r=0.045, l=0.170):
     angle = {"crank": f, "rod": th, "piston": np.full(N, 0.5 * np.pi)}
     a1 = {"crank": one, "rod": th1, "piston": z}
     a2 = {"crank": z, "rod": th2, "piston": z}
-    return pos, d1, d2, angle, a1, a2
+    return pos, d1, d2, angle, a1, a2, (sing if sing.any() else None)
 
 
 def four_bar_closed(phi_deg, a=0.08, b=0.30, c=0.22, d=0.30):
@@ -102,7 +113,10 @@ def four_bar_closed(phi_deg, a=0.08, b=0.30, c=0.22, d=0.30):
     A2 = -A
     ACx, ACy = d - A[:, 0], -A[:, 1]
     L = np.hypot(ACx, ACy)
-    gam = np.arccos((b * b + L * L - c * c) / (2 * b * L))
+    cg = (b * b + L * L - c * c) / (2 * b * L)
+    if not (np.abs(cg) <= 1).all():                         # tmm: an assembly error
+        raise ValueError("the four-bar does not assemble")
+    gam = np.arccos(cg)
     t2 = np.arctan2(ACy, ACx) + gam                        # coupler angle
     c2, s2 = np.cos(t2), np.sin(t2)
     B = A + b * np.stack([c2, s2], 1)
@@ -110,6 +124,7 @@ def four_bar_closed(phi_deg, a=0.08, b=0.30, c=0.22, d=0.30):
     c3, s3 = np.cos(t3), np.sin(t3)
     # A1 + w2 b (-s2, c2) = w3 c (-s3, c3)  ->  2x2 by Cramer
     det = b * c * (c2 * s3 - s2 * c3)
+    sing = ~(np.abs(det) >= 1e-10 * b * c)                 # tmm: the coupler and rocker in line
     rx, ry = -A1[:, 0], -A1[:, 1]
     w2 = (rx * c * c3 + ry * c * s3) / det
     w3 = (b * c2 * rx + b * s2 * ry) / det
@@ -128,12 +143,13 @@ def four_bar_closed(phi_deg, a=0.08, b=0.30, c=0.22, d=0.30):
     angle = {"crank": f, "coupler": t2, "rocker": t3}
     a1 = {"crank": np.ones(N), "coupler": w2, "rocker": w3}
     a2 = {"crank": np.zeros(N), "coupler": e2, "rocker": e3}
-    return pos, d1, d2, angle, a1, a2
+    return pos, d1, d2, angle, a1, a2, (sing if sing.any() else None)
 
 
 def check_same(name: str, k, ref) -> None:
     """tmm's result and the closed form hold the same outputs, to round-off."""
-    pos, d1, d2, angle, a1, a2 = ref
+    pos, d1, d2, angle, a1, a2, sing = ref
+    assert (k.singular is None) == (sing is None), f"{name}: not the same singular positions"
     assert sorted(k.pos) == sorted(pos) and sorted(k.angle) == sorted(angle), f"{name}: not the same outputs"
     for p in pos:
         for what, mine, theirs in (("pos", k.pos, pos), ("d1", k.d1, d1), ("d2", k.d2, d2)):
@@ -178,15 +194,18 @@ def pylinkage_case(name: str, n: int):
 
 
 # ----------------------------------------------------------------- timing
-def _batch(fn, calls: int) -> tuple[float, float]:
-    """(wall, cpu) per call of ``calls`` calls."""
+def _batch(fn, calls: int) -> tuple[float, float, float]:
+    """(wall, cpu, minor page faults) per call of ``calls`` calls."""
+    f0 = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
     t0, c0 = time.perf_counter(), time.process_time()
     for _ in range(calls):
         fn()
-    return (time.perf_counter() - t0) / calls, (time.process_time() - c0) / calls
+    t1, c1 = time.perf_counter(), time.process_time()
+    f1 = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
+    return (t1 - t0) / calls, (c1 - c0) / calls, (f1 - f0) / calls
 
 
-def core(repeat: int = 7, sizes=(36, 360, 3600, 36000)) -> None:
+def core(repeat: int = 7, sizes=(12, 36, 360, 3600, 36000)) -> None:
     cases = [("slider-crank", build_mechanism(load_task(SLIDER_CRANK)), slider_crank_closed),
              ("four-bar", build_mechanism(load_task(FOUR_BAR)), four_bar_closed)]
     have_pyl = pylinkage_case("four-bar", 36) is not None
@@ -207,8 +226,9 @@ def core(repeat: int = 7, sizes=(36, 360, 3600, 36000)) -> None:
             for _ in range(repeat):
                 for k, fn in fns.items():
                     res[k].append(_batch(fn, calls))
-            cpu = {k: [c for _, c in v] for k, v in res.items()}
-            wall = {k: [w for w, _ in v] for k, v in res.items()}
+            cpu = {k: [c for _, c, _ in v] for k, v in res.items()}
+            wall = {k: [w for w, _, _ in v] for k, v in res.items()}
+            flt = {k: statistics.median(f for _, _, f in v) for k, v in res.items()}
             line = f"  {name:12s} N={n:6d}  cpu ms: " + ", ".join(
                 f"{k} {statistics.median(v) * 1e3:.3f}" for k, v in cpu.items())
             for other in [k for k in fns if k != "tmm"]:
@@ -221,6 +241,7 @@ def core(repeat: int = 7, sizes=(36, 360, 3600, 36000)) -> None:
                     tgt = " (< 1 " + ("ok" if statistics.median(rc) < 1 else "OVER") + ")"
                 line += (f" | tmm/{other} cpu {statistics.median(rc):.2f} [{min(rc):.2f}-{max(rc):.2f}]"
                          f" wall {statistics.median(rw):.2f}{tgt}")
+            line += " | page faults/call " + ", ".join(f"{k} {v:.0f}" for k, v in flt.items())
             print(line, flush=True)
 
 
@@ -245,12 +266,14 @@ def sixbar(n: int = 100_000, repeat: int = 5) -> None:
 def digest() -> None:
     """A digest of every output of ``solve`` (positions, derivatives, angles, warnings, the
     singular and near-change-point masks) for each linkage task of tasks/ and the two
-    linkages above, on four sets of angles (sorted, random unsorted, three, one): run it
+    linkages above, on six sets of angles (sorted, random unsorted, three, one, and sorted and
+    unsorted sets of thousands, where the kinematics holds less memory): run it
     before and after a change of the kinematics to see that no bit of its results moved."""
     import glob
     import hashlib
     rng = np.random.default_rng(7)
-    grids = [np.arange(720) * 0.5, rng.uniform(0.0, 360.0, 500), np.array([0.0, 180.0, 359.999]), np.array([90.0])]
+    grids = [np.arange(720) * 0.5, rng.uniform(0.0, 360.0, 500), np.array([0.0, 180.0, 359.999]), np.array([90.0]),
+             np.arange(3600) * 0.1, rng.uniform(0.0, 360.0, 2000)]      # the last two: many positions
     srcs = [(Path(f).name, f) for f in sorted(glob.glob(str(ROOT / "tasks" / "*.yaml")))]
     for name, src in srcs + [("slider-crank", SLIDER_CRANK), ("four-bar", FOUR_BAR)]:
         task = load_task(src)
@@ -278,13 +301,22 @@ def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("what", nargs="*", default=["sixbar", "core"], choices=["sixbar", "core", "digest"])
     ap.add_argument("--repeat", type=int, default=7)
+    ap.add_argument("--sizes", default="12,36,360,3600,36000", help="core: numbers of positions (comma-separated)")
+    ap.add_argument("--no-trim", action="store_true",
+                    help="glibc: keep freed memory in the process (mallopt M_TRIM_THRESHOLD, M_MMAP_THRESHOLD), "
+                         "for every side alike: the timings without the page faults")
     a = ap.parse_args()
+    if a.no_trim:
+        import ctypes
+        libc = ctypes.CDLL("libc.so.6")
+        libc.mallopt(-1, 256 << 20)            # M_TRIM_THRESHOLD
+        libc.mallopt(-3, 32 << 20)             # M_MMAP_THRESHOLD
     if "digest" in a.what:
         digest()
     if "sixbar" in a.what:
         sixbar()
     if "core" in a.what:
-        core(max(5, a.repeat))
+        core(max(5, a.repeat), tuple(int(n) for n in a.sizes.split(",")))
 
 
 if __name__ == "__main__":

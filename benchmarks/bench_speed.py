@@ -20,15 +20,18 @@ interleaved (A, B, A, B, ...), each repeated (>= 5 times); medians and the sprea
   run of the same task;
 * with --kinetostatics: loads + kinetostatics + the results entries at 36,000 positions of
   the six-bar of bench_kinetostatics.py, each in a fresh process (target <= 1 s and
-  <= 200 MB peak), interleaved with the kinematics alone at the same positions.
+  <= 200 MB peak), interleaved with the kinematics alone at the same positions, and with
+  `tmm run --format json` of the six-bar at 3600 positions (the most `positions.count`
+  allows) and at 12, and the import floor (CPU and peak RSS of each process).
 
 The commands run as an installed tmm does: with the bytecode cache (pip compiles it at
 install), so a PYTHONDONTWRITEBYTECODE of the environment is dropped for them (the cache
 goes to a temporary PYTHONPYCACHEPREFIX).
 
-* with --against DIR: the whole report and the JSON run of this checkout and of another
-  one (DIR: e.g. `git archive <commit> | tar -x -C DIR`), all four interleaved; with
-  --batch also the batch run by DIR, interleaved with this checkout's.
+* with --against DIR: the JSON run and `tmm validate` (with --report also the whole report)
+  of this checkout and of another one (DIR: e.g. `git archive <commit> | tar -x -C DIR`),
+  and the import floor, all interleaved; with --batch also the batch run by DIR,
+  interleaved with this checkout's.
 * with --scaling: `tmm run` of the task at 12 and at 3600 positions (made on the fly),
   --format json and --format html, interleaved (target for HTML: 3600 <= 2x 12).
 
@@ -238,6 +241,7 @@ def batch(repeat: int, n: int, base: Path | None = None) -> None:
 # ----------------------------------------------------------------- kinetostatics at 36,000
 _KS_CODE = """
 import resource, sys, time
+import numpy as np
 sys.path.insert(0, {bench!r})
 from bench_kinetostatics import SIX
 from tmm_cli import load_task
@@ -267,18 +271,59 @@ print(time.perf_counter() - t0, time.process_time() - c0,
 """
 
 
-def kinetostatics_big(repeat: int, n: int = 36000) -> None:
+def _run_peak(cmd: list[str]) -> tuple[float, float, float]:
+    """(wall, cpu, peak RSS in MB) of one subprocess (its own rusage, by wait4)."""
+    t0 = time.perf_counter()
+    p = subprocess.Popen(cmd, cwd=ROOT, env=_ENV, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    _, status, ru = os.wait4(p.pid, 0)
+    wall = time.perf_counter() - t0
+    err = p.stderr.read().decode(errors="replace")
+    p.stderr.close()
+    p.returncode = os.waitstatus_to_exitcode(status)
+    if p.returncode != 0:
+        raise SystemExit(f"{' '.join(cmd)} failed ({p.returncode}):\n{err[-2000:]}")
+    return wall, ru.ru_utime + ru.ru_stime, ru.ru_maxrss / 1024.0
+
+
+def _six_task(path: Path, count: int) -> Path:
+    """The six-bar of bench_kinetostatics.py as a task file at ``count`` positions (written
+    by a child process: this one stays small, as the peak RSS of a child it starts counts
+    this process's size at the start)."""
+    code = ("import sys, yaml; sys.path.insert(0, sys.argv[1]); from bench_kinetostatics import SIX; "
+            "open(sys.argv[2], 'w', encoding='utf-8').write(yaml.safe_dump({**SIX, 'positions': "
+            "{'count': int(sys.argv[3])}}, sort_keys=False))")
+    subprocess.run([sys.executable, "-c", code, str(ROOT / "benchmarks"), str(path), str(count)], check=True,
+                   cwd=ROOT, env=_ENV)
+    return path
+
+
+def kinetostatics_big(repeat: int, n: int = 36000, n_cli: int = 3600) -> None:
     """Each in a fresh process, interleaved: the kinematics alone (solve), the kinematics
-    and its results entries, and loads + kinetostatics + its results entries."""
+    and its results entries, and loads + kinetostatics + its results entries (in one
+    process, at ``n`` positions); and the command line, `tmm run --format json` of the
+    same six-bar at ``n_cli`` positions (a task's `positions.count` is at most 3600) and
+    at 12, against the import floor (peak RSS and CPU of each process)."""
     cases = (("kinematics", False, False), ("kinematics+entries", False, True),
              ("kinetostatics", True, True))
     out: dict[str, list[list[float]]] = {c[0]: [] for c in cases}
-    for _ in range(repeat):
-        for name, full, entries in cases:
-            code = _KS_CODE.format(bench=str(ROOT / "benchmarks"), n=n, full=full, entries=entries)
-            p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, env=_ENV,
-                               check=True)
-            out[name].append([float(x) for x in p.stdout.split()])
+    with tempfile.TemporaryDirectory() as tmp:
+        tmm = [sys.executable, "-m", "tmm_cli", "run"]
+        clis = {"floor": [sys.executable, "-c", "import numpy, pydantic, yaml"],
+                "cli json 12": tmm + [str(_six_task(Path(tmp) / "six12.yaml", 12)), "--format", "json",
+                                      "--quiet", "--out", f"{tmp}/o12"],
+                f"cli json {n_cli}": tmm + [str(_six_task(Path(tmp) / "six.yaml", n_cli)), "--format", "json",
+                                            "--quiet", "--out", f"{tmp}/o"]}
+        cli_out: dict[str, list[tuple[float, float, float]]] = {k: [] for k in clis}
+        for c in clis.values():                     # warm-up (bytecode and disk caches)
+            _run_peak(c)
+        for _ in range(repeat):
+            for name, full, entries in cases:
+                code = _KS_CODE.format(bench=str(ROOT / "benchmarks"), n=n, full=full, entries=entries)
+                p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT,
+                                   env=_ENV, check=True)
+                out[name].append([float(x) for x in p.stdout.split()])
+            for k, c in clis.items():
+                cli_out[k].append(_run_peak(c))
     print(f"kinetostatics at {n} positions (six-bar with friction: loads, three methods, the results "
           f"entries), {repeat} interleaved rounds, each in a fresh process; s and MB: median [min-max]")
     for name, rows in out.items():
@@ -289,28 +334,40 @@ def kinetostatics_big(repeat: int, n: int = 36000) -> None:
     print(f"  target: <= 1 s {'ok' if statistics.median(k[1]) <= 1 else 'OVER'} (cpu), "
           f"<= 200 MB {'ok' if statistics.median(k[3]) <= 200 else 'OVER'} (process peak)")
     _ratio_line("kinetostatics / kinematics alone (cpu)", list(k[1]), [r[1] for r in out["kinematics"]], None)
+    print("  the command line, the same six-bar, interleaved with the above; peak RSS of each process")
+    for name, rows in cli_out.items():
+        cols = list(zip(*rows))
+        print(f"  {name:19s} wall {_stat(list(cols[0]))}   cpu {_stat(list(cols[1]))}   peak RSS {_stat(list(cols[2]))}")
+    for name in clis:
+        if name != "floor":
+            _ratio_line(f"{name} / import floor (cpu)", [r[1] for r in cli_out[name]],
+                        [r[1] for r in cli_out["floor"]], None)
+    _ratio_line(f"cli json {n_cli} / 12 (cpu)", [r[1] for r in cli_out[f"cli json {n_cli}"]],
+                [r[1] for r in cli_out["cli json 12"]], None)
 
 
-def against(repeat: int, base: Path) -> None:
-    """The whole report and the JSON run of this checkout against another checkout of tmm
-    (e.g. `git archive <commit> | tar -x -C DIR`), all four interleaved: the report's
-    change measured under the same load."""
+def against(repeat: int, base: Path, report: bool = True) -> None:
+    """The JSON run and `tmm validate` (and with ``report`` the whole report) of this
+    checkout against another checkout of tmm (e.g. `git archive <commit> | tar -x -C DIR`),
+    with the import floor, all interleaved: a change measured under the same load."""
     py = [sys.executable, "-m", "tmm_cli"]
     trees = {"this": ROOT, "base": Path(base).resolve()}
 
     def run_in(tree: Path, args: list[str]) -> tuple[float, float]:
         c0, t0 = _child_cpu(), time.perf_counter()
-        p = subprocess.run(py + args, capture_output=True, text=True, cwd=tree, env=_ENV)
+        p = subprocess.run(args, capture_output=True, text=True, cwd=tree, env=_ENV)
         if p.returncode != 0:
             raise SystemExit(f"{tree}: {' '.join(args)} failed ({p.returncode}):\n{p.stderr[-2000:]}")
         return time.perf_counter() - t0, _child_cpu() - c0
 
     with tempfile.TemporaryDirectory() as tmp:
-        cmds = {}
+        cmds = {"floor": (ROOT, [sys.executable, "-c", "import numpy, pydantic, yaml"])}
         for tag, tree in trees.items():
             task = str(tree / "tasks" / TASK.name)
-            cmds[f"json {tag}"] = (tree, ["run", task, "--format", "json", "--quiet", "--out", f"{tmp}/j{tag}"])
-            cmds[f"report {tag}"] = (tree, ["run", task, "--quiet", "--out", f"{tmp}/r{tag}"])
+            cmds[f"json {tag}"] = (tree, py + ["run", task, "--format", "json", "--quiet", "--out", f"{tmp}/j{tag}"])
+            cmds[f"validate {tag}"] = (tree, py + ["validate", task])
+            if report:
+                cmds[f"report {tag}"] = (tree, py + ["run", task, "--quiet", "--out", f"{tmp}/r{tag}"])
         out: dict[str, list[tuple[float, float]]] = {k: [] for k in cmds}
         for tree, args in cmds.values():        # warm-up
             run_in(tree, args)
@@ -319,7 +376,18 @@ def against(repeat: int, base: Path) -> None:
                 out[k].append(run_in(tree, args))
     print(f"this checkout against {trees['base']}, {TASK.name}, {repeat} interleaved rounds; wall / cpu in s")
     for k, v in out.items():
-        print(f"  {k:12s} wall {_stat([w for w, _ in v])}   cpu {_stat([c for _, c in v])}")
+        print(f"  {k:15s} wall {_stat([w for w, _ in v])}   cpu {_stat([c for _, c in v])}")
+    floor = out["floor"]
+    for what in ("json", "validate"):
+        for tag in trees:
+            for i, kind in ((0, "wall"), (1, "cpu")):
+                _ratio_line(f"{tag}: {what} / import floor ({kind})", [r[i] for r in out[f"{what} {tag}"]],
+                            [r[i] for r in floor], 2.0)
+        for i, kind in ((0, "wall"), (1, "cpu")):
+            _ratio_line(f"{what}: this / base ({kind})", [r[i] for r in out[f"{what} this"]],
+                        [r[i] for r in out[f"{what} base"]], None)
+    if not report:
+        return
     for tag in trees:
         for i, what in ((0, "wall"), (1, "cpu")):
             _ratio_line(f"{tag}: report html+pdf / json run ({what})", [r[i] for r in out[f"report {tag}"]],
@@ -354,7 +422,7 @@ def main() -> None:
     if a.kinetostatics:
         kinetostatics_big(max(5, a.repeat))
     if a.against:
-        against(max(5, a.repeat), Path(a.against))
+        against(max(5, a.repeat), Path(a.against), report=a.report)
     if not a.no_kinematics:
         kinematics(max(5, a.repeat))
 

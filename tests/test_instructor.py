@@ -6,6 +6,7 @@ import csv
 import json
 import math
 import os
+import re
 from pathlib import Path
 
 import pytest
@@ -609,3 +610,150 @@ def test_batch_stage_failure_in_the_summary_language(tmp_path):
     html = (tmp_path / "o" / "summary.html").read_text(encoding="utf-8")
     assert "етап «синтез планетарного механізму» не виконано: жоден набір чисел зубів схеми A не дає i_1H = 1.2" in html
     assert "no tooth numbers" not in html
+
+
+SLIDER = """schema: tmm/1
+mechanism:
+  ground: {O: [0, 0]}
+  links:
+    crank: {points: [O, A], length: 0.08}
+    rod:   {points: [A, B], length: 0.35}
+    ram:   {slider: B, guide: {through: [0.025, 0], angle: 90}}
+  assembly: {B: [0.025, 0.34]}
+drive: {link: crank, speed: 90 rpm, direction: cw}
+positions: {count: 12, zero: extreme, output: ram}
+loads:
+  forces:
+    - {on: ram, kind: resistance, stroke: working, magnitude: 1 kN}
+"""
+# a student's mistakes: (file, what is changed, the Russian and the Ukrainian words shown)
+BROKEN = [
+    ("misspelt", ("length: 0.08", "lenght: 0.08"), "неизвестный ключ «lenght»; возможно, имелось в виду «length»?",
+     "невідомий ключ «lenght»; можливо, малося на увазі «length»?"),
+    ("word", ("length: 0.35", "length: long"), "неизвестная единица измерения «long» в «long»; ожидается длина",
+     "невідома одиниця вимірювання «long» у «long»; очікується довжина"),
+    ("negative", ("length: 0.08", "length: -0.08"), "длина звена `length` должна быть положительной",
+     "довжина ланки `length` має бути додатною"),
+    ("unit", ("90 rpm", "90 rmp"), "неизвестная единица измерения «rmp» в «90 rmp»; ожидается угловая скорость",
+     "невідома одиниця вимірювання «rmp» у «90 rmp»; очікується кутова швидкість"),
+    ("syntax", ("{O: [0, 0]}", "{O: [0, 0}"), "синтаксическая ошибка YAML", "синтаксична помилка YAML"),
+    ("indent", ("  links:", "   links:"), "проверьте отступы в строках", "перевірте відступи в рядках"),
+    ("assembly", ("assembly: {B:", "assembly: {Q:"), "указание сборки для неизвестной точки «Q»",
+     "вказівка складання для невідомої точки «Q»"),
+    ("loads", ("on: ram", "on: rem"), "звена с именем «rem» нет; возможно, имелось в виду «ram»?",
+     "ланки з ім'ям «rem» немає; можливо, малося на увазі «ram»?"),
+    ("literal", ("direction: cw", "direction: clockwise"), "допустимые значения: 'ccw' или 'cw'; задано 'clockwise'",
+     "допустимі значення: 'ccw' або 'cw'; задано 'clockwise'"),
+    ("count", ("count: 12", "count: 1"), "значение должно быть не меньше 2", "значення має бути не меншим за 2"),
+    ("missing", ("{link: crank, ", "{"), "обязательное поле не задано", "обов'язкове поле не задане"),
+]
+
+
+@pytest.mark.parametrize("lang", ["ru", "uk"])
+def test_batch_invalid_variants_in_the_summary_language(tmp_path, lang):
+    """Broken variants: summary.csv (and stderr) keep the English lines of `tmm run`;
+    summary.html shows each with its file, line and field, in the batch's language."""
+    from html import unescape
+
+    from tmm_cli.errors import TaskError
+    from tmm_cli.orchestrate import prepare
+    src = tmp_path / "src"
+    english = {}
+    for name, (a, b), _, _ in BROKEN:
+        assert a in SLIDER
+        f = _write(src, f"{name}.yaml", SLIDER.replace(a, b, 1))
+        with pytest.raises(TaskError) as info:
+            prepare(f)
+        english[name] = info.value.render()
+    res = runner.invoke(app, ["batch", str(src), "--out", str(tmp_path / "o"), "--lang", lang])
+    assert res.exit_code == 2, res.output
+    rows = {Path(r["file"]).stem: r for r in _csv(tmp_path / "o" / "summary.csv")}
+    html = unescape((tmp_path / "o" / "summary.html").read_text(encoding="utf-8"))
+    for name, _, ru, uk in BROKEN:
+        assert rows[name]["status"] == "invalid" and rows[name]["message"] == english[name]
+        first = english[name].splitlines()[0]
+        where = re.match(r"^(.*?\.yaml:\d+(?::\d+)?): ", first).group(1)
+        assert where in html, name                                   # file:line:col as in English
+        if ": field '" in first:
+            field = first.split(": field '")[1].split("'")[0]
+            assert f"{where}: поле «{field}»: " in html, name
+        assert (ru if lang == "ru" else uk) in html, (name, lang)
+        assert first not in html, name                               # no English line left
+
+
+def test_batch_resends_a_variant_whose_idle_worker_was_killed(tmp_path, monkeypatch):
+    """A worker killed from outside while idle, just as a variant is sent to it, never began
+    that variant: a fresh worker runs it (once). A variant that kills its own worker is not
+    run again: its row says the worker died."""
+    import signal
+
+    import tmm_cli.batch as b
+    real_work, real_send = b.work, b._Slot.send
+    runs = tmp_path / "runs.txt"
+
+    def work(path, *a):
+        with open(runs, "a") as fh:
+            fh.write(Path(path).stem + "\n")
+        if Path(path).stem == "crash":
+            os.kill(os.getpid(), signal.SIGKILL)
+        return real_work(path, *a)
+
+    sent = []
+
+    def send(self, i):
+        sent.append(i)
+        if len(sent) == 2:                      # the second variant: its worker waits idle for it
+            os.kill(self.proc.pid, signal.SIGSTOP)   # stopped: alive, but it will never read the index
+            ok = real_send(self, i)
+            os.kill(self.proc.pid, signal.SIGKILL)
+            return ok
+        return real_send(self, i)
+
+    monkeypatch.setattr(b, "work", work)
+    monkeypatch.setattr(b._Slot, "send", send)
+    src = tmp_path / "src"
+    for name in ("a1", "a2", "crash", "a4"):
+        _write(src, f"{name}.yaml", GEARS.format(v=1))
+    res = runner.invoke(app, ["batch", str(src), "--out", str(tmp_path / "o"), "--jobs", "1"])
+    rows = {Path(r["file"]).stem: r for r in _csv(tmp_path / "o" / "summary.csv")}
+    assert rows["a1"]["status"] == rows["a2"]["status"] == rows["a4"]["status"] == "ok", rows
+    assert rows["crash"]["status"] == "failed" and "SIGKILL" in rows["crash"]["message"]
+    assert sorted(runs.read_text().split()) == ["a1", "a2", "a4", "crash"]   # each run once
+    assert sent == [0, 1, 1, 2, 3]              # a2 sent twice: to the killed worker, then a fresh one
+    assert res.exit_code == 3
+
+
+def test_batch_invalid_answers_in_the_summary_language(tmp_path):
+    """An answers file that is not one, and an answer that is not a number: summary.csv
+    keeps the English; summary.html (ru) shows both in Russian, with the file and field."""
+    from html import unescape
+    src, ans = tmp_path / "src", tmp_path / "ans"
+    _write(src, "v1.yaml", GEARS.format(v=1))
+    _write(ans, "s1.yaml", "student: {name: Ivanov}\nvariant: 1\nanswers: {gears.aw: twelve}\n")
+    _write(ans, "s2.yaml", "student: {name: Petrov}\nvariant: 1\nanswer: {gears.aw: 0.09}\n")
+    res = runner.invoke(app, ["batch", str(src), "--out", str(tmp_path / "o"), "--answers", str(ans), "--lang", "ru"])
+    assert res.exit_code == 2, res.output
+    rows = {r["student"] or Path(r["file"]).name: r for r in _csv(tmp_path / "o" / "summary.csv")}
+    assert rows["Ivanov"]["message"] == f"{ans / 's1.yaml'}:3:11: field 'answers.gears.aw': invalid answer: " \
+                                        "not a number: 'twelve'"
+    assert rows["s2.yaml"]["message"].endswith("s2.yaml: not an answers file (a YAML file with an `answers:` "
+                                               "mapping of result paths to values)")
+    html = unescape((tmp_path / "o" / "summary.html").read_text(encoding="utf-8"))
+    assert f"{ans / 's1.yaml'}:3:11: поле «answers.gears.aw»: неверный ответ: это не число: 'twelve'" in html
+    assert f"{ans / 's2.yaml'}: это не файл ответов" in html
+    assert "invalid answer" not in html and "not an answers file" not in html
+
+
+def test_feedback_page_names_a_misspelt_path_in_its_language(tmp_path):
+    """A student's misspelt result path: check.csv's note keeps the English "did you mean";
+    the Russian feedback page gives the hint in Russian."""
+    from types import SimpleNamespace
+
+    from tmm_cli.check import grade
+    from tmm_cli.feedback import feedback_html
+    res = {"flywheel": {"J": 1.0, "delta": 0.1}}
+    rows = grade(res, AnswerSet(source="s.yaml", answers={"flywheel.JJ": 1.0, "flywheel.J": 1.0}), {})
+    assert str(rows[0]["note"]).endswith("; did you mean 'flywheel.J'?")
+    html = feedback_html(SimpleNamespace(title="t", name="t"), {"rows": rows, "student": "S"}, "ru")
+    assert "возможно, имелось в виду «flywheel.J»?" in html.replace("&laquo;", "«").replace("&raquo;", "»")
+    assert "did you mean" not in html

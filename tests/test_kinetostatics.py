@@ -277,3 +277,48 @@ def test_at_and_near_a_singular_position_numbers_are_null_or_finite_and_flagged(
     assert not e2["near_singular"]
     assert d["singular"] == pytest.approx(sing, abs=1e-6)
     assert "Infinity" not in text
+
+
+def test_conditioning_certificate_never_clears_an_ill_conditioned_matrix():
+    """The Cholesky certificate that spares the SVD: True only when cond_2 < 1.5e6
+    (checked by the SVD on matrices of prescribed singular values), and it clears the
+    well-conditioned ones; one ill-conditioned matrix in a block leaves the block undecided."""
+    from tmm_cli.linkage.kinetostatics.solve import _surely_conditioned
+    rng = np.random.default_rng(7)
+    m = 15
+    for c in [1.0, 10.0, 1e3, 1e5, 1e6, 2e6, 1e8, 1e12, 1e17]:
+        for _ in range(20):
+            U, _r = np.linalg.qr(rng.normal(size=(m, m)))
+            V, _r = np.linalg.qr(rng.normal(size=(m, m)))
+            s = np.geomspace(1.0, 1.0 / c, m) * 10.0 ** rng.uniform(-3, 3)
+            A = (U * s) @ V.T
+            cond = np.linalg.cond(A)
+            got = _surely_conditioned(A[None])
+            if got:
+                assert cond < 1.5e6
+            if cond < 1e5:
+                assert got
+    good = np.tile(np.eye(m), (4, 1, 1))
+    assert _surely_conditioned(good)
+    good[2, :, 3] = 0.0                              # a singular matrix among them
+    assert not _surely_conditioned(good)
+    good[2, 3, 3] = np.nan
+    assert not _surely_conditioned(good)
+
+
+@pytest.mark.parametrize("balance", ["rocker", "coupler", "crank"])
+def test_matrix_method_flags_the_positions_the_svd_condition_number_flags(balance):
+    """The stage's conditioning decision equals cond_2 (SVD) < COND_MAX position by position,
+    on a fine grid with the singular angles and angles 1e-9 deg, 1e-7 deg off them."""
+    from tmm_cli.linkage.kinetostatics.equations import geometry
+    from tmm_cli.linkage.kinetostatics.solve import COND_MAX, condition_numbers, matrix_method
+    mech = mech_of(four_bar_task())
+    b = mech.link(balance).index
+    sing = np.array(find_singular(mech, None, balance, solver=fb_solver))
+    phi = np.concatenate([np.linspace(0.0, 360.0, 5000, endpoint=False), sing, sing + 1e-9, sing - 1e-7])
+    geo = geometry(mech, four_bar_kin(phi))
+    q = np.random.default_rng(1).normal(size=(len(phi), mech.n + 1, 3))
+    _, _, well, _ = matrix_method(mech, geo, q, b, with_det=False)
+    cond = condition_numbers(mech, geo, b)
+    assert np.array_equal(well, cond < COND_MAX)
+    assert (balance == "crank") == bool(np.all(well))

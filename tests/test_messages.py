@@ -138,6 +138,259 @@ ENGLISH = [
                             'message': {'code': 'cam.fail.stroke', 'params': {}, 'text': 'the stroke must be positive'}},
      "stage 'cam' failed: the stroke must be positive"),
     ('batch.at_angle', {'angle': 123.4567891}, ' at crank angle 123.457 deg'),
+    # structure: a linkage the crank cannot drive (the former f-strings of linkage/structure.py)
+    ('structure.fail.reasons', {'reasons': [
+        {'code': 'structure.fail.lonely_point', 'params': {'point': 'C', 'link': 'rod', 'hint': {
+            'code': 'structure.fail.point_hint', 'params': {'point': 'B'}, 'text': 'x'}}, 'text': 'x'},
+        {'code': 'structure.fail.inputs', 'params': {'W': 3, 'n': 3, 'p5': 3, 'p4': 0}, 'text': 'x'},
+        {'code': 'structure.fail.idle', 'params': {'links': ['rod', 'ram']}, 'text': 'x'}]},
+     "point C is used by rod only: a pair needs two links — did you mean B?; W = 3: by Chebyshev's formula "
+     "W = 3*3 - 2*3 - 0 = 3; one crank cannot define the motion (n = 3, p5 = 3); the linkage needs 3 inputs; "
+     "idle degree(s) of freedom: link(s) rod, ram with a single pair"),
+    ('structure.fail.lonely_point', {'point': 'E', 'link': 'link4', 'hint': {'code': 'text', 'params': {'text': ''},
+                                                                          'text': ''}},
+     'point E is used by link4 only: a pair needs two links'),
+    ('structure.fail.point_hint', {'point': 'C'}, ' — did you mean C?'),
+    ('structure.fail.rigid', {'W': 0, 'n': 4, 'p5': 6, 'p4': 0},
+     "W = 0: by Chebyshev's formula W = 3n - 2p5 - p4 = 3*4 - 2*6 - 0 = 0, the linkage is a rigid structure "
+     "(n = 4 moving links, p5 = 6 lower pairs)"),
+    ('structure.fail.over_constrained', {'W': -1, 'n': 3, 'p5': 5, 'p4': 0},
+     "W = -1: by Chebyshev's formula W = 3n - 2p5 - p4 = 3*3 - 2*5 - 0 = -1, the linkage is an over-constrained "
+     "structure (n = 3 moving links, p5 = 5 lower pairs)"),
+    ('structure.fail.special_dimensions', {},
+     'it can move only thanks to special dimensions (passive constraints); remove the redundant link or pair'),
+    ('structure.fail.inputs', {'W': 2, 'n': 4, 'p5': 5, 'p4': 0},
+     "W = 2: by Chebyshev's formula W = 3*4 - 2*5 - 0 = 2; one crank cannot define the motion (n = 4, p5 = 5); "
+     "the linkage needs 2 inputs"),
+    ('structure.fail.idle', {'links': ['rod']}, 'idle degree(s) of freedom: link(s) rod with a single pair'),
+    ('structure.fail.no_groups', {'links': ['a', 'b'], 'crank': 'crank'},
+     "links a, b cannot be split into Assur groups attached to the crank 'crank' (passive constraints and idle "
+     "freedoms cancel in Chebyshev's formula?)"),
+    # the task model's own checks (the former texts of tmm_cli/task.py)
+    ('input.guide_kind', {},
+     'a guide needs `through` (fixed guide) or `link` (moving guide)'),
+    ('input.guide_both', {},
+     'a guide is either fixed (`through`) or on a link (`link`), not both'),
+    ('input.guide_angle', {},
+     'a fixed guide needs `angle` (deg from +x)'),
+    ('input.bar_points', {'n': 3},
+     'a bar has exactly two points [P, Q], got 3'),
+    ('input.bar_same_points', {},
+     'the two points of a bar must differ'),
+    ('input.link_kind', {},
+     'a link needs `points: [P, Q]` (bar) or `slider: P` (block)'),
+    ('input.link_both', {},
+     'a link is either a bar (`points`) or a slider (`slider`), not both'),
+    ('input.bar_length', {},
+     'a bar link needs `length`'),
+    ('input.slider_guide', {},
+     'a slider needs a `guide`'),
+    ('input.slider_length', {},
+     'a slider has no `length`'),
+    ('input.no_links', {},
+     'at least one link is needed'),
+    ('input.no_speed', {},
+     "required field is missing: the crank's `speed`, or the output's `mean_output_speed` or `working_stroke_speed`"),
+    ('input.speed_one', {'given': ['speed', 'mean_output_speed']},
+     "give exactly one of `speed` (the crank's), `mean_output_speed` or `working_stroke_speed` (the output's); got speed, mean_output_speed"),
+    ('input.diagram_axis', {},
+     'a diagram needs exactly one abscissa: `s` (relative stroke) or `phi` (crank angle)'),
+    ('input.diagram_short', {},
+     'a diagram needs at least two points'),
+    ('input.diagram_order', {},
+     'the abscissa must be non-decreasing'),
+    ('input.diagram_s', {},
+     'relative stroke `s` must lie in [0, 1]'),
+    ('input.load_what', {},
+     'a load needs exactly one of `magnitude`, `diagram` (a force) or `moment` (a couple)'),
+    ('input.load_what_got', {'given': ['magnitude', 'moment']},
+     'a load needs exactly one of `magnitude`, `diagram` (a force) or `moment` (a couple); got magnitude, moment'),
+    ('input.friction_both', {},
+     'give `f` (both kinds of pair) or `f_pin` / `f_slide`, not both'),
+    ('input.friction_none', {},
+     'give the friction coefficient `f`, or `f_pin` and/or `f_slide`'),
+    ('input.phases_over', {'used': 370.5},
+     'rise + far_dwell + return = 370.5 deg exceeds 360'),
+    ('input.phases_sum', {'total': 350.0},
+     'phases sum to 350 deg, not 360'),
+    ('input.z_min', {},
+     'tooth numbers must be at least 5'),
+    ('input.needs_drive', {},
+     'a `mechanism` needs a `drive` section (link, speed, direction)'),
+    ('input.needs_mechanism', {'sections': ['drive', 'loads']},
+     'section(s) drive, loads need a `mechanism`'),
+    ('input.flywheel_loads', {},
+     '`flywheel` needs `loads` (the forces whose work it evens out)'),
+    # a student's answers file (the former texts of tmm_cli/check.py)
+    ('answers.not_answers_file', {},
+     'not an answers file (a YAML file with an `answers:` mapping of result paths to values)'),
+    ('answers.unknown_key', {'key': 'anwsers'},
+     "unknown key 'anwsers'; an answers file holds `answers`, `tolerance`, `student` and `variant`"),
+    ('answers.invalid', {'reason': {'code': 'answers.not_number', 'params': {'value': "'abc'"}, 'text': 'x'}},
+     "invalid answer: not a number: 'abc'"),
+    ('answers.invalid_cell', {'where': 'a.csv:3', 'column': 'flywheel.J',
+                              'reason': {'code': 'answers.not_finite', 'params': {'value': "'inf'"}, 'text': 'x'}},
+     "a.csv:3: column 'flywheel.J': invalid answer: not a finite number: 'inf'"),
+    ('answers.did_you_mean', {'path': 'flywheel.J'}, "did you mean 'flywheel.J'?"),
+    ('answers.no_such_path', {}, 'no such path in the results'),
+    ('answers.note_unknown_path', {'reason': "flywheel.JJ': no key 'JJ",
+                                   'hint': {'code': 'answers.did_you_mean', 'params': {'path': 'flywheel.J'}, 'text': 'x'}},
+     "flywheel.JJ': no key 'JJ; did you mean 'flywheel.J'?"),
+    ('answers.note_not_number', {'kind': 'list', 'hint': {'code': 'answers.no_such_path', 'params': {}, 'text': 'x'}},
+     'not a number but a list; no such path in the results'),
+    ('answers.not_number', {'value': "'abc'"}, "not a number: 'abc'"),
+    ('answers.not_finite', {'value': 'inf'}, 'not a finite number: inf'),
+    ('input.cam_angles_both', {},
+     'give `pressure_angle` or `transmission_angle`, not both'),
+    ('input.cam_pressure_range', {},
+     'the allowed pressure angle must lie in (0, 90) deg'),
+    ('input.cam_rocker_length', {},
+     'a rocker follower needs `rocker_length`'),
+    ('input.cam_offset_rocker', {},
+     '`offset` is for a translating follower'),
+    ('input.cam_swing', {},
+     'a rocker swing (`stroke`, deg) must be below 180'),
+    ('input.ratio_zero', {},
+     'the ratio cannot be zero'),
+    ('input.planetary_scheme', {'scheme': "'E'", 'known': ['A', 'B', 'C', 'D']},
+     "unknown planetary scheme 'E'; known: A, B, C, D"),
+    ('input.z_range', {'z_min': 30, 'z_max': 20},
+     'z_min = 30 exceeds z_max = 20'),
+    ('input.synthesis_and_mechanism', {},
+     '`synthesis` generates the mechanism: give either `synthesis` or `mechanism`, not both'),
+    ('input.synthesis_drive', {},
+     '`synthesis` needs a `drive` section (link: crank, speed, direction)'),
+    ('input.detail_needs_mechanism', {},
+     '`detail_position` names a position of the linkage: it needs a `mechanism` (or `synthesis`)'),
+    ('input.output_speed_bool', {},
+     'expected a speed (m/s for a slider, rad/s or deg/s for a rocker), got a boolean'),
+    ('input.output_speed_unit', {'value': '3 kg'},
+     "'3 kg' is not a speed: give m/s (a slider) or rad/s, deg/s (a rocker)"),
+    ('input.output_speed_positive', {'value': "'-0.3 m/s'"},
+     "the output speed must be positive, got '-0.3 m/s'"),
+    ('input.load_negative_against', {'name': 'magnitude', 'kind': 'resistance', 'value': -12000.0},
+     '`magnitude` of a `kind: resistance` load is its size and must not be negative (got -12000); the sense comes from `kind` (against the motion)'),
+    ('input.load_negative_along', {'name': 'moment', 'kind': 'driving', 'value': -5.0},
+     '`moment` of a `kind: driving` load is its size and must not be negative (got -5); the sense comes from `kind` (along the motion)'),
+    # the linkage's references and sizes (the former texts of linkage/mechanism.py, validation.py)
+    ('input.ground_is_link', {'name': 'O'},
+     "'O' is both a ground point and a link name"),
+    ('input.extra_repeats', {'point': 'A'},
+     "extra point 'A' repeats a point of the link"),
+    ('input.ground_unused', {'point': 'O1'},
+     "ground point 'O1' is used by no link"),
+    ('input.drive_slider', {'link': 'ram'},
+     "the drive link 'ram' must be a bar (a crank), not a slider"),
+    ('input.drive_no_pivot', {'link': 'crank', 'points': "['A', 'B']"},
+     "the drive link 'crank' has no ground pivot: one of its points ['A', 'B'] must be listed under mechanism.ground"),
+    ('input.slider_self', {},
+     'a slider cannot slide on itself'),
+    ('input.com_point', {'point': 'Z', 'link': 'rod', 'points': ['A', 'B']},
+     "'Z' is not a point of link 'rod' (its points: A, B)"),
+    ('input.link_alone', {'link': 'rod'},
+     "link 'rod' shares no point with any other link or the ground"),
+    ('input.reserved_point', {'point': 'S2', 'index': 2},
+     "point name 'S2' is reserved for the centre of mass of link 2"),
+    ('input.motion_flywheel', {},
+     '`motion: true` needs a `flywheel` section (the steady motion comes from the flywheel)'),
+    ('input.load_point', {'point': 'Z', 'link': 'rod', 'points': ['A', 'B']},
+     "'Z' is not a point of the mechanism (the points of link 'rod': A, B)"),
+    ('input.force_direction', {'link': 'rod'},
+     "a force on the bar 'rod' needs `direction` (deg from +x); only a resistance/driving force over a stroke takes the direction of motion"),
+    ('input.mm_link', {'link': 'rod'},
+     "the length of 'rod'"),
+    ('input.mm_ground', {'point': 'O1', 'd': 620.0, 'origin': 'O'},
+     'ground point O1 (at 620 m from O)'),
+    ('input.mm_suspect', {'what': {'code': 'input.mm_link', 'params': {'link': 'rod'}, 'text': "the length of 'rod'"}, 'value': 350.0, 'ratio': 1000.4, 'lo': 0.08, 'hi': 0.62},
+     "the length of 'rod', 350 m, is 1000 times the other lengths (0.08..0.62 m): probably meant in millimetres (write '350 mm')"),
+    ('input.mm_no_assembly', {'suspect': {'code': 'text', 'params': {'text': 'X'}, 'text': 'X'}, 'reason': {'code': 'kinematics.fail.never', 'params': {'group': 'II(2,3)', 'links': ['rod', 'ram']}, 'text': 'x'}},
+     'X; the linkage does not assemble: group II(2,3) (links rod, ram) does not assemble at any crank angle'),
+    ('input.impossible', {'reason': {'code': 'kinematics.fail.never', 'params': {'group': 'II(2,3)', 'links': ['rod', 'ram']}, 'text': 'x'}, 'links': ['rod', 'ram']},
+     'impossible dimensions: group II(2,3) (links rod, ram) does not assemble at any crank angle — at no crank angle; check the lengths of rod, ram and the ground points'),
+    # an invalid task (TaskError): the lines of `tmm run` on a broken task (stderr as before)
+    ('input.issues', {'issues': [
+        {'code': 'input.at_field', 'params': {'where': 't.yaml:12:29', 'field': 'mechanism.links.crank.lenght',
+                                              'message': {'code': 'input.unknown_key', 'params': {
+                                                  'key': 'lenght', 'hint': 'length'}, 'text': 'x'}}, 'text': 'x'},
+        {'code': 'input.at', 'params': {'where': 't.yaml:19:1', 'message': {
+            'code': 'input.tab', 'params': {}, 'text': 'x'}}, 'text': 'x'}]},
+     "t.yaml:12:29: field 'mechanism.links.crank.lenght': unknown key 'lenght'; did you mean 'length'?\n"
+     "t.yaml:19:1: use spaces for indentation: this line is indented with a tab, which YAML does not allow"),
+    ('input.at', {'where': 't.yaml:1:1', 'message': {'code': 'input.not_mapping', 'params': {}, 'text': 'x'}},
+     't.yaml:1:1: the task file must be a mapping of sections (schema: tmm/1, ...)'),
+    ('input.at_field', {'where': 't.yaml:16:1', 'field': 'drive.link',
+                        'message': {'code': 'input.missing', 'params': {}, 'text': 'x'}},
+     "t.yaml:16:1: field 'drive.link': required field is missing"),
+    ('input.missing', {}, 'required field is missing'),
+    ('input.literal', {'expected': ["'working'", "'idle'", "'both'"], 'got': "'work'"},
+     "Input should be 'working', 'idle' or 'both'; got 'work'"),
+    ('input.int_parsing', {}, 'Input should be a valid integer, unable to parse string as an integer'),
+    ('input.float_parsing', {}, 'Input should be a valid number, unable to parse string as a number'),
+    ('input.bool_parsing', {}, 'Input should be a valid boolean, unable to interpret input'),
+    ('input.int_from_float', {}, 'Input should be a valid integer, got a number with a fractional part'),
+    ('input.int_type', {}, 'Input should be a valid integer'),
+    ('input.float_type', {}, 'Input should be a valid number'),
+    ('input.bool_type', {}, 'Input should be a valid boolean'),
+    ('input.string_type', {}, 'Input should be a valid string'),
+    ('input.dict_type', {}, 'Input should be a valid dictionary'),
+    ('input.list_type', {}, 'Input should be a valid list'),
+    ('input.tuple_type', {}, 'Input should be a valid tuple'),
+    ('input.finite_number', {}, 'Input should be a finite number'),
+    ('input.model_type', {'class_name': 'LinkSpec'}, 'Input should be a valid dictionary or instance of LinkSpec'),
+    ('input.greater_than', {'gt': '0'}, 'Input should be greater than 0'),
+    ('input.greater_than_equal', {'ge': '2'}, 'Input should be greater than or equal to 2'),
+    ('input.less_than', {'lt': '1.5'}, 'Input should be less than 1.5'),
+    ('input.less_than_equal', {'le': '3600'}, 'Input should be less than or equal to 3600'),
+    ('input.too_short', {'field_type': 'List', 'min_length': '2', 'actual_length': '1'},
+     'List should have at least 2 items after validation, not 1'),
+    ('input.too_long', {'field_type': 'Tuple', 'max_length': '2', 'actual_length': '3'},
+     'Tuple should have at most 2 items after validation, not 3'),
+    ('input.not_mapping', {}, 'the task file must be a mapping of sections (schema: tmm/1, ...)'),
+    ('input.schema', {'got': "'tmm/2'"}, "unsupported schema 'tmm/2'; this tool reads 'tmm/1'"),
+    ('input.unknown_key', {'key': 'lenght', 'hint': 'length'}, "unknown key 'lenght'; did you mean 'length'?"),
+    ('input.unknown_key_allowed', {'key': 'zzz', 'allowed': ['s', 'value']}, "unknown key 'zzz'; allowed: s, value"),
+    ('input.key_not_name', {'key': 'True', 'allowed': ['on', 'kind']},
+     "unknown key 'True' (keys are names; allowed: on, kind)"),
+    ('input.length_positive', {}, '`length` must be positive'),
+    ('input.diagram_lengths', {'n_x': 4, 'n_value': 3}, 'abscissa and `value` differ in length (4 vs 3)'),
+    ('input.no_link', {'name': 'krank', 'hint': 'crank'}, "no link named 'krank'; did you mean 'crank'?"),
+    ('input.no_link_list', {'name': 'zz', 'links': ['crank', 'rod']}, "no link named 'zz'; links: crank, rod"),
+    ('input.assembly_point', {'point': 'Q'}, "assembly hint for unknown point 'Q'"),
+    ('input.guide_through', {'point': 'Z'},
+     "'Z' is not a ground point (fixed guides pass through ground points or [x, y])"),
+    ('input.unit_unknown', {'text': '90 rmp', 'unit': 'rmp', 'kind': 'speed'},
+     "unknown unit in '90 rmp' ('rmp' is not defined in the unit registry); expected an angular speed (rad/s, rpm)"),
+    ('input.unit_unreadable', {'text': '3 m +', 'kind': 'length'}, "cannot read '3 m +' as a length (m, mm, cm...)"),
+    ('input.unit_not_convert', {'text': '0.35 kg', 'kind': 'length', 'unit': 'm'},
+     "'0.35 kg' is not a length (m, mm, cm...): its unit does not convert to m"),
+    ('input.unit_not_kind', {'text': '3 m', 'kind': 'force_or_pressure'},
+     "'3 m' is not a force (N) or, with `area`, a pressure (Pa)"),
+    ('input.unit_expected', {'kind': 'length', 'got': 'None'}, 'expected a length (m, mm, cm...), got None'),
+    ('input.unit_decimal_comma', {'fixed': '3.5', 'given': '3,5'}, "use a decimal point: 3.5, not '3,5'"),
+    ('input.number_bool', {}, 'expected a number, got a boolean'),
+    ('input.not_finite', {}, 'expected a finite number'),
+    ('input.out_of_range', {'value': 2e12, 'limit': 1e12},
+     "2e+12 is out of range: |value| must not exceed 1e+12 (in the field's base unit)"),
+    ('input.fraction_zero', {}, 'division by zero in a fraction'),
+    ('input.yaml_syntax', {'problem': "mapping values are not allowed here",
+                           'hint': {'code': 'input.indent_hint', 'params': {'prev': 23, 'line': 24, 'col_prev': 3,
+                                                                            'col_line': 4}, 'text': 'x'}},
+     "YAML syntax error: mapping values are not allowed here; check the indentation of lines 23 and 24: the keys "
+     "of one section start in the same column (line 23 starts in column 3, line 24 in column 4)"),
+    ('input.indent_hint', {'prev': 10, 'line': 11, 'col_prev': 5, 'col_line': 3},
+     "; check the indentation of lines 10 and 11: the keys of one section start in the same column (line 10 "
+     "starts in column 5, line 11 in column 3)"),
+    ('input.yaml_colon', {}, 'mapping values are not allowed here'),
+    ('input.yaml_end', {}, 'found unexpected end of stream'),
+    ('input.yaml_no_colon', {}, "could not find expected ':'"),
+    ('input.yaml_no_key', {}, 'did not find expected key'),
+    ('input.yaml_block_end', {'found': '<block mapping start>'}, "expected <block end>, but found '<block mapping start>'"),
+    ('input.yaml_flow', {'close': ']', 'got': '<stream end>'}, "expected ',' or ']', but got '<stream end>'"),
+    ('input.yaml_char', {'char': '@'}, "found character '@' that cannot start any token"),
+    ('input.tab', {}, 'use spaces for indentation: this line is indented with a tab, which YAML does not allow'),
+    ('input.duplicate_key', {'key': 'output', 'first': 20}, "duplicate key 'output' (first given on line 20)"),
+    ('input.decimal_comma', {'fixed': '0.35', 'given': '0,35'},
+     "use a decimal point: 0.35 (YAML reads '0,35' as two numbers or as text)"),
     # the failures of a stage (StageError): the former f-strings of the stages
     ('cam.fail.pressure_range', {'phase': 'rise', 'value': 95.0},
      'allowed pressure angle on the rise must lie in (0, 90) deg, got 95'),
@@ -270,7 +523,7 @@ ENGLISH = [
      'the guide of the prismatic pair slider/rocker must keep its offset from the pivot C, which is closer to A than that offset'),
     ('kinematics.reason.parallel_guides', {},
      'the guides of the group are parallel (the prismatic pairs lock)'),
-    ('kinematics.fail.intervals', {'group': 'II(2,3)', 'links': ['rod', 'slider'], 'intervals': '95.123457..110.765432, 250.000000..265.500000', 'reason': {'code': 'kinematics.reason.rrr_far', 'params': {'pa': 'A', 'pb': 'D', 'pc': 'B', 'd': 0.51234567, 'la': 0.2, 'lb': 0.25, 'link_a': 'rod', 'link_b': 'rocker'}, 'text': '|AD| = 0.512346 m > |AB| + |BD| = 0.2 + 0.25 m (links rod and rocker cannot reach)'}},
+    ('kinematics.fail.intervals', {'group': 'II(2,3)', 'links': ['rod', 'slider'], 'intervals': [[95.1234567, 110.7654321], [250.0, 265.5]], 'reason': {'code': 'kinematics.reason.rrr_far', 'params': {'pa': 'A', 'pb': 'D', 'pc': 'B', 'd': 0.51234567, 'la': 0.2, 'lb': 0.25, 'link_a': 'rod', 'link_b': 'rocker'}, 'text': '|AD| = 0.512346 m > |AB| + |BD| = 0.2 + 0.25 m (links rod and rocker cannot reach)'}},
      'group II(2,3) (links rod, slider) does not assemble for crank angles 95.123457..110.765432, 250.000000..265.500000 deg: |AD| = 0.512346 m > |AB| + |BD| = 0.2 + 0.25 m (links rod and rocker cannot reach)'),
     ('positions.fail.output_turns', {'link': 'slider'},
      "the output link 'slider' has no extreme positions (it turns fully), so stroke-based loads cannot be placed"),
@@ -366,7 +619,7 @@ def test_catalogue_complete(lang):
         assert set(got) == set(want), (lang, code)
         for name, specs in got.items():
             for spec in specs:
-                assert spec in want[name] or spec in cat["terms"], (lang, code, name, spec)
+                assert spec in want[name] or spec in cat["terms"] or spec in messages.SPECS, (lang, code, name, spec)
     for other in OTHERS:
         terms = catalogue(other)["terms"]
         assert set(terms) == set(cat["terms"])
@@ -393,6 +646,8 @@ def _emitted_codes() -> dict[str, str]:
         for node in ast.walk(tree):
             if isinstance(node, ast.Call) and getattr(node.func, "id", None) == "Message" and node.args:
                 codes = _codes(node.args[0])
+                if not codes and path.name == "task.py" and isinstance(node.args[0], ast.JoinedStr):
+                    continue        # Message(f"input.{kind}") of _PYDANTIC_CODES (counted by the caller)
                 assert codes, f"{path}:{node.lineno}: a Message code must be a literal (found by this test)"
                 for c in codes:
                     found[c] = str(path.relative_to(ROOT))
@@ -400,7 +655,9 @@ def _emitted_codes() -> dict[str, str]:
 
 
 def test_every_emitted_code_is_catalogued_and_every_code_emitted():
+    from tmm_cli.task import _PYDANTIC_CODES   # pydantic's error types: input.<type>
     emitted = _emitted_codes()
+    emitted.update({f"input.{kind}": "tmm_cli/task.py" for kind in _PYDANTIC_CODES})
     codes = set(catalogue("en")["messages"])
     assert not set(emitted) - codes, {c: emitted[c] for c in set(emitted) - codes}
     assert not codes - {PLAIN} - set(emitted), codes - {PLAIN} - set(emitted)
@@ -452,7 +709,7 @@ def _english_words(text: str, params: dict) -> set[str]:
         core = tok.strip("()[],;:'\"«»")
         if "_" in core or "." in core or "`" in tok:
             continue
-        if core.isascii() and core.isalpha() and len(core) >= 3 and core not in values | {"rpm"}:
+        if core.isascii() and core.isalpha() and len(core) >= 3 and core not in values | {"rpm", "YAML"}:
             out.add(core)
     return out
 
@@ -465,7 +722,8 @@ def test_translations_leave_no_english(lang):
         assert not _english_words(out, params), (lang, code, out)
         terms = catalogue(lang)["terms"]               # a word table translates a parameter
         by_terms = any(sp in terms for sps in _fields(catalogue(lang)["messages"][code]).values() for sp in sps)
-        nested = any(isinstance(v, dict) for v in params.values())          # a message inside a message
+        nested = any(isinstance(v, dict) or (isinstance(v, list) and v and isinstance(v[0], dict))
+                     for v in params.values())                              # a message inside a message
         formula = not re.search(r"[A-Za-z]{3,}", text)                      # symbols and units only
         assert _english_words(text, params) or code == "text" or by_terms or nested or formula  # can fail
         if lang == "uk":
@@ -539,3 +797,47 @@ def test_translated_reports_have_no_english_warning(warned_reports, lang):
             assert item == render(m["code"], m["params"], lang)
             assert not _english_words(item, m["params"]), (name, lang, item)
             assert m["text"] not in html[lang]
+
+
+def test_quantity_words_are_the_units_words():
+    """The English `quantity` table renders a field's expected quantity exactly as the unit
+    reader names it (tmm_cli/units.py KINDS), and every language has every quantity."""
+    from tmm_cli.units import KINDS
+    assert catalogue("en")["terms"]["quantity"] == {kind: words for kind, (_, words) in KINDS.items()}
+    for lang in OTHERS:
+        assert set(catalogue(lang)["terms"]["quantity"]) == set(KINDS)
+
+
+def test_task_error_coded_is_its_text_in_every_language(tmp_path):
+    """An invalid task's coded message is exactly its English text (stderr), and renders in
+    Russian and Ukrainian with the same file, line and field; an issue no check codes
+    stays English inside the translated frame."""
+    from tmm_cli.errors import TaskError
+    f = tmp_path / "t.yaml"
+    f.write_text("schema: tmm/1\ndrive: {link: crank, speed: 90 rmp, direction: clockwise}\n", encoding="utf-8")
+    with pytest.raises(TaskError) as info:
+        __import__("tmm_cli").load_task(f)
+    coded = info.value.coded()
+    assert coded == info.value.render() == str(info.value)
+    ru = localize(coded.to_dict(), "ru").splitlines()
+    uk = localize(coded.to_dict(), "uk").splitlines()
+    assert ru[0].startswith(f"{f}:2:") and "поле «drive." in ru[0]
+    assert any("неизвестная единица измерения «rmp» в «90 rmp»; ожидается угловая скорость" in x for x in ru)
+    assert any("допустимые значения: 'ccw' или 'cw'; задано 'clockwise'" in x for x in ru)
+    assert any("невідома одиниця вимірювання «rmp» у «90 rmp»" in x for x in uk)
+    plain = TaskError("x", file="a.yaml", issues=[("f", 3, None, "a check with no code")])
+    assert localize(plain.coded().to_dict(), "ru") == "a.yaml:3: поле «f»: a check with no code"
+
+
+def test_crank_angle_intervals_are_data_formatted_per_language():
+    """A group's failing intervals are [from, to] pairs in degrees: the English text keeps
+    its six decimals (stderr, results.json); Russian and Ukrainian show φ = a…b° to 0.1°,
+    finer where an interval is narrower than the rounding."""
+    reason = Message("kinematics.reason.no_solution")
+    m = Message("kinematics.fail.intervals", group="II(2,3)", links=["rod", "ram"], reason=reason,
+                intervals=[[37.46, 52.14], [350.0, 10.25], [120.012, 120.048]])
+    assert m.params["intervals"] == [[37.46, 52.14], [350.0, 10.25], [120.012, 120.048]]
+    assert "crank angles 37.460000..52.140000, 350.000000..10.250000, 120.012000..120.048000 deg:" in m
+    ru = render(m.code, m.params, "ru")
+    assert "при углах кривошипа φ = 37.5…52.1°, 350.0…10.2°, 120.01…120.05°: уравнения" in ru
+    assert "φ = 37.5…52.1°" in render(m.code, m.params, "uk")

@@ -71,11 +71,33 @@ def test_disk_full_names_the_file(tmp_path, monkeypatch):
 def test_write_error_names_the_target_not_the_temporary_file(tmp_path, monkeypatch):
     import tmm_cli.io as tio
 
-    def denied(prefix, suffix, dir):
-        raise PermissionError(errno.EACCES, os.strerror(errno.EACCES), os.path.join(dir, prefix + "k3j9x0qz" + suffix))
-    monkeypatch.setattr(tio.tempfile, "mkstemp", denied)
+    def denied(path):
+        raise PermissionError(errno.EACCES, os.strerror(errno.EACCES),
+                              os.path.join(path.parent, f".{path.name}.k3j9x0qz.tmp"))
+    monkeypatch.setattr(tio, "_mkstemp", denied)
     out = tmp_path / "out"
     res = _run(out, "json")
     assert res.exit_code == 3, res.output
     assert f"cannot write {out / 'results.json'}: Permission denied" in res.output
     assert ".tmp" not in res.output
+
+
+def test_temporary_file_as_mkstemp_makes_it(tmp_path):
+    """atomic_write's temporary file: mkstemp's name pattern (which the manifest's clean-up
+    of a killed run's leftovers matches), mode 0600 until written, never an existing file."""
+    import stat
+
+    import tmm_cli.io as tio
+
+    target = tmp_path / "results.json"
+    names = set()
+    for _ in range(50):
+        fd, name = tio._mkstemp(target)
+        os.close(fd)
+        assert os.path.isabs(name) and os.path.dirname(name) == str(tmp_path)
+        assert tio._TMP.match(os.path.basename(name)).group("name") == "results.json"
+        assert stat.S_IMODE(os.stat(name).st_mode) == 0o600
+        names.add(name)
+    assert len(names) == 50
+    tio.atomic_write(target, "x")
+    assert target.read_text() == "x" and stat.S_IMODE(target.stat().st_mode) == tio.file_mode()

@@ -115,3 +115,21 @@ def test_csv_number_rows_as_the_writer_gives_them():
             {"index": 6, "phi": 0.25, "a": None, "b": 1.5}, iter([7, 0.5, 0.5, 0.5]), [], [8, "1e5", -1, 0]]
     ref_rows = rows[:7] + [[7, 0.5, 0.5, 0.5]] + rows[8:]       # the iterator row, as a list
     assert csv_text(header, rows) == _csv_reference(header, ref_rows)
+
+
+def test_written_piece_by_piece_as_a_whole(tmp_path):
+    """results.json written in pieces (a fine grid: several pieces per section) is the
+    text of dumps() to the byte, through the atomic writer."""
+    from tmm_cli.io import atomic_write
+    from tmm_cli.results import ENTRIES_PER_SPILL, dump
+    text = (ROOT / "tasks" / "forging_sixbar.yaml").read_text(encoding="utf-8").replace("count: 12", "count: 600")
+    res = tmm_cli.run(tmm_cli.load_task(ROOT / "tasks" / "forging_sixbar.yaml", text=text))
+    res["task"]["title"] = "Кривошипно-ползунный μ \"q\""       # non-ASCII across the pieces
+    pieces: list[bytes] = []
+    dump(res, pieces.append)
+    assert len(pieces) >= 2 * (600 // ENTRIES_PER_SPILL)
+    whole = dumps(res).encode("utf-8")
+    assert b"".join(pieces) == whole
+    p = atomic_write(tmp_path / "results.json", lambda write: dump(res, write))
+    assert p.read_bytes() == whole
+    assert json.loads(whole)["kinetostatics"][599]["index"] == res["kinetostatics"][599]["index"]

@@ -26,7 +26,8 @@ def _imported_by(args: list[str], tmp_path: Path, env: dict | None = None) -> se
             "print('MODULES', ' '.join(sorted({m.split('.')[0] for m in sys.modules}\n"
             "                                  | {m for m in sys.modules if m.startswith(('tmm_cli.report',\n"
             "                                                                            'tmm_cli.commands',\n"
-            "                                                                            'numpy.ma'))})),\n"
+            "                                                                            'numpy.ma',\n"
+            "                                                                            'numpy.polynomial'))})),\n"
             "      file=sys.stderr)\n"
             "sys.exit(code)\n")
     import os
@@ -44,6 +45,7 @@ def test_json_run_imports_no_heavy_module(tmp_path):
     assert not mods & set(HEAVY), sorted(mods & set(HEAVY))
     assert not mods & set(CLI_APP), sorted(mods & set(CLI_APP))
     assert "numpy.ma" not in mods                # np.unique's import (tmm_cli.lazy.unique)
+    assert "numpy.polynomial" not in mods        # the flywheel's Gauss points (tmm_cli.lazy.leggauss)
     # the report package neither (the hand-method error reads tmm_cli.plans, not the report)
     assert not {m for m in mods if m.startswith("tmm_cli.report")}, sorted(mods)
     assert json.loads((tmp_path / "o" / "results.json").read_text())["kinetostatics"]
@@ -209,6 +211,19 @@ def test_unique_is_numpys():
         assert got.dtype == want.dtype and got.shape == want.shape
         assert np.array_equal(got, want, equal_nan=True), x
         assert np.array_equal(np.signbit(got.real), np.signbit(want.real)), x   # -0.0 kept as numpy keeps it
+
+
+def test_leggauss_is_numpys():
+    """The Gauss-Legendre rule of the flywheel's works, bit for bit numpy's (which imports
+    all of numpy.polynomial), for every count a task can ask (quadrature <= 8) and far beyond."""
+    from numpy.polynomial.legendre import leggauss
+    for n in range(1, 121):
+        (xw, ww), (xg, wg) = leggauss(n), lazy.leggauss(n)
+        assert xg.dtype == xw.dtype and xg.shape == xw.shape == wg.shape
+        assert np.array_equal(xg, xw) and np.array_equal(wg, ww), n
+        assert np.array_equal(np.signbit(xg), np.signbit(xw)), n
+    with pytest.raises(ValueError):
+        lazy.leggauss(0)
 
 
 def test_unwrap_is_numpys():

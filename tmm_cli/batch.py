@@ -171,8 +171,11 @@ def work(path: Path, out: Path, folder: str, formats: set[str], lang: str, sets:
 
 def stage_failure_message(exc: BaseException) -> Message | None:
     """A StageError whose message is coded, as one coded message ("stage 'cam' failed at
-    ...: ..."), the text of ``str(exc)``; None for any other failure."""
-    from .errors import StageError
+    ...: ..."), the text of ``str(exc)``; an invalid task (TaskError) as its coded lines
+    (``TaskError.coded``); None for any other failure."""
+    from .errors import StageError, TaskError
+    if isinstance(exc, TaskError):
+        return exc.coded()
     if not isinstance(exc, StageError) or getattr(exc.message, "code", None) is None:
         return None
     pos = exc.position
@@ -210,8 +213,8 @@ _SECTION_MODULES = {"mechanism": ("linkage.mechanism", "linkage.structure", "lin
                     "planetary": ("gears",), "drive_train": ("gears", "gears.train"), "dof2": ("dof2",)}
 _SECTION_MODULES["synthesis"] += _SECTION_MODULES["mechanism"]
 # modules outside tmm_cli the stages import on first use (numpy's `np.unique` imports
-# numpy.ma, the Gauss-Legendre nodes numpy.polynomial; the plans' scales): ~30 ms a variant
-_FIRST_USE = {"mechanism": ("numpy.ma", "numpy.polynomial.legendre", "tmm_cli.scales")}
+# numpy.ma; the plans' scales): ~30 ms a variant
+_FIRST_USE = {"mechanism": ("numpy.ma", "tmm_cli.scales")}
 _FIRST_USE["synthesis"] = _FIRST_USE["mechanism"]
 
 
@@ -306,8 +309,9 @@ def _run_one(result_file: str, memory_mb, args) -> bool:
 
 
 def _worker(jobs_args, tmpdir: str, memory_mb, task_r: int, done_w: int, close: list[int]) -> None:
-    """A worker of the pool: read a variant's index from ``task_r``, run it, write its
-    outcome to ``tmpdir/<index>.pickle``, then "<index> <retire>" to ``done_w``; exit on
+    """A worker of the pool: read a variant's index from ``task_r``, acknowledge it
+    ("<index> a" to ``done_w``), run it, write its outcome to ``tmpdir/<index>.pickle``,
+    then "<index> <retire>" to ``done_w``; exit on
     end of input, after ``MAX_VARIANTS`` variants, once its address space has grown by
     ``RECYCLE_GROWTH``, or after a variant that failed (out of memory, a stage's error):
     the batch then forks a fresh worker."""
@@ -326,6 +330,7 @@ def _worker(jobs_args, tmpdir: str, memory_mb, task_r: int, done_w: int, close: 
             buf += chunk
         line, buf = buf.split(b"\n", 1)
         i = int(line)
+        os.write(done_w, b"%d a\n" % i)                 # begun: a death from now on is this variant's
         retire = _run_one(os.path.join(tmpdir, f"{i}.pickle"), memory_mb, jobs_args[i])
         retire = retire or n == MAX_VARIANTS or _address_space() - start > RECYCLE_GROWTH
         os.write(done_w, b"%d %d\n" % (i, retire))      # a few bytes: never blocks
@@ -366,6 +371,7 @@ class _Slot:
         self.t0 = 0.0
         self.buf = b""
         self.retire = False
+        self.begun = False             # the worker acknowledged variant i (it began it)
 
     def send(self, i: int) -> bool:
         """Give the worker variant i; False when it is gone (then it gets a successor)."""
@@ -375,11 +381,12 @@ class _Slot:
             os.write(self.task_w, b"%d\n" % i)
         except OSError:
             return False
-        self.i, self.t0 = i, time.monotonic()
+        self.i, self.t0, self.begun = i, time.monotonic(), False
         return True
 
-    def reports(self) -> list[tuple[int, bool]]:
-        """The "<index> <retire>" lines the worker has written and not yet read."""
+    def reports(self) -> list[tuple[int, str]]:
+        """The "<index> a" (begun) and "<index> <retire: 0|1>" (done) lines the worker has
+        written and not yet read."""
         while True:
             try:
                 chunk = os.read(self.done_r, 4096)
@@ -391,7 +398,7 @@ class _Slot:
                 break
             self.buf += chunk
         *lines, self.buf = self.buf.split(b"\n")
-        return [(int(a), b == b"1") for a, b in (ln.split() for ln in lines if ln.strip())]
+        return [(int(a), b.decode()) for a, b in (ln.split() for ln in lines if ln.strip())]
 
     def close(self, kill: bool) -> None:
         if kill:
@@ -411,7 +418,9 @@ def run_all(jobs_args: list[tuple], *, jobs: int, timeout: float, memory_mb: int
     """Run the jobs on a pool of at most ``jobs`` forked workers, each running variants
     one at a time; return the outcomes in order. ``on_done(i, outcome)`` is called as
     each finishes. A worker that dies or overruns ``timeout`` fails the variant it was
-    running, is replaced by a fresh fork, and the batch goes on."""
+    running, is replaced by a fresh fork, and the batch goes on. A worker that died before
+    it acknowledged its variant (killed from outside while idle, just as the variant was
+    sent) did not run it: the variant is given, once, to a fresh worker."""
     import multiprocessing as mp
     import pickle
     import shutil
@@ -424,6 +433,7 @@ def run_all(jobs_args: list[tuple], *, jobs: int, timeout: float, memory_mb: int
     pending.reverse()                  # pop() from the end: the variants in order
     slots: list[_Slot] = []
     parent_fds: set[int] = set()
+    resent: set[int] = set()           # the variants sent again after their worker died idle
     tmpdir = tempfile.mkdtemp(prefix="tmm-batch-")
 
     def load(i):
@@ -468,7 +478,9 @@ def run_all(jobs_args: list[tuple], *, jobs: int, timeout: float, memory_mb: int
             now = time.monotonic()
             for s in busy:
                 res, i = None, s.i
-                done = [r for k, r in s.reports() if k == i]
+                reports = [r for k, r in s.reports() if k == i]
+                s.begun = s.begun or "a" in reports
+                done = [r == "1" for r in reports if r != "a"]
                 if done:
                     res = load(i)
                     if res is None:
@@ -476,10 +488,16 @@ def run_all(jobs_args: list[tuple], *, jobs: int, timeout: float, memory_mb: int
                     s.retire = s.retire or done[0]
                 elif not s.proc.is_alive():
                     s.proc.join()
+                    s.begun = s.begun or "a" in [r for k, r in s.reports() if k == i]   # its last words
+                    s.retire = True
                     res = load(i)              # it may have died after writing its outcome
+                    if res is None and not s.begun and i not in resent:
+                        resent.add(i)          # it never began the variant: a fresh worker runs it
+                        pending.append(i)
+                        s.i = None
+                        continue
                     if res is None:
                         res = _failed(_death(s.proc.exitcode, memory_mb))
-                    s.retire = True
                 elif timeout and now - s.t0 > timeout:
                     _kill(s.proc)
                     res = _failed(Message("batch.timeout", timeout=timeout))

@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import Any
 
 from .errors import TaskError
+from .messages import Message, as_message
 from .results import lookup, parse_path
 
 DEFAULT_TOLERANCE = 0.05
@@ -123,7 +124,7 @@ def answer_value(v, path: str):
     if isinstance(v, (int, float)):
         x = float(v)
         if not math.isfinite(x):
-            raise ValueError(f"not a finite number: {v!r}")
+            raise ValueError(Message("answers.not_finite", value=repr(v)))
         return x
     s = str(v).strip()
     if s == "":
@@ -137,9 +138,9 @@ def answer_value(v, path: str):
     try:
         q = reg.Quantity(s.replace("^", "**"))
     except Exception:  # noqa: BLE001 - pint's parser raises many kinds (tokenize, syntax, undefined unit)
-        raise ValueError(f"not a number: {s!r}") from None
+        raise ValueError(Message("answers.not_number", value=repr(s))) from None
     if not hasattr(q, "magnitude") or not isinstance(q.magnitude, (int, float)):
-        raise ValueError(f"not a number: {s!r}")
+        raise ValueError(Message("answers.not_number", value=repr(s)))
     try:
         if _is_angle(path) and q.dimensionless:
             x = float(q.to("degree").magnitude) if not q.unitless else float(q.magnitude)
@@ -148,8 +149,13 @@ def answer_value(v, path: str):
     except Exception as exc:  # noqa: BLE001 - pint's conversion errors: dimensionality, offset units, types
         raise ValueError(f"cannot read {s!r}: {exc}") from None
     if not math.isfinite(x):
-        raise ValueError(f"not a finite number: {s!r}")
+        raise ValueError(Message("answers.not_finite", value=repr(s)))
     return x
+
+
+def _coded(exc: Exception) -> Message:
+    """An exception's message as a Message (coded where the raiser coded it)."""
+    return as_message(exc.args[0] if len(exc.args) == 1 else str(exc))
 
 
 def _is_angle(path: str) -> bool:
@@ -179,14 +185,12 @@ def load_answers_file(path: Path, keep_errors: bool = False) -> AnswerSet:
         data, marks = None, {}
     if not isinstance(data, dict) or "answers" not in data:
         # never echo the file's content: it may be anything
-        raise TaskError("not an answers file (a YAML file with an `answers:` mapping of result paths to "
-                        "values)", file=str(path))
+        raise TaskError(Message("answers.not_answers_file"), file=str(path))
     unknown = set(map(str, data)) - {"answers", "tolerance", "student", "variant", "schema", "title"}
     if unknown:
         k = sorted(unknown)[0]
         line, col = _mark(marks, (k,))
-        raise TaskError("unknown key", file=str(path), issues=[(k, line, col, f"unknown key '{k}'; an answers "
-                        f"file holds `answers`, `tolerance`, `student` and `variant`")])
+        raise TaskError("unknown key", file=str(path), issues=[(k, line, col, Message("answers.unknown_key", key=k))])
     for key in ("answers", "tolerance", "student"):
         raw = data.get(key)
         if raw is not None and not isinstance(raw, dict):
@@ -208,11 +212,11 @@ def load_answers_file(path: Path, keep_errors: bool = False) -> AnswerSet:
                             issues=[(f"answers.{k}", line, col, str(exc).strip("'\""))])
         except ValueError as exc:
             err = TaskError("invalid answer", file=str(path),
-                            issues=[(f"answers.{k}", line, col, f"invalid answer: {exc}")])
+                            issues=[(f"answers.{k}", line, col, Message("answers.invalid", reason=_coded(exc)))])
         if err is not None:
             if not keep_errors:
                 raise err
-            aset.error = aset.error or err.render()
+            aset.error = aset.error or err.coded() or err.render()
     if data.get("tolerance") is not None:
         aset.tolerance = {}
         for k, v in data["tolerance"].items():
@@ -230,7 +234,8 @@ def load_answers_dir(folder: Path) -> list[AnswerSet]:
         try:
             sets.append(load_answers_file(f, keep_errors=True))
         except TaskError as exc:
-            sets.append(AnswerSet(source=str(f), stem=f.stem, error=exc.render().replace("\n", "; ")))
+            one = exc.coded() if len(exc.issues) <= 1 else None     # one line: in the summary's language too
+            sets.append(AnswerSet(source=str(f), stem=f.stem, error=one or exc.render().replace("\n", "; ")))
     return sets
 
 
@@ -263,7 +268,8 @@ def load_answers_csv(path: Path) -> list[AnswerSet]:
             try:
                 aset.answers[p] = answer_value(row.get(p, ""), p)
             except ValueError as exc:
-                aset.error = aset.error or f"{path}:{line}: column '{p}': invalid answer: {exc}"
+                aset.error = aset.error or Message("answers.invalid_cell", where=f"{path}:{line}", column=p,
+                                                   reason=_coded(exc))
         sets.append(aset)
     return sets
 
@@ -363,7 +369,7 @@ def did_you_mean(path: str, results: dict, leaves: list[str] | None = None) -> s
     sec = path.split(".")[0].split("[")[0]
     near = [c for c in cands if c.split(".")[0].split("[")[0] == sec] or cands
     hit = difflib.get_close_matches(path, near, n=1, cutoff=0.5)
-    return f"did you mean '{hit[0]}'?" if hit else "no such path in the results"
+    return Message("answers.did_you_mean", path=hit[0]) if hit else Message("answers.no_such_path")
 
 
 # ------------------------------------------------------------------ grading
@@ -410,7 +416,8 @@ def grade(results: dict, aset: AnswerSet, tol: dict, required: list[str] | None 
                 if leaves is None:
                     leaves = [q for q, v in leaf_paths(results) if isinstance(v, (int, float))]
                 row["status"] = "unknown_path"
-                row["note"] = f"{str(exc).strip(chr(34) + chr(39))}; {did_you_mean(p, results, leaves)}"
+                row["note"] = Message("answers.note_unknown_path", reason=str(exc).strip(chr(34) + chr(39)),
+                                      hint=did_you_mean(p, results, leaves))
             continue
         if ref is None:
             row["status"], row["note"] = "not_computed", "no value in the results (singular or not computed)"
@@ -421,7 +428,7 @@ def grade(results: dict, aset: AnswerSet, tol: dict, required: list[str] | None 
             if leaves is None:
                 leaves = [q for q, v in leaf_paths(results) if isinstance(v, (int, float))]
             row["status"] = "unknown_path"
-            row["note"] = f"not a number but a {type(ref).__name__}; {did_you_mean(p, results, leaves)}"
+            row["note"] = Message("answers.note_not_number", kind=type(ref).__name__, hint=did_you_mean(p, results, leaves))
             continue
         row["reference"] = float(ref)
         if val is None:

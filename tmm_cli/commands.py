@@ -273,10 +273,10 @@ def check(
         code = max(code, set_code(set_status(rows)))
     if out:
         from .io import atomic_write
-        from .results import dumps
+        from .results import dump
         try:
             atomic_write(out / "check.csv", check_csv(all_rows))
-            atomic_write(out / "results.json", dumps(results))
+            atomic_write(out / "results.json", lambda write: dump(results, write))
         except OSError as exc:
             raise _fail_write(exc)
     raise typer.Exit(code)

@@ -8,6 +8,13 @@
 from __future__ import annotations
 
 
+def _where(file: str, line: int | None, col: int | None) -> str:
+    """FILE, FILE:LINE or FILE:LINE:COL."""
+    if line is None:
+        return file
+    return f"{file}:{line}" if col is None else f"{file}:{line}:{col}"
+
+
 class TaskError(Exception):
     """Invalid task input. ``issues`` is a list of (field, line, column, message)."""
 
@@ -24,13 +31,30 @@ class TaskError(Exception):
             return f"{where}: {self.message}"
         lines = []
         for field, line, col, msg in self.issues:
-            loc = where
-            if line is not None:
-                loc += f":{line}"
-                if col is not None:
-                    loc += f":{col}"
+            loc = _where(where, line, col)
             lines.append(f"{loc}: field '{field}': {msg}" if field else f"{loc}: {msg}")
         return "\n".join(lines)
+
+    def coded(self):
+        """:meth:`render` as one coded message (``tmm_cli.messages.Message``, code
+        ``input.issues``: one ``input.at`` / ``input.at_field`` a line, each holding its
+        issue's message -- coded where the check that found it codes it, else as written),
+        so a page in another language can show it; its English text is :meth:`render`'s.
+        None when the two would differ."""
+        from .messages import Message
+        from .messages import as_message as part
+
+        where = self.file or "<task>"
+        if not self.issues:
+            out = Message("input.issues", issues=[Message("input.at", where=where, message=part(self.message))])
+        else:
+            items = []
+            for field, line, col, msg in self.issues:
+                loc = _where(where, line, col)
+                items.append(Message("input.at_field", where=loc, field=field, message=part(msg)) if field
+                             else Message("input.at", where=loc, message=part(msg)))
+            out = Message("input.issues", issues=items)
+        return out if str(out) == self.render() else None
 
 
 class StageError(Exception):

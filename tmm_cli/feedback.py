@@ -123,7 +123,11 @@ def feedback_html(task, s: dict, lang: str = "en") -> str:
         if r["error"] is not None:
             err = (_num(r["error"]) if "abs" in r["tolerance"] or r["note"] == "absolute error"
                    else f"{100 * r['error']:.2f} %")
-        step = step_for(r["path"], lang) if st in ("outside", "sign") else (r["note"] if st == "unknown_path" else "")
+        note = r["note"]
+        if st == "unknown_path" and hasattr(note, "to_dict"):        # coded: in the page's language
+            from .messages import localize
+            note = localize(note.to_dict(), lang)
+        step = step_for(r["path"], lang) if st in ("outside", "sign") else (note if st == "unknown_path" else "")
         colour = {"ok": "#c8e6c9", "outside": "#ffcdd2", "sign": "#e1bee7", "missing": "#fff9c4"}.get(st, "#eee")
         trs.append(f"<tr><td><code>{e(r['path'])}</code><br><small>{e(notation(r['path'], lang, local_units=True))}</small></td>"
                    f"<td>{e(_num(r['answer']))}</td><td>{e(_num(r['reference']))}</td><td>{e(err)}</td>"

@@ -17,13 +17,14 @@ from __future__ import annotations
 import json
 import os
 import re
-import tempfile
 import time
 from pathlib import Path
+from typing import Callable
 
 MANIFEST = ".tmm-manifest.json"
-# mkstemp(prefix=".NAME.", suffix=".tmp"): eight random characters
+# _mkstemp(path): ".NAME." eight random characters ".tmp" (the names tempfile.mkstemp gives)
 _TMP = re.compile(r"^\.(?P<name>.+)\.[a-z0-9_]{8}\.tmp$")
+_TMP_CHARS = "abcdefghijklmnopqrstuvwxyz0123456789_"
 
 
 def file_mode() -> int:
@@ -40,14 +41,17 @@ def file_mode() -> int:
     return 0o666 & ~mask
 
 
-def atomic_write(path: str | os.PathLike, data: bytes | str, encoding: str = "utf-8") -> Path:
+def atomic_write(path: str | os.PathLike, data: bytes | str | Callable[[Callable[[bytes], object]], None],
+                 encoding: str = "utf-8") -> Path:
     """Write ``data`` to ``path`` through a temporary file in the same folder and
-    ``os.replace`` it into place, so readers see either the old or the new file."""
+    ``os.replace`` it into place, so readers see either the old or the new file.
+    ``data`` may be a function given the temporary file's ``write`` (bytes), to write a
+    large file piece by piece."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     raw = data.encode(encoding) if isinstance(data, str) else data
     try:
-        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+        fd, tmp = _mkstemp(path)
     except OSError as exc:  # the error names the file asked for, not the temporary one
         from .safepath import target_error
         raise target_error(exc, path) from exc
@@ -55,7 +59,10 @@ def atomic_write(path: str | os.PathLike, data: bytes | str, encoding: str = "ut
         if hasattr(os, "fchmod"):
             os.fchmod(fd, file_mode())
         with os.fdopen(fd, "wb") as fh:
-            fh.write(raw)
+            if callable(raw):
+                raw(fh.write)
+            else:
+                fh.write(raw)
             fh.flush()
             os.fsync(fh.fileno())
         os.replace(tmp, path)
@@ -69,6 +76,23 @@ def atomic_write(path: str | os.PathLike, data: bytes | str, encoding: str = "ut
             raise target_error(exc, path) from exc
         raise
     return path
+
+
+def _mkstemp(path: Path) -> tuple[int, str]:
+    """``tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)``: a new
+    file of mode 0600 (O_EXCL, no symlink followed) named ``.NAME.<8 random characters>.tmp``
+    next to ``path``, opened for writing; without importing tempfile (and shutil, bz2,
+    lzma: ~2.5 ms of a JSON run)."""
+    flags = os.O_RDWR | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_CLOEXEC", 0) \
+        | getattr(os, "O_BINARY", 0)
+    for _ in range(10000):                      # tempfile.TMP_MAX tries
+        tag = "".join(_TMP_CHARS[b % len(_TMP_CHARS)] for b in os.urandom(8))
+        name = os.path.abspath(os.path.join(path.parent, f".{path.name}.{tag}.tmp"))
+        try:
+            return os.open(name, flags, 0o600), name
+        except FileExistsError:
+            continue
+    raise FileExistsError(f"no unused temporary name for {path}")
 
 
 def _stamp(path: Path) -> list[int] | None:

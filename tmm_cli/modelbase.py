@@ -4,10 +4,11 @@ error can name its field.  Kept apart from task.py so that the section modules a
 task model import it without importing each other."""
 from __future__ import annotations
 
-import difflib
 from typing import Any
 
 from pydantic import BaseModel, ConfigDict, model_validator
+
+from .messages import Message
 
 PLANETARY_SCHEMES = ("A", "B", "C", "D")
 PLANETARY_ALIASES = {"a": "A", "b": "B", "c": "C", "d": "D", "single": "A", "james": "A"}
@@ -39,10 +40,10 @@ class _Model(BaseModel):
                 allowed.append(f.alias or name)
             for key in data:
                 if not isinstance(key, str):
-                    raise ValueError(f"unknown key '{key}' (keys are names; "
-                                     f"allowed: {', '.join(allowed)})")
+                    raise ValueError(Message("input.key_not_name", key=str(key), allowed=allowed))
                 if key not in allowed:
+                    import difflib
                     close = difflib.get_close_matches(key, allowed, n=1, cutoff=0.6)
-                    hint = f"; did you mean '{close[0]}'?" if close else f"; allowed: {', '.join(allowed)}"
-                    raise ValueError(f"unknown key '{key}'{hint}")
+                    raise ValueError(Message("input.unknown_key", key=key, hint=close[0]) if close
+                                     else Message("input.unknown_key_allowed", key=key, allowed=allowed))
         return data

@@ -60,12 +60,12 @@ def write_outputs(task, results: dict, out: Path, formats: set[str], lang: str, 
     ``tmm_cli.study.run_study``, shown in the reports and written as study.json and
     study.html (never in results.json)."""
     from .io import Manifest, atomic_write
-    from .results import dumps
+    from .results import dump
 
     out = Path(out)
     manifest = Manifest(out)
-    written = [atomic_write(out / "results.json",
-                            dumps({k: v for k, v in results.items() if k not in REPORT_ONLY}))]
+    kept = {k: v for k, v in results.items() if k not in REPORT_ONLY}
+    written = [atomic_write(out / "results.json", lambda write: dump(kept, write))]
     rep = set(formats) & {"html", "pdf"}
     if rep:
         from .report import render

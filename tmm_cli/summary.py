@@ -200,7 +200,7 @@ def summary_html(rows: list[dict], paths: list[str], source: str, lang: str = "e
             "<style>body{font-family:sans-serif;margin:1em}table{border-collapse:collapse;font-size:13px}"
             "td,th{border:1px solid #999;padding:3px 6px;text-align:left}th.q{writing-mode:vertical-rl;"
             "transform:rotate(180deg);font-weight:normal;font-size:11px}td.m{text-align:center}"
-            ".lg{padding:2px 6px;margin-right:4px;border:1px solid #999}.msg{font-size:11px;max-width:30em}</style>"
+            ".lg{padding:2px 6px;margin-right:4px;border:1px solid #999}.msg{font-size:11px;max-width:30em;white-space:pre-line}</style>"
             f"</head><body><h1>{e(T['title'])}: {e(source)}</h1><p>{len(rows)} {e(T['rows'])}</p>"
             f"<p>{e(T['legend'])}: {legend}</p>"
             f"<table><tr>{head}</tr>{''.join(body)}</table></body></html>\n")

@@ -5,8 +5,8 @@ Pydantic models for every section of the task file (README, *The task file*). Qu
 :func:`load_task` reads a YAML file (or a dict) and raises :class:`TaskError` naming
 the file, line, column and field of every problem.
 """
-from __future__ import annotations
-
+# annotations evaluated as written (no `from __future__ import annotations`): pydantic would
+# compile and evaluate every field's annotation string when the models are made
 import re
 from pathlib import Path
 from typing import Annotated, Any, Literal, Union
@@ -15,6 +15,7 @@ from pydantic import (BaseModel, ConfigDict, Field, PrivateAttr, ValidationError
                       field_validator, model_validator)
 
 from .errors import TaskError
+from .messages import Message
 from .modelbase import PLANETARY_ALIASES, PLANETARY_SCHEMES, FieldValueError, _Model
 from .units import (Angle, AngularSpeed, Area, Density, ForceOrPressure, Inertia,
                     Length, Mass, MomentQ, Number, Ratio)
@@ -45,11 +46,11 @@ class GuideSpec(_Model):
     @model_validator(mode="after")
     def _kind(self):
         if self.link is None and self.through is None:
-            raise ValueError("a guide needs `through` (fixed guide) or `link` (moving guide)")
+            raise ValueError(Message("input.guide_kind"))
         if self.link is not None and self.through is not None:
-            raise ValueError("a guide is either fixed (`through`) or on a link (`link`), not both")
+            raise ValueError(Message("input.guide_both"))
         if self.link is None and self.angle is None:
-            raise ValueError("a fixed guide needs `angle` (deg from +x)")
+            raise ValueError(Message("input.guide_angle"))
         return self
 
 
@@ -69,25 +70,25 @@ class LinkSpec(_Model):
     @classmethod
     def _two_points(cls, v):
         if v is not None and len(v) != 2:
-            raise ValueError(f"a bar has exactly two points [P, Q], got {len(v)}")
+            raise ValueError(Message("input.bar_points", n=len(v)))
         if v is not None and v[0] == v[1]:
-            raise ValueError("the two points of a bar must differ")
+            raise ValueError(Message("input.bar_same_points"))
         return v
 
     @model_validator(mode="after")
     def _kind(self):
         if self.slider is None and self.points is None:
-            raise ValueError("a link needs `points: [P, Q]` (bar) or `slider: P` (block)")
+            raise ValueError(Message("input.link_kind"))
         if self.slider is not None and self.points is not None:
-            raise ValueError("a link is either a bar (`points`) or a slider (`slider`), not both")
+            raise ValueError(Message("input.link_both"))
         if self.points is not None and self.length is None:
-            raise ValueError("a bar link needs `length`")
+            raise ValueError(Message("input.bar_length"))
         if self.length is not None and self.length <= 0:
-            raise ValueError("`length` must be positive")
+            raise ValueError(Message("input.length_positive"))
         if self.slider is not None and self.guide is None:
-            raise ValueError("a slider needs a `guide`")
+            raise ValueError(Message("input.slider_guide"))
         if self.slider is not None and self.length is not None:
-            raise ValueError("a slider has no `length`")
+            raise ValueError(Message("input.slider_length"))
         return self
 
     @property
@@ -105,7 +106,7 @@ class MechanismSection(_Model):
     @classmethod
     def _nonempty(cls, v):
         if not v:
-            raise ValueError("at least one link is needed")
+            raise ValueError(Message("input.no_links"))
         return v
 
 
@@ -122,16 +123,14 @@ class DriveSection(_Model):
         from .linkage.drive_speed import check_output_speed
         given = [k for k in ("speed", "mean_output_speed", "working_stroke_speed") if getattr(self, k) is not None]
         if not given:
-            raise FieldValueError(("speed",), "required field is missing: the crank's `speed`, or the output's "
-                                              "`mean_output_speed` or `working_stroke_speed`")
+            raise FieldValueError(("speed",), Message("input.no_speed"))
         if len(given) > 1:
-            raise FieldValueError((given[1],), f"give exactly one of `speed` (the crank's), `mean_output_speed` or "
-                                               f"`working_stroke_speed` (the output's); got {', '.join(given)}")
+            raise FieldValueError((given[1],), Message("input.speed_one", given=given))
         if given[0] != "speed":
             try:
                 check_output_speed(getattr(self, given[0]))
             except ValueError as exc:
-                raise FieldValueError((given[0],), str(exc)) from None
+                raise FieldValueError((given[0],), exc.args[0] if len(exc.args) == 1 else str(exc)) from None
         return self
 
     @property
@@ -164,15 +163,15 @@ class DiagramSpec(_Model):
     def _axes(self):
         x = self.s if self.s is not None else self.phi
         if (self.s is None) == (self.phi is None):
-            raise ValueError("a diagram needs exactly one abscissa: `s` (relative stroke) or `phi` (crank angle)")
+            raise ValueError(Message("input.diagram_axis"))
         if len(x) != len(self.value):
-            raise ValueError(f"abscissa and `value` differ in length ({len(x)} vs {len(self.value)})")
+            raise ValueError(Message("input.diagram_lengths", n_x=len(x), n_value=len(self.value)))
         if len(x) < 2:
-            raise ValueError("a diagram needs at least two points")
+            raise ValueError(Message("input.diagram_short"))
         if any(b < a for a, b in zip(x, x[1:])):
-            raise ValueError("the abscissa must be non-decreasing")
+            raise ValueError(Message("input.diagram_order"))
         if self.s is not None and (min(self.s) < 0 or max(self.s) > 1):
-            raise ValueError("relative stroke `s` must lie in [0, 1]")
+            raise ValueError(Message("input.diagram_s"))
         return self
 
 
@@ -192,16 +191,15 @@ class ForceSpec(_Model):
     def _what(self):
         given = [k for k in ("magnitude", "diagram", "moment") if getattr(self, k) is not None]
         if len(given) != 1:
-            raise ValueError("a load needs exactly one of `magnitude`, `diagram` (a force) or `moment` (a couple)"
-                             + (f"; got {', '.join(given)}" if given else ""))
+            raise ValueError(Message("input.load_what_got", given=given) if given else Message("input.load_what"))
         if self.diagram is not None and self.diagram.phi is not None and self.kind is not None:
             pass
         for name in ("magnitude", "moment"):
             v = getattr(self, name)
             if self.kind is not None and v is not None and v < 0:
-                raise FieldValueError((name,), f"`{name}` of a `kind: {self.kind}` load is its size and must "
-                                      f"not be negative (got {v:g}); the sense comes from `kind` "
-                                      f"({'against' if self.kind == 'resistance' else 'along'} the motion)")
+                raise FieldValueError((name,), Message("input.load_negative_against" if self.kind == "resistance"
+                                                       else "input.load_negative_along", name=name, kind=self.kind,
+                                                       value=v))
         return self
 
 
@@ -222,10 +220,10 @@ class FrictionSpec(_Model):
         if self.f is not None:
             if self.f_pin is not None or self.f_slide is not None:
                 raise FieldValueError(("f_pin" if self.f_pin is not None else "f_slide",),
-                                      "give `f` (both kinds of pair) or `f_pin` / `f_slide`, not both")
+                                      Message("input.friction_both"))
             self.f_pin = self.f_slide = self.f
         elif self.f_pin is None and self.f_slide is None:
-            raise ValueError("give the friction coefficient `f`, or `f_pin` and/or `f_slide`")
+            raise ValueError(Message("input.friction_none"))
         self.f_pin = self.f_pin or 0.0
         self.f_slide = self.f_slide or 0.0
         return self
@@ -278,10 +276,10 @@ class PhasesSpec(_Model):
         used = self.rise + self.far_dwell + self.return_
         if self.near_dwell is None:
             if used > 360 + 1e-9:
-                raise ValueError(f"rise + far_dwell + return = {used:g} deg exceeds 360")
+                raise ValueError(Message("input.phases_over", used=used))
             self.near_dwell = max(0.0, 360.0 - used)
         elif abs(used + self.near_dwell - 360) > 1e-6:
-            raise ValueError(f"phases sum to {used + self.near_dwell:g} deg, not 360")
+            raise ValueError(Message("input.phases_sum", total=used + self.near_dwell))
         return self
 
 
@@ -341,7 +339,7 @@ class CamSection(_Model):
     @model_validator(mode="after")
     def _limits(self):
         if self.pressure_angle is not None and self.transmission_angle is not None:
-            raise ValueError("give `pressure_angle` or `transmission_angle`, not both")
+            raise ValueError(Message("input.cam_angles_both"))
         lim = self.pressure_angle
         if lim is None and self.transmission_angle is not None:
             t = self.transmission_angle
@@ -354,18 +352,18 @@ class CamSection(_Model):
         if not isinstance(lim, LimitsSpec):
             if not 0 < lim < 90:
                 given = "pressure_angle" if self.pressure_angle is not None else "transmission_angle"
-                raise FieldValueError((given,), "the allowed pressure angle must lie in (0, 90) deg")
+                raise FieldValueError((given,), Message("input.cam_pressure_range"))
             # checked just above as LimitsSpec would (an angle in (0, 90)): built without
             # validating again, which would build LimitsSpec's own validator (~10 ms)
             lim = LimitsSpec.model_construct(rise=lim, return_=lim)
         self.pressure_angle = lim
         if self.follower == "rocker":
             if self.rocker_length is None:
-                raise ValueError("a rocker follower needs `rocker_length`")
+                raise ValueError(Message("input.cam_rocker_length"))
             if self.offset not in (0.0, "auto"):
-                raise ValueError("`offset` is for a translating follower")
+                raise ValueError(Message("input.cam_offset_rocker"))
             if self.stroke >= 180:
-                raise ValueError("a rocker swing (`stroke`, deg) must be below 180")
+                raise ValueError(Message("input.cam_swing"))
         from .cam.chosen import check_section
         check_section(self, self.model_fields_set)
         return self
@@ -389,7 +387,7 @@ class GearsSection(_Model):
     @classmethod
     def _z(cls, v):
         if min(v) < 5:
-            raise ValueError("tooth numbers must be at least 5")
+            raise ValueError(Message("input.z_min"))
         return v
 
 
@@ -415,7 +413,7 @@ class PlanetarySection(_Model):
     @classmethod
     def _ratio(cls, v):
         if v == 0:
-            raise ValueError("the ratio cannot be zero")
+            raise ValueError(Message("input.ratio_zero"))
         return v
 
     @field_validator("scheme")
@@ -426,13 +424,13 @@ class PlanetarySection(_Model):
         # copied so that validating a task does not import the gears package (~1 s)
         key = str(v).strip()
         if PLANETARY_ALIASES.get(key.lower(), key.upper()) not in PLANETARY_SCHEMES:
-            raise ValueError(f"unknown planetary scheme {v!r}; known: {', '.join(PLANETARY_SCHEMES)}")
+            raise ValueError(Message("input.planetary_scheme", scheme=repr(v), known=list(PLANETARY_SCHEMES)))
         return v
 
     @model_validator(mode="after")
     def _z_range(self):
         if self.z_min > self.z_max:
-            raise FieldValueError(("z_min",), f"z_min = {self.z_min} exceeds z_max = {self.z_max}")
+            raise FieldValueError(("z_min",), Message("input.z_range", z_min=self.z_min, z_max=self.z_max))
         return self
 
 
@@ -547,8 +545,10 @@ class Task(_Model):
         Field(default_factory=dict)
 
     _file: str | None = PrivateAttr(None)
-    _marks: dict = PrivateAttr(default_factory=dict)
-    _input_warnings: list = PrivateAttr(default_factory=list)
+    # factories written as lambdas: pydantic reads a factory's signature for every Task it
+    # makes, and the builtins' (dict, list) is parsed from text by tokenize (~5 ms, once)
+    _marks: dict = PrivateAttr(default_factory=lambda: {})
+    _input_warnings: list = PrivateAttr(default_factory=lambda: [])
     _design: Any = PrivateAttr(None)             # synthesis.Design of the generated mechanism
     _synthesis_error: Any = PrivateAttr(None)    # SynthesisImpossible, raised by the pipeline (exit 3)
     _checked_mechanism: Any = PrivateAttr(None)  # the Mechanism `validation.check_feasible` assembled over
@@ -558,7 +558,7 @@ class Task(_Model):
     @classmethod
     def _schema(cls, v):
         if v != "tmm/1":
-            raise ValueError(f"unsupported schema {v!r}; this tool reads 'tmm/1'")
+            raise ValueError(Message("input.schema", got=repr(v)))
         return v
 
     @model_validator(mode="after")
@@ -569,11 +569,10 @@ class Task(_Model):
         if self.synthesis is None:
             return self
         if "mechanism" in self.model_fields_set:
-            raise FieldValueError(("synthesis",), "`synthesis` generates the mechanism: give either `synthesis` "
-                                  "or `mechanism`, not both")
+            raise FieldValueError(("synthesis",), Message("input.synthesis_and_mechanism"))
         from .linkage.synthesis import SynthesisImpossible, design
         if self.drive is None:
-            raise FieldValueError(("synthesis",), "`synthesis` needs a `drive` section (link: crank, speed, direction)")
+            raise FieldValueError(("synthesis",), Message("input.synthesis_drive"))
         try:
             d = design(self.synthesis, self.drive.sign)
         except SynthesisImpossible as exc:
@@ -598,15 +597,14 @@ class Task(_Model):
         needs_mech = [s for s in ("drive", "positions", "loads", "kinetostatics", "flywheel")
                       if getattr(self, s) is not None]
         if self.mechanism is not None and self.drive is None:
-            raise FieldValueError(("mechanism",), "a `mechanism` needs a `drive` section (link, speed, direction)")
+            raise FieldValueError(("mechanism",), Message("input.needs_drive"))
         if self.mechanism is None and needs_mech and self._synthesis_error is None:
-            raise FieldValueError((needs_mech[0],), f"section(s) {', '.join(needs_mech)} need a `mechanism`")
+            raise FieldValueError((needs_mech[0],), Message("input.needs_mechanism", sections=needs_mech))
         if self.report is not None and self.report.detail_position is not None and self.mechanism is None \
                 and self._synthesis_error is None:
-            raise FieldValueError(("report", "detail_position"), "`detail_position` names a position of the "
-                                  "linkage: it needs a `mechanism` (or `synthesis`)")
+            raise FieldValueError(("report", "detail_position"), Message("input.detail_needs_mechanism"))
         if self.flywheel is not None and self.loads is None:
-            raise FieldValueError(("flywheel",), "`flywheel` needs `loads` (the forces whose work it evens out)")
+            raise FieldValueError(("flywheel",), Message("input.flywheel_loads"))
         return self
 
     # --------------------------------------------------------------------
@@ -696,6 +694,7 @@ def _issue_from_error(err: dict, marks: dict) -> tuple[str, int | None, int | No
         msg = "required field is missing"
     elif err["type"] == "literal_error":
         msg = f"{msg}; got {err.get('input')!r}"
+    msg = _coded_issue(err, cause, msg)
     path = tuple(clean)
     if path and path[0] == "schema_":
         path = ("schema",) + path[1:]
@@ -711,6 +710,41 @@ def _issue_from_error(err: dict, marks: dict) -> tuple[str, int | None, int | No
             break
         p = p[:-1]
     return _dotted(path), line, col, msg
+
+
+# pydantic's error types a student meets, as catalogue codes (input.<type>) with the
+# parameters of pydantic's own message (its `ctx`)
+_PYDANTIC_CODES = {"int_parsing": (), "float_parsing": (), "bool_parsing": (), "int_from_float": (),
+                   "int_type": (), "float_type": (), "bool_type": (), "string_type": (), "dict_type": (),
+                   "list_type": (), "tuple_type": (), "finite_number": (), "model_type": ("class_name",),
+                   "greater_than": ("gt",), "greater_than_equal": ("ge",), "less_than": ("lt",),
+                   "less_than_equal": ("le",), "too_short": ("field_type", "min_length", "actual_length"),
+                   "too_long": ("field_type", "max_length", "actual_length")}
+
+
+def _coded_issue(err: dict, cause, msg: str) -> str:
+    """An issue's message ``msg`` as a coded Message with the same English text (a
+    validator's own coded message, or one of pydantic's error types); ``msg`` as it is
+    when it has no code, or the coded text would differ from it."""
+    kind, ctx = err["type"], err.get("ctx") or {}
+    coded = None
+    if cause is not None and cause.args and getattr(cause.args[0], "code", None):
+        coded = cause.args[0]
+    elif kind == "missing":
+        coded = Message("input.missing")
+    elif kind == "literal_error":
+        expected = str(ctx.get("expected", ""))
+        coded = Message("input.literal", expected=re.split(r", | or ", expected), got=repr(err.get("input")))
+    elif kind in _PYDANTIC_CODES and all(k in ctx for k in _PYDANTIC_CODES[kind]):
+        coded = Message(f"input.{kind}", **{k: _ctx_text(ctx[k]) for k in _PYDANTIC_CODES[kind]})
+    return coded if coded is not None and coded == msg else msg
+
+
+def _ctx_text(v) -> str:
+    """A value of pydantic's error context as its message shows it (0.0 as 0)."""
+    if isinstance(v, float) and v.is_integer():
+        return str(int(v))
+    return str(v)
 
 
 def _decimal_comma_issues(issues: list, file: str | None, text: str | None) -> list:
@@ -744,8 +778,8 @@ def load_task(source: Union[str, Path, dict], *, text: str | None = None) -> Tas
         file = str(source)
         data, marks = load_yaml(source, text=text)
     if not isinstance(data, dict):
-        raise TaskError("the task file must be a mapping of sections (schema: tmm/1, ...)", file=file,
-                        issues=[("", 1, 1, "the task file must be a mapping of sections (schema: tmm/1, ...)")])
+        msg = Message("input.not_mapping")
+        raise TaskError(msg, file=file, issues=[("", 1, 1, msg)])
     try:
         from .schemacache import validator
         task = validator(Task).validate_python(data)

@@ -14,8 +14,8 @@ Example::
 Kept apart from :mod:`tmm_cli.gears` so that validating a task does not import the gears
 package.
 """
-from __future__ import annotations
-
+# annotations evaluated as written (no `from __future__ import annotations`): pydantic would
+# compile and evaluate every field's annotation string when the models are made
 from typing import Literal
 
 from pydantic import Field, field_validator, model_validator

@@ -15,6 +15,8 @@ from typing import Annotated, Any
 
 from pydantic import AfterValidator, BeforeValidator, WithJsonSchema
 
+from .messages import Message
+
 # field kind -> (pint unit the value is converted to, words for messages)
 KINDS: dict[str, tuple[str, str]] = {
     "length": ("m", "a length (m, mm, cm...)"),
@@ -32,6 +34,7 @@ KINDS: dict[str, tuple[str, str]] = {
     # read by their own fields (dof2's times, drive.mean_output_speed), here for the fast table
     "time": ("s", "a time (s, ms, min)"),
     "linear_speed": ("m/s", "a linear speed (m/s)"),
+    "output_speed": ("", "a speed (m/s, rad/s, deg/s)"),   # drive.mean_output_speed (linkage/drive_speed.py)
 }
 
 # No quantity of a course task comes near 1e12 in its base unit (m, kg, N, Pa, rad/s, deg...);
@@ -72,19 +75,19 @@ def _pint_cache_folder(pint):
 
 def _as_float(x: Any) -> float:
     if isinstance(x, bool):
-        raise ValueError("expected a number, got a boolean")
+        raise ValueError(Message("input.number_bool"))
     v = float(x)
     if not math.isfinite(v):
-        raise ValueError("expected a finite number")
+        raise ValueError(Message("input.not_finite"))
     return check_magnitude(v)
 
 
 def check_magnitude(v: float) -> float:
     """``v`` if it is finite and |v| <= LIMIT, else a ValueError naming the limit."""
     if not math.isfinite(v):
-        raise ValueError("expected a finite number")
+        raise ValueError(Message("input.not_finite"))
     if abs(v) > LIMIT:
-        raise ValueError(f"{v:g} is out of range: |value| must not exceed {LIMIT:g} (in the field's base unit)")
+        raise ValueError(Message("input.out_of_range", value=v, limit=LIMIT))
     return v
 
 
@@ -93,22 +96,23 @@ _DECIMAL_COMMA = re.compile(r"([-+]?\d+),(\d+)(?![\d,])")
 
 def convert(value: Any, kind: str) -> float:
     """Convert a task value of the given field kind to a float in the base unit."""
-    unit, words = KINDS[kind]
+    unit = KINDS[kind][0]
     if isinstance(value, bool) or value is None:
-        raise ValueError(f"expected {words}, got {value!r}")
+        raise ValueError(Message("input.unit_expected", kind=kind, got=repr(value)))
     if isinstance(value, (int, float)):
         return _as_float(value)
     if not isinstance(value, str):
-        raise ValueError(f"expected {words}, got {type(value).__name__}")
+        raise ValueError(Message("input.unit_expected", kind=kind, got=type(value).__name__))
     text = value.strip()
     comma = _DECIMAL_COMMA.match(text)
     if comma:   # pint would read '3,5 mm' as 35 mm
-        raise ValueError(f"use a decimal point: {comma.group(1)}.{comma.group(2)}, not '{comma.group(0)}'")
+        raise ValueError(Message("input.unit_decimal_comma", fixed=f"{comma.group(1)}.{comma.group(2)}",
+                                 given=comma.group(0)))
     m = _FRACTION.match(text)
     if m:
         den = float(m.group(2))
         if den == 0:
-            raise ValueError("division by zero in a fraction")
+            raise ValueError(Message("input.fraction_zero"))
         return _as_float(float(m.group(1)) / den)
     try:
         plain = float(text)
@@ -122,19 +126,20 @@ def convert(value: Any, kind: str) -> float:
     if kind in ("dimensionless", "force_or_pressure"):
         if kind == "force_or_pressure":
             # a force or a pressure: accept either dimension, converted to SI
-            q = _parse(text, words)
+            q = _parse(text, kind)
             for target in ("N", "Pa"):
                 try:
                     return _as_float(q.to(target).magnitude)
                 except Exception:  # noqa: BLE001 - pint: not this dimension, try the next
                     continue
-            raise ValueError(f"'{text}' is not {words}")
-        raise ValueError(f"expected {words}, got '{text}'")
-    q = _parse(text, words)
+            raise ValueError(Message("input.unit_not_kind", text=text, kind=kind))
+        raise ValueError(Message("input.unit_expected", kind=kind, got=f"'{text}'"))
+    q = _parse(text, kind)
     try:
         return _as_float(q.to(unit).magnitude)
     except Exception:  # noqa: BLE001 - pint's conversion errors of any kind; the message names the unit
-        raise ValueError(f"'{text}' is not {words}: its unit does not convert to {unit.replace('**', '^')}") from None
+        raise ValueError(Message("input.unit_not_convert", text=text, kind=kind,
+                                 unit=unit.replace('**', '^'))) from None
 
 
 # The units course tasks write, with pint's factor to the base unit (a test checks each
@@ -168,16 +173,19 @@ def _fast(text: str, kind: str) -> float | None:
     return None if factor is None else float(m.group(1)) * factor
 
 
-def _parse(text: str, words: str):
+def _parse(text: str, kind: str):
     import pint
 
     reg = ureg()
     try:
         q = reg.Quantity(text)
     except (pint.errors.UndefinedUnitError, pint.errors.DefinitionSyntaxError) as exc:
-        raise ValueError(f"unknown unit in '{text}' ({exc}); expected {words}") from None
+        english = f"unknown unit in '{text}' ({exc}); expected {KINDS[kind][1]}"   # pint's words inside
+        names = getattr(exc, "unit_names", None) or ()
+        coded = Message("input.unit_unknown", text=text, unit=names[0], kind=kind) if len(names) == 1 else None
+        raise ValueError(coded if coded == english else english) from None
     except Exception:  # noqa: BLE001 - the rest of pint's parser errors (tokenize, syntax, types)
-        raise ValueError(f"cannot read '{text}' as {words}") from None
+        raise ValueError(Message("input.unit_unreadable", text=text, kind=kind)) from None
     if not isinstance(q, reg.Quantity):
         q = reg.Quantity(q)
     return q

@@ -2,6 +2,8 @@
 from __future__ import annotations
 
 from .errors import StageError, TaskError, guarded
+from .messages import Message
+from .messages import as_message as _coded
 
 
 def check_feasible(task, assembly: bool = True) -> None:
@@ -59,14 +61,14 @@ def millimetre_suspects(task) -> list[tuple[tuple, str]]:
     items: list[tuple[tuple, str, float]] = []
     for name, spec in sec.links.items():
         if spec.kind == "bar" and spec.length:
-            items.append((("mechanism", "links", name, "length"), f"the length of '{name}'", float(spec.length)))
+            items.append((("mechanism", "links", name, "length"), Message("input.mm_link", link=name), float(spec.length)))
     ground = list(sec.ground.items())
     if len(ground) > 1:
         x0, y0 = ground[0][1]
         for g, (x, y) in ground[1:]:
             d = ((x - x0) ** 2 + (y - y0) ** 2) ** 0.5
             if d > 0:
-                items.append((("mechanism", "ground", g), f"ground point {g} (at {d:g} m from {ground[0][0]})", d))
+                items.append((("mechanism", "ground", g), Message("input.mm_ground", point=g, d=d, origin=ground[0][0]), d))
     out = []
     for k, (path, what, v) in enumerate(items):
         others = [w for j, (_, _, w) in enumerate(items) if j != k]
@@ -74,9 +76,7 @@ def millimetre_suspects(task) -> list[tuple[tuple, str]]:
             continue
         ratio = v / statistics.median(others)
         if MM_RATIO[0] <= ratio <= MM_RATIO[1]:
-            out.append((path, f"{what}, {v:g} m, is {ratio:.0f} times the other lengths "
-                              f"({min(others):g}..{max(others):g} m): probably meant in millimetres "
-                              f"(write '{v:g} mm')"))
+            out.append((path, Message("input.mm_suspect", what=what, value=v, ratio=ratio, lo=min(others), hi=max(others))))
     return out
 
 
@@ -89,10 +89,9 @@ def impossible_dimensions(task, err):
     mm = millimetre_suspects(task)
     if mm:
         path, msg = mm[0]
-        return task.error(path, f"{msg}; the linkage does not assemble: {err.message}")
+        return task.error(path, Message("input.mm_no_assembly", suspect=msg, reason=_coded(err.message)))
     names = getattr(err, "never_assembles", None)
     if not names:
         return None
     return task.error(("mechanism", "links", names[0]),
-                      f"impossible dimensions: {err.message} — at no crank angle; check the lengths of "
-                      f"{', '.join(names)} and the ground points")
+                      Message("input.impossible", reason=_coded(err.message), links=list(names)))

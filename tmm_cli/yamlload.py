@@ -26,6 +26,7 @@ from typing import Any
 import yaml
 
 from .errors import TaskError
+from .messages import Message
 
 
 MAX_BYTES = 256 << 10        # 256 KiB: the largest course task is a few kB
@@ -174,7 +175,7 @@ def _walk(node: yaml.Node, path: tuple, marks: dict, file: str | None, loader: _
                 raise TaskError("duplicate key", file=file, issues=[(
                     ".".join(map(str, path + (key,))), knode.start_mark.line + 1,
                     knode.start_mark.column + 1,
-                    f"duplicate key '{key}' (first given on line {seen[key]})")])
+                    Message("input.duplicate_key", key=str(key), first=seen[key]))])
             seen[key] = knode.start_mark.line + 1
             marks[path + (key,)] = (knode.start_mark.line + 1, knode.start_mark.column + 1)
             _walk(vnode, path + (key,), marks, file, loader)
@@ -204,7 +205,7 @@ def _tab_indented_line(text: str) -> int | None:
 _DECIMAL_COMMA = re.compile(r"(?<![\w.,])(-?\d+),(\d+)(?![\d.])")
 
 
-def _indent_hint(text: str, line: int | None) -> str:
+def _indent_hint(text: str, line: int | None) -> Message | str:
     """A hint when a syntax error's line is indented unlike the content line before it,
     which does not open a block (``positions:`` / `` count: 12`` / ``  zero: extreme``:
     YAML reports the third line, the second is misindented); else ''."""
@@ -226,12 +227,32 @@ def _indent_hint(text: str, line: int | None) -> str:
         return ""
     if indent(line) > indent(prev) and lines[prev - 1].split("#")[0].rstrip().endswith((":", "-")):
         return ""
-    return (f"; check the indentation of lines {prev} and {line}: the keys of one section start in the "
-            f"same column (line {prev} starts in column {indent(prev) + 1}, line {line} in column "
-            f"{indent(line) + 1})")
+    return Message("input.indent_hint", prev=prev, line=line, col_prev=indent(prev) + 1, col_line=indent(line) + 1)
 
 
-def decimal_comma_hint(line: str) -> str | None:
+_PROBLEMS = (re.compile(r"^expected <block end>, but found '(.*)'$"),
+             re.compile(r"^expected ',' or '(.)', but got '(.*)'$"),
+             re.compile(r"^found character '(.)' that cannot start any token$"))
+
+
+def _problem(text: str) -> Message | str:
+    """The problem pyyaml names, coded where it is one a student meets (an indentation
+    that ends a block, an unclosed bracket, a colon inside a value...); else as written."""
+    coded = {"mapping values are not allowed here": Message("input.yaml_colon"),
+             "found unexpected end of stream": Message("input.yaml_end"),
+             "could not find expected ':'": Message("input.yaml_no_colon"),
+             "did not find expected key": Message("input.yaml_no_key")}.get(text)
+    block, flow, char = (rx.match(text) for rx in _PROBLEMS)
+    if block:
+        coded = Message("input.yaml_block_end", found=block.group(1))
+    elif flow:
+        coded = Message("input.yaml_flow", close=flow.group(1), got=flow.group(2))
+    elif char:
+        coded = Message("input.yaml_char", char=char.group(1))
+    return coded if coded is not None and coded == text else text
+
+
+def decimal_comma_hint(line: str) -> Message | None:
     """'use a decimal point: 0.38' when a line (outside its comment) holds a number
     written with a decimal comma such as ``0,38``, else None."""
     code = line.split("#", 1)[0]
@@ -240,8 +261,86 @@ def decimal_comma_hint(line: str) -> str | None:
         return None
     if ("[" in code or "{" in code) and not re.search(r",\s", code):
         return None     # a compact list such as [12,42,7]: commas without spaces throughout
-    return (f"use a decimal point: {m.group(1)}.{m.group(2)} (YAML reads '{m.group(0)}' as two "
-            f"numbers or as text)")
+    return Message("input.decimal_comma", fixed=f"{m.group(1)}.{m.group(2)}", given=m.group(0))
+
+
+try:                                   # libyaml's parser, when PyYAML was built with it
+    from yaml._yaml import CParser as _CParser
+except ImportError:                    # pragma: no cover - PyYAML's wheels carry it
+    _CParser = None
+
+# the largest text libyaml reads here: its composer recurses once per level of nesting in C
+# (a few hundred thousand levels overflow the stack), and a text of n characters nests at
+# most n deep; anything longer, or anything the fast reading refuses, is read by _Loader12
+FAST_MAX_CHARS = 8192
+# where libyaml and PyYAML's Python reader part (found by comparing the two on mutated task
+# files): a tab (libyaml takes it as a separator in more places), '?' (PyYAML refuses it
+# inside a plain scalar in a flow collection), '!' (a bare '!' tag: '' against None), a
+# byte-order mark inside the text, and a block scalar's header ('|' or '>' after a space or
+# at a line's start: '>#' is a header and a comment to libyaml, an error to PyYAML)
+_NOT_FAST = "\t?!\ufeff"
+_BLOCK_SCALAR = re.compile(r"(?:^|\s)[|>]", re.M)
+
+if _CParser is not None:
+    class _CLoader12(_CParser, yaml.constructor.SafeConstructor, yaml.resolver.Resolver):
+        """_Loader12's resolvers and constructors on libyaml's parser and composer (~15
+        times faster than PyYAML's Python ones), without _Loader12's limits: see
+        :func:`_load_fast`."""
+
+        yaml_implicit_resolvers = _Loader12.yaml_implicit_resolvers
+        yaml_constructors = _Loader12.yaml_constructors
+
+        def __init__(self, stream):
+            _CParser.__init__(self, stream)
+            yaml.constructor.SafeConstructor.__init__(self)
+            yaml.resolver.Resolver.__init__(self)
+
+
+def _within_limits(root: yaml.Node) -> bool:
+    """The node graph is a tree (no alias: no node reached twice) of at most MAX_NODES
+    nodes nesting at most MAX_DEPTH deep: what _Loader12 accepts without a word."""
+    seen: set[int] = set()
+    stack = [(root, 1)]
+    while stack:
+        node, depth = stack.pop()
+        if id(node) in seen or len(seen) >= MAX_NODES:
+            return False
+        seen.add(id(node))
+        if isinstance(node, yaml.MappingNode):
+            if depth >= MAX_DEPTH and node.value:
+                return False
+            for k, v in node.value:
+                stack.append((k, depth + 1))
+                stack.append((v, depth + 1))
+        elif isinstance(node, yaml.SequenceNode):
+            if depth >= MAX_DEPTH and node.value:
+                return False
+            stack.extend((v, depth + 1) for v in node.value)
+    return True
+
+
+def _load_fast(text: str, file: str) -> tuple[Any, dict] | None:
+    """``(data, marks)`` read by libyaml, or None: no libyaml, a long text, an alias, a limit
+    passed, or any error at all (then _Loader12 reads the text again and names the problem
+    in its own words). What libyaml reads in full is the same node tree, with the same
+    marks, that PyYAML's Python reader composes (tests/test_hostile_yaml.py compares them)."""
+    if _CParser is None or len(text) > FAST_MAX_CHARS or any(c in text for c in _NOT_FAST) \
+            or _BLOCK_SCALAR.search(text):
+        return None
+    try:
+        loader = _CLoader12(text)
+        try:
+            node = loader.get_single_node()
+            if node is None or not _within_limits(node):
+                return None
+            marks: dict = {}
+            _walk(node, (), marks, file, loader)
+            data = loader.construct_document(node)
+        finally:
+            loader.dispose()
+    except Exception:  # noqa: BLE001 - whatever libyaml refuses, _Loader12 reads again and names
+        return None
+    return data, marks
 
 
 def load_yaml(source: str | Path, *, text: str | None = None) -> tuple[Any, dict]:
@@ -250,6 +349,9 @@ def load_yaml(source: str | Path, *, text: str | None = None) -> tuple[Any, dict
     file = str(source)
     if text is None:
         text = read_text(source)
+    fast = _load_fast(text, file)
+    if fast is not None:
+        return fast
     try:
         loader = _Loader12(text)
         try:
@@ -267,14 +369,14 @@ def load_yaml(source: str | Path, *, text: str | None = None) -> tuple[Any, dict
         tab = _tab_indented_line(text)
         if tab is not None:
             raise TaskError("YAML syntax error", file=file, issues=[(
-                "", tab, 1, "use spaces for indentation: this line is indented with a tab, "
-                            "which YAML does not allow")]) from None
+                "", tab, 1, Message("input.tab"))]) from None
         mark = exc.problem_mark or exc.context_mark
         line = mark.line + 1 if mark else None
         col = mark.column + 1 if mark else None
         raise TaskError("YAML syntax error", file=file,
-                        issues=[("", line, col, f"YAML syntax error: {exc.problem or exc.context}"
-                                 f"{_indent_hint(text, line)}")]) from None
+                        issues=[("", line, col, Message("input.yaml_syntax", problem=_problem(str(exc.problem or exc.context)),
+                                                        hint=_indent_hint(text, line) or Message("text", text="")))
+                                ]) from None
     except yaml.reader.ReaderError as exc:
         # a character YAML does not allow (a NUL, a control character): the reader gives
         # its offset in the text, not a mark, so count the lines up to it

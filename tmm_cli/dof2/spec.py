@@ -23,8 +23,8 @@ Example::
       samples: 401
       impact:  {phi: 270}
 """
-from __future__ import annotations
-
+# annotations evaluated as written (no `from __future__ import annotations`): pydantic would
+# compile and evaluate every field's annotation string when the models are made
 import math
 from typing import Annotated, Any, Literal
 

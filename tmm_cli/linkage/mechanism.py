@@ -19,6 +19,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from ..messages import Message
 from ..task import MechanismSection, Task
 
 
@@ -143,7 +144,7 @@ def build_mechanism(task: Task) -> Mechanism:
     index = {n: i + 1 for i, n in enumerate(names)}
     for g in sec.ground:
         if g in index:
-            raise task.error(P + ("ground", g), f"'{g}' is both a ground point and a link name")
+            raise task.error(P + ("ground", g), Message("input.ground_is_link", name=g))
     owner: dict[str, list[int]] = {g: [0] for g in sec.ground}
     links: list[Link] = []
     # first pass: bars (their frames are known from lengths)
@@ -155,7 +156,7 @@ def build_mechanism(task: Task) -> Mechanism:
             local = {p: (0.0, 0.0), q: (float(spec.length), 0.0)}
             for en, (u, v) in spec.extra.items():
                 if en in local:
-                    raise task.error(lp + ("extra", en), f"extra point '{en}' repeats a point of the link")
+                    raise task.error(lp + ("extra", en), Message("input.extra_repeats", point=en))
                 local[en] = (float(u), float(v))
         else:
             local = {spec.slider: (0.0, 0.0)}
@@ -171,7 +172,7 @@ def build_mechanism(task: Task) -> Mechanism:
     # points used by no link
     for g in sec.ground:
         if owner[g] == [0]:
-            raise task.error(P + ("ground", g), f"ground point '{g}' is used by no link")
+            raise task.error(P + ("ground", g), Message("input.ground_unused", point=g))
     # drive link
     drive_name = task.drive.link
     if drive_name not in index:
@@ -179,10 +180,9 @@ def build_mechanism(task: Task) -> Mechanism:
     drive = index[drive_name]
     dspec = sec.links[drive_name]
     if dspec.kind != "bar":
-        raise task.error(("drive", "link"), f"the drive link '{drive_name}' must be a bar (a crank), not a slider")
+        raise task.error(("drive", "link"), Message("input.drive_slider", link=drive_name))
     if not any(0 in owner[p] for p in dspec.points):
-        raise task.error(("drive", "link"), f"the drive link '{drive_name}' has no ground pivot: one of its points "
-                         f"{dspec.points} must be listed under mechanism.ground")
+        raise task.error(("drive", "link"), Message("input.drive_no_pivot", link=drive_name, points=repr(dspec.points)))
     # second pass: sliders' guides, centres of mass
     final: list[Link] = []
     for lk in links:
@@ -195,14 +195,12 @@ def build_mechanism(task: Task) -> Mechanism:
                 if g.link not in index:
                     raise task.error(lp + ("guide", "link"), _unknown_link(g.link, names))
                 if g.link == lk.name:
-                    raise task.error(lp + ("guide", "link"), "a slider cannot slide on itself")
+                    raise task.error(lp + ("guide", "link"), Message("input.slider_self"))
                 guide = Guide(link=g.link, point=None, angle=float(g.angle or 0.0), offset=float(g.offset))
             else:
                 if isinstance(g.through, str):
                     if g.through not in sec.ground:
-                        raise task.error(lp + ("guide", "through"),
-                                         f"'{g.through}' is not a ground point (fixed guides pass through "
-                                         f"ground points or [x, y])")
+                        raise task.error(lp + ("guide", "through"), Message("input.guide_through", point=g.through))
                     pt = sec.ground[g.through]
                 else:
                     pt = g.through
@@ -218,8 +216,7 @@ def build_mechanism(task: Task) -> Mechanism:
                 com = (0.0, 0.0)
         elif isinstance(spec.com, str):
             if spec.com not in lk.local:
-                raise task.error(lp + ("com",), f"'{spec.com}' is not a point of link '{lk.name}' "
-                                 f"(its points: {', '.join(lk.local)})")
+                raise task.error(lp + ("com",), Message("input.com_point", point=spec.com, link=lk.name, points=list(lk.local)))
             com = lk.local[spec.com]
         else:
             com = (float(spec.com[0]), float(spec.com[1]))
@@ -243,18 +240,16 @@ def build_mechanism(task: Task) -> Mechanism:
     # every moving link must be connected to something
     for lk in links:
         if not any(lk.index in (j.a, j.b) for j in joints):
-            raise task.error(P + ("links", lk.name), f"link '{lk.name}' shares no point with any other link or "
-                             f"the ground")
+            raise task.error(P + ("links", lk.name), Message("input.link_alone", link=lk.name))
     # a point named in assembly must exist
     for pt in sec.assembly:
         if pt not in owner:
-            raise task.error(P + ("assembly", pt), f"assembly hint for unknown point '{pt}'")
+            raise task.error(P + ("assembly", pt), Message("input.assembly_point", point=pt))
     # S<i> names must not collide with user point names carried by other links
     for lk in links:
         s = f"S{lk.index}"
         if s in owner and owner[s] != [lk.index]:
-            raise task.error(P + ("links", lk.name), f"point name '{s}' is reserved for the centre of mass of "
-                             f"link {lk.index}")
+            raise task.error(P + ("links", lk.name), Message("input.reserved_point", point=s, index=lk.index))
     _check_references(task, names, owner, links)
     return Mechanism(ground={k: (float(v[0]), float(v[1])) for k, v in sec.ground.items()},
                      links=links, joints=joints, drive=drive, owner=owner,
@@ -274,8 +269,7 @@ def _check_references(task: Task, names: list[str], owner: dict[str, list[int]],
         if ks.balance is not None and ks.balance not in by_name:
             raise task.error(("kinetostatics", "balance"), _unknown_link(ks.balance, names))
         if ks.motion is True and task.flywheel is None:
-            raise task.error(("kinetostatics", "motion"), "`motion: true` needs a `flywheel` section "
-                             "(the steady motion comes from the flywheel)")
+            raise task.error(("kinetostatics", "motion"), Message("input.motion_flywheel"))
     if task.loads is None:
         return
     points = set(owner) | {f"S{lk.index}" for lk in links}
@@ -287,19 +281,18 @@ def _check_references(task: Task, names: list[str], owner: dict[str, list[int]],
         if sp.moment is not None:
             continue
         if isinstance(sp.at, str) and sp.at not in points:
-            raise task.error(fp + ("at",), f"'{sp.at}' is not a point of the mechanism "
-                             f"(the points of link '{lk.name}': {', '.join(lk.local)})")
+            raise task.error(fp + ("at",), Message("input.load_point", point=sp.at, link=lk.name, points=list(lk.local)))
         phi_diagram = sp.diagram is not None and sp.diagram.phi is not None
         if sp.direction is None and lk.kind != "slider" and (sp.kind is None or phi_diagram):
-            raise task.error(fp, f"a force on the bar '{lk.name}' needs `direction` (deg from +x); "
-                             f"only a resistance/driving force over a stroke takes the direction of motion")
+            raise task.error(fp, Message("input.force_direction", link=lk.name))
 
 
 def _unknown_link(name: str, names: list[str]) -> str:
     import difflib
     close = difflib.get_close_matches(name, names, n=1)
-    hint = f"; did you mean '{close[0]}'?" if close else f"; links: {', '.join(names)}"
-    return f"no link named '{name}'{hint}"
+    if close:
+        return Message("input.no_link", name=name, hint=close[0])
+    return Message("input.no_link_list", name=name, links=names)
 
 
 def rotate(u: float, v: float, ang: float) -> tuple[float, float]:

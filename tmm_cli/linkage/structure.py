@@ -140,8 +140,8 @@ def _lonely_pair_points(mech: Mechanism) -> list[tuple[str, str]]:
         for p in lonely_of(lk, _pair_points(lk)):
             others = [q for o in mech.links if o.index != lk.index for q in lonely_of(o, o.local)]
             guess = difflib.get_close_matches(p, others, n=1, cutoff=0.5) or (others if len(others) == 1 else [])
-            hint = f" — did you mean {guess[0]}?" if guess else ""
-            out.append((lk.name, f"point {p} is used by {lk.name} only: a pair needs two links{hint}"))
+            hint = Message("structure.fail.point_hint", point=guess[0]) if guess else Message("text", text="")
+            out.append((lk.name, Message("structure.fail.lonely_point", point=p, link=lk.name, hint=hint)))
     return out
 
 
@@ -304,30 +304,25 @@ def analyze(mech: Mechanism, task=None) -> StructureResult:
     if W != 1 or remaining:
         why = []
         if W < 1:
-            why.append(f"W = {W}: by Chebyshev's formula W = 3n - 2p5 - p4 = 3*{n} - 2*{p5} - {p4} = {W}, "
-                       f"the linkage is {'a rigid structure' if W == 0 else 'an over-constrained structure'} "
-                       f"(n = {n} moving links, p5 = {p5} lower pairs)")
+            why.append(Message("structure.fail.rigid" if W == 0 else "structure.fail.over_constrained",
+                               W=W, n=n, p5=p5, p4=p4))
             if passive:
-                why.append("it can move only thanks to special dimensions (passive constraints); "
-                           "remove the redundant link or pair")
+                why.append(Message("structure.fail.special_dimensions"))
         elif W > 1:
-            why.append(f"W = {W}: by Chebyshev's formula W = 3*{n} - 2*{p5} - {p4} = {W}; one crank "
-                       f"cannot define the motion (n = {n}, p5 = {p5}); the linkage needs {W} inputs")
+            why.append(Message("structure.fail.inputs", W=W, n=n, p5=p5, p4=p4))
             if idle:
-                why.append(f"idle degree(s) of freedom: link(s) {', '.join(idle)} with a single pair")
+                why.append(Message("structure.fail.idle", links=list(idle)))
         if remaining and W == 1:
-            why.append(f"links {', '.join(names[i] for i in remaining)} cannot be split into Assur groups "
-                       f"attached to the crank '{names[drive]}' (passive constraints and idle freedoms "
-                       f"cancel in Chebyshev's formula?)")
+            why.append(Message("structure.fail.no_groups", links=[names[i] for i in remaining], crank=names[drive]))
         why.extend(w for w in warnings if "passive" in w and w not in why)
         lonely = _lonely_pair_points(mech)
         if lonely:      # a typo in a point name: say that first, the count follows from it
             (first_link, _), *_ = lonely
-            msg = "; ".join([m for _, m in lonely] + why)
+            msg = Message("structure.fail.reasons", reasons=[m for _, m in lonely] + why)
             if task is not None:
                 raise task.error(("mechanism", "links", first_link), msg)
             raise StageError("structure", msg)
-        raise _fail(task, "; ".join(why))
+        raise _fail(task, Message("structure.fail.reasons", reasons=why))
 
     klass = max([1] + [g.klass for g in groups])
     formula = " -> ".join([f"I(0,{drive})"] + [g.label for g in groups])

@@ -17,8 +17,13 @@ The catalogues are one YAML file per language beside this module (``en.yaml``,
       phase: {rise: удаление, far_dwell: дальний выстой}
 
 A placeholder ``{where:phase}`` renders the parameter through the language's ``phase``
-table (each ``/``-separated part, joined by `` / ``; a list joined by ``, ``); any other
-spec is a Python format spec (a list parameter: each item formatted, joined by ``, ``).
+table (the whole value, else each ``/``-separated part, joined by `` / ``; a list joined by
+``, ``); the spec ``or`` joins a list as alternatives (``'a', 'b' or 'c'``, the word from the
+language's ``conj`` table); a list of messages is one a line, or with ``joined`` one line
+joined by ``; ``; the spec ``angles`` shows crank-angle intervals ``[[a, b], ...]``
+as ``φ = 37.5…52.1°`` (:data:`SPECS`); any other
+spec is a Python format spec (a list parameter: each item formatted -- an interval ``[a, b]``
+as ``a..b`` --, joined by ``, ``).
 Parameters are plain JSON values (numbers in the unit the text shows).  Adding a
 language is adding its catalogue file (and its report table in
 :mod:`tmm_cli.report.i18n`); tests/test_messages.py checks that every code and
@@ -37,6 +42,22 @@ LANGS = ("en",) + tuple(sorted(p.stem for p in _DIR.glob("*.yaml") if p.stem != 
 
 # a warning given as a plain string (not a Message): shown as written in every language
 PLAIN = "text"
+# format specs the formatter knows beside Python's and the word tables: `or` (alternatives)
+# `angles` (crank-angle intervals [[from, to], ...] in degrees: "φ = 37.5…52.1°") and
+# `joined` (a list of messages in one line, joined by "; "; without it: one a line)
+SPECS = ("or", "angles", "joined")
+
+
+def _angles(intervals: list) -> str:
+    """Crank-angle intervals as "φ = 37.5…52.1°, 250.0…265.5°": to 0.1°, or finer (to
+    0.001°) where an interval would show the same number at both ends."""
+    out = []
+    for a, b in intervals:
+        d = 1
+        while d < 3 and f"{a:.{d}f}" == f"{b:.{d}f}":
+            d += 1
+        out.append(f"{a:.{d}f}…{b:.{d}f}°")
+    return "φ = " + ", ".join(out)
 
 
 @functools.cache
@@ -61,13 +82,25 @@ class _Formatter(string.Formatter):
     def format_field(self, value: Any, spec: str) -> str:
         if isinstance(value, dict) and "code" in value:      # a message inside a message
             return localize(value, self.lang)
+        if isinstance(value, list) and value and all(isinstance(v, dict) and "code" in v for v in value):
+            return ("; " if spec == "joined" else "\n").join(localize(v, self.lang) for v in value)
+        if spec == "angles" and isinstance(value, list):
+            return _angles(value)
+        if spec == "or" and isinstance(value, list):        # alternatives: 'a', 'b' or 'c'
+            word = self.terms.get("conj", {}).get("or", "or")
+            items = [str(v) for v in value]
+            return items[0] if len(items) == 1 else f"{', '.join(items[:-1])} {word} {items[-1]}"
         table = self.terms.get(spec) if spec else None
         if table is not None:
             if isinstance(value, list):
                 return ", ".join(str(table.get(str(v), v)) for v in value)
-            return " / ".join(str(table.get(p, p)) for p in str(value).split("/"))
-        if isinstance(value, list):
-            return ", ".join(format(v, spec) for v in value)
+            if str(value) in table:
+                return str(table[str(value)])
+            parts = str(value).split("/")
+            return " / ".join(str(table.get(p, p)) for p in parts) if any(p in table for p in parts) else str(value)
+        if isinstance(value, list):                          # an interval [a, b]: a..b
+            return ", ".join(f"{format(v[0], spec)}..{format(v[1], spec)}" if isinstance(v, list) and len(v) == 2
+                             else format(v, spec) for v in value)
         return format(value, spec)
 
 
@@ -128,6 +161,11 @@ class Message(str):
         return {"code": self.code, "params": dict(self.params), "text": str(self)}
 
 
+def as_message(text: str) -> "Message":
+    """``text`` as a Message: itself when it is one (coded), else the plain ``text`` code."""
+    return text if isinstance(text, Message) else Message(PLAIN, text=str(text))
+
+
 def as_dict(warning: str) -> dict:
     """The results.json ``messages`` entry of a warning (a plain string gets code ``text``)."""
     if isinstance(warning, Message):
@@ -154,4 +192,4 @@ def render_list(section: dict, lang: str) -> list[str]:
     return [str(w) for w in section.get("warnings") or []]
 
 
-__all__ = ["LANGS", "Message", "as_dict", "catalogue", "localize", "render", "render_list"]
+__all__ = ["LANGS", "Message", "as_dict", "as_message", "catalogue", "localize", "render", "render_list"]

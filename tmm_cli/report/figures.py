@@ -458,13 +458,12 @@ def _pxy(entry, p):
 
 def mechanism_extent(entries, names=None) -> tuple[np.ndarray, np.ndarray]:
     """Bounding box (min xy, max xy) of the points over the entries."""
-    xs = []
-    for e in entries:
-        for p, d in e["points"].items():
-            if names is None or p in names:
-                xs.append((float(d["x"]), float(d["y"])))
-    a = np.array(xs) if xs else np.zeros((1, 2))
-    return a.min(axis=0), a.max(axis=0)
+    pts = [d for e in entries for p, d in e["points"].items() if names is None or p in names]
+    if not pts:
+        return np.zeros(2), np.zeros(2)
+    x = np.array([d["x"] for d in pts], float)
+    y = np.array([d["y"] for d in pts], float)
+    return np.array([x.min(), y.min()]), np.array([x.max(), y.max()])
 
 
 def slider_ranges(entries, geom) -> dict[str, tuple[np.ndarray, np.ndarray]]:

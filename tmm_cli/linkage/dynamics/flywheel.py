@@ -42,7 +42,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from ...lazy import brentq
+from ...lazy import brentq, leggauss
 
 from ...errors import StageError
 from ...messages import Message
@@ -60,7 +60,7 @@ def gauss_legendre(n: int) -> tuple[np.ndarray, np.ndarray]:
 
 @functools.lru_cache(maxsize=8)
 def _leggauss(n: int) -> tuple[np.ndarray, np.ndarray]:
-    x, w = np.polynomial.legendre.leggauss(n)
+    x, w = leggauss(n)             # numpy.polynomial.legendre.leggauss's, without importing numpy.polynomial
     return (x + 1.0) / 2.0, w / 2.0
 
 

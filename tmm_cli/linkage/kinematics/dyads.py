@@ -249,13 +249,17 @@ class _MidApply:
         if isinstance(c, RCon):
             ru = self.ru[X]
             r1, r0 = (ru[:, 1], ru[:, 0]) if one else (t * ru[:, 1], t * ru[:, 0])
-            if X == c.i:
-                return ox - r1, oy + r0
-            return np.negative(ox - r1), np.negative(oy + r0)
+            a, b = ox - r1, oy + r0
+            if X != c.i:                    # in place: no second temporary
+                np.negative(a, out=a)
+                np.negative(b, out=b)
+            return a, b
         nv = self.n[:, 0] * ox + self.n[:, 1] * oy
         if X == c.s:
             return t, nv
-        return -t, -nv - (self.ed if one else self.ed * t)
+        np.negative(nv, out=nv)
+        np.subtract(nv, self.ed if one else self.ed * t, out=nv)
+        return -t, nv
 
 
 def _length(info_X, cX, mid, N: int) -> np.ndarray:
@@ -321,9 +325,26 @@ def dyad_derivatives(plan: DyadPlan, st: State) -> np.ndarray:
     if sing.any():
         det = np.where(sing, np.where(det >= 0, 1.0, -1.0) * np.maximum(nn, 1e-300) * 1e-10, det)
     inv = 1.0 / det
+    del det, nn
 
     def solve2(r0, r1):
-        return (r0 * cB[1] - r1 * cB[0]) * inv, (cA[0] * r1 - cA[1] * r0) * inv
+        """Cramer's rule, the products formed in place (the same operations)."""
+        x = r0 * cB[1]
+        t = r1 * cB[0]
+        np.subtract(x, t, out=x)
+        np.multiply(x, inv, out=x)
+        y = cA[0] * r1
+        np.multiply(cA[1], r0, out=t)
+        np.subtract(y, t, out=y)
+        np.multiply(y, inv, out=y)
+        return x, y
+
+    def neg_sum(a, b, c=None):
+        """-(a + b) or -(a + b + c), in place in the first sum."""
+        r = a + b
+        if c is not None:
+            r = r + c if np.ndim(r) == 0 else np.add(r, c, out=r)
+        return -r if np.ndim(r) == 0 else np.negative(r, out=r)
 
     def pose_d(X, lx, W):
         """(o, th) derivative U lx + W of link X."""
@@ -336,7 +357,8 @@ def dyad_derivatives(plan: DyadPlan, st: State) -> np.ndarray:
 
     vA = ap(A, *info[A][2])
     vB = ap(B, *info[B][2])
-    l1 = dict(zip((A, B), solve2(-(vA[0] + vB[0]), -(vA[1] + vB[1]))))
+    l1 = dict(zip((A, B), solve2(neg_sum(vA[0], vB[0]), neg_sum(vA[1], vB[1]))))
+    del vA, vB
     Wd = {}
     for X in (A, B):
         kind, U, V, extra = info[X]
@@ -356,7 +378,8 @@ def dyad_derivatives(plan: DyadPlan, st: State) -> np.ndarray:
     gam = plan.mid.gamma(st, ap.ru)
     wA = ap(A, *Wd[A])
     wB = ap(B, *Wd[B])
-    l2 = dict(zip((A, B), solve2(-(wA[0] + wB[0] + gam[:, 0]), -(wA[1] + wB[1] + gam[:, 1]))))
+    l2 = dict(zip((A, B), solve2(neg_sum(wA[0], wB[0], gam[:, 0]), neg_sum(wA[1], wB[1], gam[:, 1]))))
+    del wA, wB, gam, l1
     for X in (A, B):
         st.set_d2(X, *pose_d(X, l2[X], Wd[X]))
     return sing

@@ -34,7 +34,7 @@ from ..structure import Group, analyze
 from . import newton as nw
 from .dyads import DyadPlan, dyad_derivatives
 from .result import KinematicsResult
-from .state import PCon, RCon, State
+from .state import WORK_ROWS_FROM, PCon, RCon, State
 
 MARCH_STEP = 1.0          # deg, the Newton groups' path over the cycle
 CONT_DELTA = 1e-6         # deg, singular positions: mean of +-CONT_DELTA
@@ -490,7 +490,7 @@ class Solver:
             iv = [(lo, hi)]
         mid_deg = iv[0][0] + ((iv[0][1] - iv[0][0]) % 360.0) / 2
         reason = self._reason(gi, mid_deg % 360.0)
-        ivs = ", ".join(f"{a:.6f}..{b:.6f}" for a, b in iv)
+        ivs = [[float(a), float(b)] for a, b in iv]      # degrees; each language formats them
         err = StageError("kinematics", Message("kinematics.fail.intervals", **grp.message_params(), intervals=ivs,
                                                reason=reason), position=pos)
         if sum((b - a) % 360.0 or (360.0 if b > a else 0.0) for a, b in iv) >= 360.0 - 1e-6:
@@ -511,39 +511,88 @@ def get_solver(mech: Mechanism) -> Solver:
     return s
 
 
-def _unwrap(p: np.ndarray) -> np.ndarray:
+def _unwrap(p: np.ndarray, inplace: bool = False) -> np.ndarray:
     """np.unwrap(p) of a 1-D array (period 2 pi), the same operations without its
-    generic-axis overhead (most of the fixed cost of a small solve)."""
-    up = p.copy()
+    generic-axis overhead (most of the fixed cost of a small solve); ``inplace``: into
+    p itself (p[0] stays, every other value is replaced)."""
+    up = p if inplace else p.copy()
     if len(p) < 2:
         return up
     dd = p[1:] - p[:-1]
     big = np.abs(dd) >= math.pi
     if not big.any():                      # no jump: the correction is zero everywhere
-        up[1:] = p[1:] + 0.0
+        np.add(p[1:], 0.0, out=up[1:])
         return up
     ddmod = np.mod(dd + math.pi, 2.0 * math.pi) - math.pi
     ddmod[(ddmod == -math.pi) & (dd > 0)] = math.pi
     corr = ddmod - dd
     corr[~big] = 0.0
-    up[1:] = p[1:] + np.cumsum(corr)
+    np.add(p[1:], np.cumsum(corr), out=up[1:])
     return up
 
 
-def _unwrap_sorted(th: np.ndarray, order: np.ndarray | None) -> np.ndarray:
+def _unwrap_sorted(th: np.ndarray, order: np.ndarray | None, inplace: bool = False) -> np.ndarray:
     """th unwrapped along increasing crank angle (order: argsort, None if sorted)."""
     if order is None:
-        return _unwrap(th)
-    out = th.copy()
+        return _unwrap(th, inplace)
+    out = th if inplace else th.copy()
     out[order] = _unwrap(th[order])
     return out
 
 
-def _vector(v, N: int) -> np.ndarray:
-    """A fresh float array of shape (N,) holding v (an array of that shape or a scalar)."""
+def _fresh(v, N: int, seen: set) -> bool:
+    """v is an (N,) float array of its own (not a view, not given to another output):
+    it may be handed out (or changed in place) as it is."""
+    if (type(v) is np.ndarray and v.base is None and id(v) not in seen and v.shape == (N,)
+            and v.dtype.char == "d" and v.flags.writeable):
+        seen.add(id(v))
+        return True
+    return False
+
+
+def _vector(v, N: int, seen: set) -> np.ndarray:
+    """A float array of shape (N,) of its own holding v (an array of that shape or a
+    scalar): v itself when it is such an array not handed out yet, else a copy."""
+    if _fresh(v, N, seen):
+        return v
     out = np.empty(N)
     out[:] = v
     return out
+
+
+def _outputs(solver: Solver) -> tuple:
+    """What the result holds, taken once per mechanism: the ground points (name,
+    x, y), the points fixed on links (name, link index, local coordinates), the order in
+    which to take those body by body ((index into the points, whether it is its body's
+    last)), the report order of the points and the links (name, index)."""
+    hit = solver.__dict__.get("_outputs")
+    if hit is not None:
+        return hit
+    mech = solver.mech
+    ground = [(p, float(xy[0]), float(xy[1])) for p, xy in mech.ground.items()]
+    seen = set(mech.ground)
+    moving = []
+    for lk in mech.links:
+        for p, u in lk.local.items():
+            if p not in seen:
+                seen.add(p)
+                moving.append((p, lk.index, u))
+    for i, s in mech.com_names.items():
+        if s in seen and s not in mech.link(i).local:
+            continue
+        if s not in seen:
+            seen.add(s)
+            moving.append((s, i, mech.link(i).com))
+        else:                      # a centre of mass named as a point of its own link
+            moving = [(q, b, u) if q != s else (s, i, mech.link(i).com) for q, b, u in moving]
+    names = mech.all_points()
+    links = [(lk.name, lk.index) for lk in mech.links]
+    # many positions: the points taken body by body, each body's origin released after
+    # its last point (the result's order stays that of ``moving``)
+    by_body = sorted(range(len(moving)), key=lambda k: moving[k][1])
+    done = [k == len(by_body) - 1 or moving[by_body[k + 1]][1] != moving[j][1] for k, j in enumerate(by_body)]
+    hit = solver.__dict__["_outputs"] = (ground, moving, list(zip(by_body, done)), names, links)
+    return hit
 
 
 def solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
@@ -604,45 +653,51 @@ def _blown_up(mech: Mechanism, solver: Solver, res: KinematicsResult, near: np.n
 
 def _solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
     solver = get_solver(mech)
+    ground, moving, done, names, links = _outputs(solver)
     phi_deg = np.atleast_1d(np.asarray(phi_deg, float)).reshape(-1)
     st = solver.run(np.radians(phi_deg))
+    st.margins = st.sing = st.gdet = st.last_det = None     # (held memory only)
     N = len(phi_deg)
     order = None if N < 2 or bool(np.all(phi_deg[1:] >= phi_deg[:-1])) else np.argsort(phi_deg, kind="stable")
+    seen: set = set()
     for b in range(1, mech.n + 1):
-        st.unwrap(b, _unwrap_sorted(np.asarray(st.th[b], float), order))
+        th = st.th[b]
+        own = _fresh(th, N, seen)          # the pose's own array: unwrapped in place
+        st.unwrap(b, _unwrap_sorted(th if own else np.asarray(th, float), order, inplace=own))
     pos, d1, d2 = {}, {}, {}
-    names = mech.all_points()
-    for p, xy in mech.ground.items():
+    for p, x, y in ground:
         pos[p] = np.empty((N, 2))
-        pos[p][:, 0] = xy[0]
-        pos[p][:, 1] = xy[1]
+        pos[p][:, 0] = x
+        pos[p][:, 1] = y
         d1[p] = np.zeros((N, 2))
         d2[p] = np.zeros((N, 2))
-    for lk in mech.links:
-        for p, u in lk.local.items():
-            if p in pos:
-                continue
-            pos[p], d1[p], d2[p] = st.point_d(lk.index, u)
-    for i, s in mech.com_names.items():
-        if s in pos and s not in mech.link(i).local:
-            continue
-        pos[s], d1[s], d2[s] = st.point_d(i, mech.link(i).com)
+    if N < WORK_ROWS_FROM:
+        for p, b, u in moving:
+            pos[p], d1[p], d2[p] = st.point_d(b, u)
+    else:                                  # many positions: hold less memory
+        got = [None] * len(moving)
+        for k, last in done:
+            p, b, u = moving[k]
+            got[k] = st.point_d(b, u)
+            if last:                       # no point of body b is left: its origin goes
+                st.release(b)
+        for (p, _, _), g in zip(moving, got):
+            pos[p], d1[p], d2[p] = g
     angle, a1, a2 = {}, {}, {}
-    for lk in mech.links:
-        angle[lk.name] = np.asarray(st.th[lk.index], float)
-        a1[lk.name] = _vector(st.th1[lk.index], N)
-        a2[lk.name] = _vector(st.th2[lk.index], N)
+    for name, b in links:
+        angle[name] = st.th[b]
+        a1[name] = _vector(st.th1[b], N, seen)
+        a2[name] = _vector(st.th2[b], N, seen)
     w = np.asarray(omega1, float)
     e = np.asarray(eps1, float)
     for nm_, v in (("omega1", w), ("eps1", e)):
         if v.ndim and v.shape != (N,):
             raise ValueError(f"{nm_} must be a scalar or an array of shape ({N},), got {v.shape}")
     warnings = list(dict.fromkeys(solver.warnings))
-    sing = st.singular
     return KinematicsResult(phi=phi_deg, omega1=omega1 if w.ndim == 0 else w, eps1=eps1 if e.ndim == 0 else e,
                             pos=pos, d1=d1, d2=d2, angle=angle, a1=a1, a2=a2, warnings=warnings,
-                            points=[p for p in names if p in pos], links=[lk.name for lk in mech.links],
-                            singular=sing)
+                            points=[p for p in names if p in pos], links=[nm for nm, _ in links],
+                            singular=st.singular)
 
 
 def check_assembly(mech: Mechanism, n: int = 720) -> list[str]:

@@ -28,6 +28,9 @@ import math
 import numpy as np
 
 
+WORK_ROWS_FROM = 1024    # positions: from this many on, fewer temporaries (memory) rather than fewer calls
+
+
 class State:
     """Poses and their phi-derivatives of all bodies at N positions."""
 
@@ -79,6 +82,14 @@ class State:
         self.th2[b] = th2
         if self._pd:
             self._forget(b)
+
+    def release(self, b: int) -> None:
+        """Forget body b's origin and its derivatives and the cosine and sine of its
+        angle (kept: the angle and its derivatives); for a State whose points are all
+        taken, to hold less memory while the results are being built."""
+        for d in (self.o, self.o1, self.o2, self._cs, self._csk):
+            d.pop(b, None)
+        self._forget(b)
 
     def guide(self, con) -> tuple[np.ndarray, np.ndarray]:
         """(psi, e) of prismatic pair ``con``: its guide's direction psi = th_g + a (N,)
@@ -140,19 +151,61 @@ class State:
         return hit
 
     def _point_d(self, b: int, u):
-        ru = self.rot(b, u)
-        rx, ry = ru[:, 0], ru[:, 1]
+        N = self.N
+        u0, u1 = float(u[0]), float(u[1])
+        if b == 0:
+            # the ground: o = 0, th = 0 (cos 1, sin 0 exactly) and zero derivatives, so
+            # the general terms below are u + 0 and +0 -- the same values without them
+            p = np.empty((N, 2))
+            p[:, 0] = u0 + 0.0
+            p[:, 1] = u1 + 0.0
+            return p, np.zeros((N, 2)), np.zeros((N, 2))
         t1 = self.th1[b]
         t2 = self.th2[b]
-        t11 = t1 * t1
-        p = self.o[b] + ru
-        o1, o2 = self.o1[b], self.o2[b]
-        d1 = np.empty((self.N, 2))
-        np.subtract(o1[:, 0], t1 * ry, out=d1[:, 0])
-        np.add(o1[:, 1], t1 * rx, out=d1[:, 1])
-        d2 = np.empty((self.N, 2))
-        np.subtract(o2[:, 0], t2 * ry + t11 * rx, out=d2[:, 0])
-        np.add(o2[:, 1], t2 * rx - t11 * ry, out=d2[:, 1])
+        o, o1, o2 = self.o[b], self.o1[b], self.o2[b]
+        if N < WORK_ROWS_FROM:
+            # few positions: the fewest numpy calls
+            ru = self.rot(b, u)
+            rx, ry = ru[:, 0], ru[:, 1]
+            t11 = t1 * t1
+            p = o + ru
+            d1 = np.empty((N, 2))
+            np.subtract(o1[:, 0], t1 * ry, out=d1[:, 0])
+            np.add(o1[:, 1], t1 * rx, out=d1[:, 1])
+            d2 = np.empty((N, 2))
+            np.subtract(o2[:, 0], t2 * ry + t11 * rx, out=d2[:, 0])
+            np.add(o2[:, 1], t2 * rx - t11 * ry, out=d2[:, 1])
+            return p, d1, d2
+        # many positions: the same operations, the temporaries in four scratch rows
+        rx, ry, t11, tmp = np.empty((4, N))
+        c, s = self.cs(b)
+        if u1 == 0.0:                   # as rot()
+            np.multiply(c, u0, out=rx)
+            np.multiply(s, u0, out=ry)
+        else:
+            np.multiply(c, u0, out=rx)
+            np.multiply(s, u1, out=tmp)
+            np.subtract(rx, tmp, out=rx)
+            np.multiply(s, u0, out=ry)
+            np.multiply(c, u1, out=tmp)
+            np.add(ry, tmp, out=ry)
+        np.multiply(t1, t1, out=t11)
+        p, d1, d2 = np.empty((N, 2)), np.empty((N, 2)), np.empty((N, 2))
+        np.add(o[:, 0], rx, out=p[:, 0])
+        np.add(o[:, 1], ry, out=p[:, 1])
+        np.multiply(t1, ry, out=tmp)
+        np.subtract(o1[:, 0], tmp, out=d1[:, 0])
+        np.multiply(t1, rx, out=tmp)
+        np.add(o1[:, 1], tmp, out=d1[:, 1])
+        x, y = d2[:, 0], d2[:, 1]           # (their own place, before their values)
+        np.multiply(t2, ry, out=tmp)
+        np.multiply(t11, rx, out=x)
+        np.add(tmp, x, out=tmp)
+        np.subtract(o2[:, 0], tmp, out=x)
+        np.multiply(t2, rx, out=tmp)
+        np.multiply(t11, ry, out=y)
+        np.subtract(tmp, y, out=tmp)
+        np.add(o2[:, 1], tmp, out=y)
         return p, d1, d2
 
     def take(self, idx) -> "State":

@@ -22,8 +22,8 @@ from ...results import Entries, bulk
 from .. import loads as loads_mod
 from ..loads import AppliedCouple, Loads
 from .equations import Geometry, geometry, load_vector, scaled_det
-from .solve import (COND_MAX, balance_lever, balance_rate, friction_loads, group_by_group, lever_moments,
-                    matrix_method, powers, unit_balance_q)
+from .solve import (balance_lever, balance_rate, condition_numbers, friction_loads, group_by_group,
+                    lever_moments, matrix_method, powers, unit_balance_q)
 
 NEAR_DEG = 1.0
 DETAIL_MAX = 400        # positions up to which to_dict lists every applied load
@@ -77,7 +77,12 @@ class KinetostaticsResult:
     driving_power: np.ndarray | None = None
     groups: list[list[int]] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)
-    cond: np.ndarray | None = None
+
+    @property
+    def cond(self) -> np.ndarray:
+        """The 2-norm condition number of the matrix method's scaled system per position
+        (computed when asked: the stage only needs whether it is below COND_MAX)."""
+        return condition_numbers(self.mech, self.geo, self.mech.link(self.balance).index)
 
     # ------------------------------------------------------------------
     def discrepancy(self) -> np.ndarray:
@@ -155,10 +160,11 @@ class KinetostaticsResult:
         names[0] = "ground"
         jkeys = [f"R{j.a}{j.b}" for j in mech.joints]
 
-        def L(a, mask=True):
-            a = np.asarray(a, float)
-            good = np.isfinite(a) & (self.ok if mask else True)
-            return np.where(good, a + 0.0, np.nan).tolist(), good.tolist()
+        def L(a) -> list:
+            """The values where finite at a position not singular, else None (never -0.0)."""
+            a = np.asarray(a, float) + 0.0
+            good = np.isfinite(a) & self.ok
+            return a.tolist() if good.all() else np.where(good, a, None).tolist()
 
         mb = L(self.M_b)
         bf = L(self.M_b / self.arm) if (self.balance_kind == "moment" and self.arm) else None
@@ -205,19 +211,15 @@ class KinetostaticsResult:
                   [L(self.friction_pairs[:, k]) for k in range(len(mech.joints))])
         # the entries column by column (one list of N values per key), then zipped
         none = [None] * N
-
-        def V(pair):
-            v, g = pair
-            return [x if good else None for x, good in zip(v, g)]
         cols: list[tuple[str, list]] = [("index", [int(i) for i in self.index]), ("phi", phil)]
         if self.balance_kind == "moment":
-            cols += [("balancing_moment", V(mb)), ("balancing_force", V(bf) if bf else none),
-                     ("zhukovsky_moment", V(mz)), ("virtual_power_moment", V(mv)), ("matrix_moment", V(mm))]
+            cols += [("balancing_moment", mb), ("balancing_force", bf if bf is not None else none),
+                     ("zhukovsky_moment", mz), ("virtual_power_moment", mv), ("matrix_moment", mm)]
         else:
-            cols += [("balancing_moment", none), ("balancing_force", V(mb)), ("zhukovsky_moment", none),
-                     ("virtual_power_moment", none), ("matrix_moment", none), ("zhukovsky_force", V(mz)),
-                     ("virtual_power_force", V(mv)), ("matrix_force", V(mm))]
-        cols += [("discrepancy", V(disc)), ("matrix_discrepancy", V(mdisc)),
+            cols += [("balancing_moment", none), ("balancing_force", mb), ("zhukovsky_moment", none),
+                     ("virtual_power_moment", none), ("matrix_moment", none), ("zhukovsky_force", mz),
+                     ("virtual_power_force", mv), ("matrix_force", mm)]
+        cols += [("discrepancy", disc), ("matrix_discrepancy", mdisc),
                  ("reactions", [dict(zip(jkeys, r)) for r in reaction_rows]),
                  ("inertia", [dict(zip(inert_keys, r)) for r in inert_rows])]
         if detail:
@@ -232,13 +234,13 @@ class KinetostaticsResult:
         dnames = [d[0] for d in dinfo]
         cols.append(("diagram", [dict(zip(dnames, r)) for r in zip(*dcols)] if dcols else [{} for _ in range(N)]))
         if fr is not None:
-            pcols = [V(c) for c in fr[3]]
-            cols += [("efficiency", V(fr[0])), ("friction_power", V(fr[1])), ("driving_power", V(fr[2])),
+            pcols = fr[3]
+            cols += [("efficiency", fr[0]), ("friction_power", fr[1]), ("driving_power", fr[2]),
                      ("friction_pairs", [dict(zip(jkeys, r)) for r in zip(*pcols)] if pcols
                       else [{} for _ in range(N)])]
         else:
             cols.append(("efficiency", none))
-        cols.append(("near_singular", [bool(x) for x in near]))
+        cols.append(("near_singular", near))
         keys = [k for k, _ in cols]
         # clean values by construction (tmm_cli.results.Entries)
         entries = Entries(dict(zip(keys, row)) for row in zip(*[c for _, c in cols]))
@@ -399,10 +401,11 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
         lds = Loads(lds.phi, lds.forces + ff, lds.couples + fc, lds.info)
         q = load_vector(mech, geo, lds)
     x, Mb, M1U = solve_groups(q)
+    geo.__dict__.pop("_group_plan", None)      # the groups' inverses: not needed past here
     if np.any(locked):
         x[locked] = np.nan
         Mb = np.where(locked, np.nan, Mb)
-    xm, Mm, cond, _ = matrix_method(mech, geo, q, b, with_det=False)
+    xm, Mm, well, _ = matrix_method(mech, geo, q, b, with_det=False)
     lever = lever_moments(mech, geo, lds)
     blev = balance_lever(mech, geo, b)
     P, each = powers(mech, geo, lds)
@@ -413,7 +416,7 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
         Mzh = -lever / blev
         Mvp = -P / rate
     w1 = np.abs(geo.omega1)
-    ok = (cond < COND_MAX) & np.isfinite(Mb) & np.all(np.isfinite(x), axis=1) \
+    ok = well & np.isfinite(Mb) & np.all(np.isfinite(x), axis=1) \
         & (np.abs(M1U) > 1e-12 * unit) & (np.abs(rate) > 1e-12 * w1 * unit)
     # singular crank angles of the balance link over one turn
     warnings: list[str] = []
@@ -466,7 +469,7 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
         M_b=Mb, M_matrix=Mm, M_zhukovsky=Mzh, M_virtual=Mvp, reactions=x, reactions_matrix=xm,
         ok=ok, near=near, singular=list(singular), mech=mech, geo=geo, loads=lds,
         efficiency=eff, friction_power=fpow, friction_pairs=loss, driving_power=dpow,
-        groups=_group_links(mech, structure) + [[mech.drive]], warnings=warnings, cond=cond)
+        groups=_group_links(mech, structure) + [[mech.drive]], warnings=warnings)
 
 
 def analyze_at(linkage, section, phi_deg, *, motion=None, singular: list[float] | None = None

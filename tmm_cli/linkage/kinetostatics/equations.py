@@ -64,6 +64,13 @@ class Geometry:
             return np.zeros(self.n_pos)
         return self.a1[link] * self.omega1
 
+    def take(self, sl: slice) -> "Geometry":
+        """The positions ``sl`` (a slice: views, no copies)."""
+        return Geometry(len(range(*sl.indices(self.n_pos))), {k: v[sl] for k, v in self.origin.items()},
+                        {k: v[sl] for k, v in self.d1o.items()}, {k: v[sl] for k, v in self.a1.items()},
+                        {k: v[sl] for k, v in self.a2.items()}, [v[sl] for v in self.jpoint],
+                        [None if v is None else v[sl] for v in self.jdir], self.omega1[sl], self.eps1[sl], self.Lc)
+
 
 def length_scale(mech) -> float:
     """A characteristic length: the largest link length (or ground-point spread)."""

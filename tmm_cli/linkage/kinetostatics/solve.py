@@ -140,32 +140,76 @@ def unit_balance_q(mech, geo: Geometry, balance: int) -> np.ndarray:
 
 def matrix_method(mech, geo: Geometry, q: np.ndarray, balance: int, *, with_det: bool = True
                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
-    """All equations at once: (reactions (N, 2p), balancing unknown (N,), scaled
-    condition number (N,), scaled determinant (N,); None without ``with_det``)."""
-    A = full_matrix(mech, geo, balance)
+    """All equations at once: (reactions (N, 2p), balancing unknown (N,), whether the
+    scaled 2-norm condition number is below COND_MAX (N,), scaled determinant (N,); None
+    without ``with_det``)."""
     n, p = mech.n, len(mech.joints)
-    if A.shape[1] != A.shape[2]:
-        raise StageError("kinetostatics", Message("kinetostatics.fail.not_square", equations=A.shape[1],
-                                                  unknowns=A.shape[2]))
-    rs, cs = scaling(mech, geo.Lc, balance)
-    N, m = geo.n_pos, A.shape[2]
-    xx, cond = np.empty((N, m)), np.empty(N)
+    rs, cs = _checked_scaling(mech, geo, balance)
+    N, m = geo.n_pos, len(cs)
+    xx, well = np.empty((N, m)), np.empty(N, bool)
     det = np.empty(N) if with_det else None
-    # in blocks of positions: the scaled matrices and LAPACK's work arrays of a fine grid
-    # stay small (each position is solved on its own, so the blocks change no number)
-    for i0 in range(0, N, CHUNK):
-        sl = slice(i0, min(i0 + CHUNK, N))
-        As = A[sl] * rs[None, :, None] * cs[None, None, :]
+    # in blocks of positions: the matrices and LAPACK's work arrays of a fine grid stay
+    # small (each position is solved on its own, so the blocks change no number)
+    for sl, As in _scaled_blocks(mech, geo, balance, rs, cs):
         b = -q[sl, 1:, :].reshape(-1, 3 * n) * rs[None, :]
-        sv = np.linalg.svd(As, compute_uv=False)
-        cond[sl] = np.where(sv[:, -1] > 0, sv[:, 0] / np.maximum(sv[:, -1], 1e-300), np.inf)
+        well[sl] = _surely_conditioned(As) or _condition(As) < COND_MAX
         if with_det:
             det[sl] = np.linalg.det(As)
         y, ok = _safe_solve(As, b)
         y = y * cs[None, :]
         y[~ok] = np.nan
         xx[sl] = y
-    return xx[:, :2 * p], xx[:, 2 * p], cond, det
+    return xx[:, :2 * p], xx[:, 2 * p], well, det
+
+
+def condition_numbers(mech, geo: Geometry, balance: int) -> np.ndarray:
+    """The 2-norm condition number (N,) of the matrix method's scaled system (inf where singular)."""
+    rs, cs = _checked_scaling(mech, geo, balance)
+    cond = np.empty(geo.n_pos)
+    for sl, As in _scaled_blocks(mech, geo, balance, rs, cs):
+        cond[sl] = _condition(As)
+    return cond
+
+
+def _checked_scaling(mech, geo: Geometry, balance: int) -> tuple[np.ndarray, np.ndarray]:
+    rs, cs = scaling(mech, geo.Lc, balance)
+    if len(rs) != len(cs):
+        raise StageError("kinetostatics", Message("kinetostatics.fail.not_square", equations=len(rs),
+                                                  unknowns=len(cs)))
+    return rs, cs
+
+
+def _scaled_blocks(mech, geo: Geometry, balance: int, rs: np.ndarray, cs: np.ndarray):
+    """(positions, the scaled matrices A (k, m, m) there), CHUNK positions at a time."""
+    for i0 in range(0, geo.n_pos, CHUNK):
+        sl = slice(i0, min(i0 + CHUNK, geo.n_pos))
+        yield sl, full_matrix(mech, geo.take(sl), balance) * rs[None, :, None] * cs[None, None, :]
+
+
+def _condition(As: np.ndarray) -> np.ndarray:
+    """sigma_max / sigma_min per matrix (inf where sigma_min is 0)."""
+    sv = np.linalg.svd(As, compute_uv=False)
+    return np.where(sv[:, -1] > 0, sv[:, 0] / np.maximum(sv[:, -1], 1e-300), np.inf)
+
+
+def _surely_conditioned(As: np.ndarray) -> bool:
+    """True when every matrix A of the block provably has a 2-norm condition number
+    below 1.5e6, far below COND_MAX (then no SVD is needed to say so); False when
+    undecided. The proof: a Cholesky factorisation of G = fl(A^T A) - s I,
+    s = 1e-12 ||A||_F^2, that completes with finite entries means (backward error of
+    Cholesky and of the product, each < 1e-14 ||A||_F^2 for m <= 30)
+    sigma_min(A)^2 > 0.5e-12 ||A||_F^2 >= 0.5e-12 sigma_max(A)^2."""
+    m = As.shape[2]
+    if m > 30 or not np.all(np.isfinite(As)):
+        return False
+    G = np.matmul(As.transpose(0, 2, 1), As)
+    d = np.arange(m)
+    G[:, d, d] -= 1e-12 * np.einsum("nij,nij->n", As, As)[:, None]
+    try:
+        L = np.linalg.cholesky(G)
+    except np.linalg.LinAlgError:
+        return False
+    return bool(np.all(np.isfinite(L)))
 
 
 def _pair_lever(geo: Geometry, link: int, M: np.ndarray) -> np.ndarray:

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import html
 import math
+from operator import itemgetter
 
 import numpy as np
 from markupsafe import Markup
@@ -430,12 +431,22 @@ def build(ctx) -> str | None:
     for n in lnames:
         header += [f"{n}.{k}" for k in ("angle", "omega", "epsilon")]
     rows = []
+    pk, lk = ("x", "y", "vx", "vy", "v", "ax", "ay", "a"), ("angle", "omega", "epsilon")
+    pget, lget = itemgetter(*pk), itemgetter(*lk)
     for e in entries:
         row = [e["index"], float(e["phi"])]
-        for p in pnames:
-            row += [e["points"][p].get(k) for k in ("x", "y", "vx", "vy", "v", "ax", "ay", "a")]
-        for n in lnames:
-            row += [e["links"][n].get(k) for k in ("angle", "omega", "epsilon")]
+        pts, lks = e["points"], e["links"]
+        try:
+            for p in pnames:
+                row += pget(pts[p])
+            for n in lnames:
+                row += lget(lks[n])
+        except KeyError:            # a value missing: an empty cell
+            row = row[:2]
+            for p in pnames:
+                row += [pts[p].get(k) for k in pk]
+            for n in lnames:
+                row += [lks[n].get(k) for k in lk]
         rows.append(row)
     ctx.write_csv("kinematics.csv", header, rows)
     ctx.write_csv("plans.csv", ["index", "phi", "plan", "segment", "vector", "length_mm", "value"], plan_csv)
