@@ -28,9 +28,10 @@ The commands run as an installed tmm does: with the bytecode cache (pip compiles
 install), so a PYTHONDONTWRITEBYTECODE of the environment is dropped for them (the cache
 goes to a temporary PYTHONPYCACHEPREFIX).
 
-* with --against DIR: the whole report and the JSON run of this checkout and of another
-  one (DIR: e.g. `git archive <commit> | tar -x -C DIR`), all four interleaved; with
-  --batch also the batch run by DIR, interleaved with this checkout's.
+* with --against DIR: the JSON run and `tmm validate` (with --report also the whole report)
+  of this checkout and of another one (DIR: e.g. `git archive <commit> | tar -x -C DIR`),
+  and the import floor, all interleaved; with --batch also the batch run by DIR,
+  interleaved with this checkout's.
 * with --scaling: `tmm run` of the task at 12 and at 3600 positions (made on the fly),
   --format json and --format html, interleaved (target for HTML: 3600 <= 2x 12).
 
@@ -345,26 +346,28 @@ def kinetostatics_big(repeat: int, n: int = 36000, n_cli: int = 3600) -> None:
                 [r[1] for r in cli_out["cli json 12"]], None)
 
 
-def against(repeat: int, base: Path) -> None:
-    """The whole report and the JSON run of this checkout against another checkout of tmm
-    (e.g. `git archive <commit> | tar -x -C DIR`), all four interleaved: the report's
-    change measured under the same load."""
+def against(repeat: int, base: Path, report: bool = True) -> None:
+    """The JSON run and `tmm validate` (and with ``report`` the whole report) of this
+    checkout against another checkout of tmm (e.g. `git archive <commit> | tar -x -C DIR`),
+    with the import floor, all interleaved: a change measured under the same load."""
     py = [sys.executable, "-m", "tmm_cli"]
     trees = {"this": ROOT, "base": Path(base).resolve()}
 
     def run_in(tree: Path, args: list[str]) -> tuple[float, float]:
         c0, t0 = _child_cpu(), time.perf_counter()
-        p = subprocess.run(py + args, capture_output=True, text=True, cwd=tree, env=_ENV)
+        p = subprocess.run(args, capture_output=True, text=True, cwd=tree, env=_ENV)
         if p.returncode != 0:
             raise SystemExit(f"{tree}: {' '.join(args)} failed ({p.returncode}):\n{p.stderr[-2000:]}")
         return time.perf_counter() - t0, _child_cpu() - c0
 
     with tempfile.TemporaryDirectory() as tmp:
-        cmds = {}
+        cmds = {"floor": (ROOT, [sys.executable, "-c", "import numpy, pydantic, yaml"])}
         for tag, tree in trees.items():
             task = str(tree / "tasks" / TASK.name)
-            cmds[f"json {tag}"] = (tree, ["run", task, "--format", "json", "--quiet", "--out", f"{tmp}/j{tag}"])
-            cmds[f"report {tag}"] = (tree, ["run", task, "--quiet", "--out", f"{tmp}/r{tag}"])
+            cmds[f"json {tag}"] = (tree, py + ["run", task, "--format", "json", "--quiet", "--out", f"{tmp}/j{tag}"])
+            cmds[f"validate {tag}"] = (tree, py + ["validate", task])
+            if report:
+                cmds[f"report {tag}"] = (tree, py + ["run", task, "--quiet", "--out", f"{tmp}/r{tag}"])
         out: dict[str, list[tuple[float, float]]] = {k: [] for k in cmds}
         for tree, args in cmds.values():        # warm-up
             run_in(tree, args)
@@ -373,7 +376,18 @@ def against(repeat: int, base: Path) -> None:
                 out[k].append(run_in(tree, args))
     print(f"this checkout against {trees['base']}, {TASK.name}, {repeat} interleaved rounds; wall / cpu in s")
     for k, v in out.items():
-        print(f"  {k:12s} wall {_stat([w for w, _ in v])}   cpu {_stat([c for _, c in v])}")
+        print(f"  {k:15s} wall {_stat([w for w, _ in v])}   cpu {_stat([c for _, c in v])}")
+    floor = out["floor"]
+    for what in ("json", "validate"):
+        for tag in trees:
+            for i, kind in ((0, "wall"), (1, "cpu")):
+                _ratio_line(f"{tag}: {what} / import floor ({kind})", [r[i] for r in out[f"{what} {tag}"]],
+                            [r[i] for r in floor], 2.0)
+        for i, kind in ((0, "wall"), (1, "cpu")):
+            _ratio_line(f"{what}: this / base ({kind})", [r[i] for r in out[f"{what} this"]],
+                        [r[i] for r in out[f"{what} base"]], None)
+    if not report:
+        return
     for tag in trees:
         for i, what in ((0, "wall"), (1, "cpu")):
             _ratio_line(f"{tag}: report html+pdf / json run ({what})", [r[i] for r in out[f"report {tag}"]],
@@ -408,7 +422,7 @@ def main() -> None:
     if a.kinetostatics:
         kinetostatics_big(max(5, a.repeat))
     if a.against:
-        against(max(5, a.repeat), Path(a.against))
+        against(max(5, a.repeat), Path(a.against), report=a.report)
     if not a.no_kinematics:
         kinematics(max(5, a.repeat))
 

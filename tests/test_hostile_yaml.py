@@ -198,3 +198,82 @@ def test_non_string_key_reported_at_its_line(tmp_path, key):
     code, out = _validate(_write(tmp_path, GEARS + f"{key}: 1\n"))
     assert code == 2, out
     assert "task.yaml:7:1:" in out and "unknown key" in out
+
+
+# ------------------------------------------------------------ libyaml's fast reading
+def _python_reading(text: str):
+    """(data, marks) as PyYAML's Python reader (_Loader12) gives them, or the error's type."""
+    from tmm_cli import yamlload
+    try:
+        loader = yamlload._Loader12(text)
+        try:
+            node = loader.get_single_node()
+            marks: dict = {}
+            if node is not None:
+                yamlload._walk(node, (), marks, "f", loader)
+            data = loader.construct_document(node) if node is not None else None
+        finally:
+            loader.dispose()
+    except Exception as exc:  # noqa: BLE001 - any refusal is compared by its type
+        return type(exc).__name__
+    return data, marks
+
+
+def _same(a, b) -> bool:
+    import math
+    if type(a) is not type(b):
+        return False
+    if isinstance(a, dict):
+        return list(a) == list(b) and all(_same(a[k], b[k]) for k in a)
+    if isinstance(a, list):
+        return len(a) == len(b) and all(_same(x, y) for x, y in zip(a, b))
+    if isinstance(a, float) and math.isnan(a):
+        return math.isnan(b)
+    return a == b
+
+
+def test_fast_reading_is_the_python_readers():
+    """What libyaml reads (tmm_cli.yamlload._load_fast) is, value for value and mark for
+    mark, what PyYAML's Python reader reads: on every example task and on 3,000 random
+    edits of them (characters of YAML's syntax inserted, deleted, replaced); whatever the
+    Python reader refuses, the fast reading leaves to it (returns None)."""
+    import random
+
+    from tmm_cli import yamlload
+    root = Path(__file__).resolve().parents[1]
+    texts = [p.read_text(encoding="utf-8") for p in sorted((root / "tasks").glob("*.yaml"))]
+    assert sum(yamlload._load_fast(t, "f") is not None for t in texts) >= len(texts) - 4
+    rng = random.Random(12)
+    alphabet = list(":-[]{},#&*!|>'\"?%@` \n\t.0123456789aeé\\\r~\ufeff")
+    fast = 0
+    for i in range(3000):
+        t = texts[i % len(texts)]
+        for _ in range(rng.randint(1, 4)):
+            pos, op = rng.randrange(len(t)), rng.random()
+            t = (t[:pos] + rng.choice(alphabet) + t[pos:] if op < 0.4 else t[:pos] + t[pos + 1:] if op < 0.7
+                 else t[:pos] + rng.choice(alphabet) + t[pos + 1:])
+        got = yamlload._load_fast(t, "f")
+        if got is None:
+            continue
+        fast += 1
+        want = _python_reading(t)
+        assert not isinstance(want, str), (want, t)
+        assert _same(got[0], want[0]) and got[1] == want[1], t
+    assert fast > 600
+
+
+@pytest.mark.parametrize("text", [
+    "a: &x [1, 2]\nb: *x\n",                       # an alias: the Python reader counts it
+    "a:\t1\n",                                      # a tab
+    "a: {b: c?d}\n",                                # '?' in a flow plain scalar
+    "a: !\n",                                       # a bare tag
+    "a: >#x\n",                                     # a block scalar's header
+    "a: 1\n\ufeffb: 2\n",                           # a byte-order mark inside
+    "a: " + "[" * (MAX_DEPTH + 1) + "]" * (MAX_DEPTH + 1) + "\n",   # too deep
+    "a: [" + ", ".join(["1"] * 9000) + "]\n",       # too long for libyaml's recursion bound
+    "a: 1\na: 2\n",                                 # a duplicate key
+    "a: 1\n---\nb: 2\n",                            # two documents
+])
+def test_fast_reading_leaves_the_rest_to_the_python_reader(text):
+    from tmm_cli import yamlload
+    assert yamlload._load_fast(text, "f") is None

@@ -4,7 +4,6 @@ error can name its field.  Kept apart from task.py so that the section modules a
 task model import it without importing each other."""
 from __future__ import annotations
 
-import difflib
 from typing import Any
 
 from pydantic import BaseModel, ConfigDict, model_validator
@@ -43,6 +42,7 @@ class _Model(BaseModel):
                 if not isinstance(key, str):
                     raise ValueError(Message("input.key_not_name", key=str(key), allowed=allowed))
                 if key not in allowed:
+                    import difflib
                     close = difflib.get_close_matches(key, allowed, n=1, cutoff=0.6)
                     raise ValueError(Message("input.unknown_key", key=key, hint=close[0]) if close
                                      else Message("input.unknown_key_allowed", key=key, allowed=allowed))

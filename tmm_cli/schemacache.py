@@ -82,17 +82,7 @@ def validator(model: type):
     """The validator of a model of the task (what ``model.model_validate`` runs): the
     model's own once built, else the one cached by an earlier run, else the model's, built
     now and cached for the next run."""
-    if model.__pydantic_complete__:
-        return model.__pydantic_validator__
-    v = _LOADED.get(model)
-    if v is None:
-        v = load(model)
-        if v is None:
-            model.model_rebuild()
-            save(model)
-            return model.__pydantic_validator__
-        _LOADED[model] = v
-    return v
+    return _made(model, _LOADED, "__pydantic_validator__", load)
 
 
 _SERIALIZERS: dict[type, object] = {}
@@ -102,18 +92,34 @@ def serializer(model: type):
     """The serializer of a model of the task (what ``model_dump`` runs): the model's own
     once built, else one made from the core schema cached by an earlier run (the same
     schema the validator is made of), else the model's, built now and cached."""
+    return _made(model, _SERIALIZERS, "__pydantic_serializer__", _load_serializer)
+
+
+def _made(model: type, made: dict, attr: str, load_cached):
+    """The model's own ``attr`` once built, else ``load_cached(model)`` (kept in ``made``),
+    else the model's, built now and cached for the next run."""
     if model.__pydantic_complete__:
-        return model.__pydantic_serializer__
-    s = _SERIALIZERS.get(model)
-    if s is None:
-        sc = _schema(model)
-        if sc is None:
+        return getattr(model, attr)
+    got = made.get(model)
+    if got is None:
+        got = load_cached(model)
+        if got is None:
             model.model_rebuild()
             save(model)
-            return model.__pydantic_serializer__
+            return getattr(model, attr)
+        made[model] = got
+    return got
+
+
+def _load_serializer(model: type):
+    sc = _schema(model)
+    if sc is None:
+        return None
+    try:
         from pydantic_core import SchemaSerializer
-        s = _SERIALIZERS[model] = SchemaSerializer(*sc)
-    return s
+        return SchemaSerializer(*sc)
+    except Exception:  # noqa: BLE001 - a cache that cannot be read is no cache: pydantic builds the serializer
+        return None
 
 
 def _schema(model: type):

@@ -130,7 +130,7 @@ class DriveSection(_Model):
             try:
                 check_output_speed(getattr(self, given[0]))
             except ValueError as exc:
-                raise FieldValueError((given[0],), str(exc)) from None
+                raise FieldValueError((given[0],), exc.args[0] if len(exc.args) == 1 else str(exc)) from None
         return self
 
     @property
@@ -197,9 +197,9 @@ class ForceSpec(_Model):
         for name in ("magnitude", "moment"):
             v = getattr(self, name)
             if self.kind is not None and v is not None and v < 0:
-                raise FieldValueError((name,), f"`{name}` of a `kind: {self.kind}` load is its size and must "
-                                      f"not be negative (got {v:g}); the sense comes from `kind` "
-                                      f"({'against' if self.kind == 'resistance' else 'along'} the motion)")
+                raise FieldValueError((name,), Message("input.load_negative_against" if self.kind == "resistance"
+                                                       else "input.load_negative_along", name=name, kind=self.kind,
+                                                       value=v))
         return self
 
 
@@ -339,7 +339,7 @@ class CamSection(_Model):
     @model_validator(mode="after")
     def _limits(self):
         if self.pressure_angle is not None and self.transmission_angle is not None:
-            raise ValueError("give `pressure_angle` or `transmission_angle`, not both")
+            raise ValueError(Message("input.cam_angles_both"))
         lim = self.pressure_angle
         if lim is None and self.transmission_angle is not None:
             t = self.transmission_angle
@@ -352,18 +352,18 @@ class CamSection(_Model):
         if not isinstance(lim, LimitsSpec):
             if not 0 < lim < 90:
                 given = "pressure_angle" if self.pressure_angle is not None else "transmission_angle"
-                raise FieldValueError((given,), "the allowed pressure angle must lie in (0, 90) deg")
+                raise FieldValueError((given,), Message("input.cam_pressure_range"))
             # checked just above as LimitsSpec would (an angle in (0, 90)): built without
             # validating again, which would build LimitsSpec's own validator (~10 ms)
             lim = LimitsSpec.model_construct(rise=lim, return_=lim)
         self.pressure_angle = lim
         if self.follower == "rocker":
             if self.rocker_length is None:
-                raise ValueError("a rocker follower needs `rocker_length`")
+                raise ValueError(Message("input.cam_rocker_length"))
             if self.offset not in (0.0, "auto"):
-                raise ValueError("`offset` is for a translating follower")
+                raise ValueError(Message("input.cam_offset_rocker"))
             if self.stroke >= 180:
-                raise ValueError("a rocker swing (`stroke`, deg) must be below 180")
+                raise ValueError(Message("input.cam_swing"))
         from .cam.chosen import check_section
         check_section(self, self.model_fields_set)
         return self
@@ -413,7 +413,7 @@ class PlanetarySection(_Model):
     @classmethod
     def _ratio(cls, v):
         if v == 0:
-            raise ValueError("the ratio cannot be zero")
+            raise ValueError(Message("input.ratio_zero"))
         return v
 
     @field_validator("scheme")
@@ -424,13 +424,13 @@ class PlanetarySection(_Model):
         # copied so that validating a task does not import the gears package (~1 s)
         key = str(v).strip()
         if PLANETARY_ALIASES.get(key.lower(), key.upper()) not in PLANETARY_SCHEMES:
-            raise ValueError(f"unknown planetary scheme {v!r}; known: {', '.join(PLANETARY_SCHEMES)}")
+            raise ValueError(Message("input.planetary_scheme", scheme=repr(v), known=list(PLANETARY_SCHEMES)))
         return v
 
     @model_validator(mode="after")
     def _z_range(self):
         if self.z_min > self.z_max:
-            raise FieldValueError(("z_min",), f"z_min = {self.z_min} exceeds z_max = {self.z_max}")
+            raise FieldValueError(("z_min",), Message("input.z_range", z_min=self.z_min, z_max=self.z_max))
         return self
 
 
@@ -569,11 +569,10 @@ class Task(_Model):
         if self.synthesis is None:
             return self
         if "mechanism" in self.model_fields_set:
-            raise FieldValueError(("synthesis",), "`synthesis` generates the mechanism: give either `synthesis` "
-                                  "or `mechanism`, not both")
+            raise FieldValueError(("synthesis",), Message("input.synthesis_and_mechanism"))
         from .linkage.synthesis import SynthesisImpossible, design
         if self.drive is None:
-            raise FieldValueError(("synthesis",), "`synthesis` needs a `drive` section (link: crank, speed, direction)")
+            raise FieldValueError(("synthesis",), Message("input.synthesis_drive"))
         try:
             d = design(self.synthesis, self.drive.sign)
         except SynthesisImpossible as exc:
@@ -603,8 +602,7 @@ class Task(_Model):
             raise FieldValueError((needs_mech[0],), Message("input.needs_mechanism", sections=needs_mech))
         if self.report is not None and self.report.detail_position is not None and self.mechanism is None \
                 and self._synthesis_error is None:
-            raise FieldValueError(("report", "detail_position"), "`detail_position` names a position of the "
-                                  "linkage: it needs a `mechanism` (or `synthesis`)")
+            raise FieldValueError(("report", "detail_position"), Message("input.detail_needs_mechanism"))
         if self.flywheel is not None and self.loads is None:
             raise FieldValueError(("flywheel",), Message("input.flywheel_loads"))
         return self

@@ -264,12 +264,94 @@ def decimal_comma_hint(line: str) -> Message | None:
     return Message("input.decimal_comma", fixed=f"{m.group(1)}.{m.group(2)}", given=m.group(0))
 
 
+try:                                   # libyaml's parser, when PyYAML was built with it
+    from yaml._yaml import CParser as _CParser
+except ImportError:                    # pragma: no cover - PyYAML's wheels carry it
+    _CParser = None
+
+# the largest text libyaml reads here: its composer recurses once per level of nesting in C
+# (a few hundred thousand levels overflow the stack), and a text of n characters nests at
+# most n deep; anything longer, or anything the fast reading refuses, is read by _Loader12
+FAST_MAX_CHARS = 8192
+# where libyaml and PyYAML's Python reader part (found by comparing the two on mutated task
+# files): a tab (libyaml takes it as a separator in more places), '?' (PyYAML refuses it
+# inside a plain scalar in a flow collection), '!' (a bare '!' tag: '' against None), a
+# byte-order mark inside the text, and a block scalar's header ('|' or '>' after a space or
+# at a line's start: '>#' is a header and a comment to libyaml, an error to PyYAML)
+_NOT_FAST = "\t?!\ufeff"
+_BLOCK_SCALAR = re.compile(r"(?:^|\s)[|>]", re.M)
+
+if _CParser is not None:
+    class _CLoader12(_CParser, yaml.constructor.SafeConstructor, yaml.resolver.Resolver):
+        """_Loader12's resolvers and constructors on libyaml's parser and composer (~15
+        times faster than PyYAML's Python ones), without _Loader12's limits: see
+        :func:`_load_fast`."""
+
+        yaml_implicit_resolvers = _Loader12.yaml_implicit_resolvers
+        yaml_constructors = _Loader12.yaml_constructors
+
+        def __init__(self, stream):
+            _CParser.__init__(self, stream)
+            yaml.constructor.SafeConstructor.__init__(self)
+            yaml.resolver.Resolver.__init__(self)
+
+
+def _within_limits(root: yaml.Node) -> bool:
+    """The node graph is a tree (no alias: no node reached twice) of at most MAX_NODES
+    nodes nesting at most MAX_DEPTH deep: what _Loader12 accepts without a word."""
+    seen: set[int] = set()
+    stack = [(root, 1)]
+    while stack:
+        node, depth = stack.pop()
+        if id(node) in seen or len(seen) >= MAX_NODES:
+            return False
+        seen.add(id(node))
+        if isinstance(node, yaml.MappingNode):
+            if depth >= MAX_DEPTH and node.value:
+                return False
+            for k, v in node.value:
+                stack.append((k, depth + 1))
+                stack.append((v, depth + 1))
+        elif isinstance(node, yaml.SequenceNode):
+            if depth >= MAX_DEPTH and node.value:
+                return False
+            stack.extend((v, depth + 1) for v in node.value)
+    return True
+
+
+def _load_fast(text: str, file: str) -> tuple[Any, dict] | None:
+    """``(data, marks)`` read by libyaml, or None: no libyaml, a long text, an alias, a limit
+    passed, or any error at all (then _Loader12 reads the text again and names the problem
+    in its own words). What libyaml reads in full is the same node tree, with the same
+    marks, that PyYAML's Python reader composes (tests/test_hostile_yaml.py compares them)."""
+    if _CParser is None or len(text) > FAST_MAX_CHARS or any(c in text for c in _NOT_FAST) \
+            or _BLOCK_SCALAR.search(text):
+        return None
+    try:
+        loader = _CLoader12(text)
+        try:
+            node = loader.get_single_node()
+            if node is None or not _within_limits(node):
+                return None
+            marks: dict = {}
+            _walk(node, (), marks, file, loader)
+            data = loader.construct_document(node)
+        finally:
+            loader.dispose()
+    except Exception:  # noqa: BLE001 - whatever libyaml refuses, _Loader12 reads again and names
+        return None
+    return data, marks
+
+
 def load_yaml(source: str | Path, *, text: str | None = None) -> tuple[Any, dict]:
     """Read a YAML file. Returns ``(data, marks)`` where ``marks`` maps a field path
     (tuple of keys and indices) to ``(line, column)``, 1-based."""
     file = str(source)
     if text is None:
         text = read_text(source)
+    fast = _load_fast(text, file)
+    if fast is not None:
+        return fast
     try:
         loader = _Loader12(text)
         try:

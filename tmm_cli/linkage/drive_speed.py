@@ -16,6 +16,7 @@ from __future__ import annotations
 import math
 
 from ..errors import field_error
+from ..messages import Message
 from .context import Drive
 
 SOURCES = ("speed", "mean_output_speed", "working_stroke_speed")
@@ -28,7 +29,7 @@ def check_output_speed(value) -> tuple[float, str | None]:
     from ..units import _fast, _parse, check_magnitude
 
     if isinstance(value, bool):
-        raise ValueError("expected a speed (m/s for a slider, rad/s or deg/s for a rocker), got a boolean")
+        raise ValueError(Message("input.output_speed_bool"))
     if isinstance(value, (int, float)):
         v, kind = check_magnitude(float(value)), None
     else:
@@ -48,10 +49,10 @@ def check_output_speed(value) -> tuple[float, str | None]:
                 except Exception:  # noqa: BLE001 - pint: not this dimension, try the next
                     continue
         if kind is None:
-            raise ValueError(f"'{value}' is not a speed: give m/s (a slider) or rad/s, deg/s (a rocker)")
+            raise ValueError(Message("input.output_speed_unit", value=str(value)))
         v = check_magnitude(v)
     if not v > 0:
-        raise ValueError(f"the output speed must be positive, got {value!r}")
+        raise ValueError(Message("input.output_speed_positive", value=repr(value)))
     return v, kind
 
 

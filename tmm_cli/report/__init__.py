@@ -83,7 +83,7 @@ def _bytecode_cache():
         def load_bytecode(self, bucket):
             try:
                 super().load_bytecode(bucket)
-            except Exception:  # noqa: BLE001 - an unreadable entry: compiled afresh
+            except (OSError, EOFError, ValueError, TypeError):   # an unreadable entry: compiled afresh
                 bucket.reset()
 
         def dump_bytecode(self, bucket):

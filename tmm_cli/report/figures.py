@@ -293,11 +293,17 @@ class _Segments:
         """Distance from each point (cx[i], cy[i]) to the nearest segment."""
         rx = cx[:, None] - self.ax
         ry = cy[:, None] - self.ay
-        t = (rx * self.dx + ry * self.dy) / self.L2
+        t = rx * self.dx
+        t += ry * self.dy
+        t /= self.L2
         np.minimum(np.maximum(t, 0.0, out=t), 1.0, out=t)        # np.clip(t, 0, 1), without its wrapper
-        qx = rx - self.dx * t
-        qy = ry - self.dy * t
-        return np.sqrt((qx * qx + qy * qy).min(axis=1))
+        # q = r - d t, |q|^2 (the same operations as written out, in place)
+        rx -= self.dx * t
+        ry -= self.dy * t
+        rx *= rx
+        ry *= ry
+        rx += ry
+        return np.sqrt(rx.min(axis=1))
 
 
 def _point_dists(cx, cy, px, py):

@@ -562,8 +562,9 @@ def _vector(v, N: int, seen: set) -> np.ndarray:
 
 def _outputs(solver: Solver) -> tuple:
     """What the result holds, taken once per mechanism: the ground points (name,
-    x, y), the points fixed on links (name, link index, local coordinates), the report
-    order of the points and the links (name, index)."""
+    x, y), the points fixed on links (name, link index, local coordinates), the order in
+    which to take those body by body ((index into the points, whether it is its body's
+    last)), the report order of the points and the links (name, index)."""
     hit = solver.__dict__.get("_outputs")
     if hit is not None:
         return hit
