@@ -1,10 +1,11 @@
 """Export of the cam profile for the report: CSV rows and DXF text (ezdxf, imported lazily)."""
 from __future__ import annotations
 
-import io
 import math
 
 import numpy as np
+
+from ..reproducible import dxf_text
 
 CSV_HEADER = ["phi_deg", "pitch_x_m", "pitch_y_m", "working_x_m", "working_y_m"]
 
@@ -46,6 +47,4 @@ def profile_dxf(result, units_mm: bool = True) -> str:
     if math.isfinite(roller) and roller > 0:
         x0, y0 = pitch[0]
         msp.add_circle((float(x0) * k, float(y0) * k), roller * k, dxfattribs={"layer": "WORKING"})
-    buf = io.StringIO()
-    doc.write(buf)
-    return buf.getvalue()
+    return dxf_text(doc)

@@ -27,6 +27,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from ..lazy import brentq
+from ..reproducible import dxf_text
 
 from .geometry import rack_fillet
 from .involute import inv
@@ -259,8 +260,6 @@ def outline_csv(x, y) -> str:
 
 def outline_dxf(polylines: dict[str, tuple[np.ndarray, np.ndarray]], scale=1000.0) -> str:
     """A DXF (R2010) drawing with one layer per named polyline, in millimetres by default."""
-    import io
-
     import ezdxf  # lazy: heavy import
 
     doc = ezdxf.new("R2010")
@@ -272,8 +271,6 @@ def outline_dxf(polylines: dict[str, tuple[np.ndarray, np.ndarray]], scale=1000.
             doc.layers.add(layer)
         pts = [(float(a) * scale, float(b) * scale) for a, b in zip(x, y)]
         msp.add_lwpolyline(pts, dxfattribs={"layer": layer})
-    buf = io.StringIO()
-    doc.write(buf)
-    return buf.getvalue()
+    return dxf_text(doc)
 
 

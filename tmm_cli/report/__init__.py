@@ -43,12 +43,12 @@ How to add a section (e.g. for the stage ``cam``)
 """
 from __future__ import annotations
 
-import datetime as _dt
 import re
 
 from pathlib import Path
 
 from ..messages import render_list
+from ..reproducible import source_date
 from .context import ReportContext, templates_dir
 from . import sections as _sections
 
@@ -149,7 +149,7 @@ def _assemble(ctx: ReportContext, frags: dict[str, str | None]) -> str:
                       title=title or ctx.t("report.title"),
                       variant=getattr(task, "variant", None) if task is not None else None,
                       warnings=render_list(ctx.results, ctx.lang),
-                      date=_dt.date.today().isoformat())
+                      date=source_date().date().isoformat())
 
 
 def render_html(results: dict, task, out_dir: Path, lang: str = "en") -> tuple[str, ReportContext]:

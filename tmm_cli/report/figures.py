@@ -14,6 +14,7 @@ import re
 
 import numpy as np
 
+from ..reproducible import stable_svg_ids
 from .svgdraw import PT_PER_MM
 
 MM = 1.0 / 25.4  # inch per mm
@@ -29,7 +30,7 @@ _STYLE = {
     "legend.fontsize": 7,
     "lines.linewidth": 1.0,
     "svg.fonttype": "none",      # text stays text: small, searchable SVG
-    "svg.hashsalt": None,        # random clip-path ids: unique across inline SVGs
+    "svg.hashsalt": "tmm",       # no random ids (svg() then makes them unique per figure)
     "axes.unicode_minus": True,
 }
 
@@ -63,7 +64,8 @@ def svg(fig) -> str:
     """Render a matplotlib figure as an inline SVG string and close the figure.
 
     The XML prolog/doctype are stripped; width/height stay in pt (printed at
-    the figure's real size) and the CSS caps them at the text width.
+    the figure's real size) and the CSS caps them at the text width.  The ids are
+    the same on every run and differ between figures (reproducible.stable_svg_ids).
     """
     buf = io.StringIO()
     try:
@@ -72,7 +74,7 @@ def svg(fig) -> str:
         plt().close(fig)
     text = _HEAD.sub(r"\1", buf.getvalue(), count=1)
     text = _SIZE.sub(r'\1 class="fig" width="\2pt" height="\3pt"', text, count=1)
-    return text
+    return stable_svg_ids(text)
 
 
 _NAME_OK = re.compile(r"[^a-z0-9-]+")

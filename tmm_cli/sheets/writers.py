@@ -2,8 +2,7 @@
 real LINE / LWPOLYLINE / CIRCLE / ARC / TEXT entities, units mm)."""
 from __future__ import annotations
 
-import io
-
+from ..reproducible import dxf_text
 from .prims import Arc, Circle, Line, Polyline, PrimCanvas, Text, is_halo
 
 # layer -> (ACI colour, lineweight in 1/100 mm)
@@ -74,6 +73,4 @@ def to_dxf(cv: PrimCanvas) -> bytes:
         elif isinstance(p, Text):
             t = msp.add_text(p.plain, height=0.7 * p.height, dxfattribs={**at, "style": "TMM"})
             t.set_placement((p.x, p.y), align=align[p.anchor])
-    buf = io.StringIO()
-    doc.write(buf)
-    return buf.getvalue().encode("utf-8")
+    return dxf_text(doc).encode("utf-8")
