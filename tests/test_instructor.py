@@ -757,3 +757,33 @@ def test_feedback_page_names_a_misspelt_path_in_its_language(tmp_path):
     html = feedback_html(SimpleNamespace(title="t", name="t"), {"rows": rows, "student": "S"}, "ru")
     assert "возможно, имелось в виду «flywheel.J»?" in html.replace("&laquo;", "«").replace("&raquo;", "»")
     assert "did you mean" not in html
+
+
+def test_unknown_path_note_quotes_the_path_and_the_key_whole(tmp_path):
+    """check.csv's note on a misspelt path: the path bare, the key in whole quotes, the
+    hint after; the same reason in Russian and Ukrainian (no English inside)."""
+    from tmm_cli.check import load_answers_csv, load_answers_file
+    from tmm_cli.errors import TaskError
+    from tmm_cli.messages import localize
+    res = {"flywheel": {"J": 1.0, "delta": 0.1}, "kinematics": [{"index": 0, "phi": 0.0}]}
+    rows = grade(res, AnswerSet(source="s.yaml", answers={"flywheel.JJ": 1.0, "kinematics[5].phi": 0.0,
+                                                           "flywheel.J[1]": 1.0}), {})
+    notes = [r["note"] for r in rows]
+    assert notes[0] == "flywheel.JJ: no key 'JJ'; did you mean 'flywheel.J'?"
+    assert notes[1].startswith("kinematics[5].phi: no entry with index 5; ")
+    assert notes[2].startswith("flywheel.J[1]: [1] applied to a non-list; ")
+    assert localize(notes[0].to_dict(), "ru") == \
+        "путь не найден (flywheel.JJ: нет ключа «JJ»); возможно, имелось в виду «flywheel.J»?"
+    assert localize(notes[0].to_dict(), "uk").startswith("шлях не знайдено (flywheel.JJ: немає ключа «JJ»); ")
+    # a malformed path in an answers file and in an answers table: the reason whole
+    f = tmp_path / "a.yaml"
+    f.write_text('answers:\n  "a..b": 1\n')
+    with pytest.raises(TaskError) as exc:
+        load_answers_file(f)
+    assert exc.value.render().endswith("'answers.a..b': bad path 'a..b' near '..'")
+    t = tmp_path / "a.csv"
+    t.write_text("variant,a..b\n1,2\n")
+    with pytest.raises(TaskError) as exc:
+        load_answers_csv(t)
+    assert exc.value.render().endswith("column 'a..b': bad path 'a..b' near '..'")
+    assert "«a..b»" in localize(exc.value.coded().to_dict(), "ru")

@@ -209,7 +209,7 @@ def load_answers_file(path: Path, keep_errors: bool = False) -> AnswerSet:
             aset.answers[k] = answer_value(v, k)
         except KeyError as exc:
             err = TaskError("invalid answers file", file=str(path),
-                            issues=[(f"answers.{k}", line, col, str(exc).strip("'\""))])
+                            issues=[(f"answers.{k}", line, col, _coded(exc))])
         except ValueError as exc:
             err = TaskError("invalid answer", file=str(path),
                             issues=[(f"answers.{k}", line, col, Message("answers.invalid", reason=_coded(exc)))])
@@ -255,7 +255,8 @@ def load_answers_csv(path: Path) -> list[AnswerSet]:
             parse_path(p)
         except KeyError as exc:
             raise TaskError("invalid answers table", file=str(path),
-                            issues=[(p, 1, header.index(p) + 1, f"column '{p}': {str(exc)}")]) from None
+                            issues=[(p, 1, header.index(p) + 1,
+                                     Message("answers.bad_column", column=p, reason=_coded(exc)))]) from None
     sets = []
     for line, row, bad in rows:
         from .tables import cell_value
@@ -416,7 +417,7 @@ def grade(results: dict, aset: AnswerSet, tol: dict, required: list[str] | None 
                 if leaves is None:
                     leaves = [q for q, v in leaf_paths(results) if isinstance(v, (int, float))]
                 row["status"] = "unknown_path"
-                row["note"] = Message("answers.note_unknown_path", reason=str(exc).strip(chr(34) + chr(39)),
+                row["note"] = Message("answers.note_unknown_path", reason=_coded(exc),
                                       hint=did_you_mean(p, results, leaves))
             continue
         if ref is None:
