@@ -787,3 +787,26 @@ def test_unknown_path_note_quotes_the_path_and_the_key_whole(tmp_path):
         load_answers_csv(t)
     assert exc.value.render().endswith("column 'a..b': bad path 'a..b' near '..'")
     assert "«a..b»" in localize(exc.value.coded().to_dict(), "ru")
+
+
+def test_summary_html_links_only_files_that_exist(tmp_path):
+    """A batch with a graded, a failing and an invalid variant (and answers for a variant
+    with no task): every link of summary.html points at a file the batch wrote; the graded
+    variant keeps its report, check and feedback links, the failing one its report."""
+    from html import unescape
+    from urllib.parse import unquote
+    src, ans = tmp_path / "src", tmp_path / "ans"
+    _write(src, "good.yaml", SLIDER.replace("schema: tmm/1\n", "schema: tmm/1\nvariant: 1\n"))
+    _write(src, "fails.yaml", "schema: tmm/1\ntitle: p\nplanetary: {scheme: A, ratio: 1.2, satellites: 3, m: 2 mm}\n")
+    _write(src, "bad.yaml", SLIDER.replace("length: 0.08", "lenght: 0.08"))
+    _write(ans, "ivan.yaml", "student: {name: Ivan}\nvariant: 1\nanswers:\n  structure.W: 1\n  flywheel.JJ: 1\n")
+    _write(ans, "olga.yaml", "student: {name: Olga}\nvariant: 7\nanswers:\n  structure.W: 1\n")
+    out = tmp_path / "o"
+    res = runner.invoke(app, ["batch", str(src), "--answers", str(ans), "--out", str(out), "--format", "json,html"])
+    assert res.exit_code in (2, 3), res.output
+    html = (out / "summary.html").read_text(encoding="utf-8")
+    links = [unquote(unescape(h)) for h in re.findall(r'href="([^"]*)"', html)]
+    assert {"good/report.html", "good/check.csv", "fails/report.html"} <= set(links), links
+    assert any(h.startswith("good/feedback") for h in links), links
+    for h in links:
+        assert (out / h).is_file(), (h, links)

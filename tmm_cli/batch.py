@@ -658,7 +658,8 @@ def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = froz
     atomic_write(out / "summary.csv", csv_text(SUMMARY_FIELDS + paths, rows))
     atomic_write(out / "check.csv", csv_text(CHECK_FIELDS, check_rows))
     from .summary import summary_html
-    atomic_write(out / "summary.html", summary_html(rows, paths, source, lang))
+    atomic_write(out / "summary.html", summary_html(rows, paths, source, lang,
+                                                    {Path(w).as_posix() for w in written}))
     written.update({"summary.csv", "summary.html", "check.csv"})
     removed = _remove_stale(out, old_files, written)
     atomic_write(out / MANIFEST, json.dumps({"files": sorted(written)}, indent=1) + "\n")
