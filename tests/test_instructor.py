@@ -328,7 +328,15 @@ def test_batch_rows_for_what_is_not_a_task_file(tmp_path):
     assert "directory" in rows["dir.yaml"]["message"] and "FIFO" in rows["fifo.yaml"]["message"]
     assert "dangling" in rows["dangling.yaml"]["message"]
     assert {rows[k]["status"] for k in ("dir.yaml", "fifo.yaml", "dangling.yaml")} == {"invalid"}
+    assert rows["dir.yaml"]["message"] == f"{src / 'dir.yaml'}: a directory, not a task file"
     assert res.exit_code == 2
+    # summary.html in Russian: the reasons translated too
+    res = runner.invoke(app, ["batch", str(src), "--out", str(tmp_path / "r"), "--lang", "ru"])
+    html = (tmp_path / "r" / "summary.html").read_text(encoding="utf-8")
+    for ru in ("это папка, а не файл задания", "это именованный канал, а не файл задания",
+               "символическая ссылка ведёт в никуда"):
+        assert ru in html
+    assert "not a task file" not in html and "symbolic link" not in html
 
 
 def test_batch_removes_only_its_own_stale_folders(tmp_path):

@@ -138,6 +138,14 @@ ENGLISH = [
                             'message': {'code': 'cam.fail.stroke', 'params': {}, 'text': 'the stroke must be positive'}},
      "stage 'cam' failed: the stroke must be positive"),
     ('batch.at_angle', {'angle': 123.4567891}, ' at crank angle 123.457 deg'),
+    ('batch.not_a_task', {'file': 'src/v1.yaml', 'reason': {'code': 'batch.directory', 'params': {}, 'text': 'x'}},
+     'src/v1.yaml: a directory, not a task file'),
+    ('batch.dangling_link', {}, 'a dangling symbolic link'),
+    ('batch.no_such_file', {}, 'no such file'),
+    ('batch.unreadable', {'error': 'Permission denied'}, 'cannot be read: Permission denied'),
+    ('batch.directory', {}, 'a directory, not a task file'),
+    ('batch.fifo', {}, 'a FIFO (named pipe), not a task file'),
+    ('batch.not_regular', {}, 'not a regular file'),
     # structure: a linkage the crank cannot drive (the former f-strings of linkage/structure.py)
     ('structure.fail.reasons', {'reasons': [
         {'code': 'structure.fail.lonely_point', 'params': {'point': 'C', 'link': 'rod', 'hint': {
