@@ -818,3 +818,55 @@ def test_summary_html_links_only_files_that_exist(tmp_path):
     assert any(h.startswith("good/feedback") for h in links), links
     for h in links:
         assert (out / h).is_file(), (h, links)
+
+
+@pytest.mark.parametrize("kind, name, text, ru", [
+    ("tol", "neg.yaml", "flywheel.J: -1\n", "ожидается неотрицательное число (относительный допуск), задано -1"),
+    ("tol", "abs.yaml", "flywheel.J: {abs: x}\n", "ожидается неотрицательное число (абсолютный допуск), задано 'x'"),
+    ("tol", "key.yaml", "flywheel.J: {rell: 1}\n", "неизвестный ключ «rell»; в допуске бывают `rel`"),
+    ("tol", "list.yaml", "- 1\n- 2\n", "это не файл допусков"),
+    ("tol", "dir", None, "это не обычный файл (файл допусков"),
+    ("answers", "empty.csv", "", "пустая таблица (нет строки заголовка)"),
+    ("answers", "late.csv", "\n\nvariant,flywheel.J\n1,2\n", "заголовок таблицы должен быть в первой строке"),
+    ("answers", "novar.csv", "student,flywheel.J\nA,2\n", "в таблице ответов нужен столбец `variant`"),
+    ("answers", "bin.csv", b"\xff\xfe\x00\x81\x98", "это не текстовая таблица в кодировке UTF-8"),
+    ("answers", "list.yaml", "answers: [1, 2]\n", "ожидается таблица YAML (ключ: значение), задано list"),
+    ("answers", "dir", None, "это не обычный файл (файл ответов"),
+    ("answers", "none.yaml", False, "такого файла или папки нет"),
+])
+def test_tolerance_and_answers_file_errors_in_russian(tmp_path, kind, name, text, ru):
+    """A broken tolerance file, answers table or answers file: the English text as on
+    stderr, and the whole line in Russian (no English reason left)."""
+    from tmm_cli.check import load_answers_file, load_sources, load_tolerance_file
+    from tmm_cli.errors import TaskError
+    from tmm_cli.messages import localize
+    f = tmp_path / name
+    if text is None:
+        f.mkdir()
+    elif isinstance(text, bytes):
+        f.write_bytes(text)
+    elif text is not False:
+        f.write_text(text, encoding="utf-8")
+    load = load_tolerance_file if kind == "tol" else (load_answers_file if name == "dir" else load_sources)
+    with pytest.raises(TaskError) as info:
+        load(f)
+    coded = info.value.coded()
+    assert coded is not None and str(coded) == info.value.render()
+    out = localize(coded.to_dict(), "ru")
+    assert ru in out, out
+    assert not re.search(r"\b(expected|table|file|header|unknown|regular)\b", out), out
+
+
+def test_malformed_answers_row_in_the_summary_language(tmp_path):
+    """An answers table's malformed row: summary.csv keeps the English reason, summary.html
+    shows it in Russian."""
+    src = tmp_path / "src"
+    _write(src, "v1.yaml", GEARS.format(v=1))
+    t = _write(tmp_path, "a.csv", "student,variant,gears.a_w\nIvan,1,2,3,4\n")
+    res = runner.invoke(app, ["batch", str(src), "--answers", str(t), "--out", str(tmp_path / "o"), "--lang", "ru"])
+    assert res.exit_code == 2, res.output
+    rows = [r for r in _csv(tmp_path / "o" / "summary.csv") if r["student"] == "Ivan"]
+    assert rows and rows[0]["message"] == f"{t}:2: malformed row: 5 cells but the header has 3 columns"
+    html = (tmp_path / "o" / "summary.html").read_text(encoding="utf-8")
+    assert f"{t}:2: неверная строка: ячеек 5, а столбцов в заголовке 3" in html
+    assert "malformed row" not in html
