@@ -190,7 +190,7 @@ def test_validate_shows_the_plain_number_warnings(tmp_path):
 
 
 _TASKS = __import__("pathlib").Path(__file__).resolve().parent.parent / "tasks"
-# (task file, text replaced, replacement): one check of the dof2 and drive_train sections each
+# (task file, text replaced, replacement): one check of the dof2, drive_train and synthesis sections each
 SECTION_CHECKS = [
     ("impact_rotor", "length: 60 mm", "length: -60 mm"),
     ("impact_rotor", "J: 0.0012 ", "J: 0.0012\n    J_O: 0.002 "),
@@ -221,12 +221,20 @@ SECTION_CHECKS = [
     ("press_drive_train", "{type: planetary, scheme: A}", "{type: planetary, scheme: Q}"),
     ("press_drive_train", "  satellites: 3\n", "  satellites: 3\n  z_max: 20\n"),
     ("press_drive_train", "{type: pair, z: [18, 36]}", "{type: pair, z: [18, 360]}"),
+    ("synthesis_slider_crank", "  H: 0.16\n", ""),
+    ("synthesis_crank_rocker", "  frame: 0.4\n", "  frame: 0.4\n  H: 0.1\n"),
+    ("synthesis_slider_crank", "  H: 0.16\n", "  H: 0.16\n  e: 0.01\n"),
+    ("synthesis_crank_rocker", "  K: 1.2\n", ""),
+    ("synthesis_offset_slider_crank", "  e: 50 mm\n", "  e: 50 mm\n  gamma_min: 60\n"),
+    ("synthesis_slider_crank", "  H: 0.16\n", "  H: 0.16\n  K: 1.2\n"),
+    ("synthesis_slider_crank", "rod: {mass: 5", "rood: {mass: 5"),
+    ("synthesis_slider_crank", "rod: {mass: 5", "zzzzz: {mass: 5"),
 ]
 
 
 @pytest.mark.parametrize("name, old, new", SECTION_CHECKS)
-def test_dof2_and_drive_train_checks_are_coded(tmp_path, name, old, new):
-    """A broken dof2 or drive_train section: the English line as on stderr, and in Russian
+def test_dof2_drive_train_and_synthesis_checks_are_coded(tmp_path, name, old, new):
+    """A broken dof2, drive_train or synthesis section: the English line as on stderr, and in Russian
     and Ukrainian the whole line translated (file, line and field kept, no English reason)."""
     from tmm_cli.errors import TaskError
     from tmm_cli.messages import localize
