@@ -870,3 +870,11 @@ def test_malformed_answers_row_in_the_summary_language(tmp_path):
     html = (tmp_path / "o" / "summary.html").read_text(encoding="utf-8")
     assert f"{t}:2: неверная строка: ячеек 5, а столбцов в заголовке 3" in html
     assert "malformed row" not in html
+
+
+def test_form_names_a_misspelt_quantity_without_stray_quotes(tmp_path):
+    """`tmm form -q` with a misspelt path: the reason reads as check.csv's note does."""
+    task = _write(tmp_path, "g.yaml", GEARS.format(v=1))
+    res = runner.invoke(app, ["form", str(task), "-q", "gears.a_ww", "-o", str(tmp_path / "f")])
+    assert "quantity 'gears.a_ww' is not in the results: gears.a_ww: no key 'a_ww'; did you mean 'gears.aw'?" \
+        in res.output, res.output
