@@ -277,6 +277,8 @@ ENGLISH = [
      'not a number but a list; no such path in the results'),
     ('answers.not_number', {'value': "'abc'"}, "not a number: 'abc'"),
     ('answers.not_finite', {'value': 'inf'}, 'not a finite number: inf'),
+    ('answers.unreadable', {'value': "'3 kg'", 'error': "Cannot convert from 'kilogram' to 'meter'"},
+     "cannot read '3 kg': Cannot convert from 'kilogram' to 'meter'"),
     ('input.cam_angles_both', {},
      'give `pressure_angle` or `transmission_angle`, not both'),
     ('input.cam_pressure_range', {},

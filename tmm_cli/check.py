@@ -147,7 +147,7 @@ def answer_value(v, path: str):
         else:
             x = float(q.to_base_units().magnitude)
     except Exception as exc:  # noqa: BLE001 - pint's conversion errors: dimensionality, offset units, types
-        raise ValueError(f"cannot read {s!r}: {exc}") from None
+        raise ValueError(Message("answers.unreadable", value=repr(s), error=str(exc))) from None
     if not math.isfinite(x):
         raise ValueError(Message("answers.not_finite", value=repr(s)))
     return x
