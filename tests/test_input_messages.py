@@ -3,6 +3,7 @@ plain numbers probably meant in rpm or mm, a negative size of a resistance, and 
 command line's --version, bare `tmm` and `tmm fields`."""
 from __future__ import annotations
 
+import re
 import textwrap
 
 import pytest
@@ -186,3 +187,69 @@ def test_validate_shows_the_plain_number_warnings(tmp_path):
     assert f"warning: {f}: gears.m" in res.output and "'3 mm'" in res.output
     f.write_text("schema: tmm/1\ngears: {m: 3 mm, z: [12, 42]}\n", encoding="utf-8")
     assert "warning" not in runner.invoke(app, ["validate", str(f)]).output
+
+
+_TASKS = __import__("pathlib").Path(__file__).resolve().parent.parent / "tasks"
+# (task file, text replaced, replacement): one check of the dof2, drive_train and synthesis sections each
+SECTION_CHECKS = [
+    ("impact_rotor", "length: 60 mm", "length: -60 mm"),
+    ("impact_rotor", "J: 0.0012 ", "J: 0.0012\n    J_O: 0.002 "),
+    ("impact_rotor", "com: 0\n    J: 0.0012 ", "com: 0.1\n    J_O: 0.0012 "),
+    ("impact_rotor", "length: 90 mm", "length: 0"),
+    ("impact_rotor", "mass: 0.35\n    J: 2.4e-4", "mass: 0\n    J: 0"),
+    ("impact_rotor", "mass: 1.2 ", "mass: -1.2 "),
+    ("impact_rotor", "drive: {speed: 1500 rpm, direction: ccw}", "drive: {speed: 1500 rpm, moment: 5}"),
+    ("impact_rotor", "drive: {speed: 1500 rpm, direction: ccw}", "drive: {speed: -1500 rpm}"),
+    ("impact_rotor", "drive: {speed: 1500 rpm, direction: ccw}", "drive: {moment: 5, direction: cw}"),
+    ("impact_rotor", "t_end: 40 ms ", "turns: 2\n  t_end: 40 ms "),
+    ("impact_rotor", "t_end: 40 ms ", "t_end: -40 ms "),
+    ("impact_rotor", "t_end: 40 ms ", "turns: 1\n  t_max: 0 "),
+    ("impact_rotor", "samples: 401", "samples: 1"),
+    ("impact_rotor", "    psi_dot: 0", "    psi_dot: 0\n    omega: 3"),
+    ("impact_rotor", "t_end: 40 ms ", "t_end: abc "),
+    ("impact_rotor", "t_end: 40 ms ", "t_end: 40 kg "),
+    ("impact_rotor", "t_end: 40 ms ", "t_end: true "),
+    ("impact_rotor", "t_end: 40 ms ", "t_end: 1e13 "),
+    ("press_drive_train", "{type: planetary, scheme: A}", "{type: planetary}"),
+    ("press_drive_train", "{type: pair, z: [18, 36]}", "{type: pair, z: [18, 36], scheme: A}"),
+    ("press_drive_train", "{type: planetary, scheme: A}", "{type: planetary, scheme: A, internal: true}"),
+    ("press_drive_train", "{type: pair, z: [18, 36]}", "{type: pair, z: [18, 36, 40]}"),
+    ("press_drive_train", "{type: planetary, scheme: A}", "{type: planetary, scheme: A, z: [20, 30]}"),
+    ("press_drive_train", "{type: pair, z: [18, 36]}", "{type: pair, z: [4, 36]}"),
+    ("press_drive_train", "{type: pair, z: [18, 36]}", "{type: pair, z: [18, 36], ratio: -2}"),
+    ("press_drive_train", "{type: pair, z: [18, 36]}", "{type: pair, ratio: 0}"),
+    ("press_drive_train", "{type: planetary, scheme: A}", "{type: planetary, scheme: Q}"),
+    ("press_drive_train", "  satellites: 3\n", "  satellites: 3\n  z_max: 20\n"),
+    ("press_drive_train", "{type: pair, z: [18, 36]}", "{type: pair, z: [18, 360]}"),
+    ("synthesis_slider_crank", "  H: 0.16\n", ""),
+    ("synthesis_crank_rocker", "  frame: 0.4\n", "  frame: 0.4\n  H: 0.1\n"),
+    ("synthesis_slider_crank", "  H: 0.16\n", "  H: 0.16\n  e: 0.01\n"),
+    ("synthesis_crank_rocker", "  K: 1.2\n", ""),
+    ("synthesis_offset_slider_crank", "  e: 50 mm\n", "  e: 50 mm\n  gamma_min: 60\n"),
+    ("synthesis_slider_crank", "  H: 0.16\n", "  H: 0.16\n  K: 1.2\n"),
+    ("synthesis_slider_crank", "rod: {mass: 5", "rood: {mass: 5"),
+    ("synthesis_slider_crank", "rod: {mass: 5", "zzzzz: {mass: 5"),
+]
+
+
+@pytest.mark.parametrize("name, old, new", SECTION_CHECKS)
+def test_dof2_drive_train_and_synthesis_checks_are_coded(tmp_path, name, old, new):
+    """A broken dof2, drive_train or synthesis section: the English line as on stderr, and in Russian
+    and Ukrainian the whole line translated (file, line and field kept, no English reason)."""
+    from tmm_cli.errors import TaskError
+    from tmm_cli.messages import localize
+    text = (_TASKS / f"{name}.yaml").read_text(encoding="utf-8")
+    assert old in text
+    f = tmp_path / f"{name}.yaml"
+    f.write_text(text.replace(old, new, 1), encoding="utf-8")
+    with pytest.raises(TaskError) as info:
+        tmm_cli.load_task(f)
+    english = info.value.render()
+    coded = info.value.coded()
+    assert coded is not None and str(coded) == english
+    where, _, reason = english.partition(": field '")
+    reason = reason.split("': ", 1)[1]
+    for lang in ("ru", "uk"):
+        out = localize(coded.to_dict(), lang)
+        assert out.startswith(where + ": ") and reason not in out, (lang, out)
+        assert re.search("[а-яіїє]", out.split("»: ", 1)[1]), (lang, out)

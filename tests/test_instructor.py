@@ -328,7 +328,15 @@ def test_batch_rows_for_what_is_not_a_task_file(tmp_path):
     assert "directory" in rows["dir.yaml"]["message"] and "FIFO" in rows["fifo.yaml"]["message"]
     assert "dangling" in rows["dangling.yaml"]["message"]
     assert {rows[k]["status"] for k in ("dir.yaml", "fifo.yaml", "dangling.yaml")} == {"invalid"}
+    assert rows["dir.yaml"]["message"] == f"{src / 'dir.yaml'}: a directory, not a task file"
     assert res.exit_code == 2
+    # summary.html in Russian: the reasons translated too
+    res = runner.invoke(app, ["batch", str(src), "--out", str(tmp_path / "r"), "--lang", "ru"])
+    html = (tmp_path / "r" / "summary.html").read_text(encoding="utf-8")
+    for ru in ("это папка, а не файл задания", "это именованный канал, а не файл задания",
+               "символическая ссылка ведёт в никуда"):
+        assert ru in html
+    assert "not a task file" not in html and "symbolic link" not in html
 
 
 def test_batch_removes_only_its_own_stale_folders(tmp_path):
@@ -757,3 +765,116 @@ def test_feedback_page_names_a_misspelt_path_in_its_language(tmp_path):
     html = feedback_html(SimpleNamespace(title="t", name="t"), {"rows": rows, "student": "S"}, "ru")
     assert "возможно, имелось в виду «flywheel.J»?" in html.replace("&laquo;", "«").replace("&raquo;", "»")
     assert "did you mean" not in html
+
+
+def test_unknown_path_note_quotes_the_path_and_the_key_whole(tmp_path):
+    """check.csv's note on a misspelt path: the path bare, the key in whole quotes, the
+    hint after; the same reason in Russian and Ukrainian (no English inside)."""
+    from tmm_cli.check import load_answers_csv, load_answers_file
+    from tmm_cli.errors import TaskError
+    from tmm_cli.messages import localize
+    res = {"flywheel": {"J": 1.0, "delta": 0.1}, "kinematics": [{"index": 0, "phi": 0.0}]}
+    rows = grade(res, AnswerSet(source="s.yaml", answers={"flywheel.JJ": 1.0, "kinematics[5].phi": 0.0,
+                                                           "flywheel.J[1]": 1.0}), {})
+    notes = [r["note"] for r in rows]
+    assert notes[0] == "flywheel.JJ: no key 'JJ'; did you mean 'flywheel.J'?"
+    assert notes[1].startswith("kinematics[5].phi: no entry with index 5; ")
+    assert notes[2].startswith("flywheel.J[1]: [1] applied to a non-list; ")
+    assert localize(notes[0].to_dict(), "ru") == \
+        "путь не найден (flywheel.JJ: нет ключа «JJ»); возможно, имелось в виду «flywheel.J»?"
+    assert localize(notes[0].to_dict(), "uk").startswith("шлях не знайдено (flywheel.JJ: немає ключа «JJ»); ")
+    # a malformed path in an answers file and in an answers table: the reason whole
+    f = tmp_path / "a.yaml"
+    f.write_text('answers:\n  "a..b": 1\n')
+    with pytest.raises(TaskError) as exc:
+        load_answers_file(f)
+    assert exc.value.render().endswith("'answers.a..b': bad path 'a..b' near '..'")
+    t = tmp_path / "a.csv"
+    t.write_text("variant,a..b\n1,2\n")
+    with pytest.raises(TaskError) as exc:
+        load_answers_csv(t)
+    assert exc.value.render().endswith("column 'a..b': bad path 'a..b' near '..'")
+    assert "«a..b»" in localize(exc.value.coded().to_dict(), "ru")
+
+
+def test_summary_html_links_only_files_that_exist(tmp_path):
+    """A batch with a graded, a failing and an invalid variant (and answers for a variant
+    with no task): every link of summary.html points at a file the batch wrote; the graded
+    variant keeps its report, check and feedback links, the failing one its report."""
+    from html import unescape
+    from urllib.parse import unquote
+    src, ans = tmp_path / "src", tmp_path / "ans"
+    _write(src, "good.yaml", SLIDER.replace("schema: tmm/1\n", "schema: tmm/1\nvariant: 1\n"))
+    _write(src, "fails.yaml", "schema: tmm/1\ntitle: p\nplanetary: {scheme: A, ratio: 1.2, satellites: 3, m: 2 mm}\n")
+    _write(src, "bad.yaml", SLIDER.replace("length: 0.08", "lenght: 0.08"))
+    _write(ans, "ivan.yaml", "student: {name: Ivan}\nvariant: 1\nanswers:\n  structure.W: 1\n  flywheel.JJ: 1\n")
+    _write(ans, "olga.yaml", "student: {name: Olga}\nvariant: 7\nanswers:\n  structure.W: 1\n")
+    out = tmp_path / "o"
+    res = runner.invoke(app, ["batch", str(src), "--answers", str(ans), "--out", str(out), "--format", "json,html"])
+    assert res.exit_code in (2, 3), res.output
+    html = (out / "summary.html").read_text(encoding="utf-8")
+    links = [unquote(unescape(h)) for h in re.findall(r'href="([^"]*)"', html)]
+    assert {"good/report.html", "good/check.csv", "fails/report.html"} <= set(links), links
+    assert any(h.startswith("good/feedback") for h in links), links
+    for h in links:
+        assert (out / h).is_file(), (h, links)
+
+
+@pytest.mark.parametrize("kind, name, text, ru", [
+    ("tol", "neg.yaml", "flywheel.J: -1\n", "ожидается неотрицательное число (относительный допуск), задано -1"),
+    ("tol", "abs.yaml", "flywheel.J: {abs: x}\n", "ожидается неотрицательное число (абсолютный допуск), задано 'x'"),
+    ("tol", "key.yaml", "flywheel.J: {rell: 1}\n", "неизвестный ключ «rell»; в допуске бывают `rel`"),
+    ("tol", "list.yaml", "- 1\n- 2\n", "это не файл допусков"),
+    ("tol", "dir", None, "это не обычный файл (файл допусков"),
+    ("answers", "empty.csv", "", "пустая таблица (нет строки заголовка)"),
+    ("answers", "late.csv", "\n\nvariant,flywheel.J\n1,2\n", "заголовок таблицы должен быть в первой строке"),
+    ("answers", "novar.csv", "student,flywheel.J\nA,2\n", "в таблице ответов нужен столбец `variant`"),
+    ("answers", "bin.csv", b"\xff\xfe\x00\x81\x98", "это не текстовая таблица в кодировке UTF-8"),
+    ("answers", "list.yaml", "answers: [1, 2]\n", "ожидается таблица YAML (ключ: значение), задано list"),
+    ("answers", "dir", None, "это не обычный файл (файл ответов"),
+    ("answers", "none.yaml", False, "такого файла или папки нет"),
+])
+def test_tolerance_and_answers_file_errors_in_russian(tmp_path, kind, name, text, ru):
+    """A broken tolerance file, answers table or answers file: the English text as on
+    stderr, and the whole line in Russian (no English reason left)."""
+    from tmm_cli.check import load_answers_file, load_sources, load_tolerance_file
+    from tmm_cli.errors import TaskError
+    from tmm_cli.messages import localize
+    f = tmp_path / name
+    if text is None:
+        f.mkdir()
+    elif isinstance(text, bytes):
+        f.write_bytes(text)
+    elif text is not False:
+        f.write_text(text, encoding="utf-8")
+    load = load_tolerance_file if kind == "tol" else (load_answers_file if name == "dir" else load_sources)
+    with pytest.raises(TaskError) as info:
+        load(f)
+    coded = info.value.coded()
+    assert coded is not None and str(coded) == info.value.render()
+    out = localize(coded.to_dict(), "ru")
+    assert ru in out, out
+    assert not re.search(r"\b(expected|table|file|header|unknown|regular)\b", out), out
+
+
+def test_malformed_answers_row_in_the_summary_language(tmp_path):
+    """An answers table's malformed row: summary.csv keeps the English reason, summary.html
+    shows it in Russian."""
+    src = tmp_path / "src"
+    _write(src, "v1.yaml", GEARS.format(v=1))
+    t = _write(tmp_path, "a.csv", "student,variant,gears.a_w\nIvan,1,2,3,4\n")
+    res = runner.invoke(app, ["batch", str(src), "--answers", str(t), "--out", str(tmp_path / "o"), "--lang", "ru"])
+    assert res.exit_code == 2, res.output
+    rows = [r for r in _csv(tmp_path / "o" / "summary.csv") if r["student"] == "Ivan"]
+    assert rows and rows[0]["message"] == f"{t}:2: malformed row: 5 cells but the header has 3 columns"
+    html = (tmp_path / "o" / "summary.html").read_text(encoding="utf-8")
+    assert f"{t}:2: неверная строка: ячеек 5, а столбцов в заголовке 3" in html
+    assert "malformed row" not in html
+
+
+def test_form_names_a_misspelt_quantity_without_stray_quotes(tmp_path):
+    """`tmm form -q` with a misspelt path: the reason reads as check.csv's note does."""
+    task = _write(tmp_path, "g.yaml", GEARS.format(v=1))
+    res = runner.invoke(app, ["form", str(task), "-q", "gears.a_ww", "-o", str(tmp_path / "f")])
+    assert "quantity 'gears.a_ww' is not in the results: gears.a_ww: no key 'a_ww'; did you mean 'gears.aw'?" \
+        in res.output, res.output

@@ -175,3 +175,12 @@ def test_cam_limit_out_of_range_names_its_line(tmp_path, line, field):
     res = runner.invoke(app, ["validate", str(f)])
     assert res.exit_code == 2
     assert f"{f}:5:3: field '{field}': the allowed pressure angle must lie in (0, 90) deg" in res.output
+
+
+def test_impossible_dimensions_say_crank_angle_once(tmp_path):
+    """The reason already names the crank angles (all of them, or 'any crank angle'): the
+    message adds only what to check."""
+    res, f = _validate(tmp_path, FOURBAR.replace("C: [0.3, 0]", "C: [1.0, 0]"))
+    assert res.exit_code == 2, res.output
+    assert res.output.count("crank angle") == 1, res.output
+    assert "cannot reach); check the lengths of rod, rocker and the ground points" in res.output

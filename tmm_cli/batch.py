@@ -39,20 +39,20 @@ DEFAULT_MEMORY_MB = 4096
 
 
 # ------------------------------------------------------------------ inputs
-def _not_regular(p: Path) -> str | None:
-    """Why a path named like a task file is not one, or None."""
+def _not_regular(p: Path) -> Message | None:
+    """Why a path named like a task file is not one (coded), or None."""
     try:
         st = os.stat(p)
     except FileNotFoundError:
-        return "a dangling symbolic link" if os.path.islink(p) else "no such file"
+        return Message("batch.dangling_link" if os.path.islink(p) else "batch.no_such_file")
     except OSError as exc:
-        return f"cannot be read: {exc.strerror or exc}"
+        return Message("batch.unreadable", error=str(exc.strerror or exc))
     if stat.S_ISDIR(st.st_mode):
-        return "a directory, not a task file"
+        return Message("batch.directory")
     if stat.S_ISFIFO(st.st_mode):
-        return "a FIFO (named pipe), not a task file"
+        return Message("batch.fifo")
     if not stat.S_ISREG(st.st_mode):
-        return "not a regular file"
+        return Message("batch.not_regular")
     return None
 
 
@@ -587,8 +587,9 @@ def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = froz
     outcomes: dict[int, dict] = {}
     for k, (f, why) in enumerate(found):
         if why is not None:
+            why = Message("batch.not_a_task", file=str(f), reason=why)
             outcomes[k] = {"task": None, "written": [], "sets": [], "code": 2, "status": "invalid",
-                           "message": f"{f}: {why}"}
+                           "message": why, "message_coded": why}
     args = [(found[k][0], out, folders[k], set(formats), lang, sets, tol_override, quantities) for k in runnable]
     warm([found[k][0] for k in runnable], formats)
     with _progress(con, len(args), "variants") as advance:
@@ -658,7 +659,8 @@ def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = froz
     atomic_write(out / "summary.csv", csv_text(SUMMARY_FIELDS + paths, rows))
     atomic_write(out / "check.csv", csv_text(CHECK_FIELDS, check_rows))
     from .summary import summary_html
-    atomic_write(out / "summary.html", summary_html(rows, paths, source, lang))
+    atomic_write(out / "summary.html", summary_html(rows, paths, source, lang,
+                                                    {Path(w).as_posix() for w in written}))
     written.update({"summary.csv", "summary.html", "check.csv"})
     removed = _remove_stale(out, old_files, written)
     atomic_write(out / MANIFEST, json.dumps({"files": sorted(written)}, indent=1) + "\n")

@@ -58,7 +58,7 @@ def parse_tolerance(v, where: str, line=None, col=None, file=None) -> Tol:
     def num(x, what):
         ok = isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(float(x)) and x >= 0
         if not ok:
-            raise bad(f"expected a non-negative number ({what}), got {x!r}")
+            raise bad(Message("input.tol_not_number", what=what, got=repr(x)))
         return float(x)
 
     if isinstance(v, Tol) or v == GRAPHICAL:
@@ -68,9 +68,9 @@ def parse_tolerance(v, where: str, line=None, col=None, file=None) -> Tol:
     if isinstance(v, dict):
         extra = set(map(str, v)) - {"rel", "abs"}
         if extra:
-            raise bad(f"unknown key '{sorted(extra)[0]}'; a tolerance mapping holds `rel` and `abs`")
-        return Tol(rel=num(v.get("rel", 0), "relative"), abs=num(v.get("abs", 0), "absolute"), plain=False)
-    return Tol(rel=num(v, "relative tolerance"))
+            raise bad(Message("input.tol_unknown_key", key=sorted(extra)[0]))
+        return Tol(rel=num(v.get("rel", 0), "rel"), abs=num(v.get("abs", 0), "abs"), plain=False)
+    return Tol(rel=num(v, "plain"))
 
 
 def tolerance_for(key: str, tol: dict) -> Any:
@@ -147,7 +147,7 @@ def answer_value(v, path: str):
         else:
             x = float(q.to_base_units().magnitude)
     except Exception as exc:  # noqa: BLE001 - pint's conversion errors: dimensionality, offset units, types
-        raise ValueError(f"cannot read {s!r}: {exc}") from None
+        raise ValueError(Message("answers.unreadable", value=repr(s), error=str(exc))) from None
     if not math.isfinite(x):
         raise ValueError(Message("answers.not_finite", value=repr(s)))
     return x
@@ -178,7 +178,7 @@ def load_answers_file(path: Path, keep_errors: bool = False) -> AnswerSet:
     from .yamlload import load_yaml
     path = Path(path)
     if not path.is_file():
-        raise TaskError("not a regular file (an answers file is a YAML file with `answers:`)", file=str(path))
+        raise TaskError(Message("answers.not_file"), file=str(path))
     try:
         data, marks = load_yaml(path)
     except TaskError:
@@ -195,8 +195,8 @@ def load_answers_file(path: Path, keep_errors: bool = False) -> AnswerSet:
         raw = data.get(key)
         if raw is not None and not isinstance(raw, dict):
             line, col = _mark(marks, (key,))
-            raise TaskError("invalid answers file", file=str(path), issues=[(key, line, col, f"expected a mapping, "
-                                                                              f"got {type(raw).__name__}")])
+            raise TaskError("invalid answers file", file=str(path),
+                            issues=[(key, line, col, Message("answers.not_mapping", got=type(raw).__name__))])
     aset = AnswerSet(source=str(path), stem=path.stem, variant=data.get("variant"))
     st = data.get("student") or {}
     aset.student, aset.group = str(st.get("name") or ""), str(st.get("group") or "")
@@ -209,7 +209,7 @@ def load_answers_file(path: Path, keep_errors: bool = False) -> AnswerSet:
             aset.answers[k] = answer_value(v, k)
         except KeyError as exc:
             err = TaskError("invalid answers file", file=str(path),
-                            issues=[(f"answers.{k}", line, col, str(exc).strip("'\""))])
+                            issues=[(f"answers.{k}", line, col, _coded(exc))])
         except ValueError as exc:
             err = TaskError("invalid answer", file=str(path),
                             issues=[(f"answers.{k}", line, col, Message("answers.invalid", reason=_coded(exc)))])
@@ -247,15 +247,15 @@ def load_answers_csv(path: Path) -> list[AnswerSet]:
     except TableError as exc:
         raise TaskError(exc.message, file=str(path), issues=[("", exc.line, None, exc.message)] if exc.line else None)
     if "variant" not in header:
-        raise TaskError("an answers table needs a `variant` column (and `student`, `group`, then one column "
-                        "per result path)", file=str(path))
+        raise TaskError(Message("answers.table_no_variant"), file=str(path))
     paths = [h for h in header if h not in ("student", "group", "variant") and h]
     for p in paths:
         try:
             parse_path(p)
         except KeyError as exc:
             raise TaskError("invalid answers table", file=str(path),
-                            issues=[(p, 1, header.index(p) + 1, f"column '{p}': {str(exc)}")]) from None
+                            issues=[(p, 1, header.index(p) + 1,
+                                     Message("answers.bad_column", column=p, reason=_coded(exc)))]) from None
     sets = []
     for line, row, bad in rows:
         from .tables import cell_value
@@ -263,7 +263,7 @@ def load_answers_csv(path: Path) -> list[AnswerSet]:
         aset = AnswerSet(source=f"{path}:{line}", student=row.get("student", "").strip(),
                          group=row.get("group", "").strip(), variant=None if v == "" else v)
         if bad:
-            aset.error = f"{path}:{line}: {bad}"
+            aset.error = Message("answers.table_row", where=f"{path}:{line}", reason=bad)
         for p in paths:
             try:
                 aset.answers[p] = answer_value(row.get(p, ""), p)
@@ -280,7 +280,7 @@ def load_sources(path: Path) -> list[AnswerSet]:
     if path.is_dir():
         return load_answers_dir(path)
     if not path.exists():
-        raise TaskError("no such file or folder", file=str(path))
+        raise TaskError(Message("answers.no_source"), file=str(path))
     if path.suffix.lower() == ".csv":
         return load_answers_csv(path)
     return [load_answers_file(path)]
@@ -301,7 +301,7 @@ def load_tolerance_file(path: Path) -> dict:
     from .yamlload import load_yaml
     path = Path(path)
     if not path.is_file():
-        raise TaskError("not a regular file (a tolerance file is a YAML mapping)", file=str(path))
+        raise TaskError(Message("input.tol_not_file"), file=str(path))
     try:
         data, marks = load_yaml(path)
     except TaskError:
@@ -310,8 +310,7 @@ def load_tolerance_file(path: Path) -> dict:
     if isinstance(data, dict) and isinstance(data.get("tolerance"), dict):
         data, base = data["tolerance"], ("tolerance",)
     if not isinstance(data, dict):
-        raise TaskError("not a tolerance file (a YAML mapping of result paths or prefixes to tolerances)",
-                        file=str(path))
+        raise TaskError(Message("input.tol_not_mapping"), file=str(path))
     out = {}
     for k, v in data.items():
         line, col = _mark(marks, base + (k,))
@@ -416,7 +415,7 @@ def grade(results: dict, aset: AnswerSet, tol: dict, required: list[str] | None 
                 if leaves is None:
                     leaves = [q for q, v in leaf_paths(results) if isinstance(v, (int, float))]
                 row["status"] = "unknown_path"
-                row["note"] = Message("answers.note_unknown_path", reason=str(exc).strip(chr(34) + chr(39)),
+                row["note"] = Message("answers.note_unknown_path", reason=_coded(exc),
                                       hint=did_you_mean(p, results, leaves))
             continue
         if ref is None:

@@ -142,7 +142,7 @@ def expand(quantities: str | list[str], results: dict, *, strict: bool = True) -
                 raise KeyError(f"'{raw}' holds no number")
         except KeyError as exc:
             if strict:
-                raise TaskError(f"quantity '{raw}' is not in the results: {str(exc).strip(chr(39))}; "
+                raise TaskError(f"quantity '{raw}' is not in the results: {exc.args[0] if exc.args else exc}; "
                                 f"{did_you_mean(raw, results, names)} (presets: {', '.join(PRESETS)})") from None
         if raw not in out:
             out.append(raw)

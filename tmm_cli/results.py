@@ -8,6 +8,8 @@ import re
 from contextlib import contextmanager
 from typing import Any
 
+from .messages import Message
+
 
 class Entries(list):
     """A results section's entries (one per position) built already clean: plain
@@ -193,34 +195,36 @@ def parse_path(path: str) -> list[str | int]:
     pos = 0
     for m in _TOKEN.finditer(path):
         if m.start() != pos and path[pos:m.start()] != ".":
-            raise KeyError(f"bad path '{path}' near '{path[pos:m.start()]}'")
+            raise KeyError(Message("answers.bad_path_near", path=path, near=path[pos:m.start()]))
         out.append(m.group(1) if m.group(1) is not None else int(m.group(2)))
         pos = m.end()
     if pos != len(path) or not out:
-        raise KeyError(f"bad path '{path}'")
+        raise KeyError(Message("answers.bad_path", path=path))
     return out
 
 
 def lookup(results: dict, path: str) -> Any:
     """The value at a path into results.json. In lists of position entries
     (kinematics, kinetostatics) `[i]` selects the entry whose `index` is i;
-    elsewhere it is the list index."""
+    elsewhere it is the list index. A path that leads nowhere raises KeyError whose
+    one argument is the coded reason (a Message: `exc.args[0]`, never `str(exc)`,
+    which is its quoted repr)."""
     cur: Any = results
     for tok in parse_path(path):
         if isinstance(tok, int):
             if not isinstance(cur, list):
-                raise KeyError(f"'{path}': [{tok}] applied to a non-list")
+                raise KeyError(Message("answers.path_not_list", path=path, index=tok))
             if cur and isinstance(cur[0], dict) and "index" in cur[0]:
                 hit = [e for e in cur if e.get("index") == tok]
                 if not hit:
-                    raise KeyError(f"'{path}': no entry with index {tok}")
+                    raise KeyError(Message("answers.path_no_entry", path=path, index=tok))
                 cur = hit[0]
             else:
                 if not -len(cur) <= tok < len(cur):
-                    raise KeyError(f"'{path}': index {tok} out of range")
+                    raise KeyError(Message("answers.path_index_range", path=path, index=tok))
                 cur = cur[tok]
         else:
             if not isinstance(cur, dict) or tok not in cur:
-                raise KeyError(f"'{path}': no key '{tok}'")
+                raise KeyError(Message("answers.path_no_key", path=path, key=tok))
             cur = cur[tok]
     return cur

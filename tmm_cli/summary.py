@@ -156,9 +156,12 @@ COLOURS = {"ok": "#c8e6c9", "outside": "#ffcdd2", "sign": "#e1bee7", "missing": 
            "failed": "#ef9a9a"}
 
 
-def summary_html(rows: list[dict], paths: list[str], source: str, lang: str = "en") -> str:
+def summary_html(rows: list[dict], paths: list[str], source: str, lang: str = "en",
+                 written: set[str] | None = None) -> str:
     """summary.html: students x quantities, a colour per status, the score, links to each
-    variant's report, check file and feedback. Every user string is escaped."""
+    variant's report, check file and feedback. Every user string is escaped. ``written``:
+    the files the batch wrote (relative to the page's folder): only those are linked (an
+    invalid variant has no report, a json-only batch none at all); None links every one."""
     import html
     from urllib.parse import quote
 
@@ -187,9 +190,10 @@ def summary_html(rows: list[dict], paths: list[str], source: str, lang: str = "e
         folder = r.get("folder") or ""
         if folder:
             for name, label in (("report.html", "report"), ("check.csv", "check")):
-                links.append(f'<a href="{e(quote(folder))}/{name}">{e(T[label])}</a>')
+                if written is None or f"{folder}/{name}" in written:
+                    links.append(f'<a href="{e(quote(folder))}/{name}">{e(T[label])}</a>')
         for fb in r.get("feedback", []) or []:
-            if fb.endswith(".html"):
+            if fb.endswith(".html") and (written is None or fb in written):
                 links.append(f'<a href="{e(quote(fb))}">{e(T["feedback"])}</a>')
         tds += f"<td>{' '.join(links)}</td><td class='msg'>{e(_message(r, lang, localize))}</td>"
         body.append(f"<tr>{tds}</tr>")

@@ -17,6 +17,8 @@ import math
 import re
 from pathlib import Path
 
+from .messages import Message
+
 FORMULA_START = ("=", "+", "-", "@", "\t", "\r")
 _NUMBER = re.compile(r"^[-+]?(\d+([.,]\d*)?|[.,]\d+)([eE][-+]?\d+)?$")
 
@@ -98,14 +100,14 @@ def read_table(path: str | Path) -> tuple[list[str], list[tuple[int, dict[str, s
     try:
         raw = path.read_bytes()
     except OSError as exc:
-        raise TableError(str(path), None, f"cannot read: {exc.strerror or exc}") from None
+        raise TableError(str(path), None, Message("input.table_unreadable", error=str(exc.strerror or exc))) from None
     try:
         text = raw.decode("utf-8-sig")
     except UnicodeDecodeError:
         try:
             text = raw.decode("cp1251")       # a Russian Excel "CSV (разделители - запятые)"
         except UnicodeDecodeError:
-            raise TableError(str(path), None, "not a UTF-8 text table") from None
+            raise TableError(str(path), None, Message("input.table_not_text")) from None
     first = text.split("\n", 1)[0]
     # a ";" outside quotes in the header line means ";" (headers like "l, mm" hold commas)
     sep = ";" if ";" in re.sub(r'"[^"]*"', "", first) else ","
@@ -120,14 +122,14 @@ def read_table(path: str | Path) -> tuple[list[str], list[tuple[int, dict[str, s
         if header is None:
             header = [c.strip() for c in cells]
             if start != 1:
-                raise TableError(str(path), start, "the header must be the first line")
+                raise TableError(str(path), start, Message("input.table_header_first"))
             continue
         bad = None
         if len(cells) > len(header):
-            bad = f"malformed row: {len(cells)} cells but the header has {len(header)} columns"
+            bad = Message("input.table_malformed_row", cells=len(cells), columns=len(header))
         rows.append((start, {h: (cells[i] if i < len(cells) else "") for i, h in enumerate(header)}, bad))
     if header is None:
-        raise TableError(str(path), None, "empty table (no header line)")
+        raise TableError(str(path), None, Message("input.table_empty"))
     return header, rows
 
 

@@ -471,34 +471,36 @@ class SynthesisSection(_Model):
         spell = lambda k: "lambda" if k == "lambda_" else k
         for k in required:
             if getattr(self, k) is None:
-                raise FieldValueError((spell(k),), f"type {self.type} needs `{spell(k)}`")
+                raise FieldValueError((spell(k),), Message("input.synth_needs", type=self.type, key=spell(k)))
         allowed = set(required) | set(optional) | {k for g in groups for k in g}
         for k in ("H", "psi", "K", "theta", "lambda_", "e", "gamma_min", "rocker", "frame", "guide_height"):
             if getattr(self, k) is not None and k not in allowed:
-                hint = "; use type offset_slider_crank" if self.type == "slider_crank" and k == "e" else ""
-                raise FieldValueError((spell(k),), f"type {self.type} does not take `{spell(k)}`{hint}")
+                offset = self.type == "slider_crank" and k == "e"
+                raise FieldValueError((spell(k),), Message("input.synth_not_taken_offset" if offset
+                                                           else "input.synth_not_taken", type=self.type, key=spell(k)))
         for g in groups:
             given = [k for k in g if getattr(self, k) is not None]
             if len(given) != 1:
-                names = ", ".join(f"`{spell(k)}`" for k in g)
+                names = [f"`{spell(k)}`" for k in g]
                 raise FieldValueError((spell((given or g)[-1]),),
-                                      f"type {self.type} needs exactly one of {names}"
-                                      + (f"; got {', '.join(spell(k) for k in given)}" if given else ""))
+                                      Message("input.synth_one_of_got", type=self.type, names=names,
+                                              given=[spell(k) for k in given]) if given else
+                                      Message("input.synth_one_of", type=self.type, names=names))
         if self.type == "slider_crank":
             th = self.theta if self.theta is not None else (180.0 * (self.K - 1) / (self.K + 1)
                                                             if self.K is not None else 0.0)
             if abs(th) > 1e-12:
-                raise FieldValueError(("K" if self.K is not None else "theta",),
-                                      "a central slider_crank has K = 1 (theta = 0): for K != 1 use type "
-                                      "offset_slider_crank")
+                raise FieldValueError(("K" if self.K is not None else "theta",), Message("input.synth_central"))
         from .linkage.synthesis import LINKS
         for name in self.links:
             if name not in LINKS[self.type]:
                 import difflib
                 close = difflib.get_close_matches(name, LINKS[self.type], n=1)
-                raise FieldValueError(("links", name), f"type {self.type} generates no link '{name}'"
-                                      + (f"; did you mean '{close[0]}'?" if close else "")
-                                      + f" (links: {', '.join(LINKS[self.type])})")
+                raise FieldValueError(("links", name),
+                                      Message("input.synth_no_link_hint", type=self.type, name=name, hint=close[0],
+                                              links=list(LINKS[self.type])) if close else
+                                      Message("input.synth_no_link", type=self.type, name=name,
+                                              links=list(LINKS[self.type])))
         return self
 
 

@@ -20,6 +20,7 @@ from typing import Literal
 
 from pydantic import Field, field_validator, model_validator
 
+from .messages import Message
 from .modelbase import PLANETARY_ALIASES, PLANETARY_SCHEMES, FieldValueError, _Model
 from .units import AngularSpeed, Number, Ratio
 
@@ -31,7 +32,7 @@ Z_COUNT = {"pair": 2, "A": 3, "B": 4, "C": 4, "D": 4}
 def _nonzero_ratio(v):
     """A required ratio (of a stage or the train) may have either sign but not be zero."""
     if v is not None and v == 0:
-        raise ValueError("the ratio cannot be zero")
+        raise ValueError(Message("input.ratio_zero"))
     return v
 
 class TrainStageSpec(_Model):
@@ -48,7 +49,7 @@ class TrainStageSpec(_Model):
             return v
         key = PLANETARY_ALIASES.get(str(v).strip().lower(), str(v).strip().upper())
         if key not in PLANETARY_SCHEMES:
-            raise ValueError(f"unknown planetary scheme {v!r}; known: {', '.join(PLANETARY_SCHEMES)}")
+            raise ValueError(Message("input.planetary_scheme", scheme=repr(v), known=list(PLANETARY_SCHEMES)))
         return key
 
     @field_validator("ratio")
@@ -59,20 +60,21 @@ class TrainStageSpec(_Model):
     @model_validator(mode="after")
     def _shape(self):
         if self.type == "planetary" and self.scheme is None:
-            raise FieldValueError(("scheme",), "a planetary stage needs `scheme: A | B | C | D`")
+            raise FieldValueError(("scheme",), Message("input.train_needs_scheme"))
         if self.type == "pair" and self.scheme is not None:
-            raise FieldValueError(("scheme",), "`scheme` belongs to planetary stages, not to a pair")
+            raise FieldValueError(("scheme",), Message("input.train_scheme_pair"))
         if self.type == "planetary" and self.internal:
-            raise FieldValueError(("internal",), "`internal` belongs to pairs, not to a planetary stage")
+            raise FieldValueError(("internal",), Message("input.train_internal"))
         if self.z is not None:
             n = Z_COUNT["pair" if self.type == "pair" else self.scheme]
             if len(self.z) != n:
-                what = "a pair" if self.type == "pair" else f"scheme {self.scheme}"
-                raise FieldValueError(("z",), f"{what} takes {n} tooth numbers, got {len(self.z)}")
+                raise FieldValueError(("z",), Message("input.train_z_count_pair", n=n, got=len(self.z))
+                                      if self.type == "pair" else
+                                      Message("input.train_z_count_scheme", scheme=self.scheme, n=n, got=len(self.z)))
             if min(self.z) < 5:
-                raise FieldValueError(("z",), "tooth numbers must be at least 5")
+                raise FieldValueError(("z",), Message("input.z_min"))
             if self.ratio is not None:
-                raise FieldValueError(("ratio",), "give either `z` or the stage's `ratio`, not both")
+                raise FieldValueError(("ratio",), Message("input.train_z_and_ratio"))
         return self
 
     @property
@@ -107,10 +109,11 @@ class DriveTrainSection(_Model):
     def _limits(self):
         for name in ("z_min_external", "z_min_internal", "z_min_satellite_in_internal"):
             if getattr(self, name) > self.z_max:
-                raise FieldValueError((name,), f"{name} = {getattr(self, name)} exceeds z_max = {self.z_max}")
+                raise FieldValueError((name,), Message("input.train_z_above_max", name=name, value=getattr(self, name),
+                                                       z_max=self.z_max))
         for i, st in enumerate(self.stages):
             if st.z is not None and max(st.z) > 300:
-                raise FieldValueError(("stages", i, "z"), "tooth numbers above 300 are not supported")
+                raise FieldValueError(("stages", i, "z"), Message("input.train_z_300"))
         return self
 
 

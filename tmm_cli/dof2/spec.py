@@ -30,6 +30,7 @@ from typing import Annotated, Any, Literal
 
 from pydantic import BeforeValidator, Field, WithJsonSchema, field_validator, model_validator
 
+from ..messages import Message
 from ..modelbase import _Model
 from ..units import Angle, AngularSpeed, Inertia, Length, Mass, MomentQ, Ratio, _fast, ureg
 
@@ -38,9 +39,8 @@ __all__ = ["Dof2Section", "RotorSpec", "StrikerSpec", "DriveSpec", "InitialSpec"
 
 def _time(value: Any) -> float:
     """A time: a number in seconds or a string with a unit ('40 ms', '0.5 s', '1 min')."""
-    words = "a time (s, ms, min)"
     if isinstance(value, bool) or value is None:
-        raise ValueError(f"expected {words}, got {value!r}")
+        raise ValueError(Message("input.unit_expected", kind="time", got=repr(value)))
     if isinstance(value, (int, float)):
         v = float(value)
     elif isinstance(value, str):
@@ -54,17 +54,17 @@ def _time(value: Any) -> float:
             try:
                 q = reg.Quantity(text)
             except Exception:  # noqa: BLE001 - pint's parser raises many kinds; the message names the field
-                raise ValueError(f"cannot read '{text}' as {words}") from None
+                raise ValueError(Message("input.unit_unreadable", text=text, kind="time")) from None
             try:
                 v = float(q.to("s").magnitude)
             except Exception:  # noqa: BLE001 - pint's conversion errors of any kind
-                raise ValueError(f"'{text}' is not {words}: its unit does not convert to s") from None
+                raise ValueError(Message("input.unit_not_convert", text=text, kind="time", unit="s")) from None
     else:
-        raise ValueError(f"expected {words}, got {type(value).__name__}")
+        raise ValueError(Message("input.unit_expected", kind="time", got=type(value).__name__))
     if not math.isfinite(v):
-        raise ValueError("expected a finite number")
+        raise ValueError(Message("input.not_finite"))
     if abs(v) > 1e12:
-        raise ValueError(f"{v:g} s is out of range")
+        raise ValueError(Message("input.time_range", value=v))
     return v
 
 
@@ -75,7 +75,7 @@ Time = Annotated[float, BeforeValidator(_time), WithJsonSchema({"anyOf": [
 
 def _nonneg(v: float | None, what: str) -> float | None:
     if v is not None and v < 0:
-        raise ValueError(f"{what} must not be negative, got {v:g}")
+        raise ValueError(Message("input.dof2_negative", what=what, value=v))
     return v
 
 
@@ -94,7 +94,7 @@ class RotorSpec(_Model):
     @classmethod
     def _len(cls, v):
         if v <= 0:
-            raise ValueError(f"the rotor length must be positive, got {v:g}")
+            raise ValueError(Message("input.rotor_length", value=v))
         return v
 
     @field_validator("mass", "J", "J_O")
@@ -105,11 +105,9 @@ class RotorSpec(_Model):
     @model_validator(mode="after")
     def _inertia(self):
         if self.J is not None and self.J_O is not None:
-            raise ValueError("give the rotor's moment of inertia either about its centre of mass (`J`) "
-                             "or about O (`J_O`), not both")
+            raise ValueError(Message("input.rotor_inertia_both"))
         if self.J_O is not None and self.J_O < self.mass * self.com ** 2 * (1 - 1e-12):
-            raise ValueError(f"J_O = {self.J_O:g} kg*m^2 is less than m1*com^2 = {self.mass * self.com ** 2:g}: "
-                             "impossible (J_O = J_S1 + m1*com^2 with J_S1 >= 0)")
+            raise ValueError(Message("input.rotor_J_O", J_O=self.J_O, m_com2=self.mass * self.com ** 2))
         return self
 
     @property
@@ -133,7 +131,7 @@ class StrikerSpec(_Model):
     @classmethod
     def _len(cls, v):
         if v <= 0:
-            raise ValueError(f"the striker length must be positive, got {v:g}")
+            raise ValueError(Message("input.striker_length", value=v))
         return v
 
     @field_validator("mass", "J")
@@ -144,7 +142,7 @@ class StrikerSpec(_Model):
     @model_validator(mode="after")
     def _check(self):
         if self.mass <= 0 and self.J <= 0:
-            raise ValueError("the striker needs a mass or a moment of inertia (its motion is undetermined)")
+            raise ValueError(Message("input.striker_mass"))
         return self
 
     @property
@@ -163,12 +161,11 @@ class DriveSpec(_Model):
     @model_validator(mode="after")
     def _one(self):
         if (self.moment is None) == (self.speed is None):
-            raise ValueError("the drive is either a constant `moment` (N*m) or a held `speed` (omega1 = const), "
-                             "give exactly one")
+            raise ValueError(Message("input.dof2_drive_one"))
         if self.speed is not None and self.speed <= 0:
-            raise ValueError(f"the drive speed must be positive (use `direction`), got {self.speed:g}")
+            raise ValueError(Message("input.dof2_speed_positive", value=self.speed))
         if self.moment is not None and "direction" in self.model_fields_set:
-            raise ValueError("`direction` belongs to a `speed` drive; a moment is signed (ccw positive)")
+            raise ValueError(Message("input.dof2_direction_moment"))
         return self
 
     @property
@@ -215,18 +212,17 @@ class Dof2Section(_Model):
     @model_validator(mode="after")
     def _duration(self):
         if (self.t_end is None) == (self.turns is None):
-            raise ValueError("give the duration either as `t_end` (s) or as `turns` (of the rotor), exactly one")
+            raise ValueError(Message("input.dof2_duration"))
         if self.t_end is not None and self.t_end <= 0:
-            raise ValueError(f"t_end must be positive, got {self.t_end:g}")
+            raise ValueError(Message("input.dof2_positive", name="t_end", value=self.t_end))
         if self.turns is not None and self.turns <= 0:
-            raise ValueError(f"turns must be positive, got {self.turns:g}")
+            raise ValueError(Message("input.dof2_positive", name="turns", value=self.turns))
         if self.t_max <= 0:
-            raise ValueError(f"t_max must be positive, got {self.t_max:g}")
+            raise ValueError(Message("input.dof2_positive", name="t_max", value=self.t_max))
         if not 2 <= self.samples <= 100001:
-            raise ValueError(f"samples must be between 2 and 100001, got {self.samples}")
+            raise ValueError(Message("input.dof2_samples", value=self.samples))
         if (self.drive is not None and self.drive.speed is not None
                 and "omega" in self.initial.model_fields_set
                 and abs(self.initial.omega - self.drive.omega1) > 1e-9 * abs(self.drive.omega1)):
-            raise ValueError(f"with a `speed` drive the rotor turns at omega1 = {self.drive.omega1:g} rad/s; "
-                             f"initial.omega = {self.initial.omega:g} contradicts it (omit it)")
+            raise ValueError(Message("input.dof2_omega", omega1=self.drive.omega1, omega=self.initial.omega))
         return self
