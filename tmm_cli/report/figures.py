@@ -310,7 +310,10 @@ def _point_dists(cx, cy, px, py):
     """Distance from each point (cx[i], cy[i]) to the nearest of the points (px, py)."""
     dx = cx[:, None] - px
     dy = cy[:, None] - py
-    return np.sqrt((dx * dx + dy * dy).min(axis=1))
+    dx *= dx
+    dy *= dy
+    dx += dy
+    return np.sqrt(dx.min(axis=1))
 
 
 _DIRS = np.array([[math.cos(t), math.sin(t)] for t in np.linspace(0, 2 * math.pi, 16, endpoint=False)])
@@ -363,6 +366,10 @@ def place_labels(anchors, extent: float, avoid=(), step: float | None = None, se
     ncand = len(offx)
     every = np.arange(ncand)
     lim_l, lim_a, lim_s = 2.2 * step, 1.2 * step, 0.8 * step
+    n_near = len(_DIRS) * len(_MULTS)          # the nearer rings' candidates come first
+    # the most a candidate of a farther ring can score (without the preferred direction's
+    # term), with a margin for rounding
+    far_top = lim_l + lim_a + lim_s - float(ring[n_near]) + 1e-9 * step if n_near < ncand else np.inf
     if bounds is not None:
         bx0, by0, bx1, by1 = bounds
     for k_a, (x, y, pref) in enumerate(anchors):
@@ -377,8 +384,8 @@ def place_labels(anchors, extent: float, avoid=(), step: float | None = None, se
                 ok &= ~((np.abs(r @ bu) < hw + 0.5 * step) & (np.abs(r @ bv) < hh + 0.4 * step))
         half = None
         if sizes is not None:
-            half = np.asarray(sizes[k_a], float) / 2
-            h0, h1 = float(half[0]), float(half[1])
+            half = True
+            h0, h1 = float(sizes[k_a][0]) / 2, float(sizes[k_a][1]) / 2
             if nt:
                 free = ~((np.abs(cx[:, None] - tcx[:nt]) < h0 + thx[:nt])
                          & (np.abs(cy[:, None] - tcy[:nt]) < h1 + thy[:nt])).any(axis=1)
@@ -402,21 +409,39 @@ def place_labels(anchors, extent: float, avoid=(), step: float | None = None, se
         if ok is None:
             idx, sx, sy = every, cx, cy
         else:
-            idx = np.flatnonzero(ok)
+            idx = ok.nonzero()[0]
             sx, sy = cx[idx], cy[idx]
         best = None
         n_ok = len(idx)
         if n_ok:
-            dl = _point_dists(sx, sy, plx[:k_a], ply[:k_a]) if k_a else np.full(n_ok, big)
-            da = _point_dists(sx, sy, avx, avy) if len(avx) else np.full(n_ok, big)
-            ds = seg.dists(sx, sy) if seg is not None else np.full(n_ok, np.inf)
-            score = np.minimum(dl, lim_l) + np.minimum(da, lim_a) + np.minimum(ds, lim_s) - ring[idx]
+            lean = None
             if pref is not None:
                 n = math.hypot(*pref)
                 if n > 0:
-                    score = score + 0.5 * step * (dirs[idx] @ (np.asarray(pref, float) / n))
-            k = int(np.argmax(score))
-            if np.isfinite(score[k]):
+                    lean = 0.5 * step * (dirs[idx] @ (np.asarray(pref, float) / n))
+
+            def scores(hi):
+                # each candidate's score depends on that candidate alone: the first hi
+                # score as in the whole
+                qx, qy = sx[:hi], sy[:hi]
+                dl = _point_dists(qx, qy, plx[:k_a], ply[:k_a]) if k_a else np.full(hi, big)
+                da = _point_dists(qx, qy, avx, avy) if len(avx) else np.full(hi, big)
+                ds = seg.dists(qx, qy) if seg is not None else np.full(hi, np.inf)
+                sc = np.minimum(dl, lim_l) + np.minimum(da, lim_a) + np.minimum(ds, lim_s) - ring[idx[:hi]]
+                return sc if lean is None else sc + lean[:hi]
+
+            # the nearer rings first: when one of them scores above the most a farther
+            # one can, the farther ones are not scored (the same choice: the first best)
+            score = None
+            n_in = n_ok if n_near >= ncand else (n_near if ok is None else int(np.count_nonzero(ok[:n_near])))
+            if 0 < n_in < n_ok:
+                near = scores(n_in)
+                if near.max() > (far_top if lean is None else far_top + 0.5 * step):
+                    score = near
+            if score is None:
+                score = scores(n_ok)
+            k = int(score.argmax())
+            if math.isfinite(score[k]):
                 best = (float(sx[k]), float(sy[k]))
         if best is None:
             b = np.array([x, y], float) + _DIRS[4] * step * 2.5
