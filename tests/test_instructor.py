@@ -878,3 +878,18 @@ def test_form_names_a_misspelt_quantity_without_stray_quotes(tmp_path):
     res = runner.invoke(app, ["form", str(task), "-q", "gears.a_ww", "-o", str(tmp_path / "f")])
     assert "quantity 'gears.a_ww' is not in the results: gears.a_ww: no key 'a_ww'; did you mean 'gears.aw'?" \
         in res.output, res.output
+
+
+def test_summary_shows_a_variant_without_answers_as_computed_not_correct(tmp_path):
+    """A batch with no answers anywhere grades nothing: summary.csv keeps its `ok` (the run
+    succeeded, exit 0), but the page says "computed", not "correct"."""
+    src = tmp_path / "src"
+    _write(src, "g.yaml", "schema: tmm/1\nvariant: '7'\ngears: {m: 4 mm, z: [14, 30]}\n")
+    for lang, word, verdict in (("en", ">computed<", ">ok<"), ("ru", ">рассчитано<", ">верно<"),
+                                ("uk", ">розраховано<", ">правильно<")):
+        out = tmp_path / f"o_{lang}"
+        res = runner.invoke(app, ["batch", str(src), "--out", str(out), "--lang", lang, "--format", "json"])
+        assert res.exit_code == 0, res.output
+        assert _csv(out / "summary.csv")[0]["status"] == "ok"
+        row = next(r for r in (out / "summary.html").read_text().split("<tr>") if "<td>7</td>" in r)
+        assert word in row and verdict not in row

@@ -73,7 +73,14 @@ def print_summary(results: dict, paths: list[Path]) -> None:
 
 STATUS_STYLE = {"ok": "green", "sign": "magenta", "outside": "red", "missing": "yellow",
                 "unknown_path": "yellow", "not_computed": "cyan", "no_answers": "yellow", "invalid": "red",
-                "failed": "red"}
+                "failed": "red", "computed": "blue"}
+
+
+def shown_status(row: dict) -> str:
+    """The status a batch row is shown with: summary.csv's ``ok`` of a variant that ran with
+    no answers to check (none were expected) reads ``computed``, not a verdict."""
+    st = row["status"]
+    return "computed" if st == "ok" and not row.get("answers") else st
 
 
 def _short_path(p: str, n: int = 30) -> str:
@@ -124,7 +131,7 @@ def print_batch(rows: list[dict], out: Path, skipped=(), removed=()) -> None:
     t.add_column("message", overflow="fold", max_width=32)
     for r in rows:
         who = r.get("student") or Path(str(r.get("file", ""))).name
-        st = r["status"]
+        st = shown_status(r)
         score = f"{100 * float(r['score']):.0f} %" if r.get("answers") else "-"
         t.add_row(Text(str(who)), Text(str(r.get("variant", ""))), Text(st, style=STATUS_STYLE.get(st, "")),
                   score, Text(str(r.get("message", ""))[:200]))
@@ -143,7 +150,7 @@ I18N = {
            "feedback": "feedback", "rows": "rows", "legend": "Legend",
            "ok": "ok", "outside": "outside tolerance", "sign": "sign error", "missing": "missing",
            "unknown_path": "unknown path", "not_computed": "not computed", "no_answers": "no answers",
-           "invalid": "invalid", "failed": "failed"},
+           "invalid": "invalid", "failed": "failed", "computed": "computed"},
     "ru": {"title": "tmm: сводка по группе", "student": "студент", "group": "группа", "variant": "вариант",
            "status": "статус", "score": "балл", "message": "сообщение", "files": "файлы", "report": "отчёт",
            "check": "проверка", "feedback": "разбор", "rows": "строк", "legend": "Обозначения"},
@@ -153,7 +160,7 @@ I18N = {
 }
 COLOURS = {"ok": "#c8e6c9", "outside": "#ffcdd2", "sign": "#e1bee7", "missing": "#fff9c4",
            "unknown_path": "#ffe0b2", "not_computed": "#e0e0e0", "no_answers": "#fff9c4", "invalid": "#ef9a9a",
-           "failed": "#ef9a9a"}
+           "failed": "#ef9a9a", "computed": "#e3f2fd"}
 
 
 def summary_html(rows: list[dict], paths: list[str], source: str, lang: str = "en",
@@ -176,7 +183,7 @@ def summary_html(rows: list[dict], paths: list[str], source: str, lang: str = "e
     head += f"<th>{e(T['files'])}</th><th>{e(T['message'])}</th>"
     body = []
     for r in rows:
-        st = r["status"]
+        st = shown_status(r)
         score = f"{100 * float(r['score']):.0f} %" if r.get("answers") else "–"
         cells = [e(r.get("student", "")), e(r.get("group", "")), e(r.get("variant", "")),
                  f'<span class="st">{e(T.get(st, st))}</span>', e(score)]
@@ -221,4 +228,4 @@ def _message(row: dict, lang: str, localize) -> str:
 
 def _mark(status: str) -> str:
     return {"ok": "✓", "outside": "✗", "sign": "±", "missing": "–", "unknown_path": "?",
-            "not_computed": "·", "no_answers": "–", "invalid": "!", "failed": "!"}.get(status, "")
+            "not_computed": "·", "no_answers": "–", "invalid": "!", "failed": "!", "computed": "○"}.get(status, "")
