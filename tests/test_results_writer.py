@@ -112,7 +112,9 @@ def test_csv_number_rows_as_the_writer_gives_them():
     header = ["index", "phi", "a", "b"]
     rows = [[0, 12.5, -0.0, 1e-05], (1, 1e16, -3, 2.5e-300), [2, None, 1.0, float("nan")],
             [3, float("inf"), True, "text"], [4, "=1+2", "-1,5", ""], [5, np.float64(0.1), np.int64(3), 7],
-            {"index": 6, "phi": 0.25, "a": None, "b": 1.5}, iter([7, 0.5, 0.5, 0.5]), [], [8, "1e5", -1, 0]]
+            {"index": 6, "phi": 0.25, "a": None, "b": 1.5}, iter([7, 0.5, 0.5, 0.5]), [], [8, "1e5", -1, 0],
+            [9, None, None, 2.0], [None, None, None, None], [None], [None, None], [10, "None", None, 1e-7],
+            [11, None, float("nan"), 1.0], [None, 12], (13, None, -2.5e-12, None)]
     ref_rows = rows[:7] + [[7, 0.5, 0.5, 0.5]] + rows[8:]       # the iterator row, as a list
     assert csv_text(header, rows) == _csv_reference(header, ref_rows)
 

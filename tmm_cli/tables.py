@@ -59,6 +59,10 @@ def csv_text(header: list[str], rows) -> str:
         line = ",".join(map(repr, vals))
         if numbers(line):
             buf.write(line + "\n")
+        elif len(vals) > 1 and numbers(line := line.replace("None", "")):
+            # the same with empty cells (None; the text 'None' has quotes in its repr):
+            # the writer gives an empty field for each (but for a row of one empty field)
+            buf.write(line + "\n")
         else:
             w.writerow([v if type(v) is float and v - v == 0 else safe_cell(v) for v in vals])
     return buf.getvalue()
