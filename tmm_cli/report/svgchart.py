@@ -566,9 +566,11 @@ def _marker_r(ln) -> float:
 
 def _polyline_d(X, Y) -> str:
     """Path data of a polyline broken at non-finite points."""
+    X, Y = np.asarray(X, dtype=float), np.asarray(Y, dtype=float)
     ok = np.isfinite(X) & np.isfinite(Y)
     parts, run = [], []
-    for good, a, b in zip(ok, X, Y):
+    # Python floats and bools: formatted as the numpy scalars are, without making them
+    for good, a, b in zip(ok.tolist(), X.tolist(), Y.tolist()):
         if good:
             run.append(f"{_f(a)} {_f(b)}")
         elif run:
