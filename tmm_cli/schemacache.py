@@ -112,13 +112,20 @@ def _made(model: type, made: dict, attr: str, load_cached):
 
 
 def _load_serializer(model: type):
+    """The model's serializer from the cache, or None (no cache, or a stale one)."""
+    from pydantic_core import SchemaSerializer
+    return _from_cache(model, SchemaSerializer)
+
+
+def _from_cache(model: type, make):
+    """``make(core schema, core config)`` of the cached schema, or None (no cache, a stale
+    one, or one that cannot be read: then pydantic builds the object itself)."""
     sc = _schema(model)
     if sc is None:
         return None
     try:
-        from pydantic_core import SchemaSerializer
-        return SchemaSerializer(*sc)
-    except Exception:  # noqa: BLE001 - a cache that cannot be read is no cache: pydantic builds the serializer
+        return make(*sc)
+    except Exception:  # noqa: BLE001 - a cache that cannot be read is no cache
         return None
 
 
@@ -135,14 +142,8 @@ def _schema(model: type):
 
 def load(model: type):
     """The model's validator from the cache, or None (no cache, or a stale one)."""
-    sc = _schema(model)
-    if sc is None:
-        return None
-    try:
-        from pydantic_core import SchemaValidator
-        return SchemaValidator(*sc)
-    except Exception:  # noqa: BLE001 - a cache that cannot be read is no cache: pydantic builds the validator
-        return None
+    from pydantic_core import SchemaValidator
+    return _from_cache(model, SchemaValidator)
 
 
 def save(model: type) -> None:
