@@ -25,12 +25,6 @@ Point2 = tuple[float, float]
 _UNKNOWN = re.compile(r"unknown key '([^']+)'")
 
 
-def _pair(v: Any, what: str = "coordinates") -> Any:
-    if isinstance(v, (list, tuple)) and len(v) != 2:
-        raise ValueError(f"expected two {what} [x, y], got {len(v)} values")
-    return v
-
-
 LengthPair = tuple[Length, Length]
 
 
