@@ -110,3 +110,28 @@ def test_dxf_ids_fixed_without_epoch_dates_follow_it(monkeypatch):
     assert source_date() == dt.datetime.fromtimestamp(EPOCH, dt.timezone.utc)
     monkeypatch.setenv("SOURCE_DATE_EPOCH", "yesterday")                # not seconds: the clock
     assert abs(source_date() - dt.datetime.now(dt.timezone.utc)) < dt.timedelta(minutes=5)
+
+
+def test_dxf_created_by_stamp_names_the_zone_of_its_day(monkeypatch):
+    """The "created by ezdxf <version> @ <time>" stamp is the day of the run at midnight with that day's own
+    UTC offset: +00:00 for SOURCE_DATE_EPOCH (UTC), the local offset for the clock."""
+    import time
+
+    import ezdxf
+
+    def stamp():
+        doc = ezdxf.new("R2010")
+        doc.modelspace().add_line((0, 0), (1, 2))
+        return re.search(rf"\n{re.escape(ezdxf.__version__)} @ (\S+)", dxf_text(doc)).group(1)
+
+    monkeypatch.setenv("SOURCE_DATE_EPOCH", str(EPOCH))
+    assert stamp() == dt.datetime.fromtimestamp(EPOCH, dt.timezone.utc).date().isoformat() + "T00:00:00+00:00"
+    monkeypatch.delenv("SOURCE_DATE_EPOCH")
+    monkeypatch.setenv("TZ", "Asia/Kolkata")                           # +05:30 all year
+    time.tzset()
+    try:
+        today = dt.datetime.now().date().isoformat()
+        assert stamp() in (today + "T00:00:00+05:30", dt.date.today().isoformat() + "T00:00:00+05:30")
+    finally:
+        monkeypatch.undo()
+        time.tzset()

@@ -63,7 +63,9 @@ def dxf_text(doc) -> str:
     from ezdxf.tools.juliandate import juliandate
 
     # the date of the run, as in the report's footer (a day: two runs of one day are identical)
-    day = _dt.datetime.combine(source_date().date(), _dt.time())
+    when = source_date()
+    day = _dt.datetime.combine(when.date(), _dt.time())
+    stamp = _dt.datetime.combine(when.date(), _dt.time(), tzinfo=when.tzinfo).isoformat()
     # "created by ezdxf <version> @ <time>" was stamped with the clock by ezdxf.new()
     doc.ezdxf_metadata()[CREATED_BY_EZDXF] = CONST_MARKER_STRING
     # the CLASSES of the entity types in use come from a set (an order that follows string
@@ -85,5 +87,5 @@ def dxf_text(doc) -> str:
     for var in _DATE_VARS:
         text = re.sub(r"(\n\s*9\r?\n" + re.escape(var) + r"\r?\n\s*40\r?\n)[^\r\n]*",
                       lambda m: m.group(1) + repr(juliandate(day)), text, count=1)
-    text = text.replace(CONST_MARKER_STRING, f"{ezdxf.__version__} @ {day.isoformat()}+00:00")
+    text = text.replace(CONST_MARKER_STRING, f"{ezdxf.__version__} @ {stamp}")
     return text
