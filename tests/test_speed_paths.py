@@ -128,6 +128,40 @@ def test_fast_path_answers_as_the_typer_app(tmp_path):
         assert _fast(line) is None, line
 
 
+def test_program_ends_at_once_unless_shutdown_has_work(tmp_path):
+    """The program (`tmm`, `python -m tmm_cli`: cli.entry) ends a plain run / validate
+    without the interpreter's shutdown (a global's finalizer never runs), its output all
+    written and its exit code kept; `main()` called by a program that goes on, an atexit
+    callback or a running thread take the ordinary exit (which does run them)."""
+    good = str(ROOT / "tasks" / "forging_sixbar.yaml")
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("schema: tmm/1\nmechanism:\n  ground: {O: [0, 0]}\n  linkz: {}\n", encoding="utf-8")
+    head = ("import sys, atexit, threading\n"
+            "class Last:\n    def __del__(self):\n        print('SHUTDOWN', file=sys.stderr)\n"
+            "last = Last()\n")
+    ends = {"entry": "from tmm_cli.cli import entry\nentry()\n",
+            "main": "from tmm_cli.cli import main\nmain()\n",
+            "atexit": "atexit.register(lambda: print('ATEXIT', file=sys.stderr))\n"
+                      "from tmm_cli.cli import entry\nentry()\n",
+            "thread": "threading.Thread(target=threading.main_thread().join).start()\n"     # to the end
+                      "from tmm_cli.cli import entry\nentry()\n"}
+    for args, code, out in ((["validate", good], 0, f"{good}: ok\n"), (["validate", str(bad)], 2, ""),
+                            (["run", good, "-f", "json", "-o", "o"], 0, None)):
+        for name, tail in ends.items():
+            p = subprocess.run([sys.executable, "-c", head + tail, *args], capture_output=True, text=True,
+                               cwd=tmp_path, timeout=300)
+            assert p.returncode == code, (name, args, p.stderr)
+            assert ("SHUTDOWN" in p.stderr) == (name != "entry"), (name, args, p.stderr)
+            assert ("ATEXIT" in p.stderr) == (name == "atexit"), (name, args)
+            if out is not None:
+                assert p.stdout == out, (name, args)
+            else:                                   # the summary table, to its last line
+                assert p.stdout.endswith("wrote o/.tmm-manifest.json\n"), (name, p.stdout)
+                assert json.loads((tmp_path / "o" / "results.json").read_text())["kinetostatics"]
+            if code == 2:
+                assert "error: invalid task" in p.stderr and "linkz" in p.stderr, (name, p.stderr)
+
+
 @pytest.mark.parametrize("kind", sorted(units._FAST_UNITS))
 def test_fast_units_equal_pint(kind):
     """Each factor of the table is pint's, and the product is pint's result to the bit."""
