@@ -18,7 +18,7 @@ finally:
         if _gc.get_freeze_count() == 0:     # (a caller's own freeze is left alone)
             # the import's objects straight to the oldest generation (as results.bulk):
             # enabled with them young, the collector's next pass would scan them all
-            # (~5% of a JSON run, which turns the collector off again right after)
+            # (~3 % of a JSON run, which turns the collector off again right after)
             _gc.freeze()
             _gc.unfreeze()
         _gc.enable()

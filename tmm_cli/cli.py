@@ -250,7 +250,7 @@ def _run_fast(command: Callable[[], int], exit_now: bool = False) -> None:
 def _exit_now(code: int) -> None:
     """End the program with ``code`` once its output is flushed, without the interpreter's
     shutdown: that frees every module and object one by one and runs the cycle collector
-    over them all (~10 % of a JSON run) in a process that is ending anyway, and has
+    over them all (5-10 % of a JSON run) in a process that is ending anyway, and has
     nothing else to do here (no atexit callback, no other thread, files closed). When it
     would have more to do (an atexit callback or a thread, python -i, output that
     cannot be flushed), the ordinary ``sys.exit``."""
