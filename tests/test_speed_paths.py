@@ -17,7 +17,7 @@ from tmm_cli.results import clean, dumps
 ROOT = Path(__file__).resolve().parents[1]
 HEAVY = ("scipy", "matplotlib", "weasyprint", "ezdxf", "pint", "jinja2")
 # a plain `tmm run` / `tmm validate` never builds the Typer app (tmm_cli.cli, the fast path)
-CLI_APP = ("typer", "click", "shellingham", "tmm_cli.commands")      # (rich: the summary)
+CLI_APP = ("typer", "click", "shellingham", "tmm_cli.commands")
 
 
 def _imported_by(args: list[str], tmp_path: Path, env: dict | None = None) -> set[str]:
@@ -31,8 +31,10 @@ def _imported_by(args: list[str], tmp_path: Path, env: dict | None = None) -> se
             "      file=sys.stderr)\n"
             "sys.exit(code)\n")
     import os
+    # no terminal and no console settings: the summary's text is Rich's without Rich
+    base = {k: v for k, v in os.environ.items() if k not in ("COLUMNS", "LINES", "FORCE_COLOR", "TTY_COMPATIBLE")}
     p = subprocess.run([sys.executable, "-c", code, *args], cwd=tmp_path, capture_output=True,
-                       text=True, timeout=300, env={**os.environ, **(env or {})})
+                       text=True, timeout=300, env={**base, **(env or {})}, stdin=subprocess.DEVNULL)
     assert p.returncode == 0, p.stderr
     line = [ln for ln in p.stderr.splitlines() if ln.startswith("MODULES ")][-1]
     return set(line.split()[1:])
@@ -40,10 +42,11 @@ def _imported_by(args: list[str], tmp_path: Path, env: dict | None = None) -> se
 
 def test_json_run_imports_no_heavy_module(tmp_path):
     mods = _imported_by(["run", str(ROOT / "tasks" / "forging_sixbar.yaml"), "--format", "json",
-                         "-o", str(tmp_path / "o")], tmp_path)
+                         "-o", "o"], tmp_path)
     assert "numpy" in mods                       # the stages ran
     assert not mods & set(HEAVY), sorted(mods & set(HEAVY))
     assert not mods & set(CLI_APP), sorted(mods & set(CLI_APP))
+    assert "rich" not in mods                    # the summary (not quiet) written as Rich would
     assert "numpy.ma" not in mods                # np.unique's import (tmm_cli.lazy.unique)
     assert "numpy.polynomial" not in mods        # the flywheel's Gauss points (tmm_cli.lazy.leggauss)
     # the report package neither (the hand-method error reads tmm_cli.plans, not the report)
@@ -126,6 +129,40 @@ def test_fast_path_answers_as_the_typer_app(tmp_path):
                  ["run", good, "-qf", "json"], ["run", good, good], ["run", "--help"], ["validate"],
                  ["run", good, "-o", ""], ["run", "--", good], ["check", good], ["--version"]):
         assert _fast(line) is None, line
+
+
+def test_program_ends_at_once_unless_shutdown_has_work(tmp_path):
+    """The program (`tmm`, `python -m tmm_cli`: cli.entry) ends a plain run / validate
+    without the interpreter's shutdown (a global's finalizer never runs), its output all
+    written and its exit code kept; `main()` called by a program that goes on, an atexit
+    callback or a running thread take the ordinary exit (which does run them)."""
+    good = str(ROOT / "tasks" / "forging_sixbar.yaml")
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("schema: tmm/1\nmechanism:\n  ground: {O: [0, 0]}\n  linkz: {}\n", encoding="utf-8")
+    head = ("import sys, atexit, threading\n"
+            "class Last:\n    def __del__(self):\n        print('SHUTDOWN', file=sys.stderr)\n"
+            "last = Last()\n")
+    ends = {"entry": "from tmm_cli.cli import entry\nentry()\n",
+            "main": "from tmm_cli.cli import main\nmain()\n",
+            "atexit": "atexit.register(lambda: print('ATEXIT', file=sys.stderr))\n"
+                      "from tmm_cli.cli import entry\nentry()\n",
+            "thread": "threading.Thread(target=threading.main_thread().join).start()\n"     # to the end
+                      "from tmm_cli.cli import entry\nentry()\n"}
+    for args, code, out in ((["validate", good], 0, f"{good}: ok\n"), (["validate", str(bad)], 2, ""),
+                            (["run", good, "-f", "json", "-o", "o"], 0, None)):
+        for name, tail in ends.items():
+            p = subprocess.run([sys.executable, "-c", head + tail, *args], capture_output=True, text=True,
+                               cwd=tmp_path, timeout=300)
+            assert p.returncode == code, (name, args, p.stderr)
+            assert ("SHUTDOWN" in p.stderr) == (name != "entry"), (name, args, p.stderr)
+            assert ("ATEXIT" in p.stderr) == (name == "atexit"), (name, args)
+            if out is not None:
+                assert p.stdout == out, (name, args)
+            else:                                   # the summary table, to its last line
+                assert p.stdout.endswith("wrote o/.tmm-manifest.json\n"), (name, p.stdout)
+                assert json.loads((tmp_path / "o" / "results.json").read_text())["kinetostatics"]
+            if code == 2:
+                assert "error: invalid task" in p.stderr and "linkz" in p.stderr, (name, p.stderr)
 
 
 @pytest.mark.parametrize("kind", sorted(units._FAST_UNITS))
@@ -324,3 +361,39 @@ def test_extremes_equal_brents_roots():
             assert abs((r - w + 180.0) % 360.0 - 180.0) < 1e-10, (name, r, w)
             n += 1
     assert n >= 14
+
+
+def test_plain_summary_is_what_rich_prints(monkeypatch, capsys):
+    """The run summary written without Rich (summary._plain_summary) is, character for
+    character, what Rich prints; where Rich could print anything else (a line to wrap,
+    markup, an emoji code, characters of another width, COLUMNS) Rich prints it."""
+    from tmm_cli import load_task, run, summary
+    for k in ("COLUMNS", "LINES", "FORCE_COLOR", "TTY_COMPATIBLE"):
+        monkeypatch.delenv(k, raising=False)
+    cases = [run(load_task(ROOT / "tasks" / f"{n}.yaml"))
+             for n in ("forging_sixbar", "press_drive_train", "gears_zero", "synthesis_shaper")]
+    base = cases[0]
+    more = {"title": "Горизонтально-ковочная машина, φ0", "warnings": ["a warning", "φ = 12.5 deg (ω: 5)"]}
+    for title, warnings in (("Horizontal forging machine", []), (more["title"], more["warnings"]),
+                            ("x" * 60, []), ("x" * 52, []), ("x" * 53, []), ("Її ґ", []), ("a [b] c", []),
+                            ("a :smile: b", []), ("tab\there", []), (" padded", []), ("", []),
+                            ("ok", ["w" * 70]), ("ok", ["w" * 71]), ("ok", ["w" * 72]), ("ok", ["[red]x"]),
+                            ("ok", ["wide 日本"]), ("ok", ["ellipsis …"]), ("ok", ["two\nlines"])):
+        cases.append({**base, "task": {**base["task"], "title": title}, "warnings": warnings})
+    cases.append({"task": {"title": "no rows"}, "warnings": []})
+    paths = [Path("out") / "x" / "results.json", Path("out") / "x" / ".tmm-manifest.json"]
+    plain, real = 0, summary._plain_summary
+    for results in cases:
+        summary.print_summary(results, paths)
+        got = capsys.readouterr()
+        rows = summary._summary_rows(results)
+        title = f"tmm: {results['task']['title'] or ''}"
+        plain += real(title, rows, results["warnings"], [str(p) for p in paths]) is not None
+        monkeypatch.setattr(summary, "_plain_summary", lambda *a: None)          # Rich itself
+        summary.print_summary(results, paths)
+        want = capsys.readouterr()
+        monkeypatch.setattr(summary, "_plain_summary", real)
+        assert got.out == want.out and got.err == want.err == "", (title, results["warnings"])
+    assert plain >= 8, plain                  # the plain text was written and compared
+    monkeypatch.setenv("COLUMNS", "200")
+    assert real("tmm: x", [("a", "b")], [], []) is None

@@ -15,6 +15,12 @@ try:                # the cycle collector's passes over them would be wasted (~1
     from .task import Task, load_task
 finally:
     if _collecting:
+        if _gc.get_freeze_count() == 0:     # (a caller's own freeze is left alone)
+            # the import's objects straight to the oldest generation (as results.bulk):
+            # enabled with them young, the collector's next pass would scan them all
+            # (~3 % of a JSON run, which turns the collector off again right after)
+            _gc.freeze()
+            _gc.unfreeze()
         _gc.enable()
 
 __version__ = "0.1.0"

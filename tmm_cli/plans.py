@@ -39,6 +39,8 @@ def sub_html(sym: str, sub: str) -> str:
 
 @dataclass
 class LinkG:
+    """A link as the plans draw it: its structural points and kind."""
+
     name: str
     index: int
     points: list[str]          # structural points (pairs + extras), in task order
@@ -48,6 +50,8 @@ class LinkG:
 
 @dataclass
 class JointG:
+    """A pair as the plans draw it: R or P between links ``a`` and ``b``."""
+
     kind: str                  # 'R' | 'P'
     a: int
     b: int
@@ -56,6 +60,8 @@ class JointG:
 
 @dataclass
 class Geometry:
+    """The linkage as the plans read it: links, pairs, ground points and the order of attachment."""
+
     links: list[LinkG]
     joints: list[JointG]
     ground: set[str]
@@ -121,6 +127,8 @@ def geometry(results: dict, task=None) -> Geometry | None:
 # --------------------------------------------------------------- plan model
 @dataclass
 class Vec:
+    """One segment of a plan: from ``start`` to ``end``, its quantity and magnitude (SI)."""
+
     start: str                 # label of the start point on the plan
     end: str                   # label of the end point
     kind: str                  # 'abs' | 'rel' | 'n' | 't' | 'k' | 'r'
@@ -130,6 +138,8 @@ class Vec:
 
 @dataclass
 class Plan:
+    """A velocity or acceleration plan: its scale, pole, the points (mm) and the segments."""
+
     kind: str                  # 'v' | 'a'
     mu: float                  # scale, (m/s)/mm or (m/s^2)/mm
     pole: str                  # 'p' | 'π'

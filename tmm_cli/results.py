@@ -138,7 +138,7 @@ def _emit(obj, level: int, out: list[str]) -> None:
     if type(obj) is Entries and level == _ONE_LINE_DEPTH - 2 and obj:
         _emit_entries(obj, out)
     elif level >= _ONE_LINE_DEPTH:
-        out.append(_ENC.encode(obj))
+        out.append(_one_line(obj))
     elif type(obj) is dict and obj:
         pad = "\n" + " " * (level + 1)
         first = True
@@ -146,7 +146,7 @@ def _emit(obj, level: int, out: list[str]) -> None:
         for k, v in obj.items():
             out.append(pad if first else "," + pad)
             first = False
-            out.append(_ENC.encode(k) + ": ")
+            out.append(_one_line(k) + ": ")
             _emit(v, level + 1, out)
         out.append("\n" + " " * level + "}")
     elif type(obj) is list and any(type(v) is dict or type(v) is list for v in obj):
@@ -157,7 +157,7 @@ def _emit(obj, level: int, out: list[str]) -> None:
             _emit(v, level + 1, out)
         out.append("\n" + " " * level + "]")
     else:
-        out.append(_ENC.encode(obj))
+        out.append(_one_line(obj))
 
 
 def _emit_entries(entries: Entries, out: list[str]) -> None:

@@ -1,6 +1,7 @@
 """Terminal output with rich: the run summary and the check table."""
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 
@@ -22,53 +23,131 @@ def _f(x, digits=5) -> str:
         return str(x)
 
 
+def _summary_rows(results: dict) -> list[tuple[str, str]]:
+    """(quantity, value) of each row of the run summary."""
+    rows: list[tuple[str, str]] = []
+    add = lambda *row: rows.append(row)  # noqa: E731
+    st = results.get("structure")
+    if st:
+        add("W = 3n - 2p5 - p4", f"{st['W']} (n={st['n']}, p5={st['p5']}, p4={st['p4']})")
+        add("structure formula", str(st.get("formula")))
+    pos = results.get("positions")
+    if pos:
+        add("phi0, deg", _f(pos.get("phi0")))
+        if pos.get("K") is not None:
+            add("K (mean speed increase)", _f(pos.get("K")))
+    if results.get("singular"):
+        add("singular crank angles, deg", ", ".join(_f(s, 7) for s in results["singular"]))
+    fw = results.get("flywheel")
+    if fw:
+        add("flywheel J, kg*m^2", _f(fw.get("J")))
+        add("flywheel D x b, m", f"{_f(fw.get('diameter'))} x {_f(fw.get('width'))}")
+    cam = results.get("cam")
+    if cam:
+        add("cam r0, m", _f(cam.get("r0")))
+        if cam.get("r0_given"):
+            add("cam r0_min, m", _f(cam.get("r0_min")))
+            add("cam max pressure angle, deg", _f(cam.get("max_pressure_angle")))
+    g = results.get("gears")
+    if g:
+        add("gears a_w, m", _f(g.get("aw")))
+        add("contact ratio", _f(g.get("eps_alpha")))
+    pl = results.get("planetary")
+    if pl:
+        add("planetary z", ", ".join(f"{k}={v}" for k, v in (pl.get("z") or {}).items()))
+        add("planetary ratio", _f(pl.get("ratio")))
+    dt = results.get("drive_train")
+    if dt:
+        add("drive train z", " | ".join("/".join(str(v) for v in s["z"]) for s in dt.get("stages", [])))
+        add("drive train ratio", _f(dt.get("ratio")))
+        if dt.get("motor_power_computed"):
+            add("motor power, W", _f(dt.get("motor_power")))
+    return rows
+
+
 def print_summary(results: dict, paths: list[Path]) -> None:
+    """The run summary on stdout: the table of the main quantities, the warnings, the
+    files written. Rich draws it; when the output is no terminal and nothing in it needs
+    Rich (no wrapping, no markup, one-cell characters: :func:`_plain_summary`), the same
+    text is written without importing Rich (~10 % of a JSON run)."""
+    title = f"tmm: {results.get('task', {}).get('title') or ''}"
+    rows = _summary_rows(results)
+    warnings = [str(w) for w in results.get("warnings", [])]
+    plain = _plain_summary(title, rows, warnings, [str(p) for p in paths])
+    if plain is not None:
+        import sys
+        sys.stdout.write(plain)
+        sys.stdout.flush()
+        return
     from rich.table import Table
 
     con = _console()
-    t = Table(title=f"tmm: {results.get('task', {}).get('title') or ''}", show_header=True)
+    t = Table(title=title, show_header=True)
     t.add_column("quantity")
     t.add_column("value", justify="right")
-    st = results.get("structure")
-    if st:
-        t.add_row("W = 3n - 2p5 - p4", f"{st['W']} (n={st['n']}, p5={st['p5']}, p4={st['p4']})")
-        t.add_row("structure formula", str(st.get("formula")))
-    pos = results.get("positions")
-    if pos:
-        t.add_row("phi0, deg", _f(pos.get("phi0")))
-        if pos.get("K") is not None:
-            t.add_row("K (mean speed increase)", _f(pos.get("K")))
-    if results.get("singular"):
-        t.add_row("singular crank angles, deg", ", ".join(_f(s, 7) for s in results["singular"]))
-    fw = results.get("flywheel")
-    if fw:
-        t.add_row("flywheel J, kg*m^2", _f(fw.get("J")))
-        t.add_row("flywheel D x b, m", f"{_f(fw.get('diameter'))} x {_f(fw.get('width'))}")
-    cam = results.get("cam")
-    if cam:
-        t.add_row("cam r0, m", _f(cam.get("r0")))
-        if cam.get("r0_given"):
-            t.add_row("cam r0_min, m", _f(cam.get("r0_min")))
-            t.add_row("cam max pressure angle, deg", _f(cam.get("max_pressure_angle")))
-    g = results.get("gears")
-    if g:
-        t.add_row("gears a_w, m", _f(g.get("aw")))
-        t.add_row("contact ratio", _f(g.get("eps_alpha")))
-    pl = results.get("planetary")
-    if pl:
-        t.add_row("planetary z", ", ".join(f"{k}={v}" for k, v in (pl.get("z") or {}).items()))
-        t.add_row("planetary ratio", _f(pl.get("ratio")))
-    dt = results.get("drive_train")
-    if dt:
-        t.add_row("drive train z", " | ".join("/".join(str(v) for v in s["z"]) for s in dt.get("stages", [])))
-        t.add_row("drive train ratio", _f(dt.get("ratio")))
-        if dt.get("motor_power_computed"):
-            t.add_row("motor power, W", _f(dt.get("motor_power")))
+    for row in rows:
+        t.add_row(*row)
     con.print(t)
-    for w in results.get("warnings", []):
+    for w in warnings:
         con.print(f"[yellow]warning:[/yellow] {w}")
     for p in paths:
         con.print(f"wrote {p}")
+
+
+# the characters rich.cells counts as one cell each without its width table
+_ONE_CELL = re.compile("[\x20-\x7e\xa0-\xac\xae-\u02ff\u0370-\u0482]*")
+_MARKUP_OR_EMOJI = re.compile(r"[\[\]]|:\S*:")      # a Rich markup tag, an emoji code (:name:)
+
+
+def _plain_summary(title: str, rows: list[tuple[str, str]], warnings: list[str], paths: list[str]) -> str | None:
+    """The text Rich prints for :func:`print_summary` (its Table's default heavy-head box,
+    the title centred over it, then one line per warning and per file), or None where
+    Rich could print anything else: a terminal or a forced one (styles), a console
+    width or encoding Rich reads otherwise (COLUMNS, LINES, not UTF, Windows, Jupyter),
+    text Rich would parse (markup, emoji codes), characters of another width, leading or
+    trailing blanks, or a line that does not fit (Rich wraps it). tests/test_speed_paths.py
+    compares the two."""
+    import os
+    import sys
+    out = sys.stdout
+    env = os.environ
+    if (out is None or sys.platform == "win32" or "get_ipython" in vars(__import__("builtins"))
+            or any(k in env for k in ("COLUMNS", "LINES", "FORCE_COLOR", "TTY_COMPATIBLE"))
+            or not (getattr(out, "encoding", None) or "utf-8").lower().startswith("utf")
+            or getattr(sys.stdin, "__module__", "").startswith("idlelib")):
+        return None
+    try:
+        if out.isatty():
+            return None
+    except Exception:  # noqa: BLE001 - Rich's own answer then
+        return None
+    width = 0
+    for fd in (0, 1, 2):                       # Rich's console width: the first terminal's
+        try:
+            width = os.get_terminal_size(fd)[0]
+        except (AttributeError, ValueError, OSError):
+            continue
+        break
+    width = width or 80
+    texts = [title, *(c for r in rows for c in r), *warnings, *paths]
+    if any(not _ONE_CELL.fullmatch(t) or _MARKUP_OR_EMOJI.search(t) or t != t.strip() for t in texts) \
+            or not title.strip():
+        return None
+    w1 = max([len("quantity"), *(len(q) for q, _ in rows)])
+    w2 = max([len("value"), *(len(v) for _, v in rows)])
+    table = w1 + w2 + 7                        # two cells, each padded by a space a side, three rules
+    lines = [f"warning: {w}" for w in warnings] + [f"wrote {p}" for p in paths]
+    if table >= width or len(title) >= table or any(len(s) >= width for s in lines):
+        return None
+    left = (table - len(title)) // 2
+    text = [" " * left + title + " " * (table - len(title) - left),
+            "┏" + "━" * (w1 + 2) + "┳" + "━" * (w2 + 2) + "┓",
+            f"┃ {'quantity'.ljust(w1)} ┃ {'value'.rjust(w2)} ┃",
+            "┡" + "━" * (w1 + 2) + "╇" + "━" * (w2 + 2) + "┩",
+            *(f"│ {q.ljust(w1)} │ {v.rjust(w2)} │" for q, v in rows),
+            "└" + "─" * (w1 + 2) + "┴" + "─" * (w2 + 2) + "┘",
+            *lines]
+    return "\n".join(text) + "\n"
 
 
 STATUS_STYLE = {"ok": "green", "sign": "magenta", "outside": "red", "missing": "yellow",

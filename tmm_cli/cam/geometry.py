@@ -44,6 +44,8 @@ def J(v: np.ndarray) -> np.ndarray:
 
 @dataclass(frozen=True)
 class Geometry:
+    """The follower's geometry: translating or rocker, the cam's sense of rotation, the rocker's."""
+
     kind: str                 # 'translating' | 'rocker'
     sigma: int                # cam rotation: +1 ccw, -1 cw
     tau: int = 1              # rocker turn on the rise in the fixed frame: +1 ccw, -1 cw

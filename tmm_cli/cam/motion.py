@@ -25,6 +25,8 @@ RISE, RETURN, NEAR_DWELL, FAR_DWELL = 0, 1, 2, 3
 
 @dataclass(frozen=True)
 class Motion:
+    """The follower's motion over a turn: the stroke, the phase angles and the laws."""
+
     h: float                      # stroke: m, or rad for a rocker
     rise: float                   # phase angles, rad
     far_dwell: float

@@ -34,6 +34,8 @@ MAX_ROUNDS = 40
 
 @dataclass(frozen=True)
 class Family:
+    """A family of pressure-angle constraint lines: its phase, side and tan of the angle."""
+
     phase: int         # RISE, RETURN, NEAR_DWELL, FAR_DWELL
     side: int          # +1 / -1
     tan: float         # tan of the allowed pressure angle

@@ -78,6 +78,8 @@ def _pts(a: np.ndarray) -> list[list[float]]:
 
 @dataclass
 class CamResult:
+    """The cam stage: the base radius, offset, roller and the profile with its checks."""
+
     follower: str
     rotation: str
     swing: str | None

@@ -31,6 +31,8 @@ def _f(v):
 
 @dataclass
 class GearResult:
+    """The gear pair: its geometry with profile shift, the contact ratio and the checks."""
+
     m: float
     z: tuple[int, int]
     x: tuple[float, float]

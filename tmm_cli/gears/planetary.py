@@ -427,6 +427,8 @@ def velocity_plan(scheme: str, z: dict, m: float, omega1: float = 1.0) -> dict:
 
 @dataclass
 class PlanetaryResult:
+    """The planetary synthesis: the chosen tooth numbers, the checks and the candidates."""
+
     scheme: str
     required: float
     tolerance: float

@@ -74,6 +74,8 @@ def planetary_checks(kind: str, z, k: int, limits: pl.Limits, z_max: int) -> dic
 
 @dataclass
 class TrainResult:
+    """The compound drive: its stages and shafts, the ratio and the candidates."""
+
     ratio: float
     required: float | None
     shafts: list

@@ -25,6 +25,8 @@ from ..task import MechanismSection, Task
 
 @dataclass(frozen=True)
 class Guide:
+    """The line a slider translates along: fixed (a point and an angle) or on a guide link."""
+
     link: str | None                   # None: fixed (ground)
     point: tuple[float, float] | None  # fixed guide: a global point on the line
     angle: float                       # deg: absolute (fixed) or relative to the guide link's u-axis
@@ -33,6 +35,8 @@ class Guide:
 
 @dataclass(frozen=True)
 class Link:
+    """A moving link: a bar or a slider, its points in its own frame, its mass properties."""
+
     name: str
     index: int
     kind: str                                   # 'bar' | 'slider'
@@ -50,6 +54,8 @@ class Link:
 
 @dataclass(frozen=True)
 class Joint:
+    """A lower pair between links ``a`` < ``b`` (0 the ground): revolute (R) or prismatic (P)."""
+
     kind: str               # 'R' | 'P'
     a: int                  # link index, a < b, 0 = ground
     b: int
@@ -63,6 +69,8 @@ class Joint:
 
 @dataclass
 class Mechanism:
+    """The linkage the stages compute on: the ground points, the links, the pairs, the drive link."""
+
     ground: dict[str, tuple[float, float]]
     links: list[Link]
     joints: list[Joint]

@@ -95,6 +95,8 @@ class Group:
 
 @dataclass
 class StructureResult:
+    """The structural analysis: the mobility W = 3n - 2p5 - p4, the Assur groups, the formula."""
+
     n: int
     p5: int
     p4: int

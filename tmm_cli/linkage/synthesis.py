@@ -61,6 +61,8 @@ def K_of_theta(theta: float) -> float:
 
 @dataclass
 class Design:
+    """A lever synthesis: the link lengths and the `mechanism` section it generates."""
+
     type: str
     lengths: dict[str, float]
     mechanism: dict                      # the generated `mechanism` section

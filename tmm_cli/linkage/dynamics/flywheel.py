@@ -397,6 +397,8 @@ RIM_SPEED_STEEL = 70.0
 
 @dataclass
 class FlywheelSize:
+    """The flywheel's dimensions for its moment of inertia (a disk or a rim), m and kg."""
+
     diameter: float
     width: float
     mass: float

@@ -32,6 +32,8 @@ def _perp(v: np.ndarray) -> np.ndarray:
 
 @dataclass
 class ReducedInertia:
+    """The reduced moment of inertia over the cycle: per link, the total, and their derivatives."""
+
     links: dict[str, np.ndarray]          # per link J_red,i(phi)
     dlinks: dict[str, np.ndarray | None]  # per link dJ_red,i/dphi (None: analogues d2/a2 absent)
     total: np.ndarray                     # sum over links (without extra constant inertia)

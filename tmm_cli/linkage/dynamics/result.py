@@ -29,6 +29,8 @@ def _l(a):
 
 @dataclass
 class DynamicsResult:
+    """The flywheel stage: the steady cycle, the flywheel's J and size, the hand method beside it."""
+
     cycle: CycleResult
     cycle_deg: float
     resolution: int

@@ -92,6 +92,8 @@ def circle_zeros(grid: np.ndarray, g: np.ndarray, F, *, zero_tol: float = ZERO_T
 
 @dataclass(frozen=True)
 class ChangePoint:
+    """A crank angle where a group's closure changes (the solver's branch switches)."""
+
     phi: float          # crank angle, deg in [0, 360)
     group: int          # index of the group in the solver's order
     describe: str       # "group II(2,3) (links coupler, rocker)"

@@ -158,6 +158,8 @@ def link_stroke(mech: Mechanism, name: str, working: str, sign: float) -> Stroke
 
 @dataclass
 class PositionsResult:
+    """The reported crank positions and the output's extreme positions, stroke and K."""
+
     phi: np.ndarray                  # reported crank angles, deg in [0, 360)
     index: np.ndarray                # position numbers
     kinds: list[str]                 # 'grid' | 'extra' | 'extreme' | 'added' per position

@@ -54,6 +54,8 @@ def _num(v) -> float | None:
 
 @dataclass
 class KinetostaticsResult:
+    """The force analysis at each position: the reactions and the balancing moment three ways."""
+
     index: list[int]
     phi: np.ndarray
     balance: str

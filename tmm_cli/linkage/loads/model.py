@@ -11,6 +11,8 @@ G = 9.81
 # ------------------------------------------------------------------ data
 @dataclass
 class AppliedForce:
+    """A force on a link at each position: its point of application and its vector, N."""
+
     link: int
     name: str
     point: np.ndarray          # (N, 2) position of the point of application
@@ -22,6 +24,8 @@ class AppliedForce:
 
 @dataclass
 class AppliedCouple:
+    """A couple on a link at each position, N*m (ccw positive)."""
+
     link: int
     name: str
     M: np.ndarray              # (N,) ccw positive
@@ -30,6 +34,8 @@ class AppliedCouple:
 
 @dataclass
 class Loads:
+    """The forces and couples on the links at each crank angle ``phi``."""
+
     phi: np.ndarray
     forces: list[AppliedForce] = field(default_factory=list)
     couples: list[AppliedCouple] = field(default_factory=list)
