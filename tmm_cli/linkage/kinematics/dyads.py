@@ -39,7 +39,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .state import PCon, RCon, State, cross, dot, left, scale, unit
+from .state import WORK_ROWS_FROM, PCon, RCon, State, cross, dot, left, scale, unit
 
 
 def _atan2(v):
@@ -266,22 +266,24 @@ def _length(info_X, cX, mid, N: int) -> np.ndarray:
     """|cX|, the length of link X's column of the 2x2 system. A link sliding on a fixed
     guide and jointed to the other by a revolute pair has the column +-(e - 0 r): its
     length is |e|, the same at every position (np.hypot depends on |x|, |y| only), so
-    it is taken once when the column is finite."""
-    if info_X[0] == "P" and isinstance(mid, RCon):
+    it is taken once when the column is finite (a (1,) array: it broadcasts), with many
+    positions (with few, the checks cost more than the lengths)."""
+    if N >= WORK_ROWS_FROM and info_X[0] == "P" and isinstance(mid, RCon):
         e0, e1 = info_X[1][0], info_X[1][1]
         if e0.strides == (0,) and e1.strides == (0,) and np.isfinite(cX[0]).all() and np.isfinite(cX[1]).all():
-            return np.broadcast_to(np.hypot(e0[:1], e1[:1]), (N,))
+            return np.hypot(e0[:1], e1[:1])
     return np.hypot(cX[0], cX[1])
 
 
-def dyad_derivatives(plan: DyadPlan, st: State) -> np.ndarray:
+def dyad_derivatives(plan: DyadPlan, st: State, dets: bool = True) -> np.ndarray:
     """Exact phi-derivatives of a dyad's poses (set in ``st``) by a 2x2 linear solve.
 
     Each link keeps one free scalar lambda after its external pair (its angle about a
     known point, or its shift s along a known line), so its pose derivatives are
     affine in lambda': (o', th') = U lambda' + V, (o'', th'') = U lambda'' + W; the
     pair A-B then gives two linear equations (Cramer's rule, vectorised). Returns the
-    mask of positions where the 2x2 system is singular."""
+    mask of positions where the 2x2 system is singular; ``dets``: the normalised
+    determinant in ``st.last_det`` too (the change points)."""
     A, B = plan.A, plan.B
     N = st.N
     info = {}
@@ -319,8 +321,9 @@ def dyad_derivatives(plan: DyadPlan, st: State) -> np.ndarray:
     cB = ap(B, *info[B][1])
     det = cA[0] * cB[1] - cA[1] * cB[0]
     nn = _length(info[A], cA, plan.mid, N) * _length(info[B], cB, plan.mid, N)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        st.last_det = np.where(nn > 0, det / np.maximum(nn, 1e-300), 0.0)  # sine of the angle between the columns
+    if dets:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            st.last_det = np.where(nn > 0, det / np.maximum(nn, 1e-300), 0.0)  # sine of the angle between the columns
     sing = ~(np.abs(det) >= 1e-10 * nn)
     if sing.any():
         det = np.where(sing, np.where(det >= 0, 1.0, -1.0) * np.maximum(nn, 1e-300) * 1e-10, det)

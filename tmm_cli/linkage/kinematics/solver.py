@@ -126,8 +126,9 @@ class Solver:
 
     # ------------------------------------------------------------------ run
     def run(self, phi: np.ndarray, upto: int | None = None, derivs: bool = True, strict: bool = True,
-            fallback: bool = True) -> State:
-        """Poses (and derivatives) of every body at crank angles ``phi`` (rad)."""
+            fallback: bool = True, dets: bool = False) -> State:
+        """Poses (and derivatives) of every body at crank angles ``phi`` (rad); ``dets``:
+        each group's normalised determinant in ``st.gdet`` too (the change points)."""
         phi = np.asarray(phi, float).reshape(-1)
         N = len(phi)
         st = State(N)
@@ -144,30 +145,30 @@ class Solver:
             else:
                 m = self._newton_vector(gi, st, phi)
             st.margins[gi] = m
-            bad = ~(m >= -self.tol)
-            if strict and bad.any():
-                raise self._assembly_error(gi, np.degrees(phi[bad]))
+            if strict and not (m >= -self.tol).all():
+                raise self._assembly_error(gi, np.degrees(phi[~(m >= -self.tol)]))
             if derivs:
                 if isinstance(plan, DyadPlan):
-                    st.sing[gi] = dyad_derivatives(plan, st)
+                    st.sing[gi] = dyad_derivatives(plan, st, dets)
                 else:
                     st.sing[gi] = nw.derivatives(plan.cons, self.groups[gi].links, st)
-                st.gdet[gi] = st.last_det
+                if dets:
+                    st.gdet[gi] = st.last_det
         if derivs and fallback and st.sing:
             self._continuity(st, phi, upto)
         return st
 
     def _continuity(self, st: State, phi: np.ndarray, upto: int) -> None:
-        sing = np.zeros(st.N, bool)
+        sing = None
         for gi, s in st.sing.items():
             if s.any():
-                sing |= s
+                sing = s.copy() if sing is None else np.logical_or(sing, s, out=sing)
                 ang = np.unique(np.round(np.degrees(phi[s]) % 360, 6))[:8]
                 msg = Message("kinematics.singular_continuity", **self.groups[gi].message_params(),
                               angles=ang, delta=CONT_DELTA)
                 if msg not in self.warnings:
                     self.warnings.append(msg)
-        if not sing.any():
+        if sing is None:
             return
         idx = np.nonzero(sing)[0]
         h = math.radians(CONT_DELTA)
@@ -656,7 +657,7 @@ def _solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
     ground, moving, done, names, links = _outputs(solver)
     phi_deg = np.atleast_1d(np.asarray(phi_deg, float)).reshape(-1)
     st = solver.run(np.radians(phi_deg))
-    st.margins = st.sing = st.gdet = st.last_det = None     # (held memory only)
+    st.margins = st.sing = None     # (held memory only)
     N = len(phi_deg)
     order = None if N < 2 or bool(np.all(phi_deg[1:] >= phi_deg[:-1])) else np.argsort(phi_deg, kind="stable")
     seen: set = set()
