@@ -532,6 +532,17 @@ def _unwrap(p: np.ndarray, inplace: bool = False) -> np.ndarray:
     return up
 
 
+def _unwrap_rows(TH: np.ndarray) -> None:
+    """_unwrap of every row of TH (B, N >= 2) in place: the same operations, a row at a
+    time only where one jumps."""
+    dd = TH[:, 1:] - TH[:, :-1]
+    if not (np.abs(dd) >= math.pi).any():     # no jump in any row: the correction is zero
+        np.add(TH[:, 1:], 0.0, out=TH[:, 1:])
+        return
+    for row in TH:
+        _unwrap(row, inplace=True)
+
+
 def _unwrap_sorted(th: np.ndarray, order: np.ndarray | None, inplace: bool = False) -> np.ndarray:
     """th unwrapped along increasing crank angle (order: argsort, None if sorted)."""
     if order is None:
@@ -661,10 +672,17 @@ def _solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
     N = len(phi_deg)
     order = None if N < 2 or bool(np.all(phi_deg[1:] >= phi_deg[:-1])) else np.argsort(phi_deg, kind="stable")
     seen: set = set()
-    for b in range(1, mech.n + 1):
-        th = st.th[b]
-        own = _fresh(th, N, seen)          # the pose's own array: unwrapped in place
-        st.unwrap(b, _unwrap_sorted(th if own else np.asarray(th, float), order, inplace=own))
+    if order is None and 2 <= N < WORK_ROWS_FROM:
+        # few positions in order: the links' angles unwrapped at once, as the rows of one block
+        TH = np.array([st.th[b] for b in range(1, mech.n + 1)], float)
+        _unwrap_rows(TH)
+        for b in range(1, mech.n + 1):
+            st.unwrap(b, TH[b - 1])
+    else:
+        for b in range(1, mech.n + 1):
+            th = st.th[b]
+            own = _fresh(th, N, seen)          # the pose's own array: unwrapped in place
+            st.unwrap(b, _unwrap_sorted(th if own else np.asarray(th, float), order, inplace=own))
     pos, d1, d2 = {}, {}, {}
     for p, x, y in ground:
         pos[p] = np.empty((N, 2))
