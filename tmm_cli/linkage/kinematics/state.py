@@ -48,7 +48,7 @@ class State:
         self._csk: dict[int, tuple[np.ndarray, np.ndarray]] = {}   # given to set_pose
         self._gd: dict[int, tuple] = {}       # id(PCon) -> (g, (psi, e)): guide directions
         self._pd: dict[tuple, tuple] = {}     # (b, u) -> point_d(b, u)
-        self._ru: dict[tuple, np.ndarray] = {}  # (b, u) -> rot(b, u), few positions only
+        self._rotated: dict[tuple, np.ndarray] = {}  # (b, u) -> rot(b, u), few positions only
         # boolean mask of the positions where a group's velocity equations are singular
         # (their derivatives the mean of the two sides), None where there are none
         self.singular: np.ndarray | None = None
@@ -58,9 +58,9 @@ class State:
         self.o[b] = o
         self.th[b] = th
         self._cs.pop(b, None)
-        if self._ru:
-            for k in [k for k in self._ru if k[0] == b]:
-                del self._ru[k]
+        if self._rotated:
+            for k in [k for k in self._rotated if k[0] == b]:
+                del self._rotated[k]
         if cs is None:
             self._csk.pop(b, None)
         else:
@@ -93,8 +93,8 @@ class State:
         taken, to hold less memory while the results are being built."""
         for d in (self.o, self.o1, self.o2, self._cs, self._csk):
             d.pop(b, None)
-        for k in [k for k in self._ru if k[0] == b]:
-            del self._ru[k]
+        for k in [k for k in self._rotated if k[0] == b]:
+            del self._rotated[k]
         self._forget(b)
 
     def guide(self, con) -> tuple[np.ndarray, np.ndarray]:
@@ -137,9 +137,9 @@ class State:
         u0, u1 = float(u[0]), float(u[1])
         if self.N < WORK_ROWS_FROM:
             key = (b, u0, u1)
-            hit = self._ru.get(key)
+            hit = self._rotated.get(key)
             if hit is None:
-                hit = self._ru[key] = self._rot(b, u0, u1)
+                hit = self._rotated[key] = self._rot(b, u0, u1)
             return hit
         return self._rot(b, u0, u1)
 
@@ -234,7 +234,7 @@ class State:
         sub._csk = {}
         sub._gd = {}
         sub._pd = {}
-        sub._ru = {}
+        sub._rotated = {}
         return sub
 
 
