@@ -105,7 +105,7 @@ def change_points(solver) -> list[ChangePoint]:
     if cached is not None:
         return cached
     grid = np.linspace(0.0, 360.0, N_GRID + 1)
-    st = solver.run(np.radians(grid), strict=False, fallback=False)
+    st = solver.run(np.radians(grid), strict=False, fallback=False, dets=True)
     found: list[ChangePoint] = []
     for gi, det in st.gdet.items():
         d = np.where(st.margins[gi] >= -solver.tol, np.asarray(det, float), np.nan)
@@ -114,7 +114,8 @@ def change_points(solver) -> list[ChangePoint]:
             continue
 
         def F(phi, start, gi=gi, fmax=fmax):
-            s = solver.run(np.radians(np.array([start, phi])), upto=gi + 1, strict=False, fallback=False)
+            s = solver.run(np.radians(np.array([start, phi])), upto=gi + 1, strict=False, fallback=False,
+                           dets=True)
             return float(s.gdet[gi][-1]) / fmax
 
         for phi in circle_zeros(grid, d / fmax, F):

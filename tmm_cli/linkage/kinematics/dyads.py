@@ -243,6 +243,19 @@ class _MidApply:
             self.n = left(self.e)
             self.ed = dot(self.e, st.o[con.s] - st.o[con.g])
 
+    def fixed(self, X, U):
+        """The column of a link X sliding on a fixed guide (U = (e_x, e_y, 0.0), e its
+        direction, broadcast columns) jointed by a revolute pair A-B: +-(e - 0 r) is +-e
+        exactly (r and e finite, e has no -0: its angle is 0.0 + a), as one (1,)
+        constant that broadcasts."""
+        e0, e1 = U[0][:1], U[1][:1]
+        return (e0, e1) if X == self.con.i else (-e0, -e1)
+
+    def fixed_zero(self, X):
+        """Its V and W terms, +-(0 - 0 r): a signed scalar zero (x + z is then x + that
+        array, bit for bit)."""
+        return (0.0, 0.0) if X == self.con.i else (-0.0, -0.0)
+
     def __call__(self, X, ox, oy, t):
         c = self.con
         one = isinstance(t, float) and t == 1.0
@@ -262,26 +275,21 @@ class _MidApply:
         return -t, nv
 
 
-def _length(info_X, cX, mid, N: int) -> np.ndarray:
-    """|cX|, the length of link X's column of the 2x2 system. A link sliding on a fixed
-    guide and jointed to the other by a revolute pair has the column +-(e - 0 r): its
-    length is |e|, the same at every position (np.hypot depends on |x|, |y| only), so
-    it is taken once when the column is finite."""
-    if info_X[0] == "P" and isinstance(mid, RCon):
-        e0, e1 = info_X[1][0], info_X[1][1]
-        if e0.strides == (0,) and e1.strides == (0,) and np.isfinite(cX[0]).all() and np.isfinite(cX[1]).all():
-            return np.broadcast_to(np.hypot(e0[:1], e1[:1]), (N,))
+def _length(cX) -> np.ndarray:
+    """|cX|, the length of link X's column of the 2x2 system ((1,) for a link sliding on
+    a fixed guide, see :meth:`_MidApply.fixed`: it broadcasts)."""
     return np.hypot(cX[0], cX[1])
 
 
-def dyad_derivatives(plan: DyadPlan, st: State) -> np.ndarray:
+def dyad_derivatives(plan: DyadPlan, st: State, dets: bool = True) -> np.ndarray:
     """Exact phi-derivatives of a dyad's poses (set in ``st``) by a 2x2 linear solve.
 
     Each link keeps one free scalar lambda after its external pair (its angle about a
     known point, or its shift s along a known line), so its pose derivatives are
     affine in lambda': (o', th') = U lambda' + V, (o'', th'') = U lambda'' + W; the
     pair A-B then gives two linear equations (Cramer's rule, vectorised). Returns the
-    mask of positions where the 2x2 system is singular."""
+    mask of positions where the 2x2 system is singular; ``dets``: the normalised
+    determinant in ``st.last_det`` too (the change points)."""
     A, B = plan.A, plan.B
     N = st.N
     info = {}
@@ -315,12 +323,23 @@ def dyad_derivatives(plan: DyadPlan, st: State) -> np.ndarray:
             V = (Q1[:, 0] + s * w1 * n[:, 0], Q1[:, 1] + s * w1 * n[:, 1], w1)
             info[X] = ("P", U, V, (Q2, e, n, s, w1, w2))
     ap = _MidApply(plan.mid, st)
-    cA = ap(A, *info[A][1])
-    cB = ap(B, *info[B][1])
+    # a link on a fixed guide jointed to the other by a revolute pair (one of the two):
+    # its column is a constant and its V, W terms signed zeros (see _MidApply.fixed)
+    fx = [X for X in (A, B) if info[X][3] is None] if isinstance(plan.mid, RCon) else []
+    fx = fx[0] if len(fx) == 1 else None
+
+    def apply(X, k):
+        if X != fx:
+            return ap(X, *info[X][k])
+        return ap.fixed(X, info[X][1]) if k == 1 else ap.fixed_zero(X)
+
+    cA = apply(A, 1)
+    cB = apply(B, 1)
     det = cA[0] * cB[1] - cA[1] * cB[0]
-    nn = _length(info[A], cA, plan.mid, N) * _length(info[B], cB, plan.mid, N)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        st.last_det = np.where(nn > 0, det / np.maximum(nn, 1e-300), 0.0)  # sine of the angle between the columns
+    nn = _length(cA) * _length(cB)
+    if dets:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            st.last_det = np.where(nn > 0, det / np.maximum(nn, 1e-300), 0.0)  # sine of the angle between the columns
     sing = ~(np.abs(det) >= 1e-10 * nn)
     if sing.any():
         det = np.where(sing, np.where(det >= 0, 1.0, -1.0) * np.maximum(nn, 1e-300) * 1e-10, det)
@@ -355,8 +374,8 @@ def dyad_derivatives(plan: DyadPlan, st: State) -> np.ndarray:
         th = lx + W[2] if info[X][0] == "R" else U[2] * lx + W[2]      # R: U[2] = 1
         return o, th
 
-    vA = ap(A, *info[A][2])
-    vB = ap(B, *info[B][2])
+    vA = apply(A, 2)
+    vB = apply(B, 2)
     l1 = dict(zip((A, B), solve2(neg_sum(vA[0], vB[0]), neg_sum(vA[1], vB[1]))))
     del vA, vB
     Wd = {}
@@ -376,8 +395,8 @@ def dyad_derivatives(plan: DyadPlan, st: State) -> np.ndarray:
             b = s * w1 * w1
             Wd[X] = (Q2[:, 0] + a * n[:, 0] - b * e[:, 0], Q2[:, 1] + a * n[:, 1] - b * e[:, 1], w2)
     gam = plan.mid.gamma(st, ap.ru)
-    wA = ap(A, *Wd[A])
-    wB = ap(B, *Wd[B])
+    wA = ap(A, *Wd[A]) if A != fx else ap.fixed_zero(A)
+    wB = ap(B, *Wd[B]) if B != fx else ap.fixed_zero(B)
     l2 = dict(zip((A, B), solve2(neg_sum(wA[0], wB[0], gam[:, 0]), neg_sum(wA[1], wB[1], gam[:, 1]))))
     del wA, wB, gam, l1
     for X in (A, B):

@@ -126,8 +126,9 @@ class Solver:
 
     # ------------------------------------------------------------------ run
     def run(self, phi: np.ndarray, upto: int | None = None, derivs: bool = True, strict: bool = True,
-            fallback: bool = True) -> State:
-        """Poses (and derivatives) of every body at crank angles ``phi`` (rad)."""
+            fallback: bool = True, dets: bool = False) -> State:
+        """Poses (and derivatives) of every body at crank angles ``phi`` (rad); ``dets``:
+        each group's normalised determinant in ``st.gdet`` too (the change points)."""
         phi = np.asarray(phi, float).reshape(-1)
         N = len(phi)
         st = State(N)
@@ -144,30 +145,30 @@ class Solver:
             else:
                 m = self._newton_vector(gi, st, phi)
             st.margins[gi] = m
-            bad = ~(m >= -self.tol)
-            if strict and bad.any():
-                raise self._assembly_error(gi, np.degrees(phi[bad]))
+            if strict and not (m >= -self.tol).all():
+                raise self._assembly_error(gi, np.degrees(phi[~(m >= -self.tol)]))
             if derivs:
                 if isinstance(plan, DyadPlan):
-                    st.sing[gi] = dyad_derivatives(plan, st)
+                    st.sing[gi] = dyad_derivatives(plan, st, dets)
                 else:
                     st.sing[gi] = nw.derivatives(plan.cons, self.groups[gi].links, st)
-                st.gdet[gi] = st.last_det
+                if dets:
+                    st.gdet[gi] = st.last_det
         if derivs and fallback and st.sing:
             self._continuity(st, phi, upto)
         return st
 
     def _continuity(self, st: State, phi: np.ndarray, upto: int) -> None:
-        sing = np.zeros(st.N, bool)
+        sing = None
         for gi, s in st.sing.items():
             if s.any():
-                sing |= s
+                sing = s.copy() if sing is None else np.logical_or(sing, s, out=sing)
                 ang = np.unique(np.round(np.degrees(phi[s]) % 360, 6))[:8]
                 msg = Message("kinematics.singular_continuity", **self.groups[gi].message_params(),
                               angles=ang, delta=CONT_DELTA)
                 if msg not in self.warnings:
                     self.warnings.append(msg)
-        if not sing.any():
+        if sing is None:
             return
         idx = np.nonzero(sing)[0]
         h = math.radians(CONT_DELTA)
@@ -531,6 +532,17 @@ def _unwrap(p: np.ndarray, inplace: bool = False) -> np.ndarray:
     return up
 
 
+def _unwrap_rows(TH: np.ndarray) -> None:
+    """_unwrap of every row of TH (B, N >= 2) in place: the same operations, a row at a
+    time only where one jumps."""
+    dd = TH[:, 1:] - TH[:, :-1]
+    if not (np.abs(dd) >= math.pi).any():     # no jump in any row: the correction is zero
+        np.add(TH[:, 1:], 0.0, out=TH[:, 1:])
+        return
+    for row in TH:
+        _unwrap(row, inplace=True)
+
+
 def _unwrap_sorted(th: np.ndarray, order: np.ndarray | None, inplace: bool = False) -> np.ndarray:
     """th unwrapped along increasing crank angle (order: argsort, None if sorted)."""
     if order is None:
@@ -656,14 +668,21 @@ def _solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
     ground, moving, done, names, links = _outputs(solver)
     phi_deg = np.atleast_1d(np.asarray(phi_deg, float)).reshape(-1)
     st = solver.run(np.radians(phi_deg))
-    st.margins = st.sing = st.gdet = st.last_det = None     # (held memory only)
+    st.margins = st.sing = None     # (held memory only)
     N = len(phi_deg)
     order = None if N < 2 or bool(np.all(phi_deg[1:] >= phi_deg[:-1])) else np.argsort(phi_deg, kind="stable")
     seen: set = set()
-    for b in range(1, mech.n + 1):
-        th = st.th[b]
-        own = _fresh(th, N, seen)          # the pose's own array: unwrapped in place
-        st.unwrap(b, _unwrap_sorted(th if own else np.asarray(th, float), order, inplace=own))
+    if order is None and 2 <= N < WORK_ROWS_FROM:
+        # few positions in order: the links' angles unwrapped at once, as the rows of one block
+        TH = np.array([st.th[b] for b in range(1, mech.n + 1)], float)
+        _unwrap_rows(TH)
+        for b in range(1, mech.n + 1):
+            st.unwrap(b, TH[b - 1])
+    else:
+        for b in range(1, mech.n + 1):
+            th = st.th[b]
+            own = _fresh(th, N, seen)          # the pose's own array: unwrapped in place
+            st.unwrap(b, _unwrap_sorted(th if own else np.asarray(th, float), order, inplace=own))
     pos, d1, d2 = {}, {}, {}
     for p, x, y in ground:
         pos[p] = np.empty((N, 2))

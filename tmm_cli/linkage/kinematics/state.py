@@ -48,6 +48,7 @@ class State:
         self._csk: dict[int, tuple[np.ndarray, np.ndarray]] = {}   # given to set_pose
         self._gd: dict[int, tuple] = {}       # id(PCon) -> (g, (psi, e)): guide directions
         self._pd: dict[tuple, tuple] = {}     # (b, u) -> point_d(b, u)
+        self._rotated: dict[tuple, np.ndarray] = {}  # (b, u) -> rot(b, u), few positions only
         # boolean mask of the positions where a group's velocity equations are singular
         # (their derivatives the mean of the two sides), None where there are none
         self.singular: np.ndarray | None = None
@@ -57,6 +58,9 @@ class State:
         self.o[b] = o
         self.th[b] = th
         self._cs.pop(b, None)
+        if self._rotated:
+            for k in [k for k in self._rotated if k[0] == b]:
+                del self._rotated[k]
         if cs is None:
             self._csk.pop(b, None)
         else:
@@ -89,6 +93,8 @@ class State:
         taken, to hold less memory while the results are being built."""
         for d in (self.o, self.o1, self.o2, self._cs, self._csk):
             d.pop(b, None)
+        for k in [k for k in self._rotated if k[0] == b]:
+            del self._rotated[k]
         self._forget(b)
 
     def guide(self, con) -> tuple[np.ndarray, np.ndarray]:
@@ -126,9 +132,19 @@ class State:
         self._csk.pop(b, None)
 
     def rot(self, b: int, u) -> np.ndarray:
-        """R(th_b) u -> (N, 2)."""
-        c, s = self.cs(b)
+        """R(th_b) u -> (N, 2) (read-only use: with few positions it is computed once per
+        pose of b and shared)."""
         u0, u1 = float(u[0]), float(u[1])
+        if self.N < WORK_ROWS_FROM:
+            key = (b, u0, u1)
+            hit = self._rotated.get(key)
+            if hit is None:
+                hit = self._rotated[key] = self._rot(b, u0, u1)
+            return hit
+        return self._rot(b, u0, u1)
+
+    def _rot(self, b: int, u0: float, u1: float) -> np.ndarray:
+        c, s = self.cs(b)
         out = np.empty((self.N, 2))
         if u1 == 0.0:
             np.multiply(c, u0, out=out[:, 0])
@@ -218,6 +234,7 @@ class State:
         sub._csk = {}
         sub._gd = {}
         sub._pd = {}
+        sub._rotated = {}
         return sub
 
 
