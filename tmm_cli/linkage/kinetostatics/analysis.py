@@ -424,6 +424,7 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
         q = load_vector(mech, geo, lds)
     x, Mb, M1U = solve_groups(q)
     geo.__dict__.pop("_group_plan", None)      # the groups' inverses: not needed past here
+    geo.__dict__.pop("_relative_motion", None)
     if np.any(locked):
         x[locked] = np.nan
         Mb = np.where(locked, np.nan, Mb)
