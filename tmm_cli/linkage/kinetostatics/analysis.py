@@ -228,10 +228,11 @@ class KinetostaticsResult:
                 inert_m[names[c.link]] += c.M[sl]
         inert_keys = list(inert_f)
         # per position, the links' inertia dicts (built column by column, then zipped)
-        inert_rows = list(zip(*[[{"Fx": fx + 0.0, "Fy": fy + 0.0, "M": m + 0.0} for fx, fy, m in
-                                 zip(inert_f[k][:, 0].tolist(), inert_f[k][:, 1].tolist(), inert_m[k].tolist())]
-                                for k in inert_keys])) if inert_keys else [()] * N
-        reaction_rows = list(zip(*table)) if table else [()] * N
+        inert_rows = zip(*[[{"Fx": fx, "Fy": fy, "M": m} for fx, fy, m in
+                            zip((inert_f[k][:, 0] + 0.0).tolist(), (inert_f[k][:, 1] + 0.0).tolist(),
+                                (inert_m[k] + 0.0).tolist())]
+                           for k in inert_keys]) if inert_keys else [()] * N
+        reaction_rows = zip(*table) if table else [()] * N
         dinfo = []
         n_all = len(self.phi)
         for d in self.loads.info:
