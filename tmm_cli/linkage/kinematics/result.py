@@ -8,14 +8,15 @@ import numpy as np
 from ...results import LazyEntries, bulk
 
 
-def _rows(cols, n: int, flat: bool = False) -> list:
-    """The columns (each (n,) or a scalar) as n rows of plain floats, a value that is
-    not finite as 0.0 and -0.0 as 0.0 (``flat``: one column, its n values)."""
-    a = np.empty((n, len(cols)))
+def _rows(cols, n: int, flat: bool = False):
+    """The columns (each (n,) or a scalar) as n rows (tuples, to be read once) of plain
+    floats, a value that is not finite as 0.0 and -0.0 as 0.0 (``flat``: one column, the
+    list of its n values)."""
+    a = np.empty((len(cols), n))
     for j, c in enumerate(cols):
-        a[:, j] = c
+        a[j] = c
     a = np.where(np.isfinite(a), a, 0.0) + 0.0
-    return a[:, 0].tolist() if flat else a.tolist()
+    return a[0].tolist() if flat else zip(*a.tolist())
 
 
 def angle_deg(rad) -> np.ndarray:
