@@ -23,7 +23,9 @@ class PartialResults(StageError):
 
 def run(task: Task, *, progress: Callable[[str], None] | None = None,
         kinematics_curve: int = 361, explore: bool = False) -> dict[str, Any]:
-    """Compute every stage present in ``task``; return the results dict.
+    """Compute every stage present in ``task``; return the results dict (the
+    kinematics and kinetostatics entries as :class:`tmm_cli.results.LazyEntries`, made
+    when read; ``tmm_cli.run`` gives them as lists).
 
     ``kinematics_curve``: points of the output link's curve over one turn (0: none);
     ``explore``: also the kinematics at every degree of the turn (``kinematics_explore``,
