@@ -74,9 +74,12 @@ def write_outputs(task, results: dict, out: Path, formats: set[str], lang: str, 
 
     out = Path(out)
     manifest = Manifest(out)
+    rep = set(formats) & {"html", "pdf"}
+    if rep or "sheets" in formats:      # they read the entries as lists: made once, for the file too
+        from .results import listed
+        results = listed(results)
     kept = {k: v for k, v in results.items() if k not in REPORT_ONLY}
     written = [atomic_write(out / "results.json", lambda write: dump(kept, write))]
-    rep = set(formats) & {"html", "pdf"}
     if rep:
         from .report import render
         shown = results if study is None else {**results, "study": study[0], "study_trapezoid": study[1]}
