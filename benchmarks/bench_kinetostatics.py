@@ -59,8 +59,10 @@ def main() -> None:
 
         def run():
             lds = evaluate_on(mech, task.loads, kin, pos, sign=task.drive.sign, cycle=task.drive.cycle, inertia=True)
-            equilibrium(mech, st, kin, lds, task.kinetostatics, singular=sing).to_dict()
-        rows.append((f"loads + kinetostatics, {n} positions (+ to_dict)", best(run), target))
+            d = equilibrium(mech, st, kin, lds, task.kinetostatics, singular=sing).to_dict()
+            for _ in d["kinetostatics"]:        # every entry made (they are made when read)
+                pass
+        rows.append((f"loads + kinetostatics, {n} positions (+ entries)", best(run), target))
     rows.append(("singular positions, one turn (balance on the crank)",
                  best(lambda: find_singular(mech, st, "crank"), 3), None))
     rows.append(("singular positions, one turn (balance on the slider)",

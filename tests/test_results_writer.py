@@ -1,7 +1,8 @@
 """The results file's writer: the per-position entries the stages build already clean
-(tmm_cli.results.Entries) are written without being cleaned again, so their builders
-must give exactly what clean() would: checked here by writing the same results with
-every Entries turned into a plain list (cleaned value by value)."""
+(tmm_cli.results.Entries, and LazyEntries made block by block when read) are written
+without being cleaned again, so their builders must give exactly what clean() would:
+checked here by writing the same results with every Entries and LazyEntries turned into
+a plain list (cleaned value by value)."""
 from __future__ import annotations
 
 import json
@@ -11,16 +12,17 @@ from pathlib import Path
 import pytest
 
 import tmm_cli
-from tmm_cli.results import Entries, _ENC, _one_line, clean, dumps
+from tmm_cli.pipeline import run       # the results as the command line writes them (lazy entries)
+from tmm_cli.results import Entries, LazyEntries, _ENC, _one_line, clean, dumps
 
 ROOT = Path(__file__).resolve().parents[1]
 
 
 def _plain(obj):
-    """The same results with every Entries a plain list (deep copies)."""
+    """The same results with every Entries and LazyEntries a plain list (deep copies)."""
     if isinstance(obj, dict):
         return {k: _plain(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
+    if isinstance(obj, (list, tuple, LazyEntries)):
         return [_plain(v) for v in obj]
     return obj
 
@@ -44,9 +46,9 @@ def _entries_clean(obj, path="") -> None:
 def _check(results: dict) -> None:
     n = 0
     for key, sec in results.items():
-        if type(sec) is Entries:
+        if type(sec) in (Entries, LazyEntries):
             n += 1
-            _entries_clean(sec, key)
+            _entries_clean(list(sec), key)
     assert dumps(results) == dumps(_plain(results))
     assert n, "no section built as Entries"
 
@@ -54,7 +56,7 @@ def _check(results: dict) -> None:
 @pytest.mark.parametrize("name", ["forging_sixbar", "shaper_slotted_ram", "engine_slider_crank",
                                   "triad_class3", "static_gravity"])
 def test_entries_written_as_cleaned(name):
-    res = tmm_cli.run(tmm_cli.load_task(ROOT / "tasks" / f"{name}.yaml"))
+    res = run(tmm_cli.load_task(ROOT / "tasks" / f"{name}.yaml"))
     _check(res)
     g = res.get("graphical_error")
     if g and "plans" in g:
@@ -68,7 +70,7 @@ def test_entries_with_nulls_near_a_change_point(tmp_path):
     f = tmp_path / "task.yaml"
     f.write_text(LIMIT, encoding="utf-8")
     try:
-        res = tmm_cli.run(tmm_cli.load_task(f))
+        res = run(tmm_cli.load_task(f))
     except tmm_cli.StageError as exc:            # pragma: no cover - partial results still written
         res = exc.partial
     assert any(e.get("near_singular") for e in res["kinematics"])
@@ -80,9 +82,22 @@ def test_fine_grid_with_friction():
     """A fine grid (no per-position loads) with friction in the pairs."""
     text = (ROOT / "tasks" / "forging_sixbar.yaml").read_text(encoding="utf-8").replace("count: 12", "count: 500")
     task = tmm_cli.load_task(ROOT / "tasks" / "forging_sixbar.yaml", text=text)
-    res = tmm_cli.run(task)
+    res = run(task)
     assert len(res["kinetostatics"]) >= 500
     _check(res)
+
+
+def _same_in_any_blocks(entries: LazyEntries) -> None:
+    """Entries made block by block (iteration), all in one block (a slice) and one at a
+    time (indexing) are the same: no value depends on the other rows of its block."""
+    assert type(entries) is LazyEntries and len(entries) > LazyEntries.BLOCK
+    n = len(entries)
+    whole = entries[0:n]
+    assert type(whole) is Entries and len(whole) == n
+    assert list(entries) == whole
+    for i in (0, 1, LazyEntries.BLOCK - 1, LazyEntries.BLOCK, n - 1):
+        assert entries[i] == whole[i] and entries[i - n] == whole[i]
+    assert entries[7:n:97] == whole[7::97]
 
 
 @pytest.mark.parametrize("value", [0.0, 1.5, -2.25, 1e-05, 1e16, 1.0000000000000002, 123456789.123, 3, -7, True,
@@ -125,7 +140,7 @@ def test_written_piece_by_piece_as_a_whole(tmp_path):
     from tmm_cli.io import atomic_write
     from tmm_cli.results import ENTRIES_PER_SPILL, dump
     text = (ROOT / "tasks" / "forging_sixbar.yaml").read_text(encoding="utf-8").replace("count: 12", "count: 600")
-    res = tmm_cli.run(tmm_cli.load_task(ROOT / "tasks" / "forging_sixbar.yaml", text=text))
+    res = run(tmm_cli.load_task(ROOT / "tasks" / "forging_sixbar.yaml", text=text))
     res["task"]["title"] = "Кривошипно-ползунный μ \"q\""       # non-ASCII across the pieces
     pieces: list[bytes] = []
     dump(res, pieces.append)
@@ -135,3 +150,54 @@ def test_written_piece_by_piece_as_a_whole(tmp_path):
     p = atomic_write(tmp_path / "results.json", lambda write: dump(res, write))
     assert p.read_bytes() == whole
     assert json.loads(whole)["kinetostatics"][599]["index"] == res["kinetostatics"][599]["index"]
+    _same_in_any_blocks(res["kinetostatics"])
+    from tmm_cli.linkage import kinematics
+    from tmm_cli.linkage.context import build
+    lk = build(tmm_cli.load_task(ROOT / "tasks" / "forging_sixbar.yaml", text=text))
+    _same_in_any_blocks(kinematics.analyze(lk).to_entries(list(lk.positions.index)))
+
+
+def test_lazy_entries_as_a_read_only_sequence():
+    """LazyEntries: len, indexing (new dicts each time), slices, iteration in blocks,
+    equality with lists, copies and pickles as a plain list, written as a list."""
+    import copy
+    import pickle
+    calls = []
+
+    def build(i0, i1):
+        calls.append((i0, i1))
+        return [{"index": i, "x": i / 4} for i in range(i0, i1)]
+    e = LazyEntries(5, build, block=2)
+    ref = [{"index": i, "x": i / 4} for i in range(5)]
+    assert len(e) == 5 and bool(e) and not LazyEntries(0, build)
+    assert list(e) == ref and calls == [(0, 2), (2, 4), (4, 5)]
+    assert e == ref and ref == e and e != ref[:4] and e == LazyEntries(5, build) and e != "x"
+    assert e[-1] == ref[4] and e[1:3] == ref[1:3] and e[::2] == ref[::2] and e[4:1] == []
+    with pytest.raises(IndexError):
+        e[5]
+    with pytest.raises(IndexError):
+        e[-6]
+    e[0]["x"] = 99.0
+    assert e[0]["x"] == 0.0                       # read-only: each access builds anew
+    assert {"index": 3, "x": 0.75} in e and e.index({"index": 2, "x": 0.5}) == 2
+    for other in (copy.copy(e), copy.deepcopy(e), pickle.loads(pickle.dumps(e))):
+        assert type(other) is Entries and other == ref
+    assert dumps({"s": e}) == dumps({"s": ref})
+    assert json.loads(dumps({"s": e}))["s"] == ref
+    with pytest.raises(TypeError):
+        hash(e)
+
+
+def test_listed_makes_the_lazy_entries_lists():
+    """listed: every LazyEntries in dicts at any depth made an Entries list (the dicts on
+    the way copied, the caller's untouched); results without one come back as they are."""
+    from tmm_cli.results import listed
+    e = LazyEntries(3, lambda i0, i1: [{"index": i} for i in range(i0, i1)])
+    res = {"a": e, "b": {"entries": e, "n": 1}, "c": [1.0], "d": {"x": 2}}
+    out = listed(res)
+    assert type(out["a"]) is Entries and type(out["b"]["entries"]) is Entries
+    assert out["a"] == [{"index": 0}, {"index": 1}, {"index": 2}] == out["b"]["entries"]
+    assert out["c"] is res["c"] and out["d"] is res["d"] and res["a"] is e and res["b"]["entries"] is e
+    plain = {"c": [1.0], "d": {"x": 2}}
+    assert listed(plain) is plain
+    assert json.loads(json.dumps(out)) == json.loads(dumps(res))

@@ -27,12 +27,19 @@ __version__ = "0.1.0"
 
 
 def run(task, **kwargs):
-    """Run every stage whose section is present; return the results.json dict."""
-    from .pipeline import run as _run
+    """Run every stage whose section is present; return the results.json dict (plain
+    dicts and lists: the per-position entries as lists, see ``tmm_cli.results.listed``;
+    a PartialResults' ``partial`` too)."""
+    from .pipeline import PartialResults, run as _run
+    from .results import listed
 
     if not isinstance(task, Task):
         task = load_task(task)
-    return _run(task, **kwargs)
+    try:
+        return listed(_run(task, **kwargs))
+    except PartialResults as exc:
+        exc.partial = listed(exc.partial)
+        raise
 
 
 __all__ = ["load_task", "run", "Task", "TaskError", "StageError", "__version__"]

@@ -133,6 +133,9 @@ def work(path: Path, out: Path, folder: str, formats: set[str], lang: str, sets:
             mine = [(-1, own)] if own else []
         else:
             mine = [(i, s) for i, s in enumerate(sets) if s.matches(task)]
+        if mine:                # graded: the entries as lists (looked up answer by answer)
+            from .results import listed
+            results = listed(results)
         all_rows = []
         for i, aset in mine:
             if aset.error:

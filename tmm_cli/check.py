@@ -16,7 +16,7 @@ from typing import Any
 
 from .errors import TaskError
 from .messages import Message, as_message
-from .results import lookup, parse_path
+from .results import LazyEntries, lookup, parse_path
 
 DEFAULT_TOLERANCE = 0.05
 # results in degrees: differences are taken modulo 360 into [-180, 180)
@@ -351,7 +351,7 @@ def leaf_paths(results: dict) -> list[tuple[str, Any]]:
         if isinstance(o, dict):
             for k, v in o.items():
                 walk(v, f"{p}.{k}" if p else str(k))
-        elif isinstance(o, list):
+        elif isinstance(o, (list, LazyEntries)):
             by_index = bool(o) and all(isinstance(e, dict) and "index" in e for e in o)
             for i, v in enumerate(o):
                 walk(v, f"{p}[{v['index'] if by_index else i}]")

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 
-from .results import Entries, bulk
+from .results import Entries, bulk, listed
 
 READ_MM = 0.5
 
@@ -39,7 +39,7 @@ def _rel(err_abs: float, values) -> list:
 def _plans(results: dict) -> dict | None:
     """The plans' reading errors at every position, column by column (the points and
     links of the first entry: every entry of a run has the same)."""
-    kin = results.get("kinematics") or []
+    kin = listed(results.get("kinematics") or [])     # read five times below: made once
     if not kin:
         return None
     from .plans import geometry, scales

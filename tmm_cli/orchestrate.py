@@ -42,12 +42,22 @@ def prepare(path: str | Path, *, assembly: bool = True, text: str | None = None,
 REPORT_ONLY = ("kinematics_explore", "kinetostatics_explore")
 
 
-def compute(task, progress: Callable[[str], None] | None = None, *, explore: bool = False) -> dict:
+def compute(task, progress: Callable[[str], None] | None = None, *, explore: bool = False,
+            lazy: bool = False) -> dict:
     """The results dict. Raises TaskError, StageError or PartialResults (a StageError
     with the sections computed before the failure). ``explore``: also the data of the
-    HTML report's mechanism in motion (``kinematics_explore``)."""
-    from .pipeline import run
-    return run(task, progress=progress, explore=explore)
+    HTML report's mechanism in motion (``kinematics_explore``). ``lazy``: the
+    per-position entries as the stages give them (:class:`tmm_cli.results.LazyEntries`,
+    made when read: results.json is written block by block), else as lists."""
+    from .pipeline import PartialResults, run
+    if lazy:
+        return run(task, progress=progress, explore=explore)
+    from .results import listed
+    try:
+        return listed(run(task, progress=progress, explore=explore))
+    except PartialResults as exc:
+        exc.partial = listed(exc.partial)
+        raise
 
 
 def write_outputs(task, results: dict, out: Path, formats: set[str], lang: str, *,
@@ -64,9 +74,12 @@ def write_outputs(task, results: dict, out: Path, formats: set[str], lang: str, 
 
     out = Path(out)
     manifest = Manifest(out)
+    rep = set(formats) & {"html", "pdf"}
+    if rep or "sheets" in formats:      # they read the entries as lists: made once, for the file too
+        from .results import listed
+        results = listed(results)
     kept = {k: v for k, v in results.items() if k not in REPORT_ONLY}
     written = [atomic_write(out / "results.json", lambda write: dump(kept, write))]
-    rep = set(formats) & {"html", "pdf"}
     if rep:
         from .report import render
         shown = results if study is None else {**results, "study": study[0], "study_trapezoid": study[1]}
@@ -89,13 +102,15 @@ def process(path: str | Path, out, formats: set[str], lang: str, *,
     are written with them and, in place of the failed part, what failed; then the
     PartialResults is re-raised (its ``written`` the paths). ``out`` None: nothing is
     written; a callable: out(task) gives the folder. ``study``: also the accuracy study
-    (``tmm run --study``)."""
+    (``tmm run --study``). The results returned keep their per-position entries lazy
+    (:func:`compute` with ``lazy``): a reader that takes them many times lists them
+    (:func:`tmm_cli.results.listed`)."""
     from .pipeline import PartialResults
     task = task if task is not None else prepare(path, stage_errors=False)
     folder = out(task) if callable(out) else out
     failure = None
     try:
-        results = compute(task, progress, explore="html" in formats)
+        results = compute(task, progress, explore="html" in formats, lazy=True)
     except PartialResults as exc:
         results, failure = exc.partial, exc
     st = None

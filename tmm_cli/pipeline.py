@@ -23,7 +23,9 @@ class PartialResults(StageError):
 
 def run(task: Task, *, progress: Callable[[str], None] | None = None,
         kinematics_curve: int = 361, explore: bool = False) -> dict[str, Any]:
-    """Compute every stage present in ``task``; return the results dict.
+    """Compute every stage present in ``task``; return the results dict (the
+    kinematics and kinetostatics entries as :class:`tmm_cli.results.LazyEntries`, made
+    when read; ``tmm_cli.run`` gives them as lists).
 
     ``kinematics_curve``: points of the output link's curve over one turn (0: none);
     ``explore``: also the kinematics at every degree of the turn (``kinematics_explore``,
@@ -80,8 +82,13 @@ def run(task: Task, *, progress: Callable[[str], None] | None = None,
     except TaskError as err:
         # a stage found an invalid field: name the file and the field's line (exit 2)
         raise task.locate(err) from None
-    # the hand method's own error (reading the drawings to 0.5 mm; 12-position flywheel)
+    # the hand method's own error (reading the drawings to 0.5 mm; 12-position flywheel); it
+    # reads every kinematics entry several times: they are listed once and kept (the
+    # results file and the report read them again; the kinetostatics entries stay lazy)
     from .graphical import graphical_error
+    from .results import listed
+    if results.get("structure") and results.get("kinematics"):
+        results["kinematics"] = listed(results["kinematics"])
     ge = graphical_error(results)
     if ge is not None:
         results["graphical_error"] = ge

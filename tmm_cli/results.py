@@ -5,8 +5,9 @@ import gc
 import json
 import math
 import re
+from collections.abc import Sequence
 from contextlib import contextmanager
-from typing import Any
+from typing import Any, Callable
 
 from .messages import Message
 
@@ -19,6 +20,79 @@ class Entries(list):
     ``KinetostaticsResult.to_dict``, ``graphical_error``) make them so; anything else
     stays a plain list and is cleaned."""
     __slots__ = ()
+
+
+class LazyEntries(Sequence):
+    """A results section's entries (one per position, clean as :class:`Entries`) made
+    from the stage result's arrays when they are read, a block of positions at a time:
+    nothing holds every entry at once (36,000 kinetostatics entries as dicts hold
+    ~230 MB; :func:`dump` writes them block by block).
+
+    A read-only sequence of dicts: ``len(e)``; ``e[i]`` (a new dict at each access: a
+    change to it is not kept) and ``e[a:b]`` (an :class:`Entries`); iteration (block by
+    block); ``==`` with a list or another LazyEntries compares the entries in order;
+    ``list(e)`` or ``e.tolist()`` gives them all (``tolist``: as an :class:`Entries`);
+    copied or pickled as that list. :func:`dumps` and :func:`dump` write it as the
+    list of its entries; ``json.dumps`` does not take it (it is no list).
+
+    ``build(i0, i1)``: the clean entries of the rows i0..i1-1, as a list."""
+    __slots__ = ("_n", "_build", "_block")
+
+    BLOCK = 512          # entries built at a time by iteration
+
+    def __init__(self, n: int, build: Callable[[int, int], list], block: int = BLOCK):
+        self._n, self._build, self._block = int(n), build, max(1, int(block))
+
+    def __len__(self) -> int:
+        return self._n
+
+    def __getitem__(self, i):
+        if isinstance(i, slice):
+            start, stop, step = i.indices(self._n)
+            if step == 1:
+                return Entries(self._build(start, stop) if start < stop else ())
+            return Entries(self._build(k, k + 1)[0] for k in range(start, stop, step))
+        k = i.__index__()
+        if k < 0:
+            k += self._n
+        if not 0 <= k < self._n:
+            raise IndexError("entry index out of range")
+        return self._build(k, k + 1)[0]
+
+    def __iter__(self):
+        n, b, build = self._n, self._block, self._build
+        for i0 in range(0, n, b):
+            yield from build(i0, min(i0 + b, n))
+
+    def tolist(self) -> Entries:
+        return Entries(self)
+
+    def __eq__(self, other):
+        if isinstance(other, (list, LazyEntries)):
+            return len(self) == len(other) and all(a == b for a, b in zip(self, other))
+        return NotImplemented
+
+    __hash__ = None
+
+    def __reduce__(self):
+        return Entries, (self.tolist(),)
+
+    def __repr__(self) -> str:
+        return f"<LazyEntries: {self._n} entries>"
+
+
+def listed(results: Any) -> Any:
+    """The results with every :class:`LazyEntries` in them (in dicts at any depth) made
+    into its :class:`Entries` list: for readers that take the entries many times, keep
+    them, or tell them apart by identity (the public ``tmm_cli.run``, the report, the
+    sheets, grading). A dict holding one is copied, any other value is the same object."""
+    t = type(results)
+    if t is LazyEntries:
+        return results.tolist()
+    if t is dict:
+        new = {k: listed(v) for k, v in results.items()}
+        return new if any(new[k] is not v for k, v in results.items()) else results
+    return results
 
 
 @contextmanager
@@ -44,7 +118,7 @@ def bulk():
 def clean(obj: Any) -> Any:
     """Plain JSON types: numpy scalars/arrays to Python, NaN and inf to None."""
     t = type(obj)
-    if t is Entries:
+    if t is Entries or t is LazyEntries:
         return obj
     if t is float:                                            # the common cases first
         return obj + 0.0 if math.isfinite(obj) else None      # + 0.0: no "-0.0" in the file
@@ -135,8 +209,10 @@ _ONE_LINE_DEPTH = 3
 
 
 def _emit(obj, level: int, out: list[str]) -> None:
-    if type(obj) is Entries and level == _ONE_LINE_DEPTH - 2 and obj:
+    if (type(obj) is Entries or type(obj) is LazyEntries) and level == _ONE_LINE_DEPTH - 2 and obj:
         _emit_entries(obj, out)
+    elif type(obj) is LazyEntries:           # elsewhere: as its list (an Entries) is written
+        _emit(obj.tolist(), level, out)
     elif level >= _ONE_LINE_DEPTH:
         out.append(_one_line(obj))
     elif type(obj) is dict and obj:
@@ -160,7 +236,7 @@ def _emit(obj, level: int, out: list[str]) -> None:
         out.append(_one_line(obj))
 
 
-def _emit_entries(entries: Entries, out: list[str]) -> None:
+def _emit_entries(entries: Entries | LazyEntries, out: list[str]) -> None:
     """``_emit`` of a section's clean entries (at level 1): each entry a dict, one key a
     line, its values on one line."""
     keys: dict[str, str] = {}
@@ -212,7 +288,7 @@ def lookup(results: dict, path: str) -> Any:
     cur: Any = results
     for tok in parse_path(path):
         if isinstance(tok, int):
-            if not isinstance(cur, list):
+            if not isinstance(cur, (list, LazyEntries)):
                 raise KeyError(Message("answers.path_not_list", path=path, index=tok))
             if cur and isinstance(cur[0], dict) and "index" in cur[0]:
                 hit = [e for e in cur if e.get("index") == tok]

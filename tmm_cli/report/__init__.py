@@ -114,6 +114,10 @@ def make_env():
 
 
 def _context(results: dict, task, out_dir: Path, lang: str) -> ReportContext:
+    """The sections' context; the results' per-position entries as lists (the sections
+    read them many times and tell them apart by identity)."""
+    from ..results import listed
+    results = listed(results)
     return ReportContext(results=results, task=task, lang=lang if lang in ("en", "ru", "uk") else "en",
                          out_dir=Path(out_dir), env=make_env())
 
@@ -373,6 +377,8 @@ def render(results: dict, task, out_dir: Path, formats: set[str], lang: str = "e
     if not formats & {"html", "pdf"}:
         return []
     want_pdf = "pdf" in formats
+    from ..results import listed
+    results = listed(results)      # once, before the helper is forked (it shares them)
     ctx = _context(results, task, out_dir, lang)
     all_names = [name for name, _ in _sections.available()]
     helper_names = [n for n in HELPER_SECTIONS if n in all_names and results.get(n)]

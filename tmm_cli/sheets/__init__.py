@@ -14,6 +14,8 @@ SHEETS = {"en": {1: "Kinematics", 2: "Kinetostatics", 3: "Dynamics", 4: "Cam mec
 
 def build_sheets(results: dict, task, lang: str = "en") -> list[tuple]:
     """[(PrimCanvas, info)] for each sheet whose section the results have."""
+    from ..results import listed
+    results = listed(results)        # the entries as lists: read many times
     from . import sheet1, sheet2, sheet3, sheet4, sheet5
     from .frame import SHEET_H, SHEET_W, draw_frame
     from .prims import PrimCanvas

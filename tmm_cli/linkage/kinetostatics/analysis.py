@@ -18,7 +18,7 @@ import numpy as np
 
 from ...errors import StageError, field_error
 from ...messages import Message
-from ...results import Entries, bulk
+from ...results import LazyEntries, bulk
 from .. import loads as loads_mod
 from ..loads import AppliedCouple, Loads
 from .equations import Geometry, geometry, load_vector, scaled_det
@@ -107,18 +107,20 @@ class KinetostaticsResult:
     def reaction(self, key: str, i: int) -> dict:
         """The reaction ``R<i><j>`` at row i, as in results.json."""
         keys = [f"R{j.a}{j.b}" for j in self.mech.joints]
-        return self._reactions_table()[keys.index(key)][i]
+        with np.errstate(all="ignore"):
+            return self._reactions_table(slice(i, i + 1))[keys.index(key)][0]
 
-    def _reactions_table(self) -> list[list[dict]]:
-        """Per pair, per position: the results.json reaction dicts (vectorised)."""
-        ok = self.ok & np.all(np.isfinite(self.reactions), axis=1)
+    def _reactions_table(self, sl: slice) -> list[list[dict]]:
+        """Per pair, at the rows ``sl``: the results.json reaction dicts (vectorised)."""
+        reactions = self.reactions[sl]
+        ok = self.ok[sl] & np.all(np.isfinite(reactions), axis=1)
         okl = ok.tolist()
-        scale = np.maximum(np.max(np.abs(np.nan_to_num(self.reactions)), axis=1), 1e-300)
+        scale = np.maximum(np.max(np.abs(np.nan_to_num(reactions)), axis=1), 1e-300)
         out = []
         for k, j in enumerate(self.mech.joints):
-            x = self.reactions[:, 2 * k]
-            y = self.reactions[:, 2 * k + 1]
-            p = self.geo.jpoint[k]
+            x = reactions[:, 2 * k]
+            y = reactions[:, 2 * k + 1]
+            p = self.geo.jpoint[k][sl]
             pl = _finite_list(p)
             if j.kind == "R":
                 xs, ys, Rs = (x + 0.0).tolist(), (y + 0.0).tolist(), np.hypot(x, y).tolist()
@@ -126,7 +128,7 @@ class KinetostaticsResult:
                        {"x": None, "y": None, "R": None, "point": pt}
                        for a, b_, r, pt, good in zip(xs, ys, Rs, pl, okl)]
             else:
-                e = self.geo.jdir[k]
+                e = self.geo.jdir[k][sl]
                 nx, ny = -e[:, 1], e[:, 0]
                 N_, M_ = x, y
                 has = np.abs(N_) > 1e-12 * scale
@@ -145,75 +147,108 @@ class KinetostaticsResult:
 
     def to_dict(self, detail: bool | None = None) -> dict:
         """The results.json sections of the stage: ``kinetostatics`` (one entry per
-        position), ``kinetostatics_info`` (balance link, conventions, groups, joints, the
+        position: a :class:`tmm_cli.results.LazyEntries`, made from this result's arrays
+        when read), ``kinetostatics_info`` (balance link, conventions, groups, joints, the
         load diagrams) and ``singular`` (crank angles, deg); the warnings are
         ``self.warnings``. ``detail``: include per position the applied loads with their
         points and velocities (``loads``, ``couples``: the report's force plans and
         Zhukovsky lever); default: when there are at most 400 positions."""
         if detail is None:
             detail = len(self.phi) <= DETAIL_MAX
-        with np.errstate(all="ignore"), bulk():
-            return self._to_dict(detail)
-
-    def _to_dict(self, detail: bool = True) -> dict:
         mech = self.mech
-        N = len(self.phi)
-        names = {lk.index: lk.name for lk in mech.links}
-        names[0] = "ground"
+        names = self._link_names()
         jkeys = [f"R{j.a}{j.b}" for j in mech.joints]
+        with np.errstate(all="ignore"):
+            # the two whole-turn columns the entries take (the rest is sliced per block)
+            disc = self.discrepancy()
+            a, b = self.reactions, self.reactions_matrix
+            mdisc = np.max(np.abs(a - b), axis=1) / np.maximum(np.max(np.abs(b), axis=1), 1e-300)
+
+        def build(i0: int, i1: int) -> list[dict]:
+            with np.errstate(all="ignore"), bulk():
+                return self._entries(slice(i0, i1), detail, disc, mdisc)
+        return {"kinetostatics": LazyEntries(len(self.phi), build), "kinetostatics_info": {
+            "balance": self.balance,
+            "balance_kind": self.balance_kind,
+            "arm": self.arm,
+            "convention": "R_ij = force of link i on link j (i < j), R_ji = -R_ij; moments ccw positive",
+            "groups": [[names[l] for l in g] for g in self.groups],
+            "joints": [{"key": jkeys[k], "kind": j.kind, "a": j.a, "b": j.b, "point": j.point,
+                        "slider": j.slider} for k, j in enumerate(mech.joints)],
+            "load_diagrams": [{"name": d["name"], "link": d["link"], "kind": d["kind"], "type": d["type"],
+                               "stroke": d["stroke"], "abscissa": d.get("abscissa"), "curve": d.get("curve")}
+                              for d in self.loads.info],
+        }, "singular": [float(a) for a in self.singular]}
+
+    def _link_names(self) -> dict[int, str]:
+        names = {lk.index: lk.name for lk in self.mech.links}
+        names[0] = "ground"
+        return names
+
+    def _entries(self, sl: slice, detail: bool, disc: np.ndarray, mdisc: np.ndarray) -> list[dict]:
+        """The ``kinetostatics`` entries of the rows ``sl`` (clean values), built column by
+        column (one list of values per key) and zipped; every value depends on its own
+        row only, so the entries do not depend on the blocks they are built in."""
+        mech = self.mech
+        N = len(range(*sl.indices(len(self.phi))))
+        names = self._link_names()
+        jkeys = [f"R{j.a}{j.b}" for j in mech.joints]
+        ok = self.ok[sl]
 
         def L(a) -> list:
             """The values where finite at a position not singular, else None (never -0.0)."""
             a = np.asarray(a, float) + 0.0
-            good = np.isfinite(a) & self.ok
+            good = np.isfinite(a) & ok
             return a.tolist() if good.all() else np.where(good, a, None).tolist()
 
-        mb = L(self.M_b)
-        bf = L(self.M_b / self.arm) if (self.balance_kind == "moment" and self.arm) else None
-        mz, mv, mm = L(self.M_zhukovsky), L(self.M_virtual), L(self.M_matrix)
-        disc = L(self.discrepancy())
-        a, b = self.reactions, self.reactions_matrix
-        mdisc = L(np.max(np.abs(a - b), axis=1) / np.maximum(np.max(np.abs(b), axis=1), 1e-300))
-        table = self._reactions_table()
-        phil = (self.phi % 360.0 + 0.0).tolist()
-        near = (self.near | ~self.ok).tolist()
+        Mb = self.M_b[sl]
+        mb = L(Mb)
+        bf = L(Mb / self.arm) if (self.balance_kind == "moment" and self.arm) else None
+        mz, mv, mm = L(self.M_zhukovsky[sl]), L(self.M_virtual[sl]), L(self.M_matrix[sl])
+        table = self._reactions_table(sl)
+        phil = (self.phi[sl] % 360.0 + 0.0).tolist()
+        near = (self.near[sl] | ~ok).tolist()
         # loads
+        geo = self.geo.take(sl)
         finfo = []
         inert_f = {lk.name: np.zeros((N, 2)) for lk in mech.links}
         inert_m = {lk.name: np.zeros(N) for lk in mech.links}
         for f in self.loads.forces:
             if detail:
-                v = self.geo.point_vel(f.link, f.point)
-                finfo.append((f.name, names[f.link], f.kind, _finite_list(f.point), _finite_list(f.F),
+                point = f.point[sl]
+                v = geo.point_vel(f.link, point)
+                finfo.append((f.name, names[f.link], f.kind, _finite_list(point), _finite_list(f.F[sl]),
                               _finite_list(v)))
             if f.kind == "inertia" and f.link:
-                inert_f[names[f.link]] += f.F
+                inert_f[names[f.link]] += f.F[sl]
         cinfo = []
         for c in self.loads.couples:
             if detail:
-                cinfo.append((c.name, names[c.link], c.kind, _finite_list(c.M),
-                              _finite_list(self.geo.omega(c.link))))
+                cinfo.append((c.name, names[c.link], c.kind, _finite_list(c.M[sl]),
+                              _finite_list(geo.omega(c.link))))
             if c.kind == "inertia" and c.link:
-                inert_m[names[c.link]] += c.M
+                inert_m[names[c.link]] += c.M[sl]
         inert_keys = list(inert_f)
         # per position, the links' inertia dicts (built column by column, then zipped)
-        inert_rows = list(zip(*[[{"Fx": fx + 0.0, "Fy": fy + 0.0, "M": m + 0.0} for fx, fy, m in
-                                 zip(inert_f[k][:, 0].tolist(), inert_f[k][:, 1].tolist(), inert_m[k].tolist())]
-                                for k in inert_keys])) if inert_keys else [()] * N
-        reaction_rows = list(zip(*table)) if table else [()] * N
+        inert_rows = zip(*[[{"Fx": fx, "Fy": fy, "M": m} for fx, fy, m in
+                            zip((inert_f[k][:, 0] + 0.0).tolist(), (inert_f[k][:, 1] + 0.0).tolist(),
+                                (inert_m[k] + 0.0).tolist())]
+                           for k in inert_keys]) if inert_keys else [()] * N
+        reaction_rows = zip(*table) if table else [()] * N
         dinfo = []
+        n_all = len(self.phi)
         for d in self.loads.info:
-            act = np.broadcast_to(np.asarray(d["active"], bool), (N,)).tolist()
-            xs = None if d.get("x") is None else _finite_list(d["x"])
-            vs = _finite_list(np.asarray(d["value"], float) + 0.0)
+            act = np.broadcast_to(np.asarray(d["active"], bool), (n_all,))[sl].tolist()
+            xs = None if d.get("x") is None else _finite_list(np.asarray(d["x"], float)[sl])
+            vs = _finite_list(np.asarray(d["value"], float)[sl] + 0.0)
             dinfo.append((d["name"], d["link"], d["kind"], d["stroke"], act, xs, vs))
         fr = None
         if self.efficiency is not None:
-            fr = (L(self.efficiency), L(self.friction_power), L(self.driving_power),
-                  [L(self.friction_pairs[:, k]) for k in range(len(mech.joints))])
+            fr = (L(self.efficiency[sl]), L(self.friction_power[sl]), L(self.driving_power[sl]),
+                  [L(self.friction_pairs[sl, k]) for k in range(len(mech.joints))])
         # the entries column by column (one list of N values per key), then zipped
         none = [None] * N
-        cols: list[tuple[str, list]] = [("index", [int(i) for i in self.index]), ("phi", phil)]
+        cols: list[tuple[str, list]] = [("index", [int(i) for i in self.index[sl]]), ("phi", phil)]
         if self.balance_kind == "moment":
             cols += [("balancing_moment", mb), ("balancing_force", bf if bf is not None else none),
                      ("zhukovsky_moment", mz), ("virtual_power_moment", mv), ("matrix_moment", mm)]
@@ -221,7 +256,7 @@ class KinetostaticsResult:
             cols += [("balancing_moment", none), ("balancing_force", mb), ("zhukovsky_moment", none),
                      ("virtual_power_moment", none), ("matrix_moment", none), ("zhukovsky_force", mz),
                      ("virtual_power_force", mv), ("matrix_force", mm)]
-        cols += [("discrepancy", disc), ("matrix_discrepancy", mdisc),
+        cols += [("discrepancy", L(disc[sl])), ("matrix_discrepancy", L(mdisc[sl])),
                  ("reactions", [dict(zip(jkeys, r)) for r in reaction_rows]),
                  ("inertia", [dict(zip(inert_keys, r)) for r in inert_rows])]
         if detail:
@@ -245,19 +280,7 @@ class KinetostaticsResult:
         cols.append(("near_singular", near))
         keys = [k for k, _ in cols]
         # clean values by construction (tmm_cli.results.Entries)
-        entries = Entries(dict(zip(keys, row)) for row in zip(*[c for _, c in cols]))
-        return {"kinetostatics": entries, "kinetostatics_info": {
-            "balance": self.balance,
-            "balance_kind": self.balance_kind,
-            "arm": self.arm,
-            "convention": "R_ij = force of link i on link j (i < j), R_ji = -R_ij; moments ccw positive",
-            "groups": [[names[l] for l in g] for g in self.groups],
-            "joints": [{"key": jkeys[k], "kind": j.kind, "a": j.a, "b": j.b, "point": j.point,
-                        "slider": j.slider} for k, j in enumerate(mech.joints)],
-            "load_diagrams": [{"name": d["name"], "link": d["link"], "kind": d["kind"], "type": d["type"],
-                               "stroke": d["stroke"], "abscissa": d.get("abscissa"), "curve": d.get("curve")}
-                              for d in self.loads.info],
-        }, "singular": [float(a) for a in self.singular]}
+        return [dict(zip(keys, row)) for row in zip(*[c for _, c in cols])]
 
 
 def _with_inertia(mech, kin, loads: Loads | None, inertia: bool, crank_inertia: float) -> Loads:
@@ -404,6 +427,7 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
         q = load_vector(mech, geo, lds)
     x, Mb, M1U = solve_groups(q)
     geo.__dict__.pop("_group_plan", None)      # the groups' inverses: not needed past here
+    geo.__dict__.pop("_relative_motion", None)
     if np.any(locked):
         x[locked] = np.nan
         Mb = np.where(locked, np.nan, Mb)

@@ -26,6 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..loads import Loads
+from ..loads.model import all_rows
 
 
 def cross(r: np.ndarray, f: np.ndarray) -> np.ndarray:
@@ -84,9 +85,12 @@ def geometry(mech, kin, rows=None) -> Geometry:
     phi = np.atleast_1d(np.asarray(kin.phi, float))
     rows = np.arange(len(phi)) if rows is None else np.asarray(rows, int)
     N = len(rows)
+    every = all_rows(rows, len(phi))
 
     def sel(a):
-        return np.asarray(a, float)[rows]
+        """The rows of ``a`` (every row: ``a`` itself, no copy; nothing here changes it)."""
+        a = np.asarray(a, float)
+        return a if every else a[rows]
 
     origin, d1o, a1, a2 = {}, {}, {}, {}
     for lk in mech.links:

@@ -64,21 +64,25 @@ def group_by_group(mech, structure, geo: Geometry, q: np.ndarray) -> tuple[np.nd
         cached = (structure, mech, _group_plan(mech, structure, geo))
         geo.__dict__["_group_plan"] = cached
     N, p = geo.n_pos, len(mech.joints)
-    x = np.full((N, 2 * p), np.nan)
+    # the right-hand sides and the reactions held by rows (one row of N values per
+    # unknown): every copy and subtraction below runs along the positions (an (N, 3)
+    # slice of a position-major array makes numpy loop 3 values at a time); the same
+    # numbers, the solve on the same (N, m) array as ever
+    xT = np.full((2 * p, N), np.nan)
     M1 = np.full(N, np.nan)
     for links, rows, unknown, known, inv, is_crank in cached[2]:
-        b = np.empty((N, 3 * len(links)))
+        bT = np.empty((3 * len(links), N))
         for l, i in rows.items():
-            b[:, 3 * i:3 * i + 3] = -q[:, l, :]
+            np.negative(q[:, l, :].T, out=bT[3 * i:3 * i + 3])
         # known reactions of the later groups on this group's links
         for k, i, cf in known:
-            b[:, 3 * i:3 * i + 3] -= np.einsum("nij,nj->ni", cf, x[:, 2 * k:2 * k + 2])
-        sol = np.matmul(inv, b[..., None])[..., 0]
+            bT[3 * i:3 * i + 3] -= np.einsum("nij,nj->ni", cf, xT[2 * k:2 * k + 2].T).T
+        sol = np.matmul(inv, np.ascontiguousarray(bT.T)[..., None])[..., 0]
         for c, k in enumerate(unknown):
-            x[:, 2 * k:2 * k + 2] = sol[:, 2 * c:2 * c + 2]
+            xT[2 * k:2 * k + 2] = sol[:, 2 * c:2 * c + 2].T
         if is_crank:
             M1 = sol[:, -1]
-    return x, M1
+    return xT.T, M1
 
 
 def _group_plan(mech, structure, geo: Geometry) -> list[tuple]:
@@ -279,7 +283,18 @@ def balance_rate(mech, geo: Geometry, balance: int) -> np.ndarray:
 def relative_motion(mech, geo: Geometry) -> np.ndarray:
     """(N, pairs): per pair the relative motion friction acts against: a pin's relative
     angular velocity omega_b - omega_a, a slider's relative sliding velocity along its guide
-    (the friction loads change sign where it does)."""
+    (the friction loads change sign where it does). Made once per geometry (the friction
+    iteration asks for it at every step)."""
+    cached = geo.__dict__.get("_relative_motion")
+    if cached is not None and cached[0] is mech:
+        return cached[1]
+    out = _relative_motion(mech, geo)
+    geo.__dict__["_relative_motion"] = (mech, out)
+    return out
+
+
+def _relative_motion(mech, geo: Geometry) -> np.ndarray:
+    """See :func:`relative_motion`."""
     out = np.zeros((geo.n_pos, len(mech.joints)))
     for k, j in enumerate(mech.joints):
         if j.kind == "R":
@@ -304,7 +319,7 @@ def friction_loads(mech, geo: Geometry, x: np.ndarray, f: float, r_pin: float, f
     loss = np.zeros((N, len(mech.joints)))
     # a singular position's reactions are not finite: no friction there (nan_to_num would turn
     # an infinite reaction into 1.8e308 and the friction couples into inf)
-    xs = np.where(np.isfinite(x), x, 0.0)
+    xs = x if np.isfinite(x).all() else np.where(np.isfinite(x), x, 0.0)
     rel = relative_motion(mech, geo)
     for k, j in enumerate(mech.joints):
         if j.kind == "R":

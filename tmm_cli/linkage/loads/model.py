@@ -8,6 +8,12 @@ import numpy as np
 G = 9.81
 
 
+def all_rows(rows: np.ndarray, n: int) -> bool:
+    """Whether the row numbers ``rows`` are 0, 1, ..., n-1 (every row, in order): then a
+    selection is the arrays themselves, no copies (nothing changes them in place)."""
+    return len(rows) == n and (n == 0 or (rows[0] == 0 and bool(np.all(np.diff(rows) == 1))))
+
+
 # ------------------------------------------------------------------ data
 @dataclass
 class AppliedForce:
@@ -47,8 +53,10 @@ class Loads:
                      [c for c in self.couples if c.kind != "inertia"], self.info)
 
     def select(self, rows) -> "Loads":
-        """The loads at the positions ``rows`` only."""
+        """The loads at the positions ``rows`` only (``self`` itself at every position)."""
         rows = np.asarray(rows, dtype=int)
+        if all_rows(rows, len(self.phi)):
+            return self
         return Loads(np.asarray(self.phi)[rows],
                      [replace(f, point=f.point[rows], F=f.F[rows]) for f in self.forces],
                      [replace(c, M=c.M[rows]) for c in self.couples],
