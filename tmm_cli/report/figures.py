@@ -11,6 +11,8 @@ from __future__ import annotations
 import io
 import math
 import re
+from itertools import chain
+from operator import itemgetter
 
 import numpy as np
 
@@ -483,13 +485,22 @@ def _pxy(entry, p):
     return np.array([float(d["x"]), float(d["y"])])
 
 
+def points_xy(entries, p) -> np.ndarray:
+    """(n, 2): the point ``p`` of each entry, ``np.array([_pxy(e, p) for e in entries])``
+    without an array per entry (a fine grid has thousands)."""
+    return np.array([(float(d["x"]), float(d["y"])) for d in (e["points"][p] for e in entries)])
+
+
 def mechanism_extent(entries, names=None) -> tuple[np.ndarray, np.ndarray]:
     """Bounding box (min xy, max xy) of the points over the entries."""
-    pts = [d for e in entries for p, d in e["points"].items() if names is None or p in names]
+    if names is None:
+        pts = list(chain.from_iterable(e["points"].values() for e in entries))
+    else:
+        pts = [d for e in entries for p, d in e["points"].items() if p in names]
     if not pts:
         return np.zeros(2), np.zeros(2)
-    x = np.array([d["x"] for d in pts], float)
-    y = np.array([d["y"] for d in pts], float)
+    x = np.array(list(map(itemgetter("x"), pts)), float)
+    y = np.array(list(map(itemgetter("y"), pts)), float)
     return np.array([x.min(), y.min()]), np.array([x.max(), y.max()])
 
 
@@ -503,7 +514,7 @@ def slider_ranges(entries, geom) -> dict[str, tuple[np.ndarray, np.ndarray]]:
         if s is None or not s.points:
             continue
         pin = s.points[0]
-        pts = np.array([_pxy(e, pin) for e in entries if pin in e["points"]])
+        pts = points_xy([e for e in entries if pin in e["points"]], pin)
         if not len(pts):
             continue
         ang = math.radians(float(entries[0]["links"][s.name]["angle"] or 0.0))

@@ -111,11 +111,11 @@ def positions_svg(ctx, geom, entries, grid, fine=None):
         if p in seen or p in geom.ground or p not in grid[0]["points"]:
             continue
         seen.add(p)
-        xy = np.array([_pxy(e, p) for e in grid])
+        xy = F.points_xy(grid, p)
         if np.ptp(xy, axis=0).max() < 1e-9 or len(xy) < 3:
             continue
         if fine is not None:
-            c = np.array([_pxy(e, p) for e in fine + fine[:1]])
+            c = F.points_xy(fine + fine[:1], p)
         else:
             t = np.arange(len(xy) + 1, dtype=float)
             closed = np.vstack([xy, xy[:1]])
