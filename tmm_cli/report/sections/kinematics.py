@@ -70,12 +70,13 @@ def _grid_count(ctx, entries) -> int:
 
 
 # ----------------------------------------------------------------- figures
-def positions_svg(ctx, geom, entries, grid, fine=None):
+def positions_svg(ctx, geom, entries, grid, fine=None, extent=None):
     """The plan of positions: the mechanism at the `grid` positions, trajectories as
     periodic splines through them -- or, given a `fine` grid, through its points (at most
-    TRACE_POINTS of them, evenly spaced)."""
+    TRACE_POINTS of them, evenly spaced). ``extent``: ``mechanism_extent(entries)`` when
+    already known."""
     from .. import figures as F
-    lo, hi = F.mechanism_extent(entries)
+    lo, hi = extent if extent is not None else F.mechanism_extent(entries)
     view, unit, title = F.figure_for_box(lo, hi, 165.0, min_h=60.0, max_h=150.0, margin_mm=10.0,
                                          lang=ctx.lang)
     ranges = F.slider_ranges(entries, geom)
@@ -245,9 +246,13 @@ def output_series(ctx, geom, entries, out_name):
         ang = math.radians(float(e0["links"][l.name]["angle"] or 0.0))
         u = np.array([math.cos(ang), math.sin(ang)])
         r0 = _pxy(e0, pin)
-        s = [float((_pxy(e, pin) - r0) @ u) for e in entries]
-        v = [float(np.array([e["points"][pin]["vx"], e["points"][pin]["vy"]], float) @ u) for e in entries]
-        a = [float(np.array([e["points"][pin]["ax"], e["points"][pin]["ay"]], float) @ u) for e in entries]
+        # row by row as for one entry (each row's product by itself: the same numbers),
+        # the rows read in bulk (a fine grid has thousands)
+        from ..figures import points_xy
+        ds = [e["points"][pin] for e in entries]
+        s = [float((r - r0) @ u) for r in points_xy(entries, pin)]
+        v = [float(r @ u) for r in np.array(list(map(itemgetter("vx", "vy"), ds)), float)]
+        a = [float(r @ u) for r in np.array(list(map(itemgetter("ax", "ay"), ds)), float)]
         return "slider", s, v, a
     name = l.name if l is not None else out_name
     a0 = float(e0["links"][name]["angle"] or 0.0)
@@ -453,7 +458,7 @@ def build(ctx) -> str | None:
 
     return ctx.render("sections/kinematics.html.j2",
                       pos_rows=pos_rows, scale_rows=scale_rows, lengths=lengths,
-                      fig_positions=positions_svg(ctx, geom, entries, shown_grid, fine), n_grid=len(shown_grid),
+                      fig_positions=positions_svg(ctx, geom, entries, shown_grid, fine, (lo, hi)), n_grid=len(shown_grid),
                       hdr_pts=hdr_pts, v_rows=v_rows, a_rows=a_rows, hdr_l=hdr_l,
                       w_rows=w_rows, e_rows=e_rows, hdr_ang=hdr_ang, ang_rows=ang_rows,
                       sense_note=ctx.t("kin.sense_note"), positions=positions, fig_diagrams=diag,

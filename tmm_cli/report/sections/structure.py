@@ -40,11 +40,12 @@ def link_kind(geom, link) -> str:
 def scheme_svg(ctx, geom, entries, entry, width_mm=150.0):
     from .. import figures as F
     lo, hi = F.mechanism_extent([entry])
-    for a, b in F.slider_ranges(entries, geom).values():
+    ranges = F.slider_ranges(entries, geom)
+    for a, b in ranges.values():
         lo, hi = np.minimum(lo, np.minimum(a, b)), np.maximum(hi, np.maximum(a, b))
     view, unit, title = F.figure_for_box(lo, hi, width_mm, min_h=45.0, max_h=140.0, margin_mm=10.0,
                                          lang=ctx.lang)
-    F.draw_mechanism(view, geom, entry, unit, ranges=F.slider_ranges(entries, geom), taken=[title])
+    F.draw_mechanism(view, geom, entry, unit, ranges=ranges, taken=[title])
     return ctx.svg(view, "scheme")
 
 
