@@ -134,8 +134,9 @@ def test_fast_path_answers_as_the_typer_app(tmp_path):
 def test_program_ends_at_once_unless_shutdown_has_work(tmp_path):
     """The program (`tmm`, `python -m tmm_cli`: cli.entry) ends a plain run / validate
     without the interpreter's shutdown (a global's finalizer never runs), its output all
-    written and its exit code kept; `main()` called by a program that goes on, an atexit
-    callback or a running thread take the ordinary exit (which does run them)."""
+    written and its exit code kept, its atexit callbacks run first (a report's:
+    multiprocessing's, tempfile's); `main()` called by a program that goes on or a running
+    thread take the ordinary exit (which runs the finalizer)."""
     good = str(ROOT / "tasks" / "forging_sixbar.yaml")
     bad = tmp_path / "bad.yaml"
     bad.write_text("schema: tmm/1\nmechanism:\n  ground: {O: [0, 0]}\n  linkz: {}\n", encoding="utf-8")
@@ -149,18 +150,26 @@ def test_program_ends_at_once_unless_shutdown_has_work(tmp_path):
             "thread": "threading.Thread(target=threading.main_thread().join).start()\n"     # to the end
                       "from tmm_cli.cli import entry\nentry()\n"}
     for args, code, out in ((["validate", good], 0, f"{good}: ok\n"), (["validate", str(bad)], 2, ""),
-                            (["run", good, "-f", "json", "-o", "o"], 0, None)):
+                            (["run", good, "-f", "json", "-o", "o"], 0, None),
+                            (["run", good, "-f", "html,pdf", "-o", "r"], 0, None)):
         for name, tail in ends.items():
+            if "html,pdf" in args and name not in ("entry", "atexit"):
+                continue                            # a report: the early exit after its atexit work
             p = subprocess.run([sys.executable, "-c", head + tail, *args], capture_output=True, text=True,
                                cwd=tmp_path, timeout=300)
             assert p.returncode == code, (name, args, p.stderr)
-            assert ("SHUTDOWN" in p.stderr) == (name != "entry"), (name, args, p.stderr)
+            assert ("SHUTDOWN" in p.stderr) == (name not in ("entry", "atexit")), (name, args, p.stderr)
             assert ("ATEXIT" in p.stderr) == (name == "atexit"), (name, args)
             if out is not None:
                 assert p.stdout == out, (name, args)
             else:                                   # the summary table, to its last line
-                assert p.stdout.endswith("wrote o/.tmm-manifest.json\n"), (name, p.stdout)
-                assert json.loads((tmp_path / "o" / "results.json").read_text())["kinetostatics"]
+                o = args[-1]
+                assert p.stdout.endswith(f"wrote {o}/.tmm-manifest.json\n"), (name, p.stdout)
+                assert json.loads((tmp_path / o / "results.json").read_text())["kinetostatics"]
+                if o == "r":                        # the report whole, the helper's files in place
+                    assert (tmp_path / "r" / "report.html").read_text(encoding="utf-8").rstrip().endswith("</html>")
+                    assert (tmp_path / "r" / "report.pdf").read_bytes().rstrip().endswith(b"%%EOF")
+                    assert not list(tmp_path.glob("r/.*tmp*")), name
             if code == 2:
                 assert "error: invalid task" in p.stderr and "linkz" in p.stderr, (name, p.stderr)
 

@@ -250,15 +250,19 @@ def _run_fast(command: Callable[[], int], exit_now: bool = False) -> None:
 def _exit_now(code: int) -> None:
     """End the program with ``code`` once its output is flushed, without the interpreter's
     shutdown: that frees every module and object one by one and runs the cycle collector
-    over them all (5-10 % of a JSON run) in a process that is ending anyway, and has
-    nothing else to do here (no atexit callback, no other thread, files closed). When it
-    would have more to do (an atexit callback or a thread, python -i, output that
-    cannot be flushed), the ordinary ``sys.exit``."""
+    over them all (5-10 % of a JSON run, more after a report's matplotlib and PDF engine)
+    in a process that is ending anyway. The atexit callbacks run first, as the shutdown
+    runs them (a report's: multiprocessing's join of its helper, tempfile's cleanup). When
+    it would have more to do (another thread, python -i, output that cannot be flushed),
+    the ordinary ``sys.exit``."""
     import atexit
     import os
     threading = sys.modules.get("threading")
-    if (getattr(atexit, "_ncallbacks", lambda: 1)() == 0 and not sys.flags.inspect
-            and (threading is None or threading.active_count() == 1)):
+    run_callbacks = getattr(atexit, "_run_exitfuncs", None)
+    if ((getattr(atexit, "_ncallbacks", lambda: 1)() == 0 or run_callbacks is not None)
+            and not sys.flags.inspect and (threading is None or threading.active_count() == 1)):
+        if run_callbacks is not None:
+            run_callbacks()           # as the shutdown would first (a report's: multiprocessing's, tempfile's)
         try:
             for stream in (sys.stdout, sys.stderr):
                 if stream is not None:
