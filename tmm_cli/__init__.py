@@ -30,16 +30,11 @@ def run(task, **kwargs):
     """Run every stage whose section is present; return the results.json dict (plain
     dicts and lists: the per-position entries as lists, see ``tmm_cli.results.listed``;
     a PartialResults' ``partial`` too)."""
-    from .pipeline import PartialResults, run as _run
-    from .results import listed
+    from .pipeline import run_listed
 
     if not isinstance(task, Task):
         task = load_task(task)
-    try:
-        return listed(_run(task, **kwargs))
-    except PartialResults as exc:
-        exc.partial = listed(exc.partial)
-        raise
+    return run_listed(task, **kwargs)
 
 
 __all__ = ["load_task", "run", "Task", "TaskError", "StageError", "__version__"]

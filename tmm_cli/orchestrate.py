@@ -49,15 +49,8 @@ def compute(task, progress: Callable[[str], None] | None = None, *, explore: boo
     HTML report's mechanism in motion (``kinematics_explore``). ``lazy``: the
     per-position entries as the stages give them (:class:`tmm_cli.results.LazyEntries`,
     made when read: results.json is written block by block), else as lists."""
-    from .pipeline import PartialResults, run
-    if lazy:
-        return run(task, progress=progress, explore=explore)
-    from .results import listed
-    try:
-        return listed(run(task, progress=progress, explore=explore))
-    except PartialResults as exc:
-        exc.partial = listed(exc.partial)
-        raise
+    from .pipeline import run, run_listed
+    return (run if lazy else run_listed)(task, progress=progress, explore=explore)
 
 
 def write_outputs(task, results: dict, out: Path, formats: set[str], lang: str, *,

@@ -106,6 +106,17 @@ def run(task: Task, *, progress: Callable[[str], None] | None = None,
     return results
 
 
+def run_listed(task: Task, **kwargs) -> dict[str, Any]:
+    """:func:`run` with the per-position entries as lists (``tmm_cli.results.listed``), in
+    the results and in a PartialResults' ``partial``: for readers that take them many times."""
+    from .results import listed
+    try:
+        return listed(run(task, **kwargs))
+    except PartialResults as exc:
+        exc.partial = listed(exc.partial)
+        raise
+
+
 def _drive_train(task: Task, results: dict, warnings: list, say, drive) -> None:
     """The compound gear drive (``drive``: the linkage's Drive, or the task's `drive`
     section when there is no linkage); with a flywheel, the flywheel moved to the motor shaft."""
