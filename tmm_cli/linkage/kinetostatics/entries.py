@@ -25,7 +25,7 @@ import numpy as np
 from ...results import LazyEntries, bulk
 
 TABLE_ROWS = 4096      # positions whose values are computed at a time (numpy)
-ENTRY_BLOCK = 64       # entries made at a time (dicts and floats: ~0.3 MB)
+ENTRY_BLOCK = 64       # entries made at a time (dicts and floats: ~0.4 MB)
 
 
 def lazy_entries(res, detail: bool) -> LazyEntries:
