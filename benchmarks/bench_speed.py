@@ -32,7 +32,8 @@ goes to a temporary PYTHONPYCACHEPREFIX).
 
 * with --against DIR: the JSON run and `tmm validate` (with --report also the whole report)
   of this checkout and of another one (DIR: e.g. `git archive <commit> | tar -x -C DIR`),
-  and the import floor, all interleaved; with --batch also the batch run by DIR,
+  and the import floor, all interleaved (not with --no-cli); with --batch also the batch run
+  by DIR, and with --kinetostatics DIR's loads + kinetostatics + entries at 36,000 positions,
   interleaved with this checkout's.
 * with --scaling: `tmm run` of the task at 12 and at 3600 positions (made on the fly),
   --format json and --format html, interleaved (target for HTML: 3600 <= 2x 12).
@@ -308,14 +309,19 @@ def _six_task(path: Path, count: int) -> Path:
     return path
 
 
-def kinetostatics_big(repeat: int, n: int = 36000, n_cli: int = 3600) -> None:
+def kinetostatics_big(repeat: int, n: int = 36000, n_cli: int = 3600, base: Path | None = None) -> None:
     """Each in a fresh process, interleaved: the kinematics alone (solve), the kinematics
     and its results entries, and loads + kinetostatics + its results entries (in one
     process, at ``n`` positions); and the command line, `tmm run --format json` of the
     same six-bar at ``n_cli`` positions (a task's `positions.count` is at most 3600) and
-    at 12, against the import floor (peak RSS and CPU of each process)."""
-    cases = (("kinematics", False, False), ("kinematics+entries", False, True),
-             ("kinetostatics", True, True))
+    at 12, against the import floor (peak RSS and CPU of each process). With ``base``
+    (another checkout of tmm) also its loads + kinetostatics + entries, interleaved."""
+    cases = [("kinematics", False, False), ("kinematics+entries", False, True),
+             ("kinetostatics", True, True)]
+    tree = {c[0]: ROOT for c in cases}
+    if base is not None:
+        cases.append(("kinetostatics base", True, True))
+        tree["kinetostatics base"] = Path(base).resolve()
     out: dict[str, list[list[float]]] = {c[0]: [] for c in cases}
     with tempfile.TemporaryDirectory() as tmp:
         tmm = [sys.executable, "-m", "tmm_cli", "run"]
@@ -329,8 +335,8 @@ def kinetostatics_big(repeat: int, n: int = 36000, n_cli: int = 3600) -> None:
             _run_peak(c)
         for _ in range(repeat):
             for name, full, entries in cases:
-                code = _KS_CODE.format(bench=str(ROOT / "benchmarks"), n=n, full=full, entries=entries)
-                p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT,
+                code = _KS_CODE.format(bench=str(tree[name] / "benchmarks"), n=n, full=full, entries=entries)
+                p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=tree[name],
                                    env=_ENV, check=True)
                 out[name].append([float(x) for x in p.stdout.split()])
             for k, c in clis.items():
@@ -341,13 +347,19 @@ def kinetostatics_big(repeat: int, n: int = 36000, n_cli: int = 3600) -> None:
           "(not in the target's time; in the peak)")
     for name, rows in out.items():
         cols = list(zip(*rows))
-        wr = f"   written cpu {_stat(list(cols[5]))}" if name == "kinetostatics" else ""
+        wr = f"   written cpu {_stat(list(cols[5]))}" if name.startswith("kinetostatics") else ""
         print(f"  {name:19s} wall {_stat(list(cols[0]))}   cpu {_stat(list(cols[1]))} (entries {_stat(list(cols[4]))})"
               f"   peak added {_stat(list(cols[2]))} (process {statistics.median(cols[3]):.0f}){wr}")
     k = list(zip(*out["kinetostatics"]))
     print(f"  target: <= 1 s {'ok' if statistics.median(k[1]) <= 1 else 'OVER'} (cpu), "
           f"<= 200 MB {'ok' if statistics.median(k[3]) <= 200 else 'OVER'} (process peak)")
     _ratio_line("kinetostatics / kinematics alone (cpu)", list(k[1]), [r[1] for r in out["kinematics"]], None)
+    if base is not None:
+        print(f"  base: {tree['kinetostatics base']}")
+        kb = list(zip(*out["kinetostatics base"]))
+        _ratio_line("kinetostatics: this / base (cpu)", list(k[1]), list(kb[1]), None)
+        _ratio_line("kinetostatics entries: this / base (cpu)", list(k[4]), list(kb[4]), None)
+        _ratio_line("kinetostatics written: this / base (cpu)", list(k[5]), list(kb[5]), None)
     print("  the command line, the same six-bar, interleaved with the above; peak RSS of each process")
     for name, rows in cli_out.items():
         cols = list(zip(*rows))
@@ -421,7 +433,7 @@ def main() -> None:
                     help="also tmm run at 12 and 3600 positions, json and html, interleaved")
     ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--tasks", default="", help="more tasks (names in tasks/, comma-separated) for the floor ratios")
-    ap.add_argument("--no-cli", action="store_true")
+    ap.add_argument("--no-cli", action="store_true", help="no timings of the command line (nor --against's)")
     ap.add_argument("--no-kinematics", action="store_true")
     ap.add_argument("--against", metavar="DIR", help="also the report and JSON run of another checkout "
                                                     "of tmm (DIR), interleaved with this one's")
@@ -434,8 +446,8 @@ def main() -> None:
     if a.batch:
         batch(max(3, a.repeat), a.variants, Path(a.against) if a.against else None)
     if a.kinetostatics:
-        kinetostatics_big(max(5, a.repeat))
-    if a.against:
+        kinetostatics_big(max(5, a.repeat), base=Path(a.against) if a.against else None)
+    if a.against and not a.no_cli:
         against(max(5, a.repeat), Path(a.against), report=a.report)
     if not a.no_kinematics:
         kinematics(max(5, a.repeat))

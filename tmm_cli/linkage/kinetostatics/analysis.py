@@ -18,9 +18,9 @@ import numpy as np
 
 from ...errors import StageError, field_error
 from ...messages import Message
-from ...results import LazyEntries, bulk
 from .. import loads as loads_mod
 from ..loads import AppliedCouple, Loads
+from .entries import lazy_entries
 from .equations import Geometry, geometry, load_vector, scaled_det
 from .solve import (balance_lever, balance_rate, condition_numbers, friction_loads, group_by_group,
                     lever_moments, matrix_method, powers, unit_balance_q)
@@ -34,15 +34,6 @@ def balance_index(mech, section) -> int:
     the drive link (also when ``section`` is None)."""
     name = section.balance if section is not None else None
     return mech.drive if name is None else mech.link(name).index
-
-
-def _finite_list(a) -> list:
-    """``a.tolist()`` with every NaN / inf as None and -0.0 as 0.0 (results.json never
-    holds them)."""
-    a = np.asarray(a, float) + 0.0
-    if np.all(np.isfinite(a)):
-        return a.tolist()
-    return np.where(np.isfinite(a), a, None).tolist()
 
 
 def _num(v) -> float | None:
@@ -106,44 +97,7 @@ class KinetostaticsResult:
 
     def reaction(self, key: str, i: int) -> dict:
         """The reaction ``R<i><j>`` at row i, as in results.json."""
-        keys = [f"R{j.a}{j.b}" for j in self.mech.joints]
-        with np.errstate(all="ignore"):
-            return self._reactions_table(slice(i, i + 1))[keys.index(key)][0]
-
-    def _reactions_table(self, sl: slice) -> list[list[dict]]:
-        """Per pair, at the rows ``sl``: the results.json reaction dicts (vectorised)."""
-        reactions = self.reactions[sl]
-        ok = self.ok[sl] & np.all(np.isfinite(reactions), axis=1)
-        okl = ok.tolist()
-        scale = np.maximum(np.max(np.abs(np.nan_to_num(reactions)), axis=1), 1e-300)
-        out = []
-        for k, j in enumerate(self.mech.joints):
-            x = reactions[:, 2 * k]
-            y = reactions[:, 2 * k + 1]
-            p = self.geo.jpoint[k][sl]
-            pl = _finite_list(p)
-            if j.kind == "R":
-                xs, ys, Rs = (x + 0.0).tolist(), (y + 0.0).tolist(), np.hypot(x, y).tolist()
-                col = [{"x": a, "y": b_, "R": r, "point": pt} if good else
-                       {"x": None, "y": None, "R": None, "point": pt}
-                       for a, b_, r, pt, good in zip(xs, ys, Rs, pl, okl)]
-            else:
-                e = self.geo.jdir[k][sl]
-                nx, ny = -e[:, 1], e[:, 0]
-                N_, M_ = x, y
-                has = np.abs(N_) > 1e-12 * scale
-                off = np.where(has, M_ / np.where(has, N_, 1.0), 0.0)
-                pt = p + off[:, None] * e
-                Fx, Fy, R = (N_ * nx + 0.0).tolist(), (N_ * ny + 0.0).tolist(), np.abs(N_).tolist()
-                Nl, Ml, offl, ptl, hasl = ((N_ + 0.0).tolist(), (M_ + 0.0).tolist(), (off + 0.0).tolist(),
-                                           _finite_list(pt), has.tolist())
-                col = [{"x": fx, "y": fy, "R": r, "N": n_, "M": m_, "offset": o if h else None,
-                        "point": q if h else None, "pin": pin} if good else
-                       {"x": None, "y": None, "R": None, "N": None, "M": None, "offset": None, "point": None,
-                        "pin": pin}
-                       for fx, fy, r, n_, m_, o, q, h, pin, good in zip(Fx, Fy, R, Nl, Ml, offl, ptl, hasl, pl, okl)]
-            out.append(col)
-        return out
+        return lazy_entries(self, False)[i]["reactions"][key]
 
     def to_dict(self, detail: bool | None = None) -> dict:
         """The results.json sections of the stage: ``kinetostatics`` (one entry per
@@ -158,16 +112,7 @@ class KinetostaticsResult:
         mech = self.mech
         names = self._link_names()
         jkeys = [f"R{j.a}{j.b}" for j in mech.joints]
-        with np.errstate(all="ignore"):
-            # the two whole-turn columns the entries take (the rest is sliced per block)
-            disc = self.discrepancy()
-            a, b = self.reactions, self.reactions_matrix
-            mdisc = np.max(np.abs(a - b), axis=1) / np.maximum(np.max(np.abs(b), axis=1), 1e-300)
-
-        def build(i0: int, i1: int) -> list[dict]:
-            with np.errstate(all="ignore"), bulk():
-                return self._entries(slice(i0, i1), detail, disc, mdisc)
-        return {"kinetostatics": LazyEntries(len(self.phi), build), "kinetostatics_info": {
+        return {"kinetostatics": lazy_entries(self, detail), "kinetostatics_info": {
             "balance": self.balance,
             "balance_kind": self.balance_kind,
             "arm": self.arm,
@@ -184,103 +129,6 @@ class KinetostaticsResult:
         names = {lk.index: lk.name for lk in self.mech.links}
         names[0] = "ground"
         return names
-
-    def _entries(self, sl: slice, detail: bool, disc: np.ndarray, mdisc: np.ndarray) -> list[dict]:
-        """The ``kinetostatics`` entries of the rows ``sl`` (clean values), built column by
-        column (one list of values per key) and zipped; every value depends on its own
-        row only, so the entries do not depend on the blocks they are built in."""
-        mech = self.mech
-        N = len(range(*sl.indices(len(self.phi))))
-        names = self._link_names()
-        jkeys = [f"R{j.a}{j.b}" for j in mech.joints]
-        ok = self.ok[sl]
-
-        def L(a) -> list:
-            """The values where finite at a position not singular, else None (never -0.0)."""
-            a = np.asarray(a, float) + 0.0
-            good = np.isfinite(a) & ok
-            return a.tolist() if good.all() else np.where(good, a, None).tolist()
-
-        Mb = self.M_b[sl]
-        mb = L(Mb)
-        bf = L(Mb / self.arm) if (self.balance_kind == "moment" and self.arm) else None
-        mz, mv, mm = L(self.M_zhukovsky[sl]), L(self.M_virtual[sl]), L(self.M_matrix[sl])
-        table = self._reactions_table(sl)
-        phil = (self.phi[sl] % 360.0 + 0.0).tolist()
-        near = (self.near[sl] | ~ok).tolist()
-        # loads
-        geo = self.geo.take(sl)
-        finfo = []
-        inert_f = {lk.name: np.zeros((N, 2)) for lk in mech.links}
-        inert_m = {lk.name: np.zeros(N) for lk in mech.links}
-        for f in self.loads.forces:
-            if detail:
-                point = f.point[sl]
-                v = geo.point_vel(f.link, point)
-                finfo.append((f.name, names[f.link], f.kind, _finite_list(point), _finite_list(f.F[sl]),
-                              _finite_list(v)))
-            if f.kind == "inertia" and f.link:
-                inert_f[names[f.link]] += f.F[sl]
-        cinfo = []
-        for c in self.loads.couples:
-            if detail:
-                cinfo.append((c.name, names[c.link], c.kind, _finite_list(c.M[sl]),
-                              _finite_list(geo.omega(c.link))))
-            if c.kind == "inertia" and c.link:
-                inert_m[names[c.link]] += c.M[sl]
-        inert_keys = list(inert_f)
-        # per position, the links' inertia dicts (built column by column, then zipped)
-        inert_rows = zip(*[[{"Fx": fx, "Fy": fy, "M": m} for fx, fy, m in
-                            zip((inert_f[k][:, 0] + 0.0).tolist(), (inert_f[k][:, 1] + 0.0).tolist(),
-                                (inert_m[k] + 0.0).tolist())]
-                           for k in inert_keys]) if inert_keys else [()] * N
-        reaction_rows = zip(*table) if table else [()] * N
-        dinfo = []
-        n_all = len(self.phi)
-        for d in self.loads.info:
-            act = np.broadcast_to(np.asarray(d["active"], bool), (n_all,))[sl].tolist()
-            xs = None if d.get("x") is None else _finite_list(np.asarray(d["x"], float)[sl])
-            vs = _finite_list(np.asarray(d["value"], float)[sl] + 0.0)
-            dinfo.append((d["name"], d["link"], d["kind"], d["stroke"], act, xs, vs))
-        fr = None
-        if self.efficiency is not None:
-            fr = (L(self.efficiency[sl]), L(self.friction_power[sl]), L(self.driving_power[sl]),
-                  [L(self.friction_pairs[sl, k]) for k in range(len(mech.joints))])
-        # the entries column by column (one list of N values per key), then zipped
-        none = [None] * N
-        cols: list[tuple[str, list]] = [("index", [int(i) for i in self.index[sl]]), ("phi", phil)]
-        if self.balance_kind == "moment":
-            cols += [("balancing_moment", mb), ("balancing_force", bf if bf is not None else none),
-                     ("zhukovsky_moment", mz), ("virtual_power_moment", mv), ("matrix_moment", mm)]
-        else:
-            cols += [("balancing_moment", none), ("balancing_force", mb), ("zhukovsky_moment", none),
-                     ("virtual_power_moment", none), ("matrix_moment", none), ("zhukovsky_force", mz),
-                     ("virtual_power_force", mv), ("matrix_force", mm)]
-        cols += [("discrepancy", L(disc[sl])), ("matrix_discrepancy", L(mdisc[sl])),
-                 ("reactions", [dict(zip(jkeys, r)) for r in reaction_rows]),
-                 ("inertia", [dict(zip(inert_keys, r)) for r in inert_rows])]
-        if detail:
-            fcols = [[{"name": n, "link": lk, "kind": kd, "point": pp, "F": FF, "v": vv} for pp, FF, vv in zip(p, F, v)]
-                     for n, lk, kd, p, F, v in finfo]
-            ccols = [[{"name": n, "link": lk, "kind": kd, "M": MM, "omega": ww} for MM, ww in zip(M, w)]
-                     for n, lk, kd, M, w in cinfo]
-            cols += [("loads", [list(r) for r in zip(*fcols)] if fcols else [[] for _ in range(N)]),
-                     ("couples", [list(r) for r in zip(*ccols)] if ccols else [[] for _ in range(N)])]
-        dcols = [[{"link": lk, "kind": kd, "stroke": sk, "active": ac, "x": x, "value": vv}
-                  for ac, x, vv in zip(act, none if xs is None else xs, vs)] for _, lk, kd, sk, act, xs, vs in dinfo]
-        dnames = [d[0] for d in dinfo]
-        cols.append(("diagram", [dict(zip(dnames, r)) for r in zip(*dcols)] if dcols else [{} for _ in range(N)]))
-        if fr is not None:
-            pcols = fr[3]
-            cols += [("efficiency", fr[0]), ("friction_power", fr[1]), ("driving_power", fr[2]),
-                     ("friction_pairs", [dict(zip(jkeys, r)) for r in zip(*pcols)] if pcols
-                      else [{} for _ in range(N)])]
-        else:
-            cols.append(("efficiency", none))
-        cols.append(("near_singular", near))
-        keys = [k for k, _ in cols]
-        # clean values by construction (tmm_cli.results.Entries)
-        return [dict(zip(keys, row)) for row in zip(*[c for _, c in cols])]
 
 
 def _with_inertia(mech, kin, loads: Loads | None, inertia: bool, crank_inertia: float) -> Loads:
