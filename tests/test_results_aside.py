@@ -34,8 +34,8 @@ def started(monkeypatch):
     seen = []
     real = tio.Aside.start.__func__
 
-    def spy(cls, path, data):
-        a = real(cls, path, data)
+    def spy(cls, path, data, tail=None):
+        a = real(cls, path, data, tail)
         seen.append((a, a._pid if a is not None else None))
         return a
     monkeypatch.setattr(tio.Aside, "start", classmethod(spy))
@@ -254,3 +254,65 @@ def test_interrupted_report_leaves_the_old_results_file(tmp_path, monkeypatch, f
         _write(tmp_path, task, results, interrupted)
     assert started and started[0][0] is not None and _gone(started[0][1])
     assert (tmp_path / "results.json").read_text() == "old" and _temps(tmp_path) == []
+
+
+# ----------------------------------------------------------------- the file in two parts
+def test_dump_parts_are_the_file_at_any_split(forging):
+    """The head (the child's) then the tail (this process's) are dumps() to the byte,
+    wherever the file is split (the task's sections: entries, nested dicts, lists)."""
+    from tmm_cli.results import dump_parts, dumps, listed
+    _, results = forging
+    res = dict(listed(results))
+    res["task"] = {**res["task"], "title": "Кривошипно-ползунный μ \"q\""}   # non-ASCII
+    whole = dumps(res).encode("utf-8")
+    for split in range(-1, len(res) + 2):
+        head, tail = dump_parts(res, split)
+        a: list[bytes] = []
+        b: list[bytes] = []
+        head(a.append)
+        tail(b.append)
+        assert b"".join(a + b) == whole, split
+        assert (split <= 0) == (b"".join(a) == b"{")
+    for tiny in ({}, {"a": [1.5, -0.0, float("nan")]}):
+        for split in (0, 1):
+            head, tail = dump_parts(tiny, split)
+            out: list[bytes] = []
+            head(out.append)
+            tail(out.append)
+            assert b"".join(out) == dumps(tiny).encode(), (tiny, split)
+
+
+def test_aside_with_a_tail_made_here(tmp_path):
+    parent = os.getpid()
+    target = tmp_path / "r.json"
+    a = tio.Aside.start(target, lambda write: write(b"%d," % os.getpid()),
+                        lambda write: write(b"%d" % os.getpid()))
+    assert a is not None
+    pid = a._pid
+    a.finish()
+    assert target.read_text() == f"{pid},{parent}" and pid != parent
+    assert _temps(tmp_path) == []
+
+
+def test_the_file_split_after_its_last_entries(tmp_path, monkeypatch, forging, started):
+    """write_outputs: the child writes up to the last section of per-position entries
+    (kinetostatics), this process the graphical-error block after it."""
+    monkeypatch.setattr(orch, "ASIDE_ENTRIES", 0)
+    task, results = forging
+    heads = []
+    real = tio.Aside.start.__func__
+
+    def spy(cls, path, data, tail=None):
+        out: list[bytes] = []
+        data(out.append)
+        heads.append(b"".join(out))
+        return real(cls, path, data, tail)
+    monkeypatch.setattr(tio.Aside, "start", classmethod(spy))
+    _write(tmp_path, task, results, lambda *a, **k: [])
+    text = (tmp_path / "results.json").read_bytes()
+    assert len(heads) == 1 and text.startswith(heads[0])
+    assert b'"kinetostatics"' in heads[0] and b'"graphical_error"' not in heads[0]
+    assert b'"graphical_error"' in text[len(heads[0]):]
+    from tmm_cli.orchestrate import REPORT_ONLY
+    from tmm_cli.results import dumps, listed
+    assert text == dumps({k: v for k, v in listed(results).items() if k not in REPORT_ONLY}).encode()

@@ -113,22 +113,25 @@ class Aside:
     flushed again); :meth:`finish` waits for it and puts the file in place
     (``os.replace``, here). A child that failed or died is not trusted to tell why: the
     temporary file is removed and the file is written again here, by
-    :func:`atomic_write`, which then gives the very error (or writes the file). Start it
+    :func:`atomic_write`, which then gives the very error (or writes the file). A
+    ``tail``: the file's end, made by this process when it has done its own work
+    (:meth:`finish`, while the child still writes the rest) and appended. Start it
     with :meth:`start` (None where no child can be made: write it at once instead);
     :meth:`finish` or :meth:`abandon` it, always (no child left unwaited for)."""
 
-    __slots__ = ("path", "_data", "_pid", "_tmp")
+    __slots__ = ("path", "_data", "_tail", "_pid", "_tmp")
 
-    def __init__(self, path: Path, data, pid: int, tmp: str):
-        self.path, self._data, self._pid, self._tmp = path, data, pid, tmp
+    def __init__(self, path: Path, data, tail, pid: int, tmp: str):
+        self.path, self._data, self._tail, self._pid, self._tmp = path, data, tail, pid, tmp
 
     @classmethod
-    def start(cls, path: str | os.PathLike, data: Callable[[Callable[[bytes], object]], None]) -> "Aside | None":
+    def start(cls, path: str | os.PathLike, data: Callable[[Callable[[bytes], object]], None],
+              tail: Callable[[Callable[[bytes], object]], None] | None = None) -> "Aside | None":
         """The child started writing ``path`` (``data`` as :func:`atomic_write` takes
-        it), or None: no ``os.fork`` here, or another thread runs in this process (a
-        forked child has only the forking thread: a lock another one holds stays
-        held). Raises what :func:`atomic_write` raises for a temporary file that cannot
-        be made."""
+        it; then ``tail``, taken the same way, in this process), or None: no ``os.fork``
+        here, or another thread runs in this process (a forked child has only the forking
+        thread: a lock another one holds stays held). Raises what :func:`atomic_write`
+        raises for a temporary file that cannot be made."""
         import sys
         threading = sys.modules.get("threading")
         path = Path(path)
@@ -168,12 +171,15 @@ class Aside:
             _discard(tmp)
             return None
         os.close(fd)
-        return cls(path, data, pid, tmp)
+        return cls(path, data, tail, pid, tmp)
 
     def finish(self) -> Path:
         """Wait for the child; the file in place (``path``), or the error
         :func:`atomic_write` gives."""
         try:
+            end: list[bytes] = []
+            if self._tail is not None:
+                self._tail(end.append)
             _, status = os.waitpid(self._pid, 0)
         except BaseException:
             self.abandon()
@@ -181,10 +187,16 @@ class Aside:
         self._pid = None
         if os.waitstatus_to_exitcode(status) == 0:
             with _removed_on_error(self._tmp, self.path):
+                if end:
+                    with open(self._tmp, "ab") as fh:
+                        fh.writelines(end)
+                        fh.flush()
+                        os.fsync(fh.fileno())
                 os.replace(self._tmp, self.path)
             return self.path
         _discard(self._tmp)
-        return atomic_write(self.path, self._data)
+        data, tail = self._data, self._tail
+        return atomic_write(self.path, data if tail is None else lambda write: (data(write), tail(write)))
 
     def abandon(self) -> None:
         """End the child (if still running), wait for it, remove the temporary file: the

@@ -72,11 +72,11 @@ def write_outputs(task, results: dict, out: Path, formats: set[str], lang: str, 
         from .results import listed
         results = listed(results)
     kept = {k: v for k, v in results.items() if k not in REPORT_ONLY}
-    data = lambda write: dump(kept, write)  # noqa: E731
     # a large results file written by a second process while the report or the sheets
     # are made (io.Aside): the same file, the same errors, in the same order of the list
-    aside = _aside(out / "results.json", data, kept) if rep or "sheets" in formats else None
-    written = [aside.path if aside is not None else atomic_write(out / "results.json", data)]
+    aside = _aside(out / "results.json", kept) if rep or "sheets" in formats else None
+    written = [aside.path if aside is not None else atomic_write(out / "results.json",
+                                                                 lambda write: dump(kept, write))]
     try:
         if rep:
             from .report import render
@@ -108,17 +108,22 @@ def write_outputs(task, results: dict, out: Path, formats: set[str], lang: str, 
 ASIDE_ENTRIES = 1000
 
 
-def _aside(path: Path, data, kept: dict):
+def _aside(path: Path, kept: dict):
     """An :class:`tmm_cli.io.Aside` writing ``path``, or None (write it at once): a small
-    file, TMM_REPORT_JOBS=1 (one process), a single core, no fork."""
-    from .results import Entries
-    if sum(len(v) for v in kept.values() if type(v) is Entries) < ASIDE_ENTRIES:
+    file, TMM_REPORT_JOBS=1 (one process), a single core, no fork. The child writes the
+    sections up to the last one of per-position entries; this process, its report made,
+    the ones after it (the graphical-error block: ~1/8 of the file at 3600 positions)."""
+    from .results import Entries, LazyEntries
+    sizes = [len(v) if type(v) is Entries or type(v) is LazyEntries else 0 for v in kept.values()]
+    if sum(sizes) < ASIDE_ENTRIES:
         return None
     from .report import workers_wanted
     if not workers_wanted():
         return None
     from .io import Aside
-    return Aside.start(path, data)
+    from .results import dump_parts
+    last = max((i for i, n in enumerate(sizes) if n), default=len(sizes) - 1)
+    return Aside.start(path, *dump_parts(kept, last + 1))
 
 
 def process(path: str | Path, out, formats: set[str], lang: str, *,
