@@ -316,3 +316,42 @@ def test_the_file_split_after_its_last_entries(tmp_path, monkeypatch, forging, s
     from tmm_cli.orchestrate import REPORT_ONLY
     from tmm_cli.results import dumps, listed
     assert text == dumps({k: v for k, v in listed(results).items() if k not in REPORT_ONLY}).encode()
+
+
+def test_the_child_ends_with_its_parent_and_leaves_no_file(tmp_path):
+    """The main process killed while the child writes: the child stops at its next piece
+    and removes its temporary file (nothing to clean after it)."""
+    out = tmp_path / "o"
+    out.mkdir()
+    code = ("import os, time\n"
+            "import tmm_cli.io as tio\n"
+            "def slow(write):\n"
+            "    for _ in range(400):\n"
+            "        time.sleep(0.025)\n"
+            "        write(b'x')\n"
+            f"a = tio.Aside.start({str(out / 'r.json')!r}, slow)\n"
+            "time.sleep(0.3)\n"
+            f"print(a._pid, len([n for n in os.listdir({str(out)!r}) if n.endswith('.tmp')]), flush=True)\n"
+            "os._exit(9)\n")
+    log = tmp_path / "log"
+    with open(log, "w") as fh:        # not a pipe: the child holds it open, run() would wait for it
+        p = subprocess.run([sys.executable, "-c", code], stdout=fh, stderr=subprocess.STDOUT, timeout=120,
+                           stdin=subprocess.DEVNULL)
+    assert p.returncode == 9, log.read_text()
+    pid, temps = map(int, log.read_text().split())
+    assert temps == 1                          # the child was writing (10 s of pieces) when it ended
+    import time
+    for _ in range(200):
+        try:
+            os.kill(pid, 0)
+            with open(f"/proc/{pid}/stat") as st:    # a zombie (ended, its reaper slow) counts
+                if st.read().rsplit(")", 1)[1].split()[0] == "Z":
+                    break
+        except (ProcessLookupError, FileNotFoundError):
+            break
+        except OSError:
+            pass
+        time.sleep(0.05)
+    else:
+        pytest.fail("the child outlived its parent")
+    assert _temps(out) == [] and not (out / "r.json").exists()

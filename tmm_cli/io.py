@@ -145,6 +145,7 @@ class Aside:
         block = getattr(signal, "pthread_sigmask", None)
         held = block(signal.SIG_BLOCK, {signal.SIGINT}) if block is not None else None
         pid = None
+        parent = os.getpid()
         try:
             pid = os.fork()
         except OSError:
@@ -160,10 +161,10 @@ class Aside:
                     block(signal.SIG_SETMASK, held)
                 import gc
                 gc.disable()       # no collection walking (and copying) the parent's objects
-                _fill(fd, data)
+                _fill(fd, _orphan_stops(data, parent))
                 code = 0
             except BaseException:  # noqa: BLE001 - the parent writes it again and says why
-                pass
+                _discard(tmp)
             finally:
                 os._exit(code)
         if pid is None:
@@ -213,6 +214,18 @@ class Aside:
                 pass
             self._pid = None
         _discard(self._tmp)
+
+
+def _orphan_stops(data: Callable, parent: int) -> Callable:
+    """``data`` given a ``write`` that raises once the process ``parent`` is gone (killed:
+    nobody will put the file in place), so the child ends and removes its temporary file."""
+    def go(write) -> None:
+        def checked(b):
+            if os.getppid() != parent:
+                raise ChildProcessError("the writing process's parent is gone")
+            return write(b)
+        data(checked)
+    return go
 
 
 def _mkstemp(path: Path) -> tuple[int, str]:
