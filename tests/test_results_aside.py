@@ -121,6 +121,23 @@ def test_no_fork_no_aside(tmp_path, monkeypatch):
     assert tio.Aside.start(tmp_path / "r.json", lambda write: write(b"x")) is None
 
 
+def test_no_aside_while_another_thread_runs(tmp_path):
+    """A forked child has only the forking thread: a lock another thread holds (a thread
+    pool's, logging's) would stay held in it, so no child then."""
+    import threading
+    stop = threading.Event()
+    t = threading.Thread(target=stop.wait)
+    t.start()
+    try:
+        assert tio.Aside.start(tmp_path / "r.json", lambda write: write(b"x")) is None
+    finally:
+        stop.set()
+        t.join()
+    assert _temps(tmp_path) == []
+    a = tio.Aside.start(tmp_path / "r.json", lambda write: write(b"x"))
+    assert a is not None and a.finish().read_bytes() == b"x"
+
+
 def test_a_folder_in_place_of_the_file_fails_at_once(tmp_path):
     (tmp_path / "r.json").mkdir()
     assert tio.Aside.start(tmp_path / "r.json", lambda write: write(b"x")) is None
