@@ -18,6 +18,7 @@ import json
 import os
 import re
 import time
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Callable
 
@@ -48,34 +49,183 @@ def atomic_write(path: str | os.PathLike, data: bytes | str | Callable[[Callable
     ``data`` may be a function given the temporary file's ``write`` (bytes), to write a
     large file piece by piece."""
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
     raw = data.encode(encoding) if isinstance(data, str) else data
+    fd, tmp = _open_temp(path)
+    with _removed_on_error(tmp, path):
+        _fill(fd, raw)
+        os.replace(tmp, path)
+    return path
+
+
+def _open_temp(path: Path) -> tuple[int, str]:
+    """The folder made and the temporary file of ``path`` opened (``_mkstemp``); an
+    error names ``path``, not the temporary file."""
+    path.parent.mkdir(parents=True, exist_ok=True)
     try:
-        fd, tmp = _mkstemp(path)
-    except OSError as exc:  # the error names the file asked for, not the temporary one
+        return _mkstemp(path)
+    except OSError as exc:
         from .safepath import target_error
         raise target_error(exc, path) from exc
+
+
+def _fill(fd: int, raw) -> None:
+    """The temporary file ``fd`` given an ordinary file's mode, written (``raw``: bytes, or
+    a function given its ``write``), flushed to the disk and closed."""
+    if hasattr(os, "fchmod"):
+        os.fchmod(fd, file_mode())
+    with os.fdopen(fd, "wb") as fh:
+        if callable(raw):
+            raw(fh.write)
+        else:
+            fh.write(raw)
+        fh.flush()
+        os.fsync(fh.fileno())
+
+
+def _discard(tmp: str) -> None:
     try:
-        if hasattr(os, "fchmod"):
-            os.fchmod(fd, file_mode())
-        with os.fdopen(fd, "wb") as fh:
-            if callable(raw):
-                raw(fh.write)
-            else:
-                fh.write(raw)
-            fh.flush()
-            os.fsync(fh.fileno())
-        os.replace(tmp, path)
-    except BaseException as exc:
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
-        if isinstance(exc, OSError):
-            from .safepath import target_error
-            raise target_error(exc, path) from exc
+        os.unlink(tmp)
+    except OSError:
+        pass
+
+
+@contextmanager
+def _removed_on_error(tmp: str, path: Path):
+    """On any error the temporary file ``tmp`` is removed; an OSError is raised as one
+    naming ``path``, the file asked for."""
+    try:
+        yield
+    except OSError as exc:
+        _discard(tmp)
+        from .safepath import target_error
+        raise target_error(exc, path) from exc
+    except BaseException:
+        _discard(tmp)
         raise
-    return path
+
+
+class Aside:
+    """:func:`atomic_write` of a large file done by a forked child process while this one
+    goes on (the results file written while the report is made: two cores busy instead of
+    one). The temporary file is opened here before the fork, so a folder that cannot be
+    written fails at once, as :func:`atomic_write` fails; the child writes it, flushes it to
+    the disk and ends (``os._exit``: no atexit callback, no buffer of this process
+    flushed again); :meth:`finish` waits for it and puts the file in place
+    (``os.replace``, here). A child that failed or died is not trusted to tell why: the
+    temporary file is removed and the file is written again here, by
+    :func:`atomic_write`, which then gives the very error (or writes the file). A
+    ``tail``: the file's end, made by this process when it has done its own work
+    (:meth:`finish`, while the child still writes the rest) and appended. Start it
+    with :meth:`start` (None where no child can be made: write it at once instead);
+    :meth:`finish` or :meth:`abandon` it, always (no child left unwaited for)."""
+
+    __slots__ = ("path", "_data", "_tail", "_pid", "_tmp")
+
+    def __init__(self, path: Path, data, tail, pid: int, tmp: str):
+        self.path, self._data, self._tail, self._pid, self._tmp = path, data, tail, pid, tmp
+
+    @classmethod
+    def start(cls, path: str | os.PathLike, data: Callable[[Callable[[bytes], object]], None],
+              tail: Callable[[Callable[[bytes], object]], None] | None = None) -> "Aside | None":
+        """The child started writing ``path`` (``data`` as :func:`atomic_write` takes
+        it; then ``tail``, taken the same way, in this process), or None: no ``os.fork``
+        here, or another thread runs in this process (a forked child has only the forking
+        thread: a lock another one holds stays held). Raises what :func:`atomic_write`
+        raises for a temporary file that cannot be made."""
+        import sys
+        threading = sys.modules.get("threading")
+        path = Path(path)
+        if not hasattr(os, "fork") or (threading is not None and threading.active_count() > 1) \
+                or os.path.isdir(path):    # that replace fails: at once, as atomic_write fails
+            return None
+        fd, tmp = _open_temp(path)
+        import signal
+        # Ctrl-C held back over the fork: the child ignores it (this process, interrupted,
+        # ends the child: abandon), so it never runs this process's code on
+        block = getattr(signal, "pthread_sigmask", None)
+        held = block(signal.SIG_BLOCK, {signal.SIGINT}) if block is not None else None
+        pid = None
+        parent = os.getpid()
+        try:
+            pid = os.fork()
+        except OSError:
+            pid = None
+        finally:
+            if held is not None and pid != 0:
+                block(signal.SIG_SETMASK, held)
+        if pid == 0:                                    # the child
+            code = 1
+            try:
+                signal.signal(signal.SIGINT, signal.SIG_IGN)
+                if held is not None:
+                    block(signal.SIG_SETMASK, held)
+                import gc
+                gc.disable()       # no collection walking (and copying) the parent's objects
+                _fill(fd, _orphan_stops(data, parent))
+                code = 0
+            except BaseException:  # noqa: BLE001 - the parent writes it again and says why
+                _discard(tmp)
+            finally:
+                os._exit(code)
+        if pid is None:
+            os.close(fd)
+            _discard(tmp)
+            return None
+        os.close(fd)
+        return cls(path, data, tail, pid, tmp)
+
+    def finish(self) -> Path:
+        """Wait for the child; the file in place (``path``), or the error
+        :func:`atomic_write` gives."""
+        try:
+            end: list[bytes] = []
+            if self._tail is not None:
+                self._tail(end.append)
+            _, status = os.waitpid(self._pid, 0)
+        except BaseException:
+            self.abandon()
+            raise
+        self._pid = None
+        if os.waitstatus_to_exitcode(status) == 0:
+            with _removed_on_error(self._tmp, self.path):
+                if end:
+                    with open(self._tmp, "ab") as fh:
+                        fh.writelines(end)
+                        fh.flush()
+                        os.fsync(fh.fileno())
+                os.replace(self._tmp, self.path)
+            return self.path
+        _discard(self._tmp)
+        data, tail = self._data, self._tail
+        return atomic_write(self.path, data if tail is None else lambda write: (data(write), tail(write)))
+
+    def abandon(self) -> None:
+        """End the child (if still running), wait for it, remove the temporary file: the
+        file is left as it was."""
+        if self._pid is not None:
+            import signal
+            try:
+                os.kill(self._pid, signal.SIGKILL)
+            except OSError:
+                pass
+            try:
+                os.waitpid(self._pid, 0)
+            except ChildProcessError:
+                pass
+            self._pid = None
+        _discard(self._tmp)
+
+
+def _orphan_stops(data: Callable, parent: int) -> Callable:
+    """``data`` given a ``write`` that raises once the process ``parent`` is gone (killed:
+    nobody will put the file in place), so the child ends and removes its temporary file."""
+    def go(write) -> None:
+        def checked(b):
+            if os.getppid() != parent:
+                raise ChildProcessError("the writing process's parent is gone")
+            return write(b)
+        data(checked)
+    return go
 
 
 def _mkstemp(path: Path) -> tuple[int, str]:

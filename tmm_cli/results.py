@@ -205,6 +205,27 @@ def dump(results: dict, write) -> None:
     out.spill()
 
 
+def dump_parts(results: dict, split: int) -> tuple[Callable, Callable]:
+    """(head, tail): ``dump`` in two parts, each a function given ``write`` as ``dump``
+    is; head's bytes then tail's are ``dump(results)``'s. The head writes the sections
+    before the ``split``-th (0: none), the tail the others (the results cleaned once,
+    here)."""
+    items = list(clean(results).items())
+    split = max(0, min(split, len(items)))
+
+    def part(lo: int, hi: int, first: bool):
+        def go(write) -> None:
+            out = _Spill(write)
+            if first:
+                out.append("{" if items else "{}")
+            _emit_items(items, lo, hi, 0, out)
+            if not first:
+                out.append("\n}\n" if items else "\n")
+            out.spill()
+        return go
+    return part(0, split, True), part(split, len(items), False)
+
+
 _ONE_LINE_DEPTH = 3
 
 
@@ -216,14 +237,9 @@ def _emit(obj, level: int, out: list[str]) -> None:
     elif level >= _ONE_LINE_DEPTH:
         out.append(_one_line(obj))
     elif type(obj) is dict and obj:
-        pad = "\n" + " " * (level + 1)
-        first = True
         out.append("{")
-        for k, v in obj.items():
-            out.append(pad if first else "," + pad)
-            first = False
-            out.append(_one_line(k) + ": ")
-            _emit(v, level + 1, out)
+        items = list(obj.items())
+        _emit_items(items, 0, len(items), level, out)
         out.append("\n" + " " * level + "}")
     elif type(obj) is list and any(type(v) is dict or type(v) is list for v in obj):
         pad = "\n" + " " * (level + 1)
@@ -234,6 +250,16 @@ def _emit(obj, level: int, out: list[str]) -> None:
         out.append("\n" + " " * level + "]")
     else:
         out.append(_one_line(obj))
+
+
+def _emit_items(items: list, lo: int, hi: int, level: int, out: list[str]) -> None:
+    """``_emit`` of the items lo..hi-1 of a dict at ``level`` (between its braces)."""
+    pad = "\n" + " " * (level + 1)
+    for i in range(lo, hi):
+        k, v = items[i]
+        out.append(pad if i == 0 else "," + pad)
+        out.append(_one_line(k) + ": ")
+        _emit(v, level + 1, out)
 
 
 def _emit_entries(entries: Entries | LazyEntries, out: list[str]) -> None:

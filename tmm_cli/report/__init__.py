@@ -249,7 +249,7 @@ def _helper(conn, results, task, out_dir, lang, names, pdf, parent_pid=None, par
         conn.close()
 
 
-def _workers_wanted() -> bool:
+def workers_wanted() -> bool:
     """Use a second process (fork) unless TMM_REPORT_JOBS=1 or fork is unavailable."""
     import multiprocessing
     import os
@@ -390,7 +390,7 @@ def render(results: dict, task, out_dir: Path, formats: set[str], lang: str = "e
     # long-lived caller) this process compiles it
     import sys
     helper_pdf = want_pdf and "typst" not in sys.modules
-    if (helper_names or helper_pdf) and _workers_wanted():
+    if (helper_names or helper_pdf) and workers_wanted():
         try:
             import multiprocessing
             import os
