@@ -188,6 +188,8 @@ class DyadPlan:
         thX = _minus_const(_atan2(C - P1), np.arctan2(vX[1], vX[0]))
         self._set_from_point(st, X, P1, uX1, thX)
         st.set_pose(Y, bY + sE, thY.copy(), csY)
+        if csY[0].strides[0] == 0:          # a fixed guide: Y's angle is one value
+            st.const_th[Y] = float(thY[0])
         return margin
 
     def _prp(self, st, ea, eb, uAC, uBC):
@@ -360,7 +362,7 @@ def dyad_derivatives(plan: DyadPlan, st: State, dets: bool = True) -> np.ndarray
             cc = sgn * ext.c0
             Q = st.o[K] + cc * n
             Q1 = st.o1[K] - scale(cc * w1, e)
-            Q2 = st.o2[K] - cc * (scale(w2, e) + scale(w1 ** 2, n))
+            Q2 = st.o2[K] - cc * (scale(w2, e) + scale(st.th1_sq(K), n))
             s = dot(e, st.o[X] - Q)
             U = (e[:, 0], e[:, 1], 0.0)
             V = (Q1[:, 0] + s * w1 * n[:, 0], Q1[:, 1] + s * w1 * n[:, 1], w1)
@@ -432,7 +434,7 @@ def dyad_derivatives(plan: DyadPlan, st: State, dets: bool = True) -> np.ndarray
         st.set_d1(X, *pose_d(X, lx, V))
         if kind == "R":
             P2, ru = extra
-            l2 = lx * lx
+            l2 = st.th1_sq(X)              # (lx + 0.0)^2 is lx^2 to the bit
             Wd[X] = (P2[:, 0] + l2 * ru[:, 0], P2[:, 1] + l2 * ru[:, 1], 0.0)
         elif extra is None:                     # on a fixed guide
             Wd[X] = (0.0, 0.0, st.th2[0])
