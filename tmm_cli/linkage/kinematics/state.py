@@ -111,7 +111,7 @@ class State:
         """Forget body b's origin and its derivatives and the cosine and sine of its
         angle (kept: the angle and its derivatives); for a State whose points are all
         taken, to hold less memory while the results are being built."""
-        for d in (self.o, self.o1, self.o2, self._cs, self._csk):
+        for d in (self.o, self.o1, self.o2, self._cs, self._csk, self._sq):
             d.pop(b, None)
         for k in [k for k in self._rotated if k[0] == b]:
             del self._rotated[k]
