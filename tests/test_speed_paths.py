@@ -406,3 +406,80 @@ def test_plain_summary_is_what_rich_prints(monkeypatch, capsys):
     assert plain >= 8, plain                  # the plain text was written and compared
     monkeypatch.setenv("COLUMNS", "200")
     assert real("tmm: x", [("a", "b")], [], []) is None
+
+
+def test_clearly_regular_implies_the_exact_singularity_test():
+    """dyad_derivatives' squared test (no hypot) passes only where the exact test
+    |det| >= 1e-10 |cA| |cB| finds no singular position, at every scale; it passes on a
+    regular set and fails where a position is singular, or a value overflows or is NaN."""
+    from tmm_cli.linkage.kinematics.dyads import _clearly_regular
+    rng = np.random.default_rng(3)
+
+    def exact_regular(det, cA, cB):
+        nn = np.hypot(cA[0], cA[1]) * np.hypot(cB[0], cB[1])
+        return not (~(np.abs(det) >= 1e-10 * nn)).any()
+
+    passed = 0
+    for k in range(400):
+        scale = 10.0 ** rng.uniform(-160, 160)
+        cA = tuple(rng.normal(size=50) * scale for _ in range(2))
+        cB = (rng.normal(size=1), rng.normal(size=1)) if k % 3 == 0 else tuple(rng.normal(size=50) for _ in range(2))
+        det = cA[0] * cB[1] - cA[1] * cB[0]
+        # a few positions near the threshold: det = f 1e-10 |cA||cB|, f near 1
+        nn = np.hypot(cA[0], cA[1]) * np.hypot(cB[0], cB[1])
+        f = np.array([1.0 - 1e-12, 1.0 + 1e-12, 1.0004]) if k % 2 else np.array([1.002, 1.01, 3.0])
+        det[:3] = f * rng.choice([1.0, -1.0]) * 1e-10 * nn[:3]
+        if _clearly_regular(det, cA, cB):
+            passed += 1
+            assert exact_regular(det, cA, cB), k
+    assert passed > 100
+    a = (np.array([1.0, 2.0]), np.array([0.5, -1.0]))
+    b = (np.array([0.0, 1.0]), np.array([1.0, 0.0]))
+    det = a[0] * b[1] - a[1] * b[0]
+    assert _clearly_regular(det, a, b) and exact_regular(det, a, b)
+    assert not _clearly_regular(np.array([1.0, 0.0]), a, b)
+    assert not _clearly_regular(np.array([1.0, np.nan]), a, b)
+    big = (np.array([1e200, 1.0]), np.array([1.0, 1.0]))
+    assert not _clearly_regular(np.array([1e200, 1.0]), big, b)
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_dyads_many_rows_paths_equal_the_generic_ones(seed, monkeypatch):
+    """From WORK_ROWS_FROM positions on, the dyads take a fixed guide's constant rows
+    once and skip the hypot of the singularity test: every pose and derivative of a random
+    slider-crank (offset, guide angle, either closure) and four-bar is the generic paths'
+    bit for bit."""
+    from tmm_cli.linkage.kinematics import dyads
+    from tmm_cli.linkage.kinematics.solver import Solver
+    from tmm_cli.linkage.kinematics.state import WORK_ROWS_FROM
+    from tmm_cli.linkage.mechanism import build_mechanism
+    from tmm_cli.task import load_task
+    rng = np.random.default_rng(seed)
+    r, l = rng.uniform(0.02, 0.1), rng.uniform(0.25, 0.5)
+    ang, off = rng.uniform(-180, 180), rng.uniform(-0.5, 0.5) * (l - r)
+    a = math.radians(ang)
+    gp = [-off * math.sin(a), off * math.cos(a)]
+    ahead = [gp[0] + rng.choice([1, -1]) * l * math.cos(a), gp[1] + rng.choice([1, -1]) * l * math.sin(a)]
+    tasks = [{"schema": "tmm/1", "mechanism": {
+        "ground": {"O": [0, 0]},
+        "links": {"crank": {"points": ["O", "A"], "length": r}, "rod": {"points": ["A", "B"], "length": l},
+                  "piston": {"slider": "B", "guide": {"through": gp, "angle": ang}}},
+        "assembly": {"B": ahead}}, "drive": {"link": "crank", "speed": "100 rpm"}},
+        {"schema": "tmm/1", "mechanism": {
+            "ground": {"O": [0, 0], "O3": [0.30, 0]},
+            "links": {"crank": {"points": ["O", "A"], "length": 0.05 + 0.03 * rng.random()},
+                      "coupler": {"points": ["A", "B"], "length": 0.30},
+                      "rocker": {"points": ["O3", "B"], "length": 0.22}},
+            "assembly": {"B": [0.33, rng.choice([0.21, -0.21])]}}, "drive": {"link": "crank", "speed": "100 rpm"}}]
+    phi = np.radians(rng.uniform(0.0, 360.0, WORK_ROWS_FROM + 100))
+    for src in tasks:
+        mech = build_mechanism(load_task(src))
+        many = Solver(mech).run(phi)
+        monkeypatch.setattr(dyads, "WORK_ROWS_FROM", 10 ** 9)
+        generic = Solver(mech).run(phi)
+        monkeypatch.undo()
+        for name in ("o", "th", "o1", "th1", "o2", "th2"):
+            for b, v in getattr(generic, name).items():
+                assert np.asarray(getattr(many, name)[b]).tobytes() == np.asarray(v).tobytes(), (name, b)
+        for gi, s in generic.sing.items():
+            assert np.array_equal(many.sing[gi], s)

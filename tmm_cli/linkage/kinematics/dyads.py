@@ -37,13 +37,23 @@ the line); RPR: rho - |c|; the linear cases: |sin| of the angle between the line
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-from .state import PCon, RCon, State, cross, dot, left, scale, unit
+from .state import WORK_ROWS_FROM, PCon, RCon, State, cross, dot, left, scale, unit
 
 
 def _atan2(v):
     return np.arctan2(v[..., 1], v[..., 0])
+
+
+def _minus_const(x, k: float):
+    """x - k for a float k; x itself when k is +0.0 (x - (+0.0) is x bit for bit, -0.0 and
+    NaN included)."""
+    if k == 0.0 and math.copysign(1.0, k) > 0:
+        return x
+    return x - k
 
 
 def _cs(th):
@@ -89,7 +99,13 @@ class DyadPlan:
         # prismatic: ("P", angle th of X, base, direction e of the line, (cos th, sin th))
         if con.s == X:
             th, e = st.guide(con)
-            base = st.o[con.g] + con.c0 * left(e)
+            if con.g == 0 and st.N >= WORK_ROWS_FROM:
+                # a fixed guide: e is one row broadcast (State.guide), so is the base: its
+                # values from that row, repeated (an operation on a broadcast (N, 2) array
+                # would run numpy's inner loop two elements at a time)
+                base = np.repeat(st.o[0][:1] + con.c0 * left(e[:1]), st.N, axis=0)
+            else:
+                base = st.o[con.g] + con.c0 * left(e)
             return ("P", th, base, e, (e[:, 0], e[:, 1]))
         th = st.th[con.s] - con.a
         e = unit(st.th[con.s])
@@ -141,8 +157,8 @@ class DyadPlan:
         cg = np.clip((lA ** 2 + d ** 2 - lB ** 2) / (2 * lA * ds), -1.0, 1.0)
         beta = _atan2(D)
         C = P1 + lA * unit(beta + sigma * np.arccos(cg))
-        thA = _atan2(C - P1) - np.arctan2(vA[1], vA[0])
-        thB = _atan2(C - P3) - np.arctan2(vB[1], vB[0])
+        thA = _minus_const(_atan2(C - P1), np.arctan2(vA[1], vA[0]))
+        thB = _minus_const(_atan2(C - P3), np.arctan2(vB[1], vB[0]))
         self._set_from_point(st, A, P1, uA1, thA)
         self._set_from_point(st, B, P3, uB3, thB)
         return margin
@@ -153,15 +169,27 @@ class DyadPlan:
         _, thY, bY, eY, csY = ey
         vX = uXC - uX1
         lX = float(np.hypot(*vX))
-        c0 = bY + _rot(csY, uYC)
+        if csY[0].strides[0] == 0 and len(bY) >= WORK_ROWS_FROM:
+            # a fixed guide (_ext: its direction broadcast, its base one row repeated): the
+            # same values from one row, repeated
+            c0 = np.repeat(bY[:1] + _rot((csY[0][:1], csY[1][:1]), uYC), len(bY), axis=0)
+        else:
+            c0 = bY + _rot(csY, uYC)
         w = c0 - P1
         h = cross(w, eY)
         margin = lX - np.abs(h)
-        s = -dot(w, eY) + sigma * np.sqrt(np.maximum(lX ** 2 - h ** 2, 0.0))
-        C = c0 + scale(s, eY)
-        thX = _atan2(C - P1) - np.arctan2(vX[1], vX[0])
+        root = np.sqrt(np.maximum(lX ** 2 - h ** 2, 0.0))
+        if sigma == 1.0:                    # -a + 1.0 r is r - a, bit for bit
+            s = np.subtract(root, dot(w, eY), out=root)
+        else:
+            s = -dot(w, eY) + sigma * root
+        sE = scale(s, eY)
+        C = c0 + sE
+        thX = _minus_const(_atan2(C - P1), np.arctan2(vX[1], vX[0]))
         self._set_from_point(st, X, P1, uX1, thX)
-        st.set_pose(Y, bY + scale(s, eY), thY.copy(), csY)
+        st.set_pose(Y, bY + sE, thY.copy(), csY)
+        if csY[0].strides[0] == 0:          # a fixed guide: Y's angle is one value
+            st.const_th[Y] = float(thY[0])
         return margin
 
     def _prp(self, st, ea, eb, uAC, uBC):
@@ -281,6 +309,23 @@ def _length(cX) -> np.ndarray:
     return np.hypot(cX[0], cX[1])
 
 
+def _clearly_regular(det, cA, cB) -> bool:
+    """True when |det| >= 1e-10 |cA| |cB| (the singularity test of dyad_derivatives, with
+    the lengths by np.hypot) holds at every position by a margin, seen from squares:
+    det^2 > 1.001e-20 |cA|^2 |cB|^2 + 1e-290. The margin (1.001 against a few ulps of
+    rounding in either test) makes the squared test imply the exact one; the 1e-290 covers
+    a product of squares that underflows (then |det| > 1e-145 exceeds 1e-10 |cA| |cB|), and
+    an overflow or a NaN fails it. Where it does not hold everywhere the caller takes the
+    exact test."""
+    a0, a1 = cA
+    b0, b1 = cB
+    with np.errstate(over="ignore", invalid="ignore"):
+        q = (a0 * a0 + a1 * a1) * (b0 * b0 + b1 * b1)       # (a column of shape (1,) broadcasts)
+        q *= 1.001e-20
+        q += 1e-290
+        return bool(np.all(det * det > q))
+
+
 def dyad_derivatives(plan: DyadPlan, st: State, dets: bool = True) -> np.ndarray:
     """Exact phi-derivatives of a dyad's poses (set in ``st``) by a 2x2 linear solve.
 
@@ -317,7 +362,7 @@ def dyad_derivatives(plan: DyadPlan, st: State, dets: bool = True) -> np.ndarray
             cc = sgn * ext.c0
             Q = st.o[K] + cc * n
             Q1 = st.o1[K] - scale(cc * w1, e)
-            Q2 = st.o2[K] - cc * (scale(w2, e) + scale(w1 ** 2, n))
+            Q2 = st.o2[K] - cc * (scale(w2, e) + scale(st.th1_sq(K), n))
             s = dot(e, st.o[X] - Q)
             U = (e[:, 0], e[:, 1], 0.0)
             V = (Q1[:, 0] + s * w1 * n[:, 0], Q1[:, 1] + s * w1 * n[:, 1], w1)
@@ -336,15 +381,19 @@ def dyad_derivatives(plan: DyadPlan, st: State, dets: bool = True) -> np.ndarray
     cA = apply(A, 1)
     cB = apply(B, 1)
     det = cA[0] * cB[1] - cA[1] * cB[0]
-    nn = _length(cA) * _length(cB)
-    if dets:
-        with np.errstate(divide="ignore", invalid="ignore"):
-            st.last_det = np.where(nn > 0, det / np.maximum(nn, 1e-300), 0.0)  # sine of the angle between the columns
-    sing = ~(np.abs(det) >= 1e-10 * nn)
-    if sing.any():
-        det = np.where(sing, np.where(det >= 0, 1.0, -1.0) * np.maximum(nn, 1e-300) * 1e-10, det)
+    if not dets and N >= WORK_ROWS_FROM and _clearly_regular(det, cA, cB):
+        sing = np.zeros(N, bool)           # what the test below gives there, without its two hypot
+    else:
+        nn = _length(cA) * _length(cB)
+        if dets:
+            with np.errstate(divide="ignore", invalid="ignore"):
+                st.last_det = np.where(nn > 0, det / np.maximum(nn, 1e-300), 0.0)  # sine of the angle between the columns
+        sing = ~(np.abs(det) >= 1e-10 * nn)
+        if sing.any():
+            det = np.where(sing, np.where(det >= 0, 1.0, -1.0) * np.maximum(nn, 1e-300) * 1e-10, det)
+        del nn
     inv = 1.0 / det
-    del det, nn
+    del det
 
     def solve2(r0, r1):
         """Cramer's rule, the products formed in place (the same operations)."""
@@ -385,7 +434,7 @@ def dyad_derivatives(plan: DyadPlan, st: State, dets: bool = True) -> np.ndarray
         st.set_d1(X, *pose_d(X, lx, V))
         if kind == "R":
             P2, ru = extra
-            l2 = lx * lx
+            l2 = st.th1_sq(X)              # (lx + 0.0)^2 is lx^2 to the bit
             Wd[X] = (P2[:, 0] + l2 * ru[:, 0], P2[:, 1] + l2 * ru[:, 1], 0.0)
         elif extra is None:                     # on a fixed guide
             Wd[X] = (0.0, 0.0, st.th2[0])

@@ -181,7 +181,7 @@ class Solver:
                 arr = getattr(st, name)[b].copy()
                 arr[idx] = 0.5 * (getattr(sp, name)[b] + getattr(sm, name)[b])
                 getattr(st, name)[b] = arr
-        st._pd.clear()                   # the points' derivatives change with the bodies'
+        st.derivatives_changed()         # the points' derivatives change with the bodies'
         st.singular = sing
 
     # ------------------------------------------------------------------ closures
@@ -682,6 +682,10 @@ def _solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
         for b in range(1, mech.n + 1):
             th = st.th[b]
             own = _fresh(th, N, seen)          # the pose's own array: unwrapped in place
+            v = st.const_th.get(b)
+            if own and v is not None and math.isfinite(v) and math.copysign(1.0, v) > 0:
+                # one finite value, not -0.0: no jump, th + 0.0 is th -- already unwrapped
+                continue
             st.unwrap(b, _unwrap_sorted(th if own else np.asarray(th, float), order, inplace=own))
     pos, d1, d2 = {}, {}, {}
     for p, x, y in ground:

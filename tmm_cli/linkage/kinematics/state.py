@@ -48,6 +48,9 @@ class State:
         self._csk: dict[int, tuple[np.ndarray, np.ndarray]] = {}   # given to set_pose
         self._gd: dict[int, tuple] = {}       # id(PCon) -> (g, (psi, e)): guide directions
         self._pd: dict[tuple, tuple] = {}     # (b, u) -> point_d(b, u)
+        self._sq: dict[int, np.ndarray] = {}  # b -> th1_b ** 2 (shared, read-only)
+        # b -> the one value of th_b where it is a constant (a slider on a fixed guide)
+        self.const_th: dict[int, float] = {}
         self._rotated: dict[tuple, np.ndarray] = {}  # (b, u) -> rot(b, u), few positions only
         # boolean mask of the positions where a group's velocity equations are singular
         # (their derivatives the mean of the two sides), None where there are none
@@ -58,6 +61,7 @@ class State:
         self.o[b] = o
         self.th[b] = th
         self._cs.pop(b, None)
+        self.const_th.pop(b, None)
         if self._rotated:
             for k in [k for k in self._rotated if k[0] == b]:
                 del self._rotated[k]
@@ -78,6 +82,7 @@ class State:
     def set_d1(self, b, o1, th1):
         self.o1[b] = o1
         self.th1[b] = th1
+        self._sq.pop(b, None)
         if self._pd:
             self._forget(b)
 
@@ -87,11 +92,26 @@ class State:
         if self._pd:
             self._forget(b)
 
+    def th1_sq(self, b: int) -> np.ndarray:
+        """th1_b ** 2 (= th1_b * th1_b), computed once per first derivatives of b (shared,
+        read-only)."""
+        hit = self._sq.get(b)
+        if hit is None:
+            t1 = self.th1[b]
+            hit = self._sq[b] = t1 * t1
+        return hit
+
+    def derivatives_changed(self) -> None:
+        """Forget what was derived from the bodies' derivatives (after they were replaced
+        in place of set_d1 / set_d2)."""
+        self._pd.clear()
+        self._sq.clear()
+
     def release(self, b: int) -> None:
         """Forget body b's origin and its derivatives and the cosine and sine of its
         angle (kept: the angle and its derivatives); for a State whose points are all
         taken, to hold less memory while the results are being built."""
-        for d in (self.o, self.o1, self.o2, self._cs, self._csk):
+        for d in (self.o, self.o1, self.o2, self._cs, self._csk, self._sq):
             d.pop(b, None)
         for k in [k for k in self._rotated if k[0] == b]:
             del self._rotated[k]
@@ -183,7 +203,7 @@ class State:
             # few positions: the fewest numpy calls
             ru = self.rot(b, u)
             rx, ry = ru[:, 0], ru[:, 1]
-            t11 = t1 * t1
+            t11 = self.th1_sq(b)
             p = o + ru
             d1 = np.empty((N, 2))
             np.subtract(o1[:, 0], t1 * ry, out=d1[:, 0])
@@ -193,7 +213,7 @@ class State:
             np.add(o2[:, 1], t2 * rx - t11 * ry, out=d2[:, 1])
             return p, d1, d2
         # many positions: the same operations, the temporaries in four scratch rows
-        rx, ry, t11, tmp = np.empty((4, N))
+        rx, ry, tmp = np.empty((3, N))
         c, s = self.cs(b)
         if u1 == 0.0:                   # as rot()
             np.multiply(c, u0, out=rx)
@@ -205,7 +225,7 @@ class State:
             np.multiply(s, u0, out=ry)
             np.multiply(c, u1, out=tmp)
             np.add(ry, tmp, out=ry)
-        np.multiply(t1, t1, out=t11)
+        t11 = self.th1_sq(b)
         p, d1, d2 = np.empty((N, 2)), np.empty((N, 2)), np.empty((N, 2))
         np.add(o[:, 0], rx, out=p[:, 0])
         np.add(o[:, 1], ry, out=p[:, 1])
@@ -234,6 +254,8 @@ class State:
         sub._csk = {}
         sub._gd = {}
         sub._pd = {}
+        sub._sq = {}
+        sub.const_th = {}
         sub._rotated = {}
         return sub
 
@@ -310,10 +332,15 @@ class RCon:
     def gamma(self, st: State, ru: dict | None = None) -> np.ndarray:
         """``ru``: R(th_b) u_b of the two bodies when the caller has them already."""
         g = np.zeros((st.N, 2))
-        for b, u, sg in ((self.i, self.ui, 1.0), (self.j, self.uj, -1.0)):
+        for b, u, sub in ((self.i, self.ui, True), (self.j, self.uj, False)):
             if b == 0:
                 continue
-            g -= scale(sg * st.th1[b] ** 2, st.rot(b, u) if ru is None else ru[b])
+            # g -= (sg th1^2) R u with sg = +-1: g - (-y) is g + y to the bit
+            t = scale(st.th1_sq(b), st.rot(b, u) if ru is None else ru[b])
+            if sub:
+                g -= t
+            else:
+                g += t
         return g
 
 
