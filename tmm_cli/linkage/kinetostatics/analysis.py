@@ -11,7 +11,6 @@ along its guide (positive along the guide direction).
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -34,13 +33,6 @@ def balance_index(mech, section) -> int:
     the drive link (also when ``section`` is None)."""
     name = section.balance if section is not None else None
     return mech.drive if name is None else mech.link(name).index
-
-
-def _num(v) -> float | None:
-    if v is None:
-        return None
-    v = float(v)
-    return v if math.isfinite(v) else None
 
 
 @dataclass
@@ -94,10 +86,6 @@ class KinetostaticsResult:
         if self.balance_kind == "force":
             s = s / Lc
         return np.maximum(s, 1e-300)
-
-    def reaction(self, key: str, i: int) -> dict:
-        """The reaction ``R<i><j>`` at row i, as in results.json."""
-        return lazy_entries(self, False)[i]["reactions"][key]
 
     def to_dict(self, detail: bool | None = None) -> dict:
         """The results.json sections of the stage: ``kinetostatics`` (one entry per
