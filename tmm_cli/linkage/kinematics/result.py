@@ -5,18 +5,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ...results import LazyEntries, bulk
-
-
-def _rows(cols, n: int, flat: bool = False):
-    """The columns (each (n,) or a scalar) as n rows (tuples, to be read once) of plain
-    floats, a value that is not finite as 0.0 and -0.0 as 0.0 (``flat``: one column, the
-    list of its n values)."""
-    a = np.empty((len(cols), n))
-    for j, c in enumerate(cols):
-        a[j] = c
-    a = np.where(np.isfinite(a), a, 0.0) + 0.0
-    return a[0].tolist() if flat else zip(*a.tolist())
+from ...results import LazyEntries
 
 
 def angle_deg(rad) -> np.ndarray:
@@ -74,22 +63,6 @@ class KinematicsResult:
     def epsilon(self, link: str) -> np.ndarray:
         return self.a2[link] * self._w() ** 2 + self.a1[link] * self._e()
 
-    _PKEYS = ("x", "y", "vx", "vy", "v", "ax", "ay", "a", "vqx", "vqy", "vq", "aqx", "aqy", "aq")
-    _LKEYS = ("angle", "omega", "epsilon", "i", "iq2")
-    _NULLED = {"v": ("vx", "vy", "v", "vqx", "vqy", "vq"), "a": ("ax", "ay", "a", "aqx", "aqy", "aq"),
-               "omega": ("omega", "i"), "epsilon": ("epsilon", "iq2")}
-
-    def _null(self, e: dict, k: int) -> None:
-        """Null the values of entry ``e`` (position k) that have no finite limit there."""
-        for key, mask in self.undefined.items():
-            if not mask[k]:
-                continue
-            what, name = key.split(":", 1)
-            target = e["points"].get(name) if what in ("v", "a") else e["links"].get(name)
-            if target is not None:
-                for f in self._NULLED[what]:
-                    target[f] = None
-
     # ---------------------------------------------------------------
     def to_entries(self, index=None) -> LazyEntries:
         """results.json ``kinematics`` entries, one per position.
@@ -100,53 +73,10 @@ class KinematicsResult:
         epsilon, i = dtheta/dphi (= omega_i/omega1), iq2 = d2theta/dphi2. A
         :class:`tmm_cli.results.LazyEntries` (made from this result's arrays when read)
         of clean values: a value that is not finite is 0.0, or None where it has no
-        finite limit (``undefined``)."""
+        finite limit (``undefined``); see :mod:`tmm_cli.linkage.kinematics.entries`."""
+        from .entries import lazy_entries
         N = len(self.phi)
         idx = list(range(N)) if index is None else [int(i) for i in index]
         if len(idx) != N:
             raise ValueError(f"to_entries: {len(idx)} indices for {N} positions")
-
-        def build(i0: int, i1: int) -> list[dict]:
-            with bulk():
-                return self._entries(slice(i0, i1), idx[i0:i1])
-        return LazyEntries(N, build)
-
-    def _entries(self, sl: slice, idx: list[int]) -> list[dict]:
-        """The entries of the rows ``sl`` (see :meth:`to_entries`); every value depends
-        on its own row only, so the entries do not depend on the blocks they are built in."""
-        N = len(idx)
-        phi = angle_deg(np.radians(self.phi[sl]))
-        w, e = self._w(), self._e()
-        w = w if w.ndim == 0 or w.shape[0] == 1 else w[sl]
-        e = e if e.ndim == 0 or e.shape[0] == 1 else e[sl]
-        wc = w if w.ndim == 0 else w[:, None]
-        w2 = w ** 2 if w.ndim == 0 else (w ** 2)[:, None]
-        ec = e if e.ndim == 0 else e[:, None]
-        pts = {}
-        for p in self.points:                 # one (N, 14) block per point, rows as dicts
-            q, r = self.d1[p][sl], self.d2[p][sl]
-            v, a = q * wc, r * w2 + q * ec          # vel(p), acc(p) at the rows
-            x = self.pos[p][sl]
-            cols = (x[:, 0], x[:, 1], v[:, 0], v[:, 1], np.hypot(v[:, 0], v[:, 1]),
-                    a[:, 0], a[:, 1], np.hypot(a[:, 0], a[:, 1]), q[:, 0], q[:, 1], np.hypot(q[:, 0], q[:, 1]),
-                    r[:, 0], r[:, 1], np.hypot(r[:, 0], r[:, 1]))
-            pts[p] = [dict(zip(self._PKEYS, row)) for row in _rows(cols, N)]
-        lks = {}
-        for lk in self.links:
-            a1, a2 = self.a1[lk][sl], self.a2[lk][sl]
-            cols = (angle_deg(self.angle[lk][sl]), a1 * w, a2 * w ** 2 + a1 * e, a1, a2)
-            lks[lk] = [dict(zip(self._LKEYS, row)) for row in _rows(cols, N)]
-        pnames, lnames = list(pts), list(lks)
-        prow = zip(*pts.values()) if pnames else [()] * N
-        lrow = zip(*lks.values()) if lnames else [()] * N
-        out = [{"index": i, "phi": f, "points": dict(zip(pnames, pr)), "links": dict(zip(lnames, lr))}
-               for i, f, pr, lr in zip(idx, _rows((phi,), N, flat=True), prow, lrow)]
-        i0 = sl.start
-        sing = [] if self.singular is None else np.flatnonzero(self.singular[sl]).tolist()
-        for k in sing:
-            out[k]["singular"] = True
-        near = [] if self.near is None else np.flatnonzero(self.near[sl]).tolist()
-        for k in near:
-            out[k]["near_singular"] = True
-            self._null(out[k], i0 + k)
-        return out
+        return lazy_entries(self, idx)

@@ -1,7 +1,6 @@
 """The ``kinetostatics`` entries of results.json (one dict per position), made from a
-:class:`~tmm_cli.linkage.kinetostatics.analysis.KinetostaticsResult`'s arrays when read.
-
-Two levels, each at the size it runs fastest at:
+:class:`~tmm_cli.linkage.kinetostatics.analysis.KinetostaticsResult`'s arrays when read
+(:func:`tmm_cli.entrytable.tabled`: two levels, each at the size it runs fastest at):
 
 * the numbers, vectorised over ``TABLE_ROWS`` positions at a time (:func:`_table`): every
   value of the entries, clean (-0.0 made 0.0; NaN where the entry holds None: not finite,
@@ -9,20 +8,17 @@ Two levels, each at the size it runs fastest at:
   in the order the entries take them), one of the points (x, y) and a few lists of
   flags (bool or int per position);
 * the entries, ``ENTRY_BLOCK`` positions at a time (:func:`_assemble`): one ``tolist``
-  of the block's columns, then the dicts zipped from them. A block's ~100 objects per
-  entry (a dict per entry, pair, link, diagram; a float per value) stay in the CPU's
-  cache from made to freed: with blocks of 512 entries, freeing them took as long as
-  half of making them.
+  of the block's columns, then the dicts zipped from them (dict displays for the keyed
+  dicts, :func:`tmm_cli.entrytable.dicts`), made and freed in the CPU's cache.
 
 Every value depends on its own position only: the entries do not depend on the blocks.
 """
 from __future__ import annotations
 
-from typing import Callable
-
 import numpy as np
 
-from ...results import LazyEntries, bulk
+from ...entrytable import clean, dicts, nan_rows, tabled, values
+from ...results import LazyEntries
 
 TABLE_ROWS = 4096      # positions whose values are computed at a time (numpy)
 ENTRY_BLOCK = 64       # entries made at a time (dicts and floats: ~0.4 MB)
@@ -39,31 +35,8 @@ def lazy_entries(res, detail: bool) -> LazyEntries:
         a, b = res.reactions, res.reactions_matrix
         mdisc = np.max(np.abs(a - b), axis=1) / np.maximum(np.max(np.abs(b), axis=1), 1e-300)
     lay = _layout(res, detail)
-    tables: dict[int, tuple] = {}
-
-    def table(i: int) -> tuple[int, tuple]:
-        """(first row, the table) of the rows from the table holding row ``i``."""
-        for t0, tab in tables.items():
-            if t0 <= i < t0 + tab[4]:
-                return t0, tab
-        t0 = i - i % TABLE_ROWS
-        with np.errstate(all="ignore"):
-            tab = _table(res, slice(t0, min(t0 + TABLE_ROWS, n)), detail, disc, mdisc)
-        if len(tables) >= 2:
-            del tables[next(iter(tables))]
-        tables[t0] = tab
-        return t0, tab
-
-    def build(i0: int, i1: int) -> list[dict]:
-        out: list[dict] = []
-        with bulk():
-            while i0 < i1:
-                t0, tab = table(i0)
-                k = min(i1, t0 + tab[4])
-                out += _assemble(lay, tab, i0 - t0, k - t0)
-                i0 = k
-        return out
-    return LazyEntries(n, build, ENTRY_BLOCK)
+    return tabled(n, lambda sl: _table(res, sl, detail, disc, mdisc), lambda tab, a, b: _assemble(lay, tab, a, b),
+                  TABLE_ROWS, ENTRY_BLOCK)
 
 
 def _layout(res, detail: bool) -> dict:
@@ -99,7 +72,7 @@ def _layout(res, detail: bool) -> dict:
 
 def _table(res, sl: slice, detail: bool, disc: np.ndarray, mdisc: np.ndarray) -> tuple:
     """The values of the entries of the rows ``sl``: (scalars (C, k), points (Q, k, 2),
-    flags [lists of k], the running count of the rows holding a NaN (k + 1 ints), k).
+    flags [lists of k], the running count of the rows holding a NaN (k + 1 ints)).
     NaN stands for None; never -0.0."""
     mech, geo = res.mech, res.geo
     k = len(range(*sl.indices(len(res.phi))))
@@ -177,63 +150,17 @@ def _table(res, sl: slice, detail: bool, disc: np.ndarray, mdisc: np.ndarray) ->
         for j_ in range(len(mech.joints)):
             solved(res.friction_pairs[sl, j_])
     flags.append((res.near[sl] | ~ok).tolist())
-    F = _clean(np.array(col, float).reshape(len(col), k))
-    P = _clean(np.array(pts, float).reshape(len(pts), k, 2))
-    bad = np.isnan(F).any(axis=0) | np.isnan(P).any(axis=(0, 2))
-    return F, P, flags, [0] + np.cumsum(bad).tolist(), k
-
-
-def _clean(a: np.ndarray) -> np.ndarray:
-    """``a`` with -0.0 made 0.0 and every value not finite NaN (None in the entries)."""
-    a += 0.0
-    a[~np.isfinite(a)] = np.nan
-    return a
-
-
-def _values(a: np.ndarray) -> list:
-    """``a.tolist()`` with NaN as None."""
-    return np.where(np.isnan(a), None, a).tolist()
-
-
-def _dicts(keys: tuple, cols: list[list], n: int) -> list[dict]:
-    """Per position a dict of ``keys`` with the values of ``cols`` (one list of n values
-    per key, in the order of ``keys``)."""
-    if not keys:
-        return [{} for _ in range(n)]
-    return _maker(keys)(cols)
-
-
-_MAKERS: dict[tuple, Callable] = {}
-
-
-def _maker(keys: tuple) -> Callable[[list[list]], list[dict]]:
-    """The function making :func:`_dicts` of ``keys``: a comprehension of dict displays
-    with the keys as variables (a presized dict filled from the stack, about twice as
-    fast as ``dict(zip(keys, row))``), written for the number of keys; the keys are
-    bound as arguments, never written into the code."""
-    f = _MAKERS.get(keys)
-    if f is None:
-        k = [f"k{i}" for i in range(len(keys))]
-        v = [f"v{i}" for i in range(len(keys))]
-        src = (f"def make({', '.join(k)}):\n"
-               f"    return lambda cols: [{{{', '.join(f'{a}: {b}' for a, b in zip(k, v))}}} "
-               f"for {', '.join(v)}, in zip(*cols)]\n")
-        ns: dict = {}
-        exec(compile(src, "<tmm_cli.linkage.kinetostatics.entries>", "exec"), ns)
-        if len(_MAKERS) >= 256:
-            _MAKERS.clear()
-        f = _MAKERS[keys] = ns["make"](*keys)
-    return f
+    F = clean(np.array(col, float).reshape(len(col), k))
+    P = clean(np.array(pts, float).reshape(len(pts), k, 2))
+    return F, P, flags, nan_rows(F, P)
 
 
 def _assemble(lay: dict, tab: tuple, a: int, b: int) -> list[dict]:
     """The entries of the rows a..b-1 of the table ``tab`` (taking its values in order)."""
-    F, P, flags, nan_rows, _ = tab
+    F, P, flags, nans = tab
     n = b - a
-    if nan_rows[b] != nan_rows[a]:
-        fv, pv = _values(F[:, a:b]), _values(P[:, a:b])
-    else:
-        fv, pv = F[:, a:b].tolist(), P[:, a:b].tolist()
+    nan = nans[b] != nans[a]
+    fv, pv = values(F[:, a:b], nan), values(P[:, a:b], nan)
     f, p, g = iter(fv).__next__, iter(pv).__next__, iter(flags).__next__
     none = [None] * n
     cols = [g()[a:b], f(), f()]                                 # index, phi, balancing moment (force)
@@ -250,8 +177,8 @@ def _assemble(lay: dict, tab: tuple, a: int, b: int) -> list[dict]:
             reactions.append([{"x": x, "y": y, "R": r, "N": N_, "M": M_, "offset": o, "point": q if h else None,
                                "pin": pin_} for x, y, r, N_, M_, o, q, pin_, h in
                               zip(f(), f(), f(), f(), f(), f(), p(), p(), g()[a:b])])
-    cols.append(_dicts(lay["joints"], reactions, n))
-    cols.append(_dicts(lay["links"], [[{"Fx": x, "Fy": y, "M": m} for x, y, m in zip(f(), f(), f())]
+    cols.append(dicts(lay["joints"], reactions, n))
+    cols.append(dicts(lay["links"], [[{"Fx": x, "Fy": y, "M": m} for x, y, m in zip(f(), f(), f())]
                                       for _ in lay["links"]], n))
     if lay["detail"]:
         loads = [[{"name": nm, "link": lk, "kind": kd, "point": q, "F": F_, "v": v}
@@ -263,10 +190,10 @@ def _assemble(lay: dict, tab: tuple, a: int, b: int) -> list[dict]:
     diagrams = [[{"link": lk, "kind": kd, "stroke": sk, "active": ac, "x": x, "value": v}
                  for ac, x, v in zip(g()[a:b], f() if has_x else none, f())]
                 for _, lk, kd, sk, has_x in lay["diagrams"]]
-    cols.append(_dicts(tuple(d[0] for d in lay["diagrams"]), diagrams, n))
+    cols.append(dicts(tuple(d[0] for d in lay["diagrams"]), diagrams, n))
     if lay["friction"]:
-        cols += [f(), f(), f(), _dicts(lay["joints"], [f() for _ in lay["joints"]], n)]
+        cols += [f(), f(), f(), dicts(lay["joints"], [f() for _ in lay["joints"]], n)]
     else:
         cols.append(none)
     cols.append(g()[a:b])                                       # near_singular
-    return _dicts(lay["top"], cols, n)
+    return dicts(lay["top"], cols, n)

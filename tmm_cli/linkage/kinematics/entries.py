@@ -1,0 +1,107 @@
+"""The ``kinematics`` entries of results.json (one dict per position), made from a
+:class:`~tmm_cli.linkage.kinematics.result.KinematicsResult`'s arrays when read
+(:func:`tmm_cli.entrytable.tabled`: two levels, each at the size it runs fastest at):
+
+* the numbers, vectorised over ``TABLE_ROWS`` positions at a time (:func:`_table`): one
+  float array of every value of the entries (a row per value: phi, then each point's
+  ``PKEYS``, then each link's ``LKEYS``), clean: -0.0 made 0.0, a value that is not
+  finite 0.0, NaN (None in the entry) where the value has no finite limit (``undefined``
+  at a position near a change point);
+* the entries, ``ENTRY_BLOCK`` positions at a time (:func:`_assemble`): one ``tolist``
+  of the block's columns, then the dicts zipped from them (dict displays,
+  :func:`tmm_cli.entrytable.dicts`), made and freed in the CPU's cache; then the flags
+  ``"singular": true`` and ``"near_singular": true`` of the few positions that have them.
+
+Every value depends on its own position only: the entries do not depend on the blocks.
+"""
+from __future__ import annotations
+
+from bisect import bisect_left
+
+import numpy as np
+
+from ...entrytable import clean, dicts, nan_rows, tabled, values
+from ...results import LazyEntries
+from .result import angle_deg
+
+TABLE_ROWS = 4096      # positions whose values are computed at a time (numpy)
+ENTRY_BLOCK = 64       # entries made at a time (dicts and floats)
+
+PKEYS = ("x", "y", "vx", "vy", "v", "ax", "ay", "a", "vqx", "vqy", "vq", "aqx", "aqy", "aq")
+LKEYS = ("angle", "omega", "epsilon", "i", "iq2")
+# the values nulled where ``undefined['v:P']`` (a point's), ... (a link's) holds
+NULLED = {"v": ("vx", "vy", "v", "vqx", "vqy", "vq"), "a": ("ax", "ay", "a", "aqx", "aqy", "aq"),
+          "omega": ("omega", "i"), "epsilon": ("epsilon", "iq2")}
+
+
+def lazy_entries(kin, index: list[int]) -> LazyEntries:
+    """The ``kinematics`` entries of ``kin`` (``index``: the N position numbers) as a
+    :class:`tmm_cli.results.LazyEntries`: the values of ``TABLE_ROWS`` positions computed
+    when first read (the last two such tables kept), the entries made from them
+    ``ENTRY_BLOCK`` at a time."""
+    lay = (tuple(kin.points), tuple(kin.links))
+    return tabled(len(index), lambda sl: _table(kin, sl, index), lambda tab, a, b: _assemble(lay, tab, a, b),
+                  TABLE_ROWS, ENTRY_BLOCK)
+
+
+def _table(kin, sl: slice, index: list[int]) -> tuple:
+    """The values of the entries of the rows ``sl``: (values (1 + 14 points + 5 links, k),
+    the running count of the rows holding a NaN (k + 1 ints), the rows' position numbers,
+    the rows (in ``sl``) flagged singular, those flagged near a change point)."""
+    idx = index[sl]
+    k = len(idx)
+    F = np.empty((1 + len(PKEYS) * len(kin.points) + len(LKEYS) * len(kin.links), k))
+    F[0] = angle_deg(np.radians(kin.phi[sl]))
+    w, e = kin._w(), kin._e()
+    w = w if w.ndim == 0 or w.shape[0] == 1 else w[sl]
+    e = e if e.ndim == 0 or e.shape[0] == 1 else e[sl]
+    wc = w if w.ndim == 0 else w[:, None]
+    w2 = w ** 2 if w.ndim == 0 else (w ** 2)[:, None]
+    ec = e if e.ndim == 0 else e[:, None]
+    row: dict[str, int] = {}                 # first row of each point's ("P:name") and link's values
+    r = 1
+    for p in kin.points:
+        q, d2 = kin.d1[p][sl], kin.d2[p][sl]
+        v, a = q * wc, d2 * w2 + q * ec          # vel(p), acc(p) at the rows
+        x = kin.pos[p][sl]
+        row["P:" + p] = r
+        for c in (x[:, 0], x[:, 1], v[:, 0], v[:, 1], np.hypot(v[:, 0], v[:, 1]),
+                  a[:, 0], a[:, 1], np.hypot(a[:, 0], a[:, 1]), q[:, 0], q[:, 1], np.hypot(q[:, 0], q[:, 1]),
+                  d2[:, 0], d2[:, 1], np.hypot(d2[:, 0], d2[:, 1])):
+            F[r] = c
+            r += 1
+    for lk in kin.links:
+        a1, a2 = kin.a1[lk][sl], kin.a2[lk][sl]
+        row["L:" + lk] = r
+        for c in (angle_deg(kin.angle[lk][sl]), a1 * w, a2 * w ** 2 + a1 * e, a1, a2):
+            F[r] = c
+            r += 1
+    clean(F, 0.0)
+    near = np.zeros(k, bool) if kin.near is None else np.asarray(kin.near[sl], bool)
+    if near.any():                           # no finite limit there: None
+        for key, mask in kin.undefined.items():
+            what, name = key.split(":", 1)
+            r0 = row.get(("P:" if what in ("v", "a") else "L:") + name)
+            if r0 is None:
+                continue
+            keys = PKEYS if what in ("v", "a") else LKEYS
+            rows = [r0 + keys.index(f) for f in NULLED[what]]
+            F[np.ix_(rows, np.flatnonzero(near & np.asarray(mask, bool)[sl]))] = np.nan
+    sing = [] if kin.singular is None else np.flatnonzero(kin.singular[sl]).tolist()
+    return F, nan_rows(F), idx, sing, np.flatnonzero(near).tolist()
+
+
+def _assemble(lay: tuple, tab: tuple, a: int, b: int) -> list[dict]:
+    """The entries of the rows a..b-1 of the table ``tab`` (taking its values in order)."""
+    points, links = lay
+    F, nans, idx, sing, near = tab
+    n = b - a
+    f = iter(values(F[:, a:b], nans[b] != nans[a])).__next__
+    phi = f()
+    pts = dicts(points, [dicts(PKEYS, [f() for _ in PKEYS], n) for _ in points], n)
+    lks = dicts(links, [dicts(LKEYS, [f() for _ in LKEYS], n) for _ in links], n)
+    out = dicts(("index", "phi", "points", "links"), [idx[a:b], phi, pts, lks], n)
+    for flagged, key in ((sing, "singular"), (near, "near_singular")):
+        for i in flagged[bisect_left(flagged, a):bisect_left(flagged, b)]:
+            out[i - a][key] = True
+    return out
