@@ -104,6 +104,17 @@ def _removed_on_error(tmp: str, path: Path):
         raise
 
 
+def workers_wanted() -> bool:
+    """A second process (fork) may work alongside this one (the report's helper, a results
+    file written aside): unless TMM_REPORT_JOBS=1, fork is unavailable or there is one core."""
+    import multiprocessing
+    if os.environ.get("TMM_REPORT_JOBS", "").strip() == "1":
+        return False
+    if "fork" not in multiprocessing.get_all_start_methods():
+        return False
+    return (os.cpu_count() or 1) >= 2
+
+
 class Aside:
     """:func:`atomic_write` of a large file done by a forked child process while this one
     goes on (the results file written while the report is made: two cores busy instead of

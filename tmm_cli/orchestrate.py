@@ -117,10 +117,9 @@ def _aside(path: Path, kept: dict):
     sizes = [len(v) if type(v) is Entries or type(v) is LazyEntries else 0 for v in kept.values()]
     if sum(sizes) < ASIDE_ENTRIES:
         return None
-    from .report import workers_wanted
+    from .io import Aside, workers_wanted
     if not workers_wanted():
         return None
-    from .io import Aside
     from .results import dump_parts
     last = max((i for i, n in enumerate(sizes) if n), default=len(sizes) - 1)
     return Aside.start(path, *dump_parts(kept, last + 1))

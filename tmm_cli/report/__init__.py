@@ -249,17 +249,6 @@ def _helper(conn, results, task, out_dir, lang, names, pdf, parent_pid=None, par
         conn.close()
 
 
-def workers_wanted() -> bool:
-    """Use a second process (fork) unless TMM_REPORT_JOBS=1 or fork is unavailable."""
-    import multiprocessing
-    import os
-    if os.environ.get("TMM_REPORT_JOBS", "").strip() == "1":
-        return False
-    if "fork" not in multiprocessing.get_all_start_methods():
-        return False
-    return (os.cpu_count() or 1) >= 2
-
-
 def _finish(ctx, proc, conn, formats, all_names, helper_names, out_dir, notes=None,
             helper_pdf=False) -> list[Path]:
     """Build the sections not given to the helper, assemble, write html/pdf."""
@@ -390,6 +379,7 @@ def render(results: dict, task, out_dir: Path, formats: set[str], lang: str = "e
     # long-lived caller) this process compiles it
     import sys
     helper_pdf = want_pdf and "typst" not in sys.modules
+    from ..io import workers_wanted
     if (helper_names or helper_pdf) and workers_wanted():
         try:
             import multiprocessing
