@@ -2,7 +2,8 @@
 
 * :func:`csv_text` writes every CSV tmm produces (summary, check, forms, report tables):
   a text cell that a spreadsheet would take for a formula (it begins with ``=``, ``+``,
-  ``-``, ``@``, a tab or a carriage return) gets a leading ``'``; numbers stay numbers.
+  ``-``, ``@``, a tab or a carriage return) gets a leading ``'``; numbers stay numbers,
+  every float exact (its shortest repr, or 17 significant digits in the report's tables).
 * :func:`round_sig` rounds numbers to significant digits for compact embedded data
   (the report's mechanism in motion).
 * :func:`read_table` reads a table an instructor typed or exported: ``,`` or ``;``
@@ -41,7 +42,7 @@ def safe_cell(v):
 
 
 # the text of a finite float in a CSV: its shortest repr (``0.1``, ``30.0``), or every
-# float with 17 significant digits (``0.10000000000000001``, ``30``): ~1.5x as fast to
+# float with 17 significant digits (``0.10000000000000001``, ``30``): ~1.4x as fast to
 # make, for the long per-position tables beside the report. Either reads back as the
 # very same float (17 significant digits identify every double; the sign of -0.0 and
 # subnormals included); NaN and inf are written as an empty cell either way

@@ -131,7 +131,7 @@ class ReportContext:
     def write_csv(self, name: str, header: list[str], rows) -> Path:
         """CSV (comma, UTF-8; None -> empty cell): every float with 17 significant
         digits (``tables.DIGITS17``: it reads back as the very same float; the long
-        per-position tables made ~1.5x as fast as with the shortest repr)."""
+        per-position tables made ~1.4x as fast as with the shortest repr)."""
         from tmm_cli.tables import DIGITS17, csv_text
         return self.write_file(name, csv_text(header, rows, DIGITS17))
 
