@@ -32,7 +32,8 @@ goes to a temporary PYTHONPYCACHEPREFIX).
 
 * with --against DIR: the JSON run and `tmm validate` (with --report also the whole report)
   of this checkout and of another one (DIR: e.g. `git archive <commit> | tar -x -C DIR`),
-  and the import floor, all interleaved (not with --no-cli); with --batch also the batch run
+  and the import floor, all interleaved (not with --no-cli); with --scaling also DIR's html
+  runs at 12 and 3600 positions, interleaved with this checkout's; with --batch also the batch run
   by DIR, and with --kinetostatics DIR's loads + kinetostatics + entries at 36,000 positions,
   interleaved with this checkout's.
 * with --scaling: `tmm run` of the task at 12 and at 3600 positions (made on the fly),
@@ -172,27 +173,40 @@ def report_scaling(repeat: int) -> None:
                 [y for _, y in out["12"]], 2.0)
 
 
-def scaling(repeat: int, n: int = 3600) -> None:
+def scaling(repeat: int, n: int = 3600, base: Path | None = None) -> None:
     """`tmm run` of the task at its 12 positions and at ``n`` (the task with
     `positions.count: n`, made on the fly), --format json and --format html, interleaved
-    (target for HTML: n positions <= 2x the 12)."""
+    (target for HTML: n positions <= 2x the 12); with ``base`` (another checkout of tmm)
+    also its html runs at 12 and ``n``, interleaved with these."""
     tmm = [sys.executable, "-m", "tmm_cli", "run"]
     with tempfile.TemporaryDirectory() as tmp:
         fine = Path(tmp) / "fine.yaml"
         fine.write_text(TASK.read_text(encoding="utf-8").replace("count: 12", f"count: {n}"), encoding="utf-8")
-        cmds = {}
+        cmds, cwds = {}, {}
         for fmt in ("json", "html"):
             for name, t in (("12", TASK), (str(n), fine)):
                 cmds[f"{fmt}{name}"] = tmm + [str(t), "--format", fmt, "--quiet", "--out", f"{tmp}/{fmt}{name}"]
-        res = _interleaved(cmds, repeat)
+                if base is not None and fmt == "html":
+                    cmds[f"base {fmt}{name}"] = tmm + [str(t), "--format", fmt, "--quiet", "--out",
+                                                       f"{tmp}/base{fmt}{name}"]
+                    cwds[f"base {fmt}{name}"] = Path(base).resolve()
+        res = _interleaved(cmds, repeat, cwds)
     print(f"scaling, {TASK.name} at 12 and {n} positions, {repeat} interleaved rounds; wall / cpu in s: "
-          "median [min-max]")
+          "median [min-max]" + (f"; base: {Path(base).resolve()}" if base is not None else ""))
     for k, v in res.items():
         print(f"  {k:10s} wall {_stat([w for w, _ in v])}   cpu {_stat([c for _, c in v])}")
     for fmt, tgt in (("json", None), ("html", 2.0)):
         for i, what in ((0, "wall"), (1, "cpu")):
             _ratio_line(f"run --format {fmt} {n} positions / 12 ({what})", [x[i] for x in res[f"{fmt}{n}"]],
                         [x[i] for x in res[f"{fmt}12"]], tgt)
+    if base is not None:
+        for i, what in ((0, "wall"), (1, "cpu")):
+            _ratio_line(f"base: run --format html {n} positions / 12 ({what})", [x[i] for x in res[f"base html{n}"]],
+                        [x[i] for x in res["base html12"]], 2.0)
+        for name in ("12", str(n)):
+            for i, what in ((0, "wall"), (1, "cpu")):
+                _ratio_line(f"html {name} positions: this / base ({what})", [x[i] for x in res[f"html{name}"]],
+                            [x[i] for x in res[f"base html{name}"]], None)
 
 
 # ----------------------------------------------------------------- kinematics core
@@ -442,7 +456,7 @@ def main() -> None:
     if not a.no_cli:
         cli(max(5, a.repeat), a.report, [t for t in a.tasks.split(",") if t])
     if a.scaling:
-        scaling(max(5, a.repeat))
+        scaling(max(5, a.repeat), base=Path(a.against) if a.against else None)
     if a.batch:
         batch(max(3, a.repeat), a.variants, Path(a.against) if a.against else None)
     if a.kinetostatics:

@@ -131,6 +131,26 @@ def test_fast_path_answers_as_the_typer_app(tmp_path):
         assert _fast(line) is None, line
 
 
+def test_run_holds_its_results_to_the_program_end(tmp_path):
+    """`tmm run`'s fast path keeps the results to the program's end (its command holds them:
+    a fine grid's ~10^6 objects are not freed one by one by a process about to end), listed
+    where a report was made (as the report read them), lazy in a JSON run."""
+    from tmm_cli.cli import _fast, run_task
+    from tmm_cli.results import Entries, LazyEntries
+    good = ROOT / "tasks" / "forging_sixbar.yaml"
+    for fmt, kind in (("html", Entries), ("json", LazyEntries)):
+        held: list = []
+        assert run_task(good, tmp_path / fmt, {fmt}, "en", True, False, held=held) == 0
+        assert len(held) == 1 and type(held[0]["kinetostatics"]) is kind, fmt
+        assert json.loads((tmp_path / fmt / "results.json").read_text())["kinetostatics"] == list(held[0]["kinetostatics"])
+    command = _fast(["run", str(good), "-f", "html", "-q", "-o", str(tmp_path / "fast")])
+    lists = [c.cell_contents for c in command.__closure__ if type(c.cell_contents) is list]
+    assert lists == [[]]
+    assert command() == 0
+    assert len(lists[0]) == 1 and type(lists[0][0]["kinematics"]) is Entries
+    assert held[0].keys() == lists[0][0].keys() - {"kinematics_explore", "kinetostatics_explore"}
+
+
 def test_program_ends_at_once_unless_shutdown_has_work(tmp_path):
     """The program (`tmm`, `python -m tmm_cli`: cli.entry) ends a plain run / validate
     without the interpreter's shutdown (a global's finalizer never runs), its output all

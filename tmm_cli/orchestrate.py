@@ -135,7 +135,8 @@ def process(path: str | Path, out, formats: set[str], lang: str, *,
     written; a callable: out(task) gives the folder. ``study``: also the accuracy study
     (``tmm run --study``). The results returned keep their per-position entries lazy
     (:func:`compute` with ``lazy``): a reader that takes them many times lists them
-    (:func:`tmm_cli.results.listed`)."""
+    (:func:`tmm_cli.results.listed`); but where a report or the sheets were made, they
+    are listed as those read them."""
     from .pipeline import PartialResults
     task = task if task is not None else prepare(path, stage_errors=False)
     folder = out(task) if callable(out) else out
@@ -148,6 +149,9 @@ def process(path: str | Path, out, formats: set[str], lang: str, *,
     if study and failure is None:
         from . import study as study_mod
         st = study_mod.run_study(task, progress=progress, repeat=3)
+    if folder is not None and set(formats) & {"html", "pdf", "sheets"}:
+        from .results import listed
+        results = listed(results)   # as write_outputs reads them; returned so (made once)
     written = (write_outputs(task, results, folder, formats, lang, notes=notes, study=st)
                if folder is not None else [])
     if failure is not None:

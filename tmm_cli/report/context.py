@@ -129,9 +129,11 @@ class ReportContext:
         return path
 
     def write_csv(self, name: str, header: list[str], rows) -> Path:
-        """CSV (comma, UTF-8, full float precision; None -> empty cell)."""
-        from tmm_cli.tables import csv_text
-        return self.write_file(name, csv_text(header, rows))
+        """CSV (comma, UTF-8; None -> empty cell): every float with 17 significant
+        digits (``tables.DIGITS17``: it reads back as the very same float; the long
+        per-position tables made ~1.4x as fast as with the shortest repr)."""
+        from tmm_cli.tables import DIGITS17, csv_text
+        return self.write_file(name, csv_text(header, rows, DIGITS17))
 
     # -- common look-ups
     def link_names(self) -> list[str]:
