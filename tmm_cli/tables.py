@@ -34,7 +34,8 @@ def safe_cell(v):
     if isinstance(v, int):
         return v
     if isinstance(v, float):
-        return repr(v) if math.isfinite(v) else ""
+        # float's own repr: a numpy float64 (a float) would give np.float64(...) in numpy 2
+        return float.__repr__(v) if math.isfinite(v) else ""
     s = str(v)
     if s.startswith(FORMULA_START) and not _NUMBER.match(s.strip()):
         return "'" + s
@@ -81,7 +82,7 @@ def csv_text(header: list[str], rows, floats: str = SHORTEST) -> str:
         if lines:
             buf.write("\n".join(lines) + "\n")
             lines.clear()
-        w.writerow([floats % v if type(v) is float and v - v == 0 else safe_cell(v) for v in vals])
+        w.writerow([floats % float(v) if isinstance(v, float) and v - v == 0 else safe_cell(v) for v in vals])
     if lines:
         buf.write("\n".join(lines) + "\n")
     return buf.getvalue()
