@@ -555,13 +555,15 @@ class _FixedSlide:
         c, sn = np.cos(th), np.sin(th)
         u0, u1 = self.uX1[0], self.uX1[1]
         o = np.empty((N, 2))
-        t = c * u0
-        np.subtract(t, sn * u1, out=t)
-        np.subtract(px, t, out=o[:, 0])
-        np.multiply(sn, u0, out=t)
-        np.add(t, c * u1, out=t)
-        np.subtract(py, t, out=o[:, 1])
+        ru = np.empty((N, 2))               # (c u0, s u0): R u1 as State.rot takes it when u1 = (u0, 0)
+        cu, su = ru[:, 0], ru[:, 1]
+        np.multiply(c, u0, out=cu)
+        np.multiply(sn, u0, out=su)
+        np.subtract(px, np.subtract(cu, sn * u1), out=o[:, 0])
+        np.subtract(py, np.add(su, c * u1), out=o[:, 1])
         st.set_pose(X, o, th, (c, sn))
+        if u1 == 0.0:                       # shared with the derivatives (State.rot)
+            st.share_rot(X, self.uX1, ru)
         oY = np.empty((N, 2))
         np.add(self.bx, sx, out=oY[:, 0])
         np.add(self.by, sy, out=oY[:, 1])

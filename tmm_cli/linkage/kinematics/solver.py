@@ -121,8 +121,10 @@ class Solver:
         np.subtract(self.pivot[0], ru[:, 0], out=o[:, 0])
         np.subtract(self.pivot[1], ru[:, 1], out=o[:, 1])
         st.set_pose(d, o, th, (c, s))
-        st.set_d1(d, o1, np.ones_like(phi))
-        st.set_d2(d, ru, np.zeros_like(phi))
+        one = np.empty(len(phi))
+        one.fill(1.0)
+        st.set_d1(d, o1, one)
+        st.set_d2(d, ru, np.zeros(len(phi)))
 
     # ------------------------------------------------------------------ run
     def run(self, phi: np.ndarray, upto: int | None = None, derivs: bool = True, strict: bool = True,
@@ -670,7 +672,7 @@ def _solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
     st = solver.run(np.radians(phi_deg))
     st.margins = st.sing = None     # (held memory only)
     N = len(phi_deg)
-    order = None if N < 2 or bool(np.all(phi_deg[1:] >= phi_deg[:-1])) else np.argsort(phi_deg, kind="stable")
+    order = None if N < 2 or bool((phi_deg[1:] >= phi_deg[:-1]).all()) else np.argsort(phi_deg, kind="stable")
     seen: set = set()
     if order is None and 2 <= N < WORK_ROWS_FROM:
         # few positions in order: the links' angles unwrapped at once, as the rows of one block

@@ -153,15 +153,20 @@ class State:
 
     def rot(self, b: int, u) -> np.ndarray:
         """R(th_b) u -> (N, 2) (read-only use: with few positions it is computed once per
-        pose of b and shared)."""
+        pose of b and shared; with many, once unless given by share_rot)."""
         u0, u1 = float(u[0]), float(u[1])
-        if self.N < WORK_ROWS_FROM:
-            key = (b, u0, u1)
-            hit = self._rotated.get(key)
-            if hit is None:
-                hit = self._rotated[key] = self._rot(b, u0, u1)
-            return hit
-        return self._rot(b, u0, u1)
+        key = (b, u0, u1)
+        hit = self._rotated.get(key)
+        if hit is None:
+            hit = self._rot(b, u0, u1)
+            if self.N < WORK_ROWS_FROM:
+                self._rotated[key] = hit
+        return hit
+
+    def share_rot(self, b: int, u, ru: np.ndarray) -> None:
+        """rot(b, u) is ``ru`` (computed by the caller from the pose just set, by the same
+        operations)."""
+        self._rotated[(b, float(u[0]), float(u[1]))] = ru
 
     def _rot(self, b: int, u0: float, u1: float) -> np.ndarray:
         c, s = self.cs(b)
