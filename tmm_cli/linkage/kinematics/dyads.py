@@ -41,7 +41,7 @@ import math
 
 import numpy as np
 
-from .state import WORK_ROWS_FROM, PCon, RCon, State, cross, dot, left, scale, unit
+from .state import WORK_ROWS_FROM, PCon, RCon, State, cross, dot, left, pairs, scale, unit
 
 
 def _atan2(v):
@@ -63,7 +63,7 @@ def _cs(th):
 def _rot(cs, u):
     """R(th) u (N, 2) from cs = (cos th, sin th)."""
     c, s = cs
-    out = np.empty((len(c), 2))
+    out = pairs(len(c))
     np.subtract(c * u[0], s * u[1], out=out[:, 0])
     np.add(s * u[0], c * u[1], out=out[:, 1])
     return out
@@ -437,7 +437,7 @@ def dyad_derivatives(plan: DyadPlan, st: State, dets: bool = True) -> np.ndarray
     def pose_d(X, lx, W):
         """(o, th) derivative U lx + W of link X."""
         U = info[X][1]
-        o = np.empty((N, 2))
+        o = pairs(N)
         np.add(U[0] * lx, W[0], out=o[:, 0])
         np.add(U[1] * lx, W[1], out=o[:, 1])
         th = lx + W[2] if info[X][0] == "R" else U[2] * lx + W[2]      # R: U[2] = 1
@@ -554,8 +554,8 @@ class _FixedSlide:
         th = _minus_const(np.arctan2(dy, dx), self.th0)
         c, sn = np.cos(th), np.sin(th)
         u0, u1 = self.uX1[0], self.uX1[1]
-        o = np.empty((N, 2))
-        ru = np.empty((N, 2))               # (c u0, s u0): R u1 as State.rot takes it when u1 = (u0, 0)
+        o = pairs(N)
+        ru = pairs(N)               # (c u0, s u0): R u1 as State.rot takes it when u1 = (u0, 0)
         cu, su = ru[:, 0], ru[:, 1]
         np.multiply(c, u0, out=cu)
         np.multiply(sn, u0, out=su)
@@ -564,7 +564,7 @@ class _FixedSlide:
         st.set_pose(X, o, th, (c, sn))
         if u1 == 0.0:                       # shared with the derivatives (State.rot)
             st.share_rot(X, self.uX1, ru)
-        oY = np.empty((N, 2))
+        oY = pairs(N)
         np.add(self.bx, sx, out=oY[:, 0])
         np.add(self.by, sy, out=oY[:, 1])
         st.set_pose(Y, oY, np.full(N, self.psi), self._cs_y(N))
@@ -628,11 +628,11 @@ class _FixedSlide:
     def _set(self, set_d, N, lX, lY, W0, W1, rx, ry):
         """pose_d of X (U = (-J R u1, 1)) and of Y (U = (e, 0)), W = (W0, W1, 0) for X and
         (0, 0, 0) for Y; set by ``set_d`` (State.set_d1 or set_d2)."""
-        o = np.empty((N, 2))
+        o = pairs(N)
         np.add(ry * lX, W0, out=o[:, 0])
         np.subtract(W1, rx * lX, out=o[:, 1])          # (-rx) lX + W1
         set_d(self.X, o, lX + 0.0)
-        o = np.empty((N, 2))
+        o = pairs(N)
         np.add(self.e0 * lY, 0.0, out=o[:, 0])
         np.add(self.e1 * lY, 0.0, out=o[:, 1])
         set_d(self.Y, o, 0.0 * lY + 0.0)
