@@ -532,3 +532,35 @@ def test_fixed_slide_dyad_equals_the_generic_paths(seed, monkeypatch):
                     assert np.asarray(getattr(fused, name)[gi]).tobytes() == np.asarray(v).tobytes(), (name, gi)
             assert (fused.singular is None) == (generic.singular is None)
             assert fused.const_th == generic.const_th
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_fixed_slide_bound_covers_the_squared_test(seed):
+    """_FixedSlide.bound is not below _clearly_regular's right-hand side at any position
+    (so that det^2 > bound implies its test), and by no more than a relative 1e-11: random
+    slider-cranks of lengths from 1e-3 to 1e3, many positions."""
+    from tmm_cli.linkage.kinematics.solver import Solver
+    from tmm_cli.linkage.mechanism import build_mechanism
+    from tmm_cli.task import load_task
+    rng = np.random.default_rng(300 + seed)
+    k = 10.0 ** rng.uniform(-3, 3)
+    r, l = k * rng.uniform(0.02, 0.1), k * rng.uniform(0.25, 0.5)
+    ang, off = rng.uniform(-180, 180), rng.uniform(-0.5, 0.5) * (l - r)
+    a = math.radians(ang)
+    gp = [-off * math.sin(a), off * math.cos(a)]
+    mech = build_mechanism(load_task({"schema": "tmm/1", "mechanism": {
+        "ground": {"O": [0, 0]},
+        "links": {"crank": {"points": ["O", "A"], "length": r}, "rod": {"points": ["A", "B"], "length": l},
+                  "piston": {"slider": "B", "guide": {"through": gp, "angle": ang}}},
+        "assembly": {"B": [gp[0] + l * math.cos(a), gp[1] + l * math.sin(a)]}},
+        "drive": {"link": "crank", "speed": "100 rpm"}}))
+    solver = Solver(mech)
+    sl = solver.plans[0].slide
+    st = solver.run(np.radians(rng.uniform(0.0, 360.0, 5000)))
+    ru, ruM = st.rot(sl.X, sl.uX1), st.rot(sl.X, sl.uXC)
+    a0, a1 = ru[:, 1] - ruM[:, 1], ruM[:, 0] - ru[:, 0]
+    b0, b1 = sl.cY
+    q = (a0 * a0 + a1 * a1) * (b0 * b0 + b1 * b1)
+    q *= 1.001e-20
+    q += 1e-290
+    assert (q <= sl.bound).all() and (sl.bound <= q * (1 + 1e-11)).all()

@@ -331,14 +331,17 @@ def _clearly_regular(det, cA, cB) -> bool:
         return bool(np.all(det * det > q))
 
 
-def _inverse(cA, cB, st: State, dets: bool):
+def _inverse(cA, cB, st: State, dets: bool, bound: float | None = None):
     """(1 / det, the singular mask) of a dyad's 2x2 system with the columns cA, cB: where
     |det| < 1e-10 |cA| |cB| the determinant is taken as +-1e-10 |cA| |cB| (its limit by
     continuity is taken afterwards); ``dets``: the normalised determinant in
-    ``st.last_det`` too."""
+    ``st.last_det`` too. ``bound``: a number that _clearly_regular's right-hand side
+    (1.001e-20 |cA|^2 |cB|^2 + 1e-290, as it rounds) does not exceed at any position:
+    det^2 > bound everywhere implies its test, without forming the squares."""
     N = st.N
     det = cA[0] * cB[1] - cA[1] * cB[0]
-    if not dets and N >= WORK_ROWS_FROM and _clearly_regular(det, cA, cB):
+    if not dets and N >= WORK_ROWS_FROM and ((bound is not None and bool((det * det > bound).all()))
+                                             or _clearly_regular(det, cA, cB)):
         sing = np.zeros(N, bool)           # what the test below gives there, without its two hypot
     else:
         nn = _length(cA) * _length(cB)
@@ -515,6 +518,15 @@ class _FixedSlide:
         y_first = Y == mid.i
         self.cY = (self.e0, self.e1) if y_first else (-self.e0, -self.e1)     # _MidApply.fixed
         self.zY = 0.0 if y_first else -0.0                   # _MidApply.fixed_zero: x + (-0.0) is x
+        # _inverse's bound: |cA| = |R vX| (l, c^2 + s^2 = 1 to a few ulps; its products and
+        # differences round within 1e-15 of l + |u1| + |uC|), |cB| = |e| (1 to a few ulps):
+        # a relative 1e-12 over both covers the rounding of _clearly_regular's products
+        big = self.lX + 1e-12 * (self.lX + float(np.hypot(*self.uX1)) + float(np.hypot(*self.uXC)))
+        self.bound = 1.001e-20 * (big * big) * (1.0 + 1e-12) + 2e-290
+        # 0 u1 = 0 (+0, +0) and uC = (l0 > 0, 0): 0 (R uC) is R u1 bit for bit (0 c l0 has the
+        # sign of c, as c 0 has; cos never gives 0, c l0 does not underflow)
+        self.z_is_ru = (all(float(x) == 0.0 and math.copysign(1.0, float(x)) > 0 for x in self.uX1)
+                        and float(self.uXC[0]) > 0.0 and float(self.uXC[1]) == 0.0)
         self._bc = (0, None)
 
     def _cs_y(self, N: int):
@@ -583,14 +595,13 @@ class _FixedSlide:
         # X's column: (-J R u1) - (-J R uC) of the pair, +- by the pair's order
         a = ry - my
         b = mx - rx                          # (-rx) + mx
-        z1 = 0.0 * my
-        z0 = 0.0 * mx
+        z1, z0 = (ry, rx) if self.z_is_ru else (0.0 * my, 0.0 * mx)
         if not self.x_sign:
             np.negative(a, out=a)
             np.negative(b, out=b)
         cX, cY = (a, b), self.cY
         cA, cB = (cX, cY) if self.xa else (cY, cX)
-        inv, sing = _inverse(cA, cB, st, dets)
+        inv, sing = _inverse(cA, cB, st, dets, self.bound)
         # first derivatives: -(V terms), V = (P1', 0) for X, (0, 0) for Y
         lX, lY = self._level(*self._rhs(P1[:, 0], P1[:, 1], z1, z0), cA, cB, inv)
         self._set(st.set_d1, N, lX, lY, P1[:, 0], P1[:, 1], rx, ry)
