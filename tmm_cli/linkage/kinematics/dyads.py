@@ -525,7 +525,7 @@ class _FixedSlide:
         self.bound = 1.001e-20 * (big * big) * (1.0 + 1e-12) + 2e-290
         # 0 u1 = 0 (+0, +0) and uC = (l0 > 0, 0): 0 (R uC) is R u1 bit for bit (0 c l0 has the
         # sign of c, as c 0 has; cos never gives 0, c l0 does not underflow)
-        self.z_is_ru = (all(float(x) == 0.0 and math.copysign(1.0, float(x)) > 0 for x in self.uX1)
+        self.zero_rot = (all(float(x) == 0.0 and math.copysign(1.0, float(x)) > 0 for x in self.uX1)
                         and float(self.uXC[0]) > 0.0 and float(self.uXC[1]) == 0.0)
         self._bc = (0, None)
 
@@ -595,7 +595,7 @@ class _FixedSlide:
         # X's column: (-J R u1) - (-J R uC) of the pair, +- by the pair's order
         a = ry - my
         b = mx - rx                          # (-rx) + mx
-        z1, z0 = (ry, rx) if self.z_is_ru else (0.0 * my, 0.0 * mx)
+        z1, z0 = (ry, rx) if self.zero_rot else (0.0 * my, 0.0 * mx)
         if not self.x_sign:
             np.negative(a, out=a)
             np.negative(b, out=b)
