@@ -230,7 +230,11 @@ def with_modules(fn, mods: dict):
         try:
             return fn()
         finally:
-            sys.modules.update(saved)
+            for k, v in saved.items():
+                if v is None:                  # not imported by this checkout yet
+                    sys.modules.pop(k, None)
+                else:
+                    sys.modules[k] = v
     return call
 
 
