@@ -20,7 +20,8 @@
   same before and after a change that must leave the results bit-identical.
 
 Run: python benchmarks/bench_kinematics.py [core|sixbar|digest] [--repeat 7] [--sizes 12,360,3600]
-[--no-trim]
+[--no-trim] [--against DIR]  (DIR: the code before, e.g. `git archive main | tar -x -C DIR`; core
+then also times it interleaved, tmm/before)
 """
 from __future__ import annotations
 
@@ -193,6 +194,50 @@ def pylinkage_case(name: str, n: int):
     return run
 
 
+# ----------------------------------------------------------------- another checkout
+_KIN = ("tmm_cli.linkage.kinematics", "tmm_cli.linkage.kinematics.changepoints")
+
+
+def other_checkout(root: Path):
+    """(solve, build_mechanism, load_task, its kinematics modules) of another checkout of
+    tmm at ``root`` (a `git archive` copy), imported beside this one's: its tmm_cli modules
+    are taken out of sys.modules again, this checkout's put back. Its solve imports its
+    change points lazily, by the package's name: call it through ``with_modules`` (the
+    kinematics package and its change points swapped in for the call)."""
+    mine = {k: v for k, v in sys.modules.items() if k == "tmm_cli" or k.startswith("tmm_cli.")}
+    for k in mine:
+        del sys.modules[k]
+    sys.path.insert(0, str(root))
+    try:
+        from tmm_cli.linkage.kinematics import changepoints  # noqa: F401 -- its module, for its solve
+        from tmm_cli.linkage.kinematics import solve as other_solve
+        from tmm_cli.linkage.mechanism import build_mechanism as other_build
+        from tmm_cli.task import load_task as other_load
+        mods = {k: sys.modules[k] for k in _KIN}
+    finally:
+        sys.path.remove(str(root))
+        for k in [k for k in sys.modules if k == "tmm_cli" or k.startswith("tmm_cli.")]:
+            del sys.modules[k]
+        sys.modules.update(mine)
+    return other_solve, other_build, other_load, mods
+
+
+def with_modules(fn, mods: dict):
+    """fn with the modules ``mods`` in sys.modules while it runs (this checkout's back after)."""
+    def call():
+        saved = {k: sys.modules.get(k) for k in mods}
+        sys.modules.update(mods)
+        try:
+            return fn()
+        finally:
+            for k, v in saved.items():
+                if v is None:                  # not imported by this checkout yet
+                    sys.modules.pop(k, None)
+                else:
+                    sys.modules[k] = v
+    return call
+
+
 # ----------------------------------------------------------------- timing
 def _batch(fn, calls: int) -> tuple[float, float, float]:
     """(wall, cpu, minor page faults) per call of ``calls`` calls."""
@@ -205,20 +250,30 @@ def _batch(fn, calls: int) -> tuple[float, float, float]:
     return (t1 - t0) / calls, (c1 - c0) / calls, (f1 - f0) / calls
 
 
-def core(repeat: int = 7, sizes=(12, 36, 360, 3600, 36000)) -> None:
-    cases = [("slider-crank", build_mechanism(load_task(SLIDER_CRANK)), slider_crank_closed),
-             ("four-bar", build_mechanism(load_task(FOUR_BAR)), four_bar_closed)]
+def core(repeat: int = 7, sizes=(12, 36, 360, 3600, 36000), against: Path | None = None) -> None:
+    cases = [("slider-crank", build_mechanism(load_task(SLIDER_CRANK)), slider_crank_closed, SLIDER_CRANK),
+             ("four-bar", build_mechanism(load_task(FOUR_BAR)), four_bar_closed, FOUR_BAR)]
     have_pyl = pylinkage_case("four-bar", 36) is not None
+    before_side = other_checkout(against) if against is not None else None
     print(f"kinematics core against the numpy closed form{' and pylinkage (numba)' if have_pyl else ''} "
-          f"of the same linkage, {repeat} interleaved rounds; per call, median [min-max] of the rounds"
+          f"of the same linkage{f', and the tmm of {against} (before)' if before_side else ''}, {repeat} interleaved "
+          f"rounds; per call, median [min-max] of the rounds"
           + ("" if have_pyl else "; pylinkage/numba not installed (pip install .[bench])"))
-    for name, mech, closed in cases:
+    for name, mech, closed, src in cases:
         phi = np.linspace(0.0, 360.0, 3600, endpoint=False)
         check_same(name, solve(mech, phi, 1.0), closed(phi))
+        before = None
+        if before_side is not None:
+            o_solve, o_build, o_load, mods = before_side
+            o_mech = with_modules(lambda: o_build(o_load(src)), mods)()
+            before = lambda: with_modules(lambda: o_solve(o_mech, phi, 1.0), mods)()   # noqa: E731
+            check_same(name + " (before)", before(), closed(phi))
         for n in sizes:
             phi = np.linspace(0.0, 360.0, n, endpoint=False)
             calls = max(3, 40000 // n)
             fns = {"tmm": lambda: solve(mech, phi, 1.0), "closed": lambda: closed(phi)}
+            if before is not None:
+                fns["before"] = before
             pyl = pylinkage_case(name, n)
             if pyl is not None:
                 fns["pylinkage"] = pyl
@@ -241,6 +296,9 @@ def core(repeat: int = 7, sizes=(12, 36, 360, 3600, 36000)) -> None:
                     tgt = " (< 1 " + ("ok" if statistics.median(rc) < 1 else "OVER") + ")"
                 line += (f" | tmm/{other} cpu {statistics.median(rc):.2f} [{min(rc):.2f}-{max(rc):.2f}]"
                          f" wall {statistics.median(rw):.2f}{tgt}")
+            if "before" in fns:
+                rb = [a / b for a, b in zip(cpu["before"], cpu["closed"])]
+                line += f" | before/closed cpu {statistics.median(rb):.2f} [{min(rb):.2f}-{max(rb):.2f}]"
             line += " | page faults/call " + ", ".join(f"{k} {v:.0f}" for k, v in flt.items())
             print(line, flush=True)
 
@@ -302,6 +360,9 @@ def main() -> None:
     ap.add_argument("what", nargs="*", default=["sixbar", "core"], choices=["sixbar", "core", "digest"])
     ap.add_argument("--repeat", type=int, default=7)
     ap.add_argument("--sizes", default="12,36,360,3600,36000", help="core: numbers of positions (comma-separated)")
+    ap.add_argument("--against", type=Path, default=None,
+                    help="core: also the kinematics of another checkout of tmm (a `git archive` copy), "
+                         "interleaved (tmm/before ratios)")
     ap.add_argument("--no-trim", action="store_true",
                     help="glibc: keep freed memory in the process (mallopt M_TRIM_THRESHOLD, M_MMAP_THRESHOLD), "
                          "for every side alike: the timings without the page faults")
@@ -316,7 +377,7 @@ def main() -> None:
     if "sixbar" in a.what:
         sixbar()
     if "core" in a.what:
-        core(max(5, a.repeat), tuple(int(n) for n in a.sizes.split(",")))
+        core(max(5, a.repeat), tuple(int(n) for n in a.sizes.split(",")), a.against)
 
 
 if __name__ == "__main__":

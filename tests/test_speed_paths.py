@@ -503,3 +503,84 @@ def test_dyads_many_rows_paths_equal_the_generic_ones(seed, monkeypatch):
                 assert np.asarray(getattr(many, name)[b]).tobytes() == np.asarray(v).tobytes(), (name, b)
         for gi, s in generic.sing.items():
             assert np.array_equal(many.sing[gi], s)
+
+
+@pytest.mark.parametrize("seed", range(8))
+def test_fixed_slide_dyad_equals_the_generic_paths(seed, monkeypatch):
+    """The fused path of an RRP dyad whose slider runs on a fixed guide (dyads._FixedSlide)
+    gives every pose, derivative, margin, singular mask and normalised determinant of the
+    generic _rrp / dyad_derivatives bit for bit: random slider-cranks (offset, guide angle,
+    either closure, the links in either order: the pair's two sign conventions), few and
+    many positions, positions where it does not assemble."""
+    from tmm_cli.linkage.kinematics import dyads
+    from tmm_cli.linkage.kinematics.solver import Solver
+    from tmm_cli.linkage.kinematics.state import WORK_ROWS_FROM
+    from tmm_cli.linkage.mechanism import build_mechanism
+    from tmm_cli.task import load_task
+    rng = np.random.default_rng(100 + seed)
+    r, l = rng.uniform(0.02, 0.1), rng.uniform(0.25, 0.5)
+    ang, off = rng.uniform(-180, 180), rng.uniform(-0.5, 0.5) * (l - r)
+    if seed < 4:                                # centric, on an axis: exact zeros (their signs)
+        r, l, ang, off = 0.045, 0.17, 90.0 * seed, 0.0
+    if seed == 7:
+        off = l - r + 0.3 * r                   # does not assemble over part of the turn
+    a = math.radians(ang)
+    gp = [-off * math.sin(a), off * math.cos(a)]
+    ahead = [gp[0] + rng.choice([1, -1]) * l * math.cos(a), gp[1] + rng.choice([1, -1]) * l * math.sin(a)]
+    links = {"crank": {"points": ["O", "A"], "length": r}, "rod": {"points": ["A", "B"], "length": l},
+             "piston": {"slider": "B", "guide": {"through": gp, "angle": ang}}}
+    if seed % 2:
+        links = {k: links[k] for k in ("crank", "piston", "rod")}
+    mech = build_mechanism(load_task({"schema": "tmm/1", "mechanism": {
+        "ground": {"O": [0, 0]}, "links": links, "assembly": {"B": ahead}},
+        "drive": {"link": "crank", "speed": "100 rpm"}}))
+    plan = Solver(mech).plans[0]
+    assert plan.slide is not None and plan.slide.x_sign == (seed % 2 == 0)
+    grids = [np.radians(rng.uniform(0.0, 360.0, WORK_ROWS_FROM + 100)), np.radians(rng.uniform(0.0, 360.0, 37)),
+             np.radians([0.0]), np.radians(np.arange(720) * 0.5)]
+    for phi in grids:
+        for kw in ({"strict": False}, {"strict": False, "dets": True}, {"strict": False, "fallback": False}):
+            fused = Solver(mech).run(phi, **kw)
+            monkeypatch.setattr(dyads, "FIXED_SLIDE", False)
+            generic = Solver(mech).run(phi, **kw)
+            monkeypatch.undo()
+            for name in ("o", "th", "o1", "th1", "o2", "th2"):
+                for b, v in getattr(generic, name).items():
+                    assert np.asarray(getattr(fused, name)[b]).tobytes() == np.asarray(v).tobytes(), (name, b)
+            for name in ("margins", "sing", "gdet"):
+                for gi, v in getattr(generic, name).items():
+                    assert np.asarray(getattr(fused, name)[gi]).tobytes() == np.asarray(v).tobytes(), (name, gi)
+            assert (fused.singular is None) == (generic.singular is None)
+            assert fused.const_th == generic.const_th
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_fixed_slide_bound_covers_the_squared_test(seed):
+    """_FixedSlide.bound is not below _clearly_regular's right-hand side at any position
+    (so that det^2 > bound implies its test), and by no more than a relative 1e-11: random
+    slider-cranks of lengths from 1e-3 to 1e3, many positions."""
+    from tmm_cli.linkage.kinematics.solver import Solver
+    from tmm_cli.linkage.mechanism import build_mechanism
+    from tmm_cli.task import load_task
+    rng = np.random.default_rng(300 + seed)
+    k = 10.0 ** rng.uniform(-3, 3)
+    r, l = k * rng.uniform(0.02, 0.1), k * rng.uniform(0.25, 0.5)
+    ang, off = rng.uniform(-180, 180), rng.uniform(-0.5, 0.5) * (l - r)
+    a = math.radians(ang)
+    gp = [-off * math.sin(a), off * math.cos(a)]
+    mech = build_mechanism(load_task({"schema": "tmm/1", "mechanism": {
+        "ground": {"O": [0, 0]},
+        "links": {"crank": {"points": ["O", "A"], "length": r}, "rod": {"points": ["A", "B"], "length": l},
+                  "piston": {"slider": "B", "guide": {"through": gp, "angle": ang}}},
+        "assembly": {"B": [gp[0] + l * math.cos(a), gp[1] + l * math.sin(a)]}},
+        "drive": {"link": "crank", "speed": "100 rpm"}}))
+    solver = Solver(mech)
+    sl = solver.plans[0].slide
+    st = solver.run(np.radians(rng.uniform(0.0, 360.0, 5000)))
+    ru, ruM = st.rot(sl.X, sl.uX1), st.rot(sl.X, sl.uXC)
+    a0, a1 = ru[:, 1] - ruM[:, 1], ruM[:, 0] - ru[:, 0]
+    b0, b1 = sl.cY
+    q = (a0 * a0 + a1 * a1) * (b0 * b0 + b1 * b1)
+    q *= 1.001e-20
+    q += 1e-290
+    assert (q <= sl.bound).all() and (sl.bound <= q * (1 + 1e-11)).all()

@@ -41,7 +41,7 @@ import math
 
 import numpy as np
 
-from .state import WORK_ROWS_FROM, PCon, RCon, State, cross, dot, left, scale, unit
+from .state import WORK_ROWS_FROM, PCon, RCon, State, cross, dot, left, pairs, scale, unit
 
 
 def _atan2(v):
@@ -63,7 +63,7 @@ def _cs(th):
 def _rot(cs, u):
     """R(th) u (N, 2) from cs = (cos th, sin th)."""
     c, s = cs
-    out = np.empty((len(c), 2))
+    out = pairs(len(c))
     np.subtract(c * u[0], s * u[1], out=out[:, 0])
     np.add(s * u[0], c * u[1], out=out[:, 1])
     return out
@@ -86,6 +86,9 @@ class DyadPlan:
                     v = np.asarray(mid.local(X)) - np.asarray(ext.local(X))
                     if np.hypot(*v) < 1e-12:
                         raise ValueError("the two pairs of a link of the group coincide")
+        self.slide = None
+        if self.kind in ("RRP", "PRR") and mid.kind == "R" and (e2 if self.kind == "RRP" else e1).g == 0:
+            self.slide = _FixedSlide(self)
 
     # ------------------------------------------------------------------
     @staticmethod
@@ -120,6 +123,8 @@ class DyadPlan:
 
     def solve(self, st: State, sigma: float = 1.0) -> np.ndarray:
         """Set the poses of A and B in ``st``; return the assembly margin (N,)."""
+        if self.slide is not None and FIXED_SLIDE:
+            return self.slide.pose(st, sigma)
         A, B = self.A, self.B
         ea = self._ext(A, self.e1, st)
         eb = self._ext(B, self.e2, st)
@@ -326,6 +331,44 @@ def _clearly_regular(det, cA, cB) -> bool:
         return bool(np.all(det * det > q))
 
 
+def _inverse(cA, cB, st: State, dets: bool, bound: float | None = None):
+    """(1 / det, the singular mask) of a dyad's 2x2 system with the columns cA, cB: where
+    |det| < 1e-10 |cA| |cB| the determinant is taken as +-1e-10 |cA| |cB| (its limit by
+    continuity is taken afterwards); ``dets``: the normalised determinant in
+    ``st.last_det`` too. ``bound``: a number that _clearly_regular's right-hand side
+    (1.001e-20 |cA|^2 |cB|^2 + 1e-290, as it rounds) does not exceed at any position:
+    det^2 > bound everywhere implies its test, without forming the squares."""
+    N = st.N
+    det = cA[0] * cB[1] - cA[1] * cB[0]
+    if not dets and N >= WORK_ROWS_FROM and ((bound is not None and bool((det * det > bound).all()))
+                                             or _clearly_regular(det, cA, cB)):
+        sing = np.zeros(N, bool)           # what the test below gives there, without its two hypot
+    else:
+        nn = _length(cA) * _length(cB)
+        if dets:
+            with np.errstate(divide="ignore", invalid="ignore"):
+                st.last_det = np.where(nn > 0, det / np.maximum(nn, 1e-300), 0.0)  # sine of the angle between the columns
+        sing = ~(np.abs(det) >= 1e-10 * nn)
+        if sing.any():
+            det = np.where(sing, np.where(det >= 0, 1.0, -1.0) * np.maximum(nn, 1e-300) * 1e-10, det)
+        del nn
+    return 1.0 / det, sing
+
+
+def _cramer(r0, r1, cA, cB, inv):
+    """Cramer's rule for the system with the columns cA, cB and the right-hand side
+    (r0, r1), the products formed in place (the same operations)."""
+    x = r0 * cB[1]
+    t = r1 * cB[0]
+    np.subtract(x, t, out=x)
+    np.multiply(x, inv, out=x)
+    y = cA[0] * r1
+    np.multiply(cA[1], r0, out=t)
+    np.subtract(y, t, out=y)
+    np.multiply(y, inv, out=y)
+    return x, y
+
+
 def dyad_derivatives(plan: DyadPlan, st: State, dets: bool = True) -> np.ndarray:
     """Exact phi-derivatives of a dyad's poses (set in ``st``) by a 2x2 linear solve.
 
@@ -335,6 +378,8 @@ def dyad_derivatives(plan: DyadPlan, st: State, dets: bool = True) -> np.ndarray
     pair A-B then gives two linear equations (Cramer's rule, vectorised). Returns the
     mask of positions where the 2x2 system is singular; ``dets``: the normalised
     determinant in ``st.last_det`` too (the change points)."""
+    if plan.slide is not None and FIXED_SLIDE:
+        return plan.slide.derivatives(st, dets)
     A, B = plan.A, plan.B
     N = st.N
     info = {}
@@ -380,32 +425,10 @@ def dyad_derivatives(plan: DyadPlan, st: State, dets: bool = True) -> np.ndarray
 
     cA = apply(A, 1)
     cB = apply(B, 1)
-    det = cA[0] * cB[1] - cA[1] * cB[0]
-    if not dets and N >= WORK_ROWS_FROM and _clearly_regular(det, cA, cB):
-        sing = np.zeros(N, bool)           # what the test below gives there, without its two hypot
-    else:
-        nn = _length(cA) * _length(cB)
-        if dets:
-            with np.errstate(divide="ignore", invalid="ignore"):
-                st.last_det = np.where(nn > 0, det / np.maximum(nn, 1e-300), 0.0)  # sine of the angle between the columns
-        sing = ~(np.abs(det) >= 1e-10 * nn)
-        if sing.any():
-            det = np.where(sing, np.where(det >= 0, 1.0, -1.0) * np.maximum(nn, 1e-300) * 1e-10, det)
-        del nn
-    inv = 1.0 / det
-    del det
+    inv, sing = _inverse(cA, cB, st, dets)
 
     def solve2(r0, r1):
-        """Cramer's rule, the products formed in place (the same operations)."""
-        x = r0 * cB[1]
-        t = r1 * cB[0]
-        np.subtract(x, t, out=x)
-        np.multiply(x, inv, out=x)
-        y = cA[0] * r1
-        np.multiply(cA[1], r0, out=t)
-        np.subtract(y, t, out=y)
-        np.multiply(y, inv, out=y)
-        return x, y
+        return _cramer(r0, r1, cA, cB, inv)
 
     def neg_sum(a, b, c=None):
         """-(a + b) or -(a + b + c), in place in the first sum."""
@@ -417,7 +440,7 @@ def dyad_derivatives(plan: DyadPlan, st: State, dets: bool = True) -> np.ndarray
     def pose_d(X, lx, W):
         """(o, th) derivative U lx + W of link X."""
         U = info[X][1]
-        o = np.empty((N, 2))
+        o = pairs(N)
         np.add(U[0] * lx, W[0], out=o[:, 0])
         np.add(U[1] * lx, W[1], out=o[:, 1])
         th = lx + W[2] if info[X][0] == "R" else U[2] * lx + W[2]      # R: U[2] = 1
@@ -451,3 +474,176 @@ def dyad_derivatives(plan: DyadPlan, st: State, dets: bool = True) -> np.ndarray
     for X in (A, B):
         st.set_d2(X, *pose_d(X, l2[X], Wd[X]))
     return sing
+
+
+FIXED_SLIDE = True      # the fused path of _FixedSlide (off: the generic one, for the tests)
+
+
+class _FixedSlide:
+    """An RRP / PRR dyad whose slider Y runs on a fixed guide, its other link X turning
+    about a known point, the pair X-Y revolute (the slider-crank's piston and rod): its
+    poses and derivatives by the same operations as :meth:`DyadPlan._rrp` and
+    :func:`dyad_derivatives`, element by element, in the columns x, y, without their
+    per-call bookkeeping; the guide's direction and the constant rows (the base of the
+    line, the circle-line centre) are taken once per plan, by the same operations on one
+    row as there (the values, bit for bit)."""
+
+    def __init__(self, plan: DyadPlan):
+        rrp = plan.kind == "RRP"
+        X, Y = (plan.A, plan.B) if rrp else (plan.B, plan.A)
+        ex, ey = (plan.e1, plan.e2) if rrp else (plan.e2, plan.e1)
+        mid = plan.mid
+        self.X, self.Y, self.ex, self.mid = X, Y, ex, mid
+        self.K = ex.j if ex.i == X else ex.i                 # the body carrying X's pivot
+        self.uK = ex.local(self.K)
+        self.uX1 = np.asarray(ex.local(X))                   # X's pivot and its point of the pair X-Y
+        self.uXC = np.asarray(mid.local(X))
+        self.uYC = np.asarray(mid.local(Y))
+        vX = self.uXC - self.uX1
+        self.lX = float(np.hypot(*vX))
+        self.lX2 = self.lX ** 2
+        self.th0 = np.arctan2(vX[1], vX[0])
+        # State.guide of a fixed guide and _ext / _rrp's rows, on one row
+        psi = np.full(1, 0.0 + ey.a)
+        e = unit(psi)
+        base = np.zeros((1, 2)) + ey.c0 * left(e)
+        c0 = base + _rot((e[:, 0], e[:, 1]), self.uYC)
+        self.psi = float(psi[0])
+        self.e0, self.e1 = float(e[0, 0]), float(e[0, 1])
+        self.e_row = e[0]                                    # the broadcast cos, sin of Y's angle
+        self.bx, self.by = float(base[0, 0]), float(base[0, 1])
+        self.cx, self.cy = float(c0[0, 0]), float(c0[0, 1])
+        self.xa = X == plan.A
+        self.x_sign = X == mid.i                             # _MidApply: +- the terms of X, of Y
+        y_first = Y == mid.i
+        self.cY = (self.e0, self.e1) if y_first else (-self.e0, -self.e1)     # _MidApply.fixed
+        self.zY = 0.0 if y_first else -0.0                   # _MidApply.fixed_zero: x + (-0.0) is x
+        # _inverse's bound: |cA| = |R vX| (l, c^2 + s^2 = 1 to a few ulps; its products and
+        # differences round within 1e-15 of l + |u1| + |uC|), |cB| = |e| (1 to a few ulps):
+        # a relative 1e-12 over both covers the rounding of _clearly_regular's products
+        big = self.lX + 1e-12 * (self.lX + float(np.hypot(*self.uX1)) + float(np.hypot(*self.uXC)))
+        self.bound = 1.001e-20 * (big * big) * (1.0 + 1e-12) + 2e-290
+        # 0 u1 = 0 (+0, +0) and uC = (l0 > 0, 0): 0 (R uC) is R u1 bit for bit (0 c l0 has the
+        # sign of c, as c 0 has; cos never gives 0, c l0 does not underflow)
+        self.zero_rot = (all(float(x) == 0.0 and math.copysign(1.0, float(x)) > 0 for x in self.uX1)
+                        and float(self.uXC[0]) > 0.0 and float(self.uXC[1]) == 0.0)
+        self._bc = (0, None)
+
+    def _cs_y(self, N: int):
+        """Y's (cos, sin) as State.guide gives them: one row broadcast (kept per N)."""
+        n, cs = self._bc
+        if n != N:
+            b = np.broadcast_to(self.e_row, (N, 2))
+            cs = (b[:, 0], b[:, 1])
+            self._bc = (N, cs)
+        return cs
+
+    def pose(self, st: State, sigma: float) -> np.ndarray:
+        """DyadPlan._rrp of this dyad."""
+        N = st.N
+        X, Y, e0, e1, cx, cy = self.X, self.Y, self.e0, self.e1, self.cx, self.cy
+        P1 = DyadPlan._ext(X, self.ex, st)[1]
+        px, py = P1[:, 0], P1[:, 1]
+        w0 = cx - px
+        w1 = cy - py
+        h = w0 * e1 - w1 * e0
+        margin = self.lX - np.abs(h)
+        root = np.sqrt(np.maximum(self.lX2 - h ** 2, 0.0))
+        d = np.multiply(w0, e0, out=w0)
+        d += np.multiply(w1, e1, out=w1)
+        if sigma == 1.0:                    # -a + 1.0 r is r - a, bit for bit
+            s = np.subtract(root, d, out=root)
+        else:
+            s = -d + sigma * root
+        sx = s * e0
+        sy = np.multiply(s, e1, out=s)
+        D = np.empty((N, 2))                # C - P1, strided as there (the arctangent's input)
+        dx, dy = D[:, 0], D[:, 1]
+        np.add(cx, sx, out=dx)
+        dx -= px
+        np.add(cy, sy, out=dy)
+        dy -= py
+        th = _minus_const(np.arctan2(dy, dx), self.th0)
+        c, sn = np.cos(th), np.sin(th)
+        u0, u1 = self.uX1[0], self.uX1[1]
+        o = pairs(N)
+        ru = pairs(N)               # (c u0, s u0): R u1 as State.rot takes it when u1 = (u0, 0)
+        cu, su = ru[:, 0], ru[:, 1]
+        np.multiply(c, u0, out=cu)
+        np.multiply(sn, u0, out=su)
+        np.subtract(px, np.subtract(cu, sn * u1), out=o[:, 0])
+        np.subtract(py, np.add(su, c * u1), out=o[:, 1])
+        st.set_pose(X, o, th, (c, sn))
+        if u1 == 0.0:                       # shared with the derivatives (State.rot)
+            st.share_rot(X, self.uX1, ru)
+        oY = pairs(N)
+        np.add(self.bx, sx, out=oY[:, 0])
+        np.add(self.by, sy, out=oY[:, 1])
+        st.set_pose(Y, oY, np.full(N, self.psi), self._cs_y(N))
+        st.const_th[Y] = self.psi
+        return margin
+
+    def derivatives(self, st: State, dets: bool) -> np.ndarray:
+        """dyad_derivatives of this dyad."""
+        N = st.N
+        X, Y = self.X, self.Y
+        _, P1, P2 = st.point_d(self.K, self.uK)
+        ru = st.rot(X, self.uX1)
+        rx, ry = ru[:, 0], ru[:, 1]
+        ruM = st.rot(X, self.uXC)
+        mx, my = ruM[:, 0], ruM[:, 1]
+        # X's column: (-J R u1) - (-J R uC) of the pair, +- by the pair's order
+        a = ry - my
+        b = mx - rx                          # (-rx) + mx
+        z1, z0 = (ry, rx) if self.zero_rot else (0.0 * my, 0.0 * mx)
+        if not self.x_sign:
+            np.negative(a, out=a)
+            np.negative(b, out=b)
+        cX, cY = (a, b), self.cY
+        cA, cB = (cX, cY) if self.xa else (cY, cX)
+        inv, sing = _inverse(cA, cB, st, dets, self.bound)
+        # first derivatives: -(V terms), V = (P1', 0) for X, (0, 0) for Y
+        lX, lY = self._level(*self._rhs(P1[:, 0], P1[:, 1], z1, z0), cA, cB, inv)
+        self._set(st.set_d1, N, lX, lY, P1[:, 0], P1[:, 1], rx, ry)
+        l2 = st.th1_sq(X)
+        W0 = P2[:, 0] + l2 * rx
+        W1 = P2[:, 1] + l2 * ry
+        gam = self.mid.gamma(st, {X: ruM, Y: st.rot(Y, self.uYC)})
+        # second derivatives: -(W terms + gamma), W = (P1'' + th1^2 R u1, 0) for X, (0, 0) for Y
+        lX, lY = self._level(*self._rhs(W0, W1, z1, z0, gam), cA, cB, inv)
+        self._set(st.set_d2, N, lX, lY, W0, W1, rx, ry)
+        return sing
+
+    def _rhs(self, t0, t1, z1, z0, gam=None):
+        """The right-hand side -(X's terms + Y's (signed zeros) [+ gamma]) of the 2x2
+        system, as _MidApply and neg_sum form it; (t0, t1): X's pose terms (V or W)."""
+        v0 = t0 - z1
+        v1 = t1 + z0
+        if not self.x_sign:
+            np.negative(v0, out=v0)
+            np.negative(v1, out=v1)
+        zY = self.zY
+        if zY == 0.0 and math.copysign(1.0, zY) > 0:
+            np.add(v0, zY, out=v0)
+            np.add(v1, zY, out=v1)
+        if gam is not None:
+            v0 += gam[:, 0]
+            v1 += gam[:, 1]
+        return np.negative(v0, out=v0), np.negative(v1, out=v1)
+
+    def _level(self, r0, r1, cA, cB, inv):
+        """(lambda of X, lambda of Y) by Cramer's rule."""
+        lA, lB = _cramer(r0, r1, cA, cB, inv)
+        return (lA, lB) if self.xa else (lB, lA)
+
+    def _set(self, set_d, N, lX, lY, W0, W1, rx, ry):
+        """pose_d of X (U = (-J R u1, 1)) and of Y (U = (e, 0)), W = (W0, W1, 0) for X and
+        (0, 0, 0) for Y; set by ``set_d`` (State.set_d1 or set_d2)."""
+        o = pairs(N)
+        np.add(ry * lX, W0, out=o[:, 0])
+        np.subtract(W1, rx * lX, out=o[:, 1])          # (-rx) lX + W1
+        set_d(self.X, o, lX + 0.0)
+        o = pairs(N)
+        np.add(self.e0 * lY, 0.0, out=o[:, 0])
+        np.add(self.e1 * lY, 0.0, out=o[:, 1])
+        set_d(self.Y, o, 0.0 * lY + 0.0)

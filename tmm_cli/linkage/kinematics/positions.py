@@ -53,8 +53,11 @@ def _output_coordinate(mech: Mechanism, name: str):
             p0 = np.array(g.point, float)
 
             def of(k, second=False):
-                out = (k.pos[pin] - p0) @ e, k.d1[pin] @ e
-                return out + (k.d2[pin] @ e,) if second else out
+                # the products by BLAS on row-major copies: its rounding depends on the layout
+                # (the kinematics' pairs are held column by column, state.pairs)
+                c = np.ascontiguousarray
+                out = c(k.pos[pin] - p0) @ e, c(k.d1[pin]) @ e
+                return out + (c(k.d2[pin]) @ e,) if second else out
         else:
             carrier = mech.link(g.link)
             a = math.radians(g.angle)

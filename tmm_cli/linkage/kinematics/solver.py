@@ -34,7 +34,7 @@ from ..structure import Group, analyze
 from . import newton as nw
 from .dyads import DyadPlan, dyad_derivatives
 from .result import KinematicsResult
-from .state import WORK_ROWS_FROM, PCon, RCon, State
+from .state import WORK_ROWS_FROM, PCon, RCon, State, pairs, zero_pairs
 
 MARCH_STEP = 1.0          # deg, the Newton groups' path over the cycle
 CONT_DELTA = 1e-6         # deg, singular positions: mean of +-CONT_DELTA
@@ -110,19 +110,21 @@ class Solver:
         th = phi - self.alpha0
         c, s = np.cos(th), np.sin(th)
         u0, u1 = self.cp
-        ru = np.empty((len(th), 2))
+        ru = pairs(len(th))
         np.subtract(c * u0, s * u1, out=ru[:, 0])
         np.add(s * u0, c * u1, out=ru[:, 1])
-        o1 = np.empty_like(ru)                  # -J R u
+        o1 = pairs(len(th))                     # -J R u
         o1[:, 0] = ru[:, 1]
         np.negative(ru[:, 0], out=o1[:, 1])
         d = self.mech.drive
-        o = np.empty_like(ru)
+        o = pairs(len(th))
         np.subtract(self.pivot[0], ru[:, 0], out=o[:, 0])
         np.subtract(self.pivot[1], ru[:, 1], out=o[:, 1])
         st.set_pose(d, o, th, (c, s))
-        st.set_d1(d, o1, np.ones_like(phi))
-        st.set_d2(d, ru, np.zeros_like(phi))
+        one = np.empty(len(phi))
+        one.fill(1.0)
+        st.set_d1(d, o1, one)
+        st.set_d2(d, ru, np.zeros(len(phi)))
 
     # ------------------------------------------------------------------ run
     def run(self, phi: np.ndarray, upto: int | None = None, derivs: bool = True, strict: bool = True,
@@ -670,7 +672,7 @@ def _solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
     st = solver.run(np.radians(phi_deg))
     st.margins = st.sing = None     # (held memory only)
     N = len(phi_deg)
-    order = None if N < 2 or bool(np.all(phi_deg[1:] >= phi_deg[:-1])) else np.argsort(phi_deg, kind="stable")
+    order = None if N < 2 or bool((phi_deg[1:] >= phi_deg[:-1]).all()) else np.argsort(phi_deg, kind="stable")
     seen: set = set()
     if order is None and 2 <= N < WORK_ROWS_FROM:
         # few positions in order: the links' angles unwrapped at once, as the rows of one block
@@ -689,11 +691,11 @@ def _solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
             st.unwrap(b, _unwrap_sorted(th if own else np.asarray(th, float), order, inplace=own))
     pos, d1, d2 = {}, {}, {}
     for p, x, y in ground:
-        pos[p] = np.empty((N, 2))
+        pos[p] = pairs(N)
         pos[p][:, 0] = x
         pos[p][:, 1] = y
-        d1[p] = np.zeros((N, 2))
-        d2[p] = np.zeros((N, 2))
+        d1[p] = zero_pairs(N)
+        d2[p] = zero_pairs(N)
     if N < WORK_ROWS_FROM:
         for p, b, u in moving:
             pos[p], d1[p], d2[p] = st.point_d(b, u)

@@ -31,12 +31,23 @@ import numpy as np
 WORK_ROWS_FROM = 1024    # positions: from this many on, fewer temporaries (memory) rather than fewer calls
 
 
+def pairs(N: int) -> np.ndarray:
+    """An (N, 2) array of x, y pairs held column by column (the transpose of a (2, N) one): an
+    operation on its x or y column runs on contiguous memory."""
+    return np.empty((2, N)).T
+
+
+def zero_pairs(N: int) -> np.ndarray:
+    """pairs(N) of zeros."""
+    return np.zeros((2, N)).T
+
+
 class State:
     """Poses and their phi-derivatives of all bodies at N positions."""
 
     def __init__(self, N: int):
         self.N = N
-        z2 = np.zeros((N, 2))
+        z2 = zero_pairs(N)
         z1 = np.zeros(N)
         self.o = {0: z2}
         self.th = {0: z1}
@@ -153,19 +164,24 @@ class State:
 
     def rot(self, b: int, u) -> np.ndarray:
         """R(th_b) u -> (N, 2) (read-only use: with few positions it is computed once per
-        pose of b and shared)."""
+        pose of b and shared; with many, once unless given by share_rot)."""
         u0, u1 = float(u[0]), float(u[1])
-        if self.N < WORK_ROWS_FROM:
-            key = (b, u0, u1)
-            hit = self._rotated.get(key)
-            if hit is None:
-                hit = self._rotated[key] = self._rot(b, u0, u1)
-            return hit
-        return self._rot(b, u0, u1)
+        key = (b, u0, u1)
+        hit = self._rotated.get(key)
+        if hit is None:
+            hit = self._rot(b, u0, u1)
+            if self.N < WORK_ROWS_FROM:
+                self._rotated[key] = hit
+        return hit
+
+    def share_rot(self, b: int, u, ru: np.ndarray) -> None:
+        """rot(b, u) is ``ru`` (computed by the caller from the pose just set, by the same
+        operations)."""
+        self._rotated[(b, float(u[0]), float(u[1]))] = ru
 
     def _rot(self, b: int, u0: float, u1: float) -> np.ndarray:
         c, s = self.cs(b)
-        out = np.empty((self.N, 2))
+        out = pairs(self.N)
         if u1 == 0.0:
             np.multiply(c, u0, out=out[:, 0])
             np.multiply(s, u0, out=out[:, 1])
@@ -192,10 +208,10 @@ class State:
         if b == 0:
             # the ground: o = 0, th = 0 (cos 1, sin 0 exactly) and zero derivatives, so
             # the general terms below are u + 0 and +0 -- the same values without them
-            p = np.empty((N, 2))
+            p = pairs(N)
             p[:, 0] = u0 + 0.0
             p[:, 1] = u1 + 0.0
-            return p, np.zeros((N, 2)), np.zeros((N, 2))
+            return p, zero_pairs(N), zero_pairs(N)
         t1 = self.th1[b]
         t2 = self.th2[b]
         o, o1, o2 = self.o[b], self.o1[b], self.o2[b]
@@ -205,10 +221,10 @@ class State:
             rx, ry = ru[:, 0], ru[:, 1]
             t11 = self.th1_sq(b)
             p = o + ru
-            d1 = np.empty((N, 2))
+            d1 = pairs(N)
             np.subtract(o1[:, 0], t1 * ry, out=d1[:, 0])
             np.add(o1[:, 1], t1 * rx, out=d1[:, 1])
-            d2 = np.empty((N, 2))
+            d2 = pairs(N)
             np.subtract(o2[:, 0], t2 * ry + t11 * rx, out=d2[:, 0])
             np.add(o2[:, 1], t2 * rx - t11 * ry, out=d2[:, 1])
             return p, d1, d2
@@ -226,7 +242,7 @@ class State:
             np.multiply(c, u1, out=tmp)
             np.add(ry, tmp, out=ry)
         t11 = self.th1_sq(b)
-        p, d1, d2 = np.empty((N, 2)), np.empty((N, 2)), np.empty((N, 2))
+        p, d1, d2 = pairs(N), pairs(N), pairs(N)
         np.add(o[:, 0], rx, out=p[:, 0])
         np.add(o[:, 1], ry, out=p[:, 1])
         np.multiply(t1, ry, out=tmp)
@@ -263,7 +279,7 @@ class State:
 def scale(x, v):
     """x[:, None] * v for x (N,) and v (N, 2), column by column (a broadcast over the
     last axis of length 2 runs numpy's inner loop two elements at a time)."""
-    out = np.empty((len(x), 2))
+    out = pairs(len(x))
     np.multiply(x, v[:, 0], out=out[:, 0])
     np.multiply(x, v[:, 1], out=out[:, 1])
     return out
@@ -331,7 +347,7 @@ class RCon:
 
     def gamma(self, st: State, ru: dict | None = None) -> np.ndarray:
         """``ru``: R(th_b) u_b of the two bodies when the caller has them already."""
-        g = np.zeros((st.N, 2))
+        g = zero_pairs(st.N)
         for b, u, sub in ((self.i, self.ui, True), (self.j, self.uj, False)):
             if b == 0:
                 continue
@@ -392,6 +408,6 @@ class PCon:
         d = st.o[self.s] - st.o[self.g]
         d1 = st.o1[self.s] - st.o1[self.g]
         w = st.th1[self.g]
-        g = np.zeros((st.N, 2))
+        g = zero_pairs(st.N)
         g[:, 1] = -w ** 2 * dot(n, d) - 2.0 * w * dot(e, d1)
         return g
