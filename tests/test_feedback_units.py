@@ -39,3 +39,32 @@ def test_every_unit_has_its_local_form():
     # the forms keep the English units an answer may be written in
     assert notation("flywheel.J", "ru") == "J_fly, kg*m^2 — момент инерции маховика"
     assert units
+
+
+class _NoPango:
+    """A meta-path finder as weasyprint fails where the system's Pango is missing: its
+    import raises the OSError of the library not found."""
+
+    def find_spec(self, name, path=None, target=None):
+        if name == "weasyprint":
+            raise OSError("cannot load library 'libpango-1.0-0': libpango-1.0-0: cannot open shared object file")
+        return None
+
+
+@pytest.mark.parametrize("missing", ["pango", "weasyprint"])
+def test_feedback_pdf_skipped_without_its_engine(tmp_path, monkeypatch, missing):
+    """Without Pango (OSError at import) or without weasyprint (ImportError) the feedback
+    page is written as HTML only, no half-written PDF and no failure of the grading."""
+    import sys
+    from tmm_cli.feedback import write_feedback
+    monkeypatch.delitem(sys.modules, "weasyprint", raising=False)
+    if missing == "pango":
+        monkeypatch.setattr(sys, "meta_path", [_NoPango(), *sys.meta_path])
+    else:
+        monkeypatch.setitem(sys.modules, "weasyprint", None)      # import raises ImportError
+    task = SimpleNamespace(title="Crank press, variant 3", name="03")
+    s = {"rows": ROWS, "student": "Ivanov", "group": "MT-21", "variant": 3, "index": 0}
+    written = write_feedback(task, s, tmp_path, "en", pdf=True)
+    assert [p.name for p in written] == ["feedback-Ivanov-1.html"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["feedback-Ivanov-1.html"]
+    assert "flywheel.J" in written[0].read_text(encoding="utf-8")

@@ -151,7 +151,10 @@ def feedback_name(s: dict) -> str:
 
 
 def write_feedback(task, s: dict, folder: Path, lang: str, pdf: bool = False) -> list[Path]:
-    """feedback-<student>-<n>.html (and .pdf) in the variant's folder."""
+    """feedback-<student>-<n>.html (and .pdf) in the variant's folder. The PDF is made
+    by weasyprint, which needs the system's Pango: where weasyprint or Pango is missing
+    (an ImportError, or the OSError of a library not found) the page is written as HTML
+    only and the grading goes on."""
     from .io import atomic_write
     text = feedback_html(task, s, lang)
     base = feedback_name(s)
@@ -159,7 +162,7 @@ def write_feedback(task, s: dict, folder: Path, lang: str, pdf: bool = False) ->
     if pdf:
         try:
             import weasyprint
-            out.append(atomic_write(Path(folder) / f"{base}.pdf", weasyprint.HTML(string=text).write_pdf()))
-        except ImportError:
-            pass
+        except (ImportError, OSError):
+            return out
+        out.append(atomic_write(Path(folder) / f"{base}.pdf", weasyprint.HTML(string=text).write_pdf()))
     return out

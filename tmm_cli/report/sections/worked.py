@@ -24,8 +24,8 @@ Every number is either a value of results.json at that position (the masses and
 moments of inertia are its ``structure.links``), or computed here from those by the formula
 written next to it; each carries ``data-k`` naming what it is, so that a test can
 recompute it (tests/test_worked.py).  Formulas are MathML in report.html and the
-same formulas as HTML with sub/superscripts in the PDF (weasyprint does not lay out
-MathML): each formula is written twice, ``.mml`` shown on screen, ``.mfb`` in print.
+same formulas as HTML with sub/superscripts in the PDF (report.pdf is translated from
+the print copy): each formula is written twice, ``.mml`` shown on screen, ``.mfb`` in print.
 
 Groups handled step by step: two links with a revolute inner pair whose outer pairs
 are revolute or a prismatic pair on a fixed guide (RRR, RRP) -- kinematics and
