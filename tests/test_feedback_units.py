@@ -64,7 +64,20 @@ def test_feedback_pdf_skipped_without_its_engine(tmp_path, monkeypatch, missing)
         monkeypatch.setitem(sys.modules, "weasyprint", None)      # import raises ImportError
     task = SimpleNamespace(title="Crank press, variant 3", name="03")
     s = {"rows": ROWS, "student": "Ivanov", "group": "MT-21", "variant": 3, "index": 0}
-    written = write_feedback(task, s, tmp_path, "en", pdf=True)
+    notes: list = []
+    written = write_feedback(task, s, tmp_path, "en", pdf=True, notes=notes)
     assert [p.name for p in written] == ["feedback-Ivanov-1.html"]
+    assert len(notes) == 1 and notes[0].startswith("feedback pages written as HTML only: the PDF engine (weasyprint)")
+    assert ("libpango-1.0-0" in notes[0]) == (missing == "pango")
     assert sorted(p.name for p in tmp_path.iterdir()) == ["feedback-Ivanov-1.html"]
     assert "flywheel.J" in written[0].read_text(encoding="utf-8")
+
+
+def test_batch_prints_the_notes_as_warnings(tmp_path, capsys):
+    """print_batch ends with each note as one warning line (after the table)."""
+    from tmm_cli.summary import print_batch
+    print_batch([], tmp_path, notes=["feedback pages written as HTML only: x"])
+    out = capsys.readouterr()
+    text = out.out + out.err
+    assert "warning: feedback pages written as HTML only: x" in text
+    assert text.index("tmm batch: 0 rows") < text.index("warning: feedback")

@@ -111,7 +111,7 @@ def work(path: Path, out: Path, folder: str, formats: set[str], lang: str, sets:
     from .orchestrate import classify, prepare, process
 
     vout = out / folder
-    res: dict = {"task": None, "written": [], "sets": [], "code": 0, "status": "ok", "message": ""}
+    res: dict = {"task": None, "written": [], "sets": [], "code": 0, "status": "ok", "message": "", "notes": []}
     try:
         task = prepare(path, stage_errors=False)
         st = task.student
@@ -159,7 +159,7 @@ def work(path: Path, out: Path, folder: str, formats: set[str], lang: str, sets:
             from .feedback import write_feedback
             for s in res["sets"]:
                 if s["rows"]:
-                    p = write_feedback(task, s, vout, lang, pdf="pdf" in formats)
+                    p = write_feedback(task, s, vout, lang, pdf="pdf" in formats, notes=res["notes"])
                     s["feedback"] = [str(Path(x).relative_to(out)) for x in p]
                     res["written"].extend(s["feedback"])
     except BaseException as exc:  # one broken variant must not stop the batch
@@ -668,7 +668,8 @@ def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = froz
     removed = _remove_stale(out, old_files, written)
     atomic_write(out / MANIFEST, json.dumps({"files": sorted(written)}, indent=1) + "\n")
     from .summary import print_batch
-    print_batch(rows, out, skipped, removed)
+    notes = dict.fromkeys(n for o in outcomes.values() for n in o.get("notes", ()))   # each once, in order
+    print_batch(rows, out, skipped, removed, notes=list(notes))
     return max((r["code"] for r in rows), default=0)
 
 

@@ -150,11 +150,12 @@ def feedback_name(s: dict) -> str:
     return f"feedback-{who[:40]}-{s['index'] + 1 if s['index'] >= 0 else 0}"
 
 
-def write_feedback(task, s: dict, folder: Path, lang: str, pdf: bool = False) -> list[Path]:
+def write_feedback(task, s: dict, folder: Path, lang: str, pdf: bool = False,
+                   notes: list[str] | None = None) -> list[Path]:
     """feedback-<student>-<n>.html (and .pdf) in the variant's folder. The PDF is made
     by weasyprint, which needs the system's Pango: where weasyprint or Pango is missing
     (an ImportError, or the OSError of a library not found) the page is written as HTML
-    only and the grading goes on."""
+    only, ``notes`` receives one line saying why, and the grading goes on."""
     from .io import atomic_write
     text = feedback_html(task, s, lang)
     base = feedback_name(s)
@@ -162,7 +163,11 @@ def write_feedback(task, s: dict, folder: Path, lang: str, pdf: bool = False) ->
     if pdf:
         try:
             import weasyprint
-        except (ImportError, OSError):
+        except (ImportError, OSError) as exc:
+            if notes is not None:
+                first = (str(exc).strip().splitlines() or [type(exc).__name__])[0]
+                notes.append(f"feedback pages written as HTML only: the PDF engine (weasyprint) "
+                             f"cannot be loaded: {first}")
             return out
         out.append(atomic_write(Path(folder) / f"{base}.pdf", weasyprint.HTML(string=text).write_pdf()))
     return out

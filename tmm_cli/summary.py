@@ -196,8 +196,9 @@ def print_check(rows: list[dict], source) -> None:
     con.print(f"{c['ok']} of {len(rows)} answers within tolerance" + "".join(f", {v} {k}" for k, v in c.items() if v and k != "ok"))
 
 
-def print_batch(rows: list[dict], out: Path, skipped=(), removed=()) -> None:
-    """The batch table (student, variant, status, score, message), 80 columns wide."""
+def print_batch(rows: list[dict], out: Path, skipped=(), removed=(), notes=()) -> None:
+    """The batch table (student, variant, status, score, message), 80 columns wide;
+    ``notes``: lines printed as warnings after it (an output the batch could not make)."""
     from rich.table import Table
     from rich.text import Text
 
@@ -220,6 +221,8 @@ def print_batch(rows: list[dict], out: Path, skipped=(), removed=()) -> None:
                   + ", ".join(Path(s).name for s in list(skipped)[:5]), markup=False)
     if removed:
         con.print(f"removed {len(removed)} file(s) of variants that are gone", markup=False)
+    for n in notes:
+        con.print(f"warning: {n}", markup=False)
     con.print(f"wrote {out / 'summary.csv'}, summary.html and check.csv", markup=False)
 
 
