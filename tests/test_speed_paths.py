@@ -259,7 +259,7 @@ def test_results_text_is_json_readable_and_deterministic():
     text = dumps(data)
     assert json.loads(text) == clean(data)
     assert text == dumps(data)
-    assert '"a": [1.0, 2.5, null]' in text and '  "c": [\n   [1, 2],' in text
+    assert '"a": [1.0,2.5,null]' in text and '  "c": [\n   [1,2],' in text
     assert '"g": "ω"' in text and '"i": 0.0' in text
     assert json.loads(dumps({"x": float("nan")})) == {"x": None}
 

@@ -9,6 +9,8 @@ from collections.abc import Sequence
 from contextlib import contextmanager
 from typing import Any, Callable
 
+import orjson
+
 from .messages import Message
 
 
@@ -147,30 +149,26 @@ def clean(obj: Any) -> Any:
 
 
 _ENC = json.JSONEncoder(ensure_ascii=False, allow_nan=False)
-# the same encoder called directly (JSONEncoder.encode makes one per call): one line,
-# ", " and ": ", no NaN, no check for cycles (results are trees)
-_C = (json.encoder.c_make_encoder(None, _ENC.default, json.encoder.encode_basestring, None, ": ", ", ",
-                                  False, False, False)
-      if json.encoder.c_make_encoder is not None else None)
-_SCALAR = {float: float.__repr__, int: int.__repr__, str: json.encoder.encode_basestring,
-           bool: lambda v: "true" if v else "false", type(None): lambda v: "null"}
+_ORJSON = orjson.dumps
+_ORJSON_ERROR = orjson.JSONEncodeError
 
 
 def _one_line(v) -> str:
-    """``_ENC.encode(v)`` of a clean value, faster."""
-    f = _SCALAR.get(type(v))
-    if f is not None:
-        return f(v)
-    if _C is None:
+    """A clean value (see :func:`clean`) as JSON on one line, by orjson: compact (no
+    space after "," and ":"), UTF-8 text as it is, every float in the shortest form
+    that reads back to the same float (ryu: ``0.00001``, ``2.5e-7``, ``1e+16``), ~20x
+    faster than json's encoder, whose time at a fine grid is float.__repr__'s. The
+    rare value orjson does not take (an int beyond 64 bits) goes to json's encoder."""
+    try:
+        return _ORJSON(v).decode()
+    except _ORJSON_ERROR:
         return _ENC.encode(v)
-    return "".join(_C(v, 0))
 
 
 def dumps(results: dict) -> str:
     """The results file's text, deterministic: the sections and their entries (one
     position, one joint...) one key a line, indented by one space a level; anything
-    deeper, and any array of plain values, on one line by json's C encoder
-    (``indent=`` would send the whole file through the pure-Python encoder)."""
+    deeper, and any array of plain values, on one line (:func:`_one_line`)."""
     out: list[str] = []
     _emit(clean(results), 0, out)
     out.append("\n")
@@ -282,7 +280,7 @@ def _emit_entries(entries: Entries | LazyEntries, out: list[str]) -> None:
         for k, v in e.items():
             kt = keys.get(k)
             if kt is None:
-                kt = keys[k] = pad + json.encoder.encode_basestring(k) + ": "
+                kt = keys[k] = pad + one(k) + ": "
             parts.append(kt + one(v))
         out.append("{" + sep.join(parts) + "\n  }")
     out.append("\n ]")
