@@ -22,7 +22,7 @@ from ..loads import AppliedCouple, Loads
 from .entries import lazy_entries
 from .equations import Geometry, geometry, load_vector, scaled_det
 from .solve import (balance_lever, balance_rate, condition_numbers, friction_loads, group_by_group,
-                    lever_moments, matrix_method, powers, unit_balance_q)
+                    lever_moments, matrix_method, point_velocities, powers, unit_balance_q)
 
 NEAR_DEG = 1.0
 DETAIL_MAX = 400        # positions up to which to_dict lists every applied load
@@ -268,9 +268,10 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
         x[locked] = np.nan
         Mb = np.where(locked, np.nan, Mb)
     xm, Mm, well, _ = matrix_method(mech, geo, q, b, with_det=False)
-    lever = lever_moments(mech, geo, lds)
-    blev = balance_lever(mech, geo, b)
-    P, each = powers(mech, geo, lds)
+    vel, arms = point_velocities(geo, lds), {}       # shared by the lever and the powers
+    lever = lever_moments(mech, geo, lds, vel, arms)
+    blev = balance_lever(mech, geo, b, arms)
+    P, each = powers(mech, geo, lds, vel)
     rate = balance_rate(mech, geo, b)
     Lc = geo.Lc
     unit = 1.0 if blk.kind != "slider" else Lc

@@ -22,7 +22,7 @@ import numpy as np
 from ...errors import StageError
 from ...messages import Message
 from ..loads import AppliedCouple, AppliedForce, Loads
-from .equations import (Geometry, balance_coeffs, cross, full_matrix, joint_coeffs, rot90, scaling)
+from .equations import (Geometry, balance_coeffs, coeff_array, cross, joint_terms, rot90, scaled_matrix, scaling)
 
 COND_MAX = 1e11          # scaled condition number beyond which a position is singular
 CHUNK = 2048             # positions per block of the matrix method
@@ -90,7 +90,7 @@ def _group_plan(mech, structure, geo: Geometry) -> list[tuple]:
     [(known joint, block row, its coefficients)], the inverse of the group's matrix (N, m, m),
     rows of a singular matrix NaN; whether it is the crank)."""
     N = geo.n_pos
-    coeffs = [joint_coeffs(geo, j, k) for k, j in enumerate(mech.joints)]
+    terms = [joint_terms(geo, j, k) for k, j in enumerate(mech.joints)]
     solved: set[int] = set()
     steps = [(links, False) for links in reversed(_group_links(mech, structure))]
     steps.append(([mech.drive], True))
@@ -110,13 +110,14 @@ def _group_plan(mech, structure, geo: Geometry) -> list[tuple]:
                                                       equations=3 * len(links), unknowns=ncol))
         A = np.zeros((N, 3 * len(links), ncol))
         for c, k in enumerate(unknown):
-            for l, cf in coeffs[k].items():
+            for l, tl in terms[k].items():
                 if l in rows:
-                    A[:, 3 * rows[l]:3 * rows[l] + 3, 2 * c:2 * c + 2] = cf
+                    for i, u, v in tl:          # the entries coeff_array(N, tl) holds (others 0)
+                        A[:, 3 * rows[l] + i, 2 * c + u] = v
         if is_crank:
             A[:, 3 * rows[mech.drive] + 2, -1] = 1.0
-        known = [(k, rows[l], cf) for k, j in enumerate(mech.joints) if k not in unknown
-                 for l, cf in coeffs[k].items() if l in rows and (j.a in solved or j.b in solved)]
+        known = [(k, rows[l], coeff_array(N, tl)) for k, j in enumerate(mech.joints) if k not in unknown
+                 for l, tl in terms[k].items() if l in rows and (j.a in solved or j.b in solved)]
         plan.append((links, rows, unknown, known, _safe_inverse(A), is_crank))
         solved.update(links)
     return plan
@@ -187,7 +188,7 @@ def _scaled_blocks(mech, geo: Geometry, balance: int, rs: np.ndarray, cs: np.nda
     """(positions, the scaled matrices A (k, m, m) there), CHUNK positions at a time."""
     for i0 in range(0, geo.n_pos, CHUNK):
         sl = slice(i0, min(i0 + CHUNK, geo.n_pos))
-        yield sl, full_matrix(mech, geo.take(sl), balance) * rs[None, :, None] * cs[None, None, :]
+        yield sl, scaled_matrix(mech, geo.take(sl), balance, rs, cs)
 
 
 def _condition(As: np.ndarray) -> np.ndarray:
@@ -216,53 +217,79 @@ def _surely_conditioned(As: np.ndarray) -> bool:
     return bool(np.all(np.isfinite(L)))
 
 
-def _pair_lever(geo: Geometry, link: int, M: np.ndarray) -> np.ndarray:
-    """Zhukovsky-lever moment of a couple M on ``link``: replaced by the pair of forces
-    -F at O_i and F = (M / l) n at the point O_i + l u (u: any unit vector fixed on the
-    link, here the direction O_i -> O_i + l x, rotated with it), n = rot90(u)."""
-    if link == 0:
-        return np.zeros(geo.n_pos)
+def _pair_arms(geo: Geometry, link: int) -> tuple[np.ndarray, np.ndarray]:
+    """The turned velocities (rot90(vA), rot90(vB)) of the two points of ``link`` a couple
+    on it is replaced by on Zhukovsky's lever (:func:`_pair_lever`): the same for every
+    couple on the link."""
     l = geo.Lc
     # a material point of the link at distance l from O_i along the current x axis
     u = np.tile([1.0, 0.0], (geo.n_pos, 1))
     pA = geo.origin[link]
     pB = pA + l * u
-    F = (M / l)[:, None] * rot90(u)
-    vA = geo.point_vel(link, pA)
-    vB = geo.point_vel(link, pB)
-    return cross(rot90(vB), F) + cross(rot90(vA), -F)
+    return rot90(geo.point_vel(link, pA)), rot90(geo.point_vel(link, pB))
 
 
-def lever_moments(mech, geo: Geometry, loads: Loads) -> np.ndarray:
-    """Sum of the moments about the pole of the loads moved to the turned velocity plan."""
+_TURNED_X = np.array([-0.0, 1.0])       # rot90 of the link's x axis (1, 0)
+
+
+def _pair_lever(geo: Geometry, link: int, M: np.ndarray, arms: dict | None = None) -> np.ndarray:
+    """Zhukovsky-lever moment of a couple M on ``link``: replaced by the pair of forces
+    -F at O_i and F = (M / l) n at the point O_i + l u (u: any unit vector fixed on the
+    link, here the direction O_i -> O_i + l x, rotated with it), n = rot90(u).
+    ``arms``: link -> :func:`_pair_arms`, filled as links come (a link's couples share them)."""
+    if link == 0:
+        return np.zeros(geo.n_pos)
+    if arms is None:
+        arms = {}
+    if link not in arms:
+        arms[link] = _pair_arms(geo, link)
+    rvA, rvB = arms[link]
+    F = (M / geo.Lc)[:, None] * _TURNED_X
+    return cross(rvB, F) + cross(rvA, -F)
+
+
+def point_velocities(geo: Geometry, loads: Loads) -> list[np.ndarray | None]:
+    """The velocity (N, 2) of each force's point (``loads.forces`` order; None on the
+    ground): made once for the lever and the powers."""
+    return [geo.point_vel(f.link, f.point) if f.link else None for f in loads.forces]
+
+
+def lever_moments(mech, geo: Geometry, loads: Loads, vel: list | None = None, arms: dict | None = None
+                  ) -> np.ndarray:
+    """Sum of the moments about the pole of the loads moved to the turned velocity plan.
+    ``vel``: :func:`point_velocities` of ``loads`` when made; ``arms``: see :func:`_pair_lever`."""
+    if vel is None:
+        vel = point_velocities(geo, loads)
+    if arms is None:
+        arms = {}
     tot = np.zeros(geo.n_pos)
-    for f in loads.forces:
+    for f, v in zip(loads.forces, vel):
         if f.link == 0:
             continue
-        v = geo.point_vel(f.link, f.point)
         tot += cross(rot90(v), f.F)
     for c in loads.couples:
-        tot += _pair_lever(geo, c.link, c.M)
+        tot += _pair_lever(geo, c.link, c.M, arms)
     return tot
 
 
-def balance_lever(mech, geo: Geometry, balance: int) -> np.ndarray:
+def balance_lever(mech, geo: Geometry, balance: int, arms: dict | None = None) -> np.ndarray:
     """Lever moment of a unit balancing couple (bar) or unit force along the guide (slider)."""
     lk = mech.link(balance)
     if lk.kind == "slider":
         j = next(k for k, jj in enumerate(mech.joints) if jj.kind == "P" and jj.slider == balance)
         v = geo.point_vel(balance, geo.jpoint[j])
         return cross(rot90(v), geo.jdir[j])
-    return _pair_lever(geo, balance, np.ones(geo.n_pos))
+    return _pair_lever(geo, balance, np.ones(geo.n_pos), arms)
 
 
-def powers(mech, geo: Geometry, loads: Loads) -> tuple[np.ndarray, list[np.ndarray]]:
+def powers(mech, geo: Geometry, loads: Loads, vel: list | None = None) -> tuple[np.ndarray, list[np.ndarray]]:
     """Total power of the loads, and the power of each force / couple (same order as
-    loads.forces + loads.couples)."""
+    loads.forces + loads.couples). ``vel``: :func:`point_velocities` of ``loads`` when made."""
+    if vel is None:
+        vel = point_velocities(geo, loads)
     each = []
-    for f in loads.forces:
-        each.append(np.einsum("ij,ij->i", f.F, geo.point_vel(f.link, f.point)) if f.link else
-                    np.zeros(geo.n_pos))
+    for f, v in zip(loads.forces, vel):
+        each.append(np.einsum("ij,ij->i", f.F, v) if f.link else np.zeros(geo.n_pos))
     for c in loads.couples:
         each.append(c.M * geo.omega(c.link))
     tot = np.sum(each, axis=0) if each else np.zeros(geo.n_pos)
