@@ -157,7 +157,10 @@ def matrix_method(mech, geo: Geometry, q: np.ndarray, balance: int, *, with_det:
     # small (each position is solved on its own, so the blocks change no number)
     for sl, As in _scaled_blocks(mech, geo, balance, rs, cs):
         b = -q[sl, 1:, :].reshape(-1, 3 * n) * rs[None, :]
-        well[sl] = _surely_conditioned(As) or _condition(As) < COND_MAX
+        cert = _certified(As)
+        if not cert.all():          # the SVD where the certificate is undecided
+            cert[~cert] = _condition(As[~cert]) < COND_MAX
+        well[sl] = cert
         if with_det:
             det[sl] = np.linalg.det(As)
         y, ok = _safe_solve(As, b)
@@ -197,24 +200,55 @@ def _condition(As: np.ndarray) -> np.ndarray:
     return np.where(sv[:, -1] > 0, sv[:, 0] / np.maximum(sv[:, -1], 1e-300), np.inf)
 
 
-def _surely_conditioned(As: np.ndarray) -> bool:
-    """True when every matrix A of the block provably has a 2-norm condition number
-    below 1.5e6, far below COND_MAX (then no SVD is needed to say so); False when
+def _certified(As: np.ndarray) -> np.ndarray:
+    """Per matrix A of the block (k, m, m): True when A provably has a 2-norm condition
+    number below 1.5e6, far below COND_MAX (then no SVD is needed to say so); False when
     undecided. The proof: a Cholesky factorisation of G = fl(A^T A) - s I,
-    s = 1e-12 ||A||_F^2, that completes with finite entries means (backward error of
-    Cholesky and of the product, each < 1e-14 ||A||_F^2 for m <= 30)
-    sigma_min(A)^2 > 0.5e-12 ||A||_F^2 >= 0.5e-12 sigma_max(A)^2."""
-    m = As.shape[2]
-    if m > 30 or not np.all(np.isfinite(As)):
-        return False
-    G = np.matmul(As.transpose(0, 2, 1), As)
+    s = 1e-12 fl(trace G) (= ||A||_F^2 to 1e-15), that completes with finite positive
+    pivots means (backward error of Cholesky and of the product, each < 1e-14 ||A||_F^2
+    for m <= 30, whatever the order of the sums) sigma_min(A)^2 > 0.5e-12 ||A||_F^2 >=
+    0.5e-12 sigma_max(A)^2.
+
+    Made across the matrices (each value a (k,) vector along the positions) and only
+    where the block's matrices can hold a nonzero: the Gram matrix from each row's
+    nonzeros, the right-looking Cholesky over the nonzeros and their fill (an entry
+    zero in every matrix stays exactly zero in the dense factorisation: skipping it
+    changes nothing)."""
+    k, n_rows, m = As.shape
+    if m > 30 or k == 0:
+        return np.zeros(k, bool)
+    with np.errstate(all="ignore"):         # an overflow leaves its matrix undecided
+        return _cholesky_certificate(As, k, n_rows, m)
+
+
+def _cholesky_certificate(As: np.ndarray, k: int, n_rows: int, m: int) -> np.ndarray:
+    """See :func:`_certified`."""
+    finite = np.isfinite(As).all(axis=(1, 2))
+    A = np.where(finite[:, None, None], As, 0.0) if not finite.all() else As
+    At = A.transpose(1, 2, 0)                       # (rows, columns, k) view
+    nz = np.any(A != 0.0, axis=0)                   # (rows, columns): nonzero somewhere
+    H = np.zeros((m, m, k))
+    for i in range(n_rows):
+        c = np.flatnonzero(nz[i])
+        if len(c):
+            a = At[i, c]                            # (r, k)
+            H[np.ix_(c, c)] += a[:, None, :] * a[None, :, :]
     d = np.arange(m)
-    G[:, d, d] -= 1e-12 * np.einsum("nij,nij->n", As, As)[:, None]
-    try:
-        L = np.linalg.cholesky(G)
-    except np.linalg.LinAlgError:
-        return False
-    return bool(np.all(np.isfinite(L)))
+    H[d, d] -= 1e-12 * H[d, d].sum(axis=0)
+    ok = finite.copy()
+    pattern = np.any(H != 0.0, axis=2)
+    pattern[d, d] = True
+    for j in range(m):
+        piv = H[j, j]
+        ok &= (piv > 0.0) & (piv < np.inf)
+        rows = j + 1 + np.flatnonzero(pattern[j + 1:, j])
+        if len(rows) == 0:
+            continue
+        col = H[rows, j] / np.sqrt(np.where(ok, piv, 1.0))
+        ok &= np.isfinite(col).all(axis=0)
+        pattern[np.ix_(rows, rows)] = True
+        H[np.ix_(rows, rows)] -= col[:, None, :] * col[None, :, :]
+    return ok
 
 
 def _pair_arms(geo: Geometry, link: int) -> tuple[np.ndarray, np.ndarray]:
