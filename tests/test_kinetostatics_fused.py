@@ -130,3 +130,57 @@ def test_lever_and_powers_with_shared_arms_are_the_generic_ones_bit_for_bit(geo,
             want = _pair_generic(geo, lk.index, np.ones(N))
             assert same(S.balance_lever(MECH, geo, lk.index, arms), want)
             assert same(S.balance_lever(MECH, geo, lk.index), want)
+
+
+def _load_vector_generic(geo, loads):
+    """The load vector as one array added to load by load."""
+    q = np.zeros((geo.n_pos, MECH.n + 1, 3))
+    for f in loads.forces:
+        if f.link:
+            q[:, f.link, 0] += f.F[:, 0]
+            q[:, f.link, 1] += f.F[:, 1]
+            q[:, f.link, 2] += E.cross(f.point - geo.origin[f.link], f.F)
+    for c in loads.couples:
+        if c.link:
+            q[:, c.link, 2] += c.M
+    return q
+
+
+@pytest.mark.filterwarnings("ignore::RuntimeWarning")
+@settings(max_examples=60, deadline=None)
+@given(geometries(), st.lists(st.tuples(st.integers(0, 5), pts, pts), max_size=5),
+       st.lists(st.tuples(st.integers(0, 5), vec), max_size=7))
+def test_load_vector_is_the_generic_one_bit_for_bit(geo, forces, couples):
+    loads = Loads(np.zeros(N), [AppliedForce(l, f"F{i}", p, F, "external") for i, (l, p, F) in enumerate(forces)],
+                  [AppliedCouple(l, f"M{i}", M, "external") for i, (l, M) in enumerate(couples)])
+    assert same(E.load_vector(MECH, geo, loads), _load_vector_generic(geo, loads))
+
+
+@pytest.mark.filterwarnings("ignore::RuntimeWarning")
+@settings(max_examples=40, deadline=None)
+@given(geometries(), st.lists(num, min_size=2 * N * len(MECH.joints), max_size=2 * N * len(MECH.joints)))
+def test_friction_loads_with_the_motion_signs_made_once(geo, xs):
+    """The friction loads with the relative motion's signs made once per geometry, with and
+    without the losses, are those of np.sign / np.abs of relative_motion made at the call."""
+    x = np.array(xs, float).reshape(N, -1)
+    f, r, fs = 0.1, 0.01, 0.15
+    ff, fc, loss = S.friction_loads(MECH, geo, x, f, r, fs)
+    ff2, fc2, none = S.friction_loads(MECH, geo, x, f, r, fs, losses=False)
+    assert none is None
+    assert all(same(a.F, b.F) and a.link == b.link for a, b in zip(ff, ff2)) and len(ff) == len(ff2)
+    assert all(same(a.M, b.M) and a.link == b.link for a, b in zip(fc, fc2)) and len(fc) == len(fc2)
+    rel = S.relative_motion(MECH, geo)
+    xf = np.where(np.isfinite(x), x, 0.0)
+    c = iter(fc)
+    fo = iter(ff)
+    for k, j in enumerate(MECH.joints):
+        if j.kind == "R":
+            Mf = f * r * np.hypot(xf[:, 2 * k], xf[:, 2 * k + 1])
+            assert same(next(c).M, -Mf * np.sign(rel[:, k]))
+            if j.a:
+                assert same(next(c).M, Mf * np.sign(rel[:, k]))
+            assert same(loss[:, k], Mf * np.abs(rel[:, k]))
+        else:
+            Ff = fs * np.abs(xf[:, 2 * k])
+            assert same(next(fo).F, -(Ff * np.sign(rel[:, k]))[:, None] * geo.jdir[k])
+            assert same(loss[:, k], Ff * np.abs(rel[:, k]))

@@ -242,7 +242,7 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
         finite0 = np.all(np.isfinite(x), axis=1)
         row_change = np.zeros(N)
         for _ in range(200):
-            ff, fc, loss = friction_loads(mech, geo, x, fr.f_pin, fr.pin_radius, fr.f_slide)
+            ff, fc, _ = friction_loads(mech, geo, x, fr.f_pin, fr.pin_radius, fr.f_slide, losses=False)
             qf = q + load_vector(mech, geo, Loads(lds.phi, ff, fc))
             x_new, Mb, M1U = solve_groups(qf)
             row_change = np.max(np.abs(x_new - x), axis=1)
@@ -264,6 +264,7 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
     x, Mb, M1U = solve_groups(q)
     geo.__dict__.pop("_group_plan", None)      # the groups' inverses: not needed past here
     geo.__dict__.pop("_relative_motion", None)
+    geo.__dict__.pop("_motion_signs", None)
     if np.any(locked):
         x[locked] = np.nan
         Mb = np.where(locked, np.nan, Mb)

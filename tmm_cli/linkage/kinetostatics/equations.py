@@ -169,18 +169,31 @@ def balance_coeffs(mech, geo: Geometry, link: int) -> np.ndarray:
 
 def load_vector(mech, geo: Geometry, loads: Loads) -> np.ndarray:
     """(N, n+1, 3): sum of the applied forces and of their moments about O_i, per link
-    (row 0, the ground, is left zero)."""
-    q = np.zeros((geo.n_pos, mech.n + 1, 3))
+    (row 0, the ground, is left zero). Each sum is made on its own (N,) vector, its terms
+    added in the loads' order to 0.0 (forces, then couples), then put in its place: one
+    strided write per sum, not one per load."""
+    sums: dict[tuple[int, int], np.ndarray] = {}
+
+    def add(link: int, comp: int, v: np.ndarray) -> None:
+        s = sums.get((link, comp))
+        if s is None:
+            sums[(link, comp)] = s = np.empty(geo.n_pos)
+            np.add(0.0, v, out=s)
+        else:
+            s += v
     for f in loads.forces:
         if f.link == 0:
             continue
-        q[:, f.link, 0] += f.F[:, 0]
-        q[:, f.link, 1] += f.F[:, 1]
-        q[:, f.link, 2] += cross(f.point - geo.origin[f.link], f.F)
+        add(f.link, 0, f.F[:, 0])
+        add(f.link, 1, f.F[:, 1])
+        add(f.link, 2, cross(f.point - geo.origin[f.link], f.F))
     for c in loads.couples:
         if c.link == 0:
             continue
-        q[:, c.link, 2] += c.M
+        add(c.link, 2, c.M)
+    q = np.zeros((geo.n_pos, mech.n + 1, 3))
+    for (link, comp), s in sums.items():
+        q[:, link, comp] = s
     return q
 
 

@@ -368,41 +368,53 @@ def _relative_motion(mech, geo: Geometry) -> np.ndarray:
     return out
 
 
-def friction_loads(mech, geo: Geometry, x: np.ndarray, f: float, r_pin: float, f_slide: float | None = None
-                   ) -> tuple[list[AppliedForce], list[AppliedCouple], np.ndarray]:
+def _motion_signs(mech, geo: Geometry) -> tuple[np.ndarray, np.ndarray]:
+    """(sign, |.|) of :func:`relative_motion`, each (pairs, N) (a pair's row contiguous):
+    made once per geometry (the friction iteration takes them at every step)."""
+    cached = geo.__dict__.get("_motion_signs")
+    if cached is not None and cached[0] is mech:
+        return cached[1]
+    rel = np.ascontiguousarray(relative_motion(mech, geo).T)
+    out = (np.sign(rel), np.abs(rel))
+    geo.__dict__["_motion_signs"] = (mech, out)
+    return out
+
+
+def friction_loads(mech, geo: Geometry, x: np.ndarray, f: float, r_pin: float, f_slide: float | None = None,
+                   *, losses: bool = True) -> tuple[list[AppliedForce], list[AppliedCouple], np.ndarray | None]:
     """Friction loads from the reactions x (N, 2p): a pin friction couple f r |R| against
     the relative rotation, a slider friction force f_slide |N| (f_slide defaults to f)
-    against the relative sliding; also the friction power lost in each pair (N, p), >= 0."""
+    against the relative sliding; also the friction power lost in each pair (N, p), >= 0
+    (None without ``losses``: the friction iteration's steps need the loads only)."""
     if f_slide is None:
         f_slide = f
     N = geo.n_pos
     forces, couples = [], []
-    loss = np.zeros((N, len(mech.joints)))
+    loss = np.zeros((N, len(mech.joints))) if losses else None
     # a singular position's reactions are not finite: no friction there (nan_to_num would turn
     # an infinite reaction into 1.8e308 and the friction couples into inf)
     xs = x if np.isfinite(x).all() else np.where(np.isfinite(x), x, 0.0)
-    rel = relative_motion(mech, geo)
+    sign, size = _motion_signs(mech, geo)
     for k, j in enumerate(mech.joints):
+        sg = sign[k]
         if j.kind == "R":
             Rm = np.hypot(xs[:, 2 * k], xs[:, 2 * k + 1])
-            wrel = rel[:, k]
-            sg = np.sign(wrel)
             Mf = f * r_pin * Rm
             couples.append(AppliedCouple(j.b, f"Mf{j.a}{j.b}", -Mf * sg, "friction"))
             if j.a:
                 couples.append(AppliedCouple(j.a, f"Mf{j.b}{j.a}", Mf * sg, "friction"))
-            loss[:, k] = Mf * np.abs(wrel)
+            if losses:
+                loss[:, k] = Mf * size[k]
         else:
             s = j.slider
             g = j.a if j.b == s else j.b
             p = geo.jpoint[k]
             e = geo.jdir[k]
-            vrel = rel[:, k]
-            sg = np.sign(vrel)
             Ff = f_slide * np.abs(xs[:, 2 * k])
             F = -(Ff * sg)[:, None] * e
             forces.append(AppliedForce(s, f"Ff{g}{s}", p, F, "friction"))
             if g:
                 forces.append(AppliedForce(g, f"Ff{s}{g}", p, -F, "friction"))
-            loss[:, k] = Ff * np.abs(vrel)
+            if losses:
+                loss[:, k] = Ff * size[k]
     return forces, couples, loss
