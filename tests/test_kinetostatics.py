@@ -283,28 +283,60 @@ def test_at_and_near_a_singular_position_numbers_are_null_or_finite_and_flagged(
 def test_conditioning_certificate_never_clears_an_ill_conditioned_matrix():
     """The Cholesky certificate that spares the SVD: True only when cond_2 < 1.5e6
     (checked by the SVD on matrices of prescribed singular values), and it clears the
-    well-conditioned ones; one ill-conditioned matrix in a block leaves the block undecided."""
-    from tmm_cli.linkage.kinetostatics.solve import _surely_conditioned
+    well-conditioned ones; matrix by matrix: an ill-conditioned or not finite one among
+    them is left undecided, the others cleared."""
+    from tmm_cli.linkage.kinetostatics.solve import _certified
     rng = np.random.default_rng(7)
     m = 15
     for c in [1.0, 10.0, 1e3, 1e5, 1e6, 2e6, 1e8, 1e12, 1e17]:
+        As = []
         for _ in range(20):
             U, _r = np.linalg.qr(rng.normal(size=(m, m)))
             V, _r = np.linalg.qr(rng.normal(size=(m, m)))
             s = np.geomspace(1.0, 1.0 / c, m) * 10.0 ** rng.uniform(-3, 3)
-            A = (U * s) @ V.T
-            cond = np.linalg.cond(A)
-            got = _surely_conditioned(A[None])
-            if got:
-                assert cond < 1.5e6
-            if cond < 1e5:
-                assert got
+            As.append((U * s) @ V.T)
+        As = np.array(As)
+        cond = np.linalg.cond(As)
+        got = _certified(As)
+        assert got.dtype == bool and got.shape == (20,)
+        assert np.all(cond[got] < 1.5e6)
+        assert np.all(got[cond < 1e5])
+        assert np.array_equal(got, [bool(_certified(A[None])[0]) for A in As])   # each on its own
     good = np.tile(np.eye(m), (4, 1, 1))
-    assert _surely_conditioned(good)
+    assert _certified(good).all()
     good[2, :, 3] = 0.0                              # a singular matrix among them
-    assert not _surely_conditioned(good)
-    good[2, 3, 3] = np.nan
-    assert not _surely_conditioned(good)
+    assert _certified(good).tolist() == [True, True, False, True]
+    good[1, 3, 3] = np.nan
+    assert _certified(good).tolist() == [True, False, False, True]
+    assert not _certified(np.tile(np.eye(31), (2, 1, 1))).any()     # beyond the proof's m <= 30
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(0, 2 ** 32 - 1), st.floats(0.0, 9.0), st.floats(0.05, 0.9))
+def test_conditioning_certificate_on_sparse_matrices(seed, log_cond, density):
+    """Matrices with zeros where the equilibrium systems have them (a random pattern, a
+    few columns and rows of one nonzero): the certificate only clears cond_2 < 1.5e6, and
+    clears every matrix of cond_2 < 1e5 the dense LAPACK Cholesky of the same Gram matrix
+    clears too (the sparse factorisation is the dense one with its exact zeros skipped)."""
+    from tmm_cli.linkage.kinetostatics.solve import _certified
+    rng = np.random.default_rng(seed)
+    m = int(rng.integers(3, 16))
+    mask = rng.random((m, m)) < density
+    mask[np.arange(m), rng.permutation(m)] = True             # structurally nonsingular
+    As = rng.normal(size=(30, m, m)) * 10.0 ** rng.uniform(-log_cond, 0, size=(30, 1, m)) * mask
+    As[::7, :, 0] *= 1e-9                                     # some badly scaled ones
+    got = _certified(As)
+    cond = np.linalg.cond(As)
+    assert np.all(cond[got] < 1.5e6)
+    for A, g, c in zip(As, got, cond):
+        G = A.T @ A
+        G[np.arange(m), np.arange(m)] -= 1e-12 * np.trace(G)
+        try:
+            dense = bool(np.all(np.isfinite(np.linalg.cholesky(G))))
+        except np.linalg.LinAlgError:
+            dense = False
+        if c < 1e5:
+            assert g and dense
 
 
 @pytest.mark.parametrize("balance", ["rocker", "coupler", "crank"])

@@ -22,7 +22,7 @@ from ..loads import AppliedCouple, Loads
 from .entries import lazy_entries
 from .equations import Geometry, geometry, load_vector, scaled_det
 from .solve import (balance_lever, balance_rate, condition_numbers, friction_loads, group_by_group,
-                    lever_moments, matrix_method, powers, unit_balance_q)
+                    lever_moments, matrix_method, point_velocities, powers, unit_balance_q)
 
 NEAR_DEG = 1.0
 DETAIL_MAX = 400        # positions up to which to_dict lists every applied load
@@ -242,7 +242,7 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
         finite0 = np.all(np.isfinite(x), axis=1)
         row_change = np.zeros(N)
         for _ in range(200):
-            ff, fc, loss = friction_loads(mech, geo, x, fr.f_pin, fr.pin_radius, fr.f_slide)
+            ff, fc, _ = friction_loads(mech, geo, x, fr.f_pin, fr.pin_radius, fr.f_slide, losses=False)
             qf = q + load_vector(mech, geo, Loads(lds.phi, ff, fc))
             x_new, Mb, M1U = solve_groups(qf)
             row_change = np.max(np.abs(x_new - x), axis=1)
@@ -264,13 +264,15 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
     x, Mb, M1U = solve_groups(q)
     geo.__dict__.pop("_group_plan", None)      # the groups' inverses: not needed past here
     geo.__dict__.pop("_relative_motion", None)
+    geo.__dict__.pop("_motion_signs", None)
     if np.any(locked):
         x[locked] = np.nan
         Mb = np.where(locked, np.nan, Mb)
     xm, Mm, well, _ = matrix_method(mech, geo, q, b, with_det=False)
-    lever = lever_moments(mech, geo, lds)
-    blev = balance_lever(mech, geo, b)
-    P, each = powers(mech, geo, lds)
+    vel, arms = point_velocities(geo, lds), {}       # shared by the lever and the powers
+    lever = lever_moments(mech, geo, lds, vel, arms)
+    blev = balance_lever(mech, geo, b, arms)
+    P, each = powers(mech, geo, lds, vel)
     rate = balance_rate(mech, geo, b)
     Lc = geo.Lc
     unit = 1.0 if blk.kind != "slider" else Lc

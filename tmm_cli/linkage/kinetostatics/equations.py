@@ -114,63 +114,86 @@ def geometry(mech, kin, rows=None) -> Geometry:
     return Geometry(N, origin, d1o, a1, a2, jpoint, jdir, w, e, length_scale(mech))
 
 
-def joint_coeffs(geo: Geometry, joint, jidx: int) -> dict[int, np.ndarray]:
-    """link -> (N, 3, 2): contribution of the two unknowns of pair ``jidx`` to the
-    three equations of each of its (moving) links."""
-    N = geo.n_pos
+def joint_terms(geo: Geometry, joint, jidx: int) -> dict[int, list[tuple[int, int, np.ndarray | float]]]:
+    """link -> the coefficients of the two unknowns of pair ``jidx`` in the three
+    equations of each of its (moving) links that are not zero by the pair's kind:
+    (equation 0..2, unknown 0..1, value: (N,) or a number)."""
     p = geo.jpoint[jidx]
     out = {}
     for link, sg in ((joint.b, 1.0), (joint.a, -1.0)):
         if link == 0:
             continue
         r = p - geo.origin[link]
-        c = np.zeros((N, 3, 2))
         if joint.kind == "R":
-            c[:, 0, 0] = sg
-            c[:, 1, 1] = sg
-            c[:, 2, 0] = -sg * r[:, 1]
-            c[:, 2, 1] = sg * r[:, 0]
+            out[link] = [(0, 0, sg), (1, 1, sg), (2, 0, -sg * r[:, 1]), (2, 1, sg * r[:, 0])]
         else:
             nv = rot90(geo.jdir[jidx])
-            c[:, 0, 0] = sg * nv[:, 0]
-            c[:, 1, 0] = sg * nv[:, 1]
-            c[:, 2, 0] = sg * cross(r, nv)
-            c[:, 2, 1] = sg
-        out[link] = c
+            out[link] = [(0, 0, sg * nv[:, 0]), (1, 0, sg * nv[:, 1]), (2, 0, sg * cross(r, nv)), (2, 1, sg)]
     return out
+
+
+def coeff_array(n_pos: int, terms: list[tuple[int, int, np.ndarray | float]]) -> np.ndarray:
+    """(N, 3, 2): a link's :func:`joint_terms` as the block of its equations' coefficients."""
+    c = np.zeros((n_pos, 3, 2))
+    for i, k, v in terms:
+        c[:, i, k] = v
+    return c
+
+
+def joint_coeffs(geo: Geometry, joint, jidx: int) -> dict[int, np.ndarray]:
+    """link -> (N, 3, 2): contribution of the two unknowns of pair ``jidx`` to the
+    three equations of each of its (moving) links."""
+    return {link: coeff_array(geo.n_pos, t) for link, t in joint_terms(geo, joint, jidx).items()}
+
+
+def balance_terms(mech, geo: Geometry, link: int) -> list[tuple[int, np.ndarray | float]]:
+    """The coefficients of the balancing unknown (a unit couple on a bar, or a unit force
+    along the guide at the pin of a slider) in the equations of ``link`` that are not
+    zero by the link's kind: (equation 0..2, value: (N,) or a number)."""
+    lk = mech.link(link)
+    if lk.kind == "slider":
+        j = next(k for k, jj in enumerate(mech.joints) if jj.kind == "P" and jj.slider == link)
+        e = geo.jdir[j]
+        return [(0, e[:, 0]), (1, e[:, 1]), (2, cross(geo.jpoint[j] - geo.origin[link], e))]
+    return [(2, 1.0)]
 
 
 def balance_coeffs(mech, geo: Geometry, link: int) -> np.ndarray:
     """(N, 3): a unit balancing couple on a bar, or a unit force along the guide at the
     pin of a slider, in the equations of ``link``."""
-    N = geo.n_pos
-    c = np.zeros((N, 3))
-    lk = mech.link(link)
-    if lk.kind == "slider":
-        j = next(k for k, jj in enumerate(mech.joints) if jj.kind == "P" and jj.slider == link)
-        e = geo.jdir[j]
-        c[:, 0] = e[:, 0]
-        c[:, 1] = e[:, 1]
-        c[:, 2] = cross(geo.jpoint[j] - geo.origin[link], e)
-    else:
-        c[:, 2] = 1.0
+    c = np.zeros((geo.n_pos, 3))
+    for i, v in balance_terms(mech, geo, link):
+        c[:, i] = v
     return c
 
 
 def load_vector(mech, geo: Geometry, loads: Loads) -> np.ndarray:
     """(N, n+1, 3): sum of the applied forces and of their moments about O_i, per link
-    (row 0, the ground, is left zero)."""
-    q = np.zeros((geo.n_pos, mech.n + 1, 3))
+    (row 0, the ground, is left zero). Each sum is made on its own (N,) vector, its terms
+    added in the loads' order to 0.0 (forces, then couples), then put in its place: one
+    strided write per sum, not one per load."""
+    sums: dict[tuple[int, int], np.ndarray] = {}
+
+    def add(link: int, comp: int, v: np.ndarray) -> None:
+        s = sums.get((link, comp))
+        if s is None:
+            sums[(link, comp)] = s = np.empty(geo.n_pos)
+            np.add(0.0, v, out=s)
+        else:
+            s += v
     for f in loads.forces:
         if f.link == 0:
             continue
-        q[:, f.link, 0] += f.F[:, 0]
-        q[:, f.link, 1] += f.F[:, 1]
-        q[:, f.link, 2] += cross(f.point - geo.origin[f.link], f.F)
+        add(f.link, 0, f.F[:, 0])
+        add(f.link, 1, f.F[:, 1])
+        add(f.link, 2, cross(f.point - geo.origin[f.link], f.F))
     for c in loads.couples:
         if c.link == 0:
             continue
-        q[:, c.link, 2] += c.M
+        add(c.link, 2, c.M)
+    q = np.zeros((geo.n_pos, mech.n + 1, 3))
+    for (link, comp), s in sums.items():
+        q[:, link, comp] = s
     return q
 
 
@@ -183,6 +206,29 @@ def full_matrix(mech, geo: Geometry, balance: int) -> np.ndarray:
         for link, c in joint_coeffs(geo, j, k).items():
             A[:, 3 * (link - 1):3 * link, 2 * k:2 * k + 2] += c
     A[:, 3 * (balance - 1):3 * balance, 2 * p] += balance_coeffs(mech, geo, balance)
+    return A
+
+
+def scaled_matrix(mech, geo: Geometry, balance: int, rs: np.ndarray, cs: np.ndarray) -> np.ndarray:
+    """``full_matrix(mech, geo, balance) * rs[None, :, None] * cs[None, None, :]`` bit for
+    bit (the scaled system), made from the coefficients not zero by the pairs' kinds:
+    each of them is added once to a zero of full_matrix's A, then scaled, so here it is
+    ``((0.0 + v) * rs[i]) * cs[j]`` (0.0 + v: -0.0 made 0.0, as the sum makes it), and
+    the other entries stay 0.0 (0.0 * rs * cs with finite scales); no (N, 3, 2) blocks,
+    no scaled copies of the whole matrix."""
+    if not (np.all(np.isfinite(rs)) and np.all(np.isfinite(cs))):
+        return full_matrix(mech, geo, balance) * rs[None, :, None] * cs[None, None, :]
+    n, p = mech.n, len(mech.joints)
+    A = np.zeros((geo.n_pos, 3 * n, 2 * p + 1))
+
+    def put(row: int, col: int, v) -> None:
+        A[:, row, col] = ((0.0 + v) * rs[row]) * cs[col]
+    for k, j in enumerate(mech.joints):
+        for link, terms in joint_terms(geo, j, k).items():
+            for i, c, v in terms:
+                put(3 * (link - 1) + i, 2 * k + c, v)
+    for i, v in balance_terms(mech, geo, balance):
+        put(3 * (balance - 1) + i, 2 * p, v)
     return A
 
 
@@ -203,9 +249,9 @@ def scaling(mech, Lc: float, balance: int) -> tuple[np.ndarray, np.ndarray]:
 
 def scaled_det(mech, geo: Geometry, balance: int) -> np.ndarray:
     """det of the scaled full matrix, (N,). Its roots are the singular positions."""
-    A = full_matrix(mech, geo, balance)
-    if A.shape[1] != A.shape[2]:
-        raise ValueError(f"the equilibrium system is not square ({A.shape[1]} equations, "
-                         f"{A.shape[2]} unknowns)")
+    n, p = mech.n, len(mech.joints)
+    if 3 * n != 2 * p + 1:
+        raise ValueError(f"the equilibrium system is not square ({3 * n} equations, "
+                         f"{2 * p + 1} unknowns)")
     rs, cs = scaling(mech, geo.Lc, balance)
-    return np.linalg.det(A * rs[None, :, None] * cs[None, None, :])
+    return np.linalg.det(scaled_matrix(mech, geo, balance, rs, cs))

@@ -22,7 +22,7 @@ import numpy as np
 from ...errors import StageError
 from ...messages import Message
 from ..loads import AppliedCouple, AppliedForce, Loads
-from .equations import (Geometry, balance_coeffs, cross, full_matrix, joint_coeffs, rot90, scaling)
+from .equations import (Geometry, balance_coeffs, coeff_array, cross, joint_terms, rot90, scaled_matrix, scaling)
 
 COND_MAX = 1e11          # scaled condition number beyond which a position is singular
 CHUNK = 2048             # positions per block of the matrix method
@@ -90,7 +90,7 @@ def _group_plan(mech, structure, geo: Geometry) -> list[tuple]:
     [(known joint, block row, its coefficients)], the inverse of the group's matrix (N, m, m),
     rows of a singular matrix NaN; whether it is the crank)."""
     N = geo.n_pos
-    coeffs = [joint_coeffs(geo, j, k) for k, j in enumerate(mech.joints)]
+    terms = [joint_terms(geo, j, k) for k, j in enumerate(mech.joints)]
     solved: set[int] = set()
     steps = [(links, False) for links in reversed(_group_links(mech, structure))]
     steps.append(([mech.drive], True))
@@ -110,13 +110,14 @@ def _group_plan(mech, structure, geo: Geometry) -> list[tuple]:
                                                       equations=3 * len(links), unknowns=ncol))
         A = np.zeros((N, 3 * len(links), ncol))
         for c, k in enumerate(unknown):
-            for l, cf in coeffs[k].items():
+            for l, tl in terms[k].items():
                 if l in rows:
-                    A[:, 3 * rows[l]:3 * rows[l] + 3, 2 * c:2 * c + 2] = cf
+                    for i, u, v in tl:          # the entries coeff_array(N, tl) holds (others 0)
+                        A[:, 3 * rows[l] + i, 2 * c + u] = v
         if is_crank:
             A[:, 3 * rows[mech.drive] + 2, -1] = 1.0
-        known = [(k, rows[l], cf) for k, j in enumerate(mech.joints) if k not in unknown
-                 for l, cf in coeffs[k].items() if l in rows and (j.a in solved or j.b in solved)]
+        known = [(k, rows[l], coeff_array(N, tl)) for k, j in enumerate(mech.joints) if k not in unknown
+                 for l, tl in terms[k].items() if l in rows and (j.a in solved or j.b in solved)]
         plan.append((links, rows, unknown, known, _safe_inverse(A), is_crank))
         solved.update(links)
     return plan
@@ -156,7 +157,10 @@ def matrix_method(mech, geo: Geometry, q: np.ndarray, balance: int, *, with_det:
     # small (each position is solved on its own, so the blocks change no number)
     for sl, As in _scaled_blocks(mech, geo, balance, rs, cs):
         b = -q[sl, 1:, :].reshape(-1, 3 * n) * rs[None, :]
-        well[sl] = _surely_conditioned(As) or _condition(As) < COND_MAX
+        cert = _certified(As)
+        if not cert.all():          # the SVD where the certificate is undecided
+            cert[~cert] = _condition(As[~cert]) < COND_MAX
+        well[sl] = cert
         if with_det:
             det[sl] = np.linalg.det(As)
         y, ok = _safe_solve(As, b)
@@ -187,7 +191,7 @@ def _scaled_blocks(mech, geo: Geometry, balance: int, rs: np.ndarray, cs: np.nda
     """(positions, the scaled matrices A (k, m, m) there), CHUNK positions at a time."""
     for i0 in range(0, geo.n_pos, CHUNK):
         sl = slice(i0, min(i0 + CHUNK, geo.n_pos))
-        yield sl, full_matrix(mech, geo.take(sl), balance) * rs[None, :, None] * cs[None, None, :]
+        yield sl, scaled_matrix(mech, geo.take(sl), balance, rs, cs)
 
 
 def _condition(As: np.ndarray) -> np.ndarray:
@@ -196,73 +200,130 @@ def _condition(As: np.ndarray) -> np.ndarray:
     return np.where(sv[:, -1] > 0, sv[:, 0] / np.maximum(sv[:, -1], 1e-300), np.inf)
 
 
-def _surely_conditioned(As: np.ndarray) -> bool:
-    """True when every matrix A of the block provably has a 2-norm condition number
-    below 1.5e6, far below COND_MAX (then no SVD is needed to say so); False when
+def _certified(As: np.ndarray) -> np.ndarray:
+    """Per matrix A of the block (k, m, m): True when A provably has a 2-norm condition
+    number below 1.5e6, far below COND_MAX (then no SVD is needed to say so); False when
     undecided. The proof: a Cholesky factorisation of G = fl(A^T A) - s I,
-    s = 1e-12 ||A||_F^2, that completes with finite entries means (backward error of
-    Cholesky and of the product, each < 1e-14 ||A||_F^2 for m <= 30)
-    sigma_min(A)^2 > 0.5e-12 ||A||_F^2 >= 0.5e-12 sigma_max(A)^2."""
-    m = As.shape[2]
-    if m > 30 or not np.all(np.isfinite(As)):
-        return False
-    G = np.matmul(As.transpose(0, 2, 1), As)
+    s = 1e-12 fl(trace G) (= ||A||_F^2 to 1e-15), that completes with finite positive
+    pivots means (backward error of Cholesky and of the product, each < 1e-14 ||A||_F^2
+    for m <= 30, whatever the order of the sums) sigma_min(A)^2 > 0.5e-12 ||A||_F^2 >=
+    0.5e-12 sigma_max(A)^2.
+
+    Made across the matrices (each value a (k,) vector along the positions) and only
+    where the block's matrices can hold a nonzero: the Gram matrix from each row's
+    nonzeros, the right-looking Cholesky over the nonzeros and their fill (an entry
+    zero in every matrix stays exactly zero in the dense factorisation: skipping it
+    changes nothing)."""
+    k, n_rows, m = As.shape
+    if m > 30 or k == 0:
+        return np.zeros(k, bool)
+    with np.errstate(all="ignore"):         # an overflow leaves its matrix undecided
+        return _cholesky_certificate(As, k, n_rows, m)
+
+
+def _cholesky_certificate(As: np.ndarray, k: int, n_rows: int, m: int) -> np.ndarray:
+    """See :func:`_certified`."""
+    finite = np.isfinite(As).all(axis=(1, 2))
+    A = np.where(finite[:, None, None], As, 0.0) if not finite.all() else As
+    At = A.transpose(1, 2, 0)                       # (rows, columns, k) view
+    nz = np.any(A != 0.0, axis=0)                   # (rows, columns): nonzero somewhere
+    H = np.zeros((m, m, k))
+    for i in range(n_rows):
+        c = np.flatnonzero(nz[i])
+        if len(c):
+            a = At[i, c]                            # (r, k)
+            H[np.ix_(c, c)] += a[:, None, :] * a[None, :, :]
     d = np.arange(m)
-    G[:, d, d] -= 1e-12 * np.einsum("nij,nij->n", As, As)[:, None]
-    try:
-        L = np.linalg.cholesky(G)
-    except np.linalg.LinAlgError:
-        return False
-    return bool(np.all(np.isfinite(L)))
+    H[d, d] -= 1e-12 * H[d, d].sum(axis=0)
+    ok = finite.copy()
+    pattern = np.any(H != 0.0, axis=2)
+    pattern[d, d] = True
+    for j in range(m):
+        piv = H[j, j]
+        ok &= (piv > 0.0) & (piv < np.inf)
+        rows = j + 1 + np.flatnonzero(pattern[j + 1:, j])
+        if len(rows) == 0:
+            continue
+        col = H[rows, j] / np.sqrt(np.where(ok, piv, 1.0))
+        ok &= np.isfinite(col).all(axis=0)
+        pattern[np.ix_(rows, rows)] = True
+        H[np.ix_(rows, rows)] -= col[:, None, :] * col[None, :, :]
+    return ok
 
 
-def _pair_lever(geo: Geometry, link: int, M: np.ndarray) -> np.ndarray:
-    """Zhukovsky-lever moment of a couple M on ``link``: replaced by the pair of forces
-    -F at O_i and F = (M / l) n at the point O_i + l u (u: any unit vector fixed on the
-    link, here the direction O_i -> O_i + l x, rotated with it), n = rot90(u)."""
-    if link == 0:
-        return np.zeros(geo.n_pos)
+def _pair_arms(geo: Geometry, link: int) -> tuple[np.ndarray, np.ndarray]:
+    """The turned velocities (rot90(vA), rot90(vB)) of the two points of ``link`` a couple
+    on it is replaced by on Zhukovsky's lever (:func:`_pair_lever`): the same for every
+    couple on the link."""
     l = geo.Lc
     # a material point of the link at distance l from O_i along the current x axis
     u = np.tile([1.0, 0.0], (geo.n_pos, 1))
     pA = geo.origin[link]
     pB = pA + l * u
-    F = (M / l)[:, None] * rot90(u)
-    vA = geo.point_vel(link, pA)
-    vB = geo.point_vel(link, pB)
-    return cross(rot90(vB), F) + cross(rot90(vA), -F)
+    return rot90(geo.point_vel(link, pA)), rot90(geo.point_vel(link, pB))
 
 
-def lever_moments(mech, geo: Geometry, loads: Loads) -> np.ndarray:
-    """Sum of the moments about the pole of the loads moved to the turned velocity plan."""
+_TURNED_X = np.array([-0.0, 1.0])       # rot90 of the link's x axis (1, 0)
+
+
+def _pair_lever(geo: Geometry, link: int, M: np.ndarray, arms: dict | None = None) -> np.ndarray:
+    """Zhukovsky-lever moment of a couple M on ``link``: replaced by the pair of forces
+    -F at O_i and F = (M / l) n at the point O_i + l u (u: any unit vector fixed on the
+    link, here the direction O_i -> O_i + l x, rotated with it), n = rot90(u).
+    ``arms``: link -> :func:`_pair_arms`, filled as links come (a link's couples share them)."""
+    if link == 0:
+        return np.zeros(geo.n_pos)
+    if arms is None:
+        arms = {}
+    if link not in arms:
+        arms[link] = _pair_arms(geo, link)
+    rvA, rvB = arms[link]
+    F = (M / geo.Lc)[:, None] * _TURNED_X
+    return cross(rvB, F) + cross(rvA, -F)
+
+
+def point_velocities(geo: Geometry, loads: Loads) -> list[np.ndarray | None]:
+    """The velocity (N, 2) of each force's point (``loads.forces`` order; None on the
+    ground): made once for the lever and the powers."""
+    return [geo.point_vel(f.link, f.point) if f.link else None for f in loads.forces]
+
+
+def lever_moments(mech, geo: Geometry, loads: Loads, vel: list | None = None, arms: dict | None = None
+                  ) -> np.ndarray:
+    """Sum of the moments about the pole of the loads moved to the turned velocity plan.
+    ``vel``: :func:`point_velocities` of ``loads`` when made; ``arms``: see :func:`_pair_lever`."""
+    if vel is None:
+        vel = point_velocities(geo, loads)
+    if arms is None:
+        arms = {}
     tot = np.zeros(geo.n_pos)
-    for f in loads.forces:
+    for f, v in zip(loads.forces, vel):
         if f.link == 0:
             continue
-        v = geo.point_vel(f.link, f.point)
         tot += cross(rot90(v), f.F)
     for c in loads.couples:
-        tot += _pair_lever(geo, c.link, c.M)
+        tot += _pair_lever(geo, c.link, c.M, arms)
     return tot
 
 
-def balance_lever(mech, geo: Geometry, balance: int) -> np.ndarray:
+def balance_lever(mech, geo: Geometry, balance: int, arms: dict | None = None) -> np.ndarray:
     """Lever moment of a unit balancing couple (bar) or unit force along the guide (slider)."""
     lk = mech.link(balance)
     if lk.kind == "slider":
         j = next(k for k, jj in enumerate(mech.joints) if jj.kind == "P" and jj.slider == balance)
         v = geo.point_vel(balance, geo.jpoint[j])
         return cross(rot90(v), geo.jdir[j])
-    return _pair_lever(geo, balance, np.ones(geo.n_pos))
+    return _pair_lever(geo, balance, np.ones(geo.n_pos), arms)
 
 
-def powers(mech, geo: Geometry, loads: Loads) -> tuple[np.ndarray, list[np.ndarray]]:
+def powers(mech, geo: Geometry, loads: Loads, vel: list | None = None) -> tuple[np.ndarray, list[np.ndarray]]:
     """Total power of the loads, and the power of each force / couple (same order as
-    loads.forces + loads.couples)."""
+    loads.forces + loads.couples). ``vel``: :func:`point_velocities` of ``loads`` when made."""
+    if vel is None:
+        vel = point_velocities(geo, loads)
     each = []
-    for f in loads.forces:
-        each.append(np.einsum("ij,ij->i", f.F, geo.point_vel(f.link, f.point)) if f.link else
-                    np.zeros(geo.n_pos))
+    for f, v in zip(loads.forces, vel):
+        each.append(np.einsum("ij,ij->i", f.F, v) if f.link else np.zeros(geo.n_pos))
     for c in loads.couples:
         each.append(c.M * geo.omega(c.link))
     tot = np.sum(each, axis=0) if each else np.zeros(geo.n_pos)
@@ -307,41 +368,53 @@ def _relative_motion(mech, geo: Geometry) -> np.ndarray:
     return out
 
 
-def friction_loads(mech, geo: Geometry, x: np.ndarray, f: float, r_pin: float, f_slide: float | None = None
-                   ) -> tuple[list[AppliedForce], list[AppliedCouple], np.ndarray]:
+def _motion_signs(mech, geo: Geometry) -> tuple[np.ndarray, np.ndarray]:
+    """(sign, |.|) of :func:`relative_motion`, each (pairs, N) (a pair's row contiguous):
+    made once per geometry (the friction iteration takes them at every step)."""
+    cached = geo.__dict__.get("_motion_signs")
+    if cached is not None and cached[0] is mech:
+        return cached[1]
+    rel = np.ascontiguousarray(relative_motion(mech, geo).T)
+    out = (np.sign(rel), np.abs(rel))
+    geo.__dict__["_motion_signs"] = (mech, out)
+    return out
+
+
+def friction_loads(mech, geo: Geometry, x: np.ndarray, f: float, r_pin: float, f_slide: float | None = None,
+                   *, losses: bool = True) -> tuple[list[AppliedForce], list[AppliedCouple], np.ndarray | None]:
     """Friction loads from the reactions x (N, 2p): a pin friction couple f r |R| against
     the relative rotation, a slider friction force f_slide |N| (f_slide defaults to f)
-    against the relative sliding; also the friction power lost in each pair (N, p), >= 0."""
+    against the relative sliding; also the friction power lost in each pair (N, p), >= 0
+    (None without ``losses``: the friction iteration's steps need the loads only)."""
     if f_slide is None:
         f_slide = f
     N = geo.n_pos
     forces, couples = [], []
-    loss = np.zeros((N, len(mech.joints)))
+    loss = np.zeros((N, len(mech.joints))) if losses else None
     # a singular position's reactions are not finite: no friction there (nan_to_num would turn
     # an infinite reaction into 1.8e308 and the friction couples into inf)
     xs = x if np.isfinite(x).all() else np.where(np.isfinite(x), x, 0.0)
-    rel = relative_motion(mech, geo)
+    sign, size = _motion_signs(mech, geo)
     for k, j in enumerate(mech.joints):
+        sg = sign[k]
         if j.kind == "R":
             Rm = np.hypot(xs[:, 2 * k], xs[:, 2 * k + 1])
-            wrel = rel[:, k]
-            sg = np.sign(wrel)
             Mf = f * r_pin * Rm
             couples.append(AppliedCouple(j.b, f"Mf{j.a}{j.b}", -Mf * sg, "friction"))
             if j.a:
                 couples.append(AppliedCouple(j.a, f"Mf{j.b}{j.a}", Mf * sg, "friction"))
-            loss[:, k] = Mf * np.abs(wrel)
+            if losses:
+                loss[:, k] = Mf * size[k]
         else:
             s = j.slider
             g = j.a if j.b == s else j.b
             p = geo.jpoint[k]
             e = geo.jdir[k]
-            vrel = rel[:, k]
-            sg = np.sign(vrel)
             Ff = f_slide * np.abs(xs[:, 2 * k])
             F = -(Ff * sg)[:, None] * e
             forces.append(AppliedForce(s, f"Ff{g}{s}", p, F, "friction"))
             if g:
                 forces.append(AppliedForce(g, f"Ff{s}{g}", p, -F, "friction"))
-            loss[:, k] = Ff * np.abs(vrel)
+            if losses:
+                loss[:, k] = Ff * size[k]
     return forces, couples, loss
