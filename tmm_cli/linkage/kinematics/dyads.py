@@ -352,8 +352,10 @@ def _inverse(cA, cB, st: State, dets: bool, bound: float | None = None):
     det^2 > bound everywhere implies its test, without forming the squares."""
     N = st.N
     det = cA[0] * cB[1] - cA[1] * cB[0]
-    if not dets and N >= WORK_ROWS_FROM and ((bound is not None and bool((det * det > bound).all()))
-                                             or _clearly_regular(det, cA, cB)):
+    # with a bound, at any N (three numpy calls against the exact test's eight); without,
+    # the squares are worth their cost from WORK_ROWS_FROM positions on
+    if not dets and ((bound is not None and bool((det * det > bound).all()))
+                     or (N >= WORK_ROWS_FROM and _clearly_regular(det, cA, cB))):
         sing = np.zeros(N, bool)           # what the test below gives there, without its two hypot
     else:
         nn = _length(cA) * _length(cB)
@@ -696,7 +698,7 @@ class _GroundRRR:
         self.uK = ex.local(self.K)
         eg = plan.e2 if ground_b else plan.e1
         ug = eg.local(0)
-        self.gx, self.gy = float(ug[0]) + 0.0, float(ug[1]) + 0.0
+        self.G = np.array([[float(ug[0]) + 0.0], [float(ug[1]) + 0.0]])     # (2, 1): broadcasts
         self.uA1 = np.asarray(plan.e1.local(A))
         self.uB1 = np.asarray(plan.e2.local(B))
         self.uAC = np.asarray(mid.local(A))
@@ -717,16 +719,14 @@ class _GroundRRR:
         self.bound = 1.001e-20 * (bA * bA) * (bB * bB) * (1.0 + 1e-12) + 2e-290
 
     def pose(self, st: State, sigma: float) -> np.ndarray:
-        """DyadPlan._rrr of this dyad."""
+        """DyadPlan._rrr of this dyad, its (N, 2) pairs as (2, N) blocks (their transposes,
+        see state.pairs: one numpy call for both coordinates)."""
+        N = st.N
         K = self.K
-        P = st.point_d(K, self.uK)[0] if K in st.th1 else st.point(K, self.uK)
-        if self.ground_b:
-            x1, y1, x3, y3 = P[:, 0], P[:, 1], self.gx, self.gy
-        else:
-            x1, y1, x3, y3 = self.gx, self.gy, P[:, 0], P[:, 1]
-        Dx = x3 - x1
-        Dy = y3 - y1
-        d = np.hypot(Dx, Dy)
+        P = (st.point_d(K, self.uK)[0] if K in st.th1 else st.point(K, self.uK)).T
+        P1, P3 = (P, self.G) if self.ground_b else (self.G, P)
+        D = P3 - P1
+        d = np.hypot(D[0], D[1])
         margin = np.minimum(self.lsum - d, d - self.ldiff)
         # np.where(d > 1e-300, d, 1e-300): the same where d is not NaN (a NaN d makes the
         # numerator below NaN, and a division returns its first operand's NaN)
@@ -737,7 +737,7 @@ class _GroundRRR:
         ds *= self.tlA
         cg /= ds
         _clip(cg, -1.0, 1.0, out=cg)
-        ang = np.arctan2(Dy, Dx, out=Dy)
+        ang = np.arctan2(D[1], D[0])
         ac = np.arccos(cg, out=cg)
         if sigma == 1.0:                     # beta + 1.0 a is beta + a, bit for bit
             ang += ac
@@ -745,35 +745,36 @@ class _GroundRRR:
             ang -= ac
         else:
             ang += sigma * ac
-        cx = np.cos(ang)
-        cy = np.sin(ang, out=ang)
-        cx *= self.lA                        # C = P1 + lA (cos, sin)
-        cx += x1
-        cy *= self.lA
-        cy += y1
-        thA = _minus_const(np.arctan2(cy - y1, cx - x1), self.kA)
-        thB = _minus_const(np.arctan2(cy - y3, cx - x3), self.kB)
-        self._set(st, self.A, x1, y1, self.uA1, thA)
-        self._set(st, self.B, x3, y3, self.uB1, thB)
+        C = np.empty((2, N))                 # P1 + lA (cos, sin)
+        np.cos(ang, out=C[0])
+        np.sin(ang, out=C[1])
+        C *= self.lA
+        C += P1
+        E = np.subtract(C, P1, out=D)
+        thA = _minus_const(np.arctan2(E[1], E[0]), self.kA)
+        E = np.subtract(C, P3, out=E)
+        thB = _minus_const(np.arctan2(E[1], E[0]), self.kB)
+        self._set(st, self.A, P1, self.uA1, thA)
+        self._set(st, self.B, P3, self.uB1, thB)
         return margin
 
     @staticmethod
-    def _set(st: State, X: int, px, py, u, th) -> None:
-        """DyadPlan._set_from_point: X turned by th, its point u at (px, py); R u of the
-        derivatives shared where State.rot takes it as here (u = (u0, 0))."""
+    def _set(st: State, X: int, P, u, th) -> None:
+        """DyadPlan._set_from_point: X turned by th, its point u at P ((2, N) or (2, 1));
+        R u of the derivatives shared where State.rot takes it as here (u = (u0, 0))."""
         N = st.N
-        c, s = np.cos(th), np.sin(th)
+        cs = np.empty((2, N))
+        c, s = cs
+        np.cos(th, out=c)
+        np.sin(th, out=s)
         u0, u1 = float(u[0]), float(u[1])
-        ru = pairs(N)
-        cu, su = ru[:, 0], ru[:, 1]
-        np.multiply(c, u0, out=cu)
-        np.multiply(s, u0, out=su)
-        o = pairs(N)
-        np.subtract(px, np.subtract(cu, s * u1), out=o[:, 0])
-        np.subtract(py, np.add(su, c * u1), out=o[:, 1])
-        st.set_pose(X, o, th, (c, s))
+        ru = cs * u0                         # (c u0, s u0)
+        t = cs[::-1] * u1                    # (s u1, c u1)
+        np.subtract(ru[0], t[0], out=t[0])
+        np.add(ru[1], t[1], out=t[1])
+        st.set_pose(X, np.subtract(P, t, out=t).T, th, (c, s))
         if u1 == 0.0:
-            st.share_rot(X, u, ru)
+            st.share_rot(X, u, ru.T)
 
     def derivatives(self, st: State, dets: bool) -> np.ndarray:
         """dyad_derivatives of this dyad."""
@@ -794,25 +795,27 @@ class _GroundRRR:
         zB = (rBy, rBx) if self.zrB else (0.0 * mB[:, 1], 0.0 * mB[:, 0])
         (zM, fM), (zG, fG) = ((zA, self.a_first), (zB, not self.a_first)) if gb else \
             ((zB, not self.a_first), (zA, self.a_first))
+        # the links' U = (-J R u1, 1): (ry, -rx) as (2, N) blocks
+        UA, UB = _u_block(N, rAx, rAy), _u_block(N, rBx, rBy)
         # first derivatives: V = (P1', 0) for the moving pivot's link, (0, 0) for the ground's
         # (its _MidApply terms the signed zero zG)
         vM = _mid_terms(P1[:, 0], P1[:, 1], zM, fM)
         lA, lB = _cramer(*(_neg_sum(v, self.zG) for v in vM), cA, cB, inv)
-        VA, VB = ((P1[:, 0], P1[:, 1]), (0.0, 0.0)) if gb else ((0.0, 0.0), (P1[:, 0], P1[:, 1]))
-        _pose_d(st.set_d1, N, A, lA, rAx, rAy, VA)
-        _pose_d(st.set_d1, N, B, lB, rBx, rBy, VB)
+        V = P1.T
+        _pose_d(st.set_d1, A, lA, UA, V if gb else 0.0)
+        _pose_d(st.set_d1, B, lB, UB, 0.0 if gb else V)
         # second derivatives: W = (P'' + th1^2 R u1, 0), P'' = +0 for the ground's link (then
         # +0.0 + th1^2 R u1; with u1 = (+0, +0): W = (+0, +0), its terms the signed zero zG)
         qA, qB = st.th1_sq(A), st.th1_sq(B)
-        WA = (P2[:, 0] + qA * rAx, P2[:, 1] + qA * rAy) if gb else _ground_w(qA, rAx, rAy, self.zrA)
-        WB = _ground_w(qB, rBx, rBy, self.zrB) if gb else (P2[:, 0] + qB * rBx, P2[:, 1] + qB * rBy)
+        WA = P2.T + qA * rA.T if gb else _ground_w(qA, rA, self.zrA)
+        WB = _ground_w(qB, rB, self.zrB) if gb else P2.T + qB * rB.T
         WM, WG = (WA, WB) if gb else (WB, WA)
-        wM = _mid_terms(*WM, zM, fM)
-        wG = (self.zG, self.zG) if isinstance(WG[0], float) else _mid_terms(*WG, zG, fG)
+        wM = _mid_terms(WM[0], WM[1], zM, fM)
+        wG = (self.zG, self.zG) if isinstance(WG, float) else _mid_terms(WG[0], WG[1], zG, fG)
         gam = self.mid.gamma(st, {A: mA, B: mB})
         lA, lB = _cramer(_neg_sum(wM[0], wG[0], gam[:, 0]), _neg_sum(wM[1], wG[1], gam[:, 1]), cA, cB, inv)
-        _pose_d(st.set_d2, N, A, lA, rAx, rAy, WA)
-        _pose_d(st.set_d2, N, B, lB, rBx, rBy, WB)
+        _pose_d(st.set_d2, A, lA, UA, WA)
+        _pose_d(st.set_d2, B, lB, UB, WB)
         return sing
 
 
@@ -840,22 +843,28 @@ def _neg_sum(a, b, c=None):
     return np.negative(a, out=a)
 
 
-def _ground_w(q, rx, ry, zero: bool):
-    """A ground-pivoted link's W terms +0 + th1^2 R u1: (+0.0, +0.0) where R u1 is signed
-    zeros (``zero``: u1 = (+0, +0); th1^2 is finite)."""
+def _ground_w(q, r, zero: bool):
+    """A ground-pivoted link's W terms +0 + th1^2 R u1 as a (2, N) block (r = R u1, (N, 2));
+    +0.0 where R u1 is signed zeros (``zero``: u1 = (+0, +0); th1^2 is finite)."""
     if zero:
-        return 0.0, 0.0
-    a = q * rx
-    a += 0.0
-    b = q * ry
-    b += 0.0
-    return a, b
+        return 0.0
+    w = q * r.T
+    w += 0.0
+    return w
 
 
-def _pose_d(set_d, N: int, X: int, lx, rx, ry, W) -> None:
-    """dyad_derivatives' pose_d of a link turning about a known point (U = (-J R u1, 1)),
-    its terms W = (W0, W1, 0) (arrays or +0.0), set by ``set_d`` (set_d1 or set_d2)."""
-    o = pairs(N)
-    np.add(ry * lx, W[0], out=o[:, 0])
-    np.subtract(W[1], rx * lx, out=o[:, 1])          # (-rx) lx + W1
-    set_d(X, o, lx + 0.0)
+def _u_block(N: int, rx, ry) -> np.ndarray:
+    """(ry, -rx): U's first two rows of a link turning about a known point (-J R u1)."""
+    U = np.empty((2, N))
+    U[0] = ry
+    np.negative(rx, out=U[1])
+    return U
+
+
+def _pose_d(set_d, X: int, lx, U, W) -> None:
+    """dyad_derivatives' pose_d of a link turning about a known point: U lx + W, its
+    terms W = (W0, W1, 0) a (2, N) block or +0.0, set by ``set_d`` (set_d1 or set_d2)."""
+    o = U * lx
+    o += W
+    set_d(X, o.T, lx + 0.0)
+
