@@ -682,7 +682,7 @@ class _GroundRRR:
     """An RRR dyad whose external pairs are at known points, one of them a ground pivot
     (the four-bar's rod and rocker; the six-bars' first group): its poses and derivatives
     by the same operations as :meth:`DyadPlan._rrr` and :func:`dyad_derivatives`, element
-    by element, in the columns x, y, without their per-call bookkeeping; the ground pivot's
+    by element, in (2, N) blocks, without their per-call bookkeeping; the ground pivot's
     coordinates (State.point_d of the ground: u + 0.0), the links' lengths and the constants
     of the circle/circle closure taken once per plan. The positions are assumed finite (as
     every run has them): the ground pivot's terms of the derivatives are then signed
@@ -711,8 +711,8 @@ class _GroundRRR:
         self.kA, self.kB = np.arctan2(vA[1], vA[0]), np.arctan2(vB[1], vB[0])
         # _MidApply: + the terms of the pair's first body, - those of the other
         self.a_first = A == mid.i
-        # the ground link's terms V, W (t = 0.0) are +-(0 - 0 R uC) = +-0: a signed zero
-        # (x + (+0.0) turns -0 to +0; x + (-0.0) is x)
+        # the ground link's _MidApply terms of V (and of W where u1 = (+0, +0)), t = 0.0, are
+        # +-(0 - 0 R uC) = +-0: a signed zero (x + (+0.0) turns -0 to +0; x + (-0.0) is x)
         self.zG = 0.0 if (B if ground_b else A) == mid.i else -0.0
         self.zrA, self.zrB = _zero_rot(self.uA1, self.uAC), _zero_rot(self.uB1, self.uBC)
         bA, bB = _column_bound(lA, self.uA1, self.uAC), _column_bound(lB, self.uB1, self.uBC)
