@@ -10,6 +10,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import event, given, settings
+from hypothesis import strategies as hst
 
 from tmm_cli import lazy, units
 from tmm_cli.results import clean, dumps
@@ -584,3 +586,245 @@ def test_fixed_slide_bound_covers_the_squared_test(seed):
     q *= 1.001e-20
     q += 1e-290
     assert (q <= sl.bound).all() and (sl.bound <= q * (1 + 1e-11)).all()
+
+
+# ---------------------------------------------------------------- the fused RRR dyad
+def _kin_outcome(fn):
+    """fn()'s result, or the StageError it raised as (text, results.json entry, the links
+    named as never assembling)."""
+    from tmm_cli.errors import StageError
+    try:
+        return fn()
+    except StageError as exc:
+        return ("error", str(exc), repr(exc.to_dict()), getattr(exc, "never_assembles", None))
+
+
+def _same_runs(make_mech, phi, monkeypatch, kws=({"strict": False}, {"strict": False, "dets": True},
+                                                 {"strict": False, "fallback": False}, {})):
+    """Solver.run with dyads.GROUND_RRR on and off (a new Solver each: its closures chosen
+    by that path too): every pose, derivative, margin, singular mask, normalised
+    determinant, or the same error, bit for bit."""
+    from tmm_cli.linkage.kinematics import dyads
+    from tmm_cli.linkage.kinematics.solver import Solver
+    for kw in kws:
+        fused = _kin_outcome(lambda: Solver(make_mech()).run(phi, **kw))
+        monkeypatch.setattr(dyads, "GROUND_RRR", False)
+        generic = _kin_outcome(lambda: Solver(make_mech()).run(phi, **kw))
+        monkeypatch.undo()
+        if isinstance(generic, tuple) or isinstance(fused, tuple):
+            assert fused == generic, kw
+            continue
+        for name in ("o", "th", "o1", "th1", "o2", "th2"):
+            assert sorted(getattr(fused, name)) == sorted(getattr(generic, name))
+            for b, v in getattr(generic, name).items():
+                assert np.asarray(getattr(fused, name)[b]).tobytes() == np.asarray(v).tobytes(), (kw, name, b)
+        for name in ("margins", "sing", "gdet"):
+            for gi, v in getattr(generic, name).items():
+                assert np.asarray(getattr(fused, name)[gi]).tobytes() == np.asarray(v).tobytes(), (kw, name, gi)
+        assert (fused.singular is None) == (generic.singular is None)
+        if generic.singular is not None:
+            assert np.array_equal(fused.singular, generic.singular)
+        assert fused.const_th == generic.const_th
+
+
+def _same_solves(make_mech, phi_deg, monkeypatch):
+    """kinematics.solve and check_assembly (tmm validate) with dyads.GROUND_RRR on and off
+    (a new Mechanism each): every output, warning and mask, or the same error."""
+    from tmm_cli.linkage.kinematics import dyads
+    from tmm_cli.linkage.kinematics.solver import check_assembly, solve
+
+    def both():
+        mech = make_mech()
+        return _kin_outcome(lambda: check_assembly(mech)), _kin_outcome(lambda: solve(mech, phi_deg, 2.0, 0.5))
+    (chk_f, fused) = both()
+    monkeypatch.setattr(dyads, "GROUND_RRR", False)
+    (chk_g, generic) = both()
+    monkeypatch.undo()
+    assert chk_f == chk_g
+    if isinstance(generic, tuple) or isinstance(fused, tuple):
+        assert fused == generic
+        return generic
+    for name in ("pos", "d1", "d2", "angle", "a1", "a2", "undefined"):
+        f, g = getattr(fused, name), getattr(generic, name)
+        assert sorted(f) == sorted(g), name
+        for k in g:
+            assert np.asarray(f[k]).tobytes() == np.asarray(g[k]).tobytes(), (name, k)
+    assert fused.warnings == generic.warnings
+    for name in ("singular", "near"):
+        f, g = getattr(fused, name), getattr(generic, name)
+        assert (f is None) == (g is None) and (g is None or np.array_equal(f, g)), name
+    return generic
+
+
+def test_ground_rrr_dyad_equals_the_generic_paths_on_the_tasks(monkeypatch):
+    """The fused path of an RRR dyad with one pivot on the ground (dyads._GroundRRR) gives
+    every pose, derivative, margin, singular mask and normalised determinant of the generic
+    _rrr / dyad_derivatives bit for bit on every linkage task that has one (few and many
+    positions, positions where it does not assemble, the change points' determinants), and
+    solve's results and warnings."""
+    import glob
+    from tmm_cli.linkage.kinematics.solver import Solver
+    from tmm_cli.linkage.kinematics.state import WORK_ROWS_FROM
+    from tmm_cli.linkage.mechanism import build_mechanism
+    from tmm_cli.task import load_task
+    rng = np.random.default_rng(11)
+    seen = []
+    for path in sorted(glob.glob(str(ROOT / "tasks" / "*.yaml"))):
+        task = load_task(path)
+        if getattr(task, "mechanism", None) is None:
+            continue
+        make = lambda: build_mechanism(load_task(path))      # noqa: E731
+        if not any(getattr(p, "rrr", None) is not None for p in Solver(make()).plans):
+            continue
+        seen.append(Path(path).stem)
+        for phi in (np.radians(rng.uniform(0.0, 360.0, WORK_ROWS_FROM + 100)),
+                    np.radians(rng.uniform(0.0, 360.0, 37)), np.radians([0.0]), np.radians(np.arange(720) * 0.5)):
+            _same_runs(make, phi, monkeypatch)
+        _same_solves(make, np.arange(360) * 1.0, monkeypatch)
+        _same_solves(make, rng.uniform(0.0, 360.0, 1500), monkeypatch)
+    # the four-bars and the six-bar's first group (a test that cannot pass empty)
+    assert {"crank_rocker_fourbar", "forging_sixbar", "static_gravity", "synthesis_crank_rocker"} <= set(seen)
+
+
+def _four_bar(g, r, lb, lc, up, order, rod_rev, rocker_rev, tri):
+    """A four-bar task: crank O-A (r), coupler A-B (lb), rocker B-O3 (lc), O3 = g; ``up``:
+    B's hint above or below the line O -> O3 (the two closures); ``order``: the order of the
+    links (which is A and which B of the group, and the pair's order); ``rod_rev``,
+    ``rocker_rev``: the links' points listed the other way round (their local origin at the
+    other end); ``tri`` 1, 2, 3: B (1) or A (2) an extra point of a triangular coupler, O3
+    (3) one of a triangular rocker, off the link's axis (local coordinates (0.8 l, 0.6 l))."""
+    gx, gy = g
+    coupler = {"points": ["B", "A"] if rod_rev else ["A", "B"], "length": lb}
+    rocker = {"points": ["B", "O3"] if rocker_rev else ["O3", "B"], "length": lc}
+    if tri == 1:
+        coupler = {"points": ["A", "P"], "length": lb * 1.3, "extra": {"B": [lb * 0.8, lb * 0.6]}}
+    elif tri == 2:
+        coupler = {"points": ["B", "P"], "length": lb * 1.3, "extra": {"A": [lb * 0.8, lb * 0.6]}}
+    elif tri == 3:
+        rocker = {"points": ["B", "Q"], "length": lc * 1.3, "extra": {"O3": [lc * 0.8, lc * 0.6]}}
+    links = [("crank", {"points": ["O", "A"], "length": r}), ("coupler", coupler), ("rocker", rocker)]
+    if order:
+        links = [links[0], links[2], links[1]]
+    n = math.hypot(gx, gy)
+    hint = [gx / 2 - (1 if up else -1) * gy / n * lc, gy / 2 + (1 if up else -1) * gx / n * lc]
+    return {"schema": "tmm/1", "mechanism": {
+        "ground": {"O": [0, 0], "O3": [gx, gy]}, "links": dict(links), "assembly": {"B": hint}},
+        "drive": {"link": "crank", "speed": "60 rpm"}}
+
+
+def _toggle_angles(g, r, lb, lc) -> list[float]:
+    """Crank angles (deg) where |O3 - A| = lb + lc or |lb - lc| (the coupler and the rocker
+    in line: the dyad's toggles, its singular positions), where there are any."""
+    gx, gy = g
+    dist, gam = math.hypot(gx, gy), math.atan2(gy, gx)
+    out = []
+    for L in (lb + lc, abs(lb - lc)):
+        c = (r * r + dist * dist - L * L) / (2 * r * dist)
+        if abs(c) <= 1:
+            out += [math.degrees(gam + s * math.acos(c)) % 360.0 for s in (1, -1)]
+    return out
+
+
+@settings(max_examples=60, deadline=None)
+@given(gx=hst.floats(0.1, 0.6), gy=hst.floats(-0.3, 0.3), r=hst.floats(0.02, 0.3), lb=hst.floats(0.05, 0.8),
+       lc=hst.floats(0.05, 0.8), up=hst.booleans(), order=hst.booleans(), rod_rev=hst.booleans(),
+       rocker_rev=hst.booleans(), tri=hst.integers(0, 3))
+def test_ground_rrr_dyad_equals_the_generic_paths_on_random_four_bars(gx, gy, r, lb, lc, up, order, rod_rev,
+                                                                       rocker_rev, tri):
+    """Random four-bars (either closure, the links in either order, their points either way
+    round, a triangular coupler): the fused RRR dyad's runs and solve's results equal the
+    generic path's bit for bit, at its toggles (singular positions: the limit by
+    continuity) and where it does not assemble (the same error, its intervals and reason),
+    at few and many positions."""
+    from tmm_cli.linkage.kinematics.solver import Solver
+    from tmm_cli.linkage.kinematics.state import WORK_ROWS_FROM
+    from tmm_cli.linkage.mechanism import build_mechanism
+    from tmm_cli.task import load_task
+    src = _four_bar((gx, gy), r, lb, lc, up, order, rod_rev, rocker_rev, tri)
+    make = lambda: build_mechanism(load_task(src))          # noqa: E731
+    plans = Solver(make()).plans
+    assert plans[0].rrr is not None
+    mp = pytest.MonkeyPatch()
+    try:
+        tog = _toggle_angles((gx, gy), r, lb, lc)
+        rng = np.random.default_rng(int(1e6 * (gx + r + lb + lc)))
+        grid = np.concatenate([np.arange(72) * 5.0, tog, np.array(tog) + 1e-9, np.array(tog) - 1e-7])
+        for phi in (np.radians(grid), np.radians(rng.uniform(0.0, 360.0, WORK_ROWS_FROM + 10))):
+            _same_runs(make, phi, mp, kws=({"strict": False}, {"strict": False, "dets": True}, {}))
+        out = _same_solves(make, grid, mp)
+    finally:
+        mp.undo()
+    event("does not assemble" if isinstance(out, tuple) else
+          "singular positions" if out.singular is not None else "assembles")
+
+
+@pytest.mark.parametrize("g", [(0.3, 0.0), (0.0, 0.3)])
+@pytest.mark.parametrize("r,lb,lc", [(0.1, 0.3, 0.3), (0.1, 0.3, 0.1), (0.3, 0.3, 0.3)])
+def test_ground_rrr_dyad_equals_the_generic_paths_with_exact_zeros(g, r, lb, lc, monkeypatch):
+    """Four-bars with the ground pivots on an axis, at crank angles of whole 45 deg (exact
+    zeros among the coordinates and derivatives: their signs), every closure, order of the
+    links and of their points, triangular links: the fused RRR dyad equals the generic
+    path bit for bit (a signed zero lost in its derivatives shows here)."""
+    import itertools
+    from tmm_cli.linkage.mechanism import build_mechanism
+    from tmm_cli.task import load_task
+    grid = np.arange(8) * 45.0
+    for up, order, rod_rev, rocker_rev, tri in itertools.product((True, False), (True, False), (True, False),
+                                                                 (True, False), (0, 1, 2, 3)):
+        src = _four_bar(g, r, lb, lc, up, order, rod_rev, rocker_rev, tri)
+        make = lambda: build_mechanism(load_task(src))      # noqa: E731
+        _same_runs(make, np.radians(grid), monkeypatch, kws=({"strict": False}, {"strict": False, "dets": True}))
+        _same_solves(make, grid, monkeypatch)
+
+
+@pytest.mark.parametrize("case", ["part", "never", "change_point", "toggle_grid"])
+def test_ground_rrr_dyad_fails_and_warns_as_the_generic_path(case, monkeypatch):
+    """Where the RRR dyad does not assemble over part of the turn, at no angle, or passes
+    its change points, the fused path raises the same error (the same text, intervals,
+    reason, position, links) from solve and from check_assembly (tmm validate), and gives
+    the same singular positions and warnings, as the generic path."""
+    from tmm_cli.linkage.mechanism import build_mechanism
+    from tmm_cli.task import load_task
+    g, r, lb, lc, grid = {"part": ((0.3, 0.05), 0.12, 0.2, 0.15, np.arange(360) * 1.0),
+                          "never": ((0.9, 0.0), 0.1, 0.2, 0.15, np.arange(36) * 10.0),
+                          "change_point": ((0.3, 0.0), 0.1, 0.3, 0.1, np.arange(720) * 0.5),
+                          "toggle_grid": ((0.0, 0.3), 0.3, 0.3, 0.3, np.arange(8) * 45.0)}[case]
+    src = _four_bar(g, r, lb, lc, True, False, False, False, 0)
+    out = _same_solves(lambda: build_mechanism(load_task(src)), grid, monkeypatch)
+    if case in ("part", "never"):
+        assert isinstance(out, tuple) and "does not assemble" in out[1], out
+        assert (out[3] is not None) == (case == "never")        # never: the links named
+        if case == "part":
+            assert "'code': 'kinematics.fail.intervals'" in out[2]
+    else:
+        assert not isinstance(out, tuple) and out.singular is not None and out.singular.sum() >= 2
+        assert any("change point" in str(w) for w in out.warnings)
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_ground_rrr_bound_covers_the_squared_test(seed):
+    """_GroundRRR.bound is not below _clearly_regular's right-hand side at any position
+    (so that det^2 > bound implies its test), and by no more than a relative 1e-11: random
+    four-bars (their links' points either way round, a triangular coupler) of sizes from
+    1e-3 to 1e3, many positions."""
+    from tmm_cli.linkage.kinematics.solver import Solver
+    from tmm_cli.linkage.mechanism import build_mechanism
+    from tmm_cli.task import load_task
+    rng = np.random.default_rng(400 + seed)
+    k = 10.0 ** rng.uniform(-3, 3)
+    src = _four_bar((k * 0.3, k * rng.uniform(-0.1, 0.1)), k * rng.uniform(0.02, 0.08), k * rng.uniform(0.25, 0.35),
+                    k * rng.uniform(0.2, 0.3), True, seed % 2 == 1, seed in (1, 2), seed in (2, 3), seed % 3)
+    solver = Solver(build_mechanism(load_task(src)))
+    plan = solver.plans[0]
+    rr = plan.rrr
+    st = solver.run(np.radians(rng.uniform(0.0, 360.0, 5000)))
+
+    def col(X, u1, uC):
+        ru, ruM = st.rot(X, u1), st.rot(X, uC)
+        return ru[:, 1] - ruM[:, 1], ruM[:, 0] - ru[:, 0]
+    a0, a1 = col(rr.A, rr.uA1, rr.uAC)
+    b0, b1 = col(rr.B, rr.uB1, rr.uBC)
+    q = (a0 * a0 + a1 * a1) * (b0 * b0 + b1 * b1)
+    q *= 1.001e-20
+    q += 1e-290
+    assert (q <= rr.bound).all() and (rr.bound <= q * (1 + 1e-11)).all()

@@ -41,6 +41,11 @@ import math
 
 import numpy as np
 
+try:                                    # np.clip's ufunc, without its Python wrappers
+    from numpy._core.umath import clip as _clip
+except ImportError:                     # numpy < 2
+    from numpy.core.umath import clip as _clip
+
 from .state import WORK_ROWS_FROM, PCon, RCon, State, cross, dot, left, pairs, scale, unit
 
 
@@ -89,6 +94,11 @@ class DyadPlan:
         self.slide = None
         if self.kind in ("RRP", "PRR") and mid.kind == "R" and (e2 if self.kind == "RRP" else e1).g == 0:
             self.slide = _FixedSlide(self)
+        self.rrr = None
+        if self.kind == "RRR":
+            ka, kb = (e.j if e.i == X else e.i for X, e in ((A, e1), (B, e2)))
+            if (ka == 0) != (kb == 0):          # one pivot on the ground, the other moving
+                self.rrr = _GroundRRR(self, kb == 0)
 
     # ------------------------------------------------------------------
     @staticmethod
@@ -125,6 +135,8 @@ class DyadPlan:
         """Set the poses of A and B in ``st``; return the assembly margin (N,)."""
         if self.slide is not None and FIXED_SLIDE:
             return self.slide.pose(st, sigma)
+        if self.rrr is not None and GROUND_RRR:
+            return self.rrr.pose(st, sigma)
         A, B = self.A, self.B
         ea = self._ext(A, self.e1, st)
         eb = self._ext(B, self.e2, st)
@@ -340,8 +352,10 @@ def _inverse(cA, cB, st: State, dets: bool, bound: float | None = None):
     det^2 > bound everywhere implies its test, without forming the squares."""
     N = st.N
     det = cA[0] * cB[1] - cA[1] * cB[0]
-    if not dets and N >= WORK_ROWS_FROM and ((bound is not None and bool((det * det > bound).all()))
-                                             or _clearly_regular(det, cA, cB)):
+    # with a bound, at any N (three numpy calls against the exact test's eight); without,
+    # the squares are worth their cost from WORK_ROWS_FROM positions on
+    if not dets and ((bound is not None and bool((det * det > bound).all()))
+                     or (N >= WORK_ROWS_FROM and _clearly_regular(det, cA, cB))):
         sing = np.zeros(N, bool)           # what the test below gives there, without its two hypot
     else:
         nn = _length(cA) * _length(cB)
@@ -380,6 +394,8 @@ def dyad_derivatives(plan: DyadPlan, st: State, dets: bool = True) -> np.ndarray
     determinant in ``st.last_det`` too (the change points)."""
     if plan.slide is not None and FIXED_SLIDE:
         return plan.slide.derivatives(st, dets)
+    if plan.rrr is not None and GROUND_RRR:
+        return plan.rrr.derivatives(st, dets)
     A, B = plan.A, plan.B
     N = st.N
     info = {}
@@ -477,6 +493,22 @@ def dyad_derivatives(plan: DyadPlan, st: State, dets: bool = True) -> np.ndarray
 
 
 FIXED_SLIDE = True      # the fused path of _FixedSlide (off: the generic one, for the tests)
+GROUND_RRR = True       # the fused path of _GroundRRR (off: the generic one, for the tests)
+
+
+def _column_bound(l: float, u1, uC) -> float:
+    """A number not below |(-J R u1) - (-J R uC)| as a link's column of the 2x2 system
+    rounds (_MidApply with t = 1.0; l = |uC - u1|): c^2 + s^2 = 1 to a few ulps, and its
+    products and differences round within 1e-15 of l + |u1| + |uC|."""
+    return l + 1e-12 * (l + float(np.hypot(*u1)) + float(np.hypot(*uC)))
+
+
+def _zero_rot(u1, uC) -> bool:
+    """u1 = (+0, +0) and uC = (l0 > 0, 0): then 0 (R uC) is R u1 bit for bit (0 c l0 has the
+    sign of c, as c 0 has; cos never gives 0, c l0 does not underflow) -- the t = 0.0 terms
+    of _MidApply are R u1's columns."""
+    return (all(float(x) == 0.0 and math.copysign(1.0, float(x)) > 0 for x in u1)
+            and float(uC[0]) > 0.0 and float(uC[1]) == 0.0)
 
 
 class _FixedSlide:
@@ -521,12 +553,9 @@ class _FixedSlide:
         # _inverse's bound: |cA| = |R vX| (l, c^2 + s^2 = 1 to a few ulps; its products and
         # differences round within 1e-15 of l + |u1| + |uC|), |cB| = |e| (1 to a few ulps):
         # a relative 1e-12 over both covers the rounding of _clearly_regular's products
-        big = self.lX + 1e-12 * (self.lX + float(np.hypot(*self.uX1)) + float(np.hypot(*self.uXC)))
+        big = _column_bound(self.lX, self.uX1, self.uXC)
         self.bound = 1.001e-20 * (big * big) * (1.0 + 1e-12) + 2e-290
-        # 0 u1 = 0 (+0, +0) and uC = (l0 > 0, 0): 0 (R uC) is R u1 bit for bit (0 c l0 has the
-        # sign of c, as c 0 has; cos never gives 0, c l0 does not underflow)
-        self.zero_rot = (all(float(x) == 0.0 and math.copysign(1.0, float(x)) > 0 for x in self.uX1)
-                        and float(self.uXC[0]) > 0.0 and float(self.uXC[1]) == 0.0)
+        self.zero_rot = _zero_rot(self.uX1, self.uXC)
         self._bc = (0, None)
 
     def _cs_y(self, N: int):
@@ -647,3 +676,195 @@ class _FixedSlide:
         np.add(self.e0 * lY, 0.0, out=o[:, 0])
         np.add(self.e1 * lY, 0.0, out=o[:, 1])
         set_d(self.Y, o, 0.0 * lY + 0.0)
+
+
+class _GroundRRR:
+    """An RRR dyad whose external pairs are at known points, one of them a ground pivot
+    (the four-bar's rod and rocker; the six-bars' first group): its poses and derivatives
+    by the same operations as :meth:`DyadPlan._rrr` and :func:`dyad_derivatives`, element
+    by element, in (2, N) blocks, without their per-call bookkeeping; the ground pivot's
+    coordinates (State.point_d of the ground: u + 0.0), the links' lengths and the constants
+    of the circle/circle closure taken once per plan. The positions are assumed finite (as
+    every run has them): the ground pivot's terms of the derivatives are then signed
+    zeros."""
+
+    def __init__(self, plan: DyadPlan, ground_b: bool):
+        A, B, mid = plan.A, plan.B, plan.mid
+        self.A, self.B, self.mid = A, B, mid
+        self.ground_b = ground_b                               # B's pivot on the ground (else A's)
+        ex = plan.e1 if ground_b else plan.e2                  # the moving pivot's pair
+        M = A if ground_b else B
+        self.K = ex.j if ex.i == M else ex.i                   # the body carrying it
+        self.uK = ex.local(self.K)
+        eg = plan.e2 if ground_b else plan.e1
+        ug = eg.local(0)
+        self.G = np.array([[float(ug[0]) + 0.0], [float(ug[1]) + 0.0]])     # (2, 1): broadcasts
+        self.uA1 = np.asarray(plan.e1.local(A))
+        self.uB1 = np.asarray(plan.e2.local(B))
+        self.uAC = np.asarray(mid.local(A))
+        self.uBC = np.asarray(mid.local(B))
+        vA, vB = self.uAC - self.uA1, self.uBC - self.uB1
+        lA, lB = float(np.hypot(*vA)), float(np.hypot(*vB))      # as _rrr takes them
+        self.lA = lA
+        self.lsum, self.ldiff = lA + lB, abs(lA - lB)
+        self.lA2, self.lB2, self.tlA = lA ** 2, lB ** 2, 2 * lA
+        self.kA, self.kB = np.arctan2(vA[1], vA[0]), np.arctan2(vB[1], vB[0])
+        # _MidApply: + the terms of the pair's first body, - those of the other
+        self.a_first = A == mid.i
+        # the ground link's _MidApply terms of V (and of W where u1 = (+0, +0)), t = 0.0, are
+        # +-(0 - 0 R uC) = +-0: a signed zero (x + (+0.0) turns -0 to +0; x + (-0.0) is x)
+        self.zG = 0.0 if (B if ground_b else A) == mid.i else -0.0
+        self.zrA, self.zrB = _zero_rot(self.uA1, self.uAC), _zero_rot(self.uB1, self.uBC)
+        bA, bB = _column_bound(lA, self.uA1, self.uAC), _column_bound(lB, self.uB1, self.uBC)
+        self.bound = 1.001e-20 * (bA * bA) * (bB * bB) * (1.0 + 1e-12) + 2e-290
+
+    def pose(self, st: State, sigma: float) -> np.ndarray:
+        """DyadPlan._rrr of this dyad, its (N, 2) pairs as (2, N) blocks (their transposes,
+        see state.pairs: one numpy call for both coordinates)."""
+        N = st.N
+        K = self.K
+        P = (st.point_d(K, self.uK)[0] if K in st.th1 else st.point(K, self.uK)).T
+        P1, P3 = (P, self.G) if self.ground_b else (self.G, P)
+        D = P3 - P1
+        d = np.hypot(D[0], D[1])
+        margin = np.minimum(self.lsum - d, d - self.ldiff)
+        # np.where(d > 1e-300, d, 1e-300): the same where d is not NaN (a NaN d makes the
+        # numerator below NaN, and a division returns its first operand's NaN)
+        ds = np.maximum(d, 1e-300)
+        cg = np.multiply(d, d)
+        cg += self.lA2
+        cg -= self.lB2
+        ds *= self.tlA
+        cg /= ds
+        _clip(cg, -1.0, 1.0, out=cg)
+        ang = np.arctan2(D[1], D[0])
+        ac = np.arccos(cg, out=cg)
+        if sigma == 1.0:                     # beta + 1.0 a is beta + a, bit for bit
+            ang += ac
+        elif sigma == -1.0:                  # beta + (-1.0) a is beta - a
+            ang -= ac
+        else:
+            ang += sigma * ac
+        C = np.empty((2, N))                 # P1 + lA (cos, sin)
+        np.cos(ang, out=C[0])
+        np.sin(ang, out=C[1])
+        C *= self.lA
+        C += P1
+        E = np.subtract(C, P1, out=D)
+        thA = _minus_const(np.arctan2(E[1], E[0]), self.kA)
+        E = np.subtract(C, P3, out=E)
+        thB = _minus_const(np.arctan2(E[1], E[0]), self.kB)
+        self._set(st, self.A, P1, self.uA1, thA)
+        self._set(st, self.B, P3, self.uB1, thB)
+        return margin
+
+    @staticmethod
+    def _set(st: State, X: int, P, u, th) -> None:
+        """DyadPlan._set_from_point: X turned by th, its point u at P ((2, N) or (2, 1));
+        R u of the derivatives shared where State.rot takes it as here (u = (u0, 0))."""
+        N = st.N
+        cs = np.empty((2, N))
+        c, s = cs
+        np.cos(th, out=c)
+        np.sin(th, out=s)
+        u0, u1 = float(u[0]), float(u[1])
+        ru = cs * u0                         # (c u0, s u0)
+        t = cs[::-1] * u1                    # (s u1, c u1)
+        np.subtract(ru[0], t[0], out=t[0])
+        np.add(ru[1], t[1], out=t[1])
+        st.set_pose(X, np.subtract(P, t, out=t).T, th, (c, s))
+        if u1 == 0.0:
+            st.share_rot(X, u, ru.T)
+
+    def derivatives(self, st: State, dets: bool) -> np.ndarray:
+        """dyad_derivatives of this dyad."""
+        N = st.N
+        A, B, gb = self.A, self.B, self.ground_b
+        _, P1, P2 = st.point_d(self.K, self.uK)               # the moving pivot's derivatives
+        rA, rB = st.rot(A, self.uA1), st.rot(B, self.uB1)
+        mA, mB = st.rot(A, self.uAC), st.rot(B, self.uBC)
+        rAx, rAy, rBx, rBy = rA[:, 0], rA[:, 1], rB[:, 0], rB[:, 1]
+        # the columns (_MidApply, t = 1.0): (ry - my, (-rx) + mx), +- by the pair's order
+        cA = (rAy - mA[:, 1], mA[:, 0] - rAx)
+        cB = (rBy - mB[:, 1], mB[:, 0] - rBx)
+        for col in (cB if self.a_first else cA):
+            np.negative(col, out=col)
+        inv, sing = _inverse(cA, cB, st, dets, self.bound)
+        # _MidApply's t = 0.0 terms (0 my, 0 mx): R u1's columns where they are the same bits
+        zA = (rAy, rAx) if self.zrA else (0.0 * mA[:, 1], 0.0 * mA[:, 0])
+        zB = (rBy, rBx) if self.zrB else (0.0 * mB[:, 1], 0.0 * mB[:, 0])
+        (zM, fM), (zG, fG) = ((zA, self.a_first), (zB, not self.a_first)) if gb else \
+            ((zB, not self.a_first), (zA, self.a_first))
+        # the links' U = (-J R u1, 1): (ry, -rx) as (2, N) blocks
+        UA, UB = _u_block(N, rAx, rAy), _u_block(N, rBx, rBy)
+        # first derivatives: V = (P1', 0) for the moving pivot's link, (0, 0) for the ground's
+        # (its _MidApply terms the signed zero zG)
+        vM = _mid_terms(P1[:, 0], P1[:, 1], zM, fM)
+        lA, lB = _cramer(*(_neg_sum(v, self.zG) for v in vM), cA, cB, inv)
+        V = P1.T
+        _pose_d(st.set_d1, A, lA, UA, V if gb else 0.0)
+        _pose_d(st.set_d1, B, lB, UB, 0.0 if gb else V)
+        # second derivatives: W = (P'' + th1^2 R u1, 0), P'' = +0 for the ground's link (then
+        # +0.0 + th1^2 R u1; with u1 = (+0, +0): W = (+0, +0), its terms the signed zero zG)
+        qA, qB = st.th1_sq(A), st.th1_sq(B)
+        WA = P2.T + qA * rA.T if gb else _ground_w(qA, rA, self.zrA)
+        WB = _ground_w(qB, rB, self.zrB) if gb else P2.T + qB * rB.T
+        WM, WG = (WA, WB) if gb else (WB, WA)
+        wM = _mid_terms(WM[0], WM[1], zM, fM)
+        wG = (self.zG, self.zG) if isinstance(WG, float) else _mid_terms(WG[0], WG[1], zG, fG)
+        gam = self.mid.gamma(st, {A: mA, B: mB})
+        lA, lB = _cramer(_neg_sum(wM[0], wG[0], gam[:, 0]), _neg_sum(wM[1], wG[1], gam[:, 1]), cA, cB, inv)
+        _pose_d(st.set_d2, A, lA, UA, WA)
+        _pose_d(st.set_d2, B, lB, UB, WB)
+        return sing
+
+
+def _mid_terms(t0, t1, z, first: bool):
+    """_MidApply of a link turning about a known point with t = 0.0 (its V or W terms
+    (t0, t1), z = (0 my, 0 mx)): (t0 - 0 my, t1 + 0 mx), negated for the pair's second body."""
+    a = t0 - z[0]
+    b = t1 + z[1]
+    if not first:
+        np.negative(a, out=a)
+        np.negative(b, out=b)
+    return a, b
+
+
+def _neg_sum(a, b, c=None):
+    """dyad_derivatives' neg_sum -(a + b [+ c]) in place in a (an array of its own); b may be
+    a signed zero (an array of them broadcast: x + (-0.0) is x, x + (+0.0) turns -0 to +0)."""
+    if isinstance(b, float) and b == 0.0:
+        if math.copysign(1.0, b) > 0:
+            a += 0.0
+    else:
+        a += b
+    if c is not None:
+        a += c
+    return np.negative(a, out=a)
+
+
+def _ground_w(q, r, zero: bool):
+    """A ground-pivoted link's W terms +0 + th1^2 R u1 as a (2, N) block (r = R u1, (N, 2));
+    +0.0 where R u1 is signed zeros (``zero``: u1 = (+0, +0); th1^2 is finite)."""
+    if zero:
+        return 0.0
+    w = q * r.T
+    w += 0.0
+    return w
+
+
+def _u_block(N: int, rx, ry) -> np.ndarray:
+    """(ry, -rx): U's first two rows of a link turning about a known point (-J R u1)."""
+    U = np.empty((2, N))
+    U[0] = ry
+    np.negative(rx, out=U[1])
+    return U
+
+
+def _pose_d(set_d, X: int, lx, U, W) -> None:
+    """dyad_derivatives' pose_d of a link turning about a known point: U lx + W, its
+    terms W = (W0, W1, 0) a (2, N) block or +0.0, set by ``set_d`` (set_d1 or set_d2)."""
+    o = U * lx
+    o += W
+    set_d(X, o.T, lx + 0.0)
+

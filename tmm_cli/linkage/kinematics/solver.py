@@ -614,7 +614,7 @@ def solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
     the crank's ground pivot to its pin, from +x ccw). ``omega1`` and ``eps1`` (rad/s,
     rad/s^2, ccw positive) may be scalars or arrays of shape (N,). Positions next to a
     change point of the linkage are marked (see :mod:`.changepoints`)."""
-    from . import changepoints as cpm
+    cpm = _changepoints()
     res = _solve(mech, phi_deg, omega1, eps1)
     solver = get_solver(mech)
     cps = cpm.change_points(solver)
@@ -632,12 +632,24 @@ def solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
     return res
 
 
+_CPM = None
+
+
+def _changepoints():
+    """The module :mod:`.changepoints`, imported on the first solve (not at every call)."""
+    global _CPM
+    if _CPM is None:
+        from . import changepoints
+        _CPM = changepoints
+    return _CPM
+
+
 def _blown_up(mech: Mechanism, solver: Solver, res: KinematicsResult, near: np.ndarray) -> dict[str, np.ndarray]:
     """Masks of the values without a finite limit at positions next to a change point:
     keys 'v:P', 'a:P' (point P), 'omega:L', 'epsilon:L' (link L). A value is so when its
     analogue (d/dphi, d2/dphi2) exceeds BLOWUP times its largest magnitude over the rest
     of the cycle (sampled away from every change point)."""
-    from . import changepoints as cpm
+    cpm = _changepoints()
     ref = solver.__dict__.get("_cp_reference")
     if ref is None:
         grid = np.arange(0.0, 360.0, 0.5)
@@ -668,7 +680,7 @@ def _blown_up(mech: Mechanism, solver: Solver, res: KinematicsResult, near: np.n
 def _solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
     solver = get_solver(mech)
     ground, moving, done, names, links = _outputs(solver)
-    phi_deg = np.atleast_1d(np.asarray(phi_deg, float)).reshape(-1)
+    phi_deg = np.asarray(phi_deg, float).reshape(-1)     # (a scalar: shape (1,))
     st = solver.run(np.radians(phi_deg))
     st.margins = st.sing = None     # (held memory only)
     N = len(phi_deg)
