@@ -36,3 +36,35 @@ def test_paths_as_each_number_by_f(shapes, h):
     stroke, fill = re.findall(r'<path d="([^"]*)"', svg)
     assert stroke == " ".join(_path(p, h, c) for p, c in shapes)
     assert fill == " ".join(_path(p, h, True) for p, _ in shapes)
+
+
+def _arrow_points(p, q, head, head_w):
+    """Canvas.arrow's shaft and head as the 2-vector operations it did (numpy), or None."""
+    import numpy as np
+    p, q = np.asarray(p, float), np.asarray(q, float)
+    d = q - p
+    L = float(np.hypot(*d))
+    if L < 1e-9:
+        return None
+    u = d / L
+    hl = min(head, 0.45 * L) if L < 2.2 * head else head
+    hw = (head_w if head_w is not None else 0.36 * head) * hl / head
+    base = q - u * hl
+    n = np.array([-u[1], u[0]])
+    return [p, base + u * 0.1 * hl], [q, base + n * hw, base - n * hw]
+
+
+@settings(max_examples=400, deadline=None)
+@given(st.tuples(st.floats(-100, 100), st.floats(-100, 100)),
+       st.tuples(st.floats(-1e-6, 1e-6), st.floats(-30, 30), st.integers(-12, 2)),
+       st.floats(0.5, 4), st.one_of(st.none(), st.floats(0.1, 2)))
+def test_arrow_as_on_vectors(p, step, head, head_w):
+    """The arrow's points in plain floats: the very numbers of the 2-vector operations."""
+    q = (p[0] + step[0], p[1] + step[1] * 10.0 ** step[2])
+    got = []
+    cv = Canvas(50.0, 40.0)
+    cv.polyline = lambda pts, *a, **k: got.append([tuple(map(float, x)) for x in pts])
+    cv.polygon = lambda pts, *a, **k: got.append([tuple(map(float, x)) for x in pts])
+    cv.arrow(p, q, "#000", 0.3, head, head_w)
+    want = _arrow_points(p, q, head, head_w)
+    assert got == ([] if want is None else [[tuple(map(float, x)) for x in w] for w in want])

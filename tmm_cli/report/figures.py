@@ -374,22 +374,21 @@ def place_labels(anchors, extent: float, avoid=(), step: float | None = None, se
         MDS = np.minimum(_Segments(segs).dists(CX.ravel(), CY.ravel()).reshape(na, ncand), lim_s)
     else:
         MDS = np.full((na, ncand), lim_s)
-    C = np.stack((CX, CY))                     # (2, anchors, candidates)
     D2 = np.full((na, ncand), np.inf)          # squared distance to the nearest placed label
     box_tests = [(np.asarray(bc, float), np.asarray(bu, float), np.array([-bu[1], bu[0]], float), hw, hh)
                  for (bc, bu, hw, hh) in boxes]
     nt = len(taken)
     if sizes is not None:
-        H = np.array([[float(s[0]) / 2 for s in sizes[:na]], [float(s[1]) / 2 for s in sizes[:na]]],
-                     float)[:, :, None]       # (2, anchors, 1): the label boxes' half sizes
-        H0, H1 = H[0], H[1]
+        # the label boxes' half sizes, (anchors, 1)
+        H0 = np.array([float(s[0]) / 2 for s in sizes[:na]], float)[:, None]
+        H1 = np.array([float(s[1]) / 2 for s in sizes[:na]], float)[:, None]
         if bounds is not None:
             bx0, by0, bx1, by1 = bounds
             free_all = (CX - H0 >= bx0) & (CX + H0 <= bx1) & (CY - H1 >= by0) & (CY + H1 <= by1)
         else:
             free_all = np.ones((na, ncand), bool)
         for box in taken:                      # not overlapping a taken box (and inside the bounds)
-            free_all &= ~_overlaps(C, H, box)
+            free_all &= ~_overlaps(CX, CY, H0, H1, box)
     every = np.arange(ncand)
     n_near = len(_DIRS) * len(_MULTS)          # the nearer rings' candidates come first
     # the most a candidate of a farther ring can score (without the preferred direction's
@@ -437,16 +436,19 @@ def place_labels(anchors, extent: float, avoid=(), step: float | None = None, se
             best = (float(b[0]), float(b[1]))
         last = k_a == na - 1
         if not last:                           # the later anchors' distances to this label
-            d = C[:, k_a + 1:] - np.array(best)[:, None, None]
-            sq = d * d
-            np.minimum(D2[k_a + 1:], sq[0] + sq[1], out=D2[k_a + 1:])
+            dx = CX[k_a + 1:] - best[0]
+            dy = CY[k_a + 1:] - best[1]
+            dx *= dx
+            dy *= dy
+            dx += dy
+            np.minimum(D2[k_a + 1:], dx, out=D2[k_a + 1:])
         if sizes is not None:
             h0, h1 = float(sizes[k_a][0]) / 2, float(sizes[k_a][1]) / 2
             box = (best[0] - h0, best[1] - h1, best[0] + h0, best[1] + h1)
             taken.append(box)
             nt += 1
             if not last:
-                free_all[k_a + 1:] &= ~_overlaps(C[:, k_a + 1:], H[:, k_a + 1:], box)
+                free_all[k_a + 1:] &= ~_overlaps(CX[k_a + 1:], CY[k_a + 1:], H0[k_a + 1:], H1[k_a + 1:], box)
         out.append(best)
     return out
 
@@ -477,13 +479,16 @@ def _admissible(ok, free):
     return free if free.any() else ok
 
 
-def _overlaps(C, H, box):
-    """Whether each candidate's label box (centres C (2, anchors, candidates), half sizes
-    H (2, anchors, 1)) overlaps ``box`` (x0, y0, x1, y1), the box taken as its centre and
-    half sizes (the same numbers as the one-by-one test)."""
-    c = np.array([(box[0] + box[2]) / 2, (box[1] + box[3]) / 2])[:, None, None]
-    h = np.array([(box[2] - box[0]) / 2, (box[3] - box[1]) / 2])[:, None, None]
-    return (np.abs(C - c) < H + h).all(axis=0)
+def _overlaps(CX, CY, H0, H1, box):
+    """Whether each candidate's label box (centres CX, CY (anchors, candidates), half
+    sizes H0, H1 (anchors, 1)) overlaps ``box`` (x0, y0, x1, y1), the box taken as its
+    centre and half sizes (the same numbers as the one-by-one test)."""
+    x0, y0, x1, y1 = (float(v) for v in box)
+    cx, cy = (x0 + x1) / 2, (y0 + y1) / 2
+    hx, hy = (x1 - x0) / 2, (y1 - y0) / 2
+    ov = np.abs(CX - cx) < H0 + hx
+    ov &= np.abs(CY - cy) < H1 + hy
+    return ov
 
 
 _CANDIDATES: dict[tuple[float, bool], tuple] = {}

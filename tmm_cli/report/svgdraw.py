@@ -164,19 +164,20 @@ class Canvas:
     def arrow(self, p, q, color="#000", width=0.3, head=2.2, head_w=None, dash=None, z=3):
         """Vector p -> q with a filled head of length `head` mm (shortened for
         short vectors); nothing for a zero vector."""
-        p = np.asarray(p, float)
-        q = np.asarray(q, float)
-        d = q - p
-        L = float(np.hypot(*d))
+        # in plain floats: the same operations, x and y apart, as on 2-vectors
+        px, py = float(p[0]), float(p[1])
+        qx, qy = float(q[0]), float(q[1])
+        dx, dy = qx - px, qy - py
+        L = float(np.hypot(dx, dy))
         if L < 1e-9:
             return
-        u = d / L
+        ux, uy = dx / L, dy / L
         hl = min(head, 0.45 * L) if L < 2.2 * head else head
         hw = (head_w if head_w is not None else 0.36 * head) * hl / head
-        base = q - u * hl
-        n = np.array([-u[1], u[0]])
-        self.polyline([p, base + u * 0.1 * hl], color, width, dash, z)
-        self.polygon([q, base + n * hw, base - n * hw], color, z + 1)
+        bx, by = qx - ux * hl, qy - uy * hl        # the head's base
+        nx, ny = -uy, ux
+        self.polyline([(px, py), (bx + ux * 0.1 * hl, by + uy * 0.1 * hl)], color, width, dash, z)
+        self.polygon([(qx, qy), (bx + nx * hw, by + ny * hw), (bx - nx * hw, by - ny * hw)], color, z + 1)
 
     def text(self, x, y, s, size=7.0, color="#000", anchor="middle", italic=False, bold=False,
              sub: str | None = None, sup: str | None = None, z=8, vcenter=True, halo=False,
