@@ -176,11 +176,29 @@ def read_table(path: str | Path) -> tuple[list[str], list[tuple[int, dict[str, s
 
 def round_sig(values, digits: int = 7) -> list:
     """Each value rounded to ``digits`` significant digits (a plain float; 0 as 0);
-    NaN, inf and None -> None."""
+    NaN, inf and None -> None.  The values are written "%.6e" all at once (one
+    formatting and one split, not one call per value), the exceptions put right after."""
+    vals = values if isinstance(values, (list, tuple)) else _flat(values)
     spec = f"%.{digits - 1}e"
+    try:
+        text = ((spec + " ") * len(vals)) % tuple(vals)
+    except TypeError:               # a None (or a value "%e" does not take): one by one
+        return _round_sig_each(vals, spec)
+    out = list(map(float, text.split()))
+    if "n" in text or f"{0.0:{spec[1:]}} " in text:     # nan or inf, or a zero
+        fin = math.isfinite
+        for i, w in enumerate(out):
+            if w == 0.0:
+                out[i] = 0
+            elif not fin(w):
+                out[i] = None
+    return out
+
+
+def _round_sig_each(vals, spec: str) -> list:
     fin = math.isfinite
     return [None if v is None or not fin(w := float(v)) else (0 if w == 0.0 else float(spec % w))
-            for v in (values if isinstance(values, (list, tuple)) else _flat(values))]
+            for v in vals]
 
 
 def _flat(values):

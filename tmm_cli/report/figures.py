@@ -343,120 +343,152 @@ def place_labels(anchors, extent: float, avoid=(), step: float | None = None, se
     one nor one of `taken` (x0, y0, x1, y1), and stays inside `bounds` (x0, y0, x1, y1);
     when no place near its anchor is free it moves further out (rings up to 11 steps),
     and it is appended to `taken` (the caller's list) once placed.
-    Vectorised over the candidates (numpy); the distances are computed for the
-    admissible candidates only.
+    Vectorised over the candidates of all the anchors (numpy): what does not depend on
+    the labels placed before (the distances to the `avoid` points and the segments, the
+    bounds) is computed for every anchor at once; the distances to the placed labels and
+    the overlaps with their boxes are brought up to date as each label is placed.
     """
     if step is None:
         step = 0.045 * extent
-    avoid_a = np.asarray([np.asarray(a, float) for a in avoid], float).reshape(-1, 2)
-    avx, avy = avoid_a[:, 0].copy(), avoid_a[:, 1].copy()
-    segs = np.asarray(segments, float).reshape(-1, 2, 2) if segments is not None and len(segments) else None
-    seg = _Segments(segs) if segs is not None else None
-    offs, offx, offy, ring, dirs = _candidates(step, sizes is not None)
     taken = taken if isinstance(taken, list) else list(taken)
-    # the taken boxes as centres and half sizes (x, y), grown as labels are placed
-    tb = np.asarray(taken, float).reshape(-1, 4)
-    nt = len(tb)
-    tcx, tcy, thx, thy = np.empty((4, nt + (len(anchors) if sizes is not None else 0)))
-    tcx[:nt], tcy[:nt] = (tb[:, 0] + tb[:, 2]) / 2, (tb[:, 1] + tb[:, 3]) / 2
-    thx[:nt], thy[:nt] = (tb[:, 2] - tb[:, 0]) / 2, (tb[:, 3] - tb[:, 1]) / 2
+    na = len(anchors)
+    if not na:
+        return []
+    offs, offx, offy, ring, dirs = _candidates(step, sizes is not None)
+    ncand = len(offx)
+    ax = np.array([a[0] for a in anchors], float)
+    ay = np.array([a[1] for a in anchors], float)
+    CX = ax[:, None] + offx                    # (anchors, candidates): x + offx of each anchor
+    CY = ay[:, None] + offy
+    big = 9 * step
+    lim_l, lim_a, lim_s = 2.2 * step, 1.2 * step, 0.8 * step
+    # the terms of the score that the placed labels do not change, (anchors, candidates)
+    avoid_a = np.asarray([np.asarray(a, float) for a in avoid], float).reshape(-1, 2)
+    if len(avoid_a):
+        MDA = np.minimum(_point_dists(CX.ravel(), CY.ravel(), avoid_a[:, 0].copy(),
+                                      avoid_a[:, 1].copy()).reshape(na, ncand), lim_a)
+    else:
+        MDA = np.full((na, ncand), min(big, lim_a))
+    segs = np.asarray(segments, float).reshape(-1, 2, 2) if segments is not None and len(segments) else None
+    if segs is not None:
+        MDS = np.minimum(_Segments(segs).dists(CX.ravel(), CY.ravel()).reshape(na, ncand), lim_s)
+    else:
+        MDS = np.full((na, ncand), lim_s)
+    D2 = np.full((na, ncand), np.inf)          # squared distance to the nearest placed label
     box_tests = [(np.asarray(bc, float), np.asarray(bu, float), np.array([-bu[1], bu[0]], float), hw, hh)
                  for (bc, bu, hw, hh) in boxes]
-    plx, ply = np.empty((2, len(anchors)))
-    out = []
-    big = 9 * step
-    ncand = len(offx)
+    nt = len(taken)
+    if sizes is not None:
+        # the label boxes' half sizes, (anchors, 1)
+        H0 = np.array([float(s[0]) / 2 for s in sizes[:na]], float)[:, None]
+        H1 = np.array([float(s[1]) / 2 for s in sizes[:na]], float)[:, None]
+        if bounds is not None:
+            bx0, by0, bx1, by1 = bounds
+            free_all = (CX - H0 >= bx0) & (CX + H0 <= bx1) & (CY - H1 >= by0) & (CY + H1 <= by1)
+        else:
+            free_all = np.ones((na, ncand), bool)
+        for box in taken:                      # not overlapping a taken box (and inside the bounds)
+            free_all &= ~_overlaps(CX, CY, H0, H1, box)
     every = np.arange(ncand)
-    lim_l, lim_a, lim_s = 2.2 * step, 1.2 * step, 0.8 * step
     n_near = len(_DIRS) * len(_MULTS)          # the nearer rings' candidates come first
     # the most a candidate of a farther ring can score (without the preferred direction's
     # term), with a margin for rounding
     far_top = lim_l + lim_a + lim_s - float(ring[n_near]) + 1e-9 * step if n_near < ncand else np.inf
-    if bounds is not None:
-        bx0, by0, bx1, by1 = bounds
+    full_l = np.full(ncand, min(big, lim_l))
+    out = []
     for k_a, (x, y, pref) in enumerate(anchors):
-        # the candidates x + offx, y + offy (the same sums as (x, y) + offs)
-        cx, cy = x + offx, y + offy
-        ok = None
-        if box_tests:
-            cand = np.array([x, y], float) + offs
-            ok = np.ones(ncand, bool)
-            for bc, bu, bv, hw, hh in box_tests:
-                r = cand - bc
-                ok &= ~((np.abs(r @ bu) < hw + 0.5 * step) & (np.abs(r @ bv) < hh + 0.4 * step))
-        half = None
+        ok = _clear_of_boxes(x, y, offs, box_tests, step)
         if sizes is not None:
-            half = True
-            h0, h1 = float(sizes[k_a][0]) / 2, float(sizes[k_a][1]) / 2
-            if nt:
-                free = ~((np.abs(cx[:, None] - tcx[:nt]) < h0 + thx[:nt])
-                         & (np.abs(cy[:, None] - tcy[:nt]) < h1 + thy[:nt])).any(axis=1)
-                if bounds is not None:
-                    free &= (cx - h0 >= bx0) & (cx + h0 <= bx1) & (cy - h1 >= by0) & (cy + h1 <= by1)
-            elif bounds is not None:
-                free = (cx - h0 >= bx0) & (cx + h0 <= bx1) & (cy - h1 >= by0) & (cy + h1 <= by1)
-            else:
-                free = None
-            if free is None:                   # every candidate free: the boxes' test may yield
-                if ok is not None and not ok.any():
-                    ok = None
-            else:
-                if ok is None:
-                    if free.any():
-                        ok = free
-                elif (ok & free).any():
-                    ok &= free
-                elif free.any():
-                    ok = free
+            free = free_all[k_a] if nt or bounds is not None else None
+            ok = _admissible(ok, free)
+        best = None
         if ok is None:
-            idx, sx, sy = every, cx, cy
+            idx = every
         else:
             idx = ok.nonzero()[0]
-            sx, sy = cx[idx], cy[idx]
-        best = None
         n_ok = len(idx)
         if n_ok:
-            lean = None
+            # the score of every candidate (the same sums, in the same order, as one by one)
+            row = np.minimum(np.sqrt(D2[k_a]), lim_l) if k_a else full_l.copy()
+            row += MDA[k_a]
+            row += MDS[k_a]
+            row -= ring
+            sc = row if ok is None else row[idx]
             if pref is not None:
                 n = math.hypot(*pref)
                 if n > 0:
-                    lean = 0.5 * step * (dirs[idx] @ (np.asarray(pref, float) / n))
-
-            def scores(hi):
-                # each candidate's score depends on that candidate alone: the first hi
-                # score as in the whole
-                qx, qy = sx[:hi], sy[:hi]
-                dl = _point_dists(qx, qy, plx[:k_a], ply[:k_a]) if k_a else np.full(hi, big)
-                da = _point_dists(qx, qy, avx, avy) if len(avx) else np.full(hi, big)
-                ds = seg.dists(qx, qy) if seg is not None else np.full(hi, np.inf)
-                sc = np.minimum(dl, lim_l) + np.minimum(da, lim_a) + np.minimum(ds, lim_s) - ring[idx[:hi]]
-                return sc if lean is None else sc + lean[:hi]
-
+                    sc = sc + 0.5 * step * (dirs[idx] @ (np.asarray(pref, float) / n))
+                else:
+                    pref = None
             # the nearer rings first: when one of them scores above the most a farther
-            # one can, the farther ones are not scored (the same choice: the first best)
-            score = None
+            # one can, the farther ones are not looked at (the same choice: the first best)
+            score = sc
             n_in = n_ok if n_near >= ncand else (n_near if ok is None else int(np.count_nonzero(ok[:n_near])))
             if 0 < n_in < n_ok:
-                near = scores(n_in)
-                if near.max() > (far_top if lean is None else far_top + 0.5 * step):
+                near = sc[:n_in]
+                if near.max() > (far_top if pref is None else far_top + 0.5 * step):
                     score = near
-            if score is None:
-                score = scores(n_ok)
             k = int(score.argmax())
             if math.isfinite(score[k]):
-                best = (float(sx[k]), float(sy[k]))
+                best = (float(CX[k_a, idx[k]]), float(CY[k_a, idx[k]]))
         if best is None:
             b = np.array([x, y], float) + _DIRS[4] * step * 2.5
             best = (float(b[0]), float(b[1]))
-        plx[k_a], ply[k_a] = best
-        if half is not None:
+        last = k_a == na - 1
+        if not last:                           # the later anchors' distances to this label
+            dx = CX[k_a + 1:] - best[0]
+            dy = CY[k_a + 1:] - best[1]
+            dx *= dx
+            dy *= dy
+            dx += dy
+            np.minimum(D2[k_a + 1:], dx, out=D2[k_a + 1:])
+        if sizes is not None:
+            h0, h1 = float(sizes[k_a][0]) / 2, float(sizes[k_a][1]) / 2
             box = (best[0] - h0, best[1] - h1, best[0] + h0, best[1] + h1)
             taken.append(box)
-            tcx[nt], tcy[nt] = (box[0] + box[2]) / 2, (box[1] + box[3]) / 2
-            thx[nt], thy[nt] = (box[2] - box[0]) / 2, (box[3] - box[1]) / 2
             nt += 1
+            if not last:
+                free_all[k_a + 1:] &= ~_overlaps(CX[k_a + 1:], CY[k_a + 1:], H0[k_a + 1:], H1[k_a + 1:], box)
         out.append(best)
     return out
+
+
+def _clear_of_boxes(x, y, offs, box_tests, step):
+    """Whether each candidate (x, y) + offs keeps clear of the slider boxes (None: no boxes)."""
+    if not box_tests:
+        return None
+    cand = np.array([x, y], float) + offs
+    ok = np.ones(len(offs), bool)
+    for bc, bu, bv, hw, hh in box_tests:
+        r = cand - bc
+        ok &= ~((np.abs(r @ bu) < hw + 0.5 * step) & (np.abs(r @ bv) < hh + 0.4 * step))
+    return ok
+
+
+def _admissible(ok, free):
+    """The candidates to choose from: those clear of the slider boxes (``ok``, None: all)
+    and free (clear of the taken boxes, inside the bounds; None: all); when none is both,
+    the free ones, else those ``ok`` (the boxes' test yields); None: every candidate."""
+    if free is None:
+        return None if ok is not None and not ok.any() else ok
+    if ok is None:
+        return free if free.any() else None
+    if (ok & free).any():
+        ok &= free
+        return ok
+    return free if free.any() else ok
+
+
+def _overlaps(CX, CY, H0, H1, box):
+    """Whether each candidate's label box (centres CX, CY (anchors, candidates), half
+    sizes H0, H1 (anchors, 1)) overlaps ``box`` (x0, y0, x1, y1), the box taken as its
+    centre and half sizes (the same numbers as the one-by-one test)."""
+    x0, y0, x1, y1 = (float(v) for v in box)
+    cx, cy = (x0 + x1) / 2, (y0 + y1) / 2
+    hx, hy = (x1 - x0) / 2, (y1 - y0) / 2
+    ov = np.abs(CX - cx) < H0 + hx
+    ov &= np.abs(CY - cy) < H1 + hy
+    return ov
 
 
 _CANDIDATES: dict[tuple[float, bool], tuple] = {}

@@ -14,6 +14,7 @@ figure prints at its real size.
 from __future__ import annotations
 
 import math
+import re
 from html import escape
 
 import numpy as np
@@ -25,6 +26,19 @@ FONT = "DejaVu Sans"
 def _f(x: float) -> str:
     s = f"{x:.2f}".rstrip("0").rstrip(".")
     return "0" if s in ("-0", "") else s
+
+
+# _f's trimming done to a whole path's data at once (its numbers written "%.2f"): the
+# trailing zeros of the decimals (and then the point) dropped, "-0" written "0"
+_ZZ = re.compile(r"\.00(?!\d)")
+_Z = re.compile(r"(\.\d)0(?!\d)")
+_M0 = re.compile(r"-0(?![\d.])")
+_PD: dict[int, str] = {}      # path data formats by the number of points
+
+
+def trim(data: str) -> str:
+    """Path data whose numbers are written "%.2f", each number as _f writes it."""
+    return _M0.sub("0", _Z.sub(r"\1", _ZZ.sub("", data)))
 
 
 def _w(x: float) -> str:
@@ -102,9 +116,20 @@ class Canvas:
         return self.h - y
 
     def _pd(self, pts, closed=False) -> str:
+        """Path data of the points, its numbers "%.2f" (to_svg trims them as _f does, a
+        whole path at once: one formatting of all the numbers, not one call per number)."""
         h = self.h
-        s = "M" + " L".join(f"{_f(float(p[0]))} {_f(h - float(p[1]))}" for p in pts)
-        return s + ("Z" if closed else "")
+        xy = []
+        for p in pts:
+            xy.append(float(p[0]))
+            xy.append(h - float(p[1]))
+        n = len(xy) // 2
+        fmt = _PD.get(n)
+        if fmt is None:
+            fmt = "M" + " L".join(["%.2f %.2f"] * n)
+            if len(_PD) < 256:
+                _PD[n] = fmt
+        return fmt % tuple(xy) + ("Z" if closed else "")
 
     # ------------------------------------------------------------ primitives
     def polyline(self, pts, color="#000", width=0.25, dash=None, z=1, closed=False):
@@ -139,19 +164,20 @@ class Canvas:
     def arrow(self, p, q, color="#000", width=0.3, head=2.2, head_w=None, dash=None, z=3):
         """Vector p -> q with a filled head of length `head` mm (shortened for
         short vectors); nothing for a zero vector."""
-        p = np.asarray(p, float)
-        q = np.asarray(q, float)
-        d = q - p
-        L = float(np.hypot(*d))
+        # in plain floats: the same operations, x and y apart, as on 2-vectors
+        px, py = float(p[0]), float(p[1])
+        qx, qy = float(q[0]), float(q[1])
+        dx, dy = qx - px, qy - py
+        L = float(np.hypot(dx, dy))
         if L < 1e-9:
             return
-        u = d / L
+        ux, uy = dx / L, dy / L
         hl = min(head, 0.45 * L) if L < 2.2 * head else head
         hw = (head_w if head_w is not None else 0.36 * head) * hl / head
-        base = q - u * hl
-        n = np.array([-u[1], u[0]])
-        self.polyline([p, base + u * 0.1 * hl], color, width, dash, z)
-        self.polygon([q, base + n * hw, base - n * hw], color, z + 1)
+        bx, by = qx - ux * hl, qy - uy * hl        # the head's base
+        nx, ny = -uy, ux
+        self.polyline([(px, py), (bx + ux * 0.1 * hl, by + uy * 0.1 * hl)], color, width, dash, z)
+        self.polygon([(qx, qy), (bx + nx * hw, by + ny * hw), (bx - nx * hw, by - ny * hw)], color, z + 1)
 
     def text(self, x, y, s, size=7.0, color="#000", anchor="middle", italic=False, bold=False,
              sub: str | None = None, sup: str | None = None, z=8, vcenter=True, halo=False,
@@ -240,12 +266,12 @@ class Canvas:
             if key[0] == "s":
                 _, z, color, width, dash = key
                 da = f' stroke-dasharray="{dash}"' if dash else ""
-                el = (f'<path d="{" ".join(self._strokes[key])}" fill="none" stroke="{color}" '
+                el = (f'<path d="{trim(" ".join(self._strokes[key]))}" fill="none" stroke="{color}" '
                       f'stroke-width="{_w(width)}"{da} '
                       f'stroke-linejoin="round" stroke-linecap="round"/>')
             else:
                 _, z, fill = key
-                el = f'<path d="{" ".join(self._fills[key])}" fill="{fill}" stroke="none"/>'
+                el = f'<path d="{trim(" ".join(self._fills[key]))}" fill="{fill}" stroke="none"/>'
             layers.setdefault(z, []).append(el)
         for z, el in self._items:
             layers.setdefault(z, []).append(el)
