@@ -108,6 +108,26 @@ def _s(text: str) -> str:
 
 
 _WS = re.compile(r"\s+")
+_MM = 72 / 25.4                             # pt
+_TEXT_WIDTH = (210 - 18 - 14) * _MM        # the page's text width (PREAMBLE's margins), pt
+_STRING = re.compile(r'#"(?:[^"\\]|\\.)*"')
+# markup that keeps a line of text one line of the table's height (the line edges are fixed
+# lengths: sub- and superscripts, bold, italics and a bar over it do not make it taller)
+_LINE_MARKUP = re.compile(r"#(?:sub|super|strong|emph|overline)\[|\]")
+# advances of DejaVu Sans in em, rounded up, by kind of character; any other Latin, Greek or
+# Cyrillic one 1.1 (the widest, Щ, is 1.094), the rest of Unicode 2.0; DejaVu Sans Bold
+# within _BOLD times these (tests/test_typst_rows.py reads both fonts)
+_ADV = {**dict.fromkeys("0123456789", 0.64), **dict.fromkeys(".,:;' |il", 0.40),
+        **dict.fromkeys("-()[]/!", 0.42), **dict.fromkeys("+−×=<>", 0.84),
+        **dict.fromkeys("abcdeghknopqsuvxyz", 0.64), **dict.fromkeys("fjrt", 0.42)}
+_BOLD = 1.25
+
+
+def _em_width(text: str, bold: bool = False) -> float:
+    """A bound of the advance of ``text`` in DejaVu Sans (regular or bold), in em."""
+    w = sum(_ADV.get(ch) or (1.1 if ord(ch) < 0x1C4 or 0x370 <= ord(ch) < 0x460 else 2.0)
+            for ch in text)
+    return w * _BOLD if bold else w
 
 PREAMBLE = r"""
 #set document(title: TITLE, date: none)
@@ -140,6 +160,7 @@ class _Writer:
         self.files: dict[str, bytes] = {}
         self.after_section = False
         self.in_pair = 0
+        self.width: float | None = _TEXT_WIDTH   # pt free for a block here; None: not known
 
     # inline content -> markup
     def inline(self, node) -> str:
@@ -175,7 +196,9 @@ class _Writer:
             elif tag == "img" and "data-svg" in c.attrs:
                 out.append(self.figure_image(int(c.attrs["data-svg"]), None))
             elif tag in ("table", "div", "p", "ul", "ol"):
+                width, self.width = self.width, None        # inside a cell or an item: not known
                 out.append("\n" + self.block(c) + "\n")
+                self.width = width
             else:
                 out.append(self.inline(c))
         return "".join(out)
@@ -224,7 +247,10 @@ class _Writer:
         if tag in ("ol", "ul"):
             items = [c for c in node.children if isinstance(c, _Node) and c.tag == "li"]
             fn = "enum" if tag == "ol" else "list"
-            return f"#{fn}(" + ", ".join(f"[{self.inline(li).strip()}]" for li in items) + ")"
+            width, self.width = self.width, None            # indented: not known
+            out = f"#{fn}(" + ", ".join(f"[{self.inline(li).strip()}]" for li in items) + ")"
+            self.width = width
+            return out
         if tag == "section":
             body = self.blocks(node)
             brk = "#pagebreak(weak: true)\n" if self.after_section else ""
@@ -235,15 +261,27 @@ class _Writer:
         if tag == "div" and ("tables2" in cls or "pair" in cls):
             kids = [c for c in node.children if isinstance(c, _Node)]
             self.in_pair += 1
+            width = self.width
+            if width is not None:
+                self.width = (width - _MM * 3 * (len(kids) - 1)) / max(len(kids), 1)
             cells = ", ".join(f"[{self.blocks(k) if k.tag == 'div' else self.block(k)}]" for k in kids)
+            self.width = width
             self.in_pair -= 1
             return f"#grid(columns: ({', '.join(['1fr'] * max(len(kids), 1))}), gutter: 3mm, {cells})"
         if tag == "div" and "task-groups" in cls:
             kids = [c for c in node.children if isinstance(c, _Node)]
-            return "".join(f"#box(inset: (right: 4mm))[{self.block(k)}]" for k in kids)
+            width, self.width = self.width, None            # boxes in a line: not known
+            out = "".join(f"#box(inset: (right: 4mm))[{self.block(k)}]" for k in kids)
+            self.width = width
+            return out
         if tag == "div" and "failure" in cls:
+            width = self.width
+            if width is not None:
+                self.width = width - 8 * _MM - 1.5
+            body = self.blocks(node)
+            self.width = width
             return (f'#block(stroke: 1.5pt + rgb("#b03a2e"), fill: rgb("#fdf2f0"), inset: (x: 4mm, y: 3mm), '
-                    f'width: 100%)[{self.blocks(node)}]')
+                    f'width: 100%)[{body}]')
         if tag == "footer":
             return f'#v(8mm)\n#text(size: 8pt, fill: rgb("#666666"))[{self.blocks(node)}]'
         if tag in ("div", "header", "nav", "body", "html", "#root", "main", "article", "li"):
@@ -298,6 +336,65 @@ class _Writer:
             return f"({', '.join(['1fr'] * ncols)})"
         return "(" + ", ".join("1fr" if t else "auto" for t in text) + ")"
 
+    def fixed_rows(self, rows, nhead: int, one_line: list[bool], ncols: int, cols: str,
+                   compact: bool) -> str:
+        """The ``rows:`` argument giving each body row that is one line of text in every cell
+        its height outright: Typst then lays its cells out once instead of measuring them
+        first (an auto row), ~0.2 s of the forging report's compilation. The height is the
+        one an auto row gets (the table's line edges 0.8em + 0.25em and the cell insets);
+        a row is fixed only where no cell of it can wrap, i.e. where a bound of the
+        table's width (DejaVu Sans advances, rounded up) fits the width free for it.
+        Empty when no row qualifies or the free width is not known here."""
+        if self.width is None or nhead >= len(rows) or not any(one_line[nhead:]):
+            return ""
+        size = 7.5 if compact else 8.5
+        pad = 2 * (1.2 if compact else 1.8) * _MM
+        need = [0.0] * ncols                # a bound of each column's natural width, pt
+        spans = []
+        est = []                            # per row: (first column, last + 1, bound) of its cells
+        for head, r in rows:
+            j, row = 0, []
+            for c in r:
+                span = int(c.attrs.get("colspan") or 1)
+                if int(c.attrs.get("rowspan") or 1) > 1:
+                    return ""
+                t = c.text().strip()
+                w = _em_width(t, bold=c.tag == "th") * size + pad if t else 0.0
+                if span == 1 and j < ncols:
+                    need[j] = max(need[j], w)
+                else:
+                    spans.append((j, min(j + span, ncols), w))
+                row.append((j, min(j + span, ncols), w))
+                j += span
+            est.append(row)
+        for a, b, w in spans:               # a spanning cell widens its last column
+            if b > a and w > sum(need[a:b]):
+                need[b - 1] += w - sum(need[a:b])
+        free = self.width * 0.97            # strokes and rounding
+        if cols.startswith("("):
+            kinds = [k.strip() for k in cols.strip("()").split(",") if k.strip()]
+        else:
+            kinds = ["auto"] * ncols
+        auto = sum(n for n, k in zip(need, kinds) if k == "auto")
+        nfr = sum(1 for k in kinds if k == "1fr")
+        if auto > free or (nfr and auto >= free):
+            return ""                       # auto columns would be shrunk: cells may wrap
+        share = (free - auto) / nfr if nfr else 0.0
+        # an auto column is at least as wide as its widest cell, a shared one as wide as its
+        # share whatever its cells (a header may wrap in it)
+        col = [n if k == "auto" else share for n, k in zip(need, kinds)]
+        h = f"0.8em + 0.25em + {'1.6mm' if compact else '2.1mm'}"   # as Typst sums an auto row
+        out = []
+        for i, row in enumerate(est):
+            ok = (i >= nhead and one_line[i] and any(w for _, _, w in row)
+                  and all(w <= sum(col[a:b]) for a, b, w in row))
+            out.append(h if ok else "auto")
+        if h not in out:
+            return ""
+        while len(out) > 1 and out[-1] == out[-2]:
+            out.pop()                       # the last track repeats
+        return f"rows: ({', '.join(out)},), "
+
     def table(self, node) -> str:
         rows, caption = [], None
         compact = "compact" in node.classes
@@ -336,7 +433,9 @@ class _Writer:
         if not rows[nhead:]:
             right = [False] * ncols
         cells = []
+        one_line = []       # per row: every cell one line of text (or empty)
         for i, (head, r) in enumerate(rows):
+            plain = True
             for j, c in enumerate(r):
                 body = self.inline(c).strip()
                 args = []
@@ -358,18 +457,21 @@ class _Writer:
                     cell = body[1:]                 # a plain string: no markup to parse
                 else:
                     cell = f"[{body}]"
+                    plain = plain and not _LINE_MARKUP.sub("", _STRING.sub("", body))
                 cells.append(f"table.cell({', '.join(args)}){cell if cell[0] == '[' else f'[#{cell}]'}"
                              if args else cell)
+            one_line.append(plain)
         head_cells = sum(len(r) for _, r in rows[:nhead])
         size = "7.5pt" if compact else "8.5pt"
         inset = "(x: 1.2mm, y: 0.8mm)" if compact else "(x: 1.8mm, y: 1.05mm)"
         cols = self.widths(rows[nhead:], ncols) if wide else str(ncols)
+        rows_arg = self.fixed_rows(rows, nhead, one_line, ncols, cols, compact)
         header = f"table.header({', '.join(cells[:head_cells])}), " if head_cells else ""
         body = ", ".join(cells[head_cells:])
         align = ""
         if any(right):
             align = "align: (" + ", ".join("right" if x else "left" for x in right) + ",), "
-        tbl = f"#table(columns: {cols}, inset: {inset}, {align}{header}{body})"
+        tbl = f"#table(columns: {cols}, {rows_arg}inset: {inset}, {align}{header}{body})"
         if caption:
             tbl = f"#cap[{caption}]\n{tbl}"
         return f"#block(above: 1.5mm, below: 3mm, width: {'100%' if wide else 'auto'})[#text(size: {size})[{tbl}]]"
