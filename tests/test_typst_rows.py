@@ -60,6 +60,12 @@ HTML = "<html><head><title>t</title></head><body><section><h2>Tables</h2>" + "".
     '<table class="wide"><thead><tr><th>a</th><th>b</th></tr></thead><tbody>'
     '<tr><td>1</td><td>2</td></tr><tr><td colspan="2">' + "a long note spanning the columns " * 12
     + "</td></tr><tr><td>3</td><td>4</td></tr></tbody></table>",
+    # tables in a row (boxes in a line): each is laid out in the whole line's width, so a
+    # row of a second table, too long for the line, stays auto (a wrapped cell)
+    '<div class="task-groups">'
+    + '<table class="kv"><tr><th>' + "first table, wide " * 2 + "</th><td>1</td></tr></table>"
+    + '<table class="kv"><tr><th>second</th><td>' + "a long value on one line " * 5
+    + "</td></tr><tr><th>x</th><td>2</td></tr></table></div>",
     # a table in a list item (its free width not known): every row auto
     "<ul><li>item " + _table("compact", ["x", "y"], _numbers(4, 2, 3)) + "</li></ul>",
 ]) + "</section></body></html>"
@@ -68,7 +74,7 @@ HTML = "<html><head><title>t</title></head><body><section><h2>Tables</h2>" + "".
 def test_fixed_rows_leave_the_pdf_byte_identical(tmp_path):
     src, files = to_typst(HTML, "ru")
     tracks = _ROWS.findall(src)
-    assert len(tracks) == 5, "the test's tables give rows of a given height"
+    assert len(tracks) == 6, "the test's tables give rows of a given height"
     auto_src = _ROWS.sub("", src)
     a = _compile(src, files, tmp_path)
     b = _compile(auto_src, files, tmp_path)

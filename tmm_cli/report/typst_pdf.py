@@ -270,7 +270,10 @@ class _Writer:
             return f"#grid(columns: ({', '.join(['1fr'] * max(len(kids), 1))}), gutter: 3mm, {cells})"
         if tag == "div" and "task-groups" in cls:
             kids = [c for c in node.children if isinstance(c, _Node)]
-            width, self.width = self.width, None            # boxes in a line: not known
+            # boxes in a line: each is laid out in the width of the line, less its inset
+            width = self.width
+            if width is not None:
+                self.width = width - 4 * _MM
             out = "".join(f"#box(inset: (right: 4mm))[{self.block(k)}]" for k in kids)
             self.width = width
             return out
