@@ -68,3 +68,49 @@ def test_group_force_data_is_group_forces():
     assert names == ["G2", "R12"]          # the reaction of link 1 on link 2; 23 has no value
     flips = {r[0]: r[3] for r in group_force_data(e, info, {1}, index)}
     assert flips == {"R01": False, "R21": True}
+
+
+def _polyline_d_reference(X, Y):
+    """svgchart._polyline_d as it was: each number through svgdraw._f."""
+    from tmm_cli.report.svgdraw import _f
+    X, Y = np.asarray(X, dtype=float), np.asarray(Y, dtype=float)
+    ok = np.isfinite(X) & np.isfinite(Y)
+    parts, run = [], []
+    for good, a, b in zip(ok.tolist(), X.tolist(), Y.tolist()):
+        if good:
+            run.append(f"{_f(a)} {_f(b)}")
+        elif run:
+            parts.append(run)
+            run = []
+    if run:
+        parts.append(run)
+    return "".join("M" + "L".join(r) for r in parts if len(r) > 1)
+
+
+coord = st.floats(allow_nan=True, allow_infinity=True, width=64, min_value=None, max_value=None) | \
+    st.sampled_from([0.0, -0.0, -0.004, 0.005, -0.005, 0.995, -1.0, 10.0, 100.1, -0.001])
+
+
+@settings(max_examples=400, deadline=None)
+@given(st.lists(st.tuples(coord, coord), max_size=25))
+def test_chart_path_data_is_per_number_formatting(pts):
+    from tmm_cli.report.svgchart import _polyline_d
+    X = [p[0] for p in pts]
+    Y = [p[1] for p in pts]
+    assert _polyline_d(X, Y) == _polyline_d_reference(X, Y)
+
+
+@pytest.mark.parametrize("size", [5.0, 6.5, 7.0, 8.0, 9, 11.5])
+def test_text_attributes_by_size(size):
+    """Canvas.text's size-dependent attributes (made once per size) are what _f writes."""
+    from tmm_cli.report.svgdraw import PT_PER_MM, Canvas, _f
+    fs = size / PT_PER_MM
+    cv = Canvas(50, 30)
+    cv.text(10, 10, "M", size=size, sub="Φ2", after=" = 5")
+    cv.text(20, 10, "x", size=size, sup="2", after="y")
+    svg = cv.to_svg()
+    assert f'font-size="{_f(fs)}"' in svg
+    assert f'<tspan dy="{_f(0.3 * fs)}" font-size="{_f(0.72 * fs)}">Φ2</tspan>' in svg
+    assert f'<tspan dy="{_f(-0.3 * fs)}" font-size="{_f(fs)}"> = 5</tspan>' in svg
+    assert f'<tspan dy="{_f(-0.4 * fs)}" font-size="{_f(0.72 * fs)}">2</tspan>' in svg
+    assert f'<tspan dy="{_f(0.4 * fs)}" font-size="{_f(fs)}">y</tspan>' in svg

@@ -435,7 +435,7 @@ def place_labels(anchors, extent: float, avoid=(), step: float | None = None, se
                     pref = None
             # the nearer rings first: when one of them scores above the most a farther
             # one can, the farther ones are not looked at (the same choice: the first best)
-            n_in = n_ok if n_near >= ncand else (n_near if ok is None else int(np.count_nonzero(ok[:n_near])))
+            n_in = n_ok if n_near >= ncand else (n_near if ok is None else int(idx.searchsorted(n_near)))
             score = None
             if n_in == n_ok or 0 < n_in:
                 near = row if ok is None else row[idx[:n_in]]
@@ -504,15 +504,19 @@ def _clear_of_boxes(x, y, offs, box_tests, step):
 def _admissible(ok, free):
     """The candidates to choose from: those clear of the slider boxes (``ok``, None: all)
     and free (clear of the taken boxes, inside the bounds; None: all); when none is both,
-    the free ones, else those ``ok`` (the boxes' test yields); None: every candidate."""
+    the free ones, else those ``ok`` (the boxes' test yields); None: every candidate.
+    (``count_nonzero`` for ``any``: the same answer without ndarray.any's Python wrapper.)"""
     if free is None:
-        return None if ok is not None and not ok.any() else ok
+        return None if ok is not None and not _count(ok) else ok
     if ok is None:
-        return free if free.any() else None
-    if (ok & free).any():
+        return free if _count(free) else None
+    if _count(ok & free):
         ok &= free
         return ok
-    return free if free.any() else ok
+    return free if _count(free) else ok
+
+
+_count = np.count_nonzero
 
 
 def _overlaps(CX, CY, H0, H1, box):
