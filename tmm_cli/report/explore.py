@@ -19,6 +19,7 @@ function ``tmm_cli.linkage.kinematics.explore.explore_grid``)."""
 from __future__ import annotations
 
 import json
+import math
 
 import numpy as np
 
@@ -70,13 +71,25 @@ def data_json(data: dict) -> str:
 
 
 def _vec_rows(items: dict, digits: int) -> list:
-    """name -> (kind, (symbol, subscript), [F (2,) | None per row]) -> [{name, sym, sub, kind, x, y}]."""
-    out = []
-    for name, (kind, sym, col) in items.items():
-        arr = np.array([[np.nan, np.nan] if F is None else F for F in col], float)
-        out.append({"name": name, "sym": sym[0], "sub": sym[1], "kind": kind,
-                    "x": round_sig(arr[:, 0], digits), "y": round_sig(arr[:, 1], digits)})
-    return out
+    """name -> (kind, (symbol, subscript), [(x, y) | None per row]) -> [{name, sym, sub, kind, x, y}]."""
+    return [{"name": name, "sym": sym[0], "sub": sym[1], "kind": kind,
+             "x": round_sig(_column(col, 0), digits), "y": round_sig(_column(col, 1), digits)}
+            for name, (kind, sym, col) in items.items()]
+
+
+def _column(col, j: int) -> list[float]:
+    """Coordinate j of each vector of col (None: no vector) as a float, NaN where there is
+    none (what a float array of them holds: a None coordinate is NaN too)."""
+    nan = math.nan
+    try:
+        return [nan if F is None else float(F[j]) for F in col]
+    except TypeError:
+        return [nan if F is None or F[j] is None else float(F[j]) for F in col]
+
+
+def _negated(F) -> tuple[float, float]:
+    """-F of a vector (x, y) as floats (a None coordinate: NaN)."""
+    return tuple(math.nan if c is None else -float(c) for c in F[:2])
 
 
 def forces_grid(results: dict, lang: str = "en") -> dict | None:
@@ -89,7 +102,7 @@ def forces_grid(results: dict, lang: str = "en") -> dict | None:
     st = results.get("structure") or {}
     if not d or not d.get("entries") or not st.get("links"):
         return None
-    from .sections.kinetostatics import group_forces, label_parts
+    from .sections.kinetostatics import group_force_data, label_parts
     entries = d["entries"]
     N = len(entries)
     links = {l["name"]: l for l in st["links"]}
@@ -108,13 +121,13 @@ def forces_grid(results: dict, lang: str = "en") -> dict | None:
         gi = {index_by_name[n] for n in g}
         items: dict = {}
         for i, e in enumerate(entries):
-            fs = group_forces(e, d, gi, index_by_name)
+            fs = group_force_data(e, d, gi, index_by_name)
             if guide is not None and d["balance"] in g and e.get("balancing_force") is not None:
-                fs.append(("P\u0000b", None, float(e["balancing_force"]) * guide, "balance"))
-            for name, _, F, kind in fs:
+                fs.append(("P\u0000b", None, float(e["balancing_force"]) * guide, False, "balance"))
+            for name, _, F, flip, kind in fs:
                 if name not in items:
                     items[name] = (kind, label_parts(name, lang), [None] * N)
-                items[name][2][i] = F
+                items[name][2][i] = _negated(F) if flip else F
         # the polygon's order: loads, then reactions (as the report's drawings)
         items = dict(sorted(items.items(), key=lambda t: t[1][0] == "reaction"))
         out_groups.append({"links": [index_by_name[n] for n in g], "crank": k == len(order) - 1,
@@ -129,8 +142,7 @@ def forces_grid(results: dict, lang: str = "en") -> dict | None:
     lev = []
     for name, (kind, sym, F, v) in lever.items():
         row = _vec_rows({name: (kind, sym, F)}, 5)[0]
-        vv = np.array([[np.nan, np.nan] if x is None else x for x in v], float)
-        row["vx"], row["vy"] = round_sig(vv[:, 0], 5), round_sig(vv[:, 1], 5)
+        row["vx"], row["vy"] = round_sig(_column(v, 0), 5), round_sig(_column(v, 1), 5)
         lev.append(row)
     key = "balancing_force" if force_bal else "balancing_moment"
     zkey = "zhukovsky_force" if force_bal else "zhukovsky_moment"

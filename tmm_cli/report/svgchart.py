@@ -23,7 +23,7 @@ from html import escape
 
 import numpy as np
 
-from .svgdraw import FONT, PT_PER_MM, _f, _w, css_color
+from .svgdraw import FONT, PT_PER_MM, _f, _w, css_color, trim
 
 MM_PER_PT = 1.0 / PT_PER_MM
 TAB10 = ("#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f",
@@ -572,13 +572,16 @@ def _polyline_d(X, Y) -> str:
     # Python floats and bools: formatted as the numpy scalars are, without making them
     for good, a, b in zip(ok.tolist(), X.tolist(), Y.tolist()):
         if good:
-            run.append(f"{_f(a)} {_f(b)}")
+            run.append(a)
+            run.append(b)
         elif run:
             parts.append(run)
             run = []
     if run:
         parts.append(run)
-    return "".join("M" + "L".join(r) for r in parts if len(r) > 1)
+    # each run's numbers written "%.2f" at once, trimmed as _f trims them (svgdraw.trim)
+    return trim("".join(("M" + "L".join(["%.2f %.2f"] * (len(r) // 2))) % tuple(r)
+                        for r in parts if len(r) > 2))
 
 
 def _text(x, y, s, size_mm, anchor, fill=None, rotate=False) -> str:

@@ -100,6 +100,25 @@ def block_corners(c, angle_deg: float, w: float, h: float) -> list[np.ndarray]:
     return [c + u * w / 2 + v * h / 2, c - u * w / 2 + v * h / 2,
             c - u * w / 2 - v * h / 2, c + u * w / 2 - v * h / 2]
 
+_TEXT_SIZES: dict[float, dict[str, str]] = {}
+
+
+def _text_sizes(size: float) -> dict[str, str]:
+    """The attributes of a label of font size ``size`` pt that depend on the size only
+    (Canvas.text, thousands of labels in a handful of sizes): made once per size."""
+    got = _TEXT_SIZES.get(size)
+    if got is None:
+        fs = size / PT_PER_MM
+        got = {"fs": f'font-size="{_f(fs)}"',
+               "sub": f'<tspan dy="{_f(0.3 * fs)}" font-size="{_f(0.72 * fs)}">',
+               "sup": f'<tspan dy="{_f(-0.4 * fs)}" font-size="{_f(0.72 * fs)}">',
+               "after_sub": f'<tspan dy="{_f(-0.3 * fs)}" font-size="{_f(fs)}">',
+               "after_sup": f'<tspan dy="{_f(0.4 * fs)}" font-size="{_f(fs)}">'}
+        if len(_TEXT_SIZES) < 256:
+            _TEXT_SIZES[size] = got
+    return got
+
+
 class Canvas:
     """A drawing of width_mm x height_mm; see the module docstring."""
 
@@ -187,7 +206,8 @@ class Canvas:
         (M + sub 'Φ2' -> M_Φ2); after: normal text after the sub/sup ('μ' 'F' ' = 5 N/mm')."""
         fs = size / PT_PER_MM
         yb = self._y(y) + (0.35 * fs if vcenter else 0.0)
-        attrs = [f'x="{_f(x)}"', f'y="{_f(yb)}"', f'font-size="{_f(fs)}"']
+        fsz = _text_sizes(size)
+        attrs = [f'x="{_f(x)}"', f'y="{_f(yb)}"', fsz["fs"]]
         if anchor != "start":
             attrs.append(f'text-anchor="{anchor}"')
         color = css_color(color)
@@ -199,11 +219,11 @@ class Canvas:
             attrs.append('font-weight="bold"')
         body = escape(s)
         if sub:
-            body += f'<tspan dy="{_f(0.3 * fs)}" font-size="{_f(0.72 * fs)}">{escape(sub)}</tspan>'
+            body += f'{fsz["sub"]}{escape(sub)}</tspan>'
         elif sup:
-            body += f'<tspan dy="{_f(-0.4 * fs)}" font-size="{_f(0.72 * fs)}">{escape(sup)}</tspan>'
+            body += f'{fsz["sup"]}{escape(sup)}</tspan>'
         if after and (sub or sup):
-            body += f'<tspan dy="{_f(-0.3 * fs if sub else 0.4 * fs)}" font-size="{_f(fs)}">{escape(after)}</tspan>'
+            body += f'{fsz["after_sub" if sub else "after_sup"]}{escape(after)}</tspan>'
         elif after:
             body += escape(after)
         el = f'<text {" ".join(attrs)}>{body}</text>'
@@ -252,9 +272,12 @@ class Canvas:
             return
         sgn = 1.0 if M > 0 else -1.0
         t = np.linspace(math.radians(200), math.radians(200) + sgn * math.radians(260), 24)
-        pts = [np.asarray(c, float) + r * np.array([math.cos(a), math.sin(a)]) for a in t]
+        # in plain floats: the same operations, x and y apart, as on 2-vectors
+        cx, cy = (float(v) for v in np.asarray(c, float))
+        pts = [(cx + r * math.cos(a), cy + r * math.sin(a)) for a in t.tolist()]
+        (x1, y1), (x2, y2) = pts[-1], pts[-2]
         self.polyline(pts[:-2], color, width, z=z)
-        self.arrow(pts[-3], pts[-1] + (pts[-1] - pts[-2]) * 0.5, color, width, head=1.8, z=z)
+        self.arrow(pts[-3], (x1 + (x1 - x2) * 0.5, y1 + (y1 - y2) * 0.5), color, width, head=1.8, z=z)
 
     # ------------------------------------------------------------ output
     def to_svg(self) -> str:

@@ -42,6 +42,17 @@ I18N = {
 COLORS = {"abs": "#000000", "rel": "#595959", "n": "#1f5fbf", "t": "#c0392b", "k": "#1e8449", "r": "#8e44ad"}
 
 
+def _median(values) -> float:
+    """np.median of a list of numbers, bit for bit (the middle value, or the mean of the
+    two middle ones; NaN if any is NaN), without numpy's median: its NaN check imports
+    numpy.ma (~20 ms of the report)."""
+    s = sorted(float(v) for v in values)
+    if any(v != v for v in s):
+        return math.nan
+    m = len(s) // 2
+    return s[m] if len(s) % 2 else (s[m - 1] + s[m]) / 2
+
+
 def _pxy(e, p):
     d = e["points"][p]
     return np.array([float(d["x"]), float(d["y"])])
@@ -352,7 +363,7 @@ def build(ctx) -> str | None:
     if rel:
         scale_rows.append((ctx.t("kin.reading"),
                            ctx.t("kin.reading_val", ev=f"{0.5 * mu_v:g}", ea=f"{0.5 * mu_a:g}",
-                                 med=ctx.fmt_fixed(100 * float(np.median(rel)), 2),
+                                 med=ctx.fmt_fixed(100 * _median(rel), 2),
                                  top=ctx.fmt_fixed(100 * max(rel), 1))))
     pos_rows = []
     if res_pos:

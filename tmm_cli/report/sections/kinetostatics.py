@@ -174,11 +174,18 @@ def group_forces(e: dict, info: dict, group_idx: set[int], index_by_name: dict, 
     """Forces on the links ``group_idx`` in position entry ``e``: their loads, then the
     reactions of the links outside the group (R_ji = -R_ij), then, for a balancing
     force on a slider of the group, P_b along its guide.  -> [(name, point (2,), F (2,), kind)]."""
+    return [(name, np.array(pt, float), -np.array(F, float) if flip else np.array(F, float), kind)
+            for name, pt, F, flip, kind in group_force_data(e, info, group_idx, index_by_name)]
+
+
+def group_force_data(e: dict, info: dict, group_idx: set[int], index_by_name: dict):
+    """group_forces' forces as the results give them (no arrays made):
+    -> [(name, point, F (x, y), reversed: F acts as -F, kind)]."""
     out = []
     for f in e.get("loads", []):
         li = index_by_name.get(f["link"])
         if li in group_idx:
-            out.append((f["name"], np.array(f["point"], float), np.array(f["F"], float), f["kind"]))
+            out.append((f["name"], f["point"], f["F"], False, f["kind"]))
     for j in info["joints"]:
         a, b = j["a"], j["b"]
         if (a in group_idx) == (b in group_idx):
@@ -186,12 +193,11 @@ def group_forces(e: dict, info: dict, group_idx: set[int], index_by_name: dict, 
         r = e["reactions"][j["key"]]
         if r.get("x") is None:
             continue
-        F = np.array([r["x"], r["y"]], float)
         pt = r.get("point") or r.get("pin")
         if b in group_idx:
-            out.append((f"R{a}{b}", np.array(pt, float), F, "reaction"))
+            out.append((f"R{a}{b}", pt, (r["x"], r["y"]), False, "reaction"))
         else:
-            out.append((f"R{b}{a}", np.array(pt, float), -F, "reaction"))
+            out.append((f"R{b}{a}", pt, (r["x"], r["y"]), True, "reaction"))
     return out
 
 
