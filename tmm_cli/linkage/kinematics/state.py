@@ -60,6 +60,7 @@ class State:
         self._gd: dict[int, tuple] = {}       # id(PCon) -> (g, (psi, e)): guide directions
         self._pd: dict[tuple, tuple] = {}     # (b, u) -> point_d(b, u)
         self._sq: dict[int, np.ndarray] = {}  # b -> th1_b ** 2 (shared, read-only)
+        self._dcols: dict[int, tuple] = {}    # b -> _cols(b)
         # b -> the one value of th_b where it is a constant (a slider on a fixed guide)
         self.const_th: dict[int, float] = {}
         self._rotated: dict[tuple, np.ndarray] = {}  # (b, u) -> rot(b, u), few positions only
@@ -94,12 +95,14 @@ class State:
         self.o1[b] = o1
         self.th1[b] = th1
         self._sq.pop(b, None)
+        self._dcols.pop(b, None)
         if self._pd:
             self._forget(b)
 
     def set_d2(self, b, o2, th2):
         self.o2[b] = o2
         self.th2[b] = th2
+        self._dcols.pop(b, None)
         if self._pd:
             self._forget(b)
 
@@ -117,12 +120,13 @@ class State:
         in place of set_d1 / set_d2)."""
         self._pd.clear()
         self._sq.clear()
+        self._dcols.clear()
 
     def release(self, b: int) -> None:
         """Forget body b's origin and its derivatives and the cosine and sine of its
         angle (kept: the angle and its derivatives); for a State whose points are all
         taken, to hold less memory while the results are being built."""
-        for d in (self.o, self.o1, self.o2, self._cs, self._csk, self._sq):
+        for d in (self.o, self.o1, self.o2, self._cs, self._csk, self._sq, self._dcols):
             d.pop(b, None)
         for k in [k for k in self._rotated if k[0] == b]:
             del self._rotated[k]
@@ -202,6 +206,14 @@ class State:
             hit = self._pd[key] = self._point_d(b, u)
         return hit
 
+    def _cols(self, b: int) -> tuple:
+        """Body b's derivative columns (o1x, o1y, o2x, o2y), taken once per derivatives."""
+        hit = self._dcols.get(b)
+        if hit is None:
+            o1, o2 = self.o1[b], self.o2[b]
+            hit = self._dcols[b] = (o1[:, 0], o1[:, 1], o2[:, 0], o2[:, 1])
+        return hit
+
     def _point_d(self, b: int, u):
         N = self.N
         u0, u1 = float(u[0]), float(u[1])
@@ -216,18 +228,25 @@ class State:
         t2 = self.th2[b]
         o, o1, o2 = self.o[b], self.o1[b], self.o2[b]
         if N < WORK_ROWS_FROM:
-            # few positions: the fewest numpy calls
+            # few positions: the fewest numpy calls, the temporaries in the outputs' rows,
+            # the body's derivative columns taken once per derivatives
             ru = self.rot(b, u)
             rx, ry = ru[:, 0], ru[:, 1]
-            t11 = self.th1_sq(b)
+            o1x, o1y, o2x, o2y = self._cols(b)
             p = o + ru
-            d1 = pairs(N)
-            np.subtract(o1[:, 0], t1 * ry, out=d1[:, 0])
-            np.add(o1[:, 1], t1 * rx, out=d1[:, 1])
-            d2 = pairs(N)
-            np.subtract(o2[:, 0], t2 * ry + t11 * rx, out=d2[:, 0])
-            np.add(o2[:, 1], t2 * rx - t11 * ry, out=d2[:, 1])
-            return p, d1, d2
+            mul, add, sub = np.multiply, np.add, np.subtract
+            D1 = np.empty((2, N))
+            x, y = D1[0], D1[1]
+            sub(o1x, mul(t1, ry, x), x)                 # o1x - t1 ry
+            add(o1y, mul(t1, rx, y), y)                 # o1y + t1 rx
+            D2 = np.empty((2, N))
+            x, y = D2[0], D2[1]
+            t11 = self.th1_sq(b)
+            tmp = mul(t11, rx)
+            sub(o2x, add(mul(t2, ry, x), tmp, x), x)    # o2x - (t2 ry + t11 rx)
+            mul(t11, ry, tmp)
+            add(o2y, sub(mul(t2, rx, y), tmp, y), y)    # o2y + (t2 rx - t11 ry)
+            return p, D1.T, D2.T
         # many positions: the same operations, the temporaries in four scratch rows
         rx, ry, tmp = np.empty((3, N))
         c, s = self.cs(b)
@@ -271,6 +290,7 @@ class State:
         sub._gd = {}
         sub._pd = {}
         sub._sq = {}
+        sub._dcols = {}
         sub.const_th = {}
         sub._rotated = {}
         return sub
