@@ -62,6 +62,7 @@ class Solver:
         cq = np.array(crank.local[self.pin], float)
         self.alpha0 = math.atan2(cq[1] - self.cp[1], cq[0] - self.cp[0])
         self.pivot = np.array(mech.ground[self.piv], float)
+        self.pivot2 = self.pivot.reshape(2, 1)             # (2, 1): broadcasts over a (2, N) block
         sizes = [lk.length or 0.0 for lk in mech.links]
         for lk in mech.links:
             sizes += [math.hypot(*u) for u in lk.local.values()]
@@ -107,24 +108,29 @@ class Solver:
         return PCon(s, g, a, c0, j)
 
     def _crank(self, st: State, phi: np.ndarray) -> None:
+        """The crank's pose and derivatives: th = phi - alpha0, o = pivot - R u (u its
+        pivot's local coordinates), o' = -J R u, o'' = R u; the pairs as (2, N) blocks
+        (their transposes, see state.pairs)."""
+        N = len(phi)
         th = phi - self.alpha0
-        c, s = np.cos(th), np.sin(th)
+        CS = np.empty((2, N))
+        c, s = CS[0], CS[1]
+        np.cos(th, out=c)
+        np.sin(th, out=s)
         u0, u1 = self.cp
-        ru = pairs(len(th))
-        np.subtract(c * u0, s * u1, out=ru[:, 0])
-        np.add(s * u0, c * u1, out=ru[:, 1])
-        o1 = pairs(len(th))                     # -J R u
-        o1[:, 0] = ru[:, 1]
-        np.negative(ru[:, 0], out=o1[:, 1])
+        R = CS * u0                             # (c u0, s u0)
+        T = CS[::-1] * u1                       # (s u1, c u1)
+        np.subtract(R[0], T[0], out=R[0])       # c u0 - s u1
+        np.add(R[1], T[1], out=R[1])            # s u0 + c u1
+        O1 = T                                  # -J R u: (R u_y, -R u_x)
+        O1[0] = R[1]
+        np.negative(R[0], out=O1[1])
         d = self.mech.drive
-        o = pairs(len(th))
-        np.subtract(self.pivot[0], ru[:, 0], out=o[:, 0])
-        np.subtract(self.pivot[1], ru[:, 1], out=o[:, 1])
-        st.set_pose(d, o, th, (c, s))
-        one = np.empty(len(phi))
+        st.set_pose(d, np.subtract(self.pivot2, R).T, th, (c, s))
+        one = np.empty(N)
         one.fill(1.0)
-        st.set_d1(d, o1, one)
-        st.set_d2(d, ru, np.zeros(len(phi)))
+        st.set_d1(d, O1.T, one)
+        st.set_d2(d, R.T, np.zeros(N))
 
     # ------------------------------------------------------------------ run
     def run(self, phi: np.ndarray, upto: int | None = None, derivs: bool = True, strict: bool = True,

@@ -31,6 +31,19 @@ import numpy as np
 WORK_ROWS_FROM = 1024    # positions: from this many on, fewer temporaries (memory) rather than fewer calls
 
 
+def const(x) -> np.ndarray:
+    """The float x as a read-only 0-d float64 array: a ufunc takes it without a Python
+    scalar's conversion (a fraction of the call's cost at few positions), the same float64
+    arithmetic bit for bit."""
+    a = np.array(float(x))
+    a.flags.writeable = False
+    return a
+
+
+ZERO = const(0.0)
+ONE = const(1.0)
+
+
 def pairs(N: int) -> np.ndarray:
     """An (N, 2) array of x, y pairs held column by column (the transpose of a (2, N) one): an
     operation on its x or y column runs on contiguous memory."""
