@@ -71,12 +71,12 @@ class State:
         self._cs: dict[int, tuple[np.ndarray, np.ndarray]] = {}
         self._csk: dict[int, tuple[np.ndarray, np.ndarray]] = {}   # given to set_pose
         self._gd: dict[int, tuple] = {}       # id(PCon) -> (g, (psi, e)): guide directions
-        self._pd: dict[tuple, tuple] = {}     # (b, u) -> point_d(b, u)
+        self._pd: dict[int, dict] = {}        # b -> {u: point_d(b, u)}
         self._sq: dict[int, np.ndarray] = {}  # b -> th1_b ** 2 (shared, read-only)
         self._dcols: dict[int, tuple] = {}    # b -> _cols(b)
         # b -> the one value of th_b where it is a constant (a slider on a fixed guide)
         self.const_th: dict[int, float] = {}
-        self._rotated: dict[tuple, np.ndarray] = {}  # (b, u) -> rot(b, u), few positions only
+        self._rotated: dict[int, dict] = {}   # b -> {u: rot(b, u)} (few positions, or share_rot)
         # boolean mask of the positions where a group's velocity equations are singular
         # (their derivatives the mean of the two sides), None where there are none
         self.singular: np.ndarray | None = None
@@ -87,37 +87,28 @@ class State:
         self.th[b] = th
         self._cs.pop(b, None)
         self.const_th.pop(b, None)
-        if self._rotated:
-            for k in [k for k in self._rotated if k[0] == b]:
-                del self._rotated[k]
+        self._rotated.pop(b, None)
         if cs is None:
             self._csk.pop(b, None)
         else:
             self._csk[b] = cs
-        if self._pd:
-            self._forget(b)
+        self._pd.pop(b, None)
         if self._gd:
             for k in [k for k, (g, _) in self._gd.items() if g == b]:
                 del self._gd[k]
-
-    def _forget(self, b: int) -> None:
-        for k in [k for k in self._pd if k[0] == b]:
-            del self._pd[k]
 
     def set_d1(self, b, o1, th1):
         self.o1[b] = o1
         self.th1[b] = th1
         self._sq.pop(b, None)
         self._dcols.pop(b, None)
-        if self._pd:
-            self._forget(b)
+        self._pd.pop(b, None)
 
     def set_d2(self, b, o2, th2):
         self.o2[b] = o2
         self.th2[b] = th2
         self._dcols.pop(b, None)
-        if self._pd:
-            self._forget(b)
+        self._pd.pop(b, None)
 
     def th1_sq(self, b: int) -> np.ndarray:
         """th1_b ** 2 (= th1_b * th1_b), computed once per first derivatives of b (shared,
@@ -139,11 +130,8 @@ class State:
         """Forget body b's origin and its derivatives and the cosine and sine of its
         angle (kept: the angle and its derivatives); for a State whose points are all
         taken, to hold less memory while the results are being built."""
-        for d in (self.o, self.o1, self.o2, self._cs, self._csk, self._sq, self._dcols):
+        for d in (self.o, self.o1, self.o2, self._cs, self._csk, self._sq, self._dcols, self._rotated, self._pd):
             d.pop(b, None)
-        for k in [k for k in self._rotated if k[0] == b]:
-            del self._rotated[k]
-        self._forget(b)
 
     def guide(self, con) -> tuple[np.ndarray, np.ndarray]:
         """(psi, e) of prismatic pair ``con``: its guide's direction psi = th_g + a (N,)
@@ -183,25 +171,26 @@ class State:
         """R(th_b) u -> (N, 2) (read-only use: with few positions it is computed once per
         pose of b and shared; with many, once unless given by share_rot)."""
         u0, u1 = float(u[0]), float(u[1])
-        key = (b, u0, u1)
-        hit = self._rotated.get(key)
+        got = self._rotated.get(b)
+        hit = None if got is None else got.get((u0, u1))
         if hit is None:
             hit = self._rot(b, u0, u1)
             if self.N < WORK_ROWS_FROM:
-                self._rotated[key] = hit
+                self._rotated.setdefault(b, {})[(u0, u1)] = hit
         return hit
 
     def share_rot(self, b: int, u, ru: np.ndarray) -> None:
         """rot(b, u) is ``ru`` (computed by the caller from the pose just set, by the same
         operations)."""
-        self._rotated[(b, float(u[0]), float(u[1]))] = ru
+        self._rotated.setdefault(b, {})[(float(u[0]), float(u[1]))] = ru
 
     def _rot(self, b: int, u0: float, u1: float) -> np.ndarray:
         c, s = self.cs(b)
         out = pairs(self.N)
         if u1 == 0.0:
-            np.multiply(c, u0, out=out[:, 0])
-            np.multiply(s, u0, out=out[:, 1])
+            k0 = np.array(u0)               # (a 0-d array: no scalar conversion per call)
+            np.multiply(c, k0, out[:, 0])
+            np.multiply(s, k0, out[:, 1])
         else:
             out[:, 0] = c * u0 - s * u1
             out[:, 1] = s * u0 + c * u1
@@ -213,10 +202,13 @@ class State:
     def point_d(self, b: int, u):
         """Position, first and second phi-derivatives of a point fixed on body b
         (computed once per pose and derivatives of b: the arrays are shared, read-only)."""
-        key = (b, float(u[0]), float(u[1]))
-        hit = self._pd.get(key)
+        key = (float(u[0]), float(u[1]))
+        got = self._pd.get(b)
+        if got is None:
+            got = self._pd[b] = {}
+        hit = got.get(key)
         if hit is None:
-            hit = self._pd[key] = self._point_d(b, u)
+            hit = got[key] = self._point_d(b, u)
         return hit
 
     def _cols(self, b: int) -> tuple:
@@ -312,10 +304,10 @@ class State:
 def scale(x, v):
     """x[:, None] * v for x (N,) and v (N, 2), column by column (a broadcast over the
     last axis of length 2 runs numpy's inner loop two elements at a time)."""
-    out = pairs(len(x))
-    np.multiply(x, v[:, 0], out=out[:, 0])
-    np.multiply(x, v[:, 1], out=out[:, 1])
-    return out
+    out = np.empty((2, len(x)))
+    np.multiply(x, v[:, 0], out[0])
+    np.multiply(x, v[:, 1], out[1])
+    return out.T
 
 
 def unit(ang):
@@ -386,10 +378,7 @@ class RCon:
                 continue
             # g -= (sg th1^2) R u with sg = +-1: g - (-y) is g + y to the bit
             t = scale(st.th1_sq(b), st.rot(b, u) if ru is None else ru[b])
-            if sub:
-                g -= t
-            else:
-                g += t
+            (np.subtract if sub else np.add)(g, t, g)
         return g
 
 
