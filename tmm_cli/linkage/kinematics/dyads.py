@@ -585,7 +585,8 @@ class _FixedSlide:
         X, Y, k = self.X, self.Y, self.k
         e0, e1 = k["e0"], k["e1"]
         add, sub, mul = np.add, np.subtract, np.multiply
-        P1 = DyadPlan._ext(X, self.ex, st)[1]
+        K = self.K                          # DyadPlan._ext: X's pivot
+        P1 = st.point_d(K, self.uK)[0] if K in st.th1 else st.point(K, self.uK)
         px, py = P1[:, 0], P1[:, 1]
         w0 = sub(k["cx"], px)
         w1 = sub(k["cy"], py)
@@ -763,7 +764,7 @@ class _GroundRRR:
         k = self.k
         add, sub, mul = np.add, np.subtract, np.multiply
         P = (st.point_d(K, self.uK)[0] if K in st.th1 else st.point(K, self.uK)).T
-        G = self._ground(N)
+        G = self._ground(N) if N < WORK_ROWS_FROM else self.G      # (many positions: less memory)
         P1, P3 = (P, G) if self.ground_b else (G, P)
         D = P3 - P1
         Dx, Dy = D[0], D[1]
@@ -801,7 +802,7 @@ class _GroundRRR:
 
     @staticmethod
     def _set(st: State, X: int, P, u, ku, th) -> None:
-        """DyadPlan._set_from_point: X turned by th, its point u at P ((2, N)); ``ku``: u's
+        """DyadPlan._set_from_point: X turned by th, its point u at P ((2, N) or (2, 1)); ``ku``: u's
         coordinates as 0-d arrays; R u of the derivatives shared where State.rot takes it
         as here (u = (u0, 0))."""
         N = st.N
@@ -810,10 +811,15 @@ class _GroundRRR:
         np.cos(th, c)
         np.sin(th, s)
         ru = np.multiply(cs, ku[0])          # (c u0, s u0)
-        t = np.multiply(cs, ku[1])           # (c u1, s u1)
-        o = np.empty((2, N))
-        np.subtract(ru[0], t[1], o[0])       # c u0 - s u1
-        np.add(ru[1], t[0], o[1])            # s u0 + c u1
+        if N < WORK_ROWS_FROM:
+            t = np.multiply(cs, ku[1])       # (c u1, s u1)
+            o = np.empty((2, N))
+            np.subtract(ru[0], t[1], o[0])   # c u0 - s u1
+            np.add(ru[1], t[0], o[1])        # s u0 + c u1
+        else:                                # many positions: in place, one block less
+            o = np.multiply(cs[::-1], ku[1])     # (s u1, c u1)
+            np.subtract(ru[0], o[0], o[0])
+            np.add(ru[1], o[1], o[1])
         st.set_pose(X, np.subtract(P, o, o).T, th, (c, s))
         if float(u[1]) == 0.0:
             st.share_rot(X, u, ru.T)
