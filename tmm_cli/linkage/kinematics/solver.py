@@ -34,7 +34,7 @@ from ..structure import Group, analyze
 from . import newton as nw
 from .dyads import DyadPlan, dyad_derivatives
 from .result import KinematicsResult
-from .state import WORK_ROWS_FROM, ZERO, PCon, RCon, State, const, pairs, zero_pairs
+from .state import WORK_ROWS_FROM, ZERO, PCon, RCon, State, const, zero_pairs
 
 MARCH_STEP = 1.0          # deg, the Newton groups' path over the cycle
 CONT_DELTA = 1e-6         # deg, singular positions: mean of +-CONT_DELTA
