@@ -430,6 +430,36 @@ def test_plain_summary_is_what_rich_prints(monkeypatch, capsys):
     assert real("tmm: x", [("a", "b")], [], []) is None
 
 
+_SPECIAL = [0.0, -0.0, 1.0, -1.0, 1e-300, -5e-324, 1e300, -1e308, math.pi, float("inf"), -float("inf")]
+
+
+@settings(max_examples=200, deadline=None)
+@given(x=hst.one_of(hst.sampled_from(_SPECIAL), hst.floats(allow_nan=False)), seed=hst.integers(0, 2 ** 16))
+def test_zero_d_constants_give_the_python_floats_bits(x, seed):
+    """The kinematics passes its constants to numpy as 0-d arrays (state.const: no scalar
+    conversion per call): every ufunc it so calls gives the bits the Python float gives, on
+    either side, into a new array or in place, signed zeros, infinities, subnormals and NaN
+    among the operands; a comparison the same mask."""
+    from numpy._core.umath import clip
+    from tmm_cli.linkage.kinematics.state import const
+    rng = np.random.default_rng(seed)
+    a = np.concatenate([rng.normal(size=20) * 10.0 ** rng.uniform(-300, 300, 20), _SPECIAL, [np.nan]])
+    k = const(x)
+    assert np.asarray(k).tobytes() == np.float64(x).tobytes() and not k.flags.writeable
+    for f in (np.add, np.subtract, np.multiply, np.divide, np.maximum, np.minimum, np.arctan2, np.hypot):
+        with np.errstate(all="ignore"):
+            assert f(a, x).tobytes() == f(a, k).tobytes(), (f, x)
+            assert f(x, a).tobytes() == f(k, a).tobytes(), (f, x)
+            out = a.copy()
+            assert f(a, x).tobytes() == f(out, k, out=out).tobytes(), (f, x)
+    for f in (np.greater, np.greater_equal):
+        with np.errstate(all="ignore"):
+            assert np.array_equal(f(a, x), f(a, k)) and np.array_equal(f(x, a), f(k, a))
+    if x <= 1.0:
+        with np.errstate(all="ignore"):
+            assert np.clip(a, x, 1.0).tobytes() == clip(a, k, const(1.0)).tobytes()
+
+
 def test_clearly_regular_implies_the_exact_singularity_test():
     """dyad_derivatives' squared test (no hypot) passes only where the exact test
     |det| >= 1e-10 |cA| |cB| finds no singular position, at every scale; it passes on a

@@ -46,19 +46,21 @@ try:                                    # np.clip's ufunc, without its Python wr
 except ImportError:                     # numpy < 2
     from numpy.core.umath import clip as _clip
 
-from .state import WORK_ROWS_FROM, PCon, RCon, State, cross, dot, left, pairs, scale, unit
+from .state import ONE, WORK_ROWS_FROM, ZERO, PCon, RCon, State, const, cross, dot, left, pairs, scale, unit
+
+_TINY, _M1 = const(1e-300), const(-1.0)
 
 
 def _atan2(v):
     return np.arctan2(v[..., 1], v[..., 0])
 
 
-def _minus_const(x, k: float):
+def _minus_const(x, k: float, kc=None):
     """x - k for a float k; x itself when k is +0.0 (x - (+0.0) is x bit for bit, -0.0 and
-    NaN included)."""
+    NaN included); ``kc``: k as a 0-d array (see state.const), then in place in x."""
     if k == 0.0 and math.copysign(1.0, k) > 0:
         return x
-    return x - k
+    return x - k if kc is None else np.subtract(x, kc, x)
 
 
 def _cs(th):
@@ -343,18 +345,22 @@ def _clearly_regular(det, cA, cB) -> bool:
         return bool(np.all(det * det > q))
 
 
-def _inverse(cA, cB, st: State, dets: bool, bound: float | None = None):
+def _inverse(cA, cB, st: State, dets: bool, bound: float | None = None, kbound=None):
     """(1 / det, the singular mask) of a dyad's 2x2 system with the columns cA, cB: where
     |det| < 1e-10 |cA| |cB| the determinant is taken as +-1e-10 |cA| |cB| (its limit by
     continuity is taken afterwards); ``dets``: the normalised determinant in
     ``st.last_det`` too. ``bound``: a number that _clearly_regular's right-hand side
     (1.001e-20 |cA|^2 |cB|^2 + 1e-290, as it rounds) does not exceed at any position:
-    det^2 > bound everywhere implies its test, without forming the squares."""
+    det^2 > bound everywhere implies its test, without forming the squares (``kbound``:
+    bound as a 0-d array, see state.const)."""
     N = st.N
-    det = cA[0] * cB[1] - cA[1] * cB[0]
+    mul = np.multiply
+    det = mul(cA[0], cB[1])
+    np.subtract(det, mul(cA[1], cB[0]), det)
     # with a bound, at any N (three numpy calls against the exact test's eight); without,
     # the squares are worth their cost from WORK_ROWS_FROM positions on
-    if not dets and ((bound is not None and bool((det * det > bound).all()))
+    if not dets and ((bound is not None
+                      and np.count_nonzero(np.greater(mul(det, det), bound if kbound is None else kbound)) == N)
                      or (N >= WORK_ROWS_FROM and _clearly_regular(det, cA, cB))):
         sing = np.zeros(N, bool)           # what the test below gives there, without its two hypot
     else:
@@ -366,20 +372,21 @@ def _inverse(cA, cB, st: State, dets: bool, bound: float | None = None):
         if sing.any():
             det = np.where(sing, np.where(det >= 0, 1.0, -1.0) * np.maximum(nn, 1e-300) * 1e-10, det)
         del nn
-    return 1.0 / det, sing
+    return np.divide(ONE, det, det), sing
 
 
 def _cramer(r0, r1, cA, cB, inv):
     """Cramer's rule for the system with the columns cA, cB and the right-hand side
     (r0, r1), the products formed in place (the same operations)."""
-    x = r0 * cB[1]
-    t = r1 * cB[0]
-    np.subtract(x, t, out=x)
-    np.multiply(x, inv, out=x)
-    y = cA[0] * r1
-    np.multiply(cA[1], r0, out=t)
-    np.subtract(y, t, out=y)
-    np.multiply(y, inv, out=y)
+    mul, sub = np.multiply, np.subtract
+    x = mul(r0, cB[1])
+    t = mul(r1, cB[0])
+    sub(x, t, x)
+    mul(x, inv, x)
+    y = mul(cA[0], r1)
+    mul(cA[1], r0, t)
+    sub(y, t, y)
+    mul(y, inv, y)
     return x, y
 
 
@@ -557,6 +564,11 @@ class _FixedSlide:
         self.bound = 1.001e-20 * (big * big) * (1.0 + 1e-12) + 2e-290
         self.zero_rot = _zero_rot(self.uX1, self.uXC)
         self._bc = (0, None)
+        # the same numbers as 0-d arrays (a ufunc takes them without a scalar's conversion)
+        self.k = {n: const(getattr(self, n)) for n in ("lX", "lX2", "th0", "e0", "e1", "cx", "cy", "bx", "by",
+                                                       "bound")}
+        self.ku = (const(self.uX1[0]), const(self.uX1[1]))
+        self.cY = tuple(const(v) for v in self.cY)
 
     def _cs_y(self, N: int):
         """Y's (cos, sin) as State.guide gives them: one row broadcast (kept per N)."""
@@ -570,45 +582,51 @@ class _FixedSlide:
     def pose(self, st: State, sigma: float) -> np.ndarray:
         """DyadPlan._rrp of this dyad."""
         N = st.N
-        X, Y, e0, e1, cx, cy = self.X, self.Y, self.e0, self.e1, self.cx, self.cy
-        P1 = DyadPlan._ext(X, self.ex, st)[1]
+        X, Y, k = self.X, self.Y, self.k
+        e0, e1 = k["e0"], k["e1"]
+        add, sub, mul = np.add, np.subtract, np.multiply
+        K = self.K                          # DyadPlan._ext: X's pivot
+        P1 = st.point_d(K, self.uK)[0] if K in st.th1 else st.point(K, self.uK)
         px, py = P1[:, 0], P1[:, 1]
-        w0 = cx - px
-        w1 = cy - py
-        h = w0 * e1 - w1 * e0
-        margin = self.lX - np.abs(h)
-        root = np.sqrt(np.maximum(self.lX2 - h ** 2, 0.0))
-        d = np.multiply(w0, e0, out=w0)
-        d += np.multiply(w1, e1, out=w1)
+        w0 = sub(k["cx"], px)
+        w1 = sub(k["cy"], py)
+        h = mul(w0, e1)
+        sub(h, mul(w1, e0), h)
+        margin = sub(k["lX"], np.abs(h))
+        root = np.sqrt(np.maximum(sub(k["lX2"], h ** 2), ZERO))
+        d = mul(w0, e0, w0)
+        add(d, mul(w1, e1, w1), d)
         if sigma == 1.0:                    # -a + 1.0 r is r - a, bit for bit
-            s = np.subtract(root, d, out=root)
+            s = sub(root, d, root)
         else:
             s = -d + sigma * root
-        sx = s * e0
-        sy = np.multiply(s, e1, out=s)
+        sx = mul(s, e0)
+        sy = mul(s, e1, s)
         D = np.empty((N, 2))                # C - P1, strided as there (the arctangent's input)
         dx, dy = D[:, 0], D[:, 1]
-        np.add(cx, sx, out=dx)
-        dx -= px
-        np.add(cy, sy, out=dy)
-        dy -= py
-        th = _minus_const(np.arctan2(dy, dx), self.th0)
+        add(k["cx"], sx, dx)
+        sub(dx, px, dx)
+        add(k["cy"], sy, dy)
+        sub(dy, py, dy)
+        th = _minus_const(np.arctan2(dy, dx), self.th0, k["th0"])
         c, sn = np.cos(th), np.sin(th)
-        u0, u1 = self.uX1[0], self.uX1[1]
+        u0, u1 = self.ku
         o = pairs(N)
         ru = pairs(N)               # (c u0, s u0): R u1 as State.rot takes it when u1 = (u0, 0)
         cu, su = ru[:, 0], ru[:, 1]
-        np.multiply(c, u0, out=cu)
-        np.multiply(sn, u0, out=su)
-        np.subtract(px, np.subtract(cu, sn * u1), out=o[:, 0])
-        np.subtract(py, np.add(su, c * u1), out=o[:, 1])
+        mul(c, u0, cu)
+        mul(sn, u0, su)
+        sub(px, sub(cu, mul(sn, u1)), o[:, 0])
+        sub(py, add(su, mul(c, u1)), o[:, 1])
         st.set_pose(X, o, th, (c, sn))
-        if u1 == 0.0:                       # shared with the derivatives (State.rot)
+        if float(self.uX1[1]) == 0.0:       # shared with the derivatives (State.rot)
             st.share_rot(X, self.uX1, ru)
         oY = pairs(N)
-        np.add(self.bx, sx, out=oY[:, 0])
-        np.add(self.by, sy, out=oY[:, 1])
-        st.set_pose(Y, oY, np.full(N, self.psi), self._cs_y(N))
+        add(k["bx"], sx, oY[:, 0])
+        add(k["by"], sy, oY[:, 1])
+        thY = np.empty(N)
+        thY.fill(self.psi)
+        st.set_pose(Y, oY, thY, self._cs_y(N))
         st.const_th[Y] = self.psi
         return margin
 
@@ -624,13 +642,13 @@ class _FixedSlide:
         # X's column: (-J R u1) - (-J R uC) of the pair, +- by the pair's order
         a = ry - my
         b = mx - rx                          # (-rx) + mx
-        z1, z0 = (ry, rx) if self.zero_rot else (0.0 * my, 0.0 * mx)
+        z1, z0 = (ry, rx) if self.zero_rot else (np.multiply(ZERO, my), np.multiply(ZERO, mx))
         if not self.x_sign:
-            np.negative(a, out=a)
-            np.negative(b, out=b)
+            np.negative(a, a)
+            np.negative(b, b)
         cX, cY = (a, b), self.cY
         cA, cB = (cX, cY) if self.xa else (cY, cX)
-        inv, sing = _inverse(cA, cB, st, dets, self.bound)
+        inv, sing = _inverse(cA, cB, st, dets, self.bound, self.k["bound"])
         # first derivatives: -(V terms), V = (P1', 0) for X, (0, 0) for Y
         lX, lY = self._level(*self._rhs(P1[:, 0], P1[:, 1], z1, z0), cA, cB, inv)
         self._set(st.set_d1, N, lX, lY, P1[:, 0], P1[:, 1], rx, ry)
@@ -646,19 +664,20 @@ class _FixedSlide:
     def _rhs(self, t0, t1, z1, z0, gam=None):
         """The right-hand side -(X's terms + Y's (signed zeros) [+ gamma]) of the 2x2
         system, as _MidApply and neg_sum form it; (t0, t1): X's pose terms (V or W)."""
-        v0 = t0 - z1
-        v1 = t1 + z0
+        add, neg = np.add, np.negative
+        v0 = np.subtract(t0, z1)
+        v1 = add(t1, z0)
         if not self.x_sign:
-            np.negative(v0, out=v0)
-            np.negative(v1, out=v1)
+            neg(v0, v0)
+            neg(v1, v1)
         zY = self.zY
         if zY == 0.0 and math.copysign(1.0, zY) > 0:
-            np.add(v0, zY, out=v0)
-            np.add(v1, zY, out=v1)
+            add(v0, ZERO, v0)
+            add(v1, ZERO, v1)
         if gam is not None:
-            v0 += gam[:, 0]
-            v1 += gam[:, 1]
-        return np.negative(v0, out=v0), np.negative(v1, out=v1)
+            add(v0, gam[:, 0], v0)
+            add(v1, gam[:, 1], v1)
+        return neg(v0, v0), neg(v1, v1)
 
     def _level(self, r0, r1, cA, cB, inv):
         """(lambda of X, lambda of Y) by Cramer's rule."""
@@ -668,14 +687,17 @@ class _FixedSlide:
     def _set(self, set_d, N, lX, lY, W0, W1, rx, ry):
         """pose_d of X (U = (-J R u1, 1)) and of Y (U = (e, 0)), W = (W0, W1, 0) for X and
         (0, 0, 0) for Y; set by ``set_d`` (State.set_d1 or set_d2)."""
+        add, mul = np.add, np.multiply
         o = pairs(N)
-        np.add(ry * lX, W0, out=o[:, 0])
-        np.subtract(W1, rx * lX, out=o[:, 1])          # (-rx) lX + W1
-        set_d(self.X, o, lX + 0.0)
+        add(mul(ry, lX), W0, o[:, 0])
+        np.subtract(W1, mul(rx, lX), o[:, 1])          # (-rx) lX + W1
+        set_d(self.X, o, add(lX, ZERO))
         o = pairs(N)
-        np.add(self.e0 * lY, 0.0, out=o[:, 0])
-        np.add(self.e1 * lY, 0.0, out=o[:, 1])
-        set_d(self.Y, o, 0.0 * lY + 0.0)
+        k = self.k
+        add(mul(k["e0"], lY), ZERO, o[:, 0])
+        add(mul(k["e1"], lY), ZERO, o[:, 1])
+        t = mul(ZERO, lY)
+        set_d(self.Y, o, add(t, ZERO, t))
 
 
 class _GroundRRR:
@@ -717,98 +739,127 @@ class _GroundRRR:
         self.zrA, self.zrB = _zero_rot(self.uA1, self.uAC), _zero_rot(self.uB1, self.uBC)
         bA, bB = _column_bound(lA, self.uA1, self.uAC), _column_bound(lB, self.uB1, self.uBC)
         self.bound = 1.001e-20 * (bA * bA) * (bB * bB) * (1.0 + 1e-12) + 2e-290
+        # the same numbers as 0-d arrays (a ufunc takes them without a scalar's conversion)
+        self.k = {n: const(getattr(self, n)) for n in ("lA", "lsum", "ldiff", "lA2", "lB2", "tlA", "kA", "kB",
+                                                       "bound")}
+        self.kuA = (const(self.uA1[0]), const(self.uA1[1]))
+        self.kuB = (const(self.uB1[0]), const(self.uB1[1]))
+        self._gn = (0, None)
+
+    def _ground(self, N: int) -> np.ndarray:
+        """The ground pivot's (2, 1) coordinates repeated over N positions (kept per N):
+        the same values, an operation on two (2, N) blocks takes numpy's plain loop."""
+        n, g = self._gn
+        if n != N:
+            g = np.repeat(self.G, N, axis=1)
+            g.flags.writeable = False
+            self._gn = (N, g)
+        return g
 
     def pose(self, st: State, sigma: float) -> np.ndarray:
         """DyadPlan._rrr of this dyad, its (N, 2) pairs as (2, N) blocks (their transposes,
         see state.pairs: one numpy call for both coordinates)."""
         N = st.N
         K = self.K
+        k = self.k
+        add, sub, mul = np.add, np.subtract, np.multiply
         P = (st.point_d(K, self.uK)[0] if K in st.th1 else st.point(K, self.uK)).T
-        P1, P3 = (P, self.G) if self.ground_b else (self.G, P)
+        G = self._ground(N) if N < WORK_ROWS_FROM else self.G      # (many positions: less memory)
+        P1, P3 = (P, G) if self.ground_b else (G, P)
         D = P3 - P1
-        d = np.hypot(D[0], D[1])
-        margin = np.minimum(self.lsum - d, d - self.ldiff)
+        Dx, Dy = D[0], D[1]
+        d = np.hypot(Dx, Dy)
+        margin = np.minimum(sub(k["lsum"], d), sub(d, k["ldiff"]))
         # np.where(d > 1e-300, d, 1e-300): the same where d is not NaN (a NaN d makes the
         # numerator below NaN, and a division returns its first operand's NaN)
-        ds = np.maximum(d, 1e-300)
-        cg = np.multiply(d, d)
-        cg += self.lA2
-        cg -= self.lB2
-        ds *= self.tlA
-        cg /= ds
-        _clip(cg, -1.0, 1.0, out=cg)
-        ang = np.arctan2(D[1], D[0])
-        ac = np.arccos(cg, out=cg)
+        ds = np.maximum(d, _TINY)
+        cg = mul(d, d)
+        add(cg, k["lA2"], cg)
+        sub(cg, k["lB2"], cg)
+        mul(ds, k["tlA"], ds)
+        np.divide(cg, ds, cg)
+        _clip(cg, _M1, ONE, cg)
+        ang = np.arctan2(Dy, Dx)
+        ac = np.arccos(cg, cg)
         if sigma == 1.0:                     # beta + 1.0 a is beta + a, bit for bit
-            ang += ac
+            add(ang, ac, ang)
         elif sigma == -1.0:                  # beta + (-1.0) a is beta - a
-            ang -= ac
+            sub(ang, ac, ang)
         else:
             ang += sigma * ac
         C = np.empty((2, N))                 # P1 + lA (cos, sin)
-        np.cos(ang, out=C[0])
-        np.sin(ang, out=C[1])
-        C *= self.lA
-        C += P1
-        E = np.subtract(C, P1, out=D)
-        thA = _minus_const(np.arctan2(E[1], E[0]), self.kA)
-        E = np.subtract(C, P3, out=E)
-        thB = _minus_const(np.arctan2(E[1], E[0]), self.kB)
-        self._set(st, self.A, P1, self.uA1, thA)
-        self._set(st, self.B, P3, self.uB1, thB)
+        np.cos(ang, C[0])
+        np.sin(ang, C[1])
+        mul(C, k["lA"], C)
+        add(C, P1, C)
+        sub(C, P1, D)
+        thA = _minus_const(np.arctan2(Dy, Dx), self.kA, k["kA"])
+        sub(C, P3, D)
+        thB = _minus_const(np.arctan2(Dy, Dx), self.kB, k["kB"])
+        self._set(st, self.A, P1, self.uA1, self.kuA, thA)
+        self._set(st, self.B, P3, self.uB1, self.kuB, thB)
         return margin
 
     @staticmethod
-    def _set(st: State, X: int, P, u, th) -> None:
-        """DyadPlan._set_from_point: X turned by th, its point u at P ((2, N) or (2, 1));
-        R u of the derivatives shared where State.rot takes it as here (u = (u0, 0))."""
+    def _set(st: State, X: int, P, u, ku, th) -> None:
+        """DyadPlan._set_from_point: X turned by th, its point u at P ((2, N) or (2, 1)); ``ku``: u's
+        coordinates as 0-d arrays; R u of the derivatives shared where State.rot takes it
+        as here (u = (u0, 0))."""
         N = st.N
         cs = np.empty((2, N))
-        c, s = cs
-        np.cos(th, out=c)
-        np.sin(th, out=s)
-        u0, u1 = float(u[0]), float(u[1])
-        ru = cs * u0                         # (c u0, s u0)
-        t = cs[::-1] * u1                    # (s u1, c u1)
-        np.subtract(ru[0], t[0], out=t[0])
-        np.add(ru[1], t[1], out=t[1])
-        st.set_pose(X, np.subtract(P, t, out=t).T, th, (c, s))
-        if u1 == 0.0:
+        c, s = cs[0], cs[1]
+        np.cos(th, c)
+        np.sin(th, s)
+        ru = np.multiply(cs, ku[0])          # (c u0, s u0)
+        if N < WORK_ROWS_FROM:
+            t = np.multiply(cs, ku[1])       # (c u1, s u1)
+            o = np.empty((2, N))
+            np.subtract(ru[0], t[1], o[0])   # c u0 - s u1
+            np.add(ru[1], t[0], o[1])        # s u0 + c u1
+        else:                                # many positions: in place, one block less
+            o = np.multiply(cs[::-1], ku[1])     # (s u1, c u1)
+            np.subtract(ru[0], o[0], o[0])
+            np.add(ru[1], o[1], o[1])
+        st.set_pose(X, np.subtract(P, o, o).T, th, (c, s))
+        if float(u[1]) == 0.0:
             st.share_rot(X, u, ru.T)
 
     def derivatives(self, st: State, dets: bool) -> np.ndarray:
         """dyad_derivatives of this dyad."""
         N = st.N
         A, B, gb = self.A, self.B, self.ground_b
+        neg, sub = np.negative, np.subtract
         _, P1, P2 = st.point_d(self.K, self.uK)               # the moving pivot's derivatives
         rA, rB = st.rot(A, self.uA1), st.rot(B, self.uB1)
         mA, mB = st.rot(A, self.uAC), st.rot(B, self.uBC)
         rAx, rAy, rBx, rBy = rA[:, 0], rA[:, 1], rB[:, 0], rB[:, 1]
+        mAx, mAy, mBx, mBy = mA[:, 0], mA[:, 1], mB[:, 0], mB[:, 1]
         # the columns (_MidApply, t = 1.0): (ry - my, (-rx) + mx), +- by the pair's order
-        cA = (rAy - mA[:, 1], mA[:, 0] - rAx)
-        cB = (rBy - mB[:, 1], mB[:, 0] - rBx)
+        cA = (sub(rAy, mAy), sub(mAx, rAx))
+        cB = (sub(rBy, mBy), sub(mBx, rBx))
         for col in (cB if self.a_first else cA):
-            np.negative(col, out=col)
-        inv, sing = _inverse(cA, cB, st, dets, self.bound)
+            neg(col, col)
+        inv, sing = _inverse(cA, cB, st, dets, self.bound, self.k["bound"])
         # _MidApply's t = 0.0 terms (0 my, 0 mx): R u1's columns where they are the same bits
-        zA = (rAy, rAx) if self.zrA else (0.0 * mA[:, 1], 0.0 * mA[:, 0])
-        zB = (rBy, rBx) if self.zrB else (0.0 * mB[:, 1], 0.0 * mB[:, 0])
+        zA = (rAy, rAx) if self.zrA else (np.multiply(ZERO, mAy), np.multiply(ZERO, mAx))
+        zB = (rBy, rBx) if self.zrB else (np.multiply(ZERO, mBy), np.multiply(ZERO, mBx))
         (zM, fM), (zG, fG) = ((zA, self.a_first), (zB, not self.a_first)) if gb else \
             ((zB, not self.a_first), (zA, self.a_first))
         # the links' U = (-J R u1, 1): (ry, -rx) as (2, N) blocks
         UA, UB = _u_block(N, rAx, rAy), _u_block(N, rBx, rBy)
         # first derivatives: V = (P1', 0) for the moving pivot's link, (0, 0) for the ground's
         # (its _MidApply terms the signed zero zG)
-        vM = _mid_terms(P1[:, 0], P1[:, 1], zM, fM)
-        lA, lB = _cramer(*(_neg_sum(v, self.zG) for v in vM), cA, cB, inv)
+        P1x, P1y = P1[:, 0], P1[:, 1]
+        v0, v1 = _mid_terms(P1x, P1y, zM, fM)
+        lA, lB = _cramer(_neg_sum(v0, self.zG), _neg_sum(v1, self.zG), cA, cB, inv)
         V = P1.T
         _pose_d(st.set_d1, A, lA, UA, V if gb else 0.0)
         _pose_d(st.set_d1, B, lB, UB, 0.0 if gb else V)
         # second derivatives: W = (P'' + th1^2 R u1, 0), P'' = +0 for the ground's link (then
         # +0.0 + th1^2 R u1; with u1 = (+0, +0): W = (+0, +0), its terms the signed zero zG)
         qA, qB = st.th1_sq(A), st.th1_sq(B)
-        WA = P2.T + qA * rA.T if gb else _ground_w(qA, rA, self.zrA)
-        WB = _ground_w(qB, rB, self.zrB) if gb else P2.T + qB * rB.T
+        WA = np.add(P2.T, np.multiply(qA, rA.T)) if gb else _ground_w(qA, rA, self.zrA)
+        WB = _ground_w(qB, rB, self.zrB) if gb else np.add(P2.T, np.multiply(qB, rB.T))
         WM, WG = (WA, WB) if gb else (WB, WA)
         wM = _mid_terms(WM[0], WM[1], zM, fM)
         wG = (self.zG, self.zG) if isinstance(WG, float) else _mid_terms(WG[0], WG[1], zG, fG)
@@ -822,11 +873,11 @@ class _GroundRRR:
 def _mid_terms(t0, t1, z, first: bool):
     """_MidApply of a link turning about a known point with t = 0.0 (its V or W terms
     (t0, t1), z = (0 my, 0 mx)): (t0 - 0 my, t1 + 0 mx), negated for the pair's second body."""
-    a = t0 - z[0]
-    b = t1 + z[1]
+    a = np.subtract(t0, z[0])
+    b = np.add(t1, z[1])
     if not first:
-        np.negative(a, out=a)
-        np.negative(b, out=b)
+        np.negative(a, a)
+        np.negative(b, b)
     return a, b
 
 
@@ -835,12 +886,12 @@ def _neg_sum(a, b, c=None):
     a signed zero (an array of them broadcast: x + (-0.0) is x, x + (+0.0) turns -0 to +0)."""
     if isinstance(b, float) and b == 0.0:
         if math.copysign(1.0, b) > 0:
-            a += 0.0
+            np.add(a, ZERO, a)
     else:
-        a += b
+        np.add(a, b, a)
     if c is not None:
-        a += c
-    return np.negative(a, out=a)
+        np.add(a, c, a)
+    return np.negative(a, a)
 
 
 def _ground_w(q, r, zero: bool):
@@ -848,23 +899,22 @@ def _ground_w(q, r, zero: bool):
     +0.0 where R u1 is signed zeros (``zero``: u1 = (+0, +0); th1^2 is finite)."""
     if zero:
         return 0.0
-    w = q * r.T
-    w += 0.0
-    return w
+    w = np.multiply(q, r.T)
+    return np.add(w, ZERO, w)
 
 
 def _u_block(N: int, rx, ry) -> np.ndarray:
     """(ry, -rx): U's first two rows of a link turning about a known point (-J R u1)."""
     U = np.empty((2, N))
-    U[0] = ry
-    np.negative(rx, out=U[1])
+    U0, U1 = U[0], U[1]
+    np.copyto(U0, ry)
+    np.negative(rx, U1)
     return U
 
 
 def _pose_d(set_d, X: int, lx, U, W) -> None:
     """dyad_derivatives' pose_d of a link turning about a known point: U lx + W, its
     terms W = (W0, W1, 0) a (2, N) block or +0.0, set by ``set_d`` (set_d1 or set_d2)."""
-    o = U * lx
-    o += W
-    set_d(X, o.T, lx + 0.0)
-
+    o = np.multiply(U, lx)
+    np.add(o, ZERO if isinstance(W, float) else W, o)
+    set_d(X, o.T, np.add(lx, ZERO))

@@ -34,7 +34,7 @@ from ..structure import Group, analyze
 from . import newton as nw
 from .dyads import DyadPlan, dyad_derivatives
 from .result import KinematicsResult
-from .state import WORK_ROWS_FROM, PCon, RCon, State, pairs, zero_pairs
+from .state import WORK_ROWS_FROM, ZERO, PCon, RCon, State, const, zero_pairs
 
 MARCH_STEP = 1.0          # deg, the Newton groups' path over the cycle
 CONT_DELTA = 1e-6         # deg, singular positions: mean of +-CONT_DELTA
@@ -62,6 +62,10 @@ class Solver:
         cq = np.array(crank.local[self.pin], float)
         self.alpha0 = math.atan2(cq[1] - self.cp[1], cq[0] - self.cp[0])
         self.pivot = np.array(mech.ground[self.piv], float)
+        self.pivot2 = self.pivot.reshape(2, 1)             # (2, 1): broadcasts over a (2, N) block
+        # 0-d arrays of the crank's constants (a ufunc takes them without a scalar's conversion)
+        self.k_alpha0 = const(self.alpha0)
+        self.k_cp = (const(self.cp[0]), const(self.cp[1]))
         sizes = [lk.length or 0.0 for lk in mech.links]
         for lk in mech.links:
             sizes += [math.hypot(*u) for u in lk.local.values()]
@@ -70,6 +74,7 @@ class Solver:
             sizes.append(float(np.ptp(g, axis=0).max()))
         self.L = max(max(sizes), 1e-6)
         self.tol = 1e-9 * self.L
+        self.k_mtol = const(-self.tol)
         self.plans = []
         for grp in self.groups:
             cons = [self._con(j) for j in grp.joints]
@@ -107,24 +112,29 @@ class Solver:
         return PCon(s, g, a, c0, j)
 
     def _crank(self, st: State, phi: np.ndarray) -> None:
-        th = phi - self.alpha0
-        c, s = np.cos(th), np.sin(th)
-        u0, u1 = self.cp
-        ru = pairs(len(th))
-        np.subtract(c * u0, s * u1, out=ru[:, 0])
-        np.add(s * u0, c * u1, out=ru[:, 1])
-        o1 = pairs(len(th))                     # -J R u
-        o1[:, 0] = ru[:, 1]
-        np.negative(ru[:, 0], out=o1[:, 1])
+        """The crank's pose and derivatives: th = phi - alpha0, o = pivot - R u (u its
+        pivot's local coordinates), o' = -J R u, o'' = R u; the pairs as (2, N) blocks
+        (their transposes, see state.pairs)."""
+        N = len(phi)
+        th = np.subtract(phi, self.k_alpha0)
+        CS = np.empty((2, N))
+        c, s = CS[0], CS[1]
+        np.cos(th, c)
+        np.sin(th, s)
+        u0, u1 = self.k_cp
+        R = np.multiply(CS, u0)                 # (c u0, s u0)
+        T = np.multiply(CS, u1)                 # (c u1, s u1)
+        np.subtract(R[0], T[1], R[0])           # c u0 - s u1
+        np.add(R[1], T[0], R[1])                # s u0 + c u1
+        O1 = T                                  # -J R u: (R u_y, -R u_x)
+        np.copyto(O1[0], R[1])
+        np.negative(R[0], O1[1])
         d = self.mech.drive
-        o = pairs(len(th))
-        np.subtract(self.pivot[0], ru[:, 0], out=o[:, 0])
-        np.subtract(self.pivot[1], ru[:, 1], out=o[:, 1])
-        st.set_pose(d, o, th, (c, s))
-        one = np.empty(len(phi))
+        st.set_pose(d, np.subtract(self.pivot2, R).T, th, (c, s))
+        one = np.empty(N)
         one.fill(1.0)
-        st.set_d1(d, o1, one)
-        st.set_d2(d, ru, np.zeros(len(phi)))
+        st.set_d1(d, O1.T, one)
+        st.set_d2(d, R.T, np.zeros(N))
 
     # ------------------------------------------------------------------ run
     def run(self, phi: np.ndarray, upto: int | None = None, derivs: bool = True, strict: bool = True,
@@ -147,7 +157,7 @@ class Solver:
             else:
                 m = self._newton_vector(gi, st, phi)
             st.margins[gi] = m
-            if strict and not (m >= -self.tol).all():
+            if strict and np.count_nonzero(np.greater_equal(m, self.k_mtol)) != m.size:
                 raise self._assembly_error(gi, np.degrees(phi[~(m >= -self.tol)]))
             if derivs:
                 if isinstance(plan, DyadPlan):
@@ -163,7 +173,7 @@ class Solver:
     def _continuity(self, st: State, phi: np.ndarray, upto: int) -> None:
         sing = None
         for gi, s in st.sing.items():
-            if s.any():
+            if np.count_nonzero(s):
                 sing = s.copy() if sing is None else np.logical_or(sing, s, out=sing)
                 ang = np.unique(np.round(np.degrees(phi[s]) % 360, 6))[:8]
                 msg = Message("kinematics.singular_continuity", **self.groups[gi].message_params(),
@@ -534,12 +544,16 @@ def _unwrap(p: np.ndarray, inplace: bool = False) -> np.ndarray:
     return up
 
 
+_PI = const(math.pi)
+
+
 def _unwrap_rows(TH: np.ndarray) -> None:
     """_unwrap of every row of TH (B, N >= 2) in place: the same operations, a row at a
     time only where one jumps."""
-    dd = TH[:, 1:] - TH[:, :-1]
-    if not (np.abs(dd) >= math.pi).any():     # no jump in any row: the correction is zero
-        np.add(TH[:, 1:], 0.0, out=TH[:, 1:])
+    rest = TH[:, 1:]
+    dd = np.subtract(rest, TH[:, :-1])
+    if not np.count_nonzero(np.greater_equal(np.abs(dd, dd), _PI)):   # no jump in any row: no correction
+        np.add(rest, ZERO, rest)
         return
     for row in TH:
         _unwrap(row, inplace=True)
@@ -684,7 +698,8 @@ def _solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
     st = solver.run(np.radians(phi_deg))
     st.margins = st.sing = None     # (held memory only)
     N = len(phi_deg)
-    order = None if N < 2 or bool((phi_deg[1:] >= phi_deg[:-1]).all()) else np.argsort(phi_deg, kind="stable")
+    order = None if N < 2 or np.count_nonzero(np.greater_equal(phi_deg[1:], phi_deg[:-1])) == N - 1 \
+        else np.argsort(phi_deg, kind="stable")
     seen: set = set()
     if order is None and 2 <= N < WORK_ROWS_FROM:
         # few positions in order: the links' angles unwrapped at once, as the rows of one block
@@ -703,9 +718,10 @@ def _solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
             st.unwrap(b, _unwrap_sorted(th if own else np.asarray(th, float), order, inplace=own))
     pos, d1, d2 = {}, {}, {}
     for p, x, y in ground:
-        pos[p] = pairs(N)
-        pos[p][:, 0] = x
-        pos[p][:, 1] = y
+        g = np.empty((2, N))
+        g[0].fill(x)
+        g[1].fill(y)
+        pos[p] = g.T
         d1[p] = zero_pairs(N)
         d2[p] = zero_pairs(N)
     if N < WORK_ROWS_FROM:

@@ -31,6 +31,19 @@ import numpy as np
 WORK_ROWS_FROM = 1024    # positions: from this many on, fewer temporaries (memory) rather than fewer calls
 
 
+def const(x) -> np.ndarray:
+    """The float x as a read-only 0-d float64 array: a ufunc takes it without a Python
+    scalar's conversion (a fraction of the call's cost at few positions), the same float64
+    arithmetic bit for bit."""
+    a = np.array(float(x))
+    a.flags.writeable = False
+    return a
+
+
+ZERO = const(0.0)
+ONE = const(1.0)
+
+
 def pairs(N: int) -> np.ndarray:
     """An (N, 2) array of x, y pairs held column by column (the transpose of a (2, N) one): an
     operation on its x or y column runs on contiguous memory."""
@@ -58,11 +71,12 @@ class State:
         self._cs: dict[int, tuple[np.ndarray, np.ndarray]] = {}
         self._csk: dict[int, tuple[np.ndarray, np.ndarray]] = {}   # given to set_pose
         self._gd: dict[int, tuple] = {}       # id(PCon) -> (g, (psi, e)): guide directions
-        self._pd: dict[tuple, tuple] = {}     # (b, u) -> point_d(b, u)
+        self._pd: dict[int, dict] = {}        # b -> {u: point_d(b, u)}
         self._sq: dict[int, np.ndarray] = {}  # b -> th1_b ** 2 (shared, read-only)
+        self._dcols: dict[int, tuple] = {}    # b -> _cols(b)
         # b -> the one value of th_b where it is a constant (a slider on a fixed guide)
         self.const_th: dict[int, float] = {}
-        self._rotated: dict[tuple, np.ndarray] = {}  # (b, u) -> rot(b, u), few positions only
+        self._rotated: dict[int, dict] = {}   # b -> {u: rot(b, u)} (few positions, or share_rot)
         # boolean mask of the positions where a group's velocity equations are singular
         # (their derivatives the mean of the two sides), None where there are none
         self.singular: np.ndarray | None = None
@@ -73,35 +87,28 @@ class State:
         self.th[b] = th
         self._cs.pop(b, None)
         self.const_th.pop(b, None)
-        if self._rotated:
-            for k in [k for k in self._rotated if k[0] == b]:
-                del self._rotated[k]
+        self._rotated.pop(b, None)
         if cs is None:
             self._csk.pop(b, None)
         else:
             self._csk[b] = cs
-        if self._pd:
-            self._forget(b)
+        self._pd.pop(b, None)
         if self._gd:
             for k in [k for k, (g, _) in self._gd.items() if g == b]:
                 del self._gd[k]
-
-    def _forget(self, b: int) -> None:
-        for k in [k for k in self._pd if k[0] == b]:
-            del self._pd[k]
 
     def set_d1(self, b, o1, th1):
         self.o1[b] = o1
         self.th1[b] = th1
         self._sq.pop(b, None)
-        if self._pd:
-            self._forget(b)
+        self._dcols.pop(b, None)
+        self._pd.pop(b, None)
 
     def set_d2(self, b, o2, th2):
         self.o2[b] = o2
         self.th2[b] = th2
-        if self._pd:
-            self._forget(b)
+        self._dcols.pop(b, None)
+        self._pd.pop(b, None)
 
     def th1_sq(self, b: int) -> np.ndarray:
         """th1_b ** 2 (= th1_b * th1_b), computed once per first derivatives of b (shared,
@@ -117,16 +124,14 @@ class State:
         in place of set_d1 / set_d2)."""
         self._pd.clear()
         self._sq.clear()
+        self._dcols.clear()
 
     def release(self, b: int) -> None:
         """Forget body b's origin and its derivatives and the cosine and sine of its
         angle (kept: the angle and its derivatives); for a State whose points are all
         taken, to hold less memory while the results are being built."""
-        for d in (self.o, self.o1, self.o2, self._cs, self._csk, self._sq):
+        for d in (self.o, self.o1, self.o2, self._cs, self._csk, self._sq, self._dcols, self._rotated, self._pd):
             d.pop(b, None)
-        for k in [k for k in self._rotated if k[0] == b]:
-            del self._rotated[k]
-        self._forget(b)
 
     def guide(self, con) -> tuple[np.ndarray, np.ndarray]:
         """(psi, e) of prismatic pair ``con``: its guide's direction psi = th_g + a (N,)
@@ -166,25 +171,26 @@ class State:
         """R(th_b) u -> (N, 2) (read-only use: with few positions it is computed once per
         pose of b and shared; with many, once unless given by share_rot)."""
         u0, u1 = float(u[0]), float(u[1])
-        key = (b, u0, u1)
-        hit = self._rotated.get(key)
+        got = self._rotated.get(b)
+        hit = None if got is None else got.get((u0, u1))
         if hit is None:
             hit = self._rot(b, u0, u1)
             if self.N < WORK_ROWS_FROM:
-                self._rotated[key] = hit
+                self._rotated.setdefault(b, {})[(u0, u1)] = hit
         return hit
 
     def share_rot(self, b: int, u, ru: np.ndarray) -> None:
         """rot(b, u) is ``ru`` (computed by the caller from the pose just set, by the same
         operations)."""
-        self._rotated[(b, float(u[0]), float(u[1]))] = ru
+        self._rotated.setdefault(b, {})[(float(u[0]), float(u[1]))] = ru
 
     def _rot(self, b: int, u0: float, u1: float) -> np.ndarray:
         c, s = self.cs(b)
         out = pairs(self.N)
         if u1 == 0.0:
-            np.multiply(c, u0, out=out[:, 0])
-            np.multiply(s, u0, out=out[:, 1])
+            k0 = np.array(u0)               # (a 0-d array: no scalar conversion per call)
+            np.multiply(c, k0, out[:, 0])
+            np.multiply(s, k0, out[:, 1])
         else:
             out[:, 0] = c * u0 - s * u1
             out[:, 1] = s * u0 + c * u1
@@ -196,10 +202,21 @@ class State:
     def point_d(self, b: int, u):
         """Position, first and second phi-derivatives of a point fixed on body b
         (computed once per pose and derivatives of b: the arrays are shared, read-only)."""
-        key = (b, float(u[0]), float(u[1]))
-        hit = self._pd.get(key)
+        key = (float(u[0]), float(u[1]))
+        got = self._pd.get(b)
+        if got is None:
+            got = self._pd[b] = {}
+        hit = got.get(key)
         if hit is None:
-            hit = self._pd[key] = self._point_d(b, u)
+            hit = got[key] = self._point_d(b, u)
+        return hit
+
+    def _cols(self, b: int) -> tuple:
+        """Body b's derivative columns (o1x, o1y, o2x, o2y), taken once per derivatives."""
+        hit = self._dcols.get(b)
+        if hit is None:
+            o1, o2 = self.o1[b], self.o2[b]
+            hit = self._dcols[b] = (o1[:, 0], o1[:, 1], o2[:, 0], o2[:, 1])
         return hit
 
     def _point_d(self, b: int, u):
@@ -216,18 +233,25 @@ class State:
         t2 = self.th2[b]
         o, o1, o2 = self.o[b], self.o1[b], self.o2[b]
         if N < WORK_ROWS_FROM:
-            # few positions: the fewest numpy calls
+            # few positions: the fewest numpy calls, the temporaries in the outputs' rows,
+            # the body's derivative columns taken once per derivatives
             ru = self.rot(b, u)
             rx, ry = ru[:, 0], ru[:, 1]
-            t11 = self.th1_sq(b)
+            o1x, o1y, o2x, o2y = self._cols(b)
             p = o + ru
-            d1 = pairs(N)
-            np.subtract(o1[:, 0], t1 * ry, out=d1[:, 0])
-            np.add(o1[:, 1], t1 * rx, out=d1[:, 1])
-            d2 = pairs(N)
-            np.subtract(o2[:, 0], t2 * ry + t11 * rx, out=d2[:, 0])
-            np.add(o2[:, 1], t2 * rx - t11 * ry, out=d2[:, 1])
-            return p, d1, d2
+            mul, add, sub = np.multiply, np.add, np.subtract
+            D1 = np.empty((2, N))
+            x, y = D1[0], D1[1]
+            sub(o1x, mul(t1, ry, x), x)                 # o1x - t1 ry
+            add(o1y, mul(t1, rx, y), y)                 # o1y + t1 rx
+            D2 = np.empty((2, N))
+            x, y = D2[0], D2[1]
+            t11 = self.th1_sq(b)
+            tmp = mul(t11, rx)
+            sub(o2x, add(mul(t2, ry, x), tmp, x), x)    # o2x - (t2 ry + t11 rx)
+            mul(t11, ry, tmp)
+            add(o2y, sub(mul(t2, rx, y), tmp, y), y)    # o2y + (t2 rx - t11 ry)
+            return p, D1.T, D2.T
         # many positions: the same operations, the temporaries in four scratch rows
         rx, ry, tmp = np.empty((3, N))
         c, s = self.cs(b)
@@ -271,6 +295,7 @@ class State:
         sub._gd = {}
         sub._pd = {}
         sub._sq = {}
+        sub._dcols = {}
         sub.const_th = {}
         sub._rotated = {}
         return sub
@@ -279,10 +304,10 @@ class State:
 def scale(x, v):
     """x[:, None] * v for x (N,) and v (N, 2), column by column (a broadcast over the
     last axis of length 2 runs numpy's inner loop two elements at a time)."""
-    out = pairs(len(x))
-    np.multiply(x, v[:, 0], out=out[:, 0])
-    np.multiply(x, v[:, 1], out=out[:, 1])
-    return out
+    out = np.empty((2, len(x)))
+    np.multiply(x, v[:, 0], out[0])
+    np.multiply(x, v[:, 1], out[1])
+    return out.T
 
 
 def unit(ang):
@@ -353,10 +378,7 @@ class RCon:
                 continue
             # g -= (sg th1^2) R u with sg = +-1: g - (-y) is g + y to the bit
             t = scale(st.th1_sq(b), st.rot(b, u) if ru is None else ru[b])
-            if sub:
-                g -= t
-            else:
-                g += t
+            (np.subtract if sub else np.add)(g, t, g)
         return g
 
 
