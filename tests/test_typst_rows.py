@@ -46,7 +46,7 @@ HTML = "<html><head><title>t</title></head><body><section><h2>Tables</h2>" + "".
     '<div class="pair"><div>'
     + _table("compact wide", ["Vector", "Segment", "Length, mm", "Value, m/s²"],
              [[f"a<sub>B{k}</sub><sup>τ</sup>", f"πs₂{k}", "82.2", "4.112"] for k in range(12)]
-             + [[f"<b>v</b><sub>{k}</sub>", f"<span class='vec'>ab</span>", "1.0", "2"] for k in range(6)])
+             + [[f"<b>v</b><sub>{k}</sub>", "<span class='vec'>ab</span>", "1.0", "2"] for k in range(6)])
     + "</div><div>"
     + _table("compact wide", ["Вектор", "Отрезок", "Длина, мм", "Значение"],
              [[f"<i>ω</i><sub>{k}</sub>", "Щ", "-0.5", "1e-05"] for k in range(12)])
