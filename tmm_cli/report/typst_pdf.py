@@ -342,7 +342,7 @@ class _Writer:
         return "\n".join(out)
 
     @staticmethod
-    def widths(rows, ncols: int) -> str:
+    def widths(rows, ncols: int) -> list[str]:
         """Columns of a full-width table: text columns (a cell of more than a few words)
         share the free width, the others fit their content (as a browser lays out
         `width: 100%`); all equal when there is no text column."""
@@ -352,10 +352,10 @@ class _Writer:
                 if "num" not in c.classes and len(c.text().strip()) > 14:
                     text[j] = True
         if not any(text):
-            return f"({', '.join(['1fr'] * ncols)})"
-        return "(" + ", ".join("1fr" if t else "auto" for t in text) + ")"
+            return ["1fr"] * ncols
+        return ["1fr" if t else "auto" for t in text]
 
-    def fixed_rows(self, rows, nhead: int, one_line: list[bool], ncols: int, cols: str,
+    def fixed_rows(self, rows, nhead: int, one_line: list[bool], ncols: int, kinds: list[str],
                    compact: bool) -> str:
         """The ``rows:`` argument giving each body row that is one line of text in every cell
         its height outright: Typst then lays its cells out once instead of measuring them
@@ -390,10 +390,6 @@ class _Writer:
             if b > a and w > sum(need[a:b]):
                 need[b - 1] += w - sum(need[a:b])
         free = self.width * 0.97            # strokes and rounding
-        if cols.startswith("("):
-            kinds = [k.strip() for k in cols.strip("()").split(",") if k.strip()]
-        else:
-            kinds = ["auto"] * ncols
         auto = sum(n for n, k in zip(need, kinds) if k == "auto")
         nfr = sum(1 for k in kinds if k == "1fr")
         if auto > free or (nfr and auto >= free):
@@ -483,8 +479,9 @@ class _Writer:
         head_cells = sum(len(r) for _, r in rows[:nhead])
         size = "7.5pt" if compact else "8.5pt"
         inset = "(x: 1.2mm, y: 0.8mm)" if compact else "(x: 1.8mm, y: 1.05mm)"
-        cols = self.widths(rows[nhead:], ncols) if wide else str(ncols)
-        rows_arg = self.fixed_rows(rows, nhead, one_line, ncols, cols, compact)
+        kinds = self.widths(rows[nhead:], ncols) if wide else ["auto"] * ncols
+        cols = f"({', '.join(kinds)})" if wide else str(ncols)
+        rows_arg = self.fixed_rows(rows, nhead, one_line, ncols, kinds, compact)
         header = f"table.header({', '.join(cells[:head_cells])}), " if head_cells else ""
         body = ", ".join(cells[head_cells:])
         align = ""
