@@ -14,6 +14,7 @@ PDF drawing operators) and the text keeps DejaVu Sans (Cyrillic, Greek).
 from __future__ import annotations
 
 import re
+from contextlib import contextmanager
 from pathlib import Path
 
 __all__ = ["to_typst", "pdf_bytes"]
@@ -125,7 +126,8 @@ def _s(text: str) -> str:
 
 _WS = re.compile(r"\s+")
 _MM = 72 / 25.4                             # pt
-_TEXT_WIDTH = (210 - 18 - 14) * _MM        # the page's text width (PREAMBLE's margins), pt
+# a table's text size (pt) and cell insets (mm: x, y), compact or not
+_TABLE_STYLE = {False: (8.5, 1.8, 1.05), True: (7.5, 1.2, 0.8)}
 _STRING = re.compile(r'#"(?:[^"\\]|\\.)*"')
 # markup that keeps a line of text one line of the table's height (the line edges are fixed
 # lengths: sub- and superscripts, bold, italics and a bar over it do not make it taller)
@@ -167,6 +169,9 @@ PREAMBLE = r"""
 #let fig(file, w, c) = block(above: 2mm, below: 3mm, breakable: false, width: 100%,
   align(center, { layout(size => image(file, width: calc.min(w, size.width))); if c != none { v(1mm, weak: true); text(size: 8.5pt, fill: rgb("#333333"), c) } }))
 """
+# the page's text width (A4 less the margins of PREAMBLE), pt
+_TEXT_WIDTH = (210 - sum(map(float, re.search(r"right: ([\d.]+)mm, bottom: [\d.]+mm, left: ([\d.]+)mm",
+                                              PREAMBLE).groups()))) * _MM
 
 
 class _Writer:
@@ -177,6 +182,17 @@ class _Writer:
         self.after_section = False
         self.in_pair = 0
         self.width: float | None = _TEXT_WIDTH   # pt free for a block here; None: not known
+
+    @contextmanager
+    def _inside(self, narrower=None):
+        """``self.width`` for the blocks made inside: ``narrower(width)``, or not known
+        (None) where ``narrower`` is None; put back after."""
+        width = self.width
+        self.width = narrower(width) if narrower is not None and width is not None else None
+        try:
+            yield
+        finally:
+            self.width = width
 
     # inline content -> markup
     def inline(self, node) -> str:
@@ -212,9 +228,8 @@ class _Writer:
             elif tag == "img" and "data-svg" in c.attrs:
                 out.append(self.figure_image(int(c.attrs["data-svg"]), None))
             elif tag in ("table", "div", "p", "ul", "ol"):
-                width, self.width = self.width, None        # inside a cell or an item: not known
-                out.append("\n" + self.block(c) + "\n")
-                self.width = width
+                with self._inside():                        # in a cell or an item: not known
+                    out.append("\n" + self.block(c) + "\n")
             else:
                 out.append(self.inline(c))
         return "".join(out)
@@ -263,10 +278,8 @@ class _Writer:
         if tag in ("ol", "ul"):
             items = [c for c in node.children if isinstance(c, _Node) and c.tag == "li"]
             fn = "enum" if tag == "ol" else "list"
-            width, self.width = self.width, None            # indented: not known
-            out = f"#{fn}(" + ", ".join(f"[{self.inline(li).strip()}]" for li in items) + ")"
-            self.width = width
-            return out
+            with self._inside():                            # indented: not known
+                return f"#{fn}(" + ", ".join(f"[{self.inline(li).strip()}]" for li in items) + ")"
         if tag == "section":
             body = self.blocks(node)
             brk = "#pagebreak(weak: true)\n" if self.after_section else ""
@@ -277,28 +290,18 @@ class _Writer:
         if tag == "div" and ("tables2" in cls or "pair" in cls):
             kids = [c for c in node.children if isinstance(c, _Node)]
             self.in_pair += 1
-            width = self.width
-            if width is not None:
-                self.width = (width - _MM * 3 * (len(kids) - 1)) / max(len(kids), 1)
-            cells = ", ".join(f"[{self.blocks(k) if k.tag == 'div' else self.block(k)}]" for k in kids)
-            self.width = width
+            with self._inside(lambda w: (w - _MM * 3 * (len(kids) - 1)) / max(len(kids), 1)):
+                cells = ", ".join(f"[{self.blocks(k) if k.tag == 'div' else self.block(k)}]" for k in kids)
             self.in_pair -= 1
             return f"#grid(columns: ({', '.join(['1fr'] * max(len(kids), 1))}), gutter: 3mm, {cells})"
         if tag == "div" and "task-groups" in cls:
             kids = [c for c in node.children if isinstance(c, _Node)]
             # boxes in a line: each is laid out in the width of the line, less its inset
-            width = self.width
-            if width is not None:
-                self.width = width - 4 * _MM
-            out = "".join(f"#box(inset: (right: 4mm))[{self.block(k)}]" for k in kids)
-            self.width = width
-            return out
+            with self._inside(lambda w: w - 4 * _MM):
+                return "".join(f"#box(inset: (right: 4mm))[{self.block(k)}]" for k in kids)
         if tag == "div" and "failure" in cls:
-            width = self.width
-            if width is not None:
-                self.width = width - 8 * _MM - 1.5
-            body = self.blocks(node)
-            self.width = width
+            with self._inside(lambda w: w - 8 * _MM - 1.5):
+                body = self.blocks(node)
             return (f'#block(stroke: 1.5pt + rgb("#b03a2e"), fill: rgb("#fdf2f0"), inset: (x: 4mm, y: 3mm), '
                     f'width: 100%)[{body}]')
         if tag == "footer":
@@ -366,8 +369,8 @@ class _Writer:
         Empty when no row qualifies or the free width is not known here."""
         if self.width is None or nhead >= len(rows) or not any(one_line[nhead:]):
             return ""
-        size = 7.5 if compact else 8.5
-        pad = 2 * (1.2 if compact else 1.8) * _MM
+        size, ix, iy = _TABLE_STYLE[compact]
+        pad = 2 * ix * _MM
         need = [0.0] * ncols                # a bound of each column's natural width, pt
         spans = []
         est = []                            # per row: (first column, last + 1, bound) of its cells
@@ -398,7 +401,7 @@ class _Writer:
         # an auto column is at least as wide as its widest cell, a shared one as wide as its
         # share whatever its cells (a header may wrap in it)
         col = [n if k == "auto" else share for n, k in zip(need, kinds)]
-        h = f"0.8em + 0.25em + {'1.6mm' if compact else '2.1mm'}"   # as Typst sums an auto row
+        h = f"0.8em + 0.25em + {2 * iy}mm"   # as Typst sums an auto row
         out = []
         for i, row in enumerate(est):
             ok = (i >= nhead and one_line[i] and any(w for _, _, w in row)
@@ -477,8 +480,9 @@ class _Writer:
                              if args else cell)
             one_line.append(plain)
         head_cells = sum(len(r) for _, r in rows[:nhead])
-        size = "7.5pt" if compact else "8.5pt"
-        inset = "(x: 1.2mm, y: 0.8mm)" if compact else "(x: 1.8mm, y: 1.05mm)"
+        pt, ix, iy = _TABLE_STYLE[compact]
+        size = f"{pt}pt"
+        inset = f"(x: {ix}mm, y: {iy}mm)"
         kinds = self.widths(rows[nhead:], ncols) if wide else ["auto"] * ncols
         cols = f"({', '.join(kinds)})" if wide else str(ncols)
         rows_arg = self.fixed_rows(rows, nhead, one_line, ncols, kinds, compact)
