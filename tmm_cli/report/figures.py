@@ -437,7 +437,7 @@ def place_labels(anchors, extent: float, avoid=(), step: float | None = None, se
             # one can, the farther ones are not looked at (the same choice: the first best)
             n_in = n_ok if n_near >= ncand else (n_near if ok is None else int(idx.searchsorted(n_near)))
             score = None
-            if n_in == n_ok or 0 < n_in:
+            if n_in:                           # (n_ok > 0 here)
                 near = row if ok is None else row[idx[:n_in]]
                 if lean is not None:
                     near = near + (lean if n_in == n_ok else lean[:n_in])
