@@ -315,6 +315,40 @@ def diagrams_svg(ctx, geom, entries, phase, out_name, curve, marks=None):
     return ctx.svg(fig, "output-diagrams"), kind
 
 
+def write_table(ctx) -> None:
+    """kinematics.csv: every point's and link's values at every position of the results
+    (thousands of rows at a fine grid), where the section is drawn (build's conditions)."""
+    entries = ctx.results.get("kinematics") or []
+    if not entries or geometry(ctx.results) is None:
+        return
+    header = ["index", "phi"]
+    pnames = list(entries[0]["points"].keys())
+    for p in pnames:
+        header += [f"{p}.{k}" for k in ("x", "y", "vx", "vy", "v", "ax", "ay", "a")]
+    lnames = list(entries[0]["links"].keys())
+    for n in lnames:
+        header += [f"{n}.{k}" for k in ("angle", "omega", "epsilon")]
+    rows = []
+    pk, lk = ("x", "y", "vx", "vy", "v", "ax", "ay", "a"), ("angle", "omega", "epsilon")
+    pget, lget = itemgetter(*pk), itemgetter(*lk)
+    for e in entries:
+        row = [e["index"], float(e["phi"])]
+        pts, lks = e["points"], e["links"]
+        try:
+            for p in pnames:
+                row += pget(pts[p])
+            for n in lnames:
+                row += lget(lks[n])
+        except KeyError:            # a value missing: an empty cell
+            row = row[:2]
+            for p in pnames:
+                row += [pts[p].get(k) for k in pk]
+            for n in lnames:
+                row += [lks[n].get(k) for k in lk]
+        rows.append(row)
+    ctx.write_csv("kinematics.csv", header, rows)
+
+
 # ----------------------------------------------------------------- section
 def build(ctx) -> str | None:
     entries = ctx.results.get("kinematics") or []
@@ -438,33 +472,11 @@ def build(ctx) -> str | None:
         marks = [id(e) in ids for e in entries]
     diag, _ = diagrams_svg(ctx, geom, entries, phase, out_name, curve, marks)
 
-    # CSV
-    header = ["index", "phi"]
-    pnames = list(entries[0]["points"].keys())
-    for p in pnames:
-        header += [f"{p}.{k}" for k in ("x", "y", "vx", "vy", "v", "ax", "ay", "a")]
-    lnames = list(entries[0]["links"].keys())
-    for n in lnames:
-        header += [f"{n}.{k}" for k in ("angle", "omega", "epsilon")]
-    rows = []
-    pk, lk = ("x", "y", "vx", "vy", "v", "ax", "ay", "a"), ("angle", "omega", "epsilon")
-    pget, lget = itemgetter(*pk), itemgetter(*lk)
-    for e in entries:
-        row = [e["index"], float(e["phi"])]
-        pts, lks = e["points"], e["links"]
-        try:
-            for p in pnames:
-                row += pget(pts[p])
-            for n in lnames:
-                row += lget(lks[n])
-        except KeyError:            # a value missing: an empty cell
-            row = row[:2]
-            for p in pnames:
-                row += [pts[p].get(k) for k in pk]
-            for n in lnames:
-                row += [lks[n].get(k) for k in lk]
-        rows.append(row)
-    ctx.write_csv("kinematics.csv", header, rows)
+    # CSV (with two processes the report's helper writes kinematics.csv: report.HELPER_TABLES)
+    if "kinematics" in ctx.tables_elsewhere:
+        ctx.written_elsewhere("kinematics.csv")
+    else:
+        write_table(ctx)
     ctx.write_csv("plans.csv", ["index", "phi", "plan", "segment", "vector", "length_mm", "value"], plan_csv)
 
     return ctx.render("sections/kinematics.html.j2",
