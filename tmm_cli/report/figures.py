@@ -578,8 +578,12 @@ def mechanism_extent(entries, names=None) -> tuple[np.ndarray, np.ndarray]:
         pts = [d for e in entries for p, d in e["points"].items() if p in names]
     if not pts:
         return np.zeros(2), np.zeros(2)
-    x = np.array(list(map(itemgetter("x"), pts)), float)
-    y = np.array(list(map(itemgetter("y"), pts)), float)
+    try:                            # read straight into the arrays (a fine grid has ~10^5)
+        x = np.fromiter(map(itemgetter("x"), pts), float, len(pts))
+        y = np.fromiter(map(itemgetter("y"), pts), float, len(pts))
+    except TypeError:               # a None (NaN here) that fromiter refuses
+        x = np.array(list(map(itemgetter("x"), pts)), float)
+        y = np.array(list(map(itemgetter("y"), pts)), float)
     return np.array([x.min(), y.min()]), np.array([x.max(), y.max()])
 
 

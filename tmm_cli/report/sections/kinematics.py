@@ -45,12 +45,14 @@ COLORS = {"abs": "#000000", "rel": "#595959", "n": "#1f5fbf", "t": "#c0392b", "k
 def _median(values) -> float:
     """np.median of a list of numbers, bit for bit (the middle value, or the mean of the
     two middle ones; NaN if any is NaN), without numpy's median: its NaN check imports
-    numpy.ma (~20 ms of the report)."""
-    s = sorted(map(float, values))
-    if any(map(math.isnan, s)):
+    numpy.ma (~20 ms of the report); sorted by numpy (tens of thousands of plan readings at
+    a fine grid), stably as by sorted (0.0 and -0.0 kept in their order), the mean of the
+    middle two taken in Python floats."""
+    s = np.sort(np.asarray(values, float), kind="stable")
+    if np.isnan(s).any():
         return math.nan
     m = len(s) // 2
-    return s[m] if len(s) % 2 else (s[m - 1] + s[m]) / 2
+    return float(s[m]) if len(s) % 2 else (float(s[m - 1]) + float(s[m])) / 2
 
 
 def _pxy(e, p):
