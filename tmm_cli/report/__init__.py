@@ -372,7 +372,8 @@ def render(results: dict, task, out_dir: Path, formats: set[str], lang: str = "e
     ``notes`` the PdfSkipped exception propagates.
 
     With two cores the work is split over two processes: a helper (forked) builds
-    the kinetostatics section while the main process builds the other sections; the helper then compiles the PDF while the main process
+    the kinetostatics section and writes kinematics.csv (HELPER_TABLES) while the main
+    process builds the other sections; the helper then compiles the PDF while the main process
     writes report.html.  Any failure of the helper falls back to doing everything here."""
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
