@@ -39,6 +39,21 @@ def test_same_report_with_and_without_helper(tmp_path, shaper, monkeypatch):
     assert f1 == f2 and "kinetostatics.csv" in f1
     assert _strip_ids(h1) == _strip_ids(h2)
     assert 'id="kinetostatics"' in h1
+    # the tables the helper writes (HELPER_TABLES) are the lone process's, byte for byte
+    assert R.HELPER_TABLES == ("kinematics",)
+    for name in ("kinematics.csv", "kinetostatics.csv"):
+        assert (tmp_path / "par" / name).read_bytes() == (tmp_path / "ser" / name).read_bytes()
+
+
+def test_helper_tables_listed_in_the_lone_process_order(tmp_path, shaper, monkeypatch):
+    """kinematics.csv, written by the helper, is listed where the kinematics section
+    would write it (the order `tmm run` prints the files in)."""
+    task, r = shaper
+    par = [p.name for p in R.render(r, task, tmp_path / "par", {"html"}, "en")]
+    monkeypatch.setenv("TMM_REPORT_JOBS", "1")
+    ser = [p.name for p in R.render(r, task, tmp_path / "ser", {"html"}, "en")]
+    assert par.index("kinematics.csv") < par.index("plans.csv")
+    assert [n for n in par if n != "kinetostatics.csv"] == [n for n in ser if n != "kinetostatics.csv"]
 
 
 def test_helper_failure_falls_back(tmp_path, shaper, monkeypatch):
@@ -50,6 +65,8 @@ def test_helper_failure_falls_back(tmp_path, shaper, monkeypatch):
     monkeypatch.setattr(R, "_helper", broken)
     h, files = _render(tmp_path, task, r, "fail")
     assert 'id="kinetostatics"' in h and "kinetostatics.csv" in files
+    # the helper's table written by the main process instead
+    assert (tmp_path / "fail" / "kinematics.csv").read_text(encoding="utf-8").count("\n") == 1 + len(r["kinematics"])
 
 
 def test_pdf_in_a_process_that_already_used_typst(tmp_path):

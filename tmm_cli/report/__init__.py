@@ -128,6 +128,14 @@ def _build(ctx: ReportContext, names) -> dict[str, str | None]:
     return {name: (mods[name].build(ctx) if name in mods else None) for name in names}
 
 
+def _write_tables(ctx: ReportContext, names) -> None:
+    """The per-position tables of the sections `names` (HELPER_TABLES) written."""
+    mods = dict(_sections.available())
+    for name in names:
+        if name in mods:
+            mods[name].write_table(ctx)
+
+
 def _assemble(ctx: ReportContext, frags: dict[str, str | None]) -> str:
     from markupsafe import Markup
     from . import failure
@@ -188,6 +196,10 @@ def _pdf_bytes(html: str, lang: str = "en") -> bytes:
 # together (the dynamics section, results key "flywheel", stays in the main process: with
 # it the helper would be the longer by more)
 HELPER_SECTIONS = ("kinetostatics",)
+# sections built by the main process whose per-position table (the module's write_table)
+# the helper writes meanwhile: at a fine grid kinematics.csv is a fifth of the report's
+# time, and the main process (all the other sections) is the longer one
+HELPER_TABLES = ("kinematics",)
 
 
 PR_SET_PDEATHSIG = 1  # <linux/prctl.h>
@@ -226,15 +238,16 @@ def _recv_from(conn, parent_pid: int, poll: float = 0.5):
     return conn.recv()
 
 
-def _helper(conn, results, task, out_dir, lang, names, pdf, parent_pid=None, parent_end=None):
-    """The second process: build `names`, send (fragments, written paths), then receive
-    the whole HTML and send the PDF bytes (compiled while the main process writes
-    report.html and the figure files)."""
+def _helper(conn, results, task, out_dir, lang, names, pdf, parent_pid=None, parent_end=None, tables=()):
+    """The second process: build `names` and write the tables of `tables`, send
+    (fragments, written paths), then receive the whole HTML and send the PDF bytes
+    (compiled while the main process writes report.html and the figure files)."""
     if parent_pid is not None:
         _die_with_parent(parent_pid, parent_end)
     try:
         ctx = _context(results, task, out_dir, lang)
         frags = _build(ctx, names)
+        _write_tables(ctx, tables)
         conn.send(("frags", frags, [str(p) for p in ctx.written]))
         if pdf:
             msg = _recv_from(conn, parent_pid) if parent_pid is not None else conn.recv()
@@ -266,6 +279,7 @@ def _finish(ctx, proc, conn, formats, all_names, helper_names, out_dir, notes=No
             pass
         if not helper_ok:
             frags.update(_build(ctx, helper_names))
+            _write_tables(ctx, ctx.tables_elsewhere)
     html, figure_files = _figure_files(ctx, _assemble(ctx, frags))
     sent = False
     if want_pdf and helper_pdf and proc is not None and helper_ok:
@@ -358,7 +372,8 @@ def render(results: dict, task, out_dir: Path, formats: set[str], lang: str = "e
     ``notes`` the PdfSkipped exception propagates.
 
     With two cores the work is split over two processes: a helper (forked) builds
-    the kinetostatics section while the main process builds the other sections; the helper then compiles the PDF while the main process
+    the kinetostatics section and writes kinematics.csv (HELPER_TABLES) while the main
+    process builds the other sections; the helper then compiles the PDF while the main process
     writes report.html.  Any failure of the helper falls back to doing everything here."""
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -393,10 +408,12 @@ def render(results: dict, task, out_dir: Path, formats: set[str], lang: str = "e
                 gc.freeze()
                 froze = True
             conn, child = mp.Pipe()
+            tables = tuple(n for n in HELPER_TABLES if n in all_names and results.get(n))
             proc = mp.Process(target=_helper, args=(child, results, task, out_dir, ctx.lang, helper_names,
-                                                    helper_pdf, os.getpid(), conn), daemon=True)
+                                                    helper_pdf, os.getpid(), conn, tables), daemon=True)
             proc.start()
             child.close()
+            ctx.tables_elsewhere = tables
         except OSError:                    # no second process here: everything in this one
             proc = conn = None
     try:

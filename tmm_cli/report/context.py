@@ -74,6 +74,8 @@ class ReportContext:
     out_dir  -- directory of the report; CSV/figure files go beside it
     env      -- the Jinja environment over templates/
     written  -- paths of the files written so far (returned by render)
+    tables_elsewhere -- sections whose long per-position table (a module's write_table)
+                another process writes (report.HELPER_TABLES): their build leaves it out
     """
     results: dict
     task: Any
@@ -81,6 +83,7 @@ class ReportContext:
     out_dir: Path
     env: Any
     written: list[Path] = field(default_factory=list)
+    tables_elsewhere: tuple[str, ...] = ()
     figures = figures
 
     # -- text
@@ -124,6 +127,16 @@ class ReportContext:
         from ..safepath import inside
         path = inside(self.out_dir, name)  # never through a linked folder inside out_dir
         atomic_write(path, data)
+        return self._listed(path)
+
+    def written_elsewhere(self, name: str) -> Path:
+        """The file ``name``, which another process writes (report.HELPER_TABLES), listed
+        with the files written here in the place this process would have written it (the
+        order `tmm run` prints)."""
+        from ..safepath import inside
+        return self._listed(inside(self.out_dir, name))
+
+    def _listed(self, path: Path) -> Path:
         if path not in self.written:
             self.written.append(path)
         return path

@@ -557,10 +557,17 @@ def _pxy(entry, p):
     return np.array([float(d["x"]), float(d["y"])])
 
 
+_XY = itemgetter("x", "y")
+
+
 def points_xy(entries, p) -> np.ndarray:
     """(n, 2): the point ``p`` of each entry, ``np.array([_pxy(e, p) for e in entries])``
-    without an array per entry (a fine grid has thousands)."""
-    return np.array([(float(d["x"]), float(d["y"])) for d in (e["points"][p] for e in entries)])
+    without an array per entry (a fine grid has thousands): the numbers read as one flat
+    run (x0, y0, x1, ...), each through float as by _pxy."""
+    ds = [e["points"][p] for e in entries]
+    if not ds:
+        return np.array([])
+    return np.fromiter(chain.from_iterable(map(_XY, ds)), float, 2 * len(ds)).reshape(-1, 2)
 
 
 def mechanism_extent(entries, names=None) -> tuple[np.ndarray, np.ndarray]:
@@ -571,8 +578,12 @@ def mechanism_extent(entries, names=None) -> tuple[np.ndarray, np.ndarray]:
         pts = [d for e in entries for p, d in e["points"].items() if p in names]
     if not pts:
         return np.zeros(2), np.zeros(2)
-    x = np.array(list(map(itemgetter("x"), pts)), float)
-    y = np.array(list(map(itemgetter("y"), pts)), float)
+    try:                            # read straight into the arrays (a fine grid has ~10^5)
+        x = np.fromiter(map(itemgetter("x"), pts), float, len(pts))
+        y = np.fromiter(map(itemgetter("y"), pts), float, len(pts))
+    except TypeError:               # a None (NaN here) that fromiter refuses
+        x = np.array(list(map(itemgetter("x"), pts)), float)
+        y = np.array(list(map(itemgetter("y"), pts)), float)
     return np.array([x.min(), y.min()]), np.array([x.max(), y.max()])
 
 

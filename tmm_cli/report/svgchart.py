@@ -568,17 +568,20 @@ def _polyline_d(X, Y) -> str:
     """Path data of a polyline broken at non-finite points."""
     X, Y = np.asarray(X, dtype=float), np.asarray(Y, dtype=float)
     ok = np.isfinite(X) & np.isfinite(Y)
-    parts, run = [], []
-    # Python floats and bools: formatted as the numpy scalars are, without making them
-    for good, a, b in zip(ok.tolist(), X.tolist(), Y.tolist()):
-        if good:
-            run.append(a)
-            run.append(b)
-        elif run:
+    # Python floats (and bools): formatted as the numpy scalars are, without making them
+    if ok.all():                       # one run, the usual case: no loop over the points
+        parts = [np.column_stack((X, Y)).ravel().tolist()]
+    else:
+        parts, run = [], []
+        for good, a, b in zip(ok.tolist(), X.tolist(), Y.tolist()):
+            if good:
+                run.append(a)
+                run.append(b)
+            elif run:
+                parts.append(run)
+                run = []
+        if run:
             parts.append(run)
-            run = []
-    if run:
-        parts.append(run)
     # each run's numbers written "%.2f" at once, trimmed as _f trims them (svgdraw.trim)
     return trim("".join(("M" + "L".join(["%.2f %.2f"] * (len(r) // 2))) % tuple(r)
                         for r in parts if len(r) > 2))

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import math
 import re
+from operator import itemgetter
 
 import numpy as np
 from markupsafe import Markup, escape
@@ -690,14 +691,15 @@ def _cycle_fig(ctx, entries, phi0, sign, info):
     q = [r[0] for r in rows]
     from ..course import COURSE_MAX
     dot = "" if len(rows) > COURSE_MAX else "."      # a fine grid: curves without a dot a position
-    a1.plot(q, [np.nan if r[1][key] is None else r[1][key] for r in rows], f"k{dot}-")
+    nan = math.nan                                   # (the lists below are a position each)
+    a1.plot(q, [nan if (v := r[1][key]) is None else v for r in rows], f"k{dot}-")
     a1.set_ylabel(ctx.t("kst.moment_axis") if key == "balancing_moment" else ctx.t("kst.force_axis"))
     a1.grid(True, lw=0.3)
     a1.axhline(0, color="0.5", lw=0.5)
     a1.set_title("$M_b$" if key == "balancing_moment" else "$P_b$", fontsize=8)
     for j in info["joints"]:
-        vals = [np.nan if r[1]["reactions"][j["key"]]["R"] is None else r[1]["reactions"][j["key"]]["R"]
-                for r in rows]
+        jk = j["key"]
+        vals = [nan if (v := r[1]["reactions"][jk]["R"]) is None else v for r in rows]
         a2.plot(q, vals, f"{dot}-", label=f"$R_{{{j['key'][1:]}}}$", lw=0.8, ms=3)
     a2.legend(ncol=1, fontsize=6.5, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)
     a2.set_ylabel("|R|, " + ctx.t("kst.N"))
@@ -708,6 +710,19 @@ def _cycle_fig(ctx, entries, phi0, sign, info):
     fig.subplots_adjust(left=0.1, right=0.9, top=0.93, bottom=0.1, hspace=0.3)
     figures.std_graph(fig, (a1, a2), ctx.t("kin.mm"), x_axis=a2, tight=False)      # μM, μR, μφ
     return ctx.svg(fig, "balancing-cycle")
+
+
+def _getter(keys: tuple):
+    """d -> the values of ``keys`` in ``d`` (a tuple; None for a missing key, as
+    ``d.get``): ``itemgetter``'s one call where every key is there (at least two keys)."""
+    get = itemgetter(*keys)
+
+    def values(d):
+        try:
+            return get(d)
+        except KeyError:
+            return tuple(d.get(k) for k in keys)
+    return values
 
 
 # ----------------------------------------------------------------- section
@@ -743,17 +758,20 @@ def build(ctx) -> str | None:
     shown_ids = {id(e) for e in shown}
     mb_rows = []
     csv_rows = []
+    # the CSV row of every position (a fine grid has thousands) read by _getter
+    values, xyr = _getter(keys + ("discrepancy", "efficiency")), _getter(("x", "y", "R"))
+    jkeys = [j["key"] for j in info["joints"]]
     for e in entries:
-        disc = None if e.get("discrepancy") is None else 100.0 * e["discrepancy"]
         if id(e) in shown_ids:
+            disc = None if e.get("discrepancy") is None else 100.0 * e["discrepancy"]
             row = [e["index"], ctx.fmt_fixed(e["phi"], 2)] + [fmt(e.get(k), 6) for k in keys] + [fmt(disc, 2)]
             if has_near:
                 row.append("✓" if e.get("near_singular") else "")
             mb_rows.append(row)
-        crow = [e["index"], e["phi"]] + [e.get(k) for k in keys] + [e.get("discrepancy"), e.get("efficiency")]
-        for j in info["joints"]:
-            r = e["reactions"][j["key"]]
-            crow += [r.get("x"), r.get("y"), r.get("R")]
+        crow = [e["index"], e["phi"], *values(e)]
+        reactions = e["reactions"]
+        for k in jkeys:
+            crow += xyr(reactions[k])
         csv_rows.append(crow)
     csv_hdr = ["index", "phi"] + list(keys) + ["discrepancy", "efficiency"]
     for j in info["joints"]:
