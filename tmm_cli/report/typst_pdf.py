@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import re
 from contextlib import contextmanager
+from functools import lru_cache
 from pathlib import Path
 
 __all__ = ["to_typst", "pdf_bytes"]
@@ -166,8 +167,10 @@ PREAMBLE = r"""
 #let num(x) = align(right, x)
 #let note(x) = text(size: 8.5pt, fill: rgb("#444444"), x)
 #let cap(x) = block(below: 1mm, sticky: true, strong(x))
-#let fig(file, w, c) = block(above: 2mm, below: 3mm, breakable: false, width: 100%,
-  align(center, { layout(size => image(file, width: calc.min(w, size.width))); if c != none { v(1mm, weak: true); text(size: 8.5pt, fill: rgb("#333333"), c) } }))
+#let fig(file, w, c, labels: none) = block(above: 2mm, below: 3mm, breakable: false, width: 100%,
+  align(center, { if labels == none { layout(size => image(file, width: calc.min(w, size.width))) } else {
+    block(width: w, { image(file, width: w); set text(top-edge: "baseline", bottom-edge: "baseline"); labels }) }
+    if c != none { v(1mm, weak: true); text(size: 8.5pt, fill: rgb("#333333"), c) } }))
 """
 # the page's text width (A4 less the margins of PREAMBLE), pt
 _TEXT_WIDTH = (210 - sum(map(float, re.search(r"right: ([\d.]+)mm, bottom: [\d.]+mm, left: ([\d.]+)mm",
@@ -239,10 +242,13 @@ class _Writer:
         if "xmlns=" not in svg[:300]:
             svg = svg.replace("<svg", '<svg xmlns="http://www.w3.org/2000/svg"', 1)
         name = f"fig-{k:03d}.svg"
-        self.files[name] = svg.encode("utf-8")
         w = _WPT.search(svg[:400])
         width = f"{w.group(1)}pt" if w else "100%"
-        return f'#fig("{name}", {width}, {caption if caption else "none"})'
+        labels = ""
+        if w and self.width is not None and float(w.group(1)) <= self.width - 1:
+            svg, labels = _labels(svg, float(w.group(1)))     # drawn at its width: labels placed
+        self.files[name] = svg.encode("utf-8")
+        return f'#fig("{name}", {width}, {caption if caption else "none"}{", labels: " + labels if labels else ""})'
 
     # block content
     def block(self, node) -> str:
@@ -452,33 +458,34 @@ class _Writer:
             right = [False] * ncols
         cells = []
         one_line = []       # per row: every cell one line of text (or empty)
-        for i, (head, r) in enumerate(rows):
-            plain = True
-            for j, c in enumerate(r):
-                body = self.inline(c).strip()
-                args = []
-                span = int(c.attrs.get("colspan") or 1)
-                if span > 1:
-                    args.append(f"colspan: {span}")
-                rspan = int(c.attrs.get("rowspan") or 1)
-                if rspan > 1:
-                    args.append(f"rowspan: {rspan}")
-                if c.tag == "th":
-                    if kv and i >= nhead:
-                        args.append('fill: rgb("#f4f4f4")')
+        with self._inside():                    # in a cell: the width not known
+            for i, (head, r) in enumerate(rows):
+                plain = True
+                for j, c in enumerate(r):
+                    body = self.inline(c).strip()
+                    args = []
+                    span = int(c.attrs.get("colspan") or 1)
+                    if span > 1:
+                        args.append(f"colspan: {span}")
+                    rspan = int(c.attrs.get("rowspan") or 1)
+                    if rspan > 1:
+                        args.append(f"rowspan: {rspan}")
+                    if c.tag == "th":
+                        if kv and i >= nhead:
+                            args.append('fill: rgb("#f4f4f4")')
+                        else:
+                            args.append('fill: rgb("#eeeeee"), align: center')
+                            body = f"#strong[{body}]"
+                    elif "num" in c.classes and not (j < ncols and right[j]):
+                        args.append("align: right")
+                    if body.startswith('#"') and body.endswith('"') and body.count('#"') == 1:
+                        cell = body[1:]                 # a plain string: no markup to parse
                     else:
-                        args.append('fill: rgb("#eeeeee"), align: center')
-                        body = f"#strong[{body}]"
-                elif "num" in c.classes and not (j < ncols and right[j]):
-                    args.append("align: right")
-                if body.startswith('#"') and body.endswith('"') and body.count('#"') == 1:
-                    cell = body[1:]                 # a plain string: no markup to parse
-                else:
-                    cell = f"[{body}]"
-                    plain = plain and not _LINE_MARKUP.sub("", _STRING.sub("", body))
-                cells.append(f"table.cell({', '.join(args)}){cell if cell[0] == '[' else f'[#{cell}]'}"
-                             if args else cell)
-            one_line.append(plain)
+                        cell = f"[{body}]"
+                        plain = plain and not _LINE_MARKUP.sub("", _STRING.sub("", body))
+                    cells.append(f"table.cell({', '.join(args)}){cell if cell[0] == '[' else f'[#{cell}]'}"
+                                 if args else cell)
+                one_line.append(plain)
         head_cells = sum(len(r) for _, r in rows[:nhead])
         pt, ix, iy = _TABLE_STYLE[compact]
         size = f"{pt}pt"
@@ -495,6 +502,162 @@ class _Writer:
         if caption:
             tbl = f"#cap[{caption}]\n{tbl}"
         return f"#block(above: 1.5mm, below: 3mm, width: {'100%' if wide else 'auto'})[#text(size: {size})[{tbl}]]"
+
+
+# ---------------------------------------------------------------- figure labels
+# An SVG <text> costs Typst's SVG reader (usvg) a shaping face of the font for each of its
+# spans, each span shaping the whole text again, and an outline of each glyph: the report's
+# ~1,800 labels were ~30 % of the compilation.  The labels a figure draws last (over all
+# else, outside any group) are placed by Typst itself over the image instead: the same
+# font, sizes, baselines, anchors, colours and styles, the same text in the PDF.
+_TEXT = re.compile(r"<text\b([^>]*)>(.*?)</text>\s*", re.S)
+_SVG_TAG = re.compile(r"<svg\b([^>]*)>")
+_XATTR = re.compile(r'\s+([a-zA-Z:-]+)="([^"]*)"')
+_TSPAN = re.compile(r"<tspan\b([^>]*)>([^<]*)</tspan>|([^<]+)|(<)")
+_SVG_ROOT_KEYS = {"xmlns", "class", "width", "height", "viewBox", "font-family"}
+_TEXT_KEYS = {"x", "y", "font-size", "text-anchor", "fill", "font-style", "font-weight"}
+_SPAN_KEYS = {"dy", "font-size", "font-style", "fill", "font-weight"}
+_NUM = re.compile(r"-?(?:\d+\.?\d*|\.\d+)")
+_COLOR = re.compile(r"#[0-9a-fA-F]{6}")
+_ANCHOR = {"start": ("left", 0.0), "middle": ("center", 0.5), "end": ("right", 1.0)}
+
+
+def _pt(v: float) -> str:
+    return f"{v:.3f}".rstrip("0").rstrip(".") + "pt"
+
+
+def _text_args(at: dict, k: float) -> list[str] | None:
+    """Typst text() arguments of an SVG text's or tspan's font size (user units, ``k`` pt
+    each), fill, style and weight; None where one is not of the plain kind tmm writes."""
+    args = []
+    fs = at.get("font-size")
+    if fs is not None:
+        if not _NUM.fullmatch(fs):
+            return None
+        args.append(f"size: {_pt(float(fs) * k)}")
+    fill = at.get("fill")
+    if fill is not None:
+        if not _COLOR.fullmatch(fill):
+            return None
+        args.append(f'fill: rgb("{fill}")')
+    for key, name, values in (("font-style", "style", ("normal", "italic")),
+                              ("font-weight", "weight", ("normal", "bold"))):
+        v = at.get(key)
+        if v is not None:
+            if v not in values:
+                return None
+            args.append(f'{name}: "{v}"')
+    return args
+
+
+@lru_cache(maxsize=4096)
+def _label_style(attrs: str, k: float) -> tuple[str, str, float] | None:
+    """(the opening ``text(...,`` of a label, its place() side, the fraction of the figure's
+    width that side is at) of an SVG text's attributes other than x and y; None where one
+    is not of the plain kind tmm writes."""
+    at = dict(_XATTR.findall(attrs))
+    if set(at) - _TEXT_KEYS or at.get("text-anchor", "start") not in _ANCHOR:
+        return None
+    args = _text_args(at, k)
+    if args is None:
+        return None
+    side, frac = _ANCHOR[at.get("text-anchor", "start")]
+    return f"text({', '.join(args)}, " if args else "text(", side, frac
+
+
+@lru_cache(maxsize=4096)
+def _label_body(inner: str, k: float) -> str | None:
+    """The Typst content of an SVG text's content (``k`` pt per user unit): its runs, the
+    tspans shifting the baseline (dy) or changing the size, colour or style; "" when it has
+    no text, None where it holds anything else."""
+    from html import unescape
+    if "<" not in inner:                # plain text: its white space as below
+        t = _WS.sub(" ", unescape(inner) if "&" in inner else inner).strip()
+        return _s(t)[1:] if t else ""
+    parts, shift = [], 0.0              # (text() arguments, text) of each run
+    for sattrs, stext, plain, lt in _TSPAN.findall(inner):
+        if lt:
+            return None                 # an element other than a plain tspan
+        if plain:
+            if shift:
+                return None
+            parts.append(("", plain))
+            continue
+        sat = dict(_XATTR.findall(sattrs))
+        if set(sat) - _SPAN_KEYS or not _NUM.fullmatch(sat.get("dy", "0")):
+            return None
+        shift += float(sat.pop("dy", "0"))
+        sargs = _text_args(sat, k)
+        if sargs is None:
+            return None
+        if abs(shift) > 1e-9:
+            sargs.append(f"baseline: {_pt(shift * k)}")
+        parts.append((", ".join(sargs), stext))
+    # white space as SVG collapses it (xml:space default): runs to one space, the ends trimmed
+    texts = [_WS.sub(" ", unescape(t) if "&" in t else t) for _, t in parts]
+    if texts:
+        texts[0] = texts[0].lstrip()
+        texts[-1] = texts[-1].rstrip()
+    runs = [f"text({a}, {_s(t)[1:]})" if a else _s(t)[1:] for (a, _), t in zip(parts, texts) if t]
+    if not runs:
+        return ""
+    return runs[0] if len(runs) == 1 else "{" + "; ".join(runs) + "}"
+
+
+# a label as tmm writes it (x and y first), or any other text element
+_LABEL = re.compile(r'<text x="(-?\d+(?:\.\d+)?)" y="(-?\d+(?:\.\d+)?)"([^>]*)>(.*?)</text>\s*'
+                    r"|<text\b.*?</text>\s*", re.S)
+
+
+def _place_labels(texts: str, k: float, vw: float) -> tuple[str, list[str]]:
+    """(the SVG text elements of ``texts`` left in the figure, the Typst calls placing the
+    others over it): each at its baseline (x, y user units, ``k`` pt each; the figure ``vw``
+    wide) by its anchor (the styles and contents alike read once: cached)."""
+    kept, placed = [], []
+    for m in _LABEL.finditer(texts):
+        x, y, attrs, inner = m.groups()
+        st = _label_style(attrs, k) if x is not None else None
+        body = _label_body(inner, k) if st is not None else None
+        if body is None:
+            kept.append(m.group(0))
+        elif body:
+            head, side, frac = st
+            placed.append(f"place(top + {side}, dx: {(float(x) - frac * vw) * k:.3f}pt, "
+                          f"dy: {float(y) * k:.3f}pt, {head}{body}))")
+    return "".join(kept), placed
+
+
+def _labels(svg: str, width_pt: float) -> tuple[str, str]:
+    """(the SVG less the labels that Typst places, Typst content placing them over the
+    figure drawn ``width_pt`` wide, or "" when none is)."""
+    m = _SVG_TAG.match(svg)
+    if not m:
+        return svg, ""
+    root = dict(_XATTR.findall(m.group(1)))
+    vb = (root.get("viewBox") or "").split()
+    h = re.fullmatch(r"([0-9.]+)pt", root.get("height", ""))
+    if (set(root) - _SVG_ROOT_KEYS or root.get("font-family") != "DejaVu Sans" or len(vb) != 4
+            or vb[:2] != ["0", "0"] or not h or not all(_NUM.fullmatch(v) for v in vb)):
+        return svg, ""
+    vw, vh = float(vb[2]), float(vb[3])
+    k = width_pt / vw if vw > 0 else 0.0
+    if not (k > 0 and vh > 0 and abs(float(h.group(1)) / vh - k) <= 1e-3 * k):
+        return svg, ""                  # not a uniform scale: the viewBox is fitted otherwise
+    # the texts after the last other element, outside any group
+    end = pos = svg.rindex("</svg>")
+    start = end
+    while True:
+        t = svg.rfind("</text>", 0, pos)
+        if t < 0 or svg[t + 7:pos].strip():
+            break
+        o = svg.rfind("<text", 0, t)
+        if o < 0 or "<text" in svg[o + 5:t] or "</" in svg[o:t].replace("</tspan>", ""):
+            break
+        start = pos = o
+    kept, placed = _place_labels(svg[start:end], k, vw)
+    if not placed:
+        return svg, ""
+    return svg[:start] + kept + svg[end:], "{" + "; ".join(placed) + "}"
 
 
 def to_typst(html: str, lang: str = "en") -> tuple[str, dict[str, bytes]]:
