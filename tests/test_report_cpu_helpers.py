@@ -114,3 +114,13 @@ def test_text_attributes_by_size(size):
     assert f'<tspan dy="{_f(-0.3 * fs)}" font-size="{_f(fs)}"> = 5</tspan>' in svg
     assert f'<tspan dy="{_f(-0.4 * fs)}" font-size="{_f(0.72 * fs)}">2</tspan>' in svg
     assert f'<tspan dy="{_f(0.4 * fs)}" font-size="{_f(fs)}">y</tspan>' in svg
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.dictionaries(st.sampled_from("abcdef"), st.integers() | st.none()),
+       st.lists(st.sampled_from("abcdef"), min_size=2, max_size=6))
+def test_values_of_is_get_of_each_key(d, keys):
+    """values_of(keys)(d) is the tuple of d.get(k), whether every key is there (the one
+    itemgetter call) or some is missing (None, an empty cell of the tables)."""
+    from tmm_cli.report.context import values_of
+    assert values_of(tuple(keys))(d) == tuple(d.get(k) for k in keys)

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from operator import itemgetter
 from pathlib import Path
 from typing import Any
 
@@ -17,6 +18,20 @@ def templates_dir() -> Path:
     if pkg.is_dir():
         return pkg
     return Path(__file__).resolve().parents[2] / "templates"
+
+
+def values_of(keys: tuple):
+    """d -> the values of ``keys`` (two or more) in ``d``, a tuple, None for a missing key
+    (as ``d.get``): one ``itemgetter`` call where every key is there, for the per-position
+    rows of the report's tables (thousands at a fine grid)."""
+    get = itemgetter(*keys)
+
+    def values(d):
+        try:
+            return get(d)
+        except KeyError:
+            return tuple(d.get(k) for k in keys)
+    return values
 
 
 def fmt(x: Any, digits: int = 4) -> str:

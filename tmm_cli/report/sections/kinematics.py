@@ -19,6 +19,7 @@ from operator import itemgetter
 import numpy as np
 from markupsafe import Markup
 
+from ..context import values_of
 from ..course import course_entries, grid_count
 from ...plans import build_plan, crank_pin, geometry, plan_label, scales
 
@@ -323,30 +324,23 @@ def write_table(ctx) -> None:
     entries = ctx.results.get("kinematics") or []
     if not entries or geometry(ctx.results) is None:
         return
+    pk, lk = ("x", "y", "vx", "vy", "v", "ax", "ay", "a"), ("angle", "omega", "epsilon")
     header = ["index", "phi"]
     pnames = list(entries[0]["points"].keys())
     for p in pnames:
-        header += [f"{p}.{k}" for k in ("x", "y", "vx", "vy", "v", "ax", "ay", "a")]
+        header += [f"{p}.{k}" for k in pk]
     lnames = list(entries[0]["links"].keys())
     for n in lnames:
-        header += [f"{n}.{k}" for k in ("angle", "omega", "epsilon")]
+        header += [f"{n}.{k}" for k in lk]
     rows = []
-    pk, lk = ("x", "y", "vx", "vy", "v", "ax", "ay", "a"), ("angle", "omega", "epsilon")
-    pget, lget = itemgetter(*pk), itemgetter(*lk)
+    pget, lget = values_of(pk), values_of(lk)       # a value missing: an empty cell
     for e in entries:
         row = [e["index"], float(e["phi"])]
         pts, lks = e["points"], e["links"]
-        try:
-            for p in pnames:
-                row += pget(pts[p])
-            for n in lnames:
-                row += lget(lks[n])
-        except KeyError:            # a value missing: an empty cell
-            row = row[:2]
-            for p in pnames:
-                row += [pts[p].get(k) for k in pk]
-            for n in lnames:
-                row += [lks[n].get(k) for k in lk]
+        for p in pnames:
+            row += pget(pts[p])
+        for n in lnames:
+            row += lget(lks[n])
         rows.append(row)
     ctx.write_csv("kinematics.csv", header, rows)
 

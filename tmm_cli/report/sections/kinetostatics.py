@@ -22,10 +22,11 @@ from __future__ import annotations
 
 import math
 import re
-from operator import itemgetter
 
 import numpy as np
 from markupsafe import Markup, escape
+
+from ..context import values_of
 
 I18N = {
     "en": {"kst.title": "Kinetostatics", "kst.convention": "Sign convention",
@@ -712,19 +713,6 @@ def _cycle_fig(ctx, entries, phi0, sign, info):
     return ctx.svg(fig, "balancing-cycle")
 
 
-def _getter(keys: tuple):
-    """d -> the values of ``keys`` in ``d`` (a tuple; None for a missing key, as
-    ``d.get``): ``itemgetter``'s one call where every key is there (at least two keys)."""
-    get = itemgetter(*keys)
-
-    def values(d):
-        try:
-            return get(d)
-        except KeyError:
-            return tuple(d.get(k) for k in keys)
-    return values
-
-
 # ----------------------------------------------------------------- section
 def build(ctx) -> str | None:
     entries = ctx.results.get("kinetostatics")
@@ -758,8 +746,8 @@ def build(ctx) -> str | None:
     shown_ids = {id(e) for e in shown}
     mb_rows = []
     csv_rows = []
-    # the CSV row of every position (a fine grid has thousands) read by _getter
-    values, xyr = _getter(keys + ("discrepancy", "efficiency")), _getter(("x", "y", "R"))
+    # the CSV row of every position (a fine grid has thousands) read by values_of
+    values, xyr = values_of(keys + ("discrepancy", "efficiency")), values_of(("x", "y", "R"))
     jkeys = [j["key"] for j in info["joints"]]
     for e in entries:
         if id(e) in shown_ids:
