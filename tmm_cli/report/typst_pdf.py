@@ -510,7 +510,6 @@ class _Writer:
 # ~1,800 labels were ~30 % of the compilation.  The labels a figure draws last (over all
 # else, outside any group) are placed by Typst itself over the image instead: the same
 # font, sizes, baselines, anchors, colours and styles, the same text in the PDF.
-_TEXT = re.compile(r"<text\b([^>]*)>(.*?)</text>\s*", re.S)
 _SVG_TAG = re.compile(r"<svg\b([^>]*)>")
 _XATTR = re.compile(r'\s+([a-zA-Z:-]+)="([^"]*)"')
 _TSPAN = re.compile(r"<tspan\b([^>]*)>([^<]*)</tspan>|([^<]+)|(<)")
