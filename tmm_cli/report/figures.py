@@ -282,19 +282,21 @@ def arrow(ax, p, q, color="k", lw=1.0, head=None, z=4, style="-|>", ls="-"):
 
 class _Segments:
     """Distances from points to the nearest of segments (k, 2, 2), the segments' parts
-    computed once (x and y apart: no reductions over a length-2 axis)."""
+    computed once (x and y apart: no reductions over a length-2 axis), as columns (k, 1):
+    the points run along the arrays' long last axis (numpy's inner loop over the points,
+    not over the few segments)."""
 
     def __init__(self, segs):
         a, b = segs[:, 0], segs[:, 1]
         d = b - a
-        self.ax, self.ay = a[:, 0], a[:, 1]
-        self.dx, self.dy = d[:, 0], d[:, 1]
+        self.ax, self.ay = a[:, 0, None], a[:, 1, None]
+        self.dx, self.dy = d[:, 0, None], d[:, 1, None]
         self.L2 = np.maximum(self.dx * self.dx + self.dy * self.dy, 1e-300)
 
     def dists(self, cx, cy):
         """Distance from each point (cx[i], cy[i]) to the nearest segment."""
-        rx = cx[:, None] - self.ax
-        ry = cy[:, None] - self.ay
+        rx = cx - self.ax                          # (segments, points)
+        ry = cy - self.ay
         t = rx * self.dx
         t += ry * self.dy
         t /= self.L2
@@ -305,17 +307,21 @@ class _Segments:
         rx *= rx
         ry *= ry
         rx += ry
-        return np.sqrt(rx.min(axis=1))
+        return np.sqrt(_min_over(rx, 0))
 
 
 def _point_dists(cx, cy, px, py):
     """Distance from each point (cx[i], cy[i]) to the nearest of the points (px, py)."""
-    dx = cx[:, None] - px
-    dy = cy[:, None] - py
+    dx = cx - px[:, None]                          # (points, candidates)
+    dy = cy - py[:, None]
     dx *= dx
     dy *= dy
     dx += dy
-    return np.sqrt(dx.min(axis=1))
+    return np.sqrt(_min_over(dx, 0))
+
+
+_min_over = np.minimum.reduce        # (the exact minimum: the same number in any order)
+_gt = np.greater                     # of booleans: a > b is a & ~b, in one operation
 
 
 _DIRS = np.array([[math.cos(t), math.sin(t)] for t in np.linspace(0, 2 * math.pi, 16, endpoint=False)])
@@ -390,22 +396,34 @@ def place_labels(anchors, extent: float, avoid=(), step: float | None = None, se
                  for (bc, bu, hw, hh) in boxes]
     nt = len(taken)
     if sizes is not None:
-        # the label boxes' half sizes, (anchors, 1)
-        H0 = np.array([float(s[0]) / 2 for s in sizes[:na]], float)[:, None]
-        H1 = np.array([float(s[1]) / 2 for s in sizes[:na]], float)[:, None]
+        # the label boxes' half sizes, repeated to (anchors, candidates): the operations with
+        # CX, CY then run over same-shape arrays (numpy's fast loop, not a broadcast)
+        h0s = [float(s[0]) / 2 for s in sizes[:na]]
+        h1s = [float(s[1]) / 2 for s in sizes[:na]]
+        H0 = np.repeat(np.array(h0s, float), ncand).reshape(-1, ncand)
+        H1 = np.repeat(np.array(h1s, float), ncand).reshape(-1, ncand)
+        h_max = max(map(abs, h0s + h1s))
         if bounds is not None:
             bx0, by0, bx1, by1 = bounds
             free_all = (CX - H0 >= bx0) & (CX + H0 <= bx1) & (CY - H1 >= by0) & (CY + H1 <= by1)
         else:
             free_all = np.ones((na, ncand), bool)
         for box in taken:                      # not overlapping a taken box (and inside the bounds)
-            free_all &= ~_overlaps(CX, CY, H0, H1, box)
+            if bounds is None or not _beyond(box, bounds, h_max):
+                _gt(free_all, _overlaps(CX, CY, H0, H1, box), free_all)
     every = np.arange(ncand)
     # the most a candidate of a farther ring can score (without the preferred direction's
     # term), with a margin for rounding
     far_top = lim_l + lim_a + lim_s - float(ring[n_near]) + 1e-9 * step if n_near < ncand else np.inf
     full_l = np.full(ncand, min(big, lim_l))
     ring_n, ring_f = ring[:n_near], ring[n_near:]
+    lim_l0 = np.array(lim_l)                   # (a 0-d array: no scalar conversion in each np.minimum)
+    # the preferred directions as unit vectors, every anchor's at once (the same divisions
+    # as np.asarray(pref, float) / hypot(pref) one by one); norms[k] > 0: anchor k has one
+    norms = [0.0 if a[2] is None else math.hypot(*a[2]) for a in anchors]
+    if any(n > 0 for n in norms):
+        units = np.array([a[2] if n > 0 else (0.0, 0.0) for a, n in zip(anchors, norms)], float)
+        units /= np.array([n if n > 0 else 1.0 for n in norms], float)[:, None]
     px: list[float] = []                       # the labels placed so far
     py: list[float] = []
     out = []
@@ -422,17 +440,17 @@ def place_labels(anchors, extent: float, avoid=(), step: float | None = None, se
         n_ok = len(idx)
         if n_ok:
             # the score of every candidate (the same sums, in the same order, as one by one)
-            row = np.minimum(np.sqrt(D2[k_a]), lim_l) if k_a else full_l[:n_near].copy()
+            row = np.minimum(np.sqrt(D2[k_a]), lim_l0) if k_a else full_l[:n_near].copy()
             row += MDA[k_a]
             row += MDS[k_a]
             row -= ring_n
             lean = None
-            if pref is not None:
-                n = math.hypot(*pref)
-                if n > 0:
-                    lean = 0.5 * step * (dirs[idx] @ (np.asarray(pref, float) / n))
-                else:
-                    pref = None
+            if norms[k_a] > 0:
+                # (dirs.take: the same rows as dirs[idx], without the fancy index's cost; the
+                # product over exactly the admissible rows: its bits depend on them)
+                lean = 0.5 * step * (dirs.take(idx, 0) @ units[k_a])
+            else:
+                pref = None
             # the nearer rings first: when one of them scores above the most a farther
             # one can, the farther ones are not looked at (the same choice: the first best)
             n_in = n_ok if n_near >= ncand else (n_near if ok is None else int(idx.searchsorted(n_near)))
@@ -441,7 +459,8 @@ def place_labels(anchors, extent: float, avoid=(), step: float | None = None, se
                 near = row if ok is None else row[idx[:n_in]]
                 if lean is not None:
                     near = near + (lean if n_in == n_ok else lean[:n_in])
-                if n_in == n_ok or near.max() > (far_top if pref is None else far_top + 0.5 * step):
+                k = int(near.argmax())         # (near[k]: near.max(), NaN as NaN, without the reduction)
+                if n_in == n_ok or near[k] > (far_top if pref is None else far_top + 0.5 * step):
                     score = near
             if score is None:                  # the farther rings' scores too
                 cxf, cyf = CX[k_a, n_near:], CY[k_a, n_near:]
@@ -462,7 +481,7 @@ def place_labels(anchors, extent: float, avoid=(), step: float | None = None, se
                 score = row if ok is None else row[idx]
                 if lean is not None:
                     score = score + lean
-            k = int(score.argmax())
+                k = int(score.argmax())
             if math.isfinite(score[k]):
                 best = (float(CX[k_a, idx[k]]), float(CY[k_a, idx[k]]))
         if best is None:
@@ -475,7 +494,8 @@ def place_labels(anchors, extent: float, avoid=(), step: float | None = None, se
             dx *= dx
             dy *= dy
             dx += dy
-            np.minimum(D2[k_a + 1:], dx, out=D2[k_a + 1:])
+            rest = D2[k_a + 1:]
+            np.minimum(rest, dx, out=rest)
             px.append(best[0])
             py.append(best[1])
         if sizes is not None:
@@ -484,7 +504,8 @@ def place_labels(anchors, extent: float, avoid=(), step: float | None = None, se
             taken.append(box)
             nt += 1
             if not last:
-                free_all[k_a + 1:] &= ~_overlaps(CX[k_a + 1:], CY[k_a + 1:], H0[k_a + 1:], H1[k_a + 1:], box)
+                rest = free_all[k_a + 1:]
+                _gt(rest, _overlaps(CX[k_a + 1:], CY[k_a + 1:], H0[k_a + 1:], H1[k_a + 1:], box), rest)
         out.append(best)
     return out
 
@@ -519,9 +540,20 @@ def _admissible(ok, free):
 _count = np.count_nonzero
 
 
+def _beyond(box, bounds, h_max) -> bool:
+    """Whether ``box`` (x0, y0, x1, y1) lies beyond ``bounds`` (x0, y0, x1, y1) by more than a
+    margin far above rounding (1e-9 of the numbers), so that no label box inside the bounds
+    (half sizes at most h_max) can overlap it: its overlap test would leave every candidate
+    inside the bounds free (a panel's title above the labels' bounds).  NaN: False."""
+    x0, y0, x1, y1 = (float(v) for v in box)
+    bx0, by0, bx1, by1 = (float(v) for v in bounds)
+    m = 1e-9 * max(abs(x0), abs(y0), abs(x1), abs(y1), abs(bx0), abs(by0), abs(bx1), abs(by1), h_max)
+    return x1 < bx0 - m or x0 > bx1 + m or y1 < by0 - m or y0 > by1 + m
+
+
 def _overlaps(CX, CY, H0, H1, box):
     """Whether each candidate's label box (centres CX, CY (anchors, candidates), half
-    sizes H0, H1 (anchors, 1)) overlaps ``box`` (x0, y0, x1, y1), the box taken as its
+    sizes H0, H1 (the same shape, or (anchors, 1))) overlaps ``box`` (x0, y0, x1, y1), the box taken as its
     centre and half sizes (the same numbers as the one-by-one test)."""
     x0, y0, x1, y1 = (float(v) for v in box)
     cx, cy = (x0 + x1) / 2, (y0 + y1) / 2
