@@ -56,3 +56,22 @@ def test_figure_files_named_by_content_and_position_with_captions_in_the_report_
         assert "data-name" not in (tmp_path / r["file"]).read_text(encoding="utf-8")
     plans = next(r for r in rows if r["file"] == f"figures/plans-pos{idx[2]:02d}.svg")
     assert plans["caption"].startswith(f"Положення {idx[2]},")
+
+
+def test_figures_found_as_the_regex_finds_them():
+    """report._figures (str.find) gives what the regex it replaced gives, on random text
+    made of the tags' pieces (word boundaries, missing ends, nesting)."""
+    import random
+    import re
+    from tmm_cli.report import _figures
+    rx = re.compile(r"<figure\b.*?(<svg\b.*?</svg>)(.*?)</figure>", re.S)
+    rng = random.Random(5)
+    toks = ["<figure", "<figure>", "<figurex", "<figure ", "<svg", "<svg ", "<svgé", "</svg>",
+            "</figure>", "x", "<", ">", "é", "_", "1", " ", "\n"]
+    found = 0
+    for _ in range(20000):
+        h = "".join(rng.choice(toks) for _ in range(rng.randint(0, 14)))
+        want = [(m.start(), m.group(1), m.group(2)) for m in rx.finditer(h)]
+        assert list(_figures(h)) == want, h
+        found += len(want)
+    assert found > 50

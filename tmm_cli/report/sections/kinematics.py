@@ -440,10 +440,11 @@ def build(ctx) -> str | None:
     for e in shown:
         vp = build_plan("v", e, geom, mu_v)
         ap = build_plan("a", e, geom, mu_a)
-        vrows = [(Markup(sym), seg, ctx.fmt_fixed(mm, 1), ctx.fmt(val)) for sym, seg, mm, val in vp.rows()]
-        arows = [(Markup(sym), seg, ctx.fmt_fixed(mm, 1), ctx.fmt(val)) for sym, seg, mm, val in ap.rows()]
-        for kind, pl in (("v", vp), ("a", ap)):
-            for sym, seg, mm, val in pl.rows():
+        vr, ar = vp.rows(), ap.rows()
+        vrows = [(Markup(sym), seg, ctx.fmt_fixed(mm, 1), ctx.fmt(val)) for sym, seg, mm, val in vr]
+        arows = [(Markup(sym), seg, ctx.fmt_fixed(mm, 1), ctx.fmt(val)) for sym, seg, mm, val in ar]
+        for kind, rows in (("v", vr), ("a", ar)):
+            for sym, seg, mm, val in rows:
                 plan_csv.append([e["index"], e["phi"], kind, seg,
                                  html.unescape(sym.replace("<sub>", "_").replace("</sub>", "")
                                                .replace("<sup>", "^").replace("</sup>", "")),
