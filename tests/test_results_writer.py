@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 
 import tmm_cli
 from tmm_cli.pipeline import run       # the results as the command line writes them (lazy entries)
-from tmm_cli.results import Entries, LazyEntries, _one_line, clean, dumps
+from tmm_cli.results import Entries, LazyEntries, one_line, clean, dumps
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -123,22 +123,22 @@ _value = st.recursive(_leaf, lambda kids: st.lists(kids, max_size=4)
 @pytest.mark.parametrize("value", [0.0, 1.5, -2.25, 1e-05, 2.5e-07, 1e16, 1e22, 1.0000000000000002, 5e-324,
                                    1.7976931348623157e308, 123456789.123, 3, -7, 2**64, -2**63 - 1, True, False,
                                    None, "S2", "μ ü \"q\"\n\t\x00\u2028", [1.0, None], {"x": 1e-300, "y": [True]}])
-def test_one_line_reads_back_bit_for_bit(value):
-    text = _one_line(clean(value))
+def testone_line_reads_back_bit_for_bit(value):
+    text = one_line(clean(value))
     assert "\n" not in text
     assert _same_bits(json.loads(text), clean(value))
 
 
 @given(_value)
 @settings(max_examples=300, deadline=None)
-def test_one_line_reads_back_bit_for_bit_any(value):
+def testone_line_reads_back_bit_for_bit_any(value):
     v = clean(value)
-    text = _one_line(v)
+    text = one_line(v)
     assert "\n" not in text
     assert _same_bits(json.loads(text), v)
 
 
-def test_one_line_floats_shortest():
+def testone_line_floats_shortest():
     """Every float written in the fewest significant digits that read back to it: the
     same digits as Python's repr (both shortest, ties to the nearest), on random doubles
     of every magnitude."""
@@ -148,7 +148,7 @@ def test_one_line_floats_shortest():
         x = struct.unpack("<d", struct.pack("<Q", rnd.getrandbits(64)))[0]
         if not math.isfinite(x):
             continue
-        text = _one_line(x)
+        text = one_line(x)
         assert float(text) == x
         mant = lambda t: t.lower().split("e")[0].replace("-", "").replace(".", "").strip("0")   # noqa: E731
         assert mant(text) == mant(repr(x)), (text, repr(x))

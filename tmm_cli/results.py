@@ -153,7 +153,7 @@ _ORJSON = orjson.dumps
 _ORJSON_ERROR = orjson.JSONEncodeError
 
 
-def _one_line(v) -> str:
+def one_line(v) -> str:
     """A clean value (see :func:`clean`) as JSON on one line, by orjson: compact (no
     space after "," and ":"), UTF-8 text as it is, every float in the shortest form
     that reads back to the same float (ryu: ``0.00001``, ``2.5e-7``, ``1e+16``), ~20x
@@ -168,7 +168,7 @@ def _one_line(v) -> str:
 def dumps(results: dict) -> str:
     """The results file's text, deterministic: the sections and their entries (one
     position, one joint...) one key a line, indented by one space a level; anything
-    deeper, and any array of plain values, on one line (:func:`_one_line`)."""
+    deeper, and any array of plain values, on one line (:func:`one_line`)."""
     out: list[str] = []
     _emit(clean(results), 0, out)
     out.append("\n")
@@ -233,7 +233,7 @@ def _emit(obj, level: int, out: list[str]) -> None:
     elif type(obj) is LazyEntries:           # elsewhere: as its list (an Entries) is written
         _emit(obj.tolist(), level, out)
     elif level >= _ONE_LINE_DEPTH:
-        out.append(_one_line(obj))
+        out.append(one_line(obj))
     elif type(obj) is dict and obj:
         out.append("{")
         items = list(obj.items())
@@ -247,7 +247,7 @@ def _emit(obj, level: int, out: list[str]) -> None:
             _emit(v, level + 1, out)
         out.append("\n" + " " * level + "]")
     else:
-        out.append(_one_line(obj))
+        out.append(one_line(obj))
 
 
 def _emit_items(items: list, lo: int, hi: int, level: int, out: list[str]) -> None:
@@ -256,7 +256,7 @@ def _emit_items(items: list, lo: int, hi: int, level: int, out: list[str]) -> No
     for i in range(lo, hi):
         k, v = items[i]
         out.append(pad if i == 0 else "," + pad)
-        out.append(_one_line(k) + ": ")
+        out.append(one_line(k) + ": ")
         _emit(v, level + 1, out)
 
 
@@ -266,7 +266,7 @@ def _emit_entries(entries: Entries | LazyEntries, out: list[str]) -> None:
     keys: dict[str, str] = {}
     pad = "\n" + " " * _ONE_LINE_DEPTH
     sep = ","
-    one = _one_line
+    one = one_line
     spill = getattr(out, "spill", None)
     out.append("[")
     for i, e in enumerate(entries):

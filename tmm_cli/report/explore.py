@@ -18,19 +18,13 @@ data are the results' ``kinematics_explore`` (made by the pipeline with the stag
 function ``tmm_cli.linkage.kinematics.explore.explore_grid``)."""
 from __future__ import annotations
 
-import json
 import math
-import re
-
-import orjson
 
 import numpy as np
 
+from ..results import one_line
 from ..tables import round_sig
 from .context import templates_dir
-
-_ORJSON = orjson.dumps
-_ORJSON_ERROR = orjson.JSONEncodeError
 
 I18N = {
     "en": {"explore.title": "The mechanism in motion", "explore.play": "Play", "explore.pause": "Pause",
@@ -72,75 +66,8 @@ I18N = {
 def data_json(data: dict) -> str:
     """JSON safe inside <script>: no '<', '>' or '&' at all (written as \\u003c ...), so
     user text (point and link names) can neither end the element nor open a tag."""
-    s = _json_text(data)
+    s = one_line(data)
     return s.replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")
-
-
-def _json_text(data) -> str:
-    """``json.dumps(data, separators=(",", ":"), ensure_ascii=True, allow_nan=False)``,
-    the same text, made by orjson (~1/10 of the time; the widget's data are ~0.4 MB of
-    floats): orjson writes a float 1e-5 <= |x| < 1e-4 as ``0.0000ddd`` and a one-digit
-    negative exponent as ``e-7`` where repr writes ``d.dde-05`` and ``e-07`` (those put
-    right, outside strings), and text as UTF-8 (escaped here as json does).  What orjson
-    does not take (an int beyond 64 bits, a numpy scalar, a key not a string) and a
-    non-finite float (orjson: null; json: ValueError) go to json's encoder."""
-    try:
-        s = _ORJSON(data).decode()
-    except _ORJSON_ERROR:
-        s = None
-    if s is None or (not _FINITE(data) if "null" in s else False):
-        return json.dumps(data, separators=(",", ":"), ensure_ascii=True, allow_nan=False)
-    if "e-" in s or "0.0000" in s:
-        if '\\"' in s:        # a quote inside a string: the split below cannot tell
-            return json.dumps(data, separators=(",", ":"), ensure_ascii=True, allow_nan=False)
-        parts = s.split('"')    # the even parts: outside the strings (numbers, punctuation)
-        for i in range(0, len(parts), 2):
-            p = parts[i]
-            if "e-" in p:
-                p = _EXP1.sub(r"e-0\1", p)
-            if "0.0000" in p:
-                p = _SMALL.sub(_small_repr, p)
-            parts[i] = p
-        s = '"'.join(parts)
-    if not s.isascii() or "\x7f" in s:
-        s = _NON_ASCII.sub(_u_escape, s)
-    return s
-
-
-def _finite(v) -> bool:
-    """No NaN or infinity anywhere in v (lists, tuples and dicts looked into)."""
-    if type(v) is float:
-        return math.isfinite(v)
-    if isinstance(v, dict):
-        return all(map(_finite, v.values()))
-    if isinstance(v, (list, tuple)):
-        try:                    # a list of numbers: NaN or inf in it makes the sum so
-            return math.isfinite(sum(v))    # (an overflow only sends it to json's encoder)
-        except TypeError:       # None, text, lists in it
-            return all(map(_finite, v))
-    return True
-
-
-_FINITE = _finite
-_EXP1 = re.compile(r"e-(\d)(?!\d)")               # orjson's e-7: repr's e-07
-_SMALL = re.compile(r"0\.0000([1-9])(\d*)")        # orjson's 0.0000ddd: repr's d.dde-05
-_NON_ASCII = re.compile("[^\x00-\x7e]")
-
-
-def _small_repr(m) -> str:
-    at = m.start()
-    if at and m.string[at - 1] in "0123456789.":     # inside a longer number (10.00001)
-        return m.group(0)
-    rest = m.group(2)
-    return f"{m.group(1)}{'.' + rest if rest else ''}e-05"
-
-
-def _u_escape(m) -> str:
-    n = ord(m.group(0))
-    if n > 0xFFFF:
-        n -= 0x10000
-        return "\\u{0:04x}\\u{1:04x}".format(0xD800 | (n >> 10), 0xDC00 | (n & 0x3FF))
-    return "\\u{0:04x}".format(n)
 
 
 def _vec_rows(items: dict, digits: int) -> list:
