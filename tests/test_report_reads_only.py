@@ -27,6 +27,7 @@ REPORT = ROOT / "tmm_cli" / "report"
 # modules outside tmm_cli.report the report may import, and why
 ALLOWED = {
     "tmm_cli.io": "atomic file writing",
+    "tmm_cli.results": "the results file's own helpers: its entries as lists, its JSON writer (the widget's data)",
     "tmm_cli.safepath": "paths kept inside the output folder",
     "tmm_cli.tables": "CSV text",
     "tmm_cli.units": "number formatting of the task-data table",
@@ -50,7 +51,7 @@ def _modules():
     for f in sorted(REPORT.rglob("*.py")):
         rel = f.relative_to(ROOT).with_suffix("")
         parts = list(rel.parts)
-        package = parts if f.name == "__init__.py" else parts[:-1]
+        package = parts[:-1]           # a package's __init__ and its modules: the same package
         if f.name == "__init__.py":
             parts = parts[:-1]
         yield f, ".".join(parts), package
@@ -89,6 +90,14 @@ def test_the_import_check_sees_a_stage_import(tmp_path):
     found = [m for _, m, _ in _imports(tree, ["tmm_cli", "report"])]
     assert found == ["tmm_cli.linkage.kinematics.explore", "tmm_cli.gears"]
     assert not set(found) & set(ALLOWED)
+
+
+def test_the_import_check_resolves_a_packages_init():
+    """A relative import in tmm_cli/report/__init__.py is resolved from tmm_cli.report
+    (the check once read ``..linkage`` there as tmm_cli.report.linkage and let it pass)."""
+    init = {f.name: package for f, _, package in _modules() if f.parent == REPORT}["__init__.py"]
+    tree = ast.parse("from ..linkage import kinematics\nfrom .figures import place_labels\n")
+    assert [m for _, m, _ in _imports(tree, init)] == ["tmm_cli.linkage", "tmm_cli.report.figures"]
 
 
 def _broad(handler: ast.ExceptHandler) -> bool:
