@@ -184,6 +184,7 @@ class _Writer:
         self.files: dict[str, bytes] = {}
         self.after_section = False
         self.in_pair = 0
+        self.whole = False                  # inside a block kept on one page (not breakable)
         self.width: float | None = _TEXT_WIDTH   # pt free for a block here; None: not known
 
     @contextmanager
@@ -292,14 +293,23 @@ class _Writer:
             self.after_section = True
             return brk + body
         if tag == "div" and "position" in cls:
-            return "#pagebreak(weak: true)\n#block(breakable: false)[\n" + self.blocks(node) + "\n]"
+            whole, self.whole = self.whole, True
+            body = self.blocks(node)
+            self.whole = whole
+            return "#pagebreak(weak: true)\n#block(breakable: false)[\n" + body + "\n]"
         if tag == "div" and ("tables2" in cls or "pair" in cls):
             kids = [c for c in node.children if isinstance(c, _Node)]
+            n = max(len(kids), 1)
             self.in_pair += 1
-            with self._inside(lambda w: (w - _MM * 3 * (len(kids) - 1)) / max(len(kids), 1)):
-                cells = ", ".join(f"[{self.blocks(k) if k.tag == 'div' else self.block(k)}]" for k in kids)
+            with self._inside(lambda w: (w - _MM * 3 * (n - 1)) / n):
+                parts = [self.blocks(k) if k.tag == 'div' else self.block(k) for k in kids]
             self.in_pair -= 1
-            return f"#grid(columns: ({', '.join(['1fr'] * max(len(kids), 1))}), gutter: 3mm, {cells})"
+            if self.whole:
+                # on one page: side by side in a stack, each laid out once (a grid's auto row
+                # lays its cells out twice, measured first); the same page as the grid's
+                width = f"(100% - {3 * (n - 1)}mm) / {n}"
+                return "#stack(dir: ltr, spacing: 3mm, " + ", ".join(f"block(width: {width})[{p}]" for p in parts) + ")"
+            return f"#grid(columns: ({', '.join(['1fr'] * n)}), gutter: 3mm, {', '.join(f'[{p}]' for p in parts)})"
         if tag == "div" and "task-groups" in cls:
             kids = [c for c in node.children if isinstance(c, _Node)]
             # boxes in a line: each is laid out in the width of the line, less its inset
