@@ -91,15 +91,19 @@ def test_rows_that_may_wrap_stay_auto():
         return m.group(0) if m else None
 
     long_num = rows_of('"c0"')
-    # header auto, five rows fixed, the row of the long number auto, then fixed again
+    # the header (short bold names) and five rows fixed, the row of the long number auto,
+    # then fixed again
     tracks = [x.strip() for x in long_num[len("rows: ("):-len(",), ")].split(",")]
-    assert tracks[0] == "auto" and tracks[6] == "auto"
-    assert all(t.startswith("0.8em") for t in tracks[1:6] + tracks[7:])
+    assert tracks[6] == "auto"
+    assert all(t.startswith("0.8em") for t in tracks[:6] + tracks[7:])
+    # a header with sub- and superscripts in bold: fixed too
+    assert rows_of('"Pos."').startswith("rows: (0.8em")
     # a cell wider than the columns it spans: the table stays auto (how Typst widens the
     # columns under it is not modelled)
     note = rows_of('"a"')
     assert note is None
     assert rows_of('"x"') is None
+    # a header whose bound (bold) exceeds its shared column's width may wrap: auto
     assert rows_of('"Vector"').startswith("rows: (auto, 0.8em")
 
 

@@ -376,12 +376,13 @@ class _Writer:
 
     def fixed_rows(self, rows, nhead: int, one_line: list[bool], ncols: int, kinds: list[str],
                    compact: bool) -> str:
-        """The ``rows:`` argument giving each body row that is one line of text in every cell
-        its height outright: Typst then lays its cells out once instead of measuring them
+        """The ``rows:`` argument giving each row (header or body) that is one line of text
+        in every cell its height outright: Typst then lays its cells out once instead of measuring them
         first (an auto row), ~0.2 s of the forging report's compilation. The height is the
         one an auto row gets (the table's line edges 0.8em + 0.25em and the cell insets);
         a row is fixed only where no cell of it can wrap, i.e. where a bound of the
-        table's width (DejaVu Sans advances, rounded up) fits the width free for it.
+        table's width (DejaVu Sans advances, rounded up; bold ones for a header's cells)
+        fits the width free for it.
         Empty when no row qualifies or the free width is not known here."""
         if self.width is None or nhead >= len(rows) or not any(one_line[nhead:]):
             return ""
@@ -420,7 +421,7 @@ class _Writer:
         h = f"0.8em + 0.25em + {2 * iy}mm"   # as Typst sums an auto row
         out = []
         for i, row in enumerate(est):
-            ok = (i >= nhead and one_line[i] and any(w for _, _, w in row)
+            ok = (one_line[i] and any(w for _, _, w in row)
                   and all(w <= sum(col[a:b]) for a, b, w in row))
             out.append(h if ok else "auto")
         if h not in out:
