@@ -71,7 +71,8 @@ HTML = "<html><head><title>t</title></head><body><section><h2>Tables</h2>" + "".
 ]) + "</section></body></html>"
 
 
-def test_fixed_rows_leave_the_pdf_byte_identical(tmp_path):
+def test_fixed_rows_leave_the_pdf_byte_identical(tmp_path, monkeypatch):
+    monkeypatch.setattr(typst_pdf, "_CHUNK", 0)         # one row a table row
     src, files = to_typst(HTML, "ru")
     tracks = _ROWS.findall(src)
     assert len(tracks) == 6, "the test's tables give rows of a given height"
@@ -81,7 +82,8 @@ def test_fixed_rows_leave_the_pdf_byte_identical(tmp_path):
     assert a == b
 
 
-def test_rows_that_may_wrap_stay_auto():
+def test_rows_that_may_wrap_stay_auto(monkeypatch):
+    monkeypatch.setattr(typst_pdf, "_CHUNK", 0)
     src, _ = to_typst(HTML, "en")
     tables = src.split("#table(")[1:]
 
@@ -91,16 +93,21 @@ def test_rows_that_may_wrap_stay_auto():
         return m.group(0) if m else None
 
     long_num = rows_of('"c0"')
-    # header auto, five rows fixed, the row of the long number auto, then fixed again
+    # the header (short bold names) and five rows fixed, the row of the long number auto,
+    # then fixed again
     tracks = [x.strip() for x in long_num[len("rows: ("):-len(",), ")].split(",")]
-    assert tracks[0] == "auto" and tracks[6] == "auto"
-    assert all(t.startswith("0.8em") for t in tracks[1:6] + tracks[7:])
+    assert tracks[6] == "auto"
+    assert all(t.startswith("0.8em") for t in tracks[:6] + tracks[7:])
+    # a header with sub- and superscripts in bold: fixed too
+    assert rows_of('"Pos."').startswith("rows: (0.8em")
     # a cell wider than the columns it spans: the table stays auto (how Typst widens the
     # columns under it is not modelled)
     note = rows_of('"a"')
     assert note is None
     assert rows_of('"x"') is None
-    assert rows_of('"Vector"').startswith("rows: (auto, 0.8em")
+    # a header in bold, one line in its shared column (the bound of DejaVu Sans Bold's
+    # advances), then the body rows
+    assert rows_of('"Vector"').startswith("rows: (0.8em")
 
 
 def test_width_bound_covers_dejavu_sans():
@@ -122,3 +129,65 @@ def test_width_bound_covers_dejavu_sans():
                     over.append((hex(cp), adv))
         assert not over, f"{name}: {over[:10]}"
     assert _em_width("0.5", False) == pytest.approx(0.64 + 0.40 + 0.64)
+
+
+# one page of tables: rows merged column by column (_by_columns) next to each kind of row
+PAGE = "<html><head><title>t</title></head><body><section>" + "".join([
+    # 10 rows: a chunk of 7 and one of 3, equal shared columns (one curve a chunk)
+    _table("compact wide", ["Pos.", "φ, °"] + [f"M<sub>Φ{k}</sub>" for k in range(2, 8)], _numbers(10, 8, 4)),
+    # a pair of plan tables: markup in the cells (sub/superscripts, a bar), a wrapped header
+    '<div class="position"><div class="tables2"><div>'
+    + _table("compact", ["Vector", "Segment", "Length of the segment on the drawing, mm", "Value"],
+             [[f"a<sub>B{k}</sub><sup>τ</sup>", f"πs₂{k}", "82.2", "4.112"] for k in range(9)],
+             caption="Acceleration plan")
+    + "</div><div>"
+    + _table("compact wide", ["Вектор", "Отрезок", "Длина, мм", "Значение"],
+             [[f"<span class='vec'>ab</span><sub>{k}</sub>", "Щ", "-0.5", "1e-05"] for k in range(5)])
+    + "</div></div></div>",
+    # an auto row (a long number) between chunks, not compact; an empty cell splits a run
+    _table("wide", [f"c{k}" for k in range(6)],
+           _numbers(4, 6, 5) + [["1234567890123456789012345678901234567890"] + ["1"] * 5]
+           + _numbers(3, 6, 6) + [["", "2", "3", "4", "5", "6"]] + _numbers(2, 6, 7)),
+    # text columns (auto width): a curve in each cell
+    '<table class="kv"><tr><th>a</th><td>x</td></tr></table>',
+    _table("", ["name", "value"], [[f"link {k}", f"{k * 1.5:.2f}"] for k in range(6)]),
+]) + "</section></body></html>"
+
+
+def _pixels(src: str, tmp_path):
+    import io
+
+    import numpy as np
+    from PIL import Image
+    (tmp_path / "p.typ").write_text(src, encoding="utf-8")
+    pages = typst.compile(str(tmp_path / "p.typ"), root=str(tmp_path), font_paths=typst_pdf._font_dirs(),
+                          format="png", ppi=100)
+    pages = pages if isinstance(pages, list) else [pages]
+    return [np.asarray(Image.open(io.BytesIO(p)).convert("L"), dtype=int) for p in pages]
+
+
+def test_rows_by_columns_draw_the_same_page(tmp_path, monkeypatch):
+    """The rows merged column by column: the same page, pixel for pixel, as one table row
+    a row (rendered by Typst at 100 ppi), but for the anti-aliasing of the rules."""
+    src, _ = to_typst(PAGE, "en")
+    h = "0.8em + 0.25em + 1.6mm"
+    assert f"rows: ({h}, 7 * ({h}), 3 * ({h}),)" in src           # the header, chunks of 7 and 3
+    assert "2 * (0.8em + 0.25em + 2.1mm)" in src                  # 2 rows after the empty cell
+    assert '"0\\n1\\n2\\n3\\n4\\n5\\n6"' in src          # a column's values one string
+    assert src.count("#_rules") > src.count("#let _rules")
+    # a header that may wrap in its shared column stays auto, with PREAMBLE's leading
+    plan = src[src.index("Acceleration plan"):]
+    # (on a page of its own: one chunk, no page to break)
+    assert plan[plan.index("rows: ("):].startswith(f"rows: (auto, 9 * ({h}),)")
+    assert plan[plan.index("table.header("):].startswith(
+        'table.header(table.cell(fill: rgb("#eeeeee"), align: center)[#set par(leading: 0.3em)')
+    monkeypatch.setattr(typst_pdf, "_CHUNK", 0)
+    rows, _ = to_typst(PAGE, "en")
+    assert "_rules" not in rows and "7 * (" not in rows
+    a, b = _pixels(src, tmp_path), _pixels(rows, tmp_path)
+    assert len(a) == len(b) == 2                                 # the position: a page of its own
+    import numpy as np
+    d = np.concatenate([abs(x - y).ravel() for x, y in zip(a, b)])
+    assert (d > 0).sum() > 0                                     # not the same source
+    assert (d > 8).sum() == 0, f"{(d > 8).sum()} pixels differ by more than anti-aliasing"
+    assert (d > 0).sum() < 1e-3 * d.size

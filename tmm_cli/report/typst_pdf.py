@@ -140,13 +140,28 @@ _ADV = {**dict.fromkeys("0123456789", 0.64), **dict.fromkeys(".,:;' |il", 0.40),
         **dict.fromkeys("-()[]/!", 0.42), **dict.fromkeys("+−×=<>", 0.84),
         **dict.fromkeys("abcdeghknopqsuvxyz", 0.64), **dict.fromkeys("fjrt", 0.42)}
 _BOLD = 1.25
+# DejaVu Sans Bold's advances of ASCII, Greek, Cyrillic and a few signs, in em rounded up to
+# 0.01 (a header's cells; tests/test_typst_rows.py reads the font)
+_ADV_BOLD = {ch: adv for adv, chars in (
+    (0.27, '′'), (0.31, "'"), (0.35, ' ijlіїј'), (0.37, '/\\|'), (0.38, ',.IJ·ΙΪІЇЈ'), (0.39, 'ίι'),
+    (0.40, ':;'), (0.42, '-'), (0.44, 'f²³₀₁₂₃₄₅₆₇₈₉'), (0.45, '″'), (0.46, '!()[]'), (0.48, 't'),
+    (0.50, '_`r°–'), (0.53, '"*гѓ'), (0.56, 'έε'), (0.58, 'т'), (0.59, '?zз'), (0.60, 'csζξςсэєѕ'),
+    (0.64, 'LΓΞλτЃГвь'), (0.65, 'xχхя'), (0.66, 'vyуў'), (0.67, 'k'), (0.68, 'aeΰυаекѐёќ'),
+    (0.69, 'EFToΕΣΤάαγδθνοЀЁЕТоч'), (0.70, '$0123456789бнпџ'), (0.71, 'ийѝ'), (0.72, 'bdghnpqu{}ήβηκρЗрђ'),
+    (0.73, 'SYZΖΥΫЅ'), (0.74, 'CPΡμЄРСЭлћ'), (0.75, 'ц'), (0.76, 'ъ'), (0.77, 'BΒБВЬ'),
+    (0.78, 'AKRVXΑΔΚΛΧσЎАУХЯ'), (0.79, 'φ'), (0.80, 'πψ'), (0.81, 'Чд'), (0.82, 'UЌКм'), (0.83, 'G'),
+    (0.84, '#+<=>DHN^~±×÷−ΗΝΠЍЏИЙЛНП'), (0.85, 'Ψ'), (0.86, 'OQΘΟΦΩО'), (0.87, 'ω'), (0.88, '&ЂЋ'),
+    (0.90, 'Д'), (0.91, 'ы'), (0.93, 'wЦ'), (0.94, 'Ъ'), (0.96, 'њ'), (0.98, 'ю'), (1.00, '@M—…ΜМФжфљ'),
+    (1.01, '%'), (1.04, 'Ы'), (1.05, 'm'), (1.07, 'ш'), (1.11, 'Wщ'), (1.13, 'Њ'), (1.16, 'Љ'),
+    (1.18, 'Ю'), (1.23, 'Ж'), (1.24, 'Ш'), (1.33, 'Щ')) for ch in chars}
 
 
 def _em_width(text: str, bold: bool = False) -> float:
     """A bound of the advance of ``text`` in DejaVu Sans (regular or bold), in em."""
-    w = sum(_ADV.get(ch) or (1.1 if ord(ch) < 0x1C4 or 0x370 <= ord(ch) < 0x460 else 2.0)
-            for ch in text)
-    return w * _BOLD if bold else w
+    if bold:
+        return sum(_ADV_BOLD.get(ch) or _em_width(ch) * _BOLD for ch in text)
+    return sum(_ADV.get(ch) or (1.1 if ord(ch) < 0x1C4 or 0x370 <= ord(ch) < 0x460 else 2.0)
+               for ch in text)
 
 PREAMBLE = r"""
 #set document(title: TITLE, date: none)
@@ -184,6 +199,7 @@ class _Writer:
         self.files: dict[str, bytes] = {}
         self.after_section = False
         self.in_pair = 0
+        self.whole = False                  # inside a block kept on one page (not breakable)
         self.width: float | None = _TEXT_WIDTH   # pt free for a block here; None: not known
 
     @contextmanager
@@ -292,14 +308,23 @@ class _Writer:
             self.after_section = True
             return brk + body
         if tag == "div" and "position" in cls:
-            return "#pagebreak(weak: true)\n#block(breakable: false)[\n" + self.blocks(node) + "\n]"
+            whole, self.whole = self.whole, True
+            body = self.blocks(node)
+            self.whole = whole
+            return "#pagebreak(weak: true)\n#block(breakable: false)[\n" + body + "\n]"
         if tag == "div" and ("tables2" in cls or "pair" in cls):
             kids = [c for c in node.children if isinstance(c, _Node)]
+            n = max(len(kids), 1)
             self.in_pair += 1
-            with self._inside(lambda w: (w - _MM * 3 * (len(kids) - 1)) / max(len(kids), 1)):
-                cells = ", ".join(f"[{self.blocks(k) if k.tag == 'div' else self.block(k)}]" for k in kids)
+            with self._inside(lambda w: (w - _MM * 3 * (n - 1)) / n):
+                parts = [self.blocks(k) if k.tag == 'div' else self.block(k) for k in kids]
             self.in_pair -= 1
-            return f"#grid(columns: ({', '.join(['1fr'] * max(len(kids), 1))}), gutter: 3mm, {cells})"
+            if self.whole:
+                # on one page: side by side in a stack, each laid out once (a grid's auto row
+                # lays its cells out twice, measured first); the same page as the grid's
+                width = f"(100% - {3 * (n - 1)}mm) / {n}"
+                return "#stack(dir: ltr, spacing: 3mm, " + ", ".join(f"block(width: {width})[{p}]" for p in parts) + ")"
+            return f"#grid(columns: ({', '.join(['1fr'] * n)}), gutter: 3mm, {', '.join(f'[{p}]' for p in parts)})"
         if tag == "div" and "task-groups" in cls:
             kids = [c for c in node.children if isinstance(c, _Node)]
             # boxes in a line: each is laid out in the width of the line, less its inset
@@ -366,15 +391,17 @@ class _Writer:
 
     def fixed_rows(self, rows, nhead: int, one_line: list[bool], ncols: int, kinds: list[str],
                    compact: bool) -> str:
-        """The ``rows:`` argument giving each body row that is one line of text in every cell
-        its height outright: Typst then lays its cells out once instead of measuring them
+        """The ``rows:`` argument giving each row (header or body) that is one line of text
+        in every cell its height outright: Typst then lays its cells out once instead of measuring them
         first (an auto row), ~0.2 s of the forging report's compilation. The height is the
         one an auto row gets (the table's line edges 0.8em + 0.25em and the cell insets);
         a row is fixed only where no cell of it can wrap, i.e. where a bound of the
-        table's width (DejaVu Sans advances, rounded up) fits the width free for it.
-        Empty when no row qualifies or the free width is not known here."""
+        table's width (DejaVu Sans advances, rounded up; bold ones for a header's cells)
+        fits the width free for it.
+        The tracks, one a row ("auto" or the height); None when no row qualifies or the
+        free width is not known here."""
         if self.width is None or nhead >= len(rows) or not any(one_line[nhead:]):
-            return ""
+            return None
         size, ix, iy = _TABLE_STYLE[compact]
         pad = 2 * ix * _MM
         need = [0.0] * ncols                # a bound of each column's natural width, pt
@@ -385,7 +412,7 @@ class _Writer:
             for c in r:
                 span = int(c.attrs.get("colspan") or 1)
                 if int(c.attrs.get("rowspan") or 1) > 1:
-                    return ""
+                    return None
                 t = c.text().strip()
                 w = _em_width(t, bold=c.tag == "th") * size + pad if t else 0.0
                 if span == 1 and j < ncols:
@@ -402,7 +429,7 @@ class _Writer:
         auto = sum(n for n, k in zip(need, kinds) if k == "auto")
         nfr = sum(1 for k in kinds if k == "1fr")
         if auto > free or (nfr and auto >= free):
-            return ""                       # auto columns would be shrunk: cells may wrap
+            return None                     # auto columns would be shrunk: cells may wrap
         share = (free - auto) / nfr if nfr else 0.0
         # an auto column is at least as wide as its widest cell, a shared one as wide as its
         # share whatever its cells (a header may wrap in it)
@@ -410,14 +437,10 @@ class _Writer:
         h = f"0.8em + 0.25em + {2 * iy}mm"   # as Typst sums an auto row
         out = []
         for i, row in enumerate(est):
-            ok = (i >= nhead and one_line[i] and any(w for _, _, w in row)
+            ok = (one_line[i] and any(w for _, _, w in row)
                   and all(w <= sum(col[a:b]) for a, b, w in row))
             out.append(h if ok else "auto")
-        if h not in out:
-            return ""
-        while len(out) > 1 and out[-1] == out[-2]:
-            out.pop()                       # the last track repeats
-        return f"rows: ({', '.join(out)},), "
+        return out if h in out else None
 
     def table(self, node) -> str:
         rows, caption = [], None
@@ -456,11 +479,13 @@ class _Writer:
                     right[j] = False
         if not rows[nhead:]:
             right = [False] * ncols
-        cells = []
+        cells = []          # per row: its cells' markup
+        bare = []           # per row: the same where each cell is plain text of one column
         one_line = []       # per row: every cell one line of text (or empty)
         with self._inside():                    # in a cell: the width not known
             for i, (head, r) in enumerate(rows):
                 plain = True
+                row, row_bare = [], len(r) == ncols
                 for j, c in enumerate(r):
                     body = self.inline(c).strip()
                     args = []
@@ -483,25 +508,113 @@ class _Writer:
                     else:
                         cell = f"[{body}]"
                         plain = plain and not _LINE_MARKUP.sub("", _STRING.sub("", body))
-                    cells.append(f"table.cell({', '.join(args)}){cell if cell[0] == '[' else f'[#{cell}]'}"
-                                 if args else cell)
+                    row.append(f"table.cell({', '.join(args)}){cell if cell[0] == '[' else f'[#{cell}]'}"
+                               if args else cell)
+                    row_bare = row_bare and not args and bool(body) and cell != '""'
+                cells.append(row)
+                bare.append(row if row_bare else None)
                 one_line.append(plain)
-        head_cells = sum(len(r) for _, r in rows[:nhead])
+        nhead_cells = sum(len(r) for r in cells[:nhead])
         pt, ix, iy = _TABLE_STYLE[compact]
         size = f"{pt}pt"
         inset = f"(x: {ix}mm, y: {iy}mm)"
         kinds = self.widths(rows[nhead:], ncols) if wide else ["auto"] * ncols
         cols = f"({', '.join(kinds)})" if wide else str(ncols)
-        rows_arg = self.fixed_rows(rows, nhead, one_line, ncols, kinds, compact)
-        header = f"table.header({', '.join(cells[:head_cells])}), " if head_cells else ""
-        body = ", ".join(cells[head_cells:])
+        tracks = self.fixed_rows(rows, nhead, one_line, ncols, kinds, compact)
+        rules = ""
+        # (not around a table in a cell: the leading set for the table's paragraphs would be its too)
+        if tracks is not None and _CHUNK > 1 and not any("#table(" in c for r in cells for c in r):
+            equal = len(set(kinds)) == 1 and kinds[0] == "1fr"
+            # on a page of its own (a block not broken) the table's rows are one chunk
+            tracks, cells, rules = _by_columns(tracks, cells, bare, nhead, ix, iy, len(kinds) if equal else 0,
+                                               len(rows) if self.whole else _CHUNK)
+        cells = [c for r in cells for c in r]
+        rows_arg = ""
+        if tracks is not None:
+            while len(tracks) > 1 and tracks[-1] == tracks[-2]:
+                tracks.pop()                    # the last track repeats
+            rows_arg = f"rows: ({', '.join(tracks)},), "
+        header = f"table.header({', '.join(cells[:nhead_cells])}), " if nhead_cells else ""
+        body = ", ".join(cells[nhead_cells:])
         align = ""
         if any(right):
             align = "align: (" + ", ".join("right" if x else "left" for x in right) + ",), "
-        tbl = f"#table(columns: {cols}, {rows_arg}inset: {inset}, {align}{header}{body})"
+        tbl = f"{rules}#table(columns: {cols}, {rows_arg}inset: {inset}, {align}{header}{body})"
         if caption:
             tbl = f"#cap[{caption}]\n{tbl}"
         return f"#block(above: 1.5mm, below: 3mm, width: {'100%' if wide else 'auto'})[#text(size: {size})[{tbl}]]"
+
+
+# body rows merged into one table row, column by column (see _by_columns)
+_CHUNK = 7                                  # (0 or 1: rows not merged)
+# the tables' stroke (PREAMBLE's `set table`) and its width, pt
+_RULE = re.search(r"#set table\(stroke: (.+)\)\n", PREAMBLE).group(1)
+_RULE_W = float(re.match(r"([0-9.]+)pt \+ ", _RULE).group(1))
+
+
+def _by_columns(tracks: list[str], cells: list[list[str]], bare: list, nhead: int,
+                ix: float, iy: float, equal: int, chunk: int) -> tuple[list[str], list[list[str]], str]:
+    """(tracks, cells per row, Typst markup to put before the table) with each run of body
+    rows of the given height whose cells are plain text of one column each (no fill, span
+    or alignment of their own, none empty) merged by chunks of up to ``chunk`` rows into one
+    row: each column's values one cell, a line each, the row the chunk's height.  Typst
+    lays out a table's cells one by one (each padded, each its own paragraph): 7 rows of
+    10 columns are then 10 cells instead of 70.  The lines' pitch is the row pitch: the
+    table's paragraphs get the leading of the cell insets (the cells of an auto row, which
+    may wrap, keep PREAMBLE's); the rules between a chunk's rows are a curve placed in each
+    of its cells over the cell's width, or in its first cell over the table's width where
+    the table's ``equal`` (> 0) columns are all 1fr.  A page may break only between chunks."""
+    h = next(t for t in tracks if t != "auto")
+    out_t, out_c, sizes = [], [], set()
+    i, n = 0, len(cells)
+    while i < n:
+        j = i
+        if i >= nhead and tracks[i] == h and bare[i] is not None:
+            while j < n and j - i < chunk and tracks[j] == h and bare[j] is not None:
+                j += 1
+        if j - i < 2:
+            row = cells[i]
+            if tracks[i] == "auto":             # may wrap: the leading of PREAMBLE
+                row = [_leading(c) for c in row]
+            out_t.append(tracks[i])
+            out_c.append(row)
+            i += 1
+            continue
+        k = j - i
+        sizes.add(k)
+        row = []
+        for m, col in enumerate(zip(*bare[i:j])):
+            rule = f"#_rules{k}\n" if m == 0 or not equal else ""
+            if all(c[0] == '"' for c in col):
+                text = "\\n".join(c[1:-1] for c in col)
+                row.append(f'[{rule}#"{text}"]' if rule else f'"{text}"')
+            else:
+                lines = "#linebreak()".join(f"#{c}" if c[0] == '"' else c[1:-1] for c in col)
+                row.append(f"[{rule}{lines}]")
+        out_t.append(f"{k} * ({h})")
+        out_c.append(row)
+        i = j
+    if not sizes:
+        return tracks, cells, ""
+    width = f"{equal} * (100% + {2 * ix}mm)" if equal else f"100% + {2 * ix}mm"
+    defs = f"#show table: set par(leading: {2 * iy}mm)\n"
+    for k in sorted(sizes):
+        # each rule over the vertical lines' half width beyond the ends, as Typst draws them
+        segs = ", ".join(f"curve.move((-{_RULE_W / 2}pt, {m} * ({h}))), "
+                         f"curve.line(({width} + {_RULE_W / 2}pt, {m} * ({h})))" for m in range(1, k))
+        defs += f"#let _rules{k} = place(dx: -{ix}mm, dy: -{iy}mm, curve(stroke: {_RULE}, {segs}))\n"
+    return out_t, out_c, defs
+
+
+def _leading(cell: str) -> str:
+    """A table cell's markup with PREAMBLE's leading of table paragraphs set in it."""
+    set_ = "#set par(leading: 0.3em)\n"
+    if cell.startswith("table.cell("):
+        at = cell.index(")[") + 2
+        return cell[:at] + set_ + cell[at:]
+    if cell[0] == "[":
+        return "[" + set_ + cell[1:]
+    return f"[{set_}#{cell}]"
 
 
 # ---------------------------------------------------------------- figure labels
