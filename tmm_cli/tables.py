@@ -176,16 +176,30 @@ def read_table(path: str | Path) -> tuple[list[str], list[tuple[int, dict[str, s
 
 def round_sig(values, digits: int = 7) -> list:
     """Each value rounded to ``digits`` significant digits (a plain float; 0 as 0);
-    NaN, inf and None -> None.  The values are written "%.6e" all at once (one
-    formatting and one split, not one call per value), the exceptions put right after."""
-    vals = values if isinstance(values, (list, tuple)) else _flat(values)
+    NaN, inf and None -> None: the floats that "%.6e" (digits - 1) and float() give.  A
+    long list or array (>= 48 values) by numpy's arithmetic (_round_sig_vector), else the
+    values written "%.6e" all at once (one formatting and one split, not one call per
+    value), the exceptions put right after."""
     spec = f"%.{digits - 1}e"
+    if isinstance(values, (list, tuple)):
+        vals = values
+        many = len(vals) >= _VECTOR_MIN
+    else:                           # an array: numbers of a real dtype go to numpy as they are
+        kind = getattr(getattr(values, "dtype", None), "kind", "")
+        many = kind in ("f", "i", "u") and values.size >= _VECTOR_MIN
+        vals = values.ravel() if many else _flat(values)
+    if many and 1 <= digits <= _VECTOR_DIGITS:
+        out = _round_sig_vector(vals, digits, spec)
+        if out is not None:
+            return out
+        vals = _flat(vals)
     try:
         text = ((spec + " ") * len(vals)) % tuple(vals)
     except TypeError:               # a None (or a value "%e" does not take): one by one
         return _round_sig_each(vals, spec)
     out = list(map(float, text.split()))
-    if "n" in text or f"{0.0:{spec[1:]}} " in text:     # nan or inf, or a zero
+    # nan or inf, or a zero, or a value rounded up beyond the largest float (inf too)
+    if "n" in text or f"{0.0:{spec[1:]}} " in text or "e+308" in text:
         fin = math.isfinite
         for i, w in enumerate(out):
             if w == 0.0:
@@ -195,9 +209,59 @@ def round_sig(values, digits: int = 7) -> list:
     return out
 
 
+# round_sig of a long list by numpy: the same floats as "%e" and float() give them, ~1/8
+# of the time of the formatting (the explorable report's grid: ~0.1 s a report)
+_VECTOR_MIN, _VECTOR_DIGITS = 48, 12
+
+
+def _round_sig_vector(vals, digits: int, spec: str) -> list | None:
+    """round_sig by arithmetic: each finite nonzero v scaled by an exact power of ten
+    10**k (k = digits - 1 - its decimal exponent: one rounding, relative error <= 2**-53),
+    rounded to the integer m (half to even, as "%e" rounds a tie), and m / 10**k (or
+    m * 10**-k): IEEE division and multiplication round correctly, and m and 10**|k|
+    (|k| <= 22) are exact, so that is the float nearest to m * 10**-k, the value of the
+    "%e" text, which float() reads correctly rounded too.  Where the scaled value lies
+    within 4 ulp of a half-integer (m may be off) or within 1 of the ends of the digits'
+    range (the decimal exponent may be off), and for 0, NaN, inf and |k| > 22, each
+    value is formatted as before (_round_sig_each).  None: not numbers numpy takes (the
+    caller formats them as before)."""
+    import numpy as np
+    try:
+        a = np.array(vals, dtype=float)
+    except (TypeError, ValueError, OverflowError):
+        return None
+    if a.ndim != 1:
+        return None
+    lo, hi = 10.0 ** (digits - 1), 10.0 ** digits
+    with np.errstate(all="ignore"):
+        mag = np.abs(a)
+        k = (digits - 1) - np.floor(np.log10(mag))       # -inf/nan for 0, inf, nan
+        ok = np.abs(k) <= 22
+        k = np.where(ok, k, 0.0).astype(np.int64)
+        p = np.array(_POW10)[np.abs(k)]
+        up = k >= 0
+        y = np.where(up, a * p, a / p)
+        m = np.rint(y)
+        ay = np.abs(y)
+        ok &= (ay >= lo + 1) & (ay < hi - 1) & (0.5 - np.abs(y - m) > hi * 2.0 ** -50)
+        r = np.where(up, m / p, m * p)
+    out = r.tolist()
+    if not ok.all():
+        for i in np.flatnonzero(~ok & (a != 0) & np.isfinite(a)).tolist():
+            out[i] = _round_sig_each((a[i],), spec)[0]       # as "%e" and float() give it
+        for i in np.flatnonzero(a == 0).tolist():
+            out[i] = 0
+        for i in np.flatnonzero(~np.isfinite(a)).tolist():
+            out[i] = None
+    return out
+
+
+_POW10 = [float(10 ** i) for i in range(23)]     # exact doubles (5**22 < 2**53)
+
+
 def _round_sig_each(vals, spec: str) -> list:
     fin = math.isfinite
-    return [None if v is None or not fin(w := float(v)) else (0 if w == 0.0 else float(spec % w))
+    return [None if v is None or not fin(w := float(spec % float(v))) else (0 if w == 0.0 else w)
             for v in vals]
 
 
