@@ -457,11 +457,10 @@ def _lever_panel(ctx, cv, box, e, kin_e, pin, omega1, balance_kind):
     x0, y0, w, h = box
     P = kin_e["points"]
     text_h = 13.0
-    vel = {}
-    for p, d in P.items():
-        v = np.array([float(d.get("vx") or 0.0), float(d.get("vy") or 0.0)])
-        if np.hypot(*v) > 1e-12:
-            vel[p] = np.array([-v[1], v[0]])           # turned by +90 deg
+    vx = [float(d.get("vx") or 0.0) for d in P.values()]
+    vy = [float(d.get("vy") or 0.0) for d in P.values()]
+    moving = (np.hypot(np.array(vx), np.array(vy)) > 1e-12).tolist()      # (as one by one)
+    vel = {p: np.array([-y, x]) for p, x, y, mv in zip(P, vx, vy, moving) if mv}    # turned by +90 deg
     loads = [f for f in e.get("loads", []) if float(np.hypot(*f["F"])) > 0]
     turned = list(vel.values()) + [np.array([-f["v"][1], f["v"][0]], float) for f in loads]
     # the feet of the arms h (the pole's projection on each line of action) stay inside too
@@ -549,16 +548,20 @@ def _lever_panel(ctx, cv, box, e, kin_e, pin, omega1, balance_kind):
     cv.text(pole[0] - 1.8, pole[1] - 1.8, "p", size=7, italic=True)
     tw, th = figures.text_size("p", 7 / PT_PER_MM)
     taken.append((pole[0] - 1.8 - tw / 2, pole[1] - 1.8 - th / 2, pole[0] - 1.8 + tw / 2, pole[1] - 1.8 + th / 2))
-    groups: list[tuple[np.ndarray, list[str]]] = []
-    for p, q in ends.items():
+    groups: list[tuple[np.ndarray, list[str], int]] = []
+    if ends:                 # the ends' distances to each other (np.hypot of the differences, as one by one)
+        e_xy = np.array(list(ends.values()))
+        ex, ey = e_xy[:, 0], e_xy[:, 1]
+        apart = np.hypot(ex[:, None] - ex, ey[:, None] - ey).tolist()
+    for j, (p, q) in enumerate(ends.items()):
         for g in groups:
-            if np.hypot(*(g[0] - q)) < 1.2:
+            if apart[g[2]][j] < 1.2:
                 g[1].append(p)
                 break
         else:
-            groups.append((q, [p]))
+            groups.append((q, [p], j))
     letters = [(q, tuple(q - pole), ", ".join(plan_label(p) for p in names) + "\u0000", "#555")
-               for q, names in groups]
+               for q, names, _ in groups]
     segs = figures.segment_set(segs)
     _labels(cv, letters, 1.8, segs, avoid, ctx.lang, size=5.5, box=box, taken=taken, halo=False)
     _labels(cv, arrows + arms, 2.6, segs, avoid, ctx.lang, size=6.5, box=box, taken=taken)
