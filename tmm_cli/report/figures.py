@@ -310,6 +310,14 @@ class _Segments:
         return np.sqrt(_min_over(rx, 0))
 
 
+def segment_set(segments):
+    """The segments' parts as place_labels computes them (_Segments), for several calls with
+    the same segments (a panel's point letters and force names); None for none."""
+    if isinstance(segments, _Segments) or segments is None:
+        return segments
+    return _Segments(np.asarray(segments, float).reshape(-1, 2, 2)) if len(segments) else None
+
+
 def _point_dists(cx, cy, px, py):
     """Distance from each point (cx[i], cy[i]) to the nearest of the points (px, py)."""
     dx = cx - px[:, None]                          # (points, candidates)
@@ -375,8 +383,7 @@ def place_labels(anchors, extent: float, avoid=(), step: float | None = None, se
     # the terms of the score that the placed labels do not change, (anchors, candidates)
     avoid_a = np.asarray([np.asarray(a, float) for a in avoid], float).reshape(-1, 2)
     avx, avy = avoid_a[:, 0].copy(), avoid_a[:, 1].copy()
-    segs = np.asarray(segments, float).reshape(-1, 2, 2) if segments is not None and len(segments) else None
-    seg = _Segments(segs) if segs is not None else None
+    seg = segment_set(segments)                # (given as segment_set(...): made once for several calls)
 
     def fixed_terms(cx, cy):
         """min(distance to the avoided points, lim_a) + min(distance to the segments,

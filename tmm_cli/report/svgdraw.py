@@ -31,14 +31,16 @@ def _f(x: float) -> str:
 # _f's trimming done to a whole path's data at once (its numbers written "%.2f"): the
 # trailing zeros of the decimals (and then the point) dropped, "-0" written "0"
 _ZZ = re.compile(r"\.00(?!\d)")
-_Z = re.compile(r"(\.\d)0(?!\d)")
+# the zero of ".d0" (not before a digit) dropped: as (\.\d)0(?!\d) -> \1 (such matches never
+# overlap), a literal first and no replacement template (~4x as fast over a drawing's paths)
+_Z = re.compile(r"0(?!\d)(?<=\.\d0)")
 _M0 = re.compile(r"-0(?![\d.])")
 _PD: dict[int, str] = {}      # path data formats by the number of points
 
 
 def trim(data: str) -> str:
     """Path data whose numbers are written "%.2f", each number as _f writes it."""
-    return _M0.sub("0", _Z.sub(r"\1", _ZZ.sub("", data)))
+    return _M0.sub("0", _Z.sub("", _ZZ.sub("", data)))
 
 
 def _w(x: float) -> str:
@@ -119,8 +121,46 @@ def _text_sizes(size: float) -> dict[str, str]:
     return got
 
 
+_TEXT_STYLES: dict[tuple, str] = {}      # a label style's attributes after x and y (Canvas.text)
+_CIRCLE_TAILS: dict[tuple, str] = {}     # a circle style's attributes after its centre and radius
+_ESCAPED: dict[str, str] = {}            # label texts escaped (a drawing's few hundred, over and over)
+
+
+def _escape(s: str) -> str:
+    """html.escape(s), remembered for the labels' texts."""
+    got = _ESCAPED.get(s)
+    if got is None:
+        got = escape(s)
+        if len(_ESCAPED) < 4096:
+            _ESCAPED[s] = got
+    return got
+
+
+_ARCS: dict[bool, list[tuple[float, float]]] = {}
+
+
+def _arc_unit(ccw: bool) -> list[tuple[float, float]]:
+    """(cos t, sin t) at Canvas.moment's 24 angles of its 3/4 arc (ccw or cw): the same
+    numbers for every couple, computed once."""
+    got = _ARCS.get(ccw)
+    if got is None:
+        sgn = 1.0 if ccw else -1.0
+        t = np.linspace(math.radians(200), math.radians(200) + sgn * math.radians(260), 24)
+        got = _ARCS[ccw] = [(math.cos(a), math.sin(a)) for a in t.tolist()]
+    return got
+
+
 class Canvas:
     """A drawing of width_mm x height_mm; see the module docstring."""
+
+    # polyline and polygon as here: arrow, text (halo) and circle write their path data and
+    # elements straight into the merged paths (a subclass that records the primitives instead,
+    # sheets.prims.PrimCanvas, gets them through its own polyline and polygon)
+    _plain = True
+
+    def __init_subclass__(cls, **kw):
+        super().__init_subclass__(**kw)
+        cls._plain = cls.polyline is Canvas.polyline and cls.polygon is Canvas.polygon
 
     def __init__(self, width_mm: float, height_mm: float):
         self.w = float(width_mm)
@@ -129,6 +169,24 @@ class Canvas:
         self._fills: dict[tuple, list[str]] = {}
         self._items: list[tuple[int, str]] = []       # (z, element) drawn after the paths of lower z
         self._order: list[tuple] = []
+        self._arrows: dict[tuple, tuple[list[str], list[str]]] = {}   # an arrow style's two path lists
+
+    def _stroke_list(self, color, width, dash, z) -> list[str]:
+        """The path data pieces of a stroke style (registered in the drawing order when new)."""
+        key = ("s", z, css_color(color), round(width, 3), dash)
+        got = self._strokes.get(key)
+        if got is None:
+            got = self._strokes[key] = []
+            self._order.append(key)
+        return got
+
+    def _fill_list(self, fill, z) -> list[str]:
+        key = ("f", z, css_color(fill))
+        got = self._fills.get(key)
+        if got is None:
+            got = self._fills[key] = []
+            self._order.append(key)
+        return got
 
     # ------------------------------------------------------------ geometry
     def _y(self, y: float) -> float:
@@ -138,10 +196,15 @@ class Canvas:
         """Path data of the points, its numbers "%.2f" (to_svg trims them as _f does, a
         whole path at once: one formatting of all the numbers, not one call per number)."""
         h = self.h
-        xy = []
-        for p in pts:
-            xy.append(float(p[0]))
-            xy.append(h - float(p[1]))
+        if type(pts) is np.ndarray and pts.ndim == 2 and pts.shape[1] == 2:
+            a = pts.astype(float)                  # (a copy: the same float(x), h - float(y))
+            a[:, 1] = h - a[:, 1]
+            xy = a.ravel().tolist()
+        else:
+            xy = []
+            for p in pts:
+                xy.append(float(p[0]))
+                xy.append(h - float(p[1]))
         n = len(xy) // 2
         fmt = _PD.get(n)
         if fmt is None:
@@ -153,29 +216,26 @@ class Canvas:
     # ------------------------------------------------------------ primitives
     def polyline(self, pts, color="#000", width=0.25, dash=None, z=1, closed=False):
         """A stroked polyline (mm); merged with every other of the same style."""
-        key = ("s", z, css_color(color), round(width, 3), dash)
-        if key not in self._strokes:
-            self._strokes[key] = []
-            self._order.append(key)
-        self._strokes[key].append(self._pd(pts, closed))
+        self._stroke_list(color, width, dash, z).append(self._pd(pts, closed))
 
     def line(self, p, q, color="#000", width=0.25, dash=None, z=1):
         self.polyline([p, q], color, width, dash, z)
 
     def polygon(self, pts, fill="#000", z=2, stroke=None, width=0.2):
         """A filled polygon (merged per fill colour); optional outline."""
-        key = ("f", z, css_color(fill))
-        if key not in self._fills:
-            self._fills[key] = []
-            self._order.append(key)
-        self._fills[key].append(self._pd(pts, True))
+        self._fill_list(fill, z).append(self._pd(pts, True))
         if stroke:
             self.polyline(pts, stroke, width, z=z, closed=True)
 
     def circle(self, c, r, stroke="#000", fill="#fff", width=0.25, z=5):
-        self._items.append((z, f'<circle cx="{_f(c[0])}" cy="{_f(self._y(c[1]))}" r="{_f(r)}" '
-                               f'fill="{css_color(fill)}" stroke="{css_color(stroke)}" '
-                               f'stroke-width="{_w(width)}"/>'))
+        key = (fill, stroke, width)
+        tail = _CIRCLE_TAILS.get(key)
+        if tail is None:
+            tail = (f'fill="{css_color(fill)}" stroke="{css_color(stroke)}" '
+                    f'stroke-width="{_w(width)}"/>')
+            if len(_CIRCLE_TAILS) < 1024:
+                _CIRCLE_TAILS[key] = tail
+        self._items.append((z, f'<circle cx="{_f(c[0])}" cy="{_f(self._y(c[1]))}" r="{_f(r)}" {tail}'))
 
     def dot(self, c, r=0.5, color="#000", z=6):
         self.circle(c, r, stroke="none", fill=color, width=0, z=z)
@@ -195,8 +255,20 @@ class Canvas:
         hw = (head_w if head_w is not None else 0.36 * head) * hl / head
         bx, by = qx - ux * hl, qy - uy * hl        # the head's base
         nx, ny = -uy, ux
-        self.polyline([(px, py), (bx + ux * 0.1 * hl, by + uy * 0.1 * hl)], color, width, dash, z)
-        self.polygon([(qx, qy), (bx + nx * hw, by + ny * hw), (bx - nx * hw, by - ny * hw)], color, z + 1)
+        sx, sy = bx + ux * 0.1 * hl, by + uy * 0.1 * hl          # the shaft's end
+        lx, ly, rx, ry = bx + nx * hw, by + ny * hw, bx - nx * hw, by - ny * hw
+        if not (self._plain and type(color) is str):
+            self.polyline([(px, py), (sx, sy)], color, width, dash, z)
+            self.polygon([(qx, qy), (lx, ly), (rx, ry)], color, z + 1)
+            return
+        # the same path data as polyline and polygon write (_pd), straight into their lists
+        key = (color, width, dash, z)
+        lists = self._arrows.get(key)
+        if lists is None:
+            lists = self._arrows[key] = (self._stroke_list(color, width, dash, z), self._fill_list(color, z + 1))
+        h = self.h
+        lists[0].append("M%.2f %.2f L%.2f %.2f" % (px, h - py, sx, h - sy))
+        lists[1].append("M%.2f %.2f L%.2f %.2f L%.2f %.2fZ" % (qx, h - qy, lx, h - ly, rx, h - ry))
 
     def text(self, x, y, s, size=7.0, color="#000", anchor="middle", italic=False, bold=False,
              sub: str | None = None, sup: str | None = None, z=8, vcenter=True, halo=False,
@@ -207,33 +279,45 @@ class Canvas:
         fs = size / PT_PER_MM
         yb = self._y(y) + (0.35 * fs if vcenter else 0.0)
         fsz = _text_sizes(size)
-        attrs = [f'x="{_f(x)}"', f'y="{_f(yb)}"', fsz["fs"]]
-        if anchor != "start":
-            attrs.append(f'text-anchor="{anchor}"')
-        color = css_color(color)
-        if color != "#000000":
-            attrs.append(f'fill="{color}"')
-        if italic:
-            attrs.append('font-style="italic"')
-        if bold:
-            attrs.append('font-weight="bold"')
-        body = escape(s)
+        style = (size, anchor, color, italic, bold)
+        attrs = _TEXT_STYLES.get(style)
+        if attrs is None:                      # the attributes after x and y, made once per style
+            attrs = [fsz["fs"]]
+            if anchor != "start":
+                attrs.append(f'text-anchor="{anchor}"')
+            c = css_color(color)
+            if c != "#000000":
+                attrs.append(f'fill="{c}"')
+            if italic:
+                attrs.append('font-style="italic"')
+            if bold:
+                attrs.append('font-weight="bold"')
+            attrs = " ".join(attrs)
+            if len(_TEXT_STYLES) < 1024:
+                _TEXT_STYLES[style] = attrs
+        body = _escape(s)
         if sub:
-            body += f'{fsz["sub"]}{escape(sub)}</tspan>'
+            body += f'{fsz["sub"]}{_escape(sub)}</tspan>'
         elif sup:
-            body += f'{fsz["sup"]}{escape(sup)}</tspan>'
+            body += f'{fsz["sup"]}{_escape(sup)}</tspan>'
         if after and (sub or sup):
-            body += f'{fsz["after_sub" if sub else "after_sup"]}{escape(after)}</tspan>'
+            body += f'{fsz["after_sub" if sub else "after_sup"]}{_escape(after)}</tspan>'
         elif after:
-            body += escape(after)
-        el = f'<text {" ".join(attrs)}>{body}</text>'
+            body += _escape(after)
+        el = f'<text x="{_f(x)}" y="{_f(yb)}" {attrs}>{body}</text>'
         if halo:
             # a white box under the label keeps it readable over lines (merged into one path)
             w = 0.6 * fs * (len(s) + 0.72 * len(sub or sup or "")) + 0.6
             x0 = x - w / 2 if anchor == "middle" else (x - w if anchor == "end" else x)
             yc = y if vcenter else y + 0.35 * fs
-            self.polygon([(x0 - 0.3, yc - 0.62 * fs), (x0 + w - 0.3, yc - 0.62 * fs),
-                          (x0 + w - 0.3, yc + 0.62 * fs), (x0 - 0.3, yc + 0.62 * fs)], "#fff", z=z - 1)
+            xa, xb, ya, yb = x0 - 0.3, x0 + w - 0.3, yc - 0.62 * fs, yc + 0.62 * fs
+            if self._plain:                    # polygon's path data (_pd), written here
+                h = self.h
+                xa, xb, ya, yb = float(xa), float(xb), h - float(ya), h - float(yb)
+                self._fill_list("#fff", z - 1).append(
+                    "M%.2f %.2f L%.2f %.2f L%.2f %.2f L%.2f %.2fZ" % (xa, ya, xb, ya, xb, yb, xa, yb))
+            else:
+                self.polygon([(xa, ya), (xb, ya), (xb, yb), (xa, yb)], "#fff", z=z - 1)
         self._items.append((z, el))
 
     def hatch(self, p, q, outward, depth=1.2, step=1.6, color="#000", width=0.25, z=1):
@@ -270,11 +354,9 @@ class Canvas:
         """A couple M (ccw positive) as a 3/4 circular arrow of radius r around c."""
         if M == 0 or not math.isfinite(M):
             return
-        sgn = 1.0 if M > 0 else -1.0
-        t = np.linspace(math.radians(200), math.radians(200) + sgn * math.radians(260), 24)
         # in plain floats: the same operations, x and y apart, as on 2-vectors
         cx, cy = (float(v) for v in np.asarray(c, float))
-        pts = [(cx + r * math.cos(a), cy + r * math.sin(a)) for a in t.tolist()]
+        pts = [(cx + r * ca, cy + r * sa) for ca, sa in _arc_unit(M > 0)]
         (x1, y1), (x2, y2) = pts[-1], pts[-2]
         self.polyline(pts[:-2], color, width, z=z)
         self.arrow(pts[-3], (x1 + (x1 - x2) * 0.5, y1 + (y1 - y2) * 0.5), color, width, head=1.8, z=z)

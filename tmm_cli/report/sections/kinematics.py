@@ -175,14 +175,20 @@ def draw_plan(cv, plan, box, title, unit_txt, si_unit="m/s", mm="mm"):
     k = plan.mu / mu_drawn
     c = np.array([x0 + w / 2, y0 + bar_h + (h - top - bar_h) / 2]) - (lo + hi) / 2 * k
 
-    def M(p):
-        return c + np.asarray(p, float) * k
-
+    # the plan's points on the paper at once (row by row c + p k), in plain floats
+    names = list(pts)
+    on_paper = c + xy * k
+    mp = dict(zip(names, on_paper.tolist()))
+    row = {name: i for i, name in enumerate(names)}
     segs = []
-    for v in plan.vecs:
-        p, q = M(pts[v.start]), M(pts[v.end])
+    vecs = plan.vecs
+    if vecs:                 # the vectors' lengths on the paper (np.hypot of all at once, as one by one)
+        d = on_paper[[row[v.end] for v in vecs]] - on_paper[[row[v.start] for v in vecs]]
+        lengths = np.hypot(d[:, 0], d[:, 1]).tolist()
+    for v, L in zip(vecs, lengths if vecs else ()):
+        p, q = mp[v.start], mp[v.end]
         segs.append((p, q))
-        if np.hypot(*(q - p)) < 0.15:
+        if L < 0.15:
             continue
         if v.kind == "abs":
             cv.arrow(p, q, COLORS["abs"], 0.45, head=2.4, z=4)
@@ -192,16 +198,18 @@ def draw_plan(cv, plan, box, title, unit_txt, si_unit="m/s", mm="mm"):
             cv.arrow(p, q, COLORS[v.kind], 0.4, head=2.1, z=3,
                      dash="1.6 0.8" if v.kind in ("n", "k") else None)
     # labels: coincident points share one label
-    groups: list[tuple[np.ndarray, list[str]]] = []
-    for name, p in pts.items():
-        q = M(p)
+    groups: list[tuple[list, list[str], int]] = []
+    # the points' distances to each other (np.hypot of the differences, as one by one)
+    ex, ey = on_paper[:, 0], on_paper[:, 1]
+    apart = np.hypot(ex[:, None] - ex, ey[:, None] - ey).tolist()
+    for j, name in enumerate(names):
         for g in groups:
-            if np.hypot(*(g[0] - q)) < 1.0:
+            if apart[g[2]][j] < 1.0:
                 g[1].append(name)
                 break
         else:
-            groups.append((q, [name]))
-    pole = M(np.zeros(2))
+            groups.append((mp[name], [name], j))
+    pole = c + np.zeros(2) * k
     # title, scale, scale bar first: the point labels keep clear of them
     from ..svgdraw import PT_PER_MM
     taken = []
@@ -223,14 +231,15 @@ def draw_plan(cv, plan, box, title, unit_txt, si_unit="m/s", mm="mm"):
           anchor="start")
     taken.append((bx, by - 0.5, bx + bar, by + 1.0))
     anchors, texts, sizes = [], [], []
-    for q, names in groups:
-        d = q - pole
-        anchors.append((q[0], q[1], tuple(d) if np.hypot(*d) > 0.5 else (-1.0, -1.0)))
+    d = on_paper[[g[2] for g in groups]] - pole           # (the anchors' offsets from the pole)
+    from_pole = np.hypot(d[:, 0], d[:, 1]).tolist()
+    for (q, names, _), dq, r in zip(groups, d.tolist(), from_pole):
+        anchors.append((q[0], q[1], tuple(dq) if r > 0.5 else (-1.0, -1.0)))
         texts.append(", ".join(sorted(names, key=lambda s: (s != plan.pole, s))))
         sizes.append(F.text_size(texts[-1], 7 / PT_PER_MM))
     pos = F.place_labels(anchors, 60.0, avoid=[g[0] for g in groups], step=2.6, segments=segs, sizes=sizes,
                          taken=taken, bounds=(x0 + 0.5, y0 + 0.5, x0 + w - 0.5, y0 + h - 0.5))
-    for (q, names), text, (x, y) in zip(groups, texts, pos):
+    for (q, names, _), text, (x, y) in zip(groups, texts, pos):
         aux = plan.pole not in names and min(names, key=lambda s: (s != plan.pole, s)).startswith(("n", "k"))
         cv.text(x, y, text, size=7, italic=True, color="#444" if aux else "#000", halo=True)
     cv.dot(pole, 0.6, z=6)

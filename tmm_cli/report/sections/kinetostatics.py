@@ -26,7 +26,9 @@ import re
 import numpy as np
 from markupsafe import Markup, escape
 
+from .. import figures
 from ..context import values_of
+from ..svgdraw import PT_PER_MM, Canvas
 
 I18N = {
     "en": {"kst.title": "Kinetostatics", "kst.convention": "Sign convention",
@@ -145,7 +147,22 @@ def _links(results):
 
 
 # ----------------------------------------------------------------- names
+_PARTS: dict[tuple[str, str], tuple[str, str]] = {}
+
+
 def label_parts(name: str, lang: str = "en") -> tuple[str, str]:
+    """A load/reaction name of the results -> (symbol, subscript) (_label_parts), remembered
+    (a report draws the same few dozen names over and over)."""
+    key = (name, lang)
+    got = _PARTS.get(key)
+    if got is None:
+        got = _label_parts(name, lang)
+        if len(_PARTS) < 4096:
+            _PARTS[key] = got
+    return got
+
+
+def _label_parts(name: str, lang: str = "en") -> tuple[str, str]:
     """A load/reaction name of the results -> (symbol, subscript) as the course
     writes it: 'R12' -> ('R', '12'); 'G2' -> ('G', '2'); 'Fi2' -> ('Φ', '2');
     'Mi2' -> ('M', 'Φ2'); 'Ff03' -> ('F', 'тр03' | 'f03'); 'F1' -> ('F', '1')."""
@@ -208,11 +225,22 @@ def group_couples(e: dict, group_names: set[str]):
             if c["link"] in group_names and c.get("M") is not None and abs(float(c["M"])) > 0]
 
 
-def polygon(forces, rel_tol: float = 1e-9):
+def force_norms(forces) -> list[float]:
+    """|F| of each force (name, point, F, kind): np.hypot of all at once (the same numbers
+    as one by one)."""
+    if not forces:
+        return []
+    return np.hypot(np.array([float(F[0]) for _, _, F, _ in forces]),
+                    np.array([float(F[1]) for _, _, F, _ in forces])).tolist()
+
+
+def polygon(forces, rel_tol: float = 1e-9, norms=None):
     """The force polygon: nonzero forces head to tail, loads first, then reactions.
-    -> (vectors [(name, F, kind)], tips (k+1, 2)) in N; tips[-1] ~ 0 (equilibrium)."""
-    Fmax = max((float(np.hypot(*F)) for _, _, F, _ in forces), default=0.0)
-    keep = [(n, F, k) for n, _, F, k in forces if float(np.hypot(*F)) > rel_tol * Fmax]
+    -> (vectors [(name, F, kind)], tips (k+1, 2)) in N; tips[-1] ~ 0 (equilibrium).
+    ``norms``: force_norms(forces) when already known."""
+    norms = force_norms(forces) if norms is None else norms
+    Fmax = max(norms, default=0.0)
+    keep = [(n, F, k) for (n, _, F, k), nF in zip(forces, norms) if nF > rel_tol * Fmax]
     keep.sort(key=lambda t: t[2] == "reaction")           # stable: loads, then reactions
     tips = np.cumsum([np.zeros(2)] + [F for _, F, _ in keep], axis=0)
     return keep, tips
@@ -220,14 +248,18 @@ def polygon(forces, rel_tol: float = 1e-9):
 
 # ----------------------------------------------------------------- drawing
 def _arrow_len(F, Fmax):
-    return 5.5 + 7.5 * math.sqrt(min(float(np.hypot(*F)) / Fmax, 1.0)) if Fmax > 0 else 9.0
+    return _arrow_len_n(float(np.hypot(*F)), Fmax)
+
+
+def _arrow_len_n(nF, Fmax):
+    """_arrow_len of a force of norm nF."""
+    return 5.5 + 7.5 * math.sqrt(min(nF / Fmax, 1.0)) if Fmax > 0 else 9.0
 
 
 def _labels(cv, items, step, segments, avoid, lang, size=7.0, box=None, taken=None, halo=True, italic=True):
     """items: (anchor xy, preferred dir, name, color); each label a box clear of the others
-    and of `taken` (a list, extended), inside box below its title."""
-    from .. import figures
-    from ..svgdraw import PT_PER_MM
+    and of `taken` (a list, extended), inside box below its title; `segments`: a list, or
+    figures.segment_set of it (shared by a panel's label calls)."""
     if not items:
         return
     parts = [label_parts(name, lang) for _, _, name, _ in items]
@@ -244,9 +276,9 @@ def _labels(cv, items, step, segments, avoid, lang, size=7.0, box=None, taken=No
         cv.text(x, y, s, size=size, color=col, italic=italic, sub=sub or None, halo=halo)
 
 
-def _fbd_panel(ctx, cv, box, kin_e, links, names, forces, couples, title):
-    """Free-body diagram of the links `names` inside box = (x0, y0, w, h) (mm)."""
-    from .. import figures
+def _fbd_panel(ctx, cv, box, kin_e, links, names, forces, couples, title, norms=None):
+    """Free-body diagram of the links `names` inside box = (x0, y0, w, h) (mm); ``norms``:
+    force_norms(forces) when already known."""
     x0, y0, w, h = box
     P = kin_e["points"]
     pts_names = [p for n in names for p in links[n]["points"] if p in P]
@@ -263,6 +295,9 @@ def _fbd_panel(ctx, cv, box, kin_e, links, names, forces, couples, title):
     def M(p):
         return c_pan + (np.asarray(p, float) - c_box) / mu_l
 
+    # the points and the forces' points on the paper at once (row by row what M gives)
+    on_paper = c_pan + (xy - c_box) / mu_l
+    mp = dict(zip(pts_names, on_paper))
     segs, avoid = [], []
     for n in names:
         lk = links[n]
@@ -270,19 +305,19 @@ def _fbd_panel(ctx, cv, box, kin_e, links, names, forces, couples, title):
         if lk["kind"] == "slider":
             if ps:
                 ang = float(kin_e["links"][n]["angle"] or 0.0)
-                c = M(_xy(P[ps[0]]))
+                c = mp[ps[0]]
                 cv.block(c, ang, 8.0, 4.6, width=0.35, z=4)
                 u = np.array([math.cos(math.radians(ang)), math.sin(math.radians(ang))])
                 cv.line(c - u * 9, c + u * 9, "#777", 0.2, dash="2 0.6 0.4 0.6", z=1)
                 segs.append((c - u * 4, c + u * 4))
                 for p in ps[1:]:                       # a slider carrying other points (a yoke)
-                    q = M(_xy(P[p]))
+                    q = mp[p]
                     cv.line(c, q, "#000", 0.6, z=2)
                     segs.append((c, q))
                     cv.circle(q, 0.8, width=0.3, z=5)
                     avoid.append(q)
             continue
-        q = np.array([M(_xy(P[p])) for p in ps])
+        q = np.array([mp[p] for p in ps])
         if len(q) >= 3 and _area(q) > 1.0:
             order = np.argsort(np.arctan2(q[:, 1] - q[:, 1].mean(), q[:, 0] - q[:, 0].mean()))
             cv.polygon(q[order], "#e8e8e8", z=2, stroke="#000", width=0.5)
@@ -304,22 +339,23 @@ def _fbd_panel(ctx, cv, box, kin_e, links, names, forces, couples, title):
             c = M(_xy(P[s]))
             cv.dot(c, 0.55, z=6)
     # point names
-    Fmax = max((float(np.hypot(*F)) for _, _, F, _ in forces), default=0.0)
+    norms = force_norms(forces) if norms is None else norms
+    Fmax = max(norms, default=0.0)
     items = []
     for p in dict.fromkeys(pts_names):
-        items.append((M(_xy(P[p])), None, p, "#555"))
+        items.append((mp[p], None, p, "#555"))
     arrows = []
-    for name, pt, F, kind in forces:
-        nF = float(np.hypot(*F))
+    # in plain floats: the same operations, x and y apart, as on 2-vectors
+    for (name, pt, F, kind), nF, (ax, ay) in zip(forces, norms, on_paper[len(pts_names):].tolist()):
         if nF <= 1e-9 * max(Fmax, 1e-300):
             continue
-        a = M(pt)
-        u = F / nF
-        b = a + u * _arrow_len(F, Fmax)
+        ux, uy = float(F[0]) / nF, float(F[1]) / nF
+        L = _arrow_len_n(nF, Fmax)
+        bx, by = ax + ux * L, ay + uy * L
         col = KIND_COLOR.get(kind, "#000")
-        cv.arrow(a, b, col, 0.45 if kind == "reaction" else 0.4, head=2.2, z=3)
-        segs.append((a, b))
-        arrows.append((b + u * 0.6, tuple(u), name, col))
+        cv.arrow((ax, ay), (bx, by), col, 0.45 if kind == "reaction" else 0.4, head=2.2, z=3)
+        segs.append(((ax, ay), (bx, by)))
+        arrows.append(((bx + ux * 0.6, by + uy * 0.6), (ux, uy), name, col))
     for name, link, Mv, kind in couples:
         lk = links.get(link)
         if lk is None:
@@ -331,6 +367,7 @@ def _fbd_panel(ctx, cv, box, kin_e, links, names, forces, couples, title):
         arrows.append((c + np.array([0.0, 4.2]), (0.0, 1.0), name, col))
     taken = _title(cv, box, title, f"μl = {mu_l:g} {ctx.t('kst.unit_l')}")
     # point letters (upright, grey, small) next to their points, then the force names
+    segs = figures.segment_set(segs)
     _labels(cv, [(a, (-1.0, 1.0), p, col) for a, _, p, col in items], 1.6, segs, avoid, ctx.lang, size=6,
             box=box, taken=taken, halo=False, italic=False)
     _labels(cv, arrows, 2.6, segs, avoid, ctx.lang, box=box, taken=taken)
@@ -342,8 +379,7 @@ TITLE_H = 11.0               # mm at the top of a panel: its title and scale
 
 def _title(cv, box, title, scale) -> list:
     """The panel's title and scale at its top left; returns their boxes (the labels keep clear)."""
-    from ..figures import text_size
-    from ..svgdraw import PT_PER_MM
+    text_size = figures.text_size
     x0, y0, w, h = box
     title = title[:1].upper() + title[1:]
     cv.text(x0 + 1.5, y0 + h - 3.2, title, size=7, anchor="start", bold=True)
@@ -361,11 +397,13 @@ def _area(q):
     return 0.5 * abs(float(np.dot(x, np.roll(y, 1)) - np.dot(y, np.roll(x, 1))))
 
 
-def _polygon_panel(ctx, cv, box, forces):
-    """The force polygon to scale inside box; returns (mu_F, drawn tips in mm)."""
-    from .. import figures
+def _polygon_panel(ctx, cv, box, forces, norms=None, out=None):
+    """The force polygon to scale inside box; returns (mu_F, drawn tips in mm); ``norms``:
+    force_norms(forces) when already known; ``out``: a list that gets the vectors drawn."""
     x0, y0, w, h = box
-    vecs, tips = polygon(forces)
+    vecs, tips = polygon(forces, norms=norms)
+    if out is not None:
+        out.extend(vecs)
     if not vecs:
         return None, None
     lo, hi = tips.min(axis=0), tips.max(axis=0)
@@ -374,15 +412,18 @@ def _polygon_panel(ctx, cv, box, forces):
     mu_F = figures.nice_scale(max(span[0] / (w - 2 * m), span[1] / (h - TITLE_H - 2 * m)))
     c = np.array([x0 + w / 2, y0 + (h - TITLE_H) / 2]) - (lo + hi) / 2 / mu_F
     T = c + tips / mu_F
-    segs = list(zip(T[:-1], T[1:]))
+    # the sides' lengths at once (np.hypot as one by one); in plain floats, x and y apart,
+    # the same operations as on 2-vectors
+    d = T[1:] - T[:-1]
+    Ls = np.hypot(d[:, 0], d[:, 1]).tolist()
+    Tl = T.tolist()
+    segs = list(zip(Tl[:-1], Tl[1:]))
     items = []
-    for (name, F, kind), a, b in zip(vecs, T[:-1], T[1:]):
+    for (name, F, kind), (ax, ay), (bx, by), (dx, dy), L in zip(vecs, Tl[:-1], Tl[1:], d.tolist(), Ls):
         col = KIND_COLOR.get(kind, "#000")
-        cv.arrow(a, b, col, 0.45, head=2.4, z=3)
-        d = b - a
-        L = float(np.hypot(*d))
-        nrm = np.array([-d[1], d[0]]) / (L or 1.0)
-        items.append(((a + b) / 2, tuple(nrm), name, col))
+        cv.arrow((ax, ay), (bx, by), col, 0.45, head=2.4, z=3)
+        L = L or 1.0
+        items.append((((ax + bx) / 2, (ay + by) / 2), (-dy / L, dx / L), name, col))
     cv.dot(T[0], 0.6, z=6)
     taken = _title(cv, box, ctx.t("kst.polygon"), f"μF = {mu_F:g} {ctx.t('kst.unit_F')}")
     _labels(cv, items, 2.8, segs, [T[0]], ctx.lang, box=box, taken=taken)
@@ -412,17 +453,14 @@ def _lever_panel(ctx, cv, box, e, kin_e, pin, omega1, balance_kind):
     """Zhukovsky's lever: the velocity plan turned by +90 deg (ends rot90(v)/mu_v, mu_v
     a nice scale for this position), the loads moved to the ends of the turned
     velocities with their arms about the pole, P_b at the crank pin; M_b below."""
-    from .. import figures
     from ...plans import plan_label
-    from ..svgdraw import PT_PER_MM
     x0, y0, w, h = box
     P = kin_e["points"]
     text_h = 13.0
-    vel = {}
-    for p, d in P.items():
-        v = np.array([float(d.get("vx") or 0.0), float(d.get("vy") or 0.0)])
-        if np.hypot(*v) > 1e-12:
-            vel[p] = np.array([-v[1], v[0]])           # turned by +90 deg
+    vx = [float(d.get("vx") or 0.0) for d in P.values()]
+    vy = [float(d.get("vy") or 0.0) for d in P.values()]
+    moving = (np.hypot(np.array(vx), np.array(vy)) > 1e-12).tolist()      # (as one by one)
+    vel = {p: np.array([-y, x]) for p, x, y, mv in zip(P, vx, vy, moving) if mv}    # turned by +90 deg
     loads = [f for f in e.get("loads", []) if float(np.hypot(*f["F"])) > 0]
     turned = list(vel.values()) + [np.array([-f["v"][1], f["v"][0]], float) for f in loads]
     # the feet of the arms h (the pole's projection on each line of action) stay inside too
@@ -510,16 +548,21 @@ def _lever_panel(ctx, cv, box, e, kin_e, pin, omega1, balance_kind):
     cv.text(pole[0] - 1.8, pole[1] - 1.8, "p", size=7, italic=True)
     tw, th = figures.text_size("p", 7 / PT_PER_MM)
     taken.append((pole[0] - 1.8 - tw / 2, pole[1] - 1.8 - th / 2, pole[0] - 1.8 + tw / 2, pole[1] - 1.8 + th / 2))
-    groups: list[tuple[np.ndarray, list[str]]] = []
-    for p, q in ends.items():
+    groups: list[tuple[np.ndarray, list[str], int]] = []
+    if ends:                 # the ends' distances to each other (np.hypot of the differences, as one by one)
+        e_xy = np.array(list(ends.values()))
+        ex, ey = e_xy[:, 0], e_xy[:, 1]
+        apart = np.hypot(ex[:, None] - ex, ey[:, None] - ey).tolist()
+    for j, (p, q) in enumerate(ends.items()):
         for g in groups:
-            if np.hypot(*(g[0] - q)) < 1.2:
+            if apart[g[2]][j] < 1.2:
                 g[1].append(p)
                 break
         else:
-            groups.append((q, [p]))
+            groups.append((q, [p], j))
     letters = [(q, tuple(q - pole), ", ".join(plan_label(p) for p in names) + "\u0000", "#555")
-               for q, names in groups]
+               for q, names, _ in groups]
+    segs = figures.segment_set(segs)
     _labels(cv, letters, 1.8, segs, avoid, ctx.lang, size=5.5, box=box, taken=taken, halo=False)
     _labels(cv, arrows + arms, 2.6, segs, avoid, ctx.lang, size=6.5, box=box, taken=taken)
     return mu_v
@@ -572,8 +615,6 @@ def position_figures(ctx, e, kin_e, info, links, pin=None, omega1=None):
     most, named groups-posNN; then Zhukovsky's lever over the whole width, lever-posNN),
     and the data drawn: [{'group': [...], 'mu_l', 'mu_F', 'tips' (mm), 'vectors'}] and,
     last, {'lever': mu_v}."""
-    from .. import figures
-    from ..svgdraw import Canvas
     rows = position_rows(ctx, e, kin_e, info, links)
     figs, drawn = [], []
     start = 0
@@ -589,9 +630,11 @@ def position_figures(ctx, e, kin_e, info, links, pin=None, omega1=None):
                 cv.line((0, y + ROW_H), (FIG_W, y + ROW_H), "#bbb", 0.2, z=0)
             g, forces, couples, title = rows[r]
             wd = CRANK_W if r == n - 1 else GROUP_W
-            mu_l = _fbd_panel(ctx, cv, (0, y, wd, ROW_H), kin_e, links, g, forces, couples, title)
-            mu_F, T = _polygon_panel(ctx, cv, (wd + 1, y, FIG_W - wd - 1, ROW_H), forces)
-            drawn.append({"group": g, "mu_l": mu_l, "mu_F": mu_F, "tips": T, "vectors": polygon(forces)[0]})
+            norms = force_norms(forces)
+            mu_l = _fbd_panel(ctx, cv, (0, y, wd, ROW_H), kin_e, links, g, forces, couples, title, norms)
+            vecs = []
+            mu_F, T = _polygon_panel(ctx, cv, (wd + 1, y, FIG_W - wd - 1, ROW_H), forces, norms, vecs)
+            drawn.append({"group": g, "mu_l": mu_l, "mu_F": mu_F, "tips": T, "vectors": vecs})
             cv.line((wd, y + 1), (wd, y + ROW_H - 1), "#bbb", 0.2, z=0)
         figs.append(figures.named(cv.to_svg(), figures.pos_name("groups", e["index"])))
         start = stop
