@@ -63,8 +63,15 @@ def _reference(anchors, extent: float, avoid=(), step: float | None = None, segm
         step = 0.045 * extent
     avoid_a = np.asarray([np.asarray(a, float) for a in avoid], float).reshape(-1, 2)
     avx, avy = avoid_a[:, 0].copy(), avoid_a[:, 1].copy()
-    segs = np.asarray(segments, float).reshape(-1, 2, 2) if segments is not None and len(segments) else None
-    seg = _Segments(segs) if segs is not None else None
+    if isinstance(segments, figures._Segments):
+        # made once by figures.segment_set for several calls (a panel's letters and force
+        # names): the same parts, as the reference lays them out
+        seg = _Segments.__new__(_Segments)
+        seg.ax, seg.ay, seg.dx, seg.dy, seg.L2 = (v[:, 0] for v in (segments.ax, segments.ay, segments.dx,
+                                                                     segments.dy, segments.L2))
+    else:
+        segs = np.asarray(segments, float).reshape(-1, 2, 2) if segments is not None and len(segments) else None
+        seg = _Segments(segs) if segs is not None else None
     offs, offx, offy, ring, dirs = _candidates(step, sizes is not None)
     taken = taken if isinstance(taken, list) else list(taken)
     # the taken boxes as centres and half sizes (x, y), grown as labels are placed
@@ -246,3 +253,17 @@ def test_tasks(lang, tasks, formats, tmp_path, monkeypatch):
     for task in tasks:
         orchestrate.process(root / f"{task}.yaml", tmp_path / task, formats, lang)
     assert calls[0] > 3 * len(tasks)
+
+
+def test_segment_set_has_the_parts_of_the_segments():
+    """figures.segment_set (made once for several calls) holds the parts the reference
+    computes from the segments themselves; none for no segments; given back as it is."""
+    rng = np.random.default_rng(5)
+    segs = rng.normal(size=(7, 2, 2)) * 40
+    got, ref = figures.segment_set(segs.tolist()), _Segments(segs)
+    for name in ("ax", "ay", "dx", "dy", "L2"):
+        assert np.array_equal(getattr(got, name)[:, 0], getattr(ref, name))
+    cx, cy = rng.normal(size=(2, 50)) * 40
+    assert np.array_equal(got.dists(cx, cy), ref.dists(cx, cy))
+    assert figures.segment_set([]) is None and figures.segment_set(None) is None
+    assert figures.segment_set(got) is got
