@@ -13,6 +13,7 @@ figure prints at its real size.
 """
 from __future__ import annotations
 
+import functools
 import math
 import re
 from html import escape
@@ -123,17 +124,8 @@ def _text_sizes(size: float) -> dict[str, str]:
 
 _TEXT_STYLES: dict[tuple, str] = {}      # a label style's attributes after x and y (Canvas.text)
 _CIRCLE_TAILS: dict[tuple, str] = {}     # a circle style's attributes after its centre and radius
-_ESCAPED: dict[str, str] = {}            # label texts escaped (a drawing's few hundred, over and over)
-
-
-def _escape(s: str) -> str:
-    """html.escape(s), remembered for the labels' texts."""
-    got = _ESCAPED.get(s)
-    if got is None:
-        got = escape(s)
-        if len(_ESCAPED) < 4096:
-            _ESCAPED[s] = got
-    return got
+# html.escape(s), remembered for the labels' texts (a drawing's few hundred, over and over)
+_escape = functools.lru_cache(maxsize=4096)(escape)
 
 
 _ARCS: dict[bool, list[tuple[float, float]]] = {}

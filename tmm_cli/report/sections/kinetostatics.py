@@ -20,6 +20,7 @@ numbers only from results.
 """
 from __future__ import annotations
 
+import functools
 import math
 import re
 
@@ -147,19 +148,11 @@ def _links(results):
 
 
 # ----------------------------------------------------------------- names
-_PARTS: dict[tuple[str, str], tuple[str, str]] = {}
-
-
+@functools.lru_cache(maxsize=4096)
 def label_parts(name: str, lang: str = "en") -> tuple[str, str]:
     """A load/reaction name of the results -> (symbol, subscript) (_label_parts), remembered
     (a report draws the same few dozen names over and over)."""
-    key = (name, lang)
-    got = _PARTS.get(key)
-    if got is None:
-        got = _label_parts(name, lang)
-        if len(_PARTS) < 4096:
-            _PARTS[key] = got
-    return got
+    return _label_parts(name, lang)
 
 
 def _label_parts(name: str, lang: str = "en") -> tuple[str, str]:
