@@ -3,7 +3,8 @@
 * :func:`csv_text` writes every CSV tmm produces (summary, check, forms, report tables):
   a text cell that a spreadsheet would take for a formula (it begins with ``=``, ``+``,
   ``-``, ``@``, a tab or a carriage return) gets a leading ``'``; numbers stay numbers,
-  every float exact (its shortest repr, or 17 significant digits in the report's tables).
+  every float exact (its shortest repr, or the same digits spelt as results.json spells
+  them in the report's tables).
 * :func:`round_sig` rounds numbers to significant digits for compact embedded data
   (the report's mechanism in motion).
 * :func:`read_table` reads a table an instructor typed or exported: ``,`` or ``;``
@@ -42,70 +43,98 @@ def safe_cell(v):
     return s
 
 
-# the text of a finite float in a CSV: its shortest repr (``0.1``, ``30.0``), or every
-# float with 17 significant digits (``0.10000000000000001``, ``30``): ~1.4x as fast to
-# make, for the long per-position tables beside the report. Either reads back as the
-# very same float (17 significant digits identify every double; the sign of -0.0 and
-# subnormals included); NaN and inf are written as an empty cell either way
-SHORTEST, DIGITS17 = "%r", "%.17g"
+# the text of a finite float in a CSV: its shortest repr (``0.1``, ``30.0``, ``1e-05``), or
+# the same shortest digits as results.json spells them (orjson: ``0.00001``, ``2.5e-7``,
+# ``1e+16``), whole tables of numbers at once: ~4x as fast to make, for the long
+# per-position tables beside the report. Either reads back as the very same float (the
+# sign of -0.0 and subnormals included); NaN and inf are written as an empty cell either way
+SHORTEST, AS_JSON = "%r", "json"
 
 
 def csv_text(header: list[str], rows, floats: str = SHORTEST) -> str:
     """A CSV (comma, UTF-8, full float precision) of ``rows`` (lists, or dicts keyed by
     the header); every cell through :func:`safe_cell`, the header too, but a finite float
-    written as ``floats`` gives it (:data:`SHORTEST` or :data:`DIGITS17`)."""
-    if floats not in (SHORTEST, DIGITS17):
+    written as ``floats`` gives it (:data:`SHORTEST` or :data:`AS_JSON`)."""
+    if floats not in (SHORTEST, AS_JSON):
         raise ValueError(f"floats: {floats!r}")
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
     w.writerow([safe_cell(h) for h in header])
+    if floats == AS_JSON:
+        _json_rows(w, buf, [tuple(r.get(h) for h in header) if isinstance(r, dict) else r for r in rows])
+        return buf.getvalue()
     lines: list[str] = []
-    formats: dict[tuple, str | None] = {}
+    formats: dict[tuple, bool] = {}
     for r in rows:
         vals = [r.get(h) for h in header] if isinstance(r, dict) else r
         if type(vals) is not tuple:
             vals = tuple(vals)
         # the long per-position tables are all numbers: a row of floats, ints and None
-        # (empty cells) is one %-format of the row, made once per pattern of cell types
-        # (what the writer gives: str of an int, nothing to quote); a non-finite float
-        # there writes nan or inf, the only letter such a line can hold: the writer then
+        # (empty cells) is its cells' reprs joined, None's cut out after (what the writer
+        # gives: str of an int, nothing to quote), where the pattern of cell types allows
+        # it (decided once per pattern); a non-finite float there writes nan or inf, the
+        # only letter such a line can hold: the writer then
         kinds = tuple(map(type, vals))
-        fmt = formats.get(kinds, 0)
-        if fmt == 0:
-            fmt = formats[kinds] = _row_format(kinds, floats)
-        if fmt is not None:
-            # shortest: the reprs joined (a %r format is slower), None's cut out after
-            line = fmt % vals if fmt else ",".join(map(repr, vals)).replace("None", "")
+        fast = formats.get(kinds)
+        if fast is None:
+            fast = formats[kinds] = _numbers_only(kinds)
+        if fast:
+            line = ",".join(map(repr, vals)).replace("None", "")
             if "n" not in line:
                 lines.append(line)
                 continue
         if lines:
             buf.write("\n".join(lines) + "\n")
             lines.clear()
-        w.writerow([floats % float(v) if isinstance(v, float) and v - v == 0 else safe_cell(v) for v in vals])
+        w.writerow([repr(float(v)) if isinstance(v, float) and v - v == 0 else safe_cell(v) for v in vals])
     if lines:
         buf.write("\n".join(lines) + "\n")
     return buf.getvalue()
 
 
 _NONE = type(None)
-_CELL_FORMAT = {int: "%d", _NONE: "%.0s"}      # None: "" (the text "None" cut to nothing)
 
 
-def _row_format(kinds: tuple, floats: str) -> str | None:
-    """The %-format of a row whose cells are of the types ``kinds`` (a float as
-    ``floats``; "" for :data:`SHORTEST`: the caller joins the reprs), or None: a cell of
-    another type (bool, text, a numpy scalar), or a row of one empty cell (the writer
+def _numbers_only(kinds: tuple) -> bool:
+    """Whether a row whose cells are of the types ``kinds`` is written as its cells'
+    reprs joined: floats, ints and None only, but not a row of one empty cell (the writer
     quotes it: ``""``)."""
-    if kinds == (_NONE,):
-        return None
-    parts = []
-    for k in kinds:
-        f = floats if k is float else _CELL_FORMAT.get(k)
-        if f is None:
-            return None
-        parts.append(f)
-    return ",".join(parts) if floats != SHORTEST else ""
+    return kinds != (_NONE,) and all(k is float or k is int or k is _NONE for k in kinds)
+
+
+def _json_rows(w, buf, rows: list) -> None:
+    """The rows in :data:`AS_JSON`'s spelling, into ``buf`` (the header written): a table
+    of plain numbers, None and bools is one orjson text of the rows, its brackets turned
+    into line breaks and ``null`` cut to an empty cell (JSON's ``true``/``false`` are
+    safe_cell's text); a table holding anything else (text, numpy scalars, ints beyond 64
+    bits, an empty row or a row of one empty cell, which the writer writes as ``""``)
+    goes row by row, such rows through the writer."""
+    import orjson
+    if rows:
+        try:
+            text = orjson.dumps(rows)
+        except orjson.JSONEncodeError:
+            text = None
+        if text is not None and _plain(text, len(rows)):
+            buf.write(text[2:-2].replace(b"],[", b"\n").replace(b"null", b"").decode() + "\n")
+            return
+    for r in rows:
+        try:
+            text = orjson.dumps([r])
+        except orjson.JSONEncodeError:
+            text = None
+        if text is not None and _plain(text, 1):
+            buf.write(text[2:-2].replace(b"null", b"").decode() + "\n")
+        else:
+            w.writerow([orjson.dumps(float(v)).decode() if isinstance(v, float) and v - v == 0 else safe_cell(v)
+                        for v in r])
+
+
+def _plain(text: bytes, n: int) -> bool:
+    """Whether ``text``, orjson's text of ``n`` rows, holds plain cells only: no string,
+    no nested list or mapping, no empty row and no row of one empty cell."""
+    return (b'"' not in text and b"{" not in text and b"[]" not in text and b"[null]" not in text
+            and text.count(b"[") == n + 1)
 
 
 def cell_value(text: str):
