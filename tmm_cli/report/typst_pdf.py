@@ -724,8 +724,12 @@ _LABEL = re.compile(r'<text x="(-?\d+(?:\.\d+)?)" y="(-?\d+(?:\.\d+)?)"([^>]*)>(
 def _place_labels(texts: str, k: float, vw: float) -> tuple[str, list[str]]:
     """(the SVG text elements of ``texts`` left in the figure, the Typst calls placing the
     others over it): each at its baseline (x, y user units, ``k`` pt each; the figure ``vw``
-    wide) by its anchor (the styles and contents alike read once: cached)."""
+    wide) by its anchor (the styles and contents alike read once: cached).  Labels of one
+    style drawn one after another share one text() call around their place() calls (in
+    the same order, so the same page): ~30 k instructions a label less to evaluate and to
+    lay out than a text() call each (a set rule instead nests the styles: dearer)."""
     kept, placed = [], []
+    run, head0 = [], None
     for m in _LABEL.finditer(texts):
         x, y, attrs, inner = m.groups()
         st = _label_style(attrs, k) if x is not None else None
@@ -734,9 +738,21 @@ def _place_labels(texts: str, k: float, vw: float) -> tuple[str, list[str]]:
             kept.append(m.group(0))
         elif body:
             head, side, frac = st
-            placed.append(f"place(top + {side}, dx: {(float(x) - frac * vw) * k:.3f}pt, "
-                          f"dy: {float(y) * k:.3f}pt, {head}{body}))")
+            if head != head0 and run:
+                placed.append(_styled(head0, run))
+                run = []
+            head0 = head
+            run.append(f"place(top + {side}, dx: {(float(x) - frac * vw) * k:.3f}pt, "
+                       f"dy: {float(y) * k:.3f}pt, {body})")
+    if run:
+        placed.append(_styled(head0, run))
     return "".join(kept), placed
+
+
+def _styled(head: str, places: list[str]) -> str:
+    """Typst content of ``places`` in the text style ``head`` (an opening ``text(...,``)."""
+    inner = "; ".join(places)
+    return f"{head}{{{inner}}})" if head != "text(" else f"{{{inner}}}"
 
 
 def _labels(svg: str, width_pt: float) -> tuple[str, str]:
