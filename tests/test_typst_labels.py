@@ -143,19 +143,20 @@ def test_a_figure_not_at_its_width_keeps_its_labels():
 
 
 def test_labels_of_one_style_share_one_text_call(tmp_path, monkeypatch):
-    """Consecutive labels of one style are placed inside one text() call (fewer calls for
-    Typst to evaluate and lay out); the PDF is the same bytes as with a text() call in each
-    place(), and a change of style between them starts a new call (the order kept)."""
+    """The labels of one style are placed inside one text() call (fewer calls for Typst to
+    evaluate and lay out), the styles in the order of their first label; the PDF is the same
+    bytes as with a text() call in each place()."""
     import re
     svg = SVG.replace("</svg>", '<text x="20" y="56" font-size="2.12" fill="#555555">C</text>\n'
                                 '<text x="30" y="56" font-size="2.12" fill="#555555">D</text>\n'
-                                '<text x="40" y="56" font-size="2.12">E</text>\n</svg>')
+                                '<text x="40" y="56" font-size="2.12">E</text>\n'
+                                '<text x="50" y="56" font-size="2.12" fill="#555555">F</text>\n</svg>')
     src, files = to_typst(_html(svg), "en")
     figure = src[src.rindex("#fig("):]
-    assert figure.count('fill: rgb("#555555")') == 1 and figure.count("place(") == 8
+    assert figure.count('fill: rgb("#555555")') == 1 and figure.count("place(") == 9
     assert re.search(r'text\(size: 6\.01pt, fill: rgb\("#555555"\), \{place\([^{}]*"A & B"\); '
-                     r'place\([^{}]*"C"\); place\([^{}]*"D"\)\}\); text\(size: 6\.01pt, \{place\([^{}]*"E"\)\}\)',
-                     src), src
+                     r'place\([^{}]*"C"\); place\([^{}]*"D"\); place\([^{}]*"F"\)\}\); '
+                     r'text\(size: 6\.01pt, \{place\([^{}]*"E"\)\}\)\}\)$', figure.strip()), figure
 
     def one_each(head, places):           # the form before: each label its own text() call
         out = []
@@ -166,7 +167,7 @@ def test_labels_of_one_style_share_one_text_call(tmp_path, monkeypatch):
 
     monkeypatch.setattr(typst_pdf, "_styled", one_each)
     src0, files0 = to_typst(_html(svg), "en")
-    assert src0 != src and src0[src0.rindex("#fig("):].count("text(size: 6.01pt, fill") == 3
+    assert src0 != src and src0[src0.rindex("#fig("):].count("text(size: 6.01pt, fill") == 4
 
     def pdf(s, fs, name):
         d = tmp_path / name
