@@ -140,3 +140,41 @@ def test_a_figure_not_at_its_width_keeps_its_labels():
     cell = f"<html><body><table><tr><td>{SVG}</td></tr></table></body></html>"
     src, files = to_typst(cell, "en")
     assert "place(" not in src and b"<text" in files["fig-000.svg"]
+
+
+def test_labels_of_one_style_share_one_text_call(tmp_path, monkeypatch):
+    """The labels of one style are placed inside one text() call (fewer calls for Typst to
+    evaluate and lay out), the styles in the order of their first label; the PDF is the same
+    bytes as with a text() call in each place()."""
+    import re
+    svg = SVG.replace("</svg>", '<text x="20" y="56" font-size="2.12" fill="#555555">C</text>\n'
+                                '<text x="30" y="56" font-size="2.12" fill="#555555">D</text>\n'
+                                '<text x="40" y="56" font-size="2.12">E</text>\n'
+                                '<text x="50" y="56" font-size="2.12" fill="#555555">F</text>\n</svg>')
+    src, files = to_typst(_html(svg), "en")
+    figure = src[src.rindex("#fig("):]
+    assert figure.count('fill: rgb("#555555")') == 1 and figure.count("place(") == 9
+    assert re.search(r'text\(size: 6\.01pt, fill: rgb\("#555555"\), \{place\([^{}]*"A & B"\); '
+                     r'place\([^{}]*"C"\); place\([^{}]*"D"\); place\([^{}]*"F"\)\}\); '
+                     r'text\(size: 6\.01pt, \{place\([^{}]*"E"\)\}\)\}\)$', figure.strip()), figure
+
+    def one_each(head, places):           # the form before: each label its own text() call
+        out = []
+        for p in places:
+            m = re.fullmatch(r"(place\(top \+ \w+, dx: \S+, dy: \S+, )(.*)\)", p, re.S)
+            out.append(f"{m.group(1)}{head}{m.group(2)}))" if head != "text(" else p)
+        return "{" + "; ".join(out) + "}"
+
+    monkeypatch.setattr(typst_pdf, "_styled", one_each)
+    src0, files0 = to_typst(_html(svg), "en")
+    assert src0 != src and src0[src0.rindex("#fig("):].count("text(size: 6.01pt, fill") == 4
+
+    def pdf(s, fs, name):
+        d = tmp_path / name
+        d.mkdir()
+        for n, data in fs.items():
+            (d / n).write_bytes(data)
+        (d / "r.typ").write_text(s, encoding="utf-8")
+        return typst.compile(str(d / "r.typ"), root=str(d), font_paths=typst_pdf._font_dirs(), pdf_tags=False)
+
+    assert pdf(src, files, "grouped") == pdf(src0, files0, "each")
