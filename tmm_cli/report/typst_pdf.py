@@ -13,7 +13,6 @@ PDF drawing operators) and the text keeps DejaVu Sans (Cyrillic, Greek).
 """
 from __future__ import annotations
 
-import os
 import re
 from contextlib import contextmanager
 from functools import lru_cache
@@ -838,49 +837,6 @@ def _font_links(into: Path) -> list[str]:
     return [str(into)]
 
 
-# the DejaVu files of the report's text (`pdffonts` of every task's PDF: Sans, its bold and
-# oblique, Serif; its mathematics is Typst's own New Computer Modern Math, its `raw` text DejaVu
-# Sans Mono) and the directories where distributions install the system's copies
-# (Debian/Ubuntu, Fedora, Arch, Alpine/openSUSE)
-_DEJAVU_USED = ("DejaVuSans.ttf", "DejaVuSans-Bold.ttf", "DejaVuSans-Oblique.ttf", "DejaVuSans-BoldOblique.ttf",
-                "DejaVuSerif.ttf", "DejaVuSerif-Bold.ttf", "DejaVuSerif-Italic.ttf", "DejaVuSerif-BoldItalic.ttf")
-_SYSTEM_DEJAVU = ("/usr/share/fonts/truetype/dejavu", "/usr/share/fonts/dejavu-sans-fonts",
-                  "/usr/share/fonts/dejavu-serif-fonts", "/usr/share/fonts/TTF", "/usr/share/fonts/dejavu")
-
-
-def _fonts(into: Path, system_dirs=_SYSTEM_DEJAVU) -> tuple[list[str], bool]:
-    """(font directories, whether to leave the system's fonts out) for a compilation.  Where
-    the system has DejaVu Sans in one of ``system_dirs``: links in ``into`` (a new directory)
-    to the DejaVu Sans and Serif files, each the system's copy where there is one, else
-    matplotlib's, and the system's fonts not searched: the same Sans and Serif files Typst
-    chose when it searched the system's fonts first (then its own, then matplotlib's),
-    without reading the system's other font files for their coverage (forging: 1.675 ->
-    1.635 G instructions, the same PDF bytes).  DejaVu Sans Mono (`raw`) is then Typst's own
-    copy (its fonts come before the directories when the system's are not searched), not the
-    system's: the glyph data in the PDF differ in bytes, the pages not (tests/test_typst_fonts.py
-    renders them).  Elsewhere (or where links cannot be made) `_font_links`, the system's fonts
-    searched as before."""
-    mpl = _font_dirs()
-    have = {}
-    for d in system_dirs:
-        if not have and os.path.isfile(os.path.join(d, "DejaVuSans.ttf")):
-            have = {n: os.path.join(d, n) for n in _DEJAVU_USED if os.path.isfile(os.path.join(d, n))}
-    if have:
-        for n in _DEJAVU_USED:
-            if n not in have and mpl and os.path.isfile(os.path.join(mpl[0], n)):
-                have[n] = os.path.join(mpl[0], n)
-        try:
-            into.mkdir()
-            for n, f in have.items():
-                (into / n).symlink_to(f)
-        except OSError:
-            pass
-        else:
-            return [str(into)], True
-        into = into.with_name(into.name + "-all")
-    return _font_links(into), False
-
-
 def pdf_bytes(html: str, lang: str = "en") -> bytes:
     """Compile the report's HTML to PDF bytes (the figures are files of a temporary
     directory that Typst reads)."""
@@ -894,6 +850,5 @@ def pdf_bytes(html: str, lang: str = "en") -> bytes:
         (d / "report.typ").write_text(src, encoding="utf-8")
         # untagged, as weasyprint wrote it: a third of the size (0.4 MB against 1.1 MB for the
         # forging report) and no complaint from poppler's tools about the structure tree
-        fonts, no_system = _fonts(d / "fonts")
-        return typst.compile(str(d / "report.typ"), root=str(d), font_paths=fonts,
-                             ignore_system_fonts=no_system, pdf_tags=False)
+        return typst.compile(str(d / "report.typ"), root=str(d), font_paths=_font_links(d / "fonts"),
+                             pdf_tags=False)
