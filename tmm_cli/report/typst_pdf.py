@@ -275,6 +275,8 @@ class _Writer:
         self.whole = False                  # inside a block kept on one page (not breakable)
         self.width: float | None = _TEXT_WIDTH   # pt free for a block here; None: not known
         self.texts: dict[str, str] = {}     # a text node's markup (see _text)
+        self.cells: dict[str, tuple[str, str]] = {}     # a table cell's one text: stripped, markup
+        self.ems: dict[str, float] = {}     # _em_width of a (regular) cell text
 
     @contextmanager
     def _inside(self, narrower=None):
@@ -455,10 +457,10 @@ class _Writer:
         """Columns of a full-width table: text columns (a cell of more than a few words)
         share the free width, the others fit their content (as a browser lays out
         `width: 100%`); all equal when there is no text column.  ``rows``: per row its
-        cells' (node, colspan, rowspan, stripped text)."""
+        cells' (node, colspan, rowspan, stripped text, markup or None)."""
         text = [False] * ncols
         for r in rows:
-            for j, (c, _, _, t) in enumerate(r[:ncols]):
+            for j, (c, _, _, t, _) in enumerate(r[:ncols]):
                 if len(t) > 14 and "num" not in c.classes:
                     text[j] = True
         if not any(text):
@@ -474,7 +476,7 @@ class _Writer:
         a row is fixed only where no cell of it can wrap, i.e. where a bound of the
         table's width (DejaVu Sans advances, rounded up; bold ones for a header's cells)
         fits the width free for it.
-        ``rows``: per row its cells' (node, colspan, rowspan, stripped text).
+        ``rows``: per row its cells' (node, colspan, rowspan, stripped text, markup or None).
         The tracks, one a row ("auto" or the height); None when no row qualifies or the
         free width is not known here."""
         if self.width is None or nhead >= len(rows) or not any(one_line[nhead:]):
@@ -484,12 +486,21 @@ class _Writer:
         need = [0.0] * ncols                # a bound of each column's natural width, pt
         spans = []
         est = []                            # per row: (first column, last + 1, bound) of its cells
+        ems = self.ems
         for r in rows:
             j, row = 0, []
-            for c, span, rspan, t in r:
+            for c, span, rspan, t, _ in r:
                 if rspan > 1:
                     return None
-                w = _em_width(t, c.tag == "th") * size + pad if t else 0.0
+                if not t:
+                    w = 0.0
+                elif c.tag == "th":
+                    w = _em_width(t, True) * size + pad
+                else:
+                    em = ems.get(t)
+                    if em is None:
+                        em = ems[t] = _em_width(t)
+                    w = em * size + pad
                 if span == 1 and j < ncols:
                     need[j] = max(need[j], w)
                 else:
@@ -538,13 +549,23 @@ class _Writer:
                     rows.append((head, [k for k in c if isinstance(k, _Node) and k.tag in ("td", "th")]))
 
         collect(node, False)
-        info = []           # per row: its cells' (node, colspan, rowspan, stripped text)
+        # per row: its cells' (node, colspan, rowspan, stripped text, markup of a cell that is
+        # one text, else None), that of one text remembered (numbers recur from table to table)
+        info = []
+        known = self.cells
         for _, r in rows:
             row = []
             for c in r:
                 at = c.attrs
                 span, rspan = at.get("colspan"), at.get("rowspan")
-                row.append((c, int(span) if span else 1, int(rspan) if rspan else 1, c.text().strip()))
+                if len(c) == 1 and c[0].__class__ is str:
+                    x = c[0]
+                    got = known.get(x)
+                    if got is None:             # (inline(c).strip() is the text's markup)
+                        got = known[x] = (x.strip(), self._text(x))
+                    row.append((c, int(span) if span else 1, int(rspan) if rspan else 1) + got)
+                else:
+                    row.append((c, int(span) if span else 1, int(rspan) if rspan else 1, c.text().strip(), None))
             info.append(row)
         ncols = max((sum(x[1] for x in r) for r in info), default=1)
         nhead = 0
@@ -557,7 +578,7 @@ class _Writer:
         # a plain cell is cheaper to lay out than a table.cell with its own alignment
         right = [True] * ncols
         for r in info[nhead:]:
-            for j, (c, _, _, t) in enumerate(r[:ncols]):
+            for j, (c, _, _, t, _) in enumerate(r[:ncols]):
                 if c.tag != "td" or (t and "num" not in c.classes):
                     right[j] = False
         if not rows[nhead:]:
@@ -569,8 +590,9 @@ class _Writer:
             for i, r in enumerate(info):
                 plain = True
                 row, row_bare = [], len(r) == ncols
-                for j, (c, span, rspan, _) in enumerate(r):
-                    body = self.inline(c).strip()
+                for j, (c, span, rspan, _, body) in enumerate(r):
+                    if body is None:
+                        body = self.inline(c).strip()
                     args = []
                     if span > 1:
                         args.append(f"colspan: {span}")
@@ -797,9 +819,11 @@ def _label_body(inner: str, k: float) -> str | None:
     return runs[0] if len(runs) == 1 else "{" + "; ".join(runs) + "}"
 
 
-# a label as tmm writes it (x and y first), or any other text element
-_LABEL = re.compile(r'<text x="(-?\d+(?:\.\d+)?)" y="(-?\d+(?:\.\d+)?)"([^>]*)>(.*?)</text>\s*'
-                    r"|<text\b.*?</text>\s*", re.S)
+# a label as tmm writes it (x and y first), or any other text element: the whole, then x, y,
+# the other attributes and the content of a label ("" for another element); the content up
+# to the first </text>, taken possessively
+_LABEL = re.compile(r'(<text x="(-?\d+(?:\.\d+)?)" y="(-?\d+(?:\.\d+)?)"([^>]*)>((?:[^<]++|<(?!/text>))*+)</text>\s*'
+                    r"|<text\b(?:[^<]++|<(?!/text>))*+</text>\s*)", re.S)
 
 
 def _place_labels(texts: str, k: float, vw: float) -> tuple[str, list[str]]:
@@ -807,17 +831,22 @@ def _place_labels(texts: str, k: float, vw: float) -> tuple[str, list[str]]:
     others over it): each at its baseline (x, y user units, ``k`` pt each; the figure ``vw``
     wide) by its anchor (the styles and contents alike read once: cached)."""
     kept, placed = [], []
-    for m in _LABEL.finditer(texts):
-        x, y, attrs, inner = m.groups()
-        st = _label_style(attrs, k) if x is not None else None
+    for whole, x, y, attrs, inner in _LABEL.findall(texts):
+        st = _label_style(attrs, k) if x else None
         body = _label_body(inner, k) if st is not None else None
         if body is None:
-            kept.append(m.group(0))
+            kept.append(whole)
         elif body:
             head, side, frac = st
             placed.append(f"place(top + {side}, dx: {(float(x) - frac * vw) * k:.3f}pt, "
                           f"dy: {float(y) * k:.3f}pt, {head}{body}))")
     return "".join(kept), placed
+
+
+_SPACE = re.compile(r"\s*")
+# an end tag other than </tspan>, or one that removing the </tspan> tags would make ("<" and
+# "/" around them): where ``"</" in text.replace("</tspan>", "")``
+_OTHER_END = re.compile(r"</(?!tspan>)|<(?:</tspan>)+/")
 
 
 def _labels(svg: str, width_pt: float) -> tuple[str, str]:
@@ -836,15 +865,18 @@ def _labels(svg: str, width_pt: float) -> tuple[str, str]:
     k = width_pt / vw if vw > 0 else 0.0
     if not (k > 0 and vh > 0 and abs(float(h.group(1)) / vh - k) <= 1e-3 * k):
         return svg, ""                  # not a uniform scale: the viewBox is fitted otherwise
-    # the texts after the last other element, outside any group
+    # the texts after the last other element, outside any group: from the end, each
+    # "<text ...</text>" with only white space after it and no end tag in it but </tspan>
+    # (read in place, without slicing the figure)
     end = pos = svg.rindex("</svg>")
     start = end
+    rfind, space, other_end = svg.rfind, _SPACE.fullmatch, _OTHER_END.search
     while True:
-        t = svg.rfind("</text>", 0, pos)
-        if t < 0 or svg[t + 7:pos].strip():
+        t = rfind("</text>", 0, pos)
+        if t < 0 or not space(svg, t + 7, pos):
             break
-        o = svg.rfind("<text", 0, t)
-        if o < 0 or "<text" in svg[o + 5:t] or "</" in svg[o:t].replace("</tspan>", ""):
+        o = rfind("<text", 0, t)
+        if o < 0 or svg.find("<text", o + 5, t) >= 0 or other_end(svg, o, t):
             break
         start = pos = o
     kept, placed = _place_labels(svg[start:end], k, vw)
