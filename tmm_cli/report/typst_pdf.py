@@ -26,13 +26,14 @@ _VOID = {"meta", "br", "img", "hr", "input", "link", "col", "wbr"}
 
 class _Node(list):
     """An element: its children (_Node | str) are its items."""
-    __slots__ = ("tag", "attrs", "_classes")
+    __slots__ = ("tag", "attrs", "classes")
 
     def __init__(self, tag, attrs, classes=None):
         super().__init__()
         self.tag = tag
         self.attrs = attrs
-        self._classes = classes
+        self.classes: frozenset[str] = (frozenset((attrs.get("class") or "").split())
+                                        if classes is None else classes)
 
     @property
     def children(self) -> list:
@@ -41,13 +42,6 @@ class _Node(list):
     @children.setter
     def children(self, items) -> None:
         self[:] = items
-
-    @property
-    def classes(self) -> frozenset[str]:
-        c = self._classes
-        if c is None:
-            c = self._classes = frozenset((self.attrs.get("class") or "").split())
-        return c
 
     def text(self) -> str:
         if len(self) == 1 and self[0].__class__ is str:
@@ -107,15 +101,13 @@ def _read(html: str) -> _Node:
                 got = seen[attrs] = (at, frozenset((at.get("class") or "").split()))
             node = new(_Node)
             node.tag = tag
-            node.attrs, node._classes = got
+            node.attrs, node.classes = got
             kids.append(node)
             if not selfclose and tag not in void:
                 stack.append(node)
                 kids = node
         elif end:
-            tag = low.get(end)
-            if tag is None:
-                tag = low[end] = end.lower()
+            tag = end if end == kids.tag else (low.get(end) or end.lower())
             if kids.tag == tag:               # the open element (never the root: "#root")
                 stack.pop()
                 kids = stack[-1]
@@ -832,15 +824,28 @@ def _place_labels(texts: str, k: float, vw: float) -> tuple[str, list[str]]:
     wide) by its anchor (the styles and contents alike read once: cached)."""
     kept, placed = [], []
     for whole, x, y, attrs, inner in _LABEL.findall(texts):
-        st = _label_style(attrs, k) if x else None
-        body = _label_body(inner, k) if st is not None else None
-        if body is None:
+        got = _label_parts(attrs, inner, k) if x else None
+        if got is None:
             kept.append(whole)
-        elif body:
-            head, side, frac = st
-            placed.append(f"place(top + {side}, dx: {(float(x) - frac * vw) * k:.3f}pt, "
-                          f"dy: {float(y) * k:.3f}pt, {head}{body}))")
+        elif got:
+            pre, frac, post = got
+            placed.append(f"{pre}{(float(x) - frac * vw) * k:.3f}pt, dy: {float(y) * k:.3f}pt, {post}")
     return "".join(kept), placed
+
+
+@lru_cache(maxsize=4096)
+def _label_parts(attrs: str, inner: str, k: float) -> tuple[str, float, str] | str | None:
+    """A label's place() call but its position: (the text before dx, the fraction of the
+    figure's width its anchor is at, the text after dy); "" for a label without text, None
+    for one left in the figure (see _label_style, _label_body)."""
+    st = _label_style(attrs, k)
+    body = _label_body(inner, k) if st is not None else None
+    if body is None:
+        return None
+    if not body:
+        return ""
+    head, side, frac = st
+    return f"place(top + {side}, dx: ", frac, f"{head}{body}))"
 
 
 _SPACE = re.compile(r"\s*")
