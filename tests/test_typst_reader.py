@@ -5,6 +5,8 @@ tags, upper case) and on the reports of example tasks in the three languages; an
 Typst source made from either tree is the same."""
 from __future__ import annotations
 
+import random
+import re
 from html.parser import HTMLParser
 from pathlib import Path
 
@@ -77,6 +79,43 @@ HAND = """<!DOCTYPE html><html lang="ru"><head><meta charset="utf-8"><title>A &a
 <p>tail &unknown; &amp</p></BODY></html>"""
 
 
+# the tag expression as it was (the attributes taken lazily, a character at a time)
+_TAG_LAZY = re.compile(r"""<(?:([a-zA-Z][^\s/>]*)((?:[^>"']|"[^"]*"|'[^']*')*?)(/?)>"""
+                       r"""|/([a-zA-Z][^\s/>]*)\s*>|!--.*?-->|[!?][^>]*>)""", re.S)
+
+
+def cut_by_regex(html: str) -> tuple[str, list[str]]:
+    """_cut_svgs as the regular expression _SVG does it (the code before)."""
+    svgs = []
+
+    def cut(m):
+        svgs.append(m.group(0))
+        return f'<img data-svg="{len(svgs) - 1}">'
+
+    return typst_pdf._SVG.sub(cut, html), svgs
+
+
+_SOUP = ["<", ">", "/", "/>", '"', "'", "=", " ", "\n", "a", "b1", "_", "é", "ω", "-", "!", "?", "&amp;",
+         "<svg", "<svg>", "<SVG ", "<svgx", "<svg_", "<svgé", "<svg1", "</svg>", "</svg", "svg>", "<!--", "-->",
+         "<p", "</p>", "<br/>", '<a href="x>y">', "<td class='n'>", "</td >", "<img data-svg=\"1\"/>",
+         '<x a="/>" b=c/>', "<!DOCTYPE html>", "<?pi?>"]
+
+
+def soup(rng: random.Random) -> str:
+    return "".join(rng.choice(_SOUP) for _ in range(rng.randrange(0, 60)))
+
+
+def test_the_tag_expression_and_the_figure_cut_are_as_before():
+    """The possessive tag expression splits as the lazy one did; the figures are cut out by
+    str.find where the regular expression _SVG found them (random tag soup)."""
+    rng = random.Random(12)
+    for _ in range(20000):
+        h = soup(rng)
+        assert typst_pdf._TAG.split(h) == _TAG_LAZY.split(h), h
+        assert typst_pdf._cut_svgs(h) == cut_by_regex(h), h
+    assert typst_pdf._TAG.split(HAND) == _TAG_LAZY.split(HAND)
+
+
 def test_the_reader_is_html_parser_on_awkward_html():
     assert dump(_read(HAND)) == dump(reference(HAND))
     got = dump(_read(HAND))
@@ -94,9 +133,10 @@ def test_the_reader_on_reports(name, lang, tmp_path, monkeypatch):
     html, ctx = render_html(tmm_cli.run(task), task, tmp_path, lang)
     html = _figure_files(ctx, html)[0]
     root, svgs = typst_pdf._parse(html)
+    assert typst_pdf._cut_svgs(html) == cut_by_regex(html)
     cut = typst_pdf._SVG.sub(lambda m: "<img>", html)
-    import re
     cut = re.sub(r"<(style|script)\b.*?</\1>", "", cut, flags=re.S | re.I)
+    assert typst_pdf._TAG.split(cut) == _TAG_LAZY.split(cut)
     ref = reference(cut)
     # the same tree (the figures' placeholders aside: data-svg numbers)
     strip = re.compile(r"\('data-svg', '\d+'\)")

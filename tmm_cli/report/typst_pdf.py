@@ -24,29 +24,38 @@ __all__ = ["to_typst", "pdf_bytes"]
 _VOID = {"meta", "br", "img", "hr", "input", "link", "col", "wbr"}
 
 
-class _Node:
-    __slots__ = ("tag", "attrs", "children", "_classes")
+class _Node(list):
+    """An element: its children (_Node | str) are its items."""
+    __slots__ = ("tag", "attrs", "classes")
 
     def __init__(self, tag, attrs, classes=None):
+        super().__init__()
         self.tag = tag
         self.attrs = attrs
-        self.children: list = []            # _Node | str
-        self._classes = classes
+        self.classes: frozenset[str] = (frozenset((attrs.get("class") or "").split())
+                                        if classes is None else classes)
 
     @property
-    def classes(self) -> frozenset[str]:
-        c = self._classes
-        if c is None:
-            c = self._classes = frozenset((self.attrs.get("class") or "").split())
-        return c
+    def children(self) -> list:
+        return self
+
+    @children.setter
+    def children(self, items) -> None:
+        self[:] = items
 
     def text(self) -> str:
-        return "".join(c if isinstance(c, str) else c.text() for c in self.children)
+        if len(self) == 1 and self[0].__class__ is str:
+            return self[0]
+        return "".join(c if isinstance(c, str) else c.text() for c in self)
 
+
+_new_node = list.__new__
 
 # a start tag (name, attributes, "/" of a self-closed one), an end tag, or a comment /
-# declaration / processing instruction (skipped); the rest is text
-_TAG = re.compile(r"""<(?:([a-zA-Z][^\s/>]*)((?:[^>"']|"[^"]*"|'[^']*')*?)(/?)>"""
+# declaration / processing instruction (skipped); the rest is text.  The attributes are
+# runs of characters other than > " ' /, quoted values and a / not before >, taken
+# possessively (no backtracking: each character can be read one way only)
+_TAG = re.compile(r"""<(?:([a-zA-Z][^\s/>]*)((?:[^>"'/]++|"[^"]*+"|'[^']*+'|/(?!>))*+)(/?)>"""
                   r"""|/([a-zA-Z][^\s/>]*)\s*>|!--.*?-->|[!?][^>]*>)""", re.S)
 # an attribute: its name, "=value" when it has one, the value (double-, single- or unquoted)
 _ATTR = re.compile(r"""([^\s"'>/=]+)(\s*=\s*(?:"([^"]*)"|'([^']*)'|([^\s>]+)))?""")
@@ -60,21 +69,25 @@ def _read(html: str) -> _Node:
     of its name (a stray one ignored) -- what html.parser gives, several times faster.
     The text is split at the tags in one call (text, then each tag's groups and the text
     after it); the elements with the same attribute text share one attribute dict and
-    class set (read only)."""
+    class set (read only); the nodes are made without calling __init__."""
     from html import unescape
     root = _Node("#root", {})
     stack = [root]
-    kids = root.children
+    kids = root                         # the open element (stack[-1])
     it = iter(_TAG.split(html))
     text = next(it)
     if text:
         kids.append(unescape(text) if "&" in text else text)
     seen: dict[str, tuple[dict, frozenset]] = {}
+    low: dict[str, str] = {}            # element name -> lower case
+    new, void = _new_node, _VOID
     for name, attrs, selfclose, end, text in zip(it, it, it, it, it):
         if name:
-            tag = name.lower()
-            if tag == "svg":                  # kept whole, as text: cut out by _parse
-                raise AssertionError("svg must be cut out before parsing")
+            tag = low.get(name)
+            if tag is None:
+                tag = low[name] = name.lower()
+                if tag == "svg":              # kept whole, as text: cut out by _parse
+                    raise AssertionError("svg must be cut out before parsing")
             got = seen.get(attrs)
             if got is None:
                 at = {}
@@ -86,18 +99,24 @@ def _read(html: str) -> _Node:
                         else:
                             at[a.lower()] = None
                 got = seen[attrs] = (at, frozenset((at.get("class") or "").split()))
-            node = _Node(tag, got[0], got[1])
+            node = new(_Node)
+            node.tag = tag
+            node.attrs, node.classes = got
             kids.append(node)
-            if not selfclose and tag not in _VOID:
+            if not selfclose and tag not in void:
                 stack.append(node)
-                kids = node.children
+                kids = node
         elif end:
-            tag = end.lower()
-            for k in range(len(stack) - 1, 0, -1):
-                if stack[k].tag == tag:
-                    del stack[k:]
-                    kids = stack[-1].children
-                    break
+            tag = end if end == kids.tag else (low.get(end) or end.lower())
+            if kids.tag == tag:               # the open element (never the root: "#root")
+                stack.pop()
+                kids = stack[-1]
+            else:
+                for k in range(len(stack) - 2, 0, -1):
+                    if stack[k].tag == tag:
+                        del stack[k:]
+                        kids = stack[-1]
+                        break
         if text:
             kids.append(unescape(text) if "&" in text else text)
     return root
@@ -107,15 +126,42 @@ _SVG = re.compile(r"<svg\b.*?</svg>", re.S)
 _WPT = re.compile(r'\bwidth="([0-9.]+)pt"')
 
 
-def _parse(html: str) -> tuple[_Node, list[str]]:
+_STYLE = re.compile(r"<(style|script)\b.*?</\1>", re.S | re.I)
+
+
+def _cut_svgs(html: str) -> tuple[str, list[str]]:
+    """(the HTML with each inline <svg> element replaced by ``<img data-svg="k">``, the
+    SVG texts): the matches of ``_SVG`` (``<svg`` at a word's end up to the first
+    ``</svg>`` after it), found by ``str.find`` (the lazy regex steps through the
+    figures' ~0.6 MB a character at a time)."""
     svgs: list[str] = []
+    parts = []
+    find = html.find
+    pos = 0
+    at = find("<svg")
+    while at >= 0:
+        nxt = html[at + 4:at + 5]
+        if nxt and (nxt.isalnum() or nxt == "_"):       # not at a word's end (\b)
+            at = find("<svg", at + 1)
+            continue
+        end = find("</svg>", at + 4)
+        if end < 0:
+            break
+        end += 6
+        parts.append(html[pos:at])
+        parts.append(f'<img data-svg="{len(svgs)}">')
+        svgs.append(html[at:end])
+        pos = end
+        at = find("<svg", end)
+    if not svgs:
+        return html, svgs
+    parts.append(html[pos:])
+    return "".join(parts), svgs
 
-    def cut(m):
-        svgs.append(m.group(0))
-        return f'<img data-svg="{len(svgs) - 1}">'
 
-    html = _SVG.sub(cut, html)
-    html = re.sub(r"<(style|script)\b.*?</\1>", "", html, flags=re.S | re.I)
+def _parse(html: str) -> tuple[_Node, list[str]]:
+    html, svgs = _cut_svgs(html)
+    html = _STYLE.sub("", html)
     return _read(html), svgs
 
 
@@ -126,6 +172,8 @@ def _s(text: str) -> str:
 
 
 _WS = re.compile(r"\s+")
+# inline elements that wrap their content in a Typst function
+_WRAP = {"sub": "#sub", "sup": "#super", "b": "#strong", "strong": "#strong", "i": "#emph", "em": "#emph"}
 _MM = 72 / 25.4                             # pt
 # a table's text size (pt) and cell insets (mm: x, y), compact or not
 _TABLE_STYLE = {False: (8.5, 1.8, 1.05), True: (7.5, 1.2, 0.8)}
@@ -156,12 +204,29 @@ _ADV_BOLD = {ch: adv for adv, chars in (
     (1.18, 'Ю'), (1.23, 'Ж'), (1.24, 'Ш'), (1.33, 'Щ')) for ch in chars}
 
 
+class _Advances(dict):
+    """A character's advance bound, em (see _em_width): the given ones, any other by
+    ``other(ch)``, remembered."""
+    __slots__ = ("other",)
+
+    def __init__(self, given, other):
+        super().__init__(given)
+        self.other = other
+
+    def __missing__(self, ch):
+        adv = self[ch] = self.other(ch)
+        return adv
+
+
+_ADV_ALL = _Advances(_ADV, lambda ch: 1.1 if ord(ch) < 0x1C4 or 0x370 <= ord(ch) < 0x460 else 2.0)
+_ADV_BOLD_ALL = _Advances(_ADV_BOLD, lambda ch: _ADV_ALL[ch] * _BOLD)
+
+
 def _em_width(text: str, bold: bool = False) -> float:
-    """A bound of the advance of ``text`` in DejaVu Sans (regular or bold), in em."""
-    if bold:
-        return sum(_ADV_BOLD.get(ch) or _em_width(ch) * _BOLD for ch in text)
-    return sum(_ADV.get(ch) or (1.1 if ord(ch) < 0x1C4 or 0x370 <= ord(ch) < 0x460 else 2.0)
-               for ch in text)
+    """A bound of the advance of ``text`` in DejaVu Sans (regular or bold), in em: the sum of
+    its characters' advances (_ADV, any other Latin, Greek or Cyrillic one 1.1, the rest
+    2.0; bold ones _ADV_BOLD, any other _BOLD times the regular bound), in order."""
+    return sum(map((_ADV_BOLD_ALL if bold else _ADV_ALL).__getitem__, text))
 
 PREAMBLE = r"""
 #set document(title: TITLE, date: none)
@@ -201,6 +266,9 @@ class _Writer:
         self.in_pair = 0
         self.whole = False                  # inside a block kept on one page (not breakable)
         self.width: float | None = _TEXT_WIDTH   # pt free for a block here; None: not known
+        self.texts: dict[str, str] = {}     # a text node's markup (see _text)
+        self.cells: dict[str, tuple[str, str]] = {}     # a table cell's one text: stripped, markup
+        self.ems: dict[str, float] = {}     # _em_width of a (regular) cell text
 
     @contextmanager
     def _inside(self, narrower=None):
@@ -213,24 +281,28 @@ class _Writer:
         finally:
             self.width = width
 
+    def _text(self, text: str) -> str:
+        """The markup of a text node (white space runs one space; "" for ""), remembered."""
+        m = self.texts.get(text)
+        if m is None:
+            t = _WS.sub(" ", text)
+            m = self.texts[text] = _s(t) if t else ""
+        return m
+
     # inline content -> markup
     def inline(self, node) -> str:
+        """The markup of an element's children (or of any sequence of nodes)."""
         out = []
-        for c in node.children:
+        texts = self.texts
+        for c in node:
             if isinstance(c, str):
-                t = _WS.sub(" ", c)
-                if t:
-                    out.append(_s(t))
+                m = texts.get(c)
+                out.append(self._text(c) if m is None else m)
                 continue
             tag = c.tag
-            if tag == "sub":
-                out.append(f"#sub[{self.inline(c)}]")
-            elif tag == "sup":
-                out.append(f"#super[{self.inline(c)}]")
-            elif tag in ("b", "strong"):
-                out.append(f"#strong[{self.inline(c)}]")
-            elif tag in ("i", "em"):
-                out.append(f"#emph[{self.inline(c)}]")
+            wrap = _WRAP.get(tag)
+            if wrap is not None:
+                out.append(f"{wrap}[{self.inline(c)}]")
             elif tag == "code":
                 out.append(f"#raw({_s(c.text())[1:]})")
             elif tag == "br":
@@ -238,7 +310,7 @@ class _Writer:
             elif tag == "span" and "mml" in c.classes:
                 continue        # the MathML copy of a worked formula (screen only): its HTML copy follows
             elif tag == "span" and "frac" in c.classes:
-                num, den = (k for k in c.children if isinstance(k, _Node))
+                num, den = (k for k in c if isinstance(k, _Node))
                 out.append(f"$display(frac(#[{self.inline(num)}], #[{self.inline(den)}]))$")
             elif tag == "span" and "vec" in c.classes:
                 out.append(f"#overline[{self.inline(c)}]")
@@ -291,14 +363,14 @@ class _Writer:
         if tag == "table":
             return self.table(node)
         if tag == "figure":
-            cap = next((c for c in node.children if isinstance(c, _Node) and c.tag == "figcaption"), None)
-            imgs = [c for c in node.children if isinstance(c, _Node) and c.tag == "img" and "data-svg" in c.attrs]
+            cap = next((c for c in node if isinstance(c, _Node) and c.tag == "figcaption"), None)
+            imgs = [c for c in node if isinstance(c, _Node) and c.tag == "img" and "data-svg" in c.attrs]
             capm = f"[{self.inline(cap).strip()}]" if cap is not None else None
             parts = [self.figure_image(int(im.attrs["data-svg"]), capm if i == len(imgs) - 1 else None)
                      for i, im in enumerate(imgs)]
             return "\n".join(parts)
         if tag in ("ol", "ul"):
-            items = [c for c in node.children if isinstance(c, _Node) and c.tag == "li"]
+            items = [c for c in node if isinstance(c, _Node) and c.tag == "li"]
             fn = "enum" if tag == "ol" else "list"
             with self._inside():                            # indented: not known
                 return f"#{fn}(" + ", ".join(f"[{self.inline(li).strip()}]" for li in items) + ")"
@@ -313,7 +385,7 @@ class _Writer:
             self.whole = whole
             return "#pagebreak(weak: true)\n#block(breakable: false)[\n" + body + "\n]"
         if tag == "div" and ("tables2" in cls or "pair" in cls):
-            kids = [c for c in node.children if isinstance(c, _Node)]
+            kids = [c for c in node if isinstance(c, _Node)]
             n = max(len(kids), 1)
             self.in_pair += 1
             with self._inside(lambda w: (w - _MM * 3 * (n - 1)) / n):
@@ -326,7 +398,7 @@ class _Writer:
                 return "#stack(dir: ltr, spacing: 3mm, " + ", ".join(f"block(width: {width})[{p}]" for p in parts) + ")"
             return f"#grid(columns: ({', '.join(['1fr'] * n)}), gutter: 3mm, {', '.join(f'[{p}]' for p in parts)})"
         if tag == "div" and "task-groups" in cls:
-            kids = [c for c in node.children if isinstance(c, _Node)]
+            kids = [c for c in node if isinstance(c, _Node)]
             # boxes in a line: each is laid out in the width of the line, less its inset
             with self._inside(lambda w: w - 4 * _MM):
                 return "".join(f"#box(inset: (right: 4mm))[{self.block(k)}]" for k in kids)
@@ -353,16 +425,13 @@ class _Writer:
                 out.append(f"#par[{body}]")
             run.clear()
 
-        for c in node.children:
+        for c in node:
             if isinstance(c, str):
-                t = _WS.sub(" ", c)
-                if t.strip() or run:
-                    run.append(_s(t) if t else "")
+                if run or (c and not c.isspace()):      # (\s is str.isspace)
+                    run.append(self._text(c))
                 continue
             if c.tag in ("sub", "sup", "b", "strong", "i", "em", "code", "br", "span", "a"):
-                wrap = _Node("#inline", {})
-                wrap.children = [c]
-                run.append(self.inline(wrap))
+                run.append(self.inline((c,)))
                 continue
             if c.tag == "img" and "data-svg" in c.attrs:
                 flush()
@@ -379,11 +448,12 @@ class _Writer:
     def widths(rows, ncols: int) -> list[str]:
         """Columns of a full-width table: text columns (a cell of more than a few words)
         share the free width, the others fit their content (as a browser lays out
-        `width: 100%`); all equal when there is no text column."""
+        `width: 100%`); all equal when there is no text column.  ``rows``: per row its
+        cells' (node, colspan, rowspan, stripped text, markup or None)."""
         text = [False] * ncols
-        for _, r in rows:
-            for j, c in enumerate(r[:ncols]):
-                if "num" not in c.classes and len(c.text().strip()) > 14:
+        for r in rows:
+            for j, (c, _, _, t, _) in enumerate(r[:ncols]):
+                if len(t) > 14 and "num" not in c.classes:
                     text[j] = True
         if not any(text):
             return ["1fr"] * ncols
@@ -398,6 +468,7 @@ class _Writer:
         a row is fixed only where no cell of it can wrap, i.e. where a bound of the
         table's width (DejaVu Sans advances, rounded up; bold ones for a header's cells)
         fits the width free for it.
+        ``rows``: per row its cells' (node, colspan, rowspan, stripped text, markup or None).
         The tracks, one a row ("auto" or the height); None when no row qualifies or the
         free width is not known here."""
         if self.width is None or nhead >= len(rows) or not any(one_line[nhead:]):
@@ -407,14 +478,21 @@ class _Writer:
         need = [0.0] * ncols                # a bound of each column's natural width, pt
         spans = []
         est = []                            # per row: (first column, last + 1, bound) of its cells
-        for head, r in rows:
+        ems = self.ems
+        for r in rows:
             j, row = 0, []
-            for c in r:
-                span = int(c.attrs.get("colspan") or 1)
-                if int(c.attrs.get("rowspan") or 1) > 1:
+            for c, span, rspan, t, _ in r:
+                if rspan > 1:
                     return None
-                t = c.text().strip()
-                w = _em_width(t, bold=c.tag == "th") * size + pad if t else 0.0
+                if not t:
+                    w = 0.0
+                elif c.tag == "th":
+                    w = _em_width(t, True) * size + pad
+                else:
+                    em = ems.get(t)
+                    if em is None:
+                        em = ems[t] = _em_width(t)
+                    w = em * size + pad
                 if span == 1 and j < ncols:
                     need[j] = max(need[j], w)
                 else:
@@ -449,7 +527,7 @@ class _Writer:
         wide = "wide" in node.classes or self.in_pair > 0
 
         def collect(n, head):
-            for c in n.children:
+            for c in n:
                 if not isinstance(c, _Node):
                     continue
                 if c.tag == "caption":
@@ -460,10 +538,28 @@ class _Writer:
                 elif c.tag in ("tbody", "tfoot"):
                     collect(c, False)
                 elif c.tag == "tr":
-                    rows.append((head, [k for k in c.children if isinstance(k, _Node) and k.tag in ("td", "th")]))
+                    rows.append((head, [k for k in c if isinstance(k, _Node) and k.tag in ("td", "th")]))
 
         collect(node, False)
-        ncols = max((sum(int(c.attrs.get("colspan") or 1) for c in r) for _, r in rows), default=1)
+        # per row: its cells' (node, colspan, rowspan, stripped text, markup of a cell that is
+        # one text, else None), that of one text remembered (numbers recur from table to table)
+        info = []
+        known = self.cells
+        for _, r in rows:
+            row = []
+            for c in r:
+                at = c.attrs
+                span, rspan = at.get("colspan"), at.get("rowspan")
+                if len(c) == 1 and c[0].__class__ is str:
+                    x = c[0]
+                    got = known.get(x)
+                    if got is None:             # (inline(c).strip() is the text's markup)
+                        got = known[x] = (x.strip(), self._text(x))
+                    row.append((c, int(span) if span else 1, int(rspan) if rspan else 1) + got)
+                else:
+                    row.append((c, int(span) if span else 1, int(rspan) if rspan else 1, c.text().strip(), None))
+            info.append(row)
+        ncols = max((sum(x[1] for x in r) for r in info), default=1)
         nhead = 0
         for head, r in rows:
             if head or all(c.tag == "th" for c in r):
@@ -473,9 +569,9 @@ class _Writer:
         # columns whose body cells are all numbers (or empty) are right-aligned as a whole:
         # a plain cell is cheaper to lay out than a table.cell with its own alignment
         right = [True] * ncols
-        for _, r in rows[nhead:]:
-            for j, c in enumerate(r[:ncols]):
-                if c.tag != "td" or ("num" not in c.classes and c.text().strip()):
+        for r in info[nhead:]:
+            for j, (c, _, _, t, _) in enumerate(r[:ncols]):
+                if c.tag != "td" or (t and "num" not in c.classes):
                     right[j] = False
         if not rows[nhead:]:
             right = [False] * ncols
@@ -483,16 +579,15 @@ class _Writer:
         bare = []           # per row: the same where each cell is plain text of one column
         one_line = []       # per row: every cell one line of text (or empty)
         with self._inside():                    # in a cell: the width not known
-            for i, (head, r) in enumerate(rows):
+            for i, r in enumerate(info):
                 plain = True
                 row, row_bare = [], len(r) == ncols
-                for j, c in enumerate(r):
-                    body = self.inline(c).strip()
+                for j, (c, span, rspan, _, body) in enumerate(r):
+                    if body is None:
+                        body = self.inline(c).strip()
                     args = []
-                    span = int(c.attrs.get("colspan") or 1)
                     if span > 1:
                         args.append(f"colspan: {span}")
-                    rspan = int(c.attrs.get("rowspan") or 1)
                     if rspan > 1:
                         args.append(f"rowspan: {rspan}")
                     if c.tag == "th":
@@ -518,9 +613,9 @@ class _Writer:
         pt, ix, iy = _TABLE_STYLE[compact]
         size = f"{pt}pt"
         inset = f"(x: {ix}mm, y: {iy}mm)"
-        kinds = self.widths(rows[nhead:], ncols) if wide else ["auto"] * ncols
+        kinds = self.widths(info[nhead:], ncols) if wide else ["auto"] * ncols
         cols = f"({', '.join(kinds)})" if wide else str(ncols)
-        tracks = self.fixed_rows(rows, nhead, one_line, ncols, kinds, compact)
+        tracks = self.fixed_rows(info, nhead, one_line, ncols, kinds, compact)
         rules = ""
         # (not around a table in a cell: the leading set for the table's paragraphs would be its too)
         if tracks is not None and _CHUNK > 1 and not any("#table(" in c for r in cells for c in r):
@@ -716,9 +811,11 @@ def _label_body(inner: str, k: float) -> str | None:
     return runs[0] if len(runs) == 1 else "{" + "; ".join(runs) + "}"
 
 
-# a label as tmm writes it (x and y first), or any other text element
-_LABEL = re.compile(r'<text x="(-?\d+(?:\.\d+)?)" y="(-?\d+(?:\.\d+)?)"([^>]*)>(.*?)</text>\s*'
-                    r"|<text\b.*?</text>\s*", re.S)
+# a label as tmm writes it (x and y first), or any other text element: the whole, then x, y,
+# the other attributes and the content of a label ("" for another element); the content up
+# to the first </text>, taken possessively
+_LABEL = re.compile(r'(<text x="(-?\d+(?:\.\d+)?)" y="(-?\d+(?:\.\d+)?)"([^>]*)>((?:[^<]++|<(?!/text>))*+)</text>\s*'
+                    r"|<text\b(?:[^<]++|<(?!/text>))*+</text>\s*)", re.S)
 
 
 def _place_labels(texts: str, k: float, vw: float) -> tuple[str, list[str]]:
@@ -731,16 +828,14 @@ def _place_labels(texts: str, k: float, vw: float) -> tuple[str, list[str]]:
     drawn after one of another style that the figure drew later: the page is the same where
     labels do not overlap (tmm's labels are placed apart)."""
     kept, styles = [], {}
-    for m in _LABEL.finditer(texts):
-        x, y, attrs, inner = m.groups()
-        st = _label_style(attrs, k) if x is not None else None
-        body = _label_body(inner, k) if st is not None else None
-        if body is None:
-            kept.append(m.group(0))
-        elif body:
-            head, side, frac = st
-            styles.setdefault(head, []).append(f"place(top + {side}, dx: {(float(x) - frac * vw) * k:.3f}pt, "
-                                               f"dy: {float(y) * k:.3f}pt, {body})")
+    for whole, x, y, attrs, inner in _LABEL.findall(texts):
+        got = _label_parts(attrs, inner, k) if x else None
+        if got is None:
+            kept.append(whole)
+        elif got:
+            head, pre, frac, post = got
+            styles.setdefault(head, []).append(
+                f"{pre}{(float(x) - frac * vw) * k:.3f}pt, dy: {float(y) * k:.3f}pt, {post}")
     return "".join(kept), [_styled(head, places) for head, places in styles.items()]
 
 
@@ -748,6 +843,28 @@ def _styled(head: str, places: list[str]) -> str:
     """Typst content of ``places`` in the text style ``head`` (an opening ``text(...,``)."""
     inner = "; ".join(places)
     return f"{head}{{{inner}}})" if head != "text(" else f"{{{inner}}}"
+
+
+@lru_cache(maxsize=4096)
+def _label_parts(attrs: str, inner: str, k: float) -> tuple[str, str, float, str] | str | None:
+    """A label's text style and place() call but its position: (the style's opening
+    ``text(...,``, the text before dx, the fraction of the figure's width its anchor is at,
+    the text after dy); "" for a label without text, None for one left in the figure (see
+    _label_style, _label_body)."""
+    st = _label_style(attrs, k)
+    body = _label_body(inner, k) if st is not None else None
+    if body is None:
+        return None
+    if not body:
+        return ""
+    head, side, frac = st
+    return head, f"place(top + {side}, dx: ", frac, f"{body})"
+
+
+_SPACE = re.compile(r"\s*")
+# an end tag other than </tspan>, or one that removing the </tspan> tags would make ("<" and
+# "/" around them): where ``"</" in text.replace("</tspan>", "")``
+_OTHER_END = re.compile(r"</(?!tspan>)|<(?:</tspan>)+/")
 
 
 def _labels(svg: str, width_pt: float) -> tuple[str, str]:
@@ -766,15 +883,18 @@ def _labels(svg: str, width_pt: float) -> tuple[str, str]:
     k = width_pt / vw if vw > 0 else 0.0
     if not (k > 0 and vh > 0 and abs(float(h.group(1)) / vh - k) <= 1e-3 * k):
         return svg, ""                  # not a uniform scale: the viewBox is fitted otherwise
-    # the texts after the last other element, outside any group
+    # the texts after the last other element, outside any group: from the end, each
+    # "<text ...</text>" with only white space after it and no end tag in it but </tspan>
+    # (read in place, without slicing the figure)
     end = pos = svg.rindex("</svg>")
     start = end
+    rfind, space, other_end = svg.rfind, _SPACE.fullmatch, _OTHER_END.search
     while True:
-        t = svg.rfind("</text>", 0, pos)
-        if t < 0 or svg[t + 7:pos].strip():
+        t = rfind("</text>", 0, pos)
+        if t < 0 or not space(svg, t + 7, pos):
             break
-        o = svg.rfind("<text", 0, t)
-        if o < 0 or "<text" in svg[o + 5:t] or "</" in svg[o:t].replace("</tspan>", ""):
+        o = rfind("<text", 0, t)
+        if o < 0 or svg.find("<text", o + 5, t) >= 0 or other_end(svg, o, t):
             break
         start = pos = o
     kept, placed = _place_labels(svg[start:end], k, vw)
