@@ -39,10 +39,6 @@ class _Node(list):
     def children(self) -> list:
         return self
 
-    @children.setter
-    def children(self, items) -> None:
-        self[:] = items
-
     def text(self) -> str:
         if len(self) == 1 and self[0].__class__ is str:
             return self[0]
@@ -122,7 +118,6 @@ def _read(html: str) -> _Node:
     return root
 
 
-_SVG = re.compile(r"<svg\b.*?</svg>", re.S)
 _WPT = re.compile(r'\bwidth="([0-9.]+)pt"')
 
 
@@ -131,8 +126,8 @@ _STYLE = re.compile(r"<(style|script)\b.*?</\1>", re.S | re.I)
 
 def _cut_svgs(html: str) -> tuple[str, list[str]]:
     """(the HTML with each inline <svg> element replaced by ``<img data-svg="k">``, the
-    SVG texts): the matches of ``_SVG`` (``<svg`` at a word's end up to the first
-    ``</svg>`` after it), found by ``str.find`` (the lazy regex steps through the
+    SVG texts): each ``<svg`` at a word's end up to the first ``</svg>`` after it (what
+    the regular expression ``<svg\b.*?</svg>`` matches), found by ``str.find`` (the lazy regex steps through the
     figures' ~0.6 MB a character at a time)."""
     svgs: list[str] = []
     parts = []
@@ -918,7 +913,7 @@ def to_typst(html: str, lang: str = "en") -> tuple[str, dict[str, bytes]]:
 
 
 def _iter(node):
-    for c in node.children:
+    for c in node:
         if isinstance(c, _Node):
             yield c
             yield from _iter(c)
