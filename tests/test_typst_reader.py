@@ -28,12 +28,12 @@ class _Reference(HTMLParser):
 
     def handle_starttag(self, tag, attrs):
         node = _Node(tag, dict(attrs))
-        self.stack[-1].children.append(node)
+        self.stack[-1].append(node)
         if tag not in _VOID:
             self.stack.append(node)
 
     def handle_startendtag(self, tag, attrs):
-        self.stack[-1].children.append(_Node(tag, dict(attrs)))
+        self.stack[-1].append(_Node(tag, dict(attrs)))
 
     def handle_endtag(self, tag):
         for k in range(len(self.stack) - 1, 0, -1):
@@ -42,7 +42,7 @@ class _Reference(HTMLParser):
                 return
 
     def handle_data(self, data):
-        self.stack[-1].children.append(data)
+        self.stack[-1].append(data)
 
 
 def reference(html: str) -> _Node:
@@ -55,7 +55,7 @@ def reference(html: str) -> _Node:
 def dump(node) -> object:
     """The tree as plain data; adjacent texts joined (html.parser may split a text)."""
     kids = []
-    for c in node.children:
+    for c in node:
         if isinstance(c, str):
             if kids and isinstance(kids[-1], str):
                 kids[-1] += c

@@ -35,10 +35,6 @@ class _Node(list):
         self.classes: frozenset[str] = (frozenset((attrs.get("class") or "").split())
                                         if classes is None else classes)
 
-    @property
-    def children(self) -> list:
-        return self
-
     def text(self) -> str:
         if len(self) == 1 and self[0].__class__ is str:
             return self[0]
