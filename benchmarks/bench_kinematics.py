@@ -7,8 +7,10 @@
   (issue 12 target: <= 3x at N >= 3600), and against pylinkage's numba solver
   (``Linkage.step_fast_with_kinematics``: positions, velocities and accelerations of
   the joints A and B only; less work than tmm's) when pylinkage and numba are
-  installed (``pip install .[bench]``; target: tmm faster at N >= 360). All three are
-  timed interleaved (tmm, closed form, pylinkage, tmm, ...), CPU time and wall time of
+  installed (``pip install .[bench]``; target: tmm faster at N >= 360). The four-bar
+  also against ``four_bar_lean``, the same closed form coded for the fewest numpy calls
+  in complex numbers (what numpy reaches for one linkage by hand; ``lean/pylinkage``).
+  All are timed interleaved (tmm, closed form, pylinkage, tmm, ...), CPU time and wall time of
   a batch of calls, medians and spread of the per-round ratios, and the minor page faults
   per call (memory the C library handed back to the system and took again: at N >= 3600
   a large part of the time of both sides, and it depends on the process's allocation
@@ -147,6 +149,85 @@ def four_bar_closed(phi_deg, a=0.08, b=0.30, c=0.22, d=0.30):
     return pos, d1, d2, angle, a1, a2, (sing if sing.any() else None)
 
 
+def four_bar_lean(phi_deg, a=0.08, b=0.30, c=0.22, d=0.30):
+    """The four-bar of ``four_bar_closed`` written for the fewest numpy calls: points as
+    complex numbers (an (N,) complex array is an (N, 2) float one, x and y interleaved, so
+    the outputs are views of it), B by the circle intersection B = A + (A->O3) (k + i h)
+    without the angles, the rotation of a vector by a complex product, the velocity and
+    acceleration equations by cross products with the unit vectors e2, e3. It shows what
+    numpy can reach for one linkage coded by hand (not what a solver of any linkage does)."""
+    def xy(z):
+        return z.view(np.float64).reshape(-1, 2)
+    N = len(phi_deg)
+    f = np.radians(phi_deg)
+    A = np.empty(N, complex)
+    Af = xy(A)
+    np.cos(f, Af[:, 0])
+    np.sin(f, Af[:, 1])
+    A *= a
+    A1 = A * 1j
+    A2 = -A
+    AC = d - A
+    L2 = AC.real * AC.real
+    L2 += AC.imag * AC.imag
+    k = (b * b - c * c) / L2
+    k += 1.0
+    k *= 0.5
+    h = b * b / L2
+    h -= k * k
+    if not (h >= 0).all():                                  # tmm: an assembly error
+        raise ValueError("the four-bar does not assemble")
+    np.sqrt(h, h)
+    w = np.empty(N, complex)                                # k + i h, then times A->O3
+    wf = xy(w)
+    wf[:, 0] = k
+    wf[:, 1] = h
+    w *= AC
+    B = A + w
+    e2 = w / b                                              # the coupler's unit vector
+    e3 = (B - d) / c                                        # the rocker's
+    t2, t3 = np.angle(e2), np.angle(e3)
+    e3c, e2c = e3.conjugate(), e2.conjugate()
+    D = (e3c * e2).imag                                     # sin(t2 - t3)
+    sing = ~(np.abs(D) >= 1e-10)                            # tmm: the coupler and rocker in line
+    bD, cD = b * D, c * D
+    R = A2                                                  # i A1 (= -A): w2 b e2 - w3 c e3 = i A1
+    w2 = (e3c * R).imag / bD
+    w3 = (e2c * R).imag / cD
+    ce3 = c * e3
+    B1 = ce3 * (1j * w3)
+    R = (A2 - (w2 * w2 * b) * e2 + (w3 * w3) * ce3) * 1j
+    e2a = (e3c * R).imag / bD
+    e3a = (e2c * R).imag / cD
+    B2 = ce3 * (e3a * 1j - w3 * w3)
+    Z = np.zeros((N, 2))
+    O3 = np.empty((N, 2))
+    O3[:, 0] = d
+    O3[:, 1] = 0.0
+    pos = {"O": Z, "O3": O3, "A": Af, "B": xy(B), "S1": Z, "S2": xy(0.5 * (A + B)), "S3": xy(0.5 * (d + B))}
+    d1 = {"O": Z, "O3": Z, "A": xy(A1), "B": xy(B1), "S1": Z, "S2": xy(0.5 * (A1 + B1)), "S3": xy(0.5 * B1)}
+    d2 = {"O": Z, "O3": Z, "A": xy(A2), "B": xy(B2), "S1": Z, "S2": xy(0.5 * (A2 + B2)), "S3": xy(0.5 * B2)}
+    angle = {"crank": f, "coupler": t2, "rocker": t3}
+    a1 = {"crank": np.ones(N), "coupler": w2, "rocker": w3}
+    a2 = {"crank": np.zeros(N), "coupler": e2a, "rocker": e3a}
+    return pos, d1, d2, angle, a1, a2, (sing if sing.any() else None)
+
+
+def check_closed(name: str, mine, ref) -> None:
+    """Two closed forms hold the same outputs, to round-off."""
+    for i in range(3):
+        assert sorted(mine[i]) == sorted(ref[i]), f"{name}: not the same points"
+        for p in ref[i]:
+            err = np.max(np.abs(mine[i][p] - ref[i][p]))
+            assert err < 1e-9, f"{name}: output {i} [{p}] differs by {err:.3g}"
+    for i in range(3, 6):
+        for lk in ref[i]:
+            x = mine[i][lk] - ref[i][lk]
+            err = np.max(np.abs(np.mod(x + np.pi, 2 * np.pi) - np.pi if i == 3 else x))
+            assert err < 1e-9, f"{name}: output {i} [{lk}] differs by {err:.3g}"
+    assert (mine[6] is None) == (ref[6] is None), f"{name}: not the same singular positions"
+
+
 def check_same(name: str, k, ref) -> None:
     """tmm's result and the closed form hold the same outputs, to round-off."""
     pos, d1, d2, angle, a1, a2, sing = ref
@@ -272,6 +353,9 @@ def core(repeat: int = 7, sizes=(12, 36, 360, 3600, 36000), against: Path | None
             phi = np.linspace(0.0, 360.0, n, endpoint=False)
             calls = max(3, 40000 // n)
             fns = {"tmm": lambda: solve(mech, phi, 1.0), "closed": lambda: closed(phi)}
+            if name == "four-bar":
+                check_closed("four-bar lean", four_bar_lean(phi), closed(phi))
+                fns["lean"] = lambda: four_bar_lean(phi)
             if before is not None:
                 fns["before"] = before
             pyl = pylinkage_case(name, n)
@@ -296,6 +380,9 @@ def core(repeat: int = 7, sizes=(12, 36, 360, 3600, 36000), against: Path | None
                     tgt = " (< 1 " + ("ok" if statistics.median(rc) < 1 else "OVER") + ")"
                 line += (f" | tmm/{other} cpu {statistics.median(rc):.2f} [{min(rc):.2f}-{max(rc):.2f}]"
                          f" wall {statistics.median(rw):.2f}{tgt}")
+            if "lean" in fns and "pylinkage" in fns:
+                rl = [a / b for a, b in zip(cpu["lean"], cpu["pylinkage"])]
+                line += f" | lean/pylinkage cpu {statistics.median(rl):.2f} [{min(rl):.2f}-{max(rl):.2f}]"
             if "before" in fns:
                 rb = [a / b for a, b in zip(cpu["before"], cpu["closed"])]
                 line += f" | before/closed cpu {statistics.median(rb):.2f} [{min(rb):.2f}-{max(rb):.2f}]"
