@@ -239,3 +239,25 @@ def test_bad_answers_file(tmp_path, text, field):
     assert res.exit_code == 2, res.output
     assert f"{ans}:" in res.output and f"field '{field}'" in res.output
     assert "Traceback" not in res.output
+
+
+def test_check_table_tolerance_in_the_errors_terms(tmp_path):
+    """The terminal table of `tmm check` at 80 columns: a relative tolerance in percent like
+    the error beside it (0.05 -> '5 %'), tolerance {rel: 0.02, abs: 0.001} as '2 % abs 0.001',
+    the notes (did you mean, wrong sign) below the table so that no status is broken across
+    lines. gears.aw = 88 mm (m (z1 + z2) / 2 = 4 * 44 / 2): 0.0968 is 10 % off."""
+    f = _write(tmp_path, "g.yaml", GEARS + f"answers: {{gears.aw: 0.0968, 'gears.r[0]': {-R1}, gears.aww: 1}}\n"
+               "tolerance: {default: 0.05, 'gears.r': {rel: 0.02, abs: 0.001}}\n")
+    res = runner.invoke(app, ["check", str(f)], env={"COLUMNS": "80"})
+    assert res.exit_code == 1, res.output
+    lines = res.output.splitlines()
+    aw = next(ln for ln in lines if "gears.aw " in ln)
+    assert "10.00 %" in aw and "5 %" in aw and "0.05 " not in aw and "outside" in aw, aw
+    r0 = next(ln for ln in lines if "gears.r[0]" in ln and "│" in ln)
+    assert "2 % abs 0.001" in r0 and r0.rstrip("│ ").endswith("sign"), r0
+    assert any(ln.rstrip("│ ").endswith("unknown_path") for ln in lines), res.output
+    table_end = next(i for i, ln in enumerate(lines) if ln.startswith("└"))
+    below = "\n".join(lines[table_end + 1:])
+    assert "gears.r[0]: right magnitude, wrong sign" in below
+    assert "did you mean 'gears.aw'" in below.replace("\n", "")
+    assert max(len(ln) for ln in lines) <= 80

@@ -170,6 +170,17 @@ def _short_path(p: str, n: int = 30) -> str:
     return s if len(s) <= n else "…" + s[-(n - 1):]
 
 
+def _tol_shown(text: str, absolute: bool) -> str:
+    """A tolerance as the terminal table shows it, in the error column's terms: a relative
+    bound in percent ('0.05' -> '5 %'), a plain number against a zero reference as the
+    absolute bound it is ('abs 0.05'); check.csv keeps the tolerance as written."""
+    words = text.split()
+    if len(words) == 1:
+        v = float(words[0])
+        return f"abs {v:g}" if absolute else f"{100 * v:g} %"
+    return " ".join(f"{100 * float(v):g} %" if k == "rel" else f"abs {v}" for k, v in zip(words[::2], words[1::2]))
+
+
 def print_check(rows: list[dict], source) -> None:
     """The graded answers of one set: path, answer, reference, error, status; fits 80 columns."""
     from rich.table import Table
@@ -182,16 +193,22 @@ def print_check(rows: list[dict], source) -> None:
     t.add_column("quantity", overflow="fold", max_width=26)
     for c in ("answer", "reference", "error", "tol."):
         t.add_column(c, justify="right", no_wrap=True)
-    t.add_column("status", overflow="fold", max_width=22)
+    t.add_column("status", no_wrap=True)
+    notes = []
     for r in rows:
         st = r["status"]
-        err = "-" if r["error"] is None else (f"{100 * r['error']:.2f} %" if r["note"] != "absolute error"
-                                              and "abs" not in r["tolerance"] else _f(r["error"], 3))
+        zero_ref = r["reference"] == 0 and r["tolerance"].split()[0] not in ("rel", "abs")
+        absolute = r["note"] == "absolute error" or "abs" in r["tolerance"] or zero_ref
+        err = "-" if r["error"] is None else (_f(r["error"], 3) if absolute else f"{100 * r['error']:.2f} %")
         style = STATUS_STYLE.get(st, "white")
-        note = f" {r['note']}" if r["note"] and st in ("unknown_path", "sign") else ""
-        t.add_row(_short_path(r["path"], 26), _f(r["answer"]), _f(r["reference"]), err, r["tolerance"],
-                  f"[{style}]{st}[/{style}]" + note.replace("[", "\\["))
+        if r["note"] and st in ("unknown_path", "sign"):
+            notes.append(r["note"] if r["note"].startswith(r["path"]) else f"{r['path']}: {r['note']}")
+        t.add_row(_short_path(r["path"], 26), _f(r["answer"]), _f(r["reference"]), err,
+                  _tol_shown(r["tolerance"], zero_ref or r["note"] == "absolute error"),
+                  f"[{style}]{st}[/{style}]")
     con.print(t)
+    for n in notes:
+        con.print(n, markup=False, highlight=False)
     c = counts(rows)
     con.print(f"{c['ok']} of {len(rows)} answers within tolerance" + "".join(f", {v} {k}" for k, v in c.items() if v and k != "ok"))
 
