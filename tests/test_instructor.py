@@ -225,6 +225,21 @@ def test_form_and_key(tmp_path):
     assert res.exit_code == 0, res.output
 
 
+def test_form_that_fails_keeps_the_earlier_set_files(tmp_path):
+    """A rerun of `tmm form` whose quantities fit no task (exit 2) writes no form, so it
+    leaves form.csv and key.csv of the earlier run as they were (the key is not emptied),
+    and names the task file once, not a '<task>' placeholder."""
+    t = _write(tmp_path, "g7.yaml", GEARS.format(v=7))
+    out = tmp_path / "f"
+    assert runner.invoke(app, ["form", str(t), "-q", "gears.aw", "-o", str(out)]).exit_code == 0
+    before = {n: (out / n).read_text() for n in ("form.csv", "key.csv")}
+    assert "gears.aw" in before["key.csv"]
+    res = runner.invoke(app, ["form", str(t), "-q", "planetary", "-o", str(out)])
+    assert res.exit_code == 2, res.output
+    assert f"error: {t}: preset 'planetary'" in res.output and "<task>" not in res.output, res.output
+    assert {n: (out / n).read_text() for n in before} == before
+
+
 def test_form_in_ukrainian(tmp_path):
     """`tmm form --lang uk`: the comments in Ukrainian course terms, no Russian or English left."""
     import re

@@ -399,7 +399,8 @@ def form(
             atomic_write(out / f"{task.name}.form.yaml", form_text(task, qp, None, lang))
             atomic_write(out / f"{task.name}.key.yaml", form_text(task, qp, results, lang))
         except TaskError as exc:
-            _err(f"error: {exc.render() if exc.file else f'{f}: {exc.render()}'}")
+            exc.file = exc.file or str(f)          # a quantity the results lack: name the task
+            _err(f"error: {exc.render()}")
             code = max(code, EXIT_INVALID)
             continue
         except BaseException as exc:
@@ -416,11 +417,12 @@ def form(
         for p in qp:
             krow[p] = lookup(results, p)
         krows.append(krow)
-    try:
-        atomic_write(out / "form.csv", forms_csv(frows, all_paths))
-        atomic_write(out / "key.csv", forms_csv(krows, all_paths))
-    except OSError as exc:
-        raise _fail_write(exc)
+    if frows:        # with no form written, an earlier run's form.csv and key.csv stay as they were
+        try:
+            atomic_write(out / "form.csv", forms_csv(frows, all_paths))
+            atomic_write(out / "key.csv", forms_csv(krows, all_paths))
+        except OSError as exc:
+            raise _fail_write(exc)
     _err(f"wrote {len(frows)} form(s) and key(s) to {out}")
     raise typer.Exit(code)
 
