@@ -111,6 +111,29 @@ def test_answer_values_with_units():
             answer_value(bad, "gears.aw")
 
 
+def test_answer_in_another_quantitys_unit_is_not_graded():
+    """A unit of another quantity is an error naming the path's unit, not a number taken in
+    SI base units and graded: "0.67 kg" for a velocity was 0.67 and graded ok against
+    0.6685 m/s. Units of the right quantity convert: 1005 mm/s = 1.005 m/s, 3 kN*m =
+    3000 N*m, 2 % of a ratio error = 0.02; an angle in metres is no angle. A path outside
+    the presets keeps SI base units (a last name like `y` means different things)."""
+    from tmm_cli.messages import render
+    assert answer_value("1005 mm/s", "kinematics[1].points.B.v") == pytest.approx(1.005)
+    assert answer_value("3 kN*m", "kinetostatics[1].balancing_moment") == pytest.approx(3000.0)
+    assert answer_value("2 %", "planetary.ratio_error") == pytest.approx(0.02)
+    assert answer_value("12 mm", "kinematics[1].points.B.y") == pytest.approx(0.012)
+    for bad, path, unit in (("0.67 kg", "kinematics[1].points.B.v", "m/s"),
+                            ("5 m/s", "kinematics[1].points.B.a", "m/s^2"),
+                            ("12 m", "positions.phi0", "degree"),
+                            ("3 kg", "flywheel.delta", "dimensionless"),
+                            ("336 N*m", "kinetostatics[1].reactions.R12.R", "N")):
+        with pytest.raises(ValueError) as err:
+            answer_value(bad, path)
+        msg = err.value.args[0]
+        assert msg.code == "answers.wrong_unit" and f"does not convert to {unit}" in str(msg), (bad, str(msg))
+        assert "единица не приводится к " + unit in render(msg.code, msg.params, "ru")
+
+
 def test_grade_statuses():
     res = {"structure": {"W": 1}, "flywheel": {"J": 10.0, "delta": None}, "positions": {"phi0": 246.0}}
     aset = AnswerSet(source="a", answers={"structure.W": 1, "flywheel.J": -10.1, "flywheel.JJ": 3,

@@ -279,6 +279,8 @@ ENGLISH = [
     ('answers.not_finite', {'value': 'inf'}, 'not a finite number: inf'),
     ('answers.unreadable', {'value': "'3 kg'", 'error': "Cannot convert from 'kilogram' to 'meter'"},
      "cannot read '3 kg': Cannot convert from 'kilogram' to 'meter'"),
+    ('answers.wrong_unit', {'value': "'0.67 kg'", 'unit': 'm/s'},
+     "'0.67 kg' is not in a unit of this quantity: its unit does not convert to m/s"),
     ('input.cam_angles_both', {},
      'give `pressure_angle` or `transmission_angle`, not both'),
     ('input.cam_pressure_range', {},

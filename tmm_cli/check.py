@@ -141,11 +141,18 @@ def answer_value(v, path: str):
         raise ValueError(Message("answers.not_number", value=repr(s))) from None
     if not hasattr(q, "magnitude") or not isinstance(q.magnitude, (int, float)):
         raise ValueError(Message("answers.not_number", value=repr(s)))
+    unit = _path_unit(path)
     try:
         if _is_angle(path) and q.dimensionless:
             x = float(q.to("degree").magnitude) if not q.unitless else float(q.magnitude)
+        elif unit is not None and not q.unitless and not (q.dimensionless if unit == "dimensionless"
+                                                          else q.check(unit)):
+            # "0.67 kg" for a velocity: not a slip of the unit's prefix but another quantity
+            raise ValueError(Message("answers.wrong_unit", value=repr(s), unit=unit.replace("**", "^")))
         else:
-            x = float(q.to_base_units().magnitude)
+            x = float(q.to(unit).magnitude) if unit is not None else float(q.to_base_units().magnitude)
+    except ValueError:
+        raise
     except Exception as exc:  # noqa: BLE001 - pint's conversion errors: dimensionality, offset units, types
         raise ValueError(Message("answers.unreadable", value=repr(s), error=str(exc))) from None
     if not math.isfinite(x):
@@ -156,6 +163,31 @@ def answer_value(v, path: str):
 def _coded(exc: Exception) -> Message:
     """An exception's message as a Message (coded where the raiser coded it)."""
     return as_message(exc.args[0] if len(exc.args) == 1 else str(exc))
+
+
+def _path_unit(path: str) -> str | None:
+    """The unit of a result path in pint's words ('m/s**2') for the course quantities the
+    presets name (`tmm form`'s list: kinematics[1].points.*.v, gears.aw, flywheel.J...), from
+    the notation of its last name. None for any other path (a last name such as `a` or `y`
+    means different things in different sections): the answer is then taken in SI base units."""
+    from .forms import NOTATION, PRESETS, _pattern
+    if not any(_pattern(pat).match(path) for pats in PRESETS.values() for pat in pats if "**" not in pat):
+        return None
+    names = [t for t in _tokens(path) if isinstance(t, str)]
+    key = names[-1] if names else ""
+    if key not in NOTATION and re.fullmatch(r"R\d+", key):
+        key = "R"
+    unit = NOTATION[key][1] if key in NOTATION else None
+    if unit in (None, "m or deg"):
+        return None
+    return {"deg": "degree", "": "dimensionless"}.get(unit, unit.replace("^", "**"))
+
+
+def _tokens(path: str) -> list:
+    try:
+        return parse_path(path)
+    except KeyError:
+        return []
 
 
 def _is_angle(path: str) -> bool:
