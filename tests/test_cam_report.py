@@ -29,7 +29,8 @@ def test_pipeline_section_matches_closed_form(central):
     assert "warnings" not in res["cam"] or isinstance(res["cam"]["warnings"], list)
 
 
-@pytest.mark.parametrize("lang,word", [("en", "Cam mechanism"), ("ru", "Кулачковый механизм")])
+@pytest.mark.parametrize("lang,word", [("en", "Cam mechanism"), ("ru", "Кулачковый механизм"),
+                                       ("uk", "Кулачковий механізм")])
 def test_html_section(central, tmp_path, lang, word):
     from tmm_cli.report import render
 
@@ -38,6 +39,7 @@ def test_html_section(central, tmp_path, lang, word):
     html = (tmp_path / "report.html").read_text(encoding="utf-8")
     assert 'id="cam"' in html and word in html
     assert html.count("<svg") >= 4 and "figure failed" not in html
+    assert "ds/dφ" in html and "dphi" not in html          # the course's notation, as in the tables
     # r0 in mm with 6 significant digits, as computed from the closed form above
     h, P, t = 0.03, math.pi / 2, math.tan(math.radians(30))
     A = h * math.pi / (2 * P * t)

@@ -40,8 +40,8 @@ I18N = {
         "cam.diagrams": "Motion diagrams",
         "cam.diagrams_caption": "Displacement, velocity and acceleration analogues of the follower over the "
                                 "cam angle; the scales are those of the printed figure",
-        "cam.construction": "Smallest cam: the s - ds/dphi diagram",
-        "cam.construction_caption": "Follower positions B, the points D (ds/dphi laid off turned by 90 deg in the "
+        "cam.construction": "Smallest cam: the s - ds/dφ diagram",
+        "cam.construction_caption": "Follower positions B, the points D (ds/dφ laid off turned by 90 deg in the "
                                     "direction of rotation), the tangent lines at the allowed pressure angle and "
                                     "the admissible region of cam centres (shaded); O is its point nearest to B0",
         "cam.profile": "Cam profile",
@@ -52,7 +52,7 @@ I18N = {
         "cam.table": "Follower motion and profile (every 15 deg)",
         "cam.files": "Profile and motion tables",
         "cam.method": "r0 is computed exactly: the admissible region of cam centres is the intersection of the "
-                      "half-planes bounded by the tangent lines of the s - ds/dphi diagram at the allowed pressure "
+                      "half-planes bounded by the tangent lines of the s - ds/dφ diagram at the allowed pressure "
                       "angle (one pair per cam angle), and O is its point nearest to the lowest follower position B0.",
         "cam.scales": "Scales",
         "cam.flat": "flat-faced translating follower", "cam.knife": "knife-edge translating follower",
@@ -116,7 +116,7 @@ I18N = {
         "cam.diagrams": "Кинематические диаграммы",
         "cam.diagrams_caption": "Перемещение, аналоги скорости и ускорения толкателя по углу поворота кулачка; "
                                 "масштабы — масштабы напечатанного рисунка",
-        "cam.construction": "Наименьший кулачок: диаграмма s - ds/dphi",
+        "cam.construction": "Наименьший кулачок: диаграмма s - ds/dφ",
         "cam.construction_caption": "Положения толкателя B, точки D (аналог скорости, повёрнутый на 90° в сторону "
                                     "вращения кулачка), касательные под допустимым углом давления и область "
                                     "допустимых положений центра кулачка (заливка); O — ближайшая к B0 её точка",
@@ -128,7 +128,7 @@ I18N = {
         "cam.table": "Движение толкателя и профиль (через 15°)",
         "cam.files": "Таблицы профиля и движения",
         "cam.method": "r0 вычислен точно: область допустимых положений центра кулачка — пересечение "
-                      "полуплоскостей, ограниченных касательными к диаграмме s - ds/dphi под допустимым углом "
+                      "полуплоскостей, ограниченных касательными к диаграмме s - ds/dφ под допустимым углом "
                       "давления (по паре на каждый угол поворота), O — её точка, ближайшая к нижнему положению "
                       "толкателя B0.",
         "cam.scales": "Масштабы",
