@@ -858,6 +858,25 @@ def test_summary_html_links_only_files_that_exist(tmp_path):
         assert (out / h).is_file(), (h, links)
 
 
+def test_summary_html_status_of_an_invalid_answers_file_does_not_blame_the_task(tmp_path):
+    """`invalid` is a row's status both for a task that is not valid and for an answers file
+    that is not (broken YAML, a variant no task has): its word in the ru/uk summary says the
+    data are wrong ("ошибка в данных"), not "ошибка в задании", which blamed the instructor's
+    task for a student's file; the message says which."""
+    src, ans = tmp_path / "src", tmp_path / "ans"
+    _write(src, "good.yaml", SLIDER.replace("schema: tmm/1\n", "schema: tmm/1\nvariant: 1\n"))
+    _write(ans, "broken.yaml", "answers: [1, 2\n")
+    _write(ans, "olga.yaml", "student: {name: Olga}\nvariant: 7\nanswers:\n  structure.W: 1\n")
+    for lang, word, wrong in (("ru", "ошибка в данных", "ошибка в задании"),
+                              ("uk", "помилка в даних", "помилка в завданні")):
+        out = tmp_path / lang
+        res = runner.invoke(app, ["batch", str(src), "--answers", str(ans), "--out", str(out),
+                                  "--format", "json", "--lang", lang])
+        assert res.exit_code == 2, res.output
+        html = (out / "summary.html").read_text(encoding="utf-8")
+        assert html.count(f'<span class="st">{word}</span>') == 2 and wrong not in html, html
+
+
 @pytest.mark.parametrize("kind, name, text, ru", [
     ("tol", "neg.yaml", "flywheel.J: -1\n", "ожидается неотрицательное число (относительный допуск), задано -1"),
     ("tol", "abs.yaml", "flywheel.J: {abs: x}\n", "ожидается неотрицательное число (абсолютный допуск), задано 'x'"),
