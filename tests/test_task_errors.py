@@ -74,6 +74,11 @@ CASES = [
     ("com names a foreign point", GOOD_MECH.replace("mass: 2}", "mass: 2, com: O}"),
      7, ["mechanism.links.rod.com", "not a point of link 'rod'"]),
     ("not a mapping", "- just\n- a list\n", 1, ["must be a mapping"]),
+    # pint reads a bare unit as one of it: `length: mm` was a 1 mm crank, `speed: rpm` 1 rpm
+    ("unit without a number", GOOD_MECH.replace("length: 0.1,", "length: mm,"),
+     6, ["mechanism.links.crank.length", "'mm' is a unit without a number"]),
+    ("speed without a number", GOOD_MECH.replace("speed: 100 rpm}", "speed: rpm}"),
+     9, ["drive.speed", "'rpm' is a unit without a number"]),
 ]
 
 

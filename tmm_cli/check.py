@@ -133,6 +133,8 @@ def answer_value(v, path: str):
     c = cell_value(s)
     if isinstance(c, (int, float)):
         return float(c)
+    if not any(ch.isdigit() for ch in s):       # pint reads a bare 'm/s' as 1 m/s
+        raise ValueError(Message("answers.not_number", value=repr(s)))
     from .units import ureg
     reg = ureg()
     try:

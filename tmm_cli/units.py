@@ -186,6 +186,8 @@ def _parse(text: str, kind: str):
         raise ValueError(coded if coded == english else english) from None
     except Exception:  # noqa: BLE001 - the rest of pint's parser errors (tokenize, syntax, types)
         raise ValueError(Message("input.unit_unreadable", text=text, kind=kind)) from None
+    if not any(ch.isdigit() for ch in text):     # pint reads a bare 'mm' as 1 mm
+        raise ValueError(Message("input.unit_no_number", text=text, kind=kind))
     if not isinstance(q, reg.Quantity):
         q = reg.Quantity(q)
     return q

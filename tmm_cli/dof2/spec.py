@@ -55,6 +55,8 @@ def _time(value: Any) -> float:
                 q = reg.Quantity(text)
             except Exception:  # noqa: BLE001 - pint's parser raises many kinds; the message names the field
                 raise ValueError(Message("input.unit_unreadable", text=text, kind="time")) from None
+            if not any(ch.isdigit() for ch in text):     # pint reads a bare 's' as 1 s
+                raise ValueError(Message("input.unit_no_number", text=text, kind="time"))
             try:
                 v = float(q.to("s").magnitude)
             except Exception:  # noqa: BLE001 - pint's conversion errors of any kind
