@@ -106,7 +106,7 @@ def test_answer_values_with_units():
     assert answer_value("50 rpm", "kinematics[1].links.crank.omega") == pytest.approx(50 * 2 * math.pi / 60)
     assert answer_value("120 mm", "gears.aw") == pytest.approx(0.12)
     assert answer_value("3,5", "gears.aw") == 3.5 and answer_value("", "x") is None and answer_value(None, "x") is None
-    for bad in ("abc", "12 apples", float("nan")):
+    for bad in ("abc", "12 apples", float("nan"), "mm", "m/s"):     # a bare unit is not 1 of it
         with pytest.raises(ValueError):
             answer_value(bad, "gears.aw")
 
@@ -196,6 +196,21 @@ def test_variants_bad_rows_are_reported_and_others_written(tmp_path):
     t = yaml.safe_load((tmp_path / "o" / "5.yaml").read_text())
     assert t["title"] == "Variant 5 {literal}" and t["variant"] == 5
     assert t["mechanism"]["links"]["crank"]["length"] == "80 mm" and t["drive"]["speed"] == 12.5
+
+
+def test_variants_empty_cell_and_unused_column(tmp_path):
+    """An empty cell a placeholder takes is the row's error naming the column: with a unit
+    in the header it became ' mm', read as 1 mm, and the row was written as a valid task
+    with a 1 mm crank; without one '' reached the field. A column no placeholder takes is
+    warned about (the instructor meant to vary it); the rows are still written."""
+    tpl = _write(tmp_path, "tpl.yaml", TEMPLATE)
+    tab = _write(tmp_path, "tab.csv", "variant;a, mm;b [mm];n;m2\n1;;300;10;2\n2;100;300;;2\n3;100;300;10;2\n")
+    res = runner.invoke(app, ["variants", str(tpl), str(tab), "--out", str(tmp_path / "o")])
+    assert res.exit_code == 2, res.output
+    assert f"{tab}:2: variant 1: empty cell in column a" in res.output
+    assert f"{tab}:3: variant 2: empty cell in column n" in res.output
+    assert f"{tab}: warning: column m2 used by no placeholder of tpl.yaml" in res.output
+    assert sorted(p.name for p in (tmp_path / "o").glob("*.yaml")) == ["3.yaml"]
 
 
 @pytest.mark.parametrize("table,what", [("variant,a\n1,2\n", "placeholder {b} names no column"),

@@ -121,7 +121,12 @@ def make_variants(template: Path, table: Path, out: Path) -> tuple[int, list[dic
                             issues=[("variant", line, None, f"duplicate variant {raw}: already on line {seen[key]}")])
         seen[key] = line
     units = {n: u for n, (_, u) in cols.items()}
+    used = [n for n in dict.fromkeys(name for _, name in placeholders(data))]
     report, messages, code = [], [], 0
+    unused = [n for n in cols if n != "variant" and n not in used]
+    if unused:      # a column the instructor meant to vary but no placeholder takes
+        messages.append(f"{table}: warning: column{'s' if len(unused) > 1 else ''} "
+                        f"{', '.join(unused)} used by no placeholder of {Path(template).name}")
     names_used: set[str] = set()
     from rich.console import Console
 
@@ -139,6 +144,10 @@ def make_variants(template: Path, table: Path, out: Path) -> tuple[int, list[dic
                 if bad or raw_v == "":
                     raise _RowError(bad or "empty `variant` cell")
                 cells = {n: cell_value(row.get(h, "")) for n, (h, _) in cols.items()}
+                empty = [n for n in used if cells[n] == ""]
+                if empty:       # else '' or ' mm' reaches the field, a message about the field
+                    raise _RowError(f"empty cell{'s' if len(empty) > 1 else ''} in column"
+                                    f"{'s' if len(empty) > 1 else ''} {', '.join(empty)}")
                 task = substitute(data, cells, units)
                 if "variant" not in data:       # after schema and title, as in a hand-written task
                     items = list(task.items())
