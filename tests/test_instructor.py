@@ -111,6 +111,25 @@ def test_answer_values_with_units():
             answer_value(bad, "gears.aw")
 
 
+def test_answer_with_a_decimal_comma_and_a_unit():
+    """'0,67 m/s' is 0.67 m/s as '0,67' alone is 0.67: pint alone read it as 0 m/s (graded
+    outside with no reason given) and '3,5 mm' as 35 mm."""
+    assert answer_value("0,67 m/s", "kinematics[1].points.B.v") == pytest.approx(0.67)
+    assert answer_value("3,5 mm", "gears.aw") == pytest.approx(0.0035)
+    assert answer_value("-1,5 kN*m", "kinetostatics[1].balancing_moment") == pytest.approx(-1500.0)
+
+
+def test_answer_in_cyrillic_units_names_the_latin_spelling():
+    """'3,04 рад/с' as a Russian student writes it: not graded, the Latin spelling named."""
+    with pytest.raises(ValueError) as err:
+        answer_value("3,04 рад/с", "kinematics[1].links.rocker.omega")
+    assert str(err.value.args[0]) == ("unknown unit in '3,04 рад/с': units are written in Latin letters; "
+                                      "did you mean '3.04 rad/s'?")
+    with pytest.raises(ValueError) as err:
+        answer_value("5 попугаев", "kinematics[1].links.rocker.omega")
+    assert err.value.args[0].code == "answers.not_number"
+
+
 def test_answer_in_another_quantitys_unit_is_not_graded():
     """A unit of another quantity is an error naming the path's unit, not a number taken in
     SI base units and graded: "0.67 kg" for a velocity was 0.67 and graded ok against

@@ -447,6 +447,8 @@ ENGLISH = [
     ('input.unit_unknown', {'text': '90 rmp', 'unit': 'rmp', 'kind': 'speed'},
      "unknown unit in '90 rmp' ('rmp' is not defined in the unit registry); expected an angular speed (rad/s, rpm)"),
     ('input.unit_unreadable', {'text': '3 m +', 'kind': 'length'}, "cannot read '3 m +' as a length (m, mm, cm...)"),
+    ('input.unit_cyrillic', {'text': '120 об/мин', 'latin': '120 rpm'},
+     "unknown unit in '120 об/мин': units are written in Latin letters; did you mean '120 rpm'?"),
     ('input.unit_no_number', {'text': 'mm', 'kind': 'length'},
      "'mm' is a unit without a number; expected a length (m, mm, cm...) written as a number and its unit"),
     ('input.unit_not_convert', {'text': '0.35 kg', 'kind': 'length', 'unit': 'm'},

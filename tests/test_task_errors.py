@@ -79,6 +79,13 @@ CASES = [
      6, ["mechanism.links.crank.length", "'mm' is a unit without a number"]),
     ("speed without a number", GOOD_MECH.replace("speed: 100 rpm}", "speed: rpm}"),
      9, ["drive.speed", "'rpm' is a unit without a number"]),
+    # units in Cyrillic letters, as a Russian or Ukrainian text writes them: the Latin spelling named
+    ("Cyrillic unit", GOOD_MECH.replace("length: 0.1,", "length: 100 мм,"),
+     6, ["mechanism.links.crank.length", "units are written in Latin letters; did you mean '100 mm'?"]),
+    ("Cyrillic speed", GOOD_MECH.replace("speed: 100 rpm}", "speed: 100 об/мин}"),
+     9, ["drive.speed", "did you mean '100 rpm'?"]),
+    ("Cyrillic word that is no unit", GOOD_MECH.replace("length: 0.1,", "length: 100 попугаев,"),
+     6, ["mechanism.links.crank.length", "unknown unit"]),
 ]
 
 

@@ -173,6 +173,25 @@ def _fast(text: str, kind: str) -> float | None:
     return None if factor is None else float(m.group(1)) * factor
 
 
+# Units as a Russian or Ukrainian text writes them, and their Latin names: tmm reads units in
+# Latin letters only, and names the Latin spelling when a Cyrillic one is met.
+_CYRILLIC_UNITS = {"мм": "mm", "см": "cm", "дм": "dm", "м": "m", "км": "km", "кг": "kg", "г": "g", "т": "t",
+                   "Н": "N", "кН": "kN", "МН": "MN", "Па": "Pa", "кПа": "kPa", "МПа": "MPa", "ГПа": "GPa",
+                   "бар": "bar", "рад": "rad", "град": "deg", "с": "s", "мс": "ms", "мин": "min", "хв": "min"}
+_CYRILLIC_WORD = re.compile(r"[А-Яа-яЁёІіЇїЄєҐґ]+")
+
+
+def latin_units(text: str) -> str | None:
+    """'120 об/мин' -> '120 rpm', '80 мм' -> '80 mm', '5 Н·м' -> '5 N*m': the Latin spelling of
+    a quantity written with Cyrillic units; None when it holds none or a word not known here."""
+    if not _CYRILLIC_WORD.search(text):
+        return None
+    t = re.sub(r"об\.?\s*/\s*(мин|хв)\.?", "rpm", text)
+    t = t.replace("·", "*").replace("²", "^2").replace("³", "^3")
+    t = _CYRILLIC_WORD.sub(lambda m: _CYRILLIC_UNITS.get(m.group(0), m.group(0)), t)
+    return None if _CYRILLIC_WORD.search(t) else t
+
+
 def _parse(text: str, kind: str):
     import pint
 
@@ -180,6 +199,14 @@ def _parse(text: str, kind: str):
     try:
         q = reg.Quantity(text)
     except (pint.errors.UndefinedUnitError, pint.errors.DefinitionSyntaxError) as exc:
+        latin = latin_units(text)
+        if latin is not None and kind in KINDS:
+            try:
+                convert(latin, kind)
+            except ValueError:
+                latin = None
+            if latin is not None:
+                raise ValueError(Message("input.unit_cyrillic", text=text, latin=latin)) from None
         english = f"unknown unit in '{text}' ({exc}); expected {KINDS[kind][1]}"   # pint's words inside
         names = getattr(exc, "unit_names", None) or ()
         coded = Message("input.unit_unknown", text=text, unit=names[0], kind=kind) if len(names) == 1 else None
