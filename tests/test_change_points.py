@@ -95,6 +95,28 @@ def test_grashof_limit_change_point_at_the_extreme(tmp_path):
         assert ks[e["index"]]["near_singular"] is True
 
 
+def test_a_change_point_at_the_extreme_position_is_named_once(tmp_path):
+    """Grashof limit a + b = c + d (0.1 + 0.3 = 0.25 + 0.15): coupler and rocker collinear at
+    phi = 0, also the rocker's extreme position, so the course grid starts at phi0 ~ 5e-7 deg
+    (a root found numerically) while the kinematics curve starts at 0. The singular angle is
+    one warning "0 deg", not a second one "1e-06 deg" for the same position."""
+    text = """\
+schema: tmm/1
+mechanism:
+  ground: {O: [0, 0], O3: [0.15, 0]}
+  links:
+    crank: {points: [O, A], length: 0.1}
+    coupler: {points: [A, B], length: 0.3}
+    rocker: {points: [O3, B], length: 0.25}
+  assembly: {B: [0.2, 0.25]}
+drive: {link: crank, speed: 100 rpm}
+"""
+    res = _run(tmp_path, text)
+    assert abs(res["positions"]["phi0"]) < 1e-5 or abs(res["positions"]["phi0"] - 360) < 1e-5
+    sing = [w for w in res["warnings"] if "the velocity equations are singular at crank angle(s)" in w]
+    assert len(sing) == 1 and "singular at crank angle(s) 0 deg" in sing[0], sing
+
+
 def test_grashof_limit_values_kept_near_but_not_at_the_change_point(tmp_path):
     # 2 deg before the change point the values are finite and of the cycle's size
     import tmm_cli

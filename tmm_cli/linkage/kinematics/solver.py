@@ -175,7 +175,9 @@ class Solver:
         for gi, s in st.sing.items():
             if np.count_nonzero(s):
                 sing = s.copy() if sing is None else np.logical_or(sing, s, out=sing)
-                ang = np.unique(np.round(np.degrees(phi[s]) % 360, 6))[:8]
+                # to 1e-4 deg (the message shows 6 digits), 360 as 0: a course grid starting
+                # at an extreme position 5e-7 deg off 0 names the same angle as a grid from 0
+                ang = np.unique(np.round(np.degrees(phi[s]) % 360, 4) % 360 + 0.0)[:8]
                 msg = Message("kinematics.singular_continuity", **self.groups[gi].message_params(),
                               angles=ang, delta=CONT_DELTA)
                 if msg not in self.warnings:
