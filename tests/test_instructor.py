@@ -258,6 +258,10 @@ def test_paths_lists_every_leaf(tmp_path):
     res = runner.invoke(app, ["paths", str(t), "--prefix", "gears.r["])
     lines = res.output.strip().splitlines()
     assert lines == [f"gears.r[0]\t{results['gears']['r'][0]!r}", f"gears.r[1]\t{results['gears']['r'][1]!r}"]
+    # a prefix no path has (a typo) is an error with a suggestion, not an empty list and exit 0
+    res = runner.invoke(app, ["paths", str(t), "--prefix", "gearz.a"])
+    assert res.exit_code == 2 and "no result path of this task starts with 'gearz.a'" in res.output, res.output
+    assert "did you mean 'gears.a'?" in res.output
 
 
 def test_form_and_key(tmp_path):

@@ -359,7 +359,14 @@ def paths(
         raise _fail_task(exc)
     except (PartialResults, StageError) as exc:
         raise _fail_stage(exc, str(task_file))
-    leaves = [(p, v) for p, v in leaf_paths(results) if prefix is None or p.startswith(prefix)]
+    every = leaf_paths(results)
+    leaves = [(p, v) for p, v in every if prefix is None or p.startswith(prefix)]
+    if prefix is not None and not leaves:       # a misspelt prefix printed nothing and exit 0
+        import difflib
+        heads = sorted({p[:len(prefix)] for p, _ in every})
+        near = difflib.get_close_matches(prefix, heads, n=1, cutoff=0.6)
+        raise typer.BadParameter(f"no result path of this task starts with '{prefix}'"
+                                 + (f"; did you mean '{near[0]}'?" if near else ""), param_hint="--prefix")
     if format == "json":
         typer.echo(json.dumps(dict(leaves), indent=1, ensure_ascii=False))
     else:
