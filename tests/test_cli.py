@@ -261,3 +261,24 @@ def test_check_table_tolerance_in_the_errors_terms(tmp_path):
     assert "gears.r[0]: right magnitude, wrong sign" in below
     assert "did you mean 'gears.aw'" in below.replace("\n", "")
     assert max(len(ln) for ln in lines) <= 80
+
+
+def test_validate_a_folder_and_a_quoted_pattern(tmp_path):
+    """`tmm validate DIR` checks its task files (answers files skipped) and a quoted pattern
+    the files it matches, as `tmm batch` takes them; a folder with no task file is exit 2
+    saying so (it was "not a regular file (a folder)" for every folder)."""
+    d = tmp_path / "group"
+    d.mkdir()
+    _write(d, "a.yaml", GEARS)
+    _write(d, "b.yml", GEARS.replace("x: [0, 0]", "x: [0.5, 0]"))
+    _write(d, "bad.yaml", GEARS.replace("m: 4 mm", "m: 4 parsecs"))
+    _write(d, "ans.yaml", "answers: {gears.aw: 0.088}\n")
+    res = runner.invoke(app, ["validate", str(d)])
+    assert res.exit_code == 2, res.output
+    assert f"{d / 'a.yaml'}: ok" in res.output and f"{d / 'b.yml'}: ok" in res.output
+    assert f"{d / 'bad.yaml'}:" in res.output and "gears.m" in res.output and "ans.yaml" not in res.output
+    res = runner.invoke(app, ["validate", str(d / "[ab].y*ml")])
+    assert res.exit_code == 0 and res.output.count(": ok") == 2, res.output
+    (tmp_path / "empty").mkdir()
+    res = runner.invoke(app, ["validate", str(tmp_path / "empty")])
+    assert res.exit_code == 2 and "no task files (*.yaml, *.yml) in this folder" in res.output, res.output

@@ -80,6 +80,12 @@ def test_validate_every_task_imports_no_heavy_module(tmp_path):
     assert not mods & set(HEAVY + CLI_APP), sorted(mods & set(HEAVY + CLI_APP))
 
 
+def test_validate_a_folder_imports_no_heavy_module(tmp_path):
+    """`tmm validate tasks/` (a folder, expanded as `tmm batch` does) stays as light."""
+    mods = _imported_by(["validate", str(ROOT / "tasks")], tmp_path)
+    assert not mods & set(HEAVY + CLI_APP), sorted(mods & set(HEAVY + CLI_APP))
+
+
 @pytest.mark.parametrize("name", ["gears_zero", "planetary_A", "synthesis_shaper", "press_drive_train",
                                   "engine_slider_crank", "static_gravity"])
 def test_json_runs_import_no_heavy_module(name, tmp_path):

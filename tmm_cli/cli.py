@@ -112,9 +112,18 @@ def run_task(task_file: Path, out: Optional[Path], formats: set[str], lang: str,
 
 
 def validate_tasks(task_files: list[Path], no_assembly: bool, echo: Echo = echo) -> int:
-    """`tmm validate`: each file checked, `FILE: ok` or its errors; the exit code."""
+    """`tmm validate`: each file checked, `FILE: ok` or its errors; the exit code. A folder
+    stands for its task files (*.yaml, *.yml; answers files skipped) and a quoted pattern
+    (`'group21/*.yaml'`) for the files it matches, as for `tmm batch`."""
     code = EXIT_OK
-    for f in task_files:
+    files = []
+    for a in task_files:
+        try:
+            files += _task_files([a])
+        except TaskError as exc:
+            echo(f"error: invalid task\n{exc.render()}", err=True)
+            code = EXIT_INVALID
+    for f in files:
         try:
             from .orchestrate import prepare
             task = prepare(f, assembly=not no_assembly)
@@ -128,6 +137,22 @@ def validate_tasks(task_files: list[Path], no_assembly: bool, echo: Echo = echo)
             echo(f"error: {f}: {exc}", err=True)
             code = EXIT_STAGE if code == EXIT_OK else max(code, EXIT_STAGE)
     return code
+
+
+def _task_files(args: list[Path]) -> list[Path]:
+    """The arguments of `tmm validate` with folders and unexpanded patterns expanded (a
+    folder or pattern with no task file stays as given: its check names why)."""
+    out: list[Path] = []
+    for a in args:
+        if a.is_dir() or (not a.exists() and any(c in str(a) for c in "*?[")):
+            from .batch import find_tasks
+            found = [f for f, _ in find_tasks(str(a))[0]]
+            if not found and a.is_dir():
+                raise TaskError("no task files (*.yaml, *.yml) in this folder", file=str(a))
+            out += found or [a]
+        else:
+            out.append(a)
+    return out
 
 
 # ----------------------------------------------------------------- the fast path

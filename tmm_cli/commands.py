@@ -199,7 +199,8 @@ def sheets(
 
 @app.command()
 def validate(
-    task_files: List[Path] = typer.Argument(..., metavar="TASK.yaml...", help="one or more task files"),
+    task_files: List[Path] = typer.Argument(..., metavar="TASK.yaml...",
+                                            help="task files, folders of them or quoted patterns ('group21/*.yaml')"),
     no_assembly: bool = typer.Option(False, "--no-assembly", help="schema only: skip the check that the "
                                                                   "linkage assembles over the whole cycle"),
 ):
