@@ -234,7 +234,8 @@ def test_variants_empty_cell_and_unused_column(tmp_path):
 
 @pytest.mark.parametrize("table,what", [("variant,a\n1,2\n", "placeholder {b} names no column"),
                                         ("a,b,n\n1,2,3\n", "needs a `variant` column"),
-                                        ("variant,a,b,n\n1,1,2,3\n01,1,2,3\n", "duplicate variant")])
+                                        ("variant,a,b,n\n1,1,2,3\n01,1,2,3\n", "duplicate variant"),
+                                        ("variant,a,b,n\n\n", "a header line but no rows")])
 def test_variants_errors_before_anything_is_written(tmp_path, table, what):
     tpl = _write(tmp_path, "tpl.yaml", TEMPLATE)
     tab = _write(tmp_path, "tab.csv", table)

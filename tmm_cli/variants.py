@@ -102,6 +102,8 @@ def make_variants(template: Path, table: Path, out: Path) -> tuple[int, list[dic
         raise TaskError(exc.message, file=str(table),
                         issues=[("", exc.line, None, exc.message)] if exc.line else None) from None
     cols = parse_header(header)
+    if not rows:        # wrote 0 of 0 variants, exit 0: the instructor's table lost its rows
+        raise TaskError("the table has a header line but no rows of variants", file=str(table))
     if "variant" not in cols:
         raise TaskError(f"the table needs a `variant` column (columns: {', '.join(cols)})", file=str(table))
     issues = []
