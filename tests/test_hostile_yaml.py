@@ -159,10 +159,14 @@ def test_fifo_is_refused_without_hanging(tmp_path):
 
 
 def test_folder_is_refused(tmp_path):
+    """A folder is no task file for `tmm run`; `tmm validate` takes a folder for its task
+    files (as `tmm batch` does), and one with none is exit 2 saying so."""
     d = tmp_path / "dir.yaml"
     d.mkdir()
+    res = runner.invoke(app, ["run", str(d), "--format", "json", "-o", str(tmp_path / "o")])
+    assert res.exit_code == 2 and "not a regular file (a folder)" in res.output, res.output
     code, out = _validate(d)
-    assert code == 2 and "not a regular file (a folder)" in out
+    assert code == 2 and "no task files (*.yaml, *.yml) in this folder" in out
 
 
 def test_oversized_file_is_refused(tmp_path):
