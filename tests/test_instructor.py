@@ -287,6 +287,19 @@ def test_form_and_key(tmp_path):
     assert res.exit_code == 0, res.output
 
 
+def test_check_warns_of_an_answers_file_of_another_variant(tmp_path):
+    """`tmm check TASK --answers FILE` grades one FILE as given, but a form of another variant
+    (the student took the wrong task) is warned about: every answer would be outside without
+    a reason shown. Variant 7's own file draws no warning."""
+    t = _write(tmp_path, "g7.yaml", GEARS.format(v=7))
+    for v, warned in ((8, True), (7, False)):
+        ans = _write(tmp_path, f"a{v}.yaml", f"variant: {v}\nanswers:\n  gears.aw: 0.1\n")
+        res = runner.invoke(app, ["check", str(t), "--answers", str(ans)])
+        assert res.exit_code == 1, res.output
+        assert (f"warning: {ans} holds answers for variant 8; the task is variant 7" in res.output) == warned, \
+            res.output
+
+
 def test_form_that_fails_keeps_the_earlier_set_files(tmp_path):
     """A rerun of `tmm form` whose quantities fit no task (exit 2) writes no form, so it
     leaves form.csv and key.csv of the earlier run as they were (the key is not emptied),

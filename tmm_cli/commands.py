@@ -248,6 +248,10 @@ def check(
         for a in sets:
             if a.error:
                 raise TaskError(a.error)
+            if single and a.variant not in (None, "") and task.variant is not None and not a.matches(task):
+                # graded all the same (one FILE is taken as given), but a form of another variant
+                # grades every answer outside: say why
+                _err(f"warning: {answers} holds answers for variant {a.variant}; the task is variant {task.variant}")
     except TaskError as exc:
         raise _fail_task(exc)
     try:
