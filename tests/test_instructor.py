@@ -989,3 +989,37 @@ def test_summary_shows_a_variant_without_answers_as_computed_not_correct(tmp_pat
         assert _csv(out / "summary.csv")[0]["status"] == "ok"
         row = next(r for r in (out / "summary.html").read_text().split("<tr>") if "<td>7</td>" in r)
         assert word in row and verdict not in row
+
+
+def test_readme_loop_grades_what_the_form_asked(tmp_path):
+    """The README's instructor loop hands out forms for some quantities; its `batch` and
+    `check` lines must ask for the same ones, else a student who leaves answers out of the
+    form is graded only on what they gave (3 of 7 given, all right -> 100 %, `ok`)."""
+    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+    block = readme.split("## The instructor's loop", 1)[1].split("```sh", 1)[1].split("```", 1)[0]
+    cmds = {m.group(1): m.group(0) for m in re.finditer(r"^tmm (form|batch|check) .*$", block, re.M)}
+    assert set(cmds) == {"form", "batch", "check"}
+    q = {k: re.search(r"--quantities (\S+)", v) for k, v in cmds.items()}
+    assert q["form"] and q["batch"] and q["check"], cmds
+    assert q["batch"].group(1) == q["form"].group(1) == q["check"].group(1)
+    # and with them, a half-filled form is `missing`, scored 3 / 7
+    tab = tmp_path / "table.csv"
+    lines = (EX / "press_variants.csv").read_text(encoding="utf-8-sig").splitlines()
+    tab.write_text("\n".join(lines[:2]) + "\n", encoding="utf-8")
+    res = runner.invoke(app, ["variants", str(EX / "press_template.yaml"), str(tab), "--out", str(tmp_path / "t")])
+    assert res.exit_code == 0, res.output
+    quant = "positions,flywheel.J"
+    res = runner.invoke(app, ["form", str(tmp_path / "t"), "--quantities", quant, "--out", str(tmp_path / "f")])
+    assert res.exit_code == 0, res.output
+    import yaml
+    key = yaml.safe_load((tmp_path / "f" / "01.key.yaml").read_text(encoding="utf-8"))
+    assert len(key["answers"]) == 7          # flywheel.J + six position quantities
+    key["answers"] = dict(list(key["answers"].items())[:3])
+    (tmp_path / "a").mkdir()
+    (tmp_path / "a" / "s.yaml").write_text(yaml.safe_dump(key, allow_unicode=True), encoding="utf-8")
+    res = runner.invoke(app, ["batch", str(tmp_path / "t"), "--out", str(tmp_path / "g"), "--answers",
+                              str(tmp_path / "a"), "--quantities", quant, "--jobs", "1", "--format", "json"])
+    assert res.exit_code == 1, res.output
+    rows = list(csv.DictReader((tmp_path / "g" / "summary.csv").open(encoding="utf-8-sig")))
+    assert len(rows) == 1 and rows[0]["status"] == "missing", rows
+    assert rows[0]["missing"] == "4" and abs(float(rows[0]["score"]) - 3 / 7) < 1e-3
