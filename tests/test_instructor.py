@@ -1023,3 +1023,32 @@ def test_readme_loop_grades_what_the_form_asked(tmp_path):
     rows = list(csv.DictReader((tmp_path / "g" / "summary.csv").open(encoding="utf-8-sig")))
     assert len(rows) == 1 and rows[0]["status"] == "missing", rows
     assert rows[0]["missing"] == "4" and abs(float(rows[0]["score"]) - 3 / 7) < 1e-3
+
+
+def test_interrupted_batch_leaves_no_temporary_files(tmp_path, monkeypatch):
+    """Ctrl-C during `tmm batch`: workers ended while writing leave `.NAME.<random>.tmp`
+    files in the variant folders; the batch removes those this run made (an older one, a
+    file of the user's, stays) and the interrupt goes on (exit 130)."""
+    import time
+    from tmm_cli import batch
+    tasks = tmp_path / "t"
+    tasks.mkdir()
+    (tasks / "01.yaml").write_text((ROOT / "tasks" / "crank_rocker_fourbar.yaml").read_text(encoding="utf-8"),
+                                   encoding="utf-8")
+    out = tmp_path / "g"
+    old = out / "00" / ".old.html.abcdefgh.tmp"
+    old.parent.mkdir(parents=True)
+    old.write_text("x")
+    os.utime(old, (time.time() - 3600, time.time() - 3600))
+    mine = out / "00" / "notes.tmp"
+    mine.write_text("the user's")
+
+    def interrupted(args, **kw):
+        (out / "01").mkdir(parents=True, exist_ok=True)
+        (out / "01" / ".report.html.k3j9x0a_.tmp").write_text("<html><body>half")
+        raise KeyboardInterrupt
+    monkeypatch.setattr(batch, "run_all", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        batch.run_batch(str(tasks), out, jobs=1)
+    assert not (out / "01" / ".report.html.k3j9x0a_.tmp").exists()
+    assert old.exists() and mine.read_text() == "the user's"
