@@ -1052,3 +1052,18 @@ def test_interrupted_batch_leaves_no_temporary_files(tmp_path, monkeypatch):
         batch.run_batch(str(tasks), out, jobs=1)
     assert not (out / "01" / ".report.html.k3j9x0a_.tmp").exists()
     assert old.exists() and mine.read_text() == "the user's"
+
+
+def test_variants_non_numeric_cell_of_a_unit_column_named(tmp_path):
+    """A cell `abc` in the column `l_OA, mm` is reported as that column's bad number,
+    not as "unknown unit in 'abc mm'" about a field; the other rows are written."""
+    tab = tmp_path / "table.csv"
+    lines = (EX / "press_variants.csv").read_text(encoding="utf-8-sig").splitlines()
+    bad = lines[1].split(";")
+    bad[1] = "abc"
+    tab.write_text("\n".join([lines[0], ";".join(bad), lines[2]]) + "\n", encoding="utf-8")
+    res = runner.invoke(app, ["variants", str(EX / "press_template.yaml"), str(tab), "--out", str(tmp_path / "t")])
+    assert res.exit_code == 2
+    assert f"{tab}:2: variant 01: column l_OA, mm: 'abc' is not a number" in res.output, res.output
+    assert "unknown unit" not in res.output
+    assert not (tmp_path / "t" / "01.yaml").exists() and (tmp_path / "t" / "02.yaml").exists()
