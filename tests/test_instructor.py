@@ -1002,3 +1002,81 @@ def test_summary_shows_a_variant_without_answers_as_computed_not_correct(tmp_pat
         assert _csv(out / "summary.csv")[0]["status"] == "ok"
         row = next(r for r in (out / "summary.html").read_text().split("<tr>") if "<td>7</td>" in r)
         assert word in row and verdict not in row
+
+
+def test_readme_loop_grades_what_the_form_asked(tmp_path):
+    """The README's instructor loop hands out forms for some quantities; its `batch` and
+    `check` lines must ask for the same ones, else a student who leaves answers out of the
+    form is graded only on what they gave (3 of 7 given, all right -> 100 %, `ok`)."""
+    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+    block = readme.split("## The instructor's loop", 1)[1].split("```sh", 1)[1].split("```", 1)[0]
+    cmds = {m.group(1): m.group(0) for m in re.finditer(r"^tmm (form|batch|check) .*$", block, re.M)}
+    assert set(cmds) == {"form", "batch", "check"}
+    q = {k: re.search(r"--quantities (\S+)", v) for k, v in cmds.items()}
+    assert q["form"] and q["batch"] and q["check"], cmds
+    assert q["batch"].group(1) == q["form"].group(1) == q["check"].group(1)
+    # and with them, a half-filled form is `missing`, scored 3 / 7
+    tab = tmp_path / "table.csv"
+    lines = (EX / "press_variants.csv").read_text(encoding="utf-8-sig").splitlines()
+    tab.write_text("\n".join(lines[:2]) + "\n", encoding="utf-8")
+    res = runner.invoke(app, ["variants", str(EX / "press_template.yaml"), str(tab), "--out", str(tmp_path / "t")])
+    assert res.exit_code == 0, res.output
+    quant = "positions,flywheel.J"
+    res = runner.invoke(app, ["form", str(tmp_path / "t"), "--quantities", quant, "--out", str(tmp_path / "f")])
+    assert res.exit_code == 0, res.output
+    import yaml
+    key = yaml.safe_load((tmp_path / "f" / "01.key.yaml").read_text(encoding="utf-8"))
+    assert len(key["answers"]) == 7          # flywheel.J + six position quantities
+    key["answers"] = dict(list(key["answers"].items())[:3])
+    (tmp_path / "a").mkdir()
+    (tmp_path / "a" / "s.yaml").write_text(yaml.safe_dump(key, allow_unicode=True), encoding="utf-8")
+    res = runner.invoke(app, ["batch", str(tmp_path / "t"), "--out", str(tmp_path / "g"), "--answers",
+                              str(tmp_path / "a"), "--quantities", quant, "--jobs", "1", "--format", "json"])
+    assert res.exit_code == 1, res.output
+    rows = list(csv.DictReader((tmp_path / "g" / "summary.csv").open(encoding="utf-8-sig")))
+    assert len(rows) == 1 and rows[0]["status"] == "missing", rows
+    assert rows[0]["missing"] == "4" and abs(float(rows[0]["score"]) - 3 / 7) < 1e-3
+
+
+def test_interrupted_batch_leaves_no_temporary_files(tmp_path, monkeypatch):
+    """Ctrl-C during `tmm batch`: workers ended while writing leave `.NAME.<random>.tmp`
+    files in the variant folders; the batch removes those this run made (an older one, a
+    file of the user's, stays) and the interrupt goes on (exit 130)."""
+    import time
+    from tmm_cli import batch
+    tasks = tmp_path / "t"
+    tasks.mkdir()
+    (tasks / "01.yaml").write_text((ROOT / "tasks" / "crank_rocker_fourbar.yaml").read_text(encoding="utf-8"),
+                                   encoding="utf-8")
+    out = tmp_path / "g"
+    old = out / "00" / ".old.html.abcdefgh.tmp"
+    old.parent.mkdir(parents=True)
+    old.write_text("x")
+    os.utime(old, (time.time() - 3600, time.time() - 3600))
+    mine = out / "00" / "notes.tmp"
+    mine.write_text("the user's")
+
+    def interrupted(args, **kw):
+        (out / "01").mkdir(parents=True, exist_ok=True)
+        (out / "01" / ".report.html.k3j9x0a_.tmp").write_text("<html><body>half")
+        raise KeyboardInterrupt
+    monkeypatch.setattr(batch, "run_all", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        batch.run_batch(str(tasks), out, jobs=1)
+    assert not (out / "01" / ".report.html.k3j9x0a_.tmp").exists()
+    assert old.exists() and mine.read_text() == "the user's"
+
+
+def test_variants_non_numeric_cell_of_a_unit_column_named(tmp_path):
+    """A cell `abc` in the column `l_OA, mm` is reported as that column's bad number,
+    not as "unknown unit in 'abc mm'" about a field; the other rows are written."""
+    tab = tmp_path / "table.csv"
+    lines = (EX / "press_variants.csv").read_text(encoding="utf-8-sig").splitlines()
+    bad = lines[1].split(";")
+    bad[1] = "abc"
+    tab.write_text("\n".join([lines[0], ";".join(bad), lines[2]]) + "\n", encoding="utf-8")
+    res = runner.invoke(app, ["variants", str(EX / "press_template.yaml"), str(tab), "--out", str(tmp_path / "t")])
+    assert res.exit_code == 2
+    assert f"{tab}:2: variant 01: column l_OA, mm: 'abc' is not a number" in res.output, res.output
+    assert "unknown unit" not in res.output
+    assert not (tmp_path / "t" / "01.yaml").exists() and (tmp_path / "t" / "02.yaml").exists()

@@ -323,13 +323,21 @@ def _worker(jobs_args, tmpdir: str, memory_mb, task_r: int, done_w: int, close: 
             os.close(fd)
         except OSError:
             pass
+    try:
+        _serve(jobs_args, tmpdir, memory_mb, task_r, done_w)
+    except KeyboardInterrupt:          # Ctrl-C reaches the workers too: the batch reports it
+        os._exit(130)
+    os._exit(0)                    # no atexit handlers or inherited threads of the parent
+
+
+def _serve(jobs_args, tmpdir: str, memory_mb, task_r: int, done_w: int) -> None:
     start = _address_space()
     buf = b""
     for n in range(1, MAX_VARIANTS + 1):
         while b"\n" not in buf:
             chunk = os.read(task_r, 64)
             if not chunk:
-                os._exit(0)
+                return
             buf += chunk
         line, buf = buf.split(b"\n", 1)
         i = int(line)
@@ -339,7 +347,6 @@ def _worker(jobs_args, tmpdir: str, memory_mb, task_r: int, done_w: int, close: 
         os.write(done_w, b"%d %d\n" % (i, retire))      # a few bytes: never blocks
         if retire:
             break
-    os._exit(0)                    # no atexit handlers or inherited threads of the parent
 
 
 def _death(exitcode: int | None, memory_mb) -> str:
@@ -524,6 +531,27 @@ def _kill(proc) -> None:
     proc.join(5)
 
 
+def _remove_own_temps(out: Path, since: float) -> list[Path]:
+    """The temporary files ``.NAME.<random>.tmp`` (atomic_write's) under ``out`` made
+    since ``since``: left by workers ended while writing. Only regular files, no links
+    followed."""
+    from .io import _TMP
+    removed = []
+    for root, dirs, names in os.walk(out):
+        for name in names:
+            if not _TMP.match(name):
+                continue
+            p = os.path.join(root, name)
+            try:
+                st = os.lstat(p)
+                if stat.S_ISREG(st.st_mode) and st.st_mtime >= since - 1.0:
+                    os.unlink(p)
+                    removed.append(Path(p))
+            except OSError:
+                continue
+    return removed
+
+
 # ------------------------------------------------------------------ manifest
 def _read_manifest(out: Path) -> set[str]:
     try:
@@ -598,8 +626,14 @@ def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = froz
     with _progress(con, len(args), "variants") as advance:
         def done(i, res):
             advance()
+        started = time.time()
         try:
             res_list = run_all(args, jobs=jobs, timeout=timeout, memory_mb=memory_mb, on_done=done)
+        except KeyboardInterrupt:
+            # Ctrl-C: the workers are gone, some killed while writing; their temporary
+            # files (never a file under its own name) go too, so nothing half-written stays
+            _remove_own_temps(out, started)
+            raise
         finally:
             import gc
             gc.unfreeze()

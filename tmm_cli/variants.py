@@ -150,6 +150,10 @@ def make_variants(template: Path, table: Path, out: Path) -> tuple[int, list[dic
                 if empty:       # else '' or ' mm' reaches the field, a message about the field
                     raise _RowError(f"empty cell{'s' if len(empty) > 1 else ''} in column"
                                     f"{'s' if len(empty) > 1 else ''} {', '.join(empty)}")
+                wordy = [n for n in used if units.get(n) and not isinstance(cells[n], (int, float))]
+                if wordy:       # else 'abc mm' reaches the field: "'abc' is not a unit"
+                    raise _RowError("; ".join(f"column {cols[n][0]}: {cells[n]!r} is not a number"
+                                              for n in wordy))
                 task = substitute(data, cells, units)
                 if "variant" not in data:       # after schema and title, as in a hand-written task
                     items = list(task.items())
