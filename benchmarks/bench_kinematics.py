@@ -15,6 +15,8 @@
   per call (memory the C library handed back to the system and took again: at N >= 3600
   a large part of the time of both sides, and it depends on the process's allocation
   history -- see the README).
+  ``general``: tmm's general solver (its complex-number fast path off), which answers the
+  calls the fast path does not (singular and limit positions, class-III groups).
 * ``sixbar``: the six-bar of tasks/forging_sixbar.yaml at 10^5 positions: wall time, CPU
   time and the peak memory traced by tracemalloc (numpy arrays are traced). Targets:
   < 0.2 s, < 200 MB.
@@ -323,6 +325,18 @@ def _batch(fn, calls: int) -> tuple[float, float, float]:
     return (t1 - t0) / calls, (c1 - c0) / calls, (f1 - f0) / calls
 
 
+def general(mech, phi):
+    """tmm's general solver alone (the complex-number fast path off): what answers a call
+    with a singular or limit position, a class-III group, or a dyad the fast path does not
+    cover."""
+    from tmm_cli.linkage.kinematics import solver as sv
+    sv.FAST = False
+    try:
+        return solve(mech, phi, 1.0)
+    finally:
+        sv.FAST = True
+
+
 def core(repeat: int = 7, sizes=(12, 36, 360, 3600, 36000), against: Path | None = None) -> None:
     cases = [("slider-crank", build_mechanism(load_task(SLIDER_CRANK)), slider_crank_closed, SLIDER_CRANK),
              ("four-bar", build_mechanism(load_task(FOUR_BAR)), four_bar_closed, FOUR_BAR)]
@@ -335,6 +349,7 @@ def core(repeat: int = 7, sizes=(12, 36, 360, 3600, 36000), against: Path | None
     for name, mech, closed, src in cases:
         phi = np.linspace(0.0, 360.0, 3600, endpoint=False)
         check_same(name, solve(mech, phi, 1.0), closed(phi))
+        check_same(name + " (general)", general(mech, phi), closed(phi))
         before = None
         if before_side is not None:
             o_solve, o_build, o_load, mods = before_side
@@ -344,7 +359,8 @@ def core(repeat: int = 7, sizes=(12, 36, 360, 3600, 36000), against: Path | None
         for n in sizes:
             phi = np.linspace(0.0, 360.0, n, endpoint=False)
             calls = max(3, 40000 // n)
-            fns = {"tmm": lambda: solve(mech, phi, 1.0), "closed": lambda: closed(phi)}
+            fns = {"tmm": lambda: solve(mech, phi, 1.0), "closed": lambda: closed(phi),
+                   "general": lambda: general(mech, phi)}
             if name == "four-bar":
                 check_same("four-bar lean", as_result(four_bar_lean(phi)), closed(phi))
                 fns["lean"] = lambda: four_bar_lean(phi)

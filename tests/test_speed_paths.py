@@ -667,15 +667,20 @@ def _same_solves(make_mech, phi_deg, monkeypatch):
     """kinematics.solve and check_assembly (tmm validate) with dyads.GROUND_RRR on and off
     (a new Mechanism each): every output, warning and mask, or the same error."""
     from tmm_cli.linkage.kinematics import dyads
+    from tmm_cli.linkage.kinematics import solver as sv
     from tmm_cli.linkage.kinematics.solver import check_assembly, solve
 
     def both():
         mech = make_mech()
         return _kin_outcome(lambda: check_assembly(mech)), _kin_outcome(lambda: solve(mech, phi_deg, 2.0, 0.5))
-    (chk_f, fused) = both()
-    monkeypatch.setattr(dyads, "GROUND_RRR", False)
-    (chk_g, generic) = both()
-    monkeypatch.undo()
+    sv.FAST = False                     # the general solver's two paths (not the complex fast path)
+    try:
+        (chk_f, fused) = both()
+        monkeypatch.setattr(dyads, "GROUND_RRR", False)
+        (chk_g, generic) = both()
+        monkeypatch.undo()
+    finally:
+        sv.FAST = True
     assert chk_f == chk_g
     if isinstance(generic, tuple) or isinstance(fused, tuple):
         assert fused == generic

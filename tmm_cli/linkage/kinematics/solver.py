@@ -693,15 +693,36 @@ def _blown_up(mech: Mechanism, solver: Solver, res: KinematicsResult, near: np.n
     return {k: v for k, v in out.items() if v.any()}
 
 
+_NO_STEPS = object()
+
+
+def _fast_steps(solver: Solver):
+    """The fast path's steps for the solver's groups (made once), None if it does not cover them."""
+    steps = solver.__dict__.get("_fast_steps", _NO_STEPS)
+    if steps is _NO_STEPS:
+        from . import fast
+        steps = solver.__dict__["_fast_steps"] = fast.compile_steps(solver)
+    return steps
+
+
+FAST = True       # the complex-number fast path of a regular call (off: the general solver only, for the tests)
+
+
 def _solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
     solver = get_solver(mech)
-    ground, moving, done, names, links = _outputs(solver)
     phi_deg = np.asarray(phi_deg, float).reshape(-1)     # (a scalar: shape (1,))
-    st = solver.run(np.radians(phi_deg))
-    st.margins = st.sing = None     # (held memory only)
     N = len(phi_deg)
     order = None if N < 2 or np.count_nonzero(np.greater_equal(phi_deg[1:], phi_deg[:-1])) == N - 1 \
         else np.argsort(phi_deg, kind="stable")
+    steps = _fast_steps(solver) if N else None
+    if steps is not None and FAST:
+        from . import fast
+        S = fast.run(solver, steps, np.radians(phi_deg), 0 if order is None else int(order[0]))
+        if S is not None:
+            return _fast_result(mech, solver, S, phi_deg, order, omega1, eps1)
+    ground, moving, done, names, links = _outputs(solver)
+    st = solver.run(np.radians(phi_deg))
+    st.margins = st.sing = None     # (held memory only)
     seen: set = set()
     if order is None and 2 <= N < WORK_ROWS_FROM:
         # few positions in order: the links' angles unwrapped at once, as the rows of one block
@@ -719,13 +740,7 @@ def _solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
                 continue
             st.unwrap(b, _unwrap_sorted(th if own else np.asarray(th, float), order, inplace=own))
     pos, d1, d2 = {}, {}, {}
-    for p, x, y in ground:
-        g = np.empty((2, N))
-        g[0].fill(x)
-        g[1].fill(y)
-        pos[p] = g.T
-        d1[p] = zero_pairs(N)
-        d2[p] = zero_pairs(N)
+    _ground_points(ground, N, pos, d1, d2)
     if N < WORK_ROWS_FROM:
         for p, b, u in moving:
             pos[p], d1[p], d2[p] = st.point_d(b, u)
@@ -743,6 +758,72 @@ def _solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
         angle[name] = st.th[b]
         a1[name] = _vector(st.th1[b], N, seen)
         a2[name] = _vector(st.th2[b], N, seen)
+    return _result(solver, phi_deg, omega1, eps1, pos, d1, d2, angle, a1, a2, names, links, st.singular)
+
+
+def _ground_points(ground, N: int, pos: dict, d1: dict, d2: dict) -> None:
+    for p, x, y in ground:
+        g = np.empty((2, N))
+        g[0].fill(x)
+        g[1].fill(y)
+        pos[p] = g.T
+        d1[p] = zero_pairs(N)
+        d2[p] = zero_pairs(N)
+
+
+def _fast_result(mech: Mechanism, solver: Solver, S, phi_deg: np.ndarray, order, omega1, eps1) -> KinematicsResult:
+    """The result of a call the fast path answered (``S``: its bodies' poses)."""
+    from .fast import as_pairs
+    ground, moving, done, names, links = _outputs(solver)
+    N = len(phi_deg)
+    bodies = S.bodies
+    seen: set = set()
+    th = {}
+    if order is None and 2 <= N < WORK_ROWS_FROM:
+        # the rows of one block, their differences taken along the block (one contiguous
+        # call; those across two rows not counted): a row is unwrapped only if it jumps
+        TH = np.array([bodies[b].th for b in range(1, mech.n + 1)], float)
+        flat = TH.reshape(-1)
+        dd = np.subtract(flat[1:], flat[:-1])
+        dd[N - 1::N] = 0.0
+        if np.count_nonzero(np.greater_equal(np.abs(dd, dd), _PI)):
+            for row in TH:
+                _unwrap(row, inplace=True)
+        for b in range(1, mech.n + 1):
+            th[b] = TH[b - 1]
+    else:
+        for b in range(1, mech.n + 1):
+            t = bodies[b].th
+            own = _fresh(t, N, seen)
+            if own and bodies[b].const:
+                v = float(t[0])
+                if math.isfinite(v) and math.copysign(1.0, v) > 0:      # one value: no jump
+                    th[b] = t
+                    continue
+            th[b] = _unwrap_sorted(t if own else np.asarray(t, float), order, inplace=own)
+    pos, d1, d2 = {}, {}, {}
+    _ground_points(ground, N, pos, d1, d2)
+    for p, b, u in _moving_complex(solver, moving):
+        P, P1, P2 = S.pt(b, u)
+        pos[p], d1[p], d2[p] = as_pairs(P, N, seen), as_pairs(P1, N, seen), as_pairs(P2, N, seen)
+    angle, a1, a2 = {}, {}, {}
+    for name, b in links:
+        angle[name] = th[b]
+        a1[name] = _vector(bodies[b].w, N, seen)
+        a2[name] = _vector(bodies[b].e, N, seen)
+    return _result(solver, phi_deg, omega1, eps1, pos, d1, d2, angle, a1, a2, names, links, None)
+
+
+def _moving_complex(solver: Solver, moving) -> list:
+    """The moving points (name, body, local coordinates as a complex number), made once."""
+    hit = solver.__dict__.get("_moving_complex")
+    if hit is None:
+        hit = solver.__dict__["_moving_complex"] = [(p, b, complex(float(u[0]), float(u[1]))) for p, b, u in moving]
+    return hit
+
+
+def _result(solver, phi_deg, omega1, eps1, pos, d1, d2, angle, a1, a2, names, links, singular) -> KinematicsResult:
+    N = len(phi_deg)
     w = np.asarray(omega1, float)
     e = np.asarray(eps1, float)
     for nm_, v in (("omega1", w), ("eps1", e)):
@@ -752,7 +833,7 @@ def _solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
     return KinematicsResult(phi=phi_deg, omega1=omega1 if w.ndim == 0 else w, eps1=eps1 if e.ndim == 0 else e,
                             pos=pos, d1=d1, d2=d2, angle=angle, a1=a1, a2=a2, warnings=warnings,
                             points=[p for p in names if p in pos], links=[nm for nm, _ in links],
-                            singular=st.singular)
+                            singular=singular)
 
 
 def check_assembly(mech: Mechanism, n: int = 720) -> list[str]:
