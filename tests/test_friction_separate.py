@@ -107,3 +107,29 @@ def _kst_task() -> str:
         if "kinetostatics:" in f.read_text() and "friction" in f.read_text():
             return f.name
     raise AssertionError("no task with friction in tasks/")
+
+
+@pytest.mark.parametrize("dead", [0.0, 180.0])
+def test_friction_at_a_reversal_is_the_mean_of_its_two_sides(dead):
+    """At a dead centre the slider's velocity is zero (round-off: at 180 deg v_B is -9e-18):
+    its sliding friction there is the mean of its two sides, 0 -- not f |N| with the sign
+    of the round-off -- while a hundredth of a degree either side it is f |N| against the
+    motion, with opposite signs; the moment at the dead centre lies between its sides'."""
+    f, P = 0.15, 1000.0
+    task = slider_crank_task(e=0.0, m2=0, J2=0, m3=0)
+    out = {}
+    for d in (-0.01, 0.0, 0.01):
+        kin = slider_crank_kin([(dead + d) % 360.0], e=0.0)
+        mech, res, ent = _run(task, kin, {"forces": [{"on": "slider", "magnitude": P}]},
+                              {"inertia": False, "friction": {"pin_radius": 0.02, "f": f}}, sc_solver)
+        e = ent["kinetostatics"][0]
+        ff = [ld for ld in e["loads"] if ld["name"] == "Ff03"][0]
+        vB = kin.d1["B"][0][0]
+        out[d] = (ff["F"][0], vB, e["balancing_moment"], abs(e["reactions"]["R03"]["R"]))
+    assert out[0.0][0] == 0.0
+    for d in (-0.01, 0.01):
+        F, vB, _, N = out[d]
+        assert F == pytest.approx(-f * N * math.copysign(1.0, vB), rel=1e-9)   # against the motion
+    assert out[-0.01][0] * out[0.01][0] < 0
+    lo, hi = sorted((out[-0.01][2], out[0.01][2]))
+    assert lo - 1e-6 <= out[0.0][2] <= hi + 1e-6

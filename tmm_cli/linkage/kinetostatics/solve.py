@@ -368,6 +368,9 @@ def _relative_motion(mech, geo: Geometry) -> np.ndarray:
     return out
 
 
+ZERO_MOTION = 1e-9     # a relative motion below this (rad/rad; m/rad over the size) is none
+
+
 def _motion_signs(mech, geo: Geometry) -> tuple[np.ndarray, np.ndarray]:
     """(sign, |.|) of :func:`relative_motion`, each (pairs, N) (a pair's row contiguous):
     made once per geometry (the friction iteration takes them at every step)."""
@@ -375,7 +378,18 @@ def _motion_signs(mech, geo: Geometry) -> tuple[np.ndarray, np.ndarray]:
     if cached is not None and cached[0] is mech:
         return cached[1]
     rel = np.ascontiguousarray(relative_motion(mech, geo).T)
-    out = (np.sign(rel), np.abs(rel))
+    sign = np.sign(rel)
+    # A relative motion within round-off of zero is none: the instant a pair's motion
+    # reverses (the rocker's pairs at an extreme position, which the course's positions
+    # include). Its sign there is round-off, and the friction with it +-f r |R| by chance;
+    # the friction at that instant is the mean of its two sides, zero (as the kinematics
+    # takes the mean of the two sides at a singular position).
+    w = np.abs(geo.omega1) * ZERO_MOTION
+    for k, j in enumerate(mech.joints):
+        still = np.abs(rel[k]) <= (w if j.kind == "R" else w * geo.Lc)
+        if still.any():
+            sign[k][still] = 0.0
+    out = (sign, np.abs(rel))
     geo.__dict__["_motion_signs"] = (mech, out)
     return out
 
