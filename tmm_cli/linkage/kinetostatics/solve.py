@@ -77,7 +77,10 @@ def group_by_group(mech, structure, geo: Geometry, q: np.ndarray) -> tuple[np.nd
         # known reactions of the later groups on this group's links
         for k, i, cf in known:
             bT[3 * i:3 * i + 3] -= np.einsum("nij,nj->ni", cf, xT[2 * k:2 * k + 2].T).T
-        sol = np.matmul(inv, np.ascontiguousarray(bT.T)[..., None])[..., 0]
+        # inv (N, m, m) times each position's right-hand side: einsum's loop over the
+        # positions, ~2.4x numpy's batched matmul of small matrices (the same products,
+        # summed in its own order)
+        sol = np.einsum("nij,jn->ni", inv, bT)
         for c, k in enumerate(unknown):
             xT[2 * k:2 * k + 2] = sol[:, 2 * c:2 * c + 2].T
         if is_crank:
