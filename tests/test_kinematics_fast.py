@@ -77,6 +77,21 @@ CASES = {
                   "blockC": {"slider": "C", "guide": {"link": "rocker"}},
                   "ram": {"slider": "C", "guide": {"through": [0, 0.4], "angle": 0}}},
         "assembly": {"A": [0.12, 0], "C": [0.24, 0.4]}},
+    "RRP on a translating guide (the Scotch yoke's)": {
+        "ground": {"O": [0, 0]},
+        "links": {"crank": {"points": ["O", "A"], "length": 0.06, "extra": {"E": [0.02, 0.03]}},
+                  "block": {"slider": "A", "guide": {"link": "yoke", "angle": 90}},
+                  "yoke": {"slider": "Y", "extra": {"P": [0.25, 0.1]}, "guide": {"through": "O", "angle": 0}},
+                  "rod": {"points": ["E", "D"], "length": 0.2},
+                  "block2": {"slider": "D", "guide": {"link": "yoke", "angle": 0, "offset": 0.1}}},
+        "assembly": {"D": [0.2, 0.1]}},
+    "PRP on a translating guide (the Scotch yoke's) and a fixed one": {
+        "ground": {"O": [0, 0]},
+        "links": {"crank": {"points": ["O", "A"], "length": 0.06},
+                  "block": {"slider": "A", "guide": {"link": "yoke", "angle": 90}},
+                  "yoke": {"slider": "Y", "extra": {"P": [0.25, 0.1]}, "guide": {"through": "O", "angle": 0}},
+                  "block2": {"slider": "D", "guide": {"link": "yoke", "angle": 45, "offset": 0.05}},
+                  "block3": {"slider": "D", "guide": {"through": [0.3, 0], "angle": 90}}}},
     "RPP (Scotch yoke)": {
         "ground": {"O": [0, 0]},
         "links": {"crank": {"points": ["O", "A"], "length": 0.06},

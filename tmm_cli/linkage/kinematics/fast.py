@@ -313,18 +313,19 @@ class _RRP(_Step):
         wX2 = wX * wX
         K = S.bodies[G]
         s1E = np.multiply(EY, s1)
-        r = np.subtract(S.acc_at(G, C), P1dd)
+        AK = S.acc_at(G, C)
+        r = np.subtract(AK, P1dd)
         r += np.multiply(a, wX2)
         if K.rot:
             cor = np.multiply(s1E, 2j)
             cor *= K.w
             r += cor
         eX, s2, _ = _solve2(p, q, r)
-        # C' and C'' as Y's point
-        C1 = s1E if not K.rot else np.add(VK, s1E)
+        # C' and C'' as Y's point: the guide's point there, the slide along it, Coriolis
+        C1 = np.add(VK, s1E)
         C2 = np.multiply(EY, s2)
+        C2 += AK
         if K.rot:
-            C2 += S.acc_at(G, C)
             C2 += cor
         thX = np.angle(a)
         thX -= self.argX
