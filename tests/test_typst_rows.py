@@ -54,9 +54,10 @@ HTML = "<html><head><title>t</title></head><body><section><h2>Tables</h2>" + "".
     # a key-value table of text (auto columns)
     '<table class="kv"><tr><th>Title</th><td>Horizontal forging machine</td></tr>'
     '<tr><th>J<sub>n</sub>, kg·m²</th><td>179.853</td></tr><tr><th>δ</th><td>1/18</td></tr></table>',
-    # rows that may wrap: a long number in one of 12 shared columns, a spanning note row
+    # rows that may wrap: a long number in groups of digits in one of 12 shared columns (a
+    # number without spaces cannot wrap: its column is made as wide as it), a spanning note row
     _table("compact wide", [f"c{k}" for k in range(12)],
-           _numbers(5, 12, 1) + [["1234567890123456789012"] + ["1"] * 11] + _numbers(5, 12, 2)),
+           _numbers(5, 12, 1) + [["1234 5678 9012 3456 7890 12"] + ["1"] * 11] + _numbers(5, 12, 2)),
     '<table class="wide"><thead><tr><th>a</th><th>b</th></tr></thead><tbody>'
     '<tr><td>1</td><td>2</td></tr><tr><td colspan="2">' + "a long note spanning the columns " * 12
     + "</td></tr><tr><td>3</td><td>4</td></tr></tbody></table>",
@@ -144,9 +145,10 @@ PAGE = "<html><head><title>t</title></head><body><section>" + "".join([
     + _table("compact wide", ["Вектор", "Отрезок", "Длина, мм", "Значение"],
              [[f"<span class='vec'>ab</span><sub>{k}</sub>", "Щ", "-0.5", "1e-05"] for k in range(5)])
     + "</div></div></div>",
-    # an auto row (a long number) between chunks, not compact; an empty cell splits a run
+    # an auto row (a long number in groups of digits, which wraps) between chunks, not
+    # compact; an empty cell splits a run
     _table("wide", [f"c{k}" for k in range(6)],
-           _numbers(4, 6, 5) + [["1234567890123456789012345678901234567890"] + ["1"] * 5]
+           _numbers(4, 6, 5) + [["1234567890 1234567890 1234567890 1234567890"] + ["1"] * 5]
            + _numbers(3, 6, 6) + [["", "2", "3", "4", "5", "6"]] + _numbers(2, 6, 7)),
     # text columns (auto width): a curve in each cell
     '<table class="kv"><tr><th>a</th><td>x</td></tr></table>',

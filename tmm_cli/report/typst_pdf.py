@@ -13,6 +13,7 @@ PDF drawing operators) and the text keeps DejaVu Sans (Cyrillic, Greek).
 """
 from __future__ import annotations
 
+import math
 import re
 from contextlib import contextmanager
 from functools import lru_cache
@@ -450,8 +451,41 @@ class _Writer:
             return ["1fr"] * ncols
         return ["1fr" if t else "auto" for t in text]
 
+    def fit(self, rows, nhead: int, ncols: int, compact: bool, kinds: list[str]
+            ) -> tuple[tuple[float, float, float], list[str]]:
+        """The table's (font size pt, x inset mm, y inset mm) and its columns: its style and
+        ``kinds`` where its body cells (numbers, which do not wrap) fit the free width side
+        by side; else the columns each as wide as its cells ("auto": equal shares would
+        leave the widest numbers too little) and, where even that does not fit, the font
+        and insets smaller (never below 0.6 of the style). A table of 19 columns of loads
+        per position had its numbers overrun their cells into the next ones. ``rows`` as in
+        :meth:`fixed_rows`."""
+        style = _TABLE_STYLE[compact]
+        size, ix, iy = style
+        if self.width is None or nhead >= len(rows):
+            return style, kinds
+        need = [0.0] * ncols                # em of each column's widest one-column body cell
+        for r in rows[nhead:]:
+            j = 0
+            for c, span, _, t, _ in r:
+                if span == 1 and j < ncols and t:
+                    need[j] = max(need[j], self.unbroken(t))
+                j += span
+        free = self.width * 0.97
+        pad = 2 * ix * _MM
+        if all(k == "1fr" for k in kinds):
+            if ncols * (max(need) * size + pad) <= free:
+                return style, kinds
+            kinds = ["auto"] * ncols
+        fixed = [n for n, k in zip(need, kinds) if k == "auto"]
+        total = sum(fixed) * size + len(fixed) * pad
+        if total <= free:
+            return style, kinds
+        k = max(free / total, 0.6)
+        return (math.floor(size * k * 10) / 10, round(ix * k, 2), iy), kinds
+
     def fixed_rows(self, rows, nhead: int, one_line: list[bool], ncols: int, kinds: list[str],
-                   compact: bool) -> str:
+                   style: tuple[float, float, float]) -> str:
         """The ``rows:`` argument giving each row (header or body) that is one line of text
         in every cell its height outright: Typst then lays its cells out once instead of measuring them
         first (an auto row), ~0.2 s of the forging report's compilation. The height is the
@@ -464,7 +498,7 @@ class _Writer:
         free width is not known here."""
         if self.width is None or nhead >= len(rows) or not any(one_line[nhead:]):
             return None
-        size, ix, iy = _TABLE_STYLE[compact]
+        size, ix, iy = style
         pad = 2 * ix * _MM
         need = [0.0] * ncols                # a bound of each column's natural width, pt
         spans = []
@@ -511,7 +545,94 @@ class _Writer:
             out.append(h if ok else "auto")
         return out if h in out else None
 
+    def unbroken(self, t: str) -> float:
+        """em of the widest part of ``t`` that cannot wrap (its longest word; a number is
+        one word)."""
+        em = self.ems.get(t)
+        if em is None:
+            em = self.ems[t] = _em_width(t)
+        if " " in t:
+            return min(em, max(_em_width(w) for w in t.split()))
+        return em
+
+    def split_wide(self, node) -> list | None:
+        """A table of one-cell columns (no spans) too wide for the page at 0.8 of its style's
+        font (a per-position table of ~20 columns of numbers): its columns in parts that fit
+        at its style, each part a table repeating the leading columns (the position and its
+        angle for a table of 12 columns or more, else the first); None when it fits (then
+        :meth:`fit` sizes it) or is not such a table."""
+        if self.width is None:
+            return None
+        head, body, other = [], [], []
+        for c in node:
+            if not isinstance(c, _Node):
+                continue
+            if c.tag in ("thead", "tbody", "tfoot"):
+                for tr in c:
+                    if isinstance(tr, _Node) and tr.tag == "tr":
+                        (head if c.tag == "thead" else body).append(tr)
+            elif c.tag == "tr":
+                body.append(c)
+            else:
+                other.append(c)
+        cells = [[k for k in tr if isinstance(k, _Node) and k.tag in ("td", "th")] for tr in head + body]
+        if not body or not cells or any(k.attrs.get("colspan") or k.attrs.get("rowspan") for r in cells for k in r):
+            return None
+        ncols = len(cells[0])
+        if ncols < 4 or any(len(r) != ncols for r in cells):
+            return None
+        size, ix, _ = _TABLE_STYLE["compact" in node.classes]
+        need = [0.0] * ncols
+        for r in cells[len(head):]:
+            for j, k in enumerate(r):
+                need[j] = max(need[j], self.unbroken(k.text().strip()))
+        free = self.width * 0.97
+        col = [n * size + 2 * ix * _MM for n in need]          # at the style
+        if sum(col) * 0.8 <= free:          # fits at 0.8 of the font or more: one table
+            return None
+        keep = 2 if ncols >= 12 else 1
+        groups, cur, w0 = [], [], sum(col[:keep])
+        for j in range(keep, ncols):
+            if cur and w0 + sum(col[i] for i in cur) + col[j] > free:
+                groups.append(cur)
+                cur = []
+            cur.append(j)
+        groups.append(cur)
+        # as many parts as that takes, of about equal widths (not 15 columns and then 4)
+        target = sum(col[keep:]) / len(groups)
+        even, cur = [], []
+        for j in range(keep, ncols):
+            w = sum(col[i] for i in cur)
+            if cur and len(even) < len(groups) - 1 and w + col[j] / 2 > target:
+                even.append(cur)
+                cur = []
+            cur.append(j)
+        even.append(cur)
+        if len(even) == len(groups) and all(w0 + sum(col[i] for i in g) <= free for g in even):
+            groups = even
+        parts = []
+        for g, cols in enumerate(groups):
+            take = list(range(keep)) + cols
+            t = _Node("table", node.attrs, node.classes)
+            if g == 0:
+                t.extend(other)
+            for tag, trs in (("thead", head), ("tbody", body)):
+                if not trs:
+                    continue
+                sec = _Node(tag, {}, frozenset())
+                for tr in trs:
+                    row = _Node("tr", tr.attrs, tr.classes)
+                    ks = [k for k in tr if isinstance(k, _Node) and k.tag in ("td", "th")]
+                    row.extend(ks[i] for i in take)
+                    sec.append(row)
+                t.append(sec)
+            parts.append(t)
+        return parts
+
     def table(self, node) -> str:
+        parts = self.split_wide(node)
+        if parts is not None:
+            return "\n".join(self.table(t) for t in parts)
         rows, caption = [], None
         compact = "compact" in node.classes
         kv = "kv" in node.classes
@@ -601,12 +722,13 @@ class _Writer:
                 bare.append(row if row_bare else None)
                 one_line.append(plain)
         nhead_cells = sum(len(r) for r in cells[:nhead])
-        pt, ix, iy = _TABLE_STYLE[compact]
+        kinds = self.widths(info[nhead:], ncols) if wide else ["auto"] * ncols
+        style, kinds = self.fit(info, nhead, ncols, compact, kinds)
+        pt, ix, iy = style
         size = f"{pt}pt"
         inset = f"(x: {ix}mm, y: {iy}mm)"
-        kinds = self.widths(info[nhead:], ncols) if wide else ["auto"] * ncols
         cols = f"({', '.join(kinds)})" if wide else str(ncols)
-        tracks = self.fixed_rows(info, nhead, one_line, ncols, kinds, compact)
+        tracks = self.fixed_rows(info, nhead, one_line, ncols, kinds, style)
         rules = ""
         # (not around a table in a cell: the leading set for the table's paragraphs would be its too)
         if tracks is not None and _CHUNK > 1 and not any("#table(" in c for r in cells for c in r):
