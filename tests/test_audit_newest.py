@@ -211,3 +211,36 @@ def test_chosen_size_curvature_inside_the_rise_by_hand(r0):
     assert c["rho_min"] == pytest.approx(float(rho.min()), rel=1e-8)
     assert c["rho_min_phi"] == pytest.approx(float(deg[np.argmin(rho)]), abs=0.01)
     assert c["roller"] == pytest.approx(min(0.7 * c["rho_min"], 0.4 * r0), rel=1e-12)
+
+
+# ------------------------------------------------------------------ slotted lever, shaper: construction
+@pytest.mark.parametrize("name", ["synthesis_slotted_lever", "synthesis_shaper"])
+def test_slotted_construction_by_hand(name):
+    """At the extremes the slotted link O1B is tangent to the crank circle at the block A:
+    OA is perpendicular to O1A (so A . O1 = r^2), and O1, A, B lie on one line; the crank
+    angles there are the extreme positions found by the analysis; theta = 2 asin(r/f)."""
+    r = _run(name)
+    s = r["synthesis"]
+    con, rr, f, L = s["construction"], s["lengths"]["crank"], s["lengths"]["frame"], s["lengths"]["rocker"]
+    O1 = np.array(con["O1"])
+    assert np.linalg.norm(O1) == pytest.approx(f, rel=1e-12)
+    assert 2 * math.degrees(math.asin(rr / f)) == pytest.approx(s["theta"], abs=1e-9)
+    ext = sorted(s["extreme"])
+    pts = sorted([np.array(con["A1"]), np.array(con["A2"])], key=lambda p: math.degrees(math.atan2(p[1], p[0])) % 360)
+    for A, B, e in zip(pts, sorted([np.array(con["B1"]), np.array(con["B2"])],
+                                   key=lambda p: math.degrees(math.atan2(p[1] - O1[1], p[0] - O1[0])) % 360), ext):
+        assert np.linalg.norm(A) == pytest.approx(rr, rel=1e-12)
+        assert float(A @ O1) == pytest.approx(rr * rr, rel=1e-9)                 # tangency
+        assert A == pytest.approx([rr * math.cos(math.radians(e)), rr * math.sin(math.radians(e))], abs=1e-12)
+    for A, B in ((con["A1"], con["B1"]), (con["A2"], con["B2"])):
+        u, v = np.array(A) - O1, np.array(B) - O1
+        assert abs(u[0] * v[1] - u[1] * v[0]) == pytest.approx(0.0, abs=1e-12)  # O1, A, B collinear
+        assert np.linalg.norm(v) == pytest.approx(L, rel=1e-12)
+    if name == "synthesis_shaper":
+        # the ram's extremes C1, C2 on the guide, H apart, on the link's line
+        C1, C2 = np.array(con["C1"]), np.array(con["C2"])
+        assert np.linalg.norm(C2 - C1) == pytest.approx(s["H"], rel=1e-12)
+        assert C1[1] == C2[1] == pytest.approx(con["guide_y"], abs=1e-15)
+        for B, C in ((con["B1"], C1), (con["B2"], C2)):
+            u, v = np.array(B) - O1, C - O1
+            assert abs(u[0] * v[1] - u[1] * v[0]) == pytest.approx(0.0, abs=1e-12)
