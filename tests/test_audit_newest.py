@@ -244,3 +244,46 @@ def test_slotted_construction_by_hand(name):
         for B, C in ((con["B1"], C1), (con["B2"], C2)):
             u, v = np.array(B) - O1, C - O1
             assert abs(u[0] * v[1] - u[1] * v[0]) == pytest.approx(0.0, abs=1e-12)
+
+
+# ------------------------------------------------------------------ slider-crank synthesis: the rest
+@pytest.mark.parametrize("name", ["synthesis_offset_slider_crank", "synthesis_slider_crank"])
+def test_slider_crank_construction_transmission_by_hand(name):
+    """O at the origin, guide y = -e: B1 (folded) at sqrt((l - r)^2 - e^2), B2 (stretched) at
+    sqrt((l + r)^2 - e^2), H = B2 - B1; the crank along OB2 and opposite to OB1 at the extremes;
+    gamma(phi) = 90 - asin(|r sin(phi) + e| / l); the circle through O, B1, B2 has
+    R = H / (2 sin theta) (none for theta = 0)."""
+    s = _run(name)["synthesis"]
+    r, l, e = s["lengths"]["crank"], s["lengths"]["rod"], s["lengths"]["offset"]
+    x1, x2 = math.sqrt((l - r) ** 2 - e * e), math.sqrt((l + r) ** 2 - e * e)
+    con = s["construction"]
+    assert con["B1"] == pytest.approx([x1, -e], abs=1e-12) and con["B2"] == pytest.approx([x2, -e], abs=1e-12)
+    assert x2 - x1 == pytest.approx(s["H"], rel=1e-9)
+    e2 = math.degrees(math.atan2(-e, x2)) % 360
+    e1 = math.degrees(math.atan2(e, -x1)) % 360
+    assert sorted(s["extreme"]) == pytest.approx(sorted([e1, e2]), abs=1e-6)
+    theta = (e2 - e1) % 360 - 180                                           # the idle less the working
+    assert abs(theta) == pytest.approx(s["theta"], abs=1e-6)
+    for phi, g in zip(s["transmission"]["phi"], s["transmission"]["gamma"]):
+        assert g == pytest.approx(90 - math.degrees(math.asin(abs(r * math.sin(math.radians(phi)) + e) / l)), abs=1e-9)
+    assert s["gamma_min"] == pytest.approx(90 - math.degrees(math.asin((r + e) / l)), abs=1e-9)
+    assert s["gamma_min_phi"] == pytest.approx(90.0, abs=1e-4)
+    if s["theta"] > 1e-9:
+        assert con["circle"]["radius"] == pytest.approx(s["H"] / (2 * math.sin(math.radians(s["theta"]))), rel=1e-9)
+    else:
+        assert con["circle"] is None
+
+
+def test_shaper_and_slotted_transmission_by_hand():
+    # shaper: the ram's block presses along the guide on the slotted link O1A produced; the
+    # transmission angle is 90 deg less the link's deviation from the normal to the guide
+    s = _run("synthesis_shaper")["synthesis"]
+    r, O1 = s["lengths"]["crank"], np.array(s["construction"]["O1"])
+    for phi, g in zip(s["transmission"]["phi"], s["transmission"]["gamma"]):
+        A = r * np.array([math.cos(math.radians(phi)), math.sin(math.radians(phi))])
+        u = A - O1
+        assert g == pytest.approx(90 - math.degrees(math.atan(abs(u[0] / u[1]))), abs=1e-9)
+    assert s["gamma_min"] == pytest.approx(90 - s["theta"] / 2, abs=1e-9)
+    # slotted lever: the block's force is normal to the slot, the slot moves normal to itself
+    s = _run("synthesis_slotted_lever")["synthesis"]
+    assert s["transmission"]["gamma"] == pytest.approx([90.0] * len(s["transmission"]["gamma"]), abs=1e-9)
