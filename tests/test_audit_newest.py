@@ -287,3 +287,17 @@ def test_shaper_and_slotted_transmission_by_hand():
     # slotted lever: the block's force is normal to the slot, the slot moves normal to itself
     s = _run("synthesis_slotted_lever")["synthesis"]
     assert s["transmission"]["gamma"] == pytest.approx([90.0] * len(s["transmission"]["gamma"]), abs=1e-9)
+
+
+def test_synthesis_examples_drive_speed_by_hand():
+    # working stroke over pi + theta of the crank: omega = v_w (pi + theta) / (stroke)
+    r = _run("synthesis_crank_rocker")
+    th, psi = math.radians(r["synthesis"]["theta"]), math.radians(40.0)
+    assert r["drive"]["omega"] == pytest.approx(1.2 * (math.pi + th) / psi, rel=1e-9)      # ccw
+    assert r["drive"]["n"] == pytest.approx(r["drive"]["omega"] * 30 / math.pi, rel=1e-12)
+    r = _run("synthesis_shaper")
+    th = math.radians(r["synthesis"]["theta"])
+    assert r["drive"]["omega"] == pytest.approx(-0.4 * (math.pi + th) / 0.4, rel=1e-9)      # cw, H = 0.4
+    # mean output speed: the slider covers 2H a turn, omega = pi v / H
+    r = _run("synthesis_offset_slider_crank")
+    assert r["drive"]["omega"] == pytest.approx(math.pi * 0.5 / 0.2, rel=1e-9)
