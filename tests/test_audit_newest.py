@@ -301,3 +301,32 @@ def test_synthesis_examples_drive_speed_by_hand():
     # mean output speed: the slider covers 2H a turn, omega = pi v / H
     r = _run("synthesis_offset_slider_crank")
     assert r["drive"]["omega"] == pytest.approx(math.pi * 0.5 / 0.2, rel=1e-9)
+
+
+def test_chosen_size_construction_by_hand():
+    """The diagram of the chosen cam (ccw, central follower): B = B0 + s up the follower's axis,
+    D = B moved by ds/dphi across it (to the left on the rise, to the right on the return);
+    the binding tangent at 30 deg to the axis touches D where |s'|/tan 30 - s is largest and
+    crosses the axis r0_min below B0 (the least cam's centre)."""
+    c = _run("cam_chosen_size")["cam"]
+    con = c["construction"]
+    mo = Motion(0.03, {"rise": 120, "far_dwell": 30, "return": 120}, {"rise": "sine", "return": "cosine"})
+    r0 = 0.04
+    assert con["O"] == [0.0, 0.0] and con["B0"] == pytest.approx([0.0, r0], abs=1e-15)
+    for which in ("rise", "return"):
+        phi = np.radians(np.asarray(con[f"phi_{which}"]))
+        s, s1, _ = mo.at(phi)
+        assert np.asarray(con[f"B_{which}"]) == pytest.approx(np.column_stack([0 * s, r0 + s]), abs=1e-12)
+        assert np.asarray(con[f"D_{which}"]) == pytest.approx(np.column_stack([-s1, r0 + s]), abs=1e-12)
+    (t,) = con["tangents"]
+    x = np.linspace(0, 1, 400001)
+    s, s1, _ = mo.phase("rise", x)
+    k = int(np.argmax(np.abs(s1) / math.tan(math.radians(30)) - s))
+    assert t["phi"] == pytest.approx(120 * x[k], abs=0.01)
+    p, dvec = np.array(t["point"]), np.array(t["direction"])
+    ps, ps1, _ = mo.at(np.radians([t["phi"]]))
+    assert p == pytest.approx([-ps1[0], r0 + ps[0]], abs=1e-12)
+    assert abs(dvec[1]) / np.linalg.norm(dvec) == pytest.approx(math.cos(math.radians(30)), rel=1e-12)
+    y_axis = p[1] - p[0] * dvec[1] / dvec[0]                    # where the tangent crosses x = 0
+    assert r0 - y_axis == pytest.approx(c["r0_min"], rel=1e-9)
+    assert r0 - y_axis == pytest.approx(float(np.max(np.abs(s1) / math.tan(math.radians(30)) - s)), rel=1e-6)
