@@ -330,3 +330,23 @@ def test_chosen_size_construction_by_hand():
     y_axis = p[1] - p[0] * dvec[1] / dvec[0]                    # where the tangent crosses x = 0
     assert r0 - y_axis == pytest.approx(c["r0_min"], rel=1e-9)
     assert r0 - y_axis == pytest.approx(float(np.max(np.abs(s1) / math.tan(math.radians(30)) - s)), rel=1e-6)
+
+
+def test_press_velocity_plan_points_by_hand():
+    """Drawing module m = 1 mm, the motor's axis at y = 0: pitch point P1 at m z1/2 = 9 mm,
+    shaft 2 at m (18 + 36)/2 = 27 mm, P2 10 mm above it, shaft 3 at 27 + m (20 + 44)/2 = 59 mm;
+    scheme A [44, 28, 100] about shaft 3: A at +22 mm, the satellite's centre C at +36 mm, the
+    fixed ring's mesh F at +50 mm. Speeds v = omega (y - y_axis) of the wheel that owns the point."""
+    d = _run("press_drive_train")["drive_train"]
+    p = d["velocity_plan"]
+    w = d["shafts"]
+    ref = {"P1": (0.009, w[0] * 0.009), "O2": (0.027, 0.0), "P2": (0.037, w[1] * 0.010),
+           "O3": (0.059, 0.0), "A3": (0.081, w[2] * 0.022), "C3": (0.095, w[3] * 0.036), "F3": (0.109, 0.0)}
+    got = {q["name"]: (q["y"], q["v"]) for q in p["points"]}
+    assert set(got) == set(ref)
+    for k, (y, v) in ref.items():
+        assert got[k] == pytest.approx((y, v), rel=1e-12, abs=1e-15)
+    # the satellite's velocities: zero at F (on the fixed ring), its centre's at C
+    sat = d["stages"][2]["omega_satellite"]
+    assert sat * (0.095 - 0.109) == pytest.approx(got["C3"][1], rel=1e-12)
+    assert p["mu_omega"] == pytest.approx(p["mu_v"] / (p["H"] * p["mu_l"]), rel=1e-12)
