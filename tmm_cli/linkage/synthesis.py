@@ -373,8 +373,10 @@ def _slotted(sec, sign: float) -> Design:
              "block": {"slider": "A", "guide": {"link": "rocker"}, **_mass(sec, "block")},
              "rocker": {"points": ["O1", "B"], "length": L, **_mass(sec, "rocker")}}
     assembly = {"A": [r, 0.0]}
-    A1 = [-r * math.cos(half), m * r * math.sin(half)]
-    A2 = [r * math.cos(half), m * r * math.sin(half)]
+    # the block at the extremes: the link O1A tangent to the crank circle, A on O1's side of O
+    # (A . O1 = r^2, so A_y = -m r sin(theta/2))
+    A1 = [-r * math.cos(half), -m * r * math.sin(half)]
+    A2 = [r * math.cos(half), -m * r * math.sin(half)]
     cons = {"O": [0.0, 0.0], "O1": [0.0, -m * f], "A1": A1, "A2": A2,
             "B1": [-L * math.sin(half), m * (L * math.cos(half) - f)],
             "B2": [L * math.sin(half), m * (L * math.cos(half) - f)]}

@@ -171,7 +171,8 @@ def construction_svg(r: dict, w_mm: float = 165.0, h_mm: float = 100.0) -> tuple
         b1 = math.atan2(*(P["B1"] - O1)[::-1])
         b2 = math.atan2(*(P["B2"] - O1)[::-1])
         arc(O1, 14.0, b1, b2, "ψ")
-        arc(O, 6.0, math.atan2(*P["A1"][::-1]) + math.pi, math.atan2(*P["A2"][::-1]) + math.pi, "θ")
+        # theta between OA2 and OA1 produced beyond O
+        arc(O, 6.0, math.atan2(*P["A2"][::-1]), math.atan2(*P["A1"][::-1]) + math.pi, "θ")
         if "guide_y" in c:
             y = c["guide_y"]
             x0, x1 = lo[0] - 0.05 * span[0], hi[0] + 0.05 * span[0]
