@@ -1,4 +1,4 @@
-"""Independent checks added by the audit of the newest features (AUDIT.md): the example tasks
+"""Independent checks added by the audit of the newest features (docs/audit-newest.md): the example tasks
 synthesis_crank_rocker, press_drive_train, cam_flat and cam_chosen_size, every number below
 recomputed here by a few lines of trigonometry or a hand calculation from the task's data
 (nothing is read back from an earlier run)."""
