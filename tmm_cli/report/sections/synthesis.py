@@ -171,7 +171,8 @@ def construction_svg(r: dict, w_mm: float = 165.0, h_mm: float = 100.0) -> tuple
         b1 = math.atan2(*(P["B1"] - O1)[::-1])
         b2 = math.atan2(*(P["B2"] - O1)[::-1])
         arc(O1, 14.0, b1, b2, "ψ")
-        # theta between OA2 and OA1 produced beyond O
+        # theta between OA2 and OA1 produced beyond O (drawn thin, dash-dotted)
+        cv.line(m(O), m(-np.asarray(P["A1"], float)), "#888", 0.2, dash="3,1,0.5,1")
         arc(O, 6.0, math.atan2(*P["A2"][::-1]), math.atan2(*P["A1"][::-1]) + math.pi, "θ")
         if "guide_y" in c:
             y = c["guide_y"]
