@@ -316,3 +316,29 @@ def test_random_slider_cranks_agree_with_the_general_solver(r, lam, off, ang, ah
         sv.FAST = True
     f = sv._solve(mech, phi, 1.0, 0.0)
     _assert_close(f, g, sv.get_solver(mech).L, tol=_conditioning_tol(mech, phi))
+
+
+def _scaled(d, k):
+    """A mechanism's data with every length times k (angles kept)."""
+    if isinstance(d, dict):
+        return {key: (v if key == "angle" else _scaled(v, k)) for key, v in d.items()}
+    if isinstance(d, list):
+        return [_scaled(v, k) for v in d]
+    if isinstance(d, (int, float)) and not isinstance(d, bool):
+        return d * k
+    return d
+
+
+@pytest.mark.parametrize("k", [1e-3, 1e3])
+@pytest.mark.parametrize("name", sorted(CASES))
+def test_every_kind_at_extreme_sizes_and_odd_angles(name, k):
+    """Linkages a thousand times smaller and larger (a watch, a crane), crank angles
+    unsorted, repeated, negative and beyond 360: the fast path answers (its tests are
+    relative to the linkage's size) and agrees with the general solver."""
+    mech = _mech(_scaled(CASES[name], k))
+    rng = np.random.default_rng(11)
+    assert _answers(mech, np.arange(0.0, 360.0, 7.0) + 0.3)
+    for phi in (rng.uniform(-720, 720, 40), np.array([5.0, 5.0, 5.0]), np.array([359.999, 0.0, 0.001]),
+                np.arange(0.0, 360.0, 0.5)[::-1]):
+        f, g = _both(mech, phi)
+        _assert_close(f, g, sv.get_solver(mech).L, tol=_conditioning_tol(mech, phi))
