@@ -63,6 +63,13 @@ def _solve2(p, q, r):
     return x, y, det
 
 
+def _coriolis(e, s1, w):
+    """2 i omega s' e: the Coriolis term of a slide s' along e on a guide turning at omega."""
+    c = np.multiply(e, np.multiply(s1, w))
+    c *= 2j
+    return c
+
+
 def _regular(det, scale, N) -> bool:
     """|det| >= REGULAR * scale at every position (a NaN fails)."""
     return np.count_nonzero(np.abs(det) >= REGULAR * scale) == N
@@ -282,7 +289,7 @@ class _RRP(_Step):
         ey = self.ey
         G = ey.g
         P1, P1d, P1dd = S.pt(self.K, self.uK)
-        EY, (C0, C0d, C0dd) = _guide(ey, S, self.uYC)
+        EY, (C0, _, _) = _guide(ey, S, self.uYC)
         w = np.subtract(C0, P1)
         if np.ndim(w) == 0:
             return False
@@ -317,8 +324,7 @@ class _RRP(_Step):
         r = np.subtract(AK, P1dd)
         r += np.multiply(a, wX2)
         if K.rot:
-            cor = np.multiply(s1E, 2j)
-            cor *= K.w
+            cor = _coriolis(EY, s1, K.w)
             r += cor
         eX, s2, _ = _solve2(p, q, r)
         # C' and C'' as Y's point: the guide's point there, the slide along it, Coriolis
@@ -400,9 +406,7 @@ class _RPR(_Step):
         w2 = w * w
         r = np.subtract(Spdd, Gdd)
         r += np.multiply(D, w2)
-        cor = np.multiply(Es, np.multiply(w, t1))
-        cor *= 2j
-        r -= cor
+        r -= _coriolis(Es, t1, w)
         e, _, _ = _solve2(p, Es, r)
         bs = _Body(Sp, Spd, Spdd, self.us, Es, th_s, w, e, True)
         bg = _Body(G, Gd, Gdd, self.ug, np.multiply(Es, self.ema), th_g, w, e, True)
@@ -422,8 +426,8 @@ class _PRP(_Step):
         N = S.N
         plan = self.plan
         eA, eB = plan.e1, plan.e2
-        EA, (CA, CAd, CAdd) = _guide(eA, S, self.uAC)
-        EB, (CB, CBd, CBdd) = _guide(eB, S, self.uBC)
+        EA, (CA, _, _) = _guide(eA, S, self.uAC)           # (the guides' points' motion: vel_at, acc_at)
+        EB, (CB, _, _) = _guide(eB, S, self.uBC)
         den = np.multiply(np.conjugate(EA), EB).imag
         if np.ndim(den) == 0:
             den = np.full(N, den)
@@ -441,14 +445,11 @@ class _PRP(_Step):
         sA1, sB1, _ = _solve2(EA, qB, np.subtract(VB, VA))
         AA, AB = S.acc_at(eA.g, C), S.acc_at(eB.g, C)
         r = np.subtract(AB, AA)
-        corA = corB = 0.0
+        corA = 0.0
         if KB.rot:
-            corB = np.multiply(EB, np.multiply(sB1, KB.w))
-            corB *= 2j
-            r += corB
+            r += _coriolis(EB, sB1, KB.w)
         if KA.rot:
-            corA = np.multiply(EA, np.multiply(sA1, KA.w))
-            corA *= 2j
+            corA = _coriolis(EA, sA1, KA.w)
             r -= corA
         sA2, _, _ = _solve2(EA, qB, r)
         C1 = np.add(VA, np.multiply(EA, sA1))

@@ -34,7 +34,7 @@ from ..structure import Group, analyze
 from . import newton as nw
 from .dyads import DyadPlan, dyad_derivatives
 from .result import KinematicsResult
-from .state import WORK_ROWS_FROM, ZERO, PCon, RCon, State, const, zero_pairs
+from .state import WORK_ROWS_FROM, PCon, RCon, State, const, zero_pairs
 
 MARCH_STEP = 1.0          # deg, the Newton groups' path over the cycle
 CONT_DELTA = 1e-6         # deg, singular positions: mean of +-CONT_DELTA
@@ -549,16 +549,30 @@ def _unwrap(p: np.ndarray, inplace: bool = False) -> np.ndarray:
 _PI = const(math.pi)
 
 
-def _unwrap_rows(TH: np.ndarray) -> None:
-    """_unwrap of every row of TH (B, N >= 2) in place: the same operations, a row at a
-    time only where one jumps."""
-    rest = TH[:, 1:]
-    dd = np.subtract(rest, TH[:, :-1])
-    if not np.count_nonzero(np.greater_equal(np.abs(dd, dd), _PI)):   # no jump in any row: no correction
-        np.add(rest, ZERO, rest)
-        return
-    for row in TH:
-        _unwrap(row, inplace=True)
+def _unwrapped(ths: list, consts: list, N: int, order: np.ndarray | None, seen: set) -> list:
+    """The links' angles (as their poses gave them, in link order) unwrapped along increasing
+    crank angle (``order``: argsort, None if sorted). Few positions in order: as the rows of
+    one block, their differences taken along the block in one call (those across two rows
+    not counted), a row unwrapped only if it jumps. Else each in place where it is the
+    pose's own array; ``consts``: a link's one angle (a slider on a fixed guide), which
+    does not jump, or None."""
+    if order is None and 2 <= N < WORK_ROWS_FROM:
+        TH = np.array(ths, float)
+        flat = TH.reshape(-1)
+        dd = np.subtract(flat[1:], flat[:-1])
+        dd[N - 1::N] = 0.0
+        if np.count_nonzero(np.greater_equal(np.abs(dd, dd), _PI)):
+            for row in TH:
+                _unwrap(row, inplace=True)
+        return list(TH)
+    out = []
+    for t, v in zip(ths, consts):
+        own = _fresh(t, N, seen)            # the pose's own array: unwrapped in place
+        if own and v is not None and math.isfinite(v) and math.copysign(1.0, v) > 0:
+            out.append(t)                   # one finite value, not -0.0: already unwrapped
+        else:
+            out.append(_unwrap_sorted(t if own else np.asarray(t, float), order, inplace=own))
+    return out
 
 
 def _unwrap_sorted(th: np.ndarray, order: np.ndarray | None, inplace: bool = False) -> np.ndarray:
@@ -724,21 +738,10 @@ def _solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
     st = solver.run(np.radians(phi_deg))
     st.margins = st.sing = None     # (held memory only)
     seen: set = set()
-    if order is None and 2 <= N < WORK_ROWS_FROM:
-        # few positions in order: the links' angles unwrapped at once, as the rows of one block
-        TH = np.array([st.th[b] for b in range(1, mech.n + 1)], float)
-        _unwrap_rows(TH)
-        for b in range(1, mech.n + 1):
-            st.unwrap(b, TH[b - 1])
-    else:
-        for b in range(1, mech.n + 1):
-            th = st.th[b]
-            own = _fresh(th, N, seen)          # the pose's own array: unwrapped in place
-            v = st.const_th.get(b)
-            if own and v is not None and math.isfinite(v) and math.copysign(1.0, v) > 0:
-                # one finite value, not -0.0: no jump, th + 0.0 is th -- already unwrapped
-                continue
-            st.unwrap(b, _unwrap_sorted(th if own else np.asarray(th, float), order, inplace=own))
+    bs = range(1, mech.n + 1)
+    for b, t in zip(bs, _unwrapped([st.th[b] for b in bs], [st.const_th.get(b) for b in bs], N, order, seen)):
+        if t is not st.th[b]:
+            st.unwrap(b, t)
     pos, d1, d2 = {}, {}, {}
     _ground_points(ground, N, pos, d1, d2)
     if N < WORK_ROWS_FROM:
@@ -778,29 +781,9 @@ def _fast_result(mech: Mechanism, solver: Solver, S, phi_deg: np.ndarray, order,
     N = len(phi_deg)
     bodies = S.bodies
     seen: set = set()
-    th = {}
-    if order is None and 2 <= N < WORK_ROWS_FROM:
-        # the rows of one block, their differences taken along the block (one contiguous
-        # call; those across two rows not counted): a row is unwrapped only if it jumps
-        TH = np.array([bodies[b].th for b in range(1, mech.n + 1)], float)
-        flat = TH.reshape(-1)
-        dd = np.subtract(flat[1:], flat[:-1])
-        dd[N - 1::N] = 0.0
-        if np.count_nonzero(np.greater_equal(np.abs(dd, dd), _PI)):
-            for row in TH:
-                _unwrap(row, inplace=True)
-        for b in range(1, mech.n + 1):
-            th[b] = TH[b - 1]
-    else:
-        for b in range(1, mech.n + 1):
-            t = bodies[b].th
-            own = _fresh(t, N, seen)
-            if own and bodies[b].const:
-                v = float(t[0])
-                if math.isfinite(v) and math.copysign(1.0, v) > 0:      # one value: no jump
-                    th[b] = t
-                    continue
-            th[b] = _unwrap_sorted(t if own else np.asarray(t, float), order, inplace=own)
+    bs = range(1, mech.n + 1)
+    th = dict(zip(bs, _unwrapped([bodies[b].th for b in bs],
+                                 [float(bodies[b].th[0]) if bodies[b].const else None for b in bs], N, order, seen)))
     pos, d1, d2 = {}, {}, {}
     _ground_points(ground, N, pos, d1, d2)
     for p, b, u in _moving_complex(solver, moving):
