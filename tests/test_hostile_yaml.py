@@ -80,10 +80,10 @@ def test_node_bound_counts_alias_contents():
 
 def test_many_plain_values_refused_quickly(tmp_path):
     f = _write(tmp_path, "schema: tmm/1\ntitle: [" + ", ".join(["1"] * 60000) + "]\n")
-    t0 = time.perf_counter()
+    t0 = time.process_time()      # CPU time of this process: the work done, not the machine's load
     code, out = _validate(f)
     assert code == 2 and f"more than {MAX_NODES} values" in out and "field 'title[" in out
-    assert time.perf_counter() - t0 < 10
+    assert time.process_time() - t0 < 10
 
 
 @pytest.mark.parametrize("text, line, field", [

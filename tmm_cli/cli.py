@@ -336,8 +336,24 @@ def main(exit_now: bool = False) -> None:
         sys.exit(EXIT_STAGE)
 
 
+# BLAS libraries start a pool of threads on their first call (OpenBLAS: one per core), which
+# costs a short run more CPU than its small matrices gain; tmm's arrays are vectorised over
+# positions, not large linear algebra.  One thread, unless the user's environment says otherwise.
+BLAS_THREADS = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
+
+
+def single_blas_thread(environ=None) -> None:
+    """Set each of :data:`BLAS_THREADS` to 1 where unset (before numpy is imported)."""
+    import os
+
+    env = os.environ if environ is None else environ
+    for name in BLAS_THREADS:
+        env.setdefault(name, "1")
+
+
 def entry() -> None:
     """The ``tmm`` program (pyproject's console script; ``python -m tmm_cli``)."""
+    single_blas_thread()
     main(exit_now=True)
 
 
