@@ -127,7 +127,8 @@ def test_no_label_collides_or_leaves_its_figure(name, tmp_path, monkeypatch):
     res = tmm_cli.run(task)
     figs = _record(monkeypatch)
     render(res, task, tmp_path, {"html"}, "ru" if name.startswith(("forging", "shaper")) else "en")
-    assert figs
+    # a differential alone draws only a chart (svgchart places its own labels): no drawing to record
+    assert figs or set(res) & {"structure", "cam", "gears", "planetary", "drive_train", "dof2"} == set()
     assert problems(figs) == []
     # every scale the report states is a standard one
     html = (tmp_path / "report.html").read_text(encoding="utf-8")

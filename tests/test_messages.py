@@ -377,6 +377,24 @@ ENGLISH = [
     ('input.train_z_above_max', {'name': 'z_min_internal', 'value': 85, 'z_max': 20},
      'z_min_internal = 85 exceeds z_max = 20'),
     ('input.train_z_300', {}, 'tooth numbers above 300 are not supported'),
+    ('input.diff_member', {'key': '4', 'scheme': 'A', 'members': ['1', '3', 'H']},
+     "'4' is not a member of scheme A: the members are 1, 3, H"),
+    ('input.diff_two_speeds', {'got': 1, 'members': ['1', '3', 'H']},
+     "give the speeds of exactly two members of 1, 3, H (got 1)"),
+    ('input.diff_one_torque', {'got': 2}, 'give the torque of one member at most (got 2)'),
+    ('differential.not_coaxial', {'a1': 45.0, 'a2': 46.0},
+     'the wheels are not coaxial: the meshes\' centre distances are 45 and 46 (in modules x 2, i.e. tooth sums)'),
+    ('differential.adjacency', {'k': 9, 'margin': -3.25},
+     '9 satellites do not fit side by side (margin -3.25 modules): use fewer satellites'),
+    ('differential.rigid', {'last': '4'}, 'with u = 1 the wheels 1 and 4 always turn together: their speeds do '
+     "not give the carrier's; give the speed of H and one wheel"),
+    ('differential.tooth_limits', {'violations': ['z3 = 72 < 85 (internal wheel)']},
+     'differential: the given teeth break the tooth limits of zero-shift wheels (z3 = 72 < 85 (internal wheel)); '
+     'computed as given'),
+    ('differential.assembly', {'k': 3, 'fits': [1, 2, 4]}, 'differential: 3 equally spaced satellites cannot be '
+     'assembled with these teeth (computed as given); numbers of satellites that assemble and fit: 1, 2, 4'),
+    ('differential.fail.self_locking', {'u': 1.05, 'eta': 0.9}, 'the train self-locks for this torque: with '
+     'u = 1.05 and efficiency 0.9 no direction of the power flow balances the torques'),
     ('input.synth_needs', {'type': 'slider_crank', 'key': 'H'}, 'type slider_crank needs `H`'),
     ('input.synth_not_taken', {'type': 'crank_rocker', 'key': 'H'}, 'type crank_rocker does not take `H`'),
     ('input.synth_not_taken_offset', {'type': 'slider_crank', 'key': 'e'},

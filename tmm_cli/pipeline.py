@@ -77,6 +77,8 @@ def run(task: Task, *, progress: Callable[[str], None] | None = None,
             part(simple("planetary", "gears", "synthesize_planetary", task.planetary))
         if task.drive_train is not None:
             part(lambda: _drive_train(task, results, warnings, say, built.get("drive", task.drive)))
+        if task.differential is not None:
+            part(simple("differential", "differential", "analyze", task.differential))
         if task.dof2 is not None:
             part(simple("dof2", "dof2", "analyze", task.dof2, keep_warnings=True))
     except TaskError as err:

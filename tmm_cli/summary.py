@@ -62,6 +62,12 @@ def _summary_rows(results: dict) -> list[tuple[str, str]]:
         add("drive train ratio", _f(dt.get("ratio")))
         if dt.get("motor_power_computed"):
             add("motor power, W", _f(dt.get("motor_power")))
+    df = results.get("differential")
+    if df:
+        add("differential u (carrier held)", _f(df.get("u")))
+        add("differential speeds, rpm", ", ".join(f"{k}: {_f(v)}" for k, v in (df.get("speeds_rpm") or {}).items()))
+        if df.get("torques"):
+            add("differential torques, N*m", ", ".join(f"{k}: {_f(v)}" for k, v in df["torques"].items()))
     return rows
 
 

@@ -514,6 +514,7 @@ class StudentSpec(BaseModel):
     group: str | None = None
 
 
+from .differential.spec import DifferentialSection  # noqa: E402
 from .dof2.spec import Dof2Section  # noqa: E402
 
 
@@ -533,6 +534,8 @@ class Task(_Model):
     gears: GearsSection | None = None
     planetary: PlanetarySection | None = None
     drive_train: DriveTrainSection | None = None
+    differential: DifferentialSection | None = Field(None, description="a differential: a planetary scheme A-D "
+                                                                       "with no member fixed (runs on its own)")
     dof2: Dof2Section | None = Field(None, description="a machine with two degrees of freedom: rotor + hinged "
                                                        "striker (docs/methods.md §7; runs on its own)")
     report: ReportSection | None = None
@@ -815,6 +818,8 @@ _DOCS: dict[type, dict[str, str]] = {
         "gears": "external spur involute pair with profile shift (runs on its own)",
         "planetary": "planetary gear synthesis (runs on its own)",
         "drive_train": "compound gear drive from the motor: ordinary pairs and planetary stages, given or chosen",
+        "differential": "a differential (planetary scheme A-D, no member fixed): two members' speeds give the "
+                        "third, one member's torque gives the others",
         "report": "what the report shows: {detail_position: N} (the position worked step by step)",
         "answers": "a student's numbers: path into results.json -> value (tmm check / tmm batch)",
         "tolerance": "tolerances per path or prefix: {default: 0.05, <path or prefix>: 0.02 or {rel: R, abs: A} or "

@@ -21,6 +21,7 @@ STAGES = {
     "gears": ("gears", "gears.title", "gears"),
     "planetary": ("planetary", "plan.title", "planetary"),
     "dof2": ("dof2", "dof2.title", "dof2"),
+    "differential": ("differential", "diff.title", "differential"),
 }
 # a linkage that fails stops the sections after it in its chain
 CHAIN = ("structure", "kinematics", "kinetostatics", "dynamics")

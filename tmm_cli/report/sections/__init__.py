@@ -11,7 +11,7 @@ from types import ModuleType
 from .. import i18n
 
 ORDER = ("task", "synthesis", "structure", "kinematics", "kinetostatics", "worked", "dynamics", "cam", "gears",
-         "planetary", "drive_train", "dof2", "study")
+         "planetary", "drive_train", "differential", "dof2", "study")
 
 
 def load(name: str) -> ModuleType | None:

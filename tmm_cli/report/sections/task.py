@@ -379,9 +379,24 @@ def _unit(key: str, lang: str, context: dict | None = None) -> str:
         return ""
     if last == "stroke" and isinstance((context or {}).get("stroke"), (int, float)):
         return units["angle"] if (context or {}).get("follower") == "rocker" else units["length"]
-    if last == "m" and not key.startswith(("gears", "planetary")):
+    if last == "m" and not key.startswith(("gears", "planetary", "differential")):
         return ""
     return units.get(last, "")
+
+
+def _param(plain: str, lang: str) -> str | None:
+    """A parameter's name from a section's own word table (``task.param.<path>``), if it has one."""
+    from ..i18n import translate
+    from . import available
+    available()                     # every section's word table registered
+    key = f"task.param.{plain}"
+    text = translate(key, lang)
+    return None if text == key else text
+
+
+def param_name(plain: str, lang: str) -> str | None:
+    """The name the task data table gives the field ``plain`` (``cam.stroke``), or None."""
+    return PARAMS.get(lang, {}).get(plain) or _param(plain, lang)
 
 
 def _rows(key: str, sec: Any, lang: str) -> list[tuple[str, str]]:
@@ -401,7 +416,7 @@ def _rows(key: str, sec: Any, lang: str) -> list[tuple[str, str]]:
             if isinstance(node, dict):
                 ctx.update(node)
         plain = re.sub(r"\[\d+\]", "", f"{key}.{k}")
-        label = PARAMS.get(lang, {}).get(plain) or k.replace(".", " · ")
+        label = param_name(plain, lang) or k.replace(".", " · ")
         idx = re.findall(r"(\w+)\[(\d+)\]", k)
         if idx and plain in PARAMS.get(lang, {}):
             item = ITEMS.get(lang, {}).get(idx[-1][0], idx[-1][0])
