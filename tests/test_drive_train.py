@@ -214,12 +214,31 @@ def test_coaxiality_violation_exit_2(tmp_path):
     assert ":5" in res.output                                     # the line of the stage
 
 
-def test_not_assemblable_exit_2(tmp_path):
+def test_not_assemblable_given_teeth_computed_with_a_warning(tmp_path):
+    """Given teeth are the user's: 3 satellites do not assemble with z1 + z3 = 104 (not a multiple
+    of 3), so the stage is computed with a warning naming the numbers that do: 104/k whole for
+    k = 1, 2, 4, 8; adjacency 2 a_w sin(pi/k) > z2 + 2 = 36 with a_w = 26 keeps 1, 2 and 4
+    (52 sin(pi/4) = 36.77), not 8 (52 sin(pi/8) = 19.9)."""
     f = _write(tmp_path, "schema: tmm/1\ndrive_train:\n  satellites: 3\n  stages:\n"
                          "    - {type: planetary, scheme: A, z: [18, 34, 86]}\n")
     res = runner.invoke(app, ["run", str(f), "--out", str(tmp_path / "o"), "--format", "json"])
-    assert res.exit_code == 2
-    assert "drive_train.stages[0].z" in res.output and "assembly" in res.output
+    assert res.exit_code == 0, res.output
+    d = json.loads((tmp_path / "o" / "results.json").read_text())
+    assert d["drive_train"]["ratio"] == pytest.approx(1 + 86 / 18, rel=1e-15)
+    assert d["drive_train"]["stages"][0]["checks"]["assembly"] is False
+    (m,) = [m for m in d["messages"] if m["code"] == "drive_train.given_assembly"]
+    assert m["params"]["fits"] == [1, 2, 4] and m["params"]["k"] == 3
+
+
+def test_book_train_ring_72_sun_32_one_planet():
+    """A textbook's train (sun 32, planet 20, ring 72, one planet) breaks the internal-wheel limit
+    z >= 85 of zero-shift wheels: computed as given (i_1H = 1 + 72/32), the limit named."""
+    res = run(load_task({"schema": "tmm/1", "drive_train": {"satellites": 1, "stages": [
+        {"type": "planetary", "scheme": "A", "z": [32, 20, 72]}]}}))
+    assert res["drive_train"]["ratio"] == pytest.approx(3.25, rel=1e-15)
+    (m,) = [m for m in res["messages"] if m["code"] == "drive_train.given_tooth_limits"]
+    assert m["params"]["violations"] == ["z3 = 72 < 85 (internal wheel)"]
+    assert not [m for m in res["messages"] if m["code"] == "drive_train.given_assembly"]
 
 
 def test_unmet_ratio_exit_3(tmp_path):

@@ -382,6 +382,13 @@ ENGLISH = [
     ('input.diff_two_speeds', {'got': 1, 'members': ['1', '3', 'H']},
      "give the speeds of exactly two members of 1, 3, H (got 1)"),
     ('input.diff_one_torque', {'got': 2}, 'give the torque of one member at most (got 2)'),
+    ('drive_train.given_tooth_limits', {'stage': 0, 'scheme': 'A', 'z': [32, 20, 72],
+                                        'violations': ['z3 = 72 < 85 (internal wheel)']},
+     'drive_train: stage 0 (planetary A, z = 32, 20, 72): the given teeth break the tooth limits of zero-shift '
+     'wheels (z3 = 72 < 85 (internal wheel)); computed as given'),
+    ('drive_train.given_assembly', {'stage': 0, 'scheme': 'A', 'z': [18, 34, 86], 'k': 3, 'fits': [1, 2, 4]},
+     'drive_train: stage 0 (planetary A, z = 18, 34, 86): 3 equally spaced satellites cannot be assembled '
+     '(computed as given); numbers of satellites that assemble and fit: 1, 2, 4'),
     ('differential.not_coaxial', {'a1': 45.0, 'a2': 46.0},
      'the wheels are not coaxial: the meshes\' centre distances are 45 and 46 (in modules x 2, i.e. tooth sums)'),
     ('differential.adjacency', {'k': 9, 'margin': -3.25},

@@ -198,9 +198,7 @@ def analyze(spec) -> DifferentialResult:
         warnings.append(Message("differential.tooth_limits", violations=bad))
     p = pl.assembly_p(scheme, teeth, k)
     if p is None:
-        ok = [n for n in range(1, 13) if pl.assembly_p(scheme, teeth, n) is not None
-              and pl.adjacency_margin(scheme, teeth, n) > 0]
-        warnings.append(Message("differential.assembly", k=k, fits=ok))
+        warnings.append(Message("differential.assembly", k=k, fits=pl.assembling_counts(scheme, teeth)))
     u_exact = willis_ratio(scheme, teeth)
     u = float(u_exact)
     if u_exact == 1 and set(spec.speeds) == {"1", last}:

@@ -172,6 +172,11 @@ def adjacency_margin(scheme: str, z: dict, k: int) -> float:
     return 2 * abs(aw) * math.sin(math.pi / k) - (max(satellites_of(scheme, z)) + 2 * HA)
 
 
+def assembling_counts(scheme: str, z: dict, most: int = 12) -> list[int]:
+    """The numbers of equally spaced satellites (1..most) that assemble and fit side by side."""
+    return [k for k in range(1, most + 1) if assembly_p(scheme, z, k) is not None and adjacency_margin(scheme, z, k) > 0]
+
+
 def size_key(scheme: str, z: dict) -> float:
     if scheme in ("A",):
         return z["z3"]

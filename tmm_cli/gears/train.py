@@ -166,8 +166,18 @@ def analyze(spec, drive=None) -> TrainResult:
             if st.internal and st.z[1] <= st.z[0]:
                 raise _err(path, f"stage {i}: an internal pair needs the ring z2 > z1 (got {st.z})")
         else:
+            # given teeth are the user's: a tooth limit or the assembly of k satellites that fails is
+            # computed with a warning; a train that cannot be built (coaxiality, adjacency) is an error
             for name, (ok, why) in planetary_checks(st.kind, st.z, k, lim, zmax).items():
-                if not ok:
+                if ok:
+                    continue
+                if name == "undercut":
+                    warnings.append(Message("drive_train.given_tooth_limits", stage=i, scheme=st.kind,
+                                            z=list(st.z), violations=why.split(": ", 1)[1].split("; ")))
+                elif name == "assembly":
+                    warnings.append(Message("drive_train.given_assembly", stage=i, scheme=st.kind, z=list(st.z),
+                                            k=k, fits=pl.assembling_counts(st.kind, _zdict(st.kind, st.z))))
+                else:
                     raise _err(path, f"stage {i} (planetary {st.kind}, z = {list(st.z)}): "
                                      f"{CONDITION[name]} condition violated: {why}")
         given_u[i] = stage_ratio(st.kind, st.z, st.internal)
