@@ -55,7 +55,9 @@ def reference_entry(kin, i: int, index: int) -> dict:
         a1, a2 = kin.a1[lk][i], kin.a2[lk][i]
         links[lk] = {"angle": _fin(angle_deg(kin.angle[lk][i])), "omega": _fin(a1 * w),
                      "epsilon": _fin(a2 * w ** 2 + a1 * e), "i": _fin(a1), "iq2": _fin(a2)}
-    ent = {"index": index, "phi": _fin(angle_deg(math.radians(kin.phi[i]))), "points": points, "links": links}
+    near = kin.near is not None and bool(kin.near[i])
+    ent = {"index": index, "phi": _fin(angle_deg(math.radians(kin.phi[i]))), "points": points, "links": links,
+           "instant_centres": _centres(kin, i, w, near)}
     if kin.singular is not None and kin.singular[i]:
         ent["singular"] = True
     if kin.near is not None and kin.near[i]:
@@ -68,6 +70,36 @@ def reference_entry(kin, i: int, index: int) -> dict:
                           "omega": ("omega", "i"), "epsilon": ("epsilon", "iq2")}[what]:
                     target[k] = None
     return ent
+
+
+def _centres(kin, i: int, w: float, near: bool) -> dict:
+    """Every pair's instant centre at row i, one pair at a time: the pin of a revolute, null for a
+    slide; else where the relative velocity field c + (w_a - w_b) k x P is zero; null where
+    w_a = w_b (to 1e-12 of the largest |w| at the row) or near a change point."""
+    n = len(kin.links)
+    vel = [(0.0, 0.0, 0.0)]             # per link: (c_x, c_y, w) with c = v_S - w k x S
+    for k, lk in enumerate(kin.links, start=1):
+        (sx, sy), (qx, qy) = kin.pos[f"S{k}"][i], kin.d1[f"S{k}"][i]
+        wk = float(kin.a1[lk][i]) * w
+        vel.append((qx * w + wk * sy, qy * w - wk * sx, wk))
+    with np.errstate(all="ignore"):
+        scale = max(float(np.max(np.abs([v[2] for v in vel]))), 1e-300)
+    out = {}
+    for a in range(n + 1):
+        for b in range(a + 1, n + 1):
+            key = f"{a}-{b}"
+            if key in kin.pins:
+                pin = kin.pins[key]
+                out[key] = None if pin is None else [_fin(kin.pos[pin][i][0]), _fin(kin.pos[pin][i][1])]
+                continue
+            cx, cy = vel[a][0] - vel[b][0], vel[a][1] - vel[b][1]
+            dw = vel[a][2] - vel[b][2]
+            if near or abs(dw) <= 1e-12 * scale:
+                out[key] = None
+            else:
+                with np.errstate(all="ignore"):
+                    out[key] = [_fin(np.float64(-cy) / dw), _fin(np.float64(cx) / dw)]
+    return out
 
 
 # ----------------------------------------------------------------- spoilt results

@@ -382,6 +382,14 @@ ENGLISH = [
     ('input.diff_two_speeds', {'got': 1, 'members': ['1', '3', 'H']},
      "give the speeds of exactly two members of 1, 3, H (got 1)"),
     ('input.diff_one_torque', {'got': 2}, 'give the torque of one member at most (got 2)'),
+    ('input.balancing_radius', {'method': 'full', 'key': 'rocker'},
+     'counterweights by the full method need `radius: {rocker: ...}` (m)'),
+    ('input.balancing_radius_positive', {'key': 'crank'}, "the counterweight's radius `crank` must be above zero"),
+    ('input.rotor_planes_equal', {}, 'the two correction planes must be at different z'),
+    ('input.balancing_needs_mechanism', {}, 'counterweights balance a linkage: the task needs a `mechanism`'),
+    ('balancing.method_needs', {'method': 'full', 'kind': 'four-bar linkage'},
+     'counterweights by the full method need a four-bar linkage: the crank, the coupler and the rocker (full) '
+     'or the crank, the connecting rod and a slider on a fixed guide (crank)'),
     ('drive_train.given_tooth_limits', {'stage': 0, 'scheme': 'A', 'z': [32, 20, 72],
                                         'violations': ['z3 = 72 < 85 (internal wheel)']},
      'drive_train: stage 0 (planetary A, z = 32, 20, 72): the given teeth break the tooth limits of zero-shift '

@@ -77,6 +77,8 @@ def run(task: Task, *, progress: Callable[[str], None] | None = None,
             part(simple("planetary", "gears", "synthesize_planetary", task.planetary))
         if task.drive_train is not None:
             part(lambda: _drive_train(task, results, warnings, say, built.get("drive", task.drive)))
+        if task.balancing is not None and task.mechanism is None:
+            part(lambda: _rotor_only(task, results, say))
         if task.differential is not None:
             part(simple("differential", "differential", "analyze", task.differential))
         if task.dof2 is not None:
@@ -204,6 +206,14 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explo
         from .linkage.kinematics.explore import explore_grid
         results["kinematics_explore"] = _stage("kinematics")(explore_grid)(linkage)
 
+    if task.balancing is not None:
+        say("balancing")
+        import numpy as np
+
+        from . import balancing
+        grid = kinematics.solve(mech, np.arange(361) * 1.0, drive.omega)   # the hodographs over the turn
+        put(results, warnings, "balancing", _stage("balancing")(balancing.analyze)(mech, kin, task.balancing, grid))
+
     dyn = None
     if task.flywheel is not None:
         say("dynamics")
@@ -228,6 +238,17 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explo
                 linkage, task.kinetostatics, phi_g, motion=dyn, singular=results.get("singular"))
             kg = res_g.to_dict(detail=True)
             results["kinetostatics_explore"] = {"entries": kg["kinetostatics"], **kg["kinetostatics_info"]}
+
+
+def _rotor_only(task: Task, results: dict, say) -> None:
+    """`balancing` without a mechanism: the rotor alone (counterweights need a linkage: exit 2)."""
+    from .messages import Message
+    if task.balancing.counterweights is not None:
+        raise task.error(("balancing", "counterweights"), Message("input.balancing_needs_mechanism"))
+    if task.balancing.rotor is not None:
+        say("balancing")
+        from .balancing.rotor import balance_rotor
+        results["balancing"] = {"rotor": _stage("balancing")(balance_rotor)(task.balancing.rotor)}
 
 
 def default_detail(positions: dict) -> int | None:

@@ -62,6 +62,13 @@ def _summary_rows(results: dict) -> list[tuple[str, str]]:
         add("drive train ratio", _f(dt.get("ratio")))
         if dt.get("motor_power_computed"):
             add("motor power, W", _f(dt.get("motor_power")))
+    bal = results.get("balancing")
+    if bal and bal.get("max"):
+        add("shaking force max, N", _f(bal["max"].get("F")))
+        if "F_balanced" in bal["max"]:
+            add("with counterweights, N", _f(bal["max"]["F_balanced"]))
+    if bal and bal.get("rotor"):
+        add("rotor corrections m, kg", ", ".join(_f(c["m"]) for c in bal["rotor"]["corrections"]))
     df = results.get("differential")
     if df:
         add("differential u (carrier held)", _f(df.get("u")))

@@ -514,6 +514,7 @@ class StudentSpec(BaseModel):
     group: str | None = None
 
 
+from .balancing.spec import BalancingSection  # noqa: E402
 from .differential.spec import DifferentialSection  # noqa: E402
 from .dof2.spec import Dof2Section  # noqa: E402
 
@@ -534,6 +535,8 @@ class Task(_Model):
     gears: GearsSection | None = None
     planetary: PlanetarySection | None = None
     drive_train: DriveTrainSection | None = None
+    balancing: BalancingSection | None = Field(None, description="balancing: the linkage's shaking force and "
+                                                                 "moment, counterweights; a rotor's correction masses")
     differential: DifferentialSection | None = Field(None, description="a differential: a planetary scheme A-D "
                                                                        "with no member fixed (runs on its own)")
     dof2: Dof2Section | None = Field(None, description="a machine with two degrees of freedom: rotor + hinged "
@@ -818,6 +821,8 @@ _DOCS: dict[type, dict[str, str]] = {
         "gears": "external spur involute pair with profile shift (runs on its own)",
         "planetary": "planetary gear synthesis (runs on its own)",
         "drive_train": "compound gear drive from the motor: ordinary pairs and planetary stages, given or chosen",
+        "balancing": "balancing: the linkage's shaking force and moment (with a mechanism), its counterweights, and "
+                     "a rigid rotor's static or dynamic balancing",
         "differential": "a differential (planetary scheme A-D, no member fixed): two members' speeds give the "
                         "third, one member's torque gives the others",
         "report": "what the report shows: {detail_position: N} (the position worked step by step)",

@@ -22,6 +22,7 @@ STAGES = {
     "planetary": ("planetary", "plan.title", "planetary"),
     "dof2": ("dof2", "dof2.title", "dof2"),
     "differential": ("differential", "diff.title", "differential"),
+    "balancing": ("balancing", "bal.title", "balancing"),
 }
 # a linkage that fails stops the sections after it in its chain
 CHAIN = ("structure", "kinematics", "kinetostatics", "dynamics")

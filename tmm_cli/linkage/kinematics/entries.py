@@ -50,7 +50,8 @@ def _table(kin, sl: slice, index: list[int]) -> tuple:
     the rows (in ``sl``) flagged singular, those flagged near a change point)."""
     idx = index[sl]
     k = len(idx)
-    F = np.empty((1 + len(PKEYS) * len(kin.points) + len(LKEYS) * len(kin.links), k))
+    F = np.empty((1 + len(PKEYS) * len(kin.points) + len(LKEYS) * len(kin.links) + 2 * len(pairs(len(kin.links))),
+                  k))
     F[0] = angle_deg(np.radians(kin.phi[sl]))
     w, e = kin._w(), kin._e()
     w = w if w.ndim == 0 or w.shape[0] == 1 else w[sl]
@@ -76,8 +77,16 @@ def _table(kin, sl: slice, index: list[int]) -> tuple:
         for c in (angle_deg(kin.angle[lk][sl]), a1 * w, a2 * w ** 2 + a1 * e, a1, a2):
             F[r] = c
             r += 1
+    row["IC"] = r
+    inf = []
+    for x, y, at_inf, pin in instant_centres(kin, sl, wc):
+        F[r], F[r + 1] = x, y
+        inf.append((at_inf, pin))
+        r += 2
     clean(F, 0.0)
     near = np.zeros(k, bool) if kin.near is None else np.asarray(kin.near[sl], bool)
+    for j, (at_inf, pin) in enumerate(inf):   # at infinity (a relative translation), or from velocities
+        F[row["IC"] + 2 * j:row["IC"] + 2 * j + 2, at_inf | (near & (not pin))] = np.nan   # near a change point
     if near.any():                           # no finite limit there: None
         for key, mask in kin.undefined.items():
             what, name = key.split(":", 1)
@@ -91,6 +100,50 @@ def _table(kin, sl: slice, index: list[int]) -> tuple:
     return F, nan_rows(F), idx, sing, np.flatnonzero(near).tolist()
 
 
+def pairs(n: int) -> list[tuple[int, int]]:
+    """Every pair (i, j), i < j, of the frame 0 and the links 1..n."""
+    return [(i, j) for i in range(n + 1) for j in range(i + 1, n + 1)]
+
+
+def instant_centres(kin, sl: slice, wc) -> list[tuple[np.ndarray, np.ndarray, np.ndarray, bool]]:
+    """(x, y, at infinity, a pin) of the instant centre of every pair of links (the frame 0, the links
+    1..n in the task's order) at the rows ``sl``, from the links' velocity fields.
+
+    Link i moves as v_i(P) = v_Si + w_i k x (P - S_i) (S_i its centre of mass, a point of it);
+    the relative velocity of i and j at P is c + (w_i - w_j) k x P with
+    c = (v_Si - w_i k x S_i) - (v_Sj - w_j k x S_j), zero at P = (-c_y, c_x)/(w_i - w_j).
+    Where w_i = w_j the relative motion is a translation: the centre lies at infinity (null). Two
+    links joined directly have their pin as the centre (a slide: at infinity), also where both are
+    at rest relative to each other (a rocker at its extreme position). Kennedy's theorem (the
+    three centres of three links on one line) holds for these; tests check it."""
+    n = len(kin.links)
+    k = len(kin.phi[sl])
+    C, W = [np.zeros((k, 2))], [np.zeros(k)]
+    for i, lk in enumerate(kin.links, start=1):
+        s, q = kin.pos[f"S{i}"][sl], kin.d1[f"S{i}"][sl]
+        w = kin.a1[lk][sl] * (wc if np.ndim(wc) == 0 else wc[:, 0])
+        v = q * wc
+        C.append(v - w[:, None] * np.stack([-s[:, 1], s[:, 0]], axis=1))
+        W.append(w)
+    scale = np.maximum(np.max(np.abs(np.stack(W)), axis=0), 1e-300)      # per row: its own position only
+    out = []
+    for i, j in pairs(n):
+        key = f"{i}-{j}"
+        if key in kin.pins:                  # joined directly: the pin, or a slide (at infinity)
+            pin = kin.pins[key]
+            if pin is None:
+                out.append((np.zeros(k), np.zeros(k), np.ones(k, bool), False))
+            else:
+                x = kin.pos[pin][sl]
+                out.append((x[:, 0], x[:, 1], np.zeros(k, bool), True))
+            continue
+        c, dw = C[i] - C[j], W[i] - W[j]
+        at_inf = np.abs(dw) <= 1e-12 * scale
+        d = np.where(at_inf, 1.0, dw)
+        out.append((-c[:, 1] / d, c[:, 0] / d, at_inf, False))
+    return out
+
+
 def _assemble(lay: tuple, tab: tuple, a: int, b: int) -> list[dict]:
     """The entries of the rows a..b-1 of the table ``tab`` (taking its values in order)."""
     points, links = lay
@@ -100,7 +153,13 @@ def _assemble(lay: tuple, tab: tuple, a: int, b: int) -> list[dict]:
     phi = f()
     pts = dicts(points, [dicts(PKEYS, [f() for _ in PKEYS], n) for _ in points], n)
     lks = dicts(links, [dicts(LKEYS, [f() for _ in LKEYS], n) for _ in links], n)
-    out = dicts(("index", "phi", "points", "links"), [idx[a:b], phi, pts, lks], n)
+    names = tuple(f"{i}-{j}" for i, j in pairs(len(links)))
+    cols = []
+    for _ in names:
+        xs, ys = f(), f()
+        cols.append([None if x is None else [x, y] for x, y in zip(xs, ys)])
+    ics = dicts(names, cols, n)
+    out = dicts(("index", "phi", "points", "links", "instant_centres"), [idx[a:b], phi, pts, lks, ics], n)
     for flagged, key in ((sing, "singular"), (near, "near_singular")):
         for i in flagged[bisect_left(flagged, a):bisect_left(flagged, b)]:
             out[i - a][key] = True

@@ -37,6 +37,7 @@ class KinematicsResult:
     singular: np.ndarray | None = None                  # (N,) bool: velocity equations singular
     near: np.ndarray | None = None                      # (N,) bool: within 1 deg of a change point
     undefined: dict[str, np.ndarray] = field(default_factory=dict)  # 'v:P', 'a:P', 'omega:L', 'epsilon:L'
+    pins: dict[str, str | None] = field(default_factory=dict)  # "i-j" joined directly: the pin (None: a slide)
 
     # ---------------------------------------------------------------
     def _w(self):

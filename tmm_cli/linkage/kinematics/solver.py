@@ -816,7 +816,16 @@ def _result(solver, phi_deg, omega1, eps1, pos, d1, d2, angle, a1, a2, names, li
     return KinematicsResult(phi=phi_deg, omega1=omega1 if w.ndim == 0 else w, eps1=eps1 if e.ndim == 0 else e,
                             pos=pos, d1=d1, d2=d2, angle=angle, a1=a1, a2=a2, warnings=warnings,
                             points=[p for p in names if p in pos], links=[nm for nm, _ in links],
-                            singular=singular)
+                            singular=singular, pins=pins_of(solver.mech))
+
+
+def pins_of(mech: Mechanism) -> dict[str, str | None]:
+    """The pairs of links joined directly ("i-j", i < j, 0 the frame): a revolute's point (their
+    permanent instant centre), None for a prismatic pair (a relative translation)."""
+    out: dict[str, str | None] = {}
+    for j in mech.joints:
+        out.setdefault(f"{j.a}-{j.b}", j.point if j.kind == "R" else None)
+    return out
 
 
 def check_assembly(mech: Mechanism, n: int = 720) -> list[str]:

@@ -10,7 +10,7 @@ from types import ModuleType
 
 from .. import i18n
 
-ORDER = ("task", "synthesis", "structure", "kinematics", "kinetostatics", "worked", "dynamics", "cam", "gears",
+ORDER = ("task", "synthesis", "structure", "kinematics", "kinetostatics", "worked", "dynamics", "balancing", "cam", "gears",
          "planetary", "drive_train", "differential", "dof2", "study")
 
 

@@ -384,12 +384,12 @@ def _unit(key: str, lang: str, context: dict | None = None) -> str:
     return units.get(last, "")
 
 
-def _param(plain: str, lang: str) -> str | None:
+def _param(plain: str, lang: str, prefix: str = "task.param") -> str | None:
     """A parameter's name from a section's own word table (``task.param.<path>``), if it has one."""
     from ..i18n import translate
     from . import available
     available()                     # every section's word table registered
-    key = f"task.param.{plain}"
+    key = f"{prefix}.{plain}"
     text = translate(key, lang)
     return None if text == key else text
 
@@ -397,6 +397,13 @@ def _param(plain: str, lang: str) -> str | None:
 def param_name(plain: str, lang: str) -> str | None:
     """The name the task data table gives the field ``plain`` (``cam.stroke``), or None."""
     return PARAMS.get(lang, {}).get(plain) or _param(plain, lang)
+
+
+def word_of(plain: str, value: str, lang: str) -> str | None:
+    """How the task data table writes the word ``value`` of the field ``plain``: a section's own
+    word for that field (``task.word.<path>.<value>``), else the common table, else None."""
+    own = _param(f"{plain}.{value}", lang, prefix="task.word")
+    return own if own is not None else WORDS.get(lang, {}).get(value)
 
 
 def _rows(key: str, sec: Any, lang: str) -> list[tuple[str, str]]:
@@ -427,7 +434,7 @@ def _rows(key: str, sec: Any, lang: str) -> list[tuple[str, str]]:
             frac = fraction_text(v)
             val = f"{frac} = {_value(v)}" if frac.startswith("1/") else val
         if isinstance(v, (str, bool)):
-            val = WORDS.get(lang, {}).get(val, val)
+            val = (word_of(plain, val, lang) if isinstance(v, str) else None) or WORDS.get(lang, {}).get(val, val)
         rows.append((label, val))
     return rows
 

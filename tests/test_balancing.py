@@ -1,0 +1,199 @@
+"""Balancing: the shaking force and moment against a second method (the total centre of mass
+and the angular momentum differentiated numerically), counterweights against hand formulas
+and their purpose (a fully balanced four-bar's shaking force is zero), rotors by hand."""
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from tmm_cli import load_task, run
+from tmm_cli.balancing.rotor import balance_rotor
+from tmm_cli.cli import app
+from tmm_cli.linkage.kinematics import solve
+from tmm_cli.linkage.mechanism import build_mechanism
+
+ROOT = Path(__file__).resolve().parents[1]
+runner = CliRunner()
+
+FOURBAR = {"ground": {"O": [0, 0], "O3": [0.30, 0]},
+           "links": {"crank": {"points": ["O", "A"], "length": 0.08, "mass": 1.0, "J": 0.0015},
+                     "coupler": {"points": ["A", "B"], "length": 0.30, "mass": 2.4, "J": 0.02, "com": [0.12, 0.02]},
+                     "rocker": {"points": ["O3", "B"], "length": 0.22, "mass": 1.8, "J": 0.0085}},
+           "assembly": {"B": [0.33, 0.21]}}
+SLIDER = {"ground": {"O": [0, 0]},
+          "links": {"crank": {"points": ["O", "A"], "length": 0.045, "mass": 2.5, "J": 0.004},
+                    "rod": {"points": ["A", "B"], "length": 0.17, "mass": 1.2, "J": 0.0055, "com": [0.05, 0]},
+                    "piston": {"slider": "B", "guide": {"through": "O", "angle": 90}, "mass": 0.9}}}
+
+
+def _task(mech, balancing, speed=12.566370614359172):
+    return load_task({"schema": "tmm/1", "mechanism": mech, "drive": {"link": "crank", "speed": speed},
+                      "positions": {"count": 12, "zero": 0}, "balancing": balancing})
+
+
+def _momenta(task, phi, omega):
+    """Total linear momentum sum m v_S and angular momentum about O, sum [m (S - O) x v_S + J w]."""
+    mech = build_mechanism(task)
+    k = solve(mech, phi, omega)
+    P = np.zeros((len(phi), 2))
+    H = np.zeros(len(phi))
+    for lk in mech.links:
+        s, v = k.pos[f"S{lk.index}"], k.vel(f"S{lk.index}")
+        P += lk.mass * v
+        H += lk.mass * (s[:, 0] * v[:, 1] - s[:, 1] * v[:, 0]) + lk.J * k.omega(lk.name)
+    return P, H
+
+
+def test_shaking_force_and_moment_are_the_rates_of_the_momenta():
+    """F = dP/dt and M = dH_O/dt: central differences in time (t = phi/omega), h = 1e-4 deg."""
+    w = 120 * math.pi / 30
+    task = _task(FOURBAR, {})
+    res = run(task)
+    sh = res["balancing"]["shaking"]
+    phi = np.array([e["phi"] for e in sh])
+    h = 1e-4
+    dt = math.radians(h) / w
+    Pp, Hp = _momenta(task, phi + h, w)
+    Pm, Hm = _momenta(task, phi - h, w)
+    F = (Pp - Pm) / (2 * dt)
+    M = (Hp - Hm) / (2 * dt)
+    scale = max(e["F"] for e in sh)
+    for e, f, m in zip(sh, F, M):
+        assert e["Fx"] == pytest.approx(f[0], abs=1e-6 * scale)
+        assert e["Fy"] == pytest.approx(f[1], abs=1e-6 * scale)
+        assert e["M"] == pytest.approx(m, abs=1e-6 * scale)
+    assert res["balancing"]["about"] == "O"
+
+
+def test_full_balancing_of_a_four_bar_stills_the_centre_of_mass():
+    res = run(_task(FOURBAR, {"counterweights": {"method": "full", "radius": {"crank": 0.06, "rocker": 0.08}}}))
+    b = res["balancing"]
+    assert b["max"]["F"] > 10
+    assert b["max"]["F_balanced"] < 1e-12 * b["max"]["F"] * 1e3
+    for e in b["shaking_balanced"]:
+        assert abs(e["F"]) < 1e-9 * b["max"]["F"]
+
+
+def test_four_bar_counterweights_by_hand():
+    """Coupler's centre of mass on AB at s2 = 0.12 of l2 = 0.30 (no offset), the crank's at its
+    pivot O (tmm's default for the drive link) and the rocker's at its middle. The crank's mass
+    moment about O must become -m2 l1 (1 - s2/l2): the counterweight takes m2 l1 (1 - s2/l2)
+    = 2.4 (0.08)(0.6) = 0.1152 kg m, opposite the crank (180 deg); the rocker's about O3
+    -m2 l3 s2/l2: m2 l3 s2/l2 + m3 l3/2 = 2.4 (0.22)(0.4) + 1.8 (0.11) = 0.4092 kg m at 180 deg."""
+    mech = json.loads(json.dumps(FOURBAR))
+    mech["links"]["coupler"]["com"] = [0.12, 0]
+    res = run(_task(mech, {"counterweights": {"method": "full", "radius": {"crank": 0.06, "rocker": 0.08}}}))
+    cw = res["balancing"]["counterweights"]
+    assert cw["crank"]["m"] == pytest.approx(0.1152 / 0.06, rel=1e-12)
+    assert cw["crank"]["angle"] == pytest.approx(180, abs=1e-9)
+    assert cw["rocker"]["m"] == pytest.approx(0.4092 / 0.08, rel=1e-12)
+    assert cw["rocker"]["angle"] == pytest.approx(180, abs=1e-9)
+    assert cw["crank"]["r"] == 0.06 and cw["rocker"]["r"] == 0.08
+
+
+@pytest.mark.parametrize("share", [0.0, 0.5, 1.0])
+def test_slider_crank_counterweight_leaves_the_reciprocating_force(share):
+    """With the rod's centre of mass on AB (s2 = 0.05 of l2 = 0.17), the rotating masses cancel
+    exactly and what remains is m_rec a_B - share m_rec a_A, m_rec = m3 + m2 s2/l2."""
+    w = 12.566370614359172
+    task = _task(SLIDER, {"counterweights": {"method": "crank", "radius": {"crank": 0.05},
+                                             "reciprocating_share": share}}, speed=w)
+    res = run(task)
+    b = res["balancing"]
+    m_rec = 0.9 + 1.2 * 0.05 / 0.17
+    assert b["remains"]["reciprocating_mass"] == pytest.approx(m_rec, rel=1e-14)
+    # counterweight by hand (the crank's centre of mass at O): m2 l1 (1 - s2/l2) + share m_rec l1,
+    # opposite the crank
+    assert b["counterweights"]["crank"]["m"] * 0.05 == pytest.approx(
+        1.2 * 0.045 * (1 - 0.05 / 0.17) + share * m_rec * 0.045, rel=1e-12)
+    assert b["counterweights"]["crank"]["angle"] == pytest.approx(180, abs=1e-9)
+    mech = build_mechanism(task)
+    phi = np.array([e["phi"] for e in b["shaking_balanced"]])
+    k = solve(mech, phi, w)
+    want = m_rec * k.acc("B") - share * m_rec * k.acc("A")
+    for e, f in zip(b["shaking_balanced"], want):
+        assert e["Fx"] == pytest.approx(f[0], abs=1e-9) and e["Fy"] == pytest.approx(f[1], abs=1e-9)
+    lam = 0.045 / 0.17
+    assert b["remains"]["secondary_amplitude"] == pytest.approx(m_rec * 0.045 * w ** 2 * lam, rel=1e-12)
+    assert b["remains"]["primary_amplitude"] == pytest.approx((1 - share) * m_rec * 0.045 * w ** 2, rel=1e-12)
+
+
+def _rotor(masses, planes, radius):
+    return load_task({"schema": "tmm/1", "balancing": {"rotor": {"masses": masses, "planes": planes,
+                                                                  "radius": radius}}}).balancing.rotor
+
+
+def test_rotor_dynamic_by_the_lever_rule():
+    """One mass 1 kg at r = 0.1 m, 0 deg, z = 0.1 m between planes z = 0 and 0.3: plane 1 takes
+    2/3 of m r, plane 2 takes 1/3, both opposite (180 deg)."""
+    r = balance_rotor(_rotor([{"m": 1, "r": 0.1, "angle": 0, "z": 0.1}], [0, 0.3], 0.05))
+    c1, c2 = r["corrections"]
+    assert c1["mr"] == pytest.approx(0.1 * 2 / 3, rel=1e-14) and c2["mr"] == pytest.approx(0.1 / 3, rel=1e-14)
+    assert c1["m"] == pytest.approx(0.1 * 2 / 3 / 0.05, rel=1e-14)
+    assert c1["angle"] == pytest.approx(180) and c2["angle"] == pytest.approx(180)
+    assert r["imbalance"] == pytest.approx({"mr": 0.1, "angle": 0.0, "z": 0.1, "couple": 0.0}, abs=1e-15)
+
+
+def test_rotor_corrections_cancel_force_and_moment():
+    masses = [{"m": 0.2, "r": 0.1, "angle": 30, "z": 0.05}, {"m": 0.15, "r": 0.08, "angle": 150, "z": 0.15},
+              {"m": 0.1, "r": 0.12, "angle": 260, "z": 0.25}]
+    r = balance_rotor(_rotor(masses, [0, 0.3], 0.12))
+
+    def vec(m, rr, a):
+        return m * rr * complex(math.cos(math.radians(a)), math.sin(math.radians(a)))
+    U = [vec(m["m"], m["r"], m["angle"]) for m in masses]
+    Uc = [vec(c["m"], c["r"], c["angle"]) for c in r["corrections"]]
+    assert abs(sum(U) + sum(Uc)) < 1e-15
+    assert abs(sum(m["z"] * u for m, u in zip(masses, U)) + sum(c["z"] * u for c, u in
+                                                                 zip(r["corrections"], Uc))) < 1e-15
+
+
+def test_rotor_static_one_plane_leaves_the_couple():
+    masses = [{"m": 1, "r": 0.1, "angle": 0, "z": 0.0}, {"m": 1, "r": 0.1, "angle": 180, "z": 0.2}]
+    r = balance_rotor(_rotor(masses, [0.1], 0.1))
+    assert r["method"] == "static"
+    assert r["corrections"][0]["mr"] == pytest.approx(0, abs=1e-15)     # statically balanced already
+    assert r["couple_left"] == pytest.approx(0.1 * 0.2, rel=1e-12)     # m r times the distance 0.2 m
+
+
+def _run(tmp_path, text):
+    f = tmp_path / "t.yaml"
+    f.write_text(text, encoding="utf-8")
+    res = runner.invoke(app, ["run", str(f), "--format", "json", "--out", str(tmp_path / "o")])
+    return res.exit_code, res.output
+
+
+def test_full_method_on_a_slider_crank_exit_2(tmp_path):
+    text = (ROOT / "tasks" / "engine_slider_crank.yaml").read_text(encoding="utf-8")
+    text += "balancing:\n  counterweights: {method: full, radius: {crank: 0.05, rocker: 0.05}}\n"
+    code, out = _run(tmp_path, text)
+    assert code == 2, out
+    assert "balancing.counterweights.method" in out and "four-bar" in out and "Traceback" not in out
+
+
+def test_counterweights_without_a_mechanism_exit_2(tmp_path):
+    code, out = _run(tmp_path, "schema: tmm/1\nbalancing:\n  counterweights: {method: crank, radius: {crank: 0.05}}\n")
+    assert code == 2 and "balancing.counterweights" in out and "mechanism" in out
+
+
+def test_missing_rocker_radius_exit_2(tmp_path):
+    text = (ROOT / "tasks" / "balancing_fourbar.yaml").read_text(encoding="utf-8")
+    text = text.replace("radius: {crank: 60 mm, rocker: 80 mm}", "radius: {crank: 60 mm}")
+    code, out = _run(tmp_path, text)
+    assert code == 2 and "balancing.counterweights.radius" in out and "rocker" in out
+
+
+def test_example_task(tmp_path):
+    res = runner.invoke(app, ["run", str(ROOT / "tasks" / "balancing_fourbar.yaml"), "--format", "json",
+                              "--out", str(tmp_path / "o")])
+    assert res.exit_code == 0, res.output
+    d = json.loads((tmp_path / "o" / "results.json").read_text())
+    b = d["balancing"]
+    n = len(d["positions"]["phi"])
+    assert len(b["shaking"]) == n and len(b["shaking_balanced"]) == n
+    assert [e["phi"] for e in b["shaking"]] == d["positions"]["phi"]
+    assert b["max"]["F_balanced"] < 1e-9 * b["max"]["F"]
+    assert len(b["hodograph"]["phi"]) == 361 and b["rotor"]["method"] == "dynamic"

@@ -1,0 +1,101 @@
+"""Report section 'balancing': the shaking force and moment at the positions (with the
+counterweights beside), their hodograph over a turn, the counterweights and what they leave,
+the rotor's imbalance and correction masses. Reads numbers only from results["balancing"];
+its words are the data file balancing.yaml beside this module."""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+
+def _table() -> dict:
+    import yaml
+    return yaml.safe_load((Path(__file__).with_suffix(".yaml")).read_text(encoding="utf-8"))
+
+
+I18N = _table()
+
+
+def hodograph(ctx, b):
+    from ..svgchart import subplots
+    h = b["hodograph"]
+    fig, ax = subplots(150, 110)
+    ax.plot(h["Fx"], h["Fy"], lw=1.2, label=ctx.t("bal.before"))
+    if "Fx_balanced" in h:
+        ax.plot(h["Fx_balanced"], h["Fy_balanced"], "ro", ms=2.5, label=ctx.t("bal.after"))
+    ax.plot([0.0], [0.0], "k+", ms=6)
+    ax.set_aspect("equal")
+    ax.set_xlabel(ctx.t("bal.Fx"))
+    ax.set_ylabel(ctx.t("bal.Fy"))
+    ax.grid(True)
+    ax.legend(fontsize=6)
+    return fig
+
+
+def rotor_figure(ctx, r, masses):
+    from ..svgchart import subplots
+    fig, ax = subplots(100, 100)
+    for m in masses:
+        mr, a = m["m"] * m["r"], math.radians(m["angle"])
+        ax.plot([0.0, mr * math.cos(a)], [0.0, mr * math.sin(a)], color="0.55", lw=1.4)
+    for c in r["corrections"]:
+        a = math.radians(c["angle"])
+        x, y = c["mr"] * math.cos(a), c["mr"] * math.sin(a)
+        ax.plot([0.0, x], [0.0, y], color="r", lw=1.6)
+        ax.annotate(str(c["plane"]), (x, y), xytext=(3, 2))
+    ax.set_aspect("equal")
+    ax.grid(True)
+    return fig
+
+
+def build(ctx) -> str | None:
+    b = (ctx.results or {}).get("balancing")
+    if not b:
+        return None
+    f, t = ctx.fmt, ctx.t
+    parts = {}
+    if "shaking" in b:
+        idx = list((ctx.results.get("positions") or {}).get("index") or range(len(b["shaking"])))
+        after = b.get("shaking_balanced")
+        rows = []
+        for k, e in enumerate(b["shaking"]):
+            row = [idx[k] if k < len(idx) else k, f(e["phi"], 5), f(e["Fx"]), f(e["Fy"]), f(e["F"]), f(e["M"])]
+            if after:
+                row += [f(after[k]["F"]), f(after[k]["M"])]
+            rows.append(row)
+        head = [t("bal.pos"), t("bal.phi"), t("bal.Fx"), t("bal.Fy"), t("bal.F"), t("bal.M")]
+        if after:
+            head += [t("bal.F_after"), t("bal.M_after")]
+        notes = [t("bal.maxima", F=f(b["max"]["F"]), M=f(b["max"]["M"]))]
+        if after:
+            notes.append(t("bal.maxima_after", F=f(b["max"]["F_balanced"]), M=f(b["max"]["M_balanced"])))
+        cw = b.get("counterweights")
+        cw_rows, cw_text = None, []
+        if cw:
+            names = ((ctx.results.get("structure") or {}).get("links") or [])
+            number = {lk["name"]: lk["index"] for lk in names}
+            cw_rows = [(f"{c['link']} ({number.get(c['link'], '')})", f(c["m"]), f(c["r"]), f(c["angle"], 5),
+                        f(c["m"] * c["r"])) for c in cw.values()]
+            rem = b.get("remains") or {}
+            if rem:
+                cw_text.append(t("bal.cw_crank", share=f"{100 * rem['reciprocating_share']:g} %",
+                                 m_rec=f(rem["reciprocating_mass"])))
+                cw_text.append(t("bal.remains", p=f(rem["primary_amplitude"]), s=f(rem["secondary_amplitude"]),
+                                 lam=f(rem["lambda"])))
+            else:
+                cw_text.append(t("bal.cw_full"))
+        parts.update(head=head, rows=rows, notes=notes, method=t("bal.method", about=b.get("about", "O")),
+                     hodo=ctx.svg(hodograph(ctx, b), "balancing-hodograph"), cw_rows=cw_rows, cw_text=cw_text)
+    r = b.get("rotor")
+    if r:
+        masses = r.get("masses") or []
+        im = r["imbalance"]
+        parts.update(
+            rotor_text=[t("bal.imbalance", mr=f(im["mr"]), angle=f(im["angle"], 5),
+                          z=f(im["z"]) if im["z"] is not None else "—", c=f(im["couple"])),
+                        t("bal.rotor_static", c=f(r["couple_left"])) if r["method"] == "static"
+                        else t("bal.rotor_dynamic")],
+            rotor_rows=[(c["plane"], f(c["z"]), f(c["m"]), f(c["r"]), f(c["angle"], 5), f(c["mr"]))
+                        for c in r["corrections"]],
+            rotor_fig=ctx.svg(rotor_figure(ctx, r, masses), "balancing-rotor"))
+    return ctx.render("sections/balancing.html.j2", **parts)
