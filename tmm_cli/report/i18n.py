@@ -246,6 +246,15 @@ from .i18n_uk import UK as _UK  # noqa: E402  (the Ukrainian table lives in its 
 STRINGS["uk"] = dict(_UK)
 
 
+def words_beside(module_file: str) -> dict[str, dict[str, str]]:
+    """A section's word table from the YAML data file beside its module (``x.py`` -> ``x.yaml``:
+    ``{lang: {key: text}}``), the way a new section keeps its words out of Python."""
+    from pathlib import Path
+
+    import yaml
+    return yaml.safe_load(Path(module_file).with_suffix(".yaml").read_text(encoding="utf-8"))
+
+
 def register(table: dict[str, dict[str, str]]) -> None:
     """Merge ``{lang: {key: text}}`` into the tables (later registrations win)."""
     for lang, words in table.items():

@@ -4,15 +4,9 @@ picture (Smirnov's method). Reads numbers only from results["differential"]; its
 the data file differential.yaml beside this module."""
 from __future__ import annotations
 
-from pathlib import Path
+from ..i18n import words_beside
 
-
-def _table() -> dict:
-    import yaml
-    return yaml.safe_load((Path(__file__).with_suffix(".yaml")).read_text(encoding="utf-8"))
-
-
-I18N = _table()
+I18N = words_beside(__file__)
 
 
 def figure(ctx, d):
