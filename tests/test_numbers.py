@@ -364,3 +364,15 @@ def test_answers_table_with_cyrillic_headers_and_numbers(tmp_path):
     assert sets[0].answers == {"flywheel.J": 1234.5, OMEGA: 3.04}
     assert sets[1].answers["flywheel.J"] == -508.7 and sets[1].answers[OMEGA] == pytest.approx(4 * math.pi)
     assert all(s.error is None for s in sets)
+
+
+def test_plain_number_fields_read_by_the_grammar():
+    """A field without a unit (gears.x) reads a string as the grammar does; a unit there, or
+    what is not a number, is the field's error with the reason."""
+    t = tmm_cli.load_task({"schema": "tmm/1", "gears": {"m": "4 \u043c\u043c", "z": [14, 30],
+                                                        "x": ["0,3", "\u22120,1"]}})
+    assert t.gears.x == (0.3, -0.1) and t.gears.m == 0.004
+    with pytest.raises(tmm_cli.TaskError) as err:
+        tmm_cli.load_task({"schema": "tmm/1", "gears": {"m": 0.004, "z": [14, 30], "x": ["0,3 mm", "1,2,3"]}})
+    text = str(err.value.render())
+    assert "gears.x[0]" in text and "gears.x[1]" in text and "more than one decimal mark" in text

@@ -222,5 +222,17 @@ Area = Annotated[float, _q("area"), _schema("area")]
 Density = Annotated[float, _q("density"), _schema("density")]
 Ratio = Annotated[float, _q("dimensionless"), _schema("dimensionless")]
 ForceOrPressure = Annotated[float, _q("force_or_pressure"), _schema("force_or_pressure")]
+def plain_number(value: Any) -> Any:
+    """A string read as a number without a unit (tmm_cli.numbers: '1 234,5', '−0,5',
+    '1/18'); anything else as it is, for the field's own type check."""
+    if not isinstance(value, str):
+        return value
+    from .numbers import read
+    r = read(value)
+    if r.unit:
+        raise ValueError(Message("input.unit_expected", kind="dimensionless", got=f"'{value.strip()}'"))
+    return r.value
+
+
 # a plain number (no unit), finite and within LIMIT
-Number = Annotated[float, AfterValidator(check_magnitude)]
+Number = Annotated[float, BeforeValidator(plain_number), AfterValidator(check_magnitude)]
