@@ -376,3 +376,17 @@ def test_plain_number_fields_read_by_the_grammar():
         tmm_cli.load_task({"schema": "tmm/1", "gears": {"m": 0.004, "z": [14, 30], "x": ["0,3 mm", "1,2,3"]}})
     text = str(err.value.render())
     assert "gears.x[0]" in text and "gears.x[1]" in text and "more than one decimal mark" in text
+
+
+def test_check_refuses_an_exponent_of_an_exponent_at_once(tmp_path):
+    """As a student's answer '9**9**9' hung `check` (pint computed the power): now it is that
+    answer's reason, and `check` ends (exit 2 naming file, line and field)."""
+    t = tmp_path / "g.yaml"
+    t.write_text("schema: tmm/1\nvariant: 7\ngears: {m: 4 mm, z: [14, 30], x: [0.3, 0.1]}\n", encoding="utf-8")
+    ans = tmp_path / "a.yaml"
+    ans.write_text("variant: 7\nanswers:\n  gears.aw: '9**9**9 mm'\n", encoding="utf-8")
+    res = subprocess.run([sys.executable, "-m", "tmm_cli", "check", str(t), "--answers", str(ans),
+                          "--out", str(tmp_path / "c")], capture_output=True, text=True, timeout=120)
+    out = res.stdout + res.stderr
+    assert res.returncode == 2, out
+    assert f"{ans}:3" in out and "answers.gears.aw" in out and "expression" in out and "Traceback" not in out
