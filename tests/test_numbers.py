@@ -390,3 +390,19 @@ def test_check_refuses_an_exponent_of_an_exponent_at_once(tmp_path):
     out = res.stdout + res.stderr
     assert res.returncode == 2, out
     assert f"{ans}:3" in out and "answers.gears.aw" in out and "expression" in out and "Traceback" not in out
+
+
+def test_variants_cell_that_is_not_a_number_gives_the_reason(tmp_path):
+    tpl = tmp_path / "tpl.yaml"
+    tpl.write_text(TEMPLATE, encoding="utf-8")
+    header = ["\u0412\u0430\u0440\u0438\u0430\u043d\u0442", "l_OA, \u043c\u043c", "l_AB, \u043c\u043c",
+              "m, \u043a\u0433", "n, \u043e\u0431/\u043c\u0438\u043d", "F, \u043a\u041d"]
+    tab = _write_csv(tmp_path / "t.csv", header, [["1", "1,2,3", "400", "1,5", "120", "1"],
+                                                  ["2", "110", "420", "\u22482", "120", "1"],
+                                                  ["3", "110", "420", "2", "120", "1"]])
+    res = runner.invoke(app, ["variants", str(tpl), str(tab), "--out", str(tmp_path / "o")])
+    assert res.exit_code == 2
+    assert f"{tab}:2: variant 1: column l_OA, \u043c\u043c: '1,2,3' is not a number: it has more than one " \
+           "decimal mark" in res.output, res.output
+    assert f"{tab}:3: variant 2: column m, \u043a\u0433: '\u22482' is not a number: it begins with" in res.output
+    assert (tmp_path / "o" / "3.yaml").is_file() and not (tmp_path / "o" / "1.yaml").exists()

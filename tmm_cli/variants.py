@@ -152,8 +152,7 @@ def make_variants(template: Path, table: Path, out: Path) -> tuple[int, list[dic
                                     f"{'s' if len(empty) > 1 else ''} {', '.join(empty)}")
                 wordy = [n for n in used if units.get(n) and not isinstance(cells[n], (int, float))]
                 if wordy:       # else 'abc mm' reaches the field: "'abc' is not a unit"
-                    raise _RowError("; ".join(f"column {cols[n][0]}: {cells[n]!r} is not a number"
-                                              for n in wordy))
+                    raise _RowError("; ".join(f"column {cols[n][0]}: {_not_a_number(cells[n])}" for n in wordy))
                 task = substitute(data, cells, units)
                 if "variant" not in data:       # after schema and title, as in a hand-written task
                     items = list(task.items())
@@ -175,6 +174,17 @@ def make_variants(template: Path, table: Path, out: Path) -> tuple[int, list[dic
             advance()
     atomic_write(Path(out) / "variants.csv", csv_text(["line", "variant", "file", "status", "message"], report))
     return code, report, messages
+
+
+def _not_a_number(cell: str) -> str:
+    """Why a cell of a column with a unit is no number: the grammar's reason ('1,2,3': more
+    than one decimal mark), else (a unit of its own, a fraction) that it is not a number."""
+    from .numbers import read
+    try:
+        read(cell)
+    except ValueError as exc:
+        return str(exc.args[0])
+    return f"{cell!r} is not a number"
 
 
 class _RowError(ValueError):
