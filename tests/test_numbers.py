@@ -326,12 +326,15 @@ loads:
 """
 
 
+# Variant; l_OA, mm; l_AB, mm; m, kg; n, rpm; F, kN -- in Russian
+VARIANT_HEADER = ["\u0412\u0430\u0440\u0438\u0430\u043d\u0442", "l_OA, \u043c\u043c", "l_AB, \u043c\u043c",
+                  "m, \u043a\u0433", "n, \u043e\u0431/\u043c\u0438\u043d", "F, \u043a\u041d"]
+
+
 def test_variants_table_with_cyrillic_headers_and_units(tmp_path):
     tpl = tmp_path / "tpl.yaml"
     tpl.write_text(TEMPLATE, encoding="utf-8")
-    header = ["\u0412\u0430\u0440\u0438\u0430\u043d\u0442", "l_OA, \u043c\u043c", "l_AB, \u043c\u043c",
-              "m, \u043a\u0433", "n, \u043e\u0431/\u043c\u0438\u043d", "F, \u043a\u041d"]
-    tab = _write_csv(tmp_path / "t.csv", header, [["1", "100", "400", "1,5", "120", "1 234,5"],
+    tab = _write_csv(tmp_path / "t.csv", VARIANT_HEADER, [["1", "100", "400", "1,5", "120", "1 234,5"],
                                                   ["2", "110", "420", "2", "1 440", "2,5"]])
     res = runner.invoke(app, ["variants", str(tpl), str(tab), "--out", str(tmp_path / "o")])
     assert res.exit_code == 0, res.output
@@ -395,9 +398,7 @@ def test_check_refuses_an_exponent_of_an_exponent_at_once(tmp_path):
 def test_variants_cell_that_is_not_a_number_gives_the_reason(tmp_path):
     tpl = tmp_path / "tpl.yaml"
     tpl.write_text(TEMPLATE, encoding="utf-8")
-    header = ["\u0412\u0430\u0440\u0438\u0430\u043d\u0442", "l_OA, \u043c\u043c", "l_AB, \u043c\u043c",
-              "m, \u043a\u0433", "n, \u043e\u0431/\u043c\u0438\u043d", "F, \u043a\u041d"]
-    tab = _write_csv(tmp_path / "t.csv", header, [["1", "1,2,3", "400", "1,5", "120", "1"],
+    tab = _write_csv(tmp_path / "t.csv", VARIANT_HEADER, [["1", "1,2,3", "400", "1,5", "120", "1"],
                                                   ["2", "110", "420", "\u22482", "120", "1"],
                                                   ["3", "110", "420", "2", "120", "1"]])
     res = runner.invoke(app, ["variants", str(tpl), str(tab), "--out", str(tmp_path / "o")])
