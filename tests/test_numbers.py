@@ -407,3 +407,21 @@ def test_variants_cell_that_is_not_a_number_gives_the_reason(tmp_path):
            "decimal mark" in res.output, res.output
     assert f"{tab}:3: variant 2: column m, \u043a\u0433: '\u22482' is not a number: it begins with" in res.output
     assert (tmp_path / "o" / "3.yaml").is_file() and not (tmp_path / "o" / "1.yaml").exists()
+
+
+@settings(max_examples=1500, deadline=None)
+@given(st.text(alphabet="0123456789 .,-+eE*/^()\u00b1\u2248~\u2212\u2013\u00b7\u00d7\u00b2\u207b\u00b9\u00b0%"
+                        "mskgNhinrpdaz\u043c\u0441\u043a\u0433\u041d\u0438\u043d\u00a0\u202f", max_size=30))
+def test_any_text_is_a_number_or_a_reason(text):
+    """Whatever the text, the grammar gives a reading or a ValueError carrying a catalogue
+    Message -- no other exception, no evaluation; a reading holds a finite number or one
+    beyond the float range written as digits, and its unit only checked names (one-digit
+    powers, added up where a name repeats)."""
+    from tmm_cli.messages import Message
+    try:
+        r = read(text, answer=True)
+    except ValueError as exc:
+        assert isinstance(exc.args[0], Message), (text, exc)
+        return
+    assert isinstance(r.value, float)
+    assert all(isinstance(n, str) and 0 < abs(p) <= 9 * 25 and p != 0 for n, p in r.unit), (text, r)
