@@ -425,3 +425,19 @@ def test_any_text_is_a_number_or_a_reason(text):
         return
     assert isinstance(r.value, float)
     assert all(isinstance(n, str) and 0 < abs(p) <= 9 * 25 and p != 0 for n, p in r.unit), (text, r)
+
+
+def test_variants_column_unit_that_is_no_unit_stops_before_anything_is_written(tmp_path):
+    """A header unit tmm cannot read ('l_OA, parrots') made every row fail with the same
+    message; it is one error naming the column, exit 2, nothing written."""
+    tpl = tmp_path / "tpl.yaml"
+    tpl.write_text(TEMPLATE, encoding="utf-8")
+    header = list(VARIANT_HEADER)
+    header[1] = "l_OA, \u043f\u043e\u043f\u0443\u0433\u0430\u0438"
+    tab = _write_csv(tmp_path / "t.csv", header, [["1", "100", "400", "1,5", "120", "1"],
+                                                  ["2", "110", "420", "2", "120", "1"]])
+    res = runner.invoke(app, ["variants", str(tpl), str(tab), "--out", str(tmp_path / "o")])
+    assert res.exit_code == 2, res.output
+    assert f"{tab}:1:2:" in res.output and "\u043f\u043e\u043f\u0443\u0433\u0430\u0438" in res.output
+    assert res.output.count("not a unit tmm knows") == 1, res.output
+    assert not (tmp_path / "o" / "1.yaml").exists()
