@@ -205,23 +205,29 @@ def test_program_ends_at_once_unless_shutdown_has_work(tmp_path):
 @pytest.mark.parametrize("kind", sorted(units._FAST_UNITS))
 def test_fast_units_equal_pint(kind):
     """Each factor of the table is pint's, and the product is pint's result to the bit."""
+    from tmm_cli.numbers import parse_unit, unit_expression
     target = units.KINDS[kind][0]
     reg = units.ureg()
     for unit, factor in units._FAST_UNITS[kind].items():
+        expression = unit_expression(parse_unit(unit)[0])
+        tables = ("force", "pressure") if kind == "force_or_pressure" else (kind,)
+        assert any(expression in units._fast_table(t) for t in tables), unit      # read without pint
         for value in ("1", "50", "-3.25", "0.001", "2.5e3", "137.5"):
             q = reg.Quantity(f"{value} {unit}")
             if kind == "force_or_pressure":
                 want = q.to("N" if q.check("[force]") else "Pa").magnitude
             else:
                 want = q.to(target).magnitude
-            assert units._fast(f"{value} {unit}", kind) == want, (value, unit)
+            assert units.quantity(f"{value} {unit}", kind)[0] == want, (value, unit)
             if abs(want) <= units.LIMIT:
                 assert units.convert(f"{value} {unit}", kind) == want
 
 
 def test_fast_units_leave_the_rest_to_pint():
-    assert units._fast("50 RPM", "speed") is None           # pint decides (and rejects)
-    assert units._fast("3 ft", "length") is None
+    assert "RPM" not in units._fast_table("speed")           # pint decides (and rejects)
+    assert "ft" not in units._fast_table("length")
+    with pytest.raises(ValueError):
+        units.convert("50 RPM", "speed")
     assert units.convert("3 ft", "length") == pytest.approx(0.9144)
     assert units.convert("300mm", "length") == pytest.approx(0.3)
     with pytest.raises(ValueError):

@@ -129,48 +129,13 @@ def answer_value(v, path: str):
     s = str(v).strip()
     if s == "":
         return None
-    from .tables import cell_value
-    c = cell_value(s)
-    if isinstance(c, (int, float)):
-        return float(c)
-    if not any(ch.isdigit() for ch in s):       # pint reads a bare 'm/s' as 1 m/s
-        raise ValueError(Message("answers.not_number", value=repr(s)))
-    from .units import _DECIMAL_COMMA, ureg
-    raw, comma = s, _DECIMAL_COMMA.match(s)
-    if comma:       # '0,67 m/s' as a plain '0,67' is read: pint alone reads 0 m/s, and '3,5 mm' 35 mm
-        s = f"{comma.group(1)}.{comma.group(2)}{s[comma.end():]}"
-    reg = ureg()
-    try:
-        q = reg.Quantity(s.replace("^", "**"))
-    except Exception:  # noqa: BLE001 - pint's parser raises many kinds (tokenize, syntax, undefined unit)
-        from .units import latin_units
-        latin = latin_units(s)
-        if latin is not None:
-            try:
-                answer_value(latin, path)
-            except ValueError:
-                latin = None
-        if latin is not None:            # '3.04 рад/с': name the Latin spelling
-            raise ValueError(Message("input.unit_cyrillic", text=raw, latin=latin)) from None
-        raise ValueError(Message("answers.not_number", value=repr(raw))) from None
-    if not hasattr(q, "magnitude") or not isinstance(q.magnitude, (int, float)):
-        raise ValueError(Message("answers.not_number", value=repr(raw)))
+    from .numbers import answer
+    names = [t for t in _tokens(path) if isinstance(t, str)]
     unit = _path_unit(path)
-    try:
-        if _is_angle(path) and q.dimensionless:
-            x = float(q.to("degree").magnitude) if not q.unitless else float(q.magnitude)
-        elif unit is not None and not q.unitless and not (q.dimensionless if unit == "dimensionless"
-                                                          else q.check(unit)):
-            # "0.67 kg" for a velocity: not a slip of the unit's prefix but another quantity
-            raise ValueError(Message("answers.wrong_unit", value=repr(raw), unit=unit.replace("**", "^")))
-        else:
-            x = float(q.to(unit).magnitude) if unit is not None else float(q.to_base_units().magnitude)
-    except ValueError:
-        raise
-    except Exception as exc:  # noqa: BLE001 - pint's conversion errors: dimensionality, offset units, types
-        raise ValueError(Message("answers.unreadable", value=repr(raw), error=str(exc))) from None
+    x = answer(s, unit, angle=_is_angle(path),
+               angular=unit == "rad/s" or bool(names and names[-1].startswith("omega")))
     if not math.isfinite(x):
-        raise ValueError(Message("answers.not_finite", value=repr(raw)))
+        raise ValueError(Message("answers.not_finite", value=repr(s)))
     return x
 
 

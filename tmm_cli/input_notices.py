@@ -5,6 +5,10 @@ unit differs from the base unit, a plain number far above what a course task hol
 most likely in the everyday unit: ``speed: 60`` meant as 60 rpm is read as 60 rad/s
 (573 rpm), ``length: 100`` meant as 100 mm is read as 100 m. Such values are computed
 as written, with a warning that suggests the unit string.
+
+A unit the course reads otherwise than pint would (tmm_cli.numbers) is stated once a
+task, naming every field that holds it: ``120 min^-1`` is 120 rpm, ``2 Hz`` 2 rev/s,
+``12,57 s^-1`` of an angular speed 12.57 rad/s, ``90 grad`` 90 degrees.
 """
 from __future__ import annotations
 
@@ -23,6 +27,8 @@ LENGTH_PLAIN_MAX = 10.0     # m
 MODULE_PLAIN_MAX = 0.1      # m: a gear module (field `m`) is a few millimetres
 
 _KIND_BY_DESCRIPTION = {"in m": "length", "in rad/s": "speed"}
+# the kinds whose strings may hold a unit read as the course reads it (a note of tmm_cli.numbers)
+_READ_KINDS = {"in degrees": "angle", "in rad/s": "speed"}
 
 
 def _kind(metadata) -> str | None:
@@ -32,7 +38,8 @@ def _kind(metadata) -> str | None:
         schema = getattr(m, "json_schema", None)
         if isinstance(schema, dict):
             for alt in schema.get("anyOf", []):
-                kind = _KIND_BY_DESCRIPTION.get(alt.get("description", ""))
+                kind = _KIND_BY_DESCRIPTION.get(alt.get("description", "")) or \
+                    _READ_KINDS.get(alt.get("description", ""))
                 if kind:
                     return kind
     return None
@@ -59,6 +66,8 @@ def _walk(ann, raw: Any, path: tuple, out: list[str]) -> None:
                 msg = _message(kind, float(raw), path)
                 if msg:
                     out.append(msg)
+            elif isinstance(raw, str) and kind in _READ_KINDS.values() and any("0" <= c <= "9" for c in raw):
+                out.append(_Reading(path, raw, kind))
             return
         _walk(base, raw, path, out)
     elif isinstance(ann, type) and issubclass(ann, BaseModel):
@@ -92,6 +101,40 @@ def _walk(ann, raw: Any, path: tuple, out: list[str]) -> None:
 def plain_number_warnings(model_type: type[BaseModel], data: dict) -> list[str]:
     """Warnings for plain numbers in ``data`` (the task as read) whose field's everyday
     unit differs from its base unit and whose value is implausible in the base unit."""
-    out: list[str] = []
+    out: list = []
     _walk(model_type, data, (), out)
+    return [m for m in out if not isinstance(m, _Reading)] + _reading_warnings(
+        [m for m in out if isinstance(m, _Reading)])
+
+
+class _Reading(typing.NamedTuple):
+    path: tuple
+    text: str
+    kind: str
+
+
+def _reading_warnings(readings: list[_Reading]) -> list[str]:
+    """One warning per unit read as the course reads it, naming every field that holds it."""
+    from .numbers import read
+    from .units import quantity
+    found: dict[tuple, tuple[dict, list]] = {}
+    for path, text, kind in readings:
+        try:
+            value, notes, _ = quantity(text, kind)
+            written = read(text).value
+        except ValueError:
+            continue
+        for code in notes:
+            found.setdefault((code, read(text).unit), ((text.strip(), written, value), []))[1].append(_dotted(path))
+    out = []
+    for (code, _unit), ((text, written, value), fields) in found.items():
+        field = fields if len(fields) > 1 else fields[0]
+        if code == "input.reading_per_min":
+            out.append(Message("input.reading_per_min", field=field, text=text, rpm=written, omega=value))
+        elif code == "input.reading_hz":
+            out.append(Message("input.reading_hz", field=field, text=text, rps=written, omega=value))
+        elif code == "input.reading_per_s":
+            out.append(Message("input.reading_per_s", field=field, text=text, omega=value))
+        else:
+            out.append(Message("input.reading_grad", field=field, text=text, deg=written))
     return out

@@ -9,7 +9,9 @@
   (the report's mechanism in motion).
 * :func:`read_table` reads a table an instructor typed or exported: ``,`` or ``;``
   separators (detected from the header line), optional quotes, UTF-8 with or without a
-  BOM; :func:`cell_value` reads ``0,12`` and ``-1,5`` as decimal-comma numbers.
+  BOM; the Russian and Ukrainian words for variant, student and group (spellings.yaml)
+  head the columns ``variant``, ``student``, ``group``; :func:`cell_value` reads a cell as tmm_cli.numbers reads a
+  number (``0,12``, ``-1,5``, ``1 234,5``, ``−1,5``).
 """
 from __future__ import annotations
 
@@ -138,20 +140,23 @@ def _plain(text: bytes, n: int) -> bool:
 
 
 def cell_value(text: str):
-    """A table cell: an int or float when it reads as a number (decimal comma allowed),
-    else the stripped text ('' for an empty cell)."""
+    """A table cell: an int or float when it is a number as tmm_cli.numbers reads one
+    (decimal comma, thousands grouped by spaces, Unicode minus: ``0,12``, ``1 234,5``,
+    ``−1,5``), else the stripped text ('' for an empty cell; a fraction or a number with a
+    unit stays text, read by the field it goes to)."""
     s = text.strip()
-    if _NUMBER.match(s):
-        t = s.replace(",", ".")
-        try:
-            if re.fullmatch(r"[-+]?\d+", t):
-                return int(t)
-            x = float(t)
-            if math.isfinite(x):
-                return x
-        except ValueError:
-            pass
-    return s
+    if not s or "/" in s or not (s[0] in "+-.,\u2212" or "0" <= s[0] <= "9"):
+        return s
+    from .numbers import GROUP, read
+    try:
+        r = read(s)
+    except ValueError:
+        return s
+    if r.unit or not math.isfinite(r.value):
+        return s
+    if r.integral:
+        return int(s.translate({ord(c): None for c in GROUP}).replace("\u2212", "-"))
+    return r.value
 
 
 class TableError(ValueError):
@@ -166,6 +171,7 @@ def read_table(path: str | Path) -> tuple[list[str], list[tuple[int, dict[str, s
     """(header, rows): each row its line number in the file (header = line 1), a
     mapping column -> raw text, and the reason it is malformed (more cells than the
     header has columns) or None. Blank lines are skipped."""
+    from .numbers import header_name
     path = Path(path)
     try:
         raw = path.read_bytes()
@@ -190,7 +196,7 @@ def read_table(path: str | Path) -> tuple[list[str], list[tuple[int, dict[str, s
         if not any(c.strip() for c in cells):
             continue
         if header is None:
-            header = [c.strip() for c in cells]
+            header = [header_name(c) for c in cells]     # the Russian 'variant' is `variant`
             if start != 1:
                 raise TableError(str(path), start, Message("input.table_header_first"))
             continue

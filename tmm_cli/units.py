@@ -1,14 +1,15 @@
 """Quantities with units for the task model.
 
-A number is taken in the field's base unit (SI, angles in degrees). A string carries
-its own unit and is converted with pint (``"300 mm"``, ``"50 rpm"``, ``"20 deg"``).
-Dimensionless fields also accept fractions (``1/18``). pint is imported only when a
-string with a unit is met, so plain-number tasks validate fast.
+A number is taken in the field's base unit (SI, angles in degrees). A string is read by
+the grammar of tmm_cli.numbers (decimal comma, grouped thousands, Unicode minus, a unit in
+Latin or Cyrillic letters: ``"300 mm"``, ``"50 rpm"``, ``"120 min⁻¹"``, ``"0,15 kg·m²"``)
+and its unit converted by a table of the course's units, else by pint. A fraction
+(``1/18``) is a plain number. pint is imported only when a unit outside the table is met,
+so plain-number tasks validate fast.
 """
 from __future__ import annotations
 
 import math
-import re
 from fractions import Fraction
 from functools import lru_cache, partial
 from typing import Annotated, Any
@@ -41,9 +42,6 @@ KINDS: dict[str, tuple[str, str]] = {
 # a larger value is a typo or an overflow waiting to happen (its square or cube in a stage
 # would leave the float range), so it is rejected at the field that holds it.
 LIMIT = 1e12
-
-_FRACTION = re.compile(r"^\s*([-+]?\d+(?:\.\d*)?)\s*/\s*(\d+(?:\.\d*)?)\s*$")
-
 
 @lru_cache(maxsize=1)
 def ureg():
@@ -91,133 +89,98 @@ def check_magnitude(v: float) -> float:
     return v
 
 
-_DECIMAL_COMMA = re.compile(r"([-+]?\d+),(\d+)(?![\d,])")
-
-
 def convert(value: Any, kind: str) -> float:
     """Convert a task value of the given field kind to a float in the base unit."""
-    unit = KINDS[kind][0]
     if isinstance(value, bool) or value is None:
         raise ValueError(Message("input.unit_expected", kind=kind, got=repr(value)))
     if isinstance(value, (int, float)):
         return _as_float(value)
     if not isinstance(value, str):
         raise ValueError(Message("input.unit_expected", kind=kind, got=type(value).__name__))
-    text = value.strip()
-    comma = _DECIMAL_COMMA.match(text)
-    if comma:   # pint would read '3,5 mm' as 35 mm
-        raise ValueError(Message("input.unit_decimal_comma", fixed=f"{comma.group(1)}.{comma.group(2)}",
-                                 given=comma.group(0)))
-    m = _FRACTION.match(text)
-    if m:
-        den = float(m.group(2))
-        if den == 0:
-            raise ValueError(Message("input.fraction_zero"))
-        return _as_float(float(m.group(1)) / den)
-    try:
-        plain = float(text)
-    except ValueError:
-        plain = None
-    if plain is not None:
-        return _as_float(plain)
-    fast = _fast(text, kind)
-    if fast is not None:
-        return _as_float(fast)
-    if kind in ("dimensionless", "force_or_pressure"):
-        if kind == "force_or_pressure":
-            # a force or a pressure: accept either dimension, converted to SI
-            q = _parse(text, kind)
-            for target in ("N", "Pa"):
-                try:
-                    return _as_float(q.to(target).magnitude)
-                except Exception:  # noqa: BLE001 - pint: not this dimension, try the next
-                    continue
-            raise ValueError(Message("input.unit_not_kind", text=text, kind=kind))
-        raise ValueError(Message("input.unit_expected", kind=kind, got=f"'{text}'"))
-    q = _parse(text, kind)
-    try:
-        return _as_float(q.to(unit).magnitude)
-    except Exception:  # noqa: BLE001 - pint's conversion errors of any kind; the message names the unit
-        raise ValueError(Message("input.unit_not_convert", text=text, kind=kind,
-                                 unit=unit.replace('**', '^'))) from None
+    return _as_float(quantity(value, kind)[0])
 
 
 # The units course tasks write, with pint's factor to the base unit (a test checks each
 # against pint): "<number> <unit>" is converted as number * factor -- pint's own product --
-# without building pint's registry (~0.3 s).  Anything else goes to pint.
+# without building pint's registry (~0.3 s).  Anything else goes to pint, after
+# tmm_cli.numbers has checked the unit's text.
 _FAST_UNITS: dict[str, dict[str, float]] = {
     "length": {"m": 1.0, "mm": 0.001, "cm": 0.01, "dm": 0.1, "km": 1000.0},
     "mass": {"kg": 1.0, "g": 0.001, "t": 1000.0},
     "angle": {"deg": 1.0, "degree": 1.0, "degrees": 1.0, "°": 1.0, "rad": 57.29577951308232},
-    "speed": {"rpm": 0.10471975511965977, "rad/s": 1.0, "1/s": 1.0, "deg/s": 0.017453292519943295},
+    "speed": {"rpm": 0.10471975511965977, "rad/s": 1.0, "deg/s": 0.017453292519943295},
     "linear_speed": {"m/s": 1.0, "mm/s": 0.001, "cm/s": 0.01},
     "time": {"s": 1.0, "ms": 0.001, "min": 60.0},
     "force": {"N": 1.0, "kN": 1000.0, "MN": 1000000.0},
-    "moment": {"N*m": 1.0, "N m": 1.0, "N·m": 1.0, "kN*m": 1000.0, "kN m": 1000.0, "kN·m": 1000.0},
+    "moment": {"N*m": 1.0, "kN*m": 1000.0},
     "pressure": {"Pa": 1.0, "kPa": 1000.0, "MPa": 1000000.0, "GPa": 1000000000.0, "bar": 100000.0},
-    "area": {"m^2": 1.0, "m**2": 1.0, "mm^2": 1e-06, "mm**2": 1e-06, "cm^2": 0.0001, "cm**2": 0.0001},
-    "density": {"kg/m^3": 1.0, "kg/m**3": 1.0},
-    "inertia": {"kg*m^2": 1.0, "kg*m**2": 1.0, "kg m^2": 1.0, "kg·m^2": 1.0},
+    "area": {"m^2": 1.0, "mm^2": 1e-06, "cm^2": 0.0001},
+    "density": {"kg/m^3": 1.0},
+    "inertia": {"kg*m^2": 1.0},
 }
 _FAST_UNITS["force_or_pressure"] = {**_FAST_UNITS["force"], **_FAST_UNITS["pressure"]}
-_NUM_UNIT = re.compile(r"^([-+]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][-+]?\d+)?)\s*(\S.*?)\s*$")
+# a kind -> the (base unit, table of _FAST_UNITS) its value may convert to, in that order
+_TARGETS = {"force_or_pressure": (("N", "force"), ("Pa", "pressure")),
+            "output_speed": (("m/s", "linear_speed"), ("rad/s", "speed"))}
 
 
-def _fast(text: str, kind: str) -> float | None:
-    """number * factor for a unit of _FAST_UNITS[kind], else None (pint decides)."""
-    table = _FAST_UNITS.get(kind)
-    m = _NUM_UNIT.match(text) if table else None
-    if m is None:
-        return None
-    factor = table.get(m.group(2))
-    return None if factor is None else float(m.group(1)) * factor
+@lru_cache(maxsize=None)
+def _fast_table(table: str) -> dict[str, float]:
+    """_FAST_UNITS[table] keyed by the unit's expression as tmm_cli.numbers spells it."""
+    from .numbers import parse_unit, unit_expression
+    return {unit_expression(parse_unit(k)[0]): v for k, v in _FAST_UNITS.get(table, {}).items()}
 
 
-# Units as a Russian or Ukrainian text writes them, and their Latin names: tmm reads units in
-# Latin letters only, and names the Latin spelling when a Cyrillic one is met.
-_CYRILLIC_UNITS = {"мм": "mm", "см": "cm", "дм": "dm", "м": "m", "км": "km", "кг": "kg", "г": "g", "т": "t",
-                   "Н": "N", "кН": "kN", "МН": "MN", "Па": "Pa", "кПа": "kPa", "МПа": "MPa", "ГПа": "GPa",
-                   "бар": "bar", "рад": "rad", "град": "deg", "с": "s", "мс": "ms", "мин": "min", "хв": "min"}
-_CYRILLIC_WORD = re.compile(r"[А-Яа-яЁёІіЇїЄєҐґ]+")
-
-
-def latin_units(text: str) -> str | None:
-    """'120 об/мин' -> '120 rpm', '80 мм' -> '80 mm', '5 Н·м' -> '5 N*m': the Latin spelling of
-    a quantity written with Cyrillic units; None when it holds none or a word not known here."""
-    if not _CYRILLIC_WORD.search(text):
-        return None
-    t = re.sub(r"об\.?\s*/\s*(мин|хв)\.?", "rpm", text)
-    t = t.replace("·", "*").replace("²", "^2").replace("³", "^3")
-    t = _CYRILLIC_WORD.sub(lambda m: _CYRILLIC_UNITS.get(m.group(0), m.group(0)), t)
-    return None if _CYRILLIC_WORD.search(t) else t
-
-
-def _parse(text: str, kind: str):
-    import pint
-
-    reg = ureg()
+def quantity(text: str, kind: str) -> tuple[float, list, str]:
+    """(value in the base unit of ``kind``, the notes of its reading, the kind it was read
+    as: ``kind``, or for force_or_pressure and output_speed the one that converted) of a
+    number written with an optional unit (tmm_cli.numbers' grammar; a plain number is in
+    the base unit). Raises ValueError(Message) naming the reason."""
+    from .numbers import in_unit, read
+    text = text.strip()
     try:
-        q = reg.Quantity(text)
-    except (pint.errors.UndefinedUnitError, pint.errors.DefinitionSyntaxError) as exc:
-        latin = latin_units(text)
-        if latin is not None and kind in KINDS:
-            try:
-                convert(latin, kind)
-            except ValueError:
-                latin = None
-            if latin is not None:
-                raise ValueError(Message("input.unit_cyrillic", text=text, latin=latin)) from None
-        english = f"unknown unit in '{text}' ({exc}); expected {KINDS[kind][1]}"   # pint's words inside
-        names = getattr(exc, "unit_names", None) or ()
-        coded = Message("input.unit_unknown", text=text, unit=names[0], kind=kind) if len(names) == 1 else None
-        raise ValueError(coded if coded == english else english) from None
-    except Exception:  # noqa: BLE001 - the rest of pint's parser errors (tokenize, syntax, types)
-        raise ValueError(Message("input.unit_unreadable", text=text, kind=kind)) from None
-    if not any(ch.isdigit() for ch in text):     # pint reads a bare 'mm' as 1 mm
-        raise ValueError(Message("input.unit_no_number", text=text, kind=kind))
-    if not isinstance(q, reg.Quantity):
-        q = reg.Quantity(q)
-    return q
+        r = read(text)
+    except ValueError as exc:
+        raise ValueError(_for_kind(exc.args[0], text, kind)) from None
+    if not r.unit:
+        return r.value, [], kind
+    if kind == "dimensionless":
+        raise ValueError(Message("input.unit_expected", kind=kind, got=f"'{text}'"))
+    targets = _TARGETS.get(kind, ((KINDS[kind][0], kind),))
+    for target, table in targets:           # a unit of the table first: no pint for '2 MPa' or '1.2 m/s'
+        if r.expression in _fast_table(table):
+            return (*in_unit(r, target, angular=table == "speed", fast=_fast_table(table)),
+                    table if kind in _TARGETS else kind)
+    for target, table in targets:
+        try:
+            value, notes = in_unit(r, target, angular=table == "speed", fast=_fast_table(table))
+        except ValueError as exc:
+            if exc.args and exc.args[0] is not None:
+                raise ValueError(_for_kind(exc.args[0], text, kind)) from None
+            continue
+        return value, notes, table if kind in _TARGETS else kind
+    if kind in _TARGETS:
+        raise ValueError(Message("input.unit_not_kind", text=text, kind=kind))
+    raise ValueError(Message("input.unit_not_convert", text=text, kind=kind,
+                             unit=KINDS[kind][0].replace("**", "^")))
+
+
+def _for_kind(msg, text: str, kind: str):
+    """A reason of tmm_cli.numbers in the words of a field of ``kind``: an unknown unit
+    names the quantity expected, a unit alone says the number is missing."""
+    code = getattr(msg, "code", None)
+    if code == "input.number_unit_unknown":
+        return Message("input.unit_unknown", text=text, unit=msg.params["unit"], kind=kind)
+    if code == "input.number_not_number" and not any("0" <= ch <= "9" for ch in text) and kind != "dimensionless":
+        from .numbers import is_dimensionless, parse_unit, unit_expression
+        try:                                # a unit pint knows, alone: 'mm', 'rpm'
+            is_dimensionless(unit_expression(parse_unit(text)[0]))
+        except ValueError:
+            return Message("input.unit_expected", kind=kind, got=f"'{text}'")
+        return Message("input.unit_no_number", text=text, kind=kind)
+    if code == "input.number_not_number" and kind == "dimensionless":
+        return Message("input.unit_expected", kind=kind, got=f"'{text}'")
+    return msg
 
 
 def fraction_text(x: float) -> str:
@@ -259,5 +222,17 @@ Area = Annotated[float, _q("area"), _schema("area")]
 Density = Annotated[float, _q("density"), _schema("density")]
 Ratio = Annotated[float, _q("dimensionless"), _schema("dimensionless")]
 ForceOrPressure = Annotated[float, _q("force_or_pressure"), _schema("force_or_pressure")]
+def plain_number(value: Any) -> Any:
+    """A string read as a number without a unit (tmm_cli.numbers: '1 234,5', '−0,5',
+    '1/18'); anything else as it is, for the field's own type check."""
+    if not isinstance(value, str):
+        return value
+    from .numbers import read
+    r = read(value)
+    if r.unit:
+        raise ValueError(Message("input.unit_expected", kind="dimensionless", got=f"'{value.strip()}'"))
+    return r.value
+
+
 # a plain number (no unit), finite and within LIMIT
-Number = Annotated[float, AfterValidator(check_magnitude)]
+Number = Annotated[float, BeforeValidator(plain_number), AfterValidator(check_magnitude)]

@@ -85,7 +85,8 @@ def file_stem(raw: str) -> str:
 def make_variants(template: Path, table: Path, out: Path) -> tuple[int, list[dict], list[str]]:
     """Write the tasks. Returns (exit code, variants.csv rows, stderr messages). Raises
     TaskError for what stops everything (a placeholder with no column, no `variant`
-    column, a duplicate variant, an unreadable template or table)."""
+    column, a duplicate variant, a column's unit that is no unit, an unreadable template
+    or table)."""
     import yaml
 
     from .io import atomic_write
@@ -114,6 +115,10 @@ def make_variants(template: Path, table: Path, out: Path) -> tuple[int, list[dic
                                                     f"(columns: {', '.join(cols)})"))
     if issues:
         raise TaskError("placeholder with no column", file=str(template), issues=issues)
+    bad_units = [(h, 1, header.index(h) + 1, reason) for n, (h, u) in cols.items()
+                 if u and n in {name for _, name in placeholders(data)} and (reason := _unit_problem(u))]
+    if bad_units:       # else every row fails alike, one message a row
+        raise TaskError("a column's unit is not a unit", file=str(table), issues=bad_units)
     seen: dict[str, int] = {}
     for line, row, _bad in rows:
         raw = row.get(cols["variant"][0], "").strip()
@@ -152,8 +157,7 @@ def make_variants(template: Path, table: Path, out: Path) -> tuple[int, list[dic
                                     f"{'s' if len(empty) > 1 else ''} {', '.join(empty)}")
                 wordy = [n for n in used if units.get(n) and not isinstance(cells[n], (int, float))]
                 if wordy:       # else 'abc mm' reaches the field: "'abc' is not a unit"
-                    raise _RowError("; ".join(f"column {cols[n][0]}: {cells[n]!r} is not a number"
-                                              for n in wordy))
+                    raise _RowError("; ".join(f"column {cols[n][0]}: {_not_a_number(cells[n])}" for n in wordy))
                 task = substitute(data, cells, units)
                 if "variant" not in data:       # after schema and title, as in a hand-written task
                     items = list(task.items())
@@ -175,6 +179,28 @@ def make_variants(template: Path, table: Path, out: Path) -> tuple[int, list[dic
             advance()
     atomic_write(Path(out) / "variants.csv", csv_text(["line", "variant", "file", "status", "message"], report))
     return code, report, messages
+
+
+def _unit_problem(unit: str):
+    """Why a column header's unit is none (its text is not written as units are, or names
+    a unit tmm does not know), else None."""
+    from .numbers import is_dimensionless, parse_unit, unit_expression
+    try:
+        is_dimensionless(unit_expression(parse_unit(unit)[0]))
+    except ValueError as exc:
+        return exc.args[0]
+    return None
+
+
+def _not_a_number(cell: str) -> str:
+    """Why a cell of a column with a unit is no number: the grammar's reason ('1,2,3': more
+    than one decimal mark), else (a unit of its own, a fraction) that it is not a number."""
+    from .numbers import read
+    try:
+        read(cell)
+    except ValueError as exc:
+        return str(exc.args[0])
+    return f"{cell!r} is not a number"
 
 
 class _RowError(ValueError):

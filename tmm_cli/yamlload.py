@@ -254,10 +254,12 @@ def _problem(text: str) -> Message | str:
 
 def decimal_comma_hint(line: str) -> Message | None:
     """'use a decimal point: 0.38' when a line (outside its comment) holds a number
-    written with a decimal comma such as ``0,38``, else None."""
-    code = line.split("#", 1)[0]
+    written with a decimal comma such as ``0,38`` inside a flow collection (``[0,38, 0,12]``,
+    ``{length: 0,15}``: YAML splits it at the comma), else None. A block scalar
+    (``speed: 5,5 rad/s``) is read whole, decimal comma and all (tmm_cli.numbers)."""
+    code = re.sub(r'"[^"]*"|\'[^\']*\'', "''", line.split("#", 1)[0])    # a quoted scalar is read whole
     m = _DECIMAL_COMMA.search(code)
-    if m is None:
+    if m is None or ("[" not in code and "{" not in code):
         return None
     if ("[" in code or "{" in code) and not re.search(r",\s", code):
         return None     # a compact list such as [12,42,7]: commas without spaces throughout

@@ -32,7 +32,7 @@ from pydantic import BeforeValidator, Field, WithJsonSchema, field_validator, mo
 
 from ..messages import Message
 from ..modelbase import _Model
-from ..units import Angle, AngularSpeed, Inertia, Length, Mass, MomentQ, Ratio, _fast, ureg
+from ..units import Angle, AngularSpeed, Inertia, Length, Mass, MomentQ, Ratio, quantity
 
 __all__ = ["Dof2Section", "RotorSpec", "StrikerSpec", "DriveSpec", "InitialSpec", "ImpactSpec", "Time"]
 
@@ -44,23 +44,7 @@ def _time(value: Any) -> float:
     if isinstance(value, (int, float)):
         v = float(value)
     elif isinstance(value, str):
-        text = value.strip()
-        try:
-            v = float(text)
-        except ValueError:
-            v = _fast(text, "time")          # s, ms, min: pint's factors, without its registry
-        if v is None:
-            reg = ureg()
-            try:
-                q = reg.Quantity(text)
-            except Exception:  # noqa: BLE001 - pint's parser raises many kinds; the message names the field
-                raise ValueError(Message("input.unit_unreadable", text=text, kind="time")) from None
-            if not any(ch.isdigit() for ch in text):     # pint reads a bare 's' as 1 s
-                raise ValueError(Message("input.unit_no_number", text=text, kind="time"))
-            try:
-                v = float(q.to("s").magnitude)
-            except Exception:  # noqa: BLE001 - pint's conversion errors of any kind
-                raise ValueError(Message("input.unit_not_convert", text=text, kind="time", unit="s")) from None
+        v = quantity(value, "time")[0]       # tmm_cli.numbers' grammar: s, ms, min (Latin or Cyrillic)
     else:
         raise ValueError(Message("input.unit_expected", kind="time", got=type(value).__name__))
     if not math.isfinite(v):

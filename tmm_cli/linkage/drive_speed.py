@@ -26,30 +26,20 @@ def check_output_speed(value) -> tuple[float, str | None]:
     """(magnitude in m/s or rad/s, 'linear' | 'angular' | None for a plain number).
     Raises ValueError for a value that is neither a linear nor an angular speed, or
     not positive."""
-    from ..units import _fast, _parse, check_magnitude
+    from ..units import check_magnitude, quantity
 
     if isinstance(value, bool):
         raise ValueError(Message("input.output_speed_bool"))
     if isinstance(value, (int, float)):
         v, kind = check_magnitude(float(value)), None
     else:
-        text = str(value).strip()
-        v = kind = None
-        for table, k in (("linear_speed", "linear"), ("speed", "angular")):    # the common units, pint's factors
-            v = _fast(text, table)
-            if v is not None:
-                kind = k
-                break
-        if kind is None:
-            q = _parse(text, "output_speed")
-            for unit, k in (("m/s", "linear"), ("rad/s", "angular")):
-                try:
-                    v, kind = float(q.to(unit).magnitude), k
-                    break
-                except Exception:  # noqa: BLE001 - pint: not this dimension, try the next
-                    continue
-        if kind is None:
-            raise ValueError(Message("input.output_speed_unit", value=str(value)))
+        try:
+            v, _notes, read_as = quantity(str(value), "output_speed")
+        except ValueError as exc:
+            if getattr(exc.args[0], "code", None) == "input.unit_not_kind":
+                raise ValueError(Message("input.output_speed_unit", value=str(value))) from None
+            raise
+        kind = {"linear_speed": "linear", "speed": "angular"}.get(read_as)
         v = check_magnitude(v)
     if not v > 0:
         raise ValueError(Message("input.output_speed_positive", value=repr(value)))
