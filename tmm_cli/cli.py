@@ -21,7 +21,7 @@ from typing import Callable, Optional
 from .errors import StageError, TaskError
 
 EXIT_OK, EXIT_ANSWERS, EXIT_INVALID, EXIT_STAGE = 0, 1, 2, 3
-FORMATS = {"json", "html", "pdf", "sheets"}
+FORMATS = {"json", "html", "pdf", "sheets", "note"}
 LANGS = ("en", "ru", "uk")
 
 _ANSI = re.compile(r"\033\[[;?0-9]*[a-zA-Z]")     # click's: stripped when not a terminal

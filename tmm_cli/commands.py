@@ -102,7 +102,9 @@ def run(
     out: Optional[Path] = typer.Option(None, "--out", "-o", help="output folder (default: out/<task name>/)"),
     format: str = typer.Option("json,html,pdf", "--format", "-f",
                                help="comma-separated outputs: json, html, pdf, sheets (the A1 drawing sheets in "
-                                    "sheets/; results.json is always written)"),
+                                    "sheets/), note (note.pdf: the explanatory note in the ESKD frame; the task's "
+                                    "student and course headers fill its title page); results.json is always "
+                                    "written"),
     lang: str = typer.Option("en", "--lang", "-l", help="report language: en | ru | uk"),
     quiet: bool = typer.Option(False, "--quiet", "-q", help="no progress and summary on the terminal"),
     study: bool = typer.Option(False, "--study", help="also write study.json and study.html: "

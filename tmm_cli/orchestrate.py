@@ -67,7 +67,7 @@ def write_outputs(task, results: dict, out: Path, formats: set[str], lang: str, 
 
     out = Path(out)
     manifest = Manifest(out)
-    rep = set(formats) & {"html", "pdf"}
+    rep = set(formats) & {"html", "pdf", "note"}
     if rep or "sheets" in formats:      # they read the entries as lists: made once, for the file too
         from .results import listed
         results = listed(results)
@@ -149,7 +149,7 @@ def process(path: str | Path, out, formats: set[str], lang: str, *,
     if study and failure is None:
         from . import study as study_mod
         st = study_mod.run_study(task, progress=progress, repeat=3)
-    if folder is not None and set(formats) & {"html", "pdf", "sheets"}:
+    if folder is not None and set(formats) & {"html", "pdf", "sheets", "note"}:
         from .results import listed
         results = listed(results)   # as write_outputs reads them; returned so (made once)
     written = (write_outputs(task, results, folder, formats, lang, notes=notes, study=st)

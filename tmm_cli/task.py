@@ -514,6 +514,16 @@ class StudentSpec(BaseModel):
     group: str | None = None
 
 
+class CourseSpec(_Model):
+    """The course header of the explanatory note's title page and of the sheets' title blocks."""
+    university: str | None = None
+    department: str | None = None
+    supervisor: str | None = None
+    city: str | None = None
+    year: int | None = Field(None, ge=1900, le=2200)
+    designation: str | None = Field(None, description="the document's designation, e.g. 'ТММ.КП.07.00.00 ПЗ'")
+
+
 from .balancing.spec import BalancingSection  # noqa: E402
 from .differential.spec import DifferentialSection  # noqa: E402
 from .dof2.spec import Dof2Section  # noqa: E402
@@ -524,6 +534,7 @@ class Task(_Model):
     title: str = ""
     variant: Union[int, str, None] = None
     student: StudentSpec | None = None
+    course: CourseSpec | None = None
     mechanism: MechanismSection | None = None
     synthesis: SynthesisSection | None = None
     drive: DriveSection | None = None
@@ -811,6 +822,8 @@ _DOCS: dict[type, dict[str, str]] = {
         "title": "free text, shown in the report",
         "variant": "the variant number or name (free)",
         "student": "free metadata shown in the report: {name, group}",
+        "course": "the explanatory note's title page (`--format note`): {university, department, supervisor, city, "
+                  "year, designation}",
         "mechanism": "a planar linkage with lower pairs (the linkage stages run when present)",
         "drive": "the input link (crank): link, speed, direction, cycle",
         "positions": "the reported crank positions",
@@ -831,6 +844,10 @@ _DOCS: dict[type, dict[str, str]] = {
                      "graphical (the error of reading the drawings to 0.5 mm)}",
     },
     StudentSpec: {"name": "the student's name", "group": "the student's group"},
+    CourseSpec: {"university": "the university (title page)", "department": "the department (title page)",
+                 "supervisor": "the supervisor (title page, title block 'Пров.')", "city": "the city (title page)",
+                 "year": "the year (title page; default: the year of the run)",
+                 "designation": "the document's designation in the title blocks, e.g. 'ТММ.КП.07.00.00 ПЗ'"},
     ToleranceSpec: {"rel": "relative tolerance (fraction of |reference|)", "abs": "absolute tolerance, in the unit of the path"},
     LinkSpec: {"mass": "mass, kg", "guide": "slider: the line it translates along (fixed or on a link)"},
     DriveSection: {"link": "the crank (a bar with a ground pivot)",

@@ -179,15 +179,20 @@ class PdfSkipped(Exception):
     is still written."""
 
 
-def _pdf_bytes(html: str, lang: str = "en") -> bytes:
-    """report.pdf from the report's HTML, compiled by Typst (see typst_pdf)."""
-    from . import typst_pdf
+def _typst_ready() -> None:
+    """PdfSkipped naming the reason when the PDF engine (the typst package) cannot be loaded."""
     try:
         import typst  # noqa: F401
     except (ImportError, OSError) as exc:
         first = (str(exc).strip().splitlines() or [type(exc).__name__])[0]
         raise PdfSkipped(f"the PDF engine (typst) is not installed: {first}; "
                          "install it with: pip install typst") from None
+
+
+def _pdf_bytes(html: str, lang: str = "en") -> bytes:
+    """report.pdf from the report's HTML, compiled by Typst (see typst_pdf)."""
+    from . import typst_pdf
+    _typst_ready()
     return typst_pdf.pdf_bytes(html, lang)
 
 
@@ -311,6 +316,15 @@ def _finish(ctx, proc, conn, formats, all_names, helper_names, out_dir, notes=No
             notes.append(f"report.pdf skipped: {exc}")
         else:
             written.append(ctx.write_file("report.pdf", pdf))
+    if "note" in formats:              # the explanatory note: the same content, as a text document
+        try:
+            from . import note
+            _typst_ready()
+            written.append(ctx.write_file("note.pdf", note.pdf_bytes(html, ctx.results, ctx.task, ctx.lang)))
+        except PdfSkipped as exc:
+            if notes is None:
+                raise
+            notes.append(f"note.pdf skipped: {exc}")
     return written
 
 
@@ -406,7 +420,7 @@ def render(results: dict, task, out_dir: Path, formats: set[str], lang: str = "e
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     formats = {f.lower() for f in formats}
-    if not formats & {"html", "pdf"}:
+    if not formats & {"html", "pdf", "note"}:
         return []
     want_pdf = "pdf" in formats
     from ..results import listed

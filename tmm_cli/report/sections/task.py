@@ -47,7 +47,7 @@ I18N = {
            "task.extra": "другие точки: {p}"},
 }
 
-_META = ("schema", "schema_", "title", "variant", "student")
+_META = ("schema", "schema_", "title", "variant", "student", "course")
 
 # names of the task file's parameters (by the key without list indices) and of its word values
 PARAMS = {

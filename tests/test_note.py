@@ -1,0 +1,100 @@
+"""The explanatory note (`--format note`): the title page's fields, the ЕСКД frame where the
+standard puts it, the title block's designation and page number on every page after the
+title page, nothing outside the frame, the conclusions from the results, the references."""
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+MM = 72 / 25.4
+pytestmark = pytest.mark.skipif(shutil.which("pdftotext") is None, reason="pdftotext (poppler-utils) is missing")
+
+HEADER = """student: {name: "Іваненко П. С.", group: "МТ-31"}
+course: {university: "Національний технічний університет", department: "Кафедра теорії механізмів",
+         supervisor: "Петренко О. В.", city: "Харків", year: 2026, designation: "ТММ.КП.07.00.00 ПЗ"}
+"""
+
+
+@pytest.fixture(scope="module")
+def note(tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("note")
+    task = tmp / "engine.yaml"
+    task.write_text((ROOT / "tasks" / "engine_slider_crank.yaml").read_text(encoding="utf-8") + HEADER,
+                    encoding="utf-8")
+    p = subprocess.run([sys.executable, "-m", "tmm_cli", "run", str(task), "--out", str(tmp / "out"),
+                        "--format", "json,note", "--lang", "uk"], capture_output=True, text=True, timeout=600)
+    assert p.returncode == 0, p.stderr
+    assert not (tmp / "out" / "report.pdf").exists() and not (tmp / "out" / "report.html").exists()
+    return tmp / "out" / "note.pdf"
+
+
+def _pages(pdf: Path) -> list[list[tuple[float, float, float, float, str]]]:
+    """Every page's words as (x0, y0, x1, y1, word) in pt from the top left."""
+    xml = subprocess.run(["pdftotext", "-bbox", str(pdf), "-"], capture_output=True, text=True, check=True).stdout
+    pages = []
+    for page in xml.split("<page ")[1:]:
+        words = [(float(a), float(b), float(c), float(d), w) for a, b, c, d, w in
+                 re.findall(r'<word xMin="([\d.]+)" yMin="([\d.]+)" xMax="([\d.]+)" yMax="([\d.]+)">([^<]*)</word>',
+                            page)]
+        pages.append(words)
+    return pages
+
+
+def test_title_page_fields(note):
+    words = " ".join(w for *_, w in _pages(note)[0])
+    for text in ("ПОЯСНЮВАЛЬНА ЗАПИСКА", "Національний технічний університет", "Кафедра теорії механізмів",
+                 "Іваненко П. С.", "МТ-31", "Петренко О. В.", "Харків 2026", "ТММ.КП.07.00.00 ПЗ",
+                 "Four-stroke engine, central slider-crank"):
+        assert text in words, text
+
+
+def test_every_page_after_the_title_has_its_block(note):
+    pages = _pages(note)
+    assert len(pages) > 10
+    for k, words in enumerate(pages[1:], start=2):
+        block_top = (297 - 5 - (40 if k == 2 else 15)) * MM
+        inside = [w for x0, y0, x1, y1, w in words if y0 >= block_top - 0.5]
+        text = " ".join(inside)
+        assert "ТММ.КП.07.00.00" in text, (k, text)
+        assert re.search(rf"(^|\s){k}(\s|$)", text), (k, text)            # the page number in the block
+        # nothing outside the frame, and the text clear of the block
+        for x0, y0, x1, y1, w in words:
+            assert 20 * MM - 0.5 <= x0 and x1 <= (210 - 5) * MM + 0.5, (k, w, x0, x1)
+            assert 5 * MM - 0.5 <= y0 and y1 <= (297 - 5) * MM + 0.5, (k, w, y0, y1)
+            assert y1 <= block_top + 0.5 or y0 >= block_top - 0.5, (k, w, y0, y1)
+
+
+def test_the_frame_is_where_the_standard_puts_it(note, tmp_path):
+    """Page 3 rendered at 1 px = 1 pt: the frame's left line 20 mm from the left edge, its top
+    line 5 mm from the top, the right line 5 mm from the right edge."""
+    from PIL import Image
+    subprocess.run(["pdftoppm", "-png", "-r", "72", "-f", "3", "-l", "3", "-singlefile", str(note),
+                    str(tmp_path / "p3")], check=True)
+    im = Image.open(tmp_path / "p3.png").convert("L")
+    w, h = im.size
+    px = im.load()
+
+    def dark_column(x):
+        return sum(px[x, y] < 128 for y in range(h)) > 0.8 * h
+
+    def dark_row(y):
+        return sum(px[x, y] < 128 for x in range(w)) > 0.75 * w
+    cols = [x for x in range(w) if dark_column(x)]
+    rows = [y for y in range(h) if dark_row(y)]
+    assert any(abs(x - 20 * MM) <= 1.5 for x in cols), cols
+    assert any(abs(x - (210 - 5) * MM) <= 1.5 for x in cols), cols
+    assert any(abs(y - 5 * MM) <= 1.5 for y in rows), rows
+
+
+def test_contents_conclusions_and_references(note):
+    text = subprocess.run(["pdftotext", str(note), "-"], capture_output=True, text=True, check=True).stdout
+    assert "Зміст" in text and "Вступ" in text and "Висновки" in text and "Список літератури" in text
+    assert "Артоболевский И. И." in text and "Таблиця 1.1" in text and "Рисунок 2.1" in text
+    import json
+    res = json.loads((note.parent / "results.json").read_text())
+    J = res["flywheel"]["J"]
+    assert f"J = {J:.4g}".replace(".", ",") + " кг·м²" in text.replace("\n", " ")

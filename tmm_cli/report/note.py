@@ -1,0 +1,286 @@
+"""The explanatory note (пояснительная записка): the report's content laid out as the text
+document a student hands in (ГОСТ 2.105, 2.106): an A4 title page from the task's header
+(``student``, ``course``), then pages in the ЕСКД frame (20 mm from the left edge, 5 mm from
+the others; ГОСТ 2.104) with the title block of form 2 on the first page of the text (the
+contents) and of form 2a on the rest, each with the designation and the page number; an
+introduction, the report's sections with numbered figures and tables, conclusions made from
+the results, and the references.
+
+One content, two layouts: the sections are the report's HTML, translated to Typst by
+:mod:`tmm_cli.report.typst_pdf` exactly as for report.pdf; only the page, the title page,
+the captions' numbering and the parts around the sections are the note's own.
+"""
+from __future__ import annotations
+
+import datetime
+import re
+
+from . import typst_pdf
+from .i18n import words_beside
+
+WORDS = words_beside(__file__)
+
+# the sources the methods cite (docs/methods.md, Sources), ГОСТ 7.1 style
+BIBLIOGRAPHY = [
+    "Артоболевский И. И. Теория механизмов и машин : учебник для втузов. — 4-е изд., перераб. и доп. — М. : "
+    "Наука, 1988. — 640 с.",
+    "Попов С. А., Тимофеев Г. А. Курсовое проектирование по теории механизмов и механике машин : учеб. пособие "
+    "для втузов / под ред. К. В. Фролова. — М. : Высшая школа, 2002. — 411 с.",
+    "Теория механизмов и машин : учебник для втузов / К. В. Фролов, С. А. Попов, А. К. Мусатов [и др.] ; под "
+    "ред. К. В. Фролова. — М. : Высшая школа, 1987. — 496 с.",
+    "ГОСТ 16532-70. Передачи зубчатые цилиндрические эвольвентные внешнего зацепления. Расчёт геометрии. — "
+    "М. : Изд-во стандартов, 1983. — 43 с.",
+    "ГОСТ 2.105-2019. Единая система конструкторской документации. Общие требования к текстовым документам. — "
+    "М. : Стандартинформ, 2019. — 32 с.",
+]
+
+# the page: the frame 20 mm from the left edge, 5 mm from the others; the text 5 mm inside it,
+# clear of the title block (form 2: 40 mm, on the contents page; form 2a: 15 mm, on the rest)
+FRAME = {"left": 20.0, "top": 5.0, "right": 5.0, "bottom": 5.0}
+FORM2, FORM2A = 40.0, 15.0
+
+
+def _q(text) -> str:
+    """A Typst string literal."""
+    return '"' + str(text).replace("\\", "\\\\").replace('"', '\\"') + '"'
+
+
+def _arr(items) -> str:
+    """A Typst array of strings."""
+    return "(" + ", ".join(_q(x) for x in items) + ",)"
+
+
+def _num(x, lang: str, digits: int = 4) -> str:
+    if x is None:
+        return "—"
+    s = f"{float(x):.{digits}g}"
+    return s.replace(".", ",") if lang in ("ru", "uk") else s
+
+
+def conclusions(results: dict, lang: str) -> list[str]:
+    """Facts of the results, one sentence each, in the language (numbers from the results only)."""
+    W = WORDS[lang]
+    out = []
+    st = results.get("structure")
+    if st:
+        out.append(W["c_structure"].format(W=st.get("W"), formula=st.get("formula")))
+    pos = results.get("positions") or {}
+    if pos.get("K") is not None and pos.get("working_stroke_angle") is not None:
+        out.append(W["c_K"].format(K=_num(pos["K"], lang), ws=_num(pos["working_stroke_angle"], lang)))
+    ks = results.get("kinetostatics") or []
+    mb = [e.get("balancing_moment") for e in ks if e.get("balancing_moment") is not None]
+    if mb:
+        top = max(abs(m) for m in mb)
+        diff = max((abs(e["balancing_moment"] - e["zhukovsky_moment"]) for e in ks
+                    if e.get("balancing_moment") is not None and e.get("zhukovsky_moment") is not None), default=0.0)
+        share = f"{100 * diff / top:.2g} %" if top > 0 else "0 %"
+        out.append(W["c_mb"].format(diff=share.replace(".", ",") if lang in ("ru", "uk") else share,
+                                    mb=_num(top, lang)))
+    fw = results.get("flywheel")
+    if fw and fw.get("J") is not None:
+        out.append(W["c_fly"].format(J=_num(fw["J"], lang), delta=_num(fw.get("delta"), lang)))
+    cam = results.get("cam")
+    if cam and cam.get("r0") is not None:
+        out.append(W["c_cam"].format(r0=_num(1e3 * cam["r0"], lang), pa=_num(cam.get("max_pressure_angle"), lang)))
+    g = results.get("gears")
+    if g and g.get("aw") is not None:
+        out.append(W["c_gears"].format(aw=_num(1e3 * g["aw"], lang), eps=_num(g.get("eps_alpha"), lang)))
+    pl = results.get("planetary")
+    if pl and pl.get("ratio") is not None:
+        err = f"{100 * (pl.get('ratio_error') or 0):.3g} %"
+        out.append(W["c_plan"].format(s=pl.get("scheme"), z=", ".join(str(v) for v in (pl.get("z") or {}).values()),
+                                      i=_num(pl["ratio"], lang, 6),
+                                      err=err.replace(".", ",") if lang in ("ru", "uk") else err))
+    df = results.get("differential")
+    if df:
+        out.append(W["c_diff"].format(nH=_num(df["speeds_rpm"]["H"], lang), loss=_num(df.get("power_loss") or 0, lang)))
+    bal = results.get("balancing")
+    if bal and bal.get("max"):
+        after = W["c_bal_after"].format(Fb=_num(bal["max"]["F_balanced"], lang)) if "F_balanced" in bal["max"] else ""
+        out.append(W["c_bal"].format(F=_num(bal["max"]["F"], lang), after=after))
+    return out
+
+
+def _parts(results: dict, lang: str) -> str:
+    names = WORDS[lang]["parts"]
+    order = ("synthesis", "structure", "kinematics", "kinetostatics", "flywheel", "balancing", "cam", "gears",
+             "planetary", "drive_train", "differential", "dof2")
+    return ", ".join(names[k] for k in order if results.get(k))
+
+
+def _header(task) -> dict:
+    """The title page's fields: the task's ``student`` and ``course`` (each may be absent)."""
+    st = getattr(task, "student", None)
+    co = getattr(task, "course", None)
+    year = getattr(co, "year", None) or datetime.date.today().year
+    return {"title": getattr(task, "title", "") or "", "variant": getattr(task, "variant", None),
+            "student": getattr(st, "name", None) or "", "group": getattr(st, "group", None) or "",
+            "university": getattr(co, "university", None) or "", "department": getattr(co, "department", None) or "",
+            "supervisor": getattr(co, "supervisor", None) or "", "city": getattr(co, "city", None) or "",
+            "year": year, "designation": getattr(co, "designation", None) or ""}
+
+
+def _preamble(h: dict, lang: str) -> str:
+    W = WORDS[lang]
+    ch, roles = W["changes"], W["roles"]
+    fr = FRAME
+    return rf"""
+#set document(title: {_q(h['title'])}, date: none)
+#let designation = {_q(h['designation'])}
+#let cell(x, size: 7pt) = align(center + horizon, text(size: size, x))
+#let small = (7mm, 10mm, 23mm, 15mm, 10mm)
+#let form2a(pn) = table(columns: (..small, 110mm, 10mm), rows: (5mm, 5mm, 5mm), stroke: 0.5pt, inset: 0pt,
+  [], [], [], [], [], table.cell(rowspan: 3, cell(designation, size: 14pt)), cell({_q(W['sheet'])}),
+  [], [], [], [], [], table.cell(rowspan: 2, cell(str(pn), size: 10pt)),
+  ..{_arr(ch)}.map(c => cell(c, size: 6pt)))
+#let form2(pn, total) = table(columns: (..small, 70mm, 15mm, 15mm, 20mm),
+  rows: (5mm,) * 8, stroke: 0.5pt, inset: 0pt,
+  [], [], [], [], [], table.cell(colspan: 4, rowspan: 3, cell(designation, size: 14pt)),
+  [], [], [], [], [],
+  ..{_arr(ch)}.map(c => cell(c, size: 6pt)),
+  table.cell(colspan: 2, cell({_q(roles[0])}, size: 6pt)), cell({_q(h['student'])}, size: 6pt), [], [],
+  table.cell(rowspan: 5, cell({_q(h['title'])}, size: 9pt)), cell({_q(W['lit'])}, size: 6pt),
+  cell({_q(W['sheet'])}, size: 6pt), cell({_q(W['sheets'])}, size: 6pt),
+  table.cell(colspan: 2, cell({_q(roles[1])}, size: 6pt)), cell({_q(h['supervisor'])}, size: 6pt), [], [],
+  [], cell(str(pn), size: 8pt), cell(str(total), size: 8pt),
+  table.cell(colspan: 2, cell({_q(roles[2])}, size: 6pt)), [], [], [],
+  table.cell(colspan: 3, rowspan: 3, cell({_q(h['university'] or h['group'])}, size: 7pt)),
+  table.cell(colspan: 2, cell({_q(roles[3])}, size: 6pt)), [], [], [],
+  table.cell(colspan: 2, cell({_q(roles[4])}, size: 6pt)), [], [], [])
+#let frame = context {{
+  let pn = counter(page).get().first()
+  let total = counter(page).final().first()
+  place(top + left, dx: {fr['left']}mm, dy: {fr['top']}mm,
+    rect(width: {210 - fr['left'] - fr['right']}mm, height: {297 - fr['top'] - fr['bottom']}mm, stroke: 0.7pt))
+  if pn == 2 {{
+    place(bottom + left, dx: {fr['left']}mm, dy: -{fr['bottom']}mm, form2(pn, total))
+  }} else {{
+    place(bottom + left, dx: {fr['left']}mm, dy: -{fr['bottom']}mm, form2a(pn))
+  }}
+}}
+#let textmargin(block) = (left: {fr['left'] + 5}mm, right: {fr['right'] + 5}mm, top: {fr['top'] + 5}mm,
+  bottom: {fr['bottom']}mm + block + 4mm)
+"""
+
+
+def _title_page(h: dict, lang: str) -> str:
+    W = WORDS[lang]
+    who = h["student"] + (f", {W['group']} {h['group']}" if h["group"] else "")
+    sup = f"{W['supervisor']}: {h['supervisor']}" if h["supervisor"] else ""
+    var = W["variant"].format(v=h["variant"]).lstrip(", ") if h["variant"] not in (None, "") else ""
+    return rf"""
+#page(margin: (left: 30mm, right: 15mm, top: 20mm, bottom: 20mm), foreground: none, footer: none)[
+  #set align(center)
+  #text(size: 12pt, {_q(h['university'])}) \
+  #text(size: 12pt, {_q(h['department'])})
+  #v(1fr)
+  #text(size: 16pt, weight: "bold", {_q(W['kind'])}) \
+  #v(2mm)
+  #text(size: 13pt, {_q(W['to'])}) \
+  #v(4mm)
+  #text(size: 14pt, weight: "bold", {_q('«' + h['title'] + '»')}) \
+  #text(size: 12pt, {_q(var)}) \
+  #v(2mm)
+  #text(size: 12pt, {_q(h['designation'])})
+  #v(1fr)
+  #align(right, block(width: 90mm, align(left, [
+    #text(size: 12pt, {_q(W['student'] + ': ' + who if h['student'] else '')}) \
+    #text(size: 12pt, {_q(sup)})
+  ])))
+  #v(1fr)
+  #text(size: 12pt, {_q((h['city'] + ' ' if h['city'] else '') + str(h['year']))})
+]
+"""
+
+
+def _strip_head(html: str) -> str:
+    """The report's HTML less its own title block and contents (the note has its own)."""
+    html = re.sub(r'<header class="report-head">.*?</header>', "", html, count=1, flags=re.S)
+    return re.sub(r'<nav class="toc">.*?</nav>', "", html, count=1, flags=re.S)
+
+
+def to_typst(html: str, results: dict, task, lang: str = "en") -> tuple[str, dict[str, bytes]]:
+    """(Typst source, {file name: bytes}) of the explanatory note."""
+    W = WORDS.get(lang, WORDS["en"])
+    h = _header(task)
+    # the report's body as report.pdf has it; its preamble (fonts, tables, headings) less its page,
+    # figure and caption settings, which are the note's own
+    root, svgs = typst_pdf._parse(_strip_head(html))
+    w = typst_pdf._Writer(svgs, None)
+    body, files = w.block(root), w.files
+    # the report keeps a position's drawings on one page; the note's text area is shorter (the title
+    # block), so there they may flow on to the next page (each drawing itself stays whole)
+    body = body.replace("#block(breakable: false)[", "#block[")
+    head = _preamble_only(typst_pdf.PREAMBLE.replace("TITLE", typst_pdf._s(h["title"])[1:]).replace("LANG", f'"{lang}"'))
+    var = W["variant"].format(v=h["variant"]) if h["variant"] not in (None, "") else ""
+    intro = W["intro_text"].format(title=h["title"], variant=var, parts=_parts(results, lang))
+    concl = conclusions(results, lang)
+    numbering = rf"""
+#let figno = counter("note-figure")
+#let tabno = counter("note-table")
+#show heading.where(level: 1): it => {{ figno.update(0); tabno.update(0); it }}
+#let fig(file, w, c, labels: none) = {{
+  figno.step()
+  block(above: 2mm, below: 3mm, breakable: false, width: 100%, align(center, {{
+    // a drawing never taller than the page's text leaves room for (its caption below it)
+    layout(size => {{
+      let body = if labels == none {{ image(file, width: calc.min(w, size.width)) }} else {{
+        block(width: w, {{ image(file, width: w); set text(top-edge: "baseline", bottom-edge: "baseline"); labels }}) }}
+      let m = measure(body)
+      let k = calc.min(1.0, size.width / m.width, MAXH / m.height)
+      if k < 1.0 {{ scale(x: k * 100%, y: k * 100%, reflow: true, body) }} else {{ body }}
+    }})
+    v(1mm, weak: true)
+    text(size: 9pt, context [{W['figure']} #counter(heading).get().first().#figno.display() #if c != none [— #c]])
+  }}))
+}}
+#let cap(x) = {{ tabno.step(); block(below: 1mm, sticky: true,
+  context [{W['table']} #counter(heading).get().first().#tabno.display() — #x]) }}
+"""
+    page = rf"""
+#set page(margin: textmargin({FORM2A}mm), foreground: frame, footer: none, header: none)
+"""
+    numbering = numbering.replace("MAXH", f"{297 - 10 - FORM2A - 4 - 5 - 14}mm")
+    contents = rf"""
+#page(margin: textmargin({FORM2}mm), foreground: frame, footer: none)[
+  #align(center, text(size: 13pt, weight: "bold", {_q(W['contents'])}))
+  #outline(title: none, depth: 2)
+]
+"""
+    intro_block = rf"""
+#heading(numbering: none, {_q(W['intro'])})
+#par({_q(intro)})
+"""
+    tail = rf"""
+#heading(numbering: none, {_q(W['conclusions'])})
+{''.join('#par(' + _q(c) + ')' + chr(10) for c in concl)}
+#heading(numbering: none, {_q(W['biblio'])})
+#enum(numbering: "1.", {', '.join('[' + _q(b)[1:-1].replace('[', '(').replace(']', ')') + ']' for b in BIBLIOGRAPHY)})
+"""
+    out = head + numbering + _title_page(h, lang) + contents + page + intro_block + body + tail
+    return out, files
+
+
+def _preamble_only(pre: str) -> str:
+    """The report's preamble without its page setting (the note sets its own) and its fig/cap
+    (the note's number their captions)."""
+    pre = re.sub(r"#set page\(.*?\)\)\)\)\n", "", pre, count=1, flags=re.S)
+    pre = re.sub(r"#let cap\(x\) = .*?\n", "", pre, count=1)
+    pre = re.sub(r"#let fig\(file.*", "", pre, count=1, flags=re.S)
+    return pre
+
+
+def pdf_bytes(html: str, results: dict, task, lang: str = "en") -> bytes:
+    """Compile the explanatory note to PDF bytes."""
+    import tempfile
+    from pathlib import Path
+
+    import typst
+    src, files = to_typst(html, results, task, lang)
+    with tempfile.TemporaryDirectory(prefix="tmm-note-") as tmp:
+        d = Path(tmp)
+        for name, data in files.items():
+            (d / name).write_bytes(data)
+        (d / "note.typ").write_text(_preamble(_header(task), lang) + src, encoding="utf-8")
+        return typst.compile(str(d / "note.typ"), root=str(d), font_paths=typst_pdf._font_links(d / "fonts"),
+                             pdf_tags=False)
