@@ -90,7 +90,7 @@ def test_primitive_kinds_each_written():
     arc = doc.modelspace().query("ARC")[0]
     assert (arc.dxf.radius, arc.dxf.start_angle, arc.dxf.end_angle) == (10, 0, 90)
     t = doc.modelspace().query("TEXT")[0]
-    assert t.dxf.height == pytest.approx(0.7 * 3.5)
+    assert t.dxf.height == pytest.approx(3.5)        # the size of the lettering: the capitals
     assert [e.dxftype() for e in doc.modelspace()] == ["LINE", "ARC", "CIRCLE", "LWPOLYLINE", "TEXT"]
 
 
@@ -440,3 +440,51 @@ def test_sheets_pdf_by_typst(forging, tmp_path):
     p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
     assert p.returncode == 0, p.stderr
     assert p.stdout.strip() == "False" and (tmp_path / "en" / "sheets.pdf").stat().st_size > 20000
+
+
+GOST_2304 = (2.5, 3.5, 5.0, 7.0, 10.0, 14.0)
+
+
+@pytest.fixture(scope="module")
+def every_sheet():
+    """{(task, lang): sheets} of every task in tasks/ that has sheets."""
+    from tmm_cli.pipeline import run
+    from tmm_cli.sheets import build_sheets
+    from tmm_cli.task import load_task
+    out = {}
+    for path in sorted((ROOT / "tasks").glob("*.yaml")):
+        task = load_task(path)
+        res = run(task)
+        for lang in ("en", "ru", "uk"):
+            sheets = build_sheets(res, task, lang)
+            if sheets:
+                out[path.stem, lang] = sheets
+    return out
+
+
+def test_lettering_in_gost_sizes(every_sheet):
+    """Every text of every sheet (its capitals) in a ГОСТ 2.304 size: measured in the SVG
+    (font-size x the capitals of DejaVu Sans, 1493/2048 em), in the DXF (TEXT height) and
+    in the primitives; a subscript 0.72 of its text: 1.8 mm (ГОСТ 2.304's size for
+    indices) under 2.5, 2.5 under 3.5."""
+    import io
+    import re
+
+    import ezdxf
+    from tmm_cli.sheets.writers import to_svg
+    cap = 1493.0 / 2048.0
+    assert len({k[0] for k in every_sheet}) >= 20
+    for (name, lang), sheets in every_sheet.items():
+        for cv, info in sheets:
+            where = (name, lang, info["number"])
+            heights = {round(p.cap, 6) for p in cv.prims if isinstance(p, Text)}
+            assert heights and heights <= set(GOST_2304), (where, heights)
+            svg = to_svg(cv)
+            mains = {round(float(f) * cap, 3) for f in re.findall(r'<text [^>]*font-size="([0-9.]+)"', svg)}
+            assert all(min(abs(h - g) for g in GOST_2304) <= 0.02 for h in mains), (where, mains)
+            subs = {round(float(f) * cap, 3) for f in re.findall(r'<tspan [^>]*font-size="([0-9.]+)"', svg)}
+            assert all(min(abs(h - g) for g in (1.8, *GOST_2304)) <= 0.06 for h in subs), (where, subs)
+            if lang == "en":
+                doc = ezdxf.read(io.StringIO(to_dxf(cv).decode()))
+                dxf = {round(t.dxf.height, 4) for t in doc.modelspace().query("TEXT")}
+                assert dxf <= set(GOST_2304), (where, dxf)

@@ -49,7 +49,7 @@ def build(cv, results, task, lang="en") -> dict:
         last = None
         for yv, key in ends:
             yy = yv if last is None else min(yv, last - 4.0)
-            cv.mtext(x0f + 20.0 + 360.0 / mu_phi + 4.0, yy, key.replace("_", " "), 2.5)
+            cv.mtext(x0f + 20.0 + 360.0 / mu_phi + 15.0, yy, key.replace("_", " "), 2.5)   # past φ
             last = yy
         info["graphs"][sym] = {"mu": mu, "pts": pts, "origin": (x0f + 20.0, yc),
                                "values": [y for y in ys]}

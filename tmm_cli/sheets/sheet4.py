@@ -9,6 +9,7 @@ import numpy as np
 from .frame import FRAME, length_scale, std_mu
 from .graph import draw_graph
 
+GX = 28.0         # mm: the diagrams' φ axes start this far into the frame (room for d²s/dφ²)
 TXT = {"en": {"profile": "Cam profile", "law": "Motion law of the follower", "mm": "mm", "m": "m"},
        "ru": {"profile": "Профиль кулачка", "law": "Закон движения толкателя", "mm": "мм", "m": "м"},
        "uk": {"profile": "Профіль кулачка", "law": "Закон руху штовхача", "mm": "мм", "m": "м"}}
@@ -35,10 +36,10 @@ def build(cv, results, task, lang="en") -> dict:
         mu = std_mu(max(hi - lo, 1e-12) / (box_h - 22.0))
         yc = y1f - 20.0 - k * box_h - hi / mu
         per = "" if unit.startswith("1/") else f"/{mm}"
-        pts, = draw_graph(cv, (x0f + 20.0, yc), [(np.append(phi, 360.0), np.append(y, y[0]), "#1f5fbf")],
+        pts, = draw_graph(cv, (x0f + GX, yc), [(np.append(phi, 360.0), np.append(y, y[0]), "#1f5fbf")],
                           1.0, mu, x_len=360.0, y_up=hi / mu + 5.0, y_down=-lo / mu + 3.0, x_sym="φ",
                           y_sym=sym, mu_text=f"μ = {mu:g} {unit}{per},  μφ = 1 °/{mm}", ticks=ticks)
-        info["graphs"][key] = {"mu": mu, "pts": pts, "origin": (x0f + 20.0, yc),
+        info["graphs"][key] = {"mu": mu, "pts": pts, "origin": (x0f + GX, yc),
                                "values": np.append(y, y[0])}
     # --- the profile: centre of the cam in the middle of the right half
     pitch = np.asarray(c["pitch_profile"], float)

@@ -211,18 +211,17 @@ def draw_plan(cv, plan, box, title, unit_txt, si_unit="m/s", mm="mm"):
             groups.append((mp[name], [name], j))
     pole = c + np.zeros(2) * k
     # title, scale, scale bar first: the point labels keep clear of them
-    from ..svgdraw import PT_PER_MM
     taken = []
 
     def fixed(x, y, text, pt, **kw):
         cv.text(x, y, text, size=pt, **kw)
-        tw, th = F.text_size(text, pt / PT_PER_MM)
+        tw, th = F.text_size(text, cv.font_mm(pt))
         taken.append((x, y - th / 2, x + tw, y + th / 2))
 
     fixed(x0 + 1.5, y0 + h - 3.2, title, 7, anchor="start", bold=True)
     cv.text(x0 + 1.5, y0 + h - 7.2, "μ", size=6.5, anchor="start", sub=plan.kind,
             after=f" = {mu_drawn:g} {unit_txt}")
-    tw, th = F.text_size(f"μ{plan.kind} = {mu_drawn:g} {unit_txt}", 6.5 / PT_PER_MM)
+    tw, th = F.text_size(f"μ{plan.kind} = {mu_drawn:g} {unit_txt}", cv.font_mm(6.5))
     taken.append((x0 + 1.5, y0 + h - 7.2 - th / 2, x0 + 1.5 + tw, y0 + h - 7.2 + th / 2))
     bar = 20.0                               # mm of the drawing, at the stated scale
     bx, by = x0 + 2.0, y0 + 2.5
@@ -236,7 +235,7 @@ def draw_plan(cv, plan, box, title, unit_txt, si_unit="m/s", mm="mm"):
     for (q, names, _), dq, r in zip(groups, d.tolist(), from_pole):
         anchors.append((q[0], q[1], tuple(dq) if r > 0.5 else (-1.0, -1.0)))
         texts.append(", ".join(sorted(names, key=lambda s: (s != plan.pole, s))))
-        sizes.append(F.text_size(texts[-1], 7 / PT_PER_MM))
+        sizes.append(F.text_size(texts[-1], cv.font_mm(7)))
     pos = F.place_labels(anchors, 60.0, avoid=[g[0] for g in groups], step=2.6, segments=segs, sizes=sizes,
                          taken=taken, bounds=(x0 + 0.5, y0 + 0.5, x0 + w - 0.5, y0 + h - 0.5))
     for (q, names, _), text, (x, y) in zip(groups, texts, pos):

@@ -29,7 +29,7 @@ from markupsafe import Markup, escape
 
 from .. import figures
 from ..context import values_of
-from ..svgdraw import PT_PER_MM, Canvas
+from ..svgdraw import Canvas
 
 I18N = {
     "en": {"kst.title": "Kinetostatics", "kst.convention": "Sign convention",
@@ -256,7 +256,7 @@ def _labels(cv, items, step, segments, avoid, lang, size=7.0, box=None, taken=No
     if not items:
         return
     parts = [label_parts(name, lang) for _, _, name, _ in items]
-    fs = size / PT_PER_MM
+    fs = cv.font_mm(size)
     sizes = [figures.text_size(s, fs, sub) for s, sub in parts]
     bounds = None
     if box is not None:
@@ -380,7 +380,7 @@ def _title(cv, box, title, scale) -> list:
     cv.text(x0 + 1.5, y0 + h - 7.2, sym[0], size=6.5, anchor="start", sub=sym[1:], after=f" = {rest}")
     out = []
     for s, yc, pt in ((title, h - 3.2, 7), (scale, h - 7.2, 6.5)):
-        tw, th = text_size(s, pt / PT_PER_MM)
+        tw, th = text_size(s, cv.font_mm(pt))
         out.append((x0 + 1.5, y0 + yc - th / 2, x0 + 1.5 + tw, y0 + yc + th / 2))
     return out
 
@@ -534,12 +534,12 @@ def _lever_panel(ctx, cv, box, e, kin_e, pin, omega1, balance_kind):
     yy = y0 + text_h - 2.5
     for s in lines:
         cv.text(x0 + 1, yy, s, size=6.5, anchor="start")
-        tw, th = figures.text_size(s, 6.5 / PT_PER_MM)
+        tw, th = figures.text_size(s, cv.font_mm(6.5))
         taken.append((x0 + 1, yy - th / 2, x0 + 1 + tw, yy + th / 2))
         yy -= 3.8
     # the pole, then the letters of the turned plan (merged where ends coincide), then the forces
     cv.text(pole[0] - 1.8, pole[1] - 1.8, "p", size=7, italic=True)
-    tw, th = figures.text_size("p", 7 / PT_PER_MM)
+    tw, th = figures.text_size("p", cv.font_mm(7))
     taken.append((pole[0] - 1.8 - tw / 2, pole[1] - 1.8 - th / 2, pole[0] - 1.8 + tw / 2, pole[1] - 1.8 + th / 2))
     groups: list[tuple[np.ndarray, list[str], int]] = []
     if ends:                 # the ends' distances to each other (np.hypot of the differences, as one by one)
