@@ -20,7 +20,7 @@ import numpy as np
 from markupsafe import Markup
 
 from ..context import values_of
-from ..course import course_entries, grid_count
+from ..course import course_entries, cycle_order, grid_count, position_label
 from ...plans import build_plan, crank_pin, geometry, plan_label, scales
 
 I18N = {
@@ -370,6 +370,11 @@ def build(ctx) -> str | None:
     fine = grid if len(shown_grid) < n_grid else None
     sgn = _rotation_sign(ctx, geom, entries)
     phi0 = res_pos.get("phi0", grid[0]["phi"])
+    # the tables and plans in the order of the crank's turn, the extras marked
+    shown = cycle_order(shown, phi0, sgn)
+
+    def num(e):
+        return position_label(e, n_grid)
     phase = [((float(e["phi"]) - float(phi0)) * sgn) % 360.0 for e in entries]
     phase = [0.0 if abs(p - 360.0) < 1e-9 else p for p in phase]
 
@@ -421,9 +426,9 @@ def build(ctx) -> str | None:
             if p not in geom.ground and p not in moving_pts and p in entries[0]["points"]:
                 moving_pts.append(p)
     hdr_pts = [ctx.t("common.position"), "φ, °"] + moving_pts
-    v_rows = [[str(e["index"]), ctx.fmt_fixed(e["phi"], 2)] +
+    v_rows = [[num(e), ctx.fmt_fixed(e["phi"], 2)] +
               [ctx.fmt(e["points"][p]["v"]) for p in moving_pts] for e in shown]
-    a_rows = [[str(e["index"]), ctx.fmt_fixed(e["phi"], 2)] +
+    a_rows = [[num(e), ctx.fmt_fixed(e["phi"], 2)] +
               [ctx.fmt(e["points"][p]["a"]) for p in moving_pts] for e in shown]
     # angular quantities: links that turn (a slider on a fixed guide never does)
     def turns(n):
@@ -433,12 +438,12 @@ def build(ctx) -> str | None:
 
     def signed(x):
         return f"{ctx.fmt(x)} {_sense_mark(x)}".rstrip()
-    w_rows = [[str(e["index"]), ctx.fmt_fixed(e["phi"], 2)] +
+    w_rows = [[num(e), ctx.fmt_fixed(e["phi"], 2)] +
               [signed(e["links"][l.name]["omega"]) for l in rot_links] for e in shown]
-    e_rows = [[str(e["index"]), ctx.fmt_fixed(e["phi"], 2)] +
+    e_rows = [[num(e), ctx.fmt_fixed(e["phi"], 2)] +
               [signed(e["links"][l.name]["epsilon"]) for l in rot_links] for e in shown]
     hdr_ang = [ctx.t("common.position"), "φ, °"] + [f"{l.index} ({l.name})" for l in geom.links]
-    ang_rows = [[str(e["index"]), ctx.fmt_fixed(e["phi"], 2)] +
+    ang_rows = [[num(e), ctx.fmt_fixed(e["phi"], 2)] +
                 [ctx.fmt_fixed(e["links"][l.name].get("angle"), 2) for l in geom.links] for e in shown]
 
     # plans of every (course) position
@@ -457,7 +462,7 @@ def build(ctx) -> str | None:
                                  html.unescape(sym.replace("<sub>", "_").replace("</sub>", "")
                                                .replace("<sup>", "^").replace("</sup>", "")),
                                  float(mm), float(val)])
-        positions.append({"index": e["index"], "phi": ctx.fmt_fixed(e["phi"], 2),
+        positions.append({"index": num(e), "phi": ctx.fmt_fixed(e["phi"], 2),
                           "fig": F.named(plans_svg(ctx, vp, ap), F.pos_name("plans", e["index"])), "vrows": vrows, "arows": arows})
 
     # diagrams
@@ -482,6 +487,8 @@ def build(ctx) -> str | None:
         ctx.written_elsewhere("kinematics.csv")
     else:
         write_table(ctx)
+    order = {e["index"]: k for k, e in enumerate(entries)}      # the CSV in the results' order
+    plan_csv.sort(key=lambda r: order[r[0]])
     ctx.write_csv("plans.csv", ["index", "phi", "plan", "segment", "vector", "length_mm", "value"], plan_csv)
 
     return ctx.render("sections/kinematics.html.j2",
@@ -490,4 +497,5 @@ def build(ctx) -> str | None:
                       hdr_pts=hdr_pts, v_rows=v_rows, a_rows=a_rows, hdr_l=hdr_l,
                       w_rows=w_rows, e_rows=e_rows, hdr_ang=hdr_ang, ang_rows=ang_rows,
                       sense_note=ctx.t("kin.sense_note"), positions=positions, fig_diagrams=diag,
-                      out_name=out_name, dense=curve is not None)
+                      out_name=out_name, dense=curve is not None,
+                      extra_note=ctx.t("common.extra_note") if len(entries) > n_grid else None)

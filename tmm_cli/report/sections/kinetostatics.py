@@ -29,6 +29,7 @@ from markupsafe import Markup, escape
 
 from .. import figures
 from ..context import values_of
+from ..course import position_label
 from ..svgdraw import Canvas
 
 I18N = {
@@ -721,6 +722,8 @@ def _cycle_fig(ctx, entries, phi0, sign, info):
     rows.sort(key=lambda r: r[0])
     if len(rows) < 2:
         return None
+    if rows[0][0] < 1e-6:            # a periodic curve closes: the zero position again at 360°
+        rows.append((360.0, rows[0][1]))
     key = "balancing_moment" if info["balance_kind"] == "moment" else "balancing_force"
     from .. import figures
     from ..svgchart import subplots
@@ -777,21 +780,23 @@ def build(ctx) -> str | None:
     if has_near:
         hdr.append(ctx.t("kst.near"))
     # a fine grid: tables and drawings of the course positions (report/course.py), CSV in full
-    from ..course import course_entries, grid_count
-    shown = course_entries(entries, grid_count(ctx.results, len(entries)))
-    shown_ids = {id(e) for e in shown}
+    from ..course import course_entries, cycle_order, grid_count
+    n_grid = grid_count(ctx.results, len(entries))
+    # the tables and drawings in the order of the crank's turn, the extras marked
+    shown = cycle_order(course_entries(entries, n_grid), phi0, sign)
     mb_rows = []
     csv_rows = []
     # the CSV row of every position (a fine grid has thousands) read by values_of
     values, xyr = values_of(keys + ("discrepancy", "efficiency")), values_of(("x", "y", "R"))
     jkeys = [j["key"] for j in info["joints"]]
+    for e in shown:
+        disc = None if e.get("discrepancy") is None else 100.0 * e["discrepancy"]
+        row = [position_label(e, n_grid), ctx.fmt_fixed(e["phi"], 2)] + [fmt(e.get(k), 6) for k in keys] + [
+            fmt(disc, 2)]
+        if has_near:
+            row.append("✓" if e.get("near_singular") else "")
+        mb_rows.append(row)
     for e in entries:
-        if id(e) in shown_ids:
-            disc = None if e.get("discrepancy") is None else 100.0 * e["discrepancy"]
-            row = [e["index"], ctx.fmt_fixed(e["phi"], 2)] + [fmt(e.get(k), 6) for k in keys] + [fmt(disc, 2)]
-            if has_near:
-                row.append("✓" if e.get("near_singular") else "")
-            mb_rows.append(row)
         crow = [e["index"], e["phi"], *values(e)]
         reactions = e["reactions"]
         for k in jkeys:
@@ -808,7 +813,7 @@ def build(ctx) -> str | None:
                                        for j in info["joints"]]
     r_rows = []
     for e in shown:
-        row = [e["index"]]
+        row = [position_label(e, n_grid)]
         for j in info["joints"]:
             r = e["reactions"][j["key"]]
             if j["kind"] == "P":
@@ -820,10 +825,10 @@ def build(ctx) -> str | None:
     # friction table
     eff_rows = None
     if has_eff:
-        eff_rows = [[e["index"], ctx.fmt_fixed(e["phi"], 2), fmt(e.get("friction_power"), 5),
+        eff_rows = [[position_label(e, n_grid), ctx.fmt_fixed(e["phi"], 2), fmt(e.get("friction_power"), 5),
                      fmt(e.get("driving_power"), 5), fmt(e.get("efficiency"), 4)] for e in shown]
     # loads of every position in one table: the varying loads by position, the constant ones below
-    loads_hdr, loads_rows, const = _loads_table(ctx, shown)
+    loads_hdr, loads_rows, const = _loads_table(ctx, shown, n_grid)
     # per position drawings
     from ...plans import crank_pin, geometry
     geom = geometry(ctx.results)
@@ -838,7 +843,7 @@ def build(ctx) -> str | None:
             figs = []
         else:
             figs, _ = position_figures(ctx, e, ke, info, links, geom_pin, w1)
-        positions.append({"index": e["index"], "phi": e["phi"], "figs": figs})
+        positions.append({"index": position_label(e, n_grid), "phi": e["phi"], "figs": figs})
     sing = ctx.results.get("singular") or []
     bk = ctx.t("kst.bk_moment") if info["balance_kind"] == "moment" else ctx.t("kst.bk_force")
     return ctx.render("sections/kinetostatics.html.j2", info=info, mb_hdr=hdr, mb_rows=mb_rows,
@@ -850,10 +855,11 @@ def build(ctx) -> str | None:
                       fbd_caption=ctx.t("kst.fbd_caption"),
                       fig_diagrams=_diagrams_fig(ctx, info, shown, len(entries)),
                       fig_cycle=_cycle_fig(ctx, entries, phi0, sign, info),
-                      singular=", ".join(ctx.fmt_fixed(s, 6) for s in sing))
+                      singular=", ".join(ctx.fmt_fixed(s, 6) for s in sing),
+                      extra_note=ctx.t("common.extra_note") if len(entries) > n_grid else None)
 
 
-def _loads_table(ctx, entries):
+def _loads_table(ctx, entries, n_grid=None):
     """Header, rows (one per position) of the loads that vary, and the text of the
     constant ones ('G₁ = 14.72 N, ...')."""
     lang = ctx.lang
@@ -899,6 +905,7 @@ def _loads_table(ctx, entries):
         [label_html(nm, lang) for nm in ccols]
     rows = []
     for k, e in enumerate(with_loads):
-        rows.append([e["index"], ctx.fmt_fixed(e["phi"], 2)] + [ctx.fmt(fval[nm][k], 4) for nm in fcols]
+        rows.append([e["index"] if n_grid is None else position_label(e, n_grid), ctx.fmt_fixed(e["phi"], 2)]
+                    + [ctx.fmt(fval[nm][k], 4) for nm in fcols]
                     + [ctx.fmt(cval[nm][k], 4) for nm in ccols])
     return hdr, rows, Markup(", ").join(const_parts)
