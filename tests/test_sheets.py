@@ -488,3 +488,38 @@ def test_lettering_in_gost_sizes(every_sheet):
                 doc = ezdxf.read(io.StringIO(to_dxf(cv).decode()))
                 dxf = {round(t.dxf.height, 4) for t in doc.modelspace().query("TEXT")}
                 assert dxf <= set(GOST_2304), (where, dxf)
+
+
+@pytest.mark.parametrize("lang", ["en", "ru", "uk"])
+def test_planetary_only_task_writes_a_sheet(lang):
+    """A task with only a planetary section: its sheet (scheme at a ГОСТ scale, the picture of
+    linear velocities on the same radii at a standard μv) - each point at v/μv from the v axis
+    and at r/μl above the axis as in the scheme, i1H read from the drawn lines."""
+    import io
+
+    import ezdxf
+    from tmm_cli.pipeline import run
+    from tmm_cli.sheets import SHEETS, build_sheets
+    from tmm_cli.task import load_task
+    task = load_task(ROOT / "tasks" / "planetary_A.yaml")
+    res = run(task)
+    sheets = build_sheets(res, task, lang)
+    assert [info["number"] for _, info in sheets] == [6]
+    cv, info = sheets[0]
+    assert info["title_block"]["sheet_title"] == SHEETS[lang][6]
+    assert info["title_block"]["scale"] == info["scale"] and _mantissa_ok(info["mu_v"])
+    _check_texts(sheets)
+    assert not ezdxf.read(io.StringIO(to_dxf(cv).decode())).audit().has_errors
+    vp = res["planetary"]["velocity_plan"]
+    vx = info["points"]["O"][0]
+    for q in vp["points"]:
+        x, y = info["points"][q["name"].split()[0]]
+        assert x - vx == pytest.approx(q["v"] / info["mu_v"], abs=1e-9)
+        assert y - info["axis_y"] == pytest.approx(q["y"] * 1000.0 / info["unit"], abs=1e-9)
+    # the wheels of the scheme on the same radii: wheel 1 from the axis to point A's height
+    assert info["wheels"]["1"][3] == pytest.approx(info["points"]["A"][1], abs=1e-9)
+
+    def tan(seg):                      # v per radius of a drawn line, as the scales make it
+        (xa, ya), (xb, yb) = seg
+        return (xb - xa) * info["mu_v"] / ((yb - ya) * info["unit"] / 1000.0)
+    assert tan(info["lines"]["1"]) / tan(info["lines"]["H"]) == pytest.approx(res["planetary"]["ratio"], rel=1e-9)
