@@ -6,6 +6,7 @@ import math
 from collections import Counter
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from tmm_cli.sheets.frame import FRAME, std_mu
@@ -523,3 +524,27 @@ def test_planetary_only_task_writes_a_sheet(lang):
         (xa, ya), (xb, yb) = seg
         return (xb - xa) * info["mu_v"] / ((yb - ya) * info["unit"] / 1000.0)
     assert tan(info["lines"]["1"]) / tan(info["lines"]["H"]) == pytest.approx(res["planetary"]["ratio"], rel=1e-9)
+
+
+@pytest.mark.parametrize("name", ["gears_shifted", "gears_zero"])
+def test_gear_sheet_teeth_closed(name):
+    """Each wheel's window of teeth one closed main-line contour: every tooth, the end ones too,
+    bounded by its two flanks (each crossing the pitch circle once) and the root circle
+    under it; nothing inside the root circle or outside the tip circle."""
+    from tmm_cli.sheets.sheet5 import TEETH
+    res, cv, info = _only_sheet(name, 5, "en")
+    g, M, unit = res["gears"], info["M"], info["unit"]
+    teeth = [p for p in cv.prims if isinstance(p, Polyline) and p.layer == "contour" and len(p.pts) > 100]
+    assert len(teeth) == 2
+    centres = [M((0.0, 0.0)), M((0.0, g["aw"]))]
+    for i, (p, c) in enumerate(zip(teeth, centres)):
+        assert p.closed
+        P = np.asarray(p.pts)
+        r = np.hypot(*(P - c).T)
+        rf, ra, rp = (g[k][i] * 1000.0 / unit for k in ("rf", "ra", "r"))
+        assert r.min() >= rf * (1 - 1e-9) and r.max() <= ra * (1 + 1e-9)
+        closing = [P[-1], P[0]]               # the closing segment lies on the root circle too
+        assert [math.hypot(*(q - c)) for q in closing] == pytest.approx([rf, rf], rel=1e-9)
+        assert math.hypot(*(P[-1] - P[0])) < 0.02 * rf     # a short chord of the arc, not across
+        crossings = np.count_nonzero(np.diff(np.sign(r - rp)) != 0)
+        assert crossings == 2 * TEETH, crossings

@@ -13,6 +13,32 @@ TXT = {"en": {"mesh": "Gear mesh", "m": "m", "mm": "mm"}, "ru": {"mesh": "Зуб
 TEETH = 5          # teeth drawn of each wheel, centred on the mesh
 
 
+def closed_window(X, Y, centre, rf: float, step_deg: float = 1.0) -> np.ndarray:
+    """The outline of a window of teeth (Wheel.outline: tooth after tooth, root point to root
+    point) as a closed contour: the spaces between the teeth along the root circle (arcs, not
+    chords) and the window closed under its teeth by the root circle, so that each tooth,
+    the end ones too, is a closed outline standing on the rim."""
+    c = np.asarray(centre, float)
+    P = np.c_[np.asarray(X, float), np.asarray(Y, float)]
+    r = np.hypot(*(P - c).T)
+    on_root = np.abs(r - rf) <= 1e-9 * rf
+
+    def arc(p, q):                 # root-circle points strictly between p and q, the short way
+        a0 = np.arctan2(*(p - c)[::-1])
+        d = (np.arctan2(*(q - c)[::-1]) - a0 + np.pi) % (2 * np.pi) - np.pi
+        n = int(abs(np.degrees(d)) / step_deg)
+        t = a0 + d * np.arange(1, n + 1) / (n + 1)
+        return c + rf * np.c_[np.cos(t), np.sin(t)]
+
+    out = [P[:1]]
+    for k in range(1, len(P)):
+        if on_root[k - 1] and on_root[k] and np.hypot(*(P[k] - P[k - 1])) > 1e-12:
+            out.append(arc(P[k - 1], P[k]))
+        out.append(P[k:k + 1])
+    out.append(arc(P[-1], P[0]))    # under the window's teeth back to its first point
+    return np.concatenate(out)
+
+
 def build(cv, results, task, lang="en") -> dict:
     from ..gears import mesh_layout
     from ..report.figures import place_labels
@@ -43,7 +69,7 @@ def build(cv, results, task, lang="en") -> dict:
     for i, (c, ax_ang, w) in enumerate(((c1, a1, w1), (c2, a2, w2))):
         cv.layer = "contour"
         X, Y = w.outline(axis_angle=ax_ang, teeth=TEETH, centre=c)
-        cv.polyline([M(p) for p in zip(X, Y)], width=0.7)
+        cv.polyline([M(p) for p in closed_window(X, Y, c, g["rf"][i])], width=0.7, closed=True)
         cv.layer = "thin"
         for key in ("rw", "r", "rb", "ra", "rf"):
             R = g[key][i] * 1000.0 / unit
