@@ -548,3 +548,26 @@ def test_gear_sheet_teeth_closed(name):
         assert math.hypot(*(P[-1] - P[0])) < 0.02 * rf     # a short chord of the arc, not across
         crossings = np.count_nonzero(np.diff(np.sign(r - rp)) != 0)
         assert crossings == 2 * TEETH, crossings
+
+
+@pytest.mark.parametrize("name", ["cam_offset", "cam_rocker", "cam_knife"])
+def test_cam_sheet_r0_construction(name):
+    """The s - ds/dφ construction of r0 on the cam sheet: the points D of the rise and the
+    return at one ГОСТ 2.302 scale from O, O B0 = r0 at that scale, each tangent at the allowed
+    pressure angle drawn through its point along its direction."""
+    res, cv, info = _only_sheet(name, 4, "ru")
+    c, k = res["cam"], res["cam"]["construction"]
+    d = info["construction"]
+    unit, O = d["unit"], d["O"]
+    assert _gost_length(unit / 1000.0)
+    for phase in ("rise", "return"):
+        want = O + np.asarray(k[f"D_{phase}"]) * 1000.0 / unit
+        assert np.allclose(d["D"][phase], want, atol=1e-9)
+    assert math.hypot(*(d["B0"] - O)) == pytest.approx(float(c["r0"]) * 1000.0 / unit, rel=1e-6)
+    assert len(d["tangents"]) == len(k["tangents"])
+    for (p, q), t in zip(d["tangents"], k["tangents"]):
+        u = np.asarray(t["direction"], float)
+        at = O + np.asarray(t["point"], float) * 1000.0 / unit
+        for end in (p, q):                               # both ends on the line through the point
+            w = np.asarray(end) - at
+            assert abs(u[0] * w[1] - u[1] * w[0]) < 1e-6
