@@ -571,3 +571,44 @@ def test_cam_sheet_r0_construction(name):
         for end in (p, q):                               # both ends on the line through the point
             w = np.asarray(end) - at
             assert abs(u[0] * w[1] - u[1] * w[0]) < 1e-6
+
+
+@pytest.mark.parametrize("name", ["forging_sixbar", "crank_rocker_fourbar"])
+def test_chord_method_check_on_sheet1(name):
+    """The output's v (ω) and a (ε) diagrams carry the chord-method differentiation of the
+    diagram above (12 intervals, at the middles, dashed) drawn at the diagram's μ, and its
+    greatest deviation from the exact curve; refined, the chord method meets the exact curve
+    (its ω and, for a rocker, degrees per radian are right)."""
+    from tmm_cli.pipeline import run
+    from tmm_cli.sheets import build_sheets
+    from tmm_cli.sheets.sheet1 import chord_derivative
+    from tmm_cli.task import load_task
+    task = load_task(ROOT / "tasks" / f"{name}.yaml")
+    res = run(task)
+    (cv, info), *_ = build_sheets(res, task, "uk")
+    dg = info["diagrams"]
+    kc, pos = res["kinematics_curve"], res["positions"]
+    sgn = -1.0 if pos.get("direction") == "cw" else 1.0
+    phase = (np.asarray(kc["phi"], float) - float(pos["phi0"])) * sgn % 360.0
+    o = np.argsort(phase, kind="stable")
+    phase = phase[o]
+    omega = abs(float(res["kinematics"][0]["links"]["crank"]["omega"]))
+    rocker = kc["quantity"] != "slider"
+    for key, prev in (("v", "s"), ("a", "v")):
+        ch = dg[key]["chord"]
+        assert len(ch["phase"]) == 12 and ch["phase"][0] == pytest.approx(15.0)
+        exact = np.asarray(kc[key], float)[o]
+        ym = float(np.max(np.abs(exact)))
+        dev = np.abs(ch["values"] - np.interp(ch["phase"], phase, exact, period=360.0))
+        assert ch["error_pct"] == pytest.approx(100 * dev.max() / ym, rel=1e-9)
+        assert 0.0 < ch["error_pct"] < 25.0
+        ox = ch["pts"][0][0] - ch["phase"][0] / dg["mu_phi"]
+        oy = ch["pts"][:, 1] - ch["values"] / dg[key]["mu"]
+        assert np.ptp(oy) < 1e-9 and ox == pytest.approx(dg[key]["pts"][0][0] - phase[0] / dg["mu_phi"])
+        texts = [p.plain for p in cv.prims if isinstance(p, Text)]
+        assert any(f"{ch['error_pct']:.1f} %" in t and "хорд" in t for t in texts)
+        # refined to 360 intervals the chords meet the exact derivative
+        mids, d = chord_derivative(phase, np.asarray(kc[prev], float)[o], omega, n=360,
+                                   per_deg=rocker and prev == "s")
+        fine = np.abs(d - np.interp(mids, phase, exact, period=360.0)).max() / ym
+        assert fine < 0.01, fine

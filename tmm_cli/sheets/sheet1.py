@@ -13,13 +13,16 @@ from .graph import draw_graph
 TXT = {
     "en": {"scheme": "Kinematic scheme", "plans": "Plans, position {i}", "vplan": "Velocity plan",
            "aplan": "Acceleration plan", "diagrams": "Diagrams of the output", "pos": "position",
-           "unit_v": "(m/s)/mm", "unit_a": "(m/s²)/mm", "mm": "mm"},
+           "unit_v": "(m/s)/mm", "unit_a": "(m/s²)/mm", "mm": "mm",
+           "chord": "chord method, {n} intervals (dashed): greatest deviation {err} % of the largest value"},
     "ru": {"scheme": "Кинематическая схема", "plans": "Планы, положение {i}", "vplan": "План скоростей",
            "aplan": "План ускорений", "diagrams": "Диаграммы выходного звена", "pos": "положение",
-           "unit_v": "(м/с)/мм", "unit_a": "(м/с²)/мм", "mm": "мм"},
+           "unit_v": "(м/с)/мм", "unit_a": "(м/с²)/мм", "mm": "мм",
+           "chord": "метод хорд, {n} интервалов (штриховая): наибольшее отклонение {err} % от наибольшего значения"},
     "uk": {"scheme": "Кінематична схема", "plans": "Плани, положення {i}", "vplan": "План швидкостей",
            "aplan": "План прискорень", "diagrams": "Діаграми вихідної ланки", "pos": "положення",
-           "unit_v": "(м/с)/мм", "unit_a": "(м/с²)/мм", "mm": "мм"},
+           "unit_v": "(м/с)/мм", "unit_a": "(м/с²)/мм", "mm": "мм",
+           "chord": "метод хорд, {n} інтервалів (штрихова): найбільше відхилення {err} % від найбільшого значення"},
 }
 UNITS = {"en": {"m": "m", "m/s": "m/s", "m/s²": "m/s²", "rad": "rad", "rad/s": "rad/s", "rad/s²": "rad/s²",
                 "deg": "°"},
@@ -176,6 +179,17 @@ def draw_plans(cv, geom, entry, box, lang="en") -> dict:
     return out
 
 
+def chord_derivative(phase_deg, y, omega: float, n: int = 12, per_deg: bool = False):
+    """The course's check of a diagram by graphical differentiation, the chord method: y at
+    n equal steps of the crank's turn (interpolated on the exact curve), the slope of each
+    chord times ω (the crank turns at ω) put at the middle of its interval.  per_deg: y in
+    degrees (a rocker's ψ), the slope per radian.  Returns (middles, derivative values)."""
+    q = np.linspace(0.0, 360.0, n + 1)
+    yq = np.interp(q, phase_deg, y, period=360.0)
+    scale = omega * (math.pi / 180.0 if per_deg else 1.0)
+    return (q[:-1] + q[1:]) / 2, np.diff(yq) / math.radians(360.0 / n) * scale
+
+
 def draw_diagrams(cv, results, geom, box, lang="en") -> dict:
     """The output's s, v, a (or ψ, ω, ε) over the crank turn from the start position,
     each at a standard μ; the φ axis at μφ = 1 °/mm (360 mm)."""
@@ -195,6 +209,10 @@ def draw_diagrams(cv, results, geom, box, lang="en") -> dict:
         (("s", "ψ", U["deg"]), ("v", "ω", U["rad/s"]), ("a", "ε", U["rad/s²"]))
     mu_phi = 1.0
     rowh = (h - 10.0) / 3
+    drive = next((l.name for l in geom.links if l.index == geom.drive), None) if geom is not None else None
+    omegas = [abs(float(e["links"][drive]["omega"] or 0.0)) for e in results.get("kinematics") or []
+              if drive in e.get("links", {})]
+    omega = float(np.median(omegas)) if omegas else 0.0        # the crank's steady ω
     out = {}
     cv.mtext(x0 + 2, y0 + h - 4, TXT[lang]["diagrams"], 5.0, bold=True)
     for k, (key, sym, unit) in enumerate(keys):
@@ -210,6 +228,21 @@ def draw_diagrams(cv, results, geom, box, lang="en") -> dict:
                           ticks=[(30.0 * i, str(i) if i < 12 else "") for i in range(13)])
         good = np.isfinite(y)
         out[key] = {"mu": mu, "pts": pts, "values": y[good]}
+        prev = {"v": "s", "a": "v"}.get(key)
+        if prev and omega and np.isfinite(out.get(prev, {}).get("raw", y)).all():
+            # the chord method on the diagram above: dashed, with its deviation from this exact curve
+            mids, d = chord_derivative(phase, out[prev]["raw"], omega, per_deg=(prev == "s" and not slider))
+            exact = np.interp(mids, phase, y, period=360.0)
+            err = 100.0 * float(np.max(np.abs(d - exact))) / ym
+            cv.layer = "thin"
+            cp = np.c_[ax0 + mids / mu_phi, yc + d / mu]
+            cv.polyline(cp, color="#b03a2e", width=0.35, dash="3 1.5")
+            for p in cp:
+                cv.circle(p, 0.8, stroke="#b03a2e", fill=None, width=0.3)
+            cv.mtext(ax0 + 150.0, yc + rowh / 2 - 5.0, TXT[lang]["chord"].format(n=len(mids), err=f"{err:.1f}"),
+                     2.5, color="#b03a2e")
+            out[key]["chord"] = {"phase": mids, "values": d, "exact": exact, "error_pct": err, "pts": cp}
+        out[key]["raw"] = y
     out["mu_phi"] = mu_phi
     return out
 
