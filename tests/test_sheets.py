@@ -612,3 +612,29 @@ def test_chord_method_check_on_sheet1(name):
                                    per_deg=rocker and prev == "s")
         fine = np.abs(d - np.interp(mids, phase, exact, period=360.0)).max() / ym
         assert fine < 0.01, fine
+
+
+@pytest.mark.parametrize("name", ["forging_sixbar", "shaper_slotted_lever", "press_offset_slider_crank"])
+def test_sheet1_velocity_plans_of_every_position(name):
+    """Sheet 1 as the course sets it: the velocity plans of all 12 positions at one standard
+    μv, each at true size (every vector value / μv long) in its own cell clear of the title
+    block; the acceleration plans of the two course positions."""
+    from tmm_cli.pipeline import run
+    from tmm_cli.sheets import build_sheets
+    from tmm_cli.sheets.frame import SHEET_W, TB_H, TB_W
+    from tmm_cli.task import load_task
+    task = load_task(ROOT / "tasks" / f"{name}.yaml")
+    res = run(task)
+    sheets = build_sheets(res, task, "ru")
+    _check_texts(sheets)
+    cv, info = sheets[0]
+    vp = info["vplans"]
+    assert set(range(12)) <= set(vp)
+    assert len({d["mu"] for d in vp.values()}) == 1 and _mantissa_ok(next(iter(vp.values()))["mu"])
+    for i, d in vp.items():
+        assert d["k"] == 1.0
+        for v in d["plan"].vecs:
+            assert d["plan"].length_mm(v) == pytest.approx(v.value / d["mu"], rel=1e-9, abs=1e-9)
+        x, y, w, h = d["box"]
+        assert not (x + w > SHEET_W - 5.0 - TB_W and y < 5.0 + TB_H), i       # clear of the title block
+    assert len(info["plans"]) == 2 and all(set(p) == {"v", "a"} for p in info["plans"].values())

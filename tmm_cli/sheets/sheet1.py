@@ -156,9 +156,9 @@ def draw_mechanism(cv, geom, entries, course: list[int], box, lang="en") -> dict
 PLAN_BOX_W, PLAN_BOX_H = 200.0, 140.0
 
 
-def draw_plans(cv, geom, entry, box, lang="en") -> dict:
-    """The velocity and acceleration plans of one position side by side, each at a
-    standard μ that fits its half of box at true size (the report's draw_plan)."""
+def draw_plans(cv, geom, entry, box, lang="en", kinds=("v", "a")) -> dict:
+    """The velocity and acceleration plans (kinds) of one position side by side, each at a
+    standard μ that fits its part of box at true size (the report's draw_plan)."""
     from ..plans import build_plan
     from ..report.sections.kinematics import draw_plan
     x0, y0, w, h = box
@@ -166,9 +166,10 @@ def draw_plans(cv, geom, entry, box, lang="en") -> dict:
     U = UNITS[lang]
     out = {}
     cv.layer = "thin"
-    for k, (kind, title, unit_txt, si) in enumerate((("v", T["vplan"], T["unit_v"], U["m/s"]),
-                                                     ("a", T["aplan"], T["unit_a"], U["m/s²"]))):
-        bx = (x0 + k * w / 2, y0, w / 2 - 2, h)
+    todo = [t for t in (("v", T["vplan"], T["unit_v"], U["m/s"]), ("a", T["aplan"], T["unit_a"], U["m/s²"]))
+            if t[0] in kinds]
+    for k, (kind, title, unit_txt, si) in enumerate(todo):
+        bx = (x0 + k * w / len(todo), y0, w / len(todo) - 2, h)
         p1 = build_plan(kind, entry, geom, 1.0)
         xy = np.array(list(p1.pts.values()))
         span = np.maximum(xy.max(axis=0) - xy.min(axis=0), 1e-12)
@@ -188,6 +189,32 @@ def chord_derivative(phase_deg, y, omega: float, n: int = 12, per_deg: bool = Fa
     yq = np.interp(q, phase_deg, y, period=360.0)
     scale = omega * (math.pi / 180.0 if per_deg else 1.0)
     return (q[:-1] + q[1:]) / 2, np.diff(yq) / math.radians(360.0 / n) * scale
+
+
+def draw_velocity_plans(cv, geom, entries, box, lang="en", ncol: int = 4) -> dict:
+    """The velocity plans of the grid's positions (the course's 12) in a grid of cells of box,
+    all at one standard μv, the smallest at which every plan fits its cell at true size."""
+    from ..plans import build_plan
+    from ..report.sections.kinematics import draw_plan
+    x0, y0, w, h = box
+    T, U = TXT[lang], UNITS[lang]
+    nrow = -(-len(entries) // ncol)
+    cw, ch = w / ncol, h / nrow
+    need = 0.0
+    for e in entries:
+        xy = np.array(list(build_plan("v", e, geom, 1.0).pts.values()))
+        span = np.maximum(xy.max(axis=0) - xy.min(axis=0), 1e-12)
+        need = max(need, span[0] / (cw - 2.0 - 12.0), span[1] / (ch - 30.0))
+    mu = std_mu(need)
+    cv.layer = "thin"
+    out = {}
+    for n, e in enumerate(entries):
+        r, c = divmod(n, ncol)
+        cell = (x0 + c * cw, y0 + h - (r + 1) * ch, cw - 2, ch)
+        plan = build_plan("v", e, geom, mu)
+        k = draw_plan(cv, plan, cell, f"{T['vplan']} ({T['pos']} {e['index']})", T["unit_v"], U["m/s"], T["mm"])
+        out[e["index"]] = {"plan": plan, "mu": mu, "k": k, "box": cell}
+    return out
 
 
 def draw_diagrams(cv, results, geom, box, lang="en") -> dict:
@@ -257,9 +284,19 @@ def build(cv, results, task, lang="en") -> dict:
                                         lang)}
     info["plans"] = {}
     by_index = {e["index"]: e for e in entries}
+    # the acceleration plans of the course positions side by side at the top, the velocity
+    # plans of every grid position (the course's 12) under them, at one μv
     for k, i in enumerate(course):
-        info["plans"][i] = draw_plans(cv, geom, by_index[i], (430.0, 445.0 - 145.0 * k, 2 * PLAN_BOX_W,
-                                                               PLAN_BOX_H), lang)
+        info["plans"][i] = draw_plans(cv, geom, by_index[i], (430.0 + PLAN_BOX_W * k, 445.0, PLAN_BOX_W,
+                                                               PLAN_BOX_H), lang, kinds=("a",))
+    from ..report.course import course_entries, grid_count
+    n_grid = grid_count(results, len(entries))
+    grid = course_entries(entries[:n_grid], n_grid)          # the course's 12 of a finer grid
+    grid += [by_index[i] for i in course if by_index[i] not in grid]     # a course extra after them
+    info["vplans"] = draw_velocity_plans(cv, geom, grid, (430.0, fy0 + 62.0, fx1 - 430.0 - 3.0,
+                                                          440.0 - fy0 - 62.0), lang)
+    for i in course:
+        info["plans"][i]["v"] = info["vplans"][i]
     info["diagrams"] = draw_diagrams(cv, results, geom, (fx0 + 3, fy0 + 3, 400.0, 290.0), lang)
     info["scale"] = info["mechanism"]["scale"]
     return info
