@@ -225,6 +225,11 @@ def test_dynamics_sheet(forging):
     assert min(y - sb * x) >= b - 1e-9 * abs(b) and min(y - sb * x) == pytest.approx(b, rel=1e-4)
     fw = res["flywheel"]
     assert sa == pytest.approx(fw["energy_mass"]["omega_max"] ** 2 / 2)
+    # the course's dynamics sheet: J_red(φ) and ω(φ) (about ωm) beside M, A, ΔT, each at value / μ
+    assert list(info["graphs"]) == ["M", "A", "ΔT", "J", "ω − ωm"]
+    arr = fw["arrays"]
+    assert np.array_equal(info["graphs"]["J"]["values"][0], np.asarray(arr["J_red"], float))
+    assert np.allclose(info["graphs"]["ω − ωm"]["values"][0] + fw["omega_m"], np.asarray(arr["omega"], float))
 
 
 def _only_sheet(name, number, lang):
