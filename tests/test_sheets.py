@@ -643,3 +643,20 @@ def test_sheet1_velocity_plans_of_every_position(name):
         x, y, w, h = d["box"]
         assert not (x + w > SHEET_W - 5.0 - TB_W and y < 5.0 + TB_H), i       # clear of the title block
     assert len(info["plans"]) == 2 and all(set(p) == {"v", "a"} for p in info["plans"].values())
+
+
+@pytest.mark.parametrize("name", ["gears_shifted", "gears_zero"])
+def test_gear_sheet_sliding_diagrams(name):
+    """The gear sheet carries the specific-sliding diagrams λ1, λ2 along the line of action:
+    every drawn point at X / μX, λ / μλ from the origin (X at a ГОСТ 2.302 scale, μλ
+    standard), B1, P, B2 marked where the results put them."""
+    res, cv, info = _only_sheet(name, 5, "uk")
+    sl, d = res["gears"]["sliding"], info["sliding"]
+    assert _gost_length(d["mu_x"]) and _mantissa_ok(d["mu_lambda"])
+    ox, oy = d["origin"]
+    for (X, v, _), p in zip(d["curves"], d["pts"]):
+        ok = np.isfinite(v)
+        assert ok.sum() >= 5 and len(p) == ok.sum()
+        assert np.allclose(p[:, 0], ox + X[ok] / d["mu_x"]) and np.allclose(p[:, 1], oy + v[ok] / d["mu_lambda"])
+    for k in ("B1", "P", "B2"):
+        assert d["marks"][k] == pytest.approx(ox + sl["marks"][k] / d["mu_x"])
