@@ -73,13 +73,18 @@ def test_extra_positions_in_angle_order_in_every_table(tmp_path, monkeypatch):
     from tmm_cli.report import render_html
     from tmm_cli.report import svgchart
     from tmm_cli.task import load_task
-    plotted = []
-    orig = svgchart.Axes.plot
+    plotted, notes = [], []
+    orig, orig_note = svgchart.Axes.plot, svgchart.Axes.annotate
 
     def plot(self, *args, **kw):
         plotted.append(list(args[0]) if args and not isinstance(args[0], str) else None)
         return orig(self, *args, **kw)
     monkeypatch.setattr(svgchart.Axes, "plot", plot)
+
+    def annotate(self, text, *args, **kw):
+        notes.append(text)
+        return orig_note(self, text, *args, **kw)
+    monkeypatch.setattr(svgchart.Axes, "annotate", annotate)
     task = load_task(ROOT / "tasks" / "shaper_slotted_lever.yaml")
     res = run(task)
     page, _ = render_html(res, task, tmp_path, "en")
@@ -104,3 +109,4 @@ def test_extra_positions_in_angle_order_in_every_table(tmp_path, monkeypatch):
         assert heads[:len(want)] == want, sec
     assert "an extra position" in page
     assert any(xs and xs[0] == 0.0 and xs[-1] == 360.0 for xs in plotted)        # M_b over the cycle
+    assert {"12*", "13*", "14*"} & set(notes)           # the load diagrams' points: the extras marked too

@@ -663,7 +663,7 @@ def _diagrams_fig(ctx, info, entries, grid_n):
             val = dd.get("value")
             # the diagram value (magnitude for a stroke load, signed for a phi-diagram)
             ys.append(abs(val) if d["abscissa"] == "s" and d["kind"] in ("resistance", "driving") else val)
-            labels.append(str(e["index"]))
+            labels.append(position_label(e, grid_n))       # an extra marked, as in the tables
         ax.plot(xs, ys, "o", ms=3.5, color="#c0392b")
         marks.append((ax, xs, ys, labels))
         ax.set_xlabel(ctx.t("kst.s_axis") if d["abscissa"] == "s" else ctx.t("kst.phi_axis"))
@@ -853,7 +853,7 @@ def build(ctx) -> str | None:
                       loads_note=Markup(escape(ctx.t("kst.loads_note", const="\u0001"))).replace(
                           "\u0001", const or "—"),
                       fbd_caption=ctx.t("kst.fbd_caption"),
-                      fig_diagrams=_diagrams_fig(ctx, info, shown, len(entries)),
+                      fig_diagrams=_diagrams_fig(ctx, info, shown, n_grid),
                       fig_cycle=_cycle_fig(ctx, entries, phi0, sign, info),
                       singular=", ".join(ctx.fmt_fixed(s, 6) for s in sing),
                       extra_note=ctx.t("common.extra_note") if len(entries) > n_grid else None)
