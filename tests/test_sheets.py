@@ -660,3 +660,35 @@ def test_gear_sheet_sliding_diagrams(name):
         assert np.allclose(p[:, 0], ox + X[ok] / d["mu_x"]) and np.allclose(p[:, 1], oy + v[ok] / d["mu_lambda"])
     for k in ("B1", "P", "B2"):
         assert d["marks"][k] == pytest.approx(ox + sl["marks"][k] / d["mu_x"])
+
+
+@pytest.mark.parametrize("name", ["crank_rocker_fourbar", "forging_sixbar"])
+def test_sheet1_coupler_curves(name):
+    """The plan of positions carries the trajectories of the moving links' points (the coupler
+    curves, centres of mass included): closed curves through the point's place in every grid
+    position, drawn at the plan's scale."""
+    from tmm_cli.pipeline import run
+    from tmm_cli.sheets import build_sheets
+    from tmm_cli.task import load_task
+    task = load_task(ROOT / "tasks" / f"{name}.yaml")
+    res = run(task)
+    (cv, info), *_ = build_sheets(res, task, "en")
+    mech = info["mechanism"]
+    paths = mech["paths"]
+    assert paths and any(p.startswith("S") for p in paths)
+    if name == "crank_rocker_fourbar":
+        assert "M" in paths                                   # the coupler point of the task
+    drawn = [p for p in cv.prims if isinstance(p, Polyline) and p.dash == "3 1.5"]
+    n = res["positions"]["count"]
+    for q, d in paths.items():
+        assert len(d["nodes"]) == n
+        c = d["curve"]
+        assert np.allclose(c[0], c[-1])                       # closed
+        for node in d["nodes"]:                               # through every grid position
+            assert np.hypot(*(c - node).T).min() < 1e-9
+        assert any(len(p.pts) == len(c) and np.allclose(p.pts, c) for p in drawn), q
+    # the nodes are the points at the plan's scale: two of them as far apart as in the results
+    e0, e1 = res["kinematics"][0], res["kinematics"][1]
+    q = next(iter(paths))
+    dm = math.hypot(e1["points"][q]["x"] - e0["points"][q]["x"], e1["points"][q]["y"] - e0["points"][q]["y"])
+    assert math.hypot(*(paths[q]["nodes"][1] - paths[q]["nodes"][0])) == pytest.approx(dm / mech["mu_l"], rel=1e-9)

@@ -53,9 +53,10 @@ def course_positions(results: dict) -> list[int]:
     return [i for i in out if i in kin][:2]
 
 
-def draw_mechanism(cv, geom, entries, course: list[int], box, lang="en") -> dict:
+def draw_mechanism(cv, geom, entries, course: list[int], box, lang="en", traced_over=None) -> dict:
     """Every position thin, the course positions as contour lines, at a ГОСТ scale
-    fitting box = (x0, y0, w, h) mm.  Returns {'unit', 'scale', 'mu_l'}."""
+    fitting box = (x0, y0, w, h) mm, the trajectories of the points of the moving links (the
+    coupler curves) through the positions `traced_over` (the grid; default all).  Returns {'unit', 'scale', 'mu_l', 'paths'}."""
     from ..report.figures import place_labels
     x0, y0, w, h = box
     pts = np.array([_xy(e, p) for e in entries for p in e["points"]]) * 1000.0
@@ -96,6 +97,25 @@ def draw_mechanism(cv, geom, entries, course: list[int], box, lang="en") -> dict
         if g in entries[0]["points"]:
             cv.ground(M(_xy(entries[0], g)), size=3.0, width=0.5)
             cv.circle(M(_xy(entries[0], g)), 1.2, width=0.5)
+    # the trajectories (coupler curves): periodic splines through the grid positions, dashed;
+    # the centres of mass' in blue
+    from ..report.svgchart import periodic_spline
+    over = traced_over if traced_over is not None else entries
+    paths = {}
+    from ..plans import crank_pin
+    pin = crank_pin(geom)
+    traced = [l.com for l in geom.links if l.com] + [q for l in geom.links if l.kind == "bar" for q in l.points]
+    cv.layer = "thin"
+    for q in dict.fromkeys(traced):
+        if q in geom.ground or q == pin or len(over) < 3 or q not in over[0]["points"]:
+            continue
+        xy = np.array([M(_xy(e, q)) for e in over])
+        if np.ptp(xy, axis=0).max() < 0.5:
+            continue
+        t = np.arange(len(xy) + 1, dtype=float)
+        curve = periodic_spline(t, np.vstack([xy, xy[:1]]), np.linspace(0, len(xy), 24 * len(xy) + 1))
+        cv.polyline(curve, color="#1f5fbf" if q.startswith("S") else "#000", width=0.25, dash="3 1.5")
+        paths[q] = {"nodes": xy, "curve": curve}
     # guides of the sliders: dash-dot centre lines over the stroke
     cv.layer = "thin"
     for l in geom.links:
@@ -150,7 +170,7 @@ def draw_mechanism(cv, geom, entries, course: list[int], box, lang="en") -> dict
     mu_l = unit / 1000.0
     cv.mtext(x0 + 2, y0 + h - 11, "μ", 3.5, sub="l", after=f" = {mu_l:g} {UNITS[lang]['m']}/{TXT[lang]['mm']}"
              f"   (M {label})")
-    return {"unit": unit, "scale": label, "mu_l": mu_l}
+    return {"unit": unit, "scale": label, "mu_l": mu_l, "paths": paths}
 
 
 PLAN_BOX_W, PLAN_BOX_H = 200.0, 140.0
@@ -280,8 +300,9 @@ def build(cv, results, task, lang="en") -> dict:
     geom = geometry(results, task)
     fx0, fy0, fx1, fy1 = FRAME
     course = course_positions(results)
+    from ..report.course import grid_count
     info = {"mechanism": draw_mechanism(cv, geom, entries, course, (fx0 + 3, 300.0, 400.0, fy1 - 300.0 - 3),
-                                        lang)}
+                                        lang, traced_over=entries[:grid_count(results, len(entries))])}
     info["plans"] = {}
     by_index = {e["index"]: e for e in entries}
     # the acceleration plans of the course positions side by side at the top, the velocity
