@@ -692,3 +692,23 @@ def test_sheet1_coupler_curves(name):
     q = next(iter(paths))
     dm = math.hypot(e1["points"][q]["x"] - e0["points"][q]["x"], e1["points"][q]["y"] - e0["points"][q]["y"])
     assert math.hypot(*(paths[q]["nodes"][1] - paths[q]["nodes"][0])) == pytest.approx(dm / mech["mu_l"], rel=1e-9)
+
+
+@pytest.mark.parametrize("name", ["gears_shifted", "gears_zero"])
+def test_gear_sheet_working_parts(name):
+    """The working parts of the profiles drawn thick: on each flank of every drawn tooth, its
+    points of the tooth outline from the lowest point of contact (gears.lowest_active.r_p) up to
+    the tip circle."""
+    from tmm_cli.sheets.sheet5 import TEETH
+    res, cv, info = _only_sheet(name, 5, "en")
+    g = res["gears"]
+    thick = [p for p in cv.prims if isinstance(p, Polyline) and p.width == 1.4]
+    assert len(thick) == 2 * 2 * TEETH
+    for i, c in enumerate((np.zeros(2), np.array([0.0, g["aw"]]))):
+        parts = info["drawn"][(i, "working")]
+        assert len(parts) == 2 * TEETH
+        r_p, ra = g["lowest_active"]["r_p"][i], g["ra"][i]
+        for part in parts:
+            r = np.hypot(*(part - c).T)
+            assert r.min() >= r_p * (1 - 1e-9) and r.max() == pytest.approx(ra, rel=1e-9)
+            assert r.min() == pytest.approx(r_p, rel=0.01)            # from the lowest point of contact

@@ -15,6 +15,23 @@ LAMBDA_LO, LAMBDA_HI = -5.0, 1.5       # the course draws λ over this range (th
 TEETH = 5          # teeth drawn of each wheel, centred on the mesh
 
 
+def working_parts(w, axis_angle: float, centre, r_low) -> list[np.ndarray]:
+    """The working part of each flank of the window's teeth (Wheel.outline's teeth): its points
+    from the radius of the lowest point of contact r_low (results: gears.lowest_active.r_p)
+    up to the tip circle, in m."""
+    if r_low is None:
+        return []
+    fl = w.flank()
+    on = np.asarray(fl.r) >= float(r_low) * (1 - 1e-12)
+    r, psi = np.asarray(fl.r)[on], np.asarray(fl.psi)[on]
+    out = []
+    for k in range(-(TEETH // 2), TEETH - TEETH // 2):
+        ax = axis_angle + 2.0 * np.pi * k / w.z
+        for ang in (ax - psi, ax + psi):
+            out.append(np.c_[centre[0] + r * np.cos(ang), centre[1] + r * np.sin(ang)])
+    return out
+
+
 def closed_window(X, Y, centre, rf: float, step_deg: float = 1.0) -> np.ndarray:
     """The outline of a window of teeth (Wheel.outline: tooth after tooth, root point to root
     point) as a closed contour: the spaces between the teeth along the root circle (arcs, not
@@ -72,6 +89,11 @@ def build(cv, results, task, lang="en") -> dict:
         cv.layer = "contour"
         X, Y = w.outline(axis_angle=ax_ang, teeth=TEETH, centre=c)
         cv.polyline([M(p) for p in closed_window(X, Y, c, g["rf"][i])], width=0.7, closed=True)
+        # the working parts of the profiles: each flank from the lowest point of contact up
+        work = working_parts(w, ax_ang, c, (g.get("lowest_active") or {}).get("r_p", [None, None])[i])
+        for part in work:
+            cv.polyline([M(p) for p in part], width=1.4)
+        drawn[(i, "working")] = work
         cv.layer = "thin"
         for key in ("rw", "r", "rb", "ra", "rf"):
             R = g[key][i] * 1000.0 / unit
