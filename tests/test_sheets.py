@@ -712,3 +712,19 @@ def test_gear_sheet_working_parts(name):
             r = np.hypot(*(part - c).T)
             assert r.min() >= r_p * (1 - 1e-9) and r.max() == pytest.approx(ra, rel=1e-9)
             assert r.min() == pytest.approx(r_p, rel=0.01)            # from the lowest point of contact
+
+
+def test_sheet1_extra_positions_marked():
+    """The extra positions' numbers at the crank pin's circle carry the report's mark (12*)."""
+    from tmm_cli.pipeline import run
+    from tmm_cli.sheets import build_sheets
+    from tmm_cli.task import load_task
+    task = load_task(ROOT / "tasks" / "press_offset_slider_crank.yaml")
+    res = run(task)
+    (cv, info), *_ = build_sheets(res, task, "ru")
+    texts = {p.plain for p in cv.prims if isinstance(p, Text)}
+    n = res["positions"]["count"]
+    extras = [e["index"] for e in res["kinematics"] if e["index"] >= n]
+    drawn = {t for t in texts if t.rstrip("*") in {str(i) for i in extras}}
+    assert drawn and all(t.endswith("*") for t in drawn), drawn       # (the course ones among them)
+    assert {str(i) for i in range(n)} <= texts

@@ -100,6 +100,7 @@ def draw_mechanism(cv, geom, entries, course: list[int], box, lang="en", traced_
     # the trajectories (coupler curves): periodic splines through the grid positions, dashed;
     # the centres of mass' in blue
     from ..report.svgchart import periodic_spline
+    from ..report.course import position_label
     over = traced_over if traced_over is not None else entries
     paths = {}
     from ..plans import crank_pin
@@ -149,7 +150,7 @@ def draw_mechanism(cv, geom, entries, course: list[int], box, lang="en", traced_
                 continue
             d = M(_xy(e, pin)) - Oc
             d = d / (np.hypot(*d) or 1.0)
-            s = str(e["index"])
+            s = position_label(e, len(over))          # an extra marked, as in the report's tables
             q = Oc + d * (r + 5.0)
             # an extra position next to a grid one: its number further out
             while any(abs(q[0] - p[0]) < 0.3 * 3.5 * (len(s) + len(t)) + 0.5 and abs(q[1] - p[1]) < 4.0
