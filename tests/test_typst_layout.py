@@ -39,7 +39,8 @@ def _lines(words) -> list[tuple[float, str]]:
     return [(y, " ".join(ws)) for y, ws in sorted(rows.items())]
 
 
-@pytest.fixture(scope="module", params=[("forging_sixbar", "en"), ("shaper_slotted_lever", "ru")])
+@pytest.fixture(scope="module", params=[("forging_sixbar", "en"), ("shaper_slotted_lever", "ru"),
+                                        ("engine_slider_crank", "uk")])
 def report(request, tmp_path_factory):
     from tmm_cli.pipeline import run
     from tmm_cli.report import _pdf_bytes, render_html
