@@ -49,3 +49,64 @@ def test_fine_grid_report_shows_course_positions(tmp_path):
         plan_rows = list(csv.DictReader(f))
     assert sorted({int(r["index"]) for r in plan_rows}) == [4 * k for k in range(12)] + \
         list(range(48, n_all))
+
+
+def test_cycle_order_and_marks():
+    from tmm_cli.report.course import cycle_order, position_label
+    es = [{"index": i, "phi": (200.0 - 30.0 * i) % 360.0} for i in range(12)] + \
+        [{"index": 12, "phi": 338.5}, {"index": 13, "phi": 8.4}, {"index": 14, "phi": 175.0}]
+    got = [e["index"] for e in cycle_order(es, 200.0, -1.0)]          # clockwise from 200°
+    assert got == [0, 14, 1, 2, 3, 4, 5, 6, 13, 7, 12, 8, 9, 10, 11]
+    got = [e["index"] for e in cycle_order(es, 200.0, 1.0)]
+    assert got[0] == 0 and got.index(12) < got.index(13)               # 138.5° before 168.4° ccw
+    assert [position_label(e, 12) for e in es[10:]] == ["10", "11", "12*", "13*", "14*"]
+
+
+def test_extra_positions_in_angle_order_in_every_table(tmp_path, monkeypatch):
+    """The shaper's extras (338.5°, 8.4°, 175.0°; clockwise from 201.5°) stand between the
+    grid positions they fall between, marked, in the same order in every table of the
+    kinematics and the kinetostatics and in the plan pages; the curve of M_b and the
+    reactions over the cycle closes at 360°."""
+    import html as H
+
+    from tmm_cli.pipeline import run
+    from tmm_cli.report import render_html
+    from tmm_cli.report import svgchart
+    from tmm_cli.task import load_task
+    plotted, notes = [], []
+    orig, orig_note = svgchart.Axes.plot, svgchart.Axes.annotate
+
+    def plot(self, *args, **kw):
+        plotted.append(list(args[0]) if args and not isinstance(args[0], str) else None)
+        return orig(self, *args, **kw)
+    monkeypatch.setattr(svgchart.Axes, "plot", plot)
+
+    def annotate(self, text, *args, **kw):
+        notes.append(text)
+        return orig_note(self, text, *args, **kw)
+    monkeypatch.setattr(svgchart.Axes, "annotate", annotate)
+    task = load_task(ROOT / "tasks" / "shaper_slotted_lever.yaml")
+    res = run(task)
+    page, _ = render_html(res, task, tmp_path, "en")
+    pos = res["positions"]
+    phase = {e["index"]: round(((e["phi"] - pos["phi0"]) * (-1 if pos["direction"] == "cw" else 1)) % 360.0, 6)
+             % 360.0 for e in res["kinematics"]}
+    want = [f"{i}*" if i >= 12 else str(i) for i in sorted(phase, key=phase.get)]
+    assert want[:3] == ["0", "14*", "1"]
+    for sec in ("kinematics", "kinetostatics"):
+        body = page[page.index(f'id="{sec}"'):]
+        body = body[:body.index("</section>")]
+        tables = re.findall(r"<table.*?</table>", body, re.S)
+        orders = []
+        for t in tables:
+            firsts = [H.unescape(re.sub(r"<[^>]+>", "", c)).strip()
+                      for c in re.findall(r"<tr>\s*<td[^>]*>(.*?)</td>", t, re.S)]
+            if len(firsts) >= len(want) and set(firsts) == set(want):
+                orders.append(firsts)
+        assert len(orders) >= (5 if sec == "kinematics" else 3), sec
+        assert all(o == want for o in orders), sec
+        heads = re.findall(r'<div class="position">\s*<h4[^>]*>\D*?(\d+\*?)', body)
+        assert heads[:len(want)] == want, sec
+    assert "an extra position" in page
+    assert any(xs and xs[0] == 0.0 and xs[-1] == 360.0 for xs in plotted)        # M_b over the cycle
+    assert {"12*", "13*", "14*"} & set(notes)           # the load diagrams' points: the extras marked too

@@ -6,6 +6,7 @@ import math
 from collections import Counter
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from tmm_cli.sheets.frame import FRAME, std_mu
@@ -90,7 +91,7 @@ def test_primitive_kinds_each_written():
     arc = doc.modelspace().query("ARC")[0]
     assert (arc.dxf.radius, arc.dxf.start_angle, arc.dxf.end_angle) == (10, 0, 90)
     t = doc.modelspace().query("TEXT")[0]
-    assert t.dxf.height == pytest.approx(0.7 * 3.5)
+    assert t.dxf.height == pytest.approx(3.5)        # the size of the lettering: the capitals
     assert [e.dxftype() for e in doc.modelspace()] == ["LINE", "ARC", "CIRCLE", "LWPOLYLINE", "TEXT"]
 
 
@@ -224,6 +225,11 @@ def test_dynamics_sheet(forging):
     assert min(y - sb * x) >= b - 1e-9 * abs(b) and min(y - sb * x) == pytest.approx(b, rel=1e-4)
     fw = res["flywheel"]
     assert sa == pytest.approx(fw["energy_mass"]["omega_max"] ** 2 / 2)
+    # the course's dynamics sheet: J_red(φ) and ω(φ) (about ωm) beside M, A, ΔT, each at value / μ
+    assert list(info["graphs"]) == ["M", "A", "ΔT", "J", "ω − ωm"]
+    arr = fw["arrays"]
+    assert np.array_equal(info["graphs"]["J"]["values"][0], np.asarray(arr["J_red"], float))
+    assert np.allclose(info["graphs"]["ω − ωm"]["values"][0] + fw["omega_m"], np.asarray(arr["omega"], float))
 
 
 def _only_sheet(name, number, lang):
@@ -440,3 +446,285 @@ def test_sheets_pdf_by_typst(forging, tmp_path):
     p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
     assert p.returncode == 0, p.stderr
     assert p.stdout.strip() == "False" and (tmp_path / "en" / "sheets.pdf").stat().st_size > 20000
+
+
+GOST_2304 = (2.5, 3.5, 5.0, 7.0, 10.0, 14.0)
+
+
+@pytest.fixture(scope="module")
+def every_sheet():
+    """{(task, lang): sheets} of every task in tasks/ that has sheets."""
+    from tmm_cli.pipeline import run
+    from tmm_cli.sheets import build_sheets
+    from tmm_cli.task import load_task
+    out = {}
+    for path in sorted((ROOT / "tasks").glob("*.yaml")):
+        task = load_task(path)
+        res = run(task)
+        for lang in ("en", "ru", "uk"):
+            sheets = build_sheets(res, task, lang)
+            if sheets:
+                out[path.stem, lang] = sheets
+    return out
+
+
+def test_lettering_in_gost_sizes(every_sheet):
+    """Every text of every sheet (its capitals) in a ГОСТ 2.304 size: measured in the SVG
+    (font-size x the capitals of DejaVu Sans, 1493/2048 em), in the DXF (TEXT height) and
+    in the primitives; a subscript 0.72 of its text: 1.8 mm (ГОСТ 2.304's size for
+    indices) under 2.5, 2.5 under 3.5."""
+    import io
+    import re
+
+    import ezdxf
+    from tmm_cli.sheets.writers import to_svg
+    cap = 1493.0 / 2048.0
+    assert len({k[0] for k in every_sheet}) >= 20
+    for (name, lang), sheets in every_sheet.items():
+        for cv, info in sheets:
+            where = (name, lang, info["number"])
+            heights = {round(p.cap, 6) for p in cv.prims if isinstance(p, Text)}
+            assert heights and heights <= set(GOST_2304), (where, heights)
+            svg = to_svg(cv)
+            mains = {round(float(f) * cap, 3) for f in re.findall(r'<text [^>]*font-size="([0-9.]+)"', svg)}
+            assert all(min(abs(h - g) for g in GOST_2304) <= 0.02 for h in mains), (where, mains)
+            subs = {round(float(f) * cap, 3) for f in re.findall(r'<tspan [^>]*font-size="([0-9.]+)"', svg)}
+            assert all(min(abs(h - g) for g in (1.8, *GOST_2304)) <= 0.06 for h in subs), (where, subs)
+            if lang == "en":
+                doc = ezdxf.read(io.StringIO(to_dxf(cv).decode()))
+                dxf = {round(t.dxf.height, 4) for t in doc.modelspace().query("TEXT")}
+                assert dxf <= set(GOST_2304), (where, dxf)
+
+
+@pytest.mark.parametrize("lang", ["en", "ru", "uk"])
+def test_planetary_only_task_writes_a_sheet(lang):
+    """A task with only a planetary section: its sheet (scheme at a ГОСТ scale, the picture of
+    linear velocities on the same radii at a standard μv) - each point at v/μv from the v axis
+    and at r/μl above the axis as in the scheme, i1H read from the drawn lines."""
+    import io
+
+    import ezdxf
+    from tmm_cli.pipeline import run
+    from tmm_cli.sheets import SHEETS, build_sheets
+    from tmm_cli.task import load_task
+    task = load_task(ROOT / "tasks" / "planetary_A.yaml")
+    res = run(task)
+    sheets = build_sheets(res, task, lang)
+    assert [info["number"] for _, info in sheets] == [6]
+    cv, info = sheets[0]
+    assert info["title_block"]["sheet_title"] == SHEETS[lang][6]
+    assert info["title_block"]["scale"] == info["scale"] and _mantissa_ok(info["mu_v"])
+    _check_texts(sheets)
+    assert not ezdxf.read(io.StringIO(to_dxf(cv).decode())).audit().has_errors
+    vp = res["planetary"]["velocity_plan"]
+    vx = info["points"]["O"][0]
+    for q in vp["points"]:
+        x, y = info["points"][q["name"].split()[0]]
+        assert x - vx == pytest.approx(q["v"] / info["mu_v"], abs=1e-9)
+        assert y - info["axis_y"] == pytest.approx(q["y"] * 1000.0 / info["unit"], abs=1e-9)
+    # the wheels of the scheme on the same radii: wheel 1 from the axis to point A's height
+    assert info["wheels"]["1"][3] == pytest.approx(info["points"]["A"][1], abs=1e-9)
+
+    def tan(seg):                      # v per radius of a drawn line, as the scales make it
+        (xa, ya), (xb, yb) = seg
+        return (xb - xa) * info["mu_v"] / ((yb - ya) * info["unit"] / 1000.0)
+    assert tan(info["lines"]["1"]) / tan(info["lines"]["H"]) == pytest.approx(res["planetary"]["ratio"], rel=1e-9)
+
+
+@pytest.mark.parametrize("name", ["gears_shifted", "gears_zero"])
+def test_gear_sheet_teeth_closed(name):
+    """Each wheel's window of teeth one closed main-line contour: every tooth, the end ones too,
+    bounded by its two flanks (each crossing the pitch circle once) and the root circle
+    under it; nothing inside the root circle or outside the tip circle."""
+    from tmm_cli.sheets.sheet5 import TEETH
+    res, cv, info = _only_sheet(name, 5, "en")
+    g, M, unit = res["gears"], info["M"], info["unit"]
+    teeth = [p for p in cv.prims if isinstance(p, Polyline) and p.layer == "contour" and len(p.pts) > 100]
+    assert len(teeth) == 2
+    centres = [M((0.0, 0.0)), M((0.0, g["aw"]))]
+    for i, (p, c) in enumerate(zip(teeth, centres)):
+        assert p.closed
+        P = np.asarray(p.pts)
+        r = np.hypot(*(P - c).T)
+        rf, ra, rp = (g[k][i] * 1000.0 / unit for k in ("rf", "ra", "r"))
+        assert r.min() >= rf * (1 - 1e-9) and r.max() <= ra * (1 + 1e-9)
+        closing = [P[-1], P[0]]               # the closing segment lies on the root circle too
+        assert [math.hypot(*(q - c)) for q in closing] == pytest.approx([rf, rf], rel=1e-9)
+        assert math.hypot(*(P[-1] - P[0])) < 0.02 * rf     # a short chord of the arc, not across
+        crossings = np.count_nonzero(np.diff(np.sign(r - rp)) != 0)
+        assert crossings == 2 * TEETH, crossings
+
+
+@pytest.mark.parametrize("name", ["cam_offset", "cam_rocker", "cam_knife"])
+def test_cam_sheet_r0_construction(name):
+    """The s - ds/dφ construction of r0 on the cam sheet: the points D of the rise and the
+    return at one ГОСТ 2.302 scale from O, O B0 = r0 at that scale, each tangent at the allowed
+    pressure angle drawn through its point along its direction."""
+    res, cv, info = _only_sheet(name, 4, "ru")
+    c, k = res["cam"], res["cam"]["construction"]
+    d = info["construction"]
+    unit, O = d["unit"], d["O"]
+    assert _gost_length(unit / 1000.0)
+    for phase in ("rise", "return"):
+        want = O + np.asarray(k[f"D_{phase}"]) * 1000.0 / unit
+        assert np.allclose(d["D"][phase], want, atol=1e-9)
+    assert math.hypot(*(d["B0"] - O)) == pytest.approx(float(c["r0"]) * 1000.0 / unit, rel=1e-6)
+    assert len(d["tangents"]) == len(k["tangents"])
+    for (p, q), t in zip(d["tangents"], k["tangents"]):
+        u = np.asarray(t["direction"], float)
+        at = O + np.asarray(t["point"], float) * 1000.0 / unit
+        for end in (p, q):                               # both ends on the line through the point
+            w = np.asarray(end) - at
+            assert abs(u[0] * w[1] - u[1] * w[0]) < 1e-6
+
+
+@pytest.mark.parametrize("name", ["forging_sixbar", "crank_rocker_fourbar"])
+def test_chord_method_check_on_sheet1(name):
+    """The output's v (ω) and a (ε) diagrams carry the chord-method differentiation of the
+    diagram above (12 intervals, at the middles, dashed) drawn at the diagram's μ, and its
+    greatest deviation from the exact curve; refined, the chord method meets the exact curve
+    (its ω and, for a rocker, degrees per radian are right)."""
+    from tmm_cli.pipeline import run
+    from tmm_cli.sheets import build_sheets
+    from tmm_cli.sheets.sheet1 import chord_derivative
+    from tmm_cli.task import load_task
+    task = load_task(ROOT / "tasks" / f"{name}.yaml")
+    res = run(task)
+    (cv, info), *_ = build_sheets(res, task, "uk")
+    dg = info["diagrams"]
+    kc, pos = res["kinematics_curve"], res["positions"]
+    sgn = -1.0 if pos.get("direction") == "cw" else 1.0
+    phase = (np.asarray(kc["phi"], float) - float(pos["phi0"])) * sgn % 360.0
+    o = np.argsort(phase, kind="stable")
+    phase = phase[o]
+    omega = abs(float(res["kinematics"][0]["links"]["crank"]["omega"]))
+    rocker = kc["quantity"] != "slider"
+    for key, prev in (("v", "s"), ("a", "v")):
+        ch = dg[key]["chord"]
+        assert len(ch["phase"]) == 12 and ch["phase"][0] == pytest.approx(15.0)
+        exact = np.asarray(kc[key], float)[o]
+        ym = float(np.max(np.abs(exact)))
+        dev = np.abs(ch["values"] - np.interp(ch["phase"], phase, exact, period=360.0))
+        assert ch["error_pct"] == pytest.approx(100 * dev.max() / ym, rel=1e-9)
+        assert 0.0 < ch["error_pct"] < 25.0
+        ox = ch["pts"][0][0] - ch["phase"][0] / dg["mu_phi"]
+        oy = ch["pts"][:, 1] - ch["values"] / dg[key]["mu"]
+        assert np.ptp(oy) < 1e-9 and ox == pytest.approx(dg[key]["pts"][0][0] - phase[0] / dg["mu_phi"])
+        texts = [p.plain for p in cv.prims if isinstance(p, Text)]
+        assert any(f"{ch['error_pct']:.1f} %" in t and "хорд" in t for t in texts)
+        # refined to 360 intervals the chords meet the exact derivative
+        mids, d = chord_derivative(phase, np.asarray(kc[prev], float)[o], omega, n=360,
+                                   per_deg=rocker and prev == "s")
+        fine = np.abs(d - np.interp(mids, phase, exact, period=360.0)).max() / ym
+        assert fine < 0.01, fine
+
+
+@pytest.mark.parametrize("name", ["forging_sixbar", "shaper_slotted_lever", "press_offset_slider_crank"])
+def test_sheet1_velocity_plans_of_every_position(name):
+    """Sheet 1 as the course sets it: the velocity plans of all 12 positions at one standard
+    μv, each at true size (every vector value / μv long) in its own cell clear of the title
+    block; the acceleration plans of the two course positions."""
+    from tmm_cli.pipeline import run
+    from tmm_cli.sheets import build_sheets
+    from tmm_cli.sheets.frame import SHEET_W, TB_H, TB_W
+    from tmm_cli.task import load_task
+    task = load_task(ROOT / "tasks" / f"{name}.yaml")
+    res = run(task)
+    sheets = build_sheets(res, task, "ru")
+    _check_texts(sheets)
+    cv, info = sheets[0]
+    vp = info["vplans"]
+    assert set(range(12)) <= set(vp)
+    assert len({d["mu"] for d in vp.values()}) == 1 and _mantissa_ok(next(iter(vp.values()))["mu"])
+    for i, d in vp.items():
+        assert d["k"] == 1.0
+        for v in d["plan"].vecs:
+            assert d["plan"].length_mm(v) == pytest.approx(v.value / d["mu"], rel=1e-9, abs=1e-9)
+        x, y, w, h = d["box"]
+        assert not (x + w > SHEET_W - 5.0 - TB_W and y < 5.0 + TB_H), i       # clear of the title block
+    assert len(info["plans"]) == 2 and all(set(p) == {"v", "a"} for p in info["plans"].values())
+
+
+@pytest.mark.parametrize("name", ["gears_shifted", "gears_zero"])
+def test_gear_sheet_sliding_diagrams(name):
+    """The gear sheet carries the specific-sliding diagrams λ1, λ2 along the line of action:
+    every drawn point at X / μX, λ / μλ from the origin (X at a ГОСТ 2.302 scale, μλ
+    standard), B1, P, B2 marked where the results put them."""
+    res, cv, info = _only_sheet(name, 5, "uk")
+    sl, d = res["gears"]["sliding"], info["sliding"]
+    assert _gost_length(d["mu_x"]) and _mantissa_ok(d["mu_lambda"])
+    ox, oy = d["origin"]
+    for (X, v, _), p in zip(d["curves"], d["pts"]):
+        ok = np.isfinite(v)
+        assert ok.sum() >= 5 and len(p) == ok.sum()
+        assert np.allclose(p[:, 0], ox + X[ok] / d["mu_x"]) and np.allclose(p[:, 1], oy + v[ok] / d["mu_lambda"])
+    for k in ("B1", "P", "B2"):
+        assert d["marks"][k] == pytest.approx(ox + sl["marks"][k] / d["mu_x"])
+
+
+@pytest.mark.parametrize("name", ["crank_rocker_fourbar", "forging_sixbar"])
+def test_sheet1_coupler_curves(name):
+    """The plan of positions carries the trajectories of the moving links' points (the coupler
+    curves, centres of mass included): closed curves through the point's place in every grid
+    position, drawn at the plan's scale."""
+    from tmm_cli.pipeline import run
+    from tmm_cli.sheets import build_sheets
+    from tmm_cli.task import load_task
+    task = load_task(ROOT / "tasks" / f"{name}.yaml")
+    res = run(task)
+    (cv, info), *_ = build_sheets(res, task, "en")
+    mech = info["mechanism"]
+    paths = mech["paths"]
+    assert paths and any(p.startswith("S") for p in paths)
+    if name == "crank_rocker_fourbar":
+        assert "M" in paths                                   # the coupler point of the task
+    drawn = [p for p in cv.prims if isinstance(p, Polyline) and p.dash == "3 1.5"]
+    n = res["positions"]["count"]
+    for q, d in paths.items():
+        assert len(d["nodes"]) == n
+        c = d["curve"]
+        assert np.allclose(c[0], c[-1])                       # closed
+        for node in d["nodes"]:                               # through every grid position
+            assert np.hypot(*(c - node).T).min() < 1e-9
+        assert any(len(p.pts) == len(c) and np.allclose(p.pts, c) for p in drawn), q
+    # the nodes are the points at the plan's scale: two of them as far apart as in the results
+    e0, e1 = res["kinematics"][0], res["kinematics"][1]
+    q = next(iter(paths))
+    dm = math.hypot(e1["points"][q]["x"] - e0["points"][q]["x"], e1["points"][q]["y"] - e0["points"][q]["y"])
+    assert math.hypot(*(paths[q]["nodes"][1] - paths[q]["nodes"][0])) == pytest.approx(dm / mech["mu_l"], rel=1e-9)
+
+
+@pytest.mark.parametrize("name", ["gears_shifted", "gears_zero"])
+def test_gear_sheet_working_parts(name):
+    """The working parts of the profiles drawn thick: on each flank of every drawn tooth, its
+    points of the tooth outline from the lowest point of contact (gears.lowest_active.r_p) up to
+    the tip circle."""
+    from tmm_cli.sheets.sheet5 import TEETH
+    res, cv, info = _only_sheet(name, 5, "en")
+    g = res["gears"]
+    thick = [p for p in cv.prims if isinstance(p, Polyline) and p.width == 1.4]
+    assert len(thick) == 2 * 2 * TEETH
+    for i, c in enumerate((np.zeros(2), np.array([0.0, g["aw"]]))):
+        parts = info["drawn"][(i, "working")]
+        assert len(parts) == 2 * TEETH
+        r_p, ra = g["lowest_active"]["r_p"][i], g["ra"][i]
+        for part in parts:
+            r = np.hypot(*(part - c).T)
+            assert r.min() >= r_p * (1 - 1e-9) and r.max() == pytest.approx(ra, rel=1e-9)
+            assert r.min() == pytest.approx(r_p, rel=0.01)            # from the lowest point of contact
+
+
+def test_sheet1_extra_positions_marked():
+    """The extra positions' numbers at the crank pin's circle carry the report's mark (12*)."""
+    from tmm_cli.pipeline import run
+    from tmm_cli.sheets import build_sheets
+    from tmm_cli.task import load_task
+    task = load_task(ROOT / "tasks" / "press_offset_slider_crank.yaml")
+    res = run(task)
+    (cv, info), *_ = build_sheets(res, task, "ru")
+    texts = {p.plain for p in cv.prims if isinstance(p, Text)}
+    n = res["positions"]["count"]
+    extras = [e["index"] for e in res["kinematics"] if e["index"] >= n]
+    drawn = {t for t in texts if t.rstrip("*") in {str(i) for i in extras}}
+    assert drawn and all(t.endswith("*") for t in drawn), drawn       # (the course ones among them)
+    assert {str(i) for i in range(n)} <= texts

@@ -170,7 +170,7 @@ def sheets(
     """The A1 drawing sheets (frame, ГОСТ 2.104 title block, standard scales) as PDF, SVG and DXF.
 
     Sheets: 1 kinematics (mechanism, plans, s-v-a diagrams), 2 kinetostatics (groups, force
-    polygons, Zhukovsky's lever of one or two positions), 3 dynamics, 4 cam, 5 gear mesh;
+    polygons, Zhukovsky's lever of one or two positions), 3 dynamics, 4 cam, 5 gear mesh, 6 planetary gear;
     only those the task has.
 
     Example: tmm sheets tasks/forging_sixbar.yaml --out out/forging --format pdf,dxf

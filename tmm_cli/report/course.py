@@ -33,6 +33,22 @@ def course_entries(entries: list, n_grid: int) -> list:
     return [entries[i] for i in idx]
 
 
+def cycle_order(entries: list, phi0: float, sign: float) -> list:
+    """The entries in the order of the crank's turn from the zero position (phi0, sign +1
+    counter-clockwise): a named extra between the grid positions it falls between, as the
+    tables and drawings show them (the results keep the grid first, the extras after it)."""
+    def phase(e):
+        q = ((float(e["phi"]) - float(phi0)) * sign) % 360.0
+        return 0.0 if q > 360.0 - 1e-9 else q
+    return sorted(entries, key=phase)
+
+
+def position_label(e: dict, n_grid: int) -> str:
+    """A position's number as the tables show it: a named extra (index >= the grid's count)
+    marked with an asterisk."""
+    return f"{e['index']}*" if int(e["index"]) >= n_grid else str(e["index"])
+
+
 def grid_count(results: dict, n_entries: int) -> int:
     """The number of grid positions among n_entries (results' ``positions.count``), the
     rest being named extras; all of them when the results do not say."""

@@ -12,6 +12,7 @@ UK: dict[str, str] = {
     'report.files': 'Таблиці поруч зі звітом',
     'common.position': 'Положення',
     'common.positions': 'Положення',
+    'common.extra_note': '* додаткове положення; положення наведено в порядку повороту кривошипа',
     'common.value': 'Значення',
     'common.parameter': 'Параметр',
     'common.link': 'Ланка',

@@ -262,6 +262,11 @@ class Canvas:
         lists[0].append("M%.2f %.2f L%.2f %.2f" % (px, h - py, sx, h - sy))
         lists[1].append("M%.2f %.2f L%.2f %.2f L%.2f %.2fZ" % (qx, h - qy, lx, h - ly, rx, h - ry))
 
+    def font_mm(self, size: float) -> float:
+        """The font size in mm that a label asked for at ``size`` pt is drawn at (a drawing
+        sheet's canvas sets its labels in the standard sizes of lettering)."""
+        return size / PT_PER_MM
+
     def text(self, x, y, s, size=7.0, color="#000", anchor="middle", italic=False, bold=False,
              sub: str | None = None, sup: str | None = None, z=8, vcenter=True, halo=False,
              after: str | None = None):

@@ -239,6 +239,8 @@ PREAMBLE = r"""
 #let num(x) = align(right, x)
 #let note(x) = text(size: 8.5pt, fill: rgb("#444444"), x)
 #let cap(x) = block(below: 1mm, sticky: true, strong(x))
+#let keep(x) = block(sticky: true, above: 0.55em, below: 0.55em, x)
+#let section-break = context if here().position().y > 148mm { pagebreak(weak: true) } else { v(4mm) }
 #let fig(file, w, c, labels: none) = block(above: 2mm, below: 3mm, breakable: false, width: 100%,
   align(center, { if labels == none { layout(size => image(file, width: calc.min(w, size.width))) } else {
     block(width: w, { image(file, width: w); set text(top-edge: "baseline", bottom-edge: "baseline"); labels }) }
@@ -255,6 +257,8 @@ class _Writer:
         self.fig_dir = fig_dir
         self.files: dict[str, bytes] = {}
         self.after_section = False
+        self.led = False                    # a div.position led by a heading: no page break of its own
+        self.math_done = False              # a worked formula written from its MathML: skip its HTML copy
         self.in_pair = 0
         self.whole = False                  # inside a block kept on one page (not breakable)
         self.width: float | None = _TEXT_WIDTH   # pt free for a block here; None: not known
@@ -300,7 +304,16 @@ class _Writer:
             elif tag == "br":
                 out.append("#linebreak()")
             elif tag == "span" and "mml" in c.classes:
-                continue        # the MathML copy of a worked formula (screen only): its HTML copy follows
+                # a worked formula: its MathML as Typst mathematics (spaced as mathematics is)
+                m = next((k for k in c if isinstance(k, _Node) and k.tag == "math"), None)
+                if m is not None:
+                    out.append(f"#text(size: 11pt)[$display({_math(m)})$]")
+                    self.math_done = True
+            elif tag == "span" and "mfb" in c.classes and self.math_done:
+                self.math_done = False      # its HTML copy (print of the browser): the mathematics is above
+            elif tag == "span" and "mo" in c.classes and c.text() in _MO:
+                t = c.text()            # an operator between words: spaced (',' and ';' after)
+                out.append(f"{t} " if t in ",;" else f" {self._text(t)} ")
             elif tag == "span" and "frac" in c.classes:
                 num, den = (k for k in c if isinstance(k, _Node))
                 out.append(f"$display(frac(#[{self.inline(num)}], #[{self.inline(den)}]))$")
@@ -368,14 +381,17 @@ class _Writer:
                 return f"#{fn}(" + ", ".join(f"[{self.inline(li).strip()}]" for li in items) + ")"
         if tag == "section":
             body = self.blocks(node)
-            brk = "#pagebreak(weak: true)\n" if self.after_section else ""
+            # a section starts a new page unless the last one's tail would leave it nearly empty
+            brk = "#section-break\n" if self.after_section else ""
             self.after_section = True
             return brk + body
         if tag == "div" and "position" in cls:
+            led, self.led = self.led, False
             whole, self.whole = self.whole, True
             body = self.blocks(node)
             self.whole = whole
-            return "#pagebreak(weak: true)\n#block(breakable: false)[\n" + body + "\n]"
+            brk = "" if led else "#pagebreak(weak: true)\n"
+            return brk + "#block(breakable: false)[\n" + body + "\n]"
         if tag == "div" and ("tables2" in cls or "pair" in cls):
             kids = [c for c in node if isinstance(c, _Node)]
             n = max(len(kids), 1)
@@ -394,6 +410,8 @@ class _Writer:
             # boxes in a line: each is laid out in the width of the line, less its inset
             with self._inside(lambda w: w - 4 * _MM):
                 return "".join(f"#box(inset: (right: 4mm))[{self.block(k)}]" for k in kids)
+        if tag == "div" and "wf" in cls:           # a line of worked formulas: room for fractions
+            return f"#block(above: 0.8em, below: 0.8em)[{self.blocks(node)}]"
         if tag == "div" and "failure" in cls:
             with self._inside(lambda w: w - 8 * _MM - 1.5):
                 body = self.blocks(node)
@@ -408,13 +426,16 @@ class _Writer:
         return f"#par[{self.inline(node).strip()}]"
 
     def blocks(self, node) -> str:
-        """Children of a block element: runs of inline content become paragraphs."""
+        """Children of a block element: runs of inline content become paragraphs.  A heading
+        and the paragraphs after it stick to the next block (a figure, a table, a position's
+        page): a heading never ends a page."""
         out, run = [], []
+        led = False                                     # after a heading, paragraphs only since
 
         def flush():
             body = "".join(run).strip()
             if body and body.replace('#" "', "").strip():
-                out.append(f"#par[{body}]")
+                out.append(f"#keep[#par[{body}]]" if led else f"#par[{body}]")
             run.clear()
 
         for c in node:
@@ -428,9 +449,16 @@ class _Writer:
             if c.tag == "img" and "data-svg" in c.attrs:
                 flush()
                 out.append(self.figure_image(int(c.attrs["data-svg"]), None))
+                led = False
                 continue
             flush()
+            self.led = led and c.tag == "div" and "position" in c.classes
             b = self.block(c)
+            self.led = False
+            if b and led and c.tag == "p":
+                b = f"#keep[{b}]"
+            elif c.tag in ("h2", "h3", "h4") or (b and c.tag != "p"):
+                led = c.tag in ("h2", "h3", "h4")
             if b:
                 out.append(b)
         flush()
@@ -840,6 +868,55 @@ _SPAN_KEYS = {"dy", "font-size", "font-style", "fill", "font-weight"}
 _NUM = re.compile(r"-?(?:\d+\.?\d*|\.\d+)")
 _COLOR = re.compile(r"#[0-9a-fA-F]{6}")
 _ANCHOR = {"start": ("left", 0.0), "middle": ("center", 0.5), "end": ("right", 1.0)}
+
+
+# MathML operators of the worked formulas as Typst mathematics
+_MO = {"=": "=", "+": "+", "−": "-", "-": "-", "·": "dot.op", "/": "slash", "(": "\\(", ")": "\\)",
+       "⊥": "perp", "∥": "parallel", ",": ",", ";": ";", "×": "times", "¯": "macron"}
+
+
+def _mstr(t: str) -> str:
+    """A text in Typst mathematics: quoted (upright, as written)."""
+    return '"' + t.replace("\\", "\\\\").replace('"', '\\"') + '"'
+
+
+def _math(node) -> str:
+    """Typst mathematics of a MathML element of the worked formulas (math, mrow, mi, mn, mo,
+    mtext, mspace, msub, msup, msubsup, mover with a bar, mfrac, msqrt)."""
+    tag = node.tag
+    kids = [k for k in node if isinstance(k, _Node)]
+    text = "".join(k for k in node if isinstance(k, str))
+    if tag in ("math", "mrow"):
+        return " ".join(_math(k) for k in kids) or '""'
+    if tag == "mi":
+        if not text:
+            return '""'
+        if node.attrs.get("mathvariant") == "normal" or len(text) > 1:
+            return f"upright({_mstr(text)})"
+        return text if text.isalpha() else _mstr(text)
+    if tag == "mn":
+        return _mstr(text.strip())
+    if tag == "mo":
+        t = text.strip()
+        return _MO.get(t, _mstr(t))
+    if tag == "mtext":
+        return _mstr(text.replace("\u00a0", " "))
+    if tag == "mspace":
+        return "thin"
+    if tag in ("msub", "msup", "msubsup") and len(kids) >= 2:
+        base = _math(kids[0])
+        if tag == "msub":
+            return f"attach({base}, b: {_math(kids[1])})"
+        if tag == "msup":
+            return f"attach({base}, t: {_math(kids[1])})"
+        return f"attach({base}, b: {_math(kids[1])}, t: {_math(kids[2])})"
+    if tag == "mover" and kids:
+        return f"overline({_math(kids[0])})"
+    if tag == "mfrac" and len(kids) == 2:
+        return f"frac({_math(kids[0])}, {_math(kids[1])})"
+    if tag == "msqrt":
+        return "sqrt(" + " ".join(_math(k) for k in kids) + ")"
+    return " ".join(_math(k) for k in kids) or (_mstr(text) if text else '""')
 
 
 def _pt(v: float) -> str:

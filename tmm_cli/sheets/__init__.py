@@ -5,18 +5,19 @@ from __future__ import annotations
 
 from pathlib import Path
 
-SHEETS = {"en": {1: "Kinematics", 2: "Kinetostatics", 3: "Dynamics", 4: "Cam mechanism", 5: "Gear mesh"},
+SHEETS = {"en": {1: "Kinematics", 2: "Kinetostatics", 3: "Dynamics", 4: "Cam mechanism", 5: "Gear mesh",
+                 6: "Planetary gear"},
           "ru": {1: "Кинематический анализ", 2: "Силовой анализ", 3: "Динамический анализ",
-                 4: "Кулачковый механизм", 5: "Зубчатое зацепление"},
+                 4: "Кулачковый механизм", 5: "Зубчатое зацепление", 6: "Планетарный механизм"},
           "uk": {1: "Кінематичний аналіз", 2: "Силовий аналіз", 3: "Динамічний аналіз",
-                 4: "Кулачковий механізм", 5: "Зубчасте зачеплення"}}
+                 4: "Кулачковий механізм", 5: "Зубчасте зачеплення", 6: "Планетарний механізм"}}
 
 
 def build_sheets(results: dict, task, lang: str = "en") -> list[tuple]:
     """[(PrimCanvas, info)] for each sheet whose section the results have."""
     from ..results import listed
     results = listed(results)        # the entries as lists: read many times
-    from . import sheet1, sheet2, sheet3, sheet4, sheet5
+    from . import sheet1, sheet2, sheet3, sheet4, sheet5, sheet6
     from .frame import SHEET_H, SHEET_W, draw_frame
     from .prims import PrimCanvas
     makers = []
@@ -30,6 +31,8 @@ def build_sheets(results: dict, task, lang: str = "en") -> list[tuple]:
         makers.append((4, sheet4.build))
     if (results.get("gears") or {}).get("line_of_action"):
         makers.append((5, sheet5.build))
+    if (results.get("planetary") or {}).get("velocity_plan"):
+        makers.append((6, sheet6.build))
     out = []
     student = getattr(getattr(task, "student", None), "name", None) or ""
     group = getattr(getattr(task, "student", None), "group", None) or getattr(task, "group", None) or ""

@@ -21,11 +21,45 @@ def length_scale(model_mm_per_paper_mm: float) -> tuple[float, str]:
     return drawing_scale(model_mm_per_paper_mm)
 
 
+NARROWEST = 0.6      # ГОСТ 2.304 type B: capitals 6/10 of h wide, about 0.6 of DejaVu Sans'
+
+
 def fit_text(cv, x, y, s, h, max_w, anchor="start", **kw):
-    """A label of height h mm, made smaller when it would be wider than max_w."""
+    """A label of size h mm, set a ГОСТ 2.304 size smaller while it would be wider than max_w;
+    at 2.5 mm, the smallest size, its letters narrower (down to NARROWEST) to fit."""
+    from .prims import CAP_RATIO, GOST_SIZES
     if s:
-        h = min(h, max_w / (0.6 * len(s)))
-        cv.mtext(x, y, s, h, anchor=anchor, **kw)
+        def width(g):
+            return 0.6 * g / CAP_RATIO * len(s)
+        fits = [g for g in GOST_SIZES if g <= h and width(g) <= max_w]
+        g = max(fits, default=GOST_SIZES[0])
+        narrow = 1.0 if fits else max(NARROWEST, max_w / width(g))
+        cv.mtext(x, y, s, g, anchor=anchor, narrow=narrow, **kw)
+
+
+def fit_lines(cv, x, yc, s, h, max_w, max_h):
+    """A centred text of size h mm around (x, yc), wrapped at its spaces into as few lines as fit
+    max_w at the largest ГОСТ 2.304 size <= h whose lines (pitch 1.7 h) fit max_h; the
+    smallest size's last line narrowed (fit_text) when even that does not fit."""
+    import textwrap
+
+    from .prims import CAP_RATIO, GOST_SIZES
+    if not s:
+        return
+    for g in sorted((g for g in GOST_SIZES if g <= h), reverse=True):
+        per_line = max(1, int(max_w / (0.6 * g / CAP_RATIO)))
+        lines = textwrap.wrap(s, per_line, break_long_words=False) or [s]
+        if 1.7 * g * (len(lines) - 1) + g <= max_h and all(len(t) <= per_line for t in lines):
+            break
+    else:
+        g = GOST_SIZES[0]
+        n = max(1, int((max_h - g) // (1.7 * g)) + 1)
+        lines = textwrap.wrap(s, max(1, int(max_w / (0.6 * g / CAP_RATIO))), break_long_words=False) or [s]
+        lines = lines[:n - 1] + [" ".join(lines[n - 1:])]
+    y = yc + 1.7 * g * (len(lines) - 1) / 2
+    for t in lines:
+        fit_text(cv, x, y, t, g, max_w, anchor="middle")
+        y -= 1.7 * g
 
 
 TB_TEXT = {
@@ -74,7 +108,7 @@ def draw_frame(cv, *, title: str, sheet_title: str, variant, student: str, group
         cv.line((rx + 70, y), (x1, y), width=0.5)
     for x in (rx + 85, rx + 102):
         cv.line((x, by + 20), (x, by + 40), width=0.5)
-    cv.line((rx + 105, by + 15), (rx + 105, by + 20), width=0.5)
+    cv.line((rx + 90, by + 15), (rx + 90, by + 20), width=0.5)
     # texts
     h = 2.5
     for c, s in zip(cols, (T["ch"], T["sh"], T["doc"], T["sign"], T["date"])):
@@ -86,7 +120,7 @@ def draw_frame(cv, *, title: str, sheet_title: str, variant, student: str, group
         fit_text(cv, bx + 17.7, y, val, h, 21.6)
     code = f"TMM.{variant}.{n:02d}" if variant not in (None, "") else f"TMM.{n:02d}"
     fit_text(cv, rx + 60, by + 47.5, code, 7.0, 116, anchor="middle")
-    fit_text(cv, rx + 35, by + 28, title, 5.0, 66, anchor="middle")
+    fit_lines(cv, rx + 35, by + 31, title, 5.0, 66, 14.0)
     fit_text(cv, rx + 35, by + 20, sheet_title, 3.5, 66, anchor="middle")
     fit_text(cv, rx + 35, by + 12, f"{T['variant']} {variant}" if variant not in (None, "") else "", 3.5, 66,
              anchor="middle")
@@ -95,8 +129,8 @@ def draw_frame(cv, *, title: str, sheet_title: str, variant, student: str, group
     fit_text(cv, rx + 93.5, by + 37.5, T["mass"], h, 15, anchor="middle")
     fit_text(cv, rx + 111, by + 37.5, T["scale"], h, 16, anchor="middle")
     fit_text(cv, rx + 111, by + 27.5, scale, 3.5, 16, anchor="middle")
-    fit_text(cv, rx + 71, by + 17.5, f"{T['sheet']} {n}", h, 32)
-    fit_text(cv, rx + 106, by + 17.5, f"{T['sheets']} {total}", h, 13)
+    fit_text(cv, rx + 71, by + 17.5, f"{T['sheet']} {n}", h, 18)
+    fit_text(cv, rx + 91, by + 17.5, f"{T['sheets']} {total}", h, 28)
     fit_text(cv, rx + 95, by + 7.5, group, 3.5, 46, anchor="middle")
     return {"title": title, "sheet_title": sheet_title, "variant": variant, "student": student,
             "group": group, "sheet": n, "sheets": total, "scale": scale, "code": code}

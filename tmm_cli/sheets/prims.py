@@ -16,6 +16,15 @@ import numpy as np
 from ..report.svgdraw import PT_PER_MM, Canvas
 
 LAYERS = ("contour", "thin", "dimensions", "text")
+# ГОСТ 2.304: the sizes of lettering, h = the height of the capitals in mm; a text on a
+# sheet is set in DejaVu Sans, whose capitals are CAP_RATIO of the font size (1493/2048 em).
+GOST_SIZES = (2.5, 3.5, 5.0, 7.0, 10.0, 14.0)
+CAP_RATIO = 1493.0 / 2048.0
+
+
+def gost_size(cap_mm: float) -> float:
+    """The ГОСТ 2.304 size nearest to a capital height of cap_mm (2.5 mm the smallest)."""
+    return min(GOST_SIZES, key=lambda h: (abs(math.log(h / max(cap_mm, 1e-9))), h))
 
 
 @dataclass(frozen=True)
@@ -65,7 +74,7 @@ class Text:
     x: float
     y: float                       # the middle of the text height
     s: str
-    height: float                  # font size, mm
+    height: float                  # font size, mm (its capitals: cap)
     layer: str = "text"
     anchor: str = "middle"         # start | middle | end
     color: str = "#000"
@@ -74,6 +83,12 @@ class Text:
     sub: str | None = None
     sup: str | None = None
     after: str | None = None
+    narrow: float = 1.0            # the letters' width factor (a title block's narrow cells)
+
+    @property
+    def cap(self) -> float:
+        """The height of the capitals, mm: the size of the lettering (ГОСТ 2.304)."""
+        return self.height * CAP_RATIO
 
     @property
     def plain(self) -> str:
@@ -81,7 +96,7 @@ class Text:
 
     def box(self) -> tuple[float, float, float, float]:
         """(x0, y0, x1, y1): the estimated box, width 0.6 x height per character."""
-        w = 0.6 * self.height * len(self.plain)
+        w = 0.6 * self.height * len(self.plain) * self.narrow
         x0 = self.x - w / 2 if self.anchor == "middle" else (self.x - w if self.anchor == "end" else self.x)
         return x0, self.y - self.height / 2, x0 + w, self.y + self.height / 2
 
@@ -116,9 +131,15 @@ class PrimCanvas(Canvas):
     def arc(self, c, r, a0, a1, color="#000", width=0.25):
         self.prims.append(Arc(_t(c), float(r), float(a0), float(a1), self.layer, color, width))
 
+    def font_mm(self, size: float) -> float:
+        """A label asked for at size pt is set in the nearest ГОСТ 2.304 size."""
+        return gost_size(size / PT_PER_MM * CAP_RATIO) / CAP_RATIO
+
     def text(self, x, y, s, size=7.0, color="#000", anchor="middle", italic=False, bold=False,
-             sub=None, sup=None, z=8, vcenter=True, halo=False, after=None):
-        fs = size / PT_PER_MM
+             sub=None, sup=None, z=8, vcenter=True, halo=False, after=None, narrow=1.0):
+        # every text on a sheet in a ГОСТ 2.304 size: the report's figures drawn here ask
+        # for screen sizes in pt, the sheets' own labels (mtext) for h exactly
+        fs = self.font_mm(size)
         if halo:
             w = 0.6 * fs * (len(s) + 0.72 * len(sub or sup or "")) + 0.6
             x0 = x - w / 2 if anchor == "middle" else (x - w if anchor == "end" else x)
@@ -126,11 +147,11 @@ class PrimCanvas(Canvas):
             self.polygon([(x0 - 0.3, yc - 0.62 * fs), (x0 + w - 0.3, yc - 0.62 * fs),
                           (x0 + w - 0.3, yc + 0.62 * fs), (x0 - 0.3, yc + 0.62 * fs)], "#fff")
         self.prims.append(Text(float(x), float(y if vcenter else y + 0.35 * fs), s, fs, "text", anchor,
-                               color, italic, bold, sub, sup, after))
+                               color, italic, bold, sub, sup, after, float(narrow)))
 
     def mtext(self, x, y, s, h=3.5, anchor="start", **kw):
-        """A label of height h mm (the sheets' own labels: 2.5, 3.5, 5, 7 mm fonts)."""
-        self.text(x, y, s, size=h * PT_PER_MM, anchor=anchor, **kw)
+        """A label of size h mm (ГОСТ 2.304: the height of its capitals, 2.5, 3.5, 5, 7, 10, 14)."""
+        self.text(x, y, s, size=h / CAP_RATIO * PT_PER_MM, anchor=anchor, **kw)
 
     def to_svg(self) -> str:
         """The primitives replayed onto the report's SVG canvas."""
@@ -152,6 +173,10 @@ class PrimCanvas(Canvas):
             else:
                 cv.text(p.x, p.y, p.s, size=p.height * PT_PER_MM, color=p.color, anchor=p.anchor,
                         italic=p.italic, bold=p.bold, sub=p.sub, sup=p.sup, after=p.after)
+                if p.narrow != 1.0:          # narrower letters: scaled about the anchor
+                    z, el = cv._items[-1]
+                    cv._items[-1] = (z, el.replace("<text ", f'<text transform="matrix({p.narrow:.4g} 0 0 1 '
+                                                          f'{p.x * (1.0 - p.narrow):.3f} 0)" ', 1))
         return cv.to_svg()
 
 

@@ -13,13 +13,16 @@ from .graph import draw_graph
 TXT = {
     "en": {"scheme": "Kinematic scheme", "plans": "Plans, position {i}", "vplan": "Velocity plan",
            "aplan": "Acceleration plan", "diagrams": "Diagrams of the output", "pos": "position",
-           "unit_v": "(m/s)/mm", "unit_a": "(m/s²)/mm", "mm": "mm"},
+           "unit_v": "(m/s)/mm", "unit_a": "(m/s²)/mm", "mm": "mm",
+           "chord": "chord method, {n} intervals (dashed): greatest deviation {err} % of the largest value"},
     "ru": {"scheme": "Кинематическая схема", "plans": "Планы, положение {i}", "vplan": "План скоростей",
            "aplan": "План ускорений", "diagrams": "Диаграммы выходного звена", "pos": "положение",
-           "unit_v": "(м/с)/мм", "unit_a": "(м/с²)/мм", "mm": "мм"},
+           "unit_v": "(м/с)/мм", "unit_a": "(м/с²)/мм", "mm": "мм",
+           "chord": "метод хорд, {n} интервалов (штриховая): наибольшее отклонение {err} % от наибольшего значения"},
     "uk": {"scheme": "Кінематична схема", "plans": "Плани, положення {i}", "vplan": "План швидкостей",
            "aplan": "План прискорень", "diagrams": "Діаграми вихідної ланки", "pos": "положення",
-           "unit_v": "(м/с)/мм", "unit_a": "(м/с²)/мм", "mm": "мм"},
+           "unit_v": "(м/с)/мм", "unit_a": "(м/с²)/мм", "mm": "мм",
+           "chord": "метод хорд, {n} інтервалів (штрихова): найбільше відхилення {err} % від найбільшого значення"},
 }
 UNITS = {"en": {"m": "m", "m/s": "m/s", "m/s²": "m/s²", "rad": "rad", "rad/s": "rad/s", "rad/s²": "rad/s²",
                 "deg": "°"},
@@ -50,9 +53,10 @@ def course_positions(results: dict) -> list[int]:
     return [i for i in out if i in kin][:2]
 
 
-def draw_mechanism(cv, geom, entries, course: list[int], box, lang="en") -> dict:
+def draw_mechanism(cv, geom, entries, course: list[int], box, lang="en", traced_over=None) -> dict:
     """Every position thin, the course positions as contour lines, at a ГОСТ scale
-    fitting box = (x0, y0, w, h) mm.  Returns {'unit', 'scale', 'mu_l'}."""
+    fitting box = (x0, y0, w, h) mm, the trajectories of the points of the moving links (the
+    coupler curves) through the positions `traced_over` (the grid; default all).  Returns {'unit', 'scale', 'mu_l', 'paths'}."""
     from ..report.figures import place_labels
     x0, y0, w, h = box
     pts = np.array([_xy(e, p) for e in entries for p in e["points"]]) * 1000.0
@@ -93,6 +97,26 @@ def draw_mechanism(cv, geom, entries, course: list[int], box, lang="en") -> dict
         if g in entries[0]["points"]:
             cv.ground(M(_xy(entries[0], g)), size=3.0, width=0.5)
             cv.circle(M(_xy(entries[0], g)), 1.2, width=0.5)
+    # the trajectories (coupler curves): periodic splines through the grid positions, dashed;
+    # the centres of mass' in blue
+    from ..report.svgchart import periodic_spline
+    from ..report.course import position_label
+    over = traced_over if traced_over is not None else entries
+    paths = {}
+    from ..plans import crank_pin
+    pin = crank_pin(geom)
+    traced = [l.com for l in geom.links if l.com] + [q for l in geom.links if l.kind == "bar" for q in l.points]
+    cv.layer = "thin"
+    for q in dict.fromkeys(traced):
+        if q in geom.ground or q == pin or len(over) < 3 or q not in over[0]["points"]:
+            continue
+        xy = np.array([M(_xy(e, q)) for e in over])
+        if np.ptp(xy, axis=0).max() < 0.5:
+            continue
+        t = np.arange(len(xy) + 1, dtype=float)
+        curve = periodic_spline(t, np.vstack([xy, xy[:1]]), np.linspace(0, len(xy), 24 * len(xy) + 1))
+        cv.polyline(curve, color="#1f5fbf" if q.startswith("S") else "#000", width=0.25, dash="3 1.5")
+        paths[q] = {"nodes": xy, "curve": curve}
     # guides of the sliders: dash-dot centre lines over the stroke
     cv.layer = "thin"
     for l in geom.links:
@@ -126,7 +150,7 @@ def draw_mechanism(cv, geom, entries, course: list[int], box, lang="en") -> dict
                 continue
             d = M(_xy(e, pin)) - Oc
             d = d / (np.hypot(*d) or 1.0)
-            s = str(e["index"])
+            s = position_label(e, len(over))          # an extra marked, as in the report's tables
             q = Oc + d * (r + 5.0)
             # an extra position next to a grid one: its number further out
             while any(abs(q[0] - p[0]) < 0.3 * 3.5 * (len(s) + len(t)) + 0.5 and abs(q[1] - p[1]) < 4.0
@@ -147,15 +171,15 @@ def draw_mechanism(cv, geom, entries, course: list[int], box, lang="en") -> dict
     mu_l = unit / 1000.0
     cv.mtext(x0 + 2, y0 + h - 11, "μ", 3.5, sub="l", after=f" = {mu_l:g} {UNITS[lang]['m']}/{TXT[lang]['mm']}"
              f"   (M {label})")
-    return {"unit": unit, "scale": label, "mu_l": mu_l}
+    return {"unit": unit, "scale": label, "mu_l": mu_l, "paths": paths}
 
 
 PLAN_BOX_W, PLAN_BOX_H = 200.0, 140.0
 
 
-def draw_plans(cv, geom, entry, box, lang="en") -> dict:
-    """The velocity and acceleration plans of one position side by side, each at a
-    standard μ that fits its half of box at true size (the report's draw_plan)."""
+def draw_plans(cv, geom, entry, box, lang="en", kinds=("v", "a")) -> dict:
+    """The velocity and acceleration plans (kinds) of one position side by side, each at a
+    standard μ that fits its part of box at true size (the report's draw_plan)."""
     from ..plans import build_plan
     from ..report.sections.kinematics import draw_plan
     x0, y0, w, h = box
@@ -163,9 +187,10 @@ def draw_plans(cv, geom, entry, box, lang="en") -> dict:
     U = UNITS[lang]
     out = {}
     cv.layer = "thin"
-    for k, (kind, title, unit_txt, si) in enumerate((("v", T["vplan"], T["unit_v"], U["m/s"]),
-                                                     ("a", T["aplan"], T["unit_a"], U["m/s²"]))):
-        bx = (x0 + k * w / 2, y0, w / 2 - 2, h)
+    todo = [t for t in (("v", T["vplan"], T["unit_v"], U["m/s"]), ("a", T["aplan"], T["unit_a"], U["m/s²"]))
+            if t[0] in kinds]
+    for k, (kind, title, unit_txt, si) in enumerate(todo):
+        bx = (x0 + k * w / len(todo), y0, w / len(todo) - 2, h)
         p1 = build_plan(kind, entry, geom, 1.0)
         xy = np.array(list(p1.pts.values()))
         span = np.maximum(xy.max(axis=0) - xy.min(axis=0), 1e-12)
@@ -173,6 +198,43 @@ def draw_plans(cv, geom, entry, box, lang="en") -> dict:
         plan = build_plan(kind, entry, geom, mu)
         scale = draw_plan(cv, plan, bx, f"{title} ({T['pos']} {entry['index']})", unit_txt, si, T["mm"])
         out[kind] = {"plan": plan, "mu": mu, "k": scale}
+    return out
+
+
+def chord_derivative(phase_deg, y, omega: float, n: int = 12, per_deg: bool = False):
+    """The course's check of a diagram by graphical differentiation, the chord method: y at
+    n equal steps of the crank's turn (interpolated on the exact curve), the slope of each
+    chord times ω (the crank turns at ω) put at the middle of its interval.  per_deg: y in
+    degrees (a rocker's ψ), the slope per radian.  Returns (middles, derivative values)."""
+    q = np.linspace(0.0, 360.0, n + 1)
+    yq = np.interp(q, phase_deg, y, period=360.0)
+    scale = omega * (math.pi / 180.0 if per_deg else 1.0)
+    return (q[:-1] + q[1:]) / 2, np.diff(yq) / math.radians(360.0 / n) * scale
+
+
+def draw_velocity_plans(cv, geom, entries, box, lang="en", ncol: int = 4) -> dict:
+    """The velocity plans of the grid's positions (the course's 12) in a grid of cells of box,
+    all at one standard μv, the smallest at which every plan fits its cell at true size."""
+    from ..plans import build_plan
+    from ..report.sections.kinematics import draw_plan
+    x0, y0, w, h = box
+    T, U = TXT[lang], UNITS[lang]
+    nrow = -(-len(entries) // ncol)
+    cw, ch = w / ncol, h / nrow
+    need = 0.0
+    for e in entries:
+        xy = np.array(list(build_plan("v", e, geom, 1.0).pts.values()))
+        span = np.maximum(xy.max(axis=0) - xy.min(axis=0), 1e-12)
+        need = max(need, span[0] / (cw - 2.0 - 12.0), span[1] / (ch - 30.0))
+    mu = std_mu(need)
+    cv.layer = "thin"
+    out = {}
+    for n, e in enumerate(entries):
+        r, c = divmod(n, ncol)
+        cell = (x0 + c * cw, y0 + h - (r + 1) * ch, cw - 2, ch)
+        plan = build_plan("v", e, geom, mu)
+        k = draw_plan(cv, plan, cell, f"{T['vplan']} ({T['pos']} {e['index']})", T["unit_v"], U["m/s"], T["mm"])
+        out[e["index"]] = {"plan": plan, "mu": mu, "k": k, "box": cell}
     return out
 
 
@@ -195,6 +257,10 @@ def draw_diagrams(cv, results, geom, box, lang="en") -> dict:
         (("s", "ψ", U["deg"]), ("v", "ω", U["rad/s"]), ("a", "ε", U["rad/s²"]))
     mu_phi = 1.0
     rowh = (h - 10.0) / 3
+    drive = next((l.name for l in geom.links if l.index == geom.drive), None) if geom is not None else None
+    omegas = [abs(float(e["links"][drive]["omega"] or 0.0)) for e in results.get("kinematics") or []
+              if drive in e.get("links", {})]
+    omega = float(np.median(omegas)) if omegas else 0.0        # the crank's steady ω
     out = {}
     cv.mtext(x0 + 2, y0 + h - 4, TXT[lang]["diagrams"], 5.0, bold=True)
     for k, (key, sym, unit) in enumerate(keys):
@@ -210,6 +276,21 @@ def draw_diagrams(cv, results, geom, box, lang="en") -> dict:
                           ticks=[(30.0 * i, str(i) if i < 12 else "") for i in range(13)])
         good = np.isfinite(y)
         out[key] = {"mu": mu, "pts": pts, "values": y[good]}
+        prev = {"v": "s", "a": "v"}.get(key)
+        if prev and omega and np.isfinite(out.get(prev, {}).get("raw", y)).all():
+            # the chord method on the diagram above: dashed, with its deviation from this exact curve
+            mids, d = chord_derivative(phase, out[prev]["raw"], omega, per_deg=(prev == "s" and not slider))
+            exact = np.interp(mids, phase, y, period=360.0)
+            err = 100.0 * float(np.max(np.abs(d - exact))) / ym
+            cv.layer = "thin"
+            cp = np.c_[ax0 + mids / mu_phi, yc + d / mu]
+            cv.polyline(cp, color="#b03a2e", width=0.35, dash="3 1.5")
+            for p in cp:
+                cv.circle(p, 0.8, stroke="#b03a2e", fill=None, width=0.3)
+            cv.mtext(ax0 + 150.0, yc + rowh / 2 - 5.0, TXT[lang]["chord"].format(n=len(mids), err=f"{err:.1f}"),
+                     2.5, color="#b03a2e")
+            out[key]["chord"] = {"phase": mids, "values": d, "exact": exact, "error_pct": err, "pts": cp}
+        out[key]["raw"] = y
     out["mu_phi"] = mu_phi
     return out
 
@@ -220,13 +301,24 @@ def build(cv, results, task, lang="en") -> dict:
     geom = geometry(results, task)
     fx0, fy0, fx1, fy1 = FRAME
     course = course_positions(results)
+    from ..report.course import grid_count
     info = {"mechanism": draw_mechanism(cv, geom, entries, course, (fx0 + 3, 300.0, 400.0, fy1 - 300.0 - 3),
-                                        lang)}
+                                        lang, traced_over=entries[:grid_count(results, len(entries))])}
     info["plans"] = {}
     by_index = {e["index"]: e for e in entries}
+    # the acceleration plans of the course positions side by side at the top, the velocity
+    # plans of every grid position (the course's 12) under them, at one μv
     for k, i in enumerate(course):
-        info["plans"][i] = draw_plans(cv, geom, by_index[i], (430.0, 445.0 - 145.0 * k, 2 * PLAN_BOX_W,
-                                                               PLAN_BOX_H), lang)
+        info["plans"][i] = draw_plans(cv, geom, by_index[i], (430.0 + PLAN_BOX_W * k, 445.0, PLAN_BOX_W,
+                                                               PLAN_BOX_H), lang, kinds=("a",))
+    from ..report.course import course_entries, grid_count
+    n_grid = grid_count(results, len(entries))
+    grid = course_entries(entries[:n_grid], n_grid)          # the course's 12 of a finer grid
+    grid += [by_index[i] for i in course if by_index[i] not in grid]     # a course extra after them
+    info["vplans"] = draw_velocity_plans(cv, geom, grid, (430.0, fy0 + 62.0, fx1 - 430.0 - 3.0,
+                                                          440.0 - fy0 - 62.0), lang)
+    for i in course:
+        info["plans"][i]["v"] = info["vplans"][i]
     info["diagrams"] = draw_diagrams(cv, results, geom, (fx0 + 3, fy0 + 3, 400.0, 290.0), lang)
     info["scale"] = info["mechanism"]["scale"]
     return info

@@ -10,11 +10,14 @@ from .graph import draw_graph
 
 TXT = {
     "en": {"title": "Dynamics: reduced moments, works, kinetic energy", "em": "Energy-mass diagram",
-           "mm": "mm", "Nm": "N·m", "J": "J", "kgm2": "kg·m²", "jred": "Reduced moment of inertia"},
+           "mm": "mm", "Nm": "N·m", "J": "J", "kgm2": "kg·m²", "jred": "Reduced moment of inertia",
+           "rads": "rad/s"},
     "ru": {"title": "Динамика: приведённые моменты, работы, кинетическая энергия", "em": "Диаграмма энергомасс",
-           "mm": "мм", "Nm": "Н·м", "J": "Дж", "kgm2": "кг·м²", "jred": "Приведённый момент инерции"},
+           "mm": "мм", "Nm": "Н·м", "J": "Дж", "kgm2": "кг·м²", "jred": "Приведённый момент инерции",
+           "rads": "рад/с"},
     "uk": {"title": "Динаміка: зведені моменти, роботи, кінетична енергія", "em": "Діаграма енергомас",
-           "mm": "мм", "Nm": "Н·м", "J": "Дж", "kgm2": "кг·м²", "jred": "Зведений момент інерції"},
+           "mm": "мм", "Nm": "Н·м", "J": "Дж", "kgm2": "кг·м²", "jred": "Зведений момент інерції",
+           "rads": "рад/с"},
 }
 
 
@@ -30,11 +33,19 @@ def build(cv, results, task, lang="en") -> dict:
     rows = [("M", [("M_d", "#7a1f1f"), ("M_c", "#1f5fbf"), ("M_red", "#000")], T["Nm"]),
             ("A", [("A_d", "#7a1f1f"), ("A_c", "#1f5fbf")], T["J"]),
             ("ΔT", [("dT", "#000")], T["J"])]
-    box_h = (y1f - y0f - 20.0) / 3
+    # the reduced moment of inertia J_red(φ) and the angular speed ω(φ) of the crank, drawn
+    # about its mean ωm (its deviation is a few per cent of it)
+    omega_m = float(f.get("omega_m") or np.nanmean(a["omega"]))
+    arrays = dict(a, omega_dev=np.asarray(a["omega"], float) - omega_m)
+    if a.get("J_red") is not None:
+        rows.append(("J", [("J_red", "#000")], T["kgm2"]))
+    if a.get("omega") is not None:
+        rows.append(("ω − ωm", [("omega_dev", "#000")], T["rads"]))
+    box_h = (y1f - y0f - 20.0) / len(rows)
     info = {"mu_phi": mu_phi, "graphs": {}, "scale": "—"}   # diagrams only: no length scale
     cv.mtext(x0f + 5, y1f - 6, T["title"], 5.0, bold=True)
     for k, (sym, keys, unit) in enumerate(rows):
-        ys = [np.asarray(a[key], float) for key, _ in keys]
+        ys = [np.asarray(arrays[key], float) for key, _ in keys]
         hi = max(0.0, *(float(np.nanmax(y)) for y in ys))
         lo = min(0.0, *(float(np.nanmin(y)) for y in ys))
         mu = std_mu(max(hi - lo, 1e-12) / (box_h - 22.0))
@@ -42,14 +53,14 @@ def build(cv, results, task, lang="en") -> dict:
         yc = top - 6.0 - hi / mu
         pts = draw_graph(cv, (x0f + 20.0, yc), [(phi, y, c) for y, (_, c) in zip(ys, keys)], mu_phi, mu,
                          x_len=360.0 / mu_phi, y_up=hi / mu + 5.0, y_down=-lo / mu + 3.0, x_sym="φ",
-                         y_sym=sym, mu_text=f"μ{sym} = {mu:g} {unit}/{mm},  μφ = {mu_phi:g} °/{mm}",
-                         ticks=ticks)
+                         y_sym=sym, mu_text=f"μ{sym.split()[0]} = {mu:g} {unit}/{mm},  μφ = {mu_phi:g} °/{mm}"
+                         + (f",  ωm = {omega_m:.4g} {unit}" if keys[0][0] == "omega_dev" else ""), ticks=ticks)
         # the names of the curves at their right ends
-        ends = sorted(((p[-1][1], key) for p, (key, _) in zip(pts, keys)), reverse=True)
+        ends = sorted(((p[-1][1], key) for p, (key, _) in zip(pts, keys)), reverse=True) if k < 3 else []
         last = None
         for yv, key in ends:
             yy = yv if last is None else min(yv, last - 4.0)
-            cv.mtext(x0f + 20.0 + 360.0 / mu_phi + 4.0, yy, key.replace("_", " "), 2.5)
+            cv.mtext(x0f + 20.0 + 360.0 / mu_phi + 15.0, yy, key.replace("_", " "), 2.5)   # past φ
             last = yy
         info["graphs"][sym] = {"mu": mu, "pts": pts, "origin": (x0f + 20.0, yc),
                                "values": [y for y in ys]}

@@ -6,12 +6,76 @@ import math
 
 import numpy as np
 
-from .frame import FRAME, length_scale, std_mu
+from .frame import FRAME, TB_H, length_scale, std_mu
 from .graph import draw_graph
 
+GX = 28.0         # mm: the diagrams' φ axes start this far into the frame (room for d²s/dφ²)
 TXT = {"en": {"profile": "Cam profile", "law": "Motion law of the follower", "mm": "mm", "m": "m"},
        "ru": {"profile": "Профиль кулачка", "law": "Закон движения толкателя", "mm": "мм", "m": "м"},
        "uk": {"profile": "Профіль кулачка", "law": "Закон руху штовхача", "mm": "мм", "m": "м"}}
+
+
+def draw_construction(cv, k, c, box, results, task, lang="en") -> dict:
+    """The s - ds/dφ diagram that gives the least base radius (the report's figure): the
+    follower's points B (s along its path) and D (ds/dφ across it) over the rise and the
+    return, the tangents at the allowed pressure angles bounding the zone of the cam's
+    centre, O and B0 (O B0 = r0), at one ГОСТ 2.302 scale for s and ds/dφ alike."""
+    from pathlib import Path
+
+    from ..report.context import ReportContext
+    from ..report.sections import load
+    C = load("cam")                  # registers its texts in the three languages
+    ctx = ReportContext(results=results, task=task, lang=lang, out_dir=Path("."), env=None)
+    x0, y0, w, h = box
+    lo, hi = np.asarray(k["box"][:2], float), np.asarray(k["box"][2:], float)
+    if k.get("A") is not None:      # a rocker's pivot A: on the drawing too
+        lo, hi = np.minimum(lo, np.asarray(k["A"], float)), np.maximum(hi, np.asarray(k["A"], float))
+    unit, label = length_scale(max((hi - lo)[0] * 1000.0 / (w - 20.0), (hi - lo)[1] * 1000.0 / (h - 22.0)))
+    O = np.array([x0 + 10.0, y0 + 6.0]) - lo * 1000.0 / unit
+
+    def M(p):
+        return O + np.asarray(p, float) * 1000.0 / unit
+
+    mm = TXT[lang]["mm"]
+    cv.mtext(x0 + 5, y0 + h - 2, ctx.t("cam.construction_title"), 5.0, bold=True)
+    cv.mtext(x0 + 5, y0 + h - 9, "μ", 3.5, sub="s", after=f" = μds/dφ = {unit / 1000.0:g} {TXT[lang]['m']}/{mm}"
+             f"   (M {label})")
+    B0 = M(k["B0"])
+    # the axes of the diagram through B0: s along the follower's path, ds/dφ across it
+    cv.layer = "thin"
+    ax_lo, ax_hi = M(lo), M(hi)
+    cv.arrow((ax_lo[0], B0[1]), (ax_hi[0], B0[1]), width=0.25, head=2.5)
+    cv.arrow((B0[0], ax_lo[1]), (B0[0], ax_hi[1]), width=0.25, head=2.5)
+    cv.mtext(ax_hi[0] - 2.0, B0[1] + 3.5, C._loc(lang, "ds/dφ, mm"), 2.5, anchor="end")
+    cv.mtext(B0[0] + 2.0, ax_hi[1] - 2.0, C._loc(lang, "s, mm"), 2.5)
+    drawn = {}
+    for phase in ("rise", "return"):
+        B, D = M(k[f"B_{phase}"]), M(k[f"D_{phase}"])
+        cv.layer = "thin"
+        cv.polyline(B, width=0.25)
+        step = max(1, len(B) // 8)
+        for b, d in zip(B[::step], D[::step]):
+            cv.line(b, d, width=0.18)
+        cv.layer = "contour"
+        cv.polyline(D, width=0.6)
+        drawn[phase] = D
+    # the tangents at the allowed pressure angles: the cam's centre on the safe side of both
+    cv.layer = "dimensions"
+    tangents = []
+    for t in k["tangents"]:
+        seg = C._clip_line(np.asarray(t["point"], float), np.asarray(t["direction"], float), (*lo, *hi))
+        if seg is not None:
+            q = [M(p) for p in seg]
+            cv.line(q[0], q[1], width=0.3, dash="4 1.5")
+            tangents.append(q)
+    cv.layer = "contour"
+    cv.line(O, B0, width=0.5)
+    for name, p in (("O", O), ("B0", B0)) + ((("A", M(k["A"])),) if k.get("A") is not None else ()):
+        cv.circle(p, 1.0, width=0.5)
+        cv.mtext(p[0] + 2.5, p[1] - 3.5, name[0], 3.5, italic=True, sub=name[1:] or None)
+    mid = (O + B0) / 2
+    cv.mtext(mid[0] + 2.5, mid[1], "r₀", 3.5, italic=True)
+    return {"unit": unit, "scale": label, "O": O, "B0": B0, "D": drawn, "tangents": tangents, "M": M}
 
 
 def build(cv, results, task, lang="en") -> dict:
@@ -35,17 +99,23 @@ def build(cv, results, task, lang="en") -> dict:
         mu = std_mu(max(hi - lo, 1e-12) / (box_h - 22.0))
         yc = y1f - 20.0 - k * box_h - hi / mu
         per = "" if unit.startswith("1/") else f"/{mm}"
-        pts, = draw_graph(cv, (x0f + 20.0, yc), [(np.append(phi, 360.0), np.append(y, y[0]), "#1f5fbf")],
+        pts, = draw_graph(cv, (x0f + GX, yc), [(np.append(phi, 360.0), np.append(y, y[0]), "#1f5fbf")],
                           1.0, mu, x_len=360.0, y_up=hi / mu + 5.0, y_down=-lo / mu + 3.0, x_sym="φ",
                           y_sym=sym, mu_text=f"μ = {mu:g} {unit}{per},  μφ = 1 °/{mm}", ticks=ticks)
-        info["graphs"][key] = {"mu": mu, "pts": pts, "origin": (x0f + 20.0, yc),
+        info["graphs"][key] = {"mu": mu, "pts": pts, "origin": (x0f + GX, yc),
                                "values": np.append(y, y[0])}
     # --- the profile: centre of the cam in the middle of the right half
     pitch = np.asarray(c["pitch_profile"], float)
     work = np.asarray(c["working_profile"], float)
     roller = float(c.get("roller") or 0.0)
     R = float(np.hypot(pitch[:, 0], pitch[:, 1]).max()) + roller
-    bx0, by0, bw, bh = 440.0, 70.0, x1f - 440.0 - 5.0, y1f - 70.0 - 5.0
+    kc = c.get("construction")
+    # the profile over the right half; with the s - ds/dφ construction of r0 in its lower part
+    by0 = 300.0 if kc else 70.0
+    bx0, bw, bh = 440.0, x1f - 440.0 - 5.0, y1f - by0 - 5.0
+    if kc:
+        info["construction"] = draw_construction(cv, kc, c, (bx0, y0f + TB_H + 5.0, bw, by0 - y0f - TB_H - 12.0),
+                                                 results, task, lang)
     unit, label = length_scale(2 * R * 1000.0 / (min(bw, bh) - 50.0))
     O = np.array([bx0 + bw / 2, by0 + (bh - 20.0) / 2])
 

@@ -71,6 +71,8 @@ def to_dxf(cv: PrimCanvas) -> bytes:
         elif isinstance(p, Arc):
             msp.add_arc(p.c, p.r, p.a0, p.a1, dxfattribs=at)
         elif isinstance(p, Text):
-            t = msp.add_text(p.plain, height=0.7 * p.height, dxfattribs={**at, "style": "TMM"})
+            t = msp.add_text(p.plain, height=round(p.cap, 6), dxfattribs={**at, "style": "TMM"})
+            if p.narrow != 1.0:
+                t.dxf.width = round(p.narrow, 4)
             t.set_placement((p.x, p.y), align=align[p.anchor])
     return dxf_text(doc).encode("utf-8")

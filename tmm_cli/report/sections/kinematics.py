@@ -20,7 +20,7 @@ import numpy as np
 from markupsafe import Markup
 
 from ..context import values_of
-from ..course import course_entries, grid_count
+from ..course import course_entries, cycle_order, grid_count, position_label
 from ...plans import build_plan, crank_pin, geometry, plan_label, scales
 
 I18N = {
@@ -211,18 +211,17 @@ def draw_plan(cv, plan, box, title, unit_txt, si_unit="m/s", mm="mm"):
             groups.append((mp[name], [name], j))
     pole = c + np.zeros(2) * k
     # title, scale, scale bar first: the point labels keep clear of them
-    from ..svgdraw import PT_PER_MM
     taken = []
 
     def fixed(x, y, text, pt, **kw):
         cv.text(x, y, text, size=pt, **kw)
-        tw, th = F.text_size(text, pt / PT_PER_MM)
+        tw, th = F.text_size(text, cv.font_mm(pt))
         taken.append((x, y - th / 2, x + tw, y + th / 2))
 
     fixed(x0 + 1.5, y0 + h - 3.2, title, 7, anchor="start", bold=True)
     cv.text(x0 + 1.5, y0 + h - 7.2, "μ", size=6.5, anchor="start", sub=plan.kind,
             after=f" = {mu_drawn:g} {unit_txt}")
-    tw, th = F.text_size(f"μ{plan.kind} = {mu_drawn:g} {unit_txt}", 6.5 / PT_PER_MM)
+    tw, th = F.text_size(f"μ{plan.kind} = {mu_drawn:g} {unit_txt}", cv.font_mm(6.5))
     taken.append((x0 + 1.5, y0 + h - 7.2 - th / 2, x0 + 1.5 + tw, y0 + h - 7.2 + th / 2))
     bar = 20.0                               # mm of the drawing, at the stated scale
     bx, by = x0 + 2.0, y0 + 2.5
@@ -236,7 +235,7 @@ def draw_plan(cv, plan, box, title, unit_txt, si_unit="m/s", mm="mm"):
     for (q, names, _), dq, r in zip(groups, d.tolist(), from_pole):
         anchors.append((q[0], q[1], tuple(dq) if r > 0.5 else (-1.0, -1.0)))
         texts.append(", ".join(sorted(names, key=lambda s: (s != plan.pole, s))))
-        sizes.append(F.text_size(texts[-1], 7 / PT_PER_MM))
+        sizes.append(F.text_size(texts[-1], cv.font_mm(7)))
     pos = F.place_labels(anchors, 60.0, avoid=[g[0] for g in groups], step=2.6, segments=segs, sizes=sizes,
                          taken=taken, bounds=(x0 + 0.5, y0 + 0.5, x0 + w - 0.5, y0 + h - 0.5))
     for (q, names, _), text, (x, y) in zip(groups, texts, pos):
@@ -371,6 +370,11 @@ def build(ctx) -> str | None:
     fine = grid if len(shown_grid) < n_grid else None
     sgn = _rotation_sign(ctx, geom, entries)
     phi0 = res_pos.get("phi0", grid[0]["phi"])
+    # the tables and plans in the order of the crank's turn, the extras marked
+    shown = cycle_order(shown, phi0, sgn)
+
+    def num(e):
+        return position_label(e, n_grid)
     phase = [((float(e["phi"]) - float(phi0)) * sgn) % 360.0 for e in entries]
     phase = [0.0 if abs(p - 360.0) < 1e-9 else p for p in phase]
 
@@ -422,9 +426,9 @@ def build(ctx) -> str | None:
             if p not in geom.ground and p not in moving_pts and p in entries[0]["points"]:
                 moving_pts.append(p)
     hdr_pts = [ctx.t("common.position"), "φ, °"] + moving_pts
-    v_rows = [[str(e["index"]), ctx.fmt_fixed(e["phi"], 2)] +
+    v_rows = [[num(e), ctx.fmt_fixed(e["phi"], 2)] +
               [ctx.fmt(e["points"][p]["v"]) for p in moving_pts] for e in shown]
-    a_rows = [[str(e["index"]), ctx.fmt_fixed(e["phi"], 2)] +
+    a_rows = [[num(e), ctx.fmt_fixed(e["phi"], 2)] +
               [ctx.fmt(e["points"][p]["a"]) for p in moving_pts] for e in shown]
     # angular quantities: links that turn (a slider on a fixed guide never does)
     def turns(n):
@@ -434,12 +438,12 @@ def build(ctx) -> str | None:
 
     def signed(x):
         return f"{ctx.fmt(x)} {_sense_mark(x)}".rstrip()
-    w_rows = [[str(e["index"]), ctx.fmt_fixed(e["phi"], 2)] +
+    w_rows = [[num(e), ctx.fmt_fixed(e["phi"], 2)] +
               [signed(e["links"][l.name]["omega"]) for l in rot_links] for e in shown]
-    e_rows = [[str(e["index"]), ctx.fmt_fixed(e["phi"], 2)] +
+    e_rows = [[num(e), ctx.fmt_fixed(e["phi"], 2)] +
               [signed(e["links"][l.name]["epsilon"]) for l in rot_links] for e in shown]
     hdr_ang = [ctx.t("common.position"), "φ, °"] + [f"{l.index} ({l.name})" for l in geom.links]
-    ang_rows = [[str(e["index"]), ctx.fmt_fixed(e["phi"], 2)] +
+    ang_rows = [[num(e), ctx.fmt_fixed(e["phi"], 2)] +
                 [ctx.fmt_fixed(e["links"][l.name].get("angle"), 2) for l in geom.links] for e in shown]
 
     # plans of every (course) position
@@ -458,7 +462,7 @@ def build(ctx) -> str | None:
                                  html.unescape(sym.replace("<sub>", "_").replace("</sub>", "")
                                                .replace("<sup>", "^").replace("</sup>", "")),
                                  float(mm), float(val)])
-        positions.append({"index": e["index"], "phi": ctx.fmt_fixed(e["phi"], 2),
+        positions.append({"index": num(e), "phi": ctx.fmt_fixed(e["phi"], 2),
                           "fig": F.named(plans_svg(ctx, vp, ap), F.pos_name("plans", e["index"])), "vrows": vrows, "arows": arows})
 
     # diagrams
@@ -483,6 +487,8 @@ def build(ctx) -> str | None:
         ctx.written_elsewhere("kinematics.csv")
     else:
         write_table(ctx)
+    order = {e["index"]: k for k, e in enumerate(entries)}      # the CSV in the results' order
+    plan_csv.sort(key=lambda r: order[r[0]])
     ctx.write_csv("plans.csv", ["index", "phi", "plan", "segment", "vector", "length_mm", "value"], plan_csv)
 
     return ctx.render("sections/kinematics.html.j2",
@@ -491,4 +497,5 @@ def build(ctx) -> str | None:
                       hdr_pts=hdr_pts, v_rows=v_rows, a_rows=a_rows, hdr_l=hdr_l,
                       w_rows=w_rows, e_rows=e_rows, hdr_ang=hdr_ang, ang_rows=ang_rows,
                       sense_note=ctx.t("kin.sense_note"), positions=positions, fig_diagrams=diag,
-                      out_name=out_name, dense=curve is not None)
+                      out_name=out_name, dense=curve is not None,
+                      extra_note=ctx.t("common.extra_note") if len(entries) > n_grid else None)

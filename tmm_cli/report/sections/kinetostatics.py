@@ -29,7 +29,8 @@ from markupsafe import Markup, escape
 
 from .. import figures
 from ..context import values_of
-from ..svgdraw import PT_PER_MM, Canvas
+from ..course import position_label
+from ..svgdraw import Canvas
 
 I18N = {
     "en": {"kst.title": "Kinetostatics", "kst.convention": "Sign convention",
@@ -256,7 +257,7 @@ def _labels(cv, items, step, segments, avoid, lang, size=7.0, box=None, taken=No
     if not items:
         return
     parts = [label_parts(name, lang) for _, _, name, _ in items]
-    fs = size / PT_PER_MM
+    fs = cv.font_mm(size)
     sizes = [figures.text_size(s, fs, sub) for s, sub in parts]
     bounds = None
     if box is not None:
@@ -380,7 +381,7 @@ def _title(cv, box, title, scale) -> list:
     cv.text(x0 + 1.5, y0 + h - 7.2, sym[0], size=6.5, anchor="start", sub=sym[1:], after=f" = {rest}")
     out = []
     for s, yc, pt in ((title, h - 3.2, 7), (scale, h - 7.2, 6.5)):
-        tw, th = text_size(s, pt / PT_PER_MM)
+        tw, th = text_size(s, cv.font_mm(pt))
         out.append((x0 + 1.5, y0 + yc - th / 2, x0 + 1.5 + tw, y0 + yc + th / 2))
     return out
 
@@ -534,12 +535,12 @@ def _lever_panel(ctx, cv, box, e, kin_e, pin, omega1, balance_kind):
     yy = y0 + text_h - 2.5
     for s in lines:
         cv.text(x0 + 1, yy, s, size=6.5, anchor="start")
-        tw, th = figures.text_size(s, 6.5 / PT_PER_MM)
+        tw, th = figures.text_size(s, cv.font_mm(6.5))
         taken.append((x0 + 1, yy - th / 2, x0 + 1 + tw, yy + th / 2))
         yy -= 3.8
     # the pole, then the letters of the turned plan (merged where ends coincide), then the forces
     cv.text(pole[0] - 1.8, pole[1] - 1.8, "p", size=7, italic=True)
-    tw, th = figures.text_size("p", 7 / PT_PER_MM)
+    tw, th = figures.text_size("p", cv.font_mm(7))
     taken.append((pole[0] - 1.8 - tw / 2, pole[1] - 1.8 - th / 2, pole[0] - 1.8 + tw / 2, pole[1] - 1.8 + th / 2))
     groups: list[tuple[np.ndarray, list[str], int]] = []
     if ends:                 # the ends' distances to each other (np.hypot of the differences, as one by one)
@@ -662,7 +663,7 @@ def _diagrams_fig(ctx, info, entries, grid_n):
             val = dd.get("value")
             # the diagram value (magnitude for a stroke load, signed for a phi-diagram)
             ys.append(abs(val) if d["abscissa"] == "s" and d["kind"] in ("resistance", "driving") else val)
-            labels.append(str(e["index"]))
+            labels.append(position_label(e, grid_n))       # an extra marked, as in the tables
         ax.plot(xs, ys, "o", ms=3.5, color="#c0392b")
         marks.append((ax, xs, ys, labels))
         ax.set_xlabel(ctx.t("kst.s_axis") if d["abscissa"] == "s" else ctx.t("kst.phi_axis"))
@@ -721,6 +722,8 @@ def _cycle_fig(ctx, entries, phi0, sign, info):
     rows.sort(key=lambda r: r[0])
     if len(rows) < 2:
         return None
+    if rows[0][0] < 1e-6:            # a periodic curve closes: the zero position again at 360°
+        rows.append((360.0, rows[0][1]))
     key = "balancing_moment" if info["balance_kind"] == "moment" else "balancing_force"
     from .. import figures
     from ..svgchart import subplots
@@ -777,21 +780,23 @@ def build(ctx) -> str | None:
     if has_near:
         hdr.append(ctx.t("kst.near"))
     # a fine grid: tables and drawings of the course positions (report/course.py), CSV in full
-    from ..course import course_entries, grid_count
-    shown = course_entries(entries, grid_count(ctx.results, len(entries)))
-    shown_ids = {id(e) for e in shown}
+    from ..course import course_entries, cycle_order, grid_count
+    n_grid = grid_count(ctx.results, len(entries))
+    # the tables and drawings in the order of the crank's turn, the extras marked
+    shown = cycle_order(course_entries(entries, n_grid), phi0, sign)
     mb_rows = []
     csv_rows = []
     # the CSV row of every position (a fine grid has thousands) read by values_of
     values, xyr = values_of(keys + ("discrepancy", "efficiency")), values_of(("x", "y", "R"))
     jkeys = [j["key"] for j in info["joints"]]
+    for e in shown:
+        disc = None if e.get("discrepancy") is None else 100.0 * e["discrepancy"]
+        row = [position_label(e, n_grid), ctx.fmt_fixed(e["phi"], 2)] + [fmt(e.get(k), 6) for k in keys] + [
+            fmt(disc, 2)]
+        if has_near:
+            row.append("✓" if e.get("near_singular") else "")
+        mb_rows.append(row)
     for e in entries:
-        if id(e) in shown_ids:
-            disc = None if e.get("discrepancy") is None else 100.0 * e["discrepancy"]
-            row = [e["index"], ctx.fmt_fixed(e["phi"], 2)] + [fmt(e.get(k), 6) for k in keys] + [fmt(disc, 2)]
-            if has_near:
-                row.append("✓" if e.get("near_singular") else "")
-            mb_rows.append(row)
         crow = [e["index"], e["phi"], *values(e)]
         reactions = e["reactions"]
         for k in jkeys:
@@ -808,7 +813,7 @@ def build(ctx) -> str | None:
                                        for j in info["joints"]]
     r_rows = []
     for e in shown:
-        row = [e["index"]]
+        row = [position_label(e, n_grid)]
         for j in info["joints"]:
             r = e["reactions"][j["key"]]
             if j["kind"] == "P":
@@ -820,10 +825,10 @@ def build(ctx) -> str | None:
     # friction table
     eff_rows = None
     if has_eff:
-        eff_rows = [[e["index"], ctx.fmt_fixed(e["phi"], 2), fmt(e.get("friction_power"), 5),
+        eff_rows = [[position_label(e, n_grid), ctx.fmt_fixed(e["phi"], 2), fmt(e.get("friction_power"), 5),
                      fmt(e.get("driving_power"), 5), fmt(e.get("efficiency"), 4)] for e in shown]
     # loads of every position in one table: the varying loads by position, the constant ones below
-    loads_hdr, loads_rows, const = _loads_table(ctx, shown)
+    loads_hdr, loads_rows, const = _loads_table(ctx, shown, n_grid)
     # per position drawings
     from ...plans import crank_pin, geometry
     geom = geometry(ctx.results)
@@ -838,7 +843,7 @@ def build(ctx) -> str | None:
             figs = []
         else:
             figs, _ = position_figures(ctx, e, ke, info, links, geom_pin, w1)
-        positions.append({"index": e["index"], "phi": e["phi"], "figs": figs})
+        positions.append({"index": position_label(e, n_grid), "phi": e["phi"], "figs": figs})
     sing = ctx.results.get("singular") or []
     bk = ctx.t("kst.bk_moment") if info["balance_kind"] == "moment" else ctx.t("kst.bk_force")
     return ctx.render("sections/kinetostatics.html.j2", info=info, mb_hdr=hdr, mb_rows=mb_rows,
@@ -848,12 +853,13 @@ def build(ctx) -> str | None:
                       loads_note=Markup(escape(ctx.t("kst.loads_note", const="\u0001"))).replace(
                           "\u0001", const or "—"),
                       fbd_caption=ctx.t("kst.fbd_caption"),
-                      fig_diagrams=_diagrams_fig(ctx, info, shown, len(entries)),
+                      fig_diagrams=_diagrams_fig(ctx, info, shown, n_grid),
                       fig_cycle=_cycle_fig(ctx, entries, phi0, sign, info),
-                      singular=", ".join(ctx.fmt_fixed(s, 6) for s in sing))
+                      singular=", ".join(ctx.fmt_fixed(s, 6) for s in sing),
+                      extra_note=ctx.t("common.extra_note") if len(entries) > n_grid else None)
 
 
-def _loads_table(ctx, entries):
+def _loads_table(ctx, entries, n_grid=None):
     """Header, rows (one per position) of the loads that vary, and the text of the
     constant ones ('G₁ = 14.72 N, ...')."""
     lang = ctx.lang
@@ -899,6 +905,7 @@ def _loads_table(ctx, entries):
         [label_html(nm, lang) for nm in ccols]
     rows = []
     for k, e in enumerate(with_loads):
-        rows.append([e["index"], ctx.fmt_fixed(e["phi"], 2)] + [ctx.fmt(fval[nm][k], 4) for nm in fcols]
+        rows.append([e["index"] if n_grid is None else position_label(e, n_grid), ctx.fmt_fixed(e["phi"], 2)]
+                    + [ctx.fmt(fval[nm][k], 4) for nm in fcols]
                     + [ctx.fmt(cval[nm][k], 4) for nm in ccols])
     return hdr, rows, Markup(", ").join(const_parts)
