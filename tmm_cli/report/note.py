@@ -148,8 +148,9 @@ def _preamble(h: dict, lang: str) -> str:
   table.cell(colspan: 2, cell({_q(roles[3])}, size: 6pt)), [], [], [],
   table.cell(colspan: 2, cell({_q(roles[4])}, size: 6pt)), [], [], [])
 #let frame = context {{
-  let pn = counter(page).get().first()
-  let total = counter(page).final().first()
+  // the sheets counted as they lie (the title page is sheet 1), not by a counter a page run may reset
+  let pn = here().page()
+  let total = locate(<note-end>).page()
   place(top + left, dx: {fr['left']}mm, dy: {fr['top']}mm,
     rect(width: {210 - fr['left'] - fr['right']}mm, height: {297 - fr['top'] - fr['bottom']}mm, stroke: 0.7pt))
   if pn == 2 {{
@@ -256,6 +257,7 @@ def to_typst(html: str, results: dict, task, lang: str = "en") -> tuple[str, dic
 {''.join('#par(' + _q(c) + ')' + chr(10) for c in concl)}
 #heading(numbering: none, {_q(W['biblio'])})
 #enum(numbering: "1.", {', '.join('[' + _q(b)[1:-1].replace('[', '(').replace(']', ')') + ']' for b in BIBLIOGRAPHY)})
+#metadata("end") <note-end>
 """
     out = head + numbering + _title_page(h, lang) + contents + page + intro_block + body + tail
     return out, files

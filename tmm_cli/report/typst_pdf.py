@@ -240,7 +240,7 @@ PREAMBLE = r"""
 #let note(x) = text(size: 8.5pt, fill: rgb("#444444"), x)
 #let cap(x) = block(below: 1mm, sticky: true, strong(x))
 #let keep(x) = block(sticky: true, above: 0.55em, below: 0.55em, x)
-#let section-break = context if here().position().y > 148mm { pagebreak(weak: true) } else { v(4mm) }
+#let section-break = { block(breakable: false, height: 50%, above: 4mm, below: 0pt); v(-50%) }
 #let fig(file, w, c, labels: none) = block(above: 2mm, below: 3mm, breakable: false, width: 100%,
   align(center, { if labels == none { layout(size => image(file, width: calc.min(w, size.width))) } else {
     block(width: w, { image(file, width: w); set text(top-edge: "baseline", bottom-edge: "baseline"); labels }) }
