@@ -98,3 +98,21 @@ def test_contents_conclusions_and_references(note):
     res = json.loads((note.parent / "results.json").read_text())
     J = res["flywheel"]["J"]
     assert f"J = {J:.4g}".replace(".", ",") + " кг·м²" in text.replace("\n", " ")
+
+
+def test_sheets_title_blocks_take_the_course_header(tmp_path):
+    """The A1 sheets' title blocks: the supervisor in the row 'checked', the designation (less its
+    'ПЗ') with the sheet's number as the code, the university beside the group."""
+    import tmm_cli
+    from tmm_cli.sheets import build_sheets
+    task_file = tmp_path / "engine.yaml"
+    task_file.write_text((ROOT / "tasks" / "engine_slider_crank.yaml").read_text(encoding="utf-8") + HEADER,
+                         encoding="utf-8")
+    task = tmm_cli.load_task(task_file)
+    sheets = build_sheets(tmm_cli.run(task), task, "uk")
+    assert sheets
+    for n, (_, info) in enumerate(sheets, start=1):
+        tb = info["title_block"]
+        assert tb["code"] == f"ТММ.КП.07.00.00.{n:02d}"
+        assert tb["supervisor"] == "Петренко О. В." and tb["student"] == "Іваненко П. С."
+        assert tb["organisation"] == "Національний технічний університет, МТ-31"

@@ -37,13 +37,17 @@ def build_sheets(results: dict, task, lang: str = "en") -> list[tuple]:
     student = getattr(getattr(task, "student", None), "name", None) or ""
     group = getattr(getattr(task, "student", None), "group", None) or getattr(task, "group", None) or ""
     meta = results.get("task") or {}
+    course = getattr(task, "course", None)
     for n, (num, make) in enumerate(makers, start=1):
         cv = PrimCanvas(SHEET_W, SHEET_H)
         info = make(cv, results, task, lang)
         info["title_block"] = draw_frame(cv, title=meta.get("title") or getattr(task, "title", "") or "",
                                          sheet_title=SHEETS[lang][num], variant=meta.get("variant", ""),
                                          student=student, group=str(group), n=n, total=len(makers),
-                                         scale=info.get("scale", ""), lang=lang)
+                                         scale=info.get("scale", ""), lang=lang,
+                                         supervisor=getattr(course, "supervisor", None) or "",
+                                         designation=getattr(course, "designation", None) or "",
+                                         university=getattr(course, "university", None) or "")
         info["number"] = num
         out.append((cv, info))
     return out

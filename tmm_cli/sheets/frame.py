@@ -3,6 +3,8 @@ the other sides) and the title block of ГОСТ 2.104 form 1 (185 x 55 mm), the
 of the course's drawings (ГОСТ 2.302 for lengths, 1, 2, 2.5, 4, 5 x 10^k for the others)."""
 from __future__ import annotations
 
+import re
+
 from ..report.figures import drawing_scale, nice_scale
 
 SHEET_W, SHEET_H = 841.0, 594.0
@@ -79,8 +81,12 @@ TB_TEXT = {
 
 
 def draw_frame(cv, *, title: str, sheet_title: str, variant, student: str, group: str,
-               n: int, total: int, scale: str, lang: str = "en") -> dict:
-    """The frame and the title block; returns the title block's fields as written."""
+               n: int, total: int, scale: str, lang: str = "en", supervisor: str = "",
+               designation: str = "", university: str = "") -> dict:
+    """The frame and the title block; returns the title block's fields as written. The task's
+    ``course`` header gives the supervisor (row 'checked'), the designation (the sheet's code:
+    the note's designation less its 'ПЗ', and the sheet's number) and the university (with the
+    group, in the organisation's cell)."""
     T = TB_TEXT[lang]
     x0, y0, x1, y1 = FRAME
     cv.layer = "thin"
@@ -113,12 +119,13 @@ def draw_frame(cv, *, title: str, sheet_title: str, variant, student: str, group
     h = 2.5
     for c, s in zip(cols, (T["ch"], T["sh"], T["doc"], T["sign"], T["date"])):
         fit_text(cv, c + 0.7, by + 27.5, s, h, 1.0 + (cols[cols.index(c) + 1] - c) - 2.4)
-    rows = [(T["dev"], student), (T["chk"], ""), (T["tcn"], ""), (T["ncn"], ""), (T["apr"], "")]
+    rows = [(T["dev"], student), (T["chk"], supervisor), (T["tcn"], ""), (T["ncn"], ""), (T["apr"], "")]
     for k, (lab, val) in enumerate(rows):
         y = by + 22.5 - 5 * k
         fit_text(cv, bx + 0.7, y, lab, h, 15.6)
         fit_text(cv, bx + 17.7, y, val, h, 21.6)
-    code = f"TMM.{variant}.{n:02d}" if variant not in (None, "") else f"TMM.{n:02d}"
+    base = re.sub(r"\s*(ПЗ|PZ)\s*$", "", designation or "").strip()
+    code = f"{base}.{n:02d}" if base else (f"TMM.{variant}.{n:02d}" if variant not in (None, "") else f"TMM.{n:02d}")
     fit_text(cv, rx + 60, by + 47.5, code, 7.0, 116, anchor="middle")
     fit_lines(cv, rx + 35, by + 31, title, 5.0, 66, 14.0)
     fit_text(cv, rx + 35, by + 20, sheet_title, 3.5, 66, anchor="middle")
@@ -131,6 +138,8 @@ def draw_frame(cv, *, title: str, sheet_title: str, variant, student: str, group
     fit_text(cv, rx + 111, by + 27.5, scale, 3.5, 16, anchor="middle")
     fit_text(cv, rx + 71, by + 17.5, f"{T['sheet']} {n}", h, 18)
     fit_text(cv, rx + 91, by + 17.5, f"{T['sheets']} {total}", h, 28)
-    fit_text(cv, rx + 95, by + 7.5, group, 3.5, 46, anchor="middle")
+    org = ", ".join(x for x in (university, group) if x)
+    fit_text(cv, rx + 95, by + 7.5, org, 3.5, 46, anchor="middle")
     return {"title": title, "sheet_title": sheet_title, "variant": variant, "student": student,
-            "group": group, "sheet": n, "sheets": total, "scale": scale, "code": code}
+            "group": group, "sheet": n, "sheets": total, "scale": scale, "code": code,
+            "supervisor": supervisor, "organisation": org}
