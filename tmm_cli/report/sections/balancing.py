@@ -26,6 +26,54 @@ def hodograph(ctx, b):
     return fig
 
 
+def counterweights_figure(ctx, b, results):
+    """The linkage at position 0 with each counterweight drawn on its link: a disc at its radius
+    and angle from the link's axis (fixed pivot -> other pair point), its area in proportion to its
+    mass, labelled with m (kg)."""
+    from ..svgchart import subplots
+    e = (results.get("kinematics") or [None])[0]
+    links = (results.get("structure") or {}).get("links") or []
+    if e is None or not links:
+        return None
+    P = {k: (v["x"], v["y"]) for k, v in e["points"].items()}
+    fig, ax = subplots(120, 90)
+    for lk in links:
+        pts = [P[q] for q in lk["points"] if q in P]
+        if len(pts) >= 2:
+            ax.plot([q[0] for q in pts], [q[1] for q in pts], "k-", lw=1.4)
+    ground = [q for q in (results.get("structure") or {}).get("ground", {}) or {}]
+    for q in ground:
+        if q in P:
+            ax.plot([P[q][0]], [P[q][1]], "ko", ms=5)
+    cw = b.get("counterweights") or {}
+    mmax = max((c["m"] for c in cw.values()), default=1.0) or 1.0
+    placed_x, placed_y = [], []
+    for role, c in cw.items():
+        lk = next((x for x in links if x["name"] == c["link"]), None)
+        if lk is None:
+            continue
+        piv = next((q for q in lk["points"] if q in ground), None)
+        other = next((q for q in lk["points"] if q != piv), None)
+        if piv is None or other is None:
+            continue
+        (px, py), (qx, qy) = P[piv], P[other]
+        th = math.atan2(qy - py, qx - px) + math.radians(c["angle"])
+        x, y = px + c["r"] * math.cos(th), py + c["r"] * math.sin(th)
+        placed_x.append(x)
+        placed_y.append(y)
+        ax.plot([px, x], [py, y], color="r", lw=1.2)
+        ax.plot([x], [y], "ro", ms=4 + 6 * math.sqrt(c["m"] / mmax))
+        ax.annotate(ctx.t("bal.kg", m=ctx.fmt(c["m"])), (x, y), xytext=(4, 3))
+    xs = [q[0] for q in P.values()] + placed_x
+    ys = [q[1] for q in P.values()] + placed_y
+    span = max(max(xs) - min(xs), max(ys) - min(ys), 1e-9)
+    ax.set_xlim(min(xs) - 0.12 * span, max(xs) + 0.3 * span)        # room for the labels on the right
+    ax.set_ylim(min(ys) - 0.12 * span, max(ys) + 0.12 * span)
+    ax.set_aspect("equal")
+    ax.grid(True)
+    return fig
+
+
 def rotor_figure(ctx, r, masses):
     from ..svgchart import subplots
     fig, ax = subplots(100, 100)
@@ -78,8 +126,10 @@ def build(ctx) -> str | None:
                                  lam=f(rem["lambda"])))
             else:
                 cw_text.append(t("bal.cw_full"))
+        cw_fig = counterweights_figure(ctx, b, ctx.results) if cw else None
         parts.update(head=head, rows=rows, notes=notes, method=t("bal.method", about=b.get("about", "O")),
-                     hodo=ctx.svg(hodograph(ctx, b), "balancing-hodograph"), cw_rows=cw_rows, cw_text=cw_text)
+                     hodo=ctx.svg(hodograph(ctx, b), "balancing-hodograph"), cw_rows=cw_rows, cw_text=cw_text,
+                     cw_fig=ctx.svg(cw_fig, "balancing-counterweights") if cw_fig is not None else None)
     r = b.get("rotor")
     if r:
         masses = r.get("masses") or []
