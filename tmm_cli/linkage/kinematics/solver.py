@@ -83,6 +83,7 @@ class Solver:
                     self.plans.append(DyadPlan(grp.links[0], grp.links[1], *cons))
                 except ValueError as exc:
                     raise StageError("kinematics", f"{grp.describe()}: {exc}") from None
+                self.plans[-1].length = self._group_length(grp)
             else:
                 if grp.type == "PPP":
                     raise StageError("kinematics", Message("kinematics.fail.ppp", **grp.message_params()))
@@ -93,6 +94,17 @@ class Solver:
         self.warnings: list[str] = []
 
     # ------------------------------------------------------------------ model
+    def _group_length(self, grp: Group) -> float:
+        """The group's length: the largest distance between two points of one of its links
+        (the linkage's size where its links have one point each); the scale of its
+        normalised determinant (see dyads._inverse)."""
+        best = 0.0
+        for b in grp.links:
+            pts = np.array(list(self.mech.link(b).local.values()), float).reshape(-1, 2)
+            if len(pts) > 1:
+                best = max(best, float(np.max(np.hypot(*(pts[:, None, :] - pts[None, :, :]).T))))
+        return best if best > 0.0 else self.L
+
     def local(self, b: int, p: str):
         if b == 0:
             return self.mech.ground[p]
