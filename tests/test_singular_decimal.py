@@ -89,3 +89,195 @@ def test_decimal_grashof_limit_change_point_is_found(tmp_path, lengths, at, scal
 
 def test_regular_decimal_crank_rocker_has_no_change_point(tmp_path):
     assert _cps(tmp_path, fourbar(0.1, 0.25, 0.2, 0.34)) == []
+
+
+# ---------------------------------------------------------------------------------------
+# references: one-sided and central finite differences of the solver's own positions
+# (independent of its exact derivatives), polynomial through five angles, at phi0
+
+def _positions(mech, phis):
+    k = ksolver.solve_raw(mech, np.asarray(phis, float))
+    out = {f"x:{p}": np.asarray(k.pos[p], float) for p in k.points}
+    out.update({f"th:{lk}": np.unwrap(np.asarray(k.angle[lk], float)) for lk in k.links})
+    return out
+
+
+def _fd(mech, phi0, nodes_deg):
+    """d/dphi and d2/dphi2 (per rad) at phi0 of each point's coordinates and link's angle,
+    from the interpolating polynomial through the positions at phi0 + nodes_deg."""
+    t = np.radians(np.asarray(nodes_deg, float))
+    P = _positions(mech, phi0 + np.asarray(nodes_deg, float))
+    V = np.vander(t, len(t), increasing=True)
+    out = {}
+    for key, y in P.items():
+        y = y.reshape(len(t), -1)
+        if key.startswith("th:"):
+            y = np.unwrap(y, axis=0)
+        c = np.linalg.solve(V, y)                  # coefficients c0 + c1 t + c2 t^2 ...
+        out[key] = (c[1], 2.0 * c[2])
+    return out
+
+
+def _fd_side(mech, phi0, side, h=0.25):
+    return _fd(mech, phi0, side * h * np.arange(1, 6))
+
+
+def _fd_central(mech, phi0, h=0.02):
+    return _fd(mech, phi0, h * np.array([-2.0, -1.0, 0.0, 1.0, 2.0]))
+
+
+def _printed(k, i):
+    """Every analogue the entry of position i prints: key -> (value (or None: null),
+    reference key, order)."""
+    out = {}
+    for p in k.points:
+        for what, arr, order in (("v", k.d1, 1), ("a", k.d2, 2)):
+            null = bool(k.undefined.get(f"{what}:{p}", np.zeros(len(k.phi), bool))[i])
+            out[f"{what}:{p}"] = (None if null else np.asarray(arr[p][i], float), f"x:{p}", order)
+    for lk in k.links:
+        for what, arr, order in (("omega", k.a1, 1), ("epsilon", k.a2, 2)):
+            null = bool(k.undefined.get(f"{what}:{lk}", np.zeros(len(k.phi), bool))[i])
+            out[f"{what}:{lk}"] = (None if null else np.asarray(arr[lk][i], float), f"th:{lk}", order)
+    return out
+
+
+def _scale(mech):
+    """The largest analogue of points and of links over the cycle (the tolerances' size)."""
+    k = ksolver.solve_raw(mech, np.arange(0.0, 360.0, 1.0))
+    pts = max(float(np.max(np.abs(np.concatenate([k.d1[p], k.d2[p]])))) for p in k.points)
+    lks = max(float(np.max(np.abs(np.concatenate([k.a1[lk], k.a2[lk]])))) for lk in k.links)
+    return {"v": pts, "a": pts, "omega": lks, "epsilon": lks}
+
+
+TOL = 1e-3      # of the cycle's largest analogue of the kind
+
+
+def check_printed_values(mech, phis, cps):
+    """Every value solve() prints at ``phis`` is null, or within TOL of the finite-difference
+    value: central where no change point is within 1 deg (it must then not be flagged either
+    unless ill-conditioned); at a change point (to 1e-6 deg) the same one-sided value from both
+    sides; near one, from the side that does not cross it. Returns (flagged, nulled) counts."""
+    k = solve(mech, phis, 1.0)
+    scale = _scale(mech)
+    flagged = nulled = 0
+    for i, phi0 in enumerate(phis):
+        d = float(changepoints.distance_deg([phi0], cps)[0]) if cps else math.inf
+        near = k.near is not None and bool(k.near[i])
+        flagged += near
+        if d > 1.5:
+            refs = [_fd_central(mech, phi0)]
+        elif d < 1e-6:
+            refs = [_fd_side(mech, phi0, 1), _fd_side(mech, phi0, -1)]
+            assert near and k.singular is not None and k.singular[i], (phi0, "not flagged at a change point")
+        else:
+            # the side away from the change point (nodes up to 5 h from phi0)
+            cp = min(cps, key=lambda c: changepoints.distance_deg([phi0], [c])[0])
+            side = 1 if ((phi0 - cp + 180.0) % 360.0 - 180.0) > 0 else -1
+            refs = [_fd_side(mech, phi0, side, h=min(0.25, d / 6.0) if d > 0.05 else 0.25)]
+            if d <= 0.05:
+                refs = None            # too close for a finite difference of one side: flagged
+                assert near, (phi0, "not flagged next to a change point")
+        for key, (val, rk, order) in _printed(k, i).items():
+            if val is None:
+                nulled += 1
+                continue
+            if refs is None:
+                continue
+            tol = TOL * scale[key.split(":", 1)[0]]
+            for ref in refs:
+                want = ref[rk][order - 1]
+                assert np.all(np.abs(val - want) <= tol), (phi0, key, val, want, near)
+    return flagged, nulled
+
+
+def test_decimal_change_point_is_flagged_nulled_and_limited(tmp_path):
+    """The issue's four-bar (0.1 + 0.35 = 0.25 + 0.2) at its change point 180 deg and next to
+    it: flags, nulls (omega jumps), the limits that exist (epsilon -> 0 from both sides) and
+    the values next to it against finite differences; kinetostatics null there."""
+    text = fourbar(0.1, 0.25, 0.2, 0.35, extra=[179.99, 180.01, 179.9, 180.5])
+    mech = _mech(tmp_path, text)
+    cps = _cps(tmp_path, text)
+    phis = [0.0, 90.0, 150.0, 180.0, 179.99, 180.01, 179.9, 180.5, 270.0]
+    flagged, nulled = check_printed_values(mech, phis, cps)
+    assert flagged >= 5 and nulled > 0
+    k = solve(mech, [180.0], 1.0)
+    assert k.undefined["omega:rocker"][0] and k.undefined["omega:coupler"][0]
+    assert "epsilon:rocker" not in k.undefined and abs(float(k.a2["rocker"][0])) < 1e-4
+    import tmm_cli.results as results
+    res = results.clean(tmm_cli.run(_task(tmp_path, text)))
+    at = [e for e in res["kinematics"] if abs(e["phi"] - 180.0) < 1e-9]
+    assert at and at[0]["singular"] is True and at[0]["near_singular"] is True
+    assert at[0]["links"]["rocker"]["omega"] is None and at[0]["points"]["B"]["v"] is None
+    ks = {e["index"]: e for e in res["kinetostatics"]}[at[0]["index"]]
+    assert ks["balancing_moment"] is None and ks["near_singular"] is True
+    assert all(r["R"] is None for r in ks["reactions"].values())
+    assert any(w.startswith("crank angle 180.000000 deg: group II(2,3) (links coupler, rocker) is ill-conditioned")
+               and "have no limit by continuity" in w and "ω rocker" in w for w in res["warnings"])
+    assert any("position 6 (phi = 180.0000 deg) is a singular or change point" in w for w in res["warnings"])
+
+
+def test_decimal_change_point_at_zero_kinetostatics_null(tmp_path):
+    # crank 0.1, coupler 0.35, rocker 0.25, ground 0.2: folded at phi = 0 (the issue's 0-deg case)
+    text = fourbar(0.1, 0.35, 0.25, 0.2)
+    import tmm_cli.results as results
+    res = results.clean(tmm_cli.run(_task(tmp_path, text)))
+    e0 = res["kinematics"][0]
+    assert e0["phi"] == 0.0 and e0["singular"] is True and e0["links"]["rocker"]["omega"] is None
+    k0 = res["kinetostatics"][0]
+    assert k0["balancing_moment"] is None and all(r["R"] is None for r in k0["reactions"].values())
+
+
+def test_fast_path_refuses_ill_conditioned_calls(tmp_path):
+    mech = _mech(tmp_path, fourbar(0.1, 0.25, 0.2, 0.35))
+    sv = ksolver.get_solver(mech)
+    steps = ksolver._fast_steps(sv)
+    assert steps is not None
+    assert fast.run(sv, steps, np.radians([10.0, 90.0]), 0) is not None        # regular: answered
+    for phi in (180.0, 179.99, 180.01, 179.95):
+        assert fast.run(sv, steps, np.radians([90.0, phi]), 0) is None, phi
+    # and what it refuses is what the general solver flags
+    k = solve(mech, [179.99, 180.01, 179.95], 1.0)
+    assert k.near.all()
+
+
+SLOTTED = """\
+schema: tmm/1
+title: slotted lever whose crank pin passes through the lever's pivot
+mechanism:
+  ground:
+    O: [0, 0]
+    O1: [0, -0.11]
+  links:
+    crank:  {points: [O, A], length: 0.11, mass: 3.0, J: 0.01}
+    block:  {slider: A, guide: {link: rocker}, mass: 0.8}
+    rocker: {points: [O1, B], length: 0.55, mass: 12, J: 0.35}
+  assembly: {A: [0.11, 0], B: [0.4, 0.3]}
+drive: {link: crank, speed: 60 rpm, direction: cw}
+positions: {count: 12, zero: 0, output: rocker}
+loads:
+  gravity: true
+kinetostatics:
+  positions: all
+  balance: crank
+"""
+
+
+def test_slotted_lever_through_the_pivot_gives_the_limit(tmp_path):
+    """|OO1| = r = 0.11: the pin A passes through O1 at phi = 270 deg. The lever turns at half
+    the crank's speed everywhere (the inscribed angle): omega = -pi at 60 rpm cw, v_B =
+    0.55 pi = 1.728 m/s -- the limit by continuity at 270 deg too (was -2 pi and 3.456)."""
+    import tmm_cli.results as results
+    res = results.clean(tmm_cli.run(_task(tmp_path, SLOTTED)))
+    e = [x for x in res["kinematics"] if abs(x["phi"] - 270.0) < 1e-9][0]
+    assert e["singular"] is True and e["near_singular"] is True
+    assert e["links"]["rocker"]["omega"] == pytest.approx(-math.pi, rel=1e-9)
+    assert e["points"]["B"]["v"] == pytest.approx(0.55 * math.pi, rel=1e-6)
+    assert e["links"]["rocker"]["epsilon"] == pytest.approx(0.0, abs=1e-6)
+    assert any(w.startswith("crank angle 270.000000 deg: group II(2,3) (links block, rocker) is ill-conditioned")
+               and "ω rocker" in w and "limit by continuity" in w for w in res["warnings"])
+    # and next to the point (ill-conditioned, 0.01 deg off): the same
+    mech = _mech(tmp_path, SLOTTED)
+    k = solve(mech, [270.01, 269.99, 270.3], 1.0)
+    assert k.near[:2].all()
+    assert np.allclose(k.a1["rocker"], 0.5, rtol=1e-7)
+    assert np.allclose(np.hypot(*k.d1["B"].T), 0.275, rtol=1e-6)
