@@ -25,11 +25,11 @@ from tmm_cli.linkage.mechanism import build_mechanism
 def fourbar(a, b, c, d, *, zero=0, count=12, extra=None, scale=1.0, loads=True):
     """A four-bar task (text) with the rocker's pin B assembled above the ground line."""
     a, b, c, d = (x * scale for x in (a, b, c, d))
-    # B: the upper intersection of the circles about A(phi = 90) and O3
-    A = np.array([0.0, a])
+    # B: the upper intersection of the circles about A (phi = 0: the hints' crank angle) and O3
+    A = np.array([a, 0.0])
     O3 = np.array([d, 0.0])
     D = O3 - A
-    dist = float(np.hypot(*D))
+    dist = max(float(np.hypot(*D)), 1e-12)
     k = (b * b - c * c + dist * dist) / (2 * dist)
     h = math.sqrt(max(b * b - k * k, 0.0))
     e = D / dist
@@ -281,3 +281,129 @@ def test_slotted_lever_through_the_pivot_gives_the_limit(tmp_path):
     assert k.near[:2].all()
     assert np.allclose(k.a1["rocker"], 0.5, rtol=1e-7)
     assert np.allclose(np.hypot(*k.d1["B"].T), 0.275, rtol=1e-6)
+
+
+# ---------------------------------------------------------------------------------------
+# property tests: >= 300 linkages on the Grashof limit and with a straight dyad, in
+# decimal lengths, at reported positions on and next to their change points
+
+from decimal import Decimal  # noqa: E402
+
+from hypothesis import HealthCheck, assume, given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+_DEC = st.integers(min_value=20, max_value=400).map(lambda n: Decimal(n) / 1000)     # 0.020 .. 0.400
+
+
+def _mech_of(text):
+    import tempfile
+    from pathlib import Path
+    with tempfile.TemporaryDirectory() as d:
+        f = Path(d) / "t.yaml"
+        f.write_text(text, encoding="utf-8")
+        return build_mechanism(tmm_cli.load_task(f))
+
+
+@st.composite
+def grashof_limit(draw):
+    """Crank a (the shortest), p, q and l = p + q - a in decimal (s + l = p + q exactly in
+    decimal, not in binary), the ground, coupler and rocker a permutation of p, q, l; a scale
+    10^k (k = -2, 0, 2)."""
+    a = draw(_DEC)
+    p = a + draw(_DEC)
+    q = a + draw(_DEC)
+    l_ = p + q - a
+    g, b, c = draw(st.permutations([p, q, l_]))
+    k = draw(st.sampled_from([-2, 0, 2]))
+    return tuple(float(x * Decimal(10) ** k) for x in (a, b, c, g))
+
+
+@settings(max_examples=200, deadline=None, suppress_health_check=list(HealthCheck), derandomize=True)
+@given(grashof_limit())
+def test_grashof_limit_linkages_every_printed_value_flagged_null_or_right(lengths):
+    a, b, c, d = lengths
+    mech = _mech_of(fourbar(a, b, c, d, loads=False))
+    sv = ksolver.get_solver(mech)
+    cps = [cp.phi for cp in changepoints.change_points(sv)]
+    # the change point: all four links collinear, the crank along the ground line
+    assert cps and all(min(abs(x), abs(x - 180.0), abs(x - 360.0)) < 1e-6 for x in cps), (lengths, cps)
+    at = cps[0]
+    phis = [at, at + 0.01, at - 0.01, at + 0.3, at - 0.3, at + 90.0, at + 2.0]
+    check_printed_values(mech, [x % 360.0 for x in phis], cps)
+    # the fast path answers none of the flagged positions
+    steps = ksolver._fast_steps(sv)
+    assert steps is None or fast.run(sv, steps, np.radians([at % 360.0]), 0) is None
+
+
+def sixbar_text(a, b, c, d, O5, l4, l5):
+    return f"""\
+schema: tmm/1
+title: six-bar
+mechanism:
+  ground:
+    O: [0, 0]
+    O3: [{d!r}, 0]
+    O5: [{O5[0]!r}, {O5[1]!r}]
+  links:
+    crank:   {{points: [O, A], length: {a!r}}}
+    coupler: {{points: [A, B], length: {b!r}}}
+    rocker:  {{points: [O3, B], length: {c!r}}}
+    link4:   {{points: [B, D], length: {l4!r}}}
+    link5:   {{points: [O5, D], length: {l5!r}}}
+drive: {{link: crank, speed: 120 rpm, direction: ccw}}
+positions: {{count: 12, zero: 0, output: link5}}
+"""
+
+
+@st.composite
+def straight_dyad(draw):
+    """A crank-rocker four-bar (decimal, clearly Grashof) driving a second dyad B-D-O5 that
+    goes straight (|B - O5| = l4 + l5) where |B - O5| is largest over the turn."""
+    a = draw(st.integers(5, 12).map(lambda n: n / 100))
+    b = draw(st.integers(30, 40).map(lambda n: n / 100))
+    c = draw(st.integers(25, 35).map(lambda n: n / 100))
+    d = draw(st.integers(30, 40).map(lambda n: n / 100))
+    x5 = draw(st.integers(-30, 60).map(lambda n: n / 100))
+    y5 = draw(st.integers(-40, -10).map(lambda n: n / 100))
+    r = draw(st.integers(40, 60).map(lambda n: n / 100))
+    return a, b, c, d, (x5, y5), r
+
+
+def _sixbar(a, b, c, d, O5, r):
+    """(mechanism, phi*) or None where the dyad cannot be built."""
+    from tmm_cli.lazy import minimize_scalar
+    base = _mech_of(fourbar(a, b, c, d, loads=False))
+    grid = np.arange(0.0, 360.0, 0.5)
+    B = np.asarray(ksolver.solve_raw(base, grid).pos["B"])
+    dist = np.hypot(*(B - np.asarray(O5)).T)
+    j = int(np.argmax(dist))
+
+    def neg(phi):
+        P = np.asarray(ksolver.solve_raw(base, [phi]).pos["B"])[0]
+        return -float(np.hypot(*(P - np.asarray(O5))))
+    res = minimize_scalar(neg, bounds=(grid[j] - 0.5, grid[j] + 0.5), method="bounded", options={"xatol": 1e-11})
+    phi_s, D = float(res.x) % 360.0, -float(res.fun)
+    l4 = round(r * D, 3)
+    l5 = D - l4
+    if not (l5 > 0.02 and dist.min() > abs(l4 - l5) + 0.02):
+        return None
+    return _mech_of(sixbar_text(a, b, c, d, O5, l4, l5)), phi_s
+
+
+@settings(max_examples=110, deadline=None, suppress_health_check=list(HealthCheck), derandomize=True)
+@given(straight_dyad())
+def test_straight_dyad_every_printed_value_flagged_null_or_right(case):
+    got = _sixbar(*case)
+    assume(got is not None)          # (max_examples counts the linkages built)
+    mech, phi_s = got
+    sv = ksolver.get_solver(mech)
+    cps = [cp.phi for cp in changepoints.change_points(sv)]
+    # found where the dyad is straight (to the width of the round-off floor of its flat
+    # touching: |B - O5| varies as the square of the distance from phi*), and phi* flagged
+    assert changepoints.distance_deg([phi_s], cps)[0] < 1e-4, (case, phi_s, cps)
+    k = solve(mech, [phi_s], 1.0)
+    assert k.singular is not None and k.singular[0] and k.near[0]
+    phis = [phi_s, phi_s + 0.01, phi_s - 0.01, phi_s + 0.3, phi_s - 0.3, phi_s + 120.0]
+    check_printed_values(mech, [x % 360.0 for x in phis], cps)
+    steps = ksolver._fast_steps(sv)
+    assert steps is None or fast.run(sv, steps, np.radians([phi_s]), 0) is None

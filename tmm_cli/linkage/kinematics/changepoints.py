@@ -56,7 +56,7 @@ SING_DET = DOUBLE_ROOT
 
 
 def circle_zeros(grid: np.ndarray, g: np.ndarray, F, *, zero_tol: float = ZERO_TOL, touch_grid: float = TOUCH_GRID,
-                 touch_zero: float = TOUCH_ZERO) -> list[float]:
+                 touch_zero: float = TOUCH_ZERO, vertex: bool = False) -> list[float]:
     """Zeros in [0, 360) of a function of the crank angle that is periodic over the turn.
 
     ``grid``: n + 1 angles from 0 to 360 deg; ``g``: the values there, normalised so
@@ -69,7 +69,8 @@ def circle_zeros(grid: np.ndarray, g: np.ndarray, F, *, zero_tol: float = ZERO_T
     Sign changes are refined by Brent's method to 1e-10 deg; touching (double) zeros,
     local minima of |g| without a sign change (around 0 deg as well), by a bounded
     minimisation (docs/methods.md §3.2): a local minimum of |g| on the grid below
-    ``touch_grid`` whose refined value is below ``touch_zero``."""
+    ``touch_grid`` whose refined value is below ``touch_zero``; ``vertex``: that minimum
+    placed by :func:`_vertex` (the minimiser alone stops anywhere in the round-off floor)."""
     from ...lazy import brentq, minimize_scalar
 
     grid = np.asarray(grid, float)
@@ -97,7 +98,7 @@ def circle_zeros(grid: np.ndarray, g: np.ndarray, F, *, zero_tol: float = ZERO_T
             res = minimize_scalar(lambda t: abs(F(t, lo)), bounds=(lo, grid[i] + step),
                                   method="bounded", options={"xatol": 1e-10})
             if res.fun < touch_zero:
-                roots.append(float(res.x))
+                roots.append(_vertex(F, float(res.x), lo) if vertex else float(res.x))
     out: list[float] = []
     for r in sorted(float(r) % 360.0 for r in roots):
         if r >= 360.0 - 1e-12:
@@ -107,6 +108,25 @@ def circle_zeros(grid: np.ndarray, g: np.ndarray, F, *, zero_tol: float = ZERO_T
     if len(out) > 1 and abs(out[0] + 360.0 - out[-1]) <= 1e-7:
         out.pop()
     return out
+
+
+VERTEX_STEP = 1e-3     # deg: the samples of s^2 either side of a touching zero (s ~ 1e-5, clear of round-off)
+
+
+def _vertex(F, x0: float, start: float) -> float:
+    """A touching (double) zero of g = F refined: g^2 is smooth there, a parabola
+    k^2 (phi - phi_c)^2 whether |g| is V-shaped (g = k |phi - phi_c|, a change point) or
+    parabolic; its vertex from g^2 at x0 + VERTEX_STEP (-2, -1, 1, 2) by least squares (one
+    Newton step on the derivative of g^2), taken when within VERTEX_STEP of x0 (else x0).
+    The minimiser alone stops anywhere where |g| is below its round-off floor, sqrt(eps)
+    for lengths that are not binary fractions: a few 1e-6 deg off."""
+    t = np.array([-2.0, -1.0, 1.0, 2.0]) * VERTEX_STEP
+    y = np.array([F(x0 + dt, start) ** 2 for dt in t])
+    c2, c1, _ = np.polyfit(t, y, 2)
+    if not (c2 > 0 and np.all(np.isfinite(y))):
+        return x0
+    dx = -c1 / (2.0 * c2)
+    return x0 + dx if abs(dx) <= VERTEX_STEP else x0
 
 
 @dataclass(frozen=True)
@@ -138,7 +158,7 @@ def change_points(solver) -> list[ChangePoint]:
             return float(s.gdet[gi][-1]) / fmax
 
         for phi in circle_zeros(grid, d / fmax, F, touch_grid=GROUP_TOUCH_GRID / fmax,
-                                touch_zero=DOUBLE_ROOT / fmax):
+                                touch_zero=DOUBLE_ROOT / fmax, vertex=True):
             found.append(ChangePoint(phi, gi, solver.groups[gi].describe()))
     found.sort(key=lambda c: c.phi)
     solver.__dict__["_change_points"] = found

@@ -26,11 +26,13 @@ from ...messages import Message
 from .changepoints import ILL_DET, SING_DET
 
 LADDER = 1e-4 * 2.0 ** np.arange(17)     # deg: 1e-4 .. 6.6 deg
-NODE_DET = 10.0 * ILL_DET                # the least |s| at the nodes (their noise: eps / s^3 = 1e-10)
+NODE_DET = 3.0 * ILL_DET                 # the least |s| at the nodes (noise of their accelerations: ~1e-7)
 AGREE = 1e-4          # one-sided limits this close (a fraction of the cycle's largest value): one limit
 POSE_TOL = 1e-3       # a side whose positions at the point are this close (a fraction of the size; rad) to the reported ones counts
+POSE_FLIP = 0.1       # ... this far: another pose (a link turned over: the closure's other branch)
 STEPS = np.array([1.0, 1.5, 2.0, 2.5])    # the nodes on a side: phi0 +- h STEPS
 WEIGHTS = (10.0, -20.0, 15.0, -4.0)      # the cubic through them, at phi0
+WEIGHTS2 = (6.0, -8.0, 3.0, 0.0)         # the quadratic through the first three (its check)
 SYMBOL = {"v": "v", "a": "a", "omega": "ω", "epsilon": "ε"}
 
 
@@ -113,8 +115,9 @@ def _poses(k, i: int) -> dict[str, np.ndarray]:
     return out
 
 
-def _extrapolated(k, j: int, get) -> dict[str, np.ndarray]:
-    """The cubic through side j's positions (rows n j .. n j + n - 1 of ``k``) at phi0."""
+def _extrapolated(k, j: int, get, weights=WEIGHTS) -> dict[str, np.ndarray]:
+    """The cubic (``weights``) through side j's positions (rows n j .. n j + n - 1 of ``k``)
+    at phi0."""
     n = STEPS.size
     vals = [get(k, n * j + m) for m in range(n)]
     out = {}
@@ -122,7 +125,7 @@ def _extrapolated(k, j: int, get) -> dict[str, np.ndarray]:
         v = [x[key] for x in vals]
         if key.startswith("th:"):                 # angles: unwrapped along the side
             v = [v[0]] + [v[0] + _wrap(x - v[0]) for x in v[1:]]
-        out[key] = sum(w * x for w, x in zip(WEIGHTS, v))
+        out[key] = sum(w * x for w, x in zip(weights, v))
     return out
 
 
@@ -130,24 +133,26 @@ def _wrap(d):
     return (np.asarray(d, float) + np.pi) % (2.0 * np.pi) - np.pi
 
 
-def _side_limits(mech, solver, solve_raw, phi0: float) -> list[tuple[dict, dict]]:
-    """Per side where the nodes exist: (the analogues, the positions) extrapolated to phi0."""
+def _side_limits(mech, solver, solve_raw, phi0: float) -> list[tuple[dict, dict, dict]]:
+    """Per side where the nodes exist: (the analogues, the positions, the analogues by the
+    quadratic: the check of the cubic's truncation) extrapolated to phi0."""
     nodes = _nodes(solver, phi0)
     if not nodes:
         return []
     sides = list(nodes.values())
     k = solve_raw(mech, np.concatenate(sides), 1.0, 0.0)
-    return [(_extrapolated(k, j, _values), _extrapolated(k, j, _poses)) for j in range(len(sides))]
+    return [(_extrapolated(k, j, _values), _extrapolated(k, j, _poses), _extrapolated(k, j, _values, WEIGHTS2))
+            for j in range(len(sides))]
 
 
-def _same_pose(a: dict, b: dict, L: float) -> bool:
-    """Two sets of positions agree (points to POSE_TOL L, angles to POSE_TOL rad)."""
+def _pose_gap(a: dict, b: dict, L: float) -> float:
+    """How far two sets of positions are apart: points as a fraction of L, angles in rad."""
+    gap = 0.0
     for key, x in a.items():
         y = b[key]
         d = _wrap(x - y) if key.startswith("th:") else np.hypot(*(x - y)) / L
-        if not np.all(np.abs(d) <= POSE_TOL):
-            return False
-    return True
+        gap = max(gap, float(np.max(np.abs(d))))
+    return gap
 
 
 def _set(res, key: str, i: int, value) -> None:
@@ -196,19 +201,25 @@ def by_continuity(mech, solver, res, s: np.ndarray, g: np.ndarray, solve_raw) ->
             v[i] = False
         lims = _side_limits(mech, solver, solve_raw, phi0)
         here = _poses(res, i)
-        sides = [v for v, pose in lims if _same_pose(pose, here, solver.L)]
-        if lims and not sides:                       # the reported pose is not a limit: the + side's
+        gaps = [_pose_gap(pose, here, solver.L) for _, pose, _ in lims]
+        sides = [(v, v2) for (v, _, v2), gap in zip(lims, gaps) if gap <= POSE_TOL]
+        if any(POSE_TOL < gap < POSE_FLIP for gap in gaps):
+            sides = []                               # a side's extrapolation not to be trusted: null
+        elif lims and not sides:                     # the reported pose is not a limit: the + side's
             for key, x in lims[0][1].items():
                 _set(res, key, i, x)
-            sides = [lims[0][0]]
+            sides = [(lims[0][0], lims[0][2])]
         taken, nulled = [], []
         for key in _values(res, i):
-            ok, val = False, None
-            if len(sides) == 1:
-                ok, val = True, sides[0][key]
-            elif len(sides) == 2:
-                a, b = sides[0][key], sides[1][key]
-                ok = bool(np.all(np.abs(a - b) <= AGREE * scale[key.split(":", 1)[0]]))
+            tol = AGREE * scale[key.split(":", 1)[0]]
+            # each side's cubic and quadratic agreeing (its truncation small), the sides agreeing
+            ok = bool(sides) and all(np.all(np.abs(v[key] - v2[key]) <= tol) for v, v2 in sides)
+            val = None
+            if ok and len(sides) == 1:
+                val = sides[0][0][key]
+            elif ok:
+                a, b = sides[0][0][key], sides[1][0][key]
+                ok = bool(np.all(np.abs(a - b) <= tol))
                 val = 0.5 * (a + b)
             if ok:
                 _set(res, key, i, val)
