@@ -11,9 +11,10 @@ without bound there. They are found on every group, not only on known linkages:
 * the normalised determinant of each group (the sine of the angle between the columns
   of a dyad's 2x2 system; the determinant of the row/column-equilibrated matrix of a
   larger group) is sampled over one turn (``N_GRID`` points);
-* a sign change is refined by Brent's method, a touching zero (a local minimum of |det|
-  that does not change sign, as at the extended position of a crank-rocker on the
-  Grashof limit) by a bounded minimisation, both to about 1e-9 deg.
+* a sign change is refined by Brent's method, a touching zero (a double root: a local
+  minimum of |det| that does not change sign, as at the extended position of a
+  crank-rocker on the Grashof limit) by a bounded minimisation, accepted below
+  DOUBLE_ROOT and placed at the vertex of det^2 (docs/methods.md §2.1).
 
 Positions within ``NEAR_DEG`` of a change point are marked ``near_singular`` in the
 results; there a velocity or acceleration whose magnitude exceeds ``BLOWUP`` times its

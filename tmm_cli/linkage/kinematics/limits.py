@@ -1,5 +1,5 @@
 """Velocities and accelerations at ill-conditioned and singular positions: the limit by
-continuity, or null (docs/methods.md §2.4).
+continuity, or null (docs/methods.md §2.1).
 
 At a crank angle where a group's normalised determinant s (see :mod:`.changepoints`) is
 below ``ILL_DET`` the exact derivatives of the group and of every group it drives carry
@@ -8,16 +8,20 @@ cycle's values; where s is zero (a toggle of the group, a change point, the cran
 slotted lever on the lever's pivot) they are 0 / 0. There each analogue (d/dphi, d2/dphi2
 of every point and link) is taken from either side instead:
 
-* on each side the nearest three crank angles phi0 +- (h, 1.5 h, 2 h), h from a ladder
-  1e-4 deg x 2^k, where every group is assembled and well conditioned (s >= ILL_DET);
-* the value at phi0 from each side: the quadratic through the three, at phi0
-  (6 f(h) - 8 f(1.5 h) + 3 f(2 h): error h^3 f''' / 4, noise 17 x that of the values);
-* both sides agreeing to ``AGREE`` of the value's largest size over the cycle: their mean,
-  the limit by continuity; else the value has no limit (the linkage leaves the point
-  along another branch, the value jumps) and is null. One side only (the other does not
-  assemble): its value.
-
-Positions are left as computed (they stay well conditioned: an error of eps / s)."""
+* on each side the crank angles phi0 +- h STEPS (1, 1.5, 2, 2.5), h the least of LADDER
+  (1e-4 deg x 2^k) where every group is assembled and has |s| >= NODE_DET;
+* the value at phi0 from each side: the cubic through the four exact values (WEIGHTS),
+  checked against the quadratic through the first three (WEIGHTS2); the positions
+  extrapolated the same way;
+* a side counts where its positions at phi0 are the reported ones (POSE_TOL); a side in
+  another pose (POSE_FLIP: a link turned over, the slotted lever at its pivot) is the
+  other branch and left out; where the reported pose is neither side's (0 / 0 itself),
+  the + side's positions are taken;
+* both sides agreeing to ``AGREE`` of the cycle's largest analogue of the kind: their
+  mean, the limit by continuity; one side only: its value; else (the sides differ: the
+  linkage leaves the point along another branch, the value jumps -- or a side's cubic and
+  quadratic differ, or its pose is in doubt) null.
+"""
 from __future__ import annotations
 
 import numpy as np

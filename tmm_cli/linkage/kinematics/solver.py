@@ -16,9 +16,10 @@ largest mean y (the "upper" closure), with a warning suggesting hints. If a grou
 not assemble at 0 deg the closure is chosen at the first crank angle where it does.
 
 Singular positions: where a group's velocity equations are singular (its links
-collinear: a toggle of the group, or a change point), velocities and accelerations
-there are the limit by continuity, taken as the mean of the values at crank angles
-+-1e-6 deg, and a warning is issued.
+collinear: a toggle of the group, or a change point) the run's values are the mean of
+those at crank angles +-1e-6 deg, with a warning; :func:`solve` then takes the values at
+every ill-conditioned position (a normalised determinant below changepoints.ILL_DET) by
+continuity from either side, or null (:mod:`.limits`, docs/methods.md §2.1).
 """
 from __future__ import annotations
 
