@@ -5,8 +5,10 @@ At a crank angle where a group's normalised determinant s (see :mod:`.changepoin
 below ``ILL_DET`` the exact derivatives of the group and of every group it drives carry
 round-off errors of about eps / s^2 (velocities) and eps / s^3 (accelerations) of the
 cycle's values; where s is zero (a toggle of the group, a change point, the crank pin of a
-slotted lever on the lever's pivot) they are 0 / 0. There each analogue (d/dphi, d2/dphi2
-of every point and link) is taken from either side instead:
+slotted lever on the lever's pivot) they are 0 / 0. There each analogue (d/dphi, d2/dphi2)
+of the links of that group and of the groups solved after it, and of their points, is
+taken from either side instead (those of the groups before it, of the crank and of the
+ground are regular there and kept):
 
 * on each side the crank angles phi0 +- h STEPS (1, 1.5, 2, 2.5), h the least of LADDER
   (1e-4 deg x 2^k) where every group is assembled and has |s| >= NODE_DET;
@@ -195,7 +197,6 @@ def by_continuity(mech, solver, res, s: np.ndarray, g: np.ndarray, solve_raw) ->
     sing = np.zeros(N, bool) if res.singular is None else np.array(res.singular, bool)
     undef = {k: np.array(v, bool) for k, v in res.undefined.items()}
     warnings = list(res.warnings)
-    named = _named(solver)
     for i in rows:
         phi0 = float(res.phi[i])
         near[i] = True
@@ -214,7 +215,10 @@ def by_continuity(mech, solver, res, s: np.ndarray, g: np.ndarray, solve_raw) ->
                 _set(res, key, i, x)
             sides = [(lims[0][0], lims[0][2])]
         taken, nulled = [], []
+        named = _named(solver, int(g[i]))
         for key in _values(res, i):
+            if key not in named:               # a body of an earlier group, the crank, the ground: regular
+                continue
             tol = AGREE * scale[key.split(":", 1)[0]]
             # each side's cubic and quadratic agreeing (its truncation small), the sides agreeing
             ok = bool(sides) and all(np.all(np.abs(v[key] - v2[key]) <= tol) for v, v2 in sides)
@@ -233,9 +237,8 @@ def by_continuity(mech, solver, res, s: np.ndarray, g: np.ndarray, solve_raw) ->
                 nulled.append(key)
         grp = solver.groups[int(g[i])]
         common = dict(phi=phi0 % 360.0, **grp.message_params(), det=float(s[i]), ill=ILL_DET)
-        moving = [k for k in taken if k in named]
-        if moving:
-            warnings.append(Message("kinematics.by_continuity", **common, quantities=_names(moving)))
+        if taken:
+            warnings.append(Message("kinematics.by_continuity", **common, quantities=_names(taken)))
         if nulled:
             warnings.append(Message("kinematics.no_limit", **common, quantities=_names(nulled)))
     res.near, res.singular = near, sing
@@ -243,14 +246,15 @@ def by_continuity(mech, solver, res, s: np.ndarray, g: np.ndarray, solve_raw) ->
     res.warnings = list(dict.fromkeys(warnings))
 
 
-def _named(solver) -> set[str]:
-    """The keys a warning names: the values of the moving links other than the drive and of
-    their points (the ground's and the crank's are exact at every position)."""
+def _named(solver, gi: int) -> set[str]:
+    """The keys a warning about group gi names: the values of the links of that group and of
+    the groups solved after it, and of their points (those of the groups before it, of the
+    crank and of the ground are regular there)."""
     from .solver import _outputs
-    mech = solver.mech
+    bodies = {b for grp in solver.groups[gi:] for b in grp.links}
     _, moving, _, _, links = _outputs(solver)
-    keys = {f"{w}:{p}" for p, b, _ in moving if b != mech.drive for w in ("v", "a")}
-    keys |= {f"{w}:{nm}" for nm, b in links if b != mech.drive for w in ("omega", "epsilon")}
+    keys = {f"{w}:{p}" for p, b, _ in moving if b in bodies for w in ("v", "a")}
+    keys |= {f"{w}:{nm}" for nm, b in links if b in bodies for w in ("omega", "epsilon")}
     return keys
 
 
