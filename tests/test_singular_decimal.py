@@ -407,3 +407,23 @@ def test_straight_dyad_every_printed_value_flagged_null_or_right(case):
     check_printed_values(mech, [x % 360.0 for x in phis], cps)
     steps = ksolver._fast_steps(sv)
     assert steps is None or fast.run(sv, steps, np.radians([phi_s]), 0) is None
+
+
+@pytest.mark.parametrize("scale", [1e-3, 1e3])
+def test_slotted_lever_determinant_does_not_depend_on_the_size(tmp_path, scale):
+    """RPR: the determinant (the distance tau along the slot) over the group's length is the
+    same number for the same linkage in millimetres or kilometres (its columns mix an angle
+    row and a length row: their lengths would not be)."""
+    def scaled(x):
+        return repr(float(x) * scale)
+    text = (SLOTTED.replace("O1: [0, -0.11]", f"O1: [0, {scaled(-0.11)}]")
+            .replace("length: 0.11", f"length: {scaled(0.11)}").replace("length: 0.55", f"length: {scaled(0.55)}")
+            .replace("A: [0.11, 0], B: [0.4, 0.3]", f"A: [{scaled(0.11)}, 0], B: [{scaled(0.4)}, {scaled(0.3)}]"))
+    from tmm_cli.linkage.kinematics import limits
+    phis = [271.0, 300.0, 90.0]
+    s1, _ = limits.det_min(ksolver.get_solver(_mech(tmp_path, SLOTTED)), phis)
+    m = _mech(tmp_path, text)
+    s2, _ = limits.det_min(ksolver.get_solver(m), phis)
+    assert s2 == pytest.approx(s1, rel=1e-9)
+    assert s1[0] == pytest.approx(0.11 * 2 * math.sin(math.radians(0.5)) / 0.55, rel=1e-6)   # tau = rho = chord
+    assert [round(c.phi, 6) for c in changepoints.change_points(ksolver.get_solver(m))] == [270.0]
