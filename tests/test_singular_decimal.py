@@ -202,6 +202,20 @@ def test_decimal_change_point_is_flagged_nulled_and_limited(tmp_path):
     assert flagged >= 5 and nulled > 0
     k = solve(mech, [180.0], 1.0)
     assert k.undefined["omega:rocker"][0] and k.undefined["omega:coupler"][0]
+    # 0.01 deg either side (normalised determinant 1.5e-4: ill-conditioned), against the
+    # four-bar's closed form in 60-digit arithmetic (mpmath): omega from the side of its own
+    # branch (was right to 1e-7, kept), epsilon (was 10 times off, of the wrong sign at
+    # 180.01) to 1e-5
+    k = solve(mech, [179.99, 180.01], 1.0)
+    assert k.near.all() and not k.singular.any()
+    exact = {"omega:coupler": (-0.149626679253, 0.594071120772), "omega:rocker": (0.687033346326, -0.242588904806),
+             "epsilon:coupler": (9.08718512237e-6, -2.44307979519e-5),
+             "epsilon:rocker": (2.00390393332e-5, -1.34789437411e-5)}
+    for key, want in exact.items():
+        what, lk = key.split(":")
+        got = (k.a1 if what == "omega" else k.a2)[lk]
+        assert key not in k.undefined
+        assert got == pytest.approx(want, abs=1e-5 if what == "epsilon" else 1e-8), key
     assert "epsilon:rocker" not in k.undefined and abs(float(k.a2["rocker"][0])) < 1e-4
     import tmm_cli.results as results
     res = results.clean(tmm_cli.run(_task(tmp_path, text)))

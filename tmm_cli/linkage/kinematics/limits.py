@@ -20,9 +20,11 @@ ground are regular there and kept):
   other branch and left out; where the reported pose is neither side's (0 / 0 itself),
   the + side's positions are taken;
 * both sides agreeing to ``AGREE`` of the cycle's largest analogue of the kind: their
-  mean, the limit by continuity; one side only: its value; else (the sides differ: the
-  linkage leaves the point along another branch, the value jumps -- or a side's cubic and
-  quadratic differ, or its pose is in doubt) null.
+  mean, the limit by continuity; one side only: its value; next to (not at: |s| >=
+  SING_DET) the point, the sides differing (one crosses it), the side the exact value
+  agrees with; else (the sides differ at the point: the linkage leaves it along another
+  branch, the value jumps -- or a side's cubic and quadratic differ, or its pose is in
+  doubt) null.
 """
 from __future__ import annotations
 
@@ -220,15 +222,20 @@ def by_continuity(mech, solver, res, s: np.ndarray, g: np.ndarray, solve_raw) ->
             if key not in named:               # a body of an earlier group, the crank, the ground: regular
                 continue
             tol = AGREE * scale[key.split(":", 1)[0]]
-            # each side's cubic and quadratic agreeing (its truncation small), the sides agreeing
-            ok = bool(sides) and all(np.all(np.abs(v[key] - v2[key]) <= tol) for v, v2 in sides)
-            val = None
-            if ok and len(sides) == 1:
-                val = sides[0][0][key]
-            elif ok:
-                a, b = sides[0][0][key], sides[1][0][key]
-                ok = bool(np.all(np.abs(a - b) <= tol))
-                val = 0.5 * (a + b)
+            # the sides whose cubic and quadratic agree (their truncation small)
+            good = [v[key] for v, v2 in sides if np.all(np.abs(v[key] - v2[key]) <= tol)]
+            ok, val = False, None
+            if len(good) == len(sides) == 1:
+                ok, val = True, good[0]
+            elif len(good) == len(sides) == 2 and np.all(np.abs(good[0] - good[1]) <= tol):
+                ok, val = True, 0.5 * (good[0] + good[1])
+            elif s[i] >= SING_DET:
+                # next to (not at) the point the sides differ (one of them crosses it): the one
+                # the exact value (its error eps / s^2, eps / s^3) agrees with is the branch there
+                raw = _values(res, i)[key]
+                match = [v for v in good if np.all(np.abs(v - raw) <= tol)]
+                if len(match) == 1:
+                    ok, val = True, match[0]
             if ok:
                 _set(res, key, i, val)
                 taken.append(key)
