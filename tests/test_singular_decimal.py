@@ -154,9 +154,10 @@ TOL = 1e-3      # of the cycle's largest analogue of the kind
 
 def check_printed_values(mech, phis, cps):
     """Every value solve() prints at ``phis`` is null, or within TOL of the finite-difference
-    value: central where no change point is within 1 deg (it must then not be flagged either
-    unless ill-conditioned); at a change point (to 1e-6 deg) the same one-sided value from both
-    sides; near one, from the side that does not cross it. Returns (flagged, nulled) counts."""
+    value: central where no change point is within 1.5 deg; at a change point (to 1e-5 deg, then
+    flagged singular) the one-sided value from both sides; next to one (flagged within 0.05 deg),
+    from the side away from it (nodes beyond the position, extrapolated back). Returns
+    (flagged, nulled) counts."""
     k = solve(mech, phis, 1.0)
     scale = _scale(mech)
     flagged = nulled = 0
@@ -166,16 +167,17 @@ def check_printed_values(mech, phis, cps):
         flagged += near
         if d > 1.5:
             refs = [_fd_central(mech, phi0)]
-        elif d < 1e-6:
+        elif d < 1e-5:
             refs = [_fd_side(mech, phi0, 1), _fd_side(mech, phi0, -1)]
             assert near and k.singular is not None and k.singular[i], (phi0, "not flagged at a change point")
         else:
             # the side away from the change point (nodes up to 5 h from phi0)
             cp = min(cps, key=lambda c: changepoints.distance_deg([phi0], [c])[0])
             side = 1 if ((phi0 - cp + 180.0) % 360.0 - 180.0) > 0 else -1
-            refs = [_fd_side(mech, phi0, side, h=min(0.25, d / 6.0) if d > 0.05 else 0.25)]
-            if d <= 0.05:
-                refs = None            # too close for a finite difference of one side: flagged
+            if d > 0.05:
+                refs = [_fd_side(mech, phi0, side, h=min(0.25, d / 6.0))]
+            else:                      # nodes 0.1 .. 0.5 deg away from it, extrapolated back
+                refs = [_fd_side(mech, phi0, side, h=0.1)]
                 assert near, (phi0, "not flagged next to a change point")
         for key, (val, rk, order) in _printed(k, i).items():
             if val is None:
