@@ -11,9 +11,10 @@ without bound there. They are found on every group, not only on known linkages:
 * the normalised determinant of each group (the sine of the angle between the columns
   of a dyad's 2x2 system; the determinant of the row/column-equilibrated matrix of a
   larger group) is sampled over one turn (``N_GRID`` points);
-* a sign change is refined by Brent's method, a touching zero (a local minimum of |det|
-  that does not change sign, as at the extended position of a crank-rocker on the
-  Grashof limit) by a bounded minimisation, both to about 1e-9 deg.
+* a sign change is refined by Brent's method, a touching zero (a double root: a local
+  minimum of |det| that does not change sign, as at the extended position of a
+  crank-rocker on the Grashof limit) by a bounded minimisation, accepted below
+  DOUBLE_ROOT and placed at the vertex of det^2 (docs/methods.md §2.1).
 
 Positions within ``NEAR_DEG`` of a change point are marked ``near_singular`` in the
 results; there a velocity or acceleration whose magnitude exceeds ``BLOWUP`` times its
@@ -37,8 +38,26 @@ TOUCH_ZERO = 1e-9   # ... and accept it when the refined minimum is below this
 
 ZERO_TOL = 1e-13    # |g| at or below this on the grid is a root (round-off of an exact zero)
 
+# A group's normalised determinant s (dimensionless: the sine of the angle between the
+# columns of a dyad's system scaled by the group's length, the determinant of a larger
+# group's equilibrated matrix) against round-off. At a change point s has a double root
+# (it touches zero without changing sign, |s| V-shaped or parabolic); computed in double
+# precision from lengths that are not binary fractions (0.1 + 0.35 = 0.25 + 0.2) its
+# minimum only reaches the round-off of an arccos next to +-1, about sqrt(eps) = 1.5e-8
+# times a factor of the geometry. Hence:
+DOUBLE_ROOT = 1e-6       # a local minimum of |s| refined below this is a change point (a double root)
+GROUP_TOUCH_GRID = 0.05  # ... looked for at grid minima of |s| below this (a V of slope ~10 sampled 0.25 deg off)
+# A position where |s| < ILL_DET is ill-conditioned: the velocities carry errors of about
+# eps / s^2 and the accelerations eps / s^3 of the cycle's values (1e-6 at s = 1e-3, 0.01 at
+# s = 1e-4, the size of the value at s = 1e-5). It is flagged near_singular and its
+# velocities and accelerations are taken by continuity (limits.py), or null; where
+# |s| < SING_DET it is at a singular (change) point to working precision: flagged singular.
+ILL_DET = 1e-3
+SING_DET = DOUBLE_ROOT
 
-def circle_zeros(grid: np.ndarray, g: np.ndarray, F, *, zero_tol: float = ZERO_TOL) -> list[float]:
+
+def circle_zeros(grid: np.ndarray, g: np.ndarray, F, *, zero_tol: float = ZERO_TOL, touch_grid: float = TOUCH_GRID,
+                 touch_zero: float = TOUCH_ZERO, vertex: bool = False) -> list[float]:
     """Zeros in [0, 360) of a function of the crank angle that is periodic over the turn.
 
     ``grid``: n + 1 angles from 0 to 360 deg; ``g``: the values there, normalised so
@@ -50,7 +69,9 @@ def circle_zeros(grid: np.ndarray, g: np.ndarray, F, *, zero_tol: float = ZERO_T
     as +1e-17 and -1e-17: neither a sign test nor an exact-zero test sees such a root).
     Sign changes are refined by Brent's method to 1e-10 deg; touching (double) zeros,
     local minima of |g| without a sign change (around 0 deg as well), by a bounded
-    minimisation (docs/methods.md §3.2)."""
+    minimisation (docs/methods.md §3.2): a local minimum of |g| on the grid below
+    ``touch_grid`` whose refined value is below ``touch_zero``; ``vertex``: that minimum
+    placed by :func:`_vertex` (the minimiser alone stops anywhere in the round-off floor)."""
     from ...lazy import brentq, minimize_scalar
 
     grid = np.asarray(grid, float)
@@ -71,14 +92,14 @@ def circle_zeros(grid: np.ndarray, g: np.ndarray, F, *, zero_tol: float = ZERO_T
     ag = np.abs(gp)
     for i in range(n):
         im, ip = (i - 1) % n, (i + 1) % n
-        if zero[i] or not (ag[i] < ag[im] and ag[i] <= ag[ip] and ag[i] < TOUCH_GRID):
+        if zero[i] or not (ag[i] < ag[im] and ag[i] <= ag[ip] and ag[i] < touch_grid):
             continue
         if gp[im] * gp[ip] > 0 and gp[im] * gp[i] > 0:
             lo = grid[i] - step
             res = minimize_scalar(lambda t: abs(F(t, lo)), bounds=(lo, grid[i] + step),
                                   method="bounded", options={"xatol": 1e-10})
-            if res.fun < TOUCH_ZERO:
-                roots.append(float(res.x))
+            if res.fun < touch_zero:
+                roots.append(_vertex(F, float(res.x), lo) if vertex else float(res.x))
     out: list[float] = []
     for r in sorted(float(r) % 360.0 for r in roots):
         if r >= 360.0 - 1e-12:
@@ -88,6 +109,25 @@ def circle_zeros(grid: np.ndarray, g: np.ndarray, F, *, zero_tol: float = ZERO_T
     if len(out) > 1 and abs(out[0] + 360.0 - out[-1]) <= 1e-7:
         out.pop()
     return out
+
+
+VERTEX_STEP = 1e-3     # deg: the samples of s^2 either side of a touching zero (s ~ 1e-5, clear of round-off)
+
+
+def _vertex(F, x0: float, start: float) -> float:
+    """A touching (double) zero of g = F refined: g^2 is smooth there, a parabola
+    k^2 (phi - phi_c)^2 whether |g| is V-shaped (g = k |phi - phi_c|, a change point) or
+    parabolic; its vertex from g^2 at x0 + VERTEX_STEP (-2, -1, 1, 2) by least squares (one
+    Newton step on the derivative of g^2), taken when within VERTEX_STEP of x0 (else x0).
+    The minimiser alone stops anywhere where |g| is below its round-off floor, sqrt(eps)
+    for lengths that are not binary fractions: a few 1e-6 deg off."""
+    t = np.array([-2.0, -1.0, 1.0, 2.0]) * VERTEX_STEP
+    y = np.array([F(x0 + dt, start) ** 2 for dt in t])
+    c2, c1, _ = np.polyfit(t, y, 2)
+    if not (c2 > 0 and np.all(np.isfinite(y))):
+        return x0
+    dx = -c1 / (2.0 * c2)
+    return x0 + dx if abs(dx) <= VERTEX_STEP else x0
 
 
 @dataclass(frozen=True)
@@ -118,7 +158,8 @@ def change_points(solver) -> list[ChangePoint]:
                            dets=True)
             return float(s.gdet[gi][-1]) / fmax
 
-        for phi in circle_zeros(grid, d / fmax, F):
+        for phi in circle_zeros(grid, d / fmax, F, touch_grid=GROUP_TOUCH_GRID / fmax,
+                                touch_zero=DOUBLE_ROOT / fmax, vertex=True):
             found.append(ChangePoint(phi, gi, solver.groups[gi].describe()))
     found.sort(key=lambda c: c.phi)
     solver.__dict__["_change_points"] = found

@@ -93,6 +93,7 @@ class DyadPlan:
                     v = np.asarray(mid.local(X)) - np.asarray(ext.local(X))
                     if np.hypot(*v) < 1e-12:
                         raise ValueError("the two pairs of a link of the group coincide")
+        self.length = 1.0     # the group's length (Solver sets it): scales the determinant's angle row
         self.slide = None
         if self.kind in ("RRP", "PRR") and mid.kind == "R" and (e2 if self.kind == "RRP" else e1).g == 0:
             self.slide = _FixedSlide(self)
@@ -345,11 +346,18 @@ def _clearly_regular(det, cA, cB) -> bool:
         return bool(np.all(det * det > q))
 
 
-def _inverse(cA, cB, st: State, dets: bool, bound: float | None = None, kbound=None):
+def _inverse(cA, cB, st: State, dets: bool, bound: float | None = None, kbound=None,
+             length: float | None = None):
     """(1 / det, the singular mask) of a dyad's 2x2 system with the columns cA, cB: where
     |det| < 1e-10 |cA| |cB| the determinant is taken as +-1e-10 |cA| |cB| (its limit by
     continuity is taken afterwards); ``dets``: the normalised determinant in
-    ``st.last_det`` too. ``bound``: a number that _clearly_regular's right-hand side
+    ``st.last_det`` too, dimensionless: the sine of the angle between the columns; with a
+    prismatic pair A-B (``length``: the group's length) the determinant itself, divided by
+    that length where both links turn about known points (RPR: the determinant is then the
+    distance tau along the guide from the foot of the slider's pivot to the guide link's
+    pivot, whatever the links' frames; RPP, PPR: the sine of the angle between the guides),
+    not the columns' lengths (they mix an angle row and a length row: the sine would change
+    with the linkage's size). ``bound``: a number that _clearly_regular's right-hand side
     (1.001e-20 |cA|^2 |cB|^2 + 1e-290, as it rounds) does not exceed at any position:
     det^2 > bound everywhere implies its test, without forming the squares (``kbound``:
     bound as a 0-d array, see state.const)."""
@@ -366,8 +374,10 @@ def _inverse(cA, cB, st: State, dets: bool, bound: float | None = None, kbound=N
     else:
         nn = _length(cA) * _length(cB)
         if dets:
+            nd = nn if length is None else np.full(N, length)
+            dn = det
             with np.errstate(divide="ignore", invalid="ignore"):
-                st.last_det = np.where(nn > 0, det / np.maximum(nn, 1e-300), 0.0)  # sine of the angle between the columns
+                st.last_det = np.where(nd > 0, dn / np.maximum(nd, 1e-300), 0.0)  # sine of the angle between the columns
         sing = ~(np.abs(det) >= 1e-10 * nn)
         if sing.any():
             det = np.where(sing, np.where(det >= 0, 1.0, -1.0) * np.maximum(nn, 1e-300) * 1e-10, det)
@@ -448,7 +458,10 @@ def dyad_derivatives(plan: DyadPlan, st: State, dets: bool = True) -> np.ndarray
 
     cA = apply(A, 1)
     cB = apply(B, 1)
-    inv, sing = _inverse(cA, cB, st, dets)
+    norm = None                          # a revolute pair A-B: the sine between the columns
+    if not isinstance(plan.mid, RCon):
+        norm = plan.length if plan.kind == "RPR" else 1.0
+    inv, sing = _inverse(cA, cB, st, dets, length=norm)
 
     def solve2(r0, r1):
         return _cramer(r0, r1, cA, cB, inv)

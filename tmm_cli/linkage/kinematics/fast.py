@@ -23,8 +23,10 @@ x p + y q = r in complex form (Cramer's rule by cross products, Im(conj(a) b));
 a slide on a moving guide adds the Coriolis term 2 i omega s' e.
 
 This path answers only a regular call: every group assembles with a clear margin and
-its velocity equations are clearly regular (the normalised determinant above 1e-6, four
-orders above the 1e-10 of the general solver's singular test) at every position. Anything
+its velocity equations are well conditioned (the normalised determinant -- the sine of the
+angle between the columns; for RPR the distance tau below over the group's length -- at
+least ``changepoints.ILL_DET``, below which the general solver flags a position and takes
+its values by continuity) at every position. Anything
 else -- a group it does not cover (a Newton group, a dyad whose link carries the guide of
 a known slider, RPP on a moving guide), a position near a limit or a singular position,
 an angle whose branch is in doubt, no positions -- returns None, and the general solver
@@ -40,10 +42,11 @@ import math
 
 import numpy as np
 
+from .changepoints import ILL_DET
 from .dyads import DyadPlan
 from .state import PCon
 
-REGULAR = 1e-6           # the least normalised determinant (and margin) the fast path takes
+REGULAR = ILL_DET        # the least normalised determinant (and margin) the fast path takes
 _TWO_PI = 2.0 * math.pi
 
 
@@ -363,6 +366,7 @@ class _RPR(_Step):
         self.cc = mid.c0 + float(us[1]) - float(np.dot(mid.na, ug))    # as the general solver
         self.a = mid.a
         self.ema = cmath.exp(-1j * mid.a)
+        self.tau_min2 = (REGULAR * plan.length) ** 2
 
     def run(self, S: _Run, sigma: float, i0: int) -> bool:
         N = S.N
@@ -372,8 +376,9 @@ class _RPR(_Step):
         (G, Gd, Gdd), (Sp, Spd, Spdd), D, rho2 = gap            # D = Sp - G
         c = self.cc
         tau2 = np.subtract(rho2, c * c)
-        # assembles (tau^2 > 0) and regular (|tau| >= REGULAR rho) at once
-        if np.count_nonzero(tau2 > np.multiply(rho2, REGULAR * REGULAR)) != N:
+        # assembles (tau^2 > 0) and regular (|tau| >= REGULAR rho) at once, and the
+        # velocity equations (their determinant tau) well conditioned: tau >= REGULAR l_g
+        if np.count_nonzero(tau2 > np.maximum(np.multiply(rho2, REGULAR * REGULAR), self.tau_min2)) != N:
             return False
         z = np.empty(N, complex)
         zf = z.view(np.float64).reshape(N, 2)

@@ -32,7 +32,7 @@ import numpy as np
 from ...errors import StageError
 from ...messages import Message
 from ..mechanism import Mechanism
-from .solver import solve
+from .solver import solve_raw
 
 SCAN_STEP = 0.5       # deg
 XTOL = 1e-11          # deg
@@ -87,7 +87,7 @@ def _output_coordinate(mech: Mechanism, name: str):
         kind = "rocker"
 
     def f(phi, second=False):
-        return of(solve(mech, phi), second)
+        return of(solve_raw(mech, phi), second)
     f.from_kin = of
     return kind, f
 

@@ -38,6 +38,10 @@ class KinematicsResult:
     near: np.ndarray | None = None                      # (N,) bool: within 1 deg of a change point
     undefined: dict[str, np.ndarray] = field(default_factory=dict)  # 'v:P', 'a:P', 'omega:L', 'epsilon:L'
     pins: dict[str, str | None] = field(default_factory=dict)  # "i-j" joined directly: the pin (None: a slide)
+    # (N,) the least normalised determinant of the groups' velocity equations (None: the fast
+    # path answered, every one at least changepoints.ILL_DET) and (N,) the group that has it
+    det_min: np.ndarray | None = field(default=None, repr=False)
+    det_group: np.ndarray | None = field(default=None, repr=False)
 
     # ---------------------------------------------------------------
     def _w(self):

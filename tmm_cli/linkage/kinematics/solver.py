@@ -16,9 +16,10 @@ largest mean y (the "upper" closure), with a warning suggesting hints. If a grou
 not assemble at 0 deg the closure is chosen at the first crank angle where it does.
 
 Singular positions: where a group's velocity equations are singular (its links
-collinear: a toggle of the group, or a change point), velocities and accelerations
-there are the limit by continuity, taken as the mean of the values at crank angles
-+-1e-6 deg, and a warning is issued.
+collinear: a toggle of the group, or a change point) the run's values are the mean of
+those at crank angles +-1e-6 deg, with a warning; :func:`solve` then takes the values at
+every ill-conditioned position (a normalised determinant below changepoints.ILL_DET) by
+continuity from either side, or null (:mod:`.limits`, docs/methods.md §2.1).
 """
 from __future__ import annotations
 
@@ -83,6 +84,7 @@ class Solver:
                     self.plans.append(DyadPlan(grp.links[0], grp.links[1], *cons))
                 except ValueError as exc:
                     raise StageError("kinematics", f"{grp.describe()}: {exc}") from None
+                self.plans[-1].length = self._group_length(grp)
             else:
                 if grp.type == "PPP":
                     raise StageError("kinematics", Message("kinematics.fail.ppp", **grp.message_params()))
@@ -93,6 +95,17 @@ class Solver:
         self.warnings: list[str] = []
 
     # ------------------------------------------------------------------ model
+    def _group_length(self, grp: Group) -> float:
+        """The group's length: the largest distance between two points of one of its links
+        (the linkage's size where its links have one point each); the scale of its
+        normalised determinant (see dyads._inverse)."""
+        best = 0.0
+        for b in grp.links:
+            pts = np.array(list(self.mech.link(b).local.values()), float).reshape(-1, 2)
+            if len(pts) > 1:
+                best = max(best, float(np.max(np.hypot(*(pts[:, None, :] - pts[None, :, :]).T))))
+        return best if best > 0.0 else self.L
+
     def local(self, b: int, p: str):
         if b == 0:
             return self.mech.ground[p]
@@ -648,18 +661,29 @@ def solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
     res = _solve(mech, phi_deg, omega1, eps1)
     solver = get_solver(mech)
     cps = cpm.change_points(solver)
-    if not cps:
-        return res
-    for cp in cps:
-        msg = cpm.warning(cp, solver.groups[cp.group])
-        if msg not in solver.warnings:
-            solver.warnings.append(msg)
-    res.warnings = list(dict.fromkeys(solver.warnings))
-    near = cpm.distance_deg(res.phi, [c.phi for c in cps]) <= cpm.NEAR_DEG
-    if near.any():
-        res.near = near
-        res.undefined = _blown_up(mech, solver, res, near)
+    if cps:
+        for cp in cps:
+            msg = cpm.warning(cp, solver.groups[cp.group])
+            if msg not in solver.warnings:
+                solver.warnings.append(msg)
+        res.warnings = list(dict.fromkeys(solver.warnings))
+        near = cpm.distance_deg(res.phi, [c.phi for c in cps]) <= cpm.NEAR_DEG
+        if near.any():
+            res.near = near
+            res.undefined = _blown_up(mech, solver, res, near)
+    if res.det_min is not None:
+        # ill-conditioned positions (the fast path answers none): by continuity, or null
+        from .limits import by_continuity
+        by_continuity(mech, solver, res, res.det_min, res.det_group, _solve)
     return res
+
+
+def solve_raw(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
+    """:func:`solve` without its marks: the exact derivatives as the groups give them at every
+    position, ill-conditioned or not (no change points, no limits by continuity, no nulls);
+    for a search along the curves (the extreme positions: roots of an analogue) that must
+    see the solver's own smooth values on either side of a singular point."""
+    return _solve(mech, phi_deg, omega1, eps1)
 
 
 _CPM = None
@@ -735,8 +759,10 @@ def _solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
         if S is not None:
             return _fast_result(mech, solver, S, phi_deg, order, omega1, eps1)
     ground, moving, done, names, links = _outputs(solver)
-    st = solver.run(np.radians(phi_deg))
-    st.margins = st.sing = None     # (held memory only)
+    st = solver.run(np.radians(phi_deg), dets=True)
+    from .limits import dets_of
+    s_min, s_group = dets_of(solver, st)
+    st.margins = st.sing = st.gdet = None     # (held memory only)
     seen: set = set()
     bs = range(1, mech.n + 1)
     for b, t in zip(bs, _unwrapped([st.th[b] for b in bs], [st.const_th.get(b) for b in bs], N, order, seen)):
@@ -761,7 +787,9 @@ def _solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
         angle[name] = st.th[b]
         a1[name] = _vector(st.th1[b], N, seen)
         a2[name] = _vector(st.th2[b], N, seen)
-    return _result(solver, phi_deg, omega1, eps1, pos, d1, d2, angle, a1, a2, names, links, st.singular)
+    res = _result(solver, phi_deg, omega1, eps1, pos, d1, d2, angle, a1, a2, names, links, st.singular)
+    res.det_min, res.det_group = s_min, s_group
+    return res
 
 
 def _ground_points(ground, N: int, pos: dict, d1: dict, d2: dict) -> None:

@@ -282,6 +282,8 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
     w1 = np.abs(geo.omega1)
     ok = well & np.isfinite(Mb) & np.all(np.isfinite(x), axis=1) \
         & (np.abs(M1U) > 1e-12 * unit) & (np.abs(rate) > 1e-12 * w1 * unit)
+    untrusted = _untrusted_kinematics(kin, rows) & ok & ~locked
+    ok &= ~untrusted
     # singular crank angles of the balance link over one turn
     warnings: list[str] = []
     if singular is None:
@@ -304,7 +306,8 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
                                 f_pin=fr.f_pin, f_slide=fr.f_slide, pin_radius=fr.pin_radius,
                                 balancing="moment" if blk.kind != "slider" else "force"))
     for i in np.nonzero(~ok & ~locked)[0]:
-        warnings.append(Message("kinetostatics.singular_balance", position=int(rows[i]), phi=phi[i] % 360,
+        warnings.append(Message("kinetostatics.no_kinematics" if untrusted[i] else "kinetostatics.singular_balance",
+                                position=int(rows[i]), phi=phi[i] % 360,
                                 link=blk.name, balancing="moment" if blk.kind != "slider" else "force"))
     eff = fpow = dpow = None
     if loss is not None:
@@ -334,6 +337,19 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
         ok=ok, near=near, singular=list(singular), mech=mech, geo=geo, loads=lds,
         efficiency=eff, friction_power=fpow, friction_pairs=loss, driving_power=dpow,
         groups=_group_links(mech, structure) + [[mech.drive]], warnings=warnings)
+
+
+def _untrusted_kinematics(kin, rows: np.ndarray) -> np.ndarray:
+    """(len(rows),) the positions whose kinematics cannot carry a force analysis: a velocity or
+    acceleration there has no limit by continuity (null in the kinematics), or a group's
+    velocity equations -- whose transpose are its equilibrium equations -- are singular to
+    working precision (``kin.singular``): the loads and reactions there are not finite."""
+    bad = np.zeros(len(rows), bool)
+    if getattr(kin, "singular", None) is not None:
+        bad |= np.asarray(kin.singular, bool)[rows]
+    for mask in (getattr(kin, "undefined", None) or {}).values():
+        bad |= np.asarray(mask, bool)[rows]
+    return bad
 
 
 def analyze_at(linkage, section, phi_deg, *, motion=None, singular: list[float] | None = None
