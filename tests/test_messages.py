@@ -385,6 +385,16 @@ ENGLISH = [
     ('input.diff_two_speeds', {'got': 1, 'members': ['1', '3', 'H']},
      "give the speeds of exactly two members of 1, 3, H (got 1)"),
     ('input.diff_one_torque', {'got': 2}, 'give the torque of one member at most (got 2)'),
+    ('input.synth_function', {'reason': "unknown name 'z'"}, "the function to generate: unknown name 'z'"),
+    ('input.synth_range_zero', {}, 'the range of the angle must not be zero'),
+    ('input.synth_x_range', {}, 'the range of x must have two different ends'),
+    ('synthesis.fail.function_range', {}, 'synthesis: the function is not finite over the range of x, or '
+     'y(x0) = y(x1): change `function` or `x`'),
+    ('synthesis.fail.function_points', {}, 'synthesis: the precision points give no Freudenstein solution '
+     '(singular equations): change the ranges of `input` or `output`'),
+    ('synthesis.fail.function_lengths', {'a': -0.1, 'c': 0.2, 'b2': 0.01}, "synthesis: Freudenstein's solution "
+     'has no four-bar (crank -0.1 m, rocker 0.2 m, coupler squared 0.01 m^2; each must be positive): change '
+     '`frame` or the ranges of `input` and `output`'),
     ('input.balancing_radius', {'method': 'full', 'key': 'rocker'},
      'counterweights by the full method need `radius: {rocker: ...}` (m)'),
     ('input.balancing_radius_positive', {'key': 'crank'}, "the counterweight's radius `crank` must be above zero"),

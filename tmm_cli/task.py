@@ -11,7 +11,7 @@ import re
 from pathlib import Path
 from typing import Annotated, Any, Literal, Union
 
-from pydantic import (BaseModel, ConfigDict, Field, PrivateAttr, ValidationError,
+from pydantic import (AfterValidator, BaseModel, ConfigDict, Field, PrivateAttr, ValidationError,
                       field_validator, model_validator)
 
 from .errors import TaskError
@@ -442,11 +442,39 @@ SYNTHESIS_INPUTS = {  # type -> (required, exactly-one-of groups, optional)
     "crank_rocker": (("psi", "rocker", "frame"), (("K", "theta"),), ()),
     "slotted_lever": (("frame",), (("K", "theta"),), ("rocker",)),
     "shaper": (("H", "frame"), (("K", "theta"),), ("rocker", "guide_height")),
+    "function": (("function_", "x", "input", "output", "frame"), (), ("points",)),
 }
+SYNTHESIS_FIELDS = ("H", "psi", "K", "theta", "lambda_", "e", "gamma_min", "rocker", "frame", "guide_height",
+                    "function_", "x", "input", "output", "points")
+
+
+def _function_text(v):
+    """The function to generate, checked by its grammar (tmm_cli.expr: never evaluated as code)."""
+    if v is None:
+        return v
+    from .expr import ExprError, compile_expr
+    try:
+        compile_expr(v)
+    except ExprError as exc:
+        raise ValueError(Message("input.synth_function", reason=str(exc))) from None
+    return v
+
+
+class AngleRange(_Model):
+    """An angle that varies linearly with x or y: start + range (t - t0)/(t1 - t0), deg."""
+    start: Angle = Field(0.0, description="the angle at the range's start, deg")
+    range: Angle = Field(..., description="the angle swept over the range, deg (non-zero)")
+
+    @field_validator("range")
+    @classmethod
+    def _nonzero(cls, v):
+        if v == 0:
+            raise ValueError(Message("input.synth_range_zero"))
+        return v
 
 
 class SynthesisSection(_Model):
-    type: Literal["slider_crank", "offset_slider_crank", "crank_rocker", "slotted_lever", "shaper"]
+    type: Literal["slider_crank", "offset_slider_crank", "crank_rocker", "slotted_lever", "shaper", "function"]
     H: Length | None = Field(None, gt=0)
     psi: Angle | None = Field(None, gt=0, lt=180)
     K: Ratio | None = Field(None, gt=0)
@@ -457,17 +485,26 @@ class SynthesisSection(_Model):
     rocker: Length | None = Field(None, gt=0)
     frame: Length | None = Field(None, gt=0)
     guide_height: Length | None = Field(None, gt=0)
+    function_: Annotated[str | None, AfterValidator(_function_text)] = Field(
+        None, alias="function", description="function generation: y(x) in x, numbers, + - * / **, sin cos tan exp log log10 sqrt")
+    x: tuple[Number, Number] | None = Field(None, description="function generation: the range [x0, x1] of x")
+    input: AngleRange | None = Field(None, description="function generation: the crank angle phi (deg, from O->O1) "
+                                                       "over the range of x: {start, range}")
+    output: AngleRange | None = Field(None, description="function generation: the rocker angle psi (deg, from O->O1 "
+                                                        "at O1) over the range of y: {start, range}")
+    points: int | None = Field(None, ge=3, le=5, description="function generation: precision points, Chebyshev "
+                                                              "spacing (3; 4 or 5 by least squares)")
     links: dict[str, SynthesisLinkSpec] = Field(default_factory=dict)
 
     @model_validator(mode="after")
     def _inputs(self):
         required, groups, optional = SYNTHESIS_INPUTS[self.type]
-        spell = lambda k: "lambda" if k == "lambda_" else k
+        spell = lambda k: k.rstrip("_") if k in ("lambda_", "function_") else k
         for k in required:
             if getattr(self, k) is None:
                 raise FieldValueError((spell(k),), Message("input.synth_needs", type=self.type, key=spell(k)))
         allowed = set(required) | set(optional) | {k for g in groups for k in g}
-        for k in ("H", "psi", "K", "theta", "lambda_", "e", "gamma_min", "rocker", "frame", "guide_height"):
+        for k in SYNTHESIS_FIELDS:
             if getattr(self, k) is not None and k not in allowed:
                 offset = self.type == "slider_crank" and k == "e"
                 raise FieldValueError((spell(k),), Message("input.synth_not_taken_offset" if offset
@@ -480,6 +517,8 @@ class SynthesisSection(_Model):
                                       Message("input.synth_one_of_got", type=self.type, names=names,
                                               given=[spell(k) for k in given]) if given else
                                       Message("input.synth_one_of", type=self.type, names=names))
+        if self.type == "function" and self.x[0] == self.x[1]:
+            raise FieldValueError(("x",), Message("input.synth_x_range"))
         if self.type == "slider_crank":
             th = self.theta if self.theta is not None else (180.0 * (self.K - 1) / (self.K + 1)
                                                             if self.K is not None else 0.0)

@@ -31,15 +31,17 @@ import math
 from dataclasses import dataclass, field
 
 from ..errors import StageError
+from ..messages import Message
 
 STAGE = "synthesis"
-TYPES = ("slider_crank", "offset_slider_crank", "crank_rocker", "slotted_lever", "shaper")
-LINKS = {"slider_crank": ("crank", "rod", "slider"),
+TYPES = ("slider_crank", "offset_slider_crank", "crank_rocker", "slotted_lever", "shaper", "function")
+LINKS = {"function": ("crank", "coupler", "rocker"),
+         "slider_crank": ("crank", "rod", "slider"),
          "offset_slider_crank": ("crank", "rod", "slider"),
          "crank_rocker": ("crank", "coupler", "rocker"),
          "slotted_lever": ("crank", "block", "rocker"),
          "shaper": ("crank", "block", "rocker", "blockC", "ram")}
-OUTPUT = {"slider_crank": "slider", "offset_slider_crank": "slider", "crank_rocker": "rocker",
+OUTPUT = {"function": "rocker", "slider_crank": "slider", "offset_slider_crank": "slider", "crank_rocker": "rocker",
           "slotted_lever": "rocker", "shaper": "ram"}
 
 
@@ -49,6 +51,13 @@ class SynthesisImpossible(StageError):
 
     def __init__(self, message: str):
         super().__init__(STAGE, message)
+
+    def __eq__(self, other) -> bool:
+        """Two are equal when they say the same (the task model keeps one: two validations of one
+        task give equal models)."""
+        return type(other) is type(self) and str(other) == str(self)
+
+    __hash__ = StageError.__hash__
 
 
 def theta_of_K(K: float) -> float:
@@ -422,11 +431,133 @@ def design(sec, sign: float) -> Design:
     Artobolevsky, *Theory of Mechanisms and Machines*: synthesis of lever mechanisms by
     the coefficient of the mean speed K = (180 + theta)/(180 - theta); docs/methods.md.
     """
+    if sec.type == "function":
+        return _function(sec)
     if sec.type in ("slider_crank", "offset_slider_crank"):
         return _slider_crank(sec, sign)
     if sec.type == "crank_rocker":
         return _crank_rocker(sec, sign)
     return _slotted(sec, sign)
+
+
+# ---------------------------------------------------------------- function generation (Freudenstein)
+def chebyshev_points(x0: float, x1: float, n: int) -> list[float]:
+    """x_j = (x0 + x1)/2 - (x1 - x0)/2 cos((2j - 1) pi/(2n)), j = 1..n."""
+    return [(x0 + x1) / 2 - (x1 - x0) / 2 * math.cos((2 * j - 1) * math.pi / (2 * n)) for j in range(1, n + 1)]
+
+
+def function_angles(g: dict, x):
+    """The ideal crank angle phi(x) and rocker angle psi(y(x)), deg, linear in x and in y over their
+    ranges; ``g``: {function, x: [x0, x1], input: [start, range], output: [start, range]}."""
+    import numpy as np
+
+    from ..expr import compile_expr
+    fx = compile_expr(g["function"])
+
+    def f(t):                                   # a constant expression gives one number: one per x
+        return np.broadcast_to(np.asarray(fx(t), float), np.shape(t))
+    x0, x1 = g["x"]
+    y0, y1 = (float(v) for v in f(np.array([x0, x1])))
+    x = np.asarray(x, float)
+    phi = g["input"][0] + g["input"][1] * (x - x0) / (x1 - x0)
+    with np.errstate(all="ignore"):
+        psi = g["output"][0] + g["output"][1] * (f(x) - y0) / (y1 - y0)
+    return phi, psi, (y0, y1)
+
+
+def _generator(sec) -> dict:
+    return {"function": sec.function_, "x": [float(sec.x[0]), float(sec.x[1])],
+            "input": [float(sec.input.start), float(sec.input.range)],
+            "output": [float(sec.output.start), float(sec.output.range)]}
+
+
+def freudenstein(phi_deg, psi_deg):
+    """K1, K2, K3 of K1 cos psi - K2 cos phi + K3 = cos(phi - psi) through the precision points
+    (three: exactly; more: least squares)."""
+    import numpy as np
+    p, q = np.radians(phi_deg), np.radians(psi_deg)
+    A = np.column_stack([np.cos(q), -np.cos(p), np.ones_like(p)])
+    b = np.cos(p - q)
+    if len(p) == 3:
+        return np.linalg.solve(A, b)
+    return np.linalg.lstsq(A, b, rcond=None)[0]
+
+
+def _function(sec) -> Design:
+    """A four-bar whose rocker angle follows y(x) while the crank angle follows x (Freudenstein's
+    equation at Chebyshev precision points; d = frame, a = d/K1, c = d/K2,
+    b^2 = a^2 + c^2 + d^2 - 2 a c K3)."""
+    import numpy as np
+    g = _generator(sec)
+    x0, x1 = g["x"]
+    n = int(sec.points or 3)
+    xs = chebyshev_points(x0, x1, n)
+    phi, psi, (y0, y1) = function_angles(g, xs)
+    if not (np.all(np.isfinite(phi)) and np.all(np.isfinite(psi))) or y0 == y1:
+        raise SynthesisImpossible(Message("synthesis.fail.function_range"))
+    d = float(sec.frame)
+    try:
+        K1, K2, K3 = (float(v) for v in freudenstein(phi, psi))
+    except np.linalg.LinAlgError:
+        raise SynthesisImpossible(Message("synthesis.fail.function_points")) from None
+    a, c = d / K1 if K1 else math.inf, d / K2 if K2 else math.inf
+    b2 = a * a + c * c + d * d - 2 * a * c * K3
+    if not (math.isfinite(a) and math.isfinite(c)) or a <= 0 or c <= 0 or b2 <= 0:
+        raise SynthesisImpossible(Message("synthesis.fail.function_lengths", a=a, c=c, b2=b2))
+    b = math.sqrt(b2)
+    # B in the first precision pose: from O1 along psi_1; A from O along phi_1
+    B1 = [d + c * math.cos(math.radians(psi[0])), c * math.sin(math.radians(psi[0]))]
+    mech = {"ground": {"O": [0.0, 0.0], "O1": [d, 0.0]},
+            "links": {"crank": {"points": ["O", "A"], "length": a, **_mass(sec, "crank")},
+                      "coupler": {"points": ["A", "B"], "length": b, **_mass(sec, "coupler")},
+                      "rocker": {"points": ["O1", "B"], "length": c, **_mass(sec, "rocker")}},
+            "assembly": {"B": B1}}
+    cons = {"precision_points": [{"x": float(x), "phi": float(f), "psi": float(q)} for x, f, q in zip(xs, phi, psi)],
+            "K": [K1, K2, K3], "y": [y0, y1], "generator": g}
+    return Design("function", {"crank": a, "coupler": b, "rocker": c, "frame": d}, mech, "rocker", "forward", [],
+                  cons)
+
+
+def grashof(a: float, b: float, c: float, d: float) -> str:
+    """crank-rocker | double-crank | double-rocker | change-point of a four-bar (a the crank, d the frame)."""
+    s, *mid, long_ = sorted((a, b, c, d))
+    lhs, rhs = s + long_, sum(mid)
+    if abs(lhs - rhs) <= 1e-12 * long_:
+        return "change-point"
+    if lhs > rhs:
+        return "double-rocker"
+    if s == d:
+        return "double-crank"
+    return "crank-rocker" if s == a else "double-rocker"
+
+
+def analyse_function(linkage, d: Design) -> dict:
+    """The function generator analysed: the generated linkage's rocker angle over the whole range
+    of x (its kinematics at 401 crank angles) against the ideal; the structural error (deg)."""
+    import numpy as np
+
+    from .kinematics import solve
+    g = d.construction["generator"]
+    x0, x1 = g["x"]
+    xs = np.linspace(x0, x1, 401)
+    phi, psi, _ = function_angles(g, xs)
+    kin = solve(linkage.mechanism, np.mod(phi, 360.0), linkage.drive.omega)
+    P, B = kin.pos["O1"], kin.pos["B"]
+    got = np.degrees(np.arctan2(B[:, 1] - P[:, 1], B[:, 0] - P[:, 0]))
+    err = (got - psi + 180.0) % 360.0 - 180.0
+    k = int(np.argmax(np.abs(err)))
+    pts = d.construction["precision_points"]
+    kp = solve(linkage.mechanism, np.mod([p["phi"] for p in pts], 360.0), linkage.drive.omega)
+    Bp, Pp = kp.pos["B"], kp.pos["O1"]
+    got_p = np.degrees(np.arctan2(Bp[:, 1] - Pp[:, 1], Bp[:, 0] - Pp[:, 0]))
+    L = d.lengths
+    return {"type": "function", "lengths": dict(L), "K": list(d.construction["K"]),
+            "precision_points": [dict(p, psi_generated=float(g)) for p, g in zip(pts, got_p)],
+            "structural_error": {"max": float(abs(err[k])), "at_x": float(xs[k])},
+            "error_curve": {"x": xs.tolist(), "error": err.tolist()},
+            "grashof": grashof(L["crank"], L["coupler"], L["rocker"], L["frame"]),
+            "mechanism": d.mechanism, "output": d.output, "function": g["function"],
+            "x": [x0, x1], "y": list(d.construction["y"]), "working": d.working}
 
 
 # ---------------------------------------------------------------- analysis of the generated mechanism
@@ -487,6 +618,8 @@ def analyse(linkage, d: Design) -> dict:
     Artobolevsky, *Theory of Mechanisms and Machines*: extreme positions, the coefficient
     of the mean speed, the transmission angle; docs/methods.md.
     """
+    if d.type == "function":
+        return analyse_function(linkage, d)
     import numpy as np
 
     from .kinematics import find_positions, solve

@@ -46,6 +46,11 @@ I18N = {
            "анализом спроектированного механизма."},
 }
 
+from ..i18n import words_beside  # noqa: E402
+
+for _lang, _words in words_beside(__file__).items():   # function generation's words (data)
+    I18N.setdefault(_lang, {}).update(_words)
+
 _LEN = {"en": {"crank": "crank l_OA", "rod": "connecting rod l_AB", "offset": "offset e",
                "coupler": "coupler l_AB", "rocker": "rocker l_O1B", "frame": "frame l_OO1",
                "guide_height": "ram guide above O1"},
@@ -222,10 +227,42 @@ def gamma_svg(r: dict, t_turn: str, w_mm: float = 165.0, h_mm: float = 60.0, mm:
     return cv.to_svg()
 
 
+def error_chart(ctx, r):
+    """The structural error over the range of x."""
+    from ..svgchart import subplots
+    c = r["error_curve"]
+    fig, ax = subplots(150, 70)
+    ax.plot(c["x"], c["error"], lw=1.2)
+    pts = r["precision_points"]
+    ax.plot([p["x"] for p in pts], [0.0] * len(pts), "ko", ms=3)
+    ax.axhline(0.0, color="k", lw=0.6)
+    ax.set_xlabel(ctx.t("syn.fn.x"))
+    ax.set_ylabel(ctx.t("syn.fn.error_axis"))
+    ax.grid(True)
+    return fig
+
+
+def _function(ctx, r) -> str:
+    f, t = ctx.fmt, ctx.t
+    mu = "m" if ctx.lang == "en" else "м"
+    lens = [(_LEN.get(ctx.lang, _LEN["en"]).get(k, k), f"{f(v, 6)} {mu}") for k, v in r["lengths"].items()]
+    pts = r["precision_points"]
+    info = [(t("syn.type"), t("syn.type.function")), (t("syn.fn.K"), ", ".join(f(k, 6) for k in r["K"])),
+            (t("syn.fn.grashof"), t(f"syn.grashof.{r['grashof']}"))]
+    rows = [(f(p["x"], 6), f(p["phi"], 6), f(p["psi"], 6), f(p["psi_generated"], 6)) for p in pts]
+    se = r["structural_error"]
+    return ctx.render("sections/synthesis_function.html.j2", info=info, lens=lens, rows=rows,
+                      method=t("syn.fn.method", f=r["function"], n=len(pts), ls=t("syn.fn.ls") if len(pts) > 3 else ""),
+                      error=t("syn.fn.error", e=f(se["max"], 4), x=f(se["at_x"], 5)),
+                      fig=ctx.svg(error_chart(ctx, r), "synthesis-structural-error"))
+
+
 def build(ctx) -> str | None:
     r = (ctx.results or {}).get("synthesis")
     if not r:
         return None
+    if r.get("type") == "function":
+        return _function(ctx, r)
 
     f, t, lang = ctx.fmt, ctx.t, ctx.lang
     mu = "m" if lang == "en" else "м"

@@ -1,0 +1,146 @@
+"""Function generation (Freudenstein): the precision points at Chebyshev spacing, the equation
+solved through them, the link lengths, and the generated linkage's structural error against an
+independent closed-form position analysis of the four-bar written out here; the expression
+grammar (never evaluated as code); the errors a student meets."""
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from tmm_cli import load_task, run
+from tmm_cli.cli import app
+from tmm_cli.expr import ExprError, compile_expr
+
+ROOT = Path(__file__).resolve().parents[1]
+runner = CliRunner()
+BASE = {"type": "function", "function": "x**1.5", "x": [1, 4], "input": {"start": 30, "range": 90},
+        "output": {"start": 60, "range": 60}, "frame": 0.3}
+
+
+def _task(**kw):
+    return load_task({"schema": "tmm/1", "synthesis": {**BASE, **kw}, "drive": {"link": "crank", "speed": 6.0}})
+
+
+def _psi_closed_form(a, b, c, d, phi_deg, branch_psi0):
+    """The rocker angle of a four-bar (O at 0, O1 at (d, 0)) for crank angles phi, by the circle
+    intersection of B around A (radius b) and around O1 (radius c), on the branch nearest psi0."""
+    out = []
+    prev = math.radians(branch_psi0)
+    for f in np.radians(phi_deg):
+        ax, ay = a * math.cos(f), a * math.sin(f)
+        dx, dy = d - ax, -ay
+        L = math.hypot(dx, dy)
+        k = (b * b - c * c + L * L) / (2 * L)
+        h = math.sqrt(max(b * b - k * k, 0.0))
+        cands = []
+        for s in (1, -1):
+            bx = ax + (k * dx - s * h * dy) / L
+            by = ay + (k * dy + s * h * dx) / L
+            cands.append(math.atan2(by, bx - d))
+        q = min(cands, key=lambda t: abs((t - prev + math.pi) % (2 * math.pi) - math.pi))
+        out.append(math.degrees(q))
+        prev = q
+    return np.array(out)
+
+
+def test_chebyshev_points_and_freudenstein_by_hand():
+    r = run(_task())["synthesis"]
+    pts = r["precision_points"]
+    # x_j = 2.5 - 1.5 cos((2j - 1) pi/6): 2.5 - 1.5 (sqrt 3/2), 2.5, 2.5 + 1.5 (sqrt 3/2)
+    assert [p["x"] for p in pts] == pytest.approx([2.5 - 1.5 * math.sqrt(3) / 2, 2.5, 2.5 + 1.5 * math.sqrt(3) / 2],
+                                                  rel=1e-14)
+    for p in pts:
+        assert p["phi"] == pytest.approx(30 + 90 * (p["x"] - 1) / 3, rel=1e-14)
+        assert p["psi"] == pytest.approx(60 + 60 * (p["x"] ** 1.5 - 1) / 7, rel=1e-14)
+    K1, K2, K3 = r["K"]
+    for p in pts:                       # Freudenstein's equation holds at each precision point
+        f, q = math.radians(p["phi"]), math.radians(p["psi"])
+        assert K1 * math.cos(q) - K2 * math.cos(f) + K3 == pytest.approx(math.cos(f - q), abs=1e-13)
+    L = r["lengths"]
+    d = 0.3
+    assert L["crank"] == pytest.approx(d / K1, rel=1e-14) and L["rocker"] == pytest.approx(d / K2, rel=1e-14)
+    a, c = L["crank"], L["rocker"]
+    assert L["coupler"] == pytest.approx(math.sqrt(a * a + c * c + d * d - 2 * a * c * K3), rel=1e-13)
+    # the analysed linkage passes the precision points
+    for p in pts:
+        assert p["psi_generated"] == pytest.approx(p["psi"], abs=1e-9)
+    assert r["grashof"] == "crank-rocker"        # s + l = 0.1516 + 0.3 <= 0.1973 + 0.2814, the crank shortest
+
+
+def test_structural_error_against_a_closed_form_analysis():
+    r = run(_task())["synthesis"]
+    L = r["lengths"]
+    xs = np.linspace(1, 4, 2001)
+    phi = 30 + 90 * (xs - 1) / 3
+    ideal = 60 + 60 * (xs ** 1.5 - 1) / 7
+    got = _psi_closed_form(L["crank"], L["coupler"], L["rocker"], L["frame"], phi, r["precision_points"][0]["psi"])
+    err = (got - ideal + 180) % 360 - 180
+    k = int(np.argmax(np.abs(err)))
+    assert r["structural_error"]["max"] == pytest.approx(abs(err[k]), rel=1e-3)
+    assert r["structural_error"]["at_x"] == pytest.approx(xs[k], abs=0.01)
+    # the error vanishes at the precision points and changes sign between them (Chebyshev)
+    e = np.interp([p["x"] for p in r["precision_points"]], xs, err)
+    assert np.all(np.abs(e) < 1e-3)
+
+
+def test_five_points_by_least_squares():
+    r = run(_task(points=5))["synthesis"]
+    assert len(r["precision_points"]) == 5
+    K1, K2, K3 = r["K"]
+    res = [K1 * math.cos(math.radians(p["psi"])) - K2 * math.cos(math.radians(p["phi"])) + K3
+           - math.cos(math.radians(p["phi"] - p["psi"])) for p in r["precision_points"]]
+    # least squares: the residuals are orthogonal to the columns (cos psi, -cos phi, 1)
+    cols = [[math.cos(math.radians(p["psi"])) for p in r["precision_points"]],
+            [-math.cos(math.radians(p["phi"])) for p in r["precision_points"]], [1.0] * 5]
+    for col in cols:
+        assert abs(sum(a * b for a, b in zip(col, res))) < 1e-12
+
+
+@pytest.mark.parametrize("text, value", [("x**1.5", 8.0), ("sqrt(x) + 1", 3.0), ("log10(x) * 2", 2 * math.log10(4)),
+                                         ("-x + exp(0)", -3.0), ("sin(x)/cos(x) - tan(x)", 0.0)])
+def test_expression_grammar_values(text, value):
+    assert float(compile_expr(text)(np.array([4.0]))[0]) == pytest.approx(value, abs=1e-12)
+
+
+@pytest.mark.parametrize("text", ["__import__('os').system('true')", "x.real", "open('f')", "y + 1", "[x]",
+                                  "x if x else 1", "lambda: 1", "2" + "**2" * 12, "sin(x, x)", ""])
+def test_expression_grammar_refuses(text):
+    with pytest.raises(ExprError):
+        compile_expr(text)
+
+
+def _run(tmp_path, **kw):
+    import yaml
+    f = tmp_path / "t.yaml"
+    f.write_text(yaml.safe_dump({"schema": "tmm/1", "synthesis": {**BASE, **kw},
+                                 "drive": {"link": "crank", "speed": 6.0}}, allow_unicode=True), encoding="utf-8")
+    res = runner.invoke(app, ["run", str(f), "--format", "json", "--out", str(tmp_path / "o")])
+    return res.exit_code, res.output
+
+
+@pytest.mark.parametrize("kw, code, words", [
+    ({"function": "import os"}, 2, "synthesis.function"),
+    ({"function": "z**2"}, 2, "unknown name 'z'"),
+    ({"x": [2, 2]}, 2, "synthesis.x"),
+    ({"K": 1.2}, 2, "synthesis.K"),
+    ({"output": {"start": 60, "range": 0}}, 2, "synthesis.output.range"),
+    ({"output": {"start": 170, "range": -160}, "frame": 0.05}, 3, "synthesis"),
+    ({"function": "1"}, 3, "y(x0) = y(x1)"),                  # a constant: no range of y
+    ({"function": "1/0"}, 3, "not finite"),
+])
+def test_errors(tmp_path, kw, code, words):
+    got, out = _run(tmp_path, **kw)
+    assert got == code, out
+    assert words in out and "Traceback" not in out
+
+
+def test_example_task(tmp_path):
+    res = runner.invoke(app, ["run", str(ROOT / "tasks" / "synthesis_function.yaml"), "--format", "json,html",
+                              "--out", str(tmp_path / "o")])
+    assert res.exit_code == 0, res.output
+    r = json.loads((tmp_path / "o" / "results.json").read_text())["synthesis"]
+    assert r["type"] == "function" and r["structural_error"]["max"] < 2.0
+    assert (tmp_path / "o" / "figures" / "synthesis-structural-error.svg").is_file()
