@@ -49,3 +49,154 @@ def test_negative_index_is_an_unknown_path(tmp_path):
     with open(tmp_path / "o" / "check.csv", encoding="utf-8", newline="") as fh:
         rows = {r["path"]: r["status"] for r in csv.DictReader(fh)}
     assert rows == {"gears.r[-1]": "unknown_path", "gears.r[1]": "ok"}
+
+
+# ---------------------------------------------------------------- items 10, 8 (tables)
+def _answers_csv(tmp_path: Path, rows: list[str]) -> Path:
+    return _write(tmp_path, "answers.csv", "student,group,variant,gears.aw\n" + "".join(r + "\n" for r in rows))
+
+
+def test_csv_cell_over_the_field_limit_names_the_line(tmp_path):
+    """A cell over the csv module's field limit (128 KiB) was 'internal error ... field larger
+    than field limit': exit 2 naming the file and the line."""
+    task = _write(tmp_path, "g.yaml", GEARS)
+    big = _answers_csv(tmp_path, ["A,MM-1,,0.088", "B,MM-1,," + "x" * 200_000])
+    res = runner.invoke(app, ["check", str(task), "--answers", str(big)])
+    assert res.exit_code == 2, res.output
+    assert "answers.csv:3: a cell longer than 131072 characters" in res.output, res.output
+    assert "internal error" not in res.output and "Traceback" not in res.output
+    tmpl = _write(tmp_path, "t.yaml", GEARS.replace("[14, 30]", "[{z1}, 30]"))
+    table = _write(tmp_path, "v.csv", "variant,z1\n1,14\n2," + "9" * 200_000 + "\n")
+    res = runner.invoke(app, ["variants", str(tmpl), str(table), "--out", str(tmp_path / "v")])
+    assert res.exit_code == 2, res.output
+    assert "v.csv:3: a cell longer than" in res.output, res.output
+    assert "internal error" not in res.output and "Traceback" not in res.output
+
+
+def test_answers_table_rows_are_bounded(tmp_path):
+    """An answers table of more rows than the limit is refused at once (10^6 rows took
+    about 17 minutes), naming the first row past it."""
+    from tmm_cli.limits import MAX_TABLE_ROWS
+    task = _write(tmp_path, "g.yaml", GEARS)
+    big = _answers_csv(tmp_path, [f"S{i},MM-1,,0.088" for i in range(MAX_TABLE_ROWS + 5)])
+    t0 = time.perf_counter()
+    res = runner.invoke(app, ["check", str(task), "--answers", str(big)])
+    assert time.perf_counter() - t0 < 5
+    assert res.exit_code == 2, res.output
+    assert str(MAX_TABLE_ROWS) in res.output and str(MAX_TABLE_ROWS + 2) in res.output, res.output
+
+
+# ---------------------------------------------------------------- items 8, 9, 13 (the task)
+FOURBAR = (ROOT / "tasks" / "crank_rocker_fourbar.yaml").read_text(encoding="utf-8")
+
+
+def _validate(tmp_path: Path, text: str):
+    f = _write(tmp_path, "task.yaml", text)
+    t0 = time.perf_counter()
+    res = runner.invoke(app, ["validate", str(f)])
+    return res, time.perf_counter() - t0
+
+
+@pytest.mark.parametrize("escape,shown,field", [
+    (r"A\x01B", "U+0001", "title"),
+    (r"A\0B", "U+0000", "title"),
+    (r"A\uFFFEB", "U+FFFE", "title"),
+    (r"A\ud800B", "U+D800", "title"),
+    (r"A\x85B", "U+0085", "title"),
+    (r"A\x7fB", "U+007F", "student.name"),
+    (r"A\tB\rC", "U+000D", "student.group"),
+])
+def test_control_characters_in_free_text_are_refused(tmp_path, escape, shown, field):
+    """A control character, a noncharacter or a lone surrogate in a text field was 'ok' for
+    validate and an internal error (or nothing written) for run: exit 2 naming the field."""
+    key = field.split(".")[-1]
+    text = FOURBAR.replace("variant: 3\n", f'variant: 3\nstudent: {{name: "Ann", group: "MM-1"}}\n')
+    if field == "title":
+        text = text.replace("title: Conveyor drive, crank-rocker four-bar", f'title: "{escape}"')
+    else:
+        text = text.replace(f'{key}: "{"Ann" if key == "name" else "MM-1"}"', f'{key}: "{escape}"')
+    res, _ = _validate(tmp_path, text)
+    assert res.exit_code == 2, res.output
+    assert f"field '{field}'" in res.output and shown in res.output, res.output
+    assert "Traceback" not in res.output
+
+
+@pytest.mark.parametrize("place", ["point", "link", "variant"])
+def test_control_characters_in_names_are_refused(tmp_path, place):
+    """Names (keys and references) follow the same rule, tab and newline included."""
+    if place == "point":
+        text = FOURBAR.replace("extra: {M: [0.15, 0.06]}", r'extra: {"M\x02": [0.15, 0.06]}')
+        field = r"mechanism.links.coupler.extra.M\u0002"
+    elif place == "link":
+        text = FOURBAR.replace("coupler: {points", r'"coupler\n": {points')
+        field = r"mechanism.links.coupler\u000a"
+    else:
+        text = FOURBAR.replace("variant: 3", r'variant: "3\x03"')
+        field = "variant"
+    res, _ = _validate(tmp_path, text)
+    assert res.exit_code == 2, res.output
+    assert f"field '{field}'" in res.output, res.output
+
+
+def test_tab_and_newline_are_allowed_in_the_title(tmp_path):
+    text = FOURBAR.replace("title: Conveyor drive, crank-rocker four-bar", r'title: "Conveyor\tdrive\nfour-bar"')
+    res, _ = _validate(tmp_path, text)
+    assert res.exit_code == 0, res.output
+
+
+def test_text_length_and_combining_marks_are_bounded(tmp_path):
+    """One letter and 70,000 combining marks aborted the PDF engine (SIGABRT): a text over
+    the length limit, or with more combining marks in a row than Unicode's stream-safe
+    limit, is refused at validation within a second; accented letters are fine."""
+    from tmm_cli.limits import MAX_COMBINING, MAX_TEXT
+    title = "title: Conveyor drive, crank-rocker four-bar"
+    res, dt = _validate(tmp_path, FOURBAR.replace(title, "title: a" + "\u0301" * 70_000))
+    assert res.exit_code == 2 and "field 'title'" in res.output and str(MAX_TEXT) in res.output, res.output
+    res, dt = _validate(tmp_path, FOURBAR.replace(title, "title: a" + "\u0301" * (MAX_COMBINING + 1)))
+    assert res.exit_code == 2 and "field 'title'" in res.output and "combining" in res.output, res.output
+    res, _ = _validate(tmp_path, FOURBAR.replace(title, "title: Привод конвейера, ё й \u1ec7" + "e\u0301" * 20))
+    assert res.exit_code == 0, res.output
+
+
+def test_positions_count_their_extras(tmp_path):
+    """`positions.extra` bypassed the 3600-position cap (16,000 extras: minutes, gigabytes):
+    count + extras over the limit is exit 2 naming positions.extra."""
+    from tmm_cli.limits import MAX_POSITIONS
+    extras = ", ".join(str(i) for i in range(MAX_POSITIONS - 11))
+    text = FOURBAR.replace("  count: 12\n", f"  count: 12\n  extra: [{extras}]\n")
+    res, dt = _validate(tmp_path, text)
+    assert res.exit_code == 2, res.output
+    assert "field 'positions.extra'" in res.output and f"{MAX_POSITIONS + 1} positions" in res.output, res.output
+    extras = ", ".join(str(i) for i in range(MAX_POSITIONS - 12))
+    res, dt = _validate(tmp_path, FOURBAR.replace("  count: 12\n", f"  count: 12\n  extra: [{extras}]\n"))
+    assert res.exit_code == 0, res.output
+
+
+def test_extra_points_and_forces_are_bounded(tmp_path):
+    """4,000 extra points ended in MemoryError and 1,700 forces too: refused at validation,
+    naming the link (or loads.forces)."""
+    from tmm_cli.limits import MAX_EXTRA_POINTS, MAX_FORCES
+    pts = ", ".join(f"P{i}: [0.1, {i * 1e-4}]" for i in range(MAX_EXTRA_POINTS + 1))
+    text = FOURBAR.replace("extra: {M: [0.15, 0.06]}", f"extra: {{{pts}}}")
+    res, dt = _validate(tmp_path, text)
+    assert res.exit_code == 2 and dt < 10, res.output
+    assert "field 'mechanism.links.coupler.extra'" in res.output and str(MAX_EXTRA_POINTS + 1) in res.output
+    force = "    - {on: rocker, kind: resistance, stroke: idle, moment: 8}"
+    assert FOURBAR.count(force) == 1 and FOURBAR.count("- {on:") == 2
+    res, dt = _validate(tmp_path, FOURBAR.replace(force, "\n".join([force] * MAX_FORCES)))
+    assert res.exit_code == 2 and "field 'loads.forces'" in res.output, res.output
+    assert f"{MAX_FORCES + 1} forces" in res.output, res.output
+    res, dt = _validate(tmp_path, FOURBAR.replace(force, "\n".join([force] * (MAX_FORCES - 1))))
+    assert res.exit_code == 0, res.output
+
+
+def test_kinetostatics_positions_empty_and_repeated(tmp_path):
+    """`positions: []` computed nothing without a word: exit 2 naming the field. A position
+    listed twice was computed twice: once now."""
+    res, _ = _validate(tmp_path, FOURBAR.replace("  positions: all\n", "  positions: []\n"))
+    assert res.exit_code == 2 and "field 'kinetostatics.positions'" in res.output, res.output
+    f = _write(tmp_path, "dup.yaml", FOURBAR.replace("  positions: all\n", "  positions: [3, 1, 3, 1]\n"))
+    res = runner.invoke(app, ["run", str(f), "--format", "json", "--out", str(tmp_path / "o")])
+    assert res.exit_code == 0, res.output
+    data = json.loads((tmp_path / "o" / "results.json").read_text(encoding="utf-8"))
+    assert [e["index"] for e in data["kinetostatics"]] == [3, 1]

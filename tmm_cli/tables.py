@@ -18,6 +18,7 @@ from __future__ import annotations
 import csv
 import io
 import math
+import os
 import re
 from pathlib import Path
 
@@ -171,12 +172,17 @@ def read_table(path: str | Path) -> tuple[list[str], list[tuple[int, dict[str, s
     """(header, rows): each row its line number in the file (header = line 1), a
     mapping column -> raw text, and the reason it is malformed (more cells than the
     header has columns) or None. Blank lines are skipped."""
+    from .limits import MAX_TABLE_BYTES, MAX_TABLE_ROWS
     from .numbers import header_name
     path = Path(path)
     try:
-        raw = path.read_bytes()
+        with open(path, "rb") as fh:
+            raw = fh.read(MAX_TABLE_BYTES + 1)
+            size = len(raw) if len(raw) <= MAX_TABLE_BYTES else max(len(raw), os.fstat(fh.fileno()).st_size)
     except OSError as exc:
         raise TableError(str(path), None, Message("input.table_unreadable", error=str(exc.strerror or exc))) from None
+    if size > MAX_TABLE_BYTES:
+        raise TableError(str(path), None, Message("input.table_large", size=size, limit=MAX_TABLE_BYTES))
     try:
         text = raw.decode("utf-8-sig")
     except UnicodeDecodeError:
@@ -191,7 +197,16 @@ def read_table(path: str | Path) -> tuple[list[str], list[tuple[int, dict[str, s
     header: list[str] | None = None
     rows: list[tuple[int, dict[str, str], str | None]] = []
     prev = 0
-    for cells in reader:
+    while True:
+        try:
+            cells = next(reader)
+        except StopIteration:
+            break
+        except csv.Error as exc:        # a cell over the csv module's field limit (128 KiB)
+            raise TableError(str(path), prev + 1,
+                             Message("input.table_cell_long", limit=csv.field_size_limit())
+                             if "field limit" in str(exc) else Message("input.table_unreadable", error=str(exc))) \
+                from None
         start, prev = prev + 1, reader.line_num
         if not any(c.strip() for c in cells):
             continue
@@ -200,6 +215,8 @@ def read_table(path: str | Path) -> tuple[list[str], list[tuple[int, dict[str, s
             if start != 1:
                 raise TableError(str(path), start, Message("input.table_header_first"))
             continue
+        if len(rows) == MAX_TABLE_ROWS:
+            raise TableError(str(path), start, Message("input.table_rows_many", limit=MAX_TABLE_ROWS))
         bad = None
         if len(cells) > len(header):
             bad = Message("input.table_malformed_row", cells=len(cells), columns=len(header))
