@@ -200,3 +200,17 @@ def test_kinetostatics_positions_empty_and_repeated(tmp_path):
     assert res.exit_code == 0, res.output
     data = json.loads((tmp_path / "o" / "results.json").read_text(encoding="utf-8"))
     assert [e["index"] for e in data["kinetostatics"]] == [3, 1]
+
+
+# ---------------------------------------------------------------- item 4
+@pytest.mark.parametrize("extra,field", [
+    ("{M: [0.15, 0.06], S2: [0.15, 0.06]}", "mechanism.links.coupler.extra.S2"),     # the link's own
+    ("{M: [0.15, 0.06], S3: [0.15, 0.06]}", "mechanism.links.coupler.extra.S3"),     # another link's
+])
+def test_extra_point_named_like_a_centre_of_mass(tmp_path, extra, field):
+    """`extra: {S2: ...}` on link 2 vanished: the results gave the centre of mass under that
+    name. A clash with the automatic name S<i> is exit 2 naming the point."""
+    text = FOURBAR.replace("extra: {M: [0.15, 0.06]}", f"extra: {extra}")
+    res, _ = _validate(tmp_path, text)
+    assert res.exit_code == 2, res.output
+    assert f"field '{field}'" in res.output and "reserved for the centre of mass" in res.output, res.output
