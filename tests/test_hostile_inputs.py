@@ -214,3 +214,30 @@ def test_extra_point_named_like_a_centre_of_mass(tmp_path, extra, field):
     res, _ = _validate(tmp_path, text)
     assert res.exit_code == 2, res.output
     assert f"field '{field}'" in res.output and "reserved for the centre of mass" in res.output, res.output
+
+
+# ---------------------------------------------------------------- item 6
+@pytest.mark.parametrize("out", ["rel", "default"])
+def test_manifest_with_a_relative_output_folder(tmp_path, monkeypatch, out):
+    """A relative --out (and the default out/<task>/) stored paths relative to the working
+    directory, so the next run removed nothing: a linkage's figures stayed beside a gear
+    task's results. Now the next run removes them, and stale temporary files in the
+    sub-folders are swept."""
+    monkeypatch.chdir(tmp_path)
+    _write(tmp_path, "task.yaml", FOURBAR.replace("  count: 12\n", "  count: 4\n"))
+    args = ["--out", "res"] if out == "rel" else []
+    folder = tmp_path / ("res" if out == "rel" else "out/task")
+    res = runner.invoke(app, ["run", "task.yaml", "--format", "json,html", *args])
+    assert res.exit_code == 0, res.output
+    figures = sorted((folder / "figures").iterdir())
+    assert figures and (folder / "report.html").exists()
+    manifest = json.loads((folder / ".tmm-manifest.json").read_text(encoding="utf-8"))
+    assert "report.html" in manifest["files"] and manifest["files"]["report.html"] is not None
+    stale = folder / "figures" / ".plans-pos01.svg.abcd1234.tmp"
+    stale.write_text("half", encoding="utf-8")
+    os.utime(stale, (time.time() - 60, time.time() - 60))
+    _write(tmp_path, "task.yaml", GEARS)
+    res = runner.invoke(app, ["run", "task.yaml", "--format", "json", *args])
+    assert res.exit_code == 0, res.output
+    left = sorted(p.relative_to(folder).as_posix() for p in folder.rglob("*"))
+    assert left == [".tmm-manifest.json", "results.json"], left

@@ -294,10 +294,12 @@ class Manifest:
             return {}
         return {k: v for k, v in files.items() if isinstance(k, str)}
 
-    def _relative(self, p: str | os.PathLike) -> str | None:
-        """The path inside the folder, as 'a/b.csv', or None if it lies outside."""
+    def _relative(self, p: str | os.PathLike, *, written: bool = False) -> str | None:
+        """The path inside the folder, as 'a/b.csv', or None if it lies outside. ``p`` is
+        relative to the folder (a manifest's entry) or, ``written``, as the run wrote it:
+        absolute or relative to the working directory (``--out out/task``)."""
         root = os.path.abspath(self.folder)
-        full = os.path.abspath(p if os.path.isabs(p) else os.path.join(root, p))
+        full = os.path.abspath(p if written or os.path.isabs(p) else os.path.join(root, p))
         rel = os.path.relpath(full, root)
         if rel.startswith("..") or os.path.isabs(rel) or rel == ".":
             return None
@@ -308,7 +310,7 @@ class Manifest:
         Returns the removed paths."""
         now: dict[str, list[int] | None] = {}
         for p in written:
-            rel = self._relative(p)
+            rel = self._relative(p, written=True)
             if rel is not None and rel != MANIFEST:
                 now[rel] = _stamp(self.folder / rel)
         removed: list[Path] = []
@@ -325,11 +327,28 @@ class Manifest:
                 continue
             self._prune(f.parent)
         dirs = {self.folder} | {(self.folder / r).parent for r in list(now) + list(self.previous())
-                                if self._relative(r) == r}
-        removed += self.remove_stale_temps(dirs)
+                                if self._relative(r) == r} | set(self._subfolders())
+        temps = self.remove_stale_temps(dirs)
+        for t in temps:
+            self._prune(t.parent)
+        removed += temps
         atomic_write(self.path, json.dumps({"schema": "tmm-manifest/1", "files": now}, indent=1,
                                            sort_keys=True) + "\n")
         return removed
+
+    def _subfolders(self):
+        """The folder's own sub-folders (figures/, sheets/; not a link): a run killed before
+        its first manifest leaves its temporary files there too."""
+        try:
+            entries = list(os.scandir(self.folder))
+        except OSError:
+            return
+        for e in entries:
+            try:
+                if e.is_dir(follow_symlinks=False):
+                    yield Path(e.path)
+            except OSError:
+                continue
 
     def _prune(self, d: Path) -> None:
         """Remove folders (inside ours) emptied by the removal."""
