@@ -110,7 +110,7 @@ def test_control_characters_in_free_text_are_refused(tmp_path, escape, shown, fi
     """A control character, a noncharacter or a lone surrogate in a text field was 'ok' for
     validate and an internal error (or nothing written) for run: exit 2 naming the field."""
     key = field.split(".")[-1]
-    text = FOURBAR.replace("variant: 3\n", f'variant: 3\nstudent: {{name: "Ann", group: "MM-1"}}\n')
+    text = FOURBAR.replace("variant: 3\n", 'variant: 3\nstudent: {name: "Ann", group: "MM-1"}\n')
     if field == "title":
         text = text.replace("title: Conveyor drive, crank-rocker four-bar", f'title: "{escape}"')
     else:
@@ -241,3 +241,88 @@ def test_manifest_with_a_relative_output_folder(tmp_path, monkeypatch, out):
     assert res.exit_code == 0, res.output
     left = sorted(p.relative_to(folder).as_posix() for p in folder.rglob("*"))
     assert left == [".tmm-manifest.json", "results.json"], left
+
+
+# ---------------------------------------------------------------- item 7
+_HOLD = """
+import sys, time
+from tmm_cli.io import folder_lock
+with folder_lock(sys.argv[1]):
+    print("held", flush=True)
+    time.sleep(float(sys.argv[2]))
+    released = time.time()
+print(released, flush=True)
+"""
+
+
+def _holder(folder: Path, seconds: float) -> subprocess.Popen:
+    """A second process holding the output folder's lock for ``seconds``."""
+    p = subprocess.Popen([sys.executable, "-c", _HOLD, str(folder), str(seconds)], stdout=subprocess.PIPE, text=True)
+    assert p.stdout.readline().strip() == "held"
+    return p
+
+
+def _tmm(*args, wait: float, cwd: Path) -> subprocess.CompletedProcess:
+    env = {**os.environ, "TMM_LOCK_WAIT": str(wait)}
+    return subprocess.run([*TMM, *args], cwd=cwd, env=env, capture_output=True, text=True, timeout=120)
+
+
+def test_two_processes_into_one_folder_do_not_interleave(tmp_path):
+    """Two `tmm run` into one folder at once both exited 0, one's results.json beside the
+    other's report: the output folder is locked. A run finding it busy waits; past the
+    wait it fails (exit 3) naming the folder, writing nothing; once free it runs."""
+    _write(tmp_path, "g.yaml", GEARS)
+    out = tmp_path / "res"
+    holder = _holder(out, 30)
+    try:
+        res = _tmm("run", "g.yaml", "--format", "json", "--out", "res", wait=1, cwd=tmp_path)
+        assert res.returncode == 3, res.stderr
+        assert "res" in res.stderr and "another tmm run or batch is writing into this folder" in res.stderr
+        assert "Traceback" not in res.stderr
+        assert not (out / "results.json").exists()
+        _write(tmp_path, "v1.yaml", GEARS)
+        res = _tmm("batch", "v1.yaml", "--out", "res", wait=1, cwd=tmp_path)
+        assert res.returncode == 3 and "another tmm run or batch" in res.stderr, res.stderr
+        assert not (out / "summary.csv").exists()
+    finally:
+        holder.kill()
+        holder.wait()
+    res = _tmm("run", "g.yaml", "--format", "json", "--out", "res", wait=1, cwd=tmp_path)
+    assert res.returncode == 0, res.stderr
+    assert json.loads((out / "results.json").read_text(encoding="utf-8"))["gears"]["r"][0] == pytest.approx(R1)
+
+
+def test_a_run_waits_for_the_folder(tmp_path):
+    """Within the wait, the second run writes once the first is done."""
+    _write(tmp_path, "g.yaml", GEARS)
+    holder = _holder(tmp_path / "res", 3)
+    try:
+        res = _tmm("run", "g.yaml", "--format", "json", "--out", "res", wait=60, cwd=tmp_path)
+        assert res.returncode == 0, res.stderr
+        released = float(holder.stdout.readline())
+    finally:
+        holder.kill()
+        holder.wait()
+    assert (tmp_path / "res" / "results.json").stat().st_mtime >= released - 0.05     # written after it let go
+
+
+# ---------------------------------------------------------------- item 11
+def test_control_characters_of_student_names_never_written_raw(tmp_path):
+    """NUL bytes (and other control characters) of a student's name in an answers table
+    went raw into summary.csv, check.csv and the HTML pages: replaced now."""
+    d = tmp_path / "tasks"
+    d.mkdir()
+    _write(d, "v1.yaml", GEARS.replace("title: zero-shift pair\n", "title: zero-shift pair\nvariant: 1\n"))
+    (tmp_path / "answers.csv").write_bytes("student,group,variant,gears.aw\n"
+                                           "Ann\x00Lee\x01,MM\x1b[31m-1\x85,1,0.088\n".encode("utf-8"))
+    res = runner.invoke(app, ["batch", str(d), "--answers", str(tmp_path / "answers.csv"),
+                              "--out", str(tmp_path / "out"), "--format", "json,html"])
+    assert res.exit_code in (0, 1), res.output
+    out = tmp_path / "out"
+    pages = [out / "summary.csv", out / "check.csv", out / "summary.html", *out.rglob("feedback-*.html")]
+    assert len(pages) >= 4, sorted(out.rglob("*"))
+    for page in pages:
+        text = page.read_text(encoding="utf-8")
+        assert "Ann" in text, page
+        bad = sorted({f"U+{ord(c):04X}" for c in text if ord(c) < 0x20 and c not in "\t\n\r" or 0x7F <= ord(c) <= 0x9F})
+        assert not bad, (page, bad)

@@ -589,9 +589,17 @@ def _remove_stale(out: Path, old: set[str], new: set[str]) -> list[str]:
 
 
 # ------------------------------------------------------------------ the batch
-def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = frozenset({"json"}), lang: str = "en",
-              answers: Path | None = None, tolerance: Path | None = None, quantities: str | None = None,
-              timeout: float = DEFAULT_TIMEOUT, memory_mb: int | None = DEFAULT_MEMORY_MB) -> int:
+def run_batch(source: str, out: Path, **kwargs) -> int:
+    """:func:`_run_batch` with the output folder locked (tmm_cli.io.folder_lock): two
+    batches (or a batch and a run) into one folder never interleave."""
+    from .io import folder_lock
+    with folder_lock(out):
+        return _run_batch(source, out, **kwargs)
+
+
+def _run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = frozenset({"json"}), lang: str = "en",
+               answers: Path | None = None, tolerance: Path | None = None, quantities: str | None = None,
+               timeout: float = DEFAULT_TIMEOUT, memory_mb: int | None = DEFAULT_MEMORY_MB) -> int:
     from rich.console import Console
 
     from .check import CHECK_FIELDS, load_sources, load_tolerance_file

@@ -23,6 +23,9 @@ from pathlib import Path
 from typing import Callable
 
 MANIFEST = ".tmm-manifest.json"
+# the lock of an output folder (folder_lock): one run (or batch) writes into a folder at a time
+LOCK = ".tmm-lock"
+LOCK_WAIT = 300.0           # seconds a run waits for another to finish writing (TMM_LOCK_WAIT)
 # _mkstemp(path): ".NAME." eight random characters ".tmp" (the names tempfile.mkstemp gives)
 _TMP = re.compile(r"^\.(?P<name>.+)\.[a-z0-9_]{8}\.tmp$")
 _TMP_CHARS = "abcdefghijklmnopqrstuvwxyz0123456789_"
@@ -254,6 +257,51 @@ def _mkstemp(path: Path) -> tuple[int, str]:
         except FileExistsError:
             continue
     raise FileExistsError(f"no unused temporary name for {path}")
+
+
+def lock_wait() -> float:
+    """Seconds to wait for an output folder another run writes into: TMM_LOCK_WAIT, else
+    LOCK_WAIT."""
+    try:
+        v = float(os.environ.get("TMM_LOCK_WAIT", ""))
+    except ValueError:
+        return LOCK_WAIT
+    return v if v >= 0 else LOCK_WAIT
+
+
+@contextmanager
+def folder_lock(folder: str | os.PathLike):
+    """Hold the lock of the output ``folder`` (the file ``.tmm-lock`` in it while held;
+    filelock: an advisory lock of the system, released when the process ends, however it
+    ends) while
+    the block writes into it, so that two runs into one folder never leave one's
+    results.json beside the other's report: the second waits for the first to finish
+    writing, up to :func:`lock_wait` seconds, then fails with an OSError (EBUSY) naming
+    the folder (exit 3, as a folder that cannot be written). A folder where the lock file
+    cannot be made is left to the writes themselves to report (they fail as before)."""
+    import errno
+
+    from filelock import FileLock, Timeout
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    if os.path.islink(folder / LOCK):    # never opened through a link planted in its place
+        raise OSError(errno.ELOOP, "the output folder's lock file is a symbolic link", str(folder / LOCK))
+    wait = lock_wait()
+    lock = FileLock(str(folder / LOCK), timeout=wait)
+    try:
+        lock.acquire()
+    except Timeout:
+        raise OSError(errno.EBUSY, f"another tmm run or batch is writing into this folder (waited {wait:g} s; "
+                                   f"TMM_LOCK_WAIT sets the wait)", str(folder)) from None
+    except OSError:
+        yield                           # cannot even make the lock file: the writes say why
+        return
+    try:
+        yield
+    finally:
+        if os.name == "posix":      # no lock file left in the folder: unlinked while held, so a
+            _discard(lock.lock_file)  # waiter that opened it retries on a new one (filelock >= 4.3)
+        lock.release()
 
 
 def _stamp(path: Path) -> list[int] | None:

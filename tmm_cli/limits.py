@@ -20,10 +20,6 @@ MAX_COMBINING = 30            # combining marks in a row (Unicode's stream-safe 
 MAX_TABLE_BYTES = 16 << 20    # 16 MiB
 MAX_TABLE_ROWS = 10_000       # rows of a table: a course's students or variants, many times over
 
-# tab and newline: allowed in free text (title, student), nowhere else
-FREE_TEXT_CONTROLS = frozenset("\t\n")
-
-
 def bad_character(text: str, free: bool = False) -> str | None:
     """The first character a text field may not hold, as U+XXXX, or None: control
     characters (U+0000-U+001F, but tab and newline in free text; U+007F-U+009F), the
@@ -32,10 +28,23 @@ def bad_character(text: str, free: bool = False) -> str | None:
         return None
     for ch in text:
         o = ord(ch)
-        if (o < 0x20 and not (free and ch in FREE_TEXT_CONTROLS)) or 0x7F <= o <= 0x9F \
-                or o in (0xFFFE, 0xFFFF) or 0xD800 <= o <= 0xDFFF:
+        if _forbidden(o, free):
             return f"U+{o:04X}"
     return None
+
+
+def _forbidden(o: int, free: bool) -> bool:
+    return (o < 0x20 and not (free and o in (9, 10))) or 0x7F <= o <= 0x9F or o in (0xFFFE, 0xFFFF) \
+        or 0xD800 <= o <= 0xDFFF
+
+
+def printable(text: str) -> str:
+    """``text`` with each character :func:`bad_character` refuses (tab, newline and
+    carriage return kept: a CSV quotes them) replaced by U+FFFD: a student's name from a
+    table, written into a CSV or a page, never carries a NUL or a control character raw."""
+    if text.isprintable():
+        return text
+    return "".join("\ufffd" if c != "\r" and _forbidden(ord(c), True) else c for c in text)
 
 
 def combining_run(text: str) -> int:

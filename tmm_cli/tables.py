@@ -30,7 +30,8 @@ _NUMBER = re.compile(r"^[-+]?(\d+([.,]\d*)?|[.,]\d+)([eE][-+]?\d+)?$")
 
 def safe_cell(v):
     """A CSV cell that no spreadsheet evaluates: numbers (and number-like text) as they
-    are, None empty, other text beginning with a formula character prefixed with '."""
+    are, None empty, other text beginning with a formula character prefixed with ';
+    a control character of a text replaced (tmm_cli.limits.printable)."""
     if v is None:
         return ""
     if isinstance(v, bool):
@@ -41,6 +42,9 @@ def safe_cell(v):
         # float's own repr: a numpy float64 (a float) would give np.float64(...) in numpy 2
         return float.__repr__(v) if math.isfinite(v) else ""
     s = str(v)
+    if not s.isprintable():             # no NUL or control character written raw
+        from .limits import printable
+        s = printable(s)
     if s.startswith(FORMULA_START) and not _NUMBER.match(s.strip()):
         return "'" + s
     return s
