@@ -65,7 +65,7 @@ def test_csv_cell_over_the_field_limit_names_the_line(tmp_path):
     assert res.exit_code == 2, res.output
     assert "answers.csv:3: a cell longer than 131072 characters" in res.output, res.output
     assert "internal error" not in res.output and "Traceback" not in res.output
-    tmpl = _write(tmp_path, "t.yaml", GEARS.replace("[14, 30]", "[{z1}, 30]"))
+    tmpl = _write(tmp_path, "t.yaml", GEARS.replace("[14, 30]", '["{z1}", 30]'))
     table = _write(tmp_path, "v.csv", "variant,z1\n1,14\n2," + "9" * 200_000 + "\n")
     res = runner.invoke(app, ["variants", str(tmpl), str(table), "--out", str(tmp_path / "v")])
     assert res.exit_code == 2, res.output
@@ -326,3 +326,23 @@ def test_control_characters_of_student_names_never_written_raw(tmp_path):
         assert "Ann" in text, page
         bad = sorted({f"U+{ord(c):04X}" for c in text if ord(c) < 0x20 and c not in "\t\n\r" or 0x7F <= ord(c) <= 0x9F})
         assert not bad, (page, bad)
+
+
+# ---------------------------------------------------------------- item 13 (file names)
+def test_no_file_or_folder_name_starts_with_a_dash(tmp_path):
+    """`variants` wrote `-1_1.yaml` for the variant `-1 1` (a name a command reads as an
+    option), and a batch made a folder `-2` of the task file `-2.yaml`: neither now."""
+    tmpl = _write(tmp_path, "t.yaml", GEARS.replace("[14, 30]", '["{z1}", 30]'))
+    table = _write(tmp_path, "v.csv", "variant,z1\n-1 1,14\n--x,15\n.-y,16\n7,17\n")
+    res = runner.invoke(app, ["variants", str(tmpl), str(table), "--out", str(tmp_path / "v")])
+    assert res.exit_code == 0, res.output
+    names = sorted(p.name for p in (tmp_path / "v").iterdir())
+    assert len(names) == 5 and "7.yaml" in names and "variants.csv" in names, names
+    assert not [n for n in names if n.startswith(("-", "."))], names
+    d = tmp_path / "tasks"
+    d.mkdir()
+    _write(d, "-2.yaml", GEARS)
+    res = runner.invoke(app, ["batch", str(d), "--out", str(tmp_path / "b")])
+    assert res.exit_code == 0, res.output
+    folders = [p.name for p in (tmp_path / "b").iterdir() if p.is_dir()]
+    assert folders == ["v_-2"], folders

@@ -86,12 +86,13 @@ def find_tasks(source: str) -> tuple[list[tuple[Path, str | None]], list[Path]]:
 
 def folder_names(files: list[Path]) -> list[str]:
     """A unique, safe folder name per task file: its stem with anything but letters,
-    digits, '.', '_' and '-' replaced, no leading dot, never a name of the batch's own
+    digits, '.', '_' and '-' replaced, no leading dot or dash (safepath.safe_stem), never a name of the batch's own
     files; a clash (v1.yaml and v1.yml, a/v2.yaml and b/v2.yaml) gets -2, -3..."""
+    from .safepath import safe_stem
     used: set[str] = set()
     names = []
     for f in files:
-        base = re.sub(r"[^\w.-]", "_", f.stem).lstrip(".") or "task"
+        base = safe_stem(f.stem, "task")
         if base.lower() in RESERVED or base.lower().startswith("summary."):
             base = "v_" + base
         name, k = base, 2
