@@ -79,9 +79,9 @@ def test_answers_table_rows_are_bounded(tmp_path):
     from tmm_cli.limits import MAX_TABLE_ROWS
     task = _write(tmp_path, "g.yaml", GEARS)
     big = _answers_csv(tmp_path, [f"S{i},MM-1,,0.088" for i in range(MAX_TABLE_ROWS + 5)])
-    t0 = time.perf_counter()
+    t0 = time.process_time()                # CPU time: a busy machine's wall time says little
     res = runner.invoke(app, ["check", str(task), "--answers", str(big)])
-    assert time.perf_counter() - t0 < 5
+    assert time.process_time() - t0 < 5
     assert res.exit_code == 2, res.output
     assert str(MAX_TABLE_ROWS) in res.output and str(MAX_TABLE_ROWS + 2) in res.output, res.output
 
@@ -92,9 +92,9 @@ FOURBAR = (ROOT / "tasks" / "crank_rocker_fourbar.yaml").read_text(encoding="utf
 
 def _validate(tmp_path: Path, text: str):
     f = _write(tmp_path, "task.yaml", text)
-    t0 = time.perf_counter()
+    t0 = time.process_time()
     res = runner.invoke(app, ["validate", str(f)])
-    return res, time.perf_counter() - t0
+    return res, time.process_time() - t0
 
 
 @pytest.mark.parametrize("escape,shown,field", [
