@@ -294,14 +294,14 @@ def folder_lock(folder: str | os.PathLike):
         raise OSError(errno.EBUSY, f"another tmm run or batch is writing into this folder (waited {wait:g} s; "
                                    f"TMM_LOCK_WAIT sets the wait)", str(folder)) from None
     except OSError:
-        yield                           # cannot even make the lock file: the writes say why
-        return
+        lock = None                     # cannot even make the lock file: the writes say why
     try:
         yield
     finally:
-        if os.name == "posix":      # no lock file left in the folder: unlinked while held, so a
-            _discard(lock.lock_file)  # waiter that opened it retries on a new one (filelock >= 4.3)
-        lock.release()
+        if lock is not None:
+            if os.name == "posix":      # no lock file left in the folder: unlinked while held, so
+                _discard(lock.lock_file)  # a waiter that opened it retries on a new one (filelock >= 4.3)
+            lock.release()
 
 
 def _stamp(path: Path) -> list[int] | None:
