@@ -159,16 +159,21 @@ def test_text_length_and_combining_marks_are_bounded(tmp_path):
 
 
 def test_positions_count_their_extras(tmp_path):
-    """`positions.extra` bypassed the 3600-position cap (16,000 extras: minutes, gigabytes):
-    count + extras over the limit is exit 2 naming positions.extra."""
-    from tmm_cli.limits import MAX_POSITIONS
-    extras = ", ".join(str(i) for i in range(MAX_POSITIONS - 11))
-    text = FOURBAR.replace("  count: 12\n", f"  count: 12\n  extra: [{extras}]\n")
-    res, dt = _validate(tmp_path, text)
+    """`positions.extra` bypassed the 3600-position cap (16,000 extras: minutes, gigabytes,
+    each extra position with its own figures): count + extras over the limit, or more
+    extra positions than their own limit, is exit 2 naming positions.extra."""
+    from tmm_cli.limits import MAX_EXTRA_POSITIONS, MAX_POSITIONS
+
+    def given(count, n):
+        extras = ", ".join(str(i / 7) for i in range(n))
+        return FOURBAR.replace("  count: 12\n", f"  count: {count}\n  extra: [{extras}]\n")
+    res, _ = _validate(tmp_path, given(MAX_POSITIONS - 10, 11))
     assert res.exit_code == 2, res.output
     assert "field 'positions.extra'" in res.output and f"{MAX_POSITIONS + 1} positions" in res.output, res.output
-    extras = ", ".join(str(i) for i in range(MAX_POSITIONS - 12))
-    res, dt = _validate(tmp_path, FOURBAR.replace("  count: 12\n", f"  count: 12\n  extra: [{extras}]\n"))
+    res, _ = _validate(tmp_path, given(12, MAX_EXTRA_POSITIONS + 1))
+    assert res.exit_code == 2, res.output
+    assert "field 'positions.extra'" in res.output and f"{MAX_EXTRA_POSITIONS + 1} extra positions" in res.output
+    res, _ = _validate(tmp_path, given(12, MAX_EXTRA_POSITIONS))
     assert res.exit_code == 0, res.output
 
 

@@ -473,6 +473,8 @@ ENGLISH = [
     ('input.positions_many', {'n': 3700, 'count': 3600, 'extra': 100, 'limit': 3600},
      '3700 positions (count 3600 + 100 extra): at most 3600'),
     ('input.extra_points_many', {'n': 600, 'limit': 500}, '600 extra points on the links: at most 500'),
+    ('input.extra_positions_many', {'n': 101, 'limit': 100},
+     '101 extra positions: at most 100 (each is drawn on its own; for a finer grid raise `count`)'),
     ('input.forces_many', {'n': 300, 'limit': 200}, '300 forces: at most 200'),
     ('input.ks_positions_empty', {},
      'an empty list computes nothing: list the position numbers or write `all`'),

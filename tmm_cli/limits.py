@@ -11,6 +11,7 @@ import unicodedata
 
 # -- a task
 MAX_POSITIONS = 3600          # positions.count + len(positions.extra): every position is computed and drawn
+MAX_EXTRA_POSITIONS = 100     # positions.extra: each extra position is drawn on its own (its plans)
 MAX_EXTRA_POINTS = 100        # the links' own extra points, all links together (a coupler curve needs a few)
 MAX_FORCES = 200              # loads.forces
 MAX_TEXT = 1000               # characters of any text of a task: title, names, student, a value

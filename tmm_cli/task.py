@@ -15,7 +15,7 @@ from pydantic import (BaseModel, ConfigDict, Field, PrivateAttr, ValidationError
                       field_validator, model_validator)
 
 from .errors import TaskError
-from .limits import MAX_EXTRA_POINTS, MAX_FORCES, MAX_POSITIONS
+from .limits import MAX_EXTRA_POINTS, MAX_EXTRA_POSITIONS, MAX_FORCES, MAX_POSITIONS
 from .messages import Message
 from .modelbase import PLANETARY_ALIASES, PLANETARY_SCHEMES, FieldValueError, _Model
 from .units import (Angle, AngularSpeed, Area, Density, ForceOrPressure, Inertia,
@@ -157,6 +157,9 @@ class PositionsSection(_Model):
     @model_validator(mode="after")
     def _bounded(self):
         """Every position is computed, listed and drawn: the extras count toward the limit."""
+        if len(self.extra) > MAX_EXTRA_POSITIONS:
+            raise FieldValueError(("extra",), Message("input.extra_positions_many", n=len(self.extra),
+                                                      limit=MAX_EXTRA_POSITIONS))
         n = self.count + len(self.extra)
         if n > MAX_POSITIONS:
             raise FieldValueError(("extra",), Message("input.positions_many", n=n, count=self.count,
