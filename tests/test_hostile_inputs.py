@@ -351,3 +351,17 @@ def test_no_file_or_folder_name_starts_with_a_dash(tmp_path):
     assert res.exit_code == 0, res.output
     folders = [p.name for p in (tmp_path / "b").iterdir() if p.is_dir()]
     assert folders == ["v_-2"], folders
+
+
+def test_answers_file_follows_the_rule_for_every_text(tmp_path):
+    """An answers file with a lone surrogate in a path was an internal error
+    (UnicodeEncodeError) of `tmm check`: exit 2 naming the file, line and field."""
+    task = _write(tmp_path, "g.yaml", GEARS)
+    ans = _write(tmp_path, "a.yaml", 'student: {name: "Ann"}\nanswers:\n  "gears.a\\ud800w": 0.088\n'
+                                     '  "gears.\\x01aw": 0.088\n')
+    res = subprocess.run([*TMM, "check", str(task), "--answers", str(ans)], capture_output=True, text=True,
+                         timeout=120, errors="backslashreplace")
+    assert res.returncode == 2, res.stderr
+    assert r"a.yaml:3:3: field 'answers.gears.a\ud800w': the character U+D800" in res.stderr, res.stderr
+    assert r"a.yaml:4:3: field 'answers.gears.\u0001aw': the character U+0001" in res.stderr, res.stderr
+    assert "internal error" not in res.stderr

@@ -203,6 +203,10 @@ def load_answers_file(path: Path, keep_errors: bool = False) -> AnswerSet:
         k = sorted(unknown)[0]
         line, col = _mark(marks, (k,))
         raise TaskError("unknown key", file=str(path), issues=[(k, line, col, Message("answers.unknown_key", key=k))])
+    from .limits import text_issues
+    bad_text = text_issues(data, marks)     # the task file's rule for every text
+    if bad_text:
+        raise TaskError("invalid answers file", file=str(path), issues=bad_text)
     for key in ("answers", "tolerance", "student"):
         raw = data.get(key)
         if raw is not None and not isinstance(raw, dict):
