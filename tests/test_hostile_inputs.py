@@ -289,6 +289,10 @@ def test_two_processes_into_one_folder_do_not_interleave(tmp_path):
         res = _tmm("batch", "v1.yaml", "--out", "res", wait=1, cwd=tmp_path)
         assert res.returncode == 3 and "another tmm run or batch" in res.stderr, res.stderr
         assert not (out / "summary.csv").exists()
+        _write(tmp_path, "c.yaml", GEARS + "answers: {gears.aw: 0.088}\n")
+        res = _tmm("check", "c.yaml", "--out", "res", wait=1, cwd=tmp_path)
+        assert res.returncode == 3 and "another tmm run or batch" in res.stderr, res.stderr
+        assert not (out / "check.csv").exists()
     finally:
         holder.kill()
         holder.wait()
