@@ -86,12 +86,13 @@ def find_tasks(source: str) -> tuple[list[tuple[Path, str | None]], list[Path]]:
 
 def folder_names(files: list[Path]) -> list[str]:
     """A unique, safe folder name per task file: its stem with anything but letters,
-    digits, '.', '_' and '-' replaced, no leading dot, never a name of the batch's own
+    digits, '.', '_' and '-' replaced, no leading dot or dash (safepath.safe_stem), never a name of the batch's own
     files; a clash (v1.yaml and v1.yml, a/v2.yaml and b/v2.yaml) gets -2, -3..."""
+    from .safepath import safe_stem
     used: set[str] = set()
     names = []
     for f in files:
-        base = re.sub(r"[^\w.-]", "_", f.stem).lstrip(".") or "task"
+        base = safe_stem(f.stem, "task")
         if base.lower() in RESERVED or base.lower().startswith("summary."):
             base = "v_" + base
         name, k = base, 2
@@ -589,9 +590,17 @@ def _remove_stale(out: Path, old: set[str], new: set[str]) -> list[str]:
 
 
 # ------------------------------------------------------------------ the batch
-def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = frozenset({"json"}), lang: str = "en",
-              answers: Path | None = None, tolerance: Path | None = None, quantities: str | None = None,
-              timeout: float = DEFAULT_TIMEOUT, memory_mb: int | None = DEFAULT_MEMORY_MB) -> int:
+def run_batch(source: str, out: Path, **kwargs) -> int:
+    """:func:`_run_batch` with the output folder locked (tmm_cli.io.folder_lock): two
+    batches (or a batch and a run) into one folder never interleave."""
+    from .io import folder_lock
+    with folder_lock(out):
+        return _run_batch(source, out, **kwargs)
+
+
+def _run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = frozenset({"json"}), lang: str = "en",
+               answers: Path | None = None, tolerance: Path | None = None, quantities: str | None = None,
+               timeout: float = DEFAULT_TIMEOUT, memory_mb: int | None = DEFAULT_MEMORY_MB) -> int:
     from rich.console import Console
 
     from .check import CHECK_FIELDS, load_sources, load_tolerance_file

@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import Any
 
 from .errors import TaskError
+from .limits import printable
 from .messages import Message, as_message
 from .results import LazyEntries, lookup, parse_path
 
@@ -202,6 +203,10 @@ def load_answers_file(path: Path, keep_errors: bool = False) -> AnswerSet:
         k = sorted(unknown)[0]
         line, col = _mark(marks, (k,))
         raise TaskError("unknown key", file=str(path), issues=[(k, line, col, Message("answers.unknown_key", key=k))])
+    from .limits import text_issues
+    bad_text = text_issues(data, marks)     # the task file's rule for every text
+    if bad_text:
+        raise TaskError("invalid answers file", file=str(path), issues=bad_text)
     for key in ("answers", "tolerance", "student"):
         raw = data.get(key)
         if raw is not None and not isinstance(raw, dict):
@@ -210,7 +215,7 @@ def load_answers_file(path: Path, keep_errors: bool = False) -> AnswerSet:
                             issues=[(key, line, col, Message("answers.not_mapping", got=type(raw).__name__))])
     aset = AnswerSet(source=str(path), stem=path.stem, variant=data.get("variant"))
     st = data.get("student") or {}
-    aset.student, aset.group = str(st.get("name") or ""), str(st.get("group") or "")
+    aset.student, aset.group = printable(str(st.get("name") or "")), printable(str(st.get("group") or ""))
     for k, v in (data.get("answers") or {}).items():
         k = str(k)
         line, col = _mark(marks, ("answers", k))
@@ -271,8 +276,8 @@ def load_answers_csv(path: Path) -> list[AnswerSet]:
     for line, row, bad in rows:
         from .tables import cell_value
         v = cell_value(row.get("variant", ""))
-        aset = AnswerSet(source=f"{path}:{line}", student=row.get("student", "").strip(),
-                         group=row.get("group", "").strip(), variant=None if v == "" else v)
+        aset = AnswerSet(source=f"{path}:{line}", student=printable(row.get("student", "").strip()),
+                         group=printable(row.get("group", "").strip()), variant=None if v == "" else v)
         if bad:
             aset.error = Message("answers.table_row", where=f"{path}:{line}", reason=bad)
         for p in paths:

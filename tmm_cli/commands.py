@@ -279,11 +279,12 @@ def check(
         all_rows.extend(rows)
         code = max(code, set_code(set_status(rows)))
     if out:
-        from .io import atomic_write
+        from .io import atomic_write, folder_lock
         from .results import dump
         try:
-            atomic_write(out / "check.csv", check_csv(all_rows))
-            atomic_write(out / "results.json", lambda write: dump(results, write))
+            with folder_lock(out):          # never interleaved with a run into the same folder
+                atomic_write(out / "check.csv", check_csv(all_rows))
+                atomic_write(out / "results.json", lambda write: dump(results, write))
         except OSError as exc:
             raise _fail_write(exc)
     raise typer.Exit(code)

@@ -113,7 +113,8 @@ def feedback_html(task, s: dict, lang: str = "en") -> str:
     from .forms import notation
     lang = lang if lang in TEXT else "en"
     T = TEXT[lang]
-    e = lambda x: html.escape(str(x), quote=True)  # noqa: E731
+    from .limits import printable
+    e = lambda x: html.escape(printable(str(x)), quote=True)  # noqa: E731  (no control character raw)
     rows = s["rows"]
     n_ok = sum(r["status"] == "ok" for r in rows)
     trs = []

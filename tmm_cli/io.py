@@ -23,6 +23,9 @@ from pathlib import Path
 from typing import Callable
 
 MANIFEST = ".tmm-manifest.json"
+# the lock of an output folder (folder_lock): one run (or batch) writes into a folder at a time
+LOCK = ".tmm-lock"
+LOCK_WAIT = 300.0           # seconds a run waits for another to finish writing (TMM_LOCK_WAIT)
 # _mkstemp(path): ".NAME." eight random characters ".tmp" (the names tempfile.mkstemp gives)
 _TMP = re.compile(r"^\.(?P<name>.+)\.[a-z0-9_]{8}\.tmp$")
 _TMP_CHARS = "abcdefghijklmnopqrstuvwxyz0123456789_"
@@ -256,6 +259,51 @@ def _mkstemp(path: Path) -> tuple[int, str]:
     raise FileExistsError(f"no unused temporary name for {path}")
 
 
+def lock_wait() -> float:
+    """Seconds to wait for an output folder another run writes into: TMM_LOCK_WAIT, else
+    LOCK_WAIT."""
+    try:
+        v = float(os.environ.get("TMM_LOCK_WAIT", ""))
+    except ValueError:
+        return LOCK_WAIT
+    return v if v >= 0 else LOCK_WAIT
+
+
+@contextmanager
+def folder_lock(folder: str | os.PathLike):
+    """Hold the lock of the output ``folder`` (the file ``.tmm-lock`` in it while held;
+    filelock: an advisory lock of the system, released when the process ends, however it
+    ends) while
+    the block writes into it, so that two runs into one folder never leave one's
+    results.json beside the other's report: the second waits for the first to finish
+    writing, up to :func:`lock_wait` seconds, then fails with an OSError (EBUSY) naming
+    the folder (exit 3, as a folder that cannot be written). A folder where the lock file
+    cannot be made is left to the writes themselves to report (they fail as before)."""
+    import errno
+
+    from filelock import FileLock, Timeout
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    if os.path.islink(folder / LOCK):    # never opened through a link planted in its place
+        raise OSError(errno.ELOOP, "the output folder's lock file is a symbolic link", str(folder / LOCK))
+    wait = lock_wait()
+    lock = FileLock(str(folder / LOCK), timeout=wait)
+    try:
+        lock.acquire()
+    except Timeout:
+        raise OSError(errno.EBUSY, f"another tmm run or batch is writing into this folder (waited {wait:g} s; "
+                                   f"TMM_LOCK_WAIT sets the wait)", str(folder)) from None
+    except OSError:
+        lock = None                     # cannot even make the lock file: the writes say why
+    try:
+        yield
+    finally:
+        if lock is not None:
+            if os.name == "posix":      # no lock file left in the folder: unlinked while held, so
+                _discard(lock.lock_file)  # a waiter that opened it retries on a new one (filelock >= 4.3)
+            lock.release()
+
+
 def _stamp(path: Path) -> list[int] | None:
     try:
         st = path.stat()
@@ -294,10 +342,12 @@ class Manifest:
             return {}
         return {k: v for k, v in files.items() if isinstance(k, str)}
 
-    def _relative(self, p: str | os.PathLike) -> str | None:
-        """The path inside the folder, as 'a/b.csv', or None if it lies outside."""
+    def _relative(self, p: str | os.PathLike, *, written: bool = False) -> str | None:
+        """The path inside the folder, as 'a/b.csv', or None if it lies outside. ``p`` is
+        relative to the folder (a manifest's entry) or, ``written``, as the run wrote it:
+        absolute or relative to the working directory (``--out out/task``)."""
         root = os.path.abspath(self.folder)
-        full = os.path.abspath(p if os.path.isabs(p) else os.path.join(root, p))
+        full = os.path.abspath(p if written or os.path.isabs(p) else os.path.join(root, p))
         rel = os.path.relpath(full, root)
         if rel.startswith("..") or os.path.isabs(rel) or rel == ".":
             return None
@@ -308,7 +358,7 @@ class Manifest:
         Returns the removed paths."""
         now: dict[str, list[int] | None] = {}
         for p in written:
-            rel = self._relative(p)
+            rel = self._relative(p, written=True)
             if rel is not None and rel != MANIFEST:
                 now[rel] = _stamp(self.folder / rel)
         removed: list[Path] = []
@@ -325,11 +375,28 @@ class Manifest:
                 continue
             self._prune(f.parent)
         dirs = {self.folder} | {(self.folder / r).parent for r in list(now) + list(self.previous())
-                                if self._relative(r) == r}
-        removed += self.remove_stale_temps(dirs)
+                                if self._relative(r) == r} | set(self._subfolders())
+        temps = self.remove_stale_temps(dirs)
+        for t in temps:
+            self._prune(t.parent)
+        removed += temps
         atomic_write(self.path, json.dumps({"schema": "tmm-manifest/1", "files": now}, indent=1,
                                            sort_keys=True) + "\n")
         return removed
+
+    def _subfolders(self):
+        """The folder's own sub-folders (figures/, sheets/; not a link): a run killed before
+        its first manifest leaves its temporary files there too."""
+        try:
+            entries = list(os.scandir(self.folder))
+        except OSError:
+            return
+        for e in entries:
+            try:
+                if e.is_dir(follow_symlinks=False):
+                    yield Path(e.path)
+            except OSError:
+                continue
 
     def _prune(self, d: Path) -> None:
         """Remove folders (inside ours) emptied by the removal."""

@@ -62,10 +62,17 @@ def write_outputs(task, results: dict, out: Path, formats: set[str], lang: str, 
     PDF where its engine cannot run). ``study``: (study, trapezoid) of
     ``tmm_cli.study.run_study``, shown in the reports and written as study.json and
     study.html (never in results.json)."""
+    from .io import folder_lock
+    with folder_lock(out):              # one run writes into a folder at a time
+        return _write_outputs(task, results, Path(out), formats, lang, notes=notes, study=study)
+
+
+def _write_outputs(task, results: dict, out: Path, formats: set[str], lang: str, *,
+                   notes: list[str] | None, study: tuple[dict, dict] | None) -> list[Path]:
+    """write_outputs, the output folder locked."""
     from .io import Manifest, atomic_write
     from .results import dump
 
-    out = Path(out)
     manifest = Manifest(out)
     rep = set(formats) & {"html", "pdf", "note"}
     if rep or "sheets" in formats:      # they read the entries as lists: made once, for the file too

@@ -306,7 +306,8 @@ def parse_path(path: str) -> list[str | int]:
 def lookup(results: dict, path: str) -> Any:
     """The value at a path into results.json. In lists of position entries
     (kinematics, kinetostatics) `[i]` selects the entry whose `index` is i;
-    elsewhere it is the list index. A path that leads nowhere raises KeyError whose
+    elsewhere it is the list index, counted from 0 (a negative index, Python's count from
+    the end, leads nowhere: ``r[-1]`` is not ``r[1]``). A path that leads nowhere raises KeyError whose
     one argument is the coded reason (a Message: `exc.args[0]`, never `str(exc)`,
     which is its quoted repr)."""
     cur: Any = results
@@ -320,7 +321,7 @@ def lookup(results: dict, path: str) -> Any:
                     raise KeyError(Message("answers.path_no_entry", path=path, index=tok))
                 cur = hit[0]
             else:
-                if not -len(cur) <= tok < len(cur):
+                if not 0 <= tok < len(cur):
                     raise KeyError(Message("answers.path_index_range", path=path, index=tok))
                 cur = cur[tok]
         else:

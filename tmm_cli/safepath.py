@@ -4,6 +4,7 @@ in every error.
 * :func:`inside` refuses to write through a symbolic link to a folder *inside* the output
   folder (``out/figures -> /elsewhere``): following it would overwrite the files of
   whatever it points to. The output folder itself may be a link (the user chose it).
+* :func:`safe_stem` makes a file name of user text (no path, no hidden file, no option).
 * :func:`target_error` turns an OSError met while writing a file (through its temporary
   file) into one that names the file the user asked for, never the temporary file, and
   never nothing (a full disk fails in ``write``, whose error carries no file name).
@@ -13,6 +14,16 @@ from __future__ import annotations
 import errno
 import os
 from pathlib import Path
+
+
+def safe_stem(raw: str, default: str) -> str:
+    """A file or folder name made from user text (a variant, a task file's stem): letters,
+    digits, '.', '_' and '-' kept, anything else '_'; no leading dot (a hidden file) and no
+    leading dash (a name a command reads as an option: `-1_1.yaml`): such a name gets 'v_'
+    before it. ``default`` for nothing left."""
+    import re
+    name = re.sub(r"[^\w.-]", "_", raw).lstrip(".") or default
+    return "v_" + name if name.startswith("-") else name
 
 
 class SymlinkedFolder(OSError):

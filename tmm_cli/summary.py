@@ -289,7 +289,8 @@ def summary_html(rows: list[dict], paths: list[str], source: str, lang: str = "e
     T = dict(I18N.get(lang, I18N["en"]))
     if lang != "en":                     # the status words: the catalogue's, as in the messages
         T.update(catalogue(lang)["terms"].get("status", {}))
-    e = lambda x: html.escape(str(x), quote=True)  # noqa: E731
+    from .limits import printable
+    e = lambda x: html.escape(printable(str(x)), quote=True)  # noqa: E731  (no control character raw)
     head = "".join(f"<th>{e(T[c])}</th>" for c in ("student", "group", "variant", "status", "score"))
     head += "".join(f'<th class="q" title="{e(p)}">{e(_short_path(p, 18))}</th>' for p in paths)
     head += f"<th>{e(T['files'])}</th><th>{e(T['message'])}</th>"

@@ -18,6 +18,7 @@ from __future__ import annotations
 import csv
 import io
 import math
+import os
 import re
 from pathlib import Path
 
@@ -29,7 +30,8 @@ _NUMBER = re.compile(r"^[-+]?(\d+([.,]\d*)?|[.,]\d+)([eE][-+]?\d+)?$")
 
 def safe_cell(v):
     """A CSV cell that no spreadsheet evaluates: numbers (and number-like text) as they
-    are, None empty, other text beginning with a formula character prefixed with '."""
+    are, None empty, other text beginning with a formula character prefixed with ';
+    a control character of a text replaced (tmm_cli.limits.printable)."""
     if v is None:
         return ""
     if isinstance(v, bool):
@@ -40,6 +42,9 @@ def safe_cell(v):
         # float's own repr: a numpy float64 (a float) would give np.float64(...) in numpy 2
         return float.__repr__(v) if math.isfinite(v) else ""
     s = str(v)
+    if not s.isprintable():             # no NUL or control character written raw
+        from .limits import printable
+        s = printable(s)
     if s.startswith(FORMULA_START) and not _NUMBER.match(s.strip()):
         return "'" + s
     return s
@@ -171,12 +176,17 @@ def read_table(path: str | Path) -> tuple[list[str], list[tuple[int, dict[str, s
     """(header, rows): each row its line number in the file (header = line 1), a
     mapping column -> raw text, and the reason it is malformed (more cells than the
     header has columns) or None. Blank lines are skipped."""
+    from .limits import MAX_TABLE_BYTES, MAX_TABLE_ROWS
     from .numbers import header_name
     path = Path(path)
     try:
-        raw = path.read_bytes()
+        with open(path, "rb") as fh:
+            raw = fh.read(MAX_TABLE_BYTES + 1)
+            size = len(raw) if len(raw) <= MAX_TABLE_BYTES else max(len(raw), os.fstat(fh.fileno()).st_size)
     except OSError as exc:
         raise TableError(str(path), None, Message("input.table_unreadable", error=str(exc.strerror or exc))) from None
+    if size > MAX_TABLE_BYTES:
+        raise TableError(str(path), None, Message("input.table_large", size=size, limit=MAX_TABLE_BYTES))
     try:
         text = raw.decode("utf-8-sig")
     except UnicodeDecodeError:
@@ -191,7 +201,16 @@ def read_table(path: str | Path) -> tuple[list[str], list[tuple[int, dict[str, s
     header: list[str] | None = None
     rows: list[tuple[int, dict[str, str], str | None]] = []
     prev = 0
-    for cells in reader:
+    while True:
+        try:
+            cells = next(reader)
+        except StopIteration:
+            break
+        except csv.Error as exc:        # a cell over the csv module's field limit (128 KiB)
+            raise TableError(str(path), prev + 1,
+                             Message("input.table_cell_long", limit=csv.field_size_limit())
+                             if "field limit" in str(exc) else Message("input.table_unreadable", error=str(exc))) \
+                from None
         start, prev = prev + 1, reader.line_num
         if not any(c.strip() for c in cells):
             continue
@@ -200,6 +219,8 @@ def read_table(path: str | Path) -> tuple[list[str], list[tuple[int, dict[str, s
             if start != 1:
                 raise TableError(str(path), start, Message("input.table_header_first"))
             continue
+        if len(rows) == MAX_TABLE_ROWS:
+            raise TableError(str(path), start, Message("input.table_rows_many", limit=MAX_TABLE_ROWS))
         bad = None
         if len(cells) > len(header):
             bad = Message("input.table_malformed_row", cells=len(cells), columns=len(header))

@@ -15,6 +15,7 @@ from pydantic import (AfterValidator, BaseModel, ConfigDict, Field, PrivateAttr,
                       field_validator, model_validator)
 
 from .errors import TaskError
+from .limits import MAX_EXTRA_POINTS, MAX_EXTRA_POSITIONS, MAX_FORCES, MAX_POSITIONS
 from .messages import Message
 from .modelbase import PLANETARY_ALIASES, PLANETARY_SCHEMES, FieldValueError, _Model
 from .units import (Angle, AngularSpeed, Area, Density, ForceOrPressure, Inertia,
@@ -101,6 +102,13 @@ class MechanismSection(_Model):
     def _nonempty(cls, v):
         if not v:
             raise ValueError(Message("input.no_links"))
+        n = 0
+        for name, link in v.items():
+            n += len(link.extra)
+            if n > MAX_EXTRA_POINTS:
+                total = sum(len(k.extra) for k in v.values())
+                raise FieldValueError((name, "extra"), Message("input.extra_points_many", n=total,
+                                                               limit=MAX_EXTRA_POINTS))
         return v
 
 
@@ -140,11 +148,23 @@ class DriveSection(_Model):
 
 
 class PositionsSection(_Model):
-    count: int = Field(12, ge=2, le=3600)
+    count: int = Field(12, ge=2, le=MAX_POSITIONS)
     zero: Union[Literal["extreme"], Angle] = "extreme"
     output: str | None = None
     working: Literal["forward", "backward"] = "forward"
     extra: list[Angle] = Field(default_factory=list)
+
+    @model_validator(mode="after")
+    def _bounded(self):
+        """Every position is computed, listed and drawn: the extras count toward the limit."""
+        if len(self.extra) > MAX_EXTRA_POSITIONS:
+            raise FieldValueError(("extra",), Message("input.extra_positions_many", n=len(self.extra),
+                                                      limit=MAX_EXTRA_POSITIONS))
+        n = self.count + len(self.extra)
+        if n > MAX_POSITIONS:
+            raise FieldValueError(("extra",), Message("input.positions_many", n=n, count=self.count,
+                                                      extra=len(self.extra), limit=MAX_POSITIONS))
+        return self
 
 
 # ---------------------------------------------------------------- loads
@@ -201,6 +221,13 @@ class LoadsSection(_Model):
     gravity: bool = False
     forces: list[ForceSpec] = Field(default_factory=list)
 
+    @field_validator("forces")
+    @classmethod
+    def _bounded(cls, v):
+        if len(v) > MAX_FORCES:
+            raise ValueError(Message("input.forces_many", n=len(v), limit=MAX_FORCES))
+        return v
+
 
 class FrictionSpec(_Model):
     pin_radius: Length = Field(..., gt=0)
@@ -229,6 +256,16 @@ class KinetostaticsSection(_Model):
     balance: str | None = None
     friction: FrictionSpec | None = None
     motion: Union[Literal["constant"], Literal[True]] = "constant"
+
+    @field_validator("positions")
+    @classmethod
+    def _positions(cls, v):
+        """An empty list computes nothing (refused); a position listed twice is computed once."""
+        if isinstance(v, list):
+            if not v:
+                raise ValueError(Message("input.ks_positions_empty"))
+            v = list(dict.fromkeys(v))
+        return v
 
 
 # ---------------------------------------------------------------- report
@@ -832,6 +869,10 @@ def load_task(source: Union[str, Path, dict], *, text: str | None = None) -> Tas
     if not isinstance(data, dict):
         msg = Message("input.not_mapping")
         raise TaskError(msg, file=file, issues=[("", 1, 1, msg)])
+    from .limits import text_issues
+    bad_text = text_issues(data, marks)     # one rule for every text of the task, before the schema
+    if bad_text:
+        raise TaskError("invalid task", file=file, issues=bad_text)
     try:
         from .schemacache import validator
         task = validator(Task).validate_python(data)

@@ -79,7 +79,8 @@ def _dotted(path: tuple) -> str:
 
 
 def file_stem(raw: str) -> str:
-    return re.sub(r"[^\w.-]", "_", raw.strip()).lstrip(".") or "variant"
+    from .safepath import safe_stem
+    return safe_stem(raw.strip(), "variant")
 
 
 def make_variants(template: Path, table: Path, out: Path) -> tuple[int, list[dict], list[str]]:

@@ -253,11 +253,16 @@ def build_mechanism(task: Task) -> Mechanism:
     for pt in sec.assembly:
         if pt not in owner:
             raise task.error(P + ("assembly", pt), Message("input.assembly_point", point=pt))
-    # S<i> names must not collide with user point names carried by other links
+    # S<i>, the centre of mass of link i, is no user point's name: not another link's, nor
+    # the link's own (its extra point S2 would vanish, the centre of mass reported in its place)
     for lk in links:
         s = f"S{lk.index}"
-        if s in owner and owner[s] != [lk.index]:
-            raise task.error(P + ("links", lk.name), Message("input.reserved_point", point=s, index=lk.index))
+        if s in owner:
+            where = next((P + ("links", sec_name, "extra", s) for sec_name, spec in sec.links.items()
+                          if s in spec.extra), None)
+            if where is None:
+                where = P + (("ground", s) if s in sec.ground else ("links", lk.name))
+            raise task.error(where, Message("input.reserved_point", point=s, index=lk.index))
     _check_references(task, names, owner, links)
     return Mechanism(ground={k: (float(v[0]), float(v[1])) for k, v in sec.ground.items()},
                      links=links, joints=joints, drive=drive, owner=owner,

@@ -294,7 +294,11 @@ class _Segments:
         self.L2 = np.maximum(self.dx * self.dx + self.dy * self.dy, 1e-300)
 
     def dists(self, cx, cy):
-        """Distance from each point (cx[i], cy[i]) to the nearest segment."""
+        """Distance from each point (cx[i], cy[i]) to the nearest segment; the points a
+        block at a time (:func:`_by_blocks`: the same numbers in bounded memory)."""
+        return _by_blocks(self._dists, cx, cy, len(self.L2))
+
+    def _dists(self, cx, cy):
         rx = cx - self.ax                          # (segments, points)
         ry = cy - self.ay
         t = rx * self.dx
@@ -318,8 +322,30 @@ def segment_set(segments):
     return _Segments(np.asarray(segments, float).reshape(-1, 2, 2)) if len(segments) else None
 
 
+# elements of one (segments or points, candidates) temporary of the label placement: 2**20
+# (8 MB): the candidates a block at a time beyond it, so that many labels and many lines
+# (a hundred extra points) need memory in proportion to their number, not its square
+_BLOCK = 1 << 20
+
+
+def _by_blocks(f, cx, cy, k: int):
+    """``f(cx, cy)`` (a value per point, from a (k, points) temporary) for the points a
+    block at a time, each block's temporary at most _BLOCK elements: every column is
+    computed on its own (elementwise operations and a minimum down the column), so the
+    values are those of one call."""
+    n = len(cx)
+    if k * n <= _BLOCK or n < 2:
+        return f(cx, cy)
+    step = max(1, _BLOCK // max(k, 1))
+    return np.concatenate([f(cx[i:i + step], cy[i:i + step]) for i in range(0, n, step)])
+
+
 def _point_dists(cx, cy, px, py):
     """Distance from each point (cx[i], cy[i]) to the nearest of the points (px, py)."""
+    return _by_blocks(lambda x, y: _point_dists_block(x, y, px, py), cx, cy, len(px))
+
+
+def _point_dists_block(cx, cy, px, py):
     dx = cx - px[:, None]                          # (points, candidates)
     dy = cy - py[:, None]
     dx *= dx
