@@ -242,6 +242,9 @@ ENGLISH = [
      "unknown key 'anwsers'; an answers file holds `answers`, `tolerance`, `student` and `variant`"),
     ('answers.invalid', {'reason': {'code': 'input.number_not_number', 'params': {'text': 'abc'}, 'text': 'x'}},
      "invalid answer: 'abc' is not a number"),
+    ('answers.tolerance_ignored', {'where': 's.yaml:3'},
+     "s.yaml:3: the answers file's `tolerance` is ignored: answers are graded with the task's tolerances and "
+     "--tolerance FILE"),
     ('answers.invalid_cell', {'where': 'a.csv:3', 'column': 'flywheel.J',
                               'reason': {'code': 'answers.not_finite', 'params': {'value': "'inf'"}, 'text': 'x'}},
      "a.csv:3: column 'flywheel.J': invalid answer: not a finite number: 'inf'"),

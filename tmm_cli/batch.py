@@ -31,7 +31,7 @@ from .check import STATUSES, AnswerSet, set_code
 from .messages import Message
 
 SUMMARY_FIELDS = ["student", "group", "variant", "file", "status", "score", "answers", "ok", "outside", "sign",
-                  "missing", "unknown_path", "not_computed", "message"]
+                  "missing", "unknown_path", "not_computed", "message", "invalid"]
 RESERVED = {"summary.csv", "summary.html", "check.csv", "feedback", ".tmm-batch.json"}
 MANIFEST = ".tmm-batch.json"
 DEFAULT_TIMEOUT = 120.0
@@ -702,7 +702,8 @@ def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = froz
     removed = _remove_stale(out, old_files, written)
     atomic_write(out / MANIFEST, json.dumps({"files": sorted(written)}, indent=1) + "\n")
     from .summary import print_batch
-    notes = dict.fromkeys(n for o in outcomes.values() for n in o.get("notes", ()))   # each once, in order
+    notes = dict.fromkeys([n for s in sets or [] for n in s.notes]       # each once, in order
+                          + [n for o in outcomes.values() for n in o.get("notes", ())])
     print_batch(rows, out, skipped, removed, notes=list(notes))
     return max((r["code"] for r in rows), default=0)
 

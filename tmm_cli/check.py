@@ -3,7 +3,9 @@
 Answers come from a task's own `answers` section, one answers file (YAML), a folder of
 them, or one CSV with a row per student. Values may carry units. Each answer gets a
 status: ok, sign (right magnitude, wrong sign), outside, missing, unknown_path (with
-"did you mean") or not_computed; an answer set gets no_answers, ok or its worst status.
+"did you mean"), not_computed, or invalid (a value that is not a number: the reason in
+`note`, the student's other answers graded as usual); an answer set gets no_answers, ok
+or its worst status (an invalid answer counts as one outside: a wrong answer).
 """
 from __future__ import annotations
 
@@ -25,7 +27,7 @@ ANGLE_KEYS = {"phi", "phi0", "extreme", "angle", "working_stroke_angle", "alpha_
 # top-level result sections: a path into one the task did not compute is not_computed
 SECTIONS = {"structure", "positions", "kinematics", "kinematics_curve", "kinetostatics", "kinetostatics_info",
             "singular", "flywheel", "cam", "gears", "planetary", "drive_train", "synthesis", "dof2"}
-STATUSES = ("ok", "outside", "sign", "missing", "unknown_path", "not_computed")
+STATUSES = ("ok", "outside", "sign", "missing", "unknown_path", "not_computed", "invalid")
 SET_ORDER = ("outside", "sign", "missing", "unknown_path", "not_computed")
 CHECK_FIELDS = ["student", "group", "variant", "path", "answer", "reference", "error", "tolerance", "status",
                 "note"]
@@ -94,8 +96,9 @@ class AnswerSet:
     group: str = ""
     variant: Any = None
     stem: str | None = None
-    tolerance: dict | None = None
     error: str | None = None                      # an invalid answers file / row
+    invalid: dict[str, tuple[str, Any]] = field(default_factory=dict)   # path -> (as written, the note: why)
+    notes: list = field(default_factory=list)     # warnings on reading the file (each a Message)
 
     def matches(self, task) -> bool:
         tv = task.variant
@@ -182,10 +185,12 @@ def _mark(marks, key, default=(None, None)):
 
 
 def load_answers_file(path: Path, keep_errors: bool = False) -> AnswerSet:
-    """One student's answers file (YAML): `answers`, optional `student`, `variant`,
-    `tolerance`. Raises TaskError naming the file, line and field; with ``keep_errors``
-    an invalid answer or path is kept as the set's error (the set still names its
-    student and variant)."""
+    """One student's answers file (YAML): `answers`, optional `student`, `variant`
+    (a `tolerance` is ignored, with a note in ``notes``). An answer that is not a number
+    is that answer's `invalid` (``invalid``: as written, why). Raises TaskError naming
+    the file, line and field for a file that is not an answers file or a malformed path;
+    with ``keep_errors`` a malformed path is kept as the set's error (the set still names
+    its student and variant)."""
     from .yamlload import load_yaml
     path = Path(path)
     if not path.is_file():
@@ -202,7 +207,7 @@ def load_answers_file(path: Path, keep_errors: bool = False) -> AnswerSet:
         k = sorted(unknown)[0]
         line, col = _mark(marks, (k,))
         raise TaskError("unknown key", file=str(path), issues=[(k, line, col, Message("answers.unknown_key", key=k))])
-    for key in ("answers", "tolerance", "student"):
+    for key in ("answers", "student"):
         raw = data.get(key)
         if raw is not None and not isinstance(raw, dict):
             line, col = _mark(marks, (key,))
@@ -214,25 +219,22 @@ def load_answers_file(path: Path, keep_errors: bool = False) -> AnswerSet:
     for k, v in (data.get("answers") or {}).items():
         k = str(k)
         line, col = _mark(marks, ("answers", k))
-        err = None
         try:
             parse_path(k)
-            aset.answers[k] = answer_value(v, k)
         except KeyError as exc:
-            err = TaskError("invalid answers file", file=str(path),
-                            issues=[(f"answers.{k}", line, col, _coded(exc))])
-        except ValueError as exc:
-            err = TaskError("invalid answer", file=str(path),
-                            issues=[(f"answers.{k}", line, col, Message("answers.invalid", reason=_coded(exc)))])
-        if err is not None:
+            err = TaskError("invalid answers file", file=str(path), issues=[(f"answers.{k}", line, col, _coded(exc))])
             if not keep_errors:
-                raise err
+                raise err from None
             aset.error = aset.error or err.coded() or err.render()
-    if data.get("tolerance") is not None:
-        aset.tolerance = {}
-        for k, v in data["tolerance"].items():
-            line, col = _mark(marks, ("tolerance", k))
-            aset.tolerance[str(k)] = parse_tolerance(v, f"tolerance.{k}", line, col, str(path))
+            continue
+        try:
+            aset.answers[k] = answer_value(v, k)
+        except ValueError as exc:       # this answer only: the others are graded as usual
+            aset.answers[k] = None
+            aset.invalid[k] = ("" if v is None else str(v), Message("answers.invalid", reason=_coded(exc)))
+    if data.get("tolerance") is not None:    # the instructor's tolerances only: the student's is ignored
+        line, _ = _mark(marks, ("tolerance",))
+        aset.notes.append(Message("answers.tolerance_ignored", where=f"{path}:{line}" if line else str(path)))
     return aset
 
 
@@ -278,9 +280,10 @@ def load_answers_csv(path: Path) -> list[AnswerSet]:
         for p in paths:
             try:
                 aset.answers[p] = answer_value(row.get(p, ""), p)
-            except ValueError as exc:
-                aset.error = aset.error or Message("answers.invalid_cell", where=f"{path}:{line}", column=p,
-                                                   reason=_coded(exc))
+            except ValueError as exc:       # this cell only: the row's other answers are graded as usual
+                aset.answers[p] = None
+                aset.invalid[p] = (row.get(p, ""), Message("answers.invalid_cell", where=f"{path}:{line}", column=p,
+                                                           reason=_coded(exc)))
         sets.append(aset)
     return sets
 
@@ -329,17 +332,15 @@ def load_tolerance_file(path: Path) -> dict:
     return out
 
 
-def tolerances(task, override: dict | None = None, student: dict | None = None,
-               results: dict | None = None) -> dict:
-    """The task's `tolerance`, then --tolerance FILE per key, then (check with one FILE)
-    the student's file. A key whose tolerance is ``graphical`` (``default`` or a path or
+def tolerances(task, override: dict | None = None, results: dict | None = None) -> dict:
+    """The task's `tolerance`, then --tolerance FILE per key (never a student's file's:
+    the instructor's tolerances only). A key whose tolerance is ``graphical`` (``default`` or a path or
     prefix) gives every path under it that a student reads off a drawing the relative
     error of reading it to 0.5 mm at the report's scales (the 12-position integration for
     the flywheel: `tmm_cli.graphical.graphical_tolerance`); its other paths keep the
     default."""
     raw = {str(k): v for k, v in (task.tolerance or {}).items()}
     raw.update(override or {})
-    raw.update(student or {})
     tol = {k: parse_tolerance(v, f"tolerance.{k}") for k, v in raw.items() if v != GRAPHICAL}
     hand = [k for k, v in raw.items() if v == GRAPHICAL]
     if hand:
@@ -441,6 +442,10 @@ def grade(results: dict, aset: AnswerSet, tol: dict, required: list[str] | None 
             row["note"] = Message("answers.note_not_number", kind=type(ref).__name__, hint=did_you_mean(p, results, leaves))
             continue
         row["reference"] = float(ref)
+        if p in aset.invalid:
+            row["answer"], row["status"] = aset.invalid[p][0], "invalid"
+            row["note"] = aset.invalid[p][1]
+            continue
         if val is None:
             row["status"], row["note"] = "missing", "no value given"
             continue
@@ -454,9 +459,9 @@ def grade(results: dict, aset: AnswerSet, tol: dict, required: list[str] | None 
 
 
 def set_status(rows: list[dict]) -> str:
-    if not rows or all(r["answer"] is None for r in rows):
+    if not rows or all(r["answer"] is None and r["status"] != "invalid" for r in rows):
         return "no_answers"
-    present = {r["status"] for r in rows}
+    present = {"outside" if r["status"] == "invalid" else r["status"] for r in rows}
     if present <= {"ok"}:
         return "ok"
     for s in SET_ORDER:

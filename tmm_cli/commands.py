@@ -248,12 +248,12 @@ def check(
             if not single:
                 sets = [a for a in sets if a.matches(task)]
         for a in sets:
-            if a.error:
-                raise TaskError(a.error)
             if single and a.variant not in (None, "") and task.variant is not None and not a.matches(task):
                 # graded all the same (one FILE is taken as given), but a form of another variant
                 # grades every answer outside: say why
                 _err(f"warning: {answers} holds answers for variant {a.variant}; the task is variant {task.variant}")
+            for n in a.notes:
+                _err(f"warning: {n}")
     except TaskError as exc:
         raise _fail_task(exc)
     try:
@@ -273,8 +273,13 @@ def check(
     if not sets:
         _err(f"no answers for variant {task.variant if task.variant is not None else task.name} in {answers}")
     code, all_rows = (EXIT_ANSWERS if not sets else EXIT_OK), []
+    tol = tolerances(task, tol_override, results)
     for a in sets:
-        rows = grade(results, a, tolerances(task, tol_override, a.tolerance if single else None, results), required)
+        if a.error:          # one malformed row or file of a class: named, the others graded
+            _err(f"error: {a.error}")
+            code = max(code, EXIT_INVALID)
+            continue
+        rows = grade(results, a, tol, required)
         print_check(rows, a.source)
         all_rows.extend(rows)
         code = max(code, set_code(set_status(rows)))

@@ -50,17 +50,19 @@ TEXT = {
            "quantity": "quantity", "value": "your value", "reference": "reference", "error": "error",
            "verdict": "verdict", "step": "where to look", "score": "Score", "depends": "depends on",
            "ok": "correct", "outside": "outside tolerance", "sign": "sign error", "missing": "missing",
-           "unknown_path": "unknown quantity", "not_computed": "not computed"},
+           "unknown_path": "unknown quantity", "not_computed": "not computed", "invalid": "not a number"},
     "ru": {"title": "Разбор ответов", "student": "Студент", "group": "Группа", "variant": "Вариант",
            "task": "Задание", "quantity": "величина", "value": "ваш ответ", "reference": "эталон",
            "error": "ошибка", "verdict": "оценка", "step": "что проверить", "score": "Балл",
            "depends": "зависит от", "ok": "верно", "outside": "вне допуска", "sign": "ошибка знака",
-           "missing": "нет ответа", "unknown_path": "неизвестная величина", "not_computed": "не вычислено"},
+           "missing": "нет ответа", "unknown_path": "неизвестная величина", "not_computed": "не вычислено",
+           "invalid": "не число"},
     "uk": {"title": "Розбір відповідей", "student": "Студент", "group": "Група", "variant": "Варіант",
            "task": "Завдання", "quantity": "величина", "value": "ваша відповідь", "reference": "еталон",
            "error": "похибка", "verdict": "оцінка", "step": "що перевірити", "score": "Бал",
            "depends": "залежить від", "ok": "правильно", "outside": "поза допуском", "sign": "помилка знака",
-           "missing": "немає відповіді", "unknown_path": "невідома величина", "not_computed": "не обчислено"},
+           "missing": "немає відповіді", "unknown_path": "невідома величина", "not_computed": "не обчислено",
+           "invalid": "не число"},
 }
 
 # section -> (step uk, depends on uk)
@@ -124,10 +126,11 @@ def feedback_html(task, s: dict, lang: str = "en") -> str:
             err = (_num(r["error"]) if "abs" in r["tolerance"] or r["note"] == "absolute error"
                    else f"{100 * r['error']:.2f} %")
         note = r["note"]
-        if st == "unknown_path" and hasattr(note, "to_dict"):        # coded: in the page's language
+        if st in ("unknown_path", "invalid") and hasattr(note, "to_dict"):        # coded: in the page's language
             from .messages import localize
             note = localize(note.to_dict(), lang)
-        step = step_for(r["path"], lang) if st in ("outside", "sign") else (note if st == "unknown_path" else "")
+        step = step_for(r["path"], lang) if st in ("outside", "sign") else (note if st in ("unknown_path", "invalid")
+                                                                            else "")
         colour = {"ok": "#c8e6c9", "outside": "#ffcdd2", "sign": "#e1bee7", "missing": "#fff9c4"}.get(st, "#eee")
         trs.append(f"<tr><td><code>{e(r['path'])}</code><br><small>{e(notation(r['path'], lang, local_units=True))}</small></td>"
                    f"<td>{e(_num(r['answer']))}</td><td>{e(_num(r['reference']))}</td><td>{e(err)}</td>"

@@ -214,7 +214,7 @@ def print_check(rows: list[dict], source) -> None:
         absolute = r["note"] == "absolute error" or "abs" in r["tolerance"] or zero_ref
         err = "-" if r["error"] is None else (_f(r["error"], 3) if absolute else f"{100 * r['error']:.2f} %")
         style = STATUS_STYLE.get(st, "white")
-        if r["note"] and st in ("unknown_path", "sign"):
+        if r["note"] and st in ("unknown_path", "sign", "invalid"):
             notes.append(r["note"] if r["note"].startswith(r["path"]) else f"{r['path']}: {r['note']}")
         t.add_row(_short_path(r["path"], 26), _f(r["answer"]), _f(r["reference"]), err,
                   _tol_shown(r["tolerance"], zero_ref or r["note"] == "absolute error"),

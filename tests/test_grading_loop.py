@@ -1,0 +1,114 @@
+"""The instructor's loop, graded answer by answer: an unreadable answer is that answer's
+`invalid`, a student's own tolerance is ignored, and every grade here is checked against
+a recomputation written in this file (involute gear geometry from the textbook formulas)."""
+from __future__ import annotations
+
+import csv
+import math
+from pathlib import Path
+
+from typer.testing import CliRunner
+
+from test_instructor import _write
+from tmm_cli.cli import app
+
+runner = CliRunner()
+
+GEARS = """schema: tmm/1
+title: gears
+variant: {v}
+gears: {{m: 4 mm, z: [{z1}, {z2}], x: [0.3, 0.1]}}
+"""
+
+
+def _csv(path: Path) -> list[dict]:
+    """Rows of a CSV as tmm writes it (a BOM read away, `;` or `,`, decimal commas kept as text)."""
+    with open(path, encoding="utf-8-sig", newline="") as fh:
+        text = fh.read()
+    return list(csv.DictReader(text.splitlines(), delimiter=";" if text.split("\n")[0].count(";") else ","))
+
+
+def gear_key(z1: int, z2: int, x1: float = 0.3, x2: float = 0.1, m: float = 0.004) -> dict[str, float]:
+    """alpha_w (deg) from inv alpha_w = inv 20 + 2 (x1 + x2) tan 20 / (z1 + z2) (Newton),
+    aw = m (z1 + z2) / 2 cos 20 / cos alpha_w (m)."""
+    a = math.radians(20.0)
+    target = math.tan(a) - a + 2 * (x1 + x2) * math.tan(a) / (z1 + z2)
+    w = a
+    for _ in range(60):
+        w -= (math.tan(w) - w - target) / math.tan(w) ** 2
+    return {"gears.alpha_w": math.degrees(w), "gears.aw": m * (z1 + z2) / 2 * math.cos(a) / math.cos(w)}
+
+
+def expect(value: float, ref: float, rel: float = 0.05) -> str:
+    """ok within rel |ref|, sign when -value is, else outside."""
+    if abs(value - ref) <= rel * abs(ref):
+        return "ok"
+    return "sign" if abs(-value - ref) <= rel * abs(ref) else "outside"
+
+
+def test_one_unreadable_answer_leaves_the_others_graded(tmp_path):
+    key = gear_key(14, 30)
+    t = _write(tmp_path, "g.yaml", GEARS.format(v=4, z1=14, z2=30))
+    aw, alpha = key["gears.aw"] * 1.03, key["gears.alpha_w"] * 0.9
+    f = _write(tmp_path, "s.yaml", "variant: 4\nstudent: {name: Ivanov}\nanswers:\n"
+                                   f"  gears.aw: {aw}\n  gears.alpha_w: {alpha}\n  gears.y: около 0,6\n")
+    res = runner.invoke(app, ["check", str(t), "--answers", str(f), "--out", str(tmp_path / "c")])
+    assert res.exit_code == 1, res.output
+    rows = {r["path"]: r for r in _csv(tmp_path / "c" / "check.csv")}
+    assert rows["gears.aw"]["status"] == expect(aw, key["gears.aw"]) == "ok"
+    assert rows["gears.alpha_w"]["status"] == expect(alpha, key["gears.alpha_w"]) == "outside"
+    assert rows["gears.y"]["status"] == "invalid" and rows["gears.y"]["answer"] == "около 0,6"
+    assert rows["gears.y"]["note"] == "invalid answer: not a number: 'около 0,6'"
+
+
+def test_a_class_csv_with_one_bad_cell_grades_everyone(tmp_path):
+    """`check` with a class CSV: one unreadable cell is that cell's `invalid`; the row's
+    other answers and the other students are graded (exit 1, not 2)."""
+    key = gear_key(14, 30)
+    t = _write(tmp_path, "g.yaml", GEARS.format(v=4, z1=14, z2=30))
+    vals = {"A": (key["gears.aw"], key["gears.alpha_w"] * 1.04), "B": ("216 kg m2", -key["gears.alpha_w"]),
+            "C": (key["gears.aw"] * 1.2, key["gears.alpha_w"])}
+    tab = _write(tmp_path, "class.csv", "student,group,variant,gears.aw,gears.alpha_w\n"
+                 + "".join(f"{s},G,4,{a},{b}\n" for s, (a, b) in vals.items()))
+    res = runner.invoke(app, ["check", str(t), "--answers", str(tab), "--out", str(tmp_path / "c")])
+    assert res.exit_code == 1, res.output
+    got = {(r["student"], r["path"]): r["status"] for r in _csv(tmp_path / "c" / "check.csv")}
+    for s, (a, b) in vals.items():
+        want_a = "invalid" if isinstance(a, str) else expect(a, key["gears.aw"])
+        assert got[(s, "gears.aw")] == want_a
+        assert got[(s, "gears.alpha_w")] == expect(b, key["gears.alpha_w"])
+    assert got[("B", "gears.alpha_w")] == "sign" and got[("C", "gears.aw")] == "outside"
+
+
+def test_batch_grades_around_an_unreadable_answer_and_writes_the_feedback(tmp_path):
+    src, ans = tmp_path / "src", tmp_path / "ans"
+    key = gear_key(14, 30)
+    _write(src, "v4.yaml", GEARS.format(v=4, z1=14, z2=30))
+    _write(ans, "ivanov.yaml", "variant: 4\nstudent: {name: Ivanov}\nanswers:\n"
+                               f"  gears.aw: \"{key['gears.aw'] * 1000:.3f} mm\"\n  gears.alpha_w: около 22,5\n")
+    res = runner.invoke(app, ["batch", str(src), "--answers", str(ans), "--out", str(tmp_path / "o"),
+                              "--format", "json,html"])
+    assert res.exit_code == 1, res.output
+    row = _csv(tmp_path / "o" / "summary.csv")[0]
+    assert row["gears.aw"] == expect(round(key["gears.aw"] * 1000, 3) / 1000, key["gears.aw"]) == "ok"
+    assert row["gears.alpha_w"] == "invalid" and row["invalid"] == "1"
+    assert row["status"] == "outside" and float(row["score"]) == 0.5
+    assert list((tmp_path / "o" / "v4").glob("feedback-*.html"))
+
+
+def test_a_students_tolerance_is_ignored_with_a_warning(tmp_path):
+    """A `tolerance:` in a student's file must not let 30 % off pass: check and batch."""
+    key = gear_key(14, 30)
+    t = _write(tmp_path, "src" / Path("v4.yaml"), GEARS.format(v=4, z1=14, z2=30))
+    aw = key["gears.aw"] * 1.3
+    f = _write(tmp_path / "ans", "s.yaml", "variant: 4\nstudent: {name: Ivanov}\ntolerance: {default: 0.5}\n"
+                                           f"answers:\n  gears.aw: {aw}\n")
+    res = runner.invoke(app, ["check", str(t), "--answers", str(f), "--out", str(tmp_path / "c")])
+    assert res.exit_code == 1, res.output
+    assert "the answers file's `tolerance` is ignored" in res.output
+    r = _csv(tmp_path / "c" / "check.csv")[0]
+    assert r["status"] == expect(aw, key["gears.aw"]) == "outside" and r["tolerance"] == "0.05"
+    res = runner.invoke(app, ["batch", str(tmp_path / "src"), "--answers", str(tmp_path / "ans"),
+                              "--out", str(tmp_path / "o")])
+    assert res.exit_code == 1 and "the answers file's `tolerance` is ignored" in " ".join(res.output.split())
+    assert _csv(tmp_path / "o" / "summary.csv")[0]["gears.aw"] == "outside"
