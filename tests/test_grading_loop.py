@@ -112,3 +112,59 @@ def test_a_students_tolerance_is_ignored_with_a_warning(tmp_path):
                               "--out", str(tmp_path / "o")])
     assert res.exit_code == 1 and "the answers file's `tolerance` is ignored" in " ".join(res.output.split())
     assert _csv(tmp_path / "o" / "summary.csv")[0]["gears.aw"] == "outside"
+
+
+def test_sign_any_grades_the_magnitude(tmp_path):
+    """`sign: any` in the task's tolerance: |ω| passes; without it a negated answer is `sign`."""
+    from tmm_cli.check import Tol, compare, parse_tolerance
+    t = parse_tolerance({"rel": 0.05, "sign": "any"}, "kinematics")
+    assert t == Tol(0.05, 0.0, False, True) and t.text == "rel 0.05 sign any"
+    for ref, ans in ((-12.5, 12.6), (-12.5, -12.4), (12.5, -12.0), (12.5, 14.0), (-3.0, 0.0)):
+        want = "ok" if abs(abs(ans) - abs(ref)) <= 0.05 * abs(ref) else "outside"
+        assert compare(ans, ref, t, False)[0] == want
+        plain = "ok" if abs(ans - ref) <= 0.05 * abs(ref) else ("sign" if abs(ans + ref) <= 0.05 * abs(ref)
+                                                                  else "outside")
+        assert compare(ans, ref, Tol(0.05, 0.0, False), False)[0] == plain
+    key = gear_key(14, 30)
+    task = GEARS.format(v=4, z1=14, z2=30) + 'tolerance: {"gears.alpha_w": {rel: 0.02, sign: any}}\n'
+    f = _write(tmp_path, "g.yaml", task)
+    a = _write(tmp_path, "a.yaml", f"answers:\n  gears.alpha_w: {-key['gears.alpha_w'] * 1.01}\n"
+                                   f"  gears.aw: {-key['gears.aw']}\n")
+    res = runner.invoke(app, ["check", str(f), "--answers", str(a), "--out", str(tmp_path / "c")])
+    assert res.exit_code == 1, res.output
+    rows = {r["path"]: r for r in _csv(tmp_path / "c" / "check.csv")}
+    assert rows["gears.alpha_w"]["status"] == "ok" and rows["gears.alpha_w"]["tolerance"] == "rel 0.02 sign any"
+    assert rows["gears.aw"]["status"] == expect(-key["gears.aw"], key["gears.aw"]) == "sign"
+    bad = _write(tmp_path, "b.yaml", GEARS.format(v=4, z1=14, z2=30) + "tolerance: {default: {sign: plus}}\n")
+    res = runner.invoke(app, ["check", str(bad), "--answers", str(a)])
+    assert res.exit_code == 2 and "Traceback" not in res.output
+
+
+def test_forms_state_the_sign_conventions_and_the_filled_form_csv_reads_back(tmp_path):
+    """The form's comments and form.csv's notes row say which sense is positive; the notes
+    row is never read as a student's answers."""
+    lever = Path(__file__).resolve().parent.parent / "tasks" / "crank_rocker_fourbar.yaml"
+    out = tmp_path / "forms"
+    res = runner.invoke(app, ["form", str(lever), "-q", "kinematics[1].links.coupler.omega,kinematics[1].points.B.v",
+                              "--out", str(out), "--lang", "uk"])
+    assert res.exit_code == 0, res.output
+    form = (out / "crank_rocker_fourbar.form.yaml").read_text(encoding="utf-8")
+    assert "проти годинникової стрілки — плюс" in form and "модуль, без знака" in form
+    key = (out / "crank_rocker_fourbar.key.yaml").read_text(encoding="utf-8")
+    assert "проти годинникової стрілки — плюс" in key
+    rows = _csv(out / "form.csv")
+    assert rows[0]["student"] == "# знак"
+    assert rows[0]["kinematics[1].links.coupler.omega"] == "зі знаком: проти годинникової стрілки — плюс"
+    assert [r["student"] for r in _csv(out / "key.csv")] == [""]
+    # the filled form.csv, notes row and all, graded: one student, not two
+    import yaml
+    ref = yaml.safe_load(key)["answers"]
+    text = (out / "form.csv").read_text(encoding="utf-8").splitlines()
+    cells = text[2].split(",")
+    cells[0], cells[3], cells[4] = "Ivanov", str(ref["kinematics[1].links.coupler.omega"]), "1"
+    filled = _write(tmp_path, "filled.csv", "\n".join(text[:2] + [",".join(cells)]) + "\n")
+    res = runner.invoke(app, ["check", str(lever), "--answers", str(filled), "--out", str(tmp_path / "c")])
+    got = {r["path"]: (r["student"], r["status"]) for r in _csv(tmp_path / "c" / "check.csv")}
+    assert got["kinematics[1].links.coupler.omega"] == ("Ivanov", "ok")
+    assert got["kinematics[1].points.B.v"] == ("Ivanov", expect(1.0, ref["kinematics[1].points.B.v"]))
+    assert len(got) == 2 and res.exit_code == 1, res.output

@@ -39,13 +39,14 @@ class Tol:
     rel: float = DEFAULT_TOLERANCE
     abs: float = 0.0
     plain: bool = True            # a plain number: absolute for a zero reference
+    any_sign: bool = False        # `sign: any`: the magnitude is graded
 
     @property
     def text(self) -> str:
         if self.plain:
             return f"{self.rel:g}"
         parts = ([f"rel {self.rel:g}"] if self.rel else []) + ([f"abs {self.abs:g}"] if self.abs else [])
-        return " ".join(parts) or "0"
+        return " ".join(parts + (["sign any"] if self.any_sign else [])) or "0"
 
 
 GRAPHICAL = "graphical"   # the tolerance of a hand solution: the error of reading the drawings
@@ -68,10 +69,13 @@ def parse_tolerance(v, where: str, line=None, col=None, file=None) -> Tol:
     if hasattr(v, "model_dump"):          # the task's ToleranceSpec
         v = v.model_dump()
     if isinstance(v, dict):
-        extra = set(map(str, v)) - {"rel", "abs"}
+        extra = set(map(str, v)) - {"rel", "abs", "sign"}
         if extra:
             raise bad(Message("input.tol_unknown_key", key=sorted(extra)[0]))
-        return Tol(rel=num(v.get("rel", 0), "rel"), abs=num(v.get("abs", 0), "abs"), plain=False)
+        if v.get("sign") not in (None, "any"):
+            raise bad(Message("input.tol_sign", got=repr(v.get("sign"))))
+        return Tol(rel=num(v.get("rel", 0), "rel"), abs=num(v.get("abs", 0), "abs"), plain=False,
+                   any_sign=v.get("sign") == "any")
     return Tol(rel=num(v, "plain"))
 
 
@@ -269,8 +273,11 @@ def load_answers_csv(path: Path) -> list[AnswerSet]:
             raise TaskError("invalid answers table", file=str(path),
                             issues=[(p, 1, header.index(p) + 1,
                                      Message("answers.bad_column", column=p, reason=_coded(exc)))]) from None
+    from .forms import NOTES_MARK
     sets = []
     for line, row, bad in rows:
+        if row.get("student", "").strip().startswith(NOTES_MARK) and not row.get("variant", "").strip():
+            continue            # form.csv's notes row (the sign conventions)
         from .tables import cell_value
         v = cell_value(row.get("variant", ""))
         aset = AnswerSet(source=f"{path}:{line}", student=row.get("student", "").strip(),
@@ -385,7 +392,12 @@ def did_you_mean(path: str, results: dict, leaves: list[str] | None = None) -> s
 
 # ------------------------------------------------------------------ grading
 def compare(student: float, ref: float, tol: Tol, angle: bool) -> tuple[str, float, str]:
-    """(status, error, kind of error: 'rel' | 'abs')."""
+    """(status, error, kind of error: 'rel' | 'abs'). With ``tol.any_sign`` the magnitude
+    is graded: the answer or its negation, whichever is nearer."""
+    if tol.any_sign:
+        a, b = (compare(s, ref, Tol(tol.rel, tol.abs, tol.plain), angle) for s in (student, -student))
+        return ("ok", b[1], b[2]) if b[0] == "ok" and a[0] != "ok" else a
+
     def diff(a):
         d = a - ref
         return (d + 180.0) % 360.0 - 180.0 if angle else d

@@ -438,7 +438,7 @@ def form(
         krows.append(krow)
     if frows:        # with no form written, an earlier run's form.csv and key.csv stay as they were
         try:
-            atomic_write(out / "form.csv", forms_csv(frows, all_paths))
+            atomic_write(out / "form.csv", forms_csv(frows, all_paths, lang))
             atomic_write(out / "key.csv", forms_csv(krows, all_paths))
         except OSError as exc:
             raise _fail_write(exc)

@@ -81,6 +81,31 @@ NOTATION: dict[str, tuple[str, str, str, str, str]] = {
     "z4": ("z4", "", "teeth", "число зубьев", "число зубів"),
 }
 
+_CCW = ("signed: counter-clockwise positive", "со знаком: против часовой стрелки — плюс",
+        "зі знаком: проти годинникової стрілки — плюс")
+_MAGNITUDE = ("magnitude, no sign", "модуль, без знака", "модуль, без знака")
+# the sign convention of a result key (en, ru, uk): the sense that is positive, or that it is a magnitude
+SIGN: dict[str, tuple[str, str, str]] = {
+    "omega": _CCW, "epsilon": _CCW, "balancing_moment": _CCW, "zhukovsky_moment": _CCW,
+    "M_constant": ("signed: positive drives (along the crank's rotation), negative resists",
+                   "со знаком: плюс — движущий (по вращению кривошипа), минус — сопротивления",
+                   "зі знаком: плюс — рушійний (за обертанням кривошипа), мінус — опору"),
+    "ratio": ("signed: positive when input and output turn the same way",
+              "со знаком: плюс, когда входное и выходное звенья вращаются в одну сторону",
+              "зі знаком: плюс, коли вхідна й вихідна ланки обертаються в один бік"),
+    "v": _MAGNITUDE, "a": _MAGNITUDE, "R": _MAGNITUDE, "omega_max": _MAGNITUDE, "omega_min": _MAGNITUDE,
+}
+
+
+def sign_note(path: str, lang: str = "en") -> str:
+    """The sign convention of a path's quantity in ``lang`` ('' when the key has none listed)."""
+    names = re.findall(r"[A-Za-z_][A-Za-z0-9_]*", path)
+    key = names[-1] if names else ""
+    if key not in SIGN and re.fullmatch(r"R\d+", key or ""):
+        key = "R"
+    s = SIGN.get(key)
+    return s[("en", "ru", "uk").index(lang)] if s else ""
+
 
 # the units as a Russian or Ukrainian text writes them (the feedback page; a form keeps the units
 # an answer may be written in, which are the English ones)
@@ -179,12 +204,20 @@ def form_text(task, paths: list[str], results: dict | None, lang: str) -> str:
                 val = "" if v is None else (repr(float(v)) if isinstance(v, float) else json.dumps(v))
             except KeyError:
                 val = ""
-        note = notation(p, lang)
+        note = "; ".join(x for x in (notation(p, lang), sign_note(p, lang)) if x)
         entry = f"  {yaml_key(p)}: {val}"
         lines.append(entry.ljust(width + 4 + len(val)) + (f"  # {note}" if note else ""))
     return "\n".join(lines) + "\n"
 
 
-def forms_csv(rows: list[dict], paths: list[str]) -> str:
+NOTES_MARK = "#"     # a table row whose `student` cell starts with it is a note, never a student's answers
+NOTES_ROW = {"en": "# sign", "ru": "# знак", "uk": "# знак"}
+
+
+def forms_csv(rows: list[dict], paths: list[str], lang: str | None = None) -> str:
+    """form.csv / key.csv; with ``lang`` a notes row under the header gives each column's sign
+    convention (its `student` cell begins with '#': the answers reader skips it)."""
     from .tables import csv_text
-    return csv_text(["student", "group", "variant"] + paths, rows)
+    notes = {p: sign_note(p, lang) for p in paths} if lang else {}
+    head = [{"student": NOTES_ROW[lang], **notes}] if any(notes.values()) else []
+    return csv_text(["student", "group", "variant"] + paths, head + rows)

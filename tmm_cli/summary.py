@@ -191,7 +191,8 @@ def _tol_shown(text: str, absolute: bool) -> str:
     if len(words) == 1:
         v = float(words[0])
         return f"abs {v:g}" if absolute else f"{100 * v:g} %"
-    return " ".join(f"{100 * float(v):g} %" if k == "rel" else f"abs {v}" for k, v in zip(words[::2], words[1::2]))
+    return " ".join(f"{100 * float(v):g} %" if k == "rel" else (f"abs {v}" if k == "abs" else "|x|")
+                    for k, v in zip(words[::2], words[1::2]))
 
 
 def print_check(rows: list[dict], source) -> None:
