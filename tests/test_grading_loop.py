@@ -168,3 +168,41 @@ def test_forms_state_the_sign_conventions_and_the_filled_form_csv_reads_back(tmp
     assert got["kinematics[1].links.coupler.omega"] == ("Ivanov", "ok")
     assert got["kinematics[1].points.B.v"] == ("Ivanov", expect(1.0, ref["kinematics[1].points.B.v"]))
     assert len(got) == 2 and res.exit_code == 1, res.output
+
+
+def test_answers_file_named_repeats_flagged_and_latest(tmp_path):
+    """answers_file in summary.csv and check.csv; a student's second submission for one
+    variant is flagged `repeat=`; --latest grades only the newest by modification time."""
+    import os
+    src, ans = tmp_path / "src", tmp_path / "ans"
+    key = gear_key(14, 30)
+    _write(src, "v4.yaml", GEARS.format(v=4, z1=14, z2=30))
+    old = _write(ans, "ivanov-1.yaml", f"variant: 4\nstudent: {{name: Ivanov}}\nanswers: {{gears.aw: {key['gears.aw'] * 2}}}\n")
+    new = _write(ans, "ivanov-2.yaml", f"variant: 4\nstudent: {{name: Ivanov}}\nanswers: {{gears.aw: {key['gears.aw']}}}\n")
+    _write(ans, "anon.yaml", f"variant: 4\nanswers: {{gears.aw: {key['gears.aw'] * 1.01}}}\n")
+    os.utime(old, (1_000_000, 1_000_000))
+    os.utime(new, (2_000_000, 2_000_000))
+    res = runner.invoke(app, ["batch", str(src), "--answers", str(ans), "--out", str(tmp_path / "o")])
+    rows = {r["answers_file"]: r for r in _csv(tmp_path / "o" / "summary.csv")}
+    assert set(rows) == {"ivanov-1.yaml", "ivanov-2.yaml", "anon.yaml"}, res.output
+    assert rows["ivanov-1.yaml"]["flags"] == "repeat=ivanov-2.yaml"
+    assert rows["ivanov-2.yaml"]["flags"] == "repeat=ivanov-1.yaml"
+    assert rows["anon.yaml"]["flags"] == "" and rows["anon.yaml"]["student"] == ""
+    assert rows["ivanov-1.yaml"]["gears.aw"] == expect(key["gears.aw"] * 2, key["gears.aw"]) == "outside"
+    assert {r["answers_file"] for r in _csv(tmp_path / "o" / "check.csv")} == set(rows)
+    fb = sorted(p.name for p in (tmp_path / "o" / "v4").glob("feedback-*.html"))
+    assert fb == ["feedback-Ivanov-ivanov-1.html", "feedback-Ivanov-ivanov-2.html", "feedback-answers-anon.html"]
+    res = runner.invoke(app, ["batch", str(src), "--answers", str(ans), "--out", str(tmp_path / "l"), "--latest"])
+    rows = {r["answers_file"]: r for r in _csv(tmp_path / "l" / "summary.csv")}
+    assert set(rows) == {"ivanov-2.yaml", "anon.yaml"} and rows["ivanov-2.yaml"]["flags"] == ""
+    assert res.exit_code == 0 and "ivanov-1.yaml: an older submission of Ivanov" in " ".join(res.output.split())
+    # a class table: NAME.csv:LINE; check flags the repeat, --latest keeps the later row
+    tab = _write(tmp_path, "class.csv", "student,variant,gears.aw\n"
+                                        f"Petrov,4,{key['gears.aw'] * 3}\nPetrov,4,{key['gears.aw']}\n")
+    t = src / "v4.yaml"
+    res = runner.invoke(app, ["check", str(t), "--answers", str(tab), "--out", str(tmp_path / "c")])
+    assert res.exit_code == 1 and "another submission of Petrov" in " ".join(res.output.split()), res.output
+    assert [r["answers_file"] for r in _csv(tmp_path / "c" / "check.csv")] == ["class.csv:2", "class.csv:3"]
+    res = runner.invoke(app, ["check", str(t), "--answers", str(tab), "--latest", "--out", str(tmp_path / "c2")])
+    got = [(r["answers_file"], r["status"]) for r in _csv(tmp_path / "c2" / "check.csv")]
+    assert got == [("class.csv:3", expect(key["gears.aw"], key["gears.aw"]))] and res.exit_code == 0

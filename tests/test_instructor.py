@@ -343,7 +343,7 @@ def test_check_answer_sources_and_messages(tmp_path):
     assert res.exit_code == 1, res.output
     rows = _csv(tmp_path / "c" / "check.csv")
     assert list(rows[0]) == ["student", "group", "variant", "path", "answer", "reference", "error", "tolerance",
-                             "status", "note"]
+                             "status", "note", "answers_file"]
     assert [(r["student"], r["path"], r["status"]) for r in rows] == [("Ivanov", "gears.aw", "ok"),
                                                                      ("Ivanov", "gears.alpha_w", "sign")]
     # CSV: one row per student, decimal commas; another variant's row is not this task's

@@ -242,6 +242,10 @@ ENGLISH = [
      "unknown key 'anwsers'; an answers file holds `answers`, `tolerance`, `student` and `variant`"),
     ('answers.invalid', {'reason': {'code': 'input.number_not_number', 'params': {'text': 'abc'}, 'text': 'x'}},
      "invalid answer: 'abc' is not a number"),
+    ('answers.repeat', {'file': 'a.yaml', 'student': 'Ivanov', 'others': ['b.yaml']},
+     "a.yaml: another submission of Ivanov for this variant: b.yaml"),
+    ('answers.older_dropped', {'file': 'a.yaml', 'student': 'Ivanov', 'newer': 'b.yaml'},
+     "a.yaml: an older submission of Ivanov for this variant, not graded (--latest: b.yaml is the newest)"),
     ('answers.tolerance_ignored', {'where': 's.yaml:3'},
      "s.yaml:3: the answers file's `tolerance` is ignored: answers are graded with the task's tolerances and "
      "--tolerance FILE"),

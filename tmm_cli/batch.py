@@ -31,7 +31,7 @@ from .check import STATUSES, AnswerSet, set_code
 from .messages import Message
 
 SUMMARY_FIELDS = ["student", "group", "variant", "file", "status", "score", "answers", "ok", "outside", "sign",
-                  "missing", "unknown_path", "not_computed", "message", "invalid"]
+                  "missing", "unknown_path", "not_computed", "message", "answers_file", "flags", "invalid"]
 RESERVED = {"summary.csv", "summary.html", "check.csv", "feedback", ".tmm-batch.json"}
 MANIFEST = ".tmm-batch.json"
 DEFAULT_TIMEOUT = 120.0
@@ -140,7 +140,8 @@ def work(path: Path, out: Path, folder: str, formats: set[str], lang: str, sets:
         for i, aset in mine:
             if aset.error:
                 res["sets"].append({"index": i, "status": "invalid", "message": aset.error, "rows": [],
-                                    "student": aset.student, "group": aset.group, "variant": aset.variant})
+                                    "student": aset.student, "group": aset.group, "variant": aset.variant,
+                                    "answers_file": aset.answers_file})
                 continue
             required = None
             if quantities:
@@ -150,7 +151,7 @@ def work(path: Path, out: Path, folder: str, formats: set[str], lang: str, sets:
             all_rows.extend(rows)
             sst = set_status(rows)
             res["sets"].append({"index": i, "status": sst, "rows": rows, "counts": counts(rows),
-                                "student": aset.student, "group": aset.group,
+                                "student": aset.student, "group": aset.group, "answers_file": aset.answers_file,
                                 "variant": aset.variant if aset.variant is not None else task.variant,
                                 "message": _set_message(rows, sst, aset)})
         if mine:
@@ -591,10 +592,11 @@ def _remove_stale(out: Path, old: set[str], new: set[str]) -> list[str]:
 # ------------------------------------------------------------------ the batch
 def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = frozenset({"json"}), lang: str = "en",
               answers: Path | None = None, tolerance: Path | None = None, quantities: str | None = None,
-              timeout: float = DEFAULT_TIMEOUT, memory_mb: int | None = DEFAULT_MEMORY_MB) -> int:
+              timeout: float = DEFAULT_TIMEOUT, memory_mb: int | None = DEFAULT_MEMORY_MB,
+              latest: bool = False) -> int:
     from rich.console import Console
 
-    from .check import CHECK_FIELDS, load_sources, load_tolerance_file
+    from .check import CHECK_FIELDS, load_sources, load_tolerance_file, repeats
     from .errors import TaskError
     from .io import atomic_write
     from .tables import csv_text
@@ -610,6 +612,9 @@ def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = froz
     except TaskError as exc:
         con.print(f"error: invalid answers\n{exc.render()}", markup=False)
         return 2
+    set_notes = []
+    if sets is not None:
+        sets, set_notes = repeats(sets, latest)
     out.mkdir(parents=True, exist_ok=True)
     old_files = _read_manifest(out)
     files = [f for f, _ in found]
@@ -666,7 +671,11 @@ def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = froz
             matched.add(s["index"])
             c = s.get("counts") or {}
             n = sum(c.values())
-            row = {**base, "student": s["student"] or base["student"], "group": s["group"] or base["group"],
+            own = s["index"] < 0            # the task's own `answers`: the task's student
+            aset = None if own else sets[s["index"]]
+            row = {**base, "student": s["student"] or (base["student"] if own else ""),
+                   "group": s["group"] or (base["group"] if own else ""),
+                   "answers_file": s.get("answers_file", ""), "flags": ";".join(aset.flags if aset else []),
                    "variant": "" if s["variant"] is None else s["variant"], "status": s["status"],
                    "code": set_code(s["status"]), "message": s["message"] + note, "answers": n,
                    "message_parts": [s["message"], note],
@@ -681,6 +690,7 @@ def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = froz
                               else Message("batch.no_task_of_name", file=Path(s.source).name))
             rows.append({"student": s.student, "group": s.group, "variant": "" if s.variant is None else s.variant,
                          "file": s.source, "folder": "", "status": "invalid", "code": 2, "message": why,
+                         "answers_file": s.answers_file, "flags": ";".join(s.flags),
                          "message_parts": [why]})
     for r in rows:
         if "answers" not in r:
@@ -702,7 +712,7 @@ def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = froz
     removed = _remove_stale(out, old_files, written)
     atomic_write(out / MANIFEST, json.dumps({"files": sorted(written)}, indent=1) + "\n")
     from .summary import print_batch
-    notes = dict.fromkeys([n for s in sets or [] for n in s.notes]       # each once, in order
+    notes = dict.fromkeys(set_notes + [n for s in sets or [] for n in s.notes]       # each once, in order
                           + [n for o in outcomes.values() for n in o.get("notes", ())])
     print_batch(rows, out, skipped, removed, notes=list(notes))
     return max((r["code"] for r in rows), default=0)

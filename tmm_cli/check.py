@@ -30,7 +30,7 @@ SECTIONS = {"structure", "positions", "kinematics", "kinematics_curve", "kinetos
 STATUSES = ("ok", "outside", "sign", "missing", "unknown_path", "not_computed", "invalid")
 SET_ORDER = ("outside", "sign", "missing", "unknown_path", "not_computed")
 CHECK_FIELDS = ["student", "group", "variant", "path", "answer", "reference", "error", "tolerance", "status",
-                "note"]
+                "note", "answers_file"]
 
 
 # ------------------------------------------------------------------ tolerances
@@ -103,6 +103,13 @@ class AnswerSet:
     error: str | None = None                      # an invalid answers file / row
     invalid: dict[str, tuple[str, Any]] = field(default_factory=dict)   # path -> (as written, the note: why)
     notes: list = field(default_factory=list)     # warnings on reading the file (each a Message)
+    flags: list = field(default_factory=list)     # summary.csv's `flags` ('repeat=...', 'same_as=...')
+    mtime: float = 0.0                            # the file's modification time (--latest)
+
+    @property
+    def answers_file(self) -> str:
+        """The base name of the student's file, or NAME.csv:LINE for a row of a table."""
+        return Path(self.source).name
 
     def matches(self, task) -> bool:
         tv = task.variant
@@ -217,7 +224,7 @@ def load_answers_file(path: Path, keep_errors: bool = False) -> AnswerSet:
             line, col = _mark(marks, (key,))
             raise TaskError("invalid answers file", file=str(path),
                             issues=[(key, line, col, Message("answers.not_mapping", got=type(raw).__name__))])
-    aset = AnswerSet(source=str(path), stem=path.stem, variant=data.get("variant"))
+    aset = AnswerSet(source=str(path), stem=path.stem, variant=data.get("variant"), mtime=_mtime(path))
     st = data.get("student") or {}
     aset.student, aset.group = str(st.get("name") or ""), str(st.get("group") or "")
     for k, v in (data.get("answers") or {}).items():
@@ -240,6 +247,40 @@ def load_answers_file(path: Path, keep_errors: bool = False) -> AnswerSet:
         line, _ = _mark(marks, ("tolerance",))
         aset.notes.append(Message("answers.tolerance_ignored", where=f"{path}:{line}" if line else str(path)))
     return aset
+
+
+def _mtime(path: Path) -> float:
+    try:
+        return Path(path).stat().st_mtime
+    except OSError:
+        return 0.0
+
+
+def repeats(sets: list[AnswerSet], latest: bool = False) -> tuple[list[AnswerSet], list]:
+    """Second submissions: sets of one student (by name) for one variant (by `variant`,
+    else the file's stem). Each is flagged ``repeat=<the others' answers_file>``; with
+    ``latest`` only the newest by modification time stays (one note per set dropped).
+    Sets without a student's name are never taken for one another."""
+    groups: dict[tuple, list[AnswerSet]] = {}
+    for a in sets:
+        if a.error or not a.student.strip():
+            continue
+        v = a.variant if a.variant not in (None, "") else a.stem
+        groups.setdefault((" ".join(a.student.split()).casefold(), str(v).strip()), []).append(a)
+    drop: set[int] = set()
+    notes = []
+    for same in groups.values():
+        if len(same) < 2:
+            continue
+        newest = max(same, key=lambda a: a.mtime)
+        for a in same:
+            if latest and a is not newest:
+                drop.add(id(a))
+                notes.append(Message("answers.older_dropped", file=a.answers_file, newer=newest.answers_file,
+                                     student=a.student))
+            elif not latest:
+                a.flags.append("repeat=" + "|".join(b.answers_file for b in same if b is not a))
+    return [a for a in sets if id(a) not in drop], notes
 
 
 def load_answers_dir(folder: Path) -> list[AnswerSet]:
@@ -281,7 +322,8 @@ def load_answers_csv(path: Path) -> list[AnswerSet]:
         from .tables import cell_value
         v = cell_value(row.get("variant", ""))
         aset = AnswerSet(source=f"{path}:{line}", student=row.get("student", "").strip(),
-                         group=row.get("group", "").strip(), variant=None if v == "" else v)
+                         group=row.get("group", "").strip(), variant=None if v == "" else v,
+                         mtime=_mtime(path) + line * 1e-6)      # a later row of one table is the newer
         if bad:
             aset.error = Message("answers.table_row", where=f"{path}:{line}", reason=bad)
         for p in paths:
@@ -427,7 +469,7 @@ def grade(results: dict, aset: AnswerSet, tol: dict, required: list[str] | None 
         t = t if isinstance(t, Tol) else parse_tolerance(t, p)
         row = {"student": aset.student, "group": aset.group, "variant": "" if aset.variant is None else aset.variant,
                "path": p, "answer": val, "reference": None, "error": None, "tolerance": t.text, "status": "",
-               "note": ""}
+               "note": "", "answers_file": aset.answers_file if aset.source else ""}
         rows.append(row)
         try:
             ref = lookup(results, p)

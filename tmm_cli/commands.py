@@ -16,6 +16,7 @@ import typer
 from . import cli
 from .cli import EXIT_ANSWERS, EXIT_INVALID, EXIT_OK, EXIT_STAGE, FORMATS  # noqa: F401
 from .errors import StageError, TaskError
+from .messages import Message
 
 app = typer.Typer(
     name="tmm",
@@ -225,11 +226,13 @@ def check(
     quantities: Optional[str] = typer.Option(None, "--quantities", "-q",
                                              help="required quantities: result paths and presets, comma-separated "
                                                   "(a required path not answered is missing)"),
+    latest: bool = typer.Option(False, "--latest", help="of several submissions of one student for the variant, "
+                                                        "grade only the newest (by modification time)"),
 ):
     """Compare a student's answers with the computed results: path, answer, reference,
     error and status (ok, sign, outside, missing, unknown_path, not_computed). Exit 1 if
     any answer is not ok (or there are none), 2 invalid input, 3 a stage failed."""
-    from .check import (check_csv, grade, load_sources, load_tolerance_file, set_code, set_status,
+    from .check import (check_csv, grade, load_sources, load_tolerance_file, repeats, set_code, set_status,
                         task_answer_set, tolerances)
     from .orchestrate import compute, prepare
     from .pipeline import PartialResults
@@ -246,7 +249,13 @@ def check(
         else:
             sets = load_sources(answers)
             if not single:
-                sets = [a for a in sets if a.matches(task)]
+                sets, dropped = repeats([a for a in sets if a.matches(task)], latest)
+                for n in dropped:
+                    _err(f"note: {n}")
+                for a in sets:
+                    if a.flags:
+                        others = [f.split("=", 1)[1] for f in a.flags if f.startswith("repeat=")]
+                        _err(f"warning: {Message('answers.repeat', file=a.answers_file, student=a.student, others=others)}")
         for a in sets:
             if single and a.variant not in (None, "") and task.variant is not None and not a.matches(task):
                 # graded all the same (one FILE is taken as given), but a form of another variant
@@ -311,6 +320,8 @@ def batch(
                                   help="seconds one variant may run (0 = no limit); over it: a failed row"),
     memory: int = typer.Option(4096, "--memory", min=0,
                                help="MB of address space per variant (0 = no limit); over it: a failed row"),
+    latest: bool = typer.Option(False, "--latest", help="of several submissions of one student for one variant, "
+                                                        "grade only the newest (by modification time)"),
 ):
     """Run and grade many variants; one failing variant never stops the rest.
     Writes summary.csv, summary.html and check.csv (and <out>/<variant>/...). Exit code:
@@ -321,7 +332,7 @@ def batch(
     _check_lang(lang)
     try:
         code = run_batch(source, out, jobs=jobs, formats=formats, lang=lang, answers=answers, tolerance=tolerance,
-                         quantities=quantities, timeout=timeout, memory_mb=memory or None)
+                         quantities=quantities, timeout=timeout, memory_mb=memory or None, latest=latest)
     except OSError as exc:
         raise _fail_write(exc)
     raise typer.Exit(code)

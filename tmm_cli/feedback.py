@@ -149,7 +149,15 @@ def feedback_html(task, s: dict, lang: str = "en") -> str:
 
 
 def feedback_name(s: dict) -> str:
-    who = re.sub(r"[^\w.-]", "_", str(s.get("student") or "")).strip("._") or "answers"
+    """feedback-<student>-<answers file> ('feedback-Ivanov-ivanov', 'feedback-Petrov-class.csv_5'
+    for a table's line 5); without an answers file (the task's own answers) the set's number."""
+    def safe(x):
+        return re.sub(r"[^\w.-]", "_", str(x or "")).strip("._")
+    who = safe(s.get("student")) or "answers"
+    src = s.get("answers_file")
+    if src:
+        src = src[:-5] if src.endswith(".yaml") else (src[:-4] if src.endswith(".yml") else src)
+        return f"feedback-{who[:40]}-{safe(src)[:40]}"
     return f"feedback-{who[:40]}-{s['index'] + 1 if s['index'] >= 0 else 0}"
 
 

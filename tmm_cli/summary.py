@@ -241,7 +241,7 @@ def print_batch(rows: list[dict], out: Path, skipped=(), removed=(), notes=()) -
     t.add_column("score", justify="right", no_wrap=True)
     t.add_column("message", overflow="fold", max_width=32)
     for r in rows:
-        who = r.get("student") or Path(str(r.get("file", ""))).name
+        who = r.get("student") or r.get("answers_file") or Path(str(r.get("file", ""))).name
         st = shown_status(r)
         score = f"{100 * float(r['score']):.0f} %" if r.get("answers") else "-"
         t.add_row(Text(str(who)), Text(str(r.get("variant", ""))), Text(st, style=STATUS_STYLE.get(st, "")),
