@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import csv
 import math
+import re
 from pathlib import Path
 
 from typer.testing import CliRunner
@@ -206,3 +207,47 @@ def test_answers_file_named_repeats_flagged_and_latest(tmp_path):
     res = runner.invoke(app, ["check", str(t), "--answers", str(tab), "--latest", "--out", str(tmp_path / "c2")])
     got = [(r["answers_file"], r["status"]) for r in _csv(tmp_path / "c2" / "check.csv")]
     assert got == [("class.csv:3", expect(key["gears.aw"], key["gears.aw"]))] and res.exit_code == 0
+
+
+def test_idle_stroke_angle_is_compared_modulo_360():
+    from tmm_cli.check import AnswerSet, grade
+    results = {"positions": {"idle_stroke_angle": 168.3, "working_stroke_angle": 191.7}}
+    rows = grade(results, AnswerSet(source="s.yaml", answers={"positions.idle_stroke_angle": 168.3 - 360,
+                                                              "positions.working_stroke_angle": 191.7 + 360}),
+                 {"default": 0.01})
+    assert [r["status"] for r in rows] == ["ok", "ok"]
+
+
+def test_a_subset_against_the_whole_answers_folder_skips_the_others_with_one_note(tmp_path):
+    src, ans = tmp_path / "src", tmp_path / "ans"
+    key = gear_key(14, 30)
+    for v in (1, 2, 3):
+        _write(src, f"v{v}.yaml", GEARS.format(v=v, z1=14, z2=30))
+        _write(ans, f"s{v}.yaml", f"variant: {v}\nstudent: {{name: S{v}}}\nanswers: {{gears.aw: {key['gears.aw']}}}\n")
+    _write(ans, "ghost.yaml", "variant: 77\nanswers: {gears.aw: 1}\n")
+    res = runner.invoke(app, ["batch", str(src / "v1.yaml"), "--answers", str(ans), "--out", str(tmp_path / "o")])
+    rows = _csv(tmp_path / "o" / "summary.csv")
+    assert [(r["student"], r["status"]) for r in rows] == [("S1", "ok"), ("", "invalid")], res.output
+    assert "no task of this variant" in rows[1]["message"]          # variant 77 is nowhere: still invalid
+    text = " ".join(res.output.split())
+    assert text.count("not graded: 2 (2, 3)") == 1 and res.exit_code == 2
+
+
+def test_paths_group_and_choose_positions(tmp_path):
+    lever = Path(__file__).resolve().parent.parent / "tasks" / "crank_rocker_fourbar.yaml"
+    full = runner.invoke(app, ["paths", str(lever), "--prefix", "kinematics_curve"]).output.splitlines()
+    grouped = runner.invoke(app, ["paths", str(lever), "--prefix", "kinematics_curve", "--group"]).output.splitlines()
+    arrays: dict[str, list[float]] = {}
+    for ln in full:
+        p, v = ln.split("\t")
+        base, _, i = p.rpartition("[")
+        if i.rstrip("]").isdigit():
+            arrays.setdefault(base, []).append(float(v))
+    long = {b: v for b, v in arrays.items() if len(v) > 12}
+    assert long and len(grouped) < len(full)
+    for b, vals in long.items():
+        line = [g for g in grouped if g.startswith(b + "[0..")]
+        assert line == [f"{b}[0..{len(vals) - 1}]\t{len(vals)} values, {min(vals):.6g} .. {max(vals):.6g}"]
+    chosen = runner.invoke(app, ["paths", str(lever), "--index", "2,5-6", "--prefix", "kinematics["]).output
+    assert {m for m in re.findall(r"^kinematics\[(\d+)\]", chosen, re.M)} == {"2", "5", "6"}
+    assert runner.invoke(app, ["paths", str(lever), "--index", "x"]).exit_code == 2

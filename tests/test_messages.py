@@ -242,6 +242,8 @@ ENGLISH = [
      "unknown key 'anwsers'; an answers file holds `answers`, `tolerance`, `student` and `variant`"),
     ('answers.invalid', {'reason': {'code': 'input.number_not_number', 'params': {'text': 'abc'}, 'text': 'x'}},
      "invalid answer: 'abc' is not a number"),
+    ('batch.answers_outside', {'count': 2, 'variants': ['07', '08']},
+     "answers for variants outside the tasks given (in their folder) not graded: 2 (07, 08)"),
     ('answers.repeat', {'file': 'a.yaml', 'student': 'Ivanov', 'others': ['b.yaml']},
      "a.yaml: another submission of Ivanov for this variant: b.yaml"),
     ('answers.older_dropped', {'file': 'a.yaml', 'student': 'Ivanov', 'newer': 'b.yaml'},

@@ -27,7 +27,7 @@ import stat
 import time
 from pathlib import Path
 
-from .check import STATUSES, AnswerSet, set_code
+from .check import STATUSES, AnswerSet, _same, set_code
 from .messages import Message
 
 SUMMARY_FIELDS = ["student", "group", "variant", "file", "status", "score", "answers", "ok", "outside", "sign",
@@ -207,6 +207,30 @@ def _set_message(rows, status, aset) -> str:
     if not bad:
         return ""
     return Message("batch.set_not_ok" if len(bad) <= 6 else "batch.set_not_ok_more", status=status, paths=bad[:6])
+
+
+def _variants_beside(source: str, files: list[Path]) -> set[str]:
+    """The variants (file stems and `variant:` lines) of the task files beside those a
+    pattern matched, in their folders, that the pattern left out: answers for them are
+    not this run's. Empty when the source is a folder (every task in it runs)."""
+    if Path(source).is_dir():
+        return set()
+    given = {Path(f).resolve() for f in files}
+    out: set[str] = set()
+    line = re.compile(r"""^variant\s*:\s*["']?([^"'#\n]*?)["']?\s*(?:#.*)?$""", re.M)
+    for d in {Path(f).parent for f in files}:
+        for f in set(d.glob("*.yaml")) | set(d.glob("*.yml")):
+            if f.resolve() in given or _not_regular(f) is not None or _looks_like_answers(f):
+                continue
+            out.add(f.stem)
+            try:
+                with open(f, "rb") as fh:
+                    m = line.search(fh.read(65536).decode("utf-8", "replace"))
+            except OSError:
+                m = None
+            if m and m.group(1).strip():
+                out.add(m.group(1).strip())
+    return out
 
 
 # the modules a variant's sections need (imported once in the batch, before the workers fork)
@@ -684,7 +708,13 @@ def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = froz
                    **{k: c.get(k, 0) for k in STATUSES}}
             rows.append(row)
             check_rows.extend(s["rows"])
+    outside = _variants_beside(source, files)
+    skipped_sets = []
     for i, s in enumerate(sets or []):
+        if i not in matched and not s.error and s.answers_file and any(
+                _same(x, v) for v in outside for x in (s.variant, s.stem) if x not in (None, "")):
+            skipped_sets.append(s)         # a variant of the folder that this run (a pattern) left out
+            continue
         if i not in matched:
             why = s.error or (Message("batch.no_task_of_variant", variant=s.variant) if s.variant not in (None, "")
                               else Message("batch.no_task_of_name", file=Path(s.source).name))
@@ -712,6 +742,10 @@ def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = froz
     removed = _remove_stale(out, old_files, written)
     atomic_write(out / MANIFEST, json.dumps({"files": sorted(written)}, indent=1) + "\n")
     from .summary import print_batch
+    if skipped_sets:
+        set_notes.append(Message("batch.answers_outside", count=len(skipped_sets),
+                                 variants=sorted({str(s.variant if s.variant not in (None, "") else s.stem)
+                                                  for s in skipped_sets})))
     notes = dict.fromkeys(set_notes + [n for s in sets or [] for n in s.notes]       # each once, in order
                           + [n for o in outcomes.values() for n in o.get("notes", ())])
     print_batch(rows, out, skipped, removed, notes=list(notes))

@@ -22,8 +22,8 @@ from .results import LazyEntries, lookup, parse_path
 
 DEFAULT_TOLERANCE = 0.05
 # results in degrees: differences are taken modulo 360 into [-180, 180)
-ANGLE_KEYS = {"phi", "phi0", "extreme", "angle", "working_stroke_angle", "alpha_w", "theta", "psi",
-              "gamma_min", "pressure_angle", "max_pressure_angle", "singular"}
+ANGLE_KEYS = {"phi", "phi0", "extreme", "angle", "working_stroke_angle", "idle_stroke_angle", "alpha_w", "theta",
+              "psi", "gamma_min", "pressure_angle", "max_pressure_angle", "singular"}
 # top-level result sections: a path into one the task did not compute is not_computed
 SECTIONS = {"structure", "positions", "kinematics", "kinematics_curve", "kinetostatics", "kinetostatics_info",
             "singular", "flywheel", "cam", "gears", "planetary", "drive_train", "synthesis", "dof2"}

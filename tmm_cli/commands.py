@@ -367,14 +367,24 @@ def paths(
     task_file: Path = typer.Argument(..., metavar="TASK.yaml"),
     prefix: Optional[str] = typer.Option(None, "--prefix", "-p", help="only paths starting with this"),
     format: str = typer.Option("text", "--format", "-f", help="text (PATH<TAB>VALUE) | json"),
+    group: bool = typer.Option(False, "--group", "-g", help="each array of more than 12 numbers (per position or "
+                                                              "degree) as one line: its index range, count, min .. max"),
+    index: Optional[str] = typer.Option(None, "--index", "-i", metavar="I,J,A-B",
+                                        help="of those arrays and of the positions (kinematics[i], "
+                                             "kinetostatics[i]) only these elements, e.g. 0,90,180 or 1-3"),
 ):
     """Run the task and list every result path with its value (the paths `answers`,
-    `--quantities` and tolerances use)."""
+    `--quantities` and tolerances use). `--group` and `--index` shorten the long arrays."""
     from .check import leaf_paths
     from .orchestrate import compute, prepare
     from .pipeline import PartialResults
     if format not in ("text", "json"):
         raise typer.BadParameter("--format must be text or json")
+    from .forms import group_leaves, parse_indices
+    try:
+        chosen = parse_indices(index) if index is not None else None
+    except ValueError as exc:
+        raise typer.BadParameter(f"'{exc.args[0]}' is not an index or a range A-B", param_hint="--index") from None
     try:
         task = prepare(task_file, stage_errors=False)
         results = compute(task)
@@ -390,6 +400,8 @@ def paths(
         near = difflib.get_close_matches(prefix, heads, n=1, cutoff=0.6)
         raise typer.BadParameter(f"no result path of this task starts with '{prefix}'"
                                  + (f"; did you mean '{near[0]}'?" if near else ""), param_hint="--prefix")
+    if group or chosen is not None:
+        leaves = group_leaves(leaves, chosen, group)
     if format == "json":
         typer.echo(json.dumps(dict(leaves), indent=1, ensure_ascii=False))
     else:
