@@ -251,3 +251,94 @@ def test_paths_group_and_choose_positions(tmp_path):
     chosen = runner.invoke(app, ["paths", str(lever), "--index", "2,5-6", "--prefix", "kinematics["]).output
     assert {m for m in re.findall(r"^kinematics\[(\d+)\]", chosen, re.M)} == {"2", "5", "6"}
     assert runner.invoke(app, ["paths", str(lever), "--index", "x"]).exit_code == 2
+
+
+def _group(tmp_path, answers: dict[str, tuple[int, float, float]]):
+    """Gear variants 1..3 (z1 = 14, 20, 26) and an answers folder: student -> (variant, aw, alpha_w)."""
+    src, ans = tmp_path / "src", tmp_path / "ans"
+    for v in (1, 2, 3):
+        _write(src, f"v{v}.yaml", GEARS.format(v=v, z1=8 + 6 * v, z2=30))
+    for name, (v, aw, al) in answers.items():
+        _write(ans, f"{name.lower()}.yaml", f"variant: {v}\nstudent: {{name: {name}, group: G1, email: "
+                                            f"{name.lower()}@uni.example}}\nanswers:\n  gears.aw: {aw!r}\n"
+                                            f"  gears.alpha_w: {al!r}\n")
+    return src, ans
+
+
+def test_copies_flagged_grades_and_a_moodle_gradebook(tmp_path):
+    keys = {v: gear_key(8 + 6 * v, 30) for v in (1, 2, 3)}
+    k1, k3 = keys[1], keys[3]
+    answers = {"Anna": (1, k1["gears.aw"] * 1.01, k1["gears.alpha_w"] * 0.99),
+               "Boris": (1, k1["gears.aw"] * 1.01, k1["gears.alpha_w"] * 0.99),      # Anna's numbers, verbatim
+               "Clara": (2, k3["gears.aw"], k3["gears.alpha_w"]),                   # variant 3's key on variant 2
+               "Dmitro": (3, k3["gears.aw"] * 1.08, k3["gears.alpha_w"])}
+    src, ans = _group(tmp_path, answers)
+    res = runner.invoke(app, ["batch", str(src), "--answers", str(ans), "--out", str(tmp_path / "o"),
+                              "--grades", "5:0.9,4:0.75,3:0.6", "--gradebook", "moodle"])
+    assert res.exit_code == 1, res.output
+    rows = {r["student"]: r for r in _csv(tmp_path / "o" / "summary.csv")}
+    # the independent recomputation: statuses, score, grade, and the copy rules
+    for name, (v, aw, al) in answers.items():
+        st = [expect(aw, keys[v]["gears.aw"]), expect(al, keys[v]["gears.alpha_w"])]
+        score = st.count("ok") / 2
+        assert [rows[name]["gears.aw"], rows[name]["gears.alpha_w"]] == st
+        assert float(rows[name]["score"]) == score
+        assert rows[name]["grade"] == str(next((g for g, least in ((5, .9), (4, .75), (3, .6)) if score >= least), 2))
+        flags = []
+        for other, (_, aw2, al2) in answers.items():
+            same = [abs(x - y) <= 1e-9 * max(abs(x), abs(y)) for x, y in ((aw, aw2), (al, al2))]
+            if other != name and sum(same) >= 0.8 * 2:
+                flags.append(f"same_as={other}")
+        own = st.count("ok")
+        best = max(((sum(expect(x, keys[w][p]) == "ok" for x, p in ((aw, "gears.aw"), (al, "gears.alpha_w"))), -w)
+                    for w in keys if w != v), default=(0, 0))
+        if best[0] > own:
+            flags.append(f"key_of={-best[1]}")
+        assert rows[name]["flags"] == ";".join(flags), name
+    assert rows["Boris"]["flags"] == "same_as=Anna" and rows["Clara"]["flags"] == "key_of=3"
+    html = (tmp_path / "o" / "summary.html").read_text(encoding="utf-8")
+    assert "key_of=3" in html and "same_as=Anna" in html
+    book = _csv(tmp_path / "o" / "gradebook-moodle.csv")
+    assert list(book[0]) == ["Email address", "ID number", "Full name", "Group", "tmm grade", "Feedback"]
+    assert {(b["Email address"], b["tmm grade"]) for b in book} == {
+        (f"{n.lower()}@uni.example", rows[n]["grade"]) for n in answers}
+
+
+def test_feedback_pages_show_the_tolerance_the_unit_written_and_no_key_on_request(tmp_path):
+    from html import unescape
+    key = gear_key(14, 30)
+    src = tmp_path / "src"
+    _write(src, "v4.yaml", GEARS.format(v=4, z1=14, z2=30) + 'tolerance: {"gears.alpha_w": {abs: 0.5}}\n')
+    aw_mm = round(key["gears.aw"] * 1000 * 1.02, 2)
+    _write(tmp_path / "ans", "ivanov.yaml", "variant: 4\nstudent: {name: Ivanov}\nanswers:\n"
+                                           f"  gears.aw: \"{aw_mm} mm\"\n  gears.alpha_w: {key['gears.alpha_w'] + 0.3}\n")
+    for mode in ("key", "no-key"):
+        out = tmp_path / mode
+        res = runner.invoke(app, ["batch", str(src), "--answers", str(tmp_path / "ans"), "--out", str(out),
+                                  "--format", "json,html", "--lang", "ru", "--feedback", mode])
+        assert res.exit_code == 0, res.output
+        page = unescape((out / "v4" / "feedback-Ivanov-ivanov.html").read_text(encoding="utf-8"))
+        assert f"{aw_mm} mm" in page                                  # the value as the student wrote it
+        assert "±5 %" in page and "±0,5 °" in page                     # each answer's tolerance
+        ref_mm = f"{key['gears.aw'] * 1000:.5g}".replace(".", ",")   # the reference in the student's unit
+        assert (f"{ref_mm} mm" in page) == (mode == "key") and ("эталон" in page) == (mode == "key")
+
+
+def test_summary_html_typo_columns_and_the_no_answer_marks(tmp_path):
+    key = gear_key(14, 30)
+    src = tmp_path / "src"
+    _write(src, "v4.yaml", GEARS.format(v=4, z1=14, z2=30))
+    _write(src, "v5.yaml", GEARS.format(v=5, z1=14, z2=30))
+    ans = tmp_path / "ans"
+    _write(ans, "a.yaml", f"variant: 4\nstudent: {{name: A}}\nanswers:\n  gears.aw: {key['gears.aw']}\n"
+                          "  gears.a_w: 1\n  gears.alpha_ww: 3\n")
+    res = runner.invoke(app, ["batch", str(src), "--answers", str(ans), "--out", str(tmp_path / "o"), "--lang", "uk"])
+    html = (tmp_path / "o" / "summary.html").read_text(encoding="utf-8")
+    assert 'title="gears.a_w"' not in html and 'title="gears.aw"' in html      # a typo gets no column
+    row = [ln for ln in html.split("<tr>") if ">A<" in ln][0]
+    assert "100 %" in row                                 # 1 ok of 1 known: the typos are not in the denominator
+    assert "∅" in html and COLOUR_NONE in html            # nobody answered variant 5: not the missing mark
+    assert "<span>gears.alpha_ww</span>" not in html and res.exit_code == 1
+
+
+COLOUR_NONE = "#cfd8dc"

@@ -32,7 +32,11 @@ from .messages import Message
 
 SUMMARY_FIELDS = ["student", "group", "variant", "file", "status", "score", "answers", "ok", "outside", "sign",
                   "missing", "unknown_path", "not_computed", "message", "answers_file", "flags", "invalid"]
-RESERVED = {"summary.csv", "summary.html", "check.csv", "feedback", ".tmm-batch.json"}
+GRADEBOOK = "gradebook-moodle.csv"
+RESERVED = {"summary.csv", "summary.html", "check.csv", "feedback", ".tmm-batch.json", GRADEBOOK}
+# the columns of the gradebook file Moodle's grade import (CSV) maps: a user field to identify
+# the student by (Email address -> useremail, ID number -> useridnumber), a grade, a feedback text
+GRADEBOOK_FIELDS = ["Email address", "ID number", "Full name", "Group", "tmm grade", "Feedback"]
 MANIFEST = ".tmm-batch.json"
 DEFAULT_TIMEOUT = 120.0
 DEFAULT_MEMORY_MB = 4096
@@ -104,8 +108,10 @@ def folder_names(files: list[Path]) -> list[str]:
 
 # ------------------------------------------------------------------ one variant (in the worker)
 def work(path: Path, out: Path, folder: str, formats: set[str], lang: str, sets: list[AnswerSet] | None,
-         tol_override: dict | None, quantities: str | None) -> dict:
-    """Run, write and grade one variant. Never raises: errors become the outcome."""
+         tol_override: dict | None, quantities: str | None, options: dict | None = None) -> dict:
+    """Run, write and grade one variant. Never raises: errors become the outcome.
+    ``options``: ``feedback`` ('key' | 'no-key'); with answer sets the outcome carries the
+    variant's ``key`` (path -> (reference, tolerance, angle)) for the paths any set answered."""
     from .check import check_csv, counts, grade, set_status, task_answer_set, tolerances
     from .io import atomic_write
     from .orchestrate import classify, prepare, process
@@ -133,9 +139,12 @@ def work(path: Path, out: Path, folder: str, formats: set[str], lang: str, sets:
             mine = [(-1, own)] if own else []
         else:
             mine = [(i, s) for i, s in enumerate(sets) if s.matches(task)]
-        if mine:                # graded: the entries as lists (looked up answer by answer)
+        if mine or sets:        # graded: the entries as lists (looked up answer by answer)
             from .results import listed
             results = listed(results)
+        tol = tolerances(task, tol_override, results=results) if (mine or sets) else {}
+        if sets:
+            res["key"] = variant_key(results, {p for a in sets for p in a.answers}, tol)
         all_rows = []
         for i, aset in mine:
             if aset.error:
@@ -147,7 +156,7 @@ def work(path: Path, out: Path, folder: str, formats: set[str], lang: str, sets:
             if quantities:
                 from .forms import expand
                 required = expand(quantities, results, strict=False)
-            rows = grade(results, aset, tolerances(task, tol_override, results=results), required)
+            rows = grade(results, aset, tol, required)
             all_rows.extend(rows)
             sst = set_status(rows)
             res["sets"].append({"index": i, "status": sst, "rows": rows, "counts": counts(rows),
@@ -160,7 +169,8 @@ def work(path: Path, out: Path, folder: str, formats: set[str], lang: str, sets:
             from .feedback import write_feedback
             for s in res["sets"]:
                 if s["rows"]:
-                    p = write_feedback(task, s, vout, lang, pdf="pdf" in formats, notes=res["notes"])
+                    p = write_feedback(task, s, vout, lang, pdf="pdf" in formats, notes=res["notes"],
+                                       key=(options or {}).get("feedback", "key") != "no-key")
                     s["feedback"] = [str(Path(x).relative_to(out)) for x in p]
                     res["written"].extend(s["feedback"])
     except BaseException as exc:  # one broken variant must not stop the batch
@@ -171,6 +181,22 @@ def work(path: Path, out: Path, folder: str, formats: set[str], lang: str, sets:
         if coded is not None and str(coded) == res["message"]:
             res["message_coded"] = coded            # the same text, in the report language too
     return res
+
+
+def variant_key(results: dict, paths: set[str], tol: dict) -> dict:
+    """path -> (reference, Tol, angle) of the paths that hold a number in ``results``."""
+    from .check import Tol, _is_angle, parse_tolerance, tolerance_for
+    from .results import lookup
+    key = {}
+    for p in sorted(paths):
+        try:
+            v = lookup(results, p)
+        except KeyError:
+            continue
+        if isinstance(v, (int, float)) and not isinstance(v, bool) and v == v:
+            t = tolerance_for(p, tol)
+            key[p] = (float(v), t if isinstance(t, Tol) else parse_tolerance(t, p), _is_angle(p))
+    return key
 
 
 def stage_failure_message(exc: BaseException) -> Message | None:
@@ -617,7 +643,8 @@ def _remove_stale(out: Path, old: set[str], new: set[str]) -> list[str]:
 def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = frozenset({"json"}), lang: str = "en",
               answers: Path | None = None, tolerance: Path | None = None, quantities: str | None = None,
               timeout: float = DEFAULT_TIMEOUT, memory_mb: int | None = DEFAULT_MEMORY_MB,
-              latest: bool = False) -> int:
+              latest: bool = False, grades: list[tuple[int, float]] | None = None, gradebook: str | None = None,
+              feedback: str = "key") -> int:
     from rich.console import Console
 
     from .check import CHECK_FIELDS, load_sources, load_tolerance_file, repeats
@@ -650,7 +677,9 @@ def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = froz
             why = Message("batch.not_a_task", file=str(f), reason=why)
             outcomes[k] = {"task": None, "written": [], "sets": [], "code": 2, "status": "invalid",
                            "message": why, "message_coded": why}
-    args = [(found[k][0], out, folders[k], set(formats), lang, sets, tol_override, quantities) for k in runnable]
+    options = {"feedback": feedback}
+    args = [(found[k][0], out, folders[k], set(formats), lang, sets, tol_override, quantities, options)
+            for k in runnable]
     warm([found[k][0] for k in runnable], formats)
     with _progress(con, len(args), "variants") as advance:
         def done(i, res):
@@ -705,7 +734,7 @@ def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = froz
                    "message_parts": [s["message"], note],
                    "score": round(c.get("ok", 0) / n, 4) if n else 0, "feedback": s.get("feedback", []),
                    "per_path": {r["path"]: r["status"] for r in s["rows"]}, "rows": s["rows"],
-                   **{k: c.get(k, 0) for k in STATUSES}}
+                   "_k": k, "_set": aset, **{k: c.get(k, 0) for k in STATUSES}}
             rows.append(row)
             check_rows.extend(s["rows"])
     outside = _variants_beside(source, files)
@@ -725,6 +754,17 @@ def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = froz
     for r in rows:
         if "answers" not in r:
             r.update({"answers": 0, "score": 0, **{s: 0 for s in STATUSES}})
+    if sets is not None:
+        labels = []
+        for k in range(len(found)):
+            v = (outcomes[k].get("task") or {}).get("variant")
+            labels.append(files[k].stem if v is None else str(v))
+        _copies(rows, [outcomes[k].get("key") or {} for k in range(len(found))], labels)
+    fields = SUMMARY_FIELDS + (["grade"] if grades else [])
+    if grades:
+        from .copies import grade_of
+        for r in rows:
+            r["grade"] = grade_of(float(r["score"]), grades) if r.get("rows") is not None and r["answers"] else ""
     paths = []
     for r in rows:
         for p in r.get("per_path", {}):
@@ -733,12 +773,14 @@ def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = froz
     for r in rows:
         for p in paths:
             r[p] = r.get("per_path", {}).get(p, "")
-    atomic_write(out / "summary.csv", csv_text(SUMMARY_FIELDS + paths, rows))
+    atomic_write(out / "summary.csv", csv_text(fields + paths, rows))
+    if gradebook:
+        atomic_write(out / GRADEBOOK, gradebook_csv(rows, bool(grades)))
     atomic_write(out / "check.csv", csv_text(CHECK_FIELDS, check_rows))
     from .summary import summary_html
     atomic_write(out / "summary.html", summary_html(rows, paths, source, lang,
                                                     {Path(w).as_posix() for w in written}))
-    written.update({"summary.csv", "summary.html", "check.csv"})
+    written.update({"summary.csv", "summary.html", "check.csv"} | ({GRADEBOOK} if gradebook else set()))
     removed = _remove_stale(out, old_files, written)
     atomic_write(out / MANIFEST, json.dumps({"files": sorted(written)}, indent=1) + "\n")
     from .summary import print_batch
@@ -750,6 +792,38 @@ def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = froz
                           + [n for o in outcomes.values() for n in o.get("notes", ())])
     print_batch(rows, out, skipped, removed, notes=list(notes))
     return max((r["code"] for r in rows), default=0)
+
+
+def _copies(rows: list[dict], keys: list[dict], variants: list[str]) -> None:
+    """Add `same_as=<student>` and `key_of=<variant>` to the graded rows' `flags`."""
+    from .copies import key_of, same_as
+    graded = [r for r in rows if r.get("_set") is not None]
+    nums = [{p: v for p, v in r["_set"].answers.items() if v is not None and p not in r["_set"].invalid}
+            for r in graded]
+    for r, others in zip(graded, same_as(nums)):
+        for j in others:
+            o = graded[j]
+            r["flags"] = ";".join(filter(None, [r["flags"], f"same_as={o['student'] or o['answers_file']}"]))
+    for r, a in zip(graded, nums):
+        k = key_of(a, r["_k"], r.get("ok", 0), keys)
+        if k is not None:
+            r["flags"] = ";".join(filter(None, [r["flags"], f"key_of={variants[k]}"]))
+
+
+def gradebook_csv(rows: list[dict], with_grades: bool) -> str:
+    """gradebook-moodle.csv: one line per graded answer set, the columns of GRADEBOOK_FIELDS;
+    the grade is `grade` with --grades, else the score in percent."""
+    from .tables import csv_text
+    out = []
+    for r in rows:
+        a = r.get("_set")
+        if a is None or not r.get("answers"):
+            continue
+        grade = r["grade"] if with_grades else round(100 * float(r["score"]), 1)
+        fb = f"{r['ok']}/{r['answers']} ok ({r['status']})" + (f"; {r['flags']}" if r.get("flags") else "")
+        out.append({"Email address": a.email, "ID number": a.idnumber, "Full name": r["student"],
+                    "Group": r["group"], "tmm grade": grade, "Feedback": fb})
+    return csv_text(GRADEBOOK_FIELDS, out)
 
 
 class _progress:

@@ -104,6 +104,9 @@ class AnswerSet:
     invalid: dict[str, tuple[str, Any]] = field(default_factory=dict)   # path -> (as written, the note: why)
     notes: list = field(default_factory=list)     # warnings on reading the file (each a Message)
     flags: list = field(default_factory=list)     # summary.csv's `flags` ('repeat=...', 'same_as=...')
+    written: dict[str, str] = field(default_factory=dict)   # path -> the value as written, where it has a unit
+    email: str = ""                               # for a gradebook: `student: {email, id}`, columns email, id
+    idnumber: str = ""
     mtime: float = 0.0                            # the file's modification time (--latest)
 
     @property
@@ -227,6 +230,7 @@ def load_answers_file(path: Path, keep_errors: bool = False) -> AnswerSet:
     aset = AnswerSet(source=str(path), stem=path.stem, variant=data.get("variant"), mtime=_mtime(path))
     st = data.get("student") or {}
     aset.student, aset.group = str(st.get("name") or ""), str(st.get("group") or "")
+    aset.email, aset.idnumber = str(st.get("email") or ""), str(st.get("id") or "")
     for k, v in (data.get("answers") or {}).items():
         k = str(k)
         line, col = _mark(marks, ("answers", k))
@@ -240,6 +244,7 @@ def load_answers_file(path: Path, keep_errors: bool = False) -> AnswerSet:
             continue
         try:
             aset.answers[k] = answer_value(v, k)
+            _keep_written(aset, k, v)
         except ValueError as exc:       # this answer only: the others are graded as usual
             aset.answers[k] = None
             aset.invalid[k] = ("" if v is None else str(v), Message("answers.invalid", reason=_coded(exc)))
@@ -247,6 +252,12 @@ def load_answers_file(path: Path, keep_errors: bool = False) -> AnswerSet:
         line, _ = _mark(marks, ("tolerance",))
         aset.notes.append(Message("answers.tolerance_ignored", where=f"{path}:{line}" if line else str(path)))
     return aset
+
+
+def _keep_written(aset: AnswerSet, path: str, v) -> None:
+    """Keep a string answer with a unit as written (a feedback page shows it so)."""
+    if isinstance(v, str) and re.search(r"[^\d\s.,+\-eE]", v.strip()):
+        aset.written[path] = v.strip()
 
 
 def _mtime(path: Path) -> float:
@@ -297,6 +308,9 @@ def load_answers_dir(folder: Path) -> list[AnswerSet]:
     return sets
 
 
+META_COLUMNS = ("student", "group", "variant", "email", "id")    # an answers table's columns that are no path
+
+
 def load_answers_csv(path: Path) -> list[AnswerSet]:
     """One row per student: student, group, variant, then one column per path."""
     from .tables import TableError, read_table
@@ -306,7 +320,7 @@ def load_answers_csv(path: Path) -> list[AnswerSet]:
         raise TaskError(exc.message, file=str(path), issues=[("", exc.line, None, exc.message)] if exc.line else None)
     if "variant" not in header:
         raise TaskError(Message("answers.table_no_variant"), file=str(path))
-    paths = [h for h in header if h not in ("student", "group", "variant") and h]
+    paths = [h for h in header if h not in META_COLUMNS and h]
     for p in paths:
         try:
             parse_path(p)
@@ -323,12 +337,14 @@ def load_answers_csv(path: Path) -> list[AnswerSet]:
         v = cell_value(row.get("variant", ""))
         aset = AnswerSet(source=f"{path}:{line}", student=row.get("student", "").strip(),
                          group=row.get("group", "").strip(), variant=None if v == "" else v,
-                         mtime=_mtime(path) + line * 1e-6)      # a later row of one table is the newer
+                         mtime=_mtime(path) + line * 1e-6,      # a later row of one table is the newer
+                         email=row.get("email", "").strip(), idnumber=row.get("id", "").strip())
         if bad:
             aset.error = Message("answers.table_row", where=f"{path}:{line}", reason=bad)
         for p in paths:
             try:
                 aset.answers[p] = answer_value(row.get(p, ""), p)
+                _keep_written(aset, p, row.get(p, ""))
             except ValueError as exc:       # this cell only: the row's other answers are graded as usual
                 aset.answers[p] = None
                 aset.invalid[p] = (row.get(p, ""), Message("answers.invalid_cell", where=f"{path}:{line}", column=p,
@@ -470,6 +486,8 @@ def grade(results: dict, aset: AnswerSet, tol: dict, required: list[str] | None 
         row = {"student": aset.student, "group": aset.group, "variant": "" if aset.variant is None else aset.variant,
                "path": p, "answer": val, "reference": None, "error": None, "tolerance": t.text, "status": "",
                "note": "", "answers_file": aset.answers_file if aset.source else ""}
+        if p in aset.written:
+            row["written"] = aset.written[p]
         rows.append(row)
         try:
             ref = lookup(results, p)

@@ -322,17 +322,34 @@ def batch(
                                help="MB of address space per variant (0 = no limit); over it: a failed row"),
     latest: bool = typer.Option(False, "--latest", help="of several submissions of one student for one variant, "
                                                         "grade only the newest (by modification time)"),
+    grades: Optional[str] = typer.Option(None, "--grades", metavar="5:0.9,4:0.75,3:0.6",
+                                         help="a `grade` column: grade:least score, highest first (below the "
+                                              "last: the next lower grade)"),
+    gradebook: Optional[str] = typer.Option(None, "--gradebook", metavar="moodle",
+                                            help="also write gradebook-moodle.csv for Moodle's grade import"),
+    feedback: str = typer.Option("key", "--feedback", metavar="key|no-key",
+                                 help="feedback pages with the reference values (key) or without (no-key)"),
 ):
     """Run and grade many variants; one failing variant never stops the rest.
     Writes summary.csv, summary.html and check.csv (and <out>/<variant>/...). Exit code:
     the worst of the rows (0 all ok, 1 some answers wrong or missing, 2 some invalid,
     3 some failed)."""
     from .batch import run_batch
+    from .copies import parse_grades
     formats = _parse_formats(format)
     _check_lang(lang)
     try:
+        scale = parse_grades(grades) if grades is not None else None
+    except ValueError as exc:
+        raise typer.BadParameter(str(exc), param_hint="--grades") from None
+    if gradebook not in (None, "moodle"):
+        raise typer.BadParameter("the gradebook format is moodle", param_hint="--gradebook")
+    if feedback not in ("key", "no-key"):
+        raise typer.BadParameter("key or no-key", param_hint="--feedback")
+    try:
         code = run_batch(source, out, jobs=jobs, formats=formats, lang=lang, answers=answers, tolerance=tolerance,
-                         quantities=quantities, timeout=timeout, memory_mb=memory or None, latest=latest)
+                         quantities=quantities, timeout=timeout, memory_mb=memory or None, latest=latest,
+                         grades=scale, gradebook=gradebook, feedback=feedback)
     except OSError as exc:
         raise _fail_write(exc)
     raise typer.Exit(code)

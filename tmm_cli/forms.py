@@ -81,30 +81,21 @@ NOTATION: dict[str, tuple[str, str, str, str, str]] = {
     "z4": ("z4", "", "teeth", "число зубьев", "число зубів"),
 }
 
-_CCW = ("signed: counter-clockwise positive", "со знаком: против часовой стрелки — плюс",
-        "зі знаком: проти годинникової стрілки — плюс")
-_MAGNITUDE = ("magnitude, no sign", "модуль, без знака", "модуль, без знака")
-# the sign convention of a result key (en, ru, uk): the sense that is positive, or that it is a magnitude
-SIGN: dict[str, tuple[str, str, str]] = {
-    "omega": _CCW, "epsilon": _CCW, "balancing_moment": _CCW, "zhukovsky_moment": _CCW,
-    "M_constant": ("signed: positive drives (along the crank's rotation), negative resists",
-                   "со знаком: плюс — движущий (по вращению кривошипа), минус — сопротивления",
-                   "зі знаком: плюс — рушійний (за обертанням кривошипа), мінус — опору"),
-    "ratio": ("signed: positive when input and output turn the same way",
-              "со знаком: плюс, когда входное и выходное звенья вращаются в одну сторону",
-              "зі знаком: плюс, коли вхідна й вихідна ланки обертаються в один бік"),
-    "v": _MAGNITUDE, "a": _MAGNITUDE, "R": _MAGNITUDE, "omega_max": _MAGNITUDE, "omega_min": _MAGNITUDE,
-}
+# the sign convention of a result key: a word of the catalogues' `sign_convention` table
+# (the sense that is positive, or that it is a magnitude)
+SIGN: dict[str, str] = {"omega": "ccw", "epsilon": "ccw", "balancing_moment": "ccw", "zhukovsky_moment": "ccw",
+                        "M_constant": "drives", "ratio": "ratio", "v": "magnitude", "a": "magnitude",
+                        "R": "magnitude", "omega_max": "magnitude", "omega_min": "magnitude"}
 
 
 def sign_note(path: str, lang: str = "en") -> str:
     """The sign convention of a path's quantity in ``lang`` ('' when the key has none listed)."""
+    from .messages import catalogue
     names = re.findall(r"[A-Za-z_][A-Za-z0-9_]*", path)
     key = names[-1] if names else ""
     if key not in SIGN and re.fullmatch(r"R\d+", key or ""):
         key = "R"
-    s = SIGN.get(key)
-    return s[("en", "ru", "uk").index(lang)] if s else ""
+    return catalogue(lang)["terms"]["sign_convention"][SIGN[key]] if key in SIGN else ""
 
 
 # the units as a Russian or Ukrainian text writes them (the feedback page; a form keeps the units
@@ -264,7 +255,6 @@ def form_text(task, paths: list[str], results: dict | None, lang: str) -> str:
 
 
 NOTES_MARK = "#"     # a table row whose `student` cell starts with it is a note, never a student's answers
-NOTES_ROW = {"en": "# sign", "ru": "# знак", "uk": "# знак"}
 
 
 def forms_csv(rows: list[dict], paths: list[str], lang: str | None = None) -> str:
@@ -272,5 +262,6 @@ def forms_csv(rows: list[dict], paths: list[str], lang: str | None = None) -> st
     convention (its `student` cell begins with '#': the answers reader skips it)."""
     from .tables import csv_text
     notes = {p: sign_note(p, lang) for p in paths} if lang else {}
-    head = [{"student": NOTES_ROW[lang], **notes}] if any(notes.values()) else []
+    from .messages import catalogue
+    head = [{"student": catalogue(lang)["terms"]["grading"]["sign_row"], **notes}] if any(notes.values()) else []
     return csv_text(["student", "group", "variant"] + paths, head + rows)
