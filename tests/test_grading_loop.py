@@ -342,3 +342,36 @@ def test_summary_html_typo_columns_and_the_no_answer_marks(tmp_path):
 
 
 COLOUR_NONE = "#cfd8dc"
+
+
+def test_excel_ru_csv_every_file_of_the_run(tmp_path):
+    """--csv excel-ru: `;`, decimal commas, a UTF-8 BOM in summary.csv, check.csv (both),
+    the gradebook and a variant's own tables; form.csv and key.csv too, and a filled form
+    written so is read back."""
+    key = gear_key(14, 30)
+    src = tmp_path / "src"
+    t = _write(src, "v4.yaml", GEARS.format(v=4, z1=14, z2=30))
+    res = runner.invoke(app, ["form", str(t), "-q", "gears.aw,gears.alpha_w", "--out", str(tmp_path / "f"),
+                              "--lang", "ru", "--csv", "excel-ru"])
+    assert res.exit_code == 0, res.output
+    raw = (tmp_path / "f" / "key.csv").read_bytes()
+    assert raw.startswith("\ufeff".encode()) and raw.splitlines()[0] == "\ufeffstudent;group;variant;gears.aw;gears.alpha_w".encode()
+    ref_aw = float(_csv(tmp_path / "f" / "key.csv")[0]["gears.aw"].replace(",", "."))
+    assert ref_aw == key["gears.aw"] or abs(ref_aw / key["gears.aw"] - 1) < 1e-12
+    lines = (tmp_path / "f" / "form.csv").read_text(encoding="utf-8-sig").splitlines()
+    cells = lines[-1].split(";")
+    cells[0], cells[3], cells[4] = "Ivanov", f"{key['gears.aw']:.6f}".replace(".", ","), "1"
+    filled = _write(tmp_path, "filled.csv", "\ufeff" + "\n".join(lines[:-1] + [";".join(cells)]) + "\n")
+    out = tmp_path / "o"
+    res = runner.invoke(app, ["batch", str(src), "--answers", str(filled), "--out", str(out), "--csv", "excel-ru",
+                              "--gradebook", "moodle", "--format", "json,html"])
+    assert res.exit_code == 1, res.output
+    for f in [out / "summary.csv", out / "check.csv", out / "gradebook-moodle.csv", out / "v4" / "check.csv",
+              out / "v4" / "gears_sliding.csv"]:
+        text = f.read_text(encoding="utf-8")
+        assert text.startswith("\ufeff") and ";" in text.splitlines()[0], f
+        assert not any(c.replace(".", "", 1).isdigit() and "." in c for ln in text.splitlines()
+                       for c in ln.split(";")), f
+    row = _csv(out / "summary.csv")[0]
+    assert row["score"] == "0,5" and row["gears.aw"] == expect(round(key["gears.aw"], 6), key["gears.aw"]) == "ok"
+    assert row["gears.alpha_w"] == expect(1.0, key["gears.alpha_w"]) == "outside"

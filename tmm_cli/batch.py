@@ -134,6 +134,12 @@ def work(path: Path, out: Path, folder: str, formats: set[str], lang: str, sets:
                 res["written"].append(str(Path(folder) / "results.json"))
             raise
         res["written"] = [str(Path(p).relative_to(out)) for p in written if _inside(p, out)]
+        style = (options or {}).get("csv", "plain")
+        if style != "plain":          # every CSV of the run in the spreadsheet's style
+            from .tables import csv_styled
+            for p in written:
+                if str(p).endswith(".csv"):
+                    atomic_write(p, csv_styled(Path(p).read_text(encoding="utf-8"), style))
         if sets is None:
             own = task_answer_set(task)
             mine = [(-1, own)] if own else []
@@ -164,7 +170,8 @@ def work(path: Path, out: Path, folder: str, formats: set[str], lang: str, sets:
                                 "variant": aset.variant if aset.variant is not None else task.variant,
                                 "message": _set_message(rows, sst, aset)})
         if mine:
-            atomic_write(vout / "check.csv", check_csv(all_rows))
+            from .tables import csv_styled
+            atomic_write(vout / "check.csv", csv_styled(check_csv(all_rows), style))
             res["written"].append(str(Path(folder) / "check.csv"))
             from .feedback import write_feedback
             for s in res["sets"]:
@@ -644,7 +651,7 @@ def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = froz
               answers: Path | None = None, tolerance: Path | None = None, quantities: str | None = None,
               timeout: float = DEFAULT_TIMEOUT, memory_mb: int | None = DEFAULT_MEMORY_MB,
               latest: bool = False, grades: list[tuple[int, float]] | None = None, gradebook: str | None = None,
-              feedback: str = "key") -> int:
+              feedback: str = "key", csv_style: str = "plain") -> int:
     from rich.console import Console
 
     from .check import CHECK_FIELDS, load_sources, load_tolerance_file, repeats
@@ -677,7 +684,7 @@ def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = froz
             why = Message("batch.not_a_task", file=str(f), reason=why)
             outcomes[k] = {"task": None, "written": [], "sets": [], "code": 2, "status": "invalid",
                            "message": why, "message_coded": why}
-    options = {"feedback": feedback}
+    options = {"feedback": feedback, "csv": csv_style}
     args = [(found[k][0], out, folders[k], set(formats), lang, sets, tol_override, quantities, options)
             for k in runnable]
     warm([found[k][0] for k in runnable], formats)
@@ -773,10 +780,11 @@ def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = froz
     for r in rows:
         for p in paths:
             r[p] = r.get("per_path", {}).get(p, "")
-    atomic_write(out / "summary.csv", csv_text(fields + paths, rows))
+    from .tables import csv_styled
+    atomic_write(out / "summary.csv", csv_styled(csv_text(fields + paths, rows), csv_style))
     if gradebook:
-        atomic_write(out / GRADEBOOK, gradebook_csv(rows, bool(grades)))
-    atomic_write(out / "check.csv", csv_text(CHECK_FIELDS, check_rows))
+        atomic_write(out / GRADEBOOK, csv_styled(gradebook_csv(rows, bool(grades)), csv_style))
+    atomic_write(out / "check.csv", csv_styled(csv_text(CHECK_FIELDS, check_rows), csv_style))
     from .summary import summary_html
     atomic_write(out / "summary.html", summary_html(rows, paths, source, lang,
                                                     {Path(w).as_posix() for w in written}))

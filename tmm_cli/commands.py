@@ -69,6 +69,12 @@ def _check_lang(lang: str) -> None:
         raise typer.BadParameter(f"--lang must be {', '.join(cli.LANGS[:-1])} or {cli.LANGS[-1]}")
 
 
+def _check_csv_style(style: str) -> None:
+    from .tables import CSV_STYLES
+    if style not in CSV_STYLES:
+        raise typer.BadParameter(" or ".join(CSV_STYLES), param_hint="--csv")
+
+
 def _fail_write(exc: OSError) -> "typer.Exit":
     """The output folder or a file in it cannot be written: exit 3, no traceback."""
     return typer.Exit(cli.fail_write(exc, typer.echo))
@@ -228,6 +234,8 @@ def check(
                                                   "(a required path not answered is missing)"),
     latest: bool = typer.Option(False, "--latest", help="of several submissions of one student for the variant, "
                                                         "grade only the newest (by modification time)"),
+    csv_style: str = typer.Option("plain", "--csv", metavar="plain|excel-ru",
+                                  help="check.csv: plain (`,`, decimal points) or excel-ru (`;`, decimal commas, BOM)"),
 ):
     """Compare a student's answers with the computed results: path, answer, reference,
     error and status (ok, sign, outside, missing, unknown_path, not_computed). Exit 1 if
@@ -236,6 +244,7 @@ def check(
                         task_answer_set, tolerances)
     from .orchestrate import compute, prepare
     from .pipeline import PartialResults
+    _check_csv_style(csv_style)
     try:
         task = prepare(task_file, stage_errors=False)
         tol_override = load_tolerance_file(tolerance) if tolerance is not None else None
@@ -296,7 +305,8 @@ def check(
         from .io import atomic_write
         from .results import dump
         try:
-            atomic_write(out / "check.csv", check_csv(all_rows))
+            from .tables import csv_styled
+            atomic_write(out / "check.csv", csv_styled(check_csv(all_rows), csv_style))
             atomic_write(out / "results.json", lambda write: dump(results, write))
         except OSError as exc:
             raise _fail_write(exc)
@@ -329,6 +339,9 @@ def batch(
                                             help="also write gradebook-moodle.csv for Moodle's grade import"),
     feedback: str = typer.Option("key", "--feedback", metavar="key|no-key",
                                  help="feedback pages with the reference values (key) or without (no-key)"),
+    csv_style: str = typer.Option("plain", "--csv", metavar="plain|excel-ru",
+                                  help="every CSV of the run: plain (`,`, decimal points) or excel-ru (`;`, "
+                                       "decimal commas, a UTF-8 BOM)"),
 ):
     """Run and grade many variants; one failing variant never stops the rest.
     Writes summary.csv, summary.html and check.csv (and <out>/<variant>/...). Exit code:
@@ -346,10 +359,11 @@ def batch(
         raise typer.BadParameter("the gradebook format is moodle", param_hint="--gradebook")
     if feedback not in ("key", "no-key"):
         raise typer.BadParameter("key or no-key", param_hint="--feedback")
+    _check_csv_style(csv_style)
     try:
         code = run_batch(source, out, jobs=jobs, formats=formats, lang=lang, answers=answers, tolerance=tolerance,
                          quantities=quantities, timeout=timeout, memory_mb=memory or None, latest=latest,
-                         grades=scale, gradebook=gradebook, feedback=feedback)
+                         grades=scale, gradebook=gradebook, feedback=feedback, csv_style=csv_style)
     except OSError as exc:
         raise _fail_write(exc)
     raise typer.Exit(code)
@@ -435,6 +449,9 @@ def form(
                                         "kinetostatics, flywheel, cam, gears, planetary, drive_train, synthesis"),
     out: Path = typer.Option(Path("forms"), "--out", "-o", help="output folder (default: forms/)"),
     lang: str = typer.Option("en", "--lang", "-l", help="language of the comments: en | ru | uk"),
+    csv_style: str = typer.Option("plain", "--csv", metavar="plain|excel-ru",
+                                  help="form.csv and key.csv: plain (`,`, decimal points) or excel-ru (`;`, "
+                                       "decimal commas, a UTF-8 BOM)"),
 ):
     """Write per task a blank answer form NAME.form.yaml and an answer key NAME.key.yaml,
     and for the set form.csv and key.csv."""
@@ -444,6 +461,7 @@ def form(
     from .orchestrate import classify, compute, prepare
     from .results import lookup
     _check_lang(lang)
+    _check_csv_style(csv_style)
     if source.is_dir():
         found, _ = find_tasks(str(source))
         files = [f for f, why in found if why is None]
@@ -478,8 +496,9 @@ def form(
         krows.append(krow)
     if frows:        # with no form written, an earlier run's form.csv and key.csv stay as they were
         try:
-            atomic_write(out / "form.csv", forms_csv(frows, all_paths, lang))
-            atomic_write(out / "key.csv", forms_csv(krows, all_paths))
+            from .tables import csv_styled
+            atomic_write(out / "form.csv", csv_styled(forms_csv(frows, all_paths, lang), csv_style))
+            atomic_write(out / "key.csv", csv_styled(forms_csv(krows, all_paths), csv_style))
         except OSError as exc:
             raise _fail_write(exc)
     _err(f"wrote {len(frows)} form(s) and key(s) to {out}")
