@@ -93,7 +93,7 @@ def test_batch_grades_around_an_unreadable_answer_and_writes_the_feedback(tmp_pa
     row = _csv(tmp_path / "o" / "summary.csv")[0]
     assert row["gears.aw"] == expect(round(key["gears.aw"] * 1000, 3) / 1000, key["gears.aw"]) == "ok"
     assert row["gears.alpha_w"] == "invalid" and row["invalid"] == "1"
-    assert row["status"] == "outside" and float(row["score"]) == 0.5
+    assert row["status"] == "outside" and float(row["score"]) == 0.5 and row["message"] == "invalid: gears.alpha_w"
     assert list((tmp_path / "o" / "v4").glob("feedback-*.html"))
 
 

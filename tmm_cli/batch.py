@@ -236,10 +236,15 @@ def _inside(p, out: Path) -> bool:
 def _set_message(rows, status, aset) -> str:
     if status == "no_answers":
         return Message("batch.set_no_answers", file=Path(aset.source).name)
-    bad = [r["path"] for r in rows if r["status"] not in ("ok",)]
-    if not bad:
-        return ""
-    return Message("batch.set_not_ok" if len(bad) <= 6 else "batch.set_not_ok_more", status=status, paths=bad[:6])
+    parts = []       # each status with its paths: "outside: a, b; invalid: c"
+    for st in ("outside", "invalid", "sign", "missing", "unknown_path", "not_computed"):
+        bad = [r["path"] for r in rows if r["status"] == st]
+        if bad:
+            parts.append(Message("batch.set_not_ok" if len(bad) <= 6 else "batch.set_not_ok_more", status=st,
+                                 paths=bad[:6]))
+    if len(parts) <= 1:
+        return parts[0] if parts else ""
+    return Message("batch.set_statuses", parts=parts)
 
 
 def _variants_beside(source: str, files: list[Path]) -> set[str]:
@@ -730,7 +735,7 @@ def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = froz
         for s in res["sets"]:
             matched.add(s["index"])
             c = s.get("counts") or {}
-            n = sum(c.values())
+            n = sum(c.values()) - c.get("unknown_path", 0)       # a misspelt path answers no quantity
             own = s["index"] < 0            # the task's own `answers`: the task's student
             aset = None if own else sets[s["index"]]
             row = {**base, "student": s["student"] or (base["student"] if own else ""),

@@ -161,6 +161,7 @@ def feedback_html(task, s: dict, lang: str = "en", key: bool = True) -> str:
     e = lambda x: html.escape(str(x), quote=True)  # noqa: E731
     rows = s["rows"]
     n_ok = sum(r["status"] == "ok" for r in rows)
+    n_all = sum(r["status"] != "unknown_path" for r in rows)      # a misspelt path answers no quantity
     trs = []
     for r in rows:
         st = r["status"]
@@ -179,7 +180,8 @@ def feedback_html(task, s: dict, lang: str = "en", key: bool = True) -> str:
             note = localize(note.to_dict(), lang)
         step = step_for(r["path"], lang) if st in ("outside", "sign") else (note if st in ("unknown_path", "invalid")
                                                                             else "")
-        colour = {"ok": "#c8e6c9", "outside": "#ffcdd2", "sign": "#e1bee7", "missing": "#fff9c4"}.get(st, "#eee")
+        colour = {"ok": "#c8e6c9", "outside": "#ffcdd2", "sign": "#e1bee7", "missing": "#fff9c4",
+                  "invalid": "#ef9a9a"}.get(st, "#eee")
         conv = _in_written_unit(r)
         if "written" in r:
             value = r["written"]
@@ -198,7 +200,7 @@ def feedback_html(task, s: dict, lang: str = "en", key: bool = True) -> str:
     head = "".join(f"<th>{e(T[c])}</th>" for c in cols)
     who = [(T["student"], s.get("student") or "–"), (T["group"], s.get("group") or "–"),
            (T["variant"], "–" if s.get("variant") in (None, "") else s.get("variant")),
-           (T["task"], task.title or task.name), (T["score"], f"{n_ok} / {len(rows)}")]
+           (T["task"], task.title or task.name), (T["score"], f"{n_ok} / {n_all}")]
     if s.get("answers_file"):
         who.insert(3, (T["file"], s["answers_file"]))
     info = "".join(f"<tr><th>{e(k)}</th><td>{e(v)}</td></tr>" for k, v in who)

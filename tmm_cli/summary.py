@@ -303,8 +303,7 @@ def summary_html(rows: list[dict], paths: list[str], source: str, lang: str = "e
     body = []
     for r in rows:
         st = shown_status(r)
-        known = (r.get("answers") or 0) - (r.get("unknown_path") or 0)     # a misspelt path is no answer
-        score = f"{100 * (r.get('ok') or 0) / known:.0f} %" if known > 0 else "–"
+        score = f"{100 * float(r['score']):.0f} %" if r.get("answers") else "–"
         cells = [e(r.get("student") or r.get("answers_file") or ""), e(r.get("group", "")), e(r.get("variant", "")),
                  f'<span class="st">{e(T.get(st, st))}</span>', e(score)]
         tds = "".join(f"<td>{c}</td>" for c in cells[:3])
@@ -336,7 +335,7 @@ def summary_html(rows: list[dict], paths: list[str], source: str, lang: str = "e
             "td,th{border:1px solid #999;padding:3px 6px;text-align:left}th.q{vertical-align:bottom;"
             "font-weight:normal;font-size:11px}th.q span{writing-mode:vertical-rl;transform:rotate(180deg);"
             "white-space:nowrap;display:inline-block}td.m{text-align:center}td.fl{font-size:11px;color:#b71c1c}"
-            ".lg{padding:2px 6px;margin-right:4px;border:1px solid #999}.msg{font-size:11px;max-width:30em;white-space:pre-line}</style>"
+            ".lg{padding:2px 6px;margin:0 4px 4px 0;border:1px solid #999;display:inline-block}.msg{font-size:11px;max-width:30em;white-space:pre-line}</style>"
             f"</head><body><h1>{e(T['title'])}: {e(source)}</h1><p>{len(rows)} {e(T['rows'])}</p>"
             f"<p>{e(T['legend'])}: {legend}</p>"
             f"<table><tr>{head}</tr>{''.join(body)}</table></body></html>\n")
