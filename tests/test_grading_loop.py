@@ -375,3 +375,24 @@ def test_excel_ru_csv_every_file_of_the_run(tmp_path):
     row = _csv(out / "summary.csv")[0]
     assert row["score"] == "0,5" and row["gears.aw"] == expect(round(key["gears.aw"], 6), key["gears.aw"]) == "ok"
     assert row["gears.alpha_w"] == expect(1.0, key["gears.alpha_w"]) == "outside"
+
+
+def test_a_batch_compiles_the_report_templates_once(tmp_path, monkeypatch):
+    """Without a bytecode cache (PYTHONDONTWRITEBYTECODE) every report compiled every
+    template again; now the batch compiles them before it forks, and a second report in
+    one process compiles nothing."""
+    import sys
+    from tmm_cli import report
+    from tmm_cli.batch import warm
+    monkeypatch.setattr(sys, "dont_write_bytecode", True)
+    monkeypatch.setattr(report, "_SHARED_ENV", None)
+    t = _write(tmp_path, "g.yaml", GEARS.format(v=4, z1=14, z2=30))
+    warm([t], {"json", "html"})
+    import gc
+    gc.unfreeze()
+    env = report.shared_env()
+    monkeypatch.setattr(env, "_compile", lambda *a: (_ for _ in ()).throw(AssertionError("compiled again")))
+    for out in ("a", "b"):
+        res = runner.invoke(app, ["run", str(t), "--format", "json,html", "--out", str(tmp_path / out), "-q"])
+        assert res.exit_code == 0, res.output
+        assert (tmp_path / out / "report.html").exists()

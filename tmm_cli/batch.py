@@ -318,6 +318,12 @@ def warm(files: list[Path], formats) -> None:
         Task.model_rebuild()
     except Exception:   # noqa: BLE001
         pass
+    if set(formats) & {"html", "pdf"}:
+        try:
+            from .report import warm_templates
+            warm_templates()            # compiled once here, not once per variant
+        except Exception:   # noqa: BLE001  (the variant that needs them reports the failure)
+            pass
     gc.collect()
     gc.freeze()         # the workers' collections leave the inherited objects (and their pages) alone
 
