@@ -806,7 +806,8 @@ def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = froz
     if skipped_sets:
         set_notes.append(Message("batch.answers_outside", count=len(skipped_sets),
                                  variants=sorted({str(s.variant if s.variant not in (None, "") else s.stem)
-                                                  for s in skipped_sets})))
+                                                  for s in skipped_sets},
+                                                 key=lambda v: (not v.isdigit(), int(v) if v.isdigit() else 0, v))))
     notes = dict.fromkeys(set_notes + [n for s in sets or [] for n in s.notes]       # each once, in order
                           + [n for o in outcomes.values() for n in o.get("notes", ())])
     print_batch(rows, out, skipped, removed, notes=list(notes))
