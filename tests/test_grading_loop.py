@@ -396,3 +396,23 @@ def test_a_batch_compiles_the_report_templates_once(tmp_path, monkeypatch):
         res = runner.invoke(app, ["run", str(t), "--format", "json,html", "--out", str(tmp_path / out), "-q"])
         assert res.exit_code == 0, res.output
         assert (tmp_path / out / "report.html").exists()
+
+
+def test_key_table_counts_what_compare_grades_ok():
+    """The vectorised key_of counts, per variant, exactly the answers compare() passes
+    (relative, plain against a zero reference, sign: any, angles modulo 360)."""
+    import random
+    from tmm_cli.check import Tol, compare
+    from tmm_cli.copies import KeyTable
+    rnd = random.Random(7)
+    paths = [f"p{i}" for i in range(6)]
+    keys = [{p: (rnd.choice([0.0, rnd.uniform(-200, 200)]), Tol(0.05, rnd.choice([0.0, 0.3]), rnd.random() < .5,
+                                                               rnd.random() < .3), p == "p0") for p in paths}
+            for _ in range(40)]
+    table = KeyTable(keys)
+    for i in range(40):
+        a = {p: keys[i][p][0] * rnd.choice([1, 1.03, -1, 0.7]) + rnd.choice([0, 360]) * (p == "p0")
+             for p in paths}
+        got = table.counts(a)
+        for k in range(40):
+            assert got[k] == sum(compare(v, *keys[k][p])[0] == "ok" for p, v in a.items()), (i, k)

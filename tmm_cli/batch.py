@@ -816,7 +816,7 @@ def run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = froz
 
 def _copies(rows: list[dict], keys: list[dict], variants: list[str]) -> None:
     """Add `same_as=<student>` and `key_of=<variant>` to the graded rows' `flags`."""
-    from .copies import key_of, same_as
+    from .copies import KeyTable, key_of, same_as
     graded = [r for r in rows if r.get("_set") is not None]
     nums = [{p: v for p, v in r["_set"].answers.items() if v is not None and p not in r["_set"].invalid}
             for r in graded]
@@ -824,8 +824,9 @@ def _copies(rows: list[dict], keys: list[dict], variants: list[str]) -> None:
         for j in others:
             o = graded[j]
             r["flags"] = ";".join(filter(None, [r["flags"], f"same_as={o['student'] or o['answers_file']}"]))
+    table = KeyTable(keys)
     for r, a in zip(graded, nums):
-        k = key_of(a, r["_k"], r.get("ok", 0), keys)
+        k = key_of(a, r["_k"], r.get("ok", 0), table)
         if k is not None:
             r["flags"] = ";".join(filter(None, [r["flags"], f"key_of={variants[k]}"]))
 

@@ -449,6 +449,14 @@ def did_you_mean(path: str, results: dict, leaves: list[str] | None = None) -> s
 
 
 # ------------------------------------------------------------------ grading
+def bound_of(ref: float, tol: Tol) -> tuple[float, str]:
+    """The largest |answer - reference| a tolerance passes, and its kind ('rel' | 'abs')."""
+    if ref == 0 and tol.plain:
+        return tol.rel, "abs"
+    rel_b = tol.rel * abs(ref)
+    return (rel_b, "rel") if rel_b >= tol.abs and ref != 0 else (tol.abs, "abs")
+
+
 def compare(student: float, ref: float, tol: Tol, angle: bool) -> tuple[str, float, str]:
     """(status, error, kind of error: 'rel' | 'abs'). With ``tol.any_sign`` the magnitude
     is graded: the answer or its negation, whichever is nearer."""
@@ -460,11 +468,7 @@ def compare(student: float, ref: float, tol: Tol, angle: bool) -> tuple[str, flo
         d = a - ref
         return (d + 180.0) % 360.0 - 180.0 if angle else d
     d = abs(diff(student))
-    if ref == 0 and tol.plain:
-        bound, kind = tol.rel, "abs"
-    else:
-        rel_b = tol.rel * abs(ref)
-        bound, kind = (rel_b, "rel") if rel_b >= tol.abs and ref != 0 else (tol.abs, "abs")
+    bound, kind = bound_of(ref, tol)
     err = d / abs(ref) if kind == "rel" else d
     slack = 1e-12 * max(1.0, abs(ref))
     if d <= bound + slack:

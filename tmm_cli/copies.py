@@ -37,23 +37,52 @@ def same_as(answers: list[dict[str, float]]) -> list[list[int]]:
     return out
 
 
-def key_of(answers: dict[str, float], own: int, own_ok: int, keys: list[dict]) -> int | None:
+class KeyTable:
+    """Every variant's key as arrays per path, for :func:`key_of`: the reference, the bound its
+    tolerance passes (``check.bound_of``, with compare's slack), whether either sign passes,
+    and whether the variant has the path at all."""
+
+    def __init__(self, keys: list[dict]):
+        import numpy as np
+
+        from .check import bound_of
+        n = len(keys)
+        self.n = n
+        self.paths: dict[str, tuple] = {}
+        for p in {p for key in keys for p in key}:
+            ref, bound = np.zeros(n), np.full(n, -1.0)
+            anysign, angle = np.zeros(n, bool), False
+            for k, key in enumerate(keys):
+                if p in key:
+                    r, tol, angle = key[p]
+                    ref[k], anysign[k] = r, tol.any_sign
+                    bound[k] = bound_of(r, tol)[0] + 1e-12 * max(1.0, abs(r))
+            self.paths[p] = (ref, bound, anysign, angle)
+
+    def counts(self, answers: dict[str, float]):
+        """Per variant: on how many of ``answers`` its key passes."""
+        import numpy as np
+        n = np.zeros(self.n, int)
+        for p, a in answers.items():
+            if p not in self.paths:
+                continue
+            ref, bound, anysign, angle = self.paths[p]
+
+            def dist(x):
+                d = x - ref
+                return np.abs((d + 180.0) % 360.0 - 180.0 if angle else d)
+            n += (dist(a) <= bound) | (anysign & (dist(-a) <= bound))
+        return n
+
+
+def key_of(answers: dict[str, float], own: int, own_ok: int, table: KeyTable) -> int | None:
     """The index of the variant whose key the answers match (within that key's tolerance)
     on more quantities than their own variant's (``own``, where ``own_ok`` answers are
-    ok), or None. ``keys[k]``: path -> (reference, Tol, angle) of variant k."""
-    from .check import compare
-    best, best_n = None, own_ok
-    for k, key in enumerate(keys):
-        if k == own:
-            continue
-        n = 0
-        for p, a in answers.items():
-            ref = key.get(p)
-            if ref is not None and compare(a, ref[0], ref[1], ref[2])[0] == "ok":
-                n += 1
-        if n > best_n:
-            best, best_n = k, n
-    return best
+    ok), or None; the first such variant on a tie."""
+    counts = table.counts(answers)
+    counts[own] = -1
+    best = int(counts.argmax()) if len(counts) else 0
+    return best if len(counts) and counts[best] > own_ok else None
 
 
 def parse_grades(text: str) -> list[tuple[int, float]]:
