@@ -174,13 +174,15 @@ def test_graphical_error_and_tolerance():
     e = d["kinematics"][3]
     tol = graphical_tolerance(d)
     B = e["points"]["B"]
-    assert tol["kinematics[3].points.B.v"] == pytest.approx(0.5 * mu / B["v"], rel=1e-12)
-    assert tol["kinematics[3].points.B.a"] == pytest.approx(0.5 * g["plans"]["mu_a"] / B["a"], rel=1e-12)
+    # the tolerance: a careful hand solution's plan error, 2.5 % of the crank pin's vector, over the segment
+    aA = max(k["points"]["A"]["a"] for k in d["kinematics"])
+    assert tol["kinematics[3].points.B.v"] == pytest.approx(0.025 * vA / B["v"], rel=1e-12)
+    assert tol["kinematics[3].points.B.a"] == pytest.approx(0.025 * aA / B["a"], rel=1e-12)
     # a link's omega read off its relative velocity segment |omega| l
     A, Bp = e["points"]["A"], e["points"]["B"]
     l_ab = math.hypot(Bp["x"] - A["x"], Bp["y"] - A["y"])
     w = abs(e["links"]["rod"]["omega"])
-    assert tol["kinematics[3].links.rod.omega"] == pytest.approx(0.5 * mu / (w * l_ab), rel=1e-12)
+    assert tol["kinematics[3].links.rod.omega"] == pytest.approx(0.025 * vA / (w * l_ab), rel=1e-12)
     # the 12-position flywheel: its error against the accurate J
     h = d["flywheel"]["hand"]
     assert tol["flywheel.J"] == pytest.approx(abs(h["J"] / d["flywheel"]["J"] - 1), rel=1e-9)

@@ -343,7 +343,7 @@ def test_check_answer_sources_and_messages(tmp_path):
     assert res.exit_code == 1, res.output
     rows = _csv(tmp_path / "c" / "check.csv")
     assert list(rows[0]) == ["student", "group", "variant", "path", "answer", "reference", "error", "tolerance",
-                             "status", "note"]
+                             "status", "note", "answers_file"]
     assert [(r["student"], r["path"], r["status"]) for r in rows] == [("Ivanov", "gears.aw", "ok"),
                                                                      ("Ivanov", "gears.alpha_w", "sign")]
     # CSV: one row per student, decimal commas; another variant's row is not this task's
@@ -355,11 +355,10 @@ def test_check_answer_sources_and_messages(tmp_path):
     junk = _write(tmp_path, "junk.txt", "SECRET-FIRST-LINE: [unclosed\n\x07binary")
     res = runner.invoke(app, ["check", str(t), "--answers", str(junk)])
     assert res.exit_code == 2 and "not an answers file" in res.output and "SECRET" not in res.output
-    # a non-numeric answer: an invalid answer with file, line and field
+    # a non-numeric answer: that answer's `invalid` with the reason, the set graded (exit 1, not 2)
     bad = _write(tmp_path, "bad.yaml", "answers:\n  gears.aw: twelve\n")
     res = runner.invoke(app, ["check", str(t), "--answers", str(bad)])
-    assert res.exit_code == 2 and f"{bad}:2" in res.output and "invalid answer" in res.output
-    assert "outside" not in res.output
+    assert res.exit_code == 1 and "invalid answer: 'twelve' is not a number" in res.output, res.output
     # an unknown path: exit 1 with "did you mean"
     up = _write(tmp_path, "up.yaml", "answers:\n  gears.a_w: 1\n")
     res = runner.invoke(app, ["check", str(t), "--answers", str(up), "--out", str(tmp_path / "u")])
@@ -536,7 +535,9 @@ def test_instructor_loop_end_to_end(tmp_path):
     by = {r["student"] or r["file"]: r for r in rows}
     assert by["Student 01"]["status"] == "ok" and by["Student 01"]["score"] == "1.0"
     assert by["Student 02"]["status"] == "outside" and by["Student 02"]["flywheel.J"] == "outside"
-    assert by["Student 03"]["status"] == "invalid" and "positions.K" in by["Student 03"]["message"]
+    # a non-numeric answer: that answer's `invalid`, the student's other answers graded
+    assert by["Student 03"]["status"] == "outside" and by["Student 03"]["positions.K"] == "invalid"
+    assert "positions.K" in by["Student 03"]["message"] and by["Student 03"]["flywheel.J"] == "ok"
     ghost = [r for r in rows if r["variant"] == "77"][0]
     assert ghost["status"] == "invalid" and "no task of this variant" in ghost["message"]
     html = (tmp_path / "graded" / "summary.html").read_text(encoding="utf-8")
@@ -830,14 +831,18 @@ def test_batch_invalid_answers_in_the_summary_language(tmp_path):
     res = runner.invoke(app, ["batch", str(src), "--out", str(tmp_path / "o"), "--answers", str(ans), "--lang", "ru"])
     assert res.exit_code == 2, res.output
     rows = {r["student"] or Path(r["file"]).name: r for r in _csv(tmp_path / "o" / "summary.csv")}
-    assert rows["Ivanov"]["message"] == f"{ans / 's1.yaml'}:3:11: field 'answers.gears.aw': invalid answer: " \
-                                        "'twelve' is not a number"
+    # the answer that is not a number is that answer's `invalid`; the set is graded, not invalid
+    assert rows["Ivanov"]["status"] == "outside" and rows["Ivanov"]["gears.aw"] == "invalid"
+    assert rows["Ivanov"]["invalid"] == "1" and rows["Ivanov"]["answers"] == "1"
+    note = [r for r in _csv(tmp_path / "o" / "check.csv") if r["student"] == "Ivanov"][0]
+    assert note["answer"] == "twelve" and note["note"] == "invalid answer: 'twelve' is not a number"
     assert rows["s2.yaml"]["message"].endswith("s2.yaml: not an answers file (a YAML file with an `answers:` "
                                                "mapping of result paths to values)")
     html = unescape((tmp_path / "o" / "summary.html").read_text(encoding="utf-8"))
-    assert f"{ans / 's1.yaml'}:3:11: поле «answers.gears.aw»: неверный ответ: «twelve» — не число" in html
     assert f"{ans / 's2.yaml'}: это не файл ответов" in html
-    assert "invalid answer" not in html and "not an answers file" not in html
+    assert "not an answers file" not in html
+    fb = unescape(next((tmp_path / "o" / "v1").glob("feedback-Ivanov*.html")).read_text(encoding="utf-8"))
+    assert "неверный ответ: «twelve» — не число" in fb
 
 
 def test_feedback_page_names_a_misspelt_path_in_its_language(tmp_path):

@@ -27,12 +27,16 @@ import stat
 import time
 from pathlib import Path
 
-from .check import STATUSES, AnswerSet, set_code
+from .check import STATUSES, AnswerSet, _same, set_code
 from .messages import Message
 
 SUMMARY_FIELDS = ["student", "group", "variant", "file", "status", "score", "answers", "ok", "outside", "sign",
-                  "missing", "unknown_path", "not_computed", "message"]
-RESERVED = {"summary.csv", "summary.html", "check.csv", "feedback", ".tmm-batch.json"}
+                  "missing", "unknown_path", "not_computed", "message", "answers_file", "flags", "invalid"]
+GRADEBOOK = "gradebook-moodle.csv"
+RESERVED = {"summary.csv", "summary.html", "check.csv", "feedback", ".tmm-batch.json", GRADEBOOK}
+# the columns of the gradebook file Moodle's grade import (CSV) maps: a user field to identify
+# the student by (Email address -> useremail, ID number -> useridnumber), a grade, a feedback text
+GRADEBOOK_FIELDS = ["Email address", "ID number", "Full name", "Group", "tmm grade", "Feedback"]
 MANIFEST = ".tmm-batch.json"
 DEFAULT_TIMEOUT = 120.0
 DEFAULT_MEMORY_MB = 4096
@@ -105,8 +109,10 @@ def folder_names(files: list[Path]) -> list[str]:
 
 # ------------------------------------------------------------------ one variant (in the worker)
 def work(path: Path, out: Path, folder: str, formats: set[str], lang: str, sets: list[AnswerSet] | None,
-         tol_override: dict | None, quantities: str | None) -> dict:
-    """Run, write and grade one variant. Never raises: errors become the outcome."""
+         tol_override: dict | None, quantities: str | None, options: dict | None = None) -> dict:
+    """Run, write and grade one variant. Never raises: errors become the outcome.
+    ``options``: ``feedback`` ('key' | 'no-key'); with answer sets the outcome carries the
+    variant's ``key`` (path -> (reference, tolerance, angle)) for the paths any set answered."""
     from .check import check_csv, counts, grade, set_status, task_answer_set, tolerances
     from .io import atomic_write
     from .orchestrate import classify, prepare, process
@@ -129,38 +135,50 @@ def work(path: Path, out: Path, folder: str, formats: set[str], lang: str, sets:
                 res["written"].append(str(Path(folder) / "results.json"))
             raise
         res["written"] = [str(Path(p).relative_to(out)) for p in written if _inside(p, out)]
+        style = (options or {}).get("csv", "plain")
+        if style != "plain":          # every CSV of the run in the spreadsheet's style
+            from .tables import csv_styled
+            for p in written:
+                if str(p).endswith(".csv"):
+                    atomic_write(p, csv_styled(Path(p).read_text(encoding="utf-8"), style))
         if sets is None:
             own = task_answer_set(task)
             mine = [(-1, own)] if own else []
         else:
             mine = [(i, s) for i, s in enumerate(sets) if s.matches(task)]
-        if mine:                # graded: the entries as lists (looked up answer by answer)
+        if mine or sets:        # graded: the entries as lists (looked up answer by answer)
             from .results import listed
             results = listed(results)
+        tol = tolerances(task, tol_override, results=results) if (mine or sets) else {}
+        if sets:
+            res["key"] = variant_key(results, {p for a in sets for p in a.answers}, tol)
         all_rows = []
         for i, aset in mine:
             if aset.error:
                 res["sets"].append({"index": i, "status": "invalid", "message": aset.error, "rows": [],
-                                    "student": aset.student, "group": aset.group, "variant": aset.variant})
+                                    "student": aset.student, "group": aset.group, "variant": aset.variant,
+                                    "answers_file": aset.answers_file})
                 continue
             required = None
             if quantities:
                 from .forms import expand
                 required = expand(quantities, results, strict=False)
-            rows = grade(results, aset, tolerances(task, tol_override, results=results), required)
+            rows = grade(results, aset, tol, required)
             all_rows.extend(rows)
             sst = set_status(rows)
             res["sets"].append({"index": i, "status": sst, "rows": rows, "counts": counts(rows),
-                                "student": aset.student, "group": aset.group,
+                                "student": aset.student, "group": aset.group, "answers_file": aset.answers_file,
                                 "variant": aset.variant if aset.variant is not None else task.variant,
                                 "message": _set_message(rows, sst, aset)})
         if mine:
-            atomic_write(vout / "check.csv", check_csv(all_rows))
+            from .tables import csv_styled
+            atomic_write(vout / "check.csv", csv_styled(check_csv(all_rows), style))
             res["written"].append(str(Path(folder) / "check.csv"))
             from .feedback import write_feedback
             for s in res["sets"]:
                 if s["rows"]:
-                    p = write_feedback(task, s, vout, lang, pdf="pdf" in formats, notes=res["notes"])
+                    p = write_feedback(task, s, vout, lang, pdf="pdf" in formats, notes=res["notes"],
+                                       key=(options or {}).get("feedback", "key") != "no-key")
                     s["feedback"] = [str(Path(x).relative_to(out)) for x in p]
                     res["written"].extend(s["feedback"])
     except BaseException as exc:  # one broken variant must not stop the batch
@@ -171,6 +189,22 @@ def work(path: Path, out: Path, folder: str, formats: set[str], lang: str, sets:
         if coded is not None and str(coded) == res["message"]:
             res["message_coded"] = coded            # the same text, in the report language too
     return res
+
+
+def variant_key(results: dict, paths: set[str], tol: dict) -> dict:
+    """path -> (reference, Tol, angle) of the paths that hold a number in ``results``."""
+    from .check import Tol, _is_angle, parse_tolerance, tolerance_for
+    from .results import lookup
+    key = {}
+    for p in sorted(paths):
+        try:
+            v = lookup(results, p)
+        except KeyError:
+            continue
+        if isinstance(v, (int, float)) and not isinstance(v, bool) and v == v:
+            t = tolerance_for(p, tol)
+            key[p] = (float(v), t if isinstance(t, Tol) else parse_tolerance(t, p), _is_angle(p))
+    return key
 
 
 def stage_failure_message(exc: BaseException) -> Message | None:
@@ -203,10 +237,39 @@ def _inside(p, out: Path) -> bool:
 def _set_message(rows, status, aset) -> str:
     if status == "no_answers":
         return Message("batch.set_no_answers", file=Path(aset.source).name)
-    bad = [r["path"] for r in rows if r["status"] not in ("ok",)]
-    if not bad:
-        return ""
-    return Message("batch.set_not_ok" if len(bad) <= 6 else "batch.set_not_ok_more", status=status, paths=bad[:6])
+    parts = []       # each status with its paths: "outside: a, b; invalid: c"
+    for st in ("outside", "invalid", "sign", "missing", "unknown_path", "not_computed"):
+        bad = [r["path"] for r in rows if r["status"] == st]
+        if bad:
+            parts.append(Message("batch.set_not_ok" if len(bad) <= 6 else "batch.set_not_ok_more", status=st,
+                                 paths=bad[:6]))
+    if len(parts) <= 1:
+        return parts[0] if parts else ""
+    return Message("batch.set_statuses", parts=parts)
+
+
+def _variants_beside(source: str, files: list[Path]) -> set[str]:
+    """The variants (file stems and `variant:` lines) of the task files beside those a
+    pattern matched, in their folders, that the pattern left out: answers for them are
+    not this run's. Empty when the source is a folder (every task in it runs)."""
+    if Path(source).is_dir():
+        return set()
+    given = {Path(f).resolve() for f in files}
+    out: set[str] = set()
+    line = re.compile(r"""^variant\s*:\s*["']?([^"'#\n]*?)["']?\s*(?:#.*)?$""", re.M)
+    for d in {Path(f).parent for f in files}:
+        for f in set(d.glob("*.yaml")) | set(d.glob("*.yml")):
+            if f.resolve() in given or _not_regular(f) is not None or _looks_like_answers(f):
+                continue
+            out.add(f.stem)
+            try:
+                with open(f, "rb") as fh:
+                    m = line.search(fh.read(65536).decode("utf-8", "replace"))
+            except OSError:
+                m = None
+            if m and m.group(1).strip():
+                out.add(m.group(1).strip())
+    return out
 
 
 # the modules a variant's sections need (imported once in the batch, before the workers fork)
@@ -256,6 +319,12 @@ def warm(files: list[Path], formats) -> None:
         Task.model_rebuild()
     except Exception:   # noqa: BLE001
         pass
+    if set(formats) & {"html", "pdf"}:
+        try:
+            from .report import warm_templates
+            warm_templates()            # compiled once here, not once per variant
+        except Exception:   # noqa: BLE001  (the variant that needs them reports the failure)
+            pass
     gc.collect()
     gc.freeze()         # the workers' collections leave the inherited objects (and their pages) alone
 
@@ -600,10 +669,12 @@ def run_batch(source: str, out: Path, **kwargs) -> int:
 
 def _run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = frozenset({"json"}), lang: str = "en",
                answers: Path | None = None, tolerance: Path | None = None, quantities: str | None = None,
-               timeout: float = DEFAULT_TIMEOUT, memory_mb: int | None = DEFAULT_MEMORY_MB) -> int:
+               timeout: float = DEFAULT_TIMEOUT, memory_mb: int | None = DEFAULT_MEMORY_MB,
+               latest: bool = False, grades: list[tuple[int, float]] | None = None, gradebook: str | None = None,
+               feedback: str = "key", csv_style: str = "plain") -> int:
     from rich.console import Console
 
-    from .check import CHECK_FIELDS, load_sources, load_tolerance_file
+    from .check import CHECK_FIELDS, load_sources, load_tolerance_file, repeats
     from .errors import TaskError
     from .io import atomic_write
     from .tables import csv_text
@@ -619,6 +690,9 @@ def _run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = fro
     except TaskError as exc:
         con.print(f"error: invalid answers\n{exc.render()}", markup=False)
         return 2
+    set_notes = []
+    if sets is not None:
+        sets, set_notes = repeats(sets, latest)
     out.mkdir(parents=True, exist_ok=True)
     old_files = _read_manifest(out)
     files = [f for f, _ in found]
@@ -630,7 +704,9 @@ def _run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = fro
             why = Message("batch.not_a_task", file=str(f), reason=why)
             outcomes[k] = {"task": None, "written": [], "sets": [], "code": 2, "status": "invalid",
                            "message": why, "message_coded": why}
-    args = [(found[k][0], out, folders[k], set(formats), lang, sets, tol_override, quantities) for k in runnable]
+    options = {"feedback": feedback, "csv": csv_style}
+    args = [(found[k][0], out, folders[k], set(formats), lang, sets, tol_override, quantities, options)
+            for k in runnable]
     warm([found[k][0] for k in runnable], formats)
     with _progress(con, len(args), "variants") as advance:
         def done(i, res):
@@ -674,26 +750,48 @@ def _run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = fro
         for s in res["sets"]:
             matched.add(s["index"])
             c = s.get("counts") or {}
-            n = sum(c.values())
-            row = {**base, "student": s["student"] or base["student"], "group": s["group"] or base["group"],
+            n = sum(c.values()) - c.get("unknown_path", 0)       # a misspelt path answers no quantity
+            own = s["index"] < 0            # the task's own `answers`: the task's student
+            aset = None if own else sets[s["index"]]
+            row = {**base, "student": s["student"] or (base["student"] if own else ""),
+                   "group": s["group"] or (base["group"] if own else ""),
+                   "answers_file": s.get("answers_file", ""), "flags": ";".join(aset.flags if aset else []),
                    "variant": "" if s["variant"] is None else s["variant"], "status": s["status"],
                    "code": set_code(s["status"]), "message": s["message"] + note, "answers": n,
                    "message_parts": [s["message"], note],
                    "score": round(c.get("ok", 0) / n, 4) if n else 0, "feedback": s.get("feedback", []),
                    "per_path": {r["path"]: r["status"] for r in s["rows"]}, "rows": s["rows"],
-                   **{k: c.get(k, 0) for k in STATUSES}}
+                   "_k": k, "_set": aset, **{k: c.get(k, 0) for k in STATUSES}}
             rows.append(row)
             check_rows.extend(s["rows"])
+    outside = _variants_beside(source, files)
+    skipped_sets = []
     for i, s in enumerate(sets or []):
+        if i not in matched and not s.error and s.answers_file and any(
+                _same(x, v) for v in outside for x in (s.variant, s.stem) if x not in (None, "")):
+            skipped_sets.append(s)         # a variant of the folder that this run (a pattern) left out
+            continue
         if i not in matched:
             why = s.error or (Message("batch.no_task_of_variant", variant=s.variant) if s.variant not in (None, "")
                               else Message("batch.no_task_of_name", file=Path(s.source).name))
             rows.append({"student": s.student, "group": s.group, "variant": "" if s.variant is None else s.variant,
                          "file": s.source, "folder": "", "status": "invalid", "code": 2, "message": why,
+                         "answers_file": s.answers_file, "flags": ";".join(s.flags),
                          "message_parts": [why]})
     for r in rows:
         if "answers" not in r:
             r.update({"answers": 0, "score": 0, **{s: 0 for s in STATUSES}})
+    if sets is not None:
+        labels = []
+        for k in range(len(found)):
+            v = (outcomes[k].get("task") or {}).get("variant")
+            labels.append(files[k].stem if v is None else str(v))
+        _copies(rows, [outcomes[k].get("key") or {} for k in range(len(found))], labels)
+    fields = SUMMARY_FIELDS + (["grade"] if grades else [])
+    if grades:
+        from .copies import grade_of
+        for r in rows:
+            r["grade"] = grade_of(float(r["score"]), grades) if r.get("rows") is not None and r["answers"] else ""
     paths = []
     for r in rows:
         for p in r.get("per_path", {}):
@@ -702,18 +800,60 @@ def _run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = fro
     for r in rows:
         for p in paths:
             r[p] = r.get("per_path", {}).get(p, "")
-    atomic_write(out / "summary.csv", csv_text(SUMMARY_FIELDS + paths, rows))
-    atomic_write(out / "check.csv", csv_text(CHECK_FIELDS, check_rows))
+    from .tables import csv_styled
+    atomic_write(out / "summary.csv", csv_styled(csv_text(fields + paths, rows), csv_style))
+    if gradebook:
+        atomic_write(out / GRADEBOOK, csv_styled(gradebook_csv(rows, bool(grades)), csv_style))
+    atomic_write(out / "check.csv", csv_styled(csv_text(CHECK_FIELDS, check_rows), csv_style))
     from .summary import summary_html
     atomic_write(out / "summary.html", summary_html(rows, paths, source, lang,
                                                     {Path(w).as_posix() for w in written}))
-    written.update({"summary.csv", "summary.html", "check.csv"})
+    written.update({"summary.csv", "summary.html", "check.csv"} | ({GRADEBOOK} if gradebook else set()))
     removed = _remove_stale(out, old_files, written)
     atomic_write(out / MANIFEST, json.dumps({"files": sorted(written)}, indent=1) + "\n")
     from .summary import print_batch
-    notes = dict.fromkeys(n for o in outcomes.values() for n in o.get("notes", ()))   # each once, in order
+    if skipped_sets:
+        set_notes.append(Message("batch.answers_outside", count=len(skipped_sets),
+                                 variants=sorted({str(s.variant if s.variant not in (None, "") else s.stem)
+                                                  for s in skipped_sets},
+                                                 key=lambda v: (not v.isdigit(), int(v) if v.isdigit() else 0, v))))
+    notes = dict.fromkeys(set_notes + [n for s in sets or [] for n in s.notes]       # each once, in order
+                          + [n for o in outcomes.values() for n in o.get("notes", ())])
     print_batch(rows, out, skipped, removed, notes=list(notes))
     return max((r["code"] for r in rows), default=0)
+
+
+def _copies(rows: list[dict], keys: list[dict], variants: list[str]) -> None:
+    """Add `same_as=<student>` and `key_of=<variant>` to the graded rows' `flags`."""
+    from .copies import KeyTable, key_of, same_as
+    graded = [r for r in rows if r.get("_set") is not None]
+    nums = [{p: v for p, v in r["_set"].answers.items() if v is not None and p not in r["_set"].invalid}
+            for r in graded]
+    for r, others in zip(graded, same_as(nums)):
+        for j in others:
+            o = graded[j]
+            r["flags"] = ";".join(filter(None, [r["flags"], f"same_as={o['student'] or o['answers_file']}"]))
+    table = KeyTable(keys)
+    for r, a in zip(graded, nums):
+        k = key_of(a, r["_k"], r.get("ok", 0), table)
+        if k is not None:
+            r["flags"] = ";".join(filter(None, [r["flags"], f"key_of={variants[k]}"]))
+
+
+def gradebook_csv(rows: list[dict], with_grades: bool) -> str:
+    """gradebook-moodle.csv: one line per graded answer set, the columns of GRADEBOOK_FIELDS;
+    the grade is `grade` with --grades, else the score in percent."""
+    from .tables import csv_text
+    out = []
+    for r in rows:
+        a = r.get("_set")
+        if a is None or not r.get("answers"):
+            continue
+        grade = r["grade"] if with_grades else round(100 * float(r["score"]), 1)
+        fb = f"{r['ok']}/{r['answers']} ok ({r['status']})" + (f"; {r['flags']}" if r.get("flags") else "")
+        out.append({"Email address": a.email, "ID number": a.idnumber, "Full name": r["student"],
+                    "Group": r["group"], "tmm grade": grade, "Feedback": fb})
+    return csv_text(GRADEBOOK_FIELDS, out)
 
 
 class _progress:

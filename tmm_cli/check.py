@@ -3,7 +3,9 @@
 Answers come from a task's own `answers` section, one answers file (YAML), a folder of
 them, or one CSV with a row per student. Values may carry units. Each answer gets a
 status: ok, sign (right magnitude, wrong sign), outside, missing, unknown_path (with
-"did you mean") or not_computed; an answer set gets no_answers, ok or its worst status.
+"did you mean"), not_computed, or invalid (a value that is not a number: the reason in
+`note`, the student's other answers graded as usual); an answer set gets no_answers, ok
+or its worst status (an invalid answer counts as one outside: a wrong answer).
 """
 from __future__ import annotations
 
@@ -21,15 +23,15 @@ from .results import LazyEntries, lookup, parse_path
 
 DEFAULT_TOLERANCE = 0.05
 # results in degrees: differences are taken modulo 360 into [-180, 180)
-ANGLE_KEYS = {"phi", "phi0", "extreme", "angle", "working_stroke_angle", "alpha_w", "theta", "psi",
-              "gamma_min", "pressure_angle", "max_pressure_angle", "singular"}
+ANGLE_KEYS = {"phi", "phi0", "extreme", "angle", "working_stroke_angle", "idle_stroke_angle", "alpha_w", "theta",
+              "psi", "gamma_min", "pressure_angle", "max_pressure_angle", "singular"}
 # top-level result sections: a path into one the task did not compute is not_computed
 SECTIONS = {"structure", "positions", "kinematics", "kinematics_curve", "kinetostatics", "kinetostatics_info",
             "singular", "flywheel", "cam", "gears", "planetary", "drive_train", "synthesis", "dof2"}
-STATUSES = ("ok", "outside", "sign", "missing", "unknown_path", "not_computed")
+STATUSES = ("ok", "outside", "sign", "missing", "unknown_path", "not_computed", "invalid")
 SET_ORDER = ("outside", "sign", "missing", "unknown_path", "not_computed")
 CHECK_FIELDS = ["student", "group", "variant", "path", "answer", "reference", "error", "tolerance", "status",
-                "note"]
+                "note", "answers_file"]
 
 
 # ------------------------------------------------------------------ tolerances
@@ -38,13 +40,14 @@ class Tol:
     rel: float = DEFAULT_TOLERANCE
     abs: float = 0.0
     plain: bool = True            # a plain number: absolute for a zero reference
+    any_sign: bool = False        # `sign: any`: the magnitude is graded
 
     @property
     def text(self) -> str:
         if self.plain:
             return f"{self.rel:g}"
         parts = ([f"rel {self.rel:g}"] if self.rel else []) + ([f"abs {self.abs:g}"] if self.abs else [])
-        return " ".join(parts) or "0"
+        return " ".join(parts + (["sign any"] if self.any_sign else [])) or "0"
 
 
 GRAPHICAL = "graphical"   # the tolerance of a hand solution: the error of reading the drawings
@@ -67,10 +70,13 @@ def parse_tolerance(v, where: str, line=None, col=None, file=None) -> Tol:
     if hasattr(v, "model_dump"):          # the task's ToleranceSpec
         v = v.model_dump()
     if isinstance(v, dict):
-        extra = set(map(str, v)) - {"rel", "abs"}
+        extra = set(map(str, v)) - {"rel", "abs", "sign"}
         if extra:
             raise bad(Message("input.tol_unknown_key", key=sorted(extra)[0]))
-        return Tol(rel=num(v.get("rel", 0), "rel"), abs=num(v.get("abs", 0), "abs"), plain=False)
+        if v.get("sign") not in (None, "any"):
+            raise bad(Message("input.tol_sign", got=repr(v.get("sign"))))
+        return Tol(rel=num(v.get("rel", 0), "rel"), abs=num(v.get("abs", 0), "abs"), plain=False,
+                   any_sign=v.get("sign") == "any")
     return Tol(rel=num(v, "plain"))
 
 
@@ -95,8 +101,19 @@ class AnswerSet:
     group: str = ""
     variant: Any = None
     stem: str | None = None
-    tolerance: dict | None = None
     error: str | None = None                      # an invalid answers file / row
+    invalid: dict[str, tuple[str, Any]] = field(default_factory=dict)   # path -> (as written, the note: why)
+    notes: list = field(default_factory=list)     # warnings on reading the file (each a Message)
+    flags: list = field(default_factory=list)     # summary.csv's `flags` ('repeat=...', 'same_as=...')
+    written: dict[str, str] = field(default_factory=dict)   # path -> the value as written, where it has a unit
+    email: str = ""                               # for a gradebook: `student: {email, id}`, columns email, id
+    idnumber: str = ""
+    mtime: float = 0.0                            # the file's modification time (--latest)
+
+    @property
+    def answers_file(self) -> str:
+        """The base name of the student's file, or NAME.csv:LINE for a row of a table."""
+        return Path(self.source).name
 
     def matches(self, task) -> bool:
         tv = task.variant
@@ -183,10 +200,12 @@ def _mark(marks, key, default=(None, None)):
 
 
 def load_answers_file(path: Path, keep_errors: bool = False) -> AnswerSet:
-    """One student's answers file (YAML): `answers`, optional `student`, `variant`,
-    `tolerance`. Raises TaskError naming the file, line and field; with ``keep_errors``
-    an invalid answer or path is kept as the set's error (the set still names its
-    student and variant)."""
+    """One student's answers file (YAML): `answers`, optional `student`, `variant`
+    (a `tolerance` is ignored, with a note in ``notes``). An answer that is not a number
+    is that answer's `invalid` (``invalid``: as written, why). Raises TaskError naming
+    the file, line and field for a file that is not an answers file or a malformed path;
+    with ``keep_errors`` a malformed path is kept as the set's error (the set still names
+    its student and variant)."""
     from .yamlload import load_yaml
     path = Path(path)
     if not path.is_file():
@@ -207,38 +226,77 @@ def load_answers_file(path: Path, keep_errors: bool = False) -> AnswerSet:
     bad_text = text_issues(data, marks)     # the task file's rule for every text
     if bad_text:
         raise TaskError("invalid answers file", file=str(path), issues=bad_text)
-    for key in ("answers", "tolerance", "student"):
+    for key in ("answers", "student"):
         raw = data.get(key)
         if raw is not None and not isinstance(raw, dict):
             line, col = _mark(marks, (key,))
             raise TaskError("invalid answers file", file=str(path),
                             issues=[(key, line, col, Message("answers.not_mapping", got=type(raw).__name__))])
-    aset = AnswerSet(source=str(path), stem=path.stem, variant=data.get("variant"))
+    aset = AnswerSet(source=str(path), stem=path.stem, variant=data.get("variant"), mtime=_mtime(path))
     st = data.get("student") or {}
     aset.student, aset.group = printable(str(st.get("name") or "")), printable(str(st.get("group") or ""))
+    aset.email, aset.idnumber = str(st.get("email") or ""), str(st.get("id") or "")
     for k, v in (data.get("answers") or {}).items():
         k = str(k)
         line, col = _mark(marks, ("answers", k))
-        err = None
         try:
             parse_path(k)
-            aset.answers[k] = answer_value(v, k)
         except KeyError as exc:
-            err = TaskError("invalid answers file", file=str(path),
-                            issues=[(f"answers.{k}", line, col, _coded(exc))])
-        except ValueError as exc:
-            err = TaskError("invalid answer", file=str(path),
-                            issues=[(f"answers.{k}", line, col, Message("answers.invalid", reason=_coded(exc)))])
-        if err is not None:
+            err = TaskError("invalid answers file", file=str(path), issues=[(f"answers.{k}", line, col, _coded(exc))])
             if not keep_errors:
-                raise err
+                raise err from None
             aset.error = aset.error or err.coded() or err.render()
-    if data.get("tolerance") is not None:
-        aset.tolerance = {}
-        for k, v in data["tolerance"].items():
-            line, col = _mark(marks, ("tolerance", k))
-            aset.tolerance[str(k)] = parse_tolerance(v, f"tolerance.{k}", line, col, str(path))
+            continue
+        try:
+            aset.answers[k] = answer_value(v, k)
+            _keep_written(aset, k, v)
+        except ValueError as exc:       # this answer only: the others are graded as usual
+            aset.answers[k] = None
+            aset.invalid[k] = ("" if v is None else str(v), Message("answers.invalid", reason=_coded(exc)))
+    if data.get("tolerance") is not None:    # the instructor's tolerances only: the student's is ignored
+        line, _ = _mark(marks, ("tolerance",))
+        aset.notes.append(Message("answers.tolerance_ignored", where=f"{path}:{line}" if line else str(path)))
     return aset
+
+
+def _keep_written(aset: AnswerSet, path: str, v) -> None:
+    """Keep a string answer with a unit as written (a feedback page shows it so)."""
+    if isinstance(v, str) and re.search(r"[^\d\s.,+\-eE]", v.strip()):
+        aset.written[path] = v.strip()
+
+
+def _mtime(path: Path) -> float:
+    try:
+        return Path(path).stat().st_mtime
+    except OSError:
+        return 0.0
+
+
+def repeats(sets: list[AnswerSet], latest: bool = False) -> tuple[list[AnswerSet], list]:
+    """Second submissions: sets of one student (by name) for one variant (by `variant`,
+    else the file's stem). Each is flagged ``repeat=<the others' answers_file>``; with
+    ``latest`` only the newest by modification time stays (one note per set dropped).
+    Sets without a student's name are never taken for one another."""
+    groups: dict[tuple, list[AnswerSet]] = {}
+    for a in sets:
+        if a.error or not a.student.strip():
+            continue
+        v = a.variant if a.variant not in (None, "") else a.stem
+        groups.setdefault((" ".join(a.student.split()).casefold(), str(v).strip()), []).append(a)
+    drop: set[int] = set()
+    notes = []
+    for same in groups.values():
+        if len(same) < 2:
+            continue
+        newest = max(same, key=lambda a: a.mtime)
+        for a in same:
+            if latest and a is not newest:
+                drop.add(id(a))
+                notes.append(Message("answers.older_dropped", file=a.answers_file, newer=newest.answers_file,
+                                     student=a.student))
+            elif not latest:
+                a.flags.append("repeat=" + "|".join(b.answers_file for b in same if b is not a))
+    return [a for a in sets if id(a) not in drop], notes
 
 
 def load_answers_dir(folder: Path) -> list[AnswerSet]:
@@ -255,6 +313,9 @@ def load_answers_dir(folder: Path) -> list[AnswerSet]:
     return sets
 
 
+META_COLUMNS = ("student", "group", "variant", "email", "id")    # an answers table's columns that are no path
+
+
 def load_answers_csv(path: Path) -> list[AnswerSet]:
     """One row per student: student, group, variant, then one column per path."""
     from .tables import TableError, read_table
@@ -264,7 +325,7 @@ def load_answers_csv(path: Path) -> list[AnswerSet]:
         raise TaskError(exc.message, file=str(path), issues=[("", exc.line, None, exc.message)] if exc.line else None)
     if "variant" not in header:
         raise TaskError(Message("answers.table_no_variant"), file=str(path))
-    paths = [h for h in header if h not in ("student", "group", "variant") and h]
+    paths = [h for h in header if h not in META_COLUMNS and h]
     for p in paths:
         try:
             parse_path(p)
@@ -272,20 +333,27 @@ def load_answers_csv(path: Path) -> list[AnswerSet]:
             raise TaskError("invalid answers table", file=str(path),
                             issues=[(p, 1, header.index(p) + 1,
                                      Message("answers.bad_column", column=p, reason=_coded(exc)))]) from None
+    from .forms import NOTES_MARK
     sets = []
     for line, row, bad in rows:
+        if row.get("student", "").strip().startswith(NOTES_MARK) and not row.get("variant", "").strip():
+            continue            # form.csv's notes row (the sign conventions)
         from .tables import cell_value
         v = cell_value(row.get("variant", ""))
         aset = AnswerSet(source=f"{path}:{line}", student=printable(row.get("student", "").strip()),
-                         group=printable(row.get("group", "").strip()), variant=None if v == "" else v)
+                         group=printable(row.get("group", "").strip()), variant=None if v == "" else v,
+                         mtime=_mtime(path) + line * 1e-6,      # a later row of one table is the newer
+                         email=row.get("email", "").strip(), idnumber=row.get("id", "").strip())
         if bad:
             aset.error = Message("answers.table_row", where=f"{path}:{line}", reason=bad)
         for p in paths:
             try:
                 aset.answers[p] = answer_value(row.get(p, ""), p)
-            except ValueError as exc:
-                aset.error = aset.error or Message("answers.invalid_cell", where=f"{path}:{line}", column=p,
-                                                   reason=_coded(exc))
+                _keep_written(aset, p, row.get(p, ""))
+            except ValueError as exc:       # this cell only: the row's other answers are graded as usual
+                aset.answers[p] = None
+                aset.invalid[p] = (row.get(p, ""), Message("answers.invalid_cell", where=f"{path}:{line}", column=p,
+                                                           reason=_coded(exc)))
         sets.append(aset)
     return sets
 
@@ -334,17 +402,15 @@ def load_tolerance_file(path: Path) -> dict:
     return out
 
 
-def tolerances(task, override: dict | None = None, student: dict | None = None,
-               results: dict | None = None) -> dict:
-    """The task's `tolerance`, then --tolerance FILE per key, then (check with one FILE)
-    the student's file. A key whose tolerance is ``graphical`` (``default`` or a path or
+def tolerances(task, override: dict | None = None, results: dict | None = None) -> dict:
+    """The task's `tolerance`, then --tolerance FILE per key (never a student's file's:
+    the instructor's tolerances only). A key whose tolerance is ``graphical`` (``default`` or a path or
     prefix) gives every path under it that a student reads off a drawing the relative
     error of reading it to 0.5 mm at the report's scales (the 12-position integration for
     the flywheel: `tmm_cli.graphical.graphical_tolerance`); its other paths keep the
     default."""
     raw = {str(k): v for k, v in (task.tolerance or {}).items()}
     raw.update(override or {})
-    raw.update(student or {})
     tol = {k: parse_tolerance(v, f"tolerance.{k}") for k, v in raw.items() if v != GRAPHICAL}
     hand = [k for k, v in raw.items() if v == GRAPHICAL]
     if hand:
@@ -388,17 +454,26 @@ def did_you_mean(path: str, results: dict, leaves: list[str] | None = None) -> s
 
 
 # ------------------------------------------------------------------ grading
+def bound_of(ref: float, tol: Tol) -> tuple[float, str]:
+    """The largest |answer - reference| a tolerance passes, and its kind ('rel' | 'abs')."""
+    if ref == 0 and tol.plain:
+        return tol.rel, "abs"
+    rel_b = tol.rel * abs(ref)
+    return (rel_b, "rel") if rel_b >= tol.abs and ref != 0 else (tol.abs, "abs")
+
+
 def compare(student: float, ref: float, tol: Tol, angle: bool) -> tuple[str, float, str]:
-    """(status, error, kind of error: 'rel' | 'abs')."""
+    """(status, error, kind of error: 'rel' | 'abs'). With ``tol.any_sign`` the magnitude
+    is graded: the answer or its negation, whichever is nearer."""
+    if tol.any_sign:
+        a, b = (compare(s, ref, Tol(tol.rel, tol.abs, tol.plain), angle) for s in (student, -student))
+        return ("ok", b[1], b[2]) if b[0] == "ok" and a[0] != "ok" else a
+
     def diff(a):
         d = a - ref
         return (d + 180.0) % 360.0 - 180.0 if angle else d
     d = abs(diff(student))
-    if ref == 0 and tol.plain:
-        bound, kind = tol.rel, "abs"
-    else:
-        rel_b = tol.rel * abs(ref)
-        bound, kind = (rel_b, "rel") if rel_b >= tol.abs and ref != 0 else (tol.abs, "abs")
+    bound, kind = bound_of(ref, tol)
     err = d / abs(ref) if kind == "rel" else d
     slack = 1e-12 * max(1.0, abs(ref))
     if d <= bound + slack:
@@ -419,7 +494,9 @@ def grade(results: dict, aset: AnswerSet, tol: dict, required: list[str] | None 
         t = t if isinstance(t, Tol) else parse_tolerance(t, p)
         row = {"student": aset.student, "group": aset.group, "variant": "" if aset.variant is None else aset.variant,
                "path": p, "answer": val, "reference": None, "error": None, "tolerance": t.text, "status": "",
-               "note": ""}
+               "note": "", "answers_file": aset.answers_file if aset.source else ""}
+        if p in aset.written:
+            row["written"] = aset.written[p]
         rows.append(row)
         try:
             ref = lookup(results, p)
@@ -446,6 +523,10 @@ def grade(results: dict, aset: AnswerSet, tol: dict, required: list[str] | None 
             row["note"] = Message("answers.note_not_number", kind=type(ref).__name__, hint=did_you_mean(p, results, leaves))
             continue
         row["reference"] = float(ref)
+        if p in aset.invalid:
+            row["answer"], row["status"] = aset.invalid[p][0], "invalid"
+            row["note"] = aset.invalid[p][1]
+            continue
         if val is None:
             row["status"], row["note"] = "missing", "no value given"
             continue
@@ -459,9 +540,9 @@ def grade(results: dict, aset: AnswerSet, tol: dict, required: list[str] | None 
 
 
 def set_status(rows: list[dict]) -> str:
-    if not rows or all(r["answer"] is None for r in rows):
+    if not rows or all(r["answer"] is None and r["status"] != "invalid" for r in rows):
         return "no_answers"
-    present = {r["status"] for r in rows}
+    present = {"outside" if r["status"] == "invalid" else r["status"] for r in rows}
     if present <= {"ok"}:
         return "ok"
     for s in SET_ORDER:

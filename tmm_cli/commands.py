@@ -16,6 +16,7 @@ import typer
 from . import cli
 from .cli import EXIT_ANSWERS, EXIT_INVALID, EXIT_OK, EXIT_STAGE, FORMATS  # noqa: F401
 from .errors import StageError, TaskError
+from .messages import Message
 
 app = typer.Typer(
     name="tmm",
@@ -66,6 +67,12 @@ def _check_lang(lang: str) -> None:
     """--lang: one of the report languages (a usage error otherwise)."""
     if lang not in cli.LANGS:
         raise typer.BadParameter(f"--lang must be {', '.join(cli.LANGS[:-1])} or {cli.LANGS[-1]}")
+
+
+def _check_csv_style(style: str) -> None:
+    from .tables import CSV_STYLES
+    if style not in CSV_STYLES:
+        raise typer.BadParameter(" or ".join(CSV_STYLES), param_hint="--csv")
 
 
 def _fail_write(exc: OSError) -> "typer.Exit":
@@ -225,14 +232,19 @@ def check(
     quantities: Optional[str] = typer.Option(None, "--quantities", "-q",
                                              help="required quantities: result paths and presets, comma-separated "
                                                   "(a required path not answered is missing)"),
+    latest: bool = typer.Option(False, "--latest", help="of several submissions of one student for the variant, "
+                                                        "grade only the newest (by modification time)"),
+    csv_style: str = typer.Option("plain", "--csv", metavar="plain|excel-ru",
+                                  help="check.csv: plain (`,`, decimal points) or excel-ru (`;`, decimal commas, BOM)"),
 ):
     """Compare a student's answers with the computed results: path, answer, reference,
     error and status (ok, sign, outside, missing, unknown_path, not_computed). Exit 1 if
     any answer is not ok (or there are none), 2 invalid input, 3 a stage failed."""
-    from .check import (check_csv, grade, load_sources, load_tolerance_file, set_code, set_status,
+    from .check import (check_csv, grade, load_sources, load_tolerance_file, repeats, set_code, set_status,
                         task_answer_set, tolerances)
     from .orchestrate import compute, prepare
     from .pipeline import PartialResults
+    _check_csv_style(csv_style)
     try:
         task = prepare(task_file, stage_errors=False)
         tol_override = load_tolerance_file(tolerance) if tolerance is not None else None
@@ -246,14 +258,20 @@ def check(
         else:
             sets = load_sources(answers)
             if not single:
-                sets = [a for a in sets if a.matches(task)]
+                sets, dropped = repeats([a for a in sets if a.matches(task)], latest)
+                for n in dropped:
+                    _err(f"note: {n}")
+                for a in sets:
+                    if a.flags:
+                        others = [f.split("=", 1)[1] for f in a.flags if f.startswith("repeat=")]
+                        _err(f"warning: {Message('answers.repeat', file=a.answers_file, student=a.student, others=others)}")
         for a in sets:
-            if a.error:
-                raise TaskError(a.error)
             if single and a.variant not in (None, "") and task.variant is not None and not a.matches(task):
                 # graded all the same (one FILE is taken as given), but a form of another variant
                 # grades every answer outside: say why
                 _err(f"warning: {answers} holds answers for variant {a.variant}; the task is variant {task.variant}")
+            for n in a.notes:
+                _err(f"warning: {n}")
     except TaskError as exc:
         raise _fail_task(exc)
     try:
@@ -273,8 +291,13 @@ def check(
     if not sets:
         _err(f"no answers for variant {task.variant if task.variant is not None else task.name} in {answers}")
     code, all_rows = (EXIT_ANSWERS if not sets else EXIT_OK), []
+    tol = tolerances(task, tol_override, results)
     for a in sets:
-        rows = grade(results, a, tolerances(task, tol_override, a.tolerance if single else None, results), required)
+        if a.error:          # one malformed row or file of a class: named, the others graded
+            _err(f"error: {a.error}")
+            code = max(code, EXIT_INVALID)
+            continue
+        rows = grade(results, a, tol, required)
         print_check(rows, a.source)
         all_rows.extend(rows)
         code = max(code, set_code(set_status(rows)))
@@ -282,8 +305,9 @@ def check(
         from .io import atomic_write, folder_lock
         from .results import dump
         try:
+            from .tables import csv_styled
             with folder_lock(out):          # never interleaved with a run into the same folder
-                atomic_write(out / "check.csv", check_csv(all_rows))
+                atomic_write(out / "check.csv", csv_styled(check_csv(all_rows), csv_style))
                 atomic_write(out / "results.json", lambda write: dump(results, write))
         except OSError as exc:
             raise _fail_write(exc)
@@ -307,17 +331,40 @@ def batch(
                                   help="seconds one variant may run (0 = no limit); over it: a failed row"),
     memory: int = typer.Option(4096, "--memory", min=0,
                                help="MB of address space per variant (0 = no limit); over it: a failed row"),
+    latest: bool = typer.Option(False, "--latest", help="of several submissions of one student for one variant, "
+                                                        "grade only the newest (by modification time)"),
+    grades: Optional[str] = typer.Option(None, "--grades", metavar="5:0.9,4:0.75,3:0.6",
+                                         help="a `grade` column: grade:least score, highest first (below the "
+                                              "last: the next lower grade)"),
+    gradebook: Optional[str] = typer.Option(None, "--gradebook", metavar="moodle",
+                                            help="also write gradebook-moodle.csv for Moodle's grade import"),
+    feedback: str = typer.Option("key", "--feedback", metavar="key|no-key",
+                                 help="feedback pages with the reference values (key) or without (no-key)"),
+    csv_style: str = typer.Option("plain", "--csv", metavar="plain|excel-ru",
+                                  help="every CSV of the run: plain (`,`, decimal points) or excel-ru (`;`, "
+                                       "decimal commas, a UTF-8 BOM)"),
 ):
     """Run and grade many variants; one failing variant never stops the rest.
     Writes summary.csv, summary.html and check.csv (and <out>/<variant>/...). Exit code:
     the worst of the rows (0 all ok, 1 some answers wrong or missing, 2 some invalid,
     3 some failed)."""
     from .batch import run_batch
+    from .copies import parse_grades
     formats = _parse_formats(format)
     _check_lang(lang)
     try:
+        scale = parse_grades(grades) if grades is not None else None
+    except ValueError as exc:
+        raise typer.BadParameter(str(exc), param_hint="--grades") from None
+    if gradebook not in (None, "moodle"):
+        raise typer.BadParameter("the gradebook format is moodle", param_hint="--gradebook")
+    if feedback not in ("key", "no-key"):
+        raise typer.BadParameter("key or no-key", param_hint="--feedback")
+    _check_csv_style(csv_style)
+    try:
         code = run_batch(source, out, jobs=jobs, formats=formats, lang=lang, answers=answers, tolerance=tolerance,
-                         quantities=quantities, timeout=timeout, memory_mb=memory or None)
+                         quantities=quantities, timeout=timeout, memory_mb=memory or None, latest=latest,
+                         grades=scale, gradebook=gradebook, feedback=feedback, csv_style=csv_style)
     except OSError as exc:
         raise _fail_write(exc)
     raise typer.Exit(code)
@@ -352,14 +399,24 @@ def paths(
     task_file: Path = typer.Argument(..., metavar="TASK.yaml"),
     prefix: Optional[str] = typer.Option(None, "--prefix", "-p", help="only paths starting with this"),
     format: str = typer.Option("text", "--format", "-f", help="text (PATH<TAB>VALUE) | json"),
+    group: bool = typer.Option(False, "--group", "-g", help="each array of more than 12 numbers (per position or "
+                                                              "degree) as one line: its index range, count, min .. max"),
+    index: Optional[str] = typer.Option(None, "--index", "-i", metavar="I,J,A-B",
+                                        help="of those arrays and of the positions (kinematics[i], "
+                                             "kinetostatics[i]) only these elements, e.g. 0,90,180 or 1-3"),
 ):
     """Run the task and list every result path with its value (the paths `answers`,
-    `--quantities` and tolerances use)."""
+    `--quantities` and tolerances use). `--group` and `--index` shorten the long arrays."""
     from .check import leaf_paths
     from .orchestrate import compute, prepare
     from .pipeline import PartialResults
     if format not in ("text", "json"):
         raise typer.BadParameter("--format must be text or json")
+    from .forms import group_leaves, parse_indices
+    try:
+        chosen = parse_indices(index) if index is not None else None
+    except ValueError as exc:
+        raise typer.BadParameter(f"'{exc.args[0]}' is not an index or a range A-B", param_hint="--index") from None
     try:
         task = prepare(task_file, stage_errors=False)
         results = compute(task)
@@ -375,6 +432,8 @@ def paths(
         near = difflib.get_close_matches(prefix, heads, n=1, cutoff=0.6)
         raise typer.BadParameter(f"no result path of this task starts with '{prefix}'"
                                  + (f"; did you mean '{near[0]}'?" if near else ""), param_hint="--prefix")
+    if group or chosen is not None:
+        leaves = group_leaves(leaves, chosen, group)
     if format == "json":
         typer.echo(json.dumps(dict(leaves), indent=1, ensure_ascii=False))
     else:
@@ -391,6 +450,9 @@ def form(
                                         "kinetostatics, flywheel, cam, gears, planetary, drive_train, synthesis"),
     out: Path = typer.Option(Path("forms"), "--out", "-o", help="output folder (default: forms/)"),
     lang: str = typer.Option("en", "--lang", "-l", help="language of the comments: en | ru | uk"),
+    csv_style: str = typer.Option("plain", "--csv", metavar="plain|excel-ru",
+                                  help="form.csv and key.csv: plain (`,`, decimal points) or excel-ru (`;`, "
+                                       "decimal commas, a UTF-8 BOM)"),
 ):
     """Write per task a blank answer form NAME.form.yaml and an answer key NAME.key.yaml,
     and for the set form.csv and key.csv."""
@@ -400,6 +462,7 @@ def form(
     from .orchestrate import classify, compute, prepare
     from .results import lookup
     _check_lang(lang)
+    _check_csv_style(csv_style)
     if source.is_dir():
         found, _ = find_tasks(str(source))
         files = [f for f, why in found if why is None]
@@ -434,8 +497,9 @@ def form(
         krows.append(krow)
     if frows:        # with no form written, an earlier run's form.csv and key.csv stay as they were
         try:
-            atomic_write(out / "form.csv", forms_csv(frows, all_paths))
-            atomic_write(out / "key.csv", forms_csv(krows, all_paths))
+            from .tables import csv_styled
+            atomic_write(out / "form.csv", csv_styled(forms_csv(frows, all_paths, lang), csv_style))
+            atomic_write(out / "key.csv", csv_styled(forms_csv(krows, all_paths), csv_style))
         except OSError as exc:
             raise _fail_write(exc)
     _err(f"wrote {len(frows)} form(s) and key(s) to {out}")

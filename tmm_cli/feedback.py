@@ -100,43 +100,110 @@ def step_for(path: str, lang: str) -> str:
     return step + (f"; {TEXT[lang]['depends']}: {dep}" if dep else "")
 
 
-def _num(x) -> str:
+def _num(x, lang: str = "en") -> str:
     if x is None:
         return "–"
     try:
-        return f"{float(x):.5g}"
+        text = f"{float(x):.5g}"
     except (TypeError, ValueError):
         return str(x)
+    return text.replace(".", ",") if lang in ("ru", "uk") else text
 
 
-def feedback_html(task, s: dict, lang: str = "en") -> str:
-    from .forms import notation
+_NUMBER_HEAD = re.compile(r"^\s*[-+\u2212\u2013]?[\d\s.,\u00a0\u202f]*\d(?:[eE][-+]?\d+)?\s*")
+
+
+def _in_written_unit(r: dict):
+    """The reference in the unit the student wrote (a number), or None where the answer
+    carried no unit or it does not convert."""
+    written, ref = r.get("written"), r.get("reference")
+    if not written or ref is None:
+        return None
+    unit = _NUMBER_HEAD.sub("", written, count=1).strip()
+    if not unit:
+        return None
+    from .check import _is_angle, _path_unit
+    from .units import ureg
+    si = "degree" if _is_angle(r["path"]) else _path_unit(r["path"])
+    if si is None:
+        return None
+    try:
+        return float(ureg().Quantity(float(ref), si).to(unit.replace("^", "**")).magnitude), unit
+    except Exception:  # noqa: BLE001 - pint's parse and conversion errors: shown in SI instead
+        return None
+
+
+def _tolerance(r: dict, unit: str, lang: str) -> str:
+    """The tolerance in the error column's terms: '±5 %', '±0.5 °', '±2 % (at least 0.001 m/s)'."""
+    words = str(r["tolerance"]).split()
+    zero = r.get("reference") == 0
+    if len(words) == 1:
+        v = float(words[0])
+        return f"±{_num(v, lang)} {unit}".rstrip() if zero else f"±{_num(100 * v, lang)} %"
+    parts = dict(zip(words[::2], words[1::2]))
+    rel, ab = float(parts.get("rel", 0)), float(parts.get("abs", 0))
+    from .messages import catalogue
+    words = catalogue(lang)["terms"]["grading"]
+    least = words["at_least"]
+    text = (f"±{_num(100 * rel, lang)} %" + (f" ({least} {_num(ab, lang)} {unit})".rstrip() if ab else "")
+            if rel else f"±{_num(ab, lang)} {unit}".rstrip())
+    if parts.get("sign") == "any":
+        text += " " + words["either_sign"]
+    return text
+
+
+def feedback_html(task, s: dict, lang: str = "en", key: bool = True) -> str:
+    """The page; ``key`` False (`--feedback no-key`): no reference values on it."""
+    from .forms import LOCAL_UNITS, LOCAL_UNITS_UK, NOTATION, notation
+    from .messages import catalogue
     lang = lang if lang in TEXT else "en"
-    T = TEXT[lang]
+    T = {**TEXT[lang], **catalogue(lang)["terms"]["grading"]}
     from .limits import printable
     e = lambda x: html.escape(printable(str(x)), quote=True)  # noqa: E731  (no control character raw)
     rows = s["rows"]
     n_ok = sum(r["status"] == "ok" for r in rows)
+    n_all = sum(r["status"] != "unknown_path" for r in rows)      # a misspelt path answers no quantity
     trs = []
     for r in rows:
         st = r["status"]
+        names = re.findall(r"[A-Za-z_][A-Za-z0-9_]*", r["path"])
+        unit = NOTATION.get(names[-1] if names else "", ("", ""))[1]
+        unit = {"deg": "°", "m or deg": ""}.get(unit, unit)
+        if lang != "en":
+            unit = (LOCAL_UNITS_UK if lang == "uk" else LOCAL_UNITS).get(unit, unit)
         err = "–"
         if r["error"] is not None:
-            err = (_num(r["error"]) if "abs" in r["tolerance"] or r["note"] == "absolute error"
-                   else f"{100 * r['error']:.2f} %")
+            absolute = "abs" in r["tolerance"] or r["note"] == "absolute error" or r.get("reference") == 0
+            err = f"{_num(r['error'], lang)} {unit}".rstrip() if absolute else f"{_num(100 * r['error'], lang)} %"
         note = r["note"]
-        if st == "unknown_path" and hasattr(note, "to_dict"):        # coded: in the page's language
+        if st in ("unknown_path", "invalid") and hasattr(note, "to_dict"):        # coded: in the page's language
             from .messages import localize
             note = localize(note.to_dict(), lang)
-        step = step_for(r["path"], lang) if st in ("outside", "sign") else (note if st == "unknown_path" else "")
-        colour = {"ok": "#c8e6c9", "outside": "#ffcdd2", "sign": "#e1bee7", "missing": "#fff9c4"}.get(st, "#eee")
-        trs.append(f"<tr><td><code>{e(r['path'])}</code><br><small>{e(notation(r['path'], lang, local_units=True))}</small></td>"
-                   f"<td>{e(_num(r['answer']))}</td><td>{e(_num(r['reference']))}</td><td>{e(err)}</td>"
-                   f"<td style='background:{colour}'>{e(T.get(st, st))}</td><td><small>{e(step)}</small></td></tr>")
-    head = "".join(f"<th>{e(T[c])}</th>" for c in ("quantity", "value", "reference", "error", "verdict", "step"))
+        step = step_for(r["path"], lang) if st in ("outside", "sign") else (note if st in ("unknown_path", "invalid")
+                                                                            else "")
+        colour = {"ok": "#c8e6c9", "outside": "#ffcdd2", "sign": "#e1bee7", "missing": "#fff9c4",
+                  "invalid": "#ef9a9a"}.get(st, "#eee")
+        conv = _in_written_unit(r)
+        if "written" in r:
+            value = r["written"]
+        elif st == "invalid":
+            value = r["answer"]
+        else:
+            value = f"{_num(r['answer'], lang)} {unit}".rstrip() if r["answer"] is not None else "–"
+        ref = (f"{_num(conv[0], lang)} {conv[1]}" if conv else
+               (f"{_num(r['reference'], lang)} {unit}".rstrip() if r["reference"] is not None else "–"))
+        tol = _tolerance(r, unit, lang) if st not in ("unknown_path", "not_computed") else "–"
+        cells = [f"<code>{e(r['path'])}</code><br><small>{e(notation(r['path'], lang, local_units=True))}</small>",
+                 e(value)] + ([e(ref)] if key else []) + [e(err), e(tol)]
+        trs.append("<tr>" + "".join(f"<td>{c}</td>" for c in cells)
+                   + f"<td style='background:{colour}'>{e(T.get(st, st))}</td><td><small>{e(step)}</small></td></tr>")
+    cols = ("quantity", "value") + (("reference",) if key else ()) + ("error", "tolerance", "verdict", "step")
+    head = "".join(f"<th>{e(T[c])}</th>" for c in cols)
     who = [(T["student"], s.get("student") or "–"), (T["group"], s.get("group") or "–"),
            (T["variant"], "–" if s.get("variant") in (None, "") else s.get("variant")),
-           (T["task"], task.title or task.name), (T["score"], f"{n_ok} / {len(rows)}")]
+           (T["task"], task.title or task.name), (T["score"], f"{n_ok} / {n_all}")]
+    if s.get("answers_file"):
+        who.insert(3, (T["file"], s["answers_file"]))
     info = "".join(f"<tr><th>{e(k)}</th><td>{e(v)}</td></tr>" for k, v in who)
     return ("<!DOCTYPE html><html><head><meta charset='utf-8'>"
             f"<title>{e(T['title'])}</title><style>@page{{size:A4;margin:12mm}}body{{font-family:sans-serif;"
@@ -147,18 +214,26 @@ def feedback_html(task, s: dict, lang: str = "en") -> str:
 
 
 def feedback_name(s: dict) -> str:
-    who = re.sub(r"[^\w.-]", "_", str(s.get("student") or "")).strip("._") or "answers"
+    """feedback-<student>-<answers file> ('feedback-Ivanov-ivanov', 'feedback-Petrov-class.csv_5'
+    for a table's line 5); without an answers file (the task's own answers) the set's number."""
+    def safe(x):
+        return re.sub(r"[^\w.-]", "_", str(x or "")).strip("._")
+    who = safe(s.get("student")) or "answers"
+    src = s.get("answers_file")
+    if src:
+        src = src[:-5] if src.endswith(".yaml") else (src[:-4] if src.endswith(".yml") else src)
+        return f"feedback-{who[:40]}-{safe(src)[:40]}"
     return f"feedback-{who[:40]}-{s['index'] + 1 if s['index'] >= 0 else 0}"
 
 
 def write_feedback(task, s: dict, folder: Path, lang: str, pdf: bool = False,
-                   notes: list[str] | None = None) -> list[Path]:
+                   notes: list[str] | None = None, key: bool = True) -> list[Path]:
     """feedback-<student>-<n>.html (and .pdf) in the variant's folder. The PDF is made
     by weasyprint, which needs the system's Pango: where weasyprint or Pango is missing
     (an ImportError, or the OSError of a library not found) the page is written as HTML
     only, ``notes`` receives one line saying why, and the grading goes on."""
     from .io import atomic_write
-    text = feedback_html(task, s, lang)
+    text = feedback_html(task, s, lang, key=key)
     base = feedback_name(s)
     out = [atomic_write(Path(folder) / f"{base}.html", text)]
     if pdf:

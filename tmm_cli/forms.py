@@ -81,6 +81,22 @@ NOTATION: dict[str, tuple[str, str, str, str, str]] = {
     "z4": ("z4", "", "teeth", "число зубьев", "число зубів"),
 }
 
+# the sign convention of a result key: a word of the catalogues' `sign_convention` table
+# (the sense that is positive, or that it is a magnitude)
+SIGN: dict[str, str] = {"omega": "ccw", "epsilon": "ccw", "balancing_moment": "ccw", "zhukovsky_moment": "ccw",
+                        "M_constant": "drives", "ratio": "ratio", "v": "magnitude", "a": "magnitude",
+                        "R": "magnitude", "omega_max": "magnitude", "omega_min": "magnitude"}
+
+
+def sign_note(path: str, lang: str = "en") -> str:
+    """The sign convention of a path's quantity in ``lang`` ('' when the key has none listed)."""
+    from .messages import catalogue
+    names = re.findall(r"[A-Za-z_][A-Za-z0-9_]*", path)
+    key = names[-1] if names else ""
+    if key not in SIGN and re.fullmatch(r"R\d+", key or ""):
+        key = "R"
+    return catalogue(lang)["terms"]["sign_convention"][SIGN[key]] if key in SIGN else ""
+
 
 # the units as a Russian or Ukrainian text writes them (the feedback page; a form keeps the units
 # an answer may be written in, which are the English ones)
@@ -149,6 +165,59 @@ def expand(quantities: str | list[str], results: dict, *, strict: bool = True) -
     return out
 
 
+GROUP_MIN = 13     # a list of more numbers than the 12 positions is a per-position (per-degree) array
+_TRAILING = re.compile(r"^(.*)\[(\d+)\]$")
+_POSITION_LIST = re.compile(r"^(kinematics|kinetostatics)\[(\d+)\]")
+
+
+def parse_indices(text: str) -> set[int]:
+    """'0,3,6-9' -> {0, 3, 6, 7, 8, 9}; ValueError naming the part that is not one."""
+    out: set[int] = set()
+    for part in (p.strip() for p in text.split(",")):
+        m = re.fullmatch(r"(\d+)(?:\s*-\s*(\d+))?", part)
+        if not m or (m.group(2) and int(m.group(2)) < int(m.group(1))):
+            raise ValueError(part)
+        out.update(range(int(m.group(1)), int(m.group(2) or m.group(1)) + 1))
+    return out
+
+
+def group_leaves(leaves: list[tuple[str, object]], indices: set[int] | None = None,
+                 group: bool = False) -> list[tuple[str, object]]:
+    """`tmm paths` with long arrays made readable: ``indices`` keeps, of every array of more
+    than 12 numbers and of the position lists (kinematics[i], kinetostatics[i]), only those
+    elements; ``group`` writes each array left as one line ``base[first..last]`` with
+    ``"N values, min .. max"``. Other leaves pass as they are."""
+    arrays: dict[str, list[tuple[int, object]]] = {}
+    for p, v in leaves:
+        m = _TRAILING.match(p)
+        if m and isinstance(v, (int, float)) and not isinstance(v, bool):
+            arrays.setdefault(m.group(1), []).append((int(m.group(2)), v))
+    long = {b for b, items in arrays.items() if len(items) >= GROUP_MIN}
+    out: list[tuple[str, object]] = []
+    done: set[str] = set()
+    for p, v in leaves:
+        pos = _POSITION_LIST.match(p)
+        if indices is not None and pos and int(pos.group(2)) not in indices:
+            continue
+        m = _TRAILING.match(p)
+        if not (m and m.group(1) in long):
+            out.append((p, v))
+            continue
+        base = m.group(1)
+        if indices is not None:
+            if int(m.group(2)) in indices:
+                out.append((p, v))
+            continue
+        if not group:
+            out.append((p, v))
+        elif base not in done:
+            done.add(base)
+            vals = [x for _, x in arrays[base]]
+            idx = [i for i, _ in arrays[base]]
+            out.append((f"{base}[{min(idx)}..{max(idx)}]", f"{len(vals)} values, {min(vals):.6g} .. {max(vals):.6g}"))
+    return out
+
+
 def yaml_key(path: str) -> str:
     return json.dumps(path, ensure_ascii=False)
 
@@ -179,12 +248,20 @@ def form_text(task, paths: list[str], results: dict | None, lang: str) -> str:
                 val = "" if v is None else (repr(float(v)) if isinstance(v, float) else json.dumps(v))
             except KeyError:
                 val = ""
-        note = notation(p, lang)
+        note = "; ".join(x for x in (notation(p, lang), sign_note(p, lang)) if x)
         entry = f"  {yaml_key(p)}: {val}"
         lines.append(entry.ljust(width + 4 + len(val)) + (f"  # {note}" if note else ""))
     return "\n".join(lines) + "\n"
 
 
-def forms_csv(rows: list[dict], paths: list[str]) -> str:
+NOTES_MARK = "#"     # a table row whose `student` cell starts with it is a note, never a student's answers
+
+
+def forms_csv(rows: list[dict], paths: list[str], lang: str | None = None) -> str:
+    """form.csv / key.csv; with ``lang`` a notes row under the header gives each column's sign
+    convention (its `student` cell begins with '#': the answers reader skips it)."""
     from .tables import csv_text
-    return csv_text(["student", "group", "variant"] + paths, rows)
+    notes = {p: sign_note(p, lang) for p in paths} if lang else {}
+    from .messages import catalogue
+    head = [{"student": catalogue(lang)["terms"]["grading"]["sign_row"], **notes}] if any(notes.values()) else []
+    return csv_text(["student", "group", "variant"] + paths, head + rows)

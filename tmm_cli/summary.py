@@ -191,7 +191,8 @@ def _tol_shown(text: str, absolute: bool) -> str:
     if len(words) == 1:
         v = float(words[0])
         return f"abs {v:g}" if absolute else f"{100 * v:g} %"
-    return " ".join(f"{100 * float(v):g} %" if k == "rel" else f"abs {v}" for k, v in zip(words[::2], words[1::2]))
+    return " ".join(f"{100 * float(v):g} %" if k == "rel" else (f"abs {v}" if k == "abs" else "|x|")
+                    for k, v in zip(words[::2], words[1::2]))
 
 
 def print_check(rows: list[dict], source) -> None:
@@ -214,7 +215,7 @@ def print_check(rows: list[dict], source) -> None:
         absolute = r["note"] == "absolute error" or "abs" in r["tolerance"] or zero_ref
         err = "-" if r["error"] is None else (_f(r["error"], 3) if absolute else f"{100 * r['error']:.2f} %")
         style = STATUS_STYLE.get(st, "white")
-        if r["note"] and st in ("unknown_path", "sign"):
+        if r["note"] and st in ("unknown_path", "sign", "invalid"):
             notes.append(r["note"] if r["note"].startswith(r["path"]) else f"{r['path']}: {r['note']}")
         t.add_row(_short_path(r["path"], 26), _f(r["answer"]), _f(r["reference"]), err,
                   _tol_shown(r["tolerance"], zero_ref or r["note"] == "absolute error"),
@@ -240,7 +241,7 @@ def print_batch(rows: list[dict], out: Path, skipped=(), removed=(), notes=()) -
     t.add_column("score", justify="right", no_wrap=True)
     t.add_column("message", overflow="fold", max_width=32)
     for r in rows:
-        who = r.get("student") or Path(str(r.get("file", ""))).name
+        who = r.get("student") or r.get("answers_file") or Path(str(r.get("file", ""))).name
         st = shown_status(r)
         score = f"{100 * float(r['score']):.0f} %" if r.get("answers") else "-"
         t.add_row(Text(str(who)), Text(str(r.get("variant", ""))), Text(st, style=STATUS_STYLE.get(st, "")),
@@ -271,7 +272,7 @@ I18N = {
            "check": "перевірка", "feedback": "розбір", "rows": "рядків", "legend": "Позначення"},
 }
 COLOURS = {"ok": "#c8e6c9", "outside": "#ffcdd2", "sign": "#e1bee7", "missing": "#fff9c4",
-           "unknown_path": "#ffe0b2", "not_computed": "#e0e0e0", "no_answers": "#fff9c4", "invalid": "#ef9a9a",
+           "unknown_path": "#ffe0b2", "not_computed": "#e0e0e0", "no_answers": "#cfd8dc", "invalid": "#ef9a9a",
            "failed": "#ef9a9a", "computed": "#e3f2fd"}
 
 
@@ -290,18 +291,28 @@ def summary_html(rows: list[dict], paths: list[str], source: str, lang: str = "e
     if lang != "en":                     # the status words: the catalogue's, as in the messages
         T.update(catalogue(lang)["terms"].get("status", {}))
     from .limits import printable
+    words = catalogue(lang)["terms"]["grading"]
     e = lambda x: html.escape(printable(str(x)), quote=True)  # noqa: E731  (no control character raw)
+    # a path nobody's results have (a typo) gets no column: the row's message names it
+    paths = [p for p in paths if any(r.get(p) not in ("", None, "unknown_path") for r in rows)]
+    has_grade = any("grade" in r for r in rows)
     head = "".join(f"<th>{e(T[c])}</th>" for c in ("student", "group", "variant", "status", "score"))
-    head += "".join(f'<th class="q" title="{e(p)}">{e(_short_path(p, 18))}</th>' for p in paths)
+    head += f"<th>{e(words['grade'])}</th>" if has_grade else ""
+    head += f"<th>{e(words['flags'])}</th>"
+    head += "".join(f'<th class="q" title="{e(p)}"><span>{e(p)}</span></th>' for p in paths)
     head += f"<th>{e(T['files'])}</th><th>{e(T['message'])}</th>"
     body = []
     for r in rows:
         st = shown_status(r)
         score = f"{100 * float(r['score']):.0f} %" if r.get("answers") else "–"
-        cells = [e(r.get("student", "")), e(r.get("group", "")), e(r.get("variant", "")),
+        cells = [e(r.get("student") or r.get("answers_file") or ""), e(r.get("group", "")), e(r.get("variant", "")),
                  f'<span class="st">{e(T.get(st, st))}</span>', e(score)]
         tds = "".join(f"<td>{c}</td>" for c in cells[:3])
         tds += f'<td style="background:{COLOURS.get(st, "#fff")}">{cells[3]}</td><td>{cells[4]}</td>'
+        if has_grade:
+            tds += f"<td>{e(r.get('grade', ''))}</td>"
+        flags = [f for f in str(r.get("flags") or "").split(";") if f]
+        tds += f"<td class='fl'>{'<br>'.join(e(f) for f in flags)}</td>"
         for p in paths:
             ps = r.get(p, "")
             tds += (f'<td class="m" style="background:{COLOURS.get(ps, "#fff")}" title="{e(p)}: {e(T.get(ps, ps))}">'
@@ -322,9 +333,10 @@ def summary_html(rows: list[dict], paths: list[str], source: str, lang: str = "e
     return ("<!DOCTYPE html><html><head><meta charset='utf-8'>"
             f"<title>{e(T['title'])}</title>"
             "<style>body{font-family:sans-serif;margin:1em}table{border-collapse:collapse;font-size:13px}"
-            "td,th{border:1px solid #999;padding:3px 6px;text-align:left}th.q{writing-mode:vertical-rl;"
-            "transform:rotate(180deg);font-weight:normal;font-size:11px}td.m{text-align:center}"
-            ".lg{padding:2px 6px;margin-right:4px;border:1px solid #999}.msg{font-size:11px;max-width:30em;white-space:pre-line}</style>"
+            "td,th{border:1px solid #999;padding:3px 6px;text-align:left}th.q{vertical-align:bottom;"
+            "font-weight:normal;font-size:11px}th.q span{writing-mode:vertical-rl;transform:rotate(180deg);"
+            "white-space:nowrap;display:inline-block}td.m{text-align:center}td.fl{font-size:11px;color:#b71c1c}"
+            ".lg{padding:2px 6px;margin:0 4px 4px 0;border:1px solid #999;display:inline-block}.msg{font-size:11px;max-width:30em;white-space:pre-line}</style>"
             f"</head><body><h1>{e(T['title'])}: {e(source)}</h1><p>{len(rows)} {e(T['rows'])}</p>"
             f"<p>{e(T['legend'])}: {legend}</p>"
             f"<table><tr>{head}</tr>{''.join(body)}</table></body></html>\n")
@@ -341,4 +353,4 @@ def _message(row: dict, lang: str, localize) -> str:
 
 def _mark(status: str) -> str:
     return {"ok": "✓", "outside": "✗", "sign": "±", "missing": "–", "unknown_path": "?",
-            "not_computed": "·", "no_answers": "–", "invalid": "!", "failed": "!", "computed": "○"}.get(status, "")
+            "not_computed": "·", "no_answers": "∅", "invalid": "!", "failed": "!", "computed": "○"}.get(status, "")

@@ -99,6 +99,23 @@ def csv_text(header: list[str], rows, floats: str = SHORTEST) -> str:
     return buf.getvalue()
 
 
+CSV_STYLES = ("plain", "excel-ru")
+_DOT_NUMBER = re.compile(r"^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
+
+
+def csv_styled(text: str, style: str = "plain") -> str:
+    """A CSV as ``style`` wants it: ``plain`` as written (`,`, decimal points, no BOM);
+    ``excel-ru`` as a Russian or Ukrainian Excel opens it into columns: `;`, decimal commas
+    in the number cells, a UTF-8 BOM."""
+    if style == "plain":
+        return text
+    buf = io.StringIO()
+    w = csv.writer(buf, delimiter=";", lineterminator="\n")
+    for cells in csv.reader(io.StringIO(text, newline="")):
+        w.writerow([c.replace(".", ",") if _DOT_NUMBER.match(c) else c for c in cells])
+    return "\ufeff" + buf.getvalue()
+
+
 _NONE = type(None)
 
 

@@ -579,9 +579,11 @@ from .trainspec import DriveTrainSection, TrainStageSpec  # noqa: E402
 
 
 class ToleranceSpec(_Model):
-    """A tolerance as {rel: R, abs: A}: passes when |student - reference| <= max(A, R |reference|)."""
+    """A tolerance as {rel: R, abs: A}: passes when |student - reference| <= max(A, R |reference|);
+    `sign: any` grades the magnitude (either sign passes)."""
     rel: Annotated[float, Field(ge=0, allow_inf_nan=False)] = 0.0
     abs: Annotated[float, Field(ge=0, allow_inf_nan=False)] = 0.0
+    sign: Literal["any"] | None = None
 
 
 class StudentSpec(BaseModel):
@@ -920,7 +922,7 @@ _DOCS: dict[type, dict[str, str]] = {
                         "third, one member's torque gives the others",
         "report": "what the report shows: {detail_position: N} (the position worked step by step)",
         "answers": "a student's numbers: path into results.json -> value (tmm check / tmm batch)",
-        "tolerance": "tolerances per path or prefix: {default: 0.05, <path or prefix>: 0.02 or {rel: R, abs: A} or "
+        "tolerance": "tolerances per path or prefix: {default: 0.05, <path or prefix>: 0.02 or {rel: R, abs: A, sign: any} or "
                      "graphical (the error of reading the drawings to 0.5 mm)}",
     },
     StudentSpec: {"name": "the student's name", "group": "the student's group"},
@@ -928,7 +930,8 @@ _DOCS: dict[type, dict[str, str]] = {
                  "supervisor": "the supervisor (title page, title block 'Пров.')", "city": "the city (title page)",
                  "year": "the year (title page; default: the year of the run)",
                  "designation": "the document's designation in the title blocks, e.g. 'ТММ.КП.07.00.00 ПЗ'"},
-    ToleranceSpec: {"rel": "relative tolerance (fraction of |reference|)", "abs": "absolute tolerance, in the unit of the path"},
+    ToleranceSpec: {"rel": "relative tolerance (fraction of |reference|)", "abs": "absolute tolerance, in the unit of the path",
+                    "sign": "any: the magnitude is graded (either sign passes)"},
     LinkSpec: {"mass": "mass, kg", "guide": "slider: the line it translates along (fixed or on a link)"},
     DriveSection: {"link": "the crank (a bar with a ground pivot)",
                    "direction": "ccw | cw",

@@ -113,13 +113,34 @@ def make_env():
     return env
 
 
+_SHARED_ENV = None
+
+
+def shared_env():
+    """One environment per process, so its templates are compiled once for every report the
+    process renders (without a bytecode cache -- PYTHONDONTWRITEBYTECODE -- each report compiled
+    them all again). A batch compiles them before it forks its workers (:func:`warm_templates`)."""
+    global _SHARED_ENV
+    if _SHARED_ENV is None:
+        _SHARED_ENV = make_env()
+    return _SHARED_ENV
+
+
+def warm_templates() -> None:
+    """Compile every template into the shared environment (the forked workers inherit them)."""
+    env = shared_env()
+    root = templates_dir()
+    for p in sorted(root.rglob("*.j2")):
+        env.get_template(p.relative_to(root).as_posix())
+
+
 def _context(results: dict, task, out_dir: Path, lang: str) -> ReportContext:
     """The sections' context; the results' per-position entries as lists (the sections
     read them many times and tell them apart by identity)."""
     from ..results import listed
     results = listed(results)
     return ReportContext(results=results, task=task, lang=lang if lang in ("en", "ru", "uk") else "en",
-                         out_dir=Path(out_dir), env=make_env())
+                         out_dir=Path(out_dir), env=shared_env())
 
 
 def _build(ctx: ReportContext, names) -> dict[str, str | None]:
