@@ -106,11 +106,12 @@ def _removed_on_error(tmp: str, path: Path):
 
 def workers_wanted() -> bool:
     """A second process (fork) may work alongside this one (the report's helper, a results
-    file written aside): unless TMM_REPORT_JOBS=1, fork is unavailable or there is one core."""
-    import multiprocessing
+    file written aside): unless TMM_REPORT_JOBS=1, fork is unavailable (or TMM_START_METHOD=spawn)
+    or there is one core."""
     if os.environ.get("TMM_REPORT_JOBS", "").strip() == "1":
         return False
-    if "fork" not in multiprocessing.get_all_start_methods():
+    from .portable import can_fork
+    if not can_fork():              # no fork here, or TMM_START_METHOD=spawn
         return False
     return (os.cpu_count() or 1) >= 2
 
@@ -146,7 +147,8 @@ class Aside:
         import sys
         threading = sys.modules.get("threading")
         path = Path(path)
-        if not hasattr(os, "fork") or (threading is not None and threading.active_count() > 1) \
+        from .portable import can_fork
+        if not can_fork() or (threading is not None and threading.active_count() > 1) \
                 or os.path.isdir(path):    # that replace fails: at once, as atomic_write fails
             return None
         fd, tmp = _open_temp(path)
@@ -216,7 +218,7 @@ class Aside:
         if self._pid is not None:
             import signal
             try:
-                os.kill(self._pid, signal.SIGKILL)
+                os.kill(self._pid, getattr(signal, "SIGKILL", signal.SIGTERM))
             except OSError:
                 pass
             try:
