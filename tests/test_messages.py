@@ -127,6 +127,9 @@ ENGLISH = [
     ('batch.no_task_of_name', {'file': 'ghost.yaml'}, "answers file 'ghost.yaml': no task of this name or variant"),
     ('batch.out_of_memory', {'limit': 4096},
      'out of memory: the variant needs more than the --memory limit of 4096 MB'),
+    ('batch.memory_unlimited', {'limit': 4096},
+     "note: --memory 4096 is not enforced here (no RLIMIT_AS and no `psutil` to read the workers' memory); "
+     "install `psutil`"),
     ('batch.no_report', {'error': 'PicklingError'}, 'internal error: the worker could not report: PicklingError'),
     ('batch.worker_killed', {'signal': 'SIGKILL'},
      'the worker died of SIGKILL (killed: e.g. by the out-of-memory killer)'),
@@ -146,6 +149,8 @@ ENGLISH = [
     ('batch.directory', {}, 'a directory, not a task file'),
     ('batch.fifo', {}, 'a FIFO (named pipe), not a task file'),
     ('batch.not_regular', {}, 'not a regular file'),
+    ('output.file_in_use', {}, 'the file is open in another program (a PDF viewer, a spreadsheet) or protected; '
+                               'close it and run again'),
     # structure: a linkage the crank cannot drive (the former f-strings of linkage/structure.py)
     ('structure.fail.reasons', {'reasons': [
         {'code': 'structure.fail.lonely_point', 'params': {'point': 'C', 'link': 'rod', 'hint': {

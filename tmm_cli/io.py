@@ -53,8 +53,36 @@ def atomic_write(path: str | os.PathLike, data: bytes | str | Callable[[Callable
     fd, tmp = _open_temp(path)
     with _removed_on_error(tmp, path):
         _fill(fd, raw)
-        os.replace(tmp, path)
+        replace(tmp, path)
     return path
+
+
+# os.replace over a file another program holds open (Windows: a PDF viewer showing
+# report.pdf, an antivirus or an indexer reading a file just written) fails with
+# PermissionError; it is tried this many times, waiting 0.2, 0.4, 0.8... s in between
+REPLACE_TRIES = 5
+REPLACE_WAIT = 0.2
+
+
+def replace(tmp: str | os.PathLike, path: str | os.PathLike) -> None:
+    """``os.replace(tmp, path)``, tried again while ``path`` is held by another program
+    (PermissionError: the temporary file lies in the same folder, so the folder itself is
+    writable); then a PermissionError naming ``path`` and saying why, for the user."""
+    delay = REPLACE_WAIT
+    for attempt in range(REPLACE_TRIES):
+        try:
+            os.replace(tmp, path)
+            return
+        except PermissionError as exc:
+            if os.path.isdir(path):
+                raise
+            if attempt == REPLACE_TRIES - 1:
+                import errno
+
+                from .messages import Message
+                raise PermissionError(exc.errno or errno.EACCES, Message("output.file_in_use"), str(path)) from exc
+            time.sleep(delay)
+            delay *= 2
 
 
 def _open_temp(path: Path) -> tuple[int, str]:
@@ -206,7 +234,7 @@ class Aside:
                         fh.writelines(end)
                         fh.flush()
                         os.fsync(fh.fileno())
-                os.replace(self._tmp, self.path)
+                replace(self._tmp, self.path)
             return self.path
         _discard(self._tmp)
         data, tail = self._data, self._tail
