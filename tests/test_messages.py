@@ -119,6 +119,9 @@ ENGLISH = [
     ('batch.nobody_answered', {}, 'nobody answered this variant'),
     ('batch.no_answers_to_check', {}, 'computed (no answers to check)'),
     ('batch.results_in', {'folder': 'press-2'}, ' (results in press-2/)'),
+    ('form.renamed', {'file': 'src/V1.yaml', 'name': 'V1-2'},
+     'note: src/V1.yaml: its form and key are V1-2.form.yaml and V1-2.key.yaml (a file name every system '
+     'takes, one per task)'),
     ('batch.set_no_answers', {'file': 's01.yaml'}, 'no answers in s01.yaml'),
     ('batch.set_not_ok', {'status': 'outside', 'paths': ['flywheel.J', 'positions.K']},
      'outside: flywheel.J, positions.K'),

@@ -72,3 +72,76 @@ def test_a_file_held_for_good_is_named_no_traceback_no_temporary_left(tmp_path, 
     assert "Traceback" not in res.output and len(calls) == REPLACE_TRIES
     assert sorted(p.name for p in out.iterdir()) == ["results.json"]
     assert (out / "results.json").read_text() == "old"
+
+
+# ------------------------------------------------------------------ file names
+GEARS = """schema: tmm/1
+title: gears
+variant: {v}
+gears: {{m: 4 mm, z: [14, 30], x: [0.3, 0.1]}}
+"""
+
+
+def test_safe_name_windows_and_macos_take():
+    from tmm_cli.safepath import UniqueNames, safe_name
+    assert [safe_name(n) for n in ("CON", "nul", "Aux.txt", "com1", "LPT9.form", "COM10", "console")] == \
+        ["_CON", "_nul", "_Aux.txt", "_com1", "_LPT9.form", "COM10", "console"]
+    assert [safe_name(n) for n in ("v1.", "v1. ", " v2 ", "a:b*c?", "..hidden", "...", "")] == \
+        ["v1", "v1", "v2", "a_b_c_", "hidden", "file", "file"]
+    names = UniqueNames(["Summary"])
+    assert [names.take(n) for n in ("v1", "V1", "v1", "summary", "e\u0301", "\u00e9")] == \
+        ["v1", "V1-2", "v1-3", "summary-2", "e\u0301", "\u00e9-2"]      # case and Unicode forms folded
+
+
+def test_batch_folders_are_names_windows_takes(tmp_path):
+    """Task files named as Windows devices, with a trailing dot, or differing only in case
+    get folders Windows and macOS can make, one each."""
+    from typer.testing import CliRunner
+
+    from tmm_cli.batch import folder_names
+    from tmm_cli.cli import app
+    files = [tmp_path / n for n in ("CON.yaml", "prn.yml", "v1..yaml", "v1.yaml", "V1.yaml", "com3.yaml")]
+    assert folder_names(files) == ["_CON", "_prn", "v1", "v1-2", "V1-3", "_com3"]
+    src = tmp_path / "src"
+    src.mkdir()
+    for n in ("CON.yaml", "v1.yaml", "V1.yaml"):
+        (src / n).write_text(GEARS.format(v=1), encoding="utf-8")
+    res = CliRunner().invoke(app, ["batch", str(src), "--out", str(tmp_path / "o"), "--format", "json"])
+    assert res.exit_code == 0, res.output
+    assert sorted(p.name for p in (tmp_path / "o").iterdir() if p.is_dir()) == ["V1", "_CON", "v1-2"]
+    assert "results in _CON/" in (tmp_path / "o" / "summary.csv").read_text(encoding="utf-8")
+
+
+def test_variants_files_are_names_windows_takes(tmp_path):
+    from typer.testing import CliRunner
+
+    from tmm_cli.cli import app
+    (tmp_path / "tpl.yaml").write_text(GEARS.format(v='"{variant}"'), encoding="utf-8")
+    (tmp_path / "tab.csv").write_text("variant\nCON\na\nA\n7.\n", encoding="utf-8")
+    res = CliRunner().invoke(app, ["variants", str(tmp_path / "tpl.yaml"), str(tmp_path / "tab.csv"),
+                                   "--out", str(tmp_path / "o")])
+    assert res.exit_code == 0, res.output
+    assert sorted(p.name for p in (tmp_path / "o").glob("*.yaml")) == ["7.yaml", "A_.yaml", "_CON.yaml", "a.yaml"]
+
+
+def test_form_files_one_per_task_where_case_is_folded(tmp_path):
+    from typer.testing import CliRunner
+
+    from tmm_cli.cli import app
+    src = tmp_path / "src"
+    src.mkdir()
+    (src / "V1.yaml").write_text(GEARS.format(v=1), encoding="utf-8")
+    (src / "v1.yaml").write_text(GEARS.format(v=2), encoding="utf-8")
+    res = CliRunner().invoke(app, ["form", str(src), "--quantities", "gears.aw", "--out", str(tmp_path / "f")])
+    assert res.exit_code == 0, res.output
+    assert sorted(p.name for p in (tmp_path / "f").glob("*.yaml")) == \
+        ["V1.form.yaml", "V1.key.yaml", "v1-2.form.yaml", "v1-2.key.yaml"]
+    assert f"{src / 'v1.yaml'}: its form and key are v1-2.form.yaml and v1-2.key.yaml" in res.output
+    assert "variant: 2" in (tmp_path / "f" / "v1-2.form.yaml").read_text(encoding="utf-8")
+
+
+def test_feedback_page_names():
+    from tmm_cli.feedback import feedback_name
+    assert feedback_name({"student": "CON", "index": 0}) == "feedback-CON-1"
+    assert feedback_name({"student": "  ...  ", "index": -1}) == "feedback-answers-0"
+    assert feedback_name({"student": "Petrenko O. ", "index": 2}) == "feedback-Petrenko_O-3"

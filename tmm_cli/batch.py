@@ -88,20 +88,18 @@ def find_tasks(source: str) -> tuple[list[tuple[Path, str | None]], list[Path]]:
 
 
 def folder_names(files: list[Path]) -> list[str]:
-    """A unique, safe folder name per task file: its stem with anything but letters,
-    digits, '.', '_' and '-' replaced, no leading dot, never a name of the batch's own
-    files; a clash (v1.yaml and v1.yml, a/v2.yaml and b/v2.yaml) gets -2, -3..."""
-    used: set[str] = set()
+    """A unique, safe folder name per task file: its stem as :func:`tmm_cli.safepath.safe_name`
+    makes it (a name Windows and macOS take too), never a name of the batch's own files; a
+    clash (v1.yaml and v1.yml, a/v2.yaml and b/v2.yaml, v3.yaml and V3.yaml: one folder
+    on Windows and macOS) gets -2, -3..."""
+    from .safepath import UniqueNames, safe_name
+    used = UniqueNames()
     names = []
     for f in files:
-        base = re.sub(r"[^\w.-]", "_", f.stem).lstrip(".") or "task"
+        base = safe_name(f.stem, "task")
         if base.lower() in RESERVED or base.lower().startswith("summary."):
             base = "v_" + base
-        name, k = base, 2
-        while name.lower() in used:
-            name, k = f"{base}-{k}", k + 1
-        used.add(name.lower())
-        names.append(name)
+        names.append(used.take(base))
     return names
 
 

@@ -146,7 +146,8 @@ def feedback_html(task, s: dict, lang: str = "en") -> str:
 
 
 def feedback_name(s: dict) -> str:
-    who = re.sub(r"[^\w.-]", "_", str(s.get("student") or "")).strip("._") or "answers"
+    from .safepath import safe_name          # the name behind "feedback-": no device name to fear
+    who = safe_name(str(s.get("student") or ""), "").strip("._") or "answers"
     return f"feedback-{who[:40]}-{s['index'] + 1 if s['index'] >= 0 else 0}"
 
 
