@@ -145,3 +145,47 @@ def test_feedback_page_names():
     assert feedback_name({"student": "CON", "index": 0}) == "feedback-CON-1"
     assert feedback_name({"student": "  ...  ", "index": -1}) == "feedback-answers-0"
     assert feedback_name({"student": "Petrenko O. ", "index": 2}) == "feedback-Petrenko_O-3"
+
+
+# ------------------------------------------------------------------ the console
+CYR_TITLE = "\u041a\u0440\u0438\u0432\u043e\u0448\u0438\u043f"       # a Russian word, as a title
+
+
+def _tmm(*args, env=None, cwd=None):
+    import os
+    import subprocess
+    import sys
+    e = {k: v for k, v in os.environ.items() if k not in ("FORCE_COLOR", "TTY_COMPATIBLE", "PYTHONIOENCODING")}
+    e.update(env or {})
+    return subprocess.run([sys.executable, "-m", "tmm_cli", *args], capture_output=True, env=e, cwd=cwd,
+                          timeout=300)
+
+
+def test_cyrillic_on_a_console_in_a_legacy_code_page(tmp_path):
+    """stdout and stderr in cp1252 (a Windows console or a redirected stream in a Western
+    code page): the Cyrillic title, table and error lines are written in UTF-8, never an
+    internal error (UnicodeEncodeError)."""
+    task = tmp_path / "t.yaml"
+    task.write_text(GEARS.format(v=1).replace("title: gears", f"title: {CYR_TITLE}"), encoding="utf-8")
+    r = _tmm("run", str(task), "--out", str(tmp_path / "o"), "--format", "json", "--lang", "ru",
+             env={"PYTHONIOENCODING": "cp1252"})
+    assert r.returncode == 0, r.stderr.decode("utf-8", "replace")
+    assert CYR_TITLE in r.stdout.decode("utf-8")
+    bad = tmp_path / f"{CYR_TITLE}.yaml"                          # the error names the file
+    bad.write_text(f"schema: tmm/1\ntitle: {CYR_TITLE}\ngears: {{m: 4 mm, z: [14, {CYR_TITLE}]}}\n",
+                   encoding="utf-8")
+    r = _tmm("run", str(bad), "--out", str(tmp_path / "o2"), "--lang", "ru", env={"PYTHONIOENCODING": "cp1252"})
+    err = r.stderr.decode("utf-8")
+    assert r.returncode == 2 and "internal error" not in err and f"{CYR_TITLE}.yaml:3" in err
+
+
+def test_no_escape_codes_when_piped(tmp_path):
+    """Output to a pipe or a file (not a terminal): tables and progress without ANSI codes."""
+    src = tmp_path / "src"
+    src.mkdir()
+    (src / "v1.yaml").write_text(GEARS.format(v=1), encoding="utf-8")
+    for args in (["run", str(src / "v1.yaml"), "--out", str(tmp_path / "o"), "--format", "json"],
+                 ["batch", str(src), "--out", str(tmp_path / "b"), "--format", "json"]):
+        r = _tmm(*args)
+        assert r.returncode == 0, r.stderr
+        assert r.stdout.strip() and b"\x1b[" not in r.stdout + r.stderr, args
