@@ -189,3 +189,66 @@ def test_no_escape_codes_when_piped(tmp_path):
         r = _tmm(*args)
         assert r.returncode == 0, r.stderr
         assert r.stdout.strip() and b"\x1b[" not in r.stdout + r.stderr, args
+
+
+# ------------------------------------------------------------------ without Linux's extras
+# run first in every Python process (the spawned workers too, through PYTHONPATH): the
+# modules Windows lacks made unimportable, os.fork and signal.SIGKILL taken away (psutil,
+# whose Linux backend needs `resource`, loaded before: on Windows it has its own backend)
+NO_UNIX = """import os, signal, sys
+import psutil
+for m in ("fcntl", "resource", "termios", "pwd", "grp"):
+    sys.modules[m] = None
+for a in ("fork", "forkpty"):
+    if hasattr(os, a):
+        delattr(os, a)
+del signal.SIGKILL
+"""
+IMPORT_ALL = """import importlib, pkgutil, tmm_cli
+bad = []
+for m in pkgutil.walk_packages(tmm_cli.__path__, "tmm_cli."):
+    if not m.name.endswith("__main__"):
+        try:
+            importlib.import_module(m.name)
+        except BaseException as exc:
+            bad.append(f"{m.name}: {type(exc).__name__}: {exc}")
+print("\\n".join(bad) or "all imported")
+"""
+
+
+def _no_unix(tmp_path):
+    import os
+    site = tmp_path / "no_unix"
+    site.mkdir()
+    (site / "sitecustomize.py").write_text(NO_UNIX, encoding="utf-8")
+    return {"PYTHONPATH": os.pathsep.join([str(site)] + [p for p in [os.environ.get("PYTHONPATH")] if p])}
+
+
+def test_every_module_imports_without_unix_only_modules(tmp_path):
+    import subprocess
+    import sys
+    env = {**__import__("os").environ, **_no_unix(tmp_path)}
+    check = subprocess.run([sys.executable, "-c", "import os, signal; print(hasattr(os, 'fork'), "
+                            "hasattr(signal, 'SIGKILL'))"], capture_output=True, text=True, env=env)
+    assert check.stdout.split() == ["False", "False"]                # the stand-in works
+    r = subprocess.run([sys.executable, "-c", IMPORT_ALL], capture_output=True, text=True, env=env, timeout=300)
+    assert r.stdout.strip() == "all imported", r.stdout + r.stderr
+
+
+def test_batch_with_limits_and_run_without_unix_only_modules(tmp_path):
+    """As on Windows: `tmm batch` with --timeout and --memory (spawned workers, memory read
+    with psutil) and `tmm run` with the JSON and HTML outputs work, no internal error."""
+    env = _no_unix(tmp_path)
+    src = tmp_path / "src"
+    src.mkdir()
+    for v in (1, 2):
+        (src / f"v{v}.yaml").write_text(GEARS.format(v=v), encoding="utf-8")
+    r = _tmm("batch", str(src), "--out", str(tmp_path / "b"), "--format", "json,html", "--jobs", "2",
+             "--timeout", "60", "--memory", "1024", env=env)
+    out = (r.stdout + r.stderr).decode("utf-8")
+    assert r.returncode == 0 and "internal error" not in out and "not enforced" not in out, out
+    assert (tmp_path / "b" / "summary.csv").read_text(encoding="utf-8").count(".yaml,ok,") == 2
+    assert (tmp_path / "b" / "v2" / "report.html").exists() and (tmp_path / "b" / "v1" / "results.json").exists()
+    r = _tmm("run", str(src / "v1.yaml"), "--out", str(tmp_path / "r"), "--format", "json,html", env=env)
+    assert r.returncode == 0, r.stderr
+    assert (tmp_path / "r" / "report.html").exists()

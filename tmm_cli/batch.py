@@ -602,7 +602,10 @@ def _kill(proc) -> None:
     """End a worker and the report helper it may have forked (its own process group is
     not used: the helper exits when its parent's pipe closes)."""
     if proc.is_alive():
-        proc.kill()
+        if hasattr(signal, "SIGKILL"):
+            proc.kill()
+        else:                       # Windows: terminate is TerminateProcess, as final as SIGKILL
+            proc.terminate()
     proc.join(5)
 
 
