@@ -252,3 +252,14 @@ def test_batch_with_limits_and_run_without_unix_only_modules(tmp_path):
     r = _tmm("run", str(src / "v1.yaml"), "--out", str(tmp_path / "r"), "--format", "json,html", env=env)
     assert r.returncode == 0, r.stderr
     assert (tmp_path / "r" / "report.html").exists()
+
+
+def test_batch_lists_its_files_with_slashes_on_windows_too():
+    """The files a variant wrote, as the manifest lists them and summary.html links them:
+    'v1/feedback-a-1.html', not Windows's 'v1\\feedback-a-1.html' (quoted into a link to
+    nowhere, and never found among the written files: no feedback link at all)."""
+    from pathlib import PurePosixPath, PureWindowsPath
+
+    from tmm_cli.batch import _rel
+    assert _rel(PureWindowsPath(r"C:\g\v1\feedback-a-1.html"), PureWindowsPath(r"C:\g")) == "v1/feedback-a-1.html"
+    assert _rel("/g/v1/report.html", PurePosixPath("/g")) == "v1/report.html"

@@ -28,7 +28,7 @@ import signal
 import stat
 import sys
 import time
-from pathlib import Path
+from pathlib import Path, PurePath
 
 from .check import STATUSES, AnswerSet, set_code
 from .messages import Message
@@ -124,11 +124,11 @@ def work(path: Path, out: Path, folder: str, formats: set[str], lang: str, sets:
             # a failed stage: results.json and the report were written with what was computed
             partial = getattr(exc, "written", None)
             if partial:
-                res["written"] = [str(Path(p).relative_to(out)) for p in partial if _inside(p, out)]
+                res["written"] = [_rel(p, out) for p in partial if _inside(p, out)]
             elif (vout / "results.json").exists():
-                res["written"].append(str(Path(folder) / "results.json"))
+                res["written"].append(f"{folder}/results.json")
             raise
-        res["written"] = [str(Path(p).relative_to(out)) for p in written if _inside(p, out)]
+        res["written"] = [_rel(p, out) for p in written if _inside(p, out)]
         if sets is None:
             own = task_answer_set(task)
             mine = [(-1, own)] if own else []
@@ -156,12 +156,12 @@ def work(path: Path, out: Path, folder: str, formats: set[str], lang: str, sets:
                                 "message": _set_message(rows, sst, aset)})
         if mine:
             atomic_write(vout / "check.csv", check_csv(all_rows))
-            res["written"].append(str(Path(folder) / "check.csv"))
+            res["written"].append(f"{folder}/check.csv")
             from .feedback import write_feedback
             for s in res["sets"]:
                 if s["rows"]:
                     p = write_feedback(task, s, vout, lang, pdf="pdf" in formats, notes=res["notes"])
-                    s["feedback"] = [str(Path(x).relative_to(out)) for x in p]
+                    s["feedback"] = [_rel(x, out) for x in p]
                     res["written"].extend(s["feedback"])
     except BaseException as exc:  # one broken variant must not stop the batch
         if isinstance(exc, KeyboardInterrupt):
@@ -190,6 +190,13 @@ def stage_failure_message(exc: BaseException) -> Message | None:
     else:
         where = Message("batch.at_angle", angle=float(pos))
     return Message("batch.stage_failed", stage=exc.stage, where=where, message=exc.message)
+
+
+def _rel(p, out: PurePath) -> str:
+    """``p`` relative to ``out`` with '/' between the parts on every system (Windows too):
+    the manifest's entries and summary.html's links (a '\\' would be quoted into a link
+    that leads nowhere)."""
+    return type(out)(p).relative_to(out).as_posix()
 
 
 def _inside(p, out: Path) -> bool:
