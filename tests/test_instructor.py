@@ -679,6 +679,22 @@ def test_memory_watched_from_outside_where_a_worker_cannot_limit_itself(tmp_path
     assert res.exit_code == 3
 
 
+def test_watched_memory_counts_from_the_variants_start_not_the_workers(tmp_path, monkeypatch):
+    """A spawned worker imports numpy, scipy, pydantic... (~150 MB of address space) before
+    its first variant: a watched --memory counts what the variant adds from when it begins
+    it, so a small limit does not fail every variant of a fresh worker."""
+    import tmm_cli.batch as b
+    monkeypatch.setenv("TMM_START_METHOD", "spawn")
+    monkeypatch.setattr(b, "_rlimit_available", lambda: False)
+    src = tmp_path / "src"
+    for v in (1, 2, 3):
+        _write(src, f"v{v}.yaml", (ROOT / "tasks" / "engine_slider_crank.yaml").read_text(encoding="utf-8"))
+    res = runner.invoke(app, ["batch", str(src), "--out", str(tmp_path / "o"), "--jobs", "2", "--format", "json",
+                              "--memory", "100"])
+    assert res.exit_code == 0, res.output
+    assert [r["status"] for r in _csv(tmp_path / "o" / "summary.csv")] == ["ok"] * 3
+
+
 def test_memory_limit_not_available_is_said_not_an_error(tmp_path, monkeypatch):
     """No RLIMIT_AS and no psutil: the batch says --memory is not enforced and runs."""
     import tmm_cli.batch as b

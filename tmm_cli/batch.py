@@ -389,7 +389,8 @@ def _serve(work_fn, jobs_args, tmpdir: str, memory_mb, task_r, done_w, policy: t
             i = int(task_r.recv_bytes())
         except (EOFError, OSError):
             return
-        done_w.send_bytes(b"%d a" % i)                  # begun: a death from now on is this variant's
+        done_w.send_bytes(b"%d a %d" % (i, _address_space()))   # begun (a death from now on is this
+        # variant's), with the memory it begins from (the batch's base where it watches memory)
         retire = _run_one(os.path.join(tmpdir, f"{i}.pickle"), memory_mb, jobs_args[i], work_fn)
         retire = retire or n == max_variants or _address_space() - start > growth
         done_w.send_bytes(b"%d %d" % (i, retire))       # a few bytes: never blocks
@@ -443,8 +444,7 @@ class _Slot:
         """Give the worker variant i; False when it is gone (then it gets a successor)."""
         if not self.proc.is_alive():
             return False
-        if self.watch:
-            self.base = _vms(self.proc.pid)
+        self.base = 0                  # until the worker says it began (its memory then)
         try:
             self.task_w.send_bytes(b"%d" % i)
         except OSError:
@@ -459,22 +459,30 @@ class _Slot:
         return self.t0 + timeout + (0.0 if self.begun else STARTUP)
 
     def over_memory(self, memory_mb) -> bool:
-        """The watched worker's memory grew by more than ``memory_mb`` since its variant began."""
+        """The watched worker's memory grew by more than ``memory_mb`` since it began its
+        variant (not since it was started: a spawned worker's imports are not the variant's)."""
         return bool(self.watch and memory_mb and self.base
                     and _vms(self.proc.pid) - self.base > int(memory_mb) * 1024 * 1024)
 
     def reports(self) -> list[tuple[int, str]]:
-        """The "<index> a" (begun) and "<index> <retire: 0|1>" (done) messages the worker
-        has sent and not yet read."""
-        lines = []
+        """The "<index> a <memory>" (begun) and "<index> <retire: 0|1>" (done) messages the
+        worker has sent and not yet read, as (index, "a" | "0" | "1"); the memory of the
+        current variant's start kept as ``base``."""
+        out = []
         while True:
             try:
                 if not self.done_r.poll(0):
                     break
-                lines.append(self.done_r.recv_bytes())
+                parts = self.done_r.recv_bytes().split()
             except (EOFError, OSError):
                 break
-        return [(int(a), b.decode()) for a, b in (ln.split() for ln in lines if ln.strip())]
+            if len(parts) < 2:
+                continue
+            k, what = int(parts[0]), parts[1].decode()
+            if what == "a" and k == self.i and len(parts) > 2:
+                self.base = int(parts[2])
+            out.append((k, what))
+        return out
 
     def close(self, kill: bool) -> None:
         if kill:
