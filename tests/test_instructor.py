@@ -445,25 +445,19 @@ def test_batch_removes_only_its_own_stale_folders(tmp_path):
     assert (out / "mine" / "notes.txt").exists() and (out / "v3" / "results.json").exists()
 
 
-def test_batch_survives_dead_slow_and_greedy_workers(tmp_path, monkeypatch):
-    import signal
+@pytest.fixture(params=["fork", "spawn"])
+def start_method(request, monkeypatch):
+    """The batch's workers forked (Linux) and spawned (Windows, macOS; TMM_START_METHOD=spawn)."""
+    monkeypatch.setenv("TMM_START_METHOD", request.param)
+    return request.param
+
+
+def test_batch_survives_dead_slow_and_greedy_workers(tmp_path, monkeypatch, start_method):
     import time
 
+    import batch_workers
     import tmm_cli.batch as b
-    real = b.work
-
-    def work(path, *a):
-        name = Path(path).stem
-        if name == "killed":
-            os.kill(os.getpid(), signal.SIGKILL)
-        if name == "slow":
-            time.sleep(60)
-        if name == "greedy":
-            x = bytearray(3 * 1024 ** 3)                          # 3 GB over a 1.5 GB limit
-            return {"never": len(x)}
-        return real(path, *a)
-
-    monkeypatch.setattr(b, "work", work)                          # the forked workers see it
+    monkeypatch.setattr(b, "work", batch_workers.work)           # the workers run it, forked or spawned
     src = tmp_path / "src"
     for name in ("killed", "slow", "greedy", "good1", "good2"):
         _write(src, f"{name}.yaml", GEARS.format(v=1))
@@ -578,23 +572,14 @@ def test_memory_limit_counts_what_a_variant_adds(tmp_path):
         big.close()
 
 
-def _pid_logging_work(monkeypatch, log: Path, misbehave=None):
-    """Replace the batch's `work` (the forked workers see it) by one that logs
-    "<stem> <pid>" and runs the real work, unless ``misbehave(stem)`` acts first."""
+def _pid_logging_work(monkeypatch, log: Path):
+    """Replace the batch's `work` by tests/batch_workers.py's (the workers run it, forked or
+    spawned), which logs "<stem> <pid>" to ``log`` and misbehaves as the stem says."""
+    import batch_workers
     import tmm_cli.batch as b
-    real = b.work
-
-    def work(path, *a):
-        with open(log, "a", encoding="utf-8") as fh:
-            fh.write(f"{Path(path).stem} {os.getpid()}\n")
-        if misbehave is not None:
-            out = misbehave(Path(path).stem)
-            if out is not None:
-                return out
-        return real(path, *a)
-
-    monkeypatch.setattr(b, "work", work)
-    return lambda: dict(line.split() for line in log.read_text(encoding="utf-8").splitlines())
+    monkeypatch.setattr(b, "work", batch_workers.work)
+    monkeypatch.setenv("TMM_TEST_PID_LOG", str(log))
+    return lambda: batch_workers.pid_log(log)
 
 
 def test_a_worker_reused_across_variants_writes_what_a_fresh_one_writes(tmp_path, monkeypatch):
@@ -619,28 +604,17 @@ def test_a_worker_reused_across_variants_writes_what_a_fresh_one_writes(tmp_path
     assert [r["status"] for r in _csv(tmp_path / "o" / "summary.csv")] == ["ok"] * (len(names) + 1)
 
 
-def test_a_dying_slow_or_greedy_variant_in_a_long_run_fails_alone(tmp_path, monkeypatch):
+def test_a_dying_slow_or_greedy_variant_in_a_long_run_fails_alone(tmp_path, monkeypatch, start_method):
     """In a long run on one worker, a variant that kills its worker, overruns --timeout or
     --memory is that variant's failed row; the next variant runs in a fresh worker, and
     the variants before and after write what they write without it."""
-    import signal
     import time
-
-    def misbehave(stem):
-        if stem.endswith("killed"):
-            os.kill(os.getpid(), signal.SIGKILL)
-        if stem.endswith("slow"):
-            time.sleep(60)
-        if stem.endswith("greedy"):
-            x = bytearray(3 * 1024 ** 3)                          # 3 GB over a 1 GB limit
-            return {"never": len(x)}
-        return None
 
     order = ["good", "good", "killed", "good", "slow", "good", "greedy", "good", "good"]
     src = tmp_path / "src"
     for k, kind in enumerate(order):
         _write(src, f"v{k}_{kind}.yaml", GEARS.format(v=k + 1))
-    pids = _pid_logging_work(monkeypatch, tmp_path / "pids.log", misbehave)
+    pids = _pid_logging_work(monkeypatch, tmp_path / "pids.log")
     t0 = time.monotonic()
     res = runner.invoke(app, ["batch", str(src), "--out", str(tmp_path / "o"), "--jobs", "1", "--timeout", "3",
                               "--memory", "1024", "--format", "json"])
@@ -667,24 +641,86 @@ def test_a_dying_slow_or_greedy_variant_in_a_long_run_fails_alone(tmp_path, monk
         assert (tmp_path / "o" / f).exists()
 
 
+def test_a_spawned_workers_start_is_not_the_variants_time(tmp_path, monkeypatch):
+    """A spawned worker (Windows, macOS) first starts an interpreter and imports the modules
+    (a second or more): --timeout counts from when it begins the variant, not from when
+    the batch handed it over."""
+    import batch_workers
+    import tmm_cli.batch as b
+    monkeypatch.setenv("TMM_START_METHOD", "spawn")
+    monkeypatch.setattr(b, "work", batch_workers.quick)             # the variant itself: no time at all
+    src = tmp_path / "src"
+    _write(src, "v1.yaml", (ROOT / "tasks" / "engine_slider_crank.yaml").read_text(encoding="utf-8"))
+    res = runner.invoke(app, ["batch", str(src), "--out", str(tmp_path / "o"), "--format", "html",
+                              "--timeout", "0.5"])
+    assert res.exit_code == 0, res.output
+    assert _csv(tmp_path / "o" / "summary.csv")[0]["status"] == "ok"
+
+
+def test_memory_watched_from_outside_where_a_worker_cannot_limit_itself(tmp_path, monkeypatch, start_method):
+    """Where RLIMIT_AS is not available (Windows; macOS does not enforce it) the batch reads
+    each worker's memory (psutil) and ends one whose variant added more than --memory: that
+    variant's failed row, the others computed."""
+    import time
+
+    import batch_workers
+    import tmm_cli.batch as b
+    monkeypatch.setattr(b, "_rlimit_available", lambda: False)
+    monkeypatch.setattr(b, "work", batch_workers.work)
+    src = tmp_path / "src"
+    for name in ("a_good", "b_hog", "c_good"):
+        _write(src, f"{name}.yaml", GEARS.format(v=1))
+    t0 = time.monotonic()
+    res = runner.invoke(app, ["batch", str(src), "--out", str(tmp_path / "o"), "--jobs", "1", "--format", "json",
+                              "--memory", "1024"])
+    assert time.monotonic() - t0 < 25                                # not the hog's 30 s
+    rows = {Path(r["file"]).stem: r for r in _csv(tmp_path / "o" / "summary.csv")}
+    assert rows["b_hog"]["status"] == "failed" and "--memory limit of 1024 MB" in rows["b_hog"]["message"]
+    assert rows["a_good"]["status"] == rows["c_good"]["status"] == "ok"
+    assert res.exit_code == 3
+
+
+def test_watched_memory_counts_from_the_variants_start_not_the_workers(tmp_path, monkeypatch):
+    """A spawned worker imports numpy, scipy, pydantic... (~150 MB of address space) before
+    its first variant: a watched --memory counts what the variant adds from when it begins
+    it, so a small limit does not fail every variant of a fresh worker."""
+    import tmm_cli.batch as b
+    monkeypatch.setenv("TMM_START_METHOD", "spawn")
+    monkeypatch.setattr(b, "_rlimit_available", lambda: False)
+    src = tmp_path / "src"
+    for v in (1, 2, 3):
+        _write(src, f"v{v}.yaml", (ROOT / "tasks" / "engine_slider_crank.yaml").read_text(encoding="utf-8"))
+    res = runner.invoke(app, ["batch", str(src), "--out", str(tmp_path / "o"), "--jobs", "2", "--format", "json",
+                              "--memory", "100"])
+    assert res.exit_code == 0, res.output
+    assert [r["status"] for r in _csv(tmp_path / "o" / "summary.csv")] == ["ok"] * 3
+
+
+def test_memory_limit_not_available_is_said_not_an_error(tmp_path, monkeypatch):
+    """No RLIMIT_AS and no psutil: the batch says --memory is not enforced and runs."""
+    import tmm_cli.batch as b
+    monkeypatch.setattr(b, "_rlimit_available", lambda: False)
+    monkeypatch.setattr(b, "_memory_watch", lambda: False)
+    src = tmp_path / "src"
+    _write(src, "v1.yaml", GEARS.format(v=1))
+    res = runner.invoke(app, ["batch", str(src), "--out", str(tmp_path / "o"), "--format", "json",
+                              "--memory", "512"])
+    assert res.exit_code == 0, res.output
+    assert "--memory 512 is not enforced here" in res.output
+    assert _csv(tmp_path / "o" / "summary.csv")[0]["status"] == "ok"
+
+
 def test_a_worker_is_replaced_after_max_variants_and_after_growing(tmp_path, monkeypatch):
     """The pool's policy: a worker runs at most MAX_VARIANTS variants, and one whose address
     space has grown by RECYCLE_GROWTH (here a variant that leaks 64 MB) is replaced."""
     import tmm_cli.batch as b
     monkeypatch.setattr(b, "MAX_VARIANTS", 3)
     monkeypatch.setattr(b, "RECYCLE_GROWTH", 32 * 1024 ** 2)
-    kept = []
-
-    def misbehave(stem):
-        if stem.endswith("leaky"):
-            kept.append(bytearray(64 * 1024 ** 2))              # stays in the worker
-        return None
-
     order = ["good", "good", "good", "good", "leaky", "good", "good"]
     src = tmp_path / "src"
     for k, kind in enumerate(order):
         _write(src, f"v{k}_{kind}.yaml", GEARS.format(v=k + 1))
-    pids = _pid_logging_work(monkeypatch, tmp_path / "pids.log", misbehave)
+    pids = _pid_logging_work(monkeypatch, tmp_path / "pids.log")
     res = runner.invoke(app, ["batch", str(src), "--out", str(tmp_path / "o"), "--jobs", "1", "--format", "json"])
     assert res.exit_code == 0, res.output
     assert [r["status"] for r in _csv(tmp_path / "o" / "summary.csv")] == ["ok"] * len(order)
@@ -785,16 +821,8 @@ def test_batch_resends_a_variant_whose_idle_worker_was_killed(tmp_path, monkeypa
     import signal
 
     import tmm_cli.batch as b
-    real_work, real_send = b.work, b._Slot.send
-    runs = tmp_path / "runs.txt"
-
-    def work(path, *a):
-        with open(runs, "a") as fh:
-            fh.write(Path(path).stem + "\n")
-        if Path(path).stem == "crash":
-            os.kill(os.getpid(), signal.SIGKILL)
-        return real_work(path, *a)
-
+    real_send = b._Slot.send
+    _pid_logging_work(monkeypatch, tmp_path / "runs.txt")
     sent = []
 
     def send(self, i):
@@ -806,7 +834,6 @@ def test_batch_resends_a_variant_whose_idle_worker_was_killed(tmp_path, monkeypa
             return ok
         return real_send(self, i)
 
-    monkeypatch.setattr(b, "work", work)
     monkeypatch.setattr(b._Slot, "send", send)
     src = tmp_path / "src"
     for name in ("a1", "a2", "crash", "a4"):
@@ -815,7 +842,8 @@ def test_batch_resends_a_variant_whose_idle_worker_was_killed(tmp_path, monkeypa
     rows = {Path(r["file"]).stem: r for r in _csv(tmp_path / "o" / "summary.csv")}
     assert rows["a1"]["status"] == rows["a2"]["status"] == rows["a4"]["status"] == "ok", rows
     assert rows["crash"]["status"] == "failed" and "SIGKILL" in rows["crash"]["message"]
-    assert sorted(runs.read_text().split()) == ["a1", "a2", "a4", "crash"]   # each run once
+    assert sorted(ln.split()[0] for ln in (tmp_path / "runs.txt").read_text().splitlines()) == \
+        ["a1", "a2", "a4", "crash"]             # each run once
     assert sent == [0, 1, 1, 2, 3]              # a2 sent twice: to the killed worker, then a fresh one
     assert res.exit_code == 3
 

@@ -125,6 +125,9 @@ ENGLISH = [
     ('batch.nobody_answered', {}, 'nobody answered this variant'),
     ('batch.no_answers_to_check', {}, 'computed (no answers to check)'),
     ('batch.results_in', {'folder': 'press-2'}, ' (results in press-2/)'),
+    ('form.renamed', {'file': 'src/V1.yaml', 'name': 'V1-2'},
+     'note: src/V1.yaml: its form and key are V1-2.form.yaml and V1-2.key.yaml (a file name every system '
+     'takes, one per task)'),
     ('batch.set_no_answers', {'file': 's01.yaml'}, 'no answers in s01.yaml'),
     ('batch.set_not_ok', {'status': 'outside', 'paths': ['flywheel.J', 'positions.K']},
      'outside: flywheel.J, positions.K'),
@@ -133,6 +136,9 @@ ENGLISH = [
     ('batch.no_task_of_name', {'file': 'ghost.yaml'}, "answers file 'ghost.yaml': no task of this name or variant"),
     ('batch.out_of_memory', {'limit': 4096},
      'out of memory: the variant needs more than the --memory limit of 4096 MB'),
+    ('batch.memory_unlimited', {'limit': 4096},
+     "note: --memory 4096 is not enforced here (no RLIMIT_AS and no `psutil` to read the workers' memory); "
+     "install `psutil`"),
     ('batch.no_report', {'error': 'PicklingError'}, 'internal error: the worker could not report: PicklingError'),
     ('batch.worker_killed', {'signal': 'SIGKILL'},
      'the worker died of SIGKILL (killed: e.g. by the out-of-memory killer)'),
@@ -152,6 +158,8 @@ ENGLISH = [
     ('batch.directory', {}, 'a directory, not a task file'),
     ('batch.fifo', {}, 'a FIFO (named pipe), not a task file'),
     ('batch.not_regular', {}, 'not a regular file'),
+    ('output.file_in_use', {}, 'the file is open in another program (a PDF viewer, a spreadsheet) or protected; '
+                               'close it and run again'),
     # structure: a linkage the crank cannot drive (the former f-strings of linkage/structure.py)
     ('structure.fail.reasons', {'reasons': [
         {'code': 'structure.fail.lonely_point', 'params': {'point': 'C', 'link': 'rod', 'hint': {

@@ -21,7 +21,8 @@ ROOT = Path(__file__).resolve().parents[1]
 FORGING = ROOT / "tasks" / "forging_sixbar.yaml"
 runner = CliRunner()
 
-pytestmark = pytest.mark.skipif(not hasattr(os, "fork"), reason="no os.fork: always the one-process path")
+pytestmark = pytest.mark.skipif(not hasattr(os, "fork") or os.environ.get("TMM_START_METHOD") == "spawn",
+                                reason="no os.fork (or TMM_START_METHOD=spawn): always the one-process path")
 
 
 def _temps(folder: Path) -> list[str]:

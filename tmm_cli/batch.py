@@ -1,11 +1,13 @@
 """`tmm batch`: run and grade many variants; one variant never stops the rest.
 
-The variants run on a pool of ``--jobs`` worker processes forked from the batch process;
+The variants run on a pool of ``--jobs`` worker processes forked from the batch process
+(started afresh, "spawn", where fork is not available: Windows, macOS; docs/platforms.md);
 each worker runs variants one at a time (the batch sends it a variant's index over a
 pipe, the worker leaves the outcome in a file and says so on a second pipe), with a time
 limit (``--timeout``) and an address-space limit (``--memory``, RLIMIT_AS: the worker's
 address space when the variant starts + the limit, so the limit is what one variant may
-add). A worker that dies (a signal, the out-of-memory killer) is replaced by a fresh
+add; where RLIMIT_AS is not available the batch reads the workers' memory with psutil and
+ends one past it). A worker that dies (a signal, the out-of-memory killer) is replaced by a fresh
 fork, one that overruns its time is killed and replaced; its variant becomes one
 ``failed`` row with the reason, a variant past its memory too. A worker also ends, and a fresh fork takes its
 place, after a variant that failed (out of memory, a stage's error), after
@@ -24,8 +26,9 @@ import os
 import re
 import signal
 import stat
+import sys
 import time
-from pathlib import Path
+from pathlib import Path, PurePath
 
 from .check import STATUSES, AnswerSet, _same, set_code
 from .messages import Message
@@ -89,21 +92,18 @@ def find_tasks(source: str) -> tuple[list[tuple[Path, str | None]], list[Path]]:
 
 
 def folder_names(files: list[Path]) -> list[str]:
-    """A unique, safe folder name per task file: its stem with anything but letters,
-    digits, '.', '_' and '-' replaced, no leading dot or dash (safepath.safe_stem), never a name of the batch's own
-    files; a clash (v1.yaml and v1.yml, a/v2.yaml and b/v2.yaml) gets -2, -3..."""
-    from .safepath import safe_stem
-    used: set[str] = set()
+    """A unique, safe folder name per task file: its stem as :func:`tmm_cli.safepath.safe_name`
+    makes it (a name Windows and macOS take too), never a name of the batch's own files; a
+    clash (v1.yaml and v1.yml, a/v2.yaml and b/v2.yaml, v3.yaml and V3.yaml: one folder
+    on Windows and macOS) gets -2, -3..."""
+    from .safepath import UniqueNames, safe_name
+    used = UniqueNames()
     names = []
     for f in files:
-        base = safe_stem(f.stem, "task")
+        base = safe_name(f.stem, "task")
         if base.lower() in RESERVED or base.lower().startswith("summary."):
             base = "v_" + base
-        name, k = base, 2
-        while name.lower() in used:
-            name, k = f"{base}-{k}", k + 1
-        used.add(name.lower())
-        names.append(name)
+        names.append(used.take(base))
     return names
 
 
@@ -130,11 +130,11 @@ def work(path: Path, out: Path, folder: str, formats: set[str], lang: str, sets:
             # a failed stage: results.json and the report were written with what was computed
             partial = getattr(exc, "written", None)
             if partial:
-                res["written"] = [str(Path(p).relative_to(out)) for p in partial if _inside(p, out)]
+                res["written"] = [_rel(p, out) for p in partial if _inside(p, out)]
             elif (vout / "results.json").exists():
-                res["written"].append(str(Path(folder) / "results.json"))
+                res["written"].append(f"{folder}/results.json")
             raise
-        res["written"] = [str(Path(p).relative_to(out)) for p in written if _inside(p, out)]
+        res["written"] = [_rel(p, out) for p in written if _inside(p, out)]
         style = (options or {}).get("csv", "plain")
         if style != "plain":          # every CSV of the run in the spreadsheet's style
             from .tables import csv_styled
@@ -173,13 +173,13 @@ def work(path: Path, out: Path, folder: str, formats: set[str], lang: str, sets:
         if mine:
             from .tables import csv_styled
             atomic_write(vout / "check.csv", csv_styled(check_csv(all_rows), style))
-            res["written"].append(str(Path(folder) / "check.csv"))
+            res["written"].append(f"{folder}/check.csv")
             from .feedback import write_feedback
             for s in res["sets"]:
                 if s["rows"]:
                     p = write_feedback(task, s, vout, lang, pdf="pdf" in formats, notes=res["notes"],
                                        key=(options or {}).get("feedback", "key") != "no-key")
-                    s["feedback"] = [str(Path(x).relative_to(out)) for x in p]
+                    s["feedback"] = [_rel(x, out) for x in p]
                     res["written"].extend(s["feedback"])
     except BaseException as exc:  # one broken variant must not stop the batch
         if isinstance(exc, KeyboardInterrupt):
@@ -224,6 +224,13 @@ def stage_failure_message(exc: BaseException) -> Message | None:
     else:
         where = Message("batch.at_angle", angle=float(pos))
     return Message("batch.stage_failed", stage=exc.stage, where=where, message=exc.message)
+
+
+def _rel(p, out: PurePath) -> str:
+    """``p`` relative to ``out`` with '/' between the parts on every system (Windows too):
+    the manifest's entries and summary.html's links (a '\\' would be quoted into a link
+    that leads nowhere)."""
+    return type(out)(p).relative_to(out).as_posix()
 
 
 def _inside(p, out: Path) -> bool:
@@ -333,23 +340,58 @@ def _address_space() -> int:
     """Bytes of virtual memory this process has mapped now (0 where it cannot be read)."""
     try:
         with open("/proc/self/statm", "rb") as fh:
-            import os
             return int(fh.read().split()[0]) * os.sysconf("SC_PAGE_SIZE")
-    except (OSError, ValueError, IndexError):
+    except (OSError, ValueError, IndexError, AttributeError):
+        pass
+    return _vms(os.getpid())        # no /proc (Windows, macOS): psutil's reading
+
+
+def _vms(pid: int) -> int:
+    """The virtual memory size of process ``pid`` (psutil's ``vms``: the address space on
+    Linux and macOS, the committed private memory on Windows); 0 where it cannot be read."""
+    try:
+        import psutil
+        return int(psutil.Process(pid).memory_info().vms)
+    except Exception:  # noqa: BLE001 - psutil missing, the process gone: no reading
         return 0
 
 
+def _rlimit_available() -> bool:
+    """The worker can limit its own address space (RLIMIT_AS): Linux. macOS has the call
+    but does not enforce it; Windows has no ``resource``: there the batch watches the
+    workers' memory (:func:`_memory_watch`)."""
+    if not sys.platform.startswith("linux"):
+        return False
+    try:
+        import resource
+    except ImportError:
+        return False
+    return hasattr(resource, "RLIMIT_AS")
+
+
+def _memory_watch() -> bool:
+    """The batch can read a worker's memory from outside (psutil)."""
+    try:
+        import psutil  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
 # the worker pool: how long a worker lives
-MAX_VARIANTS = 100                 # a worker runs at most this many variants, then a fresh fork replaces it
+MAX_VARIANTS = 100                 # a worker runs at most this many variants, then a fresh one replaces it
 RECYCLE_GROWTH = 256 * 1024 ** 2   # ... or fewer, once its address space grew this much over its start
+STARTUP = 60.0                     # s: a worker's time to start (spawned: imports) before --timeout counts
+WATCH_INTERVAL = 0.1               # s: how often the batch reads the workers' memory where they cannot limit it
 
 
 def _failed(message) -> dict:
     return {"task": None, "written": [], "sets": [], "code": 3, "status": "failed", "message": message}
 
 
-def _run_one(result_file: str, memory_mb, args) -> bool:
-    """In a worker: limit what this variant may add to the address space, run it, leave
+def _run_one(result_file: str, memory_mb, args, work_fn=None) -> bool:
+    """In a worker: limit what this variant may add to the address space (``memory_mb``:
+    None where the batch watches it from outside), run it, leave
     the outcome in ``result_file`` (a file, not a pipe: nothing can block between a
     dying worker and the batch). True when the worker should end: the variant ran out of
     memory or failed."""
@@ -366,7 +408,7 @@ def _run_one(result_file: str, memory_mb, args) -> bool:
             if hard != resource.RLIM_INFINITY:
                 lim = min(lim, hard)
             resource.setrlimit(resource.RLIMIT_AS, (lim, hard))
-        res = work(*args)
+        res = (work_fn or work)(*args)
     except MemoryError:
         oom = True
         res = _failed(Message("batch.out_of_memory", limit=memory_mb))
@@ -381,40 +423,46 @@ def _run_one(result_file: str, memory_mb, args) -> bool:
     return oom or res.get("status") == "failed"
 
 
-def _worker(jobs_args, tmpdir: str, memory_mb, task_r: int, done_w: int, close: list[int]) -> None:
+def _worker(work_fn, jobs_args, tmpdir: str, memory_mb, task_r, done_w, close: list[int],
+            policy: tuple[int, int], spawned: bool = False) -> None:
     """A worker of the pool: read a variant's index from ``task_r``, acknowledge it
-    ("<index> a" to ``done_w``), run it, write its outcome to ``tmpdir/<index>.pickle``,
-    then "<index> <retire>" to ``done_w``; exit on
+    ("<index> a" to ``done_w``), run it (``work_fn``: :func:`work`, passed so that a
+    spawned worker runs the same function as a forked one), write its outcome to
+    ``tmpdir/<index>.pickle``, then "<index> <retire>" to ``done_w``; exit on
     end of input, after ``MAX_VARIANTS`` variants, once its address space has grown by
-    ``RECYCLE_GROWTH``, or after a variant that failed (out of memory, a stage's error):
-    the batch then forks a fresh worker."""
-    for fd in close:                   # the batch's ends of every worker's pipes
+    ``RECYCLE_GROWTH`` (``policy``: the two, as the batch has them), or after a variant
+    that failed (out of memory, a stage's error): the batch then starts a fresh worker.
+    ``close``: the descriptors of the batch's ends of every worker's pipes, which a forked
+    worker inherits (a spawned one inherits nothing: empty). A ``spawned`` worker first
+    does what the batch does before it forks (:func:`warm`): its first variant then runs
+    as fast as the next ones, and its growth is counted from there."""
+    for fd in close:
         try:
             os.close(fd)
         except OSError:
             pass
     try:
-        _serve(jobs_args, tmpdir, memory_mb, task_r, done_w)
+        if spawned and jobs_args:
+            warm([a[0] for a in jobs_args], jobs_args[0][3])
+        _serve(work_fn, jobs_args, tmpdir, memory_mb, task_r, done_w, policy)
     except KeyboardInterrupt:          # Ctrl-C reaches the workers too: the batch reports it
         os._exit(130)
     os._exit(0)                    # no atexit handlers or inherited threads of the parent
 
 
-def _serve(jobs_args, tmpdir: str, memory_mb, task_r: int, done_w: int) -> None:
+def _serve(work_fn, jobs_args, tmpdir: str, memory_mb, task_r, done_w, policy: tuple[int, int]) -> None:
+    max_variants, growth = policy
     start = _address_space()
-    buf = b""
-    for n in range(1, MAX_VARIANTS + 1):
-        while b"\n" not in buf:
-            chunk = os.read(task_r, 64)
-            if not chunk:
-                return
-            buf += chunk
-        line, buf = buf.split(b"\n", 1)
-        i = int(line)
-        os.write(done_w, b"%d a\n" % i)                 # begun: a death from now on is this variant's
-        retire = _run_one(os.path.join(tmpdir, f"{i}.pickle"), memory_mb, jobs_args[i])
-        retire = retire or n == MAX_VARIANTS or _address_space() - start > RECYCLE_GROWTH
-        os.write(done_w, b"%d %d\n" % (i, retire))      # a few bytes: never blocks
+    for n in range(1, max_variants + 1):
+        try:
+            i = int(task_r.recv_bytes())
+        except (EOFError, OSError):
+            return
+        done_w.send_bytes(b"%d a %d" % (i, _address_space()))   # begun (a death from now on is this
+        # variant's), with the memory it begins from (the batch's base where it watches memory)
+        retire = _run_one(os.path.join(tmpdir, f"{i}.pickle"), memory_mb, jobs_args[i], work_fn)
+        retire = retire or n == max_variants or _address_space() - start > growth
+        done_w.send_bytes(b"%d %d" % (i, retire))       # a few bytes: never blocks
         if retire:
             break
 
@@ -426,7 +474,7 @@ def _death(exitcode: int | None, memory_mb) -> str:
             name = signal.Signals(sig).name
         except ValueError:
             name = f"signal {sig}"
-        if sig == signal.SIGKILL:
+        if sig == getattr(signal, "SIGKILL", None):
             return Message("batch.worker_killed", signal=name)
         return Message("batch.worker_signal", signal=name)
     return Message("batch.worker_exit", code=exitcode, limit=memory_mb)
@@ -434,22 +482,30 @@ def _death(exitcode: int | None, memory_mb) -> str:
 
 class _Slot:
     """The batch's side of one worker: its process, the pipe it reads variants from, the
-    pipe it reports on, and the variant it runs (index, start time)."""
+    pipe it reports on (multiprocessing's connections: they pass to a forked and to a
+    spawned worker alike), the variant it runs (index, start time) and the worker's memory
+    when that variant began (where the batch watches it)."""
 
-    def __init__(self, ctx, jobs_args, tmpdir, memory_mb, parent_fds: set[int]):
-        task_r, self.task_w = os.pipe()
-        self.done_r, done_w = os.pipe()
-        os.set_blocking(self.done_r, False)
-        parent_fds.update((self.task_w, self.done_r))
-        self.proc = ctx.Process(target=_worker, args=(jobs_args, tmpdir, memory_mb, task_r, done_w,
-                                                      sorted(parent_fds)), daemon=False)
-        self.proc.start()
-        os.close(task_r)
-        os.close(done_w)
-        self.parent_fds = parent_fds
+    def __init__(self, ctx, jobs_args, tmpdir, memory_mb, parent_fds: set[int], work_fn=None, watch=False):
+        task_r, self.task_w = ctx.Pipe(duplex=False)
+        self.done_r, done_w = ctx.Pipe(duplex=False)
+        own = {self.task_w.fileno(), self.done_r.fileno()}
+        parent_fds.update(own)
+        close = sorted(parent_fds) if ctx.get_start_method() == "fork" else []
+        self.proc = ctx.Process(target=_worker, args=(work_fn or work, jobs_args, tmpdir, memory_mb, task_r, done_w,
+                                                      close, (MAX_VARIANTS, RECYCLE_GROWTH),
+                                                      ctx.get_start_method() != "fork"), daemon=False)
+        try:
+            self.proc.start()
+        finally:
+            task_r.close()
+            done_w.close()
+        self.parent_fds, self.own = parent_fds, own
+        self.watch = watch
         self.i: int | None = None
         self.t0 = 0.0
-        self.buf = b""
+        self.base = 0
+        self.buf: list[bytes] = []
         self.retire = False
         self.begun = False             # the worker acknowledged variant i (it began it)
 
@@ -457,57 +513,83 @@ class _Slot:
         """Give the worker variant i; False when it is gone (then it gets a successor)."""
         if not self.proc.is_alive():
             return False
+        self.base = 0                  # until the worker says it began (its memory then)
         try:
-            os.write(self.task_w, b"%d\n" % i)
+            self.task_w.send_bytes(b"%d" % i)
         except OSError:
             return False
         self.i, self.t0, self.begun = i, time.monotonic(), False
         return True
 
+    def deadline(self, timeout: float) -> float:
+        """When the variant overruns ``timeout``: counted from when the worker began it; a
+        worker that has not begun it yet (a spawned one starting: a fresh interpreter
+        importing the modules) has ``STARTUP`` more."""
+        return self.t0 + timeout + (0.0 if self.begun else STARTUP)
+
+    def over_memory(self, memory_mb) -> bool:
+        """The watched worker's memory grew by more than ``memory_mb`` since it began its
+        variant (not since it was started: a spawned worker's imports are not the variant's)."""
+        return bool(self.watch and memory_mb and self.base
+                    and _vms(self.proc.pid) - self.base > int(memory_mb) * 1024 * 1024)
+
     def reports(self) -> list[tuple[int, str]]:
-        """The "<index> a" (begun) and "<index> <retire: 0|1>" (done) lines the worker has
-        written and not yet read."""
+        """The "<index> a <memory>" (begun) and "<index> <retire: 0|1>" (done) messages the
+        worker has sent and not yet read, as (index, "a" | "0" | "1"); the memory of the
+        current variant's start kept as ``base``."""
+        out = []
         while True:
             try:
-                chunk = os.read(self.done_r, 4096)
-            except BlockingIOError:
+                if not self.done_r.poll(0):
+                    break
+                parts = self.done_r.recv_bytes().split()
+            except (EOFError, OSError):
                 break
-            except OSError:
-                break
-            if not chunk:
-                break
-            self.buf += chunk
-        *lines, self.buf = self.buf.split(b"\n")
-        return [(int(a), b.decode()) for a, b in (ln.split() for ln in lines if ln.strip())]
+            if len(parts) < 2:
+                continue
+            k, what = int(parts[0]), parts[1].decode()
+            if what == "a" and k == self.i and len(parts) > 2:
+                self.base = int(parts[2])
+            out.append((k, what))
+        return out
 
     def close(self, kill: bool) -> None:
         if kill:
             _kill(self.proc)
-        for fd in (self.task_w, self.done_r):
+        for conn in (self.task_w, self.done_r):
             try:
-                os.close(fd)
+                conn.close()
             except OSError:
                 pass
-            self.parent_fds.discard(fd)
+        self.parent_fds.difference_update(self.own)
         self.proc.join(5)
         if self.proc.is_alive():
             _kill(self.proc)
 
 
-def run_all(jobs_args: list[tuple], *, jobs: int, timeout: float, memory_mb: int | None, on_done) -> list[dict]:
-    """Run the jobs on a pool of at most ``jobs`` forked workers, each running variants
+def run_all(jobs_args: list[tuple], *, jobs: int, timeout: float, memory_mb: int | None, on_done,
+            method: str | None = None) -> list[dict]:
+    """Run the jobs on a pool of at most ``jobs`` workers (started by ``method``, fork or
+    spawn: :func:`tmm_cli.portable.start_method` by default), each running variants
     one at a time; return the outcomes in order. ``on_done(i, outcome)`` is called as
     each finishes. A worker that dies or overruns ``timeout`` fails the variant it was
-    running, is replaced by a fresh fork, and the batch goes on. A worker that died before
-    it acknowledged its variant (killed from outside while idle, just as the variant was
-    sent) did not run it: the variant is given, once, to a fresh worker."""
+    running, is replaced by a fresh one, and the batch goes on. Where a worker cannot
+    limit its own memory (:func:`_rlimit_available`), the batch reads it every
+    ``WATCH_INTERVAL`` and ends one whose variant added more than ``memory_mb``. A worker
+    that died before it acknowledged its variant (killed from outside while idle, just as
+    the variant was sent) did not run it: the variant is given, once, to a fresh worker."""
     import multiprocessing as mp
     import pickle
     import shutil
     import tempfile
     from multiprocessing.connection import wait
 
-    ctx = mp.get_context("fork")
+    from .portable import start_method
+
+    ctx = mp.get_context(method or start_method())
+    watch = bool(memory_mb) and not _rlimit_available() and _memory_watch()
+    limit_in_worker = memory_mb if memory_mb and _rlimit_available() else None
+    work_fn = work                     # as this module has it now (a test may replace it)
     results: list[dict | None] = [None] * len(jobs_args)
     pending = list(range(len(jobs_args)))
     pending.reverse()                  # pop() from the end: the variants in order
@@ -541,7 +623,7 @@ def run_all(jobs_args: list[tuple], *, jobs: int, timeout: float, memory_mb: int
                 s.close(kill=False)
                 slots.remove(s)
             while pending and len(slots) < max(1, jobs):      # fresh workers for the rest
-                s = _Slot(ctx, jobs_args, tmpdir, memory_mb, parent_fds)
+                s = _Slot(ctx, jobs_args, tmpdir, limit_in_worker, parent_fds, work_fn, watch)
                 slots.append(s)
                 if s.send(pending[-1]):
                     pending.pop()
@@ -552,14 +634,17 @@ def run_all(jobs_args: list[tuple], *, jobs: int, timeout: float, memory_mb: int
             if not busy:
                 continue
             now = time.monotonic()
-            left = min(s.t0 + timeout - now for s in busy) if timeout else None
+            left = min(s.deadline(timeout) - now for s in busy) if timeout else None
+            if watch:
+                left = WATCH_INTERVAL if left is None else min(left, WATCH_INTERVAL)
             wait([s.proc.sentinel for s in busy] + [s.done_r for s in busy],
                  timeout=None if left is None else max(0.0, left))
             now = time.monotonic()
             for s in busy:
                 res, i = None, s.i
                 reports = [r for k, r in s.reports() if k == i]
-                s.begun = s.begun or "a" in reports
+                if "a" in reports and not s.begun:
+                    s.begun, s.t0 = True, now      # the time limit counts from here
                 done = [r == "1" for r in reports if r != "a"]
                 if done:
                     res = load(i)
@@ -578,9 +663,13 @@ def run_all(jobs_args: list[tuple], *, jobs: int, timeout: float, memory_mb: int
                         continue
                     if res is None:
                         res = _failed(_death(s.proc.exitcode, memory_mb))
-                elif timeout and now - s.t0 > timeout:
+                elif timeout and now > s.deadline(timeout):
                     _kill(s.proc)
                     res = _failed(Message("batch.timeout", timeout=timeout))
+                    s.retire = True
+                elif s.over_memory(memory_mb):
+                    _kill(s.proc)
+                    res = _failed(Message("batch.out_of_memory", limit=memory_mb))
                     s.retire = True
                 if res is not None:
                     s.i = None
@@ -597,7 +686,10 @@ def _kill(proc) -> None:
     """End a worker and the report helper it may have forked (its own process group is
     not used: the helper exits when its parent's pipe closes)."""
     if proc.is_alive():
-        proc.kill()
+        if hasattr(signal, "SIGKILL"):
+            proc.kill()
+        else:                       # Windows: terminate is TerminateProcess, as final as SIGKILL
+            proc.terminate()
     proc.join(5)
 
 
@@ -707,7 +799,11 @@ def _run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = fro
     options = {"feedback": feedback, "csv": csv_style}
     args = [(found[k][0], out, folders[k], set(formats), lang, sets, tol_override, quantities, options)
             for k in runnable]
-    warm([found[k][0] for k in runnable], formats)
+    from .portable import start_method
+    if start_method() == "fork":       # the workers inherit what the batch imported
+        warm([found[k][0] for k in runnable], formats)
+    if memory_mb and not _rlimit_available() and not _memory_watch():
+        con.print(Message("batch.memory_unlimited", limit=memory_mb), markup=False)
     with _progress(con, len(args), "variants") as advance:
         def done(i, res):
             advance()

@@ -317,6 +317,8 @@ def main(exit_now: bool = False) -> None:
     """``tmm`` with the arguments of the command line. ``exit_now``: this is the program
     (``tmm``, ``python -m tmm_cli``): a plain run / validate ends the process at once
     when done (:func:`_exit_now`); a caller that goes on after ``main`` leaves it off."""
+    from .portable import utf8_console
+    utf8_console()          # Cyrillic on a Windows console or a redirected stream in a legacy code page
     try:
         command = _fast(sys.argv[1:])
         if command is not None:

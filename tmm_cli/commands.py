@@ -468,14 +468,20 @@ def form(
         files = [f for f, why in found if why is None]
     else:
         files = [source]
+    from .safepath import UniqueNames, safe_name
     code, frows, krows, all_paths = EXIT_OK, [], [], []
+    names = UniqueNames()       # v1.yaml and V1.yaml: one form file on Windows and macOS
     for f in files:
         try:
             task = prepare(f, stage_errors=False)
             results = compute(task)
             qp = expand(quantities, results)
-            atomic_write(out / f"{task.name}.form.yaml", form_text(task, qp, None, lang))
-            atomic_write(out / f"{task.name}.key.yaml", form_text(task, qp, results, lang))
+            name = names.take(safe_name(task.name, "task"))
+            atomic_write(out / f"{name}.form.yaml", form_text(task, qp, None, lang))
+            atomic_write(out / f"{name}.key.yaml", form_text(task, qp, results, lang))
+            if name != task.name:
+                from .messages import Message
+                _err(Message("form.renamed", file=str(f), name=name))
         except TaskError as exc:
             exc.file = exc.file or str(f)          # a quantity the results lack: name the task
             _err(f"error: {exc.render()}")

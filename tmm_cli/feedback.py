@@ -216,8 +216,10 @@ def feedback_html(task, s: dict, lang: str = "en", key: bool = True) -> str:
 def feedback_name(s: dict) -> str:
     """feedback-<student>-<answers file> ('feedback-Ivanov-ivanov', 'feedback-Petrov-class.csv_5'
     for a table's line 5); without an answers file (the task's own answers) the set's number."""
+    from .safepath import safe_name          # no device name, no leading dash
+
     def safe(x):
-        return re.sub(r"[^\w.-]", "_", str(x or "")).strip("._")
+        return safe_name(str(x or ""), "").strip("._")
     who = safe(s.get("student")) or "answers"
     src = s.get("answers_file")
     if src:

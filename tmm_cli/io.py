@@ -56,8 +56,36 @@ def atomic_write(path: str | os.PathLike, data: bytes | str | Callable[[Callable
     fd, tmp = _open_temp(path)
     with _removed_on_error(tmp, path):
         _fill(fd, raw)
-        os.replace(tmp, path)
+        replace(tmp, path)
     return path
+
+
+# os.replace over a file another program holds open (Windows: a PDF viewer showing
+# report.pdf, an antivirus or an indexer reading a file just written) fails with
+# PermissionError; it is tried this many times, waiting 0.2, 0.4, 0.8... s in between
+REPLACE_TRIES = 5
+REPLACE_WAIT = 0.2
+
+
+def replace(tmp: str | os.PathLike, path: str | os.PathLike) -> None:
+    """``os.replace(tmp, path)``, tried again while ``path`` is held by another program
+    (PermissionError: the temporary file lies in the same folder, so the folder itself is
+    writable); then a PermissionError naming ``path`` and saying why, for the user."""
+    delay = REPLACE_WAIT
+    for attempt in range(REPLACE_TRIES):
+        try:
+            os.replace(tmp, path)
+            return
+        except PermissionError as exc:
+            if os.path.isdir(path):
+                raise
+            if attempt == REPLACE_TRIES - 1:
+                import errno
+
+                from .messages import Message
+                raise PermissionError(exc.errno or errno.EACCES, Message("output.file_in_use"), str(path)) from exc
+            time.sleep(delay)
+            delay *= 2
 
 
 def _open_temp(path: Path) -> tuple[int, str]:
@@ -109,11 +137,12 @@ def _removed_on_error(tmp: str, path: Path):
 
 def workers_wanted() -> bool:
     """A second process (fork) may work alongside this one (the report's helper, a results
-    file written aside): unless TMM_REPORT_JOBS=1, fork is unavailable or there is one core."""
-    import multiprocessing
+    file written aside): unless TMM_REPORT_JOBS=1, fork is unavailable (or TMM_START_METHOD=spawn)
+    or there is one core."""
     if os.environ.get("TMM_REPORT_JOBS", "").strip() == "1":
         return False
-    if "fork" not in multiprocessing.get_all_start_methods():
+    from .portable import can_fork
+    if not can_fork():              # no fork here, or TMM_START_METHOD=spawn
         return False
     return (os.cpu_count() or 1) >= 2
 
@@ -149,7 +178,8 @@ class Aside:
         import sys
         threading = sys.modules.get("threading")
         path = Path(path)
-        if not hasattr(os, "fork") or (threading is not None and threading.active_count() > 1) \
+        from .portable import can_fork
+        if not can_fork() or (threading is not None and threading.active_count() > 1) \
                 or os.path.isdir(path):    # that replace fails: at once, as atomic_write fails
             return None
         fd, tmp = _open_temp(path)
@@ -207,7 +237,7 @@ class Aside:
                         fh.writelines(end)
                         fh.flush()
                         os.fsync(fh.fileno())
-                os.replace(self._tmp, self.path)
+                replace(self._tmp, self.path)
             return self.path
         _discard(self._tmp)
         data, tail = self._data, self._tail
@@ -219,7 +249,7 @@ class Aside:
         if self._pid is not None:
             import signal
             try:
-                os.kill(self._pid, signal.SIGKILL)
+                os.kill(self._pid, getattr(signal, "SIGKILL", signal.SIGTERM))
             except OSError:
                 pass
             try:

@@ -79,8 +79,10 @@ def _dotted(path: tuple) -> str:
 
 
 def file_stem(raw: str) -> str:
-    from .safepath import safe_stem
-    return safe_stem(raw.strip(), "variant")
+    """The task file's name (without .yaml) for a variant: a name every system takes
+    (:func:`tmm_cli.safepath.safe_name`: variant "CON" -> "_CON", "7." -> "7")."""
+    from .safepath import safe_name
+    return safe_name(raw, "variant")
 
 
 def make_variants(template: Path, table: Path, out: Path) -> tuple[int, list[dict], list[str]]:
@@ -135,17 +137,15 @@ def make_variants(template: Path, table: Path, out: Path) -> tuple[int, list[dic
     if unused:      # a column the instructor meant to vary but no placeholder takes
         messages.append(f"{table}: warning: column{'s' if len(unused) > 1 else ''} "
                         f"{', '.join(unused)} used by no placeholder of {Path(template).name}")
-    names_used: set[str] = set()
+    from .safepath import UniqueNames
+    names_used = UniqueNames()       # "a" and "A": one file on Windows and macOS
     from rich.console import Console
 
     from .batch import progress as progress_bar
     with progress_bar(Console(stderr=True), len(rows), "variants") as advance:
         for line, row, bad in rows:
             raw_v = row.get(cols["variant"][0], "").strip()
-            name = file_stem(raw_v)
-            while name.lower() in names_used:
-                name += "_"
-            names_used.add(name.lower())
+            name = names_used.take(file_stem(raw_v), sep="", suffix="_")
             target = Path(out) / f"{name}.yaml"
             status, msg = "written", ""
             try:
