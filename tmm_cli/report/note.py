@@ -219,7 +219,10 @@ def to_typst(html: str, results: dict, task, lang: str = "en") -> tuple[str, dic
     numbering = rf"""
 #let figno = counter("note-figure")
 #let tabno = counter("note-table")
-#show heading.where(level: 1): it => {{ figno.update(0); tabno.update(0); it }}
+#let eqno = counter("note-equation")
+#show heading.where(level: 1): it => {{ figno.update(0); tabno.update(0); eqno.update(0); it }}
+#let wf(x) = {{ eqno.step(); block(above: 0.8em, below: 0.8em, grid(columns: (1fr, auto), column-gutter: 3mm,
+  align: (left + horizon, right + horizon), x, context [(#counter(heading).get().first().#eqno.display())])) }}
 #let fig(file, w, c, labels: none) = {{
   figno.step()
   block(above: 2mm, below: 3mm, breakable: false, width: 100%, align(center, {{
@@ -268,6 +271,7 @@ def _preamble_only(pre: str) -> str:
     (the note's number their captions)."""
     pre = re.sub(r"#set page\(.*?\)\)\)\)\n", "", pre, count=1, flags=re.S)
     pre = re.sub(r"#let cap\(x\) = .*?\n", "", pre, count=1)
+    pre = re.sub(r"#let wf\(x\) = .*?\n", "", pre, count=1)
     pre = re.sub(r"#let fig\(file.*", "", pre, count=1, flags=re.S)
     return pre
 

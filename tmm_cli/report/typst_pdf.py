@@ -240,6 +240,7 @@ PREAMBLE = r"""
 #let note(x) = text(size: 8.5pt, fill: rgb("#444444"), x)
 #let cap(x) = block(below: 1mm, sticky: true, strong(x))
 #let keep(x) = block(sticky: true, above: 0.55em, below: 0.55em, x)
+#let wf(x) = block(above: 0.8em, below: 0.8em, x)
 #let section-break = { block(breakable: false, height: 50%, above: 4mm, below: 0pt); v(-50%) }
 #let fig(file, w, c, labels: none) = block(above: 2mm, below: 3mm, breakable: false, width: 100%,
   align(center, { if labels == none { layout(size => image(file, width: calc.min(w, size.width))) } else {
@@ -411,7 +412,7 @@ class _Writer:
             with self._inside(lambda w: w - 4 * _MM):
                 return "".join(f"#box(inset: (right: 4mm))[{self.block(k)}]" for k in kids)
         if tag == "div" and "wf" in cls:           # a line of worked formulas: room for fractions
-            return f"#block(above: 0.8em, below: 0.8em)[{self.blocks(node)}]"
+            return f"#wf[{self.blocks(node)}]"
         if tag == "div" and "failure" in cls:
             with self._inside(lambda w: w - 8 * _MM - 1.5):
                 body = self.blocks(node)
