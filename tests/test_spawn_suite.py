@@ -16,7 +16,7 @@ def test_batch_and_run_suites_pass_under_spawn():
     if os.environ.get("TMM_START_METHOD") == "spawn":
         pytest.skip("the whole suite runs under spawn already")
     env = dict(os.environ, TMM_START_METHOD="spawn")
-    p = subprocess.run([sys.executable, "-m", "pytest", "-q", "-n", "0", "-p", "no:cacheprovider", *FILES],
+    p = subprocess.run([sys.executable, "-m", "pytest", "-n", "0", "-p", "no:cacheprovider", *FILES],
                        cwd=ROOT, env=env, capture_output=True, text=True, timeout=1800)
     assert p.returncode == 0, p.stdout[-4000:] + p.stderr[-2000:]
     assert " passed" in p.stdout
