@@ -242,7 +242,7 @@ PREAMBLE = r"""
 #let keep(x) = block(sticky: true, above: 0.55em, below: 0.55em, x)
 #let section-break = { block(breakable: false, height: 50%, above: 4mm, below: 0pt); v(-50%) }
 #let fig(file, w, c, labels: none) = block(above: 2mm, below: 3mm, breakable: false, width: 100%,
-  align(center, { if labels == none { layout(size => image(file, width: calc.min(w, size.width))) } else {
+  align(center, { if labels == none { layout(size => image(file, width: if type(w) == length { calc.min(w, size.width) } else { w })) } else {
     block(width: w, { image(file, width: w); set text(top-edge: "baseline", bottom-edge: "baseline"); labels }) }
     if c != none { v(1mm, weak: true); text(size: 8.5pt, fill: rgb("#333333"), c) } }))
 """
