@@ -249,6 +249,10 @@ PREAMBLE = r"""
 # the page's text width (A4 less the margins of PREAMBLE), pt
 _TEXT_WIDTH = (210 - sum(map(float, re.search(r"right: ([\d.]+)mm, bottom: [\d.]+mm, left: ([\d.]+)mm",
                                               PREAMBLE).groups()))) * _MM
+# and its height, pt
+_TEXT_HEIGHT = (297 - sum(map(float, re.search(r"margin: \(top: ([\d.]+)mm, right: [\d.]+mm, bottom: ([\d.]+)mm",
+                                               PREAMBLE).groups()))) * _MM
+_HPT = re.compile(r'\bheight="([0-9.]+)pt"')
 
 
 class _Writer:
@@ -330,6 +334,23 @@ class _Writer:
                 out.append(self.inline(c))
         return "".join(out)
 
+    def _drawn_height(self, node) -> float:
+        """A bound of the height of a block's figures with their captions and a heading,
+        pt (the figures' heights in pt, the captions' lines at 8.5 pt from their
+        characters' advance bounds)."""
+        h = 12 * _MM                                             # the heading
+        for c in node:
+            if not isinstance(c, _Node):
+                continue
+            if c.tag == "img" and "data-svg" in c.attrs:
+                m = _HPT.search(self.svgs[int(c.attrs["data-svg"])][:400])
+                h += (float(m.group(1)) if m else _TEXT_HEIGHT) + 5 * _MM      # with the block's spacing
+            elif c.tag == "figcaption":
+                h += (_em_width(c.text()) * 8.5 // _TEXT_WIDTH + 1) * 8.5 * 1.25 + _MM
+            else:
+                h += self._drawn_height(c) - 12 * _MM
+        return h
+
     def figure_image(self, k: int, caption: str | None) -> str:
         svg = self.svgs[k]
         if "xmlns=" not in svg[:300]:
@@ -386,12 +407,16 @@ class _Writer:
             self.after_section = True
             return brk + body
         if tag == "div" and "position" in cls:
+            # a position on a page of its own; where its drawings are taller than a page
+            # (the groups of a six-bar and Zhukovsky's lever) it breaks between them: each
+            # figure stays whole, the heading with the first
+            fits = self._drawn_height(node) <= _TEXT_HEIGHT
             led, self.led = self.led, False
-            whole, self.whole = self.whole, True
+            whole, self.whole = self.whole, fits
             body = self.blocks(node)
             self.whole = whole
             brk = "" if led else "#pagebreak(weak: true)\n"
-            return brk + "#block(breakable: false)[\n" + body + "\n]"
+            return brk + f"#block(breakable: {'false' if fits else 'true'})[\n" + body + "\n]"
         if tag == "div" and ("tables2" in cls or "pair" in cls):
             kids = [c for c in node if isinstance(c, _Node)]
             n = max(len(kids), 1)
