@@ -518,11 +518,13 @@ class _Writer:
         if self.width is None or nhead >= len(rows):
             return style, kinds
         need = [0.0] * ncols                # em of each column's widest one-column body cell
-        for r in rows[nhead:]:
+        for i, r in enumerate(rows):
             j = 0
             for c, span, _, t, _ in r:
                 if span == 1 and j < ncols and t:
-                    need[j] = max(need[j], self.unbroken(t))
+                    # a header's longest word (bold) too: "Направляющая," once ran out of its column
+                    need[j] = max(need[j], self.unbroken(t) if i >= nhead else
+                                  max(_em_width(w, True) for w in t.split()))
                 j += span
         free = self.width * 0.97
         pad = 2 * ix * _MM

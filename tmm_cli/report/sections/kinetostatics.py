@@ -443,14 +443,14 @@ def _point_name(kin_e, xy, tol=1e-9):
     return None
 
 
-def _lever_panel(ctx, cv, box, e, kin_e, pin, omega1, balance_kind):
-    """Zhukovsky's lever: the velocity plan turned by +90 deg (ends rot90(v)/mu_v, mu_v
-    a nice scale for this position), the loads moved to the ends of the turned
-    velocities with their arms about the pole, P_b at the crank pin; M_b below."""
-    from ...plans import plan_label
-    x0, y0, w, h = box
+LEVER_TEXT_H = 13.0          # mm: the lines of M_b under the lever
+
+
+def _lever_extent(e, kin_e):
+    """The turned velocities {point: rot90(v)}, the loads drawn, and the extent lo, hi
+    (m/s) of the lever: the turned velocities, the pole and the feet of the arms near
+    them."""
     P = kin_e["points"]
-    text_h = 13.0
     vx = [float(d.get("vx") or 0.0) for d in P.values()]
     vy = [float(d.get("vy") or 0.0) for d in P.values()]
     moving = (np.hypot(np.array(vx), np.array(vy)) > 1e-12).tolist()      # (as one by one)
@@ -469,10 +469,31 @@ def _lever_panel(ctx, cv, box, e, kin_e, pin, omega1, balance_kind):
     # (a foot far outside the plan would shrink the lever: its arm is then drawn up to the edge)
     near = [q for q in feet if np.all(q >= lo - 0.5 * span) and np.all(q <= hi + 0.5 * span)]
     T = np.array(turned + near + [np.zeros(2)])
-    lo, hi = T.min(axis=0), T.max(axis=0)
+    return vel, loads, T.min(axis=0), T.max(axis=0)
+
+
+def lever_scale(e, kin_e, w: float | None = None, h: float | None = None) -> float:
+    """The standard μv at which Zhukovsky's lever of a position is drawn in a box w x h
+    mm (the report's, by default), the largest at which it fits; the worked section's
+    lever is at the same."""
+    w = FIG_W if w is None else w
+    h = LEVER_H if h is None else h
+    _, _, lo, hi = _lever_extent(e, kin_e)
     span = np.maximum(hi - lo, 1e-12)
     m = 10.0
-    mu_v = figures.nice_scale(max(span[0] / (w - 2 * m), span[1] / (h - TITLE_H - text_h - 2 * m)))
+    return figures.nice_scale(max(span[0] / (w - 2 * m), span[1] / (h - TITLE_H - LEVER_TEXT_H - 2 * m)))
+
+
+def _lever_panel(ctx, cv, box, e, kin_e, pin, omega1, balance_kind):
+    """Zhukovsky's lever: the velocity plan turned by +90 deg (ends rot90(v)/mu_v, mu_v
+    lever_scale), the loads moved to the ends of the turned velocities with their arms
+    about the pole, P_b at the crank pin; M_b below."""
+    from ...plans import plan_label
+    x0, y0, w, h = box
+    P = kin_e["points"]
+    text_h = LEVER_TEXT_H
+    vel, loads, lo, hi = _lever_extent(e, kin_e)
+    mu_v = lever_scale(e, kin_e, w, h)
     c = np.array([x0 + w / 2, y0 + text_h + (h - TITLE_H - text_h) / 2])
     pole = c - (lo + hi) / 2 / mu_v
 
