@@ -235,6 +235,7 @@ PREAMBLE = r"""
 #show heading.where(level: 3): it => block(above: 3mm, below: 1mm, text(size: 10pt, it.body))
 #set table(stroke: 0.5pt + rgb("#999999"))
 #show table: set text(top-edge: 0.8em, bottom-edge: -0.25em)
+#show math.equation: set text(top-edge: "bounds")
 #show table: set par(leading: 0.3em)
 #let num(x) = align(right, x)
 #let note(x) = text(size: 8.5pt, fill: rgb("#444444"), x)
