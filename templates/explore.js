@@ -51,7 +51,49 @@
       box.appendChild(svg);
     }
     while (svg.firstChild) svg.removeChild(svg.firstChild);
+    svg.boxes = [];
     return svg;
+  }
+  // a label's box (the report's measure: 0.6 x the font size a character, the size high) and
+  // where it goes: at (x, y) if it overlaps no label already placed, else the nearest free
+  // place round it, inside the drawing
+  function boxAt(x, y, w, h, anchor) {
+    var x0 = anchor === "middle" ? x - w / 2 : x;
+    return [x0, y - 0.8 * h, x0 + w, y + 0.2 * h];
+  }
+  function overlaps(a, b) { return Math.min(a[2], b[2]) - Math.max(a[0], b[0]) > 0 && Math.min(a[3], b[3]) - Math.max(a[1], b[1]) > 0; }
+  function spot(svg, x, y, w, h, anchor) {
+    var W = +svg.getAttribute("width"), H = +svg.getAttribute("height");
+    var at;
+    function inside(px, py) {       // moved into the drawing where it would leave it
+      var b = boxAt(px, py, w, h, anchor);
+      px += Math.max(0, -b[0]) - Math.max(0, b[2] - W);
+      py += Math.max(0, -b[1]) - Math.max(0, b[3] - H);
+      return [px, py];
+    }
+    function free(px, py) {
+      at = inside(px, py);
+      var b = boxAt(at[0], at[1], w, h, anchor);
+      for (var i = 0; i < svg.boxes.length; i++) if (overlaps(b, svg.boxes[i])) return null;
+      return b;
+    }
+    var best = free(x, y);
+    for (var r = 4; !best && r <= 60; r += 4) {
+      for (var i = 0; i < 16 && !best; i++) {
+        var t = Math.PI * i / 8;
+        best = free(x + r * Math.cos(t), y - r * Math.sin(t));
+      }
+    }
+    if (!best) { at = inside(x, y); best = boxAt(at[0], at[1], w, h, anchor); }
+    svg.boxes.push(best);
+    return at;
+  }
+  // a text placed clear of the others: attrs x, y the wanted place; sub a subscript
+  function tag(svg, attrs, text, sub) {
+    var fs = +attrs["font-size"], w = 0.6 * fs * text.length + (sub ? 0.6 * 8 * sub.length : 0);
+    var at = spot(svg, attrs.x, attrs.y, w, fs + (sub ? 3 : 0), attrs["text-anchor"] || "start");
+    attrs.x = at[0]; attrs.y = at[1];
+    return el(svg, "text", attrs, text);
   }
   function mapper(svg, x0, x1, y0, y1) {
     var W = +svg.getAttribute("width"), H = +svg.getAttribute("height"), pad = 22;
@@ -77,7 +119,7 @@
       el(svg, "path", {d: "M" + c[0] + "," + c[1] + " l-7,11 h14 z", fill: "none", stroke: "#000"}); });
     names.forEach(function (p) { if (p.charAt(0) === "S") return; var c = P(p);
       el(svg, "circle", {cx: c[0], cy: c[1], r: 3, fill: "#fff", stroke: "#000"});
-      el(svg, "text", {x: c[0] + 5, y: c[1] - 5, "font-size": 11}, p); });
+      tag(svg, {x: c[0] + 5, y: c[1] - 5, "font-size": 11}, p); });
   }
   function drawPlan(id, kx, ky, M, k, letter) {
     var svg = canvas(id);
@@ -89,14 +131,20 @@
     var f = mapper(svg, -m, m, -m, m);
     var o = f(0, 0);
     el(svg, "circle", {cx: o[0], cy: o[1], r: 2.5, fill: "#000"});
-    el(svg, "text", {x: o[0] - 12, y: o[1] + 12, "font-size": 11}, letter);
+    tag(svg, {x: o[0] - 12, y: o[1] + 12, "font-size": 11}, letter);
+    var ends = [];                 // coincident ends share one label ("a3, b3"), as in the report
     movers.forEach(function (p) {
       var a = D.points[p][kx][k], b = D.points[p][ky][k];
       if (!fin(a) || !fin(b)) return;
       var e = f(a, b), grey = p.charAt(0) === "S";
       el(svg, "line", {x1: o[0], y1: o[1], x2: e[0], y2: e[1], stroke: grey ? "#888" : "#000", "stroke-width": grey ? 1 : 1.6});
       el(svg, "circle", {cx: e[0], cy: e[1], r: 1.8, fill: grey ? "#888" : "#000"});
-      el(svg, "text", {x: e[0] + 3, y: e[1] - 3, "font-size": 10, fill: grey ? "#666" : "#000"}, p.toLowerCase());
+      var same = ends.filter(function (q) { return Math.hypot(q.e[0] - e[0], q.e[1] - e[1]) < 2; })[0];
+      if (same) { same.names.push(p.toLowerCase()); same.grey = same.grey && grey; }
+      else ends.push({e: e, names: [p.toLowerCase()], grey: grey});
+    });
+    ends.forEach(function (q) {
+      tag(svg, {x: q.e[0] + 3, y: q.e[1] - 3, "font-size": 10, fill: q.grey ? "#666" : "#000"}, q.names.join(", "));
     });
   }
   function row(cells, th) {
@@ -122,8 +170,8 @@
   var FE = document.getElementById("ex-forces");
   var F = FE ? JSON.parse(FE.textContent) : null, COL = F ? F.colors : {};
   function label(svg, x, y, sym, sub, col) {
-    var t = el(svg, "text", {x: x, y: y, "font-size": 11, "font-style": "italic", fill: col || "#000",
-      "text-anchor": "middle"}, sym);
+    var t = tag(svg, {x: x, y: y, "font-size": 11, "font-style": "italic", fill: col || "#000",
+      "text-anchor": "middle"}, sym, sub);
     if (sub) { var s = document.createElementNS(NS, "tspan"); s.setAttribute("dy", "3");
       s.setAttribute("font-size", "8"); s.textContent = sub; t.appendChild(s); }
     return t;
@@ -165,7 +213,7 @@
     movers.forEach(function (p) { var q = D.points[p]; if (!fin(q.vx[k]) || !fin(q.vy[k])) return;
       var b = f(-q.vy[k], q.vx[k]);
       el(svg, "line", {x1: o[0], y1: o[1], x2: b[0], y2: b[1], stroke: "#aaa", "stroke-width": 1});
-      el(svg, "text", {x: b[0] + 3, y: b[1] - 3, "font-size": 9, fill: "#666"}, p.toLowerCase()); });
+      tag(svg, {x: b[0] + 3, y: b[1] - 3, "font-size": 9, fill: "#666"}, p.toLowerCase()); });
     var Fm = 0; F.lever.forEach(function (l) { if (fin(l.x[k]) && fin(l.y[k])) Fm = Math.max(Fm, Math.hypot(l.x[k], l.y[k])); });
     function force(at, Fx, Fy, col, sym, sub, len) {
       var n = Math.hypot(Fx, Fy); if (!(n > 1e-9 * Fm)) return;
@@ -182,7 +230,7 @@
         force([-vy, vx], c * vx, c * vy, COL.balance || "#117a65", "P", "b", 26); }
     }
     el(svg, "circle", {cx: o[0], cy: o[1], r: 2.5, fill: "#000"});
-    el(svg, "text", {x: o[0] - 12, y: o[1] + 12, "font-size": 11}, "p");
+    tag(svg, {x: o[0] - 12, y: o[1] + 12, "font-size": 11}, "p");
   }
   function fillForces(k) {
     var h = row([L["explore.pair"], L["explore.R"], ""], true);

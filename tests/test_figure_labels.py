@@ -87,7 +87,8 @@ def problems(figs) -> list:
 
 
 # not a product such as the worked steps' "v_B = pb·μv = 36.84·0.04" (a segment times μ)
-_MU = re.compile(r"(?<![·*×])μ\s?([^\s=()<>;,]{1,8})\s?=\s?([0-9]+(?:\.[0-9]+)?(?:e[-+]?[0-9]+)?)\b")
+# (the number ends where no digit follows: a formula runs its unit on, "μv=0.02м/(с·мм)")
+_MU = re.compile(r"(?<![·*×])μ\s?([^\s=()<>;,]{1,8})\s?=\s?([0-9]+(?:\.[0-9]+)?(?:e[-+]?[0-9]+)?)(?![0-9])")
 
 
 def stated_scales(html: str) -> list[tuple[str, float]]:

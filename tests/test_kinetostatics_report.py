@@ -40,3 +40,70 @@ def test_section_absent_without_kinetostatics(tmp_path, shaper):
     r = {k: v for k, v in r.items() if k not in ("kinetostatics", "kinetostatics_info")}
     render(r, task, tmp_path, {"html"}, "en")
     assert 'id="kinetostatics"' not in (tmp_path / "report.html").read_text(encoding="utf-8")
+
+
+def test_every_force_of_a_group_drawing_acts_on_a_drawn_link():
+    """The groups' drawings: each force's arrow starts on a drawn link (a bar, a joint, a
+    centre of mass, a block or the ram of a slider). The shaper's guide reaction R05 acts
+    at its offset along the ram, far from the block: it was drawn alone in the air; the
+    ram now reaches it."""
+    import numpy as np
+    from pathlib import Path as _P
+    from tmm_cli.pipeline import run
+    from tmm_cli.report.context import ReportContext
+    from tmm_cli.report.sections import load
+    from tmm_cli.report.svgdraw import Canvas
+    from tmm_cli.task import load_task
+    K = load("kinetostatics")
+    root = _P(__file__).resolve().parents[1]
+    task = load_task(root / "tasks" / "shaper_slotted_lever.yaml")
+    res = run(task)
+    ctx = ReportContext(results=res, task=task, lang="en", out_dir=_P("."), env=None)
+    links = K._links(res)
+    kin = {k["index"]: k for k in res["kinematics"]}
+
+    class Rec(Canvas):
+        def __init__(self, *a):
+            super().__init__(*a)
+            self.solid, self.starts, self.blocks, self.joints = [], [], [], []
+
+        def line(self, p, q, color="#000", width=0.25, dash=None, z=1):
+            if dash is None and color == "#000":
+                self.solid.append((np.asarray(p, float), np.asarray(q, float)))
+            return super().line(p, q, color, width, dash, z)
+
+        def arrow(self, p, q, *a, **kw):
+            self.starts.append(np.asarray(p, float))
+            return super().arrow(p, q, *a, **kw)
+
+        def block(self, c, *a, **kw):
+            self.blocks.append(np.asarray(c, float))
+            return super().block(c, *a, **kw)
+
+        def circle(self, c, r, *a, **kw):
+            self.joints.append(np.asarray(c, float))
+            return super().circle(c, r, *a, **kw)
+
+        def dot(self, c, *a, **kw):
+            self.joints.append(np.asarray(c, float))
+            return super().dot(c, *a, **kw)
+
+    def near_segment(x, p, q):
+        d = q - p
+        t = np.clip((x - p) @ d / max(d @ d, 1e-12), 0, 1)
+        return float(np.hypot(*(p + t * d - x)))
+
+    checked = 0
+    for e in res["kinetostatics"]:
+        for g, forces, couples, title in K.position_rows(ctx, e, kin[e["index"]], res["kinetostatics_info"], links):
+            cv = Rec(90.0, 72.0)
+            K._fbd_panel(ctx, cv, (0, 0, 90.0, 72.0), kin[e["index"]], links, g, forces, couples, title)
+            norms = K.force_norms(forces)
+            shown = sum(n > 1e-9 * max(max(norms), 1e-300) for n in norms)
+            for s in cv.starts[:shown]:              # the forces' arrows (then the couples')
+                on = (any(near_segment(s, p, q) < 0.3 for p, q in cv.solid)
+                      or any(np.hypot(*(s - b)) < 5.0 for b in cv.blocks)
+                      or any(np.hypot(*(s - j)) < 1.0 for j in cv.joints))
+                assert on, (e["index"], g, s)
+                checked += 1
+    assert checked > 100

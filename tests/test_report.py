@@ -244,8 +244,13 @@ def test_scales_hand_computation(results, task, html_en):
     assert vA == pytest.approx(1.2566371, rel=1e-6)
     assert aA == pytest.approx(13.159473, rel=1e-6)
     assert mu_v == 0.02 and mu_a == 0.2
-    assert "1.257 / 62.83 → 0.02" in html_en       # pa = 1.256637/0.02 = 62.832 mm
-    assert "13.16 / 65.80 → 0.2" in html_en        # pi-a = 13.1595/0.2 = 65.797 mm
+    # the report draws and tabulates the plans at these where every position's plan fits its
+    # half of the figure (84 x 86 mm less the title, the scale bar and the margins: 72 x 56 mm);
+    # the slider-crank's do not (pa 62.8 mm turning with the crank, πa 65.8 mm): the next standard ones
+    from tmm_cli.report.sections.kinematics import drawn_scales
+    assert drawn_scales(results, geom)[:2] == (0.025, 0.25)
+    assert "1.257 / 50.27 → 0.025" in html_en      # pa = 1.256637/0.025 = 50.265 mm
+    assert "13.16 / 52.64 → 0.25" in html_en       # pi-a = 13.1595/0.25 = 52.638 mm
 
 
 @pytest.mark.parametrize("i", range(12))
@@ -365,7 +370,8 @@ def test_csv_tables(rendered_ru):
     assert len(pb) == 12
     for r in pb:
         s = slider_crank_state(float(r["phi"]))
-        assert float(r["length_mm"]) == pytest.approx(abs(s["vB"][0]) / 0.02, abs=1e-9)  # μv = 0.02 (m/s)/mm
+        # μv = 0.025 (m/s)/mm: the plans as drawn (test_scales_hand_computation)
+        assert float(r["length_mm"]) == pytest.approx(abs(s["vB"][0]) / 0.025, abs=1e-9)
 
 
 def test_absent_sections(tmp_path):

@@ -149,6 +149,23 @@ def test_texts_do_not_collide_or_leave_the_frame(forging, lang):
     _check_texts(forging[1][lang])
 
 
+TASKS = sorted(p.stem for p in (ROOT / "tasks").glob("*.yaml"))
+
+
+@pytest.mark.parametrize("name", TASKS)
+def test_texts_of_every_examples_sheets(name):
+    """Every sheet of every example task, in en, ru and uk (the kinetostatics sheet's lever
+    and groups, the cam's and the gears' sheets included): no two texts overlap, none
+    leaves the frame."""
+    from tmm_cli.pipeline import run
+    from tmm_cli.sheets import build_sheets
+    from tmm_cli.task import load_task
+    task = load_task(ROOT / "tasks" / f"{name}.yaml")
+    res = run(task)
+    for lang in ("en", "ru", "uk"):
+        _check_texts(build_sheets(res, task, lang))
+
+
 def test_sheet_texts_in_every_language():
     """Every sheet table has the keys of English in ru and uk; the Ukrainian sheets carry no
     Russian-only letter (ы, э, ъ, ё)."""

@@ -58,6 +58,8 @@ class Expected:
         self.ks = next(e for e in res["kinetostatics"] if e["index"] == n)
         self.n = n
         self.mu_v, self.mu_a = mu_v, mu_a
+        from tmm_cli.report.sections.kinetostatics import lever_scale
+        self.mu_lev = lever_scale(self.ks, self.ke)         # the lever's own, as drawn
         self.links = {l["name"]: l for l in res["structure"]["links"]}
 
     def r(self, p):
@@ -151,6 +153,8 @@ class Expected:
             return self.mu_v, False
         if k == "mu_a":
             return self.mu_a, False
+        if k == "mu_lev":
+            return self.mu_lev, False
         if k == "w":
             return self.w(a[0]), False
         if k == "e":
@@ -163,8 +167,8 @@ class Expected:
             return float(np.hypot(*self.a(a[0]))), False
         if k == "vr":
             return float(np.hypot(*(self.v(a[0]) - self.v(a[1])))), False
-        if k == "sv":
-            return float(np.hypot(*self.v(a[0]))) / self.mu_v, False
+        if k in ("sv", "svl"):
+            return float(np.hypot(*self.v(a[0]))) / (self.mu_v if k == "sv" else self.mu_lev), False
         if k == "svr":
             return float(np.hypot(*(self.v(a[0]) - self.v(a[1])))) / self.mu_v, False
         if k == "sa":
@@ -207,7 +211,7 @@ class Expected:
         if k == "hl":
             f = next(f for f in ks["loads"] if f["name"] == a[0])
             v, F = np.array(f["v"]), np.array(f["F"])
-            return abs(-v[1] * F[1] - v[0] * F[0]) / float(np.hypot(*F)) / self.mu_v, False
+            return abs(-v[1] * F[1] - v[0] * F[0]) / float(np.hypot(*F)) / self.mu_lev, False
         arm = self.res["kinetostatics_info"]["arm"]
         if k == "Mb":
             return ks["balancing_moment"], True
@@ -218,7 +222,7 @@ class Expected:
         if k == "lev":
             crank = self.links[self.task.drive.link]
             pin = next(q for q in crank["points"] if q not in self.task.mechanism.ground)
-            return ks["zhukovsky_moment"] / arm * float(np.hypot(*self.v(pin))) / self.mu_v, True
+            return ks["zhukovsky_moment"] / arm * float(np.hypot(*self.v(pin))) / self.mu_lev, True
         raise KeyError(key)
 
 
@@ -269,13 +273,17 @@ def _check_section(browser, out: Path, task_path: Path, n: int, kinds: set[str])
     d = dict((k, t) for k, t in tagged)
     assert d["pos"] == str(n)
     mu_v, mu_a = float(d["mu_v"]), float(d["mu_a"])
-    # the scales: nice numbers, the crank pin's largest vector 2/3 .. 1 of 100 mm
+    # the scales: nice numbers, the crank pin's largest vector at most 100 mm (shorter where the
+    # plans are drawn at a larger scale to fit the page), the very scales of the drawn plans
     vA = max(math.hypot(e["points"]["A"]["vx"], e["points"]["A"]["vy"]) for e in res["kinematics"])
     aA = max(math.hypot(e["points"]["A"]["ax"], e["points"]["A"]["ay"]) for e in res["kinematics"])
     for mu, top in ((mu_v, vA), (mu_a, aA)):
         m = mu / 10 ** math.floor(math.log10(mu))
         assert any(abs(m - s) < 1e-9 for s in NICE), mu
-        assert 100 / 1.6 <= top / mu <= 100 + 1e-9
+        assert top / mu <= 100 + 1e-9
+    from tmm_cli.plans import geometry
+    from tmm_cli.report.sections.kinematics import drawn_scales
+    assert (mu_v, mu_a) == drawn_scales(res, geometry(res))[:2]
     ex = Expected(res, load_task(task_path), n, mu_v, mu_a)
     seen = set()
     bad = []

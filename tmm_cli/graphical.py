@@ -1,7 +1,8 @@
 """The hand method's own error: what a student reading the drawings may be off by.
 
-* Plans of velocities and accelerations, drawn at the scales the report chooses
-  (mu_v, mu_a: the crank pin's vector about 100 mm long, `tmm_cli.plans.scales`): a
+* Plans of velocities and accelerations, drawn at the course's scales as on a sheet
+  (mu_v, mu_a: the crank pin's vector about 100 mm long, `tmm_cli.plans.scales`; the
+  report's A4 plans may be at larger ones, report.sections.kinematics.drawn_scales): a
   segment read to +/- READ_MM is off by READ_MM mu, i.e. relatively READ_MM mu / value
   for a point's velocity or acceleration, READ_MM mu_v / (|omega| l) for a link's omega
   read off the relative velocity segment (l: the distance of two of its points),

@@ -24,11 +24,17 @@ SUB = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
 
 
 def plan_label(name: str) -> str:
-    """Point name -> plan letter: 'S2' -> 's₂', 'O1' -> 'o₁', 'B' -> 'b'."""
+    """Point name -> plan letter: 'S2' -> 's₂', 'O1' -> 'o₁', 'B' -> 'b'; a point P is p′,
+    p being the velocity plan's pole (the scotch yoke's P once took the pole's place, and
+    every segment from p was measured from P's end).
+
+    >>> plan_label("P"), plan_label("P2")
+    ('p′', 'p₂')
+    """
     m = re.match(r"^(.*?)(\d+)$", name)
     if m and m.group(1):
         return m.group(1).lower() + m.group(2).translate(SUB)
-    return name.lower()
+    return "p\u2032" if name == "P" else name.lower()
 
 
 def sub_html(sym: str, sub: str) -> str:

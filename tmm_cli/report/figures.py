@@ -720,6 +720,17 @@ def _num(x: float) -> str:
     return f"{x:.3f}".rstrip("0").rstrip(".") or "0"
 
 
+def box_scale(lo, hi, width_mm, min_h=40.0, max_h=150.0, margin_mm=8.0) -> tuple[float, float, str]:
+    """The height (mm), the scale (metres per paper mm, μl) and its ГОСТ 2.302 label at
+    which figure_for_box draws lo..hi (metres): the tables of a drawing state the
+    lengths at the scale it is drawn at."""
+    span = np.maximum(np.asarray(hi, float) - np.asarray(lo, float), 1e-12)
+    h = float(np.clip((width_mm - 2 * margin_mm) * span[1] / span[0] + 2 * margin_mm, min_h, max_h))
+    fit = max(span[0] / max(width_mm - 2 * margin_mm, 1.0), span[1] / max(h - 2 * margin_mm, 1.0))
+    model, label = drawing_scale(fit * 1000.0)
+    return h, model / 1000.0, label
+
+
 def figure_for_box(lo, hi, width_mm, min_h=40.0, max_h=150.0, margin_mm=8.0, lang="en"):
     """A drawing (SchemeView) showing lo..hi (metres), centred, at the largest ГОСТ 2.302
     scale that leaves the margin, stated at its top left ('μl = 0.005 m/mm (M 1:5)');
@@ -727,11 +738,7 @@ def figure_for_box(lo, hi, width_mm, min_h=40.0, max_h=150.0, margin_mm=8.0, lan
     metres: the labels keep clear of it)."""
     lo = np.asarray(lo, float)
     hi = np.asarray(hi, float)
-    span = np.maximum(hi - lo, 1e-12)
-    h = float(np.clip((width_mm - 2 * margin_mm) * span[1] / span[0] + 2 * margin_mm, min_h, max_h))
-    fit = max(span[0] / max(width_mm - 2 * margin_mm, 1.0), span[1] / max(h - 2 * margin_mm, 1.0))
-    model, label = drawing_scale(fit * 1000.0)
-    unit = model / 1000.0
+    h, unit, label = box_scale(lo, hi, width_mm, min_h, max_h, margin_mm)
     c = (lo + hi) / 2
     view = SchemeView(width_mm, h, c - unit * np.array([width_mm / 2, h / 2]), unit)
     m, mm = ("м", "мм") if lang in ("ru", "uk") else ("m", "mm")

@@ -95,7 +95,7 @@ STRINGS: dict[str, dict[str, str]] = {
         "kin.mu_l": "length scale",
         "kin.mu_v": "velocity scale",
         "kin.mu_a": "acceleration scale",
-        "kin.reading": "reading the plans to ±0.5 mm (the hand method's own error)",
+        "kin.reading": "reading plans drawn with the crank pin's vectors pa, πa about 100 mm long to ±0.5 mm (the hand method's own error)",
         "kin.reading_val": "±{ev} m/s, ±{ea} m/s²; relative, over the points and positions: median {med} %, "
                            "largest {top} % (per quantity in results.json, graphical_error)",
         "kin.link_lengths": "Link lengths on the drawing",
@@ -205,7 +205,7 @@ STRINGS: dict[str, dict[str, str]] = {
         "kin.mu_l": "масштабный коэффициент длин",
         "kin.mu_v": "масштабный коэффициент плана скоростей",
         "kin.mu_a": "масштабный коэффициент плана ускорений",
-        "kin.reading": "чтение планов с точностью ±0,5 мм (погрешность графического метода)",
+        "kin.reading": "чтение планов, построенных с отрезками pa и πa около 100 мм, с точностью ±0,5 мм (погрешность графического метода)",
         "kin.reading_val": "±{ev} м/с, ±{ea} м/с²; относительная по точкам и положениям: медиана {med} %, "
                            "наибольшая {top} % (по каждой величине в results.json, graphical_error)",
         "kin.link_lengths": "Длины звеньев на чертеже",

@@ -235,6 +235,7 @@ PREAMBLE = r"""
 #show heading.where(level: 3): it => block(above: 3mm, below: 1mm, text(size: 10pt, it.body))
 #set table(stroke: 0.5pt + rgb("#999999"))
 #show table: set text(top-edge: 0.8em, bottom-edge: -0.25em)
+#show math.equation: set text(top-edge: "bounds")
 #show table: set par(leading: 0.3em)
 #let num(x) = align(right, x)
 #let note(x) = text(size: 8.5pt, fill: rgb("#444444"), x)
@@ -243,13 +244,17 @@ PREAMBLE = r"""
 #let wf(x) = block(above: 0.8em, below: 0.8em, x)
 #let section-break = { block(breakable: false, height: 50%, above: 4mm, below: 0pt); v(-50%) }
 #let fig(file, w, c, labels: none) = block(above: 2mm, below: 3mm, breakable: false, width: 100%,
-  align(center, { if labels == none { layout(size => image(file, width: calc.min(w, size.width))) } else {
+  align(center, { if labels == none { layout(size => image(file, width: if type(w) == length { calc.min(w, size.width) } else { w })) } else {
     block(width: w, { image(file, width: w); set text(top-edge: "baseline", bottom-edge: "baseline"); labels }) }
     if c != none { v(1mm, weak: true); text(size: 8.5pt, fill: rgb("#333333"), c) } }))
 """
 # the page's text width (A4 less the margins of PREAMBLE), pt
 _TEXT_WIDTH = (210 - sum(map(float, re.search(r"right: ([\d.]+)mm, bottom: [\d.]+mm, left: ([\d.]+)mm",
                                               PREAMBLE).groups()))) * _MM
+# and its height, pt
+_TEXT_HEIGHT = (297 - sum(map(float, re.search(r"margin: \(top: ([\d.]+)mm, right: [\d.]+mm, bottom: ([\d.]+)mm",
+                                               PREAMBLE).groups()))) * _MM
+_HPT = re.compile(r'\bheight="([0-9.]+)pt"')
 
 
 class _Writer:
@@ -331,6 +336,23 @@ class _Writer:
                 out.append(self.inline(c))
         return "".join(out)
 
+    def _drawn_height(self, node) -> float:
+        """A bound of the height of a block's figures with their captions and a heading,
+        pt (the figures' heights in pt, the captions' lines at 8.5 pt from their
+        characters' advance bounds)."""
+        h = 12 * _MM                                             # the heading
+        for c in node:
+            if not isinstance(c, _Node):
+                continue
+            if c.tag == "img" and "data-svg" in c.attrs:
+                m = _HPT.search(self.svgs[int(c.attrs["data-svg"])][:400])
+                h += (float(m.group(1)) if m else _TEXT_HEIGHT) + 5 * _MM      # with the block's spacing
+            elif c.tag == "figcaption":
+                h += (_em_width(c.text()) * 8.5 // _TEXT_WIDTH + 1) * 8.5 * 1.25 + _MM
+            else:
+                h += self._drawn_height(c) - 12 * _MM
+        return h
+
     def figure_image(self, k: int, caption: str | None) -> str:
         svg = self.svgs[k]
         if "xmlns=" not in svg[:300]:
@@ -387,12 +409,16 @@ class _Writer:
             self.after_section = True
             return brk + body
         if tag == "div" and "position" in cls:
+            # a position on a page of its own; where its drawings are taller than a page
+            # (the groups of a six-bar and Zhukovsky's lever) it breaks between them: each
+            # figure stays whole, the heading with the first
+            fits = self._drawn_height(node) <= _TEXT_HEIGHT
             led, self.led = self.led, False
-            whole, self.whole = self.whole, True
+            whole, self.whole = self.whole, fits
             body = self.blocks(node)
             self.whole = whole
             brk = "" if led else "#pagebreak(weak: true)\n"
-            return brk + "#block(breakable: false)[\n" + body + "\n]"
+            return brk + f"#block(breakable: {'false' if fits else 'true'})[\n" + body + "\n]"
         if tag == "div" and ("tables2" in cls or "pair" in cls):
             kids = [c for c in node if isinstance(c, _Node)]
             n = max(len(kids), 1)
@@ -494,11 +520,13 @@ class _Writer:
         if self.width is None or nhead >= len(rows):
             return style, kinds
         need = [0.0] * ncols                # em of each column's widest one-column body cell
-        for r in rows[nhead:]:
+        for i, r in enumerate(rows):
             j = 0
             for c, span, _, t, _ in r:
                 if span == 1 and j < ncols and t:
-                    need[j] = max(need[j], self.unbroken(t))
+                    # a header's longest word (bold) too: "Направляющая," once ran out of its column
+                    need[j] = max(need[j], self.unbroken(t) if i >= nhead else
+                                  max(_em_width(w, True) for w in t.split()))
                 j += span
         free = self.width * 0.97
         pad = 2 * ix * _MM

@@ -22,6 +22,7 @@ from markupsafe import Markup
 from ..context import values_of
 from ..course import course_entries, cycle_order, grid_count, position_label
 from ...plans import build_plan, crank_pin, geometry, plan_label, scales
+from ...scales import nice_scale
 
 I18N = {
     "en": {"kin.si_v": "m/s", "kin.si_a": "m/s²", "kin.mm": "mm", "kin.unit_v": "(m/s)/mm", "kin.unit_a": "(m/s²)/mm", "kin.unit_l": "m/mm",
@@ -84,6 +85,9 @@ def _grid_count(ctx, entries) -> int:
 
 
 # ----------------------------------------------------------------- figures
+POSITIONS_BOX = dict(width_mm=165.0, min_h=60.0, max_h=150.0, margin_mm=10.0)   # the plan of positions
+
+
 def positions_svg(ctx, geom, entries, grid, fine=None, extent=None):
     """The plan of positions: the mechanism at the `grid` positions, trajectories as
     periodic splines through them -- or, given a `fine` grid, through its points (at most
@@ -91,8 +95,7 @@ def positions_svg(ctx, geom, entries, grid, fine=None, extent=None):
     already known."""
     from .. import figures as F
     lo, hi = extent if extent is not None else F.mechanism_extent(entries)
-    view, unit, title = F.figure_for_box(lo, hi, 165.0, min_h=60.0, max_h=150.0, margin_mm=10.0,
-                                         lang=ctx.lang)
+    view, unit, title = F.figure_for_box(lo, hi, lang=ctx.lang, **POSITIONS_BOX)
     ranges = F.slider_ranges(entries, geom)
     for e in grid[1:]:
         F.draw_mechanism(view, geom, e, unit, light=True)
@@ -152,6 +155,33 @@ TRACE_POINTS = 720      # at most this many points of a trajectory drawn from a 
 
 
 PLAN_W, PLAN_H = 170.0, 86.0        # mm: the two plans side by side
+PLAN_MARGIN, PLAN_TOP, PLAN_BAR = 6.0, 11.0, 7.0     # mm: round a plan, its title lines, its scale bar
+
+
+def plan_room(w: float, h: float) -> tuple[float, float]:
+    """The room (mm) for a plan in a box w x h of draw_plan."""
+    return w - 2 * PLAN_MARGIN, h - PLAN_TOP - PLAN_BAR - 2 * PLAN_MARGIN
+
+
+def drawn_scales(results: dict, geom):
+    """(mu_v, mu_a, v_A, a_A): the one scale of each kind at which the report draws the
+    plans of every course position, tabulates their segments and works them out step by
+    step: the course's (the crank pin's vector <= 100 mm, plans.scales), or the next
+    standard one at which the plan of every position fits its half of the figure, so
+    that the printed plan measures what its table says."""
+    entries = results.get("kinematics") or []
+    mu_v, mu_a, vA, aA = scales(entries, geom)
+    if crank_pin(geom) is None:
+        return mu_v, mu_a, vA, aA
+    room = np.array(plan_room(PLAN_W / 2 - 1, PLAN_H))
+    out = []
+    for kind, mu in (("v", mu_v), ("a", mu_a)):
+        need = mu
+        for e in course_entries(entries, grid_count(results, len(entries))):
+            xy = np.array(list(build_plan(kind, e, geom, 1.0).pts.values()))
+            need = max(need, float(((xy.max(axis=0) - xy.min(axis=0)) / room).max()))
+        out.append(nice_scale(need))
+    return out[0], out[1], vA, aA
 
 
 def draw_plan(cv, plan, box, title, unit_txt, si_unit="m/s", mm="mm"):
@@ -163,14 +193,14 @@ def draw_plan(cv, plan, box, title, unit_txt, si_unit="m/s", mm="mm"):
     with a 20 mm scale bar.  Returns k."""
     from .. import figures as F
     x0, y0, w, h = box
-    top = 11.0                          # title and scale lines
-    bar_h = 7.0                         # the scale bar at the bottom
+    top = PLAN_TOP                      # title and scale lines
+    bar_h = PLAN_BAR                    # the scale bar at the bottom
     pts = plan.pts
     xy = np.array(list(pts.values()))
     lo, hi = xy.min(axis=0), xy.max(axis=0)
     span = np.maximum(hi - lo, 1e-9)
-    m = 6.0
-    k = min(1.0, (w - 2 * m) / span[0], (h - top - bar_h - 2 * m) / span[1])
+    room = plan_room(w, h)
+    k = min(1.0, room[0] / span[0], room[1] / span[1])
     mu_drawn = F.nice_scale(plan.mu / k)      # reduced to fit: still at a standard μ, the one stated
     k = plan.mu / mu_drawn
     c = np.array([x0 + w / 2, y0 + bar_h + (h - top - bar_h) / 2]) - (lo + hi) / 2 * k
@@ -379,15 +409,11 @@ def build(ctx) -> str | None:
     phase = [0.0 if abs(p - 360.0) < 1e-9 else p for p in phase]
 
     # scales
-    mu_v, mu_a, vA, aA = scales(entries, geom)
+    mu_v, mu_a, vA, aA = drawn_scales(ctx.results, geom)
     pin = crank_pin(geom)
-    from ..figures import nice_scale, mechanism_extent
+    from ..figures import box_scale, mechanism_extent
     lo, hi = mechanism_extent(entries)
-    lOA = None
-    dl = geom.link(geom.drive)
-    if dl is not None and len(dl.points) >= 2:
-        lOA = float(np.linalg.norm(_pxy(entries[0], dl.points[1]) - _pxy(entries[0], dl.points[0])))
-    mu_l = nice_scale(max((lOA or 0.0) / 50.0, float((hi - lo).max()) / 250.0))
+    _, mu_l, _ = box_scale(lo, hi, **POSITIONS_BOX)         # the plan of positions' own
     lengths = []
     for l in geom.links:
         if l.kind == "bar" and len(l.points) >= 2:
@@ -401,11 +427,12 @@ def build(ctx) -> str | None:
         (Markup("μ<sub>a</sub> = a<sub>{}</sub>/π{} — {}").format(pin, plan_label(pin), ctx.t('kin.mu_a')),
          Markup(f"{ctx.fmt(aA)} / {ctx.fmt_fixed(aA / mu_a, 2)} → {mu_a:g} {ctx.t('kin.unit_a')}")),
     ]
-    rel = [r for e in ((ctx.results.get("graphical_error") or {}).get("plans") or {}).get("positions", [])
-           for d in e["points"].values() for r in d.values() if r is not None]
+    gp = (ctx.results.get("graphical_error") or {}).get("plans") or {}
+    rel = [r for e in gp.get("positions", []) for d in e["points"].values() for r in d.values() if r is not None]
     if rel:
+        # (the hand method's error: a plan drawn with the crank pin's vector about 100 mm)
         scale_rows.append((ctx.t("kin.reading"),
-                           ctx.t("kin.reading_val", ev=f"{0.5 * mu_v:g}", ea=f"{0.5 * mu_a:g}",
+                           ctx.t("kin.reading_val", ev=f"{gp['abs_v']:g}", ea=f"{gp['abs_a']:g}",
                                  med=ctx.fmt_fixed(100 * _median(rel), 2),
                                  top=ctx.fmt_fixed(100 * max(rel), 1))))
     pos_rows = []

@@ -270,6 +270,14 @@ def _labels(cv, items, step, segments, avoid, lang, size=7.0, box=None, taken=No
         cv.text(x, y, s, size=size, color=col, italic=italic, sub=sub or None, halo=halo)
 
 
+def _off(x, a, b) -> float:
+    """The distance (mm) of the point x from the segment a-b."""
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    d = b - a
+    t = min(1.0, max(0.0, float((x - a) @ d) / max(float(d @ d), 1e-12)))
+    return float(np.hypot(*(a + t * d - x)))
+
+
 def _fbd_panel(ctx, cv, box, kin_e, links, names, forces, couples, title, norms=None):
     """Free-body diagram of the links `names` inside box = (x0, y0, w, h) (mm); ``norms``:
     force_norms(forces) when already known."""
@@ -293,6 +301,7 @@ def _fbd_panel(ctx, cv, box, kin_e, links, names, forces, couples, title, norms=
     on_paper = c_pan + (xy - c_box) / mu_l
     mp = dict(zip(pts_names, on_paper))
     segs, avoid = [], []
+    axes = []                   # the sliders' blocks and directions
     for n in names:
         lk = links[n]
         ps = [p for p in lk["points"] if p in P]
@@ -304,6 +313,7 @@ def _fbd_panel(ctx, cv, box, kin_e, links, names, forces, couples, title, norms=
                 u = np.array([math.cos(math.radians(ang)), math.sin(math.radians(ang))])
                 cv.line(c - u * 9, c + u * 9, "#777", 0.2, dash="2 0.6 0.4 0.6", z=1)
                 segs.append((c - u * 4, c + u * 4))
+                axes.append((c, u))
                 for p in ps[1:]:                       # a slider carrying other points (a yoke)
                     q = mp[p]
                     cv.line(c, q, "#000", 0.6, z=2)
@@ -327,11 +337,27 @@ def _fbd_panel(ctx, cv, box, kin_e, links, names, forces, couples, title, norms=
             cv.circle(p, 0.8, width=0.3, z=5)
             avoid.append(p)
     # centres of mass
+    held = [np.asarray(q, float) for q in mp.values()]
     for n in names:
         s = f"S{links[n]['index']}"
         if s in P and links[n]["kind"] != "slider":
             c = M(_xy(P[s]))
             cv.dot(c, 0.55, z=6)
+            held.append(c)
+    # a force at a point off the drawn links (a guide's reaction at its offset along a ram,
+    # a tool's load below it): the link carried on to it -- a slider's ram along its axis
+    # from the block, else from the nearest point -- so that every force acts on the group
+    drawn = list(segs)
+    for q in dict.fromkeys(map(tuple, on_paper[len(pts_names):].tolist())):
+        q = np.array(q)
+        if min(float(np.hypot(*(q - h))) for h in held) < 1.0 or any(_off(q, a, b) < 0.3 for a, b in drawn):
+            continue
+        ram = [c for c, u in axes if abs(float((q - c) @ np.array([-u[1], u[0]]))) < 0.3]
+        near = ram[0] if ram else min(held, key=lambda h: float(np.hypot(*(q - h))))
+        cv.line(near, q, "#000", 0.6, z=2)
+        segs.append((near, q))
+        drawn.append((near, q))
+        held.append(q)
     # point names
     norms = force_norms(forces) if norms is None else norms
     Fmax = max(norms, default=0.0)
@@ -443,14 +469,14 @@ def _point_name(kin_e, xy, tol=1e-9):
     return None
 
 
-def _lever_panel(ctx, cv, box, e, kin_e, pin, omega1, balance_kind):
-    """Zhukovsky's lever: the velocity plan turned by +90 deg (ends rot90(v)/mu_v, mu_v
-    a nice scale for this position), the loads moved to the ends of the turned
-    velocities with their arms about the pole, P_b at the crank pin; M_b below."""
-    from ...plans import plan_label
-    x0, y0, w, h = box
+LEVER_TEXT_H = 13.0          # mm: the lines of M_b under the lever
+
+
+def _lever_extent(e, kin_e):
+    """The turned velocities {point: rot90(v)}, the loads drawn, and the extent lo, hi
+    (m/s) of the lever: the turned velocities, the pole and the feet of the arms near
+    them."""
     P = kin_e["points"]
-    text_h = 13.0
     vx = [float(d.get("vx") or 0.0) for d in P.values()]
     vy = [float(d.get("vy") or 0.0) for d in P.values()]
     moving = (np.hypot(np.array(vx), np.array(vy)) > 1e-12).tolist()      # (as one by one)
@@ -469,10 +495,31 @@ def _lever_panel(ctx, cv, box, e, kin_e, pin, omega1, balance_kind):
     # (a foot far outside the plan would shrink the lever: its arm is then drawn up to the edge)
     near = [q for q in feet if np.all(q >= lo - 0.5 * span) and np.all(q <= hi + 0.5 * span)]
     T = np.array(turned + near + [np.zeros(2)])
-    lo, hi = T.min(axis=0), T.max(axis=0)
+    return vel, loads, T.min(axis=0), T.max(axis=0)
+
+
+def lever_scale(e, kin_e, w: float | None = None, h: float | None = None) -> float:
+    """The standard μv at which Zhukovsky's lever of a position is drawn in a box w x h
+    mm (the report's, by default), the largest at which it fits; the worked section's
+    lever is at the same."""
+    w = FIG_W if w is None else w
+    h = LEVER_H if h is None else h
+    _, _, lo, hi = _lever_extent(e, kin_e)
     span = np.maximum(hi - lo, 1e-12)
     m = 10.0
-    mu_v = figures.nice_scale(max(span[0] / (w - 2 * m), span[1] / (h - TITLE_H - text_h - 2 * m)))
+    return figures.nice_scale(max(span[0] / (w - 2 * m), span[1] / (h - TITLE_H - LEVER_TEXT_H - 2 * m)))
+
+
+def _lever_panel(ctx, cv, box, e, kin_e, pin, omega1, balance_kind):
+    """Zhukovsky's lever: the velocity plan turned by +90 deg (ends rot90(v)/mu_v, mu_v
+    lever_scale), the loads moved to the ends of the turned velocities with their arms
+    about the pole, P_b at the crank pin; M_b below."""
+    from ...plans import plan_label
+    x0, y0, w, h = box
+    P = kin_e["points"]
+    text_h = LEVER_TEXT_H
+    vel, loads, lo, hi = _lever_extent(e, kin_e)
+    mu_v = lever_scale(e, kin_e, w, h)
     c = np.array([x0 + w / 2, y0 + text_h + (h - TITLE_H - text_h) / 2])
     pole = c - (lo + hi) / 2 / mu_v
 

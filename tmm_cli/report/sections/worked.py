@@ -40,7 +40,8 @@ from __future__ import annotations
 import numpy as np
 from markupsafe import Markup, escape
 
-from ...plans import SUB, geometry as plan_geometry, plan_label, scales
+from ...plans import SUB, geometry as plan_geometry, plan_label
+from .kinematics import drawn_scales
 
 I18N = {
     "en": {"worked.title": "The working of one position, step by step",
@@ -442,7 +443,7 @@ class _Writer:
         self.geom = plan_geometry(res, None)
         kin = res.get("kinematics") or []
         self.ke = next(e for e in kin if e["index"] == n)
-        self.mu_v, self.mu_a, _, _ = scales(kin, self.geom)
+        self.mu_v, self.mu_a, _, _ = drawn_scales(res, self.geom)     # the plans' as drawn
         self.pts = self.ke["points"]
         self.lk = self.ke["links"]
         self.names = {l.index: l.name for l in self.geom.links}
@@ -1075,15 +1076,18 @@ class _Writer:
         A = self.A
         vA = float(np.hypot(*self.v(A)))
         sgn = 1.0 if self.w1 > 0 else -1.0
+        from .kinetostatics import lever_scale
+        mu = lever_scale(ks, self.ke)               # the lever's as drawn for this position
         self.h(self.t("worked.lever"))
         self.p(self.pt("worked.lever_text", pin=A, crank=self.O + A, pinl=plan_label(A), deg=("mn", "90", "const:90")))
+        self.f(sb("μ", "v"), mo("="), num.exact(mu, "mu_lev"), unit(self.u["mu_v"]))
         terms, total = [], 0.0
         for f in ks["loads"]:
             F = np.array(f["F"], float)
             v = np.array(f["v"], float)
             Fm = float(np.hypot(*F))
-            m = sgn * _cross(_rot(v), F) / self.mu_v          # N*mm on the plan, with the crank's sense
-            if Fm <= 0 or abs(m) <= 1e-12 * Fm * max(vA, 1e-300) / self.mu_v:
+            m = sgn * _cross(_rot(v), F) / mu          # N*mm on the plan, with the crank's sense
+            if Fm <= 0 or abs(m) <= 1e-12 * Fm * max(vA, 1e-300) / mu:
                 continue
             total += m
             terms += [brk(), mo("+" if m > 0 else "−"), num(Fm, f"F:{f['name']}"), mo("·"),
@@ -1092,14 +1096,14 @@ class _Writer:
             M, w = c.get("M"), c.get("omega")
             if not M or not w:
                 continue
-            m = -sgn * float(M) * float(w) / self.mu_v
+            m = -sgn * float(M) * float(w) / mu
             total += m
             terms += [brk(), mo("+" if m > 0 else "−"), num(M, f"M:{c['name']}"), mo("·"),
-                      num(w, f"w:{c['link']}"), mo("/"), num.exact(self.mu_v, "mu_v")]
-        Pb = total / (vA / self.mu_v)
+                      num(w, f"w:{c['link']}"), mo("/"), num.exact(mu, "mu_lev")]
+        Pb = total / (vA / mu)
         self.f(sb("P", "b"), mo("·"), seg("p", plan_label(A)), mo("="), *terms, mo("="),
                num(total, "lev", signed=True), mo(";"),
-               sb("P", "b"), mo("="), frac(num(total, "lev", signed=True), num.mm(vA / self.mu_v, f"sv:{A}")), mo("="),
+               sb("P", "b"), mo("="), frac(num(total, "lev", signed=True), num.mm(vA / mu, f"svl:{A}")), mo("="),
                num(Pb, "Pbz", signed=True), unit(self.u["N"]))
         self.f(sb("M", "b"), mo("="), sb("P", "b"), mo("·"), qty("l", self.O, A), mo("="),
                num(Pb, "Pbz", signed=True), mo("·"), self.lval(self.O, A), mo("="),

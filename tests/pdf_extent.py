@@ -1,0 +1,85 @@
+"""What a PDF page shows outside its body: the words (poppler's ``pdftotext -bbox``) and
+the ink (the page rendered by ``pdftoppm``, read with Pillow) in the margins of the
+report's A4 pages, the page number in the footer excepted.  Used by the tests that
+nothing of a report leaves the page body."""
+from __future__ import annotations
+
+import html
+import re
+import shutil
+import subprocess
+import tempfile
+from pathlib import Path
+
+MM = 72 / 25.4
+# the report's page (A4) and margins, pt: typst_pdf's PREAMBLE
+PAGE_W, PAGE_H = 595.28, 841.89
+BODY = (18 * MM, 15 * MM, PAGE_W - 14 * MM, PAGE_H - 16 * MM)     # x0, y0, x1, y1 (from the top)
+# what a glyph may reach past the body's edge: Typst aligns the first line's cap height
+# (not its tallest glyph, a display fraction's numerator) with the top of the body
+SLACK = 1.5 * MM
+
+_WORD = re.compile(r'<word xMin="([\d.]+)" yMin="([\d.]+)" xMax="([\d.]+)" yMax="([\d.]+)">(.*?)</word>')
+_PAGE = re.compile(r"<page [^>]*>(.*?)</page>", re.S)
+
+
+def have_poppler() -> bool:
+    return bool(shutil.which("pdftotext") and shutil.which("pdftoppm"))
+
+
+def words(pdf: Path) -> list[list[tuple[float, float, float, float, str]]]:
+    """Per page its words with their boxes, pt from the top left."""
+    out = subprocess.run(["pdftotext", "-bbox", str(pdf), "-"], capture_output=True, text=True,
+                         check=True).stdout
+    return [[(float(a), float(b), float(c), float(d), html.unescape(w)) for a, b, c, d, w in _WORD.findall(p)]
+            for p in _PAGE.findall(out)]
+
+
+def footer_boxes(page_words) -> list[tuple[float, float, float, float]]:
+    """The page number "n / N" in the bottom margin (the only thing the margin holds)."""
+    low = [w for w in page_words if w[1] > BODY[3]]
+    return [w[:4] for w in low if re.fullmatch(r"\d+|/", w[4])]
+
+
+def stray_words(page_words) -> list[tuple]:
+    """Words of a page not wholly inside the body (the page number excepted); also any
+    word of the body that overlaps the page number."""
+    foot = footer_boxes(page_words)
+    bad = []
+    for w in page_words:
+        x0, y0, x1, y1, s = w
+        if w[:4] in foot:
+            continue
+        inside = (x0 >= BODY[0] - SLACK and y0 >= BODY[1] - SLACK and x1 <= BODY[2] + SLACK
+                  and y1 <= BODY[3] + SLACK)
+        if not inside:
+            bad.append(w)
+    return bad
+
+
+def stray_ink(pdf: Path, page_words, dpi: int = 36) -> list[tuple[int, str, int]]:
+    """[(page, margin, dark pixels)] for each page whose margins hold ink other than the
+    page number (rendered in grey at ``dpi``; a pixel darker than 240 of 255 counts)."""
+    import numpy as np
+    from PIL import Image
+    found = []
+    with tempfile.TemporaryDirectory() as tmp:
+        subprocess.run(["pdftoppm", "-gray", "-r", str(dpi), str(pdf), f"{tmp}/p"], check=True)
+        files = sorted(Path(tmp).glob("p-*.pgm"), key=lambda p: int(p.stem.split("-")[-1]))
+        for k, f in enumerate(files):
+            im = np.asarray(Image.open(f), dtype=np.uint8)
+            h, w = im.shape
+            sx, sy = w / PAGE_W, h / PAGE_H
+            ink = im < 240
+            # the page number's box (and a pixel round it) is allowed
+            for x0, y0, x1, y1 in footer_boxes(page_words[k] if k < len(page_words) else []):
+                ink[max(0, int(y0 * sy) - 1):int(y1 * sy) + 2, max(0, int(x0 * sx) - 1):int(x1 * sx) + 2] = False
+            # SLACK and a pixel (antialiasing) round the body's edges
+            bx0, by0 = int((BODY[0] - SLACK) * sx) - 1, int((BODY[1] - SLACK) * sy) - 1
+            bx1, by1 = int((BODY[2] + SLACK) * sx) + 2, int((BODY[3] + SLACK) * sy) + 2
+            for name, part in (("top", ink[:by0, :]), ("bottom", ink[by1:, :]),
+                               ("left", ink[:, :bx0]), ("right", ink[:, bx1:])):
+                n = int(part.sum())
+                if n:
+                    found.append((k + 1, name, n))
+    return found
