@@ -25,6 +25,9 @@ class Kin:
     angle: dict = field(default_factory=dict)
     a1: dict = field(default_factory=dict)
     a2: dict = field(default_factory=dict)
+    singular: np.ndarray | None = None          # the fields of KinematicsResult the force analysis reads
+    near: np.ndarray | None = None
+    undefined: dict = field(default_factory=dict)
 
     def vel(self, p):
         return self.d1[p] * np.asarray(self.omega1)[..., None]

@@ -36,7 +36,7 @@ def check_output_speed(value) -> tuple[float, str | None]:
         try:
             v, _notes, read_as = quantity(str(value), "output_speed")
         except ValueError as exc:
-            if getattr(exc.args[0], "code", None) == "input.unit_not_kind":
+            if isinstance(exc.args[0], Message) and exc.args[0].code == "input.unit_not_kind":
                 raise ValueError(Message("input.output_speed_unit", value=str(value))) from None
             raise
         kind = {"linear_speed": "linear", "speed": "angular"}.get(read_as)

@@ -345,9 +345,9 @@ def _untrusted_kinematics(kin, rows: np.ndarray) -> np.ndarray:
     velocity equations -- whose transpose are its equilibrium equations -- are singular to
     working precision (``kin.singular``): the loads and reactions there are not finite."""
     bad = np.zeros(len(rows), bool)
-    if getattr(kin, "singular", None) is not None:
+    if kin.singular is not None:
         bad |= np.asarray(kin.singular, bool)[rows]
-    for mask in (getattr(kin, "undefined", None) or {}).values():
+    for mask in (kin.undefined or {}).values():
         bad |= np.asarray(mask, bool)[rows]
     return bad
 
