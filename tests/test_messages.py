@@ -1039,5 +1039,5 @@ def test_crank_angle_intervals_are_data_formatted_per_language():
     assert m.params["intervals"] == [[37.46, 52.14], [350.0, 10.25], [120.012, 120.048]]
     assert "crank angles 37.460000..52.140000, 350.000000..10.250000, 120.012000..120.048000 deg:" in m
     ru = render(m.code, m.params, "ru")
-    assert "при углах кривошипа φ = 37.5…52.1°, 350.0…10.2°, 120.01…120.05°: уравнения" in ru
-    assert "φ = 37.5…52.1°" in render(m.code, m.params, "uk")
+    assert "при углах кривошипа φ = 37,5…52,1°, 350,0…10,2°, 120,01…120,05°: уравнения" in ru   # decimal comma
+    assert "φ = 37,5…52,1°" in render(m.code, m.params, "uk")

@@ -368,9 +368,10 @@ def test_kinetostatics_sheet(forging, lang, tmp_path):
         assert lw >= 280.0 and lh > 150.0
         assert ly >= FRAME[1] + TB_H or lx + lw <= FRAME[2] - TB_W
     texts = {t.plain for t in cv.prims if isinstance(t, Text)}
+    from tmm_cli.numfmt import localize
     from tmm_cli.report.context import fmt
     for e in (k for k in kst if k["index"] in info["positions"]):
-        assert any(fmt(e["balancing_moment"], 5) in t for t in texts)
+        assert any(localize(fmt(e["balancing_moment"], 5), lang) in t for t in texts)   # ru, uk: 0,5
     _check_texts([(cv, info)])
     path = write_sheets([(cv, info)], tmp_path, {"dxf"})[0]
     doc = ezdxf.readfile(path)

@@ -8,6 +8,7 @@ from pathlib import Path
 from typing import Any
 
 from ..io import atomic_write
+from ..numfmt import localize
 from . import figures
 from .i18n import translate
 
@@ -37,7 +38,8 @@ def values_of(keys: tuple):
 def fmt(x: Any, digits: int = 4) -> str:
     """Number for a table: `digits` significant digits, no exponent for
     1e-4 <= |x| < 1e7, '—' for None/NaN, '0' for |x| < 1e-10 (round-off of an
-    exact zero in SI units) and '-0'."""
+    exact zero in SI units) and '-0'; written in the current language (numfmt: the
+    decimal comma and 8,9·10⁻¹⁶ in ru and uk)."""
     if x is None:
         return "—"
     if isinstance(x, bool):
@@ -54,12 +56,12 @@ def fmt(x: Any, digits: int = 4) -> str:
     if a < 1e-10:      # round-off of an exact zero (a dead-centre velocity ...)
         return "0"
     if a < 1e-4 or a >= 1e7:
-        return f"{v:.{max(digits - 1, 0)}e}"
+        return localize(f"{v:.{max(digits - 1, 0)}e}")
     decimals = max(digits - 1 - int(math.floor(math.log10(a))), 0)
     s = f"{v:.{decimals}f}"
     if float(s) == 0:
         return "0"
-    return s
+    return localize(s)
 
 
 def fmt_fixed(x: Any, decimals: int = 2) -> str:
@@ -75,7 +77,7 @@ def fmt_fixed(x: Any, decimals: int = 2) -> str:
     s = f"{v:.{decimals}f}"
     if float(s) == 0:
         s = f"{0.0:.{decimals}f}"
-    return s
+    return localize(s)
 
 
 @dataclass

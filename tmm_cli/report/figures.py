@@ -16,6 +16,7 @@ from operator import itemgetter
 
 import numpy as np
 
+from .. import numfmt
 from ..reproducible import stable_svg_ids
 from .svgdraw import PT_PER_MM
 
@@ -71,12 +72,49 @@ def svg(fig) -> str:
     """
     buf = io.StringIO()
     try:
+        if numfmt.comma():
+            _localize_figure(fig)
         fig.savefig(buf, format="svg", metadata={"Date": None, "Creator": None})
     finally:
         plt().close(fig)
     text = _HEAD.sub(r"\1", buf.getvalue(), count=1)
     text = _SIZE.sub(r'\1 class="fig" width="\2pt" height="\3pt"', text, count=1)
     return stable_svg_ids(text)
+
+
+def _localize_figure(fig) -> None:
+    """The figure's texts and tick labels with the numbers as the current language writes
+    them (the decimal comma in ru and uk: numfmt)."""
+    from matplotlib.text import Text
+    for t in fig.findobj(Text):
+        s = t.get_text()
+        if s:
+            t.set_text(numfmt.localize(s))
+    for ax in fig.axes:
+        for axis in (ax.xaxis, ax.yaxis):
+            fmt = axis.get_major_formatter()
+            fmt.__class__ = _localized(type(fmt))
+
+
+_LOCALIZED: dict[type, type] = {}
+
+
+def _localized(cls: type) -> type:
+    """A subclass of the tick formatter ``cls`` whose labels are localised (numfmt)."""
+    if getattr(cls, "_tmm_localized", False):
+        return cls
+    if cls not in _LOCALIZED:
+        def call(self, x, pos=None):
+            return numfmt.localize(cls.__call__(self, x, pos))
+
+        def ticks(self, values):
+            return [numfmt.localize(s) for s in cls.format_ticks(self, values)]
+
+        def offset(self):
+            return numfmt.localize(cls.get_offset(self))
+        _LOCALIZED[cls] = type("Localized" + cls.__name__, (cls,), {
+            "__call__": call, "format_ticks": ticks, "get_offset": offset, "_tmm_localized": True})
+    return _LOCALIZED[cls]
 
 
 _NAME_OK = re.compile(r"[^a-z0-9-]+")

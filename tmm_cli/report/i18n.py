@@ -266,14 +266,16 @@ def register(table: dict[str, dict[str, str]]) -> None:
 def translate(key: str, lang: str, **kw) -> str:
     """Text for ``key`` in ``lang`` (fallback: English, then the key itself).
 
-    Keyword arguments are substituted with ``str.format``.
+    Keyword arguments are substituted with ``str.format`` (a number in ``lang``'s writing:
+    the decimal comma in ru and uk, :mod:`tmm_cli.numfmt`).
     """
     text = STRINGS.get(lang, {}).get(key)
     if text is None:
         text = STRINGS["en"].get(key, key)
     if kw:
+        from ..numfmt import format_text
         try:
-            text = text.format(**kw)
+            text = format_text(text, lang, **kw)
         except (KeyError, IndexError, ValueError):
             pass
     return text

@@ -6,6 +6,8 @@ from __future__ import annotations
 
 import math
 
+from ...numfmt import localize, num
+
 I18N = {
     "en": {"train.title": "Gear drive", "train.stage": "Stage", "train.kind": "Kind",
            "train.z": "Tooth numbers", "train.ratio": "Ratio u (analytic)", "train.ratio_plan": "u from the plan",
@@ -225,7 +227,7 @@ def angular_plan(d: dict) -> str:
 
 def _pct(x) -> str:
     s = f"{100 * x:.3f} %"
-    return s[1:] if s.startswith("-0.000") else s
+    return localize(s[1:] if s.startswith("-0.000") else s)
 
 
 def build(ctx) -> str | None:
@@ -239,7 +241,7 @@ def build(ctx) -> str | None:
         kind = (t("train.pair_int") if s.get("internal") else t("train.pair")) if s["type"] == "pair" \
             else t("train.planetary", s=s["scheme"])
         rows.append((i, kind, " / ".join(str(v) for v in s["z"]), f(s["ratio"], 8), f(pr["ratio_plan"], 8),
-                     f"{abs(pr['ratio_plan'] - s['ratio']):.1e}"))
+                     num(abs(pr['ratio_plan'] - s['ratio']), ".1e")))
     info = [(t("train.overall"), f(d["ratio"], 8))]
     if d.get("required") is not None:
         info += [(t("train.required"), f(d["required"], 6)), (t("train.error"), _pct(d["ratio_error"])),

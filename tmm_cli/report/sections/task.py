@@ -14,6 +14,8 @@ from typing import Any
 
 from markupsafe import Markup, escape
 
+from ...numfmt import current, localize
+
 I18N = {
     "en": {"task.sec.mechanism": "Mechanism", "task.sec.drive": "Drive",
            "task.sec.positions": "Positions", "task.sec.loads": "Loads",
@@ -305,7 +307,8 @@ def _dump(task) -> dict:
 
 
 def num(v: float) -> str:
-    """A task number as written: 6 significant digits, no trailing zeros."""
+    """A task number as written: 6 significant digits, no trailing zeros (the decimal
+    comma in ru and uk)."""
     if isinstance(v, bool):
         return "true" if v else "false"
     if isinstance(v, int):
@@ -320,7 +323,7 @@ def num(v: float) -> str:
     else:
         mant, ex = f"{v:.5e}".split("e")
         s = f"{mant.rstrip('0').rstrip('.')}·10{str(int(ex)).translate(_SUP)}"
-    return s.replace("-", "−")
+    return localize(s).replace("-", "−")
 
 
 _SUP = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
@@ -344,7 +347,22 @@ def _value(v: Any, unit: str = "") -> str:
         if all(_is_num(x) for x in v):
             return "; ".join(num(x) for x in v) + (u if v else "")
         return ", ".join(str(x) for x in v)
-    return str(v)
+    return _quantity(str(v))
+
+
+_WRITTEN = re.compile(r"^([-+]?(?:\d+(?:[.,]\d*)?|\.\d+)(?:[eE][-+]?\d+)?)\s*([^\d\s].*?)\s*$")
+
+
+def _quantity(text: str) -> str:
+    """A value the task gives as a number with its unit ('1.2 rad/s', '0.4 m/s') in the
+    report's language: its number as the language writes it, the unit in its spelling."""
+    m = _WRITTEN.match(text)
+    if not m:
+        return text
+    from ...messages import catalogue
+    units = catalogue(current())["terms"].get("unit", {})
+    unit = units.get(m.group(2), m.group(2))
+    return localize(m.group(1).replace(",", ".")) + ("" if unit == "°" else " ") + unit
 
 
 def flatten(d: Any, prefix: str = "") -> list[tuple[str, Any]]:

@@ -40,6 +40,7 @@ from __future__ import annotations
 import numpy as np
 from markupsafe import Markup, escape
 
+from ...numfmt import num
 from ...plans import SUB, geometry as plan_geometry, plan_label
 from .kinematics import drawn_scales
 
@@ -384,7 +385,7 @@ class Num:
         return ("mn", self.ctx.fmt_fixed(abs(float(value)), 2), key)
 
     def exact(self, value, key: str):
-        return ("mn", f"{float(value):g}", key)
+        return ("mn", num(float(value), "g"), key)
 
 
 def _xy(d, a="x", b="y"):
