@@ -7,6 +7,8 @@ import html
 import re
 from pathlib import Path
 
+from .numfmt import num
+
 # section -> (step en, step ru, depends on en, depends on ru)
 STEPS = {
     "structure": ("structural analysis (Chebyshev's formula, Assur groups)",
@@ -101,13 +103,14 @@ def step_for(path: str, lang: str) -> str:
 
 
 def _num(x, lang: str = "en") -> str:
+    """A value of the page in ``lang``'s writing (ru, uk: 0,25 and 8,9·10⁻¹⁶; numfmt)."""
     if x is None:
         return "–"
     try:
-        text = f"{float(x):.5g}"
+        v = float(x)
     except (TypeError, ValueError):
         return str(x)
-    return text.replace(".", ",") if lang in ("ru", "uk") else text
+    return num(v, ".5g", lang)
 
 
 _NUMBER_HEAD = re.compile(r"^\s*[-+\u2212\u2013]?[\d\s.,\u00a0\u202f]*\d(?:[eE][-+]?\d+)?\s*")
