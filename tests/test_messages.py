@@ -945,7 +945,7 @@ def test_plain_string_and_unknown_code():
 def test_render_list_reads_messages_else_warnings():
     m = Message("dof2.rotor_reverses")
     assert render_list({"warnings": [str(m)], "messages": [m.to_dict()]}, "uk") == \
-        ["машина з двома ступенями вільності: ротор змінює напрямок обертання"]
+        ["машина з двома ступенями рухомості: ротор змінює напрямок обертання"]   # the glossary's term
     # results.json written before messages existed: the English texts as they are
     assert render_list({"warnings": ["old text"]}, "ru") == ["old text"]
     assert render_list({}, "ru") == []

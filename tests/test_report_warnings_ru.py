@@ -16,7 +16,7 @@ ROOT = Path(__file__).resolve().parents[1]
 @pytest.mark.parametrize("code,params,en,ru", [
     ("cam.soft_impact", {"phi": 140.0, "where": "far_dwell/return"},
      "soft impact (finite jump of acceleration) at phi = 140 deg (far_dwell/return)",
-     "мягкий удар (конечный скачок ускорения) при φ = 140° (дальний выстой / возвращение)"),
+     "мягкий удар (конечный скачок ускорения) при φ = 140° (дальнее стояние / возвращение)"),
     ("cam.rigid_impact", {"phi": 90.0, "where": "rise"},
      "rigid impact (jump of velocity, infinite acceleration) at phi = 90 deg (rise)",
      "жёсткий удар (скачок скорости, бесконечное ускорение) при φ = 90° (удаление)"),

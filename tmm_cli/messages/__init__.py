@@ -14,7 +14,7 @@ The catalogues are one YAML file per language beside this module (``en.yaml``,
     messages:                  # code -> template (str.format, parameters by name)
       cam.soft_impact: "soft impact (finite jump of acceleration) at phi = {phi:.4g} deg ({where})"
     terms:                     # word tables a template names as the format spec
-      phase: {rise: удаление, far_dwell: дальний выстой}
+      phase: {rise: удаление, far_dwell: дальнее стояние}
 
 A placeholder ``{where:phase}`` renders the parameter through the language's ``phase``
 table (the whole value, else each ``/``-separated part, joined by `` / ``; a list joined by

@@ -175,6 +175,28 @@ class ReportContext:
         kin = self.results.get("kinematics") or []
         return list(kin[0]["links"].keys()) if kin else []
 
+    def link_label(self, name: str) -> str:
+        """A link as the text names it: its kind and number, the task's name in brackets
+        ('кривошип 1 (crank)'); the number and the name where the kind is unknown."""
+        from ..plans import geometry
+        from .sections.structure import link_kind
+        geom = self.__dict__.get("_geometry", False)
+        if geom is False:
+            try:
+                geom = geometry(self.results)
+            except (KeyError, TypeError, ValueError):
+                geom = None
+            self.__dict__["_geometry"] = geom
+        link = geom.by_name(name) if geom is not None else None
+        if link is None:
+            return self.link_ref(name)
+        return f"{self.t('link.' + link_kind(geom, link))} {link.index} ({name})"
+
+    def link_ref(self, name: str) -> str:
+        """A link by its number and the task's name ('3 (rocker)'): in any grammatical case."""
+        names = self.link_names()
+        return f"{names.index(name) + 1} ({name})" if name in names else str(name)
+
     def link_index(self, name: str) -> int:
         try:
             return self.link_names().index(name) + 1

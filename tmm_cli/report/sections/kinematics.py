@@ -525,5 +525,5 @@ def build(ctx) -> str | None:
                       hdr_pts=hdr_pts, v_rows=v_rows, a_rows=a_rows, hdr_l=hdr_l,
                       w_rows=w_rows, e_rows=e_rows, hdr_ang=hdr_ang, ang_rows=ang_rows,
                       sense_note=ctx.t("kin.sense_note"), positions=positions, fig_diagrams=diag,
-                      out_name=out_name, dense=curve is not None,
+                      out_name=out_name, out_label=ctx.link_label(out_name), dense=curve is not None,
                       extra_note=ctx.t("common.extra_note") if len(entries) > n_grid else None)

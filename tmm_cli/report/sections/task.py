@@ -37,7 +37,7 @@ I18N = {
            "task.sec.kinetostatics": "Кинетостатика", "task.sec.flywheel": "Маховик",
            "task.sec.cam": "Кулачковый механизм", "task.sec.gears": "Зубчатая передача",
            "task.sec.planetary": "Планетарный механизм", "task.sec.answers": "Ответы",
-           "task.sec.dof2": "Машина с двумя степенями свободы",
+           "task.sec.dof2": "Машина с двумя степенями подвижности",
            "task.sec.tolerance": "Допуски", "task.ground": "Неподвижные точки (стойка)",
            "task.links": "Звенья", "task.assembly": "Начальная сборка (приближённые положения шарниров)",
            "task.point": "Точка", "task.points": "Точки", "task.length": "l, м", "task.mass": "m, кг",
@@ -229,7 +229,9 @@ WORDS = {"ru": {"ccw": "против часовой стрелки", "cw": "по
                 "rocker": "коромысло", "translating": "поступательный", "equal_sliding": "равенство удельных скольжений",
                 "true_motion": "истинное", "linear_decreasing": "линейно убывающее ускорение",
                 "parabolic": "параболический", "poly345": "полином 3-4-5", "cosine": "косинусоидальный",
-                "sine": "синусоидальный", "uniform": "равномерный"},
+                "sine": "синусоидальный", "uniform": "равномерный",
+                "kinetostatics.motion=constant": "равномерное", "flywheel.constant=driving": "движущий",
+                "flywheel.constant=resistance": "сопротивления"},
          "en": {"ccw": "counter-clockwise", "cw": "clockwise", "true": "yes", "false": "no",
                 "extreme": "extreme position", "energy-mass": "energy-mass (Wittenbauer)",
                 "linear_decreasing": "linearly decreasing acceleration", "poly345": "polynomial 3-4-5",
@@ -451,8 +453,10 @@ def _rows(key: str, sec: Any, lang: str) -> list[tuple[str, str]]:
             from ...units import fraction_text
             frac = fraction_text(v)
             val = f"{frac} = {_value(v)}" if frac.startswith("1/") else val
-        if isinstance(v, (str, bool)):
-            val = (word_of(plain, val, lang) if isinstance(v, str) else None) or WORDS.get(lang, {}).get(val, val)
+        if isinstance(v, (str, bool)):    # a word agreeing with its label's noun ('key=value') first
+            words = WORDS.get(lang, {})
+            val = words.get(f"{plain}={val}") or (word_of(plain, val, lang) if isinstance(v, str) else None) \
+                or words.get(val, val)
         rows.append((label, val))
     return rows
 
