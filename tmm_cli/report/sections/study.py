@@ -14,6 +14,15 @@ I18N = {
                        "and the computing time (best of repeats). The measured order is the slope of the error "
                        "against the setting in log-log, fitted over the four finest rows above the rounding "
                        "floor; beside it the theoretical order of the rule used.",
+        "study.short": "In short",
+        "study.default": " (the default)",
+        "study.trade.flywheel": "flywheel J: {a} positions of the grid give an error of {ea}, {b}{dflt} give {eb} ({ta} → {tb} ms)",
+        "study.trade.curves": "the s, v, a diagrams drawn through {a} points err by {ea}, through {b}{dflt} by {eb} ({ta} → {tb} ms)",
+        "study.trade.kinetostatics": "the M_b and reaction diagrams drawn through {a} positions err by {ea}, through {b}{dflt} by {eb} ({ta} → {tb} ms)",
+        "study.trade.dof2": "the integration at rtol = {a} errs by {ea}, at {b}{dflt} by {eb} ({ta} → {tb} ms)",
+        "study.trade.cam": "the cam profile as a polygon with a {a}° step errs by {ea}, with {b}°{dflt} by {eb} ({ta} → {tb} ms)",
+        "study.trade.gears": "the blocking contour on a grid of {a} nodes errs by {ea}, of {b}{dflt} by {eb} ({ta} → {tb} ms)",
+        "study.trade.planetary": "the search up to z = {a} finds a ratio off by {ea}, up to {b}{dflt} by {eb} ({ta} → {tb} ms)",
         "study.stage.flywheel": "Flywheel: positions of the grid",
         "study.stage.curves": "Kinematic diagrams of the output (s, v, a): points over a turn",
         "study.stage.kinetostatics": "Kinetostatic diagrams (M_b and the reactions): positions over the cycle",
@@ -80,6 +89,15 @@ I18N = {
                        "когда два соседних совпадают до {tol}) и время счёта (лучшее из повторов). Измеренный "
                        "порядок — наклон погрешности в логарифмических осях по четырём самым точным строкам "
                        "выше уровня округления; рядом — теоретический порядок применённого правила.",
+        "study.short": "Коротко",
+        "study.default": " (по умолчанию)",
+        "study.trade.flywheel": "J маховика: при {a} положениях сетки погрешность {ea}, при {b}{dflt} — {eb} ({ta} → {tb} мс)",
+        "study.trade.curves": "диаграммы s, v, a, построенные по {a} точкам, отличаются от точных на {ea}, по {b}{dflt} — на {eb} ({ta} → {tb} мс)",
+        "study.trade.kinetostatics": "диаграммы M_b и реакций, построенные по {a} положениям, отличаются от точных на {ea}, по {b}{dflt} — на {eb} ({ta} → {tb} мс)",
+        "study.trade.dof2": "интегрирование с rtol = {a} даёт погрешность {ea}, с {b}{dflt} — {eb} ({ta} → {tb} мс)",
+        "study.trade.cam": "профиль кулачка как многоугольник с шагом {a}° отличается от точного на {ea}, с шагом {b}°{dflt} — на {eb} ({ta} → {tb} мс)",
+        "study.trade.gears": "блокирующий контур на сетке из {a} узлов отличается от точного на {ea}, из {b}{dflt} — на {eb} ({ta} → {tb} мс)",
+        "study.trade.planetary": "подбор до z = {a} даёт передаточное отношение с погрешностью {ea}, до {b}{dflt} — {eb} ({ta} → {tb} мс)",
         "study.stage.flywheel": "Маховик: число положений сетки",
         "study.stage.curves": "Кинематические диаграммы выходного звена (s, v, a): точки за оборот",
         "study.stage.kinetostatics": "Диаграммы кинетостатики (M_b и реакции): положения за цикл",
@@ -144,6 +162,15 @@ I18N = {
                        "збігаються до {tol}) і час обчислення (найкращий із повторів). Виміряний порядок — нахил "
                        "похибки в логарифмічних осях за чотирма найточнішими рядками понад рівень округлення; "
                        "поруч — теоретичний порядок застосованого правила.",
+        "study.short": "Коротко",
+        "study.default": " (типово)",
+        "study.trade.flywheel": "J маховика: за {a} положень сітки похибка {ea}, за {b}{dflt} — {eb} ({ta} → {tb} мс)",
+        "study.trade.curves": "діаграми s, v, a, побудовані за {a} точками, відрізняються від точних на {ea}, за {b}{dflt} — на {eb} ({ta} → {tb} мс)",
+        "study.trade.kinetostatics": "діаграми M_b і реакцій, побудовані за {a} положеннями, відрізняються від точних на {ea}, за {b}{dflt} — на {eb} ({ta} → {tb} мс)",
+        "study.trade.dof2": "інтегрування з rtol = {a} дає похибку {ea}, з {b}{dflt} — {eb} ({ta} → {tb} мс)",
+        "study.trade.cam": "профіль кулачка як багатокутник із кроком {a}° відрізняється від точного на {ea}, із кроком {b}°{dflt} — на {eb} ({ta} → {tb} мс)",
+        "study.trade.gears": "блокувальний контур на сітці з {a} вузлів відрізняється від точного на {ea}, з {b}{dflt} — на {eb} ({ta} → {tb} мс)",
+        "study.trade.planetary": "підбір до z = {a} дає передатне відношення з похибкою {ea}, до {b}{dflt} — {eb} ({ta} → {tb} мс)",
         "study.stage.flywheel": "Маховик: кількість положень сітки",
         "study.stage.curves": "Кінематичні діаграми вихідної ланки (s, v, a): точки за оберт",
         "study.stage.kinetostatics": "Діаграми кінетостатики (M_b і реакції): положення за цикл",
