@@ -14,7 +14,7 @@ from typing import Any
 
 from markupsafe import Markup, escape
 
-from ...numfmt import current, localize
+from ...numfmt import localize, unit as spelt
 
 I18N = {
     "en": {"task.sec.mechanism": "Mechanism", "task.sec.drive": "Drive",
@@ -361,9 +361,7 @@ def _quantity(text: str) -> str:
     m = _WRITTEN.match(text)
     if not m:
         return text
-    from ...messages import catalogue
-    units = catalogue(current())["terms"].get("unit", {})
-    unit = units.get(m.group(2), m.group(2))
+    unit = spelt(m.group(2))
     return localize(m.group(1).replace(",", ".")) + ("" if unit == "°" else " ") + unit
 
 
