@@ -141,3 +141,18 @@ def test_group_summary_title_and_row_count(lang, words):
     for w in words:
         assert w in page, w
     assert not re.search(r"<p>\d+ \w+</p>", page)
+
+
+@pytest.mark.parametrize("lang, names", [("ru", {("M", "д"), ("M", "с"), ("M", "пр"), ("A", "д"), ("ΔT", None)}),
+                                         ("uk", {("M", "р"), ("M", "о"), ("M", "зв"), ("A", "о"), ("ΔT", None)})])
+def test_dynamics_sheet_names_its_curves_in_the_language(lang, names):
+    """Sheet 3's curves are named as the course writes them (M_д, M_пр; uk M_р, M_зв), not
+    'M d', 'M red', 'A c', 'dT'."""
+    from tmm_cli.sheets import build_sheets
+    from tmm_cli.sheets.prims import Text
+    task = tmm_cli.load_task(ROOT / "tasks" / "forging_sixbar.yaml")
+    sheets = build_sheets(tmm_cli.run(task, kinematics_curve=0), task, lang)
+    (cv,) = [cv for cv, info in sheets if info["number"] == 3]
+    texts = {(t.s, t.sub) for t in cv.prims if isinstance(t, Text)}
+    assert names <= texts, names - texts
+    assert not {s for s, _ in texts} & {"M d", "M c", "M red", "A d", "A c", "dT"}

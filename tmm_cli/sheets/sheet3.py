@@ -21,6 +21,13 @@ TXT = {
 }
 
 
+def curve_name(key: str, lang: str) -> str:
+    """A curve's name in the language's notation (M_d -> M_д in Russian, M_р in Ukrainian; the
+    catalogue's ``curve`` table)."""
+    from ..messages import catalogue
+    return catalogue(lang)["terms"].get("curve", {}).get(key, key)
+
+
 def build(cv, results, task, lang="en") -> dict:
     f = results["flywheel"]
     a = f["arrays"]
@@ -60,7 +67,8 @@ def build(cv, results, task, lang="en") -> dict:
         last = None
         for yv, key in ends:
             yy = yv if last is None else min(yv, last - 4.0)
-            cv.mtext(x0f + 20.0 + 360.0 / mu_phi + 15.0, yy, key.replace("_", " "), 2.5)   # past φ
+            base, _, low = curve_name(key, lang).partition("_")      # M_д: M with the subscript д
+            cv.mtext(x0f + 20.0 + 360.0 / mu_phi + 15.0, yy, base, 2.5, sub=low or None)   # past φ
             last = yy
         info["graphs"][sym] = {"mu": mu, "pts": pts, "origin": (x0f + 20.0, yc),
                                "values": [y for y in ys]}
