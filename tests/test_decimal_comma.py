@@ -107,3 +107,17 @@ def test_localize(lang):
         from tmm_cli.report.context import fmt, fmt_fixed
         assert fmt(0.123456) == "0,1235" and fmt(8.9e-6) == "8,900·10⁻⁶" and fmt_fixed(2.5, 2) == "2,50"
     assert fmt(0.123456) == "0.1235"
+
+
+@pytest.mark.parametrize("name", ["forging_sixbar", "cam_rocker", "gears_shifted"])
+@pytest.mark.parametrize("lang", ["ru", "uk"])
+def test_sheets_take_the_decimal_comma(computed, name, lang):
+    """The A1 sheets' labels (scales, values, the title block) in ru and uk: the decimal comma."""
+    from tmm_cli.sheets import build_sheets
+    from tmm_cli.sheets.prims import Text
+    task, results = computed(name)
+    texts = [" ".join(x for x in (t.s, t.sub, t.after) if x) for cv, _ in build_sheets(results, task, lang)
+             for t in cv.prims if isinstance(t, Text)]
+    bad = _bad("\n".join(texts).replace(getattr(task, "title", None) or "\0", ""))
+    assert not bad, bad[:20]
+    assert any(re.search(r"\d,\d", x) for x in texts)

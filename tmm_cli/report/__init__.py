@@ -112,6 +112,7 @@ def make_env():
     env.filters["fmt"] = fmt
     env.filters["fmt_fixed"] = fmt_fixed
     env.tests["numeric"] = _is_numeric
+    env.globals["unit"] = numfmt.unit          # a task-file unit in the report's language
     return env
 
 
