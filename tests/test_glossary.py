@@ -157,3 +157,13 @@ def test_dynamics_sheet_names_its_curves_in_the_language(lang, names):
     texts = {(t.s, t.sub) for t in cv.prims if isinstance(t, Text)}
     assert names <= texts, names - texts
     assert not {s for s, _ in texts} & {"M d", "M c", "M red", "A d", "A c", "dT"}
+
+
+def test_drive_train_stages_numbered_as_the_task_lists_them(reports):
+    """The drive train's stages are numbered 1, 2, 3 in the report as in the task file (the
+    results keep their list index from 0): the stage table, the shafts, the satellites."""
+    ru, _ = reports["press_drive_train", "ru"]
+    assert "выходной вал ступени 1" in ru and "выходной вал ступени 3" in ru
+    assert "ступени 0" not in ru
+    uk, _ = reports["press_drive_train", "uk"]
+    assert "вихідний вал ступеня 1" in uk and "ступеня 0" not in uk

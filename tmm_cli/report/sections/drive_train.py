@@ -247,19 +247,20 @@ def build(ctx) -> str | None:
     for i, (s, pr) in enumerate(zip(d["stages"], vp["stages"])):
         kind = (t("train.pair_int") if s.get("internal") else t("train.pair")) if s["type"] == "pair" \
             else t("train.planetary", s=s["scheme"])
-        rows.append((i, kind, " / ".join(str(v) for v in s["z"]), f(s["ratio"], 8), f(pr["ratio_plan"], 8),
+        rows.append((i + 1, kind, " / ".join(str(v) for v in s["z"]), f(s["ratio"], 8), f(pr["ratio_plan"], 8),
                      num(abs(pr['ratio_plan'] - s['ratio']), ".1e")))
     info = [(t("train.overall"), f(d["ratio"], 8))]
     if d.get("required") is not None:
         info += [(t("train.required"), f(d["required"], 6)), (t("train.error"), _pct(d["ratio_error"])),
                  (t("train.best"), _pct(d["best_ratio_error"]))]
     if d.get("split"):
-        info.append((t("train.split"), "; ".join(f"{s['stage']}: {f(s['ratio'], 5)}" for s in d["split"])))
+        info.append((t("train.split"), "; ".join(f"{s['stage'] + 1}: {f(s['ratio'], 5)}" for s in d["split"])))
     shafts = []
     for i, w in enumerate(d["shafts"]):
-        shafts.append((t("train.input") if i == 0 else t("train.out_of", i=i - 1), f(w, 6),
+        shafts.append((t("train.input") if i == 0 else t("train.out_of", i=i), f(w, 6),
                        f(abs(w) * 30 / math.pi, 6), ctx.sense(w)))
-    sats = [(i, f(s["omega_carrier"], 6), f(s["omega_satellite"], 6), f(s["omega_satellite_rel"], 6),
+    # the stages numbered from 1, as the task file lists them (results.json: from 0)
+    sats = [(i + 1, f(s["omega_carrier"], 6), f(s["omega_satellite"], 6), f(s["omega_satellite_rel"], 6),
              ", ".join(f"{t('train.c.' + k)}: {t('train.yes') if v else t('train.no')}" for k, v in s["checks"].items()))
             for i, s in enumerate(d["stages"]) if s["type"] == "planetary"]
     cands = [(" | ".join("/".join(str(v) for v in z) for z in c["z"]), f(c["ratio"], 6),
