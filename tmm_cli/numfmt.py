@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import contextlib
 import contextvars
+import functools
 import re
 import string
 from typing import Any
@@ -64,8 +65,14 @@ def _typeset(m: re.Match) -> str:
 def localize(s: str, lang: str | None = None) -> str:
     """A formatted number (or a short text of formatted numbers: '0.5..1.25', '8.9e-16 m')
     in ``lang``'s writing: unchanged in English, '0,5', '8,9·10⁻¹⁶' in ru/uk."""
-    if not comma(lang) or not s:
+    if not comma(lang) or not s or ("." not in s and "e" not in s and "E" not in s):
         return s
+    return _typeset_all(s)
+
+
+@functools.lru_cache(maxsize=8192)
+def _typeset_all(s: str) -> str:
+    """Every number of ``s`` typeset (remembered: a drawing's labels repeat)."""
     return _NUMBER.sub(_typeset, s)
 
 
