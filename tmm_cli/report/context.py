@@ -175,9 +175,8 @@ class ReportContext:
         kin = self.results.get("kinematics") or []
         return list(kin[0]["links"].keys()) if kin else []
 
-    def link_label(self, name: str) -> str:
-        """A link as the text names it: its kind and number, the task's name in brackets
-        ('кривошип 1 (crank)'); the number and the name where the kind is unknown."""
+    def link_kind_word(self, name: str) -> str | None:
+        """The kind of a link in words ('кривошип', 'камень кулисы'), None where unknown."""
         from ..plans import geometry
         from .sections.structure import link_kind
         geom = self.__dict__.get("_geometry", False)
@@ -188,9 +187,13 @@ class ReportContext:
                 geom = None
             self.__dict__["_geometry"] = geom
         link = geom.by_name(name) if geom is not None else None
-        if link is None:
-            return self.link_ref(name)
-        return f"{self.t('link.' + link_kind(geom, link))} {link.index} ({name})"
+        return None if link is None else self.t("link." + link_kind(geom, link))
+
+    def link_label(self, name: str) -> str:
+        """A link as the text names it: its kind and number, the task's name in brackets
+        ('кривошип 1 (crank)'); the number and the name where the kind is unknown."""
+        kind = self.link_kind_word(name)
+        return f"{kind} {self.link_ref(name)}" if kind else self.link_ref(name)
 
     def link_ref(self, name: str) -> str:
         """A link by its number and the task's name ('3 (rocker)'): in any grammatical case."""

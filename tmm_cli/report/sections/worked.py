@@ -71,9 +71,9 @@ I18N = {
                                      "reactions are those of the tables of the kinetostatics section.",
            "worked.moment_eq_p": "Moment equation of link {link} about {p} (counter-clockwise positive): the "
                                  "reaction {r} of the block is perpendicular to the guide, h is its arm:",
-           "worked.order_rpr": "Order: {r} from this moment equation, then the reaction on the {block} "
-                               "from its force polygon, the reaction of the frame on {link} from the polygon of "
-                               "{link}:",
+           "worked.order_rpr": "Order: {r} from this moment equation, then the reaction on the {kind} {block} "
+                               "({bname}) from its force polygon, the reaction of the frame on link {link} ({lname}) "
+                               "from the polygon of link {link}:",
            "worked.lever_motion": "With the steady motion of the flywheel (kinetostatics motion: true) the "
                                    "lever is not written out here: its balancing moment is in the table of the "
                                    "kinetostatics section.",
@@ -127,8 +127,9 @@ I18N = {
                                      "раздела кинетостатики.",
            "worked.moment_eq_p": "Уравнение моментов звена {link} относительно {p} (против часовой стрелки — "
                                  "положительные): реакция {r} камня перпендикулярна направляющей, h — её плечо:",
-           "worked.order_rpr": "Порядок: {r} — из этого уравнения моментов, затем реакция на {block} — из "
-                               "его плана сил, реакция стойки на {link} — из плана сил звена {link}:",
+           "worked.order_rpr": "Порядок: {r} — из этого уравнения моментов, затем реакция на {kind} {block} "
+                               "({bname}) — из его плана сил, реакция стойки на звено {link} ({lname}) — из плана "
+                               "сил звена {link}:",
            "worked.lever_motion": "При установившемся движении с маховиком (motion: true) рычаг здесь не "
                                    "расписан: его уравновешивающий момент — в таблице раздела кинетостатики.",
            "worked.undefined": "Это положение нельзя расписать: нужное значение в нём не определено (рядом особое "
@@ -182,8 +183,9 @@ I18N = {
                                      "розділу кінетостатики.",
            "worked.moment_eq_p": "Рівняння моментів ланки {link} відносно {p} (проти годинникової стрілки — "
                                  "додатні): реакція {r} каменя перпендикулярна до напрямної, h — її плече:",
-           "worked.order_rpr": "Порядок: {r} — з цього рівняння моментів, потім реакція на {block} — з "
-                               "його плану сил, реакція стояка на {link} — з плану сил ланки {link}:",
+           "worked.order_rpr": "Порядок: {r} — з цього рівняння моментів, потім реакція на {kind} {block} "
+                               "({bname}) — з його плану сил, реакція стояка на ланку {link} ({lname}) — з плану "
+                               "сил ланки {link}:",
            "worked.lever_motion": "При усталеному русі з маховиком (motion: true) важіль тут не розписано: його "
                                    "зрівноважувальний момент — у таблиці розділу кінетостатики.",
            "worked.undefined": "Це положення не можна розписати: потрібне значення в ньому не визначене (поруч "
@@ -1032,7 +1034,9 @@ class _Writer:
                frac(row(mo("−"), mo("("), num(total, f"Mr:{rsg}:{hinge}", signed=True), mo(")")),
                     num(h, f"h:{rsg}:{hinge}")), mo("="), num(m / h, f"Rm:{rsg}:{hinge}", signed=True),
                unit(self.u["N"]))
-        self.p(self.t("worked.order_rpr", r=rsg, block=self.ctx.link_label(s.name), link=self.ctx.link_ref(g.name)))
+        self.p(self.pt("worked.order_rpr", r=rsg, kind=self.ctx.link_kind_word(s.name) or "",
+                       block=("mn", str(s.index), f"idx:{s.name}"), bname=s.name,
+                       link=("mn", str(g.index), f"idx:{g.name}"), lname=g.name))
         for lk in (s, g):
             own = [j for j in outer if lk.index in (j.a, j.b)][0]
             _, rn, _, Fo = self.reaction_on(ks, own, lk.index)
