@@ -7,8 +7,6 @@ import subprocess
 import sys
 from pathlib import Path
 
-import pytest
-
 import tmm_cli
 from tmm_cli.messages import render
 
