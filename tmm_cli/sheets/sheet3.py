@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..report.figures import mu_text
 from .frame import FRAME, std_mu
 from .graph import draw_graph
 
@@ -60,7 +61,7 @@ def build(cv, results, task, lang="en") -> dict:
         yc = top - 6.0 - hi / mu
         pts = draw_graph(cv, (x0f + 20.0, yc), [(phi, y, c) for y, (_, c) in zip(ys, keys)], mu_phi, mu,
                          x_len=360.0 / mu_phi, y_up=hi / mu + 5.0, y_down=-lo / mu + 3.0, x_sym="φ",
-                         y_sym=sym, mu_text=f"μ{sym.split()[0]} = {mu:g} {unit}/{mm},  μφ = {mu_phi:g} °/{mm}"
+                         y_sym=sym, mu_text=f"{mu_text(sym.split()[0], mu, unit, mm)},  μφ = {mu_phi:g} °/{mm}"
                          + (f",  ωm = {omega_m:.4g} {unit}" if keys[0][0] == "omega_dev" else ""), ticks=ticks)
         # the names of the curves at their right ends
         ends = sorted(((p[-1][1], key) for p, (key, _) in zip(pts, keys)), reverse=True) if k < 3 else []
