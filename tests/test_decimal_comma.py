@@ -121,3 +121,9 @@ def test_sheets_take_the_decimal_comma(computed, name, lang):
     bad = _bad("\n".join(texts).replace(getattr(task, "title", None) or "\0", ""))
     assert not bad, bad[:20]
     assert any(re.search(r"\d,\d", x) for x in texts)
+
+
+def test_note_conclusions_write_powers_of_ten():
+    """The explanatory note's conclusions (their own numbers): 8,9·10⁻¹⁶, not 8,9e-16."""
+    from tmm_cli.report.note import _num
+    assert _num(8.9e-16, "ru") == "8,9·10⁻¹⁶" and _num(0.25, "uk") == "0,25" and _num(0.25, "en") == "0.25"
