@@ -4,6 +4,8 @@ from pathlib import Path
 
 import pytest
 
+from tmm_cli import numfmt
+
 import tmm_cli
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -44,7 +46,7 @@ def test_html_section(central, tmp_path, lang, word):
     h, P, t = 0.03, math.pi / 2, math.tan(math.radians(30))
     A = h * math.pi / (2 * P * t)
     r0_mm = (math.sqrt(A * A + h * h / 4) - h / 2) * 1000
-    assert f"{r0_mm:.4f}" in html
+    assert numfmt.localize(f"{r0_mm:.4f}", lang) in html       # ru, uk: the decimal comma
     names = {p.name for p in paths}
     assert {"cam_profile.csv", "cam_motion.csv", "cam_profile.dxf"} <= names
     rows = (tmp_path / "cam_profile.csv").read_text().splitlines()

@@ -10,6 +10,7 @@ from pathlib import Path
 
 import pytest
 
+from tmm_cli import numfmt
 from tmm_cli.dof2 import Dof2Section, analyze
 from tmm_cli.report import _context
 from tmm_cli.report.context import fmt
@@ -29,7 +30,8 @@ def results():
 
 def build(results, lang, tmp_path):
     mod = load("dof2")
-    return mod.build(_context(results, None, tmp_path, lang))
+    with numfmt.language(lang):         # as report.render builds the sections
+        return mod.build(_context(results, None, tmp_path, lang))
 
 
 def text(html):
@@ -48,14 +50,16 @@ def test_section_numbers_and_csv(results, lang, tmp_path):
     assert html.count("<svg") == 5                        # scheme, angles, speeds, reactions, energy
     body = text(html)
     # the hit at phi = 270 deg with omega1 = const: t = (3 pi / 2) / omega1 (closed form)
-    assert fmt(1.5 * math.pi / OMEGA, 6) in body
+    def fmt_(x, digits=4):              # the numbers as the language writes them (the comma in ru)
+        return numfmt.localize(fmt(x, digits), lang)
+    assert fmt_(1.5 * math.pi / OMEGA, 6) in body
     # centrifugal pendulum: omega_n = omega1 sqrt(m2 l lc / (J_C + m2 lc^2)), example values
     m2, l, lc, JC = 0.35, 0.06, 0.055, 2.4e-4
     wn = OMEGA * math.sqrt(m2 * l * lc / (JC + m2 * lc ** 2))
-    assert fmt(wn) in body and fmt(2 * math.pi / wn) in body
+    assert fmt_(wn) in body and fmt_(2 * math.pi / wn) in body
     # parameters as given in the task
     for v in ("0.06000", "0.3500", "0.0550", "0.0002400"):
-        assert v in body, v
+        assert numfmt.localize(v, lang) in body, v
     rows = list(csv.reader((tmp_path / "dof2.csv").open(encoding="utf-8")))
     head, rows = rows[0], rows[1:]
     assert len(rows) == 401

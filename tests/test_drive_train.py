@@ -308,10 +308,15 @@ def test_report_section(tmp_path, lang, title, plan):
     assert title in sec and plan in sec and "figure failed" not in sec
     assert sec.count("<svg") == 2
     # every stage row: the analytic ratio and the one read off the plan agree to 1e-9
-    diffs = re.findall(r"<td[^>]*>(\d\.\de[-+]\d\d)</td>", sec)
+    # (Russian: the decimal comma and powers of ten, 8,9·10⁻¹⁶)
+    diffs = re.findall(r"<td[^>]*>(\d[.,]\d(?:e[-+]\d\d|·10[⁻⁺]?[⁰¹²³⁴⁵⁶⁷⁸⁹]+)?)</td>", sec)
     assert len(diffs) == len(res["drive_train"]["stages"])
-    assert all(float(x) <= 1e-9 for x in diffs)
-    assert "7.8825911" in sec                                 # u1H = 1 + 40*85/(19*26) = 7.88259109
+
+    def read(x):
+        m, _, e = x.replace(",", ".").partition("·10")
+        return float(m) * 10.0 ** int(e.translate(str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺", "0123456789-+")) or 0)
+    assert all(read(x) <= 1e-9 for x in diffs)
+    assert ("7.8825911" if lang == "en" else "7,8825911") in sec   # u1H = 1 + 40*85/(19*26) = 7.88259109
 
 
 def test_chosen_pair_respects_tooth_limit():

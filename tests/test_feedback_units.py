@@ -81,3 +81,17 @@ def test_batch_prints_the_notes_as_warnings(tmp_path, capsys):
     text = out.out + out.err
     assert "warning: feedback pages written as HTML only: x" in text
     assert text.index("tmm batch: 0 rows") < text.index("warning: feedback")
+
+
+@pytest.mark.parametrize("lang", ["ru", "uk"])
+def test_feedback_numbers_take_the_decimal_comma(lang):
+    """The page's answers, references and errors are written with the decimal comma in ru and
+    uk (58,46), powers of ten as 8,9·10⁻¹⁶ (not 8,9e-16), with the point in English."""
+    import re
+    from tmm_cli.feedback import _num
+    task = SimpleNamespace(title="Crank press", name="03")
+    s = {"rows": ROWS, "student": "S", "group": "G", "variant": 3}
+    page = feedback_html(task, s, lang)
+    assert "58,46" in page and not re.search(r"<td>-?\d+\.\d+", page)
+    assert "58.46" in feedback_html(task, s, "en")
+    assert _num(8.9e-16, lang) == "8,9·10⁻¹⁶" and _num(8.9e-16, "en") == "8.9e-16"

@@ -87,14 +87,24 @@ def problems(figs) -> list:
 
 
 # not a product such as the worked steps' "v_B = pb·μv = 36.84·0.04" (a segment times μ)
-# (the number ends where no digit follows: a formula runs its unit on, "μv=0.02м/(с·мм)")
-_MU = re.compile(r"(?<![·*×])μ\s?([^\s=()<>;,]{1,8})\s?=\s?([0-9]+(?:\.[0-9]+)?(?:e[-+]?[0-9]+)?)(?![0-9])")
+# (the number ends where no digit follows: a formula runs its unit on, "μv=0.02м/(с·мм)"); a number
+# as the report writes it: 0.005, 2e-05 (en); 0,005, 2·10⁻⁵ (ru, uk)
+_MU = re.compile(r"(?<![·*×])μ\s?([^\s=()<>;,]{1,8})\s?=\s?([0-9]+(?:[.,][0-9]+)?(?:e[-+]?[0-9]+|·10[⁻⁺]?[⁰¹²³⁴⁵⁶⁷⁸⁹]+)?)(?![0-9])")
+
+
+def read_number(s: str) -> float:
+    """A number of the report's text in any of its languages (decimal comma, ·10ⁿ)."""
+    s = s.replace(",", ".").replace("−", "-")
+    if "·10" in s:
+        m, e = s.split("·10")
+        return float(m) * 10.0 ** int(e.translate(str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺", "0123456789-+")))
+    return float(s)
 
 
 def stated_scales(html: str) -> list[tuple[str, float]]:
     """Every 'μX = number' the report states (in its text, tables and figures)."""
     text = " ".join(re.sub(r"<[^>]+>", "", html_mod.unescape(html)).split())
-    return [(sym, float(v)) for sym, v in _MU.findall(text)]
+    return [(sym, read_number(v)) for sym, v in _MU.findall(text)]
 
 
 def standard(sym: str, mu: float) -> bool:

@@ -741,7 +741,7 @@ def test_batch_stage_failure_in_the_summary_language(tmp_path):
     assert row["status"] == "failed"
     assert row["message"].startswith("stage 'planetary' failed: no tooth numbers for scheme A give i_1H = 1.2")
     html = (tmp_path / "o" / "summary.html").read_text(encoding="utf-8")
-    assert "етап «синтез планетарного механізму» не виконано: жоден набір чисел зубів схеми A не дає i_1H = 1.2" in html
+    assert "етап «синтез планетарного механізму» не виконано: жоден набір чисел зубів схеми A не дає i_1H = 1,2" in html
     assert "no tooth numbers" not in html
 
 

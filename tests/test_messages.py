@@ -43,6 +43,15 @@ ENGLISH = [
      "crank angle 270.000000 deg: group II(2,3) (links block, rocker) is ill-conditioned there (normalised determinant 3.7e-17, below 0.001); v B, ω rocker are given as the limit by continuity (extrapolated from the neighbouring positions of the same branch)"),
     ('kinematics.no_limit', {'phi': 180.0, 'group': 'II(2,3)', 'links': ['coupler', 'rocker'], 'det': 3.4e-08, 'ill': 0.001, 'quantities': ['v B', 'ω rocker']},
      "crank angle 180.000000 deg: group II(2,3) (links coupler, rocker) is ill-conditioned there (normalised determinant 3.4e-08, below 0.001); v B, ω rocker have no limit by continuity (the values from either side differ: the linkage may switch branch) and are null"),
+    ('positions.quick_working', {'working': 'backward', 'link': 'rocker', 'K': 0.8781, 'slow': 'forward'},
+     "positions.working = backward makes the working stroke of 'rocker' the quick one (K = 0.878 < 1): the slow "
+     "stroke is the forward one; write working: forward if the working stroke is meant to be the slow one"),
+    ('inertia.massless', {'links': ['coupler', 'block']},
+     "inertia is taken into account, but links coupler, block have no mass (mass not given or 0): no inertia "
+     "force acts on them"),
+    ('inertia.massless_flywheel', {'links': ['coupler']},
+     "inertia is taken into account, but links coupler have no mass (mass not given or 0): no inertia force "
+     "acts on them and their mass adds nothing to the reduced moment of inertia"),
     ('kinetostatics.self_locking', {'position': 5, 'phi': 52.345669999999984, 'f_pin': 0.1, 'f_slide': 0.15, 'pin_radius': 0.01, 'balancing': 'moment'},
      'kinetostatics: position 5 (phi = 52.3457 deg) is self-locking with friction f_pin = 0.1, f_slide = 0.15, pin radius 0.01 m: the friction loads grow without bound, no finite balancing moment'),
     ('kinetostatics.singular_balance', {'position': 5, 'phi': 52.345669999999984, 'link': 'crank', 'balancing': 'moment'},
@@ -350,6 +359,8 @@ ENGLISH = [
      "extra point 'A' repeats a point of the link"),
     ('input.ground_unused', {'point': 'O1'},
      "ground point 'O1' is used by no link"),
+    ('input.point_not_ground', {'point': 'O2', 'link': 'rocker', 'ground': 'O3'},
+     "point 'O2' of link 'rocker' is on no other link and is no ground point: did you mean the ground point 'O3'?"),
     ('input.drive_slider', {'link': 'ram'},
      "the drive link 'ram' must be a bar (a crank), not a slider"),
     ('input.drive_no_pivot', {'link': 'crank', 'points': "['A', 'B']"},
@@ -945,7 +956,7 @@ def test_plain_string_and_unknown_code():
 def test_render_list_reads_messages_else_warnings():
     m = Message("dof2.rotor_reverses")
     assert render_list({"warnings": [str(m)], "messages": [m.to_dict()]}, "uk") == \
-        ["машина з двома ступенями вільності: ротор змінює напрямок обертання"]
+        ["машина з двома ступенями рухомості: ротор змінює напрямок обертання"]   # the glossary's term
     # results.json written before messages existed: the English texts as they are
     assert render_list({"warnings": ["old text"]}, "ru") == ["old text"]
     assert render_list({}, "ru") == []
@@ -1039,5 +1050,5 @@ def test_crank_angle_intervals_are_data_formatted_per_language():
     assert m.params["intervals"] == [[37.46, 52.14], [350.0, 10.25], [120.012, 120.048]]
     assert "crank angles 37.460000..52.140000, 350.000000..10.250000, 120.012000..120.048000 deg:" in m
     ru = render(m.code, m.params, "ru")
-    assert "при углах кривошипа φ = 37.5…52.1°, 350.0…10.2°, 120.01…120.05°: уравнения" in ru
-    assert "φ = 37.5…52.1°" in render(m.code, m.params, "uk")
+    assert "при углах кривошипа φ = 37,5…52,1°, 350,0…10,2°, 120,01…120,05°: уравнения" in ru   # decimal comma
+    assert "φ = 37,5…52,1°" in render(m.code, m.params, "uk")

@@ -87,5 +87,5 @@ def test_shift_rule_in_the_same_words_as_the_messages():
 def test_batch_angle_as_in_the_failure_box():
     """The summary's 'at crank angle' reads as the report's failure box: φ = 30.5°."""
     from tmm_cli.messages import render
-    assert render("batch.at_angle", {"angle": 30.5}, "ru") == " при угле кривошипа φ = 30.5°"
-    assert render("batch.at_angle", {"angle": 30.5}, "uk") == " при куті кривошипа φ = 30.5°"
+    assert render("batch.at_angle", {"angle": 30.5}, "ru") == " при угле кривошипа φ = 30,5°"
+    assert render("batch.at_angle", {"angle": 30.5}, "uk") == " при куті кривошипа φ = 30,5°"

@@ -169,6 +169,7 @@ def slotted_results(count=12):
 # ----------------------------------------------------------------------------
 from tmm_cli.report import render, render_html  # noqa: E402
 from tmm_cli.report import figures as F  # noqa: E402
+from tmm_cli.numfmt import localize  # noqa: E402
 from tmm_cli.report.context import fmt  # noqa: E402
 from tmm_cli.plans import build_plan, geometry, scales  # noqa: E402
 
@@ -298,9 +299,9 @@ def test_angular_sense_marks(html_ru):
     col = hdr.index("2 (rod)")
     assert "3 (slider)" not in hdr            # a slider on a fixed guide does not turn
     for wr, er in zip(w_rows[1:], e_rows[1:]):
-        s = slider_crank_state(float(wr[1]))
+        s = slider_crank_state(float(wr[1].replace(",", ".")))     # the decimal comma of Russian
         for txt, x in ((wr[col], s["db"]), (er[col], s["ddb"])):
-            assert txt.split()[0] == fmt(x)
+            assert txt.split()[0] == localize(fmt(x), "ru")
             if abs(x) > 1e-9:
                 assert txt.endswith("↺" if x > 0 else "↻")
             else:                                   # a dead centre: no sense

@@ -84,7 +84,7 @@ def test_task_data_has_no_python_formatting(reports):
     sec = re.search(r'<section class="section" id="task">(.*?)</section>', ru, re.S).group(1)
     cells = _texts(sec, ("td",))
     assert not [c for c in cells if re.search(r"[\[\]]|\w\[\d", c)], cells
-    assert "0; 0.7; 0.7; 0.9; 1" in cells              # the s/H points of the load diagram
+    assert "0; 0,7; 0,7; 0,9; 1" in cells              # the s/H points of the load diagram (decimal comma)
     assert "0; 0; 6000; 15000; 15000 Н" in cells       # its forces, N
-    assert "5.23599 рад/с" in cells                    # 50 rpm = 5.235988 rad/s
+    assert "5,23599 рад/с" in cells                    # 50 rpm = 5.235988 rad/s
     assert "против часовой стрелки" in cells

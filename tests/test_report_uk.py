@@ -81,6 +81,6 @@ def test_headings_are_ukrainian(reports):
 
 def test_warnings_translated():
     assert render("gears.contact_ratio_course", {"eps": 1.05, "limit": 1.2}, "uk") == \
-        "зубчаста передача: коефіцієнт перекриття ε_α = 1.05 < 1.2 (мінімум курсового проєкту)"
+        "зубчаста передача: коефіцієнт перекриття ε_α = 1,05 < 1,2 (мінімум курсового проєкту)"
     assert render("cam.soft_impact", {"phi": 120.0, "where": "rise/far_dwell"}, "uk") == \
         "м'який удар (скінченний стрибок прискорення) при φ = 120° (віддалення / дальнє стояння)"

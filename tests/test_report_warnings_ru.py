@@ -16,17 +16,17 @@ ROOT = Path(__file__).resolve().parents[1]
 @pytest.mark.parametrize("code,params,en,ru", [
     ("cam.soft_impact", {"phi": 140.0, "where": "far_dwell/return"},
      "soft impact (finite jump of acceleration) at phi = 140 deg (far_dwell/return)",
-     "мягкий удар (конечный скачок ускорения) при φ = 140° (дальний выстой / возвращение)"),
+     "мягкий удар (конечный скачок ускорения) при φ = 140° (дальнее стояние / возвращение)"),
     ("cam.rigid_impact", {"phi": 90.0, "where": "rise"},
      "rigid impact (jump of velocity, infinite acceleration) at phi = 90 deg (rise)",
      "жёсткий удар (скачок скорости, бесконечное ускорение) при φ = 90° (удаление)"),
     ("gears.undercut", {"wheel": 2, "z": 15, "x": 0.0, "x_min": 0.11764705882352944},
      "gears: wheel 2 (z = 15) is undercut: x2 = 0 < x_min = 0.1176",
-     "зубчатая передача: колесо 2 (z = 15) подрезано: x2 = 0 < x_min = 0.1176"),
+     "зубчатая передача: колесо 2 (z = 15) подрезано: x2 = 0 < x_min = 0,1176"),
     ("cam.swing_auto", {"swing": "with", "r0": 20.29442991, "other": "against", "r0_other": 21.4868449},
      "swing auto: the rocker turns with the cam on the rise (r0 = 20.294 mm; against: 21.487 mm)",
-     "выбор направления: коромысло на удалении вращается в сторону вращения кулачка (r0 = 20.294 мм; "
-     "против вращения: 21.487 мм)"),
+     "выбор направления: коромысло на удалении вращается в сторону вращения кулачка (r0 = 20,294 мм; "
+     "против вращения: 21,487 мм)"),
 ])
 def test_known_warnings(code, params, en, ru):
     m = Message(code, **params)

@@ -180,8 +180,8 @@ def test_failing_planetary_keeps_cam_gears_and_the_report(tmp_path):
     assert (out / "cam_profile.dxf").exists() and (out / "gears_outline.dxf").exists()
 
 
-@pytest.mark.parametrize("lang, words", [("ru", "ни один набор чисел зубьев схемы A не даёт i_1H = 1.2"),
-                                         ("uk", "жоден набір чисел зубів схеми A не дає i_1H = 1.2")])
+@pytest.mark.parametrize("lang, words", [("ru", "ни один набор чисел зубьев схемы A не даёт i_1H = 1,2"),
+                                         ("uk", "жоден набір чисел зубів схеми A не дає i_1H = 1,2")])
 def test_stage_failure_in_the_report_language(tmp_path, lang, words):
     """A stage's failure: English on stderr and in results.json `errors[].message` (with its
     code and parameters beside it); the report's failure box in the report's language."""
@@ -241,7 +241,7 @@ def test_linkage_failure_in_the_report_language(tmp_path, lang, words):
     box = (out / "report.html").read_text(encoding="utf-8").split('id="kinematics-failed"', 1)[1]
     box = box.split("</section>", 1)[0]
     assert words in box and "does not assemble" not in box and "too short" not in box
-    where = {"ru": "при угле кривошипа φ = 30.5°", "uk": "при куті кривошипа φ = 30.5°"}[lang]
+    where = {"ru": "при угле кривошипа φ = 30,5°", "uk": "при куті кривошипа φ = 30,5°"}[lang]   # decimal comma
     assert where in box                       # the failure's crank angle (the first bad one found)
 
 

@@ -79,7 +79,7 @@ def test_drive_train_task_data_in_russian():
 
 
 @pytest.mark.parametrize("lang, words", [("ru", "по отклонению передаточного отношения"),
-                                         ("uk", "за відхиленням передаточного відношення"),
+                                         ("uk", "за відхиленням передатного відношення"),
                                          ("en", "by the error of the ratio")])
 def test_drive_train_candidates_heading_in_words(lang, words):
     from tmm_cli.report.sections.drive_train import rank_words

@@ -163,6 +163,8 @@ def study_cmd(
         paths = study_mod.write(st, out, trap, lang)
     except OSError as exc:
         raise _fail_write(exc)
+    for line in study_mod.trades(st, lang):      # the trade in plain words first, then the files
+        typer.echo(line[0].upper() + line[1:] + ".")
     for p in paths:
         typer.echo(str(p))
 

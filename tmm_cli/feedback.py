@@ -7,6 +7,8 @@ import html
 import re
 from pathlib import Path
 
+from .numfmt import num
+
 # section -> (step en, step ru, depends on en, depends on ru)
 STEPS = {
     "structure": ("structural analysis (Chebyshev's formula, Assur groups)",
@@ -42,7 +44,7 @@ STEPS = {
     "synthesis": ("lever mechanism synthesis from K and the stroke", "синтез рычажного механизма по K и ходу",
                   "the given K and stroke", "заданные K и ход"),
     "dof2": ("the machine with two degrees of freedom (Lagrange's equations)",
-             "машина с двумя степенями свободы (уравнения Лагранжа)", "the initial state", "начальное состояние"),
+             "машина с двумя степенями подвижности (уравнения Лагранжа)", "the initial state", "начальное состояние"),
 }
 
 TEXT = {
@@ -78,10 +80,10 @@ STEPS_UK = {
     "gears": ("геометрія евольвентного зачеплення: α_w за inv α_w, потім радіуси й товщини",
               "модуль, числа зубів і коефіцієнти зміщення"),
     "planetary": ("добір чисел зубів планетарної передачі (Вілліс, співвісність, складання, сусідство)",
-                  "задане передаточне відношення"),
-    "drive_train": ("передаточне відношення і швидкості приводу", "ступені приводу"),
+                  "задане передатне відношення"),
+    "drive_train": ("передатне відношення і швидкості приводу", "ступені приводу"),
     "synthesis": ("синтез важільного механізму за K і ходом", "задані K і хід"),
-    "dof2": ("машина з двома ступенями вільності (рівняння Лагранжа)", "початковий стан"),
+    "dof2": ("машина з двома ступенями рухомості (рівняння Лагранжа)", "початковий стан"),
 }
 
 
@@ -101,13 +103,14 @@ def step_for(path: str, lang: str) -> str:
 
 
 def _num(x, lang: str = "en") -> str:
+    """A value of the page in ``lang``'s writing (ru, uk: 0,25 and 8,9·10⁻¹⁶; numfmt)."""
     if x is None:
         return "–"
     try:
-        text = f"{float(x):.5g}"
+        v = float(x)
     except (TypeError, ValueError):
         return str(x)
-    return text.replace(".", ",") if lang in ("ru", "uk") else text
+    return num(v, ".5g", lang)
 
 
 _NUMBER_HEAD = re.compile(r"^\s*[-+\u2212\u2013]?[\d\s.,\u00a0\u202f]*\d(?:[eE][-+]?\d+)?\s*")

@@ -149,11 +149,25 @@ def put(results: dict, warnings: list, name: str | None, res, *, keep_warnings: 
     warnings.extend(res.warnings)
 
 
+def massless_links(task: Task, mech) -> list:
+    """A warning naming the moving links without mass where inertia is taken into account
+    (kinetostatics with inertia, or a flywheel): no inertia force acts on them."""
+    from .messages import Message
+    kst = task.kinetostatics is not None and task.kinetostatics.inertia
+    if not (kst or task.flywheel is not None):
+        return []
+    names = [lk.name for lk in mech.links if not lk.mass > 0]
+    if not names:
+        return []
+    return [Message("inertia.massless_flywheel" if task.flywheel is not None else "inertia.massless", links=names)]
+
+
 def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explore: bool, built: dict) -> None:
     """The linkage chain: its context (structure, positions, the crank speed), then
     kinematics, dynamics (``flywheel``) and kinetostatics."""
     from .linkage import dynamics, kinematics, kinetostatics, structure
     from .linkage.context import Linkage, reported_positions
+    from .linkage.kinematics.positions import quick_working
     from .linkage.drive_speed import resolve
     from .linkage.mechanism import build_mechanism
 
@@ -175,6 +189,8 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explo
     positions = _stage("positions")(reported_positions)(mech, task.positions, task.loads, task.drive.sign,
                                                          float(task.drive.cycle), kinks=task.flywheel is not None)
     check_detail(task, positions)
+    warnings.extend(quick_working(positions))
+    warnings.extend(massless_links(task, mech))
     results["positions"] = positions.to_dict()
     # the position the report works step by step (report.detail_position, or the default)
     detail = task.report.detail_position if task.report is not None else None

@@ -16,7 +16,10 @@ convergence order: the slope of log(error) against log(1/step) fitted over the f
 rows whose error is above the rounding floor (the asymptotic range; null when fewer than
 three rows are, or the setting is not a resolution, as for the planetary search); `theory`
 is the order of the rule used.
-The timings live here only: results.json stays deterministic.
+The timings live here only: results.json stays deterministic. Each row is timed after one
+untimed call (no cold start). `default` is the setting a run uses (where the stage has one);
+`trade()` says the coarsest row against it (else the finest) in one plain sentence, which
+study.html and `tmm study` print first.
 
 Stages and settings (the rule, its theoretical order):
 * flywheel: `resolution` (grid intervals; two-point Gauss-Legendre per interval: 4), values
@@ -45,6 +48,7 @@ Stages and settings (the rule, its theoretical order):
 from __future__ import annotations
 
 import math
+import re
 import time
 from contextlib import contextmanager
 from typing import Callable
@@ -89,8 +93,10 @@ def fit_order(settings, errors, floor: float = FLOOR, inverse: bool = False,
 
 
 def _timed(fn: Callable[[], dict], repeat: int = 3) -> tuple[dict, float]:
+    """(fn(), the best of ``repeat`` timed calls in ms) after one untimed call: a first
+    call's imports and caches (a cold start) are not the setting's cost."""
     best = math.inf
-    out = None
+    out = fn()
     for _ in range(repeat):
         t0 = time.perf_counter()
         out = fn()
@@ -155,6 +161,7 @@ def study_flywheel(task, linkage, quadrature: int | None = None, repeat: int = 3
     refs = [2880, 5760, 11520] if quadrature != 0 else [23040, 46080]
     out = sweep("resolution", lambda r: flywheel_values(task, linkage, r, quadrature),
                 settings, refs, repeat=repeat, stage="flywheel")
+    out["default"] = int(task.flywheel.resolution)
     if quadrature == 0:
         out["theory"] = 2
     return out
@@ -199,7 +206,7 @@ def study_curves(linkage, repeat: int = 3) -> dict:
     diff = max(abs(e1[k] - e2[k]) / max(e2[k], 1e-300) for k in e1)
     ref = {"stroke": float(scale[0]), "v_max": float(scale[1]), "a_max": float(scale[2]),
            "setting": KST_EVAL, "check": {"setting": 2 * KST_EVAL, "points": n0, "difference": diff}}
-    return {"setting": "points", "reference": ref, "rows": rows,
+    return {"setting": "points", "reference": ref, "rows": rows, "default": n0,
             "order": fit_order(settings, [r["error"] for r in rows]), "theory": THEORY["curves"]}
 
 
@@ -329,7 +336,7 @@ def study_kinetostatics(task, linkage, repeat: int = 3) -> dict:
     ref = {"M_b_max": float(np.max(np.abs(d.exact[ok, 0]))),
            "R_max": float(np.max(np.abs(d.exact[ok, 1:]))) if d.exact.shape[1] > 1 else 0.0,
            "setting": KST_EVAL, "check": {"setting": 2 * KST_EVAL, "positions": n0, "difference": diff}}
-    return {"setting": "positions", "reference": ref, "rows": rows,
+    return {"setting": "positions", "reference": ref, "rows": rows, "default": n0,
             "order": fit_order(settings, [r["error"] for r in rows]), "theory": THEORY["kinetostatics"]}
 
 
@@ -530,6 +537,46 @@ def _fmt(v, key: str = "") -> str:
     return str(v)
 
 
+def _error_text(e: float | None) -> str:
+    """A relative error in plain words: '10.7 %' down to 0.01 %, below it the number itself
+    ('2e-11'), written in the current language."""
+    from .numfmt import localize
+    if e is None or not math.isfinite(e):
+        return "—"
+    if e >= 1e-4:
+        return localize(f"{100 * e:.3g} %")
+    return localize(re.sub(r"e([-+])0*(\d)", r"e\1\2", f"{e:.1g}")) if e > 0 else "0"
+
+
+def trade(stage: str, d: dict, lang: str = "en") -> str | None:
+    """The stage's trade in one sentence: the coarsest setting's error and time against the
+    tool's default setting (else the finest): '12 positions give 10.7 %, 720 give 0.01 %'."""
+    from .numfmt import language, localize
+    from .report import i18n
+    from .report.sections import study as sec
+    i18n.register(sec.I18N)
+    rows = d.get("rows") or []
+    key = f"study.trade.{stage}"
+    if len(rows) < 2 or key not in i18n.STRINGS["en"]:
+        return None
+    a = rows[0]
+    dflt = d.get("default")
+    b = next((r for r in rows if r["setting"] == dflt), None)
+    if b is None or b is a:
+        b, dflt_text = rows[-1], ""
+    else:
+        dflt_text = i18n.translate("study.default", lang)
+    with language(lang):
+        return i18n.translate(key, lang, a=localize(f"{a['setting']:g}"), b=localize(f"{b['setting']:g}"),
+                              ea=_error_text(a["error"]), eb=_error_text(b["error"]), dflt=dflt_text,
+                              ta=localize(f"{a['time_ms']:.3g}"), tb=localize(f"{b['time_ms']:.3g}"))
+
+
+def trades(study: dict, lang: str = "en") -> list[str]:
+    """The trade sentence of every stage of the study (its order)."""
+    return [s for s in (trade(stage, d, lang) for stage, d in study.items()) if s]
+
+
 def html_section(study: dict, trapezoid: dict | None = None, lang: str = "en") -> str:
     """A report section in `lang`: per stage the table, the measured and the theoretical
     order and a log-log plot (texts: tmm_cli/report/sections/study.py, I18N)."""
@@ -545,7 +592,12 @@ def html_section(study: dict, trapezoid: dict | None = None, lang: str = "en") -
         key = f"study.col.{k}"
         return i18n.translate(key, lang) if key in i18n.STRINGS["en"] else k
 
-    parts = [f"<section><h2>{h.escape(t('title'))}</h2>", f"<p>{h.escape(t('intro', tol=f'{REF_TOL:g}'))}</p>"]
+    parts = [f"<section><h2>{h.escape(t('title'))}</h2>"]
+    short = trades(study, lang)        # the trade first, in plain words; the method after it
+    if short:
+        parts.append(f"<h3>{h.escape(t('short'))}</h3><ul class='trade'>"
+                     + "".join(f"<li>{h.escape(x[0].upper() + x[1:])}.</li>" for x in short) + "</ul>")
+    parts.append(f"<p>{h.escape(t('intro', tol=f'{REF_TOL:g}'))}</p>")
     for stage, d in study.items():
         rows = d["rows"]
         keys = [k for k in rows[0] if k not in ("setting", "error", "time_ms")]

@@ -260,16 +260,16 @@ def print_batch(rows: list[dict], out: Path, skipped=(), removed=(), notes=()) -
 I18N = {
     "en": {"title": "tmm batch", "student": "student", "group": "group", "variant": "variant", "status": "status",
            "score": "score", "message": "message", "files": "files", "report": "report", "check": "check",
-           "feedback": "feedback", "rows": "rows", "legend": "Legend",
+           "feedback": "feedback", "rows": "Rows", "legend": "Legend",
            "ok": "ok", "outside": "outside tolerance", "sign": "sign error", "missing": "missing",
            "unknown_path": "unknown path", "not_computed": "not computed", "no_answers": "no answers",
            "invalid": "invalid", "failed": "failed", "computed": "computed"},
     "ru": {"title": "tmm: сводка по группе", "student": "студент", "group": "группа", "variant": "вариант",
            "status": "статус", "score": "балл", "message": "сообщение", "files": "файлы", "report": "отчёт",
-           "check": "проверка", "feedback": "разбор", "rows": "строк", "legend": "Обозначения"},
-    "uk": {"title": "tmm: зведення по групі", "student": "студент", "group": "група", "variant": "варіант",
+           "check": "проверка", "feedback": "разбор", "rows": "Строк", "legend": "Обозначения"},
+    "uk": {"title": "tmm: підсумки групи", "student": "студент", "group": "група", "variant": "варіант",
            "status": "статус", "score": "бал", "message": "повідомлення", "files": "файли", "report": "звіт",
-           "check": "перевірка", "feedback": "розбір", "rows": "рядків", "legend": "Позначення"},
+           "check": "перевірка", "feedback": "розбір", "rows": "Рядків", "legend": "Позначення"},
 }
 COLOURS = {"ok": "#c8e6c9", "outside": "#ffcdd2", "sign": "#e1bee7", "missing": "#fff9c4",
            "unknown_path": "#ffe0b2", "not_computed": "#e0e0e0", "no_answers": "#cfd8dc", "invalid": "#ef9a9a",
@@ -337,7 +337,7 @@ def summary_html(rows: list[dict], paths: list[str], source: str, lang: str = "e
             "font-weight:normal;font-size:11px}th.q span{writing-mode:vertical-rl;transform:rotate(180deg);"
             "white-space:nowrap;display:inline-block}td.m{text-align:center}td.fl{font-size:11px;color:#b71c1c}"
             ".lg{padding:2px 6px;margin:0 4px 4px 0;border:1px solid #999;display:inline-block}.msg{font-size:11px;max-width:30em;white-space:pre-line}</style>"
-            f"</head><body><h1>{e(T['title'])}: {e(source)}</h1><p>{len(rows)} {e(T['rows'])}</p>"
+            f"</head><body><h1>{e(T['title'])}: {e(source)}</h1><p>{e(T['rows'])}: {len(rows)}</p>"
             f"<p>{e(T['legend'])}: {legend}</p>"
             f"<table><tr>{head}</tr>{''.join(body)}</table></body></html>\n")
 

@@ -16,6 +16,7 @@ carry a guide (RPP / PRP groups).
 """
 from __future__ import annotations
 
+import difflib
 import math
 from dataclasses import dataclass, field
 
@@ -177,9 +178,17 @@ def build_mechanism(task: Task) -> Mechanism:
                 owner[pt].append(i)
         links.append(Link(name=name, index=i, kind=spec.kind, local=local, mass=spec.mass, J=spec.J,
                           com=(0.0, 0.0), guide=None, length=spec.length))
-    # points used by no link
+    # points used by no link: most often a misspelt point of a link ('rocker: [O2, B]' with
+    # the ground point O3): the link's line, its point and the ground point it resembles
     for g in sec.ground:
         if owner[g] == [0]:
+            lone = [pt for pt, o in owner.items() if len(o) == 1 and o[0] != 0 and pt not in sec.ground
+                    and sec.links[names[o[0] - 1]].kind == "bar" and pt in sec.links[names[o[0] - 1]].points]
+            near = difflib.get_close_matches(g, lone, n=1, cutoff=0.5)
+            if near:
+                link = names[owner[near[0]][0] - 1]
+                raise task.error(P + ("links", link, "points"),
+                                 Message("input.point_not_ground", point=near[0], link=link, ground=g))
             raise task.error(P + ("ground", g), Message("input.ground_unused", point=g))
     # drive link
     drive_name = task.drive.link

@@ -14,7 +14,7 @@ The catalogues are one YAML file per language beside this module (``en.yaml``,
     messages:                  # code -> template (str.format, parameters by name)
       cam.soft_impact: "soft impact (finite jump of acceleration) at phi = {phi:.4g} deg ({where})"
     terms:                     # word tables a template names as the format spec
-      phase: {rise: удаление, far_dwell: дальний выстой}
+      phase: {rise: удаление, far_dwell: дальнее стояние}
 
 A placeholder ``{where:phase}`` renders the parameter through the language's ``phase``
 table (the whole value, else each ``/``-separated part, joined by `` / ``; a list joined by
@@ -35,6 +35,8 @@ import functools
 import string
 from pathlib import Path
 from typing import Any
+
+from .. import numfmt
 
 _DIR = Path(__file__).resolve().parent
 # the languages: one catalogue file each, English first
@@ -85,7 +87,7 @@ class _Formatter(string.Formatter):
         if isinstance(value, list) and value and all(isinstance(v, dict) and "code" in v for v in value):
             return ("; " if spec == "joined" else "\n").join(localize(v, self.lang) for v in value)
         if spec == "angles" and isinstance(value, list):
-            return _angles(value)
+            return numfmt.localize(_angles(value), self.lang)
         if spec == "or" and isinstance(value, list):        # alternatives: 'a', 'b' or 'c'
             word = self.terms.get("conj", {}).get("or", "or")
             items = [str(v) for v in value]
@@ -99,9 +101,9 @@ class _Formatter(string.Formatter):
             parts = str(value).split("/")
             return " / ".join(str(table.get(p, p)) for p in parts) if any(p in table for p in parts) else str(value)
         if isinstance(value, list):                          # an interval [a, b]: a..b
-            return ", ".join(f"{format(v[0], spec)}..{format(v[1], spec)}" if isinstance(v, list) and len(v) == 2
-                             else format(v, spec) for v in value)
-        return format(value, spec)
+            return ", ".join(f"{numfmt.num(v[0], spec, self.lang)}..{numfmt.num(v[1], spec, self.lang)}"
+                             if isinstance(v, list) and len(v) == 2 else numfmt.num(v, spec, self.lang) for v in value)
+        return numfmt.localize(format(value, spec), self.lang) if numfmt.is_number(value) else format(value, spec)
 
 
 def render(code: str, params: dict, lang: str = "en") -> str:

@@ -47,6 +47,7 @@ import re
 
 from pathlib import Path
 
+from .. import numfmt
 from ..messages import render_list
 from ..reproducible import source_date
 from .context import ReportContext, templates_dir
@@ -55,7 +56,8 @@ from . import sections as _sections
 __all__ = ["render", "render_html", "make_env", "PdfSkipped"]
 
 
-_NUM = re.compile(r"^[−+-]?(\d+(\.\d*)?|\.\d+)([eE][−+-]?\d+)?( [↺↻])?$")
+# a number as the report writes it: 0.25, 8.9e-16 (en); 0,25, 8,9·10⁻¹⁶ (ru, uk)
+_NUM = re.compile(r"^[−+-]?(\d+([.,]\d*)?|[.,]\d+)([eE][−+-]?\d+|·10[⁻⁺]?[⁰¹²³⁴⁵⁶⁷⁸⁹]+)?( [↺↻])?$")
 
 
 def _is_numeric(value) -> bool:
@@ -110,6 +112,7 @@ def make_env():
     env.filters["fmt"] = fmt
     env.filters["fmt_fixed"] = fmt_fixed
     env.tests["numeric"] = _is_numeric
+    env.globals["unit"] = numfmt.unit          # a task-file unit in the report's language
     return env
 
 
@@ -187,9 +190,10 @@ def _assemble(ctx: ReportContext, frags: dict[str, str | None]) -> str:
 
 def render_html(results: dict, task, out_dir: Path, lang: str = "en") -> tuple[str, ReportContext]:
     """Build the HTML text (sections may write CSV files into out_dir)."""
-    ctx = _context(results, task, out_dir, lang)
-    frags = _build(ctx, [name for name, _ in _sections.available()])
-    return _assemble(ctx, frags), ctx
+    with numfmt.language(lang):
+        ctx = _context(results, task, out_dir, lang)
+        frags = _build(ctx, [name for name, _ in _sections.available()])
+        return _assemble(ctx, frags), ctx
 
 
 _H2 = re.compile(r"<h2\b[^>]*>(.*?)</h2>", re.S)
@@ -270,6 +274,7 @@ def _helper(conn, results, task, out_dir, lang, names, pdf, parent_pid=None, par
     (compiled while the main process writes report.html and the figure files)."""
     if parent_pid is not None:
         _die_with_parent(parent_pid, parent_end)
+    numfmt.language(lang).__enter__()     # this process's numbers: the report's language
     try:
         ctx = _context(results, task, out_dir, lang)
         frags = _build(ctx, names)
@@ -428,6 +433,14 @@ def _figure_files(ctx, html: str):
 
 def render(results: dict, task, out_dir: Path, formats: set[str], lang: str = "en",
            notes: list[str] | None = None) -> list[Path]:
+    """Write report.html and/or report.pdf (+ CSV tables) into out_dir; return the paths
+    (:func:`_render`), every number written in ``lang``'s way (:mod:`tmm_cli.numfmt`)."""
+    with numfmt.language(lang):
+        return _render(results, task, out_dir, formats, lang, notes)
+
+
+def _render(results: dict, task, out_dir: Path, formats: set[str], lang: str = "en",
+            notes: list[str] | None = None) -> list[Path]:
     """Write report.html and/or report.pdf (+ CSV tables) into out_dir; return the paths.
 
     If the PDF engine cannot run here, ``notes`` (when given) receives one line

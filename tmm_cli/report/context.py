@@ -8,6 +8,7 @@ from pathlib import Path
 from typing import Any
 
 from ..io import atomic_write
+from ..numfmt import localize
 from . import figures
 from .i18n import translate
 
@@ -37,7 +38,8 @@ def values_of(keys: tuple):
 def fmt(x: Any, digits: int = 4) -> str:
     """Number for a table: `digits` significant digits, no exponent for
     1e-4 <= |x| < 1e7, '—' for None/NaN, '0' for |x| < 1e-10 (round-off of an
-    exact zero in SI units) and '-0'."""
+    exact zero in SI units) and '-0'; written in the current language (numfmt: the
+    decimal comma and 8,9·10⁻¹⁶ in ru and uk)."""
     if x is None:
         return "—"
     if isinstance(x, bool):
@@ -54,12 +56,12 @@ def fmt(x: Any, digits: int = 4) -> str:
     if a < 1e-10:      # round-off of an exact zero (a dead-centre velocity ...)
         return "0"
     if a < 1e-4 or a >= 1e7:
-        return f"{v:.{max(digits - 1, 0)}e}"
+        return localize(f"{v:.{max(digits - 1, 0)}e}")
     decimals = max(digits - 1 - int(math.floor(math.log10(a))), 0)
     s = f"{v:.{decimals}f}"
     if float(s) == 0:
         return "0"
-    return s
+    return localize(s)
 
 
 def fmt_fixed(x: Any, decimals: int = 2) -> str:
@@ -75,7 +77,7 @@ def fmt_fixed(x: Any, decimals: int = 2) -> str:
     s = f"{v:.{decimals}f}"
     if float(s) == 0:
         s = f"{0.0:.{decimals}f}"
-    return s
+    return localize(s)
 
 
 @dataclass
@@ -172,6 +174,31 @@ class ReportContext:
             return [l["name"] for l in sorted(links, key=lambda l: l["index"])]
         kin = self.results.get("kinematics") or []
         return list(kin[0]["links"].keys()) if kin else []
+
+    def link_kind_word(self, name: str) -> str | None:
+        """The kind of a link in words ('кривошип', 'камень кулисы'), None where unknown."""
+        from ..plans import geometry
+        from .sections.structure import link_kind
+        geom = self.__dict__.get("_geometry", False)
+        if geom is False:
+            try:
+                geom = geometry(self.results)
+            except (KeyError, TypeError, ValueError):
+                geom = None
+            self.__dict__["_geometry"] = geom
+        link = geom.by_name(name) if geom is not None else None
+        return None if link is None else self.t("link." + link_kind(geom, link))
+
+    def link_label(self, name: str) -> str:
+        """A link as the text names it: its kind and number, the task's name in brackets
+        ('кривошип 1 (crank)'); the number and the name where the kind is unknown."""
+        kind = self.link_kind_word(name)
+        return f"{kind} {self.link_ref(name)}" if kind else self.link_ref(name)
+
+    def link_ref(self, name: str) -> str:
+        """A link by its number and the task's name ('3 (rocker)'): in any grammatical case."""
+        names = self.link_names()
+        return f"{names.index(name) + 1} ({name})" if name in names else str(name)
 
     def link_index(self, name: str) -> int:
         try:

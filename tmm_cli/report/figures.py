@@ -16,6 +16,7 @@ from operator import itemgetter
 
 import numpy as np
 
+from .. import numfmt
 from ..reproducible import stable_svg_ids
 from .svgdraw import PT_PER_MM
 
@@ -71,12 +72,49 @@ def svg(fig) -> str:
     """
     buf = io.StringIO()
     try:
+        if numfmt.comma():
+            _localize_figure(fig)
         fig.savefig(buf, format="svg", metadata={"Date": None, "Creator": None})
     finally:
         plt().close(fig)
     text = _HEAD.sub(r"\1", buf.getvalue(), count=1)
     text = _SIZE.sub(r'\1 class="fig" width="\2pt" height="\3pt"', text, count=1)
     return stable_svg_ids(text)
+
+
+def _localize_figure(fig) -> None:
+    """The figure's texts and tick labels with the numbers as the current language writes
+    them (the decimal comma in ru and uk: numfmt)."""
+    from matplotlib.text import Text
+    for t in fig.findobj(Text):
+        s = t.get_text()
+        if s:
+            t.set_text(numfmt.localize(s))
+    for ax in fig.axes:
+        for axis in (ax.xaxis, ax.yaxis):
+            fmt = axis.get_major_formatter()
+            fmt.__class__ = _localized(type(fmt))
+
+
+_LOCALIZED: dict[type, type] = {}
+
+
+def _localized(cls: type) -> type:
+    """A subclass of the tick formatter ``cls`` whose labels are localised (numfmt)."""
+    if getattr(cls, "_tmm_localized", False):
+        return cls
+    if cls not in _LOCALIZED:
+        def call(self, x, pos=None):
+            return numfmt.localize(cls.__call__(self, x, pos))
+
+        def ticks(self, values):
+            return [numfmt.localize(s) for s in cls.format_ticks(self, values)]
+
+        def offset(self):
+            return numfmt.localize(cls.get_offset(self))
+        _LOCALIZED[cls] = type("Localized" + cls.__name__, (cls,), {
+            "__call__": call, "format_ticks": ticks, "get_offset": offset, "_tmm_localized": True})
+    return _LOCALIZED[cls]
 
 
 _NAME_OK = re.compile(r"[^a-z0-9-]+")
@@ -170,9 +208,19 @@ def std_graph(fig, axes, mm: str = "mm", x_axis=None, x_sym: str = "φ", x_unit:
 
 
 def mu_text(sym: str, mu: float, unit: str, mm: str = "mm") -> str:
-    """The scale in the course's form: 'μs = 0.002 m/mm', 'μv = 0.05 (m/s)/mm'."""
+    """The scale in the course's form: 'μs = 0.002 m/mm', 'μv = 0.05 (m/s)/mm' (in Russian and
+    Ukrainian 'μv = 0,05 м/(с·мм)')."""
+    if mm != "mm" and "/" in unit and not unit.startswith("("):   # ru, uk: м/(с·мм), as the course writes it
+        num, den = unit.split("/", 1)
+        return f"μ{sym} = {mu:g} {num}/({den}·{mm})"
     u = f"({unit})" if "/" in unit and not unit.startswith("(") else unit
     return f"μ{sym} = {mu:g} {u}/{mm}"
+
+
+def scale_mark(lang: str) -> str:
+    """The letter before a drawing scale (ГОСТ 2.302: 'M 1:10'): the Cyrillic capital Em in
+    Russian and Ukrainian."""
+    return "\u041c" if lang in ("ru", "uk") else "M"
 
 
 # standard drawing scales (GOST 2.302): enlargements n:1 and reductions 1:n, as model mm per paper mm
@@ -742,7 +790,7 @@ def figure_for_box(lo, hi, width_mm, min_h=40.0, max_h=150.0, margin_mm=8.0, lan
     c = (lo + hi) / 2
     view = SchemeView(width_mm, h, c - unit * np.array([width_mm / 2, h / 2]), unit)
     m, mm = ("м", "мм") if lang in ("ru", "uk") else ("m", "mm")
-    title = f"{mu_text('l', unit, m, mm)}  (M {label})"
+    title = f"{mu_text('l', unit, m, mm)}  ({scale_mark(lang)} {label})"
     size = 7.0
     fs = size / PT_PER_MM
     x0, top = 0.01 * width_mm, 0.99 * h          # the text's top left, as matplotlib put it

@@ -44,6 +44,7 @@ STRINGS: dict[str, dict[str, str]] = {
         "link.rod": "connecting rod",
         "link.rocker": "rocker",
         "link.slider": "slider",
+        "link.block": "sliding block",
         "link.slotted": "slotted link",
         "link.bar": "link",
         # task section
@@ -97,7 +98,7 @@ STRINGS: dict[str, dict[str, str]] = {
         "kin.mu_a": "acceleration scale",
         "kin.reading": "reading plans drawn with the crank pin's vectors pa, πa about 100 mm long to ±0.5 mm (the hand method's own error)",
         "kin.reading_val": "±{ev} m/s, ±{ea} m/s²; relative, over the points and positions: median {med} %, "
-                           "largest {top} % (per quantity in results.json, graphical_error)",
+                           "largest {top} %",
         "kin.link_lengths": "Link lengths on the drawing",
         "kin.drawing_mm": "On the drawing, mm",
         "kin.velocity_plan": "Velocity plan",
@@ -157,6 +158,7 @@ STRINGS: dict[str, dict[str, str]] = {
         "link.rod": "шатун",
         "link.rocker": "коромысло",
         "link.slider": "ползун",
+        "link.block": "камень кулисы",
         "link.slotted": "кулиса",
         "link.bar": "звено",
         "task.title": "Задание",
@@ -207,7 +209,7 @@ STRINGS: dict[str, dict[str, str]] = {
         "kin.mu_a": "масштабный коэффициент плана ускорений",
         "kin.reading": "чтение планов, построенных с отрезками pa и πa около 100 мм, с точностью ±0,5 мм (погрешность графического метода)",
         "kin.reading_val": "±{ev} м/с, ±{ea} м/с²; относительная по точкам и положениям: медиана {med} %, "
-                           "наибольшая {top} % (по каждой величине в results.json, graphical_error)",
+                           "наибольшая {top} %",
         "kin.link_lengths": "Длины звеньев на чертеже",
         "kin.drawing_mm": "На чертеже, мм",
         "kin.velocity_plan": "План скоростей",
@@ -266,14 +268,16 @@ def register(table: dict[str, dict[str, str]]) -> None:
 def translate(key: str, lang: str, **kw) -> str:
     """Text for ``key`` in ``lang`` (fallback: English, then the key itself).
 
-    Keyword arguments are substituted with ``str.format``.
+    Keyword arguments are substituted with ``str.format`` (a number in ``lang``'s writing:
+    the decimal comma in ru and uk, :mod:`tmm_cli.numfmt`).
     """
     text = STRINGS.get(lang, {}).get(key)
     if text is None:
         text = STRINGS["en"].get(key, key)
     if kw:
+        from ..numfmt import format_text
         try:
-            text = text.format(**kw)
+            text = format_text(text, lang, **kw)
         except (KeyError, IndexError, ValueError):
             pass
     return text

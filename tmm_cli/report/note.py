@@ -15,6 +15,7 @@ from __future__ import annotations
 import datetime
 import re
 
+from ..numfmt import localize
 from . import typst_pdf
 from .i18n import words_beside
 
@@ -53,8 +54,7 @@ def _arr(items) -> str:
 def _num(x, lang: str, digits: int = 4) -> str:
     if x is None:
         return "—"
-    s = f"{float(x):.{digits}g}"
-    return s.replace(".", ",") if lang in ("ru", "uk") else s
+    return localize(f"{float(x):.{digits}g}", lang)      # ru, uk: 0,25 and 8,9·10⁻¹⁶
 
 
 def conclusions(results: dict, lang: str) -> list[str]:
@@ -74,7 +74,7 @@ def conclusions(results: dict, lang: str) -> list[str]:
         diff = max((abs(e["balancing_moment"] - e["zhukovsky_moment"]) for e in ks
                     if e.get("balancing_moment") is not None and e.get("zhukovsky_moment") is not None), default=0.0)
         share = f"{100 * diff / top:.2g} %" if top > 0 else "0 %"
-        out.append(W["c_mb"].format(diff=share.replace(".", ",") if lang in ("ru", "uk") else share,
+        out.append(W["c_mb"].format(diff=localize(share, lang),
                                     mb=_num(top, lang)))
     fw = results.get("flywheel")
     if fw and fw.get("J") is not None:
@@ -90,7 +90,7 @@ def conclusions(results: dict, lang: str) -> list[str]:
         err = f"{100 * (pl.get('ratio_error') or 0):.3g} %"
         out.append(W["c_plan"].format(s=pl.get("scheme"), z=", ".join(str(v) for v in (pl.get("z") or {}).values()),
                                       i=_num(pl["ratio"], lang, 6),
-                                      err=err.replace(".", ",") if lang in ("ru", "uk") else err))
+                                      err=localize(err, lang)))
     df = results.get("differential")
     if df:
         out.append(W["c_diff"].format(nH=_num(df["speeds_rpm"]["H"], lang), loss=_num(df.get("power_loss") or 0, lang)))

@@ -23,6 +23,7 @@ from html import escape
 
 import numpy as np
 
+from ..numfmt import localize
 from .svgdraw import FONT, PT_PER_MM, _f, _w, css_color, trim
 
 MM_PER_PT = 1.0 / PT_PER_MM
@@ -42,7 +43,7 @@ def _num(v: float, decimals: int) -> str:
     s = f"{v:.{decimals}f}"
     if float(s) == 0:
         s = f"{0.0:.{decimals}f}"
-    return s.replace("-", "\u2212")
+    return localize(s).replace("-", "\u2212")
 
 
 def nice_ticks(lo: float, hi: float, nbins: int) -> np.ndarray:
@@ -114,7 +115,8 @@ _SCRIPT = re.compile(r"([_^])(\{[^}]*\}|.)")
 
 def text_body(s: str, size_mm: float) -> str:
     """SVG text content of a label; $X_{ab}$ (matplotlib mathtext) -> italic X with a
-    lowered smaller 'ab' (^ raised)."""
+    lowered smaller 'ab' (^ raised); its numbers as the current language writes them."""
+    s = localize(s)
     segs: list[tuple[str, float, bool]] = []       # (text, baseline shift in em, italic)
     pos = 0
     for m in _MATH.finditer(s):

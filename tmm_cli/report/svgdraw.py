@@ -20,6 +20,8 @@ from html import escape
 
 import numpy as np
 
+from .. import numfmt
+
 PT_PER_MM = 72.0 / 25.4
 FONT = "DejaVu Sans"
 
@@ -292,6 +294,8 @@ class Canvas:
             attrs = " ".join(attrs)
             if len(_TEXT_STYLES) < 1024:
                 _TEXT_STYLES[style] = attrs
+        if numfmt.comma():                     # a label's numbers as the language writes them
+            s, after = numfmt.localize(s), after and numfmt.localize(after)
         body = _escape(s)
         if sub:
             body += f'{fsz["sub"]}{_escape(sub)}</tspan>'

@@ -5,6 +5,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from .. import numfmt
+
 SHEETS = {"en": {1: "Kinematics", 2: "Kinetostatics", 3: "Dynamics", 4: "Cam mechanism", 5: "Gear mesh",
                  6: "Planetary gear"},
           "ru": {1: "Кинематический анализ", 2: "Силовой анализ", 3: "Динамический анализ",
@@ -40,14 +42,15 @@ def build_sheets(results: dict, task, lang: str = "en") -> list[tuple]:
     course = getattr(task, "course", None)
     for n, (num, make) in enumerate(makers, start=1):
         cv = PrimCanvas(SHEET_W, SHEET_H)
-        info = make(cv, results, task, lang)
-        info["title_block"] = draw_frame(cv, title=meta.get("title") or getattr(task, "title", "") or "",
-                                         sheet_title=SHEETS[lang][num], variant=meta.get("variant", ""),
-                                         student=student, group=str(group), n=n, total=len(makers),
-                                         scale=info.get("scale", ""), lang=lang,
-                                         supervisor=getattr(course, "supervisor", None) or "",
-                                         designation=getattr(course, "designation", None) or "",
-                                         university=getattr(course, "university", None) or "")
+        with numfmt.language(lang):          # the numbers as the sheet's language writes them
+            info = make(cv, results, task, lang)
+            info["title_block"] = draw_frame(cv, title=meta.get("title") or getattr(task, "title", "") or "",
+                                             sheet_title=SHEETS[lang][num], variant=meta.get("variant", ""),
+                                             student=student, group=str(group), n=n, total=len(makers),
+                                             scale=info.get("scale", ""), lang=lang,
+                                             supervisor=getattr(course, "supervisor", None) or "",
+                                             designation=getattr(course, "designation", None) or "",
+                                             university=getattr(course, "university", None) or "")
         info["number"] = num
         out.append((cv, info))
     return out

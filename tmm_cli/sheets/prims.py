@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import numfmt
 from ..report.svgdraw import PT_PER_MM, Canvas
 
 LAYERS = ("contour", "thin", "dimensions", "text")
@@ -137,6 +138,8 @@ class PrimCanvas(Canvas):
 
     def text(self, x, y, s, size=7.0, color="#000", anchor="middle", italic=False, bold=False,
              sub=None, sup=None, z=8, vcenter=True, halo=False, after=None, narrow=1.0):
+        if numfmt.comma():                     # the sheet's numbers as its language writes them
+            s, after = numfmt.localize(s), after and numfmt.localize(after)
         # every text on a sheet in a ГОСТ 2.304 size: the report's figures drawn here ask
         # for screen sizes in pt, the sheets' own labels (mtext) for h exactly
         fs = self.font_mm(size)

@@ -7,6 +7,7 @@ import math
 
 import numpy as np
 
+from ..report.figures import mu_text, scale_mark
 from .frame import FRAME, length_scale, std_mu
 from .graph import draw_graph
 
@@ -17,11 +18,11 @@ TXT = {
            "chord": "chord method, {n} intervals (dashed): greatest deviation {err} % of the largest value"},
     "ru": {"scheme": "Кинематическая схема", "plans": "Планы, положение {i}", "vplan": "План скоростей",
            "aplan": "План ускорений", "diagrams": "Диаграммы выходного звена", "pos": "положение",
-           "unit_v": "(м/с)/мм", "unit_a": "(м/с²)/мм", "mm": "мм",
+           "unit_v": "м/(с·мм)", "unit_a": "м/(с²·мм)", "mm": "мм",
            "chord": "метод хорд, {n} интервалов (штриховая): наибольшее отклонение {err} % от наибольшего значения"},
     "uk": {"scheme": "Кінематична схема", "plans": "Плани, положення {i}", "vplan": "План швидкостей",
            "aplan": "План прискорень", "diagrams": "Діаграми вихідної ланки", "pos": "положення",
-           "unit_v": "(м/с)/мм", "unit_a": "(м/с²)/мм", "mm": "мм",
+           "unit_v": "м/(с·мм)", "unit_a": "м/(с²·мм)", "mm": "мм",
            "chord": "метод хорд, {n} інтервалів (штрихова): найбільше відхилення {err} % від найбільшого значення"},
 }
 UNITS = {"en": {"m": "m", "m/s": "m/s", "m/s²": "m/s²", "rad": "rad", "rad/s": "rad/s", "rad/s²": "rad/s²",
@@ -170,7 +171,7 @@ def draw_mechanism(cv, geom, entries, course: list[int], box, lang="en", traced_
     cv.mtext(x0 + 2, y0 + h - 4, TXT[lang]["scheme"], 5.0, bold=True)
     mu_l = unit / 1000.0
     cv.mtext(x0 + 2, y0 + h - 11, "μ", 3.5, sub="l", after=f" = {mu_l:g} {UNITS[lang]['m']}/{TXT[lang]['mm']}"
-             f"   (M {label})")
+             f"   ({scale_mark(lang)} {label})")
     return {"unit": unit, "scale": label, "mu_l": mu_l, "paths": paths}
 
 
@@ -272,7 +273,7 @@ def draw_diagrams(cv, results, geom, box, lang="en") -> dict:
         mm = TXT[lang]["mm"]
         pts, = draw_graph(cv, (ax0, yc), [(phase, y, "#1f5fbf")], mu_phi, mu, x_len=360.0 / mu_phi,
                           y_up=rowh / 2 - 3, y_down=rowh / 2 - 3, x_sym="φ", y_sym=sym,
-                          mu_text=f"μ{sym} = {mu:g} {unit}/{mm},  μφ = {mu_phi:g} °/{mm}",
+                          mu_text=f"{mu_text(sym, mu, unit, mm)},  μφ = {mu_phi:g} °/{mm}",
                           ticks=[(30.0 * i, str(i) if i < 12 else "") for i in range(13)])
         good = np.isfinite(y)
         out[key] = {"mu": mu, "pts": pts, "values": y[good]}

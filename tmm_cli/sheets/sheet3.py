@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..report.figures import mu_text
 from .frame import FRAME, std_mu
 from .graph import draw_graph
 
@@ -19,6 +20,13 @@ TXT = {
            "mm": "мм", "Nm": "Н·м", "J": "Дж", "kgm2": "кг·м²", "jred": "Зведений момент інерції",
            "rads": "рад/с"},
 }
+
+
+def curve_name(key: str, lang: str) -> str:
+    """A curve's name in the language's notation (M_d -> M_д in Russian, M_р in Ukrainian; the
+    catalogue's ``curve`` table)."""
+    from ..messages import catalogue
+    return catalogue(lang)["terms"].get("curve", {}).get(key, key)
 
 
 def build(cv, results, task, lang="en") -> dict:
@@ -53,14 +61,15 @@ def build(cv, results, task, lang="en") -> dict:
         yc = top - 6.0 - hi / mu
         pts = draw_graph(cv, (x0f + 20.0, yc), [(phi, y, c) for y, (_, c) in zip(ys, keys)], mu_phi, mu,
                          x_len=360.0 / mu_phi, y_up=hi / mu + 5.0, y_down=-lo / mu + 3.0, x_sym="φ",
-                         y_sym=sym, mu_text=f"μ{sym.split()[0]} = {mu:g} {unit}/{mm},  μφ = {mu_phi:g} °/{mm}"
+                         y_sym=sym, mu_text=f"{mu_text(sym.split()[0], mu, unit, mm)},  μφ = {mu_phi:g} °/{mm}"
                          + (f",  ωm = {omega_m:.4g} {unit}" if keys[0][0] == "omega_dev" else ""), ticks=ticks)
         # the names of the curves at their right ends
         ends = sorted(((p[-1][1], key) for p, (key, _) in zip(pts, keys)), reverse=True) if k < 3 else []
         last = None
         for yv, key in ends:
             yy = yv if last is None else min(yv, last - 4.0)
-            cv.mtext(x0f + 20.0 + 360.0 / mu_phi + 15.0, yy, key.replace("_", " "), 2.5)   # past φ
+            base, _, low = curve_name(key, lang).partition("_")      # M_д: M with the subscript д
+            cv.mtext(x0f + 20.0 + 360.0 / mu_phi + 15.0, yy, base, 2.5, sub=low or None)   # past φ
             last = yy
         info["graphs"][sym] = {"mu": mu, "pts": pts, "origin": (x0f + 20.0, yc),
                                "values": [y for y in ys]}

@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 
+from ..report.figures import scale_mark
 from .frame import FRAME, TB_H, length_scale, std_mu
 from .graph import draw_graph
 
@@ -124,7 +125,7 @@ def build(cv, results, task, lang="en") -> dict:
 
     cv.mtext(bx0 + 5, y1f - 6, T["profile"], 5.0, bold=True)
     mu_l = unit / 1000.0
-    cv.mtext(bx0 + 5, y1f - 13, "μ", 3.5, sub="l", after=f" = {mu_l:g} {T['m']}/{mm}   (M {label})")
+    cv.mtext(bx0 + 5, y1f - 13, "μ", 3.5, sub="l", after=f" = {mu_l:g} {T['m']}/{mm}   ({scale_mark(lang)} {label})")
     cv.layer = "contour"
     cv.polyline([M(p) for p in work], width=0.7, closed=True)
     cv.layer = "thin"

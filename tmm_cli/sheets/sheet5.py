@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..report.figures import scale_mark
 from .frame import FRAME, length_scale
 
 TXT = {"en": {"mesh": "Gear mesh", "m": "m", "mm": "mm", "sliding": "Specific sliding"},
@@ -80,7 +81,7 @@ def build(cv, results, task, lang="en") -> dict:
 
     cv.mtext(x0f + 5, y1f - 6, T["mesh"], 5.0, bold=True)
     mu_l = unit / 1000.0
-    cv.mtext(x0f + 5, y1f - 13, "μ", 3.5, sub="l", after=f" = {mu_l:g} {T['m']}/{T['mm']}   (M {label})")
+    cv.mtext(x0f + 5, y1f - 13, "μ", 3.5, sub="l", after=f" = {mu_l:g} {T['m']}/{T['mm']}   ({scale_mark(lang)} {label})")
     cv.mtext(x0f + 5, y1f - 19, f"m = {g['m'] * 1000:g} {T['mm']},  z = {g['z'][0]}, {g['z'][1]},  "
              f"x = {g['x'][0]:g}, {g['x'][1]:g},  αw = {g['alpha_w']:.3f}°,  aw = {g['aw'] * 1000:.3f} {T['mm']},  "
              f"εα = {g['eps_alpha']:.3f}", 3.5)

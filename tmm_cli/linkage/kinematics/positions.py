@@ -404,3 +404,12 @@ def _add(phis: list, kinds: list, a, kd: str) -> int:
 
 def _phi_array(phis: list) -> np.ndarray:
     return np.array([0.0 if x >= 360.0 - 1e-12 else x for x in phis])
+
+
+def quick_working(pos: PositionsResult) -> list:
+    """A warning where ``positions.working`` names the quick stroke (K < 1): the working
+    stroke of a machine is its slow one (Artobolevsky: K = working / idle crank angle >= 1)."""
+    if pos.K is None or pos.K >= 1.0 - 1e-9:
+        return []
+    slow = "backward" if pos.working == "forward" else "forward"
+    return [Message("positions.quick_working", working=pos.working, link=pos.output, K=float(pos.K), slow=slow)]

@@ -4,6 +4,7 @@ picture (Smirnov's method). Reads numbers only from results["differential"]; its
 the data file differential.yaml beside this module."""
 from __future__ import annotations
 
+from ...numfmt import num
 from ..i18n import words_beside
 
 I18N = words_beside(__file__)
@@ -60,7 +61,7 @@ def build(ctx) -> str | None:
     if d.get("torques"):
         torques = [(names[k], f(d["torques"][k], 6), f(d["powers"][k], 6)) for k in d["torques"]]
         p_in = sum(p for p in d["powers"].values() if p > 0)
-        share = f"{100 * d['power_loss'] / p_in:.2f} %" if p_in > 0 else "0 %"
+        share = num(100 * d["power_loss"] / p_in, ".2f") + " %" if p_in > 0 else "0 %"
         notes.append(t("diff.loss", p=f(d["power_loss"], 4), share=share))
         if d.get("relative_driver"):
             notes.append(t("diff.driver", k="1" if d["relative_driver"] == "1" else last))

@@ -6,6 +6,9 @@ from __future__ import annotations
 
 import math
 
+from ...numfmt import localize, num, unit
+from ..figures import mu_text
+
 I18N = {
     "en": {"train.title": "Gear drive", "train.stage": "Stage", "train.kind": "Kind",
            "train.z": "Tooth numbers", "train.ratio": "Ratio u (analytic)", "train.ratio_plan": "u from the plan",
@@ -56,6 +59,11 @@ FRAME = 170.0        # mm: the width of the page's figure
 STEP = 22.0          # mm between the stages of the scheme
 
 
+def _mu_after(sym: str, mu: float, u: str) -> str:
+    """' = 0.05 (m/s)/mm' after a μ with its subscript, the unit in the report's language."""
+    return " = " + mu_text(sym, mu, unit(u), unit("mm")).split(" = ", 1)[1]
+
+
 def _colors():
     return ["#1f4e9c", "#c0392b", "#1e8449", "#7d3c98", "#d35400", "#117a65", "#884400", "#34495e"]
 
@@ -101,7 +109,7 @@ def scheme_and_picture(d: dict, lang_t) -> str:
         c.line((xw, y_a), (xw, y_b), color=color, width=0.7)
         for yy in (y_a, y_b):
             c.line((xw - 1.2, yy), (xw + 1.2, yy), color=color, width=0.7)
-    c.text(x, H - 4, "μ", sub="l", after=f" = {mu_l / kl:g} m/mm", anchor="start", size=6.5)
+    c.text(x, H - 4, "μ", sub="l", after=_mu_after("l", mu_l / kl, "m"), anchor="start", size=6.5)
     y_shaft = Y(0.0)
     c.line((2, y_shaft), (x + 6 * k, y_shaft), width=0.5)               # motor shaft
     c.text(2, y_shaft + 2.2, "M", anchor="start", size=6.5)
@@ -165,7 +173,8 @@ def scheme_and_picture(d: dict, lang_t) -> str:
     x0 = w_scheme * k + vmax * k + 10 * k
     c.line((x0, Y(y_lo) - 4), (x0, Y(y_hi) + 4), width=0.3)
     c.text(x0, Y(y_hi) + 7, "y", size=6.5, italic=True)
-    c.text(x0 + vmax * k, 4, "μ", sub="v", after=f" = {mu_v / kv:g} (m/s)/mm", anchor="end", size=6.5)
+    c.text(x0 + vmax * k, 4, "μ", sub="v", after=_mu_after("v", mu_v / kv, "m/s"),
+           anchor="end", size=6.5)
     for p in vp["points"]:
         yy = Y(p["y"])
         c.line((w_scheme * k - 4, yy), (x0, yy), color="#999", width=0.15, dash="0.8,0.8")
@@ -204,7 +213,7 @@ def angular_plan(d: dict) -> str:
     for r in rays:
         lifts.append(2.5 + 3.2 * sum(1 for u in used if abs(u - r["x"] * k) < 6))
         used.append(r["x"] * k)
-    note = f"H = {vp['H'] * k:.0f} mm, μω = {vp['mu_omega'] / k:g} (rad/s)/mm"
+    note = f"H = {vp['H'] * k:.0f} {unit('mm')}, {mu_text('ω', vp['mu_omega'] / k, unit('rad/s'), unit('mm'))}"
     c = Canvas(max((max(xs) - min(xs)) * k + 30, figures.text_size(note, 6.5 * 25.4 / 72.0)[0] + 6.0),
                Hh + 14 + max(lifts + [10.0]) + 2.0)
     px, py = 15 - x_lo, 8.0
@@ -218,14 +227,14 @@ def angular_plan(d: dict) -> str:
         color = col[(r["stage"] + 1) % len(col)] if r["stage"] >= 0 else "#000"
         c.line((px, py), q, color=color, width=0.4, dash="2,1" if r["satellite"] else None)
         c.text(q[0], q[1] + lift, r["name"], size=6, color=color, halo=True)
-    c.text(2.0, 4, "H = " + f"{vp['H'] * k:.0f} mm, μ", sub="ω",
-           after=f" = {vp['mu_omega'] / k:g} (rad/s)/mm", anchor="start", size=6.5)
+    c.text(2.0, 4, "H = " + f"{vp['H'] * k:.0f} {unit('mm')}, μ", sub="ω",
+           after=_mu_after("ω", vp["mu_omega"] / k, "rad/s"), anchor="start", size=6.5)
     return c.to_svg()
 
 
 def _pct(x) -> str:
     s = f"{100 * x:.3f} %"
-    return s[1:] if s.startswith("-0.000") else s
+    return localize(s[1:] if s.startswith("-0.000") else s)
 
 
 def build(ctx) -> str | None:
@@ -238,19 +247,20 @@ def build(ctx) -> str | None:
     for i, (s, pr) in enumerate(zip(d["stages"], vp["stages"])):
         kind = (t("train.pair_int") if s.get("internal") else t("train.pair")) if s["type"] == "pair" \
             else t("train.planetary", s=s["scheme"])
-        rows.append((i, kind, " / ".join(str(v) for v in s["z"]), f(s["ratio"], 8), f(pr["ratio_plan"], 8),
-                     f"{abs(pr['ratio_plan'] - s['ratio']):.1e}"))
+        rows.append((i + 1, kind, " / ".join(str(v) for v in s["z"]), f(s["ratio"], 8), f(pr["ratio_plan"], 8),
+                     num(abs(pr['ratio_plan'] - s['ratio']), ".1e")))
     info = [(t("train.overall"), f(d["ratio"], 8))]
     if d.get("required") is not None:
         info += [(t("train.required"), f(d["required"], 6)), (t("train.error"), _pct(d["ratio_error"])),
                  (t("train.best"), _pct(d["best_ratio_error"]))]
     if d.get("split"):
-        info.append((t("train.split"), "; ".join(f"{s['stage']}: {f(s['ratio'], 5)}" for s in d["split"])))
+        info.append((t("train.split"), "; ".join(f"{s['stage'] + 1}: {f(s['ratio'], 5)}" for s in d["split"])))
     shafts = []
     for i, w in enumerate(d["shafts"]):
-        shafts.append((t("train.input") if i == 0 else t("train.out_of", i=i - 1), f(w, 6),
+        shafts.append((t("train.input") if i == 0 else t("train.out_of", i=i), f(w, 6),
                        f(abs(w) * 30 / math.pi, 6), ctx.sense(w)))
-    sats = [(i, f(s["omega_carrier"], 6), f(s["omega_satellite"], 6), f(s["omega_satellite_rel"], 6),
+    # the stages numbered from 1, as the task file lists them (results.json: from 0)
+    sats = [(i + 1, f(s["omega_carrier"], 6), f(s["omega_satellite"], 6), f(s["omega_satellite_rel"], 6),
              ", ".join(f"{t('train.c.' + k)}: {t('train.yes') if v else t('train.no')}" for k, v in s["checks"].items()))
             for i, s in enumerate(d["stages"]) if s["type"] == "planetary"]
     cands = [(" | ".join("/".join(str(v) for v in z) for z in c["z"]), f(c["ratio"], 6),

@@ -43,7 +43,7 @@ I18N = {
            "dyn.methods": "Comparison of the methods", "dyn.col_method": "Method",
            "dyn.col_Jn": "J_n, kg·m²", "dyn.col_J": "J_fly, kg·m²", "dyn.col_diff": "vs exact, %",
            "dyn.m_wittenbauer": "Wittenbauer tangents (1 ± δ)/2 (graphical)",
-           "dyn.methods_note": "Bounds (docs/methods.md §4): J_Merzalov − J_exact lies between min and max of J_var "
+           "dyn.methods_note": "Bounds: J_Merzalov − J_exact lies between min and max of J_var "
                                "({jmin} … {jmax} kg·m²); the graphical tangents differ from the exact form by at most "
                                "(max J_var − min J_var)·δ/8.",
            "dyn.accuracy": "Accuracy against the number of positions",
@@ -88,7 +88,7 @@ I18N = {
            "dyn.methods": "Сравнение методов", "dyn.col_method": "Метод",
            "dyn.col_Jn": "J_н, кг·м²", "dyn.col_J": "J_м, кг·м²", "dyn.col_diff": "отличие от точного, %",
            "dyn.m_wittenbauer": "касательные Виттенбауэра (1 ± δ)/2 (графически)",
-           "dyn.methods_note": "Оценки (docs/methods.md §4): J_Мерцалов − J_точн лежит между min и max J_перем "
+           "dyn.methods_note": "Оценки: J_Мерцалов − J_точн лежит между min и max J_перем "
                                "({jmin} … {jmax} кг·м²); графические касательные отличаются от точной формы не более "
                                "чем на (max J_перем − min J_перем)·δ/8.",
            "dyn.accuracy": "Точность в зависимости от числа положений",

@@ -8,6 +8,7 @@ import math
 import numpy as np
 
 from ...messages import render_list
+from ...numfmt import localize
 
 I18N = {
     "en": {"gears.title": "Involute spur gearing", "gears.geometry": "Geometry (GOST 16532-70)",
@@ -49,7 +50,7 @@ I18N = {
            "gears.sliding": "Удельные скольжения", "gears.sliding_caption":
                "Удельные скольжения вдоль линии зацепления; активная часть между B1 и B2",
            "gears.defect": "дефект", "gears.ok": "норма", "gears.undercut": "Подрез (x < x_min)",
-           "gears.sharpening": "Заострение (s_a < {k} m)", "gears.contact": "Коэффициент перекрытия eps_alpha < 1.2",
+           "gears.sharpening": "Заострение (s_a < {k} m)", "gears.contact": "Коэффициент перекрытия ε_α < 1,2",
            "gears.interference": "Интерференция (вершина с переходной кривой)", "gears.pair": "Передача",
            "gears.rule": "Смещения выбраны по правилу: {rule}", "gears.files": "Профили зубьев",
            "gears.mm": "мм", "gears.deg": "°", "gears.lines": "Линия зацепления",
@@ -105,7 +106,7 @@ def drawing_scale(width_mm: float, height_mm: float) -> float:
 
 
 def scale_text(k: float) -> str:
-    return f"{k:g}:1" if k >= 1 else f"1:{1 / k:g}"
+    return localize(f"{k:g}:1" if k >= 1 else f"1:{1 / k:g}")
 
 
 def line_points(g) -> dict:

@@ -21,6 +21,7 @@ from markupsafe import Markup
 
 from ..context import values_of
 from ..course import course_entries, cycle_order, grid_count, position_label
+from ...numfmt import num as written
 from ...plans import build_plan, crank_pin, geometry, plan_label, scales
 from ...scales import nice_scale
 
@@ -421,18 +422,18 @@ def build(ctx) -> str | None:
             lengths.append((f"{l.index} ({l.name}), {l.points[0]}{l.points[1]}", ctx.fmt(L),
                             ctx.fmt_fixed(L / mu_l, 1)))
     scale_rows = [
-        (Markup(f"μ<sub>l</sub> — {ctx.t('kin.mu_l')}"), f"{mu_l:g} {ctx.t('kin.unit_l')}"),
+        (Markup(f"μ<sub>l</sub> — {ctx.t('kin.mu_l')}"), f"{written(mu_l, 'g')} {ctx.t('kin.unit_l')}"),
         (Markup("μ<sub>v</sub> = v<sub>{}</sub>/p{} — {}").format(pin, plan_label(pin), ctx.t('kin.mu_v')),
-         Markup(f"{ctx.fmt(vA)} / {ctx.fmt_fixed(vA / mu_v, 2)} → {mu_v:g} {ctx.t('kin.unit_v')}")),
+         Markup(f"{ctx.fmt(vA)} / {ctx.fmt_fixed(vA / mu_v, 2)} → {written(mu_v, 'g')} {ctx.t('kin.unit_v')}")),
         (Markup("μ<sub>a</sub> = a<sub>{}</sub>/π{} — {}").format(pin, plan_label(pin), ctx.t('kin.mu_a')),
-         Markup(f"{ctx.fmt(aA)} / {ctx.fmt_fixed(aA / mu_a, 2)} → {mu_a:g} {ctx.t('kin.unit_a')}")),
+         Markup(f"{ctx.fmt(aA)} / {ctx.fmt_fixed(aA / mu_a, 2)} → {written(mu_a, 'g')} {ctx.t('kin.unit_a')}")),
     ]
     gp = (ctx.results.get("graphical_error") or {}).get("plans") or {}
     rel = [r for e in gp.get("positions", []) for d in e["points"].values() for r in d.values() if r is not None]
     if rel:
         # (the hand method's error: a plan drawn with the crank pin's vector about 100 mm)
         scale_rows.append((ctx.t("kin.reading"),
-                           ctx.t("kin.reading_val", ev=f"{gp['abs_v']:g}", ea=f"{gp['abs_a']:g}",
+                           ctx.t("kin.reading_val", ev=written(gp["abs_v"], "g"), ea=written(gp["abs_a"], "g"),
                                  med=ctx.fmt_fixed(100 * _median(rel), 2),
                                  top=ctx.fmt_fixed(100 * max(rel), 1))))
     pos_rows = []
@@ -524,5 +525,5 @@ def build(ctx) -> str | None:
                       hdr_pts=hdr_pts, v_rows=v_rows, a_rows=a_rows, hdr_l=hdr_l,
                       w_rows=w_rows, e_rows=e_rows, hdr_ang=hdr_ang, ang_rows=ang_rows,
                       sense_note=ctx.t("kin.sense_note"), positions=positions, fig_diagrams=diag,
-                      out_name=out_name, dense=curve is not None,
+                      out_name=out_name, out_label=ctx.link_label(out_name), dense=curve is not None,
                       extra_note=ctx.t("common.extra_note") if len(entries) > n_grid else None)

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ...numfmt import num
+
 I18N = {
     "en": {"plan.title": "Planetary gear synthesis", "plan.scheme": "Scheme {s}: {name}",
            "plan.z": "Tooth numbers", "plan.ratio": "Ratio i_1H (Willis)", "plan.required": "Required",
@@ -96,8 +98,8 @@ def build(ctx) -> str | None:
     info = [(t("plan.scheme", s=p.get("scheme", ""), name=sname), ""),
             (t("plan.z"), ", ".join(f"{k} = {v}" for k, v in p["z"].items())),
             (t("plan.required"), f(p.get("required"), 6)), (sym(t("plan.ratio")), f(p["ratio"], 6)),
-            (t("plan.error"), f"{100 * p['ratio_error']:.3f} %"),
-            *([(t("plan.best"), f"{100 * p['best_ratio_error']:.3f} %")] if p.get("best_ratio_error") is not None
+            (t("plan.error"), num(100 * p['ratio_error'], ".3f") + " %"),
+            *([(t("plan.best"), num(100 * p['best_ratio_error'], ".3f") + " %")] if p.get("best_ratio_error") is not None
               else []),
             (t("plan.plan_ratio"), f(p.get("ratio_plan"), 6))]
     conds = [(t("plan.coaxial"), bool(ch.get("coaxial"))),
@@ -106,7 +108,7 @@ def build(ctx) -> str | None:
              (t("plan.undercut"), bool(ch.get("undercut")))]
     conds = [(k, t("common.yes") if v else t("common.no")) for k, v in conds]
     cands = [(", ".join(str(v) for v in c["z"].values()), f(c["ratio"], 6),
-              f"{100 * c['ratio_error']:.3f} %", c["size"]) for c in p.get("candidates", [])]
+              num(100 * c['ratio_error'], ".3f") + " %", c["size"]) for c in p.get("candidates", [])]
     fig = ctx.svg(figure(ctx, p), "planetary-scheme")
     return ctx.render("sections/planetary.html.j2", info=info, conds=conds, cands=cands, fig=fig,
                       ratio_head=sym(t("plan.ratio")))

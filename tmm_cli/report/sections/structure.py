@@ -24,9 +24,11 @@ def group_kind(typ, lang: str) -> str:
 
 
 def link_kind(geom, link) -> str:
-    """crank | rocker | rod | slider | slotted (кулиса), by the pairs of the link."""
+    """crank | rocker | rod | slider | block | slotted (кулиса), by the pairs of the link: a
+    slider on a moving link's guide is the block of a slotted link (камень кулисы)."""
     if link.kind == "slider":
-        return "slider"
+        on_moving = any(j.kind == "P" and link.index in (j.a, j.b) and 0 not in (j.a, j.b) for j in geom.joints)
+        return "block" if on_moving else "slider"
     for j in geom.joints:
         if j.kind == "P" and link.index in (j.a, j.b):
             return "slotted"

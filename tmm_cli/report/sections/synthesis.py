@@ -58,7 +58,7 @@ _LEN = {"en": {"crank": "crank l_OA", "rod": "connecting rod l_AB", "offset": "o
                "coupler": "шатун l_AB", "rocker": "коромысло (кулиса) l_O1B", "frame": "стойка l_OO1",
                "guide_height": "направляющая ползуна над O1"},
         "uk": {"crank": "кривошип l_OA", "rod": "шатун l_AB", "offset": "дезаксіал e",
-               "coupler": "шатун l_AB", "rocker": "коромисло (куліса) l_O1B", "frame": "стійка l_OO1",
+               "coupler": "шатун l_AB", "rocker": "коромисло (куліса) l_O1B", "frame": "стояк l_OO1",
                "guide_height": "напрямна повзуна над O1"}}
 _SCALES = (1, 2, 2.5, 4, 5, 10, 15, 20, 25, 40, 50, 75, 100, 200, 500, 1000)
 
@@ -276,7 +276,7 @@ def build(ctx) -> str | None:
     if r.get("psi") is not None:
         info.append((t("syn.psi"), f"{f(r['psi'], 6)}°"))
     info.append((t("syn.gamma"), t("syn.gamma_at", g=f(r["gamma_min"], 6), p=f(r.get("gamma_min_phi"), 5))))
-    info.append((t("syn.working", o=out), t(f"syn.{r['working']}")))
+    info.append((t("syn.working", o=ctx.link_ref(out)), t(f"syn.{r['working']}")))
     sols = []
     for s in r.get("solutions") or []:
         sols.append([t(f"syn.side.{s['side']}") if s.get("side") else ""] + [f(s[k], 6) for k in r["lengths"] if k in s]

@@ -14,6 +14,8 @@ from typing import Any
 
 from markupsafe import Markup, escape
 
+from ...numfmt import localize, unit as spelt
+
 I18N = {
     "en": {"task.sec.mechanism": "Mechanism", "task.sec.drive": "Drive",
            "task.sec.positions": "Positions", "task.sec.loads": "Loads",
@@ -35,7 +37,7 @@ I18N = {
            "task.sec.kinetostatics": "Кинетостатика", "task.sec.flywheel": "Маховик",
            "task.sec.cam": "Кулачковый механизм", "task.sec.gears": "Зубчатая передача",
            "task.sec.planetary": "Планетарный механизм", "task.sec.answers": "Ответы",
-           "task.sec.dof2": "Машина с двумя степенями свободы",
+           "task.sec.dof2": "Машина с двумя степенями подвижности",
            "task.sec.tolerance": "Допуски", "task.ground": "Неподвижные точки (стойка)",
            "task.links": "Звенья", "task.assembly": "Начальная сборка (приближённые положения шарниров)",
            "task.point": "Точка", "task.points": "Точки", "task.length": "l, м", "task.mass": "m, кг",
@@ -227,7 +229,9 @@ WORDS = {"ru": {"ccw": "против часовой стрелки", "cw": "по
                 "rocker": "коромысло", "translating": "поступательный", "equal_sliding": "равенство удельных скольжений",
                 "true_motion": "истинное", "linear_decreasing": "линейно убывающее ускорение",
                 "parabolic": "параболический", "poly345": "полином 3-4-5", "cosine": "косинусоидальный",
-                "sine": "синусоидальный", "uniform": "равномерный"},
+                "sine": "синусоидальный", "uniform": "равномерный",
+                "kinetostatics.motion=constant": "равномерное", "flywheel.constant=driving": "движущий",
+                "flywheel.constant=resistance": "сопротивления"},
          "en": {"ccw": "counter-clockwise", "cw": "clockwise", "true": "yes", "false": "no",
                 "extreme": "extreme position", "energy-mass": "energy-mass (Wittenbauer)",
                 "linear_decreasing": "linearly decreasing acceleration", "poly345": "polynomial 3-4-5",
@@ -305,7 +309,8 @@ def _dump(task) -> dict:
 
 
 def num(v: float) -> str:
-    """A task number as written: 6 significant digits, no trailing zeros."""
+    """A task number as written: 6 significant digits, no trailing zeros (the decimal
+    comma in ru and uk)."""
     if isinstance(v, bool):
         return "true" if v else "false"
     if isinstance(v, int):
@@ -320,7 +325,7 @@ def num(v: float) -> str:
     else:
         mant, ex = f"{v:.5e}".split("e")
         s = f"{mant.rstrip('0').rstrip('.')}·10{str(int(ex)).translate(_SUP)}"
-    return s.replace("-", "−")
+    return localize(s).replace("-", "−")
 
 
 _SUP = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
@@ -344,7 +349,20 @@ def _value(v: Any, unit: str = "") -> str:
         if all(_is_num(x) for x in v):
             return "; ".join(num(x) for x in v) + (u if v else "")
         return ", ".join(str(x) for x in v)
-    return str(v)
+    return _quantity(str(v))
+
+
+_WRITTEN = re.compile(r"^([-+]?(?:\d+(?:[.,]\d*)?|\.\d+)(?:[eE][-+]?\d+)?)\s*([^\d\s].*?)\s*$")
+
+
+def _quantity(text: str) -> str:
+    """A value the task gives as a number with its unit ('1.2 rad/s', '0.4 m/s') in the
+    report's language: its number as the language writes it, the unit in its spelling."""
+    m = _WRITTEN.match(text)
+    if not m:
+        return text
+    unit = spelt(m.group(2))
+    return localize(m.group(1).replace(",", ".")) + ("" if unit == "°" else " ") + unit
 
 
 def flatten(d: Any, prefix: str = "") -> list[tuple[str, Any]]:
@@ -433,8 +451,10 @@ def _rows(key: str, sec: Any, lang: str) -> list[tuple[str, str]]:
             from ...units import fraction_text
             frac = fraction_text(v)
             val = f"{frac} = {_value(v)}" if frac.startswith("1/") else val
-        if isinstance(v, (str, bool)):
-            val = (word_of(plain, val, lang) if isinstance(v, str) else None) or WORDS.get(lang, {}).get(val, val)
+        if isinstance(v, (str, bool)):    # a word agreeing with its label's noun ('key=value') first
+            words = WORDS.get(lang, {})
+            val = words.get(f"{plain}={val}") or (word_of(plain, val, lang) if isinstance(v, str) else None) \
+                or words.get(val, val)
         rows.append((label, val))
     return rows
 

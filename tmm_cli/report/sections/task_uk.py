@@ -37,8 +37,8 @@ PARAMS_UK = {
     "gears.alpha": "кут профілю α", "gears.ha": "коефіцієнт висоти головки h*a",
     "gears.c": "коефіцієнт радіального зазору c*", "gears.rule": "правило вибору зміщень",
     "gears.sa_min": "найменша товщина вершини s_a/m", "planetary.scheme": "схема",
-    "planetary.ratio": "потрібне передаточне відношення u₁H", "planetary.satellites": "кількість сателітів k",
-    "planetary.tolerance": "допуск передаточного відношення", "planetary.m": "модуль m",
+    "planetary.ratio": "потрібне передатне відношення u₁H", "planetary.satellites": "кількість сателітів k",
+    "planetary.tolerance": "допуск передатного відношення", "planetary.m": "модуль m",
     "planetary.z_min": "найменше число зубів", "planetary.z_max": "найбільше число зубів",
     "planetary.candidates": "кількість варіантів",
     "dof2.rotor.length": "довжина ротора l = OO₁", "dof2.rotor.mass": "маса ротора m₁",
@@ -56,7 +56,7 @@ PARAMS_UK = {
     "synthesis.K": "коефіцієнт зміни середньої швидкості K", "synthesis.theta": "кут θ",
     "synthesis.lambda": "λ = l_AB/l_OA", "synthesis.e": "дезаксіал e",
     "synthesis.gamma_min": "найменший кут передачі γ_min",
-    "synthesis.rocker": "довжина коромисла (куліси)", "synthesis.frame": "стійка l_OO1",
+    "synthesis.rocker": "довжина коромисла (куліси)", "synthesis.frame": "стояк l_OO1",
     "synthesis.guide_height": "напрямна повзуна над O1",
     "drive.mean_output_speed": "середня швидкість вихідної ланки за цикл",
     "drive.working_stroke_speed": "середня швидкість вихідної ланки на робочому ході",
@@ -73,11 +73,11 @@ PARAMS_UK = {
     "planetary.internal_minus_external_min": "найменша різниця чисел зубів у внутрішньому зачепленні",
     "drive_train.motor_speed": "кутова швидкість двигуна ω_д",
     "drive_train.motor_direction": "напрямок обертання двигуна",
-    "drive_train.ratio": "потрібне загальне передаточне відношення",
+    "drive_train.ratio": "потрібне загальне передатне відношення",
     "drive_train.efficiency": "ККД приводу η",
     "drive_train.stages.type": "вид",
     "drive_train.stages.z": "числа зубів", "drive_train.stages.internal": "внутрішнє зачеплення",
-    "drive_train.stages.scheme": "схема", "drive_train.stages.ratio": "передаточне відношення",
+    "drive_train.stages.scheme": "схема", "drive_train.stages.ratio": "передатне відношення",
 }
 LINK_WORDS_UK = {"mass": "маса", "J": "J_S", "com": "центр мас"}
 ITEMS_UK = {"forces": "сила", "couples": "пара", "stages": "ступінь"}
@@ -92,11 +92,14 @@ WORDS_UK = {"ccw": "проти годинникової стрілки", "cw": "
             "sine": "синусоїдальний", "uniform": "рівномірний",
             "flat": "тарілчастий", "knife": "загострений", "constant_velocity": "сталої швидкості",
             "trapezoidal": "трапецієподібний", "with": "за обертанням кулачка", "against": "проти обертання кулачка",
-            "size": "за габаритом", "ratio_error": "за відхиленням передаточного відношення",
+            "size": "за габаритом", "ratio_error": "за відхиленням передатного відношення",
             "pair": "зубчаста пара", "planetary": "планетарна", "exact": "точний", "no_undercut": "без підрізання",
             "table": "за таблицею", "slider_crank": "кривошипно-повзунний",
             "offset_slider_crank": "дезаксіальний кривошипно-повзунний", "crank_rocker": "кривошипно-коромисловий",
-            "slotted_lever": "кулісний", "shaper": "кулісний (поперечно-стругальний верстат)"}
+            "slotted_lever": "кулісний", "shaper": "кулісний (поперечно-стругальний верстат)",
+            # words agreeing with their label's noun: рух, момент, вид (masculine)
+            "kinetostatics.motion=constant": "рівномірний", "flywheel.constant=driving": "рушійний",
+            "flywheel.constant=resistance": "опору", "drive_train.stages.type=planetary": "планетарний"}
 
 
 def add_uk(params: dict, items: dict, words: dict, units: dict) -> None:

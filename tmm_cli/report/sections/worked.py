@@ -40,8 +40,10 @@ from __future__ import annotations
 import numpy as np
 from markupsafe import Markup, escape
 
+from ...numfmt import num
 from ...plans import SUB, geometry as plan_geometry, plan_label
 from .kinematics import drawn_scales
+from .structure import group_kind
 
 I18N = {
     "en": {"worked.title": "The working of one position, step by step",
@@ -69,9 +71,9 @@ I18N = {
                                      "reactions are those of the tables of the kinetostatics section.",
            "worked.moment_eq_p": "Moment equation of link {link} about {p} (counter-clockwise positive): the "
                                  "reaction {r} of the block is perpendicular to the guide, h is its arm:",
-           "worked.order_rpr": "Order: {r} from this moment equation, then the reaction on the block ({block}) "
-                               "from its force polygon, the reaction of the frame on {link} from the polygon of "
-                               "{link}:",
+           "worked.order_rpr": "Order: {r} from this moment equation, then the reaction on the {kind} {block} "
+                               "({bname}) from its force polygon, the reaction of the frame on link {link} ({lname}) "
+                               "from the polygon of link {link}:",
            "worked.lever_motion": "With the steady motion of the flywheel (kinetostatics motion: true) the "
                                    "lever is not written out here: its balancing moment is in the table of the "
                                    "kinetostatics section.",
@@ -125,8 +127,9 @@ I18N = {
                                      "раздела кинетостатики.",
            "worked.moment_eq_p": "Уравнение моментов звена {link} относительно {p} (против часовой стрелки — "
                                  "положительные): реакция {r} камня перпендикулярна направляющей, h — её плечо:",
-           "worked.order_rpr": "Порядок: {r} — из этого уравнения моментов, затем реакция на камень ({block}) — из "
-                               "его плана сил, реакция стойки на {link} — из плана сил звена {link}:",
+           "worked.order_rpr": "Порядок: {r} — из этого уравнения моментов, затем реакция на {kind} {block} "
+                               "({bname}) — из его плана сил, реакция стойки на звено {link} ({lname}) — из плана "
+                               "сил звена {link}:",
            "worked.lever_motion": "При установившемся движении с маховиком (motion: true) рычаг здесь не "
                                    "расписан: его уравновешивающий момент — в таблице раздела кинетостатики.",
            "worked.undefined": "Это положение нельзя расписать: нужное значение в нём не определено (рядом особое "
@@ -180,8 +183,9 @@ I18N = {
                                      "розділу кінетостатики.",
            "worked.moment_eq_p": "Рівняння моментів ланки {link} відносно {p} (проти годинникової стрілки — "
                                  "додатні): реакція {r} каменя перпендикулярна до напрямної, h — її плече:",
-           "worked.order_rpr": "Порядок: {r} — з цього рівняння моментів, потім реакція на камінь ({block}) — з "
-                               "його плану сил, реакція стояка на {link} — з плану сил ланки {link}:",
+           "worked.order_rpr": "Порядок: {r} — з цього рівняння моментів, потім реакція на {kind} {block} "
+                               "({bname}) — з його плану сил, реакція стояка на ланку {link} ({lname}) — з плану "
+                               "сил ланки {link}:",
            "worked.lever_motion": "При усталеному русі з маховиком (motion: true) важіль тут не розписано: його "
                                    "зрівноважувальний момент — у таблиці розділу кінетостатики.",
            "worked.undefined": "Це положення не можна розписати: потрібне значення в ньому не визначене (поруч "
@@ -211,9 +215,9 @@ I18N = {
            "worked.where": "де"},
 }
 
-UNITS = {"en": {"m/s": "m/s", "m/s2": "m/s²", "1/s": "1/s", "1/s2": "1/s²", "mm": "mm", "N": "N", "Nm": "N·m",
+UNITS = {"en": {"m/s": "m/s", "m/s2": "m/s²", "1/s": "rad/s", "1/s2": "rad/s²", "mm": "mm", "N": "N", "Nm": "N·m",
                 "m": "m", "mu_v": "(m/s)/mm", "mu_a": "(m/s²)/mm", "kg": "kg", "kgm2": "kg·m²"},
-         "ru": {"m/s": "м/с", "m/s2": "м/с²", "1/s": "1/с", "1/s2": "1/с²", "mm": "мм", "N": "Н", "Nm": "Н·м",
+         "ru": {"m/s": "м/с", "m/s2": "м/с²", "1/s": "рад/с", "1/s2": "рад/с²", "mm": "мм", "N": "Н", "Nm": "Н·м",
                 "m": "м", "mu_v": "м/(с·мм)", "mu_a": "м/(с²·мм)", "kg": "кг", "kgm2": "кг·м²"}}
 UNITS["uk"] = UNITS["ru"]
 
@@ -384,7 +388,7 @@ class Num:
         return ("mn", self.ctx.fmt_fixed(abs(float(value)), 2), key)
 
     def exact(self, value, key: str):
-        return ("mn", f"{float(value):g}", key)
+        return ("mn", num(float(value), "g"), key)
 
 
 def _xy(d, a="x", b="y"):
@@ -637,7 +641,6 @@ class _Writer:
 
     def group_title(self, typ, G):
         """The heading of a group, its link numbers tagged (``data-k="idx:<link>"``)."""
-        from .structure import group_kind
         a, _, b = self.t("worked.group", type=group_kind(typ, self.ctx.lang), links="\u0001").partition("\u0001")
         nums = ", ".join(f'<span class="mn" data-k="idx:{escape(self.names[i])}">{i}</span>' for i in G)
         return Markup(escape(a)) + Markup(nums) + Markup(escape(b))
@@ -1031,7 +1034,9 @@ class _Writer:
                frac(row(mo("−"), mo("("), num(total, f"Mr:{rsg}:{hinge}", signed=True), mo(")")),
                     num(h, f"h:{rsg}:{hinge}")), mo("="), num(m / h, f"Rm:{rsg}:{hinge}", signed=True),
                unit(self.u["N"]))
-        self.p(self.t("worked.order_rpr", r=rsg, block=str(s.name), link=str(g.name)))
+        self.p(self.pt("worked.order_rpr", r=rsg, kind=self.ctx.link_kind_word(s.name) or "",
+                       block=("mn", str(s.index), f"idx:{s.name}"), bname=s.name,
+                       link=("mn", str(g.index), f"idx:{g.name}"), lname=g.name))
         for lk in (s, g):
             own = [j for j in outer if lk.index in (j.a, j.b)][0]
             _, rn, _, Fo = self.reaction_on(ks, own, lk.index)
@@ -1126,7 +1131,7 @@ class _Writer:
             elif sl is not None:
                 known[tuple(G)] = self.slotted_velocity(G, sl)
             else:
-                self.p(self.t("worked.unsupported", type=typ))
+                self.p(self.t("worked.unsupported", type=group_kind(typ, self.ctx.lang)))
         self.h(self.t("worked.acc"))
         self.crank_acceleration()
         for typ, G, inner, outer in groups:
@@ -1137,7 +1142,7 @@ class _Writer:
             elif tuple(G) in known:
                 self.group_acceleration(typ, G, inner, outer, known[tuple(G)])
             else:
-                self.p(self.t("worked.unsupported", type=typ))
+                self.p(self.t("worked.unsupported", type=group_kind(typ, self.ctx.lang)))
         kst = self.kst_setup()
         if kst is None:
             info = self.ctx.results.get("kinetostatics_info") or {}
@@ -1157,7 +1162,7 @@ class _Writer:
             elif sl is not None:
                 self.slotted_kinetostatics(ks, G, sl, inner, outer, later)
             else:
-                self.p(self.t("worked.unsupported_kst", type=typ))
+                self.p(self.t("worked.unsupported_kst", type=group_kind(typ, self.ctx.lang)))
             solved += G
         self.crank_kinetostatics(ks)
         if info.get("motion") == "steady":

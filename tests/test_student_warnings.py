@@ -1,0 +1,73 @@
+"""Warnings a student needs (what the input says is valid but probably not meant): the working
+stroke set to the quick one (K < 1), links without mass where inertia is taken into account,
+a misspelt point of a link that was meant as a ground point."""
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import tmm_cli
+from tmm_cli.messages import render
+
+ROOT = Path(__file__).resolve().parents[1]
+FOURBAR = (ROOT / "tasks" / "crank_rocker_fourbar.yaml").read_text(encoding="utf-8")
+
+
+def _run(tmp_path, text: str) -> dict:
+    path = tmp_path / "task.yaml"
+    path.write_text(text, encoding="utf-8")
+    return tmm_cli.run(tmm_cli.load_task(path), kinematics_curve=0)
+
+
+def _codes(results: dict, code: str) -> list[dict]:
+    return [m for m in results["messages"] if m["code"] == code]
+
+
+def test_quick_working_stroke_names_the_slow_one(tmp_path):
+    ok = _run(tmp_path, FOURBAR)
+    assert ok["positions"]["K"] > 1 and not _codes(ok, "positions.quick_working")
+    r = _run(tmp_path, FOURBAR.replace("working: forward", "working: backward"))
+    assert r["positions"]["K"] < 1
+    (m,) = _codes(r, "positions.quick_working")
+    assert m["params"]["slow"] == "forward" and m["params"]["link"] == "rocker"
+    assert "the slow stroke is the forward one" in m["text"]
+    assert "медленный ход — прямой" in render(m["code"], m["params"], "ru")
+    assert "повільний хід — прямий" in render(m["code"], m["params"], "uk")
+    assert "K = 0,878 < 1" in render(m["code"], m["params"], "uk")
+
+
+def test_links_without_mass_are_named_where_inertia_counts(tmp_path):
+    assert not _codes(_run(tmp_path, FOURBAR), "inertia.massless")
+    text = FOURBAR.replace("length: 0.30, extra: {M: [0.15, 0.06]}, mass: 2.4,", "length: 0.30, extra: {M: [0.15, 0.06]},")
+    assert text != FOURBAR
+    (m,) = _codes(_run(tmp_path, text), "inertia.massless")
+    assert m["params"]["links"] == ["coupler"] and "links coupler have no mass" in m["text"]
+    # inertia off: the masses play no part, no warning
+    off = text.replace("  balance: crank", "  balance: crank\n  inertia: false")
+    assert off != text and not _codes(_run(tmp_path, off), "inertia.massless")
+    # with a flywheel the reduced moment of inertia is named too
+    fly = (ROOT / "tasks" / "forging_sixbar.yaml").read_text(encoding="utf-8")
+    r = _run(tmp_path, fly)
+    massless = [l["name"] for l in r["structure"]["links"] if not l["mass"] > 0]
+    hit = _codes(r, "inertia.massless_flywheel")
+    assert [m["params"]["links"] for m in hit] == ([massless] if massless else [])
+    assert "reduced moment of inertia" in render("inertia.massless_flywheel", {"links": ["a"]}, "en")
+
+
+def test_misspelt_point_named_at_its_link(tmp_path):
+    """`rocker: [O2, B]` with the ground point O3: the error points at the rocker's line and
+    names O2 with 'did you mean' O3 (was: 'O3 is used by no link' at the ground line)."""
+    path = tmp_path / "bad.yaml"
+    path.write_text(FOURBAR.replace("rocker:  {points: [O3, B]", "rocker:  {points: [O2, B]"), encoding="utf-8")
+    line = next(i for i, s in enumerate(path.read_text(encoding="utf-8").splitlines(), 1) if "[O2, B]" in s)
+    p = subprocess.run([sys.executable, "-m", "tmm_cli", "run", str(path), "--format", "json", "--out",
+                        str(tmp_path / "out")], capture_output=True, text=True)
+    assert p.returncode == 2 and "Traceback" not in p.stderr
+    assert f"bad.yaml:{line}:" in p.stderr and "mechanism.links.rocker.points" in p.stderr
+    assert "'O2'" in p.stderr and "did you mean the ground point 'O3'" in p.stderr
+    # a ground point no link uses and no point like it: the ground line, as before
+    path.write_text(FOURBAR.replace("    O3: [0.30, 0]\n", "    O3: [0.30, 0]\n    Q: [1, 1]\n"), encoding="utf-8")
+    p = subprocess.run([sys.executable, "-m", "tmm_cli", "run", str(path), "--format", "json", "--out",
+                        str(tmp_path / "out")], capture_output=True, text=True)
+    assert p.returncode == 2 and "ground point 'Q' is used by no link" in p.stderr

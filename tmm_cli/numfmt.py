@@ -1,0 +1,120 @@
+"""Numbers as the reader's language writes them: the one place that knows it.
+
+English keeps the decimal point and Python's exponent (``8.9e-16``); Russian and Ukrainian
+typeset the decimal comma and powers of ten (``0,25``, ``8,9·10⁻¹⁶``).  Every formatter of a
+text a person reads (the report, its figures and PDF, the sheets, forms, feedback pages,
+messages) passes its formatted number through :func:`localize`; machine files (results.json,
+CSV, DXF coordinates) never do.
+
+The language is either given (``localize(s, lang)``) or the one of the enclosing
+``with language(lang):`` block -- a context variable, so the report's sections, figures and
+charts, which format numbers deep below the code that knows the language, need no parameter
+for it.  Outside any block the numbers stay as Python writes them.
+"""
+from __future__ import annotations
+
+import contextlib
+import contextvars
+import functools
+import re
+import string
+from typing import Any
+
+# the languages whose typeset numbers use the decimal comma
+COMMA_LANGS = ("ru", "uk")
+
+_LANG: contextvars.ContextVar[str] = contextvars.ContextVar("tmm_number_language", default="en")
+
+_SUP = str.maketrans("0123456789-+", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺")
+# a formatted number: sign, digits, decimals, exponent (what format() gives for a float)
+# (not a part of a designation or a date: 'КП.07.00.00', '06.12.2026', 'v1.2' stay as they are)
+_NUMBER = re.compile(r"(?<!\w)(?<!\w\.)([-+\u2212]?)(\d+)(?:\.(\d*))?(?:[eE]([-+\u2212]?)(\d+))?(?!\w)(?!\.\d)")
+
+
+def current() -> str:
+    """The language of the enclosing ``with language(...)`` block ('en' outside any)."""
+    return _LANG.get()
+
+
+@contextlib.contextmanager
+def language(lang: str | None):
+    """Numbers formatted inside the block are written the way ``lang`` writes them."""
+    token = _LANG.set(lang if lang in COMMA_LANGS else "en")
+    try:
+        yield
+    finally:
+        _LANG.reset(token)
+
+
+def comma(lang: str | None = None) -> bool:
+    """True when numbers in ``lang`` (default: the current one) take the decimal comma."""
+    return (lang if lang is not None else _LANG.get()) in COMMA_LANGS
+
+
+def _typeset(m: re.Match) -> str:
+    sign, whole, dec, esign, exp = m.groups()
+    s = sign + whole + ("," + dec if dec else "")
+    if exp is not None:
+        e = int(exp)
+        if e == 0:
+            return s
+        return s + "·10" + (("-" if esign in ("-", "\u2212") else "") + str(e)).translate(_SUP)
+    return s
+
+
+def localize(s: str, lang: str | None = None) -> str:
+    """A formatted number (or a short text of formatted numbers: '0.5..1.25', '8.9e-16 m')
+    in ``lang``'s writing: unchanged in English, '0,5', '8,9·10⁻¹⁶' in ru/uk."""
+    if not comma(lang) or not s or ("." not in s and "e" not in s and "E" not in s):
+        return s
+    return _typeset_all(s)
+
+
+@functools.lru_cache(maxsize=8192)
+def _typeset_all(s: str) -> str:
+    """Every number of ``s`` typeset (remembered: a drawing's labels repeat)."""
+    return _NUMBER.sub(_typeset, s)
+
+
+def num(x: Any, spec: str = "", lang: str | None = None) -> str:
+    """``format(x, spec)`` written in the language (a non-number: ``str(x)``)."""
+    if isinstance(x, bool) or not isinstance(x, (int, float)) and not hasattr(x, "__float__"):
+        return format(x, spec) if spec else str(x)
+    return localize(format(x, spec), lang)
+
+
+_WRITTEN = re.compile(r"[-+\u2212]?\d+(?:\.\d+)?(?:[eE][-+]?\d+)?")
+
+
+def unit(text: str, lang: str | None = None) -> str:
+    """A unit as a task writes it ('m/s', 'rad/s', 'N*m', 'mm') in the language's spelling
+    (м/с, рад/с, Н·м, мм: the catalogue's ``unit`` table; unchanged where it has none)."""
+    from .messages import catalogue
+    return catalogue(lang if lang is not None else _LANG.get())["terms"].get("unit", {}).get(text, text)
+
+
+def is_number(value: Any) -> bool:
+    """A number, or a text that is one number as Python writes it ('0.02', '8.9e-16': a
+    parameter formatted beforehand)."""
+    if isinstance(value, str):
+        return bool(_WRITTEN.fullmatch(value))
+    return not isinstance(value, bool) and (isinstance(value, (int, float))
+                                            or type(value).__module__ == "numpy" and hasattr(value, "__float__"))
+
+
+class Formatter(string.Formatter):
+    """``str.format`` whose numeric fields are written in ``lang`` (the current language when
+    None): the message catalogues' and the report tables' templates ("{phi:.4g}°")."""
+
+    def __init__(self, lang: str | None = None):
+        super().__init__()
+        self.lang = lang
+
+    def format_field(self, value: Any, spec: str) -> str:
+        text = super().format_field(value, spec)
+        return localize(text, self.lang) if is_number(value) else text
+
+
+def format_text(template: str, lang: str | None = None, /, **kw) -> str:
+    """``template.format(**kw)`` with the numeric fields written in ``lang``."""
+    return Formatter(lang).format(template, **kw)
