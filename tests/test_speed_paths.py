@@ -421,7 +421,9 @@ def test_plain_summary_is_what_rich_prints(monkeypatch, capsys):
                             ("x" * 60, []), ("x" * 52, []), ("x" * 53, []), ("Її ґ", []), ("a [b] c", []),
                             ("a :smile: b", []), ("tab\there", []), (" padded", []), ("", []),
                             ("ok", ["w" * 70]), ("ok", ["w" * 71]), ("ok", ["w" * 72]), ("ok", ["[red]x"]),
-                            ("ok", ["wide 日本"]), ("ok", ["ellipsis …"]), ("ok", ["two\nlines"])):
+                            ("ok", ["wide 日本"]), ("ok", ["ellipsis …"]), ("ok", ["two\nlines"]),
+                            ("ok", ["a long warning of many words " * 5]), ("ok", ["word " * 16 + "x" * 90]),
+                            ("ok", ["exactly " + "y" * 63 + " then more words follow here"])):
         cases.append({**base, "task": {**base["task"], "title": title}, "warnings": warnings})
     cases.append({"task": {"title": "no rows"}, "warnings": []})
     paths = [Path("out") / "x" / "results.json", Path("out") / "x" / ".tmm-manifest.json"]

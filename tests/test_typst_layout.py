@@ -83,6 +83,6 @@ def test_worked_formulas_typeset_as_mathematics(report):
     ('5.236 ⋅ 0.1500 = 0.7854'), none crammed ('5.236·0.1500=0.7854')."""
     name, pages, _ = report
     text = "\n".join(t for _, words in pages for _, t in _lines(words))
-    spaced = re.findall(r"\d \u22c5 \d[\d.]* = \d", text)
-    crammed = re.findall(r"\d[·\u22c5]\d[\d.]*=\d", text)
+    spaced = re.findall(r"\d \u22c5 \d[\d.,]* = \d", text)          # a decimal point or comma (ru, uk)
+    crammed = re.findall(r"\d[·\u22c5]\d[\d.,]*=\d", text)
     assert len(spaced) >= 10 and not crammed, (name, len(spaced), crammed[:3])

@@ -149,7 +149,12 @@ def _plain_summary(title: str, rows: list[tuple[str, str]], warnings: list[str],
     w1 = max([len("quantity"), *(len(q) for q, _ in rows)])
     w2 = max([len("value"), *(len(v) for _, v in rows)])
     table = w1 + w2 + 7                        # two cells, each padded by a space a side, three rules
-    lines = [f"warning: {w}" for w in warnings] + [f"wrote {p}" for p in paths]
+    lines = []
+    for s in [f"warning: {w}" for w in warnings] + [f"wrote {p}" for p in paths]:
+        wrapped = _wrapped(s, width)
+        if wrapped is None:
+            return None
+        lines.extend(wrapped)
     if table >= width or len(title) >= table or any(len(s) >= width for s in lines):
         return None
     left = (table - len(title)) // 2
@@ -161,6 +166,35 @@ def _plain_summary(title: str, rows: list[tuple[str, str]], warnings: list[str],
             "└" + "─" * (w1 + 2) + "┴" + "─" * (w2 + 2) + "┘",
             *lines]
     return "\n".join(text) + "\n"
+
+
+_WORD = re.compile(r"\s*\S+\s*")
+
+
+def _wrapped(s: str, width: int) -> list[str] | None:
+    """``s`` broken into lines as Rich wraps a printed line of one-cell characters (rich._wrap's
+    divide_line: a word with its trailing blanks goes on while its letters fit; a wrapped line keeps
+    its trailing blanks up to the width), or None where Rich would fold a word longer than the
+    width (then Rich prints it)."""
+    breaks, off = [], 0
+    for m in _WORD.finditer(s):
+        word = m.group(0)
+        n = len(word.rstrip())
+        if n > width:
+            return None
+        if width - off >= n:
+            off += len(word)
+        elif off and m.start():
+            breaks.append(m.start())
+            off = len(word)
+    out = []
+    for a, b in zip([0, *breaks], [*breaks, len(s)]):
+        piece = s[a:b]
+        if len(piece) > width:                  # Text.rstrip_end(width): blanks beyond the width dropped
+            keep = len(piece.rstrip())
+            piece = piece[:max(width, keep)]
+        out.append(piece)
+    return out
 
 
 STATUS_STYLE = {"ok": "green", "sign": "magenta", "outside": "red", "missing": "yellow",
