@@ -31,7 +31,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import TaskError
+from ..errors import field_error
 from ..messages import Message
 
 STAGE = "balancing"
@@ -56,9 +56,6 @@ class Counterweight:
     def to_dict(self) -> dict:
         return {"link": self.link, "m": self.m, "r": self.r, "angle": self.angle}
 
-
-def _field_error(path: str, msg) -> TaskError:
-    return TaskError(msg, issues=[(path, None, None, msg)])
 
 
 def _geometry(mech):
@@ -96,7 +93,7 @@ def counterweights(mech, kin, spec) -> tuple[list[Counterweight], dict]:
     g = _geometry(mech)
     kind = "fourbar" if spec.method == "full" else "slidercrank"
     if g is None or g[0] != kind:
-        raise _field_error("balancing.counterweights.method",
+        raise field_error("balancing.counterweights.method",
                            Message("balancing.method_needs", method=spec.method,
                                    kind="four-bar linkage" if kind == "fourbar" else "slider-crank linkage"))
     _, crank, coupler, third, O, A, B, O1 = g

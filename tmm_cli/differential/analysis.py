@@ -39,9 +39,9 @@ import math
 from dataclasses import dataclass, field
 from fractions import Fraction
 
-from ..errors import StageError, TaskError
+from ..errors import StageError, field_error
 from ..messages import Message
-from .spec import members
+from .spec import last_member, members
 
 STAGE = "differential"
 RPM = 30.0 / math.pi          # rad/s -> rpm
@@ -126,7 +126,8 @@ class DifferentialResult:
 
     def to_dict(self) -> dict:
         sp = dict(self.speeds)
-        d = {"scheme": self.scheme, "z": dict(self.z), "satellites": self.satellites, "u": self.u,
+        d = {"scheme": self.scheme, "last": last_member(self.scheme), "z": dict(self.z), "satellites": self.satellites,
+             "u": self.u,
              "given": {"speeds": list(self.given_speeds), "torque": self.given_torque},
              "speeds": sp, "speeds_rpm": {k: v * RPM for k, v in sp.items()},
              "satellite_relative": self.satellite_relative, "efficiency": self.efficiency}
@@ -138,9 +139,6 @@ class DifferentialResult:
                  warnings=list(self.warnings))
         return d
 
-
-def _field_error(path: str, msg: Message) -> TaskError:
-    return TaskError(msg, issues=[(path, None, None, msg)])
 
 
 def _plan(scheme: str, teeth: dict, m: float, w: dict, last: str) -> dict:
@@ -188,10 +186,10 @@ def analyze(spec) -> DifferentialResult:
     # with the given number of satellites: the user's teeth are computed, with a warning
     a1, a2 = pl.centre_distances(scheme, teeth)
     if not (a1 == a2 and a1 > 0):
-        raise _field_error("differential.z", Message("differential.not_coaxial", a1=2 * a1, a2=2 * a2))
+        raise field_error("differential.z", Message("differential.not_coaxial", a1=2 * a1, a2=2 * a2))
     margin = pl.adjacency_margin(scheme, teeth, k)
     if margin <= 0:
-        raise _field_error("differential.satellites", Message("differential.adjacency", k=k, margin=margin))
+        raise field_error("differential.satellites", Message("differential.adjacency", k=k, margin=margin))
     warnings: list = []
     bad = pl.undercut_ok(scheme, teeth, pl.Limits())
     if bad:
@@ -202,7 +200,7 @@ def analyze(spec) -> DifferentialResult:
     u_exact = willis_ratio(scheme, teeth)
     u = float(u_exact)
     if u_exact == 1 and set(spec.speeds) == {"1", last}:
-        raise _field_error("differential.speeds", Message("differential.rigid", last=last))
+        raise field_error("differential.speeds", Message("differential.rigid", last=last))
     w = third_speed(u, {kk: float(v) for kk, v in spec.speeds.items()}, last)
     zl = [teeth[n] for n in pl.SCHEMES[scheme]["wheels"]]
     w_sat, w_rel = satellite_speeds(scheme, zl, w["1"], w["H"])

@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 
 
-from ..errors import StageError, TaskError
+from ..errors import StageError, field_error
 from ..messages import Message
 from . import planetary as pl
 
@@ -110,9 +110,6 @@ class TrainResult:
         return d
 
 
-def _err(path, msg) -> TaskError:
-    return TaskError(msg, issues=[(path, None, None, msg)])
-
 
 def _can_take(kind: str, sign: int) -> bool:
     if kind == "pair":
@@ -164,7 +161,7 @@ def analyze(spec, drive=None) -> TrainResult:
             if not st.internal and min(st.z) < lim.external:
                 warnings.append(Message("drive_train.undercut", stage=i, z=min(st.z), limit=lim.external))
             if st.internal and st.z[1] <= st.z[0]:
-                raise _err(path, f"stage {i}: an internal pair needs the ring z2 > z1 (got {st.z})")
+                raise field_error(path, f"stage {i}: an internal pair needs the ring z2 > z1 (got {st.z})")
         else:
             # given teeth are the user's: a tooth limit or the assembly of k satellites that fails is
             # computed with a warning; a train that cannot be built (coaxiality, adjacency) is an error
@@ -178,12 +175,12 @@ def analyze(spec, drive=None) -> TrainResult:
                     warnings.append(Message("drive_train.given_assembly", stage=i, scheme=st.kind, z=list(st.z),
                                             k=k, fits=pl.assembling_counts(st.kind, _zdict(st.kind, st.z))))
                 else:
-                    raise _err(path, f"stage {i} (planetary {st.kind}, z = {list(st.z)}): "
+                    raise field_error(path, f"stage {i} (planetary {st.kind}, z = {list(st.z)}): "
                                      f"{CONDITION[name]} condition violated: {why}")
         given_u[i] = stage_ratio(st.kind, st.z, st.internal)
     free = [i for i, st in enumerate(specs) if st.z is None]
     if free and req is None and any(specs[i].ratio is None for i in free):
-        raise _err("drive_train.ratio", "stages without z need the required `ratio` "
+        raise field_error("drive_train.ratio", "stages without z need the required `ratio` "
                                         "(or `motor_speed` with a `drive` section)")
     # sign of the required ratio when it comes from the speeds
     if req_src == "motor":

@@ -17,7 +17,7 @@ def figure(ctx, d):
     fig, ax = subplots(150, 90)
     ys = [pt["y"] for pt in vp["points"]]
     top = max(ys) * 1.08
-    last = "3" if d["scheme"] == "A" else "4"
+    last = d["last"]
     for name, ln in vp["lines"].items():
         if name == "satellite":
             y0, y1 = min(ys[1], ys[3], vp["aw"]), max(ys[1], ys[3], vp["aw"])
@@ -46,7 +46,7 @@ def build(ctx) -> str | None:
     if not d:
         return None
     f, t = ctx.fmt, ctx.t
-    last = "3" if d["scheme"] == "A" else "4"
+    last = d["last"]
     given = set(d["given"]["speeds"])
     ch = d["checks"]
     info = [(t("diff.scheme", s=d["scheme"], n=d["satellites"]), ""),
