@@ -120,3 +120,31 @@ def test_sheets_title_blocks_take_the_course_header(tmp_path):
         assert tb["code"] == f"ТММ.КП.07.00.00.{n:02d}"
         assert tb["supervisor"] == "Петренко О. В." and tb["student"] == "Іваненко П. С."
         assert tb["organisation"] == "Національний технічний університет, МТ-31"
+
+
+def test_every_figure_has_a_numbered_caption_with_a_title(note):
+    """GOST 2.105: "Рисунок <section>.<n> — <title>" under every figure, numbered 1, 2, ... in each
+    section; the figures the report leaves bare (a position's drawings) take their heading."""
+    text = subprocess.run(["pdftotext", str(note), "-"], capture_output=True, text=True, check=True).stdout
+    caps = re.findall(r"^Рисунок (\d+)\.(\d+)(.*)$", text, re.M)
+    assert len(caps) >= 10
+    for sec, n, rest in caps:
+        assert rest.startswith(" — ") and len(rest.strip(" —")) > 3, (sec, n, rest)
+    by_section: dict[str, list[int]] = {}
+    for sec, n, _ in caps:
+        by_section.setdefault(sec, []).append(int(n))
+    for sec, ns in by_section.items():
+        assert ns == list(range(1, len(ns) + 1)), (sec, ns)
+    assert any("Положення 0, φ = " in rest for *_, rest in caps)
+
+
+def test_bare_figures_take_the_heading_they_stand_under():
+    from tmm_cli.report.note import _caption_bare_figures
+    html = ('<h3>A</h3><figure class="fig"><svg/></figure>'
+            '<h4>Position 1, φ = 30°</h4><figure class="fig"><svg/></figure>'
+            '<figure class="fig"><svg/><figcaption>own</figcaption></figure>')
+    out = _caption_bare_figures(html)
+    assert out.count("<figcaption>") == 3
+    assert '<svg/><figcaption>A</figcaption></figure>' in out
+    assert '<svg/><figcaption>Position 1, φ = 30°</figcaption></figure>' in out
+    assert out.endswith('<figcaption>own</figcaption></figure>')

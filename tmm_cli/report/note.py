@@ -200,13 +200,38 @@ def _strip_head(html: str) -> str:
     return re.sub(r'<nav class="toc">.*?</nav>', "", html, count=1, flags=re.S)
 
 
+_FIGURE = re.compile(r"<figure\b[^>]*>.*?</figure>", re.S)
+_HEADING = re.compile(r"<h([2-4])\b[^>]*>(.*?)</h\1>", re.S)
+
+
+def _caption_bare_figures(html: str) -> str:
+    """Every figure of a text document has a caption (GOST 2.105): a figure the report leaves
+    without one (a position's drawings under their heading "Position 3, φ = 96.42°", a diagram
+    under its subsection's heading) takes the text of the heading it stands under."""
+    out, last, heading = [], 0, None
+    marks = sorted([(m.start(), "h", m) for m in _HEADING.finditer(html)]
+                   + [(m.start(), "f", m) for m in _FIGURE.finditer(html)], key=lambda t: t[0])
+    for _, kind, m in marks:
+        if kind == "h":
+            heading = re.sub(r"<[^>]+>", "", m.group(2)).strip()
+            continue
+        fig = m.group(0)
+        if "<figcaption" in fig or not heading:
+            continue
+        out.append(html[last:m.end() - len("</figure>")])
+        out.append(f"<figcaption>{heading}</figcaption></figure>")
+        last = m.end()
+    out.append(html[last:])
+    return "".join(out)
+
+
 def to_typst(html: str, results: dict, task, lang: str = "en") -> tuple[str, dict[str, bytes]]:
     """(Typst source, {file name: bytes}) of the explanatory note."""
     W = WORDS.get(lang, WORDS["en"])
     h = _header(task)
     # the report's body as report.pdf has it; its preamble (fonts, tables, headings) less its page,
     # figure and caption settings, which are the note's own
-    root, svgs = typst_pdf._parse(_strip_head(html))
+    root, svgs = typst_pdf._parse(_caption_bare_figures(_strip_head(html)))
     w = typst_pdf._Writer(svgs, None)
     body, files = w.block(root), w.files
     # the report keeps a position's drawings on one page; the note's text area is shorter (the title
