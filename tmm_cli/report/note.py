@@ -237,7 +237,7 @@ def to_typst(html: str, results: dict, task, lang: str = "en") -> tuple[str, dic
     # the report keeps a position's drawings on one page; the note's text area is shorter (the title
     # block), so there they may flow on to the next page (each drawing itself stays whole)
     body = body.replace("#block(breakable: false)[", "#block[")
-    head = _preamble_only(typst_pdf.PREAMBLE.replace("TITLE", typst_pdf._s(h["title"])[1:]).replace("LANG", f'"{lang}"'))
+    head = _shared_preamble().replace("TITLE", typst_pdf._s(h["title"])[1:]).replace("LANG", f'"{lang}"')
     var = W["variant"].format(v=h["variant"]) if h["variant"] not in (None, "") else ""
     intro = W["intro_text"].format(title=h["title"], variant=var, parts=_parts(results, lang))
     concl = conclusions(results, lang)
@@ -291,14 +291,12 @@ def to_typst(html: str, results: dict, task, lang: str = "en") -> tuple[str, dic
     return out, files
 
 
-def _preamble_only(pre: str) -> str:
-    """The report's preamble without its page setting (the note sets its own) and its fig/cap
-    (the note's number their captions)."""
-    pre = re.sub(r"#set page\(.*?\)\)\)\)\n", "", pre, count=1, flags=re.S)
-    pre = re.sub(r"#let cap\(x\) = .*?\n", "", pre, count=1)
-    pre = re.sub(r"#let wf\(x\) = .*?\n", "", pre, count=1)
-    pre = re.sub(r"#let fig\(file.*", "", pre, count=1, flags=re.S)
-    return pre
+def _shared_preamble() -> str:
+    """The parts of the report's preamble the note shares: the document, type, headings, tables,
+    the kept blocks and section breaks -- not the report's page, nor its figure, table and
+    formula captions (the note sets its own page and numbers its captions)."""
+    t = typst_pdf
+    return "\n" + t.PREAMBLE_DOC + t.PREAMBLE_STYLE + t.PREAMBLE_KEEP + t.PREAMBLE_BREAK
 
 
 def pdf_bytes(html: str, results: dict, task, lang: str = "en") -> bytes:

@@ -220,12 +220,14 @@ def _em_width(text: str, bold: bool = False) -> float:
     2.0; bold ones _ADV_BOLD, any other _BOLD times the regular bound), in order."""
     return sum(map((_ADV_BOLD_ALL if bold else _ADV_ALL).__getitem__, text))
 
-PREAMBLE = r"""
-#set document(title: TITLE, date: none)
-#set page(paper: "a4", margin: (top: 15mm, right: 14mm, bottom: 16mm, left: 18mm),
+# the report's Typst preamble, in named parts (the explanatory note takes the parts it shares)
+PREAMBLE_DOC = r"""#set document(title: TITLE, date: none)
+"""  # the document's metadata
+PREAMBLE_PAGE = r"""#set page(paper: "a4", margin: (top: 15mm, right: 14mm, bottom: 16mm, left: 18mm),
   footer: context align(right, text(size: 8pt, fill: rgb("#555555"),
     counter(page).display("1 / 1", both: true))))
-#set text(font: ("DejaVu Sans",), size: 9.5pt, fill: rgb("#111111"), lang: LANG, hyphenate: false)
+"""  # the report's page: A4, margins, the page number in the footer
+PREAMBLE_STYLE = r"""#set text(font: ("DejaVu Sans",), size: 9.5pt, fill: rgb("#111111"), lang: LANG, hyphenate: false)
 #set par(leading: 0.42em, spacing: 0.55em, justify: false)
 #set heading(numbering: (..n) => if n.pos().len() <= 2 { numbering("1.1.", ..n) })
 #show heading: set block(sticky: true)
@@ -239,15 +241,22 @@ PREAMBLE = r"""
 #show table: set par(leading: 0.3em)
 #let num(x) = align(right, x)
 #let note(x) = text(size: 8.5pt, fill: rgb("#444444"), x)
-#let cap(x) = block(below: 1mm, sticky: true, strong(x))
-#let keep(x) = block(sticky: true, above: 0.55em, below: 0.55em, x)
-#let wf(x) = block(above: 0.8em, below: 0.8em, x)
-#let section-break = { block(breakable: false, height: 50%, above: 4mm, below: 0pt); v(-50%) }
-#let fig(file, w, c, labels: none) = block(above: 2mm, below: 3mm, breakable: false, width: 100%,
+"""  # type, paragraphs, headings, tables, the small helpers
+PREAMBLE_CAP = r"""#let cap(x) = block(below: 1mm, sticky: true, strong(x))
+"""  # a table's caption (the note numbers its own)
+PREAMBLE_KEEP = r"""#let keep(x) = block(sticky: true, above: 0.55em, below: 0.55em, x)
+"""  # a block kept with what follows
+PREAMBLE_WF = r"""#let wf(x) = block(above: 0.8em, below: 0.8em, x)
+"""  # a worked formula (the note numbers its own)
+PREAMBLE_BREAK = r"""#let section-break = { block(breakable: false, height: 50%, above: 4mm, below: 0pt); v(-50%) }
+"""  # a section's break: a new page when less than half of one is left
+PREAMBLE_FIG = r"""#let fig(file, w, c, labels: none) = block(above: 2mm, below: 3mm, breakable: false, width: 100%,
   align(center, { if labels == none { layout(size => image(file, width: if type(w) == length { calc.min(w, size.width) } else { w })) } else {
     block(width: w, { image(file, width: w); set text(top-edge: "baseline", bottom-edge: "baseline"); labels }) }
     if c != none { v(1mm, weak: true); text(size: 8.5pt, fill: rgb("#333333"), c) } }))
-"""
+"""  # a figure with its caption (the note numbers its own)
+PREAMBLE = "\n" + "".join((PREAMBLE_DOC, PREAMBLE_PAGE, PREAMBLE_STYLE, PREAMBLE_CAP, PREAMBLE_KEEP, PREAMBLE_WF,
+                               PREAMBLE_BREAK, PREAMBLE_FIG))
 # the page's text width (A4 less the margins of PREAMBLE), pt
 _TEXT_WIDTH = (210 - sum(map(float, re.search(r"right: ([\d.]+)mm, bottom: [\d.]+mm, left: ([\d.]+)mm",
                                               PREAMBLE).groups()))) * _MM
