@@ -197,3 +197,84 @@ def test_example_task(tmp_path):
     assert [e["phi"] for e in b["shaking"]] == d["positions"]["phi"]
     assert b["max"]["F_balanced"] < 1e-9 * b["max"]["F"]
     assert len(b["hodograph"]["phi"]) == 361 and b["rotor"]["method"] == "dynamic"
+
+
+# ---------------------------------------------------------------- balancing.apply
+APPLY_LOADS = {"forces": [{"on": "rocker", "kind": "resistance", "moment": 20}]}
+
+
+def _apply_task(apply: bool):
+    return load_task({"schema": "tmm/1", "mechanism": FOURBAR, "drive": {"link": "crank", "speed": "120 rpm"},
+                      "positions": {"count": 12, "zero": 0, "output": "rocker"}, "loads": APPLY_LOADS,
+                      "kinetostatics": {}, "flywheel": {"delta": 0.05},
+                      "balancing": {"counterweights": {"method": "full", "radius": {"crank": 0.06, "rocker": 0.08}},
+                                    "apply": apply}})
+
+
+@pytest.fixture(scope="module")
+def applied():
+    return run(_apply_task(False)), run(_apply_task(True))
+
+
+def test_applied_counterweights_leave_the_frame_no_net_force(applied):
+    """Without gravity and with only a couple as the load, the frame's reactions on the links
+    sum to the links' sum m a_S: the shaking force of the balancing stage (a second method:
+    kinetostatics against the momenta). With the full-balancing counterweights applied that sum
+    is zero at every position; without them it is the `shaking` force."""
+    plain, bal = applied
+    for res, key in ((plain, "shaking"), (bal, None)):
+        sh = res["balancing"]["shaking"]
+        scale = max(e["F"] for e in sh)
+        for e, k in zip(res["kinetostatics"], sh):
+            R = e["reactions"]
+            fx = R["R01"]["x"] + R["R03"]["x"]
+            fy = R["R01"]["y"] + R["R03"]["y"]
+            want = (k["Fx"], k["Fy"]) if key else (0.0, 0.0)
+            assert fx == pytest.approx(want[0], abs=1e-9 * scale)
+            assert fy == pytest.approx(want[1], abs=1e-9 * scale)
+    assert max(e["F"] for e in plain["balancing"]["shaking"]) > 10
+
+
+def test_applied_counterweights_in_the_reduced_moment_of_inertia(applied):
+    """Each counterweight turns with its link about a fixed pivot: it adds m r^2 to the link's
+    moment of inertia about the pivot. The crank's (centre of mass at O): J_O = 0.0015 + m1' r1^2;
+    the rocker's reduced share J_O3 (w3/w1)^2 scales by (J_O3 + m3' r3^2)/J_O3 with
+    J_O3 = J_S3 + m3 (l3/2)^2 = 0.0085 + 1.8 (0.11)^2 = 0.03028 kg m^2; the coupler's is unchanged."""
+    plain, bal = applied
+    cw = bal["balancing"]["counterweights"]
+    m1, m3 = cw["crank"]["m"], cw["rocker"]["m"]
+    a0, a1 = plain["flywheel"]["arrays"]["J_links"], bal["flywheel"]["arrays"]["J_links"]
+    assert a1["crank"][0] == pytest.approx(0.0015 + m1 * 0.06 ** 2, rel=1e-12)
+    assert a0["crank"][0] == pytest.approx(0.0015, rel=1e-12)
+    J_O3 = 0.0085 + 1.8 * 0.11 ** 2
+    k = 1 + m3 * 0.08 ** 2 / J_O3
+    for x0, x1 in zip(a0["rocker"], a1["rocker"]):
+        assert x1 == pytest.approx(k * x0, rel=1e-9, abs=1e-15)
+    assert a1["coupler"] == pytest.approx(a0["coupler"], rel=1e-12)
+    assert bal["flywheel"]["J"] != pytest.approx(plain["flywheel"]["J"], rel=1e-6)
+
+
+def test_applied_links_by_hand(applied):
+    """`balancing.applied`: the crank (1.0 kg at O, J 0.0015) with m1' at r1 = 0.06 opposite A:
+    mass 1 + m1', centre of mass at -m1' 0.06/(1 + m1') on its axis, J about it by parallel axes."""
+    _, bal = applied
+    m1 = bal["balancing"]["counterweights"]["crank"]["m"]
+    ang = math.radians(bal["balancing"]["counterweights"]["crank"]["angle"])
+    c = bal["balancing"]["applied"]["crank"]
+    M = 1.0 + m1
+    sx, sy = m1 * 0.06 * math.cos(ang) / M, m1 * 0.06 * math.sin(ang) / M
+    assert c["mass"] == pytest.approx(M, rel=1e-12)
+    assert c["com"] == pytest.approx([sx, sy], abs=1e-12)
+    assert c["J"] == pytest.approx(0.0015 + 1.0 * (sx ** 2 + sy ** 2) + m1 * ((0.06 * math.cos(ang) - sx) ** 2
+                                                                           + (0.06 * math.sin(ang) - sy) ** 2), rel=1e-12)
+    assert "applied" not in applied[0]["balancing"]
+
+
+def test_apply_without_counterweights_exit_2(tmp_path):
+    text = (ROOT / "tasks" / "balancing_fourbar.yaml").read_text(encoding="utf-8")
+    cut = "  counterweights:\n    method: full\n    radius: {crank: 60 mm, rocker: 80 mm}\n"
+    assert cut in text and "  apply: true\n" in text
+    text = text.replace(cut, "")
+    code, out = _run(tmp_path, text)
+    assert code == 2 and "`apply: true` needs `counterweights`" in out and "balancing.apply" in out
+    assert "Traceback" not in out

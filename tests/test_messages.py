@@ -436,6 +436,7 @@ ENGLISH = [
     ('input.balancing_radius', {'method': 'full', 'key': 'rocker'},
      'counterweights by the full method need `radius: {rocker: ...}` (m)'),
     ('input.balancing_radius_positive', {'key': 'crank'}, "the counterweight's radius `crank` must be above zero"),
+    ('input.balancing_apply_needs', {}, "`apply: true` needs `counterweights`: there is nothing to apply"),
     ('input.rotor_planes_equal', {}, 'the two correction planes must be at different z'),
     ('input.balancing_needs_mechanism', {}, 'counterweights balance a linkage: the task needs a `mechanism`'),
     ('balancing.method_needs', {'method': 'full', 'kind': 'four-bar linkage'},

@@ -228,7 +228,16 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explo
 
         from . import balancing
         grid = kinematics.solve(mech, np.arange(361) * 1.0, drive.omega)   # the hodographs over the turn
-        put(results, warnings, "balancing", _stage("balancing")(balancing.analyze)(mech, kin, task.balancing, grid))
+        bal = _stage("balancing")(balancing.analyze)(mech, kin, task.balancing, grid)
+        put(results, warnings, "balancing", bal)
+        if task.balancing.apply:
+            # the later stages see the links with their counterweights (geometry unchanged; the
+            # centres of mass moved): results' kinematics stay those of the task's links
+            import dataclasses
+
+            from .balancing.linkage import with_counterweights
+            linkage = dataclasses.replace(linkage, mechanism=with_counterweights(mech, bal.weights))
+            kin = _stage("kinematics")(kinematics.analyze)(linkage)
 
     dyn = None
     if task.flywheel is not None:

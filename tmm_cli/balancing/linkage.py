@@ -127,6 +127,39 @@ def counterweights(mech, kin, spec) -> tuple[list[Counterweight], dict]:
     return out, remains
 
 
+def with_counterweights(mech, cws):
+    """The mechanism with each counterweight (a point mass) added to its link: the link's mass
+    M' = M + m, centre of mass S' = (M S + m X)/M' and moment of inertia about it
+    J' = J + M |S - S'|^2 + m |X - S'|^2 (parallel axes), with X = P + r e^{i angle} (Q - P)/|Q - P|
+    in the link's own frame (P the fixed pivot, Q the other pair point). The geometry is unchanged."""
+    from dataclasses import replace
+
+    links = []
+    for lk in mech.links:
+        M, S, J = float(lk.mass), complex(*lk.com), float(lk.J)
+        for cw in (c for c in cws if c.link == lk.name):
+            P, Q = complex(*lk.local[cw.pivot]), complex(*lk.local[cw.other])
+            X = P + cw.r * np.exp(1j * np.radians(cw.angle)) * (Q - P) / abs(Q - P)
+            M2 = M + cw.m
+            S2 = (M * S + cw.m * X) / M2
+            J = J + M * abs(S - S2) ** 2 + cw.m * abs(X - S2) ** 2
+            M, S = M2, S2
+        links.append(lk if (M, S, J) == (float(lk.mass), complex(*lk.com), float(lk.J))
+                     else replace(lk, mass=M, com=(S.real, S.imag), J=J))
+    return replace(mech, links=links)
+
+
+def _applied(mech, cws) -> dict:
+    """results.json ``balancing.applied``: each counterweighted link's mass (kg), centre of mass
+    in its own frame (m) and moment of inertia about it (kg*m^2) as the kinetostatics and the
+    flywheel take them."""
+    out = {}
+    for lk in with_counterweights(mech, cws).links:
+        if any(c.link == lk.name for c in cws):
+            out[lk.name] = {"mass": float(lk.mass), "com": [float(lk.com[0]), float(lk.com[1])], "J": float(lk.J)}
+    return out
+
+
 def _cw_motion(kin, cw: Counterweight):
     """Position and acceleration (complex, (N,)) of a counterweight on a link turning about its
     fixed pivot: X = P + c e^{i theta_axis}, a = (i eps - omega^2)(X - P)."""
@@ -171,6 +204,8 @@ class BalancingResult:
     maxima: dict
     rotor: dict | None = None
     warnings: list = field(default_factory=list)
+    applied: dict | None = None              # balancing.apply: the links as the later stages take them
+    weights: list = field(default_factory=list, repr=False)   # the Counterweight objects (not written)
 
     def to_dict(self) -> dict:
         d = {"about": self.about, "shaking": self.shaking}
@@ -183,6 +218,8 @@ class BalancingResult:
         d.update(max=self.maxima, hodograph=self.hodograph)
         if self.rotor is not None:
             d["rotor"] = self.rotor
+        if self.applied is not None:
+            d["applied"] = self.applied
         return d
 
 
@@ -208,4 +245,5 @@ def analyze(mech, kin, spec, grid=None) -> BalancingResult:
         rotor = balance_rotor(spec.rotor)
     return BalancingResult(about=about, shaking=_entries(kin.phi, sh), shaking_balanced=balanced,
                            counterweights={c.role: c.to_dict() for c in cws} if cws else None,
-                           remains=remains, hodograph=hod, maxima=maxima, rotor=rotor)
+                           remains=remains, hodograph=hod, maxima=maxima, rotor=rotor,
+                           applied=_applied(mech, cws) if spec.apply else None, weights=cws)

@@ -10,6 +10,8 @@ Example::
                                   #   `reciprocating_share` of the reciprocating ones (slider-crank)
         radius: {crank: 0.10 m, rocker: 0.12 m}   # from the link's fixed pivot
         reciprocating_share: 0.5
+      apply: true                 # the kinetostatics and the flywheel with the counterweights on
+                                  #   the links (default false: they show the unbalanced linkage)
       rotor:                      # static (one plane) or dynamic (two planes) balancing
         masses: [{m: 0.2 kg, r: 0.10 m, angle: 30, z: 0.05 m}, ...]
         planes: [0, 0.30 m]
@@ -77,3 +79,12 @@ class BalancingSection(_Model):
                                                                        "radius, reciprocating_share")
     rotor: RotorSpec | None = Field(None, description="a rigid rotor's masses and correction planes: static (one "
                                                       "plane) or dynamic (two planes) balancing")
+    apply: bool = Field(False, description="true: the kinetostatics and the flywheel are computed with the "
+                                           "counterweights on the links (their masses, centres of mass and "
+                                           "moments of inertia as changed); needs counterweights")
+
+    @model_validator(mode="after")
+    def _apply_needs_counterweights(self):
+        if self.apply and self.counterweights is None:
+            raise FieldValueError(("apply",), Message("input.balancing_apply_needs"))
+        return self

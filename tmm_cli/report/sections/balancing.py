@@ -127,6 +127,11 @@ def build(ctx) -> str | None:
             else:
                 cw_text.append(t("bal.cw_full"))
         cw_fig = counterweights_figure(ctx, b, ctx.results) if cw else None
+        applied = b.get("applied")
+        if applied:
+            parts.update(applied_text=t("bal.applied"), applied_rows=[
+                (f"{name} ({number.get(name, '')})", f(a["mass"]), f"({f(a['com'][0])}; {f(a['com'][1])})", f(a["J"]))
+                for name, a in applied.items()])
         parts.update(head=head, rows=rows, notes=notes, method=t("bal.method", about=b.get("about", "O")),
                      hodo=ctx.svg(hodograph(ctx, b), "balancing-hodograph"), cw_rows=cw_rows, cw_text=cw_text,
                      cw_fig=ctx.svg(cw_fig, "balancing-counterweights") if cw_fig is not None else None)
