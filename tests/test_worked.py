@@ -133,6 +133,26 @@ class Expected:
             x = self.e(name) * self.dist(pin, a[1])
         return x / mu if k.startswith("s") else x
 
+    def mass_props(self, name: str) -> tuple[float, float]:
+        """The link's mass and J_S from the task; with balancing.apply and a counterweight on the
+        link (a two-point bar, its frame from its first point, the fixed pivot, along the bar),
+        a point mass m at (r cos a, r sin a) added by hand: M' = M + m, S' = (M S + m X)/M',
+        J' = J + M |S - S'|^2 + m |X - S'|^2."""
+        spec = self.task.mechanism.links[name]
+        M, J = float(spec.mass), float(spec.J)
+        bal = self.res.get("balancing") or {}
+        cw = next((c for c in (bal.get("counterweights") or {}).values() if c["link"] == name), None)
+        if cw is None or self.task.balancing is None or not self.task.balancing.apply:
+            return M, J
+        # tmm's defaults: the drive link's centre of mass at its pivot, a bar's at its middle
+        com = spec.com if spec.com is not None else \
+            ((0.0, 0.0) if name == self.task.drive.link else (float(spec.length) / 2, 0.0))
+        S = complex(float(com[0]), float(com[1]))
+        X = cw["r"] * complex(math.cos(math.radians(cw["angle"])), math.sin(math.radians(cw["angle"])))
+        M2 = M + cw["m"]
+        S2 = (M * S + cw["m"] * X) / M2
+        return M2, J + M * abs(S - S2) ** 2 + cw["m"] * abs(X - S2) ** 2
+
     def value(self, key: str) -> tuple[float, bool]:
         """(value, signed)."""
         k, *a = key.split(":")
@@ -181,10 +201,8 @@ class Expected:
             return (x if k == "at" else x / self.mu_a), False
         if k in ("vc", "svc", "vcr", "svcr", "ac", "sac", "ak", "sak", "ar", "sar", "anc", "sanc", "atc", "satc"):
             return self.slotted(k, a), False
-        if k == "m":        # the task's inputs (results.json repeats them in structure.links)
-            return float(self.task.mechanism.links[a[0]].mass), False
-        if k == "J":
-            return float(self.task.mechanism.links[a[0]].J), False
+        if k in ("m", "J"):     # the task's inputs (results.json repeats them in structure.links)
+            return self.mass_props(a[0])[0 if k == "m" else 1], False
         if k == "F":
             return float(np.hypot(*self.force(a[0])[1])), False
         if k == "R":
@@ -411,7 +429,7 @@ def _section_numbers(html: str) -> list[tuple[str, str]]:
 
 
 @pytest.mark.parametrize("name", ["engine_slider_crank", "compressor_v_twin", "crank_rocker_fourbar",
-                                  "static_gravity", "press_offset_slider_crank", "motion"])
+                                  "static_gravity", "press_offset_slider_crank", "motion", "balancing_fourbar"])
 def test_numbers_of_other_tasks(tmp_path, name):
     """The same check without a browser on the HTML formulas (the PDF's) of other tasks:
     a slider-crank, a V-twin (two groups on one crank), a four-bar, a static problem,

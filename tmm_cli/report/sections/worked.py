@@ -867,11 +867,16 @@ class _Writer:
         # with `motion: true` the inertia loads follow the flywheel's omega(phi), eps(phi), not the
         # constant-speed accelerations of the kinematics: their values only, no substitution
         steady = (self.ctx.results.get("kinetostatics_info") or {}).get("motion") != "steady"
+        # with balancing.apply a counterweighted link's mass, centre of mass and J are the applied
+        # ones (results balancing.applied); its centre of mass is not a point of the kinematics:
+        # the inertia loads' values only, no substitution
+        applied = (self.ctx.results.get("balancing") or {}).get("applied") or {}
         self.p(self.t("worked.loads"))
         for l in G:
             name = self.names[l]
-            spec = links.get(name)
+            spec = applied.get(name) or links.get(name)
             mass, J = (spec.get("mass"), spec.get("J")) if spec else (None, None)
+            moved = name in applied
             items = []
             for f in ks["loads"]:
                 if f["link"] != name:
@@ -881,7 +886,7 @@ class _Writer:
                     items += [self.fsym(f["name"]), mo("="), sb("m", str(l)), mo("·"), mi("g"), mo("="),
                               num(mass, f"m:{name}"), mo("·"), num(9.81, "g"), mo("="),
                               num(Fm, f"F:{f['name']}"), mo(";")]
-                elif f["kind"] == "inertia" and mass and Fm > 0 and steady:
+                elif f["kind"] == "inertia" and mass and Fm > 0 and steady and not moved:
                     s = f"S{l}"
                     aS = float(np.hypot(*self.a(s))) if s in self.pts else None
                     if aS is None:
