@@ -549,6 +549,49 @@ def test_planetary_only_task_writes_a_sheet(lang):
     assert tan(info["lines"]["1"]) / tan(info["lines"]["H"]) == pytest.approx(res["planetary"]["ratio"], rel=1e-9)
 
 
+@pytest.mark.parametrize("lang", ["en", "ru", "uk"])
+def test_differential_sheet(lang):
+    """tasks/differential_A.yaml (z 27-30-87, m 2 mm, n1 = 1000 rpm, n3 = -200 rpm): sheet 7 alone,
+    each point of the velocity picture at v/μv from the v axis (left for a negative speed) and at
+    r/μl above the axis, and Willis' ratio read from the drawn lines: by hand u = -z3/z1 = -87/27,
+    ωH = (ω1 - u ω3)/(1 - u) = (1000 + 87/27 (-200))/(1 + 87/27) rpm = 84.2105 rpm; each line's
+    tangent in proportion to its member's speed."""
+    import io
+
+    import ezdxf
+    from tmm_cli.pipeline import run
+    from tmm_cli.sheets import SHEETS, build_sheets
+    from tmm_cli.sheets.sheet7 import tangents
+    from tmm_cli.task import load_task
+    task = load_task(ROOT / "tasks" / "differential_A.yaml")
+    res = run(task)
+    sheets = build_sheets(res, task, lang)
+    assert [info["number"] for _, info in sheets] == [7]
+    cv, info = sheets[0]
+    assert info["title_block"]["sheet_title"] == SHEETS[lang][7]
+    _check_texts(sheets)
+    assert not ezdxf.read(io.StringIO(to_dxf(cv).decode())).audit().has_errors
+    vp = res["differential"]["velocity_plan"]
+    vx = info["points"]["O"][0]
+    assert min(q["v"] for q in vp["points"]) < 0
+    for q in vp["points"]:
+        x, y = info["points"][q["name"].split()[0]]
+        assert x - vx == pytest.approx(q["v"] / info["mu_v"], abs=1e-9)
+        assert y - info["axis_y"] == pytest.approx(q["y"] * 1000.0 / info["unit"], abs=1e-9)
+    u = -87 / 27
+    nH = (1000 - u * (-200)) / (1 - u)
+    assert nH == pytest.approx(84.2105263, rel=1e-8)
+    tg = tangents(info)
+    assert info["u_plan"] == pytest.approx(u, rel=1e-9)
+    assert (tg["1"] - tg["H"]) / (tg["3"] - tg["H"]) == pytest.approx(u, rel=1e-9)
+    assert tg["H"] / tg["1"] == pytest.approx(nH / 1000, rel=1e-9)
+    assert tg["3"] / tg["1"] == pytest.approx(-200 / 1000, rel=1e-9)
+    # every drawn item on the sheet inside the frame
+    x0, y0, x1, y1 = FRAME
+    for name, (x, y) in info["points"].items():
+        assert x0 < x < x1 and y0 < y < y1, name
+
+
 @pytest.mark.parametrize("name", ["gears_shifted", "gears_zero"])
 def test_gear_sheet_teeth_closed(name):
     """Each wheel's window of teeth one closed main-line contour: every tooth, the end ones too,

@@ -17,14 +17,29 @@ COL_W, WHEEL_W = 34.0, 22.0      # mm: a row of wheels' column, a wheel's width 
 def build(cv, results, task, lang="en") -> dict:
     from ..report.context import ReportContext
     from ..report.sections import load
-    from .sheet1 import UNITS
-    U = UNITS[lang]
     P = load("planetary")            # registers its texts in the three languages
     ctx = ReportContext(results=results, task=task, lang=lang, out_dir=Path("."), env=None)
     p = results["planetary"]
+    rows, a = P._rows_of(p)
+    info = draw_train(cv, ctx, p, rows, a, ctx.t("plan.sketch"), ctx.t("plan.v_axis"), lang)
+    vx, (x0f, y0f, x1f, y1f) = info["points"]["O"][0], FRAME
+    # the ratio from the picture: tan ψ1 / tan ψH
+    tg = "tan" if lang == "en" else "tg"
+    vp = p["velocity_plan"]
+    cv.mtext(vx - 20.0, y0f + TB_H + 12.0, f"i₁H = {tg} ψ₁ / {tg} ψH = {float(vp['tan_psi_1']):.4g} / "
+             f"{float(vp['tan_psi_H']):.4g} = {float(p['ratio_plan']):.4g}", 3.5)
+    return info
+
+
+def draw_train(cv, ctx, p, rows, a, heading: str, v_axis: str, lang: str) -> dict:
+    """The scheme of a planetary train (``rows``: its wheels as (name, r_bottom, r_top, column,
+    fixed) in m, ``a`` the satellites' axle radius) at a GOST 2.302 scale and its picture of
+    linear velocities (``p["velocity_plan"]``) at a standard μv on the same radii; returns the
+    drawn points, lines and wheels with the scales (sheet mm)."""
+    from .sheet1 import UNITS
+    U = UNITS[lang]
     mm = ctx.t("plan.mm")
     x0f, y0f, x1f, y1f = FRAME
-    rows, a = P._rows_of(p)
     top = max(y1 for _, _, y1, _, _ in rows)                       # m
     axis_y = y0f + TB_H + 40.0                                     # the axis of rotation on the sheet
     unit, label = length_scale(top * 1000.0 / (y1f - axis_y - 60.0))
@@ -36,7 +51,7 @@ def build(cv, results, task, lang="en") -> dict:
     # the scheme
     sx = x0f + 40.0
     ncol = max(c for *_, c, _ in rows) + 1
-    cv.mtext(x0f + 5, y1f - 7, ctx.t("plan.sketch"), 5.0, bold=True)
+    cv.mtext(x0f + 5, y1f - 7, heading, 5.0, bold=True)
     cv.mtext(x0f + 5, y1f - 14, "μ", 3.5, sub="l", after=f" = {unit / 1000.0:g} {U['m']}/{mm}   (M {label})")
     cv.layer = "thin"
     right = sx + ncol * COL_W + 30.0
@@ -60,13 +75,14 @@ def build(cv, results, task, lang="en") -> dict:
     # the velocity picture: v to the right of its axis, the radii as in the scheme
     vp = p["velocity_plan"]
     vmax = max(abs(float(q["v"])) for q in vp["points"]) or 1.0
-    vx = right + 80.0
     mu_v = std_mu(vmax / 160.0)
-    cv.mtext(vx + 4.0, Y(top) + 12.0, ctx.t("plan.v_axis"), 3.5)
+    vneg = max(0.0, -min(float(q["v"]) for q in vp["points"])) / mu_v    # a differential's lines go left too
+    vx = right + 80.0 + vneg
+    cv.mtext(vx + 4.0, Y(top) + 12.0, v_axis, 3.5)
     cv.mtext(vx + 4.0, Y(top) + 5.0, "μ", 3.5, sub="v", after=f" = {mu_v:g} ({U['m/s']})/{mm}")
     cv.layer = "thin"
     cv.arrow((vx, axis_y), (vx, Y(top) + 15.0), width=0.3, head=2.5)
-    cv.arrow((vx - 30.0, axis_y), (vx + vmax / mu_v + 30.0, axis_y), width=0.3, head=2.5)
+    cv.arrow((vx - 30.0 - vneg, axis_y), (vx + vmax / mu_v + 30.0, axis_y), width=0.3, head=2.5)
     cv.mtext(vx + vmax / mu_v + 32.0, axis_y - 4.0, "v", 3.5, italic=True)
     pts = {}
     for q in vp["points"]:
@@ -91,9 +107,5 @@ def build(cv, results, task, lang="en") -> dict:
         at = np.asarray(seg[0]) + 0.55 * (np.asarray(seg[1]) - np.asarray(seg[0]))
         cv.mtext(at[0] + 3.0, at[1], tag, 3.5, italic=True)
         lines[name] = seg
-    # the ratio from the picture: tan ψ1 / tan ψH
-    tg = "tan" if lang == "en" else "tg"
-    cv.mtext(vx - 20.0, y0f + TB_H + 12.0, f"i₁H = {tg} ψ₁ / {tg} ψH = {float(vp['tan_psi_1']):.4g} / "
-             f"{float(vp['tan_psi_H']):.4g} = {float(p['ratio_plan']):.4g}", 3.5)
     return {"unit": unit, "scale": label, "mu_l": unit / 1000.0, "mu_v": mu_v, "points": pts, "lines": lines,
             "wheels": wheels, "axis_y": axis_y, "k": k}
