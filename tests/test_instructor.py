@@ -1111,3 +1111,15 @@ def test_variants_non_numeric_cell_of_a_unit_column_named(tmp_path):
     assert f"{tab}:2: variant 01: column l_OA, mm: 'abc' is not a number" in res.output, res.output
     assert "unknown unit" not in res.output
     assert not (tmp_path / "t" / "01.yaml").exists() and (tmp_path / "t" / "02.yaml").exists()
+
+
+def test_leaf_paths_give_python_numbers():
+    """A numpy scalar among the results is listed as the number it is (printed by `tmm paths` and
+    written to forms as 1.5, never as 'np.float64(1.5)'), a numpy integer or bool not dropped."""
+    import numpy as np
+
+    from tmm_cli.check import leaf_paths
+    got = dict(leaf_paths({"a": np.float64(1.5), "b": {"c": np.int64(3), "d": np.bool_(True)}, "e": [np.float32(0.25)]}))
+    assert got == {"a": 1.5, "b.c": 3, "b.d": True, "e[0]": 0.25}
+    assert all(type(v) in (float, int, bool) for v in got.values())
+    assert repr(got["a"]) == "1.5"

@@ -430,6 +430,8 @@ def leaf_paths(results: dict) -> list[tuple[str, Any]]:
     out: list[tuple[str, Any]] = []
 
     def walk(o, p):
+        if type(o).__module__ == "numpy" and not isinstance(o, (list, dict)):
+            o = o.item()             # a numpy scalar as the Python number it is (printed as such)
         if isinstance(o, dict):
             for k, v in o.items():
                 walk(v, f"{p}.{k}" if p else str(k))

@@ -109,7 +109,7 @@ def counterweights(mech, kin, spec) -> tuple[list[Counterweight], dict]:
     def add(role, lk, piv, oth, need, have):
         c = need - have
         r = float(spec.radius[role])
-        m = abs(c) / r
+        m = float(abs(c)) / r
         ang = float(np.degrees(np.angle(c)) % 360.0) if abs(c) > 0 else 0.0
         out.append(Counterweight(role, lk.name, piv, oth, m, r, ang))
 
