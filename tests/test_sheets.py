@@ -592,6 +592,62 @@ def test_differential_sheet(lang):
         assert x0 < x < x1 and y0 < y < y1, name
 
 
+@pytest.mark.parametrize("lang", ["en", "ru", "uk"])
+def test_balancing_sheet(lang):
+    """tasks/balancing_fourbar.yaml: sheet 8 (after kinematics and kinetostatics) - the linkage's
+    points at position 0 at μl, each counterweight's disc at r/μl from its pivot at its angle from
+    the link's axis; the hodograph's marks at (Fx, Fy)/μF from its origin; the rotor's polygons, one
+    per correction plane, of the imbalances reduced by hand (U_i (z2 - z_i)/(z2 - z1) and
+    U_i (z_i - z1)/(z2 - z1), U_i = m_i r_i e^{i angle_i} from the task), each vector |U|/μ long,
+    each closed by its correction."""
+    import io
+
+    import ezdxf
+    from tmm_cli.pipeline import run
+    from tmm_cli.sheets import SHEETS, build_sheets
+    from tmm_cli.task import load_task
+    task = load_task(ROOT / "tasks" / "balancing_fourbar.yaml")
+    res = run(task)
+    sheets = build_sheets(res, task, lang)
+    assert [info["number"] for _, info in sheets] == [1, 2, 8]
+    cv, info = sheets[2]
+    assert info["title_block"]["sheet_title"] == SHEETS[lang][8]
+    _check_texts([sheets[2]])
+    assert not ezdxf.read(io.StringIO(to_dxf(cv).decode())).audit().has_errors
+    lk, e0 = info["linkage"], res["kinematics"][0]["points"]
+    k = 1000.0 / lk["unit"]
+    O = np.array([e0["O"]["x"], e0["O"]["y"]])
+    for p in ("A", "B", "O3"):
+        d = np.array([e0[p]["x"], e0[p]["y"]]) - O
+        assert lk["points"][p] - lk["points"]["O"] == pytest.approx(d * k, abs=1e-9)
+    for role, pivot, other in (("crank", "O", "A"), ("rocker", "O3", "B")):
+        c = res["balancing"]["counterweights"][role]
+        P, Q = (np.array([e0[q]["x"], e0[q]["y"]]) for q in (pivot, other))
+        th = math.atan2(Q[1] - P[1], Q[0] - P[0]) + math.radians(c["angle"])
+        want = lk["points"][pivot] + c["r"] * k * np.array([math.cos(th), math.sin(th)])
+        assert lk["discs"][role][0] == pytest.approx(want, abs=1e-9)
+    h = info["hodograph"]
+    for s in res["balancing"]["shaking"]:
+        i = res["positions"]["index"][res["balancing"]["shaking"].index(s)]
+        assert h["marks"][i] - h["origin"] == pytest.approx(np.array([s["Fx"], s["Fy"]]) / h["mu_F"], abs=1e-9)
+    # the rotor, by hand from the task's masses and planes [0, 0.3]
+    masses = [(0.2, 0.10, 30, 0.05), (0.15, 0.08, 150, 0.15), (0.1, 0.12, 260, 0.25)]
+    U = [m * r * complex(math.cos(math.radians(a)), math.sin(math.radians(a))) for m, r, a, _ in masses]
+    z1, z2 = 0.0, 0.3
+    planes = [[u * (z2 - z) / (z2 - z1) for u, (*_, z) in zip(U, masses)],
+              [u * (z - z1) / (z2 - z1) for u, (*_, z) in zip(U, masses)]]
+    rot = info["rotor"]
+    for poly, us, corr in zip(rot["polygons"], planes, res["balancing"]["rotor"]["corrections"]):
+        assert len(poly) == len(us) + 2
+        for i, u in enumerate(us):
+            assert np.hypot(*(poly[i + 1] - poly[i])) == pytest.approx(abs(u) / rot["mu_U"], rel=1e-9)
+        assert poly[-1] == pytest.approx(poly[0], abs=1e-9)               # the correction closes it
+        assert np.hypot(*(poly[-1] - poly[-2])) == pytest.approx(corr["mr"] / rot["mu_U"], rel=1e-9)
+    x0, y0, x1, y1 = FRAME
+    for poly in rot["polygons"]:
+        assert (poly[:, 0] > x0).all() and (poly[:, 0] < x1).all() and (poly[:, 1] > y0).all() and (poly[:, 1] < y1).all()
+
+
 @pytest.mark.parametrize("name", ["gears_shifted", "gears_zero"])
 def test_gear_sheet_teeth_closed(name):
     """Each wheel's window of teeth one closed main-line contour: every tooth, the end ones too,

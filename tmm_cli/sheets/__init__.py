@@ -8,20 +8,20 @@ from pathlib import Path
 from .. import numfmt
 
 SHEETS = {"en": {1: "Kinematics", 2: "Kinetostatics", 3: "Dynamics", 4: "Cam mechanism", 5: "Gear mesh",
-                 6: "Planetary gear", 7: "Differential"},
+                 6: "Planetary gear", 7: "Differential", 8: "Balancing"},
           "ru": {1: "Кинематический анализ", 2: "Силовой анализ", 3: "Динамический анализ",
                  4: "Кулачковый механизм", 5: "Зубчатое зацепление", 6: "Планетарный механизм",
-                 7: "Дифференциальный механизм"},
+                 7: "Дифференциальный механизм", 8: "Уравновешивание"},
           "uk": {1: "Кінематичний аналіз", 2: "Силовий аналіз", 3: "Динамічний аналіз",
                  4: "Кулачковий механізм", 5: "Зубчасте зачеплення", 6: "Планетарний механізм",
-                 7: "Диференціальний механізм"}}
+                 7: "Диференціальний механізм", 8: "Зрівноваження"}}
 
 
 def build_sheets(results: dict, task, lang: str = "en") -> list[tuple]:
     """[(PrimCanvas, info)] for each sheet whose section the results have."""
     from ..results import listed
     results = listed(results)        # the entries as lists: read many times
-    from . import sheet1, sheet2, sheet3, sheet4, sheet5, sheet6, sheet7
+    from . import sheet1, sheet2, sheet3, sheet4, sheet5, sheet6, sheet7, sheet8
     from .frame import SHEET_H, SHEET_W, draw_frame
     from .prims import PrimCanvas
     makers = []
@@ -39,6 +39,9 @@ def build_sheets(results: dict, task, lang: str = "en") -> list[tuple]:
         makers.append((6, sheet6.build))
     if (results.get("differential") or {}).get("velocity_plan"):
         makers.append((7, sheet7.build))
+    bal = results.get("balancing") or {}
+    if bal.get("rotor") or (bal.get("shaking") and results.get("kinematics")):
+        makers.append((8, sheet8.build))
     out = []
     student = getattr(getattr(task, "student", None), "name", None) or ""
     group = getattr(getattr(task, "student", None), "group", None) or getattr(task, "group", None) or ""
