@@ -205,9 +205,9 @@ def test_program_ends_at_once_unless_shutdown_has_work(tmp_path):
 @pytest.mark.parametrize("kind", sorted(units._FAST_UNITS))
 def test_fast_units_equal_pint(kind):
     """Each factor of the table is pint's, and the product is pint's result to the bit."""
-    from tmm_cli.numbers import parse_unit, unit_expression
+    from tmm_cli.numbers import parse_unit, unit_expression, ureg
     target = units.KINDS[kind][0]
-    reg = units.ureg()
+    reg = ureg()
     for unit, factor in units._FAST_UNITS[kind].items():
         expression = unit_expression(parse_unit(unit)[0])
         tables = ("force", "pressure") if kind == "force_or_pressure" else (kind,)

@@ -90,8 +90,8 @@ def _write_outputs(task, results: dict, out: Path, formats: set[str], lang: str,
             shown = results if study is None else {**results, "study": study[0], "study_trapezoid": study[1]}
             written.extend(render(shown, task, out, rep, lang, notes=notes))
         if study is not None:
-            from . import study as study_mod
-            written.extend(study_mod.write(study[0], out, study[1], lang))
+            from .report.sections import study as study_page
+            written.extend(study_page.write(study[0], out, study[1], lang))
         if "sheets" in formats:   # the A1 drawing sheets (README, Drawing sheets)
             from .sheets import build_sheets, write_sheets
             written.extend(write_sheets(build_sheets(results, task, lang), out / "sheets", {"pdf", "svg", "dxf"}))

@@ -180,7 +180,7 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explo
     warnings.extend(st.warnings)
 
     say("positions")
-    from .validation import impossible_dimensions
+    from .validation import check_detail, impossible_dimensions
     try:
         if checked is None:
             kinematics.check_assembly(mech)
@@ -286,12 +286,3 @@ def default_detail(positions: dict) -> int | None:
         if 1e-9 < turn < float(ws) - 1e-9:
             return i
     return grid[0][0]
-
-
-def check_detail(task: Task, positions) -> None:
-    """`report.detail_position` must be one of the positions (TaskError, exit 2)."""
-    n = task.report.detail_position if task.report is not None else None
-    idx = list(positions.index)
-    if n is not None and n not in idx:
-        raise task.error(("report", "detail_position"),
-                         f"position {n} does not exist (positions are {idx[0]}..{idx[-1]})")

@@ -14,7 +14,7 @@ from typing import Annotated, Any, Literal, Union
 from pydantic import (AfterValidator, BaseModel, ConfigDict, Field, PrivateAttr, ValidationError,
                       field_validator, model_validator)
 
-from .errors import TaskError
+from .errors import TaskError, dotted
 from .limits import MAX_EXTRA_POINTS, MAX_EXTRA_POSITIONS, MAX_FORCES, MAX_POSITIONS
 from .messages import Message
 from .modelbase import PLANETARY_ALIASES, PLANETARY_SCHEMES, FieldValueError, _Model
@@ -741,17 +741,7 @@ class Task(_Model):
     def error(self, path: tuple, message: str) -> TaskError:
         """A TaskError pointing at a field of this task (used by later checks)."""
         line, col = self.line_of(path)
-        return TaskError(message, file=self._file, issues=[(_dotted(path), line, col, message)])
-
-
-def _dotted(path) -> str:
-    out = ""
-    for p in path:
-        if isinstance(p, int):
-            out += f"[{p}]"
-        else:
-            out += ("." if out else "") + str(p)
-    return out
+        return TaskError(message, file=self._file, issues=[(dotted(path), line, col, message)])
 
 
 _MSG_CLEAN = [
@@ -800,7 +790,7 @@ def _issue_from_error(err: dict, marks: dict) -> tuple[str, int | None, int | No
         if not p:
             break
         p = p[:-1]
-    return _dotted(path), line, col, msg
+    return dotted(path), line, col, msg
 
 
 # pydantic's error types a student meets, as catalogue codes (input.<type>) with the

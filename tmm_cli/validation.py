@@ -40,12 +40,20 @@ def check_selection(task, mech) -> None:
         return
     from .linkage.context import reported_positions
     from .linkage.kinetostatics import select_rows
-    from .pipeline import check_detail
     positions = guarded("positions")(reported_positions)(mech, task.positions, task.loads, task.drive.sign,
                                                         float(task.drive.cycle))
     if sel:
         select_rows(task.kinetostatics.positions, positions)
     check_detail(task, positions)
+
+
+def check_detail(task, positions) -> None:
+    """`report.detail_position` must be one of the positions (TaskError, exit 2)."""
+    n = task.report.detail_position if task.report is not None else None
+    idx = list(positions.index)
+    if n is not None and n not in idx:
+        raise task.error(("report", "detail_position"),
+                         f"position {n} does not exist (positions are {idx[0]}..{idx[-1]})")
 
 
 MM_RATIO = (50.0, 5000.0)     # a length this many times the others was meant in mm

@@ -15,55 +15,16 @@ angles in degrees (crank angles absolute, from +x, ccw positive).
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Optional
+
+from .drive_speed import Drive
 
 if TYPE_CHECKING:       # types only: importing the context loads no stage
     from ..task import LoadsSection
     from .kinematics.positions import PositionsResult
     from .mechanism import Mechanism
     from .structure import StructureResult
-
-
-@dataclass(frozen=True)
-class Drive:
-    """The input link's motion at the mean speed.
-
-    Attributes
-    ----------
-    link : str
-        Name of the input link (the crank).
-    omega : float
-        Mean angular speed, rad/s, signed: positive counter-clockwise.
-    sign : float
-        Sense of rotation: +1.0 counter-clockwise, -1.0 clockwise (``omega`` has it).
-    cycle : float
-        Crank rotation of one machine cycle, deg: 360, or 720 (a four-stroke engine).
-    source : str
-        Where ``omega`` comes from: ``'speed'`` (given), ``'mean_output_speed'`` or
-        ``'working_stroke_speed'`` (from the output's speed, stroke and K).
-    """
-    link: str
-    omega: float
-    sign: float
-    cycle: float
-    source: str = "speed"
-
-    @property
-    def speed(self) -> float:
-        """|omega|, rad/s."""
-        return abs(self.omega)
-
-    @property
-    def direction(self) -> str:
-        """'ccw' | 'cw'."""
-        return "ccw" if self.sign > 0 else "cw"
-
-    def to_dict(self) -> dict:
-        """results.json ``drive``: omega (rad/s, signed), n (rpm), source."""
-        return {"omega": float(self.omega), "n": abs(float(self.omega)) * 30.0 / math.pi,
-                "source": self.source}
 
 
 @dataclass(frozen=True)
@@ -91,7 +52,7 @@ class Linkage:
     loads: Optional["LoadsSection"] = None
 
 
-__all__ = ["Drive", "Linkage", "build", "reported_positions"]
+__all__ = ["Linkage", "build", "reported_positions"]
 
 
 def reported_positions(mech: "Mechanism", positions_section, loads_section, sign: float,

@@ -14,12 +14,52 @@ stage reads (kinematics, dynamics, kinetostatics run at its omega).
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 from ..errors import field_error
 from ..messages import Message
-from .context import Drive
 
 SOURCES = ("speed", "mean_output_speed", "working_stroke_speed")
+
+
+@dataclass(frozen=True)
+class Drive:
+    """The input link's motion at the mean speed.
+
+    Attributes
+    ----------
+    link : str
+        Name of the input link (the crank).
+    omega : float
+        Mean angular speed, rad/s, signed: positive counter-clockwise.
+    sign : float
+        Sense of rotation: +1.0 counter-clockwise, -1.0 clockwise (``omega`` has it).
+    cycle : float
+        Crank rotation of one machine cycle, deg: 360, or 720 (a four-stroke engine).
+    source : str
+        Where ``omega`` comes from: ``'speed'`` (given), ``'mean_output_speed'`` or
+        ``'working_stroke_speed'`` (from the output's speed, stroke and K).
+    """
+    link: str
+    omega: float
+    sign: float
+    cycle: float
+    source: str = "speed"
+
+    @property
+    def speed(self) -> float:
+        """|omega|, rad/s."""
+        return abs(self.omega)
+
+    @property
+    def direction(self) -> str:
+        """'ccw' | 'cw'."""
+        return "ccw" if self.sign > 0 else "cw"
+
+    def to_dict(self) -> dict:
+        """results.json ``drive``: omega (rad/s, signed), n (rpm), source."""
+        return {"omega": float(self.omega), "n": abs(float(self.omega)) * 30.0 / math.pi,
+                "source": self.source}
 
 
 def check_output_speed(value) -> tuple[float, str | None]:
