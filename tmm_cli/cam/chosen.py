@@ -30,8 +30,8 @@ STAGE = "cam"
 
 def check_section(sec, given: set) -> None:
     """Rules of the task's ``cam`` section for the followers and a chosen size (a ValueError
-    naming the field, :class:`tmm_cli.task.FieldValueError`)."""
-    from ..task import FieldValueError
+    naming the field, :class:`tmm_cli.modelbase.FieldValueError`)."""
+    from ..modelbase import FieldValueError
 
     def err(field, text):
         return FieldValueError((field,), text)

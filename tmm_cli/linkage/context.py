@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING, Optional
 from .drive_speed import Drive
 
 if TYPE_CHECKING:       # types only: importing the context loads no stage
-    from ..task import LoadsSection
+    from .spec import LoadsSection
     from .kinematics.positions import PositionsResult
     from .mechanism import Mechanism
     from .structure import StructureResult

@@ -17,7 +17,7 @@ import math
 from dataclasses import dataclass
 
 from ..errors import field_error
-from ..messages import Message
+from .spec import check_output_speed
 
 SOURCES = ("speed", "mean_output_speed", "working_stroke_speed")
 
@@ -60,30 +60,6 @@ class Drive:
         """results.json ``drive``: omega (rad/s, signed), n (rpm), source."""
         return {"omega": float(self.omega), "n": abs(float(self.omega)) * 30.0 / math.pi,
                 "source": self.source}
-
-
-def check_output_speed(value) -> tuple[float, str | None]:
-    """(magnitude in m/s or rad/s, 'linear' | 'angular' | None for a plain number).
-    Raises ValueError for a value that is neither a linear nor an angular speed, or
-    not positive."""
-    from ..units import check_magnitude, quantity
-
-    if isinstance(value, bool):
-        raise ValueError(Message("input.output_speed_bool"))
-    if isinstance(value, (int, float)):
-        v, kind = check_magnitude(float(value)), None
-    else:
-        try:
-            v, _notes, read_as = quantity(str(value), "output_speed")
-        except ValueError as exc:
-            if isinstance(exc.args[0], Message) and exc.args[0].code == "input.unit_not_kind":
-                raise ValueError(Message("input.output_speed_unit", value=str(value))) from None
-            raise
-        kind = {"linear_speed": "linear", "speed": "angular"}.get(read_as)
-        v = check_magnitude(v)
-    if not v > 0:
-        raise ValueError(Message("input.output_speed_positive", value=repr(value)))
-    return v, kind
 
 
 def omega_from_mean(V: float, H: float) -> float:

@@ -35,12 +35,6 @@ from ..messages import Message
 
 STAGE = "synthesis"
 TYPES = ("slider_crank", "offset_slider_crank", "crank_rocker", "slotted_lever", "shaper", "function")
-LINKS = {"function": ("crank", "coupler", "rocker"),
-         "slider_crank": ("crank", "rod", "slider"),
-         "offset_slider_crank": ("crank", "rod", "slider"),
-         "crank_rocker": ("crank", "coupler", "rocker"),
-         "slotted_lever": ("crank", "block", "rocker"),
-         "shaper": ("crank", "block", "rocker", "blockC", "ram")}
 OUTPUT = {"function": "rocker", "slider_crank": "slider", "offset_slider_crank": "slider", "crank_rocker": "rocker",
           "slotted_lever": "rocker", "shaper": "ram"}
 
@@ -624,7 +618,7 @@ def analyse(linkage, d: Design) -> dict:
 
     from .kinematics import find_positions, solve
     from ..schemacache import validator
-    from ..task import PositionsSection
+    from .spec import PositionsSection
 
     mech, sign = linkage.mechanism, linkage.drive.sign
     # PositionsSection(output=..., working=...) by the cached validator (tmm_cli.schemacache)
