@@ -157,13 +157,6 @@ class DriveSection(_Model):
     def sign(self) -> float:
         return 1.0 if self.direction == "ccw" else -1.0
 
-    @property
-    def omega1(self) -> float:
-        if self.speed is None:
-            raise ValueError("the crank speed follows from the output's speed: resolve it first "
-                             "(tmm_cli.linkage.drive_speed.resolve)")
-        return self.sign * self.speed
-
 
 class PositionsSection(_Model):
     count: int = Field(12, ge=2, le=MAX_POSITIONS)
