@@ -1,15 +1,19 @@
 """The task model: one variant of the course project, validated once.
 
-Pydantic models for every section of the task file (README, *The task file*). Quantities are converted to SI floats
-(angles in degrees) at validation. Unknown keys are errors with a "did you mean".
-:func:`load_task` reads a YAML file (or a dict) and raises :class:`TaskError` naming
-the file, line, column and field of every problem.
+The task file's sections (README, *The task file*) composed into :class:`Task`: each topic
+owns its sections beside its stage (tmm_cli/linkage/spec.py, cam/spec.py, gears/spec.py,
+trainspec.py, balancing/spec.py, differential/spec.py, dof2/spec.py); this module composes
+them and loads. Quantities are converted to SI floats (angles in degrees) at validation.
+Unknown keys are errors with a "did you mean". :func:`load_task` reads a YAML file (or a
+dict) and raises :class:`TaskError` naming the file, line, column and field of every
+problem. The model is the input only: what the stages compute from it (the mechanism a
+``synthesis`` generates: ``linkage.synthesis.generate``) is never kept on it.
 """
 # annotations evaluated as written (no `from __future__ import annotations`): pydantic would
 # compile and evaluate every field's annotation string when the models are made
 import re
 from pathlib import Path
-from typing import Annotated, Any, Literal, Union
+from typing import Annotated, Literal, Union
 
 from pydantic import (BaseModel, ConfigDict, Field, PrivateAttr, ValidationError,
                       field_validator, model_validator)
@@ -101,10 +105,6 @@ class Task(_Model):
     # makes, and the builtins' (dict, list) is parsed from text by tokenize (~5 ms, once)
     _marks: dict = PrivateAttr(default_factory=lambda: {})
     _input_warnings: list = PrivateAttr(default_factory=lambda: [])
-    _design: Any = PrivateAttr(None)             # synthesis.Design of the generated mechanism
-    _synthesis_error: Any = PrivateAttr(None)    # SynthesisImpossible, raised by the pipeline (exit 3)
-    _checked_mechanism: Any = PrivateAttr(None)  # the Mechanism `validation.check_feasible` assembled over
-    #                                              the cycle, taken (once) by the pipeline
 
     @field_validator("schema_", mode="before")
     @classmethod
@@ -115,45 +115,27 @@ class Task(_Model):
 
     @model_validator(mode="after")
     def _synthesise(self):
-        """`synthesis` generates the `mechanism` (and the defaults of positions.output and
-        positions.working) before the other checks, so they see the generated links. An
-        impossible synthesis is kept for the pipeline (exit 3), not raised here."""
+        """`synthesis` stands for the `mechanism` it generates (the synthesis stage,
+        ``linkage.synthesis.generate``, makes it: orchestrate.prepare and the pipeline), and
+        needs the drive's sense of rotation."""
         if self.synthesis is None:
             return self
         if "mechanism" in self.model_fields_set:
             raise FieldValueError(("synthesis",), Message("input.synthesis_and_mechanism"))
-        from .linkage.synthesis import SynthesisImpossible, design
         if self.drive is None:
             raise FieldValueError(("synthesis",), Message("input.synthesis_drive"))
-        try:
-            d = design(self.synthesis, self.drive.sign)
-        except SynthesisImpossible as exc:
-            self._synthesis_error = exc
-            return self
-        self._design = d
-        from .schemacache import validator
-        self.mechanism = validator(MechanismSection).validate_python(d.mechanism)     # MechanismSection.model_validate
-        pos = self.positions if self.positions is not None else validator(PositionsSection).validate_python({})
-        upd = {}
-        if "output" not in pos.model_fields_set:
-            upd["output"] = d.output
-        if "working" not in pos.model_fields_set:
-            upd["working"] = d.working
-        if upd:
-            self.positions = pos.model_copy(update=upd)
-            self.positions.__pydantic_fields_set__ = set(pos.model_fields_set)
         return self
 
     @model_validator(mode="after")
     def _sections(self):
         needs_mech = [s for s in ("drive", "positions", "loads", "kinetostatics", "flywheel")
                       if getattr(self, s) is not None]
+        linkage = self.mechanism is not None or self.synthesis is not None
         if self.mechanism is not None and self.drive is None:
             raise FieldValueError(("mechanism",), Message("input.needs_drive"))
-        if self.mechanism is None and needs_mech and self._synthesis_error is None:
+        if not linkage and needs_mech:
             raise FieldValueError((needs_mech[0],), Message("input.needs_mechanism", sections=needs_mech))
-        if self.report is not None and self.report.detail_position is not None and self.mechanism is None \
-                and self._synthesis_error is None:
+        if self.report is not None and self.report.detail_position is not None and not linkage:
             raise FieldValueError(("report", "detail_position"), Message("input.detail_needs_mechanism"))
         if self.flywheel is not None and self.loads is None:
             raise FieldValueError(("flywheel",), Message("input.flywheel_loads"))

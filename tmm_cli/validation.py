@@ -6,15 +6,18 @@ from .messages import Message
 from .messages import as_message as _coded
 
 
-def check_feasible(task, assembly: bool = True) -> None:
+def check_feasible(task, assembly: bool = True):
     """Raise TaskError / StageError if the task's linkage cannot be computed:
     bad references between points, links and guides; W != 1; and (with
-    ``assembly``) a crank angle where some group does not assemble."""
+    ``assembly``) a crank angle where some group does not assemble.  Returns the
+    mechanism built and checked over the cycle (None without ``assembly``): the pipeline
+    computes on it (``pipeline.run``'s ``mechanism``) instead of building and checking it
+    again."""
     from .linkage.mechanism import build_mechanism
 
     mech = build_mechanism(task)
     if not assembly:
-        return
+        return None
     from .linkage import kinematics, structure
 
     structure.analyze(mech, task=task)
@@ -26,9 +29,7 @@ def check_feasible(task, assembly: bool = True) -> None:
         check_selection(task, mech)
     except TaskError as err:
         raise task.locate(err) from None
-    # the pipeline computes on this mechanism (its kinematic model already built and checked
-    # over the cycle) instead of building and checking it again
-    task._checked_mechanism = mech
+    return mech
 
 
 def check_selection(task, mech) -> None:
