@@ -715,14 +715,14 @@ def test_ground_rrr_dyad_equals_the_generic_paths_on_the_tasks(monkeypatch):
     from tmm_cli.linkage.kinematics.solver import Solver
     from tmm_cli.linkage.kinematics.state import WORK_ROWS_FROM
     from tmm_cli.linkage.mechanism import build_mechanism
-    from tmm_cli.task import load_task
+    from tmm_cli.orchestrate import prepare
     rng = np.random.default_rng(11)
     seen = []
     for path in sorted(glob.glob(str(ROOT / "tasks" / "*.yaml"))):
-        task = load_task(path)
+        task = prepare(path, assembly=False)         # a synthesis's mechanism generated
         if getattr(task, "mechanism", None) is None:
             continue
-        make = lambda: build_mechanism(load_task(path))      # noqa: E731
+        make = lambda: build_mechanism(prepare(path, assembly=False))      # noqa: E731
         if not any(getattr(p, "rrr", None) is not None for p in Solver(make()).plans):
             continue
         seen.append(Path(path).stem)
