@@ -66,6 +66,9 @@ def claims(paths) -> list[tuple[str, float, float, bool]]:
     mb, em_ex, witt, merz, ext = 0.0, 0.0, 0.0, 0.0, True
     for p in paths:
         task = tmm_cli.load_task(p)
+        if task.synthesis is not None:       # the mechanism it generates
+            from tmm_cli.linkage.synthesis import generate
+            task, _ = generate(task)
         if task.mechanism is not None:
             # the extreme positions bracket a root of the output's analogue ds/dphi to 1e-10 deg
             from tmm_cli.linkage.context import build

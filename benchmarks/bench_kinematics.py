@@ -430,6 +430,9 @@ def digest() -> None:
     srcs = [(Path(f).name, f) for f in sorted(glob.glob(str(ROOT / "tasks" / "*.yaml")))]
     for name, src in srcs + [("slider-crank", SLIDER_CRANK), ("four-bar", FOUR_BAR)]:
         task = load_task(src)
+        if task.synthesis is not None:       # the mechanism it generates
+            from tmm_cli.linkage.synthesis import generate
+            task, _ = generate(task)
         if getattr(task, "mechanism", None) is None:
             continue
         mech = build_mechanism(task)

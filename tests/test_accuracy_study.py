@@ -116,6 +116,7 @@ def test_hermite_extremum_of_a_sine():
 def test_study_json_shape_and_orders(tmp_path):
     import tmm_cli
     from tmm_cli import study
+    from tmm_cli.report.sections import study as study_page
     task = tmm_cli.load_task("tasks/engine_slider_crank.yaml")
     st, trap = study.run_study(task, repeat=1)
     assert set(st) == {"curves", "flywheel", "kinetostatics"}
@@ -139,7 +140,7 @@ def test_study_json_shape_and_orders(tmp_path):
     for stage in ("curves", "kinetostatics"):
         assert st[stage]["theory"] == 2
         assert st[stage]["order"] == pytest.approx(2.0, abs=0.25), stage
-    paths = study.write(st, tmp_path, trap)
+    paths = study_page.write(st, tmp_path, trap)
     assert json.loads((tmp_path / "study.json").read_text()) == json.loads(json.dumps(st))
     html = (tmp_path / "study.html").read_text()
     assert "<svg" in html and "<table>" in html and len(paths) == 2

@@ -13,6 +13,7 @@ from tmm_cli.linkage.drive_speed import omega_from_mean, omega_from_working
 from tmm_cli.errors import TaskError
 from tmm_cli.linkage.kinematics import solve
 from tmm_cli.linkage.mechanism import build_mechanism
+from tmm_cli.linkage.synthesis import generate
 from tmm_cli.pipeline import run
 from tmm_cli.task import load_task
 
@@ -78,8 +79,8 @@ def test_working_stroke_speed_gives_the_mean_over_the_working_stroke():
 
 def test_rocker_output_angular_speed():
     syn = {"type": "crank_rocker", "psi": 40, "K": 1.2, "rocker": 0.3, "frame": 0.4}
-    t = load_task({"schema": "tmm/1", "synthesis": syn,
-                   "drive": {"link": "crank", "mean_output_speed": "30 deg/s"}})
+    t, _ = generate(load_task({"schema": "tmm/1", "synthesis": syn,
+                               "drive": {"link": "crank", "mean_output_speed": "30 deg/s"}}))
     r = run(t, kinematics_curve=0)
     # omega1 = pi V/psi with V and psi in radians: pi (30 deg/s)/(40 deg) = 0.75 pi rad/s
     assert r["drive"]["omega"] == pytest.approx(0.75 * math.pi, rel=1e-9)

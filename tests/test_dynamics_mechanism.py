@@ -169,7 +169,7 @@ def test_balancing_moment_equals_constant_driving_moment(direction):
     kin = kinematics.solve(mech, phi, w, e)
     lds = loads_mod.evaluate(linkage_of(task, mech, pos), kin, inertia=True)
     st = structure.analyze(mech, task=task)
-    ks = tmm_cli.task.KinetostaticsSection()
+    ks = tmm_cli.linkage.spec.KinetostaticsSection()
     res = kinetostatics.equilibrium(mech, st, kin, lds, ks, crank_inertia=r.J_fly + task.flywheel.reduced_J)
     entries = res.to_dict()["kinetostatics"]
     Mb = np.array([x["balancing_moment"] for x in entries])
@@ -192,7 +192,7 @@ def test_balancing_moment_720_cycle_positions_off_zero():
     kin = kinematics.solve(mech, phi, w, e)
     lds = loads_mod.evaluate(linkage_of(task, mech, pos), kin, inertia=True)
     st = structure.analyze(mech, task=task)
-    res = kinetostatics.equilibrium(mech, st, kin, lds, tmm_cli.task.KinetostaticsSection(),
+    res = kinetostatics.equilibrium(mech, st, kin, lds, tmm_cli.linkage.spec.KinetostaticsSection(),
                                 crank_inertia=r.J_fly)
     Mb = np.array([x["balancing_moment"] for x in res.to_dict()["kinetostatics"]])
     assert Mb == pytest.approx(np.full(Mb.size, r.cycle.work.M_constant), rel=1e-6, abs=1e-6)

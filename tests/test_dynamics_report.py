@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from tmm_cli.linkage.dynamics import EPS_DEG, Sample, analyze_sampler
-from tmm_cli.task import FlywheelSection
+from tmm_cli.linkage.spec import FlywheelSection
 
 
 def _results():

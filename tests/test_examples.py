@@ -10,6 +10,7 @@ import pytest
 
 import tmm_cli
 from tmm_cli.messages import LANGS, PLAIN, catalogue, render
+from tmm_cli.orchestrate import prepare
 
 TASKS = sorted((Path(__file__).resolve().parents[1] / "tasks").glob("*.yaml"))
 
@@ -27,7 +28,7 @@ def _finite_numbers(obj, path="$"):
 
 @pytest.mark.parametrize("path", TASKS, ids=[p.stem for p in TASKS])
 def test_example_runs(path):
-    task = tmm_cli.load_task(path)
+    task = prepare(path)          # as the command line reads it: a synthesis's mechanism generated
     res = tmm_cli.run(task)
     assert res["schema"] == "tmm-results/1"
     json.dumps(res, allow_nan=False)          # plain JSON, no NaN anywhere

@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 
 from tmm_cli.errors import TaskError
-from tmm_cli.task import FrictionSpec, load_task
+from tmm_cli.linkage.spec import FrictionSpec
+from tmm_cli.task import load_task
 
 from test_kinetostatics import _run, sc_solver
 from test_kinetostatics_closedform import SC, slider_crank_kin, slider_crank_task

@@ -435,7 +435,7 @@ def test_unknown_planetary_scheme_is_an_invalid_task():
 
 def test_planetary_scheme_names_match_the_planetary_module():
     from tmm_cli.gears import planetary
-    from tmm_cli.task import PLANETARY_ALIASES, PLANETARY_SCHEMES
+    from tmm_cli.modelbase import PLANETARY_ALIASES, PLANETARY_SCHEMES
     assert tuple(planetary.SCHEMES) == PLANETARY_SCHEMES
     assert planetary.ALIASES == PLANETARY_ALIASES
 

@@ -1118,7 +1118,7 @@ def test_leaf_paths_give_python_numbers():
     written to forms as 1.5, never as 'np.float64(1.5)'), a numpy integer or bool not dropped."""
     import numpy as np
 
-    from tmm_cli.check import leaf_paths
+    from tmm_cli.results import leaf_paths
     got = dict(leaf_paths({"a": np.float64(1.5), "b": {"c": np.int64(3), "d": np.bool_(True)}, "e": [np.float32(0.25)]}))
     assert got == {"a": 1.5, "b.c": 3, "b.d": True, "e[0]": 0.25}
     assert all(type(v) in (float, int, bool) for v in got.values())

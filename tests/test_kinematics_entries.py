@@ -17,7 +17,7 @@ import tmm_cli
 from tmm_cli.linkage import kinematics
 from tmm_cli.linkage.context import build
 from tmm_cli.linkage.kinematics import entries as entries_mod
-from tmm_cli.linkage.kinematics.result import angle_deg
+from tmm_cli.linkage.kinematics.entries import angle_deg
 from tmm_cli.linkage.mechanism import build_mechanism
 from tmm_cli.results import dumps
 

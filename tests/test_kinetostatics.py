@@ -13,7 +13,7 @@ from tmm_cli.linkage import structure
 from tmm_cli.linkage.kinetostatics import equilibrium, find_singular
 from tmm_cli.linkage.loads import evaluate_on
 from tmm_cli.results import listed
-from tmm_cli.task import KinetostaticsSection, LoadsSection
+from tmm_cli.linkage.spec import KinetostaticsSection, LoadsSection
 
 from test_kinetostatics_closedform import (FB, SC, four_bar_kin, four_bar_task, mech_of, slider_crank_kin,
                                            slider_crank_task)

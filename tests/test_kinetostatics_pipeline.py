@@ -18,7 +18,7 @@ import tmm_cli
 from tmm_cli.linkage import structure
 from tmm_cli.linkage.kinetostatics import equilibrium
 from tmm_cli.linkage.loads import evaluate_on
-from tmm_cli.task import KinetostaticsSection, LoadsSection
+from tmm_cli.linkage.spec import KinetostaticsSection, LoadsSection
 
 from test_kinetostatics_closedform import mech_of, slider_crank_kin, slider_crank_task
 

@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from tmm_cli.linkage.loads import G, evaluate_on, interp_right, switch_angles
-from tmm_cli.task import LoadsSection
+from tmm_cli.linkage.spec import LoadsSection
 
 from test_kinetostatics_closedform import mech_of, slider_crank_kin, slider_crank_task
 

@@ -147,7 +147,7 @@ def test_stale_or_broken_cache_is_not_used(cached, tmp_path, monkeypatch):
     assert schemacache.load(Task) is not None
     (tmp_path / "MechanismSection-validator.pickle").write_bytes(path.read_bytes())
     monkeypatch.setattr(schemacache, "_stamp", _STAMP)
-    from tmm_cli.task import MechanismSection
+    from tmm_cli.linkage.spec import MechanismSection
     assert schemacache.load(MechanismSection) is None              # another model's validator
     monkeypatch.setattr(schemacache, "_stamp", lambda model: stamp)
     path.write_bytes(path.read_bytes()[:-100])                     # cut short

@@ -205,9 +205,9 @@ def test_program_ends_at_once_unless_shutdown_has_work(tmp_path):
 @pytest.mark.parametrize("kind", sorted(units._FAST_UNITS))
 def test_fast_units_equal_pint(kind):
     """Each factor of the table is pint's, and the product is pint's result to the bit."""
-    from tmm_cli.numbers import parse_unit, unit_expression
+    from tmm_cli.numbers import parse_unit, unit_expression, ureg
     target = units.KINDS[kind][0]
-    reg = units.ureg()
+    reg = ureg()
     for unit, factor in units._FAST_UNITS[kind].items():
         expression = unit_expression(parse_unit(unit)[0])
         tables = ("force", "pressure") if kind == "force_or_pressure" else (kind,)
@@ -715,14 +715,14 @@ def test_ground_rrr_dyad_equals_the_generic_paths_on_the_tasks(monkeypatch):
     from tmm_cli.linkage.kinematics.solver import Solver
     from tmm_cli.linkage.kinematics.state import WORK_ROWS_FROM
     from tmm_cli.linkage.mechanism import build_mechanism
-    from tmm_cli.task import load_task
+    from tmm_cli.orchestrate import prepare
     rng = np.random.default_rng(11)
     seen = []
     for path in sorted(glob.glob(str(ROOT / "tasks" / "*.yaml"))):
-        task = load_task(path)
+        task = prepare(path, assembly=False)         # a synthesis's mechanism generated
         if getattr(task, "mechanism", None) is None:
             continue
-        make = lambda: build_mechanism(load_task(path))      # noqa: E731
+        make = lambda: build_mechanism(prepare(path, assembly=False))      # noqa: E731
         if not any(getattr(p, "rrr", None) is not None for p in Solver(make()).plans):
             continue
         seen.append(Path(path).stem)

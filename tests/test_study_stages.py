@@ -22,6 +22,7 @@ import pytest
 
 import tmm_cli
 from tmm_cli import study
+from tmm_cli.report.sections import study as study_page
 from tmm_cli.cam import polygon
 from tmm_cli.linkage.context import build
 
@@ -128,9 +129,9 @@ def test_study_section_in_every_language():
     from tmm_cli.report import i18n
     from tmm_cli.report.sections import study as sec
     st = {"cam": study.study_cam(tmm_cli.load_task("tasks/cam_knife.yaml"), repeat=1)}
-    en = study.html_section(st, lang="en")
+    en = study_page.html_section(st, lang="en")
     for lang in ("ru", "uk"):
-        html = study.html_section(st, lang=lang)
+        html = study_page.html_section(st, lang=lang)
         assert sec.I18N[lang]["study.title"] in html
         for key, text in sec.I18N["en"].items():     # no English sentence left
             if len(text) > 12 and key.split(".")[1] not in ("series", "col"):

@@ -9,6 +9,7 @@ from pathlib import Path
 from typer.testing import CliRunner
 
 from tmm_cli import study as study_mod
+from tmm_cli.report.sections import study as study_page
 from tmm_cli.commands import app
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -35,19 +36,19 @@ def test_a_cold_first_call_is_not_timed():
 
 
 def test_the_trade_in_plain_words():
-    en = study_mod.trades(STUDY, "en")
+    en = study_page.trades(STUDY, "en")
     assert en[0] == ("the M_b and reaction diagrams drawn through 12 positions err by 10.7 %, through 720 "
                      "(the default) by 2e-11 (2.5 → 80 ms)")
     # no default among the rows: the coarsest against the finest
     assert en[1].startswith("the s, v, a diagrams drawn through 13 points err by 17.6 %, through 1441 by 1e-5")
-    ru = study_mod.trades(STUDY, "ru")
+    ru = study_page.trades(STUDY, "ru")
     assert "по 12 положениям" in ru[0] and "10,7 %" in ru[0] and "2·10⁻¹¹" in ru[0] and "(по умолчанию)" in ru[0]
-    uk = study_mod.trades(STUDY, "uk")
+    uk = study_page.trades(STUDY, "uk")
     assert "за 12 положеннями" in uk[0] and "10,7 %" in uk[0] and "(типово)" in uk[0]
 
 
 def test_study_html_and_terminal_lead_with_the_trade(tmp_path, monkeypatch):
-    html = study_mod.html_section(STUDY, None, "en")
+    html = study_page.html_section(STUDY, None, "en")
     assert html.index("In short") < html.index("For each stage") < html.index("Reference")
     assert "The M_b and reaction diagrams drawn through 12 positions err by 10.7 %" in html
     monkeypatch.setattr(study_mod, "run_study", lambda task, progress=None, repeat=3: (STUDY, {}))

@@ -12,7 +12,7 @@ from typer.testing import CliRunner
 from tmm_cli.cli import app
 from tmm_cli.errors import StageError, TaskError
 from tmm_cli.linkage.mechanism import build_mechanism
-from tmm_cli.linkage.synthesis import K_of_theta, analyse, theta_of_K
+from tmm_cli.linkage.synthesis import K_of_theta, analyse, generate, theta_of_K
 from tmm_cli.task import load_task
 
 TASKS = Path(__file__).resolve().parent.parent / "tasks"
@@ -20,10 +20,8 @@ runner = CliRunner()
 
 
 def design(syn, direction="ccw", drive=None):
-    t = load_task({"schema": "tmm/1", "synthesis": syn,
-                   "drive": drive or {"link": "crank", "speed": 10, "direction": direction}})
-    if t._synthesis_error is not None:
-        raise t._synthesis_error
+    t, d = generate(load_task({"schema": "tmm/1", "synthesis": syn,
+                               "drive": drive or {"link": "crank", "speed": 10, "direction": direction}}))
     from tmm_cli.linkage import kinematics, structure
     from tmm_cli.linkage.context import Linkage
     from tmm_cli.linkage.drive_speed import resolve
@@ -31,7 +29,7 @@ def design(syn, direction="ccw", drive=None):
     pos = kinematics.find_positions(mech, t.positions, t.drive.sign)
     linkage = Linkage(mechanism=mech, structure=structure.analyze(mech, task=t), drive=resolve(t.drive, pos),
                       positions=pos, loads=t.loads)
-    return t, analyse(linkage, t._design)
+    return t, analyse(linkage, d)
 
 
 def test_spec_example_offset_slider_crank_by_hand():

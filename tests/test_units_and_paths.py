@@ -84,7 +84,7 @@ def test_pint_disk_cache_is_one_folder_per_installation(tmp_path, monkeypatch):
 
     import platformdirs
 
-    from tmm_cli.units import _pint_cache_folder
+    from tmm_cli.numbers import _pint_cache_folder
 
     monkeypatch.setattr(platformdirs, "user_cache_path", lambda **kw: tmp_path / "cache" / kw["appname"])
     a = _pint_cache_folder(SimpleNamespace(__file__="/venv-a/site-packages/pint/__init__.py", __version__="0.24"))

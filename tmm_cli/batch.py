@@ -115,17 +115,17 @@ def work(path: Path, out: Path, folder: str, formats: set[str], lang: str, sets:
     variant's ``key`` (path -> (reference, tolerance, angle)) for the paths any set answered."""
     from .check import check_csv, counts, grade, set_status, task_answer_set, tolerances
     from .io import atomic_write
-    from .orchestrate import classify, prepare, process
+    from .orchestrate import checked, classify, process
 
     vout = out / folder
     res: dict = {"task": None, "written": [], "sets": [], "code": 0, "status": "ok", "message": "", "notes": []}
     try:
-        task = prepare(path, stage_errors=False)
+        task, mechanism = checked(path, stage_errors=False)
         st = task.student
         res["task"] = {"title": task.title, "variant": task.variant, "name": task.name,
                        "student": (st.name or "") if st else "", "group": (st.group or "") if st else ""}
         try:
-            task, results, written = process(path, vout, formats, lang, task=task)
+            task, results, written = process(path, vout, formats, lang, task=task, mechanism=mechanism)
         except BaseException as exc:
             # a failed stage: results.json and the report were written with what was computed
             partial = getattr(exc, "written", None)

@@ -9,7 +9,6 @@ or its worst status (an invalid answer counts as one outside: a wrong answer).
 """
 from __future__ import annotations
 
-import difflib
 import math
 import re
 from dataclasses import dataclass, field
@@ -19,7 +18,7 @@ from typing import Any
 from .errors import TaskError
 from .limits import printable
 from .messages import Message, as_message
-from .results import LazyEntries, lookup, parse_path
+from .results import did_you_mean, leaf_paths, lookup, parse_path
 
 DEFAULT_TOLERANCE = 0.05
 # results in degrees: differences are taken modulo 360 into [-180, 180)
@@ -425,36 +424,6 @@ def tolerances(task, override: dict | None = None, results: dict | None = None) 
 
 
 # ------------------------------------------------------------------ results paths
-def leaf_paths(results: dict) -> list[tuple[str, Any]]:
-    """Every path to a number, bool or string in results (position lists by [index])."""
-    out: list[tuple[str, Any]] = []
-
-    def walk(o, p):
-        if type(o).__module__ == "numpy" and not isinstance(o, (list, dict)):
-            o = o.item()             # a numpy scalar as the Python number it is (printed as such)
-        if isinstance(o, dict):
-            for k, v in o.items():
-                walk(v, f"{p}.{k}" if p else str(k))
-        elif isinstance(o, (list, LazyEntries)):
-            by_index = bool(o) and all(isinstance(e, dict) and "index" in e for e in o)
-            for i, v in enumerate(o):
-                walk(v, f"{p}[{v['index'] if by_index else i}]")
-        elif o is None or isinstance(o, (bool, int, float, str)):
-            if o is not None:
-                out.append((p, o))
-    walk(results, "")
-    return out
-
-
-def did_you_mean(path: str, results: dict, leaves: list[str] | None = None) -> str:
-    cands = leaves if leaves is not None else [p for p, v in leaf_paths(results)
-                                               if isinstance(v, (int, float))]
-    sec = path.split(".")[0].split("[")[0]
-    near = [c for c in cands if c.split(".")[0].split("[")[0] == sec] or cands
-    hit = difflib.get_close_matches(path, near, n=1, cutoff=0.5)
-    return Message("answers.did_you_mean", path=hit[0]) if hit else Message("answers.no_such_path")
-
-
 # ------------------------------------------------------------------ grading
 def bound_of(ref: float, tol: Tol) -> tuple[float, str]:
     """The largest |answer - reference| a tolerance passes, and its kind ('rel' | 'abs')."""

@@ -13,8 +13,8 @@ from typing import List, Optional
 
 import typer
 
-from . import cli
-from .cli import EXIT_ANSWERS, EXIT_INVALID, EXIT_OK, EXIT_STAGE, FORMATS  # noqa: F401
+from . import console
+from .console import EXIT_ANSWERS, EXIT_INVALID, EXIT_OK, EXIT_STAGE, FORMATS  # noqa: F401
 from .errors import StageError, TaskError
 from .messages import Message
 
@@ -56,17 +56,17 @@ def _err(msg: str) -> None:
 
 
 def _fail_task(exc: TaskError) -> "typer.Exit":
-    return typer.Exit(cli.fail_task(exc, typer.echo))
+    return typer.Exit(console.fail_task(exc, typer.echo))
 
 
 def _fail_stage(exc: StageError, file: str | None = None) -> "typer.Exit":
-    return typer.Exit(cli.fail_stage(exc, file, typer.echo))
+    return typer.Exit(console.fail_stage(exc, file, typer.echo))
 
 
 def _check_lang(lang: str) -> None:
     """--lang: one of the report languages (a usage error otherwise)."""
-    if lang not in cli.LANGS:
-        raise typer.BadParameter(f"--lang must be {', '.join(cli.LANGS[:-1])} or {cli.LANGS[-1]}")
+    if lang not in console.LANGS:
+        raise typer.BadParameter(f"--lang must be {', '.join(console.LANGS[:-1])} or {console.LANGS[-1]}")
 
 
 def _check_csv_style(style: str) -> None:
@@ -77,7 +77,7 @@ def _check_csv_style(style: str) -> None:
 
 def _fail_write(exc: OSError) -> "typer.Exit":
     """The output folder or a file in it cannot be written: exit 3, no traceback."""
-    return typer.Exit(cli.fail_write(exc, typer.echo))
+    return typer.Exit(console.fail_write(exc, typer.echo))
 
 
 def _load(path: Path):
@@ -87,7 +87,7 @@ def _load(path: Path):
 
 
 def _parse_formats(text: str) -> set[str]:
-    fm = cli.parse_formats(text)
+    fm = console.parse_formats(text)
     if fm is None:
         bad = {f.strip().lower() for f in text.split(",") if f.strip()} - FORMATS
         raise typer.BadParameter(f"unknown format(s) {', '.join(sorted(bad)) or '(none)'}; "
@@ -123,7 +123,7 @@ def run(
     """
     formats = _parse_formats(format)
     _check_lang(lang)
-    code = cli.run_task(task_file, out, formats, lang, quiet, study, typer.echo)
+    code = console.run_task(task_file, out, formats, lang, quiet, study, typer.echo)
     if code != EXIT_OK:
         raise typer.Exit(code)
 
@@ -158,12 +158,12 @@ def study_cmd(
         raise _fail_task(exc)
     out = out or Path("out") / task.name
     st, trap = _run_study(task, lambda s: _err(f"  {s}..."), repeat)
-    from . import study as study_mod
+    from .report.sections import study as study_page
     try:
-        paths = study_mod.write(st, out, trap, lang)
+        paths = study_page.write(st, out, trap, lang)
     except OSError as exc:
         raise _fail_write(exc)
-    for line in study_mod.trades(st, lang):      # the trade in plain words first, then the files
+    for line in study_page.trades(st, lang):      # the trade in plain words first, then the files
         typer.echo(line[0].upper() + line[1:] + ".")
     for p in paths:
         typer.echo(str(p))
@@ -217,7 +217,7 @@ def validate(
 ):
     """Check task files: the schema, the references, and (for a linkage) that it
     assembles at every crank angle of the cycle. Does not run the pipeline."""
-    raise typer.Exit(cli.validate_tasks(task_files, no_assembly, typer.echo))
+    raise typer.Exit(console.validate_tasks(task_files, no_assembly, typer.echo))
 
 
 @app.command()
@@ -409,7 +409,7 @@ def paths(
 ):
     """Run the task and list every result path with its value (the paths `answers`,
     `--quantities` and tolerances use). `--group` and `--index` shorten the long arrays."""
-    from .check import leaf_paths
+    from .results import leaf_paths
     from .orchestrate import compute, prepare
     from .pipeline import PartialResults
     if format not in ("text", "json"):

@@ -81,6 +81,15 @@ class StageError(Exception):
         return out
 
 
+def dotted(path) -> str:
+    """A field path as a task file's reader names it: ``('links', 'crank', 'extra', 0)`` ->
+    ``links.crank.extra[0]``."""
+    out = ""
+    for p in path:
+        out += f"[{p}]" if isinstance(p, int) else ("." if out else "") + str(p)
+    return out
+
+
 def field_error(field: str, message: str) -> TaskError:
     """A TaskError naming its field (dotted path, e.g. 'loads.forces[0].at') without the
     file and line: the pipeline adds them (``Task.locate``)."""

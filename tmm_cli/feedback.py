@@ -126,7 +126,7 @@ def _in_written_unit(r: dict):
     if not unit:
         return None
     from .check import _is_angle, _path_unit
-    from .units import ureg
+    from .numbers import ureg
     si = "degree" if _is_angle(r["path"]) else _path_unit(r["path"])
     if si is None:
         return None

@@ -127,7 +127,7 @@ def _pattern(p: str) -> re.Pattern:
 
 
 def numeric_leaves(results: dict) -> list[tuple[str, float]]:
-    from .check import leaf_paths
+    from .results import leaf_paths
     return [(p, v) for p, v in leaf_paths(results)
             if isinstance(v, (int, float)) and not isinstance(v, bool)]
 
@@ -135,7 +135,7 @@ def numeric_leaves(results: dict) -> list[tuple[str, float]]:
 def expand(quantities: str | list[str], results: dict, *, strict: bool = True) -> list[str]:
     """Result paths of a quantity list for one task's results. With ``strict`` a path or a
     preset the results lack is a TaskError naming it (with "did you mean")."""
-    from .check import did_you_mean
+    from .results import did_you_mean
     from .results import lookup, parse_path
     items = quantities.split(",") if isinstance(quantities, str) else list(quantities)
     leaves = numeric_leaves(results)

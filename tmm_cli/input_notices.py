@@ -19,7 +19,7 @@ from typing import Any
 from pydantic import BaseModel
 
 from .messages import Message
-from .task import _dotted
+from .errors import dotted
 
 # plain numbers above these (in the base unit) get a warning
 SPEED_PLAIN_MAX = 50.0      # rad/s (~480 rpm)
@@ -46,7 +46,7 @@ def _kind(metadata) -> str | None:
 
 
 def _message(kind: str, value: float, path: tuple) -> str | None:
-    field = _dotted(path)
+    field = dotted(path)
     if kind == "speed" and abs(value) > SPEED_PLAIN_MAX:
         rpm = abs(value) * 30.0 / math.pi
         return Message("input.speed_plain", field=field, value=value, rpm=rpm)
@@ -125,7 +125,7 @@ def _reading_warnings(readings: list[_Reading]) -> list[str]:
         except ValueError:
             continue
         for code in notes:
-            found.setdefault((code, read(text).unit), ((text.strip(), written, value), []))[1].append(_dotted(path))
+            found.setdefault((code, read(text).unit), ((text.strip(), written, value), []))[1].append(dotted(path))
     out = []
     for (code, _unit), ((text, written, value), fields) in found.items():
         field = fields if len(fields) > 1 else fields[0]

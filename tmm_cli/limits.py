@@ -97,7 +97,7 @@ def text_issues(data, marks: dict) -> list[tuple]:
     """(field, line, column, message) of every key and text value of the task ``data``
     (as read from YAML) that breaks :func:`text_problem`'s rule: one walk, linear in the
     size of the data."""
-    from .task import _dotted
+    from .errors import dotted
     out: list[tuple] = []
 
     def where(path):
@@ -114,13 +114,13 @@ def text_issues(data, marks: dict) -> list[tuple]:
         if isinstance(v, str):
             msg = text_problem(v, free=bool(path) and path[0] in _FREE)
             if msg is not None:
-                out.append((_dotted(tuple(shown(p) if isinstance(p, str) else p for p in path)), *where(path), msg))
+                out.append((dotted(tuple(shown(p) if isinstance(p, str) else p for p in path)), *where(path), msg))
         elif isinstance(v, dict):
             for k, sub in v.items():
                 if isinstance(k, str):
                     msg = text_problem(k)
                     if msg is not None:
-                        out.append((_dotted(path + (shown(k),)), *where(path + (k,)), msg))
+                        out.append((dotted(path + (shown(k),)), *where(path + (k,)), msg))
                 stack.append((path + (k,), sub))
         elif isinstance(v, list):
             stack.extend((path + (i,), sub) for i, sub in enumerate(v))

@@ -305,12 +305,39 @@ def in_unit(r: Reading, target: str, *, angular: bool = False, fast: dict | None
         raise
 
 
+@lru_cache(maxsize=1)
+def ureg():
+    import pint  # lazy: ~0.3 s import
+
+    return pint.UnitRegistry(cache_folder=_pint_cache_folder(pint))
+
+
+def _pint_cache_folder(pint):
+    """pint's disk cache of parsed definitions, one folder per pint installation: pint's own
+    shared folder (``:auto:``) serves the parse of one installation's definition files to
+    another whose files have the same content, with the first one's paths inside, so a
+    removed virtual environment broke the registry of every other one (FileNotFoundError
+    on its `@import`s). None (no disk cache, ~0.1 s more to parse) where no folder can be made."""
+    import hashlib
+    import os
+
+    import platformdirs
+
+    where = os.path.dirname(os.path.abspath(pint.__file__))
+    key = hashlib.sha1(f"{where}|{pint.__version__}".encode()).hexdigest()[:16]
+    folder = platformdirs.user_cache_path(appname="pint", appauthor=False) / f"tmm-{key}"
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError:
+        return None
+    return folder
+
+
 @lru_cache(maxsize=256)
 def _pint_factor(expression: str, target: str) -> float:
     """pint's factor from a checked unit expression to ``target``."""
     import pint
 
-    from .units import ureg
     reg = ureg()
     try:
         q = reg.Quantity(1.0, expression)
@@ -343,7 +370,6 @@ def is_dimensionless(expression: str) -> bool:
 @lru_cache(maxsize=256)
 def _pint_base(expression: str) -> float:
     """pint's factor from a checked unit expression to SI base units."""
-    from .units import ureg
     try:
         return float(ureg().Quantity(1.0, expression).to_base_units().magnitude)
     except Exception:  # noqa: BLE001 - pint's parser errors of any kind on a checked expression

@@ -86,13 +86,6 @@ def num(x: Any, spec: str = "", lang: str | None = None) -> str:
 _WRITTEN = re.compile(r"[-+\u2212]?\d+(?:\.\d+)?(?:[eE][-+]?\d+)?")
 
 
-def unit(text: str, lang: str | None = None) -> str:
-    """A unit as a task writes it ('m/s', 'rad/s', 'N*m', 'mm') in the language's spelling
-    (м/с, рад/с, Н·м, мм: the catalogue's ``unit`` table; unchanged where it has none)."""
-    from .messages import catalogue
-    return catalogue(lang if lang is not None else _LANG.get())["terms"].get("unit", {}).get(text, text)
-
-
 def is_number(value: Any) -> bool:
     """A number, or a text that is one number as Python writes it ('0.02', '8.9e-16': a
     parameter formatted beforehand)."""

@@ -18,23 +18,38 @@ EXIT_OK, EXIT_ANSWERS, EXIT_INVALID, EXIT_STAGE = 0, 1, 2, 3
 
 
 def prepare(path: str | Path, *, assembly: bool = True, text: str | None = None, stage_errors: bool = True):
-    """The task, loaded and validated as `tmm validate` does: the schema, the references,
-    the positions named by other sections, and (with ``assembly``) that the linkage
-    assembles at every crank angle. Raises TaskError (exit 2) or StageError (exit 3)."""
+    """The task, loaded and validated as `tmm validate` does: the schema, the mechanism a
+    `synthesis` generates (linkage.synthesis.generate), the references, the positions named
+    by other sections, and (with ``assembly``) that the linkage assembles at every crank
+    angle. Raises TaskError (exit 2) or StageError (exit 3)."""
+    return checked(path, assembly=assembly, text=text, stage_errors=stage_errors)[0]
+
+
+def checked(path: str | Path, *, assembly: bool = True, text: str | None = None, stage_errors: bool = True):
+    """(task, mechanism): :func:`prepare`'s task and the linkage's mechanism that validation
+    built from it and checked over the cycle (None: no linkage, no ``assembly``, or a failed
+    check), which :func:`compute` takes to compute on instead of building and checking it again."""
     from .task import load_task
     task = load_task(Path(path), text=text)
-    if task._synthesis_error is not None and stage_errors:
-        raise task._synthesis_error      # requirements a lever synthesis cannot meet (exit 3)
+    if task.synthesis is not None:
+        from .linkage.synthesis import SynthesisImpossible, generate
+        try:
+            task, _ = generate(task)
+        except SynthesisImpossible:
+            if stage_errors:
+                raise          # requirements a lever synthesis cannot meet (exit 3)
+            return task, None  # compute() meets the same failure
+    mechanism = None
     if task.mechanism is not None:
         from .validation import check_feasible
         try:
-            check_feasible(task, assembly=assembly)
+            mechanism = check_feasible(task, assembly=assembly)
         except StageError:
             if stage_errors:
                 raise
             # a valid task that cannot be computed everywhere: compute() meets the same
             # failure and keeps the sections computed before it (partial results)
-    return task
+    return task, mechanism
 
 
 # drawing data made for the HTML report only: kept out of results.json (a JSON run
@@ -43,14 +58,15 @@ REPORT_ONLY = ("kinematics_explore", "kinetostatics_explore")
 
 
 def compute(task, progress: Callable[[str], None] | None = None, *, explore: bool = False,
-            lazy: bool = False) -> dict:
+            lazy: bool = False, mechanism=None) -> dict:
     """The results dict. Raises TaskError, StageError or PartialResults (a StageError
     with the sections computed before the failure). ``explore``: also the data of the
     HTML report's mechanism in motion (``kinematics_explore``). ``lazy``: the
     per-position entries as the stages give them (:class:`tmm_cli.results.LazyEntries`,
-    made when read: results.json is written block by block), else as lists."""
+    made when read: results.json is written block by block), else as lists.
+    ``mechanism``: the one :func:`checked` gave with ``task``."""
     from .pipeline import run, run_listed
-    return (run if lazy else run_listed)(task, progress=progress, explore=explore)
+    return (run if lazy else run_listed)(task, progress=progress, explore=explore, mechanism=mechanism)
 
 
 def write_outputs(task, results: dict, out: Path, formats: set[str], lang: str, *,
@@ -90,8 +106,8 @@ def _write_outputs(task, results: dict, out: Path, formats: set[str], lang: str,
             shown = results if study is None else {**results, "study": study[0], "study_trapezoid": study[1]}
             written.extend(render(shown, task, out, rep, lang, notes=notes))
         if study is not None:
-            from . import study as study_mod
-            written.extend(study_mod.write(study[0], out, study[1], lang))
+            from .report.sections import study as study_page
+            written.extend(study_page.write(study[0], out, study[1], lang))
         if "sheets" in formats:   # the A1 drawing sheets (README, Drawing sheets)
             from .sheets import build_sheets, write_sheets
             written.extend(write_sheets(build_sheets(results, task, lang), out / "sheets", {"pdf", "svg", "dxf"}))
@@ -133,7 +149,7 @@ def _aside(path: Path, kept: dict):
 
 
 def process(path: str | Path, out, formats: set[str], lang: str, *,
-            progress: Callable[[str], None] | None = None, task=None, study: bool = False,
+            progress: Callable[[str], None] | None = None, task=None, mechanism=None, study: bool = False,
             notes: list[str] | None = None):
     """prepare -> compute -> write. Returns (task, results, written paths). On a failed
     stage every independent section is still computed, and results.json and the reports
@@ -143,13 +159,15 @@ def process(path: str | Path, out, formats: set[str], lang: str, *,
     (``tmm run --study``). The results returned keep their per-position entries lazy
     (:func:`compute` with ``lazy``): a reader that takes them many times lists them
     (:func:`tmm_cli.results.listed`); but where a report or the sheets were made, they
-    are listed as those read them."""
+    are listed as those read them. ``task``, ``mechanism``: what :func:`checked` gave
+    (the task is then not read again)."""
     from .pipeline import PartialResults
-    task = task if task is not None else prepare(path, stage_errors=False)
+    if task is None:
+        task, mechanism = checked(path, stage_errors=False)
     folder = out(task) if callable(out) else out
     failure = None
     try:
-        results = compute(task, progress, explore="html" in formats, lazy=True)
+        results = compute(task, progress, explore="html" in formats, lazy=True, mechanism=mechanism)
     except PartialResults as exc:
         results, failure = exc.partial, exc
     st = None

@@ -22,7 +22,7 @@ class PartialResults(StageError):
 
 
 def run(task: Task, *, progress: Callable[[str], None] | None = None,
-        kinematics_curve: int = 361, explore: bool = False) -> dict[str, Any]:
+        kinematics_curve: int = 361, explore: bool = False, mechanism=None) -> dict[str, Any]:
     """Compute every stage present in ``task``; return the results dict (the
     kinematics and kinetostatics entries as :class:`tmm_cli.results.LazyEntries`, made
     when read; ``tmm_cli.run`` gives them as lists).
@@ -30,7 +30,12 @@ def run(task: Task, *, progress: Callable[[str], None] | None = None,
     ``kinematics_curve``: points of the output link's curve over one turn (0: none);
     ``explore``: also the kinematics at every degree of the turn (``kinematics_explore``,
     the mechanism in motion of report.html; made only for an HTML report and never
-    written to results.json, see :func:`tmm_cli.orchestrate.write_outputs`).
+    written to results.json, see :func:`tmm_cli.orchestrate.write_outputs`);
+    ``mechanism``: the task's linkage already built and checked over the cycle
+    (``orchestrate.checked``), computed on as it is.
+
+    A ``synthesis`` is the first stage: it generates the mechanism the linkage's stages
+    compute (``linkage.synthesis.generate``); an impossible one is raised at once (exit 3).
 
     The independent parts (the linkage chain, cam, gears, planetary, dof2) each run
     even when another fails; a part stops at its first StageError.  If any part
@@ -64,11 +69,16 @@ def run(task: Task, *, progress: Callable[[str], None] | None = None,
         return go
 
     try:
-        if task.synthesis is not None and task._synthesis_error is not None:
-            say("synthesis")
-            raise task._synthesis_error
+        design = None
+        if task.synthesis is not None:
+            from .linkage.synthesis import SynthesisImpossible, generate
+            try:
+                task, design = generate(task)
+            except SynthesisImpossible:
+                say("synthesis")
+                raise
         if task.mechanism is not None:
-            part(lambda: _linkage(task, results, warnings, say, kinematics_curve, explore, built))
+            part(lambda: _linkage(task, results, warnings, say, kinematics_curve, explore, built, mechanism, design))
         if task.cam is not None:
             part(simple("cam", "cam", "synthesize", task.cam))
         if task.gears is not None:
@@ -162,52 +172,56 @@ def massless_links(task: Task, mech) -> list:
     return [Message("inertia.massless_flywheel" if task.flywheel is not None else "inertia.massless", links=names)]
 
 
-def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explore: bool, built: dict) -> None:
-    """The linkage chain: its context (structure, positions, the crank speed), then
-    kinematics, dynamics (``flywheel``) and kinetostatics."""
-    from .linkage import dynamics, kinematics, kinetostatics, structure
-    from .linkage.context import Linkage, reported_positions
+def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explore: bool, built: dict,
+             checked=None, design=None) -> None:
+    """The linkage chain: its context (structure, positions, the crank speed: each part
+    written to the results as it is made), the synthesis's analysis (``design``), then
+    kinematics, dynamics (``flywheel``) and kinetostatics. ``checked``: the mechanism
+    validation built and checked over the cycle (else built and checked here)."""
+    from .linkage import dynamics, kinematics, kinetostatics
+    from .linkage.context import build
     from .linkage.kinematics.positions import quick_working
-    from .linkage.drive_speed import resolve
-    from .linkage.mechanism import build_mechanism
+    from .validation import check_detail, impossible_dimensions
+
+    mech = checked
+
+    def told(part, value) -> None:
+        nonlocal mech
+        if part == "structure":
+            mech, st = value
+            results["structure"] = {**st.to_dict(), **mech.structure_info()}
+            warnings.extend(st.warnings)
+            say("positions")
+            try:
+                if checked is None:
+                    kinematics.check_assembly(mech)
+            except StageError as err:
+                raise impossible_dimensions(task, err) or err
+            return
+        positions = value
+        check_detail(task, positions)
+        warnings.extend(quick_working(positions))
+        warnings.extend(massless_links(task, mech))
+        results["positions"] = positions.to_dict()
+        # the position the report works step by step (report.detail_position, or the default)
+        detail = task.report.detail_position if task.report is not None else None
+        results["positions"]["detail_position"] = detail if detail is not None else \
+            default_detail(results["positions"])
+        if task.loads is not None:      # each loaded slider's own stroke (docs/methods.md §3.3)
+            from .linkage.loads import slider_strokes
+            strokes = slider_strokes(mech, task.loads, positions)
+            if strokes:
+                results["positions"]["strokes"] = {k: s.to_dict() for k, s in strokes.items()}
 
     say("structure")
-    # the mechanism `validation.check_feasible` built and checked (taken once), or a new one
-    checked, task._checked_mechanism = task._checked_mechanism, None
-    mech = checked if checked is not None else build_mechanism(task)
-    st = structure.analyze(mech, task=task)
-    results["structure"] = {**st.to_dict(), **mech.structure_info()}
-    warnings.extend(st.warnings)
-
-    say("positions")
-    from .validation import impossible_dimensions
-    try:
-        if checked is None:
-            kinematics.check_assembly(mech)
-    except StageError as err:
-        raise impossible_dimensions(task, err) or err
-    positions = _stage("positions")(reported_positions)(mech, task.positions, task.loads, task.drive.sign,
-                                                         float(task.drive.cycle), kinks=task.flywheel is not None)
-    check_detail(task, positions)
-    warnings.extend(quick_working(positions))
-    warnings.extend(massless_links(task, mech))
-    results["positions"] = positions.to_dict()
-    # the position the report works step by step (report.detail_position, or the default)
-    detail = task.report.detail_position if task.report is not None else None
-    results["positions"]["detail_position"] = detail if detail is not None else \
-        default_detail(results["positions"])
-    if task.loads is not None:      # each loaded slider's own stroke (docs/methods.md §3.3)
-        from .linkage.loads import slider_strokes
-        strokes = slider_strokes(mech, task.loads, positions)
-        if strokes:
-            results["positions"]["strokes"] = {k: s.to_dict() for k, s in strokes.items()}
     # the crank speed: given, or from the output's speed with the stroke and K just found
-    drive = built["drive"] = resolve(task.drive, positions)
-    linkage = Linkage(mechanism=mech, structure=st, drive=drive, positions=positions, loads=task.loads)
-    if task.synthesis is not None:
+    linkage = build(task, mechanism=checked, kinks=task.flywheel is not None, told=told)
+    mech, positions, drive = linkage.mechanism, linkage.positions, linkage.drive
+    built["drive"] = drive
+    if design is not None:
         say("synthesis")
         from .linkage.synthesis import analyse
-        results["synthesis"] = _stage("synthesis")(analyse)(linkage, task._design)
+        results["synthesis"] = _stage("synthesis")(analyse)(linkage, design)
     results["drive"] = drive.to_dict()
 
     say("kinematics")
@@ -295,12 +309,3 @@ def default_detail(positions: dict) -> int | None:
         if 1e-9 < turn < float(ws) - 1e-9:
             return i
     return grid[0][0]
-
-
-def check_detail(task: Task, positions) -> None:
-    """`report.detail_position` must be one of the positions (TaskError, exit 2)."""
-    n = task.report.detail_position if task.report is not None else None
-    idx = list(positions.index)
-    if n is not None and n not in idx:
-        raise task.error(("report", "detail_position"),
-                         f"position {n} does not exist (positions are {idx[0]}..{idx[-1]})")

@@ -329,3 +329,36 @@ def lookup(results: dict, path: str) -> Any:
                 raise KeyError(Message("answers.path_no_key", path=path, key=tok))
             cur = cur[tok]
     return cur
+
+
+def leaf_paths(results: dict) -> list[tuple[str, Any]]:
+    """Every path to a number, bool or string in results (position lists by [index])."""
+    out: list[tuple[str, Any]] = []
+
+    def walk(o, p):
+        if type(o).__module__ == "numpy" and not isinstance(o, (list, dict)):
+            o = o.item()             # a numpy scalar as the Python number it is (printed as such)
+        if isinstance(o, dict):
+            for k, v in o.items():
+                walk(v, f"{p}.{k}" if p else str(k))
+        elif isinstance(o, (list, LazyEntries)):
+            by_index = bool(o) and all(isinstance(e, dict) and "index" in e for e in o)
+            for i, v in enumerate(o):
+                walk(v, f"{p}[{v['index'] if by_index else i}]")
+        elif o is None or isinstance(o, (bool, int, float, str)):
+            if o is not None:
+                out.append((p, o))
+    walk(results, "")
+    return out
+
+
+def did_you_mean(path: str, results: dict, leaves: list[str] | None = None) -> str:
+    """'did you mean <the nearest numeric path>' (in the path's section first), or 'no such path'."""
+    import difflib
+
+    cands = leaves if leaves is not None else [p for p, v in leaf_paths(results)
+                                               if isinstance(v, (int, float))]
+    sec = path.split(".")[0].split("[")[0]
+    near = [c for c in cands if c.split(".")[0].split("[")[0] == sec] or cands
+    hit = difflib.get_close_matches(path, near, n=1, cutoff=0.5)
+    return Message("answers.did_you_mean", path=hit[0]) if hit else Message("answers.no_such_path")

@@ -26,7 +26,8 @@ from types import MethodType
 # the modules the task model (its fields, types, validators) is defined in
 # (every tmm_cli module `import tmm_cli.task` loads: tests/test_schema_cache.py)
 MODULES = ("tmm_cli", "tmm_cli.errors", "tmm_cli.limits", "tmm_cli.messages", "tmm_cli.modelbase", "tmm_cli.units",
-           "tmm_cli.trainspec", "tmm_cli.dof2", "tmm_cli.dof2.spec", "tmm_cli.differential", "tmm_cli.differential.spec",
+           "tmm_cli.linkage", "tmm_cli.linkage.spec", "tmm_cli.cam", "tmm_cli.cam.spec", "tmm_cli.gears",
+           "tmm_cli.gears.spec", "tmm_cli.trainspec", "tmm_cli.dof2", "tmm_cli.dof2.spec", "tmm_cli.differential", "tmm_cli.differential.spec",
            "tmm_cli.balancing", "tmm_cli.balancing.spec", "tmm_cli.numfmt", "tmm_cli.task")
 _FORMAT = 1
 

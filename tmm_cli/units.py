@@ -43,34 +43,6 @@ KINDS: dict[str, tuple[str, str]] = {
 # would leave the float range), so it is rejected at the field that holds it.
 LIMIT = 1e12
 
-@lru_cache(maxsize=1)
-def ureg():
-    import pint  # lazy: ~0.3 s import
-
-    return pint.UnitRegistry(cache_folder=_pint_cache_folder(pint))
-
-
-def _pint_cache_folder(pint):
-    """pint's disk cache of parsed definitions, one folder per pint installation: pint's own
-    shared folder (``:auto:``) serves the parse of one installation's definition files to
-    another whose files have the same content, with the first one's paths inside, so a
-    removed virtual environment broke the registry of every other one (FileNotFoundError
-    on its `@import`s). None (no disk cache, ~0.1 s more to parse) where no folder can be made."""
-    import hashlib
-    import os
-
-    import platformdirs
-
-    where = os.path.dirname(os.path.abspath(pint.__file__))
-    key = hashlib.sha1(f"{where}|{pint.__version__}".encode()).hexdigest()[:16]
-    folder = platformdirs.user_cache_path(appname="pint", appauthor=False) / f"tmm-{key}"
-    try:
-        folder.mkdir(parents=True, exist_ok=True)
-    except OSError:
-        return None
-    return folder
-
-
 def _as_float(x: Any) -> float:
     if isinstance(x, bool):
         raise ValueError(Message("input.number_bool"))

@@ -6,15 +6,18 @@ from .messages import Message
 from .messages import as_message as _coded
 
 
-def check_feasible(task, assembly: bool = True) -> None:
+def check_feasible(task, assembly: bool = True):
     """Raise TaskError / StageError if the task's linkage cannot be computed:
     bad references between points, links and guides; W != 1; and (with
-    ``assembly``) a crank angle where some group does not assemble."""
+    ``assembly``) a crank angle where some group does not assemble.  Returns the
+    mechanism built and checked over the cycle (None without ``assembly``): the pipeline
+    computes on it (``pipeline.run``'s ``mechanism``) instead of building and checking it
+    again."""
     from .linkage.mechanism import build_mechanism
 
     mech = build_mechanism(task)
     if not assembly:
-        return
+        return None
     from .linkage import kinematics, structure
 
     structure.analyze(mech, task=task)
@@ -26,9 +29,7 @@ def check_feasible(task, assembly: bool = True) -> None:
         check_selection(task, mech)
     except TaskError as err:
         raise task.locate(err) from None
-    # the pipeline computes on this mechanism (its kinematic model already built and checked
-    # over the cycle) instead of building and checking it again
-    task._checked_mechanism = mech
+    return mech
 
 
 def check_selection(task, mech) -> None:
@@ -40,12 +41,20 @@ def check_selection(task, mech) -> None:
         return
     from .linkage.context import reported_positions
     from .linkage.kinetostatics import select_rows
-    from .pipeline import check_detail
     positions = guarded("positions")(reported_positions)(mech, task.positions, task.loads, task.drive.sign,
                                                         float(task.drive.cycle))
     if sel:
         select_rows(task.kinetostatics.positions, positions)
     check_detail(task, positions)
+
+
+def check_detail(task, positions) -> None:
+    """`report.detail_position` must be one of the positions (TaskError, exit 2)."""
+    n = task.report.detail_position if task.report is not None else None
+    idx = list(positions.index)
+    if n is not None and n not in idx:
+        raise task.error(("report", "detail_position"),
+                         f"position {n} does not exist (positions are {idx[0]}..{idx[-1]})")
 
 
 MM_RATIO = (50.0, 5000.0)     # a length this many times the others was meant in mm

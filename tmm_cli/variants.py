@@ -12,7 +12,7 @@ import re
 from pathlib import Path
 from typing import Any
 
-from .errors import TaskError
+from .errors import TaskError, dotted
 
 _PLACE = re.compile(r"\{\{|\}\}|\{([^{}]*)\}")
 _HEADER_UNIT = re.compile(r"^\s*(?P<name>[^,\[\]]+?)\s*(?:,\s*(?P<u1>.+?)|\[(?P<u2>[^\]]+)\])\s*$")
@@ -71,13 +71,6 @@ def _text(v) -> str:
     return str(v)
 
 
-def _dotted(path: tuple) -> str:
-    s = ""
-    for p in path:
-        s += f"[{p}]" if isinstance(p, int) else (f".{p}" if s else str(p))
-    return s
-
-
 def file_stem(raw: str) -> str:
     """The task file's name (without .yaml) for a variant: a name every system takes
     (:func:`tmm_cli.safepath.safe_name`: variant "CON" -> "_CON", "7." -> "7")."""
@@ -114,7 +107,7 @@ def make_variants(template: Path, table: Path, out: Path) -> tuple[int, list[dic
     for path, name in placeholders(data):
         if name not in cols:
             line, col = marks.get(path, (None, None))
-            issues.append((_dotted(path), line, col, f"placeholder {{{name}}} names no column of {table} "
+            issues.append((dotted(path), line, col, f"placeholder {{{name}}} names no column of {table} "
                                                     f"(columns: {', '.join(cols)})"))
     if issues:
         raise TaskError("placeholder with no column", file=str(template), issues=issues)

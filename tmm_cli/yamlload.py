@@ -25,7 +25,7 @@ from typing import Any
 
 import yaml
 
-from .errors import TaskError
+from .errors import TaskError, dotted
 from .messages import Message
 
 
@@ -184,13 +184,6 @@ def _walk(node: yaml.Node, path: tuple, marks: dict, file: str | None, loader: _
     elif isinstance(node, yaml.SequenceNode):
         for i, item in enumerate(node.value):
             _walk(item, path + (i,), marks, file, loader)
-
-
-def _dotted(path: tuple) -> str:
-    out = ""
-    for p in path:
-        out += f"[{p}]" if isinstance(p, int) else ("." if out else "") + str(p)
-    return out
 
 
 def _tab_indented_line(text: str) -> int | None:
@@ -366,7 +359,7 @@ def load_yaml(source: str | Path, *, text: str | None = None) -> tuple[Any, dict
             loader.dispose()
     except _Refused as exc:
         raise TaskError("refused", file=file, issues=[(
-            _dotted(exc.field), exc.mark.line + 1, exc.mark.column + 1, exc.message)]) from None
+            dotted(exc.field), exc.mark.line + 1, exc.mark.column + 1, exc.message)]) from None
     except yaml.MarkedYAMLError as exc:
         tab = _tab_indented_line(text)
         if tab is not None:

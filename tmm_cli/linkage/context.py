@@ -1,10 +1,11 @@
 """The linkage context: what every linkage stage reads, built once from the task.
 
-The pipeline builds it in the order the course computes it (structure, positions, the
-crank speed) and hands it to each stage with that stage's own section::
+:func:`build` makes it in the order the course computes it (structure, positions, the
+crank speed) -- the pipeline, `tmm study`, the benchmarks and the tests alike -- and each
+stage is handed it with that stage's own section::
 
     mech = build_mechanism(task); st = structure.analyze(mech, task=task)
-    positions = kinematics.find_positions(mech, task.positions, task.drive.sign, ...)
+    positions = reported_positions(mech, task.positions, task.loads, task.drive.sign, ...)
     drive = drive_speed.resolve(task.drive, positions)           # a Drive
     linkage = Linkage(mech, st, drive, positions, task.loads)
     kinematics.analyze(linkage); dynamics.analyze(linkage, task.flywheel); ...
@@ -15,55 +16,16 @@ angles in degrees (crank angles absolute, from +x, ccw positive).
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Optional
 
+from .drive_speed import Drive
+
 if TYPE_CHECKING:       # types only: importing the context loads no stage
-    from ..task import LoadsSection
+    from .spec import LoadsSection
     from .kinematics.positions import PositionsResult
     from .mechanism import Mechanism
     from .structure import StructureResult
-
-
-@dataclass(frozen=True)
-class Drive:
-    """The input link's motion at the mean speed.
-
-    Attributes
-    ----------
-    link : str
-        Name of the input link (the crank).
-    omega : float
-        Mean angular speed, rad/s, signed: positive counter-clockwise.
-    sign : float
-        Sense of rotation: +1.0 counter-clockwise, -1.0 clockwise (``omega`` has it).
-    cycle : float
-        Crank rotation of one machine cycle, deg: 360, or 720 (a four-stroke engine).
-    source : str
-        Where ``omega`` comes from: ``'speed'`` (given), ``'mean_output_speed'`` or
-        ``'working_stroke_speed'`` (from the output's speed, stroke and K).
-    """
-    link: str
-    omega: float
-    sign: float
-    cycle: float
-    source: str = "speed"
-
-    @property
-    def speed(self) -> float:
-        """|omega|, rad/s."""
-        return abs(self.omega)
-
-    @property
-    def direction(self) -> str:
-        """'ccw' | 'cw'."""
-        return "ccw" if self.sign > 0 else "cw"
-
-    def to_dict(self) -> dict:
-        """results.json ``drive``: omega (rad/s, signed), n (rpm), source."""
-        return {"omega": float(self.omega), "n": abs(float(self.omega)) * 30.0 / math.pi,
-                "source": self.source}
 
 
 @dataclass(frozen=True)
@@ -91,7 +53,7 @@ class Linkage:
     loads: Optional["LoadsSection"] = None
 
 
-__all__ = ["Drive", "Linkage", "build", "reported_positions"]
+__all__ = ["Linkage", "build", "reported_positions"]
 
 
 def reported_positions(mech: "Mechanism", positions_section, loads_section, sign: float,
@@ -125,16 +87,33 @@ def reported_positions(mech: "Mechanism", positions_section, loads_section, sign
     return pos0.with_added(switch_angles(mech, loads_section, pos0, sign=sign, cycle=cycle, roots=pos0._roots))
 
 
-def build(task) -> Linkage:
-    """The linkage context of a valid task (its ``mechanism`` or ``synthesis``, ``drive``,
-    ``positions``, ``loads``), as the pipeline builds it step by step (writing each part to
-    the results as it is done): the mechanism, its structure, the reported positions and
-    the crank's speed (``drive_speed.resolve``)."""
+def build(task, *, mechanism: Optional["Mechanism"] = None, kinks: bool = False, told=None) -> Linkage:
+    """The linkage context of a valid task (its ``mechanism``: a ``synthesis`` generated
+    first, ``linkage.synthesis.generate``; ``drive``, ``positions``, ``loads``): the
+    mechanism, its structure, the reported positions and the crank's speed
+    (``drive_speed.resolve``), in that order.
+
+    Parameters
+    ----------
+    mechanism : Mechanism, optional
+        The task's mechanism already built (``validation.check_feasible``); else built here.
+    kinks : bool
+        Also the kinks of the load diagrams (:func:`reported_positions`; the flywheel reads them).
+    told : callable, optional
+        ``told(part, value)`` as each part is made: ``'structure'`` with ``(mechanism,
+        structure)``, then ``'positions'`` with the positions -- the pipeline writes each to
+        the results (and checks it) before the next is made.
+    """
+    from ..errors import guarded
     from . import structure
     from .drive_speed import resolve
     from .mechanism import build_mechanism
-    mech = build_mechanism(task)
+    tell = told if told is not None else (lambda part, value: None)
+    mech = mechanism if mechanism is not None else build_mechanism(task)
     st = structure.analyze(mech, task=task)
-    positions = reported_positions(mech, task.positions, task.loads, task.drive.sign, float(task.drive.cycle))
+    tell("structure", (mech, st))
+    positions = guarded("positions")(reported_positions)(mech, task.positions, task.loads, task.drive.sign,
+                                                         float(task.drive.cycle), kinks=kinks)
+    tell("positions", positions)
     return Linkage(mechanism=mech, structure=st, drive=resolve(task.drive, positions), positions=positions,
                    loads=task.loads)

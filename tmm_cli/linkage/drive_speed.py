@@ -14,36 +14,52 @@ stage reads (kinematics, dynamics, kinetostatics run at its omega).
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 from ..errors import field_error
-from ..messages import Message
-from .context import Drive
+from .spec import check_output_speed
 
 SOURCES = ("speed", "mean_output_speed", "working_stroke_speed")
 
 
-def check_output_speed(value) -> tuple[float, str | None]:
-    """(magnitude in m/s or rad/s, 'linear' | 'angular' | None for a plain number).
-    Raises ValueError for a value that is neither a linear nor an angular speed, or
-    not positive."""
-    from ..units import check_magnitude, quantity
+@dataclass(frozen=True)
+class Drive:
+    """The input link's motion at the mean speed.
 
-    if isinstance(value, bool):
-        raise ValueError(Message("input.output_speed_bool"))
-    if isinstance(value, (int, float)):
-        v, kind = check_magnitude(float(value)), None
-    else:
-        try:
-            v, _notes, read_as = quantity(str(value), "output_speed")
-        except ValueError as exc:
-            if isinstance(exc.args[0], Message) and exc.args[0].code == "input.unit_not_kind":
-                raise ValueError(Message("input.output_speed_unit", value=str(value))) from None
-            raise
-        kind = {"linear_speed": "linear", "speed": "angular"}.get(read_as)
-        v = check_magnitude(v)
-    if not v > 0:
-        raise ValueError(Message("input.output_speed_positive", value=repr(value)))
-    return v, kind
+    Attributes
+    ----------
+    link : str
+        Name of the input link (the crank).
+    omega : float
+        Mean angular speed, rad/s, signed: positive counter-clockwise.
+    sign : float
+        Sense of rotation: +1.0 counter-clockwise, -1.0 clockwise (``omega`` has it).
+    cycle : float
+        Crank rotation of one machine cycle, deg: 360, or 720 (a four-stroke engine).
+    source : str
+        Where ``omega`` comes from: ``'speed'`` (given), ``'mean_output_speed'`` or
+        ``'working_stroke_speed'`` (from the output's speed, stroke and K).
+    """
+    link: str
+    omega: float
+    sign: float
+    cycle: float
+    source: str = "speed"
+
+    @property
+    def speed(self) -> float:
+        """|omega|, rad/s."""
+        return abs(self.omega)
+
+    @property
+    def direction(self) -> str:
+        """'ccw' | 'cw'."""
+        return "ccw" if self.sign > 0 else "cw"
+
+    def to_dict(self) -> dict:
+        """results.json ``drive``: omega (rad/s, signed), n (rpm), source."""
+        return {"omega": float(self.omega), "n": abs(float(self.omega)) * 30.0 / math.pi,
+                "source": self.source}
 
 
 def omega_from_mean(V: float, H: float) -> float:

@@ -19,9 +19,13 @@ from __future__ import annotations
 import difflib
 import math
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 from ..messages import Message
-from ..task import MechanismSection, Task
+from .spec import MechanismSection
+
+if TYPE_CHECKING:       # the type only: the task model imports no stage, no stage the task model
+    from ..task import Task
 
 
 @dataclass(frozen=True)

@@ -6,7 +6,8 @@ Pure functions. :func:`design` turns a ``synthesis`` section into the link lengt
 the generated ``mechanism`` section (a dict, as a task would write it); it raises
 :class:`SynthesisImpossible` naming the requirement to relax. :func:`analyse` runs the
 generated mechanism through the kinematics (extreme positions, transmission angle
-over the cycle) and gives the ``synthesis`` results.
+over the cycle) and gives the ``synthesis`` results. :func:`generate` gives the task with
+the generated mechanism (what `tmm validate` checks and every later stage reads).
 
 K = (180 + theta)/(180 - theta); theta = 180 (K - 1)/(K + 1), the angle between the
 crank's positions at the two extremes of the output, less 180 deg.
@@ -35,12 +36,6 @@ from ..messages import Message
 
 STAGE = "synthesis"
 TYPES = ("slider_crank", "offset_slider_crank", "crank_rocker", "slotted_lever", "shaper", "function")
-LINKS = {"function": ("crank", "coupler", "rocker"),
-         "slider_crank": ("crank", "rod", "slider"),
-         "offset_slider_crank": ("crank", "rod", "slider"),
-         "crank_rocker": ("crank", "coupler", "rocker"),
-         "slotted_lever": ("crank", "block", "rocker"),
-         "shaper": ("crank", "block", "rocker", "blockC", "ram")}
 OUTPUT = {"function": "rocker", "slider_crank": "slider", "offset_slider_crank": "slider", "crank_rocker": "rocker",
           "slotted_lever": "rocker", "shaper": "ram"}
 
@@ -53,8 +48,7 @@ class SynthesisImpossible(StageError):
         super().__init__(STAGE, message)
 
     def __eq__(self, other) -> bool:
-        """Two are equal when they say the same (the task model keeps one: two validations of one
-        task give equal models)."""
+        """Two are equal when they say the same (two syntheses of one task fail alike)."""
         return type(other) is type(self) and str(other) == str(self)
 
     __hash__ = StageError.__hash__
@@ -440,6 +434,36 @@ def design(sec, sign: float) -> Design:
     return _slotted(sec, sign)
 
 
+def generate(task):
+    """The synthesis stage's first step: the design of the task's ``synthesis`` section and
+    the task with the ``mechanism`` it generates (and the defaults of positions.output and
+    positions.working: the output link and its slow stroke), which every later check and
+    stage reads.  The task given is left as it is; generating from a generated task gives
+    it again.
+
+    Returns
+    -------
+    (Task, Design)
+
+    Raises
+    ------
+    SynthesisImpossible
+        When no mechanism of the type meets the conditions (exit 3).
+    """
+    from ..schemacache import validator
+    from .spec import MechanismSection, PositionsSection
+
+    d = design(task.synthesis, task.drive.sign)
+    mechanism = validator(MechanismSection).validate_python(d.mechanism)     # MechanismSection.model_validate
+    pos = task.positions if task.positions is not None else validator(PositionsSection).validate_python({})
+    given = set(pos.model_fields_set)
+    upd = {k: v for k, v in (("output", d.output), ("working", d.working)) if k not in given}
+    if upd:
+        pos = pos.model_copy(update=upd)
+        pos.__pydantic_fields_set__ = given       # still the defaults: a second generation sets them again
+    return task.model_copy(update={"mechanism": mechanism, "positions": pos}), d
+
+
 # ---------------------------------------------------------------- function generation (Freudenstein)
 def chebyshev_points(x0: float, x1: float, n: int) -> list[float]:
     """x_j = (x0 + x1)/2 - (x1 - x0)/2 cos((2j - 1) pi/(2n)), j = 1..n."""
@@ -604,7 +628,7 @@ def analyse(linkage, d: Design) -> dict:
     linkage : Linkage
         The mechanism built from ``d.mechanism`` and the drive's sense of rotation.
     d : Design
-        The design the task model made from the ``synthesis`` section (``Task._design``).
+        The design of the task's ``synthesis`` section (:func:`generate`).
 
     Returns
     -------
@@ -624,7 +648,7 @@ def analyse(linkage, d: Design) -> dict:
 
     from .kinematics import find_positions, solve
     from ..schemacache import validator
-    from ..task import PositionsSection
+    from .spec import PositionsSection
 
     mech, sign = linkage.mechanism, linkage.drive.sign
     # PositionsSection(output=..., working=...) by the cached validator (tmm_cli.schemacache)

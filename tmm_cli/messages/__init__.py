@@ -72,6 +72,13 @@ def catalogue(lang: str) -> dict:
     return {"messages": dict(data.get("messages") or {}), "terms": dict(data.get("terms") or {})}
 
 
+def unit(text: str, lang: str | None = None) -> str:
+    """A unit as a task writes it ('m/s', 'rad/s', 'N*m', 'mm') in the language's spelling
+    (м/с, рад/с, Н·м, мм: the catalogue's ``unit`` table; unchanged where it has none);
+    ``lang`` None: the language of the enclosing ``numfmt.language`` block."""
+    return catalogue(lang if lang is not None else numfmt.current())["terms"].get("unit", {}).get(text, text)
+
+
 class _Formatter(string.Formatter):
     """``str.format`` whose spec may name a word table of the catalogue; list values are
     formatted item by item and joined by ``", "``."""

@@ -48,7 +48,7 @@ import re
 from pathlib import Path
 
 from .. import numfmt
-from ..messages import render_list
+from ..messages import render_list, unit
 from ..reproducible import source_date
 from .context import ReportContext, templates_dir
 from . import sections as _sections
@@ -112,7 +112,7 @@ def make_env():
     env.filters["fmt"] = fmt
     env.filters["fmt_fixed"] = fmt_fixed
     env.tests["numeric"] = _is_numeric
-    env.globals["unit"] = numfmt.unit          # a task-file unit in the report's language
+    env.globals["unit"] = unit                  # a task-file unit in the report's language
     return env
 
 

@@ -258,10 +258,8 @@ def draw_diagrams(cv, results, geom, box, lang="en") -> dict:
         (("s", "ψ", U["deg"]), ("v", "ω", U["rad/s"]), ("a", "ε", U["rad/s²"]))
     mu_phi = 1.0
     rowh = (h - 10.0) / 3
-    drive = next((l.name for l in geom.links if l.index == geom.drive), None) if geom is not None else None
-    omegas = [abs(float(e["links"][drive]["omega"] or 0.0)) for e in results.get("kinematics") or []
-              if drive in e.get("links", {})]
-    omega = float(np.median(omegas)) if omegas else 0.0        # the crank's steady ω
+    # the crank's steady ω
+    omega = abs(float(results["drive"]["omega"])) if results.get("kinematics") and results.get("drive") else 0.0
     out = {}
     cv.mtext(x0 + 2, y0 + h - 4, TXT[lang]["diagrams"], 5.0, bold=True)
     for k, (key, sym, unit) in enumerate(keys):

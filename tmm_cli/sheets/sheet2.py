@@ -85,7 +85,7 @@ def build(cv, results, task, lang="en") -> dict:
             lb = y0f + TB_H + 2
         cv.layer = "thin"                 # the lever: the turned plan and the arms, thin lines
         mu_v = K._lever_panel(ctx, cv, (lx, lb, x1f - lx - 1, top - HEAD - lb), e, ke, pin,
-                              K.drive_omega(geom, ke), info_k.get("balance_kind"))
+                              (results.get("drive") or {}).get("omega"), info_k.get("balance_kind"))
         if k:
             cv.layer = "thin"
             cv.line((x0f, top), (x1f, top), width=0.35)

@@ -22,7 +22,6 @@ import numpy as np
 
 from ...entrytable import clean, dicts, nan_rows, tabled, values
 from ...results import LazyEntries
-from .result import angle_deg
 
 TABLE_ROWS = 4096      # positions whose values are computed at a time (numpy)
 ENTRY_BLOCK = 64       # entries made at a time (dicts and floats)
@@ -32,6 +31,12 @@ LKEYS = ("angle", "omega", "epsilon", "i", "iq2")
 # the values nulled where ``undefined['v:P']`` (a point's), ... (a link's) holds
 NULLED = {"v": ("vx", "vy", "v", "vqx", "vqy", "vq"), "a": ("ax", "ay", "a", "aqx", "aqy", "aq"),
           "omega": ("omega", "i"), "epsilon": ("epsilon", "iq2")}
+
+
+def angle_deg(rad) -> np.ndarray:
+    """Angle in degrees in [0, 360)."""
+    d = np.mod(np.degrees(np.asarray(rad, float)), 360.0)
+    return np.where(d >= 360.0 - 1e-11, 0.0, d)
 
 
 def lazy_entries(kin, index: list[int]) -> LazyEntries:

@@ -257,9 +257,8 @@ def _named(solver, gi: int) -> set[str]:
     """The keys a warning about group gi names: the values of the links of that group and of
     the groups solved after it, and of their points (those of the groups before it, of the
     crank and of the ground are regular there)."""
-    from .solver import _outputs
     bodies = {b for grp in solver.groups[gi:] for b in grp.links}
-    _, moving, _, _, links = _outputs(solver)
+    _, moving, _, _, links = solver.outputs()
     keys = {f"{w}:{p}" for p, b, _ in moving if b in bodies for w in ("v", "a")}
     keys |= {f"{w}:{nm}" for nm, b in links if b in bodies for w in ("omega", "epsilon")}
     return keys

@@ -350,7 +350,7 @@ def find_positions(mech: Mechanism, positions_section, sign: float, extra_added=
     Artobolevsky, *Theory of Mechanisms and Machines*: extreme (dead) positions and the
     coefficient of the mean speed K = (180 + theta)/(180 - theta); module docstring.
     """
-    from ...task import PositionsSection
+    from ..spec import PositionsSection
     sec = positions_section if positions_section is not None else PositionsSection()
     direction = "ccw" if sign > 0 else "cw"
     out_name = sec.output or mech.links[-1].name      # a name the task model checked

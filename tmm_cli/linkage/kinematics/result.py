@@ -8,12 +8,6 @@ import numpy as np
 from ...results import LazyEntries
 
 
-def angle_deg(rad) -> np.ndarray:
-    """Angle in degrees in [0, 360)."""
-    d = np.mod(np.degrees(np.asarray(rad, float)), 360.0)
-    return np.where(d >= 360.0 - 1e-11, 0.0, d)
-
-
 @dataclass
 class KinematicsResult:
     """Kinematics of the linkage at N crank positions (see docs/ARCHITECTURE.md).

@@ -106,6 +106,10 @@ class Solver:
                 best = max(best, float(np.max(np.hypot(*(pts[:, None, :] - pts[None, :, :]).T))))
         return best if best > 0.0 else self.L
 
+    def outputs(self) -> tuple:
+        """What the result holds (:func:`_outputs`: the ground points, the moving ones, ...)."""
+        return _outputs(self)
+
     def local(self, b: int, p: str):
         if b == 0:
             return self.mech.ground[p]

@@ -7,12 +7,15 @@ the kinematic diagrams (results.json ``kinematics_curve``).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..context import Linkage
 from .result import KinematicsResult
 from .solver import solve
+
+if TYPE_CHECKING:       # the type only: the context builds its positions with the kinematics
+    from ..context import Linkage
 
 
 def analyze(linkage: Linkage) -> KinematicsResult:

@@ -6,7 +6,8 @@ from __future__ import annotations
 
 import math
 
-from ...numfmt import localize, num, unit
+from ...messages import unit
+from ...numfmt import localize, num
 from ..figures import mu_text
 
 I18N = {

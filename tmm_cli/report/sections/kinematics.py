@@ -67,11 +67,8 @@ def _rotation_sign(ctx, geom, entries) -> float:
     d = (ctx.results.get("positions") or {}).get("direction")
     if d in ("ccw", "cw"):
         return 1.0 if d == "ccw" else -1.0
-    l = geom.link(geom.drive)
-    if l is not None and entries:
-        w = entries[0]["links"].get(l.name, {}).get("omega") or 1.0
-        return 1.0 if w >= 0 else -1.0
-    return 1.0
+    w = (ctx.results.get("drive") or {}).get("omega") or 1.0
+    return 1.0 if w >= 0 else -1.0
 
 
 def _sense_mark(x, tiny: float = 1e-9) -> str:

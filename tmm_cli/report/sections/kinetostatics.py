@@ -638,16 +638,6 @@ def position_rows(ctx, e, kin_e, info, links):
     return rows
 
 
-def drive_omega(geom, kin_e):
-    """The angular velocity of the input link in one kinematics entry (None without it)."""
-    if geom is None:
-        return None
-    dl = geom.link(geom.drive)
-    if dl is not None and dl.name in kin_e["links"]:
-        return kin_e["links"][dl.name].get("omega")
-    return None
-
-
 LEVER_H = 110.0              # mm: Zhukovsky's lever, a figure of its own under the groups
 
 
@@ -885,7 +875,7 @@ def build(ctx) -> str | None:
         if "loads" not in e or e["index"] not in kin:
             continue
         ke = kin[e["index"]]
-        w1 = drive_omega(geom, ke)
+        w1 = (ctx.results.get("drive") or {}).get("omega")
         if e.get("balancing_moment") is None and e.get("balancing_force") is None:
             figs = []
         else:

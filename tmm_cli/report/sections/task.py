@@ -14,7 +14,8 @@ from typing import Any
 
 from markupsafe import Markup, escape
 
-from ...numfmt import localize, unit as spelt
+from ...messages import unit as spelt
+from ...numfmt import localize
 
 I18N = {
     "en": {"task.sec.mechanism": "Mechanism", "task.sec.drive": "Drive",

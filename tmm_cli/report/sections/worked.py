@@ -450,6 +450,7 @@ class _Writer:
         self.mu_v, self.mu_a, _, _ = drawn_scales(res, self.geom)     # the plans' as drawn
         self.pts = self.ke["points"]
         self.lk = self.ke["links"]
+        self.w1 = float(res["drive"]["omega"])     # the crank's ω₁ (signed), as the results give it
         self.names = {l.index: l.name for l in self.geom.links}
         self.names[0] = "ground"
         self.blocks: list = []          # ('h', text) | ('p', text) | ('f', Markup)
@@ -665,8 +666,7 @@ class _Writer:
         if O not in g.ground:
             O, A = A, O
         self.O, self.A = O, A
-        w1 = self.w(dl.name)
-        self.w1 = w1
+        w1 = self.w1
         num = self.num
         self.h(self.t("worked.crank") + f" {O}{A}")
         vA = float(np.hypot(*self.v(A)))
@@ -752,7 +752,7 @@ class _Writer:
         dl = g.link(g.drive)
         O, A = self.O, self.A
         self.h(self.t("worked.crank") + f" {O}{A}")
-        w1, e1 = self.w(dl.name), self.e(dl.name)
+        w1, e1 = self.w1, self.e(dl.name)
         an = w1 * w1 * self.l(O, A)
         at = abs(e1) * self.l(O, A)
         aA = float(np.hypot(*self.a(A)))

@@ -1,0 +1,146 @@
+"""What the commands share (the Typer app of :mod:`tmm_cli.commands` and the fast path of
+:mod:`tmm_cli.cli`): the exit codes, formats and languages, how a failure is told, and the
+two commands a user repeats most, `tmm run` (:func:`run_task`) and `tmm validate`
+(:func:`validate_tasks`)."""
+from __future__ import annotations
+
+import re
+import sys
+from pathlib import Path
+from typing import Callable, Optional
+
+from .errors import StageError, TaskError
+
+EXIT_OK, EXIT_ANSWERS, EXIT_INVALID, EXIT_STAGE = 0, 1, 2, 3
+FORMATS = {"json", "html", "pdf", "sheets", "note"}
+LANGS = ("en", "ru", "uk")
+
+_ANSI = re.compile(r"\033\[[;?0-9]*[a-zA-Z]")     # click's: stripped when not a terminal
+
+
+def echo(message: str, err: bool = False) -> None:
+    """click.echo of a text line on a well-configured stream (what the fast path runs
+    with): the line and a newline, ANSI codes stripped unless a terminal, flushed."""
+    file = sys.stderr if err else sys.stdout
+    if file is None:
+        return
+    out = message + "\n"
+    try:
+        tty = file.isatty()
+    except Exception:  # noqa: BLE001 - click.isatty's: a stream without isatty is no terminal
+        tty = False
+    if not tty:
+        out = _ANSI.sub("", out)
+    file.write(out)
+    file.flush()
+
+
+Echo = Callable[..., None]
+
+
+def fail_task(exc: TaskError, echo: Echo = echo) -> int:
+    echo(f"error: invalid task\n{exc.render()}", err=True)
+    return EXIT_INVALID
+
+
+def fail_stage(exc: StageError, file: str | None = None, echo: Echo = echo) -> int:
+    where = f"{file}: " if file else ""
+    echo(f"error: {where}{exc}", err=True)
+    return EXIT_STAGE
+
+
+def fail_write(exc: OSError, echo: Echo = echo) -> int:
+    """The output folder or a file in it cannot be written (--out names a file, no
+    permission, disk full): the writing stage failed, exit 3, no traceback."""
+    from .orchestrate import write_error_text
+    echo(f"error: {write_error_text(exc)}", err=True)
+    return EXIT_STAGE
+
+
+def parse_formats(text: str) -> set[str] | None:
+    """The set of --format, or None when it names no format or an unknown one."""
+    fm = {f.strip().lower() for f in text.split(",") if f.strip()}
+    return fm if fm and not fm - FORMATS else None
+
+
+def run_task(task_file: Path, out: Optional[Path], formats: set[str], lang: str, quiet: bool, study: bool,
+             echo: Echo = echo, held: list | None = None) -> int:
+    """`tmm run` with its options checked: compute, write, report; the exit code.
+    ``held``: receives the results (the caller keeps them to its end)."""
+    from .orchestrate import process
+    from .pipeline import PartialResults
+    progress = None
+    if not quiet:
+        def progress(stage: str) -> None:
+            echo(f"  {stage}...", err=True)
+    failure = None
+    notes: list[str] = []
+    try:
+        task, results, paths = process(task_file, lambda t: out or Path("out") / t.name, formats, lang,
+                                       progress=progress, study=study, notes=notes)
+    except PartialResults as exc:
+        # results.json and the report were written with every computed section and, in
+        # place of a failed one, what failed; then exit 3
+        failure, results = exc, exc.partial
+    except TaskError as exc:
+        return fail_task(exc, echo)
+    except StageError as exc:
+        return fail_stage(exc, str(task_file), echo)
+    except OSError as exc:
+        return fail_write(exc, echo)
+    if held is not None:
+        held.append(results)
+    for note in notes:
+        echo(f"warning: {note}", err=True)
+    if failure is not None:
+        for e in results.get("errors", [])[1:]:
+            echo(f"error: {task_file}: {StageError(e['stage'], e['message'], e['position'])}", err=True)
+        return fail_stage(failure, str(task_file), echo)
+    if not quiet:
+        from .summary import print_summary
+        print_summary(results, paths)
+    return EXIT_OK
+
+
+def validate_tasks(task_files: list[Path], no_assembly: bool, echo: Echo = echo) -> int:
+    """`tmm validate`: each file checked, `FILE: ok` or its errors; the exit code. A folder
+    stands for its task files (*.yaml, *.yml; answers files skipped) and a quoted pattern
+    (`'group21/*.yaml'`) for the files it matches, as for `tmm batch`."""
+    code = EXIT_OK
+    files = []
+    for a in task_files:
+        try:
+            files += _task_files([a])
+        except TaskError as exc:
+            echo(f"error: invalid task\n{exc.render()}", err=True)
+            code = EXIT_INVALID
+    for f in files:
+        try:
+            from .orchestrate import prepare
+            task = prepare(f, assembly=not no_assembly)
+            echo(f"{f}: ok")
+            for note in task.input_warnings:        # e.g. a plain number read as metres
+                echo(f"warning: {f}: {note}", err=True)
+        except TaskError as exc:
+            echo(f"error: invalid task\n{exc.render()}", err=True)
+            code = max(code, EXIT_INVALID) if code != EXIT_STAGE else code
+        except StageError as exc:
+            echo(f"error: {f}: {exc}", err=True)
+            code = EXIT_STAGE if code == EXIT_OK else max(code, EXIT_STAGE)
+    return code
+
+
+def _task_files(args: list[Path]) -> list[Path]:
+    """The arguments of `tmm validate` with folders and unexpanded patterns expanded (a
+    folder or pattern with no task file stays as given: its check names why)."""
+    out: list[Path] = []
+    for a in args:
+        if a.is_dir() or (not a.exists() and any(c in str(a) for c in "*?[")):
+            from .batch import find_tasks
+            found = [f for f, _ in find_tasks(str(a))[0]]
+            if not found and a.is_dir():
+                raise TaskError("no task files (*.yaml, *.yml) in this folder", file=str(a))
+            out += found or [a]
+        else:
+            out.append(a)
+    return out

@@ -1,0 +1,406 @@
+"""The linkage's sections of the task file: `mechanism`, `drive`, `positions`, `loads`,
+`kinetostatics`, `flywheel` and `synthesis` (README, *The task file*), validated once by
+the task model (tmm_cli/task.py composes them).  Quantities are SI floats (angles in
+degrees).  Nothing here imports a stage: the stages import these sections."""
+# annotations evaluated as written (no `from __future__ import annotations`): pydantic would
+# compile and evaluate every field's annotation string when the models are made
+from typing import Annotated, Literal, Union
+
+from pydantic import AfterValidator, Field, field_validator, model_validator
+
+from ..limits import MAX_EXTRA_POINTS, MAX_EXTRA_POSITIONS, MAX_FORCES, MAX_POSITIONS
+from ..messages import Message
+from ..modelbase import FieldValueError, _Model
+from ..units import (Angle, AngularSpeed, Area, Density, ForceOrPressure, Inertia,
+                     Length, Mass, MomentQ, Number, Ratio)
+
+LengthPair = tuple[Length, Length]
+# the links each type of synthesis generates, in the order of the generated `mechanism`
+LINKS = {"function": ("crank", "coupler", "rocker"),
+         "slider_crank": ("crank", "rod", "slider"),
+         "offset_slider_crank": ("crank", "rod", "slider"),
+         "crank_rocker": ("crank", "coupler", "rocker"),
+         "slotted_lever": ("crank", "block", "rocker"),
+         "shaper": ("crank", "block", "rocker", "blockC", "ram")}
+
+
+# ---------------------------------------------------------------- mechanism
+class GuideSpec(_Model):
+    """The line a slider translates along: fixed ({through, angle}) or on a link."""
+
+    through: Union[str, LengthPair, None] = Field(None, description="fixed guide: a point name or [x, y] on the line")
+    angle: Angle | None = Field(None, description="deg: from +x (fixed guide) or relative to the guide link (moving)")
+    link: str | None = Field(None, description="moving guide (slotted link): the link carrying the guide")
+    offset: Length = Field(0.0, description="moving guide: perpendicular shift to the left of the link's axis, m")
+
+    @model_validator(mode="after")
+    def _kind(self):
+        if self.link is None and self.through is None:
+            raise ValueError(Message("input.guide_kind"))
+        if self.link is not None and self.through is not None:
+            raise ValueError(Message("input.guide_both"))
+        if self.link is None and self.angle is None:
+            raise ValueError(Message("input.guide_angle"))
+        return self
+
+
+class LinkSpec(_Model):
+    """A bar link (``points: [P, Q]``, ``length``) or a slider (``slider: P``, ``guide``)."""
+
+    points: list[str] | None = Field(None, description="bar: its two pair points [P, Q]")
+    length: Length | None = Field(None, description="bar: |PQ|, m")
+    extra: dict[str, LengthPair] = Field(default_factory=dict, description="extra points in local [u, v], m")
+    slider: str | None = Field(None, description="slider: its pin point")
+    guide: GuideSpec | None = None
+    mass: Mass = Field(0.0, ge=0)
+    J: Inertia = Field(0.0, ge=0, description="moment of inertia about the centre of mass, kg*m^2")
+    com: Union[str, LengthPair, None] = Field(None, description="centre of mass: local [u, v] or a point name")
+
+    @field_validator("points")
+    @classmethod
+    def _two_points(cls, v):
+        if v is not None and len(v) != 2:
+            raise ValueError(Message("input.bar_points", n=len(v)))
+        if v is not None and v[0] == v[1]:
+            raise ValueError(Message("input.bar_same_points"))
+        return v
+
+    @model_validator(mode="after")
+    def _kind(self):
+        if self.slider is None and self.points is None:
+            raise ValueError(Message("input.link_kind"))
+        if self.slider is not None and self.points is not None:
+            raise ValueError(Message("input.link_both"))
+        if self.points is not None and self.length is None:
+            raise ValueError(Message("input.bar_length"))
+        if self.length is not None and self.length <= 0:
+            raise ValueError(Message("input.length_positive"))
+        if self.slider is not None and self.guide is None:
+            raise ValueError(Message("input.slider_guide"))
+        if self.slider is not None and self.length is not None:
+            raise ValueError(Message("input.slider_length"))
+        return self
+
+    @property
+    def kind(self) -> str:
+        return "slider" if self.slider is not None else "bar"
+
+
+class MechanismSection(_Model):
+    ground: dict[str, LengthPair] = Field(..., description="fixed pivots: name -> [x, y], m")
+    links: dict[str, LinkSpec] = Field(..., description="moving links, numbered 1..n in this order")
+    assembly: dict[str, LengthPair] = Field(default_factory=dict,
+                                            description="rough coordinates of moving points at crank angle 0 deg")
+
+    @field_validator("links")
+    @classmethod
+    def _nonempty(cls, v):
+        if not v:
+            raise ValueError(Message("input.no_links"))
+        n = 0
+        for name, link in v.items():
+            n += len(link.extra)
+            if n > MAX_EXTRA_POINTS:
+                total = sum(len(k.extra) for k in v.values())
+                raise FieldValueError((name, "extra"), Message("input.extra_points_many", n=total,
+                                                               limit=MAX_EXTRA_POINTS))
+        return v
+
+
+def check_output_speed(value) -> tuple[float, str | None]:
+    """(magnitude in m/s or rad/s, 'linear' | 'angular' | None for a plain number).
+    Raises ValueError for a value that is neither a linear nor an angular speed, or
+    not positive."""
+    from ..units import check_magnitude, quantity
+
+    if isinstance(value, bool):
+        raise ValueError(Message("input.output_speed_bool"))
+    if isinstance(value, (int, float)):
+        v, kind = check_magnitude(float(value)), None
+    else:
+        try:
+            v, _notes, read_as = quantity(str(value), "output_speed")
+        except ValueError as exc:
+            if isinstance(exc.args[0], Message) and exc.args[0].code == "input.unit_not_kind":
+                raise ValueError(Message("input.output_speed_unit", value=str(value))) from None
+            raise
+        kind = {"linear_speed": "linear", "speed": "angular"}.get(read_as)
+        v = check_magnitude(v)
+    if not v > 0:
+        raise ValueError(Message("input.output_speed_positive", value=repr(value)))
+    return v, kind
+
+
+class DriveSection(_Model):
+    link: str
+    speed: AngularSpeed | None = Field(None, gt=0, description="mean angular speed (rad/s; or '50 rpm')")
+    mean_output_speed: Union[Number, str, None] = None
+    working_stroke_speed: Union[Number, str, None] = None
+    direction: Literal["ccw", "cw"] = "ccw"
+    cycle: Literal[360, 720] = 360
+
+    @model_validator(mode="after")
+    def _one_speed(self):
+        given = [k for k in ("speed", "mean_output_speed", "working_stroke_speed") if getattr(self, k) is not None]
+        if not given:
+            raise FieldValueError(("speed",), Message("input.no_speed"))
+        if len(given) > 1:
+            raise FieldValueError((given[1],), Message("input.speed_one", given=given))
+        if given[0] != "speed":
+            try:
+                check_output_speed(getattr(self, given[0]))
+            except ValueError as exc:
+                raise FieldValueError((given[0],), exc.args[0] if len(exc.args) == 1 else str(exc)) from None
+        return self
+
+    @property
+    def sign(self) -> float:
+        return 1.0 if self.direction == "ccw" else -1.0
+
+
+class PositionsSection(_Model):
+    count: int = Field(12, ge=2, le=MAX_POSITIONS)
+    zero: Union[Literal["extreme"], Angle] = "extreme"
+    output: str | None = None
+    working: Literal["forward", "backward"] = "forward"
+    extra: list[Angle] = Field(default_factory=list)
+
+    @model_validator(mode="after")
+    def _bounded(self):
+        """Every position is computed, listed and drawn: the extras count toward the limit."""
+        if len(self.extra) > MAX_EXTRA_POSITIONS:
+            raise FieldValueError(("extra",), Message("input.extra_positions_many", n=len(self.extra),
+                                                      limit=MAX_EXTRA_POSITIONS))
+        n = self.count + len(self.extra)
+        if n > MAX_POSITIONS:
+            raise FieldValueError(("extra",), Message("input.positions_many", n=n, count=self.count,
+                                                      extra=len(self.extra), limit=MAX_POSITIONS))
+        return self
+
+# ---------------------------------------------------------------- loads
+class DiagramSpec(_Model):
+    s: list[Ratio] | None = Field(None, description="relative stroke s/H in [0, 1]")
+    phi: list[Angle] | None = Field(None, description="crank angle over the cycle, deg")
+    value: list[ForceOrPressure]
+
+    @model_validator(mode="after")
+    def _axes(self):
+        x = self.s if self.s is not None else self.phi
+        if (self.s is None) == (self.phi is None):
+            raise ValueError(Message("input.diagram_axis"))
+        if len(x) != len(self.value):
+            raise ValueError(Message("input.diagram_lengths", n_x=len(x), n_value=len(self.value)))
+        if len(x) < 2:
+            raise ValueError(Message("input.diagram_short"))
+        if any(b < a for a, b in zip(x, x[1:])):
+            raise ValueError(Message("input.diagram_order"))
+        if self.s is not None and (min(self.s) < 0 or max(self.s) > 1):
+            raise ValueError(Message("input.diagram_s"))
+        return self
+
+
+class ForceSpec(_Model):
+    on: str = Field(..., description="the link the load acts on")
+    kind: Literal["resistance", "driving"] | None = None
+    stroke: Literal["working", "idle", "both"] = "working"
+    working: Literal["forward", "backward"] | None = None
+    magnitude: ForceOrPressure | None = None
+    diagram: DiagramSpec | None = None
+    area: Area | None = Field(None, gt=0)
+    at: Union[str, LengthPair, None] = None
+    direction: Angle | None = None
+    moment: MomentQ | None = None
+
+    @model_validator(mode="after")
+    def _what(self):
+        given = [k for k in ("magnitude", "diagram", "moment") if getattr(self, k) is not None]
+        if len(given) != 1:
+            raise ValueError(Message("input.load_what_got", given=given) if given else Message("input.load_what"))
+        if self.diagram is not None and self.diagram.phi is not None and self.kind is not None:
+            pass
+        for name in ("magnitude", "moment"):
+            v = getattr(self, name)
+            if self.kind is not None and v is not None and v < 0:
+                raise FieldValueError((name,), Message("input.load_negative_against" if self.kind == "resistance"
+                                                       else "input.load_negative_along", name=name, kind=self.kind,
+                                                       value=v))
+        return self
+
+
+class LoadsSection(_Model):
+    gravity: bool = False
+    forces: list[ForceSpec] = Field(default_factory=list)
+
+    @field_validator("forces")
+    @classmethod
+    def _bounded(cls, v):
+        if len(v) > MAX_FORCES:
+            raise ValueError(Message("input.forces_many", n=len(v), limit=MAX_FORCES))
+        return v
+
+
+class FrictionSpec(_Model):
+    pin_radius: Length = Field(..., gt=0)
+    f: float | None = Field(None, ge=0, le=1)
+    f_pin: float | None = Field(None, ge=0, le=1)
+    f_slide: float | None = Field(None, ge=0, le=1)
+
+    @model_validator(mode="after")
+    def _coefficients(self):
+        """`f` is the shorthand for both; alone, a missing one of f_pin / f_slide is 0."""
+        if self.f is not None:
+            if self.f_pin is not None or self.f_slide is not None:
+                raise FieldValueError(("f_pin" if self.f_pin is not None else "f_slide",),
+                                      Message("input.friction_both"))
+            self.f_pin = self.f_slide = self.f
+        elif self.f_pin is None and self.f_slide is None:
+            raise ValueError(Message("input.friction_none"))
+        self.f_pin = self.f_pin or 0.0
+        self.f_slide = self.f_slide or 0.0
+        return self
+
+
+class KinetostaticsSection(_Model):
+    positions: Union[Literal["all"], list[int]] = "all"
+    inertia: bool = True
+    balance: str | None = None
+    friction: FrictionSpec | None = None
+    motion: Union[Literal["constant"], Literal[True]] = "constant"
+
+    @field_validator("positions")
+    @classmethod
+    def _positions(cls, v):
+        """An empty list computes nothing (refused); a position listed twice is computed once."""
+        if isinstance(v, list):
+            if not v:
+                raise ValueError(Message("input.ks_positions_empty"))
+            v = list(dict.fromkeys(v))
+        return v
+
+# ---------------------------------------------------------------- flywheel
+class ShapeSpec(_Model):
+    type: Literal["disk", "rim"] = "disk"
+    density: Density = Field(7800.0, gt=0)
+    width_ratio: Ratio = Field(0.1, gt=0)
+
+
+def _default_shape() -> ShapeSpec:
+    """ShapeSpec() (its defaults, which need no validation) without building its validator."""
+    return ShapeSpec.model_construct()
+
+
+class FlywheelSection(_Model):
+    delta: Ratio = Field(..., gt=0, lt=1)
+    constant: Literal["driving", "resistance"] = "driving"
+    method: Literal["energy-mass", "merzalov", "exact"] = "energy-mass"
+    resolution: int = Field(360, ge=12, le=100000)
+    quadrature: int = Field(2, ge=0, le=8, description="Gauss-Legendre points per interval (0: trapezoid)")
+    shape: ShapeSpec = Field(default_factory=_default_shape)
+    reduced_J: Inertia = Field(0.0, ge=0, description="extra constant reduced inertia (rotor, gears), kg*m^2")
+
+# ---------------------------------------------------------------- synthesis
+class SynthesisLinkSpec(_Model):
+    """Mass properties of a generated link."""
+    mass: Mass = Field(0.0, ge=0)
+    J: Inertia = Field(0.0, ge=0, description="moment of inertia about the centre of mass, kg*m^2")
+    com: Union[str, LengthPair, None] = Field(None, description="centre of mass: local [u, v] or a point name")
+
+
+SYNTHESIS_INPUTS = {  # type -> (required, exactly-one-of groups, optional)
+    "slider_crank": (("H",), (("lambda_", "gamma_min"),), ("K", "theta")),
+    "offset_slider_crank": (("H",), (("K", "theta"), ("e", "lambda_", "gamma_min")), ()),
+    "crank_rocker": (("psi", "rocker", "frame"), (("K", "theta"),), ()),
+    "slotted_lever": (("frame",), (("K", "theta"),), ("rocker",)),
+    "shaper": (("H", "frame"), (("K", "theta"),), ("rocker", "guide_height")),
+    "function": (("function_", "x", "input", "output", "frame"), (), ("points",)),
+}
+SYNTHESIS_FIELDS = ("H", "psi", "K", "theta", "lambda_", "e", "gamma_min", "rocker", "frame", "guide_height",
+                    "function_", "x", "input", "output", "points")
+
+
+def _function_text(v):
+    """The function to generate, checked by its grammar (tmm_cli.expr: never evaluated as code)."""
+    if v is None:
+        return v
+    from ..expr import ExprError, compile_expr
+    try:
+        compile_expr(v)
+    except ExprError as exc:
+        raise ValueError(Message("input.synth_function", reason=str(exc))) from None
+    return v
+
+
+class AngleRange(_Model):
+    """An angle that varies linearly with x or y: start + range (t - t0)/(t1 - t0), deg."""
+    start: Angle = Field(0.0, description="the angle at the range's start, deg")
+    range: Angle = Field(..., description="the angle swept over the range, deg (non-zero)")
+
+    @field_validator("range")
+    @classmethod
+    def _nonzero(cls, v):
+        if v == 0:
+            raise ValueError(Message("input.synth_range_zero"))
+        return v
+
+
+class SynthesisSection(_Model):
+    type: Literal["slider_crank", "offset_slider_crank", "crank_rocker", "slotted_lever", "shaper", "function"]
+    H: Length | None = Field(None, gt=0)
+    psi: Angle | None = Field(None, gt=0, lt=180)
+    K: Ratio | None = Field(None, gt=0)
+    theta: Angle | None = Field(None, gt=-180, lt=180)
+    lambda_: Ratio | None = Field(None, alias="lambda", gt=1)
+    e: Length | None = Field(None, gt=0)
+    gamma_min: Angle | None = Field(None, gt=0, lt=90)
+    rocker: Length | None = Field(None, gt=0)
+    frame: Length | None = Field(None, gt=0)
+    guide_height: Length | None = Field(None, gt=0)
+    function_: Annotated[str | None, AfterValidator(_function_text)] = Field(
+        None, alias="function", description="function generation: y(x) in x, numbers, + - * / **, sin cos tan exp log log10 sqrt")
+    x: tuple[Number, Number] | None = Field(None, description="function generation: the range [x0, x1] of x")
+    input: AngleRange | None = Field(None, description="function generation: the crank angle phi (deg, from O->O1) "
+                                                       "over the range of x: {start, range}")
+    output: AngleRange | None = Field(None, description="function generation: the rocker angle psi (deg, from O->O1 "
+                                                        "at O1) over the range of y: {start, range}")
+    points: int | None = Field(None, ge=3, le=5, description="function generation: precision points, Chebyshev "
+                                                              "spacing (3; 4 or 5 by least squares)")
+    links: dict[str, SynthesisLinkSpec] = Field(default_factory=dict)
+
+    @model_validator(mode="after")
+    def _inputs(self):
+        required, groups, optional = SYNTHESIS_INPUTS[self.type]
+        spell = lambda k: k.rstrip("_") if k in ("lambda_", "function_") else k
+        for k in required:
+            if getattr(self, k) is None:
+                raise FieldValueError((spell(k),), Message("input.synth_needs", type=self.type, key=spell(k)))
+        allowed = set(required) | set(optional) | {k for g in groups for k in g}
+        for k in SYNTHESIS_FIELDS:
+            if getattr(self, k) is not None and k not in allowed:
+                offset = self.type == "slider_crank" and k == "e"
+                raise FieldValueError((spell(k),), Message("input.synth_not_taken_offset" if offset
+                                                           else "input.synth_not_taken", type=self.type, key=spell(k)))
+        for g in groups:
+            given = [k for k in g if getattr(self, k) is not None]
+            if len(given) != 1:
+                names = [f"`{spell(k)}`" for k in g]
+                raise FieldValueError((spell((given or g)[-1]),),
+                                      Message("input.synth_one_of_got", type=self.type, names=names,
+                                              given=[spell(k) for k in given]) if given else
+                                      Message("input.synth_one_of", type=self.type, names=names))
+        if self.type == "function" and self.x[0] == self.x[1]:
+            raise FieldValueError(("x",), Message("input.synth_x_range"))
+        if self.type == "slider_crank":
+            th = self.theta if self.theta is not None else (180.0 * (self.K - 1) / (self.K + 1)
+                                                            if self.K is not None else 0.0)
+            if abs(th) > 1e-12:
+                raise FieldValueError(("K" if self.K is not None else "theta",), Message("input.synth_central"))
+        for name in self.links:
+            if name not in LINKS[self.type]:
+                import difflib
+                close = difflib.get_close_matches(name, LINKS[self.type], n=1)
+                raise FieldValueError(("links", name),
+                                      Message("input.synth_no_link_hint", type=self.type, name=name, hint=close[0],
+                                              links=list(LINKS[self.type])) if close else
+                                      Message("input.synth_no_link", type=self.type, name=name,
+                                              links=list(LINKS[self.type])))
+        return self
