@@ -464,10 +464,14 @@ class Manifest:
         absolute or relative to the working directory (``--out out/task``)."""
         root = os.path.abspath(self.folder)
         full = os.path.abspath(p if written or os.path.isabs(p) else os.path.join(root, p))
-        rel = os.path.relpath(full, root)
+        prefix = root if root.endswith(os.sep) else root + os.sep
+        # both normalised: inside the folder, what relpath gives (without its splitting)
+        rel = full[len(prefix):] if full.startswith(prefix) else ""
+        if not rel or os.path.isabs(rel):
+            rel = os.path.relpath(full, root)
         if rel.startswith("..") or os.path.isabs(rel) or rel == ".":
             return None
-        return Path(rel).as_posix()
+        return rel if os.sep == "/" else Path(rel).as_posix()
 
     def commit(self, written) -> list[Path]:
         """Record ``written``; remove what the previous run wrote and this one did not.
@@ -478,7 +482,8 @@ class Manifest:
             if rel is not None and rel != MANIFEST:
                 now[rel] = _stamp(self.folder / rel)
         removed: list[Path] = []
-        for rel, stamp in self.previous().items():
+        previous = self.previous()              # (read once: this run writes the manifest last)
+        for rel, stamp in previous.items():
             if rel in now or self._relative(rel) != rel:
                 continue                      # written again, or not a plain path inside
             f = self.folder / rel
@@ -490,7 +495,7 @@ class Manifest:
             except OSError:
                 continue
             self._prune(f.parent)
-        dirs = {self.folder} | {(self.folder / r).parent for r in list(now) + list(self.previous())
+        dirs = {self.folder} | {(self.folder / r).parent for r in list(now) + list(previous)
                                 if self._relative(r) == r} | set(self._subfolders())
         temps = self.remove_stale_temps(dirs)
         for t in temps:
