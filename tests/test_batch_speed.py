@@ -148,3 +148,27 @@ def test_batch_flushes_once_before_its_summary(tmp_path, monkeypatch):
     assert not any(n.startswith(".results.json.") for n in synced)           # the variant's: none
     for name in ("summary.csv", "check.csv", "summary.html", ".tmm-batch.json"):
         assert any(n.startswith(f".{name}.") and n.endswith(".tmp") for n in synced), name
+
+
+def _relative_by_relpath(folder, p, written=False):
+    """Manifest._relative as it was written before its prefix path: os.path.relpath."""
+    root = os.path.abspath(folder)
+    full = os.path.abspath(p if written or os.path.isabs(p) else os.path.join(root, p))
+    rel = os.path.relpath(full, root)
+    if rel.startswith("..") or os.path.isabs(rel) or rel == ".":
+        return None
+    return Path(rel).as_posix()
+
+
+def test_manifest_relative_paths_as_relpath_gives_them():
+    rnd = random.Random(41)
+    parts = ["a", "b", "..", ".", "", "..x", "figures", "/", "//", "c.csv", "x//y", "o"]
+    folders = ["/tmp/o", "/tmp/o/", "o", "./o", "/", "//", "//tmp", "o/a/..", "/tmp", "."]
+    for _ in range(20000):
+        folder = rnd.choice(folders)
+        p = "/".join(rnd.choice(parts) for _ in range(rnd.randint(1, 4)))
+        if rnd.random() < 0.5:
+            p = os.path.join(rnd.choice(["/tmp/o", "o", "/tmp", "//tmp/o", os.path.join(os.getcwd(), "o")]), p)
+        for written in (False, True):
+            assert tio.Manifest(folder)._relative(p, written=written) == \
+                _relative_by_relpath(folder, p, written), (folder, p, written)
