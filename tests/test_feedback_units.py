@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import string
+from pathlib import Path
 from types import SimpleNamespace
 
 import pytest
@@ -41,36 +42,57 @@ def test_every_unit_has_its_local_form():
     assert units
 
 
-class _NoPango:
-    """A meta-path finder as weasyprint fails where the system's Pango is missing: its
-    import raises the OSError of the library not found."""
-
-    def find_spec(self, name, path=None, target=None):
-        if name == "weasyprint":
-            raise OSError("cannot load library 'libpango-1.0-0': libpango-1.0-0: cannot open shared object file")
-        return None
-
-
-@pytest.mark.parametrize("missing", ["pango", "weasyprint"])
-def test_feedback_pdf_skipped_without_its_engine(tmp_path, monkeypatch, missing):
-    """Without Pango (OSError at import) or without weasyprint (ImportError) the feedback
-    page is written as HTML only, no half-written PDF and no failure of the grading."""
+def test_feedback_pdf_skipped_without_its_engine(tmp_path, monkeypatch):
+    """Without the typst package (ImportError) the feedback page is written as HTML only,
+    no half-written PDF and no failure of the grading."""
     import sys
     from tmm_cli.feedback import write_feedback
-    monkeypatch.delitem(sys.modules, "weasyprint", raising=False)
-    if missing == "pango":
-        monkeypatch.setattr(sys, "meta_path", [_NoPango(), *sys.meta_path])
-    else:
-        monkeypatch.setitem(sys.modules, "weasyprint", None)      # import raises ImportError
+    monkeypatch.setitem(sys.modules, "typst", None)      # import raises ImportError
     task = SimpleNamespace(title="Crank press, variant 3", name="03")
     s = {"rows": ROWS, "student": "Ivanov", "group": "MT-21", "variant": 3, "index": 0}
     notes: list = []
     written = write_feedback(task, s, tmp_path, "en", pdf=True, notes=notes)
     assert [p.name for p in written] == ["feedback-Ivanov-1.html"]
-    assert len(notes) == 1 and notes[0].startswith("feedback pages written as HTML only: the PDF engine (weasyprint)")
-    assert ("libpango-1.0-0" in notes[0]) == (missing == "pango")
+    assert len(notes) == 1 and notes[0].startswith("feedback pages written as HTML only: the PDF engine (typst)")
     assert sorted(p.name for p in tmp_path.iterdir()) == ["feedback-Ivanov-1.html"]
     assert "flywheel.J" in written[0].read_text(encoding="utf-8")
+
+
+def _pdf_text(pdf: Path) -> str | None:
+    import shutil
+    import subprocess
+    if shutil.which("pdftotext") is None:
+        return None
+    return subprocess.run(["pdftotext", "-layout", str(pdf), "-"], capture_output=True, text=True,
+                          check=True).stdout
+
+
+@pytest.mark.parametrize("lang", ["en", "ru"])
+def test_feedback_pdf_carries_the_grades(tmp_path, lang):
+    """The feedback PDF is compiled by Typst (the report's writer) and carries the page:
+    the student, the score (2 of the 3 rows are ok: 2 / 3), each value and reference as
+    the rows give them (58.46 written 58,46 in ru), the verdicts in the page's language."""
+    from tmm_cli.feedback import feedback_html, write_feedback
+    from tmm_cli.report.typst_pdf import to_typst
+    task = SimpleNamespace(title="Crank press, variant 3", name="03")
+    s = {"rows": ROWS, "student": "Ivanov", "group": "MT-21", "variant": 3, "index": 0}
+    notes: list = []
+    written = write_feedback(task, s, tmp_path, lang, pdf=True, notes=notes)
+    assert [p.name for p in written] == ["feedback-Ivanov-1.html", "feedback-Ivanov-1.pdf"] and not notes
+    assert written[1].read_bytes().startswith(b"%PDF-")
+    comma = (lambda x: x.replace(".", ",")) if lang == "ru" else (lambda x: x)
+    ok, sign = ("верно", "ошибка знака") if lang == "ru" else ("correct", "sign error")
+    words = ["Ivanov", "MT-21", "flywheel.J", comma("58.46"), comma("-1.19"), comma("1.19"), comma("84.8"), ok, sign]
+    text = _pdf_text(written[1])
+    if text is None:                   # no poppler here: the Typst source the PDF is compiled from
+        text = to_typst(feedback_html(task, s, lang), lang)[0]
+    for w in words:
+        assert w in text, w
+    import re
+    assert re.search(r"2\s*/\s*3", text)
+    # the verdicts' colours of the HTML page are the PDF's cells' fills
+    src = to_typst(feedback_html(task, s, lang), lang)[0]
+    assert 'fill: rgb("#c8e6c9")' in src and 'fill: rgb("#e1bee7")' in src
 
 
 def test_batch_prints_the_notes_as_warnings(tmp_path, capsys):

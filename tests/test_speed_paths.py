@@ -1,5 +1,5 @@
 """The fast paths give the same numbers as the slow ones they replace, and a JSON run
-imports only what it needs (scipy, matplotlib, weasyprint, ezdxf, pint stay out)."""
+imports only what it needs (scipy, matplotlib, typst, ezdxf, pint stay out)."""
 from __future__ import annotations
 
 import json
@@ -17,7 +17,7 @@ from tmm_cli import lazy, units
 from tmm_cli.results import clean, dumps
 
 ROOT = Path(__file__).resolve().parents[1]
-HEAVY = ("scipy", "matplotlib", "weasyprint", "ezdxf", "pint", "jinja2")
+HEAVY = ("scipy", "matplotlib", "typst", "ezdxf", "pint", "jinja2")
 # a plain `tmm run` / `tmm validate` never builds the Typer app (tmm_cli.cli, the fast path)
 CLI_APP = ("typer", "click", "shellingham", "tmm_cli.commands")
 

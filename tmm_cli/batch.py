@@ -444,7 +444,9 @@ def _worker(work_fn, jobs_args, tmpdir: str, memory_mb, task_r, done_w, close: l
     try:
         if spawned and jobs_args:
             warm([a[0] for a in jobs_args], jobs_args[0][3])
-        _serve(work_fn, jobs_args, tmpdir, memory_mb, task_r, done_w, policy)
+        from .io import deferred_sync
+        with deferred_sync():   # the variants' files flushed to the disk at once by the batch (flush_all)
+            _serve(work_fn, jobs_args, tmpdir, memory_mb, task_r, done_w, policy)
     except KeyboardInterrupt:          # Ctrl-C reaches the workers too: the batch reports it
         os._exit(130)
     os._exit(0)                    # no atexit handlers or inherited threads of the parent
@@ -768,7 +770,7 @@ def _run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = fro
 
     from .check import CHECK_FIELDS, load_sources, load_tolerance_file, repeats
     from .errors import TaskError
-    from .io import atomic_write
+    from .io import atomic_write, deferred_sync, flush_all
     from .tables import csv_text
 
     con = Console(stderr=True, highlight=False)
@@ -809,7 +811,8 @@ def _run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = fro
             advance()
         started = time.time()
         try:
-            res_list = run_all(args, jobs=jobs, timeout=timeout, memory_mb=memory_mb, on_done=done)
+            with deferred_sync():       # (and so in a forked worker from its start)
+                res_list = run_all(args, jobs=jobs, timeout=timeout, memory_mb=memory_mb, on_done=done)
         except KeyboardInterrupt:
             # Ctrl-C: the workers are gone, some killed while writing; their temporary
             # files (never a file under its own name) go too, so nothing half-written stays
@@ -820,6 +823,9 @@ def _run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = fro
             gc.unfreeze()
     for k, res in zip(runnable, res_list):
         outcomes[k] = res
+    # the variants' files, put in place unflushed (io.deferred_sync), flushed to the disk at
+    # once, before the summary and the manifest that list them
+    flush_all(out)
 
     # no_answers fails (exit 1) only when answers were expected
     expected = sets is not None or any(o.get("sets") for o in outcomes.values())

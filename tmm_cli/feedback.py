@@ -233,22 +233,21 @@ def feedback_name(s: dict) -> str:
 
 def write_feedback(task, s: dict, folder: Path, lang: str, pdf: bool = False,
                    notes: list[str] | None = None, key: bool = True) -> list[Path]:
-    """feedback-<student>-<n>.html (and .pdf) in the variant's folder. The PDF is made
-    by weasyprint, which needs the system's Pango: where weasyprint or Pango is missing
-    (an ImportError, or the OSError of a library not found) the page is written as HTML
-    only, ``notes`` receives one line saying why, and the grading goes on."""
+    """feedback-<student>-<n>.html (and .pdf) in the variant's folder. The PDF is the page's
+    HTML compiled by Typst as report.pdf is (the report's HTML-to-Typst writer,
+    tmm_cli.report.typst_pdf); where the typst package cannot be loaded the page is
+    written as HTML only, ``notes`` receives one line saying why, and the grading goes on."""
     from .io import atomic_write
     text = feedback_html(task, s, lang, key=key)
     base = feedback_name(s)
     out = [atomic_write(Path(folder) / f"{base}.html", text)]
     if pdf:
+        from .report import PdfSkipped, _pdf_bytes
         try:
-            import weasyprint
-        except (ImportError, OSError) as exc:
+            data = _pdf_bytes(text, lang)
+        except PdfSkipped as exc:
             if notes is not None:
-                first = (str(exc).strip().splitlines() or [type(exc).__name__])[0]
-                notes.append(f"feedback pages written as HTML only: the PDF engine (weasyprint) "
-                             f"cannot be loaded: {first}")
+                notes.append(f"feedback pages written as HTML only: {exc}")
             return out
-        out.append(atomic_write(Path(folder) / f"{base}.pdf", weasyprint.HTML(string=text).write_pdf()))
+        out.append(atomic_write(Path(folder) / f"{base}.pdf", data))
     return out

@@ -11,12 +11,25 @@ run owns the files it wrote in its output folder.
   never touches a file it did not write: a listed file is removed only while its size
   and modification time are still those recorded (a file the user replaced or edited
   stays).  Temporary files of our naming left by a killed run are removed too.
+- Durability: ``atomic_write`` flushes each file to the disk (``fsync``) before it puts it
+  in place, so after a system crash a file under its own name is whole. A batch writes
+  ~56 files a variant, and a flush each waited ~10 ms for a busy disk (the write itself
+  ~1 ms; ~0.5 s a variant, measured 6 Dec 2026 on the shared 2-core machine): inside
+  :func:`deferred_sync` (the batch's workers) the files are put in place unflushed -- still
+  through a temporary file and ``os.replace``, so no reader and no killed process ever
+  sees half a file -- and :func:`flush_all` then flushes the whole file system at once
+  (Linux ``syncfs``: one wait for the disk instead of one a file), before the batch
+  writes its summary and its manifest, flushed as ever. A system crash during the batch
+  may leave files of its variants empty under their own names (the summary of the batch
+  before still in place): the batch is run again, as after any interruption. Where no
+  such call exists (macOS, Windows) every file is flushed as it is written, as before.
 """
 from __future__ import annotations
 
 import json
 import os
 import re
+import sys
 import time
 from contextlib import contextmanager
 from pathlib import Path
@@ -110,7 +123,79 @@ def _fill(fd: int, raw) -> None:
         else:
             fh.write(raw)
         fh.flush()
-        os.fsync(fh.fileno())
+        if _SYNC_EACH:
+            os.fsync(fh.fileno())
+
+
+# False inside deferred_sync(): atomic_write leaves the flush to the disk to flush_all()
+_SYNC_EACH = True
+
+
+def _flush_fs():
+    """:func:`_find_flush_fs`'s call, found once."""
+    global _FLUSH_FS
+    if _FLUSH_FS is _UNKNOWN:
+        _FLUSH_FS = _find_flush_fs()
+    return _FLUSH_FS
+
+
+_UNKNOWN = object()
+_FLUSH_FS = _UNKNOWN
+
+
+def _find_flush_fs():
+    """The call that flushes a whole file system to the disk and waits for it, given a
+    descriptor of any file or folder on it: Linux's ``syncfs`` (returns 0, or -1 and
+    errno); None elsewhere (macOS's and the BSDs' ``sync`` only schedules the writes,
+    Windows has none): there each file is flushed as it is written."""
+    if sys.platform.startswith("linux"):
+        try:
+            import ctypes
+            libc = ctypes.CDLL(None, use_errno=True)
+            call = libc.syncfs
+        except (OSError, AttributeError):
+            call = None
+        if call is not None:
+            call.argtypes = [ctypes.c_int]
+
+            def syncfs(fd: int) -> None:
+                if call(fd) != 0:
+                    err = ctypes.get_errno()
+                    raise OSError(err, os.strerror(err))
+            return syncfs
+    return None
+
+
+@contextmanager
+def deferred_sync():
+    """Inside the block :func:`atomic_write` puts files in place without flushing each to
+    the disk (a batch's worker: ~56 files a variant); the caller then calls
+    :func:`flush_all` once. Where no whole-file-system flush exists, nothing changes."""
+    global _SYNC_EACH
+    was = _SYNC_EACH
+    if _flush_fs() is not None:
+        _SYNC_EACH = False
+    try:
+        yield
+    finally:
+        _SYNC_EACH = was
+
+
+def flush_all(folder: str | os.PathLike) -> None:
+    """Flush the file system of ``folder`` to the disk: every file written there unflushed
+    (:func:`deferred_sync`, in this process or another) and every ``os.replace`` that put
+    one in place. Raises the OSError of the flush (an I/O error, a full disk found only on
+    writing back) naming ``folder``."""
+    flush = _flush_fs()
+    if flush is None:
+        return
+    fd = os.open(folder, os.O_RDONLY | getattr(os, "O_DIRECTORY", 0) | getattr(os, "O_CLOEXEC", 0))
+    try:
+        flush(fd)
+    except OSError as exc:
+        raise OSError(exc.errno, exc.strerror, str(folder)) from None
+    finally:
+        os.close(fd)
 
 
 def _discard(tmp: str) -> None:
@@ -236,7 +321,8 @@ class Aside:
                     with open(self._tmp, "ab") as fh:
                         fh.writelines(end)
                         fh.flush()
-                        os.fsync(fh.fileno())
+                        if _SYNC_EACH:
+                            os.fsync(fh.fileno())
                 replace(self._tmp, self.path)
             return self.path
         _discard(self._tmp)
@@ -378,10 +464,14 @@ class Manifest:
         absolute or relative to the working directory (``--out out/task``)."""
         root = os.path.abspath(self.folder)
         full = os.path.abspath(p if written or os.path.isabs(p) else os.path.join(root, p))
-        rel = os.path.relpath(full, root)
+        prefix = root if root.endswith(os.sep) else root + os.sep
+        # both normalised: inside the folder, what relpath gives (without its splitting)
+        rel = full[len(prefix):] if full.startswith(prefix) else ""
+        if not rel or os.path.isabs(rel):
+            rel = os.path.relpath(full, root)
         if rel.startswith("..") or os.path.isabs(rel) or rel == ".":
             return None
-        return Path(rel).as_posix()
+        return rel if os.sep == "/" else Path(rel).as_posix()
 
     def commit(self, written) -> list[Path]:
         """Record ``written``; remove what the previous run wrote and this one did not.
@@ -392,7 +482,8 @@ class Manifest:
             if rel is not None and rel != MANIFEST:
                 now[rel] = _stamp(self.folder / rel)
         removed: list[Path] = []
-        for rel, stamp in self.previous().items():
+        previous = self.previous()              # (read once: this run writes the manifest last)
+        for rel, stamp in previous.items():
             if rel in now or self._relative(rel) != rel:
                 continue                      # written again, or not a plain path inside
             f = self.folder / rel
@@ -404,7 +495,7 @@ class Manifest:
             except OSError:
                 continue
             self._prune(f.parent)
-        dirs = {self.folder} | {(self.folder / r).parent for r in list(now) + list(self.previous())
+        dirs = {self.folder} | {(self.folder / r).parent for r in list(now) + list(previous)
                                 if self._relative(r) == r} | set(self._subfolders())
         temps = self.remove_stale_temps(dirs)
         for t in temps:

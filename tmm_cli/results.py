@@ -117,6 +117,9 @@ def bulk():
             gc.enable()
 
 
+_FLOATS = {float}
+
+
 def clean(obj: Any) -> Any:
     """Plain JSON types: numpy scalars/arrays to Python, NaN and inf to None."""
     t = type(obj)
@@ -127,6 +130,10 @@ def clean(obj: Any) -> Any:
     if t is dict:
         return {k if type(k) is str else str(k): clean(v) for k, v in obj.items()}
     if t is list:
+        if obj and set(map(type, obj)) == _FLOATS:
+            # a list of floats (a curve, an array's tolist()): cleaned in one pass, no call
+            # per value (finite: v - v is 0.0; inf and NaN give NaN, which is no 0.0)
+            return [v + 0.0 if v - v == 0.0 else None for v in obj]
         return [clean(v) for v in obj]
     if t is str or t is int or obj is None or t is bool:
         return obj

@@ -7,7 +7,9 @@ The HTML of the report uses a small vocabulary (see templates/): headings h1-h4,
 paragraphs, tables with th/td (td.num right-aligned numbers), caption, figure with an
 inline <svg> and figcaption, sub/sup/b/i/code/br/span/a, ol/ul/li and a few <div>
 classes (position: a page of its own; tables2/pair: side by side; failure: a red box;
-task-groups: tables in a row).  Anything else is rendered as its text content, so
+task-groups: tables in a row), and a table cell's own background colour (a style
+``background:#rrggbb``: the verdicts of the feedback pages, tmm_cli.feedback, whose PDF is
+made by this writer too).  Anything else is rendered as its text content, so
 nothing of the report is lost.  The figures stay vector graphics (Typst embeds SVG as
 PDF drawing operators) and the text keeps DejaVu Sans (Cyrillic, Greek).
 """
@@ -776,6 +778,10 @@ class _Writer:
                             body = f"#strong[{body}]"
                     elif "num" in c.classes and not (j < ncols and right[j]):
                         args.append("align: right")
+                    if "style" in c.attrs:     # a cell's own colour (the feedback page's verdicts)
+                        bg = _BACKGROUND.search(c.attrs["style"] or "")
+                        if bg:
+                            args.append(f'fill: rgb("{bg.group(1)}")')
                     if body.startswith('#"') and body.endswith('"') and body.count('#"') == 1:
                         cell = body[1:]                 # a plain string: no markup to parse
                     else:
@@ -819,6 +825,8 @@ class _Writer:
         return f"#block(above: 1.5mm, below: 3mm, width: {'100%' if wide else 'auto'})[#text(size: {size})[{tbl}]]"
 
 
+# a table cell's background colour in its style attribute (#rrggbb)
+_BACKGROUND = re.compile(r"(?:^|;)\s*background(?:-color)?\s*:\s*(#[0-9a-fA-F]{6})\s*(?:;|$)")
 # body rows merged into one table row, column by column (see _by_columns)
 _CHUNK = 7                                  # (0 or 1: rows not merged)
 # the tables' stroke (PREAMBLE's `set table`) and its width, pt
