@@ -49,17 +49,16 @@ def test_every_force_of_a_group_drawing_acts_on_a_drawn_link():
     ram now reaches it."""
     import numpy as np
     from pathlib import Path as _P
+    from tmm_cli.drawings import forces as K
+    from tmm_cli.drawings.words import Words
     from tmm_cli.pipeline import run
-    from tmm_cli.report.context import ReportContext
-    from tmm_cli.report.sections import load
     from tmm_cli.report.svgdraw import Canvas
     from tmm_cli.task import load_task
-    K = load("kinetostatics")
     root = _P(__file__).resolve().parents[1]
     task = load_task(root / "tasks" / "shaper_slotted_lever.yaml")
     res = run(task)
-    ctx = ReportContext(results=res, task=task, lang="en", out_dir=_P("."), env=None)
-    links = K._links(res)
+    ctx = Words("en")
+    links = K.links_by_name(res)
     kin = {k["index"]: k for k in res["kinematics"]}
 
     class Rec(Canvas):
@@ -97,7 +96,7 @@ def test_every_force_of_a_group_drawing_acts_on_a_drawn_link():
     for e in res["kinetostatics"]:
         for g, forces, couples, title in K.position_rows(ctx, e, kin[e["index"]], res["kinetostatics_info"], links):
             cv = Rec(90.0, 72.0)
-            K._fbd_panel(ctx, cv, (0, 0, 90.0, 72.0), kin[e["index"]], links, g, forces, couples, title)
+            K.group_panel(ctx, cv, (0, 0, 90.0, 72.0), kin[e["index"]], links, g, forces, couples, title)
             norms = K.force_norms(forces)
             shown = sum(n > 1e-9 * max(max(norms), 1e-300) for n in norms)
             for s in cv.starts[:shown]:              # the forces' arrows (then the couples')

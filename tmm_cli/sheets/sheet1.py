@@ -182,7 +182,7 @@ def draw_plans(cv, geom, entry, box, lang="en", kinds=("v", "a")) -> dict:
     """The velocity and acceleration plans (kinds) of one position side by side, each at a
     standard μ that fits its part of box at true size (the report's draw_plan)."""
     from ..plans import build_plan
-    from ..report.sections.kinematics import draw_plan
+    from ..drawings.plans import draw_plan
     x0, y0, w, h = box
     T = TXT[lang]
     U = UNITS[lang]
@@ -217,7 +217,7 @@ def draw_velocity_plans(cv, geom, entries, box, lang="en", ncol: int = 4) -> dic
     """The velocity plans of the grid's positions (the course's 12) in a grid of cells of box,
     all at one standard μv, the smallest at which every plan fits its cell at true size."""
     from ..plans import build_plan
-    from ..report.sections.kinematics import draw_plan
+    from ..drawings.plans import draw_plan
     x0, y0, w, h = box
     T, U = TXT[lang], UNITS[lang]
     nrow = -(-len(entries) // ncol)
