@@ -130,12 +130,19 @@ def _arrow_len_n(nF, Fmax):
     return 5.5 + 7.5 * math.sqrt(min(nF / Fmax, 1.0)) if Fmax > 0 else 9.0
 
 
-def _labels(cv, items, step, segments, avoid, lang, size=7.0, box=None, taken=None, halo=True, italic=True):
+LEADER = 2.0          # mm: a label farther than this from its anchor is tied to it by a leader line
+
+
+def _labels(cv, items, step, segments, avoid, lang, size=7.0, box=None, taken=None, halo=True, italic=True,
+            leaders=False):
     """items: (anchor xy, preferred dir, name, color); each label a box clear of the others
     and of `taken` (a list, extended), inside box below its title; `segments`: a list, or
-    figures.segment_set of it (shared by a panel's label calls)."""
+    figures.segment_set of it (shared by a panel's label calls).  leaders: a label the
+    placer had to put farther than LEADER mm from its anchor gets a thin line, in its
+    colour, from the anchor to its box (which force it names stays plain).  Returns the
+    labels' boxes (x0, y0, x1, y1)."""
     if not items:
-        return
+        return []
     parts = [label_parts(name, lang) for _, _, name, _ in items]
     fs = cv.font_mm(size)
     sizes = [figures.text_size(s, fs, sub) for s, sub in parts]
@@ -146,8 +153,45 @@ def _labels(cv, items, step, segments, avoid, lang, size=7.0, box=None, taken=No
     pos = figures.place_labels([(a[0], a[1], d) for a, d, _, _ in items], 10 * step, avoid=avoid,
                                step=step, segments=segments, sizes=sizes,
                                taken=taken if taken is not None else [], bounds=bounds)
-    for (a, d, name, col), (s, sub), (x, y) in zip(items, parts, pos):
+    out = []
+    for (a, d, name, col), (s, sub), (x, y), (tw, th) in zip(items, parts, pos, sizes):
         cv.text(x, y, s, size=size, color=col, italic=italic, sub=sub or None, halo=halo)
+        bx = (x - tw / 2, y - th / 2, x + tw / 2, y + th / 2)
+        out.append(bx)
+        if leaders:
+            near = (min(max(float(a[0]), bx[0]), bx[2]), min(max(float(a[1]), bx[1]), bx[3]))
+            if math.hypot(near[0] - float(a[0]), near[1] - float(a[1])) > LEADER:
+                cv.line((float(a[0]), float(a[1])), near, col, 0.15, z=1)
+    return out
+
+
+def along_line(start, u, L: float, drawn: list, gap: float = 1.0):
+    """The start of an arrow of length L along the unit vector u from `start`, moved along its
+    own line of action off every arrow in ``drawn`` [(start, tip, u)] it would cover: after the
+    tip of one in the same sense, to the start of one in the opposite sense (a force slides
+    along its line of action: the same force on a rigid link).  Forces at one point along one
+    line -- a ram's load, its friction and its inertia force -- were drawn on top of each
+    other, their names stacked around one point."""
+    s = np.asarray(start, float)
+    u = np.asarray(u, float)
+    for _ in range(4 * len(drawn) + 1):
+        for p, q, v in drawn:
+            c = float(u @ v)
+            if abs(c) < math.cos(math.radians(5.0)):
+                continue
+            d = q - p
+            n = np.array([-v[1], v[0]])
+            if abs(float((s - p) @ n)) > 0.5:            # not on its line
+                continue
+            t0, t1 = float((s - p) @ v), float((s + u * L - p) @ v)
+            lo, hi = min(t0, t1), max(t0, t1)
+            if min(hi, float(d @ v)) - max(lo, 0.0) <= 0.5:   # the shafts share at most half a millimetre
+                continue
+            s = q + u * gap if c > 0 else p.copy()
+            break
+        else:
+            return s
+    return s
 
 
 def _off(x, a, b) -> float:
@@ -165,7 +209,9 @@ def group_panel(words, cv, box, kin_e, links, names, forces, couples, title, nor
     P = kin_e["points"]
     pts_names = [p for n in names for p in links[n]["points"] if p in P]
     xy = np.array([_xy(P[p]) for p in pts_names] + [f[1] for f in forces])
-    lo, hi = xy.min(axis=0), xy.max(axis=0)
+    far = _far(xy, len(pts_names), [_xy(P[f"S{links[n]['index']}"]) for n in names
+                                    if f"S{links[n]['index']}" in P])
+    lo, hi = xy[~far].min(axis=0), xy[~far].max(axis=0)
     span = np.maximum(hi - lo, 0.02)     # a group all in one point (a block on a block): at 20 mm
     m = 11.0 if w > 60 else 15.0                       # room for the arrows
     # a ГОСТ 2.302 length scale (1:1, 1:2, 1:2.5, 1:4, 1:5, 1:10, ...), stated as μl in m/mm
@@ -179,6 +225,26 @@ def group_panel(words, cv, box, kin_e, links, names, forces, couples, title, nor
 
     # the points and the forces' points on the paper at once (row by row what M gives)
     on_paper = c_pan + (xy - c_box) / mu_l
+    broken = {}                # a far point drawn nearer: {its place on the paper: its true place}
+    for k in np.nonzero(far)[0].tolist():
+        # from the block of the slider whose axis it is on (a guide's reaction on a ram), else
+        # from the nearest point drawn
+        near = on_paper[~far][int(np.argmin(np.hypot(*(xy[~far] - xy[k]).T)))]
+        for n in names:
+            ps = [p for p in links[n]["points"] if p in P]
+            if links[n]["kind"] == "slider" and ps:
+                a = math.radians(float(kin_e["links"][n]["angle"] or 0.0))
+                b = _xy(P[ps[0]])
+                if abs(float((xy[k] - b) @ np.array([-math.sin(a), math.cos(a)]))) <= 1e-6 * (1.0 + float(
+                        np.hypot(*(xy[k] - b)))):
+                    near = on_paper[pts_names.index(ps[0])]
+                    break
+        d = on_paper[k] - near
+        L = float(np.hypot(*d))
+        t = _room(near, d / L, (x0 + m, y0 + m, x0 + w - m, y0 + h - TITLE_H - m))
+        if t < L:
+            on_paper[k] = near + d / L * max(t, 12.0)
+            broken[tuple(on_paper[k].tolist())] = xy[k]
     mp = dict(zip(pts_names, on_paper))
     segs, avoid = [], []
     axes = []                   # the sliders' blocks and directions
@@ -228,13 +294,25 @@ def group_panel(words, cv, box, kin_e, links, names, forces, couples, title, nor
     # a tool's load below it): the link carried on to it -- a slider's ram along its axis
     # from the block, else from the nearest point -- so that every force acts on the group
     drawn = list(segs)
+    lengths = []               # the true lengths of the parts drawn broken
     for q in dict.fromkeys(map(tuple, on_paper[len(pts_names):].tolist())):
         q = np.array(q)
         if min(float(np.hypot(*(q - h))) for h in held) < 1.0 or any(_off(q, a, b) < 0.3 for a, b in drawn):
             continue
         ram = [c for c, u in axes if abs(float((q - c) @ np.array([-u[1], u[0]]))) < 0.3]
         near = ram[0] if ram else min(held, key=lambda h: float(np.hypot(*(q - h))))
-        cv.line(near, q, "#000", 0.6, z=2)
+        true = broken.get(tuple(q.tolist()))
+        if true is None:
+            cv.line(near, q, "#000", 0.6, z=2)
+        else:
+            # drawn shorter than it is: a break on it (ГОСТ 2.303), its true length beside
+            d = (q - near) / float(np.hypot(*(q - near)))
+            n_ = np.array([-d[1], d[0]])
+            mid = (near + q) / 2
+            cv.polyline([near, mid - d * 1.2, mid - d * 0.4 + n_ * 1.8, mid + d * 0.4 - n_ * 1.8, mid + d * 1.2, q],
+                        "#000", 0.6, z=2)
+            dist = float(np.hypot(*(true - (c_box + (near - c_pan) * mu_l))))
+            lengths.append((mid + n_ * 2.5, tuple(n_), f"{words.fmt(dist, 3)} {words.t('kst.s_unit')}\u0000", "#000"))
         segs.append((near, q))
         drawn.append((near, q))
         held.append(q)
@@ -245,17 +323,21 @@ def group_panel(words, cv, box, kin_e, links, names, forces, couples, title, nor
     for p in dict.fromkeys(pts_names):
         items.append((mp[p], None, p, "#555"))
     arrows = []
+    placed = []                 # (start, tip, u) of the arrows drawn: none covers another
     # in plain floats: the same operations, x and y apart, as on 2-vectors
     for (name, pt, F, kind), nF, (ax, ay) in zip(forces, norms, on_paper[len(pts_names):].tolist()):
         if nF <= 1e-9 * max(Fmax, 1e-300):
             continue
         ux, uy = float(F[0]) / nF, float(F[1]) / nF
         L = _arrow_len_n(nF, Fmax)
+        ax, ay = along_line((ax, ay), (ux, uy), L, placed).tolist()
         bx, by = ax + ux * L, ay + uy * L
+        placed.append((np.array([ax, ay]), np.array([bx, by]), np.array([ux, uy])))
         col = KIND_COLOR.get(kind, "#000")
         cv.arrow((ax, ay), (bx, by), col, 0.45 if kind == "reaction" else 0.4, head=2.2, z=3)
         segs.append(((ax, ay), (bx, by)))
         arrows.append(((bx + ux * 0.6, by + uy * 0.6), (ux, uy), name, col))
+    rings = []
     for name, link, Mv, kind in couples:
         lk = links.get(link)
         if lk is None:
@@ -263,15 +345,45 @@ def group_panel(words, cv, box, kin_e, links, names, forces, couples, title, nor
         s = f"S{lk['index']}"
         c = M(_xy(P[s])) if s in P else M(np.mean([_xy(P[p]) for p in lk["points"] if p in P], axis=0))
         col = KIND_COLOR.get(kind, "#000")
-        cv.moment(c, 3.2, Mv, col, 0.35, z=3)
-        arrows.append((c + np.array([0.0, 4.2]), (0.0, 1.0), name, col))
+        r = 3.2 + 1.4 * sum(1 for q in rings if float(np.hypot(*(q - c))) < 0.5)   # a couple more: a ring out
+        rings.append(c)
+        cv.moment(c, r, Mv, col, 0.35, z=3)
+        arrows.append((c + np.array([0.0, r + 1.0]), (0.0, 1.0), name, col))
     taken = panel_title(cv, box, title, f"μl = {mu_l:g} {words.t('kst.unit_l')}")
     # point letters (upright, grey, small) next to their points, then the force names
     segs = figures.segment_set(segs)
     _labels(cv, [(a, (-1.0, 1.0), p, col) for a, _, p, col in items], 1.6, segs, avoid, words.lang, size=6,
             box=box, taken=taken, halo=False, italic=False)
-    _labels(cv, arrows, 2.6, segs, avoid, words.lang, box=box, taken=taken)
+    _labels(cv, arrows, 2.6, segs, avoid, words.lang, box=box, taken=taken, leaders=True)
+    _labels(cv, lengths, 2.6, segs, avoid, words.lang, size=6, box=box, taken=taken, italic=False, leaders=True)
     return mu_l
+
+
+def _far(xy, n_pts: int, coms) -> np.ndarray:
+    """Which rows of xy (the links' n_pts points, then the forces' points) are forces' points
+    farther from the links (their points and centres of mass) than twice the links' size:
+    a guide's reaction acting at x = M/N far along a ram.  The group is drawn at the scale of
+    the rest, such a point nearer on a broken line (its true length written beside)."""
+    far = np.zeros(len(xy), bool)
+    core = np.array(list(xy[:n_pts]) + list(coms), float).reshape(-1, 2)
+    if not len(core):
+        return far
+    lo, hi = core.min(axis=0), core.max(axis=0)
+    reach = 2.0 * max(float(np.hypot(*(hi - lo))), 0.02)
+    out = np.maximum(np.maximum(lo - xy[n_pts:], xy[n_pts:] - hi), 0.0)
+    far[n_pts:] = np.hypot(out[:, 0], out[:, 1]) > reach
+    return far
+
+
+def _room(p, u, rect) -> float:
+    """How far from p along the unit vector u the rectangle (x0, y0, x1, y1) goes on."""
+    t = np.inf
+    for i, (lo_, hi_) in enumerate(((rect[0], rect[2]), (rect[1], rect[3]))):
+        if u[i] > 1e-12:
+            t = min(t, (hi_ - p[i]) / u[i])
+        elif u[i] < -1e-12:
+            t = min(t, (lo_ - p[i]) / u[i])
+    return max(float(t), 0.0)
 
 
 TITLE_H = 11.0               # mm at the top of a panel: its title and scale
@@ -413,13 +525,17 @@ def lever_panel(words, cv, box, e, kin_e, pin, omega1, balance_kind):
         cv.dot(q, 0.45, "#555", z=5)
     Fmax = max((float(np.hypot(*f["F"])) for f in loads), default=0.0)
     arrows, arms = [], []
+    placed = []                 # (start, tip, u) of the arrows drawn: none covers another
     for f in loads:
         F = np.asarray(f["F"], float)
         q = end(np.array([-f["v"][1], f["v"][0]], float))
         nF = float(np.hypot(*F))
         u = F / nF
         col = KIND_COLOR.get(f["kind"], "#000")
-        b = q + u * (5.0 + 6.0 * math.sqrt(nF / Fmax))
+        L = 5.0 + 6.0 * math.sqrt(nF / Fmax)
+        q = along_line(q, u, L, placed)
+        b = q + u * L
+        placed.append((q, b, u))
         cv.arrow(q, b, col, 0.4, head=1.9, z=3)
         segs.append((q, b))
         foot = q + u * float(np.dot(pole - q, u))      # arm h: pole to the line of action
@@ -440,6 +556,7 @@ def lever_panel(words, cv, box, e, kin_e, pin, omega1, balance_kind):
             Pb = (float(Mb) * float(omega1) / float(vA @ vA)) * vA
             q = end(np.array([-vA[1], vA[0]]))
             u = Pb / np.hypot(*Pb)
+            q = along_line(q, u, 10.0, placed)
             b = q + u * 10.0
             col = KIND_COLOR["balance"]
             cv.arrow(q, b, col, 0.5, head=2.2, z=3)
@@ -482,7 +599,7 @@ def lever_panel(words, cv, box, e, kin_e, pin, omega1, balance_kind):
                for q, names, _ in groups]
     segs = figures.segment_set(segs)
     _labels(cv, letters, 1.8, segs, avoid, words.lang, size=5.5, box=box, taken=taken, halo=False)
-    _labels(cv, arrows + arms, 2.6, segs, avoid, words.lang, size=6.5, box=box, taken=taken)
+    _labels(cv, arrows + arms, 2.6, segs, avoid, words.lang, size=6.5, box=box, taken=taken, leaders=True)
     return mu_v
 
 
