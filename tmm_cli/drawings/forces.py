@@ -546,7 +546,7 @@ def lever_panel(words, cv, box, e, kin_e, pin, omega1, balance_kind):
             segs.append((pole, foot))
             d = foot - pole
             arms.append(((pole + foot) / 2, (-d[1], d[0]), "h\u0000" + "".join(label_parts(f["name"], words.lang)),
-                         col))
+                         col, foot))
         arrows.append((b + u * 0.6, tuple(u), f["name"], col))
     # the balancing force at the crank pin: its power P_b . v_A = M_b omega_1
     Mb = e.get("balancing_moment")
@@ -599,8 +599,28 @@ def lever_panel(words, cv, box, e, kin_e, pin, omega1, balance_kind):
                for q, names, _ in groups]
     segs = figures.segment_set(segs)
     _labels(cv, letters, 1.8, segs, avoid, words.lang, size=5.5, box=box, taken=taken, halo=False)
-    _labels(cv, arrows + arms, 2.6, segs, avoid, words.lang, size=6.5, box=box, taken=taken, leaders=True)
+    _labels(cv, arrows + _arm_anchors(pole, arms), 2.6, segs, avoid, words.lang, size=6.5, box=box, taken=taken,
+            leaders=True)
     return mu_v
+
+
+def _arm_anchors(pole, arms) -> list:
+    """The arms' label items: an arm's name at the middle of the part of it no shorter arm on
+    the same ray from the pole covers (the weights' arms all lie on one horizontal line: their
+    names were stacked about the middle of the shortest)."""
+    out = []
+    for k, (mid, d, name, col, foot) in enumerate(arms):
+        r = foot - pole
+        L = float(np.hypot(*r))
+        u = r / L
+        start = 0.0
+        for j, (_, _, _, _, f2) in enumerate(arms):
+            r2 = f2 - pole
+            t = float(r2 @ u)
+            if j != k and abs(float(r2 @ np.array([-u[1], u[0]]))) < 0.3 and start < t < L - 1e-9:
+                start = t                       # the foot of a shorter arm on this one
+        out.append((pole + u * (start + L) / 2, d, name, col))
+    return out
 
 
 def position_rows(words, e, kin_e, info, links):
