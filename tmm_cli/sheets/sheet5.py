@@ -111,7 +111,7 @@ def build(cv, results, task, lang="en") -> dict:
     pos = place_labels(anchors, 60.0, avoid=[a[:2] for a in anchors], step=5.0,
                        segments=[(pts["N1"], pts["N2"])])
     for name, (x, y) in zip(names, pos):
-        cv.mtext(x, y, name[0], 3.5, anchor="middle", italic=True, sub=name[1:] or None)
+        cv.mtext(x, y, name[0], 3.5, anchor="middle", italic=True, sub=name[1:] or None, halo=True)   # over the teeth
     cv.layer = "contour"
     for c in (c1, c2):
         cv.circle(M(c), 1.2, width=0.5)
