@@ -23,8 +23,8 @@ import numpy as np
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-LINKAGES = sorted(p.stem for p in (ROOT / "tasks").glob("*.yaml")
-                  if re.search(r"^mechanism:", p.read_text(encoding="utf-8"), re.M))
+LINKAGES = sorted(p.stem for p in (ROOT / "tasks").glob("*.yaml")          # given or synthesised
+                  if re.search(r"^(mechanism|synthesis):", p.read_text(encoding="utf-8"), re.M))
 
 
 def _box_dist(x, box) -> float:

@@ -26,8 +26,9 @@ import pytest
 from test_plan_scales import _NUM, _num, _paths
 
 ROOT = Path(__file__).resolve().parents[1]
+# the linkages, given or synthesised (a synthesis task draws its mechanism's sheet 1 too)
 LINKAGES = sorted(p.stem for p in (ROOT / "tasks").glob("*.yaml")
-                  if re.search(r"^mechanism:", p.read_text(encoding="utf-8"), re.M))
+                  if re.search(r"^(mechanism|synthesis):", p.read_text(encoding="utf-8"), re.M))
 
 
 def _texts(svg: str) -> list[tuple[float, float, str]]:
