@@ -211,12 +211,26 @@ def group_panel(words, cv, box, kin_e, links, names, forces, couples, title, nor
     xy = np.array([_xy(P[p]) for p in pts_names] + [f[1] for f in forces])
     far = _far(xy, len(pts_names), [_xy(P[f"S{links[n]['index']}"]) for n in names
                                     if f"S{links[n]['index']}" in P])
-    lo, hi = xy[~far].min(axis=0), xy[~far].max(axis=0)
-    span = np.maximum(hi - lo, 0.02)     # a group all in one point (a block on a block): at 20 mm
     m = 11.0 if w > 60 else 15.0                       # room for the arrows
-    # a ГОСТ 2.302 length scale (1:1, 1:2, 1:2.5, 1:4, 1:5, 1:10, ...), stated as μl in m/mm
-    mu_l = figures.drawing_scale(1000.0 * max(span[0] / (w - 2 * m), span[1] / (h - TITLE_H - 2 * m), 1e-9))[0] \
-        / 1000.0
+
+    def scale(pts):
+        lo, hi = pts.min(axis=0), pts.max(axis=0)
+        span = np.maximum(hi - lo, 0.02)     # a group all in one point (a block on a block): at 20 mm
+        # a ГОСТ 2.302 length scale (1:1, 1:2, 1:2.5, 1:4, 1:5, 1:10, ...), stated as μl in m/mm
+        return figures.drawing_scale(1000.0 * max(span[0] / (w - 2 * m), span[1] / (h - TITLE_H - 2 * m),
+                                                  1e-9))[0] / 1000.0, lo, hi
+    bases = {k: _base(xy, far, k, names, links, kin_e, pts_names) for k in np.nonzero(far)[0].tolist()}
+    ext = xy[~far]
+    mu_l, lo, hi = scale(ext)
+    for _ in range(3):           # room for the broken part: BROKEN mm towards each far point
+        if not bases:
+            break
+        virt = [xy[b] + (xy[k] - xy[b]) / float(np.hypot(*(xy[k] - xy[b]))) * BROKEN * mu_l for k, b in bases.items()]
+        ext = np.vstack([xy[~far]] + virt)
+        mu_new, lo, hi = scale(ext)
+        if mu_new == mu_l:
+            break
+        mu_l = mu_new
     c_box = (lo + hi) / 2
     c_pan = np.array([x0 + w / 2, y0 + (h - TITLE_H) / 2])
 
@@ -226,19 +240,8 @@ def group_panel(words, cv, box, kin_e, links, names, forces, couples, title, nor
     # the points and the forces' points on the paper at once (row by row what M gives)
     on_paper = c_pan + (xy - c_box) / mu_l
     broken = {}                # a far point drawn nearer: {its place on the paper: its true place}
-    for k in np.nonzero(far)[0].tolist():
-        # from the block of the slider whose axis it is on (a guide's reaction on a ram), else
-        # from the nearest point drawn
-        near = on_paper[~far][int(np.argmin(np.hypot(*(xy[~far] - xy[k]).T)))]
-        for n in names:
-            ps = [p for p in links[n]["points"] if p in P]
-            if links[n]["kind"] == "slider" and ps:
-                a = math.radians(float(kin_e["links"][n]["angle"] or 0.0))
-                b = _xy(P[ps[0]])
-                if abs(float((xy[k] - b) @ np.array([-math.sin(a), math.cos(a)]))) <= 1e-6 * (1.0 + float(
-                        np.hypot(*(xy[k] - b)))):
-                    near = on_paper[pts_names.index(ps[0])]
-                    break
+    for k, b in bases.items():
+        near = on_paper[b]
         d = on_paper[k] - near
         L = float(np.hypot(*d))
         t = _room(near, d / L, (x0 + m, y0 + m, x0 + w - m, y0 + h - TITLE_H - m))
@@ -357,6 +360,25 @@ def group_panel(words, cv, box, kin_e, links, names, forces, couples, title, nor
     _labels(cv, arrows, 2.6, segs, avoid, words.lang, box=box, taken=taken, leaders=True)
     _labels(cv, lengths, 2.6, segs, avoid, words.lang, size=6, box=box, taken=taken, italic=False, leaders=True)
     return mu_l
+
+
+BROKEN = 30.0         # mm: a part drawn broken (a far point of application) is drawn this long
+
+
+def _base(xy, far, k: int, names, links, kin_e, pts_names) -> int:
+    """The row of xy a far point k is drawn from: the block of the slider whose axis it is on
+    (a guide's reaction on a ram), else the nearest point not far."""
+    P = kin_e["points"]
+    for n in names:
+        ps = [p for p in links[n]["points"] if p in P]
+        if links[n]["kind"] == "slider" and ps:
+            a = math.radians(float(kin_e["links"][n]["angle"] or 0.0))
+            b = _xy(P[ps[0]])
+            if abs(float((xy[k] - b) @ np.array([-math.sin(a), math.cos(a)]))) <= 1e-6 * (1.0 + float(
+                    np.hypot(*(xy[k] - b)))):
+                return pts_names.index(ps[0])
+    rows = np.nonzero(~far)[0]
+    return int(rows[int(np.argmin(np.hypot(*(xy[rows] - xy[k]).T)))])
 
 
 def _far(xy, n_pts: int, coms) -> np.ndarray:
