@@ -49,31 +49,37 @@ def test_every_force_of_a_group_drawing_acts_on_a_drawn_link():
     ram now reaches it."""
     import numpy as np
     from pathlib import Path as _P
+    from tmm_cli.drawings import forces as K
+    from tmm_cli.drawings.words import Words
     from tmm_cli.pipeline import run
-    from tmm_cli.report.context import ReportContext
-    from tmm_cli.report.sections import load
     from tmm_cli.report.svgdraw import Canvas
     from tmm_cli.task import load_task
-    K = load("kinetostatics")
     root = _P(__file__).resolve().parents[1]
     task = load_task(root / "tasks" / "shaper_slotted_lever.yaml")
     res = run(task)
-    ctx = ReportContext(results=res, task=task, lang="en", out_dir=_P("."), env=None)
-    links = K._links(res)
+    ctx = Words("en")
+    links = K.links_by_name(res)
     kin = {k["index"]: k for k in res["kinematics"]}
 
     class Rec(Canvas):
         def __init__(self, *a):
             super().__init__(*a)
-            self.solid, self.starts, self.blocks, self.joints = [], [], [], []
+            self.solid, self.starts, self.tips, self.blocks, self.joints = [], [], [], [], []
 
         def line(self, p, q, color="#000", width=0.25, dash=None, z=1):
             if dash is None and color == "#000":
                 self.solid.append((np.asarray(p, float), np.asarray(q, float)))
             return super().line(p, q, color, width, dash, z)
 
+        def polyline(self, pts, color="#000", width=0.25, dash=None, z=1, closed=False):
+            if dash is None and color == "#000" and not closed and len(pts) > 2:     # a ram drawn broken
+                ps = [np.asarray(p, float) for p in pts]
+                self.solid.extend(zip(ps, ps[1:]))
+            return super().polyline(pts, color, width, dash, z, closed)
+
         def arrow(self, p, q, *a, **kw):
             self.starts.append(np.asarray(p, float))
+            self.tips.append(np.asarray(q, float))
             return super().arrow(p, q, *a, **kw)
 
         def block(self, c, *a, **kw):
@@ -97,13 +103,24 @@ def test_every_force_of_a_group_drawing_acts_on_a_drawn_link():
     for e in res["kinetostatics"]:
         for g, forces, couples, title in K.position_rows(ctx, e, kin[e["index"]], res["kinetostatics_info"], links):
             cv = Rec(90.0, 72.0)
-            K._fbd_panel(ctx, cv, (0, 0, 90.0, 72.0), kin[e["index"]], links, g, forces, couples, title)
+            K.group_panel(ctx, cv, (0, 0, 90.0, 72.0), kin[e["index"]], links, g, forces, couples, title)
             norms = K.force_norms(forces)
             shown = sum(n > 1e-9 * max(max(norms), 1e-300) for n in norms)
-            for s in cv.starts[:shown]:              # the forces' arrows (then the couples')
+            acting = []
+            for k, s in enumerate(cv.starts[:shown]):      # the forces' arrows (then the couples')
                 on = (any(near_segment(s, p, q) < 0.3 for p, q in cv.solid)
                       or any(np.hypot(*(s - b)) < 5.0 for b in cv.blocks)
                       or any(np.hypot(*(s - j)) < 1.0 for j in cv.joints))
+                # or slid along its line of action off an arrow that acts there (drawings.forces.along_line):
+                # a millimetre past its tip in the same sense, or from its start the other way
+                u = (cv.tips[k] - s) / np.hypot(*(cv.tips[k] - s))
+                for j in acting:
+                    v = cv.tips[j] - cv.starts[j]
+                    v = v / np.hypot(*v)
+                    if abs(float(u @ v)) > 0.995 and (np.hypot(*(s - cv.tips[j] - u * 1.0)) < 1e-6
+                                                      or np.hypot(*(s - cv.starts[j])) < 1e-6):
+                        on = True
                 assert on, (e["index"], g, s)
+                acting.append(k)
                 checked += 1
     assert checked > 100

@@ -102,7 +102,7 @@ def forces_grid(results: dict, lang: str = "en") -> dict | None:
     st = results.get("structure") or {}
     if not d or not d.get("entries") or not st.get("links"):
         return None
-    from .sections.kinetostatics import group_force_data, label_parts
+    from ..drawings.forces import group_force_data, label_parts
     entries = d["entries"]
     N = len(entries)
     links = {l["name"]: l for l in st["links"]}
@@ -170,7 +170,7 @@ def fragment(ctx) -> str | None:
     forces = forces_grid(ctx.results, ctx.lang)
     fdata = None
     if forces:                  # a script element of its own: ex-data is the results' grid as it is
-        from .sections.kinetostatics import KIND_COLOR
+        from ..drawings.forces import KIND_COLOR
         fdata = Markup(data_json({**forces, "colors": KIND_COLOR}))
     tr = I18N.get(ctx.lang, I18N["en"])
     js = (templates_dir() / "explore.js").read_text(encoding="utf-8")

@@ -8,7 +8,7 @@ import math
 import numpy as np
 
 from ..report.figures import mu_text, scale_mark
-from .frame import FRAME, length_scale, std_mu
+from .frame import FRAME, TB_W, length_scale, std_mu
 from .graph import draw_graph
 
 TXT = {
@@ -176,13 +176,16 @@ def draw_mechanism(cv, geom, entries, course: list[int], box, lang="en", traced_
 
 
 PLAN_BOX_W, PLAN_BOX_H = 200.0, 140.0
+TABLE_W = 46.0       # mm: an acceleration plan's segment table, right of the plan
 
 
-def draw_plans(cv, geom, entry, box, lang="en", kinds=("v", "a")) -> dict:
+def draw_plans(cv, geom, entry, box, lang="en", kinds=("v", "a"), table_w: float = 0.0) -> dict:
     """The velocity and acceleration plans (kinds) of one position side by side, each at a
-    standard μ that fits its part of box at true size (the report's draw_plan)."""
+    standard μ that fits its part of box at true size (the report's draw_plan); with table_w,
+    each plan's segment table (segments.acceleration_table) in the right table_w mm of its part."""
     from ..plans import build_plan
-    from ..report.sections.kinematics import draw_plan
+    from ..drawings.plans import draw_plan
+    from .segments import acceleration_table
     x0, y0, w, h = box
     T = TXT[lang]
     U = UNITS[lang]
@@ -191,7 +194,7 @@ def draw_plans(cv, geom, entry, box, lang="en", kinds=("v", "a")) -> dict:
     todo = [t for t in (("v", T["vplan"], T["unit_v"], U["m/s"]), ("a", T["aplan"], T["unit_a"], U["m/s²"]))
             if t[0] in kinds]
     for k, (kind, title, unit_txt, si) in enumerate(todo):
-        bx = (x0 + k * w / len(todo), y0, w / len(todo) - 2, h)
+        bx = (x0 + k * w / len(todo), y0, w / len(todo) - 2 - table_w, h)
         p1 = build_plan(kind, entry, geom, 1.0)
         xy = np.array(list(p1.pts.values()))
         span = np.maximum(xy.max(axis=0) - xy.min(axis=0), 1e-12)
@@ -199,6 +202,10 @@ def draw_plans(cv, geom, entry, box, lang="en", kinds=("v", "a")) -> dict:
         plan = build_plan(kind, entry, geom, mu)
         scale = draw_plan(cv, plan, bx, f"{title} ({T['pos']} {entry['index']})", unit_txt, si, T["mm"])
         out[kind] = {"plan": plan, "mu": mu, "k": scale}
+        if table_w:
+            out[kind]["table"] = acceleration_table(cv, plan, scale, (bx[0] + bx[2] + 1.0, y0 + 3.0, table_w - 2.0,
+                                                                     h - 4.0), lang, unit_txt)
+            cv.layer = "thin"
     return out
 
 
@@ -217,7 +224,7 @@ def draw_velocity_plans(cv, geom, entries, box, lang="en", ncol: int = 4) -> dic
     """The velocity plans of the grid's positions (the course's 12) in a grid of cells of box,
     all at one standard μv, the smallest at which every plan fits its cell at true size."""
     from ..plans import build_plan
-    from ..report.sections.kinematics import draw_plan
+    from ..drawings.plans import draw_plan
     x0, y0, w, h = box
     T, U = TXT[lang], UNITS[lang]
     nrow = -(-len(entries) // ncol)
@@ -309,8 +316,9 @@ def build(cv, results, task, lang="en") -> dict:
     # plans of every grid position (the course's 12) under them, at one μv
     for k, i in enumerate(course):
         info["plans"][i] = draw_plans(cv, geom, by_index[i], (430.0 + PLAN_BOX_W * k, 445.0, PLAN_BOX_W,
-                                                               PLAN_BOX_H), lang, kinds=("a",))
-    from ..report.course import course_entries, grid_count
+                                                               PLAN_BOX_H), lang, kinds=("a",),
+                                        table_w=TABLE_W)
+    from ..report.course import course_entries, grid_count, position_label
     n_grid = grid_count(results, len(entries))
     grid = course_entries(entries[:n_grid], n_grid)          # the course's 12 of a finer grid
     grid += [by_index[i] for i in course if by_index[i] not in grid]     # a course extra after them
@@ -318,6 +326,10 @@ def build(cv, results, task, lang="en") -> dict:
                                                           440.0 - fy0 - 62.0), lang)
     for i in course:
         info["plans"][i]["v"] = info["vplans"][i]
+    # the velocity plans' segments as drawn, at the sheet's μv: under the plans, left of the title block
+    from .segments import velocity_table
+    info["vtable"] = velocity_table(cv, info["vplans"], (432.0, fy0 + 2.0, fx1 - TB_W - 432.0 - 3.0, 58.0),
+                                    lang, TXT[lang]["unit_v"], {e["index"]: position_label(e, n_grid) for e in grid})
     info["diagrams"] = draw_diagrams(cv, results, geom, (fx0 + 3, fy0 + 3, 400.0, 290.0), lang)
     info["scale"] = info["mechanism"]["scale"]
     return info

@@ -1,10 +1,8 @@
 """Sheet 2: the kinetostatics of one or two positions - each structural group detached
 from the mechanism at a ГОСТ 2.302 length scale with its loads and reactions, its force
 polygon at a standard μF, the input link, and Zhukovsky's lever large enough to read
-every force and arm.  Drawn by the report's own panels (report/sections/kinetostatics)."""
+every force and arm.  Drawn by the panels the report draws too (tmm_cli/drawings/forces.py)."""
 from __future__ import annotations
-
-from pathlib import Path
 
 from .frame import FRAME, TB_H, TB_W
 
@@ -36,13 +34,12 @@ def layout(n: int, width: float) -> tuple[int, int]:
 
 
 def build(cv, results, task, lang="en") -> dict:
-    from ..report.context import ReportContext
+    from ..drawings import forces as K
+    from ..drawings.words import Words
     from ..plans import crank_pin, geometry
-    from ..report.sections import load
-    K = load("kinetostatics")        # registers its texts in the three languages
-    ctx = ReportContext(results=results, task=task, lang=lang, out_dir=Path("."), env=None)
+    words = Words(lang)
     info_k = results["kinetostatics_info"]
-    links = K._links(results)
+    links = K.links_by_name(results)
     kin = {k["index"]: k for k in results.get("kinematics") or []}
     kst = {k["index"]: k for k in results["kinetostatics"]}
     geom = geometry(results, task)
@@ -57,7 +54,7 @@ def build(cv, results, task, lang="en") -> dict:
         bottom = top - band_h
         cv.layer = "text"
         cv.mtext(x0f + 4, top - 5.5, TXT[lang]["pos"].format(i=i, phi=float(e["phi"])), 5.0, bold=True)
-        rows = K.position_rows(ctx, e, ke, info_k, links)
+        rows = K.position_rows(words, e, ke, info_k, links)
         n = len(rows)
         ncol, nrow = layout(n, x1f - x0f - LEVER_MIN_W)
         col_w = min(COL_W, (x1f - x0f - LEVER_MIN_W) / ncol)
@@ -70,8 +67,8 @@ def build(cv, results, task, lang="en") -> dict:
             row_top = top - HEAD - r * row_h
             y_up, y_lo = row_top - ph, row_top - 2 * ph
             cv.layer = "contour"          # the groups and their polygons: main lines
-            mu_l = K._fbd_panel(ctx, cv, (x + 1, y_up, col_w - 2, ph), ke, links, g, forces, couples, title)
-            mu_F, T = K._polygon_panel(ctx, cv, (x + 1, y_lo + 1, col_w - 2, ph - 1), forces)
+            mu_l = K.group_panel(words, cv, (x + 1, y_up, col_w - 2, ph), ke, links, g, forces, couples, title)
+            mu_F, T = K.polygon_panel(words, cv, (x + 1, y_lo + 1, col_w - 2, ph - 1), forces)
             drawn.append({"group": g, "mu_l": mu_l, "mu_F": mu_F, "tips": T, "vectors": K.polygon(forces)[0],
                           "box": (x, y_lo, col_w, 2 * ph)})
             cv.layer = "thin"
@@ -84,7 +81,7 @@ def build(cv, results, task, lang="en") -> dict:
         if bottom - y0f < TB_H + 1 and lx + LEVER_MIN_W > x1f - TB_W:
             lb = y0f + TB_H + 2
         cv.layer = "thin"                 # the lever: the turned plan and the arms, thin lines
-        mu_v = K._lever_panel(ctx, cv, (lx, lb, x1f - lx - 1, top - HEAD - lb), e, ke, pin,
+        mu_v = K.lever_panel(words, cv, (lx, lb, x1f - lx - 1, top - HEAD - lb), e, ke, pin,
                               (results.get("drive") or {}).get("omega"), info_k.get("balance_kind"))
         if k:
             cv.layer = "thin"

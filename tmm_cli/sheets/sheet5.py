@@ -62,11 +62,11 @@ def closed_window(X, Y, centre, rf: float, step_deg: float = 1.0) -> np.ndarray:
 def build(cv, results, task, lang="en") -> dict:
     from ..gears import mesh_layout
     from ..report.figures import place_labels
-    from ..report.sections.gears import _wheels, action_points
+    from ..drawings.mesh import action_points, wheels
     g = results["gears"]
     T = TXT[lang]
     x0f, y0f, x1f, y1f = FRAME
-    w1, w2 = _wheels(g)
+    w1, w2 = wheels(g)
     (c1, a1), (c2, a2) = mesh_layout((w1, w2), g["aw"], 0.0)
     # the whole wheels: wheel 1 at the origin, wheel 2 above it at aw
     box = (x0f + 10.0, y0f + 65.0, x1f - x0f - 20.0, y1f - y0f - 95.0)
@@ -111,7 +111,7 @@ def build(cv, results, task, lang="en") -> dict:
     pos = place_labels(anchors, 60.0, avoid=[a[:2] for a in anchors], step=5.0,
                        segments=[(pts["N1"], pts["N2"])])
     for name, (x, y) in zip(names, pos):
-        cv.mtext(x, y, name[0], 3.5, anchor="middle", italic=True, sub=name[1:] or None)
+        cv.mtext(x, y, name[0], 3.5, anchor="middle", italic=True, sub=name[1:] or None, halo=True)   # over the teeth
     cv.layer = "contour"
     for c in (c1, c2):
         cv.circle(M(c), 1.2, width=0.5)

@@ -7,6 +7,7 @@ import math
 
 import numpy as np
 
+from ...drawings.mesh import action_points
 from ...messages import render_list
 from ...numfmt import localize
 
@@ -87,12 +88,6 @@ def _symbols(text: str):
     return Markup(h)
 
 
-def _wheels(g):
-    """The two wheels of the result (the drawing sheets draw them; the gears stage makes them)."""
-    from tmm_cli.gears.drawing import wheels
-    return list(wheels(g))
-
-
 SCALES = (50, 40, 20, 10, 5, 4, 2.5, 2, 1, 1 / 2, 1 / 2.5, 1 / 4, 1 / 5, 1 / 10)   # GOST 2.302
 AX_L, AX_B, AX_W, AX_H = 14.0, 14.0, 150.0, 130.0     # mm of paper: the mesh drawing's axes
 
@@ -112,18 +107,6 @@ def scale_text(k: float) -> str:
 def line_points(g) -> dict:
     """N1, N2, B1, B2 and the pole P on the line of action (m, wheel 1 at the origin, P above it)."""
     return action_points(g, (0.0, g["aw"]))
-
-
-def action_points(g, c2) -> dict:
-    """N1, N2, B1, B2, P on the line of action (m), wheel 1 at the origin, wheel 2 at c2."""
-    awa = math.radians(g["alpha_w"])
-    P = np.array([0.0, g["rw"][0]])
-    d = np.array([math.cos(awa), -math.sin(awa)])
-    la = g["line_of_action"]
-    s_n1 = -(P @ d)
-    sg = math.copysign(1.0, (np.array(c2) - P) @ d - s_n1)
-    return {name: P + (s_n1 + sg * q) * d for name, q in
-            (("N1", 0.0), ("N2", la["N1N2"]), ("B1", la["N1B1"]), ("B2", la["N1B2"]), ("P", la["N1P"]))}
 
 
 def action_arc(g, i: int) -> tuple[float, float]:

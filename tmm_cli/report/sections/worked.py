@@ -852,12 +852,12 @@ class _Writer:
         return key, f"R{j.b}{j.a}", pt, -F
 
     def vfsym(self, name):
-        from .kinetostatics import label_parts
+        from ...drawings.forces import label_parts
         sym, sub = label_parts(name, self.ctx.lang)
         return sb(vec(mi(sym)), sub) if sub else vec(mi(sym))
 
     def fsym(self, name):
-        from .kinetostatics import label_parts
+        from ...drawings.forces import label_parts
         s, sub = label_parts(name, self.ctx.lang)
         return sb(s, sub) if sub else mi(s)
 

@@ -1,0 +1,182 @@
+"""The force drawings -- each group with its loads, Zhukovsky's lever -- of the report and of
+sheet 2, for every example task with a linkage, in en, ru and uk: which name belongs to which
+arrow stays plain.
+
+* no two arrows of a drawing cover each other (on one line, their shafts sharing more than
+  half a millimetre): the shaper's ram load F1, its friction F_f05 and its inertia force Φ5
+  act at one point along the guide and were drawn one over the other, their three names
+  stacked around one point (sheet 2's lever: F, Φ4, Φ5, G4 at one point);
+* every force's or couple's name is within drawings.forces.LEADER mm of its arrow's tip (its
+  couple's ring), or a leader line runs from there to the name;
+* no text of any figure of the report or of any sheet overlaps another or leaves its figure
+  (the checks of test_figure_labels and test_sheets), in every language.
+
+Recorded as drawn: the canvas' arrows, lines and texts while the drawing functions of
+tmm_cli/drawings/forces.py run for the report (html) and for the sheets."""
+from __future__ import annotations
+
+import math
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+LINKAGES = sorted(p.stem for p in (ROOT / "tasks").glob("*.yaml")          # given or synthesised
+                  if re.search(r"^(mechanism|synthesis):", p.read_text(encoding="utf-8"), re.M))
+
+
+def _box_dist(x, box) -> float:
+    nx = min(max(float(x[0]), box[0]), box[2])
+    ny = min(max(float(x[1]), box[1]), box[3])
+    return math.hypot(nx - float(x[0]), ny - float(x[1]))
+
+
+def _covering(arrows) -> list:
+    """Pairs of arrows (p, q) on one line whose shafts share more than 0.5 mm."""
+    out = []
+    for i in range(len(arrows)):
+        p1, q1 = (np.asarray(v, float) for v in arrows[i])
+        d1 = q1 - p1
+        L1 = float(np.hypot(*d1))
+        if L1 < 1e-9:
+            continue
+        u = d1 / L1
+        n = np.array([-u[1], u[0]])
+        for j in range(i + 1, len(arrows)):
+            p2, q2 = (np.asarray(v, float) for v in arrows[j])
+            if abs(float((p2 - p1) @ n)) > 0.3 or abs(float((q2 - p1) @ n)) > 0.3:
+                continue
+            a, b = sorted((float((p2 - p1) @ u), float((q2 - p1) @ u)))
+            if min(b, L1) - max(a, 0.0) > 0.5:
+                out.append((tuple(np.round(p1, 2).tolist()), tuple(np.round(p2, 2).tolist())))
+    return out
+
+
+class Recorder:
+    """The panels drawn while patched: [{'kind', 'arrows': [(p, q)], 'lines': [(p, q)],
+    'labels': [(anchor, u, name, box, leader)], 'texts': [box]}]."""
+
+    def __init__(self, monkeypatch):
+        from tmm_cli.drawings import forces
+        from tmm_cli.report.svgdraw import Canvas
+        self.panels, self.cur = [], None
+        arrow0, line0, labels0 = Canvas.arrow, Canvas.line, forces._labels
+        rec = self
+
+        def arrow(cv, p, q, *a, **kw):
+            if rec.cur is not None and not rec.cur.get("in_moment"):
+                rec.cur["arrows"].append((tuple(map(float, p)), tuple(map(float, q))))
+            return arrow0(cv, p, q, *a, **kw)
+
+        def line(cv, p, q, *a, **kw):
+            if rec.cur is not None:
+                rec.cur["lines"].append((tuple(map(float, p)), tuple(map(float, q))))
+            return line0(cv, p, q, *a, **kw)
+
+        moment0 = Canvas.moment
+
+        def moment(cv, *a, **kw):
+            if rec.cur is not None:
+                rec.cur["in_moment"] = True
+            try:
+                return moment0(cv, *a, **kw)
+            finally:
+                if rec.cur is not None:
+                    rec.cur["in_moment"] = False
+
+        def labels(cv, items, *a, leaders=False, **kw):
+            boxes = labels0(cv, items, *a, leaders=leaders, **kw)
+            if rec.cur is not None:
+                for (anchor, u, name, col), box in zip(items, boxes):
+                    rec.cur["labels"].append((np.asarray(anchor, float), u, name, box, leaders))
+            return boxes
+
+        def wrap(kind, fn):
+            def run(*a, **kw):
+                rec.cur = {"kind": kind, "arrows": [], "lines": [], "labels": []}
+                try:
+                    return fn(*a, **kw)
+                finally:
+                    rec.panels.append(rec.cur)
+                    rec.cur = None
+            return run
+
+        monkeypatch.setattr(Canvas, "arrow", arrow)
+        monkeypatch.setattr(Canvas, "line", line)
+        monkeypatch.setattr(Canvas, "moment", moment)
+        monkeypatch.setattr(forces, "_labels", labels)
+        monkeypatch.setattr(forces, "group_panel", wrap("group", forces.group_panel))
+        monkeypatch.setattr(forces, "lever_panel", wrap("lever", forces.lever_panel))
+
+
+def problems(panels) -> list[str]:
+    from tmm_cli.drawings.forces import LEADER
+    bad = []
+    for k, pan in enumerate(panels):
+        where = f"{pan['kind']} {k}"
+        for a, b in _covering(pan["arrows"]):
+            bad.append(f"{where}: arrows from {a} and {b} cover each other")
+        for anchor, u, name, box, leader in pan["labels"]:
+            if not leader:
+                continue
+            d = _box_dist(anchor, box)
+            if d > LEADER + 1e-6:
+                near = (min(max(float(anchor[0]), box[0]), box[2]), min(max(float(anchor[1]), box[1]), box[3]))
+                if not any(math.dist(p, anchor) < 0.05 and math.dist(q, near) < 0.05 for p, q in pan["lines"]):
+                    bad.append(f"{where}: {name!r} {d:.1f} mm from its arrow, no leader")
+                continue
+    return bad
+
+
+def test_the_checks_see_covering_arrows_and_a_lost_name():
+    panels = [{"kind": "group", "arrows": [((0, 0), (10, 0)), ((2, 0), (8, 0)), ((0, 0), (-5, 0)), ((0, 5), (0, 9))],
+               "lines": [], "labels": [(np.array([0.0, 9.6]), (0.0, 1.0), "G4", (6.0, 12.0, 8.0, 14.0), True)]}]
+    got = problems(panels)
+    assert got[0].startswith("group 0: arrows from (0.0, 0.0) and (2.0, 0.0)") and len(got) == 2
+    assert "'G4' 6.5 mm from its arrow, no leader" in got[1]      # hypot(6, 2.4)
+
+
+def test_a_ram_load_its_friction_and_inertia_one_after_another():
+    """drawings.forces.along_line: three forces at one point along one line are drawn one
+    after another along it (each starting a millimetre past the tip before), an opposite one
+    from the point itself."""
+    from tmm_cli.drawings.forces import along_line
+    drawn = []
+    u = np.array([-1.0, 0.0])
+    for L in (9.0, 7.0, 5.0):
+        s = along_line((0.0, 0.0), u, L, drawn)
+        drawn.append((s, s + u * L, u))
+    assert [tuple(np.round(d[0], 9)) for d in drawn] == [(0.0, 0.0), (-10.0, 0.0), (-18.0, 0.0)]
+    s = along_line((-4.0, 0.0), -u, 3.0, drawn)          # from inside the first, the other way
+    assert tuple(s) == (0.0, 0.0)
+    s = along_line((0.0, 0.0), np.array([0.0, -1.0]), 6.0, drawn)    # across: where it is
+    assert tuple(s) == (0.0, 0.0)
+
+
+@pytest.mark.parametrize("name", LINKAGES)
+def test_force_names_beside_their_arrows(name, tmp_path, monkeypatch):
+    import tmm_cli
+    from tmm_cli.report import render
+    from tmm_cli.sheets import build_sheets
+    monkeypatch.setenv("TMM_REPORT_JOBS", "1")           # every figure drawn in this process
+    task = tmm_cli.load_task(ROOT / "tasks" / f"{name}.yaml")
+    res = tmm_cli.run(task)
+    if not res.get("kinetostatics"):
+        pytest.skip("no kinetostatics")
+    from test_figure_labels import _record, problems as text_problems
+    from test_sheets import _check_texts
+    rec = Recorder(monkeypatch)
+    bad = []
+    for lang in ("en", "ru", "uk"):
+        rec.panels.clear()
+        figs = _record(monkeypatch)                  # every text of every figure of the report
+        render(res, task, tmp_path / lang, {"html"}, lang)
+        n_report = len(rec.panels)
+        bad += [f"{lang}: report: {b}" for b in text_problems(figs)]
+        sheets = build_sheets(res, task, lang)
+        _check_texts(sheets)                         # every text of every sheet
+        assert n_report and len(rec.panels) > n_report
+        bad += [f"{lang}: {b}" for b in problems(rec.panels)]
+    assert not bad, f"{len(bad)} problems, e.g. {bad[:8]}"
