@@ -624,7 +624,9 @@ class Axes:
                 Xa, Ya = self.to_mm([n.arrow_from[0]], [n.arrow_from[1]])
                 out.append(_arrow_svg(Xa[0], Ya[0], X1[0], Y1[0], n.arrow_lw, n.arrow_color, n.pt))
             if n.s:
-                yy = Y1[0] - n.dy * MM_PER_PT + _va_shift(n.va, f)
+                # (svgchart's own charts: 'center' only, their other labels on the baseline)
+                va = n.va if self.fig.mpl or n.va == "center" else "baseline"
+                yy = Y1[0] - n.dy * MM_PER_PT + _va_shift(va, f)
                 out.append(_text(X1[0] + n.dx * MM_PER_PT, yy, n.s, f, _ANCHOR.get(n.ha, "start"), fill=n.color))
         if self.legend_kw and self.legend_entries():
             self._draw_legend(out)
