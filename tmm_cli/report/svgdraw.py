@@ -116,7 +116,7 @@ _NAMED.update({"tab:grey": _TAB10[7], "black": "#000000", "white": "#ffffff", "r
 
 def block_corners(c, angle_deg: float, w: float, h: float) -> list[np.ndarray]:
     """The four corners of a slider block w (along angle_deg) x h centred at c,
-    shared by the matplotlib drawings and the direct-SVG ones."""
+    shared by the drawings and the sheets."""
     a = math.radians(angle_deg)
     u = np.array([math.cos(a), math.sin(a)])
     v = np.array([-u[1], u[0]])
