@@ -1,6 +1,11 @@
 """Line charts written directly as SVG: the report's diagrams over the cycle
 (kinematic diagrams, loads, balancing moment and reactions, the flywheel's
-diagrams and the energy-mass diagram).
+diagrams and the energy-mass diagram), and, laid out as matplotlib laid them out
+(``mpl=True``, report.figures.new_figure / figure_at_scale), the figures matplotlib
+drew before: the cam's diagrams, construction and profile, the gear mesh, sliding and
+blocking contour, the planetary scheme, the two-DOF scheme and charts (patches,
+'///' hatches, spans, markers, annotations with arrows: ``fill``, ``fill_rings``,
+``rectangle``, ``circle``, ``axvspan``, ``annotate(arrowprops=...)``).
 
 The interface is the small part of matplotlib's the report used for them
 (``subplots``, ``ax.plot`` with format strings, ``axhline``/``axvline``,
