@@ -594,6 +594,11 @@ class Axes:
                 continue
             Lx, Ly = self.to_mm(ln.x, ln.y)
             if ln.ls:
+                if self.fig.mpl and ln.clip and len(Lx) > 2:       # as matplotlib: no path beyond the axes
+                    m = ln.lw * MM_PER_PT
+                    Lx, Ly = _clip_runs(Lx, Ly, x0 - m, y0 - m, x0 + w + m, y0 + h + m)
+                if self.fig.mpl and len(Lx) > 8:         # and simplified (matplotlib's path.simplify)
+                    Lx, Ly = _simplify(Lx, Ly, SIMPLIFY_MM)
                 d = _polyline_d(Lx, Ly)
                 if d:
                     target.append(self._stroke(d, ln.color, ln.lw, ln.ls, ln.cap))
@@ -836,6 +841,55 @@ def _marker_d(marker: str, r: float, X, Y) -> str:
         return "".join(f"M{_f(a - r)} {_f(b)}h{_f(2 * r)}M{_f(a)} {_f(b - r)}v{_f(2 * r)}" for a, b in zip(X, Y))
     return "".join(f"M{_f(a - r)} {_f(b)}a{_f(r)} {_f(r)} 0 1 0 {_f(2 * r)} 0"
                    f"a{_f(r)} {_f(r)} 0 1 0 {_f(-2 * r)} 0" for a, b in zip(X, Y))
+
+
+SIMPLIFY_MM = 0.01      # the most a simplified polyline leaves its points (matplotlib's is 1/9 px, 0.04 mm)
+
+
+def _simplify(X, Y, tol: float):
+    """The polyline with only the points that keep it within ``tol`` of every dropped one
+    (Ramer-Douglas-Peucker on each run between breaks); the ends of each run are kept."""
+    X, Y = np.asarray(X, float), np.asarray(Y, float)
+    ok = np.isfinite(X) & np.isfinite(Y)
+    keep = ~ok                                   # (the breaks stay)
+    edges = np.flatnonzero(np.diff(np.r_[0, ok.astype(np.int8), 0]))
+    for a, b in zip(edges[::2], edges[1::2]):    # runs a .. b-1
+        keep[a] = keep[b - 1] = True
+        stack = [(a, b - 1)]
+        while stack:
+            i, j = stack.pop()
+            if j - i < 2:
+                continue
+            dx, dy = X[j] - X[i], Y[j] - Y[i]
+            L = math.hypot(dx, dy)
+            px, py = X[i + 1:j] - X[i], Y[i + 1:j] - Y[i]
+            dist = np.abs(px * dy - py * dx) / L if L > 0 else np.hypot(px, py)
+            k = int(np.argmax(dist))
+            if dist[k] > tol:
+                k += i + 1
+                keep[k] = True
+                stack.append((i, k))
+                stack.append((k, j))
+    return X[keep], Y[keep]
+
+
+def _clip_runs(X, Y, xa, ya, xb, yb):
+    """The polyline without its runs of segments that lie wholly beyond the box (each such
+    run replaced by a break): a segment is kept when its bounding box meets the box."""
+    X, Y = np.asarray(X, float), np.asarray(Y, float)
+    with np.errstate(invalid="ignore"):
+        meet = ((np.maximum(X[:-1], X[1:]) >= xa) & (np.minimum(X[:-1], X[1:]) <= xb) &
+                (np.maximum(Y[:-1], Y[1:]) >= ya) & (np.minimum(Y[:-1], Y[1:]) <= yb))
+    if meet.all():
+        return X, Y
+    keep = np.zeros(len(X), bool)
+    keep[:-1] |= meet
+    keep[1:] |= meet
+    # a break (NaN) where a dropped run starts after a kept point
+    out_x, out_y = np.where(keep, X, np.nan), np.where(keep, Y, np.nan)
+    nan_run = ~keep & np.r_[False, keep[:-1]]
+    sel = keep | nan_run
+    return out_x[sel], out_y[sel]
 
 
 def _polyline_d(X, Y) -> str:
