@@ -5,8 +5,11 @@ states (μl, μv, μa, μF, μM, ... = value) is from the standard series.
 The boxes are measured, not taken from the placement code: the texts of the drawings
 tmm draws itself (the SVG canvas: plans, groups, force polygons, the lever, the gear
 trains) are recorded as they are written (width 0.6 x font size per character, the
-font size high), the texts of the matplotlib figures are measured by matplotlib's own
-renderer (tick labels only where their tick is within the axis).  One report per task."""
+font size high), and so are the texts of the charts and scale drawings laid out as
+matplotlib laid them out (svgchart's figures of figures.new_figure: cam, gears, planetary,
+two-DOF; ascent 0.76, descent 0.24 of the font size about the baseline, a subscript or
+superscript counted full width; tick labels are written only where their tick is within
+the axis).  One report per task."""
 from __future__ import annotations
 
 import html as html_mod
@@ -21,11 +24,13 @@ TASKS = sorted(p.stem for p in (ROOT / "tasks").glob("*.yaml"))
 
 
 def _record(monkeypatch) -> list:
-    """Patch the two figure writers to record (kind, width mm, height mm, [(text, box)])."""
-    from tmm_cli.report import figures
+    """Patch the figure writers to record (kind, width mm, height mm, [(text, box)])."""
+    from tmm_cli.report import svgchart
     from tmm_cli.report.svgdraw import PT_PER_MM, Canvas
     figs, open_ = [], {}
-    text0, to_svg0, svg0 = Canvas.text, Canvas.to_svg, figures.svg
+    text0, to_svg0 = Canvas.text, Canvas.to_svg
+    chart_text0, chart_svg0 = svgchart._text, svgchart.Figure.to_svg
+    chart: list = []
 
     def text(self, x, y, s, size=7.0, color="#000", anchor="middle", italic=False, bold=False, sub=None,
              sup=None, z=8, vcenter=True, halo=False, after=None):
@@ -41,33 +46,35 @@ def _record(monkeypatch) -> list:
         figs.append(("drawing", self.w, self.h, open_.pop(id(self), [])))
         return to_svg0(self)
 
-    def svg(fig):
-        import matplotlib.text as mt
-        fig.canvas.draw()
-        r = fig.canvas.get_renderer()
-        k = 25.4 / fig.dpi
-        ticks, shown = set(), set()
-        for ax in fig.axes:
-            for axis in (ax.xaxis, ax.yaxis):
-                lo, hi = sorted(axis.get_view_interval())
-                tol = 1e-9 * (hi - lo)
-                for tk in axis.get_major_ticks() + axis.get_minor_ticks():
-                    for lab in (tk.label1, tk.label2):
-                        ticks.add(id(lab))
-                        if tk.get_visible() and lo - tol <= tk.get_loc() <= hi + tol:
-                            shown.add(id(lab))
-        boxes = []
-        for t in fig.findobj(mt.Text):
-            if not t.get_visible() or not t.get_text().strip() or (id(t) in ticks and id(t) not in shown):
-                continue
-            b = t.get_window_extent(r)
-            boxes.append((t.get_text(), (b.x0 * k, b.y0 * k, b.x1 * k, b.y1 * k)))
-        figs.append(("matplotlib", fig.bbox.width * k, fig.bbox.height * k, boxes))
-        return svg0(fig)
+    def chart_text(x, y, s, size_mm, anchor, fill=None, rotate=False):
+        plain = re.sub(r"\\[A-Za-z]+", "x", s)
+        plain = re.sub(r"[${}_^]", "", plain)
+        if plain.strip() and chart:
+            w = 0.6 * size_mm * len(plain)
+            a = x - w / 2 if anchor == "middle" else (x - w if anchor == "end" else x)
+            # along the text: a .. a + w; across: the baseline y, ascent above (y down)
+            lo, hi = y - 0.76 * size_mm, y + 0.24 * size_mm
+            if rotate:          # turned by -90° about (x, y): along the text is up the page
+                box = (x - (y - lo), y - (a + w - x), x + (hi - y), y - (a - x))
+            else:
+                box = (a, lo, a + w, hi)
+            chart[-1].append((s, box))
+        return chart_text0(x, y, s, size_mm, anchor, fill, rotate)
+
+    def chart_svg(self):
+        chart.append([])
+        try:
+            out = chart_svg0(self)
+        finally:
+            boxes = chart.pop()
+        if self.mpl:            # (y down in the SVG: the boxes as measured from the top)
+            figs.append(("chart", self.w, self.h, boxes))
+        return out
 
     monkeypatch.setattr(Canvas, "text", text)
     monkeypatch.setattr(Canvas, "to_svg", to_svg)
-    monkeypatch.setattr(figures, "svg", svg)
+    monkeypatch.setattr(svgchart, "_text", chart_text)
+    monkeypatch.setattr(svgchart.Figure, "to_svg", chart_svg)
     return figs
 
 

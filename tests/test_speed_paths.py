@@ -67,6 +67,17 @@ def test_linkage_html_report_imports_no_matplotlib(tmp_path):
     assert 'μl = 0.01 m/mm  (M 1:10)' in html and 'μl = 0.015 m/mm  (M 1:15)' in html
 
 
+@pytest.mark.parametrize("task", ["cam_rocker", "gears_shifted", "planetary_A", "impact_rotor"])
+def test_every_report_imports_no_matplotlib(tmp_path, task):
+    """The cam, gear, planetary and two-DOF reports draw their figures themselves too
+    (svgchart's matplotlib-like axes): no matplotlib in the HTML and PDF report."""
+    mods = _imported_by(["run", str(ROOT / "tasks" / f"{task}.yaml"), "--format", "html,pdf",
+                         "-o", str(tmp_path / "o")], tmp_path, env={"TMM_REPORT_JOBS": "1"})
+    assert "tmm_cli.report.figures" in mods and "jinja2" in mods       # the report was made
+    assert "matplotlib" not in mods
+    assert (tmp_path / "o" / "report.pdf").stat().st_size > 10000
+
+
 def test_validate_imports_no_heavy_module(tmp_path):
     mods = _imported_by(["validate", str(ROOT / "tasks" / "forging_sixbar.yaml")], tmp_path)
     assert not mods & set(HEAVY), sorted(mods & set(HEAVY))

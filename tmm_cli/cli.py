@@ -148,7 +148,7 @@ def _run_fast(command: Callable[[], int], exit_now: bool = False) -> None:
 def _exit_now(code: int) -> None:
     """End the program with ``code`` once its output is flushed, without the interpreter's
     shutdown: that frees every module and object one by one and runs the cycle collector
-    over them all (5-10 % of a JSON run, more after a report's matplotlib and PDF engine)
+    over them all (5-10 % of a JSON run, more after a report's PDF engine)
     in a process that is ending anyway. The atexit callbacks run first, as the shutdown
     runs them (a report's: multiprocessing's join of its helper, tempfile's cleanup). When
     it would have more to do (another thread, python -i, output that cannot be flushed),

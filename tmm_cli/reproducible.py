@@ -3,10 +3,6 @@
 - ``source_date()``: the date written into outputs (the report's footer, the DXF header, a day):
   the time given by ``SOURCE_DATE_EPOCH`` (seconds since 1970, UTC; the reproducible-builds
   convention) when it is set, else now.
-- ``stable_svg_ids(svg)``: matplotlib names clip paths and markers by a hash of a random
-  salt; rendered with a fixed salt they repeat from figure to figure (two axes of one size
-  share a clip id), so each id is renamed by a hash of the whole figure: the same figure
-  gets the same ids, different figures of one report different ones.
 - ``dxf_text(doc)``: an ezdxf document as DXF text without the random GUIDs, the clock
   time and the hash-seed order of classes ezdxf writes: the GUIDs are derived from the
   drawing itself (always the same), the dates are the day of ``source_date()``.
@@ -17,7 +13,7 @@ import datetime as _dt
 import os
 import re
 
-__all__ = ["source_date", "stable_svg_ids", "dxf_text"]
+__all__ = ["source_date", "dxf_text"]
 
 
 def source_date() -> _dt.datetime:
@@ -29,21 +25,6 @@ def source_date() -> _dt.datetime:
         except (ValueError, OverflowError, OSError):
             pass                      # not a number of seconds: ignored, as other tools do
     return _dt.datetime.now().astimezone().replace(microsecond=0)
-
-
-# matplotlib's SVG ids: a letter (p clip path, m marker, h hatch) and 10 hex digits of a hash
-_MPL_ID = re.compile(r'\bid="([a-z][0-9a-f]{10})"')
-
-
-def stable_svg_ids(svg: str) -> str:
-    """Rename matplotlib's hashed ids by a hash of the figure's text (see the module doc)."""
-    ids = set(_MPL_ID.findall(svg))
-    if not ids:
-        return svg
-    import hashlib
-    digest = hashlib.sha256(svg.encode("utf-8")).hexdigest()
-    new = {old: old[0] + hashlib.sha256((digest + old).encode("ascii")).hexdigest()[:10] for old in ids}
-    return re.sub(r"\b(" + "|".join(sorted(ids)) + r")\b", lambda m: new[m.group(1)], svg)
 
 
 _CONST_GUID = "{00000000-0000-0000-0000-000000000000}"

@@ -55,7 +55,7 @@ def region_polygons(x1, x2, ok) -> list[list[list[list[float]]]]:
     the grid (x1 columns, x2 rows) where every check holds, traced at the 0.5 level of the
     mask (marching squares, contourpy).  Each polygon is [outer ring, hole rings...], a ring
     being [[x1, x2], ...] (closed: the first point again at the end)."""
-    import contourpy  # lazy (a matplotlib dependency)
+    import contourpy  # lazy (marching squares; a dependency of its own)
 
     ok = np.asarray(ok, bool)
     if not ok.any():

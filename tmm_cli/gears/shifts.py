@@ -72,7 +72,7 @@ def blocking_contour(m, z1, z2, alpha=20.0, ha=1.0, c=0.25, sa_min=0.25, rho_f=N
     for v in marg.values():
         ok &= np.nan_to_num(v, nan=-1.0) >= 0
     lines = {}
-    import contourpy  # lazy (a matplotlib dependency)
+    import contourpy  # lazy (marching squares; a dependency of its own)
 
     for name, v in marg.items():
         vv = np.where(valid, v, np.nan)

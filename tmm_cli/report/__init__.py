@@ -18,7 +18,7 @@ How to add a section (e.g. for the stage ``cam``)
            data = ctx.results.get("cam")
            if not data:
                return None                  # section absent -> nothing in the report
-           fig, ax = ctx.figures.new_figure(170, 90)   # matplotlib, Agg, mm size
+           fig, ax = ctx.figures.new_figure(170, 90)   # SVG chart (svgchart), mm size
            ax.plot(...)
            ctx.write_csv("cam.csv", ["phi", "s"], rows)  # beside the report
            return ctx.render("sections/cam.html.j2", data=data,
@@ -38,7 +38,7 @@ How to add a section (e.g. for the stage ``cam``)
 ``svg(fig)``, ``write_csv(name, header, rows)``, ``write_file(name, data)``,
 ``fmt``, ``fmt_fixed``, ``sense(omega)`` (cw/ccw in words), ``link_names()``,
 ``figures`` (helpers: ``new_figure``, ``nice_scale``, ``draw_ground``,
-``draw_joint``, ``arrow``, ``place_labels``, and ``figures.figure_for_box`` +
+``draw_joint``, ``figure_at_scale``, ``place_labels``, and ``figures.figure_for_box`` +
 ``figures.draw_mechanism`` for the linkage, drawn directly as SVG).
 """
 from __future__ import annotations

@@ -132,11 +132,10 @@ class ReportContext:
         return self.env.get_template(template).render(**kw)
 
     def svg(self, fig, name: str | None = None):
-        """A figure -> inline SVG (markup-safe): a chart of svgchart (written directly)
-        or a matplotlib figure (closed); `name`: its file name in figures/
-        (figures.named)."""
+        """A figure (svgchart, SchemeView, ...: anything with ``to_svg``) -> inline SVG
+        (markup-safe); `name`: its file name in figures/ (figures.named)."""
         from markupsafe import Markup
-        out = Markup(fig.to_svg()) if hasattr(fig, "to_svg") else Markup(figures.svg(fig))
+        out = Markup(fig.to_svg())
         return figures.named(out, name) if name else out
 
     # -- files beside the report

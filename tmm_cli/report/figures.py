@@ -1,14 +1,12 @@
-"""Figure helpers of the report: matplotlib (Agg) -> inline SVG, nice scales, label
-placement, and the kinematic scheme of a linkage (ground pivots with hatching, slider
-blocks, guides, joints, link numbers) drawn directly as SVG (SchemeView: the linkage
-report imports no matplotlib); the cam, gear and two-DOF figures still use matplotlib.
+"""Figure helpers of the report: charts and drawings written directly as SVG (svgchart's
+matplotlib-like axes: ``new_figure``, ``figure_at_scale``), nice scales, label placement,
+and the kinematic scheme of a linkage (ground pivots with hatching, slider blocks, guides,
+joints, link numbers; SchemeView on an svgdraw canvas).  The report imports no matplotlib.
 
-matplotlib is imported lazily (inside functions): importing this module is cheap.
-Text uses DejaVu Sans (ships with matplotlib, has Cyrillic and Greek).
+Text uses DejaVu Sans (it has Cyrillic and Greek).
 """
 from __future__ import annotations
 
-import io
 import math
 import re
 from itertools import chain
@@ -16,105 +14,20 @@ from operator import itemgetter
 
 import numpy as np
 
-from .. import numfmt
-from ..reproducible import stable_svg_ids
 from .svgdraw import PT_PER_MM
 
 MM = 1.0 / 25.4  # inch per mm
 _SUBS = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
 
-_STYLE = {
-    "font.family": "DejaVu Sans",
-    "font.size": 8,
-    "axes.titlesize": 9,
-    "axes.labelsize": 8,
-    "xtick.labelsize": 7,
-    "ytick.labelsize": 7,
-    "legend.fontsize": 7,
-    "lines.linewidth": 1.0,
-    "svg.fonttype": "none",      # text stays text: small, searchable SVG
-    "svg.hashsalt": "tmm",       # no random ids (svg() then makes them unique per figure)
-    "axes.unicode_minus": True,
-}
 
-_configured = False
-
-
-def plt():
-    """The pyplot module with the Agg backend and the report style."""
-    global _configured
-    import matplotlib
-    if not _configured:
-        matplotlib.use("Agg", force=True)
-        matplotlib.rcParams.update(_STYLE)
-        _configured = True
-    import matplotlib.pyplot as _plt
-    return _plt
-
-
-def new_figure(width_mm: float = 170.0, height_mm: float = 100.0, **kw):
-    """A new figure of the given size in millimetres; returns (fig, ax or axes)."""
-    p = plt()
-    fig, ax = p.subplots(figsize=(width_mm * MM, height_mm * MM), **kw)
-    return fig, ax
-
-
-_HEAD = re.compile(r"^.*?(<svg\b)", re.S)
-_SIZE = re.compile(r'(<svg\b[^>]*?)\swidth="([0-9.]+)pt"\s+height="([0-9.]+)pt"', re.S)
-
-
-def svg(fig) -> str:
-    """Render a matplotlib figure as an inline SVG string and close the figure.
-
-    The XML prolog/doctype are stripped; width/height stay in pt (printed at
-    the figure's real size) and the CSS caps them at the text width.  The ids are
-    the same on every run and differ between figures (reproducible.stable_svg_ids).
-    """
-    buf = io.StringIO()
-    try:
-        if numfmt.comma():
-            _localize_figure(fig)
-        fig.savefig(buf, format="svg", metadata={"Date": None, "Creator": None})
-    finally:
-        plt().close(fig)
-    text = _HEAD.sub(r"\1", buf.getvalue(), count=1)
-    text = _SIZE.sub(r'\1 class="fig" width="\2pt" height="\3pt"', text, count=1)
-    return stable_svg_ids(text)
-
-
-def _localize_figure(fig) -> None:
-    """The figure's texts and tick labels with the numbers as the current language writes
-    them (the decimal comma in ru and uk: numfmt)."""
-    from matplotlib.text import Text
-    for t in fig.findobj(Text):
-        s = t.get_text()
-        if s:
-            t.set_text(numfmt.localize(s))
-    for ax in fig.axes:
-        for axis in (ax.xaxis, ax.yaxis):
-            fmt = axis.get_major_formatter()
-            fmt.__class__ = _localized(type(fmt))
-
-
-_LOCALIZED: dict[type, type] = {}
-
-
-def _localized(cls: type) -> type:
-    """A subclass of the tick formatter ``cls`` whose labels are localised (numfmt)."""
-    if getattr(cls, "_tmm_localized", False):
-        return cls
-    if cls not in _LOCALIZED:
-        def call(self, x, pos=None):
-            return numfmt.localize(cls.__call__(self, x, pos))
-
-        def ticks(self, values):
-            return [numfmt.localize(s) for s in cls.format_ticks(self, values)]
-
-        def offset(self):
-            return numfmt.localize(cls.get_offset(self))
-        _LOCALIZED[cls] = type("Localized" + cls.__name__, (cls,), {
-            "__call__": call, "format_ticks": ticks, "get_offset": offset, "_tmm_localized": True})
-    return _LOCALIZED[cls]
+def new_figure(width_mm: float = 170.0, height_mm: float = 100.0, nrows: int = 1, ncols: int = 1,
+               sharex: bool = False, gridspec_kw: dict | None = None):
+    """A new figure of the given size in millimetres (svgchart, laid out as matplotlib lays
+    out a figure: subplots_adjust's fractions, tight_layout); returns (fig, ax or axes)."""
+    from .svgchart import subplots
+    gk = gridspec_kw or {}
+    return subplots(width_mm, height_mm, nrows=nrows, ncols=ncols, sharex=sharex,
+                    height_ratios=gk.get("height_ratios"), width_ratios=gk.get("width_ratios"), mpl=True)
 
 
 _NAME_OK = re.compile(r"[^a-z0-9-]+")
@@ -293,7 +206,7 @@ def _hatch_strokes(p, q, depth, outward, n=None):
 
 
 def draw_ground(ax, xy, size: float, angle_deg: float = -90.0, lw=0.8, color="k"):
-    """A fixed pivot (matplotlib axes): small triangle ending in a hatched base, pointing
+    """A fixed pivot (svgchart axes): small triangle ending in a hatched base, pointing
     away from angle_deg (default: base below the pivot)."""
     sides, (e1, e2), d = _ground_lines(xy, size, angle_deg)
     for p, q in sides:
@@ -302,30 +215,18 @@ def draw_ground(ax, xy, size: float, angle_deg: float = -90.0, lw=0.8, color="k"
 
 
 def draw_hatch(ax, p, q, depth, outward, lw=0.8, color="k", n=None):
-    """A ground line p-q with short hatch strokes on the side `outward` (matplotlib axes)."""
+    """A ground line p-q with short hatch strokes on the side `outward` (svgchart axes)."""
     ax.plot([p[0], q[0]], [p[1], q[1]], color=color, lw=lw * 1.3, zorder=3)
     segs = _hatch_strokes(p, q, depth, outward, n)
-    if segs:
-        from matplotlib.collections import LineCollection
-        ax.add_collection(LineCollection(segs, colors=color, linewidths=lw * 0.7, zorder=3))
+    if segs:            # one polyline broken by NaN: one path, as matplotlib's LineCollection
+        xs = [v for a, b in segs for v in (a[0], b[0], np.nan)]
+        ys = [v for a, b in segs for v in (a[1], b[1], np.nan)]
+        ax.plot(xs, ys, color=color, lw=lw * 0.7, zorder=3)
 
 
 def draw_joint(ax, xy, r: float, color="k", lw=0.8, z=5):
     """A revolute pair: small open circle."""
-    from matplotlib.patches import Circle
-    ax.add_patch(Circle(xy, r, facecolor="white", edgecolor=color, lw=lw, zorder=z))
-
-
-def arrow(ax, p, q, color="k", lw=1.0, head=None, z=4, style="-|>", ls="-"):
-    """A vector p -> q (data coordinates); head size in points."""
-    from matplotlib.patches import FancyArrowPatch
-    if head is None:
-        head = 6
-    if math.hypot(q[0] - p[0], q[1] - p[1]) <= 1e-12:
-        return
-    ax.add_patch(FancyArrowPatch(tuple(p), tuple(q), arrowstyle=style,
-                                 mutation_scale=head, color=color, lw=lw,
-                                 linestyle=ls, shrinkA=0, shrinkB=0, zorder=z))
+    ax.circle(xy, r, facecolor="white", edgecolor=color, lw=lw, zorder=z)
 
 
 class _Segments:

@@ -1,6 +1,11 @@
 """Line charts written directly as SVG: the report's diagrams over the cycle
 (kinematic diagrams, loads, balancing moment and reactions, the flywheel's
-diagrams and the energy-mass diagram).
+diagrams and the energy-mass diagram), and, laid out as matplotlib laid them out
+(``mpl=True``, report.figures.new_figure / figure_at_scale), the figures matplotlib
+drew before: the cam's diagrams, construction and profile, the gear mesh, sliding and
+blocking contour, the planetary scheme, the two-DOF scheme and charts (patches,
+'///' hatches, spans, markers, annotations with arrows: ``fill``, ``fill_rings``,
+``rectangle``, ``circle``, ``axvspan``, ``annotate(arrowprops=...)``).
 
 The interface is the small part of matplotlib's the report used for them
 (``subplots``, ``ax.plot`` with format strings, ``axhline``/``axvline``,
@@ -103,6 +108,8 @@ def _nbins(length_mm: float, per_label: float) -> int:
 def tick_labels(ticks) -> list[str]:
     """Fewest decimals that show every tick exactly (as matplotlib's labels)."""
     ticks = np.asarray(ticks, float)
+    if not ticks.size:
+        return []
     for d in range(0, 7):
         if np.all(np.abs(np.round(ticks, d) - ticks) <= 1e-9 * max(1.0, float(np.max(np.abs(ticks))))):
             return [_num(t, d) for t in ticks]
@@ -110,6 +117,10 @@ def tick_labels(ticks) -> list[str]:
 
 
 _MATH = re.compile(r"\$([^$]*)\$")
+_TEX = re.compile(r"\\([A-Za-z]+)")
+_GREEK = dict(zip(("alpha", "beta", "gamma", "delta", "epsilon", "varepsilon", "eta", "theta", "lambda", "mu",
+                   "rho", "sigma", "tau", "phi", "varphi", "psi", "omega", "Delta", "Sigma", "Omega"),
+                  "αβγδεεηθλμρστϕφψωΔΣΩ"))
 _SCRIPT = re.compile(r"([_^])(\{[^}]*\}|.)")
 
 
@@ -117,6 +128,8 @@ def text_body(s: str, size_mm: float) -> str:
     """SVG text content of a label; $X_{ab}$ (matplotlib mathtext) -> italic X with a
     lowered smaller 'ab' (^ raised); its numbers as the current language writes them."""
     s = localize(s)
+    if "\\" in s:                                   # mathtext's Greek letters: $\\lambda_1$
+        s = _TEX.sub(lambda m: _GREEK.get(m.group(1), m.group(0)), s)
     segs: list[tuple[str, float, bool]] = []       # (text, baseline shift in em, italic)
     pos = 0
     for m in _MATH.finditer(s):
@@ -157,7 +170,7 @@ def _parse_fmt(fmt: str) -> tuple[str | None, str | None, str | None]:
     for ch in fmt:
         if ch in "bgrcmykw":
             color = ch
-        elif ch in "o.":
+        elif ch in "o.s^+":
             marker = ch
     if ls is None and marker is None:
         ls = "-"
@@ -188,7 +201,38 @@ class _ToDisplay:
 
 
 class _Line:
-    __slots__ = ("x", "y", "color", "lw", "ls", "marker", "ms", "label", "clip", "z")
+    __slots__ = ("x", "y", "color", "lw", "ls", "marker", "ms", "label", "clip", "z", "cap")
+
+    def __init__(self, **kw):
+        for k in self.__slots__:
+            setattr(self, k, kw.get(k))
+
+
+class _Patch:
+    """A filled or outlined shape in data coordinates (matplotlib's patches as far as the
+    report draws them): ``rings`` closed polygons (holes by the even-odd rule), or a
+    circle (``circle`` = (centre x, centre y, radius)); ``hatch``: '///' strokes."""
+    __slots__ = ("rings", "circle", "face", "edge", "lw", "z", "hatch", "clip", "label", "ls")
+
+    def __init__(self, **kw):
+        for k in self.__slots__:
+            setattr(self, k, kw.get(k))
+        self.clip = kw.get("clip", True)
+
+    def points(self):
+        if self.circle is not None:
+            x, y, r = self.circle
+            return np.array([x - r, x + r]), np.array([y - r, y + r])
+        pts = np.concatenate([np.asarray(r, float).reshape(-1, 2) for r in self.rings])
+        return pts[:, 0], pts[:, 1]
+
+
+class _Note:
+    """A text of the axes (annotate / text): at the data point (x, y), the y an axes fraction when
+    ``frac_y``; offset (dx, dy) points; ha/va as matplotlib's; an arrow from ``arrow_from``
+    (data) to (x, y) when given."""
+    __slots__ = ("s", "x", "y", "dx", "dy", "color", "pt", "va", "ha", "frac_y", "arrow_from", "arrow_lw",
+                 "arrow_color")
 
     def __init__(self, **kw):
         for k in self.__slots__:
@@ -201,7 +245,14 @@ class Axes:
         self.lines: list[_Line] = []
         self.hlines: list[tuple] = []
         self.vlines: list[tuple] = []
-        self.notes: list[tuple] = []
+        self.notes: list[_Note] = []
+        self.patches: list[_Patch] = []
+        self.spans: list[tuple] = []        # axvspan: (x0, x1, colour)
+        self.artists: list = []             # lines and patches in the order drawn (by zorder, then added)
+        self.axis_on = True
+        self.yticks = None
+        self.tick_pt = TICK_PT
+        self.title_at = None                # (y fraction, va) of a title inside the axes
         self.title = self.xlabel = self.ylabel = None
         self.title_pt = TITLE_PT
         self.side_titles: dict[str, tuple[str, float]] = {}     # loc 'left'/'right': (text, pt)
@@ -237,9 +288,55 @@ class Axes:
             color = TAB10[self._cycle % len(TAB10)]
             self._cycle += 1
         ms = kw.get("ms", kw.get("markersize", 6.0))
-        self.lines.append(_Line(x=x, y=y, color=css_color(color), lw=float(kw.get("lw", kw.get("linewidth", 1.0))),
-                                ls=ls, marker=marker, ms=float(ms), label=kw.get("label"),
-                                clip=kw.get("clip_on", True), z=kw.get("zorder", 2)))
+        x, y = np.atleast_1d(x).astype(float), np.atleast_1d(y).astype(float)
+        ln = _Line(x=x, y=y, color=css_color(color), lw=float(kw.get("lw", kw.get("linewidth", 1.0))),
+                   ls=ls, marker=marker, ms=float(ms), label=kw.get("label"),
+                   clip=kw.get("clip_on", True), z=kw.get("zorder", 2), cap=kw.get("solid_capstyle", "butt"))
+        self.lines.append(ln)
+        self.artists.append(ln)
+
+    def _patch(self, **kw):
+        p = _Patch(**kw)
+        self.patches.append(p)
+        self.artists.append(p)
+        return p
+
+    def fill(self, x, y, color="C0", lw=0.0, zorder=1, **kw):
+        """A filled polygon (matplotlib's ax.fill), no outline when lw is 0."""
+        pts = np.column_stack([np.asarray(x, float), np.asarray(y, float)])
+        c = css_color(kw.get("facecolor", color))
+        self._patch(rings=[pts], face=c, edge=c if lw else None, lw=float(lw), z=zorder)
+
+    def fill_rings(self, rings, facecolor, zorder=1):
+        """A filled region of outer rings and holes (a compound path: even-odd rule)."""
+        self._patch(rings=[np.asarray(r, float) for r in rings], face=css_color(facecolor), edge=None, lw=0.0,
+                    z=zorder)
+
+    def rectangle(self, xy, width, height, fill=False, lw=1.0, color="k", hatch=None, zorder=1):
+        """matplotlib's Rectangle patch: outlined (edge ``color``), filled or not, '///' hatched."""
+        x0, y0 = float(xy[0]), float(xy[1])
+        ring = np.array([[x0, y0], [x0 + width, y0], [x0 + width, y0 + height], [x0, y0 + height]])
+        self._patch(rings=[ring], face=css_color(color) if fill else None, edge=css_color(color), lw=float(lw),
+                    z=zorder, hatch=hatch)
+
+    def circle(self, xy, r, facecolor="white", edgecolor="k", lw=1.0, zorder=1):
+        """A circle of data radius r (matplotlib's Circle patch)."""
+        self._patch(circle=(float(xy[0]), float(xy[1]), float(r)), face=css_color(facecolor),
+                    edge=css_color(edgecolor), lw=float(lw), z=zorder)
+
+    def axvspan(self, a, b, color="0.9", lw=0.0, **kw):
+        self.spans.append((float(a), float(b), css_color(color)))
+
+    def axis(self, what):
+        if what == "off":
+            self.axis_on = False
+
+    def set_yticks(self, ticks):
+        self.yticks = np.asarray(ticks, float)
+
+    def tick_params(self, labelsize=None, **kw):
+        if labelsize:
+            self.tick_pt = float(labelsize)
 
     def axhline(self, y=0.0, color="k", lw=0.8, ls="-", **kw):
         self.hlines.append((float(y), css_color(color), float(kw.get("linewidth", lw)), kw.get("linestyle", ls)))
@@ -247,18 +344,34 @@ class Axes:
     def axvline(self, x=0.0, color="k", lw=0.8, ls="-", **kw):
         self.vlines.append((float(x), css_color(color), float(kw.get("linewidth", lw)), kw.get("linestyle", ls)))
 
-    def annotate(self, text, xy, xytext=(0, 0), textcoords="offset points", color="k", fontsize=None,
-                 va="baseline", **kw):
-        self.notes.append((str(text), float(xy[0]), float(xy[1]), float(xytext[0]), float(xytext[1]),
-                           css_color(color), float(fontsize or LABEL_PT), va))
+    def annotate(self, text, xy, xytext=None, textcoords=None, color="k", fontsize=None,
+                 va="baseline", ha="left", xycoords="data", arrowprops=None, **kw):
+        """A text at xy (data; ``xycoords`` ('data', 'axes fraction'): y a fraction of the
+        axes), moved by xytext points (or, with ``arrowprops`` and no textcoords, an arrow
+        from the data point xytext to xy, the text there)."""
+        dx = dy = 0.0
+        arrow_from = None
+        if xytext is not None:
+            if arrowprops is not None and textcoords in (None, "data"):
+                arrow_from = (float(xytext[0]), float(xytext[1]))
+            else:
+                dx, dy = float(xytext[0]), float(xytext[1])
+        ap = arrowprops or {}
+        self.notes.append(_Note(s=str(text), x=float(xy[0]), y=float(xy[1]), dx=dx, dy=dy, color=css_color(color),
+                                pt=float(fontsize or LABEL_PT), va=va, ha=ha,
+                                frac_y=isinstance(xycoords, tuple) and xycoords[1] == "axes fraction",
+                                arrow_from=arrow_from, arrow_lw=float(ap.get("lw", 1.0)),
+                                arrow_color=css_color(ap.get("color", "k"))))
 
-    def set_title(self, s, fontsize=None, loc="center", **kw):
+    def set_title(self, s, fontsize=None, loc="center", y=None, va=None, **kw):
         if loc in ("left", "right"):
             self.side_titles[loc] = (str(s), float(fontsize or TITLE_PT))
             return
         self.title = str(s)
         if fontsize:
             self.title_pt = float(fontsize)
+        if y is not None and y < 1.0:          # inside the axes (a drawing without axes)
+            self.title_at = (float(y), va or "baseline")
 
     # what figures.std_graph / std_axis and the label placement read (matplotlib's names)
     @property
@@ -340,14 +453,16 @@ class Axes:
     def legend(self, loc="best", ncol=1, fontsize=None, bbox_to_anchor=None, frameon=True, **kw):
         self.legend_kw = {"loc": loc, "fontsize": float(fontsize or LEGEND_PT),
                           "outside": bbox_to_anchor is not None and bbox_to_anchor[0] > 1.0,
-                          "frame": frameon}
+                          "frame": frameon, "ncol": max(1, int(ncol))}
 
     # ------------------------------------------------------------ layout
     def data_x(self) -> list[np.ndarray]:
-        return [l.x for l in self.lines] + [np.array([v[0]]) for v in self.vlines]
+        return ([l.x for l in self.lines] + [np.array([v[0]]) for v in self.vlines] +
+                [p.points()[0] for p in self.patches])
 
     def data_y(self) -> list[np.ndarray]:
-        return [l.y for l in self.lines] + [np.array([h[0]]) for h in self.hlines]
+        return ([l.y for l in self.lines] + [np.array([h[0]]) for h in self.hlines] +
+                [p.points()[1] for p in self.patches])
 
     def legend_entries(self):
         return [l for l in self.lines if l.label and not str(l.label).startswith("_")]
@@ -355,14 +470,18 @@ class Axes:
     def legend_size(self) -> tuple[float, float]:
         fs = self.legend_kw["fontsize"] * MM_PER_PT
         ent = self.legend_entries()
+        ncol = min(self.legend_kw.get("ncol", 1), max(len(ent), 1))
         w = 6.0 + max((_text_w(str(l.label), self.legend_kw["fontsize"]) for l in ent), default=0.0) + 2.0
-        return w, len(ent) * fs * 1.45 + 1.6
+        rows = -(-len(ent) // ncol)
+        return w * ncol, rows * fs * 1.45 + 1.6
 
     def margins(self) -> tuple[float, float, float, float]:
         """left, right, top, bottom in mm around the axes box."""
+        if not self.axis_on:
+            return 0.0, 0.0, 0.0, 0.0
         yt = self._yticks_for_margin()
         tick = 1.25 + 0.9
-        left = tick + max((_text_w(s, TICK_PT) for s in tick_labels(yt)), default=2.0) + 0.5
+        left = tick + max((_text_w(s, self.tick_pt) for s in tick_labels(yt)), default=2.0) + 0.5
         if self.ylabel:
             left += LABEL_PT * MM_PER_PT * 1.25 + 0.8
         bottom = 1.5
@@ -374,14 +493,16 @@ class Axes:
         top = max(pts) * MM_PER_PT * 1.5 + 0.8 if pts else 2.0
         right = 3.0
         if self.xlim is not None:      # labels annotated beyond the right end of the axes
-            for s, x, y, dx, dy, c, fpt, va in self.notes:
-                if x >= self.xlim[1]:
-                    right = max(right, dx * MM_PER_PT + 1.15 * _text_w(s, fpt) + 1.5)
+            for n in self.notes:
+                if n.x >= self.xlim[1]:
+                    right = max(right, n.dx * MM_PER_PT + 1.15 * _text_w(n.s, n.pt) + 1.5)
         if self.legend_kw and self.legend_kw["outside"] and self.legend_entries():
             right += self.legend_size()[0] + 1.0
         return left + 1.0, right, top, bottom
 
     def _yticks_for_margin(self):
+        if self.yticks is not None:
+            return self.yticks
         lo, hi = self._limits(self.data_y(), self.ylim)
         return nice_ticks(lo, hi, 9)
 
@@ -408,7 +529,16 @@ class Axes:
             xs = xs + ax.data_x()
         xlo, xhi = self._limits(xs, self.xlim)
         ylo, yhi = self._limits(self.data_y(), self.ylim)
-        if self.equal and w > 0 and h > 0:        # same data units per mm on both axes
+        if self.equal and self.fig.mpl and self.xlim is not None and self.ylim is not None and w > 0 and h > 0:
+            # matplotlib's adjustable 'box' (its default): the limits stay, the box shrinks about its centre
+            sx, sy = (xhi - xlo) / w, (yhi - ylo) / h
+            if sx > sy * (1 + 1e-12):
+                h2 = (yhi - ylo) / sx
+                self.box = (x0, y0 + (h - h2) / 2, w, h2)
+            elif sy > sx * (1 + 1e-12):
+                w2 = (xhi - xlo) / sy
+                self.box = (x0 + (w - w2) / 2, y0, w2, h)
+        elif self.equal and w > 0 and h > 0:        # same data units per mm on both axes
             sx, sy = (xhi - xlo) / w, (yhi - ylo) / h
             if sx > sy:
                 c, half = (ylo + yhi) / 2, sx * h / 2
@@ -430,16 +560,22 @@ class Axes:
         x0, y0, w, h = self.box
         xlo, xhi, ylo, yhi = self.view
         xt = self.xticks if self.xticks is not None else nice_ticks(xlo, xhi, _nbins(w, 3.0))
-        yt = nice_ticks(ylo, yhi, _nbins(h, 2.0))
+        yt = self.yticks if self.yticks is not None else nice_ticks(ylo, yhi, _nbins(h, 2.0))
         xt = xt[(xt >= xlo - 1e-9 * abs(xhi - xlo)) & (xt <= xhi + 1e-9 * abs(xhi - xlo))]
         yt = yt[(yt >= ylo - 1e-9 * abs(yhi - ylo)) & (yt <= yhi + 1e-9 * abs(yhi - ylo))]
         X, _ = self.to_mm(xt, np.zeros_like(xt))
         _, Y = self.to_mm(np.zeros_like(yt), yt)
-        if self.grid_on:
+        for a, b, c in self.spans:              # under the grid, as matplotlib's patches (zorder 1)
+            (Xa, Xb), _ = self.to_mm([a, b], [0.0, 0.0])
+            Xa, Xb = max(min(Xa, Xb), x0), min(max(Xa, Xb), x0 + w)
+            if Xb > Xa:
+                out.append(f'<rect x="{_f(Xa)}" y="{_f(y0)}" width="{_f(Xb - Xa)}" height="{_f(h)}" fill="{c}"/>')
+        if self.grid_on and self.axis_on:
             c, lw = self.grid_style
             d = " ".join([f"M{_f(x)} {_f(y0)}V{_f(y0 + h)}" for x in X] +
                          [f"M{_f(x0)} {_f(y)}H{_f(x0 + w)}" for y in Y])
-            out.append(f'<path d="{d}" fill="none" stroke="{c}" stroke-width="{_w(lw * MM_PER_PT)}"/>')
+            if d:
+                out.append(f'<path d="{d}" fill="none" stroke="{c}" stroke-width="{_w(lw * MM_PER_PT)}"/>')
         clip = f"{uid}-{k}"
         out.append(f'<clipPath id="{clip}"><rect x="{_f(x0)}" y="{_f(y0)}" width="{_f(w)}" '
                    f'height="{_f(h)}"/></clipPath>')
@@ -451,32 +587,70 @@ class Axes:
             Xv, _ = self.to_mm([x], [0.0])
             inside.append(self._stroke(f"M{_f(Xv[0])} {_f(y0)}V{_f(y0 + h)}", c, lw, ls))
         free = []
-        for ln in sorted(self.lines, key=lambda l: l.z):
+        for ln in sorted(self.artists, key=lambda l: l.z):
             target = inside if ln.clip else free
+            if isinstance(ln, _Patch):
+                target.extend(self._patch_svg(ln))
+                continue
             Lx, Ly = self.to_mm(ln.x, ln.y)
             if ln.ls:
+                if self.fig.mpl and ln.clip and len(Lx) > 2:       # as matplotlib: no path beyond the axes
+                    m = ln.lw * MM_PER_PT
+                    Lx, Ly = _clip_runs(Lx, Ly, x0 - m, y0 - m, x0 + w + m, y0 + h + m)
+                if self.fig.mpl and len(Lx) > 8:         # and simplified (matplotlib's path.simplify)
+                    Lx, Ly = _simplify(Lx, Ly, SIMPLIFY_MM)
                 d = _polyline_d(Lx, Ly)
                 if d:
-                    target.append(self._stroke(d, ln.color, ln.lw, ln.ls))
+                    target.append(self._stroke(d, ln.color, ln.lw, ln.ls, ln.cap))
             if ln.marker:
                 r = _marker_r(ln)
                 ok = np.isfinite(Lx) & np.isfinite(Ly)
                 if ln.clip:
                     ok &= (Lx >= x0 - r) & (Lx <= x0 + w + r) & (Ly >= y0 - r) & (Ly <= y0 + h + r)
-                d = "".join(f"M{_f(a - r)} {_f(b)}a{_f(r)} {_f(r)} 0 1 0 {_f(2 * r)} 0"
-                            f"a{_f(r)} {_f(r)} 0 1 0 {_f(-2 * r)} 0" for a, b in zip(Lx[ok], Ly[ok]))
-                if d:
+                d = _marker_d(ln.marker, r, Lx[ok], Ly[ok])
+                if d and ln.marker == "+":
+                    target.append(f'<path d="{d}" fill="none" stroke="{ln.color}" stroke-width="{_w(MM_PER_PT)}"/>')
+                elif d:
                     target.append(f'<path d="{d}" fill="{ln.color}" stroke="none"/>')
         inside.append("</g>")
         out.extend(inside)
         out.extend(free)
-        # frame, ticks, labels
+        if self.axis_on:
+            self._draw_axis(out, X, Y, xt, yt)
+        if self.title and self.title_at is not None:
+            tf = self.title_pt * MM_PER_PT
+            yfrac, va = self.title_at
+            # (matplotlib's title pad, 6 pt, above the given height)
+            out.append(_text(x0 + w / 2, y0 + (1 - yfrac) * h - 6.0 * MM_PER_PT + _va_shift(va, tf), self.title, tf,
+                             "middle"))
+        for n in self.notes:
+            X1, Y1 = self.to_mm([n.x], [n.y])
+            if n.frac_y:
+                Y1 = [y0 + (1.0 - n.y) * h]
+            elif self.fig.mpl and not (x0 - 1e-9 <= X1[0] <= x0 + w + 1e-9 and y0 - 1e-9 <= Y1[0] <= y0 + h + 1e-9):
+                continue        # matplotlib draws an annotation of a data point only inside the axes
+            f = n.pt * MM_PER_PT
+            if n.arrow_from is not None:
+                Xa, Ya = self.to_mm([n.arrow_from[0]], [n.arrow_from[1]])
+                out.append(_arrow_svg(Xa[0], Ya[0], X1[0], Y1[0], n.arrow_lw, n.arrow_color, n.pt))
+            if n.s:
+                # (svgchart's own charts: 'center' only, their other labels on the baseline)
+                va = n.va if self.fig.mpl or n.va == "center" else "baseline"
+                yy = Y1[0] - n.dy * MM_PER_PT + _va_shift(va, f)
+                out.append(_text(X1[0] + n.dx * MM_PER_PT, yy, n.s, f, _ANCHOR.get(n.ha, "start"), fill=n.color))
+        if self.legend_kw and self.legend_entries():
+            self._draw_legend(out)
+
+    def _draw_axis(self, out, X, Y, xt, yt):
+        """The frame, the ticks, their labels, the axis labels and the title above."""
+        x0, y0, w, h = self.box
         out.append(f'<rect x="{_f(x0)}" y="{_f(y0)}" width="{_f(w)}" height="{_f(h)}" fill="none" '
                    f'stroke="#000000" stroke-width="{_w(0.8 * MM_PER_PT)}"/>')
         tl = 3.5 * MM_PER_PT
         d = " ".join([f"M{_f(x)} {_f(y0 + h)}v{_f(tl)}" for x in X] + [f"M{_f(x0)} {_f(y)}h{_f(-tl)}" for y in Y])
-        out.append(f'<path d="{d}" stroke="#000000" stroke-width="{_w(0.8 * MM_PER_PT)}"/>')
-        fs = TICK_PT * MM_PER_PT
+        if d:
+            out.append(f'<path d="{d}" stroke="#000000" stroke-width="{_w(0.8 * MM_PER_PT)}"/>')
+        fs = self.tick_pt * MM_PER_PT
         if self.show_xticklabels:
             for x, s in zip(X, tick_labels(xt)):
                 out.append(_text(x, y0 + h + tl + 0.9 + 0.8 * fs, s, fs, "middle"))
@@ -487,31 +661,58 @@ class Axes:
         if self.xlabel and self.show_xticklabels:
             out.append(_text(x0 + w / 2, y0 + h + tl + 0.9 + fs + 0.5 + 0.95 * lf, self.xlabel, lf, "middle"))
         if self.ylabel:
-            yw = max((_text_w(s, TICK_PT) for s in ylabels), default=2.0)
+            yw = max((_text_w(s, self.tick_pt) for s in ylabels), default=2.0)
             xl = x0 - tl - 0.9 - yw - 0.8 - 0.25 * lf
             out.append(_text(xl, y0 + h / 2, self.ylabel, lf, "middle", rotate=True))
-        if self.title:
+        if self.title and self.title_at is None:
             tf = self.title_pt * MM_PER_PT
             out.append(_text(x0 + w / 2, y0 - 0.35 * tf - 0.8, self.title, tf, "middle"))
         for loc, (s, pt) in self.side_titles.items():
             tf = pt * MM_PER_PT
             out.append(_text(x0 if loc == "left" else x0 + w, y0 - 0.35 * tf - 0.8, s, tf,
                              "start" if loc == "left" else "end"))
-        for s, x, y, dx, dy, c, fpt, va in self.notes:
-            X1, Y1 = self.to_mm([x], [y])
-            f = fpt * MM_PER_PT
-            yy = Y1[0] - dy * MM_PER_PT + (0.35 * f if va == "center" else 0.0)
-            out.append(_text(X1[0] + dx * MM_PER_PT, yy, s, f, "start", fill=c))
-        if self.legend_kw and self.legend_entries():
-            self._draw_legend(out)
+
+    def _patch_svg(self, p: _Patch) -> list[str]:
+        """A patch's elements: its fill, its hatch strokes (clipped to it) and its outline."""
+        out = []
+        if p.circle is not None:
+            cx, cy, r = p.circle
+            (X,), (Y,) = self.to_mm([cx], [cy])
+            xlo, xhi, ylo, yhi = self.view
+            rx, ry = r / (xhi - xlo) * self.box[2], r / (yhi - ylo) * self.box[3]
+            attrs = (f'fill="{p.face or "none"}" stroke="{p.edge or "none"}" stroke-width="{_w(p.lw * MM_PER_PT)}"')
+            if abs(rx - ry) <= 1e-9 * max(rx, ry):
+                out.append(f'<circle cx="{_f(X)}" cy="{_f(Y)}" r="{_f(rx)}" {attrs}/>')
+            else:
+                out.append(f'<ellipse cx="{_f(X)}" cy="{_f(Y)}" rx="{_f(rx)}" ry="{_f(ry)}" {attrs}/>')
+            return out
+        rings = [np.column_stack(self.to_mm(r[:, 0], r[:, 1])) for r in p.rings]
+        d = trim("".join(("M" + "L".join(["%.2f %.2f"] * len(r)) + "Z") % tuple(r.ravel().tolist())
+                         for r in rings if len(r) >= 2))
+        if not d:
+            return out
+        if p.face:
+            rule = ' fill-rule="evenodd"' if len(rings) > 1 else ""
+            out.append(f'<path d="{d}" fill="{p.face}"{rule} stroke="none"/>')
+        if p.hatch:
+            out.append(self._stroke(_hatch_d(rings[0], p.hatch), p.edge or "#000000", 1.0, "-"))
+        if p.edge and p.lw > 0:
+            out.append(f'<path d="{d}" fill="none" stroke="{p.edge}" stroke-width="{_w(p.lw * MM_PER_PT)}" '
+                       f'stroke-linejoin="miter"/>')
+        return out
 
     @staticmethod
-    def _stroke(d, color, lw, ls):
+    def _stroke(d, color, lw, ls, cap="butt"):
         da = ""
         if ls in _DASH:
             da = ' stroke-dasharray="' + " ".join(_f(float(v) * lw * MM_PER_PT) for v in _DASH[ls].split()) + '"'
+        elif isinstance(ls, tuple):         # matplotlib's (offset, (on, off, ...)) in line widths
+            da = ' stroke-dasharray="' + " ".join(_f(float(v) * lw * MM_PER_PT) for v in ls[1]) + '"'
+            if ls[0]:
+                da += f' stroke-dashoffset="{_f(float(ls[0]) * lw * MM_PER_PT)}"'
+        capa = "butt" if da or cap != "projecting" else "square"
         return (f'<path d="{d}" fill="none" stroke="{color}" stroke-width="{_w(lw * MM_PER_PT)}"{da} '
-                f'stroke-linejoin="round" stroke-linecap="butt"/>')
+                f'stroke-linejoin="round" stroke-linecap="{capa}"/>')
 
     def _draw_legend(self, out):
         x0, y0, w, h = self.box
@@ -550,20 +751,145 @@ class Axes:
             out.append(f'<rect x="{_f(bx)}" y="{_f(by)}" width="{_f(lw_)}" height="{_f(lh)}" rx="0.5" '
                        f'fill="#ffffff" fill-opacity="0.8" stroke="#cccccc" stroke-width="{_w(0.8 * MM_PER_PT)}"/>')
         fs = self.legend_kw["fontsize"] * MM_PER_PT
-        for i, ln in enumerate(self.legend_entries()):
-            yc = by + 0.8 + fs * 1.45 * (i + 0.5)
+        ent = self.legend_entries()
+        ncol = min(self.legend_kw.get("ncol", 1), max(len(ent), 1))
+        rows = -(-len(ent) // ncol)
+        cw = lw_ / ncol
+        for i, ln in enumerate(ent):
+            col, row = divmod(i, rows)          # matplotlib fills the columns first
+            cx = bx + col * cw
+            yc = by + 0.8 + fs * 1.45 * (row + 0.5)
             if ln.ls:
-                out.append(self._stroke(f"M{_f(bx + 1.0)} {_f(yc)}h5", ln.color, ln.lw, ln.ls))
+                out.append(self._stroke(f"M{_f(cx + 1.0)} {_f(yc)}h5", ln.color, ln.lw, ln.ls))
             if ln.marker:
                 r = _marker_r(ln)
-                out.append(f'<circle cx="{_f(bx + 3.5)}" cy="{_f(yc)}" r="{_f(r)}" fill="{ln.color}"/>')
-            out.append(_text(bx + 7.0, yc + 0.35 * fs, str(ln.label), fs, "start"))
+                out.append(f'<circle cx="{_f(cx + 3.5)}" cy="{_f(yc)}" r="{_f(r)}" fill="{ln.color}"/>')
+            out.append(_text(cx + 7.0, yc + 0.35 * fs, str(ln.label), fs, "start"))
+
+
+_ANCHOR = {"left": "start", "center": "middle", "right": "end"}
+
+
+def _va_shift(va: str, f: float) -> float:
+    """From a text's anchor y (mm, y down) to its baseline, for matplotlib's vertical alignment
+    (DejaVu Sans: ascent ~0.76 em, descent ~0.24 em, x-height centre ~0.35 em)."""
+    return {"center": 0.35 * f, "top": 0.76 * f, "bottom": -0.24 * f}.get(va, 0.0)
+
+
+def _arrow_svg(xa, ya, xb, yb, lw, color, size_pt) -> str:
+    """matplotlib's annotate arrow '-|>' from (xa, ya) to (xb, yb) (mm): both ends shrunk by
+    2 pt, a filled head 0.4 x 0.4 of the text size (its mutation scale)."""
+    L = math.hypot(xb - xa, yb - ya)
+    if L <= 1e-9:
+        return ""
+    hl, hw = 0.4 * size_pt * MM_PER_PT, 0.2 * size_pt * MM_PER_PT
+    sh = 2.0 * MM_PER_PT if L > 4.0 * MM_PER_PT + hl else 0.0      # (a short arrow: not shrunk)
+    ux, uy = (xb - xa) / L, (yb - ya) / L
+    xa, ya, xb, yb = xa + ux * sh, ya + uy * sh, xb - ux * sh, yb - uy * sh
+    bx, by = xb - ux * hl, yb - uy * hl
+    head = (f"M{_f(xb)} {_f(yb)}L{_f(bx - uy * hw)} {_f(by + ux * hw)}L{_f(bx + uy * hw)} {_f(by - ux * hw)}Z")
+    return (f'<path d="M{_f(xa)} {_f(ya)}L{_f(bx)} {_f(by)}" fill="none" stroke="{color}" '
+            f'stroke-width="{_w(lw * MM_PER_PT)}"/>\n'
+            f'<path d="{head}" fill="{color}" stroke="{color}" stroke-width="{_w(lw * MM_PER_PT)}" '
+            f'stroke-linejoin="miter"/>')
+
+
+def _hatch_d(ring, hatch: str) -> str:
+    """matplotlib's '/' hatch (6 lines an inch per '/', 45°, bottom left to top right) inside the
+    convex polygon ``ring`` (mm, y down): the strokes' path data."""
+    n = hatch.count("/") * 6
+    if not n:
+        return ""
+    step = 2 * 25.4 / n                          # mm between the lines along x (matplotlib's 8 pt for '///')
+    # a line x - (-y) = c  (y down: rising to the right is x + y = c)
+    c = ring[:, 0] + ring[:, 1]
+    parts = []
+    k0, k1 = math.ceil(c.min() / step), math.floor(c.max() / step)
+    m = len(ring)
+    for k in range(k0, k1 + 1):
+        cc = k * step
+        hits = []
+        for i in range(m):
+            (xa, ya), (xb, yb) = ring[i], ring[(i + 1) % m]
+            fa, fb = xa + ya - cc, xb + yb - cc
+            if (fa < 0) != (fb < 0) and fa != fb:
+                t = fa / (fa - fb)
+                hits.append((xa + t * (xb - xa), ya + t * (yb - ya)))
+        if len(hits) >= 2:
+            hits.sort()
+            (p, q), (r, s_) = hits[0], hits[-1]
+            parts.append(f"M{_f(p)} {_f(q)}L{_f(r)} {_f(s_)}")
+    return "".join(parts)
 
 
 def _marker_r(ln) -> float:
     """Radius (mm) of a marker: 'o' of diameter ms pt, '.' of ms/2, each with matplotlib's
-    1 pt edge of the same colour."""
-    return ((ln.ms if ln.marker == "o" else 0.5 * ln.ms) + 1.0) * MM_PER_PT / 2
+    1 pt edge of the same colour ('s', '^', '+': half their size, the edge too)."""
+    if ln.marker == "+":
+        return ln.ms * MM_PER_PT / 2
+    return ((ln.ms if ln.marker != "." else 0.5 * ln.ms) + 1.0) * MM_PER_PT / 2
+
+
+def _marker_d(marker: str, r: float, X, Y) -> str:
+    """Path data of the markers at (X, Y) (mm): circles, squares, triangles or crosses."""
+    if marker == "s":
+        return "".join(f"M{_f(a - r)} {_f(b - r)}h{_f(2 * r)}v{_f(2 * r)}h{_f(-2 * r)}Z" for a, b in zip(X, Y))
+    if marker == "^":
+        return "".join(f"M{_f(a)} {_f(b - r)}L{_f(a + r)} {_f(b + r)}L{_f(a - r)} {_f(b + r)}Z"
+                       for a, b in zip(X, Y))
+    if marker == "+":
+        return "".join(f"M{_f(a - r)} {_f(b)}h{_f(2 * r)}M{_f(a)} {_f(b - r)}v{_f(2 * r)}" for a, b in zip(X, Y))
+    return "".join(f"M{_f(a - r)} {_f(b)}a{_f(r)} {_f(r)} 0 1 0 {_f(2 * r)} 0"
+                   f"a{_f(r)} {_f(r)} 0 1 0 {_f(-2 * r)} 0" for a, b in zip(X, Y))
+
+
+SIMPLIFY_MM = 0.01      # the most a simplified polyline leaves its points (matplotlib's is 1/9 px, 0.04 mm)
+
+
+def _simplify(X, Y, tol: float):
+    """The polyline with only the points that keep it within ``tol`` of every dropped one
+    (Ramer-Douglas-Peucker on each run between breaks); the ends of each run are kept."""
+    X, Y = np.asarray(X, float), np.asarray(Y, float)
+    ok = np.isfinite(X) & np.isfinite(Y)
+    keep = ~ok                                   # (the breaks stay)
+    edges = np.flatnonzero(np.diff(np.r_[0, ok.astype(np.int8), 0]))
+    for a, b in zip(edges[::2], edges[1::2]):    # runs a .. b-1
+        keep[a] = keep[b - 1] = True
+        stack = [(a, b - 1)]
+        while stack:
+            i, j = stack.pop()
+            if j - i < 2:
+                continue
+            dx, dy = X[j] - X[i], Y[j] - Y[i]
+            L = math.hypot(dx, dy)
+            px, py = X[i + 1:j] - X[i], Y[i + 1:j] - Y[i]
+            dist = np.abs(px * dy - py * dx) / L if L > 0 else np.hypot(px, py)
+            k = int(np.argmax(dist))
+            if dist[k] > tol:
+                k += i + 1
+                keep[k] = True
+                stack.append((i, k))
+                stack.append((k, j))
+    return X[keep], Y[keep]
+
+
+def _clip_runs(X, Y, xa, ya, xb, yb):
+    """The polyline without its runs of segments that lie wholly beyond the box (each such
+    run replaced by a break): a segment is kept when its bounding box meets the box."""
+    X, Y = np.asarray(X, float), np.asarray(Y, float)
+    with np.errstate(invalid="ignore"):
+        meet = ((np.maximum(X[:-1], X[1:]) >= xa) & (np.minimum(X[:-1], X[1:]) <= xb) &
+                (np.maximum(Y[:-1], Y[1:]) >= ya) & (np.minimum(Y[:-1], Y[1:]) <= yb))
+    if meet.all():
+        return X, Y
+    keep = np.zeros(len(X), bool)
+    keep[:-1] |= meet
+    keep[1:] |= meet
+    # a break (NaN) where a dropped run starts after a kept point
+    out_x, out_y = np.where(keep, X, np.nan), np.where(keep, Y, np.nan)
+    nan_run = ~keep & np.r_[False, keep[:-1]]
+    sel = keep | nan_run
+    return out_x[sel], out_y[sel]
 
 
 def _polyline_d(X, Y) -> str:
@@ -602,7 +928,11 @@ def _text(x, y, s, size_mm, anchor, fill=None, rotate=False) -> str:
 
 class Figure:
     def __init__(self, width_mm, height_mm, nrows=1, ncols=1, sharex=False, height_ratios=None,
-                 width_ratios=None):
+                 width_ratios=None, mpl=False):
+        # mpl: laid out as matplotlib lays out a figure (report.figures.new_figure): the
+        # fractions of subplots_adjust are kept (its defaults when the section calls neither it
+        # nor tight_layout), and an equal aspect with both limits set shrinks the axes' box
+        self.mpl = bool(mpl)
         self.w, self.h = float(width_mm), float(height_mm)
         self.nrows, self.ncols = nrows, ncols
         self.sharex = sharex
@@ -641,8 +971,40 @@ class Figure:
         self.layout()
         self.laid_out = True
 
-    def subplots_adjust(self, *a, **kw):
-        self.tight_layout()
+    def subplots_adjust(self, left=None, bottom=None, right=None, top=None, wspace=None, hspace=None):
+        if not self.mpl:
+            self.tight_layout()
+            return
+        self.adjust(left, bottom, right, top, wspace, hspace)
+
+    def adjust(self, left=None, bottom=None, right=None, top=None, wspace=None, hspace=None):
+        """The axes' boxes as matplotlib's subplot parameters (fractions of the figure; the
+        gaps fractions of the mean axes width / height) put them."""
+        left = 0.125 if left is None else left
+        right = 0.9 if right is None else right
+        bottom = 0.11 if bottom is None else bottom
+        top = 0.88 if top is None else top
+        wspace = 0.2 if wspace is None else wspace
+        hspace = 0.2 if hspace is None else hspace
+        W, H = (right - left) * self.w, (top - bottom) * self.h
+        cw = W / (self.ncols + wspace * (self.ncols - 1))
+        ch = H / (self.nrows + hspace * (self.nrows - 1))
+        ws = [cw * self.ncols * r / sum(self.wr) for r in self.wr]
+        hs = [ch * self.nrows * r / sum(self.hr) for r in self.hr]
+        if self.sharex:
+            for i in range(self.nrows - 1):
+                for ax in self.grid[i]:
+                    ax.show_xticklabels = False
+        y = (1 - top) * self.h
+        for i in range(self.nrows):
+            x = left * self.w
+            for j in range(self.ncols):
+                self.grid[i][j].box = (x, y, ws[j], hs[i])
+                x += ws[j] + wspace * cw
+            y += hs[i] + hspace * ch
+        for ax in self.axes_list():
+            ax.finish_view()
+        self.laid_out = True
 
     def layout(self):
         if self.sharex:
@@ -674,6 +1036,8 @@ class Figure:
         if self.laid_out:
             for ax in self.axes_list():
                 ax.finish_view()
+        elif self.mpl:
+            self.adjust()
         else:
             self.layout()
         uid = "\x00"                    # replaced by a hash of the drawing, below
@@ -690,10 +1054,10 @@ class Figure:
 
 
 def subplots(width_mm: float, height_mm: float, nrows: int = 1, ncols: int = 1, sharex: bool = False,
-             squeeze: bool = True, height_ratios=None, width_ratios=None):
+             squeeze: bool = True, height_ratios=None, width_ratios=None, mpl: bool = False):
     """(Figure, axes) as matplotlib's plt.subplots: one Axes, a 1-D array (one row or
     column) or a 2-D array (squeeze=False or a grid)."""
-    fig = Figure(width_mm, height_mm, nrows, ncols, sharex, height_ratios, width_ratios)
+    fig = Figure(width_mm, height_mm, nrows, ncols, sharex, height_ratios, width_ratios, mpl)
     arr = np.empty((nrows, ncols), dtype=object)
     for i in range(nrows):
         for j in range(ncols):

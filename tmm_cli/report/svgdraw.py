@@ -87,17 +87,36 @@ def _css_color(c) -> str:
         return _BASE[s]
     if s and s.replace(".", "", 1).isdigit() and 0.0 <= float(s) <= 1.0:     # a grey level
         return "#" + f"{round(255 * float(s)):02x}" * 3
-    from matplotlib.colors import to_hex   # the rare other spellings
-    try:
-        return to_hex(c, keep_alpha=False)
-    except ValueError:
-        raise ValueError(f"not a colour: {c!r}") from None
+    if s in _NAMED:
+        return _NAMED[s]
+    if s and s[0] == "c" and s[1:].isdigit():          # matplotlib's cycle 'C0'..'C9' (tab10)
+        return _TAB10[int(s[1:]) % 10]
+    if not isinstance(c, str):                         # an RGB(A) tuple of 0..1
+        try:
+            v = [float(x) for x in c][:3]
+        except (TypeError, ValueError):
+            v = []
+        if len(v) == 3 and all(0.0 <= x <= 1.0 for x in v):
+            return "#" + "".join(f"{round(255 * x):02x}" for x in v)
+    raise ValueError(f"not a colour: {c!r}")
+
+
+# tab10, matplotlib's default cycle ('C0'..'C9', 'tab:blue'...), and the CSS names the drawings use
+_TAB10 = ("#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f",
+          "#bcbd22", "#17becf")
+_NAMED = {"tab:" + n: c for n, c in zip(("blue", "orange", "green", "red", "purple", "brown", "pink", "gray",
+                                        "olive", "cyan"), _TAB10)}
+_NAMED.update({"tab:grey": _TAB10[7], "black": "#000000", "white": "#ffffff", "red": "#ff0000",
+               "green": "#008000", "blue": "#0000ff", "gray": "#808080", "grey": "#808080",
+               "orange": "#ffa500", "purple": "#800080", "brown": "#a52a2a", "cyan": "#00ffff",
+               "magenta": "#ff00ff", "yellow": "#ffff00", "navy": "#000080", "darkgreen": "#006400",
+               "darkred": "#8b0000", "lightgray": "#d3d3d3", "lightgrey": "#d3d3d3", "silver": "#c0c0c0"})
 
 
 
 def block_corners(c, angle_deg: float, w: float, h: float) -> list[np.ndarray]:
     """The four corners of a slider block w (along angle_deg) x h centred at c,
-    shared by the matplotlib drawings and the direct-SVG ones."""
+    shared by the drawings and the sheets."""
     a = math.radians(angle_deg)
     u = np.array([math.cos(a), math.sin(a)])
     v = np.array([-u[1], u[0]])

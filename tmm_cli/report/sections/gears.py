@@ -217,11 +217,8 @@ def contour_figure(ctx, g):
             ax.plot(a[:, 0], a[:, 1], color=col, ls=ls, lw=1.1, label=None if name in seen else lab)
             seen.add(name)
     # the admissible region (the stage's polygons: outer ring, then holes)
-    from matplotlib.patches import PathPatch
-    from matplotlib.path import Path
     for rings in bc["region"]:
-        path = Path.make_compound_path(*(Path(np.asarray(r), closed=True) for r in rings))
-        ax.add_patch(PathPatch(path, facecolor="#cfe8cf", edgecolor="none", zorder=0))
+        ax.fill_rings(rings, facecolor="#cfe8cf", zorder=0)
     ax.plot(*bc["chosen"], "ko", ms=4)
     ax.set_xlim(*bc["x1_range"])
     ax.set_ylim(*bc["x2_range"])

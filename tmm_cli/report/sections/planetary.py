@@ -57,8 +57,7 @@ def figure(ctx, p):
     rows, a = _rows_of(p)
     for name, y0, y1, col, fixed in rows:
         x0 = col * 1.2
-        ax.add_patch(__import__("matplotlib.patches", fromlist=["Rectangle"]).Rectangle(
-            (x0, y0 * 1e3), 0.8, (y1 - y0) * 1e3, fill=False, lw=1.2, hatch="///" if fixed else None))
+        ax.rectangle((x0, y0 * 1e3), 0.8, (y1 - y0) * 1e3, fill=False, lw=1.2, hatch="///" if fixed else None)
         ax.annotate(name, (x0 + 0.4, (y0 + y1) / 2 * 1e3), ha="center", va="center")
     ax.plot([-0.3, 2.3], [0, 0], "k-.", lw=0.6)
     ax.plot([2.2, 2.2, 0.4], [0, a * 1e3, a * 1e3], "k-", lw=1.0)
