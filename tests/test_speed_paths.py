@@ -159,12 +159,14 @@ def test_run_holds_its_results_to_the_program_end(tmp_path):
     assert held[0].keys() == lists[0][0].keys() - {"kinematics_explore", "kinetostatics_explore"}
 
 
-def test_program_ends_at_once_unless_shutdown_has_work(tmp_path):
+@pytest.mark.parametrize("command", ["validate good", "validate bad", "run json", "run html,pdf"])
+def test_program_ends_at_once_unless_shutdown_has_work(tmp_path, command):
     """The program (`tmm`, `python -m tmm_cli`: cli.entry) ends a plain run / validate
     without the interpreter's shutdown (a global's finalizer never runs), its output all
     written and its exit code kept, its atexit callbacks run first (a report's:
     multiprocessing's, tempfile's); `main()` called by a program that goes on or a running
-    thread take the ordinary exit (which runs the finalizer)."""
+    thread take the ordinary exit (which runs the finalizer). One test per command line
+    (each runs its programs one after another)."""
     good = str(ROOT / "tasks" / "forging_sixbar.yaml")
     bad = tmp_path / "bad.yaml"
     bad.write_text("schema: tmm/1\nmechanism:\n  ground: {O: [0, 0]}\n  linkz: {}\n", encoding="utf-8")
@@ -177,9 +179,10 @@ def test_program_ends_at_once_unless_shutdown_has_work(tmp_path):
                       "from tmm_cli.cli import entry\nentry()\n",
             "thread": "threading.Thread(target=threading.main_thread().join).start()\n"     # to the end
                       "from tmm_cli.cli import entry\nentry()\n"}
-    for args, code, out in ((["validate", good], 0, f"{good}: ok\n"), (["validate", str(bad)], 2, ""),
-                            (["run", good, "-f", "json", "-o", "o"], 0, None),
-                            (["run", good, "-f", "html,pdf", "-o", "r"], 0, None)):
+    cases = {"validate good": (["validate", good], 0, f"{good}: ok\n"), "validate bad": (["validate", str(bad)], 2, ""),
+             "run json": (["run", good, "-f", "json", "-o", "o"], 0, None),
+             "run html,pdf": (["run", good, "-f", "html,pdf", "-o", "r"], 0, None)}
+    for args, code, out in [cases[command]]:
         for name, tail in ends.items():
             if "html,pdf" in args and name not in ("entry", "atexit"):
                 continue                            # a report: the early exit after its atexit work
