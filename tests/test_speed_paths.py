@@ -159,7 +159,7 @@ def test_run_holds_its_results_to_the_program_end(tmp_path):
     assert held[0].keys() == lists[0][0].keys() - {"kinematics_explore", "kinetostatics_explore"}
 
 
-@pytest.mark.parametrize("command", ["validate good", "validate bad", "run json", "run html,pdf"])
+@pytest.mark.parametrize("command", ["validate-good", "validate-bad", "run-json", "run-html,pdf"])
 def test_program_ends_at_once_unless_shutdown_has_work(tmp_path, command):
     """The program (`tmm`, `python -m tmm_cli`: cli.entry) ends a plain run / validate
     without the interpreter's shutdown (a global's finalizer never runs), its output all
@@ -179,9 +179,9 @@ def test_program_ends_at_once_unless_shutdown_has_work(tmp_path, command):
                       "from tmm_cli.cli import entry\nentry()\n",
             "thread": "threading.Thread(target=threading.main_thread().join).start()\n"     # to the end
                       "from tmm_cli.cli import entry\nentry()\n"}
-    cases = {"validate good": (["validate", good], 0, f"{good}: ok\n"), "validate bad": (["validate", str(bad)], 2, ""),
-             "run json": (["run", good, "-f", "json", "-o", "o"], 0, None),
-             "run html,pdf": (["run", good, "-f", "html,pdf", "-o", "r"], 0, None)}
+    cases = {"validate-good": (["validate", good], 0, f"{good}: ok\n"), "validate-bad": (["validate", str(bad)], 2, ""),
+             "run-json": (["run", good, "-f", "json", "-o", "o"], 0, None),
+             "run-html,pdf": (["run", good, "-f", "html,pdf", "-o", "r"], 0, None)}
     for args, code, out in [cases[command]]:
         for name, tail in ends.items():
             if "html,pdf" in args and name not in ("entry", "atexit"):
