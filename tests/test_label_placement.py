@@ -227,12 +227,21 @@ def test_taken_list_is_extended_in_place():
 TASKS = sorted(p.stem for p in (Path(__file__).resolve().parents[1] / "tasks").glob("*.yaml"))
 
 
-@pytest.mark.parametrize("lang, tasks, formats", [
-    ("en", TASKS, {"html"}),
-    ("en", ["forging_sixbar", "synthesis_shaper", "gears_shifted"], {"sheets"}),
-    ("ru", ["forging_sixbar", "shaper_slotted_lever"], {"html", "sheets"}),
-    ("uk", ["compressor_v_twin", "press_drive_train"], {"html", "sheets"})])
-def test_tasks(lang, tasks, formats, tmp_path, monkeypatch):
+# one test per task and language (each a report or sheets of its own: the suite's workers
+# share them out instead of one worker rendering all 31 reports in a row)
+_CASES = ([("en", t, ("html",)) for t in TASKS]
+          + [("en", t, ("sheets",)) for t in ["forging_sixbar", "synthesis_shaper", "gears_shifted"]]
+          + [("ru", t, ("html", "sheets")) for t in ["forging_sixbar", "shaper_slotted_lever"]]
+          + [("uk", t, ("html", "sheets")) for t in ["compressor_v_twin", "press_drive_train"]])
+
+
+# the reports that place no label (a cam's, a gear pair's, a planetary or differential
+# train's, an impact rotor's): the others place from 26 to 197 in their report
+_UNLABELLED = ("cam_", "gears_", "planetary_", "differential_", "impact_")
+
+
+@pytest.mark.parametrize("lang, task, formats", _CASES, ids=[f"{lg}-{t}-{'+'.join(f)}" for lg, t, f in _CASES])
+def test_tasks(lang, task, formats, tmp_path, monkeypatch):
     """Every call the reports and the drawing sheets of the tasks make: the same places
     (every task's report and sheets in en, ru and uk were checked so when the anchors were
     batched: 6462 calls, 37,821 labels)."""
@@ -250,9 +259,10 @@ def test_tasks(lang, tasks, formats, tmp_path, monkeypatch):
 
     monkeypatch.setattr(figures, "place_labels", both)
     root = Path(__file__).resolve().parents[1] / "tasks"
-    for task in tasks:
-        orchestrate.process(root / f"{task}.yaml", tmp_path / task, formats, lang)
-    assert calls[0] > 3 * len(tasks)
+    orchestrate.process(root / f"{task}.yaml", tmp_path / task, set(formats), lang)
+    if formats == ("html",) and task.startswith(_UNLABELLED):
+        return              # a report with no labelled plan or polygon: any call it makes is compared all the same
+    assert calls[0] > (0 if task == "gears_shifted" else 3)       # a gear sheet: one labelled drawing
 
 
 def test_segment_set_has_the_parts_of_the_segments():

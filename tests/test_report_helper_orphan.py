@@ -59,14 +59,15 @@ def test_helper_exits_when_main_process_is_killed(tmp_path, kill_when):
                 time.sleep(0.02)
         os.kill(main.pid, signal.SIGKILL)
         main.wait(timeout=10)
+        # it exits when its pipe closes (no clock of its own to wait for): a generous bound,
+        # not a wall time a busy machine could miss -- a helper waiting forever stays past it
         t0 = time.monotonic()
-        while _running(helper) and time.monotonic() - t0 < 10:
+        while _running(helper) and time.monotonic() - t0 < 60:
             time.sleep(0.05)
         alive = _running(helper)
         if alive:
             os.kill(helper, signal.SIGKILL)
         assert not alive, "the report helper outlived the main process"
-        assert time.monotonic() - t0 < 5
     finally:
         if main.poll() is None:
             main.kill()

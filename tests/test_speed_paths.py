@@ -170,12 +170,14 @@ def test_run_holds_its_results_to_the_program_end(tmp_path):
     assert held[0].keys() == lists[0][0].keys() - {"kinematics_explore", "kinetostatics_explore"}
 
 
-def test_program_ends_at_once_unless_shutdown_has_work(tmp_path):
+@pytest.mark.parametrize("command", ["validate-good", "validate-bad", "run-json", "run-html,pdf"])
+def test_program_ends_at_once_unless_shutdown_has_work(tmp_path, command):
     """The program (`tmm`, `python -m tmm_cli`: cli.entry) ends a plain run / validate
     without the interpreter's shutdown (a global's finalizer never runs), its output all
     written and its exit code kept, its atexit callbacks run first (a report's:
     multiprocessing's, tempfile's); `main()` called by a program that goes on or a running
-    thread take the ordinary exit (which runs the finalizer)."""
+    thread take the ordinary exit (which runs the finalizer). One test per command line
+    (each runs its programs one after another)."""
     good = str(ROOT / "tasks" / "forging_sixbar.yaml")
     bad = tmp_path / "bad.yaml"
     bad.write_text("schema: tmm/1\nmechanism:\n  ground: {O: [0, 0]}\n  linkz: {}\n", encoding="utf-8")
@@ -188,9 +190,10 @@ def test_program_ends_at_once_unless_shutdown_has_work(tmp_path):
                       "from tmm_cli.cli import entry\nentry()\n",
             "thread": "threading.Thread(target=threading.main_thread().join).start()\n"     # to the end
                       "from tmm_cli.cli import entry\nentry()\n"}
-    for args, code, out in ((["validate", good], 0, f"{good}: ok\n"), (["validate", str(bad)], 2, ""),
-                            (["run", good, "-f", "json", "-o", "o"], 0, None),
-                            (["run", good, "-f", "html,pdf", "-o", "r"], 0, None)):
+    cases = {"validate-good": (["validate", good], 0, f"{good}: ok\n"), "validate-bad": (["validate", str(bad)], 2, ""),
+             "run-json": (["run", good, "-f", "json", "-o", "o"], 0, None),
+             "run-html,pdf": (["run", good, "-f", "html,pdf", "-o", "r"], 0, None)}
+    for args, code, out in [cases[command]]:
         for name, tail in ends.items():
             if "html,pdf" in args and name not in ("entry", "atexit"):
                 continue                            # a report: the early exit after its atexit work
@@ -818,19 +821,20 @@ def test_ground_rrr_dyad_equals_the_generic_paths_on_random_four_bars(gx, gy, r,
           "singular positions" if out.singular is not None else "assembles")
 
 
+@pytest.mark.parametrize("up", [True, False])
 @pytest.mark.parametrize("g", [(0.3, 0.0), (0.0, 0.3)])
 @pytest.mark.parametrize("r,lb,lc", [(0.1, 0.3, 0.3), (0.1, 0.3, 0.1), (0.3, 0.3, 0.3)])
-def test_ground_rrr_dyad_equals_the_generic_paths_with_exact_zeros(g, r, lb, lc, monkeypatch):
+def test_ground_rrr_dyad_equals_the_generic_paths_with_exact_zeros(g, r, lb, lc, up, monkeypatch):
     """Four-bars with the ground pivots on an axis, at crank angles of whole 45 deg (exact
-    zeros among the coordinates and derivatives: their signs), every closure, order of the
-    links and of their points, triangular links: the fused RRR dyad equals the generic
-    path bit for bit (a signed zero lost in its derivatives shows here)."""
+    zeros among the coordinates and derivatives: their signs), every closure (one test
+    each), order of the links and of their points, triangular links: the fused RRR dyad
+    equals the generic path bit for bit (a signed zero lost in its derivatives shows here)."""
     import itertools
     from tmm_cli.linkage.mechanism import build_mechanism
     from tmm_cli.task import load_task
     grid = np.arange(8) * 45.0
-    for up, order, rod_rev, rocker_rev, tri in itertools.product((True, False), (True, False), (True, False),
-                                                                 (True, False), (0, 1, 2, 3)):
+    for order, rod_rev, rocker_rev, tri in itertools.product((True, False), (True, False), (True, False),
+                                                             (0, 1, 2, 3)):
         src = _four_bar(g, r, lb, lc, up, order, rod_rev, rocker_rev, tri)
         make = lambda: build_mechanism(load_task(src))      # noqa: E731
         _same_runs(make, np.radians(grid), monkeypatch, kws=({"strict": False}, {"strict": False, "dets": True}))
