@@ -480,9 +480,23 @@ SYNTHESIS_INPUTS = {  # type -> (required, exactly-one-of groups, optional)
     "slotted_lever": (("frame",), (("K", "theta"),), ("rocker",)),
     "shaper": (("H", "frame"), (("K", "theta"),), ("rocker", "guide_height")),
     "function": (("function_", "x", "input", "output", "frame"), (), ("points",)),
+    "positions": (("positions", "moving_pivots"), (), ()),
+    "path": (("points",), (), ("gamma_min",)),
 }
 SYNTHESIS_FIELDS = ("H", "psi", "K", "theta", "lambda_", "e", "gamma_min", "rocker", "frame", "guide_height",
-                    "function_", "x", "input", "output", "points")
+                    "function_", "x", "input", "output", "points", "positions", "moving_pivots")
+
+
+class CouplerPose(_Model):
+    """A position of the coupler plane: its point P (m) and its angle (deg, from +x)."""
+    P: LengthPair
+    angle: Angle
+
+
+class MovingPivots(_Model):
+    """The moving pivots in the coupler plane's own frame (at P, x along the plane's angle), m."""
+    A: LengthPair
+    B: LengthPair
 
 
 def _function_text(v):
@@ -511,7 +525,8 @@ class AngleRange(_Model):
 
 
 class SynthesisSection(_Model):
-    type: Literal["slider_crank", "offset_slider_crank", "crank_rocker", "slotted_lever", "shaper", "function"]
+    type: Literal["slider_crank", "offset_slider_crank", "crank_rocker", "slotted_lever", "shaper", "function",
+                  "positions", "path"]
     H: Length | None = Field(None, gt=0)
     psi: Angle | None = Field(None, gt=0, lt=180)
     K: Ratio | None = Field(None, gt=0)
@@ -529,8 +544,13 @@ class SynthesisSection(_Model):
                                                        "over the range of x: {start, range}")
     output: AngleRange | None = Field(None, description="function generation: the rocker angle psi (deg, from O->O1 "
                                                         "at O1) over the range of y: {start, range}")
-    points: int | None = Field(None, ge=3, le=5, description="function generation: precision points, Chebyshev "
-                                                              "spacing (3; 4 or 5 by least squares)")
+    points: Union[Annotated[int, Field(ge=3, le=5)], Annotated[list[LengthPair], Field(min_length=5, max_length=20)],
+                  None] = Field(None, description="function generation: precision points, Chebyshev spacing (3; 4 or "
+                                                  "5 by least squares); path: the 5 to 20 points [x, y] (m) to pass")
+    positions: Annotated[list[CouplerPose], Field(min_length=3, max_length=3)] | None = Field(
+        None, description="three positions: the coupler plane's three positions {P: [x, y], angle}")
+    moving_pivots: MovingPivots | None = Field(None, description="three positions: {A: [u, v], B: [u, v]} in the "
+                                                                 "plane's frame at P, x along its angle, m")
     links: dict[str, SynthesisLinkSpec] = Field(default_factory=dict)
 
     @model_validator(mode="after")
@@ -556,6 +576,14 @@ class SynthesisSection(_Model):
                                       Message("input.synth_one_of", type=self.type, names=names))
         if self.type == "function" and self.x[0] == self.x[1]:
             raise FieldValueError(("x",), Message("input.synth_x_range"))
+        if self.points is not None and isinstance(self.points, int) != (self.type == "function"):
+            raise FieldValueError(("points",), Message("input.synth_points_function" if self.type == "function"
+                                                       else "input.synth_points_path"))
+        if self.type == "positions":
+            from .linkage.synthesis_positions import check
+            bad = check(self)
+            if bad:
+                raise FieldValueError(*bad)
         if self.type == "slider_crank":
             th = self.theta if self.theta is not None else (180.0 * (self.K - 1) / (self.K + 1)
                                                             if self.K is not None else 0.0)
@@ -1030,7 +1058,8 @@ _DOCS_SYNTHESIS: dict[type, dict[str, str]] = {
     Task: {"synthesis": "design the lever mechanism from K and the stroke; replaces `mechanism` (the generated "
                         "links: crank, rod, slider | crank, coupler, rocker | crank, block, rocker[, blockC, ram])"},
     SynthesisSection: {
-        "type": "slider_crank | offset_slider_crank | crank_rocker | slotted_lever | shaper",
+        "type": "slider_crank | offset_slider_crank | crank_rocker | slotted_lever | shaper | function | positions "
+                "| path",
         "H": "stroke of the slider or ram, m (slider-cranks, shaper)",
         "psi": "swing of the rocker, deg (crank_rocker)",
         "K": "coefficient of mean speed increase K = (180 + theta)/(180 - theta) (or give theta)",
