@@ -442,6 +442,8 @@ ENGLISH = [
     ('synthesis.fail.positions_crank', {'a': 0.25, 'b': 0.3, 'c': 0.22, 'd': 0.3},
      "synthesis: the linkage through the three positions has the crank 0.25 m, coupler 0.3 m, rocker 0.22 m and "
      "frame 0.3 m: by Grashof's rule its crank cannot turn fully; move `moving_pivots` or change `positions`"),
+    ('synthesis.fail.path_none', {'gamma': 30.0}, 'synthesis: no crank-rocker with the least transmission angle '
+     '30 deg was found whose coupler point passes near the points: lower `gamma_min` or change `points`'),
     ('input.balancing_radius', {'method': 'full', 'key': 'rocker'},
      'counterweights by the full method need `radius: {rocker: ...}` (m)'),
     ('input.balancing_radius_positive', {'key': 'crank'}, "the counterweight's radius `crank` must be above zero"),

@@ -104,15 +104,15 @@ def path_svg(r: dict) -> tuple[str, float]:
     T = np.asarray(r["points"], float)
     curve = coupler_curve(r)
     L = r["lengths"]
-    pts = [O, O1, *T, *curve, O + (L["crank"], L["crank"]), O - (L["crank"], L["crank"])]
+    f = r["first"]
+    A, B, M = (np.asarray(f[k]) for k in ("A", "B", "M"))
+    pts = [O, O1, A, B, M, *T, *curve, O + (L["crank"], L["crank"]), O - (L["crank"], L["crank"])]
     sh = _Sheet(np.vstack(pts))
     cv, m = sh.cv, sh.m
     if len(curve):
         cv.polyline([m(p) for p in curve], "#1f4e99", 0.4, closed=True)
     t = np.linspace(0, 2 * math.pi, 121)
     cv.polyline([m(O + L["crank"] * np.array([math.cos(x), math.sin(x)])) for x in t], "#777", 0.2, dash="1.5,1")
-    f = r["first"]
-    A, B, M = (np.asarray(f[k]) for k in ("A", "B", "M"))
     cv.line(m(O), m(A), "#000", 0.5)
     cv.polygon([m(A), m(B), m(M)], fill="#ddd", z=0, stroke="#000", width=0.35)
     cv.line(m(O1), m(B), "#000", 0.5)
