@@ -489,14 +489,14 @@ SYNTHESIS_FIELDS = ("H", "psi", "K", "theta", "lambda_", "e", "gamma_min", "rock
 
 class CouplerPose(_Model):
     """A position of the coupler plane: its point P (m) and its angle (deg, from +x)."""
-    P: LengthPair
-    angle: Angle
+    P: LengthPair = Field(..., description="the plane's point P [x, y], m")
+    angle: Angle = Field(..., description="the plane's angle from +x, deg")
 
 
 class MovingPivots(_Model):
     """The moving pivots in the coupler plane's own frame (at P, x along the plane's angle), m."""
-    A: LengthPair
-    B: LengthPair
+    A: LengthPair = Field(..., description="moving pivot A [u, v] in the plane's frame, m")
+    B: LengthPair = Field(..., description="moving pivot B [u, v] in the plane's frame, m")
 
 
 def _function_text(v):
