@@ -143,6 +143,17 @@ def _xy(ctx, p, digits=6):
     return f"({ctx.fmt(p[0], digits)}; {ctx.fmt(p[1], digits)})"
 
 
+def _given(p):
+    """A point as the task gives it (no padding zeros), in the language's writing."""
+    from .task import num
+    return f"({num(float(p[0]))}; {num(float(p[1]))})"
+
+
+def _scale(ctx, s):
+    from ...numfmt import localize
+    return localize(f"{s:g}", ctx.lang)
+
+
 def build_positions(ctx, r, names) -> str:
     f, t = ctx.fmt, ctx.t
     mu = t("syn.m")
@@ -156,7 +167,7 @@ def build_positions(ctx, r, names) -> str:
             (t("syn.pos.order"), t("syn.pos.defect" if df["order"] else "syn.pos.none"))]
     rows = []
     for j, (g, q) in enumerate(zip(r["positions"], r["targets"])):
-        rows.append((str(j + 1), _xy(ctx, q["P"]), f(q["angle"], 6), f(g["crank_angle"], 6), _xy(ctx, g["P"]),
+        rows.append((str(j + 1), _given(q["P"]), f(q["angle"], 6), f(g["crank_angle"], 6), _xy(ctx, g["P"]),
                      f(g["angle"], 6), f(g["deviation"], 3), f(g["angle_error"], 3)))
     head = [t("syn.pos.n"), t("syn.pos.P_target"), t("syn.pos.angle_target"), t("syn.pos.phi"),
             t("syn.pos.P_got"), t("syn.pos.angle_got"), t("syn.pos.dev"), t("syn.pos.dangle")]
@@ -165,7 +176,7 @@ def build_positions(ctx, r, names) -> str:
     return ctx.render("sections/synthesis_motion.html.j2", method=t("syn.pos.method"), info=info,
                       lens=_lens(ctx, r, names), head=head, rows=rows, warn=warn, rows_title=t("syn.pos.table"),
                       fig=ctx.figures.named(svg, "synthesis-positions"),
-                      fig_caption=t("syn.pos.fig", s=f(scale, 4)))
+                      fig_caption=t("syn.pos.fig", s=_scale(ctx, scale)))
 
 
 def build_path(ctx, r, names) -> str:
@@ -179,11 +190,11 @@ def build_path(ctx, r, names) -> str:
             (t("syn.fn.grashof"), t(f"syn.grashof.{r['grashof']}")),
             (t("syn.gamma"), t("syn.gamma_at", g=f(r["gamma_min"], 6), p=f(r["gamma_min_phi"], 5))),
             (t("syn.path.max"), f"{f(r['max_deviation'], 4)} {mu}")]
-    rows = [(str(j + 1), _xy(ctx, p), f(dv, 4), f(phi, 5))
+    rows = [(str(j + 1), _given(p), f(dv, 4), f(phi, 5))
             for j, (p, dv, phi) in enumerate(zip(r["points"], r["deviations"], r["crank_angles"]))]
     head = [t("syn.pos.n"), t("syn.path.point"), t("syn.path.dev"), t("syn.pos.phi")]
     svg, scale = path_svg(r)
     return ctx.render("sections/synthesis_motion.html.j2", method=t("syn.path.method", n=len(r["points"])),
                       info=info, lens=_lens(ctx, r, names), head=head, rows=rows, warn=[],
                       rows_title=t("syn.path.table"), fig=ctx.figures.named(svg, "synthesis-path"),
-                      fig_caption=t("syn.path.fig", s=f(scale, 4)))
+                      fig_caption=t("syn.path.fig", s=_scale(ctx, scale)))
