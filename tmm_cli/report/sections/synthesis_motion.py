@@ -124,12 +124,17 @@ def path_svg(r: dict) -> tuple[str, float]:
     sh.label(O1, "O₁", (2.0, -3.0))
     sh.label(A, "A", (-3.5, 1.5))
     sh.label(B, "B", (1.5, 1.5))
-    sh.label(M, "M", (1.5, 1.5))
+    # each point's number outward from the points' centroid; M's label toward it (M sits at point 1)
+    c0 = m(T.mean(axis=0))
+    out = [(m(p) - c0) / (np.linalg.norm(m(p) - c0) or 1.0) for p in T]
+    qm = m(M) - 4.0 * out[0]
+    cv.text(qm[0], qm[1], "M", size=6.5, italic=True, halo=True)
     for j, p in enumerate(T):
         q = m(p)
         cv.line(q + (-1.2, -1.2), q + (1.2, 1.2), "#b00", 0.35)
         cv.line(q + (-1.2, 1.2), q + (1.2, -1.2), "#b00", 0.35)
-        cv.text(q[0] + 2.0, q[1] + 1.5, str(j + 1), size=5.5, color="#b00", halo=True)
+        qt = q + 3.5 * out[j]
+        cv.text(qt[0], qt[1], str(j + 1), size=5.5, color="#b00", halo=True)
     return cv.to_svg(), sh.scale
 
 
