@@ -175,3 +175,12 @@ def test_starter_runs(tmp_path):
     # 150 mm and 60 mm read as the example's 0.15 m and 0.06 m: the same fixed pivots
     ex = run(load_task(ROOT / "tasks" / "synthesis_positions.yaml"))["synthesis"]
     assert r["fixed_pivots"]["O1"] == pytest.approx(ex["fixed_pivots"]["O1"], abs=1e-14)
+
+
+def test_coinciding_moving_pivots_exit_2(tmp_path):
+    f = tmp_path / "t.yaml"
+    f.write_text("schema: tmm/1\nsynthesis:\n  type: positions\n  positions:\n"
+                 "    - {P: [0, 0], angle: 0}\n    - {P: [0.1, 0], angle: 20}\n    - {P: [0.2, 0.1], angle: 40}\n"
+                 "  moving_pivots: {A: [0.05, 0.02], B: [0.05, 0.02]}\ndrive: {link: crank, speed: 6}\n")
+    res = runner.invoke(app, ["validate", str(f)])
+    assert res.exit_code == 2 and "coincide" in res.output and "t.yaml:8:" in res.output

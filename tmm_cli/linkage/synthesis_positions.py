@@ -54,6 +54,8 @@ def check(sec) -> tuple | None:
     """(field path, Message) when the positions of A or B are collinear (no circle passes
     through them), else None; the task model reports it as an input error (exit 2)."""
     pts = pivot_positions(sec)
+    if math.dist(pts["A"][0], pts["B"][0]) <= 1e-12 * max(1.0, math.hypot(*pts["A"][0])):
+        return ("moving_pivots", "B"), Message("input.synth_pivots_same")
     for name in ("A", "B"):
         if collinear(*pts[name]):
             return (("moving_pivots", name),
