@@ -108,6 +108,7 @@ def test_reproducible(example):
 @pytest.mark.parametrize("points, words", [
     ("[[0, 0], [1, 1], [2, 0], [3, 1]]", "at least 5"),
     ("5", "a list of 5 to 20 points"),
+    ("[[0.1, 0.2], [0.1, 0.2], [0.1, 0.2], [0.1, 0.2], [0.1, 0.2]]", "all coincide"),
 ])
 def test_bad_points_exit_2(tmp_path, points, words):
     f = tmp_path / "t.yaml"

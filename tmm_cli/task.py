@@ -579,9 +579,9 @@ class SynthesisSection(_Model):
         if self.points is not None and isinstance(self.points, int) != (self.type == "function"):
             raise FieldValueError(("points",), Message("input.synth_points_function" if self.type == "function"
                                                        else "input.synth_points_path"))
-        if self.type == "positions":
-            from .linkage.synthesis_positions import check
-            bad = check(self)
+        if self.type in ("positions", "path"):
+            from importlib import import_module
+            bad = import_module(f".linkage.synthesis_{self.type}", __package__).check(self)
             if bad:
                 raise FieldValueError(*bad)
         if self.type == "slider_crank":

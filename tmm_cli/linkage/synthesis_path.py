@@ -40,6 +40,15 @@ def _points(sec) -> np.ndarray:
     return np.array([[float(p[0]), float(p[1])] for p in sec.points], float)
 
 
+def check(sec) -> tuple | None:
+    """(field path, Message) when the points give no path (they all coincide), else None; the
+    task model reports it as an input error (exit 2)."""
+    xs, ys = [float(p[0]) for p in sec.points], [float(p[1]) for p in sec.points]
+    if max(max(xs) - min(xs), max(ys) - min(ys)) <= 0.0:
+        return ("points",), Message("input.synth_points_same")
+    return None
+
+
 def coupler_points(x, phi):
     """The coupler point M for parameter rows ``x`` (..., 10: a, b, c, d, Ox, Oy, frame angle,
     u, v, branch; branch by its sign) at crank angles ``phi`` (rad, from the frame line); arrays
