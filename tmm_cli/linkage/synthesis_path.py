@@ -214,6 +214,9 @@ def search(T: np.ndarray, gamma_min: float, seed: int = SEED):
     return x, phi, e * ext * ext
 
 
+_FOUND: dict = {}      # (points, gamma_min) -> search's answer: a task read again (validate, then run) searches once
+
+
 def design(sec, sign: float):
     """The crank-rocker whose coupler point M passes nearest the points.
 
@@ -241,7 +244,12 @@ def design(sec, sign: float):
 
     T = _points(sec)
     gmin = float(sec.gamma_min) if sec.gamma_min is not None else GAMMA_DEFAULT
-    found = search(T, gmin)
+    key = (tuple(map(tuple, T.tolist())), gmin)
+    found = _FOUND.get(key)
+    if key not in _FOUND:
+        found = _FOUND[key] = search(T, gmin)
+        while len(_FOUND) > 64:                  # the oldest out
+            _FOUND.pop(next(iter(_FOUND)))
     if found is None:
         raise SynthesisImpossible(Message("synthesis.fail.path_none", gamma=gmin))
     x, phi, _ = found
