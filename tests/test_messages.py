@@ -433,6 +433,19 @@ ENGLISH = [
     ('synthesis.fail.function_lengths', {'a': -0.1, 'c': 0.2, 'b2': 0.01}, "synthesis: Freudenstein's solution "
      'has no four-bar (crank -0.1 m, rocker 0.2 m, coupler squared 0.01 m^2; each must be positive): change '
      '`frame` or the ranges of `input` and `output`'),
+    ('input.synth_collinear', {'name': 'A', 'points': '(0, 0), (0.1, 0), (0.2, 0)'},
+     'the three positions of the moving pivot A lie on one line (0, 0), (0.1, 0), (0.2, 0): no circle passes '
+     'through them; move the pivot or change `positions`'),
+    ('input.synth_pivots_same', {}, 'the moving pivots A and B coincide: the coupler needs two pivots apart'),
+    ('input.synth_points_same', {}, 'the points of the path all coincide: give points that trace a path'),
+    ('input.synth_points_function', {}, 'function generation takes `points` as the number of precision points '
+     '(3 to 5)'),
+    ('input.synth_points_path', {}, 'path generation takes `points` as a list of 5 to 20 points [x, y]'),
+    ('synthesis.fail.positions_crank', {'a': 0.25, 'b': 0.3, 'c': 0.22, 'd': 0.3},
+     "synthesis: the linkage through the three positions has the crank 0.25 m, coupler 0.3 m, rocker 0.22 m and "
+     "frame 0.3 m: by Grashof's rule its crank cannot turn fully; move `moving_pivots` or change `positions`"),
+    ('synthesis.fail.path_none', {'gamma': 30.0}, 'synthesis: no crank-rocker with the least transmission angle '
+     '30 deg was found whose coupler point passes near the points: lower `gamma_min` or change `points`'),
     ('input.balancing_radius', {'method': 'full', 'key': 'rocker'},
      'counterweights by the full method need `radius: {rocker: ...}` (m)'),
     ('input.balancing_radius_positive', {'key': 'crank'}, "the counterweight's radius `crank` must be above zero"),

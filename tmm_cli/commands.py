@@ -561,11 +561,13 @@ def fields(section: Optional[str] = typer.Argument(None, help="only this section
 STARTERS = ("linkage", "cam", "gears", "full", "synthesis")
 STARTERS += ("cam_rocker", "cam_flat", "cam_knife")      # one starter for each cam follower
 STARTERS += ("differential", "balancing")
+STARTERS += ("synthesis_positions", "synthesis_path")
 
 
 @app.command()
 def new(kind: str = typer.Argument(..., metavar="KIND", help="linkage | cam | cam_rocker | cam_flat | cam_knife | "
-                                                            "gears | full | synthesis | differential | balancing")):
+                                                            "gears | full | synthesis | synthesis_positions | synthesis_path | "
+                                                            "differential | balancing")):
     """Print a commented starter task of the given kind."""
     if kind not in STARTERS:
         _err(f"error: unknown kind '{kind}'; choose from {', '.join(STARTERS)}")

@@ -463,7 +463,8 @@ _DOCS_SYNTHESIS: dict[type, dict[str, str]] = {
     Task: {"synthesis": "design the lever mechanism from K and the stroke; replaces `mechanism` (the generated "
                         "links: crank, rod, slider | crank, coupler, rocker | crank, block, rocker[, blockC, ram])"},
     SynthesisSection: {
-        "type": "slider_crank | offset_slider_crank | crank_rocker | slotted_lever | shaper",
+        "type": "slider_crank | offset_slider_crank | crank_rocker | slotted_lever | shaper | function | positions "
+                "| path",
         "H": "stroke of the slider or ram, m (slider-cranks, shaper)",
         "psi": "swing of the rocker, deg (crank_rocker)",
         "K": "coefficient of mean speed increase K = (180 + theta)/(180 - theta) (or give theta)",

@@ -4,6 +4,7 @@ the task model (tmm_cli/task.py composes them).  Quantities are SI floats (angle
 degrees).  Nothing here imports a stage: the stages import these sections."""
 # annotations evaluated as written (no `from __future__ import annotations`): pydantic would
 # compile and evaluate every field's annotation string when the models are made
+import math
 from typing import Annotated, Literal, Union
 
 from pydantic import AfterValidator, Field, field_validator, model_validator
@@ -16,7 +17,8 @@ from ..units import (Angle, AngularSpeed, Area, Density, ForceOrPressure, Inerti
 
 LengthPair = tuple[Length, Length]
 # the links each type of synthesis generates, in the order of the generated `mechanism`
-LINKS = {"function": ("crank", "coupler", "rocker"),
+LINKS = {"function": ("crank", "coupler", "rocker"), "positions": ("crank", "coupler", "rocker"),
+         "path": ("crank", "coupler", "rocker"),
          "slider_crank": ("crank", "rod", "slider"),
          "offset_slider_crank": ("crank", "rod", "slider"),
          "crank_rocker": ("crank", "coupler", "rocker"),
@@ -313,9 +315,71 @@ SYNTHESIS_INPUTS = {  # type -> (required, exactly-one-of groups, optional)
     "slotted_lever": (("frame",), (("K", "theta"),), ("rocker",)),
     "shaper": (("H", "frame"), (("K", "theta"),), ("rocker", "guide_height")),
     "function": (("function_", "x", "input", "output", "frame"), (), ("points",)),
+    "positions": (("positions", "moving_pivots"), (), ()),
+    "path": (("points",), (), ("gamma_min",)),
 }
 SYNTHESIS_FIELDS = ("H", "psi", "K", "theta", "lambda_", "e", "gamma_min", "rocker", "frame", "guide_height",
-                    "function_", "x", "input", "output", "points")
+                    "function_", "x", "input", "output", "points", "positions", "moving_pivots")
+
+
+class CouplerPose(_Model):
+    """A position of the coupler plane: its point P (m) and its angle (deg, from +x)."""
+    P: LengthPair = Field(..., description="the plane's point P [x, y], m")
+    angle: Angle = Field(..., description="the plane's angle from +x, deg")
+
+
+class MovingPivots(_Model):
+    """The moving pivots in the coupler plane's own frame (at P, x along the plane's angle), m."""
+    A: LengthPair = Field(..., description="moving pivot A [u, v] in the plane's frame, m")
+    B: LengthPair = Field(..., description="moving pivot B [u, v] in the plane's frame, m")
+
+
+def _rot(p, ang_deg):
+    c, s = math.cos(math.radians(ang_deg)), math.sin(math.radians(ang_deg))
+    return (c * p[0] - s * p[1], s * p[0] + c * p[1])
+
+
+def pivot_positions(sec) -> dict[str, list[tuple[float, float]]]:
+    """The moving pivots A and B in each of the three positions of a `positions` synthesis
+    (m, in the task's frame): A_j = P_j + R(angle_j) A."""
+    out = {}
+    for name, loc in (("A", sec.moving_pivots.A), ("B", sec.moving_pivots.B)):
+        pts = []
+        for pose in sec.positions:
+            r = _rot((float(loc[0]), float(loc[1])), float(pose.angle))
+            pts.append((float(pose.P[0]) + r[0], float(pose.P[1]) + r[1]))
+        out[name] = pts
+    return out
+
+
+def collinear(p, q, s, rel: float = 1e-9) -> bool:
+    """True when the three points lie on one line (or two coincide): twice the triangle's
+    area below ``rel`` times the square of its longest side."""
+    area2 = (q[0] - p[0]) * (s[1] - p[1]) - (q[1] - p[1]) * (s[0] - p[0])
+    span = max(math.dist(p, q), math.dist(q, s), math.dist(p, s))
+    return span == 0.0 or abs(area2) <= rel * span * span
+
+
+def positions_input_error(sec) -> tuple | None:
+    """(field path, Message) when the moving pivots coincide or the positions of A or B are
+    collinear (no circle passes through them), else None: an input error (exit 2)."""
+    pts = pivot_positions(sec)
+    if math.dist(pts["A"][0], pts["B"][0]) <= 1e-12 * max(1.0, math.hypot(*pts["A"][0])):
+        return ("moving_pivots", "B"), Message("input.synth_pivots_same")
+    for name in ("A", "B"):
+        if collinear(*pts[name]):
+            return (("moving_pivots", name),
+                    Message("input.synth_collinear", name=name,
+                            points=", ".join(f"({x:.6g}, {y:.6g})" for x, y in pts[name])))
+    return None
+
+
+def path_input_error(sec) -> tuple | None:
+    """(field path, Message) when the path's points all coincide (no path), else None."""
+    xs, ys = [float(p[0]) for p in sec.points], [float(p[1]) for p in sec.points]
+    if max(max(xs) - min(xs), max(ys) - min(ys)) <= 0.0:
+        return ("points",), Message("input.synth_points_same")
+    return None
 
 
 def _function_text(v):
@@ -344,7 +408,8 @@ class AngleRange(_Model):
 
 
 class SynthesisSection(_Model):
-    type: Literal["slider_crank", "offset_slider_crank", "crank_rocker", "slotted_lever", "shaper", "function"]
+    type: Literal["slider_crank", "offset_slider_crank", "crank_rocker", "slotted_lever", "shaper", "function",
+                  "positions", "path"]
     H: Length | None = Field(None, gt=0)
     psi: Angle | None = Field(None, gt=0, lt=180)
     K: Ratio | None = Field(None, gt=0)
@@ -362,8 +427,13 @@ class SynthesisSection(_Model):
                                                        "over the range of x: {start, range}")
     output: AngleRange | None = Field(None, description="function generation: the rocker angle psi (deg, from O->O1 "
                                                         "at O1) over the range of y: {start, range}")
-    points: int | None = Field(None, ge=3, le=5, description="function generation: precision points, Chebyshev "
-                                                              "spacing (3; 4 or 5 by least squares)")
+    points: Union[Annotated[int, Field(ge=3, le=5)], Annotated[list[LengthPair], Field(min_length=5, max_length=20)],
+                  None] = Field(None, description="function generation: precision points, Chebyshev spacing (3; 4 or "
+                                                  "5 by least squares); path: the 5 to 20 points [x, y] (m) to pass")
+    positions: Annotated[list[CouplerPose], Field(min_length=3, max_length=3)] | None = Field(
+        None, description="three positions: the coupler plane's three positions {P: [x, y], angle}")
+    moving_pivots: MovingPivots | None = Field(None, description="three positions: {A: [u, v], B: [u, v]} in the "
+                                                                 "plane's frame at P, x along its angle, m")
     links: dict[str, SynthesisLinkSpec] = Field(default_factory=dict)
 
     @model_validator(mode="after")
@@ -389,6 +459,13 @@ class SynthesisSection(_Model):
                                       Message("input.synth_one_of", type=self.type, names=names))
         if self.type == "function" and self.x[0] == self.x[1]:
             raise FieldValueError(("x",), Message("input.synth_x_range"))
+        if self.points is not None and isinstance(self.points, int) != (self.type == "function"):
+            raise FieldValueError(("points",), Message("input.synth_points_function" if self.type == "function"
+                                                       else "input.synth_points_path"))
+        bad = (positions_input_error(self) if self.type == "positions" else
+               path_input_error(self) if self.type == "path" else None)
+        if bad:
+            raise FieldValueError(*bad)
         if self.type == "slider_crank":
             th = self.theta if self.theta is not None else (180.0 * (self.K - 1) / (self.K + 1)
                                                             if self.K is not None else 0.0)

@@ -35,8 +35,10 @@ from ..errors import StageError
 from ..messages import Message
 
 STAGE = "synthesis"
-TYPES = ("slider_crank", "offset_slider_crank", "crank_rocker", "slotted_lever", "shaper", "function")
-OUTPUT = {"function": "rocker", "slider_crank": "slider", "offset_slider_crank": "slider", "crank_rocker": "rocker",
+TYPES = ("slider_crank", "offset_slider_crank", "crank_rocker", "slotted_lever", "shaper", "function", "positions",
+         "path")
+OUTPUT = {"function": "rocker", "positions": "rocker", "path": "rocker", "slider_crank": "slider",
+          "offset_slider_crank": "slider", "crank_rocker": "rocker",
           "slotted_lever": "rocker", "shaper": "ram"}
 
 
@@ -427,6 +429,9 @@ def design(sec, sign: float) -> Design:
     """
     if sec.type == "function":
         return _function(sec)
+    if sec.type in ("positions", "path"):
+        from importlib import import_module
+        return import_module(f".synthesis_{sec.type}", __package__).design(sec, sign)
     if sec.type in ("slider_crank", "offset_slider_crank"):
         return _slider_crank(sec, sign)
     if sec.type == "crank_rocker":
@@ -644,6 +649,9 @@ def analyse(linkage, d: Design) -> dict:
     """
     if d.type == "function":
         return analyse_function(linkage, d)
+    if d.type in ("positions", "path"):
+        from importlib import import_module
+        return import_module(f".synthesis_{d.type}", __package__).analyse(linkage, d)
     import numpy as np
 
     from .kinematics import find_positions, solve

@@ -263,6 +263,10 @@ def build(ctx) -> str | None:
         return None
     if r.get("type") == "function":
         return _function(ctx, r)
+    if r.get("type") in ("positions", "path"):
+        from . import synthesis_motion
+        names = _LEN.get(ctx.lang, _LEN["en"])
+        return getattr(synthesis_motion, f"build_{r['type']}")(ctx, r, names)
 
     f, t, lang = ctx.fmt, ctx.t, ctx.lang
     mu = "m" if lang == "en" else "м"

@@ -349,6 +349,8 @@ def _value(v: Any, unit: str = "") -> str:
             return f"({num(v[0])}, {num(v[1])}){u}"
         if all(_is_num(x) for x in v):
             return "; ".join(num(x) for x in v) + (u if v else "")
+        if v and all(isinstance(x, (list, tuple)) and x and all(_is_num(y) for y in x) for x in v):
+            return ", ".join("(" + "; ".join(num(y) for y in x) + ")" for x in v) + u     # points
         return ", ".join(str(x) for x in v)
     return _quantity(str(v))
 
@@ -442,7 +444,9 @@ def _rows(key: str, sec: Any, lang: str) -> list[tuple[str, str]]:
             if isinstance(node, dict):
                 ctx.update(node)
         plain = re.sub(r"\[\d+\]", "", f"{key}.{k}")
-        label = param_name(plain, lang) or k.replace(".", " · ")
+        # a field given as a list may have a name of its own ('task.param.synthesis.points[]': path points)
+        label = (isinstance(v, list) and _param(plain + "[]", lang)) or param_name(plain, lang) \
+            or k.replace(".", " · ")
         idx = re.findall(r"(\w+)\[(\d+)\]", k)
         if idx and plain in PARAMS.get(lang, {}):
             item = ITEMS.get(lang, {}).get(idx[-1][0], idx[-1][0])

@@ -1,0 +1,125 @@
+"""Path generation: the coupler point of the generated crank-rocker, computed here from the
+reported lengths, pivots and coupler point by a closed-form circle intersection, passes each
+target within its reported deviation; a known crank-rocker's own coupler points are recovered;
+the crank turns (Grashof) and the transmission angle (law of cosines, crank along the frame)
+stays above gamma_min; the same task gives the same linkage; the errors a student meets."""
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from tmm_cli import load_task, run
+from tmm_cli.cli import app
+
+ROOT = Path(__file__).resolve().parents[1]
+runner = CliRunner()
+
+
+def _coupler(O, O1, a, b, c, uv, phi_deg, near_B):
+    """A, B, M of a four-bar at crank angle phi (deg, absolute): B where the circles about A
+    (radius b) and O1 (radius c) meet, the one nearer ``near_B``; M = A + u e + v n."""
+    f = math.radians(phi_deg)
+    A = np.array([O[0] + a * math.cos(f), O[1] + a * math.sin(f)])
+    D = np.asarray(O1) - A
+    L = float(np.hypot(*D))
+    k = (b * b - c * c + L * L) / (2 * L)
+    h = math.sqrt(max(b * b - k * k, 0.0))
+    Bs = [A + (k * D + s * h * np.array([-D[1], D[0]])) / L for s in (1, -1)]
+    B = min(Bs, key=lambda q: float(np.hypot(*(q - near_B))))
+    e = (B - A) / b
+    return A, B, A + uv[0] * e + uv[1] * np.array([-e[1], e[0]])
+
+
+def _trace(r, phis):
+    """M along the turn, each B the nearer to the last (the assembly branch of position 1)."""
+    m = r["mechanism"]
+    O, O1 = m["ground"]["O"], m["ground"]["O1"]
+    L = r["lengths"]
+    B = np.asarray(m["assembly"]["B"])
+    out = []
+    for p in phis:
+        _, B, M = _coupler(O, O1, L["crank"], L["coupler"], L["rocker"], r["M"], p, B)
+        out.append(M)
+    return np.array(out)
+
+
+@pytest.fixture(scope="module")
+def example():
+    return run(load_task(ROOT / "tasks" / "synthesis_path.yaml"))["synthesis"]
+
+
+def test_coupler_point_passes_within_the_reported_deviations(example):
+    r = example
+    T = np.asarray(r["points"])
+    # from the first point's crank angle on, each point's crank angle in turn (continuous branch)
+    start = r["crank_angles"][0]
+    turn = sorted(range(len(T)), key=lambda j: (r["crank_angles"][j] - start) % 360.0)
+    phis = [start + (r["crank_angles"][j] - start) % 360.0 for j in turn]
+    dense = np.arange(start, start + 360.0, 0.05)
+    Ms = _trace(r, dense)
+    M_at = _trace(r, phis)
+    for j, M in zip(turn, M_at):
+        d = float(np.hypot(*(M - T[j])))
+        assert d == pytest.approx(r["deviations"][j], rel=1e-6, abs=1e-12)
+        # nothing on the curve is nearer (the optimum is the foot of the perpendicular)
+        assert float(np.min(np.hypot(*(Ms - T[j]).T))) >= d - 1e-9
+    assert r["max_deviation"] == pytest.approx(max(r["deviations"]), rel=1e-15)
+    # the points were read off a crank-rocker's curve to the millimetre: within half a millimetre
+    assert r["max_deviation"] < 5e-4
+
+
+def test_a_crank_rocker_whose_transmission_angle_stays_above_the_limit(example):
+    L = example["lengths"]
+    a, b, c, d = L["crank"], L["coupler"], L["rocker"], L["frame"]
+    s, *mid, l_ = sorted((a, b, c, d))
+    assert s == a and s + l_ < sum(mid)          # Grashof, the crank the shortest
+    # the angle between the coupler and the rocker with the crank along the frame line
+    mus = [math.degrees(math.acos((b * b + c * c - (d - a) ** 2) / (2 * b * c))),
+           math.degrees(math.acos((b * b + c * c - (d + a) ** 2) / (2 * b * c)))]
+    gamma = min(min(m, 180 - m) for m in mus)
+    assert gamma >= 30.0
+    assert example["gamma_min"] == pytest.approx(gamma, abs=1e-6)
+    assert example["grashof"] == "crank-rocker"
+    assert math.dist(example["fixed_pivots"]["O"], example["fixed_pivots"]["O1"]) == pytest.approx(d, rel=1e-12)
+
+
+def test_a_known_crank_rockers_own_points_recovered():
+    # O (0.02, 0.01), frame along +x, a 0.1, b 0.35, c 0.3, d 0.3, M at u 0.15, v 0.2: ten points
+    O, O1 = (0.02, 0.01), (0.32, 0.01)
+    B = np.array([0.3, 0.3])
+    pts = []
+    for p in np.arange(0.0, 360.0, 36.0):
+        _, B, M = _coupler(O, O1, 0.1, 0.35, 0.3, (0.15, 0.2), p, B)
+        pts.append([float(M[0]), float(M[1])])
+    task = load_task({"schema": "tmm/1", "synthesis": {"type": "path", "points": pts},
+                      "drive": {"link": "crank", "speed": 6.0}})
+    r = run(task)["synthesis"]
+    extent = float(np.max(np.ptp(np.asarray(pts), axis=0)))
+    assert r["max_deviation"] < 1e-4 * extent
+
+
+def test_reproducible(example):
+    from tmm_cli.linkage import synthesis_path
+    synthesis_path._FOUND.clear()               # searched anew, not the remembered answer
+    again = run(load_task(ROOT / "tasks" / "synthesis_path.yaml"))["synthesis"]
+    assert again["lengths"] == example["lengths"] and again["deviations"] == example["deviations"]
+
+
+@pytest.mark.parametrize("points, words", [
+    ("[[0, 0], [1, 1], [2, 0], [3, 1]]", "at least 5"),
+    ("5", "a list of 5 to 20 points"),
+    ("[[0.1, 0.2], [0.1, 0.2], [0.1, 0.2], [0.1, 0.2], [0.1, 0.2]]", "all coincide"),
+])
+def test_bad_points_exit_2(tmp_path, points, words):
+    f = tmp_path / "t.yaml"
+    f.write_text(f"schema: tmm/1\nsynthesis:\n  type: path\n  points: {points}\ndrive: {{link: crank, speed: 6}}\n")
+    res = runner.invoke(app, ["validate", str(f)])
+    assert res.exit_code == 2 and "t.yaml:4" in res.output and "Traceback" not in res.output
+    assert words in res.output
+
+
+def test_starter_validates(tmp_path):
+    res = runner.invoke(app, ["new", "synthesis_path"])
+    assert res.exit_code == 0 and "type: path" in res.output

@@ -1,0 +1,186 @@
+"""Motion generation through three positions (the pole method): a known four-bar's own coupler
+positions, computed here by a closed-form circle intersection, give back its fixed pivots and
+lengths; the fixed pivot by the perpendicular bisectors written out by hand; the poles; the
+branch and order defects; collinear positions (exit 2) and a linkage whose crank cannot turn
+(exit 3)."""
+import json
+import math
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from tmm_cli import load_task, run
+from tmm_cli.cli import app
+
+ROOT = Path(__file__).resolve().parents[1]
+runner = CliRunner()
+MP = {"A": [-0.15, -0.06], "B": [0.15, -0.06]}
+
+
+def _task(positions, moving_pivots=MP, direction="ccw"):
+    return load_task({"schema": "tmm/1", "synthesis": {"type": "positions", "positions": positions,
+                                                        "moving_pivots": moving_pivots},
+                      "drive": {"link": "crank", "speed": 6.0, "direction": direction}})
+
+
+def _fourbar_pose(O, O1, a, b, c, phi_deg, branch=1):
+    """A, B of a four-bar with the crank at phi: B where the circles about A (radius b) and O1
+    (radius c) meet, on the left (branch +1) or the right (-1) of the line A -> O1."""
+    f = math.radians(phi_deg)
+    A = (O[0] + a * math.cos(f), O[1] + a * math.sin(f))
+    dx, dy = O1[0] - A[0], O1[1] - A[1]
+    L = math.hypot(dx, dy)
+    k = (b * b - c * c + L * L) / (2 * L)
+    h = math.sqrt(b * b - k * k)
+    B = (A[0] + (k * dx - branch * h * dy) / L, A[1] + (k * dy + branch * h * dx) / L)
+    return A, B
+
+
+def _plane(A, B):
+    """The coupler plane's pose for the moving pivots MP: P and the plane's angle. MP's A->B is
+    along the plane's x, so the plane's angle is the line AB's; P = A - R(angle) MP.A."""
+    ang = math.atan2(B[1] - A[1], B[0] - A[0])
+    c, s = math.cos(ang), math.sin(ang)
+    ax, ay = MP["A"]
+    P = (A[0] - (c * ax - s * ay), A[1] - (s * ax + c * ay))
+    return {"P": list(P), "angle": math.degrees(ang)}
+
+
+# a crank-rocker: O (0.02, -0.01), O1 (0.33, 0.04), crank 0.08, coupler 0.3 (|AB| of MP), rocker 0.22
+O, O1, a, b, c = (0.02, -0.01), (0.33, 0.04), 0.08, 0.30, 0.22
+
+
+def test_known_fourbar_recovered():
+    poses = [_plane(*_fourbar_pose(O, O1, a, b, c, phi)) for phi in (40.0, 100.0, 160.0)]
+    r = run(_task(poses))["synthesis"]
+    assert r["fixed_pivots"]["O"] == pytest.approx(O, abs=1e-12)
+    assert r["fixed_pivots"]["O1"] == pytest.approx(O1, abs=1e-12)
+    L = r["lengths"]
+    assert [L["crank"], L["coupler"], L["rocker"], L["frame"]] == pytest.approx(
+        [a, b, c, math.dist(O, O1)], rel=1e-11)
+    # the crank angles of the analysed positions: those the poses were made at
+    assert [p["crank_angle"] for p in r["positions"]] == pytest.approx([40.0, 100.0, 160.0], abs=1e-9)
+    for p, q in zip(r["positions"], poses):
+        assert p["P"] == pytest.approx(q["P"], abs=1e-12)
+        assert p["deviation"] < 1e-12 and abs(p["angle_error"]) < 1e-9
+    assert r["defects"] == {"branch": False, "order": False}
+    assert r["grashof"] == "crank-rocker"       # 0.08 + 0.3 < 0.22 + 0.314
+    m = r["mechanism"]
+    assert m["ground"]["O"] == pytest.approx(O, abs=1e-12)
+    # the plane's point P in the coupler's frame: midway along AB (u = 0.15), 0.06 to its left
+    assert m["links"]["coupler"]["extra"]["P"] == pytest.approx([0.15, 0.06], abs=1e-15)
+
+
+def test_fixed_pivot_by_perpendicular_bisectors_by_hand():
+    # the task's example: A_j = P_j + R(angle_j) (-0.15, -0.06)
+    task = load_task(ROOT / "tasks" / "synthesis_positions.yaml")
+    r = run(task)["synthesis"]
+    pos = [((0.1518, 0.1853), 34.14), ((0.0925, 0.2004), 27.01), ((0.0211, 0.1571), 31.61)]
+    A = []
+    for (px, py), ang in pos:
+        cs, sn = math.cos(math.radians(ang)), math.sin(math.radians(ang))
+        A.append((px + cs * -0.15 - sn * -0.06, py + sn * -0.15 + cs * -0.06))
+    # bisector of A1A2: (A2 - A1).X = (|A2|^2 - |A1|^2)/2; likewise A2A3; Cramer's rule
+    (x1, y1), (x2, y2), (x3, y3) = A
+    a1, b1, c1 = x2 - x1, y2 - y1, (x2 ** 2 + y2 ** 2 - x1 ** 2 - y1 ** 2) / 2
+    a2, b2, c2 = x3 - x2, y3 - y2, (x3 ** 2 + y3 ** 2 - x2 ** 2 - y2 ** 2) / 2
+    det = a1 * b2 - a2 * b1
+    Ox, Oy = (c1 * b2 - c2 * b1) / det, (a1 * c2 - a2 * c1) / det
+    assert r["fixed_pivots"]["O"] == pytest.approx([Ox, Oy], abs=1e-13)
+    assert r["lengths"]["crank"] == pytest.approx(math.hypot(x1 - Ox, y1 - Oy), rel=1e-12)
+    assert r["lengths"]["coupler"] == pytest.approx(0.3, rel=1e-14)
+    # the example is the four-bar O (0, 0), O1 (0.3, 0), 0.08, 0.3, 0.22 at 40, 100, 160 deg, rounded
+    assert r["lengths"]["crank"] == pytest.approx(0.08, abs=2e-4)
+    assert r["lengths"]["rocker"] == pytest.approx(0.22, abs=2e-3)
+    assert [p["crank_angle"] for p in r["positions"]] == pytest.approx([40, 100, 160], abs=0.05)
+
+
+def test_poles_fixed_by_both_displacements():
+    poses = [_plane(*_fourbar_pose(O, O1, a, b, c, phi)) for phi in (40.0, 100.0, 160.0)]
+    r = run(_task(poses))["synthesis"]
+    for key, (i, k) in {"12": (0, 1), "13": (0, 2), "23": (1, 2)}.items():
+        X = r["construction"]["poles"][key]
+        # the pole keeps its place: P_k + R(angle_k - angle_i)(X - P_i) = X
+        d = math.radians(poses[k]["angle"] - poses[i]["angle"])
+        px, py = X[0] - poses[i]["P"][0], X[1] - poses[i]["P"][1]
+        Y = (poses[k]["P"][0] + math.cos(d) * px - math.sin(d) * py,
+             poses[k]["P"][1] + math.sin(d) * px + math.cos(d) * py)
+        assert Y == pytest.approx(X, abs=1e-12)
+        # and O, the centre of A's circle, is as far from A_i as from A_k; it sees A_iA_k from the pole
+        Ai, Ak = r["construction"]["A_positions"][i], r["construction"]["A_positions"][k]
+        assert math.dist(X, Ai) == pytest.approx(math.dist(X, Ak), rel=1e-10)
+
+
+def test_branch_defect():
+    # position 2 on the other branch of the same four-bar: the circles still pass, the linkage
+    # assembled on position 1's branch does not reach position 2
+    poses = [_plane(*_fourbar_pose(O, O1, a, b, c, 40.0)), _plane(*_fourbar_pose(O, O1, a, b, c, 100.0, -1)),
+             _plane(*_fourbar_pose(O, O1, a, b, c, 160.0))]
+    r = run(_task(poses))["synthesis"]
+    assert r["fixed_pivots"]["O1"] == pytest.approx(O1, abs=1e-12)
+    assert r["defects"]["branch"] is True and r["defects"]["order"] is False
+    assert r["positions"][1]["deviation"] > 1e-3       # the analysed linkage is elsewhere
+    assert r["positions"][2]["deviation"] < 1e-12
+
+
+def test_order_defect_by_the_drive_sense():
+    poses = [_plane(*_fourbar_pose(O, O1, a, b, c, phi)) for phi in (40.0, 160.0, 100.0)]
+    assert run(_task(poses))["synthesis"]["defects"] == {"branch": False, "order": True}
+    # ccw from 40 deg: 160 lies 120 deg on, 100 lies 60 deg on (position 3 first: the defect);
+    # cw from 40 deg: 160 lies 240 deg on, 100 lies 300 deg on (position 2 first: in order)
+    assert run(_task(poses, direction="cw"))["synthesis"]["defects"]["order"] is False
+
+
+def test_collinear_positions_exit_2(tmp_path):
+    f = tmp_path / "t.yaml"
+    f.write_text("schema: tmm/1\nsynthesis:\n  type: positions\n  positions:\n"
+                 "    - {P: [0, 0], angle: 0}\n    - {P: [0.1, 0], angle: 0}\n    - {P: [0.2, 0], angle: 0}\n"
+                 "  moving_pivots: {A: [0, 0], B: [0.1, 0.05]}\ndrive: {link: crank, speed: 6}\n")
+    res = runner.invoke(app, ["run", str(f), "-o", str(tmp_path / "o"), "--format", "json"])
+    assert res.exit_code == 2
+    assert "moving_pivots" in res.output and "one line" in res.output and "Traceback" not in res.output
+    assert "t.yaml:8:" in res.output                   # the line of moving_pivots
+    assert "(0, 0), (0.1, 0), (0.2, 0)" in res.output
+
+
+def test_crank_that_cannot_turn_exit_3(tmp_path):
+    # a double-rocker's coupler positions (crank 0.25 longer than half the others allow)
+    Od, O1d, ad, bd, cd = (0.0, 0.0), (0.3, 0.0), 0.25, 0.30, 0.22
+    poses = [_plane(*_fourbar_pose(Od, O1d, ad, bd, cd, phi)) for phi in (60.0, 80.0, 100.0)]
+    f = tmp_path / "t.yaml"
+    f.write_text(json.dumps({"schema": "tmm/1", "synthesis": {"type": "positions", "positions": poses,
+                                                               "moving_pivots": MP},
+                             "drive": {"link": "crank", "speed": 6}}))
+    res = runner.invoke(app, ["run", str(f), "-o", str(tmp_path / "o"), "--format", "json"])
+    assert res.exit_code == 3
+    assert "Grashof" in res.output and "moving_pivots" in res.output
+
+
+def test_wrong_points_for_the_type(tmp_path):
+    f = tmp_path / "t.yaml"
+    f.write_text("schema: tmm/1\nsynthesis:\n  type: function\n  function: x\n  x: [0, 1]\n"
+                 "  input: {range: 90}\n  output: {range: 60}\n  frame: 0.3\n  points: [[0, 0], [1, 1], [2, 0], "
+                 "[3, 1], [4, 0]]\ndrive: {link: crank, speed: 6}\n")
+    res = runner.invoke(app, ["validate", str(f)])
+    assert res.exit_code == 2 and "number of precision points" in res.output
+
+
+def test_starter_runs(tmp_path):
+    res = runner.invoke(app, ["new", "synthesis_positions"])
+    assert res.exit_code == 0
+    f = tmp_path / "s.yaml"
+    f.write_text(res.output)
+    r = run(load_task(f))["synthesis"]
+    # 150 mm and 60 mm read as the example's 0.15 m and 0.06 m: the same fixed pivots
+    ex = run(load_task(ROOT / "tasks" / "synthesis_positions.yaml"))["synthesis"]
+    assert r["fixed_pivots"]["O1"] == pytest.approx(ex["fixed_pivots"]["O1"], abs=1e-14)
+
+
+def test_coinciding_moving_pivots_exit_2(tmp_path):
+    f = tmp_path / "t.yaml"
+    f.write_text("schema: tmm/1\nsynthesis:\n  type: positions\n  positions:\n"
+                 "    - {P: [0, 0], angle: 0}\n    - {P: [0.1, 0], angle: 20}\n    - {P: [0.2, 0.1], angle: 40}\n"
+                 "  moving_pivots: {A: [0.05, 0.02], B: [0.05, 0.02]}\ndrive: {link: crank, speed: 6}\n")
+    res = runner.invoke(app, ["validate", str(f)])
+    assert res.exit_code == 2 and "coincide" in res.output and "t.yaml:8:" in res.output

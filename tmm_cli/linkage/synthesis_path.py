@@ -1,0 +1,298 @@
+"""Path generation: a crank-rocker whose coupler point M passes as near as it can to 5-20
+given points (approximate synthesis by optimisation).
+
+The unknowns: the crank a, coupler b, rocker c and frame d, the coupler point M in the
+coupler's frame (u along A->B, v to its left) and the assembly branch -- the curve's shape
+-- and its placement: the crank pivot O and the frame's direction. scipy's differential
+evolution searches the shapes from a fixed seed (the result is reproducible); each shape's
+curve, sampled at 60 crank angles, is placed on the points by iterative closest points
+from six initial turns (each step pairs every point with its nearest sample and fits the
+pairs by the closed-form 2-D Procrustes turn), and its energy is the mean squared distance
+of the points from the placed curve (scaled by the points' extent) plus penalties that keep
+the crank turning fully (Grashof: a the shortest, a + l <= p + q) and the transmission
+angle above ``gamma_min`` (closed form: the angle between the coupler and the rocker is
+extreme with the crank along the frame line). The best candidates of the last population
+are then refined by least squares (scipy's ``least_squares``, Levenberg-Marquardt with
+central differences taken in one batch) in which each point's crank angle is an unknown
+too, so that at the optimum M(phi_j) is the foot of the perpendicular from the point to
+the curve.
+
+References: Norton, *Design of Machinery*, ch. 5 (precision points, path generation);
+Storn & Price (1997), differential evolution; Artobolevsky, coupler curves.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..messages import Message
+from .spec import path_input_error
+
+SEED = 43                       # the differential evolution's seed: the same task gives the same linkage
+SAMPLES = 60                   # crank angles of the sampled coupler curve in the global search
+GAMMA_DEFAULT = 30.0
+CANDIDATES = 4                  # the best of the last population refined by least squares
+# the global search's bounds, in units of the points' extent: a, b, c, d, u, v, branch (its sign)
+SHAPE_BOUNDS = [(0.05, 1.0), (0.1, 3.0), (0.1, 3.0), (0.1, 3.0), (-2.5, 2.5), (-2.5, 2.5), (-1.0, 1.0)]
+
+
+def _points(sec) -> np.ndarray:
+    return np.array([[float(p[0]), float(p[1])] for p in sec.points], float)
+
+
+check = path_input_error          # the input check lives with the section (the task model runs it)
+
+
+def coupler_points(x, phi):
+    """The coupler point M for parameter rows ``x`` (..., 10: a, b, c, d, Ox, Oy, frame angle,
+    u, v, branch; branch by its sign) at crank angles ``phi`` (rad, from the frame line); arrays
+    broadcast: x[..., k] with phi. NaN where the linkage does not close."""
+    a, b, c, d, ox, oy, t0, u, v, br = (x[..., k] for k in range(10))
+    s = np.where(br >= 0.0, 1.0, -1.0)
+    ct, st = np.cos(t0), np.sin(t0)
+    ang = t0 + phi
+    Ax, Ay = ox + a * np.cos(ang), oy + a * np.sin(ang)
+    dx, dy = ox + d * ct - Ax, oy + d * st - Ay
+    L = np.hypot(dx, dy)
+    k = (b * b - c * c + L * L) / (2.0 * L)
+    with np.errstate(invalid="ignore"):
+        h = np.sqrt(b * b - k * k)
+    Bx, By = Ax + (k * dx - s * h * dy) / L, Ay + (k * dy + s * h * dx) / L
+    ex, ey = (Bx - Ax) / b, (By - Ay) / b
+    return Ax + u * ex - v * ey, Ay + u * ey + v * ex
+
+
+def violation(a, b, c, d, gamma_min: float):
+    """How far the lengths are from a crank-rocker whose transmission angle stays above gamma_min
+    (0 when they are one): a the shortest, Grashof's a + l <= p + q, and |cos mu| <= cos(gamma_min)
+    with the crank along the frame line (mu the angle between the coupler and the rocker)."""
+    lo = np.minimum(np.minimum(b, c), d)
+    hi = np.maximum(np.maximum(b, c), d)
+    g1 = np.maximum(0.0, a - lo)
+    g2 = np.maximum(0.0, a + 2.0 * hi - (b + c + d))
+    cg = math.cos(math.radians(gamma_min))
+    c1 = (b * b + c * c - (d - a) ** 2) / (2.0 * b * c)
+    c2 = (b * b + c * c - (d + a) ** 2) / (2.0 * b * c)
+    g3 = np.maximum(0.0, np.abs(c1) - cg) + np.maximum(0.0, np.abs(c2) - cg)
+    return g1 + g2 + g3
+
+
+def _shape_curve(P, phi):
+    """The coupler curve of shape rows P (S, 7: a, b, c, d, u, v, branch) in the linkage's own
+    frame (O at the origin, O1 on +x): (x, y), each (S, N)."""
+    X = np.zeros((len(P), 10))
+    X[:, :4], X[:, 7:9], X[:, 9] = P[:, :4], P[:, 4:6], P[:, 6]
+    return coupler_points(X[:, None, :], phi[None, :])
+
+
+def align(P, T, starts: int = 6, steps: int = 3):
+    """The best placement (turn theta, shift t) of each candidate's curve on the points T:
+    iterative closest points from ``starts`` initial turns, each step pairing every point with
+    its nearest curve sample and solving the pairs' rigid fit in closed form (the 2-D
+    Procrustes turn atan2(sum a x b, sum a . b) about the centroids). (energy, [theta, tx, ty])
+    with energy the mean squared distance after the last step."""
+    phi = np.linspace(0.0, 2.0 * math.pi, SAMPLES, endpoint=False)
+    cx, cy = _shape_curve(P, phi)
+    S = len(P)
+    bad = ~(np.isfinite(cx).all(axis=1) & np.isfinite(cy).all(axis=1))
+    cx, cy = np.where(np.isfinite(cx), cx, 0.0), np.where(np.isfinite(cy), cy, 0.0)
+    mx, my = cx.mean(axis=1), cy.mean(axis=1)
+    tmx, tmy = T[:, 0].mean(), T[:, 1].mean()
+    bx, by = T[None, :, 0] - tmx, T[None, :, 1] - tmy
+    best_e, best = np.full(S, np.inf), np.zeros((S, 3))
+    for k in range(starts):
+        th = np.full(S, 2.0 * math.pi * k / starts)
+        tx = tmx - (np.cos(th) * mx - np.sin(th) * my)
+        ty = tmy - (np.sin(th) * mx + np.cos(th) * my)
+        for step in range(steps + 1):
+            c, s = np.cos(th)[:, None], np.sin(th)[:, None]
+            gx, gy = c * cx - s * cy + tx[:, None], s * cx + c * cy + ty[:, None]
+            d2 = (gx[:, None, :] - T[None, :, 0, None]) ** 2 + (gy[:, None, :] - T[None, :, 1, None]) ** 2
+            j = np.argmin(d2, axis=2)
+            e = np.take_along_axis(d2, j[:, :, None], axis=2)[:, :, 0].mean(axis=1)
+            if step == steps:
+                break
+            qx, qy = np.take_along_axis(cx, j, axis=1), np.take_along_axis(cy, j, axis=1)
+            qmx, qmy = qx.mean(axis=1), qy.mean(axis=1)
+            ax, ay = qx - qmx[:, None], qy - qmy[:, None]
+            th = np.arctan2((ax * by - ay * bx).sum(axis=1), (ax * bx + ay * by).sum(axis=1))
+            tx = tmx - (np.cos(th) * qmx - np.sin(th) * qmy)
+            ty = tmy - (np.sin(th) * qmx + np.cos(th) * qmy)
+        upd = e < best_e
+        best_e = np.where(upd, e, best_e)
+        best[upd] = np.column_stack([th, tx, ty])[upd]
+    return np.where(bad, 10.0, best_e), best
+
+
+def _objective(T, gamma_min):
+    def f(ps):                                   # ps: (7, S) -> (S,)
+        P = np.asarray(ps, float).T
+        e, _ = align(P, T)
+        viol = violation(P[:, 0], P[:, 1], P[:, 2], P[:, 3], gamma_min)
+        return e + 10.0 * viol + np.where(viol > 0, 1.0, 0.0)
+    return f
+
+
+def _refine(x0, T, gamma_min):
+    """Least squares over the parameters and each point's crank angle, from a candidate x0."""
+    from scipy.optimize import least_squares
+
+    n = len(T)
+    phi = np.linspace(0.0, 2.0 * math.pi, 720, endpoint=False)
+    Mx, My = coupler_points(x0[None, :], phi)
+    d2 = (Mx[None, :] - T[:, 0, None]) ** 2 + (My[None, :] - T[:, 1, None]) ** 2
+    phi0 = phi[np.nanargmin(np.where(np.isnan(d2), np.inf, d2), axis=1)]
+    s = x0[9]
+
+    def batch(Z):                                # (K, 9 + n) -> (K, 2n + 1)
+        X = np.concatenate([Z[:, :9], np.full((len(Z), 1), s)], axis=1)
+        mx, my = coupler_points(X[:, None, :], Z[:, 9:])
+        r = np.concatenate([mx - T[None, :, 0], my - T[None, :, 1]], axis=1)
+        r = np.where(np.isfinite(r), r, 10.0)
+        v = violation(Z[:, 0], Z[:, 1], Z[:, 2], Z[:, 3], gamma_min + 0.01)
+        return np.concatenate([r, 30.0 * v[:, None]], axis=1)
+
+    def res(z):
+        return batch(z[None, :])[0]
+
+    def jac(z):                                  # central differences, every column in one batch
+        h = 1e-7 * np.maximum(1.0, np.abs(z))
+        E = np.diag(h)
+        R = batch(np.concatenate([z + E, z - E]))
+        m = len(z)
+        return ((R[:m] - R[m:]) / (2.0 * h[:, None])).T
+
+    z0 = np.concatenate([x0[:9], phi0])
+    method = "lm" if 2 * n + 1 >= len(z0) else "trf"   # MINPACK needs no fewer residuals than unknowns
+    sol = least_squares(res, z0, jac=jac, method=method, x_scale="jac", xtol=1e-14, ftol=1e-14, gtol=1e-14,
+                        max_nfev=100 * (9 + n))
+    return np.concatenate([sol.x[:9], [s]]), sol.x[9:]
+
+
+def search(T: np.ndarray, gamma_min: float, seed: int = SEED):
+    """The best crank-rocker for the points T (n, 2), in the points' own units: (x, phi_j,
+    sum of squared distances) or None when none keeps the constraints."""
+    from scipy.optimize import differential_evolution
+
+    centre = T.mean(axis=0)
+    ext = float(np.max(np.ptp(T, axis=0)))
+    Tn = (T - centre) / ext
+    de = differential_evolution(_objective(Tn, gamma_min), SHAPE_BOUNDS, vectorized=True, updating="deferred",
+                                seed=seed, popsize=15, maxiter=100, tol=1e-10, mutation=(0.5, 1.0),
+                                recombination=0.9, polish=False, init="sobol")
+    order = np.argsort(de.population_energies)[:CANDIDATES]
+    shapes = de.population[order]
+    _, placed = align(shapes, Tn)
+    # shape and placement -> a, b, c, d, O, frame angle, u, v, branch
+    cands = [np.array([p[0], p[1], p[2], p[3], pl[1], pl[2], pl[0], p[4], p[5], p[6]]) for p, pl in zip(shapes, placed)]
+    best = None
+    for x0 in cands:
+        x, phi = _refine(x0, Tn, gamma_min)
+        if violation(x[0], x[1], x[2], x[3], gamma_min) > 0.0 or not (x[:4] > 0).all():
+            continue
+        mx, my = coupler_points(x[None, :], phi)
+        e = float(np.sum((mx - Tn[:, 0]) ** 2 + (my - Tn[:, 1]) ** 2))
+        if not math.isfinite(e):
+            continue
+        if best is None or e < best[2]:
+            best = (x, phi, e)
+        if e < 1e-20 * len(Tn):                 # the points lie on this curve: no candidate does better
+            break
+    if best is None:
+        return None
+    x, phi, e = best
+    # back to the task's units
+    x = x.copy()
+    x[[0, 1, 2, 3, 7, 8]] *= ext
+    x[4:6] = x[4:6] * ext + centre
+    return x, phi, e * ext * ext
+
+
+_FOUND: dict = {}      # (points, gamma_min) -> search's answer: a task read again (validate, then run) searches once
+
+
+def design(sec, sign: float):
+    """The crank-rocker whose coupler point M passes nearest the points.
+
+    Parameters
+    ----------
+    sec : SynthesisSection
+        ``points``: 5 to 20 points [x, y] (m); ``gamma_min``: the least transmission angle
+        allowed (deg, default 30).
+    sign : float
+        The drive's sense of rotation (the curve does not depend on it).
+
+    Returns
+    -------
+    Design
+        The lengths {crank, coupler, rocker, frame} (m), the generated mechanism (M an extra
+        point of the coupler, assembled at the first point's crank angle), and the optimiser's
+        crank angle of each point.
+
+    Raises
+    ------
+    SynthesisImpossible
+        When no candidate keeps the crank turning and the transmission angle.
+    """
+    from .synthesis import Design, SynthesisImpossible, _mass
+
+    T = _points(sec)
+    gmin = float(sec.gamma_min) if sec.gamma_min is not None else GAMMA_DEFAULT
+    key = (tuple(map(tuple, T.tolist())), gmin)
+    found = _FOUND.get(key)
+    if key not in _FOUND:
+        found = _FOUND[key] = search(T, gmin)
+        while len(_FOUND) > 64:                  # the oldest out
+            _FOUND.pop(next(iter(_FOUND)))
+    if found is None:
+        raise SynthesisImpossible(Message("synthesis.fail.path_none", gamma=gmin))
+    x, phi, _ = found
+    a, b, c, d, ox, oy, t0, u, v, br = (float(q) for q in x)
+    O = (ox, oy)
+    O1 = (ox + d * math.cos(t0), oy + d * math.sin(t0))
+    crank = [math.degrees(t0 + p) % 360.0 for p in phi]
+    # B at the first point (the branch the optimiser chose)
+    f = math.radians(crank[0])
+    A = (ox + a * math.cos(f), oy + a * math.sin(f))
+    dx, dy = O1[0] - A[0], O1[1] - A[1]
+    L = math.hypot(dx, dy)
+    k = (b * b - c * c + L * L) / (2 * L)
+    h = math.sqrt(max(b * b - k * k, 0.0))
+    s = 1.0 if br >= 0 else -1.0
+    B = (A[0] + (k * dx - s * h * dy) / L, A[1] + (k * dy + s * h * dx) / L)
+    mech = {"ground": {"O": [O[0], O[1]], "O1": [O1[0], O1[1]]},
+            "links": {"crank": {"points": ["O", "A"], "length": a, **_mass(sec, "crank")},
+                      "coupler": {"points": ["A", "B"], "length": b, "extra": {"M": [u, v]},
+                                  **_mass(sec, "coupler")},
+                      "rocker": {"points": ["O1", "B"], "length": c, **_mass(sec, "rocker")}},
+            "assembly": {"B": [B[0], B[1]]}}
+    cons = {"points": T.tolist(), "crank_angles": crank, "M": [u, v], "gamma_limit": gmin}
+    return Design("path", {"crank": a, "coupler": b, "rocker": c, "frame": d}, mech, "rocker", "forward", [], cons)
+
+
+def analyse(linkage, d) -> dict:
+    """The generated crank-rocker analysed: its point M at each point's crank angle (the
+    deviation: the distance from the point), the coupler curve over the turn, the least
+    transmission angle."""
+    from .kinematics import solve
+    from .synthesis import grashof, least_transmission
+
+    cons = d.construction
+    T = np.asarray(cons["points"], float)
+    mech = linkage.mechanism
+    kin = solve(mech, np.asarray(cons["crank_angles"]), linkage.drive.omega)
+    M = kin.pos["M"]
+    dev = np.hypot(M[:, 0] - T[:, 0], M[:, 1] - T[:, 1])
+    turn = solve(mech, np.arange(0.0, 360.0, 2.0), linkage.drive.omega)
+    gmin, gphi = least_transmission("crank_rocker", mech)
+    L = d.lengths
+    first = {k: [float(kin.pos[k][0, 0]), float(kin.pos[k][0, 1])] for k in ("A", "B", "M")}
+    return {"type": "path", "lengths": dict(L), "M": list(cons["M"]), "points": T.tolist(),
+            "deviations": dev.tolist(), "max_deviation": float(dev.max()),
+            "crank_angles": [float(q) for q in cons["crank_angles"]],
+            "fixed_pivots": {"O": list(d.mechanism["ground"]["O"]), "O1": list(d.mechanism["ground"]["O1"])},
+            "grashof": grashof(L["crank"], L["coupler"], L["rocker"], L["frame"]),
+            "gamma_min": gmin, "gamma_min_phi": gphi, "gamma_limit": cons["gamma_limit"],
+            "curve": {"phi": np.arange(0.0, 360.0, 2.0).tolist(), "M": turn.pos["M"].tolist()},
+            "first": first, "mechanism": d.mechanism, "output": d.output, "working": d.working}
