@@ -1,15 +1,7 @@
 """A cam task section for the cam stage tests, built and validated by the task model."""
-from tmm_cli.task import Task
+from task_sections import fields, section
 
-
-def fields(**kw) -> dict:
-    """A mapping of a section's fields, ``return_`` written for the YAML key ``return``."""
-    return {("return" if k == "return_" else k): v for k, v in kw.items()}
-
-
-def section(name: str, data: dict):
-    """The task's section ``name`` validated by the task model (as a task file gives it)."""
-    return getattr(Task.model_validate({"schema": "tmm/1", name: data}), name)
+__all__ = ["fields", "section", "spec"]
 
 
 def spec(**kw):

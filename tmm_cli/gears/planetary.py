@@ -55,11 +55,15 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from fractions import Fraction
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..errors import StageError
 from ..messages import Message
+
+if TYPE_CHECKING:
+    from ..task import PlanetarySection
 
 STAGE = "planetary"
 
@@ -483,13 +487,36 @@ def _no_candidates_hint(scheme: str, req: float, tol: float, z_min: int, z_max: 
     return Message("planetary.hint.general")
 
 
-def spec_limits(spec) -> Limits:
-    """The tooth limits of a `planetary` or `drive_train` section (tmm/1 `z_min` kept)."""
-    ext = getattr(spec, "z_min_external", None) or getattr(spec, "z_min", None) or Z_EXT
-    sat = getattr(spec, "z_min_satellite_in_internal", None)
-    return Limits(external=int(ext), internal=int(getattr(spec, "z_min_internal", None) or Z_INT),
-                  satellite_in_internal=int(sat) if sat is not None else max(Z_EXT_IN_INT, int(ext)),
-                  difference=int(getattr(spec, "internal_minus_external_min", None) or Z_DIFF))
+def tooth_limits(external: int, internal: int, satellite_in_internal: int | None, difference: int) -> Limits:
+    """The tooth limits of a `planetary` or `drive_train` section.
+
+    Parameters
+    ----------
+    external : int
+        Least teeth of an external wheel in an external mesh.
+    internal : int
+        Least teeth of an internal (ring) wheel.
+    satellite_in_internal : int or None
+        Least teeth of an external wheel meshing a ring (None: the greater of 20 and
+        ``external``).
+    difference : int
+        Least z_ring - z_pinion of an internal mesh.
+
+    Returns
+    -------
+    Limits
+        The four limits as ints.
+
+    References
+    ----------
+    Popov & Timofeev, *Курсовое проектирование по ТММ*: the limits of the tooth numbers of a
+    planetary gear (no undercut, no interference in an internal mesh).
+    """
+    external = int(external)
+    return Limits(external=external, internal=int(internal),
+                  satellite_in_internal=(int(satellite_in_internal) if satellite_in_internal is not None
+                                         else max(Z_EXT_IN_INT, external)),
+                  difference=int(difference))
 
 
 def ratios_of(scheme: str, arr: np.ndarray) -> np.ndarray:
@@ -525,22 +552,45 @@ def nearest_ratio(scheme: str, req: float, k: int, limits: Limits, z_max: int) -
     return float(ratios_of(scheme, arr[:1])[0]) if len(arr) else None
 
 
-def synthesize_planetary(spec) -> PlanetaryResult:
-    """Tooth numbers for ``spec`` (scheme, ratio, satellites, tolerance, optional m, tooth limits,
-    z_max, rank)."""
+def synthesize_planetary(spec: PlanetarySection) -> PlanetaryResult:
+    """Tooth numbers of a planetary gear of a given ratio.
+
+    Parameters
+    ----------
+    spec : PlanetarySection
+        The task's ``planetary`` section: the scheme (A-D), the required ratio i_1H
+        (dimensionless), the number of satellites k, the relative ratio tolerance, the
+        module ``m`` (m; None: 1 mm for the velocity plan), the tooth limits, ``z_max``,
+        how many candidates to list and how to rank them (``size`` or ``ratio_error``).
+
+    Returns
+    -------
+    PlanetaryResult
+        The chosen tooth numbers with their checks (coaxiality, assembly, adjacency, the
+        tooth limits), the ranked candidates and the velocity plan (m, rad/s for a unit
+        input speed); ``to_dict()`` is the results.json ``planetary`` section.
+
+    Raises
+    ------
+    StageError
+        No tooth set meets the conditions within the tolerance (with a hint at the cause).
+
+    References
+    ----------
+    Popov & Timofeev, *Курсовое проектирование по ТММ*: the schemes A-D, Willis' formula,
+    the conditions of coaxiality, assembly and adjacency; Artobolevsky, *Theory of
+    Mechanisms and Machines*: the velocity plan; docs/methods.md §6.
+    """
     scheme = scheme_key(spec.scheme)
     req = float(spec.ratio)
     if req == 0 or not math.isfinite(req):
         raise StageError(STAGE, Message("planetary.fail.ratio_zero"))
-    k = int(getattr(spec, "satellites", 3) or 3)
-    tol = float(getattr(spec, "tolerance", 0.05) or 0.05)
-    m = getattr(spec, "m", None)
-    m = 0.001 if m is None else float(m)
-    limits = spec_limits(spec)
+    k, tol = int(spec.satellites), float(spec.tolerance)
+    m = 0.001 if spec.m is None else float(spec.m)
+    limits = tooth_limits(spec.z_min_external or spec.z_min, spec.z_min_internal,
+                          spec.z_min_satellite_in_internal, spec.internal_minus_external_min)
     z_min = limits.external
-    z_max = getattr(spec, "z_max", None) or 150
-    n_keep = int(getattr(spec, "candidates", 10) or 10)
-    rank = getattr(spec, "rank", None) or "size"
+    z_max, n_keep, rank = spec.z_max, int(spec.candidates), spec.rank
     if scheme in ("A", "B") and req <= 1:
         raise StageError(STAGE, Message("planetary.fail.below_one", scheme=scheme, required=req))
     found, best = search(scheme, req, tol, k, limits, int(z_max), rank, n_keep)
