@@ -354,9 +354,9 @@ def synthesize(spec: CamSection) -> CamResult:
 
     References
     ----------
-    .. [1] I. I. Artobolevsky, *Theory of Mechanisms and Machines*, ch. on cam mechanisms.
-    .. [2] E. A. Popov, G. A. Timofeev, *Theory of Mechanisms*, cam synthesis.
-    .. [3] K. V. Frolov (ed.), *Theory of Mechanisms and Machines*, cam synthesis.
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
+    проектирование по ТММ*; Frolov (ed.), *Теория механизмов и машин*: the least size of a
+    cam from the allowed pressure angle, the profile by inverted motion; docs/methods.md §5.
     """
     follower, rotation = spec.follower, spec.rotation
     stroke, rocker_length = _check_follower(spec)
