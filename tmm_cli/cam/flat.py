@@ -94,7 +94,9 @@ def convexity_margin(motion: Motion) -> tuple[float, float]:
     References
     ----------
     Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
-    проектирование по ТММ*; Frolov (ed.), *Теория механизмов и машин*: the convexity condition r0 + s + d2s/dphi2 >= rho_min of a cam with a flat-faced follower; docs/methods.md §5.
+    проектирование по ТММ*; Frolov (ed.), *Теория механизмов и машин*: the convexity
+    condition r0 + s + d2s/dphi2 >= rho_min of a cam with a flat-faced follower;
+    docs/methods.md §5.
     """
     return cycle_max(motion, lambda s, s1, s2: -s - s2)
 
@@ -117,7 +119,8 @@ def face_widths(motion: Motion) -> tuple[float, float]:
     References
     ----------
     Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
-    проектирование по ТММ*; Frolov (ed.), *Теория механизмов и машин*: the contact point's distance ds/dphi from the follower's axis; docs/methods.md §5.
+    проектирование по ТММ*; Frolov (ed.), *Теория механизмов и машин*: the contact point's
+    distance ds/dphi from the follower's axis; docs/methods.md §5.
     """
     hi, _ = cycle_max(motion, lambda s, s1, s2: s1)
     lo, _ = cycle_max(motion, lambda s, s1, s2: -s1)
@@ -147,7 +150,9 @@ def profile(motion: Motion, r0: float, sigma: int, phi_rad) -> np.ndarray:
     References
     ----------
     Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
-    проектирование по ТММ*; Frolov (ed.), *Теория механизмов и машин*: the profile of a flat-faced follower's cam as the envelope of the face's positions in inverted motion; docs/methods.md §5.
+    проектирование по ТММ*; Frolov (ed.), *Теория механизмов и машин*: the profile of a
+    flat-faced follower's cam as the envelope of the face's positions in inverted motion;
+    docs/methods.md §5.
     """
     phi = np.asarray(phi_rad, dtype=float)
     s, s1, _, _ = motion.evaluate(phi)

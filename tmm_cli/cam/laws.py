@@ -169,7 +169,8 @@ def get_law(name: str) -> Law:
     References
     ----------
     Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
-    проектирование по ТММ*; Frolov (ed.), *Теория механизмов и машин*: the motion laws of the follower and their coefficients; docs/methods.md §5.
+    проектирование по ТММ*; Frolov (ed.), *Теория механизмов и машин*: the motion laws of
+    the follower and their coefficients; docs/methods.md §5.
     """
     try:
         return LAWS[name]

@@ -36,7 +36,28 @@ KEEP = 400        # per free planetary stage: candidates carried into the whole-
 
 
 def stage_ratio(kind: str, z: list[int], internal: bool = False) -> float:
-    """u = omega_in/omega_out of one stage (pair or planetary scheme letter)."""
+    """The ratio of one stage of a drive train.
+
+    Parameters
+    ----------
+    kind : str
+        ``pair`` or a planetary scheme's letter A-D.
+    z : list of int
+        The stage's tooth numbers (input wheel first).
+    internal : bool
+        A pair: True when z2 is a ring.
+
+    Returns
+    -------
+    float
+        u = omega_in/omega_out: -z2/z1 (external pair), +z2/z1 (internal pair), Willis' i_1H
+        (planetary).
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
+    проектирование по ТММ*: the ratio of a gear pair and Willis' formula; docs/methods.md §6.
+    """
     return float(_exact(kind, z, internal))
 
 
@@ -51,17 +72,73 @@ def _zdict(kind: str, z) -> dict:
 
 
 def satellite_speeds(kind: str, z, omega_in: float, omega_h: float) -> tuple[float, float]:
-    """(absolute, relative to the carrier) angular speed of the satellite (the block 2-3)."""
+    """The angular speed of a planetary stage's satellite.
+
+    Parameters
+    ----------
+    kind : str
+        The scheme's letter A-D.
+    z : list of int
+        The stage's tooth numbers.
+    omega_in : float
+        The speed of wheel 1, rad/s.
+    omega_h : float
+        The carrier's speed, rad/s.
+
+    Returns
+    -------
+    tuple of float
+        (absolute, relative to the carrier) speed of the satellite block 2-3, rad/s: by
+        Willis, omega_2 - omega_H = -+(z1/z2)(omega_1 - omega_H) (+ for scheme D).
+    """
     rel = (1.0 if kind == "D" else -1.0) * z[0] / z[1] * (omega_in - omega_h)
     return omega_h + rel, rel
 
 
 def stage_size(kind: str, z) -> int:
+    """The size of a stage, in teeth, for the ranking.
+
+    Parameters
+    ----------
+    kind : str
+        ``pair`` or a scheme's letter.
+    z : list of int
+        The stage's tooth numbers.
+
+    Returns
+    -------
+    int
+        The largest wheel of a pair; :func:`.planetary.size_key` of a planetary stage.
+    """
     return max(z) if kind == "pair" else int(pl.size_key(kind, _zdict(kind, z)))
 
 
 def planetary_checks(kind: str, z, k: int, limits: pl.Limits, z_max: int) -> dict:
-    """The conditions of a planetary stage with given z (ratio excluded): name -> (ok, detail)."""
+    """The conditions of a planetary stage with given teeth, the ratio aside.
+
+    Parameters
+    ----------
+    kind : str
+        The scheme's letter A-D.
+    z : list of int
+        The stage's tooth numbers.
+    k : int
+        The number of satellites.
+    limits : Limits
+        The tooth limits.
+    z_max : int
+        The largest tooth number allowed.
+
+    Returns
+    -------
+    dict
+        ``coaxial``, ``assembly``, ``adjacency``, ``undercut`` -> (holds, the detail in words).
+
+    References
+    ----------
+    Popov & Timofeev, *Курсовое проектирование по ТММ*: the conditions of coaxiality,
+    assembly and adjacency; docs/methods.md §6.
+    """
     zd = _zdict(kind, z)
     a1, a2 = pl.centre_distances(kind, zd)
     p = pl.assembly_p(kind, zd, k)
@@ -388,8 +465,30 @@ def _stage_speeds(kinds: list, combo, specs, w0: float, k: int, lim: pl.Limits, 
 
 
 def motor_shaft(train: dict, flywheel: dict, constant: str) -> dict:
-    """The flywheel moved to the motor shaft (J/u^2, J_n/u^2), GD^2 = 4 g J (N*m^2), and the motor's
-    power M_constant * omega_m / efficiency (a driving constant moment only)."""
+    """The flywheel moved to the motor shaft, and the motor's power.
+
+    Parameters
+    ----------
+    train : dict
+        The results.json ``drive_train`` section (``ratio``, ``efficiency``).
+    flywheel : dict
+        The results.json ``flywheel`` section (``J``, ``J_n`` in kg*m^2, ``M_constant`` in N*m,
+        ``omega_m`` in rad/s).
+    constant : str
+        The flywheel's constant moment: ``driving`` or ``resistance``.
+
+    Returns
+    -------
+    dict
+        ``flywheel``: J/u^2, J_n/u^2 (kg*m^2) and GD^2 = 4 g J (N*m^2) on the motor shaft;
+        ``motor_power``: |M_constant omega_m| / efficiency (W) for a driving constant moment,
+        else None.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: reduction of moments of inertia by the
+    square of the ratio; docs/methods.md §4.
+    """
     u2 = train["ratio"] ** 2
     out = {"J_motor_shaft": flywheel["J"] / u2, "J_n_motor_shaft": flywheel["J_n"] / u2}
     out["GD2_motor_shaft"] = 4 * 9.80665 * out["J_motor_shaft"]
