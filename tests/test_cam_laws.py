@@ -44,7 +44,7 @@ def test_end_values_and_monotone(name):
 
 
 @pytest.mark.parametrize("name", LAW_NAMES)
-def test_published_coefficients(name):
+def test_norton_popov_frolov_law_coefficients(name):
     cv, ca = PUBLISHED[name]
     law = LAWS[name]
     x = np.linspace(0, 1, 200001)

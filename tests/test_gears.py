@@ -75,7 +75,7 @@ def test_involute_small_angle_series_continuity():
 
 
 # ------------------------------------------------- zero-shift pair, published example
-def test_zero_shift_pair_course_example():
+def test_course_project_engine_gears_z20_z15_m9_zero_shift():
     """reference/course-project-engine-cam-gears.txt, section 5: z1 = 20, z2 = 15, m = 9 mm,
     x = 0: rw = r, aw = a = 90 + 67.5 = 157.5 mm, h = 2.25 m = 20.25 mm, eps_alpha = 1.52."""
     r = analyze(gears(m=0.009, z=(20, 15), x=(0.0, 0.0), alpha=20, ha=1, c=0.25)).to_dict()

@@ -99,7 +99,7 @@ def test_property_positive_ratio_schemes(scheme, ratio, k):
         independent_check(scheme, c["z"], k, ratio, 0.03)
 
 
-def test_published_example_ratio_7():
+def test_ukrbukva_piston_pump_scheme_a_ratio_7():
     """Published course project (ukrbukva.net, «Поршневий насос для перекачування рідини»,
     planetary stage of scheme A, i_1H = 7, k = 3): z1 = 18, z2 = 45, z3 = 108 (z1 = 17 gives
     no integer z2 for the exact ratio)."""
