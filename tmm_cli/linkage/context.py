@@ -126,10 +126,25 @@ def reported_positions(mech: "Mechanism", positions_section, loads_section, sign
 
 
 def build(task) -> Linkage:
-    """The linkage context of a valid task (its ``mechanism`` or ``synthesis``, ``drive``,
-    ``positions``, ``loads``), as the pipeline builds it step by step (writing each part to
-    the results as it is done): the mechanism, its structure, the reported positions and
-    the crank's speed (``drive_speed.resolve``)."""
+    """The linkage context of a valid task, as the pipeline builds it step by step.
+
+    Parameters
+    ----------
+    task : Task
+        The validated task: its ``mechanism`` (or ``synthesis``), ``drive``, ``positions``
+        and ``loads``.
+
+    Returns
+    -------
+    Linkage
+        The mechanism (lengths in m), its structure, the reported positions (crank angles in
+        deg) and the crank's speed (rad/s, :func:`.drive_speed.resolve`).
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: the structure (Assur groups), the
+    extreme positions and the kinematics of the reported positions; docs/methods.md §1-2.
+    """
     from . import structure
     from .drive_speed import resolve
     from .mechanism import build_mechanism

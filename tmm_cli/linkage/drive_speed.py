@@ -23,9 +23,25 @@ SOURCES = ("speed", "mean_output_speed", "working_stroke_speed")
 
 
 def check_output_speed(value) -> tuple[float, str | None]:
-    """(magnitude in m/s or rad/s, 'linear' | 'angular' | None for a plain number).
-    Raises ValueError for a value that is neither a linear nor an angular speed, or
-    not positive."""
+    """The output's speed a task gives, checked.
+
+    Parameters
+    ----------
+    value : float or str
+        A plain number or a quantity with a unit (``"0.5 m/s"``, ``"30 rpm"``).
+
+    Returns
+    -------
+    magnitude : float
+        m/s for a linear speed, rad/s for an angular one.
+    kind : str or None
+        ``"linear"``, ``"angular"``, or None for a plain number.
+
+    Raises
+    ------
+    ValueError
+        A value that is neither a linear nor an angular speed, or not positive.
+    """
     from ..units import check_magnitude, quantity
 
     if isinstance(value, bool):
@@ -47,12 +63,50 @@ def check_output_speed(value) -> tuple[float, str | None]:
 
 
 def omega_from_mean(V: float, H: float) -> float:
-    """|omega1| (rad/s) from the output's mean speed over the cycle V and stroke H."""
+    """The crank's speed from the output's mean speed over the cycle.
+
+    Parameters
+    ----------
+    V : float
+        The output's mean speed over the cycle, m/s (rad/s for a rocker).
+    H : float
+        The output's stroke, m (rad for a rocker).
+
+    Returns
+    -------
+    float
+        |omega1| = pi V / H, rad/s (the output travels 2 H per turn).
+
+    References
+    ----------
+    Popov & Timofeev; Frolov, *Theory of Machines and Mechanisms*: the mean speed of the
+    output V = H omega1/pi.
+    """
     return math.pi * V / H
 
 
 def omega_from_working(V_w: float, H: float, K: float) -> float:
-    """|omega1| (rad/s) from the output's mean speed over the working stroke."""
+    """The crank's speed from the output's mean speed over the working stroke.
+
+    Parameters
+    ----------
+    V_w : float
+        The output's mean speed over the working stroke, m/s (rad/s for a rocker).
+    H : float
+        The output's stroke, m (rad for a rocker).
+    K : float
+        The coefficient of the mean speed (the time ratio of the strokes).
+
+    Returns
+    -------
+    float
+        |omega1| = V_w phi_w / H with phi_w = 2 pi K/(K + 1), rad/s.
+
+    References
+    ----------
+    Popov & Timofeev; Frolov, *Theory of Machines and Mechanisms*: the mean speed of the
+    output over the working stroke V_w = H omega1/phi_w.
+    """
     return 2.0 * math.pi * V_w / (H * (1.0 + 1.0 / K))
 
 
