@@ -9,7 +9,18 @@ from ...results import LazyEntries
 
 
 def angle_deg(rad) -> np.ndarray:
-    """Angle in degrees in [0, 360)."""
+    """An angle in degrees in [0, 360).
+
+    Parameters
+    ----------
+    rad : float or array_like
+        The angle, rad.
+
+    Returns
+    -------
+    numpy.ndarray
+        The angle, deg, in [0, 360).
+    """
     d = np.mod(np.degrees(np.asarray(rad, float)), 360.0)
     return np.where(d >= 360.0 - 1e-11, 0.0, d)
 
