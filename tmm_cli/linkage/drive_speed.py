@@ -139,8 +139,11 @@ def resolve(section, positions) -> Drive:
 
     if section.speed is not None:
         return drive(float(section.speed), "speed")
-    source = "mean_output_speed" if section.mean_output_speed is not None else "working_stroke_speed"
-    V, kind = check_output_speed(getattr(section, source))
+    if section.mean_output_speed is not None:
+        source, given = "mean_output_speed", section.mean_output_speed
+    else:
+        source, given = "working_stroke_speed", section.working_stroke_speed
+    V, kind = check_output_speed(given)
     field = f"drive.{source}"
     if positions.H is None or not positions.H > 0:
         raise field_error(field, f"the output '{positions.output}' has no stroke (no extreme positions), "

@@ -204,10 +204,11 @@ class Solver:
         for b in list(st.o1):
             if b == 0:
                 continue
-            for name in ("o1", "th1", "o2", "th2"):
-                arr = getattr(st, name)[b].copy()
-                arr[idx] = 0.5 * (getattr(sp, name)[b] + getattr(sm, name)[b])
-                getattr(st, name)[b] = arr
+            for cur, plus, minus in ((st.o1, sp.o1, sm.o1), (st.th1, sp.th1, sm.th1),
+                                     (st.o2, sp.o2, sm.o2), (st.th2, sp.th2, sm.th2)):
+                arr = cur[b].copy()
+                arr[idx] = 0.5 * (plus[b] + minus[b])
+                cur[b] = arr
         st.derivatives_changed()         # the points' derivatives change with the bodies'
         st.singular = sing
 
