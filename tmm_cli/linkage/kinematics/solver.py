@@ -507,9 +507,8 @@ class Solver:
         grp = self.groups[gi]
         pos = float(np.mod(bad_deg[0], 360.0))
         if whole:
-            err = StageError("kinematics", Message("kinematics.fail.never", **grp.message_params()), position=pos)
-            err.never_assembles = [self.mech.link(i).name for i in grp.links_sorted]
-            return err
+            return StageError("kinematics", Message("kinematics.fail.never", **grp.message_params()), position=pos,
+                              never_assembles=[self.mech.link(i).name for i in grp.links_sorted])
         try:
             iv = self.bad_intervals(gi)
         except StageError:
@@ -520,12 +519,12 @@ class Solver:
         mid_deg = iv[0][0] + ((iv[0][1] - iv[0][0]) % 360.0) / 2
         reason = self._reason(gi, mid_deg % 360.0)
         ivs = [[float(a), float(b)] for a, b in iv]      # degrees; each language formats them
-        err = StageError("kinematics", Message("kinematics.fail.intervals", **grp.message_params(), intervals=ivs,
-                                               reason=reason), position=pos)
+        never = None
         if sum((b - a) % 360.0 or (360.0 if b > a else 0.0) for a, b in iv) >= 360.0 - 1e-6:
             # no crank angle at all: the dimensions are impossible, an invalid task
-            err.never_assembles = [self.mech.link(i).name for i in grp.links_sorted]
-        return err
+            never = [self.mech.link(i).name for i in grp.links_sorted]
+        return StageError("kinematics", Message("kinematics.fail.intervals", **grp.message_params(), intervals=ivs,
+                                                reason=reason), position=pos, never_assembles=never)
 
 
 # ---------------------------------------------------------------------- cache
