@@ -5,8 +5,12 @@ every force and arm.  Drawn by the report's own panels (report/sections/kinetost
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from .frame import FRAME, TB_H, TB_W
+
+if TYPE_CHECKING:
+    from ..task import Task
 
 TXT = {"en": {"pos": "Position {i}, φ = {phi:.1f}°"},
        "ru": {"pos": "Положение {i}, φ = {phi:.1f}°"},
@@ -35,7 +39,7 @@ def layout(n: int, width: float) -> tuple[int, int]:
     return ncol, math.ceil(n / ncol)
 
 
-def build(cv, results, task, lang="en") -> dict:
+def build(cv, results: dict, task: Task | None, lang: str = "en") -> dict:
     from ..report.context import ReportContext
     from ..plans import crank_pin, geometry
     from ..report.sections import load
@@ -45,7 +49,7 @@ def build(cv, results, task, lang="en") -> dict:
     links = K._links(results)
     kin = {k["index"]: k for k in results.get("kinematics") or []}
     kst = {k["index"]: k for k in results["kinetostatics"]}
-    geom = geometry(results, task)
+    geom = geometry(results)
     pin = crank_pin(geom) if geom is not None else None
     x0f, y0f, x1f, y1f = FRAME
     course = positions(results)

@@ -6,15 +6,19 @@ the tangents of the lines of wheel 1 and the carrier (ψ1, ψH)."""
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from .frame import FRAME, TB_H, length_scale, std_mu
 
+if TYPE_CHECKING:
+    from ..task import Task
+
 COL_W, WHEEL_W = 34.0, 22.0      # mm: a row of wheels' column, a wheel's width in the scheme
 
 
-def build(cv, results, task, lang="en") -> dict:
+def build(cv, results: dict, task: Task | None, lang: str = "en") -> dict:
     from ..report.context import ReportContext
     from ..report.sections import load
     from .sheet1 import UNITS
