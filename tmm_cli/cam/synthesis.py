@@ -374,7 +374,7 @@ def synthesize(spec: CamSection) -> CamResult:
 
     # ---- smallest cam
     if rocker:
-        size = _rocker_size(spec, motion, fams, sigma, scale, th_rise, th_ret, r0_chosen, warnings)
+        size = _rocker_size(spec, motion, fams, sigma, rocker_length, th_rise, th_ret, r0_chosen, warnings)
     else:
         size = _translating_size(spec, motion, fams, sigma, scale, r0_chosen)
     geom, O, r0 = size.geom, size.O, size.r0
