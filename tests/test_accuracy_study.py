@@ -17,13 +17,13 @@ import json
 import math
 import subprocess
 import sys
-from types import SimpleNamespace as NS
 
 import numpy as np
 import pytest
 
 from tmm_cli.linkage.dynamics import EPS_DEG, Sample, analyze_sampler
 from tmm_cli.linkage.dynamics import flywheel as fw
+from task_sections import flywheel  # noqa: E402  (the section through the task model)
 
 R, L, F, J0, WM = 0.1, 0.35, 2000.0, 0.05, 20.0
 
@@ -61,9 +61,9 @@ def _closed_form(delta):
 
 
 def section(delta, resolution=360, quadrature=2, method="energy-mass"):
-    return NS(delta=delta, constant="driving", method=method, resolution=resolution,
-              quadrature=quadrature, shape=NS(type="disk", density=7800.0, width_ratio=0.1),
-              reduced_J=0.0)
+    return flywheel(delta=delta, constant="driving", method=method, resolution=resolution,
+                    quadrature=quadrature, shape=dict(type="disk", density=7800.0, width_ratio=0.1),
+                    reduced_J=0.0)
 
 
 @pytest.mark.parametrize("delta", [1 / 18, 0.1])

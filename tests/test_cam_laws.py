@@ -1,6 +1,5 @@
 """Motion laws of the cam follower: shape, continuity, integration, published coefficients."""
 import math
-from types import SimpleNamespace as NS
 
 import numpy as np
 import pytest
@@ -9,6 +8,7 @@ from scipy.integrate import cumulative_trapezoid
 
 from tmm_cli.cam.laws import LAW_NAMES, LAWS
 from tmm_cli.cam.motion import Motion
+from cam_spec import fields, section  # noqa: E402  (the task model builds the section)
 
 # Peak velocity / acceleration coefficients (factors of h/Phi and h/Phi^2) as tabulated in
 # the textbooks (Popov & Timofeev, Frolov; Norton "Cam design and manufacturing handbook",
@@ -44,7 +44,7 @@ def test_end_values_and_monotone(name):
 
 
 @pytest.mark.parametrize("name", LAW_NAMES)
-def test_published_coefficients(name):
+def test_norton_popov_frolov_law_coefficients(name):
     cv, ca = PUBLISHED[name]
     law = LAWS[name]
     x = np.linspace(0, 1, 200001)
@@ -78,9 +78,9 @@ def test_integration_of_derivatives(name):
 
 
 def _motion(rise_law, ret_law, h=0.04, phases=(100, 40, 120)):
-    ph = NS(rise=phases[0], far_dwell=phases[1], return_=phases[2],
-            near_dwell=360 - sum(phases))
-    return Motion.from_spec(h, ph, NS(rise=rise_law, return_=ret_law))
+    cam = section("cam", {"stroke": h, "phases": fields(rise=phases[0], far_dwell=phases[1], return_=phases[2]),
+                          "laws": fields(rise=rise_law, return_=ret_law)})
+    return Motion.from_spec(h, cam.phases, cam.laws)
 
 
 @pytest.mark.parametrize("name", LAW_NAMES)

@@ -2,7 +2,6 @@
 pressure angle, radius of curvature, roller rule, export."""
 import io
 import math
-from types import SimpleNamespace as NS
 
 import numpy as np
 import pytest
@@ -11,25 +10,25 @@ from scipy.optimize import brentq, minimize_scalar
 from tmm_cli.cam import synthesize
 from tmm_cli.cam.export import profile_csv_rows, profile_dxf
 from tmm_cli.errors import StageError
-from cam_spec import spec  # noqa: E402  (shared cam section builder)
+from cam_spec import fields, spec  # noqa: E402  (shared cam section builder)
 
 
 
 
 CASES = {
-    "offset": spec(stroke=0.04, offset="auto", laws=NS(rise="sine", return_="poly345"),
-                   phases=NS(rise=120, far_dwell=20, return_=100, near_dwell=120),
-                   pressure_angle=NS(rise=25, return_=40)),
-    "offset_cw": spec(stroke=0.04, offset=0.004, rotation="cw", laws=NS(rise="cosine", return_="sine"),
-                      pressure_angle=NS(rise=30, return_=45)),
+    "offset": spec(stroke=0.04, offset="auto", laws=fields(rise="sine", return_="poly345"),
+                   phases=fields(rise=120, far_dwell=20, return_=100, near_dwell=120),
+                   pressure_angle=fields(rise=25, return_=40)),
+    "offset_cw": spec(stroke=0.04, offset=0.004, rotation="cw", laws=fields(rise="cosine", return_="sine"),
+                      pressure_angle=fields(rise=30, return_=45)),
     "rocker": spec(follower="rocker", stroke=18.0, rocker_length=0.12, swing="against",
-                   laws=NS(rise="poly345", return_="cosine"),
-                   phases=NS(rise=100, far_dwell=30, return_=110, near_dwell=120),
-                   pressure_angle=NS(rise=40, return_=50)),
+                   laws=fields(rise="poly345", return_="cosine"),
+                   phases=fields(rise=100, far_dwell=30, return_=110, near_dwell=120),
+                   pressure_angle=fields(rise=40, return_=50)),
     "rocker_cw": spec(follower="rocker", stroke=22.0, rocker_length=0.1, swing="with", rotation="cw",
-                      laws=NS(rise="sine", return_="sine"),
-                      phases=NS(rise=90, far_dwell=40, return_=120, near_dwell=110),
-                      pressure_angle=NS(rise=35, return_=45)),
+                      laws=fields(rise="sine", return_="sine"),
+                      phases=fields(rise=90, far_dwell=40, return_=120, near_dwell=110),
+                      pressure_angle=fields(rise=35, return_=45)),
 }
 
 
@@ -142,7 +141,7 @@ def test_rho_min_central_closed_form():
     (textbook radius of curvature of the pitch curve in polar form), minimum over the
     convex parts; and the automatic roller = min(0.7 rho_min, 0.4 r0)."""
     h, P = 0.03, math.pi / 2
-    r = synthesize(spec(stroke=h, laws=NS(rise="cosine", return_="cosine")))
+    r = synthesize(spec(stroke=h, laws=fields(rise="cosine", return_="cosine")))
     A = h * math.pi / (2 * P * math.tan(math.radians(30)))
     r0 = math.sqrt(A * A + h * h / 4) - h / 2                 # closed form, see test_cam_synthesis
     x = np.linspace(0, 1, 400001)
@@ -158,7 +157,7 @@ def test_rho_min_central_closed_form():
 
 
 def test_roller_undercut_and_rules():
-    base = dict(stroke=0.03, laws=NS(rise="cosine", return_="cosine"))
+    base = dict(stroke=0.03, laws=fields(rise="cosine", return_="cosine"))
     r = synthesize(spec(**base))
     with pytest.raises(StageError, match="undercut"):
         synthesize(spec(**base, roller=r.rho_min * 1.001))

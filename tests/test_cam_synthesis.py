@@ -7,7 +7,6 @@ the roller centre.  A cam centre is admissible when that angle never exceeds the
 value and the roller centre moves away from the cam centre on the rise.
 """
 import math
-from types import SimpleNamespace as NS
 
 import numpy as np
 import pytest
@@ -16,7 +15,7 @@ from hypothesis import given, settings, strategies as st
 from tmm_cli.cam import synthesize
 from tmm_cli.cam.laws import LAWS
 from tmm_cli.errors import StageError
-from cam_spec import spec  # noqa: E402  (shared cam section builder)
+from cam_spec import fields, spec  # noqa: E402  (shared cam section builder)
 
 
 
@@ -34,8 +33,8 @@ def test_central_cosine_closed_form(h, Phi, theta):
     t = math.tan(math.radians(theta))
     A = h * math.pi / (2 * P * t)
     r0_exact = math.sqrt(A * A + h * h / 4) - h / 2
-    r = synthesize(spec(stroke=h, phases=NS(rise=Phi, far_dwell=10, return_=Phi, near_dwell=350 - 2 * Phi),
-                        pressure_angle=NS(rise=theta, return_=theta)))
+    r = synthesize(spec(stroke=h, phases=fields(rise=Phi, far_dwell=10, return_=Phi, near_dwell=350 - 2 * Phi),
+                        pressure_angle=fields(rise=theta, return_=theta)))
     assert r.r0 == pytest.approx(r0_exact, rel=1e-10)
     assert r.offset == 0.0 and r.center_distance is None
     # equality at the optimum: tan(theta) = max (ds/dphi)/(r0 + s)
@@ -53,9 +52,9 @@ def test_central_any_law_against_direct_maximum(rise_law, ret_law, rise, ret, th
     """Central follower: r0 = max over each phase of |ds/dphi|/tan(theta_allowed) - s
     (the pressure-angle formula tan(theta) = |s'|/(r0 + s)), on a grid of 2e5 points."""
     h = 0.04
-    r = synthesize(spec(stroke=h, laws=NS(rise=rise_law, return_=ret_law),
-                        phases=NS(rise=rise, far_dwell=20, return_=ret, near_dwell=340 - rise - ret),
-                        pressure_angle=NS(rise=th_r, return_=th_d)))
+    r = synthesize(spec(stroke=h, laws=fields(rise=rise_law, return_=ret_law),
+                        phases=fields(rise=rise, far_dwell=20, return_=ret, near_dwell=340 - rise - ret),
+                        pressure_angle=fields(rise=th_r, return_=th_d)))
     best = 0.0
     for law, P, th, up in ((LAWS[rise_law], rise, th_r, True), (LAWS[ret_law], ret, th_d, False)):
         x = np.linspace(0, 1, 200001)
@@ -71,8 +70,8 @@ def test_given_offset_against_formula():
     with |s' -+ e| <= (s0 + s) tan(theta) (textbook formula tan(theta) = (s' - e)/(s0 + s)
     for the side that lowers the rise angle)."""
     h, e = 0.03, 0.006
-    r = synthesize(spec(stroke=h, offset=e, laws=NS(rise="sine", return_="poly345"),
-                        pressure_angle=NS(rise=30, return_=40)))
+    r = synthesize(spec(stroke=h, offset=e, laws=fields(rise="sine", return_="poly345"),
+                        pressure_angle=fields(rise=30, return_=40)))
     need = []
     for law, P, th, up in ((LAWS["sine"], 90, 30, True), (LAWS["poly345"], 90, 40, False)):
         x = np.linspace(0, 1, 400001)
@@ -171,9 +170,9 @@ def _brute_min(kind, sigma, sp, box, tau=1, l=None, levels=8, m=25):
 @pytest.mark.parametrize("laws,lim", [(("cosine", "cosine"), (30, 30)), (("sine", "poly345"), (25, 45)),
                                       (("poly345", "sine"), (30, 60))])
 def test_best_offset_brute_force(laws, lim):
-    sp = spec(stroke=0.04, offset="auto", laws=NS(rise=laws[0], return_=laws[1]),
-              phases=NS(rise=100, far_dwell=20, return_=80, near_dwell=160),
-              pressure_angle=NS(rise=lim[0], return_=lim[1]))
+    sp = spec(stroke=0.04, offset="auto", laws=fields(rise=laws[0], return_=laws[1]),
+              phases=fields(rise=100, far_dwell=20, return_=80, near_dwell=160),
+              pressure_angle=fields(rise=lim[0], return_=lim[1]))
     r = synthesize(sp)
     # the follower moves along +x in the check's frame, the cam rotates ccw:
     O = _brute_min("translating", 1, sp, ((-0.3, 0.0), (-0.15, 0.15)))
@@ -186,8 +185,8 @@ def test_best_offset_brute_force(laws, lim):
 
 
 def test_given_offset_brute_force():
-    sp = spec(stroke=0.04, offset=-0.005, laws=NS(rise="sine", return_="sine"),
-              pressure_angle=NS(rise=30, return_=35))
+    sp = spec(stroke=0.04, offset=-0.005, laws=fields(rise="sine", return_="sine"),
+              pressure_angle=fields(rise=30, return_=35))
     r = synthesize(sp)
     # O on the line y = offset (check frame: follower along +x), nearest admissible x
     xs = np.linspace(-0.2, 0.0, 401)
@@ -204,9 +203,9 @@ def test_given_offset_brute_force():
 def test_rocker_brute_force(swing, rotation):
     l = 0.1
     sp = spec(follower="rocker", stroke=20.0, rocker_length=l, offset=0.0, swing=swing,
-              rotation=rotation, laws=NS(rise="sine", return_="cosine"),
-              phases=NS(rise=100, far_dwell=20, return_=120, near_dwell=120),
-              pressure_angle=NS(rise=40, return_=50))
+              rotation=rotation, laws=fields(rise="sine", return_="cosine"),
+              phases=fields(rise=100, far_dwell=20, return_=120, near_dwell=120),
+              pressure_angle=fields(rise=40, return_=50))
     r = synthesize(sp)
     sigma = 1 if rotation == "ccw" else -1
     tau = sigma if swing == "with" else -sigma
@@ -218,9 +217,9 @@ def test_rocker_brute_force(swing, rotation):
 
 
 def test_rocker_auto_swing_picks_smaller():
-    base = dict(follower="rocker", stroke=25.0, rocker_length=0.12, laws=NS(rise="poly345", return_="sine"),
-                phases=NS(rise=80, far_dwell=40, return_=110, near_dwell=130),
-                pressure_angle=NS(rise=35, return_=50))
+    base = dict(follower="rocker", stroke=25.0, rocker_length=0.12, laws=fields(rise="poly345", return_="sine"),
+                phases=fields(rise=80, far_dwell=40, return_=110, near_dwell=130),
+                pressure_angle=fields(rise=35, return_=50))
     a = synthesize(spec(**base, swing="with"))
     b = synthesize(spec(**base, swing="against"))
     c = synthesize(spec(**base, swing="auto"))
@@ -229,9 +228,9 @@ def test_rocker_auto_swing_picks_smaller():
 
 
 def test_rotation_mirrors_the_cam():
-    a = synthesize(spec(offset="auto", laws=NS(rise="sine", return_="cosine"), pressure_angle=NS(rise=28, return_=40)))
-    b = synthesize(spec(offset="auto", rotation="cw", laws=NS(rise="sine", return_="cosine"),
-                        pressure_angle=NS(rise=28, return_=40)))
+    a = synthesize(spec(offset="auto", laws=fields(rise="sine", return_="cosine"), pressure_angle=fields(rise=28, return_=40)))
+    b = synthesize(spec(offset="auto", rotation="cw", laws=fields(rise="sine", return_="cosine"),
+                        pressure_angle=fields(rise=28, return_=40)))
     assert a.r0 == pytest.approx(b.r0, rel=1e-12)
     assert a.offset == pytest.approx(b.offset, rel=1e-9)
     assert np.allclose(a.pitch[:, 0], -b.pitch[:, 0], atol=1e-12)
@@ -241,14 +240,14 @@ def test_rotation_mirrors_the_cam():
 def test_empty_region_is_a_stage_error():
     with pytest.raises(StageError):
         synthesize(spec(follower="rocker", stroke=150.0, rocker_length=0.05, swing="with",
-                        phases=NS(rise=30, far_dwell=0, return_=30, near_dwell=300),
-                        laws=NS(rise="constant_velocity", return_="constant_velocity"),
-                        pressure_angle=NS(rise=5, return_=5)))
+                        phases=fields(rise=30, far_dwell=0, return_=30, near_dwell=300),
+                        laws=fields(rise="constant_velocity", return_="constant_velocity"),
+                        pressure_angle=fields(rise=5, return_=5)))
 
 
 def test_results_dict_is_plain_json():
     import json
-    r = synthesize(spec(offset="auto", speed=10.0, laws=NS(rise="constant_velocity", return_="parabolic")))
+    r = synthesize(spec(offset="auto", speed=10.0, laws=fields(rise="constant_velocity", return_="parabolic")))
     d = r.to_dict()
     text = json.dumps(d, allow_nan=False)
     assert json.loads(text)["r0"] == d["r0"]

@@ -218,7 +218,7 @@ def test_equations_against_newton_euler(l, s1, m1, JS, lc, m2, JC, phi, psi, w, 
 @settings(max_examples=40, deadline=None)
 @given(l=pos, lc=st.floats(0.01, 0.3), m=st.floats(0.05, 3), J1=st.floats(1e-4, 1e-2), J2=st.floats(1e-5, 1e-2),
        phi=ang, psi=ang, w=rate, pd=rate)
-def test_equations_against_the_paper(l, lc, m, J1, J2, phi, psi, w, pd):
+def test_voronkin_equations_9(l, lc, m, J1, J2, phi, psi, w, pd):
     """Voronkin's (9), horizontal, no moment, his psi_p = psi - 180 deg (from O1 -> O):
         A phi'' + C psi'' + B psi' (2 phi' + psi') = 0,   C phi'' + D psi'' - B phi'^2 = 0
         A = J1 + m l^2 + J2 + m lc^2 - 2 m l lc cos psi_p,  B = m l lc sin psi_p,
@@ -268,7 +268,7 @@ def test_reactions_theorem_on_the_motion_of_the_centre_of_mass():
 
 
 # ------------------------------------------------------------------ double pendulum
-def test_double_pendulum_limit():
+def test_landau_lifshitz_double_pendulum_limit():
     """Point masses m1 at l1 (rotor: com = length, J = 0), m2 at l2 (striker: com = length,
     J = 0), gravity on, no moment.  Textbook (Landau & Lifshitz par. 5, angles from the
     downward vertical, theta1 = phi + 90 deg, theta2 = phi + psi + 90 deg):

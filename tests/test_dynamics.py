@@ -16,7 +16,6 @@ Independent references used here:
 from __future__ import annotations
 
 import json
-from types import SimpleNamespace as NS
 
 import numpy as np
 import pytest
@@ -25,6 +24,7 @@ from hypothesis import given, settings, strategies as st
 from tmm_cli.linkage.dynamics import EPS_DEG, Sample, analyze_sampler, grid, solve_cycle
 from tmm_cli.linkage.dynamics import flywheel as fw
 from tmm_cli.errors import StageError
+from task_sections import flywheel  # noqa: E402  (the section through the task model)
 
 SPEC_KEYS = {"J", "J_energy_mass", "J_merzalov", "J_exact", "J_n", "J_const", "delta_achieved",
              "omega_max", "omega_min", "M_constant", "diameter", "width", "mass"}
@@ -32,9 +32,9 @@ SPEC_KEYS = {"J", "J_energy_mass", "J_merzalov", "J_exact", "J_n", "J_const", "d
 
 def section(delta=0.1, method="energy-mass", constant="driving", resolution=360, shape="disk",
             density=7800.0, width_ratio=0.1, reduced_J=0.0, quadrature=2):
-    return NS(delta=delta, constant=constant, method=method, resolution=resolution,
-              quadrature=quadrature,
-              shape=NS(type=shape, density=density, width_ratio=width_ratio), reduced_J=reduced_J)
+    return flywheel(delta=delta, constant=constant, method=method, resolution=resolution,
+                    quadrature=quadrature,
+                    shape=dict(type=shape, density=density, width_ratio=width_ratio), reduced_J=reduced_J)
 
 
 def step_sampler(levels, edges, J0=2.0, Jvar=None):

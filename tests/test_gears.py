@@ -8,16 +8,17 @@ the package's Newton solver).
 """
 import json
 import math
-from types import SimpleNamespace as NS
 
 import numpy as np
 import pytest
+from pydantic import ValidationError
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from tmm_cli.errors import StageError
 from tmm_cli.gears import ainv, analyze, inv
 from tmm_cli.gears.geometry import pair, x_min_course, z_min_course
+from task_sections import gears  # noqa: E402  (sections through the task model)
 
 RAD = math.pi / 180
 
@@ -74,10 +75,10 @@ def test_involute_small_angle_series_continuity():
 
 
 # ------------------------------------------------- zero-shift pair, published example
-def test_zero_shift_pair_course_example():
+def test_course_project_engine_gears_z20_z15_m9_zero_shift():
     """reference/course-project-engine-cam-gears.txt, section 5: z1 = 20, z2 = 15, m = 9 mm,
     x = 0: rw = r, aw = a = 90 + 67.5 = 157.5 mm, h = 2.25 m = 20.25 mm, eps_alpha = 1.52."""
-    r = analyze(NS(m=0.009, z=(20, 15), x=(0.0, 0.0), alpha=20, ha=1, c=0.25)).to_dict()
+    r = analyze(gears(m=0.009, z=(20, 15), x=(0.0, 0.0), alpha=20, ha=1, c=0.25)).to_dict()
     assert r["aw"] == pytest.approx(0.1575, rel=1e-12)
     assert r["alpha_w"] == pytest.approx(20.0, rel=1e-12)
     assert r["rw"] == pytest.approx([0.090, 0.0675], rel=1e-12)
@@ -105,7 +106,7 @@ def test_zero_shift_small_pinion_verdicts():
     """z1 = 12 with x = 0 (ha* = 1, 20 deg): undercut (x_min = 5/17) and the tip of the
     wheel 2 reaches beyond the tangency point N1 (N2B1 > N1N2): interference."""
     m, a = 0.003, 20 * RAD
-    r = analyze(NS(m=m, z=(12, 30), x=(0.0, 0.0), alpha=20, ha=1, c=0.25)).to_dict()
+    r = analyze(gears(m=m, z=(12, 30), x=(0.0, 0.0), alpha=20, ha=1, c=0.25)).to_dict()
     aw = m * 42 / 2
     g = aw * math.sin(a)                                   # N1N2
     rb2, ra2 = m * 15 * math.cos(a), m * 15 + m
@@ -164,7 +165,7 @@ def test_shifted_pair_spec_example_hand_calculation():
     aw = 25.63 deg, a = 81 mm, aw = 81 cos 20 / cos 25.63 = 84.42 mm, y = 1.140,
     dy = 0.160, ra1 = 18 + 3 (1 + 0.63 - 0.160) = 22.41 mm, rf1 = 18 - 3 (1.25 - 0.63)
     = 16.14 mm, s1 = 3 (pi/2 + 2 * 0.63 * 0.36397) = 6.088 mm."""
-    spec = NS(m=0.003, z=(12, 42), x=(0.63, 0.67), alpha=20, ha=1, c=0.25)
+    spec = gears(m=0.003, z=(12, 42), x=(0.63, 0.67), alpha=20, ha=1, c=0.25)
     r = analyze(spec).to_dict()
     h = hand_shifted(0.003, 12, 42, 0.63, 0.67)
     # rounded table values, by hand
@@ -200,7 +201,7 @@ def test_shifted_pair_spec_example_hand_calculation():
 
 
 def test_line_of_action_and_contact_ratio_agree():
-    r = analyze(NS(m=0.003, z=(12, 42), x=(0.63, 0.67))).to_dict()
+    r = analyze(gears(m=0.003, z=(12, 42), x=(0.63, 0.67))).to_dict()
     la = r["line_of_action"]
     aw, awa = r["aw"], r["alpha_w"] * RAD
     assert la["N1N2"] == pytest.approx(aw * math.sin(awa), rel=1e-12)
@@ -218,7 +219,7 @@ def test_line_of_action_and_contact_ratio_agree():
 
 def test_specific_sliding_identities():
     z1, z2 = 12, 42
-    r = analyze(NS(m=0.003, z=(z1, z2), x=(0.63, 0.67))).to_dict()
+    r = analyze(gears(m=0.003, z=(z1, z2), x=(0.63, 0.67))).to_dict()
     sl = r["sliding"]
     g = r["line_of_action"]["N1N2"]
     X = np.array(sl["X"])
@@ -244,13 +245,13 @@ def test_checks_sharpening_and_contact_ratio():
     # z1 = 10, x1 = 1.0: pointed tip by hand (sa1 < 0.25 m)
     m = 0.003
     h = hand_shifted(m, 10, 40, 1.0, 0.0)
-    r = analyze(NS(m=m, z=(10, 40), x=(1.0, 0.0))).to_dict()
+    r = analyze(gears(m=m, z=(10, 40), x=(1.0, 0.0))).to_dict()
     assert (h["sa"][0] < 0.25 * m) is True
     assert r["checks"]["sharpening"] == [True, False]
     assert any("tip is too thin" in w for w in r["warnings"])
     # large shifts on both wheels: eps below 1.2 by hand
     h = hand_shifted(m, 20, 20, 1.0, 1.0)
-    r = analyze(NS(m=m, z=(20, 20), x=(1.0, 1.0))).to_dict()
+    r = analyze(gears(m=m, z=(20, 20), x=(1.0, 1.0))).to_dict()
     assert h["eps"] < 1.2
     assert r["checks"]["contact_ratio_low"] is True
     assert r["eps_alpha"] == pytest.approx(h["eps"], rel=1e-10)
@@ -258,7 +259,7 @@ def test_checks_sharpening_and_contact_ratio():
 
 
 def test_sharpening_limit_option():
-    r = analyze(NS(m=0.003, z=(12, 42), x=(0.63, 0.67), sa_min=0.5)).to_dict()
+    r = analyze(gears(m=0.003, z=(12, 42), x=(0.63, 0.67), sa_min=0.5)).to_dict()
     # sa1 = 0.454 m by hand (see the SPEC example): defect for a 0.5 m limit only
     assert 0.25 < r["sa"][0] / 0.003 < 0.5
     assert r["checks"]["sharpening"] == [True, False]
@@ -275,7 +276,7 @@ def test_z_min_and_x_min_generalised():
 
 
 def test_results_are_json_and_have_spec_keys():
-    d = analyze(NS(m=0.003, z=(12, 42), x=(0.63, 0.67))).to_dict()
+    d = analyze(gears(m=0.003, z=(12, 42), x=(0.63, 0.67))).to_dict()
     json.dumps(d, allow_nan=False)
     for k in ("aw", "alpha_w", "y", "dy", "r", "rb", "rw", "ra", "rf", "s", "sa", "eps_alpha",
               "x_min", "checks"):
@@ -285,9 +286,9 @@ def test_results_are_json_and_have_spec_keys():
 
 def test_invalid_inputs_raise_stage_error():
     with pytest.raises(StageError):
-        analyze(NS(m=0.003, z=(12, 14), x=(-3.0, -3.0)))           # inv aw < 0
-    with pytest.raises(StageError):
-        analyze(NS(m=0.003, z=(12, 42), x="sometimes"))
+        analyze(gears(m=0.003, z=(12, 14), x=(-3.0, -3.0)))           # inv aw < 0
+    with pytest.raises(ValidationError):                  # x neither two numbers nor auto: the task model's
+        gears(m=0.003, z=(12, 42), x="sometimes")
 
 
 # ------------------------------------------------------------------ x: auto rules
@@ -300,7 +301,7 @@ def _lambda_max(d):
 
 @pytest.mark.parametrize("z", [(12, 42), (14, 28), (20, 40), (25, 60)])
 def test_auto_equal_sliding(z):
-    d = analyze(NS(m=0.002, z=z, x="auto", rule="equal_sliding")).to_dict()
+    d = analyze(gears(m=0.002, z=z, x="auto", rule="equal_sliding")).to_dict()
     l1, l2 = _lambda_max(d)
     assert l1 == pytest.approx(l2, rel=1e-7)
     xs = max(0, (17 - z[0]) / 17) + max(0, (17 - z[1]) / 17)
@@ -311,7 +312,7 @@ def test_auto_equal_sliding(z):
 
 
 def test_auto_no_undercut():
-    d = analyze(NS(m=0.002, z=(12, 42), x="auto", rule="no_undercut")).to_dict()
+    d = analyze(gears(m=0.002, z=(12, 42), x="auto", rule="no_undercut")).to_dict()
     assert d["x"] == pytest.approx([5 / 17, 0.0], abs=1e-12)
     assert d["checks"]["undercut"] == [False, False]
 
@@ -321,7 +322,7 @@ def test_auto_moves_into_contour_when_rule_fails():
     # table rule for z = (8, 60): x = (max(0.5, 9/17), 0.5); by hand sa1 < 0.25 m there
     h = hand_shifted(m, 8, 60, 9 / 17, 0.5)
     assert h["sa"][0] < 0.25 * m
-    d = analyze(NS(m=m, z=(8, 60), x="auto", rule="table")).to_dict()
+    d = analyze(gears(m=m, z=(8, 60), x="auto", rule="table")).to_dict()
     assert "outside the blocking contour" in d["warnings"][0]
     x1, x2 = d["x"]
     h = hand_shifted(m, 8, 60, x1, x2)                       # the new point, checked by hand
@@ -330,14 +331,14 @@ def test_auto_moves_into_contour_when_rule_fails():
     assert math.hypot(x1 - 9 / 17, x2 - 0.5) < 0.15
     assert d["blocking_contour"]["chosen_admissible"] is True
     # z = (10, 12): no admissible shifts at all (undercut limits force eps < 1.2)
-    d = analyze(NS(m=m, z=(10, 12), x="auto", rule="table")).to_dict()
+    d = analyze(gears(m=m, z=(10, 12), x="auto", rule="table")).to_dict()
     assert "no shifts satisfy every check" in d["warnings"][0]
     assert d["checks"]["contact_ratio_low"] is True
 
 
 def test_blocking_contour_lines_lie_on_their_limits():
     m, z1, z2 = 0.003, 12, 42
-    d = analyze(NS(m=m, z=(z1, z2), x=(0.63, 0.67))).to_dict()
+    d = analyze(gears(m=m, z=(z1, z2), x=(0.63, 0.67))).to_dict()
     lines = d["blocking_contour"]["lines"]
     for seg in lines["undercut_1"]:
         for x1, _ in seg:

@@ -1,10 +1,10 @@
 """Report sections 'gears' and 'planetary' render in both languages and show the numbers."""
 from pathlib import Path
-from types import SimpleNamespace as NS
 
 import pytest
 
 from tmm_cli.gears import analyze, synthesize_planetary
+from task_sections import gears, planetary  # noqa: E402  (sections through the task model)
 
 
 @pytest.mark.parametrize("lang,word", [("en", "Region of (x<sub>1</sub>, x<sub>2</sub>)"),
@@ -12,8 +12,8 @@ from tmm_cli.gears import analyze, synthesize_planetary
 def test_sections_render(tmp_path: Path, lang, word):
     from tmm_cli.report import render_html
 
-    g = analyze(NS(m=0.003, z=(12, 42), x=(0.63, 0.67))).to_dict()
-    p = synthesize_planetary(NS(scheme="A", ratio=7, satellites=3, tolerance=0.005, m=0.002)).to_dict()
+    g = analyze(gears(m=0.003, z=(12, 42), x=(0.63, 0.67))).to_dict()
+    p = synthesize_planetary(planetary(scheme="A", ratio=7, satellites=3, tolerance=0.005, m=0.002)).to_dict()
     html, ctx = render_html({"schema": "tmm-results/1", "gears": g, "planetary": p, "warnings": []},
                             None, tmp_path, lang)
     assert word in html and "figure failed" not in html
@@ -28,7 +28,7 @@ def test_ru_symbols_and_words(tmp_path: Path):
     (a_w, alpha_w, eps_alpha as subscripts), no raw identifiers are left."""
     from tmm_cli.report import render_html
 
-    g = analyze(NS(m=0.003, z=(12, 42), x=(0.63, 0.67))).to_dict()
+    g = analyze(gears(m=0.003, z=(12, 42), x=(0.63, 0.67))).to_dict()
     html, _ = render_html({"schema": "tmm-results/1", "gears": g, "warnings": []}, None, tmp_path, "ru")
     for text in ("межосевое расстояние, a<sub>w</sub>, мм", "угол зацепления, α<sub>w</sub>",
                  "коэффициент перекрытия, ε<sub>α</sub>", "радиус основной окружности, r<sub>b</sub>, мм"):
@@ -43,7 +43,7 @@ def test_mesh_labels_do_not_overlap_and_contour_styles_distinct():
     from tmm_cli.report.sections import gears as sec
 
     for z, x in (((12, 42), (0.63, 0.67)), ((14, 30), (0.0, 0.0)), ((17, 17), (0.0, 0.0)), ((10, 60), (0.5, 0.2))):
-        g = analyze(NS(m=0.003, z=z, x=x)).to_dict()
+        g = analyze(gears(m=0.003, z=z, x=x)).to_dict()
         pts = sec.line_points(g)
         la = g["line_of_action"]
         # the points lie on the line at the (signed) distances reported from N1

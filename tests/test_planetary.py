@@ -4,14 +4,15 @@ condition for rigid identical satellites, adjacency of satellite tip circles, th
 tooth-number limits), the velocity plan against Willis, and a published example."""
 import math
 from math import gcd
-from types import SimpleNamespace as NS
 
 import pytest
+from pydantic import ValidationError
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from tmm_cli.errors import StageError
 from tmm_cli.gears import synthesize_planetary
+from task_sections import planetary  # noqa: E402  (sections through the task model)
 
 # mesh chains with the carrier held: (driving, driven, kind); the last wheel is fixed
 CHAINS = {"A": [("z1", "z2", "ext"), ("z2", "z3", "int")],
@@ -73,7 +74,7 @@ CASES = [("A", 3.24, 3, 0.05), ("A", 7.0, 3, 0.01), ("A", 5.5, 4, 0.02), ("B", 1
 
 @pytest.mark.parametrize("scheme,ratio,k,tol", CASES)
 def test_every_returned_set_meets_all_conditions(scheme, ratio, k, tol):
-    res = synthesize_planetary(NS(scheme=scheme, ratio=ratio, satellites=k, tolerance=tol))
+    res = synthesize_planetary(planetary(scheme=scheme, ratio=ratio, satellites=k, tolerance=tol))
     d = res.to_dict()
     assert d["candidates"], "candidates"
     for c in d["candidates"]:
@@ -91,25 +92,25 @@ def test_every_returned_set_meets_all_conditions(scheme, ratio, k, tol):
 @settings(max_examples=15, deadline=None)
 def test_property_positive_ratio_schemes(scheme, ratio, k):
     try:
-        res = synthesize_planetary(NS(scheme=scheme, ratio=ratio, satellites=k, tolerance=0.03))
+        res = synthesize_planetary(planetary(scheme=scheme, ratio=ratio, satellites=k, tolerance=0.03))
     except StageError:
         return                                                    # nothing fits: reported, fine
     for c in res.to_dict()["candidates"]:
         independent_check(scheme, c["z"], k, ratio, 0.03)
 
 
-def test_published_example_ratio_7():
+def test_ukrbukva_piston_pump_scheme_a_ratio_7():
     """Published course project (ukrbukva.net, «Поршневий насос для перекачування рідини»,
     planetary stage of scheme A, i_1H = 7, k = 3): z1 = 18, z2 = 45, z3 = 108 (z1 = 17 gives
     no integer z2 for the exact ratio)."""
-    res = synthesize_planetary(NS(scheme="A", ratio=7, satellites=3, tolerance=0.005))
+    res = synthesize_planetary(planetary(scheme="A", ratio=7, satellites=3, tolerance=0.005))
     assert res.z == {"z1": 18, "z2": 45, "z3": 108}
     assert res.to_dict()["ratio_error"] == 0.0
 
 
 def test_velocity_plan_matches_willis():
     for scheme, ratio in (("A", 3.24), ("B", 12.0), ("C", -2.24), ("D", 0.1)):
-        res = synthesize_planetary(NS(scheme=scheme, ratio=ratio, satellites=3, tolerance=0.05, m=0.002))
+        res = synthesize_planetary(planetary(scheme=scheme, ratio=ratio, satellites=3, tolerance=0.05, m=0.002))
         d = res.to_dict()
         z = d["z"]
         i = willis(scheme, z)
@@ -127,12 +128,12 @@ def test_velocity_plan_matches_willis():
 
 
 def test_errors():
+    with pytest.raises(ValidationError):                  # an unknown scheme: the task model's error
+        planetary(scheme="Z", ratio=3, satellites=3, tolerance=0.05)
     with pytest.raises(StageError):
-        synthesize_planetary(NS(scheme="Z", ratio=3, satellites=3, tolerance=0.05))
-    with pytest.raises(StageError):
-        synthesize_planetary(NS(scheme="A", ratio=0.5, satellites=3, tolerance=0.05))
+        synthesize_planetary(planetary(scheme="A", ratio=0.5, satellites=3, tolerance=0.05))
     with pytest.raises(StageError):                       # 12 satellites never fit in scheme A
-        synthesize_planetary(NS(scheme="A", ratio=4, satellites=12, tolerance=0.001))
+        synthesize_planetary(planetary(scheme="A", ratio=4, satellites=12, tolerance=0.001))
 
 
 def test_scheme_a_hint_states_the_feasible_range():
@@ -144,7 +145,7 @@ def test_scheme_a_hint_states_the_feasible_range():
     z3 = 149 (166/3 no), 147 (164/3 no), 145 (162/3 = 54): i = 1 + 145/17 = 9.52941."""
     for ratio in (1.2, 12.0):
         with pytest.raises(StageError) as e:
-            synthesize_planetary(NS(scheme="A", ratio=ratio, satellites=3, tolerance=0.05, m=0.002))
+            synthesize_planetary(planetary(scheme="A", ratio=ratio, satellites=3, tolerance=0.05, m=0.002))
         hint = e.value.message.params["hint"]
         assert hint["code"] == "planetary.hint.scheme_a"
         assert hint["params"]["lo"] == pytest.approx(1 + 149 / 109, rel=1e-12)

@@ -240,7 +240,7 @@ def test_chebyshev_line(html_en):
 def test_scales_hand_computation(results, task, html_en):
     # v_A = omega r = (pi*100/30)*0.12 = 1.256637 m/s; v_A/100 mm = 0.012566 -> standard 0.02
     # a_A = omega^2 r = 10.47198^2 * 0.12 = 13.1595 m/s^2; /100 mm = 0.1316 -> standard 0.2
-    geom = geometry(results, task)
+    geom = geometry(results)
     mu_v, mu_a, vA, aA = scales(results["kinematics"], geom)
     assert vA == pytest.approx(1.2566371, rel=1e-6)
     assert aA == pytest.approx(13.159473, rel=1e-6)
@@ -256,7 +256,7 @@ def test_scales_hand_computation(results, task, html_en):
 
 @pytest.mark.parametrize("i", range(12))
 def test_plan_segments_closed_form(results, task, i):
-    geom = geometry(results, task)
+    geom = geometry(results)
     e = results["kinematics"][i]
     s = slider_crank_state(e["phi"])
     mu_v, mu_a = 0.015, 0.15
@@ -313,7 +313,7 @@ def test_angular_sense_marks(html_ru):
 
 def test_coriolis_slotted_lever():
     res = slotted_results()
-    geom = geometry(res, None)
+    geom = geometry(res)
     for e in res["kinematics"]:
         st = slotted_state(e["phi"])
         mu_a = 0.1
@@ -346,7 +346,7 @@ def test_geometry_from_the_results_only(results, task):
     'links' there is no geometry (and no drawing), whatever the task says."""
     r2 = dict(results)
     r2["structure"] = {k: v for k, v in results["structure"].items() if k not in ("links", "joints")}
-    assert geometry(r2, task) is None and geometry(r2) is None
+    assert geometry(r2) is None
     g = geometry(results)
     assert [(l.name, l.index, l.points, l.kind) for l in g.links] == \
         [("crank", 1, ["O", "A"], "bar"), ("rod", 2, ["A", "B"], "bar"), ("slider", 3, ["B"], "slider")]

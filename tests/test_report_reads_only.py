@@ -14,12 +14,12 @@ import ast
 import math
 import re
 from pathlib import Path
-from types import SimpleNamespace as NS
 
 import numpy as np
 import pytest
 
 import tmm_cli
+from task_sections import gears  # noqa: E402  (sections through the task model)
 
 ROOT = Path(__file__).resolve().parents[1]
 REPORT = ROOT / "tmm_cli" / "report"
@@ -35,6 +35,7 @@ ALLOWED = {
     "tmm_cli.gears.drawing": "tooth outlines drawn from results['gears'] (the stage's drawing data)",
     "tmm_cli.study": "the tables of the accuracy study (its own results)",
     "tmm_cli.plans": "the velocity and acceleration plans constructed from results' numbers",
+    "tmm_cli.task": "the task model, for its type only (under TYPE_CHECKING: the report reads the task's data)",
     # the drawings the report and the sheets share, drawn from results' numbers (they read as
     # the report reads: checked below with it)
     "tmm_cli.drawings.plans": "a velocity or acceleration plan drawn",
@@ -147,7 +148,7 @@ def test_the_except_check_sees_a_blind_except():
 def _gears_results():
     from tmm_cli.gears import analyze
     return {"schema": "tmm-results/1", "warnings": [],
-            "gears": analyze(NS(m=0.003, z=(12, 42), x=(0.63, 0.67))).to_dict()}
+            "gears": analyze(gears(m=0.003, z=(12, 42), x=(0.63, 0.67))).to_dict()}
 
 
 def _task_results(name):
@@ -214,7 +215,7 @@ def test_gears_region_is_the_admissible_set(x):
     from tmm_cli.gears import analyze
     from tmm_cli.gears.geometry import pair
     m, z1, z2 = 0.003, 12, 42
-    g = analyze(NS(m=m, z=(z1, z2), x=x)).to_dict()
+    g = analyze(gears(m=m, z=(z1, z2), x=x)).to_dict()
     bc = g["blocking_contour"]
     (a1, b1), (a2, b2) = bc["x1_range"], bc["x2_range"]
     box = (b1 - a1) * (b2 - a2)

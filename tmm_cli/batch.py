@@ -128,7 +128,8 @@ def work(path: Path, out: Path, folder: str, formats: set[str], lang: str, sets:
             task, results, written = process(path, vout, formats, lang, task=task, mechanism=mechanism)
         except BaseException as exc:
             # a failed stage: results.json and the report were written with what was computed
-            partial = getattr(exc, "written", None)
+            from .pipeline import PartialResults
+            partial = exc.written if isinstance(exc, PartialResults) else None
             if partial:
                 res["written"] = [_rel(p, out) for p in partial if _inside(p, out)]
             elif (vout / "results.json").exists():
@@ -214,7 +215,7 @@ def stage_failure_message(exc: BaseException) -> Message | None:
     from .errors import StageError, TaskError
     if isinstance(exc, TaskError):
         return exc.coded()
-    if not isinstance(exc, StageError) or getattr(exc.message, "code", None) is None:
+    if not isinstance(exc, StageError) or not isinstance(exc.message, Message) or exc.message.code is None:
         return None
     pos = exc.position
     if pos is None:

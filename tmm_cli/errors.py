@@ -60,12 +60,16 @@ class TaskError(Exception):
 class StageError(Exception):
     """A stage failed on valid input (e.g. the mechanism does not assemble).  ``message``
     is the English text; a coded one (a :class:`tmm_cli.messages.Message`) is shown in
-    the report's language too (:meth:`to_dict` gives its code and parameters)."""
+    the report's language too (:meth:`to_dict` gives its code and parameters).
+    ``never_assembles``: the links of a group that assembles at no crank angle at all
+    (the kinematics), which makes the task invalid (:func:`tmm_cli.validation.impossible_dimensions`)."""
 
-    def __init__(self, stage: str, message: str, position: str | float | None = None):
+    def __init__(self, stage: str, message: str, position: str | float | None = None, *,
+                 never_assembles: list[str] | None = None):
         self.stage = stage
         self.message = message
         self.position = position
+        self.never_assembles = never_assembles
         text = f"stage '{stage}' failed"
         if position is not None:
             text += f" at {position}" if isinstance(position, str) else f" at crank angle {position:.6g} deg"
@@ -74,8 +78,10 @@ class StageError(Exception):
     def to_dict(self) -> dict:
         """The results.json entry: stage, English message, position, and for a coded
         message its ``code`` and ``params``."""
+        from .messages import Message
+
         out = {"stage": self.stage, "message": str(self.message), "position": self.position}
-        code = getattr(self.message, "code", None)
+        code = self.message.code if isinstance(self.message, Message) else None
         if code is not None:
             out.update(code=code, params=dict(self.message.params))
         return out

@@ -292,7 +292,7 @@ def in_unit(r: Reading, target: str, *, angular: bool = False, fast: dict | None
             _pint_factor(r.expression, target)       # unknown or not of the dimension: its own error
         except ValueError as exc:
             msg = exc.args[0] if exc.args else None
-            if getattr(msg, "code", None) == "input.number_unit_unknown":
+            if isinstance(msg, Message) and msg.code == "input.number_unit_unknown":
                 raise ValueError(Message("input.number_unit_unknown", text=r.text, unit=msg.params["unit"])) from None
             raise
         raise ValueError(Message("input.number_frequency", text=r.text))
@@ -300,7 +300,7 @@ def in_unit(r: Reading, target: str, *, angular: bool = False, fast: dict | None
         return r.value * _pint_factor(r.expression, target), notes
     except ValueError as exc:
         msg = exc.args[0] if exc.args else None
-        if getattr(msg, "code", None) == "input.number_unit_unknown":      # the whole text named
+        if isinstance(msg, Message) and msg.code == "input.number_unit_unknown":      # the whole text named
             raise ValueError(Message("input.number_unit_unknown", text=r.text, unit=msg.params["unit"])) from None
         raise
 

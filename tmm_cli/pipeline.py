@@ -13,11 +13,13 @@ SCHEMA = "tmm-results/1"
 
 
 class PartialResults(StageError):
-    """A StageError carrying what was computed before the failure."""
+    """A StageError carrying what was computed before the failure (``partial``) and, once
+    they are written, the files written with it (``written``)."""
 
     def __init__(self, err: StageError, partial: dict):
         super().__init__(err.stage, err.message, err.position)
         self.partial = partial
+        self.written: list | None = None      # the files written with the partial results
         self.__cause__ = err
 
 

@@ -87,10 +87,10 @@ class Geometry:
         return None
 
 
-def geometry(results: dict, task=None) -> Geometry | None:
+def geometry(results: dict) -> Geometry | None:
     """Links, pairs, ground points and the driving link from results['structure'] (its
-    'links', 'joints', 'ground' and 'drive_link' keys); None without them.  ``task`` is not
-    read (the argument stays for old callers): the report draws what the results hold."""
+    'links', 'joints', 'ground' and 'drive_link' keys); None without them: the report draws
+    what the results hold."""
     st = results.get("structure") or {}
     if not st.get("links"):
         return None

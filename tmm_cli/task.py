@@ -252,7 +252,7 @@ def _coded_issue(err: dict, cause, msg: str) -> str:
     when it has no code, or the coded text would differ from it."""
     kind, ctx = err["type"], err.get("ctx") or {}
     coded = None
-    if cause is not None and cause.args and getattr(cause.args[0], "code", None):
+    if cause is not None and cause.args and isinstance(cause.args[0], Message) and cause.args[0].code:
         coded = cause.args[0]
     elif kind == "missing":
         coded = Message("input.missing")

@@ -107,9 +107,10 @@ class DriveTrainSection(_Model):
 
     @model_validator(mode="after")
     def _limits(self):
-        for name in ("z_min_external", "z_min_internal", "z_min_satellite_in_internal"):
-            if getattr(self, name) > self.z_max:
-                raise FieldValueError((name,), Message("input.train_z_above_max", name=name, value=getattr(self, name),
+        for name, value in (("z_min_external", self.z_min_external), ("z_min_internal", self.z_min_internal),
+                            ("z_min_satellite_in_internal", self.z_min_satellite_in_internal)):
+            if value > self.z_max:
+                raise FieldValueError((name,), Message("input.train_z_above_max", name=name, value=value,
                                                        z_max=self.z_max))
         for i, st in enumerate(self.stages):
             if st.z is not None and max(st.z) > 300:

@@ -140,7 +140,7 @@ def quantity(text: str, kind: str) -> tuple[float, list, str]:
 def _for_kind(msg, text: str, kind: str):
     """A reason of tmm_cli.numbers in the words of a field of ``kind``: an unknown unit
     names the quantity expected, a unit alone says the number is missing."""
-    code = getattr(msg, "code", None)
+    code = msg.code if isinstance(msg, Message) else None
     if code == "input.number_unit_unknown":
         return Message("input.unit_unknown", text=text, unit=msg.params["unit"], kind=kind)
     if code == "input.number_not_number" and not any("0" <= ch <= "9" for ch in text) and kind != "dimensionless":

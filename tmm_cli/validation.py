@@ -99,7 +99,7 @@ def impossible_dimensions(task, err):
     if mm:
         path, msg = mm[0]
         return task.error(path, Message("input.mm_no_assembly", suspect=msg, reason=_coded(err.message)))
-    names = getattr(err, "never_assembles", None)
+    names = err.never_assembles
     if not names:
         return None
     return task.error(("mechanism", "links", names[0]),

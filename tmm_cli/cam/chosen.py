@@ -29,7 +29,26 @@ STAGE = "cam"
 
 
 def centre(geom: Geometry, r0: float, offset: float | None, center_distance: float | None) -> np.ndarray:
-    """Cam centre O (design frame, B0 at the origin) of the chosen size."""
+    """Cam centre O of a cam of the chosen size.
+
+    Parameters
+    ----------
+    geom : Geometry
+        The follower's geometry (translating or rocker; the rocker's length ``l`` in m).
+    r0 : float
+        The chosen base radius, m.
+    offset : float or None
+        Translating follower: the offset e, m (None for a rocker).
+    center_distance : float or None
+        Rocker: the distance a from the cam centre to the rocker's pivot, m.
+
+    Returns
+    -------
+    numpy.ndarray
+        O = (x, y) in the design frame (B0 at the origin), m: ``(-sigma e, -sqrt(r0^2 - e^2))``
+        for a translating follower, the intersection below B0 of the circles of radii r0
+        about B0 and a about the pivot for a rocker.
+    """
     if geom.kind == "translating":
         e = float(offset)
         return np.array([-geom.sigma * e, -math.sqrt(max(r0 * r0 - e * e, 0.0))])
@@ -39,9 +58,28 @@ def centre(geom: Geometry, r0: float, offset: float | None, center_distance: flo
 
 
 def excess(motion: Motion, geom: Geometry, O, th_rise: float, th_ret: float) -> tuple[float, dict]:
-    """Largest excess (deg) of the pressure angle over the allowed one and the per-phase maxima.
+    """Largest excess of the pressure angle over the allowed one for a given cam centre.
 
-    Returns (excess, {phase: (max deg, fraction)}); dwells are checked against the larger limit."""
+    Parameters
+    ----------
+    motion : Motion
+        The follower's motion.
+    geom : Geometry
+        The follower's geometry.
+    O : array_like
+        The cam centre (x, y) in the design frame, m.
+    th_rise, th_ret : float
+        The allowed pressure angles on the rise and on the return, deg (the dwells are
+        checked against the larger).
+
+    Returns
+    -------
+    excess : float
+        max over the phases of (greatest pressure angle - allowed one), deg; <= 0 when the
+        centre is admissible.
+    got : dict
+        phase index -> (greatest pressure angle, rad; the fraction of the phase where it is).
+    """
     got = {ph: max_angle(motion, geom, ph, O) for ph in (RISE, RETURN)}
     for ph, span in ((NEAR_DWELL, motion.near_dwell), (FAR_DWELL, motion.far_dwell)):
         if span > 1e-12:
@@ -53,7 +91,28 @@ def excess(motion: Motion, geom: Geometry, O, th_rise: float, th_ret: float) -> 
 
 def r0_min_on_circle(motion: Motion, geom: Geometry, a: float, th_rise: float, th_ret: float,
                      scale: float) -> float | None:
-    """Least r0 of an admissible cam centre at the distance ``a`` from the rocker pivot (below B0)."""
+    """Least base radius of an admissible cam centre on the circle about the rocker's pivot.
+
+    Parameters
+    ----------
+    motion : Motion
+        The follower's motion (a rocker's stroke in rad).
+    geom : Geometry
+        The rocker's geometry (pivot ``A`` in the design frame, m).
+    a : float
+        The centre distance (cam centre to the pivot), m.
+    th_rise, th_ret : float
+        The allowed pressure angles on the rise and on the return, deg.
+    scale : float
+        A length of the problem (the rocker's length), m (kept for the callers' symmetry).
+
+    Returns
+    -------
+    float or None
+        The least r0 = |O B0| of an admissible centre O at the distance ``a`` from A below
+        B0, m (bracketed on a 1-degree grid of the angle at A and bisected); None when no
+        point of the circle is admissible.
+    """
     A = geom.A
     base = math.atan2(-A[1], -A[0])                    # direction A -> B0
     sgn = -1.0 if math.cos(base) > 0 else 1.0          # the side below B0
@@ -83,7 +142,32 @@ def r0_min_on_circle(motion: Motion, geom: Geometry, a: float, th_rise: float, t
 
 def violation(r0: float, worst: float, got: dict, motion: Motion, th_rise: float, th_ret: float,
               r0_min: float | None, what: str) -> StageError:
-    """The exit-3 error of a chosen size whose pressure angle exceeds the allowed one."""
+    """The exit-3 error of a chosen size whose pressure angle exceeds the allowed one.
+
+    Parameters
+    ----------
+    r0 : float
+        The chosen base radius, m.
+    worst : float
+        The largest excess of the pressure angle over the allowed one, deg.
+    got : dict
+        phase index -> (greatest pressure angle, rad; fraction of the phase), as
+        :func:`excess` gives it.
+    motion : Motion
+        The follower's motion (for the cam angle of the worst point).
+    th_rise, th_ret : float
+        The allowed pressure angles, deg.
+    r0_min : float or None
+        The least admissible r0 with the same offset or centre distance, m (None: none).
+    what : str
+        What is kept fixed: ``"offset"`` or ``"centre distance"``.
+
+    Returns
+    -------
+    StageError
+        The coded error ``cam.fail.chosen_pressure`` (or ``..._none``) naming the phase, the
+        cam angle (deg) and the least r0 (mm).
+    """
     lim = {RISE: th_rise, RETURN: th_ret, NEAR_DWELL: max(th_rise, th_ret), FAR_DWELL: max(th_rise, th_ret)}
     names = {RISE: "rise", RETURN: "return", NEAR_DWELL: "near dwell", FAR_DWELL: "far dwell"}
     ph = max(got, key=lambda p: math.degrees(got[p][0]) - lim[p])

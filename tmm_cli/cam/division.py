@@ -10,11 +10,34 @@ from .motion import RETURN, RISE, Motion
 
 
 def division_table(motion: Motion, divisions: int, rocker: bool, pressure_angle=None) -> list[dict]:
-    """Entries {phase, k, phi, s, ds, d2s, pressure_angle} for k = 0..divisions, rise then return.
+    """The table of the follower's motion at the divisions of the rise and of the return.
 
-    Each value is that of the phase's own law (one-sided at the phase's ends).  ``phi`` is in
-    deg from the start of the rise; s in m (rocker: deg), ds and d2s per rad.
-    ``pressure_angle(s, s1)`` gives the unsigned pressure angle in rad (None: 0, flat face)."""
+    Parameters
+    ----------
+    motion : Motion
+        The follower's motion.
+    divisions : int
+        The number of equal parts of each phase.
+    rocker : bool
+        True for a rocker (its s in deg).
+    pressure_angle : callable or None
+        ``pressure_angle(s, s1)`` -> the unsigned pressure angle, rad (None: 0, a flat face).
+
+    Returns
+    -------
+    list of dict
+        {phase, k, phi, s, ds, d2s, pressure_angle} for k = 0..divisions, the rise then the
+        return: ``phi`` in deg from the start of the rise, ``s`` in m (rocker: deg), ``ds`` and
+        ``d2s`` per rad and per rad^2, the pressure angle in deg.  Each value is that of the
+        phase's own law (one-sided at the phase's ends).
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
+    проектирование по ТММ*; Frolov (ed.), *Теория механизмов и машин*: the table of the
+    follower's displacement at the divisions of the phases, the basis of the graphical
+    construction of the profile; docs/methods.md §5.
+    """
     out = []
     x = np.arange(divisions + 1) / divisions
     for ph, name, start, span in ((RISE, "rise", motion.starts[0], motion.rise),

@@ -19,7 +19,20 @@ def _arrays(result):
 
 
 def profile_csv_rows(result) -> tuple[list[str], list[list[float]]]:
-    """Header and rows (phi, pitch x, y, working x, y) of a CamResult or its ``to_dict()``."""
+    """Header and rows of the cam profile's CSV file.
+
+    Parameters
+    ----------
+    result : CamResult or dict
+        The cam stage's result or its ``to_dict()``.
+
+    Returns
+    -------
+    header : list of str
+        The column names.
+    rows : list of list of float
+        (phi, deg; pitch x, y, m; working x, y, m) at every degree of the cycle.
+    """
     phi, pitch, working, _, _ = _arrays(result)
     rows = [[float(p), float(a[0]), float(a[1]), float(b[0]), float(b[1])]
             for p, a, b in zip(phi, pitch, working)]
@@ -27,8 +40,21 @@ def profile_csv_rows(result) -> tuple[list[str], list[list[float]]]:
 
 
 def profile_dxf(result, units_mm: bool = True) -> str:
-    """DXF (R2010) text with the pitch and working profiles as closed polylines, the base
-    circle and the cam centre; in millimetres by default.  Layers: PITCH, WORKING, BASE."""
+    """DXF (R2010) text of the cam profile.
+
+    Parameters
+    ----------
+    result : CamResult or dict
+        The cam stage's result or its ``to_dict()``.
+    units_mm : bool
+        True: coordinates in millimetres (the default); False: in metres.
+
+    Returns
+    -------
+    str
+        The pitch and working profiles as closed polylines, the base circle and the cam
+        centre, on the layers PITCH, WORKING and BASE.
+    """
     import ezdxf  # lazy: heavy import
 
     phi, pitch, working, r0, roller = _arrays(result)

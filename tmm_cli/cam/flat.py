@@ -29,10 +29,28 @@ from .region import phase_min
 
 
 def cycle_max(motion: Motion, fn) -> tuple[float, float]:
-    """Exact maximum over the cycle of ``fn(s, s1, s2)`` and the cam angle (deg) where it is.
+    """Exact maximum over the cycle of a function of the follower's motion.
 
+    Parameters
+    ----------
+    motion : Motion
+        The follower's motion.
+    fn : callable
+        ``fn(s, s1, s2)`` of the displacement (m) and its first and second derivatives with
+        respect to the cam angle (per rad), vectorised.
+
+    Returns
+    -------
+    value : float
+        The maximum of ``fn`` over the cycle.
+    phi : float
+        The cam angle where it is, deg.
+
+    Notes
+    -----
     Each phase is a closed interval with its law's one-sided end values: sampled on a grid,
-    every local maximum refined by a bracketing search; dwells are constant."""
+    every local maximum refined by a bracketing search; the dwells are constant.
+    """
     starts = motion.starts
     spans = {RISE: (starts[0], motion.rise), FAR_DWELL: (starts[1], motion.far_dwell),
              RETURN: (starts[2], motion.ret), NEAR_DWELL: (starts[3], motion.near_dwell)}
@@ -58,13 +76,52 @@ def cycle_max(motion: Motion, fn) -> tuple[float, float]:
 
 
 def convexity_margin(motion: Motion) -> tuple[float, float]:
-    """max(-s - d2s/dphi2) over the cycle and where: r0_min = rho_min_allowed + this,
-    and a cam of base radius r0 has rho_min = r0 - this."""
+    """What a flat-faced follower's cam needs beyond its least radius of curvature.
+
+    Parameters
+    ----------
+    motion : Motion
+        The follower's motion (s in m).
+
+    Returns
+    -------
+    margin : float
+        max(-s - d2s/dphi2) over the cycle, m: r0_min = rho_min_allowed + margin, and a cam
+        of base radius r0 has rho_min = r0 - margin.
+    phi : float
+        The cam angle where the maximum is, deg.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
+    проектирование по ТММ*; Frolov (ed.), *Теория механизмов и машин*: the convexity
+    condition r0 + s + d2s/dphi2 >= rho_min of a cam with a flat-faced follower;
+    docs/methods.md §5.
+    """
     return cycle_max(motion, lambda s, s1, s2: -s - s2)
 
 
 def face_widths(motion: Motion) -> tuple[float, float]:
-    """(max ds/dphi - min ds/dphi, 2 max|ds/dphi|) over the cycle, m."""
+    """The width of a flat face that keeps the contact on it.
+
+    Parameters
+    ----------
+    motion : Motion
+        The follower's motion (s in m).
+
+    Returns
+    -------
+    span : float
+        max ds/dphi - min ds/dphi over the cycle, m (the contact's travel along the face).
+    symmetric : float
+        2 max |ds/dphi|, m (a face symmetric about the follower's axis).
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
+    проектирование по ТММ*; Frolov (ed.), *Теория механизмов и машин*: the contact point's
+    distance ds/dphi from the follower's axis; docs/methods.md §5.
+    """
     hi, _ = cycle_max(motion, lambda s, s1, s2: s1)
     lo, _ = cycle_max(motion, lambda s, s1, s2: -s1)
     lo = -lo
@@ -72,7 +129,31 @@ def face_widths(motion: Motion) -> tuple[float, float]:
 
 
 def profile(motion: Motion, r0: float, sigma: int, phi_rad) -> np.ndarray:
-    """Profile points (cam frame, O at the origin) at cycle angles (rad): the envelope of the face."""
+    """Profile of the cam of a flat-faced translating follower.
+
+    Parameters
+    ----------
+    motion : Motion
+        The follower's motion (s in m).
+    r0 : float
+        The base radius, m.
+    sigma : int
+        +1 for a ccw cam, -1 for cw.
+    phi_rad : array_like
+        Cam angles, rad.
+
+    Returns
+    -------
+    numpy.ndarray
+        The points (N, 2) of the envelope of the face in the cam's frame (O at the origin), m.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
+    проектирование по ТММ*; Frolov (ed.), *Теория механизмов и машин*: the profile of a
+    flat-faced follower's cam as the envelope of the face's positions in inverted motion;
+    docs/methods.md §5.
+    """
     phi = np.asarray(phi_rad, dtype=float)
     s, s1, _, _ = motion.evaluate(phi)
     X = np.stack([sigma * s1, r0 + s], axis=-1)

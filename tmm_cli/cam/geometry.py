@@ -38,7 +38,18 @@ import numpy as np
 
 
 def J(v: np.ndarray) -> np.ndarray:
-    """Turn vectors (..., 2) by +90 degrees."""
+    """Turn plane vectors by +90 degrees.
+
+    Parameters
+    ----------
+    v : numpy.ndarray
+        Vectors (..., 2).
+
+    Returns
+    -------
+    numpy.ndarray
+        (-v_y, v_x) of each vector.
+    """
     return np.stack([-v[..., 1], v[..., 0]], axis=-1)
 
 

@@ -148,6 +148,30 @@ LAWS: dict[str, Law] = {
 
 
 def get_law(name: str) -> Law:
+    """The motion law of a name.
+
+    Parameters
+    ----------
+    name : str
+        One of :data:`LAW_NAMES` (``cosine``, ``sine``, ``poly345``...).
+
+    Returns
+    -------
+    Law
+        The law's dimensionless displacement f(x) and derivatives on x in [0, 1], its peak
+        velocity and acceleration coefficients and its impact kind.
+
+    Raises
+    ------
+    ValueError
+        An unknown name.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
+    проектирование по ТММ*; Frolov (ed.), *Теория механизмов и машин*: the motion laws of
+    the follower and their coefficients; docs/methods.md §5.
+    """
     try:
         return LAWS[name]
     except KeyError:

@@ -15,10 +15,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from .laws import Law, get_law
+
+if TYPE_CHECKING:
+    from .spec import LawsSpec, PhasesSpec
 
 RISE, RETURN, NEAR_DWELL, FAR_DWELL = 0, 1, 2, 3
 
@@ -36,14 +40,27 @@ class Motion:
     law_return: Law
 
     @classmethod
-    def from_spec(cls, h: float, phases, laws) -> "Motion":
+    def from_spec(cls, h: float, phases: PhasesSpec, laws: LawsSpec) -> "Motion":
+        """The motion of a cam section.
+
+        Parameters
+        ----------
+        h : float
+            The stroke: m, or rad for a rocker.
+        phases : PhasesSpec
+            The phase angles, deg (the task model completes the near dwell to 360 deg).
+        laws : LawsSpec
+            The names of the laws of the rise and of the return.
+
+        Returns
+        -------
+        Motion
+            The phase angles in rad and the two laws.
+        """
         rise = math.radians(float(phases.rise))
-        far = math.radians(float(phases.far_dwell or 0.0))
+        far = math.radians(float(phases.far_dwell))
         ret = math.radians(float(phases.return_))
-        near_deg = getattr(phases, "near_dwell", None)
-        if near_deg is None:
-            near_deg = 360.0 - float(phases.rise) - float(phases.far_dwell or 0.0) - float(phases.return_)
-        near = math.radians(float(near_deg))
+        near = math.radians(float(phases.near_dwell))
         return cls(float(h), rise, far, ret, max(near, 0.0), get_law(laws.rise), get_law(laws.return_))
 
     # ------------------------------------------------------------------ bounds

@@ -38,8 +38,23 @@ def _exact(result, which: str):
 
 
 def vertices(result, step_deg: float) -> tuple[np.ndarray, np.ndarray]:
-    """(phi_deg, phase index of each chord's arc): the multiples of the step over a turn and
-    the phase boundaries, sorted; the last vertex is 360 (= 0, the polygon closes)."""
+    """The cam angles of the vertices of the profile's polygon.
+
+    Parameters
+    ----------
+    result : CamResult
+        The cam stage's result.
+    step_deg : float
+        The step of the cam angle, deg.
+
+    Returns
+    -------
+    phi : numpy.ndarray
+        The multiples of the step over a turn and the phase boundaries, sorted, deg; the last
+        is 360 (= 0, the polygon closes).
+    phase : numpy.ndarray
+        The phase index of each chord's arc.
+    """
     step = float(step_deg)
     if not step > 0:
         raise ValueError("the step must be positive")
@@ -53,13 +68,43 @@ def vertices(result, step_deg: float) -> tuple[np.ndarray, np.ndarray]:
 
 
 def polygon(result, step_deg: float, which: str = "working") -> np.ndarray:
-    """The profile's vertices (N, 2) at the step (see `vertices`), m."""
+    """The profile's polygon at a step of the cam angle.
+
+    Parameters
+    ----------
+    result : CamResult
+        The cam stage's result.
+    step_deg : float
+        The step of the cam angle, deg.
+    which : str
+        ``"working"`` or ``"pitch"``.
+
+    Returns
+    -------
+    numpy.ndarray
+        The vertices (N, 2) at the angles of :func:`vertices`, m.
+    """
     phi, _ = vertices(result, step_deg)
     return _exact(result, which)(np.radians(phi))
 
 
 def polygon_deviation(result, step_deg: float, sub: int = 16) -> float:
-    """Largest distance (m) of the exact working profile from the polygon's chords."""
+    """Largest distance of the exact working profile from the polygon's chords.
+
+    Parameters
+    ----------
+    result : CamResult
+        The cam stage's result.
+    step_deg : float
+        The step of the cam angle, deg.
+    sub : int
+        Points of the exact profile per chord.
+
+    Returns
+    -------
+    float
+        The deviation, m.
+    """
     phi, _ = vertices(result, step_deg)
     f = _exact(result, "working")
     P = f(np.radians(phi))
@@ -83,8 +128,21 @@ def polygon_deviation(result, step_deg: float, sub: int = 16) -> float:
 
 
 def polygon_rho_min(result, step_deg: float) -> float:
-    """Least radius (m) of the circle through three successive vertices of one phase on the
-    convex side of the pitch profile (the flat face's profile itself); inf if none."""
+    """Least radius of curvature of the profile's polygon.
+
+    Parameters
+    ----------
+    result : CamResult
+        The cam stage's result.
+    step_deg : float
+        The step of the cam angle, deg.
+
+    Returns
+    -------
+    float
+        The least radius of the circle through three successive vertices of one phase on the
+        convex side of the pitch profile (the flat face's profile itself), m; inf if none.
+    """
     phi, ph = vertices(result, step_deg)
     P = _exact(result, "pitch")(np.radians(phi))
     a, b, c = P[:-2], P[1:-1], P[2:]

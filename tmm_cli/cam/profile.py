@@ -26,6 +26,20 @@ from .region import GRID, phase_min
 
 
 def rot(v: np.ndarray, ang: np.ndarray) -> np.ndarray:
+    """Turn plane vectors by angles.
+
+    Parameters
+    ----------
+    v : numpy.ndarray
+        Vectors (..., 2).
+    ang : numpy.ndarray
+        Angles, rad (ccw positive), broadcast against ``v[..., 0]``.
+
+    Returns
+    -------
+    numpy.ndarray
+        The turned vectors (..., 2).
+    """
     c, s = np.cos(ang), np.sin(ang)
     return np.stack([c * v[..., 0] - s * v[..., 1], s * v[..., 0] + c * v[..., 1]], axis=-1)
 

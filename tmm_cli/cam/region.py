@@ -53,18 +53,60 @@ class Tangent:
 
 
 def rows(motion: Motion, geom: Geometry, k, side, tan, x):
+    """The pressure-angle constraint lines n . O <= c at points of the motion.
+
+    Parameters
+    ----------
+    motion : Motion
+        The follower's motion.
+    geom : Geometry
+        The follower's geometry.
+    k, side, tan, x : array_like
+        Per line: the phase index, the side (+1/-1), tan of the allowed pressure angle and
+        the fraction of the phase.
+
+    Returns
+    -------
+    N : numpy.ndarray
+        The unit normals (n, 2).
+    c : numpy.ndarray
+        The right-hand sides, m.
+    D : numpy.ndarray
+        The points of the ``s - ds/dphi`` diagram the lines pass through, m.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
+    проектирование по ТММ*; Frolov (ed.), *Теория механизмов и машин*: the tangents to the
+    s - ds/dphi diagram at the allowed pressure angle bounding the region of the cam
+    centres; docs/methods.md §5.
+    """
     s, s1, _, _ = motion.phase_mixed(k, x)
     return geom.lines(s, s1, tan, side)
 
 
 def zoom(func, lo, hi, m: int = 65, rounds: int = 8):
-    """Vectorised bracketing search for minima of ``func`` on [lo_i, hi_i] (one per row).
+    """Vectorised bracketing search for the minima of a function, one per row.
 
-    ``func(grid)`` takes an array (k, m) of abscissae and returns values of the same shape.
-    Each round keeps the two grid cells around the row's minimum, shrinking the bracket
-    by (m - 1)/2; 8 rounds of 65 points reach 1e-12 of the initial bracket (itself two
-    grid cells of 1/360 of a phase).  Returns the
-    abscissae and the values of the minima.
+    Parameters
+    ----------
+    func : callable
+        ``func(grid)`` takes an array (k, m) of abscissae and returns values of that shape.
+    lo, hi : numpy.ndarray
+        The brackets [lo_i, hi_i] (k,).
+    m : int
+        Points per bracket and round.
+    rounds : int
+        Rounds; each keeps the two grid cells around the row's minimum, shrinking the
+        bracket by (m - 1)/2: 8 rounds of 65 points reach 1e-12 of the initial bracket
+        (itself two grid cells of 1/360 of a phase).
+
+    Returns
+    -------
+    x : numpy.ndarray
+        The abscissae of the minima (k,).
+    value : numpy.ndarray
+        The values there (k,).
     """
     lo = np.asarray(lo, dtype=float).copy()
     hi = np.asarray(hi, dtype=float).copy()
@@ -83,14 +125,44 @@ def zoom(func, lo, hi, m: int = 65, rounds: int = 8):
 
 
 def local_minima(v: np.ndarray) -> np.ndarray:
-    """Indices of local minima of a sampled function (ends included)."""
+    """Indices of the local minima of a sampled function.
+
+    Parameters
+    ----------
+    v : numpy.ndarray
+        The samples (n,).
+
+    Returns
+    -------
+    numpy.ndarray
+        The indices of the local minima, the ends included.
+    """
     left = np.concatenate([[np.inf], v[:-1]])
     right = np.concatenate([v[1:], [np.inf]])
     return np.nonzero((v <= left) & (v < right))[0]
 
 
 def ldp(N: np.ndarray, c: np.ndarray, P0: np.ndarray) -> np.ndarray | None:
-    """The point nearest to P0 with N @ O <= c (Lawson & Hanson LDP via NNLS); None if empty."""
+    """The point nearest to P0 of the polygon N @ O <= c (least distance programming).
+
+    Parameters
+    ----------
+    N : numpy.ndarray
+        The constraints' normals (n, 2).
+    c : numpy.ndarray
+        The right-hand sides (n,).
+    P0 : numpy.ndarray
+        The point (2,).
+
+    Returns
+    -------
+    numpy.ndarray or None
+        The nearest admissible point; None when the region is empty.
+
+    References
+    ----------
+    Lawson & Hanson, *Solving Least Squares Problems*, ch. 23: LDP by NNLS.
+    """
     b = c - N @ P0
     E = np.vstack([-N.T, -b[None, :]])
     f = np.array([0.0, 0.0, 1.0])
@@ -169,11 +241,32 @@ class _Problem:
 
 def nearest(motion: Motion, geom: Geometry, families: list[Family], P0=(0.0, 0.0),
             scale: float = 1.0) -> tuple[np.ndarray, list[Tangent]] | None:
-    """Admissible cam centre nearest to P0 (exact), with the active tangent lines.
+    """The admissible cam centre nearest to a point, exact, with the active tangent lines.
 
-    ``scale`` is a length of the problem (stroke or rocker length) for the tolerances.
-    Returns None when the region is empty, or when no admissible point can be found to
-    the tolerance (the region recedes to infinity: the exchange does not converge).
+    Parameters
+    ----------
+    motion : Motion
+        The follower's motion.
+    geom : Geometry
+        The follower's geometry.
+    families : list of Family
+        The constraint families (phase, side, tan of the allowed angle).
+    P0 : tuple of float
+        The point, m (B0, the lowest follower position, is the origin).
+    scale : float
+        A length of the problem (stroke or rocker length), m, for the tolerances.
+
+    Returns
+    -------
+    tuple of (numpy.ndarray, list of Tangent) or None
+        The centre O (m) and the active constraints; None when the region is empty or no
+        admissible point is found to the tolerance (the region recedes to infinity).
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
+    проектирование по ТММ*; Frolov (ed.), *Теория механизмов и машин*: the smallest cam: the
+    cam centre in the admissible region nearest to B0; docs/methods.md §5.
     """
     P0 = np.asarray(P0, dtype=float)
     prob = _Problem(motion, geom, families)
@@ -210,10 +303,36 @@ def nearest(motion: Motion, geom: Geometry, families: list[Family], P0=(0.0, 0.0
 
 def highest_on_vertical(motion: Motion, geom: Geometry, families: list[Family], x0: float,
                         scale: float = 1.0) -> tuple[np.ndarray, list[Tangent]]:
-    """Admissible centre on the line x = x0 nearest to B0 (translating follower, given offset).
+    """The admissible centre on the line x = x0 nearest to B0 (translating follower, given offset).
 
+    Parameters
+    ----------
+    motion : Motion
+        The follower's motion.
+    geom : Geometry
+        The translating follower's geometry.
+    families : list of Family
+        The constraint families.
+    x0 : float
+        The line of the cam centres, m (-sigma times the offset).
+    scale : float
+        A length of the problem (the stroke), m, for the tolerances.
+
+    Returns
+    -------
+    tuple of (numpy.ndarray, list of Tangent)
+        The centre O (m) and the active constraint.
+
+    Notes
+    -----
     Every normal has n_y = sin(theta_max) > 0, so the admissible part of the line is
     y <= min_phi (c - n_x x0) / n_y: a one-dimensional minimum over the continuous phi.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
+    проектирование по ТММ*; Frolov (ed.), *Теория механизмов и машин*: the least base radius
+    with a given offset; docs/methods.md §5.
     """
     prob = _Problem(motion, geom, families)
 
@@ -230,7 +349,32 @@ def highest_on_vertical(motion: Motion, geom: Geometry, families: list[Family], 
 
 
 def max_angle(motion: Motion, geom: Geometry, phase: int, O) -> tuple[float, float]:
-    """Maximum pressure angle (rad) over a phase and the fraction where it occurs."""
+    """The greatest pressure angle over a phase for a given cam centre.
+
+    Parameters
+    ----------
+    motion : Motion
+        The follower's motion.
+    geom : Geometry
+        The follower's geometry.
+    phase : int
+        RISE, RETURN, NEAR_DWELL or FAR_DWELL.
+    O : array_like
+        The cam centre in the design frame, m.
+
+    Returns
+    -------
+    theta : float
+        The greatest pressure angle, rad.
+    x : float
+        The fraction of the phase where it is.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
+    проектирование по ТММ*; Frolov (ed.), *Теория механизмов и машин*: the pressure angle
+    tan(theta) = |ds/dphi -+ e| / (s0 + s); docs/methods.md §5.
+    """
     O = np.asarray(O, dtype=float)
     if phase in (NEAR_DWELL, FAR_DWELL):
         s, s1, _, _ = motion.phase(phase, np.array([0.0]))
@@ -247,8 +391,24 @@ def max_angle(motion: Motion, geom: Geometry, phase: int, O) -> tuple[float, flo
 
 
 def phase_min(func) -> tuple[float, float]:
-    """Minimum of ``func`` (vectorised over rows of fractions) on the closed phase [0, 1]:
-    sampled on the grid, every local minimum refined by :func:`zoom`; (fraction, value)."""
+    """Minimum of a function on the closed phase [0, 1].
+
+    Parameters
+    ----------
+    func : callable
+        Vectorised over rows of fractions of the phase.
+
+    Returns
+    -------
+    x : float
+        The fraction of the phase where the minimum is.
+    value : float
+        The minimum.
+
+    Notes
+    -----
+    Sampled on the grid, every local minimum refined by :func:`zoom`.
+    """
     x = np.linspace(0, 1, GRID)
     v = func(x[None, :])[0]
     idx = local_minima(v)

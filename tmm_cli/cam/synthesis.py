@@ -1,7 +1,7 @@
 """Cam mechanism synthesis: smallest cam from the allowed pressure angles, profile.
 
-Entry point :func:`synthesize` takes any object with the attributes of the task's ``cam``
-section (SI floats, angles in degrees; see ``docs/ARCHITECTURE.md``) and returns a
+Entry point :func:`synthesize` takes the task's validated ``cam`` section
+(:class:`~tmm_cli.task.CamSection`: SI floats, angles in degrees) and returns a
 :class:`CamResult` whose ``to_dict()`` is the results.json ``cam`` section.
 
 Method (docs/methods.md §5; Artobolevsky, Popov & Timofeev, Frolov):
@@ -42,6 +42,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -54,6 +55,9 @@ from .laws import LAW_NAMES
 from .motion import FAR_DWELL, NEAR_DWELL, RETURN, RISE, Motion
 from .profile import Profile
 from .region import Family, Tangent, highest_on_vertical, max_angle, nearest, rows
+
+if TYPE_CHECKING:
+    from .spec import CamSection
 
 STAGE = "cam"
 _PHASE_NAMES = {RISE: "rise", RETURN: "return", NEAR_DWELL: "near_dwell", FAR_DWELL: "far_dwell"}
@@ -175,18 +179,11 @@ class CamResult:
 
 
 # ---------------------------------------------------------------------- helpers
-def _get(spec, name, default=None):
-    return getattr(spec, name, default)
-
-
-def _limits(spec) -> tuple[float, float]:
-    pa = _get(spec, "pressure_angle")
-    if pa is None:
-        rise = ret = 30.0 if _get(spec, "follower", "translating") == "translating" else 45.0
-    elif isinstance(pa, (int, float)):
-        rise = ret = float(pa)
-    else:
-        rise, ret = float(pa.rise), float(pa.return_)
+def _limits(spec: CamSection) -> tuple[float, float]:
+    """The allowed pressure angles on the rise and on the return, deg (the task model turns a
+    single angle, a transmission angle or none into the pair)."""
+    pa = spec.pressure_angle
+    rise, ret = float(pa.rise), float(pa.return_)
     for name, v in (("rise", rise), ("return", ret)):
         if not 0.0 < v < 90.0:
             raise StageError(STAGE, Message("cam.fail.pressure_range", phase=name, value=v))
@@ -323,114 +320,241 @@ def _construction(motion, geom, fams, O, tangents: list[Tangent], scale):
 
 
 # ---------------------------------------------------------------------- main
-def synthesize(spec) -> CamResult:
-    """Synthesise the smallest cam and its profile from a cam task section (see module doc)."""
-    follower = _get(spec, "follower", "translating")
-    if follower not in ("translating", "rocker", "knife", "flat"):
-        raise StageError(STAGE, Message("cam.fail.unknown_follower", follower=str(follower)))
+def synthesize(spec: CamSection) -> CamResult:
+    """Synthesise the smallest cam for the allowed pressure angles, and its profile.
+
+    Parameters
+    ----------
+    spec : CamSection
+        The task's ``cam`` section, validated by the task model: the follower kind, the
+        stroke (m; deg for a rocker), the phase angles (deg), the motion laws, the allowed
+        pressure angles (deg), the offset or rocker length (m), the roller (m or ``auto``),
+        the sense of rotation, the cam speed (rad/s, optional) and an optional chosen base
+        radius ``r0`` (m).
+
+    Returns
+    -------
+    CamResult
+        The base radius r0 (m), offset or centre distance (m), roller radius (m), the
+        greatest pressure angle (deg), the least radius of curvature (m), the motion
+        diagrams over the cycle and the pitch and working profiles (m); ``to_dict()`` is
+        the results.json ``cam`` section.
+
+    Raises
+    ------
+    StageError
+        No admissible cam centre, a cusp on the profile, a roller that undercuts it, or a
+        chosen r0 below the least one.
+
+    Notes
+    -----
+    The admissible cam centres are bounded by the tangents to the ``s - ds/dphi`` diagram
+    drawn at the allowed pressure angles; the smallest cam is the nearest admissible point
+    to the lowest follower position (see the module's docstring).
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
+    проектирование по ТММ*; Frolov (ed.), *Теория механизмов и машин*: the least size of a
+    cam from the allowed pressure angle, the profile by inverted motion; docs/methods.md §5.
+    """
+    follower, rotation = spec.follower, spec.rotation
+    stroke, rocker_length = _check_follower(spec)
     rocker = follower == "rocker"
-    rotation = _get(spec, "rotation", "ccw")
     sigma = 1 if rotation == "ccw" else -1
+    h, scale = (math.radians(stroke), rocker_length) if rocker else (stroke, stroke)
+    motion = _motion(spec, h)
+    th_rise, th_ret = _limits(spec)
+    r0_chosen = None if spec.r0 == "auto" else float(spec.r0)
+    divisions = int(spec.divisions)
+    if follower == "flat":
+        return _flat(spec, motion, stroke, r0_chosen, divisions)
+    fams = _families(motion, th_rise, th_ret)
+    warnings: list[Message] = []
+
+    # ---- smallest cam
+    if rocker:
+        size = _rocker_size(spec, motion, fams, sigma, rocker_length, th_rise, th_ret, r0_chosen, warnings)
+    else:
+        size = _translating_size(spec, motion, fams, sigma, scale, r0_chosen)
+    geom, O, r0 = size.geom, size.O, size.r0
+    _check_size(size, motion, scale, th_rise, th_ret, r0_chosen)
+
+    # ---- pressure angles
+    th_max, th_max_rise, th_max_ret, th_max_phi = _pressure_angles(motion, geom, O, th_rise, th_ret)
+
+    # ---- profile
+    prof = Profile(motion, geom, O)
+    if prof.min_speed() <= 1e-9 * scale:
+        raise StageError(STAGE, Message("cam.fail.cusp"))
+    rho_min, rho_phi = prof.rho_min()
+    roller, roller_given = _roller(spec, r0, rho_min, rho_phi, warnings)
+
+    # ---- grid values
+    phi = np.arange(0.0, 360.0, 1.0)
+    phr = np.radians(phi)
+    s, s1, s2, s3 = motion.evaluate(phr)
+    pa, _ = geom.pressure_angle(s, s1, O)
+    pitch, _, _ = prof.pitch(phr)
+    working = prof.working(phr, roller)
+
+    # ---- laws and impacts
+    speed, laws_info, impacts, phases = _laws_impacts(spec, motion, rocker, warnings)
+    corners = [e for e in impacts if e["kind"] == "rigid"]
+    if corners:
+        warnings.append(Message("cam.profile_corners", phis=[e["phi"] for e in corners]))
+
+    construction = _construction(motion, geom, fams, O, size.tangents, scale)
+    extra = {"r0_min": _f(size.r0_min), "r0_given": r0_chosen is not None,
+             "division_table": division_table(motion, divisions, rocker,
+                                              lambda s, s1: geom.pressure_angle(s, s1, O)[0])}
+    return CamResult(
+        follower=follower, rotation=rotation, swing=size.swing, stroke=stroke, rocker_length=rocker_length,
+        phases=phases, allowed={"rise": th_rise, "return": th_ret},
+        r0=r0, offset=size.offset, center_distance=size.center_distance, psi0=size.psi0,
+        roller=roller, roller_given=roller_given,
+        max_pressure_angle=th_max, max_pressure_angle_rise=th_max_rise,
+        max_pressure_angle_return=th_max_ret, max_pressure_angle_phi=th_max_phi,
+        rho_min=rho_min, rho_min_phi=rho_phi, laws=laws_info, impacts=impacts,
+        phi=phi, s=s, ds=s1, d2s=s2, d3s=s3, speed=speed,
+        pressure_angle=np.degrees(pa), pitch=pitch, working=working,
+        construction=construction, alternatives=size.alternatives, warnings=warnings, extra=extra,
+        motion=motion, geometry=geom, O_design=O,
+    )
+
+
+def _check_follower(spec: CamSection) -> tuple[float, float | None]:
+    """The stroke (m, or deg for a rocker) and the rocker's length (m; None for a translating
+    follower), with the checks of the follower, the stroke and the laws."""
+    if spec.follower not in ("translating", "rocker", "knife", "flat"):
+        raise StageError(STAGE, Message("cam.fail.unknown_follower", follower=str(spec.follower)))
     stroke = float(spec.stroke)
     if not stroke > 0:
         raise StageError(STAGE, Message("cam.fail.stroke"))
-    laws = spec.laws
-    for nm in (laws.rise, laws.return_):
+    for nm in (spec.laws.rise, spec.laws.return_):
         if nm not in LAW_NAMES:
             raise StageError(STAGE, Message("cam.fail.unknown_law", law=str(nm)))
-    if rocker:
-        l = _get(spec, "rocker_length")
-        if l is None or not l > 0:
-            raise StageError(STAGE, Message("cam.fail.rocker_length"))
-        l = float(l)
-        h = math.radians(stroke)
-        scale = l
-    else:
-        l = None
-        h = stroke
-        scale = stroke
-    motion = Motion.from_spec(h, spec.phases, laws)
+    if spec.follower != "rocker":
+        return stroke, None
+    l = spec.rocker_length
+    if l is None or not l > 0:
+        raise StageError(STAGE, Message("cam.fail.rocker_length"))
+    return stroke, float(l)
+
+
+def _motion(spec: CamSection, h: float) -> Motion:
+    """The follower's motion over the cycle (stroke ``h``: m, or rad for a rocker)."""
+    motion = Motion.from_spec(h, spec.phases, spec.laws)
     if motion.rise <= 0 or motion.ret <= 0:
         raise StageError(STAGE, Message("cam.fail.phases_positive"))
     total = math.degrees(motion.rise + motion.far_dwell + motion.ret + motion.near_dwell)
     if abs(total - 360.0) > 1e-6:
         raise StageError(STAGE, Message("cam.fail.phases_sum", total=total))
-    th_rise, th_ret = _limits(spec)
-    r0_in = _get(spec, "r0", "auto")
-    r0_chosen = None if r0_in in (None, "auto") else float(r0_in)
-    divisions = int(_get(spec, "divisions", 8) or 8)
-    if follower == "flat":
-        return _flat(spec, motion, stroke, r0_chosen, divisions)
-    fams = _families(motion, th_rise, th_ret)
-    offset_in = _get(spec, "offset", 0.0)
-    if offset_in is None:
-        offset_in = 0.0
-    warnings: list[str] = []
-    alternatives: dict = {}
+    return motion
 
-    # ---- smallest cam
-    if rocker:
-        swing_in = _get(spec, "swing", "auto") or "auto"
-        options = ("with", "against") if swing_in == "auto" else (swing_in,)
-        best = None
-        for sw in options:
-            tau = sigma if sw == "with" else -sigma
-            geom = Geometry("rocker", sigma, tau, l)
-            try:
-                O, tang = _solve(motion, geom, fams, "auto", scale)
-            except StageError as err:
-                if len(options) == 1:
-                    raise StageError(STAGE, Message("cam.fail.with_hint", first=err.message,
-                                                    hint=_rocker_hint(stroke, th_rise, th_ret))) from None
-                alternatives[sw] = None
-                continue
-            r0 = float(np.hypot(*O))
-            alternatives[sw] = {"r0": r0, "center_distance": float(np.hypot(*(O - geom.A)))}
-            if best is None or r0 < best[0] * (1 - 1e-12):
-                best = (r0, sw, geom, O, tang)
-        if best is None:
-            raise StageError(STAGE, Message("cam.fail.no_region_either", hint=_rocker_hint(stroke, th_rise, th_ret)))
-        r0, swing, geom, O, tang = best
-        if r0_chosen is not None:
-            swing, geom, O, tang = _chosen_rocker(spec, motion, best, options, sigma, l, fams, scale,
-                                                  th_rise, th_ret, r0_chosen)
-            r0 = r0_chosen
-            alternatives = {}
-        if r0_chosen is None and swing_in == "auto" and len([a for a in alternatives.values() if a]) == 2:
-            other = "against" if swing == "with" else "with"
-            warnings.append(Message("cam.swing_auto", swing=swing, r0=r0 * 1000, other=other,
-                                    r0_other=alternatives[other]["r0"] * 1000))
-        center_distance = float(np.hypot(*(O - geom.A)))
-        offset = None
-        v1, v2 = O - geom.A, -geom.A        # A->O and A->B0
-        psi0 = math.degrees(math.acos(np.clip(np.dot(v1, v2) / (np.linalg.norm(v1) * l), -1, 1)))
-    else:
-        geom = Geometry("translating", sigma)
-        O, tang = _solve(motion, geom, fams, offset_in, scale)
+
+@dataclass
+class _Size:
+    """The cam centre found: its geometry, the centre O in the design frame (m), the base
+    radius and the least one (m), the active tangents and the follower's placement."""
+
+    geom: Geometry
+    O: np.ndarray
+    tangents: list
+    r0: float
+    r0_min: float | None = None
+    swing: str | None = None
+    offset: float | None = None
+    center_distance: float | None = None
+    psi0: float | None = None
+    alternatives: dict = field(default_factory=dict)
+
+
+def _rocker_size(spec: CamSection, motion: Motion, fams: list[Family], sigma: int, l: float,
+                 th_rise: float, th_ret: float, r0_chosen: float | None, warnings: list) -> _Size:
+    """The rocker's cam centre: the smaller cam of the swing senses allowed (``swing: auto``:
+    both), or the centre on a chosen r0 and centre distance."""
+    stroke = float(spec.stroke)
+    scale = l
+    swing_in = spec.swing
+    options = ("with", "against") if swing_in == "auto" else (swing_in,)
+    alternatives: dict = {}
+    best = None
+    for sw in options:
+        tau = sigma if sw == "with" else -sigma
+        geom = Geometry("rocker", sigma, tau, l)
+        try:
+            O, tang = _solve(motion, geom, fams, "auto", scale)
+        except StageError as err:
+            if len(options) == 1:
+                raise StageError(STAGE, Message("cam.fail.with_hint", first=err.message,
+                                                hint=_rocker_hint(stroke, th_rise, th_ret))) from None
+            alternatives[sw] = None
+            continue
         r0 = float(np.hypot(*O))
-        if r0_chosen is not None:
-            r0_min = r0
-            r0 = r0_chosen
-            O = chosen.centre(geom, r0, offset_in, None)
-        swing = None
-        center_distance = None
-        psi0 = None
-        offset = -sigma * float(O[0])
-        if offset_in != "auto":
-            offset = float(offset_in)
-    if not r0 > 1e-12 * scale:
+        alternatives[sw] = {"r0": r0, "center_distance": float(np.hypot(*(O - geom.A)))}
+        if best is None or r0 < best[0] * (1 - 1e-12):
+            best = (r0, sw, geom, O, tang)
+    if best is None:
+        raise StageError(STAGE, Message("cam.fail.no_region_either", hint=_rocker_hint(stroke, th_rise, th_ret)))
+    r0, swing, geom, O, tang = best
+    if r0_chosen is not None:
+        swing, geom, O, tang = _chosen_rocker(spec, motion, best, options, sigma, l, fams, scale,
+                                              th_rise, th_ret, r0_chosen)
+        r0 = r0_chosen
+        alternatives = {}
+    if r0_chosen is None and swing_in == "auto" and len([a for a in alternatives.values() if a]) == 2:
+        other = "against" if swing == "with" else "with"
+        warnings.append(Message("cam.swing_auto", swing=swing, r0=r0 * 1000, other=other,
+                                r0_other=alternatives[other]["r0"] * 1000))
+    v1, v2 = O - geom.A, -geom.A        # A->O and A->B0
+    psi0 = math.degrees(math.acos(np.clip(np.dot(v1, v2) / (np.linalg.norm(v1) * l), -1, 1)))
+    return _Size(geom=geom, O=O, tangents=tang, r0=r0, swing=swing,
+                 center_distance=float(np.hypot(*(O - geom.A))), psi0=psi0, alternatives=alternatives)
+
+
+def _translating_size(spec: CamSection, motion: Motion, fams: list[Family], sigma: int, scale: float,
+                      r0_chosen: float | None) -> _Size:
+    """The translating follower's cam centre: on the line of the given offset, or the nearest
+    admissible point (``offset: auto``), or at a chosen r0 on the offset's line."""
+    offset_in = spec.offset
+    geom = Geometry("translating", sigma)
+    O, tang = _solve(motion, geom, fams, offset_in, scale)
+    r0 = float(np.hypot(*O))
+    r0_min = None
+    if r0_chosen is not None:
+        r0_min = r0
+        r0 = r0_chosen
+        O = chosen.centre(geom, r0, offset_in, None)
+    offset = -sigma * float(O[0])
+    if offset_in != "auto":
+        offset = float(offset_in)
+    return _Size(geom=geom, O=O, tangents=tang, r0=r0, r0_min=r0_min, offset=offset)
+
+
+def _check_size(size: _Size, motion: Motion, scale: float, th_rise: float, th_ret: float,
+                r0_chosen: float | None) -> None:
+    """A cam of non-zero size; the least r0 (``size.r0_min``) and, on a chosen r0, the check of
+    its pressure angles."""
+    rocker = size.geom.kind == "rocker"
+    if not size.r0 > 1e-12 * scale:
         raise StageError(STAGE, Message("cam.fail.zero_r0"))
     if r0_chosen is None:
-        r0_min = r0
+        size.r0_min = size.r0
     elif rocker:
-        r0_min = chosen.r0_min_on_circle(motion, geom, center_distance, th_rise, th_ret, scale)
+        size.r0_min = chosen.r0_min_on_circle(motion, size.geom, size.center_distance, th_rise, th_ret, scale)
     if r0_chosen is not None:
-        worst, got = chosen.excess(motion, geom, O, th_rise, th_ret)
+        worst, got = chosen.excess(motion, size.geom, size.O, th_rise, th_ret)
         if worst > PA_TOL_DEG:
-            raise chosen.violation(r0, worst, got, motion, th_rise, th_ret, r0_min,
+            raise chosen.violation(size.r0, worst, got, motion, th_rise, th_ret, size.r0_min,
                                    "centre distance" if rocker else "offset")
 
-    # ---- pressure angles
+
+def _pressure_angles(motion: Motion, geom: Geometry, O: np.ndarray, th_rise: float,
+                     th_ret: float) -> tuple[float, float, float, float]:
+    """The greatest pressure angle over the cycle, on the rise and on the return, and the cam
+    angle where the greatest of the rise and the return occurs, all in deg; a centre that
+    exceeds an allowed angle (a numerically lost region) is an error."""
     th = {}
     for ph in (RISE, RETURN):
         th[ph] = max_angle(motion, geom, ph, O)
@@ -450,70 +574,36 @@ def synthesize(spec) -> CamResult:
                            ("dwells", math.degrees(dwell_max), max(th_rise, th_ret))):
         if not got <= lim + PA_TOL_DEG:
             raise StageError(STAGE, Message("cam.fail.pressure_exceeded", phase=name, limit=lim, got=got))
-
-    # ---- profile
-    prof = Profile(motion, geom, O)
-    if prof.min_speed() <= 1e-9 * scale:
-        raise StageError(STAGE, Message("cam.fail.cusp"))
-    rho_min, rho_phi = prof.rho_min()
-    roller_in = _get(spec, "roller", "auto")
-    if follower == "knife":
-        roller, roller_given = 0.0, False
-    elif roller_in is None or roller_in == "auto":
-        roller = min(0.7 * rho_min, 0.4 * r0)
-        roller_given = False
-    else:
-        roller = float(roller_in)
-        roller_given = True
-        if not roller > 0:
-            raise StageError(STAGE, Message("cam.fail.roller_positive"))
-        if roller >= rho_min:
-            raise StageError(STAGE, Message("cam.fail.roller_undercut", roller=roller * 1000, rho=rho_min * 1000,
-                                            phi=rho_phi))
-        if roller >= r0:
-            raise StageError(STAGE, Message("cam.fail.roller_r0", roller=roller * 1000, r0=r0 * 1000))
-        if roller > 0.8 * rho_min:
-            warnings.append(Message("cam.roller_rho", roller=roller * 1000, limit=0.8 * rho_min * 1000))
-        if roller > 0.5 * r0:
-            warnings.append(Message("cam.roller_r0", roller=roller * 1000, limit=0.5 * r0 * 1000))
-
-    # ---- grid values
-    phi = np.arange(0.0, 360.0, 1.0)
-    phr = np.radians(phi)
-    s, s1, s2, s3 = motion.evaluate(phr)
-    pa, _ = geom.pressure_angle(s, s1, O)
-    pitch, _, _ = prof.pitch(phr)
-    working = prof.working(phr, roller)
-
-    # ---- laws and impacts
-    speed, laws_info, impacts, phases = _laws_impacts(spec, motion, rocker, warnings)
-    corners = [e for e in impacts if e["kind"] == "rigid"]
-    if corners:
-        warnings.append(Message("cam.profile_corners", phis=[e["phi"] for e in corners]))
-
-    construction = _construction(motion, geom, fams, O, tang, scale)
-    extra = {"r0_min": _f(r0_min), "r0_given": r0_chosen is not None,
-             "division_table": division_table(motion, divisions, rocker,
-                                              lambda s, s1: geom.pressure_angle(s, s1, O)[0])}
-    return CamResult(
-        follower=follower, rotation=rotation, swing=swing, stroke=stroke, rocker_length=l,
-        phases=phases, allowed={"rise": th_rise, "return": th_ret},
-        r0=r0, offset=offset, center_distance=center_distance, psi0=psi0,
-        roller=roller, roller_given=roller_given,
-        max_pressure_angle=th_max, max_pressure_angle_rise=th_max_rise,
-        max_pressure_angle_return=th_max_ret, max_pressure_angle_phi=th_max_phi,
-        rho_min=rho_min, rho_min_phi=rho_phi, laws=laws_info, impacts=impacts,
-        phi=phi, s=s, ds=s1, d2s=s2, d3s=s3, speed=speed,
-        pressure_angle=np.degrees(pa), pitch=pitch, working=working,
-        construction=construction, alternatives=alternatives, warnings=warnings, extra=extra,
-        motion=motion, geometry=geom, O_design=O,
-    )
+    return th_max, th_max_rise, th_max_ret, th_max_phi
 
 
-def _laws_impacts(spec, motion, rocker, warnings):
+def _roller(spec: CamSection, r0: float, rho_min: float, rho_phi: float, warnings: list) -> tuple[float, bool]:
+    """The roller radius (m) and whether it was given: none for a knife edge, the rule
+    min(0.7 rho_min, 0.4 r0) for ``auto``, else the given one checked against the profile's
+    least radius of curvature ``rho_min`` (m, at the cam angle ``rho_phi``, deg) and r0 (m)."""
+    roller_in = spec.roller
+    if spec.follower == "knife":
+        return 0.0, False
+    if roller_in == "auto":
+        return min(0.7 * rho_min, 0.4 * r0), False
+    roller = float(roller_in)
+    if not roller > 0:
+        raise StageError(STAGE, Message("cam.fail.roller_positive"))
+    if roller >= rho_min:
+        raise StageError(STAGE, Message("cam.fail.roller_undercut", roller=roller * 1000, rho=rho_min * 1000,
+                                        phi=rho_phi))
+    if roller >= r0:
+        raise StageError(STAGE, Message("cam.fail.roller_r0", roller=roller * 1000, r0=r0 * 1000))
+    if roller > 0.8 * rho_min:
+        warnings.append(Message("cam.roller_rho", roller=roller * 1000, limit=0.8 * rho_min * 1000))
+    if roller > 0.5 * r0:
+        warnings.append(Message("cam.roller_r0", roller=roller * 1000, limit=0.5 * r0 * 1000))
+    return roller, True
+
+
+def _laws_impacts(spec: CamSection, motion: Motion, rocker: bool, warnings: list):
     """Speed, the laws' coefficients, the impacts (with their warnings) and the phase angles."""
-    speed = _get(spec, "speed")
-    speed = float(speed) if speed else None
+    speed = float(spec.speed) if spec.speed else None
     laws_info = {"rise": _law_info(motion, RISE, speed, rocker),
                  "return": _law_info(motion, RETURN, speed, rocker)}
     impacts = motion.boundaries()
@@ -525,10 +615,10 @@ def _laws_impacts(spec, motion, rocker, warnings):
     return speed, laws_info, impacts, phases
 
 
-def _chosen_rocker(spec, motion, best, options, sigma, l, fams, scale, th_rise, th_ret, r0):
+def _chosen_rocker(spec: CamSection, motion: Motion, best, options, sigma, l, fams, scale, th_rise, th_ret, r0):
     """Rocker on a chosen r0 and centre distance: the swing sense (for auto: the one with the
     smaller pressure-angle excess) and its cam centre."""
-    a = float(_get(spec, "center_distance"))
+    a = float(spec.center_distance)
     cands = []
     for sw in options:
         tau = sigma if sw == "with" else -sigma
@@ -540,14 +630,14 @@ def _chosen_rocker(spec, motion, best, options, sigma, l, fams, scale, th_rise, 
     return sw, geom, O, tang
 
 
-def _flat(spec, motion: Motion, stroke: float, r0_chosen: float | None, divisions: int) -> CamResult:
+def _flat(spec: CamSection, motion: Motion, stroke: float, r0_chosen: float | None, divisions: int) -> CamResult:
     """Flat-faced translating follower (see :mod:`.flat`)."""
-    rotation = _get(spec, "rotation", "ccw")
+    rotation = spec.rotation
     sigma = 1 if rotation == "ccw" else -1
     rigid = [e for e in motion.boundaries() if e["kind"] == "rigid"]
     if rigid:
         raise StageError(STAGE, Message("cam.fail.flat_corner", phis=[e["phi"] for e in rigid]))
-    rho_allowed = float(_get(spec, "rho_min_allowed", 0.0) or 0.0)
+    rho_allowed = float(spec.rho_min_allowed)
     margin, margin_phi = flat.convexity_margin(motion)
     r0_min = rho_allowed + margin
     if r0_chosen is None:

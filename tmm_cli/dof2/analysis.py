@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -16,6 +17,9 @@ from ..errors import StageError
 from ..messages import Message
 from . import model
 from .model import Params
+
+if TYPE_CHECKING:
+    from .spec import Dof2Section
 
 RTOL = 1e-10
 ATOL = 1e-12
@@ -144,10 +148,28 @@ def _event_state(p: Params, s: dict, i: int) -> dict:
 
 
 def centrifugal_pendulum(p: Params, omega1: float) -> dict | None:
-    """Small oscillations of the striker when the rotor turns at omega1 = const without
-    gravity: d psi'' + b omega1^2 sin psi = 0 (model.held_speed with phi' = omega1,
-    g = 0), so omega_n = |omega1| sqrt(b/d) about psi = 0 (b > 0: centre of mass C ahead
-    of the hinge) or about psi = 180 deg (b < 0); None for b = 0 or with gravity."""
+    """Small oscillations of the striker about its relative equilibrium.
+
+    Parameters
+    ----------
+    p : Params
+        The mechanism (SI units).
+    omega1 : float
+        The rotor's constant speed, rad/s.
+
+    Returns
+    -------
+    dict or None
+        ``omega_n`` (rad/s), ``period`` (s), ``ratio`` = omega_n/|omega1| and ``about_psi``
+        (deg) of d psi'' + b omega1^2 sin psi = 0 (:func:`.model.held_speed` with
+        phi' = omega1, g = 0): omega_n = |omega1| sqrt(b/d) about psi = 0 (b > 0: the centre
+        of mass C ahead of the hinge) or about psi = 180 deg (b < 0); None for b = 0, a
+        rotor at rest or with gravity.
+
+    References
+    ----------
+    Frolov (ed.), *Теория механизмов и машин*: the centrifugal pendulum; docs/methods.md §7.
+    """
     if p.g != 0 or p.b == 0 or omega1 == 0:
         return None
     ratio = math.sqrt(abs(p.b) / p.d)
@@ -155,14 +177,43 @@ def centrifugal_pendulum(p: Params, omega1: float) -> dict | None:
     return {"omega_n": wn, "period": 2 * math.pi / wn, "ratio": ratio, "about_psi": 0.0 if p.b > 0 else 180.0}
 
 
-def analyze(section) -> Dof2Result:
-    """Integrate the motion described by a :class:`Dof2Section`.
+def analyze(section: Dof2Section) -> Dof2Result:
+    """Integrate the motion of the rotary impact mechanism.
 
-    Lagrange's equations of the second kind (model.py) are integrated by
-    ``scipy.integrate.solve_ivp`` (DOP853, rtol 1e-10, atol 1e-12) with the work of
-    the driving moment as a fifth state, then sampled at ``samples`` equal steps over
-    the duration.  Raises StageError when the mass matrix is singular, the integration
-    fails, or the rotor does not make the asked ``turns`` within ``t_max``.
+    Parameters
+    ----------
+    section : Dof2Section
+        The task's ``dof2`` section: the rotor (length l, mass, centre of mass, J_O; m,
+        kg, kg*m^2), the striker (length to M, l_c, mass, J_C), gravity, the drive (a
+        constant moment, N*m, or a held speed, rad/s; none: free motion), the initial state
+        (deg, rad/s), the duration (``t_end``, s, or ``turns``) and the output ``samples``.
+
+    Returns
+    -------
+    Dof2Result
+        The time histories of the angles (deg), speeds (rad/s), accelerations, the dynamic
+        reactions in O and O1 (N), the energy balance (J) and the state at the hit;
+        ``to_dict()`` is the results.json ``dof2`` section.
+
+    Raises
+    ------
+    StageError
+        A singular mass matrix, a failed integration, or a rotor that does not make the
+        asked ``turns`` within ``t_max``.
+
+    Notes
+    -----
+    Lagrange's equations of the second kind (:mod:`.model`) are integrated by
+    ``scipy.integrate.solve_ivp`` (DOP853, rtol 1e-10, atol 1e-12) with the work of the
+    driving moment as a fifth state, then sampled at ``samples`` equal steps over the
+    duration.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*; Frolov (ed.), *Теория механизмов и
+    машин*: Lagrange's equations of the second kind for a machine with two degrees of freedom;
+    V. V. Voronkin, the rotary impact mechanism (the derivation re-done in the module's
+    docstring); docs/methods.md §7.
     """
     from scipy.integrate import solve_ivp  # lazy: scipy.integrate costs import time
 

@@ -36,11 +36,15 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..errors import StageError
 from ..messages import Message
+
+if TYPE_CHECKING:
+    from .spec import Dof2Section
 
 G_ACC = 9.81  # m/s^2, as in loads (docs/methods.md §3.1: g = 9.81 along -y)
 
@@ -72,7 +76,7 @@ class Params:
         return self.J_C + self.m2 * self.l_c ** 2
 
     @classmethod
-    def from_section(cls, sec) -> "Params":
+    def from_section(cls, sec: Dof2Section) -> "Params":
         r, s = sec.rotor, sec.striker
         return cls(l=float(r.length), m1=float(r.mass), s1=float(r.com), J_O=r.inertia_O,
                    l_M=float(s.length), l_c=s.l_c, m2=float(s.mass), J_C=float(s.J),
@@ -88,19 +92,81 @@ class Params:
 
 
 def mass_matrix(p: Params, psi):
-    """(M11, M12, M22) of the Lagrangian's kinetic energy at relative angle psi (rad)."""
+    """The mass matrix of the kinetic energy.
+
+    Parameters
+    ----------
+    p : Params
+        The mechanism (SI units).
+    psi : float or numpy.ndarray
+        The striker's angle relative to the rotor, rad.
+
+    Returns
+    -------
+    tuple
+        (M11, M12, M22) = (a + d + 2 b cos psi, d + b cos psi, d), kg*m^2.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*; Frolov (ed.), *Теория механизмов и
+    машин*: Lagrange's equations of the second kind for a machine with two degrees of freedom;
+    V. V. Voronkin, the rotary impact mechanism (the derivation re-done in the module's
+    docstring); docs/methods.md §7.
+    """
     c = np.cos(psi)
     return p.a + p.d + 2 * p.b * c, p.d + p.b * c, p.d + 0 * c
 
 
 def velocity_terms(p: Params, psi, w, pd):
-    """(h1, h2): the velocity-dependent terms of Lagrange's equations (left-hand side)."""
+    """The velocity-dependent terms of Lagrange's equations (their left-hand sides).
+
+    Parameters
+    ----------
+    p : Params
+        The mechanism (SI units).
+    psi : float or numpy.ndarray
+        The striker's angle relative to the rotor, rad.
+    w, pd : float or numpy.ndarray
+        Their rates phi' and psi', rad/s.
+
+    Returns
+    -------
+    tuple
+        (h1, h2) = (-b sin psi psi' (2 phi' + psi'), b sin psi phi'^2), N*m.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*; Frolov (ed.), *Теория механизмов и
+    машин*: Lagrange's equations of the second kind for a machine with two degrees of freedom;
+    V. V. Voronkin, the rotary impact mechanism (the derivation re-done in the module's
+    docstring); docs/methods.md §7.
+    """
     s = np.sin(psi)
     return -p.b * s * pd * (2 * w + pd), p.b * s * w ** 2
 
 
 def gravity_forces(p: Params, phi, psi):
-    """(Q_phi, Q_psi) of gravity, -dV/dq."""
+    """The generalised forces of gravity.
+
+    Parameters
+    ----------
+    p : Params
+        The mechanism (SI units; ``g`` = 0 for a horizontal machine).
+    phi, psi : float or numpy.ndarray
+        The rotor's angle and the striker's angle relative to it, rad.
+
+    Returns
+    -------
+    tuple
+        (Q_phi, Q_psi) = -dV/dq, N*m.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*; Frolov (ed.), *Теория механизмов и
+    машин*: Lagrange's equations of the second kind for a machine with two degrees of freedom;
+    V. V. Voronkin, the rotary impact mechanism (the derivation re-done in the module's
+    docstring); docs/methods.md §7.
+    """
     th = phi + psi
     q2 = -p.g * p.m2 * p.l_c * np.cos(th)
     q1 = -p.g * (p.m1 * p.s1 + p.m2 * p.l) * np.cos(phi) + q2
@@ -108,7 +174,31 @@ def gravity_forces(p: Params, phi, psi):
 
 
 def accelerations(p: Params, phi, psi, w, pd, moment):
-    """(phi'', psi'') for a given moment M_d on the rotor (Cramer's rule on the 2x2 system)."""
+    """The angular accelerations under a given moment on the rotor.
+
+    Parameters
+    ----------
+    p : Params
+        The mechanism (SI units).
+    phi, psi : float or numpy.ndarray
+        The rotor's angle and the striker's angle relative to it, rad.
+    w, pd : float or numpy.ndarray
+        Their rates phi' and psi', rad/s.
+    moment : float or numpy.ndarray
+        The driving moment M_d on the rotor, N*m.
+
+    Returns
+    -------
+    tuple
+        (phi'', psi''), rad/s^2 (Cramer's rule on the 2x2 system).
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*; Frolov (ed.), *Теория механизмов и
+    машин*: Lagrange's equations of the second kind for a machine with two degrees of freedom;
+    V. V. Voronkin, the rotary impact mechanism (the derivation re-done in the module's
+    docstring); docs/methods.md §7.
+    """
     m11, m12, m22 = mass_matrix(p, psi)
     h1, h2 = velocity_terms(p, psi, w, pd)
     g1, g2 = gravity_forces(p, phi, psi)
@@ -119,8 +209,30 @@ def accelerations(p: Params, phi, psi, w, pd, moment):
 
 
 def held_speed(p: Params, phi, psi, w, pd):
-    """Rotor held at phi' = w = const: (psi'', M_d) -- the striker's equation and the
-    moment the motor must apply (the first Lagrange equation with phi'' = 0)."""
+    """The striker's motion and the motor's moment with the rotor held at a constant speed.
+
+    Parameters
+    ----------
+    p : Params
+        The mechanism (SI units).
+    phi, psi : float or numpy.ndarray
+        The rotor's angle and the striker's angle relative to it, rad.
+    w, pd : float or numpy.ndarray
+        Their rates phi' and psi', rad/s.
+
+    Returns
+    -------
+    tuple
+        (psi'', rad/s^2; M_d, N*m): the striker's equation with phi'' = 0 and the moment the
+        motor must apply (the first Lagrange equation).
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*; Frolov (ed.), *Теория механизмов и
+    машин*: Lagrange's equations of the second kind for a machine with two degrees of freedom;
+    V. V. Voronkin, the rotary impact mechanism (the derivation re-done in the module's
+    docstring); docs/methods.md §7.
+    """
     _, m12, m22 = mass_matrix(p, psi)
     h1, h2 = velocity_terms(p, psi, w, pd)
     g1, g2 = gravity_forces(p, phi, psi)
@@ -129,7 +241,22 @@ def held_speed(p: Params, phi, psi, w, pd):
 
 
 def energy(p: Params, phi, psi, w, pd):
-    """(T, V): kinetic energy and gravity potential (V = 0 at y = 0)."""
+    """Kinetic and potential energy of the mechanism.
+
+    Parameters
+    ----------
+    p : Params
+        The mechanism (SI units).
+    phi, psi : float or numpy.ndarray
+        The rotor's angle and the striker's angle relative to it, rad.
+    w, pd : float or numpy.ndarray
+        Their rates phi' and psi', rad/s.
+
+    Returns
+    -------
+    tuple
+        (T, V), J (V = 0 at y = 0).
+    """
     m11, m12, m22 = mass_matrix(p, psi)
     T = 0.5 * (m11 * w ** 2 + 2 * m12 * w * pd + m22 * pd ** 2)
     V = p.g * ((p.m1 * p.s1 + p.m2 * p.l) * np.sin(phi) + p.m2 * p.l_c * np.sin(phi + psi))
@@ -145,8 +272,27 @@ def _n(a):
 
 
 def point_kinematics(radius_rotor: float, radius_striker: float, phi, psi, w, pd, wd, pdd):
-    """Position, velocity, acceleration (each (..., 2)) of the point
-    radius_rotor*e(phi) + radius_striker*e(phi + psi)."""
+    """Position, velocity and acceleration of a point of the striker.
+
+    Parameters
+    ----------
+    radius_rotor : float
+        The point's distance along the rotor, m (``l`` for a point of the striker).
+    radius_striker : float
+        Its distance along the striker from O1, m.
+    phi, psi : float or numpy.ndarray
+        The angles, rad.
+    w, pd : float or numpy.ndarray
+        phi' and psi', rad/s.
+    wd, pdd : float or numpy.ndarray
+        phi'' and psi'', rad/s^2.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        The position (m), velocity (m/s) and acceleration (m/s^2), each (..., 2), of the point
+        radius_rotor e(phi) + radius_striker e(phi + psi).
+    """
     phi, psi, w, pd, wd, pdd = (np.asarray(x, float) for x in (phi, psi, w, pd, wd, pdd))
     th, om2, ep2 = phi + psi, w + pd, wd + pdd
     r = radius_rotor * _e(phi) + radius_striker * _e(th)
@@ -157,8 +303,30 @@ def point_kinematics(radius_rotor: float, radius_striker: float, phi, psi, w, pd
 
 
 def reactions(p: Params, phi, psi, w, pd, wd, pdd):
-    """(R01, R12), each (..., 2): force of the ground on the rotor at O and of the rotor
-    on the striker at O1, from the theorem on the motion of the centre of mass."""
+    """The dynamic reactions in the pairs O and O1.
+
+    Parameters
+    ----------
+    p : Params
+        The mechanism (SI units).
+    phi, psi : float or numpy.ndarray
+        The rotor's angle and the striker's angle relative to it, rad.
+    w, pd : float or numpy.ndarray
+        Their rates phi' and psi', rad/s.
+    wd, pdd : float or numpy.ndarray
+        phi'' and psi'', rad/s^2.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        (R01, R12), each (..., 2), N: the force of the ground on the rotor at O and of the
+        rotor on the striker at O1.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: the theorem on the motion of the centre
+    of mass of each link; docs/methods.md §7.
+    """
     phi, psi, w, pd, wd, pdd = (np.asarray(x, float) for x in (phi, psi, w, pd, wd, pdd))
     _, _, aC = point_kinematics(p.l, p.l_c, phi, psi, w, pd, wd, pdd)
     _, _, aS = point_kinematics(p.s1, 0.0, phi, psi, w, pd, wd, pdd)
@@ -170,9 +338,24 @@ def reactions(p: Params, phi, psi, w, pd, wd, pdd):
 
 
 def rhs_scalar(p: Params, speed_held: bool, moment: float):
-    """The right-hand side f(t, y) for the integrator, y = (phi, psi, w, pd, W): the same
-    equations as accelerations()/held_speed() written with math on floats (the integrator
-    calls it ~10^3..10^6 times; numpy on scalars is ~5x slower)."""
+    """The right-hand side f(t, y) for the integrator.
+
+    Parameters
+    ----------
+    p : Params
+        The mechanism (SI units).
+    speed_held : bool
+        True: the rotor is held at a constant speed (phi'' = 0).
+    moment : float
+        The constant driving moment, N*m (free motion: 0).
+
+    Returns
+    -------
+    callable
+        f(t, y) with y = (phi, psi, w, pd, W): the same equations as :func:`accelerations` /
+        :func:`held_speed` written with ``math`` on floats (the integrator calls it ~10^3..10^6
+        times; numpy on scalars is ~5x slower); W is the work of the driving moment, J.
+    """
     a, b, d, g = p.a, p.b, p.d, p.g
     gm1 = g * (p.m1 * p.s1 + p.m2 * p.l)
     gm2 = g * p.m2 * p.l_c

@@ -2,8 +2,8 @@
 
 Public API::
 
-    analyze(spec) -> GearResult                 # spec: m, z, x ('auto'), alpha, ha, c [, rule]
-    synthesize_planetary(spec) -> PlanetaryResult
+    analyze(task.gears) -> GearResult           # the typed `gears` section (GearsSection)
+    synthesize_planetary(task.planetary) -> PlanetaryResult
     inv(a), ainv(v)                             # involute function and its inverse (radians)
     Wheel(m, z, x, alpha, ha, c, ra)            # rack-generated tooth profiles and outlines
     blocking_contour(...), outline_csv(...), outline_dxf(...)

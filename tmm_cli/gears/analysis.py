@@ -1,15 +1,16 @@
 """The gears stage: ``analyze(spec) -> GearResult`` (task section `gears`, docs/methods.md §6).
 
-``spec`` is any object with ``m`` (metres), ``z`` (two ints), ``x`` (two floats or
-'auto'), ``alpha`` (deg, default 20), ``ha`` (1), ``c`` (0.25) and optionally ``rule``
-(shift rule for ``x: auto``, see :mod:`shifts`; default equal_sliding), ``sa_min``
-(tip thickness limit as a fraction of m, default 0.25) and ``rho_f`` (rack fillet
-coefficient, default c/(1 - sin alpha) = 0.38 for the standard rack).
+``spec`` is the task's validated ``gears`` section (:class:`~tmm_cli.task.GearsSection`):
+``m`` (metres), ``z`` (two ints), ``x`` (two floats or 'auto'), ``alpha`` (deg), ``ha``,
+``c``, ``rule`` (shift rule for ``x: auto``, see :mod:`shifts`), ``sa_min`` (tip thickness
+limit as a fraction of m) and ``rho_f`` (rack fillet coefficient; None: c/(1 - sin alpha)
+= 0.38 for the standard rack).  Its defaults are the task model's.
 """
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -17,8 +18,11 @@ from ..errors import StageError
 from ..lazy import unique
 from ..messages import Message
 from . import shifts as _shifts
-from .geometry import ABSOLUTE_EPS, COURSE_EPS, DEFAULT_SA_MIN, checks, lowest_radius, pair, sliding
+from .geometry import ABSOLUTE_EPS, COURSE_EPS, checks, lowest_radius, pair, sliding
 from .tooth import Wheel
+
+if TYPE_CHECKING:
+    from .spec import GearsSection
 
 STAGE = "gears"
 
@@ -93,11 +97,6 @@ class GearResult:
         }
 
 
-def _get(spec, name, default):
-    v = getattr(spec, name, default)
-    return default if v is None else v
-
-
 def _sliding_table(g, z1, z2, n=21):
     L = float(g["N1N2"])
     pts = np.linspace(0.0, L, n)
@@ -124,36 +123,92 @@ def _contour_dict(bc, chosen):
             "region": region_polygons(bc["x1"], bc["x2"], bc["ok"])}
 
 
-def analyze(spec) -> GearResult:
-    """Geometry, checks, sliding and blocking contour of the pair described by ``spec``."""
+def analyze(spec: GearsSection) -> GearResult:
+    """Geometry, checks, sliding and blocking contour of an external spur gear pair.
+
+    Parameters
+    ----------
+    spec : GearsSection
+        The task's ``gears`` section: module ``m`` (m), tooth numbers ``z`` (z1, z2), the
+        profile shifts ``x`` (x1, x2, fractions of m, or ``auto`` chosen by ``rule``), the
+        rack's profile angle ``alpha`` (deg), addendum and clearance coefficients ``ha``,
+        ``c``, the least tip thickness ``sa_min`` (fraction of m) and the rack fillet
+        coefficient ``rho_f`` (None: c/(1 - sin alpha)).
+
+    Returns
+    -------
+    GearResult
+        The pair's geometry (radii and centre distance in m, the working pressure angle in
+        deg, the contact ratio), the undercut, sharpening, interference and contact-ratio
+        checks, the specific sliding along the line of action and the blocking contour;
+        ``to_dict()`` is the results.json ``gears`` section.
+
+    Raises
+    ------
+    StageError
+        A pair that does not mesh (no working pressure angle), a wheel without teeth, or a
+        fillet that does not fit the clearance.
+
+    References
+    ----------
+    GOST 16532-70 (the geometry of the pair), GOST 13755-81 (the rack); Popov & Timofeev,
+    *Курсовое проектирование по ТММ*, and Frolov (ed.), *Теория механизмов и машин*: the
+    pair with profile shift, the checks and the specific sliding; Bolotovsky: the blocking
+    contour; docs/methods.md §6.
+    """
     m = float(spec.m)
     z1, z2 = (int(v) for v in spec.z)
-    alpha = float(_get(spec, "alpha", 20.0))
-    ha = float(_get(spec, "ha", 1.0))
-    c = float(_get(spec, "c", 0.25))
-    sa_min = float(_get(spec, "sa_min", DEFAULT_SA_MIN))
-    rule = _get(spec, "rule", "equal_sliding")
+    alpha, ha, c, sa_min = float(spec.alpha), float(spec.ha), float(spec.c), float(spec.sa_min)
+    rule = spec.rule
     al = math.radians(alpha)
-    rho_f = _get(spec, "rho_f", None)
-    rho_f = c / (1.0 - math.sin(al)) if rho_f is None else float(rho_f)
+    rho_f = c / (1.0 - math.sin(al)) if spec.rho_f is None else float(spec.rho_f)
     if m <= 0 or min(z1, z2) < 3:
         raise StageError(STAGE, Message("gears.fail.invalid", m=m, z1=z1, z2=z2))
     if rho_f * (1.0 - math.sin(al)) > c + 1e-12:
         raise StageError(STAGE, Message("gears.fail.fillet", rho_f=rho_f, c=c))
-    warnings: list[str] = []
-    bc = None
-    xv = spec.x
-    if isinstance(xv, str):
-        if xv != "auto":
-            raise StageError(STAGE, Message("gears.fail.x_form", x=xv))
-        if rule not in _shifts.RULES:
-            raise StageError(STAGE, Message("gears.fail.unknown_rule", rule=str(rule)))
-        bc = _shifts.blocking_contour(m, z1, z2, alpha, ha, c, sa_min, rho_f)
-        x1, x2, notes = _shifts.choose(rule, m, z1, z2, alpha, ha, c, sa_min, rho_f, contour=bc)
-        warnings += notes
-    else:
+    warnings: list[Message] = []
+    x1, x2, rule, bc = _shifts_of(spec.x, rule, m, z1, z2, alpha, ha, c, sa_min, rho_f, warnings)
+    g = _pair_geometry(m, z1, z2, x1, x2, alpha, ha, c, rho_f)
+    w1 = Wheel(m, z1, x1, alpha, ha, c, g["ra1"], rho_f)
+    w2 = Wheel(m, z2, x2, alpha, ha, c, g["ra2"], rho_f)
+    rl, rhol, no_involute = _involute_starts(((w1, z1, x1), (w2, z2, x2)), warnings)
+    ch = checks(g, m, sa_min, rho_l_true=rhol, x=(x1, x2))
+    for i in no_involute:      # the other wheel's tip necessarily meets it off the involute
+        ch["interference"][i] = np.True_
+    _check_warnings(g, ch, (z1, z2), (x1, x2), m, sa_min, rhol, warnings)
+    if bc is None:
+        lo1 = min(x1 - 0.3, max(min(g["x_min1"], 0.0), -1.0) - 0.3)
+        lo2 = min(x2 - 0.3, max(min(g["x_min2"], 0.0), -1.0) - 0.3)
+        bc = _shifts.blocking_contour(m, z1, z2, alpha, ha, c, sa_min, rho_f,
+                                      x1_range=(lo1, max(1.5, x1 + 0.3)),
+                                      x2_range=(lo2, max(1.5, x2 + 0.3)))
+    cdict = _contour_dict(bc, (x1, x2))
+    cdict["chosen_admissible"] = not any(
+        [*ch["undercut"], *ch["sharpening"], ch["contact_ratio_low"], *ch["interference"]])
+    return GearResult(m=m, z=(z1, z2), x=(x1, x2), alpha=alpha, ha=ha, c=c, rho_f=rho_f, sa_min=sa_min,
+                      rule=rule, geo=g, rho_l=(rhol[0], rhol[1]), r_l=(rl[0], rl[1]), checks=ch,
+                      sliding=_sliding_table(g, z1, z2), contour=cdict, warnings=warnings)
+
+
+def _shifts_of(xv, rule, m, z1, z2, alpha, ha, c, sa_min, rho_f, warnings):
+    """The profile shifts (x1, x2), the rule that chose them (None: given) and the blocking
+    contour computed on the way (None: given shifts)."""
+    if not isinstance(xv, str):
         x1, x2 = (float(v) for v in xv)
-        rule = None
+        return x1, x2, None, None
+    if xv != "auto":
+        raise StageError(STAGE, Message("gears.fail.x_form", x=xv))
+    if rule not in _shifts.RULES:
+        raise StageError(STAGE, Message("gears.fail.unknown_rule", rule=str(rule)))
+    bc = _shifts.blocking_contour(m, z1, z2, alpha, ha, c, sa_min, rho_f)
+    x1, x2, notes = _shifts.choose(rule, m, z1, z2, alpha, ha, c, sa_min, rho_f, contour=bc)
+    warnings += notes
+    return x1, x2, rule, bc
+
+
+def _pair_geometry(m, z1, z2, x1, x2, alpha, ha, c, rho_f) -> dict:
+    """The pair's geometry (:func:`.geometry.pair`, scalars as floats) with the checks that
+    the wheels mesh and have teeth."""
     g = pair(m, z1, z2, x1, x2, alpha, ha, c, rho_f)
     g = {k: (float(v) if np.ndim(v) == 0 and not isinstance(v, (bool, np.bool_)) else v)
          for k, v in g.items()}
@@ -164,10 +219,14 @@ def analyze(spec) -> GearResult:
             raise StageError(STAGE, Message("gears.fail.root_radius", wheel=i, rf=g[f"rf{i}"]))
         if g[f"ra{i}"] <= g[f"rf{i}"]:
             raise StageError(STAGE, Message("gears.fail.no_tooth", wheel=i, ra=g[f"ra{i}"], rf=g[f"rf{i}"]))
-    w1 = Wheel(m, z1, x1, alpha, ha, c, g["ra1"], rho_f)
-    w2 = Wheel(m, z2, x2, alpha, ha, c, g["ra2"], rho_f)
+    return g
+
+
+def _involute_starts(wheels, warnings):
+    """Radii (m) where the real involutes begin, their curvature radii there (m), and the
+    wheels (0, 1) whose flank has no involute at all (warned about)."""
     rl, rhol, no_involute = [], [], []
-    for i, (w, z, x) in enumerate(((w1, z1, x1), (w2, z2, x2)), start=1):
+    for i, (w, z, x) in enumerate(wheels, start=1):
         fl = w.flank(n_fillet=200, n_involute=4)
         if fl.r_involute_start >= fl.r_tip:
             # the GOST formulas (s_a, eps_alpha, the line of action) assume an involute flank:
@@ -181,11 +240,12 @@ def analyze(spec) -> GearResult:
             no_involute.append(i - 1)
         rl.append(fl.r_involute_start)
         rhol.append(math.sqrt(max(fl.r_involute_start ** 2 - w.rb ** 2, 0.0)))
-    ch = checks(g, m, sa_min, rho_l_true=rhol, x=(x1, x2))
-    for i in no_involute:      # the other wheel's tip necessarily meets it off the involute
-        ch["interference"][i] = np.True_
-    zz = (z1, z2)
-    xx = (x1, x2)
+    return rl, rhol, no_involute
+
+
+def _check_warnings(g, ch, zz, xx, m, sa_min, rhol, warnings) -> None:
+    """The warnings of the failed checks: undercut, a thin or pointed tip, interference, the
+    contact ratio."""
     for i in (0, 1):
         n = i + 1
         if ch["undercut"][i]:
@@ -202,15 +262,3 @@ def analyze(spec) -> GearResult:
     if ch["contact_ratio_below_absolute"]:
         warnings.append(Message("gears.contact_ratio_broken" if g["eps"] < 1 else "gears.contact_ratio_absolute",
                                 eps=g["eps"], limit=ABSOLUTE_EPS))
-    if bc is None:
-        lo1 = min(x1 - 0.3, max(min(g["x_min1"], 0.0), -1.0) - 0.3)
-        lo2 = min(x2 - 0.3, max(min(g["x_min2"], 0.0), -1.0) - 0.3)
-        bc = _shifts.blocking_contour(m, z1, z2, alpha, ha, c, sa_min, rho_f,
-                                      x1_range=(lo1, max(1.5, x1 + 0.3)),
-                                      x2_range=(lo2, max(1.5, x2 + 0.3)))
-    cdict = _contour_dict(bc, (x1, x2))
-    cdict["chosen_admissible"] = not any(
-        [*ch["undercut"], *ch["sharpening"], ch["contact_ratio_low"], *ch["interference"]])
-    return GearResult(m=m, z=(z1, z2), x=(x1, x2), alpha=alpha, ha=ha, c=c, rho_f=rho_f, sa_min=sa_min,
-                      rule=rule, geo=g, rho_l=(rhol[0], rhol[1]), r_l=(rl[0], rl[1]), checks=ch,
-                      sliding=_sliding_table(g, z1, z2), contour=cdict, warnings=warnings)

@@ -28,14 +28,38 @@ __all__ = ["wheels", "mesh", "outlines", "region_polygons", "outline_csv", "outl
 
 
 def wheels(g: dict) -> tuple[Wheel, Wheel]:
-    """The two rack-generated wheels of the gears result ``g`` (results["gears"])."""
+    """The two rack-generated wheels of a gears result.
+
+    Parameters
+    ----------
+    g : dict
+        The results.json ``gears`` section (m, z, x, alpha, ha, c, rho_f, ra).
+
+    Returns
+    -------
+    tuple of Wheel
+        Wheels 1 and 2 (lengths in m).
+    """
     return tuple(Wheel(g["m"], g["z"][i], g["x"][i], g["alpha"], g["ha"], g["c"], g["ra"][i], g.get("rho_f"))
                  for i in (0, 1))
 
 
 def mesh(g: dict, teeth: int = 3) -> list[dict]:
-    """The two wheels in mesh at the pole: centre (m), axis angle of the middle tooth (rad) and
-    the closed outline (x, y in m) of ``teeth`` consecutive teeth of each wheel."""
+    """The two wheels in mesh at the pole, for the report's drawing.
+
+    Parameters
+    ----------
+    g : dict
+        The results.json ``gears`` section.
+    teeth : int
+        Consecutive teeth drawn of each wheel.
+
+    Returns
+    -------
+    list of dict
+        Per wheel: its centre (m), the axis angle of the middle tooth (rad) and the closed
+        outline (x, y, m) of ``teeth`` teeth.
+    """
     w = wheels(g)
     out = []
     for (c, ax_ang), wheel in zip(mesh_layout(w, g["aw"], 0.0), w):
@@ -45,16 +69,41 @@ def mesh(g: dict, teeth: int = 3) -> list[dict]:
 
 
 def outlines(g: dict, teeth: int = 3) -> list[tuple[np.ndarray, np.ndarray]]:
-    """The outlines written beside the report: each wheel's ``teeth`` teeth about its own
-    centre (middle tooth pointing up), x and y in metres."""
+    """The outlines written beside the report.
+
+    Parameters
+    ----------
+    g : dict
+        The results.json ``gears`` section.
+    teeth : int
+        Teeth per wheel.
+
+    Returns
+    -------
+    list of tuple of numpy.ndarray
+        Each wheel's (x, y) of ``teeth`` teeth about its own centre (middle tooth pointing
+        up), m.
+    """
     return [wheel.outline(teeth=teeth) for wheel in wheels(g)]
 
 
 def region_polygons(x1, x2, ok) -> list[list[list[list[float]]]]:
-    """The admissible region of the blocking contour as polygons: the boundary of the cells of
-    the grid (x1 columns, x2 rows) where every check holds, traced at the 0.5 level of the
-    mask (marching squares, contourpy).  Each polygon is [outer ring, hole rings...], a ring
-    being [[x1, x2], ...] (closed: the first point again at the end)."""
+    """The admissible region of the blocking contour as polygons.
+
+    Parameters
+    ----------
+    x1, x2 : numpy.ndarray
+        The grid's shift coefficients of wheels 1 (columns) and 2 (rows).
+    ok : numpy.ndarray
+        The mask (len(x2), len(x1)): every check holds.
+
+    Returns
+    -------
+    list
+        Polygons [outer ring, hole rings...], a ring being [[x1, x2], ...] closed (the first
+        point again at the end): the boundary of the admissible cells traced at the 0.5 level
+        of the mask (marching squares, contourpy).
+    """
     import contourpy  # lazy (marching squares; a dependency of its own)
 
     ok = np.asarray(ok, bool)

@@ -55,27 +55,106 @@ DEFAULT_SA_MIN = 0.25
 
 
 def rack_fillet(alpha_rad: float, c: float) -> float:
-    """Largest rack tip fillet radius coefficient c*/(1 - sin a) (0.38 for GOST 13755)."""
+    """Largest fillet radius coefficient of the rack's tip.
+
+    Parameters
+    ----------
+    alpha_rad : float
+        The rack's profile angle, rad.
+    c : float
+        The clearance coefficient c*.
+
+    Returns
+    -------
+    float
+        c*/(1 - sin alpha): 0.38 for the rack of GOST 13755 (alpha = 20 deg, c* = 0.25).
+    """
     return c / (1.0 - math.sin(alpha_rad))
 
 
 def z_min_course(alpha_rad: float, ha: float) -> int:
-    """Smallest tooth number without undercut, 2 ha / sin^2 a rounded as in the textbooks."""
+    """Least tooth number of a wheel without undercut, cut by the rack without shift.
+
+    Parameters
+    ----------
+    alpha_rad : float
+        The rack's profile angle, rad.
+    ha : float
+        The addendum coefficient ha*.
+
+    Returns
+    -------
+    int
+        2 ha / sin^2 alpha rounded as the textbooks round it (17 at 20 deg, ha* = 1).
+
+    References
+    ----------
+    GOST 16532-70; Popov & Timofeev, *Курсовое проектирование по ТММ*; Frolov (ed.), *Теория
+    механизмов и машин*: the least tooth number without undercut; docs/methods.md §6.
+    """
     return int(round(2.0 * ha / math.sin(alpha_rad) ** 2))
 
 
 def x_min_course(z, alpha_rad: float, ha: float):
-    """Course minimum shift ha (z_min - z) / z_min (docs/methods.md §6: ha (17 - z)/17 at 20 deg)."""
+    """Least profile shift without undercut, the course's formula.
+
+    Parameters
+    ----------
+    z : int or array_like
+        Tooth number(s).
+    alpha_rad : float
+        The rack's profile angle, rad.
+    ha : float
+        The addendum coefficient ha*.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        ha (z_min - z) / z_min (ha (17 - z)/17 at 20 deg).
+
+    References
+    ----------
+    GOST 16532-70; Popov & Timofeev, *Курсовое проектирование по ТММ*; Frolov (ed.), *Теория
+    механизмов и машин*: the least shift without undercut; docs/methods.md §6.
+    """
     zm = z_min_course(alpha_rad, ha)
     return ha * (zm - np.asarray(z, dtype=float)) / zm
 
 
 def pair(m, z1, z2, x1, x2, alpha_deg=20.0, ha=1.0, c=0.25, rho_f=None):
-    """All closed-form quantities of the pair; arguments may be numpy arrays (broadcast).
+    """All closed-form quantities of an external spur pair cut by the rack.
 
-    ``rho_f`` is the rack fillet coefficient (default the full fillet c/(1 - sin a)).
-    Entries where the mesh angle does not exist (inv aw <= 0) are NaN; callers check
-    ``valid``.  Returns a dict of arrays (or floats).
+    Parameters
+    ----------
+    m : float or array_like
+        Module, m.
+    z1, z2 : int or array_like
+        Tooth numbers.
+    x1, x2 : float or array_like
+        Profile shift coefficients.
+    alpha_deg : float
+        The rack's profile angle, deg.
+    ha, c : float
+        The addendum and clearance coefficients.
+    rho_f : float or None
+        The rack's tip fillet coefficient (None: the full fillet c/(1 - sin alpha)).
+
+    Returns
+    -------
+    dict
+        Arrays (or floats), broadcast over the arguments: the radii r, rb, rw, ra, rf (m),
+        the centre distances a, aw (m), alpha_w and inv alpha_w (rad), the shift and
+        reduction coefficients y, dy, the thicknesses s, sa, sb, sw and spaces e (m), the
+        pitches p, pb (m), the line of action N1N2, N1B1, N1P, N1B2, its active part ga (m),
+        the contact ratio eps, the lowest active points rho_p (m), the least shifts x_min,
+        x_min_exact and ``valid``; the wheels' entries end in 1 and 2.  Entries
+        where the working angle does not exist (inv alpha_w <= 0) are NaN.
+
+    References
+    ----------
+    GOST 16532-70; Popov & Timofeev, *Курсовое проектирование по ТММ*; Frolov (ed.), *Теория
+    механизмов и машин*: the geometry of the pair: inv alpha_w = inv alpha + 2 (x1 + x2) tan
+    alpha / (z1 + z2) and the rest; docs/methods.md §6.
     """
     al = math.radians(alpha_deg)
     if rho_f is None:
@@ -131,15 +210,45 @@ def pair(m, z1, z2, x1, x2, alpha_deg=20.0, ha=1.0, c=0.25, rho_f=None):
 
 
 def lowest_radius(rb, rho):
-    """Radius of the involute point with curvature radius rho (rho may be negative: beyond N)."""
+    """Radius of the involute's point of a given radius of curvature.
+
+    Parameters
+    ----------
+    rb : float or array_like
+        Base radius, m.
+    rho : float or array_like
+        Radius of curvature of the involute there, m (negative: beyond the point N).
+
+    Returns
+    -------
+    float or numpy.ndarray
+        sqrt(rb^2 + rho^2), m.
+    """
     return np.sqrt(rb * rb + rho * rho)
 
 
 def sliding(x, g, z1, z2):
-    """Specific sliding (lambda1, lambda2) at distance x from N1 on N1N2 = g.
+    """Specific sliding of the two profiles along the line of action.
 
-    Infinite values (at N1 for lambda1, N2 for lambda2) come back as None in lists; as
-    +-inf in arrays here.
+    Parameters
+    ----------
+    x : float or array_like
+        Distance of the contact point from N1 along N1N2, m.
+    g : float
+        The length N1N2, m.
+    z1, z2 : int
+        Tooth numbers.
+
+    Returns
+    -------
+    lambda1, lambda2 : numpy.ndarray
+        lambda1 = 1 - (g - x) z1 / (x z2), lambda2 = 1 - x z2 / ((g - x) z1); +-inf at N1 for
+        lambda1 and at N2 for lambda2.
+
+    References
+    ----------
+    GOST 16532-70; Popov & Timofeev, *Курсовое проектирование по ТММ*; Frolov (ed.), *Теория
+    механизмов и машин*: the specific sliding; docs/methods.md §6.
     """
     x = np.asarray(x, float)
     u21 = z1 / z2
@@ -152,10 +261,34 @@ def sliding(x, g, z1, z2):
 
 
 def checks(geo, m, sa_min=DEFAULT_SA_MIN, rho_l_true=None, x=(0.0, 0.0)):
-    """Defect flags (True = defect) from a :func:`pair` dict (arrays allowed).
+    """Defect flags of the pair (True = defect).
 
-    ``rho_l_true`` overrides the closed-form boundary curvature radius (for undercut teeth
-    the involute starts higher, where the trochoidal fillet cuts it).
+    Parameters
+    ----------
+    geo : dict
+        The quantities of :func:`pair` (arrays allowed).
+    m : float
+        Module, m.
+    sa_min : float
+        The least tip thickness as a fraction of m.
+    rho_l_true : sequence of float or None
+        The curvature radii (m) where the real involutes begin, overriding the closed form
+        (an undercut tooth's involute starts higher, where the trochoidal fillet cuts it).
+    x : tuple of float
+        The shift coefficients.
+
+    Returns
+    -------
+    dict
+        ``undercut``, ``sharpening``, ``interference`` (per wheel), ``contact_ratio_low``
+        (eps below COURSE_EPS = 1.2, the course's limit) and ``contact_ratio_below_absolute``
+        (eps below ABSOLUTE_EPS = 1.1).
+
+    References
+    ----------
+    GOST 16532-70; Popov & Timofeev, *Курсовое проектирование по ТММ*; Frolov (ed.), *Теория
+    механизмов и машин*: the quality checks of a gear pair: undercut, tip sharpening,
+    interference, the contact ratio; docs/methods.md §6.
     """
     x1, x2 = (np.asarray(v, float) for v in x)
     tol = 1e-12

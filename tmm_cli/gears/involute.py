@@ -22,7 +22,18 @@ _SMALL = 0.05  # below this |a| the series (error < 1e-19 relative) replaces tan
 
 
 def inv(a):
-    """Involute function tan(a) - a, a in radians (scalar or array)."""
+    """The involute function.
+
+    Parameters
+    ----------
+    a : float or array_like
+        Angle, rad.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        inv a = tan a - a.
+    """
     a = np.asarray(a, dtype=float)
     a2 = a * a
     series = np.zeros_like(a)
@@ -36,11 +47,29 @@ def inv(a):
 
 
 def ainv(v, maxiter: int = 40):
-    """Inverse involute: the angle a in [0, pi/2) with inv(a) = v (v >= 0).
+    """The inverse involute function.
 
-    Vectorised; raises ValueError for negative or non-finite v.  Newton steps are taken
-    until the largest step is below 1e-12 rad, then one more (quadratic convergence makes
-    the last one exact to rounding, ~1e-15 rad).
+    Parameters
+    ----------
+    v : float or array_like
+        Values of inv a, >= 0.
+    maxiter : int
+        Newton steps at most.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        The angle a in [0, pi/2) with inv a = v, rad.
+
+    Raises
+    ------
+    ValueError
+        A negative or non-finite ``v``.
+
+    Notes
+    -----
+    Newton steps until the largest step is below 1e-12 rad, then one more (quadratic
+    convergence makes the last one exact to rounding, ~1e-15 rad).
     """
     v = np.asarray(v, dtype=float)
     if not np.all(np.isfinite(v)) or np.any(v < 0):
@@ -61,6 +90,17 @@ def ainv(v, maxiter: int = 40):
 
 
 def deg(a):
-    """Radians to degrees, returning a plain float for scalars."""
+    """Radians to degrees.
+
+    Parameters
+    ----------
+    a : float or array_like
+        Angle, rad.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        The angle in deg (a plain float for a scalar).
+    """
     out = np.degrees(a)
     return float(out) if np.ndim(out) == 0 else out

@@ -55,11 +55,15 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from fractions import Fraction
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..errors import StageError
 from ..messages import Message
+
+if TYPE_CHECKING:
+    from .spec import PlanetarySection
 
 STAGE = "planetary"
 
@@ -99,6 +103,23 @@ class Limits:
 
 
 def scheme_key(name: str) -> str:
+    """The scheme's letter of a name the task gives.
+
+    Parameters
+    ----------
+    name : str
+        A letter A-D or one of the aliases (case and spaces ignored).
+
+    Returns
+    -------
+    str
+        The letter.
+
+    Raises
+    ------
+    StageError
+        An unknown scheme.
+    """
     key = str(name).strip()
     key = ALIASES.get(key.lower(), key.upper())
     if key not in SCHEMES:
@@ -107,7 +128,25 @@ def scheme_key(name: str) -> str:
 
 
 def ratio_exact(scheme: str, z: dict) -> Fraction:
-    """Willis' ratio i_1H as an exact fraction."""
+    """Willis' ratio i_1H of a tooth set, exact.
+
+    Parameters
+    ----------
+    scheme : str
+        The scheme's letter, A-D.
+    z : dict
+        The tooth numbers by wheel name (``z1``, ``z2``, ``z3``[, ``z4``]).
+
+    Returns
+    -------
+    fractions.Fraction
+        i_1H = 1 + z3/z1 (A), 1 + z2 z4/(z1 z3) (B), 1 - z2 z4/(z1 z3) (C, D).
+
+    References
+    ----------
+    Popov & Timofeev, *Курсовое проектирование по ТММ*: Willis' formula for the schemes A-D;
+    docs/methods.md §6.
+    """
     if scheme == "A":
         return 1 + Fraction(z["z3"], z["z1"])
     if scheme == "B":
@@ -116,7 +155,26 @@ def ratio_exact(scheme: str, z: dict) -> Fraction:
 
 
 def centre_distances(scheme: str, z: dict) -> tuple[float, float]:
-    """Centre distances (in modules) of the two meshes (equal when coaxial)."""
+    """Centre distances of the two meshes of a planetary gear.
+
+    Parameters
+    ----------
+    scheme : str
+        The scheme's letter, A-D.
+    z : dict
+        The tooth numbers by wheel name (``z1``, ``z2``, ``z3``[, ``z4``]).
+
+    Returns
+    -------
+    tuple of float
+        The centre distances of the first and the second mesh, in modules (equal when the
+        gear is coaxial).
+
+    References
+    ----------
+    Popov & Timofeev, *Курсовое проектирование по ТММ*: the coaxiality condition;
+    docs/methods.md §6.
+    """
     if scheme == "A":
         return (z["z1"] + z["z2"]) / 2, (z["z3"] - z["z2"]) / 2
     if scheme == "B":
@@ -127,11 +185,47 @@ def centre_distances(scheme: str, z: dict) -> tuple[float, float]:
 
 
 def satellites_of(scheme: str, z: dict) -> list[int]:
+    """The satellites' tooth numbers.
+
+    Parameters
+    ----------
+    scheme : str
+        The scheme's letter, A-D.
+    z : dict
+        The tooth numbers by wheel name (``z1``, ``z2``, ``z3``[, ``z4``]).
+
+    Returns
+    -------
+    list of int
+        [z2] for scheme A, [z2, z3] (the double satellite) for the others.
+    """
     return [z["z2"]] if scheme == "A" else [z["z2"], z["z3"]]
 
 
 def assembly_p(scheme: str, z: dict, k: int, pmax: int | None = None):
-    """Smallest p >= 0 with (i_1H z1 / k)(1 + k p) integer, or None."""
+    """The assembly condition of k equally spaced satellites.
+
+    Parameters
+    ----------
+    scheme : str
+        The scheme's letter, A-D.
+    z : dict
+        The tooth numbers by wheel name (``z1``, ``z2``, ``z3``[, ``z4``]).
+    k : int
+        The number of satellites.
+    pmax : int or None
+        The largest p tried (None: the denominator of i_1H z1/k plus one).
+
+    Returns
+    -------
+    int or None
+        The least p >= 0 with (i_1H z1 / k)(1 + k p) whole; None when there is none.
+
+    References
+    ----------
+    Popov & Timofeev, *Курсовое проектирование по ТММ*: the assembly condition of equally
+    spaced satellites; docs/methods.md §6.
+    """
     q = ratio_exact(scheme, z) * z["z1"] / k
     pmax = pmax if pmax is not None else q.denominator + 1
     for p in range(pmax + 1):
@@ -145,7 +239,27 @@ def _limits(z_min) -> Limits:
 
 
 def undercut_ok(scheme: str, z: dict, z_min: "int | Limits" = Z_EXT) -> list[str]:
-    """List of violated tooth-number limits (empty when none); ``z_min`` an int (tmm/1) or Limits."""
+    """The tooth-number limits a tooth set breaks.
+
+    Parameters
+    ----------
+    scheme : str
+        The scheme's letter, A-D.
+    z : dict
+        The tooth numbers by wheel name (``z1``, ``z2``, ``z3``[, ``z4``]).
+    z_min : int or Limits
+        The limits (an int: tmm/1's least external teeth, see :meth:`Limits.of`).
+
+    Returns
+    -------
+    list of str
+        The limits broken, as ``"z1 = 15 < 17"``; empty when none.
+
+    References
+    ----------
+    Popov & Timofeev, *Курсовое проектирование по ТММ*: the least tooth numbers of external
+    and internal wheels without undercut and interference; docs/methods.md §6.
+    """
     lim = _limits(z_min)
     bad = []
     for a, b, kind in SCHEMES[scheme]["meshes"]:
@@ -165,7 +279,28 @@ def undercut_ok(scheme: str, z: dict, z_min: "int | Limits" = Z_EXT) -> list[str
 
 
 def adjacency_margin(scheme: str, z: dict, k: int) -> float:
-    """2 a_w sin(pi/k) - max satellite tip diameter, in modules (> 0 required)."""
+    """The adjacency condition of k satellites.
+
+    Parameters
+    ----------
+    scheme : str
+        The scheme's letter, A-D.
+    z : dict
+        The tooth numbers by wheel name (``z1``, ``z2``, ``z3``[, ``z4``]).
+    k : int
+        The number of satellites.
+
+    Returns
+    -------
+    float
+        2 a_w sin(pi/k) - (the largest satellite's z + 2 ha*), in modules: > 0 when the tip
+        circles of neighbouring satellites do not overlap; inf for one satellite.
+
+    References
+    ----------
+    Popov & Timofeev, *Курсовое проектирование по ТММ*: the adjacency (neighbourhood)
+    condition; docs/methods.md §6.
+    """
     aw = centre_distances(scheme, z)[0]
     if k == 1:
         return math.inf
@@ -173,11 +308,41 @@ def adjacency_margin(scheme: str, z: dict, k: int) -> float:
 
 
 def assembling_counts(scheme: str, z: dict, most: int = 12) -> list[int]:
-    """The numbers of equally spaced satellites (1..most) that assemble and fit side by side."""
+    """The numbers of equally spaced satellites that assemble and fit side by side.
+
+    Parameters
+    ----------
+    scheme : str
+        The scheme's letter, A-D.
+    z : dict
+        The tooth numbers by wheel name (``z1``, ``z2``, ``z3``[, ``z4``]).
+    most : int
+        The largest number tried.
+
+    Returns
+    -------
+    list of int
+        The k in 1..most meeting the assembly and the adjacency conditions.
+    """
     return [k for k in range(1, most + 1) if assembly_p(scheme, z, k) is not None and adjacency_margin(scheme, z, k) > 0]
 
 
 def size_key(scheme: str, z: dict) -> float:
+    """The size of a planetary gear, in teeth, for the ranking.
+
+    Parameters
+    ----------
+    scheme : str
+        The scheme's letter, A-D.
+    z : dict
+        The tooth numbers by wheel name (``z1``, ``z2``, ``z3``[, ``z4``]).
+
+    Returns
+    -------
+    float
+        The ring's teeth (A: z3, B: z4), the larger outer diameter in teeth (C) or the larger
+        ring (D).
+    """
     if scheme in ("A",):
         return z["z3"]
     if scheme == "B":
@@ -189,7 +354,36 @@ def size_key(scheme: str, z: dict) -> float:
 
 def verify(scheme: str, z: dict, k: int, required: float, tolerance: float,
            z_min: "int | Limits" = Z_EXT) -> dict:
-    """All conditions of one candidate (used by the search and reported)."""
+    """Every condition of one tooth set.
+
+    Parameters
+    ----------
+    scheme : str
+        The scheme's letter, A-D.
+    z : dict
+        The tooth numbers by wheel name (``z1``, ``z2``, ``z3``[, ``z4``]).
+    k : int
+        The number of satellites.
+    required : float
+        The required ratio i_1H.
+    tolerance : float
+        The relative tolerance on the ratio.
+    z_min : int or Limits
+        The tooth limits.
+
+    Returns
+    -------
+    dict
+        ``ratio``, ``ratio_error`` (relative), ``ratio_ok``, ``coaxial``, ``assembly_p``,
+        ``assembly``, ``adjacency_margin`` (modules), ``adjacency``,
+        ``undercut_violations`` and ``undercut``.
+
+    References
+    ----------
+    Popov & Timofeev, *Курсовое проектирование по ТММ*: the conditions of the synthesis of a
+    planetary gear: the ratio, coaxiality, assembly, adjacency, the tooth limits;
+    docs/methods.md §6.
+    """
     i = ratio_exact(scheme, z)
     a1, a2 = centre_distances(scheme, z)
     p = assembly_p(scheme, z, k)
@@ -401,9 +595,30 @@ def _ranked(scheme, arr, req, order, best):
 
 
 def velocity_plan(scheme: str, z: dict, m: float, omega1: float = 1.0) -> dict:
-    """Kutzbach plan: radial positions y (m) and tangential velocities v (m/s) of the key points.
+    """The velocity plan (Kutzbach's picture) of a planetary gear.
 
-    Returns the points, the lines of the links (v = k (y - y0)) and i_1H from the plan.
+    Parameters
+    ----------
+    scheme : str
+        The scheme's letter, A-D.
+    z : dict
+        The tooth numbers by wheel name (``z1``, ``z2``, ``z3``[, ``z4``]).
+    m : float
+        Module, m.
+    omega1 : float
+        The angular speed of wheel 1, rad/s.
+
+    Returns
+    -------
+    dict
+        The key points' radial positions ``y`` (m) and tangential velocities ``v`` (m/s), the
+        links' lines v = slope (y - y0), the angular speeds of the carrier and the satellite
+        (rad/s) and the ratio i_1H read off the plan.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
+    проектирование по ТММ*: the velocity plan of a planetary gear; docs/methods.md §6.
     """
     r = {k: m * v / 2 for k, v in z.items()}
     a = centre_distances(scheme, z)[0] * m
@@ -483,17 +698,53 @@ def _no_candidates_hint(scheme: str, req: float, tol: float, z_min: int, z_max: 
     return Message("planetary.hint.general")
 
 
-def spec_limits(spec) -> Limits:
-    """The tooth limits of a `planetary` or `drive_train` section (tmm/1 `z_min` kept)."""
-    ext = getattr(spec, "z_min_external", None) or getattr(spec, "z_min", None) or Z_EXT
-    sat = getattr(spec, "z_min_satellite_in_internal", None)
-    return Limits(external=int(ext), internal=int(getattr(spec, "z_min_internal", None) or Z_INT),
-                  satellite_in_internal=int(sat) if sat is not None else max(Z_EXT_IN_INT, int(ext)),
-                  difference=int(getattr(spec, "internal_minus_external_min", None) or Z_DIFF))
+def tooth_limits(external: int, internal: int, satellite_in_internal: int | None, difference: int) -> Limits:
+    """The tooth limits of a `planetary` or `drive_train` section.
+
+    Parameters
+    ----------
+    external : int
+        Least teeth of an external wheel in an external mesh.
+    internal : int
+        Least teeth of an internal (ring) wheel.
+    satellite_in_internal : int or None
+        Least teeth of an external wheel meshing a ring (None: the greater of 20 and
+        ``external``).
+    difference : int
+        Least z_ring - z_pinion of an internal mesh.
+
+    Returns
+    -------
+    Limits
+        The four limits as ints.
+
+    References
+    ----------
+    Popov & Timofeev, *Курсовое проектирование по ТММ*: the limits of the tooth numbers of a
+    planetary gear (no undercut, no interference in an internal mesh).
+    """
+    external = int(external)
+    return Limits(external=external, internal=int(internal),
+                  satellite_in_internal=(int(satellite_in_internal) if satellite_in_internal is not None
+                                         else max(Z_EXT_IN_INT, external)),
+                  difference=int(difference))
 
 
 def ratios_of(scheme: str, arr: np.ndarray) -> np.ndarray:
-    """Willis' i_1H of every row (z1, z2, z3[, z4]) of ``arr``."""
+    """Willis' ratios of many tooth sets.
+
+    Parameters
+    ----------
+    scheme : str
+        The scheme's letter, A-D.
+    arr : numpy.ndarray
+        Rows (z1, z2, z3[, z4]).
+
+    Returns
+    -------
+    numpy.ndarray
+        i_1H of every row.
+    """
     arr = np.asarray(arr, dtype=float)
     if scheme == "A":
         return 1 + arr[:, 2] / arr[:, 0]
@@ -503,8 +754,42 @@ def ratios_of(scheme: str, arr: np.ndarray) -> np.ndarray:
 
 def search(scheme: str, req: float, tol: float, k: int, limits: Limits, z_max: int, rank: str = "size",
            keep: int = 10, stage: str = STAGE) -> tuple[list, float | None]:
-    """Ranked feasible tooth numbers (every condition checked again by :func:`verify`) and the
-    smallest |ratio error| among all feasible sets (None when there is none)."""
+    """The ranked tooth sets of a planetary gear meeting every condition.
+
+    Parameters
+    ----------
+    scheme : str
+        The scheme's letter, A-D.
+    req : float
+        The required ratio i_1H.
+    tol : float
+        The relative tolerance on the ratio.
+    k : int
+        The number of satellites.
+    limits : Limits
+        The tooth limits.
+    z_max : int
+        The largest tooth number tried.
+    rank : str
+        ``size`` (the gear's size, then the teeth) or ``ratio_error``.
+    keep : int
+        How many sets to return.
+    stage : str
+        The stage named by an internal inconsistency's error.
+
+    Returns
+    -------
+    found : list of dict
+        The best ``keep`` sets, every condition checked again by :func:`verify`: ``z``,
+        ``ratio``, ``ratio_error``, ``size``, ``teeth``, ``assembly_p``, ``checks``.
+    best : float or None
+        The least |ratio error| among all the feasible sets (None: there is none).
+
+    References
+    ----------
+    Popov & Timofeev, *Курсовое проектирование по ТММ*: the synthesis of a planetary gear by
+    its conditions; docs/methods.md §6.
+    """
     arr, best = _candidates(scheme, req, tol, k, limits, int(z_max), rank, top=max(keep, 1), best=True)
     names = SCHEMES[scheme]["wheels"]
     found = []
@@ -520,27 +805,70 @@ def search(scheme: str, req: float, tol: float, k: int, limits: Limits, z_max: i
 
 
 def nearest_ratio(scheme: str, req: float, k: int, limits: Limits, z_max: int) -> float | None:
-    """The ratio nearest to ``req`` that meets every condition but the tolerance (None: no set)."""
+    """The feasible ratio nearest to a required one, the tolerance aside.
+
+    Parameters
+    ----------
+    scheme : str
+        The scheme's letter, A-D.
+    req : float
+        The required ratio i_1H.
+    k : int
+        The number of satellites.
+    limits : Limits
+        The tooth limits.
+    z_max : int
+        The largest tooth number tried.
+
+    Returns
+    -------
+    float or None
+        The ratio of the tooth set nearest to ``req`` meeting every other condition (None: no
+        set).
+    """
     arr = _candidates(scheme, req, 1e6, k, limits, int(z_max), "ratio_error", top=1)
     return float(ratios_of(scheme, arr[:1])[0]) if len(arr) else None
 
 
-def synthesize_planetary(spec) -> PlanetaryResult:
-    """Tooth numbers for ``spec`` (scheme, ratio, satellites, tolerance, optional m, tooth limits,
-    z_max, rank)."""
+def synthesize_planetary(spec: PlanetarySection) -> PlanetaryResult:
+    """Tooth numbers of a planetary gear of a given ratio.
+
+    Parameters
+    ----------
+    spec : PlanetarySection
+        The task's ``planetary`` section: the scheme (A-D), the required ratio i_1H
+        (dimensionless), the number of satellites k, the relative ratio tolerance, the
+        module ``m`` (m; None: 1 mm for the velocity plan), the tooth limits, ``z_max``,
+        how many candidates to list and how to rank them (``size`` or ``ratio_error``).
+
+    Returns
+    -------
+    PlanetaryResult
+        The chosen tooth numbers with their checks (coaxiality, assembly, adjacency, the
+        tooth limits), the ranked candidates and the velocity plan (m, rad/s for a unit
+        input speed); ``to_dict()`` is the results.json ``planetary`` section.
+
+    Raises
+    ------
+    StageError
+        No tooth set meets the conditions within the tolerance (with a hint at the cause).
+
+    References
+    ----------
+    Popov & Timofeev, *Курсовое проектирование по ТММ*: the schemes A-D, Willis' formula,
+    the conditions of coaxiality, assembly and adjacency; Artobolevsky, *Theory of
+    Mechanisms and Machines*: the velocity plan; docs/methods.md §6.
+    """
     scheme = scheme_key(spec.scheme)
     req = float(spec.ratio)
     if req == 0 or not math.isfinite(req):
         raise StageError(STAGE, Message("planetary.fail.ratio_zero"))
-    k = int(getattr(spec, "satellites", 3) or 3)
-    tol = float(getattr(spec, "tolerance", 0.05) or 0.05)
-    m = getattr(spec, "m", None)
-    m = 0.001 if m is None else float(m)
-    limits = spec_limits(spec)
+    k, tol = int(spec.satellites), float(spec.tolerance)
+    m = 0.001 if spec.m is None else float(spec.m)
+    limits = tooth_limits(spec.z_min_external or spec.z_min, spec.z_min_internal,
+                          spec.z_min_satellite_in_internal, spec.internal_minus_external_min)
     z_min = limits.external
-    z_max = getattr(spec, "z_max", None) or 150
-    n_keep = int(getattr(spec, "candidates", 10) or 10)
-    rank = getattr(spec, "rank", None) or "size"
+    z_max, n_keep, rank = spec.z_max, int(spec.candidates), spec.rank
     if scheme in ("A", "B") and req <= 1:
         raise StageError(STAGE, Message("planetary.fail.below_one", scheme=scheme, required=req))
     found, best = search(scheme, req, tol, k, limits, int(z_max), rank, n_keep)

@@ -47,7 +47,25 @@ def _margins(geo, m, sa_min, x1, x2):
 
 
 def max_sliding(geo, z1, z2):
-    """(lambda1 at B1, lambda2 at B2): the extreme specific slidings of the two wheels."""
+    """The extreme specific slidings of the two wheels.
+
+    Parameters
+    ----------
+    geo : dict
+        The pair's quantities (:func:`.geometry.pair`).
+    z1, z2 : int
+        Tooth numbers.
+
+    Returns
+    -------
+    tuple of float
+        (lambda1 at B1, lambda2 at B2).
+
+    References
+    ----------
+    Popov & Timofeev, *Курсовое проектирование по ТММ*: the specific sliding at the ends of
+    the active line of action; docs/methods.md §6.
+    """
     l1, _ = sliding(geo["N1B1"], geo["N1N2"], z1, z2)
     _, l2 = sliding(geo["N1B2"], geo["N1N2"], z1, z2)
     return l1, l2
@@ -55,7 +73,40 @@ def max_sliding(geo, z1, z2):
 
 def blocking_contour(m, z1, z2, alpha=20.0, ha=1.0, c=0.25, sa_min=0.25, rho_f=None,
                      x1_range=None, x2_range=None, n=161):
-    """Grid, admissible mask and boundary lines of the blocking contour."""
+    """The blocking contour of a pair: the admissible region of the shifts (x1, x2).
+
+    Parameters
+    ----------
+    m : float
+        Module, m.
+    z1, z2 : int
+        Tooth numbers.
+    alpha : float
+        The rack's profile angle, deg.
+    ha, c : float
+        The addendum and clearance coefficients.
+    sa_min : float
+        The least tip thickness, a fraction of m.
+    rho_f : float or None
+        The rack's tip fillet coefficient (None: the full fillet).
+    x1_range, x2_range : tuple of float or None
+        The ranges of the grid (None: from max(min(x_min, 0), -1) - 0.3, x_min the least shift
+        without undercut, to 1.5).
+    n : int
+        Grid points per axis.
+
+    Returns
+    -------
+    dict
+        ``x1``, ``x2`` (the grid), ``ok`` (the admissible mask), ``lines`` (the boundary
+        lines of each check: undercut, sharpening, interference, the contact ratio) and
+        ``geo`` (the pair's quantities over the grid).
+
+    References
+    ----------
+    Bolotovsky, the blocking contours of involute gears; Popov & Timofeev, *Курсовое
+    проектирование по ТММ*: the choice of the shifts; docs/methods.md §6.
+    """
     geo0 = pair(m, z1, z2, 0.0, 0.0, alpha, ha, c, rho_f)
     lo1 = max(min(float(geo0["x_min1"]), 0.0), -1.0) - 0.3
     lo2 = max(min(float(geo0["x_min2"]), 0.0), -1.0) - 0.3
@@ -110,7 +161,34 @@ def _equal_sliding_split(m, z1, z2, xs, alpha, ha, c, rho_f, lo, hi):
 
 
 def rule_point(rule, m, z1, z2, alpha=20.0, ha=1.0, c=0.25, rho_f=None):
-    """The (x1, x2) the rule gives before the contour check."""
+    """The shifts a rule gives before the contour's check.
+
+    Parameters
+    ----------
+    rule : str
+        ``no_undercut``, ``equal_sliding`` or ``table``.
+    m : float
+        Module, m.
+    z1, z2 : int
+        Tooth numbers.
+    alpha : float
+        The rack's profile angle, deg.
+    ha, c : float
+        The addendum and clearance coefficients.
+    rho_f : float or None
+        The rack's tip fillet coefficient.
+
+    Returns
+    -------
+    tuple of float
+        (x1, x2).
+
+    References
+    ----------
+    Popov & Timofeev, *Курсовое проектирование по ТММ*: the rules of choosing the shifts (no
+    undercut; equal specific slidings lambda1(B1) = lambda2(B2); the table);
+    docs/methods.md §6.
+    """
     geo0 = pair(m, z1, z2, 0.0, 0.0, alpha, ha, c, rho_f)
     xm1, xm2 = float(geo0["x_min1"]), float(geo0["x_min2"])
     if rule == "no_undercut":
@@ -131,7 +209,34 @@ def rule_point(rule, m, z1, z2, alpha=20.0, ha=1.0, c=0.25, rho_f=None):
 
 
 def choose(rule, m, z1, z2, alpha=20.0, ha=1.0, c=0.25, sa_min=0.25, rho_f=None, contour=None):
-    """Shifts for ``x: auto``: (x1, x2, notes) with notes a list of warning strings."""
+    """The shifts for ``x: auto``.
+
+    Parameters
+    ----------
+    rule : str
+        ``no_undercut``, ``equal_sliding`` or ``table``.
+    m : float
+        Module, m.
+    z1, z2 : int
+        Tooth numbers.
+    alpha : float
+        The rack's profile angle, deg.
+    ha, c : float
+        The addendum and clearance coefficients.
+    sa_min : float
+        The least tip thickness, a fraction of m.
+    rho_f : float or None
+        The rack's tip fillet coefficient (None: the full fillet).
+    contour : dict or None
+        The blocking contour already computed (None: computed here).
+
+    Returns
+    -------
+    x1, x2 : float
+        The shifts: the rule's point, moved into the admissible region when it is outside.
+    notes : list
+        Warnings (coded messages) about the choice.
+    """
     x1, x2 = rule_point(rule, m, z1, z2, alpha, ha, c, rho_f)
     notes = []
     g = pair(m, z1, z2, x1, x2, alpha, ha, c, rho_f)
@@ -163,19 +268,48 @@ def _bisect(f, lo, hi, flo, steps):
 
 def contour_deviation(bc, m, z1, z2, alpha=20.0, ha=1.0, c=0.25, sa_min=0.25, rho_f=None,
                       tol=1e-13, where: bool = False, boundary: bool = True) -> dict:
-    """How far the traced blocking contour ``bc`` (of `blocking_contour`) lies from the exact
-    zero levels of its checks.
+    """How far the traced blocking contour lies from the exact zero levels of its checks.
 
+    Parameters
+    ----------
+    bc : dict
+        The contour (:func:`blocking_contour`).
+    m : float
+        Module, m.
+    z1, z2 : int
+        Tooth numbers.
+    alpha : float
+        The rack's profile angle, deg.
+    ha, c : float
+        The addendum and clearance coefficients.
+    sa_min : float
+        The least tip thickness, a fraction of m.
+    rho_f : float or None
+        The rack's tip fillet coefficient (None: the full fillet).
+    tol : float
+        The bisection's tolerance, in units of x.
+    where : bool
+        True: give the place of each largest distance too.
+    boundary : bool
+        True: count the points of the blocking contour itself (where every other check
+        holds); False: the whole lines.
+
+    Returns
+    -------
+    dict
+        check -> the largest distance, in units of the shift coefficient x (with ``where``:
+        check -> (distance, x1, x2)).
+
+    Notes
+    -----
     Marching squares puts each point P of a line on a grid edge, linearly interpolated
-    between the edge's two nodes (error O(h^2) where the margin is smooth).  Here the
-    check's zero level is located exactly (bisection to ``tol``) on the line through P
-    along its edge (A, a distance d1 from P) and on the line through P across it (B,
-    within a cell, d2; none: d2 = inf); P's distance to the exact curve is that to the
-    chord AB, d1 d2 / sqrt(d1^2 + d2^2) (to O(h^4)).  Returned: {check: the largest
-    distance, in units of the shift coefficient x} (with ``where``: {check: (distance,
-    x1, x2)}).  Counted: the points of the blocking contour itself (``boundary``: where
-    every other check holds; else the whole lines), not at a node, with a sign change
-    along the edge (not next to an invalid region)."""
+    between the edge's two nodes (error O(h^2) where the margin is smooth).  Here the check's
+    zero level is located exactly (bisection to ``tol``) on the line through P along its edge
+    (A, a distance d1 from P) and on the line through P across it (B, within a cell, d2;
+    none: d2 = inf); P's distance to the exact curve is that to the chord AB,
+    d1 d2 / sqrt(d1^2 + d2^2) (to O(h^4)).  Counted: points not at a node, with a sign change
+    along the edge (not next to an invalid region).
+    """
     g1, g2 = bc["x1"], bc["x2"]
     h1, h2 = g1[1] - g1[0], g2[1] - g2[0]
     names = list(bc["lines"])

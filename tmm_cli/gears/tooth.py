@@ -240,11 +240,23 @@ class Wheel:
 
 
 def mesh_layout(geo_wheels, aw, phi1=0.0):
-    """Axis angles of the two wheels in mesh for a rotation phi1 (rad) of wheel 1.
+    """Axis angles of the two wheels in mesh for a turn of wheel 1.
 
-    Wheel 1 at the origin, wheel 2 at (0, aw); at phi1 = 0 a tooth of wheel 1 points at the
-    pole P = (0, rw1) and a space of wheel 2 faces it.  Returns ((centre1, axis1),
-    (centre2, axis2)).
+    Parameters
+    ----------
+    geo_wheels : tuple of Wheel
+        The two wheels.
+    aw : float
+        The working centre distance, m.
+    phi1 : float
+        The turn of wheel 1, rad.
+
+    Returns
+    -------
+    tuple
+        ((centre1, axis1), (centre2, axis2)): centres in m (wheel 1 at the origin, wheel 2 at
+        (0, aw)) and axis angles in rad; at phi1 = 0 a tooth of wheel 1 points at the pole
+        P = (0, rw1) and a space of wheel 2 faces it.
     """
     w1, w2 = geo_wheels
     phi2 = -phi1 * w1.z / w2.z
@@ -253,13 +265,37 @@ def mesh_layout(geo_wheels, aw, phi1=0.0):
 
 
 def outline_csv(x, y) -> str:
-    """Outline points as CSV text (metres)."""
+    """Outline points as CSV text.
+
+    Parameters
+    ----------
+    x, y : array_like
+        The points' coordinates, m.
+
+    Returns
+    -------
+    str
+        ``x,y`` lines in metres.
+    """
     lines = ["x_m,y_m"] + [f"{a:.9e},{b:.9e}" for a, b in zip(x, y)]
     return "\n".join(lines) + "\n"
 
 
 def outline_dxf(polylines: dict[str, tuple[np.ndarray, np.ndarray]], scale=1000.0) -> str:
-    """A DXF (R2010) drawing with one layer per named polyline, in millimetres by default."""
+    """A DXF (R2010) drawing with one layer per named polyline.
+
+    Parameters
+    ----------
+    polylines : dict
+        Layer name -> (x, y) of the polyline, m.
+    scale : float
+        Drawing units per metre (1000: millimetres).
+
+    Returns
+    -------
+    str
+        The DXF text.
+    """
     import ezdxf  # lazy: heavy import
 
     doc = ezdxf.new("R2010")

@@ -32,8 +32,26 @@ def _zd(kind, z):
 
 
 def velocity_plans(stages: list, shafts: list) -> dict:
-    """Points and lines of the velocity picture, the rays of the angular-velocity plan and the
-    ratios read off it (``stages`` as in TrainResult, ``shafts[0]`` the input speed)."""
+    """The velocity plans of a drive train, built as on the sheet.
+
+    Parameters
+    ----------
+    stages : list of dict
+        The stages as in :class:`.train.TrainResult` (type, scheme, z, ratio, speeds).
+    shafts : list of float
+        The shafts' angular speeds, rad/s (``shafts[0]`` the input).
+
+    Returns
+    -------
+    dict
+        The points and lines of the velocity picture (m, m/s), the rays of the angular-velocity
+        plan and the ratios read off it.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
+    проектирование по ТММ*: the velocity plan (Kutzbach's method) of a gear train.
+    """
     links = []          # {name, y0 (m), slope (1/s) read from two points}
     points = []         # {name, y (m), v (m/s)}
     axes = []           # {stage, y (m)} of each stage's input axis

@@ -63,12 +63,50 @@ class Drive:
 
 
 def omega_from_mean(V: float, H: float) -> float:
-    """|omega1| (rad/s) from the output's mean speed over the cycle V and stroke H."""
+    """The crank's speed from the output's mean speed over the cycle.
+
+    Parameters
+    ----------
+    V : float
+        The output's mean speed over the cycle, m/s (rad/s for a rocker).
+    H : float
+        The output's stroke, m (rad for a rocker).
+
+    Returns
+    -------
+    float
+        |omega1| = pi V / H, rad/s (the output travels 2 H per turn).
+
+    References
+    ----------
+    Popov & Timofeev; Frolov, *Theory of Machines and Mechanisms*: the mean speed of the
+    output V = H omega1/pi.
+    """
     return math.pi * V / H
 
 
 def omega_from_working(V_w: float, H: float, K: float) -> float:
-    """|omega1| (rad/s) from the output's mean speed over the working stroke."""
+    """The crank's speed from the output's mean speed over the working stroke.
+
+    Parameters
+    ----------
+    V_w : float
+        The output's mean speed over the working stroke, m/s (rad/s for a rocker).
+    H : float
+        The output's stroke, m (rad for a rocker).
+    K : float
+        The coefficient of the mean speed (the time ratio of the strokes).
+
+    Returns
+    -------
+    float
+        |omega1| = V_w phi_w / H with phi_w = 2 pi K/(K + 1), rad/s.
+
+    References
+    ----------
+    Popov & Timofeev; Frolov, *Theory of Machines and Mechanisms*: the mean speed of the
+    output over the working stroke V_w = H omega1/phi_w.
+    """
     return 2.0 * math.pi * V_w / (H * (1.0 + 1.0 / K))
 
 
@@ -101,8 +139,11 @@ def resolve(section, positions) -> Drive:
 
     if section.speed is not None:
         return drive(float(section.speed), "speed")
-    source = "mean_output_speed" if section.mean_output_speed is not None else "working_stroke_speed"
-    V, kind = check_output_speed(getattr(section, source))
+    if section.mean_output_speed is not None:
+        source, given = "mean_output_speed", section.mean_output_speed
+    else:
+        source, given = "working_stroke_speed", section.working_stroke_speed
+    V, kind = check_output_speed(given)
     field = f"drive.{source}"
     if positions.H is None or not positions.H > 0:
         raise field_error(field, f"the output '{positions.output}' has no stroke (no extreme positions), "

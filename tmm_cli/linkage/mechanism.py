@@ -148,8 +148,25 @@ class Mechanism:
 
 
 def build_mechanism(task: Task) -> Mechanism:
-    """Check the references of ``task.mechanism`` and build the internal model.
-    Raises TaskError (naming the field and its line) on inconsistent input."""
+    """The internal model of the task's ``mechanism``, its references checked.
+
+    Parameters
+    ----------
+    task : Task
+        The validated task (its ``mechanism`` section: ground points and links, m).
+
+    Returns
+    -------
+    Mechanism
+        The links numbered 1..n in the task's order, their pairs and points (m), the
+        ground's pivots.
+
+    Raises
+    ------
+    TaskError
+        Inconsistent input (an unknown point or link, a broken guide), naming the field and
+        its line.
+    """
     sec: MechanismSection = task.mechanism
     assert sec is not None
     P = ("mechanism",)
@@ -322,5 +339,19 @@ def _unknown_link(name: str, names: list[str]) -> str:
 
 
 def rotate(u: float, v: float, ang: float) -> tuple[float, float]:
+    """Turn a plane vector.
+
+    Parameters
+    ----------
+    u, v : float
+        The vector's components.
+    ang : float
+        The angle, rad (ccw positive).
+
+    Returns
+    -------
+    tuple of float
+        The turned vector's components.
+    """
     c, s = math.cos(ang), math.sin(ang)
     return (c * u - s * v, s * u + c * v)

@@ -50,6 +50,18 @@ _ROMAN = {1: "I", 2: "II", 3: "III", 4: "IV", 5: "V", 6: "VI", 7: "VII", 8: "VII
 
 
 def roman(k: int) -> str:
+    """A class number in Roman numerals.
+
+    Parameters
+    ----------
+    k : int
+        The class (Assur's classification).
+
+    Returns
+    -------
+    str
+        ``"I"``, ``"II"``...; the number itself beyond the table.
+    """
     return _ROMAN.get(k, str(k))
 
 

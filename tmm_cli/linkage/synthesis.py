@@ -57,10 +57,44 @@ class SynthesisImpossible(StageError):
 
 
 def theta_of_K(K: float) -> float:
+    """The angle between the crank's extreme positions from the coefficient of the mean speed.
+
+    Parameters
+    ----------
+    K : float
+        The coefficient of the mean speed (K >= 1).
+
+    Returns
+    -------
+    float
+        theta = 180 (K - 1)/(K + 1), deg.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
+    проектирование по ТММ*: the coefficient of the mean speed K = (180 + theta)/(180 - theta); docs/methods.md §1.
+    """
     return 180.0 * (K - 1.0) / (K + 1.0)
 
 
 def K_of_theta(theta: float) -> float:
+    """The coefficient of the mean speed from the angle between the crank's extreme positions.
+
+    Parameters
+    ----------
+    theta : float
+        The angle, deg.
+
+    Returns
+    -------
+    float
+        K = (180 + theta)/(180 - theta).
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
+    проектирование по ТММ*: the coefficient of the mean speed; docs/methods.md §1.
+    """
     return (180.0 + theta) / (180.0 - theta)
 
 
@@ -103,7 +137,27 @@ def _need_quick_return(theta: float, what: str) -> None:
 
 # ---------------------------------------------------------------- slider-crank
 def slider_crank_offset(H: float, theta: float, e: float) -> tuple[float, float]:
-    """(r, l) of the offset slider-crank with stroke H, angle theta (deg), offset e."""
+    """The offset slider-crank of a stroke, an angle theta and an offset.
+
+    Parameters
+    ----------
+    H : float
+        The slider's stroke, m.
+    theta : float
+        The angle between the crank's extreme positions, deg.
+    e : float
+        The offset, m.
+
+    Returns
+    -------
+    tuple of float
+        (r, l): the crank's and the rod's lengths, m.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
+    проектирование по ТММ*: the synthesis of the offset slider-crank by the stroke and K; docs/methods.md §1.
+    """
     th = math.radians(theta)
     r2 = H * H / 4.0 - H * e / 2.0 * math.tan(th / 2.0)
     if r2 <= 0.0:
@@ -115,7 +169,27 @@ def slider_crank_offset(H: float, theta: float, e: float) -> tuple[float, float]
 
 
 def slider_crank_lambda(H: float, theta: float, lam: float) -> tuple[float, float, float]:
-    """(r, l, e) of the offset slider-crank with stroke H, angle theta and l/r = lam."""
+    """The offset slider-crank of a stroke, an angle theta and a ratio l/r.
+
+    Parameters
+    ----------
+    H : float
+        The slider's stroke, m.
+    theta : float
+        The angle between the crank's extreme positions, deg.
+    lam : float
+        The ratio l/r of the rod to the crank.
+
+    Returns
+    -------
+    tuple of float
+        (r, l, e): the crank, the rod and the offset, m.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
+    проектирование по ТММ*: the synthesis of the offset slider-crank by the stroke and K; docs/methods.md §1.
+    """
     th = math.radians(theta)
     c = 1.0 / math.sin(th / 2.0) ** 2
     r = math.sqrt(c * H * H / (4.0 * (lam * lam - 1.0 + c)))
@@ -155,9 +229,28 @@ def _gamma_offset(H: float, theta: float, e: float) -> float:
 
 
 def slider_crank_gamma(H: float, theta: float, gamma: float) -> list[tuple[float, float, float]]:
-    """Every (r, l, e) of the offset slider-crank with stroke H, angle theta and least
-    transmission angle gamma (deg), smaller offset first. gamma(e) rises from 0 (e -> 0)
-    to a maximum and falls toward e_max = H/(2 tan(theta/2))."""
+    """Every offset slider-crank of a stroke, an angle theta and a least transmission angle.
+
+    Parameters
+    ----------
+    H : float
+        The slider's stroke, m.
+    theta : float
+        The angle between the crank's extreme positions, deg.
+    gamma : float
+        The least transmission angle, deg.
+
+    Returns
+    -------
+    list of tuple of float
+        Every (r, l, e) in m, the smaller offset first: gamma(e) rises from 0 (e -> 0) to a
+        maximum and falls toward e_max = H/(2 tan(theta/2)).
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
+    проектирование по ТММ*: the synthesis of the slider-crank by the stroke, K and the least transmission angle; docs/methods.md §1.
+    """
     from ..lazy import brentq, minimize_scalar
 
     e_max = _e_reach(H, theta)
@@ -260,9 +353,31 @@ def _fourbar_gamma(a: float, b: float, c: float, d: float) -> float:
 
 
 def crank_rocker_solutions(psi: float, theta: float, c: float, d: float) -> list[dict]:
-    """Crank-rocker candidates for swing psi, angle theta (deg), rocker c and frame d.
-    Each: lengths a, b, c, d, gamma_min and the points O, O1, C1, C2 in the rocker's frame
-    (O1 at the origin, the chord C1C2 horizontal above it)."""
+    """The crank-rocker four-bars of a swing, an angle theta, a rocker and a frame.
+
+    Parameters
+    ----------
+    psi : float
+        The rocker's swing, deg.
+    theta : float
+        The angle between the crank's extreme positions, deg.
+    c : float
+        The rocker's length, m.
+    d : float
+        The frame's length, m.
+
+    Returns
+    -------
+    list of dict
+        Each candidate's lengths a, b, c, d (m), its least transmission angle gamma_min (deg)
+        and the points O, O1, C1, C2 (m) in the rocker's frame (O1 at the origin, the chord
+        C1C2 horizontal above it).
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
+    проектирование по ТММ*: the synthesis of the crank-rocker by the swing and K (the circle through C1 C2 seeing the chord at theta); docs/methods.md §1.
+    """
     ps, th = math.radians(psi), math.radians(theta)
     h0, w = c * math.cos(ps / 2.0), c * math.sin(ps / 2.0)
     P, Q = (w, h0), (-w, h0)
@@ -471,13 +586,44 @@ def generate(task):
 
 # ---------------------------------------------------------------- function generation (Freudenstein)
 def chebyshev_points(x0: float, x1: float, n: int) -> list[float]:
-    """x_j = (x0 + x1)/2 - (x1 - x0)/2 cos((2j - 1) pi/(2n)), j = 1..n."""
+    """Chebyshev's precision points on a range.
+
+    Parameters
+    ----------
+    x0, x1 : float
+        The range.
+    n : int
+        The number of points.
+
+    Returns
+    -------
+    list of float
+        x_j = (x0 + x1)/2 - (x1 - x0)/2 cos((2j - 1) pi/(2n)), j = 1..n.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: Chebyshev spacing of the precision
+    points of a function generator.
+    """
     return [(x0 + x1) / 2 - (x1 - x0) / 2 * math.cos((2 * j - 1) * math.pi / (2 * n)) for j in range(1, n + 1)]
 
 
 def function_angles(g: dict, x):
-    """The ideal crank angle phi(x) and rocker angle psi(y(x)), deg, linear in x and in y over their
-    ranges; ``g``: {function, x: [x0, x1], input: [start, range], output: [start, range]}."""
+    """The ideal crank and rocker angles of a function generator.
+
+    Parameters
+    ----------
+    g : dict
+        {function, x: [x0, x1], input: [start, range], output: [start, range]}: the function
+        y(x) and the angles' ranges, deg.
+    x : float or array_like
+        Values of the argument.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        phi(x) and psi(y(x)), deg, each linear in x and in y over its range.
+    """
     import numpy as np
 
     from ..expr import compile_expr
@@ -501,8 +647,24 @@ def _generator(sec) -> dict:
 
 
 def freudenstein(phi_deg, psi_deg):
-    """K1, K2, K3 of K1 cos psi - K2 cos phi + K3 = cos(phi - psi) through the precision points
-    (three: exactly; more: least squares)."""
+    """Freudenstein's coefficients through the precision points.
+
+    Parameters
+    ----------
+    phi_deg, psi_deg : array_like
+        The crank's and the rocker's angles at the precision points, deg.
+
+    Returns
+    -------
+    tuple of float
+        K1, K2, K3 of K1 cos psi - K2 cos phi + K3 = cos(phi - psi) (three points: exactly;
+        more: least squares).
+
+    References
+    ----------
+    Freudenstein's equation of the four-bar; Artobolevsky, *Theory of Mechanisms and
+    Machines*: the synthesis of a function generator by precision points.
+    """
     import numpy as np
     p, q = np.radians(phi_deg), np.radians(psi_deg)
     A = np.column_stack([np.cos(q), -np.cos(p), np.ones_like(p)])
@@ -548,7 +710,22 @@ def _function(sec) -> Design:
 
 
 def grashof(a: float, b: float, c: float, d: float) -> str:
-    """crank-rocker | double-crank | double-rocker | change-point of a four-bar (a the crank, d the frame)."""
+    """The kind of a four-bar by Grashof's condition.
+
+    Parameters
+    ----------
+    a, b, c, d : float
+        The crank, the coupler, the rocker and the frame, m.
+
+    Returns
+    -------
+    str
+        ``crank-rocker``, ``double-crank``, ``double-rocker`` or ``change-point``.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: Grashof's condition of a crank.
+    """
     s, *mid, long_ = sorted((a, b, c, d))
     lhs, rhs = s + long_, sum(mid)
     if abs(lhs - rhs) <= 1e-12 * long_:
@@ -561,8 +738,23 @@ def grashof(a: float, b: float, c: float, d: float) -> str:
 
 
 def analyse_function(linkage, d: Design) -> dict:
-    """The function generator analysed: the generated linkage's rocker angle over the whole range
-    of x (its kinematics at 401 crank angles) against the ideal; the structural error (deg)."""
+    """The function generator's structural error.
+
+    Parameters
+    ----------
+    linkage : Linkage
+        The generated linkage.
+    d : Design
+        Its design (the function, the ranges, the precision points).
+
+    Returns
+    -------
+    dict
+        The lengths (m), Freudenstein's K, the precision points with the generated rocker
+        angle there (deg), the structural error (the largest |psi - psi_ideal|, deg, and its
+        x) with its curve over the range of x (the kinematics at 401 crank angles) and
+        Grashof's kind.
+    """
     import numpy as np
 
     from .kinematics import solve
@@ -591,10 +783,28 @@ def analyse_function(linkage, d: Design) -> dict:
 
 # ---------------------------------------------------------------- analysis of the generated mechanism
 def transmission_angle(typ: str, kin) -> "object":
-    """Transmission angle (deg) at each position of a kinematics result of a generated
-    mechanism: slider-crank 90 - (rod, guide); crank-rocker the acute angle between the
-    coupler and the rocker; slotted lever 90 (the block presses normal to the slot, which
-    moves normal to itself); shaper: at the ram, 90 - (normal of the slotted link, guide)."""
+    """The transmission angle of a generated mechanism at each position.
+
+    Parameters
+    ----------
+    typ : str
+        The synthesis type (``slider_crank``, ``crank_rocker``, ``slotted_lever``, ``shaper``...).
+    kin : KinematicsResult
+        The mechanism's kinematics.
+
+    Returns
+    -------
+    numpy.ndarray
+        The angle, deg: slider-crank 90 - (rod, guide); crank-rocker the acute angle between
+        the coupler and the rocker; slotted lever 90 (the block presses normal to the slot,
+        which moves normal to itself); shaper: at the ram, 90 - (normal of the slotted link,
+        guide).
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
+    проектирование по ТММ*: the transmission angle; docs/methods.md §1.
+    """
     import numpy as np
 
     if typ in ("slider_crank", "offset_slider_crank"):
@@ -607,8 +817,26 @@ def transmission_angle(typ: str, kin) -> "object":
 
 
 def least_transmission(typ: str, mech) -> tuple[float, float]:
-    """(gamma_min deg, crank angle deg) over the cycle: a 0.5-deg scan refined by a
-    bounded Brent search to 1e-10 deg."""
+    """The least transmission angle over the cycle.
+
+    Parameters
+    ----------
+    typ : str
+        The synthesis type.
+    mech : Mechanism
+        The generated mechanism.
+
+    Returns
+    -------
+    tuple of float
+        (gamma_min, deg; the crank angle where it is, deg): a 0.5-deg scan refined by a
+        bounded Brent search to 1e-10 deg.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
+    проектирование по ТММ*: the transmission angle; docs/methods.md §1.
+    """
     import numpy as np
     from ..lazy import minimize_scalar
 

@@ -44,6 +44,7 @@ How to add a section (e.g. for the stage ``cam``)
 from __future__ import annotations
 
 import re
+from typing import TYPE_CHECKING
 
 from pathlib import Path
 
@@ -52,6 +53,9 @@ from ..messages import render_list, unit
 from ..reproducible import source_date
 from .context import ReportContext, templates_dir
 from . import sections as _sections
+
+if TYPE_CHECKING:
+    from ..task import Task
 
 __all__ = ["render", "render_html", "make_env", "PdfSkipped"]
 
@@ -137,7 +141,7 @@ def warm_templates() -> None:
         env.get_template(p.relative_to(root).as_posix())
 
 
-def _context(results: dict, task, out_dir: Path, lang: str) -> ReportContext:
+def _context(results: dict, task: Task | None, out_dir: Path, lang: str) -> ReportContext:
     """The sections' context; the results' per-position entries as lists (the sections
     read them many times and tell them apart by identity)."""
     from ..results import listed
@@ -180,15 +184,14 @@ def _assemble(ctx: ReportContext, frags: dict[str, str | None]) -> str:
     css_path = templates_dir() / "base.css"
     css = css_path.read_text(encoding="utf-8") if css_path.exists() else ""
     task = ctx.task
-    title = getattr(task, "title", None) if task is not None else None
     return ctx.render("report.html.j2", sections=parts, css=Markup(css),
-                      title=title or ctx.t("report.title"),
-                      variant=getattr(task, "variant", None) if task is not None else None,
+                      title=(task.title if task is not None else None) or ctx.t("report.title"),
+                      variant=task.variant if task is not None else None,
                       warnings=render_list(ctx.results, ctx.lang),
                       date=source_date().date().isoformat())
 
 
-def render_html(results: dict, task, out_dir: Path, lang: str = "en") -> tuple[str, ReportContext]:
+def render_html(results: dict, task: Task | None, out_dir: Path, lang: str = "en") -> tuple[str, ReportContext]:
     """Build the HTML text (sections may write CSV files into out_dir)."""
     with numfmt.language(lang):
         ctx = _context(results, task, out_dir, lang)
@@ -431,7 +434,7 @@ def _figure_files(ctx, html: str):
     return re.sub(r'(<svg\b[^>]*?) data-name="[a-z0-9-]+"', r"\1", html), write
 
 
-def render(results: dict, task, out_dir: Path, formats: set[str], lang: str = "en",
+def render(results: dict, task: Task | None, out_dir: Path, formats: set[str], lang: str = "en",
            notes: list[str] | None = None) -> list[Path]:
     """Write report.html and/or report.pdf (+ CSV tables) into out_dir; return the paths
     (:func:`_render`), every number written in ``lang``'s way (:mod:`tmm_cli.numfmt`)."""
@@ -439,7 +442,7 @@ def render(results: dict, task, out_dir: Path, formats: set[str], lang: str = "e
         return _render(results, task, out_dir, formats, lang, notes)
 
 
-def _render(results: dict, task, out_dir: Path, formats: set[str], lang: str = "en",
+def _render(results: dict, task: Task | None, out_dir: Path, formats: set[str], lang: str = "en",
             notes: list[str] | None = None) -> list[Path]:
     """Write report.html and/or report.pdf (+ CSV tables) into out_dir; return the paths.
 

@@ -5,12 +5,15 @@ import math
 from dataclasses import dataclass, field
 from operator import itemgetter
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ..io import atomic_write
 from ..numfmt import localize
 from . import figures
 from .i18n import translate
+
+if TYPE_CHECKING:
+    from ..task import Task
 
 
 def templates_dir() -> Path:
@@ -95,7 +98,7 @@ class ReportContext:
                 another process writes (report.HELPER_TABLES): their build leaves it out
     """
     results: dict
-    task: Any
+    task: Task | None
     lang: str
     out_dir: Path
     env: Any

@@ -14,10 +14,14 @@ from __future__ import annotations
 
 import datetime
 import re
+from typing import TYPE_CHECKING
 
 from ..numfmt import localize
 from . import typst_pdf
 from .i18n import words_beside
+
+if TYPE_CHECKING:
+    from ..task import Task
 
 WORDS = words_beside(__file__)
 
@@ -108,16 +112,22 @@ def _parts(results: dict, lang: str) -> str:
     return ", ".join(names[k] for k in order if results.get(k))
 
 
-def _header(task) -> dict:
+def _header(task: Task | None) -> dict:
     """The title page's fields: the task's ``student`` and ``course`` (each may be absent)."""
-    st = getattr(task, "student", None)
-    co = getattr(task, "course", None)
-    year = getattr(co, "year", None) or datetime.date.today().year
-    return {"title": getattr(task, "title", "") or "", "variant": getattr(task, "variant", None),
-            "student": getattr(st, "name", None) or "", "group": getattr(st, "group", None) or "",
-            "university": getattr(co, "university", None) or "", "department": getattr(co, "department", None) or "",
-            "supervisor": getattr(co, "supervisor", None) or "", "city": getattr(co, "city", None) or "",
-            "year": year, "designation": getattr(co, "designation", None) or ""}
+    st = task.student if task is not None else None
+    co = task.course if task is not None else None
+    if co is None:
+        university = department = supervisor = city = designation = year = None
+    else:
+        university, department, supervisor, city, designation, year = (
+            co.university, co.department, co.supervisor, co.city, co.designation, co.year)
+    return {"title": (task.title if task is not None else "") or "",
+            "variant": task.variant if task is not None else None,
+            "student": (st.name if st is not None else None) or "",
+            "group": (st.group if st is not None else None) or "",
+            "university": university or "", "department": department or "",
+            "supervisor": supervisor or "", "city": city or "",
+            "year": year or datetime.date.today().year, "designation": designation or ""}
 
 
 def _preamble(h: dict, lang: str) -> str:
@@ -225,7 +235,7 @@ def _caption_bare_figures(html: str) -> str:
     return "".join(out)
 
 
-def to_typst(html: str, results: dict, task, lang: str = "en") -> tuple[str, dict[str, bytes]]:
+def to_typst(html: str, results: dict, task: Task | None, lang: str = "en") -> tuple[str, dict[str, bytes]]:
     """(Typst source, {file name: bytes}) of the explanatory note."""
     W = WORDS.get(lang, WORDS["en"])
     h = _header(task)
@@ -299,7 +309,7 @@ def _shared_preamble() -> str:
     return "\n" + t.PREAMBLE_DOC + t.PREAMBLE_STYLE + t.PREAMBLE_KEEP + t.PREAMBLE_BREAK
 
 
-def pdf_bytes(html: str, results: dict, task, lang: str = "en") -> bytes:
+def pdf_bytes(html: str, results: dict, task: Task | None, lang: str = "en") -> bytes:
     """Compile the explanatory note to PDF bytes."""
     import tempfile
     from pathlib import Path

@@ -4,8 +4,12 @@ mm (tmm_cli.sheets.prims) written two ways (tmm_cli.sheets.writers)."""
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from .. import numfmt
+
+if TYPE_CHECKING:
+    from ..task import Task
 
 SHEETS = {"en": {1: "Kinematics", 2: "Kinetostatics", 3: "Dynamics", 4: "Cam mechanism", 5: "Gear mesh",
                  6: "Planetary gear", 7: "Differential", 8: "Balancing"},
@@ -17,7 +21,7 @@ SHEETS = {"en": {1: "Kinematics", 2: "Kinetostatics", 3: "Dynamics", 4: "Cam mec
                  7: "Диференціальний механізм", 8: "Зрівноваження"}}
 
 
-def build_sheets(results: dict, task, lang: str = "en") -> list[tuple]:
+def build_sheets(results: dict, task: Task | None, lang: str = "en") -> list[tuple]:
     """[(PrimCanvas, info)] for each sheet whose section the results have."""
     from ..results import listed
     results = listed(results)        # the entries as lists: read many times
@@ -43,21 +47,23 @@ def build_sheets(results: dict, task, lang: str = "en") -> list[tuple]:
     if bal.get("rotor") or (bal.get("shaking") and results.get("kinematics")):
         makers.append((8, sheet8.build))
     out = []
-    student = getattr(getattr(task, "student", None), "name", None) or ""
-    group = getattr(getattr(task, "student", None), "group", None) or getattr(task, "group", None) or ""
+    st = task.student if task is not None else None
+    student = (st.name if st is not None else None) or ""
+    group = (st.group if st is not None else None) or ""
     meta = results.get("task") or {}
-    course = getattr(task, "course", None)
+    course = task.course if task is not None else None
+    supervisor, designation, university = ((course.supervisor, course.designation, course.university)
+                                           if course is not None else (None, None, None))
     for n, (num, make) in enumerate(makers, start=1):
         cv = PrimCanvas(SHEET_W, SHEET_H)
         with numfmt.language(lang):          # the numbers as the sheet's language writes them
             info = make(cv, results, task, lang)
-            info["title_block"] = draw_frame(cv, title=meta.get("title") or getattr(task, "title", "") or "",
+            info["title_block"] = draw_frame(cv, title=meta.get("title") or (task.title if task is not None else ""),
                                              sheet_title=SHEETS[lang][num], variant=meta.get("variant", ""),
                                              student=student, group=str(group), n=n, total=len(makers),
                                              scale=info.get("scale", ""), lang=lang,
-                                             supervisor=getattr(course, "supervisor", None) or "",
-                                             designation=getattr(course, "designation", None) or "",
-                                             university=getattr(course, "university", None) or "")
+                                             supervisor=supervisor or "", designation=designation or "",
+                                             university=university or "")
         info["number"] = num
         out.append((cv, info))
     return out

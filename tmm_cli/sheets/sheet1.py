@@ -4,12 +4,16 @@ output's s, v, a diagrams."""
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..report.figures import mu_text, scale_mark
 from .frame import FRAME, TB_W, length_scale, std_mu
 from .graph import draw_graph
+
+if TYPE_CHECKING:
+    from ..task import Task
 
 TXT = {
     "en": {"scheme": "Kinematic scheme", "plans": "Plans, position {i}", "vplan": "Velocity plan",
@@ -301,10 +305,10 @@ def draw_diagrams(cv, results, geom, box, lang="en") -> dict:
     return out
 
 
-def build(cv, results, task, lang="en") -> dict:
+def build(cv, results: dict, task: Task | None, lang: str = "en") -> dict:
     from ..plans import geometry
     entries = results.get("kinematics") or []
-    geom = geometry(results, task)
+    geom = geometry(results)
     fx0, fy0, fx1, fy1 = FRAME
     course = course_positions(results)
     from ..report.course import grid_count

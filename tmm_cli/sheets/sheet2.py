@@ -4,7 +4,12 @@ polygon at a standard μF, the input link, and Zhukovsky's lever large enough to
 every force and arm.  Drawn by the panels the report draws too (tmm_cli/drawings/forces.py)."""
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from .frame import FRAME, TB_H, TB_W
+
+if TYPE_CHECKING:
+    from ..task import Task
 
 TXT = {"en": {"pos": "Position {i}, φ = {phi:.1f}°"},
        "ru": {"pos": "Положение {i}, φ = {phi:.1f}°"},
@@ -33,7 +38,7 @@ def layout(n: int, width: float) -> tuple[int, int]:
     return ncol, math.ceil(n / ncol)
 
 
-def build(cv, results, task, lang="en") -> dict:
+def build(cv, results: dict, task: Task | None, lang: str = "en") -> dict:
     from ..drawings import forces as K
     from ..drawings.words import Words
     from ..plans import crank_pin, geometry
@@ -42,7 +47,7 @@ def build(cv, results, task, lang="en") -> dict:
     links = K.links_by_name(results)
     kin = {k["index"]: k for k in results.get("kinematics") or []}
     kst = {k["index"]: k for k in results["kinetostatics"]}
-    geom = geometry(results, task)
+    geom = geometry(results)
     pin = crank_pin(geom) if geom is not None else None
     x0f, y0f, x1f, y1f = FRAME
     course = positions(results)

@@ -3,11 +3,16 @@ energy over the cycle, the reduced moment of inertia and the energy-mass diagram
 (Wittenbauer) with its tangents at ψmax, ψmin, each at a standard μ."""
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from ..report.figures import mu_text
 from .frame import FRAME, std_mu
 from .graph import draw_graph
+
+if TYPE_CHECKING:
+    from ..task import Task
 
 TXT = {
     "en": {"title": "Dynamics: reduced moments, works, kinetic energy", "em": "Energy-mass diagram",
@@ -29,7 +34,7 @@ def curve_name(key: str, lang: str) -> str:
     return catalogue(lang)["terms"].get("curve", {}).get(key, key)
 
 
-def build(cv, results, task, lang="en") -> dict:
+def build(cv, results: dict, task: Task | None, lang: str = "en") -> dict:
     f = results["flywheel"]
     a = f["arrays"]
     T = TXT[lang]

@@ -3,6 +3,7 @@ scale, and the follower's motion law s(φ), ds/dφ, d²s/dφ² at standard μ.""
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -10,13 +11,16 @@ from ..report.figures import scale_mark
 from .frame import FRAME, TB_H, length_scale, std_mu
 from .graph import draw_graph
 
+if TYPE_CHECKING:
+    from ..task import Task
+
 GX = 28.0         # mm: the diagrams' φ axes start this far into the frame (room for d²s/dφ²)
 TXT = {"en": {"profile": "Cam profile", "law": "Motion law of the follower", "mm": "mm", "m": "m"},
        "ru": {"profile": "Профиль кулачка", "law": "Закон движения толкателя", "mm": "мм", "m": "м"},
        "uk": {"profile": "Профіль кулачка", "law": "Закон руху штовхача", "mm": "мм", "m": "м"}}
 
 
-def draw_construction(cv, k, c, box, results, task, lang="en") -> dict:
+def draw_construction(cv, k, c, box, results: dict, task: Task | None, lang: str = "en") -> dict:
     """The s - ds/dφ diagram that gives the least base radius (the report's figure): the
     follower's points B (s along its path) and D (ds/dφ across it) over the rise and the
     return, the tangents at the allowed pressure angles bounding the zone of the cam's
@@ -79,7 +83,7 @@ def draw_construction(cv, k, c, box, results, task, lang="en") -> dict:
     return {"unit": unit, "scale": label, "O": O, "B0": B0, "D": drawn, "tangents": tangents, "M": M}
 
 
-def build(cv, results, task, lang="en") -> dict:
+def build(cv, results: dict, task: Task | None, lang: str = "en") -> dict:
     c = results["cam"]
     T = TXT[lang]
     mm = T["mm"]

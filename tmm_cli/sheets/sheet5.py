@@ -3,11 +3,15 @@ circles, teeth at the mesh (the report's tooth outline), the line of action N1N2
 active part B1B2 and the pole P, at a ГОСТ 2.302 scale."""
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..report.figures import scale_mark
 from .frame import FRAME, length_scale
+
+if TYPE_CHECKING:
+    from ..task import Task
 
 TXT = {"en": {"mesh": "Gear mesh", "m": "m", "mm": "mm", "sliding": "Specific sliding"},
        "ru": {"mesh": "Зубчатое зацепление", "m": "м", "mm": "мм", "sliding": "Удельные скольжения"},
@@ -59,7 +63,7 @@ def closed_window(X, Y, centre, rf: float, step_deg: float = 1.0) -> np.ndarray:
     return np.concatenate(out)
 
 
-def build(cv, results, task, lang="en") -> dict:
+def build(cv, results: dict, task: Task | None, lang: str = "en") -> dict:
     from ..gears import mesh_layout
     from ..report.figures import place_labels
     from ..drawings.mesh import action_points, wheels

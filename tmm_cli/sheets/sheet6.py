@@ -6,15 +6,19 @@ the tangents of the lines of wheel 1 and the carrier (ψ1, ψH)."""
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from .frame import FRAME, TB_H, length_scale, std_mu
 
+if TYPE_CHECKING:
+    from ..task import Task
+
 COL_W, WHEEL_W = 34.0, 22.0      # mm: a row of wheels' column, a wheel's width in the scheme
 
 
-def build(cv, results, task, lang="en") -> dict:
+def build(cv, results: dict, task: Task | None, lang: str = "en") -> dict:
     from ..report.context import ReportContext
     from ..report.sections import load
     P = load("planetary")            # registers its texts in the three languages
@@ -22,7 +26,7 @@ def build(cv, results, task, lang="en") -> dict:
     p = results["planetary"]
     rows, a = P._rows_of(p)
     info = draw_train(cv, ctx, p, rows, a, ctx.t("plan.sketch"), ctx.t("plan.v_axis"), lang)
-    vx, (x0f, y0f, x1f, y1f) = info["points"]["O"][0], FRAME
+    vx, y0f = info["points"]["O"][0], FRAME[1]
     # the ratio from the picture: tan ψ1 / tan ψH
     tg = "tan" if lang == "en" else "tg"
     vp = p["velocity_plan"]

@@ -29,11 +29,41 @@ from .result import DynamicsResult, _f
 def analyze_sampler(sampler: Sampler, section, omega_m: float, *, cycle: float = 360.0,
                     switch_q=(), phi0: float = 0.0, sign: float = 1.0,
                     accuracy: bool = True, map_cycle: float | None = None) -> DynamicsResult:
-    """The dynamics stage over a sampler (see `Sampler`): ``omega_m`` the mean speed
-    (rad/s, > 0), ``cycle`` (deg), ``switch_q`` the jumps of the loads (deg of rotation
-    from position 0), ``phi0`` (deg) and ``sign`` (+1 ccw, -1 cw) place the cycle on the
-    crank; ``accuracy``: add the timed accuracy table; ``map_cycle``: how
-    ``DynamicsResult.motion_at`` reads crank angles (default: the cycle)."""
+    """The dynamics stage over a sampler of the reduced moment and inertia.
+
+    Parameters
+    ----------
+    sampler : Sampler
+        The reduced moment (N*m) and inertia (kg*m^2) at any cycle angles.
+    section : FlywheelSection
+        The task's ``flywheel`` section (delta, the constant moment's kind, the method, the
+        resolution, the quadrature).
+    omega_m : float
+        The crank's mean speed, rad/s (> 0).
+    cycle : float
+        The cycle, deg (360 or 720).
+    switch_q : sequence of float
+        The jumps of the loads, deg of rotation from position 0.
+    phi0 : float
+        The crank angle of position 0, deg.
+    sign : float
+        +1 for a ccw crank, -1 for cw.
+    accuracy : bool
+        True: add the timed accuracy table.
+    map_cycle : float or None
+        How :meth:`DynamicsResult.motion_at` reads crank angles (None: the cycle).
+
+    Returns
+    -------
+    DynamicsResult
+        The flywheel's moment of inertia (kg*m^2), the constant moment (N*m), the motion over
+        the cycle (rad/s, rad/s^2) and the energy diagrams (J).
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: the reduced moment and moment of
+    inertia, the energy-mass (Wittenbauer) method, Merzalov's method; docs/methods.md §4.
+    """
     if not (omega_m > 0 and math.isfinite(omega_m)):
         raise StageError(STAGE, Message("flywheel.fail.drive_speed", value=omega_m))
     if cycle not in (360, 720, 360.0, 720.0):
@@ -71,8 +101,19 @@ def analyze_sampler(sampler: Sampler, section, omega_m: float, *, cycle: float =
 
 
 def grid_switch_angles(linkage) -> list[float]:
-    """The absolute crank angles (deg) the dynamics grid must hold as breakpoints: the load
-    jumps and kinks (loads.switch_angles) and both extreme positions of the output."""
+    """The crank angles the dynamics grid must hold as breakpoints.
+
+    Parameters
+    ----------
+    linkage : Linkage
+        The linkage (its loads and positions).
+
+    Returns
+    -------
+    list of float
+        The absolute crank angles, deg: the loads' jumps and kinks
+        (:func:`..loads.switch_angles`) and both extreme positions of the output.
+    """
     from .. import loads as loads_mod
     drive, positions = linkage.drive, linkage.positions
     sw = list(loads_mod.switch_angles(linkage.mechanism, linkage.loads, positions, sign=drive.sign,

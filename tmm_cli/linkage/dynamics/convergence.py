@@ -25,15 +25,55 @@ def _rel(x, ref):
 
 
 def hand_positions(cycle: float) -> int:
-    """The hand method's positions: every 30 deg of the cycle (12, or 24 over 720 deg)."""
+    """The number of positions of the hand method.
+
+    Parameters
+    ----------
+    cycle : float
+        The cycle, deg.
+
+    Returns
+    -------
+    int
+        One position every 30 deg: 12, or 24 over 720 deg.
+    """
     return int(round(cycle / 30.0))
 
 
 def hand_row(sampler: Sampler, section, omega_m: float, cycle: float, switch_q,
              ref: CycleResult, ref_resolution: int) -> dict:
-    """The course's hand method: 12 positions every 30 deg (24 over 720 deg), the trapezoid
-    of the works, no inserted jump points, the extrema at the positions; beside the
-    accurate result `ref` (deterministic: no timing)."""
+    """The course's hand method beside the accurate result.
+
+    Parameters
+    ----------
+    sampler : Sampler
+        The reduced moment and inertia.
+    section : FlywheelSection
+        The task's ``flywheel`` section (delta, the constant moment's kind, the method, the
+        resolution, the quadrature).
+    omega_m : float
+        The crank's mean speed, rad/s.
+    cycle : float
+        The cycle, deg.
+    switch_q : sequence of float
+        The loads' jumps, deg from position 0.
+    ref : CycleResult
+        The accurate result.
+    ref_resolution : int
+        Its resolution.
+
+    Returns
+    -------
+    dict
+        J (kg*m^2) and omega_max/min (rad/s) of 12 positions every 30 deg (24 over 720 deg),
+        the trapezoid of the works, no inserted jump points, the extrema at the positions,
+        with their errors relative to ``ref`` (deterministic: no timing).
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: the flywheel by the energy-mass
+    method at the positions of the plans; docs/methods.md §4.
+    """
     n_hand = hand_positions(cycle)
     hand = run_grid(sampler, section, omega_m, cycle, n_hand, switch_q, insert=False)[0]
     J_ref = ref.J_fly[ref.method]
@@ -55,15 +95,35 @@ def hand_row(sampler: Sampler, section, omega_m: float, cycle: float, switch_q,
 def accuracy_table(sampler: Sampler, section, omega_m: float, cycle: float = 360.0,
                    switch_q=(), resolutions=ACCURACY_RESOLUTIONS, *, known: dict | None = None
                    ) -> dict:
-    """J (primary method) and omega_max/min against the resolution, with the relative error
-    to the converged value (the finest resolution) and the time taken.
+    """The flywheel's results against the resolution of the grid.
 
-    Per row: J and its error; omega_max/min of the motion with the *converged* flywheel
-    computed on that grid (how well the grid resolves the speed extremes) and their errors;
-    delta_true = the fluctuation the row's J really gives (evaluated on the finest grid);
-    time_ms.  `hand`: the 12-position (every 30 deg) trapezoid without inserted jump
-    points, i.e. the course's hand calculation, beside the converged result.
-    known: {resolution: CycleResult} already computed (reused, its time not measured)."""
+    Parameters
+    ----------
+    sampler : Sampler
+        The reduced moment and inertia.
+    section : FlywheelSection
+        The task's ``flywheel`` section (delta, the constant moment's kind, the method, the
+        resolution, the quadrature).
+    omega_m : float
+        The crank's mean speed, rad/s.
+    cycle : float
+        The cycle, deg.
+    switch_q : sequence of float
+        The loads' jumps, deg from position 0.
+    resolutions : sequence of int
+        The resolutions (intervals per cycle) tabulated.
+    known : dict or None
+        {resolution: CycleResult} already computed (reused, its time not measured).
+
+    Returns
+    -------
+    dict
+        Per row: J (kg*m^2) and its relative error to the converged value (the finest
+        resolution); omega_max/min (rad/s) of the motion with the converged flywheel computed
+        on that grid and their errors; ``delta_true``, the fluctuation the row's J really
+        gives (on the finest grid); ``time_ms``.  ``hand``: the course's hand calculation
+        (:func:`hand_row`).
+    """
     known = dict(known or {})
     res_list = sorted(set(int(r) for r in resolutions))
     cycles: dict[int, CycleResult] = {}

@@ -37,10 +37,28 @@ crank rotation from position 0 along the motion), each evaluated at q + side*EPS
 # ------------------------------------------------------------------ grid
 def grid(resolution: int, cycle: float, switch_q: tuple | list = (), insert: bool = True
          ) -> tuple[np.ndarray, np.ndarray]:
-    """Nodes (q_deg, side) of the cycle: resolution + 1 equal steps over [0, cycle] and
-    the jump angles switch_q (deg, from position 0 along the motion) twice each.
-    With insert=False: the plain equal steps, every node evaluated exactly
-    (what a hand calculation over the positions does)."""
+    """The nodes of the cycle.
+
+    Parameters
+    ----------
+    resolution : int
+        Equal steps over the cycle.
+    cycle : float
+        The cycle, deg.
+    switch_q : sequence of float
+        The jump angles, deg from position 0 along the motion.
+    insert : bool
+        True: the jump angles inserted twice each (the two sides of a jump); False: the plain
+        equal steps, every node evaluated exactly (what a hand calculation does).
+
+    Returns
+    -------
+    q_deg : numpy.ndarray
+        The nodes, deg, non-decreasing.
+    side : numpy.ndarray
+        The side evaluated: -1 before and +1 after a jump at its two nodes, +1 at the
+        cycle's start, -1 at its end, 0 elsewhere (all 0 with ``insert`` False).
+    """
     n = int(resolution)
     if n < 2:
         raise StageError(STAGE, Message("flywheel.fail.resolution", value=resolution))
@@ -151,19 +169,53 @@ def solve_cycle(q: np.ndarray, M_given: np.ndarray, J_links: dict[str, np.ndarra
                 refine: bool = True, polish: Callable | None = None) -> CycleResult:
     """The whole flywheel calculation on arrays.
 
-    q: nodes (rad) from 0 to the cycle, non-decreasing (duplicates at jumps);
-    M_given: reduced moment of the given loads along the motion (N,);
-    J_links: reduced inertia per link (dict of (N,)) or one (N,) array (treated as one
-    link named 'mechanism'); J_extra: constant reduced inertia given in the task
-    (flywheel.reduced_J); dJ_links: d/dq of each link's J_red (else finite differences).
-    A link whose reduced inertia varies by less than const_tol of its maximum goes to
-    J_const (docs/methods.md §4: crank, rotor, gears), the rest to J_var.
-    increments: the integrals of M_given over every interval of q (else the trapezoid);
-    refine: locate the extrema of the energy functions between the nodes (critical points
-    of their cubic Hermite interpolants with the exact slopes M_red - J_var' omega^2/2)
-    and include them in the maxima and minima of every method (the hand calculation:
-    False, the extrema at the nodes); polish(points, work, const_links) -> (dT, J_var)
-    evaluates these two exactly at the located points (else: the Hermite interpolants).
+    Parameters
+    ----------
+    q : numpy.ndarray
+        Nodes from 0 to the cycle, rad, non-decreasing (duplicates at jumps).
+    M_given : numpy.ndarray
+        The reduced moment of the given loads along the motion, N*m (N,).
+    J_links : dict or numpy.ndarray
+        The reduced inertia per link (dict of (N,)) or one (N,) array (one link named
+        ``mechanism``), kg*m^2.
+    omega_m : float
+        The crank's mean speed, rad/s.
+    delta : float
+        The allowed coefficient of speed fluctuation.
+    constant : str
+        The constant moment's kind: ``driving`` or ``resistance``.
+    method : str
+        ``energy-mass``, ``merzalov`` or ``exact``.
+    J_extra : float
+        A constant reduced inertia given in the task (``flywheel.reduced_J``), kg*m^2.
+    dJ_links : dict or None
+        d/dq of each link's reduced inertia, kg*m^2/rad (None: finite differences).
+    M_by_kind : dict or None
+        The reduced moments by load kind, N*m.
+    const_tol : float
+        A link whose reduced inertia varies by less than this fraction of its maximum goes to
+        J_const (crank, rotor, gears), the rest to J_var.
+    increments : numpy.ndarray or None
+        The integrals of M_given over every interval of q, J (None: the trapezoid).
+    refine : bool
+        True: locate the extrema of the energy functions between the nodes (critical points of
+        their cubic Hermite interpolants with the exact slopes M_red - J_var' omega^2/2) and
+        include them in every method's maxima and minima; False: the extrema at the nodes
+        (the hand calculation).
+    polish : callable or None
+        polish(points, work, const_links) -> (dT, J_var) evaluated exactly at the located
+        points (None: the Hermite interpolants).
+
+    Returns
+    -------
+    CycleResult
+        The works (J), the energy functions, J and J_n of the flywheel (kg*m^2), the constant
+        moment (N*m) and the motion (rad/s) along q.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: the energy-mass (Wittenbauer) method,
+    Merzalov's method, the exact periodic solution; docs/methods.md §4.
     """
     if method not in FLYWHEEL_METHODS:
         raise StageError(STAGE, Message("flywheel.fail.method", method=str(method)))
@@ -322,9 +374,35 @@ class _Reuse:
 def run_grid(sampler: Sampler, section, omega_m: float, cycle: float, resolution: int,
               switch_q, insert: bool = True, gauss: int | None = None
               ) -> tuple[CycleResult, np.ndarray, np.ndarray]:
-    """The flywheel on the grid.  gauss: Gauss-Legendre points per interval for the works
-    (default: the section's `quadrature`; 0: the trapezoid on the nodes and the extrema
-    at the nodes, as by hand; insert=False implies 0)."""
+    """The flywheel on a grid.
+
+    Parameters
+    ----------
+    sampler : Sampler
+        The reduced moment and inertia.
+    section : FlywheelSection
+        The task's ``flywheel`` section (delta, the constant moment's kind, the method, the
+        resolution, the quadrature).
+    omega_m : float
+        The crank's mean speed, rad/s.
+    cycle : float
+        The cycle, deg.
+    resolution : int
+        Equal steps over the cycle.
+    switch_q : sequence of float
+        The loads' jumps, deg from position 0.
+    insert : bool
+        True: the jumps inserted as nodes (False implies ``gauss`` = 0).
+    gauss : int or None
+        Gauss-Legendre points per interval for the works (None: the section's
+        ``quadrature``; 0: the trapezoid on the nodes and the extrema at the nodes, as by
+        hand).
+
+    Returns
+    -------
+    tuple
+        (CycleResult, the nodes q in deg, the nodes' sides).
+    """
     q_deg, side = grid(resolution, cycle, switch_q, insert)
     n_g = int(section.quadrature) if gauss is None else int(gauss)
     if not insert:
@@ -364,10 +442,28 @@ def run_grid(sampler: Sampler, section, omega_m: float, cycle: float, resolution
 
 
 def mechanism_sampler(mech, kin_fn, loads_fn, *, phi0: float, sign: float) -> Sampler:
-    """Sampler over a mechanism: kin_fn(phi_deg array) -> KinematicsResult at the absolute
-    crank angles phi0 + sign*(q + side*EPS_DEG) (unwrapped: they run monotonically over
-    the cycle and may leave [0, 360), beyond 360 deg for a 720-deg cycle), and
-    loads_fn(kin) -> Loads (external loads, no inertia)."""
+    """A sampler of the reduced quantities over a mechanism.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+    kin_fn : callable
+        kin_fn(phi_deg array) -> KinematicsResult at the absolute crank angles
+        phi0 + sign (q + side EPS_DEG) (unwrapped: monotonic over the cycle, beyond 360 deg
+        for a 720-deg cycle).
+    loads_fn : callable
+        loads_fn(kin) -> Loads (the external loads, no inertia).
+    phi0 : float
+        The crank angle of position 0, deg.
+    sign : float
+        +1 for a ccw crank, -1 for cw.
+
+    Returns
+    -------
+    Sampler
+        The reduced moment (N*m) and inertia (kg*m^2) at cycle angles q (deg).
+    """
     def sampler(q_deg, side):
         q_deg = np.asarray(q_deg, float)
         phi = phi0 + sign * (q_deg + np.asarray(side, float) * EPS_DEG)
@@ -378,8 +474,25 @@ def mechanism_sampler(mech, kin_fn, loads_fn, *, phi0: float, sign: float) -> Sa
 
 
 def switch_q(switch_angles, phi0: float, sign: float, cycle: float) -> list[float]:
-    """Absolute crank angles (deg) where a load jumps as cycle angles q (deg from position 0
-    along the motion; for a 720-deg cycle in both turns)."""
+    """The loads' jumps as cycle angles.
+
+    Parameters
+    ----------
+    switch_angles : sequence of float
+        Absolute crank angles where a load jumps, deg.
+    phi0 : float
+        The crank angle of position 0, deg.
+    sign : float
+        +1 for a ccw crank, -1 for cw.
+    cycle : float
+        The cycle, deg.
+
+    Returns
+    -------
+    list of float
+        The angles q, deg from position 0 along the motion (for a 720-deg cycle in both
+        turns).
+    """
     sw = []
     for s in switch_angles or ():
         qs = (sign * (float(s) - phi0)) % 360.0

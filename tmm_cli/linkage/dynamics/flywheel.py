@@ -52,8 +52,21 @@ _TINY = 1e-300
 
 
 def gauss_legendre(n: int) -> tuple[np.ndarray, np.ndarray]:
-    """Nodes (on [0, 1]) and weights (summing to 1) of the n-point Gauss-Legendre rule:
-    exact for polynomials of degree 2n - 1, error O(h^(2n)) on smooth integrands."""
+    """The n-point Gauss-Legendre rule on [0, 1].
+
+    Parameters
+    ----------
+    n : int
+        The number of points.
+
+    Returns
+    -------
+    nodes : numpy.ndarray
+        The nodes on [0, 1].
+    weights : numpy.ndarray
+        The weights, summing to 1: exact for polynomials of degree 2n - 1, the error
+        O(h^(2n)) on smooth integrands.
+    """
     x, w = _leggauss(int(n))
     return x.copy(), w.copy()
 
@@ -65,8 +78,21 @@ def _leggauss(n: int) -> tuple[np.ndarray, np.ndarray]:
 
 
 def gauss_points(q: np.ndarray, n: int) -> np.ndarray:
-    """The n Gauss-Legendre points inside every interval of positive width of the
-    non-decreasing nodes q, interval by interval (shape (intervals, n))."""
+    """The Gauss-Legendre points of every interval of the nodes.
+
+    Parameters
+    ----------
+    q : numpy.ndarray
+        Non-decreasing nodes.
+    n : int
+        Points per interval.
+
+    Returns
+    -------
+    numpy.ndarray
+        The points inside every interval of positive width, interval by interval
+        (intervals, n).
+    """
     q = np.asarray(q, float)
     a, h = q[:-1], np.diff(q)
     x, _ = gauss_legendre(n)
@@ -75,8 +101,22 @@ def gauss_points(q: np.ndarray, n: int) -> np.ndarray:
 
 
 def gauss_increments(q: np.ndarray, y_gauss: np.ndarray, n: int) -> np.ndarray:
-    """Integral of y over every interval of q from its values at `gauss_points(q, n)`
-    (zero-width intervals: 0)."""
+    """The integral of a function over every interval of the nodes.
+
+    Parameters
+    ----------
+    q : numpy.ndarray
+        Non-decreasing nodes, rad.
+    y_gauss : numpy.ndarray
+        The function at :func:`gauss_points` (q, n).
+    n : int
+        Points per interval.
+
+    Returns
+    -------
+    numpy.ndarray
+        The integrals (zero-width intervals: 0); for a reduced moment in N*m, the works in J.
+    """
     q = np.asarray(q, float)
     h = np.diff(q)
     _, w = gauss_legendre(n)
@@ -87,10 +127,22 @@ def gauss_increments(q: np.ndarray, y_gauss: np.ndarray, n: int) -> np.ndarray:
 
 
 def hermite_critical(q: np.ndarray, y: np.ndarray, dy: np.ndarray) -> np.ndarray:
-    """Interior critical points of the piecewise cubic Hermite interpolant of (y, dy) on
-    the nodes q: in every interval of positive width where dy changes sign, the root of the
-    cubic's derivative (a quadratic) inside it.  At a maximum or minimum of a smooth y the
-    cubic's extremum value is within O(h^4) of the true one."""
+    """The interior critical points of a piecewise cubic Hermite interpolant.
+
+    Parameters
+    ----------
+    q : numpy.ndarray
+        Non-decreasing nodes.
+    y, dy : numpy.ndarray
+        The function's values and slopes at the nodes.
+
+    Returns
+    -------
+    numpy.ndarray
+        In every interval of positive width where dy changes sign, the root of the cubic's
+        derivative (a quadratic) inside it.  At a maximum or minimum of a smooth y the cubic's
+        extremum is within O(h^4) of the true one.
+    """
     q = np.asarray(q, float)
     y = np.asarray(y, float)
     dy = np.asarray(dy, float)
@@ -122,8 +174,22 @@ def hermite_critical(q: np.ndarray, y: np.ndarray, dy: np.ndarray) -> np.ndarray
 
 
 def hermite_at(q: np.ndarray, y: np.ndarray, dy: np.ndarray, x: np.ndarray) -> np.ndarray:
-    """The cubic Hermite interpolant of (y, dy) on the non-decreasing nodes q (duplicates:
-    one-sided limits) at the points x."""
+    """The cubic Hermite interpolant at given points.
+
+    Parameters
+    ----------
+    q : numpy.ndarray
+        Non-decreasing nodes (duplicates: one-sided limits).
+    y, dy : numpy.ndarray
+        The values and slopes at the nodes.
+    x : numpy.ndarray
+        The points.
+
+    Returns
+    -------
+    numpy.ndarray
+        The interpolant's values at ``x``.
+    """
     q = np.asarray(q, float)
     x = np.asarray(x, float)
     i = np.clip(np.searchsorted(q, x, side="right") - 1, 0, q.size - 2)
@@ -138,7 +204,20 @@ def hermite_at(q: np.ndarray, y: np.ndarray, dy: np.ndarray, x: np.ndarray) -> n
 
 
 def cumtrapz(q: np.ndarray, y: np.ndarray) -> np.ndarray:
-    """Cumulative trapezoid, 0 at q[0] (zero-width intervals add nothing)."""
+    """The cumulative trapezoid.
+
+    Parameters
+    ----------
+    q : numpy.ndarray
+        Non-decreasing nodes.
+    y : numpy.ndarray
+        The values there.
+
+    Returns
+    -------
+    numpy.ndarray
+        The integral from q[0] to each node (0 at q[0]; zero-width intervals add nothing).
+    """
     q = np.asarray(q, float)
     y = np.asarray(y, float)
     out = np.zeros_like(y)
@@ -167,13 +246,31 @@ class CycleWork:
 
 def cycle_work(q: np.ndarray, M_given: np.ndarray, constant: str = "driving",
                increments: np.ndarray | None = None) -> CycleWork:
-    """The constant reduced moment from zero net work over the steady cycle and the
-    works A_d, A_c, dT (trapezoid on the nodes, or the given per-interval integrals of
-    M_given, e.g. `gauss_increments`).
+    """The constant reduced moment and the works over the steady cycle.
 
-    constant='driving' (motor-driven machine): the given loads are the resistance side,
-    M_d = M_constant.  constant='resistance' (engine): the given loads are the driving
-    side, M_c = -M_constant.
+    Parameters
+    ----------
+    q : numpy.ndarray
+        The nodes along the motion, rad.
+    M_given : numpy.ndarray
+        The reduced moment of the given loads, N*m.
+    constant : str
+        ``driving`` (a motor-driven machine: the given loads are the resistance, M_d =
+        M_constant) or ``resistance`` (an engine: the given loads drive, M_c = -M_constant).
+    increments : numpy.ndarray or None
+        The integrals of M_given over every interval, J (e.g. :func:`gauss_increments`;
+        None: the trapezoid on the nodes).
+
+    Returns
+    -------
+    CycleWork
+        M_constant (N*m) from zero net work over the cycle, the moments M_d, M_c (N*m) and the
+        works A_d, A_c and dT = A_d - A_c (J) along q.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: the works of the driving and
+    resisting moments over the steady cycle; docs/methods.md §4.
     """
     q = np.asarray(q, float)
     M_given = np.asarray(M_given, float)
@@ -223,7 +320,30 @@ def _check(dT, J_var, omega_m, delta):
 
 
 def energy_mass(dT, J_var, omega_m: float, delta: float) -> tuple[float, float, float]:
-    """Exact analytic energy-mass (Wittenbauer) method: (J_n, a, b), docs/methods.md §4."""
+    """The flywheel by the energy-mass (Wittenbauer) method, exactly.
+
+    Parameters
+    ----------
+    dT : numpy.ndarray
+        The increase of the kinetic energy along the cycle, dT = A_d - A_c, J.
+    J_var : numpy.ndarray
+        The variable part of the reduced moment of inertia, kg*m^2.
+    omega_m : float
+        The mean speed, rad/s.
+    delta : float
+        The allowed coefficient of speed fluctuation.
+
+    Returns
+    -------
+    tuple of float
+        (J_n = (a - b)/(omega_m^2 delta), kg*m^2; a = max(dT - J_var omega_max^2/2),
+        b = min(dT - J_var omega_min^2/2), J, with omega_max,min = omega_m (1 +- delta/2)).
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: the energy-mass diagram
+    (Wittenbauer's method); docs/methods.md §4.
+    """
     dT, J_var = _check(dT, J_var, omega_m, delta)
     wmax = omega_m * (1 + delta / 2)
     wmin = omega_m * (1 - delta / 2)
@@ -233,8 +353,30 @@ def energy_mass(dT, J_var, omega_m: float, delta: float) -> tuple[float, float, 
 
 
 def wittenbauer(dT, J_var, omega_m: float, delta: float) -> tuple[float, float, float]:
-    """The graphical Wittenbauer construction: tangents of slope
-    omega_m^2 (1 +/- delta)/2 in the (J, dT) plane -> (J_n, a, b)."""
+    """The flywheel by the graphical Wittenbauer construction.
+
+    Parameters
+    ----------
+    dT : numpy.ndarray
+        The increase of the kinetic energy along the cycle, dT = A_d - A_c, J.
+    J_var : numpy.ndarray
+        The variable part of the reduced moment of inertia, kg*m^2.
+    omega_m : float
+        The mean speed, rad/s.
+    delta : float
+        The allowed coefficient of speed fluctuation.
+
+    Returns
+    -------
+    tuple of float
+        (J_n, kg*m^2; a, b, J): the tangents of slope omega_m^2 (1 +- delta)/2 to the
+        energy-mass diagram drawn as the construction draws them.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: Wittenbauer's construction;
+    docs/methods.md §4.
+    """
     dT, J_var = _check(dT, J_var, omega_m, delta)
     a = float(np.max(dT - J_var * omega_m**2 * (1 + delta) / 2))
     b = float(np.min(dT - J_var * omega_m**2 * (1 - delta) / 2))
@@ -242,7 +384,29 @@ def wittenbauer(dT, J_var, omega_m: float, delta: float) -> tuple[float, float, 
 
 
 def merzalov(dT, J_var, omega_m: float, delta: float) -> tuple[float, np.ndarray, np.ndarray]:
-    """Merzalov's method: (J_n, dT_I, T_II) with T_II = J_var omega_m^2/2, docs/methods.md §4."""
+    """The flywheel by Merzalov's method.
+
+    Parameters
+    ----------
+    dT : numpy.ndarray
+        The increase of the kinetic energy along the cycle, dT = A_d - A_c, J.
+    J_var : numpy.ndarray
+        The variable part of the reduced moment of inertia, kg*m^2.
+    omega_m : float
+        The mean speed, rad/s.
+    delta : float
+        The allowed coefficient of speed fluctuation.
+
+    Returns
+    -------
+    tuple
+        (J_n, kg*m^2; dT_I = dT - T_II, J; T_II = J_var omega_m^2/2, J).
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: Merzalov's method of the flywheel;
+    docs/methods.md §4.
+    """
     dT, J_var = _check(dT, J_var, omega_m, delta)
     T_II = J_var * omega_m**2 / 2
     dT_I = dT - T_II
@@ -268,8 +432,24 @@ def _omega_extremes(dT2: np.ndarray, J_tot: np.ndarray, buf: np.ndarray):
 
 
 def steady_T0(dT, J_tot, omega_m: float) -> float | None:
-    """T0 such that (max omega + min omega)/2 = omega_m for omega = sqrt(2 (T0 + dT)/J_tot).
-    None when no such T0 exists (the speed would reach zero: delta >= 2)."""
+    """The initial kinetic energy of the steady motion of a given mean speed.
+
+    Parameters
+    ----------
+    dT : numpy.ndarray
+        The increase of the kinetic energy along the cycle, J.
+    J_tot : numpy.ndarray
+        The total reduced inertia, kg*m^2.
+    omega_m : float
+        The mean speed, rad/s.
+
+    Returns
+    -------
+    float or None
+        T0 (J) such that (max omega + min omega)/2 = omega_m for
+        omega = sqrt(2 (T0 + dT)/J_tot); None when there is none (the speed would reach zero:
+        delta >= 2).
+    """
     dT = np.asarray(dT, float)
     J_tot = np.broadcast_to(np.asarray(J_tot, float), dT.shape)
     jmax = float(np.max(J_tot))
@@ -309,8 +489,30 @@ class Motion:
 
 
 def steady_motion(dT, J_var, J_n: float, omega_m: float) -> Motion:
-    """The periodic steady motion for the constant reduced inertia J_n, its mean speed
-    (omega_max + omega_min)/2 equal to omega_m."""
+    """The periodic steady motion with a flywheel.
+
+    Parameters
+    ----------
+    dT : numpy.ndarray
+        The increase of the kinetic energy along the cycle, dT = A_d - A_c, J.
+    J_var : numpy.ndarray
+        The variable part of the reduced moment of inertia, kg*m^2.
+    omega_m : float
+        The mean speed, rad/s.
+    J_n : float
+        The flywheel's constant reduced inertia, kg*m^2.
+
+    Returns
+    -------
+    Motion
+        T0 (J), omega(q) (rad/s), omega_max, omega_min and the achieved delta, the mean
+        (omega_max + omega_min)/2 equal to omega_m.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: the motion of the machine from the
+    equation of kinetic energy; docs/methods.md §4.
+    """
     dT = np.asarray(dT, float)
     J_tot = J_n + np.broadcast_to(np.asarray(J_var, float), dT.shape)
     rng = float(np.max(dT) - np.min(dT))
@@ -329,8 +531,24 @@ def steady_motion(dT, J_var, J_n: float, omega_m: float) -> Motion:
 
 
 def achieved_delta(dT, J_var, J_n: float, omega_m: float) -> float:
-    """Speed fluctuation of the steady motion with constant reduced inertia J_n
-    (2.0 when the machine would stop, i.e. delta >= 2)."""
+    """The speed fluctuation of the steady motion with a flywheel.
+
+    Parameters
+    ----------
+    dT : numpy.ndarray
+        The increase of the kinetic energy along the cycle, dT = A_d - A_c, J.
+    J_var : numpy.ndarray
+        The variable part of the reduced moment of inertia, kg*m^2.
+    omega_m : float
+        The mean speed, rad/s.
+    J_n : float
+        The flywheel's constant reduced inertia, kg*m^2.
+
+    Returns
+    -------
+    float
+        delta = (omega_max - omega_min)/omega_m (2.0 when the machine would stop).
+    """
     dT = np.asarray(dT, float)
     J_tot = J_n + np.broadcast_to(np.asarray(J_var, float), dT.shape)
     if float(np.min(J_tot)) <= 0:
@@ -343,11 +561,33 @@ def achieved_delta(dT, J_var, J_n: float, omega_m: float) -> float:
 
 
 def exact_flywheel(dT, J_var, omega_m: float, delta: float, guess: float | None = None) -> float:
-    """J_n for which the integrated steady motion has exactly the required delta
-    (root finding on J_n; T0 from the mean-speed condition at every trial).
+    """The flywheel giving exactly the required fluctuation of the integrated motion.
 
-    When even the lightest feasible inertia (J_n -> -min J_var) keeps the fluctuation
-    below delta, that lower limit is returned (no flywheel is needed)."""
+    Parameters
+    ----------
+    dT : numpy.ndarray
+        The increase of the kinetic energy along the cycle, dT = A_d - A_c, J.
+    J_var : numpy.ndarray
+        The variable part of the reduced moment of inertia, kg*m^2.
+    omega_m : float
+        The mean speed, rad/s.
+    delta : float
+        The required coefficient of speed fluctuation.
+    guess : float or None
+        A starting J_n, kg*m^2.
+
+    Returns
+    -------
+    float
+        J_n, kg*m^2: the root of achieved_delta(J_n) = delta (T0 from the mean-speed
+        condition at every trial); when even the lightest feasible inertia (J_n -> -min J_var)
+        keeps the fluctuation below delta, that lower limit (no flywheel is needed).
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: the equation of motion in the energy
+    form; docs/methods.md §4.
+    """
     dT, J_var = _check(dT, J_var, omega_m, delta)
     jv_min = float(np.min(J_var))
     rng = float(np.max(dT) - np.min(dT))
@@ -409,14 +649,42 @@ class FlywheelSize:
 
 def size(J: float, shape: str, density: float, width_ratio: float, omega_max: float,
          lang_warn: bool = True) -> FlywheelSize:
-    """Flywheel dimensions for the moment of inertia J.
+    """The flywheel's dimensions for a moment of inertia.
 
-    disk: solid disk, J = m D^2/8, width b = psi_b D, m = rho pi D^2/4 b, so
-          D = (32 J/(pi rho psi_b))^(1/5); rim speed = omega_max D/2.
-    rim:  thin rim of mean diameter D, J ~ m D^2/4, square section b = h = psi_b D
-          (the course gives only psi_b; the square section is the usual textbook choice),
-          m = rho pi D b h, so D = (4 J/(pi rho psi_b^2))^(1/5);
-          rim speed at the outer radius omega_max (D + h)/2.
+    Parameters
+    ----------
+    J : float
+        The flywheel's moment of inertia, kg*m^2.
+    shape : str
+        ``disk`` or ``rim``.
+    density : float
+        The material's density, kg/m^3.
+    width_ratio : float
+        psi_b = b/D.
+    omega_max : float
+        The greatest speed, rad/s (for the rim speed).
+    lang_warn : bool
+        True: warn about an excessive rim speed.
+
+    Returns
+    -------
+    FlywheelSize
+        The diameter D, width b and (rim) thickness (m), the mass (kg), the rim speed (m/s)
+        and the warnings.
+
+    Notes
+    -----
+    disk: a solid disk, J = m D^2/8, b = psi_b D, m = rho pi D^2/4 b, so
+    D = (32 J/(pi rho psi_b))^(1/5); the rim speed omega_max D/2.
+    rim: a thin rim of mean diameter D, J ~ m D^2/4, a square section b = h = psi_b D (the
+    course gives only psi_b; the square section is the usual textbook choice),
+    m = rho pi D b h, so D = (4 J/(pi rho psi_b^2))^(1/5); the rim speed at the outer radius
+    omega_max (D + h)/2.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: the dimensions of a flywheel;
+    docs/methods.md §4.
     """
     warns: list[str] = []
     if not (J > 0 and math.isfinite(J)):

@@ -44,10 +44,29 @@ def reduced_inertia(masses: dict[str, tuple[float, float]],
                     d1_S: dict[str, np.ndarray], a1: dict[str, np.ndarray],
                     d2_S: dict[str, np.ndarray] | None = None,
                     a2: dict[str, np.ndarray] | None = None) -> ReducedInertia:
-    """J_red per link and in total from link masses and analogues (arrays over positions).
+    """The reduced moment of inertia per link and in total.
 
-    masses: link -> (m, J_S); d1_S, d2_S: link -> (N, 2) analogues of its centre of mass;
-    a1, a2: link -> (N,) analogues of its angle.  A link without mass and J is skipped.
+    Parameters
+    ----------
+    masses : dict
+        link -> (m, kg; J_S, kg*m^2).  A link without mass and J is skipped.
+    d1_S : dict
+        link -> (N, 2) first analogues of the velocity of its centre of mass, m/rad.
+    a1 : dict
+        link -> (N,) first analogues of its angular velocity.
+    d2_S, a2 : dict or None
+        The second analogues (m/rad^2, 1/rad) for the derivative dJ/dphi (None: not computed).
+
+    Returns
+    -------
+    ReducedInertia
+        J_red,i = m_i |d1_S|^2 + J_S,i a1^2 per link and the total, kg*m^2, with their
+        derivatives.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: the reduced moment of inertia by the
+    equality of kinetic energies; docs/methods.md §4.
     """
     links: dict[str, np.ndarray] = {}
     dlinks: dict[str, np.ndarray | None] = {}
@@ -82,11 +101,25 @@ def reduced_inertia(masses: dict[str, tuple[float, float]],
 
 
 def reduced_moment(forces, couples) -> dict[str, np.ndarray]:
-    """M_red per load kind (per unit ccw crank rotation).
+    """The reduced moment per load kind.
 
-    forces: iterable of (kind, F (N,2), d1 of the application point (N,2));
-    couples: iterable of (kind, M (N,), a1 of the link (N,)).
-    Returns kind -> (N,) (only kinds present)."""
+    Parameters
+    ----------
+    forces : iterable
+        (kind, F (N, 2) in N, d1 of the application point (N, 2) in m/rad).
+    couples : iterable
+        (kind, M (N,) in N*m, a1 of the link (N,)).
+
+    Returns
+    -------
+    dict
+        kind -> M_red (N,), N*m per unit ccw crank rotation (only the kinds present).
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: the reduced moment by the equality of
+    powers; docs/methods.md §4.
+    """
     out: dict[str, np.ndarray] = {}
     for kind, F, d1 in forces:
         val = np.einsum("ij,ij->i", np.asarray(F, float), np.asarray(d1, float))
@@ -99,7 +132,20 @@ def reduced_moment(forces, couples) -> dict[str, np.ndarray]:
 
 # ------------------------------------------------------------------ adapters
 def inertia_from_kinematics(mech, kin) -> ReducedInertia:
-    """ReducedInertia of the mechanism's links from a KinematicsResult."""
+    """The reduced inertia of a mechanism's links.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism (its links' masses, kg, and moments of inertia, kg*m^2).
+    kin : KinematicsResult
+        Its kinematics (the analogues).
+
+    Returns
+    -------
+    ReducedInertia
+        Per link and in total, kg*m^2 (:func:`reduced_inertia`).
+    """
     masses, d1S, a1, d2S, a2 = {}, {}, {}, {}, {}
     for lk in mech.links:
         if lk.mass == 0 and lk.J == 0:
@@ -115,7 +161,24 @@ def inertia_from_kinematics(mech, kin) -> ReducedInertia:
 
 
 def point_analogue(mech, kin, link_index: int, point: np.ndarray) -> np.ndarray:
-    """d1 of an arbitrary point (N, 2) moving with a link: d1_O + a1 k x (P - O)."""
+    """The first analogue of the velocity of a point moving with a link.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+    kin : KinematicsResult
+        Its kinematics.
+    link_index : int
+        The link (1..n).
+    point : numpy.ndarray
+        The point's positions (N, 2), m.
+
+    Returns
+    -------
+    numpy.ndarray
+        d1 = d1_O + a1 k x (P - O), (N, 2), m/rad.
+    """
     if link_index == 0:
         return np.zeros_like(np.asarray(point, float))
     lk = mech.link(link_index)
@@ -126,7 +189,27 @@ def point_analogue(mech, kin, link_index: int, point: np.ndarray) -> np.ndarray:
 
 
 def moment_from_loads(mech, kin, loads) -> dict[str, np.ndarray]:
-    """M_red per kind (per unit ccw crank rotation) of the Loads (inertia loads skipped)."""
+    """The reduced moment per load kind of the external loads.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+    kin : KinematicsResult
+        Its kinematics.
+    loads : Loads
+        The loads (inertia loads skipped).
+
+    Returns
+    -------
+    dict
+        kind -> M_red, N*m per unit ccw crank rotation.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: the reduced moment by the equality of
+    powers; docs/methods.md §4.
+    """
     forces, couples = [], []
     for f in loads.forces:
         if f.kind == "inertia" or f.link == 0:
@@ -157,8 +240,25 @@ class Sample:
 
 
 def sample(mech, kin, loads, sign: float) -> Sample:
-    """Reduced moment (by kind) and inertia (by link) along the motion (sign = +1 ccw,
-    -1 cw drive)."""
+    """The reduced moment and inertia along the motion.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+    kin : KinematicsResult
+        Its kinematics at the sample's crank angles.
+    loads : Loads
+        The external loads there.
+    sign : float
+        +1 for a ccw drive, -1 for cw.
+
+    Returns
+    -------
+    Sample
+        The reduced moment by kind (N*m) and the reduced inertia by link (kg*m^2), with its
+        derivative, along the motion.
+    """
     inert = inertia_from_kinematics(mech, kin)
     mk = {k: sign * v for k, v in moment_from_loads(mech, kin, loads).items()}
     n = len(np.atleast_1d(kin.phi))

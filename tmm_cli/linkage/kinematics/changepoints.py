@@ -58,20 +58,35 @@ SING_DET = DOUBLE_ROOT
 
 def circle_zeros(grid: np.ndarray, g: np.ndarray, F, *, zero_tol: float = ZERO_TOL, touch_grid: float = TOUCH_GRID,
                  touch_zero: float = TOUCH_ZERO, vertex: bool = False) -> list[float]:
-    """Zeros in [0, 360) of a function of the crank angle that is periodic over the turn.
+    """Zeros in [0, 360) of a function of the crank angle periodic over the turn.
 
-    ``grid``: n + 1 angles from 0 to 360 deg; ``g``: the values there, normalised so
-    that max |g| = 1 (NaN where the function is undefined, e.g. a group that does not
-    assemble); ``F(phi, start)``: the value at ``phi`` evaluated continuously from
-    ``start`` (a grid point next to ``phi``). The value at 360 deg is the one at 0 deg,
-    so the interval that ends at 360 is bracketed with g(0), and a grid value within
-    ``zero_tol`` of zero is a root (at 0/360 the two round-off values may differ in sign,
-    as +1e-17 and -1e-17: neither a sign test nor an exact-zero test sees such a root).
-    Sign changes are refined by Brent's method to 1e-10 deg; touching (double) zeros,
-    local minima of |g| without a sign change (around 0 deg as well), by a bounded
-    minimisation (docs/methods.md §3.2): a local minimum of |g| on the grid below
-    ``touch_grid`` whose refined value is below ``touch_zero``; ``vertex``: that minimum
-    placed by :func:`_vertex` (the minimiser alone stops anywhere in the round-off floor)."""
+    Parameters
+    ----------
+    grid : numpy.ndarray
+        n + 1 angles from 0 to 360, deg.
+    g : numpy.ndarray
+        The values there, normalised so that max |g| = 1 (NaN where the function is
+        undefined, e.g. a group that does not assemble).
+    F : callable
+        F(phi, start): the value at ``phi`` evaluated continuously from ``start`` (a grid
+        point next to ``phi``).
+    zero_tol : float
+        A grid value within it of zero is a root (at 0/360 the two round-off values may
+        differ in sign, as +1e-17 and -1e-17).
+    touch_grid, touch_zero : float
+        A local minimum of |g| on the grid below ``touch_grid`` whose refined value is below
+        ``touch_zero`` is a touching (double) zero.
+    vertex : bool
+        True: that minimum placed by :func:`_vertex` (the minimiser alone stops anywhere in
+        the round-off floor).
+
+    Returns
+    -------
+    list of float
+        The zeros, deg: sign changes refined by Brent's method to 1e-10 deg (the interval
+        ending at 360 bracketed with g(0)); touching zeros, local minima of |g| without a
+        sign change (around 0 deg as well), by a bounded minimisation (docs/methods.md §3.2).
+    """
     from ...lazy import brentq, minimize_scalar
 
     grid = np.asarray(grid, float)
@@ -140,7 +155,24 @@ class ChangePoint:
 
 
 def change_points(solver) -> list[ChangePoint]:
-    """Every change point of the solver's linkage over one turn (cached on the solver)."""
+    """Every change point of a linkage over one turn.
+
+    Parameters
+    ----------
+    solver : Solver
+        The linkage's kinematic model.
+
+    Returns
+    -------
+    list of ChangePoint
+        The crank angles (deg) where a group's determinant vanishes, with the group and the
+        kind (cached on the solver).
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: the change (singular) positions of a
+    linkage, where an Assur group's closure is degenerate; docs/methods.md §2.
+    """
     cached = solver.__dict__.get("_change_points")
     if cached is not None:
         return cached
@@ -167,7 +199,20 @@ def change_points(solver) -> list[ChangePoint]:
 
 
 def distance_deg(phi_deg, angles) -> np.ndarray:
-    """Distance (deg, on the circle) from each of ``phi_deg`` to the nearest of ``angles``."""
+    """The distance on the circle to the nearest of given angles.
+
+    Parameters
+    ----------
+    phi_deg : array_like
+        Crank angles, deg.
+    angles : sequence of float
+        The angles, deg.
+
+    Returns
+    -------
+    numpy.ndarray
+        The distance of each of ``phi_deg`` to the nearest of ``angles``, deg, on the circle.
+    """
     phi = np.atleast_1d(np.asarray(phi_deg, float)) % 360.0
     a = np.asarray(list(angles), float)
     if a.size == 0:
@@ -177,6 +222,19 @@ def distance_deg(phi_deg, angles) -> np.ndarray:
 
 
 def warning(cp: ChangePoint, group) -> Message:
-    """The warning of change point ``cp`` of ``group`` (a structure.Group)."""
+    """The warning of a change point.
+
+    Parameters
+    ----------
+    cp : ChangePoint
+        The change point.
+    group : Group
+        Its Assur group (:class:`..structure.Group`).
+
+    Returns
+    -------
+    Message
+        The coded warning naming the group and the crank angle (deg).
+    """
     return Message("kinematics.change_point", phi=cp.phi, **group.message_params(), near=NEAR_DEG,
                    blowup=BLOWUP)

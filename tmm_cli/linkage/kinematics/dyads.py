@@ -401,14 +401,34 @@ def _cramer(r0, r1, cA, cB, inv):
 
 
 def dyad_derivatives(plan: DyadPlan, st: State, dets: bool = True) -> np.ndarray:
-    """Exact phi-derivatives of a dyad's poses (set in ``st``) by a 2x2 linear solve.
+    """The exact phi-derivatives of a dyad's poses by a 2x2 linear solve.
 
-    Each link keeps one free scalar lambda after its external pair (its angle about a
-    known point, or its shift s along a known line), so its pose derivatives are
-    affine in lambda': (o', th') = U lambda' + V, (o'', th'') = U lambda'' + W; the
-    pair A-B then gives two linear equations (Cramer's rule, vectorised). Returns the
-    mask of positions where the 2x2 system is singular; ``dets``: the normalised
-    determinant in ``st.last_det`` too (the change points)."""
+    Parameters
+    ----------
+    plan : DyadPlan
+        The dyad's plan (its links, pairs and the known points and lines).
+    st : State
+        The state with the dyad's poses set (its derivatives are written into it).
+    dets : bool
+        True: the normalised determinant in ``st.last_det`` too (the change points).
+
+    Returns
+    -------
+    numpy.ndarray
+        The mask of positions where the 2x2 system is singular.
+
+    Notes
+    -----
+    Each link keeps one free scalar lambda after its external pair (its angle about a known
+    point, or its shift s along a known line), so its pose derivatives are affine in lambda':
+    (o', th') = U lambda' + V, (o'', th'') = U lambda'' + W; the pair A-B then gives two
+    linear equations (Cramer's rule, vectorised).
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: the kinematic analysis of the dyads
+    (Assur groups of class II); docs/methods.md §2.
+    """
     if plan.slide is not None and FIXED_SLIDE:
         return plan.slide.derivatives(st, dets)
     if plan.rrr is not None and GROUND_RRR:

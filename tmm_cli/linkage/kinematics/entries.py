@@ -40,10 +40,21 @@ def angle_deg(rad) -> np.ndarray:
 
 
 def lazy_entries(kin, index: list[int]) -> LazyEntries:
-    """The ``kinematics`` entries of ``kin`` (``index``: the N position numbers) as a
-    :class:`tmm_cli.results.LazyEntries`: the values of ``TABLE_ROWS`` positions computed
-    when first read (the last two such tables kept), the entries made from them
-    ``ENTRY_BLOCK`` at a time."""
+    """The ``kinematics`` entries of a result, computed when first read.
+
+    Parameters
+    ----------
+    kin : KinematicsResult
+        The kinematics.
+    index : list of int
+        The N position numbers.
+
+    Returns
+    -------
+    LazyEntries
+        The values of ``TABLE_ROWS`` positions computed when first read (the last two such
+        tables kept), the entries made from them ``ENTRY_BLOCK`` at a time.
+    """
     lay = (tuple(kin.points), tuple(kin.links))
     return tabled(len(index), lambda sl: _table(kin, sl, index), lambda tab, a, b: _assemble(lay, tab, a, b),
                   TABLE_ROWS, ENTRY_BLOCK)
@@ -106,21 +117,53 @@ def _table(kin, sl: slice, index: list[int]) -> tuple:
 
 
 def pairs(n: int) -> list[tuple[int, int]]:
-    """Every pair (i, j), i < j, of the frame 0 and the links 1..n."""
+    """Every pair of links.
+
+    Parameters
+    ----------
+    n : int
+        The number of moving links.
+
+    Returns
+    -------
+    list of tuple of int
+        (i, j), i < j, of the frame 0 and the links 1..n.
+    """
     return [(i, j) for i in range(n + 1) for j in range(i + 1, n + 1)]
 
 
 def instant_centres(kin, sl: slice, wc) -> list[tuple[np.ndarray, np.ndarray, np.ndarray, bool]]:
-    """(x, y, at infinity, a pin) of the instant centre of every pair of links (the frame 0, the links
-    1..n in the task's order) at the rows ``sl``, from the links' velocity fields.
+    """The instant centres of every pair of links.
 
-    Link i moves as v_i(P) = v_Si + w_i k x (P - S_i) (S_i its centre of mass, a point of it);
-    the relative velocity of i and j at P is c + (w_i - w_j) k x P with
-    c = (v_Si - w_i k x S_i) - (v_Sj - w_j k x S_j), zero at P = (-c_y, c_x)/(w_i - w_j).
-    Where w_i = w_j the relative motion is a translation: the centre lies at infinity (null). Two
-    links joined directly have their pin as the centre (a slide: at infinity), also where both are
-    at rest relative to each other (a rocker at its extreme position). Kennedy's theorem (the
-    three centres of three links on one line) holds for these; tests check it."""
+    Parameters
+    ----------
+    kin : KinematicsResult
+        The kinematics.
+    sl : slice
+        The rows.
+    wc : dict
+        The links' angular velocities and centres of mass' velocities at the rows.
+
+    Returns
+    -------
+    list of tuple
+        Per pair (the frame 0, the links 1..n in the task's order): (x, y in m, at infinity,
+        a pin).
+
+    Notes
+    -----
+    Link i moves as v_i(P) = v_Si + w_i k x (P - S_i); the relative velocity of i and j at P
+    is c + (w_i - w_j) k x P with c = (v_Si - w_i k x S_i) - (v_Sj - w_j k x S_j), zero at
+    P = (-c_y, c_x)/(w_i - w_j).  Where w_i = w_j the relative motion is a translation: the
+    centre lies at infinity (null).  Two links joined directly have their pin as the centre
+    (a slide: at infinity).  Kennedy's theorem (the three centres of three links on one line)
+    holds for these; tests check it.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: instantaneous centres of velocity,
+    the Aronhold-Kennedy theorem.
+    """
     n = len(kin.links)
     k = len(kin.phi[sl])
     C, W = [np.zeros((k, 2))], [np.zeros(k)]

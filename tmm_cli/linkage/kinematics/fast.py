@@ -508,7 +508,19 @@ class _RPP(_Step):
 
 
 def compile_steps(solver) -> list | None:
-    """The fast path's steps for the solver's groups, or None when a group is not covered."""
+    """The fast path's steps for a solver's groups.
+
+    Parameters
+    ----------
+    solver : Solver
+        The linkage's kinematic model.
+
+    Returns
+    -------
+    list or None
+        The steps (closed-form dyad solutions on complex numbers), or None when a group is
+        not covered.
+    """
     steps = []
     for gi, plan in enumerate(solver.plans):
         if not isinstance(plan, DyadPlan):            # a Newton group
@@ -539,8 +551,25 @@ def compile_steps(solver) -> list | None:
 
 
 def run(solver, steps, phi: np.ndarray, i0: int):
-    """The bodies' poses at crank angles phi (rad), or None where the fast path does not
-    answer. ``i0``: the index of the least angle (the angles' branch is fixed there)."""
+    """The bodies' poses by the fast path.
+
+    Parameters
+    ----------
+    solver : Solver
+        The linkage's kinematic model.
+    steps : list
+        :func:`compile_steps`.
+    phi : numpy.ndarray
+        Crank angles, rad.
+    i0 : int
+        The index of the least angle (the assembly branch is fixed there).
+
+    Returns
+    -------
+    _Run or None
+        The bodies' poses (points in m as complex numbers, angles in rad), or None when a
+        step does not answer (the general solver then does).
+    """
     N = len(phi)
     S = _Run(N)
     th = np.subtract(phi, solver.k_alpha0)
@@ -565,8 +594,22 @@ _PAIR = np.dtype((np.float64, (2,)))      # a complex number seen as its x, y
 
 
 def as_pairs(z, N: int, seen: set) -> np.ndarray:
-    """An (N,) complex array (or a complex number) as the (N, 2) float array of its x, y:
-    a view of it when it is an array not handed out yet, else a copy."""
+    """A complex array as an (N, 2) float array.
+
+    Parameters
+    ----------
+    z : numpy.ndarray or complex
+        Points as complex numbers.
+    N : int
+        The number of positions.
+    seen : set
+        The ids of the arrays already handed out.
+
+    Returns
+    -------
+    numpy.ndarray
+        (N, 2) of x, y: a view of ``z`` when it is an array not handed out yet, else a copy.
+    """
     if type(z) is np.ndarray and z.shape == (N,) and id(z) not in seen:
         seen.add(id(z))
         return z.view(_PAIR)

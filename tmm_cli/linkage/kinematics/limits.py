@@ -45,14 +45,39 @@ SYMBOL = {"v": "v", "a": "a", "omega": "ω", "epsilon": "ε"}
 
 
 def det_min(solver, phi_deg: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The least |s| over the groups at each crank angle (deg; NaN where a group does not
-    assemble) and the group that has it."""
+    """The least normalised determinant over the groups at each crank angle.
+
+    Parameters
+    ----------
+    solver : Solver
+        The linkage's kinematic model.
+    phi_deg : numpy.ndarray
+        Crank angles, deg.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        The least |s| (NaN where a group does not assemble) and the group that has it.
+    """
     st = solver.run(np.radians(np.asarray(phi_deg, float)), strict=False, fallback=False, dets=True)
     return dets_of(solver, st)
 
 
 def dets_of(solver, st) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`det_min` of a run made with ``dets=True``."""
+    """:func:`det_min` of a run made with ``dets=True``.
+
+    Parameters
+    ----------
+    solver : Solver
+        The linkage's kinematic model.
+    st : State
+        The run's state.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        The least |s| and its group.
+    """
     S = np.stack([np.abs(np.asarray(st.gdet[gi], float)) for gi in sorted(st.gdet)])
     for gi in sorted(st.gdet):
         m = st.margins.get(gi) if st.margins else None
@@ -180,14 +205,33 @@ def _scales(ref: dict[str, float]) -> dict[str, float]:
 
 
 def by_continuity(mech, solver, res, s: np.ndarray, g: np.ndarray, solve_raw) -> None:
-    """At the positions of ``res`` where the least normalised determinant ``s`` is below
-    ILL_DET (``g``: its group): the analogues by continuity or null (``res.undefined``),
-    ``near`` (and ``singular`` below SING_DET) set, a warning per position (in
-    ``res.warnings``). A side counts where its positions extrapolated to the point are the
-    reported ones (a slotted lever whose crank pin passes through the lever's pivot: the
-    closure turns the lever by 180 deg there, the two sides are two poses); where neither
-    side's are (the reported pose itself is 0 / 0), the positions too are taken from the
-    side of increasing crank angle."""
+    """The analogues at ill-conditioned positions, by continuity.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+    solver : Solver
+        Its kinematic model.
+    res : KinematicsResult
+        The result, changed in place: the analogues by continuity or null
+        (``res.undefined``), ``near`` (and ``singular`` below SING_DET) set, a warning per
+        position in ``res.warnings``.
+    s : numpy.ndarray
+        The least normalised determinant at each position (below ILL_DET: treated here).
+    g : numpy.ndarray
+        Its group.
+    solve_raw : callable
+        :func:`.solver.solve_raw`.
+
+    Notes
+    -----
+    A side counts where its positions extrapolated to the point are the reported ones (a
+    slotted lever whose crank pin passes through the lever's pivot: the closure turns the
+    lever by 180 deg there, the two sides are two poses); where neither side's are (the
+    reported pose itself is 0 / 0), the positions too are taken from the side of increasing
+    crank angle.
+    """
     with np.errstate(invalid="ignore"):
         rows = np.flatnonzero(s < ILL_DET)
     if rows.size == 0:

@@ -15,23 +15,96 @@ SINGULAR = 1e-10      # |det| of the row/column-equilibrated matrix below this: 
 
 
 def group_q(st: State, links) -> np.ndarray:
+    """The group's poses as one vector per position.
+
+    Parameters
+    ----------
+    st : State
+        The state of the N positions.
+    links : sequence
+        The group's bodies.
+
+    Returns
+    -------
+    numpy.ndarray
+        (N, 3k): per body its origin x, y (m) and angle (rad).
+    """
     return np.concatenate([np.concatenate([st.o[b], st.th[b][:, None]], axis=1) for b in links], axis=1)
 
 
 def set_q(st: State, links, q: np.ndarray) -> None:
+    """Set the group's poses from one vector per position.
+
+    Parameters
+    ----------
+    st : State
+        The state, changed in place.
+    links : sequence
+        The group's bodies.
+    q : numpy.ndarray
+        (N, 3k) as :func:`group_q` gives it.
+    """
     for k, b in enumerate(links):
         st.set_pose(b, q[:, 3 * k:3 * k + 2].copy(), q[:, 3 * k + 2].copy())
 
 
 def residual(cons, st: State) -> np.ndarray:
+    """The residuals of the group's closure equations.
+
+    Parameters
+    ----------
+    cons : list
+        The group's constraints (revolute and prismatic pairs).
+    st : State
+        The state of the N positions.
+
+    Returns
+    -------
+    numpy.ndarray
+        (N, m): each constraint's residual (m for a pair's point, dimensionless for a
+        direction).
+    """
     return np.concatenate([c.value(st) for c in cons], axis=1)
 
 
 def blocks(cons, st: State):
+    """The constraints' Jacobian blocks.
+
+    Parameters
+    ----------
+    cons : list
+        The group's constraints (revolute and prismatic pairs).
+    st : State
+        The state of the N positions.
+
+    Returns
+    -------
+    list of dict
+        Per constraint: body -> (N, m_c, 3), the derivatives of its equations with respect to
+        the body's x, y and angle.
+    """
     return [c.blocks(st) for c in cons]
 
 
 def jacobian(cons, blks, links, N) -> np.ndarray:
+    """The group's Jacobian in its own bodies' poses.
+
+    Parameters
+    ----------
+    cons : list
+        The constraints.
+    blks : list of dict
+        :func:`blocks`.
+    links : sequence
+        The group's bodies.
+    N : int
+        The number of positions.
+
+    Returns
+    -------
+    numpy.ndarray
+        (N, sum of m_c, 3k).
+    """
     col = {b: 3 * k for k, b in enumerate(links)}
     M = 3 * len(links)
     A = np.zeros((N, sum(c.m for c in cons), M))
@@ -45,7 +118,26 @@ def jacobian(cons, blks, links, N) -> np.ndarray:
 
 
 def known_rhs(cons, blks, links, st: State, order: int) -> np.ndarray:
-    """sum over bodies outside the group of block_b . (o_b^(order), th_b^(order))."""
+    """The known part of the velocity or acceleration equations.
+
+    Parameters
+    ----------
+    cons : list
+        The constraints.
+    blks : list of dict
+        :func:`blocks`.
+    links : sequence
+        The group's bodies.
+    st : State
+        The state (the bodies outside the group known).
+    order : int
+        1: velocities (analogues d1), 2: accelerations (d2).
+
+    Returns
+    -------
+    numpy.ndarray
+        The sum over bodies outside the group of block_b . (o_b^(order), th_b^(order)).
+    """
     N = st.N
     out = np.zeros((N, sum(c.m for c in cons)))
     r = 0
@@ -108,8 +200,28 @@ class BatchedInverse:
 
 
 def derivatives(cons, links, st: State) -> np.ndarray:
-    """Exact first and second phi-derivatives of the group's poses (set in ``st``);
-    returns the mask of positions where the velocity equations are singular."""
+    """The exact first and second phi-derivatives of a group's poses.
+
+    Parameters
+    ----------
+    cons : list
+        The group's constraints (revolute and prismatic pairs).
+    links : sequence
+        The group's bodies.
+    st : State
+        The state of the N positions, the group's poses set; their derivatives are
+        written into it.
+
+    Returns
+    -------
+    numpy.ndarray
+        The mask of positions where the velocity equations are singular.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: the analogues of velocities and
+    accelerations by differentiating the closure equations; docs/methods.md §2.
+    """
     blks = blocks(cons, st)
     A = jacobian(cons, blks, links, st.N)
     inv = BatchedInverse(A)
@@ -129,8 +241,30 @@ def derivatives(cons, links, st: State) -> np.ndarray:
 
 def newton(cons, links, st: State, q0: np.ndarray, L: float, maxit: int = 40,
            tol: float = 1e-11) -> tuple[np.ndarray, np.ndarray]:
-    """Vectorised Newton iterations on the group's closure equations from ``q0``
-    (N, 3k). Returns (q, converged mask); ``st`` holds the last iterate."""
+    """Vectorised Newton iterations on a group's closure equations.
+
+    Parameters
+    ----------
+    cons : list
+        The constraints.
+    links : sequence
+        The group's bodies.
+    st : State
+        The state; it holds the last iterate.
+    q0 : numpy.ndarray
+        The starting poses (N, 3k).
+    L : float
+        The group's length scale, m (for the tolerance).
+    maxit : int
+        Iterations at most.
+    tol : float
+        The relative tolerance.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        (q (N, 3k), the converged mask (N,)).
+    """
     q = q0.copy()
     N = st.N
     conv = np.zeros(N, bool)

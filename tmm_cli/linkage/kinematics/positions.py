@@ -148,8 +148,30 @@ def _working_stroke(ext: list[tuple[float, float]], working: str, sign: float):
 
 
 def link_stroke(mech: Mechanism, name: str, working: str, sign: float) -> Stroke | None:
-    """The stroke of link ``name`` (its own extremes, working toward increasing
-    coordinate for ``forward``), or None when it has no two extreme positions."""
+    """The stroke of a link between its own extreme positions.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+    name : str
+        The link.
+    working : str
+        ``forward`` (working toward the increasing coordinate) or ``backward``.
+    sign : float
+        +1 for a ccw crank, -1 for cw.
+
+    Returns
+    -------
+    Stroke or None
+        The extremes (crank angles, deg), the stroke H (m, or deg for a rocker) and the
+        working sense; None when the link has no two extreme positions.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: extreme (dead) positions;
+    docs/methods.md §2.
+    """
     kind, f = _output_coordinate(mech, name)
     ext = _extremes(f, 360.0 if kind == "rocker" else None)
     if len(ext) < 2:
@@ -407,8 +429,23 @@ def _phi_array(phis: list) -> np.ndarray:
 
 
 def quick_working(pos: PositionsResult) -> list:
-    """A warning where ``positions.working`` names the quick stroke (K < 1): the working
-    stroke of a machine is its slow one (Artobolevsky: K = working / idle crank angle >= 1)."""
+    """A warning where the working stroke named is the quick one.
+
+    Parameters
+    ----------
+    pos : PositionsResult
+        The positions (K and ``working``).
+
+    Returns
+    -------
+    list
+        The warning when ``positions.working`` names the quick stroke (K < 1), else empty.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: the working stroke of a machine is its
+    slow one, K = working / idle crank angle >= 1.
+    """
     if pos.K is None or pos.K >= 1.0 - 1e-9:
         return []
     slow = "backward" if pos.working == "forward" else "forward"

@@ -208,10 +208,11 @@ class Solver:
         for b in list(st.o1):
             if b == 0:
                 continue
-            for name in ("o1", "th1", "o2", "th2"):
-                arr = getattr(st, name)[b].copy()
-                arr[idx] = 0.5 * (getattr(sp, name)[b] + getattr(sm, name)[b])
-                getattr(st, name)[b] = arr
+            for cur, plus, minus in ((st.o1, sp.o1, sm.o1), (st.th1, sp.th1, sm.th1),
+                                     (st.o2, sp.o2, sm.o2), (st.th2, sp.th2, sm.th2)):
+                arr = cur[b].copy()
+                arr[idx] = 0.5 * (plus[b] + minus[b])
+                cur[b] = arr
         st.derivatives_changed()         # the points' derivatives change with the bodies'
         st.singular = sing
 
@@ -510,9 +511,8 @@ class Solver:
         grp = self.groups[gi]
         pos = float(np.mod(bad_deg[0], 360.0))
         if whole:
-            err = StageError("kinematics", Message("kinematics.fail.never", **grp.message_params()), position=pos)
-            err.never_assembles = [self.mech.link(i).name for i in grp.links_sorted]
-            return err
+            return StageError("kinematics", Message("kinematics.fail.never", **grp.message_params()), position=pos,
+                              never_assembles=[self.mech.link(i).name for i in grp.links_sorted])
         try:
             iv = self.bad_intervals(gi)
         except StageError:
@@ -523,19 +523,29 @@ class Solver:
         mid_deg = iv[0][0] + ((iv[0][1] - iv[0][0]) % 360.0) / 2
         reason = self._reason(gi, mid_deg % 360.0)
         ivs = [[float(a), float(b)] for a, b in iv]      # degrees; each language formats them
-        err = StageError("kinematics", Message("kinematics.fail.intervals", **grp.message_params(), intervals=ivs,
-                                               reason=reason), position=pos)
+        never = None
         if sum((b - a) % 360.0 or (360.0 if b > a else 0.0) for a, b in iv) >= 360.0 - 1e-6:
             # no crank angle at all: the dimensions are impossible, an invalid task
-            err.never_assembles = [self.mech.link(i).name for i in grp.links_sorted]
-        return err
+            never = [self.mech.link(i).name for i in grp.links_sorted]
+        return StageError("kinematics", Message("kinematics.fail.intervals", **grp.message_params(), intervals=ivs,
+                                                reason=reason), position=pos, never_assembles=never)
 
 
 # ---------------------------------------------------------------------- cache
 def get_solver(mech: Mechanism) -> Solver:
-    """The (cached) kinematic model of ``mech``: closures and paths are computed once
-    per Mechanism object (kept in its instance ``__dict__``; the Mechanism must not
-    be changed after the first solve)."""
+    """The cached kinematic model of a mechanism.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism (not to be changed after the first solve).
+
+    Returns
+    -------
+    Solver
+        Its closures and paths, computed once per Mechanism object (kept in its instance
+        ``__dict__``).
+    """
     s = mech.__dict__.get("_kinematics_solver")
     if s is None:
         s = Solver(mech)
@@ -657,10 +667,33 @@ def _outputs(solver: Solver) -> tuple:
 
 
 def solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
-    """Kinematics at crank angles ``phi_deg`` (deg; the direction of the vector from
-    the crank's ground pivot to its pin, from +x ccw). ``omega1`` and ``eps1`` (rad/s,
-    rad/s^2, ccw positive) may be scalars or arrays of shape (N,). Positions next to a
-    change point of the linkage are marked (see :mod:`.changepoints`)."""
+    """The kinematics at crank angles.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism (lengths in m).
+    phi_deg : array_like
+        Crank angles, deg: the direction of the vector from the crank's ground pivot to its
+        pin, from +x ccw.
+    omega1 : float or array_like
+        The crank's angular velocity, rad/s (ccw positive; scalar or (N,)).
+    eps1 : float or array_like
+        Its angular acceleration, rad/s^2.
+
+    Returns
+    -------
+    KinematicsResult
+        The positions (m), velocities (m/s), accelerations (m/s^2) of the points, the
+        links' angles (rad), angular velocities and accelerations, and the analogues d1, d2
+        (m/rad, m/rad^2) and a1, a2; positions next to a change point of the linkage are
+        marked (:mod:`.changepoints`).
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: the method of closed vector contours
+    group by group (Assur groups); docs/methods.md §2.
+    """
     cpm = _changepoints()
     res = _solve(mech, phi_deg, omega1, eps1)
     solver = get_solver(mech)
@@ -683,10 +716,27 @@ def solve(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
 
 
 def solve_raw(mech: Mechanism, phi_deg, omega1=1.0, eps1=0.0) -> KinematicsResult:
-    """:func:`solve` without its marks: the exact derivatives as the groups give them at every
-    position, ill-conditioned or not (no change points, no limits by continuity, no nulls);
-    for a search along the curves (the extreme positions: roots of an analogue) that must
-    see the solver's own smooth values on either side of a singular point."""
+    """:func:`solve` without its marks.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+    phi_deg : array_like
+        Crank angles, deg.
+    omega1 : float or array_like
+        rad/s.
+    eps1 : float or array_like
+        rad/s^2.
+
+    Returns
+    -------
+    KinematicsResult
+        The exact derivatives as the groups give them at every position, ill-conditioned or
+        not (no change points, no limits by continuity, no nulls): for a search along the
+        curves (the extreme positions: roots of an analogue) that must see the solver's own
+        smooth values on either side of a singular point.
+    """
     return _solve(mech, phi_deg, omega1, eps1)
 
 
@@ -852,8 +902,19 @@ def _result(solver, phi_deg, omega1, eps1, pos, d1, d2, angle, a1, a2, names, li
 
 
 def pins_of(mech: Mechanism) -> dict[str, str | None]:
-    """The pairs of links joined directly ("i-j", i < j, 0 the frame): a revolute's point (their
-    permanent instant centre), None for a prismatic pair (a relative translation)."""
+    """The pairs of links joined directly.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+
+    Returns
+    -------
+    dict
+        "i-j" (i < j, 0 the frame) -> a revolute's point (their permanent instant centre), or
+        None for a prismatic pair (a relative translation).
+    """
     out: dict[str, str | None] = {}
     for j in mech.joints:
         out.setdefault(f"{j.a}-{j.b}", j.point if j.kind == "R" else None)
@@ -861,9 +922,26 @@ def pins_of(mech: Mechanism) -> dict[str, str | None]:
 
 
 def check_assembly(mech: Mechanism, n: int = 720) -> list[str]:
-    """Feasibility for ``tmm validate``: does the linkage assemble through the whole
-    cycle? Raises StageError('kinematics', ...) naming the group and the crank-angle
-    interval where it does not; returns the warnings (singular positions, closures)."""
+    """Whether the linkage assembles through the whole cycle (``tmm validate``).
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+    n : int
+        Crank angles checked over a turn.
+
+    Returns
+    -------
+    list
+        The warnings (singular positions, closures).
+
+    Raises
+    ------
+    StageError
+        ('kinematics') naming the group and the crank-angle interval where it does not
+        assemble.
+    """
     solver = get_solver(mech)
     phi = np.arange(n) * (360.0 / n)
     solver.run(np.radians(phi))

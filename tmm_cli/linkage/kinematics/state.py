@@ -32,9 +32,19 @@ WORK_ROWS_FROM = 1024    # positions: from this many on, fewer temporaries (memo
 
 
 def const(x) -> np.ndarray:
-    """The float x as a read-only 0-d float64 array: a ufunc takes it without a Python
-    scalar's conversion (a fraction of the call's cost at few positions), the same float64
-    arithmetic bit for bit."""
+    """A float as a read-only 0-d float64 array.
+
+    Parameters
+    ----------
+    x : float
+        The number.
+
+    Returns
+    -------
+    numpy.ndarray
+        A 0-d array: a ufunc takes it without a Python scalar's conversion (a fraction of the
+        call's cost at few positions), the same float64 arithmetic bit for bit.
+    """
     a = np.array(float(x))
     a.flags.writeable = False
     return a
@@ -45,13 +55,35 @@ ONE = const(1.0)
 
 
 def pairs(N: int) -> np.ndarray:
-    """An (N, 2) array of x, y pairs held column by column (the transpose of a (2, N) one): an
-    operation on its x or y column runs on contiguous memory."""
+    """An (N, 2) array of x, y pairs held column by column.
+
+    Parameters
+    ----------
+    N : int
+        The number of positions.
+
+    Returns
+    -------
+    numpy.ndarray
+        Uninitialised, the transpose of a (2, N) array: an operation on its x or y column
+        runs on contiguous memory.
+    """
     return np.empty((2, N)).T
 
 
 def zero_pairs(N: int) -> np.ndarray:
-    """pairs(N) of zeros."""
+    """:func:`pairs` of zeros.
+
+    Parameters
+    ----------
+    N : int
+        The number of positions.
+
+    Returns
+    -------
+    numpy.ndarray
+        (N, 2) zeros held column by column.
+    """
     return np.zeros((2, N)).T
 
 
@@ -302,8 +334,21 @@ class State:
 
 
 def scale(x, v):
-    """x[:, None] * v for x (N,) and v (N, 2), column by column (a broadcast over the
-    last axis of length 2 runs numpy's inner loop two elements at a time)."""
+    """Scale plane vectors, column by column.
+
+    Parameters
+    ----------
+    x : numpy.ndarray
+        The factors (N,).
+    v : numpy.ndarray
+        The vectors (N, 2).
+
+    Returns
+    -------
+    numpy.ndarray
+        x[:, None] * v (a broadcast over the last axis of length 2 runs numpy's inner loop two
+        elements at a time).
+    """
     out = np.empty((2, len(x)))
     np.multiply(x, v[:, 0], out[0])
     np.multiply(x, v[:, 1], out[1])
@@ -311,6 +356,18 @@ def scale(x, v):
 
 
 def unit(ang):
+    """Unit vectors of angles.
+
+    Parameters
+    ----------
+    ang : array_like
+        Angles, rad.
+
+    Returns
+    -------
+    numpy.ndarray
+        (..., 2): (cos, sin).
+    """
     ang = np.asarray(ang, float)
     out = np.empty(ang.shape + (2,))
     np.cos(ang, out=out[..., 0])
@@ -319,6 +376,18 @@ def unit(ang):
 
 
 def left(v):
+    """Plane vectors turned by +90 degrees.
+
+    Parameters
+    ----------
+    v : numpy.ndarray
+        Vectors (..., 2).
+
+    Returns
+    -------
+    numpy.ndarray
+        (-v_y, v_x).
+    """
     out = np.empty(v.shape)
     np.negative(v[..., 1], out=out[..., 0])
     out[..., 1] = v[..., 0]
@@ -326,14 +395,50 @@ def left(v):
 
 
 def cross(a, b):
+    """The z component of plane cross products.
+
+    Parameters
+    ----------
+    a, b : numpy.ndarray
+        Vectors (..., 2).
+
+    Returns
+    -------
+    numpy.ndarray
+        a_x b_y - a_y b_x.
+    """
     return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
 
 
 def dot(a, b):
+    """Plane dot products.
+
+    Parameters
+    ----------
+    a, b : numpy.ndarray
+        Vectors (..., 2).
+
+    Returns
+    -------
+    numpy.ndarray
+        a_x b_x + a_y b_y.
+    """
     return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1]
 
 
 def wrap(a):
+    """Angles wrapped to [-pi, pi).
+
+    Parameters
+    ----------
+    a : array_like
+        Angles, rad.
+
+    Returns
+    -------
+    numpy.ndarray
+        (a + pi) mod 2 pi - pi.
+    """
     return (a + np.pi) % (2 * np.pi) - np.pi
 
 

@@ -29,8 +29,21 @@ DETAIL_MAX = 400        # positions up to which to_dict lists every applied load
 
 
 def balance_index(mech, section) -> int:
-    """Index of the balance link: ``section.balance`` (a name the task model checked), or
-    the drive link (also when ``section`` is None)."""
+    """The index of the balance link.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+    section : KinetostaticsSection or None
+        The task's ``kinetostatics`` section (its ``balance``, a name the task model checked).
+
+    Returns
+    -------
+    int
+        The balance link's index (1..n): the section's, or the drive link's (also when
+        ``section`` is None).
+    """
     name = section.balance if section is not None else None
     return mech.drive if name is None else mech.link(name).index
 
@@ -137,9 +150,25 @@ def _with_inertia(mech, kin, loads: Loads | None, inertia: bool, crank_inertia: 
 
 
 def select_rows(spec, positions) -> list[int]:
-    """Row numbers (into ``positions.phi``) of the positions ``kinetostatics.positions``
-    names ('all' or a list of position numbers); a TaskError for a position the cycle
-    does not have."""
+    """The rows of the positions the kinetostatics section names.
+
+    Parameters
+    ----------
+    spec : str or list of int
+        ``kinetostatics.positions``: ``all`` or position numbers.
+    positions : PositionsResult
+        The reported positions.
+
+    Returns
+    -------
+    list of int
+        Row numbers into ``positions.phi``.
+
+    Raises
+    ------
+    TaskError
+        A position the cycle does not have.
+    """
     idx = list(positions.index)
     if spec == "all":
         return list(range(len(idx)))
@@ -196,15 +225,42 @@ def analyze(linkage, section, kin, *, motion=None) -> KinetostaticsResult:
 
 def equilibrium(mech, structure, kin, loads, section, *, indices=None, crank_inertia: float = 0.0,
                 solver=None, singular: list[float] | None = None) -> KinetostaticsResult:
-    """Kinetostatic analysis at the positions ``indices`` (rows of ``kin``; default all),
-    on given kinematics and loads.
+    """Kinetostatic analysis on given kinematics and loads.
 
-    ``loads``: a :class:`~tmm_cli.linkage.loads.Loads` at the positions of ``kin`` (inertia loads
-    are added here when ``section.inertia`` and absent, dropped when not wanted);
-    ``crank_inertia``: an extra constant moment of inertia on the drive link (the
-    flywheel) whose couple -J eps1 is added; ``kin`` may carry arrays omega1, eps1.
-    ``solver``: the kinematics function for the singular positions (default
-    ``tmm_cli.linkage.kinematics.solve``); ``singular``: give the singular angles to skip the search.
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+    structure : StructureResult
+        Its Assur groups.
+    kin : KinematicsResult
+        The kinematics (it may carry arrays omega1, eps1 in rad/s, rad/s^2).
+    loads : Loads
+        The loads at the positions of ``kin`` (N, N*m); inertia loads are added here when
+        ``section.inertia`` and absent, dropped when not wanted.
+    section : KinetostaticsSection
+        The task's ``kinetostatics`` section (inertia, balance link, friction).
+    indices : sequence of int or None
+        The rows of ``kin`` (None: all).
+    crank_inertia : float
+        An extra constant moment of inertia on the drive link (the flywheel), kg*m^2, whose
+        couple -J eps1 is added.
+    solver : callable or None
+        The kinematics function for the singular positions (None:
+        :func:`tmm_cli.linkage.kinematics.solve`).
+    singular : list of float or None
+        The singular crank angles, deg, when known (skips the search).
+
+    Returns
+    -------
+    KinetostaticsResult
+        The reactions in the pairs (N), the balancing moment (N*m) or force (N), Zhukovsky's
+        lever check, the powers (W) and the friction losses.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: force analysis by Assur groups
+    (d'Alembert's principle), Zhukovsky's lever; docs/methods.md §3.
     """
     with np.errstate(all="ignore"):
         return _analyze(mech, structure, kin, loads, section, indices=indices, crank_inertia=crank_inertia,
@@ -354,11 +410,32 @@ def _untrusted_kinematics(kin, rows: np.ndarray) -> np.ndarray:
 
 def analyze_at(linkage, section, phi_deg, *, motion=None, singular: list[float] | None = None
                ) -> KinetostaticsResult:
-    """The kinetostatics stage (:func:`analyze`) at the crank angles ``phi_deg`` (deg)
-    instead of the reported positions: the same loads (stroke states from
-    ``linkage.positions``) and motion (``motion: true``: the flywheel's omega1(phi),
-    eps1(phi) and crank couple).  ``singular``: the singular angles when known (skips
-    the search).  The report's mechanism in motion uses it at 360 angles."""
+    """The kinetostatics stage at given crank angles.
+
+    Parameters
+    ----------
+    linkage : Linkage
+        The linkage context.
+    section : KinetostaticsSection
+        The task's ``kinetostatics`` section.
+    phi_deg : array_like
+        The crank angles, deg (instead of the reported positions).
+    motion : DynamicsResult or None
+        With ``motion: true``: the flywheel's omega1(phi), eps1(phi) and the crank's couple.
+    singular : list of float or None
+        The singular crank angles, deg, when known (skips the search).
+
+    Returns
+    -------
+    KinetostaticsResult
+        As :func:`equilibrium`: the same loads (stroke states from ``linkage.positions``) at
+        these angles (the report's mechanism in motion uses it at 360 angles).
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: force analysis by Assur groups;
+    docs/methods.md §3.
+    """
     from ..kinematics import solve
     phi = np.atleast_1d(np.asarray(phi_deg, float))
     crank_J = 0.0
@@ -380,7 +457,24 @@ def _kin_solver(solver):
 
 
 def singular_function(mech, balance: int, solver=None, grid=None):
-    """The scaled determinant of the equilibrium system as a function of the crank angle."""
+    """The scaled determinant of the equilibrium system against the crank angle.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+    balance : int
+        The balance link's index.
+    solver : callable or None
+        The kinematics function (None: the general solver).
+    grid : array_like or None
+        The crank angles, deg, at which kinematics are precomputed.
+
+    Returns
+    -------
+    callable
+        f(phi_deg) -> the scaled determinant (dimensionless).
+    """
     solve = _kin_solver(solver)
 
     def f(phi_deg: np.ndarray) -> np.ndarray:
@@ -390,10 +484,28 @@ def singular_function(mech, balance: int, solver=None, grid=None):
 
 
 def find_singular(mech, structure=None, balance=None, *, solver=None, n_grid: int = 720) -> list[float]:
-    """Crank angles in [0, 360) where the equilibrium equations are singular for the
-    balance link (name or index; default the drive link): the roots of the scaled
-    determinant of A(phi), bracketed on a grid of ``n_grid`` points and refined by
-    Brent's method to 1e-9 deg; touching (double) roots by a bounded minimisation."""
+    """The crank angles where the equilibrium equations are singular.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+    structure : StructureResult or None
+        Its structure.
+    balance : str or int or None
+        The balance link (name or index; None: the drive link).
+    solver : callable or None
+        The kinematics function.
+    n_grid : int
+        The grid's points over a turn.
+
+    Returns
+    -------
+    list of float
+        The angles in [0, 360), deg: the roots of the scaled determinant of A(phi), bracketed
+        on the grid and refined by Brent's method to 1e-9 deg; touching (double) roots by a
+        bounded minimisation.
+    """
     if balance is None:
         b = mech.drive
     elif isinstance(balance, int):

@@ -25,9 +25,21 @@ ENTRY_BLOCK = 64       # entries made at a time (dicts and floats: ~0.4 MB)
 
 
 def lazy_entries(res, detail: bool) -> LazyEntries:
-    """The ``kinetostatics`` entries of ``res`` as a :class:`tmm_cli.results.LazyEntries`:
-    the values of ``TABLE_ROWS`` positions computed when first read (the last two such
-    tables kept), the entries made from them ``ENTRY_BLOCK`` at a time."""
+    """The ``kinetostatics`` entries of a result, computed when first read.
+
+    Parameters
+    ----------
+    res : KinetostaticsResult
+        The result.
+    detail : bool
+        True: the detailed entries too.
+
+    Returns
+    -------
+    LazyEntries
+        The values of ``TABLE_ROWS`` positions computed when first read (the last two such
+        tables kept), the entries made from them ``ENTRY_BLOCK`` at a time.
+    """
     n = len(res.phi)
     with np.errstate(all="ignore"):
         # the two whole-turn columns the entries take (the rest is computed per table)

@@ -30,10 +30,34 @@ from ..loads.model import all_rows
 
 
 def cross(r: np.ndarray, f: np.ndarray) -> np.ndarray:
+    """The z component of plane cross products.
+
+    Parameters
+    ----------
+    r, f : numpy.ndarray
+        Vectors (..., 2) (e.g. an arm in m and a force in N).
+
+    Returns
+    -------
+    numpy.ndarray
+        r_x f_y - r_y f_x (e.g. the moment, N*m).
+    """
     return r[..., 0] * f[..., 1] - r[..., 1] * f[..., 0]
 
 
 def rot90(r: np.ndarray) -> np.ndarray:
+    """Turn plane vectors by +90 degrees.
+
+    Parameters
+    ----------
+    r : numpy.ndarray
+        Vectors (..., 2).
+
+    Returns
+    -------
+    numpy.ndarray
+        (-r_y, r_x).
+    """
     return np.stack([-r[..., 1], r[..., 0]], axis=-1)
 
 
@@ -74,7 +98,18 @@ class Geometry:
 
 
 def length_scale(mech) -> float:
-    """A characteristic length: the largest link length (or ground-point spread)."""
+    """A characteristic length of a mechanism.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+
+    Returns
+    -------
+    float
+        The largest link length or spread of the ground points, m (at least 1 mm).
+    """
     L = [abs(lk.length) for lk in mech.links if lk.length]
     g = np.array(list(mech.ground.values()), float) if mech.ground else np.zeros((1, 2))
     spread = float(np.max(np.ptp(g, axis=0))) if len(g) > 1 else 0.0
@@ -82,6 +117,23 @@ def length_scale(mech) -> float:
 
 
 def geometry(mech, kin, rows=None) -> Geometry:
+    """The positions and velocity analogues the equilibrium equations need.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+    kin : KinematicsResult
+        Its kinematics.
+    rows : array_like or None
+        The rows of ``kin`` (None: all).
+
+    Returns
+    -------
+    Geometry
+        Per link its origin (m), d(origin)/dphi (m/rad), dtheta/dphi and d2theta/dphi2; per
+        pair its point (m) and a slider's guide direction; omega1 (rad/s) and eps1 (rad/s^2).
+    """
     phi = np.atleast_1d(np.asarray(kin.phi, float))
     rows = np.arange(len(phi)) if rows is None else np.asarray(rows, int)
     N = len(rows)
@@ -115,9 +167,29 @@ def geometry(mech, kin, rows=None) -> Geometry:
 
 
 def joint_terms(geo: Geometry, joint, jidx: int) -> dict[int, list[tuple[int, int, np.ndarray | float]]]:
-    """link -> the coefficients of the two unknowns of pair ``jidx`` in the three
-    equations of each of its (moving) links that are not zero by the pair's kind:
-    (equation 0..2, unknown 0..1, value: (N,) or a number)."""
+    """The coefficients of a pair's two unknowns in its links' equations.
+
+    Parameters
+    ----------
+    geo : Geometry
+        The positions.
+    joint : Joint
+        The pair.
+    jidx : int
+        Its index.
+
+    Returns
+    -------
+    dict
+        link -> [(equation 0..2, unknown 0..1, value: (N,) or a number)], the terms not zero
+        by the pair's kind (a pin: the reaction's x, y; a slider: the normal force and its
+        moment).
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: the equilibrium equations of a link:
+    sum of forces and of moments; docs/methods.md §3.
+    """
     p = geo.jpoint[jidx]
     out = {}
     for link, sg in ((joint.b, 1.0), (joint.a, -1.0)):
@@ -133,7 +205,20 @@ def joint_terms(geo: Geometry, joint, jidx: int) -> dict[int, list[tuple[int, in
 
 
 def coeff_array(n_pos: int, terms: list[tuple[int, int, np.ndarray | float]]) -> np.ndarray:
-    """(N, 3, 2): a link's :func:`joint_terms` as the block of its equations' coefficients."""
+    """A link's pair terms as a block of its equations' coefficients.
+
+    Parameters
+    ----------
+    n_pos : int
+        The number of positions N.
+    terms : list
+        (equation, unknown, value) of :func:`joint_terms`.
+
+    Returns
+    -------
+    numpy.ndarray
+        (N, 3, 2).
+    """
     c = np.zeros((n_pos, 3, 2))
     for i, k, v in terms:
         c[:, i, k] = v
@@ -141,15 +226,43 @@ def coeff_array(n_pos: int, terms: list[tuple[int, int, np.ndarray | float]]) ->
 
 
 def joint_coeffs(geo: Geometry, joint, jidx: int) -> dict[int, np.ndarray]:
-    """link -> (N, 3, 2): contribution of the two unknowns of pair ``jidx`` to the
-    three equations of each of its (moving) links."""
+    """The contribution of a pair's two unknowns to its links' equations.
+
+    Parameters
+    ----------
+    geo : Geometry
+        The positions.
+    joint : Joint
+        The pair.
+    jidx : int
+        Its index.
+
+    Returns
+    -------
+    dict
+        link -> (N, 3, 2).
+    """
     return {link: coeff_array(geo.n_pos, t) for link, t in joint_terms(geo, joint, jidx).items()}
 
 
 def balance_terms(mech, geo: Geometry, link: int) -> list[tuple[int, np.ndarray | float]]:
-    """The coefficients of the balancing unknown (a unit couple on a bar, or a unit force
-    along the guide at the pin of a slider) in the equations of ``link`` that are not
-    zero by the link's kind: (equation 0..2, value: (N,) or a number)."""
+    """The coefficients of the balancing unknown in a link's equations.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+    geo : Geometry
+        Its positions and velocity analogues at N positions (m, m/rad).
+    link : int
+        The balance link.
+
+    Returns
+    -------
+    list
+        (equation 0..2, value: (N,) or a number) of a unit couple on a bar, or a unit force
+        along the guide at the pin of a slider, the terms not zero by the link's kind.
+    """
     lk = mech.link(link)
     if lk.kind == "slider":
         j = next(k for k, jj in enumerate(mech.joints) if jj.kind == "P" and jj.slider == link)
@@ -159,8 +272,23 @@ def balance_terms(mech, geo: Geometry, link: int) -> list[tuple[int, np.ndarray 
 
 
 def balance_coeffs(mech, geo: Geometry, link: int) -> np.ndarray:
-    """(N, 3): a unit balancing couple on a bar, or a unit force along the guide at the
-    pin of a slider, in the equations of ``link``."""
+    """The balancing unknown's column in a link's equations.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+    geo : Geometry
+        Its positions and velocity analogues at N positions (m, m/rad).
+    link : int
+        The balance link.
+
+    Returns
+    -------
+    numpy.ndarray
+        (N, 3): a unit balancing couple on a bar, or a unit force along the guide at the pin
+        of a slider.
+    """
     c = np.zeros((geo.n_pos, 3))
     for i, v in balance_terms(mech, geo, link):
         c[:, i] = v
@@ -168,10 +296,24 @@ def balance_coeffs(mech, geo: Geometry, link: int) -> np.ndarray:
 
 
 def load_vector(mech, geo: Geometry, loads: Loads) -> np.ndarray:
-    """(N, n+1, 3): sum of the applied forces and of their moments about O_i, per link
-    (row 0, the ground, is left zero). Each sum is made on its own (N,) vector, its terms
-    added in the loads' order to 0.0 (forces, then couples), then put in its place: one
-    strided write per sum, not one per load."""
+    """The applied loads' sums per link.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+    geo : Geometry
+        Its positions and velocity analogues at N positions (m, m/rad).
+    loads : Loads
+        The loads (N, N*m).
+
+    Returns
+    -------
+    numpy.ndarray
+        (N, n+1, 3): the sum of the applied forces (N) and of their moments about O_i (N*m)
+        per link (row 0, the ground, left zero).  Each sum is made on its own (N,) vector, its
+        terms added in the loads' order to 0.0 (forces, then couples).
+    """
     sums: dict[tuple[int, int], np.ndarray] = {}
 
     def add(link: int, comp: int, v: np.ndarray) -> None:
@@ -198,8 +340,28 @@ def load_vector(mech, geo: Geometry, loads: Loads) -> np.ndarray:
 
 
 def full_matrix(mech, geo: Geometry, balance: int) -> np.ndarray:
-    """A (N, 3n, 2p+1): all equations of all links in all pair unknowns and the
-    balancing unknown (last column)."""
+    """All equilibrium equations of all links.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+    geo : Geometry
+        Its positions and velocity analogues at N positions (m, m/rad).
+    balance : int
+        The balance link.
+
+    Returns
+    -------
+    numpy.ndarray
+        A (N, 3n, 2p+1): the equations in all pair unknowns and the balancing unknown (last
+        column).
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: the kinetostatics of the whole
+    mechanism as one linear system; docs/methods.md §3.
+    """
     n, p = mech.n, len(mech.joints)
     A = np.zeros((geo.n_pos, 3 * n, 2 * p + 1))
     for k, j in enumerate(mech.joints):
@@ -210,12 +372,27 @@ def full_matrix(mech, geo: Geometry, balance: int) -> np.ndarray:
 
 
 def scaled_matrix(mech, geo: Geometry, balance: int, rs: np.ndarray, cs: np.ndarray) -> np.ndarray:
-    """``full_matrix(mech, geo, balance) * rs[None, :, None] * cs[None, None, :]`` bit for
-    bit (the scaled system), made from the coefficients not zero by the pairs' kinds:
-    each of them is added once to a zero of full_matrix's A, then scaled, so here it is
-    ``((0.0 + v) * rs[i]) * cs[j]`` (0.0 + v: -0.0 made 0.0, as the sum makes it), and
-    the other entries stay 0.0 (0.0 * rs * cs with finite scales); no (N, 3, 2) blocks,
-    no scaled copies of the whole matrix."""
+    """The scaled equilibrium system, bit for bit, made from its non-zero coefficients.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+    geo : Geometry
+        Its positions and velocity analogues at N positions (m, m/rad).
+    balance : int
+        The balance link.
+    rs, cs : numpy.ndarray
+        The row and column scales (:func:`scaling`).
+
+    Returns
+    -------
+    numpy.ndarray
+        ``full_matrix(mech, geo, balance) * rs[None, :, None] * cs[None, None, :]`` bit for bit:
+        each coefficient not zero by the pairs' kinds is ``((0.0 + v) * rs[i]) * cs[j]``
+        (0.0 + v: -0.0 made 0.0, as the sum makes it), the rest 0.0; no (N, 3, 2) blocks, no
+        scaled copies of the whole matrix.
+    """
     if not (np.all(np.isfinite(rs)) and np.all(np.isfinite(cs))):
         return full_matrix(mech, geo, balance) * rs[None, :, None] * cs[None, None, :]
     n, p = mech.n, len(mech.joints)
@@ -233,8 +410,23 @@ def scaled_matrix(mech, geo: Geometry, balance: int, rs: np.ndarray, cs: np.ndar
 
 
 def scaling(mech, Lc: float, balance: int) -> tuple[np.ndarray, np.ndarray]:
-    """Row and column scale factors making the entries of A dimensionless and O(1):
-    moment rows / Lc, moment unknowns * Lc."""
+    """Row and column scales making the equilibrium system dimensionless.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+    Lc : float
+        Its length scale, m.
+    balance : int
+        The balance link.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        (row scales, column scales): moment rows / Lc, moment unknowns * Lc, so the entries
+        of A are O(1).
+    """
     n, p = mech.n, len(mech.joints)
     rs = np.ones(3 * n)
     rs[2::3] = 1.0 / Lc
@@ -248,7 +440,22 @@ def scaling(mech, Lc: float, balance: int) -> tuple[np.ndarray, np.ndarray]:
 
 
 def scaled_det(mech, geo: Geometry, balance: int) -> np.ndarray:
-    """det of the scaled full matrix, (N,). Its roots are the singular positions."""
+    """The determinant of the scaled equilibrium system.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+    geo : Geometry
+        Its positions and velocity analogues at N positions (m, m/rad).
+    balance : int
+        The balance link.
+
+    Returns
+    -------
+    numpy.ndarray
+        det (N,), dimensionless; its roots are the singular positions.
+    """
     n, p = mech.n, len(mech.joints)
     if 3 * n != 2 * p + 1:
         raise ValueError(f"the equilibrium system is not square ({3 * n} equations, "

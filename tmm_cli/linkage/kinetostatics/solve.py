@@ -55,10 +55,31 @@ def _safe_solve(A: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def group_by_group(mech, structure, geo: Geometry, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Reactions x (N, 2p) and the moment on the drive link (N,) for the loads q
-    (N, n+1, 3), solving group by group from the last group to the crank. The groups'
-    matrices depend on the positions only: they are built and inverted once per
-    geometry (the friction iteration solves with many load vectors)."""
+    """Reactions and the drive's moment, solved group by group.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+    structure : StructureResult
+        Its Assur groups.
+    geo : Geometry
+        The positions.
+    q : numpy.ndarray
+        The loads' sums (N, n+1, 3), N and N*m (:func:`.equations.load_vector`).
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        The reactions x (N, 2p), N (and N*m for a slider's moment), and the moment on the
+        drive link (N,), N*m.  The groups are solved from the last to the crank; their
+        matrices depend on the positions only and are inverted once per geometry.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: force analysis group by group (Assur
+    groups), from the last group to the driving link; docs/methods.md §3.
+    """
     cached = geo.__dict__.get("_group_plan")
     if cached is None or cached[0] is not structure or cached[1] is not mech:
         cached = (structure, mech, _group_plan(mech, structure, geo))
@@ -141,6 +162,23 @@ def _safe_inverse(A: np.ndarray) -> np.ndarray:
 
 
 def unit_balance_q(mech, geo: Geometry, balance: int) -> np.ndarray:
+    """The load sums of a unit balancing unknown.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+    geo : Geometry
+        Its positions and velocity analogues at N positions (m, m/rad).
+    balance : int
+        The balance link.
+
+    Returns
+    -------
+    numpy.ndarray
+        (N, n+1, 3): a unit couple (bar) or unit force along the guide (slider) on the balance
+        link.
+    """
     q = np.zeros((geo.n_pos, mech.n + 1, 3))
     q[:, balance, :] = balance_coeffs(mech, geo, balance)
     return q
@@ -148,9 +186,27 @@ def unit_balance_q(mech, geo: Geometry, balance: int) -> np.ndarray:
 
 def matrix_method(mech, geo: Geometry, q: np.ndarray, balance: int, *, with_det: bool = True
                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
-    """All equations at once: (reactions (N, 2p), balancing unknown (N,), whether the
-    scaled 2-norm condition number is below COND_MAX (N,), scaled determinant (N,); None
-    without ``with_det``)."""
+    """All equilibrium equations solved at once.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+    geo : Geometry
+        Its positions and velocity analogues at N positions (m, m/rad).
+    q : numpy.ndarray
+        The loads' sums (N, n+1, 3).
+    balance : int
+        The balance link.
+    with_det : bool
+        True: the scaled determinant too.
+
+    Returns
+    -------
+    tuple
+        (reactions (N, 2p), N; the balancing unknown (N,), N*m or N; whether the scaled 2-norm
+        condition number is below COND_MAX (N,); the scaled determinant (N,) or None).
+    """
     n, p = mech.n, len(mech.joints)
     rs, cs = _checked_scaling(mech, geo, balance)
     N, m = geo.n_pos, len(cs)
@@ -174,7 +230,22 @@ def matrix_method(mech, geo: Geometry, q: np.ndarray, balance: int, *, with_det:
 
 
 def condition_numbers(mech, geo: Geometry, balance: int) -> np.ndarray:
-    """The 2-norm condition number (N,) of the matrix method's scaled system (inf where singular)."""
+    """The condition numbers of the matrix method's scaled system.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+    geo : Geometry
+        Its positions and velocity analogues at N positions (m, m/rad).
+    balance : int
+        The balance link.
+
+    Returns
+    -------
+    numpy.ndarray
+        The 2-norm condition number (N,) (inf where singular).
+    """
     rs, cs = _checked_scaling(mech, geo, balance)
     cond = np.empty(geo.n_pos)
     for sl, As in _scaled_blocks(mech, geo, balance, rs, cs):
@@ -286,15 +357,50 @@ def _pair_lever(geo: Geometry, link: int, M: np.ndarray, arms: dict | None = Non
 
 
 def point_velocities(geo: Geometry, loads: Loads) -> list[np.ndarray | None]:
-    """The velocity (N, 2) of each force's point (``loads.forces`` order; None on the
-    ground): made once for the lever and the powers."""
+    """The velocity of each force's point.
+
+    Parameters
+    ----------
+    geo : Geometry
+        The positions.
+    loads : Loads
+        The loads.
+
+    Returns
+    -------
+    list
+        (N, 2) in m/s per force (``loads.forces`` order; None on the ground).
+    """
     return [geo.point_vel(f.link, f.point) if f.link else None for f in loads.forces]
 
 
 def lever_moments(mech, geo: Geometry, loads: Loads, vel: list | None = None, arms: dict | None = None
                   ) -> np.ndarray:
-    """Sum of the moments about the pole of the loads moved to the turned velocity plan.
-    ``vel``: :func:`point_velocities` of ``loads`` when made; ``arms``: see :func:`_pair_lever`."""
+    """Zhukovsky's lever: the loads' moments about the pole of the turned velocity plan.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+    geo : Geometry
+        Its positions and velocity analogues at N positions (m, m/rad).
+    loads : Loads
+        The loads.
+    vel : list or None
+        :func:`point_velocities` of ``loads`` when made.
+    arms : dict or None
+        The pairs' lever arms when made.
+
+    Returns
+    -------
+    numpy.ndarray
+        The sum of the moments (N,), in W (the plan drawn at 1 m per m/s): the forces'
+        cross(rot90(v), F) = -(F . v) plus the couples' lever terms.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: Zhukovsky's lever; docs/methods.md §3.
+    """
     if vel is None:
         vel = point_velocities(geo, loads)
     if arms is None:
@@ -310,7 +416,28 @@ def lever_moments(mech, geo: Geometry, loads: Loads, vel: list | None = None, ar
 
 
 def balance_lever(mech, geo: Geometry, balance: int, arms: dict | None = None) -> np.ndarray:
-    """Lever moment of a unit balancing couple (bar) or unit force along the guide (slider)."""
+    """Zhukovsky's lever moment of a unit balancing unknown.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+    geo : Geometry
+        Its positions and velocity analogues at N positions (m, m/rad).
+    balance : int
+        The balance link.
+    arms : dict or None
+        The pairs' lever arms when made.
+
+    Returns
+    -------
+    numpy.ndarray
+        The lever moment (N,) of a unit couple (bar) or unit force along the guide (slider).
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: Zhukovsky's lever; docs/methods.md §3.
+    """
     lk = mech.link(balance)
     if lk.kind == "slider":
         j = next(k for k, jj in enumerate(mech.joints) if jj.kind == "P" and jj.slider == balance)
@@ -320,8 +447,25 @@ def balance_lever(mech, geo: Geometry, balance: int, arms: dict | None = None) -
 
 
 def powers(mech, geo: Geometry, loads: Loads, vel: list | None = None) -> tuple[np.ndarray, list[np.ndarray]]:
-    """Total power of the loads, and the power of each force / couple (same order as
-    loads.forces + loads.couples). ``vel``: :func:`point_velocities` of ``loads`` when made."""
+    """The powers of the loads.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+    geo : Geometry
+        Its positions and velocity analogues at N positions (m, m/rad).
+    loads : Loads
+        The loads.
+    vel : list or None
+        :func:`point_velocities` of ``loads`` when made.
+
+    Returns
+    -------
+    tuple
+        (the total power (N,), W; the power of each force and couple, in the order
+        loads.forces + loads.couples, W).
+    """
     if vel is None:
         vel = point_velocities(geo, loads)
     each = []
@@ -334,8 +478,22 @@ def powers(mech, geo: Geometry, loads: Loads, vel: list | None = None) -> tuple[
 
 
 def balance_rate(mech, geo: Geometry, balance: int) -> np.ndarray:
-    """omega_b (bar) or the pin velocity along the guide (slider): the factor of the
-    balancing unknown in the virtual power."""
+    """The factor of the balancing unknown in the virtual power.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+    geo : Geometry
+        Its positions and velocity analogues at N positions (m, m/rad).
+    balance : int
+        The balance link.
+
+    Returns
+    -------
+    numpy.ndarray
+        omega_b (bar, rad/s) or the pin's velocity along the guide (slider, m/s), (N,).
+    """
     lk = mech.link(balance)
     if lk.kind == "slider":
         j = next(k for k, jj in enumerate(mech.joints) if jj.kind == "P" and jj.slider == balance)
@@ -345,10 +503,22 @@ def balance_rate(mech, geo: Geometry, balance: int) -> np.ndarray:
 
 # ------------------------------------------------------------------ friction
 def relative_motion(mech, geo: Geometry) -> np.ndarray:
-    """(N, pairs): per pair the relative motion friction acts against: a pin's relative
-    angular velocity omega_b - omega_a, a slider's relative sliding velocity along its guide
-    (the friction loads change sign where it does). Made once per geometry (the friction
-    iteration asks for it at every step)."""
+    """The relative motion friction acts against, per pair.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+    geo : Geometry
+        Its positions and velocity analogues at N positions (m, m/rad).
+
+    Returns
+    -------
+    numpy.ndarray
+        (N, pairs): a pin's relative angular velocity omega_b - omega_a (rad/s), a slider's
+        relative sliding velocity along its guide (m/s); the friction loads change sign where
+        it does.
+    """
     cached = geo.__dict__.get("_relative_motion")
     if cached is not None and cached[0] is mech:
         return cached[1]
@@ -399,10 +569,37 @@ def _motion_signs(mech, geo: Geometry) -> tuple[np.ndarray, np.ndarray]:
 
 def friction_loads(mech, geo: Geometry, x: np.ndarray, f: float, r_pin: float, f_slide: float | None = None,
                    *, losses: bool = True) -> tuple[list[AppliedForce], list[AppliedCouple], np.ndarray | None]:
-    """Friction loads from the reactions x (N, 2p): a pin friction couple f r |R| against
-    the relative rotation, a slider friction force f_slide |N| (f_slide defaults to f)
-    against the relative sliding; also the friction power lost in each pair (N, p), >= 0
-    (None without ``losses``: the friction iteration's steps need the loads only)."""
+    """The friction loads from the reactions.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+    geo : Geometry
+        Its positions and velocity analogues at N positions (m, m/rad).
+    x : numpy.ndarray
+        The reactions (N, 2p), N.
+    f : float
+        The pins' friction coefficient.
+    r_pin : float
+        The pins' radius, m.
+    f_slide : float or None
+        The sliders' friction coefficient (None: ``f``).
+    losses : bool
+        True: the friction power lost in each pair too.
+
+    Returns
+    -------
+    tuple
+        (forces, couples, losses): a pin's friction couple f r |R| (N*m) against the relative
+        rotation, a slider's friction force f_slide |N| (N) against the relative sliding; the
+        power lost in each pair (N, p), W, >= 0 (None without ``losses``).
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: friction in the kinematic pairs: the
+    friction circle and the friction force; docs/methods.md §3.
+    """
     if f_slide is None:
         f_slide = f
     N = geo.n_pos

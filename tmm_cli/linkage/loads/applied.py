@@ -19,8 +19,22 @@ def _rot90(r: np.ndarray) -> np.ndarray:
 
 
 def point_motion(kin, lk, at) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Position, dr/dphi, d2r/dphi2 ((N,2) each) of a point fixed on link ``lk``:
-    a point name (from the kinematics) or local [u, v] (rigid-body formulas)."""
+    """The motion of a point fixed on a link.
+
+    Parameters
+    ----------
+    kin : KinematicsResult
+        The kinematics at N crank angles.
+    lk : Link
+        The link.
+    at : str or sequence of float
+        A point's name (from the kinematics) or local [u, v] in m (rigid-body formulas).
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        The position (m), dr/dphi (m/rad) and d2r/dphi2 (m/rad^2), (N, 2) each.
+    """
     if isinstance(at, str):
         if at in kin.pos:
             return (np.asarray(kin.pos[at], float), np.asarray(kin.d1[at], float),
@@ -93,8 +107,29 @@ def evaluate(linkage, kin, *, inertia: bool = True) -> Loads:
 
 
 def link_loads(mech, kin, *, gravity: bool, inertia: bool) -> Loads:
-    """Gravity (``gravity``) and the inertia loads (``inertia``) of every link at the crank
-    angles of ``kin``: G_i = m_i g at S_i (N); F_in = -m_i a_Si (N), M_in = -J_Si eps_i (N*m)."""
+    """Gravity and the inertia loads of every link.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism (masses in kg, moments of inertia in kg*m^2).
+    kin : KinematicsResult
+        The kinematics (accelerations at the crank's omega1, eps1).
+    gravity : bool
+        True: G_i = m_i g at S_i, N.
+    inertia : bool
+        True: F_in = -m_i a_Si (N) and M_in = -J_Si eps_i (N*m).
+
+    Returns
+    -------
+    Loads
+        The forces and couples at the crank angles of ``kin``.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: the inertia forces and couples of the
+    links (d'Alembert's principle); docs/methods.md §3.
+    """
     phi = np.atleast_1d(np.asarray(kin.phi, float))
     n = len(phi)
     w, e = _w(kin, n)
@@ -119,9 +154,31 @@ def link_loads(mech, kin, *, gravity: bool, inertia: bool) -> Loads:
 
 def evaluate_on(mech, loads_section, kin, positions, *, sign: float, cycle: float,
                 inertia: bool = True) -> Loads:
-    """:func:`evaluate` on its parts: ``positions`` (a PositionsResult, or a stand-in with
-    ``phi0`` and ``stroke_state``; None when no load depends on a stroke), ``sign`` (+1 ccw,
-    -1 cw) and ``cycle`` (360 or 720 deg: how phi-diagrams are read)."""
+    """The task's loads at the positions of given kinematics.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+    loads_section : LoadsSection
+        The task's ``loads`` section.
+    kin : KinematicsResult
+        The kinematics.
+    positions : PositionsResult or None
+        The positions (or a stand-in with ``phi0`` and ``stroke_state``; None when no load
+        depends on a stroke).
+    sign : float
+        +1 for a ccw crank, -1 for cw.
+    cycle : float
+        360 or 720 deg: how phi-diagrams are read.
+    inertia : bool
+        True: the links' inertia loads too.
+
+    Returns
+    -------
+    Loads
+        The forces (N) and couples (N*m) at the crank angles of ``kin``.
+    """
     out = link_loads(mech, kin, gravity=loads_section is not None and loads_section.gravity, inertia=inertia)
     phi = out.phi
     n = len(phi)

@@ -8,9 +8,21 @@ _SNAP = 1e-9          # s/H or deg: abscissae this close to a jump are put on it
 
 
 def interp_right(x: np.ndarray, xp, fp) -> np.ndarray:
-    """Piecewise-linear interpolation, constant beyond the ends, right-continuous at a
-    repeated abscissa (the value after the jump); x within 1e-9 of an abscissa is
-    snapped onto it."""
+    """Right-continuous piecewise-linear interpolation.
+
+    Parameters
+    ----------
+    x : numpy.ndarray
+        The abscissae asked for.
+    xp, fp : array_like
+        The diagram's points (a repeated abscissa: a jump).
+
+    Returns
+    -------
+    numpy.ndarray
+        The values: constant beyond the ends, the value after the jump at a repeated
+        abscissa; x within 1e-9 of an abscissa is snapped onto it.
+    """
     xp = np.asarray(xp, float)
     fp = np.asarray(fp, float)
     x = np.array(x, dtype=float, copy=True)
@@ -33,17 +45,46 @@ def interp_right(x: np.ndarray, xp, fp) -> np.ndarray:
 
 
 def cycle_angle(phi, phi0: float, sign: float, cycle: float) -> np.ndarray:
-    """Crank rotation from position 0 along the motion, in [0, cycle). Angles at or
-    after phi0 (along the motion, unwrapped: phi0 + sign*q) give q mod cycle; angles
-    numerically before phi0 (the reported positions are in [0, 360)) are read in the
-    first turn: q mod 360."""
+    """The crank's rotation from position 0 along the motion.
+
+    Parameters
+    ----------
+    phi : array_like
+        Crank angles, deg.
+    phi0 : float
+        The angle of position 0, deg.
+    sign : float
+        +1 for a ccw crank, -1 for cw.
+    cycle : float
+        The cycle, deg.
+
+    Returns
+    -------
+    numpy.ndarray
+        q in [0, cycle), deg: angles at or after phi0 (unwrapped: phi0 + sign q) give
+        q mod cycle; angles numerically before phi0 (the reported positions are in [0, 360))
+        are read in the first turn: q mod 360.
+    """
     q = (np.asarray(phi, float) - phi0) * sign
     q = np.where(q < 0, np.mod(q, 360.0), np.mod(q, cycle))
     return np.where(q > cycle - _SNAP, 0.0, q)
 
 
 def diagram_curve(sp, scale: float) -> dict:
-    """The load's diagram as given (abscissa s/H or phi from position 0), in N."""
+    """A load's diagram as the task gives it.
+
+    Parameters
+    ----------
+    sp : ForceSpec
+        The load (its ``diagram``).
+    scale : float
+        The factor of its values (a pressure's area, m^2; 1 for a force).
+
+    Returns
+    -------
+    dict
+        The abscissa (s/H or phi from position 0, deg) and the values, N.
+    """
     if sp.diagram is not None:
         xs = sp.diagram.phi if sp.diagram.phi is not None else sp.diagram.s
         return {"x": [float(v) for v in xs], "value": [float(v) * scale for v in sp.diagram.value]}

@@ -9,8 +9,21 @@ G = 9.81
 
 
 def all_rows(rows: np.ndarray, n: int) -> bool:
-    """Whether the row numbers ``rows`` are 0, 1, ..., n-1 (every row, in order): then a
-    selection is the arrays themselves, no copies (nothing changes them in place)."""
+    """Whether a selection of rows is every row in order.
+
+    Parameters
+    ----------
+    rows : numpy.ndarray
+        Row numbers.
+    n : int
+        The number of rows.
+
+    Returns
+    -------
+    bool
+        True when ``rows`` is 0, 1, ..., n-1: a selection is then the arrays themselves, no
+        copies (nothing changes them in place).
+    """
     return len(rows) == n and (n == 0 or (rows[0] == 0 and bool(np.all(np.diff(rows) == 1))))
 
 

@@ -8,8 +8,22 @@ from ...errors import field_error
 
 
 def stroke_states(positions, phi: np.ndarray, kin=None) -> tuple[np.ndarray, np.ndarray]:
-    """(working: bool (N,), s/H (N,)) from ``positions.stroke_state`` (scalar or vector;
-    ``kin``: the kinematics at phi, passed on so that it is not solved again)."""
+    """The stroke state at crank angles.
+
+    Parameters
+    ----------
+    positions : PositionsResult
+        The positions (``stroke_state``).
+    phi : numpy.ndarray
+        Crank angles, deg.
+    kin : KinematicsResult or None
+        The kinematics at ``phi`` (passed on so that it is not solved again).
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        (working: bool (N,), s/H (N,)).
+    """
     phi = np.asarray(phi, float)
     try:
         st, s = positions.stroke_state(phi) if kin is None else positions.stroke_state(phi, kin=kin)
@@ -29,16 +43,47 @@ def stroke_states(positions, phi: np.ndarray, kin=None) -> tuple[np.ndarray, np.
 
 
 def stroke_dependent(sp) -> bool:
-    """A load that depends on a stroke: a `kind` or a `stroke`, and not a phi diagram."""
+    """Whether a load depends on a stroke.
+
+    Parameters
+    ----------
+    sp : ForceSpec
+        The load.
+
+    Returns
+    -------
+    bool
+        True for a load with a ``kind`` or a ``stroke`` and not a phi diagram.
+    """
     return ((sp.kind is not None or "stroke" in sp.model_fields_set)
             and not (sp.diagram is not None and sp.diagram.phi is not None))
 
 
 def load_stroke(positions, lk, sp, k: int):
-    """The stroke a stroke-dependent load follows (docs/methods.md §3.3): a slider's own
-    (its extremes, stroke H and working sense: the load's `working`, default
-    positions.working, along its own guide: ``positions.stroke_for``); for a bar, the
-    output's (``positions`` itself)."""
+    """The stroke a stroke-dependent load follows.
+
+    Parameters
+    ----------
+    positions : PositionsResult
+        The positions (the output's stroke).
+    lk : Link
+        The loaded link.
+    sp : ForceSpec
+        The load.
+    k : int
+        The load's index.
+
+    Returns
+    -------
+    Stroke or PositionsResult
+        A slider's own (its extremes, stroke H and working sense along its own guide:
+        ``positions.stroke_for``); for a bar, the output's (``positions`` itself).
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: the working and idle strokes of a
+    load (docs/methods.md §3.3); docs/methods.md §3.
+    """
     working = sp.working
     if lk.kind != "slider":
         if working is not None:
@@ -49,8 +94,23 @@ def load_stroke(positions, lk, sp, k: int):
 
 
 def slider_strokes(mech, loads_section, positions) -> dict:
-    """The own strokes of the loaded sliders other than the output (name -> Stroke; a
-    slider loaded in both senses: 'name (forward)' and 'name (backward)'), for the results."""
+    """The own strokes of the loaded sliders other than the output.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+    loads_section : LoadsSection
+        The task's ``loads``.
+    positions : PositionsResult
+        The positions.
+
+    Returns
+    -------
+    dict
+        name -> Stroke (a slider loaded in both senses: ``name (forward)`` and
+        ``name (backward)``), for the results.
+    """
     found = []
     for k, sp in enumerate(loads_section.forces):
         lk = mech.link(sp.on)

@@ -10,14 +10,34 @@ from .strokes import load_stroke, stroke_dependent, stroke_states
 
 def switch_angles(mech, loads_section, positions, *, sign: float, cycle: float,
                   kinks: bool = False, roots: dict | None = None) -> list[float]:
-    """Crank angles in [0, 360) where a task load switches: where it jumps inside a stroke
-    (a repeated abscissa of an s- or phi-diagram), found to 1e-9 deg, and the extreme
-    positions of every slider other than the output that carries a stroke-dependent load
-    (where its own strokes begin and end, docs/methods.md §3.3); with kinks=True also
-    where a diagram's slope changes (every inner abscissa: the breakpoints of a piecewise
-    quadrature).  ``sign``: +1 ccw, -1 cw; ``cycle``: 360 or 720 deg; ``roots``: the crank
-    rotations already found for this task's strokes (``PositionsResult._roots``), read
-    and added to, so that a root is searched once."""
+    """Crank angles where a task load switches.
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The mechanism.
+    loads_section : LoadsSection
+        The task's ``loads``.
+    positions : PositionsResult
+        The positions.
+    sign : float
+        +1 for a ccw crank, -1 for cw.
+    cycle : float
+        360 or 720 deg.
+    kinks : bool
+        True: also where a diagram's slope changes (every inner abscissa: the breakpoints of
+        a piecewise quadrature).
+    roots : dict or None
+        The crank rotations already found for this task's strokes
+        (``PositionsResult._roots``), read and added to, so that a root is searched once.
+
+    Returns
+    -------
+    list of float
+        Angles in [0, 360), deg: where a load jumps inside a stroke (a repeated abscissa of
+        an s- or phi-diagram), found to 1e-9 deg, and the extreme positions of every slider
+        other than the output that carries a stroke-dependent load (docs/methods.md §3.3).
+    """
     if loads_section is None:
         return []
     out: list[float] = []

@@ -10,12 +10,15 @@ from __future__ import annotations
 
 import math
 import re
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from markupsafe import Markup, escape
 
 from ...messages import unit as spelt
 from ...numfmt import localize
+
+if TYPE_CHECKING:
+    from ...task import Task
 
 I18N = {
     "en": {"task.sec.mechanism": "Mechanism", "task.sec.drive": "Drive",
@@ -291,22 +294,16 @@ for _lang in PARAMS:
         PARAMS[_lang][f"drive_train.{_k}"] = PARAMS[_lang][f"planetary.{_k}"]
 
 
-def _dump(task) -> dict:
+def _dump(task: Task | None) -> dict:
     if task is None:
         return {}
-    if hasattr(task, "model_dump"):
-        try:
-            if hasattr(type(task), "__pydantic_complete__"):
-                # the model's serializer made from the cached schema (as its validator is):
-                # model_dump would build the whole model first (~40 ms)
-                from ...schemacache import serializer
-                return serializer(type(task)).to_python(task, exclude_none=True, by_alias=True)
-            return task.model_dump(exclude_none=True, by_alias=True)
-        except TypeError:
-            return task.model_dump()
-    if isinstance(task, dict):
-        return task
-    return {}
+    try:
+        # the model's serializer made from the cached schema (as its validator is):
+        # model_dump would build the whole model first (~40 ms)
+        from ...schemacache import serializer
+        return serializer(type(task)).to_python(task, exclude_none=True, by_alias=True)
+    except TypeError:
+        return task.model_dump()
 
 
 def num(v: float) -> str:
@@ -508,12 +505,10 @@ def build(ctx) -> str | None:
     task = ctx.task
     data = _dump(task)
     info = []
-    title = getattr(task, "title", None) or data.get("title")
+    title = task.title if task is not None else None
     if title:
         info.append((ctx.t("task.name"), title))
-    variant = getattr(task, "variant", None) if task is not None else None
-    if variant is None:
-        variant = data.get("variant")
+    variant = task.variant if task is not None else None
     if variant is not None:
         info.append((ctx.t("task.variant"), str(variant)))
     student = data.get("student") or {}

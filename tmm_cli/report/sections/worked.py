@@ -444,7 +444,7 @@ class _Writer:
         self.num = Num(ctx)
         self.n = n
         res = ctx.results
-        self.geom = plan_geometry(res, None)
+        self.geom = plan_geometry(res)
         kin = res.get("kinematics") or []
         self.ke = next(e for e in kin if e["index"] == n)
         self.mu_v, self.mu_a, _, _ = drawn_scales(res, self.geom)     # the plans' as drawn
