@@ -12,6 +12,8 @@ students do: mu = v_A / pa with pa = 100 mm rounded *up* to a nice value
 """
 from __future__ import annotations
 
+from ... import locales
+
 import html
 import math
 from operator import itemgetter
@@ -25,22 +27,7 @@ from ...numfmt import num as written
 from ...plans import build_plan, crank_pin, geometry, plan_label, scales
 from ...scales import nice_scale
 
-I18N = {
-    "en": {"kin.si_v": "m/s", "kin.si_a": "m/s²", "kin.mm": "mm", "kin.unit_v": "(m/s)/mm", "kin.unit_a": "(m/s²)/mm", "kin.unit_l": "m/mm",
-           "kin.plan_axis": "mm on the plan", "kin.output": "Output link",
-           "kin.s_unit": "s, m", "kin.v_unit": "v, m/s", "kin.a_unit": "a, m/s²",
-           "kin.psi_unit": "ψ, deg", "kin.w_unit": "ω, rad/s", "kin.e_unit": "ε, rad/s²",
-           "kin.formula_w": "ω = v_rel / l",
-           "kin.sense_note": "↺ counter-clockwise (positive), ↻ clockwise (negative).",
-           "kin.table_angles": "Angles of the links, ° (from the x axis, counter-clockwise)", "kin.csv_note": "All numbers: kinematics.csv, plans.csv."},
-    "ru": {"kin.si_v": "м/с", "kin.si_a": "м/с²", "kin.mm": "мм", "kin.unit_v": "м/(с·мм)", "kin.unit_a": "м/(с²·мм)", "kin.unit_l": "м/мм",
-           "kin.plan_axis": "мм на плане", "kin.output": "Выходное звено",
-           "kin.s_unit": "s, м", "kin.v_unit": "v, м/с", "kin.a_unit": "a, м/с²",
-           "kin.psi_unit": "ψ, град", "kin.w_unit": "ω, рад/с", "kin.e_unit": "ε, рад/с²",
-           "kin.formula_w": "ω = v_отн / l",
-           "kin.sense_note": "↺ — против часовой стрелки (положительные), ↻ — по часовой стрелке (отрицательные).",
-           "kin.table_angles": "Углы звеньев, ° (от оси x против часовой стрелки)", "kin.csv_note": "Все числа: kinematics.csv, plans.csv."},
-}
+I18N = locales.table("kinematics", "words")
 
 COLORS = {"abs": "#000000", "rel": "#595959", "n": "#1f5fbf", "t": "#c0392b", "k": "#1e8449", "r": "#8e44ad"}
 

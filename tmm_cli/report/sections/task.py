@@ -8,6 +8,8 @@ model stores them).  Lists of numbers are written '0; 0.7; 0.9', coordinates
 '(0.5, 0.37) m'."""
 from __future__ import annotations
 
+from ... import locales
+
 import math
 import re
 from typing import Any
@@ -16,38 +18,7 @@ from markupsafe import Markup, escape
 
 from ...numfmt import localize, unit as spelt
 
-I18N = {
-    "en": {"task.sec.mechanism": "Mechanism", "task.sec.drive": "Drive",
-           "task.sec.positions": "Positions", "task.sec.loads": "Loads",
-           "task.sec.kinetostatics": "Kinetostatics", "task.sec.flywheel": "Flywheel",
-           "task.sec.cam": "Cam mechanism", "task.sec.gears": "Gears",
-           "task.sec.planetary": "Planetary gear", "task.sec.answers": "Answers",
-           "task.sec.dof2": "Machine with two degrees of freedom",
-           "task.sec.tolerance": "Tolerance", "task.ground": "Fixed points (ground)",
-           "task.links": "Links", "task.assembly": "Assembly hints (approximate positions of the joints)",
-           "task.point": "Point", "task.points": "Points", "task.length": "l, m", "task.mass": "m, kg",
-           "task.J": "J_S, kg·m²", "task.com": "S (centre of mass), m", "task.guide": "Guide, other",
-           "task.guide_word": "guide",
-           "task.com_mid": "middle", "task.slider_on": "slider {p}",
-           "task.guide_through": "through {p}", "task.guide_link": "along link {l}",
-           "task.guide_angle": "at {a}°", "task.guide_offset": "offset {o} m",
-           "task.extra": "other points: {p}"},
-    "ru": {"task.sec.mechanism": "Механизм", "task.sec.drive": "Привод",
-           "task.sec.positions": "Положения", "task.sec.loads": "Нагрузки",
-           "task.sec.kinetostatics": "Кинетостатика", "task.sec.flywheel": "Маховик",
-           "task.sec.cam": "Кулачковый механизм", "task.sec.gears": "Зубчатая передача",
-           "task.sec.planetary": "Планетарный механизм", "task.sec.answers": "Ответы",
-           "task.sec.dof2": "Машина с двумя степенями подвижности",
-           "task.sec.tolerance": "Допуски", "task.ground": "Неподвижные точки (стойка)",
-           "task.links": "Звенья", "task.assembly": "Начальная сборка (приближённые положения шарниров)",
-           "task.point": "Точка", "task.points": "Точки", "task.length": "l, м", "task.mass": "m, кг",
-           "task.J": "J_S, кг·м²", "task.com": "S (центр масс), м", "task.guide": "Направляющая, прочее",
-           "task.guide_word": "направляющая",
-           "task.com_mid": "середина", "task.slider_on": "ползун {p}",
-           "task.guide_through": "через {p}", "task.guide_link": "по звену {l}",
-           "task.guide_angle": "под углом {a}°", "task.guide_offset": "смещение {o} м",
-           "task.extra": "другие точки: {p}"},
-}
+I18N = locales.table("task", "words")
 
 _META = ("schema", "schema_", "title", "variant", "student", "course")
 
@@ -217,8 +188,6 @@ PARAMS["ru"].update({
     "drive_train.stages.z": "числа зубьев", "drive_train.stages.internal": "внутреннее зацепление",
     "drive_train.stages.scheme": "схема", "drive_train.stages.ratio": "передаточное отношение",
 })
-I18N["en"]["task.sec.synthesis"] = "Synthesis"
-I18N["ru"]["task.sec.synthesis"] = "Синтез"
 
 ITEMS = {"en": {"forces": "force", "couples": "couple"}, "ru": {"forces": "сила", "couples": "пара"}}
 WORDS = {"ru": {"ccw": "против часовой стрелки", "cw": "по часовой стрелке", "true": "да", "false": "нет",
