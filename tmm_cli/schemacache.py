@@ -27,7 +27,7 @@ from types import MethodType
 # (every tmm_cli module `import tmm_cli.task` loads: tests/test_schema_cache.py)
 MODULES = ("tmm_cli", "tmm_cli.errors", "tmm_cli.limits", "tmm_cli.messages", "tmm_cli.modelbase", "tmm_cli.units",
            "tmm_cli.trainspec", "tmm_cli.dof2", "tmm_cli.dof2.spec", "tmm_cli.differential", "tmm_cli.differential.spec",
-           "tmm_cli.balancing", "tmm_cli.balancing.spec", "tmm_cli.numfmt", "tmm_cli.task")
+           "tmm_cli.balancing", "tmm_cli.balancing.spec", "tmm_cli.numfmt", "tmm_cli.locales", "tmm_cli.task")
 _FORMAT = 1
 
 
