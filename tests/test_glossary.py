@@ -67,8 +67,6 @@ def texts(lang: str) -> list[str]:
                 out += list(_strings(value))
             elif isinstance(value, dict):
                 out += list(_tables(value, lang))
-    from tmm_cli.forms import NOTATION
-    out += [n[3 if lang == "ru" else 4] for n in NOTATION.values()]
     return out
 
 

@@ -60,6 +60,13 @@ def table(name: str, key: str, langs: tuple[str, ...] | None = None) -> dict[str
     return out
 
 
+def of(name: str, key: str, lang: str) -> Any:
+    """Table ``key`` of topic ``name`` in ``lang``, English's where ``lang`` lacks it: the cached
+    table itself (read it, don't change it), for lookups made many times (a batch's pages)."""
+    data = _read(lang, name)
+    return data[key] if key in data else _read("en", name)[key]
+
+
 def words(lang: str) -> dict[str, str]:
     """Every ``words`` table of ``lang`` merged: ``report`` first, then the other topics sorted
     by name (a key lives in one topic; tests/test_locales.py checks it)."""
@@ -85,4 +92,4 @@ def beside(module_file: str) -> dict[str, dict[str, str]]:
     return out
 
 
-__all__ = ["DIR", "LANGS", "beside", "table", "topic", "topics", "words"]
+__all__ = ["DIR", "LANGS", "beside", "of", "table", "topic", "topics", "words"]
