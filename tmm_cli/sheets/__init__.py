@@ -5,14 +5,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .. import numfmt
+from .. import locales, numfmt
 
-SHEETS = {"en": {1: "Kinematics", 2: "Kinetostatics", 3: "Dynamics", 4: "Cam mechanism", 5: "Gear mesh",
-                 6: "Planetary gear"},
-          "ru": {1: "Кинематический анализ", 2: "Силовой анализ", 3: "Динамический анализ",
-                 4: "Кулачковый механизм", 5: "Зубчатое зацепление", 6: "Планетарный механизм"},
-          "uk": {1: "Кінематичний аналіз", 2: "Силовий аналіз", 3: "Динамічний аналіз",
-                 4: "Кулачковий механізм", 5: "Зубчасте зачеплення", 6: "Планетарний механізм"}}
+SHEETS = locales.table("sheets", "titles")
 
 
 def build_sheets(results: dict, task, lang: str = "en") -> list[tuple]:

@@ -3,6 +3,8 @@ the other sides) and the title block of ГОСТ 2.104 form 1 (185 x 55 mm), the
 of the course's drawings (ГОСТ 2.302 for lengths, 1, 2, 2.5, 4, 5 x 10^k for the others)."""
 from __future__ import annotations
 
+from .. import locales
+
 import re
 
 from ..report.figures import drawing_scale, nice_scale
@@ -64,20 +66,7 @@ def fit_lines(cv, x, yc, s, h, max_w, max_h):
         y -= 1.7 * g
 
 
-TB_TEXT = {
-    "en": {"dev": "Drawn", "chk": "Checked", "tcn": "T.contr.", "ncn": "N.contr.", "apr": "Approved",
-           "ch": "Rev.", "sh": "Sheet", "doc": "Doc. No.", "sign": "Sign.", "date": "Date",
-           "lit": "Lit.", "mass": "Mass", "scale": "Scale", "sheet": "Sheet", "sheets": "Sheets",
-           "variant": "Variant", "course": "Course project, TMM"},
-    "ru": {"dev": "Разраб.", "chk": "Пров.", "tcn": "Т.контр.", "ncn": "Н.контр.", "apr": "Утв.",
-           "ch": "Изм.", "sh": "Лист", "doc": "№ докум.", "sign": "Подп.", "date": "Дата",
-           "lit": "Лит.", "mass": "Масса", "scale": "Масштаб", "sheet": "Лист", "sheets": "Листов",
-           "variant": "Вариант", "course": "Курсовой проект по ТММ"},
-    "uk": {"dev": "Розроб.", "chk": "Перев.", "tcn": "Т.контр.", "ncn": "Н.контр.", "apr": "Затв.",
-           "ch": "Зм.", "sh": "Арк.", "doc": "№ докум.", "sign": "Підп.", "date": "Дата",
-           "lit": "Літ.", "mass": "Маса", "scale": "Масштаб", "sheet": "Аркуш", "sheets": "Аркушів",
-           "variant": "Варіант", "course": "Курсовий проєкт з ТММ"},
-}
+TB_TEXT = locales.table("sheets", "title_block")
 
 
 def draw_frame(cv, *, title: str, sheet_title: str, variant, student: str, group: str,
@@ -85,8 +74,8 @@ def draw_frame(cv, *, title: str, sheet_title: str, variant, student: str, group
                designation: str = "", university: str = "") -> dict:
     """The frame and the title block; returns the title block's fields as written. The task's
     ``course`` header gives the supervisor (row 'checked'), the designation (the sheet's code:
-    the note's designation less its 'ПЗ', and the sheet's number) and the university (with the
-    group, in the organisation's cell)."""
+    the note's designation less the note's code -- the catalogues' sheets `note_code` --, and
+    the sheet's number) and the university (with the group, in the organisation's cell)."""
     T = TB_TEXT[lang]
     x0, y0, x1, y1 = FRAME
     cv.layer = "thin"
@@ -124,7 +113,8 @@ def draw_frame(cv, *, title: str, sheet_title: str, variant, student: str, group
         y = by + 22.5 - 5 * k
         fit_text(cv, bx + 0.7, y, lab, h, 15.6)
         fit_text(cv, bx + 17.7, y, val, h, 21.6)
-    base = re.sub(r"\s*(ПЗ|PZ)\s*$", "", designation or "").strip()
+    codes = sorted({re.escape(locales.of("sheets", "note_code", other)) for other in locales.LANGS})
+    base = re.sub(rf"\s*({'|'.join(codes)})\s*$", "", designation or "").strip()
     code = f"{base}.{n:02d}" if base else (f"TMM.{variant}.{n:02d}" if variant not in (None, "") else f"TMM.{n:02d}")
     fit_text(cv, rx + 60, by + 47.5, code, 7.0, 116, anchor="middle")
     fit_lines(cv, rx + 35, by + 31, title, 5.0, 66, 14.0)

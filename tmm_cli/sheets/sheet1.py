@@ -3,6 +3,8 @@ course positions (drawn by the report's own plan code at the sheet's scale) and 
 output's s, v, a diagrams."""
 from __future__ import annotations
 
+from .. import locales
+
 import math
 
 import numpy as np
@@ -11,26 +13,8 @@ from ..report.figures import mu_text, scale_mark
 from .frame import FRAME, length_scale, std_mu
 from .graph import draw_graph
 
-TXT = {
-    "en": {"scheme": "Kinematic scheme", "plans": "Plans, position {i}", "vplan": "Velocity plan",
-           "aplan": "Acceleration plan", "diagrams": "Diagrams of the output", "pos": "position",
-           "unit_v": "(m/s)/mm", "unit_a": "(m/s²)/mm", "mm": "mm",
-           "chord": "chord method, {n} intervals (dashed): greatest deviation {err} % of the largest value"},
-    "ru": {"scheme": "Кинематическая схема", "plans": "Планы, положение {i}", "vplan": "План скоростей",
-           "aplan": "План ускорений", "diagrams": "Диаграммы выходного звена", "pos": "положение",
-           "unit_v": "м/(с·мм)", "unit_a": "м/(с²·мм)", "mm": "мм",
-           "chord": "метод хорд, {n} интервалов (штриховая): наибольшее отклонение {err} % от наибольшего значения"},
-    "uk": {"scheme": "Кінематична схема", "plans": "Плани, положення {i}", "vplan": "План швидкостей",
-           "aplan": "План прискорень", "diagrams": "Діаграми вихідної ланки", "pos": "положення",
-           "unit_v": "м/(с·мм)", "unit_a": "м/(с²·мм)", "mm": "мм",
-           "chord": "метод хорд, {n} інтервалів (штрихова): найбільше відхилення {err} % від найбільшого значення"},
-}
-UNITS = {"en": {"m": "m", "m/s": "m/s", "m/s²": "m/s²", "rad": "rad", "rad/s": "rad/s", "rad/s²": "rad/s²",
-                "deg": "°"},
-         "ru": {"m": "м", "m/s": "м/с", "m/s²": "м/с²", "rad": "рад", "rad/s": "рад/с", "rad/s²": "рад/с²",
-                "deg": "°"},
-         "uk": {"m": "м", "m/s": "м/с", "m/s²": "м/с²", "rad": "рад", "rad/s": "рад/с", "rad/s²": "рад/с²",
-                "deg": "°"}}
+TXT = locales.table("sheets", "sheet1")
+UNITS = locales.table("sheets", "sheet1_units")
 
 
 def _xy(e, p):

@@ -4,13 +4,13 @@ polygon at a standard μF, the input link, and Zhukovsky's lever large enough to
 every force and arm.  Drawn by the report's own panels (report/sections/kinetostatics)."""
 from __future__ import annotations
 
+from .. import locales
+
 from pathlib import Path
 
 from .frame import FRAME, TB_H, TB_W
 
-TXT = {"en": {"pos": "Position {i}, φ = {phi:.1f}°"},
-       "ru": {"pos": "Положение {i}, φ = {phi:.1f}°"},
-       "uk": {"pos": "Положення {i}, φ = {phi:.1f}°"}}
+TXT = locales.table("sheets", "sheet2")
 COL_W = 130.0          # mm: the width of one group's column (its drawing above its polygon)
 MIN_COL_W = 70.0       # mm: narrower columns wrap into a second row of groups (many groups)
 LEVER_MIN_W = 280.0    # mm: the lever keeps at least this width

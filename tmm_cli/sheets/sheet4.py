@@ -2,6 +2,8 @@
 scale, and the follower's motion law s(φ), ds/dφ, d²s/dφ² at standard μ."""
 from __future__ import annotations
 
+from .. import locales
+
 import math
 
 import numpy as np
@@ -11,9 +13,7 @@ from .frame import FRAME, TB_H, length_scale, std_mu
 from .graph import draw_graph
 
 GX = 28.0         # mm: the diagrams' φ axes start this far into the frame (room for d²s/dφ²)
-TXT = {"en": {"profile": "Cam profile", "law": "Motion law of the follower", "mm": "mm", "m": "m"},
-       "ru": {"profile": "Профиль кулачка", "law": "Закон движения толкателя", "mm": "мм", "m": "м"},
-       "uk": {"profile": "Профіль кулачка", "law": "Закон руху штовхача", "mm": "мм", "m": "м"}}
+TXT = locales.table("sheets", "sheet4")
 
 
 def draw_construction(cv, k, c, box, results, task, lang="en") -> dict:

@@ -3,15 +3,15 @@ circles, teeth at the mesh (the report's tooth outline), the line of action N1N2
 active part B1B2 and the pole P, at a ГОСТ 2.302 scale."""
 from __future__ import annotations
 
+from .. import locales
+
 
 import numpy as np
 
 from ..report.figures import scale_mark
 from .frame import FRAME, length_scale
 
-TXT = {"en": {"mesh": "Gear mesh", "m": "m", "mm": "mm", "sliding": "Specific sliding"},
-       "ru": {"mesh": "Зубчатое зацепление", "m": "м", "mm": "мм", "sliding": "Удельные скольжения"},
-       "uk": {"mesh": "Зубчасте зачеплення", "m": "м", "mm": "мм", "sliding": "Питомі ковзання"}}
+TXT = locales.table("sheets", "sheet5")
 LAMBDA_LO, LAMBDA_HI = -5.0, 1.5       # the course draws λ over this range (the report's figure too)
 TEETH = 5          # teeth drawn of each wheel, centred on the mesh
 
