@@ -19,12 +19,14 @@ PHASE_COLORS = {"rise": "#e8f0fb", "far_dwell": "#f4f4f4", "return": "#fbeee8", 
 
 
 def _loc(lang: str, text: str) -> str:
-    """Units in the report's language: deg -> °, and in Russian mm -> мм, rad -> рад."""
+    """Units in the report's language: deg -> °, and mm and rad as the language spells them
+    (numfmt.unit)."""
     import re
     text = re.sub(r"(?<![A-Za-z])deg(?![A-Za-z])", "°", text)
-    if lang in ("ru", "uk"):
-        text = re.sub(r"(?<![A-Za-z])mm(?![A-Za-z])", "мм", text)
-        text = re.sub(r"(?<![A-Za-z])rad(?![A-Za-z])", "рад", text)
+    from ...numfmt import unit
+    if lang != "en":
+        text = re.sub(r"(?<![A-Za-z])mm(?![A-Za-z])", unit("mm", lang), text)
+        text = re.sub(r"(?<![A-Za-z])rad(?![A-Za-z])", unit("rad", lang), text)
     return text
 
 

@@ -29,6 +29,7 @@ import re
 import numpy as np
 from markupsafe import Markup, escape
 
+from ...numfmt import unit as spelt
 from .. import figures
 from ..context import values_of
 from ..course import position_label
@@ -66,11 +67,12 @@ def label_parts(name: str, lang: str = "en") -> tuple[str, str]:
 def _label_parts(name: str, lang: str = "en") -> tuple[str, str]:
     """A load/reaction name of the results -> (symbol, subscript) as the course
     writes it: 'R12' -> ('R', '12'); 'G2' -> ('G', '2'); 'Fi2' -> ('Φ', '2');
-    'Mi2' -> ('M', 'Φ2'); 'Ff03' -> ('F', 'тр03' | 'f03'); 'F1' -> ('F', '1')."""
+    'Mi2' -> ('M', 'Φ2'); 'Ff03' -> ('F', 'f03'), in ru and uk the subscript of friction of the
+    words `kst.friction_sub`; 'F1' -> ('F', '1')."""
     if "\u0000" in name:                 # already split: 'M\0b' -> ('M', 'b')
         a, b = name.split("\u0000", 1)
         return a, b
-    fr = "тр" if lang in ("ru", "uk") else "f"
+    fr = locales.of("kinetostatics", "words", lang).get("kst.friction_sub", "f")
     m = re.fullmatch(r"(Fi|Mi|Ff|Mf|[A-Za-z])(\d+)", name)
     if not m:
         return name, ""
@@ -761,9 +763,9 @@ def build(ctx) -> str | None:
         csv_hdr += [f"{j['key']}_x", f"{j['key']}_y", f"{j['key']}_R"]
     ctx.write_csv("kinetostatics.csv", csv_hdr, csv_rows)
     # reactions table
-    r_hdr = [ctx.t("kst.position")] + [label_html(j["key"], lang) + Markup(", N" if lang == "en" else ", Н")
+    r_hdr = [ctx.t("kst.position")] + [label_html(j["key"], lang) + Markup(f", {spelt('N', lang)}")
                                        if j["kind"] == "R" else
-                                       label_html(j["key"], lang) + Markup(": N, N; x, m" if lang == "en" else ": N, Н; x, м")
+                                       label_html(j["key"], lang) + Markup(f": N, {spelt('N', lang)}; x, {spelt('m', lang)}")
                                        for j in info["joints"]]
     r_rows = []
     for e in shown:
@@ -841,8 +843,8 @@ def _loads_table(ctx, entries, n_grid=None):
         return len(v) == n and (max(v) - min(v)) <= 1e-9 * max(1.0, max(abs(x) for x in v))
 
     const_parts, fcols, ccols = [], [], []
-    N = "N" if lang == "en" else "Н"
-    Nm = "N·m" if lang == "en" else "Н·м"
+    N = spelt("N", lang)
+    Nm = spelt("N*m", lang)
     for nm in fnames:
         if constant(fval[nm]):
             if fval[nm][0] > 0:

@@ -9,18 +9,19 @@ import numpy as np
 from ...plans import geometry
 
 ROMAN = {1: "I", 2: "II", 3: "III", 4: "IV", 5: "V", 6: "VI"}
-# the kind of an Assur group by its pairs in the letters of the kinematic pairs table:
-# В (вращательная) / О (обертальна), П (поступательная, поступальна) — ВВП, ООП for RRP
-_PAIR_LETTERS = {"ru": str.maketrans("RP", "ВП"), "uk": str.maketrans("RP", "ОП")}
+# the kind of an Assur group by its pairs in the letters of the kinematic pairs table: R and P
+# as the language writes them (the words `struct.pair_letters`; Russian and Ukrainian write
+# the revolute pair's letter of their own words)
 
 
 def group_kind(typ, lang: str) -> str:
-    """'RRP' in the report's language: 'ВВП' in Russian, 'ООП' in Ukrainian; other kinds as given."""
+    """'RRP' in the report's language (the letters of `struct.pair_letters`); other kinds as given."""
+    from ..i18n import translate
     s = str(typ)
-    table = _PAIR_LETTERS.get(lang)
-    if table is None or not s or set(s) - set("RP"):
+    letters = translate("struct.pair_letters", lang)
+    if letters == "RP" or len(letters) != 2 or not s or set(s) - set("RP"):
         return s
-    return s.translate(table)
+    return s.translate(str.maketrans("RP", letters))
 
 
 def link_kind(geom, link) -> str:

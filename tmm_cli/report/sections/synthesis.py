@@ -10,6 +10,8 @@ import math
 
 import numpy as np
 
+from ...numfmt import unit
+
 I18N = locales.table("synthesis", "words")
 
 _LEN = locales.table("synthesis", "lengths")
@@ -197,7 +199,7 @@ def error_chart(ctx, r):
 
 def _function(ctx, r) -> str:
     f, t = ctx.fmt, ctx.t
-    mu = "m" if ctx.lang == "en" else "м"
+    mu = unit("m", ctx.lang)
     lens = [(_LEN.get(ctx.lang, _LEN["en"]).get(k, k), f"{f(v, 6)} {mu}") for k, v in r["lengths"].items()]
     pts = r["precision_points"]
     info = [(t("syn.type"), t("syn.type.function")), (t("syn.fn.K"), ", ".join(f(k, 6) for k in r["K"])),
@@ -218,7 +220,7 @@ def build(ctx) -> str | None:
         return _function(ctx, r)
 
     f, t, lang = ctx.fmt, ctx.t, ctx.lang
-    mu = "m" if lang == "en" else "м"
+    mu = unit("m", lang)
     typ = t(f"syn.type.{r['type']}")
     lens = [(_LEN.get(lang, _LEN["en"]).get(k, k), f"{f(v, 6)} {mu}") for k, v in r["lengths"].items()]
     out = r.get("output", "")
