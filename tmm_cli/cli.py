@@ -18,11 +18,12 @@ import sys
 from pathlib import Path
 from typing import Callable, Optional
 
+from . import locales
 from .errors import StageError, TaskError
 
 EXIT_OK, EXIT_ANSWERS, EXIT_INVALID, EXIT_STAGE = 0, 1, 2, 3
 FORMATS = {"json", "html", "pdf", "sheets", "note"}
-LANGS = ("en", "ru", "uk")
+LANGS = locales.LANGS      # one folder of catalogues each (tmm_cli/locales)
 
 _ANSI = re.compile(r"\033\[[;?0-9]*[a-zA-Z]")     # click's: stripped when not a terminal
 

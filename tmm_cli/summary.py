@@ -1,10 +1,10 @@
 """Terminal output with rich: the run summary and the check table."""
 from __future__ import annotations
 
-from . import locales
-
 import re
 from pathlib import Path
+
+from . import locales
 
 
 def _console():

@@ -18,12 +18,11 @@ data are the results' ``kinematics_explore`` (made by the pipeline with the stag
 function ``tmm_cli.linkage.kinematics.explore.explore_grid``)."""
 from __future__ import annotations
 
-from .. import locales
-
 import math
 
 import numpy as np
 
+from .. import locales
 from ..results import one_line
 from ..tables import round_sig
 from .context import templates_dir

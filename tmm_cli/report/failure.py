@@ -7,7 +7,6 @@ stage, message, position), or its single ``error`` in older results."""
 from __future__ import annotations
 
 from .. import locales
-
 from .i18n import register
 
 # stage of a StageError -> (report section it replaces, its title key, the task-file section to change)

@@ -3,10 +3,9 @@ the other sides) and the title block of ГОСТ 2.104 form 1 (185 x 55 mm), the
 of the course's drawings (ГОСТ 2.302 for lengths, 1, 2, 2.5, 4, 5 x 10^k for the others)."""
 from __future__ import annotations
 
-from .. import locales
-
 import re
 
+from .. import locales
 from ..report.figures import drawing_scale, nice_scale
 
 SHEET_W, SHEET_H = 841.0, 594.0

@@ -3,12 +3,11 @@ course positions (drawn by the report's own plan code at the sheet's scale) and 
 output's s, v, a diagrams."""
 from __future__ import annotations
 
-from .. import locales
-
 import math
 
 import numpy as np
 
+from .. import locales
 from ..report.figures import mu_text, scale_mark
 from .frame import FRAME, length_scale, std_mu
 from .graph import draw_graph

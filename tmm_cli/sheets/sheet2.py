@@ -4,10 +4,9 @@ polygon at a standard μF, the input link, and Zhukovsky's lever large enough to
 every force and arm.  Drawn by the report's own panels (report/sections/kinetostatics)."""
 from __future__ import annotations
 
-from .. import locales
-
 from pathlib import Path
 
+from .. import locales
 from .frame import FRAME, TB_H, TB_W
 
 TXT = locales.table("sheets", "sheet2")

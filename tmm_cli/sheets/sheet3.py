@@ -3,10 +3,9 @@ energy over the cycle, the reduced moment of inertia and the energy-mass diagram
 (Wittenbauer) with its tangents at ψmax, ψmin, each at a standard μ."""
 from __future__ import annotations
 
-from .. import locales
-
 import numpy as np
 
+from .. import locales
 from ..report.figures import mu_text
 from .frame import FRAME, std_mu
 from .graph import draw_graph

@@ -2,12 +2,11 @@
 scale, and the follower's motion law s(φ), ds/dφ, d²s/dφ² at standard μ."""
 from __future__ import annotations
 
-from .. import locales
-
 import math
 
 import numpy as np
 
+from .. import locales
 from ..report.figures import scale_mark
 from .frame import FRAME, TB_H, length_scale, std_mu
 from .graph import draw_graph

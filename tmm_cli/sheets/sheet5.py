@@ -3,11 +3,10 @@ circles, teeth at the mesh (the report's tooth outline), the line of action N1N2
 active part B1B2 and the pole P, at a ГОСТ 2.302 scale."""
 from __future__ import annotations
 
-from .. import locales
-
 
 import numpy as np
 
+from .. import locales
 from ..report.figures import scale_mark
 from .frame import FRAME, length_scale
 

@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .. import locales
 from .frame import FRAME, TB_H, length_scale, std_mu
 
 COL_W, WHEEL_W = 34.0, 22.0      # mm: a row of wheels' column, a wheel's width in the scheme
@@ -92,7 +93,7 @@ def build(cv, results, task, lang="en") -> dict:
         cv.mtext(at[0] + 3.0, at[1], tag, 3.5, italic=True)
         lines[name] = seg
     # the ratio from the picture: tan ψ1 / tan ψH
-    tg = "tan" if lang == "en" else "tg"
+    tg = locales.of("sheets", "sheet6", lang)["tan"]          # tan, or tg as the course writes it
     cv.mtext(vx - 20.0, y0f + TB_H + 12.0, f"i₁H = {tg} ψ₁ / {tg} ψH = {float(vp['tan_psi_1']):.4g} / "
              f"{float(vp['tan_psi_H']):.4g} = {float(p['ratio_plan']):.4g}", 3.5)
     return {"unit": unit, "scale": label, "mu_l": unit / 1000.0, "mu_v": mu_v, "points": pts, "lines": lines,

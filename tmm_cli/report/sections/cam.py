@@ -6,11 +6,11 @@ diagram and the tables; the profile exported beside the report as CSV and DXF.
 Reads only ``results['cam']`` (see tmm_cli/cam/synthesis.py for its keys)."""
 from __future__ import annotations
 
-from ... import locales
-
 import math
 
 import numpy as np
+
+from ... import locales
 
 I18N = locales.table("cam", "words")
 

@@ -8,11 +8,11 @@ numbers only from results["dof2"].
 """
 from __future__ import annotations
 
-from ... import locales
-
 import math
 
 import numpy as np
+
+from ... import locales
 
 I18N = locales.table("dof2", "words")
 

@@ -4,10 +4,9 @@ scheme of the train, the linear-velocity picture beside it (same length scale) a
 angular-velocity plan, whose segments give every ratio, compared with the analytic one."""
 from __future__ import annotations
 
-from ... import locales
-
 import math
 
+from ... import locales
 from ...numfmt import localize, num, unit
 from ..figures import mu_text
 

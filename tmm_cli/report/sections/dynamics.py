@@ -7,11 +7,11 @@ beside the report.  Reads numbers only from results["flywheel"].
 """
 from __future__ import annotations
 
-from ... import locales
-
 import math
 
 import numpy as np
+
+from ... import locales
 
 I18N = locales.table("dynamics", "words")
 

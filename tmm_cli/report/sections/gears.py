@@ -3,12 +3,11 @@ teeth per wheel, circles, line of action and its active part), the blocking cont
 specific-sliding diagrams; tooth outlines exported as CSV and DXF beside the report."""
 from __future__ import annotations
 
-from ... import locales
-
 import math
 
 import numpy as np
 
+from ... import locales
 from ...messages import render_list
 from ...numfmt import localize
 

@@ -12,8 +12,6 @@ students do: mu = v_A / pa with pa = 100 mm rounded *up* to a nice value
 """
 from __future__ import annotations
 
-from ... import locales
-
 import html
 import math
 from operator import itemgetter
@@ -21,6 +19,7 @@ from operator import itemgetter
 import numpy as np
 from markupsafe import Markup
 
+from ... import locales
 from ..context import values_of
 from ..course import course_entries, cycle_order, grid_count, position_label
 from ...numfmt import num as written

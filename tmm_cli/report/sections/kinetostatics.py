@@ -20,8 +20,6 @@ numbers only from results.
 """
 from __future__ import annotations
 
-from ... import locales
-
 import functools
 import math
 import re
@@ -29,6 +27,7 @@ import re
 import numpy as np
 from markupsafe import Markup, escape
 
+from ... import locales
 from ...numfmt import unit as spelt
 from .. import figures
 from ..context import values_of

@@ -2,10 +2,9 @@
 (half section above the axis) and the velocity (Kutzbach) plan."""
 from __future__ import annotations
 
-from ... import locales
-
 import numpy as np
 
+from ... import locales
 from ...numfmt import num
 
 I18N = locales.table("planetary", "words")

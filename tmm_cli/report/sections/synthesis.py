@@ -4,12 +4,11 @@ positions, the angle theta, the circle through the extreme points, the chosen
 solution) and the transmission angle over the cycle. Drawn directly as SVG."""
 from __future__ import annotations
 
-from ... import locales
-
 import math
 
 import numpy as np
 
+from ... import locales
 from ...numfmt import unit
 
 I18N = locales.table("synthesis", "words")

@@ -8,14 +8,13 @@ model stores them).  Lists of numbers are written '0; 0.7; 0.9', coordinates
 '(0.5, 0.37) m'."""
 from __future__ import annotations
 
-from ... import locales
-
 import math
 import re
 from typing import Any
 
 from markupsafe import Markup, escape
 
+from ... import locales
 from ...numfmt import localize, unit as spelt
 
 I18N = locales.table("task", "words")

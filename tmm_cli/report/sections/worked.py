@@ -36,12 +36,11 @@ their results (a note says so).
 """
 from __future__ import annotations
 
-from ... import locales
-
 
 import numpy as np
 from markupsafe import Markup, escape
 
+from ... import locales
 from ...numfmt import num
 from ...plans import SUB, geometry as plan_geometry, plan_label
 from .kinematics import drawn_scales
