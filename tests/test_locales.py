@@ -64,3 +64,50 @@ def test_loader_gives_copies():
     a = locales.table("cam", "words")
     a["en"]["cam.title"] = "changed"
     assert locales.table("cam", "words")["en"]["cam.title"] != "changed"
+
+
+def _split():
+    import importlib.util
+    spec = importlib.util.spec_from_file_location("split_catalogue", ROOT / "tools" / "split_catalogue.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_split_catalogue_moves_a_three_language_file(tmp_path):
+    """A beside-the-module file of the old kind goes into each language's file: new keys
+    appended, a changed text replaced, a key of another topic's English words routed there,
+    a new language given its folder; nothing else of the files changes."""
+    import shutil
+
+    import yaml
+    loc = tmp_path / "locales"
+    shutil.copytree(locales.DIR, loc, ignore=shutil.ignore_patterns("*.py", "__pycache__"))
+    before = {p.relative_to(loc): yaml.safe_load(p.read_text(encoding="utf-8")) for p in loc.rglob("*.yaml")}
+    src = tmp_path / "gears.yaml"
+    src.write_text("en: {gears.new_word: 'new', cam.title: 'Cams'}\nru: {gears.new_word: 'новое'}\n"
+                   "uk: {gears.new_word: 'нове'}\nde: {gears.new_word: 'neu'}\n", encoding="utf-8")
+    out = _split().main([str(src), "--locales", str(loc), "--remove"])
+    assert out == 0 and not src.exists()
+    after = {p.relative_to(loc): yaml.safe_load(p.read_text(encoding="utf-8")) for p in loc.rglob("*.yaml")}
+    for lang, word in (("en", "new"), ("ru", "новое"), ("uk", "нове"), ("de", "neu")):
+        words = after[Path(lang) / "gears.yaml"]["words"]
+        assert list(words)[-1] == "gears.new_word" and words["gears.new_word"] == word
+    assert after[Path("en/cam.yaml")]["words"]["cam.title"] == "Cams"       # routed to its owner
+    assert "cam.title" not in after[Path("en/gears.yaml")]["words"]
+    for rel, data in before.items():          # the rest as it was, in its order
+        if rel not in (Path("en/gears.yaml"), Path("ru/gears.yaml"), Path("uk/gears.yaml"), Path("en/cam.yaml")):
+            assert after[rel] == data, rel
+    en = after[Path("en/gears.yaml")]["words"]
+    assert list(en)[:-1] == list(before[Path("en/gears.yaml")]["words"])
+
+
+def test_words_beside_is_a_shim_over_the_catalogues(tmp_path):
+    """words_beside(x.py) reads the catalogues' topic x, with an old x.yaml beside laid over."""
+    from tmm_cli.report.i18n import words_beside
+    mod = tmp_path / "cam.py"
+    assert words_beside(str(mod))["ru"]["cam.title"] == locales.table("cam", "words")["ru"]["cam.title"]
+    (tmp_path / "cam.yaml").write_text("en: {cam.extra: 'Extra'}\nru: {cam.title: 'Кулачки'}\n", encoding="utf-8")
+    w = words_beside(str(mod))
+    assert w["en"]["cam.extra"] == "Extra" and w["ru"]["cam.title"] == "Кулачки"
+    assert w["uk"]["cam.title"] == locales.table("cam", "words")["uk"]["cam.title"]
