@@ -972,12 +972,13 @@ def test_message_is_plain_data():
 
 
 def test_catalogues_are_the_report_languages():
-    """A language is one catalogue file beside the module; the catalogues found are the
-    report's languages."""
+    """A language is one folder of catalogues (tmm_cli/locales/<lang>/, its messages.yaml
+    among them); the folders found are the report's languages."""
+    from tmm_cli import locales
     from tmm_cli.report import i18n
 
-    assert sorted(p.stem for p in Path(messages.__file__).parent.glob("*.yaml")) == sorted(LANGS)
-    assert LANGS == i18n.LANGS
+    assert sorted(p.parent.name for p in locales.DIR.glob("*/messages.yaml")) == sorted(LANGS)
+    assert LANGS == i18n.LANGS == locales.LANGS
 
 
 @pytest.fixture(scope="module")
