@@ -3,6 +3,7 @@ every key of English in every language, a report word in one topic only, and the
 three-language files beside a module converted by tools/split_catalogue.py."""
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import pytest
@@ -111,3 +112,12 @@ def test_words_beside_is_a_shim_over_the_catalogues(tmp_path):
     w = words_beside(str(mod))
     assert w["en"]["cam.extra"] == "Extra" and w["ru"]["cam.title"] == "Кулачки"
     assert w["uk"]["cam.title"] == locales.table("cam", "words")["uk"]["cam.title"]
+
+
+def test_no_cyrillic_in_python_sources():
+    """Every word a user reads is in the catalogues: no .py file of tmm_cli holds a Cyrillic
+    letter (in code, strings or comments; course terms in comments are transliterated)."""
+    cyr = re.compile("[\u0400-\u04FF]")
+    found = [f"{p.relative_to(ROOT)}:{i}" for p in sorted((ROOT / "tmm_cli").rglob("*.py"))
+             for i, line in enumerate(p.read_text(encoding="utf-8").splitlines(), 1) if cyr.search(line)]
+    assert not found, found

@@ -1,4 +1,4 @@
-"""Flat-faced translating follower (тарельчатый толкатель): size, face width, profile.
+"""Flat-faced translating follower (tarel'chatyi tolkatel'): size, face width, profile.
 
 The face is perpendicular to the follower's motion, so the pressure angle is zero and the
 cam's size is limited by the convexity of the profile alone (Artobolevsky; Popov &

@@ -1,7 +1,7 @@
 """Geometry of an external spur involute pair cut by a rack (GOST 16532-70, rack GOST 13755-81).
 
 All formulas are the standard ones of GOST 16532-70 as given in Popov & Timofeev,
-"Курсовое проектирование по ТММ" (2002) and Frolov (ed.), "Теория механизмов и машин"
+"Kursovoe proektirovanie po TMM" (2002) and Frolov (ed.), "Teoriya mekhanizmov i mashin"
 (ch. on involute gearing); symbols as there (m module, z teeth, x shift coefficients,
 alpha profile angle of the rack, ha* addendum, c* clearance coefficients):
 

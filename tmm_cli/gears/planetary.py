@@ -26,8 +26,8 @@ holding the satellite axle ``o``)::
       ==[1]==                 ==[1]==              ==[1]==  ##[4]##          (1 and 4 rings)
   ----axis----           ----axis----          ----axis---------     ----axis----------
 
-Conditions for every candidate (Popov & Timofeev, "Курсовое проектирование по ТММ",
-ch. «Синтез планетарных механизмов»):
+Conditions for every candidate (Popov & Timofeev, "Kursovoe proektirovanie po TMM",
+ch. "Sintez planetarnykh mekhanizmov"):
   * ratio:       |i - i_req| <= tolerance |i_req|;
   * coaxiality:  equal centre distances of the two meshes (equations above);
   * assembly with k equally spaced satellites: (i_1H z1 / k)(1 + k p) is an integer for

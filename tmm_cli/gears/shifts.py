@@ -1,6 +1,6 @@
 """Choice of the shift coefficients (``x: auto``) and the blocking contour.
 
-Blocking contour (Bolotovsky's «блокирующий контур»): the region of the (x1, x2) plane
+Blocking contour (Bolotovsky's "blokiruyushchii kontur"): the region of the (x1, x2) plane
 where every quality check holds.  It is computed on a grid with the closed forms of
 :mod:`geometry` and its boundary lines are the zero levels of
 

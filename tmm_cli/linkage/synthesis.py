@@ -1,5 +1,5 @@
 """Metric synthesis of lever mechanisms from the coefficient of mean speed increase K
-(Artobolevsky, ch. "Синтез рычажных механизмов"; Popov & Timofeev, the course-project
+(Artobolevsky, ch. "Sintez rychazhnykh mekhanizmov" (synthesis of linkages); Popov & Timofeev, the course-project
 collection).
 
 Pure functions. :func:`design` turns a ``synthesis`` section into the link lengths and

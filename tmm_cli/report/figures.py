@@ -771,7 +771,7 @@ def _num(x: float) -> str:
 
 
 def box_scale(lo, hi, width_mm, min_h=40.0, max_h=150.0, margin_mm=8.0) -> tuple[float, float, str]:
-    """The height (mm), the scale (metres per paper mm, μl) and its ГОСТ 2.302 label at
+    """The height (mm), the scale (metres per paper mm, μl) and its GOST 2.302 label at
     which figure_for_box draws lo..hi (metres): the tables of a drawing state the
     lengths at the scale it is drawn at."""
     span = np.maximum(np.asarray(hi, float) - np.asarray(lo, float), 1e-12)
@@ -782,7 +782,7 @@ def box_scale(lo, hi, width_mm, min_h=40.0, max_h=150.0, margin_mm=8.0) -> tuple
 
 
 def figure_for_box(lo, hi, width_mm, min_h=40.0, max_h=150.0, margin_mm=8.0, lang="en"):
-    """A drawing (SchemeView) showing lo..hi (metres), centred, at the largest ГОСТ 2.302
+    """A drawing (SchemeView) showing lo..hi (metres), centred, at the largest GOST 2.302
     scale that leaves the margin, stated at its top left ('μl = 0.005 m/mm (M 1:5)');
     returns (view, unit: metres per paper mm, the statement's box (x0, y0, x1, y1) in
     metres: the labels keep clear of it)."""

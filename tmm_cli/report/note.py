@@ -1,7 +1,7 @@
-"""The explanatory note (пояснительная записка): the report's content laid out as the text
-document a student hands in (ГОСТ 2.105, 2.106): an A4 title page from the task's header
-(``student``, ``course``), then pages in the ЕСКД frame (20 mm from the left edge, 5 mm from
-the others; ГОСТ 2.104) with the title block of form 2 on the first page of the text (the
+"""The explanatory note (poyasnitel'naya zapiska): the report's content laid out as the text
+document a student hands in (GOST 2.105, 2.106): an A4 title page from the task's header
+(``student``, ``course``), then pages in the ESKD frame (20 mm from the left edge, 5 mm from
+the others; GOST 2.104) with the title block of form 2 on the first page of the text (the
 contents) and of form 2a on the rest, each with the designation and the page number; an
 introduction, the report's sections with numbered figures and tables, conclusions made from
 the results, and the references.

@@ -1,4 +1,4 @@
-"""The drawing sheets of the course project (A1, ГОСТ 2.301/2.104/2.302) as SVG, PDF and
+"""The drawing sheets of the course project (A1, GOST 2.301/2.104/2.302) as SVG, PDF and
 DXF: `tmm sheets TASK` (README, *Drawing sheets*).  A sheet is one list of primitives in
 mm (tmm_cli.sheets.prims) written two ways (tmm_cli.sheets.writers)."""
 from __future__ import annotations

@@ -1,6 +1,6 @@
-"""The A1 sheet: the frame (ГОСТ 2.301/2.104: 20 mm on the left for binding, 5 mm on
-the other sides) and the title block of ГОСТ 2.104 form 1 (185 x 55 mm), the scales
-of the course's drawings (ГОСТ 2.302 for lengths, 1, 2, 2.5, 4, 5 x 10^k for the others)."""
+"""The A1 sheet: the frame (GOST 2.301/2.104: 20 mm on the left for binding, 5 mm on
+the other sides) and the title block of GOST 2.104 form 1 (185 x 55 mm), the scales
+of the course's drawings (GOST 2.302 for lengths, 1, 2, 2.5, 4, 5 x 10^k for the others)."""
 from __future__ import annotations
 
 import re
@@ -20,15 +20,15 @@ def std_mu(value: float) -> float:
 
 
 def length_scale(model_mm_per_paper_mm: float) -> tuple[float, str]:
-    """The ГОСТ 2.302 drawing scale for a length drawing: (model mm per paper mm, '1:5')."""
+    """The GOST 2.302 drawing scale for a length drawing: (model mm per paper mm, '1:5')."""
     return drawing_scale(model_mm_per_paper_mm)
 
 
-NARROWEST = 0.6      # ГОСТ 2.304 type B: capitals 6/10 of h wide, about 0.6 of DejaVu Sans'
+NARROWEST = 0.6      # GOST 2.304 type B: capitals 6/10 of h wide, about 0.6 of DejaVu Sans'
 
 
 def fit_text(cv, x, y, s, h, max_w, anchor="start", **kw):
-    """A label of size h mm, set a ГОСТ 2.304 size smaller while it would be wider than max_w;
+    """A label of size h mm, set a GOST 2.304 size smaller while it would be wider than max_w;
     at 2.5 mm, the smallest size, its letters narrower (down to NARROWEST) to fit."""
     from .prims import CAP_RATIO, GOST_SIZES
     if s:
@@ -42,7 +42,7 @@ def fit_text(cv, x, y, s, h, max_w, anchor="start", **kw):
 
 def fit_lines(cv, x, yc, s, h, max_w, max_h):
     """A centred text of size h mm around (x, yc), wrapped at its spaces into as few lines as fit
-    max_w at the largest ГОСТ 2.304 size <= h whose lines (pitch 1.7 h) fit max_h; the
+    max_w at the largest GOST 2.304 size <= h whose lines (pitch 1.7 h) fit max_h; the
     smallest size's last line narrowed (fit_text) when even that does not fit."""
     import textwrap
 

@@ -38,7 +38,7 @@ def course_positions(results: dict) -> list[int]:
 
 
 def draw_mechanism(cv, geom, entries, course: list[int], box, lang="en", traced_over=None) -> dict:
-    """Every position thin, the course positions as contour lines, at a ГОСТ scale
+    """Every position thin, the course positions as contour lines, at a GOST scale
     fitting box = (x0, y0, w, h) mm, the trajectories of the points of the moving links (the
     coupler curves) through the positions `traced_over` (the grid; default all).  Returns {'unit', 'scale', 'mu_l', 'paths'}."""
     from ..report.figures import place_labels

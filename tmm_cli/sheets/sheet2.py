@@ -1,5 +1,5 @@
 """Sheet 2: the kinetostatics of one or two positions - each structural group detached
-from the mechanism at a ГОСТ 2.302 length scale with its loads and reactions, its force
+from the mechanism at a GOST 2.302 length scale with its loads and reactions, its force
 polygon at a standard μF, the input link, and Zhukovsky's lever large enough to read
 every force and arm.  Drawn by the report's own panels (report/sections/kinetostatics)."""
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Sheet 4: the cam - its pitch and working profiles with the base circle at a ГОСТ 2.302
+"""Sheet 4: the cam - its pitch and working profiles with the base circle at a GOST 2.302
 scale, and the follower's motion law s(φ), ds/dφ, d²s/dφ² at standard μ."""
 from __future__ import annotations
 
@@ -19,7 +19,7 @@ def draw_construction(cv, k, c, box, results, task, lang="en") -> dict:
     """The s - ds/dφ diagram that gives the least base radius (the report's figure): the
     follower's points B (s along its path) and D (ds/dφ across it) over the rise and the
     return, the tangents at the allowed pressure angles bounding the zone of the cam's
-    centre, O and B0 (O B0 = r0), at one ГОСТ 2.302 scale for s and ds/dφ alike."""
+    centre, O and B0 (O B0 = r0), at one GOST 2.302 scale for s and ds/dφ alike."""
     from pathlib import Path
 
     from ..report.context import ReportContext

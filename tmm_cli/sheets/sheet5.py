@@ -1,6 +1,6 @@
 """Sheet 5: the gear mesh - both whole wheels with their pitch, rolling, base, tip and root
 circles, teeth at the mesh (the report's tooth outline), the line of action N1N2 with the
-active part B1B2 and the pole P, at a ГОСТ 2.302 scale."""
+active part B1B2 and the pole P, at a GOST 2.302 scale."""
 from __future__ import annotations
 
 
@@ -120,7 +120,7 @@ def build(cv, results, task, lang="en") -> dict:
 
 def draw_sliding(cv, g, box, lang="en") -> dict:
     """The specific-sliding diagrams λ1, λ2 over X along the line of action from N1 (X at a
-    ГОСТ 2.302 scale, λ at a standard μλ, over -5 <= λ <= 1.5), the ends of the active
+    GOST 2.302 scale, λ at a standard μλ, over -5 <= λ <= 1.5), the ends of the active
     part B1, B2 and the pole P marked."""
     from .frame import std_mu
     from .graph import draw_graph

@@ -1,5 +1,5 @@
 """Sheet 6: the planetary gear - its scheme (half section above the axis, the wheels at
-their pitch radii, the carrier H, the fixed wheel hatched) at a ГОСТ 2.302 scale and,
+their pitch radii, the carrier H, the fixed wheel hatched) at a GOST 2.302 scale and,
 beside it on the same radii, the picture of linear velocities (Kutzbach) at a standard
 μv, each link's velocity line from the axis; i1H read from the picture as the ratio of
 the tangents of the lines of wheel 1 and the carrier (ψ1, ψH)."""

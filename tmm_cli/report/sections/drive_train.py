@@ -238,6 +238,6 @@ def build(ctx) -> str | None:
 
 
 def rank_words(rank: str, lang: str) -> str:
-    """The candidates' order in words ('по габариту'), as in the task data table."""
+    """The candidates' order in words ('by size', in the report's language), as in the task data table."""
     from .task import WORDS
     return WORDS.get(lang, {}).get(rank, rank)

@@ -15,7 +15,7 @@ group to the crank, as the groups are solved):
 
 Force names as the course writes them (Popov & Timofeev; Frolov): R_ij reaction of
 link i on link j, G_i weight, Phi_i inertia force, M_Phi_i moment of the inertia
-couple, F_f (F_тр) friction.  Writes ``kinetostatics.csv`` beside the report.  Reads
+couple, F_f (F_tr in ru and uk) friction.  Writes ``kinetostatics.csv`` beside the report.  Reads
 numbers only from results.
 """
 from __future__ import annotations
@@ -196,7 +196,7 @@ def _fbd_panel(ctx, cv, box, kin_e, links, names, forces, couples, title, norms=
     lo, hi = xy.min(axis=0), xy.max(axis=0)
     span = np.maximum(hi - lo, 0.02)     # a group all in one point (a block on a block): at 20 mm
     m = 11.0 if w > 60 else 15.0                       # room for the arrows
-    # a ГОСТ 2.302 length scale (1:1, 1:2, 1:2.5, 1:4, 1:5, 1:10, ...), stated as μl in m/mm
+    # a GOST 2.302 length scale (1:1, 1:2, 1:2.5, 1:4, 1:5, 1:10, ...), stated as μl in m/mm
     mu_l = figures.drawing_scale(1000.0 * max(span[0] / (w - 2 * m), span[1] / (h - TITLE_H - 2 * m), 1e-9))[0] \
         / 1000.0
     c_box = (lo + hi) / 2

@@ -25,8 +25,8 @@ def group_kind(typ, lang: str) -> str:
 
 
 def link_kind(geom, link) -> str:
-    """crank | rocker | rod | slider | block | slotted (кулиса), by the pairs of the link: a
-    slider on a moving link's guide is the block of a slotted link (камень кулисы)."""
+    """crank | rocker | rod | slider | block | slotted (kulisa), by the pairs of the link: a
+    slider on a moving link's guide is the block of a slotted link (the course's kamen' kulisy)."""
     if link.kind == "slider":
         on_moving = any(j.kind == "P" and link.index in (j.a, j.b) and 0 not in (j.a, j.b) for j in geom.joints)
         return "block" if on_moving else "slider"
