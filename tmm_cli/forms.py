@@ -230,7 +230,9 @@ def yaml_key(path: str) -> str:
 
 
 def form_text(task, paths: list[str], results: dict | None, lang: str) -> str:
-    """The blank form (results None) or the key (results given) as commented YAML."""
+    """The blank form (results None) or the key (results given) as commented YAML; a comment
+    gives each quantity's symbol and unit as the language writes them (in ru and uk the units in
+    Cyrillic, which the answers reader reads too: tmm_cli/numbers.py) and its name."""
     from .results import lookup
     key = results is not None
     words = _text(lang, "text")
@@ -248,7 +250,7 @@ def form_text(task, paths: list[str], results: dict | None, lang: str) -> str:
                 val = "" if v is None else (repr(float(v)) if isinstance(v, float) else json.dumps(v))
             except KeyError:
                 val = ""
-        note = "; ".join(x for x in (notation(p, lang), sign_note(p, lang)) if x)
+        note = "; ".join(x for x in (notation(p, lang, local_units=True), sign_note(p, lang)) if x)
         entry = f"  {yaml_key(p)}: {val}"
         lines.append(entry.ljust(width + 4 + len(val)) + (f"  # {note}" if note else ""))
     return "\n".join(lines) + "\n"
