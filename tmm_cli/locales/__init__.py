@@ -27,6 +27,10 @@ LANGS = ("en",) + tuple(sorted(p.name for p in DIR.iterdir() if p.is_dir() and p
                                and not p.name.startswith(("_", "."))))
 
 
+# topics without report words (skipped by :func:`words`: the warnings' catalogue is large)
+NO_WORDS = ("messages",)
+
+
 def topics(lang: str = "en") -> tuple[str, ...]:
     """The topic names of ``lang`` (its file names without ``.yaml``), sorted."""
     d = DIR / lang
@@ -69,9 +73,9 @@ def of(name: str, key: str, lang: str) -> Any:
 
 def words(lang: str) -> dict[str, str]:
     """Every ``words`` table of ``lang`` merged: ``report`` first, then the other topics sorted
-    by name (a key lives in one topic; tests/test_locales.py checks it)."""
+    by name (a key lives in one topic; tests/test_locales.py checks it); not :data:`NO_WORDS`."""
     out: dict[str, str] = {}
-    names = topics(lang)
+    names = tuple(n for n in topics(lang) if n not in NO_WORDS)
     for name in (("report",) if "report" in names else ()) + tuple(n for n in names if n != "report"):
         out.update(_read(lang, name).get("words") or {})
     return out

@@ -18,7 +18,34 @@ from .. import locales
 
 LANGS = locales.LANGS
 
-STRINGS: dict[str, dict[str, str]] = {lang: locales.words(lang) for lang in LANGS}
+# the tables registered by the sections (applied to a language's words when it is read)
+_REGISTERED: list[dict[str, dict[str, str]]] = []
+
+
+class _Strings(dict):
+    """``{lang: {key: text}}``, a language's words read from the catalogues when first asked
+    for (a report reads English and its own language only), the registered tables over them."""
+
+    def __missing__(self, lang: str) -> dict[str, str]:
+        if lang not in LANGS:
+            raise KeyError(lang)
+        words = locales.words(lang)
+        for table in _REGISTERED:
+            words.update(table.get(lang) or {})
+        self[lang] = words
+        return words
+
+    def get(self, lang, default=None):
+        try:
+            return self[lang]
+        except KeyError:
+            return default
+
+    def __contains__(self, lang) -> bool:
+        return lang in LANGS or dict.__contains__(self, lang)
+
+
+STRINGS: dict[str, dict[str, str]] = _Strings()
 
 
 def words_beside(module_file: str) -> dict[str, dict[str, str]]:
@@ -31,8 +58,12 @@ def words_beside(module_file: str) -> dict[str, dict[str, str]]:
 
 def register(table: dict[str, dict[str, str]]) -> None:
     """Merge ``{lang: {key: text}}`` into the tables (later registrations win)."""
+    _REGISTERED.append(table)
     for lang, words in table.items():
-        STRINGS.setdefault(lang, {}).update(words)
+        if dict.__contains__(STRINGS, lang):          # a language read already
+            STRINGS[lang].update(words)
+        elif lang not in LANGS:                       # a language without catalogues
+            dict.__setitem__(STRINGS, lang, dict(words))
 
 
 def translate(key: str, lang: str, **kw) -> str:
