@@ -3,11 +3,13 @@
     python tools/split_catalogue.py tmm_cli/report/sections/foo.yaml            # beside-the-module file
     python tools/split_catalogue.py tmm_cli.report.sections.cam:I18N             # a Python table
     python tools/split_catalogue.py tmm_cli.report.i18n_uk:UK --lang uk         # one language's table
+    python tools/split_catalogue.py /tmp/gears.py:I18N --topic gears            # a file's literal table
 
 SOURCE is a YAML file ``{en: {key: text}, ru: {...}, uk: {...}}`` (the kind a section kept
 beside its module and read with ``i18n.words_beside(__file__)``), or ``module:VAR``, a
-module-level table of an importable module, ``{lang: table}`` -- or, with ``--lang``, one
-language's table.  Its keys are merged into table TABLE (default ``words``) of topic TOPIC
+module-level table of an importable module, or ``file.py:VAR``, the literal table of a
+Python file (read, not imported: the literal only, not later updates); a table
+``{lang: table}`` -- or, with ``--lang``, one language's table.  Its keys are merged into table TABLE (default ``words``) of topic TOPIC
 (default: the YAML file's stem, the module's last name) in every language's file: a new
 key is appended, a key the catalogue has is given the source's text (printed as changed),
 no key is removed.  For the ``words`` tables a key already in another topic's English words
@@ -50,7 +52,19 @@ def _dump(data: dict) -> str:
 
 def read_source(source: str, lang: str | None = None) -> tuple[dict, str]:
     """({lang: table}, default topic) of a YAML file or ``module:VAR``."""
-    if ":" in source and not Path(source).exists():
+    if ":" in source and source.split(":", 1)[0].endswith(".py"):
+        # a Python file's literal table, read without importing it (e.g. `git show
+        # branch:path/x.py > /tmp/x.py` of a branch whose module a merge brought into conflict)
+        import ast
+        path, var = source.split(":", 1)
+        tree = ast.parse(Path(path).read_text(encoding="utf-8"))
+        nodes = [n for n in tree.body if isinstance(n, (ast.Assign, ast.AnnAssign)) and any(
+            isinstance(t, ast.Name) and t.id == var for t in (n.targets if isinstance(n, ast.Assign) else [n.target]))]
+        if not nodes:
+            raise SystemExit(f"{path}: no module-level assignment to {var}")
+        value = ast.literal_eval(nodes[0].value)
+        topic = Path(path).stem
+    elif ":" in source and not Path(source).exists():
         mod, var = source.split(":", 1)
         sys.path.insert(0, str(ROOT))
         value = getattr(importlib.import_module(mod), var)
