@@ -278,3 +278,15 @@ def test_apply_without_counterweights_exit_2(tmp_path):
     code, out = _run(tmp_path, text)
     assert code == 2 and "`apply: true` needs `counterweights`" in out and "balancing.apply" in out
     assert "Traceback" not in out
+
+
+def test_counterweights_drawing_names_each_mass(tmp_path):
+    """The report's drawing of the counterweights labels each disc with its mass in kg (the
+    word `bal.kg` is '{m} kg'): the masses of results, as the report formats them."""
+    res = runner.invoke(app, ["run", str(ROOT / "tasks" / "balancing_fourbar.yaml"), "--format", "json,html",
+                              "--out", str(tmp_path / "o"), "--lang", "ru"])
+    assert res.exit_code == 0, res.output
+    svg = (tmp_path / "o" / "figures" / "balancing-counterweights.svg").read_text(encoding="utf-8")
+    cw = json.loads((tmp_path / "o" / "results.json").read_text())["balancing"]["counterweights"]
+    for c in cw.values():
+        assert f"{c['m']:.4g}".replace(".", ",") + " кг" in svg

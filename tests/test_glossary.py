@@ -1,6 +1,6 @@
 """One term per concept: every text tmm writes in Russian and Ukrainian -- the message
-catalogues, the report's tables, the sheets', forms' and feedback pages' tables, every
-module's language tables -- and the reports of the example tasks use the glossary's term,
+catalogues, every file of tmm_cli/locales/<lang>/, the report's tables, every module's
+language tables -- and the reports of the example tasks use the glossary's term,
 never a spelling it lists to avoid (docs/glossary.yaml)."""
 from __future__ import annotations
 
@@ -55,6 +55,9 @@ def texts(lang: str) -> list[str]:
     from tmm_cli.report import i18n, sections
     sections.available()
     out = list(_strings(catalogue(lang))) + list(i18n.STRINGS[lang].values())
+    from tmm_cli import locales
+    for name in locales.topics(lang):          # every catalogue file of the language
+        out += list(_strings(locales.topic(lang, name)))
     for mod in pkgutil.walk_packages(tmm_cli.__path__, "tmm_cli."):
         if mod.name.endswith("__main__"):
             continue
@@ -64,8 +67,6 @@ def texts(lang: str) -> list[str]:
                 out += list(_strings(value))
             elif isinstance(value, dict):
                 out += list(_tables(value, lang))
-    from tmm_cli.forms import NOTATION
-    out += [n[3 if lang == "ru" else 4] for n in NOTATION.values()]
     return out
 
 

@@ -322,6 +322,9 @@ def test_form_in_ukrainian(tmp_path):
     text = (tmp_path / "f" / "g8.key.yaml").read_text()
     assert text.startswith("# Ключ відповідей") and "значення в одиницях СІ" in text
     assert "міжосьова відстань" in text and "радіус кола западин" in text and "кут зачеплення" in text
+    # the units as the course writes them (issue 39): metres and degrees in the language's spelling
+    assert "# a_w, м — міжосьова відстань" in text and "# α_w, ° — кут зачеплення" in text
+    assert not re.search(r", (m|deg|m/s|N\*m|kg\*m\^2) —", text), text
     comments = " ".join(line.split("#", 1)[1] for line in text.splitlines() if "#" in line)
     assert not re.search(r"[ыэъё]", comments), comments        # letters Russian has and Ukrainian lacks
     assert not re.search(r"\b(radius|distance|angle|coefficient)\b", comments), comments

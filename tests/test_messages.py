@@ -328,6 +328,38 @@ ENGLISH = [
      'a rocker follower needs `rocker_length`'),
     ('input.cam_offset_rocker', {},
      '`offset` is for a translating follower'),
+    # the chosen cam size and the followers (tmm_cli/cam/chosen.py); the texts as they were written inline
+    ('input.cam_roller_flat_knife', {'follower': 'flat'},
+     '`roller` is not allowed with a flat-faced follower (it has no roller)'),
+    ('input.cam_roller_flat_knife', {'follower': 'knife'},
+     '`roller` is not allowed with a knife-edge follower (it has no roller)'),
+    ('input.cam_offset_flat', {},
+     '`offset` does not change the cam of a flat-faced follower: leave it out'),
+    ('input.cam_rho_min_flat', {},
+     '`rho_min_allowed` is for a flat-faced follower (`follower: flat`)'),
+    ('input.cam_r0_positive', {},
+     'the chosen base radius `r0` must be positive'),
+    ('input.cam_center_distance_rocker', {},
+     '`center_distance` is for a rocker follower with a chosen `r0`'),
+    ('input.cam_offset_auto_chosen', {},
+     'with a chosen `r0` give the offset (a number, 0 for a central follower), not auto'),
+    ('input.cam_r0_below_offset', {'r0': 0.01, 'offset': 0.015},
+     'the chosen base radius r0 = 0.01 m is smaller than |offset| = 0.015 m'),
+    ('input.cam_rocker_needs_center_distance', {},
+     'a rocker with a chosen `r0` needs `center_distance` (cam centre to rocker pivot)'),
+    ('input.cam_r0_rocker_range', {'r0': 0.2, 'a': 0.12, 'l': 0.05, 'low': 0.07, 'high': 0.17},
+     "no cam centre is 0.2 m from the follower's lowest position and 0.12 m from the pivot of a 0.05 m rocker: "
+     "r0 must lie between |center_distance - rocker_length| = 0.07 and 0.17 m"),
+    # the crank speed from the output's (tmm_cli/linkage/drive_speed.py)
+    ('input.output_no_stroke', {'output': 'ram'},
+     "the output 'ram' has no stroke (no extreme positions), so the crank speed cannot follow from its speed: "
+     "give drive.speed"),
+    ('input.output_rocker_speed', {'output': 'rocker'},
+     "the output 'rocker' is a rocker: its speed is an angular speed (rad/s, deg/s)"),
+    ('input.output_slider_speed', {'output': 'ram'},
+     "the output 'ram' is a slider: its speed is a linear speed (m/s)"),
+    ('input.output_no_working_stroke', {},
+     'the working stroke is not defined (no extreme positions): give drive.speed'),
     ('input.cam_swing', {},
      'a rocker swing (`stroke`, deg) must be below 180'),
     ('input.ratio_zero', {},
@@ -986,12 +1018,13 @@ def test_message_is_plain_data():
 
 
 def test_catalogues_are_the_report_languages():
-    """A language is one catalogue file beside the module; the catalogues found are the
-    report's languages."""
+    """A language is one folder of catalogues (tmm_cli/locales/<lang>/, its messages.yaml
+    among them); the folders found are the report's languages."""
+    from tmm_cli import locales
     from tmm_cli.report import i18n
 
-    assert sorted(p.stem for p in Path(messages.__file__).parent.glob("*.yaml")) == sorted(LANGS)
-    assert LANGS == i18n.LANGS
+    assert sorted(p.parent.name for p in locales.DIR.glob("*/messages.yaml")) == sorted(LANGS)
+    assert LANGS == i18n.LANGS == locales.LANGS
 
 
 @pytest.fixture(scope="module")

@@ -61,7 +61,7 @@ def test_uk_drive_is_privid():
     for _name, _ in sections.available():
         pass
     texts = list(i18n.STRINGS["uk"].values()) + list(_texts("uk").values()) + \
-        list(task_section.PARAMS["uk"].values()) + [str(v) for v in feedback.STEPS_UK.values()]
+        list(task_section.PARAMS["uk"].values()) + [t for v in feedback.STEPS["uk"].values() for t in v.values()]
     bad = [t for t in texts if re.search(r"\b[Пп]ривода?\b", t)]
     assert not bad, bad
 

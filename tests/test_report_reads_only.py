@@ -44,6 +44,7 @@ ALLOWED = {
     "tmm_cli.drawings.words": "the drawings' terms and numbers in the report's language",
     "tmm_cli.scales": "the standard series of the scale factors μ",
     "tmm_cli.messages": "the warnings' catalogues: results['messages'] rendered in the report's language",
+    "tmm_cli.locales": "the catalogues: every word of the report in its language (tmm_cli/locales/<lang>/)",
     "tmm_cli.reproducible": "the same files on every run: the figures' SVG ids, the report's date",
     "tmm_cli.schemacache": "the task model's serializer (the task-data table from the task as given)",
     "tmm_cli.numfmt": "numbers written as the report's language writes them (the decimal comma in ru, uk)",

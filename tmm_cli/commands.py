@@ -176,7 +176,7 @@ def sheets(
     format: str = typer.Option("pdf,svg,dxf", "--format", "-f", help="comma-separated: pdf, svg, dxf"),
     lang: str = typer.Option("en", "--lang", "-l", help="sheet language: en | ru | uk"),
 ):
-    """The A1 drawing sheets (frame, ГОСТ 2.104 title block, standard scales) as PDF, SVG and DXF.
+    """The A1 drawing sheets (frame, GOST 2.104 title block, standard scales) as PDF, SVG and DXF.
 
     Sheets: 1 kinematics (mechanism, plans, s-v-a diagrams), 2 kinetostatics (groups, force
     polygons, Zhukovsky's lever of one or two positions), 3 dynamics, 4 cam, 5 gear mesh, 6 planetary gear;

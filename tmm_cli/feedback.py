@@ -7,98 +7,25 @@ import html
 import re
 from pathlib import Path
 
+from . import locales
 from .numfmt import num
 
-# section -> (step en, step ru, depends on en, depends on ru)
-STEPS = {
-    "structure": ("structural analysis (Chebyshev's formula, Assur groups)",
-                  "структурный анализ (формула Чебышева, группы Ассура)", "", ""),
-    "positions": ("positions: the extreme positions of the output link, K and the stroke",
-                  "планы положений: крайние положения выходного звена, K и ход", "the link lengths",
-                  "длины звеньев"),
-    "kinematics": ("velocity and acceleration plans at this position",
-                   "планы скоростей и ускорений в этом положении", "the position plan (angles of the links)",
-                   "план положений (углы звеньев)"),
-    "kinetostatics": ("kinetostatics by Assur groups and the Zhukovsky lever",
-                      "кинетостатика по группам Ассура и рычаг Жуковского",
-                      "the acceleration plan (inertia forces) and the loads at this position",
-                      "план ускорений (силы инерции) и нагрузки в этом положении"),
-    "singular": ("singular positions of the force analysis", "особые положения силового расчёта",
-                 "the positions", "планы положений"),
-    "flywheel": ("the flywheel by the energy-mass method (reduced moments and inertia)",
-                 "маховик по методу энергомасс (приведённые моменты и момент инерции)",
-                 "the velocity analogues of every position (reduced inertia) and the loads",
-                 "аналоги скоростей во всех положениях (приведённый момент инерции) и нагрузки"),
-    "cam": ("cam synthesis: the base radius from the allowed pressure angle",
-            "синтез кулачка: минимальный радиус по допустимому углу давления",
-            "the follower motion law (analogues of velocity and acceleration)",
-            "закон движения толкателя (аналоги скорости и ускорения)"),
-    "gears": ("involute gear geometry: α_w from inv α_w, then the radii and thicknesses",
-              "геометрия эвольвентного зацепления: α_w по inv α_w, затем радиусы и толщины",
-              "the module, the teeth and the shift coefficients", "модуль, числа зубьев и коэффициенты смещения"),
-    "planetary": ("tooth numbers of the planetary gear (Willis, coaxiality, assembly, adjacency)",
-                  "подбор чисел зубьев планетарной передачи (Виллис, соосность, сборка, соседство)",
-                  "the required ratio", "заданное передаточное отношение"),
-    "drive_train": ("the ratio and speeds of the compound gear drive", "передаточное отношение и скорости привода",
-                    "the stages of the drive", "ступени привода"),
-    "synthesis": ("lever mechanism synthesis from K and the stroke", "синтез рычажного механизма по K и ходу",
-                  "the given K and stroke", "заданные K и ход"),
-    "dof2": ("the machine with two degrees of freedom (Lagrange's equations)",
-             "машина с двумя степенями подвижности (уравнения Лагранжа)", "the initial state", "начальное состояние"),
-}
-
-TEXT = {
-    "en": {"title": "Feedback", "student": "Student", "group": "Group", "variant": "Variant", "task": "Task",
-           "quantity": "quantity", "value": "your value", "reference": "reference", "error": "error",
-           "verdict": "verdict", "step": "where to look", "score": "Score", "depends": "depends on",
-           "ok": "correct", "outside": "outside tolerance", "sign": "sign error", "missing": "missing",
-           "unknown_path": "unknown quantity", "not_computed": "not computed"},
-    "ru": {"title": "Разбор ответов", "student": "Студент", "group": "Группа", "variant": "Вариант",
-           "task": "Задание", "quantity": "величина", "value": "ваш ответ", "reference": "эталон",
-           "error": "ошибка", "verdict": "оценка", "step": "что проверить", "score": "Балл",
-           "depends": "зависит от", "ok": "верно", "outside": "вне допуска", "sign": "ошибка знака",
-           "missing": "нет ответа", "unknown_path": "неизвестная величина", "not_computed": "не вычислено"},
-    "uk": {"title": "Розбір відповідей", "student": "Студент", "group": "Група", "variant": "Варіант",
-           "task": "Завдання", "quantity": "величина", "value": "ваша відповідь", "reference": "еталон",
-           "error": "похибка", "verdict": "оцінка", "step": "що перевірити", "score": "Бал",
-           "depends": "залежить від", "ok": "правильно", "outside": "поза допуском", "sign": "помилка знака",
-           "missing": "немає відповіді", "unknown_path": "невідома величина", "not_computed": "не обчислено"},
-}
-
-# section -> (step uk, depends on uk)
-STEPS_UK = {
-    "structure": ("структурний аналіз (формула Чебишова, групи Ассура)", ""),
-    "positions": ("плани положень: крайні положення вихідної ланки, K і хід", "довжини ланок"),
-    "kinematics": ("плани швидкостей і прискорень у цьому положенні", "план положень (кути ланок)"),
-    "kinetostatics": ("кінетостатика за групами Ассура і важіль Жуковського",
-                      "план прискорень (сили інерції) і навантаження в цьому положенні"),
-    "singular": ("особливі положення силового розрахунку", "плани положень"),
-    "flywheel": ("маховик за методом енергомас (зведені моменти й момент інерції)",
-                 "аналоги швидкостей у всіх положеннях (зведений момент інерції) і навантаження"),
-    "cam": ("синтез кулачка: мінімальний радіус за допустимим кутом тиску",
-            "закон руху штовхача (аналоги швидкості й прискорення)"),
-    "gears": ("геометрія евольвентного зачеплення: α_w за inv α_w, потім радіуси й товщини",
-              "модуль, числа зубів і коефіцієнти зміщення"),
-    "planetary": ("добір чисел зубів планетарної передачі (Вілліс, співвісність, складання, сусідство)",
-                  "задане передатне відношення"),
-    "drive_train": ("передатне відношення і швидкості приводу", "ступені приводу"),
-    "synthesis": ("синтез важільного механізму за K і ходом", "задані K і хід"),
-    "dof2": ("машина з двома ступенями рухомості (рівняння Лагранжа)", "початковий стан"),
-}
+# the page's words, and section -> {step, depends}: the course step a quantity comes from and
+# what that step depends on (the catalogues' topic feedback)
+TEXT = locales.table("feedback", "text")
+STEPS = locales.table("feedback", "steps")
 
 
 def step_for(path: str, lang: str) -> str:
     """The course step a quantity comes from, and what that step depends on."""
     sec = re.split(r"[.\[]", path, 1)[0]
-    s = STEPS.get(sec)
+    s = STEPS.get(lang, STEPS["en"]).get(sec) or STEPS["en"].get(sec)
     if not s:
         return ""
-    step, dep = (s[1], s[3]) if lang == "ru" else (s[0], s[2])
-    if lang == "uk" and sec in STEPS_UK:
-        step, dep = STEPS_UK[sec]
+    step, dep = s["step"], s["depends"]
     m = re.match(r"^\w+\[(\d+)\]", path)
     if m and sec in ("kinematics", "kinetostatics"):
-        step += f" ({ {'ru': 'положение', 'uk': 'положення'}.get(lang, 'position')} {m.group(1)})"
+        step += f" ({TEXT.get(lang, TEXT['en'])['position']} {m.group(1)})"
     return step + (f"; {TEXT[lang]['depends']}: {dep}" if dep else "")
 
 
@@ -157,7 +84,7 @@ def _tolerance(r: dict, unit: str, lang: str) -> str:
 
 def feedback_html(task, s: dict, lang: str = "en", key: bool = True) -> str:
     """The page; ``key`` False (`--feedback no-key`): no reference values on it."""
-    from .forms import LOCAL_UNITS, LOCAL_UNITS_UK, NOTATION, notation
+    from .forms import NOTATION, local_unit, notation
     from .messages import catalogue
     lang = lang if lang in TEXT else "en"
     T = {**TEXT[lang], **catalogue(lang)["terms"]["grading"]}
@@ -172,8 +99,7 @@ def feedback_html(task, s: dict, lang: str = "en", key: bool = True) -> str:
         names = re.findall(r"[A-Za-z_][A-Za-z0-9_]*", r["path"])
         unit = NOTATION.get(names[-1] if names else "", ("", ""))[1]
         unit = {"deg": "°", "m or deg": ""}.get(unit, unit)
-        if lang != "en":
-            unit = (LOCAL_UNITS_UK if lang == "uk" else LOCAL_UNITS).get(unit, unit)
+        unit = local_unit(unit, lang)
         err = "–"
         if r["error"] is not None:
             absolute = "abs" in r["tolerance"] or r["note"] == "absolute error" or r.get("reference") == 0

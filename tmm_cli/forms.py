@@ -30,55 +30,54 @@ PRESETS: dict[str, list[str]] = {
     "synthesis": ["synthesis.**"],
 }
 
-# course notation and unit of a result key: (symbol, unit, English, Russian, Ukrainian)
-NOTATION: dict[str, tuple[str, str, str, str, str]] = {
-    "v": ("v", "m/s", "velocity", "скорость", "швидкість"),
-    "a": ("a", "m/s^2", "acceleration", "ускорение", "прискорення"),
-    "omega": ("ω", "rad/s", "angular velocity", "угловая скорость", "кутова швидкість"),
-    "epsilon": ("ε", "rad/s^2", "angular acceleration", "угловое ускорение", "кутове прискорення"),
-    "phi0": ("φ0", "deg", "crank angle of the first extreme position", "угол крайнего положения", "кут крайнього положення"),
-    "working_stroke_angle": ("φ_w", "deg", "working stroke angle", "угол рабочего хода", "кут робочого ходу"),
-    "idle_stroke_angle": ("φ_i", "deg", "idle stroke angle", "угол холостого хода", "кут холостого ходу"),
-    "K": ("K", "", "coefficient of mean speed increase", "коэффициент изменения средней скорости", "коефіцієнт зміни середньої швидкості"),
-    "theta": ("θ", "deg", "angle between the extreme positions", "угол перекрытия", "кут перекриття"),
-    "H": ("H", "m or deg", "stroke of the output link", "ход выходного звена", "хід вихідної ланки"),
-    "balancing_moment": ("M_b", "N*m", "balancing moment", "уравновешивающий момент", "зрівноважувальний момент"),
-    "zhukovsky_moment": ("M_b(Zh)", "N*m", "balancing moment by the Zhukovsky lever",
-                         "уравновешивающий момент по рычагу Жуковского",
-                         "зрівноважувальний момент за важелем Жуковського"),
-    "R": ("R", "N", "reaction", "реакция", "реакція"),
-    "J": ("J_fly", "kg*m^2", "flywheel moment of inertia", "момент инерции маховика", "момент інерції маховика"),
-    "delta": ("δ", "", "coefficient of speed fluctuation", "коэффициент неравномерности", "коефіцієнт нерівномірності ходу"),
-    "omega_max": ("ω_max", "rad/s", "largest crank speed", "наибольшая угловая скорость", "найбільша кутова швидкість"),
-    "omega_min": ("ω_min", "rad/s", "smallest crank speed", "наименьшая угловая скорость", "найменша кутова швидкість"),
-    "M_constant": ("M_c", "N*m", "constant moment", "постоянный момент", "сталий момент"),
-    "diameter": ("D", "m", "flywheel diameter", "диаметр маховика", "діаметр маховика"),
-    "width": ("b", "m", "flywheel width", "ширина маховика", "ширина маховика"),
-    "mass": ("m", "kg", "mass", "масса", "маса"),
-    "r0": ("r0", "m", "base circle radius", "радиус начальной шайбы", "радіус початкової шайби"),
-    "offset": ("e", "m", "offset", "эксцентриситет", "ексцентриситет"),
-    "center_distance": ("a_w", "m", "cam centre distance", "межосевое расстояние кулачка", "міжосьова відстань кулачка"),
-    "max_pressure_angle": ("ϑ_max", "deg", "largest pressure angle", "наибольший угол давления", "найбільший кут тиску"),
-    "rho_min": ("ρ_min", "m", "smallest radius of curvature", "наименьший радиус кривизны", "найменший радіус кривини"),
-    "aw": ("a_w", "m", "centre distance", "межосевое расстояние", "міжосьова відстань"),
-    "alpha_w": ("α_w", "deg", "working pressure angle", "угол зацепления", "кут зачеплення"),
-    "y": ("y", "", "centre distance modification coefficient", "коэффициент воспринимаемого смещения", "коефіцієнт сприйманого зміщення"),
-    "dy": ("Δy", "", "tip reduction coefficient", "коэффициент уравнительного смещения", "коефіцієнт зрівняльного зміщення"),
-    "eps_alpha": ("ε_α", "", "contact ratio", "коэффициент перекрытия", "коефіцієнт перекриття"),
-    "r": ("r", "m", "pitch radius", "радиус делительной окружности", "радіус ділильного кола"),
-    "rb": ("r_b", "m", "base radius", "радиус основной окружности", "радіус основного кола"),
-    "rw": ("r_w", "m", "rolling radius", "радиус начальной окружности", "радіус початкового кола"),
-    "ra": ("r_a", "m", "tip radius", "радиус окружности вершин", "радіус кола вершин"),
-    "rf": ("r_f", "m", "root radius", "радиус окружности впадин", "радіус кола западин"),
-    "s": ("s", "m", "pitch tooth thickness", "толщина зуба по делительной окружности", "товщина зуба по ділильному колу"),
-    "sa": ("s_a", "m", "tip tooth thickness", "толщина зуба по окружности вершин", "товщина зуба по колу вершин"),
-    "ratio": ("i", "", "ratio", "передаточное отношение", "передатне відношення"),
-    "ratio_error": ("Δi", "", "ratio error (fraction)", "погрешность передаточного отношения",
-                    "похибка передатного відношення"),
-    "z1": ("z1", "", "teeth", "число зубьев", "число зубів"),
-    "z2": ("z2", "", "teeth", "число зубьев", "число зубів"),
-    "z3": ("z3", "", "teeth", "число зубьев", "число зубів"),
-    "z4": ("z4", "", "teeth", "число зубьев", "число зубів"),
+# course notation and unit of a result key: (symbol, unit as an answer is written); its name
+# in each language is the catalogues' forms `names`, its unit as a text in the language writes
+# it their forms `units`
+NOTATION: dict[str, tuple[str, str]] = {
+    "v": ("v", "m/s"),
+    "a": ("a", "m/s^2"),
+    "omega": ("ω", "rad/s"),
+    "epsilon": ("ε", "rad/s^2"),
+    "phi0": ("φ0", "deg"),
+    "working_stroke_angle": ("φ_w", "deg"),
+    "idle_stroke_angle": ("φ_i", "deg"),
+    "K": ("K", ""),
+    "theta": ("θ", "deg"),
+    "H": ("H", "m or deg"),
+    "balancing_moment": ("M_b", "N*m"),
+    "zhukovsky_moment": ("M_b(Zh)", "N*m"),
+    "R": ("R", "N"),
+    "J": ("J_fly", "kg*m^2"),
+    "delta": ("δ", ""),
+    "omega_max": ("ω_max", "rad/s"),
+    "omega_min": ("ω_min", "rad/s"),
+    "M_constant": ("M_c", "N*m"),
+    "diameter": ("D", "m"),
+    "width": ("b", "m"),
+    "mass": ("m", "kg"),
+    "r0": ("r0", "m"),
+    "offset": ("e", "m"),
+    "center_distance": ("a_w", "m"),
+    "max_pressure_angle": ("ϑ_max", "deg"),
+    "rho_min": ("ρ_min", "m"),
+    "aw": ("a_w", "m"),
+    "alpha_w": ("α_w", "deg"),
+    "y": ("y", ""),
+    "dy": ("Δy", ""),
+    "eps_alpha": ("ε_α", ""),
+    "r": ("r", "m"),
+    "rb": ("r_b", "m"),
+    "rw": ("r_w", "m"),
+    "ra": ("r_a", "m"),
+    "rf": ("r_f", "m"),
+    "s": ("s", "m"),
+    "sa": ("s_a", "m"),
+    "ratio": ("i", ""),
+    "ratio_error": ("Δi", ""),
+    "z1": ("z1", ""),
+    "z2": ("z2", ""),
+    "z3": ("z3", ""),
+    "z4": ("z4", ""),
 }
 
 # the sign convention of a result key: a word of the catalogues' `sign_convention` table
@@ -98,16 +97,11 @@ def sign_note(path: str, lang: str = "en") -> str:
     return catalogue(lang)["terms"]["sign_convention"][SIGN[key]] if key in SIGN else ""
 
 
-# the units as a Russian or Ukrainian text writes them (the feedback page; a form keeps the units
-# an answer may be written in, which are the English ones)
-LOCAL_UNITS = {"m/s": "м/с", "m/s^2": "м/с²", "rad/s": "рад/с", "rad/s^2": "рад/с²", "deg": "°",
-               "m or deg": "м или °", "N*m": "Н·м", "N": "Н", "kg*m^2": "кг·м²", "m": "м", "kg": "кг"}
-LOCAL_UNITS_UK = {**LOCAL_UNITS, "m or deg": "м або °"}
 
 
 def notation(path: str, lang: str = "en", local_units: bool = False) -> str:
     """'ω, rad/s — angular velocity' for a path, from its last name ('' when unknown);
-    ``local_units``: the unit as a text in ``lang`` writes it ('ω, рад/с — угловая скорость')."""
+    ``local_units``: the unit as a text in ``lang`` writes it (the catalogues' forms `units`)."""
     names = re.findall(r"[A-Za-z_][A-Za-z0-9_]*", path)
     key = names[-1] if names else ""
     if key not in NOTATION and re.fullmatch(r"R\d+", key or ""):
@@ -115,10 +109,21 @@ def notation(path: str, lang: str = "en", local_units: bool = False) -> str:
     n = NOTATION.get(key)
     if not n:
         return ""
-    sym, unit, en, ru, uk = n
-    if local_units and lang != "en":
-        unit = (LOCAL_UNITS_UK if lang == "uk" else LOCAL_UNITS).get(unit, unit)
-    return f"{sym}{', ' + unit if unit else ''} — {dict(en=en, ru=ru, uk=uk)[lang]}"
+    sym, unit = n
+    if local_units:
+        unit = local_unit(unit, lang)
+    return f"{sym}{', ' + unit if unit else ''} — {_text(lang, 'names').get(key) or _text('en', 'names')[key]}"
+
+
+def _text(lang: str, table: str) -> dict:
+    from . import locales
+    return locales.of("forms", table, lang)
+
+
+def local_unit(unit: str, lang: str) -> str:
+    """A unit as an answer is written ('m/s', 'N*m') as a text in ``lang`` writes it (the catalogues'
+    forms `units`: in Russian and Ukrainian the Cyrillic letters and the raised dot, kg·m²)."""
+    return _text(lang, "units").get(unit, unit)
 
 
 def _pattern(p: str) -> re.Pattern:
@@ -222,21 +227,18 @@ def yaml_key(path: str) -> str:
     return json.dumps(path, ensure_ascii=False)
 
 
-FORM_NOTE = {
-    "en": 'values in SI units, angles in degrees; a value may carry its unit, e.g. "12 deg"',
-    "ru": 'значения в единицах СИ, углы в градусах; можно с единицей, например "12 deg"',
-    "uk": 'значення в одиницях СІ, кути в градусах; можна з одиницею, наприклад "12 deg"',
-}
 
 
 def form_text(task, paths: list[str], results: dict | None, lang: str) -> str:
-    """The blank form (results None) or the key (results given) as commented YAML."""
+    """The blank form (results None) or the key (results given) as commented YAML; a comment
+    gives each quantity's symbol and unit as the language writes them (in ru and uk the units in
+    Cyrillic, which the answers reader reads too: tmm_cli/numbers.py) and its name."""
     from .results import lookup
     key = results is not None
-    head = {"en": ("Answer key" if key else "Answer form"), "ru": ("Ключ ответов" if key else "Бланк ответов"),
-            "uk": ("Ключ відповідей" if key else "Бланк відповідей")}[lang]
+    words = _text(lang, "text")
+    head = words["key" if key else "form"]
     lines = [f"# {head}: {task.title or task.name}".rstrip(),
-             "# " + FORM_NOTE[lang],
+             "# " + words["note"],
              f"variant: {json.dumps(task.variant if task.variant is not None else task.name, ensure_ascii=False)}",
              'student: {name: "", group: ""}', "answers:"]
     width = max((len(yaml_key(p)) for p in paths), default=0) + 2
@@ -248,7 +250,7 @@ def form_text(task, paths: list[str], results: dict | None, lang: str) -> str:
                 val = "" if v is None else (repr(float(v)) if isinstance(v, float) else json.dumps(v))
             except KeyError:
                 val = ""
-        note = "; ".join(x for x in (notation(p, lang), sign_note(p, lang)) if x)
+        note = "; ".join(x for x in (notation(p, lang, local_units=True), sign_note(p, lang)) if x)
         entry = f"  {yaml_key(p)}: {val}"
         lines.append(entry.ljust(width + 4 + len(val)) + (f"  # {note}" if note else ""))
     return "\n".join(lines) + "\n"

@@ -20,14 +20,20 @@ import re
 import string
 from typing import Any
 
-# the languages whose typeset numbers use the decimal comma
-COMMA_LANGS = ("ru", "uk")
+
+@functools.cache
+def comma_langs() -> tuple[str, ...]:
+    """The languages whose typeset numbers use the decimal comma (the catalogues' numbers
+    `format.decimal`: ru and uk)."""
+    from . import locales
+    return tuple(lang for lang in locales.LANGS if locales.of("numbers", "format", lang).get("decimal") == ",")
+
 
 _LANG: contextvars.ContextVar[str] = contextvars.ContextVar("tmm_number_language", default="en")
 
 _SUP = str.maketrans("0123456789-+", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺")
 # a formatted number: sign, digits, decimals, exponent (what format() gives for a float)
-# (not a part of a designation or a date: 'КП.07.00.00', '06.12.2026', 'v1.2' stay as they are)
+# (not a part of a designation or a date: 'KP.07.00.00', '06.12.2026', 'v1.2' stay as they are)
 _NUMBER = re.compile(r"(?<!\w)(?<!\w\.)([-+\u2212]?)(\d+)(?:\.(\d*))?(?:[eE]([-+\u2212]?)(\d+))?(?!\w)(?!\.\d)")
 
 
@@ -39,7 +45,7 @@ def current() -> str:
 @contextlib.contextmanager
 def language(lang: str | None):
     """Numbers formatted inside the block are written the way ``lang`` writes them."""
-    token = _LANG.set(lang if lang in COMMA_LANGS else "en")
+    token = _LANG.set(lang if lang in comma_langs() else "en")
     try:
         yield
     finally:
@@ -48,7 +54,7 @@ def language(lang: str | None):
 
 def comma(lang: str | None = None) -> bool:
     """True when numbers in ``lang`` (default: the current one) take the decimal comma."""
-    return (lang if lang is not None else _LANG.get()) in COMMA_LANGS
+    return (lang if lang is not None else _LANG.get()) in comma_langs()
 
 
 def _typeset(m: re.Match) -> str:

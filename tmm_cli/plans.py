@@ -8,7 +8,7 @@ accelerations, link omega/epsilon), the way the course draws them
 (p for velocities, pi for accelerations); for two points of a link the
 relative vector joins the ends; the acceleration of the second point of a link
 is split  a_Q = a_P + a^n_QP + a^t_QP  (a^n = omega^2 l along QP towards P,
-a^t = epsilon x r_QP), and for a slider on a moving guide (кулиса)
+a^t = epsilon x r_QP), and for a slider on a moving guide (a slotted link)
 a_X = a_Y + a^k + a^r with the Coriolis term a^k = 2 omega_guide x v_XY,
 drawn from the point known first (structure order) to the other one.
 """

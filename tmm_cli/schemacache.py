@@ -28,7 +28,7 @@ from types import MethodType
 MODULES = ("tmm_cli", "tmm_cli.errors", "tmm_cli.limits", "tmm_cli.messages", "tmm_cli.modelbase", "tmm_cli.units",
            "tmm_cli.linkage", "tmm_cli.linkage.spec", "tmm_cli.cam", "tmm_cli.cam.spec", "tmm_cli.gears",
            "tmm_cli.gears.spec", "tmm_cli.trainspec", "tmm_cli.dof2", "tmm_cli.dof2.spec", "tmm_cli.differential", "tmm_cli.differential.spec",
-           "tmm_cli.balancing", "tmm_cli.balancing.spec", "tmm_cli.numfmt", "tmm_cli.task")
+           "tmm_cli.balancing", "tmm_cli.balancing.spec", "tmm_cli.numfmt", "tmm_cli.locales", "tmm_cli.task")
 _FORMAT = 1
 
 

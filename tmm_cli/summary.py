@@ -4,6 +4,8 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
+from . import locales
+
 
 def _console():
     from rich.console import Console
@@ -291,20 +293,7 @@ def print_batch(rows: list[dict], out: Path, skipped=(), removed=(), notes=()) -
     con.print(f"wrote {out / 'summary.csv'}, summary.html and check.csv", markup=False)
 
 
-I18N = {
-    "en": {"title": "tmm batch", "student": "student", "group": "group", "variant": "variant", "status": "status",
-           "score": "score", "message": "message", "files": "files", "report": "report", "check": "check",
-           "feedback": "feedback", "rows": "Rows", "legend": "Legend",
-           "ok": "ok", "outside": "outside tolerance", "sign": "sign error", "missing": "missing",
-           "unknown_path": "unknown path", "not_computed": "not computed", "no_answers": "no answers",
-           "invalid": "invalid", "failed": "failed", "computed": "computed"},
-    "ru": {"title": "tmm: сводка по группе", "student": "студент", "group": "группа", "variant": "вариант",
-           "status": "статус", "score": "балл", "message": "сообщение", "files": "файлы", "report": "отчёт",
-           "check": "проверка", "feedback": "разбор", "rows": "Строк", "legend": "Обозначения"},
-    "uk": {"title": "tmm: підсумки групи", "student": "студент", "group": "група", "variant": "варіант",
-           "status": "статус", "score": "бал", "message": "повідомлення", "files": "файли", "report": "звіт",
-           "check": "перевірка", "feedback": "розбір", "rows": "Рядків", "legend": "Позначення"},
-}
+I18N = locales.table("summary", "text")
 COLOURS = {"ok": "#c8e6c9", "outside": "#ffcdd2", "sign": "#e1bee7", "missing": "#fff9c4",
            "unknown_path": "#ffe0b2", "not_computed": "#e0e0e0", "no_answers": "#cfd8dc", "invalid": "#ef9a9a",
            "failed": "#ef9a9a", "computed": "#e3f2fd"}

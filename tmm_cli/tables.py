@@ -208,7 +208,7 @@ def read_table(path: str | Path) -> tuple[list[str], list[tuple[int, dict[str, s
         text = raw.decode("utf-8-sig")
     except UnicodeDecodeError:
         try:
-            text = raw.decode("cp1251")       # a Russian Excel "CSV (разделители - запятые)"
+            text = raw.decode("cp1251")       # a Russian Excel "CSV (comma delimited)"
         except UnicodeDecodeError:
             raise TableError(str(path), None, Message("input.table_not_text")) from None
     first = text.split("\n", 1)[0]

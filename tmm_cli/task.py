@@ -18,6 +18,7 @@ from typing import Annotated, Literal, Union
 from pydantic import (BaseModel, ConfigDict, Field, PrivateAttr, ValidationError,
                       field_validator, model_validator)
 
+from . import locales
 from .errors import TaskError, dotted
 from .messages import Message
 from .cam.spec import CamSection, LawsSpec, LimitsSpec, PhasesSpec
@@ -57,6 +58,10 @@ class StudentSpec(BaseModel):
     group: str | None = None
 
 
+# the course's own examples in the field descriptions (a designation, the title block's words)
+_EXAMPLES = locales.topic("en", "schema")["examples"]
+
+
 class CourseSpec(_Model):
     """The course header of the explanatory note's title page and of the sheets' title blocks."""
     university: str | None = None
@@ -64,7 +69,7 @@ class CourseSpec(_Model):
     supervisor: str | None = None
     city: str | None = None
     year: int | None = Field(None, ge=1900, le=2200)
-    designation: str | None = Field(None, description="the document's designation, e.g. 'ТММ.КП.07.00.00 ПЗ'")
+    designation: str | None = Field(None, description=f"the document's designation, e.g. '{_EXAMPLES['designation']}'")
 
 
 from .balancing.spec import BalancingSection  # noqa: E402
@@ -360,9 +365,9 @@ _DOCS: dict[type, dict[str, str]] = {
     },
     StudentSpec: {"name": "the student's name", "group": "the student's group"},
     CourseSpec: {"university": "the university (title page)", "department": "the department (title page)",
-                 "supervisor": "the supervisor (title page, title block 'Пров.')", "city": "the city (title page)",
+                 "supervisor": f"the supervisor (title page, title block '{_EXAMPLES['checked']}')", "city": "the city (title page)",
                  "year": "the year (title page; default: the year of the run)",
-                 "designation": "the document's designation in the title blocks, e.g. 'ТММ.КП.07.00.00 ПЗ'"},
+                 "designation": f"the document's designation in the title blocks, e.g. '{_EXAMPLES['designation']}'"},
     ToleranceSpec: {"rel": "relative tolerance (fraction of |reference|)", "abs": "absolute tolerance, in the unit of the path",
                     "sign": "any: the magnitude is graded (either sign passes)"},
     LinkSpec: {"mass": "mass, kg", "guide": "slider: the line it translates along (fixed or on a link)"},

@@ -1,4 +1,4 @@
-"""Balancing (уравновешивание): the shaking force and moment of a linkage, counterweights
+"""Balancing (uravnoveshivanie): the shaking force and moment of a linkage, counterweights
 (the full force balancing of a four-bar, Berkof-Lowen; the crank counterweight of a
 slider-crank), and static / dynamic balancing of a rigid rotor.
 

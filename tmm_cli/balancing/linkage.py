@@ -1,5 +1,5 @@
-"""Shaking force and moment of a linkage, and its counterweights (Artobolevsky, «Теория
-механизмов и машин», ch. «Уравновешивание механизмов»; Frolov; Berkof and Lowen, "A new
+"""Shaking force and moment of a linkage, and its counterweights (Artobolevsky, "Teoriya
+mekhanizmov i mashin", ch. "Uravnoveshivanie mekhanizmov"; Frolov; Berkof and Lowen, "A new
 method for completely force balancing simple linkages", 1969; Norton, *Design of Machinery*,
 ch. 12).
 

@@ -1,4 +1,4 @@
-"""Balancing of a rigid rotor (Artobolevsky, «Теория механизмов и машин», ch. on balancing
+"""Balancing of a rigid rotor (Artobolevsky, "Teoriya mekhanizmov i mashin", ch. on balancing
 of rotating masses; Popov and Timofeev).
 
 Each mass m_i at radius r_i, angle theta_i and axial position z_i has the imbalance

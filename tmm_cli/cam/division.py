@@ -33,8 +33,8 @@ def division_table(motion: Motion, divisions: int, rocker: bool, pressure_angle=
 
     References
     ----------
-    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
-    проектирование по ТММ*; Frolov (ed.), *Теория механизмов и машин*: the table of the
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Kursovoe
+    proektirovanie po TMM*; Frolov (ed.), *Teoriya mekhanizmov i mashin*: the table of the
     follower's displacement at the divisions of the phases, the basis of the graphical
     construction of the profile; docs/methods.md §5.
     """

@@ -1,4 +1,4 @@
-"""Flat-faced translating follower (тарельчатый толкатель): size, face width, profile.
+"""Flat-faced translating follower (tarel'chatyi tolkatel'): size, face width, profile.
 
 The face is perpendicular to the follower's motion, so the pressure angle is zero and the
 cam's size is limited by the convexity of the profile alone (Artobolevsky; Popov &
@@ -93,8 +93,8 @@ def convexity_margin(motion: Motion) -> tuple[float, float]:
 
     References
     ----------
-    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
-    проектирование по ТММ*; Frolov (ed.), *Теория механизмов и машин*: the convexity
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Kursovoe
+    proektirovanie po TMM*; Frolov (ed.), *Teoriya mekhanizmov i mashin*: the convexity
     condition r0 + s + d2s/dphi2 >= rho_min of a cam with a flat-faced follower;
     docs/methods.md §5.
     """
@@ -118,8 +118,8 @@ def face_widths(motion: Motion) -> tuple[float, float]:
 
     References
     ----------
-    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
-    проектирование по ТММ*; Frolov (ed.), *Теория механизмов и машин*: the contact point's
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Kursovoe
+    proektirovanie po TMM*; Frolov (ed.), *Teoriya mekhanizmov i mashin*: the contact point's
     distance ds/dphi from the follower's axis; docs/methods.md §5.
     """
     hi, _ = cycle_max(motion, lambda s, s1, s2: s1)
@@ -149,8 +149,8 @@ def profile(motion: Motion, r0: float, sigma: int, phi_rad) -> np.ndarray:
 
     References
     ----------
-    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
-    проектирование по ТММ*; Frolov (ed.), *Теория механизмов и машин*: the profile of a
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Kursovoe
+    proektirovanie po TMM*; Frolov (ed.), *Teoriya mekhanizmov i mashin*: the profile of a
     flat-faced follower's cam as the envelope of the face's positions in inverted motion;
     docs/methods.md §5.
     """

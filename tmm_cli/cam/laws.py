@@ -168,8 +168,8 @@ def get_law(name: str) -> Law:
 
     References
     ----------
-    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
-    проектирование по ТММ*; Frolov (ed.), *Теория механизмов и машин*: the motion laws of
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Kursovoe
+    proektirovanie po TMM*; Frolov (ed.), *Teoriya mekhanizmov i mashin*: the motion laws of
     the follower and their coefficients; docs/methods.md §5.
     """
     try:

@@ -76,8 +76,8 @@ def rows(motion: Motion, geom: Geometry, k, side, tan, x):
 
     References
     ----------
-    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
-    проектирование по ТММ*; Frolov (ed.), *Теория механизмов и машин*: the tangents to the
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Kursovoe
+    proektirovanie po TMM*; Frolov (ed.), *Teoriya mekhanizmov i mashin*: the tangents to the
     s - ds/dphi diagram at the allowed pressure angle bounding the region of the cam
     centres; docs/methods.md §5.
     """
@@ -264,8 +264,8 @@ def nearest(motion: Motion, geom: Geometry, families: list[Family], P0=(0.0, 0.0
 
     References
     ----------
-    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
-    проектирование по ТММ*; Frolov (ed.), *Теория механизмов и машин*: the smallest cam: the
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Kursovoe
+    proektirovanie po TMM*; Frolov (ed.), *Teoriya mekhanizmov i mashin*: the smallest cam: the
     cam centre in the admissible region nearest to B0; docs/methods.md §5.
     """
     P0 = np.asarray(P0, dtype=float)
@@ -330,8 +330,8 @@ def highest_on_vertical(motion: Motion, geom: Geometry, families: list[Family], 
 
     References
     ----------
-    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
-    проектирование по ТММ*; Frolov (ed.), *Теория механизмов и машин*: the least base radius
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Kursovoe
+    proektirovanie po TMM*; Frolov (ed.), *Teoriya mekhanizmov i mashin*: the least base radius
     with a given offset; docs/methods.md §5.
     """
     prob = _Problem(motion, geom, families)
@@ -371,8 +371,8 @@ def max_angle(motion: Motion, geom: Geometry, phase: int, O) -> tuple[float, flo
 
     References
     ----------
-    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
-    проектирование по ТММ*; Frolov (ed.), *Теория механизмов и машин*: the pressure angle
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Kursovoe
+    proektirovanie po TMM*; Frolov (ed.), *Teoriya mekhanizmov i mashin*: the pressure angle
     tan(theta) = |ds/dphi -+ e| / (s0 + s); docs/methods.md §5.
     """
     O = np.asarray(O, dtype=float)

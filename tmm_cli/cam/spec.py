@@ -16,38 +16,35 @@ from ..units import Angle, AngularSpeed, Length, Number
 def check_section(sec, given: set) -> None:
     """Rules of the task's ``cam`` section for the followers and a chosen size (a ValueError
     naming the field, :class:`tmm_cli.modelbase.FieldValueError`)."""
-    def err(field, text):
-        return FieldValueError((field,), text)
+    def err(field, message):
+        return FieldValueError((field,), message)
 
     f = sec.follower
-    names = {"flat": "a flat-faced", "knife": "a knife-edge"}
-    if f in names and "roller" in given:
-        raise err("roller", f"`roller` is not allowed with {names[f]} follower (it has no roller)")
+    if f in ("flat", "knife") and "roller" in given:
+        raise err("roller", Message("input.cam_roller_flat_knife", follower=f))
     if f == "flat" and sec.offset != 0.0:
-        raise err("offset", "`offset` does not change the cam of a flat-faced follower: leave it out")
+        raise err("offset", Message("input.cam_offset_flat"))
     if f != "flat" and "rho_min_allowed" in given:
-        raise err("rho_min_allowed", "`rho_min_allowed` is for a flat-faced follower (`follower: flat`)")
+        raise err("rho_min_allowed", Message("input.cam_rho_min_flat"))
     chosen = sec.r0 != "auto"
     if chosen and not sec.r0 > 0:
-        raise err("r0", "the chosen base radius `r0` must be positive")
+        raise err("r0", Message("input.cam_r0_positive"))
     if sec.center_distance is not None and not (f == "rocker" and chosen):
-        raise err("center_distance", "`center_distance` is for a rocker follower with a chosen `r0`")
+        raise err("center_distance", Message("input.cam_center_distance_rocker"))
     if not chosen:
         return
     if f in ("translating", "knife"):
         if sec.offset == "auto":
-            raise err("offset", "with a chosen `r0` give the offset (a number, 0 for a central follower), not auto")
+            raise err("offset", Message("input.cam_offset_auto_chosen"))
         if sec.r0 < abs(sec.offset):
-            raise err("r0", f"the chosen base radius r0 = {sec.r0:g} m is smaller than |offset| = "
-                            f"{abs(sec.offset):g} m")
+            raise err("r0", Message("input.cam_r0_below_offset", r0=sec.r0, offset=abs(sec.offset)))
     elif f == "rocker":
         a, l = sec.center_distance, sec.rocker_length
         if a is None:
-            raise err("r0", "a rocker with a chosen `r0` needs `center_distance` (cam centre to rocker pivot)")
+            raise err("r0", Message("input.cam_rocker_needs_center_distance"))
         if not abs(a - l) <= sec.r0 <= a + l:
-            raise err("r0", f"no cam centre is {sec.r0:g} m from the follower's lowest position and "
-                            f"{a:g} m from the pivot of a {l:g} m rocker: r0 must lie between "
-                            f"|center_distance - rocker_length| = {abs(a - l):g} and {a + l:g} m")
+            raise err("r0", Message("input.cam_r0_rocker_range", r0=sec.r0, a=a, l=l, low=abs(a - l),
+                                    high=a + l))
 
 
 # ---------------------------------------------------------------- cam

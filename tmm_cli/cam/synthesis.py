@@ -354,8 +354,8 @@ def synthesize(spec: CamSection) -> CamResult:
 
     References
     ----------
-    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
-    проектирование по ТММ*; Frolov (ed.), *Теория механизмов и машин*: the least size of a
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Kursovoe
+    proektirovanie po TMM*; Frolov (ed.), *Teoriya mekhanizmov i mashin*: the least size of a
     cam from the allowed pressure angle, the profile by inverted motion; docs/methods.md §5.
     """
     follower, rotation = spec.follower, spec.rotation

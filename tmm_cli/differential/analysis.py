@@ -1,5 +1,5 @@
-"""Differential analysis (Popov & Timofeev, «Курсовое проектирование по ТММ», ch. on
-planetary gears; Artobolevsky, «Теория механизмов и машин», §§ on differentials).
+"""Differential analysis (Popov & Timofeev, "Kursovoe proektirovanie po TMM", ch. on
+planetary gears; Artobolevsky, "Teoriya mekhanizmov i mashin", §§ on differentials).
 
 A planetary scheme A-D whose members "1", last ("3" in A, "4" in B-D) and "H" all turn.
 With the carrier held the train is an ordinary one of ratio

@@ -168,7 +168,7 @@ def centrifugal_pendulum(p: Params, omega1: float) -> dict | None:
 
     References
     ----------
-    Frolov (ed.), *Теория механизмов и машин*: the centrifugal pendulum; docs/methods.md §7.
+    Frolov (ed.), *Teoriya mekhanizmov i mashin*: the centrifugal pendulum; docs/methods.md §7.
     """
     if p.g != 0 or p.b == 0 or omega1 == 0:
         return None
@@ -210,8 +210,8 @@ def analyze(section: Dof2Section) -> Dof2Result:
 
     References
     ----------
-    Artobolevsky, *Theory of Mechanisms and Machines*; Frolov (ed.), *Теория механизмов и
-    машин*: Lagrange's equations of the second kind for a machine with two degrees of freedom;
+    Artobolevsky, *Theory of Mechanisms and Machines*; Frolov (ed.), *Teoriya mekhanizmov i
+    mashin*: Lagrange's equations of the second kind for a machine with two degrees of freedom;
     V. V. Voronkin, the rotary impact mechanism (the derivation re-done in the module's
     docstring); docs/methods.md §7.
     """

@@ -108,8 +108,8 @@ def mass_matrix(p: Params, psi):
 
     References
     ----------
-    Artobolevsky, *Theory of Mechanisms and Machines*; Frolov (ed.), *Теория механизмов и
-    машин*: Lagrange's equations of the second kind for a machine with two degrees of freedom;
+    Artobolevsky, *Theory of Mechanisms and Machines*; Frolov (ed.), *Teoriya mekhanizmov i
+    mashin*: Lagrange's equations of the second kind for a machine with two degrees of freedom;
     V. V. Voronkin, the rotary impact mechanism (the derivation re-done in the module's
     docstring); docs/methods.md §7.
     """
@@ -136,8 +136,8 @@ def velocity_terms(p: Params, psi, w, pd):
 
     References
     ----------
-    Artobolevsky, *Theory of Mechanisms and Machines*; Frolov (ed.), *Теория механизмов и
-    машин*: Lagrange's equations of the second kind for a machine with two degrees of freedom;
+    Artobolevsky, *Theory of Mechanisms and Machines*; Frolov (ed.), *Teoriya mekhanizmov i
+    mashin*: Lagrange's equations of the second kind for a machine with two degrees of freedom;
     V. V. Voronkin, the rotary impact mechanism (the derivation re-done in the module's
     docstring); docs/methods.md §7.
     """
@@ -162,8 +162,8 @@ def gravity_forces(p: Params, phi, psi):
 
     References
     ----------
-    Artobolevsky, *Theory of Mechanisms and Machines*; Frolov (ed.), *Теория механизмов и
-    машин*: Lagrange's equations of the second kind for a machine with two degrees of freedom;
+    Artobolevsky, *Theory of Mechanisms and Machines*; Frolov (ed.), *Teoriya mekhanizmov i
+    mashin*: Lagrange's equations of the second kind for a machine with two degrees of freedom;
     V. V. Voronkin, the rotary impact mechanism (the derivation re-done in the module's
     docstring); docs/methods.md §7.
     """
@@ -194,8 +194,8 @@ def accelerations(p: Params, phi, psi, w, pd, moment):
 
     References
     ----------
-    Artobolevsky, *Theory of Mechanisms and Machines*; Frolov (ed.), *Теория механизмов и
-    машин*: Lagrange's equations of the second kind for a machine with two degrees of freedom;
+    Artobolevsky, *Theory of Mechanisms and Machines*; Frolov (ed.), *Teoriya mekhanizmov i
+    mashin*: Lagrange's equations of the second kind for a machine with two degrees of freedom;
     V. V. Voronkin, the rotary impact mechanism (the derivation re-done in the module's
     docstring); docs/methods.md §7.
     """
@@ -228,8 +228,8 @@ def held_speed(p: Params, phi, psi, w, pd):
 
     References
     ----------
-    Artobolevsky, *Theory of Mechanisms and Machines*; Frolov (ed.), *Теория механизмов и
-    машин*: Lagrange's equations of the second kind for a machine with two degrees of freedom;
+    Artobolevsky, *Theory of Mechanisms and Machines*; Frolov (ed.), *Teoriya mekhanizmov i
+    mashin*: Lagrange's equations of the second kind for a machine with two degrees of freedom;
     V. V. Voronkin, the rotary impact mechanism (the derivation re-done in the module's
     docstring); docs/methods.md §7.
     """

@@ -39,11 +39,13 @@ def label_parts(name: str, lang: str = "en") -> tuple[str, str]:
 def _label_parts(name: str, lang: str = "en") -> tuple[str, str]:
     """A load/reaction name of the results -> (symbol, subscript) as the course
     writes it: 'R12' -> ('R', '12'); 'G2' -> ('G', '2'); 'Fi2' -> ('Φ', '2');
-    'Mi2' -> ('M', 'Φ2'); 'Ff03' -> ('F', 'тр03' | 'f03'); 'F1' -> ('F', '1')."""
+    'Mi2' -> ('M', 'Φ2'); 'Ff03' -> ('F', 'f03'), in ru and uk the subscript of friction of the
+    words `kst.friction_sub`; 'F1' -> ('F', '1')."""
     if "\u0000" in name:                 # already split: 'M\0b' -> ('M', 'b')
         a, b = name.split("\u0000", 1)
         return a, b
-    fr = "тр" if lang in ("ru", "uk") else "f"
+    from .. import locales
+    fr = locales.of("kinetostatics", "words", lang).get("kst.friction_sub", "f")
     m = re.fullmatch(r"(Fi|Mi|Ff|Mf|[A-Za-z])(\d+)", name)
     if not m:
         return name, ""
@@ -216,7 +218,7 @@ def group_panel(words, cv, box, kin_e, links, names, forces, couples, title, nor
     def scale(pts):
         lo, hi = pts.min(axis=0), pts.max(axis=0)
         span = np.maximum(hi - lo, 0.02)     # a group all in one point (a block on a block): at 20 mm
-        # a ГОСТ 2.302 length scale (1:1, 1:2, 1:2.5, 1:4, 1:5, 1:10, ...), stated as μl in m/mm
+        # a GOST 2.302 length scale (1:1, 1:2, 1:2.5, 1:4, 1:5, 1:10, ...), stated as μl in m/mm
         return figures.drawing_scale(1000.0 * max(span[0] / (w - 2 * m), span[1] / (h - TITLE_H - 2 * m),
                                                   1e-9))[0] / 1000.0, lo, hi
     bases = {k: _base(xy, far, k, names, links, kin_e, pts_names) for k in np.nonzero(far)[0].tolist()}
@@ -308,7 +310,7 @@ def group_panel(words, cv, box, kin_e, links, names, forces, couples, title, nor
         if true is None:
             cv.line(near, q, "#000", 0.6, z=2)
         else:
-            # drawn shorter than it is: a break on it (ГОСТ 2.303), its true length beside
+            # drawn shorter than it is: a break on it (GOST 2.303), its true length beside
             d = (q - near) / float(np.hypot(*(q - near)))
             n_ = np.array([-d[1], d[0]])
             mid = (near + q) / 2

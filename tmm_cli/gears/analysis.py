@@ -152,7 +152,7 @@ def analyze(spec: GearsSection) -> GearResult:
     References
     ----------
     GOST 16532-70 (the geometry of the pair), GOST 13755-81 (the rack); Popov & Timofeev,
-    *Курсовое проектирование по ТММ*, and Frolov (ed.), *Теория механизмов и машин*: the
+    *Kursovoe proektirovanie po TMM*, and Frolov (ed.), *Teoriya mekhanizmov i mashin*: the
     pair with profile shift, the checks and the specific sliding; Bolotovsky: the blocking
     contour; docs/methods.md §6.
     """

@@ -1,7 +1,7 @@
 """Geometry of an external spur involute pair cut by a rack (GOST 16532-70, rack GOST 13755-81).
 
 All formulas are the standard ones of GOST 16532-70 as given in Popov & Timofeev,
-"Курсовое проектирование по ТММ" (2002) and Frolov (ed.), "Теория механизмов и машин"
+"Kursovoe proektirovanie po TMM" (2002) and Frolov (ed.), "Teoriya mekhanizmov i mashin"
 (ch. on involute gearing); symbols as there (m module, z teeth, x shift coefficients,
 alpha profile angle of the rack, ha* addendum, c* clearance coefficients):
 
@@ -89,8 +89,8 @@ def z_min_course(alpha_rad: float, ha: float) -> int:
 
     References
     ----------
-    GOST 16532-70; Popov & Timofeev, *Курсовое проектирование по ТММ*; Frolov (ed.), *Теория
-    механизмов и машин*: the least tooth number without undercut; docs/methods.md §6.
+    GOST 16532-70; Popov & Timofeev, *Kursovoe proektirovanie po TMM*; Frolov (ed.), *Teoriya
+    mekhanizmov i mashin*: the least tooth number without undercut; docs/methods.md §6.
     """
     return int(round(2.0 * ha / math.sin(alpha_rad) ** 2))
 
@@ -114,8 +114,8 @@ def x_min_course(z, alpha_rad: float, ha: float):
 
     References
     ----------
-    GOST 16532-70; Popov & Timofeev, *Курсовое проектирование по ТММ*; Frolov (ed.), *Теория
-    механизмов и машин*: the least shift without undercut; docs/methods.md §6.
+    GOST 16532-70; Popov & Timofeev, *Kursovoe proektirovanie po TMM*; Frolov (ed.), *Teoriya
+    mekhanizmov i mashin*: the least shift without undercut; docs/methods.md §6.
     """
     zm = z_min_course(alpha_rad, ha)
     return ha * (zm - np.asarray(z, dtype=float)) / zm
@@ -152,8 +152,8 @@ def pair(m, z1, z2, x1, x2, alpha_deg=20.0, ha=1.0, c=0.25, rho_f=None):
 
     References
     ----------
-    GOST 16532-70; Popov & Timofeev, *Курсовое проектирование по ТММ*; Frolov (ed.), *Теория
-    механизмов и машин*: the geometry of the pair: inv alpha_w = inv alpha + 2 (x1 + x2) tan
+    GOST 16532-70; Popov & Timofeev, *Kursovoe proektirovanie po TMM*; Frolov (ed.), *Teoriya
+    mekhanizmov i mashin*: the geometry of the pair: inv alpha_w = inv alpha + 2 (x1 + x2) tan
     alpha / (z1 + z2) and the rest; docs/methods.md §6.
     """
     al = math.radians(alpha_deg)
@@ -247,8 +247,8 @@ def sliding(x, g, z1, z2):
 
     References
     ----------
-    GOST 16532-70; Popov & Timofeev, *Курсовое проектирование по ТММ*; Frolov (ed.), *Теория
-    механизмов и машин*: the specific sliding; docs/methods.md §6.
+    GOST 16532-70; Popov & Timofeev, *Kursovoe proektirovanie po TMM*; Frolov (ed.), *Teoriya
+    mekhanizmov i mashin*: the specific sliding; docs/methods.md §6.
     """
     x = np.asarray(x, float)
     u21 = z1 / z2
@@ -286,8 +286,8 @@ def checks(geo, m, sa_min=DEFAULT_SA_MIN, rho_l_true=None, x=(0.0, 0.0)):
 
     References
     ----------
-    GOST 16532-70; Popov & Timofeev, *Курсовое проектирование по ТММ*; Frolov (ed.), *Теория
-    механизмов и машин*: the quality checks of a gear pair: undercut, tip sharpening,
+    GOST 16532-70; Popov & Timofeev, *Kursovoe proektirovanie po TMM*; Frolov (ed.), *Teoriya
+    mekhanizmov i mashin*: the quality checks of a gear pair: undercut, tip sharpening,
     interference, the contact ratio; docs/methods.md §6.
     """
     x1, x2 = (np.asarray(v, float) for v in x)

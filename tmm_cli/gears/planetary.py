@@ -26,8 +26,8 @@ holding the satellite axle ``o``)::
       ==[1]==                 ==[1]==              ==[1]==  ##[4]##          (1 and 4 rings)
   ----axis----           ----axis----          ----axis---------     ----axis----------
 
-Conditions for every candidate (Popov & Timofeev, "Курсовое проектирование по ТММ",
-ch. «Синтез планетарных механизмов»):
+Conditions for every candidate (Popov & Timofeev, "Kursovoe proektirovanie po TMM",
+ch. "Sintez planetarnykh mekhanizmov"):
   * ratio:       |i - i_req| <= tolerance |i_req|;
   * coaxiality:  equal centre distances of the two meshes (equations above);
   * assembly with k equally spaced satellites: (i_1H z1 / k)(1 + k p) is an integer for
@@ -144,7 +144,7 @@ def ratio_exact(scheme: str, z: dict) -> Fraction:
 
     References
     ----------
-    Popov & Timofeev, *Курсовое проектирование по ТММ*: Willis' formula for the schemes A-D;
+    Popov & Timofeev, *Kursovoe proektirovanie po TMM*: Willis' formula for the schemes A-D;
     docs/methods.md §6.
     """
     if scheme == "A":
@@ -172,7 +172,7 @@ def centre_distances(scheme: str, z: dict) -> tuple[float, float]:
 
     References
     ----------
-    Popov & Timofeev, *Курсовое проектирование по ТММ*: the coaxiality condition;
+    Popov & Timofeev, *Kursovoe proektirovanie po TMM*: the coaxiality condition;
     docs/methods.md §6.
     """
     if scheme == "A":
@@ -223,7 +223,7 @@ def assembly_p(scheme: str, z: dict, k: int, pmax: int | None = None):
 
     References
     ----------
-    Popov & Timofeev, *Курсовое проектирование по ТММ*: the assembly condition of equally
+    Popov & Timofeev, *Kursovoe proektirovanie po TMM*: the assembly condition of equally
     spaced satellites; docs/methods.md §6.
     """
     q = ratio_exact(scheme, z) * z["z1"] / k
@@ -257,7 +257,7 @@ def undercut_ok(scheme: str, z: dict, z_min: "int | Limits" = Z_EXT) -> list[str
 
     References
     ----------
-    Popov & Timofeev, *Курсовое проектирование по ТММ*: the least tooth numbers of external
+    Popov & Timofeev, *Kursovoe proektirovanie po TMM*: the least tooth numbers of external
     and internal wheels without undercut and interference; docs/methods.md §6.
     """
     lim = _limits(z_min)
@@ -298,7 +298,7 @@ def adjacency_margin(scheme: str, z: dict, k: int) -> float:
 
     References
     ----------
-    Popov & Timofeev, *Курсовое проектирование по ТММ*: the adjacency (neighbourhood)
+    Popov & Timofeev, *Kursovoe proektirovanie po TMM*: the adjacency (neighbourhood)
     condition; docs/methods.md §6.
     """
     aw = centre_distances(scheme, z)[0]
@@ -380,7 +380,7 @@ def verify(scheme: str, z: dict, k: int, required: float, tolerance: float,
 
     References
     ----------
-    Popov & Timofeev, *Курсовое проектирование по ТММ*: the conditions of the synthesis of a
+    Popov & Timofeev, *Kursovoe proektirovanie po TMM*: the conditions of the synthesis of a
     planetary gear: the ratio, coaxiality, assembly, adjacency, the tooth limits;
     docs/methods.md §6.
     """
@@ -617,8 +617,8 @@ def velocity_plan(scheme: str, z: dict, m: float, omega1: float = 1.0) -> dict:
 
     References
     ----------
-    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
-    проектирование по ТММ*: the velocity plan of a planetary gear; docs/methods.md §6.
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Kursovoe
+    proektirovanie po TMM*: the velocity plan of a planetary gear; docs/methods.md §6.
     """
     r = {k: m * v / 2 for k, v in z.items()}
     a = centre_distances(scheme, z)[0] * m
@@ -720,7 +720,7 @@ def tooth_limits(external: int, internal: int, satellite_in_internal: int | None
 
     References
     ----------
-    Popov & Timofeev, *Курсовое проектирование по ТММ*: the limits of the tooth numbers of a
+    Popov & Timofeev, *Kursovoe proektirovanie po TMM*: the limits of the tooth numbers of a
     planetary gear (no undercut, no interference in an internal mesh).
     """
     external = int(external)
@@ -787,7 +787,7 @@ def search(scheme: str, req: float, tol: float, k: int, limits: Limits, z_max: i
 
     References
     ----------
-    Popov & Timofeev, *Курсовое проектирование по ТММ*: the synthesis of a planetary gear by
+    Popov & Timofeev, *Kursovoe proektirovanie po TMM*: the synthesis of a planetary gear by
     its conditions; docs/methods.md §6.
     """
     arr, best = _candidates(scheme, req, tol, k, limits, int(z_max), rank, top=max(keep, 1), best=True)
@@ -855,7 +855,7 @@ def synthesize_planetary(spec: PlanetarySection) -> PlanetaryResult:
 
     References
     ----------
-    Popov & Timofeev, *Курсовое проектирование по ТММ*: the schemes A-D, Willis' formula,
+    Popov & Timofeev, *Kursovoe proektirovanie po TMM*: the schemes A-D, Willis' formula,
     the conditions of coaxiality, assembly and adjacency; Artobolevsky, *Theory of
     Mechanisms and Machines*: the velocity plan; docs/methods.md §6.
     """

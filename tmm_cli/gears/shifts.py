@@ -1,6 +1,6 @@
 """Choice of the shift coefficients (``x: auto``) and the blocking contour.
 
-Blocking contour (Bolotovsky's «блокирующий контур»): the region of the (x1, x2) plane
+Blocking contour (Bolotovsky's "blokiruyushchii kontur"): the region of the (x1, x2) plane
 where every quality check holds.  It is computed on a grid with the closed forms of
 :mod:`geometry` and its boundary lines are the zero levels of
 
@@ -63,7 +63,7 @@ def max_sliding(geo, z1, z2):
 
     References
     ----------
-    Popov & Timofeev, *Курсовое проектирование по ТММ*: the specific sliding at the ends of
+    Popov & Timofeev, *Kursovoe proektirovanie po TMM*: the specific sliding at the ends of
     the active line of action; docs/methods.md §6.
     """
     l1, _ = sliding(geo["N1B1"], geo["N1N2"], z1, z2)
@@ -104,8 +104,8 @@ def blocking_contour(m, z1, z2, alpha=20.0, ha=1.0, c=0.25, sa_min=0.25, rho_f=N
 
     References
     ----------
-    Bolotovsky, the blocking contours of involute gears; Popov & Timofeev, *Курсовое
-    проектирование по ТММ*: the choice of the shifts; docs/methods.md §6.
+    Bolotovsky, the blocking contours of involute gears; Popov & Timofeev, *Kursovoe
+    proektirovanie po TMM*: the choice of the shifts; docs/methods.md §6.
     """
     geo0 = pair(m, z1, z2, 0.0, 0.0, alpha, ha, c, rho_f)
     lo1 = max(min(float(geo0["x_min1"]), 0.0), -1.0) - 0.3
@@ -185,7 +185,7 @@ def rule_point(rule, m, z1, z2, alpha=20.0, ha=1.0, c=0.25, rho_f=None):
 
     References
     ----------
-    Popov & Timofeev, *Курсовое проектирование по ТММ*: the rules of choosing the shifts (no
+    Popov & Timofeev, *Kursovoe proektirovanie po TMM*: the rules of choosing the shifts (no
     undercut; equal specific slidings lambda1(B1) = lambda2(B2); the table);
     docs/methods.md §6.
     """

@@ -55,8 +55,8 @@ def stage_ratio(kind: str, z: list[int], internal: bool = False) -> float:
 
     References
     ----------
-    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
-    проектирование по ТММ*: the ratio of a gear pair and Willis' formula; docs/methods.md §6.
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Kursovoe
+    proektirovanie po TMM*: the ratio of a gear pair and Willis' formula; docs/methods.md §6.
     """
     return float(_exact(kind, z, internal))
 
@@ -136,7 +136,7 @@ def planetary_checks(kind: str, z, k: int, limits: pl.Limits, z_max: int) -> dic
 
     References
     ----------
-    Popov & Timofeev, *Курсовое проектирование по ТММ*: the conditions of coaxiality,
+    Popov & Timofeev, *Kursovoe proektirovanie po TMM*: the conditions of coaxiality,
     assembly and adjacency; docs/methods.md §6.
     """
     zd = _zdict(kind, z)
@@ -264,8 +264,8 @@ def analyze(spec: DriveTrainSection, drive=None) -> TrainResult:
 
     References
     ----------
-    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
-    проектирование по ТММ*: the ratio of a compound train as the product of the stages'
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Kursovoe
+    proektirovanie po TMM*: the ratio of a compound train as the product of the stages'
     ratios, Willis' formula for the planetary stages, the velocity plans; docs/methods.md §6.
     """
     lim = pl.tooth_limits(spec.z_min_external, spec.z_min_internal, spec.z_min_satellite_in_internal,

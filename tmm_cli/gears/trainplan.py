@@ -1,5 +1,5 @@
-"""The velocity picture (картина линейных скоростей) and the angular-velocity plan (план угловых
-скоростей) of a drive train, built graphically as on the sheet (Artobolevsky; Popov & Timofeev).
+"""The velocity picture (kartina lineinykh skorostei) and the angular-velocity plan (plan uglovykh
+skorostei) of a drive train, built graphically as on the sheet (Artobolevsky; Popov & Timofeev).
 
 The wheels are drawn with module m = 1 mm; the axes of the train lie on one vertical line y
 (the scheme of the train unfolded into one plane).  Every link turning about a fixed axis is a
@@ -49,8 +49,8 @@ def velocity_plans(stages: list, shafts: list) -> dict:
 
     References
     ----------
-    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
-    проектирование по ТММ*: the velocity plan (Kutzbach's method) of a gear train.
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Kursovoe
+    proektirovanie po TMM*: the velocity plan (Kutzbach's method) of a gear train.
     """
     links = []          # {name, y0 (m), slope (1/s) read from two points}
     points = []         # {name, y (m), v (m/s)}

@@ -17,6 +17,7 @@ import math
 from dataclasses import dataclass
 
 from ..errors import field_error
+from ..messages import Message
 from .spec import check_output_speed
 
 SOURCES = ("speed", "mean_output_speed", "working_stroke_speed")
@@ -146,18 +147,16 @@ def resolve(section, positions) -> Drive:
     V, kind = check_output_speed(given)
     field = f"drive.{source}"
     if positions.H is None or not positions.H > 0:
-        raise field_error(field, f"the output '{positions.output}' has no stroke (no extreme positions), "
-                                 f"so the crank speed cannot follow from its speed: give drive.speed")
+        raise field_error(field, Message("input.output_no_stroke", output=positions.output))
     rocker = positions.output_kind == "rocker"
     if kind == ("linear" if rocker else "angular"):
-        want = "an angular speed (rad/s, deg/s)" if rocker else "a linear speed (m/s)"
-        raise field_error(field, f"the output '{positions.output}' is a {'rocker' if rocker else 'slider'}: "
-                                 f"its speed is {want}")
+        raise field_error(field, Message("input.output_rocker_speed" if rocker else "input.output_slider_speed",
+                                         output=positions.output))
     H = math.radians(positions.H) if rocker else float(positions.H)
     if source == "mean_output_speed":
         w = omega_from_mean(V, H)
     else:
         if positions.K is None:
-            raise field_error(field, "the working stroke is not defined (no extreme positions): give drive.speed")
+            raise field_error(field, Message("input.output_no_working_stroke"))
         w = omega_from_working(V, H, float(positions.K))
     return drive(w, source)

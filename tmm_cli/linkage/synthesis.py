@@ -1,5 +1,5 @@
 """Metric synthesis of lever mechanisms from the coefficient of mean speed increase K
-(Artobolevsky, ch. "Синтез рычажных механизмов"; Popov & Timofeev, the course-project
+(Artobolevsky, ch. "Sintez rychazhnykh mekhanizmov" (synthesis of linkages); Popov & Timofeev, the course-project
 collection).
 
 Pure functions. :func:`design` turns a ``synthesis`` section into the link lengths and
@@ -71,8 +71,8 @@ def theta_of_K(K: float) -> float:
 
     References
     ----------
-    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
-    проектирование по ТММ*: the coefficient of the mean speed K = (180 + theta)/(180 - theta); docs/methods.md §1.
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Kursovoe
+    proektirovanie po TMM*: the coefficient of the mean speed K = (180 + theta)/(180 - theta); docs/methods.md §1.
     """
     return 180.0 * (K - 1.0) / (K + 1.0)
 
@@ -92,8 +92,8 @@ def K_of_theta(theta: float) -> float:
 
     References
     ----------
-    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
-    проектирование по ТММ*: the coefficient of the mean speed; docs/methods.md §1.
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Kursovoe
+    proektirovanie po TMM*: the coefficient of the mean speed; docs/methods.md §1.
     """
     return (180.0 + theta) / (180.0 - theta)
 
@@ -155,8 +155,8 @@ def slider_crank_offset(H: float, theta: float, e: float) -> tuple[float, float]
 
     References
     ----------
-    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
-    проектирование по ТММ*: the synthesis of the offset slider-crank by the stroke and K; docs/methods.md §1.
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Kursovoe
+    proektirovanie po TMM*: the synthesis of the offset slider-crank by the stroke and K; docs/methods.md §1.
     """
     th = math.radians(theta)
     r2 = H * H / 4.0 - H * e / 2.0 * math.tan(th / 2.0)
@@ -187,8 +187,8 @@ def slider_crank_lambda(H: float, theta: float, lam: float) -> tuple[float, floa
 
     References
     ----------
-    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
-    проектирование по ТММ*: the synthesis of the offset slider-crank by the stroke and K; docs/methods.md §1.
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Kursovoe
+    proektirovanie po TMM*: the synthesis of the offset slider-crank by the stroke and K; docs/methods.md §1.
     """
     th = math.radians(theta)
     c = 1.0 / math.sin(th / 2.0) ** 2
@@ -248,8 +248,8 @@ def slider_crank_gamma(H: float, theta: float, gamma: float) -> list[tuple[float
 
     References
     ----------
-    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
-    проектирование по ТММ*: the synthesis of the slider-crank by the stroke, K and the least transmission angle; docs/methods.md §1.
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Kursovoe
+    proektirovanie po TMM*: the synthesis of the slider-crank by the stroke, K and the least transmission angle; docs/methods.md §1.
     """
     from ..lazy import brentq, minimize_scalar
 
@@ -375,8 +375,8 @@ def crank_rocker_solutions(psi: float, theta: float, c: float, d: float) -> list
 
     References
     ----------
-    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
-    проектирование по ТММ*: the synthesis of the crank-rocker by the swing and K (the circle through C1 C2 seeing the chord at theta); docs/methods.md §1.
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Kursovoe
+    proektirovanie po TMM*: the synthesis of the crank-rocker by the swing and K (the circle through C1 C2 seeing the chord at theta); docs/methods.md §1.
     """
     ps, th = math.radians(psi), math.radians(theta)
     h0, w = c * math.cos(ps / 2.0), c * math.sin(ps / 2.0)
@@ -802,8 +802,8 @@ def transmission_angle(typ: str, kin) -> "object":
 
     References
     ----------
-    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
-    проектирование по ТММ*: the transmission angle; docs/methods.md §1.
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Kursovoe
+    proektirovanie po TMM*: the transmission angle; docs/methods.md §1.
     """
     import numpy as np
 
@@ -834,8 +834,8 @@ def least_transmission(typ: str, mech) -> tuple[float, float]:
 
     References
     ----------
-    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Курсовое
-    проектирование по ТММ*: the transmission angle; docs/methods.md §1.
+    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Kursovoe
+    proektirovanie po TMM*: the transmission angle; docs/methods.md §1.
     """
     import numpy as np
     from ..lazy import minimize_scalar

@@ -8,13 +8,13 @@ results.json: ``warnings`` (the English texts) and ``messages``
 (``{"code", "params", "text"}`` in the same order); a report renders ``messages``
 through the catalogue of its language (:func:`render_list`).
 
-The catalogues are one YAML file per language beside this module (``en.yaml``,
-``ru.yaml``, ``uk.yaml``)::
+The catalogues are the topic ``messages`` of every language's catalogue set
+(``tmm_cli/locales/<lang>/messages.yaml``, read through :mod:`tmm_cli.locales`)::
 
     messages:                  # code -> template (str.format, parameters by name)
       cam.soft_impact: "soft impact (finite jump of acceleration) at phi = {phi:.4g} deg ({where})"
     terms:                     # word tables a template names as the format spec
-      phase: {rise: удаление, far_dwell: дальнее стояние}
+      phase: {rise: rise, far_dwell: far dwell}    # in ru, uk: the course's words
 
 A placeholder ``{where:phase}`` renders the parameter through the language's ``phase``
 table (the whole value, else each ``/``-separated part, joined by `` / ``; a list joined by
@@ -25,22 +25,20 @@ as ``φ = 37.5…52.1°`` (:data:`SPECS`); any other
 spec is a Python format spec (a list parameter: each item formatted -- an interval ``[a, b]``
 as ``a..b`` --, joined by ``, ``).
 Parameters are plain JSON values (numbers in the unit the text shows).  Adding a
-language is adding its catalogue file (and its report table in
-:mod:`tmm_cli.report.i18n`); tests/test_messages.py checks that every code and
-placeholder of ``en.yaml`` exists in every other catalogue.
+language is adding its folder of catalogues (tmm_cli/locales/<lang>/, this topic among
+them); tests/test_messages.py checks that every code and placeholder of English exists in
+every other catalogue.
 """
 from __future__ import annotations
 
 import functools
 import string
-from pathlib import Path
 from typing import Any
 
-from .. import numfmt
+from .. import locales, numfmt
 
-_DIR = Path(__file__).resolve().parent
-# the languages: one catalogue file each, English first
-LANGS = ("en",) + tuple(sorted(p.stem for p in _DIR.glob("*.yaml") if p.stem != "en"))
+# the languages: one folder of catalogues each, English first
+LANGS = locales.LANGS
 
 # a warning given as a plain string (not a Message): shown as written in every language
 PLAIN = "text"
@@ -65,16 +63,14 @@ def _angles(intervals: list) -> str:
 @functools.cache
 def catalogue(lang: str) -> dict:
     """The catalogue of ``lang``: ``{"messages": {code: template}, "terms": {name: {word: text}}}``."""
-    import yaml
-
-    path = _DIR / f"{lang}.yaml"
-    data = yaml.load(path.read_text(encoding="utf-8"), Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
+    data = locales.topic(lang, "messages")
     return {"messages": dict(data.get("messages") or {}), "terms": dict(data.get("terms") or {})}
 
 
 def unit(text: str, lang: str | None = None) -> str:
     """A unit as a task writes it ('m/s', 'rad/s', 'N*m', 'mm') in the language's spelling
-    (м/с, рад/с, Н·м, мм: the catalogue's ``unit`` table; unchanged where it has none);
+    (in ru and uk Cyrillic letters and the raised dot: the catalogue's ``unit`` table; unchanged
+    where it has none);
     ``lang`` None: the language of the enclosing ``numfmt.language`` block."""
     return catalogue(lang if lang is not None else numfmt.current())["terms"].get("unit", {}).get(text, text)
 

@@ -9,10 +9,11 @@ names and the task-data table.
 
 How to add a section (e.g. for the stage ``cam``)
 -------------------------------------------------
-1. Create ``tmm_cli/report/sections/cam.py`` with::
+1. Put the section's words in the catalogues, a file a language
+   (``tmm_cli/locales/<lang>/cam.yaml``, table ``words``: ``cam.title: Cam mechanism``),
+   and create ``tmm_cli/report/sections/cam.py`` with::
 
-       I18N = {"en": {"cam.title": "Cam mechanism", ...},
-               "ru": {"cam.title": "Кулачковый механизм", ...}}
+       I18N = locales.table("cam", "words")
 
        def build(ctx) -> str | None:
            data = ctx.results.get("cam")
@@ -48,7 +49,7 @@ from typing import TYPE_CHECKING
 
 from pathlib import Path
 
-from .. import numfmt
+from .. import locales, numfmt
 from ..messages import render_list, unit
 from ..reproducible import source_date
 from .context import ReportContext, templates_dir
@@ -146,7 +147,7 @@ def _context(results: dict, task: Task | None, out_dir: Path, lang: str) -> Repo
     read them many times and tell them apart by identity)."""
     from ..results import listed
     results = listed(results)
-    return ReportContext(results=results, task=task, lang=lang if lang in ("en", "ru", "uk") else "en",
+    return ReportContext(results=results, task=task, lang=lang if lang in locales.LANGS else "en",
                          out_dir=Path(out_dir), env=shared_env())
 
 

@@ -178,7 +178,7 @@ class ReportContext:
         return list(kin[0]["links"].keys()) if kin else []
 
     def link_kind_word(self, name: str) -> str | None:
-        """The kind of a link in words ('кривошип', 'камень кулисы'), None where unknown."""
+        """The kind of a link in words ('crank', 'sliding block', in the report's language), None where unknown."""
         from ..plans import geometry
         from .sections.structure import link_kind
         geom = self.__dict__.get("_geometry", False)
@@ -193,7 +193,7 @@ class ReportContext:
 
     def link_label(self, name: str) -> str:
         """A link as the text names it: its kind and number, the task's name in brackets
-        ('кривошип 1 (crank)'); the number and the name where the kind is unknown."""
+        ('crank 1 (crank)' in the words of the report's language); the number and the name where the kind is unknown."""
         kind = self.link_kind_word(name)
         return f"{kind} {self.link_ref(name)}" if kind else self.link_ref(name)
 

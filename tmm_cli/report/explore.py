@@ -22,45 +22,12 @@ import math
 
 import numpy as np
 
+from .. import locales
 from ..results import one_line
 from ..tables import round_sig
 from .context import templates_dir
 
-I18N = {
-    "en": {"explore.title": "The mechanism in motion", "explore.play": "Play", "explore.pause": "Pause",
-           "explore.angle": "Crank turn from position 0", "explore.mech": "Mechanism",
-           "explore.vplan": "Velocity plan", "explore.aplan": "Acceleration plan",
-           "explore.point": "Point", "explore.link": "Link", "explore.pos": "position",
-           "explore.v": "v, m/s", "explore.a": "a, m/s²", "explore.w": "ω, 1/s", "explore.e": "ε, 1/s²",
-           "explore.polygon": "Force polygon", "explore.group": "group", "explore.crank": "input link",
-           "explore.lever": "Zhukovsky lever", "explore.pair": "Pair", "explore.R": "|R|, N",
-           "explore.mb": "M_b, N·m", "explore.pb": "P_b, N", "explore.by_groups": "by the groups",
-           "explore.by_lever": "by the lever",
-           "explore.hint": "Drag the slider (the marks are the course positions: the slider snaps to them "
-                           "within 3°) or press Play. Values at the angle shown."},
-    "ru": {"explore.title": "Механизм в движении", "explore.play": "Пуск", "explore.pause": "Пауза",
-           "explore.angle": "Поворот кривошипа от положения 0", "explore.mech": "Механизм",
-           "explore.vplan": "План скоростей", "explore.aplan": "План ускорений",
-           "explore.point": "Точка", "explore.link": "Звено", "explore.pos": "положение",
-           "explore.v": "v, м/с", "explore.a": "a, м/с²", "explore.w": "ω, рад/с", "explore.e": "ε, рад/с²",
-           "explore.polygon": "План сил", "explore.group": "группа", "explore.crank": "входное звено",
-           "explore.lever": "Рычаг Жуковского", "explore.pair": "Пара", "explore.R": "|R|, Н",
-           "explore.mb": "M_b, Н·м", "explore.pb": "P_b, Н", "explore.by_groups": "по группам",
-           "explore.by_lever": "по рычагу",
-           "explore.hint": "Передвиньте ползунок (метки — положения проекта: ползунок притягивается к ним "
-                           "в пределах 3°) или нажмите «Пуск». Значения для показанного угла."},
-    "uk": {"explore.title": "Механізм у русі", "explore.play": "Пуск", "explore.pause": "Пауза",
-           "explore.angle": "Поворот кривошипа від положення 0", "explore.mech": "Механізм",
-           "explore.vplan": "План швидкостей", "explore.aplan": "План прискорень",
-           "explore.point": "Точка", "explore.link": "Ланка", "explore.pos": "положення",
-           "explore.v": "v, м/с", "explore.a": "a, м/с²", "explore.w": "ω, рад/с", "explore.e": "ε, рад/с²",
-           "explore.polygon": "План сил", "explore.group": "група", "explore.crank": "вхідна ланка",
-           "explore.lever": "Важіль Жуковського", "explore.pair": "Пара", "explore.R": "|R|, Н",
-           "explore.mb": "M_b, Н·м", "explore.pb": "P_b, Н", "explore.by_groups": "за групами",
-           "explore.by_lever": "за важелем",
-           "explore.hint": "Пересуньте повзунок (позначки — положення проєкту: повзунок притягується до них "
-                           "у межах 3°) або натисніть «Пуск». Значення для показаного кута."},
-}
+I18N = locales.table("explore", "text")
 
 
 def data_json(data: dict) -> str:

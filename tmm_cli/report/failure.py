@@ -6,6 +6,7 @@ The failures are results.json's ``errors`` (every independent part that failed:
 stage, message, position), or its single ``error`` in older results."""
 from __future__ import annotations
 
+from .. import locales
 from .i18n import register
 
 # stage of a StageError -> (report section it replaces, its title key, the task-file section to change)
@@ -27,32 +28,7 @@ STAGES = {
 # a linkage that fails stops the sections after it in its chain
 CHAIN = ("structure", "kinematics", "kinetostatics", "dynamics")
 
-I18N = {
-    "en": {"fail.title": "not computed",
-           "fail.what": "Stage “{stage}” failed{where}: {message}",
-           "fail.where": " at position {position}",
-           "fail.where_angle": " at crank angle φ = {position}°",
-           "fail.change": "What to change: the data of section “{section}” of the task file "
-                          "(see the message above), then run tmm again. The other sections of this "
-                          "report were computed; this one and those that depend on it are missing.",
-           "fail.exit": "tmm exited with code 3 (a stage failed on a valid task)."},
-    "ru": {"fail.title": "не рассчитано",
-           "fail.what": "Этап «{stage}» не выполнен{where}: {message}",
-           "fail.where": " в положении {position}",
-           "fail.where_angle": " при угле кривошипа φ = {position}°",
-           "fail.change": "Что изменить: данные раздела «{section}» файла задания (см. сообщение "
-                          "выше), затем снова запустить tmm. Остальные разделы отчёта рассчитаны; "
-                          "нет только этого раздела и зависящих от него.",
-           "fail.exit": "tmm завершился с кодом 3 (этап расчёта не выполнен для корректного задания)."},
-    "uk": {"fail.title": "не розраховано",
-           "fail.what": "Етап «{stage}» не виконано{where}: {message}",
-           "fail.where": " у положенні {position}",
-           "fail.where_angle": " при куті кривошипа φ = {position}°",
-           "fail.change": "Що змінити: дані розділу «{section}» файлу завдання (див. повідомлення "
-                          "вище), потім знову запустити tmm. Інші розділи звіту розраховано; "
-                          "немає лише цього розділу й залежних від нього.",
-           "fail.exit": "tmm завершився з кодом 3 (етап розрахунку не виконано для коректного завдання)."},
-}
+I18N = locales.table("failure", "words")
 register(I18N)
 
 

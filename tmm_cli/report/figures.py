@@ -122,8 +122,9 @@ def std_graph(fig, axes, mm: str = "mm", x_axis=None, x_sym: str = "φ", x_unit:
 
 def mu_text(sym: str, mu: float, unit: str, mm: str = "mm") -> str:
     """The scale in the course's form: 'μs = 0.002 m/mm', 'μv = 0.05 (m/s)/mm' (in Russian and
-    Ukrainian 'μv = 0,05 м/(с·мм)')."""
-    if mm != "mm" and "/" in unit and not unit.startswith("("):   # ru, uk: м/(с·мм), as the course writes it
+    Ukrainian the unit's numerator over the bracketed product with the millimetre, as the course
+    writes it)."""
+    if mm != "mm" and "/" in unit and not unit.startswith("("):   # ru, uk: m/(s·mm) in their letters
         num, den = unit.split("/", 1)
         return f"μ{sym} = {mu:g} {num}/({den}·{mm})"
     u = f"({unit})" if "/" in unit and not unit.startswith("(") else unit
@@ -131,9 +132,10 @@ def mu_text(sym: str, mu: float, unit: str, mm: str = "mm") -> str:
 
 
 def scale_mark(lang: str) -> str:
-    """The letter before a drawing scale (ГОСТ 2.302: 'M 1:10'): the Cyrillic capital Em in
-    Russian and Ukrainian."""
-    return "\u041c" if lang in ("ru", "uk") else "M"
+    """The letter before a drawing scale (GOST 2.302: 'M 1:10'): the words' `common.scale_mark`
+    (the Cyrillic capital Em in Russian and Ukrainian)."""
+    from .. import locales
+    return locales.of("report", "words", lang).get("common.scale_mark", "M")
 
 
 # standard drawing scales (GOST 2.302): enlargements n:1 and reductions 1:n, as model mm per paper mm
@@ -670,7 +672,7 @@ def _num(x: float) -> str:
 
 
 def box_scale(lo, hi, width_mm, min_h=40.0, max_h=150.0, margin_mm=8.0) -> tuple[float, float, str]:
-    """The height (mm), the scale (metres per paper mm, μl) and its ГОСТ 2.302 label at
+    """The height (mm), the scale (metres per paper mm, μl) and its GOST 2.302 label at
     which figure_for_box draws lo..hi (metres): the tables of a drawing state the
     lengths at the scale it is drawn at."""
     span = np.maximum(np.asarray(hi, float) - np.asarray(lo, float), 1e-12)
@@ -681,7 +683,7 @@ def box_scale(lo, hi, width_mm, min_h=40.0, max_h=150.0, margin_mm=8.0) -> tuple
 
 
 def figure_for_box(lo, hi, width_mm, min_h=40.0, max_h=150.0, margin_mm=8.0, lang="en"):
-    """A drawing (SchemeView) showing lo..hi (metres), centred, at the largest ГОСТ 2.302
+    """A drawing (SchemeView) showing lo..hi (metres), centred, at the largest GOST 2.302
     scale that leaves the margin, stated at its top left ('μl = 0.005 m/mm (M 1:5)');
     returns (view, unit: metres per paper mm, the statement's box (x0, y0, x1, y1) in
     metres: the labels keep clear of it)."""
@@ -690,7 +692,8 @@ def figure_for_box(lo, hi, width_mm, min_h=40.0, max_h=150.0, margin_mm=8.0, lan
     h, unit, label = box_scale(lo, hi, width_mm, min_h, max_h, margin_mm)
     c = (lo + hi) / 2
     view = SchemeView(width_mm, h, c - unit * np.array([width_mm / 2, h / 2]), unit)
-    m, mm = ("м", "мм") if lang in ("ru", "uk") else ("m", "mm")
+    from ..messages import unit as spelt
+    m, mm = spelt("m", lang), spelt("mm", lang)
     title = f"{mu_text('l', unit, m, mm)}  ({scale_mark(lang)} {label})"
     size = 7.0
     fs = size / PT_PER_MM

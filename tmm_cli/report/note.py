@@ -1,7 +1,7 @@
-"""The explanatory note (пояснительная записка): the report's content laid out as the text
-document a student hands in (ГОСТ 2.105, 2.106): an A4 title page from the task's header
-(``student``, ``course``), then pages in the ЕСКД frame (20 mm from the left edge, 5 mm from
-the others; ГОСТ 2.104) with the title block of form 2 on the first page of the text (the
+"""The explanatory note (poyasnitel'naya zapiska): the report's content laid out as the text
+document a student hands in (GOST 2.105, 2.106): an A4 title page from the task's header
+(``student``, ``course``), then pages in the ESKD frame (20 mm from the left edge, 5 mm from
+the others; GOST 2.104) with the title block of form 2 on the first page of the text (the
 contents) and of form 2a on the rest, each with the designation and the page number; an
 introduction, the report's sections with numbered figures and tables, conclusions made from
 the results, and the references.
@@ -18,26 +18,13 @@ from typing import TYPE_CHECKING
 
 from ..numfmt import localize
 from . import typst_pdf
-from .i18n import words_beside
+from .. import locales
 
 if TYPE_CHECKING:
     from ..task import Task
 
-WORDS = words_beside(__file__)
+WORDS = locales.table("note", "text")
 
-# the sources the methods cite (docs/methods.md, Sources), ГОСТ 7.1 style
-BIBLIOGRAPHY = [
-    "Артоболевский И. И. Теория механизмов и машин : учебник для втузов. — 4-е изд., перераб. и доп. — М. : "
-    "Наука, 1988. — 640 с.",
-    "Попов С. А., Тимофеев Г. А. Курсовое проектирование по теории механизмов и механике машин : учеб. пособие "
-    "для втузов / под ред. К. В. Фролова. — М. : Высшая школа, 2002. — 411 с.",
-    "Теория механизмов и машин : учебник для втузов / К. В. Фролов, С. А. Попов, А. К. Мусатов [и др.] ; под "
-    "ред. К. В. Фролова. — М. : Высшая школа, 1987. — 496 с.",
-    "ГОСТ 16532-70. Передачи зубчатые цилиндрические эвольвентные внешнего зацепления. Расчёт геометрии. — "
-    "М. : Изд-во стандартов, 1983. — 43 с.",
-    "ГОСТ 2.105-2019. Единая система конструкторской документации. Общие требования к текстовым документам. — "
-    "М. : Стандартинформ, 2019. — 32 с.",
-]
 
 # the page: the frame 20 mm from the left edge, 5 mm from the others; the text 5 mm inside it,
 # clear of the title block (form 2: 40 mm, on the contents page; form 2a: 15 mm, on the rest)
@@ -294,7 +281,7 @@ def to_typst(html: str, results: dict, task: Task | None, lang: str = "en") -> t
 #heading(numbering: none, {_q(W['conclusions'])})
 {''.join('#par(' + _q(c) + ')' + chr(10) for c in concl)}
 #heading(numbering: none, {_q(W['biblio'])})
-#enum(numbering: "1.", {', '.join('[' + _q(b)[1:-1].replace('[', '(').replace(']', ')') + ']' for b in BIBLIOGRAPHY)})
+#enum(numbering: "1.", {', '.join('[' + _q(b)[1:-1].replace('[', '(').replace(']', ')') + ']' for b in W['bibliography'])})
 #metadata("end") <note-end>
 """
     out = head + numbering + _title_page(h, lang) + contents + page + intro_block + body + tail

@@ -15,6 +15,7 @@ PDF drawing operators) and the text keeps DejaVu Sans (Cyrillic, Greek).
 """
 from __future__ import annotations
 
+import json
 import math
 import re
 from contextlib import contextmanager
@@ -176,26 +177,16 @@ _STRING = re.compile(r'#"(?:[^"\\]|\\.)*"')
 # lengths: sub- and superscripts, bold, italics and a bar over it do not make it taller)
 _LINE_MARKUP = re.compile(r"#(?:sub|super|strong|emph|overline)\[|\]")
 # advances of DejaVu Sans in em, rounded up, by kind of character; any other Latin, Greek or
-# Cyrillic one 1.1 (the widest, Щ, is 1.094), the rest of Unicode 2.0; DejaVu Sans Bold
+# Cyrillic one 1.1 (the widest, the capital shcha, is 1.094), the rest of Unicode 2.0; DejaVu Sans Bold
 # within _BOLD times these (tests/test_typst_rows.py reads both fonts)
 _ADV = {**dict.fromkeys("0123456789", 0.64), **dict.fromkeys(".,:;' |il", 0.40),
         **dict.fromkeys("-()[]/!", 0.42), **dict.fromkeys("+−×=<>", 0.84),
         **dict.fromkeys("abcdeghknopqsuvxyz", 0.64), **dict.fromkeys("fjrt", 0.42)}
 _BOLD = 1.25
 # DejaVu Sans Bold's advances of ASCII, Greek, Cyrillic and a few signs, in em rounded up to
-# 0.01 (a header's cells; tests/test_typst_rows.py reads the font)
-_ADV_BOLD = {ch: adv for adv, chars in (
-    (0.27, '′'), (0.31, "'"), (0.35, ' ijlіїј'), (0.37, '/\\|'), (0.38, ',.IJ·ΙΪІЇЈ'), (0.39, 'ίι'),
-    (0.40, ':;'), (0.42, '-'), (0.44, 'f²³₀₁₂₃₄₅₆₇₈₉'), (0.45, '″'), (0.46, '!()[]'), (0.48, 't'),
-    (0.50, '_`r°–'), (0.53, '"*гѓ'), (0.56, 'έε'), (0.58, 'т'), (0.59, '?zз'), (0.60, 'csζξςсэєѕ'),
-    (0.64, 'LΓΞλτЃГвь'), (0.65, 'xχхя'), (0.66, 'vyуў'), (0.67, 'k'), (0.68, 'aeΰυаекѐёќ'),
-    (0.69, 'EFToΕΣΤάαγδθνοЀЁЕТоч'), (0.70, '$0123456789бнпџ'), (0.71, 'ийѝ'), (0.72, 'bdghnpqu{}ήβηκρЗрђ'),
-    (0.73, 'SYZΖΥΫЅ'), (0.74, 'CPΡμЄРСЭлћ'), (0.75, 'ц'), (0.76, 'ъ'), (0.77, 'BΒБВЬ'),
-    (0.78, 'AKRVXΑΔΚΛΧσЎАУХЯ'), (0.79, 'φ'), (0.80, 'πψ'), (0.81, 'Чд'), (0.82, 'UЌКм'), (0.83, 'G'),
-    (0.84, '#+<=>DHN^~±×÷−ΗΝΠЍЏИЙЛНП'), (0.85, 'Ψ'), (0.86, 'OQΘΟΦΩО'), (0.87, 'ω'), (0.88, '&ЂЋ'),
-    (0.90, 'Д'), (0.91, 'ы'), (0.93, 'wЦ'), (0.94, 'Ъ'), (0.96, 'њ'), (0.98, 'ю'), (1.00, '@M—…ΜМФжфљ'),
-    (1.01, '%'), (1.04, 'Ы'), (1.05, 'm'), (1.07, 'ш'), (1.11, 'Wщ'), (1.13, 'Њ'), (1.16, 'Љ'),
-    (1.18, 'Ю'), (1.23, 'Ж'), (1.24, 'Ш'), (1.33, 'Щ')) for ch in chars}
+# 0.01 (a header's cells; tests/test_typst_rows.py reads the font): data, dejavu_sans_bold.json
+_ADV_BOLD = {ch: float(adv) for adv, chars in json.loads(
+    (Path(__file__).with_name("dejavu_sans_bold.json")).read_text(encoding="utf-8"))["advances"].items() for ch in chars}
 
 
 class _Advances(dict):
@@ -535,7 +526,7 @@ class _Writer:
             j = 0
             for c, span, _, t, _ in r:
                 if span == 1 and j < ncols and t:
-                    # a header's longest word (bold) too: "Направляющая," once ran out of its column
+                    # a header's longest word (bold) too: the Russian "guide," once ran out of its column
                     need[j] = max(need[j], self.unbroken(t) if i >= nhead else
                                   max(_em_width(w, True) for w in t.split()))
                 j += span

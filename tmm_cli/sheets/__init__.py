@@ -1,4 +1,4 @@
-"""The drawing sheets of the course project (A1, ГОСТ 2.301/2.104/2.302) as SVG, PDF and
+"""The drawing sheets of the course project (A1, GOST 2.301/2.104/2.302) as SVG, PDF and
 DXF: `tmm sheets TASK` (README, *Drawing sheets*).  A sheet is one list of primitives in
 mm (tmm_cli.sheets.prims) written two ways (tmm_cli.sheets.writers)."""
 from __future__ import annotations
@@ -6,19 +6,12 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from .. import numfmt
+from .. import locales, numfmt
 
 if TYPE_CHECKING:
     from ..task import Task
 
-SHEETS = {"en": {1: "Kinematics", 2: "Kinetostatics", 3: "Dynamics", 4: "Cam mechanism", 5: "Gear mesh",
-                 6: "Planetary gear", 7: "Differential", 8: "Balancing"},
-          "ru": {1: "Кинематический анализ", 2: "Силовой анализ", 3: "Динамический анализ",
-                 4: "Кулачковый механизм", 5: "Зубчатое зацепление", 6: "Планетарный механизм",
-                 7: "Дифференциальный механизм", 8: "Уравновешивание"},
-          "uk": {1: "Кінематичний аналіз", 2: "Силовий аналіз", 3: "Динамічний аналіз",
-                 4: "Кулачковий механізм", 5: "Зубчасте зачеплення", 6: "Планетарний механізм",
-                 7: "Диференціальний механізм", 8: "Зрівноваження"}}
+SHEETS = locales.table("sheets", "titles")
 
 
 def build_sheets(results: dict, task: Task | None, lang: str = "en") -> list[tuple]:

@@ -1,10 +1,11 @@
-"""The A1 sheet: the frame (ГОСТ 2.301/2.104: 20 mm on the left for binding, 5 mm on
-the other sides) and the title block of ГОСТ 2.104 form 1 (185 x 55 mm), the scales
-of the course's drawings (ГОСТ 2.302 for lengths, 1, 2, 2.5, 4, 5 x 10^k for the others)."""
+"""The A1 sheet: the frame (GOST 2.301/2.104: 20 mm on the left for binding, 5 mm on
+the other sides) and the title block of GOST 2.104 form 1 (185 x 55 mm), the scales
+of the course's drawings (GOST 2.302 for lengths, 1, 2, 2.5, 4, 5 x 10^k for the others)."""
 from __future__ import annotations
 
 import re
 
+from .. import locales
 from ..report.figures import drawing_scale, nice_scale
 
 SHEET_W, SHEET_H = 841.0, 594.0
@@ -19,15 +20,15 @@ def std_mu(value: float) -> float:
 
 
 def length_scale(model_mm_per_paper_mm: float) -> tuple[float, str]:
-    """The ГОСТ 2.302 drawing scale for a length drawing: (model mm per paper mm, '1:5')."""
+    """The GOST 2.302 drawing scale for a length drawing: (model mm per paper mm, '1:5')."""
     return drawing_scale(model_mm_per_paper_mm)
 
 
-NARROWEST = 0.6      # ГОСТ 2.304 type B: capitals 6/10 of h wide, about 0.6 of DejaVu Sans'
+NARROWEST = 0.6      # GOST 2.304 type B: capitals 6/10 of h wide, about 0.6 of DejaVu Sans'
 
 
 def fit_text(cv, x, y, s, h, max_w, anchor="start", **kw):
-    """A label of size h mm, set a ГОСТ 2.304 size smaller while it would be wider than max_w;
+    """A label of size h mm, set a GOST 2.304 size smaller while it would be wider than max_w;
     at 2.5 mm, the smallest size, its letters narrower (down to NARROWEST) to fit."""
     from .prims import CAP_RATIO, GOST_SIZES
     if s:
@@ -41,7 +42,7 @@ def fit_text(cv, x, y, s, h, max_w, anchor="start", **kw):
 
 def fit_lines(cv, x, yc, s, h, max_w, max_h):
     """A centred text of size h mm around (x, yc), wrapped at its spaces into as few lines as fit
-    max_w at the largest ГОСТ 2.304 size <= h whose lines (pitch 1.7 h) fit max_h; the
+    max_w at the largest GOST 2.304 size <= h whose lines (pitch 1.7 h) fit max_h; the
     smallest size's last line narrowed (fit_text) when even that does not fit."""
     import textwrap
 
@@ -64,20 +65,7 @@ def fit_lines(cv, x, yc, s, h, max_w, max_h):
         y -= 1.7 * g
 
 
-TB_TEXT = {
-    "en": {"dev": "Drawn", "chk": "Checked", "tcn": "T.contr.", "ncn": "N.contr.", "apr": "Approved",
-           "ch": "Rev.", "sh": "Sheet", "doc": "Doc. No.", "sign": "Sign.", "date": "Date",
-           "lit": "Lit.", "mass": "Mass", "scale": "Scale", "sheet": "Sheet", "sheets": "Sheets",
-           "variant": "Variant", "course": "Course project, TMM"},
-    "ru": {"dev": "Разраб.", "chk": "Пров.", "tcn": "Т.контр.", "ncn": "Н.контр.", "apr": "Утв.",
-           "ch": "Изм.", "sh": "Лист", "doc": "№ докум.", "sign": "Подп.", "date": "Дата",
-           "lit": "Лит.", "mass": "Масса", "scale": "Масштаб", "sheet": "Лист", "sheets": "Листов",
-           "variant": "Вариант", "course": "Курсовой проект по ТММ"},
-    "uk": {"dev": "Розроб.", "chk": "Перев.", "tcn": "Т.контр.", "ncn": "Н.контр.", "apr": "Затв.",
-           "ch": "Зм.", "sh": "Арк.", "doc": "№ докум.", "sign": "Підп.", "date": "Дата",
-           "lit": "Літ.", "mass": "Маса", "scale": "Масштаб", "sheet": "Аркуш", "sheets": "Аркушів",
-           "variant": "Варіант", "course": "Курсовий проєкт з ТММ"},
-}
+TB_TEXT = locales.table("sheets", "title_block")
 
 
 def draw_frame(cv, *, title: str, sheet_title: str, variant, student: str, group: str,
@@ -85,8 +73,8 @@ def draw_frame(cv, *, title: str, sheet_title: str, variant, student: str, group
                designation: str = "", university: str = "") -> dict:
     """The frame and the title block; returns the title block's fields as written. The task's
     ``course`` header gives the supervisor (row 'checked'), the designation (the sheet's code:
-    the note's designation less its 'ПЗ', and the sheet's number) and the university (with the
-    group, in the organisation's cell)."""
+    the note's designation less the note's code -- the catalogues' sheets `note_code` --, and
+    the sheet's number) and the university (with the group, in the organisation's cell)."""
     T = TB_TEXT[lang]
     x0, y0, x1, y1 = FRAME
     cv.layer = "thin"
@@ -124,7 +112,8 @@ def draw_frame(cv, *, title: str, sheet_title: str, variant, student: str, group
         y = by + 22.5 - 5 * k
         fit_text(cv, bx + 0.7, y, lab, h, 15.6)
         fit_text(cv, bx + 17.7, y, val, h, 21.6)
-    base = re.sub(r"\s*(ПЗ|PZ)\s*$", "", designation or "").strip()
+    codes = sorted({re.escape(locales.of("sheets", "note_code", other)) for other in locales.LANGS})
+    base = re.sub(rf"\s*({'|'.join(codes)})\s*$", "", designation or "").strip()
     code = f"{base}.{n:02d}" if base else (f"TMM.{variant}.{n:02d}" if variant not in (None, "") else f"TMM.{n:02d}")
     fit_text(cv, rx + 60, by + 47.5, code, 7.0, 116, anchor="middle")
     fit_lines(cv, rx + 35, by + 31, title, 5.0, 66, 14.0)

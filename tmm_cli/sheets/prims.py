@@ -17,14 +17,14 @@ from .. import numfmt
 from ..report.svgdraw import PT_PER_MM, Canvas
 
 LAYERS = ("contour", "thin", "dimensions", "text")
-# ГОСТ 2.304: the sizes of lettering, h = the height of the capitals in mm; a text on a
+# GOST 2.304: the sizes of lettering, h = the height of the capitals in mm; a text on a
 # sheet is set in DejaVu Sans, whose capitals are CAP_RATIO of the font size (1493/2048 em).
 GOST_SIZES = (2.5, 3.5, 5.0, 7.0, 10.0, 14.0)
 CAP_RATIO = 1493.0 / 2048.0
 
 
 def gost_size(cap_mm: float) -> float:
-    """The ГОСТ 2.304 size nearest to a capital height of cap_mm (2.5 mm the smallest)."""
+    """The GOST 2.304 size nearest to a capital height of cap_mm (2.5 mm the smallest)."""
     return min(GOST_SIZES, key=lambda h: (abs(math.log(h / max(cap_mm, 1e-9))), h))
 
 
@@ -88,7 +88,7 @@ class Text:
 
     @property
     def cap(self) -> float:
-        """The height of the capitals, mm: the size of the lettering (ГОСТ 2.304)."""
+        """The height of the capitals, mm: the size of the lettering (GOST 2.304)."""
         return self.height * CAP_RATIO
 
     @property
@@ -133,14 +133,14 @@ class PrimCanvas(Canvas):
         self.prims.append(Arc(_t(c), float(r), float(a0), float(a1), self.layer, color, width))
 
     def font_mm(self, size: float) -> float:
-        """A label asked for at size pt is set in the nearest ГОСТ 2.304 size."""
+        """A label asked for at size pt is set in the nearest GOST 2.304 size."""
         return gost_size(size / PT_PER_MM * CAP_RATIO) / CAP_RATIO
 
     def text(self, x, y, s, size=7.0, color="#000", anchor="middle", italic=False, bold=False,
              sub=None, sup=None, z=8, vcenter=True, halo=False, after=None, narrow=1.0):
         if numfmt.comma():                     # the sheet's numbers as its language writes them
             s, after = numfmt.localize(s), after and numfmt.localize(after)
-        # every text on a sheet in a ГОСТ 2.304 size: the report's figures drawn here ask
+        # every text on a sheet in a GOST 2.304 size: the report's figures drawn here ask
         # for screen sizes in pt, the sheets' own labels (mtext) for h exactly
         fs = self.font_mm(size)
         if halo:
@@ -153,7 +153,7 @@ class PrimCanvas(Canvas):
                                color, italic, bold, sub, sup, after, float(narrow)))
 
     def mtext(self, x, y, s, h=3.5, anchor="start", **kw):
-        """A label of size h mm (ГОСТ 2.304: the height of its capitals, 2.5, 3.5, 5, 7, 10, 14)."""
+        """A label of size h mm (GOST 2.304: the height of its capitals, 2.5, 3.5, 5, 7, 10, 14)."""
         self.text(x, y, s, size=h / CAP_RATIO * PT_PER_MM, anchor=anchor, **kw)
 
     def to_svg(self) -> str:

@@ -4,10 +4,10 @@ them, at the sheet's own μ, stated above the table (the report's tables are at 
 reads what the table says."""
 from __future__ import annotations
 
-from ..report.i18n import words_beside
+from .. import locales
 
-WORDS = words_beside(__file__)
-H = 2.5              # mm: the lettering of the tables (ГОСТ 2.304's smallest)
+WORDS = locales.table("segments", "words")
+H = 2.5              # mm: the lettering of the tables (GOST 2.304's smallest)
 PITCH = 4.6          # mm: a row, at most
 TITLE = 5.0          # mm: a title line
 

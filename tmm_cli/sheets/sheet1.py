@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .. import locales
 from ..report.figures import mu_text, scale_mark
 from .frame import FRAME, TB_W, length_scale, std_mu
 from .graph import draw_graph
@@ -15,26 +16,8 @@ from .graph import draw_graph
 if TYPE_CHECKING:
     from ..task import Task
 
-TXT = {
-    "en": {"scheme": "Kinematic scheme", "plans": "Plans, position {i}", "vplan": "Velocity plan",
-           "aplan": "Acceleration plan", "diagrams": "Diagrams of the output", "pos": "position",
-           "unit_v": "(m/s)/mm", "unit_a": "(m/s²)/mm", "mm": "mm",
-           "chord": "chord method, {n} intervals (dashed): greatest deviation {err} % of the largest value"},
-    "ru": {"scheme": "Кинематическая схема", "plans": "Планы, положение {i}", "vplan": "План скоростей",
-           "aplan": "План ускорений", "diagrams": "Диаграммы выходного звена", "pos": "положение",
-           "unit_v": "м/(с·мм)", "unit_a": "м/(с²·мм)", "mm": "мм",
-           "chord": "метод хорд, {n} интервалов (штриховая): наибольшее отклонение {err} % от наибольшего значения"},
-    "uk": {"scheme": "Кінематична схема", "plans": "Плани, положення {i}", "vplan": "План швидкостей",
-           "aplan": "План прискорень", "diagrams": "Діаграми вихідної ланки", "pos": "положення",
-           "unit_v": "м/(с·мм)", "unit_a": "м/(с²·мм)", "mm": "мм",
-           "chord": "метод хорд, {n} інтервалів (штрихова): найбільше відхилення {err} % від найбільшого значення"},
-}
-UNITS = {"en": {"m": "m", "m/s": "m/s", "m/s²": "m/s²", "rad": "rad", "rad/s": "rad/s", "rad/s²": "rad/s²",
-                "deg": "°"},
-         "ru": {"m": "м", "m/s": "м/с", "m/s²": "м/с²", "rad": "рад", "rad/s": "рад/с", "rad/s²": "рад/с²",
-                "deg": "°"},
-         "uk": {"m": "м", "m/s": "м/с", "m/s²": "м/с²", "rad": "рад", "rad/s": "рад/с", "rad/s²": "рад/с²",
-                "deg": "°"}}
+TXT = locales.table("sheets", "sheet1")
+UNITS = locales.table("sheets", "sheet1_units")
 
 
 def _xy(e, p):
@@ -59,7 +42,7 @@ def course_positions(results: dict) -> list[int]:
 
 
 def draw_mechanism(cv, geom, entries, course: list[int], box, lang="en", traced_over=None) -> dict:
-    """Every position thin, the course positions as contour lines, at a ГОСТ scale
+    """Every position thin, the course positions as contour lines, at a GOST scale
     fitting box = (x0, y0, w, h) mm, the trajectories of the points of the moving links (the
     coupler curves) through the positions `traced_over` (the grid; default all).  Returns {'unit', 'scale', 'mu_l', 'paths'}."""
     from ..report.figures import place_labels

@@ -1,19 +1,18 @@
 """Sheet 2: the kinetostatics of one or two positions - each structural group detached
-from the mechanism at a ГОСТ 2.302 length scale with its loads and reactions, its force
+from the mechanism at a GOST 2.302 length scale with its loads and reactions, its force
 polygon at a standard μF, the input link, and Zhukovsky's lever large enough to read
 every force and arm.  Drawn by the panels the report draws too (tmm_cli/drawings/forces.py)."""
 from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from .. import locales
 from .frame import FRAME, TB_H, TB_W
 
 if TYPE_CHECKING:
     from ..task import Task
 
-TXT = {"en": {"pos": "Position {i}, φ = {phi:.1f}°"},
-       "ru": {"pos": "Положение {i}, φ = {phi:.1f}°"},
-       "uk": {"pos": "Положення {i}, φ = {phi:.1f}°"}}
+TXT = locales.table("sheets", "sheet2")
 COL_W = 130.0          # mm: the width of one group's column (its drawing above its polygon)
 MIN_COL_W = 70.0       # mm: narrower columns wrap into a second row of groups (many groups)
 LEVER_MIN_W = 280.0    # mm: the lever keeps at least this width

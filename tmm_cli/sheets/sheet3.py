@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .. import locales
 from ..report.figures import mu_text
 from .frame import FRAME, std_mu
 from .graph import draw_graph
@@ -14,22 +15,12 @@ from .graph import draw_graph
 if TYPE_CHECKING:
     from ..task import Task
 
-TXT = {
-    "en": {"title": "Dynamics: reduced moments, works, kinetic energy", "em": "Energy-mass diagram",
-           "mm": "mm", "Nm": "N·m", "J": "J", "kgm2": "kg·m²", "jred": "Reduced moment of inertia",
-           "rads": "rad/s"},
-    "ru": {"title": "Динамика: приведённые моменты, работы, кинетическая энергия", "em": "Диаграмма энергомасс",
-           "mm": "мм", "Nm": "Н·м", "J": "Дж", "kgm2": "кг·м²", "jred": "Приведённый момент инерции",
-           "rads": "рад/с"},
-    "uk": {"title": "Динаміка: зведені моменти, роботи, кінетична енергія", "em": "Діаграма енергомас",
-           "mm": "мм", "Nm": "Н·м", "J": "Дж", "kgm2": "кг·м²", "jred": "Зведений момент інерції",
-           "rads": "рад/с"},
-}
+TXT = locales.table("sheets", "sheet3")
 
 
 def curve_name(key: str, lang: str) -> str:
-    """A curve's name in the language's notation (M_d -> M_д in Russian, M_р in Ukrainian; the
-    catalogue's ``curve`` table)."""
+    """A curve's name in the language's notation (M_d with the Cyrillic subscript of the driving
+    moment in Russian and Ukrainian; the catalogue's ``curve`` table)."""
     from ..messages import catalogue
     return catalogue(lang)["terms"].get("curve", {}).get(key, key)
 
@@ -73,7 +64,7 @@ def build(cv, results: dict, task: Task | None, lang: str = "en") -> dict:
         last = None
         for yv, key in ends:
             yy = yv if last is None else min(yv, last - 4.0)
-            base, _, low = curve_name(key, lang).partition("_")      # M_д: M with the subscript д
+            base, _, low = curve_name(key, lang).partition("_")      # M with the subscript after "_"
             cv.mtext(x0f + 20.0 + 360.0 / mu_phi + 15.0, yy, base, 2.5, sub=low or None)   # past φ
             last = yy
         info["graphs"][sym] = {"mu": mu, "pts": pts, "origin": (x0f + 20.0, yc),

@@ -1,4 +1,4 @@
-"""Sheet 4: the cam - its pitch and working profiles with the base circle at a ГОСТ 2.302
+"""Sheet 4: the cam - its pitch and working profiles with the base circle at a GOST 2.302
 scale, and the follower's motion law s(φ), ds/dφ, d²s/dφ² at standard μ."""
 from __future__ import annotations
 
@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .. import locales
 from ..report.figures import scale_mark
 from .frame import FRAME, TB_H, length_scale, std_mu
 from .graph import draw_graph
@@ -15,16 +16,14 @@ if TYPE_CHECKING:
     from ..task import Task
 
 GX = 28.0         # mm: the diagrams' φ axes start this far into the frame (room for d²s/dφ²)
-TXT = {"en": {"profile": "Cam profile", "law": "Motion law of the follower", "mm": "mm", "m": "m"},
-       "ru": {"profile": "Профиль кулачка", "law": "Закон движения толкателя", "mm": "мм", "m": "м"},
-       "uk": {"profile": "Профіль кулачка", "law": "Закон руху штовхача", "mm": "мм", "m": "м"}}
+TXT = locales.table("sheets", "sheet4")
 
 
 def draw_construction(cv, k, c, box, results: dict, task: Task | None, lang: str = "en") -> dict:
     """The s - ds/dφ diagram that gives the least base radius (the report's figure): the
     follower's points B (s along its path) and D (ds/dφ across it) over the rise and the
     return, the tangents at the allowed pressure angles bounding the zone of the cam's
-    centre, O and B0 (O B0 = r0), at one ГОСТ 2.302 scale for s and ds/dφ alike."""
+    centre, O and B0 (O B0 = r0), at one GOST 2.302 scale for s and ds/dφ alike."""
     from pathlib import Path
 
     from ..report.context import ReportContext

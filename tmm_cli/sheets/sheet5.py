@@ -1,21 +1,20 @@
 """Sheet 5: the gear mesh - both whole wheels with their pitch, rolling, base, tip and root
 circles, teeth at the mesh (the report's tooth outline), the line of action N1N2 with the
-active part B1B2 and the pole P, at a ГОСТ 2.302 scale."""
+active part B1B2 and the pole P, at a GOST 2.302 scale."""
 from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .. import locales
 from ..report.figures import scale_mark
 from .frame import FRAME, length_scale
 
 if TYPE_CHECKING:
     from ..task import Task
 
-TXT = {"en": {"mesh": "Gear mesh", "m": "m", "mm": "mm", "sliding": "Specific sliding"},
-       "ru": {"mesh": "Зубчатое зацепление", "m": "м", "mm": "мм", "sliding": "Удельные скольжения"},
-       "uk": {"mesh": "Зубчасте зачеплення", "m": "м", "mm": "мм", "sliding": "Питомі ковзання"}}
+TXT = locales.table("sheets", "sheet5")
 LAMBDA_LO, LAMBDA_HI = -5.0, 1.5       # the course draws λ over this range (the report's figure too)
 TEETH = 5          # teeth drawn of each wheel, centred on the mesh
 
@@ -125,7 +124,7 @@ def build(cv, results: dict, task: Task | None, lang: str = "en") -> dict:
 
 def draw_sliding(cv, g, box, lang="en") -> dict:
     """The specific-sliding diagrams λ1, λ2 over X along the line of action from N1 (X at a
-    ГОСТ 2.302 scale, λ at a standard μλ, over -5 <= λ <= 1.5), the ends of the active
+    GOST 2.302 scale, λ at a standard μλ, over -5 <= λ <= 1.5), the ends of the active
     part B1, B2 and the pole P marked."""
     from .frame import std_mu
     from .graph import draw_graph

@@ -1,5 +1,5 @@
 """Sheet 6: the planetary gear - its scheme (half section above the axis, the wheels at
-their pitch radii, the carrier H, the fixed wheel hatched) at a ГОСТ 2.302 scale and,
+their pitch radii, the carrier H, the fixed wheel hatched) at a GOST 2.302 scale and,
 beside it on the same radii, the picture of linear velocities (Kutzbach) at a standard
 μv, each link's velocity line from the axis; i1H read from the picture as the ratio of
 the tangents of the lines of wheel 1 and the carrier (ψ1, ψH)."""
@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .. import locales
 from .frame import FRAME, TB_H, length_scale, std_mu
 
 if TYPE_CHECKING:
@@ -28,7 +29,7 @@ def build(cv, results: dict, task: Task | None, lang: str = "en") -> dict:
     info = draw_train(cv, ctx, p, rows, a, ctx.t("plan.sketch"), ctx.t("plan.v_axis"), lang)
     vx, y0f = info["points"]["O"][0], FRAME[1]
     # the ratio from the picture: tan ψ1 / tan ψH
-    tg = "tan" if lang == "en" else "tg"
+    tg = locales.of("sheets", "sheet6", lang)["tan"]          # tan, or tg as the course writes it
     vp = p["velocity_plan"]
     cv.mtext(vx - 20.0, y0f + TB_H + 12.0, f"i₁H = {tg} ψ₁ / {tg} ψH = {float(vp['tan_psi_1']):.4g} / "
              f"{float(vp['tan_psi_H']):.4g} = {float(p['ratio_plan']):.4g}", 3.5)

@@ -37,7 +37,8 @@ def build(cv, results, task, lang="en") -> dict:
     last = d["last"]
     tg = tangents(info)
     u_plan = (tg["1"] - tg["H"]) / (tg[last] - tg["H"])
-    t = "tan" if lang == "en" else "tg"
+    from .. import locales
+    t = locales.of("sheets", "sheet6", lang)["tan"]          # tan, or tg as the course writes it
     _, y0f, _, _ = FRAME
     vx = info["points"]["O"][0]
     cv.mtext(vx - 20.0, y0f + TB_H + 12.0,

@@ -88,8 +88,8 @@ def _linkage(cv, ctx, results, box) -> dict:
         cv.polyline([sp, sx], width=0.7)
         cv.circle(sx, rad, stroke="#000", fill="#bbbbbb", width=0.5)
         cv.layer = "text"
-        cv.mtext(sx[0] + rad + 1.5, sx[1] - 1.5, f"{c['link']}: m = {float(c['m']):.4g} {ctx.t('bal.kg')}, "
-                 f"r = {float(c['r']) * 1000:.4g} {ctx.t('bal.mm')}", 3.5)
+        cv.mtext(sx[0] + rad + 1.5, sx[1] - 1.5, f"{c['link']}: m = {float(c['m']):.4g} {ctx.t('bal.unit_kg')}, "
+                 f"r = {float(c['r']) * 1000:.4g} {ctx.t('bal.unit_mm')}", 3.5)
         cv.layer = "contour"
         discs[role] = (sx, rad)
     return {"unit": unit, "scale": label, "mu_l": unit / 1000.0, "points": drawn, "discs": discs, "M": M}
@@ -141,12 +141,12 @@ def _hodograph(cv, ctx, results, box) -> dict:
         left = 0.0 if left <= 1e-9 * float(b["max"]["F"]) else left     # rounding's remainder: none
         cv.layer = "text"
         cv.mtext(x0, y1 - 22.0, f"{ctx.t('bal.sheet_after')}: F", 3.5, sub="max",
-                 after=f" = {left:.4g} {ctx.t('bal.N')}", color="#c00000")
+                 after=f" = {left:.4g} {ctx.t('bal.unit_N')}", color="#c00000")
         cv.layer = "contour"
         after = fb
     cv.layer = "text"
     cv.mtext(x0, y1 - 16.0, f"{ctx.t('bal.sheet_before')}: F", 3.5, sub="max",
-             after=f" = {float(b['max']['F']):.4g} {ctx.t('bal.N')}")
+             after=f" = {float(b['max']['F']):.4g} {ctx.t('bal.unit_N')}")
     return {"origin": o, "mu_F": mu, "curve": curve, "marks": marks, "after": after}
 
 
@@ -204,8 +204,8 @@ def _rotor(cv, ctx, results, box) -> dict:
         cv.layer = "text"
         cv.mtext(mid[0] + 1.5, mid[1] - 4.0, "U", 3.5, italic=True, color="#c00000",
                  sub=f"{ctx.t('bal.correction_sub')}{k + 1}")
-        cv.mtext(x0, top - 8.0, f"m = {float(r['corrections'][k]['m']):.4g} {ctx.t('bal.kg')}, "
-                 f"r = {float(r['corrections'][k]['r']) * 1000:.4g} {ctx.t('bal.mm')}, "
+        cv.mtext(x0, top - 8.0, f"m = {float(r['corrections'][k]['m']):.4g} {ctx.t('bal.unit_kg')}, "
+                 f"r = {float(r['corrections'][k]['r']) * 1000:.4g} {ctx.t('bal.unit_mm')}, "
                  f"α = {float(r['corrections'][k]['angle']):.4g}°", 3.5)
         polys.append(P)
     return {"mu_U": mu, "polygons": polys}

@@ -1,13 +1,14 @@
 """Report section 'balancing': the shaking force and moment at the positions (with the
 counterweights beside), their hodograph over a turn, the counterweights and what they leave,
 the rotor's imbalance and correction masses. Reads numbers only from results["balancing"];
-its words are the data file balancing.yaml beside this module."""
+its words are the catalogues' topic 'balancing'
+(tmm_cli/locales/<lang>/balancing.yaml)."""
 from __future__ import annotations
 
 import math
-from ..i18n import words_beside
+from ... import locales
 
-I18N = words_beside(__file__)
+I18N = locales.table("balancing", "words")
 
 
 def hodograph(ctx, b):

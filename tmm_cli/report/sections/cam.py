@@ -10,172 +10,23 @@ import math
 
 import numpy as np
 
-I18N = {
-    "en": {
-        "cam.title": "Cam mechanism",
-        "cam.summary": "Main dimensions (smallest cam for the allowed pressure angles)",
-        "cam.follower": "Follower", "cam.translating": "translating roller follower",
-        "cam.rocker": "rocking roller follower (rocker)",
-        "cam.rotation": "Cam rotation",
-        "cam.r0": "Minimum base radius of the pitch profile r0 (exact)",
-        "cam.r0_design": "Design base radius (r0 rounded up to a whole mm)",
-        "cam.offset": "Offset e (positive: lowers the rise pressure angle)",
-        "cam.center_distance": "Centre distance a_w = O A",
-        "cam.psi0": "Initial rocker angle O-A-B0",
-        "cam.swing": "Rocker turns on the rise",
-        "cam.swing_with": "with the cam", "cam.swing_against": "against the cam",
-        "cam.roller": "Roller radius r_r",
-        "cam.roller_rule": "r_r = min(0.7 rho_min, 0.4 r0) (course rule r_r <= 0.7..0.8 rho_min, <= 0.4..0.5 r0)",
-        "cam.roller_given": "given in the task",
-        "cam.theta_allowed": "Allowed pressure angle (rise / return)",
-        "cam.theta_max": "Maximum pressure angle (rise / return)",
-        "cam.rho_min": "Minimum radius of curvature of the pitch profile (convex part)",
-        "cam.laws": "Motion laws",
-        "cam.phase": "Phase", "cam.rise": "rise", "cam.return": "return",
-        "cam.far_dwell": "far dwell", "cam.near_dwell": "near dwell",
-        "cam.law": "Law", "cam.angle": "Angle, deg",
-        "cam.cv": "velocity coefficient", "cam.ca": "acceleration coefficient",
-        "cam.impact": "impacts", "cam.impact_rigid": "rigid", "cam.impact_soft": "soft",
-        "cam.impact_none": "none",
-        "cam.diagrams": "Motion diagrams",
-        "cam.diagrams_caption": "Displacement, velocity and acceleration analogues of the follower over the "
-                                "cam angle; the scales are those of the printed figure",
-        "cam.construction": "Smallest cam: the s - ds/dφ diagram",
-        "cam.construction_caption": "Follower positions B, the points D (ds/dφ laid off turned by 90 deg in the "
-                                    "direction of rotation), the tangent lines at the allowed pressure angle and "
-                                    "the admissible region of cam centres (shaded); O is its point nearest to B0",
-        "cam.profile": "Cam profile",
-        "cam.profile_caption": "Base circle r0, pitch profile (dashed), working profile (solid), follower and "
-                               "roller every 30 deg by inverted motion; scale {scale}",
-        "cam.pressure": "Pressure angle",
-        "cam.pressure_caption": "Pressure angle over the cycle and the allowed values",
-        "cam.table": "Follower motion and profile (every 15 deg)",
-        "cam.files": "Profile and motion tables",
-        "cam.method": "r0 is computed exactly: the admissible region of cam centres is the intersection of the "
-                      "half-planes bounded by the tangent lines of the s - ds/dφ diagram at the allowed pressure "
-                      "angle (one pair per cam angle), and O is its point nearest to the lowest follower position B0.",
-        "cam.scales": "Scales",
-        "cam.flat": "flat-faced translating follower", "cam.knife": "knife-edge translating follower",
-        "cam.r0_chosen": "Chosen base radius r0 (the profile is built on it)",
-        "cam.r0_min": "Least base radius for the allowed pressure angle (same offset / centre distance)",
-        "cam.r0_flat": "Least base radius for a convex profile r0 = max(rho_min_allowed - s - d²s/dφ²)",
-        "cam.rho_allowed": "Allowed least radius of curvature of the profile",
-        "cam.rho_flat": "Least radius of curvature of the profile r0 + s + d²s/dφ²",
-        "cam.face_width": "Face width: span of the contact points max(ds/dφ) - min(ds/dφ)",
-        "cam.face_sym": "Face width, symmetric about the axis: 2 max|ds/dφ|",
-        "cam.theta_flat": "Pressure angle (face perpendicular to the motion)",
-        "cam.flat_method": "For a flat-faced follower the pressure angle is zero and the size is limited by "
-                           "the convexity of the profile: its radius of curvature is r0 + s + d²s/dφ², so "
-                           "r0 = max(rho_min_allowed - s - d²s/dφ²) over the cycle; the profile is the envelope "
-                           "of the face in the inverted motion, the contact point lying ds/dφ from the "
-                           "follower's axis along the face.",
-        "cam.chosen_method": "The profile is built on the chosen base radius; the pressure angle over the cycle "
-                             "is computed exactly for it and checked against the allowed one.",
-        "cam.division": "Values at the division points of the phases",
-        "cam.division_caption": "Each phase divided into {n} equal parts; at the ends of a phase the values "
-                                "are those of its own law (d²s/dφ² may jump there)",
-        "cam.construction_title": "s – ds/dφ diagram",
-        "cam.construction_chosen": "the cam is built on the chosen centre O instead",
-        "cam.construction_scale": "equal scales μs = μds/dφ = {mu} mm/mm (M {label})",
-        "cam.profile_flat_caption": "Base circle r0 and the cam profile (solid), the follower's face every 30 deg "
-                                    "by inverted motion; scale {scale}",
-        "cam.profile_knife_caption": "Base circle r0, the cam profile (solid) and the knife-edge follower every "
-                                     "30 deg by inverted motion; scale {scale}",
-        # the motion laws (cam/laws.py; results.json `cam.laws.*.name`)
-        "cam.law.constant_velocity": "constant velocity", "cam.law.parabolic": "parabolic (constant acceleration)",
-        "cam.law.cosine": "cosine (harmonic)", "cam.law.sine": "sine (cycloidal)",
-        "cam.law.poly345": "polynomial 3-4-5", "cam.law.linear_decreasing": "linearly decreasing acceleration",
-        "cam.law.trapezoidal": "trapezoidal acceleration",
-    },
-    "ru": {
-        "cam.title": "Кулачковый механизм",
-        "cam.summary": "Основные размеры (наименьший кулачок при допустимых углах давления)",
-        "cam.follower": "Толкатель", "cam.translating": "поступательно движущийся роликовый толкатель",
-        "cam.rocker": "качающийся роликовый толкатель (коромысло)",
-        "cam.rotation": "Вращение кулачка",
-        "cam.r0": "Минимальный радиус центрового профиля r0 (точно)",
-        "cam.r0_design": "Принятый радиус (r0, округлённый вверх до целого мм)",
-        "cam.offset": "Эксцентриситет e (положительный уменьшает угол давления на фазе удаления)",
-        "cam.center_distance": "Межосевое расстояние a_w = O A",
-        "cam.psi0": "Начальный угол коромысла O-A-B0",
-        "cam.swing": "Коромысло на фазе удаления поворачивается",
-        "cam.swing_with": "в сторону вращения кулачка", "cam.swing_against": "против вращения кулачка",
-        "cam.roller": "Радиус ролика r_r",
-        "cam.roller_rule": "r_r = min(0,7 rho_min, 0,4 r0) (по правилу r_r <= (0,7..0,8) rho_min, <= (0,4..0,5) r0)",
-        "cam.roller_given": "задан",
-        "cam.theta_allowed": "Допустимый угол давления (удаление / возвращение)",
-        "cam.theta_max": "Наибольший угол давления (удаление / возвращение)",
-        "cam.rho_min": "Минимальный радиус кривизны центрового профиля (выпуклая часть)",
-        "cam.laws": "Законы движения",
-        "cam.phase": "Фаза", "cam.rise": "удаление", "cam.return": "возвращение",
-        "cam.far_dwell": "дальнее стояние", "cam.near_dwell": "ближнее стояние",
-        "cam.law": "Закон", "cam.angle": "Угол, град",
-        "cam.cv": "коэффициент скорости", "cam.ca": "коэффициент ускорения",
-        "cam.impact": "удары", "cam.impact_rigid": "жёсткие", "cam.impact_soft": "мягкие",
-        "cam.impact_none": "нет",
-        "cam.diagrams": "Кинематические диаграммы",
-        "cam.diagrams_caption": "Перемещение, аналоги скорости и ускорения толкателя по углу поворота кулачка; "
-                                "масштабы — масштабы напечатанного рисунка",
-        "cam.construction": "Наименьший кулачок: диаграмма s - ds/dφ",
-        "cam.construction_caption": "Положения толкателя B, точки D (аналог скорости, повёрнутый на 90° в сторону "
-                                    "вращения кулачка), касательные под допустимым углом давления и область "
-                                    "допустимых положений центра кулачка (заливка); O — ближайшая к B0 её точка",
-        "cam.profile": "Профиль кулачка",
-        "cam.profile_caption": "Начальная окружность r0, центровой (штрих) и действительный (сплошной) профили, "
-                               "толкатель и ролик через 30° методом обращения движения; масштаб {scale}",
-        "cam.pressure": "Угол давления",
-        "cam.pressure_caption": "Угол давления за цикл и допустимые значения",
-        "cam.table": "Движение толкателя и профиль (через 15°)",
-        "cam.files": "Таблицы профиля и движения",
-        "cam.method": "r0 вычислен точно: область допустимых положений центра кулачка — пересечение "
-                      "полуплоскостей, ограниченных касательными к диаграмме s - ds/dφ под допустимым углом "
-                      "давления (по паре на каждый угол поворота), O — её точка, ближайшая к нижнему положению "
-                      "толкателя B0.",
-        "cam.scales": "Масштабы",
-        "cam.flat": "поступательно движущийся тарельчатый толкатель",
-        "cam.knife": "поступательно движущийся острый толкатель",
-        "cam.r0_chosen": "Принятый радиус r0 (профиль построен на нём)",
-        "cam.r0_min": "Наименьший радиус при допустимом угле давления (тот же эксцентриситет / межосевое расстояние)",
-        "cam.r0_flat": "Наименьший радиус при выпуклом профиле r0 = max(rho_min_доп - s - d²s/dφ²)",
-        "cam.rho_allowed": "Допустимый наименьший радиус кривизны профиля",
-        "cam.rho_flat": "Наименьший радиус кривизны профиля r0 + s + d²s/dφ²",
-        "cam.face_width": "Ширина тарелки: размах точек касания max(ds/dφ) - min(ds/dφ)",
-        "cam.face_sym": "Ширина тарелки, симметричной относительно оси: 2 max|ds/dφ|",
-        "cam.theta_flat": "Угол давления (тарелка перпендикулярна движению)",
-        "cam.flat_method": "У тарельчатого толкателя угол давления равен нулю, и размер кулачка ограничен "
-                           "выпуклостью профиля: радиус кривизны профиля r0 + s + d²s/dφ², поэтому "
-                           "r0 = max(rho_min_доп - s - d²s/dφ²) за цикл; профиль — огибающая положений тарелки "
-                           "в обращённом движении, точка касания отстоит от оси толкателя на ds/dφ.",
-        "cam.chosen_method": "Профиль построен на принятом радиусе; угол давления за цикл вычислен для него точно "
-                             "и сравнён с допустимым.",
-        "cam.division": "Значения в точках деления фаз",
-        "cam.division_caption": "Каждая фаза разделена на {n} равных частей; на концах фазы — значения её "
-                                "собственного закона (d²s/dφ² там может иметь скачок)",
-        "cam.construction_title": "Диаграмма s – ds/dφ",
-        "cam.construction_chosen": "кулачок построен на принятом центре O",
-        "cam.construction_scale": "равные масштабы μs = μds/dφ = {mu} мм/мм (М {label})",
-        "cam.profile_flat_caption": "Начальная окружность r0 и профиль кулачка (сплошной), тарелка толкателя "
-                                    "через 30° методом обращения движения; масштаб {scale}",
-        "cam.profile_knife_caption": "Начальная окружность r0, профиль кулачка (сплошной) и острый толкатель "
-                                     "через 30° методом обращения движения; масштаб {scale}",
-        "cam.law.constant_velocity": "постоянная скорость", "cam.law.parabolic": "параболический (равноускоренный)",
-        "cam.law.cosine": "косинусоидальный", "cam.law.sine": "синусоидальный", "cam.law.poly345": "полином 3-4-5",
-        "cam.law.linear_decreasing": "линейно убывающее ускорение",
-        "cam.law.trapezoidal": "трапецеидальное ускорение",
-    },
-}
+from ... import locales
+
+I18N = locales.table("cam", "words")
 
 MM = 1e3
 PHASE_COLORS = {"rise": "#e8f0fb", "far_dwell": "#f4f4f4", "return": "#fbeee8", "near_dwell": "#ffffff"}
 
 
 def _loc(lang: str, text: str) -> str:
-    """Units in the report's language: deg -> °, and in Russian mm -> мм, rad -> рад."""
+    """Units in the report's language: deg -> °, and mm and rad as the language spells them
+    (messages.unit)."""
     import re
     text = re.sub(r"(?<![A-Za-z])deg(?![A-Za-z])", "°", text)
-    if lang in ("ru", "uk"):
-        text = re.sub(r"(?<![A-Za-z])mm(?![A-Za-z])", "мм", text)
-        text = re.sub(r"(?<![A-Za-z])rad(?![A-Za-z])", "рад", text)
+    from ...messages import unit
+    if lang != "en":
+        text = re.sub(r"(?<![A-Za-z])mm(?![A-Za-z])", unit("mm", lang), text)
+        text = re.sub(r"(?<![A-Za-z])rad(?![A-Za-z])", unit("rad", lang), text)
     return text
 
 

@@ -1,13 +1,14 @@
 """Report section 'differential': the members' speeds (Willis), the satellite's, the torques
 and powers with the loss in the meshes, the conditions of the given teeth and the velocity
 picture (Smirnov's method). Reads numbers only from results["differential"]; its words are
-the data file differential.yaml beside this module."""
+the catalogues' topic 'differential'
+(tmm_cli/locales/<lang>/differential.yaml)."""
 from __future__ import annotations
 
 from ...numfmt import num
-from ..i18n import words_beside
+from ... import locales
 
-I18N = words_beside(__file__)
+I18N = locales.table("differential", "words")
 
 
 def figure(ctx, d):

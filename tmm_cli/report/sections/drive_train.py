@@ -6,55 +6,12 @@ from __future__ import annotations
 
 import math
 
+from ... import locales
 from ...messages import unit
 from ...numfmt import localize, num
 from ..figures import mu_text
 
-I18N = {
-    "en": {"train.title": "Gear drive", "train.stage": "Stage", "train.kind": "Kind",
-           "train.z": "Tooth numbers", "train.ratio": "Ratio u (analytic)", "train.ratio_plan": "u from the plan",
-           "train.diff": "|difference|", "train.pair": "external pair", "train.pair_int": "internal pair",
-           "train.planetary": "planetary, scheme {s}", "train.overall": "Overall ratio U",
-           "train.required": "Required ratio", "train.error": "Ratio error",
-           "train.best": "Smallest |error| of all feasible choices", "train.shafts": "Shaft speeds",
-           "train.shaft": "Shaft", "train.omega": "ω, rad/s", "train.rpm": "n, rpm", "train.sense": "Sense",
-           "train.input": "input (motor)", "train.out_of": "output of stage {i}",
-           "train.satellites": "Satellites (carrier speed, absolute and relative speed of the satellite)",
-           "train.omega_h": "ω_H, rad/s", "train.omega_sat": "ω_sat, rad/s", "train.omega_rel": "ω_sat − ω_H, rad/s",
-           "train.checks": "Conditions", "train.candidates": "Candidate trains (rank: {r})",
-           "train.size": "Size (teeth)", "train.motor": "Motor and flywheel",
-           "train.power": "Motor power P = M_c ω_m / η, W", "train.J": "Flywheel on the crank shaft J, kg·m²",
-           "train.J_motor": "The same on the motor shaft J/U², kg·m²",
-           "train.Jn_motor": "J_n/U² on the motor shaft, kg·m²", "train.GD2": "GD² = 4gJ on the motor shaft, N·m²",
-           "train.scheme": "Kinematic scheme of the train and the linear-velocity picture",
-           "train.plan": "Angular-velocity plan: ω_i = μ_ω · x_i, u = x_in / x_out",
-           "train.split": "Share of the stages without tooth numbers", "train.yes": "yes", "train.no": "no",
-           "task.sec.drive_train": "Gear drive", "train.c.coaxial": "coaxiality", "train.c.assembly": "assembly",
-           "train.c.adjacency": "adjacency", "train.c.undercut": "tooth limits"},
-    "ru": {"train.title": "Зубчатый привод", "train.stage": "Ступень", "train.kind": "Вид",
-           "train.z": "Числа зубьев", "train.ratio": "Передаточное отношение u (аналитически)",
-           "train.ratio_plan": "u по плану", "train.diff": "|разность|", "train.pair": "внешнее зацепление",
-           "train.pair_int": "внутреннее зацепление", "train.planetary": "планетарная, схема {s}",
-           "train.overall": "Общее передаточное отношение U", "train.required": "Требуемое",
-           "train.error": "Погрешность", "train.best": "Наименьшая |погрешность| среди допустимых вариантов",
-           "train.shafts": "Угловые скорости валов", "train.shaft": "Вал", "train.omega": "ω, рад/с",
-           "train.rpm": "n, об/мин", "train.sense": "Направление", "train.input": "входной (двигатель)",
-           "train.out_of": "выходной вал ступени {i}",
-           "train.satellites": "Сателлиты (водило, абсолютная и относительная скорость сателлита)",
-           "train.omega_h": "ω_H, рад/с", "train.omega_sat": "ω_сат, рад/с",
-           "train.omega_rel": "ω_сат − ω_H, рад/с", "train.checks": "Условия",
-           "train.candidates": "Варианты привода (ранжирование: {r})", "train.size": "Габарит (зубьев)",
-           "train.motor": "Двигатель и маховик", "train.power": "Мощность двигателя P = M_c ω_m / η, Вт",
-           "train.J": "Маховик на валу кривошипа J, кг·м²", "train.J_motor": "Тот же на валу двигателя J/U², кг·м²",
-           "train.Jn_motor": "J_n/U² на валу двигателя, кг·м²",
-           "train.GD2": "Маховой момент GD² = 4gJ на валу двигателя, Н·м²",
-           "train.scheme": "Кинематическая схема привода и картина линейных скоростей",
-           "train.plan": "План угловых скоростей: ω_i = μ_ω · x_i, u = x_вх / x_вых",
-           "train.split": "Разбивка передаточного отношения по ступеням без чисел зубьев",
-           "train.yes": "да", "train.no": "нет", "task.sec.drive_train": "Зубчатый привод",
-           "train.c.coaxial": "соосность", "train.c.assembly": "сборка", "train.c.adjacency": "соседство",
-           "train.c.undercut": "ограничения чисел зубьев"},
-}
+I18N = locales.table("drive_train", "words")
 
 FRAME = 170.0        # mm: the width of the page's figure
 STEP = 22.0          # mm between the stages of the scheme
@@ -282,6 +239,6 @@ def build(ctx) -> str | None:
 
 
 def rank_words(rank: str, lang: str) -> str:
-    """The candidates' order in words ('по габариту'), as in the task data table."""
+    """The candidates' order in words ('by size', in the report's language), as in the task data table."""
     from .task import WORDS
     return WORDS.get(lang, {}).get(rank, rank)

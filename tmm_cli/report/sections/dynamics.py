@@ -11,96 +11,9 @@ import math
 
 import numpy as np
 
-I18N = {
-    "en": {"dyn.title": "Dynamics and the flywheel",
-           "dyn.summary": "Result", "dyn.method": "Primary method",
-           "dyn.m_energy-mass": "energy-mass (exact analytic form)", "dyn.m_merzalov": "Merzalov",
-           "dyn.m_exact": "exact integration of the equation of motion",
-           "dyn.constant_driving": "constant driving moment (motor-driven machine)",
-           "dyn.constant_resistance": "constant resistance moment (engine)",
-           "dyn.constant": "Constant reduced moment", "dyn.M_constant": "M_constant, N·m",
-           "dyn.delta": "required δ", "dyn.delta_achieved": "δ achieved", "dyn.omega_m": "ω_m, rad/s",
-           "dyn.omega_max": "ω_max, rad/s", "dyn.omega_min": "ω_min, rad/s",
-           "dyn.J_const": "J_const (constant part of J_red), kg·m²", "dyn.J_n": "J_n (needed constant inertia), kg·m²",
-           "dyn.J": "J_fly (flywheel), kg·m²", "dyn.shape": "Flywheel shape", "dyn.disk": "solid disk",
-           "dyn.rim": "rim", "dyn.D": "diameter D, m", "dyn.b": "width b, m", "dyn.m": "mass m, kg",
-           "dyn.v": "rim speed, m/s", "dyn.rho": "density ρ, kg/m³", "dyn.psi": "ψ_b = b/D",
-           "dyn.const_links": "links of constant reduced inertia",
-           "dyn.diagrams": "Reduced moments, works, kinetic energy and reduced inertia",
-           "dyn.phi_axis": "crank rotation from position 0, deg",
-           "dyn.witt_x": "J_red, mm (μ_J = {mu} kg·m²/mm)", "dyn.witt_y": "ΔT, mm (μ_T = {mu} J/mm)",
-           "dyn.M_axis": "M, N·m", "dyn.A_axis": "A, J", "dyn.T_axis": "ΔT, J", "dyn.J_axis": "J_red, kg·m²",
-           "dyn.Md": "M_d (driving)", "dyn.Mc": "M_c (resistance)", "dyn.Ad": "A_d", "dyn.Ac": "A_c",
-           "dyn.dT": "ΔT = A_d − A_c", "dyn.Jred": "J_red", "dyn.Jvar": "J_var",
-           "dyn.wittenbauer": "Energy-mass (Wittenbauer) diagram",
-           "dyn.witt_caption": "ΔT against J_red to scale: μ_J = {muJ} kg·m²/mm, μ_T = {muT} J/mm; "
-                               "tan ψ_max,min = (μ_J/μ_T) ω_m² (1 ± δ)/2: ψ_max = {pmax:.3f}°, "
-                               "ψ_min = {pmin:.3f}°. The tangents cut the segment kl = {kl:.1f} mm on the "
-                               "ΔT axis: J_fly = kl·μ_T/(ω_m² δ) = {J} kg·m².",
-           "dyn.motion": "Steady motion with the flywheel",
-           "dyn.omega_axis": "ω₁, rad/s", "dyn.eps_axis": "ε₁, rad/s²",
-           "dyn.motion_caption": "ω₁(φ) from T = T₀ + ΔT, ω = √(2T/J); ε₁ = (M_red − J′ω²/2)/J (signed, ccw positive).",
-           "dyn.methods": "Comparison of the methods", "dyn.col_method": "Method",
-           "dyn.col_Jn": "J_n, kg·m²", "dyn.col_J": "J_fly, kg·m²", "dyn.col_diff": "vs exact, %",
-           "dyn.m_wittenbauer": "Wittenbauer tangents (1 ± δ)/2 (graphical)",
-           "dyn.methods_note": "Bounds: J_Merzalov − J_exact lies between min and max of J_var "
-                               "({jmin} … {jmax} kg·m²); the graphical tangents differ from the exact form by at most "
-                               "(max J_var − min J_var)·δ/8.",
-           "dyn.accuracy": "Accuracy against the number of positions",
-           "dyn.col_res": "positions", "dyn.col_errJ": "error J", "dyn.col_wmax": "ω_max",
-           "dyn.col_wmin": "ω_min", "dyn.col_err": "error", "dyn.col_dtrue": "δ really",
-           "dyn.col_time": "time, ms",
-           "dyn.acc_note": "Errors relative to the finest grid ({ref} positions); ω_max/ω_min of the motion with "
-                           "the converged flywheel computed on each grid; “δ really” is what the row's J gives.",
-           "dyn.hand": "Hand calculation ({n} positions every {step}°, trapezoid): J = {J} kg·m² "
-                       "(energy-mass {Jem}, Merzalov {Jm}); error {err} %; the accurate value is {Jacc} kg·m².",
-           "dyn.csv_note": "All arrays: flywheel.csv."},
-    "ru": {"dyn.title": "Динамика и маховик",
-           "dyn.summary": "Результат", "dyn.method": "Основной метод",
-           "dyn.m_energy-mass": "энергомасс (точная аналитическая форма)", "dyn.m_merzalov": "Мерцалова",
-           "dyn.m_exact": "точное интегрирование уравнения движения",
-           "dyn.constant_driving": "постоянный движущий момент (машина с двигателем)",
-           "dyn.constant_resistance": "постоянный момент сопротивления (двигатель)",
-           "dyn.constant": "Постоянный приведённый момент", "dyn.M_constant": "M_пост, Н·м",
-           "dyn.delta": "заданный δ", "dyn.delta_achieved": "полученный δ", "dyn.omega_m": "ω_ср, рад/с",
-           "dyn.omega_max": "ω_max, рад/с", "dyn.omega_min": "ω_min, рад/с",
-           "dyn.J_const": "J_пост (постоянная часть J_пр), кг·м²",
-           "dyn.J_n": "J_н (необходимый постоянный момент инерции), кг·м²",
-           "dyn.J": "J_м (маховик), кг·м²", "dyn.shape": "Форма маховика", "dyn.disk": "сплошной диск",
-           "dyn.rim": "обод", "dyn.D": "диаметр D, м", "dyn.b": "ширина b, м", "dyn.m": "масса m, кг",
-           "dyn.v": "окружная скорость, м/с", "dyn.rho": "плотность ρ, кг/м³", "dyn.psi": "ψ_b = b/D",
-           "dyn.const_links": "звенья с постоянным приведённым моментом инерции",
-           "dyn.diagrams": "Приведённые моменты, работы, кинетическая энергия и приведённый момент инерции",
-           "dyn.phi_axis": "поворот кривошипа от положения 0, град",
-           "dyn.witt_x": "J_пр, мм (μ_J = {mu} кг·м²/мм)", "dyn.witt_y": "ΔT, мм (μ_T = {mu} Дж/мм)",
-           "dyn.M_axis": "M, Н·м", "dyn.A_axis": "A, Дж", "dyn.T_axis": "ΔT, Дж", "dyn.J_axis": "J_пр, кг·м²",
-           "dyn.Md": "M_д (движущий)", "dyn.Mc": "M_с (сопротивления)", "dyn.Ad": "A_д", "dyn.Ac": "A_с",
-           "dyn.dT": "ΔT = A_д − A_с", "dyn.Jred": "J_пр", "dyn.Jvar": "J_перем",
-           "dyn.wittenbauer": "Диаграмма энергомасс (Виттенбауэра)",
-           "dyn.witt_caption": "ΔT в функции J_пр в масштабе: μ_J = {muJ} кг·м²/мм, μ_T = {muT} Дж/мм; "
-                               "tg ψ_max,min = (μ_J/μ_T) ω_ср² (1 ± δ)/2: ψ_max = {pmax:.3f}°, "
-                               "ψ_min = {pmin:.3f}°. Касательные отсекают на оси ΔT отрезок kl = {kl:.1f} мм: "
-                               "J_м = kl·μ_T/(ω_ср² δ) = {J} кг·м².",
-           "dyn.motion": "Установившееся движение с маховиком",
-           "dyn.omega_axis": "ω₁, рад/с", "dyn.eps_axis": "ε₁, рад/с²",
-           "dyn.motion_caption": "ω₁(φ) из T = T₀ + ΔT, ω = √(2T/J); ε₁ = (M_пр − J′ω²/2)/J (со знаком, "
-                                 "против часовой стрелки положительно).",
-           "dyn.methods": "Сравнение методов", "dyn.col_method": "Метод",
-           "dyn.col_Jn": "J_н, кг·м²", "dyn.col_J": "J_м, кг·м²", "dyn.col_diff": "отличие от точного, %",
-           "dyn.m_wittenbauer": "касательные Виттенбауэра (1 ± δ)/2 (графически)",
-           "dyn.methods_note": "Оценки: J_Мерцалов − J_точн лежит между min и max J_перем "
-                               "({jmin} … {jmax} кг·м²); графические касательные отличаются от точной формы не более "
-                               "чем на (max J_перем − min J_перем)·δ/8.",
-           "dyn.accuracy": "Точность в зависимости от числа положений",
-           "dyn.col_res": "положений", "dyn.col_errJ": "погрешность J", "dyn.col_wmax": "ω_max",
-           "dyn.col_wmin": "ω_min", "dyn.col_err": "погрешность", "dyn.col_dtrue": "δ фактический",
-           "dyn.col_time": "время, мс",
-           "dyn.acc_note": "Погрешности относительно самой мелкой сетки ({ref} положений); ω_max/ω_min движения "
-                           "со сходящимся маховиком на каждой сетке; «δ фактический» даёт J данной строки.",
-           "dyn.hand": "Ручной расчёт ({n} положений через {step}°, трапеции): J = {J} кг·м² "
-                       "(энергомасс {Jem}, Мерцалов {Jm}); погрешность {err} %; точное значение {Jacc} кг·м².",
-           "dyn.csv_note": "Все массивы: flywheel.csv."},
-}
+from ... import locales
+
+I18N = locales.table("dynamics", "words")
 
 
 def _arr(d, key):

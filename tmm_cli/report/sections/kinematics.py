@@ -19,6 +19,7 @@ from operator import itemgetter
 import numpy as np
 from markupsafe import Markup
 
+from ... import locales
 from ..context import values_of
 from ..course import course_entries, cycle_order, grid_count, position_label
 from ...drawings.plans import draw_plan, plan_room
@@ -26,22 +27,7 @@ from ...numfmt import num as written
 from ...plans import build_plan, crank_pin, geometry, plan_label, scales
 from ...scales import nice_scale
 
-I18N = {
-    "en": {"kin.si_v": "m/s", "kin.si_a": "m/s²", "kin.mm": "mm", "kin.unit_v": "(m/s)/mm", "kin.unit_a": "(m/s²)/mm", "kin.unit_l": "m/mm",
-           "kin.plan_axis": "mm on the plan", "kin.output": "Output link",
-           "kin.s_unit": "s, m", "kin.v_unit": "v, m/s", "kin.a_unit": "a, m/s²",
-           "kin.psi_unit": "ψ, deg", "kin.w_unit": "ω, rad/s", "kin.e_unit": "ε, rad/s²",
-           "kin.formula_w": "ω = v_rel / l",
-           "kin.sense_note": "↺ counter-clockwise (positive), ↻ clockwise (negative).",
-           "kin.table_angles": "Angles of the links, ° (from the x axis, counter-clockwise)", "kin.csv_note": "All numbers: kinematics.csv, plans.csv."},
-    "ru": {"kin.si_v": "м/с", "kin.si_a": "м/с²", "kin.mm": "мм", "kin.unit_v": "м/(с·мм)", "kin.unit_a": "м/(с²·мм)", "kin.unit_l": "м/мм",
-           "kin.plan_axis": "мм на плане", "kin.output": "Выходное звено",
-           "kin.s_unit": "s, м", "kin.v_unit": "v, м/с", "kin.a_unit": "a, м/с²",
-           "kin.psi_unit": "ψ, град", "kin.w_unit": "ω, рад/с", "kin.e_unit": "ε, рад/с²",
-           "kin.formula_w": "ω = v_отн / l",
-           "kin.sense_note": "↺ — против часовой стрелки (положительные), ↻ — по часовой стрелке (отрицательные).",
-           "kin.table_angles": "Углы звеньев, ° (от оси x против часовой стрелки)", "kin.csv_note": "Все числа: kinematics.csv, plans.csv."},
-}
+I18N = locales.table("kinematics", "words")
 
 
 def _median(values) -> float:

@@ -15,7 +15,7 @@ group to the crank, as the groups are solved):
 
 Force names as the course writes them (Popov & Timofeev; Frolov): R_ij reaction of
 link i on link j, G_i weight, Phi_i inertia force, M_Phi_i moment of the inertia
-couple, F_f (F_тр) friction.  Writes ``kinetostatics.csv`` beside the report.  Reads
+couple, F_f (F_tr in ru and uk) friction.  Writes ``kinetostatics.csv`` beside the report.  Reads
 numbers only from results.
 """
 from __future__ import annotations
@@ -25,6 +25,8 @@ import math
 import numpy as np
 from markupsafe import Markup, escape
 
+from ... import locales
+from ...messages import unit as spelt
 from .. import figures
 from ..context import values_of
 from ..course import position_label
@@ -33,102 +35,7 @@ from ...drawings import forces as D
 from ...drawings.forces import (KIND_COLOR, group_couples, group_force_data, group_forces,  # noqa: F401
                                 label_html, label_parts, links_by_name, polygon, position_rows)
 
-I18N = {
-    "en": {"kst.title": "Kinetostatics", "kst.convention": "Sign convention",
-           "kst.conv_text": "R_ij is the force exerted by link i on link j (i < j; R_ji = −R_ij); "
-                            "moments and couples are counter-clockwise positive. The balancing moment M_b is the "
-                            "couple the drive applies to the balance link to keep the prescribed motion; "
-                            "P_b = M_b / l is the balancing force at the end of its arm l. A prismatic pair's "
-                            "normal force N acts along the guide normal (the guide direction turned +90°) at the "
-                            "distance x = M/N from the slider's pin.",
-           "kst.names": "Names in the drawings: G — weight, Φ — inertia force, M_Φ — moment of the inertia "
-                        "couple, F_f and M_f — friction force and moment, R_ij — reaction.",
-           "kst.balance": "Balance link", "kst.arm": "arm l, m", "kst.singular": "Singular positions",
-           "kst.bk_moment": "balancing moment", "kst.bk_force": "balancing force",
-           "kst.singular_none": "none: the equilibrium equations are regular over the whole turn",
-           "kst.singular_text": "crank angles where the equations are singular for this balance link (deg)",
-           "kst.diagrams": "Load diagrams", "kst.mb_table": "Balancing moment by each method",
-           "kst.position": "Pos.", "kst.mb": "M_b (groups), N·m", "kst.zh": "M_b (Zhukovsky), N·m",
-           "kst.vp": "M_b (virtual power), N·m", "kst.mx": "M_b (matrix), N·m",
-           "kst.pb": "P_b, N", "kst.disc": "Δ, %", "kst.eff": "η", "kst.near": "near singular",
-           "kst.fb": "P_b (groups), N", "kst.fzh": "P_b (Zhukovsky), N", "kst.fvp": "P_b (virtual power), N",
-           "kst.fmx": "P_b (matrix), N",
-           "kst.reactions": "Reactions in the pairs, N", "kst.cycle": "Balancing moment and reactions over the cycle",
-           "kst.position_n": "Position {i}, φ = {phi:.2f}°", "kst.loads": "Loads",
-           "kst.loads_table": "Loads of the positions",
-           "kst.loads_note": "|F| in N, couples M in N·m (ccw positive). Constant: {const}.",
-           "kst.name": "Load", "kst.kind": "kind",
-           "kst.fbd_caption": "Left: the groups detached from the mechanism (scale μl) with the loads and the "
-                              "reactions of the removed links at their points; the arrows show direction and "
-                              "point of application, not magnitude. Right: the force polygons to scale μF. "
-                              "Bottom: Zhukovsky's lever — the velocity plan turned by 90° with the forces "
-                              "moved to the ends of the turned velocities.",
-           "kst.lever": "Zhukovsky lever", "kst.polygon": "force polygon", "kst.group": "group",
-           "kst.group_links": "Group {k}: links {links}", "kst.crank_row": "Input link {i} ({name})",
-           "kst.links_of": "link {i}",
-           "kst.crank": "crank", "kst.pair": "pair", "kst.prismatic": "N, N; x = M/N, m",
-           "kst.csv_note": "All numbers: kinetostatics.csv.", "kst.rotation": "crank rotation from position 0, deg",
-           "kst.null": "— : singular to working precision (no finite value).",
-           "kst.s_axis": "s, m", "kst.s_unit": "m", "kst.phi_axis": "φ from position 0, deg", "kst.force_axis": "F, N",
-           "kst.moment_axis": "M, N·m", "kst.efficiency": "Instantaneous efficiency η = 1 − P_f / P_d",
-           "kst.pf": "P_f, W", "kst.pd": "P_d, W", "kst.unit_F": "N/mm", "kst.unit_l": "m/mm",
-           "kst.unit_v": "(m/s)/mm", "kst.N": "N", "kst.Nm": "N·m",
-           "kst.mb_groups": "M_b by the groups", "kst.mb_lever": "M_b by the lever",
-           "kst.pb_lever": "P_b (lever)", "kst.lever_eq": "P_b·h_b = Σ F_i·h_i (+ Σ M_i ω_i / ω_1)",
-           "kst.f_friction": "f", "kst.sub_b": "b",
-           "kind.resistance": "resistance", "kind.driving": "driving", "kind.load": "load",
-           "kind.gravity": "gravity", "kind.inertia": "inertia", "kind.friction": "friction",
-           "stroke.working": "working stroke", "stroke.idle": "idle stroke", "stroke.both": "both strokes",
-           "stroke.cycle": "whole cycle"},
-    "ru": {"kst.title": "Кинетостатика", "kst.convention": "Правило знаков",
-           "kst.conv_text": "R_ij — сила, с которой звено i действует на звено j (i < j; R_ji = −R_ij); "
-                            "моменты и пары сил положительны против часовой стрелки. Уравновешивающий момент M_b — "
-                            "пара, которую привод прикладывает к звену приведения для обеспечения заданного "
-                            "движения; P_b = M_b / l — уравновешивающая сила на конце плеча l. Нормальная сила N "
-                            "поступательной пары направлена по нормали к направляющей (направление направляющей, "
-                            "повёрнутое на +90°) и приложена на расстоянии x = M/N от шарнира ползуна.",
-           "kst.names": "Обозначения на чертежах: G — сила тяжести, Φ — сила инерции, M_Φ — момент пары сил "
-                        "инерции, F_тр и M_тр — сила и момент трения, R_ij — реакция.",
-           "kst.balance": "Звено приведения", "kst.arm": "плечо l, м", "kst.singular": "Особые положения",
-           "kst.bk_moment": "уравновешивающий момент", "kst.bk_force": "уравновешивающая сила",
-           "kst.singular_none": "нет: уравнения равновесия невырождены на всём обороте",
-           "kst.singular_text": "углы кривошипа, при которых уравнения вырождены для этого звена (град)",
-           "kst.diagrams": "Диаграммы нагрузок", "kst.mb_table": "Уравновешивающий момент, найденный каждым методом",
-           "kst.position": "Пол.", "kst.mb": "M_b (по группам), Н·м", "kst.zh": "M_b (Жуковский), Н·м",
-           "kst.vp": "M_b (мощности), Н·м", "kst.mx": "M_b (матрица), Н·м",
-           "kst.pb": "P_b, Н", "kst.disc": "Δ, %", "kst.eff": "η", "kst.near": "вблизи особого",
-           "kst.fb": "P_b (по группам), Н", "kst.fzh": "P_b (Жуковский), Н", "kst.fvp": "P_b (мощности), Н",
-           "kst.fmx": "P_b (матрица), Н",
-           "kst.reactions": "Реакции в кинематических парах, Н",
-           "kst.cycle": "Уравновешивающий момент и реакции за цикл",
-           "kst.position_n": "Положение {i}, φ = {phi:.2f}°", "kst.loads": "Нагрузки",
-           "kst.loads_table": "Нагрузки в положениях механизма",
-           "kst.loads_note": "|F| в Н, моменты пар M в Н·м (против часовой стрелки — положительные). "
-                             "Постоянные: {const}.",
-           "kst.name": "Нагрузка", "kst.kind": "вид",
-           "kst.fbd_caption": "Слева — группы, отсоединённые от механизма (масштаб μl), с нагрузками и реакциями "
-                              "отброшенных звеньев в точках приложения; стрелки показывают направление и точку "
-                              "приложения, а не величину. Справа — планы сил в масштабе μF. Внизу — рычаг "
-                              "Жуковского: повёрнутый на 90° план скоростей с силами, перенесёнными в концы "
-                              "повёрнутых скоростей.",
-           "kst.lever": "Рычаг Жуковского", "kst.polygon": "план сил", "kst.group": "группа",
-           "kst.group_links": "Группа {k}: звенья {links}", "kst.crank_row": "Входное звено {i} ({name})",
-           "kst.links_of": "звено {i}",
-           "kst.crank": "кривошип", "kst.pair": "пара", "kst.prismatic": "N, Н; x = M/N, м",
-           "kst.csv_note": "Все числа: kinetostatics.csv.", "kst.rotation": "поворот кривошипа от положения 0, град",
-           "kst.null": "— : вырождено с рабочей точностью (конечного значения нет).",
-           "kst.s_axis": "s, м", "kst.s_unit": "м", "kst.phi_axis": "φ от положения 0, град", "kst.force_axis": "F, Н",
-           "kst.moment_axis": "M, Н·м", "kst.efficiency": "Мгновенный КПД η = 1 − P_тр / P_дв",
-           "kst.pf": "P_тр, Вт", "kst.pd": "P_дв, Вт", "kst.unit_F": "Н/мм", "kst.unit_l": "м/мм",
-           "kst.unit_v": "м/(с·мм)", "kst.N": "Н", "kst.Nm": "Н·м",
-           "kst.mb_groups": "M_b по группам", "kst.mb_lever": "M_b по рычагу",
-           "kst.pb_lever": "P_b (рычаг)", "kst.lever_eq": "P_b·h_b = Σ F_i·h_i (+ Σ M_i ω_i / ω_1)",
-           "kst.f_friction": "тр", "kst.sub_b": "b",
-           "kind.resistance": "сопротивление", "kind.driving": "движущая", "kind.load": "нагрузка",
-           "kind.gravity": "сила тяжести", "kind.inertia": "сила инерции", "kind.friction": "трение",
-           "stroke.working": "рабочий ход", "stroke.idle": "холостой ход", "stroke.both": "оба хода",
-           "stroke.cycle": "весь цикл"},
-}
+I18N = locales.table("kinetostatics", "words")
 
 MAX_FIG_POSITIONS = 24       # pages of drawings for at most this many positions (time, size)
 ROW_H = 72.0                 # mm: one row (a group's diagram + its polygon)
@@ -351,9 +258,9 @@ def build(ctx) -> str | None:
         csv_hdr += [f"{j['key']}_x", f"{j['key']}_y", f"{j['key']}_R"]
     ctx.write_csv("kinetostatics.csv", csv_hdr, csv_rows)
     # reactions table
-    r_hdr = [ctx.t("kst.position")] + [label_html(j["key"], lang) + Markup(", N" if lang == "en" else ", Н")
+    r_hdr = [ctx.t("kst.position")] + [label_html(j["key"], lang) + Markup(f", {spelt('N', lang)}")
                                        if j["kind"] == "R" else
-                                       label_html(j["key"], lang) + Markup(": N, N; x, m" if lang == "en" else ": N, Н; x, м")
+                                       label_html(j["key"], lang) + Markup(f": N, {spelt('N', lang)}; x, {spelt('m', lang)}")
                                        for j in info["joints"]]
     r_rows = []
     for e in shown:
@@ -431,8 +338,8 @@ def _loads_table(ctx, entries, n_grid=None):
         return len(v) == n and (max(v) - min(v)) <= 1e-9 * max(1.0, max(abs(x) for x in v))
 
     const_parts, fcols, ccols = [], [], []
-    N = "N" if lang == "en" else "Н"
-    Nm = "N·m" if lang == "en" else "Н·м"
+    N = spelt("N", lang)
+    Nm = spelt("N*m", lang)
     for nm in fnames:
         if constant(fval[nm]):
             if fval[nm][0] > 0:

@@ -4,33 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from ... import locales
 from ...numfmt import num
 
-I18N = {
-    "en": {"plan.title": "Planetary gear synthesis", "plan.scheme": "Scheme {s}: {name}",
-           "plan.z": "Tooth numbers", "plan.ratio": "Ratio i_1H (Willis)", "plan.required": "Required",
-           "plan.error": "Ratio error", "plan.plan_ratio": "Ratio from the velocity plan",
-           "plan.checks": "Conditions", "plan.candidates": "Best candidates",
-           "plan.size": "Size (modules)", "plan.sketch": "Scheme (half section) and velocity plan",
-           "plan.coaxial": "coaxiality", "plan.assembly": "assembly (p = {p})",
-           "plan.adjacency": "adjacency (margin {m} modules)", "plan.undercut": "no undercut",
-           "plan.v_axis": "v, m/s (ω₁ = 1 rad/s)", "plan.mm": "mm", "plan.carrier": "carrier H",
-           "plan.satellite": "satellite", "plan.best": "Smallest |error| of all feasible sets"},
-    "ru": {"plan.title": "Синтез планетарного механизма", "plan.scheme": "Схема {s}: {name}",
-           "plan.z": "Числа зубьев", "plan.ratio": "Передаточное отношение i_1H (Виллис)",
-           "plan.required": "Требуемое", "plan.error": "Погрешность",
-           "plan.plan_ratio": "Передаточное отношение по плану скоростей", "plan.checks": "Условия",
-           "plan.candidates": "Лучшие варианты", "plan.size": "Габарит (модулей)",
-           "plan.sketch": "Схема (полуразрез) и план линейных скоростей",
-           "plan.coaxial": "соосность", "plan.assembly": "сборка (p = {p})",
-           "plan.adjacency": "соседство (запас {m} модуля)", "plan.undercut": "отсутствие подреза",
-           "plan.v_axis": "v, м/с (ω₁ = 1 рад/с)", "plan.mm": "мм", "plan.carrier": "водило H",
-           "plan.satellite": "сателлит", "plan.best": "Наименьшая |погрешность| среди допустимых наборов",
-           "plan.scheme_A": "однорядный: солнечное колесо — сателлит — неподвижное корончатое колесо",
-           "plan.scheme_B": "двухрядный с двойным сателлитом: внешнее и внутреннее зацепления",
-           "plan.scheme_C": "двухрядный с двойным сателлитом: два внешних зацепления",
-           "plan.scheme_D": "двухрядный с двойным сателлитом: два внутренних зацепления"},
-}
+I18N = locales.table("planetary", "words")
 
 
 def _rows_of(p):

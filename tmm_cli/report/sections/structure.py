@@ -9,23 +9,24 @@ import numpy as np
 from ...plans import geometry
 
 ROMAN = {1: "I", 2: "II", 3: "III", 4: "IV", 5: "V", 6: "VI"}
-# the kind of an Assur group by its pairs in the letters of the kinematic pairs table:
-# В (вращательная) / О (обертальна), П (поступательная, поступальна) — ВВП, ООП for RRP
-_PAIR_LETTERS = {"ru": str.maketrans("RP", "ВП"), "uk": str.maketrans("RP", "ОП")}
+# the kind of an Assur group by its pairs in the letters of the kinematic pairs table: R and P
+# as the language writes them (the words `struct.pair_letters`; Russian and Ukrainian write
+# the revolute pair's letter of their own words)
 
 
 def group_kind(typ, lang: str) -> str:
-    """'RRP' in the report's language: 'ВВП' in Russian, 'ООП' in Ukrainian; other kinds as given."""
+    """'RRP' in the report's language (the letters of `struct.pair_letters`); other kinds as given."""
+    from ..i18n import translate
     s = str(typ)
-    table = _PAIR_LETTERS.get(lang)
-    if table is None or not s or set(s) - set("RP"):
+    letters = translate("struct.pair_letters", lang)
+    if letters == "RP" or len(letters) != 2 or not s or set(s) - set("RP"):
         return s
-    return s.translate(table)
+    return s.translate(str.maketrans("RP", letters))
 
 
 def link_kind(geom, link) -> str:
-    """crank | rocker | rod | slider | block | slotted (кулиса), by the pairs of the link: a
-    slider on a moving link's guide is the block of a slotted link (камень кулисы)."""
+    """crank | rocker | rod | slider | block | slotted (kulisa), by the pairs of the link: a
+    slider on a moving link's guide is the block of a slotted link (the course's kamen' kulisy)."""
     if link.kind == "slider":
         on_moving = any(j.kind == "P" and link.index in (j.a, j.b) and 0 not in (j.a, j.b) for j in geom.joints)
         return "block" if on_moving else "slider"

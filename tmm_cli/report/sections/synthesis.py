@@ -8,58 +8,12 @@ import math
 
 import numpy as np
 
-I18N = {
-    "en": {"syn.title": "Synthesis of the lever mechanism",
-           "syn.type": "Type", "syn.lengths": "Link lengths", "syn.analysed": "The designed mechanism, analysed",
-           "syn.H": "Stroke H", "syn.K": "Coefficient of mean speed increase K", "syn.theta": "Angle θ",
-           "syn.psi": "Swing ψ", "syn.gamma": "Least transmission angle γ_min",
-           "syn.gamma_at": "{g}° at crank angle {p}°", "syn.working": "Working (slow) stroke of {o}",
-           "syn.solutions": "Solutions", "syn.chosen": "chosen", "syn.side": "side",
-           "syn.construction": "Construction: extreme positions, the angle θ and the circle through the "
-                               "extreme points (drawing scale 1:{s})",
-           "syn.gamma_fig": "Transmission angle γ over the cycle from position 0",
-           "syn.turn": "crank turn from position 0, °", "syn.type.slider_crank": "central slider-crank",
-           "syn.type.offset_slider_crank": "offset slider-crank", "syn.type.crank_rocker": "crank-rocker four-bar",
-           "syn.type.slotted_lever": "slotted-lever (quick-return) mechanism",
-           "syn.type.shaper": "slotted-lever shaper with the ram", "syn.forward": "forward",
-           "syn.backward": "backward", "syn.side.far": "far from O1", "syn.side.near": "near O1",
-           "syn.method": "K = (180° + θ)/(180° − θ); the link lengths follow from "
-           "the extreme positions of the output seen from the crank axis under θ (Artobolevsky); H, K, θ, ψ and "
-           "γ_min below are found by analysing the designed mechanism."},
-    "ru": {"syn.title": "Синтез рычажного механизма",
-           "syn.type": "Тип", "syn.lengths": "Длины звеньев", "syn.analysed": "Спроектированный механизм (анализ)",
-           "syn.H": "Ход H", "syn.K": "Коэффициент изменения средней скорости K", "syn.theta": "Угол θ",
-           "syn.psi": "Размах ψ", "syn.gamma": "Наименьший угол передачи γ_min",
-           "syn.gamma_at": "{g}° при угле кривошипа {p}°", "syn.working": "Рабочий (медленный) ход звена {o}",
-           "syn.solutions": "Решения", "syn.chosen": "выбрано", "syn.side": "сторона",
-           "syn.construction": "Построение: крайние положения, угол θ и окружность через крайние точки "
-                               "(масштаб чертежа 1:{s})",
-           "syn.gamma_fig": "Угол передачи γ за цикл от положения 0",
-           "syn.turn": "поворот кривошипа от положения 0, °", "syn.type.slider_crank": "центральный кривошипно-ползунный",
-           "syn.type.offset_slider_crank": "дезаксиальный кривошипно-ползунный",
-           "syn.type.crank_rocker": "кривошипно-коромысловый шарнирный четырёхзвенник",
-           "syn.type.slotted_lever": "кулисный механизм", "syn.type.shaper": "кулисный механизм строгального станка",
-           "syn.forward": "прямой", "syn.backward": "обратный",
-           "syn.side.far": "дальняя от O1", "syn.side.near": "ближняя к O1",
-           "syn.method": "K = (180° + θ)/(180° − θ); длины звеньев найдены по крайним положениям выходного "
-           "звена, видимым из оси кривошипа под углом θ (Артоболевский); H, K, θ, ψ и γ_min ниже получены "
-           "анализом спроектированного механизма."},
-}
+from ... import locales
+from ...messages import unit
 
-from ..i18n import words_beside  # noqa: E402
+I18N = locales.table("synthesis", "words")
 
-for _lang, _words in words_beside(__file__).items():   # function generation's words (data)
-    I18N.setdefault(_lang, {}).update(_words)
-
-_LEN = {"en": {"crank": "crank l_OA", "rod": "connecting rod l_AB", "offset": "offset e",
-               "coupler": "coupler l_AB", "rocker": "rocker l_O1B", "frame": "frame l_OO1",
-               "guide_height": "ram guide above O1"},
-        "ru": {"crank": "кривошип l_OA", "rod": "шатун l_AB", "offset": "дезаксиал e",
-               "coupler": "шатун l_AB", "rocker": "коромысло (кулиса) l_O1B", "frame": "стойка l_OO1",
-               "guide_height": "направляющая ползуна над O1"},
-        "uk": {"crank": "кривошип l_OA", "rod": "шатун l_AB", "offset": "дезаксіал e",
-               "coupler": "шатун l_AB", "rocker": "коромисло (куліса) l_O1B", "frame": "стояк l_OO1",
-               "guide_height": "напрямна повзуна над O1"}}
+_LEN = locales.table("synthesis", "lengths")
 _SCALES = (1, 2, 2.5, 4, 5, 10, 15, 20, 25, 40, 50, 75, 100, 200, 500, 1000)
 
 
@@ -244,7 +198,7 @@ def error_chart(ctx, r):
 
 def _function(ctx, r) -> str:
     f, t = ctx.fmt, ctx.t
-    mu = "m" if ctx.lang == "en" else "м"
+    mu = unit("m", ctx.lang)
     lens = [(_LEN.get(ctx.lang, _LEN["en"]).get(k, k), f"{f(v, 6)} {mu}") for k, v in r["lengths"].items()]
     pts = r["precision_points"]
     info = [(t("syn.type"), t("syn.type.function")), (t("syn.fn.K"), ", ".join(f(k, 6) for k in r["K"])),
@@ -269,7 +223,7 @@ def build(ctx) -> str | None:
         return getattr(synthesis_motion, f"build_{r['type']}")(ctx, r, names)
 
     f, t, lang = ctx.fmt, ctx.t, ctx.lang
-    mu = "m" if lang == "en" else "м"
+    mu = unit("m", lang)
     typ = t(f"syn.type.{r['type']}")
     lens = [(_LEN.get(lang, _LEN["en"]).get(k, k), f"{f(v, 6)} {mu}") for k, v in r["lengths"].items()]
     out = r.get("output", "")

@@ -14,284 +14,26 @@ from typing import TYPE_CHECKING, Any
 
 from markupsafe import Markup, escape
 
+from ... import locales
 from ...messages import unit as spelt
 from ...numfmt import localize
 
 if TYPE_CHECKING:
     from ...task import Task
 
-I18N = {
-    "en": {"task.sec.mechanism": "Mechanism", "task.sec.drive": "Drive",
-           "task.sec.positions": "Positions", "task.sec.loads": "Loads",
-           "task.sec.kinetostatics": "Kinetostatics", "task.sec.flywheel": "Flywheel",
-           "task.sec.cam": "Cam mechanism", "task.sec.gears": "Gears",
-           "task.sec.planetary": "Planetary gear", "task.sec.answers": "Answers",
-           "task.sec.dof2": "Machine with two degrees of freedom",
-           "task.sec.tolerance": "Tolerance", "task.ground": "Fixed points (ground)",
-           "task.links": "Links", "task.assembly": "Assembly hints (approximate positions of the joints)",
-           "task.point": "Point", "task.points": "Points", "task.length": "l, m", "task.mass": "m, kg",
-           "task.J": "J_S, kg·m²", "task.com": "S (centre of mass), m", "task.guide": "Guide, other",
-           "task.guide_word": "guide",
-           "task.com_mid": "middle", "task.slider_on": "slider {p}",
-           "task.guide_through": "through {p}", "task.guide_link": "along link {l}",
-           "task.guide_angle": "at {a}°", "task.guide_offset": "offset {o} m",
-           "task.extra": "other points: {p}"},
-    "ru": {"task.sec.mechanism": "Механизм", "task.sec.drive": "Привод",
-           "task.sec.positions": "Положения", "task.sec.loads": "Нагрузки",
-           "task.sec.kinetostatics": "Кинетостатика", "task.sec.flywheel": "Маховик",
-           "task.sec.cam": "Кулачковый механизм", "task.sec.gears": "Зубчатая передача",
-           "task.sec.planetary": "Планетарный механизм", "task.sec.answers": "Ответы",
-           "task.sec.dof2": "Машина с двумя степенями подвижности",
-           "task.sec.tolerance": "Допуски", "task.ground": "Неподвижные точки (стойка)",
-           "task.links": "Звенья", "task.assembly": "Начальная сборка (приближённые положения шарниров)",
-           "task.point": "Точка", "task.points": "Точки", "task.length": "l, м", "task.mass": "m, кг",
-           "task.J": "J_S, кг·м²", "task.com": "S (центр масс), м", "task.guide": "Направляющая, прочее",
-           "task.guide_word": "направляющая",
-           "task.com_mid": "середина", "task.slider_on": "ползун {p}",
-           "task.guide_through": "через {p}", "task.guide_link": "по звену {l}",
-           "task.guide_angle": "под углом {a}°", "task.guide_offset": "смещение {o} м",
-           "task.extra": "другие точки: {p}"},
-}
+I18N = locales.table("task", "words")
 
 _META = ("schema", "schema_", "title", "variant", "student", "course")
 
-# names of the task file's parameters (by the key without list indices) and of its word values
-PARAMS = {
-    "en": {"drive.link": "input link", "drive.speed": "angular speed ω₁", "drive.direction": "sense of rotation",
-           "drive.cycle": "cycle", "positions.count": "number of positions", "positions.zero": "position 0",
-           "positions.output": "output link", "positions.working": "working stroke",
-           "positions.extra": "extra crank angles", "loads.gravity": "weights of the links",
-           "loads.forces.on": "link", "loads.forces.kind": "kind", "loads.forces.stroke": "stroke",
-           "loads.forces.diagram.s": "diagram: s/H", "loads.forces.diagram.phi": "diagram: φ",
-           "loads.forces.diagram.value": "diagram: value", "loads.forces.at": "point of application",
-           "loads.forces.area": "piston area", "loads.forces.magnitude": "magnitude",
-           "loads.forces.direction": "direction", "loads.forces.moment": "moment of the couple",
-           "kinetostatics.positions": "positions", "kinetostatics.inertia": "inertia loads",
-           "kinetostatics.balance": "balance link", "kinetostatics.motion": "motion of the crank",
-           "kinetostatics.friction.f": "friction coefficient f",
-           "kinetostatics.friction.f_pin": "friction coefficient of the revolute pairs f_pin",
-           "kinetostatics.friction.f_slide": "friction coefficient of the prismatic pairs f_slide",
-           "kinetostatics.friction.pin_radius": "pin radius",
-           "flywheel.delta": "coefficient of speed fluctuation δ", "flywheel.constant": "constant moment",
-           "flywheel.method": "method", "flywheel.resolution": "points per cycle",
-           "flywheel.shape.type": "flywheel shape", "flywheel.shape.density": "density ρ",
-           "flywheel.shape.width_ratio": "width ratio b/D", "flywheel.reduced_J": "added reduced inertia",
-           "cam.follower": "follower", "cam.stroke": "stroke h", "cam.rocker_length": "rocker length",
-           "cam.offset": "offset e", "cam.phases.rise": "rise angle φ_r", "cam.phases.far_dwell": "far dwell",
-           "cam.phases.return": "return angle φ_ret", "cam.phases.near_dwell": "near dwell",
-           "cam.laws.rise": "law of the rise", "cam.laws.return": "law of the return",
-           "cam.pressure_angle.rise": "allowed pressure angle, rise",
-           "cam.pressure_angle.return": "allowed pressure angle, return", "cam.swing": "rocker's turn on the rise",
-           "cam.roller": "roller radius", "cam.rotation": "cam rotation", "cam.speed": "cam speed",
-           "cam.r0": "base radius r0", "cam.center_distance": "cam-rocker centre distance",
-           "cam.rho_min_allowed": "allowed least radius of curvature", "cam.divisions": "parts of a phase in the table",
-           "gears.m": "module m", "gears.z": "numbers of teeth z₁; z₂", "gears.x": "shift coefficients x₁; x₂",
-           "gears.alpha": "pressure angle α", "gears.ha": "addendum coefficient h*a",
-           "gears.c": "clearance coefficient c*", "gears.rule": "rule for the shifts",
-           "gears.sa_min": "least top land s_a/m", "planetary.scheme": "scheme",
-           "planetary.ratio": "required ratio u₁H", "planetary.satellites": "number of satellites k",
-           "planetary.tolerance": "tolerance of the ratio", "planetary.m": "module m",
-           "planetary.z_min": "least number of teeth", "planetary.z_max": "largest number of teeth",
-           "planetary.candidates": "candidates listed"},
-    "ru": {"drive.link": "входное звено", "drive.speed": "угловая скорость ω₁",
-           "drive.direction": "направление вращения", "drive.cycle": "цикл", "positions.count": "число положений",
-           "positions.zero": "нулевое положение", "positions.output": "выходное звено",
-           "positions.working": "рабочий ход", "positions.extra": "дополнительные углы кривошипа",
-           "loads.gravity": "силы тяжести звеньев", "loads.forces.on": "звено", "loads.forces.kind": "вид",
-           "loads.forces.stroke": "ход", "loads.forces.diagram.s": "диаграмма: s/H",
-           "loads.forces.diagram.phi": "диаграмма: φ", "loads.forces.diagram.value": "диаграмма: значение",
-           "loads.forces.at": "точка приложения", "loads.forces.area": "площадь поршня",
-           "loads.forces.magnitude": "величина", "loads.forces.direction": "направление",
-           "loads.forces.moment": "момент пары", "kinetostatics.positions": "положения",
-           "kinetostatics.inertia": "силы инерции", "kinetostatics.balance": "звено приведения",
-           "kinetostatics.motion": "движение кривошипа", "kinetostatics.friction.f": "коэффициент трения f",
-           "kinetostatics.friction.f_pin": "коэффициент трения во вращательных парах f_pin",
-           "kinetostatics.friction.f_slide": "коэффициент трения в поступательных парах f_slide",
-           "kinetostatics.friction.pin_radius": "радиус цапфы",
-           "flywheel.delta": "коэффициент неравномерности δ", "flywheel.constant": "постоянный момент",
-           "flywheel.method": "метод", "flywheel.resolution": "точек на цикл",
-           "flywheel.shape.type": "форма маховика", "flywheel.shape.density": "плотность ρ",
-           "flywheel.shape.width_ratio": "отношение b/D", "flywheel.reduced_J": "доп. приведённый момент инерции",
-           "cam.follower": "толкатель", "cam.stroke": "ход h", "cam.rocker_length": "длина коромысла",
-           "cam.offset": "эксцентриситет e", "cam.phases.rise": "фаза удаления φ_у",
-           "cam.phases.far_dwell": "дальнее стояние", "cam.phases.return": "фаза возвращения φ_в",
-           "cam.phases.near_dwell": "ближнее стояние", "cam.laws.rise": "закон удаления",
-           "cam.laws.return": "закон возвращения", "cam.pressure_angle.rise": "допустимый угол давления, удаление",
-           "cam.pressure_angle.return": "допустимый угол давления, возвращение",
-           "cam.swing": "поворот коромысла на фазе удаления", "cam.roller": "радиус ролика",
-           "cam.rotation": "вращение кулачка", "cam.speed": "угловая скорость кулачка",
-           "cam.r0": "радиус начальной шайбы r0", "cam.center_distance": "межосевое расстояние кулачок-коромысло",
-           "cam.rho_min_allowed": "допустимый наименьший радиус кривизны", "cam.divisions": "число частей фазы в таблице",
-           "gears.m": "модуль m", "gears.z": "числа зубьев z₁; z₂", "gears.x": "коэффициенты смещения x₁; x₂",
-           "gears.alpha": "угол профиля α", "gears.ha": "коэффициент высоты головки h*a",
-           "gears.c": "коэффициент радиального зазора c*", "gears.rule": "правило выбора смещений",
-           "gears.sa_min": "наименьшая толщина вершины s_a/m", "planetary.scheme": "схема",
-           "planetary.ratio": "требуемое передаточное отношение u₁H", "planetary.satellites": "число сателлитов k",
-           "planetary.tolerance": "допуск передаточного отношения", "planetary.m": "модуль m",
-           "planetary.z_min": "наименьшее число зубьев", "planetary.z_max": "наибольшее число зубьев",
-           "planetary.candidates": "число вариантов"},
-}
-PARAMS["en"].update({
-    "dof2.rotor.length": "rotor length l = OO₁", "dof2.rotor.mass": "rotor mass m₁",
-    "dof2.rotor.com": "rotor centre of mass OS₁", "dof2.rotor.J": "rotor J_S1", "dof2.rotor.J_O": "rotor J_O",
-    "dof2.striker.length": "striker length O₁M", "dof2.striker.com": "striker centre of mass l_c = O₁C",
-    "dof2.striker.mass": "striker mass m₂", "dof2.striker.J": "striker J_C", "dof2.gravity": "gravity",
-    "dof2.drive.moment": "driving moment", "dof2.drive.speed": "rotor speed held ω₁",
-    "dof2.drive.direction": "sense of rotation", "dof2.initial.phi": "initial φ₀",
-    "dof2.initial.psi": "initial ψ₀", "dof2.initial.omega": "initial ω₀", "dof2.initial.psi_dot": "initial dψ/dt",
-    "dof2.t_end": "duration", "dof2.turns": "turns", "dof2.t_max": "longest time", "dof2.samples": "samples",
-    "dof2.impact.phi": "rotor angle at the hit", "dof2.impact.stop": "stop at the hit",
-})
-PARAMS["ru"].update({
-    "dof2.rotor.length": "длина ротора l = OO₁", "dof2.rotor.mass": "масса ротора m₁",
-    "dof2.rotor.com": "центр масс ротора OS₁", "dof2.rotor.J": "момент инерции ротора J_S1",
-    "dof2.rotor.J_O": "момент инерции ротора J_O", "dof2.striker.length": "длина ударника O₁M",
-    "dof2.striker.com": "центр масс ударника l_c = O₁C", "dof2.striker.mass": "масса ударника m₂",
-    "dof2.striker.J": "момент инерции ударника J_C", "dof2.gravity": "силы тяжести",
-    "dof2.drive.moment": "движущий момент", "dof2.drive.speed": "поддерживаемая скорость ротора ω₁",
-    "dof2.drive.direction": "направление вращения", "dof2.initial.phi": "начальный угол φ₀",
-    "dof2.initial.psi": "начальный угол ψ₀", "dof2.initial.omega": "начальная скорость ω₀",
-    "dof2.initial.psi_dot": "начальная скорость dψ/dt", "dof2.t_end": "продолжительность",
-    "dof2.turns": "число оборотов", "dof2.t_max": "наибольшее время", "dof2.samples": "число точек",
-    "dof2.impact.phi": "угол ротора в момент удара", "dof2.impact.stop": "остановка при ударе",
-})
-
-# the lever synthesis and the drive speed from the output
-PARAMS["en"].update({
-    "synthesis.type": "type", "synthesis.H": "stroke H", "synthesis.psi": "rocker swing ψ",
-    "synthesis.K": "coefficient of mean speed increase K", "synthesis.theta": "angle θ",
-    "synthesis.lambda": "λ = l_AB/l_OA", "synthesis.e": "offset e", "synthesis.gamma_min": "least transmission angle γ_min",
-    "synthesis.rocker": "rocker (slotted link) length", "synthesis.frame": "frame l_OO1",
-    "synthesis.guide_height": "ram guide above O1",
-    "drive.mean_output_speed": "mean speed of the output over the cycle",
-    "drive.working_stroke_speed": "mean speed of the output over the working stroke",
-})
-PARAMS["ru"].update({
-    "synthesis.type": "тип", "synthesis.H": "ход H", "synthesis.psi": "угол размаха коромысла ψ",
-    "synthesis.K": "коэффициент изменения средней скорости K", "synthesis.theta": "угол θ",
-    "synthesis.lambda": "λ = l_AB/l_OA", "synthesis.e": "дезаксиал e",
-    "synthesis.gamma_min": "наименьший угол передачи γ_min",
-    "synthesis.rocker": "длина коромысла (кулисы)", "synthesis.frame": "стойка l_OO1",
-    "synthesis.guide_height": "направляющая ползуна над O1",
-    "drive.mean_output_speed": "средняя скорость выходного звена за цикл",
-    "drive.working_stroke_speed": "средняя скорость выходного звена на рабочем ходе",
-})
-for _name in ("crank", "rod", "slider", "coupler", "rocker", "block", "blockC", "ram"):
-    for _k, _en, _ru in (("mass", "mass", "масса"), ("J", "J_S", "J_S"), ("com", "centre of mass", "центр масс")):
-        PARAMS["en"][f"synthesis.links.{_name}.{_k}"] = f"{_name}: {_en}"
-        PARAMS["ru"][f"synthesis.links.{_name}.{_k}"] = f"{_name}: {_ru}"
-# the remaining fields: flywheel quadrature, the candidate search of a planetary gear and of a drive
-# train, the cam's transmission angle and rocker sense, the basic rack's fillet
-PARAMS["en"].update({
-    "flywheel.quadrature": "Gauss–Legendre points per interval",
-    "cam.pressure_angle": "allowed pressure angle", "cam.transmission_angle": "least allowed transmission angle",
-    "cam.transmission_angle.rise": "least allowed transmission angle, rise",
-    "cam.transmission_angle.return": "least allowed transmission angle, return",
-    "gears.rho_f": "fillet radius coefficient of the basic rack ρ*_f",
-    "loads.forces.working": "direction of the working stroke",
-    "planetary.rank": "order of the candidates",
-    "planetary.z_min_external": "least number of teeth of an external wheel",
-    "planetary.z_min_internal": "least number of teeth of an internal wheel",
-    "planetary.z_min_satellite_in_internal": "least number of teeth of a satellite in internal mesh",
-    "planetary.internal_minus_external_min": "least difference of the numbers of teeth in internal mesh",
-    "drive_train.motor_speed": "motor speed ω_m", "drive_train.motor_direction": "sense of rotation of the motor",
-    "drive_train.ratio": "required overall ratio",
-    "drive_train.efficiency": "efficiency of the drive η",
-    "drive_train.stages.type": "kind",
-    "drive_train.stages.z": "numbers of teeth", "drive_train.stages.internal": "internal mesh",
-    "drive_train.stages.scheme": "scheme", "drive_train.stages.ratio": "ratio",
-})
-PARAMS["ru"].update({
-    "flywheel.quadrature": "число точек Гаусса — Лежандра на интервал",
-    "cam.pressure_angle": "допустимый угол давления", "cam.transmission_angle": "наименьший допустимый угол передачи",
-    "cam.transmission_angle.rise": "наименьший допустимый угол передачи, удаление",
-    "cam.transmission_angle.return": "наименьший допустимый угол передачи, возвращение",
-    "gears.rho_f": "коэффициент радиуса переходной кривой исходного контура ρ*_f",
-    "loads.forces.working": "направление рабочего хода",
-    "planetary.rank": "порядок вариантов",
-    "planetary.z_min_external": "наименьшее число зубьев колеса с внешними зубьями",
-    "planetary.z_min_internal": "наименьшее число зубьев колеса с внутренними зубьями",
-    "planetary.z_min_satellite_in_internal": "наименьшее число зубьев сателлита во внутреннем зацеплении",
-    "planetary.internal_minus_external_min": "наименьшая разность чисел зубьев во внутреннем зацеплении",
-    "drive_train.motor_speed": "угловая скорость двигателя ω_д",
-    "drive_train.motor_direction": "направление вращения двигателя",
-    "drive_train.ratio": "требуемое общее передаточное отношение",
-    "drive_train.efficiency": "КПД привода η",
-    "drive_train.stages.type": "вид",
-    "drive_train.stages.z": "числа зубьев", "drive_train.stages.internal": "внутреннее зацепление",
-    "drive_train.stages.scheme": "схема", "drive_train.stages.ratio": "передаточное отношение",
-})
-I18N["en"]["task.sec.synthesis"] = "Synthesis"
-I18N["ru"]["task.sec.synthesis"] = "Синтез"
-
-ITEMS = {"en": {"forces": "force", "couples": "couple"}, "ru": {"forces": "сила", "couples": "пара"}}
-WORDS = {"ru": {"ccw": "против часовой стрелки", "cw": "по часовой стрелке", "true": "да", "false": "нет",
-                "extreme": "крайнее положение", "forward": "прямой", "backward": "обратный",
-                "resistance": "сопротивление", "driving": "движущая", "working": "рабочий", "idle": "холостой",
-                "both": "оба", "constant": "постоянное", "all": "все", "disk": "диск", "rim": "обод",
-                "energy-mass": "энергомасс (Виттенбауэр)", "merzalov": "Мерцалова", "auto": "авто",
-                "rocker": "коромысло", "translating": "поступательный", "equal_sliding": "равенство удельных скольжений",
-                "true_motion": "истинное", "linear_decreasing": "линейно убывающее ускорение",
-                "parabolic": "параболический", "poly345": "полином 3-4-5", "cosine": "косинусоидальный",
-                "sine": "синусоидальный", "uniform": "равномерный",
-                "kinetostatics.motion=constant": "равномерное", "flywheel.constant=driving": "движущий",
-                "flywheel.constant=resistance": "сопротивления"},
-         "en": {"ccw": "counter-clockwise", "cw": "clockwise", "true": "yes", "false": "no",
-                "extreme": "extreme position", "energy-mass": "energy-mass (Wittenbauer)",
-                "linear_decreasing": "linearly decreasing acceleration", "poly345": "polynomial 3-4-5",
-                "equal_sliding": "equal specific sliding"}}
-
-ITEMS["en"]["stages"] = "stage"
-ITEMS["ru"]["stages"] = "ступень"
-WORDS["ru"].update({
-    "flat": "тарельчатый", "knife": "остроконечный", "constant_velocity": "постоянной скорости",
-    "trapezoidal": "трапецеидальный", "with": "по вращению кулачка", "against": "против вращения кулачка",
-    "size": "по габариту", "ratio_error": "по отклонению передаточного отношения",
-    "pair": "зубчатая пара", "planetary": "планетарная", "exact": "точный", "no_undercut": "без подрезания",
-    "table": "по таблице", "slider_crank": "кривошипно-ползунный",
-    "offset_slider_crank": "дезаксиальный кривошипно-ползунный", "crank_rocker": "кривошипно-коромысловый",
-    "slotted_lever": "кулисный", "shaper": "кулисный (поперечно-строгальный станок)",
-})
-WORDS["en"].update({
-    "flat": "flat-faced", "knife": "knife-edge", "constant_velocity": "constant velocity",
-    "with": "with the cam", "against": "against the cam", "ratio_error": "by the error of the ratio",
-    "size": "by size", "pair": "gear pair", "no_undercut": "no undercut", "slider_crank": "slider-crank",
-    "offset_slider_crank": "offset slider-crank", "crank_rocker": "crank-rocker", "slotted_lever": "slotted lever",
-    "shaper": "slotted lever of a shaper",
-})
-
-# units of the task model's numbers (SI; angles in degrees) by the key's last part
-_UNITS = {
-    "en": {"length": "m", "mass": "kg", "J": "kg·m²", "speed": "rad/s", "angle": "°", "offset": "m",
-           "density": "kg/m³", "pin_radius": "m", "rocker_length": "m", "area": "m²", "at": "m",
-           "through": "m", "m": "m", "alpha": "°", "rise": "°", "far_dwell": "°", "return": "°",
-           "near_dwell": "°", "cycle": "°", "reduced_J": "kg·m²", "magnitude": "N", "phi": "°",
-           "moment": "N·m", "width": "m", "direction": "°", "base_radius": "m", "roller_radius": "m", "extra": "°",
-           "r0": "m", "center_distance": "m", "rho_min_allowed": "m", "motor_speed": "rad/s",
-           "pressure_angle": "°", "transmission_angle": "°"},
-    "ru": {"length": "м", "mass": "кг", "J": "кг·м²", "speed": "рад/с", "angle": "°", "offset": "м",
-           "density": "кг/м³", "pin_radius": "м", "rocker_length": "м", "area": "м²", "at": "м",
-           "through": "м", "m": "м", "alpha": "°", "rise": "°", "far_dwell": "°", "return": "°",
-           "near_dwell": "°", "cycle": "°", "reduced_J": "кг·м²", "magnitude": "Н", "phi": "°",
-           "moment": "Н·м", "width": "м", "direction": "°", "base_radius": "м", "roller_radius": "м", "extra": "°",
-           "r0": "м", "center_distance": "м", "rho_min_allowed": "м", "motor_speed": "рад/с",
-           "pressure_angle": "°", "transmission_angle": "°"},
-}
-
-
-for _lang, _u in (("en", "m"), ("ru", "м")):   # synthesis fields
-    _UNITS[_lang].update({"H": _u, "e": _u, "frame": _u, "guide_height": _u, "rocker": _u, "psi": "°", "theta": "°",
-                          "gamma_min": "°"})
-
-from .task_uk import add_uk as _add_uk  # noqa: E402
-
-_add_uk(PARAMS, ITEMS, WORDS, _UNITS)
-
-# a drive train's planetary stages are searched with the planetary gear's fields: the same names
-for _lang in PARAMS:
-    for _k in ("satellites", "z_min_external", "z_min_internal", "z_min_satellite_in_internal",
-               "internal_minus_external_min", "z_max", "rank", "candidates", "tolerance"):
-        PARAMS[_lang][f"drive_train.{_k}"] = PARAMS[_lang][f"planetary.{_k}"]
+# the names of the task file's parameters (by the key without list indices), the names of a
+# list's items, the words of its word values and the units of its numbers (SI; angles in
+# degrees) by the key's last part: the catalogues' topic `task`
+PARAMS = locales.table("task", "params")
+ITEMS = locales.table("task", "items")
+WORDS = locales.table("task", "values")
+_UNITS = locales.table("task", "units")
+# the metre in every language's spelling (a pair of numbers in metres is a point)
+_METRES = tuple(_UNITS[lang]["length"] for lang in _UNITS)
 
 
 def _dump(task: Task | None) -> dict:
@@ -342,7 +84,7 @@ def _value(v: Any, unit: str = "") -> str:
     if _is_num(v):
         return num(v) + ("" if unit == "°" else " ") + unit if unit else num(v)
     if isinstance(v, (list, tuple)):
-        if len(v) == 2 and all(_is_num(x) for x in v) and unit in ("m", "м"):
+        if len(v) == 2 and all(_is_num(x) for x in v) and unit in _METRES:
             return f"({num(v[0])}, {num(v[1])}){u}"
         if all(_is_num(x) for x in v):
             return "; ".join(num(x) for x in v) + (u if v else "")
@@ -389,10 +131,9 @@ def _unit(key: str, lang: str, context: dict | None = None) -> str:
     last = key.split(".")[-1].split("[")[0]
     if last == "value" and ".diagram" in key:
         # a load diagram's ordinate: N, or Pa for a pressure (the force has an area)
-        return ("Pa" if lang == "en" else "Па") if (context or {}).get("area") else \
-            ("N" if lang == "en" else "Н")
+        return spelt("Pa", lang) if (context or {}).get("area") else spelt("N", lang)
     if last == "magnitude" and (context or {}).get("area"):
-        return "Pa" if lang == "en" else "Па"
+        return spelt("Pa", lang)
     if last == "s" and ".diagram" in key:
         return ""
     if last == "stroke" and isinstance((context or {}).get("stroke"), (int, float)):
@@ -478,7 +219,7 @@ def _mechanism(ctx, mech: dict):
                 gd.append(t("task.guide_link", l=g["link"]))
             if g.get("through") is not None:
                 th = g["through"]
-                gd.append(t("task.guide_through", p=_value(th, "m" if ctx.lang == "en" else "м")
+                gd.append(t("task.guide_through", p=_value(th, spelt("m", ctx.lang))
                             if not isinstance(th, str) else th))
             if g.get("angle") is not None and not g.get("link"):
                 gd.append(t("task.guide_angle", a=num(g["angle"])))
@@ -496,7 +237,7 @@ def _mechanism(ctx, mech: dict):
         links.append((str(i), name, ", ".join(pts), num(spec["length"]) if spec.get("length") is not None else "",
                        num(spec["mass"]) if spec.get("mass") is not None else "",
                        num(spec["J"]) if spec.get("J") is not None else "", com_txt, "; ".join(other)))
-    m = "m" if ctx.lang == "en" else "м"
+    m = spelt("m", ctx.lang)
     assembly = ", ".join(f"{p} ({num(xy[0])}, {num(xy[1])})" for p, xy in (mech.get("assembly") or {}).items())
     return ground, links, (assembly + f" {m}") if assembly else ""
 
