@@ -44,7 +44,7 @@ def build(cv, results: dict, task: Task | None, lang: str = "en") -> dict:
     if a.get("J_red") is not None:
         rows.append(("J", [("J_red", "#000")], T["kgm2"]))
     if a.get("omega") is not None:
-        rows.append(("ω − ωm", [("omega_dev", "#000")], T["rads"]))
+        rows.append((T["omega_dev"], [("omega_dev", "#000")], T["rads"]))   # ω − ω_mean
     box_h = (y1f - y0f - 20.0) / len(rows)
     info = {"mu_phi": mu_phi, "graphs": {}, "scale": "—"}   # diagrams only: no length scale
     cv.mtext(x0f + 5, y1f - 6, T["title"], 5.0, bold=True)
@@ -55,10 +55,13 @@ def build(cv, results: dict, task: Task | None, lang: str = "en") -> dict:
         mu = std_mu(max(hi - lo, 1e-12) / (box_h - 22.0))
         top = y1f - 14.0 - k * box_h
         yc = top - 6.0 - hi / mu
+        dev = keys[0][0] == "omega_dev"           # ω − ω_mean: its scale is μω
+        msym = "ω" if dev else sym.split()[0]
+        mean = T["omega_mean"].format(w=f"{omega_m:.4g} {unit}") if dev else ""
         pts = draw_graph(cv, (x0f + 20.0, yc), [(phi, y, c) for y, (_, c) in zip(ys, keys)], mu_phi, mu,
                          x_len=360.0 / mu_phi, y_up=hi / mu + 5.0, y_down=-lo / mu + 3.0, x_sym="φ",
-                         y_sym=sym, mu_text=f"{mu_text(sym.split()[0], mu, unit, mm)},  μφ = {mu_phi:g} °/{mm}"
-                         + (f",  ωm = {omega_m:.4g} {unit}" if keys[0][0] == "omega_dev" else ""), ticks=ticks)
+                         y_sym=sym, mu_text=f"{mu_text(msym, mu, unit, mm)},  μφ = {mu_phi:g} °/{mm}"
+                         + mean, ticks=ticks)
         # the names of the curves at their right ends
         ends = sorted(((p[-1][1], key) for p, (key, _) in zip(pts, keys)), reverse=True) if k < 3 else []
         last = None
