@@ -88,4 +88,4 @@ def test_batch_angle_as_in_the_failure_box():
     """The summary's 'at crank angle' reads as the report's failure box: φ = 30.5°."""
     from tmm_cli.messages import render
     assert render("batch.at_angle", {"angle": 30.5}, "ru") == " при угле кривошипа φ = 30,5°"
-    assert render("batch.at_angle", {"angle": 30.5}, "uk") == " при куті кривошипа φ = 30,5°"
+    assert render("batch.at_angle", {"angle": 30.5}, "uk") == " за кута кривошипа φ = 30,5°"

@@ -221,7 +221,7 @@ def test_linkage_that_does_not_assemble_does_not_stop_cam_and_gears(tmp_path):
 
 @pytest.mark.parametrize("lang, words", [
     ("ru", "группа II(2,3) (звенья rod, slider) не собирается при углах кривошипа"),
-    ("uk", "група II(2,3) (ланки rod, slider) не складається при кутах кривошипа")])
+    ("uk", "група II(2,3) (ланки rod, slider) не складається за кутів кривошипа")])
 def test_linkage_failure_in_the_report_language(tmp_path, lang, words):
     """A linkage that does not assemble over part of the cycle (rod 0.05 m on a 0.1 m
     crank): the English sentence on stderr, its code in results.json, the report's box in
@@ -241,7 +241,7 @@ def test_linkage_failure_in_the_report_language(tmp_path, lang, words):
     box = (out / "report.html").read_text(encoding="utf-8").split('id="kinematics-failed"', 1)[1]
     box = box.split("</section>", 1)[0]
     assert words in box and "does not assemble" not in box and "too short" not in box
-    where = {"ru": "при угле кривошипа φ = 30,5°", "uk": "при куті кривошипа φ = 30,5°"}[lang]   # decimal comma
+    where = {"ru": "при угле кривошипа φ = 30,5°", "uk": "за кута кривошипа φ = 30,5°"}[lang]   # decimal comma
     assert where in box                       # the failure's crank angle (the first bad one found)
 
 
