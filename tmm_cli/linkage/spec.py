@@ -33,7 +33,7 @@ class GuideSpec(_Model):
     through: Union[str, LengthPair, None] = Field(None, description="fixed guide: a point name or [x, y] on the line")
     angle: Angle | None = Field(None, description="deg: from +x (fixed guide) or relative to the guide link (moving)")
     link: str | None = Field(None, description="moving guide (slotted link): the link carrying the guide")
-    offset: Length = Field(0.0, description="moving guide: perpendicular shift to the left of the link's axis, m")
+    offset: Length = Field(0.0, description="perpendicular shift to the left of the line (moving: of the link's axis), m")
 
     @model_validator(mode="after")
     def _kind(self):
