@@ -269,6 +269,15 @@ class KinetostaticsSection(_Model):
     friction: FrictionSpec | None = None
     motion: Union[Literal["constant"], Literal[True]] = "constant"
 
+    @field_validator("positions", mode="before")
+    @classmethod
+    def _a_list(cls, v):
+        """`positions: 2` (a number, not a list): one message saying so (pydantic gives two,
+        one per member of the union, with no hint)."""
+        if v != "all" and not isinstance(v, (list, tuple)):
+            raise ValueError(Message("input.ks_positions_list", got=repr(v)))
+        return v
+
     @field_validator("positions")
     @classmethod
     def _positions(cls, v):
