@@ -54,16 +54,17 @@ def test_point_used_by_one_link_is_named_before_the_dof_count(tmp_path):
     assert "Traceback" not in out
 
 
-@pytest.mark.parametrize("line, bad, good, lineno", [
-    ("    O1: [0.50, 0.37]", "    O1: [0,50, 0,37]", "0.50", 5),          # four numbers, not two
+@pytest.mark.parametrize("line, bad, said, lineno", [
+    ("    O1: [0.50, 0.37]", "    O1: [0,50, 0,37]", "use a decimal point: 0.50", 5),   # four numbers, not two
+    # 'length: 0' and a key '15': the field is the length, the value may be quoted
     ("    crank:  {points: [O, A],  length: 0.15}", "    crank:  {points: [O, A],  length: 0,15}",
-     "0.15", 7),                                                          # 'length: 0' and a key '15'
+     "field 'mechanism.links.crank.length': '0,15' has a decimal comma", 7),
 ])
-def test_decimal_comma(tmp_path, line, bad, good, lineno):
+def test_decimal_comma(tmp_path, line, bad, said, lineno):
     res, f = _validate(tmp_path, SIXBAR.replace(line, bad))
     assert res.exit_code == 2, res.output
     assert f"{f}:{lineno}:" in res.output
-    assert f"use a decimal point: {good}" in res.output
+    assert said in res.output
     assert "Tuple should have" not in res.output and "unknown key" not in res.output
 
 
@@ -255,3 +256,13 @@ def test_dof2_drive_train_and_synthesis_checks_are_coded(tmp_path, name, old, ne
         out = localize(coded.to_dict(), lang)
         assert out.startswith(where + ": ") and reason not in out, (lang, out)
         assert re.search("[а-яіїє]", out.split("»: ", 1)[1]), (lang, out)
+
+
+@pytest.mark.parametrize("code", ["input.decimal_comma", "input.decimal_comma_value"])
+@pytest.mark.parametrize("lang", ["ru", "uk"])
+def test_the_decimal_point_asked_for_is_a_point(code, lang):
+    """'use a decimal point: 0.35' in ru/uk: the number asked for is not given the decimal comma
+    of the language (it read 'use a point: 0,35', the very mistake)."""
+    from tmm_cli.messages import render
+    text = render(code, {"fixed": "0.35", "given": "0,35"}, lang)
+    assert "0.35" in text and "0,35" in text

@@ -261,6 +261,12 @@ def test_paths_lists_every_leaf(tmp_path):
     res = runner.invoke(app, ["paths", str(t), "--prefix", "gearz.a"])
     assert res.exit_code == 2 and "no result path of this task starts with 'gearz.a'" in res.output, res.output
     assert "did you mean 'gears.a'?" in res.output
+    # a section the results do not have ('mechanism': its data are under 'structure'): the
+    # sections they have, to choose from
+    res = runner.invoke(app, ["paths", str(t), "--prefix", "mechanism"])
+    secs = list(dict.fromkeys(k.split(".")[0].split("[")[0] for k in d))
+    assert res.exit_code == 2 and "gears" in secs, res.output
+    assert "did you mean one of: " + ", ".join(secs) + "?" in " ".join(res.output.split()), res.output
 
 
 def test_form_and_key(tmp_path):

@@ -124,3 +124,38 @@ def test_every_force_of_a_group_drawing_acts_on_a_drawn_link():
                 acting.append(k)
                 checked += 1
     assert checked > 100
+
+
+def _kinetostatics_html(html: str) -> str:
+    start = html.index('id="kinetostatics"')
+    end = html.find("<section", start)
+    return html[start:end if end > 0 else len(html)]
+
+
+def _position_cells(sec: str) -> list[str]:
+    """The position column of the section's tables (the first cell of a row)."""
+    import re
+    return re.findall(r'<tr><td(?: class="num")?>([^<]*)</td><td class="num">', sec)
+
+
+@pytest.mark.parametrize("chosen,extra,marked", [
+    ([2], None, set()),                 # a grid position chosen: not an extra
+    ([2, 5], None, set()),
+    ([2, 12], [100.0], {"12*"}),        # position 12 is the extra (the grid has 12: 0..11)
+])
+def test_only_extra_positions_are_starred(tmp_path, chosen, extra, marked):
+    """kinetostatics.positions: [2, 5] labels them '2', '5': the asterisk (whose legend says
+    'an extra position') marks only the positions beyond the equal steps of the grid."""
+    data = copy.deepcopy(SHAPER)
+    data["kinetostatics"]["positions"] = chosen
+    if extra:
+        data["positions"] = {"extra": extra}
+    task = tmm_cli.load_task(data)
+    r = tmm_cli.run(task, kinematics_curve=0)
+    assert r["positions"]["count"] == 12
+    render(r, task, tmp_path, {"html"}, "en")
+    sec = _kinetostatics_html((tmp_path / "report.html").read_text(encoding="utf-8"))
+    cells = set(_position_cells(sec))
+    expect = {str(i) for i in chosen if i < 12} | marked
+    assert cells == expect
+    assert ("an extra position" in sec) == bool(marked)

@@ -648,6 +648,13 @@ ENGLISH = [
     ('input.duplicate_key', {'key': 'output', 'first': 20}, "duplicate key 'output' (first given on line 20)"),
     ('input.decimal_comma', {'fixed': '0.35', 'given': '0,35'},
      "use a decimal point: 0.35 (YAML reads '0,35' as two numbers or as text)"),
+    ('input.decimal_comma_value', {'fixed': '2.1', 'given': '2,1'},
+     "'2,1' has a decimal comma, and YAML splits a number at the comma inside [...] or {...}: write 2.1, "
+     "or quote the value"),
+    ('input.yaml_comma', {}, 'a stray comma: delete it (a comma separates the items inside [...] or {...}; '
+     'a line of a section ends without one)'),
+    ('input.ks_positions_list', {'got': '2'}, 'a list of positions, e.g. [2] (or all); got 2'),
+    ('input.schema_missing', {}, 'add `schema: tmm/1` as the first line'),
     # the failures of a stage (StageError): the former f-strings of the stages
     ('cam.fail.pressure_range', {'phase': 'rise', 'value': 95.0},
      'allowed pressure angle on the rise must lie in (0, 90) deg, got 95'),

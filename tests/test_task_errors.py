@@ -96,6 +96,19 @@ CASES = [
      9, ["drive.speed", "is a frequency, not an angular speed"]),
     ("a unit with a power of a power", GOOD_MECH.replace("mass: 3}", "mass: 3 kg^2^2}"),
      8, ["mechanism.links.slider.mass", "cannot read the unit 'kg^2^2'"]),
+    # a decimal comma inside a flow mapping: YAML made keys '1' and '012 кг·м²' of the pieces;
+    # the message names the real field and says how to write the value
+    ("decimal comma in a flow mapping", GOOD_MECH.replace("rod: {points: [A, B], length: 0.4, mass: 2}",
+                                                          "rod: {points: [A, B], length: 0.4, mass: 2,1, J: 0,012 кг·м²}"),
+     7, ["field 'mechanism.links.rod.mass'", "'2,1' has a decimal comma", "write 2.1, or quote the value"]),
+    ("positions as a number", GOOD_MECH + "kinetostatics:\n  positions: 2\n",
+     11, ["kinetostatics.positions", "a list of positions, e.g. [2] (or all); got 2"]),
+    ("file without schema", GOOD_MECH.replace("schema: tmm/1\n", ""),
+     1, ["field 'schema'", "add `schema: tmm/1` as the first line"]),
+    ("stray comma", GOOD_MECH.replace("drive: {link: crank, speed: 100 rpm}", "drive: {link: crank, speed: 100 rpm,, }"),
+     9, ["YAML syntax error: a stray comma: delete it"]),
+    ("stray comma after a section", GOOD_MECH.replace("drive: {link: crank, speed: 100 rpm}", "drive: {link: crank, speed: 100 rpm},"),
+     9, ["a stray comma: delete it"]),
     ("Cyrillic word that is no unit", GOOD_MECH.replace("length: 0.1,", "length: 100 попугаев,"),
      6, ["mechanism.links.crank.length", "unknown unit"]),
 ]

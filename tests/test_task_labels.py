@@ -13,7 +13,7 @@ from tmm_cli.report.sections import task as task_section
 from tmm_cli.task import Task
 
 # shown in their own tables (mechanism), not in the task data, or meta/identifiers
-SKIP_TOP = set(task_section._META) | {"mechanism", "answers", "tolerance", "report"}
+SKIP_TOP = set(task_section._META) | {"mechanism", "answers", "tolerance"}
 SKIP_LITERALS = {"schema"}
 
 

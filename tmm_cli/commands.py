@@ -431,9 +431,13 @@ def paths(
     if prefix is not None and not leaves:       # a misspelt prefix printed nothing and exit 0
         import difflib
         heads = sorted({p[:len(prefix)] for p, _ in every})
-        near = difflib.get_close_matches(prefix, heads, n=1, cutoff=0.6)
-        raise typer.BadParameter(f"no result path of this task starts with '{prefix}'"
-                                 + (f"; did you mean '{near[0]}'?" if near else ""), param_hint="--prefix")
+        # the sections the paths start with ('mechanism' is not one: the results name it 'structure')
+        secs = list(dict.fromkeys(p.split(".")[0].split("[")[0] for p, _ in every))
+        near = ("." not in prefix and difflib.get_close_matches(prefix, secs, n=1, cutoff=0.6)) \
+            or difflib.get_close_matches(prefix, heads, n=1, cutoff=0.6)
+        raise typer.BadParameter(f"no result path of this task starts with '{prefix}'; did you mean "
+                                 + (f"'{near[0]}'?" if near else "one of: " + ", ".join(secs) + "?"),
+                                 param_hint="--prefix")
     if group or chosen is not None:
         leaves = group_leaves(leaves, chosen, group)
     if format == "json":

@@ -259,6 +259,8 @@ def _coded_issue(err: dict, cause, msg: str) -> str:
     coded = None
     if cause is not None and cause.args and isinstance(cause.args[0], Message) and cause.args[0].code:
         coded = cause.args[0]
+    elif kind == "missing" and tuple(err["loc"]) in (("schema",), ("schema_",)):
+        return Message("input.schema_missing")      # a file without its first line
     elif kind == "missing":
         coded = Message("input.missing")
     elif kind == "literal_error":
@@ -281,7 +283,7 @@ def _decimal_comma_issues(issues: list, file: str | None, text: str | None) -> l
     common in the course's countries) says so: 'use a decimal point: 0.38'."""
     if file is None and text is None:
         return issues
-    from .yamlload import decimal_comma_hint
+    from .yamlload import decimal_comma_hint, decimal_comma_key
     try:
         lines = (text if text is not None else Path(file).read_text(encoding="utf-8")).splitlines()
     except (OSError, UnicodeDecodeError):
@@ -293,6 +295,12 @@ def _decimal_comma_issues(issues: list, file: str | None, text: str | None) -> l
             out.append((fld, line, col, msg))
         elif line not in hinted:        # one message per line: the split number's pieces
             hinted.add(line)            # give several errors
+            key = decimal_comma_key(lines[line - 1])
+            if key is not None:         # a mapping's value: the field is that key ('rod.mass',
+                # not the piece YAML made a key of, 'rod.1'), the value may also be quoted
+                parent = fld.rsplit(".", 1)[0] if "." in fld else ""
+                fld = f"{parent}.{key}" if parent else key
+                hint = Message("input.decimal_comma_value", **hint.params)
             out.append((fld, line, col, hint))
     return out
 

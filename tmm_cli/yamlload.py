@@ -259,6 +259,19 @@ def decimal_comma_hint(line: str) -> Message | None:
     return Message("input.decimal_comma", fixed=f"{m.group(1)}.{m.group(2)}", given=m.group(0))
 
 
+def decimal_comma_key(line: str) -> str | None:
+    """The key whose value is the number with a decimal comma on a line ``{mass: 2,1, J: 0,012}``
+    (``mass``: YAML read the mapping as ``mass: 2``, ``1``, ...), None when that number is not
+    a mapping's value (a list ``[0,38, 0,12]``) or the line has none."""
+    hint = decimal_comma_hint(line)
+    if hint is None:
+        return None
+    code = re.sub(r'"[^"]*"|\'[^\']*\'', "''", line.split("#", 1)[0])
+    m = _DECIMAL_COMMA.search(code)
+    key = re.search(r"([^\s{}\[\],:]+)\s*:\s*$", code[:m.start()])
+    return key.group(1) if key else None
+
+
 try:                                   # libyaml's parser, when PyYAML was built with it
     from yaml._yaml import CParser as _CParser
 except ImportError:                    # pragma: no cover - PyYAML's wheels carry it
@@ -368,6 +381,10 @@ def load_yaml(source: str | Path, *, text: str | None = None) -> tuple[Any, dict
         mark = exc.problem_mark or exc.context_mark
         line = mark.line + 1 if mark else None
         col = mark.column + 1 if mark else None
+        if str(exc.problem or "").endswith("but found ','") and exc.problem_mark is not None:
+            # a stray comma ('speed: 1450 rpm,' then a line; '{a: 1,, b: 2}'): the mark is on it
+            raise TaskError("YAML syntax error", file=file, issues=[("", line, col, Message(
+                "input.yaml_syntax", problem=Message("input.yaml_comma"), hint=Message("text", text="")))]) from None
         raise TaskError("YAML syntax error", file=file,
                         issues=[("", line, col, Message("input.yaml_syntax", problem=_problem(str(exc.problem or exc.context)),
                                                         hint=_indent_hint(text, line) or Message("text", text="")))

@@ -242,7 +242,12 @@ def build_mechanism(task: Task) -> Mechanism:
                     pt = sec.ground[g.through]
                 else:
                     pt = g.through
-                guide = Guide(link=None, point=(float(pt[0]), float(pt[1])), angle=float(g.angle), offset=0.0)
+                # `offset` shifts the line to the left of its direction (as on a moving guide):
+                # the point it passes through moves by offset along the left normal (-sin a, cos a)
+                a = math.radians(float(g.angle))
+                off = float(g.offset)
+                guide = Guide(link=None, point=(float(pt[0]) - off * math.sin(a), float(pt[1]) + off * math.cos(a)),
+                              angle=float(g.angle), offset=0.0)
         # centre of mass
         if spec.com is None:
             if lk.index == drive:

@@ -33,7 +33,7 @@ class GuideSpec(_Model):
     through: Union[str, LengthPair, None] = Field(None, description="fixed guide: a point name or [x, y] on the line")
     angle: Angle | None = Field(None, description="deg: from +x (fixed guide) or relative to the guide link (moving)")
     link: str | None = Field(None, description="moving guide (slotted link): the link carrying the guide")
-    offset: Length = Field(0.0, description="moving guide: perpendicular shift to the left of the link's axis, m")
+    offset: Length = Field(0.0, description="perpendicular shift to the left of the line (moving: of the link's axis), m")
 
     @model_validator(mode="after")
     def _kind(self):
@@ -268,6 +268,15 @@ class KinetostaticsSection(_Model):
     balance: str | None = None
     friction: FrictionSpec | None = None
     motion: Union[Literal["constant"], Literal[True]] = "constant"
+
+    @field_validator("positions", mode="before")
+    @classmethod
+    def _a_list(cls, v):
+        """`positions: 2` (a number, not a list): one message saying so (pydantic gives two,
+        one per member of the union, with no hint)."""
+        if v != "all" and not isinstance(v, (list, tuple)):
+            raise ValueError(Message("input.ks_positions_list", got=repr(v)))
+        return v
 
     @field_validator("positions")
     @classmethod

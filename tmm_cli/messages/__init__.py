@@ -89,6 +89,8 @@ class _Formatter(string.Formatter):
             return localize(value, self.lang)
         if isinstance(value, list) and value and all(isinstance(v, dict) and "code" in v for v in value):
             return ("; " if spec == "joined" else "\n").join(localize(v, self.lang) for v in value)
+        if spec == "raw":                                   # as written (a number not localized: '0.38')
+            return str(value)
         if spec == "angles" and isinstance(value, list):
             return numfmt.localize(_angles(value), self.lang)
         if spec == "or" and isinstance(value, list):        # alternatives: 'a', 'b' or 'c'

@@ -49,6 +49,13 @@ def position_label(e: dict, n_grid: int) -> str:
     return f"{e['index']}*" if int(e["index"]) >= n_grid else str(e["index"])
 
 
+def grid_size(results: dict) -> int | None:
+    """The number of the grid's positions (results' ``positions.count``), None when the results
+    do not say: a position numbered from it on is an extra one."""
+    c = (results.get("positions") or {}).get("count")
+    return c if isinstance(c, int) and c > 0 else None
+
+
 def grid_count(results: dict, n_entries: int) -> int:
     """The number of grid positions among n_entries (results' ``positions.count``), the
     rest being named extras; all of them when the results do not say."""

@@ -231,8 +231,12 @@ def build(ctx) -> str | None:
     if has_near:
         hdr.append(ctx.t("kst.near"))
     # a fine grid: tables and drawings of the course positions (report/course.py), CSV in full
-    from ..course import course_entries, cycle_order, grid_count
-    n_grid = grid_count(ctx.results, len(entries))
+    from ..course import course_entries, cycle_order, grid_size
+    # the task may choose some positions (kinetostatics.positions: [2, 5]): the grid's ones are
+    # those numbered below the grid's size, only the rest are extras (marked)
+    size = grid_size(ctx.results)
+    n_grid = len(entries) if size is None else sum(1 for e in entries if int(e["index"]) < size)
+    mark = n_grid if size is None else size
     # the tables and drawings in the order of the crank's turn, the extras marked
     shown = cycle_order(course_entries(entries, n_grid), phi0, sign)
     mb_rows = []
@@ -242,7 +246,7 @@ def build(ctx) -> str | None:
     jkeys = [j["key"] for j in info["joints"]]
     for e in shown:
         disc = None if e.get("discrepancy") is None else 100.0 * e["discrepancy"]
-        row = [position_label(e, n_grid), ctx.fmt_fixed(e["phi"], 2)] + [fmt(e.get(k), 6) for k in keys] + [
+        row = [position_label(e, mark), ctx.fmt_fixed(e["phi"], 2)] + [fmt(e.get(k), 6) for k in keys] + [
             fmt(disc, 2)]
         if has_near:
             row.append("✓" if e.get("near_singular") else "")
@@ -264,7 +268,7 @@ def build(ctx) -> str | None:
                                        for j in info["joints"]]
     r_rows = []
     for e in shown:
-        row = [position_label(e, n_grid)]
+        row = [position_label(e, mark)]
         for j in info["joints"]:
             r = e["reactions"][j["key"]]
             if j["kind"] == "P":
@@ -276,10 +280,10 @@ def build(ctx) -> str | None:
     # friction table
     eff_rows = None
     if has_eff:
-        eff_rows = [[position_label(e, n_grid), ctx.fmt_fixed(e["phi"], 2), fmt(e.get("friction_power"), 5),
+        eff_rows = [[position_label(e, mark), ctx.fmt_fixed(e["phi"], 2), fmt(e.get("friction_power"), 5),
                      fmt(e.get("driving_power"), 5), fmt(e.get("efficiency"), 4)] for e in shown]
     # loads of every position in one table: the varying loads by position, the constant ones below
-    loads_hdr, loads_rows, const = _loads_table(ctx, shown, n_grid)
+    loads_hdr, loads_rows, const = _loads_table(ctx, shown, mark)
     # per position drawings
     from ...plans import crank_pin, geometry
     geom = geometry(ctx.results)
@@ -294,7 +298,7 @@ def build(ctx) -> str | None:
             figs = []
         else:
             figs, _ = position_figures(ctx, e, ke, info, links, geom_pin, w1)
-        positions.append({"index": position_label(e, n_grid), "phi": e["phi"], "figs": figs})
+        positions.append({"index": position_label(e, mark), "phi": e["phi"], "figs": figs})
     sing = ctx.results.get("singular") or []
     bk = ctx.t("kst.bk_moment") if info["balance_kind"] == "moment" else ctx.t("kst.bk_force")
     return ctx.render("sections/kinetostatics.html.j2", info=info, mb_hdr=hdr, mb_rows=mb_rows,
@@ -304,7 +308,7 @@ def build(ctx) -> str | None:
                       loads_note=Markup(escape(ctx.t("kst.loads_note", const="\u0001"))).replace(
                           "\u0001", const or "—"),
                       fbd_caption=ctx.t("kst.fbd_caption"),
-                      fig_diagrams=_diagrams_fig(ctx, info, shown, n_grid),
+                      fig_diagrams=_diagrams_fig(ctx, info, shown, mark),
                       fig_cycle=_cycle_fig(ctx, entries, phi0, sign, info),
                       singular=", ".join(ctx.fmt_fixed(s, 6) for s in sing),
                       extra_note=ctx.t("common.extra_note") if len(entries) > n_grid else None)
