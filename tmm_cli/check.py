@@ -163,17 +163,14 @@ def _coded(exc: Exception) -> Message:
 
 def _path_unit(path: str) -> str | None:
     """The unit of a result path in pint's words ('m/s**2') for the course quantities the
-    presets name (`tmm form`'s list: kinematics[1].points.*.v, gears.aw, flywheel.J...), from
-    the notation of its last name. None for any other path (a last name such as `a` or `y`
+    presets name (`tmm form`'s list: kinematics[1].points.*.v, gears.aw, flywheel.J,
+    differential.speeds.H...), from the notation of the path (tmm_cli.forms.key_notation: its
+    pattern, else its last name). None for any other path (a last name such as `a` or `y`
     means different things in different sections): the answer is then taken in SI base units."""
-    from .forms import NOTATION, PRESETS, _pattern
+    from .forms import PRESETS, _pattern, unit_of
     if not any(_pattern(pat).match(path) for pats in PRESETS.values() for pat in pats if "**" not in pat):
         return None
-    names = [t for t in _tokens(path) if isinstance(t, str)]
-    key = names[-1] if names else ""
-    if key not in NOTATION and re.fullmatch(r"R\d+", key):
-        key = "R"
-    unit = NOTATION[key][1] if key in NOTATION else None
+    unit = unit_of(path)
     if unit in (None, "m or deg"):
         return None
     return {"deg": "degree", "": "dimensionless"}.get(unit, unit.replace("^", "**"))
