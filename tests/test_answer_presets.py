@@ -138,3 +138,17 @@ def test_carrier_speed_is_not_the_stroke():
         answer_value("8.8 m", "differential.speeds.H")
     assert _path_unit("balancing.max.M") == "N*m" and _path_unit("differential.power_loss") == "W"
     assert answer_value("0.14385 кВт", "differential.power_loss") == pytest.approx(143.85)
+
+
+def test_answers_for_a_chapter_the_task_lacks_are_not_computed(tmp_path):
+    """An answer into `differential` or `balancing` for a task without that stage is
+    not_computed (the task has no such stage), not a misspelt path."""
+    ans = tmp_path / "a.yaml"
+    ans.write_text("variant: 1\nanswers:\n  differential.speeds.H: 8.8\n  balancing.max.F: 59\n"
+                   "  synthesis.lengths.crank: 0.08\n", encoding="utf-8")
+    res = runner.invoke(app, ["check", str(TASKS / "synthesis_positions.yaml"), "--answers", str(ans),
+                              "-o", str(tmp_path / "o")])
+    import csv
+    rows = {r["path"]: r["status"] for r in csv.DictReader((tmp_path / "o" / "check.csv").open(encoding="utf-8"))}
+    assert rows == {"differential.speeds.H": "not_computed", "balancing.max.F": "not_computed",
+                    "synthesis.lengths.crank": "ok"}, (rows, res.output)
