@@ -152,3 +152,13 @@ def test_answers_for_a_chapter_the_task_lacks_are_not_computed(tmp_path):
     rows = {r["path"]: r["status"] for r in csv.DictReader((tmp_path / "o" / "check.csv").open(encoding="utf-8"))}
     assert rows == {"differential.speeds.H": "not_computed", "balancing.max.F": "not_computed",
                     "synthesis.lengths.crank": "ok"}, (rows, res.output)
+
+
+def test_a_synthesis_length_named_for_what_it_is():
+    """synthesis.lengths.* are link lengths l_<link>, but a slider-crank's `offset` keeps the
+    eccentricity's symbol e and a shaper's `guide_height` is h, not a 'link length'."""
+    assert notation("synthesis.lengths.rod") == "l_rod, m — link length"
+    assert notation("synthesis.lengths.offset", "ru", local_units=True) == "e, м — эксцентриситет"
+    assert notation("synthesis.lengths.guide_height").startswith("h, m — height of the ram guide")
+    assert _path_unit("synthesis.lengths.offset") == "m"
+    assert answer_value("12 mm", "synthesis.lengths.offset") == pytest.approx(0.012)

@@ -103,6 +103,8 @@ PATH_NOTATION: dict[str, tuple[str, str, str, str]] = {
     "differential.speeds.*": ("ω_{0}", "rad/s", "differential_speed", "ccw"),
     "differential.torques.*": ("T_{0}", "N*m", "differential_torque", "ccw"),
     "differential.power_loss": ("P_loss", "W", "power_loss", "magnitude"),
+    "synthesis.lengths.offset": ("e", "m", "offset", ""),
+    "synthesis.lengths.guide_height": ("h", "m", "guide_height", ""),
     "synthesis.lengths.*": ("l_{0}", "m", "link_length", ""),
     "synthesis.fixed_pivots.*[0]": ("x_{0}", "m", "pivot_x", ""),
     "synthesis.fixed_pivots.*[1]": ("y_{0}", "m", "pivot_y", ""),
