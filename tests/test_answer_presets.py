@@ -162,3 +162,17 @@ def test_a_synthesis_length_named_for_what_it_is():
     assert notation("synthesis.lengths.guide_height").startswith("h, m — height of the ram guide")
     assert _path_unit("synthesis.lengths.offset") == "m"
     assert answer_value("12 mm", "synthesis.lengths.offset") == pytest.approx(0.012)
+
+
+def test_zero_for_the_balanced_shaking_force_passes(tmp_path):
+    """After full balancing the shaking force is zero but for round-off (about 1e-14 N in
+    results.json): a student's 0 is right, and 5 N is not."""
+    import csv
+    ans = tmp_path / "a.yaml"
+    ans.write_text("variant: 3\nanswers:\n  balancing.max.F_balanced: 0\n  balancing.shaking_balanced[0].F: 5 N\n",
+                   encoding="utf-8")
+    runner.invoke(app, ["check", str(TASKS / "balancing_fourbar.yaml"), "--answers", str(ans), "-o", str(tmp_path / "o")])
+    rows = {r["path"]: r for r in csv.DictReader((tmp_path / "o" / "check.csv").open(encoding="utf-8"))}
+    assert abs(float(rows["balancing.max.F_balanced"]["reference"])) < 1e-9
+    assert rows["balancing.max.F_balanced"]["status"] == "ok"
+    assert rows["balancing.shaking_balanced[0].F"]["status"] == "outside"
