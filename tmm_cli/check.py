@@ -26,7 +26,8 @@ ANGLE_KEYS = {"phi", "phi0", "extreme", "angle", "working_stroke_angle", "idle_s
               "psi", "gamma_min", "pressure_angle", "max_pressure_angle", "singular"}
 # top-level result sections: a path into one the task did not compute is not_computed
 SECTIONS = {"structure", "positions", "kinematics", "kinematics_curve", "kinetostatics", "kinetostatics_info",
-            "singular", "flywheel", "cam", "gears", "planetary", "drive_train", "synthesis", "dof2"}
+            "singular", "flywheel", "cam", "gears", "planetary", "drive_train", "synthesis", "dof2", "balancing",
+            "differential"}
 STATUSES = ("ok", "outside", "sign", "missing", "unknown_path", "not_computed", "invalid")
 SET_ORDER = ("outside", "sign", "missing", "unknown_path", "not_computed")
 CHECK_FIELDS = ["student", "group", "variant", "path", "answer", "reference", "error", "tolerance", "status",
@@ -163,17 +164,14 @@ def _coded(exc: Exception) -> Message:
 
 def _path_unit(path: str) -> str | None:
     """The unit of a result path in pint's words ('m/s**2') for the course quantities the
-    presets name (`tmm form`'s list: kinematics[1].points.*.v, gears.aw, flywheel.J...), from
-    the notation of its last name. None for any other path (a last name such as `a` or `y`
+    presets name (`tmm form`'s list: kinematics[1].points.*.v, gears.aw, flywheel.J,
+    differential.speeds.H...), from the notation of the path (tmm_cli.forms.key_notation: its
+    pattern, else its last name). None for any other path (a last name such as `a` or `y`
     means different things in different sections): the answer is then taken in SI base units."""
-    from .forms import NOTATION, PRESETS, _pattern
+    from .forms import PRESETS, _pattern, unit_of
     if not any(_pattern(pat).match(path) for pats in PRESETS.values() for pat in pats if "**" not in pat):
         return None
-    names = [t for t in _tokens(path) if isinstance(t, str)]
-    key = names[-1] if names else ""
-    if key not in NOTATION and re.fullmatch(r"R\d+", key):
-        key = "R"
-    unit = NOTATION[key][1] if key in NOTATION else None
+    unit = unit_of(path)
     if unit in (None, "m or deg"):
         return None
     return {"deg": "degree", "": "dimensionless"}.get(unit, unit.replace("^", "**"))

@@ -84,7 +84,7 @@ def _tolerance(r: dict, unit: str, lang: str) -> str:
 
 def feedback_html(task, s: dict, lang: str = "en", key: bool = True) -> str:
     """The page; ``key`` False (`--feedback no-key`): no reference values on it."""
-    from .forms import NOTATION, local_unit, notation
+    from .forms import local_unit, notation, unit_of
     from .messages import catalogue
     lang = lang if lang in TEXT else "en"
     T = {**TEXT[lang], **catalogue(lang)["terms"]["grading"]}
@@ -96,8 +96,7 @@ def feedback_html(task, s: dict, lang: str = "en", key: bool = True) -> str:
     trs = []
     for r in rows:
         st = r["status"]
-        names = re.findall(r"[A-Za-z_][A-Za-z0-9_]*", r["path"])
-        unit = NOTATION.get(names[-1] if names else "", ("", ""))[1]
+        unit = unit_of(r["path"]) or ""
         unit = {"deg": "°", "m or deg": ""}.get(unit, unit)
         unit = local_unit(unit, lang)
         err = "–"

@@ -28,6 +28,12 @@ PRESETS: dict[str, list[str]] = {
     "planetary": ["planetary.z.*", "planetary.ratio", "planetary.ratio_error"],
     "drive_train": ["drive_train.**"],
     "synthesis": ["synthesis.**"],
+    "balancing": ["balancing.max.F", "balancing.max.M", "balancing.max.F_balanced", "balancing.max.M_balanced",
+                  "balancing.counterweights.*.m", "balancing.counterweights.*.angle",
+                  "balancing.rotor.corrections[*].m", "balancing.rotor.corrections[*].angle"],
+    "differential": ["differential.u", "differential.speeds.*", "differential.torques.*", "differential.power_loss"],
+    "synthesis_positions": ["synthesis.lengths.*", "synthesis.fixed_pivots.*[*]"],
+    "synthesis_path": ["synthesis.lengths.*", "synthesis.fixed_pivots.*[*]", "synthesis.max_deviation"],
 }
 
 # course notation and unit of a result key: (symbol, unit as an answer is written); its name
@@ -80,6 +86,31 @@ NOTATION: dict[str, tuple[str, str]] = {
     "z4": ("z4", ""),
 }
 
+# the notation of the result paths whose last name alone would mislead (differential.speeds.H is
+# a speed, not the stroke H; balancing.max.M a moment, not a mass): a path pattern (as in PRESETS)
+# -> (symbol, unit, its name's key in the catalogues' forms `names`, its sign convention: a word of
+# `sign_convention` or ''). "{0}" in a symbol is the name the pattern's first "*" matched.
+PATH_NOTATION: dict[str, tuple[str, str, str, str]] = {
+    "balancing.max.F": ("F_max", "N", "shaking_force_max", "magnitude"),
+    "balancing.max.M": ("M_max", "N*m", "shaking_moment_max", ""),
+    "balancing.max.F_balanced": ("F_max(bal)", "N", "shaking_force_balanced", "magnitude"),
+    "balancing.max.M_balanced": ("M_max(bal)", "N*m", "shaking_moment_balanced", ""),
+    "balancing.counterweights.*.m": ("m_cw", "kg", "counterweight_mass", ""),
+    "balancing.counterweights.*.angle": ("φ_cw", "deg", "counterweight_angle", ""),
+    "balancing.rotor.corrections[*].m": ("m_corr", "kg", "correction_mass", ""),
+    "balancing.rotor.corrections[*].angle": ("φ_corr", "deg", "correction_angle", ""),
+    "differential.u": ("u^H", "", "differential_u", "ratio"),
+    "differential.speeds.*": ("ω_{0}", "rad/s", "differential_speed", "ccw"),
+    "differential.torques.*": ("T_{0}", "N*m", "differential_torque", "ccw"),
+    "differential.power_loss": ("P_loss", "W", "power_loss", "magnitude"),
+    "synthesis.lengths.offset": ("e", "m", "offset", ""),
+    "synthesis.lengths.guide_height": ("h", "m", "guide_height", ""),
+    "synthesis.lengths.*": ("l_{0}", "m", "link_length", ""),
+    "synthesis.fixed_pivots.*[0]": ("x_{0}", "m", "pivot_x", ""),
+    "synthesis.fixed_pivots.*[1]": ("y_{0}", "m", "pivot_y", ""),
+    "synthesis.max_deviation": ("Δ_max", "m", "max_deviation", "magnitude"),
+}
+
 # the sign convention of a result key: a word of the catalogues' `sign_convention` table
 # (the sense that is positive, or that it is a magnitude)
 SIGN: dict[str, str] = {"omega": "ccw", "epsilon": "ccw", "balancing_moment": "ccw", "zhukovsky_moment": "ccw",
@@ -87,29 +118,54 @@ SIGN: dict[str, str] = {"omega": "ccw", "epsilon": "ccw", "balancing_moment": "c
                         "R": "magnitude", "omega_max": "magnitude", "omega_min": "magnitude"}
 
 
+def _by_path(path: str) -> tuple[str, str, str, str] | None:
+    """PATH_NOTATION's entry for a path, its symbol's "{0}" filled (None when no pattern matches)."""
+    for pat, (sym, unit, name, sign) in PATH_NOTATION.items():
+        m = _pattern(pat, capture=True).match(path)
+        if m:
+            return sym.format(*m.groups()), unit, name, sign
+    return None
+
+
+def _last_key(path: str) -> str:
+    """A path's last name, reactions R12... read as R (the key of NOTATION and SIGN)."""
+    names = re.findall(r"[A-Za-z_][A-Za-z0-9_]*", path)
+    key = names[-1] if names else ""
+    return "R" if key not in NOTATION and re.fullmatch(r"R\d+", key) else key
+
+
+def key_notation(path: str) -> tuple[str, str, str] | None:
+    """(symbol, unit as an answer is written, its name's key in the forms `names`) of a result
+    path: by PATH_NOTATION's patterns, else by its last name (None when unknown)."""
+    by_path = _by_path(path)
+    if by_path:
+        return by_path[:3]
+    key = _last_key(path)
+    return (*NOTATION[key], key) if key in NOTATION else None
+
+
+def unit_of(path: str) -> str | None:
+    """The unit of a result path as an answer is written ('m/s', 'm or deg', '' for a plain
+    number); None when the notation does not know the path."""
+    n = key_notation(path)
+    return n[1] if n else None
+
+
 def sign_note(path: str, lang: str = "en") -> str:
     """The sign convention of a path's quantity in ``lang`` ('' when the key has none listed)."""
     from .messages import catalogue
-    names = re.findall(r"[A-Za-z_][A-Za-z0-9_]*", path)
-    key = names[-1] if names else ""
-    if key not in SIGN and re.fullmatch(r"R\d+", key or ""):
-        key = "R"
-    return catalogue(lang)["terms"]["sign_convention"][SIGN[key]] if key in SIGN else ""
-
-
+    by_path = _by_path(path)
+    word = by_path[3] if by_path else SIGN.get(_last_key(path), "")
+    return catalogue(lang)["terms"]["sign_convention"][word] if word else ""
 
 
 def notation(path: str, lang: str = "en", local_units: bool = False) -> str:
-    """'ω, rad/s — angular velocity' for a path, from its last name ('' when unknown);
+    """'ω, rad/s — angular velocity' for a path, by its pattern or its last name ('' when unknown);
     ``local_units``: the unit as a text in ``lang`` writes it (the catalogues' forms `units`)."""
-    names = re.findall(r"[A-Za-z_][A-Za-z0-9_]*", path)
-    key = names[-1] if names else ""
-    if key not in NOTATION and re.fullmatch(r"R\d+", key or ""):
-        key = "R"
-    n = NOTATION.get(key)
+    n = key_notation(path)
     if not n:
         return ""
-    sym, unit = n
+    sym, unit, key = n
     if local_units:
         unit = local_unit(unit, lang)
     return f"{sym}{', ' + unit if unit else ''} — {_text(lang, 'names').get(key) or _text('en', 'names')[key]}"
@@ -126,8 +182,10 @@ def local_unit(unit: str, lang: str) -> str:
     return _text(lang, "units").get(unit, unit)
 
 
-def _pattern(p: str) -> re.Pattern:
-    out = re.escape(p).replace(r"\*\*", "@@").replace(r"\[\*\]", r"\[\d+\]").replace(r"\*", r"[^.\[\]]+")
+def _pattern(p: str, capture: bool = False) -> re.Pattern:
+    """A path pattern's regex; ``capture``: each "*" name a group."""
+    one = r"([^.\[\]]+)" if capture else r"[^.\[\]]+"
+    out = re.escape(p).replace(r"\*\*", "@@").replace(r"\[\*\]", r"\[\d+\]").replace(r"\*", one)
     return re.compile("^" + out.replace("@@", r"[^\[\]]+") + "$")
 
 

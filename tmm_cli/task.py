@@ -133,8 +133,9 @@ class Task(_Model):
 
     @model_validator(mode="after")
     def _sections(self):
-        needs_mech = [s for s in ("drive", "positions", "loads", "kinetostatics", "flywheel")
-                      if getattr(self, s) is not None]
+        needs_mech = [s for s, v in (("drive", self.drive), ("positions", self.positions), ("loads", self.loads),
+                                     ("kinetostatics", self.kinetostatics), ("flywheel", self.flywheel))
+                      if v is not None]
         linkage = self.mechanism is not None or self.synthesis is not None
         if self.mechanism is not None and self.drive is None:
             raise FieldValueError(("mechanism",), Message("input.needs_drive"))

@@ -143,14 +143,15 @@ class DriveSection(_Model):
 
     @model_validator(mode="after")
     def _one_speed(self):
-        given = [k for k in ("speed", "mean_output_speed", "working_stroke_speed") if getattr(self, k) is not None]
+        vals = self.__dict__                        # the fields by name
+        given = [k for k in ("speed", "mean_output_speed", "working_stroke_speed") if vals[k] is not None]
         if not given:
             raise FieldValueError(("speed",), Message("input.no_speed"))
         if len(given) > 1:
             raise FieldValueError((given[1],), Message("input.speed_one", given=given))
         if given[0] != "speed":
             try:
-                check_output_speed(getattr(self, given[0]))
+                check_output_speed(vals[given[0]])
             except ValueError as exc:
                 raise FieldValueError((given[0],), exc.args[0] if len(exc.args) == 1 else str(exc)) from None
         return self
@@ -215,13 +216,13 @@ class ForceSpec(_Model):
 
     @model_validator(mode="after")
     def _what(self):
-        given = [k for k in ("magnitude", "diagram", "moment") if getattr(self, k) is not None]
+        given = [k for k, v in (("magnitude", self.magnitude), ("diagram", self.diagram), ("moment", self.moment))
+                 if v is not None]
         if len(given) != 1:
             raise ValueError(Message("input.load_what_got", given=given) if given else Message("input.load_what"))
         if self.diagram is not None and self.diagram.phi is not None and self.kind is not None:
             pass
-        for name in ("magnitude", "moment"):
-            v = getattr(self, name)
+        for name, v in (("magnitude", self.magnitude), ("moment", self.moment)):
             if self.kind is not None and v is not None and v < 0:
                 raise FieldValueError((name,), Message("input.load_negative_against" if self.kind == "resistance"
                                                        else "input.load_negative_along", name=name, kind=self.kind,
@@ -449,17 +450,18 @@ class SynthesisSection(_Model):
     def _inputs(self):
         required, groups, optional = SYNTHESIS_INPUTS[self.type]
         spell = lambda k: k.rstrip("_") if k in ("lambda_", "function_") else k
+        vals = self.__dict__                        # the fields by name
         for k in required:
-            if getattr(self, k) is None:
+            if vals[k] is None:
                 raise FieldValueError((spell(k),), Message("input.synth_needs", type=self.type, key=spell(k)))
         allowed = set(required) | set(optional) | {k for g in groups for k in g}
         for k in SYNTHESIS_FIELDS:
-            if getattr(self, k) is not None and k not in allowed:
+            if vals[k] is not None and k not in allowed:
                 offset = self.type == "slider_crank" and k == "e"
                 raise FieldValueError((spell(k),), Message("input.synth_not_taken_offset" if offset
                                                            else "input.synth_not_taken", type=self.type, key=spell(k)))
         for g in groups:
-            given = [k for k in g if getattr(self, k) is not None]
+            given = [k for k in g if vals[k] is not None]
             if len(given) != 1:
                 names = [f"`{spell(k)}`" for k in g]
                 raise FieldValueError((spell((given or g)[-1]),),

@@ -1,0 +1,178 @@
+"""Answer-form presets of the balancing, differential and synthesis chapters (`tmm form -q
+balancing|differential|synthesis_positions|synthesis_path`): the form lists the preset's
+quantities with their own symbol and unit in each language (a path's notation by its pattern:
+differential.speeds.H is the carrier's speed, not the stroke H), and `tmm check` grades a key
+made from the results as all-pass and answers 10 % off as outside."""
+from __future__ import annotations
+
+import math
+import re
+from pathlib import Path
+
+import pytest
+import yaml
+from typer.testing import CliRunner
+
+from tmm_cli.check import _path_unit, answer_value
+from tmm_cli.cli import app
+from tmm_cli.forms import notation
+
+runner = CliRunner()
+TASKS = Path(__file__).resolve().parent.parent / "tasks"
+
+# example, preset, the paths the preset names there, (path, symbol, unit in en / ru / uk) samples
+CASES = {
+    "balancing": ("balancing_fourbar", [
+        "balancing.max.F", "balancing.max.M", "balancing.max.F_balanced", "balancing.max.M_balanced",
+        "balancing.counterweights.crank.m", "balancing.counterweights.rocker.m",
+        "balancing.counterweights.crank.angle", "balancing.counterweights.rocker.angle",
+        "balancing.rotor.corrections[0].m", "balancing.rotor.corrections[1].m",
+        "balancing.rotor.corrections[0].angle", "balancing.rotor.corrections[1].angle"],
+        [("balancing.max.F", "F_max", ("N", "Н", "Н")), ("balancing.max.M", "M_max", ("N*m", "Н·м", "Н·м")),
+         ("balancing.counterweights.rocker.m", "m_cw", ("kg", "кг", "кг")),
+         ("balancing.rotor.corrections[1].angle", "φ_corr", ("deg", "°", "°"))]),
+    "differential": ("differential_A", [
+        "differential.u", "differential.speeds.1", "differential.speeds.3", "differential.speeds.H",
+        "differential.speeds.satellite", "differential.torques.1", "differential.torques.3",
+        "differential.torques.H", "differential.power_loss"],
+        [("differential.speeds.H", "ω_H", ("rad/s", "рад/с", "рад/с")),
+         ("differential.speeds.satellite", "ω_satellite", ("rad/s", "рад/с", "рад/с")),
+         ("differential.torques.H", "T_H", ("N*m", "Н·м", "Н·м")),
+         ("differential.power_loss", "P_loss", ("W", "Вт", "Вт"))]),
+    "synthesis_positions": ("synthesis_positions", [
+        "synthesis.lengths.crank", "synthesis.lengths.coupler", "synthesis.lengths.rocker", "synthesis.lengths.frame",
+        "synthesis.fixed_pivots.O[0]", "synthesis.fixed_pivots.O[1]", "synthesis.fixed_pivots.O1[0]",
+        "synthesis.fixed_pivots.O1[1]"],
+        [("synthesis.lengths.coupler", "l_coupler", ("m", "м", "м")),
+         ("synthesis.fixed_pivots.O1[1]", "y_O1", ("m", "м", "м"))]),
+    "synthesis_path": ("synthesis_path", [
+        "synthesis.lengths.crank", "synthesis.lengths.coupler", "synthesis.lengths.rocker", "synthesis.lengths.frame",
+        "synthesis.fixed_pivots.O[0]", "synthesis.fixed_pivots.O[1]", "synthesis.fixed_pivots.O1[0]",
+        "synthesis.fixed_pivots.O1[1]", "synthesis.max_deviation"],
+        [("synthesis.fixed_pivots.O[0]", "x_O", ("m", "м", "м")),
+         ("synthesis.max_deviation", "Δ_max", ("m", "м", "м"))]),
+}
+
+
+def _form(tmp_path, example, preset, lang):
+    out = tmp_path / lang
+    res = runner.invoke(app, ["form", str(TASKS / f"{example}.yaml"), "-q", preset, "-o", str(out), "--lang", lang])
+    assert res.exit_code == 0, res.output
+    return out / f"{example}.key.yaml"
+
+
+@pytest.mark.parametrize("preset", list(CASES))
+def test_preset_form_lists_its_quantities_with_symbol_and_unit(tmp_path, preset):
+    example, paths, samples = CASES[preset]
+    for i, lang in enumerate(("en", "ru", "uk")):
+        key_file = _form(tmp_path, example, preset, lang)
+        text = key_file.read_text(encoding="utf-8")
+        assert list(yaml.safe_load(text)["answers"]) == paths
+        lines = {re.match(r'\s*"([^"]+)"', ln).group(1): ln for ln in text.splitlines() if ln.startswith('  "')}
+        for path, sym, units in samples:
+            assert f"# {sym}, {units[i]} — " in lines[path], (lang, lines[path])
+        if lang != "en":       # the comments in the language: no English unit word left
+            comments = " ".join(ln.split("#", 1)[1] for ln in lines.values())
+            assert not re.search(r", (m|N|kg|deg|W|N\*m|rad/s) —", comments), comments
+
+
+@pytest.mark.parametrize("preset", list(CASES))
+def test_preset_key_passes_and_ten_percent_off_fails(tmp_path, preset):
+    example, paths, _ = CASES[preset]
+    key_file = _form(tmp_path, example, preset, "en")
+    task = str(TASKS / f"{example}.yaml")
+    res = runner.invoke(app, ["check", task, "--answers", str(key_file), "-q", preset, "-o", str(tmp_path / "ok")])
+    assert res.exit_code == 0, res.output
+    key = yaml.safe_load(key_file.read_text(encoding="utf-8"))
+    # a reference that is round-off (the balanced shaking force, 1e-14 N) has no 10 % to miss
+    off = {p: 1.1 * v for p, v in key["answers"].items() if abs(v) > 1e-9}
+    assert len(off) >= len(paths) - 1
+    bad = tmp_path / "off.yaml"
+    bad.write_text(yaml.safe_dump({"variant": key["variant"], "answers": off}), encoding="utf-8")
+    res = runner.invoke(app, ["check", task, "--answers", str(bad), "-o", str(tmp_path / "off")])
+    assert res.exit_code == 1, res.output
+    import csv
+    rows = list(csv.DictReader((tmp_path / "off" / "check.csv").open(encoding="utf-8")))
+    assert {r["path"] for r in rows} == set(off)
+    # a wrong answer; an angle near 180 deg 10 % off (173.7 -> 191.0) is also near its
+    # reference's opposite (-191.0 = 169.0 deg), which the grader names a wrong sign
+    assert all(r["status"] == "outside" or (r["status"] == "sign" and r["path"].endswith(".angle"))
+               for r in rows), [(r["path"], r["status"]) for r in rows]
+
+
+def test_differential_key_against_willis(tmp_path):
+    """The differential's preset values against Willis' formula by hand: scheme A, z1 = 27,
+    z3 = 87, n1 = 1000 rpm, n3 = -200 rpm; u = -z3/z1, omega_H = (omega1 - u omega3)/(1 - u);
+    the satellite (z2 = 30) from omega2 - omega_H = -(z1/z2)(omega1 - omega_H); T1 = 50 N*m and
+    the torques balance, the power lost being the sum of the powers."""
+    a = yaml.safe_load(_form(tmp_path, "differential_A", "differential", "en").read_text(encoding="utf-8"))["answers"]
+    r = {"differential": {"u": a["differential.u"],
+                          "speeds": {k: a[f"differential.speeds.{k}"] for k in ("1", "3", "H", "satellite")},
+                          "torques": {k: a[f"differential.torques.{k}"] for k in ("1", "3", "H")},
+                          "power_loss": a["differential.power_loss"]}}
+    from tmm_cli.results import lookup
+    u = -87 / 27
+    w1, w3 = 1000 * math.pi / 30, -200 * math.pi / 30
+    wh = (w1 - u * w3) / (1 - u)
+    w2 = wh - 27 / 30 * (w1 - wh)
+    assert lookup(r, "differential.u") == pytest.approx(u, rel=1e-12)
+    assert lookup(r, "differential.speeds.H") == pytest.approx(wh, rel=1e-12)
+    assert lookup(r, "differential.speeds.satellite") == pytest.approx(w2, rel=1e-12)
+    t = [lookup(r, f"differential.torques.{k}") for k in ("1", "3", "H")]
+    assert t[0] == 50 and sum(t) == pytest.approx(0, abs=1e-9)
+    loss = sum(ti * wi for ti, wi in zip(t, (w1, w3, wh)))
+    assert lookup(r, "differential.power_loss") == pytest.approx(loss, rel=1e-9)
+    assert 0 < loss < 0.05 * t[0] * w1          # a few per cent of the input power: η = 0.97 per mesh
+
+
+def test_carrier_speed_is_not_the_stroke():
+    """differential.speeds.H ends in H, the stroke's key ('m or deg'): its notation and the
+    grader's unit are the carrier's speed (rad/s), so '84.21 rpm' reads as 8.818 rad/s and
+    a length is refused; positions.H keeps the stroke's."""
+    assert _path_unit("differential.speeds.H") == "rad/s"
+    assert notation("differential.speeds.H").startswith("ω_H, rad/s — ")
+    assert notation("positions.H").startswith("H, m or deg — ")
+    assert answer_value("84.2105263157895 rpm", "differential.speeds.H") == pytest.approx(
+        84.2105263157895 * math.pi / 30, rel=1e-12)
+    with pytest.raises(ValueError):
+        answer_value("8.8 m", "differential.speeds.H")
+    assert _path_unit("balancing.max.M") == "N*m" and _path_unit("differential.power_loss") == "W"
+    assert answer_value("0.14385 кВт", "differential.power_loss") == pytest.approx(143.85)
+
+
+def test_answers_for_a_chapter_the_task_lacks_are_not_computed(tmp_path):
+    """An answer into `differential` or `balancing` for a task without that stage is
+    not_computed (the task has no such stage), not a misspelt path."""
+    ans = tmp_path / "a.yaml"
+    ans.write_text("variant: 1\nanswers:\n  differential.speeds.H: 8.8\n  balancing.max.F: 59\n"
+                   "  synthesis.lengths.crank: 0.08\n", encoding="utf-8")
+    res = runner.invoke(app, ["check", str(TASKS / "synthesis_positions.yaml"), "--answers", str(ans),
+                              "-o", str(tmp_path / "o")])
+    import csv
+    rows = {r["path"]: r["status"] for r in csv.DictReader((tmp_path / "o" / "check.csv").open(encoding="utf-8"))}
+    assert rows == {"differential.speeds.H": "not_computed", "balancing.max.F": "not_computed",
+                    "synthesis.lengths.crank": "ok"}, (rows, res.output)
+
+
+def test_a_synthesis_length_named_for_what_it_is():
+    """synthesis.lengths.* are link lengths l_<link>, but a slider-crank's `offset` keeps the
+    eccentricity's symbol e and a shaper's `guide_height` is h, not a 'link length'."""
+    assert notation("synthesis.lengths.rod") == "l_rod, m — link length"
+    assert notation("synthesis.lengths.offset", "ru", local_units=True) == "e, м — эксцентриситет"
+    assert notation("synthesis.lengths.guide_height").startswith("h, m — height of the ram guide")
+    assert _path_unit("synthesis.lengths.offset") == "m"
+    assert answer_value("12 mm", "synthesis.lengths.offset") == pytest.approx(0.012)
+
+
+def test_zero_for_the_balanced_shaking_force_passes(tmp_path):
+    """After full balancing the shaking force is zero but for round-off (about 1e-14 N in
+    results.json): a student's 0 is right, and 5 N is not."""
+    import csv
+    ans = tmp_path / "a.yaml"
+    ans.write_text("variant: 3\nanswers:\n  balancing.max.F_balanced: 0\n  balancing.shaking_balanced[0].F: 5 N\n",
+                   encoding="utf-8")
+    runner.invoke(app, ["check", str(TASKS / "balancing_fourbar.yaml"), "--answers", str(ans), "-o", str(tmp_path / "o")])
+    rows = {r["path"]: r for r in csv.DictReader((tmp_path / "o" / "check.csv").open(encoding="utf-8"))}
+    assert abs(float(rows["balancing.max.F_balanced"]["reference"])) < 1e-9
+    assert rows["balancing.max.F_balanced"]["status"] == "ok"
+    assert rows["balancing.shaking_balanced[0].F"]["status"] == "outside"
