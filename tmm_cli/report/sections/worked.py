@@ -1084,7 +1084,8 @@ def centres_caption(ctx, far, inf) -> Markup:
     """The figure's caption: what P_ij is, the centres at infinity and those beyond the box."""
     def name(i, j):
         return Markup("<i>P</i><sub>{}{}</sub>").format(i, j)
-    out = Markup(escape(ctx.t("worked.centres_caption")))
+    a, b = ctx.t("worked.centres_caption", p="\u0001").split("\u0001")
+    out = Markup(escape(a)) + Markup("<i>P</i><sub><i>ij</i></sub>") + Markup(escape(b))
     if inf:
         out += Markup(" ") + Markup(escape(ctx.t("worked.centres_inf"))) + Markup(" ") + \
             Markup(", ").join(name(i, j) for i, j in inf) + Markup(".")
