@@ -133,7 +133,8 @@ def positions_at(linkage: Linkage, phi_deg) -> list[dict]:
     -------
     list of dict
         Per angle: ``phi`` (deg), ``points`` (x, y in m of every point) and ``links``
-        (``angle``, deg in [0, 360), of every link), as the kinematics entries hold them.
+        (``angle``, deg in [0, 360), of every link), as the kinematics entries hold them
+        (null where not finite).
     """
     from .entries import angle_deg
     phi = np.asarray(phi_deg, float).reshape(-1)
@@ -142,7 +143,10 @@ def positions_at(linkage: Linkage, phi_deg) -> list[dict]:
     kin = solve(linkage.mechanism, phi, linkage.drive.omega)
     pos = {p: np.asarray(kin.pos[p], float) for p in kin.points}
     ang = {n: angle_deg(kin.angle[n]) for n in kin.links}
+
+    def fin(x):                          # (null where the position has no finite value)
+        return float(x) if np.isfinite(x) else None
     return [{"phi": float(f),
-             "points": {p: {"x": float(xy[i, 0]), "y": float(xy[i, 1])} for p, xy in pos.items()},
-             "links": {n: {"angle": float(a[i])} for n, a in ang.items()}}
+             "points": {p: {"x": fin(xy[i, 0]), "y": fin(xy[i, 1])} for p, xy in pos.items()},
+             "links": {n: {"angle": fin(a[i])} for n, a in ang.items()}}
             for i, f in enumerate(phi)]

@@ -245,6 +245,8 @@ def singular_figures(ctx, geom, entries, info) -> list[tuple]:
     out = []
     ranges = F.slider_ranges(entries, geom) if entries else {}
     for k, e in enumerate(ctx.results.get("singular_positions") or []):
+        if any(v is None for d in e["points"].values() for v in d.values()):
+            continue                     # (a position without finite coordinates is not drawn)
         lo, hi = F.mechanism_extent([e])
         for a, b in ranges.values():
             lo, hi = np.minimum(lo, np.minimum(a, b)), np.maximum(hi, np.maximum(a, b))
