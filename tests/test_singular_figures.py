@@ -101,3 +101,32 @@ def test_their_labels_neither_overlap_nor_leave(report, tmp_path, monkeypatch):
     figs = _record(monkeypatch)
     render(res, task, tmp_path, {"html"}, "ru")
     assert len(figs) > 2 and problems(figs) == []
+
+
+def test_slider_balance_of_an_offset_slider_crank(tmp_path):
+    """Balance on the ram: singular where crank (r = 0.08) and rod (l = 0.35) are in line, B on
+    the vertical guide x = e = 0.025: |OB| = r + l with cos(phi) = e / (r + l), or |OB| = l - r
+    with A opposite to B, cos(phi + 180) = e / (l - r)."""
+    from tmm_cli.report import render
+    r, l, e = 0.08, 0.35, 0.025
+    text = (ROOT / "tasks" / "press_offset_slider_crank.yaml").read_text(encoding="utf-8")
+    assert "  balance: crank\n" in text
+    path = tmp_path / "ram_balance.yaml"
+    path.write_text(text.replace("  balance: crank\n", "  balance: ram\n"), encoding="utf-8")
+    task = tmm_cli.load_task(path)
+    res = tmm_cli.run(task, kinematics_curve=0)
+    c1, c2 = math.degrees(math.acos(e / (r + l))), math.degrees(math.acos(e / (l - r)))
+    want = sorted(x % 360.0 for x in (c1, -c1, 180.0 + c2, 180.0 - c2))
+    assert len(res["singular"]) == 2
+    for phi, pos in zip(res["singular"], res["singular_positions"]):
+        assert min(abs(phi - w) for w in want) < 1e-6
+        P = {k: np.array([v["x"], v["y"]]) for k, v in pos["points"].items()}
+        A = r * np.array([math.cos(math.radians(phi)), math.sin(math.radians(phi))])
+        assert P["A"] == pytest.approx(A, abs=1e-9)
+        assert P["B"][0] == pytest.approx(e, abs=1e-9)
+        assert abs(A[0] * P["B"][1] - A[1] * P["B"][0]) <= 1e-7 * r * (r + l)      # O, A, B in line
+    render(res, task, tmp_path / "o", {"html"}, "en")
+    html = (tmp_path / "o" / "report.html").read_text(encoding="utf-8")
+    caps = re.findall(r"<figcaption>(The mechanism at the singular angle[^<]*)</figcaption>", html)
+    assert len(caps) == 2 and all("links 1 and 2 in line" in c and "O, A, B" in c for c in caps)
+    assert len(list((tmp_path / "o" / "figures").glob("singular-*.svg"))) == 2
