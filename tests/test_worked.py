@@ -256,9 +256,11 @@ def _close(shown: str, true: float, signed: bool) -> bool:
 # a digit that is not part of a name (R12, O1, ω2, the barred vector R̄34)
 _UNTAGGED = re.compile(r"(?<![A-Za-zА-Яа-яЁёІіЇїЄєҐґΑ-Ωα-ωτπ¯\d.,])\d")
 
+# (the drawing of the position with its instant centres and its caption: tests/test_worked_centres.py)
 STRIP = """(root, print) => {
   const c = root.cloneNode(true);
-  c.querySelectorAll(print ? 'style, .mml, [data-k], .unit' : 'style, .mfb, [data-k], .unit').forEach(e => e.remove());
+  c.querySelectorAll(print ? 'style, figure, .mml, [data-k], .unit' : 'style, figure, .mfb, [data-k], .unit')
+    .forEach(e => e.remove());
   return c.textContent; }"""
 
 

@@ -26,8 +26,8 @@ ANGLE_KEYS = {"phi", "phi0", "extreme", "angle", "working_stroke_angle", "idle_s
               "psi", "gamma_min", "pressure_angle", "max_pressure_angle", "singular"}
 # top-level result sections: a path into one the task did not compute is not_computed
 SECTIONS = {"structure", "positions", "kinematics", "kinematics_curve", "kinetostatics", "kinetostatics_info",
-            "singular", "flywheel", "cam", "gears", "planetary", "drive_train", "synthesis", "dof2", "balancing",
-            "differential"}
+            "singular", "singular_positions", "flywheel", "cam", "gears", "planetary", "drive_train", "synthesis",
+            "dof2", "balancing", "differential"}
 STATUSES = ("ok", "outside", "sign", "missing", "unknown_path", "not_computed", "invalid")
 SET_ORDER = ("outside", "sign", "missing", "unknown_path", "not_computed")
 CHECK_FIELDS = ["student", "group", "variant", "path", "answer", "reference", "error", "tolerance", "status",

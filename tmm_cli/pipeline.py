@@ -268,6 +268,10 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explo
             _stage("kinetostatics")(kinetostatics.analyze)(linkage, task.kinetostatics, kin, motion=dyn))
         results.setdefault("kinetostatics_info", {})["motion"] = \
             "steady" if task.kinetostatics.motion is True else "constant"
+        if results.get("singular"):
+            # the mechanism at each singular angle of the balance link (the report draws it)
+            from .linkage.kinematics.stage import positions_at
+            results["singular_positions"] = _stage("kinematics")(positions_at)(linkage, results["singular"])
         if explore and "kinematics_explore" in results:
             # the force polygons and the lever of the mechanism in motion (report.html only):
             # the same analysis at the explore grid's crank angles

@@ -705,13 +705,15 @@ def figure_for_box(lo, hi, width_mm, min_h=40.0, max_h=150.0, margin_mm=8.0, lan
 
 
 def draw_mechanism(view: SchemeView, geom, entry, unit: float, *, labels=True, numbers=True,
-                   color="k", lw=1.5, light=False, ranges=None, label_fs=8, taken=()):
+                   color="k", lw=1.5, light=False, ranges=None, label_fs=8, taken=(), placed=None):
     """Draw the linkage of one kinematics entry on `view` (model units: metres).
 
     unit: metres per paper millimetre (sets pivot/block/label sizes).
     light: thin grey drawing (for the overlaid positions of the positions plan).
     ranges: output of slider_ranges() so fixed guides cover the whole stroke.
     taken: boxes (x0, y0, x1, y1, data units) of texts already there: the labels keep clear.
+    placed: a list that gets `taken` and the boxes of the labels placed here (for labels
+    placed after them: the instant centres of the worked position).
     Returns a list of (label, xy) placed, for the caller's bookkeeping.
     """
     size = 50.0 * unit
@@ -810,13 +812,18 @@ def draw_mechanism(view: SchemeView, geom, entry, unit: float, *, labels=True, n
             xy = _pxy(entry, p)
             anchors.insert(0, (p, xy, None, False))
     if not anchors:
+        if placed is not None:
+            placed.extend(taken)
         return []
     fs_mm = label_fs * 25.4 / 72.0
     sizes = [tuple(unit * np.array(text_size("00" if a[3] else a[0], fs_mm * (0.95 if a[3] else 1.0))))
              for a in anchors]
+    tk = list(taken)
     pos = place_labels([(a[1][0], a[1][1], a[2]) for a in anchors], size,
                        avoid=avoid + [a[1] for a in anchors], step=3.6 * unit, segments=segs,
-                       boxes=boxes, sizes=sizes, taken=list(taken))
+                       boxes=boxes, sizes=sizes, taken=tk)
+    if placed is not None:
+        placed.extend(tk)
     out = []
     seen = set()
     for (text, xy, _, is_num), (x, y) in zip(anchors, pos):

@@ -115,3 +115,38 @@ def output_curve(linkage: Linkage, n: int = 361, turn=None) -> OutputCurve:
     v = np.where(kin.undefined.get(vk, False), np.nan, v)
     a = np.where(kin.undefined.get(ak, False), np.nan, a)
     return OutputCurve(turn=turn, phi=phi, s=s, v=v, a=a, quantity=positions.output_kind)
+
+
+def positions_at(linkage: Linkage, phi_deg) -> list[dict]:
+    """The mechanism's configuration at the crank angles ``phi_deg`` (deg): results.json
+    ``singular_positions`` (the report draws the mechanism at each singular angle of the
+    kinetostatics).
+
+    Parameters
+    ----------
+    linkage : Linkage
+        The mechanism and its drive.
+    phi_deg : array_like of float
+        Crank angles, deg.
+
+    Returns
+    -------
+    list of dict
+        Per angle: ``phi`` (deg), ``points`` (x, y in m of every point) and ``links``
+        (``angle``, deg in [0, 360), of every link), as the kinematics entries hold them
+        (null where not finite).
+    """
+    from .entries import angle_deg
+    phi = np.asarray(phi_deg, float).reshape(-1)
+    if not len(phi):
+        return []
+    kin = solve(linkage.mechanism, phi, linkage.drive.omega)
+    pos = {p: np.asarray(kin.pos[p], float) for p in kin.points}
+    ang = {n: angle_deg(kin.angle[n]) for n in kin.links}
+
+    def fin(x):                          # (null where the position has no finite value)
+        return float(x) if np.isfinite(x) else None
+    return [{"phi": float(f),
+             "points": {p: {"x": fin(xy[i, 0]), "y": fin(xy[i, 1])} for p, xy in pos.items()},
+             "links": {n: {"angle": fin(a[i])} for n, a in ang.items()}}
+            for i, f in enumerate(phi)]

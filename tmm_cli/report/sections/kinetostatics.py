@@ -203,6 +203,71 @@ def _cycle_fig(ctx, entries, phi0, sign, info):
     return ctx.svg(fig, "balancing-cycle")
 
 
+# ----------------------------------------------------------------- singular positions
+SINGULAR_COLOR = "#c0392b"      # the links that make the equations singular
+COLLINEAR_TOL = 1e-6            # sine of the angle between two links taken as in line
+
+
+def collinear_dyads(geom, entry) -> list[tuple[int, int, str, str, str]]:
+    """The pairs of moving links joined by a pin whose pins lie on one line at the kinematics
+    entry (a dead point: the dyad cannot pass a moment): [(link a, link b, pin of a, the
+    common pin, pin of b)]."""
+    P = entry["points"]
+    pins: dict[int, list[str]] = {}
+    for j in geom.joints:
+        if j.kind == "R" and j.point in P:
+            for k in (j.a, j.b):
+                if j.point not in pins.setdefault(k, []):
+                    pins[k].append(j.point)
+
+    def xy(p):
+        return np.array([float(P[p]["x"]), float(P[p]["y"])])
+    out = []
+    for j in geom.joints:
+        if j.kind != "R" or 0 in (j.a, j.b) or j.point not in P:
+            continue
+        X = xy(j.point)
+        for Y in pins.get(j.a, []):
+            for Z in pins.get(j.b, []):
+                if j.point in (Y, Z) or Y == Z:
+                    continue
+                u, v = xy(Y) - X, xy(Z) - X
+                nu, nv = float(np.hypot(*u)), float(np.hypot(*v))
+                if nu > 0 and nv > 0 and abs(float(u[0] * v[1] - u[1] * v[0])) <= COLLINEAR_TOL * nu * nv:
+                    out.append((j.a, j.b, Y, j.point, Z))
+    return out
+
+
+def singular_figures(ctx, geom, entries, info) -> list[tuple]:
+    """The mechanism at each singular angle of the balance link (results ``singular_positions``):
+    [(svg, caption)]; the links of a dyad in line highlighted."""
+    from .. import figures as F
+    out = []
+    ranges = F.slider_ranges(entries, geom) if entries else {}
+    for k, e in enumerate(ctx.results.get("singular_positions") or []):
+        if any(v is None for d in e["points"].values() for v in d.values()):
+            continue                     # (a position without finite coordinates is not drawn)
+        lo, hi = F.mechanism_extent([e])
+        for a, b in ranges.values():
+            lo, hi = np.minimum(lo, np.minimum(a, b)), np.maximum(hi, np.maximum(a, b))
+        view, unit, title = F.figure_for_box(lo, hi, 110.0, min_h=40.0, max_h=90.0, margin_mm=10.0,
+                                             lang=ctx.lang)
+        F.draw_mechanism(view, geom, e, unit, ranges=ranges, taken=[title])
+        dyads = collinear_dyads(geom, e)
+        P = e["points"]
+        for a, b, Y, X, Z in dyads:
+            for p, q in ((Y, X), (X, Z)):
+                view.line([[P[p]["x"], P[p]["y"]], [P[q]["x"], P[q]["y"]]], SINGULAR_COLOR, 2.4, z=3)
+        phi = ctx.fmt_fixed(e["phi"], 3)
+        if dyads:
+            why = "; ".join(ctx.t("kst.singular_dyad", a=a, b=b, pts=f"{Y}, {X}, {Z}") for a, b, Y, X, Z in dyads)
+        else:
+            why = ctx.t("kst.singular_other")
+        out.append((ctx.svg(view, f"singular-{k + 1}"),
+                    ctx.t("kst.singular_caption", phi=phi, why=why, balance=info["balance"])))
+    return out
+
+
 # ----------------------------------------------------------------- section
 def build(ctx) -> str | None:
     entries = ctx.results.get("kinetostatics")
@@ -300,6 +365,8 @@ def build(ctx) -> str | None:
             figs, _ = position_figures(ctx, e, ke, info, links, geom_pin, w1)
         positions.append({"index": position_label(e, mark), "phi": e["phi"], "figs": figs})
     sing = ctx.results.get("singular") or []
+    sing_figs = singular_figures(ctx, geom, ctx.results.get("kinematics") or [], info) \
+        if sing and geom is not None else []
     bk = ctx.t("kst.bk_moment") if info["balance_kind"] == "moment" else ctx.t("kst.bk_force")
     return ctx.render("sections/kinetostatics.html.j2", info=info, mb_hdr=hdr, mb_rows=mb_rows,
                       r_hdr=r_hdr, r_rows=r_rows, eff_rows=eff_rows, positions=positions,
@@ -310,7 +377,7 @@ def build(ctx) -> str | None:
                       fbd_caption=ctx.t("kst.fbd_caption"),
                       fig_diagrams=_diagrams_fig(ctx, info, shown, mark),
                       fig_cycle=_cycle_fig(ctx, entries, phi0, sign, info),
-                      singular=", ".join(ctx.fmt_fixed(s, 6) for s in sing),
+                      singular=", ".join(ctx.fmt_fixed(s, 6) for s in sing), sing_figs=sing_figs,
                       extra_note=ctx.t("common.extra_note") if len(entries) > n_grid else None)
 
 

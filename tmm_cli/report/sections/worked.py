@@ -1008,6 +1008,93 @@ class _Writer:
         self.lever(ks, info)
 
 
+# ====================================================================== instant centres
+CENTRE_COLOR = "#b03060"        # the circles of the instant centres
+CENTRE_R = 1.5                  # mm
+CENTRE_ROOM = 0.5               # a centre within this fraction of the mechanism's size beyond
+                                # its box is drawn; one farther is listed with its coordinates
+
+
+def centre_key(key: str) -> tuple[int, int]:
+    """'0-2' -> (0, 2): the two links (0 the frame) of an entry of ``instant_centres``."""
+    i, j = key.split("-")
+    return int(i), int(j)
+
+
+def centres_split(entry, lo, hi):
+    """The instant centres of a kinematics entry: (drawn [(i, j, xy)], far [(i, j, xy)],
+    at infinity [(i, j)]); drawn: within CENTRE_ROOM of the size of the box lo..hi beyond it."""
+    span = float(np.max(np.asarray(hi, float) - np.asarray(lo, float)))
+    room = CENTRE_ROOM * span
+    drawn, far, inf = [], [], []
+    for key, xy in sorted((entry.get("instant_centres") or {}).items(), key=lambda kv: centre_key(kv[0])):
+        i, j = centre_key(key)
+        if xy is None:
+            inf.append((i, j))
+            continue
+        q = np.asarray(xy, float)
+        if np.all(q >= np.asarray(lo) - room) and np.all(q <= np.asarray(hi) + room):
+            drawn.append((i, j, q))
+        else:
+            far.append((i, j, q))
+    return drawn, far, inf
+
+
+def centres_svg(ctx, geom, entries, entry, width_mm=150.0):
+    """The mechanism at the worked position with its instant centres P_ij (small circles,
+    labelled as the course writes them); the centres beyond the drawing's box are not drawn
+    (the caption lists them). Returns (svg, far, at infinity) or None without centres."""
+    from .. import figures as F
+    if not entry.get("instant_centres"):
+        return None
+    lo, hi = F.mechanism_extent([entry])
+    ranges = F.slider_ranges(entries, geom)
+    for a, b in ranges.values():
+        lo, hi = np.minimum(lo, np.minimum(a, b)), np.maximum(hi, np.maximum(a, b))
+    drawn, far, inf = centres_split(entry, lo, hi)
+    for _, _, q in drawn:
+        lo, hi = np.minimum(lo, q), np.maximum(hi, q)
+    view, unit, title = F.figure_for_box(lo, hi, width_mm, min_h=45.0, max_h=140.0, margin_mm=10.0,
+                                         lang=ctx.lang)
+    taken: list = []
+    F.draw_mechanism(view, geom, entry, unit, ranges=ranges, taken=[title], placed=taken)
+    P = entry["points"]
+    segs = []
+    for l in geom.links:
+        pts = [np.array([float(P[p]["x"]), float(P[p]["y"])]) for p in l.points if p in P]
+        segs += [(pts[k], pts[k + 1]) for k in range(len(pts) - 1)]
+    for _, _, q in drawn:
+        view.circle(q, CENTRE_R * unit, face="none", edge=CENTRE_COLOR, lw=0.8, z=6)
+    if drawn:
+        size = 7.0
+        fs_mm = size / F.PT_PER_MM
+        sizes = [tuple(unit * np.array(F.text_size("P", fs_mm, sub=f"{i}{j}"))) for i, j, _ in drawn]
+        x0, y0 = view.origin
+        x1, y1 = view.origin + unit * np.array([view.cv.w, view.cv.h])
+        pad = 0.5 * unit
+        pos = F.place_labels([(q[0], q[1], None) for _, _, q in drawn], 50.0 * unit,
+                             avoid=[q for _, _, q in drawn], step=3.0 * unit, segments=segs, sizes=sizes,
+                             taken=taken, bounds=(x0 + pad, y0 + pad, x1 - pad, y1 - pad))
+        for (i, j, _), (x, y) in zip(drawn, pos):
+            view.text((x, y), "P", size=size, z=8, italic=True, color=CENTRE_COLOR, sub=f"{i}{j}")
+    return ctx.svg(view, F.pos_name("centres", entry["index"])), far, inf
+
+
+def centres_caption(ctx, far, inf) -> Markup:
+    """The figure's caption: what P_ij is, the centres at infinity and those beyond the box."""
+    def name(i, j):
+        return Markup("<i>P</i><sub>{}{}</sub>").format(i, j)
+    a, b = ctx.t("worked.centres_caption", p="\u0001").split("\u0001")
+    out = Markup(escape(a)) + Markup("<i>P</i><sub><i>ij</i></sub>") + Markup(escape(b))
+    if inf:
+        out += Markup(" ") + Markup(escape(ctx.t("worked.centres_inf"))) + Markup(" ") + \
+            Markup(", ").join(name(i, j) for i, j in inf) + Markup(".")
+    if far:
+        out += Markup(" ") + Markup(escape(ctx.t("worked.centres_far"))) + Markup(" ") + Markup("; ").join(
+            name(i, j) + Markup(" ({}; {})").format(ctx.fmt(q[0]), ctx.fmt(q[1])) for i, j, q in far) + Markup(".")
+    return out
+
+
 def build(ctx) -> str | None:
     kin = ctx.results.get("kinematics") or []
     if not kin or not (ctx.results.get("structure") or {}).get("links"):
@@ -1036,5 +1123,8 @@ def build(ctx) -> str | None:
             blocks.append(("p", Markup(escape(a)) + Markup(html(nn)) + Markup(escape(c))))
         else:
             blocks.append(b)
+    fig = centres_svg(ctx, w.geom, kin, e)
+    fig_centres, centres_note = (fig[0], centres_caption(ctx, fig[1], fig[2])) if fig else (None, None)
     return ctx.render("sections/worked.html.j2", blocks=blocks, head=Markup(html(head)),
+                      fig_centres=fig_centres, centres_note=centres_note,
                       intro=ctx.t("worked.intro", i="\u0001").split("\u0001"), n=Markup(html(num.exact(n, "pos"))))
