@@ -205,7 +205,8 @@ def test_title_block(forging):
     assert (tb["sheet"], tb["sheets"]) == (1, len(sheets["ru"]))
     assert tb["scale"] == sheets["ru"][0][1]["mechanism"]["scale"]
     texts = {p.plain for p in sheets["ru"][0][0].prims if isinstance(p, Text)}
-    assert {"Вариант 7", "Лист 1", f"Листов {tb['sheets']}", tb["scale"], "TMM.7.01", "Разраб."} <= texts
+    # the code in the drawing's letters: Cyrillic ТММ on a Russian sheet
+    assert {"Вариант 7", "Лист 1", f"Листов {tb['sheets']}", tb["scale"], "ТММ.7.01", "Разраб."} <= texts
 
 
 def test_cli_sheets_writes_files(tmp_path):

@@ -59,7 +59,7 @@ def comma(lang: str | None = None) -> bool:
 
 def _typeset(m: re.Match) -> str:
     sign, whole, dec, esign, exp = m.groups()
-    s = sign + whole + ("," + dec if dec else "")
+    s = ("\u2212" if sign in ("-", "\u2212") else sign) + whole + ("," + dec if dec else "")
     if exp is not None:
         e = int(exp)
         if e == 0:
@@ -70,8 +70,9 @@ def _typeset(m: re.Match) -> str:
 
 def localize(s: str, lang: str | None = None) -> str:
     """A formatted number (or a short text of formatted numbers: '0.5..1.25', '8.9e-16 m')
-    in ``lang``'s writing: unchanged in English, '0,5', '8,9·10⁻¹⁶' in ru/uk."""
-    if not comma(lang) or not s or ("." not in s and "e" not in s and "E" not in s):
+    in ``lang``'s writing: unchanged in English, '0,5', '8,9·10⁻¹⁶', '−1,19' (the minus sign,
+    U+2212, as typeset text writes it) in ru/uk."""
+    if not comma(lang) or not s or ("." not in s and "e" not in s and "E" not in s and "-" not in s):
         return s
     return _typeset_all(s)
 
