@@ -2,9 +2,37 @@
 every run (a property test must not pass or fail by the luck of the draw); set
 HYPOTHESIS_PROFILE=explore locally to search with fresh random examples."""
 import os
+import shutil
 
+import pytest
 from hypothesis import settings
 
 settings.register_profile("ci", derandomize=True, print_blob=True)
 settings.register_profile("explore", derandomize=False)
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
+
+
+
+@pytest.fixture(scope="session")
+def shared_once(tmp_path_factory, request):
+    """``shared_once(key, build)``: the folder ``build(folder)`` filled, built once per test
+    session for all of pytest-xdist's workers (a file lock in the session's common temporary
+    folder, pytest-xdist's documented pattern), so the tests that only read an example's
+    outputs (a report in one language, its PDF) share one run of it instead of each
+    repeating it.  Per session only: a new session (changed code) builds afresh."""
+    from filelock import FileLock
+    base = tmp_path_factory.getbasetemp()
+    # a worker's basetemp is <session>/popen-gwN: their parent is the session's own folder
+    root = (base.parent if hasattr(request.config, "workerinput") else base) / "shared-once"
+    root.mkdir(exist_ok=True)
+
+    def once(key: str, build):
+        d = root / key
+        with FileLock(str(d) + ".lock"):
+            if not (d / ".built").exists():
+                shutil.rmtree(d, ignore_errors=True)         # a build that failed half-way
+                d.mkdir()
+                build(d)
+                (d / ".built").touch()
+        return d
+    return once

@@ -83,3 +83,27 @@ def stray_ink(pdf: Path, page_words, dpi: int = 36) -> list[tuple[int, str, int]
                 if n:
                     found.append((k + 1, name, n))
     return found
+
+
+def results(shared_once, name: str):
+    """(task, results) of tasks/<name>.yaml as `tmm run --format pdf` computes them (the
+    synthesised task where the file asks a synthesis), once per test session: the three
+    languages' reports are made from one run."""
+    import pickle
+
+    def build(d: Path) -> None:
+        from tmm_cli.orchestrate import process
+        from tmm_cli.results import listed
+        task, res, _ = process(Path(__file__).resolve().parents[1] / "tasks" / f"{name}.yaml", None, {"pdf"}, "en")
+        (d / "run.pickle").write_bytes(pickle.dumps((task, listed(res))))
+    return pickle.loads((shared_once(f"pdfrun-{name}", build) / "run.pickle").read_bytes())
+
+
+def report_pdf(shared_once, name: str, lang: str) -> Path:
+    """report.pdf of tasks/<name>.yaml in ``lang``, written as `tmm run --format pdf` writes
+    it, once per test session (shared by the tests that read it)."""
+    def build(d: Path) -> None:
+        from tmm_cli.orchestrate import write_outputs
+        task, res = results(shared_once, name)
+        write_outputs(task, res, d, {"pdf"}, lang)
+    return shared_once(f"pdf-{name}-{lang}", build) / "report.pdf"

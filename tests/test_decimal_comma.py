@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import csv
 import io
-import json
 import re
 from html import unescape
 from pathlib import Path
@@ -16,8 +15,9 @@ import pytest
 
 import tmm_cli
 from tmm_cli import numfmt
-from tmm_cli.report import render_html
 from tmm_cli.report.typst_pdf import to_typst
+
+from report_langs import report_dir, report_html, results as shared_results
 
 ROOT = Path(__file__).resolve().parents[1]
 TASKS = sorted(p.stem for p in (ROOT / "tasks").glob("*.yaml"))
@@ -53,24 +53,13 @@ def _bad(text: str, given: str = "") -> list[str]:
     return out
 
 
-@pytest.fixture(scope="module")
-def computed():
-    cache = {}
-
-    def get(name):
-        if name not in cache:
-            task = tmm_cli.load_task(ROOT / "tasks" / f"{name}.yaml")
-            cache[name] = (task, tmm_cli.run(task, kinematics_curve=0))
-        return cache[name]
-    return get
-
-
 @pytest.mark.parametrize("name", TASKS)
 @pytest.mark.parametrize("lang", ["ru", "uk"])
-def test_numbers_take_the_decimal_comma(computed, tmp_path, name, lang):
-    task, results = computed(name)
-    before = json.dumps(results, sort_keys=True, default=str)
-    html = render_html(results, task, tmp_path, lang)[0]
+def test_numbers_take_the_decimal_comma(shared_once, name, lang):
+    # the report (and its CSV tables) made once per session, shared with test_report_ru/_uk, test_glossary
+    folder = report_dir(shared_once, name, lang)
+    task = tmm_cli.load_task(ROOT / "tasks" / f"{name}.yaml")
+    html = (folder / "report.html").read_bytes().decode("utf-8")
     title = getattr(task, "title", None) or ""
     typed = re.search(r'function: "([^"]+)"', (ROOT / "tasks" / f"{name}.yaml").read_text(encoding="utf-8"))
     given = typed.group(1) if typed else ""      # a function the task gives as typed ('x**1.5')
@@ -85,16 +74,16 @@ def test_numbers_take_the_decimal_comma(computed, tmp_path, name, lang):
             assert not bad, (fname, bad[:20])
     # the numbers are there, with the comma: the check above can fail
     assert re.search(r"\d,\d", _visible(html, title))
-    # the results are never localised
-    assert json.dumps(results, sort_keys=True, default=str) == before
-    for path in tmp_path.glob("*.csv"):
+    # the results are never localised (their JSON compared before and after the report)
+    assert (folder / "results-unchanged").read_text() == "True"
+    for path in folder.glob("*.csv"):
         rows = list(csv.reader(io.StringIO(path.read_text(encoding="utf-8"))))
         assert not [c for row in rows for c in row if re.fullmatch(r"[-−]?\d+,\d+|.*·10.*", c)], path.name
 
 
-def test_english_keeps_the_point(computed, tmp_path):
-    task, results = computed("engine_slider_crank")
-    text = _visible(render_html(results, task, tmp_path, "en")[0], task.title or "")
+def test_english_keeps_the_point(shared_once):
+    task = tmm_cli.load_task(ROOT / "tasks" / "engine_slider_crank.yaml")
+    text = _visible(report_html(shared_once, "engine_slider_crank", "en"), task.title or "")
     assert POINT.search(text) and not re.search(r"\d,\d{1,3}(?!\d)\s*(?:m|mm|rad|N)\b", text)
 
 
@@ -116,11 +105,12 @@ def test_localize(lang):
 
 @pytest.mark.parametrize("name", ["forging_sixbar", "cam_rocker", "gears_shifted"])
 @pytest.mark.parametrize("lang", ["ru", "uk"])
-def test_sheets_take_the_decimal_comma(computed, name, lang):
+def test_sheets_take_the_decimal_comma(shared_once, name, lang):
     """The A1 sheets' labels (scales, values, the title block) in ru and uk: the decimal comma."""
     from tmm_cli.sheets import build_sheets
     from tmm_cli.sheets.prims import Text
-    task, results = computed(name)
+    task = tmm_cli.load_task(ROOT / "tasks" / f"{name}.yaml")
+    results = shared_results(shared_once, name)          # tmm_cli.run(task, kinematics_curve=0), once per session
     texts = [" ".join(x for x in (t.s, t.sub, t.after) if x) for cv, _ in build_sheets(results, task, lang)
              for t in cv.prims if isinstance(t, Text)]
     bad = _bad("\n".join(texts).replace(getattr(task, "title", None) or "\0", ""))

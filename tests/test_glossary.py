@@ -87,14 +87,14 @@ def test_the_glossary_is_one_term_per_concept():
 
 
 @pytest.fixture(scope="module")
-def reports(tmp_path_factory):
-    from tmm_cli.report import render_html
+def reports(shared_once):
+    """The reports made once per session, shared with tests/test_report_ru.py and _uk.py."""
+    from report_langs import report_html
     out = {}
     for name in REPORT_TASKS:
         task = tmm_cli.load_task(ROOT / "tasks" / f"{name}.yaml")
-        r = tmm_cli.run(task, kinematics_curve=0)
         for lang in LANGS:
-            html = render_html(r, task, tmp_path_factory.mktemp(f"{name}-{lang}"), lang)[0]
+            html = report_html(shared_once, name, lang)
             html = re.sub(r"<style\b.*?</style>|<script\b.*?</script>", "", html, flags=re.S)
             out[name, lang] = (unescape(re.sub(r"<[^>]+>", " ", html)), task)
     return out

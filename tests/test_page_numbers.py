@@ -5,7 +5,6 @@ was such a construct."""
 import re
 import shutil
 import subprocess
-import sys
 from pathlib import Path
 
 import pytest
@@ -15,13 +14,12 @@ pytestmark = pytest.mark.skipif(shutil.which("pdftotext") is None, reason="pdfto
 
 
 @pytest.mark.parametrize("task, lang", [("engine_slider_crank", "uk"), ("forging_sixbar", "ru")])
-def test_footer_numbers_follow_the_pages(task, lang, tmp_path):
-    p = subprocess.run([sys.executable, "-m", "tmm_cli", "run", str(ROOT / "tasks" / f"{task}.yaml"), "--out",
-                        str(tmp_path), "--format", "pdf", "--lang", lang, "--quiet"], capture_output=True, text=True,
-                       timeout=600)
-    assert p.returncode == 0, p.stderr
-    xml = subprocess.run(["pdftotext", "-bbox", str(tmp_path / "report.pdf"), "-"], capture_output=True, text=True,
-                         check=True).stdout
+def test_footer_numbers_follow_the_pages(task, lang, shared_once):
+    # report.pdf as `tmm run --format pdf --lang <lang>` writes it, made once per session
+    # (tests/test_pdf_extent.py reads the same)
+    from pdf_extent import report_pdf
+    xml = subprocess.run(["pdftotext", "-bbox", str(report_pdf(shared_once, task, lang)), "-"], capture_output=True,
+                         text=True, check=True).stdout
     pages = xml.split("<page ")[1:]
     n = len(pages)
     for k, page in enumerate(pages, start=1):

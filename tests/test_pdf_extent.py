@@ -18,20 +18,10 @@ TASKS = sorted(p.stem for p in (ROOT / "tasks").glob("*.yaml"))
 pytestmark = pytest.mark.skipif(not X.have_poppler(), reason="poppler's pdftotext/pdftoppm not installed")
 
 
-def _report_pdf(tmp_path, name: str, lang: str) -> Path:
-    from typer.testing import CliRunner
-    from tmm_cli.cli import app
-    out = tmp_path / name
-    res = CliRunner().invoke(app, ["run", str(ROOT / "tasks" / f"{name}.yaml"), "--out", str(out),
-                                   "--format", "pdf", "--lang", lang, "--quiet"])
-    assert res.exit_code == 0, res.output
-    return out / "report.pdf"
-
-
 @pytest.mark.parametrize("lang", ["en", "ru", "uk"])
 @pytest.mark.parametrize("name", TASKS)
-def test_every_page_inside_its_body(tmp_path, name, lang):
-    pdf = _report_pdf(tmp_path, name, lang)
+def test_every_page_inside_its_body(shared_once, name, lang):
+    pdf = X.report_pdf(shared_once, name, lang)        # made once per session (test_page_numbers reads two)
     pages = X.words(pdf)
     assert pages and all(X.footer_boxes(p) for p in pages)      # each page has its number
     stray = [(k + 1, w[4], [round(v / X.MM, 1) for v in w[:4]]) for k, p in enumerate(pages)
