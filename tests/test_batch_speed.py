@@ -172,3 +172,19 @@ def test_manifest_relative_paths_as_relpath_gives_them():
         for written in (False, True):
             assert tio.Manifest(folder)._relative(p, written=written) == \
                 _relative_by_relpath(folder, p, written), (folder, p, written)
+
+
+@pytest.mark.parametrize("task, module", [("gears_zero", "tmm_cli.gears.analysis"),
+                                          ("planetary_A", "tmm_cli.gears.planetary"),
+                                          ("cam_knife", "tmm_cli.cam.synthesis"),
+                                          ("impact_rotor", "tmm_cli.dof2.analysis")])
+def test_warm_imports_the_stages_the_tasks_need(task, module):
+    """The packages load their stages on first use: the batch's warm-up names the stage modules
+    themselves, so a worker starts warm (a spawned one counts its growth from there: a first
+    variant that imported its stage grew past a small RECYCLE_GROWTH and retired its worker)."""
+    import subprocess
+    import sys
+    code = ("import sys; from pathlib import Path; from tmm_cli.batch import warm; "
+            f"warm([Path({str(ROOT / 'tasks' / (task + '.yaml'))!r})], {{'json'}}); print({module!r} in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "True"

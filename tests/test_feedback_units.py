@@ -80,7 +80,7 @@ def test_feedback_pdf_carries_the_grades(tmp_path, lang):
     written = write_feedback(task, s, tmp_path, lang, pdf=True, notes=notes)
     assert [p.name for p in written] == ["feedback-Ivanov-1.html", "feedback-Ivanov-1.pdf"] and not notes
     assert written[1].read_bytes().startswith(b"%PDF-")
-    comma = (lambda x: x.replace(".", ",")) if lang == "ru" else (lambda x: x)
+    comma = (lambda x: x.replace(".", ",").replace("-", "\u2212")) if lang == "ru" else (lambda x: x)   # −1,19
     ok, sign = ("верно", "ошибка знака") if lang == "ru" else ("correct", "sign error")
     words = ["Ivanov", "MT-21", "flywheel.J", comma("58.46"), comma("-1.19"), comma("1.19"), comma("84.8"), ok, sign]
     text = _pdf_text(written[1])

@@ -966,7 +966,7 @@ def test_summary_html_status_of_an_invalid_answers_file_does_not_blame_the_task(
 
 
 @pytest.mark.parametrize("kind, name, text, ru", [
-    ("tol", "neg.yaml", "flywheel.J: -1\n", "ожидается неотрицательное число (относительный допуск), задано -1"),
+    ("tol", "neg.yaml", "flywheel.J: -1\n", "ожидается неотрицательное число (относительный допуск), задано −1"),
     ("tol", "abs.yaml", "flywheel.J: {abs: x}\n", "ожидается неотрицательное число (абсолютный допуск), задано 'x'"),
     ("tol", "key.yaml", "flywheel.J: {rell: 1}\n", "неизвестный ключ «rell»; в допуске бывают `rel`"),
     ("tol", "list.yaml", "- 1\n- 2\n", "это не файл допусков"),

@@ -284,8 +284,13 @@ def _variants_beside(source: str, files: list[Path]) -> set[str]:
 _SECTION_MODULES = {"mechanism": ("linkage.mechanism", "linkage.structure", "linkage.kinematics",
                                   "linkage.kinematics.changepoints", "linkage.loads", "linkage.kinetostatics",
                                   "linkage.dynamics", "linkage.drive_speed", "graphical", "plans"),
-                    "synthesis": ("linkage.synthesis",), "cam": ("cam",), "gears": ("gears",),
-                    "planetary": ("gears",), "drive_train": ("gears", "gears.train"), "dof2": ("dof2",)}
+                    "synthesis": ("linkage.synthesis",), "cam": ("cam", "cam.laws", "cam.synthesis"),
+                    # the packages load their stages on first use: the stage modules named
+                    "gears": ("gears", "gears.involute", "gears.geometry", "gears.shifts", "gears.tooth",
+                              "gears.analysis"),
+                    "planetary": ("gears", "gears.involute", "gears.geometry", "gears.planetary"),
+                    "drive_train": ("gears", "gears.involute", "gears.geometry", "gears.planetary", "gears.train"),
+                    "dof2": ("dof2", "dof2.analysis")}
 _SECTION_MODULES["synthesis"] += _SECTION_MODULES["mechanism"]
 # modules outside tmm_cli the stages import on first use (numpy's `np.unique` imports
 # numpy.ma; the plans' scales): ~30 ms a variant

@@ -114,7 +114,7 @@ def draw_frame(cv, *, title: str, sheet_title: str, variant, student: str, group
         fit_text(cv, bx + 17.7, y, val, h, 21.6)
     codes = sorted({re.escape(locales.of("sheets", "note_code", other)) for other in locales.LANGS})
     base = re.sub(rf"\s*({'|'.join(codes)})\s*$", "", designation or "").strip()
-    tmm = T["code"]                   # the course's code in the drawing's letters (TMM, ТММ)
+    tmm = T["code"]                   # the course's code in the drawing's letters (Latin or Cyrillic)
     code = f"{base}.{n:02d}" if base else (f"{tmm}.{variant}.{n:02d}" if variant not in (None, "") else f"{tmm}.{n:02d}")
     fit_text(cv, rx + 60, by + 47.5, code, 7.0, 116, anchor="middle")
     fit_lines(cv, rx + 35, by + 31, title, 5.0, 66, 14.0)
