@@ -290,3 +290,18 @@ def test_counterweights_drawing_names_each_mass(tmp_path):
     cw = json.loads((tmp_path / "o" / "results.json").read_text())["balancing"]["counterweights"]
     for c in cw.values():
         assert f"{c['m']:.4g}".replace(".", ",") + " кг" in svg
+
+
+@pytest.mark.parametrize("lang", ["en", "uk"])
+def test_task_table_counterweight_radii_alike(lang, tmp_path):
+    """The task-data table writes both counterweights' radii alike: the names carry the unit
+    (', m'), the values none — `rocker` is a link's name here, not the synthesis' rocker length."""
+    import re as _re
+    res = runner.invoke(app, ["run", str(ROOT / "tasks" / "balancing_fourbar.yaml"), "--format", "json,html",
+                              "--out", str(tmp_path / "o"), "--lang", lang])
+    assert res.exit_code == 0, res.output
+    html = (tmp_path / "o" / "report.html").read_text(encoding="utf-8")
+    cells = _re.findall(r"<tr><td>([^<]*(?:crank|rocker|кривошип|коромисл)[^<]*(?:radius|радіус)[^<]*)</td>"
+                        r"<td[^>]*>([^<]*)</td>", html)
+    assert len(cells) == 2, cells
+    assert sorted(v for _, v in cells) == (["0.06", "0.08"] if lang == "en" else ["0,06", "0,08"])

@@ -140,6 +140,8 @@ def _unit(key: str, lang: str, context: dict | None = None) -> str:
         return units["angle"] if (context or {}).get("follower") == "rocker" else units["length"]
     if last == "m" and not key.startswith(("gears", "planetary", "differential")):
         return ""
+    if key.startswith("balancing.counterweights.radius."):
+        return ""                  # `rocker` here names a link, not the synthesis' rocker length (m)
     return units.get(last, "")
 
 
