@@ -39,6 +39,7 @@ ALLOWED = {
     # the drawings the report and the sheets share, drawn from results' numbers (they read as
     # the report reads: checked below with it)
     "tmm_cli.drawings.plans": "a velocity or acceleration plan drawn",
+    "tmm_cli.drawings.balancing": "where the counterweights stand, from results' numbers",
     "tmm_cli.drawings.forces": "groups, force polygons, Zhukovsky's lever drawn",
     "tmm_cli.drawings.mesh": "a gear pair's wheels and line of action",
     "tmm_cli.drawings.words": "the drawings' terms and numbers in the report's language",

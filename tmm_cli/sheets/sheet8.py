@@ -12,31 +12,11 @@ from pathlib import Path
 
 import numpy as np
 
+from ..drawings.balancing import counterweight_points
+from .sheet1 import _xy
 from .frame import FRAME, TB_H, fit_text, length_scale, std_mu
 
 ROTOR_W = 240.0      # mm: the rotor's column beside the linkage's two panels
-
-
-def _xy(e, p) -> np.ndarray:
-    d = e["points"][p]
-    return np.array([float(d["x"]), float(d["y"])])
-
-
-def counterweight_points(results: dict) -> dict[str, tuple[np.ndarray, np.ndarray]]:
-    """{role: (the link's fixed pivot, the counterweight's centre)} in m at position 0."""
-    b = results["balancing"]
-    e = results["kinematics"][0]
-    links = {lk["name"]: lk for lk in results["structure"]["links"]}
-    ground = set((results["structure"].get("ground") or {}))
-    out = {}
-    for role, c in (b.get("counterweights") or {}).items():
-        lk = links[c["link"]]
-        piv = next(q for q in lk["points"] if q in ground)
-        other = next(q for q in lk["points"] if q != piv)
-        P, Q = _xy(e, piv), _xy(e, other)
-        th = math.atan2(*(Q - P)[::-1]) + math.radians(float(c["angle"]))
-        out[role] = (P, P + float(c["r"]) * np.array([math.cos(th), math.sin(th)]))
-    return out
 
 
 def _linkage(cv, ctx, results, box) -> dict:

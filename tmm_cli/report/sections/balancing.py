@@ -6,6 +6,8 @@ its words are the catalogues' topic 'balancing'
 from __future__ import annotations
 
 import math
+
+from ...drawings.balancing import counterweight_points
 from ... import locales
 
 I18N = locales.table("balancing", "words")
@@ -49,17 +51,11 @@ def counterweights_figure(ctx, b, results):
     cw = b.get("counterweights") or {}
     mmax = max((c["m"] for c in cw.values()), default=1.0) or 1.0
     placed_x, placed_y = [], []
+    places = counterweight_points(results)
     for role, c in cw.items():
-        lk = next((x for x in links if x["name"] == c["link"]), None)
-        if lk is None:
+        if role not in places:
             continue
-        piv = next((q for q in lk["points"] if q in ground), None)
-        other = next((q for q in lk["points"] if q != piv), None)
-        if piv is None or other is None:
-            continue
-        (px, py), (qx, qy) = P[piv], P[other]
-        th = math.atan2(qy - py, qx - px) + math.radians(c["angle"])
-        x, y = px + c["r"] * math.cos(th), py + c["r"] * math.sin(th)
+        (px, py), (x, y) = places[role]
         placed_x.append(x)
         placed_y.append(y)
         ax.plot([px, x], [py, y], color="r", lw=1.2)
