@@ -170,21 +170,38 @@ def _cw_motion(kin, cw: Counterweight):
     return X, (1j * eps - w ** 2) * (X - P)
 
 
+ROUNDOFF = 1e-12    # a sum within this share of the sum of its terms' sizes is round-off of 0
+
+
+def _exact_zero(total: np.ndarray, size: np.ndarray) -> np.ndarray:
+    """``total`` with the values at or below ROUNDOFF ``size`` (the sum of the absolute values
+    of the terms that made it) set to 0: floating point leaves such a sum at a few eps times
+    ``size`` where the exact sum is 0 (a fully force-balanced linkage: about 1e-16 of it), so
+    1e-12 keeps every remainder a counterweight's mass carried to 12 digits could leave."""
+    return np.where(np.abs(total) <= ROUNDOFF * size, 0.0, total) + 0.0
+
+
 def shaking(mech, kin, about: str, extra=()) -> dict:
-    """Fx, Fy, M (N, N*m; (N,) arrays) of the links (and the counterweights ``extra``)."""
+    """Fx, Fy, M (N, N*m; (N,) arrays) of the links (and the counterweights ``extra``); a
+    component within round-off of 0 (see :func:`_exact_zero`) is written 0."""
     O = _c(kin.pos[about])
     F = np.zeros(len(kin.phi), complex)
     M = np.zeros(len(kin.phi))
+    sx, sy, sm = np.zeros(len(kin.phi)), np.zeros(len(kin.phi)), np.zeros(len(kin.phi))
     for lk in mech.links:
         S = _c(kin.pos[f"S{lk.index}"])
         a = _c(kin.acc(f"S{lk.index}"))
-        F = F + lk.mass * a
-        M = M + lk.mass * ((S - O).conj() * a).imag + lk.J * kin.epsilon(lk.name)
+        f, m = lk.mass * a, lk.mass * ((S - O).conj() * a).imag
+        j = lk.J * kin.epsilon(lk.name)
+        F, M = F + f, M + m + j
+        sx, sy, sm = sx + np.abs(f.real), sy + np.abs(f.imag), sm + np.abs(m) + np.abs(j)
     for cw in extra:
         X, a = _cw_motion(kin, cw)
-        F = F + cw.m * a
-        M = M + cw.m * ((X - O).conj() * a).imag
-    return {"Fx": F.real, "Fy": F.imag, "F": np.abs(F), "M": M}
+        f, m = cw.m * a, cw.m * ((X - O).conj() * a).imag
+        F, M = F + f, M + m
+        sx, sy, sm = sx + np.abs(f.real), sy + np.abs(f.imag), sm + np.abs(m)
+    Fx, Fy = _exact_zero(F.real, sx), _exact_zero(F.imag, sy)
+    return {"Fx": Fx, "Fy": Fy, "F": np.abs(Fx + 1j * Fy), "M": _exact_zero(M, sm)}
 
 
 def _entries(phi, sh) -> list[dict]:
