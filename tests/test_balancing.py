@@ -149,6 +149,11 @@ def test_balanced_force_zero_in_every_form(tmp_path):
                         "-o", str(tmp_path / "c")])
     rows = {r["path"]: r for r in csv.DictReader((tmp_path / "c" / "check.csv").open(encoding="utf-8"))}
     assert float(rows["balancing.max.F_balanced"]["reference"]) == 0
+    res = runner.invoke(app, ["form", str(ROOT / "tasks" / "balancing_fourbar.yaml"), "-q", "balancing",
+                              "-o", str(tmp_path / "f")])
+    assert res.exit_code == 0, res.output
+    key = (tmp_path / "f" / "balancing_fourbar.key.yaml").read_text(encoding="utf-8")
+    assert '"balancing.max.F_balanced": 0.0 ' in key
 
 
 def test_four_bar_counterweights_by_hand():
