@@ -5,7 +5,7 @@ Source: R. S. Khurmi and J. K. Gupta, *Theory of Machines*, ch. 13 "Gear trains"
 printed numbers as the FOSSEE Python Textbook Companion reproduces them,
 github.com/FOSSEE/Python-Textbook-Companions, folder
 "Theory_Of_Machines_by_R._S._Khurmi_And_J._K._Gupta", ch13.ipynb): Examples 13.7 (p. 444),
-13.20 (p. 465) and 13.22 (p. 468). Members as tmm names them: "1" the first central wheel,
+13.10 (p. 448), 13.20 (p. 465) and 13.22 (p. 468). Members as tmm names them: "1" the first central wheel,
 the last central wheel ("3" in scheme A, "4" in B-D) and the carrier "H"; speeds and torques
 counter-clockwise positive.
 
@@ -38,6 +38,18 @@ def test_khurmi_example_13_7_arm_speed_of_a_differential(ring_rpm, printed, tol)
     assert d["u"] == pytest.approx(-90 / 40, rel=1e-15)
     assert d["speeds_rpm"]["H"] == pytest.approx(printed, abs=tol)
     assert d["speeds_rpm"]["H"] == pytest.approx((-1 + 2.25 * ring_rpm) / 3.25, rel=1e-12)
+
+
+def test_khurmi_example_13_10_two_row_train_output_speed():
+    """Khurmi and Gupta, Theory of Machines, Example 13.10, p. 448: the wheel C (50 teeth) on the
+    input shaft at 110 rpm meshes D (20 teeth); D's compound wheel E (35 teeth) meshes the fixed
+    internal wheel G (the book's 50 + 20 + 35 = 105 teeth); the arm drives the shaft B:
+    tmm's scheme B with z = [50, 20, 35, 105]. Printed: the speed of B 50 rpm anticlockwise
+    (the book rounds to whole rpm; exact 110/2.2 = 50)."""
+    d = _diff(scheme="B", z=[50, 20, 35, 105], satellites=2, speeds={"1": "110 rpm", "4": 0})
+    assert d["u"] == pytest.approx(-(20 * 105) / (50 * 35), rel=1e-15)
+    assert d["speeds_rpm"]["H"] == pytest.approx(50, abs=0.5)
+    assert d["speeds_rpm"]["H"] == pytest.approx(110 / 2.2, rel=1e-12)
 
 
 def test_khurmi_example_13_20_holding_torque_on_the_annulus():
