@@ -5,11 +5,16 @@ Sources (the printed numbers as the FOSSEE Python Textbook Companions reproduce 
 github.com/FOSSEE/Python-Textbook-Companions, folders "The_Theory_of_Machines_by_T._Bevan"
 ch14.ipynb and "Theory_Of_Machines_by_B._K._Sarkar" Chapter8_1.ipynb, Chapter12_1.ipynb):
 
-* T. Bevan, *The Theory of Machines*, 3rd ed., ch. 14 "Balancing": Example 1 (p. 491, a
-  rotating weight balanced in two planes), Example 2 (p. 491, four weights balanced by one),
-  Example 5 (p. 500, a crank's balance weight taking half the reciprocating weight);
-* B. K. Sarkar, *Theory of Machines*, ch. 8 "Balancing of rotating masses", Illustration 1
-  (p. 221), and ch. 12 "Balancing of reciprocating masses", Illustration 1 (p. 310).
+* T. Bevan, *The Theory of Machines*, 3rd ed. (reprint: Dorling, 2005, ISBN 81-239-0874-1),
+  ch. 14 "Balancing": Example 1 (p. 491, a rotating weight balanced in two planes), Example 2
+  (p. 491, four weights balanced by one), Example 5 (p. 500, a crank's balance weight taking
+  half the reciprocating weight);
+* B. K. Sarkar, *Theory of Machines*, 1st ed. (Tata McGraw-Hill, 2002, ISBN 0-07-048288-8),
+  ch. 8 "Balancing of rotating masses", Illustration 1 (p. 221), and ch. 12 "Balancing of
+  reciprocating masses", Illustration 1 (p. 310).
+
+The companions print the numbers their code computes from the book's data; where that code
+rounds differently from the book, the docstring says so and the tolerance allows for it.
 
 Norton, *Design of Machinery*, ch. 12 (Examples 12-1, 12-2 and the four-bar's complete force
 balancing) and the Russian course books (Artobolevsky; Popov and Timofeev; Frolov) could not

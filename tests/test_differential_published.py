@@ -1,7 +1,8 @@
 """Differentials and epicyclic trains against published worked examples, their printed numbers
 written out here and compared with the tolerance the publication's rounding allows.
 
-Source: R. S. Khurmi and J. K. Gupta, *Theory of Machines*, ch. 13 "Gear trains" (the
+Source: R. S. Khurmi and J. K. Gupta, *Theory of Machines*, 14th ed. (Eurasia Publishing House,
+New Delhi, 2009, ISBN 81-219-2524-X), ch. 13 "Gear trains" (the
 printed numbers as the FOSSEE Python Textbook Companion reproduces them,
 github.com/FOSSEE/Python-Textbook-Companions, folder
 "Theory_Of_Machines_by_R._S._Khurmi_And_J._K._Gupta", ch13.ipynb): Examples 13.7 (p. 444),
