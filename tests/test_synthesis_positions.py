@@ -72,11 +72,17 @@ def test_known_fourbar_recovered():
     assert m["links"]["coupler"]["extra"]["P"] == pytest.approx([0.15, 0.06], abs=1e-15)
 
 
+def _example_positions():
+    import yaml
+    sec = yaml.safe_load((ROOT / "tasks" / "synthesis_positions.yaml").read_text(encoding="utf-8"))["synthesis"]
+    return [((float(p["P"][0]), float(p["P"][1])), float(p["angle"])) for p in sec["positions"]]
+
+
 def test_fixed_pivot_by_perpendicular_bisectors_by_hand():
     # the task's example: A_j = P_j + R(angle_j) (-0.15, -0.06)
     task = load_task(ROOT / "tasks" / "synthesis_positions.yaml")
     r = run(task)["synthesis"]
-    pos = [((0.1518, 0.1853), 34.14), ((0.0925, 0.2004), 27.01), ((0.0211, 0.1571), 31.61)]
+    pos = _example_positions()
     A = []
     for (px, py), ang in pos:
         cs, sn = math.cos(math.radians(ang)), math.sin(math.radians(ang))
@@ -90,10 +96,36 @@ def test_fixed_pivot_by_perpendicular_bisectors_by_hand():
     assert r["fixed_pivots"]["O"] == pytest.approx([Ox, Oy], abs=1e-13)
     assert r["lengths"]["crank"] == pytest.approx(math.hypot(x1 - Ox, y1 - Oy), rel=1e-12)
     assert r["lengths"]["coupler"] == pytest.approx(0.3, rel=1e-14)
-    # the example is the four-bar O (0, 0), O1 (0.3, 0), 0.08, 0.3, 0.22 at 40, 100, 160 deg, rounded
-    assert r["lengths"]["crank"] == pytest.approx(0.08, abs=2e-4)
-    assert r["lengths"]["rocker"] == pytest.approx(0.22, abs=2e-3)
-    assert [p["crank_angle"] for p in r["positions"]] == pytest.approx([40, 100, 160], abs=0.05)
+
+
+def test_example_gives_its_fourbar_back_exactly(tmp_path):
+    """The example's positions are the four-bar O (0, 0), O1 (0.3, 0), 0.08, 0.3, 0.22 at the
+    crank angles 40, 100, 160 deg, written to 1e-12 m and 1e-10 deg (closed form here). The
+    construction (circumcentres, no iteration) then gives that four-bar back to the data's
+    last digit: O at the origin (the report prints 0, not the 1.5e-5 m that positions rounded
+    to 0.1 mm and 0.01 deg put there), O1 at (0.3, 0), the lengths and the crank angles."""
+    pos = _example_positions()
+    for ((px, py), ang), phi in zip(pos, (40.0, 100.0, 160.0)):
+        q = _plane(*_fourbar_pose((0.0, 0.0), (0.3, 0.0), 0.08, 0.30, 0.22, phi))
+        assert (px, py) == pytest.approx(q["P"], abs=6e-13) and ang == pytest.approx(q["angle"], abs=6e-11)
+    r = run(load_task(ROOT / "tasks" / "synthesis_positions.yaml"))["synthesis"]
+    # the data's rounding (5e-13 m, 5e-11 deg = 9e-13 rad over 0.3 m) moves the circumcentres by ~1e-11
+    assert r["fixed_pivots"]["O"] == pytest.approx([0.0, 0.0], abs=1e-11)
+    assert r["fixed_pivots"]["O1"] == pytest.approx([0.3, 0.0], abs=5e-11)
+    L = r["lengths"]
+    assert [L["crank"], L["coupler"], L["rocker"], L["frame"]] == pytest.approx([0.08, 0.3, 0.22, 0.3], abs=5e-11)
+    assert [p["crank_angle"] for p in r["positions"]] == pytest.approx([40, 100, 160], abs=1e-8)
+    # the least transmission angle of the crank-rocker, by hand: at phi = 0 (crank along OO1),
+    # the triangle A B O1 with |AO1| = 0.3 - 0.08: cos(gamma) = (b^2 + c^2 - 0.22^2)/(2 b c)
+    g = math.degrees(math.acos((0.3 ** 2 + 0.22 ** 2 - 0.22 ** 2) / (2 * 0.3 * 0.22)))
+    assert r["gamma_min"] == pytest.approx(g, abs=1e-6)
+    assert r["gamma_min_phi"] == pytest.approx(0.0, abs=1e-5)      # 0, not 360 (a flat least: ~1e-6 deg)
+    res = runner.invoke(app, ["run", str(ROOT / "tasks" / "synthesis_positions.yaml"), "-o", str(tmp_path / "o"),
+                              "--format", "html", "--quiet"])
+    assert res.exit_code == 0, res.output
+    import re
+    text = re.sub(r"\s+", " ", re.sub(r"<[^>]+>", " ", (tmp_path / "o" / "report.html").read_text(encoding="utf-8")))
+    assert "Fixed pivot O (0; 0) m" in text and "(0.300000; 0) m" in text
 
 
 def test_poles_fixed_by_both_displacements():
