@@ -216,3 +216,64 @@ def test_coinciding_moving_pivots_exit_2(tmp_path):
                  "  moving_pivots: {A: [0.05, 0.02], B: [0.05, 0.02]}\ndrive: {link: crank, speed: 6}\n")
     res = runner.invoke(app, ["validate", str(f)])
     assert res.exit_code == 2 and "coincide" in res.output and "t.yaml:8:" in res.output
+
+
+# Norton, *Design of Machinery*, section 5.7 "Three-position motion generation by analytical
+# synthesis", Example 5-2 (p. 247 in the edition quoted): the given data and the free choices
+# as printed (lengths in the book's units).  The book's printed results (w, z, u, s, the
+# pivots O2, O4) could not be obtained; the dyad equations the book solves (its eq. 5.25,
+# W (e^{i beta_k} - 1) + Z (e^{i alpha_k} - 1) = P_k1, k = 2, 3, likewise U, S with gamma_k)
+# are solved here by Cramer's rule instead.
+NORTON_5_2 = {"p21": 2.798, "delta2": -31.19, "p31": 3.919, "delta3": -16.34, "alpha2": -45.0, "alpha3": 9.3,
+              "beta2": 342.3, "beta3": 324.8, "gamma2": 30.9, "gamma3": 80.6}
+
+
+def _norton_dyad(b2, b3, e):
+    """Norton's dyad (W, Z) for the arm's turns b2, b3 (deg): the 2x2 complex system by Cramer."""
+    import cmath
+    r = math.radians
+    p21 = e["p21"] * cmath.exp(1j * r(e["delta2"]))
+    p31 = e["p31"] * cmath.exp(1j * r(e["delta3"]))
+    a11, a12 = cmath.exp(1j * r(b2)) - 1, cmath.exp(1j * r(e["alpha2"])) - 1
+    a21, a22 = cmath.exp(1j * r(b3)) - 1, cmath.exp(1j * r(e["alpha3"])) - 1
+    det = a11 * a22 - a12 * a21
+    return (p21 * a22 - a12 * p31) / det, (a11 * p31 - a21 * p21) / det
+
+
+def test_norton_example_5_2_fixed_pivots_by_the_dyad_equations(tmp_path):
+    """Norton's Example 5-2 through tmm: the coupler point P at the origin in position 1 (the
+    plane's angle 0 there), at P21 and P31 turned by alpha2 and alpha3; the moving pivots in
+    the plane's frame are the book's dyads' ends, A = -Z, B = -S. tmm's circumcentres of A's
+    and B's three positions must be the book's ground pivots O2 = -Z - W and O4 = -S - U, and
+    A's positions the crank W turned by beta2, beta3 about O2 (B's: U by gamma2, gamma3 about O4).
+    The linkage (crank |W| = 6.832, coupler |Z - S| = 1.399, rocker |U| = 3.200, frame 9.030)
+    is not Grashof (1.399 + 9.030 > 6.832 + 3.200): tmm refuses it with exit 3, naming them."""
+    import cmath
+    from tmm_cli.linkage.spec import pivot_positions
+    from tmm_cli.linkage.synthesis_positions import circumcentre
+    e = NORTON_5_2
+    W, Z = _norton_dyad(e["beta2"], e["beta3"], e)
+    U, S = _norton_dyad(e["gamma2"], e["gamma3"], e)
+    r = math.radians
+    P = [0j, e["p21"] * cmath.exp(1j * r(e["delta2"])), e["p31"] * cmath.exp(1j * r(e["delta3"]))]
+    poses = [{"P": [p.real, p.imag], "angle": ang} for p, ang in zip(P, (0.0, e["alpha2"], e["alpha3"]))]
+    sec = {"type": "positions", "positions": poses, "moving_pivots": {"A": [-Z.real, -Z.imag], "B": [-S.real, -S.imag]}}
+    task = load_task({"schema": "tmm/1", "synthesis": sec, "drive": {"link": "crank", "speed": 6.0}})
+    pts = pivot_positions(task.synthesis)
+    O2, O4 = -Z - W, -S - U
+    for k, (turn_w, turn_u) in enumerate(((0.0, 0.0), (e["beta2"], e["gamma2"]), (e["beta3"], e["gamma3"]))):
+        A = O2 + W * cmath.exp(1j * r(turn_w))
+        B = O4 + U * cmath.exp(1j * r(turn_u))
+        assert pts["A"][k] == pytest.approx((A.real, A.imag), abs=1e-12)
+        assert pts["B"][k] == pytest.approx((B.real, B.imag), abs=1e-12)
+    assert circumcentre(*pts["A"]) == pytest.approx((O2.real, O2.imag), abs=1e-11)
+    assert circumcentre(*pts["B"]) == pytest.approx((O4.real, O4.imag), abs=1e-11)
+    a, b, c, d = abs(W), abs(Z - S), abs(U), abs(O4 - O2)
+    assert (a, b, c, d) == pytest.approx((6.832, 1.3993, 3.1997, 9.0298), abs=5e-4)
+    f = tmp_path / "t.json"
+    f.write_text(json.dumps({"schema": "tmm/1", "synthesis": sec, "drive": {"link": "crank", "speed": 6}}))
+    res = runner.invoke(app, ["run", str(f), "-o", str(tmp_path / "o"), "--format", "json"])
+    assert res.exit_code == 3 and "Grashof" in res.output, res.output
+    import re
+    got = [float(v) for v in re.findall(r"(\d+\.\d+) m", res.output)[:4]]
+    assert got == pytest.approx([a, b, c, d], rel=1e-3), res.output
