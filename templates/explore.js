@@ -153,8 +153,7 @@
     if (inf.length) { text(L["worked.centres_inf"] + " ");
       inf.forEach(function (sub, i) { if (i) text(", "); name(sub); }); text(". "); }
     if (far.length) { text(L["worked.centres_far"] + " ");
-      far.forEach(function (t, i) { if (i) text("; "); name(t[0]); text(" (" + num(t[1]) + "; " + num(t[2]) + ")"); }); text(".");
-      CN.dataset.far = far.map(function (t) { return t[0]; }).join(","); }
+      far.forEach(function (t, i) { if (i) text("; "); name(t[0]); text(" (" + num(t[1]) + "; " + num(t[2]) + ")"); }); text("."); }
   }
   function drawPlan(id, kx, ky, M, k, letter) {
     var svg = canvas(id);

@@ -274,7 +274,8 @@ def test_instant_centres_toggle_and_zero_relative_velocity(page, run):
     assert page.eval_on_selector_all("#ex-mech circle[data-centre]", "cs => cs.length") == 0
     page.check("#ex-centres")
     try:
-        for turn in (47, 133, 250):
+        far_seen = 0
+        for turn in (5, 47, 133, 250):
             _set(page, turn)
             drawn, pts, note = _centres_drawn(page)
             kin = solve(mech, np.array([(phi0 + turn) % 360.0]), w)
@@ -296,6 +297,7 @@ def test_instant_centres_toggle_and_zero_relative_velocity(page, run):
                 return np.asarray(kin.vel(a)[0], float) + om * np.array([-r[1], r[0]])
 
             size = max(float(np.linalg.norm(p - pos["O"])) for p in pos.values())
+            om = [0.0] + [float(np.broadcast_to(kin.omega(l), (1,))[0]) for l in links]
             assert "P05" in note.replace(" ", "") and "0-5" not in drawn
             listed = note.count("P")
             assert len(drawn) + listed == n * (n + 1) // 2, (turn, sorted(drawn), note)
@@ -304,9 +306,15 @@ def test_instant_centres_toggle_and_zero_relative_velocity(page, run):
                 i, j = map(int, key.split("-"))
                 P = world(px, py)
                 dv = float(np.linalg.norm(vel(i, P) - vel(j, P)))
-                om = [0.0] + [float(np.broadcast_to(kin.omega(l), (1,))[0]) for l in links]
                 # the drawing's round-off: 1e-6 of the size per pixel coordinate, times |w_i - w_j|
                 assert dv <= 1e-5 * abs(om[i] - om[j]) * size + 1e-12, (turn, key, dv)
+            # those beyond the drawing, listed with their coordinates to 4 digits
+            for i, j, x, y in re.findall(r"P(\d)(\d) \((-?[\d.]+); (-?[\d.]+)\)", note):
+                i, j, P = int(i), int(j), np.array([float(x), float(y)])
+                dv = float(np.linalg.norm(vel(i, P) - vel(j, P)))
+                assert dv <= 1e-3 * abs(om[i] - om[j]) * float(np.linalg.norm(P)), (turn, i, j, dv)
+                far_seen += 1
+        assert far_seen >= 1                  # at 5 deg P_04 lies 1.7 m off, beyond the drawing
     finally:
         page.uncheck("#ex-centres")
     assert page.eval_on_selector_all("#ex-mech circle[data-centre]", "cs => cs.length") == 0
