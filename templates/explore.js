@@ -35,6 +35,21 @@
   function vmax(kx, ky) { var m = 0; movers.forEach(function (p) { var a = D.points[p][kx], b = D.points[p][ky];
     for (var i = 0; i < n; i++) if (fin(a[i]) && fin(b[i])) m = Math.max(m, Math.hypot(a[i], b[i])); }); return m || 1; }
   var VM = vmax("vx", "vy"), AM = vmax("ax", "ay");
+  // the instant centres P_ij (the results' instant_centres at the grid): drawn when the box is
+  // ticked, those within centre_room of the mechanism's size beyond its extent over the turn
+  // (the drawing's fixed scale then takes them in); the others, and those at infinity, listed
+  var C = D.centres || {}, CK = Object.keys(C), CB = document.getElementById("ex-centres");
+  var CN = document.getElementById("ex-centres-note"), CCOL = L.centre_color || "#b03060";
+  var room = (L.centre_room || 0.5) * Math.max(ME[1] - ME[0], ME[3] - ME[2]);
+  function near(x, y) { return x >= ME[0] - room && x <= ME[1] + room && y >= ME[2] - room && y <= ME[3] + room; }
+  CK.forEach(function (key) { var c = C[key];      // two links joined by a pin: the pin
+    if (c.pin) { c.x = D.points[c.pin].x; c.y = D.points[c.pin].y; } });
+  var CE = ME.slice();
+  CK.forEach(function (key) { var c = C[key];
+    for (var i = 0; i < n; i++) if (fin(c.x[i]) && fin(c.y[i]) && near(c.x[i], c.y[i])) {
+      CE[0] = Math.min(CE[0], c.x[i]); CE[1] = Math.max(CE[1], c.x[i]);
+      CE[2] = Math.min(CE[2], c.y[i]); CE[3] = Math.max(CE[3], c.y[i]); } });
+  function centresOn() { return !!(CB && CB.checked && CK.length); }
 
   function el(svg, tag, attrs, text) {
     var e = document.createElementNS(NS, tag);
@@ -102,8 +117,8 @@
     return function (x, y) { return [W / 2 + (x - cx) * s, H / 2 - (y - cy) * s]; };
   }
   function drawMech(k) {
-    var svg = canvas("ex-mech");
-    var f = mapper(svg, ME[0], ME[1], ME[2], ME[3]);
+    var svg = canvas("ex-mech"), on = centresOn(), E = on ? CE : ME;
+    var f = mapper(svg, E[0], E[1], E[2], E[3]);
     function P(p) { return f(D.points[p].x[k], D.points[p].y[k]); }
     D.shapes.forEach(function (sh) {
       if (sh.kind === "slider") {
@@ -118,8 +133,27 @@
     D.ground.forEach(function (g) { var c = P(g);
       el(svg, "path", {d: "M" + c[0] + "," + c[1] + " l-7,11 h14 z", fill: "none", stroke: "#000"}); });
     names.forEach(function (p) { if (p.charAt(0) === "S") return; var c = P(p);
-      el(svg, "circle", {cx: c[0], cy: c[1], r: 3, fill: "#fff", stroke: "#000"});
+      el(svg, "circle", {cx: c[0], cy: c[1], r: 3, fill: "#fff", stroke: "#000", "data-point": p});
       tag(svg, {x: c[0] + 5, y: c[1] - 5, "font-size": 11}, p); });
+    if (CN) while (CN.firstChild) CN.removeChild(CN.firstChild);
+    if (!on) return;
+    var inf = [], far = [];
+    CK.forEach(function (key) {
+      var c = C[key], x = c.x[k], y = c.y[k], sub = key.replace("-", "");
+      if (!fin(x) || !fin(y)) { inf.push(sub); return; }
+      if (!near(x, y)) { far.push([sub, x, y]); return; }
+      var q = f(x, y);
+      el(svg, "circle", {cx: q[0], cy: q[1], r: 4, fill: "none", stroke: CCOL, "stroke-width": 1.2, "data-centre": key});
+      label(svg, q[0] + 9, q[1] - 6, "P", sub, CCOL);
+    });
+    function name(sub) { var i = document.createElement("i"); i.textContent = "P"; CN.appendChild(i);
+      var s = document.createElement("sub"); s.textContent = sub; CN.appendChild(s); }
+    function text(t) { var s = document.createElement("span"); s.textContent = t; CN.appendChild(s); }
+    if (!CN) return;
+    if (inf.length) { text(L["worked.centres_inf"] + " ");
+      inf.forEach(function (sub, i) { if (i) text(", "); name(sub); }); text(". "); }
+    if (far.length) { text(L["worked.centres_far"] + " ");
+      far.forEach(function (t, i) { if (i) text("; "); name(t[0]); text(" (" + num(t[1]) + "; " + num(t[2]) + ")"); }); text("."); }
   }
   function drawPlan(id, kx, ky, M, k, letter) {
     var svg = canvas(id);
@@ -258,6 +292,7 @@
     return best === null ? k : best;
   }
   slider.addEventListener("input", function () { show(snapped(+slider.value)); });
+  if (CB) CB.addEventListener("change", function () { show(+slider.value); });
   var timer = null;
   play.addEventListener("click", function () {
     if (timer) { clearInterval(timer); timer = null; play.textContent = L["explore.play"]; return; }

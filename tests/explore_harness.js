@@ -1,7 +1,8 @@
 // Runs the report's explorer (templates/explore.js) outside a browser, on a minimal
 // document, at every crank angle of its grid, and prints, as JSON, every drawing's
 // texts that overlap or leave it: [[drawing id, k, text, text]].  Input on stdin:
-// {"js": source, "data": ..., "labels": ..., "forces": ... | null, "figs": {id: [w, h]}}.
+// {"js": source, "data": ..., "labels": ..., "forces": ... | null, "figs": {id: [w, h]},
+// "centres": true to tick the instant centres' box}.
 "use strict";
 const input = JSON.parse(require("fs").readFileSync(0, "utf8"));
 class El {
@@ -19,7 +20,8 @@ function node(id, text) { const e = new El("div"); e.textContent = text || ""; b
 node("ex-data", JSON.stringify(input.data));
 node("ex-labels", JSON.stringify(input.labels));
 if (input.forces) node("ex-forces", JSON.stringify(input.forces));
-for (const id of ["ex-angle", "ex-play", "ex-readout", "ex-table", "ex-marks"]) node(id);
+for (const id of ["ex-angle", "ex-play", "ex-readout", "ex-table", "ex-marks", "ex-centres-note"]) node(id);
+if (input.centres) node("ex-centres").checked = true;      // the instant centres drawn too
 for (const [id, [w, h]] of Object.entries(input.figs)) { const e = node(id); e.dataset.w = String(w); e.dataset.h = String(h); }
 global.document = {
   getElementById: (id) => byId[id] || null,

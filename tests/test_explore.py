@@ -241,3 +241,105 @@ def test_widget_json_reads_back_the_same_values():
         for k, v in d.items():
             if isinstance(v, list):
                 assert bits(back[k]) == bits(v)
+
+
+def _centres_drawn(pg) -> tuple[dict[str, tuple[float, float]], dict[str, tuple[float, float]], str]:
+    """The drawn instant centres (key -> pixel), the drawn points (name -> pixel), the note."""
+    cs = pg.eval_on_selector_all("#ex-mech circle[data-centre]",
+                                 "cs => cs.map(c => [c.dataset.centre, +c.getAttribute('cx'), +c.getAttribute('cy')])")
+    ps = pg.eval_on_selector_all("#ex-mech circle[data-point]",
+                                 "cs => cs.map(c => [c.dataset.point, +c.getAttribute('cx'), +c.getAttribute('cy')])")
+    return {k: (x, y) for k, x, y in cs}, {k: (x, y) for k, x, y in ps}, page_note(pg)
+
+
+def page_note(pg) -> str:
+    return pg.text_content("#ex-centres-note") or ""
+
+
+def test_instant_centres_toggle_and_zero_relative_velocity(page, run):
+    """The box "instant centres" draws P_ij on the mechanism at the angle the slider shows.
+    Each drawn centre, read back from the drawing's pixels (the scale fixed by the drawn pins
+    O and D of an independent solve at exactly that crank angle), is the point where the two
+    links' velocities are equal, v_i(P) = v_A + omega_i k x (P - A) for a point A of link i
+    (0 for the frame), to the drawing's round-off; the slider (link 5) translates on the
+    frame: P_05 is at infinity, listed under the drawing and not drawn.  Unticked: none."""
+    from tmm_cli.linkage.kinematics import solve
+    from tmm_cli.linkage.mechanism import build_mechanism
+    from tmm_cli.task import load_task
+    res = json.loads((run / "results.json").read_text())
+    mech = build_mechanism(load_task(TASK))
+    w, phi0 = res["drive"]["omega"], res["positions"]["phi0"]
+    links = [l.name for l in mech.links]
+    n = len(links)
+    assert page.eval_on_selector_all("#ex-mech circle[data-centre]", "cs => cs.length") == 0
+    page.check("#ex-centres")
+    try:
+        far_seen = 0
+        for turn in (5, 47, 133, 250):
+            _set(page, turn)
+            drawn, pts, note = _centres_drawn(page)
+            kin = solve(mech, np.array([(phi0 + turn) % 360.0]), w)
+            pos = {p: np.asarray(kin.pos[p][0], float) for p in kin.points}
+            # the drawing's map: pixel = c + s (x, -y), from O and D
+            (ox, oy), (dx, dy) = pts["O"], pts["D"]
+            s = math.hypot(dx - ox, dy - oy) / float(np.linalg.norm(pos["D"] - pos["O"]))
+
+            def world(px, py):
+                return pos["O"] + np.array([(px - ox) / s, -(py - oy) / s])
+
+            def vel(i, P):                    # link i's velocity at the point P (0: the frame)
+                if i == 0:
+                    return np.zeros(2)
+                link = mech.links[i - 1]
+                a = next(q for q in link.local if q in pos)
+                om = float(np.broadcast_to(kin.omega(links[i - 1]), (1,))[0])
+                r = P - pos[a]
+                return np.asarray(kin.vel(a)[0], float) + om * np.array([-r[1], r[0]])
+
+            size = max(float(np.linalg.norm(p - pos["O"])) for p in pos.values())
+            om = [0.0] + [float(np.broadcast_to(kin.omega(l), (1,))[0]) for l in links]
+            assert "P05" in note.replace(" ", "") and "0-5" not in drawn
+            listed = note.count("P")
+            assert len(drawn) + listed == n * (n + 1) // 2, (turn, sorted(drawn), note)
+            assert len(drawn) >= 12
+            for key, (px, py) in drawn.items():
+                i, j = map(int, key.split("-"))
+                P = world(px, py)
+                dv = float(np.linalg.norm(vel(i, P) - vel(j, P)))
+                # the drawing's round-off: 1e-6 of the size per pixel coordinate, times |w_i - w_j|
+                assert dv <= 1e-5 * abs(om[i] - om[j]) * size + 1e-12, (turn, key, dv)
+            # those beyond the drawing, listed with their coordinates to 4 digits
+            for i, j, x, y in re.findall(r"P(\d)(\d) \((-?[\d.]+); (-?[\d.]+)\)", note):
+                i, j, P = int(i), int(j), np.array([float(x), float(y)])
+                dv = float(np.linalg.norm(vel(i, P) - vel(j, P)))
+                assert dv <= 1e-3 * abs(om[i] - om[j]) * float(np.linalg.norm(P)), (turn, i, j, dv)
+                far_seen += 1
+        assert far_seen >= 1                  # at 5 deg P_04 lies 1.7 m off, beyond the drawing
+    finally:
+        page.uncheck("#ex-centres")
+    assert page.eval_on_selector_all("#ex-mech circle[data-centre]", "cs => cs.length") == 0
+    assert page_note(page) == ""
+
+
+def test_centres_data_are_the_results_centres(run):
+    """The explorer's instant centres at the course positions are results.json's
+    ``instant_centres`` there (one computation): a pin's by its point, null at infinity."""
+    res = json.loads((run / "results.json").read_text())
+    html = (run / "report.html").read_text(encoding="utf-8")
+    d = json.loads(re.search(r'<script type="application/json" id="ex-data">(.*?)</script>', html, re.S).group(1))
+    n = len(d["turn"])
+    by_index = {e["index"]: e for e in res["kinematics"]}
+    for m in d["positions"]:
+        k = round(m["turn"] / d["step"]) % n
+        ic = by_index[m["index"]]["instant_centres"]
+        assert set(ic) == set(d["centres"])
+        for key, xy in ic.items():
+            c = d["centres"][key]
+            if "pin" in c:
+                got = [d["points"][c["pin"]]["x"][k], d["points"][c["pin"]]["y"][k]]
+            else:
+                got = None if c["x"][k] is None else [c["x"][k], c["y"][k]]
+            if xy is None:
+                assert got is None, (m, key)
+            else:
+                assert got == pytest.approx(xy, rel=1e-6, abs=1e-9), (m, key, got, xy)

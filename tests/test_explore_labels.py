@@ -1,7 +1,8 @@
 """The explorer's drawings (report.html's mechanism in motion: the mechanism, the velocity
 and acceleration plans, the force polygons, Zhukovsky's lever): at every crank angle of
 its grid, no two texts overlap and none leaves its drawing.  Its plans once wrote the
-letters of coincident ends over each other ("b3" on "a3" of the slotted lever).
+letters of coincident ends over each other ("b3" on "a3" of the slotted lever).  Checked with
+the instant centres P_ij drawn on the mechanism too (their box ticked).
 
 The explorer is JavaScript: it runs here in Node on a minimal document
 (tests/explore_harness.js), the report's own data and script."""
@@ -22,7 +23,7 @@ LINKAGES = sorted(p.stem for p in (ROOT / "tasks").glob("*.yaml")
 pytestmark = pytest.mark.skipif(not shutil.which("node"), reason="Node.js not installed")
 
 
-def explorer_problems(html: str) -> list:
+def explorer_problems(html: str, centres: bool = False) -> list:
     def script(id_):
         m = re.search(rf'<script type="application/json" id="{id_}">(.*?)</script>', html, re.S)
         return json.loads(m.group(1)) if m else None
@@ -30,7 +31,7 @@ def explorer_problems(html: str) -> list:
             re.findall(r'<div class="ex-fig" id="([^"]+)" data-w="(\d+)" data-h="(\d+)"', html)}
     payload = {"js": (ROOT / "templates" / "explore.js").read_text(encoding="utf-8"),
                "data": script("ex-data"), "labels": script("ex-labels"), "forces": script("ex-forces"),
-               "figs": figs}
+               "figs": figs, "centres": centres}
     out = subprocess.run(["node", str(ROOT / "tests" / "explore_harness.js")], input=json.dumps(payload),
                          capture_output=True, text=True, timeout=300)
     assert out.returncode == 0, out.stderr
@@ -50,3 +51,5 @@ def test_explorer_texts_neither_overlap_nor_leave(tmp_path, name):
         pytest.skip("no explorer")
     bad = explorer_problems(page)
     assert not bad, f"{len(bad)} overlaps, e.g. {bad[:6]}"
+    bad = explorer_problems(page, centres=True)         # the instant centres drawn too
+    assert not bad, f"with the instant centres: {len(bad)} overlaps, e.g. {bad[:6]}"

@@ -144,3 +144,76 @@ def test_example_task(tmp_path):
     r = json.loads((tmp_path / "o" / "results.json").read_text())["synthesis"]
     assert r["type"] == "function" and r["structural_error"]["max"] < 2.0
     assert (tmp_path / "o" / "figures" / "synthesis-structural-error.svg").is_file()
+
+
+def test_known_fourbar_given_back_through_its_own_three_points():
+    """A four-bar of known lengths (a 0.1, b 0.35, c 0.25, d 0.3 m) has the rocker angle psi(phi)
+    of the circle intersection (closed form here). The generator asked for the function
+    through its three points at Chebyshev's spacing of phi in [40, 120] deg (the quadratic
+    through them, written out as Lagrange's polynomial; phi = x and psi = y by the ranges)
+    must be that four-bar: Freudenstein's equation holds on it at any three of its positions."""
+    a, b, c, d = 0.1, 0.35, 0.25, 0.3
+    x0, x1 = 40.0, 120.0
+    xs = [80.0 - 40.0 * math.cos((2 * j - 1) * math.pi / 6) for j in (1, 2, 3)]
+    psi = []
+    for f in xs:
+        ax, ay = a * math.cos(math.radians(f)), a * math.sin(math.radians(f))
+        dx, dy = d - ax, -ay
+        L = math.hypot(dx, dy)
+        k = (b * b - c * c + L * L) / (2 * L)
+        h = math.sqrt(b * b - k * k)
+        B = max(((ax + (k * dx - s * h * dy) / L, ay + (k * dy + s * h * dx) / L) for s in (1, -1)),
+                key=lambda p: p[1])                         # B above the frame
+        psi.append(math.degrees(math.atan2(B[1], B[0] - d)))
+    terms = []
+    for j in range(3):
+        o = [i for i in range(3) if i != j]
+        terms.append(f"{psi[j]!r}*(x - {xs[o[0]]!r})*(x - {xs[o[1]]!r})/"
+                     f"(({xs[j]!r} - {xs[o[0]]!r})*({xs[j]!r} - {xs[o[1]]!r}))")
+    expr = " + ".join(terms)
+
+    def lag(x):
+        return sum(psi[j] * math.prod((x - xs[i]) / (xs[j] - xs[i]) for i in range(3) if i != j) for j in range(3))
+    y0, y1 = lag(x0), lag(x1)
+    r = run(_task(function=expr, x=[x0, x1], input={"start": x0, "range": x1 - x0},
+                  output={"start": y0, "range": y1 - y0}, frame=d))["synthesis"]
+    L = r["lengths"]
+    assert [L["crank"], L["coupler"], L["rocker"], L["frame"]] == pytest.approx([a, b, c, d], rel=1e-9)
+    for p, q in zip(r["precision_points"], psi):
+        assert p["psi"] == pytest.approx(q, abs=1e-9) and p["psi_generated"] == pytest.approx(q, abs=1e-7)
+
+
+def test_log10_generator_by_cramers_rule():
+    """y = log10(x), 1 <= x <= 2 (the function of Freudenstein's 1955 paper, Trans. ASME 77,
+    853-861; its printed ranges and results could not be obtained: the ranges here are
+    phi 90 deg from 90 deg, psi 60 deg from 90 deg, which give a crank-rocker), three
+    Chebyshev points worked by hand:
+    x = 1.5 -+ 0.5 cos 30 deg = 1.066987, 1.5, 1.933013; y = 0.028159, 0.176091, 0.286235;
+    phi = 90 + 90 (x - 1), psi = 90 + 60 y / log10 2; K1..K3 by Cramer's rule of
+    [cos psi_j, -cos phi_j, 1] K = cos(phi_j - psi_j), then a = d/K1, c = d/K2,
+    b^2 = a^2 + c^2 + d^2 - 2 a c K3 with d = 0.3 m."""
+    xs = [1.5 - 0.5 * math.cos(math.pi / 6), 1.5, 1.5 + 0.5 * math.cos(math.pi / 6)]
+    assert xs == pytest.approx([1.066987, 1.5, 1.933013], abs=5e-7)
+    ys = [math.log10(x) for x in xs]
+    assert ys == pytest.approx([0.028159, 0.176091, 0.286235], abs=5e-7)
+    phi = [90 + 90 * (x - 1) for x in xs]
+    psi = [90 + 60 * y / math.log10(2) for y in ys]
+    M = [[math.cos(math.radians(q)), -math.cos(math.radians(f)), 1.0] for f, q in zip(phi, psi)]
+    rhs = [math.cos(math.radians(f - q)) for f, q in zip(phi, psi)]
+
+    def det3(m):
+        return (m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+                + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]))
+    D = det3(M)
+    K = [det3([[rhs[i] if j == col else M[i][j] for j in range(3)] for i in range(3)]) / D for col in range(3)]
+    d = 0.3
+    a, c = d / K[0], d / K[1]
+    b = math.sqrt(a * a + c * c + d * d - 2 * a * c * K[2])
+    r = run(_task(function="log10(x)", x=[1, 2], input={"start": 90, "range": 90},
+                  output={"start": 90, "range": 60}, frame=d))["synthesis"]
+    assert r["K"] == pytest.approx(K, rel=1e-12)
+    L = r["lengths"]
+    assert [L["crank"], L["coupler"], L["rocker"]] == pytest.approx([a, b, c], rel=1e-12)
+    for p, f, q in zip(r["precision_points"], phi, psi):
+        assert (p["phi"], p["psi"]) == pytest.approx((f, q), abs=1e-12)
+        assert p["psi_generated"] == pytest.approx(q, abs=1e-7)

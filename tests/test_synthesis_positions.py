@@ -72,11 +72,17 @@ def test_known_fourbar_recovered():
     assert m["links"]["coupler"]["extra"]["P"] == pytest.approx([0.15, 0.06], abs=1e-15)
 
 
+def _example_positions():
+    import yaml
+    sec = yaml.safe_load((ROOT / "tasks" / "synthesis_positions.yaml").read_text(encoding="utf-8"))["synthesis"]
+    return [((float(p["P"][0]), float(p["P"][1])), float(p["angle"])) for p in sec["positions"]]
+
+
 def test_fixed_pivot_by_perpendicular_bisectors_by_hand():
     # the task's example: A_j = P_j + R(angle_j) (-0.15, -0.06)
     task = load_task(ROOT / "tasks" / "synthesis_positions.yaml")
     r = run(task)["synthesis"]
-    pos = [((0.1518, 0.1853), 34.14), ((0.0925, 0.2004), 27.01), ((0.0211, 0.1571), 31.61)]
+    pos = _example_positions()
     A = []
     for (px, py), ang in pos:
         cs, sn = math.cos(math.radians(ang)), math.sin(math.radians(ang))
@@ -90,10 +96,36 @@ def test_fixed_pivot_by_perpendicular_bisectors_by_hand():
     assert r["fixed_pivots"]["O"] == pytest.approx([Ox, Oy], abs=1e-13)
     assert r["lengths"]["crank"] == pytest.approx(math.hypot(x1 - Ox, y1 - Oy), rel=1e-12)
     assert r["lengths"]["coupler"] == pytest.approx(0.3, rel=1e-14)
-    # the example is the four-bar O (0, 0), O1 (0.3, 0), 0.08, 0.3, 0.22 at 40, 100, 160 deg, rounded
-    assert r["lengths"]["crank"] == pytest.approx(0.08, abs=2e-4)
-    assert r["lengths"]["rocker"] == pytest.approx(0.22, abs=2e-3)
-    assert [p["crank_angle"] for p in r["positions"]] == pytest.approx([40, 100, 160], abs=0.05)
+
+
+def test_example_gives_its_fourbar_back_exactly(tmp_path):
+    """The example's positions are the four-bar O (0, 0), O1 (0.3, 0), 0.08, 0.3, 0.22 at the
+    crank angles 40, 100, 160 deg, written to 1e-12 m and 1e-10 deg (closed form here). The
+    construction (circumcentres, no iteration) then gives that four-bar back to the data's
+    last digit: O at the origin (the report prints 0, not the 1.5e-5 m that positions rounded
+    to 0.1 mm and 0.01 deg put there), O1 at (0.3, 0), the lengths and the crank angles."""
+    pos = _example_positions()
+    for ((px, py), ang), phi in zip(pos, (40.0, 100.0, 160.0)):
+        q = _plane(*_fourbar_pose((0.0, 0.0), (0.3, 0.0), 0.08, 0.30, 0.22, phi))
+        assert (px, py) == pytest.approx(q["P"], abs=6e-13) and ang == pytest.approx(q["angle"], abs=6e-11)
+    r = run(load_task(ROOT / "tasks" / "synthesis_positions.yaml"))["synthesis"]
+    # the data's rounding (5e-13 m, 5e-11 deg = 9e-13 rad over 0.3 m) moves the circumcentres by ~1e-11
+    assert r["fixed_pivots"]["O"] == pytest.approx([0.0, 0.0], abs=1e-11)
+    assert r["fixed_pivots"]["O1"] == pytest.approx([0.3, 0.0], abs=5e-11)
+    L = r["lengths"]
+    assert [L["crank"], L["coupler"], L["rocker"], L["frame"]] == pytest.approx([0.08, 0.3, 0.22, 0.3], abs=5e-11)
+    assert [p["crank_angle"] for p in r["positions"]] == pytest.approx([40, 100, 160], abs=1e-8)
+    # the least transmission angle of the crank-rocker, by hand: at phi = 0 (crank along OO1),
+    # the triangle A B O1 with |AO1| = 0.3 - 0.08: cos(gamma) = (b^2 + c^2 - 0.22^2)/(2 b c)
+    g = math.degrees(math.acos((0.3 ** 2 + 0.22 ** 2 - 0.22 ** 2) / (2 * 0.3 * 0.22)))
+    assert r["gamma_min"] == pytest.approx(g, abs=1e-6)
+    assert r["gamma_min_phi"] == pytest.approx(0.0, abs=1e-5)      # 0, not 360 (a flat least: ~1e-6 deg)
+    res = runner.invoke(app, ["run", str(ROOT / "tasks" / "synthesis_positions.yaml"), "-o", str(tmp_path / "o"),
+                              "--format", "html", "--quiet"])
+    assert res.exit_code == 0, res.output
+    import re
+    text = re.sub(r"\s+", " ", re.sub(r"<[^>]+>", " ", (tmp_path / "o" / "report.html").read_text(encoding="utf-8")))
+    assert "Fixed pivot O (0; 0) m" in text and "(0.300000; 0) m" in text
 
 
 def test_poles_fixed_by_both_displacements():
@@ -184,3 +216,64 @@ def test_coinciding_moving_pivots_exit_2(tmp_path):
                  "  moving_pivots: {A: [0.05, 0.02], B: [0.05, 0.02]}\ndrive: {link: crank, speed: 6}\n")
     res = runner.invoke(app, ["validate", str(f)])
     assert res.exit_code == 2 and "coincide" in res.output and "t.yaml:8:" in res.output
+
+
+# Norton, *Design of Machinery*, section 5.7 "Three-position motion generation by analytical
+# synthesis", Example 5-2 (p. 247 in the edition quoted): the given data and the free choices
+# as printed (lengths in the book's units).  The book's printed results (w, z, u, s, the
+# pivots O2, O4) could not be obtained; the dyad equations the book solves (its eq. 5.25,
+# W (e^{i beta_k} - 1) + Z (e^{i alpha_k} - 1) = P_k1, k = 2, 3, likewise U, S with gamma_k)
+# are solved here by Cramer's rule instead.
+NORTON_5_2 = {"p21": 2.798, "delta2": -31.19, "p31": 3.919, "delta3": -16.34, "alpha2": -45.0, "alpha3": 9.3,
+              "beta2": 342.3, "beta3": 324.8, "gamma2": 30.9, "gamma3": 80.6}
+
+
+def _norton_dyad(b2, b3, e):
+    """Norton's dyad (W, Z) for the arm's turns b2, b3 (deg): the 2x2 complex system by Cramer."""
+    import cmath
+    r = math.radians
+    p21 = e["p21"] * cmath.exp(1j * r(e["delta2"]))
+    p31 = e["p31"] * cmath.exp(1j * r(e["delta3"]))
+    a11, a12 = cmath.exp(1j * r(b2)) - 1, cmath.exp(1j * r(e["alpha2"])) - 1
+    a21, a22 = cmath.exp(1j * r(b3)) - 1, cmath.exp(1j * r(e["alpha3"])) - 1
+    det = a11 * a22 - a12 * a21
+    return (p21 * a22 - a12 * p31) / det, (a11 * p31 - a21 * p21) / det
+
+
+def test_norton_example_5_2_fixed_pivots_by_the_dyad_equations(tmp_path):
+    """Norton's Example 5-2 through tmm: the coupler point P at the origin in position 1 (the
+    plane's angle 0 there), at P21 and P31 turned by alpha2 and alpha3; the moving pivots in
+    the plane's frame are the book's dyads' ends, A = -Z, B = -S. tmm's circumcentres of A's
+    and B's three positions must be the book's ground pivots O2 = -Z - W and O4 = -S - U, and
+    A's positions the crank W turned by beta2, beta3 about O2 (B's: U by gamma2, gamma3 about O4).
+    The linkage (crank |W| = 6.832, coupler |Z - S| = 1.399, rocker |U| = 3.200, frame 9.030)
+    is not Grashof (1.399 + 9.030 > 6.832 + 3.200): tmm refuses it with exit 3, naming them."""
+    import cmath
+    from tmm_cli.linkage.spec import pivot_positions
+    from tmm_cli.linkage.synthesis_positions import circumcentre
+    e = NORTON_5_2
+    W, Z = _norton_dyad(e["beta2"], e["beta3"], e)
+    U, S = _norton_dyad(e["gamma2"], e["gamma3"], e)
+    r = math.radians
+    P = [0j, e["p21"] * cmath.exp(1j * r(e["delta2"])), e["p31"] * cmath.exp(1j * r(e["delta3"]))]
+    poses = [{"P": [p.real, p.imag], "angle": ang} for p, ang in zip(P, (0.0, e["alpha2"], e["alpha3"]))]
+    sec = {"type": "positions", "positions": poses, "moving_pivots": {"A": [-Z.real, -Z.imag], "B": [-S.real, -S.imag]}}
+    task = load_task({"schema": "tmm/1", "synthesis": sec, "drive": {"link": "crank", "speed": 6.0}})
+    pts = pivot_positions(task.synthesis)
+    O2, O4 = -Z - W, -S - U
+    for k, (turn_w, turn_u) in enumerate(((0.0, 0.0), (e["beta2"], e["gamma2"]), (e["beta3"], e["gamma3"]))):
+        A = O2 + W * cmath.exp(1j * r(turn_w))
+        B = O4 + U * cmath.exp(1j * r(turn_u))
+        assert pts["A"][k] == pytest.approx((A.real, A.imag), abs=1e-12)
+        assert pts["B"][k] == pytest.approx((B.real, B.imag), abs=1e-12)
+    assert circumcentre(*pts["A"]) == pytest.approx((O2.real, O2.imag), abs=1e-11)
+    assert circumcentre(*pts["B"]) == pytest.approx((O4.real, O4.imag), abs=1e-11)
+    a, b, c, d = abs(W), abs(Z - S), abs(U), abs(O4 - O2)
+    assert (a, b, c, d) == pytest.approx((6.832, 1.3993, 3.1997, 9.0298), abs=5e-4)
+    f = tmp_path / "t.json"
+    f.write_text(json.dumps({"schema": "tmm/1", "synthesis": sec, "drive": {"link": "crank", "speed": 6}}))
+    res = runner.invoke(app, ["run", str(f), "-o", str(tmp_path / "o"), "--format", "json"])
+    assert res.exit_code == 3 and "Grashof" in res.output, res.output
+    import re
+    got = [float(v) for v in re.findall(r"(\d+\.\d+) m", res.output)[:4]]
+    assert got == pytest.approx([a, b, c, d], rel=1e-3), res.output

@@ -850,6 +850,8 @@ def least_transmission(typ: str, mech) -> tuple[float, float]:
     f = lambda x: float(transmission_angle(typ, solve(mech, np.array([x % 360.0])))[0])
     res = minimize_scalar(f, bounds=(grid[k] - 0.5, grid[k] + 0.5), method="bounded", options={"xatol": 1e-10})
     x, v = (float(res.x) % 360.0, float(res.fun)) if res.fun <= g[k] else (float(grid[k]), float(g[k]))
+    if x > 360.0 - 1e-5:        # a least at 0 found a hair below it: 0, not 360 (the angle is flat at
+        x = 0.0                 # its least: its place is known to ~1e-6 deg, not to the search's 1e-10)
     return v, x
 
 

@@ -140,9 +140,14 @@ def fragment(ctx) -> str | None:
         from ..drawings.forces import KIND_COLOR
         fdata = Markup(data_json({**forces, "colors": KIND_COLOR}))
     tr = I18N.get(ctx.lang, I18N["en"])
+    # the instant centres: the worked position's figure's notes and colour (sections/worked.py)
+    from .sections.worked import CENTRE_COLOR, CENTRE_ROOM
+    labels = {**tr, **{k: ctx.t(k) for k in ("worked.centres_inf", "worked.centres_far")},
+              "centre_color": CENTRE_COLOR, "centre_room": CENTRE_ROOM}
     js = (templates_dir() / "explore.js").read_text(encoding="utf-8")
     return ctx.render("explore.html.j2", tr=tr, data=Markup(data_json(data)),
-                      labels=Markup(data_json(tr)), forces=forces, fdata=fdata, js=Markup(js.replace("</", "<\\/")))
+                      labels=Markup(data_json(labels)), forces=forces, fdata=fdata, js=Markup(js.replace("</", "<\\/")),
+                      centres=bool(data.get("centres")))
 
 
 def inject(ctx, html: str) -> str:

@@ -94,15 +94,15 @@ def _table(kin, sl: slice, index: list[int]) -> tuple:
             F[r] = c
             r += 1
     row["IC"] = r
-    inf = []
-    for x, y, at_inf, pin in instant_centres(kin, sl, wc):
+    nulls = []
+    for x, y, null in centre_columns(kin, sl, wc):
         F[r], F[r + 1] = x, y
-        inf.append((at_inf, pin))
+        nulls.append(null)
         r += 2
     clean(F, 0.0)
     near = np.zeros(k, bool) if kin.near is None else np.asarray(kin.near[sl], bool)
-    for j, (at_inf, pin) in enumerate(inf):   # at infinity (a relative translation), or from velocities
-        F[row["IC"] + 2 * j:row["IC"] + 2 * j + 2, at_inf | (near & (not pin))] = np.nan   # near a change point
+    for j, null in enumerate(nulls):
+        F[row["IC"] + 2 * j:row["IC"] + 2 * j + 2, null] = np.nan
     if near.any():                           # no finite limit there: None
         for key, mask in kin.undefined.items():
             what, name = key.split(":", 1)
@@ -190,6 +190,31 @@ def instant_centres(kin, sl: slice, wc) -> list[tuple[np.ndarray, np.ndarray, np
         d = np.where(at_inf, 1.0, dw)
         out.append((-c[:, 1] / d, c[:, 0] / d, at_inf, False))
     return out
+
+
+def centre_columns(kin, sl: slice, wc) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
+    """The instant centres as results carry them: per pair (in :func:`pairs`' order) x, y (m)
+    and where the entry holds null: at infinity (a relative translation), or found from the
+    velocities within a change point's neighbourhood (no finite limit there; a pin is
+    still its centre).  The ``kinematics`` entries and the HTML explorer read these.
+
+    Parameters
+    ----------
+    kin : KinematicsResult
+        The kinematics.
+    sl : slice
+        The rows.
+    wc : float or numpy.ndarray
+        The crank's angular velocity at the rows (a scalar, or a (k, 1) column).
+
+    Returns
+    -------
+    list of tuple
+        (x, y, null) per pair, each of the rows' length.
+    """
+    k = len(kin.phi[sl])
+    near = np.zeros(k, bool) if kin.near is None else np.asarray(kin.near[sl], bool)
+    return [(x, y, at_inf | (near & (not pin))) for x, y, at_inf, pin in instant_centres(kin, sl, wc)]
 
 
 def _assemble(lay: tuple, tab: tuple, a: int, b: int) -> list[dict]:

@@ -4,7 +4,7 @@
 :class:`tmm_cli.linkage.context.Linkage`) at every ``step`` degrees of one crank turn,
 counted from position 0 in the sense of rotation, with the linkage's crank speed, and returns compact
 data: positions, velocities and accelerations of every point, omega and epsilon of
-every link, rounded to 7 significant digits (the table shows 4: one
+every link, the instant centres of every pair of links, rounded to 7 significant digits (the table shows 4: one
 rounding of 7 digits changes a shown 4-digit value only when it ends in 5 within 5e-7) (None where a value has no finite limit,
 next to a change point).  The report draws the mechanism and its plans from it."""
 from __future__ import annotations
@@ -32,7 +32,10 @@ def explore_grid(linkage, step: float = 1.0) -> dict:
     dict
         ``turn`` (deg from position 0), ``phi`` (crank angle, deg), ``points``
         (x, y m; vx, vy m/s; ax, ay m/s² of every point), ``links`` (omega rad/s,
-        epsilon rad/s²), ``shapes`` (what to draw), 7 significant digits.
+        epsilon rad/s²), ``centres`` (the instant centre of each pair of links "i-j", 0 the
+        frame, as the results' ``kinematics[k].instant_centres``: x, y m, None at infinity;
+        ``{"pin": name}`` for two links joined by a pin, the point's coordinates),
+        ``shapes`` (what to draw), 7 significant digits.
     """
     from .solver import solve
     mech = linkage.mechanism
@@ -60,6 +63,19 @@ def explore_grid(linkage, step: float = 1.0) -> dict:
         points[p] = {"x": round_sig(xy[:, 0]), "y": round_sig(xy[:, 1]),
                      "vx": round_sig(v[:, 0]), "vy": round_sig(v[:, 1]),
                      "ax": round_sig(a[:, 0]), "ay": round_sig(a[:, 1])}
+    # the instant centres of every pair of links (i-j, 0 the frame): those results carry
+    from .entries import centre_columns, pairs
+    w = kin._w()
+    wc = w if w.ndim == 0 else w[:, None]
+    centres = {}
+    for (i, j), (x, y, null) in zip(pairs(len(kin.links)), centre_columns(kin, slice(None), wc)):
+        key = f"{i}-{j}"
+        if kin.pins.get(key):                # joined by a pin: the pin (a point drawn anyway)
+            centres[key] = {"pin": kin.pins[key]}
+            continue
+        x, y = np.array(x, float), np.array(y, float)
+        x[null], y[null] = np.nan, np.nan
+        centres[key] = {"x": round_sig(x), "y": round_sig(y)}
     links = {}
     for name in kin.links:
         w = masked(np.broadcast_to(kin.omega(name), phi.shape), f"omega:{name}")
@@ -78,5 +94,5 @@ def explore_grid(linkage, step: float = 1.0) -> dict:
             continue
         marks.append({"index": int(k), "turn": float(np.mod(sign * (float(ph) - phi0), 360.0))})
     return {"step": 360.0 / n, "phi0": phi0, "sign": sign, "turn": round_sig(turn),
-            "phi": round_sig(phi), "points": points, "links": links, "shapes": shapes,
+            "phi": round_sig(phi), "points": points, "links": links, "centres": centres, "shapes": shapes,
             "ground": sorted(mech.ground), "positions": marks}
