@@ -13,7 +13,7 @@ the crank turning fully (Grashof: a the shortest, a + l <= p + q) and the transm
 angle above ``gamma_min`` (closed form: the angle between the coupler and the rocker is
 extreme with the crank along the frame line). The best candidates of the last population
 are then refined by least squares (scipy's ``least_squares``, Levenberg-Marquardt with
-central differences taken in one batch) in which each point's crank angle is an unknown
+the exact Jacobian, ``coupler_jacobian``) in which each point's crank angle is an unknown
 too, so that at the optimum M(phi_j) is the foot of the perpendicular from the point to
 the curve.
 
@@ -63,6 +63,67 @@ def coupler_points(x, phi):
     return Ax + u * ex - v * ey, Ay + u * ey + v * ex
 
 
+def coupler_jacobian(x, phi):
+    """The coupler point M of ``coupler_points`` (one parameter row ``x``, 10 entries, at the
+    crank angles ``phi``, shape (n,)) and its exact derivatives: (Mx, My, dMx, dMy), dMx and
+    dMy (n, 10), columns a, b, c, d, Ox, Oy, t0, u, v and the point's own phi (the branch sign
+    is fixed). Derivatives 0 where the linkage does not close (M is NaN there).
+
+    Forward differentiation of the construction, d() a derivative along any one column:
+    A = O + a (cos(t0 + phi), sin(t0 + phi)), O1 = O + d (cos t0, sin t0), D = O1 - A,
+    L = |D|, dL = D.dD / L;
+    k = (b^2 - c^2 + L^2) / (2L), dk = (b db - c dc) / L + (1 - k/L) dL;
+    h = sqrt(b^2 - k^2), dh = (b db - k dk) / h;
+    w = B - A = (k D + s h Dp) / L (Dp = (-Dy, Dx), s the branch sign),
+    dw = (dk D + k dD + s dh Dp + s h dDp) / L - w dL / L;
+    e = w / b, de = dw / b - e db / b; M = A + u e + v ep, dM = dA + e du + u de + ep dv + v dep.
+    """
+    a, b, c, d, ox, oy, t0, u, v, br = (float(q) for q in x)
+    s = 1.0 if br >= 0.0 else -1.0
+    phi = np.asarray(phi, float)
+    n = len(phi)
+    ct, st = math.cos(t0), math.sin(t0)
+    ang = t0 + phi
+    ca, sa = np.cos(ang), np.sin(ang)
+    Ax, Ay = ox + a * ca, oy + a * sa
+    Dx, Dy = ox + d * ct - Ax, oy + d * st - Ay
+    # seeds: column derivatives of A and O1 (n, 10)
+    dAx, dAy = np.zeros((n, 10)), np.zeros((n, 10))
+    dAx[:, 0], dAy[:, 0] = ca, sa                      # a
+    dAx[:, 4], dAy[:, 5] = 1.0, 1.0                    # Ox, Oy
+    dAx[:, 6], dAy[:, 6] = -a * sa, a * ca             # t0
+    dAx[:, 9], dAy[:, 9] = -a * sa, a * ca             # phi
+    dO1x, dO1y = np.zeros((n, 10)), np.zeros((n, 10))
+    dO1x[:, 3], dO1y[:, 3] = ct, st                    # d
+    dO1x[:, 4], dO1y[:, 5] = 1.0, 1.0
+    dO1x[:, 6], dO1y[:, 6] = -d * st, d * ct
+    dDx, dDy = dO1x - dAx, dO1y - dAy
+    db, dc = np.zeros(10), np.zeros(10)
+    db[1], dc[2] = 1.0, 1.0
+    col = (slice(None), None)                          # (n,) -> (n, 1) against the columns
+    with np.errstate(invalid="ignore", divide="ignore"):
+        L = np.hypot(Dx, Dy)
+        dL = (Dx[col] * dDx + Dy[col] * dDy) / L[col]
+        k = (b * b - c * c + L * L) / (2.0 * L)
+        dk = (b * db - c * dc)[None, :] / L[col] + (1.0 - k / L)[col] * dL
+        h = np.sqrt(b * b - k * k)
+        dh = (b * db[None, :] - k[col] * dk) / h[col]
+        wx, wy = (k * Dx - s * h * Dy) / L, (k * Dy + s * h * Dx) / L
+        dwx = (dk * Dx[col] + k[col] * dDx - s * (dh * Dy[col] + h[col] * dDy) - wx[col] * dL) / L[col]
+        dwy = (dk * Dy[col] + k[col] * dDy + s * (dh * Dx[col] + h[col] * dDx) - wy[col] * dL) / L[col]
+        ex, ey = wx / b, wy / b
+        dex, dey = (dwx - ex[col] * db) / b, (dwy - ey[col] * db) / b
+    Mx, My = Ax + u * ex - v * ey, Ay + u * ey + v * ex
+    dMx = dAx + u * dex - v * dey
+    dMy = dAy + u * dey + v * dex
+    dMx[:, 7], dMx[:, 8] = dMx[:, 7] + ex, dMx[:, 8] - ey
+    dMy[:, 7], dMy[:, 8] = dMy[:, 7] + ey, dMy[:, 8] + ex
+    closed = (np.isfinite(Mx) & np.isfinite(My))[col]
+    dMx = np.where(closed & np.isfinite(dMx), dMx, 0.0)
+    dMy = np.where(closed & np.isfinite(dMy), dMy, 0.0)
+    return Mx, My, dMx, dMy
+
+
 def violation(a, b, c, d, gamma_min: float):
     """How far the lengths are from a crank-rocker whose transmission angle stays above gamma_min
     (0 when they are one): a the shortest, Grashof's a + l <= p + q, and |cos mu| <= cos(gamma_min)
@@ -76,6 +137,35 @@ def violation(a, b, c, d, gamma_min: float):
     c2 = (b * b + c * c - (d + a) ** 2) / (2.0 * b * c)
     g3 = np.maximum(0.0, np.abs(c1) - cg) + np.maximum(0.0, np.abs(c2) - cg)
     return g1 + g2 + g3
+
+
+def violation_gradient(a: float, b: float, c: float, d: float, gamma_min: float) -> np.ndarray:
+    """The derivative of ``violation`` with respect to (a, b, c, d), one set of lengths.
+
+    Each term max(0, g) contributes g's derivative where g > 0 and nothing where g <= 0; the
+    shortest (longest) of b, c, d carries the derivative of the min (max), the first of equal
+    ones; |c_i| contributes sign(c_i) dc_i. With c1 = (b^2 + c^2 - (d - a)^2) / (2bc) and
+    c2 = (b^2 + c^2 - (d + a)^2) / (2bc):
+    dc1 = ((d - a)/(bc), 1/c - c1/b, 1/b - c1/c, -(d - a)/(bc)),
+    dc2 = (-(d + a)/(bc), 1/c - c2/b, 1/b - c2/c, -(d + a)/(bc)).
+    """
+    g = np.zeros(4)
+    rest = np.array([b, c, d])
+    i_lo, i_hi = int(np.argmin(rest)), int(np.argmax(rest))
+    if a - rest[i_lo] > 0.0:                          # g1 = a - min(b, c, d)
+        g[0] += 1.0
+        g[1 + i_lo] -= 1.0
+    if a + 2.0 * rest[i_hi] - (b + c + d) > 0.0:      # g2 = a + 2 max(b, c, d) - (b + c + d)
+        g += [1.0, -1.0, -1.0, -1.0]
+        g[1 + i_hi] += 2.0
+    cg = math.cos(math.radians(gamma_min))
+    for sa in (-1.0, 1.0):                           # q = d -+ a: dci/dq = -q / (bc), dq/da = sa, dq/dd = 1
+        q = d + sa * a
+        ci = (b * b + c * c - q * q) / (2.0 * b * c)
+        if abs(ci) - cg > 0.0:
+            dq = -q / (b * c)
+            g += math.copysign(1.0, ci) * np.array([sa * dq, 1.0 / c - ci / b, 1.0 / b - ci / c, dq])
+    return g
 
 
 def _shape_curve(P, phi):
@@ -134,6 +224,21 @@ def _objective(T, gamma_min):
     return f
 
 
+def _jacobian(z, s, gamma_min):
+    """The exact Jacobian of _refine's residuals at z (a, b, c, d, Ox, Oy, t0, u, v, phi_1..phi_n),
+    branch sign s: rows Mx_j - Tx_j, then My_j - Ty_j (coupler_jacobian's columns; point j
+    depends on its own phi_j only, so the phi block is diagonal), then the penalty row 30 *
+    violation(a, b, c, d, gamma_min) (violation_gradient). The residuals' targets are constants."""
+    n = len(z) - 9
+    _, _, dMx, dMy = coupler_jacobian(np.concatenate([z[:9], [s]]), z[9:])
+    J = np.zeros((2 * n + 1, 9 + n))
+    J[:n, :9], J[n:2 * n, :9] = dMx[:, :9], dMy[:, :9]
+    idx = np.arange(n)
+    J[idx, 9 + idx], J[n + idx, 9 + idx] = dMx[:, 9], dMy[:, 9]
+    J[2 * n, :4] = 30.0 * violation_gradient(*(float(q) for q in z[:4]), gamma_min)
+    return J
+
+
 def _refine(x0, T, gamma_min):
     """Least squares over the parameters and each point's crank angle, from a candidate x0."""
     from scipy.optimize import least_squares
@@ -156,12 +261,8 @@ def _refine(x0, T, gamma_min):
     def res(z):
         return batch(z[None, :])[0]
 
-    def jac(z):                                  # central differences, every column in one batch
-        h = 1e-7 * np.maximum(1.0, np.abs(z))
-        E = np.diag(h)
-        R = batch(np.concatenate([z + E, z - E]))
-        m = len(z)
-        return ((R[:m] - R[m:]) / (2.0 * h[:, None])).T
+    def jac(z):
+        return _jacobian(z, s, gamma_min + 0.01)
 
     z0 = np.concatenate([x0[:9], phi0])
     method = "lm" if 2 * n + 1 >= len(z0) else "trf"   # MINPACK needs no fewer residuals than unknowns
