@@ -458,6 +458,17 @@ ENGLISH = [
     ('input.synth_function', {'reason': "unknown name 'z'"}, "the function to generate: unknown name 'z'"),
     ('input.synth_range_zero', {}, 'the range of the angle must not be zero'),
     ('input.synth_x_range', {}, 'the range of x must have two different ends'),
+    ('input.synth_function_not_finite', {'x': 2.0, 'x0': 1.0, 'x1': 4.0},
+     'y(x) is not a finite number at x = 2 (the range of x is 1 to 4): change `function` or `x`'),
+    ('input.synth_function_ends', {'y': 0.0, 'x0': 0.0, 'x1': 3.141592653589793},
+     "y(x) takes the same value 0 at both ends of the range of x (0 and 3.14159): the rocker's angle, linear in y "
+     'between them, is undefined; change `function` or `x`'),
+    ('synthesis.fail.function_assembly', {'a': 0.2, 'b': 0.3, 'c': 0.25, 'd': 0.3, 'intervals': [[141.5, 218.5]],
+                                          'p0': 30.0, 'p1': 120.0},
+     "synthesis: the four-bar of Freudenstein's solution (crank 0.2 m, coupler 0.3 m, rocker 0.25 m, frame 0.3 m) "
+     'does not assemble for crank angles 141.500000..218.500000 deg: its crank cannot turn fully, and tmm analyses '
+     'the generated linkage over the whole turn (the range of `input` is 30 to 120 deg); change `frame` or the '
+     'ranges of `input` and `output`'),
     ('synthesis.fail.function_range', {}, 'synthesis: the function is not finite over the range of x, or '
      'y(x0) = y(x1): change `function` or `x`'),
     ('synthesis.fail.function_points', {}, 'synthesis: the precision points give no Freudenstein solution '

@@ -208,7 +208,8 @@ def _issue_from_error(err: dict, marks: dict) -> tuple[str, int | None, int | No
                                                                       "literal['all']", "literal['constant']")
                                    or p.startswith("tuple[") or p.startswith("literal[") or p == "str"
                                    or p == "list[int]" or p == "LimitsSpec" or p == "float" or p == "bool"
-                                   or p.endswith("-after]") or p.endswith("-before]")):
+                                   or p.endswith("-after]") or p.endswith("-before]")
+                                   or p.startswith("tag:") or p in ("[key]", "constrained-int")):
             continue
         clean.append(p)
     msg = err["msg"]
