@@ -193,3 +193,49 @@ def test_function_refusals_say_what_is_wrong(text, words):
     with pytest.raises(ExprError, match=".*") as exc:
         compile_expr(text)
     assert words in str(exc.value)
+
+
+# ---------------------------------------------------------------- validate finds what run refuses
+def _engine_with(balancing: str) -> str:
+    return (_tasks() / "engine_slider_crank.yaml").read_text(encoding="utf-8") + balancing
+
+
+@pytest.mark.parametrize("text, field, words", [
+    (lambda: _engine_with("balancing:\n  counterweights:\n    method: full\n    radius: {crank: 60 mm, rocker: 80 mm}\n"),
+     "balancing.counterweights.method", "the full method need a four-bar linkage"),
+    (lambda: (_tasks() / "gears_zero.yaml").read_text(encoding="utf-8")
+     + "balancing:\n  counterweights:\n    method: full\n    radius: {crank: 60 mm, rocker: 80 mm}\n",
+     "balancing.counterweights", "the task needs a `mechanism`"),
+    (lambda: (_tasks() / "differential_A.yaml").read_text(encoding="utf-8").replace("[27, 30, 87]", "[27, 30, 88]"),
+     "differential.z", "not coaxial: the meshes' centre distances are 57 and 58"),
+    (lambda: (_tasks() / "differential_A.yaml").read_text(encoding="utf-8").replace("satellites: 3", "satellites: 7"),
+     "differential.satellites", "7 satellites do not fit side by side"),
+    (lambda: (_tasks() / "planetary_pair_given.yaml").read_text(encoding="utf-8").replace("26, 85]", "26, 86]"),
+     "drive_train.stages[0].z", "coaxiality condition violated: centre distances 59 and 60"),
+    (lambda: (_tasks() / "planetary_pair_given.yaml").read_text(encoding="utf-8").replace("satellites: 3",
+                                                                                         "satellites: 4"),
+     "drive_train.stages[0].z", "adjacency condition violated"),
+])
+def test_validate_refuses_what_run_refuses(tmp_path, text, field, words):
+    """Each was 'ok' to `tmm validate` and exit 2 only in a run: counterweights by a method the
+    linkage is not the kind of (or with no linkage), given teeth that are not coaxial (27 + 30
+    against (87 - 30), doubled: 57 and 58; 19 + 40 = 59 against 86 - 26 = 60) or whose
+    satellites overlap (7 about a sun of 27 teeth; 4 about the double satellite of 40 and 26)."""
+    f = _write(tmp_path, text())
+    for args in (("validate", f), ("run", f, "--format", "json", "--out", tmp_path / "o")):
+        code, out = _invoke(*args)
+        assert code == 2 and f"t.yaml:" in out and f"field '{field}'" in out and words in out, out
+
+
+@pytest.mark.parametrize("counterweights, field", [
+    ("{method: full, radius: {crank: 60 mm, rocker: 80 mm}, reciprocating_share: 0.5}",
+     "balancing.counterweights.reciprocating_share"),
+    ("{method: crank, radius: {crank: 60 mm, rocker: 80 mm}}", "balancing.counterweights.radius.rocker"),
+])
+def test_a_counterweight_field_the_method_ignores_is_refused(tmp_path, counterweights, field):
+    """A rocker's radius for the crank method, a reciprocating share for the full method: read
+    and silently dropped (the student's counterweight never computed)."""
+    base = _tasks() / ("engine_slider_crank.yaml" if "crank," in counterweights else "crank_rocker_fourbar.yaml")
+    f = _write(tmp_path, base.read_text(encoding="utf-8") + f"balancing:\n  counterweights: {counterweights}\n")
+    code, out = _invoke("validate", f)
+    assert code == 2 and f"field '{field}'" in out, out

@@ -143,6 +143,8 @@ class Task(_Model):
             raise FieldValueError((needs_mech[0],), Message("input.needs_mechanism", sections=needs_mech))
         if self.report is not None and self.report.detail_position is not None and not linkage:
             raise FieldValueError(("report", "detail_position"), Message("input.detail_needs_mechanism"))
+        if self.balancing is not None and self.balancing.counterweights is not None and not linkage:
+            raise FieldValueError(("balancing", "counterweights"), Message("input.balancing_needs_mechanism"))
         if self.flywheel is not None and self.loads is None:
             raise FieldValueError(("flywheel",), Message("input.flywheel_loads"))
         return self
