@@ -239,3 +239,29 @@ def test_a_counterweight_field_the_method_ignores_is_refused(tmp_path, counterwe
     f = _write(tmp_path, base.read_text(encoding="utf-8") + f"balancing:\n  counterweights: {counterweights}\n")
     code, out = _invoke("validate", f)
     assert code == 2 and f"field '{field}'" in out, out
+
+
+def test_decimal_comma_in_a_counterweight_radius_names_the_radius(tmp_path):
+    """`radius: {crank: 0,06 м, ...}` named the field 'balancing.counterweights.radius.06 м.crank'
+    (the piece YAML made a key of, and pydantic's '[key]')."""
+    text = (_tasks() / "balancing_fourbar.yaml").read_text(encoding="utf-8").replace("crank: 60 mm", "crank: 0,06 м")
+    code, out = _invoke("validate", _write(tmp_path, text))
+    assert code == 2 and "field 'balancing.counterweights.radius.crank'" in out and "0.06" in out, out
+
+
+def test_a_differential_member_given_twice(tmp_path):
+    """`{h: ..., H: ...}` read both as the carrier: 'give the speeds of exactly two members
+    (got 1)' for a file that gives two."""
+    text = (_tasks() / "differential_A.yaml").read_text(encoding="utf-8").replace(
+        '{"1": 1000 rpm, "3": -200 rpm}', "{h: 1000 rpm, H: -200 rpm}")
+    code, out = _invoke("validate", _write(tmp_path, text))
+    assert code == 2 and "field 'differential.speeds'" in out and "member H is given twice (as h, H)" in out, out
+
+
+@pytest.mark.parametrize("base", ["synthesis_positions", "synthesis_crank_rocker"])
+def test_a_synthesis_is_driven_by_its_crank(tmp_path, base):
+    """`drive: {link: rocker}` on a synthesis failed in the kinematics (exit 3, 'group II(1,2)
+    (links coupler, crank) does not assemble...') of a mechanism the student never wrote."""
+    text = (_tasks() / f"{base}.yaml").read_text(encoding="utf-8").replace("link: crank", "link: rocker")
+    code, out = _invoke("validate", _write(tmp_path, text))
+    assert code == 2 and "field 'drive.link'" in out and "must be `crank` (got 'rocker')" in out, out

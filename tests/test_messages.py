@@ -455,6 +455,9 @@ ENGLISH = [
     ('input.diff_two_speeds', {'got': 1, 'members': ['1', '3', 'H']},
      "give the speeds of exactly two members of 1, 3, H (got 1)"),
     ('input.diff_one_torque', {'got': 2}, 'give the torque of one member at most (got 2)'),
+    ('input.diff_member_twice', {'member': 'H', 'keys': ['h', 'H']}, 'member H is given twice (as h, H)'),
+    ('input.synthesis_drive_crank', {'link': 'rocker'}, "a synthesis designs the linkage with its crank driving: "
+     "`drive.link` must be `crank` (got 'rocker')"),
     ('input.synth_function', {'reason': "unknown name 'z'"}, "the function to generate: unknown name 'z'"),
     ('input.synth_range_zero', {}, 'the range of the angle must not be zero'),
     ('input.synth_x_range', {}, 'the range of x must have two different ends'),

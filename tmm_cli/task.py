@@ -129,6 +129,10 @@ class Task(_Model):
             raise FieldValueError(("synthesis",), Message("input.synthesis_and_mechanism"))
         if self.drive is None:
             raise FieldValueError(("synthesis",), Message("input.synthesis_drive"))
+        if self.drive.link != "crank":
+            # every type is designed for its crank driving (K and theta count the crank's turn):
+            # the rocker driving failed in the kinematics of a mechanism the student never wrote
+            raise FieldValueError(("drive", "link"), Message("input.synthesis_drive_crank", link=self.drive.link))
         return self
 
     @model_validator(mode="after")
