@@ -265,3 +265,30 @@ def test_a_synthesis_is_driven_by_its_crank(tmp_path, base):
     text = (_tasks() / f"{base}.yaml").read_text(encoding="utf-8").replace("link: crank", "link: rocker")
     code, out = _invoke("validate", _write(tmp_path, text))
     assert code == 2 and "field 'drive.link'" in out and "must be `crank` (got 'rocker')" in out, out
+
+
+@pytest.mark.parametrize("speeds", ['{"1": 1900 rpm, "H": 900 rpm}', '{"1": 0, "3": 0}'])
+def test_differential_whose_satellite_stands_still_draws_its_sheet(tmp_path, speeds):
+    """The satellite of scheme A turns at wH + (-z1/z2)(w1 - wH): with z1 = 27, z2 = 30, wH = 900
+    rpm and w1 = 900 + 1000 rpm it is 900 - 0.9 * 1000 = 0 (and 0 when nothing turns). Its line
+    of the velocity picture has no point of zero speed (results: y0 null) and the sheet crashed
+    (internal error, 'float() argument ... NoneType'). Every point of the satellite then moves at
+    its centre's speed, wH a_w = 900 pi/30 * 0.002 (27 + 30)/2 m/s."""
+    text = (_tasks() / "differential_A.yaml").read_text(encoding="utf-8").replace(
+        '{"1": 1000 rpm, "3": -200 rpm}', speeds)
+    code, out = _invoke("run", _write(tmp_path, text), "--format", "json,sheets", "--out", tmp_path / "o")
+    assert code == 0, out
+    assert (tmp_path / "o" / "sheets" / "sheets.pdf").is_file()
+    import json
+    d = json.loads((tmp_path / "o" / "results.json").read_text(encoding="utf-8"))["differential"]
+    vc = (900 * math.pi / 30 if "1900" in speeds else 0.0) * 0.002 * 57 / 2
+    assert d["speeds"]["satellite"] == pytest.approx(0.0, abs=1e-9)
+    pts = {p["name"]: p["v"] for p in d["velocity_plan"]["points"]}
+    for name in ("A", "C", "B"):
+        assert pts[name] == pytest.approx(vc, rel=1e-12, abs=1e-12)
+    if "1900" not in speeds:             # nothing turns: the picture gives no u (was 'u = ... = nan')
+        from tmm_cli.sheets import build_sheets
+        from tmm_cli.task import load_task as load
+        r = json.loads((tmp_path / "o" / "results.json").read_text(encoding="utf-8"))
+        (info,) = [i for _, i in build_sheets(r, load(tmp_path / "t.yaml"), "en") if "u_plan" in i]
+        assert info["u_plan"] is None
