@@ -292,3 +292,30 @@ def test_differential_whose_satellite_stands_still_draws_its_sheet(tmp_path, spe
         r = json.loads((tmp_path / "o" / "results.json").read_text(encoding="utf-8"))
         (info,) = [i for _, i in build_sheets(r, load(tmp_path / "t.yaml"), "en") if "u_plan" in i]
         assert info["u_plan"] is None
+
+
+@pytest.mark.parametrize("kind, near", [("path", "synthesis_path"), ("positions", "synthesis_positions"),
+                                        ("function", "synthesis_function"), ("syntesis", "synthesis")])
+def test_new_unknown_kind_suggests_the_starter(kind, near):
+    """`tmm new path` listed the kinds without saying which one was meant."""
+    code, out = _invoke("new", kind)
+    assert code == 2 and f"did you mean '{near}'?" in out, out
+
+
+def test_function_generation_has_a_starter_that_runs(tmp_path):
+    """Positions and path had a starter, function generation none. Its four-bar is the
+    example's (y = x^1.5 over [1, 4], frame 300 mm): Freudenstein's K1 = d/a through the three
+    Chebyshev points, checked against the closed form of the test of function generation."""
+    code, out = _invoke("new", "synthesis_function")
+    assert code == 0 and "type: function" in out
+    f = _write(tmp_path, out)
+    code, res = _invoke("run", f, "--format", "json", "--out", tmp_path / "o")
+    assert code == 0, res
+    import json
+    s = json.loads((tmp_path / "o" / "results.json").read_text(encoding="utf-8"))["synthesis"]
+    for p in s["precision_points"]:       # Freudenstein's equation at each precision point
+        K1, K2, K3 = s["K"]
+        f_, q = math.radians(p["phi"]), math.radians(p["psi"])
+        assert K1 * math.cos(q) - K2 * math.cos(f_) + K3 == pytest.approx(math.cos(f_ - q), abs=1e-12)
+        assert p["psi"] == pytest.approx(60 + 60 * (p["x"] ** 1.5 - 1) / 7, rel=1e-14)
+    assert s["lengths"]["frame"] == 0.3 and s["lengths"]["crank"] == pytest.approx(0.3 / s["K"][0], rel=1e-14)
