@@ -454,7 +454,7 @@ def form(
     quantities: str = typer.Option(..., "--quantities", "-q",
                                    help="result paths and presets, comma-separated: positions, kinematics, "
                                         "kinetostatics, flywheel, cam, gears, planetary, drive_train, synthesis, "
-                                        "synthesis_positions, synthesis_path, balancing, differential"),
+                                        "synthesis_function, synthesis_positions, synthesis_path, balancing, differential"),
     out: Path = typer.Option(Path("forms"), "--out", "-o", help="output folder (default: forms/)"),
     lang: str = typer.Option("en", "--lang", "-l", help="language of the comments: en | ru | uk"),
     csv_style: str = typer.Option("plain", "--csv", metavar="plain|excel-ru",
