@@ -319,3 +319,13 @@ def test_function_generation_has_a_starter_that_runs(tmp_path):
         assert K1 * math.cos(q) - K2 * math.cos(f_) + K3 == pytest.approx(math.cos(f_ - q), abs=1e-12)
         assert p["psi"] == pytest.approx(60 + 60 * (p["x"] ** 1.5 - 1) / 7, rel=1e-14)
     assert s["lengths"]["frame"] == 0.3 and s["lengths"]["crank"] == pytest.approx(0.3 / s["K"][0], rel=1e-14)
+
+
+def test_a_position_given_twice_is_named(tmp_path):
+    """Position 2 a copy of position 1: 'the three positions of the moving pivot A lie on one
+    line (p1), (p1), (p3)', which a student reads as a geometry error, not a copied line."""
+    text = (_tasks() / "synthesis_positions.yaml").read_text(encoding="utf-8").replace(
+        "{P: [0.0925, 0.2004], angle: 27.01}", "{P: [0.1518, 0.1853], angle: 34.14}")
+    code, out = _invoke("validate", _write(tmp_path, text))
+    assert code == 2 and "field 'synthesis.positions[1]'" in out and "positions 1 and 2 of the plane are the same" \
+        in out, out

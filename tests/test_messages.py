@@ -483,6 +483,8 @@ ENGLISH = [
      'the three positions of the moving pivot A lie on one line (0, 0), (0.1, 0), (0.2, 0): no circle passes '
      'through them; move the pivot or change `positions`'),
     ('input.synth_pivots_same', {}, 'the moving pivots A and B coincide: the coupler needs two pivots apart'),
+    ('input.synth_positions_same', {'i': 1, 'j': 2}, 'positions 1 and 2 of the plane are the same: the pole method '
+     'needs three different positions'),
     ('input.synth_points_same', {}, 'the points of the path all coincide: give points that trace a path'),
     ('input.synth_points_function', {}, 'function generation takes `points` as the number of precision points '
      '(3 to 5)'),

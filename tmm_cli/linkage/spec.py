@@ -374,6 +374,9 @@ def positions_input_error(sec) -> tuple | None:
     """(field path, Message) when the moving pivots coincide or the positions of A or B are
     collinear (no circle passes through them), else None: an input error (exit 2)."""
     pts = pivot_positions(sec)
+    for i, j in ((0, 1), (0, 2), (1, 2)):      # one position given twice: named as such, not 'on one line'
+        if all(math.dist(pts[n][i], pts[n][j]) <= 1e-12 * max(1.0, math.hypot(*pts[n][i])) for n in ("A", "B")):
+            return ("positions", j), Message("input.synth_positions_same", i=i + 1, j=j + 1)
     if math.dist(pts["A"][0], pts["B"][0]) <= 1e-12 * max(1.0, math.hypot(*pts["A"][0])):
         return ("moving_pivots", "B"), Message("input.synth_pivots_same")
     for name in ("A", "B"):
