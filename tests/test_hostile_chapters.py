@@ -143,6 +143,7 @@ def test_path_refinement_is_bounded_for_points_on_a_line(monkeypatch):
     ("9**9**9", "not a finite number at x = 1 "),
     ("5", "takes the same value 5 at both ends"),
     ("(x - 2.5)**2", "takes the same value 2.25 at both ends"),
+    ("sin(3.141592653589793*(x - 1)/3)", "takes the same value 0 at both ends"),    # 0 and 1.2e-16
 ])
 def test_function_not_finite_or_equal_at_the_ends_is_invalid_input(tmp_path, function, words):
     """Found when the task is read (exit 2, its line), not by the synthesis stage's 'not finite

@@ -414,7 +414,7 @@ def function_input_error(sec) -> tuple | None:
     bad = ~np.isfinite(ys)
     if bad.any():
         return ("function",), Message("input.synth_function_not_finite", x=float(xs[np.argmax(bad)]), x0=x0, x1=x1)
-    if ys[0] == ys[1000]:
+    if abs(ys[1000] - ys[0]) <= 1e-12 * float(np.max(np.abs(ys))):     # sin(x) on [0, pi]: 1.2e-16 apart
         return ("function",), Message("input.synth_function_ends", y=float(ys[0]), x0=x0, x1=x1)
     return None
 
