@@ -330,3 +330,10 @@ def test_a_position_given_twice_is_named(tmp_path):
     code, out = _invoke("validate", _write(tmp_path, text))
     assert code == 2 and "field 'synthesis.positions[1]'" in out and "positions 1 and 2 of the plane are the same" \
         in out, out
+
+
+def test_balancing_with_nothing_to_balance(tmp_path):
+    """`balancing: {}` in a task with no linkage (a gears task) ran, exit 0, and computed nothing."""
+    f = _write(tmp_path, (_tasks() / "gears_zero.yaml").read_text(encoding="utf-8") + "balancing: {}\n")
+    code, out = _invoke("validate", f)
+    assert code == 2 and "field 'balancing'" in out and "give `rotor`" in out, out

@@ -504,6 +504,8 @@ ENGLISH = [
     ('input.balancing_apply_needs', {}, "`apply: true` needs `counterweights`: there is nothing to apply"),
     ('input.rotor_planes_equal', {}, 'the two correction planes must be at different z'),
     ('input.balancing_needs_mechanism', {}, 'counterweights balance a linkage: the task needs a `mechanism`'),
+    ('input.balancing_nothing', {}, '`balancing` without a linkage balances a `rotor`: give `rotor` (or the '
+     '`mechanism` whose shaking force it computes)'),
     ('balancing.method_needs', {'method': 'full', 'kind': 'four-bar linkage'},
      'counterweights by the full method need a four-bar linkage: the crank, the coupler and the rocker (full) '
      'or the crank, the connecting rod and a slider on a fixed guide (crank)'),

@@ -149,6 +149,9 @@ class Task(_Model):
             raise FieldValueError(("report", "detail_position"), Message("input.detail_needs_mechanism"))
         if self.balancing is not None and self.balancing.counterweights is not None and not linkage:
             raise FieldValueError(("balancing", "counterweights"), Message("input.balancing_needs_mechanism"))
+        if self.balancing is not None and self.balancing.rotor is None and not linkage:
+            # `balancing: {}` alone computed nothing and said nothing
+            raise FieldValueError(("balancing",), Message("input.balancing_nothing"))
         if self.flywheel is not None and self.loads is None:
             raise FieldValueError(("flywheel",), Message("input.flywheel_loads"))
         return self
