@@ -337,3 +337,13 @@ def test_balancing_with_nothing_to_balance(tmp_path):
     f = _write(tmp_path, (_tasks() / "gears_zero.yaml").read_text(encoding="utf-8") + "balancing: {}\n")
     code, out = _invoke("validate", f)
     assert code == 2 and "field 'balancing'" in out and "give `rotor`" in out, out
+
+
+def test_a_position_written_as_a_list_names_no_class(tmp_path):
+    """`- [0.15, 0.18, 34]` for `{P: [...], angle: ...}`: 'Input should be a valid dictionary or
+    instance of CouplerPose' (the task model's class name)."""
+    text = (_tasks() / "synthesis_positions.yaml").read_text(encoding="utf-8").replace(
+        "{P: [0.1518, 0.1853], angle: 34.14}", "[0.1518, 0.1853, 34.14]")
+    code, out = _invoke("validate", _write(tmp_path, text))
+    assert code == 2 and "field 'synthesis.positions[0]'" in out and "valid dictionary" in out, out
+    assert "CouplerPose" not in out and "instance of" not in out

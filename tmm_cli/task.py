@@ -209,6 +209,9 @@ _MSG_CLEAN = [
 
 
 def _issue_from_error(err: dict, marks: dict) -> tuple[str, int | None, int | None, str]:
+    if err["type"] == "model_type":
+        # 'a valid dictionary or instance of CouplerPose': the class is no word of the task file
+        err = {**err, "type": "dict_type", "msg": "Input should be a valid dictionary", "ctx": {}}
     loc = [p for p in err["loc"]]
     # pydantic puts union member / validator tags into loc: drop the non-field ones
     clean: list = []
