@@ -1,5 +1,5 @@
 """Answer-form presets of the balancing, differential and synthesis chapters (`tmm form -q
-balancing|differential|synthesis_positions|synthesis_path`): the form lists the preset's
+balancing|differential|synthesis_function|synthesis_positions|synthesis_path`): the form lists the preset's
 quantities with their own symbol and unit in each language (a path's notation by its pattern:
 differential.speeds.H is the carrier's speed, not the stroke H), and `tmm check` grades a key
 made from the results as all-pass and answers 10 % off as outside."""
@@ -39,6 +39,12 @@ CASES = {
          ("differential.speeds.satellite", "ω_satellite", ("rad/s", "рад/с", "рад/с")),
          ("differential.torques.H", "T_H", ("N*m", "Н·м", "Н·м")),
          ("differential.power_loss", "P_loss", ("W", "Вт", "Вт"))]),
+    "synthesis_function": ("synthesis_function", [
+        "synthesis.lengths.crank", "synthesis.lengths.coupler", "synthesis.lengths.rocker", "synthesis.lengths.frame",
+        "synthesis.K[0]", "synthesis.K[1]", "synthesis.K[2]", "synthesis.structural_error.max",
+        "synthesis.structural_error.at_x"],
+        [("synthesis.lengths.rocker", "l_rocker", ("m", "м", "м")),
+         ("synthesis.structural_error.max", "Δψ_max", ("deg", "°", "°"))]),
     "synthesis_positions": ("synthesis_positions", [
         "synthesis.lengths.crank", "synthesis.lengths.coupler", "synthesis.lengths.rocker", "synthesis.lengths.frame",
         "synthesis.fixed_pivots.O[0]", "synthesis.fixed_pivots.O[1]", "synthesis.fixed_pivots.O1[0]",

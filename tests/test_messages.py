@@ -455,9 +455,23 @@ ENGLISH = [
     ('input.diff_two_speeds', {'got': 1, 'members': ['1', '3', 'H']},
      "give the speeds of exactly two members of 1, 3, H (got 1)"),
     ('input.diff_one_torque', {'got': 2}, 'give the torque of one member at most (got 2)'),
+    ('input.diff_member_twice', {'member': 'H', 'keys': ['h', 'H']}, 'member H is given twice (as h, H)'),
+    ('input.synthesis_drive_crank', {'link': 'rocker'}, "a synthesis designs the linkage with its crank driving: "
+     "`drive.link` must be `crank` (got 'rocker')"),
     ('input.synth_function', {'reason': "unknown name 'z'"}, "the function to generate: unknown name 'z'"),
     ('input.synth_range_zero', {}, 'the range of the angle must not be zero'),
     ('input.synth_x_range', {}, 'the range of x must have two different ends'),
+    ('input.synth_function_not_finite', {'x': 2.0, 'x0': 1.0, 'x1': 4.0},
+     'y(x) is not a finite number at x = 2 (the range of x is 1 to 4): change `function` or `x`'),
+    ('input.synth_function_ends', {'y': 0.0, 'x0': 0.0, 'x1': 3.141592653589793},
+     "y(x) takes the same value 0 at both ends of the range of x (0 and 3.14159): the rocker's angle, linear in y "
+     'between them, is undefined; change `function` or `x`'),
+    ('synthesis.fail.function_assembly', {'a': 0.2, 'b': 0.3, 'c': 0.25, 'd': 0.3, 'intervals': [[141.5, 218.5]],
+                                          'p0': 30.0, 'p1': 120.0},
+     "synthesis: the four-bar of Freudenstein's solution (crank 0.2 m, coupler 0.3 m, rocker 0.25 m, frame 0.3 m) "
+     'does not assemble for crank angles 141.500000..218.500000 deg: its crank cannot turn fully, and tmm analyses '
+     'the generated linkage over the whole turn (the range of `input` is 30 to 120 deg); change `frame` or the '
+     'ranges of `input` and `output`'),
     ('synthesis.fail.function_range', {}, 'synthesis: the function is not finite over the range of x, or '
      'y(x0) = y(x1): change `function` or `x`'),
     ('synthesis.fail.function_points', {}, 'synthesis: the precision points give no Freudenstein solution '
@@ -469,6 +483,8 @@ ENGLISH = [
      'the three positions of the moving pivot A lie on one line (0, 0), (0.1, 0), (0.2, 0): no circle passes '
      'through them; move the pivot or change `positions`'),
     ('input.synth_pivots_same', {}, 'the moving pivots A and B coincide: the coupler needs two pivots apart'),
+    ('input.synth_positions_same', {'i': 1, 'j': 2}, 'positions 1 and 2 of the plane are the same: the pole method '
+     'needs three different positions'),
     ('input.synth_points_same', {}, 'the points of the path all coincide: give points that trace a path'),
     ('input.synth_points_function', {}, 'function generation takes `points` as the number of precision points '
      '(3 to 5)'),
@@ -481,9 +497,15 @@ ENGLISH = [
     ('input.balancing_radius', {'method': 'full', 'key': 'rocker'},
      'counterweights by the full method need `radius: {rocker: ...}` (m)'),
     ('input.balancing_radius_positive', {'key': 'crank'}, "the counterweight's radius `crank` must be above zero"),
+    ('input.balancing_share_full', {}, "`reciprocating_share` belongs to the `crank` method (a slider-crank): the "
+     "`full` method balances a four-bar's shaking force completely"),
+    ('input.balancing_rocker_crank', {}, 'the `crank` method (a slider-crank) puts a counterweight on the crank only: '
+     'a slider-crank has no rocker'),
     ('input.balancing_apply_needs', {}, "`apply: true` needs `counterweights`: there is nothing to apply"),
     ('input.rotor_planes_equal', {}, 'the two correction planes must be at different z'),
     ('input.balancing_needs_mechanism', {}, 'counterweights balance a linkage: the task needs a `mechanism`'),
+    ('input.balancing_nothing', {}, '`balancing` without a linkage balances a `rotor`: give `rotor` (or the '
+     '`mechanism` whose shaking force it computes)'),
     ('balancing.method_needs', {'method': 'full', 'kind': 'four-bar linkage'},
      'counterweights by the full method need a four-bar linkage: the crank, the coupler and the rocker (full) '
      'or the crank, the connecting rod and a slider on a fixed guide (crank)'),

@@ -128,8 +128,8 @@ def _run(tmp_path, **kw):
     ({"K": 1.2}, 2, "synthesis.K"),
     ({"output": {"start": 60, "range": 0}}, 2, "synthesis.output.range"),
     ({"output": {"start": 170, "range": -160}, "frame": 0.05}, 3, "synthesis"),
-    ({"function": "1"}, 3, "y(x0) = y(x1)"),                  # a constant: no range of y
-    ({"function": "1/0"}, 3, "not finite"),
+    ({"function": "1"}, 2, "takes the same value 1 at both ends"),     # a constant: no range of y
+    ({"function": "1/0"}, 2, "not a finite number at x = 1"),
 ])
 def test_errors(tmp_path, kw, code, words):
     got, out = _run(tmp_path, **kw)

@@ -454,7 +454,7 @@ def form(
     quantities: str = typer.Option(..., "--quantities", "-q",
                                    help="result paths and presets, comma-separated: positions, kinematics, "
                                         "kinetostatics, flywheel, cam, gears, planetary, drive_train, synthesis, "
-                                        "synthesis_positions, synthesis_path, balancing, differential"),
+                                        "synthesis_function, synthesis_positions, synthesis_path, balancing, differential"),
     out: Path = typer.Option(Path("forms"), "--out", "-o", help="output folder (default: forms/)"),
     lang: str = typer.Option("en", "--lang", "-l", help="language of the comments: en | ru | uk"),
     csv_style: str = typer.Option("plain", "--csv", metavar="plain|excel-ru",
@@ -566,16 +566,22 @@ def fields(section: Optional[str] = typer.Argument(None, help="only this section
 STARTERS = ("linkage", "cam", "gears", "full", "synthesis")
 STARTERS += ("cam_rocker", "cam_flat", "cam_knife")      # one starter for each cam follower
 STARTERS += ("differential", "balancing")
-STARTERS += ("synthesis_positions", "synthesis_path")
+STARTERS += ("synthesis_function", "synthesis_positions", "synthesis_path")
 
 
 @app.command()
 def new(kind: str = typer.Argument(..., metavar="KIND", help="linkage | cam | cam_rocker | cam_flat | cam_knife | "
-                                                            "gears | full | synthesis | synthesis_positions | synthesis_path | "
+                                                            "gears | full | synthesis | synthesis_function | "
+                                                            "synthesis_positions | synthesis_path | "
                                                             "differential | balancing")):
     """Print a commented starter task of the given kind."""
     if kind not in STARTERS:
-        _err(f"error: unknown kind '{kind}'; choose from {', '.join(STARTERS)}")
+        import difflib
+        # 'path' is the starter synthesis_path, 'rocker' cam_rocker: the kind a starter ends with
+        near = [s for s in STARTERS if s.endswith("_" + kind.strip().lower())] \
+            or difflib.get_close_matches(kind, STARTERS, n=1, cutoff=0.6)
+        hint = f"; did you mean '{near[0]}'? " if near else "; "
+        _err(f"error: unknown kind '{kind}'{hint}choose from {', '.join(STARTERS)}")
         raise typer.Exit(EXIT_INVALID)
     from importlib.resources import files
     typer.echo(files("tmm_cli.starters").joinpath(f"{kind}.yaml").read_text(encoding="utf-8"), nl=False)

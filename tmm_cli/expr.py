@@ -27,6 +27,8 @@ def compile_expr(text: str) -> Callable:
         raise ExprError("an empty expression")
     if len(text) > 1000:
         raise ExprError("an expression longer than 1000 characters")
+    # the minus sign of a word processor (U+2212) is a minus, as in every number tmm reads
+    text = text.replace("\u2212", "-")
     try:
         tree = ast.parse(text.strip(), mode="eval")
     except SyntaxError as exc:
@@ -59,11 +61,16 @@ def _check(node, powers: int) -> None:
             raise ExprError(f"unknown name '{node.id}' (the variable is x; functions: {', '.join(FUNCTIONS)})")
     elif isinstance(node, ast.Call):
         if not isinstance(node.func, ast.Name) or node.func.id not in FUNCTIONS:
-            name = node.func.id if isinstance(node.func, ast.Name) else "?"
+            name = node.func.id if isinstance(node.func, ast.Name) else ast.unparse(node.func)
             raise ExprError(f"unknown function '{name}' (known: {', '.join(FUNCTIONS)})")
         if len(node.args) != 1 or node.keywords:
             raise ExprError(f"{node.func.id} takes one argument")
         _check(node.args[0], powers)
+    elif isinstance(node, ast.BinOp) and isinstance(node.op, ast.BitXor):
+        raise ExprError(f"'{ast.unparse(node)}': a power is written ** (x**1.5), not ^")
+    elif isinstance(node, ast.Tuple):
+        raise ExprError(f"'{ast.unparse(node)}' is not one expression: a decimal number is written with a point "
+                        "(1.5), not a comma")
     else:
         raise ExprError(f"'{ast.unparse(node) if hasattr(ast, 'unparse') else type(node).__name__}' is not allowed "
                         f"(x, numbers, + - * / **, parentheses and {', '.join(FUNCTIONS)})")

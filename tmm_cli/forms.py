@@ -32,6 +32,8 @@ PRESETS: dict[str, list[str]] = {
                   "balancing.counterweights.*.m", "balancing.counterweights.*.angle",
                   "balancing.rotor.corrections[*].m", "balancing.rotor.corrections[*].angle"],
     "differential": ["differential.u", "differential.speeds.*", "differential.torques.*", "differential.power_loss"],
+    "synthesis_function": ["synthesis.lengths.*", "synthesis.K[*]", "synthesis.structural_error.max",
+                           "synthesis.structural_error.at_x"],
     "synthesis_positions": ["synthesis.lengths.*", "synthesis.fixed_pivots.*[*]"],
     "synthesis_path": ["synthesis.lengths.*", "synthesis.fixed_pivots.*[*]", "synthesis.max_deviation"],
 }
@@ -109,6 +111,11 @@ PATH_NOTATION: dict[str, tuple[str, str, str, str]] = {
     "synthesis.fixed_pivots.*[0]": ("x_{0}", "m", "pivot_x", ""),
     "synthesis.fixed_pivots.*[1]": ("y_{0}", "m", "pivot_y", ""),
     "synthesis.max_deviation": ("Δ_max", "m", "max_deviation", "magnitude"),
+    "synthesis.K[0]": ("K1", "", "freudenstein_k", ""),
+    "synthesis.K[1]": ("K2", "", "freudenstein_k", ""),
+    "synthesis.K[2]": ("K3", "", "freudenstein_k", ""),
+    "synthesis.structural_error.max": ("Δψ_max", "deg", "structural_error", "magnitude"),
+    "synthesis.structural_error.at_x": ("x(Δψ_max)", "", "structural_error_at", ""),
 }
 
 # the sign convention of a result key: a word of the catalogues' `sign_convention` table

@@ -49,6 +49,8 @@ def checked(path: str | Path, *, assembly: bool = True, text: str | None = None,
                 raise
             # a valid task that cannot be computed everywhere: compute() meets the same
             # failure and keeps the sections computed before it (partial results)
+    from .validation import check_sections
+    check_sections(task, mechanism)
     return task, mechanism
 
 

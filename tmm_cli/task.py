@@ -129,6 +129,10 @@ class Task(_Model):
             raise FieldValueError(("synthesis",), Message("input.synthesis_and_mechanism"))
         if self.drive is None:
             raise FieldValueError(("synthesis",), Message("input.synthesis_drive"))
+        if self.drive.link != "crank":
+            # every type is designed for its crank driving (K and theta count the crank's turn):
+            # the rocker driving failed in the kinematics of a mechanism the student never wrote
+            raise FieldValueError(("drive", "link"), Message("input.synthesis_drive_crank", link=self.drive.link))
         return self
 
     @model_validator(mode="after")
@@ -143,6 +147,11 @@ class Task(_Model):
             raise FieldValueError((needs_mech[0],), Message("input.needs_mechanism", sections=needs_mech))
         if self.report is not None and self.report.detail_position is not None and not linkage:
             raise FieldValueError(("report", "detail_position"), Message("input.detail_needs_mechanism"))
+        if self.balancing is not None and self.balancing.counterweights is not None and not linkage:
+            raise FieldValueError(("balancing", "counterweights"), Message("input.balancing_needs_mechanism"))
+        if self.balancing is not None and self.balancing.rotor is None and not linkage:
+            # `balancing: {}` alone computed nothing and said nothing
+            raise FieldValueError(("balancing",), Message("input.balancing_nothing"))
         if self.flywheel is not None and self.loads is None:
             raise FieldValueError(("flywheel",), Message("input.flywheel_loads"))
         return self
@@ -200,6 +209,9 @@ _MSG_CLEAN = [
 
 
 def _issue_from_error(err: dict, marks: dict) -> tuple[str, int | None, int | None, str]:
+    if err["type"] == "model_type":
+        # 'a valid dictionary or instance of CouplerPose': the class is no word of the task file
+        err = {**err, "type": "dict_type", "msg": "Input should be a valid dictionary", "ctx": {}}
     loc = [p for p in err["loc"]]
     # pydantic puts union member / validator tags into loc: drop the non-field ones
     clean: list = []
@@ -208,7 +220,8 @@ def _issue_from_error(err: dict, marks: dict) -> tuple[str, int | None, int | No
                                                                       "literal['all']", "literal['constant']")
                                    or p.startswith("tuple[") or p.startswith("literal[") or p == "str"
                                    or p == "list[int]" or p == "LimitsSpec" or p == "float" or p == "bool"
-                                   or p.endswith("-after]") or p.endswith("-before]")):
+                                   or p.endswith("-after]") or p.endswith("-before]")
+                                   or p.startswith("tag:") or p in ("[key]", "constrained-int")):
             continue
         clean.append(p)
     msg = err["msg"]

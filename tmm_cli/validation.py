@@ -32,6 +32,26 @@ def check_feasible(task, assembly: bool = True):
     return mech
 
 
+def check_sections(task, mech) -> None:
+    """The checks of the other sections that need no computing, made when the task is validated
+    (a run meets them again in its stages): a differential's or a drive train's given teeth that
+    cannot be built (coaxiality, adjacency, an internal pair without a larger ring), and
+    counterweights by a method the linkage ``mech`` (None: not built) is not the kind of. A
+    TaskError naming the field and its line (exit 2): `tmm validate` said 'ok' to each of them."""
+    try:
+        if task.differential is not None:
+            from .differential.analysis import check_buildable
+            check_buildable(task.differential)
+        if task.drive_train is not None:
+            from .gears.train import check_given
+            check_given(task.drive_train)
+        if mech is not None and task.balancing is not None and task.balancing.counterweights is not None:
+            from .balancing.linkage import check_kind
+            check_kind(mech, task.balancing.counterweights)
+    except TaskError as err:
+        raise task.locate(err) from None
+
+
 def check_selection(task, mech) -> None:
     """A TaskError when `kinetostatics.positions` or `report.detail_position` names a
     position the cycle does not have."""

@@ -88,14 +88,23 @@ def _mass_moment(kin, lk, pivot: str, other: str, k: int = 0) -> complex:
     return complex(lk.mass * (_c(kin.pos[f"S{lk.index}"][k]) - P) * np.conj(e))
 
 
-def counterweights(mech, kin, spec) -> tuple[list[Counterweight], dict]:
-    """The counterweights of ``spec`` (a CounterweightSpec) and what remains (a dict)."""
+def check_kind(mech, spec):
+    """The linkage's roles (:func:`_geometry`) when it is the kind ``spec.method`` balances (full:
+    a four-bar; crank: a slider-crank), else a TaskError naming the method (exit 2; found when
+    the task is validated too)."""
     g = _geometry(mech)
     kind = "fourbar" if spec.method == "full" else "slidercrank"
     if g is None or g[0] != kind:
         raise field_error("balancing.counterweights.method",
                            Message("balancing.method_needs", method=spec.method,
                                    kind="four-bar linkage" if kind == "fourbar" else "slider-crank linkage"))
+    return g
+
+
+def counterweights(mech, kin, spec) -> tuple[list[Counterweight], dict]:
+    """The counterweights of ``spec`` (a CounterweightSpec) and what remains (a dict)."""
+    g = check_kind(mech, spec)
+    kind = g[0]
     _, crank, coupler, third, O, A, B, O1 = g
     P, Q = _c(kin.pos[A][0]), _c(kin.pos[B][0])
     l1 = abs(_c(kin.pos[A][0]) - _c(kin.pos[O][0]))

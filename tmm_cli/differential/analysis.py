@@ -174,6 +174,22 @@ def _plan(scheme: str, teeth: dict, m: float, w: dict, last: str) -> dict:
             "mismatch": max(abs(points[1]["v"] - v_sat(r1)), abs(points[3]["v"] - v_sat(r_last)))}
 
 
+def check_buildable(spec) -> float:
+    """Coaxiality and adjacency: a train that cannot be built is an invalid task (exit 2, found
+    when the task is validated too); the adjacency margin (modules). Tooth limits and the
+    assembly of the given number of satellites are not checked here: the user's teeth are
+    computed, with a warning (:func:`analyze`)."""
+    from ..gears import planetary as pl
+    scheme, teeth, k = spec.scheme, spec.teeth, spec.satellites
+    a1, a2 = pl.centre_distances(scheme, teeth)
+    if not (a1 == a2 and a1 > 0):
+        raise field_error("differential.z", Message("differential.not_coaxial", a1=2 * a1, a2=2 * a2))
+    margin = pl.adjacency_margin(scheme, teeth, k)
+    if margin <= 0:
+        raise field_error("differential.satellites", Message("differential.adjacency", k=k, margin=margin))
+    return margin
+
+
 def analyze(spec) -> DifferentialResult:
     """The differential of the task section (a DifferentialSection)."""
     from ..gears import planetary as pl
@@ -182,14 +198,7 @@ def analyze(spec) -> DifferentialResult:
     scheme, teeth, k = spec.scheme, spec.teeth, spec.satellites
     last = spec.last
     names = members(scheme)
-    # coaxiality and adjacency: the train cannot be built (exit 2); tooth limits and assembly
-    # with the given number of satellites: the user's teeth are computed, with a warning
-    a1, a2 = pl.centre_distances(scheme, teeth)
-    if not (a1 == a2 and a1 > 0):
-        raise field_error("differential.z", Message("differential.not_coaxial", a1=2 * a1, a2=2 * a2))
-    margin = pl.adjacency_margin(scheme, teeth, k)
-    if margin <= 0:
-        raise field_error("differential.satellites", Message("differential.adjacency", k=k, margin=margin))
+    margin = check_buildable(spec)
     warnings: list = []
     bad = pl.undercut_ok(scheme, teeth, pl.Limits())
     if bad:

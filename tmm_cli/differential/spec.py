@@ -45,7 +45,14 @@ def members(scheme: str) -> tuple[str, str, str]:
 def _member_keys(value: Any) -> Any:
     """YAML reads ``{1: ...}`` with an integer key and ``{h: ...}`` in lower case: members by name."""
     if isinstance(value, dict):
-        return {("H" if str(k).strip().upper() == "H" else str(k).strip()): v for k, v in value.items()}
+        out: dict = {}
+        spelt: dict = {}
+        for k, v in value.items():
+            name = "H" if str(k).strip().upper() == "H" else str(k).strip()
+            if name in out:             # `h` and `H` (or `1` and "1"): one member given twice
+                raise ValueError(Message("input.diff_member_twice", member=name, keys=[spelt[name], str(k)]))
+            out[name], spelt[name] = v, str(k)
+        return out
     return value
 
 

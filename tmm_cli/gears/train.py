@@ -308,6 +308,15 @@ def analyze(spec: DriveTrainSection, drive=None) -> TrainResult:
                        synthesised=bool(free), warnings=warnings)
 
 
+def check_given(spec) -> None:
+    """The given teeth's checks of :func:`analyze` that make the train impossible to build (an
+    internal pair without a larger ring, coaxiality, adjacency): a TaskError naming the stage's
+    `z` (exit 2), found when the task is validated (``tmm validate``), not only by a run."""
+    lim = pl.tooth_limits(spec.z_min_external, spec.z_min_internal, spec.z_min_satellite_in_internal,
+                          spec.internal_minus_external_min)
+    _given_stages(list(spec.stages), int(spec.satellites), lim, int(spec.z_max), [])
+
+
 def _given_stages(specs, k: int, lim: pl.Limits, zmax: int, warnings: list) -> dict:
     """The ratios of the stages with given teeth (stage index -> u), with their checks: a tooth
     limit or the assembly of k satellites that fails is warned about; a train that cannot be

@@ -7,7 +7,7 @@ degrees).  Nothing here imports a stage: the stages import these sections."""
 import math
 from typing import Annotated, Literal, Union
 
-from pydantic import AfterValidator, Field, field_validator, model_validator
+from pydantic import AfterValidator, Discriminator, Field, Tag, field_validator, model_validator
 
 from ..limits import MAX_EXTRA_POINTS, MAX_EXTRA_POSITIONS, MAX_FORCES, MAX_POSITIONS
 from ..messages import Message
@@ -374,6 +374,9 @@ def positions_input_error(sec) -> tuple | None:
     """(field path, Message) when the moving pivots coincide or the positions of A or B are
     collinear (no circle passes through them), else None: an input error (exit 2)."""
     pts = pivot_positions(sec)
+    for i, j in ((0, 1), (0, 2), (1, 2)):      # one position given twice: named as such, not 'on one line'
+        if all(math.dist(pts[n][i], pts[n][j]) <= 1e-12 * max(1.0, math.hypot(*pts[n][i])) for n in ("A", "B")):
+            return ("positions", j), Message("input.synth_positions_same", i=i + 1, j=j + 1)
     if math.dist(pts["A"][0], pts["B"][0]) <= 1e-12 * max(1.0, math.hypot(*pts["A"][0])):
         return ("moving_pivots", "B"), Message("input.synth_pivots_same")
     for name in ("A", "B"):
@@ -385,11 +388,42 @@ def positions_input_error(sec) -> tuple | None:
 
 
 def path_input_error(sec) -> tuple | None:
-    """(field path, Message) when the path's points all coincide (no path), else None."""
+    """(field path, Message) when the path's points all coincide (no path), else None: also
+    when they differ only in the last digits their coordinates carry (an extent below 1e-9 of
+    the largest coordinate: the points 0.1, 0.1 + 1e-15, ... generated a linkage of femtometres
+    that no closure could tell from a point)."""
     xs, ys = [float(p[0]) for p in sec.points], [float(p[1]) for p in sec.points]
-    if max(max(xs) - min(xs), max(ys) - min(ys)) <= 0.0:
+    size = max(map(abs, xs + ys))
+    if max(max(xs) - min(xs), max(ys) - min(ys)) <= 1e-9 * size:
         return ("points",), Message("input.synth_points_same")
     return None
+
+
+def function_input_error(sec) -> tuple | None:
+    """(field path, Message) when the function to generate is not a finite number at some x of
+    its range (checked at 1001 points, the ends and the precision points: log(x - 1) at x = 1,
+    1/(x - 2) at x = 2) or takes the same value at the range's ends (the rocker's angle, linear
+    in y from y(x0) to y(x1), would be undefined), else None: an input error (exit 2)."""
+    import numpy as np
+
+    from ..expr import compile_expr
+    from .synthesis import chebyshev_points
+    x0, x1 = float(sec.x[0]), float(sec.x[1])
+    xs = np.concatenate([np.linspace(x0, x1, 1001), chebyshev_points(x0, x1, int(sec.points or 3))])
+    ys = np.broadcast_to(np.asarray(compile_expr(sec.function_)(xs), float), xs.shape)
+    bad = ~np.isfinite(ys)
+    if bad.any():
+        return ("function",), Message("input.synth_function_not_finite", x=float(xs[np.argmax(bad)]), x0=x0, x1=x1)
+    if abs(ys[1000] - ys[0]) <= 1e-12 * float(np.max(np.abs(ys))):     # sin(x) on [0, pi]: 1.2e-16 apart
+        return ("function",), Message("input.synth_function_ends", y=float(ys[0]), x0=x0, x1=x1)
+    return None
+
+
+def _points_kind(v) -> str:
+    """Which of `points`' two meanings a value is: a list (path: the points) or a count
+    (function: the precision points); only that one is checked, so a message names it alone
+    (not 'a valid integer' for a path's list of four points)."""
+    return "tag:list" if isinstance(v, (list, tuple)) else "tag:count"
 
 
 def _function_text(v):
@@ -437,7 +471,9 @@ class SynthesisSection(_Model):
                                                        "over the range of x: {start, range}")
     output: AngleRange | None = Field(None, description="function generation: the rocker angle psi (deg, from O->O1 "
                                                         "at O1) over the range of y: {start, range}")
-    points: Union[Annotated[int, Field(ge=3, le=5)], Annotated[list[LengthPair], Field(min_length=5, max_length=20)],
+    points: Union[Annotated[Union[Annotated[int, Field(ge=3, le=5), Tag("tag:count")],
+                                  Annotated[list[LengthPair], Field(min_length=5, max_length=20), Tag("tag:list")]],
+                            Discriminator(_points_kind)],
                   None] = Field(None, description="function generation: precision points, Chebyshev spacing (3; 4 or "
                                                   "5 by least squares); path: the 5 to 20 points [x, y] (m) to pass")
     positions: Annotated[list[CouplerPose], Field(min_length=3, max_length=3)] | None = Field(
@@ -470,6 +506,10 @@ class SynthesisSection(_Model):
                                       Message("input.synth_one_of", type=self.type, names=names))
         if self.type == "function" and self.x[0] == self.x[1]:
             raise FieldValueError(("x",), Message("input.synth_x_range"))
+        if self.type == "function" and not (self.points is not None and not isinstance(self.points, int)):
+            bad = function_input_error(self)
+            if bad:
+                raise FieldValueError(*bad)
         if self.points is not None and isinstance(self.points, int) != (self.type == "function"):
             raise FieldValueError(("points",), Message("input.synth_points_function" if self.type == "function"
                                                        else "input.synth_points_path"))

@@ -696,6 +696,10 @@ def _function(sec) -> Design:
     if not (math.isfinite(a) and math.isfinite(c)) or a <= 0 or c <= 0 or b2 <= 0:
         raise SynthesisImpossible(Message("synthesis.fail.function_lengths", a=a, c=c, b2=b2))
     b = math.sqrt(b2)
+    arcs = _unassembled_arcs(a, b, c, d)
+    if arcs:
+        raise SynthesisImpossible(Message("synthesis.fail.function_assembly", a=a, b=b, c=c, d=d, intervals=arcs,
+                                          p0=float(g["input"][0]), p1=float(g["input"][0] + g["input"][1])))
     # B in the first precision pose: from O1 along psi_1; A from O along phi_1
     B1 = [d + c * math.cos(math.radians(psi[0])), c * math.sin(math.radians(psi[0]))]
     mech = {"ground": {"O": [0.0, 0.0], "O1": [d, 0.0]},
@@ -707,6 +711,47 @@ def _function(sec) -> Design:
             "K": [K1, K2, K3], "y": [y0, y1], "generator": g}
     return Design("function", {"crank": a, "coupler": b, "rocker": c, "frame": d}, mech, "rocker", "forward", [],
                   cons)
+
+
+def _unassembled_arcs(a: float, b: float, c: float, d: float) -> list[list[float]]:
+    """The crank angles (deg, from O->O1) where the four-bar O(0, 0)-A-B-O1(d, 0) does not
+    close: |AO1| outside [|b - c|, b + c], found on a 0.05-deg grid and refined by bisection
+    to 1e-9 deg; [[from, to], ...] counter-clockwise (an arc across 0 deg as [from, to] with
+    from > to); [] when the crank turns fully. The generated linkage is analysed over the
+    whole turn: a function generator whose crank cannot turn (a double-rocker) is named here,
+    not by the kinematics of a mechanism the student never wrote."""
+    import numpy as np
+
+    def margin(f):
+        f = np.radians(f)
+        L = np.sqrt(a * a + d * d - 2.0 * a * d * np.cos(f))
+        return np.minimum(b + c - L, L - abs(b - c))
+    grid = np.arange(0.0, 360.0, 0.05)
+    ok = margin(grid) >= -1e-12 * (a + b + c + d)
+    if ok.all():
+        return []
+    if not ok.any():
+        return [[0.0, 360.0]]
+
+    def edge(lo, hi):                     # ok(lo) != ok(hi): the angle where the closure ends
+        want = margin(lo) >= 0
+        for _ in range(60):
+            mid = 0.5 * (lo + hi)
+            if (margin(mid) >= 0) == want:
+                lo = mid
+            else:
+                hi = mid
+        return 0.5 * (lo + hi) % 360.0
+    n = len(grid)
+    start = int(np.argmax(ok))            # walk from an angle where it closes, once round
+    arcs, a0 = [], None
+    for k in range(1, n + 1):
+        i, j = (start + k - 1) % n, (start + k) % n
+        if ok[i] and not ok[j]:
+            a0 = edge(grid[i], grid[i] + 0.05)
+        elif not ok[i] and ok[j]:
+            arcs.append([a0, edge(grid[i], grid[i] + 0.05)])
+    return arcs
 
 
 def grashof(a: float, b: float, c: float, d: float) -> str:

@@ -33,6 +33,10 @@ SEED = 43                       # the differential evolution's seed: the same ta
 SAMPLES = 60                   # crank angles of the sampled coupler curve in the global search
 GAMMA_DEFAULT = 30.0
 CANDIDATES = 4                  # the best of the last population refined by least squares
+# evaluations of each refinement per unknown: a fit that converges takes about 20 (the example's
+# ten points about 400 in all); points no coupler curve passes (on a straight line, say) drift on
+# toward ever larger linkages until this limit, which keeps a run of 20 such points to seconds
+NFEV = 40
 # the global search's bounds, in units of the points' extent: a, b, c, d, u, v, branch (its sign)
 SHAPE_BOUNDS = [(0.05, 1.0), (0.1, 3.0), (0.1, 3.0), (0.1, 3.0), (-2.5, 2.5), (-2.5, 2.5), (-1.0, 1.0)]
 
@@ -267,7 +271,7 @@ def _refine(x0, T, gamma_min):
     z0 = np.concatenate([x0[:9], phi0])
     method = "lm" if 2 * n + 1 >= len(z0) else "trf"   # MINPACK needs no fewer residuals than unknowns
     sol = least_squares(res, z0, jac=jac, method=method, x_scale="jac", xtol=1e-14, ftol=1e-14, gtol=1e-14,
-                        max_nfev=100 * (9 + n))
+                        max_nfev=NFEV * (9 + n))
     return np.concatenate([sol.x[:9], [s]]), sol.x[9:]
 
 

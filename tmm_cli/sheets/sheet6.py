@@ -101,11 +101,21 @@ def draw_train(cv, ctx, p, rows, a, heading: str, v_axis: str, lang: str) -> dic
     cv.layer = "contour"
     lines = {}
     for name, ln in vp["lines"].items():
-        y0, slope = float(ln["y0"]), float(ln["slope"])
+        slope = float(ln["slope"])
+        # v = slope (y - y0); a link that only translates (a differential's satellite standing
+        # still while its centre moves: no y0) has v = its centre's speed at every y
+        y0 = None if ln.get("y0") is None else float(ln["y0"])
+        const = float(ln.get("v_centre") or 0.0)
+
+        def v_of(y, slope=slope, y0=y0, const=const):
+            return slope * (y - y0) if y0 is not None else const + 0.0 * y
         # the line over the radii of the points of its link (those it passes through)
-        on = [float(q["y"]) for q in vp["points"] if abs(float(q["v"]) - slope * (float(q["y"]) - y0)) <= 1e-9 * vmax]
-        ys = np.array([min(on + [y0]), max(on + [y0])])
-        vs = slope * (ys - y0)
+        on = [float(q["y"]) for q in vp["points"] if abs(float(q["v"]) - v_of(float(q["y"]))) <= 1e-9 * vmax]
+        on += [y0] if y0 is not None else []
+        if not on:
+            continue
+        ys = np.array([min(on), max(on)])
+        vs = v_of(ys)
         seg = [(vx + v / mu_v, Y(y)) for v, y in zip(vs, ys)]
         cv.line(seg[0], seg[1], width=0.6)
         tag = {"H": "H", "satellite": "2"}.get(name, name)

@@ -36,13 +36,17 @@ def build(cv, results, task, lang="en") -> dict:
     info = draw_train(cv, ctx, p, rows, a, heading, ctx.t("diff.v_axis"), lang)
     last = d["last"]
     tg = tangents(info)
-    u_plan = (tg["1"] - tg["H"]) / (tg[last] - tg["H"])
+    den = tg[last] - tg["H"]
+    # the picture gives u only where the last wheel turns relative to the carrier (nothing
+    # turning at all, or the train turning as one body, leaves 0/0: Willis' u alone is written)
+    u_plan = (tg["1"] - tg["H"]) / den if den != 0 else None
     from .. import locales
     t = locales.of("sheets", "sheet6", lang)["tan"]          # tan, or tg as the course writes it
     _, y0f, _, _ = FRAME
     vx = info["points"]["O"][0]
+    willis = f"{ctx.t('diff.willis')}: u = {float(d['u']):.4g}"
     cv.mtext(vx - 20.0, y0f + TB_H + 12.0,
-             f"u = ({t} ψ₁ − {t} ψH) / ({t} ψ{last} − {t} ψH) = {u_plan:.4g}   "
-             f"({ctx.t('diff.willis')}: u = {float(d['u']):.4g})", 3.5)
+             f"u = ({t} ψ₁ − {t} ψH) / ({t} ψ{last} − {t} ψH) = {u_plan:.4g}   ({willis})" if u_plan is not None
+             else willis, 3.5)
     info["u_plan"] = u_plan
     return info

@@ -259,7 +259,10 @@ class Solver:
             plan.solve(st, sg)
             d = sum(float(np.sum((st.point(b, self.mech.link(b).local[p])[0] - h) ** 2)) for b, p, h in hints)
             scores[sg] = d
-            if best_d is None or d < best_d - 1e-15:
+            # a tie (the hints as near to both closures) keeps +1; the margin scales with the
+            # linkage (squared lengths): an absolute 1e-15 m^2 ignored every hint of a linkage
+            # smaller than about 0.1 um and always took +1
+            if best_d is None or d < best_d - 1e-15 * self.L * self.L:
                 best, best_d = sg, d
         self._sigma[gi] = best
         return best
