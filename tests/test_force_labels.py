@@ -5,7 +5,12 @@ arrow stays plain.
 * no two arrows of a drawing cover each other (on one line, their shafts sharing more than
   half a millimetre): the shaper's ram load F1, its friction F_f05 and its inertia force Φ5
   act at one point along the guide and were drawn one over the other, their three names
-  stacked around one point (sheet 2's lever: F, Φ4, Φ5, G4 at one point);
+  stacked around one point (sheet 2's lever: F, Φ4, Φ5, G4 at one point); in a force
+  polygon, a link's weight and its inertia force one after the other the other way round
+  were drawn one over the other (drawings.forces.apart_order, beside);
+* the arms' names of a lever are apart: arms with one foot (the weights of links whose
+  ends of the turned plan coincide, a load on the line of a plan's ray) had their names at
+  one point;
 * every force's or couple's name is within drawings.forces.LEADER mm of its arrow's tip (its
   couple's ring), or a leader line runs from there to the name;
 * no text of any figure of the report or of any sheet overlaps another or leaves its figure
@@ -109,6 +114,10 @@ class Recorder:
         monkeypatch.setattr(forces, "_labels", labels)
         monkeypatch.setattr(forces, "group_panel", wrap("group", forces.group_panel))
         monkeypatch.setattr(forces, "lever_panel", wrap("lever", forces.lever_panel))
+        monkeypatch.setattr(forces, "polygon_panel", wrap("polygon", forces.polygon_panel))
+
+
+ARM_APART = 1.0        # mm: two arms' names of a lever closer than this are at one place
 
 
 def problems(panels) -> list[str]:
@@ -118,6 +127,11 @@ def problems(panels) -> list[str]:
         where = f"{pan['kind']} {k}"
         for a, b in _covering(pan["arrows"]):
             bad.append(f"{where}: arrows from {a} and {b} cover each other")
+        arms = [(anchor, name) for anchor, u, name, box, leader in pan["labels"] if name.startswith("h\u0000")]
+        for i, (a1, n1) in enumerate(arms):
+            for a2, n2 in arms[i + 1:]:
+                if math.dist(a1, a2) < ARM_APART:
+                    bad.append(f"{where}: the arms' names {n1!r} and {n2!r} at one place of the lever")
         for anchor, u, name, box, leader in pan["labels"]:
             if not leader:
                 continue
@@ -153,6 +167,34 @@ def test_a_ram_load_its_friction_and_inertia_one_after_another():
     assert tuple(s) == (0.0, 0.0)
     s = along_line((0.0, 0.0), np.array([0.0, -1.0]), 6.0, drawn)    # across: where it is
     assert tuple(s) == (0.0, 0.0)
+
+
+def test_parallel_forces_of_a_polygon_one_after_another():
+    """drawings.forces.apart_order: a weight G = (0, -100) N followed by an inertia force
+    Φ = (0, 60) N (upwards) runs back along G; the first order that draws every side apart,
+    the loads first, puts the horizontal load F = (50, 0) N between them:
+    G (0,0)->(0,-100), F ->(50,-100), Φ ->(50,-40), R ->(0,0): no two sides on one line,
+    and the polygon still closes (the sum is the same)."""
+    from tmm_cli.drawings.forces import apart_order, covered
+    vecs = [("G2", np.array([0.0, -100.0]), "gravity"), ("Fi2", np.array([0.0, 60.0]), "inertia"),
+            ("F2", np.array([50.0, 0.0]), "load"), ("R12", np.array([-50.0, 40.0]), "reaction")]
+    assert covered([F for _, F, _ in vecs], 1.0) == [False, True, False, False]
+    got = apart_order(vecs)
+    assert [n for n, _, _ in got] == ["G2", "F2", "Fi2", "R12"]
+    assert not any(covered([F for _, F, _ in got], 1.0))
+    assert np.allclose(sum(F for _, F, _ in got), 0.0)
+    # already apart: the given order kept
+    assert apart_order(got) == got
+
+
+def test_collinear_sides_drawn_beside():
+    """drawings.forces.beside: all forces along one line (a piston's weight down 30 mm, its
+    gas force up 50 mm, the reaction down 20 mm) cannot be drawn apart in any order: the
+    second side lies along the first (drawn 1 x SIDE_GAP beside), the third along both (2 x)."""
+    from tmm_cli.drawings.forces import beside
+    T = [(0.0, 0.0), (0.0, -30.0), (0.0, 20.0), (0.0, 0.0)]
+    assert beside(T) == [0, 1, 2]
+    assert beside([(0.0, 0.0), (0.0, -30.0), (40.0, -30.0), (0.0, 0.0)]) == [0, 0, 0]
 
 
 @pytest.mark.parametrize("name", LINKAGES)
