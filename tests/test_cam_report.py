@@ -67,7 +67,8 @@ def test_the_report_says_which_r0_the_profile_is_drawn_on(central, tmp_path, lan
     """r0 computed (no r0 in the task): the profile is built on the exact least r0 (closed form
     above: the pitch point at s = 0, a central follower, lies r0 from the cam's centre), not on
     the rounded design radius printed beside it; the report says so and gives the task line
-    that builds it on the rounded radius -- which, run, puts that pitch point at the whole mm."""
+    that builds it on the rounded radius (its unit as the language writes it, which the task
+    files take too) -- which, run, puts that pitch point at the whole mm."""
     import re
 
     from tmm_cli.report import render
@@ -81,13 +82,14 @@ def test_the_report_says_which_r0_the_profile_is_drawn_on(central, tmp_path, lan
     assert math.hypot(*c["pitch_profile"][k]) == pytest.approx(r0, rel=1e-9)
     render(res, task, tmp_path, {"html"}, lang)
     html = (tmp_path / "report.html").read_text(encoding="utf-8")
-    line = f"<code>r0: {whole} mm</code>"
+    unit = {"en": "mm", "ru": "мм", "uk": "мм"}[lang]
+    line = f"<code>r0: {whole} {unit}</code>"
     assert html.count(line) == 1
     note = re.search(r"<p>([^<]*)" + re.escape(line), html).group(1)
     assert numfmt.localize(f"{r0 * 1000:.4f}", lang) in note and f" {whole} " in note
     given = tmm_cli.load_task({
         "schema": "tmm/1", "title": "central cam",
-        "cam": {"follower": "translating", "stroke": "30 mm", "offset": 0, "r0": f"{whole} mm",
+        "cam": {"follower": "translating", "stroke": "30 mm", "offset": 0, "r0": f"{whole} {unit}",
                 "phases": {"rise": 90, "far_dwell": 30, "return": 90},
                 "laws": {"rise": "cosine", "return": "cosine"}, "pressure_angle": 30,
                 "rotation": "ccw", "speed": "100 rpm"}})
