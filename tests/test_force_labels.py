@@ -10,7 +10,8 @@ arrow stays plain.
   were drawn one over the other (drawings.forces.apart_order, beside);
 * the arms' names of a lever are apart: arms with one foot (the weights of links whose
   ends of the turned plan coincide, a load on the line of a plan's ray) had their names at
-  one point;
+  one point (now one name, h with all their subscripts); arms whose feet are a millimetre
+  apart, or a few degrees, are named along them apart;
 * every force's or couple's name is within drawings.forces.LEADER mm of its arrow's tip (its
   couple's ring), or a leader line runs from there to the name;
 * no text of any figure of the report or of any sheet overlaps another or leaves its figure
@@ -195,6 +196,57 @@ def test_collinear_sides_drawn_beside():
     T = [(0.0, 0.0), (0.0, -30.0), (0.0, 20.0), (0.0, 0.0)]
     assert beside(T) == [0, 1, 2]
     assert beside([(0.0, 0.0), (0.0, -30.0), (40.0, -30.0), (0.0, 0.0)]) == [0, 0, 0]
+
+
+def test_arms_with_one_foot_named_once():
+    """drawings.forces.merge_arms: the arms of G3 and Φ3 end at one foot (0.1 mm apart): one
+    arm h with the subscript 'G3, Φ3'; F1's, 5 mm away, keeps its own."""
+    from tmm_cli.drawings.forces import merge_arms
+    z = np.zeros(2)
+    arms = [(z, (0, 1), "h\u0000G3", "#6b7b7c", np.array([10.0, 0.0])),
+            (z, (0, 1), "h\u0000Φ3", "#1f5fbf", np.array([10.1, 0.0])),
+            (z, (0, 1), "h\u0000F1", "#c0392b", np.array([15.0, 0.0]))]
+    got = merge_arms(arms)
+    assert [(n, c) for _, _, n, c, _ in got] == [("h\u0000G3, Φ3", "#444"), ("h\u0000F1", "#c0392b")]
+
+
+@pytest.mark.parametrize("balance", [None, "slider"])
+def test_the_levers_lines_as_the_course_writes_them(balance):
+    """Under the lever: M_b (or P_b) with b as a subscript -- it was printed 'M_b by the lever'
+    with its underscore -- and a force's unit after its value ('P_b (Zhukovsky) = 123.45 N',
+    not 'P_b (Zhukovsky), N = 123.45'); the values those of the results."""
+    import copy
+
+    from test_kinetostatics_pipeline import SIX
+
+    import tmm_cli
+    from tmm_cli.drawings import forces as K
+    from tmm_cli.drawings.words import Words
+    from tmm_cli.report.svgdraw import Canvas
+    case = copy.deepcopy(SIX)
+    if balance:
+        case["kinetostatics"] = {"balance": balance}
+    r = tmm_cli.run(case, kinematics_curve=0)
+    e = next(k for k in r["kinetostatics"] if k.get("zhukovsky_force" if balance else "zhukovsky_moment") is not None)
+    ke = next(k for k in r["kinematics"] if k["index"] == e["index"])
+    got = []
+    text0 = Canvas.text
+
+    class Rec(Canvas):
+        def text(self, x, y, s, *a, sub=None, after=None, **kw):
+            got.append((s, sub, after))
+            return text0(self, x, y, s, *a, sub=sub, after=after, **kw)
+    w = Words("en")
+    K.lever_panel(w, Rec(170, 110), (0, 0, 170, 110), e, ke, None, (r.get("drive") or {}).get("omega"),
+                  r["kinetostatics_info"]["balance_kind"])
+    if balance:
+        want = [("P", "b", f" (Zhukovsky) = {w.fmt(e['zhukovsky_force'], 5)} N"),
+                ("P", "b", f" (groups) = {w.fmt(e['balancing_force'], 5)} N")]
+    else:
+        want = [("M", "b", f" by the lever = {w.fmt(e['zhukovsky_moment'], 5)} N·m"),
+                ("M", "b", f" by the groups = {w.fmt(e['balancing_moment'], 5)} N·m")]
+    assert all(x in got for x in want), [g for g in got if g[1] == "b"]
+    assert not any("_" in (s + (after or "")) for s, sub, after in got)
 
 
 @pytest.mark.parametrize("name", LINKAGES)

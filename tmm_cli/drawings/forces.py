@@ -638,6 +638,17 @@ def lever_scale(e, kin_e, w: float, h: float) -> float:
     return figures.nice_scale(max(span[0] / (w - 2 * m), span[1] / (h - TITLE_H - LEVER_TEXT_H - 2 * m)))
 
 
+def lever_height(e, kin_e, w: float, h_min: float, h_max: float) -> float:
+    """The height (mm) of a lever panel w mm wide: h_min, or more -- up to h_max -- when the
+    turned plan is tall (a shaper's, a press's: drawn 110 mm high, its forces' arrows and
+    names swamped it): as high as the plan needs at the standard μv at which it fits in
+    w x h_max."""
+    _, _, lo, hi = lever_extent(e, kin_e)
+    mu = lever_scale(e, kin_e, w, h_max)
+    need = float(max(hi[1] - lo[1], 1e-12)) / mu + TITLE_H + LEVER_TEXT_H + 2 * 10.0
+    return min(max(h_min, math.ceil(need)), h_max)
+
+
 def lever_panel(words, cv, box, e, kin_e, pin, omega1, balance_kind):
     """Zhukovsky's lever: the velocity plan turned by +90 deg (ends rot90(v)/mu_v, mu_v
     lever_scale), the loads moved to the ends of the turned velocities with their arms
@@ -707,14 +718,22 @@ def lever_panel(words, cv, box, e, kin_e, pin, omega1, balance_kind):
     if balance_kind == "moment":
         lines = [f"{words.t('kst.mb_lever')} = {words.fmt(e.get('zhukovsky_moment'), 5)} {words.t('kst.Nm')}",
                  f"{words.t('kst.mb_groups')} = {words.fmt(e.get('balancing_moment'), 5)} {words.t('kst.Nm')}"]
-    else:
-        lines = [f"{words.t('kst.fzh')} = {words.fmt(e.get('zhukovsky_force'), 5)}",
-                 f"{words.t('kst.fb')} = {words.fmt(e.get('balancing_force'), 5)}"]
+    else:                    # the tables' 'P_b (groups), N': the unit after the value
+        lines = []
+        for key, v in (("kst.fzh", e.get("zhukovsky_force")), ("kst.fb", e.get("balancing_force"))):
+            name, _, unit = words.t(key).rpartition(", ")
+            lines.append(f"{name} = {words.fmt(v, 5)} {unit}" if name else f"{unit} = {words.fmt(v, 5)}")
     if e.get("discrepancy") is not None:
         lines.append(f"Δ = {words.fmt(100.0 * e['discrepancy'], 2)} %")
     yy = y0 + text_h - 2.5
     for s in lines:
-        cv.text(x0 + 1, yy, s, size=6.5, anchor="start")
+        # 'M_b by the lever = ...': M with the subscript b (it was printed with its underscore)
+        m = re.match(r"([A-Za-z])_([^\s(]+)(.*)", s)
+        if m:
+            cv.text(x0 + 1, yy, m.group(1), size=6.5, anchor="start", sub=m.group(2), after=m.group(3))
+        else:
+            cv.text(x0 + 1, yy, s, size=6.5, anchor="start")
+        s = s.replace("_", "", 1) if m else s
         tw, th = figures.text_size(s, cv.font_mm(6.5))
         taken.append((x0 + 1, yy - th / 2, x0 + 1 + tw, yy + th / 2))
         yy -= 3.8
@@ -738,9 +757,27 @@ def lever_panel(words, cv, box, e, kin_e, pin, omega1, balance_kind):
                for q, names, _ in groups]
     segs = figures.segment_set(segs)
     _labels(cv, letters, 1.8, segs, avoid, words.lang, size=5.5, box=box, taken=taken, halo=False)
-    _labels(cv, arrows + _arm_anchors(pole, arms), 2.6, segs, avoid, words.lang, size=6.5, box=box, taken=taken,
+    _labels(cv, arrows + _arm_anchors(pole, merge_arms(arms)), 2.6, segs, avoid, words.lang, size=6.5, box=box, taken=taken,
             leaders=True)
     return mu_v
+
+
+def merge_arms(arms) -> list:
+    """Arms [(mid, d, name 'h\\0<sub>', colour, foot)] ending at one foot (within 0.3 mm: forces
+    on one line of action, a link's weight and inertia force at one end of the turned plan)
+    as one arm named once with all its forces, h with the subscript 'G3, Φ3, F1' -- as a
+    lecturer names a shared arm; their names one by one had no room on it."""
+    out: list[list] = []
+    for mid, d, name, col, foot in arms:
+        for a in out:
+            if float(np.hypot(*(a[4] - foot))) < 0.3:
+                a[2] = a[2] + ", " + name.split("\u0000", 1)[1]
+                if a[3] != col:
+                    a[3] = "#444"
+                break
+        else:
+            out.append([mid, d, name, col, foot])
+    return [tuple(a) for a in out]
 
 
 def _arm_anchors(pole, arms) -> list:
