@@ -274,3 +274,32 @@ def test_force_names_beside_their_arrows(name, tmp_path, monkeypatch):
         assert n_report and len(rec.panels) > n_report
         bad += [f"{lang}: {b}" for b in problems(rec.panels)]
     assert not bad, f"{len(bad)} problems, e.g. {bad[:8]}"
+
+
+def test_a_tall_lever_drawn_larger():
+    """The report's lever figure: 110 mm high for a wide turned plan, higher (up to 200 mm)
+    for a tall one, at the finest standard μv (1, 2, 2.5, 4, 5 x 10^k) at which the plan --
+    its extent measured here from the turned velocities and the pole -- fits in the figure
+    less its margins, title and the lines under it.  The shaper's plan is tall: it was drawn
+    at a μv two steps coarser in 110 mm."""
+    import tmm_cli
+    from tmm_cli.drawings.forces import LEVER_TEXT_H, TITLE_H
+    from tmm_cli.report.sections.kinetostatics import FIG_W, LEVER_H, LEVER_H_MAX, lever_box_height, lever_scale
+    r = tmm_cli.run(tmm_cli.load_task(ROOT / "tasks" / "shaper_slotted_ram.yaml"))
+    kin = {k["index"]: k for k in r["kinematics"]}
+    grown = 0
+    for e in r["kinetostatics"]:
+        ke = kin[e["index"]]
+        h = lever_box_height(e, ke)
+        mu = lever_scale(e, ke)
+        pts = [(0.0, 0.0)] + [(-float(d.get("vy") or 0), float(d.get("vx") or 0)) for d in ke["points"].values()]
+        xs, ys = [p[0] for p in pts], [p[1] for p in pts]
+        assert LEVER_H <= h <= LEVER_H_MAX
+        assert (max(xs) - min(xs)) / mu <= FIG_W - 20 + 1e-6
+        assert (max(ys) - min(ys)) / mu <= h - TITLE_H - LEVER_TEXT_H - 20 + 1e-6
+        m = mu / 10 ** math.floor(math.log10(mu) + 1e-12)
+        assert round(m, 9) in (1, 2, 2.5, 4, 5)
+        if h > LEVER_H:
+            grown += 1
+            assert mu < lever_scale(e, ke, FIG_W, LEVER_H)          # finer than in 110 mm
+    assert grown >= 6
