@@ -601,6 +601,8 @@ def _point_name(kin_e, xy, tol=1e-9):
 
 
 LEVER_TEXT_H = 13.0          # mm: the lines of M_b under the lever
+LEVER_STEP = 3.2             # mm: the placing step of the lever's force and arm names (wider than the
+                             # groups' 2.6: more of them clear of the plan's rays and the arms)
 
 
 def lever_extent(e, kin_e):
@@ -757,7 +759,7 @@ def lever_panel(words, cv, box, e, kin_e, pin, omega1, balance_kind):
                for q, names, _ in groups]
     segs = figures.segment_set(segs)
     _labels(cv, letters, 1.8, segs, avoid, words.lang, size=5.5, box=box, taken=taken, halo=False)
-    _labels(cv, arrows + _arm_anchors(pole, merge_arms(arms)), 2.6, segs, avoid, words.lang, size=6.5, box=box, taken=taken,
+    _labels(cv, arrows + _arm_anchors(pole, merge_arms(arms)), LEVER_STEP, segs, avoid, words.lang, size=6.5, box=box, taken=taken,
             leaders=True)
     return mu_v
 
