@@ -36,9 +36,11 @@ def words(pdf: Path) -> list[list[tuple[float, float, float, float, str]]]:
 
 
 def footer_boxes(page_words) -> list[tuple[float, float, float, float]]:
-    """The page number "n / N" in the bottom margin (the only thing the margin holds)."""
+    """The footer line in the bottom margin (the only thing the margin holds): the page number
+    "n / N" and, level with it on the last page, the colophon "Computed by tmm · date"."""
     low = [w for w in page_words if w[1] > BODY[3]]
-    return [w[:4] for w in low if re.fullmatch(r"\d+|/", w[4])]
+    num = [w for w in low if re.fullmatch(r"\d+|/", w[4])]
+    return [w[:4] for w in low if num and abs(w[1] - num[0][1]) < 1.0]
 
 
 def stray_words(page_words) -> list[tuple]:

@@ -1,6 +1,7 @@
 """Nothing of a report leaves the page body: every page of every example task's
 report.pdf, in en, ru and uk, has no word (pdftotext -bbox) and no ink (the page
-rendered by pdftoppm) in its margins other than the page number.  Zhukovsky's lever of
+rendered by pdftoppm) in its margins other than the footer line (the page number; on the
+last page the colophon level with it).  Zhukovsky's lever of
 the six-bars once ran off the bottom of each kinetostatics page, and the four-bars'
 caption under it printed over the page number: a position whose drawings are taller
 than a page now breaks between its figures."""

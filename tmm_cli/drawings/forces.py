@@ -118,8 +118,92 @@ def polygon(forces, rel_tol: float = 1e-9, norms=None):
     Fmax = max(norms, default=0.0)
     keep = [(n, F, k) for (n, _, F, k), nF in zip(forces, norms) if nF > rel_tol * Fmax]
     keep.sort(key=lambda t: t[2] == "reaction")           # stable: loads, then reactions
+    keep = apart_order(keep)
     tips = np.cumsum([np.zeros(2)] + [F for _, F, _ in keep], axis=0)
     return keep, tips
+
+
+def _along(p, d, a, b, tol: float) -> bool:
+    """Whether the segment a-b lies along the side p -> p + d: both its ends within ``tol`` of
+    that side's line, sharing more than ``tol`` of its length."""
+    L = math.hypot(d[0], d[1])
+    if L <= 1e-300:
+        return False
+    ux, uy = d[0] / L, d[1] / L
+    ra, rb = (a[0] - p[0], a[1] - p[1]), (b[0] - p[0], b[1] - p[1])
+    if abs(ra[0] * uy - ra[1] * ux) > tol or abs(rb[0] * uy - rb[1] * ux) > tol:
+        return False
+    lo, hi = sorted((ra[0] * ux + ra[1] * uy, rb[0] * ux + rb[1] * uy))
+    return min(hi, L) - max(lo, 0.0) > tol
+
+
+def _covers(a, F, segs, tol: float) -> bool:
+    """Whether the side a -> a + F and one of ``segs`` [(start, G)] lie along each other (the
+    whole of one within ``tol`` of the other's line, sharing more than ``tol``: two parallel
+    forces the other way round, a short side running back along a long one)."""
+    b = (a[0] + F[0], a[1] + F[1])
+    for p, G in segs:
+        q = (p[0] + G[0], p[1] + G[1])
+        if _along(p, G, a, b, tol) or _along(a, F, p, q, tol):
+            return True
+    return False
+
+
+def apart_order(vecs, rel_tol: float = 0.01, limit: int = 4000) -> list:
+    """The polygon's vectors [(name, F, kind)] in an order in which no side lies along another
+    (two parallel forces one after the other the other way round -- a link's weight and its
+    inertia force, a ram's load and its friction -- were drawn on top of each other, one name
+    hiding the other): the given order where it draws every side apart, else the first order
+    (loads before reactions, then in the given order) that does, found by a search of at most
+    ``limit`` steps; when none is found, the given order.  The polygon closes in any order
+    (the sum is the same); the course's books lay such forces one after another this way."""
+    n = len(vecs)
+    if n < 3:
+        return list(vecs)
+    Fs = [(float(F[0]), float(F[1])) for _, F, _ in vecs]
+    tol = rel_tol * max(math.hypot(*F) for F in Fs)
+    loads = [i for i in range(n) if vecs[i][2] != "reaction"]
+    reactions = [i for i in range(n) if vecs[i][2] == "reaction"]
+    steps = [0]
+
+    def search(order, at, segs, rest):
+        if not rest:
+            return order
+        steps[0] += 1
+        if steps[0] > limit:
+            return None
+        pool = [i for i in rest if i in loads] or rest          # loads first
+        for i in pool:
+            F = Fs[i]
+            if _covers(at, F, segs, tol):
+                continue
+            got = search(order + [i], (at[0] + F[0], at[1] + F[1]), segs + [(at, F)], [j for j in rest if j != i])
+            if got is not None:
+                return got
+        return None
+
+    got = search([], (0.0, 0.0), [], loads + reactions)
+    if got is not None:
+        return [vecs[i] for i in got]
+    # no such order: the loads, then the reactions, each by their direction (forces in one
+    # sense one after another) when that draws fewer sides along others; the sides that still
+    # lie along others are drawn beside their place (polygon_panel)
+    convex = [i for part in (loads, reactions) for i in sorted(part, key=lambda i: math.atan2(Fs[i][1], Fs[i][0]))]
+    if covered([Fs[i] for i in convex], tol).count(True) < covered(Fs, tol).count(True):
+        return [vecs[i] for i in convex]
+    return list(vecs)
+
+
+def covered(Fs, tol: float) -> list[bool]:
+    """Which sides of the polygon drawn head to tail from the vectors Fs [(x, y)] lie along an
+    earlier side (_covers)."""
+    at, segs, out = (0.0, 0.0), [], []
+    for F in Fs:
+        F = (float(F[0]), float(F[1]))
+        out.append(_covers(at, F, segs, tol))
+        segs.append((at, F))
+        at = (at[0] + F[0], at[1] + F[1])
+    return out
 
 
 # ----------------------------------------------------------------- drawing
@@ -433,6 +517,30 @@ def _area(q):
     return 0.5 * abs(float(np.dot(x, np.roll(y, 1)) - np.dot(y, np.roll(x, 1))))
 
 
+SIDE_TOL = 0.5        # mm: a polygon's side this near along an earlier one is drawn beside it
+SIDE_GAP = 1.4        # mm: ... this far to its left
+
+
+def beside(T, tol: float = SIDE_TOL) -> list[int]:
+    """How far (in SIDE_GAP) each side of the polygon through the drawn tips T (mm) is drawn
+    beside its place: 0 for a side clear of the sides before it; one more than the farthest
+    of those it lies along (parallel, on one line to ``tol`` mm, sharing more than ``tol`` mm)
+    otherwise -- parallel forces no order draws apart (all loads along one line: a piston's
+    weight, inertia force and gas force) stay side by side, every arrow and name seen."""
+    out = []
+    for k in range(len(T) - 1):
+        a, b = T[k], T[k + 1]
+        F = (b[0] - a[0], b[1] - a[1])
+        lvl = 0
+        if math.hypot(*F) > tol:
+            for j in range(k):
+                c, e = T[j], T[j + 1]
+                if _covers(a, F, [(c, (e[0] - c[0], e[1] - c[1]))], tol):
+                    lvl = max(lvl, out[j] + 1)
+        out.append(lvl)
+    return out
+
+
 def polygon_panel(words, cv, box, forces, norms=None, out=None):
     """The force polygon to scale inside box; returns (mu_F, drawn tips in mm); ``norms``:
     force_norms(forces) when already known; ``out``: a list that gets the vectors drawn."""
@@ -453,10 +561,17 @@ def polygon_panel(words, cv, box, forces, norms=None, out=None):
     d = T[1:] - T[:-1]
     Ls = np.hypot(d[:, 0], d[:, 1]).tolist()
     Tl = T.tolist()
-    segs = list(zip(Tl[:-1], Tl[1:]))
+    shift = beside(Tl, SIDE_TOL)
+    segs = []
     items = []
-    for (name, F, kind), (ax, ay), (bx, by), (dx, dy), L in zip(vecs, Tl[:-1], Tl[1:], d.tolist(), Ls):
+    for (name, F, kind), (ax, ay), (bx, by), (dx, dy), L, k in zip(vecs, Tl[:-1], Tl[1:], d.tolist(), Ls, shift):
         col = KIND_COLOR.get(kind, "#000")
+        if k:                    # along an earlier side: drawn beside it, k * SIDE_GAP mm to its left
+            nx, ny = -dy / (L or 1.0) * k * SIDE_GAP, dx / (L or 1.0) * k * SIDE_GAP
+            ax, ay, bx, by = ax + nx, ay + ny, bx + nx, by + ny
+            cv.line((ax - nx, ay - ny), (ax, ay), col, 0.15, dash="0.5 0.5", z=2)   # to its true ends
+            cv.line((bx - nx, by - ny), (bx, by), col, 0.15, dash="0.5 0.5", z=2)
+        segs.append(((ax, ay), (bx, by)))
         cv.arrow((ax, ay), (bx, by), col, 0.45, head=2.4, z=3)
         L = L or 1.0
         items.append((((ax + bx) / 2, (ay + by) / 2), (-dy / L, dx / L), name, col))
@@ -486,6 +601,8 @@ def _point_name(kin_e, xy, tol=1e-9):
 
 
 LEVER_TEXT_H = 13.0          # mm: the lines of M_b under the lever
+LEVER_STEP = 3.2             # mm: the placing step of the lever's force and arm names (wider than the
+                             # groups' 2.6: more of them clear of the plan's rays and the arms)
 
 
 def lever_extent(e, kin_e):
@@ -521,6 +638,17 @@ def lever_scale(e, kin_e, w: float, h: float) -> float:
     span = np.maximum(hi - lo, 1e-12)
     m = 10.0
     return figures.nice_scale(max(span[0] / (w - 2 * m), span[1] / (h - TITLE_H - LEVER_TEXT_H - 2 * m)))
+
+
+def lever_height(e, kin_e, w: float, h_min: float, h_max: float) -> float:
+    """The height (mm) of a lever panel w mm wide: h_min, or more -- up to h_max -- when the
+    turned plan is tall (a shaper's, a press's: drawn 110 mm high, its forces' arrows and
+    names swamped it): as high as the plan needs at the standard μv at which it fits in
+    w x h_max."""
+    _, _, lo, hi = lever_extent(e, kin_e)
+    mu = lever_scale(e, kin_e, w, h_max)
+    need = float(max(hi[1] - lo[1], 1e-12)) / mu + TITLE_H + LEVER_TEXT_H + 2 * 10.0
+    return min(max(h_min, math.ceil(need)), h_max)
 
 
 def lever_panel(words, cv, box, e, kin_e, pin, omega1, balance_kind):
@@ -592,14 +720,22 @@ def lever_panel(words, cv, box, e, kin_e, pin, omega1, balance_kind):
     if balance_kind == "moment":
         lines = [f"{words.t('kst.mb_lever')} = {words.fmt(e.get('zhukovsky_moment'), 5)} {words.t('kst.Nm')}",
                  f"{words.t('kst.mb_groups')} = {words.fmt(e.get('balancing_moment'), 5)} {words.t('kst.Nm')}"]
-    else:
-        lines = [f"{words.t('kst.fzh')} = {words.fmt(e.get('zhukovsky_force'), 5)}",
-                 f"{words.t('kst.fb')} = {words.fmt(e.get('balancing_force'), 5)}"]
+    else:                    # the tables' 'P_b (groups), N': the unit after the value
+        lines = []
+        for key, v in (("kst.fzh", e.get("zhukovsky_force")), ("kst.fb", e.get("balancing_force"))):
+            name, _, unit = words.t(key).rpartition(", ")
+            lines.append(f"{name} = {words.fmt(v, 5)} {unit}" if name else f"{unit} = {words.fmt(v, 5)}")
     if e.get("discrepancy") is not None:
         lines.append(f"Δ = {words.fmt(100.0 * e['discrepancy'], 2)} %")
     yy = y0 + text_h - 2.5
     for s in lines:
-        cv.text(x0 + 1, yy, s, size=6.5, anchor="start")
+        # 'M_b by the lever = ...': M with the subscript b (it was printed with its underscore)
+        m = re.match(r"([A-Za-z])_([^\s(]+)(.*)", s)
+        if m:
+            cv.text(x0 + 1, yy, m.group(1), size=6.5, anchor="start", sub=m.group(2), after=m.group(3))
+        else:
+            cv.text(x0 + 1, yy, s, size=6.5, anchor="start")
+        s = s.replace("_", "", 1) if m else s
         tw, th = figures.text_size(s, cv.font_mm(6.5))
         taken.append((x0 + 1, yy - th / 2, x0 + 1 + tw, yy + th / 2))
         yy -= 3.8
@@ -623,9 +759,27 @@ def lever_panel(words, cv, box, e, kin_e, pin, omega1, balance_kind):
                for q, names, _ in groups]
     segs = figures.segment_set(segs)
     _labels(cv, letters, 1.8, segs, avoid, words.lang, size=5.5, box=box, taken=taken, halo=False)
-    _labels(cv, arrows + _arm_anchors(pole, arms), 2.6, segs, avoid, words.lang, size=6.5, box=box, taken=taken,
+    _labels(cv, arrows + _arm_anchors(pole, merge_arms(arms)), LEVER_STEP, segs, avoid, words.lang, size=6.5, box=box, taken=taken,
             leaders=True)
     return mu_v
+
+
+def merge_arms(arms) -> list:
+    """Arms [(mid, d, name 'h\\0<sub>', colour, foot)] ending at one foot (within 0.3 mm: forces
+    on one line of action, a link's weight and inertia force at one end of the turned plan)
+    as one arm named once with all its forces, h with the subscript 'G3, Φ3, F1' -- as a
+    lecturer names a shared arm; their names one by one had no room on it."""
+    out: list[list] = []
+    for mid, d, name, col, foot in arms:
+        for a in out:
+            if float(np.hypot(*(a[4] - foot))) < 0.3:
+                a[2] = a[2] + ", " + name.split("\u0000", 1)[1]
+                if a[3] != col:
+                    a[3] = "#444"
+                break
+        else:
+            out.append([mid, d, name, col, foot])
+    return [tuple(a) for a in out]
 
 
 def _arm_anchors(pole, arms) -> list:
@@ -638,13 +792,41 @@ def _arm_anchors(pole, arms) -> list:
         L = float(np.hypot(*r))
         u = r / L
         start = 0.0
+        same = []                               # the arms ending at this one's foot (k among them)
         for j, (_, _, _, _, f2) in enumerate(arms):
             r2 = f2 - pole
             t = float(r2 @ u)
-            if j != k and abs(float(r2 @ np.array([-u[1], u[0]]))) < 0.3 and start < t < L - 1e-9:
+            if abs(float(r2 @ np.array([-u[1], u[0]]))) >= 0.3:
+                continue
+            if abs(t - L) <= 0.3:
+                same.append(j)
+            elif j != k and start < t < L - 0.3:
                 start = t                       # the foot of a shorter arm on this one
-        out.append((pole + u * (start + L) / 2, d, name, col))
-    return out
+        # arms with one foot (two forces on one line of action, at one end or at two) share
+        # the part: each name at the middle of its own piece of it, in the order of the forces
+        i, m = same.index(k), len(same)
+        out.append([start + (L - start) * (i + 0.5) / m, u, L, d, name, col])
+    # the names at least ARM_GAP apart where there is room (arms whose feet are a millimetre
+    # apart, arms a few degrees apart, short arms about the pole), each on its own arm:
+    # the shortest arms first, each at the place along it (0.5 mm from its ends) farthest, up
+    # to ARM_GAP, from the names placed, the nearest such place to the middle of its own part
+    chosen: list[np.ndarray] = []
+    for a in sorted(out, key=lambda a: a[2]):
+        want, u, L = a[0], a[1], a[2]
+        ts = np.unique(np.clip(np.append(np.linspace(0.5, L - 0.5, 25), want), min(0.5, L / 2), max(L - 0.5, L / 2)))
+        best = None
+        for t in ts.tolist():
+            q = pole + u * t
+            room = min([float(np.hypot(*(q - c))) for c in chosen] + [ARM_GAP])
+            key = (round(room, 6), -abs(t - want))
+            if best is None or key > best[0]:
+                best = (key, t)
+        a[0] = best[1]
+        chosen.append(pole + u * a[0])
+    return [(pole + u * t, d, name, col) for t, u, L, d, name, col in out]
+
+
+ARM_GAP = 4.0          # mm: the least distance between two arms' names along one ray of the lever
 
 
 def position_rows(words, e, kin_e, info, links):

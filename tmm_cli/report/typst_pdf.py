@@ -447,7 +447,11 @@ class _Writer:
             return (f'#block(stroke: 1.5pt + rgb("#b03a2e"), fill: rgb("#fdf2f0"), inset: (x: 4mm, y: 3mm), '
                     f'width: 100%)[{body}]')
         if tag == "footer":
-            return f'#v(8mm)\n#text(size: 8pt, fill: rgb("#666666"))[{self.blocks(node)}]'
+            # in the bottom margin of the page the text ends on, level with the page number: it
+            # takes no room in the flow (as a line after the last figure it was left alone on a
+            # page of its own when that figure filled the page)
+            return (f'#place(bottom + left, dy: 6.95mm, text(size: 8pt, fill: rgb("#666666"))'
+                    f'[{self.blocks(node)}])')
         if tag in ("div", "header", "nav", "body", "html", "#root", "main", "article", "li"):
             return self.blocks(node)
         if tag in ("head", "title", "meta", "style", "script"):

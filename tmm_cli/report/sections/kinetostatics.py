@@ -45,14 +45,21 @@ FIG_W = 170.0                # mm
 PAGE_H = 245.0               # mm of drawings per page at most
 
 
-LEVER_H = 110.0              # mm: Zhukovsky's lever, a figure of its own under the groups
+LEVER_H = 110.0              # mm: Zhukovsky's lever, a figure of its own under the groups ...
+LEVER_H_MAX = 200.0          # mm: ... higher, up to this, for a tall plan (its page has room)
+
+
+def lever_box_height(e, kin_e) -> float:
+    """The report's lever figure's height (mm): LEVER_H, or up to LEVER_H_MAX for a tall
+    turned plan (drawings.forces.lever_height)."""
+    return D.lever_height(e, kin_e, FIG_W, LEVER_H, LEVER_H_MAX)
 
 
 def lever_scale(e, kin_e, w: float | None = None, h: float | None = None) -> float:
     """The standard μv at which Zhukovsky's lever of a position is drawn in a box w x h
-    mm (the report's, by default), the largest at which it fits; the worked section's
-    lever is at the same."""
-    return D.lever_scale(e, kin_e, FIG_W if w is None else w, LEVER_H if h is None else h)
+    mm (the report's, by default: lever_box_height), the largest at which it fits; the
+    worked section's lever is at the same."""
+    return D.lever_scale(e, kin_e, FIG_W if w is None else w, lever_box_height(e, kin_e) if h is None else h)
 
 
 def position_figures(ctx, e, kin_e, info, links, pin=None, omega1=None):
@@ -83,8 +90,9 @@ def position_figures(ctx, e, kin_e, info, links, pin=None, omega1=None):
             cv.line((wd, y + 1), (wd, y + ROW_H - 1), "#bbb", 0.2, z=0)
         figs.append(figures.named(cv.to_svg(), figures.pos_name("groups", e["index"])))
         start = stop
-    cv = Canvas(FIG_W, LEVER_H)
-    mu_v = D.lever_panel(ctx, cv, (0, 0, FIG_W, LEVER_H), e, kin_e, pin, omega1, info.get("balance_kind"))
+    lh = lever_box_height(e, kin_e)
+    cv = Canvas(FIG_W, lh)
+    mu_v = D.lever_panel(ctx, cv, (0, 0, FIG_W, lh), e, kin_e, pin, omega1, info.get("balance_kind"))
     drawn.append({"lever": mu_v})
     figs.append(figures.named(cv.to_svg(), figures.pos_name("lever", e["index"])))
     return figs, drawn
