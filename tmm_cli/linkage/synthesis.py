@@ -109,6 +109,7 @@ class Design:
     working: str                         # forward | backward: the slow stroke's sense
     solutions: list[dict] = field(default_factory=list)
     construction: dict = field(default_factory=dict)   # points of the drawing (m)
+    crank_range: object = None           # context.CrankRange: the crank works over it only (None: full turns)
 
 
 # ---------------------------------------------------------------- inputs
@@ -694,7 +695,11 @@ def _function(sec) -> Design:
     a, c = d / K1 if K1 else math.inf, d / K2 if K2 else math.inf
     b2 = a * a + c * c + d * d - 2 * a * c * K3
     if not (math.isfinite(a) and math.isfinite(c)) or a <= 0 or c <= 0 or b2 <= 0:
-        raise SynthesisImpossible(Message("synthesis.fail.function_lengths", a=a, c=c, b2=b2))
+        # the coefficient that gave it: crank = d/K1, rocker = d/K2, coupler^2 through K3
+        bad = ("crank", "K1", K1) if not (math.isfinite(a) and a > 0) else \
+            ("rocker", "K2", K2) if not (math.isfinite(c) and c > 0) else ("coupler", "K3", K3)
+        raise SynthesisImpossible(Message("synthesis.fail.function_lengths", what=bad[0], K=bad[1], Kv=bad[2],
+                                          a=a, c=c, b2=b2))
     b = math.sqrt(b2)
     # B in the first precision pose: from O1 along psi_1; A from O along phi_1
     B1 = [d + c * math.cos(math.radians(psi[0])), c * math.sin(math.radians(psi[0]))]
@@ -705,8 +710,52 @@ def _function(sec) -> Design:
             "assembly": {"B": B1}}
     cons = {"precision_points": [{"x": float(x), "phi": float(f), "psi": float(q)} for x, f, q in zip(xs, phi, psi)],
             "K": [K1, K2, K3], "y": [y0, y1], "generator": g}
+    kind = grashof(a, b, c, d)
+    # a crank-rocker's crank turns fully: the course's cycle (12 positions over the turn,
+    # the extremes, K, a flywheel); any other generator works over its input range only
+    over = None
+    if kind != "crank-rocker":
+        from .context import CrankRange
+        over = CrankRange(start=g["input"][0], span=g["input"][1], x=(x0, x1), kind=kind)
     return Design("function", {"crank": a, "coupler": b, "rocker": c, "frame": d}, mech, "rocker", "forward", [],
-                  cons)
+                  cons, crank_range=over)
+
+
+def check_range(mech, over) -> list:
+    """That a generated linkage assembles over its crank range (a function generator
+    whose crank does not turn fully).
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The generated linkage.
+    over : CrankRange
+        The crank's range (``Design.crank_range``).
+
+    Returns
+    -------
+    list
+        The kinematics' warnings over the range (change points).
+
+    Raises
+    ------
+    SynthesisImpossible
+        At the first crank angle from the range's start where the linkage does not
+        assemble, naming it, the argument x there and what to change (exit 3).
+    """
+    import numpy as np
+
+    from .kinematics import solve
+    n = max(2, int(math.ceil(abs(over.span) / 0.25)) + 1)
+    phi = over.angles(n)
+    try:
+        kin = solve(mech, np.mod(phi, 360.0))
+    except StageError as err:
+        at = float(err.position) if err.position is not None else float(over.start)
+        near = over.start + over.span / 2.0 + ((at - over.start - over.span / 2.0 + 180.0) % 360.0 - 180.0)
+        raise SynthesisImpossible(Message("synthesis.fail.function_assembly", phi=near, x=over.x_at(at),
+                                          start=float(over.start), end=float(over.start + over.span))) from None
+    return list(kin.warnings)
 
 
 def grashof(a: float, b: float, c: float, d: float) -> str:
@@ -772,9 +821,21 @@ def analyse_function(linkage, d: Design) -> dict:
     Bp, Pp = kp.pos["B"], kp.pos["O1"]
     got_p = np.degrees(np.arctan2(Bp[:, 1] - Pp[:, 1], Bp[:, 0] - Pp[:, 0]))
     L = d.lengths
+    serr = {"max": float(abs(err[k])), "at_x": float(xs[k])}
+    if d.crank_range is not None:
+        # the reported positions spread over the input range: x, the ideal and the generated psi there
+        xg = x0 + (x1 - x0) * np.linspace(0.0, 1.0, int(linkage.positions.count))
+        phg, psg, _ = function_angles(g, xg)
+        kg = solve(linkage.mechanism, np.mod(phg, 360.0), linkage.drive.omega)
+        Bg, Pg = kg.pos["B"], kg.pos["O1"]
+        got_g = np.degrees(np.arctan2(Bg[:, 1] - Pg[:, 1], Bg[:, 0] - Pg[:, 0]))
+        eg = (got_g - psg + 180.0) % 360.0 - 180.0
+        serr["positions"] = [{"index": i, "x": float(a), "phi": float(f), "psi": float(q),
+                              "psi_generated": float(q + e), "error": float(e)}
+                             for i, (a, f, q, e) in enumerate(zip(xg, phg, psg, eg))]
     return {"type": "function", "lengths": dict(L), "K": list(d.construction["K"]),
             "precision_points": [dict(p, psi_generated=float(g)) for p, g in zip(pts, got_p)],
-            "structural_error": {"max": float(abs(err[k])), "at_x": float(xs[k])},
+            "structural_error": serr,
             "error_curve": {"x": xs.tolist(), "error": err.tolist()},
             "grashof": grashof(L["crank"], L["coupler"], L["rocker"], L["frame"]),
             "mechanism": d.mechanism, "output": d.output, "function": g["function"],
