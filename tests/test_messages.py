@@ -466,6 +466,9 @@ ENGLISH = [
      "synthesis: Freudenstein's solution has no four-bar: K1 = -3 gives no positive crank length (crank = "
      '`frame`/K1 = -0.1 m, rocker = `frame`/K2 = 0.2 m, coupler squared = a^2 + c^2 + d^2 - 2 a c K3 = 0.01 m^2; '
      'each must be positive): change `frame` or the ranges of `input` and `output`'),
+    ('synthesis.fail.function_branch', {'x': 1.25}, "synthesis: the precision points lie on the two different "
+     "assemblies of Freudenstein's four-bar (x = 1.25 needs the other one: a branch defect), so no one linkage "
+     'passes them all: change the ranges of `input` or `output`, or their starts'),
     ('synthesis.fail.function_assembly', {'phi': 128.5, 'x': 1.7, 'start': 45.0, 'end': 165.0},
      'synthesis: the generated four-bar does not assemble at the crank angle 128.5000 deg (x = 1.7) of the input '
      'range 45..165 deg: narrow `input.range` (or `output.range`), move `input.start` or `output.start`, or '

@@ -675,6 +675,33 @@ def freudenstein(phi_deg, psi_deg):
     return np.linalg.lstsq(A, b, rcond=None)[0]
 
 
+def _closure_hint(a: float, b: float, c: float, d: float, B1: list, turn: bool) -> list:
+    """The assembly hint of B for the closure of the precision points (the triangle A B O1
+    turned counter-clockwise when ``turn``). Hints refer to crank angle 0 (or, where the
+    dyad does not assemble there, the first angle of a 0.25-deg scan that does: the
+    solver's rule, docs/task-file.md ``assembly``); B1 (the first precision pose) is kept
+    where the closure nearest it there is the right one, else B of that closure there."""
+    for k in range(1440):
+        f = math.radians(0.25 * k)
+        ax, ay = a * math.cos(f), a * math.sin(f)
+        L = math.hypot(d - ax, -ay)
+        if abs(b - c) <= L <= b + c and L > 0.0:
+            break
+    else:
+        return B1
+    ux, uy = (d - ax) / L, -ay / L
+    k_ = (b * b - c * c + L * L) / (2.0 * L)
+    h = math.sqrt(max(b * b - k_ * k_, 0.0))
+    cands = [[ax + k_ * ux - sg * h * uy, ay + k_ * uy + sg * h * ux] for sg in (1.0, -1.0)]
+
+    def ccw(B):
+        return (B[0] - ax) * (-(B[1])) - (B[1] - ay) * (d - B[0]) > 0.0     # (B - A) x (O1 - B)
+    near = min(cands, key=lambda B: (B[0] - B1[0]) ** 2 + (B[1] - B1[1]) ** 2)
+    if ccw(near) == turn:
+        return B1
+    return next(B for B in cands if ccw(B) == turn)
+
+
 def _function(sec) -> Design:
     """A four-bar whose rocker angle follows y(x) while the crank angle follows x (Freudenstein's
     equation at Chebyshev precision points; d = frame, a = d/K1, c = d/K2,
@@ -701,8 +728,19 @@ def _function(sec) -> Design:
         raise SynthesisImpossible(Message("synthesis.fail.function_lengths", what=bad[0], K=bad[1], Kv=bad[2],
                                           a=a, c=c, b2=b2))
     b = math.sqrt(b2)
+    # Freudenstein's equation holds for both assemblies of the dyad A B O1: the linkage passes
+    # only the points on the first one's side (the triangle A B O1 turned the same way)
+    turn = []
+    for f, q in zip(np.radians(phi), np.radians(psi)):
+        ab = (d + c * math.cos(q) - a * math.cos(f), c * math.sin(q) - a * math.sin(f))    # B - A
+        bo = (-c * math.cos(q), -c * math.sin(q))                                          # O1 - B
+        turn.append(ab[0] * bo[1] - ab[1] * bo[0] > 0.0)
+    other = [x for x, t in zip(xs, turn) if t != turn[0]]
+    if other:
+        raise SynthesisImpossible(Message("synthesis.fail.function_branch", x=float(other[0])))
     # B in the first precision pose: from O1 along psi_1; A from O along phi_1
     B1 = [d + c * math.cos(math.radians(psi[0])), c * math.sin(math.radians(psi[0]))]
+    B1 = _closure_hint(a, b, c, d, B1, turn[0])
     mech = {"ground": {"O": [0.0, 0.0], "O1": [d, 0.0]},
             "links": {"crank": {"points": ["O", "A"], "length": a, **_mass(sec, "crank")},
                       "coupler": {"points": ["A", "B"], "length": b, **_mass(sec, "coupler")},
@@ -750,12 +788,28 @@ def check_range(mech, over) -> list:
     phi = over.angles(n)
     try:
         kin = solve(mech, np.mod(phi, 360.0))
-    except StageError as err:
-        at = float(err.position) if err.position is not None else float(over.start)
-        near = over.start + over.span / 2.0 + ((at - over.start - over.span / 2.0 + 180.0) % 360.0 - 180.0)
-        raise SynthesisImpossible(Message("synthesis.fail.function_assembly", phi=near, x=over.x_at(at),
-                                          start=float(over.start), end=float(over.start + over.span))) from None
-    return list(kin.warnings)
+    except StageError:
+        pass
+    else:
+        return list(kin.warnings)
+
+    def assembles(f: float) -> bool:
+        try:
+            solve(mech, np.array([f % 360.0]))
+        except StageError:
+            return False
+        return True
+    k = next(i for i, f in enumerate(phi) if not assembles(float(f)))
+    at = float(phi[k])
+    if k > 0:               # the edge between the last crank angle that assembles and the first that does not
+        good = float(phi[k - 1])
+        for _ in range(60):
+            if abs(at - good) <= 1e-7:
+                break
+            mid = 0.5 * (good + at)
+            good, at = (mid, at) if assembles(mid) else (good, mid)
+    raise SynthesisImpossible(Message("synthesis.fail.function_assembly", phi=at, x=over.x_at(at),
+                                      start=float(over.start), end=float(over.start + over.span)))
 
 
 def grashof(a: float, b: float, c: float, d: float) -> str:
