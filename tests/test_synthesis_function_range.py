@@ -230,3 +230,19 @@ def test_accepted_generators_meet_their_precision_points(ps, dp, qs, dq, neg):
         return                                  # refused (exit 3): nothing to check
     for p in r["synthesis"]["precision_points"]:
         assert abs(_wrap(p["psi_generated"] - p["psi"])) <= 1e-9
+
+
+def test_starter_and_example_are_the_classic_generator(tmp_path):
+    res = runner.invoke(app, ["new", "synthesis_function"])
+    assert res.exit_code == 0
+    f = tmp_path / "s.yaml"
+    f.write_text(res.output, encoding="utf-8")
+    r = run(load_task(f))
+    ex = run(load_task(ROOT / "tasks" / "synthesis_function_log10.yaml"))
+    # 100 mm read as the classic's 0.1 m: the lengths of Cramer's rule above
+    xs = np.array([1.5 - 0.5 * math.sqrt(3) / 2, 1.5, 1.5 + 0.5 * math.sqrt(3) / 2])
+    K1, K2, _ = _cramer(*_ideal(CLASSIC, xs))
+    for res_ in (r, ex):
+        L = res_["synthesis"]["lengths"]
+        assert L["crank"] == pytest.approx(0.1 / K1, rel=1e-11) and L["rocker"] == pytest.approx(0.1 / K2, rel=1e-11)
+        assert res_["positions"]["over"] == "input_range"

@@ -566,12 +566,13 @@ def fields(section: Optional[str] = typer.Argument(None, help="only this section
 STARTERS = ("linkage", "cam", "gears", "full", "synthesis")
 STARTERS += ("cam_rocker", "cam_flat", "cam_knife")      # one starter for each cam follower
 STARTERS += ("differential", "balancing")
-STARTERS += ("synthesis_positions", "synthesis_path")
+STARTERS += ("synthesis_positions", "synthesis_path", "synthesis_function")
 
 
 @app.command()
 def new(kind: str = typer.Argument(..., metavar="KIND", help="linkage | cam | cam_rocker | cam_flat | cam_knife | "
                                                             "gears | full | synthesis | synthesis_positions | synthesis_path | "
+                                                            "synthesis_function | "
                                                             "differential | balancing")):
     """Print a commented starter task of the given kind."""
     if kind not in STARTERS:

@@ -240,7 +240,10 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explo
     say("kinematics")
     kin = _stage("kinematics")(kinematics.analyze)(linkage)
     results["kinematics"] = kin.to_entries(list(positions.index))
-    warnings.extend(kin.warnings)
+    # a generator over its input range: the synthesis chose the closure (that of its precision
+    # points, hinted at the angle the solver reads hints at), so that angle is no news to the user
+    warnings.extend(w for w in kin.warnings if over is None or not (isinstance(w, Message)
+                                                                     and w.code == "kinematics.closure_not_at_zero"))
     # a dense curve of the output link for the kinematic diagrams of the report
     if curve_n:
         results["kinematics_curve"] = kinematics.output_curve(linkage, curve_n).to_dict()
