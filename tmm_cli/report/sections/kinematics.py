@@ -420,7 +420,7 @@ def build(ctx) -> str | None:
     ctx.write_csv("plans.csv", ["index", "phi", "plan", "segment", "vector", "length_mm", "value"], plan_csv)
 
     return ctx.render("sections/kinematics.html.j2",
-                      pos_rows=pos_rows, scale_rows=scale_rows, lengths=lengths,
+                      pos_rows=pos_rows, scale_rows=scale_rows, lengths=lengths, over_range=span is not None,
                       fig_positions=positions_svg(ctx, geom, entries, shown_grid, fine, (lo, hi)), n_grid=len(shown_grid),
                       hdr_pts=hdr_pts, v_rows=v_rows, a_rows=a_rows, hdr_l=hdr_l,
                       w_rows=w_rows, e_rows=e_rows, hdr_ang=hdr_ang, ang_rows=ang_rows,
