@@ -246,3 +246,39 @@ def test_starter_and_example_are_the_classic_generator(tmp_path):
         L = res_["synthesis"]["lengths"]
         assert L["crank"] == pytest.approx(0.1 / K1, rel=1e-11) and L["rocker"] == pytest.approx(0.1 / K2, rel=1e-11)
         assert res_["positions"]["over"] == "input_range"
+
+
+def _pose(a, b, c, d, phi_deg, near_deg):
+    """A and B of the four-bar at the crank angle (circle intersection, the branch nearest near_deg)."""
+    q = math.radians(_psi_circles(a, b, c, d, [phi_deg], [near_deg])[0])
+    f = math.radians(phi_deg)
+    return np.array([a * math.cos(f), a * math.sin(f)]), np.array([d + c * math.cos(q), c * math.sin(q)])
+
+
+def test_kinetostatics_over_the_range_by_virtual_work():
+    """Gravity alone (no inertia): the balancing moment on the crank by virtual work,
+    M_b omega1 = g sum m_i vy(S_i), the centres' velocities by central differences of the
+    circle-intersection positions (S at a bar's middle, the crank's at its ground pivot O: the
+    defaults of docs/task-file.md)."""
+    masses = {"crank": 0.5, "coupler": 1.0, "rocker": 1.0}
+    t = load_task({"schema": "tmm/1", "synthesis": {**CLASSIC, "links": {k: {"mass": m, "J": 0.01}
+                                                                         for k, m in masses.items()}},
+                   "drive": {"link": "crank", "speed": 6.0}, "loads": {"gravity": True},
+                   "kinetostatics": {"inertia": False}})
+    r = run(t)
+    L = r["synthesis"]["lengths"]
+    a, b, c, d = L["crank"], L["coupler"], L["rocker"], L["frame"]
+    O1 = np.array([d, 0.0])
+    assert len(r["kinetostatics"]) == 12 and r["singular"] == []
+    for k, e in zip(r["kinetostatics"], r["kinematics"]):
+        near = e["links"]["rocker"]["angle"]
+        h = 1e-4
+
+        def centres(f):
+            A, B = _pose(a, b, c, d, f, near)
+            return {"crank": np.zeros(2), "coupler": (A + B) / 2, "rocker": (O1 + B) / 2}
+        lo, hi = centres(e["phi"] - h), centres(e["phi"] + h)
+        dphi = math.radians(2 * h)
+        vy = {n: (hi[n][1] - lo[n][1]) / dphi * 6.0 for n in masses}
+        want = 9.81 * sum(masses[n] * vy[n] for n in masses) / 6.0
+        assert k["balancing_moment"] == pytest.approx(want, rel=1e-6)
