@@ -282,3 +282,13 @@ def test_kinetostatics_over_the_range_by_virtual_work():
         vy = {n: (hi[n][1] - lo[n][1]) / dphi * 6.0 for n in masses}
         want = 9.81 * sum(masses[n] * vy[n] for n in masses) / 6.0
         assert k["balancing_moment"] == pytest.approx(want, rel=1e-6)
+
+
+def test_sheet_chord_method_over_a_range():
+    """The sheet's graphical differentiation over a crank range (no period): for y = phase^2
+    (phase in deg) each chord's slope is (q0 + q1) per deg, i.e. 2 mid * 180/pi per rad."""
+    from tmm_cli.sheets.sheet1 import chord_derivative
+    ph = np.linspace(0.0, 60.0, 601)
+    mids, d = chord_derivative(ph, ph ** 2, 2.0, n=11, span=60.0)
+    assert mids == pytest.approx((np.arange(11) + 0.5) * 60.0 / 11, abs=1e-12)
+    assert d == pytest.approx(2.0 * 2 * mids * 180.0 / math.pi, rel=1e-4)    # the data's linear interpolation
