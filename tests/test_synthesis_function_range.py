@@ -292,3 +292,21 @@ def test_sheet_chord_method_over_a_range():
     mids, d = chord_derivative(ph, ph ** 2, 2.0, n=11, span=60.0)
     assert mids == pytest.approx((np.arange(11) + 0.5) * 60.0 / 11, abs=1e-12)
     assert d == pytest.approx(2.0 * 2 * mids * 180.0 / math.pi, rel=1e-4)    # the data's linear interpolation
+
+
+def test_largest_structural_error_and_the_note():
+    """The largest |psi - psi_ideal| over the range (the 401 values of x tmm samples) by the
+    circle intersections, and the note's conclusion that states it in each language."""
+    from tmm_cli.report.note import conclusions
+    r = run(_task(CLASSIC))
+    L = r["synthesis"]["lengths"]
+    xs = np.linspace(1.0, 2.0, 401)
+    phi, ideal = _ideal(CLASSIC, xs)
+    err = _wrap(_psi_circles(L["crank"], L["coupler"], L["rocker"], L["frame"], phi, ideal) - ideal)
+    k = int(np.argmax(np.abs(err)))
+    se = r["synthesis"]["structural_error"]
+    assert se["max"] == pytest.approx(abs(err[k]), abs=1e-9) and se["at_x"] == pytest.approx(xs[k], abs=1e-12)
+    for lang, num in (("en", f"{se['max']:.4g}"), ("ru", f"{se['max']:.4g}".replace(".", ",")),
+                      ("uk", f"{se['max']:.4g}".replace(".", ","))):
+        text = " ".join(conclusions(r, lang))
+        assert num in text and "45°…105°" in text
