@@ -247,7 +247,7 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explo
     # a dense curve of the output link for the kinematic diagrams of the report
     if curve_n:
         results["kinematics_curve"] = kinematics.output_curve(linkage, curve_n).to_dict()
-    if explore and over is None:
+    if explore:
         # every point and link at each degree of the turn: the mechanism in motion of report.html
         from .linkage.kinematics.explore import explore_grid
         results["kinematics_explore"] = _stage("kinematics")(explore_grid)(linkage)
@@ -297,7 +297,7 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explo
             import numpy as np
             g = results["kinematics_explore"]
             n = len(g["turn"])
-            phi_g = np.mod(positions.phi0 + g["sign"] * np.arange(n) * (360.0 / n), 360.0)
+            phi_g = np.mod(positions.phi0 + g["sign"] * np.arange(n) * g["step"], 360.0)
             res_g = _stage("kinetostatics")(kinetostatics.analyze_at)(
                 linkage, task.kinetostatics, phi_g, motion=dyn, singular=results.get("singular"))
             kg = res_g.to_dict(detail=True)
