@@ -310,3 +310,19 @@ def test_largest_structural_error_and_the_note():
                       ("uk", f"{se['max']:.4g}".replace(".", ","))):
         text = " ".join(conclusions(r, lang))
         assert num in text and "45°…105°" in text
+
+
+def test_explorer_grid_over_the_range():
+    from tmm_cli.pipeline import run_listed
+    r = run_listed(_task(CLASSIC), explore=True)
+    g = r["kinematics_explore"]
+    assert g["phi"][0] == pytest.approx(45.0) and g["phi"][-1] == pytest.approx(105.0)
+    assert len(g["phi"]) == 61 and g["step"] == pytest.approx(1.0)       # 60 deg at 1 deg, both ends
+    assert [m["turn"] for m in g["positions"]] == pytest.approx(60.0 * np.arange(12) / 11, abs=1e-9)
+    # the mechanism in motion at the range's end: the rocker's angle of the circle intersections
+    L = r["synthesis"]["lengths"]
+    _, ideal = _ideal(CLASSIC, np.array([2.0]))
+    q = _psi_circles(L["crank"], L["coupler"], L["rocker"], L["frame"], [105.0], ideal)[0]
+    B = (g["points"]["B"]["x"][-1], g["points"]["B"]["y"][-1])
+    assert B == pytest.approx((L["frame"] + L["rocker"] * math.cos(math.radians(q)),
+                               L["rocker"] * math.sin(math.radians(q))), rel=1e-6)     # 7 digits kept
