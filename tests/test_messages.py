@@ -473,6 +473,8 @@ ENGLISH = [
      'synthesis: the generated four-bar does not assemble at the crank angle 128.5000 deg (x = 1.7) of the input '
      'range 45..165 deg: narrow `input.range` (or `output.range`), move `input.start` or `output.start`, or '
      'change `frame`'),
+    ('positions.zero_range', {'start': 45.0},
+     "positions: `positions.zero` is not used: over the input range position 0 is the range's start (45 deg)"),
     ('positions.input_range', {'kind': 'double-rocker', 'count': 12, 'start': 45.0, 'end': 105.0},
      "positions: the generated four-bar is a double-rocker, not a crank-rocker: the 12 positions are spread over "
      "the input range 45..105 deg, both ends included; the extreme positions, the coefficient K and the flywheel "

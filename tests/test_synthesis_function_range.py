@@ -326,3 +326,10 @@ def test_explorer_grid_over_the_range():
     B = (g["points"]["B"]["x"][-1], g["points"]["B"]["y"][-1])
     assert B == pytest.approx((L["frame"] + L["rocker"] * math.cos(math.radians(q)),
                                L["rocker"] * math.sin(math.radians(q))), rel=1e-6)     # 7 digits kept
+
+
+def test_zero_given_over_a_range_is_said_to_be_unused():
+    r = run(_task(CLASSIC, positions={"zero": 10}))
+    assert r["positions"]["phi0"] == 45.0
+    assert any(m["code"] == "positions.zero_range" for m in r["messages"])
+    assert not any(m["code"] == "positions.zero_range" for m in run(_task(CLASSIC))["messages"])

@@ -214,6 +214,8 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explo
         if over is not None:
             warnings.append(Message("positions.input_range", kind=over.kind, count=positions.count, start=float(over.start),
                                     end=float(over.start + over.span)))
+            if task.positions is not None and "zero" in task.positions.model_fields_set:
+                warnings.append(Message("positions.zero_range", start=float(over.start)))
         results["positions"] = positions.to_dict()
         # the position the report works step by step (report.detail_position, or the default)
         detail = task.report.detail_position if task.report is not None else None
