@@ -30,9 +30,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 from ..errors import StageError
 from ..messages import Message
+
+if TYPE_CHECKING:       # a type only: the context is imported where a range is made
+    from .context import CrankRange
 
 STAGE = "synthesis"
 TYPES = ("slider_crank", "offset_slider_crank", "crank_rocker", "slotted_lever", "shaper", "function", "positions",
@@ -109,7 +113,7 @@ class Design:
     working: str                         # forward | backward: the slow stroke's sense
     solutions: list[dict] = field(default_factory=list)
     construction: dict = field(default_factory=dict)   # points of the drawing (m)
-    crank_range: object = None           # context.CrankRange: the crank works over it only (None: full turns)
+    crank_range: CrankRange | None = None   # the crank works over it only (None: full turns)
 
 
 # ---------------------------------------------------------------- inputs
