@@ -466,19 +466,36 @@ ENGLISH = [
     ('input.synth_function_ends', {'y': 0.0, 'x0': 0.0, 'x1': 3.141592653589793},
      "y(x) takes the same value 0 at both ends of the range of x (0 and 3.14159): the rocker's angle, linear in y "
      'between them, is undefined; change `function` or `x`'),
-    ('synthesis.fail.function_assembly', {'a': 0.2, 'b': 0.3, 'c': 0.25, 'd': 0.3, 'intervals': [[141.5, 218.5]],
-                                          'p0': 30.0, 'p1': 120.0},
-     "synthesis: the four-bar of Freudenstein's solution (crank 0.2 m, coupler 0.3 m, rocker 0.25 m, frame 0.3 m) "
-     'does not assemble for crank angles 141.500000..218.500000 deg: its crank cannot turn fully, and tmm analyses '
-     'the generated linkage over the whole turn (the range of `input` is 30 to 120 deg); change `frame` or the '
-     'ranges of `input` and `output`'),
     ('synthesis.fail.function_range', {}, 'synthesis: the function is not finite over the range of x, or '
      'y(x0) = y(x1): change `function` or `x`'),
     ('synthesis.fail.function_points', {}, 'synthesis: the precision points give no Freudenstein solution '
      '(singular equations): change the ranges of `input` or `output`'),
-    ('synthesis.fail.function_lengths', {'a': -0.1, 'c': 0.2, 'b2': 0.01}, "synthesis: Freudenstein's solution "
-     'has no four-bar (crank -0.1 m, rocker 0.2 m, coupler squared 0.01 m^2; each must be positive): change '
-     '`frame` or the ranges of `input` and `output`'),
+    ('synthesis.fail.function_lengths', {'what': 'crank', 'K': 'K1', 'Kv': -3.0, 'a': -0.1, 'c': 0.2, 'b2': 0.01},
+     "synthesis: Freudenstein's solution has no four-bar: K1 = -3 gives no positive crank length (crank = "
+     '`frame`/K1 = -0.1 m, rocker = `frame`/K2 = 0.2 m, coupler squared = a^2 + c^2 + d^2 - 2 a c K3 = 0.01 m^2; '
+     'each must be positive): change `frame` or the ranges of `input` and `output`'),
+    ('synthesis.fail.function_branch', {'x': 1.25}, "synthesis: the precision points lie on the two different "
+     "assemblies of Freudenstein's four-bar (x = 1.25 needs the other one: a branch defect), so no one linkage "
+     'passes them all: change the ranges of `input` or `output`, or their starts'),
+    ('synthesis.fail.function_assembly', {'phi': 128.5, 'x': 1.7, 'start': 45.0, 'end': 165.0},
+     'synthesis: the generated four-bar does not assemble at the crank angle 128.5000 deg (x = 1.7) of the input '
+     'range 45..165 deg: narrow `input.range` (or `output.range`), move `input.start` or `output.start`, or '
+     'change `frame`'),
+    ('positions.zero_range', {'start': 45.0},
+     "positions: `positions.zero` is not used: over the input range position 0 is the range's start (45 deg)"),
+    ('positions.input_range', {'kind': 'double-rocker', 'count': 12, 'start': 45.0, 'end': 105.0},
+     "positions: the generated four-bar is a double-rocker, not a crank-rocker: the 12 positions are spread over "
+     "the input range 45..105 deg, both ends included; the extreme positions, the coefficient K and the flywheel "
+     "need a crank-rocker's full cycle and are not found"),
+    ('positions.fail.range_no_stroke', {'link': 'rocker'},
+     "the crank works over the input range only, so the output link 'rocker' has no extreme positions and "
+     "stroke-based loads cannot be placed"),
+    ('flywheel.skipped_range', {'start': 45.0, 'end': 105.0},
+     "flywheel: not computed: the crank works over the input range only (45..105 deg), and the flywheel needs "
+     "the machine's full cycle"),
+    ('balancing.skipped_range', {'start': 45.0, 'end': 105.0},
+     'balancing: not computed: the crank works over the input range only (45..105 deg), and balancing the '
+     'linkage needs its full turn'),
     ('input.synth_collinear', {'name': 'A', 'points': '(0, 0), (0.1, 0), (0.2, 0)'},
      'the three positions of the moving pivot A lie on one line (0, 0), (0.1, 0), (0.2, 0): no circle passes '
      'through them; move the pivot or change `positions`'),

@@ -31,10 +31,12 @@ def checked(path: str | Path, *, assembly: bool = True, text: str | None = None,
     check), which :func:`compute` takes to compute on instead of building and checking it again."""
     from .task import load_task
     task = load_task(Path(path), text=text)
+    crank_range = None
     if task.synthesis is not None:
         from .linkage.synthesis import SynthesisImpossible, generate
         try:
-            task, _ = generate(task)
+            task, design = generate(task)
+            crank_range = design.crank_range
         except SynthesisImpossible:
             if stage_errors:
                 raise          # requirements a lever synthesis cannot meet (exit 3)
@@ -43,7 +45,7 @@ def checked(path: str | Path, *, assembly: bool = True, text: str | None = None,
     if task.mechanism is not None:
         from .validation import check_feasible
         try:
-            mechanism = check_feasible(task, assembly=assembly)
+            mechanism = check_feasible(task, assembly=assembly, crank_range=crank_range)
         except StageError:
             if stage_errors:
                 raise

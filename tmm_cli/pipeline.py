@@ -184,8 +184,10 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explo
     from .linkage.context import build
     from .linkage.kinematics.positions import quick_working
     from .validation import check_detail, impossible_dimensions
+    from .messages import Message
 
     mech = checked
+    over = design.crank_range if design is not None else None   # a function generator's input range
 
     def told(part, value) -> None:
         nonlocal mech
@@ -194,6 +196,11 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explo
             results["structure"] = {**st.to_dict(), **mech.structure_info()}
             warnings.extend(st.warnings)
             say("positions")
+            if over is not None:            # over the input range only (exit 3 naming where not)
+                if checked is None:
+                    from .linkage.synthesis import check_range
+                    check_range(mech, over)
+                return
             try:
                 if checked is None:
                     kinematics.check_assembly(mech)
@@ -204,6 +211,11 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explo
         check_detail(task, positions)
         warnings.extend(quick_working(positions))
         warnings.extend(massless_links(task, mech))
+        if over is not None:
+            warnings.append(Message("positions.input_range", kind=over.kind, count=positions.count, start=float(over.start),
+                                    end=float(over.start + over.span)))
+            if task.positions is not None and "zero" in task.positions.model_fields_set:
+                warnings.append(Message("positions.zero_range", start=float(over.start)))
         results["positions"] = positions.to_dict()
         # the position the report works step by step (report.detail_position, or the default)
         detail = task.report.detail_position if task.report is not None else None
@@ -217,7 +229,8 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explo
 
     say("structure")
     # the crank speed: given, or from the output's speed with the stroke and K just found
-    linkage = build(task, mechanism=checked, kinks=task.flywheel is not None, told=told)
+    linkage = build(task, mechanism=checked, kinks=task.flywheel is not None and over is None, told=told,
+                    crank_range=over)
     mech, positions, drive = linkage.mechanism, linkage.positions, linkage.drive
     built["drive"] = drive
     if design is not None:
@@ -229,7 +242,10 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explo
     say("kinematics")
     kin = _stage("kinematics")(kinematics.analyze)(linkage)
     results["kinematics"] = kin.to_entries(list(positions.index))
-    warnings.extend(kin.warnings)
+    # a generator over its input range: the synthesis chose the closure (that of its precision
+    # points, hinted at the angle the solver reads hints at), so that angle is no news to the user
+    warnings.extend(w for w in kin.warnings if over is None or not (isinstance(w, Message)
+                                                                     and w.code == "kinematics.closure_not_at_zero"))
     # a dense curve of the output link for the kinematic diagrams of the report
     if curve_n:
         results["kinematics_curve"] = kinematics.output_curve(linkage, curve_n).to_dict()
@@ -238,7 +254,10 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explo
         from .linkage.kinematics.explore import explore_grid
         results["kinematics_explore"] = _stage("kinematics")(explore_grid)(linkage)
 
-    if task.balancing is not None:
+    skipped = {} if over is None else {"start": float(over.start), "end": float(over.start + over.span)}
+    if task.balancing is not None and skipped:      # a full turn is needed: said, never silent
+        warnings.append(Message("balancing.skipped_range", **skipped))
+    elif task.balancing is not None:
         say("balancing")
         import numpy as np
 
@@ -256,7 +275,9 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explo
             kin = _stage("kinematics")(kinematics.analyze)(linkage)
 
     dyn = None
-    if task.flywheel is not None:
+    if task.flywheel is not None and skipped:
+        warnings.append(Message("flywheel.skipped_range", **skipped))
+    elif task.flywheel is not None:
         say("dynamics")
         # the accuracy table (timed) runs only in `tmm study` / `tmm run --study`
         dyn = _stage("dynamics")(dynamics.analyze)(linkage, task.flywheel, accuracy=False)
@@ -278,7 +299,7 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explo
             import numpy as np
             g = results["kinematics_explore"]
             n = len(g["turn"])
-            phi_g = np.mod(positions.phi0 + g["sign"] * np.arange(n) * (360.0 / n), 360.0)
+            phi_g = np.mod(positions.phi0 + g["sign"] * np.arange(n) * g["step"], 360.0)
             res_g = _stage("kinetostatics")(kinetostatics.analyze_at)(
                 linkage, task.kinetostatics, phi_g, motion=dyn, singular=results.get("singular"))
             kg = res_g.to_dict(detail=True)

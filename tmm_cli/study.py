@@ -441,7 +441,11 @@ def run_study(task, progress: Callable[[str], None] | None = None, repeat: int =
     say = progress or (lambda s: None)
     out: dict = {}
     extra: dict = {}
-    if task.mechanism is not None:
+    over = None                 # a function generator over its input range: no turn to study
+    if task.synthesis is not None:
+        from .linkage.synthesis import generate
+        over = generate(task)[1].crank_range
+    if task.mechanism is not None and over is None:
         from .linkage.context import build
         linkage = build(task)
         say("study: curves")

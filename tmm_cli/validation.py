@@ -6,10 +6,12 @@ from .messages import Message
 from .messages import as_message as _coded
 
 
-def check_feasible(task, assembly: bool = True):
+def check_feasible(task, assembly: bool = True, crank_range=None):
     """Raise TaskError / StageError if the task's linkage cannot be computed:
     bad references between points, links and guides; W != 1; and (with
-    ``assembly``) a crank angle where some group does not assemble.  Returns the
+    ``assembly``) a crank angle where some group does not assemble (over the turn, or
+    over ``crank_range``, a ``linkage.context.CrankRange`` a synthesis gave: a function
+    generator whose crank does not turn fully; ``synthesis.check_range``).  Returns the
     mechanism built and checked over the cycle (None without ``assembly``): the pipeline
     computes on it (``pipeline.run``'s ``mechanism``) instead of building and checking it
     again."""
@@ -21,12 +23,16 @@ def check_feasible(task, assembly: bool = True):
     from .linkage import kinematics, structure
 
     structure.analyze(mech, task=task)
+    if crank_range is not None:
+        from .linkage.synthesis import check_range
+        check_range(mech, crank_range)
+    else:
+        try:
+            kinematics.check_assembly(mech)
+        except StageError as err:
+            raise impossible_dimensions(task, err) or err
     try:
-        kinematics.check_assembly(mech)
-    except StageError as err:
-        raise impossible_dimensions(task, err) or err
-    try:
-        check_selection(task, mech)
+        check_selection(task, mech, crank_range)
     except TaskError as err:
         raise task.locate(err) from None
     return mech
@@ -52,9 +58,9 @@ def check_sections(task, mech) -> None:
         raise task.locate(err) from None
 
 
-def check_selection(task, mech) -> None:
+def check_selection(task, mech, crank_range=None) -> None:
     """A TaskError when `kinetostatics.positions` or `report.detail_position` names a
-    position the cycle does not have."""
+    position the cycle (or the crank range) does not have."""
     sel = task.kinetostatics is not None and task.kinetostatics.positions != "all"
     detail = task.report is not None and task.report.detail_position is not None
     if not (sel or detail):
@@ -62,7 +68,7 @@ def check_selection(task, mech) -> None:
     from .linkage.context import reported_positions
     from .linkage.kinetostatics import select_rows
     positions = guarded("positions")(reported_positions)(mech, task.positions, task.loads, task.drive.sign,
-                                                        float(task.drive.cycle))
+                                                        float(task.drive.cycle), crank_range=crank_range)
     if sel:
         select_rows(task.kinetostatics.positions, positions)
     check_detail(task, positions)

@@ -407,7 +407,6 @@ def function_input_error(sec) -> tuple | None:
     import numpy as np
 
     from ..expr import compile_expr
-    from .synthesis import chebyshev_points
     x0, x1 = float(sec.x[0]), float(sec.x[1])
     xs = np.concatenate([np.linspace(x0, x1, 1001), chebyshev_points(x0, x1, int(sec.points or 3))])
     ys = np.broadcast_to(np.asarray(compile_expr(sec.function_)(xs), float), xs.shape)
@@ -532,3 +531,26 @@ class SynthesisSection(_Model):
                                       Message("input.synth_no_link", type=self.type, name=name,
                                               links=list(LINKS[self.type])))
         return self
+
+
+def chebyshev_points(x0: float, x1: float, n: int) -> list[float]:
+    """Chebyshev's precision points on a range.
+
+    Parameters
+    ----------
+    x0, x1 : float
+        The range.
+    n : int
+        The number of points.
+
+    Returns
+    -------
+    list of float
+        x_j = (x0 + x1)/2 - (x1 - x0)/2 cos((2j - 1) pi/(2n)), j = 1..n.
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: Chebyshev spacing of the precision
+    points of a function generator.
+    """
+    return [(x0 + x1) / 2 - (x1 - x0) / 2 * math.cos((2 * j - 1) * math.pi / (2 * n)) for j in range(1, n + 1)]

@@ -30,9 +30,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 from ..errors import StageError
 from ..messages import Message
+from .spec import chebyshev_points
+
+if TYPE_CHECKING:       # a type only: the context is imported where a range is made
+    from .context import CrankRange
 
 STAGE = "synthesis"
 TYPES = ("slider_crank", "offset_slider_crank", "crank_rocker", "slotted_lever", "shaper", "function", "positions",
@@ -109,6 +114,7 @@ class Design:
     working: str                         # forward | backward: the slow stroke's sense
     solutions: list[dict] = field(default_factory=list)
     construction: dict = field(default_factory=dict)   # points of the drawing (m)
+    crank_range: CrankRange | None = None   # the crank works over it only (None: full turns)
 
 
 # ---------------------------------------------------------------- inputs
@@ -585,29 +591,6 @@ def generate(task):
 
 
 # ---------------------------------------------------------------- function generation (Freudenstein)
-def chebyshev_points(x0: float, x1: float, n: int) -> list[float]:
-    """Chebyshev's precision points on a range.
-
-    Parameters
-    ----------
-    x0, x1 : float
-        The range.
-    n : int
-        The number of points.
-
-    Returns
-    -------
-    list of float
-        x_j = (x0 + x1)/2 - (x1 - x0)/2 cos((2j - 1) pi/(2n)), j = 1..n.
-
-    References
-    ----------
-    Artobolevsky, *Theory of Mechanisms and Machines*: Chebyshev spacing of the precision
-    points of a function generator.
-    """
-    return [(x0 + x1) / 2 - (x1 - x0) / 2 * math.cos((2 * j - 1) * math.pi / (2 * n)) for j in range(1, n + 1)]
-
-
 def function_angles(g: dict, x):
     """The ideal crank and rocker angles of a function generator.
 
@@ -674,6 +657,33 @@ def freudenstein(phi_deg, psi_deg):
     return np.linalg.lstsq(A, b, rcond=None)[0]
 
 
+def _closure_hint(a: float, b: float, c: float, d: float, B1: list, turn: bool) -> list:
+    """The assembly hint of B for the closure of the precision points (the triangle A B O1
+    turned counter-clockwise when ``turn``). Hints refer to crank angle 0 (or, where the
+    dyad does not assemble there, the first angle of a 0.25-deg scan that does: the
+    solver's rule, docs/task-file.md ``assembly``); B1 (the first precision pose) is kept
+    where the closure nearest it there is the right one, else B of that closure there."""
+    for k in range(1440):
+        f = math.radians(0.25 * k)
+        ax, ay = a * math.cos(f), a * math.sin(f)
+        L = math.hypot(d - ax, -ay)
+        if abs(b - c) <= L <= b + c and L > 0.0:
+            break
+    else:
+        return B1
+    ux, uy = (d - ax) / L, -ay / L
+    k_ = (b * b - c * c + L * L) / (2.0 * L)
+    h = math.sqrt(max(b * b - k_ * k_, 0.0))
+    cands = [[ax + k_ * ux - sg * h * uy, ay + k_ * uy + sg * h * ux] for sg in (1.0, -1.0)]
+
+    def ccw(B):
+        return (B[0] - ax) * (-(B[1])) - (B[1] - ay) * (d - B[0]) > 0.0     # (B - A) x (O1 - B)
+    near = min(cands, key=lambda B: (B[0] - B1[0]) ** 2 + (B[1] - B1[1]) ** 2)
+    if ccw(near) == turn:
+        return B1
+    return next(B for B in cands if ccw(B) == turn)
+
+
 def _function(sec) -> Design:
     """A four-bar whose rocker angle follows y(x) while the crank angle follows x (Freudenstein's
     equation at Chebyshev precision points; d = frame, a = d/K1, c = d/K2,
@@ -694,14 +704,25 @@ def _function(sec) -> Design:
     a, c = d / K1 if K1 else math.inf, d / K2 if K2 else math.inf
     b2 = a * a + c * c + d * d - 2 * a * c * K3
     if not (math.isfinite(a) and math.isfinite(c)) or a <= 0 or c <= 0 or b2 <= 0:
-        raise SynthesisImpossible(Message("synthesis.fail.function_lengths", a=a, c=c, b2=b2))
+        # the coefficient that gave it: crank = d/K1, rocker = d/K2, coupler^2 through K3
+        bad = ("crank", "K1", K1) if not (math.isfinite(a) and a > 0) else \
+            ("rocker", "K2", K2) if not (math.isfinite(c) and c > 0) else ("coupler", "K3", K3)
+        raise SynthesisImpossible(Message("synthesis.fail.function_lengths", what=bad[0], K=bad[1], Kv=bad[2],
+                                          a=a, c=c, b2=b2))
     b = math.sqrt(b2)
-    arcs = _unassembled_arcs(a, b, c, d)
-    if arcs:
-        raise SynthesisImpossible(Message("synthesis.fail.function_assembly", a=a, b=b, c=c, d=d, intervals=arcs,
-                                          p0=float(g["input"][0]), p1=float(g["input"][0] + g["input"][1])))
+    # Freudenstein's equation holds for both assemblies of the dyad A B O1: the linkage passes
+    # only the points on the first one's side (the triangle A B O1 turned the same way)
+    turn = []
+    for f, q in zip(np.radians(phi), np.radians(psi)):
+        ab = (d + c * math.cos(q) - a * math.cos(f), c * math.sin(q) - a * math.sin(f))    # B - A
+        bo = (-c * math.cos(q), -c * math.sin(q))                                          # O1 - B
+        turn.append(ab[0] * bo[1] - ab[1] * bo[0] > 0.0)
+    other = [x for x, t in zip(xs, turn) if t != turn[0]]
+    if other:
+        raise SynthesisImpossible(Message("synthesis.fail.function_branch", x=float(other[0])))
     # B in the first precision pose: from O1 along psi_1; A from O along phi_1
     B1 = [d + c * math.cos(math.radians(psi[0])), c * math.sin(math.radians(psi[0]))]
+    B1 = _closure_hint(a, b, c, d, B1, turn[0])
     mech = {"ground": {"O": [0.0, 0.0], "O1": [d, 0.0]},
             "links": {"crank": {"points": ["O", "A"], "length": a, **_mass(sec, "crank")},
                       "coupler": {"points": ["A", "B"], "length": b, **_mass(sec, "coupler")},
@@ -709,49 +730,68 @@ def _function(sec) -> Design:
             "assembly": {"B": B1}}
     cons = {"precision_points": [{"x": float(x), "phi": float(f), "psi": float(q)} for x, f, q in zip(xs, phi, psi)],
             "K": [K1, K2, K3], "y": [y0, y1], "generator": g}
+    kind = grashof(a, b, c, d)
+    # a crank-rocker's crank turns fully: the course's cycle (12 positions over the turn,
+    # the extremes, K, a flywheel); any other generator works over its input range only
+    over = None
+    if kind != "crank-rocker":
+        from .context import CrankRange
+        over = CrankRange(start=g["input"][0], span=g["input"][1], x=(x0, x1), kind=kind)
     return Design("function", {"crank": a, "coupler": b, "rocker": c, "frame": d}, mech, "rocker", "forward", [],
-                  cons)
+                  cons, crank_range=over)
 
 
-def _unassembled_arcs(a: float, b: float, c: float, d: float) -> list[list[float]]:
-    """The crank angles (deg, from O->O1) where the four-bar O(0, 0)-A-B-O1(d, 0) does not
-    close: |AO1| outside [|b - c|, b + c], found on a 0.05-deg grid and refined by bisection
-    to 1e-9 deg; [[from, to], ...] counter-clockwise (an arc across 0 deg as [from, to] with
-    from > to); [] when the crank turns fully. The generated linkage is analysed over the
-    whole turn: a function generator whose crank cannot turn (a double-rocker) is named here,
-    not by the kinematics of a mechanism the student never wrote."""
+def check_range(mech, over) -> list:
+    """That a generated linkage assembles over its crank range (a function generator
+    whose crank does not turn fully).
+
+    Parameters
+    ----------
+    mech : Mechanism
+        The generated linkage.
+    over : CrankRange
+        The crank's range (``Design.crank_range``).
+
+    Returns
+    -------
+    list
+        The kinematics' warnings over the range (change points).
+
+    Raises
+    ------
+    SynthesisImpossible
+        At the first crank angle from the range's start where the linkage does not
+        assemble, naming it, the argument x there and what to change (exit 3).
+    """
     import numpy as np
 
-    def margin(f):
-        f = np.radians(f)
-        L = np.sqrt(a * a + d * d - 2.0 * a * d * np.cos(f))
-        return np.minimum(b + c - L, L - abs(b - c))
-    grid = np.arange(0.0, 360.0, 0.05)
-    ok = margin(grid) >= -1e-12 * (a + b + c + d)
-    if ok.all():
-        return []
-    if not ok.any():
-        return [[0.0, 360.0]]
+    from .kinematics import solve
+    n = max(2, int(math.ceil(abs(over.span) / 0.25)) + 1)
+    phi = over.angles(n)
+    try:
+        kin = solve(mech, np.mod(phi, 360.0))
+    except StageError:
+        pass
+    else:
+        return list(kin.warnings)
 
-    def edge(lo, hi):                     # ok(lo) != ok(hi): the angle where the closure ends
-        want = margin(lo) >= 0
+    def assembles(f: float) -> bool:
+        try:
+            solve(mech, np.array([f % 360.0]))
+        except StageError:
+            return False
+        return True
+    k = next(i for i, f in enumerate(phi) if not assembles(float(f)))
+    at = float(phi[k])
+    if k > 0:               # the edge between the last crank angle that assembles and the first that does not
+        good = float(phi[k - 1])
         for _ in range(60):
-            mid = 0.5 * (lo + hi)
-            if (margin(mid) >= 0) == want:
-                lo = mid
-            else:
-                hi = mid
-        return 0.5 * (lo + hi) % 360.0
-    n = len(grid)
-    start = int(np.argmax(ok))            # walk from an angle where it closes, once round
-    arcs, a0 = [], None
-    for k in range(1, n + 1):
-        i, j = (start + k - 1) % n, (start + k) % n
-        if ok[i] and not ok[j]:
-            a0 = edge(grid[i], grid[i] + 0.05)
-        elif not ok[i] and ok[j]:
-            arcs.append([a0, edge(grid[i], grid[i] + 0.05)])
-    return arcs
+            if abs(at - good) <= 1e-7:
+                break
+            mid = 0.5 * (good + at)
+            good, at = (mid, at) if assembles(mid) else (good, mid)
+    raise SynthesisImpossible(Message("synthesis.fail.function_assembly", phi=at, x=over.x_at(at),
+                                      start=float(over.start), end=float(over.start + over.span)))
 
 
 def grashof(a: float, b: float, c: float, d: float) -> str:
@@ -817,9 +857,21 @@ def analyse_function(linkage, d: Design) -> dict:
     Bp, Pp = kp.pos["B"], kp.pos["O1"]
     got_p = np.degrees(np.arctan2(Bp[:, 1] - Pp[:, 1], Bp[:, 0] - Pp[:, 0]))
     L = d.lengths
+    serr = {"max": float(abs(err[k])), "at_x": float(xs[k])}
+    if d.crank_range is not None:
+        # the reported positions spread over the input range: x, the ideal and the generated psi there
+        xg = x0 + (x1 - x0) * np.linspace(0.0, 1.0, int(linkage.positions.count))
+        phg, psg, _ = function_angles(g, xg)
+        kg = solve(linkage.mechanism, np.mod(phg, 360.0), linkage.drive.omega)
+        Bg, Pg = kg.pos["B"], kg.pos["O1"]
+        got_g = np.degrees(np.arctan2(Bg[:, 1] - Pg[:, 1], Bg[:, 0] - Pg[:, 0]))
+        eg = (got_g - psg + 180.0) % 360.0 - 180.0
+        serr["positions"] = [{"index": i, "x": float(a), "phi": float(f), "psi": float(q),
+                              "psi_generated": float(q + e), "error": float(e)}
+                             for i, (a, f, q, e) in enumerate(zip(xg, phg, psg, eg))]
     return {"type": "function", "lengths": dict(L), "K": list(d.construction["K"]),
             "precision_points": [dict(p, psi_generated=float(g)) for p, g in zip(pts, got_p)],
-            "structural_error": {"max": float(abs(err[k])), "at_x": float(xs[k])},
+            "structural_error": serr,
             "error_curve": {"x": xs.tolist(), "error": err.tolist()},
             "grashof": grashof(L["crank"], L["coupler"], L["rocker"], L["frame"]),
             "mechanism": d.mechanism, "output": d.output, "function": g["function"],

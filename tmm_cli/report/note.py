@@ -56,6 +56,11 @@ def conclusions(results: dict, lang: str) -> list[str]:
     if st:
         out.append(W["c_structure"].format(W=st.get("W"), formula=st.get("formula")))
     pos = results.get("positions") or {}
+    syn = results.get("synthesis") or {}
+    if pos.get("over") == "input_range" and syn.get("structural_error"):
+        se = syn["structural_error"]
+        out.append(W["c_range"].format(start=_num(pos["phi0"], lang), end=_num(pos["phi0"] + pos["span"], lang),
+                                       err=_num(se["max"], lang), x=_num(se["at_x"], lang)))
     if pos.get("K") is not None and pos.get("working_stroke_angle") is not None:
         out.append(W["c_K"].format(K=_num(pos["K"], lang), ws=_num(pos["working_stroke_angle"], lang)))
     ks = results.get("kinetostatics") or []

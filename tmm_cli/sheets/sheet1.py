@@ -196,15 +196,17 @@ def draw_plans(cv, geom, entry, box, lang="en", kinds=("v", "a"), table_w: float
     return out
 
 
-def chord_derivative(phase_deg, y, omega: float, n: int = 12, per_deg: bool = False):
+def chord_derivative(phase_deg, y, omega: float, n: int = 12, per_deg: bool = False, span: float | None = None):
     """The course's check of a diagram by graphical differentiation, the chord method: y at
-    n equal steps of the crank's turn (interpolated on the exact curve), the slope of each
-    chord times ω (the crank turns at ω) put at the middle of its interval.  per_deg: y in
-    degrees (a rocker's ψ), the slope per radian.  Returns (middles, derivative values)."""
-    q = np.linspace(0.0, 360.0, n + 1)
-    yq = np.interp(q, phase_deg, y, period=360.0)
+    n equal steps of the crank's turn (of the crank range ``span``, deg, when the positions
+    are spread over one; interpolated on the exact curve), the slope of each chord times ω
+    (the crank turns at ω) put at the middle of its interval.  per_deg: y in degrees (a
+    rocker's ψ), the slope per radian.  Returns (middles, derivative values)."""
+    whole = 360.0 if span is None else abs(span)
+    q = np.linspace(0.0, whole, n + 1)
+    yq = np.interp(q, phase_deg, y, period=360.0) if span is None else np.interp(q, phase_deg, y)
     scale = omega * (math.pi / 180.0 if per_deg else 1.0)
-    return (q[:-1] + q[1:]) / 2, np.diff(yq) / math.radians(360.0 / n) * scale
+    return (q[:-1] + q[1:]) / 2, np.diff(yq) / math.radians(whole / n) * scale
 
 
 def draw_velocity_plans(cv, geom, entries, box, lang="en", ncol: int = 4) -> dict:
@@ -243,6 +245,9 @@ def draw_diagrams(cv, results, geom, box, lang="en") -> dict:
         return {}
     phi0 = float(pos.get("phi0", 0.0))
     sgn = -1.0 if pos.get("direction") == "cw" else 1.0
+    span = pos.get("span") if pos.get("over") == "input_range" else None
+    if span is not None:        # over the input range: its own sense, from its start
+        sgn = 1.0 if span >= 0 else -1.0
     phase = (np.asarray(kc["phi"], float) - phi0) * sgn % 360.0
     o = np.argsort(phase, kind="stable")
     phase = phase[o]
@@ -250,7 +255,10 @@ def draw_diagrams(cv, results, geom, box, lang="en") -> dict:
     slider = kc.get("quantity") == "slider"
     keys = (("s", "s", U["m"]), ("v", "v", U["m/s"]), ("a", "a", U["m/s²"])) if slider else \
         (("s", "ψ", U["deg"]), ("v", "ω", U["rad/s"]), ("a", "ε", U["rad/s²"]))
-    mu_phi = 1.0
+    mu_phi = 1.0 if span is None else std_mu(abs(span) / 360.0)
+    n_ch = 12 if span is None else max(int(pos.get("count") or 12) - 1, 1)
+    ticks = [(30.0 * i, str(i) if i < 12 else "") for i in range(13)] if span is None else \
+        [(abs(span) * i / n_ch, str(i)) for i in range(n_ch + 1)]
     rowh = (h - 10.0) / 3
     # the crank's steady ω
     omega = abs(float(results["drive"]["omega"])) if results.get("kinematics") and results.get("drive") else 0.0
@@ -263,17 +271,19 @@ def draw_diagrams(cv, results, geom, box, lang="en") -> dict:
         ax0 = x0 + 14.0
         yc = y0 + h - 10.0 - rowh * (k + 0.5)
         mm = TXT[lang]["mm"]
-        pts, = draw_graph(cv, (ax0, yc), [(phase, y, "#1f5fbf")], mu_phi, mu, x_len=360.0 / mu_phi,
+        pts, = draw_graph(cv, (ax0, yc), [(phase, y, "#1f5fbf")], mu_phi, mu,
+                          x_len=(360.0 if span is None else abs(span)) / mu_phi,
                           y_up=rowh / 2 - 3, y_down=rowh / 2 - 3, x_sym="φ", y_sym=sym,
                           mu_text=f"{mu_text(sym, mu, unit, mm)},  μφ = {mu_phi:g} °/{mm}",
-                          ticks=[(30.0 * i, str(i) if i < 12 else "") for i in range(13)])
+                          ticks=ticks)
         good = np.isfinite(y)
         out[key] = {"mu": mu, "pts": pts, "values": y[good]}
         prev = {"v": "s", "a": "v"}.get(key)
         if prev and omega and np.isfinite(out.get(prev, {}).get("raw", y)).all():
             # the chord method on the diagram above: dashed, with its deviation from this exact curve
-            mids, d = chord_derivative(phase, out[prev]["raw"], omega, per_deg=(prev == "s" and not slider))
-            exact = np.interp(mids, phase, y, period=360.0)
+            mids, d = chord_derivative(phase, out[prev]["raw"], omega, n=n_ch, per_deg=(prev == "s" and not slider),
+                                       span=span)
+            exact = np.interp(mids, phase, y, period=360.0) if span is None else np.interp(mids, phase, y)
             err = 100.0 * float(np.max(np.abs(d - exact))) / ym
             cv.layer = "thin"
             cp = np.c_[ax0 + mids / mu_phi, yc + d / mu]

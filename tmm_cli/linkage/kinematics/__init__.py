@@ -5,7 +5,7 @@ Public API (docs/ARCHITECTURE.md)::
     analyze(linkage) -> KinematicsResult                 # the stage: at the reported positions
     output_curve(linkage, n=361, turn=None) -> OutputCurve   # the output's s, v, a over a turn
     solve(mech, phi_deg, omega1, eps1=0.0) -> KinematicsResult
-    find_positions(mech, positions_section, sign, extra_added=()) -> PositionsResult
+    find_positions(mech, positions_section, sign, extra_added=(), *, crank_range=None) -> PositionsResult
     check_assembly(mech, n=720) -> list[str]
 """
 from .positions import PositionsResult, find_positions

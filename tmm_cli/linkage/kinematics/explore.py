@@ -25,7 +25,8 @@ def explore_grid(linkage, step: float = 1.0) -> dict:
         The mechanism, its drive (omega in rad/s, signed; the sense of rotation) and
         its positions (position 0 at ``positions.phi0``, deg).
     step : float
-        Grid step, deg (at least 12 angles a turn).
+        Grid step, deg (at least 12 angles a turn; over a crank range, ``positions.over``
+        'input_range', at least 12 angles from its start to its end, both included).
 
     Returns
     -------
@@ -42,8 +43,15 @@ def explore_grid(linkage, step: float = 1.0) -> dict:
     omega1 = float(linkage.drive.omega)
     sign = float(linkage.drive.sign)
     phi0 = float(linkage.positions.phi0)
-    n = max(int(round(360.0 / step)), 12)
-    turn = np.arange(n) * (360.0 / n)
+    span = linkage.positions.span
+    if span is None:
+        n = max(int(round(360.0 / step)), 12)
+        dstep = 360.0 / n
+    else:               # over a crank range (positions.over 'input_range'): from its start to its end
+        sign = 1.0 if span >= 0 else -1.0
+        n = max(int(round(abs(span) / step)) + 1, 12)
+        dstep = abs(span) / (n - 1)
+    turn = np.arange(n) * dstep
     phi = np.mod(phi0 + sign * turn, 360.0)
     kin = solve(mech, phi, omega1)
     und = kin.undefined
@@ -93,6 +101,6 @@ def explore_grid(linkage, step: float = 1.0) -> dict:
         if kind != "grid":
             continue
         marks.append({"index": int(k), "turn": float(np.mod(sign * (float(ph) - phi0), 360.0))})
-    return {"step": 360.0 / n, "phi0": phi0, "sign": sign, "turn": round_sig(turn),
+    return {"step": dstep, "phi0": phi0, "sign": sign, "turn": round_sig(turn),
             "phi": round_sig(phi), "points": points, "links": links, "centres": centres, "shapes": shapes,
             "ground": sorted(mech.ground), "positions": marks}

@@ -203,6 +203,8 @@ class PositionsResult:
     sign: float
     working: str
     extreme_index: int | None = None  # index of the position at the end of the working stroke
+    over: str = "cycle"              # 'cycle' | 'input_range' (the grid spread over a crank range)
+    span: float | None = None        # the crank range, deg, signed (over 'input_range')
     _f: object = field(default=None, repr=False)
     _mech: object = field(default=None, repr=False)
     _strokes: dict = field(default_factory=dict, repr=False)
@@ -228,7 +230,8 @@ class PositionsResult:
     def output_stroke(self) -> Stroke:
         """The output link's stroke (positions.output, positions.working)."""
         if self.extreme is None:
-            raise StageError("positions", Message("positions.fail.output_turns", link=self.output))
+            raise StageError("positions", Message("positions.fail.output_turns" if self.over == "cycle"
+                                                  else "positions.fail.range_no_stroke", link=self.output))
         return Stroke(link=self.output, kind=self.output_kind, extreme=list(self.extreme),
                       s_extreme=list(self.s_extreme), working_stroke_angle=self.working_stroke_angle,
                       sign=self.sign, working=self.working, _f=self._f)
@@ -268,7 +271,8 @@ class PositionsResult:
                 "s_extreme": None if self.s_extreme is None else [float(x) for x in self.s_extreme],
                 "count": int(self.count), "direction": self.direction,
                 "phi": [float(x) for x in self.phi], "index": [int(i) for i in self.index],
-                "kinds": list(self.kinds), "extreme_index": self.extreme_index}
+                "kinds": list(self.kinds), "extreme_index": self.extreme_index,
+                **({} if self.over == "cycle" else {"over": self.over, "span": float(self.span)})}
 
 
 def _extremes(f, period=None) -> list[tuple[float, float]]:
@@ -346,7 +350,8 @@ def _roots_in_brackets(f, a, b, *, ds_of, grid, maxiter: int = 100) -> np.ndarra
     return x
 
 
-def find_positions(mech: Mechanism, positions_section, sign: float, extra_added=()) -> PositionsResult:
+def find_positions(mech: Mechanism, positions_section, sign: float, extra_added=(), *,
+                   crank_range=None) -> PositionsResult:
     """The reported crank positions and the output's extreme positions.
 
     Parameters
@@ -360,6 +365,11 @@ def find_positions(mech: Mechanism, positions_section, sign: float, extra_added=
         Sense of rotation of the crank, +1.0 ccw, -1.0 cw (``Drive.sign``).
     extra_added : sequence of float
         Crank angles (deg) the tool adds as positions (where a load switches).
+    crank_range : CrankRange, optional
+        The crank's working range when it does not turn fully (a function generator's
+        input range, ``linkage.context.CrankRange``): ``count`` positions spread evenly
+        from its start to its end (both included), position 0 at the start, then the
+        ``extra`` angles; no extreme positions, stroke or K (they need a full turn).
 
     Returns
     -------
@@ -377,6 +387,8 @@ def find_positions(mech: Mechanism, positions_section, sign: float, extra_added=
     direction = "ccw" if sign > 0 else "cw"
     out_name = sec.output or mech.links[-1].name      # a name the task model checked
     kind, f = _output_coordinate(mech, out_name)
+    if crank_range is not None:
+        return _over_range(mech, sec, sign, crank_range, out_name, kind, f).with_added(extra_added)
     ext = _extremes(f, 360.0 if kind == "rocker" else None)
     extreme = wsa = isa = K = theta = H = s_ext = None
     if len(ext) >= 2:
@@ -408,6 +420,21 @@ def find_positions(mech: Mechanism, positions_section, sign: float, extra_added=
                            direction=direction, sign=sign, working=sec.working, extreme_index=extreme_index, _f=f,
                            _mech=mech, _phis=phis)
     return base.with_added(extra_added) if len(extra_added) else base
+
+
+def _over_range(mech, sec, sign, crank_range, out_name, kind, f) -> PositionsResult:
+    """find_positions over a crank range: the grid from its start to its end, then the extras."""
+    count = int(sec.count)
+    phis = [float(a) % 360.0 for a in crank_range.angles(count)]
+    kinds = ["grid"] * count
+    for a in sec.extra:
+        phis.append(float(a) % 360.0)
+        kinds.append("extra")
+    return PositionsResult(phi=_phi_array(phis), index=np.arange(len(phis)), kinds=kinds, phi0=phis[0],
+                           extreme=None, working_stroke_angle=None, idle_stroke_angle=None, K=None, theta=None,
+                           output=out_name, output_kind=kind, H=None, s_extreme=None, count=count,
+                           direction="ccw" if sign > 0 else "cw", sign=sign, working=sec.working,
+                           over="input_range", span=float(crank_range.span), _f=f, _mech=mech, _phis=phis)
 
 
 def _add(phis: list, kinds: list, a, kd: str) -> int:

@@ -6,6 +6,7 @@ the kinematic diagrams (results.json ``kinematics_curve``).
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -68,8 +69,9 @@ class OutputCurve:
 
 
 def output_curve(linkage: Linkage, n: int = 361, turn=None) -> OutputCurve:
-    """s, v, a of the output link at ``n`` equal steps over one turn from position 0,
-    or at the angles ``turn`` when given.
+    """s, v, a of the output link at ``n`` equal steps over one turn from position 0
+    (over a crank range, ``positions.over`` 'input_range': from its start to its end), or
+    at the angles ``turn`` when given.
 
     Parameters
     ----------
@@ -93,8 +95,12 @@ def output_curve(linkage: Linkage, n: int = 361, turn=None) -> OutputCurve:
     link (displacement, velocity and acceleration against the crank angle).
     """
     mech, positions, drive = linkage.mechanism, linkage.positions, linkage.drive
-    turn = np.linspace(0.0, 360.0, n) if turn is None else np.asarray(turn, float)
-    phi = np.mod(positions.phi0 + drive.sign * turn, 360.0)
+    if positions.span is not None:      # over a crank range (positions.over 'input_range'): from its start to its end
+        turn = np.linspace(0.0, abs(positions.span), n) if turn is None else np.asarray(turn, float)
+        phi = np.mod(positions.phi0 + math.copysign(1.0, positions.span) * turn, 360.0)
+    else:
+        turn = np.linspace(0.0, 360.0, n) if turn is None else np.asarray(turn, float)
+        phi = np.mod(positions.phi0 + drive.sign * turn, 360.0)
     kin = solve(mech, phi, drive.omega)
     out = mech.link(positions.output)
     s, _ = positions.output_value(phi)

@@ -11,6 +11,7 @@ along its guide (positive along the guide direction).
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -219,8 +220,13 @@ def analyze(linkage, section, kin, *, motion=None) -> KinetostaticsResult:
         kin_k = solve(linkage.mechanism, phi, motion.omega_of(phi), motion.epsilon_of(phi))
         crank_J = motion.crank_inertia
     lds = loads_mod.evaluate(linkage, kin_k, inertia=section.inertia)
+    singular = None
+    if linkage.positions.span is not None:      # over a crank range (a function generator): there only
+        mech = linkage.mechanism
+        singular = find_singular(mech, linkage.structure, mech.link(balance_index(mech, section)).name,
+                                 over=(float(linkage.positions.phi0), float(linkage.positions.span)))
     return equilibrium(linkage.mechanism, linkage.structure, kin_k, lds, section, indices=rows,
-                       crank_inertia=crank_J)
+                       crank_inertia=crank_J, singular=singular)
 
 
 def equilibrium(mech, structure, kin, loads, section, *, indices=None, crank_inertia: float = 0.0,
@@ -483,7 +489,23 @@ def singular_function(mech, balance: int, solver=None, grid=None):
     return f
 
 
-def find_singular(mech, structure=None, balance=None, *, solver=None, n_grid: int = 720) -> list[float]:
+def _range_zeros(mech, b: int, solve, start: float, span: float) -> list[float]:
+    """find_singular over the crank range [start, start + span] (deg)."""
+    from ...lazy import brentq
+    grid = start + span * np.linspace(0.0, 1.0, max(2, int(math.ceil(abs(span) / 0.5)) + 1))
+    f = scaled_det(mech, geometry(mech, solve(mech, np.mod(grid, 360.0), 1.0)), b)
+
+    def F(phi):
+        return float(scaled_det(mech, geometry(mech, solve(mech, np.array([phi % 360.0]), 1.0)), b)[0])
+    out = [float(a) for a, v in zip(grid, f) if v == 0.0]
+    for a, c, fa, fc in zip(grid[:-1], grid[1:], f[:-1], f[1:]):
+        if fa * fc < 0.0:
+            out.append(float(brentq(F, min(a, c), max(a, c), xtol=1e-10)))
+    return sorted(x % 360.0 for x in out)
+
+
+def find_singular(mech, structure=None, balance=None, *, solver=None, n_grid: int = 720,
+                  over: tuple[float, float] | None = None) -> list[float]:
     """The crank angles where the equilibrium equations are singular.
 
     Parameters
@@ -498,6 +520,10 @@ def find_singular(mech, structure=None, balance=None, *, solver=None, n_grid: in
         The kinematics function.
     n_grid : int
         The grid's points over a turn.
+    over : (float, float) or None
+        (start, span), deg: only over this crank range (a linkage that works over it only,
+        docs/methods.md §0): a 0.5-deg grid from its start to its end, its sign changes
+        refined by Brent's method (touching zeros are not sought).
 
     Returns
     -------
@@ -513,6 +539,8 @@ def find_singular(mech, structure=None, balance=None, *, solver=None, n_grid: in
     else:
         b = mech.link(balance).index
     solve = _kin_solver(solver)
+    if over is not None:
+        return _range_zeros(mech, b, solve, *over)
     grid = np.linspace(0.0, 360.0, n_grid + 1)
     try:
         kin = solve(mech, grid, 1.0)

@@ -362,7 +362,7 @@ def _render(ctx, c, rows, method):
 def _r0_note(ctx, c):
     """With r0 computed (not given): which radius the profile is drawn on -- the exact least
     one, not the rounded design radius printed beside it -- and the task line that builds the
-    profile on the rounded one (r0: 45 mm; in ru and uk 45 мм, as the task files take it too),
+    profile on the rounded one (r0: 45 mm; in ru and uk the Cyrillic "mm", as the task files take it too),
     or None."""
     from markupsafe import Markup, escape
     if c.get("r0_given") or c.get("r0_design") is None:
@@ -370,5 +370,5 @@ def _r0_note(ctx, c):
     whole = f"{float(c['r0_design']) * MM:.0f}"          # a whole millimetre: a task's YAML value as written
     text = ctx.t("cam.r0_drawn_on", r0=ctx.fmt(c["r0"] * MM, 6), r0d=whole, line="\u0000")
     a, _, b = text.partition("\u0000")
-    # the line as the task file takes it, its unit as the language writes it (45 mm, 45 мм)
+    # the line as the task file takes it, its unit as the language writes it (45 mm, or in Cyrillic)
     return Markup(f"{escape(a)}<code>{escape(_loc(ctx.lang, f'r0: {whole} mm'))}</code>{escape(b)}")

@@ -202,9 +202,10 @@ def output_series(ctx, geom, entries, out_name):
     return "rotating", psi, w, eps
 
 
-def diagrams_svg(ctx, geom, entries, phase, out_name, curve, marks=None):
-    """s, v, a (or psi, omega, epsilon) of the output link over the cycle; dots at the
-    positions (at those of the boolean mask `marks` only, for a fine grid)."""
+def diagrams_svg(ctx, geom, entries, phase, out_name, curve, marks=None, span=None):
+    """s, v, a (or psi, omega, epsilon) of the output link over the cycle (over the crank
+    range ``span``, deg, where the positions are spread over one: no wrap-around); dots at
+    the positions (at those of the boolean mask `marks` only, for a fine grid)."""
     from .. import figures as F
     kind, s, v, a = output_series(ctx, geom, entries, out_name)
     units = ([ctx.t("kin.s_unit"), ctx.t("kin.v_unit"), ctx.t("kin.a_unit")] if kind == "slider"
@@ -222,6 +223,8 @@ def diagrams_svg(ctx, geom, entries, phase, out_name, curve, marks=None):
             key = {0: "s", 1: "v", 2: "a"}[[s, v, a].index(ys)]
             cx = np.asarray(curve["phase"])
             ax.plot(cx, np.asarray(curve[key], float), color="#1f5fbf", lw=1.0)
+        elif span is not None:              # a range: the points joined, no period
+            ax.plot(x, y, color="#1f5fbf", lw=1.0)
         elif marks is not None:             # a fine grid is its own curve
             ax.plot(np.append(x, x[0] + 360.0), np.append(y, y[0]), color="#1f5fbf", lw=1.0)
         elif len(x) >= 3:
@@ -234,8 +237,12 @@ def diagrams_svg(ctx, geom, entries, phase, out_name, curve, marks=None):
         ax.axhline(0, color="0.5", lw=0.5)
         ax.set_ylabel(lab)
         ax.grid(True, lw=0.3, color="0.85")
-        ax.set_xlim(0, 360)
-    axes[-1].set_xticks(np.arange(0, 361, 30))
+        ax.set_xlim(0, 360 if span is None else abs(span))
+    if span is None:
+        axes[-1].set_xticks(np.arange(0, 361, 30))
+    else:
+        step = next(st for st in (5, 10, 15, 30, 45, 60, 90) if abs(span) / st <= 12)
+        axes[-1].set_xticks(np.arange(0, abs(span) + 1e-9, step))
     axes[-1].set_xlabel(ctx.t("kin.phi_axis"))
     # every axis at a standard scale μ, stated in the course's form (μs = 0.002 m/mm)
     F.std_graph(fig, axes, ctx.t("kin.mm"), x_axis=axes[-1])
@@ -285,6 +292,9 @@ def build(ctx) -> str | None:
     shown_grid = [e for e in shown[:len(shown) - (len(entries) - n_grid)]]
     fine = grid if len(shown_grid) < n_grid else None
     sgn = _rotation_sign(ctx, geom, entries)
+    span = res_pos.get("span") if res_pos.get("over") == "input_range" else None
+    if span is not None:        # over the input range: its own sense, from its start
+        sgn = 1.0 if span >= 0 else -1.0
     phi0 = res_pos.get("phi0", grid[0]["phi"])
     # the tables and plans in the order of the crank's turn, the extras marked
     shown = cycle_order(shown, phi0, sgn)
@@ -324,6 +334,11 @@ def build(ctx) -> str | None:
     pos_rows = []
     if res_pos:
         pos_rows.append((ctx.t("kin.phi0"), ctx.fmt_fixed(res_pos.get("phi0"), 3) + "°"))
+        if span is not None:
+            pos_rows.append((ctx.t("kin.over_range"),
+                             ctx.t("kin.over_range_val", start=ctx.fmt_fixed(res_pos["phi0"], 3),
+                                   end=ctx.fmt_fixed(float(res_pos["phi0"]) + float(span), 3),
+                                   count=res_pos.get("count"))))
         if res_pos.get("extreme"):
             pos_rows.append((ctx.t("kin.extreme_angles"),
                              ", ".join(ctx.fmt_fixed(x, 3) + "°" for x in res_pos["extreme"])))
@@ -393,7 +408,7 @@ def build(ctx) -> str | None:
     if fine is not None:
         ids = {id(e) for e in shown}
         marks = [id(e) in ids for e in entries]
-    diag, _ = diagrams_svg(ctx, geom, entries, phase, out_name, curve, marks)
+    diag, _ = diagrams_svg(ctx, geom, entries, phase, out_name, curve, marks, span)
 
     # CSV (with two processes the report's helper writes kinematics.csv: report.HELPER_TABLES)
     if "kinematics" in ctx.tables_elsewhere:
@@ -405,7 +420,7 @@ def build(ctx) -> str | None:
     ctx.write_csv("plans.csv", ["index", "phi", "plan", "segment", "vector", "length_mm", "value"], plan_csv)
 
     return ctx.render("sections/kinematics.html.j2",
-                      pos_rows=pos_rows, scale_rows=scale_rows, lengths=lengths,
+                      pos_rows=pos_rows, scale_rows=scale_rows, lengths=lengths, over_range=span is not None,
                       fig_positions=positions_svg(ctx, geom, entries, shown_grid, fine, (lo, hi)), n_grid=len(shown_grid),
                       hdr_pts=hdr_pts, v_rows=v_rows, a_rows=a_rows, hdr_l=hdr_l,
                       w_rows=w_rows, e_rows=e_rows, hdr_ang=hdr_ang, ang_rows=ang_rows,
