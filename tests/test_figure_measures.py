@@ -143,7 +143,7 @@ def test_cam_profile_is_the_tables_profile(tmp_path):
     text = html_mod.unescape(re.sub(r"<[^>]+>", "", html))
     unit = float(re.search(r"μl = ([\d.]+) mm/mm", text).group(1))       # real mm per paper mm
     # (the profile is that of the exact least base radius; the design radius is the one rounded up)
-    r0 = _th(html, "Minimum base radius of the pitch profile r0 (exact), mm")
+    r0 = _th(html, "Minimum base radius of the pitch profile r0 (exact; the profile is built on it), mm")
     e = _th(html, "Offset e (positive: lowers the rise pressure angle), mm")
     # the centre O: the '+' mark (two strokes of 8 pt) -- the middle of its horizontal stroke
     plus = re.search(r'<path d="M(-?[\d.]+) (-?[\d.]+)h([\d.]+)M', svg)
