@@ -166,6 +166,8 @@ def test_four_bar_offset_coupler_berkof_lowen_by_hand():
     cw = run(task)["balancing"]["counterweights"]
     crank = complex(-2.4 * 0.08 * 0.6, 2.4 * 0.08 * 0.02 / 0.30)
     rocker = complex(-2.4 * 0.22 * 0.4 - 1.8 * 0.11, -2.4 * 0.22 * 0.02 / 0.30)
+    assert cw["crank"]["mr"] == pytest.approx(abs(crank), rel=1e-12)           # 0.115909 kg m
+    assert cw["rocker"]["mr"] == pytest.approx(abs(rocker), rel=1e-12)         # 0.410711 kg m
     assert cw["crank"]["m"] == pytest.approx(abs(crank) / 0.06, rel=1e-12)
     assert cw["crank"]["m"] == pytest.approx(1.93182, abs=5e-6)
     assert cw["crank"]["angle"] == pytest.approx(180 - math.degrees(math.atan(0.0128 / 0.1152)), abs=1e-9)

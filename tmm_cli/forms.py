@@ -99,6 +99,7 @@ PATH_NOTATION: dict[str, tuple[str, str, str, str]] = {
     "balancing.max.M_balanced": ("M_max(bal)", "N*m", "shaking_moment_balanced", ""),
     "balancing.counterweights.*.m": ("m_cw", "kg", "counterweight_mass", ""),
     "balancing.counterweights.*.angle": ("φ_cw", "deg", "counterweight_angle", ""),
+    "balancing.counterweights.*.mr": ("m_cw·r_cw", "kg*m", "counterweight_moment", ""),
     "balancing.rotor.corrections[*].m": ("m_corr", "kg", "correction_mass", ""),
     "balancing.rotor.corrections[*].angle": ("φ_corr", "deg", "correction_angle", ""),
     "differential.u": ("u^H", "", "differential_u", "ratio"),

@@ -54,7 +54,9 @@ class Counterweight:
     angle: float            # deg from the link's axis pivot -> other, ccw
 
     def to_dict(self) -> dict:
-        return {"link": self.link, "m": self.m, "r": self.r, "angle": self.angle}
+        # m r (kg*m): the product the balancing conditions fix (Norton and the course books
+        # state a counterweight by it; m follows from the radius the task chose)
+        return {"link": self.link, "m": self.m, "r": self.r, "mr": self.m * self.r, "angle": self.angle}
 
 
 

@@ -117,8 +117,7 @@ def _hodograph(cv, ctx, results, box) -> dict:
             cv.circle(o, 1.6, stroke="#c00000", fill="#c00000", width=0.4)
         else:
             cv.polyline(fb, color="#c00000", width=0.6)
-        left = float(b["max"].get("F_balanced", 0.0))
-        left = 0.0 if left <= 1e-9 * float(b["max"]["F"]) else left     # rounding's remainder: none
+        left = float(b["max"].get("F_balanced", 0.0))      # round-off of zero is 0 in the results already
         cv.layer = "text"
         cv.mtext(x0, y1 - 22.0, f"{ctx.t('bal.sheet_after')}: F", 3.5, sub="max",
                  after=f" = {left:.4g} {ctx.t('bal.unit_N')}", color="#c00000")
