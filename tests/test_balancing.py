@@ -385,3 +385,16 @@ def test_task_table_counterweight_radii_alike(lang, tmp_path):
                         r"<td[^>]*>([^<]*)</td>", html)
     assert len(cells) == 2, cells
     assert sorted(v for _, v in cells) == (["0.06", "0.08"] if lang == "en" else ["0,06", "0,08"])
+
+
+def test_apply_with_nothing_to_act_on_is_said(tmp_path):
+    """`apply: true` in a task with neither kinetostatics nor a flywheel changed nothing, without a
+    word; the example (which asks for the kinetostatics) has no such warning."""
+    text = (ROOT / "tasks" / "balancing_fourbar.yaml").read_text(encoding="utf-8")
+    assert "\nkinetostatics: {}\n" in text and "apply: true" in text and "\nflywheel:" not in text
+    f = tmp_path / "t.yaml"
+    f.write_text(text.replace("\nkinetostatics: {}\n", "\n"), encoding="utf-8")
+    res = run(load_task(f))
+    said = "`apply: true` changes nothing here"
+    assert any(said in w for w in res["warnings"]), res["warnings"]
+    assert not any(said in w for w in run(load_task(ROOT / "tasks" / "balancing_fourbar.yaml"))["warnings"])

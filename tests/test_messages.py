@@ -493,6 +493,8 @@ ENGLISH = [
     ('flywheel.skipped_range', {'start': 45.0, 'end': 105.0},
      "flywheel: not computed: the crank works over the input range only (45..105 deg), and the flywheel needs "
      "the machine's full cycle"),
+    ('balancing.apply_unused', {}, "balancing: `apply: true` changes nothing here: the counterweights act on the "
+     'kinetostatics and the flywheel, and the task asks for neither'),
     ('balancing.skipped_range', {'start': 45.0, 'end': 105.0},
      'balancing: not computed: the crank works over the input range only (45..105 deg), and balancing the '
      'linkage needs its full turn'),

@@ -265,7 +265,9 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explo
         grid = kinematics.solve(mech, np.arange(361) * 1.0, drive.omega)   # the hodographs over the turn
         bal = _stage("balancing")(balancing.analyze)(mech, kin, task.balancing, grid)
         put(results, warnings, "balancing", bal)
-        if task.balancing.apply:
+        if task.balancing.apply and task.kinetostatics is None and task.flywheel is None:
+            warnings.append(Message("balancing.apply_unused"))      # said, not silently without effect
+        elif task.balancing.apply:
             # the later stages see the links with their counterweights (geometry unchanged; the
             # centres of mass moved): results' kinematics stay those of the task's links
             import dataclasses
