@@ -333,3 +333,17 @@ def test_zero_given_over_a_range_is_said_to_be_unused():
     assert r["positions"]["phi0"] == 45.0
     assert any(m["code"] == "positions.zero_range" for m in r["messages"])
     assert not any(m["code"] == "positions.zero_range" for m in run(_task(CLASSIC))["messages"])
+
+
+def test_study_says_the_linkage_is_left_out(tmp_path):
+    """`tmm study` and `tmm run --study` of a generator over its input range left the linkage's
+    study out without a word (study.json empty, no section): the terminal, study.html and the
+    report say why, with the range of the task file (start 45, range 60: 45..105 deg)."""
+    task = str(ROOT / "tasks" / "synthesis_function_log10.yaml")
+    said = "The linkage is not studied: the generated four-bar works over its input range only (45..105°)"
+    res = runner.invoke(app, ["study", task, "--out", str(tmp_path / "s")])
+    assert res.exit_code == 0 and said in res.output, res.output
+    assert said in (tmp_path / "s" / "study.html").read_text(encoding="utf-8")
+    res = runner.invoke(app, ["run", task, "--study", "--format", "json,html", "--out", str(tmp_path / "r"), "-q"])
+    assert res.exit_code == 0, res.output
+    assert said in (tmp_path / "r" / "report.html").read_text(encoding="utf-8")

@@ -165,6 +165,8 @@ def study_cmd(
         raise _fail_write(exc)
     for line in study_page.trades(st, lang):      # the trade in plain words first, then the files
         typer.echo(line[0].upper() + line[1:] + ".")
+    if trap.get("left_out"):
+        typer.echo(study_page.left_out(trap["left_out"], lang))
     for p in paths:
         typer.echo(str(p))
 

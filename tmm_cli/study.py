@@ -445,6 +445,8 @@ def run_study(task, progress: Callable[[str], None] | None = None, repeat: int =
     if task.synthesis is not None:
         from .linkage.synthesis import generate
         over = generate(task)[1].crank_range
+        if over is not None and task.mechanism is not None:    # said in the study, never silently
+            extra["left_out"] = {"start": float(over.start), "end": float(over.start + over.span)}
     if task.mechanism is not None and over is None:
         from .linkage.context import build
         linkage = build(task)

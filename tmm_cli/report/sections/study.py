@@ -15,11 +15,11 @@ I18N = locales.table("study", "words")
 
 
 def build(ctx) -> str | None:
-    st = ctx.results.get("study")
-    if not st:
+    st, trap = ctx.results.get("study"), ctx.results.get("study_trapezoid")
+    if not st and not (trap or {}).get("left_out"):
         return None
     from markupsafe import Markup
-    return Markup(html_section(st, ctx.results.get("study_trapezoid"), ctx.lang))
+    return Markup(html_section(st or {}, trap, ctx.lang))
 
 
 _W, _H, _L, _B, _T, _R = 520, 320, 64, 44, 16, 150
@@ -126,6 +126,13 @@ def trades(study: dict, lang: str = "en") -> list[str]:
     return [s for s in (trade(stage, d, lang) for stage, d in study.items()) if s]
 
 
+def left_out(left: dict, lang: str) -> str:
+    """Why the linkage's study is left out (a function generator over its input range)."""
+    from .. import i18n
+    i18n.register(I18N)
+    return i18n.translate("study.left_out_range", lang, start=f"{left['start']:g}", end=f"{left['end']:g}")
+
+
 def html_section(study: dict, trapezoid: dict | None = None, lang: str = "en") -> str:
     """A report section in `lang`: per stage the table, the measured and the theoretical
     order and a log-log plot (texts: tmm_cli/report/sections/study.py, I18N)."""
@@ -148,6 +155,9 @@ def html_section(study: dict, trapezoid: dict | None = None, lang: str = "en") -
         parts.append(f"<h3>{h.escape(t('short'))}</h3><ul class='trade'>"
                      + "".join(f"<li>{h.escape(x[0].upper() + x[1:])}.</li>" for x in short) + "</ul>")
     parts.append(f"<p>{h.escape(t('intro', tol=f'{REF_TOL:g}'))}</p>")
+    left = (trapezoid or {}).get("left_out")
+    if left:
+        parts.append(f"<p>{h.escape(left_out(left, lang))}</p>")
     for stage, d in study.items():
         rows = d["rows"]
         keys = [k for k in rows[0] if k not in ("setting", "error", "time_ms")]
