@@ -347,3 +347,14 @@ def test_study_says_the_linkage_is_left_out(tmp_path):
     res = runner.invoke(app, ["run", task, "--study", "--format", "json,html", "--out", str(tmp_path / "r"), "-q"])
     assert res.exit_code == 0, res.output
     assert said in (tmp_path / "r" / "report.html").read_text(encoding="utf-8")
+
+
+def test_generated_psi_written_in_the_ideal_psis_turn():
+    """The log10 example's rocker starts at 300 deg: the precision points' table printed the ideal
+    308.419 beside the generated -51.581 (the same direction, 360 deg apart), which reads as an
+    error of 360 deg. The generated angle is written in the ideal one's turn: within the
+    structural error of it, and the same direction of O1B as the analysis's atan2."""
+    res = run(load_task(ROOT / "tasks" / "synthesis_function_log10.yaml"))["synthesis"]
+    for p in res["precision_points"]:
+        assert abs(p["psi_generated"] - p["psi"]) <= 1e-9
+    assert res["precision_points"][0]["psi"] > 300.0 and res["precision_points"][2]["psi"] > 360.0

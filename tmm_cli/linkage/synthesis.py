@@ -856,6 +856,9 @@ def analyse_function(linkage, d: Design) -> dict:
     kp = solve(linkage.mechanism, np.mod([p["phi"] for p in pts], 360.0), linkage.drive.omega)
     Bp, Pp = kp.pos["B"], kp.pos["O1"]
     got_p = np.degrees(np.arctan2(Bp[:, 1] - Pp[:, 1], Bp[:, 0] - Pp[:, 0]))
+    # written in the turn of the ideal psi (308.42 beside 308.42, not -51.58): as the positions' are
+    ideal_p = np.array([p["psi"] for p in pts], float)
+    got_p = ideal_p + (got_p - ideal_p + 180.0) % 360.0 - 180.0
     L = d.lengths
     serr = {"max": float(abs(err[k])), "at_x": float(xs[k])}
     if d.crank_range is not None:
