@@ -792,7 +792,8 @@ ENGLISH = [
     ('drive_train.fail.missed', {'u': 28.123456, 'err': -0.0345678, 'req': 29.0, 'tol': 0.01},
      'the chosen train gives u = 28.1235, -3.457% from the required 29 (tolerance 0.01); give the stages their own `ratio` or relax `tolerance`'),
     ('dof2.fail.too_long', {'rtol': 1e-08, 'nfev': 200000, 't': 0.123456, 't_stop': 2.0},
-     'the motion is too long to integrate to rtol 1e-08: 200000 evaluations reached only t = 0.1235 s of 2 s (shorten t_end or turns)'),
+     'the motion is too long to integrate to rtol 1e-08: 200000 evaluations reached only t = 0.1235 s of 2 s (shorten t_end or turns, '
+     'or check the speeds and moments given: a faster motion needs more steps)'),
     ('dof2.fail.integration', {'why': 'Required step size is less than spacing between numbers.'},
      'the integration failed: Required step size is less than spacing between numbers.'),
     ('dof2.fail.turns', {'turned': 2.34567, 'turns': 5.0, 't_stop': 2.0},
