@@ -257,6 +257,9 @@ _TEXT_WIDTH = (210 - sum(map(float, re.search(r"right: ([\d.]+)mm, bottom: [\d.]
 _TEXT_HEIGHT = (297 - sum(map(float, re.search(r"margin: \(top: ([\d.]+)mm, right: [\d.]+mm, bottom: ([\d.]+)mm",
                                                PREAMBLE).groups()))) * _MM
 _HPT = re.compile(r'\bheight="([0-9.]+)pt"')
+# a heading's markup and the space above it (PREAMBLE's show rules), by its level
+_ABOVE = re.compile(r"#heading\(level: (\d)")
+_HEADING_ABOVE = dict(re.findall(r"heading\.where\(level: (\d)\): it => block\(above: ([\d.]+mm)", PREAMBLE))
 
 
 class _Writer:
@@ -491,15 +494,19 @@ class _Writer:
             self.led = False
             if b and led and c.tag == "p":
                 b = f"#keep[{b}]"
-            elif b and led and c.tag == "table" and "breakable: false)" in b[:200]:
-                # a short table kept whole: its heading and the paragraphs under that in its
-                # block (Typst's sticky heading stays behind when an unbreakable block
-                # after it goes to the next page)
-                b = "#block(breakable: false, width: 100%)[\n" + "\n".join(out[led_at:] + [b]) + "\n]"
-                del out[led_at:]
-            elif c.tag in ("h2", "h3", "h4") or (b and c.tag != "p"):
-                led = c.tag in ("h2", "h3", "h4")
-                led_at = len(out)
+            else:
+                if b and led and c.tag == "table" and "breakable: false)" in b[:200]:
+                    # a short table kept whole: its heading and the paragraphs under that in
+                    # its block (Typst's sticky heading stays behind when an unbreakable block
+                    # after it goes to the next page), the block spaced above as the heading
+                    lead = _ABOVE.match(out[led_at]) if led_at < len(out) else None
+                    above = f", above: {_HEADING_ABOVE[lead.group(1)]}" if lead else ""
+                    b = (f"#block(breakable: false, width: 100%{above})[\n" + "\n".join(out[led_at:] + [b])
+                         + "\n]")
+                    del out[led_at:]
+                if c.tag in ("h2", "h3", "h4") or (b and c.tag != "p"):
+                    led = c.tag in ("h2", "h3", "h4")
+                    led_at = len(out)
             if b:
                 out.append(b)
         flush()
