@@ -257,6 +257,9 @@ _TEXT_WIDTH = (210 - sum(map(float, re.search(r"right: ([\d.]+)mm, bottom: [\d.]
 _TEXT_HEIGHT = (297 - sum(map(float, re.search(r"margin: \(top: ([\d.]+)mm, right: [\d.]+mm, bottom: ([\d.]+)mm",
                                                PREAMBLE).groups()))) * _MM
 _HPT = re.compile(r'\bheight="([0-9.]+)pt"')
+# a heading's markup and the space above it (PREAMBLE's show rules), by its level
+_ABOVE = re.compile(r"#heading\(level: (\d)")
+_HEADING_ABOVE = dict(re.findall(r"heading\.where\(level: (\d)\): it => block\(above: ([\d.]+mm)", PREAMBLE))
 
 
 class _Writer:
@@ -464,6 +467,7 @@ class _Writer:
         page): a heading never ends a page."""
         out, run = [], []
         led = False                                     # after a heading, paragraphs only since
+        led_at = 0                                      # where in out that heading is
 
         def flush():
             body = "".join(run).strip()
@@ -490,8 +494,19 @@ class _Writer:
             self.led = False
             if b and led and c.tag == "p":
                 b = f"#keep[{b}]"
-            elif c.tag in ("h2", "h3", "h4") or (b and c.tag != "p"):
-                led = c.tag in ("h2", "h3", "h4")
+            else:
+                if b and led and c.tag == "table" and "breakable: false)" in b[:200]:
+                    # a short table kept whole: its heading and the paragraphs under that in
+                    # its block (Typst's sticky heading stays behind when an unbreakable block
+                    # after it goes to the next page), the block spaced above as the heading
+                    lead = _ABOVE.match(out[led_at]) if led_at < len(out) else None
+                    above = f", above: {_HEADING_ABOVE[lead.group(1)]}" if lead else ""
+                    b = (f"#block(breakable: false, width: 100%{above})[\n" + "\n".join(out[led_at:] + [b])
+                         + "\n]")
+                    del out[led_at:]
+                if c.tag in ("h2", "h3", "h4") or (b and c.tag != "p"):
+                    led = c.tag in ("h2", "h3", "h4")
+                    led_at = len(out)
             if b:
                 out.append(b)
         flush()
@@ -797,6 +812,10 @@ class _Writer:
         cols = f"({', '.join(kinds)})" if wide else str(ncols)
         tracks = self.fixed_rows(info, nhead, one_line, ncols, kinds, style)
         rules = ""
+        # a short table is never split: it goes whole to the next page, its caption (and a
+        # heading before it, sticky) with it; a long one breaks between its rows (by chunks,
+        # at least _EDGE rows on either side where its rows are merged), its header repeated
+        short = len(rows) - nhead <= _SHORT
         # (not around a table in a cell: the leading set for the table's paragraphs would be its too)
         if tracks is not None and _CHUNK > 1 and not any("#table(" in c for r in cells for c in r):
             equal = len(set(kinds)) == 1 and kinds[0] == "1fr"
@@ -817,13 +836,18 @@ class _Writer:
         tbl = f"{rules}#table(columns: {cols}, {rows_arg}inset: {inset}, {align}{header}{body})"
         if caption:
             tbl = f"#cap[{caption}]\n{tbl}"
-        return f"#block(above: 1.5mm, below: 3mm, width: {'100%' if wide else 'auto'})[#text(size: {size})[{tbl}]]"
+        keep = ", breakable: false" if short else ""
+        return f"#block(above: 1.5mm, below: 3mm, width: {'100%' if wide else 'auto'}{keep})[#text(size: {size})[{tbl}]]"
 
 
 # a table cell's background colour in its style attribute (#rrggbb)
 _BACKGROUND = re.compile(r"(?:^|;)\s*background(?:-color)?\s*:\s*(#[0-9a-fA-F]{6})\s*(?:;|$)")
 # body rows merged into one table row, column by column (see _by_columns)
 _CHUNK = 7                                  # (0 or 1: rows not merged)
+# a table of up to _SHORT body rows is kept on one page; a longer one's merged rows leave at
+# least _EDGE rows on either side of a page break (the last chunk of a run made that long)
+_SHORT = 15
+_EDGE = 3
 # the tables' stroke (PREAMBLE's `set table`) and its width, pt
 _RULE = re.search(r"#set table\(stroke: (.+)\)\n", PREAMBLE).group(1)
 _RULE_W = float(re.match(r"([0-9.]+)pt \+ ", _RULE).group(1))
@@ -847,8 +871,12 @@ def _by_columns(tracks: list[str], cells: list[list[str]], bare: list, nhead: in
     while i < n:
         j = i
         if i >= nhead and tracks[i] == h and bare[i] is not None:
-            while j < n and j - i < chunk and tracks[j] == h and bare[j] is not None:
-                j += 1
+            e = i                                   # the run of such rows
+            while e < n and tracks[e] == h and bare[e] is not None:
+                e += 1
+            j = min(e, i + chunk)
+            if 0 < e - j < _EDGE and e - i > _EDGE:     # its last chunk would be short: made _EDGE rows
+                j = e - _EDGE
         if j - i < 2:
             row = cells[i]
             if tracks[i] == "auto":             # may wrap: the leading of PREAMBLE

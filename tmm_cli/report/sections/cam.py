@@ -63,7 +63,10 @@ def diagrams_figure(ctx, c):
     series = [(np.asarray(c["s"] + c["s"][:1]) * ks, "s, " + us),
               (np.asarray(c["ds"] + c["ds"][:1]) * kv, "ds/dφ, " + uv),
               (np.asarray(c["d2s"] + c["d2s"][:1]) * ka, "d²s/dφ², " + ua)]
-    W, H = 170.0, 150.0
+    # 120 mm high (the ordinates' scales chosen for it): with its heading and caption it fits
+    # under the main dimensions and the motion laws (at 150 mm it went to a page of its own and
+    # left the cam chapter's first page half empty)
+    W, H = 170.0, 120.0
     fig, axes = fp.new_figure(W, H, nrows=3, sharex=True)
     left, right, bottom, top, gap = 0.12, 0.97, 0.08, 0.98, 0.05
     fig.subplots_adjust(left=left, right=right, bottom=bottom, top=top, hspace=gap * 3)
