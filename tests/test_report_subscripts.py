@@ -1,6 +1,6 @@
 """The course's notation in the report is written with real subscripts: M_b, omega_max,
 J_red of the catalogues appear as M<sub>b</sub> in report.html (hence subscripts in
-report.pdf), while the user's own text (the task's title, link and point names, file names,
+report.pdf) and with a lowered subscript in its figures' labels, while the user's own text (the task's title, link and point names, file names,
 code such as `r0: 45 mm`, results paths) and the plain-text outputs (CSV headers, the
 terminal) keep the underscore as written."""
 from __future__ import annotations
@@ -37,6 +37,14 @@ def _visible(html: str, title: str) -> str:
     return text.replace(title, " ") if title else text
 
 
+def _figure_text(html: str) -> str:
+    """The labels of the inline figures, each a line (a subscript's tspan joined to its base)."""
+    out = []
+    for svg in re.findall(r"<svg\b.*?</svg>", html, flags=re.S):
+        out += [unescape(re.sub(r"<[^>]+>", "", t)) for t in re.findall(r"<text\b[^>]*>(.*?)</text>", svg, flags=re.S)]
+    return "\n".join(out)
+
+
 def test_notation_html_writes_subscripts():
     assert notation_html("M_b, N·m") == "M<sub>b</sub>, N·m"
     assert notation_html("ω_ср² = ω_max·ω_min") == "ω<sub>ср</sub>² = ω<sub>max</sub>·ω<sub>min</sub>"
@@ -67,8 +75,10 @@ def test_term_is_the_plain_text_with_html():
 @pytest.mark.parametrize("lang", ["en", "ru", "uk"])
 def test_report_has_no_notation_with_underscore(shared_once, name, lang):
     task = tmm_cli.load_task(ROOT / "tasks" / f"{name}.yaml")
-    text = _visible(report_html(shared_once, name, lang), task.title or "")
-    assert TOKEN.findall(text) == []
+    html = report_html(shared_once, name, lang)
+    assert TOKEN.findall(_visible(html, task.title or "")) == []
+    # the figures draw the same catalogue texts with their subscripts lowered
+    assert TOKEN.findall(_figure_text(html)) == []
 
 
 def test_forging_notation_in_subscripts(shared_once):
@@ -95,3 +105,14 @@ def test_pdf_has_no_notation_with_underscore(shared_once, tmp_path, name, lang):
     text = subprocess.run(["pdftotext", str(pdf), "-"], capture_output=True, text=True, check=True).stdout
     title = tmm_cli.load_task(ROOT / "tasks" / f"{name}.yaml").title or ""
     assert TOKEN.findall(text.replace(title, " ")) == []
+
+
+def test_figure_label_lowers_a_catalogue_subscript():
+    from tmm_cli.report.svgchart import text_body
+    # a catalogue's text: the subscript lowered (dy) and smaller, the rest as written
+    body = text_body(Term("ΔT, mm (μ_T = 4 J/mm)"), 3.0)
+    assert re.fullmatch(r'ΔT, mm \(μ<tspan dy="0\.9" font-size="2\.16">T</tspan><tspan dy="-0\.9"> = 4 J/mm\)</tspan>',
+                        body), body
+    # any other text (a link or point name given by the task) as written
+    assert text_body("O_1", 3.0) == "O_1"
+    assert text_body(term(lambda key, lang, **kw: "ω of {n}".format(**kw), "k", "en", n="O_1"), 3.0) == "ω of O_1"

@@ -36,6 +36,27 @@ def _sub(m: re.Match) -> str:
     return f"{m.group(1)}<sub>{sub}</sub>"
 
 
+def kept(text: str) -> str:
+    """``text`` with the substituted values' underscores back (see :func:`term`)."""
+    return text.replace(_KEPT, "_")
+
+
+def parts(text: str) -> list[tuple[str, bool]]:
+    """``text`` cut into (piece, is a subscript): the figures' labels drawn from a catalogue's
+    text lower its notation's subscripts as the HTML does."""
+    out: list[tuple[str, bool]] = []
+    pos = 0
+    for m in _TOKEN.finditer(text):
+        html = _sub(m)
+        if html == m.group(0):
+            continue
+        sub = m.group(2)[1:-1] if m.group(2)[0] == "{" else m.group(2)
+        out += [(text[pos:m.start()] + m.group(1), False), (sub, True)]
+        pos = m.end()
+    out.append((text[pos:], False))
+    return [(p.replace(_KEPT, "_"), low) for p, low in out if p]
+
+
 def notation_html(text: str) -> str:
     """``text`` escaped for HTML with its notation tokens' subscripts in ``<sub>``."""
     from markupsafe import escape

@@ -10,6 +10,7 @@ import numpy as np
 from ... import locales
 from ...drawings.mesh import action_points
 from ...messages import render_list
+from ..notation import Term
 from ...numfmt import localize
 
 I18N = locales.table("gears", "words")
@@ -155,7 +156,7 @@ def contour_figure(ctx, g):
         for seg in segs:
             a = np.asarray(seg)
             kind = next(k for k in ("undercut", "sharpening", "contact_ratio", "interference") if name.startswith(k))
-            lab = ctx.t(f"gears.{kind}_l") + (f" {name.rsplit('_', 1)[-1]}" if name[-1:].isdigit() else "")
+            lab = Term(ctx.t(f"gears.{kind}_l") + (f" {name.rsplit('_', 1)[-1]}" if name[-1:].isdigit() else ""))
             ax.plot(a[:, 0], a[:, 1], color=col, ls=ls, lw=1.1, label=None if name in seen else lab)
             seen.add(name)
     # the admissible region (the stage's polygons: outer ring, then holes)

@@ -183,7 +183,8 @@ def gamma_svg(r: dict, t_turn: str, w_mm: float = 165.0, h_mm: float = 60.0, mm:
     cv.polyline([m(u, v) for u, v in zip(x, g)], "#1f4e99", 0.45)
     gm = r["gamma_min"]
     cv.line(m(0, gm), m(360, gm), "#b00", 0.25, dash="2,1")
-    cv.text(m(360, gm)[0] - 1, m(360, gm)[1] + 2.5, f"γ_min = {gm:.3f}°", size=6.5, color="#b00", anchor="end")
+    cv.text(m(360, gm)[0] - 1, m(360, gm)[1] + 2.5, "γ", sub="min", after=f" = {gm:.3f}°", size=6.5, color="#b00",
+            anchor="end")
     return cv.to_svg()
 
 
