@@ -12,8 +12,6 @@ import math
 import re
 from typing import TYPE_CHECKING, Any
 
-from markupsafe import Markup, escape
-
 from ... import locales
 from ...messages import unit as spelt
 from ...numfmt import localize
@@ -281,4 +279,4 @@ def build(ctx) -> str | None:
     if not info and not groups and mech is None:
         return None
     return ctx.render("sections/task.html.j2", info=info, groups=groups, mech=mech,
-                      J_head=Markup(str(escape(ctx.t("task.J"))).replace("J_S", "J<sub>S</sub>")))
+                      J_head=ctx.t("task.J"))
