@@ -41,10 +41,10 @@ def test_dynamics_section_renders(tmp_path, lang):
     assert ("Wittenbauer" in html) if lang == "en" else ("Виттенбауэра" in html)
     rows = list(csv.reader(open(tmp_path / "flywheel.csv")))
     assert rows[0][:2] == ["phi_cycle", "phi"] and len(rows) == 1 + r.q_deg.size
-    # kl from the caption -> J; compare with the solver's Wittenbauer flywheel
+    # kl from the caption (μ_T with a real subscript) -> J; compare with the solver's Wittenbauer flywheel
     # (the decimal comma in Russian)
     m = re.search(r"kl = ([0-9.,]+) ", html)
-    muT = float(re.search(r"μ_T = ([0-9.,e+-]+) ", html).group(1).replace(",", "."))
+    muT = float(re.search(r"μ<sub>T</sub> = ([0-9.,e+-]+) ", html).group(1).replace(",", "."))
     J_drawn = float(m.group(1).replace(",", ".")) * muT / (8.0**2 / 15)
     assert J_drawn == pytest.approx(r.cycle.J_fly["wittenbauer"], rel=2e-3)   # kl printed to 0.1 mm
     assert mod.build(ReportContext(results={}, task=None, lang=lang, out_dir=tmp_path, env=make_env())) is None

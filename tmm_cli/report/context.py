@@ -11,6 +11,7 @@ from ..io import atomic_write
 from ..numfmt import localize
 from . import figures
 from .i18n import translate
+from .notation import term
 
 if TYPE_CHECKING:
     from ..task import Task
@@ -108,7 +109,9 @@ class ReportContext:
 
     # -- text
     def t(self, key: str, **kw) -> str:
-        return translate(key, self.lang, **kw)
+        """The catalogue's text (a :class:`~.notation.Term`: plain text, written into the
+        HTML with the notation's subscripts)."""
+        return term(translate, key, self.lang, **kw)
 
     @staticmethod
     def fmt(x: Any, digits: int = 4) -> str:

@@ -124,9 +124,21 @@ _GREEK = dict(zip(("alpha", "beta", "gamma", "delta", "epsilon", "varepsilon", "
 _SCRIPT = re.compile(r"([_^])(\{[^}]*\}|.)")
 
 
+def _txt(s) -> str:
+    """A label's text: a string as given (a catalogue's :class:`~.notation.Term` stays one,
+    its notation drawn with subscripts), anything else as ``str``."""
+    return s if isinstance(s, str) else str(s)
+
+
 def text_body(s: str, size_mm: float) -> str:
     """SVG text content of a label; $X_{ab}$ (matplotlib mathtext) -> italic X with a
-    lowered smaller 'ab' (^ raised); its numbers as the current language writes them."""
+    lowered smaller 'ab' (^ raised); its numbers as the current language writes them.
+    A catalogue's text (:class:`~.notation.Term`) has its notation's subscripts lowered
+    too (X_ab upright as the report's text writes it), the values put into it as written."""
+    from .notation import Term, kept, parts
+    term = isinstance(s, Term)
+    if term and s._source is not None:
+        s = s._source
     s = localize(s)
     if "\\" in s:                                   # mathtext's Greek letters: $\\lambda_1$
         s = _TEX.sub(lambda m: _GREEK.get(m.group(1), m.group(0)), s)
@@ -142,9 +154,13 @@ def text_body(s: str, size_mm: float) -> str:
         segs.append((body[p:], 0.0, True))
         pos = m.end()
     segs.append((s[pos:], 0.0, False))
+    if term:
+        segs = [piece for g in segs for piece in
+                ([(p, 0.3 if low else 0.0, False) for p, low in parts(g[0])] if g[1] == 0.0 and not g[2]
+                 else [(kept(g[0]), g[1], g[2])])]
     segs = [g for g in segs if g[0]]
     if all(g[1] == 0.0 and not g[2] for g in segs):
-        return escape(s)
+        return escape(kept(s) if term else s)
     out, cur = [], 0.0
     for text, shift, italic in segs:
         attrs = []
@@ -357,7 +373,7 @@ class Axes:
             else:
                 dx, dy = float(xytext[0]), float(xytext[1])
         ap = arrowprops or {}
-        self.notes.append(_Note(s=str(text), x=float(xy[0]), y=float(xy[1]), dx=dx, dy=dy, color=css_color(color),
+        self.notes.append(_Note(s=_txt(text), x=float(xy[0]), y=float(xy[1]), dx=dx, dy=dy, color=css_color(color),
                                 pt=float(fontsize or LABEL_PT), va=va, ha=ha,
                                 frac_y=isinstance(xycoords, tuple) and xycoords[1] == "axes fraction",
                                 arrow_from=arrow_from, arrow_lw=float(ap.get("lw", 1.0)),
@@ -365,9 +381,9 @@ class Axes:
 
     def set_title(self, s, fontsize=None, loc="center", y=None, va=None, **kw):
         if loc in ("left", "right"):
-            self.side_titles[loc] = (str(s), float(fontsize or TITLE_PT))
+            self.side_titles[loc] = (_txt(s), float(fontsize or TITLE_PT))
             return
-        self.title = str(s)
+        self.title = _txt(s)
         if fontsize:
             self.title_pt = float(fontsize)
         if y is not None and y < 1.0:          # inside the axes (a drawing without axes)
@@ -421,10 +437,10 @@ class Axes:
                     (self.fig.h - y0) * PT_PER_MM)
 
     def set_xlabel(self, s, **kw):
-        self.xlabel = str(s)
+        self.xlabel = _txt(s)
 
     def set_ylabel(self, s, **kw):
-        self.ylabel = str(s)
+        self.ylabel = _txt(s)
 
     def grid(self, on=True, lw=0.8, color="#b0b0b0", alpha=1.0, **kw):
         self.grid_on = bool(on)
@@ -764,7 +780,7 @@ class Axes:
             if ln.marker:
                 r = _marker_r(ln)
                 out.append(f'<circle cx="{_f(cx + 3.5)}" cy="{_f(yc)}" r="{_f(r)}" fill="{ln.color}"/>')
-            out.append(_text(cx + 7.0, yc + 0.35 * fs, str(ln.label), fs, "start"))
+            out.append(_text(cx + 7.0, yc + 0.35 * fs, _txt(ln.label), fs, "start"))
 
 
 _ANCHOR = {"left": "start", "center": "middle", "right": "end"}

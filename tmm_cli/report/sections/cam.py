@@ -11,6 +11,7 @@ import math
 import numpy as np
 
 from ... import locales
+from ..notation import Term
 
 I18N = locales.table("cam", "words")
 
@@ -27,7 +28,7 @@ def _loc(lang: str, text: str) -> str:
     if lang != "en":
         text = re.sub(r"(?<![A-Za-z])mm(?![A-Za-z])", unit("mm", lang), text)
         text = re.sub(r"(?<![A-Za-z])rad(?![A-Za-z])", unit("rad", lang), text)
-    return text
+    return Term(text)          # a catalogue's name: its notation (r_r) with a subscript in the HTML
 
 
 def _law_title(L: dict, t) -> str:
@@ -272,7 +273,8 @@ def build(ctx) -> str | None:
              (_loc(ctx.lang, t("cam.rho_min") + ", mm"), f(c["rho_min"] * MM, 6))]
     if not knife:
         rows.append((_loc(ctx.lang, t("cam.roller") + ", mm"),
-                     f"{f(c['roller'] * MM, 5)} ({t('cam.roller_given') if c['roller_rule'] == 'given' else t('cam.roller_rule')})"))
+                     Term(f"{f(c['roller'] * MM, 5)} "
+                          f"({t('cam.roller_given') if c['roller_rule'] == 'given' else t('cam.roller_rule')})")))
     return _render(ctx, c, rows, t("cam.method") + (" " + t("cam.chosen_method") if c.get("r0_given") else ""))
 
 
@@ -374,4 +376,4 @@ def _r0_note(ctx, c):
     text = ctx.t("cam.r0_drawn_on", r0=ctx.fmt(c["r0"] * MM, 6), r0d=whole, line="\u0000")
     a, _, b = text.partition("\u0000")
     # the line as the task file takes it, its unit as the language writes it (45 mm, or in Cyrillic)
-    return Markup(f"{escape(a)}<code>{escape(_loc(ctx.lang, f'r0: {whole} mm'))}</code>{escape(b)}")
+    return Markup(f"{escape(a)}<code>{escape(str(_loc(ctx.lang, f'r0: {whole} mm')))}</code>{escape(b)}")

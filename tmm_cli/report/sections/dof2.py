@@ -13,6 +13,7 @@ import math
 import numpy as np
 
 from ... import locales
+from ..notation import Term
 
 I18N = locales.table("dof2", "words")
 
@@ -229,7 +230,8 @@ def build(ctx) -> str | None:
     E = d["energy"]
     _csv(ctx, d)
     return ctx.render("sections/dof2.html.j2", params=_params(ctx, d), fig_sketch=fig_sketch,
-                      sketch_cap=sketch_cap, equations=EQUATIONS, reactions=REACTIONS,
+                      sketch_cap=sketch_cap, equations=[Term(e) for e in EQUATIONS],
+                      reactions=[Term(e) for e in REACTIONS],
                       integration=t("dof2.integration", n=d.get("nfev")), figs=figs,
                       energy_text=t("dof2.energy_text", err=f(E["max_abs_error"], 3), rel=f(E["relative_error"], 2)),
                       maxima=_maxima(ctx, d), impact_head=impact_head, impact_rows=impact_rows,

@@ -12,6 +12,7 @@ import math
 import numpy as np
 
 from ... import locales
+from ..notation import Term
 
 I18N = locales.table("dynamics", "words")
 
@@ -83,8 +84,8 @@ def _wittenbauer(ctx, d):
     ax.plot(x, y, color="k", lw=1.0)
     xe = Jmax / muJ
     xs = np.array([0.0, xe])
-    ax.plot(xs, (k + xs * muJ * s_up) / muT, color="#c0392b", lw=0.8, label="ψ_max")
-    ax.plot(xs, (l_ + xs * muJ * s_lo) / muT, color="#1f5fbf", lw=0.8, label="ψ_min")
+    ax.plot(xs, (k + xs * muJ * s_up) / muT, color="#c0392b", lw=0.8, label=Term("ψ_max"))
+    ax.plot(xs, (l_ + xs * muJ * s_lo) / muT, color="#1f5fbf", lw=0.8, label=Term("ψ_min"))
     ax.plot([0, 0], [l_ / muT, k / muT], color="#1e8449", lw=2.0, label="kl")
     ax.annotate("k", (0, k / muT), xytext=(3, 0), textcoords="offset points", color="#1e8449")
     ax.annotate("l", (0, l_ / muT), xytext=(3, 0), textcoords="offset points", color="#1e8449")
@@ -117,7 +118,7 @@ def _motion(ctx, d, q):
     for key, ls in (("omega_max", "--"), ("omega_min", "--"), ("omega_m", ":")):
         if d.get(key) is not None:
             a1.axhline(sg * d[key], color="0.4", lw=0.6, ls=ls)
-            a1.annotate(key.replace("omega_", "ω_"), (q[-1], sg * d[key]), xytext=(2, 0),
+            a1.annotate(Term(key.replace("omega_", "ω_")), (q[-1], sg * d[key]), xytext=(2, 0),
                         textcoords="offset points", fontsize=6, va="center")
     a1.set_ylabel(ctx.t("dyn.omega_axis"))
     a2.plot(q, e, color="#8e44ad")

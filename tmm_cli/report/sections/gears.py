@@ -10,6 +10,7 @@ import numpy as np
 from ... import locales
 from ...drawings.mesh import action_points
 from ...messages import render_list
+from ..notation import Term
 from ...numfmt import localize
 
 I18N = locales.table("gears", "words")
@@ -155,7 +156,7 @@ def contour_figure(ctx, g):
         for seg in segs:
             a = np.asarray(seg)
             kind = next(k for k in ("undercut", "sharpening", "contact_ratio", "interference") if name.startswith(k))
-            lab = ctx.t(f"gears.{kind}_l") + (f" {name.rsplit('_', 1)[-1]}" if name[-1:].isdigit() else "")
+            lab = Term(ctx.t(f"gears.{kind}_l") + (f" {name.rsplit('_', 1)[-1]}" if name[-1:].isdigit() else ""))
             ax.plot(a[:, 0], a[:, 1], color=col, ls=ls, lw=1.1, label=None if name in seen else lab)
             seen.add(name)
     # the admissible region (the stage's polygons: outer ring, then holes)
@@ -204,14 +205,14 @@ def build(ctx) -> str | None:
         return None
     f = ctx.fmt
     t = ctx.t
-    from markupsafe import Markup
+    from markupsafe import Markup, escape
     mm, deg = t("gears.mm"), t("gears.deg")
 
     def sym(html, unit=""):
         return Markup(html + (f", {unit}" if unit else ""))
 
     def row(key, html, value, unit=""):
-        return (Markup(f"{t(key)}, ") + sym(html, unit), value)
+        return ((escape(t(key)) + Markup(", ")) + sym(html, unit), value)
     rows = [row("g.aw", "a<sub>w</sub>", f(g["aw"] * MM, 6), mm),
             row("g.alpha_w", "α<sub>w</sub>", f(g["alpha_w"], 6), deg),
             row("g.inv", "inv α<sub>w</sub>", f(g["inv_alpha_w"], 6)),
@@ -224,15 +225,15 @@ def build(ctx) -> str | None:
            ("g.rw", "r<sub>w</sub>", "rw", MM, mm), ("g.ra", "r<sub>a</sub>", "ra", MM, mm),
            ("g.rf", "r<sub>f</sub>", "rf", MM, mm), ("g.s", "s", "s", MM, mm), ("g.e", "e", "e", MM, mm),
            ("g.sa", "s<sub>a</sub>", "sa", MM, mm), ("g.sb", "s<sub>b</sub>", "sb", MM, mm)]
-    wheel_rows = [(Markup(f"{t(key)}, ") + sym(html, unit), f(g[k][0] * sc, 6), f(g[k][1] * sc, 6))
+    wheel_rows = [((escape(t(key)) + Markup(", ")) + sym(html, unit), f(g[k][0] * sc, 6), f(g[k][1] * sc, 6))
                   for key, html, k, sc, unit in per]
     la = g["line_of_action"]
 
     def seg_html(k):
         return "".join(f"{c}<sub>{n}</sub>" if n else c for c, n in
                        __import__("re").findall(r"([A-Za-z])(\d*)", k)) if k[:1] in "NB" else k
-    la_rows = [((Markup(f"{t('g.' + k)}, ") + sym(seg_html(k), mm)) if k[:1] in "NB" else
-                (Markup(f"{t('g.' + k)}, ") + sym("", mm)[2:]) if not t("g." + k).startswith("g.")
+    la_rows = [(((escape(t('g.' + k)) + Markup(", ")) + sym(seg_html(k), mm)) if k[:1] in "NB" else
+                ((escape(t('g.' + k)) + Markup(", ")) + sym("", mm)[2:]) if not t("g." + k).startswith("g.")
                 else k + ", " + mm, f(v * MM, 6)) for k, v in la.items() if v is not None]
     ch = g["checks"]
     yes, no = t("gears.defect"), t("gears.ok")

@@ -64,16 +64,12 @@ def build(ctx) -> str | None:
         return None
     f, t = ctx.fmt, ctx.t
     ch = p.get("checks", {})
-    from markupsafe import Markup, escape
     sname = t(f"plan.scheme_{p.get('scheme', '')}")
     if sname.startswith("plan.scheme_"):
         sname = p.get("scheme_name", "")
-
-    def sym(text):
-        return Markup(str(escape(text)).replace("i_1H", "i<sub>1H</sub>"))
     info = [(t("plan.scheme", s=p.get("scheme", ""), name=sname), ""),
             (t("plan.z"), ", ".join(f"{k} = {v}" for k, v in p["z"].items())),
-            (t("plan.required"), f(p.get("required"), 6)), (sym(t("plan.ratio")), f(p["ratio"], 6)),
+            (t("plan.required"), f(p.get("required"), 6)), (t("plan.ratio"), f(p["ratio"], 6)),
             (t("plan.error"), num(100 * p['ratio_error'], ".3f") + " %"),
             *([(t("plan.best"), num(100 * p['best_ratio_error'], ".3f") + " %")] if p.get("best_ratio_error") is not None
               else []),
@@ -87,4 +83,4 @@ def build(ctx) -> str | None:
               num(100 * c['ratio_error'], ".3f") + " %", c["size"]) for c in p.get("candidates", [])]
     fig = ctx.svg(figure(ctx, p), "planetary-scheme")
     return ctx.render("sections/planetary.html.j2", info=info, conds=conds, cands=cands, fig=fig,
-                      ratio_head=sym(t("plan.ratio")))
+                      ratio_head=t("plan.ratio"))

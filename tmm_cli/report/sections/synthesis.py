@@ -10,10 +10,16 @@ import numpy as np
 
 from ... import locales
 from ...messages import unit
+from ..notation import Term
 
 I18N = locales.table("synthesis", "words")
 
 _LEN = locales.table("synthesis", "lengths")
+
+
+def _length_name(key: str, lang: str):
+    """A link length's name (``crank l_OA``), its notation written with subscripts in the HTML."""
+    return Term(_LEN.get(lang, _LEN["en"]).get(key, key))
 _SCALES = (1, 2, 2.5, 4, 5, 10, 15, 20, 25, 40, 50, 75, 100, 200, 500, 1000)
 
 
@@ -177,7 +183,8 @@ def gamma_svg(r: dict, t_turn: str, w_mm: float = 165.0, h_mm: float = 60.0, mm:
     cv.polyline([m(u, v) for u, v in zip(x, g)], "#1f4e99", 0.45)
     gm = r["gamma_min"]
     cv.line(m(0, gm), m(360, gm), "#b00", 0.25, dash="2,1")
-    cv.text(m(360, gm)[0] - 1, m(360, gm)[1] + 2.5, f"γ_min = {gm:.3f}°", size=6.5, color="#b00", anchor="end")
+    cv.text(m(360, gm)[0] - 1, m(360, gm)[1] + 2.5, "γ", sub="min", after=f" = {gm:.3f}°", size=6.5, color="#b00",
+            anchor="end")
     return cv.to_svg()
 
 
@@ -199,7 +206,7 @@ def error_chart(ctx, r):
 def _function(ctx, r) -> str:
     f, t = ctx.fmt, ctx.t
     mu = unit("m", ctx.lang)
-    lens = [(_LEN.get(ctx.lang, _LEN["en"]).get(k, k), f"{f(v, 6)} {mu}") for k, v in r["lengths"].items()]
+    lens = [(_length_name(k, ctx.lang), f"{f(v, 6)} {mu}") for k, v in r["lengths"].items()]
     pts = r["precision_points"]
     info = [(t("syn.type"), t("syn.type.function")), (t("syn.fn.K"), ", ".join(f(k, 6) for k in r["K"])),
             (t("syn.fn.grashof"), t(f"syn.grashof.{r['grashof']}"))]
@@ -219,13 +226,13 @@ def build(ctx) -> str | None:
         return _function(ctx, r)
     if r.get("type") in ("positions", "path"):
         from . import synthesis_motion
-        names = _LEN.get(ctx.lang, _LEN["en"])
+        names = {k: _length_name(k, ctx.lang) for k in _LEN.get(ctx.lang, _LEN["en"])}
         return getattr(synthesis_motion, f"build_{r['type']}")(ctx, r, names)
 
     f, t, lang = ctx.fmt, ctx.t, ctx.lang
     mu = unit("m", lang)
     typ = t(f"syn.type.{r['type']}")
-    lens = [(_LEN.get(lang, _LEN["en"]).get(k, k), f"{f(v, 6)} {mu}") for k, v in r["lengths"].items()]
+    lens = [(_length_name(k, lang), f"{f(v, 6)} {mu}") for k, v in r["lengths"].items()]
     out = r.get("output", "")
     info = [(t("syn.type"), typ)]
     if r.get("H") is not None:
@@ -239,8 +246,8 @@ def build(ctx) -> str | None:
     for s in r.get("solutions") or []:
         sols.append([t(f"syn.side.{s['side']}") if s.get("side") else ""] + [f(s[k], 6) for k in r["lengths"] if k in s]
                     + [f(s["gamma_min"], 6), t("syn.chosen") if s.get("chosen") else ""])
-    sol_head = ([t("syn.side")] + [_LEN.get(lang, _LEN["en"]).get(k, k) for k in r["lengths"]
-                                   if r.get("solutions") and k in r["solutions"][0]] + ["γ_min, °", ""])
+    sol_head = ([t("syn.side")] + [_length_name(k, lang) for k in r["lengths"]
+                                   if r.get("solutions") and k in r["solutions"][0]] + [Term("γ_min, °"), ""])
     svg, scale = construction_svg(r)
     return ctx.render("sections/synthesis.html.j2", info=info, lens=lens, sols=sols, sol_head=sol_head,
                       fig=ctx.figures.named(svg, "synthesis-construction"),

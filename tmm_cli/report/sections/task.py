@@ -12,11 +12,10 @@ import math
 import re
 from typing import TYPE_CHECKING, Any
 
-from markupsafe import Markup, escape
-
 from ... import locales
 from ...messages import unit as spelt
 from ...numfmt import localize
+from ..notation import Term
 
 if TYPE_CHECKING:
     from ...task import Task
@@ -185,12 +184,13 @@ def _rows(key: str, sec: Any, lang: str) -> list[tuple[str, str]]:
                 ctx.update(node)
         plain = re.sub(r"\[\d+\]", "", f"{key}.{k}")
         # a field given as a list may have a name of its own ('task.param.synthesis.points[]': path points)
-        label = (isinstance(v, list) and _param(plain + "[]", lang)) or param_name(plain, lang) \
-            or k.replace(".", " · ")
+        label = (isinstance(v, list) and _param(plain + "[]", lang)) or param_name(plain, lang)
+        # a catalogue's name: its notation with subscripts in the HTML; a path of the task as written
+        label = Term(label) if label else k.replace(".", " · ")
         idx = re.findall(r"(\w+)\[(\d+)\]", k)
         if idx and plain in PARAMS.get(lang, {}):
             item = ITEMS.get(lang, {}).get(idx[-1][0], idx[-1][0])
-            label = f"{item} {idx[-1][1]}: {label}"
+            label = Term(f"{item} {idx[-1][1]}: {label}")
         val = _value(v, _unit(f"{key}.{k}", lang, ctx))
         if plain == "flywheel.delta" and isinstance(v, float):
             from ...units import fraction_text
@@ -279,4 +279,4 @@ def build(ctx) -> str | None:
     if not info and not groups and mech is None:
         return None
     return ctx.render("sections/task.html.j2", info=info, groups=groups, mech=mech,
-                      J_head=Markup(str(escape(ctx.t("task.J"))).replace("J_S", "J<sub>S</sub>")))
+                      J_head=ctx.t("task.J"))
