@@ -69,6 +69,11 @@ def test_term_is_the_plain_text_with_html():
     got = term(lambda key, lang, **kw: cat[key].format(**kw), "k", "en", link="O_1", n="3")
     assert got == "ω_i of O_1, T_3"
     assert str(escape(got)) == "ω<sub>i</sub> of O_1, T<sub>3</sub>"
+    # ... also where the catalogue's own text has no notation (a stage failure's message put into
+    # 'Stage «{stage}» failed: {message}': its z_min kept, not a private-use mark left in its place)
+    cat = {"k": "failed: {message}"}
+    got = term(lambda key, lang, **kw: cat[key].format(**kw), "k", "en", message="change z_min, z_max")
+    assert str(escape(got)) == "failed: change z_min, z_max"
 
 
 @pytest.mark.parametrize("name", TASKS)
@@ -76,6 +81,7 @@ def test_term_is_the_plain_text_with_html():
 def test_report_has_no_notation_with_underscore(shared_once, name, lang):
     task = tmm_cli.load_task(ROOT / "tasks" / f"{name}.yaml")
     html = report_html(shared_once, name, lang)
+    assert "\ue000" not in html                      # no kept underscore's mark left behind
     assert TOKEN.findall(_visible(html, task.title or "")) == []
     # the figures draw the same catalogue texts with their subscripts lowered
     assert TOKEN.findall(_figure_text(html)) == []

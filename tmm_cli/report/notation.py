@@ -61,8 +61,8 @@ def notation_html(text: str) -> str:
     """``text`` escaped for HTML with its notation tokens' subscripts in ``<sub>``."""
     from markupsafe import escape
     html = str(escape(text))
-    if "_" not in html:
-        return html
+    if "_" not in html:             # no notation: only the values' kept underscores to put back
+        return html.replace(_KEPT, "_")
     return _TOKEN.sub(_sub, html).replace(_KEPT, "_")
 
 
