@@ -50,7 +50,8 @@ def test_the_trade_in_plain_words():
 def test_study_html_and_terminal_lead_with_the_trade(tmp_path, monkeypatch):
     html = study_page.html_section(STUDY, None, "en")
     assert html.index("In short") < html.index("For each stage") < html.index("Reference")
-    assert "The M_b and reaction diagrams drawn through 12 positions err by 10.7 %" in html
+    # the page writes the course's notation with its subscript, the terminal as plain text
+    assert "The M<sub>b</sub> and reaction diagrams drawn through 12 positions err by 10.7 %" in html
     monkeypatch.setattr(study_mod, "run_study", lambda task, progress=None, repeat=3: (STUDY, {}))
     res = CliRunner().invoke(app, ["study", str(ROOT / "tasks" / "forging_sixbar.yaml"), "--out", str(tmp_path)])
     assert res.exit_code == 0, res.output

@@ -136,9 +136,9 @@ def left_out(left: dict, lang: str) -> str:
 def html_section(study: dict, trapezoid: dict | None = None, lang: str = "en") -> str:
     """A report section in `lang`: per stage the table, the measured and the theoretical
     order and a log-log plot (texts: tmm_cli/report/sections/study.py, I18N)."""
-    import html as h
 
     from ...study import REF_TOL
+    from ..notation import notation_html as esc      # the course's notation with its subscripts (M_b)
     from .. import i18n
     i18n.register(I18N)
 
@@ -149,19 +149,19 @@ def html_section(study: dict, trapezoid: dict | None = None, lang: str = "en") -
         key = f"study.col.{k}"
         return i18n.translate(key, lang) if key in i18n.STRINGS["en"] else k
 
-    parts = [f"<section><h2>{h.escape(t('title'))}</h2>"]
+    parts = [f"<section><h2>{esc(t('title'))}</h2>"]
     short = trades(study, lang)        # the trade first, in plain words; the method after it
     if short:
-        parts.append(f"<h3>{h.escape(t('short'))}</h3><ul class='trade'>"
-                     + "".join(f"<li>{h.escape(x[0].upper() + x[1:])}.</li>" for x in short) + "</ul>")
-    parts.append(f"<p>{h.escape(t('intro', tol=f'{REF_TOL:g}'))}</p>")
+        parts.append(f"<h3>{esc(t('short'))}</h3><ul class='trade'>"
+                     + "".join(f"<li>{esc(x[0].upper() + x[1:])}.</li>" for x in short) + "</ul>")
+    parts.append(f"<p>{esc(t('intro', tol=f'{REF_TOL:g}'))}</p>")
     left = (trapezoid or {}).get("left_out")
     if left:
-        parts.append(f"<p>{h.escape(left_out(left, lang))}</p>")
+        parts.append(f"<p>{esc(left_out(left, lang))}</p>")
     for stage, d in study.items():
         rows = d["rows"]
         keys = [k for k in rows[0] if k not in ("setting", "error", "time_ms")]
-        parts.append(f"<h3>{h.escape(t('stage.' + stage))}</h3>")
+        parts.append(f"<h3>{esc(t('stage.' + stage))}</h3>")
         ref = d["reference"]
         txt = [t("note." + stage)]
         rv = ", ".join(f"{col(k)} = {_fmt(ref[k])}" for k in ref if k not in ("setting", "check", "converged"))
@@ -181,8 +181,8 @@ def html_section(study: dict, trapezoid: dict | None = None, lang: str = "en") -
         tr = (trapezoid or {}).get(stage)
         if tr:
             txt.append(t("trapezoid", order=tr["order"]))
-        parts.append("<p>" + h.escape(" ".join(x[0].upper() + x[1:].rstrip(".") + "." for x in txt if x)) + "</p>")
-        head = "".join(f"<th>{h.escape(x)}</th>" for x in [col(d["setting"]), *map(col, keys), t("error"), t("time")])
+        parts.append("<p>" + esc(" ".join(x[0].upper() + x[1:].rstrip(".") + "." for x in txt if x)) + "</p>")
+        head = "".join(f"<th>{esc(x)}</th>" for x in [col(d["setting"]), *map(col, keys), t("error"), t("time")])
         body = "".join("<tr>" + "".join(f"<td>{_fmt(r[k], k)}</td>" for k in ["setting", *keys, "error", "time_ms"])
                        + "</tr>" for r in rows)
         parts.append(f"<table><tr>{head}</tr>{body}</table>")
