@@ -846,29 +846,28 @@ def analyse_function(linkage, d: Design) -> dict:
     g = d.construction["generator"]
     x0, x1 = g["x"]
     xs = np.linspace(x0, x1, 401)
+    def error(phi_deg, ideal):
+        """The analysed rocker angle's deviation from the ideal psi (deg, within a half turn) at
+        the crank angles phi_deg: the generated psi is ideal + error, in the ideal's turn."""
+        kn = solve(linkage.mechanism, np.mod(phi_deg, 360.0), linkage.drive.omega)
+        P, B = kn.pos["O1"], kn.pos["B"]
+        got = np.degrees(np.arctan2(B[:, 1] - P[:, 1], B[:, 0] - P[:, 0]))
+        return (got - ideal + 180.0) % 360.0 - 180.0
+
     phi, psi, _ = function_angles(g, xs)
-    kin = solve(linkage.mechanism, np.mod(phi, 360.0), linkage.drive.omega)
-    P, B = kin.pos["O1"], kin.pos["B"]
-    got = np.degrees(np.arctan2(B[:, 1] - P[:, 1], B[:, 0] - P[:, 0]))
-    err = (got - psi + 180.0) % 360.0 - 180.0
+    err = error(phi, psi)
     k = int(np.argmax(np.abs(err)))
     pts = d.construction["precision_points"]
-    kp = solve(linkage.mechanism, np.mod([p["phi"] for p in pts], 360.0), linkage.drive.omega)
-    Bp, Pp = kp.pos["B"], kp.pos["O1"]
-    got_p = np.degrees(np.arctan2(Bp[:, 1] - Pp[:, 1], Bp[:, 0] - Pp[:, 0]))
     # written in the turn of the ideal psi (308.42 beside 308.42, not -51.58): as the positions' are
     ideal_p = np.array([p["psi"] for p in pts], float)
-    got_p = ideal_p + (got_p - ideal_p + 180.0) % 360.0 - 180.0
+    got_p = ideal_p + error(np.array([p["phi"] for p in pts], float), ideal_p)
     L = d.lengths
     serr = {"max": float(abs(err[k])), "at_x": float(xs[k])}
     if d.crank_range is not None:
         # the reported positions spread over the input range: x, the ideal and the generated psi there
         xg = x0 + (x1 - x0) * np.linspace(0.0, 1.0, int(linkage.positions.count))
         phg, psg, _ = function_angles(g, xg)
-        kg = solve(linkage.mechanism, np.mod(phg, 360.0), linkage.drive.omega)
-        Bg, Pg = kg.pos["B"], kg.pos["O1"]
-        got_g = np.degrees(np.arctan2(Bg[:, 1] - Pg[:, 1], Bg[:, 0] - Pg[:, 0]))
-        eg = (got_g - psg + 180.0) % 360.0 - 180.0
+        eg = error(phg, psg)
         serr["positions"] = [{"index": i, "x": float(a), "phi": float(f), "psi": float(q),
                               "psi_generated": float(q + e), "error": float(e)}
                              for i, (a, f, q, e) in enumerate(zip(xg, phg, psg, eg))]
