@@ -59,31 +59,36 @@ def stray_words(page_words) -> list[tuple]:
     return bad
 
 
-def stray_ink(pdf: Path, page_words, dpi: int = 36) -> list[tuple[int, str, int]]:
-    """[(page, margin, dark pixels)] for each page whose margins hold ink other than the
-    page number (rendered in grey at ``dpi``; a pixel darker than 240 of 255 counts)."""
+def raster(pdf: Path, dpi: int = 36) -> list:
+    """Each page of ``pdf`` rendered in grey by pdftoppm at ``dpi``: a uint8 array per page."""
     import numpy as np
     from PIL import Image
-    found = []
     with tempfile.TemporaryDirectory() as tmp:
         subprocess.run(["pdftoppm", "-gray", "-r", str(dpi), str(pdf), f"{tmp}/p"], check=True)
         files = sorted(Path(tmp).glob("p-*.pgm"), key=lambda p: int(p.stem.split("-")[-1]))
-        for k, f in enumerate(files):
-            im = np.asarray(Image.open(f), dtype=np.uint8)
-            h, w = im.shape
-            sx, sy = w / PAGE_W, h / PAGE_H
-            ink = im < 240
-            # the page number's box (and a pixel round it) is allowed
-            for x0, y0, x1, y1 in footer_boxes(page_words[k] if k < len(page_words) else []):
-                ink[max(0, int(y0 * sy) - 1):int(y1 * sy) + 2, max(0, int(x0 * sx) - 1):int(x1 * sx) + 2] = False
-            # SLACK and a pixel (antialiasing) round the body's edges
-            bx0, by0 = int((BODY[0] - SLACK) * sx) - 1, int((BODY[1] - SLACK) * sy) - 1
-            bx1, by1 = int((BODY[2] + SLACK) * sx) + 2, int((BODY[3] + SLACK) * sy) + 2
-            for name, part in (("top", ink[:by0, :]), ("bottom", ink[by1:, :]),
-                               ("left", ink[:, :bx0]), ("right", ink[:, bx1:])):
-                n = int(part.sum())
-                if n:
-                    found.append((k + 1, name, n))
+        return [np.asarray(Image.open(f), dtype=np.uint8) for f in files]
+
+
+def stray_ink(pdf: Path, page_words, dpi: int = 36, images: list | None = None) -> list[tuple[int, str, int]]:
+    """[(page, margin, dark pixels)] for each page whose margins hold ink other than the
+    page number (rendered in grey at ``dpi``, or ``images`` as :func:`raster` gives them; a
+    pixel darker than 240 of 255 counts)."""
+    found = []
+    for k, im in enumerate(raster(pdf, dpi) if images is None else images):
+        h, w = im.shape
+        sx, sy = w / PAGE_W, h / PAGE_H
+        ink = im < 240
+        # the page number's box (and a pixel round it) is allowed
+        for x0, y0, x1, y1 in footer_boxes(page_words[k] if k < len(page_words) else []):
+            ink[max(0, int(y0 * sy) - 1):int(y1 * sy) + 2, max(0, int(x0 * sx) - 1):int(x1 * sx) + 2] = False
+        # SLACK and a pixel (antialiasing) round the body's edges
+        bx0, by0 = int((BODY[0] - SLACK) * sx) - 1, int((BODY[1] - SLACK) * sy) - 1
+        bx1, by1 = int((BODY[2] + SLACK) * sx) + 2, int((BODY[3] + SLACK) * sy) + 2
+        for name, part in (("top", ink[:by0, :]), ("bottom", ink[by1:, :]),
+                           ("left", ink[:, :bx0]), ("right", ink[:, bx1:])):
+            n = int(part.sum())
+            if n:
+                found.append((k + 1, name, n))
     return found
 
 
@@ -109,3 +114,16 @@ def report_pdf(shared_once, name: str, lang: str) -> Path:
         task, res = results(shared_once, name)
         write_outputs(task, res, d, {"pdf"}, lang)
     return shared_once(f"pdf-{name}-{lang}", build) / "report.pdf"
+
+
+def measured(shared_once, name: str, lang: str) -> tuple[Path, list, list]:
+    """(report.pdf, its words per page, its pages in grey at 36 dpi) of tasks/<name>.yaml in
+    ``lang`` (:func:`report_pdf`), read by poppler once per test session and shared by the
+    tests that measure the pages (what leaves the body, half-empty pages)."""
+    import pickle
+    pdf = report_pdf(shared_once, name, lang)
+
+    def build(d: Path) -> None:
+        (d / "pages.pickle").write_bytes(pickle.dumps((words(pdf), raster(pdf))))
+    page_words, images = pickle.loads((shared_once(f"measured-{name}-{lang}", build) / "pages.pickle").read_bytes())
+    return pdf, page_words, images

@@ -22,13 +22,13 @@ pytestmark = pytest.mark.skipif(not X.have_poppler(), reason="poppler's pdftotex
 @pytest.mark.parametrize("lang", ["en", "ru", "uk"])
 @pytest.mark.parametrize("name", TASKS)
 def test_every_page_inside_its_body(shared_once, name, lang):
-    pdf = X.report_pdf(shared_once, name, lang)        # made once per session (test_page_numbers reads two)
-    pages = X.words(pdf)
+    # made and read once per session (test_page_fill reads the same, test_page_numbers two of them)
+    pdf, pages, images = X.measured(shared_once, name, lang)
     assert pages and all(X.footer_boxes(p) for p in pages)      # each page has its number
     stray = [(k + 1, w[4], [round(v / X.MM, 1) for v in w[:4]]) for k, p in enumerate(pages)
              for w in X.stray_words(p)]
     assert not stray, f"words outside the page body (page, word, box mm): {stray[:8]}"
-    ink = X.stray_ink(pdf, pages)
+    ink = X.stray_ink(pdf, pages, images=images)
     assert not ink, f"ink in the margins (page, margin, pixels): {ink[:8]}"
 
 

@@ -821,7 +821,8 @@ def test_ground_rrr_dyad_equals_the_generic_paths_on_random_four_bars(gx, gy, r,
     from tmm_cli.linkage.mechanism import build_mechanism
     from tmm_cli.task import load_task
     src = _four_bar((gx, gy), r, lb, lc, up, order, rod_rev, rocker_rev, tri)
-    make = lambda: build_mechanism(load_task(src))          # noqa: E731
+    task = load_task(src)                          # validated once; a new Mechanism each
+    make = lambda: build_mechanism(task)                    # noqa: E731
     plans = Solver(make()).plans
     assert plans[0].rrr is not None
     mp = pytest.MonkeyPatch()
@@ -853,7 +854,8 @@ def test_ground_rrr_dyad_equals_the_generic_paths_with_exact_zeros(g, r, lb, lc,
     for order, rod_rev, rocker_rev, tri in itertools.product((True, False), (True, False), (True, False),
                                                              (0, 1, 2, 3)):
         src = _four_bar(g, r, lb, lc, up, order, rod_rev, rocker_rev, tri)
-        make = lambda: build_mechanism(load_task(src))      # noqa: E731
+        task = load_task(src)                           # validated once; a new Mechanism each
+        make = lambda: build_mechanism(task)            # noqa: E731
         _same_runs(make, np.radians(grid), monkeypatch, kws=({"strict": False}, {"strict": False, "dets": True}))
         _same_solves(make, grid, monkeypatch)
 
