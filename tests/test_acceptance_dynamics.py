@@ -256,14 +256,25 @@ class ForgingReference:
         A_res = np.where(psi > self.psi_w, self.A_total, A_res)
         W_grav = -G * sum(MASS[n][0] * (S[n][:, 1] - S0[n][0, 1]) for n in MASS)
         dT = self.M_d * psi - A_res + W_grav
-        # reduced inertia by finite differences of positions
+        # reduced inertia by finite differences of positions: the linkage solved once at each
+        # of the stencil's angles, every link's difference taken from those (as derivative and
+        # derivative_angle take them, term for term)
+        at = {k: self.m.points(phi + k * HFD) for k, _ in STENCIL}
+
+        def diff(get):
+            out = None
+            for k, c in STENCIL:
+                v = get(at[k])
+                out = c * v if out is None else out + c * v
+            return out / HFD
         Jred = np.zeros_like(psi)
         Jcrank = None
         for n, (m, J) in MASS.items():
-            v = derivative(lambda p: self.m.points(p)[0][n], phi)
+            v = diff(lambda P: P[0][n])
             term = m * (v**2).sum(1)
             if n in ang:
-                w = derivative_angle(lambda p: self.m.points(p)[1][n], phi)
+                c0 = ang[n]
+                w = diff(lambda P: c0 + np.angle(np.exp(1j * (P[1][n] - c0))))
                 term = term + J * w**2
             if n == "crank":
                 Jcrank = term
