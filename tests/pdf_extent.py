@@ -93,7 +93,7 @@ def stray_ink(pdf: Path, page_words, dpi: int = 36, images: list | None = None) 
 
 
 def results(shared_once, name: str):
-    """(task, results) of tasks/<name>.yaml as `tmm run --format pdf` computes them (the
+    """(task, results) of tasks/<name>.yaml as `tmm run --format html,pdf` computes them (the
     synthesised task where the file asks a synthesis), once per test session: the three
     languages' reports are made from one run."""
     import pickle
@@ -101,19 +101,31 @@ def results(shared_once, name: str):
     def build(d: Path) -> None:
         from tmm_cli.orchestrate import process
         from tmm_cli.results import listed
-        task, res, _ = process(Path(__file__).resolve().parents[1] / "tasks" / f"{name}.yaml", None, {"pdf"}, "en")
+        task, res, _ = process(Path(__file__).resolve().parents[1] / "tasks" / f"{name}.yaml", None, {"html", "pdf"},
+                               "en")
         (d / "run.pickle").write_bytes(pickle.dumps((task, listed(res))))
     return pickle.loads((shared_once(f"pdfrun-{name}", build) / "run.pickle").read_bytes())
 
 
-def report_pdf(shared_once, name: str, lang: str) -> Path:
-    """report.pdf of tasks/<name>.yaml in ``lang``, written as `tmm run --format pdf` writes
-    it, once per test session (shared by the tests that read it)."""
+def report_out(shared_once, name: str, lang: str) -> Path:
+    """The folder `tmm run --format html,pdf --lang <lang>` writes for tasks/<name>.yaml
+    (report.pdf, report.html, its figures/ and CSV tables), once per test session, shared by
+    the tests that read them (the report's sections built once for both formats), and
+    ``results-unchanged`` ("True": the results' JSON the same after the report was made from
+    them as before: the report never localises them)."""
     def build(d: Path) -> None:
+        import json
         from tmm_cli.orchestrate import write_outputs
         task, res = results(shared_once, name)
-        write_outputs(task, res, d, {"pdf"}, lang)
-    return shared_once(f"pdf-{name}-{lang}", build) / "report.pdf"
+        before = json.dumps(res, sort_keys=True, default=str)
+        write_outputs(task, res, d, {"html", "pdf"}, lang)
+        (d / "results-unchanged").write_text(str(json.dumps(res, sort_keys=True, default=str) == before))
+    return shared_once(f"out-{name}-{lang}", build)
+
+
+def report_pdf(shared_once, name: str, lang: str) -> Path:
+    """report.pdf of tasks/<name>.yaml in ``lang`` (:func:`report_out`)."""
+    return report_out(shared_once, name, lang) / "report.pdf"
 
 
 def measured(shared_once, name: str, lang: str) -> tuple[Path, list, list]:

@@ -1,32 +1,24 @@
 """Reports of example tasks rendered in a language and in English, for the tests that a
 translated report has no text left in another language (tests/test_report_ru.py, _uk.py)
 that it uses the glossary's words (tests/test_glossary.py), that its numbers take the
-decimal comma (tests/test_decimal_comma.py): each report (task,
-language) is made once per test session and shared by those files (``shared_once``)."""
+decimal comma (tests/test_decimal_comma.py): each report (task, language) is made once per
+test session and shared by those files and the tests of the PDF (``shared_once``)."""
 from __future__ import annotations
 
-import json
 import pickle
 from pathlib import Path
 
 import tmm_cli
+from pdf_extent import report_out
 
 ROOT = Path(__file__).resolve().parents[1]
 
 
 def report_dir(shared_once, name: str, lang: str) -> Path:
-    """The folder render_html wrote tasks/<name>.yaml's report into, in ``lang`` (the
-    results without the kinematics curve), made once per session: report.html, its CSV
-    tables, and ``results-unchanged`` ("True": the results' JSON the same after the report
-    was made from them as before, the report never localises them)."""
-    def build(d: Path) -> None:
-        from tmm_cli.report import render_html
-        task = tmm_cli.load_task(ROOT / "tasks" / f"{name}.yaml")
-        r = results(shared_once, name)
-        before = json.dumps(r, sort_keys=True, default=str)
-        (d / "report.html").write_bytes(render_html(r, task, d, lang)[0].encode("utf-8"))
-        (d / "results-unchanged").write_text(str(json.dumps(r, sort_keys=True, default=str) == before))
-    return shared_once(f"html-{name}-{lang}", build)
+    """The folder `tmm run --format html,pdf --lang <lang>` writes for tasks/<name>.yaml, made
+    once per session and shared with the tests of the PDF (:func:`pdf_extent.report_out`):
+    report.html, its figures and CSV tables, report.pdf, and ``results-unchanged``."""
+    return report_out(shared_once, name, lang)
 
 
 def report_html(shared_once, name: str, lang: str) -> str:

@@ -39,6 +39,7 @@ def _visible(html: str, title: str) -> str:
 def _typst_text(src: str) -> str:
     """The Typst source without its code: the text the PDF typesets."""
     src = re.sub(r'numbering\("[^"]*"', "", src)                       # heading numbers: 1.1.
+    src = re.sub(r'rgb\("#[0-9a-fA-F]{6}"\)', "", src)                   # colours: #1e8449 is no 1·10⁸⁴⁴⁹
     return re.sub(r"\d+(?:\.\d+)?(?:pt|mm|em|fr|cm|%|deg)\b", "", src)  # lengths of the layout
 
 

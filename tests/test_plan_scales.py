@@ -26,6 +26,8 @@ from pathlib import Path
 
 import pytest
 
+from pdf_extent import report_out
+
 ROOT = Path(__file__).resolve().parents[1]
 LINKAGES = sorted(p.stem for p in (ROOT / "tasks").glob("*.yaml")
                   if re.search(r"^mechanism:", p.read_text(encoding="utf-8"), re.M))
@@ -36,16 +38,6 @@ _NUM = r"[−-]?\d+(?:[.,]\d+)?"
 
 def _num(s: str) -> float:
     return float(s.replace("−", "-").replace(",", ".").replace("\u202f", "").replace("\xa0", ""))
-
-
-def _report(tmp_path, name: str, lang: str, fmt: str = "html") -> Path:
-    from typer.testing import CliRunner
-    from tmm_cli.cli import app
-    out = tmp_path / f"{name}-{lang}"
-    res = CliRunner().invoke(app, ["run", str(ROOT / "tasks" / f"{name}.yaml"), "--out", str(out),
-                                   "--format", fmt, "--lang", lang, "--quiet"])
-    assert res.exit_code == 0, res.output
-    return out
 
 
 # ---------------------------------------------------------------- the SVG measured
@@ -220,8 +212,10 @@ def check_worked(html: str, mu_v: float, mu_a: float) -> None:
 
 @pytest.mark.parametrize("lang", ["en", "ru", "uk"])
 @pytest.mark.parametrize("name", LINKAGES)
-def test_drawings_measure_what_their_tables_say(tmp_path, name, lang):
-    out = _report(tmp_path, name, lang)
+def test_drawings_measure_what_their_tables_say(shared_once, name, lang):
+    # `tmm run --format html,pdf --lang <lang>`'s folder, made once per session (tests/test_pdf_extent.py
+    # measures the same report's PDF)
+    out = report_out(shared_once, name, lang)
     html = (out / "report.html").read_text(encoding="utf-8")
     if 'id="kinematics"' not in html:
         pytest.skip("no kinematics")
@@ -231,14 +225,14 @@ def test_drawings_measure_what_their_tables_say(tmp_path, name, lang):
 
 
 @pytest.mark.parametrize("name", ["forging_sixbar", "shaper_slotted_lever"])
-def test_pdf_prints_the_plans_at_full_size(tmp_path, name):
+def test_pdf_prints_the_plans_at_full_size(shared_once, name):
     """The scale bars' legends of a plans figure: as far apart on the PDF page as in the
     SVG (86 mm), so the printed figure measures what its table says."""
     import shutil
     import subprocess
     if not shutil.which("pdftotext"):
         pytest.skip("poppler's pdftotext not installed")
-    out = _report(tmp_path, name, "en", "html,pdf")
+    out = report_out(shared_once, name, "en")
     html = (out / "report.html").read_text(encoding="utf-8")
     kin = _section(html, "kinematics")
     svg = re.search(r'<div class="position">.*?(<svg.*?</svg>)', kin, re.S).group(1)

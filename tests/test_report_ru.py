@@ -22,9 +22,11 @@ def reports(shared_once):
 
 
 def _visible(html: str) -> str:
-    """The report's own text: without CSS, figures, the task's free-text title and the
-    stages' warnings (free text of the results)."""
+    """The report's own text: without CSS, figures, the task's free-text title, the
+    stages' warnings (free text of the results) and the comments of the explorer's script
+    (its words are the catalogue's, in its JSON)."""
     html = re.sub(r"<style>.*?</style>", "", html, flags=re.S)
+    html = re.sub(r"<script\b.*?</script>", lambda m: re.sub(r"(?m)(^|\s)//\s.*$", "", m.group(0)), html, flags=re.S)
     html = re.sub(r"<svg\b.*?</svg>", "", html, flags=re.S)
     html = re.sub(r"<title>.*?</title>|<h1>.*?</h1>", "", html, flags=re.S)
     html = re.sub(r'<section class="section" id="warnings">.*?</section>', "", html, flags=re.S)

@@ -30,8 +30,10 @@ def reports(shared_once):
 
 
 def _visible(html: str) -> str:
-    """The report's own text without CSS, figures' drawing code and the task's free-text title."""
+    """The report's own text without CSS, figures' drawing code, the task's free-text title and
+    the comments of the explorer's script (its words are the catalogue's, in its JSON)."""
     html = re.sub(r"<style>.*?</style>", "", html, flags=re.S)
+    html = re.sub(r"<script\b.*?</script>", lambda m: re.sub(r"(?m)(^|\s)//\s.*$", "", m.group(0)), html, flags=re.S)
     html = re.sub(r"<(path|line|circle|polyline|polygon|rect)\b[^>]*>", "", html)
     html = re.sub(r"<title>.*?</title>|<h1>.*?</h1>", "", html, flags=re.S)
     html = re.sub(r"<tr><th>(Тема|Title)</th><td>.*?</td></tr>", "", html, flags=re.S)

@@ -9,21 +9,20 @@ from pathlib import Path
 
 import pytest
 
-import tmm_cli
+from pdf_extent import report_out
 from svg_check import is_color, problems
 
 TASKS = sorted((Path(__file__).resolve().parents[1] / "tasks").glob("*.yaml"))
 
 
 @pytest.mark.parametrize("path", TASKS, ids=[p.stem for p in TASKS])
-def test_every_figure_is_valid_svg(path, tmp_path):
-    from tmm_cli.cli import write_outputs
-    task = tmm_cli.load_task(path)
-    results = tmm_cli.run(task)
-    write_outputs(task, results, tmp_path, {"html"}, "en")
-    html = (tmp_path / "report.html").read_text(encoding="utf-8")
+def test_every_figure_is_valid_svg(path, shared_once):
+    # report.html and figures/ as `tmm run --format html,pdf` writes them, made once per session
+    # (tests/test_pdf_extent.py reads the same folder's PDF)
+    out = report_out(shared_once, path.stem, "en")
+    html = (out / "report.html").read_text(encoding="utf-8")
     inline = re.findall(r"<svg\b.*?</svg>", html, re.S)
-    files = sorted((tmp_path / "figures").glob("*.svg"))
+    files = sorted((out / "figures").glob("*.svg"))
     assert inline and len(files) == len(inline)
     bad = []
     for k, svg in enumerate(inline, start=1):
