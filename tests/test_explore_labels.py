@@ -16,6 +16,8 @@ from pathlib import Path
 
 import pytest
 
+from pdf_extent import report_out
+
 ROOT = Path(__file__).resolve().parents[1]
 LINKAGES = sorted(p.stem for p in (ROOT / "tasks").glob("*.yaml")
                   if re.search(r"^mechanism:", p.read_text(encoding="utf-8"), re.M))
@@ -39,14 +41,10 @@ def explorer_problems(html: str, centres: bool = False) -> list:
 
 
 @pytest.mark.parametrize("name", LINKAGES)
-def test_explorer_texts_neither_overlap_nor_leave(tmp_path, name):
-    from typer.testing import CliRunner
-    from tmm_cli.cli import app
-    out = tmp_path / name
-    res = CliRunner().invoke(app, ["run", str(ROOT / "tasks" / f"{name}.yaml"), "--out", str(out),
-                                   "--format", "html", "--quiet"])
-    assert res.exit_code == 0, res.output
-    page = (out / "report.html").read_text(encoding="utf-8")
+def test_explorer_texts_neither_overlap_nor_leave(shared_once, name):
+    # report.html as `tmm run --format html,pdf` writes it, made once per session (tests/test_pdf_extent.py
+    # measures the same report's PDF)
+    page = (report_out(shared_once, name, "en") / "report.html").read_text(encoding="utf-8")
     if 'id="ex-data"' not in page:
         pytest.skip("no explorer")
     bad = explorer_problems(page)
