@@ -169,6 +169,9 @@ ENGLISH = [
     ('batch.not_regular', {}, 'not a regular file'),
     ('output.file_in_use', {}, 'the file is open in another program (a PDF viewer, a spreadsheet) or protected; '
                                'close it and run again'),
+    ('output.earlier_run', {'folder': 'out/v1/', 'when': '2026-12-06 15:31'},
+     'note: out/v1/ still holds the outputs of an earlier run (2026-12-06 15:31): they are not of the task '
+     'file as it is now'),
     # structure: a linkage the crank cannot drive (the former f-strings of linkage/structure.py)
     ('structure.fail.reasons', {'reasons': [
         {'code': 'structure.fail.lonely_point', 'params': {'point': 'C', 'link': 'rod', 'hint': {

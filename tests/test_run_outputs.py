@@ -96,6 +96,27 @@ def test_rerun_removes_the_previous_runs_files_only(tmp_path):
         "my_notes.txt", "figures/my_sketch.svg", "gears_sliding.csv"}
 
 
+def test_a_run_that_writes_nothing_says_the_folder_holds_an_earlier_run(tmp_path):
+    """A run whose task file is invalid (exit 2) writes nothing, and says that its folder still
+    holds an earlier run's outputs, with that run's time (its manifest's), so that a student
+    does not read the old report as this file's; every file of the earlier run is kept. Into a
+    folder no run has written, it says nothing more."""
+    bad = "gearz: {m: 4 mm, z: [14, 30]}\n"
+    fresh = tmm_run(task_file(tmp_path, bad, name="bad.yaml"), tmp_path / "none")
+    assert fresh.exit_code == 2 and "gearz" in fresh.output and "earlier run" not in fresh.output
+    out = tmp_path / "o"
+    f = task_file(tmp_path, GEARS)
+    assert tmm_run(f, out).exit_code == 0
+    os.utime(out / MANIFEST, (1700000000, 1700000000))             # the earlier run: 14 Nov 2023
+    before = {p: p.read_bytes() for p in out.rglob("*") if p.is_file()}
+    res = tmm_run(task_file(tmp_path, bad), out)
+    assert res.exit_code == 2, res.output
+    when = time.strftime("%Y-%m-%d %H:%M", time.localtime(1700000000))
+    assert (f"note: {out}/ still holds the outputs of an earlier run ({when}): they are not of the task "
+            "file as it is now") in res.output
+    assert {p: p.read_bytes() for p in out.rglob("*") if p.is_file()} == before
+
+
 def test_manifest_unit(tmp_path):
     d = tmp_path / "o"
     m = Manifest(d)

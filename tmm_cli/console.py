@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import re
 import sys
+import time
 from pathlib import Path
 from typing import Callable, Optional
 
@@ -75,6 +76,7 @@ def run_task(task_file: Path, out: Optional[Path], formats: set[str], lang: str,
             echo(f"  {stage}...", err=True)
     failure = None
     notes: list[str] = []
+    started = time.time()
     try:
         task, results, paths = process(task_file, lambda t: out or Path("out") / t.name, formats, lang,
                                        progress=progress, study=study, notes=notes)
@@ -83,9 +85,13 @@ def run_task(task_file: Path, out: Optional[Path], formats: set[str], lang: str,
         # place of a failed one, what failed; then exit 3
         failure, results = exc, exc.partial
     except TaskError as exc:
-        return fail_task(exc, echo)
+        code = fail_task(exc, echo)
+        earlier_run(out or Path("out") / task_file.stem, started, echo)
+        return code
     except StageError as exc:
-        return fail_stage(exc, str(task_file), echo)
+        code = fail_stage(exc, str(task_file), echo)
+        earlier_run(out or Path("out") / task_file.stem, started, echo)
+        return code
     except OSError as exc:
         return fail_write(exc, echo)
     if held is not None:
@@ -100,6 +106,21 @@ def run_task(task_file: Path, out: Optional[Path], formats: set[str], lang: str,
         from .summary import print_summary
         print_summary(results, paths)
     return EXIT_OK
+
+
+def earlier_run(folder: Path, started: float, echo: Echo = echo) -> None:
+    """After a run that wrote nothing (its task invalid, a stage failed before the outputs): say
+    that ``folder`` still holds an earlier run's outputs (its manifest older than this run), so
+    that nobody reads them as this task file's."""
+    from .io import MANIFEST
+    from .messages import Message
+    try:
+        when = (folder / MANIFEST).stat().st_mtime
+    except OSError:
+        return                                   # no earlier run there (or not readable): nothing to say
+    if when < started:
+        echo(Message("output.earlier_run", folder=f"{folder}/",
+                     when=time.strftime("%Y-%m-%d %H:%M", time.localtime(when))), err=True)
 
 
 def validate_tasks(task_files: list[Path], no_assembly: bool, echo: Echo = echo) -> int:
