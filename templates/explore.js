@@ -181,9 +181,25 @@
       tag(svg, {x: q.e[0] + 3, y: q.e[1] - 3, "font-size": 10, fill: q.grey ? "#666" : "#000"}, q.names.join(", "));
     });
   }
+  // a heading from the catalogue in the course's notation: M_b written as M with b lowered, as
+  // the report writes it (a letter, "_", then letters and digits or {a braced group})
+  function heading(cell, text) {
+    var re = /(\p{L})_(\{[^{}]+\}|[\p{L}\p{N}]+)/gu, at = 0, m;
+    function put(tag, t) { if (t) { var e = document.createElement(tag); e.textContent = t; cell.appendChild(e); } }
+    while ((m = re.exec(text)) !== null) {
+      put("span", text.slice(at, m.index + m[1].length));
+      put("sub", m[2].replace(/^\{|\}$/g, ""));
+      at = re.lastIndex;
+    }
+    put("span", text.slice(at));
+  }
   function row(cells, th) {
     var tr = document.createElement("tr");
-    cells.forEach(function (c) { var td = document.createElement(th ? "th" : "td"); td.textContent = c; tr.appendChild(td); });
+    cells.forEach(function (c) {
+      var td = document.createElement(th ? "th" : "td");
+      if (th) heading(td, c); else td.textContent = c;
+      tr.appendChild(td);
+    });
     table.appendChild(tr); return tr;
   }
   function fill(k) {

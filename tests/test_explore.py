@@ -201,6 +201,15 @@ def test_forces_at_three_course_positions_equal_results_json(page, run):
         assert _close(mb, e["balancing_moment"]) and _close(mzh, e["zhukovsky_moment"]), (index, mb, e)
 
 
+def test_headings_in_the_courses_notation(page):
+    """The forces table's heading writes the catalogue's M_b as the report does: M with b lowered
+    (a <sub>), no underscore left in any heading of the panel."""
+    _set(page, 60)
+    heads = page.eval_on_selector_all("#ex-table th", "hs => hs.map(h => [h.textContent, h.innerHTML])")
+    assert heads and not [t for t, _ in heads if "_" in t]
+    assert ["Mb, N·m", "<span>M</span><sub>b</sub><span>, N·m</span>"] in [list(h) for h in heads]
+
+
 def test_polygon_closes_in_the_browser(page):
     """The drawn force polygon closes: the end of its last vector is its start (the
     group is in equilibrium), read from the drawn SVG of each group."""
