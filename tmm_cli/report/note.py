@@ -306,12 +306,10 @@ def pdf_bytes(html: str, results: dict, task: Task | None, lang: str = "en") -> 
     import tempfile
     from pathlib import Path
 
-    import typst
     src, files = to_typst(html, results, task, lang)
     with tempfile.TemporaryDirectory(prefix="tmm-note-") as tmp:
         d = Path(tmp)
         for name, data in files.items():
             (d / name).write_bytes(data)
         (d / "note.typ").write_text(_preamble(_header(task), lang) + src, encoding="utf-8")
-        return typst.compile(str(d / "note.typ"), root=str(d), font_paths=typst_pdf._font_links(d / "fonts"),
-                             pdf_tags=False)
+        return typst_pdf.compile_file(d / "note.typ", typst_pdf._font_links(d / "fonts"))

@@ -22,9 +22,7 @@ def to_pdf(svgs: list[str], w_mm: float, h_mm: float) -> bytes:
     import tempfile
     from pathlib import Path
 
-    import typst
-
-    from ..report.typst_pdf import _font_dirs
+    from ..report.typst_pdf import _font_dirs, compile_file
     with tempfile.TemporaryDirectory(prefix="tmm-sheets-") as tmp:
         d = Path(tmp)
         pages = []
@@ -34,7 +32,7 @@ def to_pdf(svgs: list[str], w_mm: float, h_mm: float) -> bytes:
         src = (f"#set document(date: none)\n#set page(width: {w_mm:g}mm, height: {h_mm:g}mm, margin: 0pt)\n"
                + "\n#pagebreak()\n".join(pages) + "\n")
         (d / "sheets.typ").write_text(src, encoding="utf-8")
-        return typst.compile(str(d / "sheets.typ"), root=str(d), font_paths=_font_dirs(), pdf_tags=False)
+        return compile_file(d / "sheets.typ", _font_dirs())
 
 
 def dxf_entities(cv: PrimCanvas) -> list:
