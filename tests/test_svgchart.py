@@ -26,6 +26,21 @@ def test_periodic_spline_is_scipys_periodic_cubic_spline(n):
     assert np.allclose(C.periodic_spline(x, y[:, 0], t), ref[:, 0], atol=1e-12)
 
 
+@pytest.mark.parametrize("n", [2, 3, 4, 7, 12])
+def test_natural_spline_is_scipys_natural_cubic_spline(n):
+    """The open trajectories over an input range: scipy's natural cubic spline (M = 0 at both ends)
+    between the first and the last point, passing through every one."""
+    from scipy.interpolate import CubicSpline
+    rng = np.random.default_rng(10 + n)
+    x = np.sort(rng.uniform(0.0, 60.0, n))
+    y = rng.normal(size=(n, 2))
+    t = np.linspace(x[0], x[-1], 501)
+    ref = CubicSpline(x, y, bc_type="natural")(t)
+    assert np.allclose(C.natural_spline(x, y, t), ref, atol=1e-12)
+    assert np.allclose(C.natural_spline(x, y[:, 0], t), ref[:, 0], atol=1e-12)
+    assert np.allclose(C.natural_spline(x, y, x), y, atol=1e-12)
+
+
 def test_periodic_spline_by_hand():
     """Three intervals h = 1 through y = 0, 1, 0, (0): slopes d = (1, -1, 0), right-hand
     sides 6 (d_i - d_{i-1}) = (6, -12, 6), matrix [[4,1,1],[1,4,1],[1,1,4]]; the rows sum to

@@ -5,6 +5,7 @@ out here: Freudenstein's equation solved by Cramer's rule, the four-bar's positi
 intersection of two circles, the instant centres by Kennedy's theorem as two line
 intersections, the edge of assembly by the triangle inequality."""
 import json
+import re
 import math
 from pathlib import Path
 
@@ -358,3 +359,51 @@ def test_generated_psi_written_in_the_ideal_psis_turn():
     for p in res["precision_points"]:
         assert abs(p["psi_generated"] - p["psi"]) <= 1e-9
     assert res["precision_points"][0]["psi"] > 300.0 and res["precision_points"][2]["psi"] > 360.0
+
+
+def _trajectory_ends(svg: str) -> list[float]:
+    """For each trajectory of a plan of positions (the dashed paths of the points, the blue ones of
+    the centres of mass: paths of many points), the distance from its first point to its last."""
+    out = []
+    for d, rest in re.findall(r'<path d="(M[^"]+)"([^>]*)>', svg):
+        if "stroke-dasharray" not in rest and 'stroke="#1f5fbf"' not in rest:
+            continue
+        for part in d.split("M")[1:]:                # the lines of one style share a path: M starts each
+            xy = np.array(re.findall(r"(-?[\d.]+) (-?[\d.]+)", part), float)
+            if len(xy) > 40:
+                out.append(float(np.hypot(*(xy[-1] - xy[0]))))
+    return out
+
+
+@pytest.mark.parametrize("name, closed", [("synthesis_function_log10", False), ("crank_rocker_fourbar", True)])
+def test_trajectories_open_over_a_range_closed_over_a_cycle(shared_once, name, closed):
+    """Over an input range a point's trajectory runs from the first position to the last: the
+    plan of positions (report) and sheet 1 once closed it with a spline back to the start, a
+    line across the drawing; the crank pin's circle on sheet 1 is then the arc of the range
+    (the course's full circle over a cycle)."""
+    from pdf_extent import report_out
+    from tmm_cli.sheets import build_sheets
+    from tmm_cli.sheets.prims import Arc, Circle
+    ends = _trajectory_ends((report_out(shared_once, name, "en") / "figures" / "positions.svg").read_text())
+    assert len(ends) >= 3
+    assert all((e < 1e-6) == closed for e in ends), ends            # open: apart by the path's length
+    task = load_task(ROOT / "tasks" / f"{name}.yaml")
+    res = run(task)
+    cv, info = build_sheets(res, task, "en")[0]
+    paths = info["mechanism"]["paths"]
+    assert len(paths) >= 3
+    for p in paths.values():
+        gap = float(np.hypot(*(p["curve"][-1] - p["curve"][0])))
+        if closed:
+            assert gap < 1e-6
+        else:                                                         # from the first node to the last
+            assert np.allclose(p["curve"][0], p["nodes"][0]) and np.allclose(p["curve"][-1], p["nodes"][-1])
+            assert gap > 1.0
+    pos = res["positions"]
+    arcs = [a for a in cv.prims if isinstance(a, Arc) and a.layer == "thin"]
+    circles = [c for c in cv.prims if isinstance(c, Circle) and c.layer == "thin" and c.r > 5]
+    if closed:
+        assert len(circles) == 1 and not arcs
+    else:
+        assert not circles and len(arcs) == 1
+        assert arcs[0].a1 - arcs[0].a0 == pytest.approx(abs(pos["span"]), abs=1e-6)     # the positions span it

@@ -68,19 +68,23 @@ def nice_ticks(lo: float, hi: float, nbins: int) -> np.ndarray:
     return np.arange(first, last + 1) * step
 
 
+def _knots(x, y):
+    """(x, y as (n, d), whether y was flat, the intervals h, the slopes d) of a spline's knots."""
+    x = np.asarray(x, float)
+    y = np.asarray(y, float)
+    Y = y.reshape(len(x), -1)
+    h = np.diff(x)
+    return x, Y, y.ndim == 1, h, np.diff(Y, axis=0) / h[:, None]
+
+
 def periodic_spline(x, y, t) -> np.ndarray:
     """The periodic cubic spline through (x[i], y[i]) (y[-1] == y[0]; y may be (n, d))
     evaluated at t (taken modulo the period): the same curve as scipy's
     CubicSpline(x, y, bc_type="periodic"), without importing scipy for a drawing.
     Second derivatives M from the cyclic system
     h[i-1] M[i-1] + 2 (h[i-1] + h[i]) M[i] + h[i] M[i+1] = 6 (d[i] - d[i-1])."""
-    x = np.asarray(x, float)
-    y = np.asarray(y, float)
-    flat = y.ndim == 1
-    Y = y.reshape(len(x), -1)
-    h = np.diff(x)
+    x, Y, flat, h, d = _knots(x, y)
     m = len(h)
-    d = np.diff(Y, axis=0) / h[:, None]
     A = np.zeros((m, m))
     for i in range(m):
         A[i, (i - 1) % m] += h[i - 1]
@@ -89,13 +93,41 @@ def periodic_spline(x, y, t) -> np.ndarray:
     M = np.linalg.solve(A, 6.0 * (d - np.roll(d, 1, axis=0)))
     M = np.vstack([M, M[:1]])
     t = np.asarray(t, float)
-    tt = x[0] + np.mod(t - x[0], x[-1] - x[0])
-    j = np.clip(np.searchsorted(x, tt, side="right") - 1, 0, m - 1)
+    S = _cubic(x, Y, M, x[0] + np.mod(t - x[0], x[-1] - x[0]))
+    return S[:, 0] if flat else S
+
+
+def _cubic(x, Y, M, tt) -> np.ndarray:
+    """The cubic spline of knots x, values Y (n, d) and second derivatives M (n, d) at tt
+    (within [x[0], x[-1]])."""
+    h = np.diff(x)
+    j = np.clip(np.searchsorted(x, tt, side="right") - 1, 0, len(h) - 1)
     hj = h[j][:, None]
     a = (x[j + 1] - tt)[:, None]
     b = (tt - x[j])[:, None]
-    S = (M[j] * a ** 3 + M[j + 1] * b ** 3) / (6.0 * hj) + (Y[j] / hj - M[j] * hj / 6.0) * a \
+    return (M[j] * a ** 3 + M[j + 1] * b ** 3) / (6.0 * hj) + (Y[j] / hj - M[j] * hj / 6.0) * a \
         + (Y[j + 1] / hj - M[j + 1] * hj / 6.0) * b
+
+
+def natural_spline(x, y, t) -> np.ndarray:
+    """The natural cubic spline through (x[i], y[i]) (y may be (n, d); M = 0 at both ends)
+    evaluated at t in [x[0], x[-1]]: an open curve, as scipy's CubicSpline(x, y,
+    bc_type="natural"), for a path that does not close (a linkage analysed over an input
+    range).  Second derivatives M from the tridiagonal system
+    h[i-1] M[i-1] + 2 (h[i-1] + h[i]) M[i] + h[i] M[i+1] = 6 (d[i] - d[i-1]), i = 1..n-2."""
+    x, Y, flat, h, d = _knots(x, y)
+    m = len(h)
+    M = np.zeros_like(Y)
+    if m > 1:
+        A = np.zeros((m - 1, m - 1))
+        for i in range(m - 1):
+            A[i, i] = 2.0 * (h[i] + h[i + 1])
+            if i > 0:
+                A[i, i - 1] = h[i]
+            if i < m - 2:
+                A[i, i + 1] = h[i + 1]
+        M[1:-1] = np.linalg.solve(A, 6.0 * (d[1:] - d[:-1]))
+    S = _cubic(x, Y, M, np.clip(np.asarray(t, float), x[0], x[-1]))
     return S[:, 0] if flat else S
 
 

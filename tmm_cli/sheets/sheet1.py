@@ -41,10 +41,14 @@ def course_positions(results: dict) -> list[int]:
     return [i for i in out if i in kin][:2]
 
 
-def draw_mechanism(cv, geom, entries, course: list[int], box, lang="en", traced_over=None) -> dict:
+def draw_mechanism(cv, geom, entries, course: list[int], box, lang="en", traced_over=None,
+                   closed: bool = True) -> dict:
     """Every position thin, the course positions as contour lines, at a GOST scale
     fitting box = (x0, y0, w, h) mm, the trajectories of the points of the moving links (the
-    coupler curves) through the positions `traced_over` (the grid; default all).  Returns {'unit', 'scale', 'mu_l', 'paths'}."""
+    coupler curves) through the positions `traced_over` (the grid; default all), and the crank
+    pin's circle; ``closed=False`` (a linkage analysed over an input range): the trajectories
+    open from the first position to the last and the pin's arc over the range only.
+    Returns {'unit', 'scale', 'mu_l', 'paths'}."""
     from ..report.figures import place_labels
     x0, y0, w, h = box
     pts = np.array([_xy(e, p) for e in entries for p in e["points"]]) * 1000.0
@@ -87,7 +91,7 @@ def draw_mechanism(cv, geom, entries, course: list[int], box, lang="en", traced_
             cv.circle(M(_xy(entries[0], g)), 1.2, width=0.5)
     # the trajectories (coupler curves): periodic splines through the grid positions, dashed;
     # the centres of mass' in blue
-    from ..report.svgchart import periodic_spline
+    from ..report.svgchart import natural_spline, periodic_spline
     from ..report.course import position_label
     over = traced_over if traced_over is not None else entries
     paths = {}
@@ -101,8 +105,12 @@ def draw_mechanism(cv, geom, entries, course: list[int], box, lang="en", traced_
         xy = np.array([M(_xy(e, q)) for e in over])
         if np.ptp(xy, axis=0).max() < 0.5:
             continue
-        t = np.arange(len(xy) + 1, dtype=float)
-        curve = periodic_spline(t, np.vstack([xy, xy[:1]]), np.linspace(0, len(xy), 24 * len(xy) + 1))
+        if closed:
+            t = np.arange(len(xy) + 1, dtype=float)
+            curve = periodic_spline(t, np.vstack([xy, xy[:1]]), np.linspace(0, len(xy), 24 * len(xy) + 1))
+        else:
+            t = np.arange(len(xy), dtype=float)
+            curve = natural_spline(t, xy, np.linspace(0, len(xy) - 1, 24 * (len(xy) - 1) + 1))
         cv.polyline(curve, color="#1f5fbf" if q.startswith("S") else "#000", width=0.25, dash="3 1.5")
         paths[q] = {"nodes": xy, "curve": curve}
     # guides of the sliders: dash-dot centre lines over the stroke
@@ -122,7 +130,12 @@ def draw_mechanism(cv, geom, entries, course: list[int], box, lang="en", traced_
     if pin and O:
         Oc = M(_xy(entries[0], O))
         r = float(np.hypot(*(M(_xy(entries[0], pin)) - Oc)))
-        cv.circle(Oc, r, fill=None, width=0.2)
+        if closed:
+            cv.circle(Oc, r, fill=None, width=0.2)
+        else:                   # the pin's arc over the range: its angles in the range's order, unwrapped
+            d = np.array([M(_xy(e, pin)) - Oc for e in over])
+            a = np.degrees(np.unwrap(np.arctan2(d[:, 1], d[:, 0])))
+            cv.arc(Oc, r, float(a.min()), float(a.max()), width=0.2)
         cv.layer = "dimensions"
         cv.arc(Oc, 0.45 * r, 20.0, 120.0, width=0.35)
         a = math.radians(120.0)
@@ -305,8 +318,10 @@ def build(cv, results: dict, task: Task | None, lang: str = "en") -> dict:
     fx0, fy0, fx1, fy1 = FRAME
     course = course_positions(results)
     from ..report.course import grid_count
+    over_range = (results.get("positions") or {}).get("over") == "input_range"
     info = {"mechanism": draw_mechanism(cv, geom, entries, course, (fx0 + 3, 300.0, 400.0, fy1 - 300.0 - 3),
-                                        lang, traced_over=entries[:grid_count(results, len(entries))])}
+                                        lang, traced_over=entries[:grid_count(results, len(entries))],
+                                        closed=not over_range)}
     info["plans"] = {}
     by_index = {e["index"]: e for e in entries}
     # the acceleration plans of the course positions side by side at the top, the velocity

@@ -71,11 +71,12 @@ def _grid_count(ctx, entries) -> int:
 POSITIONS_BOX = dict(width_mm=165.0, min_h=60.0, max_h=150.0, margin_mm=10.0)   # the plan of positions
 
 
-def positions_svg(ctx, geom, entries, grid, fine=None, extent=None):
+def positions_svg(ctx, geom, entries, grid, fine=None, extent=None, closed=True):
     """The plan of positions: the mechanism at the `grid` positions, trajectories as
     periodic splines through them -- or, given a `fine` grid, through its points (at most
-    TRACE_POINTS of them, evenly spaced). ``extent``: ``mechanism_extent(entries)`` when
-    already known."""
+    TRACE_POINTS of them, evenly spaced); ``closed=False`` (a linkage analysed over an input
+    range) open curves from the first position to the last, never closed back. ``extent``:
+    ``mechanism_extent(entries)`` when already known."""
     from .. import figures as F
     lo, hi = extent if extent is not None else F.mechanism_extent(entries)
     view, unit, title = F.figure_for_box(lo, hi, lang=ctx.lang, **POSITIONS_BOX)
@@ -100,8 +101,8 @@ def positions_svg(ctx, geom, entries, grid, fine=None, extent=None):
     taken = [(q[0] - w / 2, q[1] - h / 2, q[0] + w / 2, q[1] + h / 2) for q, s in numbers
              for w, h in [tuple(unit * np.array(F.text_size(s, fs_mm)))]]
     F.draw_mechanism(view, geom, grid[0], unit, ranges=ranges, lw=1.3, taken=taken + [title])
-    # trajectories: periodic splines through the grid positions
-    from ..svgchart import periodic_spline
+    # trajectories: periodic splines through the grid positions (open ones over an input range)
+    from ..svgchart import natural_spline, periodic_spline
     traced = [l.com for l in geom.links if l.com] + [p for l in geom.links if l.kind == "bar"
                                                      for p in l.points]
     if fine is not None:
@@ -116,12 +117,14 @@ def positions_svg(ctx, geom, entries, grid, fine=None, extent=None):
         if np.ptp(xy, axis=0).max() < 1e-9 or len(xy) < 3:
             continue
         if fine is not None:
-            c = F.points_xy(fine + fine[:1], p)
-        else:
+            c = F.points_xy(fine + fine[:1] if closed else fine, p)
+        elif closed:
             t = np.arange(len(xy) + 1, dtype=float)
-            closed = np.vstack([xy, xy[:1]])
             tt = np.linspace(0, len(xy), 40 * len(xy))
-            c = periodic_spline(t, closed, tt)
+            c = periodic_spline(t, np.vstack([xy, xy[:1]]), tt)
+        else:
+            t = np.arange(len(xy), dtype=float)
+            c = natural_spline(t, xy, np.linspace(0, len(xy) - 1, 40 * (len(xy) - 1) + 1))
         is_com = p.startswith("S")
         if is_com:
             view.line(c, "#1f5fbf", 0.7, z=1)
@@ -421,7 +424,9 @@ def build(ctx) -> str | None:
 
     return ctx.render("sections/kinematics.html.j2",
                       pos_rows=pos_rows, scale_rows=scale_rows, lengths=lengths, over_range=span is not None,
-                      fig_positions=positions_svg(ctx, geom, entries, shown_grid, fine, (lo, hi)), n_grid=len(shown_grid),
+                      fig_positions=positions_svg(ctx, geom, entries, shown_grid, fine, (lo, hi),
+                                                 closed=span is None),
+                      n_grid=len(shown_grid),
                       hdr_pts=hdr_pts, v_rows=v_rows, a_rows=a_rows, hdr_l=hdr_l,
                       w_rows=w_rows, e_rows=e_rows, hdr_ang=hdr_ang, ang_rows=ang_rows,
                       sense_note=ctx.t("kin.sense_note"), positions=positions, fig_diagrams=diag,
