@@ -131,6 +131,17 @@ def natural_spline(x, y, t) -> np.ndarray:
     return S[:, 0] if flat else S
 
 
+def spline_through(xy, closed: bool, samples: int) -> np.ndarray:
+    """A point's trajectory through its positions ``xy`` (n, 2), taken in order: ``samples``
+    points of the periodic spline back to the first position (``closed``, a full turn) or of
+    the natural spline from the first to the last (a linkage analysed over an input range)."""
+    xy = np.asarray(xy, float)
+    n = len(xy)
+    if closed:
+        return periodic_spline(np.arange(n + 1, dtype=float), np.vstack([xy, xy[:1]]), np.linspace(0, n, samples))
+    return natural_spline(np.arange(n, dtype=float), xy, np.linspace(0, n - 1, samples))
+
+
 def _nbins(length_mm: float, per_label: float) -> int:
     """How many tick intervals fit (matplotlib's 'auto': a label per 3 font sizes along
     x, per 2 along y; at most 9)."""

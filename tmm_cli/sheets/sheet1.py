@@ -91,7 +91,7 @@ def draw_mechanism(cv, geom, entries, course: list[int], box, lang="en", traced_
             cv.circle(M(_xy(entries[0], g)), 1.2, width=0.5)
     # the trajectories (coupler curves): periodic splines through the grid positions, dashed;
     # the centres of mass' in blue
-    from ..report.svgchart import natural_spline, periodic_spline
+    from ..report.svgchart import spline_through
     from ..report.course import position_label
     over = traced_over if traced_over is not None else entries
     paths = {}
@@ -105,12 +105,7 @@ def draw_mechanism(cv, geom, entries, course: list[int], box, lang="en", traced_
         xy = np.array([M(_xy(e, q)) for e in over])
         if np.ptp(xy, axis=0).max() < 0.5:
             continue
-        if closed:
-            t = np.arange(len(xy) + 1, dtype=float)
-            curve = periodic_spline(t, np.vstack([xy, xy[:1]]), np.linspace(0, len(xy), 24 * len(xy) + 1))
-        else:
-            t = np.arange(len(xy), dtype=float)
-            curve = natural_spline(t, xy, np.linspace(0, len(xy) - 1, 24 * (len(xy) - 1) + 1))
+        curve = spline_through(xy, closed, 24 * (len(xy) if closed else len(xy) - 1) + 1)
         cv.polyline(curve, color="#1f5fbf" if q.startswith("S") else "#000", width=0.25, dash="3 1.5")
         paths[q] = {"nodes": xy, "curve": curve}
     # guides of the sliders: dash-dot centre lines over the stroke

@@ -102,7 +102,7 @@ def positions_svg(ctx, geom, entries, grid, fine=None, extent=None, closed=True)
              for w, h in [tuple(unit * np.array(F.text_size(s, fs_mm)))]]
     F.draw_mechanism(view, geom, grid[0], unit, ranges=ranges, lw=1.3, taken=taken + [title])
     # trajectories: periodic splines through the grid positions (open ones over an input range)
-    from ..svgchart import natural_spline, periodic_spline
+    from ..svgchart import spline_through
     traced = [l.com for l in geom.links if l.com] + [p for l in geom.links if l.kind == "bar"
                                                      for p in l.points]
     if fine is not None:
@@ -118,13 +118,8 @@ def positions_svg(ctx, geom, entries, grid, fine=None, extent=None, closed=True)
             continue
         if fine is not None:
             c = F.points_xy(fine + fine[:1] if closed else fine, p)
-        elif closed:
-            t = np.arange(len(xy) + 1, dtype=float)
-            tt = np.linspace(0, len(xy), 40 * len(xy))
-            c = periodic_spline(t, np.vstack([xy, xy[:1]]), tt)
         else:
-            t = np.arange(len(xy), dtype=float)
-            c = natural_spline(t, xy, np.linspace(0, len(xy) - 1, 40 * (len(xy) - 1) + 1))
+            c = spline_through(xy, closed, 40 * len(xy) if closed else 40 * (len(xy) - 1) + 1)
         is_com = p.startswith("S")
         if is_com:
             view.line(c, "#1f5fbf", 0.7, z=1)
