@@ -22,7 +22,7 @@ def to_pdf(svgs: list[str], w_mm: float, h_mm: float) -> bytes:
     import tempfile
     from pathlib import Path
 
-    from ..report.typst_pdf import _font_dirs, compile_file
+    from ..report.typst_pdf import _font_links, compile_file
     with tempfile.TemporaryDirectory(prefix="tmm-sheets-") as tmp:
         d = Path(tmp)
         pages = []
@@ -32,7 +32,7 @@ def to_pdf(svgs: list[str], w_mm: float, h_mm: float) -> bytes:
         src = (f"#set document(date: none)\n#set page(width: {w_mm:g}mm, height: {h_mm:g}mm, margin: 0pt)\n"
                + "\n#pagebreak()\n".join(pages) + "\n")
         (d / "sheets.typ").write_text(src, encoding="utf-8")
-        return compile_file(d / "sheets.typ", _font_dirs())
+        return compile_file(d / "sheets.typ", _font_links(d / "fonts"))      # the DejaVu files only, as the report
 
 
 def dxf_entities(cv: PrimCanvas) -> list:
