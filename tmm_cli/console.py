@@ -77,8 +77,11 @@ def run_task(task_file: Path, out: Optional[Path], formats: set[str], lang: str,
     failure = None
     notes: list[str] = []
     started = time.time()
+
+    def folder(name: str) -> Path:             # the task's output folder (a task's name: its file's stem)
+        return out or Path("out") / name
     try:
-        task, results, paths = process(task_file, lambda t: out or Path("out") / t.name, formats, lang,
+        task, results, paths = process(task_file, lambda t: folder(t.name), formats, lang,
                                        progress=progress, study=study, notes=notes)
     except PartialResults as exc:
         # results.json and the report were written with every computed section and, in
@@ -86,11 +89,11 @@ def run_task(task_file: Path, out: Optional[Path], formats: set[str], lang: str,
         failure, results = exc, exc.partial
     except TaskError as exc:
         code = fail_task(exc, echo)
-        earlier_run(out or Path("out") / task_file.stem, started, echo)
+        earlier_run(folder(task_file.stem), started, echo)
         return code
     except StageError as exc:
         code = fail_stage(exc, str(task_file), echo)
-        earlier_run(out or Path("out") / task_file.stem, started, echo)
+        earlier_run(folder(task_file.stem), started, echo)
         return code
     except OSError as exc:
         return fail_write(exc, echo)
