@@ -220,8 +220,6 @@ class ForceSpec(_Model):
                  if v is not None]
         if len(given) != 1:
             raise ValueError(Message("input.load_what_got", given=given) if given else Message("input.load_what"))
-        if self.diagram is not None and self.diagram.phi is not None and self.kind is not None:
-            pass
         for name, v in (("magnitude", self.magnitude), ("moment", self.moment)):
             if self.kind is not None and v is not None and v < 0:
                 raise FieldValueError((name,), Message("input.load_negative_against" if self.kind == "resistance"
