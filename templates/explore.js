@@ -17,10 +17,19 @@
 
   function fin(v) { return v !== null && v !== undefined && isFinite(v); }
   // round-off of an exact zero (|v| < 1e-10) is shown as 0, as in the report's tables
+  // a number to 4 significant digits as the report's tables write it: with the decimal comma
+  // and a power of ten (1,2·10⁴) in ru and uk (L.decimal), the point and 1.2e+4 in English
+  var SUP = {"0": "⁰", "1": "¹", "2": "²", "3": "³", "4": "⁴", "5": "⁵", "6": "⁶", "7": "⁷", "8": "⁸", "9": "⁹", "-": "⁻"};
+  function dec(s) {
+    if (L.decimal !== ",") return s;
+    var m = s.match(/^(-?[\d.]+)e\+?(-?)(\d+)$/);
+    if (m) s = m[1] + "·10" + (m[2] + m[3]).split("").map(function (c) { return SUP[c]; }).join("");
+    return s.replace(".", ",");
+  }
   function num(v) {
     if (!fin(v)) return "—";
     if (Math.abs(v) < 1e-10) return "0";
-    return Number(v).toPrecision(4).replace(/^(-?\d+\.\d*?)0+e/, "$1e");
+    return dec(Number(v).toPrecision(4).replace(/^(-?\d+\.\d*?)0+e/, "$1e"));
   }
   function extent(xs, ys) {
     var x0 = Infinity, x1 = -Infinity, y0 = Infinity, y1 = -Infinity;
@@ -296,7 +305,7 @@
     k = ((k % n) + n) % n;
     slider.value = String(k);
     var m = marks.filter(function (x) { return x.k === k; })[0];
-    out.textContent = num(D.turn[k]) + "°  (φ = " + Number(D.phi[k]).toFixed(2) + "°)" +
+    out.textContent = num(D.turn[k]) + "°  (φ = " + dec(Number(D.phi[k]).toFixed(2)) + "°)" +
       (m ? "  — " + L["explore.pos"] + " " + m.index : "");
     out.dataset.k = String(k);
     drawMech(k); drawPlan("ex-vplan", "vx", "vy", VM, k, "p"); drawPlan("ex-aplan", "ax", "ay", AM, k, "π"); fill(k);

@@ -210,6 +210,35 @@ def test_headings_in_the_courses_notation(page):
     assert ["Mb, N·m", "<span>M</span><sub>b</sub><span>, N·m</span>"] in [list(h) for h in heads]
 
 
+def test_numbers_with_the_decimal_comma_in_russian(browser, page, tmp_path):  # noqa: F811
+    """The panel's numbers as the Russian report's tables write them: 0,7854, 1,2·10⁴, never a
+    decimal point or an e-exponent; the same values as the English panel's."""
+    out = tmp_path / "ru"
+    subprocess.run([sys.executable, "-m", "tmm_cli", "run", str(TASK), "-o", str(out), "--format", "html",
+                    "--lang", "ru"], check=True, capture_output=True, cwd=ROOT)
+    pg = browser.new_page(viewport={"width": 1300, "height": 900})
+    try:
+        pg.goto((out / "report.html").as_uri())
+        _set(pg, 60)
+        cells = pg.eval_on_selector_all("#ex-table td", "ts => ts.map(t => t.textContent)")
+        readout = pg.text_content("#ex-readout")
+    finally:
+        pg.close()
+    nums = [c for c in cells if re.fullmatch(r"-?[\d,]+(·10[⁻⁰¹²³⁴⁵⁶⁷⁸⁹]+)?", c)]
+    assert len(nums) > 20 and any("," in c for c in nums)
+    assert not [c for c in cells if re.search(r"\d\.\d|\de[-+]?\d", c)], cells
+    assert "," in readout and not re.search(r"\d\.\d", readout), readout
+
+    def value(c):
+        m = re.fullmatch(r"(-?[\d,]+)(?:·10([⁻⁰¹²³⁴⁵⁶⁷⁸⁹]+))?", c)
+        e = m.group(2) or "0"
+        return float(m.group(1).replace(",", ".")) * 10 ** int(e.translate(str.maketrans("⁻⁰¹²³⁴⁵⁶⁷⁸⁹", "-0123456789")))
+    _set(page, 60)                                      # the English panel at the same angle
+    en = [c for c in page.eval_on_selector_all("#ex-table td", "ts => ts.map(t => t.textContent)")
+          if re.fullmatch(r"-?[\d.]+(e[-+]\d+)?", c)]
+    assert [value(c) for c in nums] == pytest.approx([float(c) for c in en], rel=1e-12)
+
+
 def test_polygon_closes_in_the_browser(page):
     """The drawn force polygon closes: the end of its last vector is its start (the
     group is in equilibrium), read from the drawn SVG of each group."""

@@ -141,9 +141,12 @@ def fragment(ctx) -> str | None:
         fdata = Markup(data_json({**forces, "colors": KIND_COLOR}))
     tr = I18N.get(ctx.lang, I18N["en"])
     # the instant centres: the worked position's figure's notes and colour (sections/worked.py)
+    from ..numfmt import comma_langs
     from .sections.worked import CENTRE_COLOR, CENTRE_ROOM
     labels = {**tr, **{k: ctx.t(k) for k in ("worked.centres_inf", "worked.centres_far")},
-              "centre_color": CENTRE_COLOR, "centre_room": CENTRE_ROOM}
+              "centre_color": CENTRE_COLOR, "centre_room": CENTRE_ROOM,
+              # the numbers as the report's tables write them: the decimal comma in ru and uk
+              "decimal": "," if ctx.lang in comma_langs() else "."}
     js = (templates_dir() / "explore.js").read_text(encoding="utf-8")
     return ctx.render("explore.html.j2", tr=tr, data=Markup(data_json(data)),
                       labels=Markup(data_json(labels)), forces=forces, fdata=fdata, js=Markup(js.replace("</", "<\\/")),
