@@ -448,6 +448,20 @@ def test_stage_errors():
     assert c.J == 0.0 and c.motion.delta == 0.0 and np.all(c.motion.omega == 10.0)
 
 
+def test_varying_inertia_needs_its_exact_derivative():
+    """A link whose reduced inertia varies needs dJ/dq given (from the second transmission
+    functions): solve_cycle never takes it by finite differences; a constant one needs none."""
+    q = np.linspace(0, 2 * np.pi, 9)
+    M = -np.abs(np.sin(q))
+    with pytest.raises(ValueError, match="'rod' varies"):
+        solve_cycle(q, M, {"crank": np.ones(9), "rod": 1 + 0.5 * np.sin(q)}, omega_m=10.0, delta=0.1)
+    with pytest.raises(ValueError, match="'mechanism' varies"):
+        solve_cycle(q, M, 1 + 0.5 * np.sin(q), omega_m=10.0, delta=0.1)
+    c = solve_cycle(q, M, {"crank": np.ones(9), "rod": 1 + 0.5 * np.sin(q)}, omega_m=10.0, delta=0.1,
+                    dJ_links={"rod": 0.5 * np.cos(q)})
+    assert c.const_links == ["crank"] and c.J > 0
+
+
 # ---------------------------------------------------------------- grid and size
 def test_grid_inserts_jumps_twice():
     q, side = grid(12, 360.0, [45.0, 90.0, 0.0, 360.0 + 45.0])

@@ -131,22 +131,6 @@ class CycleResult:
         return self.J_const + self.J + self.J_var
 
 
-def _dq_numeric(q: np.ndarray, y: np.ndarray) -> np.ndarray:
-    """dy/dq by finite differences on the distinct nodes (fallback without d2/a2)."""
-    uq, first = np.unique(q, return_index=True)
-    if uq.size < 3:
-        return np.zeros_like(y)
-    # periodic central differences: the cycle closes (y[last] == y[first])
-    yu = y[first]
-    h = np.diff(uq)
-    d = np.empty_like(yu)
-    d[1:-1] = ((yu[2:] - yu[1:-1]) / h[1:] * h[:-1] + (yu[1:-1] - yu[:-2]) / h[:-1] * h[1:]) \
-        / (h[:-1] + h[1:])
-    end = ((yu[1] - yu[0]) / h[0] * h[-1] + (yu[-1] - yu[-2]) / h[-1] * h[0]) / (h[0] + h[-1])
-    d[0] = d[-1] = end
-    return np.interp(q, uq, d)
-
-
 def _extrema_between_nodes(q, dT, M_red, J_var, dJ_var, omega_m, delta) -> np.ndarray:
     """Crank angles (rad) between the nodes where the energy functions of the methods,
     dT - J_var omega^2/2 at omega_max, omega_min and omega_m, have their maxima and minima
@@ -189,7 +173,9 @@ def solve_cycle(q: np.ndarray, M_given: np.ndarray, J_links: dict[str, np.ndarra
     J_extra : float
         A constant reduced inertia given in the task (``flywheel.reduced_J``), kg*m^2.
     dJ_links : dict or None
-        d/dq of each link's reduced inertia, kg*m^2/rad (None: finite differences).
+        d/dq of each link's reduced inertia, kg*m^2/rad: required for every link whose
+        inertia varies (the exact derivative, from the second transmission functions;
+        finite differences are never used), not needed for a constant one.
     M_by_kind : dict or None
         The reduced moments by load kind, N*m.
     const_tol : float
@@ -229,7 +215,6 @@ def solve_cycle(q: np.ndarray, M_given: np.ndarray, J_links: dict[str, np.ndarra
     J_var = np.zeros(n)
     dJ_var = np.zeros(n)
     const_links: list[str] = []
-    numeric = []
     for name, arr in J_links.items():
         arr = np.broadcast_to(np.asarray(arr, float), (n,))
         if not np.all(np.isfinite(arr)):
@@ -244,8 +229,9 @@ def solve_cycle(q: np.ndarray, M_given: np.ndarray, J_links: dict[str, np.ndarra
         J_var = J_var + arr
         d = None if dJ_links is None else dJ_links.get(name)
         if d is None:
-            numeric.append(name)
-            d = _dq_numeric(q, arr)
+            raise ValueError(f"solve_cycle: the reduced inertia of {name!r} varies along the cycle but "
+                             "dJ_links gives no derivative of it (dJ/dq is taken exactly, never by "
+                             "finite differences)")
         dJ_var = dJ_var + np.broadcast_to(np.asarray(d, float), (n,))
     J_red = J_const + J_var
 
