@@ -112,15 +112,37 @@ def report_out(shared_once, name: str, lang: str) -> Path:
     (report.pdf, report.html, its figures/ and CSV tables), once per test session, shared by
     the tests that read them (the report's sections built once for both formats), and
     ``results-unchanged`` ("True": the results' JSON the same after the report was made from
-    them as before: the report never localises them)."""
+    them as before: the report never localises them), and ``recorded.pickle``: what its
+    figures drew, recorded as they were drawn (:func:`recorded`)."""
     def build(d: Path) -> None:
         import json
+        import pickle
+
+        import pytest
+        from figure_record import ForceRecorder, record_placements, record_texts
         from tmm_cli.orchestrate import write_outputs
         task, res = results(shared_once, name)
         before = json.dumps(res, sort_keys=True, default=str)
-        write_outputs(task, res, d, {"html", "pdf"}, lang)
+        with pytest.MonkeyPatch.context() as mp:
+            mp.setenv("TMM_REPORT_JOBS", "1")          # every figure drawn in this process: recorded
+            forces = ForceRecorder(mp)
+            texts = record_texts(mp)
+            # the placements are compared with the reference in English (test_label_placement)
+            places = record_placements(mp) if lang == "en" else None
+            write_outputs(task, res, d, {"html", "pdf"}, lang)
         (d / "results-unchanged").write_text(str(json.dumps(res, sort_keys=True, default=str) == before))
+        (d / "recorded.pickle").write_bytes(pickle.dumps({"texts": texts, "panels": forces.panels,
+                                                         "placements": places}))
     return shared_once(f"out-{name}-{lang}", build)
+
+
+def recorded(shared_once, name: str, lang: str) -> dict:
+    """What the figures of :func:`report_out`'s report drew (tests/figure_record.py):
+    ``texts`` [(kind, width, height, [(text, box)])] of every figure, ``panels`` the force
+    drawings' arrows, lines and names, ``placements`` every call of figures.place_labels
+    (English only; None in ru and uk)."""
+    import pickle
+    return pickle.loads((report_out(shared_once, name, lang) / "recorded.pickle").read_bytes())
 
 
 def report_pdf(shared_once, name: str, lang: str) -> Path:

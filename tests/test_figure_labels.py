@@ -9,7 +9,8 @@ font size high), and so are the texts of the charts and scale drawings laid out 
 matplotlib laid them out (svgchart's figures of figures.new_figure: cam, gears, planetary,
 two-DOF; ascent 0.76, descent 0.24 of the font size about the baseline, a subscript or
 superscript counted full width; tick labels are written only where their tick is within
-the axis).  One report per task."""
+the axis).  One report per task: the one `tmm run --format html,pdf` writes, built once per test
+session and shared with the page tests (tests/pdf_extent.py)."""
 from __future__ import annotations
 
 import html as html_mod
@@ -21,61 +22,6 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 TASKS = sorted(p.stem for p in (ROOT / "tasks").glob("*.yaml"))
-
-
-def _record(monkeypatch) -> list:
-    """Patch the figure writers to record (kind, width mm, height mm, [(text, box)])."""
-    from tmm_cli.report import svgchart
-    from tmm_cli.report.svgdraw import PT_PER_MM, Canvas
-    figs, open_ = [], {}
-    text0, to_svg0 = Canvas.text, Canvas.to_svg
-    chart_text0, chart_svg0 = svgchart._text, svgchart.Figure.to_svg
-    chart: list = []
-
-    def text(self, x, y, s, size=7.0, color="#000", anchor="middle", italic=False, bold=False, sub=None,
-             sup=None, z=8, vcenter=True, halo=False, after=None):
-        fs = size / PT_PER_MM
-        w = 0.6 * fs * (len(s) + len(sub or sup or "") + len(after or ""))
-        x0 = x - w / 2 if anchor == "middle" else (x - w if anchor == "end" else x)
-        yc = y if vcenter else y + 0.35 * fs
-        open_.setdefault(id(self), []).append((s + (sub or sup or "") + (after or ""),
-                                               (x0, yc - fs / 2, x0 + w, yc + fs / 2)))
-        return text0(self, x, y, s, size, color, anchor, italic, bold, sub, sup, z, vcenter, halo, after)
-
-    def to_svg(self):
-        figs.append(("drawing", self.w, self.h, open_.pop(id(self), [])))
-        return to_svg0(self)
-
-    def chart_text(x, y, s, size_mm, anchor, fill=None, rotate=False):
-        plain = re.sub(r"\\[A-Za-z]+", "x", s)
-        plain = re.sub(r"[${}_^]", "", plain)
-        if plain.strip() and chart:
-            w = 0.6 * size_mm * len(plain)
-            a = x - w / 2 if anchor == "middle" else (x - w if anchor == "end" else x)
-            # along the text: a .. a + w; across: the baseline y, ascent above (y down)
-            lo, hi = y - 0.76 * size_mm, y + 0.24 * size_mm
-            if rotate:          # turned by -90° about (x, y): along the text is up the page
-                box = (x - (y - lo), y - (a + w - x), x + (hi - y), y - (a - x))
-            else:
-                box = (a, lo, a + w, hi)
-            chart[-1].append((s, box))
-        return chart_text0(x, y, s, size_mm, anchor, fill, rotate)
-
-    def chart_svg(self):
-        chart.append([])
-        try:
-            out = chart_svg0(self)
-        finally:
-            boxes = chart.pop()
-        if self.mpl:            # (y down in the SVG: the boxes as measured from the top)
-            figs.append(("chart", self.w, self.h, boxes))
-        return out
-
-    monkeypatch.setattr(Canvas, "text", text)
-    monkeypatch.setattr(Canvas, "to_svg", to_svg)
-    monkeypatch.setattr(svgchart, "_text", chart_text)
-    monkeypatch.setattr(svgchart.Figure, "to_svg", chart_svg)
-    return figs
 
 
 def problems(figs) -> list:
@@ -137,19 +83,17 @@ def test_the_checker_sees_a_collision_and_a_label_outside():
 
 
 @pytest.mark.parametrize("name", TASKS)
-def test_no_label_collides_or_leaves_its_figure(name, tmp_path, monkeypatch):
-    import tmm_cli
-    from tmm_cli.report import render
-    monkeypatch.setenv("TMM_REPORT_JOBS", "1")       # every figure drawn in this process
-    task = tmm_cli.load_task(ROOT / "tasks" / f"{name}.yaml")
-    res = tmm_cli.run(task)
-    figs = _record(monkeypatch)
-    render(res, task, tmp_path, {"html"}, "ru" if name.startswith(("forging", "shaper")) else "en")
+def test_no_label_collides_or_leaves_its_figure(name, shared_once):
+    from pdf_extent import recorded, report_out, results
+    # the report `tmm run` writes (html and pdf), its figures recorded as they were drawn
+    lang = "ru" if name.startswith(("forging", "shaper")) else "en"
+    figs = recorded(shared_once, name, lang)["texts"]
+    res = results(shared_once, name)[1]
     # a differential alone draws only a chart (svgchart places its own labels): no drawing to record
     assert figs or set(res) & {"structure", "cam", "gears", "planetary", "drive_train", "dof2"} == set()
     assert problems(figs) == []
     # every scale the report states is a standard one
-    html = (tmp_path / "report.html").read_text(encoding="utf-8")
+    html = (report_out(shared_once, name, lang) / "report.html").read_text(encoding="utf-8")
     scales = stated_scales(html)
     assert [(s, m) for s, m in scales if not standard(s, m)] == []
     if res.get("kinematics") and res.get("structure"):

@@ -18,7 +18,8 @@ arrow stays plain.
   (the checks of test_figure_labels and test_sheets), in every language.
 
 Recorded as drawn: the canvas' arrows, lines and texts while the drawing functions of
-tmm_cli/drawings/forces.py run for the report (html) and for the sheets."""
+tmm_cli/drawings/forces.py run for the report (the one `tmm run --format html,pdf` writes,
+built once per test session: tests/pdf_extent.py) and for the sheets (tests/figure_record.py)."""
 from __future__ import annotations
 
 import math
@@ -58,64 +59,6 @@ def _covering(arrows) -> list:
             if min(b, L1) - max(a, 0.0) > 0.5:
                 out.append((tuple(np.round(p1, 2).tolist()), tuple(np.round(p2, 2).tolist())))
     return out
-
-
-class Recorder:
-    """The panels drawn while patched: [{'kind', 'arrows': [(p, q)], 'lines': [(p, q)],
-    'labels': [(anchor, u, name, box, leader)], 'texts': [box]}]."""
-
-    def __init__(self, monkeypatch):
-        from tmm_cli.drawings import forces
-        from tmm_cli.report.svgdraw import Canvas
-        self.panels, self.cur = [], None
-        arrow0, line0, labels0 = Canvas.arrow, Canvas.line, forces._labels
-        rec = self
-
-        def arrow(cv, p, q, *a, **kw):
-            if rec.cur is not None and not rec.cur.get("in_moment"):
-                rec.cur["arrows"].append((tuple(map(float, p)), tuple(map(float, q))))
-            return arrow0(cv, p, q, *a, **kw)
-
-        def line(cv, p, q, *a, **kw):
-            if rec.cur is not None:
-                rec.cur["lines"].append((tuple(map(float, p)), tuple(map(float, q))))
-            return line0(cv, p, q, *a, **kw)
-
-        moment0 = Canvas.moment
-
-        def moment(cv, *a, **kw):
-            if rec.cur is not None:
-                rec.cur["in_moment"] = True
-            try:
-                return moment0(cv, *a, **kw)
-            finally:
-                if rec.cur is not None:
-                    rec.cur["in_moment"] = False
-
-        def labels(cv, items, *a, leaders=False, **kw):
-            boxes = labels0(cv, items, *a, leaders=leaders, **kw)
-            if rec.cur is not None:
-                for (anchor, u, name, col), box in zip(items, boxes):
-                    rec.cur["labels"].append((np.asarray(anchor, float), u, name, box, leaders))
-            return boxes
-
-        def wrap(kind, fn):
-            def run(*a, **kw):
-                rec.cur = {"kind": kind, "arrows": [], "lines": [], "labels": []}
-                try:
-                    return fn(*a, **kw)
-                finally:
-                    rec.panels.append(rec.cur)
-                    rec.cur = None
-            return run
-
-        monkeypatch.setattr(Canvas, "arrow", arrow)
-        monkeypatch.setattr(Canvas, "line", line)
-        monkeypatch.setattr(Canvas, "moment", moment)
-        monkeypatch.setattr(forces, "_labels", labels)
-        monkeypatch.setattr(forces, "group_panel", wrap("group", forces.group_panel))
-        monkeypatch.setattr(forces, "lever_panel", wrap("lever", forces.lever_panel))
-        monkeypatch.setattr(forces, "polygon_panel", wrap("polygon", forces.polygon_panel))
 
 
 ARM_APART = 1.0        # mm: two arms' names of a lever closer than this are at one place
@@ -250,28 +193,28 @@ def test_the_levers_lines_as_the_course_writes_them(balance):
 
 
 @pytest.mark.parametrize("name", LINKAGES)
-def test_force_names_beside_their_arrows(name, tmp_path, monkeypatch):
-    import tmm_cli
-    from tmm_cli.report import render
+def test_force_names_beside_their_arrows(name, shared_once, monkeypatch):
+    from figure_record import ForceRecorder
+    from pdf_extent import recorded, results
+    from test_figure_labels import problems as text_problems
+    from test_sheets import _check_texts
+
     from tmm_cli.sheets import build_sheets
-    monkeypatch.setenv("TMM_REPORT_JOBS", "1")           # every figure drawn in this process
-    task = tmm_cli.load_task(ROOT / "tasks" / f"{name}.yaml")
-    res = tmm_cli.run(task)
+    task, res = results(shared_once, name)
     if not res.get("kinetostatics"):
         pytest.skip("no kinetostatics")
-    from test_figure_labels import _record, problems as text_problems
-    from test_sheets import _check_texts
-    rec = Recorder(monkeypatch)
+    rec = ForceRecorder(monkeypatch)
     bad = []
     for lang in ("en", "ru", "uk"):
+        # the report `tmm run` writes, its figures recorded as they were drawn (pdf_extent.report_out)
+        drawn = recorded(shared_once, name, lang)
+        bad += [f"{lang}: report: {b}" for b in text_problems(drawn["texts"])]
+        assert drawn["panels"]
+        bad += [f"{lang}: report: {b}" for b in problems(drawn["panels"])]
         rec.panels.clear()
-        figs = _record(monkeypatch)                  # every text of every figure of the report
-        render(res, task, tmp_path / lang, {"html"}, lang)
-        n_report = len(rec.panels)
-        bad += [f"{lang}: report: {b}" for b in text_problems(figs)]
         sheets = build_sheets(res, task, lang)
         _check_texts(sheets)                         # every text of every sheet
-        assert n_report and len(rec.panels) > n_report
+        assert rec.panels                            # sheet 2's groups, polygons and lever
         bad += [f"{lang}: {b}" for b in problems(rec.panels)]
     assert not bad, f"{len(bad)} problems, e.g. {bad[:8]}"
 

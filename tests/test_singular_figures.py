@@ -93,12 +93,13 @@ def test_no_figure_without_a_singular_angle(tmp_path):
 
 
 def test_their_labels_neither_overlap_nor_leave(report, tmp_path, monkeypatch):
-    from test_figure_labels import _record, problems
+    from figure_record import record_texts
+    from test_figure_labels import problems
     from tmm_cli.report import render
     monkeypatch.setenv("TMM_REPORT_JOBS", "1")
     res, out = report
     task = tmm_cli.load_task(out.parent / "rocker_balance.yaml")
-    figs = _record(monkeypatch)
+    figs = record_texts(monkeypatch)
     render(res, task, tmp_path, {"html"}, "ru")
     assert len(figs) > 2 and problems(figs) == []
 
