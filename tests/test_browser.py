@@ -25,7 +25,6 @@ from pathlib import Path
 
 import pytest
 
-import tmm_cli
 
 ROOT = Path(__file__).resolve().parents[1]
 # every writer of figures: linkage plans and force drawings (svgdraw), Coriolis plans,
@@ -129,11 +128,9 @@ def browser_inks(browser, html: Path) -> list[float]:
 
 
 @pytest.mark.parametrize("name", TASKS)
-def test_browser_draws_what_the_pdf_shows(browser, name, tmp_path):
-    from tmm_cli.cli import write_outputs
-    task = tmm_cli.load_task(ROOT / "tasks" / f"{name}.yaml")
-    write_outputs(task, tmm_cli.run(task), tmp_path, {"html"}, "en")
-    html = tmp_path / "report.html"
+def test_browser_draws_what_the_pdf_shows(browser, name, tmp_path, shared_once):
+    from pdf_extent import report_out
+    html = report_out(shared_once, name, "en") / "report.html"      # as `tmm run` writes it
     svgs = re.findall(r"<svg\b.*?</svg>", html.read_text(encoding="utf-8"), re.S)
     b = browser_inks(browser, html)
     (tmp_path / "pdf").mkdir()
