@@ -17,14 +17,15 @@
 
   function fin(v) { return v !== null && v !== undefined && isFinite(v); }
   // round-off of an exact zero (|v| < 1e-10) is shown as 0, as in the report's tables
-  // a number to 4 significant digits as the report's tables write it: with the decimal comma
-  // and a power of ten (1,2·10⁴) in ru and uk (L.decimal), the point and 1.2e+4 in English
+  // a number to 4 significant digits as the report's tables write it: with the decimal comma,
+  // a power of ten (1,2·10⁴) and the minus sign (−0,5) in ru and uk (L.decimal), the point,
+  // 1.2e+4 and the hyphen-minus in English
   var SUP = {"0": "⁰", "1": "¹", "2": "²", "3": "³", "4": "⁴", "5": "⁵", "6": "⁶", "7": "⁷", "8": "⁸", "9": "⁹", "-": "⁻"};
   function dec(s) {
     if (L.decimal !== ",") return s;
     var m = s.match(/^(-?[\d.]+)e\+?(-?)(\d+)$/);
     if (m) s = m[1] + "·10" + (m[2] + m[3]).split("").map(function (c) { return SUP[c]; }).join("");
-    return s.replace(".", ",");
+    return s.replace(".", ",").replace(/^-/, "\u2212");
   }
   function num(v) {
     if (!fin(v)) return "—";

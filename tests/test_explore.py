@@ -211,8 +211,9 @@ def test_headings_in_the_courses_notation(page):
 
 
 def test_numbers_with_the_decimal_comma_in_russian(browser, page, tmp_path):  # noqa: F811
-    """The panel's numbers as the Russian report's tables write them: 0,7854, 1,2·10⁴, never a
-    decimal point or an e-exponent; the same values as the English panel's."""
+    """The panel's numbers as the Russian report's tables write them: 0,7854, 1,2·10⁴, −0,5 (the
+    minus sign), never a decimal point, an e-exponent or a hyphen for minus; the same values as
+    the English panel's."""
     out = tmp_path / "ru"
     subprocess.run([sys.executable, "-m", "tmm_cli", "run", str(TASK), "-o", str(out), "--format", "html",
                     "--lang", "ru"], check=True, capture_output=True, cwd=ROOT)
@@ -224,15 +225,16 @@ def test_numbers_with_the_decimal_comma_in_russian(browser, page, tmp_path):  # 
         readout = pg.text_content("#ex-readout")
     finally:
         pg.close()
-    nums = [c for c in cells if re.fullmatch(r"-?[\d,]+(·10[⁻⁰¹²³⁴⁵⁶⁷⁸⁹]+)?", c)]
+    nums = [c for c in cells if re.fullmatch(r"\u2212?[\d,]+(·10[⁻⁰¹²³⁴⁵⁶⁷⁸⁹]+)?", c)]
     assert len(nums) > 20 and any("," in c for c in nums)
+    assert any(c.startswith("\u2212") for c in nums) and not [c for c in cells if re.match(r"-\d", c)], cells
     assert not [c for c in cells if re.search(r"\d\.\d|\de[-+]?\d", c)], cells
     assert "," in readout and not re.search(r"\d\.\d", readout), readout
 
     def value(c):
-        m = re.fullmatch(r"(-?[\d,]+)(?:·10([⁻⁰¹²³⁴⁵⁶⁷⁸⁹]+))?", c)
+        m = re.fullmatch(r"(\u2212?[\d,]+)(?:·10([⁻⁰¹²³⁴⁵⁶⁷⁸⁹]+))?", c)
         e = m.group(2) or "0"
-        return float(m.group(1).replace(",", ".")) * 10 ** int(e.translate(str.maketrans("⁻⁰¹²³⁴⁵⁶⁷⁸⁹", "-0123456789")))
+        return float(m.group(1).replace(",", ".").replace("\u2212", "-")) * 10 ** int(e.translate(str.maketrans("⁻⁰¹²³⁴⁵⁶⁷⁸⁹", "-0123456789")))
     _set(page, 60)                                      # the English panel at the same angle
     en = [c for c in page.eval_on_selector_all("#ex-table td", "ts => ts.map(t => t.textContent)")
           if re.fullmatch(r"-?[\d.]+(e[-+]\d+)?", c)]
