@@ -99,6 +99,38 @@ def test_compare_relative_absolute_angles_and_sign():
     assert compare(258.0, 246.0, parse_tolerance({"abs": 0.5}, "x"), True)[0] == "outside"
 
 
+def test_a_round_off_zero_reference_is_graded_as_zero():
+    """B's speed at a dead centre is zero; the kinematics gives its round-off (1.3e-16 m/s in
+    press_offset_slider_crank's position 0). Graded against 0 (the zero reference's absolute
+    tolerance), as the report's tables print it: a student's 1 mm/s read off the plan passes --
+    against 1.3e-16 the relative 5 % failed it by 10^14 %. A small reference above the round-off
+    stays relative; the key and `tmm paths` give the reference as graded."""
+    import tmm_cli
+    from tmm_cli.forms import form_text
+    from tmm_cli.report.context import fmt
+    from tmm_cli.results import ROUND_OFF_ZERO, lookup, reference
+    task = tmm_cli.load_task(ROOT / "tasks" / "press_offset_slider_crank.yaml")
+    res = tmm_cli.run(task)
+    p = "kinematics[0].points.B.v"
+    raw = lookup(res, p)
+    assert 0 < abs(raw) < 1e-14                          # the round-off the grading meets
+    rows = grade(res, AnswerSet(source="", answers={p: 0.001, "kinematics[0].points.A.v": 0.001}), {})
+    assert rows[0]["reference"] == 0.0 and rows[0]["status"] == "ok" and rows[0]["error"] == 0.001
+    assert rows[1]["status"] == "outside"                # A moves: 0.001 m/s is 100 % off
+    assert grade(res, AnswerSet(source="", answers={p: 0.06}), {})[0]["status"] == "outside"   # abs 0.05
+    # the boundary is the report's: what its tables print 0 is graded against 0
+    for v in (0.99e-10, -0.99e-10, 1.01e-10, -1.01e-10, 5e-324, -0.0):
+        assert (reference(v) == 0.0) == (fmt(v) == "0") == (abs(v) < ROUND_OFF_ZERO)
+    small = 3e-9                                         # above the round-off: relative 5 %
+    assert compare(3.1e-9, reference(small), Tol(rel=0.05), False)[0] == "ok"
+    assert compare(3.3e-9, reference(small), Tol(rel=0.05), False)[0] == "outside"
+    key = form_text(task, [p], res, "en")
+    assert f"{p}: 0.0" in key or f'"{p}": 0.0' in key, key
+    out = CliRunner().invoke(app, ["paths", str(ROOT / "tasks" / "press_offset_slider_crank.yaml"),
+                                   "--prefix", "kinematics[0].points.B"])
+    assert out.exit_code == 0 and f"{p}\t0.0\n" in out.output, out.output
+
+
 def test_answer_values_with_units():
     assert answer_value("283 kg*m^2", "flywheel.J") == pytest.approx(283.0)
     assert answer_value("12 deg", "positions.phi0") == pytest.approx(12.0)

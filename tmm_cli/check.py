@@ -18,7 +18,7 @@ from typing import Any
 from .errors import TaskError
 from .limits import printable
 from .messages import Message, as_message
-from .results import did_you_mean, leaf_paths, lookup, parse_path
+from .results import did_you_mean, leaf_paths, lookup, parse_path, reference
 
 DEFAULT_TOLERANCE = 0.05
 # results in degrees: differences are taken modulo 360 into [-180, 180)
@@ -485,6 +485,7 @@ def grade(results: dict, aset: AnswerSet, tol: dict, required: list[str] | None 
             continue
         if isinstance(ref, bool):
             ref = float(ref)
+        ref = reference(ref)            # a round-off zero (v at a dead centre: 8.7e-17) graded as 0
         if not isinstance(ref, (int, float)):
             if leaves is None:
                 leaves = [q for q, v in leaf_paths(results) if isinstance(v, (int, float))]

@@ -445,7 +445,10 @@ def paths(
     if format == "json":
         typer.echo(json.dumps(dict(leaves), indent=1, ensure_ascii=False))
     else:
-        def txt(v):
+        from .results import reference
+
+        def txt(v):                     # as tmm check takes it: a round-off zero (8.7e-17) is 0.0
+            v = reference(v)
             return json.dumps(v) if isinstance(v, bool) else (repr(v) if isinstance(v, float) else str(v))
         sys.stdout.write("".join(f"{p}\t{txt(v)}\n" for p, v in leaves))
 

@@ -299,7 +299,7 @@ def form_text(task, paths: list[str], results: dict | None, lang: str) -> str:
     """The blank form (results None) or the key (results given) as commented YAML; a comment
     gives each quantity's symbol and unit as the language writes them (in ru and uk the units in
     Cyrillic, which the answers reader reads too: tmm_cli/numbers.py) and its name."""
-    from .results import lookup
+    from .results import lookup, reference
     key = results is not None
     words = _text(lang, "text")
     head = words["key" if key else "form"]
@@ -312,7 +312,7 @@ def form_text(task, paths: list[str], results: dict | None, lang: str) -> str:
         val = ""
         if key:
             try:
-                v = lookup(results, p)
+                v = reference(lookup(results, p))        # as tmm check takes it: a round-off zero is 0.0
                 val = "" if v is None else (repr(float(v)) if isinstance(v, float) else json.dumps(v))
             except KeyError:
                 val = ""

@@ -310,6 +310,19 @@ def parse_path(path: str) -> list[str | int]:
     return out
 
 
+# a value below this in magnitude (SI units) is the round-off of an exact zero (a velocity at a
+# dead centre, a reaction's moment at a pair on the load's line): the report's tables print it
+# 0 and the grading takes 0 for its reference (:func:`reference`); results.json keeps it
+ROUND_OFF_ZERO = 1e-10
+
+
+def reference(value: Any) -> Any:
+    """A result's value as the reference of an answer: a float of magnitude below
+    :data:`ROUND_OFF_ZERO` is 0.0 (so the zero reference's absolute tolerance applies to it,
+    as to a zero computed exactly); anything else as it is."""
+    return 0.0 if type(value) is float and abs(value) < ROUND_OFF_ZERO else value
+
+
 def lookup(results: dict, path: str) -> Any:
     """The value at a path into results.json. In lists of position entries
     (kinematics, kinetostatics) `[i]` selects the entry whose `index` is i;

@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING, Any
 
 from ..io import atomic_write
 from ..numfmt import localize
+from ..results import ROUND_OFF_ZERO
 from . import figures
 from .i18n import translate
 from .notation import term
@@ -57,7 +58,7 @@ def fmt(x: Any, digits: int = 4) -> str:
     if not math.isfinite(v):
         return "—"
     a = abs(v)
-    if a < 1e-10:      # round-off of an exact zero (a dead-centre velocity ...)
+    if a < ROUND_OFF_ZERO:      # round-off of an exact zero (a dead-centre velocity ...): graded as 0 too
         return "0"
     if a < 1e-4 or a >= 1e7:
         return localize(f"{v:.{max(digits - 1, 0)}e}")
