@@ -392,9 +392,15 @@ def test_check_answer_sources_and_messages(tmp_path):
                                     "Sidorov;MM-2;9;1\n")
     res = runner.invoke(app, ["check", str(t), "--answers", str(tab)])
     assert res.exit_code == 0 and "Petrov" in res.output and "Sidorov" not in res.output, res.output
-    # a non-YAML file: said to be no answers file, its content never echoed
+    # a non-YAML file: an invalid answers file, where YAML stops reading it (as for a task file),
+    # its content never echoed
     junk = _write(tmp_path, "junk.txt", "SECRET-FIRST-LINE: [unclosed\n\x07binary")
     res = runner.invoke(app, ["check", str(t), "--answers", str(junk)])
+    assert res.exit_code == 2 and "SECRET" not in res.output, res.output
+    assert res.output.startswith("error: invalid answers file\n") and "junk.txt:2:1: YAML error" in res.output
+    # a YAML file without answers: not an answers file
+    other = _write(tmp_path, "other.txt", "SECRET: 1\n")
+    res = runner.invoke(app, ["check", str(t), "--answers", str(other)])
     assert res.exit_code == 2 and "not an answers file" in res.output and "SECRET" not in res.output
     # a non-numeric answer: that answer's `invalid` with the reason, the set graded (exit 1, not 2)
     bad = _write(tmp_path, "bad.yaml", "answers:\n  gears.aw: twelve\n")
@@ -1032,6 +1038,45 @@ def test_tolerance_and_answers_file_errors_in_russian(tmp_path, kind, name, text
     out = localize(coded.to_dict(), "ru")
     assert ru in out, out
     assert not re.search(r"\b(expected|table|file|header|unknown|regular)\b", out), out
+
+
+def test_tolerances_are_read_by_the_number_grammar(tmp_path):
+    """A tolerance is a number a user writes: read as every other (the decimal comma, a
+    fraction), in the task file and in --tolerance FILE; a wrong one is told in its own form's
+    terms (not as the three forms' errors, one naming a class of the code); a decimal comma
+    inside {...} says so, as for any other field; the head names the file that is wrong."""
+    from tmm_cli.check import Tol, load_tolerance_file
+    from tmm_cli.errors import TaskError
+    from tmm_cli.task import load_task
+    head = "schema: tmm/1\ngears: {m: 4 mm, z: [20, 40]}\ntolerance:\n"
+    t = _write(tmp_path, "ok.yaml", head + "  default: 0,02\n  gears.a_w:\n    abs: 0,5\n  gears.d: '1/20'\n")
+    tol = load_task(t).tolerance
+    assert tol["default"] == 0.02 and tol["gears.a_w"].abs == 0.5 and tol["gears.d"] == 0.05
+    bad = _write(tmp_path, "bad.yaml", head + "  gears.b: {rel: 0,1}\n  gears.z: fast\n  gears.c: {abs: x}\n")
+    with pytest.raises(TaskError) as info:
+        load_task(bad)
+    issues = [(f, line, str(m)) for f, line, _, m in info.value.issues]
+    assert issues == [("tolerance.gears.b.rel", 4, "'0,1' has a decimal comma, and YAML splits a number at the "
+                                                   "comma inside [...] or {...}: write 0.1, or quote the value"),
+                      ("tolerance.gears.z", 5, "expected a non-negative number (relative tolerance), got 'fast'"),
+                      ("tolerance.gears.c.abs", 6, "expected a non-negative number (absolute), got 'x'")]
+    # --tolerance FILE
+    f = _write(tmp_path, "tol.yaml", "flywheel.J: 0,1\npositions.phi0: {abs: '0,5'}\n")
+    got = load_tolerance_file(f)
+    assert got["flywheel.J"] == Tol(rel=0.1) and got["positions.phi0"].abs == 0.5
+    f2 = _write(tmp_path, "tol2.yaml", "positions.phi0: {abs: 0,5}\n")
+    with pytest.raises(TaskError) as info:
+        load_tolerance_file(f2)
+    assert info.value.kind == "tolerance file" and "write 0.5, or quote the value" in info.value.render()
+    runner = CliRunner()
+    task = ROOT / "tasks" / "gears_zero.yaml"
+    ans = _write(tmp_path, "a.yaml", "answers:\n  gears.aw: 1\n")
+    res = runner.invoke(app, ["check", str(task), "--answers", str(ans), "--tolerance", str(f2)])
+    assert res.exit_code == 2 and res.output.startswith("error: invalid tolerance file\n"), res.output
+    tab = _write(tmp_path, "tab.yaml", "variant: 5\nanswers:\n\tgears.aw: 12\n")
+    res = runner.invoke(app, ["check", str(task), "--answers", str(tab)])
+    assert res.exit_code == 2 and res.output.startswith("error: invalid answers file\n"), res.output
+    assert "tab.yaml:3:1: use spaces for indentation" in res.output
 
 
 def test_malformed_answers_row_in_the_summary_language(tmp_path):

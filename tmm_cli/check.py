@@ -57,13 +57,15 @@ def parse_tolerance(v, where: str, line=None, col=None, file=None) -> Tol:
     """A tolerance entry: a non-negative number (relative), {rel: R, abs: A}, or
     ``graphical`` (kept as the string; `tolerances` expands it with the results)."""
     def bad(msg):
-        return TaskError("invalid tolerance", file=file, issues=[(where, line, col, msg)])
+        return TaskError("invalid tolerance", file=file, issues=[(where, line, col, msg)],
+                         kind="tolerance file" if file else "task")
 
     def num(x, what):
-        ok = isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(float(x)) and x >= 0
-        if not ok:
-            raise bad(Message("input.tol_not_number", what=what, got=repr(x)))
-        return float(x)
+        from .units import tolerance_number
+        try:
+            return tolerance_number(x, what)
+        except ValueError as exc:
+            raise bad(exc.args[0]) from None
 
     if isinstance(v, Tol) or v == GRAPHICAL:
         return v
@@ -206,23 +208,24 @@ def load_answers_file(path: Path, keep_errors: bool = False) -> AnswerSet:
     from .yamlload import load_yaml
     path = Path(path)
     if not path.is_file():
-        raise TaskError(Message("answers.not_file"), file=str(path))
+        raise TaskError(Message("answers.not_file"), file=str(path), kind="answers file")
     try:
         data, marks = load_yaml(path)
-    except TaskError:
-        data, marks = None, {}
+    except TaskError as exc:         # not YAML: where and why (a tab, an unclosed bracket), as for a task file
+        exc.kind = "answers file"
+        raise
     if not isinstance(data, dict) or "answers" not in data:
         # never echo the file's content: it may be anything
-        raise TaskError(Message("answers.not_answers_file"), file=str(path))
+        raise TaskError(Message("answers.not_answers_file"), file=str(path), kind="answers file")
     unknown = set(map(str, data)) - {"answers", "tolerance", "student", "variant", "schema", "title"}
     if unknown:
         k = sorted(unknown)[0]
         line, col = _mark(marks, (k,))
-        raise TaskError("unknown key", file=str(path), issues=[(k, line, col, Message("answers.unknown_key", key=k))])
+        raise TaskError("unknown key", file=str(path), kind="answers file", issues=[(k, line, col, Message("answers.unknown_key", key=k))])
     from .limits import text_issues
     bad_text = text_issues(data, marks)     # the task file's rule for every text
     if bad_text:
-        raise TaskError("invalid answers file", file=str(path), issues=bad_text)
+        raise TaskError("invalid answers file", file=str(path), kind="answers file", issues=bad_text)
     for key in ("answers", "student"):
         raw = data.get(key)
         if raw is not None and not isinstance(raw, dict):
@@ -239,7 +242,7 @@ def load_answers_file(path: Path, keep_errors: bool = False) -> AnswerSet:
         try:
             parse_path(k)
         except KeyError as exc:
-            err = TaskError("invalid answers file", file=str(path), issues=[(f"answers.{k}", line, col, _coded(exc))])
+            err = TaskError("invalid answers file", file=str(path), kind="answers file", issues=[(f"answers.{k}", line, col, _coded(exc))])
             if not keep_errors:
                 raise err from None
             aset.error = aset.error or err.coded() or err.render()
@@ -382,21 +385,42 @@ def load_tolerance_file(path: Path) -> dict:
     from .yamlload import load_yaml
     path = Path(path)
     if not path.is_file():
-        raise TaskError(Message("input.tol_not_file"), file=str(path))
+        raise TaskError(Message("input.tol_not_file"), file=str(path), kind="tolerance file")
     try:
         data, marks = load_yaml(path)
-    except TaskError:
-        data, marks = None, {}
+    except TaskError as exc:         # not YAML: where and why, as for a task file
+        exc.kind = "tolerance file"
+        raise
     base = ()
     if isinstance(data, dict) and isinstance(data.get("tolerance"), dict):
         data, base = data["tolerance"], ("tolerance",)
     if not isinstance(data, dict):
-        raise TaskError(Message("input.tol_not_mapping"), file=str(path))
+        raise TaskError(Message("input.tol_not_mapping"), file=str(path), kind="tolerance file")
     out = {}
     for k, v in data.items():
         line, col = _mark(marks, base + (k,))
-        out[str(k)] = parse_tolerance(v, str(k), line, col, str(path))
+        try:
+            out[str(k)] = parse_tolerance(v, str(k), line, col, str(path))
+        except TaskError as exc:
+            raise _decimal_comma_told(exc, path, line) from None
     return out
+
+
+def _decimal_comma_told(exc: TaskError, path: Path, line: int | None) -> TaskError:
+    """``exc`` (a tolerance file's entry), or, where its line holds a number with a decimal comma
+    inside {...} (``{abs: 0,5}``: YAML read it as ``abs: 0`` and a key ``5``), that said instead,
+    as the task file's reader says it."""
+    from .yamlload import decimal_comma_hint
+    try:
+        text = path.read_text(encoding="utf-8").splitlines()[line - 1] if line else ""
+    except (OSError, UnicodeDecodeError, IndexError):
+        return exc
+    hint = decimal_comma_hint(text)
+    if hint is None or not exc.issues:
+        return exc
+    fld, ln, col, _ = exc.issues[0]
+    msg = Message("input.decimal_comma_value", **hint.params)
+    return TaskError(exc.message, file=exc.file, issues=[(fld, ln, col, msg)], kind=exc.kind)
 
 
 def tolerances(task, override: dict | None = None, results: dict | None = None) -> dict:

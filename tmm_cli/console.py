@@ -40,7 +40,7 @@ Echo = Callable[..., None]
 
 
 def fail_task(exc: TaskError, echo: Echo = echo) -> int:
-    echo(f"error: invalid task\n{exc.render()}", err=True)
+    echo(f"error: invalid {exc.kind}\n{exc.render()}", err=True)
     return EXIT_INVALID
 
 
@@ -136,7 +136,7 @@ def validate_tasks(task_files: list[Path], no_assembly: bool, echo: Echo = echo)
         try:
             files += _task_files([a])
         except TaskError as exc:
-            echo(f"error: invalid task\n{exc.render()}", err=True)
+            echo(f"error: invalid {exc.kind}\n{exc.render()}", err=True)
             code = EXIT_INVALID
     for f in files:
         try:
@@ -146,7 +146,7 @@ def validate_tasks(task_files: list[Path], no_assembly: bool, echo: Echo = echo)
             for note in task.input_warnings:        # e.g. a plain number read as metres
                 echo(f"warning: {f}: {note}", err=True)
         except TaskError as exc:
-            echo(f"error: invalid task\n{exc.render()}", err=True)
+            echo(f"error: invalid {exc.kind}\n{exc.render()}", err=True)
             code = max(code, EXIT_INVALID) if code != EXIT_STAGE else code
         except StageError as exc:
             echo(f"error: {f}: {exc}", err=True)

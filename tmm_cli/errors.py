@@ -16,10 +16,13 @@ def _where(file: str, line: int | None, col: int | None) -> str:
 
 
 class TaskError(Exception):
-    """Invalid task input. ``issues`` is a list of (field, line, column, message)."""
+    """Invalid task input. ``issues`` is a list of (field, line, column, message). ``kind``: what
+    the invalid file is, for the message's head (`error: invalid <kind>`): the task, or the
+    answers file or tolerance file given with it (exit code 2 all the same)."""
 
     def __init__(self, message: str, *, file: str | None = None,
-                 issues: list[tuple[str, int | None, int | None, str]] | None = None):
+                 issues: list[tuple[str, int | None, int | None, str]] | None = None, kind: str = "task"):
+        self.kind = kind
         self.file = file
         self.issues = issues or []
         self.message = message

@@ -12,11 +12,12 @@ problem. The model is the input only: what the stages compute from it (the mecha
 # annotations evaluated as written (no `from __future__ import annotations`): pydantic would
 # compile and evaluate every field's annotation string when the models are made
 import re
+from functools import partial
 from pathlib import Path
 from typing import Annotated, Literal, Union
 
-from pydantic import (BaseModel, ConfigDict, Field, PrivateAttr, ValidationError,
-                      field_validator, model_validator)
+from pydantic import (BaseModel, BeforeValidator, ConfigDict, Discriminator, Field, PrivateAttr, Tag,
+                      ValidationError, WithJsonSchema, field_validator, model_validator)
 
 from . import locales
 from .errors import TaskError, dotted
@@ -27,7 +28,7 @@ from .linkage.spec import (DiagramSpec, DriveSection, FlywheelSection, ForceSpec
                            LinkSpec, LoadsSection, MechanismSection, PositionsSection, ShapeSpec, SynthesisLinkSpec,
                            SynthesisSection)
 from .modelbase import FieldValueError, _Model
-from .units import Ratio
+from .units import tolerance_number
 
 Point2 = tuple[float, float]
 
@@ -44,12 +45,37 @@ from .trainspec import DOCS as _TRAIN_DOCS  # noqa: E402
 from .trainspec import DriveTrainSection, TrainStageSpec  # noqa: E402
 
 
+def _tol_number(what: str):
+    """A tolerance's number read by the number grammar ('0,02', '1/20'): units.tolerance_number."""
+    return BeforeValidator(partial(tolerance_number, what=what))
+
+
+# a tolerance's number in the JSON Schema: a number, or a string that begins as one ('0,05', '1/20')
+_TOL_SCHEMA = WithJsonSchema({"anyOf": [{"type": "number", "minimum": 0},
+                                        {"type": "string", "pattern": "^\\s*[0-9]",
+                                         "description": "a number such as '0,05' or '1/20'"}]})
+
+
 class ToleranceSpec(_Model):
     """A tolerance as {rel: R, abs: A}: passes when |student - reference| <= max(A, R |reference|);
     `sign: any` grades the magnitude (either sign passes)."""
-    rel: Annotated[float, Field(ge=0, allow_inf_nan=False)] = 0.0
-    abs: Annotated[float, Field(ge=0, allow_inf_nan=False)] = 0.0
+    rel: Annotated[float, _tol_number("rel"), _TOL_SCHEMA] = 0.0
+    abs: Annotated[float, _tol_number("abs"), _TOL_SCHEMA] = 0.0
     sign: Literal["any"] | None = None
+
+
+def _tolerance_kind(value) -> str:
+    """Which form a tolerance is written in: a mapping {rel, abs, sign}, `graphical`, or a number
+    (so that a wrong one is told in its own form's terms, not as every form's error)."""
+    if isinstance(value, (dict, ToleranceSpec)):
+        return "tag:spec"
+    return "tag:graphical" if value == "graphical" else "tag:number"
+
+
+ToleranceValue = Annotated[Union[Annotated[Literal["graphical"], Tag("tag:graphical")],
+                                 Annotated[float, _tol_number("plain"), _TOL_SCHEMA, Tag("tag:number")],
+                                 Annotated[ToleranceSpec, Tag("tag:spec")]],
+                           Discriminator(_tolerance_kind)]
 
 
 class StudentSpec(BaseModel):
@@ -102,8 +128,7 @@ class Task(_Model):
                                                        "striker (docs/methods.md §7; runs on its own)")
     report: ReportSection | None = None
     answers: dict[str, float] = Field(default_factory=dict)
-    tolerance: dict[str, Union[Literal["graphical"], Annotated[Ratio, Field(ge=0)], ToleranceSpec]] = \
-        Field(default_factory=dict)
+    tolerance: dict[str, ToleranceValue] = Field(default_factory=dict)
 
     _file: str | None = PrivateAttr(None)
     # factories written as lambdas: pydantic reads a factory's signature for every Task it

@@ -206,5 +206,21 @@ def plain_number(value: Any) -> Any:
     return r.value
 
 
+def tolerance_number(value: Any, what: str = "plain") -> float:
+    """A tolerance's number -- a share (``what`` "rel", or "plain": a plain tolerance) or an
+    absolute amount ("abs") -- non-negative and finite, given as a number or as a string of the
+    number grammar ('0,02', '1/20'); else ValueError(Message ``input.tol_not_number``). One reader
+    for the task file's ``tolerance`` and ``--tolerance FILE``."""
+    x = value
+    if isinstance(x, str):
+        try:
+            x = plain_number(x)
+        except ValueError:
+            x = None
+    if not (isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(float(x)) and x >= 0):
+        raise ValueError(Message("input.tol_not_number", what=what, got=repr(value)))
+    return float(x)
+
+
 # a plain number (no unit), finite and within LIMIT
 Number = Annotated[float, BeforeValidator(plain_number), AfterValidator(check_magnitude)]

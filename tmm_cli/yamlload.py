@@ -254,8 +254,9 @@ def decimal_comma_hint(line: str) -> Message | None:
     m = _DECIMAL_COMMA.search(code)
     if m is None or ("[" not in code and "{" not in code):
         return None
-    if ("[" in code or "{" in code) and not re.search(r",\s", code):
-        return None     # a compact list such as [12,42,7]: commas without spaces throughout
+    if not re.search(r",\s", code) and not re.search(r"[^\s{}\[\],:]+\s*:\s*$", code[:m.start()]):
+        return None     # a compact list such as [12,42,7]: commas without spaces throughout (a
+        # mapping's value, {rel: 0,1}, is split all the same: YAML reads it as rel: 0 and a key 1)
     return Message("input.decimal_comma", fixed=f"{m.group(1)}.{m.group(2)}", given=m.group(0))
 
 
