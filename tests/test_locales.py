@@ -147,3 +147,45 @@ def test_no_catalogue_file_repeats_a_key():
     assert len(files) > 30
     for f in files:
         yaml.load(f.read_text(encoding="utf-8"), Loader=Strict)
+
+
+@pytest.mark.parametrize("n, ru, uk, en", [
+    (1, "1 положение", "1 положення", "1 position"), (2, "2 положения", "2 положення", "2 positions"),
+    (4, "4 положения", "4 положення", "4 positions"), (5, "5 положений", "5 положень", "5 positions"),
+    (11, "11 положений", "11 положень", "11 positions"), (12, "12 положений", "12 положень", "12 positions"),
+    (14, "14 положений", "14 положень", "14 positions"), (21, "21 положение", "21 положення", "21 positions"),
+    (22, "22 положения", "22 положення", "22 positions"), (24, "24 положения", "24 положення", "24 positions"),
+    (111, "111 положений", "111 положень", "111 positions"), (0, "0 положений", "0 положень", "0 positions"),
+    (2.5, "2,5 положения", "2,5 положення", "2.5 positions")])
+def test_the_noun_after_a_count_as_each_language_chooses_it(n, ru, uk, en):
+    """A catalogue's {n:|form|form|form}: the count and the noun's form the language puts after it
+    (Russian and Ukrainian: one 1, 21; few 2-4, 22-24; many 0, 5-20, 25-30; a fraction the few
+    form), in the report's and the messages' formatters alike; the rule is the numbers
+    catalogue's `format.plural`."""
+    from tmm_cli import numfmt
+    from tmm_cli.messages import _Formatter, catalogue
+    for lang, want, forms in (("ru", ru, "|положение|положения|положений"), ("uk", uk, "|положення|положення|положень"),
+                              ("en", en, "|position|positions")):
+        assert numfmt.format_text("{n:" + forms + "}", lang, n=n) == want
+        assert _Formatter(catalogue(lang)["terms"], lang).format("{n:" + forms + "}", n=n) == want
+
+
+def test_counted_nouns_of_the_catalogues_agree_with_their_count():
+    """The texts that follow a count with a noun: the engine's 24 hand positions were
+    '24 положений'; a text of 1 character, a cam phase in 4 parts, 3 satellites that do not
+    assemble read right in every language."""
+    from tmm_cli.messages import render
+    from tmm_cli.report.i18n import translate
+    assert "(24 положения через" in translate("dyn.hand", "ru", n=24, step="30", J=1, Jem=1, Jm=1, err=0, Jacc=1)
+    assert "(24 положення через" in translate("dyn.hand", "uk", n=24, step="30", J=1, Jem=1, Jm=1, err=0, Jacc=1)
+    assert "(12 положений через" in translate("dyn.hand", "ru", n=12, step="30", J=1, Jem=1, Jm=1, err=0, Jacc=1)
+    assert "(1 position every" in translate("dyn.hand", "en", n=1, step="30", J=1, Jem=1, Jm=1, err=0, Jacc=1)
+    assert "на 4 равные части" in translate("cam.division_caption", "ru", n=4)
+    assert "на 6 рівних частин" in translate("cam.division_caption", "uk", n=6)
+    assert "в 21 положении" in translate("kin.positions_caption", "ru", n=21)
+    assert render("input.text_long", {"n": 1, "limit": 0}, "en").startswith("a text of 1 character:")
+    assert render("input.text_long", {"n": 22, "limit": 0}, "ru").startswith("текст из 22 символов:")
+    assert render("differential.assembly", {"k": 3, "fits": "2"}, "ru").startswith(
+        "дифференциал: 3 равномерно расположенных сателлита не собираются")
+    assert render("differential.assembly", {"k": 5, "fits": "2"}, "uk").startswith(
+        "диференціал: 5 рівномірно розташованих сателітів не збираються")

@@ -90,6 +90,35 @@ def num(x: Any, spec: str = "", lang: str | None = None) -> str:
     return localize(format(x, spec), lang)
 
 
+@functools.cache
+def _plural_rule(lang: str) -> str:
+    """How ``lang`` chooses the noun after a count (its numbers catalogue's `format.plural`)."""
+    from . import locales
+    return locales.of("numbers", "format", lang).get("plural", "one_other")
+
+
+def plural(value: Any, forms: list[str], lang: str | None = None) -> str:
+    """The count ``value`` (written in ``lang``) and the noun's form that follows it:
+    ``forms`` as the catalogue gives them, (one, other) in English, (one, few, many) in
+    Russian and Ukrainian (transliterated: 1 polozhenie, 24 polozheniya, 12 polozheniy,
+    21 polozhenie); a fraction takes the few form, the other in English. A catalogue writes
+    ``{n:|position|positions}`` (three forms in ru and uk)."""
+    lang = lang if lang is not None else current()
+    try:
+        x = abs(float(value))
+    except (TypeError, ValueError):
+        return f"{value} {forms[-1]}"
+    if _plural_rule(lang) == "one_few_many":
+        if not x.is_integer():
+            k = 1
+        else:
+            n = int(x)
+            k = 0 if n % 10 == 1 and n % 100 != 11 else (1 if 2 <= n % 10 <= 4 and not 12 <= n % 100 <= 14 else 2)
+    else:
+        k = 0 if x == 1 else 1
+    return f"{localize(str(value), lang)} {forms[min(k, len(forms) - 1)]}"
+
+
 _WRITTEN = re.compile(r"[-+\u2212]?\d+(?:\.\d+)?(?:[eE][-+]?\d+)?")
 
 
@@ -111,6 +140,8 @@ class Formatter(string.Formatter):
         self.lang = lang
 
     def format_field(self, value: Any, spec: str) -> str:
+        if spec.startswith("|"):                    # a count and its noun: {n:|position|positions}
+            return plural(value, spec[1:].split("|"), self.lang)
         text = super().format_field(value, spec)
         return localize(text, self.lang) if is_number(value) else text
 

@@ -44,7 +44,8 @@ LANGS = locales.LANGS
 PLAIN = "text"
 # format specs the formatter knows beside Python's and the word tables: `or` (alternatives)
 # `angles` (crank-angle intervals [[from, to], ...] in degrees: "φ = 37.5…52.1°") and
-# `joined` (a list of messages in one line, joined by "; "; without it: one a line)
+# `joined` (a list of messages in one line, joined by "; "; without it: one a line); and a
+# count's noun in its forms, `|form|form...` (numfmt.plural: "{n:|character|characters}")
 SPECS = ("or", "angles", "joined")
 
 
@@ -89,6 +90,8 @@ class _Formatter(string.Formatter):
             return localize(value, self.lang)
         if isinstance(value, list) and value and all(isinstance(v, dict) and "code" in v for v in value):
             return ("; " if spec == "joined" else "\n").join(localize(v, self.lang) for v in value)
+        if spec.startswith("|"):                            # a count and its noun: {n:|character|characters}
+            return numfmt.plural(value, spec[1:].split("|"), self.lang)
         if spec == "raw":                                   # as written (a number not localized: '0.38')
             return str(value)
         if spec == "angles" and isinstance(value, list):

@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .. import locales
+from ..numfmt import format_text
 from ..report.figures import mu_text, scale_mark
 from .frame import FRAME, TB_W, length_scale, std_mu
 from .graph import draw_graph
@@ -298,7 +299,7 @@ def draw_diagrams(cv, results, geom, box, lang="en") -> dict:
             cv.polyline(cp, color="#b03a2e", width=0.35, dash="3 1.5")
             for p in cp:
                 cv.circle(p, 0.8, stroke="#b03a2e", fill=None, width=0.3)
-            cv.mtext(ax0 + 150.0, yc + rowh / 2 - 5.0, TXT[lang]["chord"].format(n=len(mids), err=f"{err:.1f}"),
+            cv.mtext(ax0 + 150.0, yc + rowh / 2 - 5.0, format_text(TXT[lang]["chord"], lang, n=len(mids), err=f"{err:.1f}"),
                      2.5, color="#b03a2e")
             out[key]["chord"] = {"phase": mids, "values": d, "exact": exact, "error_pct": err, "pts": cp}
         out[key]["raw"] = y
