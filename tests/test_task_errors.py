@@ -221,3 +221,33 @@ def test_impossible_dimensions_say_crank_angle_once(tmp_path):
     assert res.exit_code == 2, res.output
     assert res.output.count("crank angle") == 1, res.output
     assert "cannot reach); check the lengths of rod, rocker and the ground points" in res.output
+
+
+def test_each_interval_where_a_group_does_not_assemble_says_why_at_its_own_angle(tmp_path):
+    """The conveyor's four-bar with a 0.25 m crank (frame 0.30, coupler 0.30, rocker 0.22): the
+    dyad cannot reach about phi = 180 deg (|AO3| = 0.30 + 0.25 = 0.55 > 0.30 + 0.22) and folds
+    too near about phi = 0 (|AO3| = 0.30 - 0.25 = 0.05 < 0.30 - 0.22). Each interval is told with
+    its own reason at its own middle (the message quoted 0.55 m for both, its header naming
+    0 deg); one reason where they agree (test_run_outputs: a slider's rod too short)."""
+    import json
+    import math
+    from pathlib import Path
+    text = (Path(__file__).resolve().parents[1] / "tasks" / "crank_rocker_fourbar.yaml").read_text(encoding="utf-8")
+    f = tmp_path / "long_crank.yaml"
+    f.write_text(text.replace("points: [O, A], length: 0.08,", "points: [O, A], length: 0.25,"), encoding="utf-8")
+    res = CliRunner().invoke(app, ["run", str(f), "--out", str(tmp_path / "o"), "--format", "json", "-q"])
+    assert res.exit_code == 3, res.output
+    err = json.loads((tmp_path / "o" / "results.json").read_text(encoding="utf-8"))["errors"][0]
+    assert err["code"] == "kinematics.fail.intervals" and err["params"]["reason"]["code"] == "kinematics.reason.each"
+    (a1, b1), (a2, b2) = err["params"]["intervals"]
+    items = err["params"]["reason"]["params"]["items"]
+    assert [i["params"]["reason"]["code"] for i in items] == ["kinematics.reason.rrr_far", "kinematics.reason.rrr_near"]
+    for (a, b), item in zip(((a1, b1), (a2, b2)), items):
+        phi = item["params"]["phi"]
+        assert phi == pytest.approx((a + ((b - a) % 360) / 2) % 360, abs=1e-9)      # the interval's middle
+        # |AO3| at that angle, by hand: A = 0.25 (cos phi, sin phi), O3 = (0.30, 0)
+        d = math.hypot(0.25 * math.cos(math.radians(phi)) - 0.30, 0.25 * math.sin(math.radians(phi)))
+        assert item["params"]["reason"]["params"]["d"] == pytest.approx(d, rel=1e-9)
+    assert [round(i["params"]["phi"]) % 360 for i in items] == [180, 0]
+    assert "at 180 deg, |AO3| = 0.55 m > |AB| + |BO3|" in res.output
+    assert "at 0 deg, |AO3| = 0.05 m < ||AB| - |BO3||" in res.output

@@ -523,8 +523,15 @@ class Solver:
         if not iv:
             lo, hi = float(np.min(np.mod(bad_deg, 360))), float(np.max(np.mod(bad_deg, 360)))
             iv = [(lo, hi)]
-        mid_deg = iv[0][0] + ((iv[0][1] - iv[0][0]) % 360.0) / 2
-        reason = self._reason(gi, mid_deg % 360.0)
+        # why, in the middle of each interval: the reasons differ from one to another (a
+        # four-bar's group reaches too far about one dead centre, folds too near about the other)
+        mids = [(a + ((b - a) % 360.0) / 2) % 360.0 for a, b in iv]
+        reasons = [self._reason(gi, m) for m in mids]
+        if len({str(r) for r in reasons}) == 1:          # one reason for all (a slider's rod too short)
+            reason = reasons[0]
+        else:                                            # each interval's, at the angle it names
+            reason = Message("kinematics.reason.each", items=[Message("kinematics.reason.at", phi=m, reason=r)
+                                                              for m, r in zip(mids, reasons)])
         ivs = [[float(a), float(b)] for a, b in iv]      # degrees; each language formats them
         never = None
         if sum((b - a) % 360.0 or (360.0 if b > a else 0.0) for a, b in iv) >= 360.0 - 1e-6:
