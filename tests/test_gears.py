@@ -357,3 +357,18 @@ def test_blocking_contour_lines_lie_on_their_limits():
     assert n > 5
     # the chosen SPEC point is admissible and close to the eps = 1.2 line
     assert d["blocking_contour"]["chosen_admissible"] is True
+
+
+def test_a_pair_that_cannot_mesh_shows_its_contact_ratio_as_formal():
+    """m = 9 mm, z = 20 and 15, x = +3 and -3: neither wheel has an involute flank (the second's
+    tip circle inside its base circle), so the GOST contact ratio is a formal number; the run's
+    summary says so beside it (it printed 1.4879 as if the pair meshed). A pair that meshes
+    shows its contact ratio alone."""
+    import tmm_cli
+    from tmm_cli.summary import _summary_rows
+    r = tmm_cli.run(tmm_cli.load_task({"schema": "tmm/1", "gears": {"m": "9 mm", "z": [20, 15], "x": [3, -3]}}))
+    row = dict(_summary_rows(r))["contact ratio"]
+    assert row.endswith(" (formal: the pair cannot mesh, see the warnings)"), row
+    assert float(row.split()[0]) == pytest.approx(r["gears"]["eps_alpha"], rel=1e-4)
+    ok = tmm_cli.run(tmm_cli.load_task({"schema": "tmm/1", "gears": {"m": "4 mm", "z": [20, 40]}}))
+    assert dict(_summary_rows(ok))["contact ratio"] == f"{ok['gears']['eps_alpha']:.5g}"

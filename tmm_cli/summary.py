@@ -53,7 +53,12 @@ def _summary_rows(results: dict) -> list[tuple[str, str]]:
     g = results.get("gears")
     if g:
         add("gears a_w, m", _f(g.get("aw")))
-        add("contact ratio", _f(g.get("eps_alpha")))
+        # a wheel without an involute flank (its tip inside the base circle, its involute beginning
+        # above the tip): eps_alpha is a formal value, the pair cannot mesh (the warnings say why)
+        formal = any(str(m.get("code", "")).startswith("gears.no_involute") for m in results.get("messages") or ()
+                     if isinstance(m, dict))
+        add("contact ratio", _f(g.get("eps_alpha")) + (" (formal: the pair cannot mesh, see the warnings)"
+                                                         if formal else ""))
     pl = results.get("planetary")
     if pl:
         add("planetary z", ", ".join(f"{k}={v}" for k, v in (pl.get("z") or {}).items()))
