@@ -251,3 +251,35 @@ def test_each_interval_where_a_group_does_not_assemble_says_why_at_its_own_angle
     assert [round(i["params"]["phi"]) % 360 for i in items] == [180, 0]
     assert "at 180 deg, |AO3| = 0.55 m > |AB| + |BO3|" in res.output
     assert "at 0 deg, |AO3| = 0.05 m < ||AB| - |BO3||" in res.output
+
+
+def test_a_name_typed_with_cyrillic_letters_is_told_so(tmp_path):
+    """A point or link name typed on the other keyboard layout (the Cyrillic O, U+041E, for the
+    Latin O) looks the same as the name it should be: the message says which holds the Cyrillic
+    letter instead of 'did you mean O?' beside an identical-looking O."""
+    from tmm_cli.limits import lookalike
+    CYR_O, CYR_A, CYR_a = "\u041e", "\u0410", "\u0430"
+    assert lookalike(CYR_O + "1", "O1") and not lookalike("O1", "O1") and not lookalike("O1", "Q1")
+
+    def four_bar(ground_o="O", crank=("O", "A"), coupler=("A", "B"), drive="crank"):
+        return {"schema": "tmm/1", "mechanism": {
+            "ground": {ground_o: [0, 0], "O3": [0.3, 0]},
+            "links": {"crank": {"points": list(crank), "length": 0.08}, "coupler": {"points": list(coupler), "length": 0.3},
+                      "rocker": {"points": ["O3", "B"], "length": 0.22}}, "assembly": {"B": [0.33, 0.21]}},
+            "drive": {"link": drive, "speed": "120 rpm"}}
+
+    def error(task) -> str:
+        import yaml
+        f = tmp_path / "t.yaml"
+        f.write_text(yaml.safe_dump(task, allow_unicode=True, sort_keys=False), encoding="utf-8")
+        res = CliRunner().invoke(app, ["validate", str(f)])
+        assert res.exit_code == 2, res.output
+        return res.output
+
+    msg = error(four_bar(ground_o=CYR_O))
+    assert f"did you mean the ground point '{CYR_O}'? ('{CYR_O}' is typed with the Cyrillic {CYR_O}, 'O' with " \
+           "Latin letters: type the names alike)" in msg, msg
+    msg = error(four_bar(crank=("O", CYR_A)))
+    assert f"did you mean A? ('{CYR_A}' is typed with the Cyrillic {CYR_A}, 'A' with Latin letters" in msg, msg
+    msg = error(four_bar(drive="cr" + CYR_a + "nk"))
+    assert f"did you mean 'crank'? ('cr{CYR_a}nk' is typed with the Cyrillic {CYR_a}, 'crank' with Latin" in msg, msg

@@ -126,3 +126,24 @@ def text_issues(data, marks: dict) -> list[tuple]:
             stack.extend((path + (i,), sub) for i, sub in enumerate(v))
     out.sort(key=lambda t: (t[1] or 0, t[2] or 0))
     return out
+
+
+# Cyrillic letters drawn as Latin ones: a name typed on the other keyboard layout (the Cyrillic
+# O, U+041E, for the Latin O) looks the same and is another name
+_LOOKALIKE = {0x0410: "A", 0x0412: "B", 0x0415: "E", 0x041A: "K", 0x041C: "M", 0x041D: "H", 0x041E: "O",
+              0x0420: "P", 0x0421: "C", 0x0422: "T", 0x0425: "X", 0x0430: "a", 0x0435: "e", 0x043E: "o",
+              0x0440: "p", 0x0441: "c", 0x0443: "y", 0x0445: "x", 0x0406: "I", 0x0456: "i"}
+
+
+def lookalike(a: str, b: str) -> bool:
+    """Two different names that read the same: one typed with Cyrillic letters drawn as Latin
+    ones where the other has the Latin letters (O1 with the Cyrillic O, U+041E, and O1)."""
+    return a != b and a.translate(_LOOKALIKE) == b.translate(_LOOKALIKE)
+
+
+def script_note(a: str, b: str):
+    """The note on two :func:`lookalike` names: which one holds the Cyrillic letters, and which."""
+    from .messages import Message
+    cyr, lat = (a, b) if any(ord(ch) in _LOOKALIKE for ch in a) else (b, a)
+    letters = "".join(dict.fromkeys(ch for ch in cyr if ord(ch) in _LOOKALIKE))
+    return Message("input.script_note", cyr=cyr, lat=lat, letters=letters)

@@ -21,6 +21,7 @@ import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
+from ..limits import lookalike, script_note
 from ..messages import Message
 from .spec import MechanismSection
 
@@ -205,10 +206,13 @@ def build_mechanism(task: Task) -> Mechanism:
         if owner[g] == [0]:
             lone = [pt for pt, o in owner.items() if len(o) == 1 and o[0] != 0 and pt not in sec.ground
                     and sec.links[names[o[0] - 1]].kind == "bar" and pt in sec.links[names[o[0] - 1]].points]
-            near = difflib.get_close_matches(g, lone, n=1, cutoff=0.5)
+            alike = [pt for pt in lone if lookalike(g, pt)]          # one typed with Cyrillic letters
+            near = alike or difflib.get_close_matches(g, lone, n=1, cutoff=0.5)
             if near:
                 link = names[owner[near[0]][0] - 1]
                 raise task.error(P + ("links", link, "points"),
+                                 Message("input.point_not_ground_script", point=near[0], link=link, ground=g,
+                                         note=script_note(g, near[0])) if alike else
                                  Message("input.point_not_ground", point=near[0], link=link, ground=g))
             raise task.error(P + ("ground", g), Message("input.ground_unused", point=g))
     # drive link
@@ -337,6 +341,9 @@ def _check_references(task: Task, names: list[str], owner: dict[str, list[int]],
 
 def _unknown_link(name: str, names: list[str]) -> str:
     import difflib
+    alike = [n for n in names if lookalike(name, n)]          # one typed with Cyrillic letters
+    if alike:
+        return Message("input.no_link_script", name=name, hint=alike[0], note=script_note(name, alike[0]))
     close = difflib.get_close_matches(name, names, n=1)
     if close:
         return Message("input.no_link", name=name, hint=close[0])

@@ -146,6 +146,8 @@ def _lonely_pair_points(mech: Mechanism) -> list[tuple[str, str]]:
     did you mean C?' (C: a point of another link that no second link uses either)."""
     import difflib
 
+    from ..limits import lookalike, script_note
+
     def lonely_of(lk, points):
         return [p for p in points if mech.owner.get(p, []) == [lk.index]]
 
@@ -153,8 +155,10 @@ def _lonely_pair_points(mech: Mechanism) -> list[tuple[str, str]]:
     for lk in mech.links:
         for p in lonely_of(lk, _pair_points(lk)):
             others = [q for o in mech.links if o.index != lk.index for q in lonely_of(o, o.local)]
-            guess = difflib.get_close_matches(p, others, n=1, cutoff=0.5) or (others if len(others) == 1 else [])
-            hint = Message("structure.fail.point_hint", point=guess[0]) if guess else Message("text", text="")
+            alike = [q for q in others if lookalike(p, q)]        # one typed with Cyrillic letters
+            guess = alike or difflib.get_close_matches(p, others, n=1, cutoff=0.5) or (others if len(others) == 1 else [])
+            hint = (Message("structure.fail.point_hint_script", point=alike[0], note=script_note(p, alike[0])) if alike
+                    else Message("structure.fail.point_hint", point=guess[0]) if guess else Message("text", text=""))
             out.append((lk.name, Message("structure.fail.lonely_point", point=p, link=lk.name, hint=hint)))
     return out
 
