@@ -148,3 +148,25 @@ def test_bare_figures_take_the_heading_they_stand_under():
     assert '<svg/><figcaption>A</figcaption></figure>' in out
     assert '<svg/><figcaption>Position 1, φ = 30°</figcaption></figure>' in out
     assert out.endswith('<figcaption>own</figcaption></figure>')
+
+
+def test_a_signers_name_fits_its_cell_of_form_2():
+    """The note's title block (form 2), 'developed' and 'checked' rows (23 mm at 6 pt): a name
+    that does not fit on one line (in type down to 5.1 pt) is written as the surname and initials, a
+    surname longer than the cell in smaller type -- a full Russian name wrapped over the row below.
+    The width is DejaVu Sans's advance of each letter (the note's font), measured by matplotlib."""
+    from matplotlib.font_manager import FontProperties
+    from matplotlib.textpath import TextPath
+
+    from tmm_cli.report.note import _signer
+
+    def width_mm(text: str, pt: float) -> float:
+        path = TextPath((0, 0), text, size=pt, prop=FontProperties(family="DejaVu Sans"))
+        return (path.get_extents().x1 - path.get_extents().x0) * 25.4 / 72
+    assert _signer("Ivanov I. I.") == 'cell("Ivanov I. I.", size: 6pt)'
+    for name, shown in (("\u0418\u0432\u0430\u043d\u043e\u0432 \u0418\u0432\u0430\u043d \u0418\u0432\u0430\u043d\u043e\u0432\u0438\u0447",
+                         "\u0418\u0432\u0430\u043d\u043e\u0432 \u0418. \u0418."),
+                        ("Konstantinopolsky-Starodubtsev Alexander Vladimirovich", "Konstantinopolsky-Starodubtsev")):
+        m = re.fullmatch(r'cell\("(.*)", size: ([\d.]+)pt\)', _signer(name))
+        assert m and m.group(1) == shown, _signer(name)
+        assert width_mm(shown, float(m.group(2))) <= 23.0, (shown, m.group(2))

@@ -845,3 +845,30 @@ def test_sheet1_extra_positions_marked():
     drawn = {t for t in texts if t.rstrip("*") in {str(i) for i in extras}}
     assert drawn and all(t.endswith("*") for t in drawn), drawn       # (the course ones among them)
     assert {str(i) for i in range(n)} <= texts
+
+
+@pytest.mark.parametrize("name, shown", [
+    ("Ivanov I. I.", "Ivanov I. I."),
+    ("\u0418\u0432\u0430\u043d\u043e\u0432 \u0418\u0432\u0430\u043d \u0418\u0432\u0430\u043d\u043e\u0432\u0438\u0447",
+     "\u0418\u0432\u0430\u043d\u043e\u0432 \u0418. \u0418."),
+    ("Konstantinopolsky-Starodubtsev Alexander Vladimirovich", "Konstantinopolsky-Starodubtsev")])
+def test_a_signers_name_stays_in_its_cell(name, shown):
+    """The title block's 'developed' row (23 mm): a name is written as given where it fits, else
+    as the surname and initials (GOST 2.104's practice), else the surname alone, narrowed to the
+    cell -- a full Russian name ran across the signature and date columns into the title."""
+    from tmm_cli.pipeline import run
+    from tmm_cli.sheets import build_sheets
+    from tmm_cli.sheets.frame import TB_W
+    from tmm_cli.task import load_task
+    from tmm_cli.yamlload import load_yaml
+    data, _ = load_yaml(ROOT / "tasks" / "crank_rocker_fourbar.yaml")
+    data["student"] = {"name": name, "group": "MM-21"}
+    task = load_task(data)
+    sheets = build_sheets(run(task), task, "ru")
+    _check_texts(sheets)
+    cell = (FRAME[2] - TB_W + 17, FRAME[2] - TB_W + 40)        # the surname column, mm
+    for cv, _ in sheets:
+        texts = [p for p in cv.prims if isinstance(p, Text) and p.plain == shown]
+        assert len(texts) == 1, [p.plain for p in cv.prims if isinstance(p, Text)][:40]
+        x0, _, x1, _ = texts[0].box()
+        assert cell[0] <= x0 and x1 <= cell[1], (x0, x1, cell)

@@ -122,6 +122,16 @@ def _header(task: Task | None) -> dict:
             "year": year or datetime.date.today().year, "designation": designation or ""}
 
 
+def _signer(name: str) -> str:
+    """A signing row's name cell of form 2 (23 mm, 6 pt): the name as given where it fits on one
+    line in type down to 5.1 pt, else the surname and initials, else the surname
+    (drawings.titleblock), smaller still only where a surname is longer than the cell (a long
+    name wrapped over the row below)."""
+    from ..drawings.titleblock import signer_name
+    shown, k = signer_name(name, 0.6 * 6 * 25.4 / 72, 21.0, 0.85)
+    return f"cell({_q(shown)}, size: {6 * k:.4g}pt)"
+
+
 def _preamble(h: dict, lang: str) -> str:
     W = WORDS[lang]
     ch, roles = W["changes"], W["roles"]
@@ -140,10 +150,10 @@ def _preamble(h: dict, lang: str) -> str:
   [], [], [], [], [], table.cell(colspan: 4, rowspan: 3, cell(designation, size: 14pt)),
   [], [], [], [], [],
   ..{_arr(ch)}.map(c => cell(c, size: 6pt)),
-  table.cell(colspan: 2, cell({_q(roles[0])}, size: 6pt)), cell({_q(h['student'])}, size: 6pt), [], [],
+  table.cell(colspan: 2, cell({_q(roles[0])}, size: 6pt)), {_signer(h['student'])}, [], [],
   table.cell(rowspan: 5, cell({_q(h['title'])}, size: 9pt)), cell({_q(W['lit'])}, size: 6pt),
   cell({_q(W['sheet'])}, size: 6pt), cell({_q(W['sheets'])}, size: 6pt),
-  table.cell(colspan: 2, cell({_q(roles[1])}, size: 6pt)), cell({_q(h['supervisor'])}, size: 6pt), [], [],
+  table.cell(colspan: 2, cell({_q(roles[1])}, size: 6pt)), {_signer(h['supervisor'])}, [], [],
   [], cell(str(pn), size: 8pt), cell(str(total), size: 8pt),
   table.cell(colspan: 2, cell({_q(roles[2])}, size: 6pt)), [], [], [],
   table.cell(colspan: 3, rowspan: 3, cell({_q(h['university'] or h['group'])}, size: 7pt)),

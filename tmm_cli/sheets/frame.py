@@ -111,7 +111,11 @@ def draw_frame(cv, *, title: str, sheet_title: str, variant, student: str, group
     for k, (lab, val) in enumerate(rows):
         y = by + 22.5 - 5 * k
         fit_text(cv, bx + 0.7, y, lab, h, 15.6)
-        fit_text(cv, bx + 17.7, y, val, h, 21.6)
+        if val:                       # GOST 2.104: the surname (and initials), narrowed to the cell
+            from ..drawings.titleblock import signer_name
+            from .prims import CAP_RATIO
+            shown, narrow = signer_name(val, 0.6 * h / CAP_RATIO, 21.6, NARROWEST)
+            cv.mtext(bx + 17.7, y, shown, h, narrow=narrow)
     codes = sorted({re.escape(locales.of("sheets", "note_code", other)) for other in locales.LANGS})
     base = re.sub(rf"\s*({'|'.join(codes)})\s*$", "", designation or "").strip()
     tmm = T["code"]                   # the course's code in the drawing's letters (Latin or Cyrillic)
