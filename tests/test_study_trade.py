@@ -37,12 +37,14 @@ def test_a_cold_first_call_is_not_timed():
 
 def test_the_trade_in_plain_words():
     en = study_page.trades(STUDY, "en")
+    # every error in percent: 2.2e-11 is 2e-9 %, 1.3e-5 is 0.0013 % (a bare 2e-11 beside 10.7 %
+    # read as one unit)
     assert en[0] == ("the M_b and reaction diagrams drawn through 12 positions err by 10.7 %, through 720 "
-                     "(the default) by 2e-11 (2.5 → 80 ms)")
+                     "(the default) by 2e-9 % (2.5 → 80 ms)")
     # no default among the rows: the coarsest against the finest
-    assert en[1].startswith("the s, v, a diagrams drawn through 13 points err by 17.6 %, through 1441 by 1e-5")
+    assert en[1].startswith("the s, v, a diagrams drawn through 13 points err by 17.6 %, through 1441 by 0.0013 %")
     ru = study_page.trades(STUDY, "ru")
-    assert "по 12 положениям" in ru[0] and "10,7 %" in ru[0] and "2·10⁻¹¹" in ru[0] and "(по умолчанию)" in ru[0]
+    assert "по 12 положениям" in ru[0] and "10,7 %" in ru[0] and "2·10⁻⁹ %" in ru[0] and "(по умолчанию)" in ru[0]
     uk = study_page.trades(STUDY, "uk")
     assert "за 12 положеннями" in uk[0] and "10,7 %" in uk[0] and "(типово)" in uk[0]
 

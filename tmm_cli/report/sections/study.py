@@ -88,14 +88,16 @@ def _fmt(v, key: str = "") -> str:
 
 
 def _error_text(e: float | None) -> str:
-    """A relative error in plain words: '10.7 %' down to 0.01 %, below it the number itself
-    ('2e-11'), written in the current language."""
+    """A relative error in plain words, always in percent (a sentence that gave '10.7 %' and then
+    '2e-11' read as one unit): '10.7 %', '0.002 %', below 0.001 % one digit and its power
+    ('2e-9 %'), written in the current language."""
     from ...numfmt import localize
     if e is None or not math.isfinite(e):
         return "—"
-    if e >= 1e-4:
-        return localize(f"{100 * e:.3g} %")
-    return localize(re.sub(r"e([-+])0*(\d)", r"e\1\2", f"{e:.1g}")) if e > 0 else "0"
+    p = 100 * e
+    if p >= 1e-3:
+        return localize(f"{p:.3g} %")
+    return localize(re.sub(r"e([-+])0*(\d)", r"e\1\2", f"{p:.1g}")) + " %" if p > 0 else "0 %"
 
 
 def trade(stage: str, d: dict, lang: str = "en") -> str | None:
