@@ -298,3 +298,24 @@ def test_validate_a_folder_and_a_quoted_pattern(tmp_path):
     (tmp_path / "empty").mkdir()
     res = runner.invoke(app, ["validate", str(tmp_path / "empty")])
     assert res.exit_code == 2 and "no task files (*.yaml, *.yml) in this folder" in res.output, res.output
+
+
+def test_a_students_small_slips_on_the_command_line(tmp_path):
+    """--lang in capitals is the language (RU is ru), on the fast path and in the Typer app; an
+    unknown format lists every format (note too); a misspelt section of `tmm fields` is
+    suggested; a language that is none is still a usage error (exit 2)."""
+    import subprocess
+    import sys
+    task = ROOT / "tasks" / "cam_knife.yaml"
+    p = subprocess.run([sys.executable, "-m", "tmm_cli", "run", str(task), "--lang", "RU", "-f", "html",
+                        "-o", str(tmp_path / "fast"), "-q"], capture_output=True, text=True, cwd=ROOT)
+    assert p.returncode == 0, p.stderr
+    assert '<html lang="ru"' in (tmp_path / "fast" / "report.html").read_text(encoding="utf-8")
+    res = runner.invoke(app, ["sheets", str(task), "--lang", "Uk", "-o", str(tmp_path / "sh"), "-f", "svg"])
+    assert res.exit_code == 0, res.output
+    res = runner.invoke(app, ["run", str(task), "--lang", "de", "-o", str(tmp_path / "de")])
+    assert res.exit_code == 2 and "--lang must be en, ru or uk" in res.output
+    res = runner.invoke(app, ["run", str(task), "--format", "pdff"])
+    assert res.exit_code == 2 and "choose from json, html, pdf, sheets, note" in res.output
+    res = runner.invoke(app, ["fields", "flywhel"])
+    assert res.exit_code == 2 and "no section or field 'flywhel'; did you mean 'flywheel'?" in res.output

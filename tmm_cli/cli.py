@@ -93,7 +93,7 @@ def _fast(argv: list[str]) -> Callable[[], int] | None:
     if len(args) != 1:
         return None
     formats = parse_formats(str(opts.get("format", "json,html,pdf")))
-    lang = str(opts.get("lang", "en"))
+    lang = str(opts.get("lang", "en")).strip().lower()         # RU is ru, as the Typer app reads it
     if formats is None or lang not in LANGS:
         return None
     out = Path(str(opts["out"])) if "out" in opts else None

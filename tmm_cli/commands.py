@@ -63,10 +63,11 @@ def _fail_stage(exc: StageError, file: str | None = None) -> "typer.Exit":
     return typer.Exit(console.fail_stage(exc, file, typer.echo))
 
 
-def _check_lang(lang: str) -> None:
-    """--lang: one of the report languages (a usage error otherwise)."""
-    if lang not in console.LANGS:
+def _check_lang(lang: str) -> str:
+    """--lang: one of the report languages, in any case (RU is ru); a usage error otherwise."""
+    if lang.strip().lower() not in console.LANGS:
         raise typer.BadParameter(f"--lang must be {', '.join(console.LANGS[:-1])} or {console.LANGS[-1]}")
+    return lang.strip().lower()
 
 
 def _check_csv_style(style: str) -> None:
@@ -91,7 +92,7 @@ def _parse_formats(text: str) -> set[str]:
     if fm is None:
         bad = {f.strip().lower() for f in text.split(",") if f.strip()} - FORMATS
         raise typer.BadParameter(f"unknown format(s) {', '.join(sorted(bad)) or '(none)'}; "
-                                 f"choose from json, html, pdf, sheets (comma-separated)")
+                                 f"choose from json, html, pdf, sheets, note (comma-separated)")
     return fm
 
 
@@ -122,7 +123,7 @@ def run(
     Example: tmm run tasks/engine_slider_crank.yaml --out out/engine --lang ru (or uk)
     """
     formats = _parse_formats(format)
-    _check_lang(lang)
+    lang = _check_lang(lang)
     code = console.run_task(task_file, out, formats, lang, quiet, study, typer.echo)
     if code != EXIT_OK:
         raise typer.Exit(code)
@@ -151,7 +152,7 @@ def study_cmd(
 
     Example: tmm study tasks/forging_sixbar.yaml --out out/forging --lang ru
     """
-    _check_lang(lang)
+    lang = _check_lang(lang)
     try:
         task = _load(task_file)
     except TaskError as exc:
@@ -189,7 +190,7 @@ def sheets(
     fm = {f.strip().lower() for f in format.split(",") if f.strip()}
     if not fm or fm - {"pdf", "svg", "dxf"}:
         raise typer.BadParameter("choose from pdf, svg, dxf (comma-separated)")
-    _check_lang(lang)
+    lang = _check_lang(lang)
     try:
         task = _load(task_file)
     except TaskError as exc:
@@ -355,7 +356,7 @@ def batch(
     from .batch import run_batch
     from .copies import parse_grades
     formats = _parse_formats(format)
-    _check_lang(lang)
+    lang = _check_lang(lang)
     try:
         scale = parse_grades(grades) if grades is not None else None
     except ValueError as exc:
@@ -473,7 +474,7 @@ def form(
     from .io import atomic_write
     from .orchestrate import classify, compute, prepare
     from .results import lookup
-    _check_lang(lang)
+    lang = _check_lang(lang)
     _check_csv_style(csv_style)
     if source.is_dir():
         found, _ = find_tasks(str(source))
@@ -556,7 +557,10 @@ def fields(section: Optional[str] = typer.Argument(None, help="only this section
     rows = [r for r in field_docs() if section is None or r[0] == section or r[0].startswith(section + ".")
             or r[0].startswith(section + "[")]
     if not rows:
-        _err(f"error: no section or field '{section}'")
+        import difflib
+        names = sorted({r[0] for r in field_docs()} | {r[0].split(".")[0].split("[")[0] for r in field_docs()})
+        near = difflib.get_close_matches(section, names, n=1, cutoff=0.6)
+        _err(f"error: no section or field '{section}'" + (f"; did you mean '{near[0]}'?" if near else ""))
         raise typer.Exit(EXIT_INVALID)
     t = Table(title="tmm task file fields (schema tmm/1)")
     t.add_column("field", overflow="fold")
