@@ -117,3 +117,23 @@ def test_feedback_numbers_take_the_decimal_comma(lang):
     assert "58,46" in page and not re.search(r"<td>-?\d+\.\d+", page)
     assert "58.46" in feedback_html(task, s, "en")
     assert _num(8.9e-16, lang) == "8,9·10⁻¹⁶" and _num(8.9e-16, "en") == "8.9e-16"
+
+
+@pytest.mark.parametrize("written, path, ref, want", [
+    ("0,234 \u043a\u041d", "kinetostatics[1].reactions.R03.R", 233.98, (0.23398, "\u043a\u041d")),   # кН
+    ("0.234 kN", "kinetostatics[1].reactions.R03.R", 233.98, (0.23398, "kN")),
+    ("160 mm", "positions.H", 0.16019, (160.19, "mm")),              # a path outside the presets
+    ("12,5 \u043c/\u0441", "kinematics[2].points.B.v", 12.4, (12.4, "\u043c/\u0441")),          # м/с
+    ("1450 \u043e\u0431/\u043c\u0438\u043d", "kinematics[2].links.crank.omega", 151.8,          # об/мин
+     (151.8 * 30 / 3.141592653589793, "\u043e\u0431/\u043c\u0438\u043d")),
+    ("12", "positions.phi0", 12.4, None)])                          # no unit written: none to convert to
+def test_the_reference_in_the_unit_the_student_wrote(written, path, ref, want):
+    """The feedback page gives the reference in the unit of the student's answer, every unit the
+    answers reader reads: a Russian 'кН' was shown against the reference in N ('233,98 Н'), a
+    length of a path outside the presets without its unit ('0.16019' against '160 mm')."""
+    from tmm_cli.feedback import _in_written_unit
+    got = _in_written_unit({"written": written, "reference": ref, "path": path})
+    if want is None:
+        assert got is None
+    else:
+        assert got[1] == want[1] and got[0] == pytest.approx(want[0], rel=1e-12)

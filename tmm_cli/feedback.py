@@ -4,6 +4,7 @@ project it comes from and the steps that step depends on. English, Russian or Uk
 from __future__ import annotations
 
 import html
+import math
 import re
 from pathlib import Path
 
@@ -44,23 +45,24 @@ _NUMBER_HEAD = re.compile(r"^\s*[-+\u2212\u2013]?[\d\s.,\u00a0\u202f]*\d(?:[eE][
 
 
 def _in_written_unit(r: dict):
-    """The reference in the unit the student wrote (a number), or None where the answer
-    carried no unit or it does not convert."""
+    """The reference in the unit the student wrote (a number, and the unit as written), or None
+    where the answer carried no unit or it does not convert. Converted by the reader that read
+    the answer (check.answer_value of one such unit), so every spelling it reads converts back:
+    'кН', 'мм', 'об/мин', and units of paths outside the presets ('160 mm' of positions.H)."""
     written, ref = r.get("written"), r.get("reference")
     if not written or ref is None:
         return None
     unit = _NUMBER_HEAD.sub("", written, count=1).strip()
     if not unit:
         return None
-    from .check import _is_angle, _path_unit
-    from .numbers import ureg
-    si = "degree" if _is_angle(r["path"]) else _path_unit(r["path"])
-    if si is None:
-        return None
+    from .check import answer_value
     try:
-        return float(ureg().Quantity(float(ref), si).to(unit.replace("^", "**")).magnitude), unit
-    except Exception:  # noqa: BLE001 - pint's parse and conversion errors: shown in SI instead
+        one = answer_value(f"1 {unit}", r["path"])
+    except ValueError:
         return None
+    if not one or not math.isfinite(one):
+        return None
+    return float(ref) / one, unit
 
 
 def _tolerance(r: dict, unit: str, lang: str) -> str:
