@@ -441,3 +441,22 @@ def test_variants_column_unit_that_is_no_unit_stops_before_anything_is_written(t
     assert f"{tab}:1:2:" in res.output and "\u043f\u043e\u043f\u0443\u0433\u0430\u0438" in res.output
     assert res.output.count("not a unit tmm knows") == 1, res.output
     assert not (tmp_path / "o" / "1.yaml").exists()
+
+
+def test_a_unit_typed_in_latin_letters_drawn_as_cyrillic_ones_is_told_so():
+    """'13,1 H': the Latin H is the henry, not the newton's Cyrillic Н; the answer is invalid
+    (never coerced) and the reason says which letters to type; a unit that is simply another
+    quantity's is told as before, its target unit in the page's language (Н, not N)."""
+    from tmm_cli.check import answer_value
+    from tmm_cli.messages import localize
+    path = "kinetostatics[1].reactions.R03.R"
+    with pytest.raises(ValueError) as info:
+        answer_value("13,1 H", path)
+    m = info.value.args[0]
+    assert m.code == "answers.wrong_unit_latin" and m.params["cyr"] == "\u041d"
+    assert answer_value("13,1 \u041d", path) == pytest.approx(13.1)          # as the hint says
+    with pytest.raises(ValueError) as info:
+        answer_value("13,1 kg", path)
+    m = info.value.args[0]
+    assert m.code == "answers.wrong_unit"
+    assert localize(m.to_dict(), "ru").endswith("\u043d\u0435 \u043f\u0440\u0438\u0432\u043e\u0434\u0438\u0442\u0441\u044f \u043a \u041d")

@@ -48,7 +48,8 @@ def _in_written_unit(r: dict):
     """The reference in the unit the student wrote (a number, and the unit as written), or None
     where the answer carried no unit or it does not convert. Converted by the reader that read
     the answer (check.answer_value of one such unit), so every spelling it reads converts back:
-    'кН', 'мм', 'об/мин', and units of paths outside the presets ('160 mm' of positions.H)."""
+    the Cyrillic spellings of kN, mm, rpm, and units of paths outside the presets ('160 mm' of
+    positions.H)."""
     written, ref = r.get("written"), r.get("reference")
     if not written or ref is None:
         return None
