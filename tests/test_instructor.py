@@ -394,6 +394,8 @@ def test_check_answer_sources_and_messages(tmp_path):
                                     "Sidorov;MM-2;9;1\n")
     res = runner.invoke(app, ["check", str(t), "--answers", str(tab)])
     assert res.exit_code == 0 and "Petrov" in res.output and "Sidorov" not in res.output, res.output
+    # ... and said to be left for its own task, not silently
+    assert "note: 1 answer set(s) of other variants (9) left for their own tasks" in res.output
     # a non-YAML file: an invalid answers file, where YAML stops reading it (as for a task file),
     # its content never echoed
     junk = _write(tmp_path, "junk.txt", "SECRET-FIRST-LINE: [unclosed\n\x07binary")

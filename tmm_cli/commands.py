@@ -263,6 +263,10 @@ def check(
         else:
             sets = load_sources(answers)
             if not single:
+                other = sorted({str(a.variant) for a in sets if not a.matches(task)})
+                if other:               # a table or folder of the whole group: the others are not this task's
+                    _err(f"note: {len([a for a in sets if not a.matches(task)])} answer set(s) of other variants "
+                         f"({', '.join(other[:8])}{', ...' if len(other) > 8 else ''}) left for their own tasks")
                 sets, dropped = repeats([a for a in sets if a.matches(task)], latest)
                 for n in dropped:
                     _err(f"note: {n}")
