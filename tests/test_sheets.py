@@ -872,3 +872,24 @@ def test_a_signers_name_stays_in_its_cell(name, shown):
         assert len(texts) == 1, [p.plain for p in cv.prims if isinstance(p, Text)][:40]
         x0, _, x1, _ = texts[0].box()
         assert cell[0] <= x0 and x1 <= cell[1], (x0, x1, cell)
+
+
+@pytest.mark.parametrize("name, shown", [
+    ("Ivanov Ivan Ivanovich", "Ivanov I. I."), ("Ivanov I. I.", "Ivanov I. I."),
+    ("Petrovskaya Ivanna I.", "Petrovskaya I. I."),                 # an initial kept as written
+    ("Ivanova-Petrovskaya I.I.", "Ivanova-Petrovskaya"),            # too wide with them: the surname
+    ("I. I. Ivanova-Petrovskaya-Sidorova", "Ivanova-Petrovskaya-Sidorova"),   # initials first
+    ("Ivanov", "Ivanov")])
+def test_signer_names_as_the_title_block_writes_them(name, shown):
+    """drawings.titleblock.signer_name on its own (the sheets' 2.5 mm letters in 21.6 mm, down to
+    NARROWEST): the name as given where it fits, the surname and initials, the surname; a
+    surname too long for the cell narrower still, never past it."""
+    from tmm_cli.drawings.titleblock import signer_name
+    from tmm_cli.sheets.frame import NARROWEST
+    from tmm_cli.sheets.prims import CAP_RATIO
+    char_w = 0.6 * 2.5 / CAP_RATIO
+    got, narrow = signer_name(name, char_w, 21.6, NARROWEST)
+    assert got == shown
+    assert char_w * narrow * len(got) <= 21.6 + 1e-9
+    # narrower than NARROWEST only for a surname longer than the cell at NARROWEST
+    assert narrow >= NARROWEST or (got == shown and char_w * NARROWEST * len(got) > 21.6)

@@ -14,8 +14,16 @@ def signer_name(name: str, char_w: float, max_w: float, narrowest: float) -> tup
     def narrowing(t: str) -> float:
         return min(1.0, max_w / (char_w * max(len(t), 1)))
     words = name.split()
-    tries = [name] + ([f"{words[0]} " + " ".join(w[0] + "." for w in words[1:]), words[0]] if len(words) > 1 else [])
+    if len(words) > 1 and _initial(words[0]):          # 'I. I. Ivanov': the surname last
+        words = words[-1:] + words[:-1]
+    tries = [name] + ([f"{words[0]} " + " ".join(w if _initial(w) else w[0] + "." for w in words[1:]), words[0]]
+                      if len(words) > 1 else [])
     for t in tries:
         if narrowing(t) >= narrowest:
             return t, narrowing(t)
     return tries[-1], narrowing(tries[-1])
+
+
+def _initial(word: str) -> bool:
+    """An initial or two as written ('I.', 'I.I.')."""
+    return word.endswith(".") and len(word.replace(".", "")) <= 2
