@@ -185,6 +185,14 @@ def test_counted_nouns_of_the_catalogues_agree_with_their_count():
     assert "в 21 положении" in translate("kin.positions_caption", "ru", n=21)
     assert render("input.text_long", {"n": 1, "limit": 0}, "en").startswith("a text of 1 character:")
     assert render("input.text_long", {"n": 22, "limit": 0}, "ru").startswith("текст из 22 символов:")
+    assert render("kinetostatics.fail.indeterminate", {"links": "2, 3", "equations": 3, "unknowns": 4},
+                  "ru").endswith("(3 уравнения, 4 неизвестные составляющие реакций)")
+    assert render("input.too_short", {"field_type": "список", "min_length": 1, "actual_length": 0},
+                  "uk").startswith("список: потрібно щонайменше 1 елемент,")
+    # pydantic's own English says 'at least 1 item': the catalogue's English is the same text (so
+    # the coded message, shown in every language, is the one used: task._coded_issue)
+    assert render("input.too_short", {"field_type": "List", "min_length": 1, "actual_length": 0},
+                  "en") == "List should have at least 1 item after validation, not 0"
     assert render("differential.assembly", {"k": 3, "fits": "2"}, "ru").startswith(
         "дифференциал: 3 равномерно расположенных сателлита не собираются")
     assert render("differential.assembly", {"k": 5, "fits": "2"}, "uk").startswith(
