@@ -323,6 +323,8 @@ ENGLISH = [
     ('answers.not_finite', {'value': 'inf'}, 'not a finite number: inf'),
     ('answers.wrong_unit_latin', {'value': "'13,1 H'", 'written': 'H', 'cyr': '\u041d'},
      "'13,1 H' is not in a unit of this quantity: 'H' in Latin letters is another unit; did you mean '\u041d', in Cyrillic letters?"),
+    ('answers.unit_not_course', {'value': "'5 MM'", 'unit': 'MM'},
+     "'5 MM' is not in a unit of the course's quantities ('MM' reads as another quantity's unit)"),
     ('answers.wrong_unit', {'value': "'0.67 kg'", 'unit': 'm/s'},
      "'0.67 kg' is not in a unit of this quantity: its unit does not convert to m/s"),
     ('input.cam_angles_both', {},

@@ -460,3 +460,15 @@ def test_a_unit_typed_in_latin_letters_drawn_as_cyrillic_ones_is_told_so():
     m = info.value.args[0]
     assert m.code == "answers.wrong_unit"
     assert localize(m.to_dict(), "ru").endswith("\u043d\u0435 \u043f\u0440\u0438\u0432\u043e\u0434\u0438\u0442\u0441\u044f \u043a \u041d")
+
+
+def test_an_answer_to_a_path_of_unknown_unit_is_read_in_a_course_quantitys_unit():
+    """A path the answers reader knows no unit of (positions.H) takes an answer in SI base units
+    -- of a course quantity's unit only: '5 MM' (pint's megamolar) was read as 5e9 and graded;
+    now it is invalid, with the reason. '160 mm', '3 W' read as before."""
+    from tmm_cli.check import answer_value
+    assert answer_value("160 mm", "positions.H") == pytest.approx(0.16)
+    assert answer_value("3 kW", "drive_train.motor_power") == pytest.approx(3000.0)
+    with pytest.raises(ValueError) as info:
+        answer_value("5 MM", "positions.H")
+    assert info.value.args[0].code == "answers.unit_not_course"

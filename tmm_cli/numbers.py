@@ -376,6 +376,28 @@ def _pint_base(expression: str) -> float:
         raise ValueError(Message("input.number_unit_unknown", text=expression, unit=expression)) from None
 
 
+# the dimensions of the course's quantities (a result path whose unit the answers reader does not
+# know is read in SI base units, of one of these): lengths, masses, times, speeds and
+# accelerations (linear and angular), forces, moments and works, inertias, pressures, areas,
+# densities, powers, stiffnesses, and plain numbers (angles in radians)
+_COURSE_UNITS = ("m", "kg", "s", "m/s", "m/s**2", "1/s", "1/s**2", "N", "N*m", "kg*m**2", "Pa", "m**2",
+                 "kg/m**3", "W", "N/m", "dimensionless")
+
+
+@lru_cache(maxsize=None)
+def _course_dimensions() -> frozenset:
+    u = ureg()
+    return frozenset(u.Quantity(1.0, e).dimensionality for e in _COURSE_UNITS)
+
+
+def _course_dimension(expression: str) -> bool:
+    """The unit ``expression`` measures one of the course's quantities (:data:`_COURSE_UNITS`)."""
+    try:
+        return ureg().Quantity(1.0, expression).dimensionality in _course_dimensions()
+    except Exception:  # noqa: BLE001 - pint's parser errors: _pint_base names the unit
+        return True
+
+
 def answer(text: str, unit: str | None, *, angle: bool = False, angular: bool = False) -> float:
     """A student's answer in ``unit`` (pint's words: 'm/s**2', 'degree', 'dimensionless';
     None: SI base units). ``angle``: an angle (any angle unit to degrees, a plain number
@@ -389,6 +411,8 @@ def answer(text: str, unit: str | None, *, angle: bool = False, angular: bool = 
         target = "rad/s"
     try:
         if target is None:
+            if not _course_dimension(r.expression):      # 'MM' is pint's megamolar: 5 MM was 5e9
+                raise ValueError(Message("answers.unit_not_course", value=repr(r.text), unit=r.unit_text))
             return r.value * _pint_base(r.expression)
         return in_unit(r, target, angular=angular)[0]
     except ValueError as exc:
