@@ -263,11 +263,13 @@ def check(
         else:
             sets = load_sources(answers)
             if not single:
-                other = sorted({str(a.variant) for a in sets if not a.matches(task)})
-                if other:               # a table or folder of the whole group: the others are not this task's
-                    _err(f"note: {len([a for a in sets if not a.matches(task)])} answer set(s) of other variants "
+                mine = [a for a in sets if a.matches(task)]
+                if len(mine) < len(sets):   # a table or folder of the whole group: the others are not this task's
+                    kept = {id(a) for a in mine}
+                    other = sorted({str(a.variant) for a in sets if id(a) not in kept})
+                    _err(f"note: {len(sets) - len(mine)} answer set(s) of other variants "
                          f"({', '.join(other[:8])}{', ...' if len(other) > 8 else ''}) left for their own tasks")
-                sets, dropped = repeats([a for a in sets if a.matches(task)], latest)
+                sets, dropped = repeats(mine, latest)
                 for n in dropped:
                     _err(f"note: {n}")
                 for a in sets:
@@ -558,11 +560,12 @@ def fields(section: Optional[str] = typer.Argument(None, help="only this section
     from rich.table import Table
 
     from .task import field_docs
-    rows = [r for r in field_docs() if section is None or r[0] == section or r[0].startswith(section + ".")
+    docs = field_docs()
+    rows = [r for r in docs if section is None or r[0] == section or r[0].startswith(section + ".")
             or r[0].startswith(section + "[")]
     if not rows:
         import difflib
-        names = sorted({r[0] for r in field_docs()} | {r[0].split(".")[0].split("[")[0] for r in field_docs()})
+        names = sorted({r[0] for r in docs} | {r[0].split(".")[0].split("[")[0] for r in docs})
         near = difflib.get_close_matches(section, names, n=1, cutoff=0.6)
         _err(f"error: no section or field '{section}'" + (f"; did you mean '{near[0]}'?" if near else ""))
         raise typer.Exit(EXIT_INVALID)

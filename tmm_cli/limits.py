@@ -133,12 +133,20 @@ def text_issues(data, marks: dict) -> list[tuple]:
 _LOOKALIKE = {0x0410: "A", 0x0412: "B", 0x0415: "E", 0x041A: "K", 0x041C: "M", 0x041D: "H", 0x041E: "O",
               0x0420: "P", 0x0421: "C", 0x0422: "T", 0x0425: "X", 0x0430: "a", 0x0435: "e", 0x043E: "o",
               0x0440: "p", 0x0441: "c", 0x0443: "y", 0x0445: "x", 0x0406: "I", 0x0456: "i"}
+_TO_CYRILLIC = {ord(v): chr(k) for k, v in _LOOKALIKE.items()}
 
 
 def lookalike(a: str, b: str) -> bool:
     """Two different names that read the same: one typed with Cyrillic letters drawn as Latin
     ones where the other has the Latin letters (O1 with the Cyrillic O, U+041E, and O1)."""
     return a != b and a.translate(_LOOKALIKE) == b.translate(_LOOKALIKE)
+
+
+def in_cyrillic(text: str) -> str | None:
+    """``text`` with its Latin letters drawn as Cyrillic ones written in Cyrillic (a unit typed on
+    the other layout: the Latin H for the newton's Cyrillic EN, U+041D); None where it has none."""
+    cyr = text.translate(_TO_CYRILLIC)
+    return cyr if cyr != text else None
 
 
 def script_note(a: str, b: str):

@@ -418,20 +418,12 @@ def answer(text: str, unit: str | None, *, angle: bool = False, angular: bool = 
     except ValueError as exc:
         if exc.args and exc.args[0] is not None:
             raise
-        cyr = _in_cyrillic(r.unit_text)
+        from .limits import in_cyrillic
+        cyr = in_cyrillic(r.unit_text)
         if cyr is not None and _converts(cyr, target, angular):
             raise ValueError(Message("answers.wrong_unit_latin", value=repr(r.text), written=r.unit_text,
                                      cyr=cyr)) from None
         raise ValueError(Message("answers.wrong_unit", value=repr(r.text), unit=target.replace("**", "^"))) from None
-
-
-def _in_cyrillic(unit_text: str) -> str | None:
-    """A unit typed with Latin letters drawn as Cyrillic ones (the Latin H for the newton's
-    Cyrillic EN, U+041D), in the Cyrillic letters; None where it has none of them."""
-    from .limits import _LOOKALIKE
-    back = {v: chr(k) for k, v in _LOOKALIKE.items()}
-    cyr = "".join(back.get(ch, ch) for ch in unit_text)
-    return cyr if cyr != unit_text else None
 
 
 def _converts(unit_text: str, target: str, angular: bool) -> bool:
