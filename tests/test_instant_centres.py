@@ -84,3 +84,33 @@ def test_slider_on_a_fixed_guide_translates():
         if c is not None:
             # the guide is vertical (angle 90) through O: the perpendicular at B is horizontal
             assert c[1] == pytest.approx(B[1], abs=1e-9 * max(1.0, abs(c[0])))
+
+
+def test_links_at_rest_at_an_extreme_have_kennedys_centres():
+    """The forging machine at its extreme positions: the rocker 3, link 4 and the slider 5 are
+    at rest (their velocities vanish), so the velocities alone do not fix the centres 0-4 and
+    3-5 -- which are not at infinity but the limits as the crank turns on, Kennedy's
+    construction: 0-4 on the line O1 K (centres 0-3, 3-4) and on the perpendicular to the
+    vertical guide at D (centres 0-5 at infinity, 4-5 = D); 3-5 on the horizontal through O1
+    (0-3, 0-5) and on the line K D (3-4, 4-5).  Once null (the relative motion taken for a
+    translation)."""
+    res = run(load_task(ROOT / "tasks" / "forging_sixbar.yaml"))
+    names = [lk["name"] for lk in res["structure"]["links"]]
+    assert names == ["crank", "rod", "rocker", "link4", "slider"]
+
+    def meet(p1, d1, p2, d2):
+        t = _cross(p2 - p1, d2) / _cross(d1, d2)
+        return p1 + t * d1
+    ends = [e for e in res["kinematics"] if e["index"] in (0, 12)]
+    assert len(ends) == 2
+    horizontal = np.array([1.0, 0.0])
+    for e in ends:
+        P = {k: np.array([v["x"], v["y"]]) for k, v in e["points"].items()}
+        assert abs(e["links"]["rocker"]["omega"]) < 1e-12 and abs(e["points"]["D"]["v"]) < 1e-12
+        ic = e["instant_centres"]
+        assert ic["0-5"] is None                           # the slide: at infinity
+        want04 = meet(P["O1"], P["K"] - P["O1"], P["D"], horizontal)
+        want35 = meet(P["O1"], horizontal, P["K"], P["D"] - P["K"])
+        assert ic["0-4"] is not None and ic["3-5"] is not None, e["index"]
+        assert np.allclose(ic["0-4"], want04, rtol=0, atol=1e-9), (e["index"], ic["0-4"], want04)
+        assert np.allclose(ic["3-5"], want35, rtol=0, atol=1e-9), (e["index"], ic["3-5"], want35)

@@ -75,15 +75,24 @@ def reference_entry(kin, i: int, index: int) -> dict:
 def _centres(kin, i: int, w: float, near: bool) -> dict:
     """Every pair's instant centre at row i, one pair at a time: the pin of a revolute, null for a
     slide; else where the relative velocity field c + (w_a - w_b) k x P is zero; null where
-    w_a = w_b (to 1e-12 of the largest |w| at the row) or near a change point."""
+    w_a = w_b (to 1e-12 of the largest |w| at the row) or near a change point.  Where the two
+    fields agree (w_a = w_b to 1e-8 of the largest |w|, |c| within 1e-8 of the largest |c_k|) the
+    same with the derivatives by the crank angle of the velocity analogues (the limit)."""
     n = len(kin.links)
     vel = [(0.0, 0.0, 0.0)]             # per link: (c_x, c_y, w) with c = v_S - w k x S
     for k, lk in enumerate(kin.links, start=1):
         (sx, sy), (qx, qy) = kin.pos[f"S{k}"][i], kin.d1[f"S{k}"][i]
         wk = float(kin.a1[lk][i]) * w
         vel.append((qx * w + wk * sy, qy * w - wk * sx, wk))
+    der = [(0.0, 0.0, 0.0)]             # per link: c' = q'' - w'' k x S - w' k x q', and w''
+    for k, lk in enumerate(kin.links, start=1):
+        (sx, sy), (qx, qy), (rx, ry) = kin.pos[f"S{k}"][i], kin.d1[f"S{k}"][i], kin.d2[f"S{k}"][i]
+        a1, a2 = float(kin.a1[lk][i]), float(kin.a2[lk][i])
+        der.append((rx + a2 * sy + a1 * qy, ry - a2 * sx - a1 * qx, a2))
     with np.errstate(all="ignore"):
         scale = max(float(np.max(np.abs([v[2] for v in vel]))), 1e-300)
+        c_scale = float(np.max([np.hypot(v[0], v[1]) for v in vel]))
+        scale1 = max(float(np.max(np.abs([v[2] for v in der]))), 1e-300)
     out = {}
     for a in range(n + 1):
         for b in range(a + 1, n + 1):
@@ -94,7 +103,11 @@ def _centres(kin, i: int, w: float, near: bool) -> dict:
                 continue
             cx, cy = vel[a][0] - vel[b][0], vel[a][1] - vel[b][1]
             dw = vel[a][2] - vel[b][2]
-            if near or abs(dw) <= 1e-12 * scale:
+            lim = 1e-12 * scale
+            if abs(dw) <= 1e-8 * scale and np.hypot(cx, cy) <= 1e-8 * c_scale and c_scale > 0:
+                cx, cy = der[a][0] - der[b][0], der[a][1] - der[b][1]
+                dw, lim = der[a][2] - der[b][2], 1e-12 * scale1
+            if near or abs(dw) <= lim:
                 out[key] = None
             else:
                 with np.errstate(all="ignore"):

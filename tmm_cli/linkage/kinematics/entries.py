@@ -155,9 +155,14 @@ def instant_centres(kin, sl: slice, wc) -> list[tuple[np.ndarray, np.ndarray, np
     Link i moves as v_i(P) = v_Si + w_i k x (P - S_i); the relative velocity of i and j at P
     is c + (w_i - w_j) k x P with c = (v_Si - w_i k x S_i) - (v_Sj - w_j k x S_j), zero at
     P = (-c_y, c_x)/(w_i - w_j).  Where w_i = w_j the relative motion is a translation: the
-    centre lies at infinity (null).  Two links joined directly have their pin as the centre
-    (a slide: at infinity).  Kennedy's theorem (the three centres of three links on one line)
-    holds for these; tests check it.
+    centre lies at infinity (null).  Where the two links move alike (c = 0 as well: at an
+    extreme position the rocker, its rod and the slider beyond it are all at rest) the
+    velocities do not fix the centre; it is their limit as the crank turns on, by l'Hopital's
+    rule P = (-c'_y, c'_x)/(w_i' - w_j') with the derivatives by the crank angle of the
+    velocity analogues (c'_i = q''_Si - w_i' k x S_i - w_i k x q'_Si), which is Kennedy's
+    construction there (null only where that limit is a translation too).  Two links joined
+    directly have their pin as the centre (a slide: at infinity).  Kennedy's theorem (the
+    three centres of three links on one line) holds for these; tests check it.
 
     References
     ----------
@@ -171,9 +176,13 @@ def instant_centres(kin, sl: slice, wc) -> list[tuple[np.ndarray, np.ndarray, np
         s, q = kin.pos[f"S{i}"][sl], kin.d1[f"S{i}"][sl]
         w = kin.a1[lk][sl] * (wc if np.ndim(wc) == 0 else wc[:, 0])
         v = q * wc
-        C.append(v - w[:, None] * np.stack([-s[:, 1], s[:, 0]], axis=1))
+        C.append(v - w[:, None] * _perp(s))
         W.append(w)
     scale = np.maximum(np.max(np.abs(np.stack(W)), axis=0), 1e-300)      # per row: its own position only
+    # the size of the velocity fields at each row (the largest c_i): two fields within 1e-8 of it
+    # of each other move alike
+    c_scale = np.max(np.stack([np.hypot(c[:, 0], c[:, 1]) for c in C]), axis=0)
+    limit = None                             # the velocity analogues' derivatives, made where needed
     out = []
     for i, j in pairs(n):
         key = f"{i}-{j}"
@@ -188,8 +197,39 @@ def instant_centres(kin, sl: slice, wc) -> list[tuple[np.ndarray, np.ndarray, np
         c, dw = C[i] - C[j], W[i] - W[j]
         at_inf = np.abs(dw) <= 1e-12 * scale
         d = np.where(at_inf, 1.0, dw)
-        out.append((-c[:, 1] / d, c[:, 0] / d, at_inf, False))
+        x, y = -c[:, 1] / d, c[:, 0] / d
+        alike = (np.abs(dw) <= 1e-8 * scale) & (np.hypot(c[:, 0], c[:, 1]) <= 1e-8 * c_scale) & (c_scale > 0)
+        if alike.any():                      # moving alike: the limit (l'Hopital, the Notes)
+            if limit is None:
+                limit = _analogue_derivatives(kin, sl)
+            c1, dw1 = limit[0][i] - limit[0][j], limit[1][i] - limit[1][j]
+            s1 = np.max(np.abs(np.stack(limit[1])), axis=0)
+            inf1 = np.abs(dw1) <= 1e-12 * np.maximum(s1, 1e-300)
+            d1 = np.where(inf1, 1.0, dw1)
+            x = np.where(alike, -c1[:, 1] / d1, x)
+            y = np.where(alike, c1[:, 0] / d1, y)
+            at_inf = np.where(alike, inf1, at_inf)
+        out.append((x, y, at_inf, False))
     return out
+
+
+def _perp(s: np.ndarray) -> np.ndarray:
+    """k x s of the rows of ``s`` (x, y): (-s_y, s_x)."""
+    return np.stack([-s[:, 1], s[:, 0]], axis=1)
+
+
+def _analogue_derivatives(kin, sl: slice) -> tuple[list[np.ndarray], list[np.ndarray]]:
+    """Per link (the frame 0 first) the derivatives by the crank angle of c_i = q'_Si - w'_i k x S_i
+    and of w'_i (the velocity analogues of :func:`instant_centres`): c_i' = q''_Si - w''_i k x S_i
+    - w'_i k x q'_Si and w''_i, at the rows ``sl``."""
+    k = len(kin.phi[sl])
+    C1, W1 = [np.zeros((k, 2))], [np.zeros(k)]
+    for i, lk in enumerate(kin.links, start=1):
+        s, q, q2 = kin.pos[f"S{i}"][sl], kin.d1[f"S{i}"][sl], kin.d2[f"S{i}"][sl]
+        a1, a2 = kin.a1[lk][sl], kin.a2[lk][sl]
+        C1.append(q2 - a2[:, None] * _perp(s) - a1[:, None] * _perp(q))
+        W1.append(a2)
+    return C1, W1
 
 
 def centre_columns(kin, sl: slice, wc) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
