@@ -416,3 +416,24 @@ def test_key_table_counts_what_compare_grades_ok():
         got = table.counts(a)
         for k in range(40):
             assert got[k] == sum(compare(v, *keys[k][p])[0] == "ok" for p, v in a.items()), (i, k)
+
+
+def test_a_form_of_a_task_without_a_variant_is_matched_by_the_batch(tmp_path):
+    """`tmm form` writes a task's file stem as the form's `variant` where the task has none;
+    `tmm batch` matches that filled form to the task (it was "no task of this variant")."""
+    src = tmp_path / "tasks"
+    _write(src, "pair.yaml", GEARS.format(v=1, z1=14, z2=30).replace("variant: 1\n", ""))
+    res = runner.invoke(app, ["form", str(src), "-q", "gears.aw,gears.alpha_w", "--out", str(tmp_path / "f")])
+    assert res.exit_code == 0, res.output
+    form = (tmp_path / "f" / "pair.form.yaml").read_text(encoding="utf-8")
+    assert 'variant: "pair"' in form
+    key = gear_key(14, 30)
+    filled = form.replace('"gears.aw":', f'"gears.aw": {key["gears.aw"]!r}').replace(
+        '"gears.alpha_w":', f'"gears.alpha_w": {key["gears.alpha_w"] * 1.2!r}')
+    _write(tmp_path / "answers", "ivanov.yaml", filled)
+    res = runner.invoke(app, ["batch", str(src), "--out", str(tmp_path / "o"), "--answers", str(tmp_path / "answers")])
+    rows = _csv(tmp_path / "o" / "summary.csv")
+    assert [(Path(r["file"]).name, r["status"], r["ok"], r["outside"]) for r in rows] == \
+        [("pair.yaml", "outside", "1", "1")], res.output
+    assert res.exit_code == 1
+    assert re.search(r"tmm batch: 1 row\b(?!s)", res.output), res.output      # was "1 rows"

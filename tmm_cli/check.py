@@ -118,9 +118,13 @@ class AnswerSet:
         return Path(self.source).name
 
     def matches(self, task) -> bool:
+        """The set answers ``task``: by its `variant` field (a task without a variant: its file
+        stem, which `tmm form` writes there), else by its file stem (the task's stem or variant)."""
         tv = task.variant
         if self.variant is not None and str(self.variant) != "":
-            return tv is not None and _same(self.variant, tv)
+            if tv is None:
+                return str(self.variant).strip() == task.name
+            return _same(self.variant, tv)
         return self.stem is not None and (self.stem == task.name or (tv is not None and _same(self.stem, tv)))
 
 

@@ -275,7 +275,8 @@ def print_batch(rows: list[dict], out: Path, skipped=(), removed=(), notes=()) -
     from rich.text import Text
 
     con = _console()
-    t = Table(title=f"tmm batch: {len(rows)} rows", title_justify="left")
+    from .numfmt import plural
+    t = Table(title=f"tmm batch: {plural(len(rows), ['row', 'rows'], 'en')}", title_justify="left")
     t.add_column("student / file", overflow="fold", max_width=22)
     t.add_column("var.", no_wrap=True, max_width=6)
     t.add_column("status", no_wrap=True)
