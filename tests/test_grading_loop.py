@@ -437,3 +437,36 @@ def test_a_form_of_a_task_without_a_variant_is_matched_by_the_batch(tmp_path):
         [("pair.yaml", "outside", "1", "1")], res.output
     assert res.exit_code == 1
     assert re.search(r"tmm batch: 1 row\b(?!s)", res.output), res.output      # was "1 rows"
+
+
+def test_counts_are_graded_exactly_unless_the_tolerance_names_them(tmp_path):
+    """Tooth numbers are counts: z3 = z1 + 2 z2 (the single-row planetary train's coaxiality,
+    40 + 2*23 = 86), so 85 is wrong however close -- it was ok within the default 5 %; a
+    tolerance given on the path or a prefix of it still holds; non-counts keep the default."""
+    task = Path(__file__).resolve().parents[1] / "tasks" / "planetary_A.yaml"
+    z1, z2 = 40, 23
+    answers = _write(tmp_path, "a.yaml", f"answers:\n  planetary.z.z1: {z1}\n  planetary.z.z2: {z2}\n"
+                                         f"  planetary.z.z3: {z1 + 2 * z2 - 1}\n  planetary.z.z2x: 1\n"
+                                         f"  planetary.ratio: '{1 + (z1 + 2 * z2) / z1 * 1.01}'\n")
+    res = runner.invoke(app, ["check", str(task), "--answers", str(answers), "--out", str(tmp_path / "o")])
+    rows = {r["path"]: r for r in _csv(tmp_path / "o" / "check.csv")}
+    assert float(rows["planetary.z.z3"]["reference"]) == z1 + 2 * z2
+    assert [rows[f"planetary.z.z{k}"]["status"] for k in (1, 2, 3)] == ["ok", "ok", "outside"], res.output
+    assert rows["planetary.z.z3"]["tolerance"] == "0"
+    assert rows["planetary.ratio"]["status"] == "ok" and rows["planetary.ratio"]["tolerance"] == "0.05"
+    tol = _write(tmp_path, "tol.yaml", "planetary.z: {abs: 1}\n")
+    runner.invoke(app, ["check", str(task), "--answers", str(answers), "--tolerance", str(tol),
+                        "--out", str(tmp_path / "o2")])
+    rows = {r["path"]: r for r in _csv(tmp_path / "o2" / "check.csv")}
+    assert rows["planetary.z.z3"]["status"] == "ok" and rows["planetary.z.z3"]["tolerance"] == "abs 1"
+
+
+def test_the_crank_angle_of_an_event_is_an_angle():
+    """gamma_min_phi (the crank angle of the least transmission angle) and the like are compared
+    modulo 360: 360 deg is 0 deg."""
+    from tmm_cli.check import EXACT, Tol, _is_angle, compare
+    assert _is_angle("synthesis.gamma_min_phi") and _is_angle("cam.max_pressure_angle_phi")
+    assert not _is_angle("synthesis.gamma_min_physics") and not _is_angle("flywheel.J")
+    assert compare(360.0, 0.5, Tol(rel=0, abs=1, plain=False), True)[0] == "ok"
+    assert compare(357.0, 0.5, Tol(rel=0, abs=1, plain=False), True)[0] == "outside"
+    assert compare(86.0, 86.0, EXACT, False)[0] == "ok" and compare(85.0, 86.0, EXACT, False)[0] == "outside"

@@ -203,7 +203,7 @@ def variant_key(results: dict, paths: set[str], tol: dict) -> dict:
         except KeyError:
             continue
         if isinstance(v, (int, float)) and not isinstance(v, bool) and v == v:
-            t = tolerance_for(p, tol)
+            t = tolerance_for(p, tol, count=type(v) is int)
             key[p] = (float(v), t if isinstance(t, Tol) else parse_tolerance(t, p), _is_angle(p))
     return key
 

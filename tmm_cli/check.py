@@ -22,8 +22,11 @@ from .results import did_you_mean, leaf_paths, lookup, parse_path, reference
 
 DEFAULT_TOLERANCE = 0.05
 # results in degrees: differences are taken modulo 360 into [-180, 180)
+# (and every key ending in "_phi": the crank angle where something happens, as gamma_min_phi)
 ANGLE_KEYS = {"phi", "phi0", "extreme", "angle", "working_stroke_angle", "idle_stroke_angle", "alpha_w", "theta",
-              "psi", "gamma_min", "pressure_angle", "max_pressure_angle", "singular"}
+              "psi", "gamma_min", "pressure_angle", "max_pressure_angle", "singular", "psi0", "gamma",
+              "max_pressure_angle_rise", "max_pressure_angle_return", "crank_angle", "crank_angles"}
+
 # top-level result sections: a path into one the task did not compute is not_computed
 SECTIONS = {"structure", "positions", "kinematics", "kinematics_curve", "kinetostatics", "kinetostatics_info",
             "singular", "singular_positions", "flywheel", "cam", "gears", "planetary", "drive_train", "synthesis",
@@ -51,6 +54,9 @@ class Tol:
 
 
 GRAPHICAL = "graphical"   # the tolerance of a hand solution: the error of reading the drawings
+# a whole number in the results is a count (teeth, satellites, the degree of freedom, an assembly
+# number): graded exactly unless the tolerances name its path or a prefix of it
+EXACT = Tol(rel=0.0, abs=0.0, plain=False)
 
 
 def parse_tolerance(v, where: str, line=None, col=None, file=None) -> Tol:
@@ -82,12 +88,13 @@ def parse_tolerance(v, where: str, line=None, col=None, file=None) -> Tol:
     return Tol(rel=num(v, "plain"))
 
 
-def tolerance_for(key: str, tol: dict) -> Any:
+def tolerance_for(key: str, tol: dict, count: bool = False) -> Any:
     """The tolerance entry for a path: the path itself, else its longest prefix, else
-    `default`, else 0.05. Returns what the mapping holds (a number or a Tol)."""
+    `default`, else 0.05 (``count``: a whole-number result, :data:`EXACT` instead of the
+    default). Returns what the mapping holds (a number or a Tol)."""
     if key in tol:
         return tol[key]
-    best, best_len = tol.get("default", DEFAULT_TOLERANCE), -1
+    best, best_len = EXACT if count else tol.get("default", DEFAULT_TOLERANCE), -1
     for k, v in tol.items():
         if k != "default" and (key.startswith(k + ".") or key.startswith(k + "[")) and len(k) > best_len:
             best, best_len = v, len(k)
@@ -195,7 +202,7 @@ def _is_angle(path: str) -> bool:
         toks = [t for t in parse_path(path) if isinstance(t, str)]
     except KeyError:
         return False
-    return bool(toks) and toks[-1] in ANGLE_KEYS
+    return bool(toks) and (toks[-1] in ANGLE_KEYS or toks[-1].endswith("_phi"))
 
 
 def _mark(marks, key, default=(None, None)):
@@ -520,6 +527,10 @@ def grade(results: dict, aset: AnswerSet, tol: dict, required: list[str] | None 
             row["status"] = "unknown_path"
             row["note"] = Message("answers.note_not_number", kind=type(ref).__name__, hint=did_you_mean(p, results, leaves))
             continue
+        if type(ref) is int:            # a count: exact, unless the tolerances name it
+            t = tolerance_for(p, tol, count=True)
+            t = t if isinstance(t, Tol) else parse_tolerance(t, p)
+            row["tolerance"] = t.text
         row["reference"] = float(ref)
         if p in aset.invalid:
             row["answer"], row["status"] = aset.invalid[p][0], "invalid"
