@@ -8,6 +8,7 @@ import math
 import re
 from pathlib import Path
 
+import pytest
 from typer.testing import CliRunner
 
 from test_instructor import _write
@@ -470,3 +471,48 @@ def test_the_crank_angle_of_an_event_is_an_angle():
     assert compare(360.0, 0.5, Tol(rel=0, abs=1, plain=False), True)[0] == "ok"
     assert compare(357.0, 0.5, Tol(rel=0, abs=1, plain=False), True)[0] == "outside"
     assert compare(86.0, 86.0, EXACT, False)[0] == "ok" and compare(85.0, 86.0, EXACT, False)[0] == "outside"
+
+
+def test_tolerance_in_percent_and_a_share_of_one_or_more_refused(tmp_path):
+    """'5 %' is the share 0.05; `default: 5` (meant for 5 %) passed every answer within 500 % --
+    now an invalid tolerance file (exit 2) that says how a share is written; an absolute
+    tolerance takes no percent."""
+    from tmm_cli.units import tolerance_number
+    assert tolerance_number("5 %") == 0.05 and tolerance_number("2,5%", "rel") == 0.025
+    assert tolerance_number("0,05") == 0.05 and tolerance_number(7, "abs") == 7.0
+    for bad, what in (("5 %", "abs"), (5, "plain"), ("100 %", "rel"), (1, "rel")):
+        with pytest.raises(ValueError):
+            tolerance_number(bad, what)
+    src = tmp_path / "t"
+    task = _write(src, "v1.yaml", GEARS.format(v=1, z1=14, z2=30))
+    key = gear_key(14, 30)
+    answers = _write(tmp_path, "a.yaml", f"variant: 1\nanswers:\n  gears.aw: {key['gears.aw'] * 1.04!r}\n")
+    tol = _write(tmp_path, "tol.yaml", "default: 5\n")
+    res = runner.invoke(app, ["check", str(task), "--answers", str(answers), "--tolerance", str(tol)])
+    assert res.exit_code == 2 and "tol.yaml" in res.output and "did you mean 0.05" in res.output, res.output
+    assert "Traceback" not in res.output
+    tol.write_text('default: "3 %"\n', encoding="utf-8")
+    res = runner.invoke(app, ["check", str(task), "--answers", str(answers), "--tolerance", str(tol),
+                              "--out", str(tmp_path / "o")])
+    rows = _csv(tmp_path / "o" / "check.csv")
+    assert [(r["status"], r["tolerance"]) for r in rows] == [("outside", "0.03")], res.output
+
+
+def test_a_misspelt_tolerance_key_is_told_with_the_key_meant(tmp_path):
+    """`differential.sped` (for differential.speeds) matched nothing, so the speeds were graded
+    at the default 5 % without a word: now a warning names it and the key meant, in `tmm check`
+    and once in `tmm batch`; a key of a section the task has not (`kinematics` for a gear
+    pair: another task's) and keys that do match are not told."""
+    src = tmp_path / "t"
+    task = _write(src, "v1.yaml", GEARS.format(v=1, z1=14, z2=30))
+    _write(src, "v2.yaml", GEARS.format(v=2, z1=15, z2=30))
+    key = gear_key(14, 30)
+    answers = _write(tmp_path / "ans", "v1.yaml", f"variant: 1\nanswers:\n  gears.aw: {key['gears.aw']!r}\n")
+    tol = _write(tmp_path, "tol.yaml", "gears.alpha_ww: 0.01\ngears.aw: 0.01\ngears.r: 0.01\nkinematics: 0.02\n")
+    res = runner.invoke(app, ["check", str(task), "--answers", str(answers), "--tolerance", str(tol)])
+    assert res.exit_code == 0, res.output
+    told = [ln for ln in res.output.splitlines() if ln.startswith("warning:")]
+    assert len(told) == 1 and "'gears.alpha_ww'" in told[0] and "did you mean 'gears.alpha_w'" in told[0], res.output
+    res = runner.invoke(app, ["batch", str(src), "--out", str(tmp_path / "o"), "--answers", str(tmp_path / "ans"),
+                              "--tolerance", str(tol), "--format", "json"])
+    assert res.output.count("'gears.alpha_ww'") == 1, res.output

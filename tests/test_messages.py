@@ -281,6 +281,9 @@ ENGLISH = [
      "a.csv:3: column 'flywheel.J': invalid answer: not a finite number: 'inf'"),
     ('answers.did_you_mean', {'path': 'flywheel.J'}, "did you mean 'flywheel.J'?"),
     ('answers.no_such_path', {}, 'no such path in the results'),
+    ('answers.tol_key_unused', {'key': 'differential.sped', 'hint': 'x'},
+     "the tolerance key 'differential.sped' matches no quantity of this task's results (x): "
+     "the quantities it was meant for keep the default tolerance"),
     ('answers.note_unknown_path', {'reason': {'code': 'answers.path_no_key', 'params': {'path': 'flywheel.JJ', 'key': 'JJ'},
                                               'text': 'x'},
                                    'hint': {'code': 'answers.did_you_mean', 'params': {'path': 'flywheel.J'}, 'text': 'x'}},
@@ -300,6 +303,9 @@ ENGLISH = [
     ('input.table_large', {'size': 20000000, 'limit': 16777216}, 'a table of 20000000 bytes: at most 16777216'),
     ('input.tol_not_number', {'what': 'plain', 'got': '-1'},
      'expected a non-negative number (relative tolerance), got -1'),
+    ('input.tol_share_large', {'what': 'plain', 'got': '5', 'pct': 500.0, 'share': 0.05},
+     "relative tolerance 5 passes every answer within 500 % of the reference: a share is written 0.05 or "
+     "'5 %' (did you mean 0.05?)"),
     ('input.tol_unknown_key', {'key': 'rell'},
      "unknown key 'rell'; a tolerance mapping holds `rel`, `abs` and `sign`"),
     ('input.tol_sign', {'got': "'plus'"}, "`sign` of a tolerance is `any` (the magnitude is graded), got 'plus'"),

@@ -182,6 +182,9 @@ def work(path: Path, out: Path, folder: str, formats: set[str], lang: str, sets:
                                        key=(options or {}).get("feedback", "key") != "no-key")
                     s["feedback"] = [_rel(x, out) for x in p]
                     res["written"].extend(s["feedback"])
+        if mine or sets:                     # a misspelt tolerance key: said once for the batch
+            from .check import unused_tolerance_keys
+            res["notes"].extend(unused_tolerance_keys(set(task.tolerance or {}) | set(tol_override or {}), results))
     except BaseException as exc:  # one broken variant must not stop the batch
         if isinstance(exc, KeyboardInterrupt):
             raise

@@ -303,6 +303,9 @@ def check(
         _err(f"no answers for variant {task.variant if task.variant is not None else task.name} in {answers}")
     code, all_rows = (EXIT_ANSWERS if not sets else EXIT_OK), []
     tol = tolerances(task, tol_override, results)
+    from .check import unused_tolerance_keys
+    for w in unused_tolerance_keys(set(task.tolerance or {}) | set(tol_override or {}), results):
+        _err(f"warning: {w}")
     for a in sets:
         if a.error:          # one malformed row or file of a class: named, the others graded
             _err(f"error: {a.error}")

@@ -209,17 +209,26 @@ def plain_number(value: Any) -> Any:
 def tolerance_number(value: Any, what: str = "plain") -> float:
     """A tolerance's number -- a share (``what`` "rel", or "plain": a plain tolerance) or an
     absolute amount ("abs") -- non-negative and finite, given as a number or as a string of the
-    number grammar ('0,02', '1/20'); else ValueError(Message ``input.tol_not_number``). One reader
-    for the task file's ``tolerance`` and ``--tolerance FILE``."""
-    x = value
+    number grammar ('0,02', '1/20'); a share may be written in percent ('5 %', '2,5%'); else
+    ValueError(Message ``input.tol_not_number``). A share of 1 or more (every answer within 100 %
+    and more passes: `default: 5` meant for 5 %) is ValueError(Message ``input.tol_share_large``).
+    One reader for the task file's ``tolerance`` and ``--tolerance FILE``."""
+    x, percent = value, False
     if isinstance(x, str):
+        text = x.strip()
+        if what != "abs" and text.endswith("%"):
+            percent, text = True, text[:-1].rstrip(" \u00a0\u202f")
         try:
-            x = plain_number(x)
+            x = plain_number(text)
         except ValueError:
             x = None
     if not (isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(float(x)) and x >= 0):
         raise ValueError(Message("input.tol_not_number", what=what, got=repr(value)))
-    return float(x)
+    x = float(x) / 100 if percent else float(x)
+    if what != "abs" and x >= 1:
+        raise ValueError(Message("input.tol_share_large", what=what, got=repr(value), pct=100 * x,
+                                 share=x / 100))
+    return x
 
 
 # a plain number (no unit), finite and within LIMIT
