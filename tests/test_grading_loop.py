@@ -516,3 +516,24 @@ def test_a_misspelt_tolerance_key_is_told_with_the_key_meant(tmp_path):
     res = runner.invoke(app, ["batch", str(src), "--out", str(tmp_path / "o"), "--answers", str(tmp_path / "ans"),
                               "--tolerance", str(tol), "--format", "json"])
     assert res.output.count("'gears.alpha_ww'") == 1, res.output
+
+
+def test_the_task_files_own_answers_are_read_as_an_answers_files(tmp_path):
+    """The task's `answers:` take what an answers file takes ('8,8', '-200 N*m' in Cyrillic
+    letters) -- they were refused with pydantic's "unable to parse string as a number" -- and an
+    unreadable one is that answer's `invalid`; `tolerance: 0.05` (meant for {default: 0.05})
+    says how it is written."""
+    key = gear_key(14, 30)
+    aw_mm = f"{key['gears.aw'] * 1000:.3f}".replace(".", ",")
+    alpha = f"{key['gears.alpha_w']:.4f}".replace(".", ",")
+    text = GEARS.format(v=1, z1=14, z2=30) + (f"answers:\n  gears.aw: '{aw_mm} \u043c\u043c'\n"
+                                              f"  gears.alpha_w: '{alpha}'\n  gears.y: abc\n")
+    task = _write(tmp_path, "v1.yaml", text)
+    res = runner.invoke(app, ["check", str(task), "--out", str(tmp_path / "o")])
+    rows = {r["path"]: r for r in _csv(tmp_path / "o" / "check.csv")}
+    assert {p: r["status"] for p, r in rows.items()} == {"gears.aw": "ok", "gears.alpha_w": "ok", "gears.y": "invalid"}
+    assert float(rows["gears.aw"]["answer"]) == pytest.approx(key["gears.aw"], abs=1e-6)
+    assert res.exit_code == 1, res.output
+    task.write_text(text + "tolerance: 0.05\n", encoding="utf-8")
+    res = runner.invoke(app, ["check", str(task)])
+    assert res.exit_code == 2 and "tolerance: {default: 0.05}" in res.output and "Traceback" not in res.output

@@ -303,6 +303,8 @@ ENGLISH = [
     ('input.table_large', {'size': 20000000, 'limit': 16777216}, 'a table of 20000000 bytes: at most 16777216'),
     ('input.tol_not_number', {'what': 'plain', 'got': '-1'},
      'expected a non-negative number (relative tolerance), got -1'),
+    ('input.tol_section_not_mapping', {'got': '0.05'},
+     "a mapping of a path or prefix (or `default`) to a tolerance, got 0.05: write `tolerance: {default: 0.05}`"),
     ('input.tol_share_large', {'what': 'plain', 'got': '5', 'pct': 500.0, 'share': 0.05},
      "relative tolerance 5 passes every answer within 500 % of the reference: a share is written 0.05 or "
      "'5 %' (did you mean 0.05?)"),

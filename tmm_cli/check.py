@@ -258,16 +258,22 @@ def load_answers_file(path: Path, keep_errors: bool = False) -> AnswerSet:
                 raise err from None
             aset.error = aset.error or err.coded() or err.render()
             continue
-        try:
-            aset.answers[k] = answer_value(v, k)
-            _keep_written(aset, k, v)
-        except ValueError as exc:       # this answer only: the others are graded as usual
-            aset.answers[k] = None
-            aset.invalid[k] = ("" if v is None else str(v), Message("answers.invalid", reason=_coded(exc)))
+        _add_answer(aset, k, v)
     if data.get("tolerance") is not None:    # the instructor's tolerances only: the student's is ignored
         line, _ = _mark(marks, ("tolerance",))
         aset.notes.append(Message("answers.tolerance_ignored", where=f"{path}:{line}" if line else str(path)))
     return aset
+
+
+def _add_answer(aset: AnswerSet, path: str, v) -> None:
+    """The answer ``v`` to ``path`` into the set, read by :func:`answer_value`; one that cannot be
+    read is that answer's `invalid` (the others are graded as usual)."""
+    try:
+        aset.answers[path] = answer_value(v, path)
+        _keep_written(aset, path, v)
+    except ValueError as exc:
+        aset.answers[path] = None
+        aset.invalid[path] = ("" if v is None else str(v), Message("answers.invalid", reason=_coded(exc)))
 
 
 def _keep_written(aset: AnswerSet, path: str, v) -> None:
@@ -386,9 +392,11 @@ def task_answer_set(task) -> AnswerSet | None:
     if not task.answers:
         return None
     st = task.student
-    return AnswerSet(source=task.file or task.name, answers={k: float(v) for k, v in task.answers.items()},
-                     student=(st.name or "") if st else "", group=(st.group or "") if st else "",
-                     variant=task.variant, stem=task.name)
+    aset = AnswerSet(source=task.file or task.name, student=(st.name or "") if st else "",
+                     group=(st.group or "") if st else "", variant=task.variant, stem=task.name)
+    for k, v in task.answers.items():      # read as an answers file's are ('8,8', '-200 N*m')
+        _add_answer(aset, str(k), v)
+    return aset
 
 
 def load_tolerance_file(path: Path) -> dict:

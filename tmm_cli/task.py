@@ -127,7 +127,9 @@ class Task(_Model):
     dof2: Dof2Section | None = Field(None, description="a machine with two degrees of freedom: rotor + hinged "
                                                        "striker (docs/methods.md §7; runs on its own)")
     report: ReportSection | None = None
-    answers: dict[str, float] = Field(default_factory=dict)
+    # a number, or a string as an answers file holds it ('8,8', '-200 N*m'): read when graded,
+    # by the answers file's reader (an unreadable one is that answer's `invalid`)
+    answers: dict[str, Union[float, str, None]] = Field(default_factory=dict)
     tolerance: dict[str, ToleranceValue] = Field(default_factory=dict)
 
     _file: str | None = PrivateAttr(None)
@@ -135,6 +137,13 @@ class Task(_Model):
     # makes, and the builtins' (dict, list) is parsed from text by tokenize (~5 ms, once)
     _marks: dict = PrivateAttr(default_factory=lambda: {})
     _input_warnings: list = PrivateAttr(default_factory=lambda: [])
+
+    @field_validator("tolerance", mode="before")
+    @classmethod
+    def _tolerance_mapping(cls, v):
+        if v is not None and not isinstance(v, dict):     # `tolerance: 0.05` meant {default: 0.05}
+            raise ValueError(Message("input.tol_section_not_mapping", got=repr(v)))
+        return v
 
     @field_validator("schema_", mode="before")
     @classmethod
@@ -406,7 +415,8 @@ _DOCS: dict[type, dict[str, str]] = {
         "differential": "a differential (planetary scheme A-D, no member fixed): two members' speeds give the "
                         "third, one member's torque gives the others",
         "report": "what the report shows: {detail_position: N} (the position worked step by step)",
-        "answers": "a student's numbers: path into results.json -> value (tmm check / tmm batch)",
+        "answers": "a student's numbers: path into results.json -> value, a number or a string with a unit "
+                   "as an answers file holds it ('8,8', '-200 N*m') (tmm check / tmm batch)",
         "tolerance": "tolerances per path or prefix: {default: 0.05, <path or prefix>: 0.02 or {rel: R, abs: A, sign: any} or "
                      "graphical (the error of reading the drawings to 0.5 mm)}",
     },
