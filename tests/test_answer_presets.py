@@ -183,3 +183,43 @@ def test_zero_for_the_balanced_shaking_force_passes(tmp_path):
     assert abs(float(rows["balancing.max.F_balanced"]["reference"])) < 1e-9
     assert rows["balancing.max.F_balanced"]["status"] == "ok"
     assert rows["balancing.shaking_balanced[0].F"]["status"] == "outside"
+
+
+def test_a_name_means_its_quantity_only_in_its_own_section():
+    """A key's notation by its last name holds in its own section only: a link's J is no
+    flywheel's (it was labelled "J_fly -- flywheel moment of inertia"), gears.a is the centre
+    distance (it was read as an acceleration: '120 mm' refused as a wrong unit),
+    planetary.r.z1 a radius (it was "z1 -- teeth", a plain number), differential.powers.H a
+    power, not the stroke H; graphical_error's relative errors carry none."""
+    from tmm_cli.forms import key_notation, unit_of
+    assert key_notation("flywheel.J")[0] == "J_fly" and unit_of("flywheel.J") == "kg*m^2"
+    for path in ("synthesis.mechanism.links.coupler.J", "structure.links[2].J", "gears.a", "planetary.r.z1",
+                 "differential.powers.H", "drive_train.velocity_plan.H", "dof2.parameters.a",
+                 "graphical_error.plans.positions[1].points.A.v", "flywheel.J_n_methods.energy-mass",
+                 "kinematics_curve.s[3]", "balancing.counterweights.crank.r"):
+        assert key_notation(path) is None, path
+    assert unit_of("positions.H") == "m or deg" and unit_of("gears.r[1]") == "m" and unit_of("cam.a[4]") == "m/s^2"
+    assert key_notation("planetary.candidates[2].z.z1")[1] == "" and unit_of("kinematics[1].points.B.v") == "m/s"
+    assert answer_value("120 \u043c\u043c", "gears.a") == pytest.approx(0.12)
+
+
+def test_synthesis_and_drive_train_presets_ask_what_a_student_computes(tmp_path):
+    """The synthesis and drive-train presets list the designed quantities with their notation,
+    not the task's own data (the generated links' masses, the efficiency, the tolerance, the
+    plan's scales: they were "every number under the section"); a misspelt preset is told."""
+    res = runner.invoke(app, ["form", str(TASKS / "synthesis_crank_rocker.yaml"), "-q", "synthesis",
+                              "--out", str(tmp_path)])
+    assert res.exit_code == 0, res.output
+    form = yaml.safe_load((tmp_path / "synthesis_crank_rocker.form.yaml").read_text(encoding="utf-8"))["answers"]
+    assert list(form) == ["synthesis.lengths.crank", "synthesis.lengths.coupler", "synthesis.lengths.rocker",
+                          "synthesis.lengths.frame", "synthesis.theta", "synthesis.gamma_min", "synthesis.gamma_min_phi"]
+    text = (tmp_path / "synthesis_crank_rocker.form.yaml").read_text(encoding="utf-8")
+    assert "# γ_min, deg — least transmission angle" in text
+    res = runner.invoke(app, ["form", str(TASKS / "press_drive_train.yaml"), "-q", "drive_train", "--out", str(tmp_path)])
+    form = yaml.safe_load((tmp_path / "press_drive_train.form.yaml").read_text(encoding="utf-8"))["answers"]
+    assert not [p for p in form if re.search(r"efficiency|tolerance|velocity_plan|candidates|split", p)], list(form)
+    assert {"drive_train.ratio", "drive_train.motor_power", "drive_train.stages[2].omega_carrier"} <= set(form)
+    text = (tmp_path / "press_drive_train.form.yaml").read_text(encoding="utf-8")
+    assert "Δi — ratio error (fraction); signed: (obtained - required) / required" in text
+    res = runner.invoke(app, ["form", str(TASKS / "differential_A.yaml"), "-q", "differntial", "--out", str(tmp_path)])
+    assert res.exit_code == 2 and "did you mean the preset 'differential'" in res.output

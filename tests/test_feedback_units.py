@@ -9,7 +9,7 @@ from types import SimpleNamespace
 import pytest
 
 from tmm_cli.feedback import feedback_html
-from tmm_cli.forms import NOTATION, notation
+from tmm_cli.forms import NOTATION, PATH_NOTATION, local_unit, notation
 
 ROWS = [{"path": "flywheel.J", "status": "ok", "answer": 58.46, "reference": 58.46, "error": 0.0,
          "tolerance": "rel 0.01", "note": ""},
@@ -30,13 +30,11 @@ def test_feedback_units_in_the_page_language(lang, words):
 
 
 def test_every_unit_has_its_local_form():
-    units = {n[1] for n in NOTATION.values()} - {""}
+    units = ({n[1] for n in NOTATION.values()} | {n[1] for n in PATH_NOTATION.values()}) - {""}
     for lang in ("ru", "uk"):
-        for key, n in NOTATION.items():
-            if n[1]:
-                local = notation(key, lang, local_units=True)
-                assert not any(c in string.ascii_letters for c in local.split(" — ")[0].split(", ", 1)[1]), \
-                    (lang, key, local)
+        for unit in units:
+            local = local_unit(unit, lang)
+            assert not any(c in string.ascii_letters for c in local), (lang, unit, local)
     # the forms keep the English units an answer may be written in
     assert notation("flywheel.J", "ru") == "J_fly, kg*m^2 — момент инерции маховика"
     assert units

@@ -26,8 +26,16 @@ PRESETS: dict[str, list[str]] = {
     "gears": ["gears.aw", "gears.alpha_w", "gears.y", "gears.dy", "gears.eps_alpha", "gears.r[*]",
               "gears.rb[*]", "gears.rw[*]", "gears.ra[*]", "gears.rf[*]", "gears.s[*]", "gears.sa[*]"],
     "planetary": ["planetary.z.*", "planetary.ratio", "planetary.ratio_error"],
-    "drive_train": ["drive_train.**"],
-    "synthesis": ["synthesis.**"],
+    # what a student computes (the given motor speed's ratio, the stages' teeth and ratios, the shafts'
+    # speeds, the motor's power), not the task's own data (efficiency, tolerance) or the plan's scales
+    "drive_train": ["drive_train.required", "drive_train.ratio", "drive_train.ratio_error",
+                    "drive_train.stages[*].z[*]", "drive_train.stages[*].ratio", "drive_train.shafts[*]",
+                    "drive_train.stages[*].omega_carrier", "drive_train.stages[*].omega_satellite",
+                    "drive_train.motor_power"],
+    # every type's designed quantities, not the given psi and K or the generated task's masses
+    "synthesis": ["synthesis.lengths.*", "synthesis.theta", "synthesis.gamma_min", "synthesis.gamma_min_phi",
+                  "synthesis.fixed_pivots.*[*]", "synthesis.max_deviation", "synthesis.K[*]",
+                  "synthesis.structural_error.max", "synthesis.structural_error.at_x"],
     "balancing": ["balancing.max.F", "balancing.max.M", "balancing.max.F_balanced", "balancing.max.M_balanced",
                   "balancing.counterweights.*.m", "balancing.counterweights.*.angle",
                   "balancing.rotor.corrections[*].m", "balancing.rotor.corrections[*].angle"],
@@ -117,6 +125,17 @@ PATH_NOTATION: dict[str, tuple[str, str, str, str]] = {
     "synthesis.K[2]": ("K3", "", "freudenstein_k", ""),
     "synthesis.structural_error.max": ("Δψ_max", "deg", "structural_error", "magnitude"),
     "synthesis.structural_error.at_x": ("x(Δψ_max)", "", "structural_error_at", ""),
+    "synthesis.psi": ("ψ", "deg", "rocker_swing", ""),
+    "synthesis.gamma_min": ("γ_min", "deg", "gamma_min", ""),
+    "synthesis.gamma_min_phi": ("φ(γ_min)", "deg", "gamma_min_phi", ""),
+    "planetary.ratio_error": ("Δi", "", "ratio_error", "deviation"),
+    "drive_train.ratio_error": ("Δi", "", "ratio_error", "deviation"),
+    "drive_train.required": ("i_req", "", "required_ratio", "ratio"),
+    "drive_train.stages[*].z[*]": ("z", "", "stage_teeth", ""),
+    "drive_train.shafts[*]": ("ω", "rad/s", "shaft_speed", "ccw"),
+    "drive_train.stages[*].omega_carrier": ("ω_H", "rad/s", "carrier_speed", "ccw"),
+    "drive_train.stages[*].omega_satellite": ("ω_g", "rad/s", "satellite_speed", "ccw"),
+    "drive_train.motor_power": ("P_m", "W", "motor_power", ""),
 }
 
 # the sign convention of a result key: a word of the catalogues' `sign_convention` table
@@ -135,11 +154,34 @@ def _by_path(path: str) -> tuple[str, str, str, str] | None:
     return None
 
 
+# where a key's notation by its last name holds (a regex the path matches; a key not listed holds
+# anywhere): `a` is a centre distance in gears, J and mass are the flywheel's only in its section (a
+# link's J is no flywheel), H the stroke in positions (differential.powers.H is the carrier's),
+# planetary.r.z1 a radius
+_FLYWHEEL = r"^flywheel\."
+_HOME: dict[str, str] = {
+    "a": r"^(?!gears\.|dof2\.parameters\.|flywheel\.)",
+    **dict.fromkeys(("J", "mass", "diameter", "width", "delta", "omega_max", "omega_min", "M_constant"), _FLYWHEEL),
+    **dict.fromkeys(("H", "K", "theta"), r"^(positions|synthesis)\."),
+    "phi0": r"^(positions|flywheel)\.",
+    **dict.fromkeys(("working_stroke_angle", "idle_stroke_angle"), r"^positions\."),
+    "aw": r"^(gears|planetary|differential)\.",
+    **dict.fromkeys(("alpha_w", "y", "dy", "eps_alpha", "r", "rb", "rw", "ra", "rf", "s", "sa"), r"^gears\."),
+    **dict.fromkeys(("r0", "offset", "center_distance", "max_pressure_angle", "rho_min"), r"^cam\."),
+    **dict.fromkeys(("ratio", "ratio_error"), r"^(planetary|drive_train)\."),
+    **dict.fromkeys(("z1", "z2", "z3", "z4"), r"\.z\.z\d$"),
+}
+
+
 def _last_key(path: str) -> str:
-    """A path's last name, reactions R12... read as R (the key of NOTATION and SIGN)."""
-    names = re.findall(r"[A-Za-z_][A-Za-z0-9_]*", path)
-    key = names[-1] if names else ""
-    return "R" if key not in NOTATION and re.fullmatch(r"R\d+", key) else key
+    """A path's last name, reactions R12... read as R (the key of NOTATION and SIGN); '' where
+    the name's notation does not hold at that path (:data:`_HOME`)."""
+    if path.startswith(("graphical_error.", "messages[")):     # relative errors; a message's parameters
+        return ""
+    key = re.sub(r"\[[^\]]*\]", "", path).rsplit(".", 1)[-1]
+    key = "R" if key not in NOTATION and re.fullmatch(r"R\d+", key) else key
+    home = _HOME.get(key)
+    return key if home is None or re.search(home, path) else ""
 
 
 def key_notation(path: str) -> tuple[str, str, str] | None:
@@ -222,6 +264,12 @@ def expand(quantities: str | list[str], results: dict, *, strict: bool = True) -
                                 f"section in the task?)")
             out.extend(g for g in got if g not in out)
             continue
+        if "." not in raw and "[" not in raw and raw not in results:
+            import difflib
+            near = difflib.get_close_matches(raw, list(PRESETS), n=1, cutoff=0.75)
+            if near and strict:              # 'differntial': the preset meant, not a path
+                raise TaskError(f"quantity '{raw}' is neither a preset nor a path in the results; "
+                                f"did you mean the preset '{near[0]}'? (presets: {', '.join(PRESETS)})")
         try:
             parse_path(raw)
             v = lookup(results, raw)
