@@ -82,9 +82,17 @@ def _fail_write(exc: OSError) -> "typer.Exit":
 
 
 def _load(path: Path):
-    """Load and validate a task as every command does (exit 2 / 3 the same everywhere)."""
+    """Load and validate a task as every command does (exit 2 / 3 the same everywhere): an
+    invalid task exits 2, a valid one that cannot be computed (a synthesis whose requirements
+    no mechanism meets, a linkage that does not assemble) exits 3 with the message of
+    `tmm run`."""
     from .orchestrate import prepare
-    return prepare(path)
+    try:
+        return prepare(path)
+    except TaskError as exc:
+        raise _fail_task(exc)
+    except StageError as exc:
+        raise _fail_stage(exc, str(path))
 
 
 def _parse_formats(text: str) -> set[str]:
@@ -153,10 +161,7 @@ def study_cmd(
     Example: tmm study tasks/forging_sixbar.yaml --out out/forging --lang ru
     """
     lang = _check_lang(lang)
-    try:
-        task = _load(task_file)
-    except TaskError as exc:
-        raise _fail_task(exc)
+    task = _load(task_file)
     out = out or Path("out") / task.name
     st, trap = _run_study(task, lambda s: _err(f"  {s}..."), repeat)
     from .report.sections import study as study_page
@@ -191,10 +196,7 @@ def sheets(
     if not fm or fm - {"pdf", "svg", "dxf"}:
         raise typer.BadParameter("choose from pdf, svg, dxf (comma-separated)")
     lang = _check_lang(lang)
-    try:
-        task = _load(task_file)
-    except TaskError as exc:
-        raise _fail_task(exc)
+    task = _load(task_file)
     from .pipeline import run as run_pipeline
     from .sheets import build_sheets, write_sheets
     try:
