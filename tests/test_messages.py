@@ -172,6 +172,10 @@ ENGLISH = [
     ('output.earlier_run', {'folder': 'out/v1/', 'when': '2026-12-06 15:31'},
      'note: out/v1/ still holds the outputs of an earlier run (2026-12-06 15:31): they are not of the task '
      'file as it is now'),
+    ('study.nothing_to_sweep', {'sections': ['differential']},
+     'nothing to sweep: `tmm study` sweeps the settings of a linkage (`mechanism` or `synthesis`: its curves, '
+     '`flywheel` and `kinetostatics`), `cam`, `gears`, `planetary` and `dof2`, and this task has none of them '
+     '(its sections: differential); study.json and study.html are not written'),
     # structure: a linkage the crank cannot drive (the former f-strings of linkage/structure.py)
     ('structure.fail.reasons', {'reasons': [
         {'code': 'structure.fail.lonely_point', 'params': {'point': 'C', 'link': 'rod', 'hint': {

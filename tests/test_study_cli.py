@@ -33,3 +33,28 @@ def test_impossible_synthesis_fails_as_run_does(tmp_path):
         assert "internal error" not in res.stderr and "Traceback" not in res.stderr
         assert [x for x in res.stderr.splitlines() if x.startswith("error:")] == said[:1], cmd[0]
     assert not (tmp_path / "study").exists()
+
+
+def test_nothing_to_sweep_is_said_and_no_empty_page(tmp_path):
+    """A differential has no setting that trades time for accuracy: `tmm study` wrote an empty
+    study.html and study.json `{}`, printed nothing and exited 0. Now it says, in the language asked
+    for, that there is nothing to sweep and what the study sweeps, and writes nothing; exit 0, as
+    `tmm sheets` with no sheet to draw. `tmm run --study` says it as a warning and writes no page."""
+    from tmm_cli import load_task
+    from tmm_cli.messages import Message, render
+    task = ROOT / "tasks" / "differential_A.yaml"
+    want = Message("study.nothing_to_sweep", sections=["differential"])
+    for lang in ("en", "ru", "uk"):
+        out = tmp_path / lang
+        res = _tmm("study", task, "--out", out, "--repeat", "1", "--lang", lang)
+        assert res.returncode == 0, res.stderr
+        text = render(want.code, want.params, lang)
+        assert text[0].upper() + text[1:] + "." in res.stderr.splitlines(), (lang, res.stderr)
+        assert "`cam`" in text and "`dof2`" in text
+        assert not out.exists()                 # no empty page, no `{}`
+    from tmm_cli import study
+    assert study.nothing_to_sweep(load_task(task), {}, {}) == want
+    res = _tmm("run", task, "--out", tmp_path / "run", "--study", "--format", "json,html", "--quiet")
+    assert res.returncode == 0 and f"warning: {want}" in res.stderr.splitlines(), res.stderr
+    assert not (tmp_path / "run" / "study.html").exists() and not (tmp_path / "run" / "study.json").exists()
+    assert (tmp_path / "run" / "report.html").exists()

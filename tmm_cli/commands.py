@@ -164,6 +164,13 @@ def study_cmd(
     task = _load(task_file)
     out = out or Path("out") / task.name
     st, trap = _run_study(task, lambda s: _err(f"  {s}..."), repeat)
+    from . import study as study_mod
+    note = study_mod.nothing_to_sweep(task, st, trap)
+    if note is not None:           # no empty page; exit 0, as `tmm sheets` with no sheet to draw
+        from .messages import localize
+        text = localize(note.to_dict(), lang)
+        _err(text[0].upper() + text[1:] + ".")
+        return
     from .report.sections import study as study_page
     try:
         paths = study_page.write(st, out, trap, lang)

@@ -178,6 +178,11 @@ def process(path: str | Path, out, formats: set[str], lang: str, *,
     if study and failure is None:
         from . import study as study_mod
         st = study_mod.run_study(task, progress=progress, repeat=3)
+        note = study_mod.nothing_to_sweep(task, *st)
+        if note is not None:     # no empty study.html: said as a warning
+            st = None
+            if notes is not None:
+                notes.append(note)
     if folder is not None and set(formats) & {"html", "pdf", "sheets", "note"}:
         from .results import listed
         results = listed(results)   # as write_outputs reads them; returned so (made once)

@@ -434,6 +434,23 @@ def study_planetary(task, repeat: int = 1) -> dict:
     return out
 
 
+# the task's sections that compute something: named when none of them has a setting to sweep
+SECTIONS = ("mechanism", "synthesis", "cam", "gears", "planetary", "drive_train", "balancing",
+            "differential", "dof2")
+
+
+def nothing_to_sweep(task, study: dict, extra: dict):
+    """The note (a Message) when the study of ``task`` swept nothing and has nothing to say (a
+    differential, a drive train, a rotor's balancing alone): which sections the study sweeps and
+    which the task has. None when a stage was swept or the linkage's study was left out with its
+    reason (``extra["left_out"]``). `tmm study` then writes no study.json or study.html and exits
+    0 (as `tmm sheets` with no sheet to draw); `tmm run --study` gives it as a warning."""
+    if study or extra.get("left_out"):
+        return None
+    from .messages import Message
+    return Message("study.nothing_to_sweep", sections=[s for s in SECTIONS if getattr(task, s, None) is not None])
+
+
 def run_study(task, progress: Callable[[str], None] | None = None, repeat: int = 3
               ) -> tuple[dict, dict]:
     """(study, trapezoid): the study of every stage present in `task` (see the module
