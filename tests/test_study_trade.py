@@ -6,6 +6,7 @@ from __future__ import annotations
 import time
 from pathlib import Path
 
+import pytest
 from typer.testing import CliRunner
 
 from tmm_cli import study as study_mod
@@ -60,3 +61,23 @@ def test_study_html_and_terminal_lead_with_the_trade(tmp_path, monkeypatch):
     lines = res.stdout.strip().splitlines()
     assert lines[0].startswith("The M_b and reaction diagrams drawn through 12 positions err by 10.7 %")
     assert lines[-2:] == [str(tmp_path / "study.json"), str(tmp_path / "study.html")]
+
+
+def test_planetary_trade_says_the_ratio_error_and_the_change_apart():
+    """planetary_A (i = 3.24 required): every search finds 3.15, 2.78 % off. The sentence said
+    "the search up to z = 100 finds a ratio off by 0 %": the 0 % is the change against the
+    reference search, not the ratio's error. Both are said, each for what it is."""
+    import tmm_cli
+    d = study_mod.study_planetary(tmm_cli.load_task(ROOT / "tasks" / "planetary_A.yaml"))
+    assert d["required"] == 3.24 and d["default"] == 150
+    assert d["rows"][0]["ratio_error"] == pytest.approx(0.09 / 3.24) and d["rows"][0]["error"] == 0.0
+    en = study_page.trade("planetary", d, "en")
+    assert en.startswith("the search up to z = 100 finds the ratio 3.15, 2.78 % off the required 3.24; "
+                         "up to z = 150 (the default): 3.15, 2.78 % off (against the reference search up to "
+                         "z = 150 the ratio found changes by 0 % and 0 %;"), en
+    ru = study_page.trade("planetary", d, "ru")
+    assert "передаточное отношение 3,15, отличающееся от заданного 3,24 на 2,78 %" in ru
+    assert "по сравнению с эталонным подбором до z = 150 найденное отношение меняется на 0 %" in ru
+    uk = study_page.trade("planetary", d, "uk")
+    assert "передатне відношення 3,15, що відрізняється від заданого 3,24 на 2,78 %" in uk
+    assert "з похибкою 0 %" not in uk and "порівняно з еталонним підбором до z = 150" in uk

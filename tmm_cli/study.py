@@ -43,7 +43,9 @@ Stages and settings (the rule, its theoretical order):
 * gears: the blocking contour's `grid` (nodes per axis): the traced contour's deviation
   from the exact zero levels, in units of x (marching squares, linear along an edge: 2
   where the check is smooth);
-* planetary: `z_max` of the search; value the best ratio found and its error (no order).
+* planetary: `z_max` of the search; values the best ratio found and its `ratio_error`, the
+  relative deviation from the `required` ratio (the task's); the row's `error` is the change of
+  these against the reference search (no order).
 """
 from __future__ import annotations
 
@@ -431,6 +433,8 @@ def study_planetary(task, repeat: int = 1) -> dict:
     out = sweep("z_max", lambda z: planetary_values(task.planetary, z), settings, [z0, 300],
                 repeat=repeat, stage="planetary")
     out["order"] = None      # a search, not a discretisation: no order
+    out["default"] = z0      # the search a run makes
+    out["required"] = float(task.planetary.ratio)   # the ratio_error of a row is against it
     return out
 
 

@@ -118,9 +118,16 @@ def trade(stage: str, d: dict, lang: str = "en") -> str | None:
     else:
         dflt_text = i18n.translate("study.default", lang)
     with language(lang):
+        found = {}
+        if stage == "planetary":     # the ratio found and its deviation from the required one, beside
+            req = d.get("required")  # the change against the reference search (the row's error)
+            found = {"ra": localize(f"{a['ratio']:.4g}"), "rb": localize(f"{b['ratio']:.4g}"),
+                     "pa": _error_text(a["ratio_error"]), "pb": _error_text(b["ratio_error"]),
+                     "ri": "—" if req is None else localize(f"{req:.4g}"),
+                     "zr": localize(f"{d['reference']['setting']:g}")}
         return i18n.translate(key, lang, a=localize(f"{a['setting']:g}"), b=localize(f"{b['setting']:g}"),
                               ea=_error_text(a["error"]), eb=_error_text(b["error"]), dflt=dflt_text,
-                              ta=localize(f"{a['time_ms']:.3g}"), tb=localize(f"{b['time_ms']:.3g}"))
+                              ta=localize(f"{a['time_ms']:.3g}"), tb=localize(f"{b['time_ms']:.3g}"), **found)
 
 
 def trades(study: dict, lang: str = "en") -> list[str]:
