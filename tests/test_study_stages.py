@@ -154,3 +154,85 @@ def test_cli_study_lang(tmp_path):
     bad = subprocess.run([sys.executable, "-m", "tmm_cli", "study", "tasks/cam_knife.yaml", "-o", str(tmp_path),
                           "--lang", "de"], capture_output=True, text=True)
     assert bad.returncode == 2 and "Traceback" not in bad.stderr
+
+
+# a study as run_study gives it (numbers of the student's trial: 0.0266, 2.99e-05, a stroke of 39.99999342)
+_WRITTEN = {
+    "curves": {"setting": "points", "default": 361, "order": 2.02, "theory": 2, "output": "rocker",
+               "reference": {"stroke": 39.99999342, "v_max": 5.914371513, "a_max": 99.5986613, "setting": 3600,
+                             "check": {"setting": 7200, "points": 361, "difference": 0.00752}},
+               "rows": [{"setting": 13, "err_s": 0.0266, "err_v": 0.0411, "err_a": 0.0498, "error": 0.0498,
+                         "time_ms": 1.43},
+                        {"setting": 1441, "err_s": 2.99e-05, "err_v": 2.98e-06, "err_a": 3.62e-06,
+                         "error": 2.99e-05, "time_ms": 2.07}]},
+    "kinetostatics": {"setting": "positions", "default": 12, "order": 1.84, "theory": 2, "balancing": "moment",
+                      "reference": {"M_b_max": 273.290474, "R_max": 17645.84958, "setting": 3600,
+                                    "check": {"setting": 7200, "positions": 12, "difference": 0.000642}},
+                      "rows": [{"setting": 12, "err_M_b": 0.0985, "err_R": 0.0293, "error": 0.0985, "time_ms": 8.39},
+                               {"setting": 720, "err_M_b": 0.000685, "err_R": 5.01e-05, "error": 0.000685,
+                                "time_ms": 16.0}]},
+    "flywheel": {"setting": "resolution", "default": 720, "order": 3.79, "theory": 4,
+                 "reference": {"J_n": 0.4190182407, "J_n_merzalov": 0.4206370129, "J_n_exact": 0.4190182407,
+                               "setting": 2880, "check": {"setting": 5760, "difference": 3.83e-13}},
+                 "rows": [{"setting": 12, "J_n": 0.4190249132, "J_n_merzalov": 0.4206436851,
+                           "J_n_exact": 0.4190249132, "error": 1.59e-05, "time_ms": 18.0},
+                          {"setting": 720, "J_n": 0.4190182406, "J_n_merzalov": 0.4206370128,
+                           "J_n_exact": 0.4190182406, "error": 1.03e-10, "time_ms": 12.9}]},
+}
+
+
+def _visible(html: str) -> str:
+    """The page's text as a reader sees it: the tags dropped, the plots' labels kept, a subscript
+    written _{...} (r<sub>0</sub> is not the key r0)."""
+    import re
+    html = re.sub(r'<sub>|<tspan baseline-shift="sub"[^>]*>', "_{", html)
+    html = re.sub(r"</sub>|</tspan>", "}", html)
+    labels = " ".join(re.findall(r"<text[^>]*>(.*?)</text>", html, flags=re.S))
+    html = re.sub(r"<svg.*?</svg>", " ", html, flags=re.S)
+    return re.sub(r"<[^>]+>", "", html + " " + labels)
+
+
+@pytest.mark.parametrize("lang", ["ru", "uk"])
+def test_study_page_numbers_names_and_units_in_the_language(lang):
+    """study.html in ru and uk wrote 0.0266 and 2.99e-05 in its tables, the keys of study.json as
+    names (err_s, err_M_b, ratio, ratio_error, M_b_max) and values without units (stroke =
+    39.99999342): every number is now written as the report writes it (the decimal comma,
+    2,99·10⁻⁵), every name comes from the catalogue with its unit."""
+    import re
+    from tmm_cli.messages import unit
+    st = {**_WRITTEN, "cam": study.study_cam(tmm_cli.load_task("tasks/cam_knife.yaml"), repeat=1),
+          "planetary": study.study_planetary(tmm_cli.load_task("tasks/planetary_A.yaml"))}
+    text = _visible(study_page.html_section(st, lang=lang))
+    assert not re.findall(r"\d\.\d|\de[-+]?\d", text), re.findall(r".{20}(?:\d\.\d|\de[-+]?\d).{10}", text)
+    for d in st.values():                   # no key of study.json as a name
+        keys = {k for r in d["rows"] for k in r} | set(d["reference"])
+        for k in keys - {"setting", "check", "time_ms", "error", "converged"}:
+            assert not re.search(rf"(?<![\w.]){re.escape(k)}(?!\w)", text), (lang, k)
+    assert "2,99·10⁻⁵" in text and "0,0266" in text
+    sec = study_page.I18N[lang]
+    # a rocker's stroke is an angle; M_b a moment; J_n in kg·m²; the ratio's deviation in percent
+    assert f"{sec['study.col.stroke']} = 39,99999342°" in text
+    assert f"{sec['study.col.v_max']} = 5,914371513 {unit('rad/s', lang)}" in text
+    assert f"{sec['study.col.a_max']} = 99,5986613 {unit('rad/s^2', lang)}" in text
+    assert f"{sec['study.col.R_max']} = 17645,84958 {unit('N', lang)}" in text
+    assert f"{unit('N*m', lang)}" in text and "кг·м²" in text
+    html = study_page.html_section(st, lang=lang)
+    assert f"<th>{sec['study.col.ratio_error']}, %</th>" in html and "<td>2,78</td>" in html
+    assert f"<th>{sec['study.col.deviation']}, {unit('m', lang)}</th>" in html
+    assert "1·10⁻" in html                 # the plots' powers of ten
+    # a slider's stroke in metres, a balancing force in newtons
+    other = {"curves": {**_WRITTEN["curves"], "output": "slider"},
+             "kinetostatics": {**_WRITTEN["kinetostatics"], "balancing": "force"}}
+    text = _visible(study_page.html_section(other, lang=lang))
+    assert f"{sec['study.col.stroke']} = 39,99999342 {unit('m', lang)}" in text
+    assert f"= 273,290474 {unit('N', lang)}," in text
+
+
+def test_study_records_the_units_kind():
+    """The units of the curves and of M_b follow the output (a slider, a rocker) and the balance link."""
+    for name, output in (("engine_slider_crank", "slider"), ("crank_rocker_fourbar", "rocker")):
+        task = tmm_cli.load_task(f"tasks/{name}.yaml")
+        linkage = build(task)
+        assert study.study_curves(linkage, repeat=1)["output"] == output
+    task = tmm_cli.load_task("tasks/engine_slider_crank.yaml")
+    assert study.study_kinetostatics(task, build(task), repeat=1)["balancing"] == "moment"

@@ -27,14 +27,15 @@ Stages and settings (the rule, its theoretical order):
   beside it in the report's plot (not in study.json);
 * curves: `points` of the output's s, v, a curves over a turn; the curves drawn through
   them (linear interpolation: 2) against the exact kinematics at `KST_EVAL` angles; error:
-  the largest deviation relative to the curve's largest value (s: the stroke);
+  the largest deviation relative to the curve's largest value (s: the stroke); `output`:
+  'slider' (m, m/s, m/s^2) or 'rocker' (deg, rad/s, rad/s^2);
 * kinetostatics: `positions` per turn (equal steps plus the load jumps and kinks, the
   extreme positions and, with friction, the reversals of the pairs' relative motion and
   the sign changes of the sliders' normal forces, each as both one-sided limits); the
   diagrams of M_b and of the reactions drawn through them (linear interpolation: 2)
   against the exact solution at `KST_EVAL` angles (at the constant crank speed, also for
   `motion: true`); error: the largest deviation over the cycle relative to the largest
-  |M_b| and the largest reaction;
+  |M_b| and the largest reaction; `balancing`: 'moment' (N*m) or 'force' (N, on a slider);
 * dof2: the integrator's `rtol` (DOP853); values the final speeds and angle (error
   proportional to the tolerance: 1);
 * cam: the profile's angular `step` (deg; `tmm_cli.cam.polygon`): the polygon's deviation
@@ -208,7 +209,8 @@ def study_curves(linkage, repeat: int = 3) -> dict:
     ref = {"stroke": float(scale[0]), "v_max": float(scale[1]), "a_max": float(scale[2]),
            "setting": KST_EVAL, "check": {"setting": 2 * KST_EVAL, "points": n0, "difference": diff}}
     return {"setting": "points", "reference": ref, "rows": rows, "default": n0,
-            "order": fit_order(settings, [r["error"] for r in rows]), "theory": THEORY["curves"]}
+            "order": fit_order(settings, [r["error"] for r in rows]), "theory": THEORY["curves"],
+            "output": linkage.positions.output_kind}      # 'slider' (m, m/s, m/s^2) | 'rocker' (deg, rad/s, rad/s^2)
 
 
 class KinetostaticDiagrams:
@@ -337,8 +339,12 @@ def study_kinetostatics(task, linkage, repeat: int = 3) -> dict:
     ref = {"M_b_max": float(np.max(np.abs(d.exact[ok, 0]))),
            "R_max": float(np.max(np.abs(d.exact[ok, 1:]))) if d.exact.shape[1] > 1 else 0.0,
            "setting": KST_EVAL, "check": {"setting": 2 * KST_EVAL, "positions": n0, "difference": diff}}
+    from .linkage.kinetostatics import balance_index
+    balancing = "force" if linkage.mechanism.link(balance_index(linkage.mechanism, task.kinetostatics)).kind == "slider" \
+        else "moment"       # M_b: a balancing force (N) on a slider, else a moment (N*m)
     return {"setting": "positions", "reference": ref, "rows": rows, "default": n0,
-            "order": fit_order(settings, [r["error"] for r in rows]), "theory": THEORY["kinetostatics"]}
+            "order": fit_order(settings, [r["error"] for r in rows]), "theory": THEORY["kinetostatics"],
+            "balancing": balancing}
 
 
 def cam_values(result, step: float) -> dict:

@@ -27,8 +27,10 @@ _COLORS = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b")
 
 
 def svg_loglog(series: list[tuple[str, list[float], list[float]]], xlabel: str,
-               ylabel: str = "relative error") -> str:
-    """A log-log plot drawn directly as SVG: series of (label, x, y), y > 0 only."""
+               ylabel: str = "relative error", lang: str = "en") -> str:
+    """A log-log plot drawn directly as SVG: series of (label, x, y), y > 0 only; the powers of ten
+    on the axes written in ``lang`` (1e-3, in ru and uk 1·10⁻³)."""
+    from ...numfmt import localize
     pts = [(x, y) for _, xs, ys in series for x, y in zip(xs, ys) if x > 0 and y and y > 0]
     if not pts:
         return ""
@@ -53,14 +55,14 @@ def svg_loglog(series: list[tuple[str, list[float], list[float]]], xlabel: str,
     for k in range(x0, x1 + 1):
         x = _L + (k - x0) / (x1 - x0) * pw
         o.append(f'<line x1="{x:.1f}" y1="{_T}" x2="{x:.1f}" y2="{_T + ph}" stroke="#ddd"/>')
-        o.append(f'<text x="{x:.1f}" y="{_T + ph + 14}" text-anchor="middle">1e{k}</text>')
+        o.append(f'<text x="{x:.1f}" y="{_T + ph + 14}" text-anchor="middle">{localize(f"1e{k}", lang)}</text>')
     for k in range(y0, y1 + 1, ystep):
         y = _T + (y1 - k) / (y1 - y0) * ph
         o.append(f'<line x1="{_L}" y1="{y:.1f}" x2="{_L + pw}" y2="{y:.1f}" stroke="#ddd"/>')
-        o.append(f'<text x="{_L - 4}" y="{y + 4:.1f}" text-anchor="end">1e{k}</text>')
-    o.append(f'<text x="{_L + pw / 2}" y="{_H - 6}" text-anchor="middle">{xlabel}</text>')
+        o.append(f'<text x="{_L - 4}" y="{y + 4:.1f}" text-anchor="end">{localize(f"1e{k}", lang)}</text>')
+    o.append(f'<text x="{_L + pw / 2}" y="{_H - 6}" text-anchor="middle">{_svg_text(xlabel)}</text>')
     o.append(f'<text x="14" y="{_T + ph / 2}" text-anchor="middle" '
-             f'transform="rotate(-90 14 {_T + ph / 2})">{ylabel}</text>')
+             f'transform="rotate(-90 14 {_T + ph / 2})">{_svg_text(ylabel)}</text>')
     for i, (label, xs, ys) in enumerate(series):
         c = _COLORS[i % len(_COLORS)]
         p = [(X(x), Y(y)) for x, y in zip(xs, ys) if x > 0 and y and y > 0]
@@ -72,19 +74,53 @@ def svg_loglog(series: list[tuple[str, list[float], list[float]]], xlabel: str,
         ly_ = _T + 14 + 16 * i
         o.append(f'<line x1="{_L + pw + 8}" y1="{ly_ - 4}" x2="{_L + pw + 24}" y2="{ly_ - 4}" '
                  f'stroke="{c}" stroke-width="2"/>')
-        o.append(f'<text x="{_L + pw + 28}" y="{ly_}">{label}</text>')
+        o.append(f'<text x="{_L + pw + 28}" y="{ly_}">{_svg_text(label)}</text>')
     o.append("</svg>")
     return "\n".join(o)
 
 
-def _fmt(v, key: str = "") -> str:
+# the unit of each value (a task file's spelling, written in the language by messages.unit); the
+# output's diagrams of a rocker are an angle, omega and epsilon; a slider's balancing is a force
+UNITS = {"J_n": "kg*m^2", "J_n_merzalov": "kg*m^2", "J_n_exact": "kg*m^2", "deviation": "m", "rho_min": "m",
+         "r0": "m", "step": "deg", "ratio_error": "%", "R_max": "N", "omega_end": "rad/s", "psi_end": "deg",
+         "psi_dot_end": "rad/s"}
+_KIND_UNITS = {("output", "rocker"): {"stroke": "deg", "v_max": "rad/s", "a_max": "rad/s^2"},
+               ("output", "slider"): {"stroke": "m", "v_max": "m/s", "a_max": "m/s^2"},
+               ("balancing", "force"): {"M_b_max": "N"}, ("balancing", "moment"): {"M_b_max": "N*m"}}
+SCALE = {"ratio_error": 100.0}       # a relative deviation shown in percent
+
+
+def _unit(d: dict, key: str, lang: str) -> str:
+    """The unit of value ``key`` of stage ``d`` in ``lang`` ('' for a number without one)."""
+    from ...messages import unit
+    u = UNITS.get(key)
+    for (field, kind), table in _KIND_UNITS.items():
+        if d.get(field) == kind and key in table:
+            u = table[key]
+    return unit(u, lang) if u else ""
+
+
+def _fmt(v, key: str = "", lang: str = "en") -> str:
+    """A number of the study's page as the report writes it in ``lang`` (the decimal comma and
+    8,9·10⁻¹⁶ in ru and uk: numfmt): errors and times to 3 digits, values to 10, a relative
+    deviation (SCALE) in percent."""
+    from ...numfmt import localize
     if v is None:
         return "—"
-    if isinstance(v, float) and (key.startswith(("err", "deviation")) or key == "time_ms"):
-        return f"{v:.3g}"
+    v = v * SCALE[key] if key in SCALE and isinstance(v, (int, float)) else v
+    if isinstance(v, float) and (key.startswith(("err", "deviation")) or key in ("time_ms", "ratio_error")):
+        return localize(f"{v:.3g}", lang)
     if isinstance(v, float):
-        return f"{v:.3g}" if (abs(v) < 1e-3 or abs(v) >= 1e6) and v != 0 else f"{v:.10g}"
-    return str(v)
+        return localize(f"{v:.3g}" if (abs(v) < 1e-3 or abs(v) >= 1e6) and v != 0 else f"{v:.10g}", lang)
+    return localize(str(v), lang)
+
+
+def _svg_text(text: str) -> str:
+    """A label of the plot with the notation's subscripts (M_b) lowered, escaped for SVG."""
+    from markupsafe import escape
+    from ..notation import parts
+    return "".join(f'<tspan baseline-shift="sub" font-size="8">{escape(p)}</tspan>' if low else str(escape(p))
+                   for p, low in parts(text))
 
 
 def _error_text(e: float | None) -> str:
@@ -154,9 +190,19 @@ def html_section(study: dict, trapezoid: dict | None = None, lang: str = "en") -
     def t(key, **kw):
         return i18n.translate(f"study.{key}", lang, **kw)
 
-    def col(k):
+    def col(k, d=None):
+        """The name of a setting or value in ``lang`` (the catalogue's), its unit after a comma."""
         key = f"study.col.{k}"
-        return i18n.translate(key, lang) if key in i18n.STRINGS["en"] else k
+        name = i18n.translate(key, lang) if key in i18n.STRINGS["en"] else k
+        u = _unit(d or {}, k, lang)
+        return f"{name}, {u}" if u else name
+
+    def value(d, k, v):
+        """'name = value unit' of a reference value (an angle's degree sign without a space)."""
+        key = f"study.col.{k}"
+        name = i18n.translate(key, lang) if key in i18n.STRINGS["en"] else k
+        u = _unit(d, k, lang)
+        return f"{name} = {_fmt(v, k, lang)}" + ("" if not u else u if u == "°" else f" {u}")
 
     parts = [f"<section><h2>{esc(t('title'))}</h2>"]
     short = trades(study, lang)        # the trade first, in plain words; the method after it
@@ -173,14 +219,15 @@ def html_section(study: dict, trapezoid: dict | None = None, lang: str = "en") -
         parts.append(f"<h3>{esc(t('stage.' + stage))}</h3>")
         ref = d["reference"]
         txt = [t("note." + stage)]
-        rv = ", ".join(f"{col(k)} = {_fmt(ref[k])}" for k in ref if k not in ("setting", "check", "converged"))
-        txt.append(t("reference_exact" if ref["setting"] == 0 else "reference", setting=_fmt(ref["setting"]),
-                     values=rv))
+        rv = ", ".join(value(d, k, ref[k]) for k in ref if k not in ("setting", "check", "converged"))
+        txt.append(t("reference_exact" if ref["setting"] == 0 else "reference",
+                     setting=_fmt(ref["setting"], lang=lang), values=rv))
         chk = ref.get("check")
         if isinstance(chk, dict):
             key = f"study.check.{stage}"
             txt.append(i18n.translate(key if key in i18n.STRINGS["en"] else "study.check", lang,
-                                      setting=_fmt(chk.get("setting")), diff=_fmt(chk.get("difference"), "err")))
+                                      setting=_fmt(chk.get("setting"), lang=lang),
+                                      diff=_fmt(chk.get("difference"), "err", lang)))
         if ref.get("converged") is False:
             txt.append(t("not_converged"))
         order, theory = d.get("order"), d.get("theory")
@@ -191,15 +238,17 @@ def html_section(study: dict, trapezoid: dict | None = None, lang: str = "en") -
         if tr:
             txt.append(t("trapezoid", order=tr["order"]))
         parts.append("<p>" + esc(" ".join(x[0].upper() + x[1:].rstrip(".") + "." for x in txt if x)) + "</p>")
-        head = "".join(f"<th>{esc(x)}</th>" for x in [col(d["setting"]), *map(col, keys), t("error"), t("time")])
-        body = "".join("<tr>" + "".join(f"<td>{_fmt(r[k], k)}</td>" for k in ["setting", *keys, "error", "time_ms"])
+        head = "".join(f"<th>{esc(x)}</th>" for x in [col(d["setting"], d), *(col(k, d) for k in keys), t("error"),
+                                                        t("time")])
+        body = "".join("<tr>" + "".join(f"<td>{_fmt(r[k], k, lang)}</td>"
+                                        for k in ["setting", *keys, "error", "time_ms"])
                        + "</tr>" for r in rows)
         parts.append(f"<table><tr>{head}</tr>{body}</table>")
         xs = [r["setting"] for r in rows]
         series = [(t("series." + stage), xs, [r["error"] for r in rows])]
         if tr:
             series.append((t("series.trapezoid"), [r["setting"] for r in tr["rows"]], [r["error"] for r in tr["rows"]]))
-        parts.append(svg_loglog(series, col(d["setting"]), t("axis")))
+        parts.append(svg_loglog(series, col(d["setting"], d), t("axis"), lang))
     parts.append("</section>")
     return "\n".join(parts)
 
