@@ -3,6 +3,7 @@ generated mechanism (its extreme positions and its transmission angle over the c
 found by the kinematics) -- it must reproduce H (or psi), K and gamma_min to 1e-9 --
 and against hand calculations written out here."""
 import math
+import re
 from pathlib import Path
 
 import pytest
@@ -222,6 +223,26 @@ def test_impossible_requirement_exit_3(tmp_path, syn, needle):
     res = runner.invoke(app, ["run", str(f), "--out", str(tmp_path / "o"), "-f", "json", "-q"])
     assert res.exit_code == 3, res.output
     assert "synthesis" in res.output and needle in res.output
+
+
+@pytest.mark.parametrize("syn,needle", IMPOSSIBLE + [
+    ({"type": "offset_slider_crank", "H": 0.5, "K": 1.75, "e": 0.5}, "lower e (at most 0.433252 m)"),
+    ({"type": "shaper", "H": 0.4, "K": 1.6, "frame": 0.3, "rocker": 0.3}, "synthesis.rocker"),
+    ({"type": "shaper", "H": 0.1, "K": 1.6, "frame": 0.3}, "synthesis.rocker"),
+    ({"type": "slotted_lever", "K": 1.0, "frame": 0.3}, "synthesis.K"),
+])
+def test_impossible_requirement_is_catalogued(syn, needle):
+    """Every refusal is a catalogued message: its English text as before, and the same
+    parameters rendered in ru and uk with no English sentence left."""
+    from tmm_cli.messages import LANGS, localize
+    with pytest.raises(StageError) as ei:
+        design(syn)
+    m = ei.value.message
+    assert m.code.startswith("synthesis.fail.") and needle in m, m
+    for lang in LANGS:
+        if lang != "en":
+            text = localize(m.to_dict(), lang)
+            assert text != str(m) and not re.search(r"\b(the|with|lower|raise|change)\b", text), text
 
 
 def test_gamma_too_large_names_the_largest():

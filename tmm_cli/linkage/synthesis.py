@@ -133,12 +133,13 @@ def _mass(sec, name: str) -> dict:
 
 
 def _need_quick_return(theta: float, what: str) -> None:
+    """That a type that needs a quick return (``what``: offset_slider_crank, slotted_lever) has
+    0 < theta < 180 deg."""
     if not theta > 0.0:
-        raise SynthesisImpossible(f"synthesis.K: {what} needs K > 1 (theta > 0); got K = "
-                                  f"{K_of_theta(theta):.6g} (theta = {theta:.6g} deg): raise K "
-                                  f"(K = 1: use type slider_crank)")
+        raise SynthesisImpossible(Message("synthesis.fail.quick_return", what=what, K=K_of_theta(theta),
+                                          theta=theta))
     if theta >= 180.0:
-        raise SynthesisImpossible(f"synthesis.theta: theta = {theta:.6g} deg must be below 180 deg: lower K or theta")
+        raise SynthesisImpossible(Message("synthesis.fail.theta_180", theta=theta))
 
 
 # ---------------------------------------------------------------- slider-crank
@@ -167,9 +168,7 @@ def slider_crank_offset(H: float, theta: float, e: float) -> tuple[float, float]
     th = math.radians(theta)
     r2 = H * H / 4.0 - H * e / 2.0 * math.tan(th / 2.0)
     if r2 <= 0.0:
-        raise SynthesisImpossible(
-            f"synthesis.e: the offset e = {e:.6g} m is too large for H and K: it must be below "
-            f"H/(2 tan(theta/2)) = {H / (2 * math.tan(th / 2)):.6g} m; lower e or K")
+        raise SynthesisImpossible(Message("synthesis.fail.offset_large", e=e, e_max=H / (2 * math.tan(th / 2))))
     l2 = r2 + H * e / math.sin(th)
     return math.sqrt(r2), math.sqrt(l2)
 
@@ -261,17 +260,14 @@ def slider_crank_gamma(H: float, theta: float, gamma: float) -> list[tuple[float
 
     e_max = _e_reach(H, theta)
     if e_max <= 0.0:
-        raise SynthesisImpossible(
-            f"synthesis.K: no offset slider-crank reaches K = {K_of_theta(theta):.6g} with stroke H: lower K")
+        raise SynthesisImpossible(Message("synthesis.fail.offset_K", K=K_of_theta(theta)))
     lo, hi = e_max * 1e-12, e_max * (1.0 - 1e-12)
     best = minimize_scalar(lambda e: -_gamma_offset(H, theta, e), bounds=(lo, hi), method="bounded",
                            options={"xatol": e_max * 1e-13})
     e_star, g_star = float(best.x), -float(best.fun)
     if gamma > g_star:
-        raise SynthesisImpossible(
-            f"synthesis.gamma_min: gamma_min = {gamma:.6g} deg is too large for K = {K_of_theta(theta):.6g}: "
-            f"an offset slider-crank reaches at most {g_star:.4f} deg (offset {e_star:.6g} m); "
-            f"lower gamma_min or K")
+        raise SynthesisImpossible(Message("synthesis.fail.offset_gamma", gamma=gamma, K=K_of_theta(theta),
+                                          g_max=g_star, e=e_star))
     out = []
     for a, b in ((lo, e_star), (e_star, hi)):
         fa, fb = _gamma_offset(H, theta, a) - gamma, _gamma_offset(H, theta, b) - gamma
@@ -298,7 +294,7 @@ def _slider_crank(sec, sign: float) -> Design:
         l, e = lam * r, 0.0
     else:
         theta = _theta(sec)
-        _need_quick_return(theta, "an offset slider-crank")
+        _need_quick_return(theta, "offset_slider_crank")
         if sec.e is not None:
             e = float(sec.e)
             r, l = slider_crank_offset(H, theta, e)
@@ -310,14 +306,10 @@ def _slider_crank(sec, sign: float) -> Design:
                           "chosen": k == 0} for k, q in enumerate(roots)]
             r, l, e = roots[0]
         if _reach(H, r, l) < 0.0:
-            lam_max = 1.0 / math.tan(math.radians(theta) / 2.0) ** 2
-            raise SynthesisImpossible(
-                "synthesis." + ("e" if sec.e is not None else "lambda") + ": with these H, K and "
-                + (f"e = {e:.6g} m" if sec.e is not None else f"lambda = {float(sec.lambda_):.6g}")
-                + " the folded extreme position falls behind the foot of the perpendicular from the crank axis "
-                  "to the guide (4 l_OA l_AB < H^2), so no slider-crank has them: "
-                + (f"lower e (at most {_e_reach(H, theta):.6g} m)" if sec.e is not None
-                   else f"lower lambda (at most cot^2(theta/2) = {lam_max:.6g})") + " or K")
+            if sec.e is not None:
+                raise SynthesisImpossible(Message("synthesis.fail.offset_reach_e", e=e, e_max=_e_reach(H, theta)))
+            raise SynthesisImpossible(Message("synthesis.fail.offset_reach_lambda", lam=float(sec.lambda_),
+                                              lam_max=1.0 / math.tan(math.radians(theta) / 2.0) ** 2))
         # the crank then always turns fully: by the law of sines in O B1 B2,
         # H = (l + r) sin(theta)/sin(B1) >= (l + r) sin(theta), so l - r = H e/((l + r) sin(theta)) >= e
     yg = -sign * e
@@ -420,11 +412,8 @@ def _crank_rocker(sec, sign: float) -> Design:
     psi, c, d = float(sec.psi), float(sec.rocker), float(sec.frame)
     sols = crank_rocker_solutions(psi, theta, c, d)
     if not sols:
-        raise SynthesisImpossible(
-            f"synthesis: no crank-rocker has psi = {psi:.6g} deg, K = {K_of_theta(theta):.6g}, rocker "
-            f"{c:.6g} m and frame {d:.6g} m (the crank pivot circle at `frame` from O1 misses the circle "
-            f"seeing the rocker's chord under theta, or the crank cannot turn): change frame or rocker, "
-            f"or lower psi or K")
+        raise SynthesisImpossible(Message("synthesis.fail.crank_rocker_none", psi=psi, K=K_of_theta(theta),
+                                          rocker=c, frame=d))
     best = max(range(len(sols)), key=lambda k: sols[k]["gamma_min"])
     s = sols[best]
     a, b = s["crank"], s["coupler"]
@@ -467,7 +456,7 @@ def _crank_rocker(sec, sign: float) -> Design:
 # ---------------------------------------------------------------- slotted lever, shaper
 def _slotted(sec, sign: float) -> Design:
     theta = _theta(sec)
-    _need_quick_return(theta, "a slotted-lever mechanism")
+    _need_quick_return(theta, "slotted_lever")
     f = float(sec.frame)
     r = f * math.sin(math.radians(theta) / 2.0)
     m = sign
@@ -479,21 +468,15 @@ def _slotted(sec, sign: float) -> Design:
         L = float(sec.rocker) if sec.rocker is not None else H / (2.0 * math.sin(half))
         h = float(sec.guide_height) if sec.guide_height is not None else h_need
         if abs(h - h_need) > 1e-9 * max(h, h_need):
-            raise SynthesisImpossible(
-                f"synthesis.guide_height: with the swing psi = theta = {theta:.6g} deg a ram guide at "
-                f"{h:.6g} m above O1 gives the stroke 2 guide_height tan(psi/2) = {2 * h * math.tan(half):.6g} m, "
-                f"not H = {H:.6g} m: omit guide_height (then {h_need:.6g} m) or change H")
+            raise SynthesisImpossible(Message("synthesis.fail.guide_height", theta=theta, h=h,
+                                              stroke=2 * h * math.tan(half), H=H, h_need=h_need))
         if L < h / math.cos(half) * (1.0 - 1e-12):
-            raise SynthesisImpossible(
-                f"synthesis.rocker: the slotted link ({L:.6g} m) does not reach the ram guide at its extreme "
-                f"positions (needs guide_height/cos(psi/2) = {h / math.cos(half):.6g} m): lengthen it")
+            raise SynthesisImpossible(Message("synthesis.fail.slotted_guide", L=L, need=h / math.cos(half)))
     else:
         L = float(sec.rocker) if sec.rocker is not None else 1.5 * (f + r)
     if L < (f + r) * (1.0 - 1e-12):
-        raise SynthesisImpossible(
-            f"synthesis.rocker: the slotted link ({L:.6g} m) is shorter than frame + crank = {f + r:.6g} m, "
-            f"the farthest reach of the block: lengthen it" + (" (raise H)" if sec.type == "shaper" else "")
-            + " or shorten frame")
+        raise SynthesisImpossible(Message("synthesis.fail.slotted_short_shaper" if sec.type == "shaper"
+                                          else "synthesis.fail.slotted_short", L=L, reach=f + r))
     lengths.update({"rocker": L, "frame": f})
     links = {"crank": {"points": ["O", "A"], "length": r, **_mass(sec, "crank")},
              "block": {"slider": "A", "guide": {"link": "rocker"}, **_mass(sec, "block")},
