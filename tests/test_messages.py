@@ -559,6 +559,10 @@ ENGLISH = [
      'synthesis.rocker: the slotted link (0.2 m) is shorter than frame + crank = 0.369098 m, the farthest reach of the block: lengthen it or shorten frame'),
     ('synthesis.fail.slotted_short_shaper', {'L': 0.2, 'reach': 0.3690983},
      'synthesis.rocker: the slotted link (0.2 m) is shorter than frame + crank = 0.369098 m, the farthest reach of the block: lengthen it (raise H) or shorten frame'),
+    # new texts
+    ('input.synth_K_below_one', {'type': 'crank_rocker', 'key': 'K', 'value': 0.8},
+     "type crank_rocker needs K >= 1 (theta >= 0 deg): K = (180 + theta)/(180 - theta) is the ratio of the crank's "
+     "turns over the slow and the quick strokes; got `K` = 0.8"),
     ('input.balancing_radius', {'method': 'full', 'key': 'rocker'},
      'counterweights by the full method need `radius: {rocker: ...}` (m)'),
     ('input.balancing_radius_positive', {'key': 'crank'}, "the counterweight's radius `crank` must be above zero"),

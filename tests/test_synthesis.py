@@ -168,6 +168,88 @@ def test_crank_rocker_both_solutions_analysed():
         assert abs(p1 - p2) == pytest.approx(theta_of_K(1.2), abs=1e-9)
 
 
+# ---------------------------------------------------------------- crank-rocker with K = 1 (theta = 0)
+K1 = {"type": "crank_rocker", "psi": 40, "K": 1, "rocker": 0.3, "frame": 0.4}
+
+
+@pytest.mark.parametrize("direction", ["ccw", "cw"])
+def test_crank_rocker_K1_closed_form(direction):
+    # theta = 0: the crank pivot O on the line C1C2 of the rocker's extreme points, at `frame`
+    # from O1; in the rocker's frame C1,2 = (+-c sin(psi/2), c cos(psi/2)), O = (x, c cos(psi/2)),
+    # x = sqrt(d^2 - c^2 cos^2(psi/2)): |OC2| = x + c sin(psi/2) = b + a, |OC1| = x - c sin(psi/2) = b - a
+    t, r = design(K1, direction)
+    h = math.radians(20.0)
+    a, b = 0.3 * math.sin(h), math.sqrt(0.16 - (0.3 * math.cos(h)) ** 2)
+    L = r["lengths"]
+    assert L["crank"] == pytest.approx(a, rel=1e-14) and L["coupler"] == pytest.approx(b, rel=1e-14)
+    assert (L["rocker"], L["frame"]) == (0.3, 0.4)
+    # analysed: the extremes 180 deg apart, the swing as asked
+    assert r["K"] == pytest.approx(1.0, abs=1e-9) and r["theta"] == pytest.approx(0.0, abs=1e-7)
+    assert r["psi"] == pytest.approx(40.0, abs=1e-9)
+    # one solution (the mirror image across the swing's bisector is the same linkage), chosen
+    assert [(s["side"], s["chosen"]) for s in r["solutions"]] == [("line", True)]
+    assert r["gamma_min"] == pytest.approx(r["solutions"][0]["gamma_min"], abs=1e-9)
+    assert r["construction"]["circle"] is None              # no circle: O on the line C1C2
+    assert t.positions.working == r["working"]
+
+
+def test_crank_rocker_continuous_at_K1():
+    """K = 1 + 1e-9 gives the lengths of K = 1 to within the change the lengths' slope allows.
+
+    theta(1 + 1e-9) = 9e-8 deg = 1.6e-9 rad. The lengths are smooth in theta (the height of O
+    above the chord, y - h0 = (d^2 - c^2) tan(theta)/(2 (h0 tan(theta) +- w)), is written without
+    the circle's centre and radius, which grow as 1/theta and cancelled to ~1e-8 m before), so
+    they move by |dL/dtheta| theta: the slope is measured at K = 1 + 1e-6 and the tolerance is
+    twice the change it gives plus a few ulps (~1e-9 m here)."""
+    from tmm_cli.linkage.synthesis import crank_rocker_solutions
+    at = lambda K: design({**K1, "K": K})[1]
+    r0, r9, r6 = at(1.0), at(1.0 + 1e-9), at(1.0 + 1e-6)
+    th9, th6 = math.radians(theta_of_K(1.0 + 1e-9)), math.radians(theta_of_K(1.0 + 1e-6))
+    for k in ("crank", "coupler", "rocker", "frame"):
+        slope = abs(r6["lengths"][k] - r0["lengths"][k]) / th6
+        assert abs(r9["lengths"][k] - r0["lengths"][k]) <= 2.0 * slope * th9 + 4e-16, k
+    assert r9["gamma_min"] == pytest.approx(r0["gamma_min"], abs=1e-6)
+    assert r9["working"] == r0["working"]          # the slow stroke's limit: the side K = 1 continues
+    # both sides converge on the one solution of K = 1
+    sols = crank_rocker_solutions(40.0, theta_of_K(1.0 + 1e-9), 0.3, 0.4)
+    assert [s["side"] for s in sols] == ["far", "near"]
+    for s in sols:
+        assert s["coupler"] == pytest.approx(r0["lengths"]["coupler"], abs=1e-8)
+
+
+def test_crank_rocker_K1_example_runs(tmp_path):
+    import json
+    import yaml
+    task = yaml.safe_load((TASKS / "synthesis_crank_rocker.yaml").read_text())
+    task["synthesis"]["K"] = 1
+    f = tmp_path / "t.yaml"
+    f.write_text(yaml.safe_dump(task))
+    res = runner.invoke(app, ["run", str(f), "--out", str(tmp_path / "o"), "-f", "json", "-q"])
+    assert res.exit_code == 0, res.output
+    r = json.loads((tmp_path / "o" / "results.json").read_text())
+    assert r["positions"]["K"] == pytest.approx(1.0, abs=1e-9) and not r["warnings"]
+
+
+def test_crank_rocker_K1_frame_not_beyond_the_rocker_exit_3():
+    # O on the line C1C2 outside the chord needs frame > rocker
+    with pytest.raises(StageError) as ei:
+        design({**K1, "frame": 0.29})
+    assert ei.value.message.code == "synthesis.fail.crank_rocker_none"
+
+
+@pytest.mark.parametrize("key, value", [("K", 0.9), ("theta", -5.0)])
+def test_crank_rocker_K_below_one_exit_2(tmp_path, key, value):
+    import yaml
+    syn = {k: v for k, v in K1.items() if k != "K"} | {key: value}
+    with pytest.raises(TaskError) as ei:
+        load_task({"schema": "tmm/1", "synthesis": syn, "drive": {"link": "crank", "speed": 10}})
+    assert [f for f, *_ in ei.value.issues] == [f"synthesis.{key}"]
+    f = tmp_path / "t.yaml"
+    f.write_text(yaml.safe_dump({"schema": "tmm/1", "synthesis": syn, "drive": {"link": "crank", "speed": 10}}))
+    res = runner.invoke(app, ["run", str(f), "--out", str(tmp_path / "o"), "-f", "json", "-q"])
+    assert res.exit_code == 2 and "K >= 1" in res.output, res.output
+
+
 @settings(**_common)
 @given(K=st.floats(1.1, 2.5), f=st.floats(0.1, 0.6), direction=st.sampled_from(["ccw", "cw"]))
 def test_slotted_lever_reproduces_K_psi(K, f, direction):

@@ -21,7 +21,9 @@ crank's positions at the two extremes of the output, less 180 deg.
 * crank-rocker: C1, C2 on the rocker's circle (angle psi at O1); O on a circle through
   C1, C2 whose chord is seen under theta, at `frame` from O1; |OC2| = b + a,
   |OC1| = b - a. One solution on each side of the chord; the larger least transmission
-  angle (between the coupler and the rocker) wins.
+  angle (between the coupler and the rocker) wins. K = 1 (theta = 0): O on the line C1C2
+  outside the chord, a = c sin(psi/2), b = sqrt(d^2 - c^2 cos^2(psi/2)), the one solution
+  both sides tend to as K -> 1+.
 * slotted lever: psi = theta, crank r = frame sin(theta/2) (the crank is perpendicular to
   the slotted link at its extremes). The shaper's ram, driven by a block C on the slotted
   link at the height h of its guide, moves 2 h tan(psi/2): h = H/(2 tan(psi/2)).
@@ -379,17 +381,29 @@ def crank_rocker_solutions(psi: float, theta: float, c: float, d: float) -> list
     ps, th = math.radians(psi), math.radians(theta)
     h0, w = c * math.cos(ps / 2.0), c * math.sin(ps / 2.0)
     P, Q = (w, h0), (-w, h0)
-    R = w / math.sin(th)
+    t = math.tan(th)
     out = []
-    for side, yc in (("far", h0 + w / math.tan(th)), ("near", h0 - w / math.tan(th))):
-        if abs(yc) < 1e-300:
+    # the circle seeing the chord under theta: centre (0, yc), yc = h0 +- w/tan(theta), radius
+    # R = w/sin(theta); the circle about O1 of radius d meets it at the height
+    # y = (d^2 + yc^2 - R^2)/(2 yc) = h0 + (d^2 - c^2) tan(theta)/(2 (h0 tan(theta) +- w)),
+    # written without yc and R (which grow without bound as theta -> 0): at theta = 0 (K = 1)
+    # it is the chord's own line, y = h0, where both sides meet (the one solution "line")
+    for side, sg in (("far", 1.0), ("near", -1.0)):
+        den = 2.0 * (h0 * t + sg * w)
+        if den == 0.0:
             continue
-        y = (d * d + yc * yc - R * R) / (2.0 * yc)
+        y = h0 + (d * d - c * c) * t / den
         if y * y > d * d:
             continue
         x = math.sqrt(d * d - y * y)
-        if (side == "far") != (y > h0):
-            continue                      # on the other arc the chord is seen under 180 - theta
+        if t > 0.0:
+            if not (y > h0 if side == "far" else y < h0):
+                continue                  # on the other arc the chord is seen under 180 - theta (y = h0,
+                                          # frame = rocker: O at C1 or C2 itself)
+        elif side == "far" or not x > w:
+            continue                      # K = 1: one solution; O between C1 and C2 would be theta = 180
+        else:
+            side = "line"                 # O on the line C1C2: the crank and coupler along one line at both
         dP, dQ = math.hypot(x - P[0], y - P[1]), math.hypot(x - Q[0], y - Q[1])
         C2, C1 = (P, Q) if dP > dQ else (Q, P)
         s2, s1 = max(dP, dQ), min(dP, dQ)
@@ -407,8 +421,9 @@ def crank_rocker_solutions(psi: float, theta: float, c: float, d: float) -> list
 
 
 def _crank_rocker(sec, sign: float) -> Design:
-    theta = _theta(sec)
-    _need_quick_return(theta, "a crank-rocker")
+    theta = _theta(sec)                    # theta >= 0: K >= 1 is checked with the task (exit 2)
+    if theta >= 180.0:                     # a K so large that theta rounds to 180
+        raise SynthesisImpossible(Message("synthesis.fail.theta_180", theta=theta))
     psi, c, d = float(sec.psi), float(sec.rocker), float(sec.frame)
     sols = crank_rocker_solutions(psi, theta, c, d)
     if not sols:
@@ -437,7 +452,14 @@ def _crank_rocker(sec, sign: float) -> Design:
     beta2 = math.atan2(C2[1], C2[0] - d)
     beta1 = math.atan2(C1[1], C1[0] - d)
     dbeta = (beta2 - beta1 + math.pi) % (2 * math.pi) - math.pi
-    f_to_e_slow = ((phi_e - phi_f) * sign) % 360.0 > 180.0
+    if theta > 0.0:
+        f_to_e_slow = ((phi_e - phi_f) * sign) % 360.0 > 180.0
+    else:
+        # K = 1: both strokes take 180 deg and phi_e - phi_f is 180 up to rounding; the sense is
+        # the limit K -> 1+ of the near side (the one K = 1 continues): there, in the rocker's
+        # frame, OC2 is turned from OC1 by +theta, so phi_e - phi_f = 180 + theta (mod 360);
+        # the flip above mirrors it
+        f_to_e_slow = (sign > 0.0) == (orient >= 0.0)
     working = "forward" if (dbeta > 0) == f_to_e_slow else "backward"
     bx = a + (d - a) / 2.0 + (b * b - c * c) / (2.0 * (d - a))     # B at crank angle 0, above the frame
     by = math.sqrt(max(b * b - (bx - a) ** 2, 0.0))
@@ -448,7 +470,8 @@ def _crank_rocker(sec, sign: float) -> Design:
             "assembly": {"B": [bx, by]}}
     solutions = [{k: v for k, v in q.items() if k in ("side", "crank", "coupler", "rocker", "frame", "gamma_min")}
                  | {"chosen": k == best} for k, q in enumerate(sols)]
-    cons = {"O": [0.0, 0.0], "O1": [d, 0.0], "C1": C1, "C2": C2, "circle": _circle3((0.0, 0.0), C1, C2)}
+    cons = {"O": [0.0, 0.0], "O1": [d, 0.0], "C1": C1, "C2": C2,
+            "circle": _circle3((0.0, 0.0), C1, C2) if theta > 0.0 else None}   # K = 1: O on the line C1C2
     return Design("crank_rocker", {"crank": a, "coupler": b, "rocker": c, "frame": d}, mech, "rocker",
                   working, solutions, cons)
 
