@@ -34,3 +34,24 @@ def test_section_en_ru(tmp_path, name):
     pts = [v for v in s["construction"].values() if isinstance(v, list) and len(v) == 2]
     xs, ys = [p[0] for p in pts], [p[1] for p in pts]
     assert (max(xs) - min(xs)) * k <= 165 and (max(ys) - min(ys)) * k <= 100
+
+
+@pytest.mark.parametrize("name, rocker, slotted", [
+    ("synthesis_crank_rocker", ("\u043a\u043e\u0440\u043e\u043c\u044b\u0441\u043b", "\u043a\u043e\u0440\u043e\u043c\u0438\u0441\u043b"), False),
+    ("synthesis_slotted_lever", ("\u043a\u0443\u043b\u0438\u0441", "\u043a\u0443\u043b\u0456\u0441"), True)])
+def test_rocker_is_a_rocker_and_a_slotted_link_a_kulisa(tmp_path, name, rocker, slotted):
+    """A crank-rocker's rocker is a rocker (ru 'korom..', uk 'korom..'), never a slotted link
+    ('kulisa', a slotted lever's link): in the lengths, the solutions and the task data table."""
+    task = tmm_cli.load_task(ROOT / "tasks" / f"{name}.yaml")
+    r = tmm_cli.run(task, kinematics_curve=0)
+    for lang, word in zip(("ru", "uk"), rocker):
+        html = render_html(r, task, tmp_path / lang, lang)[0]
+        text = re.sub(r"<[^>]+>", " ", html)
+        # the names of the rocker's length l_O1B (the lengths, the solutions' head)
+        names = re.findall(r"(\w+) l O1B", text)
+        assert names and all(n.lower().startswith(word) for n in names), names
+        assert "(\u043a\u0443\u043b" not in text          # the task data table: no 'rocker (kulisa)' either
+        kulisa = ("\u043a\u0443\u043b\u0438\u0441", "\u043a\u0443\u043b\u0456\u0441")[lang == "uk"]
+        i = html.index('id="synthesis"')
+        sec = re.sub(r"<[^>]+>", "", html[i:html.index("</section>", i)])
+        assert (kulisa in sec.lower()) == slotted

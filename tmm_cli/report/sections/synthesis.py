@@ -17,8 +17,11 @@ I18N = locales.table("synthesis", "words")
 _LEN = locales.table("synthesis", "lengths")
 
 
-def _length_name(key: str, lang: str):
-    """A link length's name (``crank l_OA``), its notation written with subscripts in the HTML."""
+def _length_name(key: str, lang: str, typ: str | None = None):
+    """A link length's name (``crank l_OA``), its notation written with subscripts in the HTML;
+    the rocker of a slotted-lever type (``typ``) is its slotted link."""
+    if key == "rocker" and typ in ("slotted_lever", "shaper"):
+        key = "slotted_rocker"
     return Term(_LEN.get(lang, _LEN["en"]).get(key, key))
 _SCALES = (1, 2, 2.5, 4, 5, 10, 15, 20, 25, 40, 50, 75, 100, 200, 500, 1000)
 
@@ -232,7 +235,7 @@ def build(ctx) -> str | None:
     f, t, lang = ctx.fmt, ctx.t, ctx.lang
     mu = unit("m", lang)
     typ = t(f"syn.type.{r['type']}")
-    lens = [(_length_name(k, lang), f"{f(v, 6)} {mu}") for k, v in r["lengths"].items()]
+    lens = [(_length_name(k, lang, r["type"]), f"{f(v, 6)} {mu}") for k, v in r["lengths"].items()]
     out = r.get("output", "")
     info = [(t("syn.type"), typ)]
     if r.get("H") is not None:
@@ -246,7 +249,7 @@ def build(ctx) -> str | None:
     for s in r.get("solutions") or []:
         sols.append([t(f"syn.side.{s['side']}") if s.get("side") else ""] + [f(s[k], 6) for k in r["lengths"] if k in s]
                     + [f(s["gamma_min"], 6), t("syn.chosen") if s.get("chosen") else ""])
-    sol_head = ([t("syn.side")] + [_length_name(k, lang) for k in r["lengths"]
+    sol_head = ([t("syn.side")] + [_length_name(k, lang, r["type"]) for k in r["lengths"]
                                    if r.get("solutions") and k in r["solutions"][0]] + [Term("γ_min, °"), ""])
     svg, scale = construction_svg(r)
     return ctx.render("sections/synthesis.html.j2", info=info, lens=lens, sols=sols, sol_head=sol_head,

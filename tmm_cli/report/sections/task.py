@@ -185,6 +185,8 @@ def _rows(key: str, sec: Any, lang: str) -> list[tuple[str, str]]:
         plain = re.sub(r"\[\d+\]", "", f"{key}.{k}")
         # a field given as a list may have a name of its own ('task.param.synthesis.points[]': path points)
         label = (isinstance(v, list) and _param(plain + "[]", lang)) or param_name(plain, lang)
+        if key == "synthesis":          # a field named by the type ('rocker': a crank-rocker's or a slotted link)
+            label = PARAMS.get(lang, {}).get(f"{plain}.{sec.get('type')}") or label
         # a catalogue's name: its notation with subscripts in the HTML; a path of the task as written
         label = Term(label) if label else k.replace(".", " · ")
         idx = re.findall(r"(\w+)\[(\d+)\]", k)
