@@ -563,6 +563,10 @@ ENGLISH = [
     ('input.synth_K_below_one', {'type': 'crank_rocker', 'key': 'K', 'value': 0.8},
      "type crank_rocker needs K >= 1 (theta >= 0 deg): K = (180 + theta)/(180 - theta) is the ratio of the crank's "
      "turns over the slow and the quick strokes; got `K` = 0.8"),
+    ('synthesis.path_far', {'dev': 0.3812345, 'point': 7, 'share': 0.19061725, 'extent': 2.0, 'limit': 0.05},
+     "synthesis: the coupler curve passes far from the points: point 7 is 0.381 m from it, 19.1% of the points' "
+     "extent 2 m (more than 5%); no crank-rocker keeping the constraints was found nearer: check `max_deviation`, "
+     "give points nearer a coupler curve, or lower `gamma_min`"),
     ('input.balancing_radius', {'method': 'full', 'key': 'rocker'},
      'counterweights by the full method need `radius: {rocker: ...}` (m)'),
     ('input.balancing_radius_positive', {'key': 'crank'}, "the counterweight's radius `crank` must be above zero"),

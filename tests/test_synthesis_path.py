@@ -46,8 +46,13 @@ def _trace(r, phis):
 
 
 @pytest.fixture(scope="module")
-def example():
-    return run(load_task(ROOT / "tasks" / "synthesis_path.yaml"))["synthesis"]
+def example_results():
+    return run(load_task(ROOT / "tasks" / "synthesis_path.yaml"))
+
+
+@pytest.fixture(scope="module")
+def example(example_results):
+    return example_results["synthesis"]
 
 
 def test_coupler_point_passes_within_the_reported_deviations(example):
@@ -123,3 +128,41 @@ def test_bad_points_exit_2(tmp_path, points, words):
 def test_starter_validates(tmp_path):
     res = runner.invoke(app, ["new", "synthesis_path"])
     assert res.exit_code == 0 and "type: path" in res.output
+
+
+# ---------------------------------------------------------------- points far from any coupler curve: a warning
+def test_deviation_warning_on_both_sides_of_the_limit():
+    from tmm_cli.linkage.synthesis_path import DEVIATION_WARN, deviation_warnings
+    T = [[0.0, 0.0], [2.0, 0.0], [1.0, 0.5], [0.5, 1.0], [1.5, 1.5]]      # extent 2 m (the larger side)
+    assert deviation_warnings(T, [0.0, 0.01, (DEVIATION_WARN - 1e-6) * 2.0, 0.0, 0.0]) == []
+    got = deviation_warnings(T, [0.0, 0.01, (DEVIATION_WARN + 1e-6) * 2.0, 0.0, 0.0])
+    assert [m.code for m in got] == ["synthesis.path_far"]
+    assert got[0].params["point"] == 3 and got[0].params["extent"] == 2.0
+    assert got[0].params["share"] == pytest.approx(DEVIATION_WARN + 1e-6)
+
+
+def test_shipped_example_does_not_warn(example_results):
+    assert not [m for m in example_results["messages"] if m["code"] == "synthesis.path_far"]
+    s = example_results["synthesis"]
+    assert "warnings" not in s                          # the section's keys as before
+    ext = float(np.max(np.ptp(np.asarray(s["points"]), axis=0)))
+    assert s["max_deviation"] < 0.01 * ext              # far below the limit (5 %)
+
+
+def test_random_points_far_from_the_curve_warn():
+    # the student's trial: 20 random points over 2 m; before, a largest deviation of ~0.4 m passed silently
+    from tmm_cli.messages import localize
+    rng = np.random.default_rng(7)
+    P = (rng.random((20, 2)) * 2.0).round(3).tolist()
+    r = run(load_task({"schema": "tmm/1", "synthesis": {"type": "path", "points": P},
+                       "drive": {"link": "crank", "speed": 6}}))
+    far = [m for m in r["messages"] if m["code"] == "synthesis.path_far"]
+    assert len(far) == 1 and far[0]["text"] in r["warnings"]
+    s = r["synthesis"]
+    ext = float(np.max(np.ptp(np.asarray(P), axis=0)))
+    assert s["max_deviation"] > 0.05 * ext
+    assert far[0]["params"]["dev"] == pytest.approx(s["max_deviation"], rel=1e-15)
+    assert far[0]["params"]["point"] == int(np.argmax(s["deviations"])) + 1
+    for lang in ("ru", "uk"):                           # catalogued: no English left
+        text = localize(far[0], lang)
+        assert "coupler" not in text and "`max_deviation`" in text

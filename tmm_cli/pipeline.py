@@ -237,6 +237,7 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explo
         say("synthesis")
         from .linkage.synthesis import analyse
         results["synthesis"] = _stage("synthesis")(analyse)(linkage, design)
+        warnings.extend(results["synthesis"].pop("warnings", ()))     # the path's miss of its points
     results["drive"] = drive.to_dict()
 
     say("kinematics")
