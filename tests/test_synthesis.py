@@ -387,3 +387,25 @@ def test_example_tasks_run(tmp_path):
         # the results' positions (of the task) agree with the synthesis' own analysis
         assert r["positions"]["K"] == pytest.approx(s["K"], abs=1e-12)
         assert s["K"] == pytest.approx(K_of_theta(s["theta"]), rel=1e-12)
+
+
+@pytest.mark.parametrize("psi", [40, 50])
+def test_the_least_transmission_angle_lies_where_crank_and_frame_are_collinear(psi):
+    """A crank-rocker's transmission angle is least with the crank along the frame line (the
+    diagonal A O1 longest or shortest): gamma_min_phi is exactly 0 or 180 deg -- it was
+    1.694e-07 (psi 50) and 180.00000000000347 (psi 40), the flat least's place to the search's
+    accuracy -- and gamma_min is the law of cosines there, by hand."""
+    import yaml
+    data = yaml.safe_load((TASKS / "synthesis_crank_rocker.yaml").read_text(encoding="utf-8"))
+    data["synthesis"]["psi"] = psi
+    from tmm_cli import load_task, run
+    res = run(load_task(data))["synthesis"]
+    a, b, c, d = (res["lengths"][k] for k in ("crank", "coupler", "rocker", "frame"))
+    assert res["gamma_min_phi"] in (0.0, 180.0), res["gamma_min_phi"]
+    # the generated four-bar has O1 on +x from O: at 0 deg the crank points at O1 (A O1 = d - a)
+    f = d - a if res["gamma_min_phi"] == 0.0 else d + a
+    gamma = math.degrees(math.acos((b * b + c * c - f * f) / (2 * b * c)))
+    assert min(gamma, 180 - gamma) == pytest.approx(res["gamma_min"], abs=1e-9)
+    other = d + a if f == d - a else d - a
+    g2 = math.degrees(math.acos((b * b + c * c - other * other) / (2 * b * c)))
+    assert min(g2, 180 - g2) >= res["gamma_min"] - 1e-9

@@ -955,9 +955,35 @@ def least_transmission(typ: str, mech) -> tuple[float, float]:
     f = lambda x: float(transmission_angle(typ, solve(mech, np.array([x % 360.0])))[0])
     res = minimize_scalar(f, bounds=(grid[k] - 0.5, grid[k] + 0.5), method="bounded", options={"xatol": 1e-10})
     x, v = (float(res.x) % 360.0, float(res.fun)) if res.fun <= g[k] else (float(grid[k]), float(g[k]))
-    if x > 360.0 - 1e-5:        # a least at 0 found a hair below it: 0, not 360 (the angle is flat at
-        x = 0.0                 # its least: its place is known to ~1e-6 deg, not to the search's 1e-10)
+    # the angle is flat at its least, so the search knows its place to ~1e-6 deg only (1.7e-7 for
+    # 0, 180.0000000000035 for 180): where the closed form puts it -- the crank along the line to
+    # another fixed pivot (a four-bar: crank and frame collinear), or square to a fixed guide (a
+    # slider-crank) -- and the angle there is as small, the place is that exact angle
+    for c in _transmission_candidates(mech):
+        fc = f(c)
+        if abs((c - x + 180.0) % 360.0 - 180.0) < 1e-3 and fc <= v + 1e-12 * max(1.0, abs(v)):
+            x, v = c, fc
+            break
+    if x > 360.0 - 1e-5 or x < 1e-5:      # a least at 0 found a hair off it (its place known to
+        x = 0.0                            # ~1e-6 deg): 0, not 360 or 1.7e-7
     return v, x
+
+
+def _transmission_candidates(mech) -> list[float]:
+    """The crank angles (deg, in [0, 360)) where a transmission angle's least lies in closed form:
+    the crank along the line from its pivot to another fixed pivot (either way), or square to a
+    fixed guide."""
+    import math
+    ox, oy = mech.ground[mech.crank_pivot]
+    out = []
+    for name, (gx, gy) in mech.ground.items():
+        if name != mech.crank_pivot and math.hypot(gx - ox, gy - oy) > 0:
+            a = math.degrees(math.atan2(gy - oy, gx - ox))
+            out += [a % 360.0, (a + 180.0) % 360.0]
+    for lk in mech.links:
+        if lk.guide is not None and lk.guide.link is None:
+            out += [(lk.guide.angle + 90.0) % 360.0, (lk.guide.angle - 90.0) % 360.0]
+    return out
 
 
 def analyse(linkage, d: Design) -> dict:
