@@ -537,3 +537,23 @@ def test_the_task_files_own_answers_are_read_as_an_answers_files(tmp_path):
     task.write_text(text + "tolerance: 0.05\n", encoding="utf-8")
     res = runner.invoke(app, ["check", str(task)])
     assert res.exit_code == 2 and "tolerance: {default: 0.05}" in res.output and "Traceback" not in res.output
+
+
+def test_a_missing_answers_or_tolerance_file_is_named_as_what_it_is(tmp_path):
+    """A missing --answers file was "error: invalid task", a missing --tolerance file in a batch
+    "error: invalid answers / not a regular file": each is headed by what it is, and says it is
+    not there."""
+    src = tmp_path / "t"
+    task = _write(src, "v1.yaml", GEARS.format(v=1, z1=14, z2=30))
+    answers = _write(tmp_path, "a.yaml", "variant: 1\nanswers:\n  gears.aw: 0.09\n")
+    cases = [(["check", str(task), "--answers", str(tmp_path / "gone.yaml")], "answers file"),
+             (["check", str(task), "--answers", str(answers), "--tolerance", str(tmp_path / "gone.yaml")],
+              "tolerance file"),
+             (["batch", str(src), "--out", str(tmp_path / "o"), "--answers", str(answers),
+               "--tolerance", str(tmp_path / "gone.yaml"), "--format", "json"], "tolerance file"),
+             (["batch", str(src), "--out", str(tmp_path / "o"), "--answers", str(tmp_path / "gone"),
+               "--format", "json"], "answers file")]
+    for args, kind in cases:
+        res = runner.invoke(app, args)
+        assert res.exit_code == 2 and f"error: invalid {kind}\n" in res.output, (args, res.output)
+        assert "no such file or folder" in " ".join(res.output.split()) and "Traceback" not in res.output

@@ -225,7 +225,7 @@ def test_validate_refuses_what_run_refuses(tmp_path, text, field, words):
 @pytest.mark.parametrize("counterweights, field", [
     ("{method: full, radius: {crank: 60 mm, rocker: 80 mm}, reciprocating_share: 0.5}",
      "balancing.counterweights.reciprocating_share"),
-    ("{method: crank, radius: {crank: 60 mm, rocker: 80 mm}}", "balancing.counterweights.radius.rocker"),
+    ("{method: crank, radius: {crank: 60 mm, rocker: 80 mm}}", "balancing.counterweights.method"),
 ])
 def test_a_counterweight_field_the_method_ignores_is_refused(tmp_path, counterweights, field):
     """A rocker's radius for the crank method, a reciprocating share for the full method: read

@@ -572,8 +572,8 @@ ENGLISH = [
     ('input.balancing_radius_positive', {'key': 'crank'}, "the counterweight's radius `crank` must be above zero"),
     ('input.balancing_share_full', {}, "`reciprocating_share` belongs to the `crank` method (a slider-crank): the "
      "`full` method balances a four-bar's shaking force completely"),
-    ('input.balancing_rocker_crank', {}, 'the `crank` method (a slider-crank) puts a counterweight on the crank only: '
-     'a slider-crank has no rocker'),
+    ('input.balancing_rocker_crank', {}, "the `crank` method is a slider-crank's (a counterweight on the crank only), "
+     "yet a rocker's radius is given: a four-bar (a crank and a rocker) takes `method: full`"),
     ('input.balancing_apply_needs', {}, "`apply: true` needs `counterweights`: there is nothing to apply"),
     ('input.rotor_planes_equal', {}, 'the two correction planes must be at different z'),
     ('input.balancing_needs_mechanism', {}, 'counterweights balance a linkage: the task needs a `mechanism`'),

@@ -791,7 +791,9 @@ def _run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = fro
         sets = load_sources(answers) if answers is not None else None
         tol_override = load_tolerance_file(tolerance) if tolerance is not None else None
     except TaskError as exc:
-        con.print(f"error: invalid answers\n{exc.render()}", markup=False)
+        # the file it is (`invalid answers file`, `invalid tolerance file`); a table's or a folder's
+        # own error: `invalid answers`
+        con.print(f"error: invalid {exc.kind if exc.kind != 'task' else 'answers'}\n{exc.render()}", markup=False)
         return 2
     set_notes = []
     if sets is not None:

@@ -381,7 +381,7 @@ def load_sources(path: Path) -> list[AnswerSet]:
     if path.is_dir():
         return load_answers_dir(path)
     if not path.exists():
-        raise TaskError(Message("answers.no_source"), file=str(path))
+        raise TaskError(Message("answers.no_source"), file=str(path), kind="answers file")
     if path.suffix.lower() == ".csv":
         return load_answers_csv(path)
     return [load_answers_file(path)]
@@ -403,6 +403,8 @@ def load_tolerance_file(path: Path) -> dict:
     """--tolerance FILE: a YAML mapping (or one with a `tolerance:` key) path -> tolerance."""
     from .yamlload import load_yaml
     path = Path(path)
+    if not path.exists():
+        raise TaskError(Message("answers.no_source"), file=str(path), kind="tolerance file")
     if not path.is_file():
         raise TaskError(Message("input.tol_not_file"), file=str(path), kind="tolerance file")
     try:

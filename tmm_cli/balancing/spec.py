@@ -46,7 +46,8 @@ class CounterweightSpec(_Model):
         if self.method == "full" and "reciprocating_share" in self.model_fields_set:
             raise FieldValueError(("reciprocating_share",), Message("input.balancing_share_full"))
         if self.method == "crank" and "rocker" in self.radius:
-            raise FieldValueError(("radius", "rocker"), Message("input.balancing_rocker_crank"))
+            # a rocker's radius with the slider-crank's method: most likely a four-bar given `crank`
+            raise FieldValueError(("method",), Message("input.balancing_rocker_crank"))
         need = ("crank", "rocker") if self.method == "full" else ("crank",)
         for k in need:
             if k not in self.radius:
