@@ -135,3 +135,12 @@ def test_the_reference_in_the_unit_the_student_wrote(written, path, ref, want):
         assert got is None
     else:
         assert got[1] == want[1] and got[0] == pytest.approx(want[0], rel=1e-12)
+
+
+def test_degrees_closed_up_and_errors_to_three_digits():
+    """A value in degrees is printed 16,36° (no space before the degree sign, as the report and
+    the drawings print it; it was '16,36 °'), other units after a space; an error in percent to
+    three digits (0,0408 %, not 0,040793 %)."""
+    from tmm_cli.feedback import _pct, _q
+    assert _q(16.36, "\u00b0", "ru") == "16,36\u00b0" and _q(0.25, "\u043c", "ru") == "0,25 \u043c"
+    assert _q(12, "", "en") == "12" and _pct(0.00040793, "ru") == "0,0408 %" and _pct(0.05, "en") == "5 %"

@@ -320,7 +320,7 @@ def test_feedback_pages_show_the_tolerance_the_unit_written_and_no_key_on_reques
         assert res.exit_code == 0, res.output
         page = unescape((out / "v4" / "feedback-Ivanov-ivanov.html").read_text(encoding="utf-8"))
         assert f"{aw_mm} mm" in page                                  # the value as the student wrote it
-        assert "±5 %" in page and "±0,5 °" in page                     # each answer's tolerance
+        assert "±5 %" in page and "±0,5°" in page                      # each answer's tolerance (° closed up)
         ref_mm = f"{key['gears.aw'] * 1000:.5g}".replace(".", ",")   # the reference in the student's unit
         assert (f"{ref_mm} mm" in page) == (mode == "key") and ("эталон" in page) == (mode == "key")
 

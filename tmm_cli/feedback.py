@@ -41,6 +41,17 @@ def _num(x, lang: str = "en") -> str:
     return num(v, ".5g", lang)
 
 
+def _q(x, unit: str, lang: str = "en", fmt: str = ".5g") -> str:
+    """A value with its unit: '16,36°' (the degree sign closed up, as printed), '0,25 м', '12'."""
+    text = "\u2013" if x is None else num(float(x), fmt, lang)
+    return f"{text}{unit}" if unit == "\u00b0" else f"{text} {unit}".rstrip()
+
+
+def _pct(share, lang: str) -> str:
+    """A share as percent to three digits ('0,0408 %')."""
+    return f"{num(100 * float(share), '.3g', lang)} %"
+
+
 _NUMBER_HEAD = re.compile(r"^\s*[-+\u2212\u2013]?[\d\s.,\u00a0\u202f]*\d(?:[eE][-+]?\d+)?\s*")
 
 
@@ -72,14 +83,14 @@ def _tolerance(r: dict, unit: str, lang: str) -> str:
     zero = r.get("reference") == 0
     if len(words) == 1:
         v = float(words[0])
-        return f"±{_num(v, lang)} {unit}".rstrip() if zero else f"±{_num(100 * v, lang)} %"
+        return f"±{_q(v, unit, lang)}" if zero else f"±{_pct(v, lang)}"
     parts = dict(zip(words[::2], words[1::2]))
     rel, ab = float(parts.get("rel", 0)), float(parts.get("abs", 0))
     from .messages import catalogue
     words = catalogue(lang)["terms"]["grading"]
     least = words["at_least"]
-    text = (f"±{_num(100 * rel, lang)} %" + (f" ({least} {_num(ab, lang)} {unit})".rstrip() if ab else "")
-            if rel else f"±{_num(ab, lang)} {unit}".rstrip())
+    text = (f"±{_pct(rel, lang)}" + (f" ({least} {_q(ab, unit, lang)})" if ab else "")
+            if rel else f"±{_q(ab, unit, lang)}")
     if parts.get("sign") == "any":
         text += " " + words["either_sign"]
     return text
@@ -105,7 +116,7 @@ def feedback_html(task, s: dict, lang: str = "en", key: bool = True) -> str:
         err = "–"
         if r["error"] is not None:
             absolute = "abs" in r["tolerance"] or r["note"] == "absolute error" or r.get("reference") == 0
-            err = f"{_num(r['error'], lang)} {unit}".rstrip() if absolute else f"{_num(100 * r['error'], lang)} %"
+            err = _q(r["error"], unit, lang, ".3g") if absolute else _pct(r["error"], lang)
         note = r["note"]
         if st in ("unknown_path", "invalid") and hasattr(note, "to_dict"):        # coded: in the page's language
             from .messages import localize
@@ -120,9 +131,9 @@ def feedback_html(task, s: dict, lang: str = "en", key: bool = True) -> str:
         elif st == "invalid":
             value = r["answer"]
         else:
-            value = f"{_num(r['answer'], lang)} {unit}".rstrip() if r["answer"] is not None else "–"
+            value = _q(r["answer"], unit, lang) if r["answer"] is not None else "–"
         ref = (f"{_num(conv[0], lang)} {conv[1]}" if conv else
-               (f"{_num(r['reference'], lang)} {unit}".rstrip() if r["reference"] is not None else "–"))
+               (_q(r["reference"], unit, lang) if r["reference"] is not None else "–"))
         tol = _tolerance(r, unit, lang) if st not in ("unknown_path", "not_computed") else "–"
         cells = [f"<code>{e(r['path'])}</code><br><small>{e(notation(r['path'], lang, local_units=True))}</small>",
                  e(value)] + ([e(ref)] if key else []) + [e(err), e(tol)]
