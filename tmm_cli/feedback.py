@@ -42,7 +42,7 @@ def _num(x, lang: str = "en") -> str:
 
 
 def _q(x, unit: str, lang: str = "en", fmt: str = ".5g") -> str:
-    """A value with its unit: '16,36°' (the degree sign closed up, as printed), '0,25 м', '12'."""
+    """A value with its unit: '16,36°' (the degree sign closed up, as printed), '0,25 m', '12'."""
     text = "\u2013" if x is None else num(float(x), fmt, lang)
     return f"{text}{unit}" if unit == "\u00b0" else f"{text} {unit}".rstrip()
 
