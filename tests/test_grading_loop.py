@@ -557,3 +557,33 @@ def test_a_missing_answers_or_tolerance_file_is_named_as_what_it_is(tmp_path):
         res = runner.invoke(app, args)
         assert res.exit_code == 2 and f"error: invalid {kind}\n" in res.output, (args, res.output)
         assert "no such file or folder" in " ".join(res.output.split()) and "Traceback" not in res.output
+
+
+def test_what_students_write_degrees_minutes_percent_and_a_unit_left_off(tmp_path):
+    """36°8′ is 36 + 8/60 degrees (36°08′30″ with seconds; 60 minutes is refused); '97 %' is the
+    share 0.97 in a task's efficiency; an answer without a unit that is right in the unit a
+    student works in -- 98,5 for 0,0985 m (mm), 0,2856 for 16,36° (rad), 1000 for 104,72 rad/s
+    (rpm) -- stays outside and says so."""
+    from tmm_cli.check import Tol, _unit_slip
+    from tmm_cli.numbers import answer, read
+    from tmm_cli.units import quantity
+    assert read("36\u00b08\u2032").value == pytest.approx(36 + 8 / 60)
+    assert read("36\u00b0 08' 30\"").value == pytest.approx(36 + 8 / 60 + 30 / 3600)
+    assert read("-12\u00b030\u2032").value == -12.5 and answer("16\u00b021\u2032", None, angle=True) == pytest.approx(16.35)
+    for bad in ("36\u00b060\u2032", "36.5\u00b08\u2032"):
+        with pytest.raises(ValueError):
+            read(bad)
+    assert quantity("97 %", "dimensionless")[0] == pytest.approx(0.97)
+    key = gear_key(14, 30)
+    aw = key["gears.aw"]
+    assert "mm" in str(_unit_slip("gears.aw", aw * 1000, aw, Tol()))
+    assert "rad" in str(_unit_slip("gears.alpha_w", math.radians(key["gears.alpha_w"]), key["gears.alpha_w"], Tol()))
+    assert "rpm" in str(_unit_slip("kinematics[1].links.crank.omega", 1000.0, 1000 * math.pi / 30, Tol()))
+    assert _unit_slip("gears.aw", aw * 1.01, aw, Tol()) is None and _unit_slip("gears.aw", 7.0, aw, Tol()) is None
+    task = _write(tmp_path, "v1.yaml", GEARS.format(v=1, z1=14, z2=30)
+                  + f"answers:\n  gears.aw: {aw * 1000:.3f}\n  gears.alpha_w: '{int(key['gears.alpha_w'])}"
+                    f"\u00b0{(key['gears.alpha_w'] % 1) * 60:.1f}\u2032'\n")
+    res = runner.invoke(app, ["check", str(task), "--out", str(tmp_path / "o")])
+    rows = {r["path"]: r for r in _csv(tmp_path / "o" / "check.csv")}
+    assert rows["gears.alpha_w"]["status"] == "ok" and rows["gears.aw"]["status"] == "outside"
+    assert "read in mm it is right" in rows["gears.aw"]["note"] and "read in mm" in " ".join(res.output.split())

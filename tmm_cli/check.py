@@ -581,9 +581,28 @@ def grade(results: dict, aset: AnswerSet, tol: dict, required: list[str] | None 
         row["status"], row["error"] = status, err
         if status == "sign":
             row["note"] = "right magnitude, wrong sign"
+        elif status == "outside" and p not in aset.written and (slip := _unit_slip(p, float(val), float(ref), t)):
+            row["note"] = slip
         elif kind == "abs" and status != "ok":
             row["note"] = "absolute error"
     return rows
+
+
+# an answer without a unit is in the path's SI unit; one that matches the reference in the unit a
+# student works in instead (a length in mm, a speed in rpm, an angle in radians) is told so
+_SLIPS = {"m": (("mm", 1e-3),), "m or deg": (("mm", 1e-3),), "rad/s": (("rpm", math.pi / 30),),
+          "deg": (("rad", 180 / math.pi),)}
+
+
+def _unit_slip(path: str, val: float, ref: float, t: Tol) -> Message | None:
+    """``answers.note_unit_slip`` where the bare number ``val`` is within tolerance of the
+    reference once read in the unit a student likely meant (98,5 for 0,0985 m: mm), else None."""
+    from .forms import unit_of
+    for unit, factor in _SLIPS.get(unit_of(path) or "", ()):
+        if ref != 0 and compare(val * factor, ref, t, False)[0] == "ok":
+            return Message("answers.note_unit_slip", unit=unit, si=unit_of(path).split()[0],
+                           example=f"{val:g} {unit}")
+    return None
 
 
 def set_status(rows: list[dict]) -> str:

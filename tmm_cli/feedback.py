@@ -118,11 +118,14 @@ def feedback_html(task, s: dict, lang: str = "en", key: bool = True) -> str:
             absolute = "abs" in r["tolerance"] or r["note"] == "absolute error" or r.get("reference") == 0
             err = _q(r["error"], unit, lang, ".3g") if absolute else _pct(r["error"], lang)
         note = r["note"]
-        if st in ("unknown_path", "invalid") and hasattr(note, "to_dict"):        # coded: in the page's language
+        coded = hasattr(note, "to_dict")
+        if coded:                            # coded: in the page's language
             from .messages import localize
             note = localize(note.to_dict(), lang)
         step = step_for(r["path"], lang) if st in ("outside", "sign") else (note if st in ("unknown_path", "invalid")
                                                                             else "")
+        if st == "outside" and coded:        # a unit slip (98,5 for 0,0985 m): said before the step
+            step = f"{note}. {step}"
         colour = {"ok": "#c8e6c9", "outside": "#ffcdd2", "sign": "#e1bee7", "missing": "#fff9c4",
                   "invalid": "#ef9a9a"}.get(st, "#eee")
         conv = _in_written_unit(r)

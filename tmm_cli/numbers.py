@@ -164,9 +164,22 @@ def read(text: str, *, answer: bool = False) -> Reading:
         if frac == 0:
             raise ValueError(Message("input.fraction_zero"))
         return Reading(value / frac, False, text=s)
+    dms = _DMS.fullmatch(rest) if integral else None
+    if dms is not None:                  # 36°8′, 36°08'30": degrees, minutes (and seconds)
+        minutes, seconds = (float((g or "0").replace(",", ".")) for g in dms.group("m", "s"))
+        if minutes >= 60 or seconds >= 60:
+            raise ValueError(Message("input.number_dms", text=s))
+        whole = abs(value) + minutes / 60 + seconds / 3600
+        factors, notes = parse_unit("\u00b0", s)
+        return Reading(-whole if number.startswith("-") else whole, False, factors, "\u00b0", s, notes)
     _refuse_rest(s, rest)
     factors, notes = parse_unit(rest.strip(), s)
     return Reading(value, integral, factors, rest.strip(), s, notes)
+
+
+# degrees and minutes (and seconds) after a whole number of degrees: 36°8′, 36° 08' 30"
+_DMS = re.compile("\\s*\u00b0\\s*(?P<m>[0-9]+(?:[.,][0-9]+)?)\\s*['\u2032]"
+                  "(?:\\s*(?P<s>[0-9]+(?:[.,][0-9]+)?)\\s*[\"\u2033])?\\s*")
 
 
 def _fraction(rest: str) -> float | None:

@@ -240,6 +240,8 @@ def print_check(rows: list[dict], source) -> None:
     """The graded answers of one set: path, answer, reference, error, status; fits 80 columns."""
     from rich.table import Table
 
+    from .messages import Message
+
     from .check import counts
 
     con = _console()
@@ -256,7 +258,7 @@ def print_check(rows: list[dict], source) -> None:
         absolute = r["note"] == "absolute error" or "abs" in r["tolerance"] or zero_ref
         err = "-" if r["error"] is None else (_f(r["error"], 3) if absolute else f"{100 * r['error']:.2f} %")
         style = STATUS_STYLE.get(st, "white")
-        if r["note"] and st in ("unknown_path", "sign", "invalid"):
+        if r["note"] and (st in ("unknown_path", "sign", "invalid") or (st == "outside" and isinstance(r["note"], Message))):
             notes.append(r["note"] if r["note"].startswith(r["path"]) else f"{r['path']}: {r['note']}")
         t.add_row(_short_path(r["path"], 26), _f(r["answer"]), _f(r["reference"]), err,
                   _tol_shown(r["tolerance"], zero_ref or r["note"] == "absolute error"),

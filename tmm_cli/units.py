@@ -117,6 +117,8 @@ def quantity(text: str, kind: str) -> tuple[float, list, str]:
     if not r.unit:
         return r.value, [], kind
     if kind == "dimensionless":
+        if r.expression == "percent":       # '97 %': a share
+            return r.value / 100, [], kind
         raise ValueError(Message("input.unit_expected", kind=kind, got=f"'{text}'"))
     targets = _TARGETS.get(kind, ((KINDS[kind][0], kind),))
     for target, table in targets:           # a unit of the table first: no pint for '2 MPa' or '1.2 m/s'
@@ -213,18 +215,15 @@ def tolerance_number(value: Any, what: str = "plain") -> float:
     ValueError(Message ``input.tol_not_number``). A share of 1 or more (every answer within 100 %
     and more passes: `default: 5` meant for 5 %) is ValueError(Message ``input.tol_share_large``).
     One reader for the task file's ``tolerance`` and ``--tolerance FILE``."""
-    x, percent = value, False
+    x = value
     if isinstance(x, str):
-        text = x.strip()
-        if what != "abs" and text.endswith("%"):
-            percent, text = True, text[:-1].rstrip(" \u00a0\u202f")
-        try:
-            x = plain_number(text)
+        try:                                # a share read as a Ratio field reads it ('5 %' is 0.05)
+            x = quantity(x, "dimensionless")[0] if what != "abs" else plain_number(x)
         except ValueError:
             x = None
     if not (isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(float(x)) and x >= 0):
         raise ValueError(Message("input.tol_not_number", what=what, got=repr(value)))
-    x = float(x) / 100 if percent else float(x)
+    x = float(x)
     if what != "abs" and x >= 1:
         raise ValueError(Message("input.tol_share_large", what=what, got=repr(value), pct=100 * x,
                                  share=x / 100))
