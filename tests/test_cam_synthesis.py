@@ -260,3 +260,19 @@ def test_results_dict_is_plain_json():
     assert any("rigid impact" in w for w in d["warnings"])
     # v = ds/dphi * omega: the constant-velocity rise moves at h/Phi*omega = 0.03/(pi/2)*10
     assert d["v"][45] == pytest.approx(0.03 / (math.pi / 2) * 10.0)
+
+
+def test_an_allowed_pressure_angle_far_above_the_courses_is_told():
+    """[theta] = 89 deg sizes a knife-edge cam of about the offset alone (the profile nearly
+    locks the follower: 1/cos 89 = 57 times the useful force); tmm says so (above 60 deg, twice
+    the force), and not at the course's 30 deg or at 60 itself."""
+    from pathlib import Path
+
+    import yaml as _yaml
+
+    from tmm_cli import load_task, run
+    base = _yaml.safe_load((Path(__file__).resolve().parents[1] / "tasks" / "cam_knife.yaml").read_text(encoding="utf-8"))
+    for angle, told in ((89, True), (61, True), (60, False), (30, False)):
+        base["cam"]["pressure_angle"] = angle
+        warnings = run(load_task(base)).get("warnings", [])
+        assert any("far above the usual" in str(w) for w in warnings) == told, (angle, warnings)

@@ -179,6 +179,12 @@ class CamResult:
 
 
 # ---------------------------------------------------------------------- helpers
+# an allowed pressure angle above this is told (the course's are 30 deg for a translating follower,
+# 45 for a rocker): past it the cam pushes with over twice the force the follower's motion takes
+# (1/cos 60 = 2), the follower can jam in its guide, and the cam that comes out is a sliver
+PRESSURE_HIGH = 60.0
+
+
 def _limits(spec: CamSection) -> tuple[float, float]:
     """The allowed pressure angles on the rise and on the return, deg (the task model turns a
     single angle, a transmission angle or none into the pair)."""
@@ -371,6 +377,9 @@ def synthesize(spec: CamSection) -> CamResult:
         return _flat(spec, motion, stroke, r0_chosen, divisions)
     fams = _families(motion, th_rise, th_ret)
     warnings: list[Message] = []
+    if max(th_rise, th_ret) > PRESSURE_HIGH:     # the cam is sized for it, and said to be no cam to build
+        warnings.append(Message("cam.pressure_high", angle=max(th_rise, th_ret), usual=45.0 if rocker else 30.0,
+                                high=PRESSURE_HIGH, force=1 / math.cos(math.radians(max(th_rise, th_ret)))))
 
     # ---- smallest cam
     if rocker:
