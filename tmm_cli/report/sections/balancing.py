@@ -68,6 +68,8 @@ def counterweights_figure(ctx, b, results):
     ax.set_ylim(min(ys) - 0.12 * span, max(ys) + 0.12 * span)
     ax.set_aspect("equal")
     ax.grid(True)
+    ax.set_xlabel(ctx.t("bal.x"))
+    ax.set_ylabel(ctx.t("bal.y"))
     return fig
 
 
@@ -84,6 +86,8 @@ def rotor_figure(ctx, r, masses):
         ax.annotate(str(c["plane"]), (x, y), xytext=(3, 2))
     ax.set_aspect("equal")
     ax.grid(True)
+    ax.set_xlabel(ctx.t("bal.Ux"))
+    ax.set_ylabel(ctx.t("bal.Uy"))
     return fig
 
 
