@@ -121,7 +121,8 @@ def test_zero_shift_small_pinion_verdicts():
     assert r["x_min"][0] == pytest.approx(5 / 17, rel=1e-12)
     assert any("undercut" in w for w in r["warnings"])
     assert any("interference" in w for w in r["warnings"])
-    assert len(r["warnings"]) == 2
+    assert len(r["warnings"]) == 3 and any("by the formula is formal" in w for w in r["warnings"])
+    assert r["eps_alpha_formal"] is True      # interference: part of B1B2 is off the involutes
 
 
 # ------------------------------------------------------ shifted pair (SPEC example)
@@ -372,3 +373,19 @@ def test_a_pair_that_cannot_mesh_shows_its_contact_ratio_as_formal():
     assert float(row.split()[0]) == pytest.approx(r["gears"]["eps_alpha"], rel=1e-4)
     ok = tmm_cli.run(tmm_cli.load_task({"schema": "tmm/1", "gears": {"m": "4 mm", "z": [20, 40]}}))
     assert dict(_summary_rows(ok))["contact ratio"] == f"{ok['gears']['eps_alpha']:.5g}"
+
+
+
+def test_a_contact_ratio_with_interference_is_formal():
+    """z = 5/8, x = 0 (m = 4 mm): the active line B1B2 = 14.67 mm by the formula is longer than
+    the whole line of action N1N2 = 8.89 mm (N1B1 < 0): no real contact is that long, so the
+    eps_alpha = 1.24 of the formula is formal (it was printed "eps < 1.2: no" with no word); a
+    pair without interference keeps it plain."""
+    from tmm_cli import load_task, run
+    res = run(load_task({"schema": "tmm/1", "gears": {"m": 0.004, "z": [5, 8], "x": [0, 0]}}))
+    r, la = res["gears"], res["gears"]["line_of_action"]
+    assert la["B1B2"] > la["N1N2"] and la["N1B1"] < 0
+    assert r["eps_alpha_formal"] is True and r["checks"]["interference"] is True
+    assert any("by the formula is formal" in str(w) for w in res["warnings"])
+    res = run(load_task({"schema": "tmm/1", "gears": {"m": 0.004, "z": [20, 40], "x": [0, 0]}}))
+    assert res["gears"]["eps_alpha_formal"] is False and not any("formal" in str(w) for w in res.get("warnings", []))

@@ -110,6 +110,10 @@ ENGLISH = [
      'gears: wheel 2 tip is too thin: sa = -0.1 mm < 0.25 m = 1 mm (pointed tooth)'),
     ('gears.interference', {'other': 1, 'wheel': 2, 'rho_p': 1.23456, 'rho_l': 2.3456},
      'gears: interference: the tip of wheel 1 reaches wheel 2 below the start of its involute (rho_p = 1.235 mm < rho_l = 2.346 mm)'),
+    ('gears.eps_formal', {'eps': 1.2427, 'b': 14.67, 'n': 8.89},
+     "eps_alpha = 1.243 by the formula is formal: with interference a tip works off the mate's involute, so part of "
+     "the active line B1B2 = 14.670 mm (N1N2 = 8.890 mm) is no conjugate action and the teeth do not mesh "
+     "continuously along it"),
     ('gears.contact_ratio_course', {'eps': 1.0567891, 'limit': 1.2},
      'gears: contact ratio eps_alpha = 1.057 < 1.2 (course minimum)'),
     ('gears.contact_ratio_absolute', {'eps': 1.05, 'limit': 1.1},

@@ -58,7 +58,8 @@ def _summary_rows(results: dict) -> list[tuple[str, str]]:
         formal = any(str(m.get("code", "")).startswith("gears.no_involute") for m in results.get("messages") or ()
                      if isinstance(m, dict))
         add("contact ratio", _f(g.get("eps_alpha")) + (" (formal: the pair cannot mesh, see the warnings)"
-                                                         if formal else ""))
+                                                         if formal else " (formal: the teeth interfere, see the warnings)"
+                                                         if g.get("eps_alpha_formal") else ""))
     pl = results.get("planetary")
     if pl:
         add("planetary z", ", ".join(f"{k}={v}" for k, v in (pl.get("z") or {}).items()))

@@ -75,6 +75,9 @@ class GearResult:
                        "contact_ratio_low": bool(ch["contact_ratio_low"]),
                        "interference": bool(any(ch["interference"]))},
             # extras
+            # eps_alpha by the formula is formal where a tip meets the mate off its involute
+            # (interference, or a flank with no involute): part of B1B2 is no conjugate action
+            "eps_alpha_formal": bool(any(ch["interference"])),
             "m": self.m, "z": list(self.z), "x": [float(v) for v in self.x], "alpha": self.alpha,
             "ha": self.ha, "c": self.c, "rho_f": self.rho_f, "sa_min": self.sa_min, "rule": self.rule,
             "a": _f(g["a"]), "inv_alpha": _f(math.tan(math.radians(self.alpha)) - math.radians(self.alpha)),
@@ -257,6 +260,8 @@ def _check_warnings(g, ch, zz, xx, m, sa_min, rhol, warnings) -> None:
             other = 2 - i
             warnings.append(Message("gears.interference", other=other, wheel=n, rho_p=g[f"rho_p{n}"] * 1e3,
                                     rho_l=rhol[i] * 1e3))
+    if any(ch["interference"]):        # the formula counts the part of B1B2 off the involutes
+        warnings.append(Message("gears.eps_formal", eps=g["eps"], b=g["ga"] * 1e3, n=g["N1N2"] * 1e3))
     if ch["contact_ratio_low"]:
         warnings.append(Message("gears.contact_ratio_course", eps=g["eps"], limit=COURSE_EPS))
     if ch["contact_ratio_below_absolute"]:
