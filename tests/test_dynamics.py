@@ -504,3 +504,16 @@ def test_accuracy_table_includes_the_chosen_resolution():
     r = analyze_sampler(smooth_sampler(), section(delta=0.05, resolution=13, quadrature=0), 10.0)
     assert any(x["resolution"] == 13 for x in r.accuracy["rows"])
     assert r.accuracy["err_J"] > 0.01 and any("resolution" in w for w in r.warnings)
+
+
+@pytest.mark.parametrize("delta, told", [(1 / 1000, True), (1 / 4, True), (1 / 300, False), (1 / 5, False),
+                                         (1 / 20, False)])
+def test_a_coefficient_of_fluctuation_outside_the_machines_range_is_told(delta, told):
+    """delta = 1/1000 sized a 2.4-tonne disk for a 150 rpm compressor without a word: a delta outside
+    the 1/5...1/300 that machines are given (pumps 1/5 to generators 1/300) is warned of; the
+    flywheel is sized all the same (J_n = (max dT - min dT)/(omega_m^2 delta) for a constant J:
+    dT = 1 - cos q, its range 2)."""
+    q = np.linspace(0, 2 * np.pi, 721)
+    c = solve_cycle(q, np.sin(q), np.ones(721), omega_m=10.0, delta=delta)
+    assert any("coefficient of speed fluctuation" in str(w) for w in c.warnings) == told
+    assert c.J_n["energy-mass"] == pytest.approx(2.0 / (100.0 * delta), rel=1e-4)

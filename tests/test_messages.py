@@ -66,6 +66,10 @@ ENGLISH = [
      "no flywheel is needed: the machine's own constant reduced inertia 0.123457 kg*m^2 exceeds the 0.0987654 kg*m^2 needed for delta = 0.05 (energy-mass); J = 0"),
     ('flywheel.not_needed_no_work', {},
      'no flywheel is needed: the loads do no work over any part of the cycle and the reduced inertia is constant, so the speed does not fluctuate; J = 0'),
+    ('flywheel.delta_unusual', {'delta': 0.001, 'inverse': 1000.0, 'lo': 5.0, 'hi': 300.0},
+     "the coefficient of speed fluctuation delta = 0.001 (1/1000) is outside the usual 1/5...1/300 of machines "
+     "(pumps 1/5-1/30, machine tools 1/20-1/50, compressors 1/50-1/100, generators 1/100-1/300): the flywheel is "
+     "sized for it"),
     ('flywheel.not_needed_equal', {'J_const': 0.123456789, 'J_needed': 0.0987654321, 'delta': 0.05, 'method': 'energy-mass'},
      "no flywheel is needed: the machine's own constant reduced inertia 0.123457 kg*m^2 equals the 0.0987654 kg*m^2 needed for delta = 0.05 (energy-mass); J = 0"),
     ('flywheel.net_positive_work', {'M': -12.3456789},

@@ -26,6 +26,9 @@ from .reduce import Sample, sample as sample_mech
 STAGE = "dynamics"
 EPS_DEG = 1e-5   # one-sided evaluation offset at a jump, deg (coarser than the loads' 1e-9 snapping)
 FLYWHEEL_METHODS = ("energy-mass", "merzalov", "exact")
+# the coefficients of speed fluctuation machines are given (Artobolevsky's table: pumps 1/5-1/30,
+# machine tools 1/20-1/50, compressors 1/50-1/100, generators 1/100-1/300): one outside is told
+DELTA_USUAL = (1 / 300, 1 / 5)
 GAUSS_DEFAULT = 2   # Gauss-Legendre points per grid interval for the works (order 4)
 
 Sampler = Callable[[np.ndarray, np.ndarray], Sample]
@@ -209,6 +212,9 @@ def solve_cycle(q: np.ndarray, M_given: np.ndarray, J_links: dict[str, np.ndarra
     if isinstance(J_links, np.ndarray) or not isinstance(J_links, dict):
         J_links = {"mechanism": np.broadcast_to(np.asarray(J_links, float), q.shape).copy()}
     warnings: list[str] = []
+    if not DELTA_USUAL[0] <= delta <= DELTA_USUAL[1]:     # sized all the same, and said
+        warnings.append(Message("flywheel.delta_unusual", delta=delta, inverse=1 / delta,
+                                lo=1 / DELTA_USUAL[1], hi=1 / DELTA_USUAL[0]))
     work = fw.cycle_work(q, M_given, constant, increments)
     n = q.size
     J_const = float(J_extra)
