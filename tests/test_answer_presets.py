@@ -223,3 +223,18 @@ def test_synthesis_and_drive_train_presets_ask_what_a_student_computes(tmp_path)
     assert "Δi — ratio error (fraction); signed: (obtained - required) / required" in text
     res = runner.invoke(app, ["form", str(TASKS / "differential_A.yaml"), "-q", "differntial", "--out", str(tmp_path)])
     assert res.exit_code == 2 and "did you mean the preset 'differential'" in res.output
+
+
+def test_presets_ask_nothing_that_is_zero_by_construction_or_given(tmp_path):
+    """The kinematics preset leaves out a fixed pivot's velocity and acceleration (O: 0 in every
+    variant) and a slider's omega and epsilon on a fixed guide (the piston: 0), keeps a slide block's
+    on a moving guide (it turns with the slotted lever); the flywheel preset leaves out the given
+    delta."""
+    from tmm_cli import load_task, run
+    from tmm_cli.forms import expand
+    res = run(load_task(TASKS / "engine_slider_crank.yaml"))
+    got = expand("kinematics,flywheel", res)
+    assert not [p for p in got if ".points.O." in p or ".links.piston." in p or p == "flywheel.delta"], got
+    assert "kinematics[1].points.B.v" in got and "kinematics[1].links.rod.epsilon" in got and "flywheel.J" in got
+    got = expand("kinematics", run(load_task(TASKS / "shaper_slotted_lever.yaml")))
+    assert "kinematics[1].links.block.omega" in got and not [p for p in got if ".links.ram." in p]

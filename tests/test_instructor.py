@@ -175,13 +175,16 @@ def test_answer_in_another_quantitys_unit_is_not_graded():
                             ("5 m/s", "kinematics[1].points.B.a", "m/s^2"),
                             ("12 m", "positions.phi0", "degree"),
                             ("3 kg", "flywheel.delta", "dimensionless"),
+                            ("0.5 kg", "kinematics[7].points.O.v", "m/s"),        # outside the presets too
+                            ("2 N", "kinematics[3].links.rod.epsilon", "rad/s^2"),
                             ("336 N*m", "kinetostatics[1].reactions.R12.R", "N")):
         with pytest.raises(ValueError) as err:
             answer_value(bad, path)
         msg = err.value.args[0]
         assert msg.code == "answers.wrong_unit" and f"does not convert to {unit}" in str(msg), (bad, str(msg))
         # the target unit in the page's language
-        ru = {"m/s": "м/с", "m/s^2": "м/с²", "degree": "°", "dimensionless": "безразмерной величине", "N": "Н"}[unit]
+        ru = {"m/s": "м/с", "m/s^2": "м/с²", "degree": "°", "dimensionless": "безразмерной величине", "N": "Н",
+              "rad/s^2": "рад/с²"}[unit]
         assert render(msg.code, msg.params, "ru").endswith("единица не приводится к " + ru)
 
 

@@ -176,14 +176,12 @@ def _coded(exc: Exception) -> Message:
 
 
 def _path_unit(path: str) -> str | None:
-    """The unit of a result path in pint's words ('m/s**2') for the course quantities the
-    presets name (`tmm form`'s list: kinematics[1].points.*.v, gears.aw, flywheel.J,
-    differential.speeds.H...), from the notation of the path (tmm_cli.forms.key_notation: its
-    pattern, else its last name). None for any other path (a last name such as `a` or `y`
-    means different things in different sections): the answer is then taken in SI base units."""
-    from .forms import PRESETS, _pattern, unit_of
-    if not any(_pattern(pat).match(path) for pats in PRESETS.values() for pat in pats if "**" not in pat):
-        return None
+    """The unit of a result path in pint's words ('m/s**2'), from the notation of the path
+    (tmm_cli.forms.key_notation: its pattern, else its last name where that name means its
+    quantity -- `a` is an acceleration but in gears a centre distance, `J` the flywheel's in its
+    section only). None for a path without one, or the stroke's 'm or deg': the answer is then
+    taken in SI base units, of a course quantity."""
+    from .forms import unit_of
     unit = unit_of(path)
     if unit in (None, "m or deg"):
         return None

@@ -20,7 +20,7 @@ PRESETS: dict[str, list[str]] = {
                    "kinematics[1].links.*.omega", "kinematics[1].links.*.epsilon"],
     "kinetostatics": ["kinetostatics[1].balancing_moment", "kinetostatics[1].zhukovsky_moment",
                       "kinetostatics[1].reactions.*.R"],
-    "flywheel": ["flywheel.J", "flywheel.delta", "flywheel.omega_max", "flywheel.omega_min",
+    "flywheel": ["flywheel.J", "flywheel.omega_max", "flywheel.omega_min",
                  "flywheel.M_constant", "flywheel.diameter", "flywheel.width", "flywheel.mass"],
     "cam": ["cam.r0", "cam.offset", "cam.center_distance", "cam.max_pressure_angle", "cam.rho_min"],
     "gears": ["gears.aw", "gears.alpha_w", "gears.y", "gears.dy", "gears.eps_alpha", "gears.r[*]",
@@ -258,7 +258,8 @@ def expand(quantities: str | list[str], results: dict, *, strict: bool = True) -
         if not raw:
             continue
         if raw in PRESETS:
-            got = [p for pat in PRESETS[raw] for rx in (_pattern(pat),) for p in names if rx.match(p)]
+            got = [p for pat in PRESETS[raw] for rx in (_pattern(pat),) for p in names if rx.match(p)
+                   if not _zero_by_construction(p, results)]
             if not got and strict:
                 raise TaskError(f"preset '{raw}': the task's results have none of its quantities (is its "
                                 f"section in the task?)")
@@ -282,6 +283,24 @@ def expand(quantities: str | list[str], results: dict, *, strict: bool = True) -
         if raw not in out:
             out.append(raw)
     return out
+
+
+_KIN_POINT = re.compile(r"^kinematics\[\d+\]\.points\.([^.]+)\.")
+_KIN_LINK = re.compile(r"^kinematics\[\d+\]\.links\.([^.]+)\.(omega|epsilon)$")
+
+
+def _zero_by_construction(path: str, results: dict) -> bool:
+    """A preset's quantity that is 0 whatever the variant -- a fixed pivot's velocity, a slider's
+    angular velocity on a fixed guide -- and asks a student nothing."""
+    st = results.get("structure") or {}
+    m = _KIN_POINT.match(path)
+    if m:
+        return m.group(1) in (st.get("ground") or {})
+    m = _KIN_LINK.match(path)
+    if m:
+        return any(lk.get("name") == m.group(1) and lk.get("kind") == "slider"
+                   and (lk.get("guide") or {}).get("link") is None for lk in st.get("links") or ())
+    return False
 
 
 GROUP_MIN = 13     # a list of more numbers than the 12 positions is a per-position (per-degree) array
