@@ -276,3 +276,16 @@ def test_an_allowed_pressure_angle_far_above_the_courses_is_told():
         base["cam"]["pressure_angle"] = angle
         warnings = run(load_task(base)).get("warnings", [])
         assert any("far above the usual" in str(w) for w in warnings) == told, (angle, warnings)
+
+
+@pytest.mark.parametrize("name, shown", [("cam_knife", False), ("cam_translating", False), ("cam_rocker", True)])
+def test_the_task_table_shows_a_rockers_fields_for_a_rocker_only(tmp_path, name, shown):
+    """'swing: auto' (a rocker's sense of swing) and the rocker's length were listed for a
+    translating or knife-edge follower, where they mean nothing."""
+    from pathlib import Path
+
+    from tmm_cli import load_task, run
+    from tmm_cli.report import render_html
+    task = load_task(Path(__file__).resolve().parents[1] / "tasks" / f"{name}.yaml")
+    html, _ = render_html(run(task), task, tmp_path, "en")
+    assert ("rocker&#39;s turn on the rise" in html or "rocker's turn on the rise" in html) == shown

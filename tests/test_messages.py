@@ -90,8 +90,7 @@ ENGLISH = [
      'roller radius 12.000 mm exceeds 0.8 rho_min = 9.876 mm (course rule)'),
     ('cam.pressure_high', {'angle': 89.0, 'usual': 30.0, 'high': 60.0, 'force': 57.3},
      "allowed pressure angle 89 deg is far above the usual 30 deg for this follower: past 60 deg the cam pushes with "
-     "57.3 times the force the follower's motion takes, the follower can jam in its guide, and the smallest cam is a "
-     "sliver"),
+     "57.3 times the force the follower's motion takes, the follower can jam, and the smallest cam is a sliver"),
     ('cam.roller_r0', {'roller': 12.0, 'limit': 10.149999999999999},
      'roller radius 12.000 mm exceeds 0.5 r0 = 10.150 mm (course rule)'),
     ('cam.rigid_impact', {'phi': 123.45678, 'where': 'rise/far_dwell'},

@@ -166,6 +166,10 @@ def word_of(plain: str, value: str, lang: str) -> str | None:
     return own if own is not None else WORDS.get(lang, {}).get(value)
 
 
+# the cam fields that only a rocker follower has
+_ROCKER_ONLY = ("cam.swing", "cam.rocker_length", "cam.center_distance")
+
+
 def _rows(key: str, sec: Any, lang: str) -> list[tuple[str, str]]:
     if not isinstance(sec, dict):
         return [(key, _value(sec))]
@@ -183,6 +187,8 @@ def _rows(key: str, sec: Any, lang: str) -> list[tuple[str, str]]:
             if isinstance(node, dict):
                 ctx.update(node)
         plain = re.sub(r"\[\d+\]", "", f"{key}.{k}")
+        if plain in _ROCKER_ONLY and sec.get("follower") != "rocker":
+            continue                     # a rocker's default ('swing: auto') says nothing of another follower
         # a field given as a list may have a name of its own ('task.param.synthesis.points[]': path points)
         label = (isinstance(v, list) and _param(plain + "[]", lang)) or param_name(plain, lang)
         if key == "synthesis":          # a field named by the type ('rocker': a crank-rocker's or a slotted link)
