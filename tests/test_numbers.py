@@ -64,7 +64,7 @@ INVALID = [
     ("9**9**9", "input.number_expression"), ("9**9**9 rpm", "input.number_expression"),
     ("2*3", "input.number_expression"), ("1+2", "input.number_expression"), ("2^10", "input.number_expression"),
     ("3 (m)", "input.number_expression"), ("1.2*10^(3", "input.number_expression"),
-    ("216 kg m2", "input.number_unit_syntax"), ("3 m^2^3", "input.number_unit_syntax"),
+    ("216 kg m23", "input.number_unit_syntax"), ("3 m^2^3", "input.number_unit_syntax"),
     ("3 m**2**2", "input.number_unit_syntax"), ("3 m^99", "input.number_unit_syntax"),
     ("3 m/s/s", "input.number_unit_syntax"), ("5 \u043f\u043e\u043f\u0443\u0433\u0430\u0435\u0432", "input.number_unit_unknown"),
     ("abc", "input.number_not_number"), ("mm", "input.number_not_number"), ("5,", "input.number_not_number"),
@@ -233,7 +233,7 @@ def test_cyrillic_task_equals_the_latin_one():
 @pytest.mark.parametrize("value, frag", [
     ("\u22480,1 m", "begins with '\u2248'"), ("0,1 \u00b1 0,01 m", "not one number"),
     ("1,2,3", "more than one decimal mark"), ("1 23,4 mm", "grouped by spaces in threes"),
-    ("\u20130,1", "a dash is not a minus sign"), ("0,1 kg m2", "cannot read the unit"),
+    ("\u20130,1", "a dash is not a minus sign"), ("0,1 kg m23", "cannot read the unit"),
 ])
 def test_not_a_number_in_a_task_file_is_exit_2_naming_line_and_field(tmp_path, value, frag):
     f = tmp_path / "t.yaml"
@@ -284,7 +284,7 @@ def test_answers_read_as_students_write_them(text, path, value):
     ("\u22480,59", "input.number_prefix"), ("0,59 \u00b1 0,02", "input.number_plus_minus"),
     ("\u043e\u043a\u043e\u043b\u043e 0,6", "input.number_prefix"), ("1,2,3", "input.number_marks"),
     ("0.5.9", "input.number_marks"), ("1 23,4", "input.number_groups"), ("9**9**9", "input.number_expression"),
-    ("216 kg m2", "input.number_unit_syntax"), ("0,67 \u043a\u0433", "answers.wrong_unit"),
+    ("216 kg m23", "input.number_unit_syntax"), ("0,67 \u043a\u0433", "answers.wrong_unit"),
 ])
 def test_answers_that_are_not_numbers_give_the_reason(text, code):
     path = "flywheel.J" if "kg" in text else "kinematics[1].points.B.v"
@@ -472,3 +472,15 @@ def test_an_answer_to_a_path_of_unknown_unit_is_read_in_a_course_quantitys_unit(
     with pytest.raises(ValueError) as info:
         answer_value("5 MM", "positions.H")
     assert info.value.args[0].code == "answers.unit_not_course"
+
+
+@pytest.mark.parametrize("text, value, expression", [
+    ("0,08 \u043a\u0433\u00b7\u043c2", 0.08, "kg*m**2"), ("9,81 \u043c/\u04412", 9.81, "m/s**2"),
+    ("78,5 \u043c\u043c2", 78.5, "mm**2"), ("7800 \u043a\u0433/\u043c3", 7800.0, "kg/m**3"),
+    ("216 kg m2", 216.0, "kg*m**2")])
+def test_a_power_typed_as_a_plain_digit_after_the_unit(text, value, expression):
+    """'kg*m2', 'm/s2', 'mm2', 'kg/m3' as students type them (no caret, no superscript): a 2 or 3
+    right after a unit's name is its power (no unit's name ends in a digit); 'm23' is no unit."""
+    from tmm_cli.numbers import read
+    r = read(text)
+    assert (r.value, r.expression) == (value, expression)

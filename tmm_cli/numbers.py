@@ -53,8 +53,10 @@ _EXPONENT = re.compile(
     r"(?![0-9\u2070\u00b9\u00b2\u00b3\u2074-\u2079^*])")
 # a unit: names of letters (Latin, Cyrillic, micro), or the signs ° and %
 _NAME = re.compile(r"[A-Za-z\u00b5\u03bc\u0400-\u04ff]{1,16}\.?|\u00b0|%")
+# a power: ^2, **2, ^(-1), superscripts; and a bare 2 or 3 right after the name as students type
+# it ('\u043a\u0433\u00b7\u043c2', 'm/s2')
 _POWER = re.compile(r"(?:\^|\*\*)(?P<b>\(?)(?P<s>[-\u2212]?)(?P<d>[1-9])(?P<e>\)?)"
-                    r"|(?P<sup>\u207b?[\u00b9\u00b2\u00b3\u2074-\u2079])")
+                    r"|(?P<sup>\u207b?[\u00b9\u00b2\u00b3\u2074-\u2079])|(?P<bare>[23])(?![0-9])")
 _TIMES = re.compile(r"\s*[*\u00b7\u22c5]\s*|\s+(?=[^\s/])")
 _OVER = re.compile(r"\s*/\s*")
 _PER = re.compile(r"1\s*/\s*")
@@ -236,6 +238,8 @@ def parse_unit(u: str, s: str = "") -> tuple[tuple, tuple]:
                 if bool(p.group("b")) != bool(p.group("e")):
                     raise ValueError(Message("input.number_unit_syntax", text=s, unit=u))
                 power = int(p.group("d")) * (-1 if p.group("s") else 1)
+            elif p.group("bare") is not None:
+                power = int(p.group("bare"))
             else:
                 power = int(p.group("sup").translate(_SUP))
             pos = p.end()
