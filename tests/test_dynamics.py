@@ -517,3 +517,22 @@ def test_a_coefficient_of_fluctuation_outside_the_machines_range_is_told(delta, 
     c = solve_cycle(q, np.sin(q), np.ones(721), omega_m=10.0, delta=delta)
     assert any("coefficient of speed fluctuation" in str(w) for w in c.warnings) == told
     assert c.J_n["energy-mass"] == pytest.approx(2.0 / (100.0 * delta), rel=1e-4)
+
+
+def test_delta_written_as_its_inverse_is_told_so(tmp_path):
+    """`delta: 18` (meant 1/18) was "Input should be less than 1": now exit 2 naming the line and
+    the field, with the fraction meant; the schema still says below 1."""
+    import re
+    from pathlib import Path
+
+    from typer.testing import CliRunner
+
+    from tmm_cli.cli import app
+    src = (Path(__file__).resolve().parents[1] / "tasks" / "forging_sixbar.yaml").read_text(encoding="utf-8")
+    bad = tmp_path / "t.yaml"
+    bad.write_text(src.replace("  delta: 1/18", "  delta: 18"), encoding="utf-8")
+    res = CliRunner().invoke(app, ["validate", str(bad)])
+    assert res.exit_code == 2 and "did you mean 1/18?" in res.output and "Traceback" not in res.output
+    assert re.search(r"t\.yaml:\d+:\d+: field 'flywheel\.delta'", res.output)
+    res = CliRunner().invoke(app, ["schema"])
+    assert '"exclusiveMaximum": 1' in res.output

@@ -316,6 +316,8 @@ ENGLISH = [
     ('input.table_cell_long', {'limit': 131072}, 'a cell longer than 131072 characters'),
     ('input.table_rows_many', {'limit': 10000}, 'more than 10000 rows'),
     ('input.table_large', {'size': 20000000, 'limit': 16777216}, 'a table of 20000000 bytes: at most 16777216'),
+    ('input.delta_inverse', {'got': 20.0, 'inverse': '1/20'},
+     "the coefficient of speed fluctuation is a fraction below 1, got 20: did you mean 1/20?"),
     ('input.tol_not_number', {'what': 'plain', 'got': '-1'},
      'expected a non-negative number (relative tolerance), got -1'),
     ('input.tol_section_not_mapping', {'got': '0.05'},

@@ -299,8 +299,15 @@ def _default_shape() -> ShapeSpec:
     return ShapeSpec.model_construct()
 
 
+def _delta_below_one(v: float) -> float:
+    """delta is a fraction below 1: `delta: 20` meant 1/20 (said so; pydantic's 'less than 1' did not)."""
+    if v >= 1:
+        raise ValueError(Message("input.delta_inverse", got=v, inverse=f"1/{v:g}"))
+    return v
+
+
 class FlywheelSection(_Model):
-    delta: Ratio = Field(..., gt=0, lt=1)
+    delta: Annotated[Ratio, AfterValidator(_delta_below_one)] = Field(..., gt=0, json_schema_extra={"exclusiveMaximum": 1})
     constant: Literal["driving", "resistance"] = "driving"
     method: Literal["energy-mass", "merzalov", "exact"] = "energy-mass"
     resolution: int = Field(360, ge=12, le=100000)
