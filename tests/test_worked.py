@@ -494,3 +494,27 @@ def test_position_without_kinetostatics_says_so(tmp_path):
     sections.available()
     html = worked.build(_context(res, task, tmp_path, "en"))
     assert "was not computed at this position" in html and 'data-k="sv:B"' in html and "Mb" not in html
+
+
+@pytest.mark.parametrize("name", ["engine_slider_crank", "crank_rocker_fourbar"])
+def test_every_computed_load_and_component_carries_its_unit(tmp_path, name):
+    """'G2 = m2 g = 6.000 * 9.810 = 58.86;' ended without N (and the inertia forces, their
+    couples and the relative accelerations' components without theirs):
+    every such result in the section (MathML and the print version) is followed by its unit."""
+    from tmm_cli.pipeline import run as run_pipeline
+    from tmm_cli.report import _context, sections
+    from tmm_cli.report.sections import worked
+    from tmm_cli.task import load_task
+    task = load_task(ROOT / "tasks" / f"{name}.yaml")
+    res = run_pipeline(task, kinematics_curve=0)
+    sections.available()
+    html = worked.build(_context(res, task, tmp_path, "en"))
+    want = {"F": "N", "M": "N·m", "an": "m/s²", "at": "m/s²"}
+    found = re.findall(r'<mn[^>]*data-k="((F|M|an|at):[^"]+)">[^<]*</mn>(<mspace[^>]*></mspace><mtext class="unit">'
+                       r'([^<]*)</mtext>)?', html)
+    assert len(found) > 5
+    units: dict = {}                  # a value is written with its unit where it is found (the
+    for k, kind, _, u in found:       # line that computes it), and bare where a later one uses it
+        units.setdefault(k, set()).add(u)
+    bad = [(k, u) for k, u in units.items() if want[k.split(":")[0]] not in u]
+    assert not bad, bad[:8]

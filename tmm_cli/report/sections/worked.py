@@ -570,7 +570,7 @@ class _Writer:
             vq = float(np.hypot(*self.v(q)))
             self.f(qty("v", q, base), mo("="), self.omega_sym(l), mo("·"), qty("l", q, base), mo("="),
                    num(w, f"w:{name}"), mo("·"), self.lval(q, base), mo("="), num(vr, f"vr:{q}:{base}"),
-                   mo(";"), qty("v", q), mo("="), seg("p", plan_label(q)), mo("·"), sb("μ", "v"), mo("="),
+                   unit(self.u["m/s"]), mo(";"), qty("v", q), mo("="), seg("p", plan_label(q)), mo("·"), sb("μ", "v"), mo("="),
                    num.mm(vq / self.mu_v, f"sv:{q}"), mo("·"), num.exact(self.mu_v, "mu_v"), mo("="),
                    num(vq, f"v:{q}"), unit(self.u["m/s"]))
 
@@ -589,7 +589,7 @@ class _Writer:
                qty("a", A, sup="n"), mo("="), sp(self.omega_sym(dl.index), "2"), mo("·"), qty("l", O, A), mo("="),
                sp(num(w1, f"w:{dl.name}"), "2"), mo("·"), self.lval(O, A), mo("="), num(an, f"an:{A}:{O}"),
                unit(self.u["m/s2"]), mo(";"), qty("a", A, sup="τ"), mo("="), sb("ε", str(dl.index)), mo("·"),
-               qty("l", O, A), mo("="), num(at, f"at:{A}:{O}"))
+               qty("l", O, A), mo("="), num(at, f"at:{A}:{O}"), unit(self.u["m/s2"]))
         self.p(self.t("worked.scale_a"))
         self.f(sb("μ", "a"), mo("="), frac(qty("a", A), seg("π", plan_label(A))), mo("="),
                frac(num(aA, f"a:{A}"), num.mm(aA / self.mu_a, f"sa:{A}")), mo("="),
@@ -646,9 +646,10 @@ class _Writer:
             self.f(vq("a", q), mo("="), vq("a", base), mo("+"), vq("a", q, base, sup="n"),
                    mo("+"), vq("a", q, base, sup="τ"), mo(";"), qty("a", q, base, sup="n"), mo("="),
                    sp(num(w, f"w:{name}"), "2"), mo("·"), self.lval(q, base), mo("="),
-                   num(w * w * L, f"an:{q}:{base}"), mo(";"), qty("a", q, base, sup="τ"), mo("="),
-                   num(e, f"e:{name}"), mo("·"), self.lval(q, base), mo("="), num(abs(e) * L, f"at:{q}:{base}"),
-                   mo(";"), qty("a", q), mo("="), seg("π", plan_label(q)), mo("·"), sb("μ", "a"), mo("="),
+                   num(w * w * L, f"an:{q}:{base}"), unit(self.u["m/s2"]), mo(";"), qty("a", q, base, sup="τ"),
+                   mo("="), num(e, f"e:{name}"), mo("·"), self.lval(q, base), mo("="),
+                   num(abs(e) * L, f"at:{q}:{base}"), unit(self.u["m/s2"]), mo(";"), qty("a", q), mo("="),
+                   seg("π", plan_label(q)), mo("·"), sb("μ", "a"), mo("="),
                    num.mm(aq / self.mu_a, f"sa:{q}"), mo("·"), num.exact(self.mu_a, "mu_a"), mo("="),
                    num(aq, f"a:{q}"), unit(self.u["m/s2"]))
 
@@ -714,7 +715,7 @@ class _Writer:
                 if f["kind"] == "gravity" and mass and Fm > 0:
                     items += [self.fsym(f["name"]), mo("="), sb("m", str(l)), mo("·"), mi("g"), mo("="),
                               num(mass, f"m:{name}"), mo("·"), num(9.81, "g"), mo("="),
-                              num(Fm, f"F:{f['name']}"), mo(";")]
+                              num(Fm, f"F:{f['name']}"), unit(self.u["N"]), mo(";")]
                 elif f["kind"] == "inertia" and mass and Fm > 0 and steady and not moved:
                     s = f"S{l}"
                     aS = float(np.hypot(*self.a(s))) if s in self.pts else None
@@ -722,18 +723,19 @@ class _Writer:
                         continue
                     items += [self.fsym(f["name"]), mo("="), sb("m", str(l)), mo("·"), qty("a", s), mo("="),
                               num(mass, f"m:{name}"), mo("·"), num(aS, f"a:{s}"), mo("="),
-                              num(Fm, f"F:{f['name']}"), mo(";")]
+                              num(Fm, f"F:{f['name']}"), unit(self.u["N"]), mo(";")]
                 elif Fm > 0:
-                    items += [self.fsym(f["name"]), mo("="), num(Fm, f"F:{f['name']}"), mo(";")]
+                    items += [self.fsym(f["name"]), mo("="), num(Fm, f"F:{f['name']}"), unit(self.u["N"]), mo(";")]
             for c in ks.get("couples", []):
                 if c["link"] != name or not c.get("M"):
                     continue
                 if c["kind"] == "inertia" and J and steady:
                     items += [self.fsym(c["name"]), mo("="), sb("J", f"S{l}"), mo("·"), sb("ε", str(l)), mo("="),
                               num(J, f"J:{name}"), mo("·"), num(self.e(name), f"e:{name}"), mo("="),
-                              num(c["M"], f"M:{c['name']}"), mo(";")]
+                              num(c["M"], f"M:{c['name']}"), unit(self.u["Nm"]), mo(";")]
                 else:
-                    items += [self.fsym(c["name"]), mo("="), num(c["M"], f"M:{c['name']}"), mo(";")]
+                    items += [self.fsym(c["name"]), mo("="), num(c["M"], f"M:{c['name']}"), unit(self.u["Nm"]),
+                              mo(";")]
             if items:
                 self.f(*items[:-1])
 
