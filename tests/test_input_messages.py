@@ -266,3 +266,16 @@ def test_the_decimal_point_asked_for_is_a_point(code, lang):
     from tmm_cli.messages import render
     text = render(code, {"fixed": "0.35", "given": "0,35"}, lang)
     assert "0.35" in text and "0,35" in text
+
+
+def test_a_slider_cranks_crank_meant_in_millimetres_is_named(tmp_path):
+    """A slider-crank has two lengths: `length: 80` for the crank (meant 80 mm) against a 0.32 m
+    rod blamed the rod ('link rod is too short'); one other length is enough to tell the 80
+    (250 times it) from the rod, and the message names the crank."""
+    text = ("schema: tmm/1\ntitle: t\nmechanism:\n  ground: {O: [0, 0]}\n  links:\n"
+            "    crank: {points: [O, A], length: 80}\n    rod: {points: [A, B], length: 0.32}\n"
+            "    slider: {slider: B, guide: {through: O, angle: 0}}\ndrive: {link: crank, speed: 150 rpm}\n")
+    res, f = _validate(tmp_path, text)
+    assert res.exit_code == 2, res.output
+    assert "mechanism.links.crank.length" in res.output and "is 250 times the other lengths" in res.output
+    assert "'80 mm'" in res.output and "Traceback" not in res.output

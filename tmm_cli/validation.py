@@ -88,8 +88,9 @@ MM_RATIO = (50.0, 5000.0)     # a length this many times the others was meant in
 
 def millimetre_suspects(task) -> list[tuple[tuple, str]]:
     """(field path, message) for each length of the linkage (a bar's length, a ground
-    point's distance from the crank's pivot) that is 100-1000 times the others, i.e.
-    probably meant in millimetres and given as a plain number in metres."""
+    point's distance from the crank's pivot) that is 50-5000 times the others (their median;
+    one other is enough: a slider-crank's crank and rod), i.e. probably meant in millimetres
+    and given as a plain number in metres."""
     import statistics
 
     sec = task.mechanism
@@ -107,7 +108,7 @@ def millimetre_suspects(task) -> list[tuple[tuple, str]]:
     out = []
     for k, (path, what, v) in enumerate(items):
         others = [w for j, (_, _, w) in enumerate(items) if j != k]
-        if len(others) < 2:
+        if not others:                       # a slider-crank has two lengths: either may be the one
             continue
         ratio = v / statistics.median(others)
         if MM_RATIO[0] <= ratio <= MM_RATIO[1]:
