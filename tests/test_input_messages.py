@@ -279,3 +279,17 @@ def test_a_slider_cranks_crank_meant_in_millimetres_is_named(tmp_path):
     assert res.exit_code == 2, res.output
     assert "mechanism.links.crank.length" in res.output and "is 250 times the other lengths" in res.output
     assert "'80 mm'" in res.output and "Traceback" not in res.output
+
+
+@pytest.mark.parametrize("law, meant", [("linear", "constant_velocity"), ("cosin", "cosine"), ("Sine", "sine"),
+                                        ("harmonic", "cosine")])
+def test_a_choice_misspelt_or_by_the_courses_other_name_is_suggested(tmp_path, law, meant):
+    """'linear' (the course's name of the constant-velocity law) and 'cosin' listed the seven laws
+    with no hint: the choice meant is suggested; nothing is suggested for a word near none."""
+    from pathlib import Path
+    src = Path(__file__).resolve().parents[1] / "tasks" / "cam_knife.yaml"
+    text = src.read_text(encoding="utf-8").replace("return: sine", f"return: {law}")
+    res, f = _validate(tmp_path, text)
+    assert res.exit_code == 2 and f"did you mean '{meant}'?" in res.output, res.output
+    res, f = _validate(tmp_path, text.replace(f"return: {law}", "return: zigzag"))
+    assert res.exit_code == 2 and "did you mean" not in res.output

@@ -650,6 +650,8 @@ ENGLISH = [
     ('input.missing', {}, 'required field is missing'),
     ('input.literal', {'expected': ["'working'", "'idle'", "'both'"], 'got': "'work'"},
      "Input should be 'working', 'idle' or 'both'; got 'work'"),
+    ('input.literal_hint', {'expected': ["'sine'", "'cosine'"], 'got': "'linear'", 'hint': "'cosine'"},
+     "Input should be 'sine' or 'cosine'; got 'linear'; did you mean 'cosine'?"),
     ('input.int_parsing', {}, 'Input should be a valid integer, unable to parse string as an integer'),
     ('input.float_parsing', {}, 'Input should be a valid number, unable to parse string as a number'),
     ('input.bool_parsing', {}, 'Input should be a valid boolean, unable to interpret input'),

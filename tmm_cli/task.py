@@ -271,6 +271,9 @@ def _issue_from_error(err: dict, marks: dict) -> tuple[str, int | None, int | No
         msg = "required field is missing"
     elif err["type"] == "literal_error":
         msg = f"{msg}; got {err.get('input')!r}"
+        hint = _literal_hint(err)
+        if hint:
+            msg = f"{msg}; did you mean {hint!r}?"
     msg = _coded_issue(err, cause, msg)
     path = tuple(clean)
     if path and path[0] == "schema_":
@@ -313,10 +316,33 @@ def _coded_issue(err: dict, cause, msg: str) -> str:
         coded = Message("input.missing")
     elif kind == "literal_error":
         expected = str(ctx.get("expected", ""))
-        coded = Message("input.literal", expected=re.split(r", | or ", expected), got=repr(err.get("input")))
+        hint = _literal_hint(err)
+        coded = Message("input.literal_hint" if hint else "input.literal", expected=re.split(r", | or ", expected),
+                        got=repr(err.get("input")), **({"hint": repr(hint)} if hint else {}))
     elif kind in _PYDANTIC_CODES and all(k in ctx for k in _PYDANTIC_CODES[kind]):
         coded = Message(f"input.{kind}", **{k: _ctx_text(ctx[k]) for k in _PYDANTIC_CODES[kind]})
     return coded if coded is not None and coded == msg else msg
+
+
+# the course's other names of a choice (a motion law's, a follower's): what a student writes
+_LITERAL_SYNONYMS = {"linear": "constant_velocity", "uniform": "constant_velocity", "harmonic": "cosine",
+                     "cycloidal": "sine", "polynomial": "poly345", "roller": "translating", "oscillating": "rocker",
+                     "swinging": "rocker", "flat_faced": "flat", "knife_edge": "knife"}
+
+
+def _literal_hint(err: dict) -> str | None:
+    """The choice meant by a value that is none of a Literal's (a misspelling, or the course's
+    other name: 'linear' is the constant-velocity law), or None."""
+    import difflib
+    got, expected = err.get("input"), str((err.get("ctx") or {}).get("expected", ""))
+    if not isinstance(got, str):
+        return None
+    choices = [c.strip("'\"") for c in re.split(r", | or ", expected) if c]
+    word = got.strip().lower().replace("-", "_").replace(" ", "_")
+    if _LITERAL_SYNONYMS.get(word) in choices:
+        return _LITERAL_SYNONYMS[word]
+    near = difflib.get_close_matches(word, choices, n=1, cutoff=0.7)
+    return near[0] if near and near[0] != got else None
 
 
 def _ctx_text(v) -> str:
