@@ -760,7 +760,8 @@ ENGLISH = [
     ('input.tab', {}, 'use spaces for indentation: this line is indented with a tab, which YAML does not allow'),
     ('input.duplicate_key', {'key': 'output', 'first': 20}, "duplicate key 'output' (first given on line 20)"),
     ('input.decimal_comma', {'fixed': '0.35', 'given': '0,35'},
-     "use a decimal point: 0.35 (YAML reads '0,35' as two numbers or as text)"),
+     "use a decimal point: 0.35, or quote the value: '0,35' (YAML reads 0,35 inside [...] or {...} as two numbers or "
+     "as text)"),
     ('input.decimal_comma_value', {'fixed': '2.1', 'given': '2,1'},
      "'2,1' has a decimal comma, and YAML splits a number at the comma inside [...] or {...}: write 2.1, "
      "or quote the value"),
