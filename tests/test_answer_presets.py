@@ -198,7 +198,7 @@ def test_a_name_means_its_quantity_only_in_its_own_section():
                  "graphical_error.plans.positions[1].points.A.v", "flywheel.J_n_methods.energy-mass",
                  "kinematics_curve.s[3]", "balancing.counterweights.crank.r"):
         assert key_notation(path) is None, path
-    assert unit_of("positions.H") == "m or deg" and unit_of("gears.r[1]") == "m" and unit_of("cam.a[4]") == "m/s^2"
+    assert unit_of("positions.H") == "m or deg" and unit_of("gears.r[1]") == "m" and unit_of("cam.a[4]") is None
     assert key_notation("planetary.candidates[2].z.z1")[1] == "" and unit_of("kinematics[1].points.B.v") == "m/s"
     assert answer_value("120 \u043c\u043c", "gears.a") == pytest.approx(0.12)
 
@@ -238,3 +238,14 @@ def test_presets_ask_nothing_that_is_zero_by_construction_or_given(tmp_path):
     assert "kinematics[1].points.B.v" in got and "kinematics[1].links.rod.epsilon" in got and "flywheel.J" in got
     got = expand("kinematics", run(load_task(TASKS / "shaper_slotted_lever.yaml")))
     assert "kinematics[1].links.block.omega" in got and not [p for p in got if ".links.ram." in p]
+
+
+def test_a_rocker_followers_curves_take_their_own_unit(tmp_path):
+    """cam.v and cam.a of a rocker follower (rad/s, rad/s^2), and kinematics_curve.v and .a of a
+    rocker output, are angular: an answer '3.21 rad/s' was refused as 'does not convert to m/s'
+    once every path ending in v took m/s; they take the unit written, as before."""
+    from tmm_cli.check import answer_value
+    assert answer_value("3.21 rad/s", "cam.v[10]") == pytest.approx(3.21)
+    assert answer_value("510 rad/s^2", "cam.a[10]") == pytest.approx(510.0)
+    assert answer_value("2 rad/s", "kinematics_curve.v[100]") == pytest.approx(2.0)
+    assert answer_value("1200 mm/s", "kinematics[1].points.B.v") == pytest.approx(1.2)

@@ -536,3 +536,17 @@ def test_delta_written_as_its_inverse_is_told_so(tmp_path):
     assert re.search(r"t\.yaml:\d+:\d+: field 'flywheel\.delta'", res.output)
     res = CliRunner().invoke(app, ["schema"])
     assert '"exclusiveMaximum": 1' in res.output
+
+
+def test_delta_of_one_is_below_one_without_a_hint(tmp_path):
+    """`delta: 1` has no inverse to suggest ('did you mean 1/1?' was as invalid)."""
+    from pathlib import Path
+
+    from typer.testing import CliRunner
+
+    from tmm_cli.cli import app
+    src = (Path(__file__).resolve().parents[1] / "tasks" / "forging_sixbar.yaml").read_text(encoding="utf-8")
+    bad = tmp_path / "t.yaml"
+    bad.write_text(src.replace("  delta: 1/18", "  delta: 1"), encoding="utf-8")
+    res = CliRunner().invoke(app, ["validate", str(bad)])
+    assert res.exit_code == 2 and "less than 1" in res.output and "did you mean" not in res.output

@@ -484,3 +484,13 @@ def test_a_power_typed_as_a_plain_digit_after_the_unit(text, value, expression):
     from tmm_cli.numbers import read
     r = read(text)
     assert (r.value, r.expression) == (value, expression)
+
+
+@pytest.mark.parametrize("text", ["30\u00b02", "40 \u0433\u0440\u0430\u04342", "5 %2", "5 rpm2", "5 Hz2"])
+def test_a_bare_power_follows_a_length_or_the_second_only(text):
+    """'30°2' (a minute mark left off) was read as a squared degree, 0.52 deg, silently (a 3 m
+    cam): a bare 2 or 3 is a power after a length or the second only; elsewhere the unit is
+    refused as before."""
+    from tmm_cli.numbers import read
+    with pytest.raises(ValueError):
+        read(text)

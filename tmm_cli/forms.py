@@ -160,7 +160,10 @@ def _by_path(path: str) -> tuple[str, str, str, str] | None:
 # planetary.r.z1 a radius
 _FLYWHEEL = r"^flywheel\."
 _HOME: dict[str, str] = {
-    "a": r"^(?!gears\.|dof2\.parameters\.|flywheel\.)",
+    # a rocker follower's and a rocker output's curves are angular (rad/s, rad/s^2): cam.v, cam.a and
+    # kinematics_curve.v, .a take the unit of what they are, so no notation there
+    "v": r"^(?!cam\.|kinematics_curve\.)",
+    "a": r"^(?!gears\.|dof2\.parameters\.|flywheel\.|cam\.|kinematics_curve\.)",
     **dict.fromkeys(("J", "mass", "diameter", "width", "delta", "omega_max", "omega_min", "M_constant"), _FLYWHEEL),
     **dict.fromkeys(("H", "K", "theta"), r"^(positions|synthesis)\."),
     "phi0": r"^(positions|flywheel)\.",

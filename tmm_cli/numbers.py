@@ -57,6 +57,8 @@ _NAME = re.compile(r"[A-Za-z\u00b5\u03bc\u0400-\u04ff]{1,16}\.?|\u00b0|%")
 # it ('\u043a\u0433\u00b7\u043c2', 'm/s2')
 _POWER = re.compile(r"(?:\^|\*\*)(?P<b>\(?)(?P<s>[-\u2212]?)(?P<d>[1-9])(?P<e>\)?)"
                     r"|(?P<sup>\u207b?[\u00b9\u00b2\u00b3\u2074-\u2079])|(?P<bare>[23])(?![0-9])")
+# the units a bare 2 or 3 may follow (an area, a volume, an acceleration's s^2): lengths and the second
+_BARE_POWER = frozenset({"m", "mm", "cm", "dm", "km", "um", "s"})
 _TIMES = re.compile(r"\s*[*\u00b7\u22c5]\s*|\s+(?=[^\s/])")
 _OVER = re.compile(r"\s*/\s*")
 _PER = re.compile(r"1\s*/\s*")
@@ -231,7 +233,7 @@ def parse_unit(u: str, s: str = "") -> tuple[tuple, tuple]:
         if m is None:
             raise ValueError(Message("input.number_unit_syntax", text=s, unit=u))
         name, pos = m.group(0), m.end()
-        power = 1
+        power, bare = 1, False
         p = _POWER.match(u, pos)
         if p is not None:
             if p.group("d") is not None:
@@ -240,10 +242,13 @@ def parse_unit(u: str, s: str = "") -> tuple[tuple, tuple]:
                 power = int(p.group("d")) * (-1 if p.group("s") else 1)
             elif p.group("bare") is not None:
                 power = int(p.group("bare"))
+                bare = True
             else:
                 power = int(p.group("sup").translate(_SUP))
             pos = p.end()
         for latin, k in _latin(name, s):
+            if bare and latin not in _BARE_POWER:     # '30°2' is no squared degree (a minute mark left
+                raise ValueError(Message("input.number_unit_syntax", text=s, unit=u))   # off): refused
             if latin == _GRAD[0]:
                 latin = _GRAD[1]
                 if "input.reading_grad" not in notes:

@@ -301,8 +301,10 @@ def _default_shape() -> ShapeSpec:
 
 def _delta_below_one(v: float) -> float:
     """delta is a fraction below 1: `delta: 20` meant 1/20 (said so; pydantic's 'less than 1' did not)."""
-    if v >= 1:
+    if v > 1:
         raise ValueError(Message("input.delta_inverse", got=v, inverse=f"1/{v:g}"))
+    if v == 1:
+        raise ValueError(Message("input.less_than", lt="1"))
     return v
 
 
