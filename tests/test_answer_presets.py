@@ -238,6 +238,10 @@ def test_presets_ask_nothing_that_is_zero_by_construction_or_given(tmp_path):
     assert "kinematics[1].points.B.v" in got and "kinematics[1].links.rod.epsilon" in got and "flywheel.J" in got
     got = expand("kinematics", run(load_task(TASKS / "shaper_slotted_lever.yaml")))
     assert "kinematics[1].links.block.omega" in got and not [p for p in got if ".links.ram." in p]
+    # the Scotch yoke's block and yoke translate (omega 0 at every position); its crank turns at a
+    # constant speed (epsilon 0): none asked
+    got = expand("kinematics", run(load_task(TASKS / "scotch_yoke_pump.yaml")))
+    assert [p for p in got if ".links." in p] == ["kinematics[1].links.crank.omega"]
 
 
 def test_a_rocker_followers_curves_take_their_own_unit(tmp_path):

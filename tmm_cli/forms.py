@@ -288,22 +288,19 @@ def expand(quantities: str | list[str], results: dict, *, strict: bool = True) -
     return out
 
 
-_KIN_POINT = re.compile(r"^kinematics\[\d+\]\.points\.([^.]+)\.")
-_KIN_LINK = re.compile(r"^kinematics\[\d+\]\.links\.([^.]+)\.(omega|epsilon)$")
+_KIN_PATH = re.compile(r"^kinematics\[\d+\]\.(points|links)\.([^.]+)\.([^.\[]+)$")
 
 
 def _zero_by_construction(path: str, results: dict) -> bool:
-    """A preset's quantity that is 0 whatever the variant -- a fixed pivot's velocity, a slider's
-    angular velocity on a fixed guide -- and asks a student nothing."""
-    st = results.get("structure") or {}
-    m = _KIN_POINT.match(path)
-    if m:
-        return m.group(1) in (st.get("ground") or {})
-    m = _KIN_LINK.match(path)
-    if m:
-        return any(lk.get("name") == m.group(1) and lk.get("kind") == "slider"
-                   and (lk.get("guide") or {}).get("link") is None for lk in st.get("links") or ())
-    return False
+    """A preset's position quantity that is 0 at every position of the task -- a fixed pivot's
+    velocity, the angular velocity of a slider on a fixed guide or of a Scotch yoke's block -- and
+    asks a student nothing."""
+    m = _KIN_PATH.match(path)
+    if not m:
+        return False
+    kind, name, key = m.groups()
+    values = [((e.get(kind) or {}).get(name) or {}).get(key) for e in results.get("kinematics") or ()]
+    return bool(values) and all(v in (0, None) for v in values) and any(v == 0 for v in values)
 
 
 GROUP_MIN = 13     # a list of more numbers than the 12 positions is a per-position (per-degree) array
