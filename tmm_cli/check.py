@@ -469,24 +469,19 @@ def unused_tolerance_keys(keys, results: dict) -> list[Message]:
     `default` that is neither a numeric result path of ``results`` nor a prefix of one, in a
     section the results have: a typo (`differential.sped`) that would leave its paths at the
     default silently (a key of a section the task has not, `kinematics` for a gear pair, is
-    another task's)."""
+    another task's). Only a key's own section is walked (a batch calls this per variant)."""
     import difflib
-    leaves = [q for q, v in leaf_paths(results) if isinstance(v, (int, float)) and not isinstance(v, bool)]
-    known = set()
-    for q in leaves:
-        for m in re.finditer(r"[.\[]", q):
-            known.add(q[:m.start()])
-        known.add(q)
     out = []
     for k in sorted(set(map(str, keys)) - {"default"}):
-        if k in known:
-            continue
         sec = k.split(".")[0].split("[")[0]
         if sec not in results:               # a section of other tasks (a group's tolerance file)
             continue
-        near = sorted(c for c in known if c.split(".")[0].split("[")[0] == sec and "[" not in c) or \
-            sorted(c for c in known if "[" not in c)
-        hit = difflib.get_close_matches(k, near, n=1, cutoff=0.6)
+        leaves = [q for q, v in leaf_paths({sec: results[sec]})
+                  if isinstance(v, (int, float)) and not isinstance(v, bool)]
+        if any(q == k or q.startswith(k + ".") or q.startswith(k + "[") for q in leaves):
+            continue
+        near = {q[:m.start()] for q in leaves for m in re.finditer(r"[.\[]", q)} | set(leaves)
+        hit = difflib.get_close_matches(k, sorted(c for c in near if "[" not in c), n=1, cutoff=0.6)
         hint = Message("answers.did_you_mean", path=hit[0]) if hit else Message("answers.no_such_path")
         out.append(Message("answers.tol_key_unused", key=k, hint=hint))
     return out
