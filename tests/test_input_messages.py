@@ -277,7 +277,7 @@ def test_a_slider_cranks_crank_meant_in_millimetres_is_named(tmp_path):
             "    slider: {slider: B, guide: {through: O, angle: 0}}\ndrive: {link: crank, speed: 150 rpm}\n")
     res, f = _validate(tmp_path, text)
     assert res.exit_code == 2, res.output
-    assert "mechanism.links.crank.length" in res.output and "is 250 times the other lengths" in res.output
+    assert "mechanism.links.crank.length" in res.output and "is 250 times the other length (0.32 m)" in res.output
     assert "'80 mm'" in res.output and "Traceback" not in res.output
 
 

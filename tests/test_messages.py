@@ -451,6 +451,8 @@ ENGLISH = [
      'ground point O1 (at 620 m from O)'),
     ('input.mm_suspect', {'what': {'code': 'input.mm_link', 'params': {'link': 'rod'}, 'text': "the length of 'rod'"}, 'value': 350.0, 'ratio': 1000.4, 'lo': 0.08, 'hi': 0.62},
      "the length of 'rod', 350 m, is 1000 times the other lengths (0.08..0.62 m): probably meant in millimetres (write '350 mm')"),
+    ('input.mm_suspect_one', {'what': 'the crank', 'value': 80.0, 'ratio': 250.0, 'other': 0.32},
+     "the crank, 80 m, is 250 times the other length (0.32 m): probably meant in millimetres (write '80 mm')"),
     ('input.mm_no_assembly', {'suspect': {'code': 'text', 'params': {'text': 'X'}, 'text': 'X'}, 'reason': {'code': 'kinematics.fail.never', 'params': {'group': 'II(2,3)', 'links': ['rod', 'ram']}, 'text': 'x'}},
      'X; the linkage does not assemble: group II(2,3) (links rod, ram) does not assemble at any crank angle'),
     ('input.impossible', {'reason': {'code': 'kinematics.fail.never', 'params': {'group': 'II(2,3)', 'links': ['rod', 'ram']}, 'text': 'x'}, 'links': ['rod', 'ram']},

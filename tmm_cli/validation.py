@@ -112,7 +112,9 @@ def millimetre_suspects(task) -> list[tuple[tuple, str]]:
             continue
         ratio = v / statistics.median(others)
         if MM_RATIO[0] <= ratio <= MM_RATIO[1]:
-            out.append((path, Message("input.mm_suspect", what=what, value=v, ratio=ratio, lo=min(others), hi=max(others))))
+            out.append((path, Message("input.mm_suspect", what=what, value=v, ratio=ratio, lo=min(others),
+                                      hi=max(others)) if len(others) > 1 else
+                        Message("input.mm_suspect_one", what=what, value=v, ratio=ratio, other=others[0])))
     return out
 
 
