@@ -212,8 +212,8 @@ def test_study_page_numbers_names_and_units_in_the_language(lang):
     sec = study_page.I18N[lang]
     # a rocker's stroke is an angle; M_b a moment; J_n in kg·m²; the ratio's deviation in percent
     assert f"{sec['study.col.stroke']} = 39,99999342°" in text
-    assert f"{sec['study.col.v_max']} = 5,914371513 {unit('rad/s', lang)}" in text
-    assert f"{sec['study.col.a_max']} = 99,5986613 {unit('rad/s^2', lang)}" in text
+    assert f"{sec['study.col.v_max_rocker']} = 5,914371513 {unit('rad/s', lang)}" in text
+    assert f"{sec['study.col.a_max_rocker']} = 99,5986613 {unit('rad/s^2', lang)}" in text
     assert f"{sec['study.col.R_max']} = 17645,84958 {unit('N', lang)}" in text
     assert f"{unit('N*m', lang)}" in text and "кг·м²" in text
     html = study_page.html_section(st, lang=lang)
@@ -236,3 +236,22 @@ def test_study_records_the_units_kind():
         assert study.study_curves(linkage, repeat=1)["output"] == output
     task = tmm_cli.load_task("tasks/engine_slider_crank.yaml")
     assert study.study_kinetostatics(task, build(task), repeat=1)["balancing"] == "moment"
+
+
+def test_a_rocker_outputs_curves_are_named_omega_and_epsilon(tmp_path):
+    """A rocker output's curves are angular (rad/s, rad/s^2): study.html named them v and a with
+    those units; now omega and epsilon (a slider's stay v and a)."""
+    import html as _html
+    import re as _re
+    from pathlib import Path
+
+    from typer.testing import CliRunner
+
+    from tmm_cli.cli import app
+    root = Path(__file__).resolve().parents[1] / "tasks"
+    for name, want, not_want in (("crank_rocker_fourbar", "largest |\u03c9| =", "largest |v| ="),
+                                 ("engine_slider_crank", "largest |v| =", "largest |\u03c9| =")):
+        res = CliRunner().invoke(app, ["study", str(root / f"{name}.yaml"), "-o", str(tmp_path / name)])
+        assert res.exit_code == 0, res.output
+        text = _html.unescape(_re.sub(r"<[^>]+>", "", (tmp_path / name / "study.html").read_text(encoding="utf-8")))
+        assert want in text and not_want not in text, name

@@ -190,17 +190,22 @@ def html_section(study: dict, trapezoid: dict | None = None, lang: str = "en") -
     def t(key, **kw):
         return i18n.translate(f"study.{key}", lang, **kw)
 
+    def name_of(k, d):
+        """The catalogue's name of ``k``; a rocker output's own where it has one (omega, not v)."""
+        for key in ((f"study.col.{k}_rocker",) if (d or {}).get("output") == "rocker" else ()) + (f"study.col.{k}",):
+            if key in i18n.STRINGS["en"]:
+                return i18n.translate(key, lang)
+        return k
+
     def col(k, d=None):
         """The name of a setting or value in ``lang`` (the catalogue's), its unit after a comma."""
-        key = f"study.col.{k}"
-        name = i18n.translate(key, lang) if key in i18n.STRINGS["en"] else k
+        name = name_of(k, d)
         u = _unit(d or {}, k, lang)
         return f"{name}, {u}" if u else name
 
     def value(d, k, v):
         """'name = value unit' of a reference value (an angle's degree sign without a space)."""
-        key = f"study.col.{k}"
-        name = i18n.translate(key, lang) if key in i18n.STRINGS["en"] else k
+        name = name_of(k, d)
         u = _unit(d, k, lang)
         return f"{name} = {_fmt(v, k, lang)}" + ("" if not u else u if u == "°" else f" {u}")
 
