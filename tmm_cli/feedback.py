@@ -30,7 +30,7 @@ def step_for(path: str, lang: str) -> str:
     return step + (f"; {TEXT[lang]['depends']}: {dep}" if dep else "")
 
 
-def _num(x, lang: str = "en") -> str:
+def _num(x, lang: str = "en", fmt: str = ".5g") -> str:
     """A value of the page in ``lang``'s writing (ru, uk: 0,25 and 8,9·10⁻¹⁶; numfmt)."""
     if x is None:
         return "–"
@@ -38,18 +38,18 @@ def _num(x, lang: str = "en") -> str:
         v = float(x)
     except (TypeError, ValueError):
         return str(x)
-    return num(v, ".5g", lang)
+    return num(v, fmt, lang)
 
 
 def _q(x, unit: str, lang: str = "en", fmt: str = ".5g") -> str:
     """A value with its unit: '16,36°' (the degree sign closed up, as printed), '0,25 m', '12'."""
-    text = "\u2013" if x is None else num(float(x), fmt, lang)
+    text = _num(x, lang, fmt)
     return f"{text}{unit}" if unit == "\u00b0" else f"{text} {unit}".rstrip()
 
 
 def _pct(share, lang: str) -> str:
     """A share as percent to three digits ('0,0408 %')."""
-    return f"{num(100 * float(share), '.3g', lang)} %"
+    return f"{_num(100 * float(share), lang, '.3g')} %"
 
 
 _NUMBER_HEAD = re.compile(r"^\s*[-+\u2212\u2013]?[\d\s.,\u00a0\u202f]*\d(?:[eE][-+]?\d+)?\s*")
@@ -135,7 +135,7 @@ def feedback_html(task, s: dict, lang: str = "en", key: bool = True) -> str:
             value = r["answer"]
         else:
             value = _q(r["answer"], unit, lang) if r["answer"] is not None else "–"
-        ref = (f"{_num(conv[0], lang)} {conv[1]}" if conv else
+        ref = (_q(conv[0], conv[1], lang) if conv else
                (_q(r["reference"], unit, lang) if r["reference"] is not None else "–"))
         tol = _tolerance(r, unit, lang) if st not in ("unknown_path", "not_computed") else "–"
         cells = [f"<code>{e(r['path'])}</code><br><small>{e(notation(r['path'], lang, local_units=True))}</small>",

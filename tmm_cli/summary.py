@@ -241,9 +241,8 @@ def print_check(rows: list[dict], source) -> None:
     """The graded answers of one set: path, answer, reference, error, status; fits 80 columns."""
     from rich.table import Table
 
-    from .messages import Message
-
     from .check import counts
+    from .messages import Message
 
     con = _console()
     who = " ".join(x for x in (rows[0].get("student"), rows[0].get("group")) if x) if rows else ""

@@ -960,8 +960,10 @@ def least_transmission(typ: str, mech) -> tuple[float, float]:
     # another fixed pivot (a four-bar: crank and frame collinear), or square to a fixed guide (a
     # slider-crank) -- and the angle there is as small, the place is that exact angle
     for c in _transmission_candidates(mech):
+        if abs((c - x + 180.0) % 360.0 - 180.0) >= 1e-3:      # not this least's place
+            continue
         fc = f(c)
-        if abs((c - x + 180.0) % 360.0 - 180.0) < 1e-3 and fc <= v + 1e-12 * max(1.0, abs(v)):
+        if fc <= v + 1e-12 * max(1.0, abs(v)):
             x, v = c, fc
             break
     if x > 360.0 - 1e-5 or x < 1e-5:      # a least at 0 found a hair off it (its place known to

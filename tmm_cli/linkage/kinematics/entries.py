@@ -203,8 +203,7 @@ def instant_centres(kin, sl: slice, wc) -> list[tuple[np.ndarray, np.ndarray, np
             if limit is None:
                 limit = _analogue_derivatives(kin, sl)
             c1, dw1 = limit[0][i] - limit[0][j], limit[1][i] - limit[1][j]
-            s1 = np.max(np.abs(np.stack(limit[1])), axis=0)
-            inf1 = np.abs(dw1) <= 1e-12 * np.maximum(s1, 1e-300)
+            inf1 = np.abs(dw1) <= 1e-12 * limit[2]
             d1 = np.where(inf1, 1.0, dw1)
             x = np.where(alike, -c1[:, 1] / d1, x)
             y = np.where(alike, c1[:, 0] / d1, y)
@@ -218,10 +217,11 @@ def _perp(s: np.ndarray) -> np.ndarray:
     return np.stack([-s[:, 1], s[:, 0]], axis=1)
 
 
-def _analogue_derivatives(kin, sl: slice) -> tuple[list[np.ndarray], list[np.ndarray]]:
+def _analogue_derivatives(kin, sl: slice) -> tuple[list[np.ndarray], list[np.ndarray], np.ndarray]:
     """Per link (the frame 0 first) the derivatives by the crank angle of c_i = q'_Si - w'_i k x S_i
     and of w'_i (the velocity analogues of :func:`instant_centres`): c_i' = q''_Si - w''_i k x S_i
-    - w'_i k x q'_Si and w''_i, at the rows ``sl``."""
+    - w'_i k x q'_Si and w''_i, at the rows ``sl``; and per row the largest |w''_i| (at least
+    1e-300), the scale a difference of two is compared with."""
     k = len(kin.phi[sl])
     C1, W1 = [np.zeros((k, 2))], [np.zeros(k)]
     for i, lk in enumerate(kin.links, start=1):
@@ -229,7 +229,7 @@ def _analogue_derivatives(kin, sl: slice) -> tuple[list[np.ndarray], list[np.nda
         a1, a2 = kin.a1[lk][sl], kin.a2[lk][sl]
         C1.append(q2 - a2[:, None] * _perp(s) - a1[:, None] * _perp(q))
         W1.append(a2)
-    return C1, W1
+    return C1, W1, np.maximum(np.max(np.abs(np.stack(W1)), axis=0), 1e-300)
 
 
 def centre_columns(kin, sl: slice, wc) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
