@@ -144,3 +144,14 @@ def test_degrees_closed_up_and_errors_to_three_digits():
     from tmm_cli.feedback import _pct, _q
     assert _q(16.36, "\u00b0", "ru") == "16,36\u00b0" and _q(0.25, "\u043c", "ru") == "0,25 \u043c"
     assert _q(12, "", "en") == "12" and _pct(0.00040793, "ru") == "0,0408 %" and _pct(0.05, "en") == "5 %"
+
+
+def test_a_reference_for_an_answer_in_degrees_and_minutes_is_in_degrees():
+    """'16°22′' as written: the reference was shown as '11,973 °22′' (the minutes taken for the
+    unit); it is in degrees. And a unit-slip note names its units in the page's language."""
+    from tmm_cli.feedback import _in_written_unit
+    from tmm_cli.messages import Message, render
+    assert _in_written_unit({"written": "16\u00b022\u2032", "reference": 16.36, "path": "synthesis.theta"}) == \
+        (16.36, "\u00b0")
+    m = Message("answers.note_unit_slip", unit="mm", si="m", value=98.5)
+    assert render(m.code, m.params, "ru").endswith("(98,5 \u043c\u043c)")

@@ -352,7 +352,7 @@ ENGLISH = [
      "'5 MM' is not in a unit of the course's quantities ('MM' reads as another quantity's unit)"),
     ('answers.wrong_unit', {'value': "'0.67 kg'", 'unit': 'm/s'},
      "'0.67 kg' is not in a unit of this quantity: its unit does not convert to m/s"),
-    ('answers.note_unit_slip', {'unit': 'mm', 'si': 'm', 'example': '98.5 mm'},
+    ('answers.note_unit_slip', {'unit': 'mm', 'si': 'm', 'value': 98.5},
      "a number without a unit is in m; read in mm it is right: write the unit (98.5 mm)"),
     ('input.cam_angles_both', {},
      'give `pressure_angle` or `transmission_angle`, not both'),

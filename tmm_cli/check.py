@@ -593,8 +593,7 @@ def _unit_slip(path: str, val: float, ref: float, t: Tol) -> Message | None:
     from .forms import unit_of
     for unit, factor in _SLIPS.get(unit_of(path) or "", ()):
         if ref != 0 and compare(val * factor, ref, t, False)[0] == "ok":
-            return Message("answers.note_unit_slip", unit=unit, si=unit_of(path).split()[0],
-                           example=f"{val:g} {unit}")
+            return Message("answers.note_unit_slip", unit=unit, si=unit_of(path).split()[0], value=val)
     return None
 
 

@@ -67,6 +67,8 @@ def _in_written_unit(r: dict):
     unit = _NUMBER_HEAD.sub("", written, count=1).strip()
     if not unit:
         return None
+    if unit.startswith("\u00b0"):         # 16°22′: degrees and minutes, the reference in degrees
+        unit = "\u00b0"
     from .check import answer_value
     try:
         one = answer_value(f"1 {unit}", r["path"])
