@@ -247,6 +247,12 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explo
     # points, hinted at the angle the solver reads hints at), so that angle is no news to the user
     warnings.extend(w for w in kin.warnings if over is None or not (isinstance(w, Message)
                                                                      and w.code == "kinematics.closure_not_at_zero"))
+    # each dyad's least transmission angle over the cycle (its input range for a generator)
+    from .linkage import transmission
+    trans = _stage("kinematics")(transmission.analyze)(linkage, over)
+    if trans:
+        results["transmission"] = trans
+        warnings.extend(transmission.warnings(trans))
     # a dense curve of the output link for the kinematic diagrams of the report
     if curve_n:
         results["kinematics_curve"] = kinematics.output_curve(linkage, curve_n).to_dict()

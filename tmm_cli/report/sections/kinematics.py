@@ -344,6 +344,10 @@ def build(ctx) -> str | None:
                                ("idle_stroke_angle", "kin.idle_angle", "°"), ("K", "kin.K", "")):
             if res_pos.get(key) is not None:
                 pos_rows.append((ctx.t(lab), ctx.fmt_fixed(res_pos[key], 3 if unit else 4) + unit))
+    for row in ctx.results.get("transmission") or []:      # each dyad's least transmission angle
+        pos_rows.append((ctx.t("kin.gamma_min", group=row["group"], links=", ".join(row["links"])),
+                         ctx.t("kin.gamma_min_val", gamma=ctx.fmt_fixed(row["gamma_min"], 2),
+                               phi=ctx.fmt_fixed(row["phi"], 2))))
 
     # summary tables
     moving_pts = []

@@ -1,0 +1,186 @@
+"""The transmission angle of each dyad (results `transmission`, tmm_cli/linkage/transmission.py):
+its least over the cycle against closed forms (the slider-crank's arccos((r + e)/l), the
+four-bar's cosine rule with the crank along the frame line), against the independent
+reference solver of the acceptance tests (the forging six-bar: an RRR dyad at a ternary
+rocker and an RRP dyad), against the synthesis's own minimisation, a dead point, its
+exact derivative against finite differences, and the warning below 20 deg."""
+from __future__ import annotations
+
+import copy
+import math
+
+import numpy as np
+import pytest
+from scipy.optimize import minimize_scalar
+
+import tmm_cli
+from acceptance_util import Linkage
+from test_acceptance_linkage import C4, L4, O1_4, R4, fourbar, sixbar, slider_crank
+
+
+def run(task):
+    return tmm_cli.run(tmm_cli.load_task(copy.deepcopy(task)))
+
+
+def codes(res):
+    return [m["code"] for m in res["messages"]]
+
+
+@pytest.mark.parametrize("r,l,e", [(0.1, 0.4, 0.0), (0.1, 0.4, 0.05), (0.12, 0.42, -0.04), (0.1, 0.3, 0.15)])
+def test_slider_crank_least_is_arccos_r_plus_e_over_l(r, l, e):
+    """The rod is steepest to the guide with the crank square to it on the far side of the
+    offset: sin(90 - gamma_min) = (r + |e|) / l, at crank angle 90 or 270 deg (guide along x
+    through (0, e))."""
+    res = run(slider_crank(r, l, [0, e], 0, [0.5, e]))
+    (row,) = res["transmission"]
+    assert row["type"] == "RRP" and row["links"] == ["rod", "slider"] and row["joint"] == "B"
+    assert row["gamma_min"] == pytest.approx(math.degrees(math.acos((r + abs(e)) / l)), abs=1e-9)
+    assert row["phi"] == pytest.approx(270.0 if e >= 0 else 90.0, abs=1e-6) or (e == 0 and row["phi"] == 90.0)
+    assert ("kinematics.transmission_low" in codes(res)) == (row["gamma_min"] < 20.0)
+
+
+def test_fourbar_least_by_the_cosine_rule():
+    """A crank-rocker's coupler-rocker angle is least with the crank along the frame line
+    (towards O1 or away from it): cos mu = (b^2 + c^2 - (d -+ a)^2) / (2bc), the acute
+    angle of the two."""
+    res = run(fourbar())
+    (row,) = res["transmission"]
+    d = math.hypot(*O1_4)
+    th = math.degrees(math.atan2(O1_4[1], O1_4[0]))
+    cands = []
+    for q, at in ((d - R4, th), (d + R4, th + 180.0)):
+        mu = math.degrees(math.acos((L4 * L4 + C4 * C4 - q * q) / (2 * L4 * C4)))
+        cands.append((min(mu, 180.0 - mu), at % 360.0))
+    g, at = min(cands)
+    assert row["type"] == "RRR" and row["links"] == ["rod", "rocker"] and row["joint"] == "B"
+    assert row["gamma_min"] == pytest.approx(g, abs=1e-9)
+    assert row["phi"] == pytest.approx(at, abs=1e-6)
+
+
+def _ref_gamma(L: Linkage, phi: float) -> tuple[float, float]:
+    """(RRR at B: rod-rocker, RRP at D: link4-guide) transmission angles, deg, of the
+    six-bar from the reference solver's points."""
+    P, _ = L.state(phi)
+    u, v = P["A"] - P["B"], P["O1"] - P["B"]
+    rrr = math.degrees(math.asin(min(1.0, abs(u[0] * v[1] - u[1] * v[0]) / (np.hypot(*u) * np.hypot(*v)))))
+    r = P["D"] - P["K"]
+    rrp = 90.0 - math.degrees(math.asin(min(1.0, abs(r[0]) / np.hypot(*r))))     # the rod off the vertical guide
+    return rrr, rrp
+
+
+def test_forging_sixbar_against_the_reference_solver():
+    """The forging six-bar (a ternary rocker O1-B-K, then link4 and the slider on a vertical
+    guide): each dyad's least found by scanning the reference's points every 0.25 deg and
+    a bounded Brent search on them."""
+    task = sixbar()
+    res = run(task)
+    L = Linkage(copy.deepcopy(task))
+    rows = {r["group"]: r for r in res["transmission"]}
+    assert [r["type"] for r in res["transmission"]] == ["RRR", "RRP"]
+    for k, name in enumerate(("II(2,3)", "II(4,5)")):
+        grid = np.arange(0.0, 360.0, 0.25)
+        vals = np.array([_ref_gamma(L, p)[k] for p in grid])
+        i = int(np.argmin(vals))
+        m = minimize_scalar(lambda p: _ref_gamma(L, p)[k], bounds=(grid[i] - 0.25, grid[i] + 0.25),
+                            method="bounded", options={"xatol": 1e-9})
+        assert rows[name]["gamma_min"] == pytest.approx(m.fun, abs=1e-8), name
+        assert rows[name]["phi"] == pytest.approx(m.x % 360.0, abs=2e-3), name
+        assert rows[name]["gamma_min"] <= m.fun + 1e-10             # the least, not a point near it
+
+
+@pytest.mark.parametrize("name", ["synthesis_offset_slider_crank", "synthesis_crank_rocker", "synthesis_path"])
+def test_generated_mechanisms_agree_with_the_synthesis(name):
+    """A generated crank-rocker or slider-crank: the synthesis's least transmission angle
+    (Brent's bounded minimiser on the angle itself) is the dyad's."""
+    from pathlib import Path
+    res = tmm_cli.run(tmm_cli.load_task(Path(__file__).resolve().parents[1] / "tasks" / f"{name}.yaml"))
+    (row,) = res["transmission"]
+    assert row["gamma_min"] == pytest.approx(res["synthesis"]["gamma_min"], abs=1e-8)
+    assert (row["phi"] - res["synthesis"]["gamma_min_phi"] + 180.0) % 360.0 - 180.0 == pytest.approx(0.0, abs=1e-3)
+
+
+def test_derivative_is_the_finite_difference_of_the_sine():
+    """sine()'s d(sin gamma)/dphi from the velocity analogues against central differences."""
+    from tmm_cli.linkage import transmission as T
+    from tmm_cli.linkage.context import build
+    from tmm_cli.linkage.kinematics import solve
+    task = tmm_cli.load_task(copy.deepcopy(sixbar()))
+    lk = build(task)
+    ds = T.dyads(lk.mechanism, lk.structure.groups)
+    phi = np.array([3.0, 47.5, 121.0, 200.0, 333.3])
+    h = 1e-4
+    kin, kp, km = (solve(lk.mechanism, phi + o) for o in (0.0, h, -h))
+    for d in ds:
+        s, dsd = T.sine(d, kin)
+        fd = (T.sine(d, kp)[0] - T.sine(d, km)[0]) / math.radians(2 * h)
+        assert np.allclose(dsd, fd, rtol=1e-6, atol=1e-8), d.kind
+
+
+def test_dead_point_is_zero_at_the_change_point():
+    """A four-bar on Grashof's limit (a = c = 0.1, b = d = 0.3) folds flat: coupler and rocker
+    collinear at its change points, where the least is 0."""
+    task = {"schema": "tmm/1",
+            "mechanism": {"ground": {"O": [0, 0], "O1": [0.3, 0]},
+                          "links": {"crank": {"points": ["O", "A"], "length": 0.1},
+                                    "rod": {"points": ["A", "B"], "length": 0.3},
+                                    "rocker": {"points": ["O1", "B"], "length": 0.1}},
+                          "assembly": {"B": [0.3, 0.1]}},
+            "drive": {"link": "crank", "speed": "60 rpm"},
+            "positions": {"output": "rocker"}}
+    res = run(task)
+    (row,) = res["transmission"]
+    assert row["gamma_min"] == pytest.approx(0.0, abs=1e-6)
+    change = [m["params"]["phi"] for m in res["messages"] if m["code"] == "kinematics.change_point"]
+    assert change and min(abs((row["phi"] - p + 180.0) % 360.0 - 180.0) for p in change) < 1e-4
+    assert "kinematics.transmission_low" in codes(res)
+
+
+def test_warning_below_20_deg_names_the_group_and_angle():
+    """A slider-crank with l = 1.05 r: gamma_min = arccos(1/1.05) = 17.75 deg, warned with the
+    group, the angle and 1/sin gamma; none at 21 deg."""
+    res = run(slider_crank(0.1, 0.105, [0, 0], 0, [0.2, 0]))
+    (m,) = [m for m in res["messages"] if m["code"] == "kinematics.transmission_low"]
+    g = math.degrees(math.acos(1 / 1.05))
+    assert m["params"]["group"] == "II(2,3)" and m["params"]["gamma"] == pytest.approx(g, abs=1e-9)
+    assert m["params"]["factor"] == pytest.approx(1 / math.sin(math.radians(g)), rel=1e-12)
+    assert "17.8 deg" in m["text"] and "3.3 times" in m["text"]
+    l21 = 0.1 / math.cos(math.radians(21.0))
+    res = run(slider_crank(0.1, l21, [0, 0], 0, [0.2, 0]))
+    assert res["transmission"][0]["gamma_min"] == pytest.approx(21.0, abs=1e-9)
+    assert "kinematics.transmission_low" not in codes(res)
+
+
+def test_no_row_for_a_slotted_lever_or_triad():
+    """The slotted lever's RPR dyad (90 deg by construction) and a class III triad: none."""
+    from pathlib import Path
+    root = Path(__file__).resolve().parents[1] / "tasks"
+    for name in ("triad_class3", "synthesis_slotted_lever", "scotch_yoke_pump"):
+        res = tmm_cli.run(tmm_cli.load_task(root / f"{name}.yaml"))
+        assert "transmission" not in res, name
+
+
+def test_derivative_on_a_moving_guide():
+    """An RRP dyad whose guide is on a turning link: sine()'s derivative (the rod's and the
+    guide's rates) against central differences of the same motion written out: K = (cos p,
+    sin 2p / 2), D = (2 + 0.3 sin p, 1 + cos 3p), the guide link at 0.7 sin p (+ 30 deg)."""
+    from types import SimpleNamespace
+
+    from tmm_cli.linkage import transmission as T
+
+    def kin(p):
+        p = np.asarray(p, float)
+        return SimpleNamespace(
+            pos={"K": np.column_stack([np.cos(p), 0.5 * np.sin(2 * p)]),
+                 "D": np.column_stack([2 + 0.3 * np.sin(p), 1 + np.cos(3 * p)])},
+            d1={"K": np.column_stack([-np.sin(p), np.cos(2 * p)]),
+                "D": np.column_stack([0.3 * np.cos(p), -3 * np.sin(3 * p)])},
+            angle={"guide": 0.7 * np.sin(p)}, a1={"guide": 0.7 * np.cos(p)})
+    d = T.DyadAngle(group=None, kind="RRP", middle="D", ends=("K", "D"), guide_angle=30.0, guide_link="guide")
+    p = np.linspace(0.1, 6.0, 13)
+    h = 1e-6
+    s, ds = T.sine(d, kin(p))
+    fd = (T.sine(d, kin(p + h))[0] - T.sine(d, kin(p - h))[0]) / (2 * h)
+    assert np.allclose(ds, fd, rtol=1e-6, atol=1e-8)
+    r = kin(p).pos["D"] - kin(p).pos["K"]
+    th = np.radians(30.0) + 0.7 * np.sin(p)
+    assert np.allclose(s, (r[:, 0] * np.cos(th) + r[:, 1] * np.sin(th)) / np.hypot(r[:, 0], r[:, 1]), rtol=1e-14)

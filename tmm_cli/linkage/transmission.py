@@ -1,0 +1,199 @@
+"""The transmission angle of each dyad of a linkage and its least over the cycle.
+
+The transmission angle gamma of a dyad is the angle at its middle pair between the force a
+link passes on and the motion it drives: 90 deg transmits best, 0 is a dead point (the
+dyad's velocity equations singular, its joint forces without bound).  The joint forces of
+the dyad grow about as 1 / sin(gamma).
+
+* RRR (links AB and BC, pairs A, B, C): the acute angle at B between the lines B-A and
+  B-C (a four-bar: between the coupler and the rocker).
+* RRP (a rod AB and a block at B on a guide): 90 deg minus the acute angle between the rod
+  and the guide (a slider-crank: gamma_min = arccos((r + e) / l)).
+* Other dyads (RPR and the dyads with two sliding pairs) and triads: none is reported (the
+  slotted lever's block presses normal to the slot, which moves normal to itself: 90 deg).
+
+The least over the cycle: the sine of gamma on a 0.5-deg grid of crank angles, then the
+zero of its exact derivative (the kinematic analogues of velocity, d/dphi) between the
+grid's neighbours (a grid of 129 points there, then the line between the ends of its
+bracket); where the sine changes sign the dyad passes a dead
+point and the least is 0 at the zero of the sine.
+
+References
+----------
+Artobolevsky, *Theory of Mechanisms and Machines*, the transmission and pressure angles of
+lever mechanisms; Popov & Timofeev, *Kursovoe proektirovanie po TMM*; docs/methods.md §2.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from .context import Linkage
+    from .mechanism import Mechanism
+    from .structure import Group
+
+#: below this least transmission angle (deg) a warning is given: the joint forces of the
+#: dyad exceed about 2.9 times those of a square transmission (1 / sin 20 deg)
+LOW = 20.0
+#: the course's recommended least for a lever mechanism in design (deg), said in the warning
+RECOMMENDED = 40.0
+
+
+@dataclass(frozen=True)
+class DyadAngle:
+    """How one dyad's transmission angle is read from the kinematics."""
+
+    group: "Group"
+    kind: str                       # "RRR" | "RRP"
+    middle: str                     # the middle pair's point
+    ends: tuple[str, str]           # RRR: the outer pairs' points; RRP: (rod's outer point, middle)
+    guide_angle: float = 0.0        # RRP: the guide's angle (deg; on a link: to its axis)
+    guide_link: str | None = None   # RRP: the link that carries the guide (None: fixed)
+
+
+def dyads(mech: "Mechanism", groups: list["Group"]) -> list[DyadAngle]:
+    """The dyads of ``groups`` whose transmission angle is defined (RRR, RRP/PRR)."""
+    out = []
+    for g in groups:
+        if len(g.links) != 2 or len(g.joints) != 3:
+            continue
+        kinds = "".join(j.kind for j in g.joints)
+        joints = list(g.joints)
+        if kinds == "PRR":
+            joints, kinds = joints[::-1], "RRP"
+        if kinds == "RRR":
+            out.append(DyadAngle(g, "RRR", joints[1].point, (joints[0].point, joints[2].point)))
+        elif kinds == "RRP" and joints[2].slider is not None:
+            guide = mech.link(joints[2].slider).guide
+            if guide is None:
+                continue
+            out.append(DyadAngle(g, "RRP", joints[1].point, (joints[0].point, joints[1].point),
+                                 float(guide.angle), guide.link))
+    return out
+
+
+def sine(d: DyadAngle, kin) -> tuple[np.ndarray, np.ndarray]:
+    """(s, ds/dphi) at every position of ``kin``: s = sin(gamma) with a sign (|s| = sin gamma;
+    a change of sign is a dead point), its derivative by the crank angle (rad) from the
+    analogues of velocity."""
+    if d.kind == "RRR":
+        b, db = kin.pos[d.middle], kin.d1[d.middle]
+        u, du = kin.pos[d.ends[0]] - b, kin.d1[d.ends[0]] - db
+        v, dv = kin.pos[d.ends[1]] - b, kin.d1[d.ends[1]] - db
+        c = u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]
+        dc = du[:, 0] * v[:, 1] + u[:, 0] * dv[:, 1] - du[:, 1] * v[:, 0] - u[:, 1] * dv[:, 0]
+        lu, lv = np.hypot(u[:, 0], u[:, 1]), np.hypot(v[:, 0], v[:, 1])
+        s = c / (lu * lv)
+        ds = dc / (lu * lv) - s * ((u * du).sum(axis=1) / lu ** 2 + (v * dv).sum(axis=1) / lv ** 2)
+        return s, ds
+    r = kin.pos[d.ends[1]] - kin.pos[d.ends[0]]
+    dr = kin.d1[d.ends[1]] - kin.d1[d.ends[0]]
+    th = np.full(len(r), math.radians(d.guide_angle))
+    dth = np.zeros(len(r))
+    if d.guide_link is not None:
+        th = th + kin.angle[d.guide_link]
+        dth = kin.a1[d.guide_link]
+    g = np.column_stack([np.cos(th), np.sin(th)])
+    dg = np.column_stack([-np.sin(th), np.cos(th)]) * dth[:, None]
+    lr = np.hypot(r[:, 0], r[:, 1])
+    s = (r * g).sum(axis=1) / lr                    # cos(rod, guide) = sin(gamma)
+    ds = ((dr * g).sum(axis=1) + (r * dg).sum(axis=1)) / lr - s * (r * dr).sum(axis=1) / lr ** 2
+    return s, ds
+
+
+def least(mech: "Mechanism", ds: list[DyadAngle], start: float = 0.0, span: float = 360.0,
+          step: float = 0.5) -> list[tuple[float, float]]:
+    """(gamma_min, deg; the crank angle where it is, deg in [0, 360)) of each dyad of ``ds``
+    over the crank angles ``start`` .. ``start + span`` (deg, ccw; a full turn by default)."""
+    from .kinematics import solve
+
+    full = span >= 360.0
+    n = int(math.ceil(span / step))
+    grid = start + np.arange(n if full else n + 1) * (span / n)
+    kin = solve(mech, grid)
+
+    def root(d, x0, x1, which):
+        """The zero in [x0, x1] of the sine (which 0) or of the slope of |sine| (1): a grid of 129
+        points (0.5 deg -> 0.004 deg), then the line between the ends of its bracket (the slope
+        is smooth: the place to ~1e-9 rad, the least to round-off); None where no point
+        brackets it."""
+        xs = np.linspace(x0, x1, 129)
+        sv, dv = sine(d, solve(mech, xs))
+        v = sv if which == 0 else np.sign(sv) * dv
+        ch = np.flatnonzero(np.signbit(v[:-1]) != np.signbit(v[1:]))
+        if not len(ch):
+            return None
+        k = int(ch[0])
+        x0, x1, f0, f1 = float(xs[k]), float(xs[k + 1]), float(v[k]), float(v[k + 1])
+        return x0 if f0 == f1 else x0 + (x1 - x0) * f0 / (f0 - f1)
+
+    out = []
+    for d in ds:
+        s, dsd = sine(d, kin)
+        a = np.abs(s)
+        k = int(np.argmin(a))
+        best_x, best = float(grid[k]), float(a[k])
+        m = len(grid)
+        for i in ((k - 1) % m if full else k - 1, k):       # the brackets either side of the grid's least
+            j = (i + 1) % m if full else i + 1
+            if i < 0 or j > m - 1:
+                continue
+            x0, x1 = float(grid[i]), float(grid[j]) + (360.0 if full and j == 0 else 0.0)
+            if s[i] * s[j] < 0.0:                       # a dead point: the zero of the sine
+                x = root(d, x0, x1, 0)
+                best_x, best = (x0 + (x1 - x0) * s[i] / (s[i] - s[j]) if x is None else x), 0.0
+                break
+            if math.copysign(1.0, s[i]) * dsd[i] < 0.0 < math.copysign(1.0, s[j]) * dsd[j]:
+                x = root(d, x0, x1, 1)                  # |s| falls, then rises: its least
+                if x is None:                           # the grid's point stands
+                    continue
+                v = abs(float(sine(d, solve(mech, np.array([x])))[0][0]))
+                if v < best:
+                    best_x, best = x, v
+        out.append((math.degrees(math.asin(min(1.0, best))), best_x % 360.0))
+    return out
+
+
+def analyze(linkage: "Linkage", crank_range=None) -> list[dict]:
+    """The stage: each dyad's least transmission angle over the cycle (over ``crank_range``,
+    a function generator's input range, where one is given).
+
+    Parameters
+    ----------
+    linkage : Linkage
+        The mechanism and its Assur groups.
+    crank_range : CrankRange or None
+        The input range (start, span, deg) of a function generator; None: a full turn.
+
+    Returns
+    -------
+    list of dict
+        results.json ``transmission``: per dyad (RRR, RRP) ``group`` (its label), ``links``,
+        ``type``, ``joint`` (the middle pair's point), ``gamma_min`` (deg) and ``phi`` (the
+        crank angle where it is, deg, ccw from the x axis).
+
+    References
+    ----------
+    Artobolevsky, *Theory of Mechanisms and Machines*: the transmission angle; docs/methods.md §2.
+    """
+    ds = dyads(linkage.mechanism, linkage.structure.groups)
+    if not ds:
+        return []
+    lo, span = (0.0, 360.0) if crank_range is None else (float(crank_range.start), float(crank_range.span))
+    return [{"group": d.group.label, "links": list(d.group.names), "type": d.kind, "joint": d.middle,
+             "gamma_min": g, "phi": x} for d, (g, x) in zip(ds, least(linkage.mechanism, ds, lo, span))]
+
+
+def warnings(rows: list[dict]) -> list:
+    """A warning for each dyad of ``rows`` (:func:`analyze`) whose least transmission angle is
+    below :data:`LOW`."""
+    from ..messages import Message
+    return [Message("kinematics.transmission_low", group=r["group"], links=list(r["links"]), joint=r["joint"],
+                    gamma=r["gamma_min"], phi=r["phi"],
+                    factor=1.0 / max(math.sin(math.radians(r["gamma_min"])), 1e-300),
+                    recommended=RECOMMENDED, low=LOW)
+            for r in rows if r["gamma_min"] < LOW]
