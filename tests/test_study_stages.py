@@ -240,7 +240,8 @@ def test_study_records_the_units_kind():
 
 def test_a_rocker_outputs_curves_are_named_omega_and_epsilon(tmp_path):
     """A rocker output's curves are angular (rad/s, rad/s^2): study.html named them v and a with
-    those units; now omega and epsilon (a slider's stay v and a)."""
+    those units; now omega and epsilon (a slider's stay v and a), in the values and in the
+    method's line (its error relative to the swing and the largest |omega| and |epsilon|)."""
     import html as _html
     import re as _re
     from pathlib import Path
@@ -255,3 +256,6 @@ def test_a_rocker_outputs_curves_are_named_omega_and_epsilon(tmp_path):
         assert res.exit_code == 0, res.output
         text = _html.unescape(_re.sub(r"<[^>]+>", "", (tmp_path / name / "study.html").read_text(encoding="utf-8")))
         assert want in text and not_want not in text, name
+        line = ("to the swing and to the largest |\u03c9| and |\u03b5|" if name == "crank_rocker_fourbar" else
+                "to the stroke and to the largest |v| and |a|")
+        assert line in text, name

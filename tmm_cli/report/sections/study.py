@@ -223,7 +223,9 @@ def html_section(study: dict, trapezoid: dict | None = None, lang: str = "en") -
         keys = [k for k in rows[0] if k not in ("setting", "error", "time_ms")]
         parts.append(f"<h3>{esc(t('stage.' + stage))}</h3>")
         ref = d["reference"]
-        txt = [t("note." + stage)]
+        rocker = f"study.note.{stage}_rocker"        # a rocker output's own words (its swing, omega, epsilon)
+        txt = [i18n.translate(rocker, lang) if d.get("output") == "rocker" and rocker in i18n.STRINGS["en"]
+               else t("note." + stage)]
         rv = ", ".join(value(d, k, ref[k]) for k in ref if k not in ("setting", "check", "converged"))
         txt.append(t("reference_exact" if ref["setting"] == 0 else "reference",
                      setting=_fmt(ref["setting"], lang=lang), values=rv))
