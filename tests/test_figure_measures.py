@@ -106,6 +106,34 @@ def test_gear_mesh_circles_are_the_tables_radii(name, tmp_path):
         assert min(abs(R - r) for R in radii) < 0.02 / k + 1e-4 * r
 
 
+def test_few_teeth_pair_fills_its_axes(tmp_path):
+    """z = 5 and 8 (m = 4 mm): the whole pair is drawn at a standard scale large enough that its
+    tip circles span most of the axes (it was 1:1, a fifth of them), and inside them; the
+    drawing still measures the table's centre distance at the stated scale."""
+    import tmm_cli
+    from tmm_cli.report import render
+    from tmm_cli.report.sections.gears import AX_H, AX_W
+    f = tmp_path / "g58.yaml"
+    f.write_text("schema: tmm/1\ntitle: few teeth\ngears:\n  m: 4 mm\n  z: [5, 8]\n  x: [0, 0]\n", encoding="utf-8")
+    task = tmm_cli.load_task(f)
+    res = tmm_cli.run(task)
+    render(res, task, tmp_path / "out", {"html"}, "en")
+    svg = (tmp_path / "out" / "figures" / "gear-mesh.svg").read_text(encoding="utf-8")
+    scale = re.search(r"scale (\d+(?:\.\d+)?):(\d+(?:\.\d+)?)<", svg)
+    k = float(scale.group(1)) / float(scale.group(2))
+    assert k == 2.0
+    g = res["gears"]
+    ra1, ra2, aw = (1000 * g["ra"][0], 1000 * g["ra"][1], 1000 * g["aw"])
+    assert (aw + ra1 + ra2) * k > 0.8 * AX_H and 2 * max(ra1, ra2) * k < AX_W
+    circles = [_circle_fit(P) for P in _paths(svg, stroke="#666666") if len(P) >= 5]
+    ys = sorted({round(c[1], 1) for c in circles})
+    assert len(ys) == 2 and (ys[1] - ys[0]) / k == pytest.approx(aw, abs=0.02)
+    # every tip circle inside the axes' frame (paper mm: the axes' box in the SVG)
+    tops = [c[1] - c[2] for c in circles]
+    bottoms = [c[1] + c[2] for c in circles]
+    assert max(bottoms) - min(tops) < AX_H
+
+
 def _table_after(html: str, header: str) -> list[list[str]]:
     """The body rows (cell texts) of the first table whose header row contains ``header``."""
     i = html.index(header)

@@ -89,6 +89,19 @@ def _overlap(a, b) -> bool:
     return a[0] < b[2] and b[0] < a[2] and a[1] < b[3] and b[1] < a[3]
 
 
+def mesh_window(g, span: float) -> tuple[float, float, float]:
+    """(width, height, the centre's ordinate), mm real, of what the mesh drawing shows: the zone
+    of 2 span x 1.5 span about the pole, each side no larger than the pair itself (with 4 % a
+    side to spare); centred on the pole, or on the pair where the whole pair's height is shown."""
+    ra1, ra2 = (1000.0 * float(r) for r in g["ra"])
+    aw = 1000.0 * float(g["aw"])
+    w = min(2.0 * span * 1000.0, 2.0 * max(ra1, ra2) * 1.08)
+    pair_h = (aw + ra1 + ra2) * 1.08
+    if pair_h < 1.5 * span * 1000.0:
+        return w, pair_h, (aw + ra2 - ra1) / 2.0
+    return w, 1.5 * span * 1000.0, 1000.0 * float(g["rw"][0])
+
+
 def mesh_figure(ctx, g):
     from tmm_cli.gears.drawing import mesh
     fp = ctx.figures
@@ -125,11 +138,14 @@ def mesh_figure(ctx, g):
         ax.plot(p[0] * MM, p[1] * MM, "o", ms=2.5, color="tab:red" if name.startswith("B") else "tab:blue")
         ax.annotate(f"${name[0]}_{{{name[1:]}}}$" if name[1:].isdigit() else name,
                     ((box[0] + box[2]) / 2 * MM, (box[1] + box[3]) / 2 * MM), ha="center", va="center", fontsize=7)
-    # a standard drawing scale (GOST 2.302): the axes are exactly AX_W x AX_H mm of paper
-    k = drawing_scale(2 * span * 1000, 1.5 * span * 1000)
+    # a standard drawing scale (GOST 2.302): the axes are exactly AX_W x AX_H mm of paper. The
+    # window is the zone of the mesh about the pole (12 modules either side), or the whole pair
+    # where that is smaller (few teeth: z = 5 and 8 filled a fifth of the axes at 1:1)
+    w, h, yc = mesh_window(g, span)
+    k = drawing_scale(w, h)
     ax.set_position([AX_L / 170, AX_B / 150, AX_W / 170, AX_H / 150])
     ax.set_xlim(-AX_W / 2 / k, AX_W / 2 / k)
-    ax.set_ylim(g["rw"][0] * 1000 - AX_H / 2 / k, g["rw"][0] * 1000 + AX_H / 2 / k)
+    ax.set_ylim(yc - AX_H / 2 / k, yc + AX_H / 2 / k)
     ax.set_xlabel(ctx.t("gears.mm") + ", " + ctx.t("gears.scale", s=scale_text(k)))
     return fig
 
