@@ -184,3 +184,30 @@ def test_derivative_on_a_moving_guide():
     r = kin(p).pos["D"] - kin(p).pos["K"]
     th = np.radians(30.0) + 0.7 * np.sin(p)
     assert np.allclose(s, (r[:, 0] * np.cos(th) + r[:, 1] * np.sin(th)) / np.hypot(r[:, 0], r[:, 1]), rtol=1e-14)
+
+
+def test_a_generator_whose_input_range_runs_backwards(tmp_path):
+    """A function generator with a negative input range (the crank turning cw through it, 45 ..
+    -15 deg): the least over that range (an empty grid crashed the stage), as a scan of the
+    generated linkage's points every 0.01 deg over the range finds it."""
+    from pathlib import Path
+
+    from tmm_cli.linkage.mechanism import build_mechanism
+    from tmm_cli.linkage.kinematics import solve
+    from tmm_cli.linkage.synthesis import generate
+    src = (Path(__file__).resolve().parents[1] / "tasks" / "synthesis_function_log10.yaml").read_text(encoding="utf-8")
+    src = src.replace("input: {start: 45, range: 60}", "input: {start: 45, range: -60}")
+    src = src.replace("output: {start: 300, range: 90}", "output: {start: 300, range: -90}")
+    assert "range: -60" in src and "range: -90" in src
+    f = tmp_path / "neg.yaml"
+    f.write_text(src, encoding="utf-8")
+    task = tmm_cli.load_task(f)
+    res = tmm_cli.run(task)
+    (row,) = res["transmission"]
+    gen, _ = generate(task)
+    kin = solve(build_mechanism(gen), np.linspace(45.0, -15.0, 6001))
+    u, v = kin.pos["A"] - kin.pos["B"], kin.pos["O1"] - kin.pos["B"]
+    g = np.degrees(np.arcsin(np.minimum(1.0, np.abs(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0])
+                                        / (np.hypot(*u.T) * np.hypot(*v.T)))))
+    assert row["gamma_min"] == pytest.approx(g.min(), abs=1e-6)
+    assert -15.0 - 1e-9 <= (row["phi"] + 180.0) % 360.0 - 180.0 <= 45.0 + 1e-9

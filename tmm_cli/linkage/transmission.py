@@ -112,7 +112,7 @@ def least(mech: "Mechanism", ds: list[DyadAngle], start: float = 0.0, span: floa
     from .kinematics import solve
 
     full = span >= 360.0
-    n = int(math.ceil(span / step))
+    n = max(1, int(math.ceil(abs(span) / step)))           # a range may run either way (signed span)
     grid = start + np.arange(n if full else n + 1) * (span / n)
     kin = solve(mech, grid)
 
