@@ -211,3 +211,23 @@ def test_a_generator_whose_input_range_runs_backwards(tmp_path):
                                         / (np.hypot(*u.T) * np.hypot(*v.T)))))
     assert row["gamma_min"] == pytest.approx(g.min(), abs=1e-6)
     assert -15.0 - 1e-9 <= (row["phi"] + 180.0) % 360.0 - 180.0 <= 45.0 + 1e-9
+
+
+def test_function_generator_over_a_cw_input_range():
+    """A function generator's input range may run cw (``input.range`` < 0): the mirror image
+    of tasks/synthesis_function_log10.yaml (input 315 deg back 60, output 60 deg back 90) has
+    the same least transmission angle, at the mirror of its crank angle (was: an empty grid,
+    the kinematics stage failed)."""
+    from pathlib import Path
+
+    import yaml
+    src = yaml.safe_load((Path(__file__).resolve().parents[1] / "tasks" / "synthesis_function_log10.yaml").read_text())
+    mirror = copy.deepcopy(src)
+    mirror["synthesis"]["input"] = {"start": 315, "range": -60}
+    mirror["synthesis"]["output"] = {"start": 60, "range": -90}
+    (a,) = run(src)["transmission"]
+    res = run(mirror)
+    (b,) = res["transmission"]
+    assert b["gamma_min"] == pytest.approx(a["gamma_min"], abs=1e-9)
+    assert b["phi"] == pytest.approx((360.0 - a["phi"]) % 360.0, abs=1e-6)
+    assert "kinematics.transmission_low" in codes(res)

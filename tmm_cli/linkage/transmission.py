@@ -108,11 +108,15 @@ def sine(d: DyadAngle, kin) -> tuple[np.ndarray, np.ndarray]:
 def least(mech: "Mechanism", ds: list[DyadAngle], start: float = 0.0, span: float = 360.0,
           step: float = 0.5) -> list[tuple[float, float]]:
     """(gamma_min, deg; the crank angle where it is, deg in [0, 360)) of each dyad of ``ds``
-    over the crank angles ``start`` .. ``start + span`` (deg, ccw; a full turn by default)."""
+    over the crank angles ``start`` .. ``start + span`` (deg; ``span`` signed, as a function
+    generator's input range: a cw range is the same angles read from its other end; a full
+    turn by default)."""
     from .kinematics import solve
 
+    if span < 0.0:
+        start, span = start + span, -span
     full = span >= 360.0
-    n = max(1, int(math.ceil(abs(span) / step)))           # a range may run either way (signed span)
+    n = max(1, int(math.ceil(span / step)))
     grid = start + np.arange(n if full else n + 1) * (span / n)
     kin = solve(mech, grid)
 
