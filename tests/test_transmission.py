@@ -231,3 +231,27 @@ def test_function_generator_over_a_cw_input_range():
     assert b["gamma_min"] == pytest.approx(a["gamma_min"], abs=1e-9)
     assert b["phi"] == pytest.approx((360.0 - a["phi"]) % 360.0, abs=1e-6)
     assert "kinematics.transmission_low" in codes(res)
+
+
+def test_sharp_least_near_a_dead_point_off_the_grid():
+    """A crank-rocker 1e-9 m short of folding flat (b + c = a + d + 1e-9), its frame line at
+    33.3 deg: the least, with the crank pointing away from O1 (213.3 deg, between grid
+    points), is sharp (sin gamma ~ sqrt(eps + k dphi^2), turning within ~1e-3 deg), and by
+    the cosine rule sin(gamma/2) = sqrt((b + c - q)(b + c + q) / 4bc), q = |O O1| + a (was:
+    one grid of 129 points and a line, 3e-5 deg off and gamma 7e-6 too large)."""
+    a, b, c, th = 0.1, 0.3, 0.2, math.radians(33.3)
+    d = b + c - a - 1e-9
+    o1 = [d * math.cos(th), d * math.sin(th)]
+    task = {"schema": "tmm/1",
+            "mechanism": {"ground": {"O": [0, 0], "O1": o1},
+                          "links": {"crank": {"points": ["O", "A"], "length": a},
+                                    "rod": {"points": ["A", "B"], "length": b},
+                                    "rocker": {"points": ["O1", "B"], "length": c}},
+                          "assembly": {"B": [0.6 * o1[0] - 0.2 * math.sin(th), 0.6 * o1[1] + 0.2 * math.cos(th)]}},
+            "drive": {"link": "crank", "speed": "60 rpm"},
+            "positions": {"output": "rocker"}}
+    (row,) = run(task)["transmission"]
+    q = math.hypot(*o1) + a
+    g = math.degrees(2 * math.asin(math.sqrt((b + c - q) * (b + c + q) / (4 * b * c))))
+    assert row["gamma_min"] == pytest.approx(g, rel=1e-6)
+    assert row["phi"] == pytest.approx(213.3, abs=1e-6)

@@ -14,8 +14,8 @@ the dyad grow about as 1 / sin(gamma).
 
 The least over the cycle: the sine of gamma on a 0.5-deg grid of crank angles, then the
 zero of its exact derivative (the kinematic analogues of velocity, d/dphi) between the
-grid's neighbours (a grid of 129 points there, then the line between the ends of its
-bracket); where the sine changes sign the dyad passes a dead
+grid's neighbours (grids of 129 points nested in the bracket each finds, to 2e-9 deg, then
+the line between its ends: a least near a dead point is sharp); where the sine changes sign the dyad passes a dead
 point and the least is 0 at the zero of the sine.
 
 References
@@ -121,18 +121,23 @@ def least(mech: "Mechanism", ds: list[DyadAngle], start: float = 0.0, span: floa
     kin = solve(mech, grid)
 
     def root(d, x0, x1, which):
-        """The zero in [x0, x1] of the sine (which 0) or of the slope of |sine| (1): a grid of 129
-        points (0.5 deg -> 0.004 deg), then the line between the ends of its bracket (the slope
-        is smooth: the place to ~1e-9 rad, the least to round-off); None where no point
-        brackets it."""
-        xs = np.linspace(x0, x1, 129)
-        sv, dv = sine(d, solve(mech, xs))
-        v = sv if which == 0 else np.sign(sv) * dv
-        ch = np.flatnonzero(np.signbit(v[:-1]) != np.signbit(v[1:]))
-        if not len(ch):
-            return None
-        k = int(ch[0])
-        x0, x1, f0, f1 = float(xs[k]), float(xs[k + 1]), float(v[k]), float(v[k + 1])
+        """The zero in [x0, x1] of the sine (which 0) or of the slope of |sine| (1): grids of 129
+        points nested in the bracket each finds (0.5 deg -> 0.004 -> 3e-5 -> 2e-7 -> 2e-9 deg),
+        then the line between the ends of the last (a least near a dead point is sharp, its
+        slope turning within 1e-3 deg: one grid's line put it 0.001 deg off, its angle a third
+        too large); None where no point of the first grid brackets it."""
+        f0 = f1 = None
+        while x1 - x0 > 1e-8:
+            xs = np.linspace(x0, x1, 129)
+            sv, dv = sine(d, solve(mech, xs))
+            v = sv if which == 0 else np.sign(sv) * dv
+            ch = np.flatnonzero(np.signbit(v[:-1]) != np.signbit(v[1:]))
+            if not len(ch):
+                if f0 is None:
+                    return None
+                break                   # the bracket's ends again, but rounded alike: it stands
+            k = int(ch[0])
+            x0, x1, f0, f1 = float(xs[k]), float(xs[k + 1]), float(v[k]), float(v[k + 1])
         return x0 if f0 == f1 else x0 + (x1 - x0) * f0 / (f0 - f1)
 
     out = []
