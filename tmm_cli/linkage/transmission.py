@@ -199,10 +199,17 @@ def analyze(linkage: "Linkage", crank_range=None) -> list[dict]:
 
 def warnings(rows: list[dict]) -> list:
     """A warning for each dyad of ``rows`` (:func:`analyze`) whose least transmission angle is
-    below :data:`LOW`."""
+    below :data:`LOW`; at a dead point (0) the warning says so (no factor 1/sin gamma)."""
     from ..messages import Message
-    return [Message("kinematics.transmission_low", group=r["group"], links=list(r["links"]), joint=r["joint"],
-                    gamma=r["gamma_min"], phi=r["phi"],
-                    factor=1.0 / max(math.sin(math.radians(r["gamma_min"])), 1e-300),
-                    recommended=RECOMMENDED, low=LOW)
-            for r in rows if r["gamma_min"] < LOW]
+    out = []
+    for r in rows:
+        if r["gamma_min"] >= LOW:
+            continue
+        at = {"group": r["group"], "links": list(r["links"]), "joint": r["joint"], "phi": r["phi"],
+              "recommended": RECOMMENDED}
+        if r["gamma_min"] > 0.0:
+            out.append(Message("kinematics.transmission_low", **at, gamma=r["gamma_min"], low=LOW,
+                               factor=1.0 / math.sin(math.radians(r["gamma_min"]))))
+        else:
+            out.append(Message("kinematics.transmission_dead", **at))
+    return out
