@@ -258,3 +258,16 @@ def test_sharp_least_near_a_dead_point_off_the_grid():
     g = math.degrees(2 * math.asin(math.sqrt((b + c - q) * (b + c + q) / (4 * b * c))))
     assert row["gamma_min"] == pytest.approx(g, rel=1e-6)
     assert row["phi"] == pytest.approx(213.3, abs=1e-6)
+
+
+def test_a_least_within_round_off_of_zero_is_a_dead_point():
+    """A least of 3e-6 deg (the round-off of an angle found at an exact Grashof limit) is told
+    as a dead point, not as 'falls to 0.0 deg ... 19098593.2 times'; 0.01 deg is still a low
+    angle with its factor."""
+    from tmm_cli.linkage import transmission as T
+    row = {"group": "II(2,3)", "links": ["rod", "rocker"], "type": "RRR", "joint": "B", "phi": 12.0}
+    (dead,) = T.warnings([{**row, "gamma_min": 3e-6}])
+    (low,) = T.warnings([{**row, "gamma_min": 0.01}])
+    assert dead.code == "kinematics.transmission_dead" and "factor" not in dead.params
+    assert low.code == "kinematics.transmission_low"
+    assert low.params["factor"] == pytest.approx(1 / math.sin(math.radians(0.01)), rel=1e-12)

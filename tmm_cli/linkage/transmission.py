@@ -41,6 +41,9 @@ if TYPE_CHECKING:
 LOW = 20.0
 #: the course's recommended least for a lever mechanism in design (deg), said in the warning
 RECOMMENDED = 40.0
+#: at or below this least (deg) the dyad is at a dead point: the round-off of an angle found
+#: at an exact Grashof limit is ~3e-6 deg, and 1e-4 deg would already be a force 5.7e5 times
+DEAD = 1e-4
 
 
 @dataclass(frozen=True)
@@ -181,7 +184,7 @@ def analyze(linkage: "Linkage", crank_range=None) -> list[dict]:
     Returns
     -------
     list of dict
-        results.json ``transmission``: per dyad (RRR, RRP) ``group`` (its label), ``links``,
+        results.json ``transmission``: per dyad (RRR, RRP, PRR) ``group`` (its label), ``links``,
         ``type``, ``joint`` (the middle pair's point), ``gamma_min`` (deg) and ``phi`` (the
         crank angle where it is, deg, ccw from the x axis).
 
@@ -193,13 +196,14 @@ def analyze(linkage: "Linkage", crank_range=None) -> list[dict]:
     if not ds:
         return []
     lo, span = (0.0, 360.0) if crank_range is None else (float(crank_range.start), float(crank_range.span))
-    return [{"group": d.group.label, "links": list(d.group.names), "type": d.kind, "joint": d.middle,
+    return [{"group": d.group.label, "links": list(d.group.names), "type": d.group.type, "joint": d.middle,
              "gamma_min": g, "phi": x} for d, (g, x) in zip(ds, least(linkage.mechanism, ds, lo, span))]
 
 
 def warnings(rows: list[dict]) -> list:
     """A warning for each dyad of ``rows`` (:func:`analyze`) whose least transmission angle is
-    below :data:`LOW`; at a dead point (0) the warning says so (no factor 1/sin gamma)."""
+    below :data:`LOW`; at a dead point (at most :data:`DEAD`) the warning says so (no factor
+    1/sin gamma)."""
     from ..messages import Message
     out = []
     for r in rows:
@@ -207,7 +211,7 @@ def warnings(rows: list[dict]) -> list:
             continue
         at = {"group": r["group"], "links": list(r["links"]), "joint": r["joint"], "phi": r["phi"],
               "recommended": RECOMMENDED}
-        if r["gamma_min"] > 0.0:
+        if r["gamma_min"] > DEAD:
             out.append(Message("kinematics.transmission_low", **at, gamma=r["gamma_min"], low=LOW,
                                factor=1.0 / math.sin(math.radians(r["gamma_min"]))))
         else:
