@@ -185,8 +185,8 @@ def analyze(linkage: "Linkage", crank_range=None) -> list[dict]:
     -------
     list of dict
         results.json ``transmission``: per dyad (RRR, RRP, PRR) ``group`` (its label), ``links``,
-        ``type``, ``joint`` (the middle pair's point), ``gamma_min`` (deg) and ``phi`` (the
-        crank angle where it is, deg, ccw from the x axis).
+        ``type`` (the group's, as ``structure`` names it), ``joint`` (the middle pair's point),
+        ``gamma_min`` (deg) and ``phi`` (the crank angle where it is, deg, ccw from the x axis).
 
     References
     ----------
