@@ -9,8 +9,8 @@ the dyad grow about as 1 / sin(gamma).
   B-C (a four-bar: between the coupler and the rocker).
 * RRP (a rod AB and a block at B on a guide): 90 deg minus the acute angle between the rod
   and the guide (a slider-crank: gamma_min = arccos((r + e) / l)).
-* Other dyads (RPR and the dyads with two sliding pairs) and triads: none is reported (the
-  slotted lever's block presses normal to the slot, which moves normal to itself: 90 deg).
+* Other dyads (RPR, as the slotted lever's, and the dyads with two sliding pairs) and triads:
+  none is reported (the slotted lever's is 90 deg only with its slot through the lever's pivot).
 
 The least over the cycle: the sine of gamma on a 0.5-deg grid of crank angles, then the
 zero of its exact derivative (the kinematic analogues of velocity, d/dphi) between the
