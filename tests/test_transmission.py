@@ -271,3 +271,30 @@ def test_a_least_within_round_off_of_zero_is_a_dead_point():
     assert dead.code == "kinematics.transmission_dead" and "factor" not in dead.params
     assert low.code == "kinematics.transmission_low"
     assert low.params["factor"] == pytest.approx(1 / math.sin(math.radians(0.01)), rel=1e-12)
+
+
+def test_a_steep_dead_point_away_from_the_grids_least(monkeypatch):
+    """sin gamma with a shallow least of 0.04 at 100 deg and a steep zero at 250.1 deg (through
+    it within a tenth of a degree: the grid's points either side read 0.07 and more): the least
+    is 0 at 250.1 (it was the shallow 2.3 deg, the grid's least being the only place looked at);
+    without the zero, the shallow least refined to its closed form."""
+    from types import SimpleNamespace
+
+    import tmm_cli.linkage.kinematics as K
+    from tmm_cli.linkage import transmission as T
+    t1, t2, k = math.radians(100.0), math.radians(250.1), 40.0
+
+    def fake_sine(d, kin):
+        p = np.radians(kin.phi)
+        f1, df1 = 0.04 + 0.5 * (1 - np.cos(p - t1)), 0.5 * np.sin(p - t1)
+        if d.kind == "RRR":                        # the shallow least alone
+            return f1, df1
+        th = np.tanh(k * (p - t2))
+        return f1 * th, df1 * th + f1 * k * (1 - th ** 2)
+    monkeypatch.setattr(K, "solve", lambda mech, xs: SimpleNamespace(phi=np.asarray(xs, float)))
+    monkeypatch.setattr(T, "sine", fake_sine)
+    steep = T.DyadAngle(group=None, kind="RRP", middle="B", ends=("A", "B"))
+    shallow = T.DyadAngle(group=None, kind="RRR", middle="B", ends=("A", "C"))
+    (g0, x0), (g1, x1) = T.least(None, [steep, shallow])
+    assert g0 == 0.0 and x0 == pytest.approx(250.1, abs=1e-7)
+    assert g1 == pytest.approx(math.degrees(math.asin(0.04)), abs=1e-9) and x1 == pytest.approx(100.0, abs=1e-6)

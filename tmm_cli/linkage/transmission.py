@@ -12,11 +12,12 @@ the dyad grow about as 1 / sin(gamma).
 * Other dyads (RPR, as the slotted lever's, and the dyads with two sliding pairs) and triads:
   none is reported (the slotted lever's is 90 deg only with its slot through the lever's pivot).
 
-The least over the cycle: the sine of gamma on a 0.5-deg grid of crank angles, then the
-zero of its exact derivative (the kinematic analogues of velocity, d/dphi) between the
-grid's neighbours (grids of 129 points nested in the bracket each finds, to 2e-9 deg, then
-the line between its ends: a least near a dead point is sharp); where the sine changes sign the dyad passes a dead
-point and the least is 0 at the zero of the sine.
+The least over the cycle: the sine of gamma on a 0.5-deg grid of crank angles. Where it
+changes sign anywhere between neighbours the dyad passes a dead point: the least is 0 at its
+zero (a steep one can hide between points that are not the grid's least). Else at every least
+of its magnitude between neighbours that could be the least, the zero of its exact derivative
+(the kinematic analogues of velocity, d/dphi): grids of 129 points nested in the bracket each
+finds, to 2e-9 deg, then the line between its ends (a least near a dead point is sharp).
 
 References
 ----------
@@ -144,22 +145,25 @@ def least(mech: "Mechanism", ds: list[DyadAngle], start: float = 0.0, span: floa
         return x0 if f0 == f1 else x0 + (x1 - x0) * f0 / (f0 - f1)
 
     out = []
+    m = len(grid)
+    pairs = [(i, (i + 1) % m) for i in range(m if full else m - 1)]      # neighbours (a turn: round)
     for d in ds:
         s, dsd = sine(d, kin)
         a = np.abs(s)
         k = int(np.argmin(a))
         best_x, best = float(grid[k]), float(a[k])
-        m = len(grid)
-        for i in ((k - 1) % m if full else k - 1, k):       # the brackets either side of the grid's least
-            j = (i + 1) % m if full else i + 1
-            if i < 0 or j > m - 1:
-                continue
+        slope = np.where(s < 0.0, -dsd, dsd)                           # d|s|/dphi
+        for i, j in pairs:
             x0, x1 = float(grid[i]), float(grid[j]) + (360.0 if full and j == 0 else 0.0)
-            if s[i] * s[j] < 0.0:                       # a dead point: the zero of the sine
-                x = root(d, x0, x1, 0)
+            if s[i] * s[j] < 0.0:       # a dead point: the zero of the sine (a steep one can hide
+                x = root(d, x0, x1, 0)  # between points that are not the grid's least)
                 best_x, best = (x0 + (x1 - x0) * s[i] / (s[i] - s[j]) if x is None else x), 0.0
                 break
-            if math.copysign(1.0, s[i]) * dsd[i] < 0.0 < math.copysign(1.0, s[j]) * dsd[j]:
+        else:
+            for i, j in pairs:          # every least of |s| between neighbours, not only the grid's least
+                if not slope[i] < 0.0 < slope[j] or min(a[i], a[j]) > 2.0 * best + 1e-3:
+                    continue
+                x0, x1 = float(grid[i]), float(grid[j]) + (360.0 if full and j == 0 else 0.0)
                 x = root(d, x0, x1, 1)                  # |s| falls, then rises: its least
                 if x is None:                           # the grid's point stands
                     continue
