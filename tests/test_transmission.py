@@ -88,10 +88,11 @@ def test_forging_sixbar_against_the_reference_solver():
         assert rows[name]["gamma_min"] <= m.fun + 1e-10             # the least, not a point near it
 
 
-@pytest.mark.parametrize("name", ["synthesis_offset_slider_crank", "synthesis_crank_rocker", "synthesis_path"])
+@pytest.mark.parametrize("name", ["synthesis_offset_slider_crank", "synthesis_crank_rocker", "synthesis_path",
+                                  "synthesis_shaper"])
 def test_generated_mechanisms_agree_with_the_synthesis(name):
-    """A generated crank-rocker or slider-crank: the synthesis's least transmission angle
-    (Brent's bounded minimiser on the angle itself) is the dyad's."""
+    """A generated crank-rocker, slider-crank or shaper (its ram's PRP dyad): the synthesis's
+    least transmission angle (Brent's bounded minimiser on the angle itself) is the dyad's."""
     from pathlib import Path
     res = tmm_cli.run(tmm_cli.load_task(Path(__file__).resolve().parents[1] / "tasks" / f"{name}.yaml"))
     (row,) = res["transmission"]
@@ -154,7 +155,7 @@ def test_warning_below_20_deg_names_the_group_and_angle():
 
 
 def test_no_row_for_a_slotted_lever_or_triad():
-    """The slotted lever's RPR dyad (90 deg by construction) and a class III triad: none."""
+    """The slotted lever's RPR dyad, the Scotch yoke's RPP and a class III triad: none."""
     from pathlib import Path
     root = Path(__file__).resolve().parents[1] / "tasks"
     for name in ("triad_class3", "synthesis_slotted_lever", "scotch_yoke_pump"):
@@ -298,3 +299,40 @@ def test_a_steep_dead_point_away_from_the_grids_least(monkeypatch):
     (g0, x0), (g1, x1) = T.least(None, [steep, shallow])
     assert g0 == 0.0 and x0 == pytest.approx(250.1, abs=1e-7)
     assert g1 == pytest.approx(math.degrees(math.asin(0.04)), abs=1e-9) and x1 == pytest.approx(100.0, abs=1e-6)
+
+
+def test_shaper_ram_through_a_block_in_the_slot():
+    """tasks/shaper_slotted_ram.yaml: the ram's PRP dyad (a block in the rocker's slot pinned to
+    the ram on a horizontal guide): the slot is steepest to the guide at the slotted lever's
+    extreme positions, where sin(psi/2) = r / |OO1| = 0.12 / 0.32: gamma_min = 90 - psi/2, at
+    the crank angle square to the rocker (180 + psi/2 for this cw drive)."""
+    from pathlib import Path
+    res = tmm_cli.run(tmm_cli.load_task(Path(__file__).resolve().parents[1] / "tasks" / "shaper_slotted_ram.yaml"))
+    (row,) = res["transmission"]
+    half = math.degrees(math.asin(0.12 / 0.32))
+    assert row["type"] == "PRP" and row["links"] == ["blockC", "ram"] and row["joint"] == "C"
+    assert row["gamma_min"] == pytest.approx(90.0 - half, abs=1e-9)
+    assert row["phi"] == pytest.approx(180.0 + half, abs=1e-6)
+    assert min(abs(row["phi"] - x) for x in res["positions"]["extreme"]) < 1e-6
+
+
+def test_prp_derivative_with_both_guides_turning():
+    """A PRP dyad whose slot and guide both turn (0.7 sin p and 0.2 cos 2p, at 10 and 80 deg to
+    their links): sine() is sin of the angle between them, its derivative the central
+    difference's."""
+    from types import SimpleNamespace
+
+    from tmm_cli.linkage import transmission as T
+
+    def kin(p):
+        p = np.asarray(p, float)
+        return SimpleNamespace(phi=np.degrees(p), angle={"g1": 0.7 * np.sin(p), "g2": 0.2 * np.cos(2 * p)},
+                               a1={"g1": 0.7 * np.cos(p), "g2": -0.4 * np.sin(2 * p)})
+    d = T.DyadAngle(group=None, kind="PRP", middle="C", ends=("C", "C"), guide_angle=10.0, guide_link="g1",
+                    guide2_angle=80.0, guide2_link="g2")
+    p = np.linspace(0.1, 6.0, 13)
+    s, ds = T.sine(d, kin(p))
+    h = 1e-6
+    fd = (T.sine(d, kin(p + h))[0] - T.sine(d, kin(p - h))[0]) / (2 * h)
+    assert np.allclose(ds, fd, rtol=1e-6, atol=1e-8)
+    assert np.allclose(s, np.sin(np.radians(70.0) + 0.2 * np.cos(2 * p) - 0.7 * np.sin(p)), rtol=1e-14)

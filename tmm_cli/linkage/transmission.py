@@ -9,8 +9,11 @@ the dyad grow about as 1 / sin(gamma).
   B-C (a four-bar: between the coupler and the rocker).
 * RRP (a rod AB and a block at B on a guide): 90 deg minus the acute angle between the rod
   and the guide (a slider-crank: gamma_min = arccos((r + e) / l)).
-* Other dyads (RPR, as the slotted lever's, and the dyads with two sliding pairs) and triads:
-  none is reported (the slotted lever's is 90 deg only with its slot through the lever's pivot).
+* PRP (a block in a slot of one link, pinned to a slider on a guide: the shaper's ram driven by
+  the rocker's slot): the acute angle between the slot and the guide (the block presses normal
+  to the slot; the slider moves along its guide).
+* Other dyads (RPR, as the slotted lever's; RPP, PPR) and triads: none is reported (the slotted
+  lever's is 90 deg only with its slot through the lever's pivot).
 
 The least over the cycle: the sine of gamma on a 0.5-deg grid of crank angles. Where it
 changes sign anywhere between neighbours the dyad passes a dead point: the least is 0 at its
@@ -55,12 +58,14 @@ class DyadAngle:
     kind: str                       # "RRR" | "RRP"
     middle: str                     # the middle pair's point
     ends: tuple[str, str]           # RRR: the outer pairs' points; RRP: (rod's outer point, middle)
-    guide_angle: float = 0.0        # RRP: the guide's angle (deg; on a link: to its axis)
-    guide_link: str | None = None   # RRP: the link that carries the guide (None: fixed)
+    guide_angle: float = 0.0        # RRP, PRP: the (first) guide's angle (deg; on a link: to its axis)
+    guide_link: str | None = None   # RRP, PRP: the link that carries it (None: fixed)
+    guide2_angle: float = 0.0       # PRP: the other guide's
+    guide2_link: str | None = None
 
 
 def dyads(mech: "Mechanism", groups: list["Group"]) -> list[DyadAngle]:
-    """The dyads of ``groups`` whose transmission angle is defined (RRR, RRP/PRR)."""
+    """The dyads of ``groups`` whose transmission angle is defined (RRR, RRP/PRR, PRP)."""
     out = []
     for g in groups:
         if len(g.links) != 2 or len(g.joints) != 3:
@@ -77,6 +82,12 @@ def dyads(mech: "Mechanism", groups: list["Group"]) -> list[DyadAngle]:
                 continue
             out.append(DyadAngle(g, "RRP", joints[1].point, (joints[0].point, joints[1].point),
                                  float(guide.angle), guide.link))
+        elif kinds == "PRP" and joints[0].slider is not None and joints[2].slider is not None:
+            g1, g2 = mech.link(joints[0].slider).guide, mech.link(joints[2].slider).guide
+            if g1 is None or g2 is None:
+                continue
+            out.append(DyadAngle(g, "PRP", joints[1].point, (joints[1].point, joints[1].point),
+                                 float(g1.angle), g1.link, float(g2.angle), g2.link))
     return out
 
 
@@ -94,19 +105,28 @@ def sine(d: DyadAngle, kin) -> tuple[np.ndarray, np.ndarray]:
         s = c / (lu * lv)
         ds = dc / (lu * lv) - s * ((u * du).sum(axis=1) / lu ** 2 + (v * dv).sum(axis=1) / lv ** 2)
         return s, ds
+    if d.kind == "PRP":                             # the slot and the guide: sin of the angle between them
+        (t1, dt1), (t2, dt2) = (_guide(kin, d.guide_angle, d.guide_link, len(kin.phi)),
+                                _guide(kin, d.guide2_angle, d.guide2_link, len(kin.phi)))
+        return np.sin(t2 - t1), np.cos(t2 - t1) * (dt2 - dt1)
     r = kin.pos[d.ends[1]] - kin.pos[d.ends[0]]
     dr = kin.d1[d.ends[1]] - kin.d1[d.ends[0]]
-    th = np.full(len(r), math.radians(d.guide_angle))
-    dth = np.zeros(len(r))
-    if d.guide_link is not None:
-        th = th + kin.angle[d.guide_link]
-        dth = kin.a1[d.guide_link]
+    th, dth = _guide(kin, d.guide_angle, d.guide_link, len(r))
     g = np.column_stack([np.cos(th), np.sin(th)])
     dg = np.column_stack([-np.sin(th), np.cos(th)]) * dth[:, None]
     lr = np.hypot(r[:, 0], r[:, 1])
     s = (r * g).sum(axis=1) / lr                    # cos(rod, guide) = sin(gamma)
     ds = ((dr * g).sum(axis=1) + (r * dg).sum(axis=1)) / lr - s * (r * dr).sum(axis=1) / lr ** 2
     return s, ds
+
+
+def _guide(kin, angle: float, link: str | None, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """(direction, rad; its derivative by the crank angle) of a guide at the positions of ``kin``:
+    fixed at ``angle`` (deg), or at ``angle`` to the axis of the link ``link``."""
+    th = np.full(n, math.radians(angle))
+    if link is None:
+        return th, np.zeros(n)
+    return th + kin.angle[link], np.asarray(kin.a1[link], float)
 
 
 def least(mech: "Mechanism", ds: list[DyadAngle], start: float = 0.0, span: float = 360.0,
@@ -188,7 +208,7 @@ def analyze(linkage: "Linkage", crank_range=None) -> list[dict]:
     Returns
     -------
     list of dict
-        results.json ``transmission``: per dyad (RRR, RRP, PRR) ``group`` (its label), ``links``,
+        results.json ``transmission``: per dyad (RRR, RRP, PRR, PRP) ``group`` (its label), ``links``,
         ``type`` (the group's, as ``structure`` names it), ``joint`` (the middle pair's point),
         ``gamma_min`` (deg) and ``phi`` (the crank angle where it is, deg, ccw from the x axis).
 
