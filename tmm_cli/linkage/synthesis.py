@@ -887,105 +887,34 @@ def analyse_function(linkage, d: Design) -> dict:
 
 
 # ---------------------------------------------------------------- analysis of the generated mechanism
-def transmission_angle(typ: str, kin) -> "object":
-    """The transmission angle of a generated mechanism at each position.
+def least_transmission(typ: str, linkage) -> tuple[float, float]:
+    """The least transmission angle over the cycle of a generated mechanism.
 
     Parameters
     ----------
     typ : str
         The synthesis type (``slider_crank``, ``crank_rocker``, ``slotted_lever``, ``shaper``...).
-    kin : KinematicsResult
-        The mechanism's kinematics.
-
-    Returns
-    -------
-    numpy.ndarray
-        The angle, deg: slider-crank 90 - (rod, guide); crank-rocker the acute angle between
-        the coupler and the rocker; slotted lever 90 (the block presses normal to the slot,
-        which moves normal to itself); shaper: at the ram, 90 - (normal of the slotted link,
-        guide).
-
-    References
-    ----------
-    Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Kursovoe
-    proektirovanie po TMM*: the transmission angle; docs/methods.md §1.
-    """
-    import numpy as np
-
-    if typ in ("slider_crank", "offset_slider_crank"):
-        return 90.0 - np.degrees(np.arcsin(np.abs(np.sin(kin.angle["rod"]))))
-    if typ == "crank_rocker":
-        return np.degrees(np.arcsin(np.minimum(1.0, np.abs(np.sin(kin.angle["coupler"] - kin.angle["rocker"])))))
-    if typ == "shaper":
-        return np.degrees(np.arcsin(np.minimum(1.0, np.abs(np.sin(kin.angle["rocker"])))))
-    return np.full(np.shape(kin.angle["rocker"]), 90.0)
-
-
-def least_transmission(typ: str, mech) -> tuple[float, float]:
-    """The least transmission angle over the cycle.
-
-    Parameters
-    ----------
-    typ : str
-        The synthesis type.
-    mech : Mechanism
-        The generated mechanism.
+    linkage : Linkage
+        The generated mechanism and its Assur groups.
 
     Returns
     -------
     tuple of float
-        (gamma_min, deg; the crank angle where it is, deg): a 0.5-deg scan refined by a
-        bounded Brent search to 1e-10 deg.
+        (gamma_min, deg; the crank angle where it is, deg): the least of its dyads'
+        (:func:`tmm_cli.linkage.transmission.least`: the slider-crank's rod and guide, the
+        crank-rocker's coupler and rocker, the shaper's slot and ram); a slotted lever's is 90
+        (the block presses normal to the slot, which passes through the lever's pivot).
 
     References
     ----------
     Artobolevsky, *Theory of Mechanisms and Machines*; Popov & Timofeev, *Kursovoe
     proektirovanie po TMM*: the transmission angle; docs/methods.md §1.
     """
-    import numpy as np
-    from ..lazy import minimize_scalar
-
-    from .kinematics import solve
-
-    grid = np.arange(0.0, 360.0, 0.5)
-    g = transmission_angle(typ, solve(mech, grid))
-    k = int(np.argmin(g))
-    if np.ptp(g) < 1e-12:
-        return float(g[k]), float(grid[k])
-    f = lambda x: float(transmission_angle(typ, solve(mech, np.array([x % 360.0])))[0])
-    res = minimize_scalar(f, bounds=(grid[k] - 0.5, grid[k] + 0.5), method="bounded", options={"xatol": 1e-10})
-    x, v = (float(res.x) % 360.0, float(res.fun)) if res.fun <= g[k] else (float(grid[k]), float(g[k]))
-    # the angle is flat at its least, so the search knows its place to ~1e-6 deg only (1.7e-7 for
-    # 0, 180.0000000000035 for 180): where the closed form puts it -- the crank along the line to
-    # another fixed pivot (a four-bar: crank and frame collinear), or square to a fixed guide (a
-    # slider-crank) -- and the angle there is as small, the place is that exact angle
-    for c in _transmission_candidates(mech):
-        if abs((c - x + 180.0) % 360.0 - 180.0) >= 1e-3:      # not this least's place
-            continue
-        fc = f(c)
-        if fc <= v + 1e-12 * max(1.0, abs(v)):
-            x, v = c, fc
-            break
-    if x > 360.0 - 1e-5 or x < 1e-5:      # a least at 0 found a hair off it (its place known to
-        x = 0.0                            # ~1e-6 deg): 0, not 360 or 1.7e-7
-    return v, x
-
-
-def _transmission_candidates(mech) -> list[float]:
-    """The crank angles (deg, in [0, 360)) where a transmission angle's least lies in closed form:
-    the crank along the line from its pivot to another fixed pivot (either way), or square to a
-    fixed guide."""
-    import math
-    ox, oy = mech.ground[mech.crank_pivot]
-    out = []
-    for name, (gx, gy) in mech.ground.items():
-        if name != mech.crank_pivot and math.hypot(gx - ox, gy - oy) > 0:
-            a = math.degrees(math.atan2(gy - oy, gx - ox))
-            out += [a % 360.0, (a + 180.0) % 360.0]
-    for lk in mech.links:
-        if lk.guide is not None and lk.guide.link is None:
-            out += [(lk.guide.angle + 90.0) % 360.0, (lk.guide.angle - 90.0) % 360.0]
-    return out
+    from . import transmission
+    ds = [] if typ == "slotted_lever" else transmission.dyads(linkage.mechanism, linkage.structure.groups)
+    if not ds:
+        return 90.0, 0.0
+    return min(transmission.least(linkage.mechanism, ds))
 
 
 def analyse(linkage, d: Design) -> dict:
@@ -1033,10 +962,13 @@ def analyse(linkage, d: Design) -> dict:
                                        sign).H)
     else:
         psi = float(pos.H)
-    gmin, gphi = least_transmission(d.type, mech)
+    gmin, gphi = least_transmission(d.type, linkage)
     curve = np.arange(0.0, 360.0 + 1e-9, 5.0)
     phis = np.mod(pos.phi0 + sign * curve, 360.0)
-    gam = transmission_angle(d.type, solve(mech, phis))
+    from . import transmission
+    ds = [] if d.type == "slotted_lever" else transmission.dyads(mech, linkage.structure.groups)
+    kin = solve(mech, phis)
+    gam = (np.min([transmission.gamma(dy, kin) for dy in ds], axis=0) if ds else np.full(len(phis), 90.0))
     return {"type": d.type, "lengths": dict(d.lengths), "H": H, "K": float(pos.K), "theta": float(pos.theta),
             "psi": psi, "gamma_min": gmin, "working": d.working, "solutions": list(d.solutions),
             "mechanism": d.mechanism, "output": d.output, "gamma_min_phi": gphi,

@@ -120,6 +120,11 @@ def sine(d: DyadAngle, kin) -> tuple[np.ndarray, np.ndarray]:
     return s, ds
 
 
+def gamma(d: DyadAngle, kin) -> np.ndarray:
+    """The transmission angle (deg) of the dyad ``d`` at every position of ``kin``."""
+    return np.degrees(np.arcsin(np.minimum(1.0, np.abs(sine(d, kin)[0]))))
+
+
 def _guide(kin, angle: float, link: str | None, n: int) -> tuple[np.ndarray, np.ndarray]:
     """(direction, rad; its derivative by the crank angle) of a guide at the positions of ``kin``:
     fixed at ``angle`` (deg), or at ``angle`` to the axis of the link ``link``."""
