@@ -190,12 +190,15 @@ def html_section(study: dict, trapezoid: dict | None = None, lang: str = "en") -
     def t(key, **kw):
         return i18n.translate(f"study.{key}", lang, **kw)
 
+    def own(key, d):
+        """The catalogue's ``key``, or a rocker output's own where it has one (omega, not v)."""
+        rocker = f"{key}_rocker"
+        return rocker if (d or {}).get("output") == "rocker" and rocker in i18n.STRINGS["en"] else key
+
     def name_of(k, d):
-        """The catalogue's name of ``k``; a rocker output's own where it has one (omega, not v)."""
-        for key in ((f"study.col.{k}_rocker",) if (d or {}).get("output") == "rocker" else ()) + (f"study.col.{k}",):
-            if key in i18n.STRINGS["en"]:
-                return i18n.translate(key, lang)
-        return k
+        """The catalogue's name of ``k`` (:func:`own`); ``k`` itself where it has none."""
+        key = own(f"study.col.{k}", d)
+        return i18n.translate(key, lang) if key in i18n.STRINGS["en"] else k
 
     def col(k, d=None):
         """The name of a setting or value in ``lang`` (the catalogue's), its unit after a comma."""
@@ -223,9 +226,7 @@ def html_section(study: dict, trapezoid: dict | None = None, lang: str = "en") -
         keys = [k for k in rows[0] if k not in ("setting", "error", "time_ms")]
         parts.append(f"<h3>{esc(t('stage.' + stage))}</h3>")
         ref = d["reference"]
-        rocker = f"study.note.{stage}_rocker"        # a rocker output's own words (its swing, omega, epsilon)
-        txt = [i18n.translate(rocker, lang) if d.get("output") == "rocker" and rocker in i18n.STRINGS["en"]
-               else t("note." + stage)]
+        txt = [i18n.translate(own(f"study.note.{stage}", d), lang)]     # a rocker's: swing, omega, epsilon
         rv = ", ".join(value(d, k, ref[k]) for k in ref if k not in ("setting", "check", "converged"))
         txt.append(t("reference_exact" if ref["setting"] == 0 else "reference",
                      setting=_fmt(ref["setting"], lang=lang), values=rv))
