@@ -204,13 +204,19 @@ def test_failing_planetary_keeps_cam_gears_and_the_report(tmp_path):
 @pytest.mark.parametrize("lang, words", [("ru", "ни один набор чисел зубьев схемы A не даёт i_1H = 1,2"),
                                          ("uk", "жоден набір чисел зубів схеми A не дає i_1H = 1,2")])
 def test_stage_failure_in_the_report_language(tmp_path, lang, words):
-    """A stage's failure: English on stderr and in results.json `errors[].message` (with its
-    code and parameters beside it); the report's failure box in the report's language."""
+    """A stage's failure: English in results.json `errors[].message` (with its code and
+    parameters beside it); on stderr and in the report's failure box in the report's language
+    (English on stderr without --lang)."""
     out = tmp_path / "o"
     f = task_file(tmp_path, PLANETARY_IMPOSSIBLE)
     res = runner.invoke(app, ["run", str(f), "--out", str(out), "--format", "json,html", "--lang", lang])
     assert res.exit_code == 3
-    assert "no tooth numbers for scheme A give i_1H = 1.2 within 0.05" in res.output
+    head = {"ru": "ошибка: ", "uk": "помилка: "}[lang]
+    stage = {"ru": "Этап «синтез планетарного механизма» не выполнен: ",
+             "uk": "Етап «синтез планетарного механізму» не виконано: "}[lang]
+    assert f"{head}{f}: {stage}{words}" in res.output and "no tooth numbers" not in res.output
+    en = runner.invoke(app, ["run", str(f), "--out", str(tmp_path / "en"), "--format", "json"])
+    assert "error: " in en.output and "no tooth numbers for scheme A give i_1H = 1.2 within 0.05" in en.output
     err = json.loads((out / "results.json").read_text())["errors"][0]
     assert err["code"] == "planetary.fail.none_found" and err["params"]["scheme"] == "A"
     assert err["message"].startswith("no tooth numbers for scheme A give i_1H = 1.2 within 0.05 with 3 satellites")
@@ -245,8 +251,9 @@ def test_linkage_that_does_not_assemble_does_not_stop_cam_and_gears(tmp_path):
     ("uk", "група II(2,3) (ланки rod, slider) не складається за кутів кривошипа")])
 def test_linkage_failure_in_the_report_language(tmp_path, lang, words):
     """A linkage that does not assemble over part of the cycle (rod 0.05 m on a 0.1 m
-    crank): the English sentence on stderr, its code in results.json, the report's box in
-    its language, with the reason (|AB| < crank) in that language too."""
+    crank): the sentence on stderr in the report's language (its crank angles with the decimal
+    comma), its code in results.json, the report's box in its language, with the reason
+    (|AB| < crank) in that language too."""
     out = tmp_path / "o"
     linkage = ("mechanism:\n  ground: {O: [0, 0]}\n  links:\n    crank: {points: [O, A], length: 0.1}\n"
                "    rod: {points: [A, B], length: 0.05}\n"
@@ -255,7 +262,9 @@ def test_linkage_failure_in_the_report_language(tmp_path, lang, words):
     res = runner.invoke(app, ["run", str(task_file(tmp_path, linkage)), "--out", str(out), "--format", "json,html",
                               "--lang", lang, "-q"])
     assert res.exit_code == 3
-    assert "group II(2,3) (links rod, slider) does not assemble for crank angles" in res.output
+    assert words in res.output and "does not assemble" not in res.output
+    where = {"ru": "при угле кривошипа φ = 30,5°", "uk": "за кута кривошипа φ = 30,5°"}[lang]
+    assert where in res.output
     err = json.loads((out / "results.json").read_text())["errors"][0]
     assert err["code"] == "kinematics.fail.intervals" and err["params"]["links"] == ["rod", "slider"]
     assert err["params"]["reason"]["code"] == "kinematics.reason.rrp_short"

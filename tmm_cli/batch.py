@@ -818,7 +818,9 @@ def _run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = fro
         warm([found[k][0] for k in runnable], formats)
     if memory_mb and not _rlimit_available() and not _memory_watch():
         con.print(Message("batch.memory_unlimited", limit=memory_mb), markup=False)
-    with _progress(con, len(args), "variants") as advance:
+    from .summary import batch_words
+    words = batch_words(lang)
+    with _progress(con, len(args), words["variants"], words["left"]) as advance:
         def done(i, res):
             advance()
         started = time.time()
@@ -933,7 +935,7 @@ def _run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = fro
                                                  key=lambda v: (not v.isdigit(), int(v) if v.isdigit() else 0, v))))
     notes = dict.fromkeys(set_notes + [n for s in sets or [] for n in s.notes]       # each once, in order
                           + [n for o in outcomes.values() for n in o.get("notes", ())])
-    print_batch(rows, out, skipped, removed, notes=list(notes))
+    print_batch(rows, out, skipped, removed, notes=list(notes), lang=lang)
     return max((r["code"] for r in rows), default=0)
 
 
@@ -974,14 +976,14 @@ class _progress:
     """A rich progress bar with the count and the time left (on stderr; nothing when
     stderr is not a terminal)."""
 
-    def __init__(self, con, total: int, what: str):
-        self.con, self.total, self.what = con, total, what
+    def __init__(self, con, total: int, what: str, left: str = "left"):
+        self.con, self.total, self.what, self.left = con, total, what, left
 
     def __enter__(self):
         from rich.progress import (BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn,
                                    TimeRemainingColumn)
         self.prog = Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(),
-                             TimeElapsedColumn(), TextColumn("left"), TimeRemainingColumn(),
+                             TimeElapsedColumn(), TextColumn(self.left), TimeRemainingColumn(),
                              console=self.con, transient=True)
         self.prog.__enter__()
         self.bar = self.prog.add_task(self.what, total=self.total)

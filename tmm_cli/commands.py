@@ -121,7 +121,8 @@ def run(
                                     "sheets/), note (note.pdf: the explanatory note in the ESKD frame; the task's "
                                     "student and course headers fill its title page); results.json is always "
                                     "written"),
-    lang: str = typer.Option("en", "--lang", "-l", help="report language: en | ru | uk"),
+    lang: str = typer.Option("en", "--lang", "-l", help="language of the report and of the terminal output "
+                             "(summary, warnings, errors): en | ru | uk"),
     quiet: bool = typer.Option(False, "--quiet", "-q", help="no progress and summary on the terminal"),
     study: bool = typer.Option(False, "--study", help="also write study.json and study.html: "
                                                       "accuracy against computing time per stage"),
@@ -163,7 +164,7 @@ def study_cmd(
     lang = _check_lang(lang)
     task = _load(task_file)
     out = out or Path("out") / task.name
-    st, trap = _run_study(task, lambda s: _err(f"  {s}..."), repeat)
+    st, trap = _run_study(task, lambda s: _err(f"  {console.stage_progress(s, lang)}..."), repeat)
     from . import study as study_mod
     note = study_mod.nothing_to_sweep(task, st, trap)
     if note is not None:           # no empty page; exit 0, as `tmm sheets` with no sheet to draw
@@ -343,7 +344,7 @@ def batch(
     out: Path = typer.Option(..., "--out", "-o", help="output folder: <out>/<variant>/ and summary files"),
     jobs: int = typer.Option(1, "--jobs", "-j", min=1, help="variants computed in parallel (processes)"),
     format: str = typer.Option("json", "--format", "-f", help="outputs per variant: json, html, pdf"),
-    lang: str = typer.Option("en", "--lang", "-l", help="report and summary language: en | ru | uk"),
+    lang: str = typer.Option("en", "--lang", "-l", help="language of the reports, the summary and the terminal table: en | ru | uk"),
     answers: Optional[Path] = typer.Option(None, "--answers", "-a",
                                            help="students' answers: a YAML file, a folder of them, or a CSV; "
                                                 "default: each task's own `answers`"),

@@ -39,15 +39,71 @@ def echo(message: str, err: bool = False) -> None:
 Echo = Callable[..., None]
 
 
-def fail_task(exc: TaskError, echo: Echo = echo) -> int:
-    echo(f"error: invalid {exc.kind}\n{exc.render()}", err=True)
+def fail_task(exc: TaskError, echo: Echo = echo, lang: str = "en") -> int:
+    """An invalid task file: its errors (file, line, field, what is wrong), exit 2; in ru and
+    uk (`tmm run --lang`) in that language where every part of them is coded."""
+    coded = exc.coded() if lang != "en" and exc.kind == "task" else None
+    if coded is None:
+        echo(f"error: invalid {exc.kind}\n{exc.render()}", err=True)
+    else:
+        from .messages import localize
+        echo(f"{_word('error', lang)}: {_word('invalid_task', lang)}\n{localize(coded.to_dict(), lang)}", err=True)
     return EXIT_INVALID
 
 
-def fail_stage(exc: StageError, file: str | None = None, echo: Echo = echo) -> int:
+def fail_stage(exc: StageError, file: str | None = None, echo: Echo = echo, lang: str = "en") -> int:
     where = f"{file}: " if file else ""
-    echo(f"error: {where}{exc}", err=True)
+    echo(f"{_word('error', lang)}: {where}{stage_text(exc.to_dict(), lang)}", err=True)
     return EXIT_STAGE
+
+
+def _word(key: str, lang: str) -> str:
+    """A word of the terminal (the catalogue's summary ``run`` table) in ``lang``."""
+    return _words(lang)[key]
+
+
+def _words(lang: str) -> dict[str, str]:
+    from .summary import run_words
+    return run_words(lang)
+
+
+def stage_text(err: dict, lang: str = "en") -> str:
+    """A failed stage (results.json's ``errors`` entry) as the terminal says it in ``lang``:
+    English as :class:`StageError` words it; in ru and uk the report's sentence (the catalogue's
+    failure ``fail.what``), the stage's name, the crank angle in the language's writing, a coded
+    message in the language."""
+    if lang == "en":
+        return str(StageError(err.get("stage"), err.get("message") or "", err.get("position")))
+    from . import locales
+    from .messages import catalogue, localize
+    from .numfmt import localize as typeset
+    W = {**locales.of("failure", "words", "en"), **locales.of("failure", "words", lang)}
+    message = err.get("message") or ""
+    if err.get("code"):
+        message = localize({"code": err["code"], "params": err.get("params") or {}, "text": message}, lang)
+    pos = err.get("position")
+    if pos in (None, ""):
+        where = ""
+    elif isinstance(pos, (int, float)):
+        where = W["fail.where_angle"].format(position=typeset(f"{float(pos):.6g}", lang))
+    else:
+        where = W["fail.where"].format(position=pos)
+    stage = str((catalogue(lang)["terms"].get("stage") or {}).get(str(err.get("stage")), err.get("stage")))
+    return W["fail.what"].format(stage=stage, where=where, message=message)
+
+
+def stage_progress(stage: str, lang: str = "en") -> str:
+    """A progress line's stage (``positions``, ``study: curves``) in ``lang``: the catalogue's
+    stage names (English: as the pipeline names it)."""
+    if lang == "en":
+        return stage
+    from .messages import catalogue
+    names = catalogue(lang)["terms"].get("stage") or {}
+    T = _words(lang)
+    if stage.startswith("study: "):
+        part = stage[len("study: "):]
+        return f"{T['study']}: {T['curves'] if part == 'curves' else names.get(part, part)}"
+    return str(names.get(stage, stage))
 
 
 def fail_write(exc: OSError, echo: Echo = echo) -> int:
@@ -73,7 +129,7 @@ def run_task(task_file: Path, out: Optional[Path], formats: set[str], lang: str,
     progress = None
     if not quiet:
         def progress(stage: str) -> None:
-            echo(f"  {stage}...", err=True)
+            echo(f"  {stage_progress(stage, lang)}...", err=True)
     failure = None
     notes: list[str] = []
     started = time.time()
@@ -88,30 +144,38 @@ def run_task(task_file: Path, out: Optional[Path], formats: set[str], lang: str,
         # place of a failed one, what failed; then exit 3
         failure, results = exc, exc.partial
     except TaskError as exc:
-        code = fail_task(exc, echo)
-        earlier_run(folder(task_file.stem), started, echo)
+        code = fail_task(exc, echo, lang)
+        earlier_run(folder(task_file.stem), started, echo, lang)
         return code
     except StageError as exc:
-        code = fail_stage(exc, str(task_file), echo)
-        earlier_run(folder(task_file.stem), started, echo)
+        code = fail_stage(exc, str(task_file), echo, lang)
+        earlier_run(folder(task_file.stem), started, echo, lang)
         return code
     except OSError as exc:
         return fail_write(exc, echo)
     if held is not None:
         held.append(results)
     for note in notes:
-        echo(f"warning: {note}", err=True)
+        echo(f"{_word('warning', lang)}: {_in(note, lang)}", err=True)
     if failure is not None:
         for e in results.get("errors", [])[1:]:
-            echo(f"error: {task_file}: {StageError(e['stage'], e['message'], e['position'])}", err=True)
-        return fail_stage(failure, str(task_file), echo)
+            echo(f"{_word('error', lang)}: {task_file}: {stage_text(e, lang)}", err=True)
+        return fail_stage(failure, str(task_file), echo, lang)
     if not quiet:
         from .summary import print_summary
-        print_summary(results, paths)
+        print_summary(results, paths, lang)
     return EXIT_OK
 
 
-def earlier_run(folder: Path, started: float, echo: Echo = echo) -> None:
+def _in(note, lang: str) -> str:
+    """A note (a coded Message or plain text) in ``lang``."""
+    if lang != "en" and hasattr(note, "to_dict"):
+        from .messages import localize
+        return localize(note.to_dict(), lang)
+    return str(note)
+
+
+def earlier_run(folder: Path, started: float, echo: Echo = echo, lang: str = "en") -> None:
     """After a run that wrote nothing (its task invalid, a stage failed before the outputs): say
     that ``folder`` still holds an earlier run's outputs (its manifest older than this run), so
     that nobody reads them as this task file's."""
@@ -122,8 +186,8 @@ def earlier_run(folder: Path, started: float, echo: Echo = echo) -> None:
     except OSError:
         return                                   # no earlier run there (or not readable): nothing to say
     if when < started:
-        echo(Message("output.earlier_run", folder=f"{folder}/",
-                     when=time.strftime("%Y-%m-%d %H:%M", time.localtime(when))), err=True)
+        echo(_in(Message("output.earlier_run", folder=f"{folder}/",
+                         when=time.strftime("%Y-%m-%d %H:%M", time.localtime(when))), lang), err=True)
 
 
 def validate_tasks(task_files: list[Path], no_assembly: bool, echo: Echo = echo) -> int:

@@ -9,7 +9,7 @@ from . import locales
 
 def _console():
     from rich.console import Console
-    return Console(stderr=False, highlight=False)
+    return Console(stderr=False, highlight=False, emoji=False)
 
 
 def _f(x, digits=5) -> str:
@@ -25,102 +25,132 @@ def _f(x, digits=5) -> str:
         return str(x)
 
 
-def _summary_rows(results: dict) -> list[tuple[str, str]]:
-    """(quantity, value) of each row of the run summary."""
+RUN = locales.table("summary", "run")
+
+
+def run_words(lang: str = "en") -> dict[str, str]:
+    """The terminal's words of `tmm run` in ``lang`` (the catalogue's summary ``run`` table;
+    English where ``lang`` lacks one)."""
+    return {**RUN["en"], **RUN.get(lang, {})}
+
+
+def _summary_rows(results: dict, lang: str = "en") -> list[tuple[str, str]]:
+    """(quantity, value) of each row of the run summary, in ``lang``: its words from the
+    catalogue, its numbers in the language's writing (ru, uk: the decimal comma, and lists
+    separated by semicolons, as the report writes them)."""
+    from .numfmt import comma, localize
+    T = run_words(lang)
+    sep = "; " if comma(lang) else ", "
     rows: list[tuple[str, str]] = []
     add = lambda *row: rows.append(row)  # noqa: E731
+
+    def f(x, digits=5) -> str:
+        if isinstance(x, bool):
+            return T["is_yes"] if x else T["is_no"]
+        return localize(_f(x, digits), lang)
     st = results.get("structure")
     if st:
         add("W = 3n - 2p5 - p4", f"{st['W']} (n={st['n']}, p5={st['p5']}, p4={st['p4']})")
-        add("structure formula", str(st.get("formula")))
+        add(T["formula"], str(st.get("formula")))
     pos = results.get("positions")
     if pos:
-        add("phi0, deg", _f(pos.get("phi0")))
+        add(T["phi0"], f(pos.get("phi0")))
         if pos.get("K") is not None:
-            add("K (mean speed increase)", _f(pos.get("K")))
+            add(T["K"], f(pos.get("K")))
     if results.get("singular"):
-        add("singular crank angles, deg", ", ".join(_f(s, 7) for s in results["singular"]))
+        add(T["singular"], sep.join(f(s, 7) for s in results["singular"]))
     fw = results.get("flywheel")
     if fw:
-        add("flywheel J, kg*m^2", _f(fw.get("J")))
-        add("flywheel D x b, m", f"{_f(fw.get('diameter'))} x {_f(fw.get('width'))}")
+        add(T["J"], f(fw.get("J")))
+        add(T["Db"], f"{f(fw.get('diameter'))} {T['times']} {f(fw.get('width'))}")
     cam = results.get("cam")
     if cam:
-        add("cam r0, m", _f(cam.get("r0")))
+        add(T["r0"], f(cam.get("r0")))
         if cam.get("r0_given"):
-            add("cam r0_min, m", _f(cam.get("r0_min")))
-            add("cam max pressure angle, deg", _f(cam.get("max_pressure_angle")))
+            add(T["r0_min"], f(cam.get("r0_min")))
+            add(T["pressure"], f(cam.get("max_pressure_angle")))
     g = results.get("gears")
     if g:
-        add("gears a_w, m", _f(g.get("aw")))
+        add(T["aw"], f(g.get("aw")))
         # a wheel without an involute flank (its tip inside the base circle, its involute beginning
         # above the tip): eps_alpha is a formal value, the pair cannot mesh (the warnings say why)
         formal = any(str(m.get("code", "")).startswith("gears.no_involute") for m in results.get("messages") or ()
                      if isinstance(m, dict))
-        add("contact ratio", _f(g.get("eps_alpha")) + (" (formal: the pair cannot mesh, see the warnings)"
-                                                         if formal else " (formal: the teeth interfere, see the warnings)"
-                                                         if g.get("eps_alpha_formal") else ""))
+        add(T["eps"], f(g.get("eps_alpha")) + (T["formal_mesh"] if formal else T["formal_interfere"]
+                                               if g.get("eps_alpha_formal") else ""))
     pl = results.get("planetary")
     if pl:
-        add("planetary z", ", ".join(f"{k}={v}" for k, v in (pl.get("z") or {}).items()))
-        add("planetary ratio", _f(pl.get("ratio")))
+        add(T["planetary_z"], sep.join(f"{k}={v}" for k, v in (pl.get("z") or {}).items()))
+        add(T["planetary_ratio"], f(pl.get("ratio")))
     dt = results.get("drive_train")
     if dt:
-        add("drive train z", " | ".join("/".join(str(v) for v in s["z"]) for s in dt.get("stages", [])))
-        add("drive train ratio", _f(dt.get("ratio")))
+        add(T["dt_z"], " | ".join("/".join(str(v) for v in s["z"]) for s in dt.get("stages", [])))
+        add(T["dt_ratio"], f(dt.get("ratio")))
         if dt.get("motor_power_computed"):
-            add("motor power, W", _f(dt.get("motor_power")))
+            add(T["motor_power"], f(dt.get("motor_power")))
     bal = results.get("balancing")
     if bal and bal.get("max"):
-        add("shaking force max, N", _f(bal["max"].get("F")))
+        add(T["shaking"], f(bal["max"].get("F")))
         if "F_balanced" in bal["max"]:
-            add("with counterweights, N", _f(bal["max"]["F_balanced"]))
+            add(T["shaking_bal"], f(bal["max"]["F_balanced"]))
     if bal and bal.get("rotor"):
-        add("rotor corrections m, kg", ", ".join(_f(c["m"]) for c in bal["rotor"]["corrections"]))
+        add(T["rotor_m"], sep.join(f(c["m"]) for c in bal["rotor"]["corrections"]))
     df = results.get("differential")
     if df:
-        add("differential u (carrier held)", _f(df.get("u")))
-        add("differential speeds, rpm", ", ".join(f"{k}: {_f(v)}" for k, v in (df.get("speeds_rpm") or {}).items()))
+        add(T["diff_u"], f(df.get("u")))
+        add(T["diff_speeds"], sep.join(f"{k}: {f(v)}" for k, v in (df.get("speeds_rpm") or {}).items()))
         if df.get("torques"):
-            add("differential torques, N*m", ", ".join(f"{k}: {_f(v)}" for k, v in df["torques"].items()))
+            add(T["diff_torques"], sep.join(f"{k}: {f(v)}" for k, v in df["torques"].items()))
     return rows
 
 
-def print_summary(results: dict, paths: list[Path]) -> None:
+def print_summary(results: dict, paths: list[Path], lang: str = "en") -> None:
     """The run summary on stdout: the table of the main quantities, the warnings, the
-    files written. Rich draws it; when the output is no terminal and nothing in it needs
-    Rich (no wrapping, no markup, one-cell characters: :func:`_plain_summary`), the same
-    text is written without importing Rich (~10 % of a JSON run)."""
+    files written, in ``lang`` (`tmm run --lang`: the words from the catalogue, the
+    warnings rendered from results.json's ``messages``). Rich draws it; when the output is
+    no terminal and nothing in it needs Rich (no wrapping, no markup, one-cell characters:
+    :func:`_plain_summary`), the same text is written without importing Rich (~10 % of a
+    JSON run)."""
+    T = run_words(lang)
     title = f"tmm: {results.get('task', {}).get('title') or ''}"
-    rows = _summary_rows(results)
-    warnings = [str(w) for w in results.get("warnings", [])]
-    plain = _plain_summary(title, rows, warnings, [str(p) for p in paths])
+    rows = _summary_rows(results, lang)
+    if lang == "en":
+        warnings = [str(w) for w in results.get("warnings", [])]
+    else:
+        from .messages import render_list
+        warnings = render_list(results, lang)
+    words = (T["quantity"], T["value"], T["warning"], T["wrote"])
+    plain = _plain_summary(title, rows, warnings, [str(p) for p in paths], words)
     if plain is not None:
         import sys
         sys.stdout.write(plain)
         sys.stdout.flush()
         return
+    from rich.markup import escape
     from rich.table import Table
 
     con = _console()
-    t = Table(title=title, show_header=True)
-    t.add_column("quantity")
-    t.add_column("value", justify="right")
+    # the task's title, the warnings and the paths are printed as written (no markup read in them)
+    t = Table(title=escape(title), show_header=True)
+    t.add_column(escape(T["quantity"]))
+    t.add_column(escape(T["value"]), justify="right")
     for row in rows:
-        t.add_row(*row)
+        t.add_row(*(escape(c) for c in row))
     con.print(t)
     for w in warnings:
-        con.print(f"[yellow]warning:[/yellow] {w}")
+        con.print(f"[yellow]{escape(T['warning'])}:[/yellow] {escape(w)}")
     for p in paths:
-        con.print(f"wrote {p}")
+        con.print(f"{escape(T['wrote'])} {escape(str(p))}")
 
 
-# the characters rich.cells counts as one cell each without its width table
-_ONE_CELL = re.compile("[\x20-\x7e\xa0-\xac\xae-\u02ff\u0370-\u0482]*")
+# the characters rich.cells counts as one cell each without its width table (Latin, Greek, Cyrillic
+# without its combining marks, the dashes, quotes and ellipsis of general punctuation)
+_ONE_CELL = re.compile("[\x20-\x7e\xa0-\xac\xae-\u02ff\u0370-\u0482\u048a-\u052f\u2010-\u2027]*")
 _MARKUP_OR_EMOJI = re.compile(r"[\[\]]|:\S*:")      # a Rich markup tag, an emoji code (:name:)
 
 
-def _plain_summary(title: str, rows: list[tuple[str, str]], warnings: list[str], paths: list[str]) -> str | None:
+def _plain_summary(title: str, rows: list[tuple[str, str]], warnings: list[str], paths: list[str],
+                   words: tuple[str, str, str, str] = ("quantity", "value", "warning", "wrote")) -> str | None:
     """The text Rich prints for :func:`print_summary` (its Table's default heavy-head box,
     the title centred over it, then one line per warning and per file), or None where
     Rich could print anything else: a terminal or a forced one (styles), a console
@@ -150,15 +180,16 @@ def _plain_summary(title: str, rows: list[tuple[str, str]], warnings: list[str],
             continue
         break
     width = width or 80
-    texts = [title, *(c for r in rows for c in r), *warnings, *paths]
+    head, value, warning, wrote = words
+    texts = [title, *(c for r in rows for c in r), *warnings, *paths, *words]
     if any(not _ONE_CELL.fullmatch(t) or _MARKUP_OR_EMOJI.search(t) or t != t.strip() for t in texts) \
             or not title.strip():
         return None
-    w1 = max([len("quantity"), *(len(q) for q, _ in rows)])
-    w2 = max([len("value"), *(len(v) for _, v in rows)])
+    w1 = max([len(head), *(len(q) for q, _ in rows)])
+    w2 = max([len(value), *(len(v) for _, v in rows)])
     table = w1 + w2 + 7                        # two cells, each padded by a space a side, three rules
     lines = []
-    for s in [f"warning: {w}" for w in warnings] + [f"wrote {p}" for p in paths]:
+    for s in [f"{warning}: {w}" for w in warnings] + [f"{wrote} {p}" for p in paths]:
         wrapped = _wrapped(s, width)
         if wrapped is None:
             return None
@@ -168,7 +199,7 @@ def _plain_summary(title: str, rows: list[tuple[str, str]], warnings: list[str],
     left = (table - len(title)) // 2
     text = [" " * left + title + " " * (table - len(title) - left),
             "┏" + "━" * (w1 + 2) + "┳" + "━" * (w2 + 2) + "┓",
-            f"┃ {'quantity'.ljust(w1)} ┃ {'value'.rjust(w2)} ┃",
+            f"┃ {head.ljust(w1)} ┃ {value.rjust(w2)} ┃",
             "┡" + "━" * (w1 + 2) + "╇" + "━" * (w2 + 2) + "┩",
             *(f"│ {q.ljust(w1)} │ {v.rjust(w2)} │" for q, v in rows),
             "└" + "─" * (w1 + 2) + "┴" + "─" * (w2 + 2) + "┘",
@@ -270,35 +301,51 @@ def print_check(rows: list[dict], source) -> None:
     con.print(f"{c['ok']} of {len(rows)} answers within tolerance" + "".join(f", {v} {k}" for k, v in c.items() if v and k != "ok"))
 
 
-def print_batch(rows: list[dict], out: Path, skipped=(), removed=(), notes=()) -> None:
-    """The batch table (student, variant, status, score, message), 80 columns wide;
-    ``notes``: lines printed as warnings after it (an output the batch could not make)."""
+BATCH = locales.table("summary", "batch")
+
+
+def batch_words(lang: str = "en") -> dict:
+    """The terminal's words of `tmm batch` in ``lang`` (the catalogue's summary ``batch`` table)."""
+    return {**BATCH["en"], **BATCH.get(lang, {})}
+
+
+def print_batch(rows: list[dict], out: Path, skipped=(), removed=(), notes=(), lang: str = "en") -> None:
+    """The batch table (student, variant, status, score, message), 80 columns wide, in
+    ``lang`` (`tmm batch --lang`: the words, the statuses and the coded messages as
+    summary.html has them); ``notes``: lines printed as warnings after it (an output the
+    batch could not make)."""
     from rich.table import Table
     from rich.text import Text
 
-    con = _console()
+    from .messages import catalogue, localize
     from .numfmt import plural
-    t = Table(title=f"tmm batch: {plural(len(rows), ['row', 'rows'], 'en')}", title_justify="left")
-    t.add_column("student / file", overflow="fold", max_width=22)
-    t.add_column("var.", no_wrap=True, max_width=6)
-    t.add_column("status", no_wrap=True)
-    t.add_column("score", justify="right", no_wrap=True)
-    t.add_column("message", overflow="fold", max_width=32)
+    B = batch_words(lang)
+    status = dict(catalogue(lang)["terms"].get("status", {})) if lang != "en" else {}
+    con = _console()
+    t = Table(title=Text(f"{B['title']}: {plural(len(rows), B['rows'], lang)}"), title_justify="left")
+    t.add_column(Text(B["who"]), overflow="fold", max_width=22)
+    t.add_column(Text(B["var"]), no_wrap=True, max_width=6)
+    t.add_column(Text(B["status"]), no_wrap=True)
+    t.add_column(Text(B["score"]), justify="right", no_wrap=True)
+    t.add_column(Text(B["message"]), overflow="fold", max_width=32)
     for r in rows:
         who = r.get("student") or r.get("answers_file") or Path(str(r.get("file", ""))).name
         st = shown_status(r)
         score = f"{100 * float(r['score']):.0f} %" if r.get("answers") else "-"
-        t.add_row(Text(str(who)), Text(str(r.get("variant", ""))), Text(st, style=STATUS_STYLE.get(st, "")),
-                  score, Text(str(r.get("message", ""))[:200]))
+        t.add_row(Text(str(who)), Text(str(r.get("variant", ""))),
+                  Text(str(status.get(st, st)), style=STATUS_STYLE.get(st, "")),
+                  score, Text(_message(r, lang, localize)[:200]))
     con.print(t)
     if skipped:
-        con.print(f"skipped {len(skipped)} answers file(s) among the tasks: "
-                  + ", ".join(Path(s).name for s in list(skipped)[:5]), markup=False)
+        con.print(B["skipped"].format(n=len(skipped), names=", ".join(Path(s).name for s in list(skipped)[:5])),
+                  markup=False)
     if removed:
-        con.print(f"removed {len(removed)} file(s) of variants that are gone", markup=False)
+        con.print(B["removed"].format(n=len(removed)), markup=False)
+    word = run_words(lang)["warning"]
     for n in notes:
-        con.print(f"warning: {n}", markup=False)
-    con.print(f"wrote {out / 'summary.csv'}, summary.html and check.csv", markup=False)
+        con.print(f"{word}: {localize(n.to_dict(), lang) if hasattr(n, 'to_dict') and lang != 'en' else n}",
+                  markup=False)
+    con.print(B["wrote"].format(csv=out / "summary.csv"), markup=False)
 
 
 I18N = locales.table("summary", "text")

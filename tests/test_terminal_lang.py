@@ -1,0 +1,176 @@
+"""The terminal speaks the report's language: `tmm run --lang ru|uk` prints its progress, the
+summary table (words from the catalogue, numbers with the decimal comma), the warnings, the
+files written and a failure in that language, and `tmm batch --lang` its table; results.json
+stays English; without --lang everything is as before (English, the decimal point)."""
+from __future__ import annotations
+
+import json
+import re
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from tmm_cli.cli import app
+
+runner = CliRunner()
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _run(tmp_path, name: str, *extra):
+    out = tmp_path / f"{name}-{'-'.join(extra) or 'en'}"
+    res = runner.invoke(app, ["run", str(ROOT / "tasks" / f"{name}.yaml"), "--out", str(out), "--format", "json",
+                              *extra])
+    assert res.exit_code == 0, res.output
+    return res, out
+
+
+def _rows(stdout: str) -> list[tuple[str, str]]:
+    """The summary table's body rows (quantity, value) as printed."""
+    return [tuple(c.strip() for c in line.strip("│").split("│")) for line in stdout.splitlines()
+            if line.startswith("│")]
+
+
+def _comma(value: str) -> str:
+    """An English summary value written the Russian way by hand: the decimal comma, the minus
+    sign U+2212, and 'x' between two numbers as '×'."""
+    value = re.sub(r"(?<=\d)\.(?=\d)", ",", value)
+    value = re.sub(r"(?<![\w)])-(?=\d)", "\u2212", value)
+    return value.replace(" x ", " × ")
+
+
+def test_run_summary_in_russian(tmp_path):
+    en, _ = _run(tmp_path, "forging_sixbar")
+    ru, out = _run(tmp_path, "forging_sixbar", "--lang", "ru")
+    head = next(line for line in ru.stdout.splitlines() if line.startswith("┃"))
+    assert "величина" in head and "значение" in head
+    want = {"structure formula": "формула строения", "phi0, deg": "φ0, град",
+            "K (mean speed increase)": "K (коэффициент изменения средней скорости)",
+            "flywheel J, kg*m^2": "маховик J, кг·м²", "flywheel D x b, m": "маховик D × b, м"}
+    en_rows, ru_rows = _rows(en.stdout), _rows(ru.stdout)
+    assert [q for q, _ in en_rows][1:] == list(want)           # every row of this task, W's first
+    for (q_en, v_en), (q_ru, v_ru) in zip(en_rows, ru_rows):
+        assert q_ru == want.get(q_en, q_en)
+        assert v_ru == (v_en if q_en == "structure formula" else _comma(v_en)), q_en
+    assert dict(ru_rows)["φ0, град"] == "6,4242" and dict(ru_rows)["маховик D × b, м"] == "1,2053 × 0,12053"
+    # the warning (K < 1 with working: backward) in Russian, its numbers with the comma
+    text = " ".join(ru.stdout.split())
+    assert "предупреждение: positions.working = backward: рабочий ход звена «slider»" in text
+    assert "K = 0,78 < 1" in text and "warning:" not in text and "quick one" not in text
+    assert f"записан{out / 'results.json'}" in re.sub(r"\s+", "", ru.stdout) and "wrote " not in ru.stdout
+    # progress on stderr: the stages' names
+    assert ru.stderr.splitlines()[:3] == ["  структурный анализ...", "  положения механизма...",
+                                          "  кинематический анализ..."]
+    # results.json is the same English file either way
+    data = json.loads((out / "results.json").read_text(encoding="utf-8"))
+    assert data["warnings"][0].startswith("positions.working = backward makes the working stroke")
+
+
+def test_run_summary_in_ukrainian_and_english_unchanged(tmp_path):
+    uk, _ = _run(tmp_path, "press_drive_train", "--lang", "uk")
+    rows = dict(_rows(uk.stdout))
+    assert rows["привід z"] == "18/36 | 20/44 | 44/28/100"
+    assert rows["передатне відношення приводу"] == "14,4"
+    assert rows["формула будови"] == "I(0,1) -> II(2,3)"
+    assert "записано " in uk.stdout
+    assert uk.stderr.splitlines()[-1] == "  зубчастий привід..."
+    en, _ = _run(tmp_path, "press_drive_train")
+    assert dict(_rows(en.stdout))["drive train ratio"] == "14.4"
+    assert [line for line in en.stdout.splitlines() if line.startswith("┃")] == [
+        "┃ quantity                ┃                     value ┃"]
+    assert en.stderr.splitlines()[-1] == "  drive_train..."
+
+
+def test_lists_are_separated_by_semicolons_where_the_comma_is_decimal():
+    from tmm_cli.summary import _summary_rows
+    results = {"differential": {"u": -2.5, "speeds_rpm": {"a": 100.5, "b": -20.25}},
+               "singular": [12.5, 190.25], "balancing": {"rotor": {"corrections": [{"m": 0.5}, {"m": 1.25}]}}}
+    en, ru = dict(_summary_rows(results)), dict(_summary_rows(results, "ru"))
+    assert en["differential speeds, rpm"] == "a: 100.5, b: -20.25"
+    assert ru["частоты вращения дифференциала, об/мин"] == "a: 100,5; b: \u221220,25"
+    assert en["singular crank angles, deg"] == "12.5, 190.25"
+    assert ru["особые положения кривошипа, град"] == "12,5; 190,25"
+    assert ru["корректирующие массы ротора m, кг"] == "0,5; 1,25"
+    assert ru["дифференциал u (водило неподвижно)"] == "\u22122,5"
+
+
+@pytest.mark.parametrize("lang", ["ru", "uk"])
+def test_plain_summary_is_what_rich_prints_in_the_language(lang, monkeypatch, capsys):
+    """The summary written without Rich equals Rich's in ru and uk too (Cyrillic, the
+    catalogue's words in the head, the warning and file lines)."""
+    from tmm_cli import load_task, run, summary
+    for k in ("COLUMNS", "LINES", "FORCE_COLOR", "TTY_COMPATIBLE"):
+        monkeypatch.delenv(k, raising=False)
+    paths = [Path("out") / "x" / "results.json"]
+    plain, real = 0, summary._plain_summary
+    for name in ("forging_sixbar", "press_drive_train", "gears_zero", "cam_offset", "crank_rocker_fourbar",
+                 "engine_slider_crank"):
+        results = run(load_task(ROOT / "tasks" / f"{name}.yaml"))
+        summary.print_summary(results, paths, lang)
+        got = capsys.readouterr()
+        T = summary.run_words(lang)
+        words = (T["quantity"], T["value"], T["warning"], T["wrote"])
+        title = f"tmm: {results['task']['title']}"
+        from tmm_cli.messages import render_list
+        plain += real(title, summary._summary_rows(results, lang), render_list(results, lang),
+                      [str(p) for p in paths], words) is not None
+        monkeypatch.setattr(summary, "_plain_summary", lambda *a: None)
+        summary.print_summary(results, paths, lang)
+        want = capsys.readouterr()
+        monkeypatch.setattr(summary, "_plain_summary", real)
+        assert got.out == want.out and T["value"] in got.out, name
+    assert plain >= 2, plain             # the plain text was written and compared
+
+
+def test_a_title_with_brackets_and_colons_is_printed_as_written(tmp_path):
+    """Rich reads neither markup nor emoji codes in the task's title or a warning."""
+    from tmm_cli import summary
+    import io
+    from rich.console import Console
+    buf = io.StringIO()
+    con = Console(file=buf, width=100, highlight=False, emoji=False)
+    import tmm_cli.summary as sm
+    orig = sm._console
+    sm._console = lambda: con
+    try:
+        summary.print_summary({"task": {"title": "variant [b]7[/b] :smile:"}, "warnings": ["a [red]x[/red] y"]},
+                              [Path("out/a.json")])
+    finally:
+        sm._console = orig
+    text = " ".join(buf.getvalue().split())
+    assert "variant [b]7[/b] :smile:" in text and "a [red]x[/red] y" in text
+
+
+def test_batch_table_in_russian(tmp_path):
+    src = tmp_path / "src"
+    src.mkdir()
+    for n in ("gears_zero", "cam_knife"):
+        (src / f"{n}.yaml").write_text((ROOT / "tasks" / f"{n}.yaml").read_text(encoding="utf-8"), encoding="utf-8")
+    (src / "bad.yaml").write_text("schema: tmm/1\ngears: {m: 4 mm, z: [14, x]}\n", encoding="utf-8")
+    out = tmp_path / "b"
+    res = runner.invoke(app, ["batch", str(src), "--out", str(out), "--format", "json", "--lang", "ru"])
+    assert res.exit_code == 2, res.output
+    text = " ".join(res.stdout.split())
+    assert "tmm batch: 3 строки" in text
+    assert all(w in text for w in ("студент / файл", "вар.", "статус", "балл", "сообщение"))
+    flat = re.sub(r"[\s│]+", "", res.stdout)               # the cells' text, however a cell wraps
+    assert "рассчитано" in text and "ошибка в данных" in text and "ожидаетсяцелоечисло" in flat
+    assert "computed" not in text and "invalid" not in text and "Inputshouldbe" not in flat
+    assert f"записаны{out / 'summary.csv'},summary.htmlиcheck.csv" in re.sub(r"\s+", "", res.stdout)
+    en = runner.invoke(app, ["batch", str(src), "--out", str(tmp_path / "e"), "--format", "json"])
+    text = " ".join(en.stdout.split())
+    assert "tmm batch: 3 rows" in text and "computed" in text and "Inputshouldbe" in re.sub(r"[\s│]+", "", en.stdout)
+
+
+def test_an_invalid_task_in_the_language(tmp_path):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("schema: tmm/1\ngears: {m: 4 mm, z: [14, x]}\n", encoding="utf-8")
+    res = runner.invoke(app, ["run", str(bad), "--out", str(tmp_path / "o"), "--lang", "uk"])
+    assert res.exit_code == 2
+    assert res.stderr.splitlines()[:2] == [
+        "помилка: хибні дані в завданні",
+        f"{bad}:2:26: поле «gears.z[1]»: очікується ціле число, а записано текст"]
+    en = runner.invoke(app, ["run", str(bad), "--out", str(tmp_path / "o")])
+    assert en.stderr.splitlines()[:2] == [
+        "error: invalid task",
+        f"{bad}:2:26: field 'gears.z[1]': Input should be a valid integer, unable to parse string as an integer"]
