@@ -44,15 +44,20 @@ def test_run_summary_in_russian(tmp_path):
     ru, out = _run(tmp_path, "forging_sixbar", "--lang", "ru")
     head = next(line for line in ru.stdout.splitlines() if line.startswith("┃"))
     assert "величина" in head and "значение" in head
-    want = {"structure formula": "формула строения", "phi0, deg": "φ0, град",
+    want = {"W = 3n - 2p5 - p4": "степень подвижности W = 3n − 2p5 − p4",
+            "structure formula": "формула строения", "phi0, deg": "угол крайнего положения кривошипа φ0, град",
             "K (mean speed increase)": "K (коэффициент изменения средней скорости)",
-            "flywheel J, kg*m^2": "маховик J, кг·м²", "flywheel D x b, m": "маховик D × b, м"}
+            "flywheel J, kg*m^2": "момент инерции маховика J, кг·м²",
+            "flywheel D x b, m": "размеры маховика D × b, м"}
     en_rows, ru_rows = _rows(en.stdout), _rows(ru.stdout)
-    assert [q for q, _ in en_rows][1:] == list(want)           # every row of this task, W's first
+    assert [q for q, _ in en_rows] == list(want)                # every row of this task
     for (q_en, v_en), (q_ru, v_ru) in zip(en_rows, ru_rows):
-        assert q_ru == want.get(q_en, q_en)
-        assert v_ru == (v_en if q_en == "structure formula" else _comma(v_en)), q_en
-    assert dict(ru_rows)["φ0, град"] == "6,4242" and dict(ru_rows)["маховик D × b, м"] == "1,2053 × 0,12053"
+        assert q_ru == want[q_en]
+        assert v_ru == (v_en.replace(" -> ", " → ") if q_en == "structure formula" else _comma(v_en)), q_en
+    rows = dict(ru_rows)
+    assert rows["угол крайнего положения кривошипа φ0, град"] == "6,4242"
+    assert rows["размеры маховика D × b, м"] == "1,2053 × 0,12053"
+    assert rows["формула строения"] == "I(0,1) → II(2,3) → II(4,5)"
     # the warning (K < 1 with working: backward) in Russian, its numbers with the comma
     text = " ".join(ru.stdout.split())
     assert "предупреждение: positions.working = backward: рабочий ход звена «slider»" in text
@@ -69,9 +74,9 @@ def test_run_summary_in_russian(tmp_path):
 def test_run_summary_in_ukrainian_and_english_unchanged(tmp_path):
     uk, _ = _run(tmp_path, "press_drive_train", "--lang", "uk")
     rows = dict(_rows(uk.stdout))
-    assert rows["привід z"] == "18/36 | 20/44 | 44/28/100"
+    assert rows["числа зубців ступенів приводу"] == "18/36 | 20/44 | 44/28/100"
     assert rows["передатне відношення приводу"] == "14,4"
-    assert rows["формула будови"] == "I(0,1) -> II(2,3)"
+    assert rows["формула будови"] == "I(0,1) → II(2,3)"
     assert "записано " in uk.stdout
     assert uk.stderr.splitlines()[-1] == "  зубчастий привід..."
     en, _ = _run(tmp_path, "press_drive_train")
@@ -83,15 +88,15 @@ def test_run_summary_in_ukrainian_and_english_unchanged(tmp_path):
 
 def test_lists_are_separated_by_semicolons_where_the_comma_is_decimal():
     from tmm_cli.summary import _summary_rows
-    results = {"differential": {"u": -2.5, "speeds_rpm": {"a": 100.5, "b": -20.25}},
+    results = {"differential": {"u": -2.5, "speeds_rpm": {"1": 100.5, "satellite": -20.25}},
                "singular": [12.5, 190.25], "balancing": {"rotor": {"corrections": [{"m": 0.5}, {"m": 1.25}]}}}
     en, ru = dict(_summary_rows(results)), dict(_summary_rows(results, "ru"))
-    assert en["differential speeds, rpm"] == "a: 100.5, b: -20.25"
-    assert ru["частоты вращения дифференциала, об/мин"] == "a: 100,5; b: \u221220,25"
+    assert en["differential speeds, rpm"] == "1: 100.5, satellite: -20.25"
+    assert ru["частоты вращения звеньев дифференциала, об/мин"] == "1: 100,5; сателлит: \u221220,25"
     assert en["singular crank angles, deg"] == "12.5, 190.25"
     assert ru["особые положения кривошипа, град"] == "12,5; 190,25"
     assert ru["корректирующие массы ротора m, кг"] == "0,5; 1,25"
-    assert ru["дифференциал u (водило неподвижно)"] == "\u22122,5"
+    assert ru["передаточное отношение при остановленном водиле u"] == "\u22122,5"
 
 
 @pytest.mark.parametrize("lang", ["ru", "uk"])
@@ -168,7 +173,7 @@ def test_an_invalid_task_in_the_language(tmp_path):
     res = runner.invoke(app, ["run", str(bad), "--out", str(tmp_path / "o"), "--lang", "uk"])
     assert res.exit_code == 2
     assert res.stderr.splitlines()[:2] == [
-        "помилка: хибні дані в завданні",
+        "Помилки у файлі завдання:",
         f"{bad}:2:26: поле «gears.z[1]»: очікується ціле число, а записано текст"]
     en = runner.invoke(app, ["run", str(bad), "--out", str(tmp_path / "o")])
     assert en.stderr.splitlines()[:2] == [

@@ -47,7 +47,7 @@ def fail_task(exc: TaskError, echo: Echo = echo, lang: str = "en") -> int:
         echo(f"error: invalid {exc.kind}\n{exc.render()}", err=True)
     else:
         from .messages import localize
-        echo(f"{_word('error', lang)}: {_word('invalid_task', lang)}\n{localize(coded.to_dict(), lang)}", err=True)
+        echo(f"{_word('invalid_task', lang)}:\n{localize(coded.to_dict(), lang)}", err=True)
     return EXIT_INVALID
 
 

@@ -50,8 +50,9 @@ def _summary_rows(results: dict, lang: str = "en") -> list[tuple[str, str]]:
         return localize(_f(x, digits), lang)
     st = results.get("structure")
     if st:
-        add("W = 3n - 2p5 - p4", f"{st['W']} (n={st['n']}, p5={st['p5']}, p4={st['p4']})")
-        add(T["formula"], str(st.get("formula")))
+        add(T["W"], f"{st['W']} (n={st['n']}, p5={st['p5']}, p4={st['p4']})")
+        formula = str(st.get("formula"))
+        add(T["formula"], formula if lang == "en" else formula.replace(" -> ", " → "))
     pos = results.get("positions")
     if pos:
         add(T["phi0"], f(pos.get("phi0")))
@@ -98,7 +99,9 @@ def _summary_rows(results: dict, lang: str = "en") -> list[tuple[str, str]]:
     df = results.get("differential")
     if df:
         add(T["diff_u"], f(df.get("u")))
-        add(T["diff_speeds"], sep.join(f"{k}: {f(v)}" for k, v in (df.get("speeds_rpm") or {}).items()))
+        # the satellite named in the language (the wheels 1, 3 and the carrier H by their symbols)
+        member = {"satellite": locales.words(lang).get("diff.satellite", "satellite")} if lang != "en" else {}
+        add(T["diff_speeds"], sep.join(f"{member.get(k, k)}: {f(v)}" for k, v in (df.get("speeds_rpm") or {}).items()))
         if df.get("torques"):
             add(T["diff_torques"], sep.join(f"{k}: {f(v)}" for k, v in df["torques"].items()))
     return rows
@@ -144,8 +147,9 @@ def print_summary(results: dict, paths: list[Path], lang: str = "en") -> None:
 
 
 # the characters rich.cells counts as one cell each without its width table (Latin, Greek, Cyrillic
-# without its combining marks, the dashes, quotes and ellipsis of general punctuation)
-_ONE_CELL = re.compile("[\x20-\x7e\xa0-\xac\xae-\u02ff\u0370-\u0482\u048a-\u052f\u2010-\u2027]*")
+# without its combining marks, the dashes, quotes and ellipsis of general punctuation, the arrows
+# and the minus sign U+2212)
+_ONE_CELL = re.compile("[\x20-\x7e\xa0-\xac\xae-\u02ff\u0370-\u0482\u048a-\u052f\u2010-\u2027\u2190-\u2199\u2212]*")
 _MARKUP_OR_EMOJI = re.compile(r"[\[\]]|:\S*:")      # a Rich markup tag, an emoji code (:name:)
 
 
@@ -334,7 +338,7 @@ def print_batch(rows: list[dict], out: Path, skipped=(), removed=(), notes=(), l
         score = f"{100 * float(r['score']):.0f} %" if r.get("answers") else "-"
         t.add_row(Text(str(who)), Text(str(r.get("variant", ""))),
                   Text(str(status.get(st, st)), style=STATUS_STYLE.get(st, "")),
-                  score, Text(_message(r, lang, localize)[:200]))
+                  score, Text(_cut(_message(r, lang, localize), 200)))
     con.print(t)
     if skipped:
         con.print(B["skipped"].format(n=len(skipped), names=", ".join(Path(s).name for s in list(skipped)[:5])),
@@ -346,6 +350,11 @@ def print_batch(rows: list[dict], out: Path, skipped=(), removed=(), notes=(), l
         con.print(f"{word}: {localize(n.to_dict(), lang) if hasattr(n, 'to_dict') and lang != 'en' else n}",
                   markup=False)
     con.print(B["wrote"].format(csv=out / "summary.csv"), markup=False)
+
+
+def _cut(text: str, n: int) -> str:
+    """``text`` shortened to ``n`` characters, its end marked by an ellipsis where cut."""
+    return text if len(text) <= n else text[:n - 1] + "…"
 
 
 I18N = locales.table("summary", "text")
