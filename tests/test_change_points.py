@@ -209,3 +209,20 @@ def test_curve_of_the_output_leaves_out_values_without_a_limit(tmp_path):
     e0 = res["kinematics"][0]
     assert e0["near_singular"] is True and e0["links"]["rocker"]["omega"] is None
     assert e0["links"]["rocker"]["epsilon"] == pytest.approx(0.0, abs=0.1)
+
+
+def test_one_continuity_warning_a_group_with_every_runs_angles():
+    """A four-bar on the Grashof limit (0.1 + 0.3 = 0.1 + 0.3) is singular at crank angles 0 and
+    180 deg; the course's positions, the diagrams' grid and the other runs of the solver each
+    found some of them, and each said so in a warning of its own (three of one kind). Now one
+    warning for the group names both angles."""
+    from tmm_cli import load_task, run
+    r = run(load_task({"schema": "tmm/1", "mechanism": {
+        "ground": {"O": [0, 0], "O3": [0.3, 0]},
+        "links": {"crank": {"points": ["O", "A"], "length": 0.1}, "coupler": {"points": ["A", "B"], "length": 0.3},
+                  "rocker": {"points": ["B", "O3"], "length": 0.1}},
+        "assembly": {"B": [0.3, 0.1]}}, "drive": {"link": "crank", "speed": "100 rpm"}}))
+    found = [m for m in r["messages"] if m["code"] == "kinematics.singular_continuity"]
+    assert len(found) == 1 and found[0]["params"]["group"] == "II(2,3)"
+    assert found[0]["params"]["angles"] == [0.0, 180.0]
+    assert "at crank angle(s) 0, 180 deg" in found[0]["text"]

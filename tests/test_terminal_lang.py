@@ -179,3 +179,35 @@ def test_an_invalid_task_in_the_language(tmp_path):
     assert en.stderr.splitlines()[:2] == [
         "error: invalid task",
         f"{bad}:2:26: field 'gears.z[1]': Input should be a valid integer, unable to parse string as an integer"]
+
+
+def test_two_degree_of_freedom_machine_has_its_summary_rows():
+    """A dof2 task (the rotary impact mechanism) printed an empty table: now the state at the hit
+    (v_M, the striker's energy), the largest v_M, |R01| and driving moment and the energy balance.
+    The hit's numbers checked by hand from the hit's angles and speeds: v_M = |v_O1 + omega2 x O1M|,
+    T2 = m2 v_C^2 / 2 + J_C omega2^2 / 2 with v_C = v_O1 + omega2 x O1C."""
+    import math
+
+    from tmm_cli import load_task, run
+    from tmm_cli.summary import _summary_rows
+    r = run(load_task(ROOT / "tasks" / "impact_rotor.yaml"))
+    d, p = r["dof2"], r["dof2"]["parameters"]
+    hit = d["impact"]
+    phi, th2 = math.radians(hit["phi"]), math.radians(hit["theta2"])
+    w1, w2 = hit["omega"], hit["omega2"]
+    vo1 = (-p["l"] * w1 * math.sin(phi), p["l"] * w1 * math.cos(phi))
+
+    def v_at(dist):
+        return math.hypot(vo1[0] - dist * w2 * math.sin(th2), vo1[1] + dist * w2 * math.cos(th2))
+    vM, vC = v_at(p["l_M"]), v_at(p["l_c"])
+    T2 = 0.5 * p["m2"] * vC ** 2 + 0.5 * p["J_C"] * w2 ** 2
+    rows = dict(_summary_rows(r))
+    assert rows["striker speed v_M at the hit, m/s"] == f"{vM:.5g}"
+    assert rows["striker energy at the hit, J"] == f"{T2:.5g}"
+    R01 = max(d["reactions"]["R01"]["R"])                     # the largest of the sampled reactions
+    assert float(rows["largest |R01|, N"]) == pytest.approx(R01, rel=1e-4)
+    assert float(rows["largest v_M, m/s"]) == pytest.approx(max(d["points"]["M"]["v"]), rel=1e-4)
+    assert float(rows["largest driving moment, N*m"]) == pytest.approx(max(d["driving_moment"]), rel=1e-4)
+    assert float(rows["energy balance, relative error"]) < 1e-8
+    ru = dict(_summary_rows(r, "ru"))
+    assert ru["скорость точки M ударника в момент удара, м/с"] == f"{vM:.5g}".replace(".", ",")

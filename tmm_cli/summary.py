@@ -96,6 +96,20 @@ def _summary_rows(results: dict, lang: str = "en") -> list[tuple[str, str]]:
             add(T["shaking_bal"], f(bal["max"]["F_balanced"]))
     if bal and bal.get("rotor"):
         add(T["rotor_m"], sep.join(f(c["m"]) for c in bal["rotor"]["corrections"]))
+    d2 = results.get("dof2")
+    if d2:
+        hit, top = d2.get("impact") or {}, d2.get("max") or {}
+        if hit:
+            add(T["dof2_vM"], f((hit.get("M") or {}).get("v")))
+            add(T["dof2_T2"], f(hit.get("striker_energy")))
+        if "v_M" in top:
+            add(T["dof2_vM_max"], f(top["v_M"].get("value")))
+        if "R01" in top:
+            add(T["dof2_R01"], f(top["R01"].get("value")))
+        if "driving_moment_max" in top:
+            add(T["dof2_Md"], f(top["driving_moment_max"].get("value")))
+        if (d2.get("energy") or {}).get("relative_error") is not None:
+            add(T["dof2_energy"], f(d2["energy"]["relative_error"], 2))
     df = results.get("differential")
     if df:
         add(T["diff_u"], f(df.get("u")))

@@ -194,11 +194,19 @@ class Solver:
                 sing = s.copy() if sing is None else np.logical_or(sing, s, out=sing)
                 # to 1e-4 deg (the message shows 6 digits), 360 as 0: a course grid starting
                 # at an extreme position 5e-7 deg off 0 names the same angle as a grid from 0
-                ang = np.unique(np.round(np.degrees(phi[s]) % 360, 4) % 360 + 0.0)[:8]
-                msg = Message("kinematics.singular_continuity", **self.groups[gi].message_params(),
-                              angles=ang, delta=CONT_DELTA)
-                if msg not in self.warnings:
+                ang = np.round(np.degrees(phi[s]) % 360, 4) % 360 + 0.0
+                params = self.groups[gi].message_params()
+                # one warning a group: the angles of every run of this solver (the course's
+                # positions, the diagrams' grid, the extra positions) joined, not one per run
+                old = next((k for k, w in enumerate(self.warnings) if getattr(w, "code", None) ==
+                            "kinematics.singular_continuity" and w.params.get("group") == params.get("group")), None)
+                if old is not None:
+                    ang = np.concatenate([ang, self.warnings[old].params["angles"]])
+                msg = Message("kinematics.singular_continuity", **params, angles=np.unique(ang)[:8], delta=CONT_DELTA)
+                if old is None:
                     self.warnings.append(msg)
+                else:
+                    self.warnings[old] = msg
         if sing is None:
             return
         idx = np.nonzero(sing)[0]
