@@ -1243,12 +1243,28 @@ def test_task_error_coded_is_its_text_in_every_language(tmp_path):
 def test_crank_angle_intervals_are_data_formatted_per_language():
     """A group's failing intervals are [from, to] pairs in degrees: the English text keeps
     its six decimals (stderr, results.json); Russian and Ukrainian show φ = a…b° to 0.1°,
-    finer where an interval is narrower than the rounding."""
+    finer where an interval is narrower than the rounding, separated by semicolons (a comma
+    between two numbers would read as a decimal one); a list of names keeps its commas."""
     reason = Message("kinematics.reason.no_solution")
     m = Message("kinematics.fail.intervals", group="II(2,3)", links=["rod", "ram"], reason=reason,
                 intervals=[[37.46, 52.14], [350.0, 10.25], [120.012, 120.048]])
     assert m.params["intervals"] == [[37.46, 52.14], [350.0, 10.25], [120.012, 120.048]]
     assert "crank angles 37.460000..52.140000, 350.000000..10.250000, 120.012000..120.048000 deg:" in m
     ru = render(m.code, m.params, "ru")
-    assert "при углах кривошипа φ = 37,5…52,1°, 350,0…10,2°, 120,01…120,05°: уравнения" in ru   # decimal comma
+    assert "при углах кривошипа φ = 37,5…52,1°; 350,0…10,2°; 120,01…120,05°: уравнения" in ru   # decimal comma
+    assert "(звенья rod, ram)" in ru
     assert "φ = 37,5…52,1°" in render(m.code, m.params, "uk")
+
+
+def test_number_lists_in_the_decimal_comma_languages():
+    """A list of numbers in a message: ", " in English, "; " in ru and uk (0, 180 would read as
+    0,180); an interval's ends ".." in English, "…" in ru and uk."""
+    m = Message("kinematics.singular_continuity", group="II(2,3)", links=["coupler", "rocker"], angles=[0.0, 180.0],
+                delta=1e-6)
+    assert "at crank angle(s) 0, 180 deg" in m
+    ru = render(m.code, m.params, "ru")
+    assert "0; 180°" in ru and "(звенья coupler, rocker)" in ru
+    from tmm_cli.messages import _Formatter
+    f = _Formatter({}, "uk")
+    assert f.format_field([[45.0, 105.0], 7.5], "g") == "45…105; 7,5"
+    assert _Formatter({}, "en").format_field([[45.0, 105.0], 7.5], "g") == "45..105, 7.5"

@@ -49,16 +49,17 @@ PLAIN = "text"
 SPECS = ("or", "angles", "joined")
 
 
-def _angles(intervals: list) -> str:
+def _angles(intervals: list, sep: str = ", ") -> str:
     """Crank-angle intervals as "φ = 37.5…52.1°, 250.0…265.5°": to 0.1°, or finer (to
-    0.001°) where an interval would show the same number at both ends."""
+    0.001°) where an interval would show the same number at both ends; ``sep`` between them
+    ("; " where the decimal comma is written)."""
     out = []
     for a, b in intervals:
         d = 1
         while d < 3 and f"{a:.{d}f}" == f"{b:.{d}f}":
             d += 1
         out.append(f"{a:.{d}f}…{b:.{d}f}°")
-    return "φ = " + ", ".join(out)
+    return "φ = " + sep.join(out)
 
 
 @functools.cache
@@ -94,8 +95,11 @@ class _Formatter(string.Formatter):
             return numfmt.plural(value, spec[1:].split("|"), self.lang)
         if spec == "raw":                                   # as written (a number not localized: '0.38')
             return str(value)
+        # a list of numbers where the decimal comma is written (ru, uk): items separated by "; ",
+        # an interval's ends by "…" ("0,5; 1,25", "45…105"), never a comma between two numbers
+        comma = numfmt.comma(self.lang)
         if spec == "angles" and isinstance(value, list):
-            return numfmt.localize(_angles(value), self.lang)
+            return numfmt.localize(_angles(value, "; " if comma else ", "), self.lang)
         if spec == "or" and isinstance(value, list):        # alternatives: 'a', 'b' or 'c'
             word = self.terms.get("conj", {}).get("or", "or")
             items = [str(v) for v in value]
@@ -109,8 +113,11 @@ class _Formatter(string.Formatter):
             parts = str(value).split("/")
             return " / ".join(str(table.get(p, p)) for p in parts) if any(p in table for p in parts) else str(value)
         if isinstance(value, list):                          # an interval [a, b]: a..b
-            return ", ".join(f"{numfmt.num(v[0], spec, self.lang)}..{numfmt.num(v[1], spec, self.lang)}"
-                             if isinstance(v, list) and len(v) == 2 else numfmt.num(v, spec, self.lang) for v in value)
+            dots = "…" if comma else ".."
+            numbers = comma and any(isinstance(v, list) or numfmt.is_number(v) for v in value)
+            return ("; " if numbers else ", ").join(
+                f"{numfmt.num(v[0], spec, self.lang)}{dots}{numfmt.num(v[1], spec, self.lang)}"
+                if isinstance(v, list) and len(v) == 2 else numfmt.num(v, spec, self.lang) for v in value)
         return numfmt.localize(format(value, spec), self.lang) if numfmt.is_number(value) else format(value, spec)
 
 
