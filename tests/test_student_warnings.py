@@ -35,6 +35,20 @@ def test_quick_working_stroke_names_the_slow_one(tmp_path):
     assert "медленный ход — прямой" in render(m["code"], m["params"], "ru")
     assert "повільний хід — прямий" in render(m["code"], m["params"], "uk")
     assert "K = 0,878 < 1" in render(m["code"], m["params"], "uk")
+    # K shown to three digits (the value itself in results.json's positions)
+    assert m["params"]["K"] == float(f"{r['positions']['K']:.3g}")
+
+
+def test_a_k_just_below_one_is_not_shown_as_one():
+    """K = 0.99962 with three digits would read "K = 1 < 1": as many digits as show it below 1."""
+    from tmm_cli.linkage.kinematics.positions import PositionsResult, quick_working
+    pos = PositionsResult.__new__(PositionsResult)
+    for name, value in (("K", 0.99962), ("working", "forward"), ("output", "slider")):
+        object.__setattr__(pos, name, value)
+    (m,) = quick_working(pos)
+    assert "(K = 0.9996 < 1)" in m and "(K = 0,9996 < 1)" in render(m.code, m.params, "ru")
+    object.__setattr__(pos, "K", 1.0 - 1e-12)                   # 1 to round-off: no quick stroke
+    assert quick_working(pos) == []
 
 
 def test_links_without_mass_are_named_where_inertia_counts(tmp_path):
