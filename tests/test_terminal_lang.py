@@ -211,3 +211,26 @@ def test_two_degree_of_freedom_machine_has_its_summary_rows():
     assert float(rows["energy balance, relative error"]) < 1e-8
     ru = dict(_summary_rows(r, "ru"))
     assert ru["скорость точки M ударника в момент удара, м/с"] == f"{vM:.5g}".replace(".", ",")
+
+
+@pytest.mark.parametrize("lang, wrote", [("en", "wrote"), ("ru", "записан")])
+def test_a_failed_stage_still_lists_the_files_written(tmp_path, lang, wrote):
+    """A linkage that does not assemble over part of the turn fails its kinematics (exit 3), yet
+    results.json and the report are written with the other sections and the failure in place:
+    the terminal says so, as after a run that succeeds (stdout; not with --quiet)."""
+    task = tmp_path / "t.yaml"
+    task.write_text("schema: tmm/1\nmechanism:\n  ground: {O: [0, 0]}\n  links:\n"
+                    "    crank: {points: [O, A], length: 0.1}\n    rod: {points: [A, B], length: 0.05}\n"
+                    "    slider: {slider: B, guide: {through: O, angle: 0}}\n"
+                    "drive: {link: crank, speed: 10 rad/s}\n" + "gears: {m: 4 mm, z: [14, 30], x: [0, 0]}\n",
+                    encoding="utf-8")
+    out = tmp_path / "o"
+    res = runner.invoke(app, ["run", str(task), "--out", str(out), "--format", "json,html", "--lang", lang])
+    assert res.exit_code == 3
+    listed = [line.split(" ", 1)[1] for line in res.stdout.splitlines() if line.startswith(wrote + " ")]
+    assert listed[0] == str(out / "results.json") and str(out / "report.html") in listed
+    # every file of the folder, and only those (the gears' drawings and tables among them)
+    assert sorted(listed) == sorted(str(p) for p in out.rglob("*") if p.is_file())
+    assert "gears" in json.loads((out / "results.json").read_text(encoding="utf-8"))
+    quiet = runner.invoke(app, ["run", str(task), "--out", str(out), "--format", "json", "--lang", lang, "-q"])
+    assert quiet.exit_code == 3 and quiet.stdout == ""

@@ -160,7 +160,11 @@ def run_task(task_file: Path, out: Optional[Path], formats: set[str], lang: str,
     if failure is not None:
         for e in results.get("errors", [])[1:]:
             echo(f"{_word('error', lang)}: {task_file}: {stage_text(e, lang)}", err=True)
-        return fail_stage(failure, str(task_file), echo, lang)
+        code = fail_stage(failure, str(task_file), echo, lang)
+        if not quiet:           # what was written all the same: the computed sections, the failure in place
+            for p in getattr(failure, "written", None) or []:
+                echo(f"{_word('wrote', lang)} {p}")
+        return code
     if not quiet:
         from .summary import print_summary
         print_summary(results, paths, lang)
