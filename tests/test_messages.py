@@ -586,6 +586,9 @@ ENGLISH = [
     ('input.synth_K_below_one', {'type': 'crank_rocker', 'key': 'K', 'value': 0.8},
      "type crank_rocker needs K >= 1 (theta >= 0 deg): K = (180 + theta)/(180 - theta) is the ratio of the crank's "
      "turns over the slow and the quick strokes; got `K` = 0.8"),
+    ('input.synth_quick_return', {'type': 'shaper', 'key': 'theta', 'value': -10.0},
+     "type shaper needs K > 1 (theta > 0 deg): its working stroke is the slow one, K = (180 + theta)/(180 - theta); "
+     "got `theta` = -10 (K = 1: use type slider_crank)"),
     ('synthesis.path_far', {'dev': 0.3812345, 'point': 7, 'share': 0.19061725, 'extent': 2.0, 'limit': 0.05},
      "synthesis: the coupler curve passes far from the points: point 7 is 0.381 m from it, 19.1% of the points' "
      "extent 2 m (more than 5%); no crank-rocker keeping the constraints was found nearer: check `max_deviation`, "

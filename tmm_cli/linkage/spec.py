@@ -523,6 +523,12 @@ class SynthesisSection(_Model):
                path_input_error(self) if self.type == "path" else None)
         if bad:
             raise FieldValueError(*bad)
+        if self.type in ("offset_slider_crank", "slotted_lever", "shaper"):    # a quick return: K > 1
+            bad_k = ("K", self.K) if self.K is not None and self.K <= 1.0 else \
+                ("theta", self.theta) if self.theta is not None and self.theta <= 0.0 else None
+            if bad_k:
+                raise FieldValueError((bad_k[0],), Message("input.synth_quick_return", type=self.type,
+                                                           key=bad_k[0], value=float(bad_k[1])))
         if self.type == "crank_rocker":            # K = 1 (theta = 0) is a crank-rocker too; below, none
             bad_k = ("K", self.K) if self.K is not None and self.K < 1.0 else \
                 ("theta", self.theta) if self.theta is not None and self.theta < 0.0 else None
