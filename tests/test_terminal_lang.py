@@ -234,3 +234,31 @@ def test_a_failed_stage_still_lists_the_files_written(tmp_path, lang, wrote):
     assert "gears" in json.loads((out / "results.json").read_text(encoding="utf-8"))
     quiet = runner.invoke(app, ["run", str(task), "--out", str(out), "--format", "json", "--lang", lang, "-q"])
     assert quiet.exit_code == 3 and quiet.stdout == ""
+
+
+def test_check_table_in_russian(tmp_path):
+    """`tmm check --lang ru`: the heads, the statuses and the count in Russian, the numbers with the
+    decimal comma (each cell the English one written the Russian way), the note on an unknown
+    path rendered from its code; check.csv stays English."""
+    ans = tmp_path / "ans.yaml"
+    ans.write_text("answers:\n  flywheel.J: 180\n  positions.K: 0,78\n  positions.phi0: 7\n"
+                   "  kinematics[3].links.zz.omega: 1\n", encoding="utf-8")
+    task = str(ROOT / "tasks" / "forging_sixbar.yaml")
+    en = runner.invoke(app, ["check", task, "--answers", str(ans)])
+    ru = runner.invoke(app, ["check", task, "--answers", str(ans), "--lang", "ru", "--out", str(tmp_path / "o")])
+    assert en.exit_code == ru.exit_code == 1
+    head = next(line for line in ru.stdout.splitlines() if line.startswith("┃"))
+    assert [c.strip() for c in head.strip("┃").split("┃")] == ["величина", "ответ", "эталон", "погр.", "допуск",
+                                                              "статус"]
+    en_rows, ru_rows = _rows(en.stdout), _rows(ru.stdout)
+    assert len(en_rows) == len(ru_rows) == 4
+    words = {"ok": "верно", "outside": "вне допуска", "unknown_path": "неизвестная величина"}
+    for e, r in zip(en_rows, ru_rows):
+        assert r[0] == e[0] and list(r[1:5]) == [_comma(c) for c in e[1:5]] and r[5] == words[e[5]], (e, r)
+    assert ru_rows[0][1:3] == ("180", "179,83")
+    text = " ".join(ru.stdout.split())
+    assert "в допуске 2 из 4 ответов; вне допуска: 1; неизвестная величина: 1" in text
+    assert "путь не найден (kinematics[3].links.zz.omega: нет ключа «zz»)" in text
+    assert "2 of 4 answers within tolerance, 1 outside, 1 unknown_path" in " ".join(en.stdout.split())
+    csv = (tmp_path / "o" / "check.csv").read_text(encoding="utf-8")
+    assert "outside" in csv and "вне допуска" not in csv

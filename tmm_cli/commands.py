@@ -55,12 +55,12 @@ def _err(msg: str) -> None:
     typer.echo(msg, err=True)
 
 
-def _fail_task(exc: TaskError) -> "typer.Exit":
-    return typer.Exit(console.fail_task(exc, typer.echo))
+def _fail_task(exc: TaskError, lang: str = "en") -> "typer.Exit":
+    return typer.Exit(console.fail_task(exc, typer.echo, lang))
 
 
-def _fail_stage(exc: StageError, file: str | None = None) -> "typer.Exit":
-    return typer.Exit(console.fail_stage(exc, file, typer.echo))
+def _fail_stage(exc: StageError, file: str | None = None, lang: str = "en") -> "typer.Exit":
+    return typer.Exit(console.fail_stage(exc, file, typer.echo, lang))
 
 
 def _check_lang(lang: str) -> str:
@@ -251,6 +251,8 @@ def check(
                                                         "grade only the newest (by modification time)"),
     csv_style: str = typer.Option("plain", "--csv", metavar="plain|excel-ru",
                                   help="check.csv: plain (`,`, decimal points) or excel-ru (`;`, decimal commas, BOM)"),
+    lang: str = typer.Option("en", "--lang", "-l", help="language of the table and the messages on the terminal "
+                                                        "(check.csv stays English): en | ru | uk"),
 ):
     """Compare a student's answers with the computed results: path, answer, reference,
     error and status (ok, sign, outside, missing, unknown_path, not_computed). Exit 1 if
@@ -260,6 +262,8 @@ def check(
     from .orchestrate import compute, prepare
     from .pipeline import PartialResults
     _check_csv_style(csv_style)
+    lang = _check_lang(lang)
+    warn = console.run_words(lang)["warning"]
     try:
         task = prepare(task_file, stage_errors=False)
         tol_override = load_tolerance_file(tolerance) if tolerance is not None else None
@@ -285,29 +289,29 @@ def check(
                 for a in sets:
                     if a.flags:
                         others = [f.split("=", 1)[1] for f in a.flags if f.startswith("repeat=")]
-                        _err(f"warning: {Message('answers.repeat', file=a.answers_file, student=a.student, others=others)}")
+                        _err(f"{warn}: {console.in_lang(Message('answers.repeat', file=a.answers_file, student=a.student, others=others), lang)}")
         for a in sets:
             if single and a.variant not in (None, "") and task.variant is not None and not a.matches(task):
                 # graded all the same (one FILE is taken as given), but a form of another variant
                 # grades every answer outside: say why
                 _err(f"warning: {answers} holds answers for variant {a.variant}; the task is variant {task.variant}")
             for n in a.notes:
-                _err(f"warning: {n}")
+                _err(f"{warn}: {console.in_lang(n, lang)}")
     except TaskError as exc:
-        raise _fail_task(exc)
+        raise _fail_task(exc, lang)
     try:
         results = compute(task)
     except (PartialResults, StageError) as exc:
-        raise _fail_stage(exc, str(task_file))
+        raise _fail_stage(exc, str(task_file), lang)
     except TaskError as exc:
-        raise _fail_task(exc)
+        raise _fail_task(exc, lang)
     required = None
     if quantities:
         from .forms import expand
         try:
             required = expand(quantities, results)
         except TaskError as exc:
-            raise _fail_task(exc)
+            raise _fail_task(exc, lang)
     from .summary import print_check
     if not sets:
         _err(f"no answers for variant {task.variant if task.variant is not None else task.name} in {answers}")
@@ -315,14 +319,14 @@ def check(
     tol = tolerances(task, tol_override, results)
     from .check import unused_tolerance_keys
     for w in unused_tolerance_keys(set(task.tolerance or {}) | set(tol_override or {}), results):
-        _err(f"warning: {w}")
+        _err(f"{warn}: {console.in_lang(w, lang)}")
     for a in sets:
         if a.error:          # one malformed row or file of a class: named, the others graded
             _err(f"error: {a.error}")
             code = max(code, EXIT_INVALID)
             continue
         rows = grade(results, a, tol, required)
-        print_check(rows, a.source)
+        print_check(rows, a.source, lang)
         all_rows.extend(rows)
         code = max(code, set_code(set_status(rows)))
     if out:

@@ -63,8 +63,13 @@ def _word(key: str, lang: str) -> str:
 
 
 def _words(lang: str) -> dict[str, str]:
-    from .summary import run_words
     return run_words(lang)
+
+
+def run_words(lang: str) -> dict[str, str]:
+    """The terminal's words in ``lang`` (:func:`tmm_cli.summary.run_words`)."""
+    from .summary import run_words as words
+    return words(lang)
 
 
 def stage_text(err: dict, lang: str = "en") -> str:
@@ -156,7 +161,7 @@ def run_task(task_file: Path, out: Optional[Path], formats: set[str], lang: str,
     if held is not None:
         held.append(results)
     for note in notes:
-        echo(f"{_word('warning', lang)}: {_in(note, lang)}", err=True)
+        echo(f"{_word('warning', lang)}: {in_lang(note, lang)}", err=True)
     if failure is not None:
         for e in results.get("errors", [])[1:]:
             echo(f"{_word('error', lang)}: {task_file}: {stage_text(e, lang)}", err=True)
@@ -171,7 +176,7 @@ def run_task(task_file: Path, out: Optional[Path], formats: set[str], lang: str,
     return EXIT_OK
 
 
-def _in(note, lang: str) -> str:
+def in_lang(note, lang: str) -> str:
     """A note (a coded Message or plain text) in ``lang``."""
     if lang != "en" and hasattr(note, "to_dict"):
         from .messages import localize
@@ -190,7 +195,7 @@ def earlier_run(folder: Path, started: float, echo: Echo = echo, lang: str = "en
     except OSError:
         return                                   # no earlier run there (or not readable): nothing to say
     if when < started:
-        echo(_in(Message("output.earlier_run", folder=f"{folder}/",
+        echo(in_lang(Message("output.earlier_run", folder=f"{folder}/",
                          when=time.strftime("%Y-%m-%d %H:%M", time.localtime(when))), lang), err=True)
 
 

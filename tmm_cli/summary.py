@@ -286,20 +286,31 @@ def _tol_shown(text: str, absolute: bool) -> str:
                     for k, v in zip(words[::2], words[1::2]))
 
 
-def print_check(rows: list[dict], source) -> None:
-    """The graded answers of one set: path, answer, reference, error, status; fits 80 columns."""
+CHECK = locales.table("summary", "check")
+
+
+def print_check(rows: list[dict], source, lang: str = "en") -> None:
+    """The graded answers of one set: path, answer, reference, error, status; fits 80 columns;
+    in ``lang`` (`tmm check --lang`: the heads and statuses from the catalogue, the notes
+    rendered from their codes, the numbers with the decimal comma)."""
     from rich.table import Table
+    from rich.text import Text
 
     from .check import counts
-    from .messages import Message
+    from .messages import Message, catalogue, localize
+    from .numfmt import localize as typeset
+    from .numfmt import plural
 
+    C = {**CHECK["en"], **CHECK.get(lang, {})}
+    status = dict(catalogue(lang)["terms"].get("status", {})) if lang != "en" else {}
     con = _console()
     who = " ".join(x for x in (rows[0].get("student"), rows[0].get("group")) if x) if rows else ""
-    t = Table(title=f"check: {Path(str(source)).name}" + (f" - {who}" if who else ""), title_justify="left")
-    t.add_column("quantity", overflow="fold", max_width=26)
-    for c in ("answer", "reference", "error", "tol."):
-        t.add_column(c, justify="right", no_wrap=True)
-    t.add_column("status", no_wrap=True)
+    t = Table(title=Text(f"{C['title']}: {Path(str(source)).name}" + (f" - {who}" if who else "")),
+              title_justify="left")
+    t.add_column(Text(C["quantity"]), overflow="fold", max_width=26)
+    for c in ("answer", "reference", "error", "tol"):
+        t.add_column(Text(C[c]), justify="right", no_wrap=True)
+    t.add_column(Text(C["status"]), no_wrap=True)
     notes = []
     for r in rows:
         st = r["status"]
@@ -308,15 +319,21 @@ def print_check(rows: list[dict], source) -> None:
         err = "-" if r["error"] is None else (_f(r["error"], 3) if absolute else f"{100 * r['error']:.2f} %")
         style = STATUS_STYLE.get(st, "white")
         if r["note"] and (st in ("unknown_path", "sign", "invalid") or (st == "outside" and isinstance(r["note"], Message))):
-            notes.append(r["note"] if r["note"].startswith(r["path"]) else f"{r['path']}: {r['note']}")
-        t.add_row(_short_path(r["path"], 26), _f(r["answer"]), _f(r["reference"]), err,
-                  _tol_shown(r["tolerance"], zero_ref or r["note"] == "absolute error"),
-                  f"[{style}]{st}[/{style}]")
+            note = localize(r["note"].to_dict(), lang) if lang != "en" and isinstance(r["note"], Message) else r["note"]
+            notes.append(note if r["note"].startswith(r["path"]) else f"{r['path']}: {note}")
+        cells = [_f(r["answer"]), _f(r["reference"]), err, _tol_shown(r["tolerance"], zero_ref or r["note"] == "absolute error")]
+        t.add_row(Text(_short_path(r["path"], 26)), *(Text(typeset(c, lang)) for c in cells),
+                  Text(str(status.get(st, st)), style=style))
     con.print(t)
     for n in notes:
         con.print(n, markup=False, highlight=False)
     c = counts(rows)
-    con.print(f"{c['ok']} of {len(rows)} answers within tolerance" + "".join(f", {v} {k}" for k, v in c.items() if v and k != "ok"))
+    if lang == "en":
+        con.print(f"{c['ok']} of {len(rows)} answers within tolerance"
+                  + "".join(f", {v} {k}" for k, v in c.items() if v and k != "ok"), markup=False)
+    else:
+        con.print(C["count"].format(ok=c["ok"], answers=plural(len(rows), C["answers"], lang))
+                  + "".join(f"; {status.get(k, k)}: {v}" for k, v in c.items() if v and k != "ok"), markup=False)
 
 
 BATCH = locales.table("summary", "batch")
