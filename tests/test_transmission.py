@@ -110,7 +110,9 @@ def test_generated_mechanisms_least_is_the_closed_form(name):
     lengths."""
     from pathlib import Path
     res = tmm_cli.run(tmm_cli.load_task(Path(__file__).resolve().parents[1] / "tasks" / f"{name}.yaml"))
-    (row,) = res["transmission"]
+    rows = [r for r in res["transmission"] if r["type"] != "RPR"]          # the shaper's slot: 90 (below)
+    assert all(r["gamma_min"] == 90.0 for r in res["transmission"] if r["type"] == "RPR")
+    (row,) = rows
     want = _closed_form(res["synthesis"])
     assert row["gamma_min"] == pytest.approx(want, abs=1e-8)
     assert res["synthesis"]["gamma_min"] == pytest.approx(want, abs=1e-8)
@@ -171,13 +173,49 @@ def test_warning_below_20_deg_names_the_group_and_angle():
     assert "kinematics.transmission_low" not in codes(res)
 
 
-def test_no_row_for_a_slotted_lever_or_triad():
-    """The slotted lever's RPR dyad, the Scotch yoke's RPP and a class III triad: none."""
+def test_no_row_for_a_scotch_yoke_or_triad_and_90_for_a_slotted_lever():
+    """The Scotch yoke's RPP dyad and a class III triad: no row. The slotted lever's RPR dyad, its
+    slot through the lever's pivot: 90 deg exactly (the block presses normal to the slot, the
+    lever's point under it moves normal to the slot too), the synthesis's own figure."""
     from pathlib import Path
     root = Path(__file__).resolve().parents[1] / "tasks"
-    for name in ("triad_class3", "synthesis_slotted_lever", "scotch_yoke_pump"):
+    for name in ("triad_class3", "scotch_yoke_pump"):
         res = tmm_cli.run(tmm_cli.load_task(root / f"{name}.yaml"))
         assert "transmission" not in res, name
+    res = tmm_cli.run(tmm_cli.load_task(root / "synthesis_slotted_lever.yaml"))
+    (row,) = res["transmission"]
+    assert row["type"] == "RPR" and row["links"] == ["block", "rocker"] and row["joint"] == "A"
+    assert row["gamma_min"] == 90.0 and res["synthesis"]["gamma_min"] == 90.0
+
+
+def test_slotted_lever_with_an_offset_slot():
+    """The shaper's slotted lever (O1 0.30 m below O, crank 0.11 m) with its slot offset by e from
+    the lever's axis: gamma = 90 - asin(e / |O1A|) at every position, least where the block is
+    nearest the pivot, |O1A| = 0.30 - 0.11 with the crank pointing at O1 (270 deg)."""
+    from pathlib import Path
+    root = Path(__file__).resolve().parents[1] / "tasks"
+    import yaml
+    for e in (0.02, -0.05):
+        task = yaml.safe_load((root / "shaper_slotted_lever.yaml").read_text(encoding="utf-8"))
+        task["mechanism"]["links"]["block"]["guide"]["offset"] = e
+        for k in ("loads", "kinetostatics", "flywheel", "dynamics"):
+            task.pop(k, None)
+        res = tmm_cli.run(tmm_cli.load_task(task))
+        row = next(r for r in res["transmission"] if r["type"] == "RPR")
+        assert row["gamma_min"] == pytest.approx(90.0 - math.degrees(math.asin(abs(e) / 0.19)), abs=1e-7), e
+        assert row["phi"] == pytest.approx(270.0, abs=1e-5)
+        # at every crank angle of a grid: the closed form with |O1A| from the crank's own circle
+        from tmm_cli.linkage import transmission
+        from tmm_cli.linkage.kinematics import solve
+        from tmm_cli.linkage.mechanism import build_mechanism
+        from tmm_cli.linkage.structure import analyze
+        mech = build_mechanism(tmm_cli.load_task(task))
+        (d,) = [x for x in transmission.dyads(mech, analyze(mech).groups) if x.kind == "RPR"]
+        phi = np.arange(0.0, 360.0, 7.5)
+        oa = np.hypot(0.11 * np.cos(np.radians(phi)), 0.11 * np.sin(np.radians(phi)) + 0.30)
+        want = 90.0 - np.degrees(np.arcsin(abs(e) / oa))
+        assert np.max(np.abs(transmission.gamma(d, solve(mech, phi)) - want)) < 1e-9
+
 
 
 def test_derivative_on_a_moving_guide():
@@ -325,7 +363,8 @@ def test_shaper_ram_through_a_block_in_the_slot():
     the crank angle square to the rocker (180 + psi/2 for this cw drive)."""
     from pathlib import Path
     res = tmm_cli.run(tmm_cli.load_task(Path(__file__).resolve().parents[1] / "tasks" / "shaper_slotted_ram.yaml"))
-    (row,) = res["transmission"]
+    slot, row = res["transmission"]
+    assert slot["type"] == "RPR" and slot["gamma_min"] == 90.0            # the crank's block: slot through O1
     half = math.degrees(math.asin(0.12 / 0.32))
     assert row["type"] == "PRP" and row["links"] == ["blockC", "ram"] and row["joint"] == "C"
     assert row["gamma_min"] == pytest.approx(90.0 - half, abs=1e-9)

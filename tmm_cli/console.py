@@ -167,7 +167,7 @@ def run_task(task_file: Path, out: Optional[Path], formats: set[str], lang: str,
             echo(f"{_word('error', lang)}: {task_file}: {stage_text(e, lang)}", err=True)
         code = fail_stage(failure, str(task_file), echo, lang)
         if not quiet:           # what was written all the same: the computed sections, the failure in place
-            for p in getattr(failure, "written", None) or []:
+            for p in failure.written or []:
                 echo(f"{_word('wrote', lang)} {p}")
         return code
     if not quiet:

@@ -911,7 +911,7 @@ def least_transmission(typ: str, linkage) -> tuple[float, float]:
     proektirovanie po TMM*: the transmission angle; docs/methods.md §1.
     """
     from . import transmission
-    ds = [] if typ == "slotted_lever" else transmission.dyads(linkage.mechanism, linkage.structure.groups)
+    ds = transmission.dyads(linkage.mechanism, linkage.structure.groups)
     if not ds:
         return 90.0, 0.0
     return min(transmission.least(linkage.mechanism, ds))
@@ -966,7 +966,7 @@ def analyse(linkage, d: Design) -> dict:
     curve = np.arange(0.0, 360.0 + 1e-9, 5.0)
     phis = np.mod(pos.phi0 + sign * curve, 360.0)
     from . import transmission
-    ds = [] if d.type == "slotted_lever" else transmission.dyads(mech, linkage.structure.groups)
+    ds = transmission.dyads(mech, linkage.structure.groups)
     kin = solve(mech, phis)
     gam = (np.min([transmission.gamma(dy, kin) for dy in ds], axis=0) if ds else np.full(len(phis), 90.0))
     return {"type": d.type, "lengths": dict(d.lengths), "H": H, "K": float(pos.K), "theta": float(pos.theta),

@@ -9,11 +9,14 @@ the dyad grow about as 1 / sin(gamma).
   B-C (a four-bar: between the coupler and the rocker).
 * RRP (a rod AB and a block at B on a guide): 90 deg minus the acute angle between the rod
   and the guide (a slider-crank: gamma_min = arccos((r + e) / l)).
+* RPR (a block pinned at A, sliding in a slot of a link that turns about its other pair O1: the
+  slotted lever): 90 deg minus the acute angle between the slot and the line O1A (the block
+  presses normal to the slot; the slotted link's point under it moves normal to O1A): 90 deg
+  with the slot through O1, 90 - asin(e / |O1A|) with the slot offset by e.
 * PRP (a block in a slot of one link, pinned to a slider on a guide: the shaper's ram driven by
   the rocker's slot): the acute angle between the slot and the guide (the block presses normal
   to the slot; the slider moves along its guide).
-* Other dyads (RPR, as the slotted lever's; RPP, PPR) and triads: none is reported (the slotted
-  lever's is 90 deg only with its slot through the lever's pivot).
+* Other dyads (RPP, as the Scotch yoke's; PPR) and triads: none is reported.
 
 The least over the cycle: the sine of gamma on a 0.5-deg grid of crank angles. Where it
 changes sign anywhere between neighbours the dyad passes a dead point: the least is 0 at its
@@ -55,17 +58,18 @@ class DyadAngle:
     """How one dyad's transmission angle is read from the kinematics."""
 
     group: "Group"
-    kind: str                       # "RRR" | "RRP"
+    kind: str                       # "RRR" | "RRP" | "RPR" | "PRP"
     middle: str                     # the middle pair's point
     ends: tuple[str, str]           # RRR: the outer pairs' points; RRP: (rod's outer point, middle)
     guide_angle: float = 0.0        # RRP, PRP: the (first) guide's angle (deg; on a link: to its axis)
     guide_link: str | None = None   # RRP, PRP: the link that carries it (None: fixed)
     guide2_angle: float = 0.0       # PRP: the other guide's
+    through_pivot: bool = False     # RPR: the slot's line passes through the pivot (gamma = 90 deg always)
     guide2_link: str | None = None
 
 
 def dyads(mech: "Mechanism", groups: list["Group"]) -> list[DyadAngle]:
-    """The dyads of ``groups`` whose transmission angle is defined (RRR, RRP/PRR, PRP)."""
+    """The dyads of ``groups`` whose transmission angle is defined (RRR, RRP/PRR, RPR, PRP)."""
     out = []
     for g in groups:
         if len(g.links) != 2 or len(g.joints) != 3:
@@ -82,6 +86,23 @@ def dyads(mech: "Mechanism", groups: list["Group"]) -> list[DyadAngle]:
                 continue
             out.append(DyadAngle(g, "RRP", joints[1].point, (joints[0].point, joints[1].point),
                                  float(guide.angle), guide.link))
+        elif kinds == "RPR" and joints[1].slider is not None:
+            block = mech.link(joints[1].slider)
+            guide = block.guide
+            pin = next(iter(block.local), None)
+            pivot = [j.point for j in (joints[0], joints[2]) if j.point != pin]
+            if guide is None or guide.link not in g.names or pin is None or len(pivot) != 1:
+                continue
+            # the slotted link turns about its other pair: the slot against the line from there to
+            # the block, as a rod against its guide (RRP); the pivot's distance from the slot's line
+            # (n . p = offset in the slotted link's frame) is the same at every position
+            slotted = mech.link(guide.link)
+            px, py = slotted.local[pivot[0]]
+            a = math.radians(guide.angle)
+            e = abs(-math.sin(a) * px + math.cos(a) * py - guide.offset)
+            scale = max(math.hypot(px, py), abs(guide.offset), float(slotted.length or 0.0), 1e-300)
+            out.append(DyadAngle(g, "RPR", pin, (pivot[0], pin), float(guide.angle), guide.link,
+                                 through_pivot=e <= 1e-12 * scale))
         elif kinds == "PRP" and joints[0].slider is not None and joints[2].slider is not None:
             g1, g2 = mech.link(joints[0].slider).guide, mech.link(joints[2].slider).guide
             if g1 is None or g2 is None:
@@ -122,6 +143,8 @@ def sine(d: DyadAngle, kin) -> tuple[np.ndarray, np.ndarray]:
 
 def gamma(d: DyadAngle, kin) -> np.ndarray:
     """The transmission angle (deg) of the dyad ``d`` at every position of ``kin``."""
+    if d.through_pivot:
+        return np.full(len(kin.phi), 90.0)
     return np.degrees(np.arcsin(np.minimum(1.0, np.abs(sine(d, kin)[0]))))
 
 
@@ -173,6 +196,9 @@ def least(mech: "Mechanism", ds: list[DyadAngle], start: float = 0.0, span: floa
     m = len(grid)
     pairs = [(i, (i + 1) % m) for i in range(m if full else m - 1)]      # neighbours (a turn: round)
     for d in ds:
+        if d.through_pivot:             # 90 deg at every position (|sin| = 1 to round-off: no least to seek)
+            out.append((90.0, float(grid[0]) % 360.0))
+            continue
         s, dsd = sine(d, kin)
         a = np.abs(s)
         k = int(np.argmin(a))
@@ -213,7 +239,7 @@ def analyze(linkage: "Linkage", crank_range=None) -> list[dict]:
     Returns
     -------
     list of dict
-        results.json ``transmission``: per dyad (RRR, RRP, PRR, PRP) ``group`` (its label), ``links``,
+        results.json ``transmission``: per dyad (RRR, RRP, PRR, RPR, PRP) ``group`` (its label), ``links``,
         ``type`` (the group's, as ``structure`` names it), ``joint`` (the middle pair's point),
         ``gamma_min`` (deg) and ``phi`` (the crank angle where it is, deg, ccw from the x axis).
 

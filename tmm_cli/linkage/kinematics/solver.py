@@ -198,7 +198,7 @@ class Solver:
                 params = self.groups[gi].message_params()
                 # one warning a group: the angles of every run of this solver (the course's
                 # positions, the diagrams' grid, the extra positions) joined, not one per run
-                old = next((k for k, w in enumerate(self.warnings) if getattr(w, "code", None) ==
+                old = next((k for k, w in enumerate(self.warnings) if isinstance(w, Message) and w.code ==
                             "kinematics.singular_continuity" and w.params.get("group") == params.get("group")), None)
                 if old is not None:
                     ang = np.concatenate([ang, self.warnings[old].params["angles"]])
