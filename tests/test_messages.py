@@ -49,7 +49,7 @@ ENGLISH = [
      "crank angle 270.000000 deg: group II(2,3) (links block, rocker) is ill-conditioned there (normalised determinant 3.7e-17, below 0.001); v B, ω rocker are given as the limit by continuity (extrapolated from the neighbouring positions of the same branch)"),
     ('kinematics.no_limit', {'phi': 180.0, 'group': 'II(2,3)', 'links': ['coupler', 'rocker'], 'det': 3.4e-08, 'ill': 0.001, 'quantities': ['v B', 'ω rocker']},
      "crank angle 180.000000 deg: group II(2,3) (links coupler, rocker) is ill-conditioned there (normalised determinant 3.4e-08, below 0.001); v B, ω rocker have no limit by continuity (the values from either side differ: the linkage may switch branch) and are null"),
-    ('positions.quick_working', {'working': 'backward', 'link': 'rocker', 'K': 0.878, 'slow': 'forward'},
+    ('positions.quick_working', {'working': 'backward', 'link': 'rocker', 'K': 0.8781, 'slow': 'forward'},
      "positions.working = backward makes the working stroke of 'rocker' the quick one (K = 0.878 < 1): the slow "
      "stroke is the forward one; write working: forward if the working stroke is meant to be the slow one"),
     ('inertia.massless', {'links': ['coupler', 'block']},

@@ -35,8 +35,8 @@ def test_quick_working_stroke_names_the_slow_one(tmp_path):
     assert "медленный ход — прямой" in render(m["code"], m["params"], "ru")
     assert "повільний хід — прямий" in render(m["code"], m["params"], "uk")
     assert "K = 0,878 < 1" in render(m["code"], m["params"], "uk")
-    # K shown to three digits (the value itself in results.json's positions)
-    assert m["params"]["K"] == float(f"{r['positions']['K']:.3g}")
+    # results.json keeps K as computed (positions.K); only the text shows it to three digits
+    assert m["params"]["K"] == r["positions"]["K"] != 0.878 and "(K = 0.878 < 1)" in m["text"]
 
 
 def test_a_k_just_below_one_is_not_shown_as_one():
@@ -47,6 +47,11 @@ def test_a_k_just_below_one_is_not_shown_as_one():
         object.__setattr__(pos, name, value)
     (m,) = quick_working(pos)
     assert "(K = 0.9996 < 1)" in m and "(K = 0,9996 < 1)" in render(m.code, m.params, "ru")
+    assert m.params["K"] == 0.99962                             # the data as computed
+    object.__setattr__(pos, "K", 0.5)
+    assert "(K = 0.5 < 1)" in quick_working(pos)[0]
+    object.__setattr__(pos, "K", 1.0 - 3e-9)                    # below 1 only in the ninth digit
+    assert "(K = 0.999999997 < 1)" in quick_working(pos)[0]
     object.__setattr__(pos, "K", 1.0 - 1e-12)                   # 1 to round-off: no quick stroke
     assert quick_working(pos) == []
 

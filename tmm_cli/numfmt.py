@@ -146,6 +146,17 @@ class Formatter(string.Formatter):
         return localize(text, self.lang) if is_number(value) else text
 
 
+def below_one(x: float) -> str:
+    """``x`` (< 1) to three significant digits, or as many more as keep it below 1: a sentence
+    that says "K < 1" never shows "K = 1" (0.99962 -> '0.9996'); Python's writing (localize it
+    for a language)."""
+    for digits in range(3, 18):
+        shown = f"{x:.{digits}g}"
+        if float(shown) < 1.0:
+            return shown
+    return repr(float(x))
+
+
 def format_text(template: str, lang: str | None = None, /, **kw) -> str:
     """``template.format(**kw)`` with the numeric fields written in ``lang``."""
     return Formatter(lang).format(template, **kw)

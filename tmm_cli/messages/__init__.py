@@ -44,9 +44,10 @@ LANGS = locales.LANGS
 PLAIN = "text"
 # format specs the formatter knows beside Python's and the word tables: `or` (alternatives)
 # `angles` (crank-angle intervals [[from, to], ...] in degrees: "φ = 37.5…52.1°") and
-# `joined` (a list of messages in one line, joined by "; "; without it: one a line); and a
+# `joined` (a list of messages in one line, joined by "; "; without it: one a line), `below1`
+# (a number < 1 to three digits or as many more as keep it below 1: numfmt.below_one); and a
 # count's noun in its forms, `|form|form...` (numfmt.plural: "{n:|character|characters}")
-SPECS = ("or", "angles", "joined")
+SPECS = ("or", "angles", "joined", "below1")
 
 
 def _angles(intervals: list, sep: str = ", ") -> str:
@@ -95,6 +96,8 @@ class _Formatter(string.Formatter):
             return numfmt.plural(value, spec[1:].split("|"), self.lang)
         if spec == "raw":                                   # as written (a number not localized: '0.38')
             return str(value)
+        if spec == "below1" and numfmt.is_number(value):    # a value < 1 never shown as 1 (K = 0.9996 < 1)
+            return numfmt.localize(numfmt.below_one(float(value)), self.lang)
         # a list of numbers where the decimal comma is written (ru, uk): items separated by "; ",
         # an interval's ends by "…" ("0,5; 1,25", "45…105"), never a comma between two numbers
         comma = numfmt.comma(self.lang)

@@ -476,15 +476,6 @@ def quick_working(pos: PositionsResult) -> list:
     if pos.K is None or pos.K >= 1.0 - 1e-9:
         return []
     slow = "backward" if pos.working == "forward" else "forward"
-    return [Message("positions.quick_working", working=pos.working, link=pos.output, K=_below_one(float(pos.K)),
-                    slow=slow)]
-
-
-def _below_one(K: float) -> float:
-    """K (< 1) to three significant digits, or as many more as keep it below 1 (0.9996 is not
-    shown as 1 in a sentence that says K < 1)."""
-    for digits in range(3, 17):
-        shown = float(f"{K:.{digits}g}")
-        if shown < 1.0:
-            return shown
-    return K
+    # K as computed (results.json's data); the catalogue's spec `below1` shows it to three digits
+    # or as many more as keep it below 1 (numfmt.below_one)
+    return [Message("positions.quick_working", working=pos.working, link=pos.output, K=float(pos.K), slow=slow)]
