@@ -74,27 +74,12 @@ def run_words(lang: str) -> dict[str, str]:
 
 def stage_text(err: dict, lang: str = "en") -> str:
     """A failed stage (results.json's ``errors`` entry) as the terminal says it in ``lang``:
-    English as :class:`StageError` words it; in ru and uk the report's sentence (the catalogue's
-    failure ``fail.what``), the stage's name, the crank angle in the language's writing, a coded
-    message in the language."""
+    English as :class:`StageError` words it; in ru and uk the report's sentence
+    (:func:`tmm_cli.report.failure.what`: the same words as the report's failure box)."""
     if lang == "en":
         return str(StageError(err.get("stage"), err.get("message") or "", err.get("position")))
-    from . import locales
-    from .messages import catalogue, localize
-    from .numfmt import localize as typeset
-    W = {**locales.of("failure", "words", "en"), **locales.of("failure", "words", lang)}
-    message = err.get("message") or ""
-    if err.get("code"):
-        message = localize({"code": err["code"], "params": err.get("params") or {}, "text": message}, lang)
-    pos = err.get("position")
-    if pos in (None, ""):
-        where = ""
-    elif isinstance(pos, (int, float)):
-        where = W["fail.where_angle"].format(position=typeset(f"{float(pos):.6g}", lang))
-    else:
-        where = W["fail.where"].format(position=pos)
-    stage = str((catalogue(lang)["terms"].get("stage") or {}).get(str(err.get("stage")), err.get("stage")))
-    return W["fail.what"].format(stage=stage, where=where, message=message)
+    from .report.failure import what
+    return what(err, lang)
 
 
 def stage_progress(stage: str, lang: str = "en") -> str:

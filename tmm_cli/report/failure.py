@@ -53,22 +53,34 @@ def stage_name(stage, lang: str) -> str:
     return str(names.get(str(stage), stage))
 
 
-def box(ctx, err: dict) -> str:
-    """The HTML fragment shown in place of the failed section."""
-    section, title_key, task_section = placement(err)
+def what(err: dict, lang: str, t=None) -> str:
+    """The failure's sentence (``fail.what``) in ``lang``: the stage's name, where it failed
+    (a crank angle in the language's writing, or a named position), its message (a coded one
+    in the language). ``t(key, **kw)``: the catalogue's text (the report's ``ctx.t``; default
+    plain text, as the terminal prints it: :func:`tmm_cli.console.stage_text`)."""
+    if t is None:
+        from .i18n import translate
+
+        def t(key: str, **kw) -> str:
+            return translate(key, lang, **kw)
     pos = err.get("position")
     message = err.get("message") or ""
-    if err.get("code"):                 # a coded message: in the report's language
+    if err.get("code"):                 # a coded message: in the language
         from ..messages import localize
-        message = localize({"code": err["code"], "params": err.get("params") or {}, "text": message}, ctx.lang)
+        message = localize({"code": err["code"], "params": err.get("params") or {}, "text": message}, lang)
     if pos in (None, ""):
         where = ""
     elif isinstance(pos, (int, float)):          # a StageError's position: a crank angle, deg
-        where = ctx.t("fail.where_angle", position=f"{float(pos):.6g}")
+        where = t("fail.where_angle", position=f"{float(pos):.6g}")
     else:
-        where = ctx.t("fail.where", position=pos)
+        where = t("fail.where", position=pos)
+    return t("fail.what", stage=stage_name(err.get("stage"), lang), where=where, message=message)
+
+
+def box(ctx, err: dict) -> str:
+    """The HTML fragment shown in place of the failed section."""
+    section, title_key, task_section = placement(err)
     return ctx.render("sections/failure.html.j2", sid=f"{section or 'stage'}-failed",
                       title=ctx.t(title_key) if section else stage_name(err.get("stage"), ctx.lang),
-                      what=ctx.t("fail.what", stage=stage_name(err.get("stage"), ctx.lang), where=where,
-                                 message=message),
+                      what=what(err, ctx.lang, ctx.t),
                       change=ctx.t("fail.change", section=task_section))
