@@ -262,3 +262,24 @@ def test_check_table_in_russian(tmp_path):
     assert "2 of 4 answers within tolerance, 1 outside, 1 unknown_path" in " ".join(en.stdout.split())
     csv = (tmp_path / "o" / "check.csv").read_text(encoding="utf-8")
     assert "outside" in csv and "вне допуска" not in csv
+
+
+def test_check_names_an_invalid_answers_file_in_the_language(tmp_path):
+    """A folder of answers with one file whose path cannot be read: that file named as an
+    error (exit 2), the others graded; with --lang ru the error line is Russian too (its
+    coded message through the catalogue), without --lang the English line as before."""
+    folder = tmp_path / "answers"
+    folder.mkdir()
+    (folder / "a.yaml").write_text('variant: 7\nstudent: {name: Ivanov}\nanswers:\n  "flywheel..J": 180\n',
+                                   encoding="utf-8")
+    (folder / "b.yaml").write_text("variant: 7\nstudent: {name: Petrov}\nanswers:\n  flywheel.J: 180\n",
+                                   encoding="utf-8")
+    task = str(ROOT / "tasks" / "forging_sixbar.yaml")
+    en = runner.invoke(app, ["check", task, "--answers", str(folder)])
+    ru = runner.invoke(app, ["check", task, "--answers", str(folder), "--lang", "ru"])
+    assert en.exit_code == ru.exit_code == 2
+    where = f"{folder / 'a.yaml'}:4:3: "
+    assert f"error: {where}field 'answers.flywheel..J': bad path 'flywheel..J' near '..'" in en.stderr.splitlines()
+    (line,) = [x for x in ru.stderr.splitlines() if where in x]
+    assert line.startswith(f"ошибка: {where}поле «answers.flywheel..J»: ") and "bad path" not in line, line
+    assert "в допуске 1 из 1 ответа" in ru.stdout

@@ -322,7 +322,7 @@ def check(
         _err(f"{warn}: {console.in_lang(w, lang)}")
     for a in sets:
         if a.error:          # one malformed row or file of a class: named, the others graded
-            _err(f"error: {a.error}")
+            _err(f"{console.run_words(lang)['error']}: {console.in_lang(a.error, lang)}")
             code = max(code, EXIT_INVALID)
             continue
         rows = grade(results, a, tol, required)
