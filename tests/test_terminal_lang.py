@@ -298,3 +298,13 @@ def test_check_names_an_invalid_answers_file_in_the_language(tmp_path):
     (line,) = [x for x in ru.stderr.splitlines() if where in x]
     assert line.startswith(f"ошибка: {where}поле «answers.flywheel..J»: ") and "bad path" not in line, line
     assert "в допуске 1 из 1 ответа" in ru.stdout
+
+
+def test_a_long_batch_message_is_cut_as_before_in_english():
+    """The batch table shows a row's message to 200 characters: English its first 200 as before
+    (no --lang: byte for byte), ru and uk 199 and an ellipsis."""
+    from tmm_cli.summary import _cut
+    text = "x" * 150 + "y" * 100
+    assert _cut(text, 200) == "x" * 150 + "y" * 50
+    assert _cut(text, 200, "ru") == "x" * 150 + "y" * 49 + "\u2026"
+    assert _cut("short", 200, "ru") == "short"

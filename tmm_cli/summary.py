@@ -369,7 +369,7 @@ def print_batch(rows: list[dict], out: Path, skipped=(), removed=(), notes=(), l
         score = f"{100 * float(r['score']):.0f} %" if r.get("answers") else "-"
         t.add_row(Text(str(who)), Text(str(r.get("variant", ""))),
                   Text(str(status.get(st, st)), style=STATUS_STYLE.get(st, "")),
-                  score, Text(_cut(_message(r, lang, localize), 200)))
+                  score, Text(_cut(_message(r, lang, localize), 200, lang)))
     con.print(t)
     if skipped:
         con.print(B["skipped"].format(n=len(skipped), names=", ".join(Path(s).name for s in list(skipped)[:5])),
@@ -383,9 +383,12 @@ def print_batch(rows: list[dict], out: Path, skipped=(), removed=(), notes=(), l
     con.print(B["wrote"].format(csv=out / "summary.csv"), markup=False)
 
 
-def _cut(text: str, n: int) -> str:
-    """``text`` shortened to ``n`` characters, its end marked by an ellipsis where cut."""
-    return text if len(text) <= n else text[:n - 1] + "…"
+def _cut(text: str, n: int, lang: str = "en") -> str:
+    """``text`` shortened to ``n`` characters, its end marked by an ellipsis where cut (English:
+    its first ``n`` characters, as the table has always shown them)."""
+    if len(text) <= n:
+        return text
+    return text[:n] if lang == "en" else text[:n - 1] + "…"
 
 
 I18N = locales.table("summary", "text")
