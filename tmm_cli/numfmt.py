@@ -57,6 +57,12 @@ def comma(lang: str | None = None) -> bool:
     return (lang if lang is not None else _LANG.get()) in comma_langs()
 
 
+def list_sep(lang: str | None = None) -> str:
+    """What separates the numbers of a list in ``lang``: ", " (0.5, 1.25), or "; " where the
+    decimal comma is written (0,5; 1,25: "0, 180" would read as a decimal "0,180")."""
+    return "; " if comma(lang) else ", "
+
+
 def _typeset(m: re.Match) -> str:
     sign, whole, dec, esign, exp = m.groups()
     s = ("\u2212" if sign in ("-", "\u2212") else sign) + whole + ("," + dec if dec else "")

@@ -38,9 +38,9 @@ def _summary_rows(results: dict, lang: str = "en") -> list[tuple[str, str]]:
     """(quantity, value) of each row of the run summary, in ``lang``: its words from the
     catalogue, its numbers in the language's writing (ru, uk: the decimal comma, and lists
     separated by semicolons, as the report writes them)."""
-    from .numfmt import comma, localize
+    from .numfmt import list_sep, localize
     T = run_words(lang)
-    sep = "; " if comma(lang) else ", "
+    sep = list_sep(lang)
     rows: list[tuple[str, str]] = []
     add = lambda *row: rows.append(row)  # noqa: E731
 

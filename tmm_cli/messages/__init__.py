@@ -102,7 +102,7 @@ class _Formatter(string.Formatter):
         # an interval's ends by "…" ("0,5; 1,25", "45…105"), never a comma between two numbers
         comma = numfmt.comma(self.lang)
         if spec == "angles" and isinstance(value, list):
-            return numfmt.localize(_angles(value, "; " if comma else ", "), self.lang)
+            return numfmt.localize(_angles(value, numfmt.list_sep(self.lang)), self.lang)
         if spec == "or" and isinstance(value, list):        # alternatives: 'a', 'b' or 'c'
             word = self.terms.get("conj", {}).get("or", "or")
             items = [str(v) for v in value]
@@ -118,7 +118,7 @@ class _Formatter(string.Formatter):
         if isinstance(value, list):                          # an interval [a, b]: a..b
             dots = "…" if comma else ".."
             numbers = comma and any(isinstance(v, list) or numfmt.is_number(v) for v in value)
-            return ("; " if numbers else ", ").join(
+            return (numfmt.list_sep(self.lang) if numbers else ", ").join(
                 f"{numfmt.num(v[0], spec, self.lang)}{dots}{numfmt.num(v[1], spec, self.lang)}"
                 if isinstance(v, list) and len(v) == 2 else numfmt.num(v, spec, self.lang) for v in value)
         return numfmt.localize(format(value, spec), self.lang) if numfmt.is_number(value) else format(value, spec)
