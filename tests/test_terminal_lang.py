@@ -308,3 +308,26 @@ def test_a_long_batch_message_is_cut_as_before_in_english():
     assert _cut(text, 200) == "x" * 150 + "y" * 50
     assert _cut(text, 200, "ru") == "x" * 150 + "y" * 49 + "\u2026"
     assert _cut("short", 200, "ru") == "short"
+
+
+def test_check_notes_and_an_invalid_answers_file_in_the_language(tmp_path):
+    """`tmm check --lang`: the note on answer sets of other variants (a folder of the group's
+    answers), and an answers file that is none, headed and said in the language; English as before."""
+    folder = tmp_path / "answers"
+    folder.mkdir()
+    (folder / "a.yaml").write_text("variant: 2\nanswers:\n  positions.K: 1\n", encoding="utf-8")
+    (folder / "b.yaml").write_text("variant: 5\nanswers:\n  positions.K: 1\n", encoding="utf-8")
+    task = str(ROOT / "tasks" / "synthesis_slider_crank.yaml")          # variant 2
+    ru = runner.invoke(app, ["check", task, "--answers", str(folder), "--lang", "ru"])
+    assert "примечание: наборов ответов других вариантов: 1 (5); они оставлены для своих заданий" in ru.stderr
+    en = runner.invoke(app, ["check", task, "--answers", str(folder)])
+    assert "note: 1 answer set(s) of other variants (5) left for their own tasks" in en.stderr
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("foo: 1\n", encoding="utf-8")
+    uk = runner.invoke(app, ["check", task, "--answers", str(bad), "--lang", "uk"])
+    assert uk.exit_code == 2 and uk.stderr.splitlines()[0] == "Помилки у файлі відповідей:"
+    assert "не файл відповідей" in uk.stderr and "not an answers file" not in uk.stderr
+    en = runner.invoke(app, ["check", task, "--answers", str(bad)])
+    assert en.stderr.splitlines()[:2] == [
+        "error: invalid answers file",
+        f"{bad}: not an answers file (a YAML file with an `answers:` mapping of result paths to values)"]

@@ -817,7 +817,8 @@ def _run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = fro
     if start_method() == "fork":       # the workers inherit what the batch imported
         warm([found[k][0] for k in runnable], formats)
     if memory_mb and not _rlimit_available() and not _memory_watch():
-        con.print(Message("batch.memory_unlimited", limit=memory_mb), markup=False)
+        from .console import in_lang
+        con.print(in_lang(Message("batch.memory_unlimited", limit=memory_mb), lang), markup=False)
     from .summary import batch_words
     words = batch_words(lang)
     with _progress(con, len(args), words["variants"], words["left"]) as advance:

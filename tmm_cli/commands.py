@@ -263,7 +263,7 @@ def check(
     from .pipeline import PartialResults
     _check_csv_style(csv_style)
     lang = _check_lang(lang)
-    warn = console.run_words(lang)["warning"]
+    warn, note = console.run_words(lang)["warning"], console.run_words(lang)["note"]
     try:
         task = prepare(task_file, stage_errors=False)
         tol_override = load_tolerance_file(tolerance) if tolerance is not None else None
@@ -281,11 +281,12 @@ def check(
                 if len(mine) < len(sets):   # a table or folder of the whole group: the others are not this task's
                     kept = {id(a) for a in mine}
                     other = sorted({str(a.variant) for a in sets if id(a) not in kept})
-                    _err(f"note: {len(sets) - len(mine)} answer set(s) of other variants "
-                         f"({', '.join(other[:8])}{', ...' if len(other) > 8 else ''}) left for their own tasks")
+                    _err(f"{note}: " + console.in_lang(Message("answers.other_variants", count=len(sets) - len(mine),
+                                                               variants=other[:8], more=", ..." if len(other) > 8 else ""),
+                                                       lang))
                 sets, dropped = repeats(mine, latest)
                 for n in dropped:
-                    _err(f"note: {n}")
+                    _err(f"{note}: {console.in_lang(n, lang)}")
                 for a in sets:
                     if a.flags:
                         others = [f.split("=", 1)[1] for f in a.flags if f.startswith("repeat=")]
@@ -294,7 +295,8 @@ def check(
             if single and a.variant not in (None, "") and task.variant is not None and not a.matches(task):
                 # graded all the same (one FILE is taken as given), but a form of another variant
                 # grades every answer outside: say why
-                _err(f"warning: {answers} holds answers for variant {a.variant}; the task is variant {task.variant}")
+                _err(f"{warn}: " + console.in_lang(Message("answers.other_variant_file", file=str(answers),
+                                                           variant=str(a.variant), task=str(task.variant)), lang))
             for n in a.notes:
                 _err(f"{warn}: {console.in_lang(n, lang)}")
     except TaskError as exc:
@@ -314,7 +316,8 @@ def check(
             raise _fail_task(exc, lang)
     from .summary import print_check
     if not sets:
-        _err(f"no answers for variant {task.variant if task.variant is not None else task.name} in {answers}")
+        _err(console.in_lang(Message("answers.none_for_variant", source=str(answers),
+                                     variant=str(task.variant if task.variant is not None else task.name)), lang))
     code, all_rows = (EXIT_ANSWERS if not sets else EXIT_OK), []
     tol = tolerances(task, tol_override, results)
     from .check import unused_tolerance_keys

@@ -39,15 +39,20 @@ def echo(message: str, err: bool = False) -> None:
 Echo = Callable[..., None]
 
 
+# the invalid file's kind (TaskError.kind) -> the head of its errors in another language
+_INVALID = {"task": "invalid_task", "answers file": "invalid_answers", "tolerance file": "invalid_tolerance"}
+
+
 def fail_task(exc: TaskError, echo: Echo = echo, lang: str = "en") -> int:
-    """An invalid task file: its errors (file, line, field, what is wrong), exit 2; in ru and
-    uk (`tmm run --lang`) in that language where every part of them is coded."""
-    coded = exc.coded() if lang != "en" and exc.kind == "task" else None
+    """An invalid task file (or answers or tolerance file): its errors (file, line, field, what is
+    wrong), exit 2; in ru and uk (`--lang`) in that language where every part of them is coded."""
+    head = _INVALID.get(exc.kind)
+    coded = exc.coded() if lang != "en" and head is not None else None
     if coded is None:
         echo(f"error: invalid {exc.kind}\n{exc.render()}", err=True)
     else:
         from .messages import localize
-        echo(f"{_word('invalid_task', lang)}:\n{localize(coded.to_dict(), lang)}", err=True)
+        echo(f"{_word(head, lang)}:\n{localize(coded.to_dict(), lang)}", err=True)
     return EXIT_INVALID
 
 
