@@ -144,6 +144,7 @@ def test_fast_path_answers_as_the_typer_app(tmp_path):
         "drive: {link: crank, speed: 10}\n", encoding="utf-8")
     lines = [["validate", good], ["validate", good, str(bad), str(stuck), "--no-assembly"],
              ["validate", str(bad), good, str(stuck), str(tmp_path / "missing.yaml")],
+             ["validate", str(bad), str(stuck), "--lang", "ru"], ["validate", "-l", "UK", str(stuck), good],
              ["run", good, "-f", "json", "-q", "-o", "{out}"], ["run", "-q", str(bad), "--format", "json", "--out", "{out}"],
              ["run", str(stuck), "-f", "json", "-o", "{out}", "-l", "ru"],
              ["run", good, "--format", "JSON", "-o", "{out}", "--quiet"]]
@@ -163,7 +164,8 @@ def test_fast_path_answers_as_the_typer_app(tmp_path):
                 (tmp_path / f"s{k}" / "results.json").read_bytes(), line
     for line in (["run", good, "--format=json"], ["run", good, "-f", "xml"], ["run", good, "-l", "de"],
                  ["run", good, "-qf", "json"], ["run", good, good], ["run", "--help"], ["validate"],
-                 ["run", good, "-o", ""], ["run", "--", good], ["check", good], ["--version"]):
+                 ["run", good, "-o", ""], ["run", "--", good], ["check", good], ["--version"],
+                 ["validate", good, "--lang", "de"], ["validate", good, "-l"]):
         assert _fast(line) is None, line
 
 

@@ -331,3 +331,27 @@ def test_check_notes_and_an_invalid_answers_file_in_the_language(tmp_path):
     assert en.stderr.splitlines()[:2] == [
         "error: invalid answers file",
         f"{bad}: not an answers file (a YAML file with an `answers:` mapping of result paths to values)"]
+
+
+def test_validate_in_the_language(tmp_path):
+    """`tmm validate --lang ru|uk`: an invalid task's errors and a valid one that cannot be
+    computed (a linkage that does not assemble over part of the turn) in the language;
+    'FILE: ok' as ever; without --lang English as before."""
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("schema: tmm/1\ngears: {m: 4 mm, z: [14, x]}\n", encoding="utf-8")
+    part = tmp_path / "part.yaml"
+    part.write_text("schema: tmm/1\nmechanism:\n  ground: {O: [0, 0], C: [0.5, 0]}\n  links:\n"
+                    "    crank: {points: [O, A], length: 0.2}\n    rod: {points: [A, B], length: 0.4}\n"
+                    "    rocker: {points: [B, C], length: 0.15}\n  assembly: {B: [0.3, 0.1]}\n"
+                    "drive: {link: crank, speed: 100 rpm}\n", encoding="utf-8")
+    good = str(ROOT / "tasks" / "cam_knife.yaml")
+    ru = runner.invoke(app, ["validate", str(bad), str(part), good, "--lang", "ru"])
+    assert ru.exit_code == 3 and ru.stdout == f"{good}: ok\n"
+    err = ru.stderr.splitlines()
+    assert err[:2] == ["Ошибки в файле задания:",
+                       f"{bad}:2:26: поле «gears.z[1]»: ожидается целое число, а записан текст"]
+    assert err[2].startswith(f"ошибка: {part}: Этап «кинематический анализ» не выполнен при угле кривошипа φ = ")
+    assert "не собирается при углах кривошипа φ = 93,6…266,4°" in err[2]
+    en = runner.invoke(app, ["validate", str(bad), str(part), good])
+    assert en.stderr.splitlines()[0] == "error: invalid task"
+    assert en.stderr.splitlines()[2].startswith(f"error: {part}: stage 'kinematics' failed at crank angle ")

@@ -79,6 +79,10 @@ def _fast(argv: list[str]) -> Callable[[], int] | None:
                 i += 1
             elif cmd == "validate" and a == "--no-assembly":
                 opts["no_assembly"] = True
+            elif cmd == "validate" and a in ("--lang", "-l") and i + 1 < len(rest) and rest[i + 1] \
+                    and not rest[i + 1].startswith("-"):
+                opts["lang"] = rest[i + 1]
+                i += 1
             else:
                 return None                                 # --help, -x, --opt=value, '-', '--', ...
         else:
@@ -89,7 +93,10 @@ def _fast(argv: list[str]) -> Callable[[], int] | None:
         return None
     if cmd == "validate":
         files = [Path(a) for a in args]
-        return _collector_off(lambda: validate_tasks(files, bool(opts.get("no_assembly"))))
+        vlang = str(opts.get("lang", "en")).strip().lower()
+        if vlang not in LANGS:
+            return None                                     # the Typer app says what --lang takes
+        return _collector_off(lambda: validate_tasks(files, bool(opts.get("no_assembly")), lang=vlang))
     if len(args) != 1:
         return None
     formats = parse_formats(str(opts.get("format", "json,html,pdf")))

@@ -227,10 +227,12 @@ def validate(
                                             help="task files, folders of them or quoted patterns ('group21/*.yaml')"),
     no_assembly: bool = typer.Option(False, "--no-assembly", help="schema only: skip the check that the "
                                                                   "linkage assembles over the whole cycle"),
+    lang: str = typer.Option("en", "--lang", "-l", help="language of the errors and warnings: en | ru | uk"),
 ):
     """Check task files: the schema, the references, and (for a linkage) that it
     assembles at every crank angle of the cycle. Does not run the pipeline."""
-    raise typer.Exit(console.validate_tasks(task_files, no_assembly, typer.echo))
+    lang = _check_lang(lang)
+    raise typer.Exit(console.validate_tasks(task_files, no_assembly, typer.echo, lang))
 
 
 @app.command()

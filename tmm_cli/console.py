@@ -189,17 +189,18 @@ def earlier_run(folder: Path, started: float, echo: Echo = echo, lang: str = "en
                          when=time.strftime("%Y-%m-%d %H:%M", time.localtime(when))), lang), err=True)
 
 
-def validate_tasks(task_files: list[Path], no_assembly: bool, echo: Echo = echo) -> int:
+def validate_tasks(task_files: list[Path], no_assembly: bool, echo: Echo = echo, lang: str = "en") -> int:
     """`tmm validate`: each file checked, `FILE: ok` or its errors; the exit code. A folder
     stands for its task files (*.yaml, *.yml; answers files skipped) and a quoted pattern
-    (`'group21/*.yaml'`) for the files it matches, as for `tmm batch`."""
+    (`'group21/*.yaml'`) for the files it matches, as for `tmm batch`. ``lang``: the errors and
+    warnings in that language (`--lang`)."""
     code = EXIT_OK
     files = []
     for a in task_files:
         try:
             files += _task_files([a])
         except TaskError as exc:
-            echo(f"error: invalid {exc.kind}\n{exc.render()}", err=True)
+            fail_task(exc, echo, lang)
             code = EXIT_INVALID
     for f in files:
         try:
@@ -207,12 +208,13 @@ def validate_tasks(task_files: list[Path], no_assembly: bool, echo: Echo = echo)
             task = prepare(f, assembly=not no_assembly)
             echo(f"{f}: ok")
             for note in task.input_warnings:        # e.g. a plain number read as metres
-                echo(f"warning: {f}: {note}", err=True)
+                echo(f"{_word('warning', lang)}: {f}: {in_lang(note, lang)}", err=True)
         except TaskError as exc:
-            echo(f"error: invalid {exc.kind}\n{exc.render()}", err=True)
+            fail_task(exc, echo, lang)
             code = max(code, EXIT_INVALID) if code != EXIT_STAGE else code
         except StageError as exc:
-            echo(f"error: {f}: {exc}", err=True)
+            text = str(exc) if lang == "en" else stage_text(exc.to_dict(), lang)
+            echo(f"{_word('error', lang)}: {f}: {text}", err=True)
             code = EXIT_STAGE if code == EXIT_OK else max(code, EXIT_STAGE)
     return code
 
