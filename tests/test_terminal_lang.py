@@ -47,6 +47,7 @@ def test_run_summary_in_russian(tmp_path):
     want = {"W = 3n - 2p5 - p4": "степень подвижности W = 3n − 2p5 − p4",
             "structure formula": "формула строения", "phi0, deg": "угол крайнего положения кривошипа φ0, град",
             "K (mean speed increase)": "K (коэффициент изменения средней скорости)",
+            "least transmission angle, deg": "наименьший угол передачи, град",
             "flywheel J, kg*m^2": "момент инерции маховика J, кг·м²",
             "flywheel D x b, m": "размеры маховика D × b, м"}
     en_rows, ru_rows = _rows(en.stdout), _rows(ru.stdout)
@@ -82,7 +83,7 @@ def test_run_summary_in_ukrainian_and_english_unchanged(tmp_path):
     en, _ = _run(tmp_path, "press_drive_train")
     assert dict(_rows(en.stdout))["drive train ratio"] == "14.4"
     assert [line for line in en.stdout.splitlines() if line.startswith("┃")] == [
-        "┃ quantity                ┃                     value ┃"]
+        "┃ quantity                      ┃                     value ┃"]
     assert en.stderr.splitlines()[-1] == "  drive_train..."
 
 
@@ -355,3 +356,25 @@ def test_validate_in_the_language(tmp_path):
     en = runner.invoke(app, ["validate", str(bad), str(part), good])
     assert en.stderr.splitlines()[0] == "error: invalid task"
     assert en.stderr.splitlines()[2].startswith(f"error: {part}: stage 'kinematics' failed at crank angle ")
+
+
+def test_a_synthesis_prints_the_generated_lengths_and_the_least_transmission_angle(tmp_path):
+    """A synthesis task's answer is the mechanism it generates: its lengths in the summary, and the
+    least transmission angle of its dyads, here a crank-rocker's by the cosine rule with the crank
+    along the frame line (cos mu = (b^2 + c^2 - (d -+ a)^2) / 2bc, the acute angle of the two)."""
+    import math
+
+    from tmm_cli import load_task, run
+    from tmm_cli.summary import _summary_rows
+    r = run(load_task(ROOT / "tasks" / "synthesis_crank_rocker.yaml"))
+    L = r["synthesis"]["lengths"]
+    rows = dict(_summary_rows(r))
+    for name in ("crank", "coupler", "rocker", "frame"):
+        assert rows[f"synthesis: {name}, m"] == f"{L[name]:.5g}"
+    a, b, c, d = L["crank"], L["coupler"], L["rocker"], L["frame"]
+    mus = [math.degrees(math.acos((b * b + c * c - q * q) / (2 * b * c))) for q in (d - a, d + a)]
+    want = min(min(m, 180.0 - m) for m in mus)
+    assert rows["least transmission angle, deg"] == f"{want:.5g} (II(2,3))"
+    ru = dict(_summary_rows(r, "ru"))
+    assert ru["синтез: coupler, м"] == f"{L['coupler']:.5g}".replace(".", ",")
+    assert ru["наименьший угол передачи, град"] == f"{want:.5g} (II(2,3))".replace(".", ",")

@@ -58,6 +58,14 @@ def _summary_rows(results: dict, lang: str = "en") -> list[tuple[str, str]]:
         add(T["phi0"], f(pos.get("phi0")))
         if pos.get("K") is not None:
             add(T["K"], f(pos.get("K")))
+    syn = results.get("synthesis")
+    if syn and isinstance(syn.get("lengths"), dict):
+        for name, value in syn["lengths"].items():         # the generated mechanism: the task's answer
+            add(T["syn_length"].format(name=name), f(value))
+    rows_t = [r for r in results.get("transmission") or () if isinstance(r, dict) and r.get("gamma_min") is not None]
+    if rows_t:                                           # the least of every dyad's least
+        least = min(rows_t, key=lambda r: r["gamma_min"])
+        add(T["gamma"], f"{f(least['gamma_min'])} ({least.get('group', '')})")
     if results.get("singular"):
         add(T["singular"], sep.join(f(s, 7) for s in results["singular"]))
     fw = results.get("flywheel")
