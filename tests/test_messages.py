@@ -1015,10 +1015,11 @@ def test_every_english_code_has_a_pinned_text():
 
 
 def _counted_noun(spec: str, lang: str) -> bool:
-    """A count's noun in its forms, {n:|form|form...}: as many as the language's rule has
-    (numbers catalogue `format.plural`: one and other in English, one, few and many in ru/uk)."""
+    """A count's noun in its forms, {n:|form|form...} (the count and the noun), or {list:#form|form...}
+    (the noun alone, its form by the list's length): as many as the language's rule has (numbers
+    catalogue `format.plural`: one and other in English, one, few and many in ru/uk)."""
     from tmm_cli import locales
-    if not spec.startswith("|"):
+    if not spec.startswith(("|", "#")):
         return False
     want = {"one_other": 2, "one_few_many": 3}[locales.of("numbers", "format", lang)["plural"]]
     return len(spec[1:].split("|")) == want and all(f.strip() for f in spec[1:].split("|"))
@@ -1262,6 +1263,20 @@ def test_crank_angle_intervals_are_data_formatted_per_language():
     assert "при углах кривошипа φ = 37,5…52,1°; 350,0…10,2°; 120,01…120,05°: уравнения" in ru   # decimal comma
     assert "(звенья rod, ram)" in ru
     assert "φ = 37,5…52,1°" in render(m.code, m.params, "uk")
+
+
+def test_a_noun_takes_the_form_of_its_lists_length():
+    """"at crank angle(s)" in ru and uk: the noun in the form of the number of angles, without the
+    number ("при угле кривошипа 0°", "при углах кривошипа 0; 180°"); English as written."""
+    for angles, ru, uk in (([90.0], "при угле кривошипа 90°", "за кута кривошипа 90°"),
+                           ([0.0, 180.0], "при углах кривошипа 0; 180°", "за кутів кривошипа 0; 180°"),
+                           ([1.0, 2.0, 3.0, 4.0, 5.0], "при углах кривошипа 1; 2; 3; 4; 5°", "за кутів кривошипа 1; 2")):
+        m = Message("kinematics.singular_continuity", group="II(2,3)", links=["a", "b"], angles=angles, delta=1e-6)
+        assert ru in render(m.code, m.params, "ru") and uk in render(m.code, m.params, "uk")
+        assert "at crank angle(s) " in m
+    from tmm_cli.messages import _Formatter
+    assert _Formatter({}, "en").format_field(["x"], "#angle|angles") == "angle"
+    assert _Formatter({}, "en").format_field(["x", "y"], "#angle|angles") == "angles"
 
 
 def test_number_lists_in_the_decimal_comma_languages():

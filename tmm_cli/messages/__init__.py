@@ -45,8 +45,9 @@ PLAIN = "text"
 # format specs the formatter knows beside Python's and the word tables: `or` (alternatives)
 # `angles` (crank-angle intervals [[from, to], ...] in degrees: "φ = 37.5…52.1°") and
 # `joined` (a list of messages in one line, joined by "; "; without it: one a line), `below1`
-# (a number < 1 to three digits or as many more as keep it below 1: numfmt.below_one); and a
-# count's noun in its forms, `|form|form...` (numfmt.plural: "{n:|character|characters}")
+# (a number < 1 to three digits or as many more as keep it below 1: numfmt.below_one); a
+# count's noun in its forms, `|form|form...` (numfmt.plural: "{n:|character|characters}"), and
+# the noun alone in the form a list's length takes, `#form|form...` ("{angles:#angle|angles}")
 SPECS = ("or", "angles", "joined", "below1")
 
 
@@ -94,6 +95,9 @@ class _Formatter(string.Formatter):
             return ("; " if spec == "joined" else "\n").join(localize(v, self.lang) for v in value)
         if spec.startswith("|"):                            # a count and its noun: {n:|character|characters}
             return numfmt.plural(value, spec[1:].split("|"), self.lang)
+        if spec.startswith("#"):                            # the noun alone, by a list's length: {a:#angle|angles}
+            n = len(value) if isinstance(value, list) else value
+            return numfmt.plural(n, spec[1:].split("|"), self.lang).split(" ", 1)[1]
         if spec == "raw":                                   # as written (a number not localized: '0.38')
             return str(value)
         if spec == "below1" and numfmt.is_number(value):    # a value < 1 never shown as 1 (K = 0.9996 < 1)
