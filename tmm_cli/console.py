@@ -64,11 +64,7 @@ def fail_stage(exc: StageError, file: str | None = None, echo: Echo = echo, lang
 
 def _word(key: str, lang: str) -> str:
     """A word of the terminal (the catalogue's summary ``run`` table) in ``lang``."""
-    return _words(lang)[key]
-
-
-def _words(lang: str) -> dict[str, str]:
-    return run_words(lang)
+    return run_words(lang)[key]
 
 
 def run_words(lang: str) -> dict[str, str]:
@@ -94,7 +90,7 @@ def stage_progress(stage: str, lang: str = "en") -> str:
         return stage
     from .messages import catalogue
     names = catalogue(lang)["terms"].get("stage") or {}
-    T = _words(lang)
+    T = run_words(lang)
     if stage.startswith("study: "):
         part = stage[len("study: "):]
         return f"{T['study']}: {T['curves'] if part == 'curves' else names.get(part, part)}"
