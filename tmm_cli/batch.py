@@ -817,8 +817,8 @@ def _run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = fro
     if start_method() == "fork":       # the workers inherit what the batch imported
         warm([found[k][0] for k in runnable], formats)
     if memory_mb and not _rlimit_available() and not _memory_watch():
-        from .messages import localize
-        con.print(localize(Message("batch.memory_unlimited", limit=memory_mb).to_dict(), lang), markup=False)
+        from .messages import in_lang
+        con.print(in_lang(Message("batch.memory_unlimited", limit=memory_mb), lang), markup=False)
     from .summary import batch_words
     words = batch_words(lang)
     with _progress(con, len(args), words["variants"], words["left"]) as advance:

@@ -16,7 +16,7 @@ import typer
 from . import console
 from .console import EXIT_ANSWERS, EXIT_INVALID, EXIT_OK, EXIT_STAGE, FORMATS  # noqa: F401
 from .errors import StageError, TaskError
-from .messages import Message
+from .messages import Message, in_lang
 
 app = typer.Typer(
     name="tmm",
@@ -283,24 +283,24 @@ def check(
                 if len(mine) < len(sets):   # a table or folder of the whole group: the others are not this task's
                     kept = {id(a) for a in mine}
                     other = sorted({str(a.variant) for a in sets if id(a) not in kept})
-                    _err(f"{note}: " + console.in_lang(Message("answers.other_variants", count=len(sets) - len(mine),
+                    _err(f"{note}: " + in_lang(Message("answers.other_variants", count=len(sets) - len(mine),
                                                                variants=other[:8], more=", ..." if len(other) > 8 else ""),
                                                        lang))
                 sets, dropped = repeats(mine, latest)
                 for n in dropped:
-                    _err(f"{note}: {console.in_lang(n, lang)}")
+                    _err(f"{note}: {in_lang(n, lang)}")
                 for a in sets:
                     if a.flags:
                         others = [f.split("=", 1)[1] for f in a.flags if f.startswith("repeat=")]
-                        _err(f"{warn}: {console.in_lang(Message('answers.repeat', file=a.answers_file, student=a.student, others=others), lang)}")
+                        _err(f"{warn}: {in_lang(Message('answers.repeat', file=a.answers_file, student=a.student, others=others), lang)}")
         for a in sets:
             if single and a.variant not in (None, "") and task.variant is not None and not a.matches(task):
                 # graded all the same (one FILE is taken as given), but a form of another variant
                 # grades every answer outside: say why
-                _err(f"{warn}: " + console.in_lang(Message("answers.other_variant_file", file=str(answers),
+                _err(f"{warn}: " + in_lang(Message("answers.other_variant_file", file=str(answers),
                                                            variant=str(a.variant), task=str(task.variant)), lang))
             for n in a.notes:
-                _err(f"{warn}: {console.in_lang(n, lang)}")
+                _err(f"{warn}: {in_lang(n, lang)}")
     except TaskError as exc:
         raise _fail_task(exc, lang)
     try:
@@ -318,16 +318,16 @@ def check(
             raise _fail_task(exc, lang)
     from .summary import print_check
     if not sets:
-        _err(console.in_lang(Message("answers.none_for_variant", source=str(answers),
+        _err(in_lang(Message("answers.none_for_variant", source=str(answers),
                                      variant=str(task.variant if task.variant is not None else task.name)), lang))
     code, all_rows = (EXIT_ANSWERS if not sets else EXIT_OK), []
     tol = tolerances(task, tol_override, results)
     from .check import unused_tolerance_keys
     for w in unused_tolerance_keys(set(task.tolerance or {}) | set(tol_override or {}), results):
-        _err(f"{warn}: {console.in_lang(w, lang)}")
+        _err(f"{warn}: {in_lang(w, lang)}")
     for a in sets:
         if a.error:          # one malformed row or file of a class: named, the others graded
-            _err(f"{console.run_words(lang)['error']}: {console.in_lang(a.error, lang)}")
+            _err(f"{console.run_words(lang)['error']}: {in_lang(a.error, lang)}")
             code = max(code, EXIT_INVALID)
             continue
         rows = grade(results, a, tol, required)

@@ -11,6 +11,7 @@ from pathlib import Path
 from typing import Callable, Optional
 
 from .errors import StageError, TaskError
+from .messages import in_lang
 
 EXIT_OK, EXIT_ANSWERS, EXIT_INVALID, EXIT_STAGE = 0, 1, 2, 3
 FORMATS = {"json", "html", "pdf", "sheets", "note"}
@@ -160,14 +161,6 @@ def run_task(task_file: Path, out: Optional[Path], formats: set[str], lang: str,
         from .summary import print_summary
         print_summary(results, paths, lang)
     return EXIT_OK
-
-
-def in_lang(note, lang: str) -> str:
-    """A note (a coded Message or plain text) in ``lang``."""
-    if lang != "en" and hasattr(note, "to_dict"):
-        from .messages import localize
-        return localize(note.to_dict(), lang)
-    return str(note)
 
 
 def earlier_run(folder: Path, started: float, echo: Echo = echo, lang: str = "en") -> None:

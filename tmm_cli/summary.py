@@ -25,13 +25,15 @@ def _f(x, digits=5) -> str:
         return str(x)
 
 
-RUN = locales.table("summary", "run")
+def _words(table: str, lang: str) -> dict:
+    """The terminal's words of the catalogue's summary table ``table`` (``run``, ``check``,
+    ``batch``) in ``lang``, English's where ``lang`` lacks one."""
+    return {**locales.of("summary", table, "en"), **(locales.of("summary", table, lang) if lang != "en" else {})}
 
 
 def run_words(lang: str = "en") -> dict[str, str]:
-    """The terminal's words of `tmm run` in ``lang`` (the catalogue's summary ``run`` table;
-    English where ``lang`` lacks one)."""
-    return {**RUN["en"], **RUN.get(lang, {})}
+    """The terminal's words of `tmm run` in ``lang`` (the catalogue's summary ``run`` table)."""
+    return _words("run", lang)
 
 
 def _summary_rows(results: dict, lang: str = "en") -> list[tuple[str, str]]:
@@ -294,9 +296,6 @@ def _tol_shown(text: str, absolute: bool) -> str:
                     for k, v in zip(words[::2], words[1::2]))
 
 
-CHECK = locales.table("summary", "check")
-
-
 def print_check(rows: list[dict], source, lang: str = "en") -> None:
     """The graded answers of one set: path, answer, reference, error, status; fits 80 columns;
     in ``lang`` (`tmm check --lang`: the heads and statuses from the catalogue, the notes
@@ -305,11 +304,11 @@ def print_check(rows: list[dict], source, lang: str = "en") -> None:
     from rich.text import Text
 
     from .check import counts
-    from .messages import Message, catalogue, localize
+    from .messages import Message, catalogue, in_lang
     from .numfmt import localize as typeset
     from .numfmt import plural
 
-    C = {**CHECK["en"], **CHECK.get(lang, {})}
+    C = _words("check", lang)
     status = dict(catalogue(lang)["terms"].get("status", {})) if lang != "en" else {}
     con = _console()
     who = " ".join(x for x in (rows[0].get("student"), rows[0].get("group")) if x) if rows else ""
@@ -327,7 +326,7 @@ def print_check(rows: list[dict], source, lang: str = "en") -> None:
         err = "-" if r["error"] is None else (_f(r["error"], 3) if absolute else f"{100 * r['error']:.2f} %")
         style = STATUS_STYLE.get(st, "white")
         if r["note"] and (st in ("unknown_path", "sign", "invalid") or (st == "outside" and isinstance(r["note"], Message))):
-            note = localize(r["note"].to_dict(), lang) if lang != "en" and isinstance(r["note"], Message) else r["note"]
+            note = in_lang(r["note"], lang)
             notes.append(note if r["note"].startswith(r["path"]) else f"{r['path']}: {note}")
         cells = [_f(r["answer"]), _f(r["reference"]), err, _tol_shown(r["tolerance"], zero_ref or r["note"] == "absolute error")]
         t.add_row(Text(_short_path(r["path"], 26)), *(Text(typeset(c, lang)) for c in cells),
@@ -344,12 +343,9 @@ def print_check(rows: list[dict], source, lang: str = "en") -> None:
                   + "".join(f"; {status.get(k, k)}: {v}" for k, v in c.items() if v and k != "ok"), markup=False)
 
 
-BATCH = locales.table("summary", "batch")
-
-
 def batch_words(lang: str = "en") -> dict:
     """The terminal's words of `tmm batch` in ``lang`` (the catalogue's summary ``batch`` table)."""
-    return {**BATCH["en"], **BATCH.get(lang, {})}
+    return _words("batch", lang)
 
 
 def print_batch(rows: list[dict], out: Path, skipped=(), removed=(), notes=(), lang: str = "en") -> None:
@@ -360,7 +356,7 @@ def print_batch(rows: list[dict], out: Path, skipped=(), removed=(), notes=(), l
     from rich.table import Table
     from rich.text import Text
 
-    from .messages import catalogue, localize
+    from .messages import catalogue, in_lang, localize
     from .numfmt import plural
     B = batch_words(lang)
     status = dict(catalogue(lang)["terms"].get("status", {})) if lang != "en" else {}
@@ -386,8 +382,7 @@ def print_batch(rows: list[dict], out: Path, skipped=(), removed=(), notes=(), l
         con.print(B["removed"].format(n=len(removed)), markup=False)
     word = run_words(lang)["warning"]
     for n in notes:
-        con.print(f"{word}: {localize(n.to_dict(), lang) if hasattr(n, 'to_dict') and lang != 'en' else n}",
-                  markup=False)
+        con.print(f"{word}: {in_lang(n, lang)}", markup=False)
     con.print(B["wrote"].format(csv=out / "summary.csv"), markup=False)
 
 

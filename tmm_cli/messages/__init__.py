@@ -102,9 +102,6 @@ class _Formatter(string.Formatter):
             return str(value)
         if spec == "below1" and numfmt.is_number(value):    # a value < 1 never shown as 1 (K = 0.9996 < 1)
             return numfmt.localize(numfmt.below_one(float(value)), self.lang)
-        # a list of numbers where the decimal comma is written (ru, uk): items separated by "; ",
-        # an interval's ends by "…" ("0,5; 1,25", "45…105"), never a comma between two numbers
-        comma = numfmt.comma(self.lang)
         if spec == "angles" and isinstance(value, list):
             return numfmt.localize(_angles(value, numfmt.list_sep(self.lang)), self.lang)
         if spec == "or" and isinstance(value, list):        # alternatives: 'a', 'b' or 'c'
@@ -120,6 +117,9 @@ class _Formatter(string.Formatter):
             parts = str(value).split("/")
             return " / ".join(str(table.get(p, p)) for p in parts) if any(p in table for p in parts) else str(value)
         if isinstance(value, list):                          # an interval [a, b]: a..b
+            # a list of numbers where the decimal comma is written (ru, uk): items separated by
+            # "; ", an interval's ends by "…" ("0,5; 1,25", "45…105"), never a comma between numbers
+            comma = numfmt.comma(self.lang)
             dots = "…" if comma else ".."
             numbers = comma and any(isinstance(v, list) or numfmt.is_number(v) for v in value)
             return (numfmt.list_sep(self.lang) if numbers else ", ").join(
@@ -206,6 +206,14 @@ def localize(entry: dict, lang: str) -> str:
         return str(entry.get("text", ""))
 
 
+def in_lang(note, lang: str) -> str:
+    """A warning or note (a coded :class:`Message`, or plain text shown as written) in ``lang``:
+    the terminal's lines under `--lang`."""
+    if lang != "en" and isinstance(note, Message):
+        return localize(note.to_dict(), lang)
+    return str(note)
+
+
 def render_list(section: dict, lang: str) -> list[str]:
     """The warnings of a results dict (or one section of it) in ``lang``: its ``messages``
     rendered through the catalogue, else (results written before messages existed) its
@@ -216,4 +224,4 @@ def render_list(section: dict, lang: str) -> list[str]:
     return [str(w) for w in section.get("warnings") or []]
 
 
-__all__ = ["LANGS", "Message", "as_dict", "as_message", "catalogue", "localize", "render", "render_list"]
+__all__ = ["LANGS", "Message", "as_dict", "as_message", "catalogue", "in_lang", "localize", "render", "render_list"]
