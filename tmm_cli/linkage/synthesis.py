@@ -887,13 +887,11 @@ def analyse_function(linkage, d: Design) -> dict:
 
 
 # ---------------------------------------------------------------- analysis of the generated mechanism
-def least_transmission(typ: str, linkage) -> tuple[float, float]:
+def least_transmission(linkage) -> tuple[float, float]:
     """The least transmission angle over the cycle of a generated mechanism.
 
     Parameters
     ----------
-    typ : str
-        The synthesis type (``slider_crank``, ``crank_rocker``, ``slotted_lever``, ``shaper``...).
     linkage : Linkage
         The generated mechanism and its Assur groups.
 
@@ -902,8 +900,8 @@ def least_transmission(typ: str, linkage) -> tuple[float, float]:
     tuple of float
         (gamma_min, deg; the crank angle where it is, deg): the least of its dyads'
         (:func:`tmm_cli.linkage.transmission.least`: the slider-crank's rod and guide, the
-        crank-rocker's coupler and rocker, the shaper's slot and ram); a slotted lever's is 90
-        (the block presses normal to the slot, which passes through the lever's pivot).
+        crank-rocker's coupler and rocker, the shaper's slot and ram, the slotted lever's block
+        and slot: 90, the slot passing through the lever's pivot).
 
     References
     ----------
@@ -962,7 +960,7 @@ def analyse(linkage, d: Design) -> dict:
                                        sign).H)
     else:
         psi = float(pos.H)
-    gmin, gphi = least_transmission(d.type, linkage)
+    gmin, gphi = least_transmission(linkage)
     curve = np.arange(0.0, 360.0 + 1e-9, 5.0)
     phis = np.mod(pos.phi0 + sign * curve, 360.0)
     from . import transmission

@@ -426,7 +426,7 @@ def analyse(linkage, d) -> dict:
     M = kin.pos["M"]
     dev = np.hypot(M[:, 0] - T[:, 0], M[:, 1] - T[:, 1])
     turn = solve(mech, np.arange(0.0, 360.0, 2.0), linkage.drive.omega)
-    gmin, gphi = least_transmission("crank_rocker", linkage)
+    gmin, gphi = least_transmission(linkage)
     L = d.lengths
     first = {k: [float(kin.pos[k][0, 0]), float(kin.pos[k][0, 1])] for k in ("A", "B", "M")}
     return {"type": "path", "lengths": dict(L), "M": list(cons["M"]), "points": T.tolist(),

@@ -160,7 +160,7 @@ def analyse(linkage, d) -> dict:
                     "crank_angle": float(df["crank_angles"][j] % 360.0), "branch": df["branches"][j]})
     L = d.lengths
     from .synthesis import least_transmission
-    gmin, gphi = least_transmission("crank_rocker", linkage)
+    gmin, gphi = least_transmission(linkage)
     return {"type": "positions", "lengths": dict(L),
             "fixed_pivots": {"O": list(cons["O"]), "O1": list(cons["O1"])},
             "grashof": cons["grashof"],
