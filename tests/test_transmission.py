@@ -392,3 +392,32 @@ def test_prp_derivative_with_both_guides_turning():
     fd = (T.sine(d, kin(p + h))[0] - T.sine(d, kin(p - h))[0]) / (2 * h)
     assert np.allclose(ds, fd, rtol=1e-6, atol=1e-8)
     assert np.allclose(s, np.sin(np.radians(70.0) + 0.2 * np.cos(2 * p) - 0.7 * np.sin(p)), rtol=1e-14)
+
+
+def test_each_dyad_reads_its_own_guides():
+    """dyads() on every linkage example: a PRP dyad's two guides are the two sliders' own (the
+    first the slot's, the second the other slider's, fixed or on a link), an RPR's slot the block's,
+    and only an RPR may be through its pivot (a field out of place read a guide's link as that)."""
+    from pathlib import Path
+
+    from tmm_cli.linkage import transmission
+    from tmm_cli.linkage.mechanism import build_mechanism
+    from tmm_cli.linkage.structure import analyze
+    from tmm_cli.orchestrate import prepare
+    kinds = set()
+    for path in sorted((Path(__file__).resolve().parents[1] / "tasks").glob("*.yaml")):
+        task = prepare(path, assembly=False)
+        if getattr(task, "mechanism", None) is None:
+            continue
+        mech = build_mechanism(task)
+        for d in transmission.dyads(mech, analyze(mech).groups):
+            kinds.add(d.kind)
+            assert type(d.through_pivot) is bool and (d.kind == "RPR" or not d.through_pivot), (path.name, d)
+            joints = list(d.group.joints)
+            if d.kind == "PRP":
+                g1, g2 = mech.link(joints[0].slider).guide, mech.link(joints[2].slider).guide
+                assert (d.guide_link, d.guide2_link) == (g1.link, g2.link), path.name
+                assert (d.guide_angle, d.guide2_angle) == (float(g1.angle), float(g2.angle)), path.name
+            if d.kind == "RPR":
+                assert d.guide_link == mech.link(joints[1].slider).guide.link, path.name
+    assert {"RRR", "RRP", "RPR", "PRP"} <= kinds

@@ -64,8 +64,8 @@ class DyadAngle:
     guide_angle: float = 0.0        # RRP, PRP: the (first) guide's angle (deg; on a link: to its axis)
     guide_link: str | None = None   # RRP, PRP: the link that carries it (None: fixed)
     guide2_angle: float = 0.0       # PRP: the other guide's
-    through_pivot: bool = False     # RPR: the slot's line passes through the pivot (gamma = 90 deg always)
     guide2_link: str | None = None
+    through_pivot: bool = False     # RPR: the slot's line passes through the pivot (gamma = 90 deg always)
 
 
 def dyads(mech: "Mechanism", groups: list["Group"]) -> list[DyadAngle]:
