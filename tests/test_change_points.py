@@ -73,10 +73,32 @@ def _cp_warnings(res):
     return [w for w in res["warnings"] if w.startswith("change point at crank angle")]
 
 
+def test_crank_angles_in_sentences_are_periodic_and_rounded():
+    """A sentence names a crank angle in [0, 360) to 0.001 deg, trailing zeros dropped: a
+    position found by a root search at a change point (180.0000016) or a probe just short of a
+    turn (359.9999995) is not shown with the search's last digits; ru and uk with the decimal
+    comma, a list of them separated by semicolons there."""
+    from tmm_cli.messages import render
+    from tmm_cli.numfmt import crank_deg
+    cases = {180.00000160988924: "180", 359.9999995: "0", -1e-9: "0", 360.0: "0", 0.0: "0",
+             38.94236: "38.942", 38.9425: "38.943", 12.5: "12.5", 725.25: "5.25", -90.0: "270",
+             0.0004: "0", 0.0006: "0.001"}
+    for x, want in cases.items():
+        assert crank_deg(x) == want, x
+    p = {"phi": 180.00000160988924, "group": "II(2,3)", "links": ["coupler", "rocker"], "near": 1.0,
+         "blowup": 10.0}
+    assert render("kinematics.change_point", p).startswith("change point at crank angle 180 deg:")
+    assert "φ = 180°" in render("kinematics.change_point", p, "ru")
+    p = {"group": "II(2,3)", "links": ["rod", "slider"], "angles": [12.5, 359.9999995], "delta": 1e-6}
+    assert "crank angle(s) 12.5, 0 deg" in render("kinematics.singular_continuity", p)
+    assert "кривошипа 12,5; 0°" in render("kinematics.singular_continuity", p, "ru")
+    assert "кривошипа 12,5; 0°" in render("kinematics.singular_continuity", p, "uk")
+
+
 def test_grashof_limit_change_point_at_the_extreme(tmp_path):
     res = _run(tmp_path, LIMIT)
     ws = _cp_warnings(res)
-    assert len(ws) == 1 and ws[0].startswith("change point at crank angle 180.000000 deg: group II(2,3)")
+    assert len(ws) == 1 and ws[0].startswith("change point at crank angle 180 deg: group II(2,3)")
     # the rocker's extreme position at the change point is added as an extra position
     ext = [e for e in res["kinematics"] if abs(e["phi"] - 180.0) < 1e-3]
     assert ext, [e["phi"] for e in res["kinematics"]]
@@ -146,7 +168,7 @@ def test_grashof_limit_values_kept_near_but_not_at_the_change_point(tmp_path):
 def test_deltoid_change_point_and_branch_jump(tmp_path):
     res = _run(tmp_path, DELTOID)
     ws = _cp_warnings(res)
-    assert len(ws) == 1 and ws[0].startswith("change point at crank angle 0.000000 deg")
+    assert len(ws) == 1 and ws[0].startswith("change point at crank angle 0 deg")
     e0 = res["kinematics"][0]
     assert e0["phi"] == 0.0 and e0["near_singular"] is True
     assert all("near_singular" not in e for e in res["kinematics"][1:])
@@ -197,7 +219,7 @@ def test_curve_of_the_output_leaves_out_values_without_a_limit(tmp_path):
             .replace("B: [0.2, 0.19]", "B: [0.25, 0.19]"))
     res = _run(tmp_path, text)
     ws = _cp_warnings(res)
-    assert len(ws) == 1 and ws[0].startswith("change point at crank angle 0.000000 deg")
+    assert len(ws) == 1 and ws[0].startswith("change point at crank angle 0 deg")
     assert abs(res["positions"]["phi0"]) < 1e-5
     c = res["kinematics_curve"]
     # at the change point omega3 jumps (0.732 on one side, -2.732 on the other): no limit,

@@ -227,9 +227,9 @@ def test_decimal_change_point_is_flagged_nulled_and_limited(tmp_path):
     ks = {e["index"]: e for e in res["kinetostatics"]}[at[0]["index"]]
     assert ks["balancing_moment"] is None and ks["near_singular"] is True
     assert all(r["R"] is None for r in ks["reactions"].values())
-    assert any(w.startswith("crank angle 180.000000 deg: group II(2,3) (links coupler, rocker) is ill-conditioned")
+    assert any(w.startswith("crank angle 180 deg: group II(2,3) (links coupler, rocker) is ill-conditioned")
                and "have no limit by continuity" in w and "ω rocker" in w for w in res["warnings"])
-    assert any("position 6 (phi = 180.0000 deg) is a singular or change point" in w for w in res["warnings"])
+    assert any("position 6 (phi = 180 deg) is a singular or change point" in w for w in res["warnings"])
 
 
 def test_decimal_change_point_at_zero_kinetostatics_null(tmp_path):
@@ -289,7 +289,7 @@ def test_slotted_lever_through_the_pivot_gives_the_limit(tmp_path):
     assert e["links"]["rocker"]["omega"] == pytest.approx(-math.pi, rel=1e-9)
     assert e["points"]["B"]["v"] == pytest.approx(0.55 * math.pi, rel=1e-6)
     assert e["links"]["rocker"]["epsilon"] == pytest.approx(0.0, abs=1e-6)
-    assert any(w.startswith("crank angle 270.000000 deg: group II(2,3) (links block, rocker) is ill-conditioned")
+    assert any(w.startswith("crank angle 270 deg: group II(2,3) (links block, rocker) is ill-conditioned")
                and "ω rocker" in w and "limit by continuity" in w for w in res["warnings"])
     # and next to the point (ill-conditioned, 0.01 deg off): the same
     mech = _mech(tmp_path, SLOTTED)

@@ -163,6 +163,19 @@ def below_one(x: float) -> str:
     return repr(float(x))
 
 
+def crank_deg(x: float, places: int = 3) -> str:
+    """A crank angle in degrees as a sentence names it: in [0, 360) (a crank angle is periodic:
+    -1e-9 and 359.9999999 are 0), to ``places`` decimals with the trailing zeros dropped
+    (180.0000016 -> '180', 38.94236 -> '38.942'): a position found by a root search at a
+    change point is not shown with the search's last digits. Python's writing (localize it
+    for a language)."""
+    v = round(float(x) % 360.0, places)
+    if v >= 360.0:
+        v -= 360.0
+    text = f"{v:.{places}f}".rstrip("0").rstrip(".")
+    return "0" if text in ("-0", "") else text
+
+
 def format_text(template: str, lang: str | None = None, /, **kw) -> str:
     """``template.format(**kw)`` with the numeric fields written in ``lang``."""
     return Formatter(lang).format(template, **kw)

@@ -45,10 +45,11 @@ PLAIN = "text"
 # format specs the formatter knows beside Python's and the word tables: `or` (alternatives)
 # `angles` (crank-angle intervals [[from, to], ...] in degrees: "φ = 37.5…52.1°") and
 # `joined` (a list of messages in one line, joined by "; "; without it: one a line), `below1`
-# (a number < 1 to three digits or as many more as keep it below 1: numfmt.below_one); a
+# (a number < 1 to three digits or as many more as keep it below 1: numfmt.below_one), `deg`
+# (a crank angle, or a list of them, in [0, 360) to 0.001 deg: numfmt.crank_deg); a
 # count's noun in its forms, `|form|form...` (numfmt.plural: "{n:|character|characters}"), and
 # the noun alone in the form a list's length takes, `#form|form...` ("{angles:#angle|angles}")
-SPECS = ("or", "angles", "joined", "below1")
+SPECS = ("or", "angles", "joined", "below1", "deg")
 
 
 def _angles(intervals: list, sep: str = ", ") -> str:
@@ -102,6 +103,10 @@ class _Formatter(string.Formatter):
             return str(value)
         if spec == "below1" and numfmt.is_number(value):    # a value < 1 never shown as 1 (K = 0.9996 < 1)
             return numfmt.localize(numfmt.below_one(float(value)), self.lang)
+        if spec == "deg" and isinstance(value, list):       # crank angles: "0, 180" ("0; 180" in ru, uk)
+            return numfmt.list_sep(self.lang).join(numfmt.localize(numfmt.crank_deg(v), self.lang) for v in value)
+        if spec == "deg" and numfmt.is_number(value):       # a crank angle: 180.0000016 -> "180"
+            return numfmt.localize(numfmt.crank_deg(value), self.lang)
         if spec == "angles" and isinstance(value, list):
             return numfmt.localize(_angles(value, numfmt.list_sep(self.lang)), self.lang)
         if spec == "or" and isinstance(value, list):        # alternatives: 'a', 'b' or 'c'
