@@ -149,7 +149,7 @@ ENGLISH = [
      'dof2: the rotor reverses its direction of rotation'),
     # tmm batch: the message column (the former f-strings of tmm_cli/batch.py)
     ('batch.nobody_answered', {}, 'nobody answered this variant'),
-    ('batch.no_answers_to_check', {}, 'computed (no answers to check)'),
+    ('batch.no_answers_to_check', {}, 'no answers to check'),
     ('batch.results_in', {'folder': 'press-2'}, ' (results in press-2/)'),
     ('form.renamed', {'file': 'src/V1.yaml', 'name': 'V1-2'},
      'note: src/V1.yaml: its form and key are V1-2.form.yaml and V1-2.key.yaml (a file name every system '

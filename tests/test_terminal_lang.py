@@ -169,6 +169,51 @@ def test_batch_table_in_russian(tmp_path):
     assert "tmm batch: 3 rows" in text and "computed" in text and "Inputshouldbe" in re.sub(r"[\s│]+", "", en.stdout)
 
 
+def test_batch_names_every_row_whole_and_says_computed_once(tmp_path, monkeypatch):
+    """The batch table at 80 columns: a file name whole where the room allows (the longest of
+    the examples, 34 characters, folded rather than every message wrapped: the fewest lines), no
+    line past the terminal's width in en or ru, a variant without answers 'computed' with the
+    message 'no answers to check' (not 'computed' twice); summary.html names an unsigned
+    variant by its task file, as the terminal does."""
+    import io
+
+    from rich.console import Console
+
+    from tmm_cli import summary
+    rows = [{"file": f"/x/{n}.yaml", "status": "ok", "variant": 3, "message": "no answers to check",
+             "folder": n} for n in ("crank_rocker_fourbar", "synthesis_offset_slider_crank", "cam_flat")]
+    for lang in ("en", "ru"):
+        buf = io.StringIO()
+        monkeypatch.setattr(summary, "_console", lambda: Console(file=buf, width=80, emoji=False, highlight=False))
+        summary.print_batch(rows, tmp_path, lang=lang)
+        lines = buf.getvalue().splitlines()
+        assert lines and max(len(ln) for ln in lines) <= 80, lines
+        table = [ln for ln in lines if ln.startswith("│")]
+        if lang == "en":          # the long name in two lines, every message in one: 4 lines, not 6
+            assert len(table) == 4, lines
+            assert any("│ crank_rocker_fourbar.yaml " in ln for ln in table)
+            assert any("│ synthesis_offset_slider_cran" in ln for ln in table)
+            assert sum(ln.count("computed") == 1 and "no answers to check" in ln for ln in table) == 3
+    html = summary.summary_html(rows, [], "x")
+    assert "<td>crank_rocker_fourbar.yaml</td>" in html and "<th>student / file</th>" in html
+    assert "<td>Ivanov</td>" in summary.summary_html([dict(rows[0], student="Ivanov")], [], "x")
+    assert "<th>студент / файл</th>" in summary.summary_html(rows, [], "x", lang="ru")
+
+
+def test_the_batch_table_splits_its_room_for_the_fewest_lines():
+    """Worked by hand: 33 names of 10 characters and one of 34, each message 'no answers to
+    check' (19), 47 columns of room. A name column of 34 leaves the messages 13: each wraps
+    ('no answers to' / 'check'), 34 rows x 2 = 68 lines. Of 28 the long name folds to 2 lines
+    and every message fits: 33 + 2 = 35 lines, the fewest (any width from 17 to 28 gives 35;
+    the widest wins the tie). Both fitting: each column its longest cell."""
+    from tmm_cli.summary import _split_width
+    names = ["b" * 10] * 33 + ["a" * 34]
+    msgs = ["no answers to check"] * 34
+    assert _split_width(47, names, msgs) == (28, 19)
+    assert _split_width(60, names, msgs) == (34, 19)
+    assert _split_width(47, ["b" * 10], ["no answers to check"]) == (10, 19)
+
+
 def test_an_invalid_task_in_the_language(tmp_path):
     bad = tmp_path / "bad.yaml"
     bad.write_text("schema: tmm/1\ngears: {m: 4 mm, z: [14, x]}\n", encoding="utf-8")

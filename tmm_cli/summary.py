@@ -276,6 +276,12 @@ def shown_status(row: dict) -> str:
     return "computed" if st == "ok" and not row.get("answers") else st
 
 
+def row_who(row: dict) -> str:
+    """Who a batch row is: the student's name, else the answers file, else the task file's name
+    (a variant nobody signed): the terminal's table and summary.html name every row alike."""
+    return str(row.get("student") or row.get("answers_file") or Path(str(row.get("file") or "")).name)
+
+
 def _short_path(p: str, n: int = 30) -> str:
     """A result path shortened for an 80-column terminal: 'kinematics[1].points.B.v' ->
     'kin[1].B.v'."""
@@ -349,7 +355,7 @@ def batch_words(lang: str = "en") -> dict:
 
 
 def print_batch(rows: list[dict], out: Path, skipped=(), removed=(), notes=(), lang: str = "en") -> None:
-    """The batch table (student, variant, status, score, message), 80 columns wide, in
+    """The batch table (student or file, variant, status, score, message) as wide as the terminal, in
     ``lang`` (`tmm batch --lang`: the words, the statuses and the coded messages as
     summary.html has them); ``notes``: lines printed as warnings after it (an output the
     batch could not make)."""
@@ -362,18 +368,28 @@ def print_batch(rows: list[dict], out: Path, skipped=(), removed=(), notes=(), l
     status = dict(catalogue(lang)["terms"].get("status", {})) if lang != "en" else {}
     con = _console()
     t = Table(title=Text(f"{B['title']}: {plural(len(rows), B['rows'], lang)}"), title_justify="left")
-    t.add_column(Text(B["who"]), overflow="fold", max_width=22)
-    t.add_column(Text(B["var"]), no_wrap=True, max_width=6)
+    cells = []
+    for r in rows:
+        st = shown_status(r)
+        cells.append((row_who(r), str(r.get("variant", ""))[:6], str(status.get(st, st)), st,
+                      f"{100 * float(r['score']):.0f} %" if r.get("answers") else "-",
+                      _cut(_message(r, lang, localize), 200, lang)))
+    # the widths given, not left to Rich (which folds a file name mid-word first): the split of
+    # the room between the name and the message that prints the fewest lines (a name folded,
+    # a message wrapped at its words), names whole on a tie
+    def widest(k: int, head: str) -> int:
+        return max([len(c[k]) for c in cells] + [len(head)])
+    fixed = widest(1, B["var"]) + widest(2, B["status"]) + widest(4, B["score"])
+    room = max(con.width - 16 - fixed, 24)             # 16: the borders and padding of 5 columns
+    who_w, msg_w = _split_width(room, [c[0] for c in cells], [c[5] for c in cells],
+                                len(B["who"].split(" / ")[0]), len(B["message"]))
+    t.add_column(Text(B["who"]), overflow="fold", width=who_w)
+    t.add_column(Text(B["var"]), no_wrap=True)
     t.add_column(Text(B["status"]), no_wrap=True)
     t.add_column(Text(B["score"]), justify="right", no_wrap=True)
-    t.add_column(Text(B["message"]), overflow="fold", max_width=32)
-    for r in rows:
-        who = r.get("student") or r.get("answers_file") or Path(str(r.get("file", ""))).name
-        st = shown_status(r)
-        score = f"{100 * float(r['score']):.0f} %" if r.get("answers") else "-"
-        t.add_row(Text(str(who)), Text(str(r.get("variant", ""))),
-                  Text(str(status.get(st, st)), style=STATUS_STYLE.get(st, "")),
-                  score, Text(_cut(_message(r, lang, localize), 200, lang)))
+    t.add_column(Text(B["message"]), overflow="fold", width=msg_w)
+    for who, var, word, st, score, msg in cells:
+        t.add_row(Text(who), Text(var), Text(word, style=STATUS_STYLE.get(st, "")), score, Text(msg))
     con.print(t)
     if skipped:
         con.print(B["skipped"].format(n=len(skipped), names=", ".join(Path(s).name for s in list(skipped)[:5])),
@@ -384,6 +400,28 @@ def print_batch(rows: list[dict], out: Path, skipped=(), removed=(), notes=(), l
     for n in notes:
         con.print(f"{word}: {in_lang(n, lang)}", markup=False)
     con.print(B["wrote"].format(csv=out / "summary.csv"), markup=False)
+
+
+def _split_width(room: int, names: list[str], messages: list[str], name_min: int = 8,
+                 message_min: int = 8) -> tuple[int, int]:
+    """(name width, message width) summing to at most ``room``: the split that prints the
+    rows in the fewest lines, a name folded at the width (ceil(len / w) lines), a message
+    wrapped at its words (textwrap, as Rich wraps); on a tie the wider name column. Neither
+    column wider than its longest cell."""
+    import math
+    import textwrap
+    want_name = max([len(n) for n in names] + [name_min])
+    want_msg = max([len(m) for m in messages] + [message_min])
+    if want_name + want_msg <= room:
+        return want_name, want_msg
+    best = None
+    for w in range(min(want_name, room - 8), 7, -1):
+        m = min(room - w, want_msg)
+        lines = sum(max(math.ceil(len(n) / w) if n else 1, len(textwrap.wrap(t, m, break_on_hyphens=False)) or 1)
+                    for n, t in zip(names, messages))
+        if best is None or lines < best[0]:
+            best = (lines, w, m)
+    return (best[1], best[2]) if best else (max(room // 2, 8), max(room - room // 2, 8))
 
 
 def _cut(text: str, n: int, lang: str = "en") -> str:
@@ -420,7 +458,7 @@ def summary_html(rows: list[dict], paths: list[str], source: str, lang: str = "e
     # a path nobody's results have (a typo) gets no column: the row's message names it
     paths = [p for p in paths if any(r.get(p) not in ("", None, "unknown_path") for r in rows)]
     has_grade = any("grade" in r for r in rows)
-    head = "".join(f"<th>{e(T[c])}</th>" for c in ("student", "group", "variant", "status", "score"))
+    head = "".join(f"<th>{e(T[c])}</th>" for c in ("who", "group", "variant", "status", "score"))
     head += f"<th>{e(words['grade'])}</th>" if has_grade else ""
     head += f"<th>{e(words['flags'])}</th>"
     head += "".join(f'<th class="q" title="{e(p)}"><span>{e(p)}</span></th>' for p in paths)
@@ -429,7 +467,7 @@ def summary_html(rows: list[dict], paths: list[str], source: str, lang: str = "e
     for r in rows:
         st = shown_status(r)
         score = f"{100 * float(r['score']):.0f} %" if r.get("answers") else "–"
-        cells = [e(r.get("student") or r.get("answers_file") or ""), e(r.get("group", "")), e(r.get("variant", "")),
+        cells = [e(row_who(r)), e(r.get("group", "")), e(r.get("variant", "")),
                  f'<span class="st">{e(T.get(st, st))}</span>', e(score)]
         tds = "".join(f"<td>{c}</td>" for c in cells[:3])
         tds += f'<td style="background:{COLOURS.get(st, "#fff")}">{cells[3]}</td><td>{cells[4]}</td>'
