@@ -217,3 +217,41 @@ def test_log10_generator_by_cramers_rule():
     for p, f, q in zip(r["precision_points"], phi, psi):
         assert (p["phi"], p["psi"]) == pytest.approx((f, q), abs=1e-12)
         assert p["psi_generated"] == pytest.approx(q, abs=1e-7)
+
+
+def test_least_transmission_angle_over_the_input_range_by_the_cosine_rule():
+    """The generator works over its input range: its least transmission angle there, against
+    the cosine rule of the four-bar (O at 0, O1 at (d, 0)): |AO1|^2 = a^2 + d^2 - 2 a d cos phi,
+    cos mu = (b^2 + c^2 - |AO1|^2) / (2 b c), gamma = min(mu, 180 - mu), its least on a grid of
+    0.001 deg over the range 30..120 deg. The
+    example's crank-rocker has its full-turn least (30.08 deg at phi = 0) outside the range:
+    the range's, 40.92 at its end phi = 30, is larger; both printed at the terminal."""
+    res = run(_task())
+    s = res["synthesis"]
+    a, b, c, d = (s["lengths"][k] for k in ("crank", "coupler", "rocker", "frame"))
+    phi = np.radians(np.linspace(30.0, 120.0, 90001))
+    ao1 = a * a + d * d - 2 * a * d * np.cos(phi)
+    mu = np.degrees(np.arccos((b * b + c * c - ao1) / (2 * b * c)))
+    gam = np.minimum(mu, 180.0 - mu)
+    k = int(np.argmin(gam))
+    assert s["gamma_min"] == pytest.approx(gam[k], abs=1e-6)
+    assert s["gamma_min_phi"] == pytest.approx(math.degrees(phi[k]), abs=2e-3)
+    full = min(r["gamma_min"] for r in res["transmission"])
+    assert s["grashof"] == "crank-rocker" and full < s["gamma_min"] - 5.0     # the turn's least lies outside
+    from tmm_cli.summary import _summary_rows
+    rows = dict(_summary_rows(res))
+    assert rows["least transmission angle in the input range, deg"] == f"{s['gamma_min']:.5g}"
+    assert rows["least transmission angle, deg"].startswith(f"{full:.5g} ")
+
+
+def test_a_double_rocker_generators_range_least_is_the_transmission_stages():
+    """A generator that is no crank-rocker (tasks/synthesis_function_log10) has its transmission
+    stage over the input range already: the synthesis's least over the range is the same number
+    at the same angle (two routes through one search), and the terminal prints it once."""
+    res = run(load_task(ROOT / "tasks" / "synthesis_function_log10.yaml"))
+    s = res["synthesis"]
+    assert s["grashof"] != "crank-rocker"
+    (t,) = res["transmission"]
+    assert s["gamma_min"] == t["gamma_min"] and s["gamma_min_phi"] == t["phi"]
+    from tmm_cli.summary import _summary_rows
+    assert "least transmission angle in the input range, deg" not in dict(_summary_rows(res))

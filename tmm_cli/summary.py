@@ -68,6 +68,10 @@ def _summary_rows(results: dict, lang: str = "en") -> list[tuple[str, str]]:
     if rows_t:                                           # the least of every dyad's least
         least = min(rows_t, key=lambda r: r["gamma_min"])
         add(T["gamma"], f"{f(least['gamma_min'])} ({least.get('group', '')})")
+    if syn and syn.get("type") == "function" and syn.get("gamma_min") is not None and syn.get("grashof") == "crank-rocker":
+        # a crank-rocker generator: the row above is the full turn's, this its working range's
+        # (any other generator's transmission stage runs over the range already)
+        add(T["gamma_range"], f(syn["gamma_min"]))
     if results.get("singular"):
         add(T["singular"], sep.join(f(s, 7) for s in results["singular"]))
     fw = results.get("flywheel")

@@ -843,8 +843,10 @@ def analyse_function(linkage, d: Design) -> dict:
     dict
         The lengths (m), Freudenstein's K, the precision points with the generated rocker
         angle there (deg), the structural error (the largest |psi - psi_ideal|, deg, and its
-        x) with its curve over the range of x (the kinematics at 401 crank angles) and
-        Grashof's kind.
+        x) with its curve over the range of x (the kinematics at 401 crank angles), Grashof's
+        kind, and the least transmission angle over the input range (deg) with its crank angle
+        (deg): the generator's working range, where a crank-rocker's full-turn least (the
+        transmission stage's) may lie outside it.
     """
     import numpy as np
 
@@ -869,6 +871,7 @@ def analyse_function(linkage, d: Design) -> dict:
     got_p = ideal_p + error(np.array([p["phi"] for p in pts], float), ideal_p)
     L = d.lengths
     serr = {"max": float(abs(err[k])), "at_x": float(xs[k])}
+    gmin, gphi = least_transmission(linkage, *g["input"])
     if d.crank_range is not None:
         # the reported positions spread over the input range: x, the ideal and the generated psi there
         xg = x0 + (x1 - x0) * np.linspace(0.0, 1.0, int(linkage.positions.count))
@@ -883,17 +886,21 @@ def analyse_function(linkage, d: Design) -> dict:
             "error_curve": {"x": xs.tolist(), "error": err.tolist()},
             "grashof": grashof(L["crank"], L["coupler"], L["rocker"], L["frame"]),
             "mechanism": d.mechanism, "output": d.output, "function": g["function"],
-            "x": [x0, x1], "y": list(d.construction["y"]), "working": d.working}
+            "x": [x0, x1], "y": list(d.construction["y"]), "working": d.working,
+            "gamma_min": gmin, "gamma_min_phi": gphi}
 
 
 # ---------------------------------------------------------------- analysis of the generated mechanism
-def least_transmission(linkage) -> tuple[float, float]:
-    """The least transmission angle over the cycle of a generated mechanism.
+def least_transmission(linkage, start: float = 0.0, span: float = 360.0) -> tuple[float, float]:
+    """The least transmission angle over the cycle of a generated mechanism (or over the crank
+    angles ``start`` .. ``start + span``: a function generator's input range).
 
     Parameters
     ----------
     linkage : Linkage
         The generated mechanism and its Assur groups.
+    start, span : float
+        The crank angles to search, deg (``span`` signed; a full turn by default).
 
     Returns
     -------
@@ -911,8 +918,8 @@ def least_transmission(linkage) -> tuple[float, float]:
     from . import transmission
     ds = transmission.dyads(linkage.mechanism, linkage.structure.groups)
     if not ds:
-        return 90.0, 0.0
-    return min(transmission.least(linkage.mechanism, ds))
+        return 90.0, float(start) % 360.0
+    return min(transmission.least(linkage.mechanism, ds, float(start), float(span)))
 
 
 def analyse(linkage, d: Design) -> dict:

@@ -213,6 +213,8 @@ def _function(ctx, r) -> str:
     pts = r["precision_points"]
     info = [(t("syn.type"), t("syn.type.function")), (t("syn.fn.K"), ", ".join(f(k, 6) for k in r["K"])),
             (t("syn.fn.grashof"), t(f"syn.grashof.{r['grashof']}"))]
+    if r.get("gamma_min") is not None:       # over the generator's working range
+        info.append((t("syn.fn.gamma"), t("syn.gamma_at", g=f(r["gamma_min"], 6), p=f(r.get("gamma_min_phi"), 5))))
     rows = [(f(p["x"], 6), f(p["phi"], 6), f(p["psi"], 6), f(p["psi_generated"], 6)) for p in pts]
     se = r["structural_error"]
     return ctx.render("sections/synthesis_function.html.j2", info=info, lens=lens, rows=rows,
