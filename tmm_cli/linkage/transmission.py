@@ -16,7 +16,11 @@ the dyad grow about as 1 / sin(gamma).
 * PRP (a block in a slot of one link, pinned to a slider on a guide: the shaper's ram driven by
   the rocker's slot): the acute angle between the slot and the guide (the block presses normal
   to the slot; the slider moves along its guide).
-* Other dyads (RPP, as the Scotch yoke's; PPR) and triads: none is reported.
+* RPP (a block pinned at A in the slot of a link that slides on a guide: the Scotch yoke): the
+  acute angle between the slot and the guide, as the PRP's (the block presses normal to the
+  slot; the slotted link moves along its guide): 90 deg with the slot square to the guide, at
+  every position (the link does not turn).
+* Triads: none is reported.
 
 The least over the cycle: the sine of gamma on a 0.5-deg grid of crank angles. Where it
 changes sign anywhere between neighbours the dyad passes a dead point: the least is 0 at its
@@ -58,26 +62,27 @@ class DyadAngle:
     """How one dyad's transmission angle is read from the kinematics."""
 
     group: "Group"
-    kind: str                       # "RRR" | "RRP" | "RPR" | "PRP"
+    kind: str                       # "RRR" | "RRP" | "RPR" | "PRP" | "RPP"
     middle: str                     # the middle pair's point
     ends: tuple[str, str]           # RRR: the outer pairs' points; RRP: (rod's outer point, middle)
-    guide_angle: float = 0.0        # RRP, PRP: the (first) guide's angle (deg; on a link: to its axis)
-    guide_link: str | None = None   # RRP, PRP: the link that carries it (None: fixed)
-    guide2_angle: float = 0.0       # PRP: the other guide's
+    guide_angle: float = 0.0        # RRP, PRP, RPP: the (first) guide's angle (deg; on a link: to its axis)
+    guide_link: str | None = None   # RRP, PRP, RPP: the link that carries it (None: fixed)
+    guide2_angle: float = 0.0       # PRP, RPP: the other guide's
     guide2_link: str | None = None
     through_pivot: bool = False     # RPR: the slot's line passes through the pivot (gamma = 90 deg always)
 
 
 def dyads(mech: "Mechanism", groups: list["Group"]) -> list[DyadAngle]:
-    """The dyads of ``groups`` whose transmission angle is defined (RRR, RRP/PRR, RPR, PRP)."""
+    """The dyads of ``groups`` whose transmission angle is defined (RRR, RRP/PRR, RPR, PRP,
+    RPP/PPR)."""
     out = []
     for g in groups:
         if len(g.links) != 2 or len(g.joints) != 3:
             continue
         kinds = "".join(j.kind for j in g.joints)
         joints = list(g.joints)
-        if kinds == "PRR":
-            joints, kinds = joints[::-1], "RRP"
+        if kinds in ("PRR", "PPR"):
+            joints, kinds = joints[::-1], kinds[::-1]
         if kinds == "RRR":
             out.append(DyadAngle(g, "RRR", joints[1].point, (joints[0].point, joints[2].point)))
         elif kinds == "RRP" and joints[2].slider is not None:
@@ -103,12 +108,18 @@ def dyads(mech: "Mechanism", groups: list["Group"]) -> list[DyadAngle]:
             scale = max(math.hypot(px, py), abs(guide.offset), float(slotted.length or 0.0), 1e-300)
             out.append(DyadAngle(g, "RPR", pin, (pivot[0], pin), float(guide.angle), guide.link,
                                  through_pivot=e <= 1e-12 * scale))
-        elif kinds == "PRP" and joints[0].slider is not None and joints[2].slider is not None:
-            g1, g2 = mech.link(joints[0].slider).guide, mech.link(joints[2].slider).guide
+        elif kinds in ("PRP", "RPP"):
+            # two guides: PRP the slot and the slider's guide (named at the pin between them),
+            # RPP the slot (the block's guide, on the slotted link) and the slotted link's guide
+            # (named at the block's pin)
+            first, pin = (0, 1) if kinds == "PRP" else (1, 0)
+            if joints[first].slider is None or joints[2].slider is None:
+                continue
+            g1, g2 = mech.link(joints[first].slider).guide, mech.link(joints[2].slider).guide
             if g1 is None or g2 is None:
                 continue
-            out.append(DyadAngle(g, "PRP", joints[1].point, (joints[1].point, joints[1].point),
-                                 float(g1.angle), g1.link, float(g2.angle), g2.link))
+            p = joints[pin].point
+            out.append(DyadAngle(g, kinds, p, (p, p), float(g1.angle), g1.link, float(g2.angle), g2.link))
     return out
 
 
@@ -126,7 +137,7 @@ def sine(d: DyadAngle, kin) -> tuple[np.ndarray, np.ndarray]:
         s = c / (lu * lv)
         ds = dc / (lu * lv) - s * ((u * du).sum(axis=1) / lu ** 2 + (v * dv).sum(axis=1) / lv ** 2)
         return s, ds
-    if d.kind == "PRP":                             # the slot and the guide: sin of the angle between them
+    if d.kind in ("PRP", "RPP"):                    # the slot and the guide: sin of the angle between them
         (t1, dt1), (t2, dt2) = (_guide(kin, d.guide_angle, d.guide_link, len(kin.phi)),
                                 _guide(kin, d.guide2_angle, d.guide2_link, len(kin.phi)))
         return np.sin(t2 - t1), np.cos(t2 - t1) * (dt2 - dt1)
