@@ -233,10 +233,15 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explo
                     crank_range=over)
     mech, positions, drive = linkage.mechanism, linkage.positions, linkage.drive
     built["drive"] = drive
+    # each dyad's least transmission angle over the cycle (its input range for a generator):
+    # found before a synthesis, which reports the least of them too (one search for both)
+    from .linkage import transmission
+    trans = None
     if design is not None:
         say("synthesis")
-        from .linkage.synthesis import analyse
-        results["synthesis"] = _stage("synthesis")(analyse)(linkage, design)
+        from .linkage.synthesis import analyse, least_of
+        trans = _stage("kinematics")(transmission.analyze)(linkage, over)
+        results["synthesis"] = _stage("synthesis")(analyse)(linkage, design, least_of(trans))
         warnings.extend(results["synthesis"].pop("warnings", ()))     # the path's miss of its points
     results["drive"] = drive.to_dict()
 
@@ -247,9 +252,8 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explo
     # points, hinted at the angle the solver reads hints at), so that angle is no news to the user
     warnings.extend(w for w in kin.warnings if over is None or not (isinstance(w, Message)
                                                                      and w.code == "kinematics.closure_not_at_zero"))
-    # each dyad's least transmission angle over the cycle (its input range for a generator)
-    from .linkage import transmission
-    trans = _stage("kinematics")(transmission.analyze)(linkage, over)
+    if trans is None:
+        trans = _stage("kinematics")(transmission.analyze)(linkage, over)
     if trans:
         results["transmission"] = trans
         warnings.extend(transmission.warnings(trans))

@@ -828,7 +828,7 @@ def grashof(a: float, b: float, c: float, d: float) -> str:
     return "crank-rocker" if s == a else "double-rocker"
 
 
-def analyse_function(linkage, d: Design) -> dict:
+def analyse_function(linkage, d: Design, least: tuple[float, float] | None = None) -> dict:
     """The function generator's structural error.
 
     Parameters
@@ -837,6 +837,10 @@ def analyse_function(linkage, d: Design) -> dict:
         The generated linkage.
     d : Design
         Its design (the function, the ranges, the precision points).
+    least : tuple of float, optional
+        The transmission stage's least (:func:`least_of`): read for a generator that works over
+        its input range only (``d.crank_range``: the stage searched that range); a crank-rocker's
+        is its full turn's, and the range's is sought here.
 
     Returns
     -------
@@ -871,7 +875,8 @@ def analyse_function(linkage, d: Design) -> dict:
     got_p = ideal_p + error(np.array([p["phi"] for p in pts], float), ideal_p)
     L = d.lengths
     serr = {"max": float(abs(err[k])), "at_x": float(xs[k])}
-    gmin, gphi = least_transmission(linkage, *g["input"])
+    gmin, gphi = least if least is not None and d.crank_range is not None else \
+        least_transmission(linkage, *g["input"])
     if d.crank_range is not None:
         # the reported positions spread over the input range: x, the ideal and the generated psi there
         xg = x0 + (x1 - x0) * np.linspace(0.0, 1.0, int(linkage.positions.count))
@@ -891,6 +896,13 @@ def analyse_function(linkage, d: Design) -> dict:
 
 
 # ---------------------------------------------------------------- analysis of the generated mechanism
+def least_of(rows: list[dict]) -> tuple[float, float]:
+    """(gamma_min, deg; its crank angle, deg) of the transmission stage's rows
+    (:func:`tmm_cli.linkage.transmission.analyze`): the least of every dyad's least, as
+    :func:`least_transmission` finds it over the same crank angles (90 deg at 0 without a dyad)."""
+    return min(((float(r["gamma_min"]), float(r["phi"])) for r in rows), default=(90.0, 0.0))
+
+
 def least_transmission(linkage, start: float = 0.0, span: float = 360.0) -> tuple[float, float]:
     """The least transmission angle over the cycle of a generated mechanism (or over the crank
     angles ``start`` .. ``start + span``: a function generator's input range).
@@ -922,7 +934,7 @@ def least_transmission(linkage, start: float = 0.0, span: float = 360.0) -> tupl
     return min(transmission.least(linkage.mechanism, ds, float(start), float(span)))
 
 
-def analyse(linkage, d: Design) -> dict:
+def analyse(linkage, d: Design, least: tuple[float, float] | None = None) -> dict:
     """The synthesis stage: the generated mechanism analysed.
 
     Parameters
@@ -931,6 +943,10 @@ def analyse(linkage, d: Design) -> dict:
         The mechanism built from ``d.mechanism`` and the drive's sense of rotation.
     d : Design
         The design of the task's ``synthesis`` section (:func:`generate`).
+    least : tuple of float, optional
+        (gamma_min, deg; its crank angle, deg): the transmission stage's least over the
+        linkage's cycle (:func:`least_of` of its rows), one search for both; None: sought here
+        (:func:`least_transmission`).
 
     Returns
     -------
@@ -945,10 +961,10 @@ def analyse(linkage, d: Design) -> dict:
     of the mean speed, the transmission angle; docs/methods.md.
     """
     if d.type == "function":
-        return analyse_function(linkage, d)
+        return analyse_function(linkage, d, least)
     if d.type in ("positions", "path"):
         from importlib import import_module
-        return import_module(f".synthesis_{d.type}", __package__).analyse(linkage, d)
+        return import_module(f".synthesis_{d.type}", __package__).analyse(linkage, d, least)
     import numpy as np
 
     from .kinematics import find_positions, solve
@@ -967,7 +983,7 @@ def analyse(linkage, d: Design) -> dict:
                                        sign).H)
     else:
         psi = float(pos.H)
-    gmin, gphi = least_transmission(linkage)
+    gmin, gphi = least if least is not None else least_transmission(linkage)
     curve = np.arange(0.0, 360.0 + 1e-9, 5.0)
     phis = np.mod(pos.phi0 + sign * curve, 360.0)
     from . import transmission

@@ -134,7 +134,7 @@ def design(sec, sign: float):
                   [], cons)
 
 
-def analyse(linkage, d) -> dict:
+def analyse(linkage, d, least: tuple[float, float] | None = None) -> dict:
     """The generated linkage analysed at the crank angles of the three positions: where its
     point P is and how its coupler is turned, against the positions asked for (on the branch
     it is assembled on: a branch defect shows as a large deviation)."""
@@ -160,7 +160,7 @@ def analyse(linkage, d) -> dict:
                     "crank_angle": float(df["crank_angles"][j] % 360.0), "branch": df["branches"][j]})
     L = d.lengths
     from .synthesis import least_transmission
-    gmin, gphi = least_transmission(linkage)
+    gmin, gphi = least if least is not None else least_transmission(linkage)
     return {"type": "positions", "lengths": dict(L),
             "fixed_pivots": {"O": list(cons["O"]), "O1": list(cons["O1"])},
             "grashof": cons["grashof"],
