@@ -431,3 +431,23 @@ def test_quick_return_types_with_K_not_above_one_exit_2(tmp_path, syn):
     assert f"t.yaml:{line}:3: field 'synthesis.{key}'" in res.output
     ru = runner.invoke(app, ["run", str(f), "--out", str(tmp_path / "o"), "--lang", "ru"])
     assert ru.exit_code == 2 and f"поле «synthesis.{key}»: для синтеза типа {syn['type']} нужен K > 1" in ru.output
+
+
+@pytest.mark.parametrize("name, calls", [("synthesis_crank_rocker", 1), ("synthesis_shaper", 1),
+                                         ("synthesis_function_log10", 1), ("synthesis_function", 2)])
+def test_the_least_transmission_angle_is_sought_once(name, calls, monkeypatch):
+    """The synthesis reports the transmission stage's least (one search of the crank angles for
+    both, the same number); a crank-rocker function generator searches its input range besides
+    its full turn."""
+    from pathlib import Path
+
+    import tmm_cli
+    from tmm_cli.linkage import transmission
+    seen = []
+    real = transmission.least
+    monkeypatch.setattr(transmission, "least", lambda *a, **k: seen.append(a[2:]) or real(*a, **k))
+    res = tmm_cli.run(tmm_cli.load_task(Path(__file__).resolve().parents[1] / "tasks" / f"{name}.yaml"))
+    assert len(seen) == calls, seen
+    if name != "synthesis_function":
+        least = min((r["gamma_min"], r["phi"]) for r in res["transmission"])
+        assert (res["synthesis"]["gamma_min"], res["synthesis"]["gamma_min_phi"]) == least
