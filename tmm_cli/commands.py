@@ -575,13 +575,18 @@ def schema(
 
 
 @app.command()
-def fields(section: Optional[str] = typer.Argument(None, help="only this section, e.g. flywheel")):
+def fields(section: Optional[str] = typer.Argument(None, help="only this section, e.g. flywheel"),
+           lang: str = typer.Option("en", "--lang", "-l", help="language of the table: en | ru | uk")):
     """List every task-file field: its path, default and meaning (units: SI base units,
     angles in degrees; a string may carry its own unit, e.g. '300 mm', '50 rpm')."""
+    lang = _check_lang(lang)
     from rich.console import Console
     from rich.table import Table
 
+    from . import locales
     from .task import field_docs
+    W = locales.of("fields", "terminal", lang)
+    meaning = locales.topic(lang, "fields").get("fields") or {}     # en: the schema's own texts
     docs = field_docs()
     rows = [r for r in docs if section is None or r[0] == section or r[0].startswith(section + ".")
             or r[0].startswith(section + "[")]
@@ -589,15 +594,16 @@ def fields(section: Optional[str] = typer.Argument(None, help="only this section
         import difflib
         names = sorted({r[0] for r in docs} | {r[0].split(".")[0].split("[")[0] for r in docs})
         near = difflib.get_close_matches(section, names, n=1, cutoff=0.6)
-        _err(f"error: no section or field '{section}'" + (f"; did you mean '{near[0]}'?" if near else ""))
+        _err(W["no_such"].format(section=section) + (W["did_you_mean"].format(near=near[0]) if near else ""))
         raise typer.Exit(EXIT_INVALID)
-    t = Table(title="tmm task file fields (schema tmm/1)")
-    t.add_column("field", overflow="fold")
-    t.add_column("default", overflow="fold")
-    t.add_column("meaning", overflow="fold")
+    t = Table(title=W["title"])
+    t.add_column(W["field"], overflow="fold")
+    t.add_column(W["default"], overflow="fold")
+    t.add_column(W["meaning"], overflow="fold")
     from rich.markup import escape      # '[x, y]' in a meaning is text, not Rich markup
     for path, default, text in rows:
-        t.add_row(escape(path), escape(default), escape(text))
+        t.add_row(escape(path), escape(W["required"] if default == "required" else default),
+                  escape(meaning.get(path, text)))
     Console().print(t)
 
 
@@ -611,15 +617,22 @@ STARTERS += ("synthesis_function", "synthesis_positions", "synthesis_path")
 def new(kind: str = typer.Argument(..., metavar="KIND", help="linkage | cam | cam_rocker | cam_flat | cam_knife | "
                                                             "gears | full | synthesis | synthesis_function | "
                                                             "synthesis_positions | synthesis_path | "
-                                                            "differential | balancing")):
-    """Print a commented starter task of the given kind."""
+                                                            "differential | balancing"),
+        lang: str = typer.Option("en", "--lang", "-l", help="language of the comments and the title: en | ru | uk")):
+    """Print a commented starter task of the given kind (its comments in --lang; the data the
+    same in every language)."""
+    lang = _check_lang(lang)
     if kind not in STARTERS:
         import difflib
         # 'path' is the starter synthesis_path, 'rocker' cam_rocker: the kind a starter ends with
         near = [s for s in STARTERS if s.endswith("_" + kind.strip().lower())] \
             or difflib.get_close_matches(kind, STARTERS, n=1, cutoff=0.6)
-        hint = f"; did you mean '{near[0]}'? " if near else "; "
-        _err(f"error: unknown kind '{kind}'{hint}choose from {', '.join(STARTERS)}")
+        from . import locales
+        W = locales.of("starters", "terminal", lang)
+        hint = W["did_you_mean"].format(near=near[0]) if near else "; "
+        _err(W["unknown"].format(kind=kind) + hint + W["choose"].format(kinds=", ".join(STARTERS)))
         raise typer.Exit(EXIT_INVALID)
     from importlib.resources import files
-    typer.echo(files("tmm_cli.starters").joinpath(f"{kind}.yaml").read_text(encoding="utf-8"), nl=False)
+    # English beside the package's __init__, another language in its folder (starters/ru/...)
+    name = f"{kind}.yaml" if lang == "en" else f"{lang}/{kind}.yaml"
+    typer.echo(files("tmm_cli.starters").joinpath(name).read_text(encoding="utf-8"), nl=False)
