@@ -212,6 +212,11 @@ def test_a_reading_is_stated_once_naming_every_field():
     assert len(grads) == 1, t.input_warnings
     assert "mechanism.links.slider.guide.angle" in grads[0] and "positions.extra[1]" in grads[0]
     assert "gon" in grads[0]
+    # the Cyrillic word: degrees as every course book writes it, nothing to say
+    cyr = _task("120 rpm", positions={"extra": ["30 \u0433\u0440\u0430\u0434"]})
+    cyr["mechanism"]["links"]["slider"]["guide"]["angle"] = "10 \u0433\u0440\u0430\u0434."
+    t = tmm_cli.load_task(cyr)
+    assert t.positions.extra[0] == 30.0 and not [m for m in t.input_warnings if m.code == "input.reading_grad"]
 
 
 def test_grad_is_degrees_and_gon_gradians():

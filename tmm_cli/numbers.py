@@ -251,7 +251,9 @@ def parse_unit(u: str, s: str = "") -> tuple[tuple, tuple]:
                 raise ValueError(Message("input.number_unit_syntax", text=s, unit=u))   # off): refused
             if latin == _GRAD[0]:
                 latin = _GRAD[1]
-                if "input.reading_grad" not in notes:
+                # said for the Latin 'grad' only (pint's gradian): the Cyrillic word is degrees in
+                # every course book, and a student who writes it means nothing else
+                if "input.reading_grad" not in notes and not _CYRILLIC.search(name):
                     notes.append("input.reading_grad")
             factors.append((latin, k * power * (-1 if below else 1)))
         if pos == len(u):
