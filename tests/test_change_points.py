@@ -248,3 +248,44 @@ def test_one_continuity_warning_a_group_with_every_runs_angles():
     assert len(found) == 1 and found[0]["params"]["group"] == "II(2,3)"
     assert found[0]["params"]["angles"] == [0.0, 180.0]
     assert "at crank angle(s) 0, 180 deg" in found[0]["text"]
+
+
+def test_no_plan_drawn_from_values_that_have_no_limit(tmp_path):
+    """At the Grashof-limit four-bar's change point (phi = 180, the rocker's extreme position
+    12*) v B, a B, omega of the coupler and rocker have no limit and are null: a plan built
+    from them would draw each null as a zero (v B = 0, and aBA tau closing the plan at the
+    length of a A, 39.5 mm, beside its computed 3.4e-8 m/s^2: a drawing whose scale is not its
+    table's). So no plan is built there, saying which quantities it lacks; at every other
+    position each segment is its value at the plan's scale (length x mu = value). The report
+    gives the position its notes and no figure."""
+    from tmm_cli.plans import build_plan, geometry
+    import tmm_cli
+    f = tmp_path / "task.yaml"
+    f.write_text(LIMIT, encoding="utf-8")
+    task = tmm_cli.load_task(f)
+    from tmm_cli.results import clean
+    res = clean(tmm_cli.run(task))
+    geom = geometry(res)
+    seen = 0
+    for e in res["kinematics"]:
+        for kind in ("v", "a"):
+            plan = build_plan(kind, e, geom, 0.01)
+            if abs(e["phi"] - 180.0) < 1e-3:
+                want = {"v B", "v S2", "v S3", "ω coupler", "ω rocker"} | (
+                    {"a B", "a S2", "a S3"} if kind == "a" else set())
+                assert set(plan.undefined) == want and not plan.vecs, plan.undefined
+                continue
+            assert not plan.undefined
+            for sym, seg, mm, value in plan.rows():
+                assert mm * 0.01 == pytest.approx(value, rel=1e-9, abs=1e-12), (e["index"], kind, seg)
+                seen += 1
+    assert seen > 100
+    from tmm_cli.report import render
+    out = tmp_path / "r"
+    render(res, task, out, {"html"}, "en")
+    html = (out / "report.html").read_text(encoding="utf-8")
+    i = html.index("Position 12*")
+    block = html[i:html.index("Position", i + 10)]
+    assert "<svg" not in block and "<figure" not in block
+    assert block.count("not drawn at this position: v B, v S2, v S3") == 2
+    assert "have no limit by continuity here" in block and "<table" not in block

@@ -151,6 +151,9 @@ class Plan:
     pole: str                  # 'p' | 'π'
     pts: dict[str, np.ndarray]  # label -> plan coordinates, mm
     vecs: list[Vec]
+    # the quantities the plan needs that the position has not ('v B', 'ω rocker': null next to a
+    # change point, no limit by continuity): then no plan (no point, no segment) is drawn
+    undefined: tuple[str, ...] = ()
 
     def length_mm(self, v: Vec) -> float:
         return float(np.linalg.norm(self.pts[v.end] - self.pts[v.start]))
@@ -211,11 +214,35 @@ def coincident_name(pin: str, guide: LinkG) -> str:
     return f"{pin}{guide.index}"
 
 
+def undefined(kind: str, entry: dict, geom: Geometry) -> tuple[str, ...]:
+    """The quantities of one kinematics entry that a plan of ``kind`` reads and the entry has
+    null (a point's velocity or acceleration, a link's ω or ε: next to a change point, where
+    they have no limit by continuity), named as the warnings name them ('v B', 'ω rocker').
+    An acceleration plan reads the velocities too (the normal and Coriolis components)."""
+    P, L = entry["points"], entry["links"]
+    out: list[str] = []
+    for k in ("v", "a") if kind == "a" else ("v",):
+        for l in geom.links:
+            for p in l.points + ([l.com] if l.com else []):
+                name = f"{k} {p}"
+                if p in P and p not in geom.ground and name not in out and \
+                        (P[p].get(f"{k}x") is None or P[p].get(f"{k}y") is None):
+                    out.append(name)
+    for k, key in (("ω", "omega"), ("ε", "epsilon")) if kind == "a" else (("ω", "omega"),):
+        out += [f"{k} {l.name}" for l in geom.links if l.name in L and L[l.name].get(key) is None]
+    return tuple(out)
+
+
 def build_plan(kind: str, entry: dict, geom: Geometry, mu: float) -> Plan:
-    """The velocity ('v') or acceleration ('a') plan of one kinematics entry."""
+    """The velocity ('v') or acceleration ('a') plan of one kinematics entry; at a position
+    whose plan reads a null quantity (:func:`undefined`) an empty plan that says which: a
+    null is never drawn as a zero."""
     P = entry["points"]
     L = entry["links"]
     pole = "p" if kind == "v" else "π"
+    missing = undefined(kind, entry, geom)
+    if missing:
+        return Plan(kind, mu, pole, {pole: np.zeros(2)}, [], missing)
     vk = ("vx", "vy") if kind == "v" else ("ax", "ay")
     sym = "v" if kind == "v" else "a"
     pts: dict[str, np.ndarray] = {pole: np.zeros(2)}

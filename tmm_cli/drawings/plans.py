@@ -13,8 +13,12 @@ def plan_room(w: float, h: float) -> tuple[float, float]:
     return w - 2 * PLAN_MARGIN, h - PLAN_TOP - PLAN_BAR - 2 * PLAN_MARGIN
 
 
-def draw_plan(cv, plan, box, title, unit_txt, si_unit="m/s", mm="mm"):
+def draw_plan(cv, plan, box, title, unit_txt, si_unit="m/s", mm="mm", note=None):
     """One plan inside box = (x0, y0, w, h) mm of the canvas `cv`.
+
+    A plan the position cannot have (``plan.undefined``: a null velocity next to a change
+    point) is its title and ``note`` (which quantities have no limit), wrapped to the box:
+    no point, no segment, no scale.
 
     The plan's coordinates are millimetres at its scale mu (the segment table's
     lengths); the drawing is that plan reduced by a factor k <= 1 to fit the box, so
@@ -22,6 +26,13 @@ def draw_plan(cv, plan, box, title, unit_txt, si_unit="m/s", mm="mm"):
     with a 20 mm scale bar.  Returns k."""
     from ..report import figures as F
     x0, y0, w, h = box
+    if plan.undefined:
+        import textwrap
+        cv.text(x0 + 1.5, y0 + h - 3.2, title, size=7, anchor="start", bold=True)
+        per_line = max(12, int((w - 3.0) / (0.6 * cv.font_mm(6))))       # F.text_size's width a letter
+        for i, line in enumerate(textwrap.wrap(note or ", ".join(plan.undefined), per_line)):
+            cv.text(x0 + 1.5, y0 + h - 8.0 - 3.0 * i, line, size=6, anchor="start")
+        return 1.0
     top = PLAN_TOP                      # title and scale lines
     bar_h = PLAN_BAR                    # the scale bar at the bottom
     pts = plan.pts

@@ -175,6 +175,11 @@ PLAN_BOX_W, PLAN_BOX_H = 200.0, 140.0
 TABLE_W = 46.0       # mm: an acceleration plan's segment table, right of the plan
 
 
+def _plan_note(plan, lang: str) -> str | None:
+    """What a plan the position cannot have says on the sheet (None for a drawable plan)."""
+    return TXT[lang]["plan_undefined"].format(what=", ".join(plan.undefined)) if plan.undefined else None
+
+
 def draw_plans(cv, geom, entry, box, lang="en", kinds=("v", "a"), table_w: float = 0.0) -> dict:
     """The velocity and acceleration plans (kinds) of one position side by side, each at a
     standard μ that fits its part of box at true size (the report's draw_plan); with table_w,
@@ -196,9 +201,10 @@ def draw_plans(cv, geom, entry, box, lang="en", kinds=("v", "a"), table_w: float
         span = np.maximum(xy.max(axis=0) - xy.min(axis=0), 1e-12)
         mu = std_mu(max(span[0] / (bx[2] - 12.0), span[1] / (bx[3] - 30.0)))
         plan = build_plan(kind, entry, geom, mu)
-        scale = draw_plan(cv, plan, bx, f"{title} ({T['pos']} {entry['index']})", unit_txt, si, T["mm"])
+        scale = draw_plan(cv, plan, bx, f"{title} ({T['pos']} {entry['index']})", unit_txt, si, T["mm"],
+                          note=_plan_note(plan, lang))
         out[kind] = {"plan": plan, "mu": mu, "k": scale}
-        if table_w:
+        if table_w and not plan.undefined:
             out[kind]["table"] = acceleration_table(cv, plan, scale, (bx[0] + bx[2] + 1.0, y0 + 3.0, table_w - 2.0,
                                                                      h - 4.0), lang, unit_txt)
             cv.layer = "thin"
@@ -239,7 +245,8 @@ def draw_velocity_plans(cv, geom, entries, box, lang="en", ncol: int = 4) -> dic
         r, c = divmod(n, ncol)
         cell = (x0 + c * cw, y0 + h - (r + 1) * ch, cw - 2, ch)
         plan = build_plan("v", e, geom, mu)
-        k = draw_plan(cv, plan, cell, f"{T['vplan']} ({T['pos']} {e['index']})", T["unit_v"], U["m/s"], T["mm"])
+        k = draw_plan(cv, plan, cell, f"{T['vplan']} ({T['pos']} {e['index']})", T["unit_v"], U["m/s"], T["mm"],
+                      note=_plan_note(plan, lang))
         out[e["index"]] = {"plan": plan, "mu": mu, "k": k, "box": cell}
     return out
 

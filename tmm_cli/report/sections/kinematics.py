@@ -159,15 +159,20 @@ def drawn_scales(results: dict, geom):
     return out[0], out[1], vA, aA
 
 
+def plan_note(ctx, plan) -> str | None:
+    """What a plan the position cannot have says instead (None for a drawable plan)."""
+    return ctx.t("kin.plan_undefined", what=", ".join(plan.undefined)) if plan.undefined else None
+
+
 def plans_svg(ctx, vplan, aplan):
     from ..svgdraw import Canvas
     from markupsafe import Markup as _M
     cv = Canvas(PLAN_W, PLAN_H)
     half = PLAN_W / 2
     draw_plan(cv, vplan, (0, 0, half - 1, PLAN_H), ctx.t("kin.velocity_plan"), ctx.t("kin.unit_v"),
-              ctx.t("kin.si_v"), ctx.t("kin.mm"))
+              ctx.t("kin.si_v"), ctx.t("kin.mm"), note=plan_note(ctx, vplan))
     draw_plan(cv, aplan, (half + 1, 0, half - 1, PLAN_H), ctx.t("kin.acceleration_plan"), ctx.t("kin.unit_a"),
-              ctx.t("kin.si_a"), ctx.t("kin.mm"))
+              ctx.t("kin.si_a"), ctx.t("kin.mm"), note=plan_note(ctx, aplan))
     cv.line((half, 1), (half, PLAN_H - 1), "#bbb", 0.2, z=0)
     return _M(cv.to_svg())
 
@@ -392,8 +397,11 @@ def build(ctx) -> str | None:
                                  html.unescape(sym.replace("<sub>", "_").replace("</sub>", "")
                                                .replace("<sup>", "^").replace("</sup>", "")),
                                  float(mm), float(val)])
-        positions.append({"index": num(e), "phi": ctx.fmt_fixed(e["phi"], 2),
-                          "fig": F.named(plans_svg(ctx, vp, ap), F.pos_name("plans", e["index"])), "vrows": vrows, "arows": arows})
+        # a position with neither plan (next to a change point) has its notes and no figure
+        fig = None if vp.undefined and ap.undefined else \
+            F.named(plans_svg(ctx, vp, ap), F.pos_name("plans", e["index"]))
+        positions.append({"index": num(e), "phi": ctx.fmt_fixed(e["phi"], 2), "fig": fig, "vrows": vrows,
+                          "arows": arows, "vnote": plan_note(ctx, vp), "anote": plan_note(ctx, ap)})
 
     # diagrams
     out_name = res_pos.get("output") or geom.links[-1].name
