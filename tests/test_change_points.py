@@ -289,3 +289,42 @@ def test_no_plan_drawn_from_values_that_have_no_limit(tmp_path):
     assert "<svg" not in block and "<figure" not in block
     assert block.count("not drawn at this position: v B, v S2, v S3") == 2
     assert "have no limit by continuity here" in block and "<table" not in block
+
+
+def test_no_inertia_load_from_accelerations_that_have_no_limit(tmp_path):
+    """At the change point (position 12*, phi = 180) a S2, a S3 have no limit: the coupler's
+    and the rocker's inertia forces have none either (null in results.json, '—' in the
+    report's table of loads), where the singular solve's accelerations had given the coupler
+    1.9e8 N. The crank's inertia (its centre at O: 0) and the weights stay; the velocities of
+    the loads on the coupler and the rocker are null, the crank's are its own (0 at O). Every
+    number written for that position is of the task's size (below 1e3 N)."""
+    import tmm_cli
+    from tmm_cli.results import clean
+    f = tmp_path / "task.yaml"
+    f.write_text(LIMIT, encoding="utf-8")
+    task = tmm_cli.load_task(f)
+    res = clean(tmm_cli.run(task))
+    (e,) = [k for k in res["kinetostatics"] if abs(k["phi"] - 180.0) < 1e-3]
+    assert e["inertia"]["crank"] == {"Fx": 0.0, "Fy": 0.0, "M": 0.0}
+    for link in ("coupler", "rocker"):
+        assert e["inertia"][link]["Fx"] is None and e["inertia"][link]["Fy"] is None
+    loads = {ld["name"]: ld for ld in e["loads"]}
+    assert loads["Fi2"]["F"] == [None, None] and loads["Fi3"]["F"] == [None, None]
+    assert loads["G2"]["F"] == [0.0, -19.62] and loads["G2"]["v"] == [None, None]
+    assert loads["G1"]["v"] == [0.0, 0.0]
+
+    def numbers(x):
+        if isinstance(x, dict):
+            return [v for y in x.values() for v in numbers(y)]
+        if isinstance(x, list):
+            return [v for y in x for v in numbers(y)]
+        return [x] if isinstance(x, float) else []
+    assert max(abs(v) for v in numbers(e)) < 1e3
+    others = [k for k in res["kinetostatics"] if k is not e]
+    assert all(k["inertia"]["coupler"]["Fx"] is not None for k in others)
+    from tmm_cli.report import render
+    render(res, task, tmp_path / "r", {"html"}, "en")
+    html = (tmp_path / "r" / "report.html").read_text(encoding="utf-8")
+    i = html.index("<td>12*</td>", html.index("Loads of the positions"))
+    row = html[i:html.index("</tr>", i)]
+    assert "e+08" not in row and row.count("—") >= 2, row

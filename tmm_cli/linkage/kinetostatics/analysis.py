@@ -76,6 +76,10 @@ class KinetostaticsResult:
     driving_power: np.ndarray | None = None
     groups: list[list[int]] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)
+    # link index -> (N,) the positions where the link's velocities have no limit by continuity
+    # (its omega or a point's velocity null in the kinematics, at a change point): the
+    # velocities of the loads on it are null there, not the singular solve's numbers
+    undefined_velocity: dict[int, np.ndarray] = field(default_factory=dict)
 
     @property
     def cond(self) -> np.ndarray:
@@ -346,6 +350,17 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
         & (np.abs(M1U) > 1e-12 * unit) & (np.abs(rate) > 1e-12 * w1 * unit)
     untrusted = _untrusted_kinematics(kin, rows) & ok & ~locked
     ok &= ~untrusted
+    undefined_velocity: dict[int, np.ndarray] = {}
+    if np.any(untrusted):
+        lds = _without_undefined_inertia(lds, mech, kin, rows)
+        und = kin.undefined or {}
+        for lk in mech.links:
+            m = np.zeros(N, bool)
+            for key in [f"omega:{lk.name}"] + [f"v:{p}" for p in lk.local]:
+                if key in und:
+                    m |= np.asarray(und[key], bool)[rows]
+            if m.any():
+                undefined_velocity[lk.index] = m
     # singular crank angles of the balance link over one turn
     warnings: list[str] = []
     if singular is None:
@@ -398,7 +413,33 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
         M_b=Mb, M_matrix=Mm, M_zhukovsky=Mzh, M_virtual=Mvp, reactions=x, reactions_matrix=xm,
         ok=ok, near=near, singular=list(singular), mech=mech, geo=geo, loads=lds,
         efficiency=eff, friction_power=fpow, friction_pairs=loss, driving_power=dpow,
-        groups=_group_links(mech, structure) + [[mech.drive]], warnings=warnings)
+        groups=_group_links(mech, structure) + [[mech.drive]], warnings=warnings,
+        undefined_velocity=undefined_velocity)
+
+
+def _without_undefined_inertia(lds: Loads, mech, kin, rows: np.ndarray) -> Loads:
+    """``lds`` with each link's inertia force NaN where its centre of mass's acceleration has
+    no limit by continuity (``kin.undefined['a:S<i>']``, null in the kinematics) and its inertia
+    couple NaN where its angular acceleration has none: the singular solve's accelerations had
+    given the Grashof-limit four-bar's coupler 1.9e8 N at its change point. The other links'
+    (the crank's) stay as computed."""
+    import dataclasses
+    und = kin.undefined or {}
+    names = {lk.index: lk.name for lk in mech.links}
+
+    def mask(key):
+        m = und.get(key)
+        return None if m is None or not np.any(np.asarray(m, bool)[rows]) else np.asarray(m, bool)[rows]
+
+    forces = []
+    for f in lds.forces:
+        m = mask(f"a:S{f.link}") if f.kind == "inertia" else None
+        forces.append(f if m is None else dataclasses.replace(f, F=np.where(m[:, None], np.nan, f.F)))
+    couples = []
+    for c in lds.couples:
+        m = mask(f"epsilon:{names.get(c.link)}") if c.kind == "inertia" else None
+        couples.append(c if m is None else dataclasses.replace(c, M=np.where(m, np.nan, c.M)))
+    return Loads(lds.phi, forces, couples, lds.info)
 
 
 def _untrusted_kinematics(kin, rows: np.ndarray) -> np.ndarray:

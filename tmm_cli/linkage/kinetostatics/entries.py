@@ -145,11 +145,14 @@ def _table(res, sl: slice, detail: bool, disc: np.ndarray, mdisc: np.ndarray) ->
         col += inert[lk.index]
     if detail:
         g = geo.take(sl)
+        # where a link's velocities have no limit (a change point) the velocities of its loads have none
+        none = np.zeros(len(res.phi), bool)
         for f in res.loads.forces:
             point = f.point[sl]
-            pts += [point, f.F[sl], g.point_vel(f.link, point)]
+            bad = res.undefined_velocity.get(f.link, none)[sl]
+            pts += [point, f.F[sl], np.where(bad[:, None], nan, g.point_vel(f.link, point))]
         for c in res.loads.couples:
-            col += [c.M[sl], g.omega(c.link)]
+            col += [c.M[sl], np.where(res.undefined_velocity.get(c.link, none)[sl], nan, g.omega(c.link))]
     n_all = len(res.phi)
     for d in res.loads.info:
         flags.append(np.broadcast_to(np.asarray(d["active"], bool), (n_all,))[sl].tolist())

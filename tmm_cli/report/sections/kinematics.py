@@ -56,6 +56,11 @@ def _rotation_sign(ctx, geom, entries) -> float:
     return 1.0 if w >= 0 else -1.0
 
 
+#: a value next to a change point below this share of its column's largest is shown as 0 (the
+#: continuity extrapolation's round-off: ~1e-8 of the largest in the examples that have one)
+NOISE = 1e-6
+
+
 def _sense_mark(x, tiny: float = 1e-9) -> str:
     """↺ for a counter-clockwise (positive) value, ↻ for a clockwise one."""
     if x is None or not math.isfinite(float(x)) or abs(float(x)) <= tiny:
@@ -355,6 +360,20 @@ def build(ctx) -> str | None:
                                phi=ctx.fmt_fixed(row["phi"], 2))))
 
     # summary tables
+    tops: dict[tuple, float] = {}
+
+    def settled(e, x, col):
+        """``x`` as the table shows it: at a position next to a change point (its values the
+        limit by continuity, extrapolated from the neighbours) a value below 1e-6 of its
+        column's largest is that extrapolation's round-off of a zero (the rocker's 1.7e-7 rad/s^2
+        where its largest is 40): 0, no sense of rotation (results.json keeps it as computed)."""
+        if x is None or not e.get("near_singular"):
+            return x
+        if col not in tops:
+            where, name, key = col
+            tops[col] = max((abs(float(v)) for v in (q[where][name][key] for q in shown) if v is not None),
+                            default=0.0)
+        return 0.0 if abs(float(x)) < NOISE * tops[col] else x
     moving_pts = []
     for l in geom.links:
         for p in l.points + ([l.com] if l.com else []):
@@ -362,9 +381,9 @@ def build(ctx) -> str | None:
                 moving_pts.append(p)
     hdr_pts = [ctx.t("common.position"), "φ, °"] + moving_pts
     v_rows = [[num(e), ctx.fmt_fixed(e["phi"], 2)] +
-              [ctx.fmt(e["points"][p]["v"]) for p in moving_pts] for e in shown]
+              [ctx.fmt(settled(e, e["points"][p]["v"], ("points", p, "v"))) for p in moving_pts] for e in shown]
     a_rows = [[num(e), ctx.fmt_fixed(e["phi"], 2)] +
-              [ctx.fmt(e["points"][p]["a"]) for p in moving_pts] for e in shown]
+              [ctx.fmt(settled(e, e["points"][p]["a"], ("points", p, "a"))) for p in moving_pts] for e in shown]
     # angular quantities: links that turn (a slider on a fixed guide never does)
     def turns(n):
         return any(abs(float(e["links"][n].get(k) or 0.0)) > 1e-12 for e in entries for k in ("omega", "epsilon"))
@@ -374,9 +393,11 @@ def build(ctx) -> str | None:
     def signed(x):
         return f"{ctx.fmt(x)} {_sense_mark(x)}".rstrip()
     w_rows = [[num(e), ctx.fmt_fixed(e["phi"], 2)] +
-              [signed(e["links"][l.name]["omega"]) for l in rot_links] for e in shown]
+              [signed(settled(e, e["links"][l.name]["omega"], ("links", l.name, "omega"))) for l in rot_links]
+              for e in shown]
     e_rows = [[num(e), ctx.fmt_fixed(e["phi"], 2)] +
-              [signed(e["links"][l.name]["epsilon"]) for l in rot_links] for e in shown]
+              [signed(settled(e, e["links"][l.name]["epsilon"], ("links", l.name, "epsilon"))) for l in rot_links]
+              for e in shown]
     hdr_ang = [ctx.t("common.position"), "φ, °"] + [f"{l.index} ({l.name})" for l in geom.links]
     ang_rows = [[num(e), ctx.fmt_fixed(e["phi"], 2)] +
                 [ctx.fmt_fixed(e["links"][l.name].get("angle"), 2) for l in geom.links] for e in shown]

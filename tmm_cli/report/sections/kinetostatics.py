@@ -404,7 +404,8 @@ def _loads_table(ctx, entries, n_grid=None):
             if f["name"] not in fval:
                 fnames.append(f["name"])
                 fval[f["name"]] = []
-            fval[f["name"]].append(float(np.hypot(*f["F"])))
+            F_ = f["F"]
+            fval[f["name"]].append(None if F_ is None or None in F_ else float(np.hypot(*F_)))   # None: no limit
         for c in e.get("couples", []):
             if c["name"] not in cval:
                 cnames.append(c["name"])
