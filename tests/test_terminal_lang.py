@@ -200,6 +200,21 @@ def test_batch_names_every_row_whole_and_says_computed_once(tmp_path, monkeypatc
     assert "<th>студент / файл</th>" in summary.summary_html(rows, [], "x", lang="ru")
 
 
+def test_two_rows_that_would_read_alike_name_their_files():
+    """One student's two submissions of a variant (or two copies of a starter signed with its
+    placeholder name) are told apart by their files' names, in the terminal and summary.html;
+    a name met once stays alone, and the same student's other variants too."""
+    from tmm_cli import summary
+    rows = [{"student": "Petrov P.", "variant": 1, "file": "/g/petrov_v1.yaml", "status": "ok"},
+            {"student": "Petrov P.", "variant": 1, "file": "/g/petrov_v1_new.yaml", "status": "ok"},
+            {"student": "Petrov P.", "variant": 2, "file": "/g/petrov_v2.yaml", "status": "ok"},
+            {"variant": 3, "file": "/g/anon.yaml", "status": "ok"}]
+    assert summary.row_names(rows) == ["Petrov P. (petrov_v1.yaml)", "Petrov P. (petrov_v1_new.yaml)",
+                                       "Petrov P.", "anon.yaml"]
+    html = summary.summary_html(rows, [], "g")
+    assert "<td>Petrov P. (petrov_v1_new.yaml)</td>" in html and "<td>Petrov P.</td>" in html
+
+
 def test_the_batch_table_splits_its_room_for_the_fewest_lines():
     """Worked by hand: 33 names of 10 characters and one of 34, each message 'no answers to
     check' (19), 47 columns of room. A name column of 34 leaves the messages 13: each wraps

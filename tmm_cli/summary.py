@@ -286,6 +286,20 @@ def row_who(row: dict) -> str:
     return str(row.get("student") or row.get("answers_file") or Path(str(row.get("file") or "")).name)
 
 
+def row_names(rows: list[dict]) -> list[str]:
+    """Each row's :func:`row_who`, with its file's name after it where two rows would read
+    alike (one student's two submissions of a variant, two copies of a starter signed with its
+    placeholder name): 'Petrov P. (petrov_v1b.yaml)'."""
+    import collections
+    who = [row_who(r) for r in rows]
+    seen = collections.Counter((w, str(r.get("variant", ""))) for w, r in zip(who, rows))
+    out = []
+    for w, r in zip(who, rows):
+        name = Path(str(r.get("answers_file") or r.get("file") or "")).name
+        out.append(f"{w} ({name})" if seen[(w, str(r.get("variant", "")))] > 1 and name and name != w else w)
+    return out
+
+
 def _short_path(p: str, n: int = 30) -> str:
     """A result path shortened for an 80-column terminal: 'kinematics[1].points.B.v' ->
     'kin[1].B.v'."""
@@ -373,9 +387,9 @@ def print_batch(rows: list[dict], out: Path, skipped=(), removed=(), notes=(), l
     con = _console()
     t = Table(title=Text(f"{B['title']}: {plural(len(rows), B['rows'], lang)}"), title_justify="left")
     cells = []
-    for r in rows:
+    for r, who in zip(rows, row_names(rows)):
         st = shown_status(r)
-        cells.append((row_who(r), str(r.get("variant", ""))[:6], str(status.get(st, st)), st,
+        cells.append((who, str(r.get("variant", ""))[:6], str(status.get(st, st)), st,
                       f"{100 * float(r['score']):.0f} %" if r.get("answers") else "-",
                       _cut(_message(r, lang, localize), 200, lang)))
     # the widths given, not left to Rich (which folds a file name mid-word first): the split of
@@ -409,10 +423,9 @@ def print_batch(rows: list[dict], out: Path, skipped=(), removed=(), notes=(), l
 def _split_width(room: int, names: list[str], messages: list[str], name_min: int = 8,
                  message_min: int = 8) -> tuple[int, int]:
     """(name width, message width) summing to at most ``room``: the split that prints the
-    rows in the fewest lines, a name folded at the width (ceil(len / w) lines), a message
-    wrapped at its words (textwrap, as Rich wraps); on a tie the wider name column. Neither
-    column wider than its longest cell."""
-    import math
+    rows in the fewest lines, each cell wrapped at its words and a word longer than the
+    column folded (textwrap, as Rich wraps); on a tie the wider name column. Neither column
+    wider than its longest cell."""
     import textwrap
     want_name = max([len(n) for n in names] + [name_min])
     want_msg = max([len(m) for m in messages] + [message_min])
@@ -421,7 +434,8 @@ def _split_width(room: int, names: list[str], messages: list[str], name_min: int
     best = None
     for w in range(min(want_name, room - 8), 7, -1):
         m = min(room - w, want_msg)
-        lines = sum(max(math.ceil(len(n) / w) if n else 1, len(textwrap.wrap(t, m, break_on_hyphens=False)) or 1)
+        lines = sum(max(len(textwrap.wrap(n, w, break_on_hyphens=False)) or 1,
+                        len(textwrap.wrap(t, m, break_on_hyphens=False)) or 1)
                     for n, t in zip(names, messages))
         if best is None or lines < best[0]:
             best = (lines, w, m)
@@ -468,10 +482,10 @@ def summary_html(rows: list[dict], paths: list[str], source: str, lang: str = "e
     head += "".join(f'<th class="q" title="{e(p)}"><span>{e(p)}</span></th>' for p in paths)
     head += f"<th>{e(T['files'])}</th><th>{e(T['message'])}</th>"
     body = []
-    for r in rows:
+    for r, who in zip(rows, row_names(rows)):
         st = shown_status(r)
         score = f"{100 * float(r['score']):.0f} %" if r.get("answers") else "–"
-        cells = [e(row_who(r)), e(r.get("group", "")), e(r.get("variant", "")),
+        cells = [e(who), e(r.get("group", "")), e(r.get("variant", "")),
                  f'<span class="st">{e(T.get(st, st))}</span>', e(score)]
         tds = "".join(f"<td>{c}</td>" for c in cells[:3])
         tds += f'<td style="background:{COLOURS.get(st, "#fff")}">{cells[3]}</td><td>{cells[4]}</td>'
