@@ -63,3 +63,16 @@ def test_new_prints_the_starter_in_the_language():
     assert res.exit_code == 2 and "помилка: невідомий вид «rocker»; можливо, малося на увазі «cam_rocker»?" in res.output
     res = runner.invoke(app, ["new", "rocker"])
     assert res.exit_code == 2 and "error: unknown kind 'rocker'; did you mean 'cam_rocker'? choose from" in res.output
+
+
+@pytest.mark.parametrize("kind", [k for k in STARTERS if k in ("linkage", "full", "synthesis")])
+def test_a_starter_does_not_warn_about_its_own_working_stroke(kind, tmp_path):
+    """A student's first run of a starter, unchanged, gives no quick-working-stroke warning
+    (the six-bar starter's slider works downward, K = 1.28 > 1; it said forward, K = 0.78)."""
+    import tmm_cli
+    f = tmp_path / f"{kind}.yaml"
+    f.write_text((DIR / f"{kind}.yaml").read_text(encoding="utf-8"), encoding="utf-8")
+    res = tmm_cli.run(tmm_cli.load_task(f))
+    assert not [m for m in res["messages"] if m["code"] == "positions.quick_working"], res["warnings"]
+    if res.get("positions", {}).get("K") is not None:
+        assert res["positions"]["K"] >= 1.0 - 1e-12      # a central slider-crank: 1
