@@ -496,7 +496,7 @@ _DOCS: dict[type, dict[str, str]] = {
                    "f_slide": "friction coefficient of the prismatic pairs (force f_slide |N|; default 0)"},
     FlywheelSection: {
         "delta": "coefficient of speed fluctuation, e.g. 1/18",
-        "constant": "driving (motor-driven machine) | resistance (engine): the constant reduced moment",
+        "constant": "which reduced moment is constant over the cycle: driving (a working machine driven by a motor: the driving moment) | resistance (an engine: the moment of resistance)",
         "method": "energy-mass | merzalov | exact: the primary J (all three are computed)",
         "resolution": "crank positions used for the integration (default 360)",
         "quadrature": "Gauss-Legendre points per interval for the works (default 2; 0: trapezoid)",
@@ -530,7 +530,7 @@ _DOCS: dict[type, dict[str, str]] = {
     GearsSection: {"z": "tooth numbers [z1, z2]", "x": "profile shift coefficients [x1, x2] or auto",
                    "alpha": "profile angle of the basic rack, deg (default 20)",
                    "ha": "addendum coefficient ha* (default 1)", "c": "clearance coefficient c* (default 0.25)"},
-    PlanetarySection: {"scheme": "A | B | C | D (see the README)", "ratio": "required i_1H (signed)",
+    PlanetarySection: {"scheme": "A (single row: sun, satellites, fixed ring) | B (two rows, external-internal) | C (two rows, external-external) | D (two rows, internal-internal); the carrier is the output", "ratio": "required i_1H (signed)",
                        "satellites": "number of satellites", "tolerance": "allowed relative ratio error",
                        "m": "module for the drawing, m (default 1 mm)",
                        "z_min": "least tooth number of an external wheel", "z_max": "largest tooth number",

@@ -87,7 +87,7 @@ class LimitsSpec(_Model):
 
 class CamSection(_Model):
     follower: Literal["translating", "rocker", "flat", "knife"] = "translating"
-    stroke: Number = Field(..., gt=0, description="m (translating) or deg (rocker)")
+    stroke: Number = Field(..., gt=0, description="the follower's stroke h: m (translating follower) or its swing, deg (rocker)")
     rocker_length: Length | None = Field(None, gt=0)
     offset: Union[Literal["auto"], Length] = 0.0
     phases: PhasesSpec

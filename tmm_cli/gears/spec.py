@@ -20,7 +20,9 @@ class GearsSection(_Model):
     ha: Number = Field(1.0, gt=0)
     c: Number = Field(0.25, ge=0)
     rule: Literal["no_undercut", "equal_sliding", "table"] = Field(
-        "equal_sliding", description="how `x: auto` chooses the shifts")
+        "equal_sliding", description="how `x: auto` chooses the shifts: no_undercut (the least that avoid "
+                                     "undercut) | equal_sliding (equal greatest specific sliding) | table "
+                                     "(x1 = x2 = 0.5, a handbook choice)")
     sa_min: float = Field(0.25, gt=0, lt=1, description="least tip thickness as a fraction of m "
                                                          "(0.25 common, 0.4 hardened teeth)")
     rho_f: Number | None = Field(None, ge=0, description="rack fillet radius / m (default c/(1 - sin alpha))")
