@@ -438,3 +438,23 @@ def test_a_synthesis_prints_the_generated_lengths_and_the_least_transmission_ang
     ru = dict(_summary_rows(r, "ru"))
     assert ru["синтез: coupler, м"] == f"{L['coupler']:.5g}".replace(".", ",")
     assert ru["наименьший угол передачи, град"] == f"{want:.5g} (II(2,3))".replace(".", ",")
+
+
+def test_a_missing_or_non_utf8_file_and_a_task_without_answers_in_the_language(tmp_path):
+    """The file-level errors a student meets first (a file not there, one saved from Notepad in
+    cp1251, `tmm check` of a task with no answers) in the language of --lang, as English
+    without it."""
+    bad = tmp_path / "cp1251.yaml"
+    bad.write_bytes("schema: tmm/1\ntitle: Четырёхзвенник\n".encode("cp1251"))
+    res = runner.invoke(app, ["validate", str(bad), str(tmp_path / "nofile.yaml"), "--lang", "ru"])
+    assert res.exit_code == 2
+    text = res.output
+    assert "cp1251.yaml:2: это не текстовый файл в кодировке UTF-8 (" in text and "сохраните его в UTF-8" in text
+    assert "nofile.yaml: файл не найден" in text and "not found" not in text
+    en = runner.invoke(app, ["validate", str(bad), str(tmp_path / "nofile.yaml")]).output
+    assert "cp1251.yaml:2: not a UTF-8 text file (invalid continuation byte at byte" in en
+    assert "nofile.yaml: file not found" in en
+    task = tmp_path / "t.yaml"
+    task.write_text((ROOT / "tasks" / "gears_zero.yaml").read_text(encoding="utf-8"), encoding="utf-8")
+    uk = runner.invoke(app, ["check", str(task), "--lang", "uk"])
+    assert uk.exit_code == 2 and "відповідей для перевірки немає: додайте розділ `answers:`" in uk.output

@@ -273,8 +273,7 @@ def check(
         if answers is None:
             own = task_answer_set(task)
             if own is None:
-                raise TaskError("no answers to check: add an `answers:` section (paths into results.json) "
-                                "or give --answers FILE", file=str(task_file))
+                raise TaskError(Message("answers.none_in_task"), file=str(task_file))
             sets = [own]
         else:
             sets = load_sources(answers)

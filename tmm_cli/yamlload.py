@@ -417,7 +417,7 @@ def read_text(source: str | Path) -> str:
     try:
         st = os.stat(source)
     except FileNotFoundError:
-        raise TaskError("file not found", file=file) from None
+        raise TaskError(Message("input.file_not_found"), file=file) from None
     except OSError as exc:
         raise TaskError(f"cannot read: {exc.strerror}", file=file) from None
     if not stat.S_ISREG(st.st_mode):
@@ -447,7 +447,6 @@ def read_text(source: str | Path) -> str:
     except UnicodeDecodeError as exc:
         line = raw.count(b"\n", 0, exc.start) + 1
         name = "UTF-8" if encoding == "utf-8" else encoding.upper().replace("-SIG", "")
-        raise TaskError("not a text file", file=file, issues=[(
-            "", line, None, f"not a {name} text file ({exc.reason} at byte {exc.start}); "
-                            f"save it as UTF-8")]) from None
+        raise TaskError(Message("input.not_text_head"), file=file, issues=[(
+            "", line, None, Message("input.not_text", encoding=name, reason=exc.reason, byte=exc.start))]) from None
     return text.lstrip("\ufeff")
