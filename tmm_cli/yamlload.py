@@ -419,24 +419,23 @@ def read_text(source: str | Path) -> str:
     except FileNotFoundError:
         raise TaskError(Message("input.file_not_found"), file=file) from None
     except OSError as exc:
-        raise TaskError(f"cannot read: {exc.strerror}", file=file) from None
+        raise TaskError(Message("input.cannot_read", reason=exc.strerror), file=file) from None
     if not stat.S_ISREG(st.st_mode):
-        kind = ("a folder" if stat.S_ISDIR(st.st_mode) else "a FIFO (named pipe)" if stat.S_ISFIFO(st.st_mode)
-                else "a device" if stat.S_ISCHR(st.st_mode) or stat.S_ISBLK(st.st_mode)
-                else "a socket" if stat.S_ISSOCK(st.st_mode) else "not a regular file")
-        raise TaskError(f"not a regular file ({kind}): give a YAML text file", file=file)
+        kind = ("folder" if stat.S_ISDIR(st.st_mode) else "fifo" if stat.S_ISFIFO(st.st_mode)
+                else "device" if stat.S_ISCHR(st.st_mode) or stat.S_ISBLK(st.st_mode)
+                else "socket" if stat.S_ISSOCK(st.st_mode) else "other")
+        raise TaskError(Message("input.not_regular", kind=kind), file=file)
     try:
         # O_NONBLOCK: should the path be swapped for a FIFO after the check, open does not hang
         fd = os.open(source, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
         with os.fdopen(fd, "rb") as fh:
             if not stat.S_ISREG(os.fstat(fh.fileno()).st_mode):
-                raise TaskError("not a regular file: give a YAML text file", file=file)
+                raise TaskError(Message("input.not_regular", kind="other"), file=file)
             raw = fh.read(MAX_BYTES + 1)
     except OSError as exc:
-        raise TaskError(f"cannot read: {exc.strerror}", file=file) from None
+        raise TaskError(Message("input.cannot_read", reason=exc.strerror), file=file) from None
     if len(raw) > MAX_BYTES:
-        raise TaskError(f"the file is larger than {MAX_BYTES // 1024} KiB: a task (or answers) file is a "
-                        f"small text file", file=file)
+        raise TaskError(Message("input.too_large", kib=MAX_BYTES // 1024), file=file)
     encoding = "utf-8"
     for bom, enc in _BOMS:
         if raw.startswith(bom):
