@@ -193,6 +193,15 @@ def test_counted_nouns_of_the_catalogues_agree_with_their_count():
     # the coded message, shown in every language, is the one used: task._coded_issue)
     assert render("input.too_short", {"field_type": "List", "min_length": 1, "actual_length": 0},
                   "en") == "List should have at least 1 item after validation, not 0"
+    # the structure's errors (a newcomer's trial read "механизму нужно начальных звеньев: 3",
+    # "звенья link4 входят"): the count with its noun, the noun and verb by the list's length
+    assert render("structure.fail.inputs", {"W": 2, "n": 4, "p5": 5, "p4": 0}, "ru").endswith(
+        "механизму нужно 2 начальных звена")
+    assert render("structure.fail.inputs", {"W": 2, "n": 4, "p5": 5, "p4": 0}, "uk").endswith(
+        "механізму потрібно 2 початкові ланки")
+    assert "звено link4 входит только" in render("structure.fail.idle", {"links": ["link4"]}, "ru")
+    assert "звенья a, b входят только" in render("structure.fail.idle", {"links": ["a", "b"]}, "ru")
+    assert "ланка link4 входить лише" in render("structure.fail.idle", {"links": ["link4"]}, "uk")
     assert render("differential.assembly", {"k": 3, "fits": "2"}, "ru").startswith(
         "дифференциал: 3 равномерно расположенных сателлита не собираются")
     assert render("differential.assembly", {"k": 5, "fits": "2"}, "uk").startswith(
