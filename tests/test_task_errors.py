@@ -283,3 +283,24 @@ def test_a_name_typed_with_cyrillic_letters_is_told_so(tmp_path):
     assert f"did you mean A? ('{CYR_A}' is typed with the Cyrillic {CYR_A}, 'A' with Latin letters" in msg, msg
     msg = error(four_bar(drive="cr" + CYR_a + "nk"))
     assert f"did you mean 'crank'? ('cr{CYR_a}nk' is typed with the Cyrillic {CYR_a}, 'crank' with Latin" in msg, msg
+
+
+def test_a_rockers_stroke_in_mm_is_the_strokes_error_at_its_line(tmp_path):
+    """A rocker's stroke is its swing, an angle: '20 mm' is refused at cam.stroke's own line
+    (it was the cam section's first line), the unit named as the language writes it."""
+    from typer.testing import CliRunner
+
+    from tmm_cli.cli import app
+    f = tmp_path / "cam.yaml"
+    f.write_text("schema: tmm/1\ncam:\n  follower: rocker\n  stroke: 20 mm\n  rocker_length: 100 mm\n"
+                 "  phases: {rise: 100, far_dwell: 40, return: 100}\n", encoding="utf-8")
+    en = CliRunner().invoke(app, ["validate", str(f)])
+    assert en.exit_code == 2
+    assert "cam.yaml:4:3: field 'cam.stroke': '20 mm' is not an angle (deg, rad)" in en.output
+    ru = CliRunner().invoke(app, ["validate", str(f), "--lang", "ru"])
+    assert "cam.yaml:4:3: поле «cam.stroke»: «20 mm» — не угол (deg, rad): единица не приводится к °" in ru.output
+    f.write_text(f.read_text().replace("stroke: 20 mm", "stroke: 20 deg"), encoding="utf-8")
+    import tmm_cli
+    assert tmm_cli.load_task(f).cam.stroke == 20.0
+    f.write_text(f.read_text().replace("follower: rocker", "follower: translating"), encoding="utf-8")
+    assert "field 'cam.stroke': '20 deg' is not a length" in CliRunner().invoke(app, ["validate", str(f)]).output

@@ -106,18 +106,13 @@ class CamSection(_Model):
     @field_validator("stroke", mode="before")
     @classmethod
     def _stroke(cls, v, info):
-        # the unit depends on the follower: checked after, here accept numbers and unit strings
-        return v
-
-    @model_validator(mode="before")
-    @classmethod
-    def _stroke_units(cls, data):
-        if isinstance(data, dict) and isinstance(data.get("stroke"), str):
+        """A stroke with its unit: an angle for a rocker (its swing), a length otherwise (the
+        follower, declared before the stroke, is among the fields validated); an error is the
+        stroke's, at its line."""
+        if isinstance(v, str):
             from ..units import convert
-            kind = "angle" if data.get("follower") == "rocker" else "length"
-            data = dict(data)
-            data["stroke"] = convert(data["stroke"], kind)
-        return data
+            return convert(v, "angle" if info.data.get("follower") == "rocker" else "length")
+        return v
 
     @model_validator(mode="after")
     def _limits(self):
