@@ -304,3 +304,27 @@ def test_a_rockers_stroke_in_mm_is_the_strokes_error_at_its_line(tmp_path):
     assert tmm_cli.load_task(f).cam.stroke == 20.0
     f.write_text(f.read_text().replace("follower: rocker", "follower: translating"), encoding="utf-8")
     assert "field 'cam.stroke': '20 deg' is not a length" in CliRunner().invoke(app, ["validate", str(f)]).output
+
+
+@pytest.mark.parametrize("field, written, meant", [
+    ("direction", "против часовой", "ccw"), ("direction", "По часовой стрелке", "cw"),
+    ("direction", "проти годинникової стрілки", "ccw"), ("law", "синусоидальный", "sine"),
+    ("law", "рівномірний", "constant_velocity"), ("follower", "коромысло", "rocker"),
+])
+def test_a_value_written_in_the_course_language_gets_its_code_as_the_hint(field, written, meant, tmp_path):
+    """A student writes the value in words (direction: против часовой): the error lists the
+    codes and says which one was meant."""
+    import tmm_cli
+    from tmm_cli.errors import TaskError
+    task = {"schema": "tmm/1", "cam": {"follower": "translating", "stroke": "20 mm",
+                                       "phases": {"rise": 120, "far_dwell": 30, "return": 120},
+                                       "laws": {"rise": "cosine", "return": "cosine"}}}
+    if field == "direction":
+        task["cam"]["rotation"] = written
+    elif field == "law":
+        task["cam"]["laws"]["rise"] = written
+    else:
+        task["cam"]["follower"] = written
+    with pytest.raises(TaskError) as exc:
+        tmm_cli.load_task(task)
+    assert f"got {written!r}; did you mean {meant!r}?" in str(exc.value)

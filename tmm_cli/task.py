@@ -325,11 +325,6 @@ def _coded_issue(err: dict, cause, msg: str) -> str:
 
 
 # the course's other names of a choice (a motion law's, a follower's): what a student writes
-_LITERAL_SYNONYMS = {"linear": "constant_velocity", "uniform": "constant_velocity", "harmonic": "cosine",
-                     "cycloidal": "sine", "polynomial": "poly345", "roller": "translating", "oscillating": "rocker",
-                     "swinging": "rocker", "flat_faced": "flat", "knife_edge": "knife"}
-
-
 def _literal_hint(err: dict) -> str | None:
     """The choice meant by a value that is none of a Literal's (a misspelling, or the course's
     other name: 'linear' is the constant-velocity law), or None."""
@@ -339,8 +334,12 @@ def _literal_hint(err: dict) -> str | None:
         return None
     choices = [c.strip("'\"") for c in re.split(r", | or ", expected) if c]
     word = got.strip().lower().replace("-", "_").replace(" ", "_")
-    if _LITERAL_SYNONYMS.get(word) in choices:
-        return _LITERAL_SYNONYMS[word]
+    from . import locales
+    plain = re.sub(r"_+", "_", word)
+    for lang in locales.LANGS:           # 'linear', or a course language's words for ccw (values.yaml)
+        meant = (locales.of("values", "synonyms", lang) or {}).get(plain)
+        if meant in choices:
+            return meant
     near = difflib.get_close_matches(word, choices, n=1, cutoff=0.7)
     return near[0] if near and near[0] != got else None
 
