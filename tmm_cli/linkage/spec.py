@@ -51,12 +51,14 @@ class LinkSpec(_Model):
 
     points: list[str] | None = Field(None, description="bar: its two pair points [P, Q]")
     length: Length | None = Field(None, description="bar: |PQ|, m")
-    extra: dict[str, LengthPair] = Field(default_factory=dict, description="extra points in local [u, v], m")
+    extra: dict[str, LengthPair] = Field(default_factory=dict, description="extra points in the link's frame [u, v], m: from its first point, u along the line to its "
+                                                   "second, v to the left of it (a slider: from its pin, u along its guide)")
     slider: str | None = Field(None, description="slider: its pin point")
     guide: GuideSpec | None = None
     mass: Mass = Field(0.0, ge=0)
     J: Inertia = Field(0.0, ge=0, description="moment of inertia about the centre of mass, kg*m^2")
-    com: Union[str, LengthPair, None] = Field(None, description="centre of mass: local [u, v] or a point name")
+    com: Union[str, LengthPair, None] = Field(None, description="centre of mass: [u, v] in the link's frame (from its first point, u towards its "
+                                         "second, v to the left; a slider: from its pin, u along its guide), or a point name")
 
     @field_validator("points")
     @classmethod
@@ -322,7 +324,8 @@ class SynthesisLinkSpec(_Model):
     """Mass properties of a generated link."""
     mass: Mass = Field(0.0, ge=0)
     J: Inertia = Field(0.0, ge=0, description="moment of inertia about the centre of mass, kg*m^2")
-    com: Union[str, LengthPair, None] = Field(None, description="centre of mass: local [u, v] or a point name")
+    com: Union[str, LengthPair, None] = Field(None, description="centre of mass: [u, v] in the link's frame (from its first point, u towards its "
+                                         "second, v to the left; a slider: from its pin, u along its guide), or a point name")
 
 
 SYNTHESIS_INPUTS = {  # type -> (required, exactly-one-of groups, optional)
