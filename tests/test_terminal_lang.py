@@ -458,3 +458,13 @@ def test_a_missing_or_non_utf8_file_and_a_task_without_answers_in_the_language(t
     task.write_text((ROOT / "tasks" / "gears_zero.yaml").read_text(encoding="utf-8"), encoding="utf-8")
     uk = runner.invoke(app, ["check", str(task), "--lang", "uk"])
     assert uk.exit_code == 2 and "відповідей для перевірки немає: додайте розділ `answers:`" in uk.output
+
+
+def test_short_names_leave_the_message_the_room():
+    """Names of 7 characters or fewer (a student 'Ivanov' under the 7-letter header 'student')
+    beside messages longer than the room: the name column is the longest name, the message the
+    rest (it had half the room each: the split's search began below the name's width, found
+    nothing, and fell back to halves, every message wrapped at 23 columns instead of 38)."""
+    from tmm_cli.summary import _split_width
+    assert _split_width(45, ["Ivanov", "Petrov"], ["word " * 40] * 2, 7, 7) == (7, 38)
+    assert _split_width(45, ["Ivanov"], ["word " * 40], 6, 7) == (6, 39)

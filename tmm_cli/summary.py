@@ -432,7 +432,7 @@ def _split_width(room: int, names: list[str], messages: list[str], name_min: int
     if want_name + want_msg <= room:
         return want_name, want_msg
     best = None
-    for w in range(min(want_name, room - 8), 7, -1):
+    for w in range(min(want_name, room - 8), min(want_name, 8) - 1, -1):     # names of 7 or fewer too
         m = min(room - w, want_msg)
         lines = sum(max(len(textwrap.wrap(n, w, break_on_hyphens=False)) or 1,
                         len(textwrap.wrap(t, m, break_on_hyphens=False)) or 1)
