@@ -85,6 +85,9 @@ def test_crank_angles_in_sentences_are_periodic_and_rounded():
              0.0004: "0", 0.0006: "0.001"}
     for x, want in cases.items():
         assert crank_deg(x) == want, x
+    # whole degrees: the integer's own zeros stay (they had been stripped as decimals: '18', '1')
+    assert (crank_deg(180.0, 0), crank_deg(100.4, 0), crank_deg(359.7, 0), crank_deg(30.0, 1)) == \
+        ("180", "100", "0", "30")
     p = {"phi": 180.00000160988924, "group": "II(2,3)", "links": ["coupler", "rocker"], "near": 1.0,
          "blowup": 10.0}
     assert render("kinematics.change_point", p).startswith("change point at crank angle 180 deg:")

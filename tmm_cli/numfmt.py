@@ -172,7 +172,9 @@ def crank_deg(x: float, places: int = 3) -> str:
     v = round(float(x) % 360.0, places)
     if v >= 360.0:
         v -= 360.0
-    text = f"{v:.{places}f}".rstrip("0").rstrip(".")
+    text = f"{v:.{places}f}"
+    if "." in text:                     # the decimals' trailing zeros only (places = 0: '180', not '18')
+        text = text.rstrip("0").rstrip(".")
     return "0" if text in ("-0", "") else text
 
 
