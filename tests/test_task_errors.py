@@ -328,3 +328,21 @@ def test_a_value_written_in_the_course_language_gets_its_code_as_the_hint(field,
     with pytest.raises(TaskError) as exc:
         tmm_cli.load_task(task)
     assert f"got {written!r}; did you mean {meant!r}?" in str(exc.value)
+
+
+def test_a_misspelt_follower_does_not_make_the_stroke_wrong(tmp_path):
+    """A rocker's '20 deg' under a misspelt follower ('roker'): one error, the follower's (with
+    its hint); the stroke, whose unit the follower decides, is not also refused as 'not a
+    length' (the follower failed, so it is not among the fields validated: the stroke was
+    judged a translating follower's)."""
+    from typer.testing import CliRunner
+
+    from tmm_cli.cli import app
+    f = tmp_path / "cam.yaml"
+    f.write_text("schema: tmm/1\ncam:\n  follower: roker\n  stroke: 20 deg\n  rocker_length: 100 mm\n"
+                 "  phases: {rise: 100, far_dwell: 40, return: 100}\n", encoding="utf-8")
+    res = CliRunner().invoke(app, ["validate", str(f)])
+    assert res.exit_code == 2 and "field 'cam.follower'" in res.output and "did you mean 'rocker'" in res.output
+    assert "cam.stroke" not in res.output, res.output
+    f.write_text(f.read_text().replace("stroke: 20 deg", "stroke: 20 kg"), encoding="utf-8")
+    assert "field 'cam.stroke'" in CliRunner().invoke(app, ["validate", str(f)]).output    # no unit at all: still said

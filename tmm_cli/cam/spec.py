@@ -111,7 +111,13 @@ class CamSection(_Model):
         stroke's, at its line."""
         if isinstance(v, str):
             from ..units import convert
-            return convert(v, "angle" if info.data.get("follower") == "rocker" else "length")
+            follower = info.data.get("follower")
+            if follower is None:            # the follower invalid (its own error): either unit stands
+                try:
+                    return convert(v, "angle")
+                except ValueError:
+                    pass
+            return convert(v, "angle" if follower == "rocker" else "length")
         return v
 
     @model_validator(mode="after")
