@@ -357,6 +357,7 @@ ENGLISH = [
     ('input.not_regular', {'kind': 'folder'}, 'not a regular file (a folder): give a YAML text file'),
     ('input.not_regular', {'kind': 'fifo'}, 'not a regular file (a FIFO (named pipe)): give a YAML text file'),
     ('input.not_regular', {'kind': 'other'}, 'not a regular file (not a regular file): give a YAML text file'),
+    ('input.not_regular_now', {}, 'not a regular file: give a YAML text file'),
     ('input.too_large', {'kib': 1024}, 'the file is larger than 1024 KiB: a task (or answers) file is a small text file'),
     ('input.not_text_head', {}, 'not a text file'),
     ('input.not_text', {'encoding': 'UTF-8', 'reason': 'invalid continuation byte', 'byte': 21},

@@ -458,3 +458,11 @@ def test_each_dyad_reads_its_own_guides():
             if d.kind == "RPR":
                 assert d.guide_link == mech.link(joints[1].slider).guide.link, path.name
     assert {"RRR", "RRP", "RPR", "PRP"} <= kinds
+
+
+def test_a_least_found_a_hair_below_zero_is_at_zero():
+    """The crank angle of a least is in [0, 360): a root a hair below 0 is 0, not
+    359.99999999999994 (a table's five digits showed 360)."""
+    from tmm_cli.linkage.transmission import _turn
+    assert _turn(-6e-14) == 0.0 and _turn(360.0) == 0.0 and _turn(-90.0) == 270.0
+    assert _turn(359.5) == 359.5 and _turn(725.0) == 5.0

@@ -389,7 +389,8 @@ def print_batch(rows: list[dict], out: Path, skipped=(), removed=(), notes=(), l
     cells = []
     for r, who in zip(rows, row_names(rows)):
         st = shown_status(r)
-        cells.append((who, str(r.get("variant", ""))[:6], str(status.get(st, st)), st,
+        var = str(r.get("variant", ""))
+        cells.append((who, var if len(var) <= 6 else var[:5] + "…", str(status.get(st, st)), st,
                       f"{100 * float(r['score']):.0f} %" if r.get("answers") else "-",
                       _cut(_message(r, lang, localize), 200, lang)))
     # the widths given, not left to Rich (which folds a file name mid-word first): the split of

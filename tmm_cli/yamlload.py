@@ -430,7 +430,7 @@ def read_text(source: str | Path) -> str:
         fd = os.open(source, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
         with os.fdopen(fd, "rb") as fh:
             if not stat.S_ISREG(os.fstat(fh.fileno()).st_mode):
-                raise TaskError(Message("input.not_regular", kind="other"), file=file)
+                raise TaskError(Message("input.not_regular_now"), file=file)    # swapped after the check
             raw = fh.read(MAX_BYTES + 1)
     except OSError as exc:
         raise TaskError(Message("input.cannot_read", reason=exc.strerror), file=file) from None

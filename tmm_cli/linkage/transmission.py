@@ -208,7 +208,7 @@ def least(mech: "Mechanism", ds: list[DyadAngle], start: float = 0.0, span: floa
     pairs = [(i, (i + 1) % m) for i in range(m if full else m - 1)]      # neighbours (a turn: round)
     for d in ds:
         if d.through_pivot:             # 90 deg at every position (|sin| = 1 to round-off: no least to seek)
-            out.append((90.0, float(grid[0]) % 360.0))
+            out.append((90.0, _turn(float(grid[0]))))
             continue
         s, dsd = sine(d, kin)
         a = np.abs(s)
@@ -232,8 +232,15 @@ def least(mech: "Mechanism", ds: list[DyadAngle], start: float = 0.0, span: floa
                 v = abs(float(sine(d, solve(mech, np.array([x])))[0][0]))
                 if v < best:
                     best_x, best = x, v
-        out.append((math.degrees(math.asin(min(1.0, best))), best_x % 360.0))
+        out.append((math.degrees(math.asin(min(1.0, best))), _turn(best_x)))
     return out
+
+
+def _turn(x: float) -> float:
+    """A crank angle in [0, 360): a root found a hair below 0 (-6e-14) is 0, not
+    359.99999999999994 (which a 5-digit table shows as 360)."""
+    x = x % 360.0
+    return 0.0 if 360.0 - x < 1e-9 else x
 
 
 def analyze(linkage: "Linkage", crank_range=None) -> list[dict]:
@@ -250,8 +257,8 @@ def analyze(linkage: "Linkage", crank_range=None) -> list[dict]:
     Returns
     -------
     list of dict
-        results.json ``transmission``: per dyad (RRR, RRP, PRR, RPR, PRP) ``group`` (its label), ``links``,
-        ``type`` (the group's, as ``structure`` names it), ``joint`` (the middle pair's point),
+        results.json ``transmission``: per dyad (RRR, RRP, PRR, RPR, PRP, RPP, PPR) ``group`` (its
+        label), ``links``, ``type`` (the group's, as ``structure`` names it), ``joint`` (the middle pair's point),
         ``gamma_min`` (deg) and ``phi`` (the crank angle where it is, deg, ccw from the x axis).
 
     References
