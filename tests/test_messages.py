@@ -353,6 +353,13 @@ ENGLISH = [
     ('answers.none_in_task', {},
      'no answers to check: add an `answers:` section (paths into results.json) or give --answers FILE'),
     ('input.file_not_found', {}, 'file not found'),
+    ('input.unknown_keys', {'first': {'code': 'input.unknown_key', 'params': {'key': 'lenght', 'hint': 'length'}},
+                            'rest': [{'code': 'input.unknown_also', 'params': {'key': 'masss', 'hint': 'mass'}},
+                                     {'code': 'input.unknown_also_plain', 'params': {'key': 'foo'}}]},
+     "unknown key 'lenght'; did you mean 'length'? Also unknown: 'masss' (did you mean 'mass'?); 'foo' (no key of "
+     "that name here)"),
+    ('input.unknown_also', {'key': 'masss', 'hint': 'mass'}, "'masss' (did you mean 'mass'?)"),
+    ('input.unknown_also_plain', {'key': 'foo'}, "'foo' (no key of that name here)"),
     ('input.cannot_read', {'reason': 'Permission denied'}, 'cannot read: Permission denied'),
     ('input.not_regular', {'kind': 'folder'}, 'not a regular file (a folder): give a YAML text file'),
     ('input.not_regular', {'kind': 'fifo'}, 'not a regular file (a FIFO (named pipe)): give a YAML text file'),

@@ -346,3 +346,25 @@ def test_a_misspelt_follower_does_not_make_the_stroke_wrong(tmp_path):
     assert "cam.stroke" not in res.output, res.output
     f.write_text(f.read_text().replace("stroke: 20 deg", "stroke: 20 kg"), encoding="utf-8")
     assert "field 'cam.stroke'" in CliRunner().invoke(app, ["validate", str(f)]).output    # no unit at all: still said
+
+
+def test_every_unknown_key_of_a_mapping_in_one_error(tmp_path):
+    """A link written {points: [O, A], lenght: 0.15, masss: 1.5, foo: 1}: one error at the first
+    unknown key's line naming all three, each with its likely meaning (the second typo was
+    hidden until the first was mended)."""
+    import tmm_cli
+    from tmm_cli.errors import TaskError
+    from pathlib import Path
+    root = Path(__file__).resolve().parents[1]
+    text = (root / "tasks" / "crank_rocker_fourbar.yaml").read_text(encoding="utf-8")
+    old = "crank:   {points: [O, A], length: 0.08, mass: 1.0, J: 0.0015}"
+    assert old in text
+    f = tmp_path / "t.yaml"
+    f.write_text(text.replace(old, "crank:   {points: [O, A], lenght: 0.08, masss: 1.0, J: 0.0015, foo: 1}"),
+                 encoding="utf-8")
+    with pytest.raises(TaskError) as exc:
+        tmm_cli.load_task(f)
+    (issue,) = exc.value.issues
+    assert issue[0] == "mechanism.links.crank.lenght" and issue[1] == 13
+    assert str(issue[3]) == ("unknown key 'lenght'; did you mean 'length'? Also unknown: 'masss' "
+                             "(did you mean 'mass'?); 'foo' (no key of that name here)")

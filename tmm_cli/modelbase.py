@@ -38,12 +38,26 @@ class _Model(BaseModel):
             allowed: list[str] = []
             for name, f in cls.model_fields.items():
                 allowed.append(f.alias or name)
+            unknown: list[str] = []
             for key in data:
                 if not isinstance(key, str):
                     raise ValueError(Message("input.key_not_name", key=str(key), allowed=allowed))
                 if key not in allowed:
-                    import difflib
+                    unknown.append(key)
+            if unknown:
+                # every unknown key of the mapping in one error, at the first one's line: a
+                # student's 'lenght' no longer hides the 'masss' beside it
+                import difflib
+
+                def near(key: str) -> str | None:
                     close = difflib.get_close_matches(key, allowed, n=1, cutoff=0.6)
-                    raise ValueError(Message("input.unknown_key", key=key, hint=close[0]) if close
-                                     else Message("input.unknown_key_allowed", key=key, allowed=allowed))
+                    return close[0] if close else None
+                hint = near(unknown[0])
+                first = Message("input.unknown_key", key=unknown[0], hint=hint) if hint \
+                    else Message("input.unknown_key_allowed", key=unknown[0], allowed=allowed)
+                if len(unknown) == 1:
+                    raise ValueError(first)
+                rest = [Message("input.unknown_also", key=k, hint=h) if (h := near(k))
+                        else Message("input.unknown_also_plain", key=k) for k in unknown[1:]]
+                raise ValueError(Message("input.unknown_keys", first=first, rest=rest))
         return data
