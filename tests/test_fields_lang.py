@@ -52,3 +52,16 @@ def test_an_unknown_section_in_the_language():
     assert res.exit_code == 2 and "error: no section or field 'flywhel'; did you mean 'flywheel'?" in res.output
     res = runner.invoke(app, ["fields", "--lang", "de"])
     assert res.exit_code == 2 and "--lang must be" in res.output
+
+
+def test_a_section_asked_for_in_the_course_words():
+    """`tmm fields маховик` lists the flywheel's fields (every language's words serve, as a
+    student types them); each word names a section the task file has."""
+    top = {p.split(".")[0].split("[")[0] for p, _, _ in field_docs()}
+    for lang in ("ru", "uk"):
+        words = locales.topic(lang, "fields")["sections"]
+        assert set(words.values()) <= top, set(words.values()) - top
+    res = runner.invoke(app, ["fields", "маховик", "--lang", "ru"], env={"COLUMNS": "200"})
+    assert res.exit_code == 0 and "flywheel.delta" in res.stdout and "cam.stroke" not in res.stdout
+    res = runner.invoke(app, ["fields", "Зубчасті колеса"], env={"COLUMNS": "200"})
+    assert res.exit_code == 0 and "gears.z" in res.stdout
