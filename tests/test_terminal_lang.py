@@ -213,6 +213,8 @@ def test_two_rows_that_would_read_alike_name_their_files():
                                        "Petrov P.", "anon.yaml"]
     html = summary.summary_html(rows, [], "g")
     assert "<td>Petrov P. (petrov_v1_new.yaml)</td>" in html and "<td>Petrov P.</td>" in html
+    two = [{"student": "Petrov P.", "variant": 1, "file": f"/{d}/task.yaml", "status": "ok"} for d in ("a", "b")]
+    assert summary.row_names(two) == ["Petrov P. (a/task.yaml)", "Petrov P. (b/task.yaml)"]
 
 
 def test_the_batch_table_splits_its_room_for_the_fewest_lines():

@@ -293,10 +293,13 @@ def row_names(rows: list[dict]) -> list[str]:
     import collections
     who = [row_who(r) for r in rows]
     seen = collections.Counter((w, str(r.get("variant", ""))) for w, r in zip(who, rows))
+    paths = [Path(str(r.get("answers_file") or r.get("file") or "")) for r in rows]
+    names = collections.Counter(p.name for p in paths)
     out = []
-    for w, r in zip(who, rows):
-        name = Path(str(r.get("answers_file") or r.get("file") or "")).name
-        out.append(f"{w} ({name})" if seen[(w, str(r.get("variant", "")))] > 1 and name and name != w else w)
+    for w, r, p in zip(who, rows, paths):
+        # the file's name, or its folder and name where two folders hold a file of that name
+        name = p.name if names[p.name] < 2 or not p.parent.name else f"{p.parent.name}/{p.name}"
+        out.append(f"{w} ({name})" if seen[(w, str(r.get("variant", "")))] > 1 and p.name and name != w else w)
     return out
 
 
