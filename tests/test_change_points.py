@@ -337,3 +337,23 @@ def test_no_inertia_load_from_accelerations_that_have_no_limit(tmp_path):
     i = html.index("<td>12*</td>", html.index("Loads of the positions"))
     row = html[i:html.index("</tr>", i)]
     assert "e+08" not in row and row.count("—") >= 2, row
+
+
+def test_a_position_placed_at_the_change_point_is_said_to_be_one(tmp_path):
+    """With zero: 0 and an extra position at 180 the change point is reached three ways (the
+    grid's position 6, the extra one, the rocker's extreme): each is 'a singular or change point
+    of the linkage', not 'singular for the balance link' (the balance solve failing first named
+    the crank alone), and none carries an inertia force of the coupler."""
+    import tmm_cli
+    from tmm_cli.results import clean
+    f = tmp_path / "task.yaml"
+    text = LIMIT.replace("  zero: extreme\n", "  zero: 0\n").replace("  output: rocker\n",
+                                                                     "  output: rocker\n  extra: [180]\n")
+    assert text.count("extra: [180]") == 1 and "zero: 0" in text
+    f.write_text(text, encoding="utf-8")
+    res = clean(tmm_cli.run(tmm_cli.load_task(f)))
+    at = [e for e in res["kinetostatics"] if abs(e["phi"] - 180.0) < 1e-3]
+    assert len(at) >= 2
+    codes = {m["params"]["position"]: m["code"] for m in res["messages"] if m["code"].startswith("kinetostatics.")}
+    assert all(codes[e["index"]] == "kinetostatics.no_kinematics" for e in at), codes
+    assert all(e["inertia"]["coupler"]["Fy"] is None for e in at)

@@ -348,10 +348,11 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
     w1 = np.abs(geo.omega1)
     ok = well & np.isfinite(Mb) & np.all(np.isfinite(x), axis=1) \
         & (np.abs(M1U) > 1e-12 * unit) & (np.abs(rate) > 1e-12 * w1 * unit)
-    untrusted = _untrusted_kinematics(kin, rows) & ok & ~locked
+    raw = _untrusted_kinematics(kin, rows)
+    untrusted = raw & ok & ~locked
     ok &= ~untrusted
     undefined_velocity: dict[int, np.ndarray] = {}
-    if np.any(untrusted):
+    if np.any(raw):                  # (also where the balance solve failed first: the same nulls)
         lds = _without_undefined_inertia(lds, mech, kin, rows)
         und = kin.undefined or {}
         for lk in mech.links:
@@ -383,7 +384,9 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
                                 f_pin=fr.f_pin, f_slide=fr.f_slide, pin_radius=fr.pin_radius,
                                 balancing="moment" if blk.kind != "slider" else "force"))
     for i in np.nonzero(~ok & ~locked)[0]:
-        warnings.append(Message("kinetostatics.no_kinematics" if untrusted[i] else "kinetostatics.singular_balance",
+        # a position whose kinematics has no limit is a change point for every balance link, said
+        # so even where the balance link's equations failed before the kinematics was looked at
+        warnings.append(Message("kinetostatics.no_kinematics" if raw[i] else "kinetostatics.singular_balance",
                                 position=int(rows[i]), phi=phi[i] % 360,
                                 link=blk.name, balancing="moment" if blk.kind != "slider" else "force"))
     eff = fpow = dpow = None
