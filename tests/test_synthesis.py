@@ -30,7 +30,9 @@ def design(syn, direction="ccw", drive=None):
     pos = kinematics.find_positions(mech, t.positions, t.drive.sign)
     linkage = Linkage(mechanism=mech, structure=structure.analyze(mech, task=t), drive=resolve(t.drive, pos),
                       positions=pos, loads=t.loads)
-    return t, analyse(linkage, d)
+    from tmm_cli.linkage import transmission
+    from tmm_cli.linkage.synthesis import least_of
+    return t, analyse(linkage, d, least_of(transmission.analyze(linkage)))
 
 
 def test_spec_example_offset_slider_crank_by_hand():

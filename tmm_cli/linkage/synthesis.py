@@ -828,7 +828,7 @@ def grashof(a: float, b: float, c: float, d: float) -> str:
     return "crank-rocker" if s == a else "double-rocker"
 
 
-def analyse_function(linkage, d: Design, least: tuple[float, float] | None = None) -> dict:
+def analyse_function(linkage, d: Design, least: tuple[float, float]) -> dict:
     """The function generator's structural error.
 
     Parameters
@@ -837,10 +837,10 @@ def analyse_function(linkage, d: Design, least: tuple[float, float] | None = Non
         The generated linkage.
     d : Design
         Its design (the function, the ranges, the precision points).
-    least : tuple of float, optional
-        The transmission stage's least (:func:`least_of`): read for a generator that works over
-        its input range only (``d.crank_range``: the stage searched that range); a crank-rocker's
-        is its full turn's, and the range's is sought here.
+    least : tuple of float
+        The transmission stage's least (:func:`least_of`): the answer for a generator that works
+        over its input range only (``d.crank_range``: the stage searched that range); a
+        crank-rocker's is its full turn's, and the range's is sought here.
 
     Returns
     -------
@@ -875,8 +875,7 @@ def analyse_function(linkage, d: Design, least: tuple[float, float] | None = Non
     got_p = ideal_p + error(np.array([p["phi"] for p in pts], float), ideal_p)
     L = d.lengths
     serr = {"max": float(abs(err[k])), "at_x": float(xs[k])}
-    gmin, gphi = least if least is not None and d.crank_range is not None else \
-        least_transmission(linkage, *g["input"])
+    gmin, gphi = least if d.crank_range is not None else least_transmission(linkage, *g["input"])
     if d.crank_range is not None:
         # the reported positions spread over the input range: x, the ideal and the generated psi there
         xg = x0 + (x1 - x0) * np.linspace(0.0, 1.0, int(linkage.positions.count))
@@ -903,16 +902,17 @@ def least_of(rows: list[dict]) -> tuple[float, float]:
     return min(((float(r["gamma_min"]), float(r["phi"])) for r in rows), default=(90.0, 0.0))
 
 
-def least_transmission(linkage, start: float = 0.0, span: float = 360.0) -> tuple[float, float]:
-    """The least transmission angle over the cycle of a generated mechanism (or over the crank
-    angles ``start`` .. ``start + span``: a function generator's input range).
+def least_transmission(linkage, start: float, span: float) -> tuple[float, float]:
+    """The least transmission angle of a generated mechanism over the crank angles ``start`` ..
+    ``start + span`` (a crank-rocker function generator's input range; over the cycle the
+    transmission stage has found it: :func:`least_of`).
 
     Parameters
     ----------
     linkage : Linkage
         The generated mechanism and its Assur groups.
     start, span : float
-        The crank angles to search, deg (``span`` signed; a full turn by default).
+        The crank angles to search, deg (``span`` signed).
 
     Returns
     -------
@@ -934,7 +934,7 @@ def least_transmission(linkage, start: float = 0.0, span: float = 360.0) -> tupl
     return min(transmission.least(linkage.mechanism, ds, float(start), float(span)))
 
 
-def analyse(linkage, d: Design, least: tuple[float, float] | None = None) -> dict:
+def analyse(linkage, d: Design, least: tuple[float, float]) -> dict:
     """The synthesis stage: the generated mechanism analysed.
 
     Parameters
@@ -943,10 +943,9 @@ def analyse(linkage, d: Design, least: tuple[float, float] | None = None) -> dic
         The mechanism built from ``d.mechanism`` and the drive's sense of rotation.
     d : Design
         The design of the task's ``synthesis`` section (:func:`generate`).
-    least : tuple of float, optional
+    least : tuple of float
         (gamma_min, deg; its crank angle, deg): the transmission stage's least over the
-        linkage's cycle (:func:`least_of` of its rows), one search for both; None: sought here
-        (:func:`least_transmission`).
+        linkage's cycle (:func:`least_of` of its rows): one search for both.
 
     Returns
     -------
@@ -983,7 +982,7 @@ def analyse(linkage, d: Design, least: tuple[float, float] | None = None) -> dic
                                        sign).H)
     else:
         psi = float(pos.H)
-    gmin, gphi = least if least is not None else least_transmission(linkage)
+    gmin, gphi = least
     curve = np.arange(0.0, 360.0 + 1e-9, 5.0)
     phis = np.mod(pos.phi0 + sign * curve, 360.0)
     from . import transmission

@@ -412,12 +412,12 @@ def deviation_warnings(T, dev) -> list:
                     limit=DEVIATION_WARN)]
 
 
-def analyse(linkage, d, least: tuple[float, float] | None = None) -> dict:
+def analyse(linkage, d, least: tuple[float, float]) -> dict:
     """The generated crank-rocker analysed: its point M at each point's crank angle (the
     deviation: the distance from the point), the coupler curve over the turn, the least
-    transmission angle (``least``: the transmission stage's, else sought here)."""
+    transmission angle (``least``: the transmission stage's, synthesis.least_of)."""
     from .kinematics import solve
-    from .synthesis import grashof, least_transmission
+    from .synthesis import grashof
 
     cons = d.construction
     T = np.asarray(cons["points"], float)
@@ -426,7 +426,7 @@ def analyse(linkage, d, least: tuple[float, float] | None = None) -> dict:
     M = kin.pos["M"]
     dev = np.hypot(M[:, 0] - T[:, 0], M[:, 1] - T[:, 1])
     turn = solve(mech, np.arange(0.0, 360.0, 2.0), linkage.drive.omega)
-    gmin, gphi = least if least is not None else least_transmission(linkage)
+    gmin, gphi = least
     L = d.lengths
     first = {k: [float(kin.pos[k][0, 0]), float(kin.pos[k][0, 1])] for k in ("A", "B", "M")}
     return {"type": "path", "lengths": dict(L), "M": list(cons["M"]), "points": T.tolist(),

@@ -134,7 +134,7 @@ def design(sec, sign: float):
                   [], cons)
 
 
-def analyse(linkage, d, least: tuple[float, float] | None = None) -> dict:
+def analyse(linkage, d, least: tuple[float, float]) -> dict:
     """The generated linkage analysed at the crank angles of the three positions: where its
     point P is and how its coupler is turned, against the positions asked for (on the branch
     it is assembled on: a branch defect shows as a large deviation)."""
@@ -159,8 +159,7 @@ def analyse(linkage, d, least: tuple[float, float] | None = None) -> dict:
                     "angle_error": float((ang - t["angle"] + 180.0) % 360.0 - 180.0),
                     "crank_angle": float(df["crank_angles"][j] % 360.0), "branch": df["branches"][j]})
     L = d.lengths
-    from .synthesis import least_transmission
-    gmin, gphi = least if least is not None else least_transmission(linkage)
+    gmin, gphi = least                    # the transmission stage's (synthesis.least_of)
     return {"type": "positions", "lengths": dict(L),
             "fixed_pivots": {"O": list(cons["O"]), "O1": list(cons["O1"])},
             "grashof": cons["grashof"],
