@@ -353,15 +353,7 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
     ok &= ~untrusted
     undefined_velocity: dict[int, np.ndarray] = {}
     if np.any(raw):                  # (also where the balance solve failed first: the same nulls)
-        lds = _without_undefined_inertia(lds, mech, kin, rows)
-        und = kin.undefined or {}
-        for lk in mech.links:
-            m = np.zeros(N, bool)
-            for key in [f"omega:{lk.name}"] + [f"v:{p}" for p in lk.local]:
-                if key in und:
-                    m |= np.asarray(und[key], bool)[rows]
-            if m.any():
-                undefined_velocity[lk.index] = m
+        lds, undefined_velocity = _without_undefined(lds, mech, kin, rows)
     # singular crank angles of the balance link over one turn
     warnings: list[str] = []
     if singular is None:
@@ -420,29 +412,36 @@ def _analyze(mech, structure, kin, loads, section, *, indices=None, crank_inerti
         undefined_velocity=undefined_velocity)
 
 
-def _without_undefined_inertia(lds: Loads, mech, kin, rows: np.ndarray) -> Loads:
-    """``lds`` with each link's inertia force NaN where its centre of mass's acceleration has
-    no limit by continuity (``kin.undefined['a:S<i>']``, null in the kinematics) and its inertia
-    couple NaN where its angular acceleration has none: the singular solve's accelerations had
-    given the Grashof-limit four-bar's coupler 1.9e8 N at its change point. The other links'
-    (the crank's) stay as computed."""
+def _without_undefined(lds: Loads, mech, kin, rows: np.ndarray) -> tuple[Loads, dict[int, np.ndarray]]:
+    """What the kinematics leaves without a limit by continuity (``kin.undefined``, null in the
+    kinematics, at a change point), for the loads: ``lds`` with each link's inertia force NaN
+    where its centre of mass's acceleration has none (``a:S<i>``) and its inertia couple NaN where
+    its angular acceleration has none (the singular solve's accelerations had given the
+    Grashof-limit four-bar's coupler 1.9e8 N), the other links' (the crank's) as computed; and,
+    link index -> (N,) mask, where a link's velocities have none (its omega or a point's
+    velocity), for the velocities of the loads on it."""
     import dataclasses
     und = kin.undefined or {}
-    names = {lk.index: lk.name for lk in mech.links}
 
-    def mask(key):
-        m = und.get(key)
-        return None if m is None or not np.any(np.asarray(m, bool)[rows]) else np.asarray(m, bool)[rows]
+    def mask(*keys):
+        m = np.zeros(len(rows), bool)
+        for key in keys:
+            if key in und:
+                m |= np.asarray(und[key], bool)[rows]
+        return m if m.any() else None
 
     forces = []
     for f in lds.forces:
         m = mask(f"a:S{f.link}") if f.kind == "inertia" else None
         forces.append(f if m is None else dataclasses.replace(f, F=np.where(m[:, None], np.nan, f.F)))
+    names = {lk.index: lk.name for lk in mech.links}
     couples = []
     for c in lds.couples:
         m = mask(f"epsilon:{names.get(c.link)}") if c.kind == "inertia" else None
         couples.append(c if m is None else dataclasses.replace(c, M=np.where(m, np.nan, c.M)))
-    return Loads(lds.phi, forces, couples, lds.info)
+    velocity = {lk.index: m for lk in mech.links
+                if (m := mask(f"omega:{lk.name}", *(f"v:{p}" for p in lk.local))) is not None}
+    return Loads(lds.phi, forces, couples, lds.info), velocity
 
 
 def _untrusted_kinematics(kin, rows: np.ndarray) -> np.ndarray:
