@@ -324,10 +324,10 @@ def _coded_issue(err: dict, cause, msg: str) -> str:
     return coded if coded is not None and coded == msg else msg
 
 
-# the course's other names of a choice (a motion law's, a follower's): what a student writes
 def _literal_hint(err: dict) -> str | None:
     """The choice meant by a value that is none of a Literal's (a misspelling, or the course's
-    other name: 'linear' is the constant-velocity law), or None."""
+    other name, the catalogues' `values` synonyms: 'linear' is the constant-velocity law, a
+    course language's words for ccw are ccw), or None."""
     import difflib
     got, expected = err.get("input"), str((err.get("ctx") or {}).get("expected", ""))
     if not isinstance(got, str):

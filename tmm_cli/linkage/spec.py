@@ -46,19 +46,25 @@ class GuideSpec(_Model):
         return self
 
 
+#: a link's centre of mass, as `tmm fields` and the JSON Schema describe it (a task's link and a
+#: generated one)
+COM_DOC = ("centre of mass: [u, v] in the link's frame (from its first point, u towards its second, v to "
+           "the left; a slider: from its pin, u along its guide), or a point name")
+
+
 class LinkSpec(_Model):
     """A bar link (``points: [P, Q]``, ``length``) or a slider (``slider: P``, ``guide``)."""
 
     points: list[str] | None = Field(None, description="bar: its two pair points [P, Q]")
     length: Length | None = Field(None, description="bar: |PQ|, m")
-    extra: dict[str, LengthPair] = Field(default_factory=dict, description="extra points in the link's frame [u, v], m: from its first point, u along the line to its "
-                                                   "second, v to the left of it (a slider: from its pin, u along its guide)")
+    extra: dict[str, LengthPair] = Field(default_factory=dict, description=(
+        "extra points in the link's frame [u, v], m: from its first point, u along the line to its second, v "
+        "to the left of it (a slider: from its pin, u along its guide)"))
     slider: str | None = Field(None, description="slider: its pin point")
     guide: GuideSpec | None = None
     mass: Mass = Field(0.0, ge=0)
     J: Inertia = Field(0.0, ge=0, description="moment of inertia about the centre of mass, kg*m^2")
-    com: Union[str, LengthPair, None] = Field(None, description="centre of mass: [u, v] in the link's frame (from its first point, u towards its "
-                                         "second, v to the left; a slider: from its pin, u along its guide), or a point name")
+    com: Union[str, LengthPair, None] = Field(None, description=COM_DOC)
 
     @field_validator("points")
     @classmethod
@@ -324,8 +330,7 @@ class SynthesisLinkSpec(_Model):
     """Mass properties of a generated link."""
     mass: Mass = Field(0.0, ge=0)
     J: Inertia = Field(0.0, ge=0, description="moment of inertia about the centre of mass, kg*m^2")
-    com: Union[str, LengthPair, None] = Field(None, description="centre of mass: [u, v] in the link's frame (from its first point, u towards its "
-                                         "second, v to the left; a slider: from its pin, u along its guide), or a point name")
+    com: Union[str, LengthPair, None] = Field(None, description=COM_DOC)
 
 
 SYNTHESIS_INPUTS = {  # type -> (required, exactly-one-of groups, optional)
