@@ -585,12 +585,13 @@ def fields(section: Optional[str] = typer.Argument(None, help="only this section
     from . import locales
     from .task import field_docs
     W = locales.of("fields", "terminal", lang)
-    meaning = locales.topic(lang, "fields").get("fields") or {}     # en: the schema's own texts
+    topics = {lg: locales.topic(lg, "fields") for lg in locales.LANGS}
+    meaning = topics[lang].get("fields") or {}                      # en: the schema's own texts
     docs = field_docs()
     if section is not None:      # a section in a course language's words (the fields topic's sections)
         word = "_".join(section.strip().lower().split())
-        section = next((t["sections"][word] for lg in locales.LANGS
-                        for t in (locales.topic(lg, "fields"),) if word in (t.get("sections") or {})), section)
+        section = next((t["sections"][word] for t in topics.values() if word in (t.get("sections") or {})),
+                       section)
     rows = [r for r in docs if section is None or r[0] == section or r[0].startswith(section + ".")
             or r[0].startswith(section + "[")]
     if not rows:
