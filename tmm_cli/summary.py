@@ -280,6 +280,15 @@ def shown_status(row: dict) -> str:
     return "computed" if st == "ok" and not row.get("answers") else st
 
 
+def status_words(lang: str) -> dict[str, str]:
+    """A row's status ('computed', 'outside', ...) as the terminal and summary.html say it in
+    ``lang`` (the warnings catalogue's ``status`` terms; English: the status itself)."""
+    if lang == "en":
+        return {}
+    from .messages import catalogue
+    return dict(catalogue(lang)["terms"].get("status", {}))
+
+
 def row_who(row: dict) -> str:
     """Who a batch row is: the student's name, else the answers file, else the task file's name
     (a variant nobody signed): the terminal's table and summary.html name every row alike."""
@@ -331,12 +340,12 @@ def print_check(rows: list[dict], source, lang: str = "en") -> None:
     from rich.text import Text
 
     from .check import counts
-    from .messages import Message, catalogue, in_lang
+    from .messages import Message, in_lang
     from .numfmt import localize as typeset
     from .numfmt import plural
 
     C = _words("check", lang)
-    status = dict(catalogue(lang)["terms"].get("status", {})) if lang != "en" else {}
+    status = status_words(lang)
     con = _console()
     who = " ".join(x for x in (rows[0].get("student"), rows[0].get("group")) if x) if rows else ""
     t = Table(title=Text(f"{C['title']}: {Path(str(source)).name}" + (f" - {who}" if who else "")),
@@ -383,10 +392,10 @@ def print_batch(rows: list[dict], out: Path, skipped=(), removed=(), notes=(), l
     from rich.table import Table
     from rich.text import Text
 
-    from .messages import catalogue, in_lang, localize
+    from .messages import in_lang, localize
     from .numfmt import plural
     B = batch_words(lang)
-    status = dict(catalogue(lang)["terms"].get("status", {})) if lang != "en" else {}
+    status = status_words(lang)
     con = _console()
     t = Table(title=Text(f"{B['title']}: {plural(len(rows), B['rows'], lang)}"), title_justify="left")
     cells = []
@@ -473,7 +482,7 @@ def summary_html(rows: list[dict], paths: list[str], source: str, lang: str = "e
 
     T = dict(I18N.get(lang, I18N["en"]))
     if lang != "en":                     # the status words: the catalogue's, as in the messages
-        T.update(catalogue(lang)["terms"].get("status", {}))
+        T.update(status_words(lang))
     from .limits import printable
     words = catalogue(lang)["terms"]["grading"]
     e = lambda x: html.escape(printable(str(x)), quote=True)  # noqa: E731  (no control character raw)
