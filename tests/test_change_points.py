@@ -357,3 +357,108 @@ def test_a_position_placed_at_the_change_point_is_said_to_be_one(tmp_path):
     codes = {m["params"]["position"]: m["code"] for m in res["messages"] if m["code"].startswith("kinetostatics.")}
     assert all(codes[e["index"]] == "kinetostatics.no_kinematics" for e in at), codes
     assert all(e["inertia"]["coupler"]["Fy"] is None for e in at)
+
+
+def test_a_change_points_warnings_are_one_head_with_its_items(tmp_path):
+    """The Grashof-limit four-bar with position 6 on the change point (phi = 180 deg) and the rocker's
+    extreme position 12 there too gives nine warnings for one angle in results.json (kept there,
+    each with its code); the terminal and the report show them as the change point's warning with
+    four short items under it -- the continuity limits, the values without one, the dead point and
+    the kinetostatics of both positions in one item -- and leave out the group's list of singular
+    angles (180 only: said by the head)."""
+    from tmm_cli.messages import grouped, render_grouped
+    res = _run(tmp_path, LIMIT.replace("zero: extreme", "zero: 0"))
+    codes = [m["code"] for m in res["messages"]]
+    assert codes == ["positions.quick_working", "kinematics.singular_continuity", "kinematics.change_point",
+                     "kinematics.by_continuity", "kinematics.no_limit", "kinematics.by_continuity",
+                     "kinematics.no_limit", "kinematics.transmission_dead", "kinetostatics.no_kinematics",
+                     "kinetostatics.no_kinematics"]
+    assert len(res["warnings"]) == len(codes)
+    g = grouped(res["messages"])
+    assert [(e["code"], [i["code"] for i in items]) for e, items in g] == [
+        ("positions.quick_working", []),
+        ("kinematics.change_point", ["kinematics.by_continuity", "kinematics.no_limit",
+                                     "kinematics.transmission_dead", "kinetostatics.no_kinematics"])]
+    kin = g[1][1][3]
+    assert kin["params"]["position"] == [6, 12] and kin["params"]["balancing"] == "moment"
+    en = render_grouped(res, "en")
+    assert en[1][0] == res["warnings"][2]                         # the head as results.json has it
+    assert en[1][1] == [
+        "ε coupler, ε rocker are the limit by continuity (extrapolated from the neighbouring positions "
+        "of the same branch)",
+        "v B, a B, v S2, a S2, v S3, a S3, ω coupler, ω rocker have no limit by continuity (the values "
+        "from either side differ) and are null",
+        "a dead point: the transmission angle is 0 (at joint B) and the forces in the group's joints "
+        "have no bound; a lever mechanism is designed with a transmission angle of at least 40 deg",
+        "kinetostatics, positions 6, 12: no balancing moment or reactions"]
+    ru = render_grouped(res, "ru")[1][1]
+    assert ru[3] == "кинетостатика, положения 6; 12: конечного уравновешивающего момента нет, реакции не выводятся"
+    assert render_grouped(res, "uk")[1][1][2].startswith("мертве положення: кут передачі дорівнює нулю (у шарнірі B)")
+    one = _run(tmp_path, LIMIT)                       # the extreme position alone: its position, singular
+    assert render_grouped(one, "en")[1][1][3] == "kinetostatics, position 12: no balancing moment or reactions"
+
+
+def test_items_go_to_the_head_of_their_angle_and_group():
+    """grouped() folds an entry under a change point only where its crank angle shows the same to
+    0.001 deg and its group is the head's (an entry without a group: by the angle); two change
+    points of one group each take their own; the group's list of singular angles stays where an
+    angle of it is no change point (a toggle), and entries without a short form stay as they are."""
+    from tmm_cli.messages import Message, grouped
+
+    def m(code, **p):
+        return Message(code, **p).to_dict()
+    g23, g45 = {"group": "II(2,3)", "links": ["coupler", "rocker"]}, {"group": "II(4,5)", "links": ["rod", "ram"]}
+    head = {"near": 1.0, "blowup": 10.0}
+    dead = {"joint": "B", "recommended": 40.0}
+    lim = {"det": 1e-8, "ill": 1e-3, "quantities": ["v B"]}
+    entries = [m("kinematics.singular_continuity", angles=[0.0, 180.0], delta=1e-6, **g23),
+               m("kinematics.singular_continuity", angles=[90.0, 180.0], delta=1e-6, **g45),
+               m("kinematics.change_point", phi=0.0, **g23, **head),
+               m("kinematics.change_point", phi=180.0, **g23, **head),
+               m("kinematics.change_point", phi=180.0, **g45, **head),
+               m("kinematics.transmission_dead", phi=359.9999999, **g23, **dead),      # at 0
+               m("kinematics.transmission_dead", phi=180.0004, **g23, **dead),         # 180 to 0.001
+               m("kinematics.transmission_dead", phi=180.002, **g23, **dead),          # not 180
+               m("kinematics.no_limit", phi=180.0, **g45, **lim),
+               m("kinetostatics.no_kinematics", position=6, phi=180.0, link="crank", balancing="moment"),
+               m("kinematics.transmission_low", gamma=20.0, phi=180.0, joint="B", factor=2.9, recommended=40.0,
+                 low=30.0, **g23)]
+    g = grouped(entries)
+    shown = [(e["code"], e["params"].get("phi"), e["params"].get("group"),
+              [(i["code"], i["params"].get("group")) for i in items]) for e, items in g]
+    assert shown == [
+        ("kinematics.singular_continuity", None, "II(4,5)", []),                   # 90: a toggle, not a head
+        ("kinematics.change_point", 0.0, "II(2,3)", [("kinematics.transmission_dead", "II(2,3)")]),
+        ("kinematics.change_point", 180.0, "II(2,3)", [("kinematics.transmission_dead", "II(2,3)"),
+                                                       ("kinetostatics.no_kinematics", None)]),
+        ("kinematics.change_point", 180.0, "II(4,5)", [("kinematics.no_limit", "II(4,5)")]),
+        ("kinematics.transmission_dead", 180.002, "II(2,3)", []),
+        ("kinematics.transmission_low", 180.0, "II(2,3)", [])]
+    assert grouped([]) == [] and grouped(entries[-1:]) == [(entries[-1], [])]
+
+
+@pytest.mark.parametrize("lang", ["en", "ru", "uk"])
+def test_the_terminal_prints_a_change_point_as_one_warning_with_its_items(tmp_path, lang, monkeypatch, capsys):
+    """The run summary prints the change point's warning once, its items indented under it ("  – ",
+    a wrapped item's lines under its first word), each line inside 80 columns; the text written
+    without Rich is Rich's, character for character."""
+    from pathlib import Path as P
+
+    from tmm_cli import summary
+    for k in ("COLUMNS", "LINES", "FORCE_COLOR", "TTY_COMPATIBLE"):
+        monkeypatch.delenv(k, raising=False)
+    res = _run(tmp_path, LIMIT.replace("zero: extreme", "zero: 0"))
+    summary.print_summary(res, [P("out/results.json")], lang)
+    plain = capsys.readouterr().out
+    real = summary._plain_summary
+    monkeypatch.setattr(summary, "_plain_summary", lambda *a: None)               # Rich itself
+    summary.print_summary(res, [P("out/results.json")], lang)
+    assert capsys.readouterr().out == plain
+    monkeypatch.setattr(summary, "_plain_summary", real)
+    word = summary.run_words(lang)["warning"]
+    lines = plain.splitlines()
+    assert sum(s.startswith(f"{word}:") for s in lines) == 2                     # K < 1 and the change point
+    items = [k for k, s in enumerate(lines) if s.startswith("  – ")]
+    assert len(items) == 4 and all(len(s.rstrip()) <= 80 for s in lines)
+    first = items[0]
+    assert lines[first + 1].startswith("    ") and not lines[first + 1].startswith("     ")

@@ -1310,3 +1310,26 @@ def test_number_lists_in_the_decimal_comma_languages():
     f = _Formatter({}, "uk")
     assert f.format_field([[45.0, 105.0], 7.5], "g") == "45…105; 7,5"
     assert _Formatter({}, "en").format_field([[45.0, 105.0], 7.5], "g") == "45..105, 7.5"
+
+
+@pytest.mark.parametrize("lang", LANGS)
+def test_every_short_form_is_a_messages_code_with_its_placeholders(lang):
+    """The short forms under a change point (the catalogue's ``folded`` table, messages.grouped):
+    every language has each of English's, each the short form of a catalogued code, naming no
+    parameter the code's message lacks; and each takes a list of positions (the noun in the form
+    the list's length takes: English "position 12", "positions 6, 12")."""
+    fields = string.Formatter()
+    en = catalogue("en")
+    short = catalogue(lang)["folded"]
+    assert set(short) == set(en["folded"]) and short
+    for code, template in short.items():
+        assert code in en["messages"], code
+        names = {f for _, f, _, _ in fields.parse(template) if f}
+        assert names <= {f for _, f, _, _ in fields.parse(en["messages"][code]) if f}, (lang, code)
+    from tmm_cli.messages import folded
+    one = folded({"code": "kinetostatics.no_kinematics", "params": {"position": [12], "balancing": "force"}}, lang)
+    two = folded({"code": "kinetostatics.no_kinematics", "params": {"position": [6, 12], "balancing": "force"}}, lang)
+    assert "12" in one and "6" not in one and "6" in two and "12" in two
+    if lang == "en":
+        assert (one, two) == ("kinetostatics, position 12: no balancing force or reactions",
+                              "kinetostatics, positions 6, 12: no balancing force or reactions")

@@ -145,11 +145,8 @@ def print_summary(results: dict, paths: list[Path], lang: str = "en") -> None:
     T = run_words(lang)
     title = f"tmm: {results.get('task', {}).get('title') or ''}"
     rows = _summary_rows(results, lang)
-    if lang == "en":
-        warnings = [str(w) for w in results.get("warnings", [])]
-    else:
-        from .messages import render_list
-        warnings = render_list(results, lang)
+    from .messages import render_grouped
+    warnings = render_grouped(results, lang)           # a change point's warnings one head with items
     words = (T["quantity"], T["value"], T["warning"], T["wrote"])
     plain = _plain_summary(title, rows, warnings, [str(p) for p in paths], words)
     if plain is not None:
@@ -168,8 +165,11 @@ def print_summary(results: dict, paths: list[Path], lang: str = "en") -> None:
     for row in rows:
         t.add_row(*(escape(c) for c in row))
     con.print(t)
-    for w in warnings:
+    for w, items in _with_items(warnings):
         con.print(f"[yellow]{escape(T['warning'])}:[/yellow] {escape(w)}")
+        for item in items:
+            for line in _item_lines(item, con.width):
+                con.print(escape(line))
     for p in paths:
         con.print(f"{escape(T['wrote'])} {escape(str(p))}")
 
@@ -181,7 +181,20 @@ _ONE_CELL = re.compile("[\x20-\x7e\xa0-\xac\xae-\u02ff\u0370-\u0482\u048a-\u052f
 _MARKUP_OR_EMOJI = re.compile(r"[\[\]]|:\S*:")      # a Rich markup tag, an emoji code (:name:)
 
 
-def _plain_summary(title: str, rows: list[tuple[str, str]], warnings: list[str], paths: list[str],
+def _with_items(warnings: list) -> list[tuple[str, list[str]]]:
+    """The warnings as ``(text, items)``: a plain string has no items."""
+    return [(w, []) if isinstance(w, str) else (w[0], list(w[1])) for w in warnings]
+
+
+def _item_lines(item: str, width: int) -> list[str]:
+    """An item under a warning (a change point's: messages.grouped) as printed lines: "  – " and
+    the words, wrapped at ``width`` with a hanging indent; a word longer than a line stays whole."""
+    import textwrap
+    lines = textwrap.wrap(item, width=max(width - 4, 20), break_long_words=False, break_on_hyphens=False)
+    return [("  – " if k == 0 else "    ") + line for k, line in enumerate(lines or [""])]
+
+
+def _plain_summary(title: str, rows: list[tuple[str, str]], warnings: list, paths: list[str],
                    words: tuple[str, str, str, str] = ("quantity", "value", "warning", "wrote")) -> str | None:
     """The text Rich prints for :func:`print_summary` (its Table's default heavy-head box,
     the title centred over it, then one line per warning and per file), or None where
@@ -213,7 +226,9 @@ def _plain_summary(title: str, rows: list[tuple[str, str]], warnings: list[str],
         break
     width = width or 80
     head, value, warning, wrote = words
-    texts = [title, *(c for r in rows for c in r), *warnings, *paths, *words]
+    warnings = _with_items(warnings)
+    texts = [title, *(c for r in rows for c in r), *(t for w, items in warnings for t in (w, *items)), *paths,
+             *words]
     if any(not _ONE_CELL.fullmatch(t) or _MARKUP_OR_EMOJI.search(t) or t != t.strip() for t in texts) \
             or not title.strip():
         return None
@@ -221,8 +236,15 @@ def _plain_summary(title: str, rows: list[tuple[str, str]], warnings: list[str],
     w2 = max([len(value), *(len(v) for _, v in rows)])
     table = w1 + w2 + 7                        # two cells, each padded by a space a side, three rules
     lines = []
-    for s in [f"{warning}: {w}" for w in warnings] + [f"{wrote} {p}" for p in paths]:
-        wrapped = _wrapped(s, width)
+    for w, items in warnings:
+        wrapped = _wrapped(f"{warning}: {w}", width)
+        if wrapped is None:
+            return None
+        lines.extend(wrapped)
+        for item in items:
+            lines.extend(_item_lines(item, width))
+    for p in paths:
+        wrapped = _wrapped(f"{wrote} {p}", width)
         if wrapped is None:
             return None
         lines.extend(wrapped)

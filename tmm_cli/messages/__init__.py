@@ -67,9 +67,11 @@ def _angles(intervals: list, sep: str = ", ") -> str:
 
 @functools.cache
 def catalogue(lang: str) -> dict:
-    """The catalogue of ``lang``: ``{"messages": {code: template}, "terms": {name: {word: text}}}``."""
+    """The catalogue of ``lang``: ``{"messages": {code: template}, "terms": {name: {word: text}},
+    "folded": {code: template}}`` (``folded``: the short forms of :func:`grouped`)."""
     data = locales.topic(lang, "messages")
-    return {"messages": dict(data.get("messages") or {}), "terms": dict(data.get("terms") or {})}
+    return {"messages": dict(data.get("messages") or {}), "terms": dict(data.get("terms") or {}),
+            "folded": dict(data.get("folded") or {})}
 
 
 def unit(text: str, lang: str | None = None) -> str:
@@ -229,4 +231,80 @@ def render_list(section: dict, lang: str) -> list[str]:
     return [str(w) for w in section.get("warnings") or []]
 
 
-__all__ = ["LANGS", "Message", "as_dict", "as_message", "catalogue", "in_lang", "localize", "render", "render_list"]
+# a change point's warnings under one head: the warnings of the same crank angle (to the 0.001 deg a
+# message shows) and group, each in its short form (the catalogue's ``folded`` table), and the
+# group's list of singular angles where every angle of it is such a head
+HEAD = "kinematics.change_point"
+SUMMARY = "kinematics.singular_continuity"
+
+
+# what an item's short form leaves out (said by its head or too technical there): merged over positions
+_PER_POSITION = ("phi", "det", "ill", "position")
+
+
+def _same_angle(a, b) -> bool:
+    return numfmt.is_number(a) and numfmt.is_number(b) and numfmt.crank_deg(a) == numfmt.crank_deg(b)
+
+
+def grouped(entries: list[dict]) -> list[tuple[dict, list[dict]]]:
+    """results.json ``messages`` entries as the terminal and the report show them: ``[(entry,
+    items)]`` in their order, where a change point's entry (:data:`HEAD`) takes as its items the
+    later entries of its crank angle whose code has a short form (its group's, where the entry
+    names a group: the continuity limits, the values without one, the dead point, the
+    kinetostatics without a solution), and a group's summary of singular angles (:data:`SUMMARY`)
+    is left out where each of its angles is a head of that group.  An item is ``{"code",
+    "params"}`` with ``position`` the list of the positions it was given for (a grid position and
+    the extreme one at the same angle make one item).  Every other entry stands alone with no
+    items; results.json keeps every entry as it is."""
+    short = catalogue("en")["folded"]
+    heads = [e for e in entries if e.get("code") == HEAD]
+    out: list[tuple[dict, list[dict]]] = []
+    taken: set[int] = set()
+    for e in entries:
+        if id(e) in taken:
+            continue
+        p = e.get("params") or {}
+        if e.get("code") == SUMMARY and p.get("angles") and all(
+                any(h["params"].get("group") == p.get("group") and _same_angle(h["params"].get("phi"), a)
+                    for h in heads) for a in p["angles"]):
+            continue
+        items: dict = {}
+        if e.get("code") == HEAD:
+            for f in entries:
+                q = f.get("params") or {}
+                if (f.get("code") in short and id(f) not in taken and _same_angle(q.get("phi"), p.get("phi"))
+                        and q.get("group", p.get("group")) == p.get("group")):
+                    taken.add(id(f))
+                    # two positions at the angle (a grid position and the extreme one): one item,
+                    # the positions listed (the short form names neither the angle nor the determinant)
+                    rest = {k: v for k, v in q.items() if k not in _PER_POSITION}
+                    key = (f["code"], repr(sorted(rest.items())))
+                    if key not in items:
+                        items[key] = {"code": f["code"], "params": {**rest, "position": []}}
+                    if "position" in q:
+                        items[key]["params"]["position"].append(q["position"])
+        out.append((e, list(items.values())))
+    return out
+
+
+def folded(entry: dict, lang: str) -> str:
+    """An entry of a change point's items (:func:`grouped`) in its short form in ``lang``."""
+    cat = catalogue(lang if lang in LANGS else "en")
+    template = cat["folded"].get(entry["code"]) or catalogue("en")["folded"][entry["code"]]
+    try:
+        return _Formatter(cat["terms"], lang if lang in LANGS else "en").format(template, **(entry.get("params") or {}))
+    except (KeyError, IndexError, TypeError, ValueError, AttributeError):
+        return localize(entry, lang)
+
+
+def render_grouped(section: dict, lang: str) -> list[tuple[str, list[str]]]:
+    """The warnings of a results dict in ``lang`` as the terminal and the report list them: each
+    ``(text, items)``, a change point's warnings one head with its items (:func:`grouped`);
+    results written before messages existed: their English ``warnings``, no items."""
+    entries = section.get("messages")
+    if entries is None:
+        return [(str(w), []) for w in section.get("warnings") or []]
+    return [(localize(e, lang), [folded(f, lang) for f in items]) for e, items in grouped(entries)]
+
+
+__all__ = ["LANGS", "Message", "as_dict", "as_message", "catalogue", "in_lang", "localize", "render", "render_grouped", "render_list"]

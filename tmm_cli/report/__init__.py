@@ -50,7 +50,7 @@ from typing import TYPE_CHECKING
 from pathlib import Path
 
 from .. import locales, numfmt
-from ..messages import render_list, unit
+from ..messages import render_grouped, unit
 from ..reproducible import source_date
 from .context import ReportContext, templates_dir
 from . import sections as _sections
@@ -188,7 +188,7 @@ def _assemble(ctx: ReportContext, frags: dict[str, str | None]) -> str:
     return ctx.render("report.html.j2", sections=parts, css=Markup(css),
                       title=(task.title if task is not None else None) or ctx.t("report.title"),
                       variant=task.variant if task is not None else None,
-                      warnings=render_list(ctx.results, ctx.lang),
+                      warnings=render_grouped(ctx.results, ctx.lang),
                       date=source_date().date().isoformat())
 
 
