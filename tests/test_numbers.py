@@ -70,6 +70,9 @@ INVALID = [
     ("abc", "input.number_not_number"), ("mm", "input.number_not_number"), ("5,", "input.number_not_number"),
     ("1_000", "input.number_not_number"), ("-", "input.number_not_number"), ("", "input.number_not_number"),
     ("1" * 200, "input.number_not_number"), ("\u20135", "input.number_dash"), ("nan", "input.not_finite"),
+    # Word's ordinal indicator, a ring above, a superscript o: not the degree sign, and told so
+    ("182,14\u00ba", "input.number_not_degree"), ("90\u02da", "input.number_not_degree"),
+    ("90 \u1d52", "input.number_not_degree"),
 ]
 
 
@@ -280,6 +283,9 @@ def test_grouped_thousands_and_unicode_minus_in_task_fields():
     ("336 \u041d", "kinetostatics[1].reactions.R12.R", 336.0), ("84,83 \u043c\u043c", "gears.aw", 0.08483),
     ("12 \u0433\u0440\u0430\u0434", "positions.phi0", 12.0), ("12\u00b0", "positions.phi0", 12.0),
     ("1,2\u00b710\u207b\u00b3", "flywheel.delta", 1.2e-3),
+    # the second shortened as texts still write it: рад/сек, м/сек
+    ("1,335 \u0440\u0430\u0434/\u0441\u0435\u043a", OMEGA, 1.335),
+    ("0,304 \u043c/\u0441\u0435\u043a", "kinematics[1].points.B.v", 0.304),
 ])
 def test_answers_read_as_students_write_them(text, path, value):
     assert answer_value(text, path) == pytest.approx(value, rel=1e-15)
@@ -499,3 +505,13 @@ def test_a_bare_power_follows_a_length_or_the_second_only(text):
     from tmm_cli.numbers import read
     with pytest.raises(ValueError):
         read(text)
+
+
+def test_a_yes_no_answer_is_no_number(tmp_path):
+    """YAML's true and false are not read as 1 and 0: the answer is invalid, its reason says why
+    (never coerced)."""
+    for v in (True, False):
+        with pytest.raises(ValueError) as err:
+            answer_value(v, "positions.H")
+        assert err.value.args[0].code == "answers.not_number_bool"
+        assert str(err.value.args[0]).startswith(f"{str(v).lower()} is a yes/no value")

@@ -44,9 +44,12 @@ class Tol:
     abs: float = 0.0
     plain: bool = True            # a plain number: absolute for a zero reference
     any_sign: bool = False        # `sign: any`: the magnitude is graded
+    band: tuple[float, float] | None = None   # `graphical` flywheel: an answer in [lo, hi] passes
 
     @property
     def text(self) -> str:
+        if self.band is not None:
+            return f"band {self.band[0]:.6g}..{self.band[1]:.6g}"
         if self.plain:
             return f"{self.rel:g}"
         parts = ([f"rel {self.rel:g}"] if self.rel else []) + ([f"abs {self.abs:g}"] if self.abs else [])
@@ -150,8 +153,8 @@ def answer_value(v, path: str):
     Raises ValueError with the reason for anything that is not a number."""
     if v is None:
         return None
-    if isinstance(v, bool):
-        return float(v)
+    if isinstance(v, bool):             # YAML's true/false: never read as 1 and 0
+        raise ValueError(Message("answers.not_number_bool", value=str(v).lower()))
     if isinstance(v, (int, float)):
         x = float(v)
         if not math.isfinite(x):
@@ -460,7 +463,8 @@ def tolerances(task, override: dict | None = None, results: dict | None = None) 
             for path, rel in est.items():
                 under = k == "default" or path == k or path.startswith(k + ".") or path.startswith(k + "[")
                 if under and path not in tol:
-                    tol[path] = Tol(rel=abs(float(rel)))
+                    tol[path] = (Tol(rel=0.0, plain=False, band=rel) if isinstance(rel, tuple)
+                                 else Tol(rel=abs(float(rel))))
     return tol
 
 
@@ -497,6 +501,16 @@ def bound_of(ref: float, tol: Tol) -> tuple[float, str]:
     return (rel_b, "rel") if rel_b >= tol.abs and ref != 0 else (tol.abs, "abs")
 
 
+def passed_interval(ref: float, tol: Tol) -> tuple[float, float]:
+    """(centre, half-width) of the answers a tolerance passes (its band's middle and half its
+    width, else the reference and :func:`bound_of`), with compare's slack."""
+    slack = 1e-12 * max(1.0, abs(ref))
+    if tol.band is not None:
+        lo, hi = tol.band
+        return (lo + hi) / 2, (hi - lo) / 2 + slack
+    return ref, bound_of(ref, tol)[0] + slack
+
+
 def compare(student: float, ref: float, tol: Tol, angle: bool) -> tuple[str, float, str]:
     """(status, error, kind of error: 'rel' | 'abs'). With ``tol.any_sign`` the magnitude
     is graded: the answer or its negation, whichever is nearer."""
@@ -508,9 +522,18 @@ def compare(student: float, ref: float, tol: Tol, angle: bool) -> tuple[str, flo
         d = a - ref
         return (d + 180.0) % 360.0 - 180.0 if angle else d
     d = abs(diff(student))
+    slack = 1e-12 * max(1.0, abs(ref))
+    if tol.band is not None:             # an interval: inside it, or its mirror (the sign), or outside
+        lo, hi = tol.band
+        err = d / abs(ref) if ref else d
+        kind = "rel" if ref else "abs"
+        if lo - slack <= student <= hi + slack:
+            return "ok", err, kind
+        if ref != 0 and lo - slack <= -student <= hi + slack:
+            return "sign", err, kind
+        return "outside", err, kind
     bound, kind = bound_of(ref, tol)
     err = d / abs(ref) if kind == "rel" else d
-    slack = 1e-12 * max(1.0, abs(ref))
     if d <= bound + slack:
         return "ok", err, kind
     if ref != 0 and abs(diff(-student)) <= bound + slack:
@@ -538,7 +561,7 @@ def grade(results: dict, aset: AnswerSet, tol: dict, required: list[str] | None 
         except KeyError as exc:
             sec = p.split(".")[0].split("[")[0]
             if sec not in results and sec in SECTIONS:
-                row["status"], row["note"] = "not_computed", f"the task has no '{sec}' stage"
+                row["status"], row["note"] = "not_computed", Message("answers.note_no_stage", section=sec)
             else:
                 if leaves is None:
                     leaves = [q for q, v in leaf_paths(results) if isinstance(v, (int, float))]
@@ -547,7 +570,7 @@ def grade(results: dict, aset: AnswerSet, tol: dict, required: list[str] | None 
                                       hint=did_you_mean(p, results, leaves))
             continue
         if ref is None:
-            row["status"], row["note"] = "not_computed", "no value in the results (singular or not computed)"
+            row["status"], row["note"] = "not_computed", Message("answers.note_no_value")
             continue
         if isinstance(ref, bool):
             ref = float(ref)
@@ -568,16 +591,16 @@ def grade(results: dict, aset: AnswerSet, tol: dict, required: list[str] | None 
             row["note"] = aset.invalid[p][1]
             continue
         if val is None:
-            row["status"], row["note"] = "missing", "no value given"
+            row["status"], row["note"] = "missing", Message("answers.note_missing")
             continue
         status, err, kind = compare(float(val), float(ref), t, _is_angle(p))
         row["status"], row["error"] = status, err
         if status == "sign":
-            row["note"] = "right magnitude, wrong sign"
+            row["note"] = Message("answers.note_sign")
         elif status == "outside" and p not in aset.written and (slip := _unit_slip(p, float(val), float(ref), t)):
             row["note"] = slip
         elif kind == "abs" and status != "ok":
-            row["note"] = "absolute error"
+            row["note"] = Message("answers.note_absolute")
     return rows
 
 

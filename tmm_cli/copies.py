@@ -38,14 +38,14 @@ def same_as(answers: list[dict[str, float]]) -> list[list[int]]:
 
 
 class KeyTable:
-    """Every variant's key as arrays per path, for :func:`key_of`: the reference, the bound its
-    tolerance passes (``check.bound_of``, with compare's slack), whether either sign passes,
-    and whether the variant has the path at all."""
+    """Every variant's key as arrays per path, for :func:`key_of`: the middle and half-width of
+    what its tolerance passes (``check.passed_interval``: the reference and its bound, or a
+    band's), whether either sign passes, and whether the variant has the path at all."""
 
     def __init__(self, keys: list[dict]):
         import numpy as np
 
-        from .check import bound_of
+        from .check import passed_interval
         n = len(keys)
         self.n = n
         self.paths: dict[str, tuple] = {}
@@ -55,8 +55,8 @@ class KeyTable:
             for k, key in enumerate(keys):
                 if p in key:
                     r, tol, angle = key[p]
-                    ref[k], anysign[k] = r, tol.any_sign
-                    bound[k] = bound_of(r, tol)[0] + 1e-12 * max(1.0, abs(r))
+                    anysign[k] = tol.any_sign
+                    ref[k], bound[k] = passed_interval(r, tol)
             self.paths[p] = (ref, bound, anysign, angle)
 
     def counts(self, answers: dict[str, float]):

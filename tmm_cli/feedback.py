@@ -80,9 +80,13 @@ def _in_written_unit(r: dict):
 
 
 def _tolerance(r: dict, unit: str, lang: str) -> str:
-    """The tolerance in the error column's terms: '±5 %', '±0.5 °', '±2 % (at least 0.001 m/s)'."""
+    """The tolerance in the error column's terms: '±5 %', '±0.5 °', '±2 % (at least 0.001 m/s)', or
+    a band's ends ('77.92…162.1 kg·m²')."""
     words = str(r["tolerance"]).split()
     zero = r.get("reference") == 0
+    if words and words[0] == "band":           # the interval an answer must lie in (graphical flywheel)
+        lo, hi = (float(v) for v in words[1].split(".."))
+        return f"{_q(lo, '', lang, '.4g')}…{_q(hi, unit, lang, '.4g')}"
     if len(words) == 1:
         v = float(words[0])
         return f"±{_q(v, unit, lang)}" if zero else f"±{_pct(v, lang)}"

@@ -121,11 +121,13 @@ def _pin(results: dict) -> tuple[float, float]:
     return v_a, a_a
 
 
-def graphical_tolerance(results: dict) -> dict[str, float]:
-    """{path into results.json: relative tolerance} of the quantities a student gets from
-    the drawings (the plans': HAND_SHARE of the crank pin's vector over the segment): 'kinematics[i].points.B.v', 'kinematics[i].links.rod.omega',
-    'flywheel.J', 'flywheel.J_n', 'flywheel.M_constant' (from `graphical_error`, computed
-    when the results lack it)."""
+def graphical_tolerance(results: dict) -> dict[str, float | tuple[float, float]]:
+    """{path into results.json: relative tolerance, or the interval (lo, hi) an answer must lie
+    in} of the quantities a student gets from the drawings (the plans': HAND_SHARE of the crank
+    pin's vector over the segment): 'kinematics[i].points.B.v', 'kinematics[i].links.rod.omega';
+    the flywheel's 'flywheel.J', 'flywheel.J_n', 'flywheel.M_constant': the interval between the
+    12-position (hand) value and the accurate one, widened by HAND_SHARE of the larger (the
+    relative error of `graphical_error` where the results lack the hand values)."""
     g = results.get("graphical_error") or graphical_error(results) or {}
     out: dict[str, float] = {}
     plans = g.get("plans") or {}
@@ -146,7 +148,19 @@ def graphical_tolerance(results: dict) -> dict[str, float]:
                 if r is not None:
                     out[f"kinematics[{i}].links.{name}.{q}"] = r * scale[q]
     f = g.get("flywheel") or {}
+    fly = results.get("flywheel") or {}
+    hand = fly.get("hand") or {}
     for key in ("J", "J_n", "M_constant"):
-        if f.get(key) is not None:
+        if f.get(key) is None:
+            continue
+        a, h = fly.get(key), hand.get(key)
+        if isinstance(a, (int, float)) and isinstance(h, (int, float)):
+            # the 12-position integration's own error is one-sided (the hand value lies on one side
+            # of the accurate one): the band from one to the other, widened by a reading error of
+            # HAND_SHARE, passes a careful hand solution, the accurate value and nothing far outside
+            # both (a band about the accurate value as wide as that error passed twice it)
+            m = HAND_SHARE * max(abs(a), abs(h))
+            out[f"flywheel.{key}"] = (min(a, h) - m, max(a, h) + m)
+        else:
             out[f"flywheel.{key}"] = f[key]
     return out

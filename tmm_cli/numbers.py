@@ -214,8 +214,16 @@ def _refuse_rest(s: str, rest: str):
         raise ValueError(Message("input.number_groups", text=s))
     if _OPERATOR.match(rest) or rest.lstrip().startswith(("(", ")")):
         raise ValueError(Message("input.number_expression", text=s))
+    if rest.strip()[:1] in _NOT_DEGREE:   # 182,14º: Word's ordinal indicator (or a ring) for the degree sign
+        raise ValueError(Message("input.number_not_degree", text=s, sign=rest.strip()[0],
+                                 code=f"U+{ord(rest.strip()[0]):04X}"))
     if not (rest[0].isspace() or _NAME.match(rest) or _PER.match(rest)):
         raise ValueError(Message("input.number_not_number", text=s))
+
+
+# signs that look like the degree sign ° (U+00B0) and are not: the masculine ordinal indicator º
+# (Word's autocorrect of "o" after a number), the ring above ˚, the superscript o
+_NOT_DEGREE = "\u00ba\u02da\u1d52"
 
 
 def parse_unit(u: str, s: str = "") -> tuple[tuple, tuple]:

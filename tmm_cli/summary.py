@@ -345,8 +345,12 @@ def _short_path(p: str, n: int = 30) -> str:
 def _tol_shown(text: str, absolute: bool) -> str:
     """A tolerance as the terminal table shows it, in the error column's terms: a relative
     bound in percent ('0.05' -> '5 %'), a plain number against a zero reference as the
-    absolute bound it is ('abs 0.05'); check.csv keeps the tolerance as written."""
+    absolute bound it is ('abs 0.05'), a band as its ends ('77.92…162.1'); check.csv keeps the
+    tolerance as written."""
     words = text.split()
+    if words[0] == "band":                     # an interval the answer must lie in: '77.92…162.1'
+        lo, hi = (float(v) for v in words[1].split(".."))
+        return f"{lo:.4g}…{hi:.4g}"
     if len(words) == 1:
         v = float(words[0])
         return f"abs {v:g}" if absolute else f"{100 * v:g} %"
