@@ -383,6 +383,12 @@ ENGLISH = [
     ('answers.note_missing', {}, 'no value given'),
     ('answers.note_sign', {}, 'right magnitude, wrong sign'),
     ('answers.note_absolute', {}, 'absolute error'),
+    ('answers.angle_relative', {'rel': 0.05, 'at90': 4.5, 'paths': ['positions.phi0', 'positions.theta'], 'more': '',
+                                'path': 'positions.phi0'},
+     "angles were graded with a relative tolerance (0.05): it passes an angle more than 1 deg off (at 90 deg, "
+     "4.5 deg either side; a swapped working and idle stroke can pass): positions.phi0, positions.theta. An angle "
+     "is better held in degrees: `positions.phi0: {abs: 0.5}` for each, in the task's `tolerance` or in "
+     "--tolerance FILE"),
     ('answers.not_number_bool', {'value': 'true'}, 'true is a yes/no value, not a number: write the number'),
     ('answers.wrong_unit_latin', {'value': "'13,1 H'", 'written': 'H', 'cyr': '\u041d'},
      "'13,1 H' is not in a unit of this quantity: 'H' in Latin letters is another unit; did you mean '\u041d', in Cyrillic letters?"),

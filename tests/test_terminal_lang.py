@@ -470,3 +470,22 @@ def test_short_names_leave_the_message_the_room():
     from tmm_cli.summary import _split_width
     assert _split_width(45, ["Ivanov", "Petrov"], ["word " * 40] * 2, 7, 7) == (7, 38)
     assert _split_width(45, ["Ivanov"], ["word " * 40], 6, 7) == (6, 39)
+
+
+@pytest.mark.parametrize("lang", ["ru", "uk"])
+def test_checks_notes_are_said_in_the_language(lang, capsys, monkeypatch):
+    """A wrong sign's note (and the other notes grade writes) is coded: `tmm check --lang` says it
+    in the language, check.csv keeps its English text."""
+    from tmm_cli import summary
+    from tmm_cli.check import grade
+    from tmm_cli.check import AnswerSet
+    from tmm_cli.messages import localize
+    monkeypatch.setenv("COLUMNS", "120")
+    results = {"kinematics": [{"index": 1, "phi": 30.0, "points": {}, "links": {"rod": {"omega": -2.5}}}]}
+    aset = AnswerSet(source="a.yaml", answers={"kinematics[1].links.rod.omega": 2.5, "kinematics[1].links.rod.x": None})
+    rows = grade(results, aset, {})
+    sign = next(r for r in rows if r["status"] == "sign")
+    assert sign["note"] == "right magnitude, wrong sign" and sign["note"].code == "answers.note_sign"
+    summary.print_check(rows, "a.yaml", lang)
+    out = capsys.readouterr().out
+    assert localize(sign["note"].to_dict(), lang) in out and "wrong sign" not in out

@@ -135,3 +135,23 @@ def test_key_of_reads_a_band_as_the_interval_it_is():
     assert list(table.counts({"flywheel.J": 205.0})) == [0, 1]
     assert list(table.counts({"flywheel.J": 170.0})) == [0, 0]
     assert key_of({"flywheel.J": 205.0}, 0, 0, table) == 1
+
+
+def test_angles_graded_with_a_relative_tolerance_are_told_to_the_instructor():
+    """The default 5 % passes phi0 = 92.15 deg 4.6 deg off and a working-stroke angle of 181.43
+    answered 175 (the strokes swapped): grading says so once, naming those paths; theta = 1.43 deg
+    (5 % of it is 0.07 deg) and an angle held in degrees are not named; no note without one."""
+    from tmm_cli.check import AnswerSet, angle_tolerance_note, grade, parse_tolerance
+    results = {"positions": {"phi0": 92.15, "theta": 1.43, "working_stroke_angle": 181.43, "K": 1.016}}
+    aset = AnswerSet(source="a.yaml", answers={"positions.phi0": 87.85, "positions.theta": 1.43,
+                                               "positions.working_stroke_angle": 175.0, "positions.K": 1.0})
+    rows = grade(results, aset, {})
+    assert {r["path"]: r["status"] for r in rows}["positions.working_stroke_angle"] == "ok"   # 3.6 % < 5 %
+    note = angle_tolerance_note(rows, {})
+    assert note.code == "answers.angle_relative"
+    assert note.params["paths"] == ["positions.phi0", "positions.working_stroke_angle"]
+    assert note.params["rel"] == 0.05 and note.params["at90"] == pytest.approx(4.5)
+    tol = {"positions.phi0": parse_tolerance({"abs": 0.5}, "t"), "positions.working_stroke_angle": 0.004}
+    rows = grade(results, aset, tol)
+    assert angle_tolerance_note(rows, tol) is None          # 0.4 % of 181.43 = 0.73 deg: within 1 deg
+    assert angle_tolerance_note([], {}) is None

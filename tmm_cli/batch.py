@@ -185,6 +185,9 @@ def work(path: Path, out: Path, folder: str, formats: set[str], lang: str, sets:
         if mine or sets:                     # a misspelt tolerance key: said once for the batch
             from .check import unused_tolerance_keys
             res["notes"].extend(unused_tolerance_keys(set(task.tolerance or {}) | set(tol_override or {}), results))
+            from .check import angle_tolerance_note
+            if (wide := angle_tolerance_note([r for s in res["sets"] for r in s["rows"]], tol)) is not None:
+                res["notes"].append(wide)          # after the feedback pages: the instructor's, not theirs
     except BaseException as exc:  # one broken variant must not stop the batch
         if isinstance(exc, KeyboardInterrupt):
             raise

@@ -491,6 +491,31 @@ def unused_tolerance_keys(keys, results: dict) -> list[Message]:
     return out
 
 
+def angle_tolerance_note(rows: list[dict], tol: dict) -> Message | None:
+    """``answers.angle_relative`` (for the instructor, once) where an angle answer of ``rows`` was
+    graded with a relative tolerance that passes it more than 1 deg off (the default 5 % passes a
+    phi0 of 92 deg 4.6 deg off: a swapped working and idle stroke, 175 for 181.4 deg, with it):
+    the largest such share, what it allows at 90 deg and the paths (four, sorted). None where every
+    angle's bound is absolute or within 1 deg."""
+    wide, paths = 0.0, []
+    for r in rows:
+        ref = r.get("reference")
+        if ref is None or not _is_angle(r["path"]):
+            continue
+        t = tolerance_for(r["path"], tol, count=False)
+        t = t if isinstance(t, Tol) else parse_tolerance(t, r["path"])
+        if t.band is None and t.rel > 0:
+            bound, kind = bound_of(float(ref), t)
+            if kind == "rel" and bound > 1.0:
+                wide = max(wide, t.rel)
+                if r["path"] not in paths:
+                    paths.append(r["path"])
+    if not wide:
+        return None
+    return Message("answers.angle_relative", rel=wide, at90=90.0 * wide, paths=sorted(paths)[:4],
+                   more="" if len(paths) <= 4 else ", ...", path=sorted(paths)[0])
+
+
 # ------------------------------------------------------------------ results paths
 # ------------------------------------------------------------------ grading
 def bound_of(ref: float, tol: Tol) -> tuple[float, str]:

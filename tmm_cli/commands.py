@@ -333,6 +333,9 @@ def check(
         print_check(rows, a.source, lang)
         all_rows.extend(rows)
         code = max(code, set_code(set_status(rows)))
+    from .check import angle_tolerance_note
+    if (wide := angle_tolerance_note(all_rows, tol)) is not None:      # for the instructor, once
+        _err(f"{note}: {in_lang(wide, lang)}")
     if out:
         from .io import atomic_write, folder_lock
         from .results import dump
