@@ -587,3 +587,33 @@ def test_what_students_write_degrees_minutes_percent_and_a_unit_left_off(tmp_pat
     rows = {r["path"]: r for r in _csv(tmp_path / "o" / "check.csv")}
     assert rows["gears.alpha_w"]["status"] == "ok" and rows["gears.aw"]["status"] == "outside"
     assert "read in mm it is right" in rows["gears.aw"]["note"] and "read in mm" in " ".join(res.output.split())
+
+
+SHORT_ROD = """schema: tmm/1
+title: short rod
+variant: 5
+mechanism:
+  ground: {O: [0, 0]}
+  links:
+    crank: {points: [O, A], length: 0.1}
+    rod: {points: [A, B], length: 0.08}
+    slider: {slider: B, guide: {through: O, angle: 0}}
+drive: {link: crank, speed: 100 rpm}
+"""
+
+
+def test_a_student_of_a_variant_whose_task_failed_is_told_so(tmp_path):
+    """A variant whose task fails (its rod, 0.08 m, shorter than the crank, 0.1 m: no assembly at
+    53.13..126.87 deg, where 0.1 sin phi > 0.08) is each of its students' row, status failed with the
+    failure, not "no task of this variant"; a variant nobody answered keeps its own row."""
+    src, ans = tmp_path / "src", tmp_path / "ans"
+    _write(src, "v4.yaml", GEARS.format(v=4, z1=14, z2=30))
+    _write(src, "v5.yaml", SHORT_ROD)
+    _write(ans, "a.yaml", "variant: 5\nstudent: {name: Savchenko}\nanswers: {positions.phi0: 0}\n")
+    res = runner.invoke(app, ["batch", str(src), "--answers", str(ans), "--out", str(tmp_path / "o")])
+    rows = _csv(tmp_path / "o" / "summary.csv")
+    assert [(r["student"], r["variant"], r["status"]) for r in rows] == [("", "4", "no_answers"),
+                                                                      ("Savchenko", "5", "failed")], res.output
+    assert "does not assemble for crank angles 53.130102..126.869898" in rows[1]["message"]
+    assert rows[1]["answers_file"] == "a.yaml" and "no task" not in res.output
+    assert res.exit_code == 3

@@ -363,14 +363,13 @@ def test_check_names_an_invalid_answers_file_in_the_language(tmp_path):
     assert "в допуске 1 из 1 ответа" in ru.stdout
 
 
-def test_a_long_batch_message_is_cut_as_before_in_english():
-    """The batch table shows a row's message to 200 characters: English its first 200 as before
-    (no --lang: byte for byte), ru and uk 199 and an ellipsis."""
+def test_a_long_batch_message_is_cut_with_a_mark():
+    """The batch table shows a row's message to 200 characters: 199 and an ellipsis where it is
+    longer, in every language (English was once cut mid-word without a mark)."""
     from tmm_cli.summary import _cut
     text = "x" * 150 + "y" * 100
-    assert _cut(text, 200) == "x" * 150 + "y" * 50
-    assert _cut(text, 200, "ru") == "x" * 150 + "y" * 49 + "\u2026"
-    assert _cut("short", 200, "ru") == "short"
+    assert _cut(text, 200) == "x" * 150 + "y" * 49 + "\u2026"
+    assert _cut("short", 200) == "short"
 
 
 def test_check_notes_and_an_invalid_answers_file_in_the_language(tmp_path):

@@ -29,6 +29,7 @@ import stat
 import sys
 import time
 from pathlib import Path, PurePath
+from types import SimpleNamespace
 
 from .check import STATUSES, AnswerSet, _same, set_code
 from .messages import Message
@@ -858,8 +859,20 @@ def _run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = fro
                 "folder": folder}
         note = "" if folder == f.stem else Message("batch.results_in", folder=folder)
         if res["status"] != "ok":
-            rows.append({**base, "status": res["status"], "message": res["message"] + note, "code": res["code"],
-                         "message_parts": [res.get("message_coded", res["message"]), note]})
+            failure = {"status": res["status"], "message": res["message"] + note, "code": res["code"],
+                       "message_parts": [res.get("message_coded", res["message"]), note]}
+            # the students who answered this variant: each a row with why it was not graded (its
+            # task failed or is invalid), not "no task of this variant"
+            probe = SimpleNamespace(variant=t.get("variant"), name=t.get("name") or f.stem)
+            theirs = [i for i, s in enumerate(sets or []) if i not in matched and not s.error and s.matches(probe)]
+            for i in theirs:
+                matched.add(i)
+                s = sets[i]
+                rows.append({**base, **failure, "student": s.student, "group": s.group,
+                             "variant": base["variant"] if s.variant in (None, "") else s.variant,
+                             "answers_file": s.answers_file, "flags": ";".join(s.flags)})
+            if not theirs:
+                rows.append({**base, **failure})
             continue
         if not res["sets"]:
             st = "no_answers" if expected else "ok"

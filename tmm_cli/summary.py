@@ -430,7 +430,7 @@ def print_batch(rows: list[dict], out: Path, skipped=(), removed=(), notes=(), l
         var = str(r.get("variant", ""))
         cells.append((who, var if len(var) <= 6 else var[:5] + "…", str(status.get(st, st)), st,
                       f"{100 * float(r['score']):.0f} %" if r.get("answers") else "-",
-                      _cut(_message(r, lang, localize), 200, lang)))
+                      _cut(_message(r, lang, localize), 200)))
     # the widths given, not left to Rich (which folds a file name mid-word first): the split of
     # the room between the name and the message that prints the fewest lines (a name folded,
     # a message wrapped at its words), names whole on a tie
@@ -481,12 +481,12 @@ def _split_width(room: int, names: list[str], messages: list[str], name_min: int
     return (best[1], best[2]) if best else (max(room // 2, 8), max(room - room // 2, 8))
 
 
-def _cut(text: str, n: int, lang: str = "en") -> str:
-    """``text`` shortened to ``n`` characters, its end marked by an ellipsis where cut (English:
-    its first ``n`` characters, as the table has always shown them)."""
+def _cut(text: str, n: int) -> str:
+    """``text`` shortened to ``n`` characters, its end marked by an ellipsis where cut (summary.csv
+    and summary.html have it whole; the table once cut English mid-word without a mark)."""
     if len(text) <= n:
         return text
-    return text[:n] if lang == "en" else text[:n - 1] + "…"
+    return text[:n - 1] + "…"
 
 
 I18N = locales.table("summary", "text")
