@@ -617,3 +617,23 @@ def test_a_student_of_a_variant_whose_task_failed_is_told_so(tmp_path):
     assert "does not assemble for crank angles 53.130102..126.869898" in rows[1]["message"]
     assert rows[1]["answers_file"] == "a.yaml" and "no task" not in res.output
     assert res.exit_code == 3
+
+
+def test_check_against_a_folder_names_the_files_it_cannot_read(tmp_path):
+    """`tmm check TASK --answers FOLDER`: a file of the folder that cannot be read (broken YAML, no
+    answers) is named with its reason, not counted as a set of another variant (it was listed as
+    variant "None"); the other variants are listed by value (3 before 12)."""
+    src, ans = tmp_path / "src", tmp_path / "ans"
+    key = gear_key(14, 30)
+    _write(src, "v4.yaml", GEARS.format(v=4, z1=14, z2=30))
+    _write(ans, "mine.yaml", f"variant: 4\nstudent: {{name: A}}\nanswers: {{gears.aw: {key['gears.aw']}}}\n")
+    _write(ans, "v12.yaml", "variant: 12\nanswers: {gears.aw: 1}\n")
+    _write(ans, "v3.yaml", "variant: 3\nanswers: {gears.aw: 1}\n")
+    _write(ans, "broken.yaml", "answers: {gears.aw: 1\n")
+    _write(ans, "empty.yaml", "")
+    res = runner.invoke(app, ["check", str(src / "v4.yaml"), "--answers", str(ans)])
+    text = " ".join(res.output.split())
+    assert "2 answer set(s) of other variants (3, 12) left for their own tasks" in text, text
+    assert "None" not in text
+    assert text.count("warning: not read: ") == 2 and "broken.yaml:" in text and "empty.yaml:" in text
+    assert "1 of 1 answers within tolerance" in text and res.exit_code == 0

@@ -343,7 +343,7 @@ ENGLISH = [
     ('input.tol_not_mapping', {},
      'not a tolerance file (a YAML mapping of result paths or prefixes to tolerances)'),
     ('answers.not_file', {}, 'not a regular file (an answers file is a YAML file with `answers:`)'),
-    ('answers.not_mapping', {'got': 'list'}, 'expected a mapping, got list'),
+    ('answers.not_mapping', {'got': 'list'}, 'expected a mapping, got a list'),
     ('answers.table_no_variant', {},
      'an answers table needs a `variant` column (and `student`, `group`, then one column per result path)'),
     ('answers.table_row', {'where': 'a.csv:2', 'reason': {'code': 'input.table_malformed_row',
@@ -389,6 +389,7 @@ ENGLISH = [
      "4.5 deg either side; a swapped working and idle stroke can pass): positions.phi0, positions.theta. An angle "
      "is better held in degrees: `positions.phi0: {abs: 0.5}` for each, in the task's `tolerance` or in "
      "--tolerance FILE"),
+    ('answers.not_read', {'reason': 'a.yaml: bad'}, 'not read: a.yaml: bad'),
     ('answers.not_number_bool', {'value': 'true'}, 'true is a yes/no value, not a number: write the number'),
     ('answers.wrong_unit_latin', {'value': "'13,1 H'", 'written': 'H', 'cyr': '\u041d'},
      "'13,1 H' is not in a unit of this quantity: 'H' in Latin letters is another unit; did you mean '\u041d', in Cyrillic letters?"),
@@ -755,7 +756,7 @@ ENGLISH = [
      "'0.35 kg' is not a length (m, mm, cm...): its unit does not convert to m"),
     ('input.unit_not_kind', {'text': '3 m', 'kind': 'force_or_pressure'},
      "'3 m' is not a force (N) or, with `area`, a pressure (Pa)"),
-    ('input.unit_expected', {'kind': 'length', 'got': 'None'}, 'expected a length (m, mm, cm...), got None'),
+    ('input.unit_expected', {'kind': 'length', 'got': 'NoneType'}, 'expected a length (m, mm, cm...), got nothing'),
     ('input.number_not_number', {'text': 'abc'}, "'abc' is not a number"),
     ('input.number_dms', {'text': '36°60′'}, "'36°60′': minutes and seconds of an angle are below 60 (36°8′, 36°08′30″)"),
     ('input.number_prefix', {'text': '≈0,59', 'prefix': '≈'},

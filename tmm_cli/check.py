@@ -242,7 +242,7 @@ def load_answers_file(path: Path, keep_errors: bool = False) -> AnswerSet:
         raw = data.get(key)
         if raw is not None and not isinstance(raw, dict):
             line, col = _mark(marks, (key,))
-            raise TaskError("invalid answers file", file=str(path),
+            raise TaskError("invalid answers file", file=str(path), kind="answers file",
                             issues=[(key, line, col, Message("answers.not_mapping", got=type(raw).__name__))])
     aset = AnswerSet(source=str(path), stem=path.stem, variant=data.get("variant"), mtime=_mtime(path))
     st = data.get("student") or {}
@@ -340,15 +340,16 @@ def load_answers_csv(path: Path) -> list[AnswerSet]:
     try:
         header, rows = read_table(path)
     except TableError as exc:
-        raise TaskError(exc.message, file=str(path), issues=[("", exc.line, None, exc.message)] if exc.line else None)
+        raise TaskError(exc.message, file=str(path), issues=[("", exc.line, None, exc.message)] if exc.line else None,
+                        kind="answers file")
     if "variant" not in header:
-        raise TaskError(Message("answers.table_no_variant"), file=str(path))
+        raise TaskError(Message("answers.table_no_variant"), file=str(path), kind="answers file")
     paths = [h for h in header if h not in META_COLUMNS and h]
     for p in paths:
         try:
             parse_path(p)
         except KeyError as exc:
-            raise TaskError("invalid answers table", file=str(path),
+            raise TaskError("invalid answers table", file=str(path), kind="answers file",
                             issues=[(p, 1, header.index(p) + 1,
                                      Message("answers.bad_column", column=p, reason=_coded(exc)))]) from None
     from .forms import NOTES_MARK

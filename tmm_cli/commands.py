@@ -278,11 +278,18 @@ def check(
         else:
             sets = load_sources(answers)
             if not single:
-                mine = [a for a in sets if a.matches(task)]
-                if len(mine) < len(sets):   # a table or folder of the whole group: the others are not this task's
+                # a file of the folder that cannot be read is named (whose variant it is, nobody knows),
+                # never counted among the other variants' sets
+                for a in sets:
+                    if a.error and not a.matches(task):
+                        _err(f"{warn}: {in_lang(Message('answers.not_read', reason=a.error), lang)}")
+                readable = [a for a in sets if not a.error or a.matches(task)]
+                mine = [a for a in readable if a.matches(task)]
+                if len(mine) < len(readable):   # a table or folder of the whole group: the others are not this task's
                     kept = {id(a) for a in mine}
-                    other = sorted({str(a.variant) for a in sets if id(a) not in kept})
-                    _err(f"{note}: " + in_lang(Message("answers.other_variants", count=len(sets) - len(mine),
+                    other = _variant_order({str(a.variant) if a.variant not in (None, "") else a.stem or "?"
+                                            for a in readable if id(a) not in kept})
+                    _err(f"{note}: " + in_lang(Message("answers.other_variants", count=len(readable) - len(mine),
                                                                variants=other[:8], more=", ..." if len(other) > 8 else ""),
                                                        lang))
                 sets, dropped = repeats(mine, latest)
@@ -347,6 +354,16 @@ def check(
         except OSError as exc:
             raise _fail_write(exc)
     raise typer.Exit(code)
+
+
+def _variant_order(names) -> list[str]:
+    """Variant names in their order: numbers by value (3 before 12), then the rest as text."""
+    def key(v: str):
+        try:
+            return (0, float(v), v)
+        except ValueError:
+            return (1, 0.0, v)
+    return sorted(names, key=key)
 
 
 @app.command()
