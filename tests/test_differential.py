@@ -157,3 +157,87 @@ def test_example_task_runs_and_its_numbers_hold(tmp_path):
     html = (tmp_path / "o" / "report.html").read_text(encoding="utf-8")
     assert 'id="differential"' in html and html.count("<svg") >= 1
     assert (tmp_path / "o" / "figures" / "differential-velocity.svg").is_file()
+
+
+# --- the carrier's torque given: Willis' formula with eta^k, T1 (1 - u eta^k) = -TH ---------------------------
+
+def _c_u1(speeds, **kw):
+    """Scheme C with z2 z4 = z1 z3 (40 * 20 = 20 * 40): u = +z2 z4/(z1 z3) = 1."""
+    return load_task({"schema": "tmm/1", "differential": {"scheme": "C", "z": [20, 40, 40, 20], "satellites": 3,
+                                                          "speeds": speeds, **kw}}).differential
+
+
+@pytest.mark.parametrize("speeds, eta", [
+    ({"1": 10, "H": 12}, 1.0),      # eta = 1: T4 = -u T1 = -T1
+    ({"1": 10, "H": 10}, 1.0),      # w1 = wH: no relative motion, eta^0 = 1
+    ({"1": 10, "H": 10}, 0.9),      # the same with a lossy train
+])
+def test_u1_carrier_torque_cannot_be_balanced(tmp_path, speeds, eta):
+    # u = 1 and eta^k = 1: T4 = -u eta^k T1 = -T1, so TH = -(T1 + T4) = 0 whatever T1; TH = 5 has no balance
+    from tmm_cli.errors import TaskError
+    with pytest.raises(TaskError) as e:
+        analyze(_c_u1(speeds, torque={"H": 5}, efficiency=eta))
+    assert "differential.torque.H" in str(e.value) and "cannot be balanced" in str(e.value)
+    # TH = 0 leaves T1 open
+    with pytest.raises(TaskError) as e:
+        analyze(_c_u1(speeds, torque={"H": 0}, efficiency=eta))
+    assert "undetermined" in str(e.value)
+    # the command: an invalid task naming the field (exit 2), no ZeroDivisionError
+    sp = ", ".join(f'"{k}": {v}' for k, v in speeds.items())
+    code, out, _ = _run(tmp_path, f"  scheme: C\n  z: [20, 40, 40, 20]\n  speeds: {{{sp}}}\n  torque: {{H: 5}}\n"
+                                  f"  efficiency: {eta}\n")
+    assert code == 2, out
+    assert "differential.torque.H" in out and "ZeroDivision" not in out
+
+
+def test_u1_lossy_train_torque_of_wheel_1_by_willis():
+    # u = 1, eta = 0.9, w1 - wH = 10 - 12 = -2; T1 = -20: T1 (w1 - wH) = 40 > 0, wheel 1 drives (k = +1):
+    # T4 = -u eta T1 = 0.9 * 20 = 18, TH = -(T1 + T4) = 2
+    r = analyze(_c_u1({"1": 10, "H": 12}, torque={"1": -20}, efficiency=0.9)).to_dict()
+    assert r["u"] == 1
+    assert r["torques"]["4"] == pytest.approx(18, rel=1e-14)
+    assert r["torques"]["H"] == pytest.approx(2, rel=1e-13)
+    assert r["relative_driver"] == "1"
+
+
+def test_both_power_flows_balancing_the_carrier_torque_is_named_as_such():
+    # scheme D, z = [90, 30, 26, 86]: u = z2 z4/(z1 z3) = 30 * 86/(90 * 26) = 43/39; w1 = -50, w4 = 20 rad/s:
+    # wH = (w1 - u w4)/(1 - u) = (-50 - 860/39)/(-4/39) = 702.5, w1 - wH = -752.5.
+    # TH = 40: k = +1: T1 = -TH/(1 - u eta) = -40/(1 - 38.7/39) = -5200, T1 (w1 - wH) > 0: consistent;
+    #          k = -1: T1 = -TH/(1 - u/eta) = -40/(1 - 430/351) = 40 * 351/79, T1 (w1 - wH) < 0: consistent too
+    from tmm_cli.errors import StageError
+    spec = load_task({"schema": "tmm/1", "differential": {
+        "scheme": "D", "z": [90, 30, 26, 86], "satellites": 3, "speeds": {"1": -50, "4": 20},
+        "torque": {"H": 40}, "efficiency": 0.9}}).differential
+    with pytest.raises(StageError) as e:
+        analyze(spec)
+    msg = e.value.message
+    assert msg.code == "differential.fail.indeterminate"
+    assert msg.params["t1_first"] == pytest.approx(-5200, rel=1e-12)
+    assert msg.params["t1_last"] == pytest.approx(40 * 351 / 79, rel=1e-12)
+    assert "self-locks" not in str(msg)
+    # TH = -40: k = +1 gives T1 = +5200 (T1 (w1 - wH) < 0), k = -1 gives T1 = -40 * 351/79 (> 0): none is
+    # consistent, the train self-locks
+    spec = load_task({"schema": "tmm/1", "differential": {
+        "scheme": "D", "z": [90, 30, 26, 86], "satellites": 3, "speeds": {"1": -50, "4": 20},
+        "torque": {"H": -40}, "efficiency": 0.9}}).differential
+    with pytest.raises(StageError) as e:
+        analyze(spec)
+    assert e.value.message.code == "differential.fail.self_locking"
+
+
+def test_u1_lossy_carrier_torque_has_two_balances():
+    # u = 1, eta = 0.9 (d14): k = +1: T1 = -5/(1 - 0.9) = -50, T1 (w1 - wH) = -50 * -2 > 0;
+    # k = -1: T1 = -5/(1 - 1/0.9) = 45, T1 (w1 - wH) < 0: both consistent
+    from tmm_cli.errors import StageError
+    with pytest.raises(StageError) as e:
+        analyze(_c_u1({"1": 10, "H": 12}, torque={"H": 5}, efficiency=0.9))
+    p = e.value.message.params
+    assert (p["t1_first"], p["t1_last"]) == (pytest.approx(-50, rel=1e-12), pytest.approx(45, rel=1e-12))
+
+
+def test_zero_carrier_torque_with_a_lossy_train_is_no_load():
+    # T1 (1 - u eta^k) = 0 with 1 - u eta^k != 0 for both k: T1 = 0, so T3 = TH = 0
+    r = analyze(_spec(torque={"H": 0}, efficiency=0.9)).to_dict()
+    assert r["torques"] == {"1": 0, "3": 0, "H": 0}
+    assert r["relative_driver"] is None

@@ -667,6 +667,19 @@ ENGLISH = [
      'assembled with these teeth (computed as given); numbers of satellites that assemble and fit: 1, 2, 4'),
     ('differential.fail.self_locking', {'u': 1.05, 'eta': 0.9}, 'the train self-locks for this torque: with '
      'u = 1.05 and efficiency 0.9 no direction of the power flow balances the torques'),
+    ('differential.fail.indeterminate', {'u': 1.1025641025641026, 'eta': 0.9, 'value': 40.0, 'last': '4',
+                                         't1_first': -5200.0, 't1_last': 177.72151898734177},
+     "the carrier's torque TH = 40 N*m does not determine the others: with u = 1.10256 and efficiency 0.9 both "
+     'directions of the power flow in the motion relative to the carrier balance it: T1 = -5200 N*m when wheel 1 '
+     'drives that motion, T1 = 177.722 N*m when wheel 4 drives it (which one holds is set by the drive, not by '
+     'this torque); give the torque of wheel 1 or 4 instead'),
+    ('differential.carrier_unbalanced', {'value': 5.0, 'last': '4'},
+     'with u = 1 and no loss in the motion relative to the carrier (efficiency 1, or wheel 1 turning with the '
+     'carrier) wheel 4 takes T4 = -T1 whatever T1, so T1 + T4 + TH = 0 holds only with TH = 0: the carrier\'s '
+     'torque 5 N*m cannot be balanced; give the torque of wheel 1 or 4'),
+    ('differential.carrier_indeterminate', {'u': 1.0, 'eta': 1.0, 'last': '4'},
+     "the carrier's torque TH = 0 leaves the torques undetermined: with u = 1 and efficiency 1 wheel 4 takes "
+     'T4 = -u eta^k T1 = -T1 whatever T1 and the carrier nothing; give the torque of wheel 1 or 4'),
     ('input.synth_needs', {'type': 'slider_crank', 'key': 'H'}, 'type slider_crank needs `H`'),
     ('input.synth_not_taken', {'type': 'crank_rocker', 'key': 'H'}, 'type crank_rocker does not take `H`'),
     ('input.synth_not_taken_offset', {'type': 'slider_crank', 'key': 'e'},

@@ -24,8 +24,12 @@ the other through the train of efficiency eta:
 i.e. Tlast = -u eta^k T1. With eta = 1 the external powers sum to zero; with eta < 1 they sum to
 the loss P_loss = T1 w1 + Tlast wlast + TH wH >= 0. Where the members do not move relative
 to the carrier (w1 = wH) no power passes the meshes and eta does not act (k = 0).
-Where neither k is consistent with the given torque (u > 0 near 1 and eta < 1) the train
-self-locks: a StageError says so.
+Given the carrier's torque, T1 (1 - u eta^k) = -TH. Where neither k is consistent with it
+(u > 0 near 1 and eta < 1) the train self-locks; where both are (u eta < 1 < u / eta, the other
+sign of TH) the torque does not determine T1: which holds is the drive's choice. Either is a
+StageError. With u eta^k = 1 (u = 1 and eta = 1, or u = 1 and w1 = wH) Tlast = -T1 for any T1:
+a non-zero TH cannot be balanced, a zero one leaves T1 open (an invalid task, naming the torque);
+a zero TH otherwise gives zero torques.
 
 Velocity picture (Smirnov's method): on the radial line through the axis and a satellite's
 centre, each member's tangential velocity is a straight line v(y): wheel 1, the last wheel and
@@ -88,8 +92,24 @@ def torques(u: float, w: dict, last: str, given: dict, eta: float) -> tuple[dict
         return from_t1(-value / (u * eta ** k), k), k
     # the carrier's torque: T1 (1 - u eta^k) = -TH, k consistent with the T1 it gives
     if rel1 == 0 or eta == 1:
+        # no loss in the relative motion (eta^k = 1): T1 (1 - u) = -TH; with u = 1 the wheel
+        # `last` takes -T1 whatever T1 and the carrier nothing
+        if u == 1:
+            if value == 0:
+                raise field_error(f"{STAGE}.torque.H", Message("differential.carrier_indeterminate", u=u, eta=eta,
+                                                               last=last))
+            raise field_error(f"{STAGE}.torque.H", Message("differential.carrier_unbalanced", value=value,
+                                                           last=last))
         t1 = -value / (1 - u)
-        return from_t1(t1, k_of(t1) if eta == 1 else 0), (k_of(t1) if eta == 1 else 0)
+        k = k_of(t1) if eta == 1 else 0
+        return from_t1(t1, k), k
+    if value == 0:
+        # no load: T1 (1 - u eta^k) = 0 gives T1 = 0 (no power passes the meshes), unless
+        # u eta^k = 1 for a k, which balances any T1 of that k's sign
+        if any(u * eta ** k == 1 for k in (1, -1)):
+            raise field_error(f"{STAGE}.torque.H", Message("differential.carrier_indeterminate", u=u, eta=eta,
+                                                           last=last))
+        return from_t1(0.0, 0), 0
     found = []
     for k in (1, -1):
         den = 1 - u * eta ** k
@@ -97,8 +117,14 @@ def torques(u: float, w: dict, last: str, given: dict, eta: float) -> tuple[dict
             t1 = -value / den
             if k_of(t1) == k:
                 found.append((k, t1))
-    if len(found) != 1:
+    if not found:
         raise StageError(STAGE, Message("differential.fail.self_locking", u=u, eta=eta))
+    if len(found) == 2:
+        # both directions of the power flow balance the torque: which holds is the drive's
+        # choice, not this torque's (a train self-braking in the relative motion)
+        t1 = dict(found)
+        raise StageError(STAGE, Message("differential.fail.indeterminate", u=u, eta=eta, value=value, last=last,
+                                        t1_first=t1[1], t1_last=t1[-1]))
     k, t1 = found[0]
     return from_t1(t1, k), k
 
