@@ -555,6 +555,13 @@ ENGLISH = [
      "synthesis: Freudenstein's solution has no four-bar: K1 = -3 gives no positive crank length (crank = "
      '`frame`/K1 = -0.1 m, rocker = `frame`/K2 = 0.2 m, coupler squared = a^2 + c^2 + d^2 - 2 a c K3 = 0.01 m^2; '
      'each must be positive): change `frame` or the ranges of `input` and `output`'),
+    ('synthesis.fail.function_turn', {'what': 'rocker', 'a': 0.0671104, 'c': -0.0931983, 'crank': 0.0671104,
+                                      'coupler': 0.191634, 'rocker': 0.0931983, 'fix': ['`output.start: 280`']},
+     "synthesis: Freudenstein's solution gives a negative rocker length (crank = `frame`/K1 = 0.0671104 m, "
+     'rocker = `frame`/K2 = -0.0931983 m): a negative length is the link pointing the other way, so this is the '
+     "four-bar with crank 0.0671104 m, coupler 0.191634 m and rocker 0.0931983 m, the rocker's angles measured "
+     'from the opposite direction (turned by 180 deg); the angles stay as the task gives them: write '
+     '`output.start: 280` (the start plus 180 deg) and run again'),
     ('synthesis.fail.function_branch', {'x': 1.25}, "synthesis: the precision points lie on the two different "
      "assemblies of Freudenstein's four-bar (x = 1.25 needs the other one: a branch defect), so no one linkage "
      'passes them all: change the ranges of `input` or `output`, or their starts'),

@@ -255,3 +255,38 @@ def test_a_double_rocker_generators_range_least_is_the_transmission_stages():
     assert s["gamma_min"] == t["gamma_min"] and s["gamma_min_phi"] == t["phi"]
     from tmm_cli.summary import _summary_rows
     assert "least transmission angle in the input range, deg" not in dict(_summary_rows(res))
+
+
+def test_negative_rocker_names_the_output_start_to_turn(tmp_path):
+    """y = sin x on [0, 1.5], phi from 20 deg over 120, psi from 100 deg over -70, d = 0.2 m: at the
+    Chebyshev points x = 0.75 -+ 0.75 cos 30 deg, 0.75 Cramer's rule gives K2 < 0, a rocker d/K2 < 0:
+    the four-bar with the rocker's angles counted from the other side, psi + 180 deg (K1, -K2, -K3).
+    The error says so and names `output.start: 280`; with it the lengths are d/K1, the same b, -d/K2."""
+    xs = [0.75 - 0.75 * math.cos(math.pi / 6), 0.75, 0.75 + 0.75 * math.cos(math.pi / 6)]
+    phi = [20 + 120 * x / 1.5 for x in xs]
+    psi = [100 - 70 * math.sin(x) / math.sin(1.5) for x in xs]
+    M = [[math.cos(math.radians(q)), -math.cos(math.radians(f)), 1.0] for f, q in zip(phi, psi)]
+    rhs = [math.cos(math.radians(f - q)) for f, q in zip(phi, psi)]
+
+    def det3(m):
+        return (m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+                + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]))
+    D = det3(M)
+    K1, K2, K3 = (det3([[rhs[i] if j == col else M[i][j] for j in range(3)] for i in range(3)]) / D
+                  for col in range(3))
+    d = 0.2
+    a, c = d / K1, d / K2
+    b = math.sqrt(a * a + c * c + d * d - 2 * a * c * K3)
+    assert a > 0 > c
+    assert [a, b, -c] == pytest.approx([0.067110, 0.191634, 0.093198], abs=5e-7)     # the audit's fg1b
+    kw = {"function": "sin(x)", "x": [0, 1.5], "input": {"start": 20, "range": 120},
+          "output": {"start": 100, "range": -70}, "points": 3, "frame": d}
+    code, out = _run(tmp_path, **kw)
+    assert code == 3, out
+    text = " ".join(out.split())
+    assert "negative rocker length" in text and "`output.start: 280`" in text
+    assert "no positive rocker length" not in text
+    r = run(_task(**{**kw, "output": {"start": 280, "range": -70}}))["synthesis"]
+    assert r["K"] == pytest.approx([K1, -K2, -K3], rel=1e-11)
+    L = r["lengths"]
+    assert [L["crank"], L["coupler"], L["rocker"]] == pytest.approx([a, b, -c], rel=1e-11)

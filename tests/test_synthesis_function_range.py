@@ -198,16 +198,48 @@ def test_failing_range_exit_3_names_the_crank_angle(tmp_path):
         assert "input.range" in text and "{" not in text
 
 
-def test_negative_length_names_its_K():
+def test_negative_length_is_the_same_fourbar_with_its_angle_scale_turned():
+    """A negative length d/K is that link pointing the other way: psi -> psi + 180 deg changes
+    cos psi and cos(phi - psi) in sign, so Freudenstein's K1 cos psi - K2 cos phi + K3 = cos(phi - psi)
+    is solved by (K1, -K2, -K3), phi -> phi + 180 deg by (-K1, K2, -K3); b^2 = a^2 + c^2 + d^2 - 2 a c K3
+    is the same. The error names the start to turn and the linkage that gives."""
     syn = {**LOG10, "input": {"start": 45, "range": 60}, "output": {"start": 135, "range": 90}}
     xs = np.array([1.5 - 0.5 * math.sqrt(3) / 2, 1.5, 1.5 + 0.5 * math.sqrt(3) / 2])
     K1, K2, K3 = _cramer(*_ideal(syn, xs))
     assert K1 > 0 > K2                         # the rocker d/K2 comes out negative
+    d = 0.1
+    a, c = d / K1, d / K2
+    b = math.sqrt(a * a + c * c + d * d - 2 * a * c * K3)
     with pytest.raises(StageError) as exc:
         run(_task(syn))
-    assert exc.value.message.code == "synthesis.fail.function_lengths"
-    assert exc.value.message.params["K"] == "K2" and exc.value.message.params["Kv"] == pytest.approx(K2, rel=1e-11)
-    assert "K2 = " in str(exc.value) and "no positive rocker length" in str(exc.value)
+    msg = exc.value.message
+    assert msg.code == "synthesis.fail.function_turn"
+    p = msg.params
+    assert p["what"] == "rocker" and p["c"] == pytest.approx(c, rel=1e-11)
+    assert [p["crank"], p["coupler"], p["rocker"]] == pytest.approx([a, b, -c], rel=1e-11)
+    assert p["fix"] == ["`output.start: 315`"]
+    assert "no positive" not in str(exc.value) and "`output.start: 315`" in str(exc.value)
+    # the start it names: Cramer's rule gives (K1, -K2, -K3), all lengths positive, the same four-bar
+    turned = {**syn, "output": {"start": 315, "range": 90}}
+    assert _cramer(*_ideal(turned, xs)) == pytest.approx([K1, -K2, -K3], rel=1e-11)
+    L = run(_task(turned))["synthesis"]["lengths"]
+    assert [L["crank"], L["coupler"], L["rocker"]] == pytest.approx([a, b, -c], rel=1e-11)
+    # the crank turned as well: both negative, both starts named; the crank alone: input.start
+    both = {**syn, "input": {"start": 225, "range": 60}}
+    with pytest.raises(StageError) as exc:
+        run(_task(both))
+    assert exc.value.message.params["what"] == "both"
+    assert exc.value.message.params["fix"] == ["`input.start: 45`", "`output.start: 315`"]
+    crank = {**turned, "input": {"start": 225, "range": 60}}
+    assert _cramer(*_ideal(crank, xs)) == pytest.approx([-K1, -K2, K3], rel=1e-11)
+    with pytest.raises(StageError) as exc:
+        run(_task(crank))
+    p = exc.value.message.params
+    assert p["what"] == "crank" and p["a"] == pytest.approx(-a, rel=1e-11) and p["fix"] == ["`input.start: 45`"]
+    for lang in ("ru", "uk"):
+        from tmm_cli.messages import render
+        text = render(exc.value.message.code, p, lang)
+        assert "`input.start: 45`" in text and "{" not in text
 
 
 def test_crank_rocker_example_keeps_the_full_cycle():

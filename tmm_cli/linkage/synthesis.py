@@ -709,12 +709,22 @@ def _function(sec) -> Design:
         raise SynthesisImpossible(Message("synthesis.fail.function_points")) from None
     a, c = d / K1 if K1 else math.inf, d / K2 if K2 else math.inf
     b2 = a * a + c * c + d * d - 2 * a * c * K3
-    if not (math.isfinite(a) and math.isfinite(c)) or a <= 0 or c <= 0 or b2 <= 0:
+    if not (math.isfinite(a) and math.isfinite(c)) or b2 <= 0:
         # the coefficient that gave it: crank = d/K1, rocker = d/K2, coupler^2 through K3
-        bad = ("crank", "K1", K1) if not (math.isfinite(a) and a > 0) else \
-            ("rocker", "K2", K2) if not (math.isfinite(c) and c > 0) else ("coupler", "K3", K3)
+        bad = ("crank", "K1", K1) if not math.isfinite(a) else \
+            ("rocker", "K2", K2) if not math.isfinite(c) else ("coupler", "K3", K3)
         raise SynthesisImpossible(Message("synthesis.fail.function_lengths", what=bad[0], K=bad[1], Kv=bad[2],
                                           a=a, c=c, b2=b2))
+    if a < 0 or c < 0:
+        # a negative length is the link pointing the other way: psi -> psi + 180 deg turns
+        # (K1, K2, K3) into (K1, -K2, -K3), phi -> phi + 180 deg into (-K1, K2, -K3), b^2 the same:
+        # the same four-bar with that link's angle scale turned by 180 deg (kept an error: the
+        # angles are the task's)
+        turn = [name for name, length in (("input", a), ("output", c)) if length < 0]
+        fix = [f"`{name}.start: {(g[name][0] + 180.0) % 360.0:.10g}`" for name in turn]
+        what = "both" if len(turn) == 2 else ("crank" if turn == ["input"] else "rocker")
+        raise SynthesisImpossible(Message("synthesis.fail.function_turn", what=what, a=a, c=c, crank=abs(a),
+                                          coupler=math.sqrt(b2), rocker=abs(c), fix=fix))
     b = math.sqrt(b2)
     # Freudenstein's equation holds for both assemblies of the dyad A B O1: the linkage passes
     # only the points on the first one's side (the triangle A B O1 turned the same way)
