@@ -155,3 +155,15 @@ def test_angles_graded_with_a_relative_tolerance_are_told_to_the_instructor():
     rows = grade(results, aset, tol)
     assert angle_tolerance_note(rows, tol) is None          # 0.4 % of 181.43 = 0.73 deg: within 1 deg
     assert angle_tolerance_note([], {}) is None
+
+
+def test_a_misspelt_tolerance_key_is_told_even_as_a_section_name():
+    """A tolerance key that names no quantity is a typo whose paths keep the default: in a section
+    the task has (`positions.ph0`), and as a section no task has (`kinematcs`: it was silently
+    ignored); a section of other tasks (`gears` for a linkage: a group's tolerance file) is not."""
+    from tmm_cli.check import unused_tolerance_keys
+    results = {"positions": {"phi0": 92.15, "K": 1.016}, "kinematics": [{"index": 0, "points": {"B": {"v": 1.0}}}]}
+    said = {m.params["key"]: m.params["hint"]["text"] for m in unused_tolerance_keys(
+        ["default", "positions.ph0", "kinematcs", "gears", "positions.K", "kinematics", "zzz"], results)}
+    assert said == {"positions.ph0": "did you mean 'positions.phi0'?", "kinematcs": "did you mean 'kinematics'?",
+                    "zzz": "no such path in the results"}

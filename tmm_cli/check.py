@@ -474,12 +474,19 @@ def unused_tolerance_keys(keys, results: dict) -> list[Message]:
     `default` that is neither a numeric result path of ``results`` nor a prefix of one, in a
     section the results have: a typo (`differential.sped`) that would leave its paths at the
     default silently (a key of a section the task has not, `kinematics` for a gear pair, is
-    another task's). Only a key's own section is walked (a batch calls this per variant)."""
+    another task's; a key of no task's section, `kinematcs`, is a typo too). Only a key's own
+    section is walked (a batch calls this per variant)."""
     import difflib
     out = []
     for k in sorted(set(map(str, keys)) - {"default"}):
         sec = k.split(".")[0].split("[")[0]
-        if sec not in results:               # a section of other tasks (a group's tolerance file)
+        if sec not in results and sec in SECTIONS:      # a section of other tasks (a group's tolerance file)
+            continue
+        if sec not in results:               # no section of any task (`kinematcs`): its paths keep the default
+            hit = difflib.get_close_matches(sec, sorted(SECTIONS), n=1, cutoff=0.6)
+            hint = (Message("answers.did_you_mean", path=k.replace(sec, hit[0], 1)) if hit
+                    else Message("answers.no_such_path"))
+            out.append(Message("answers.tol_key_unused", key=k, hint=hint))
             continue
         leaves = [q for q, v in leaf_paths({sec: results[sec]})
                   if isinstance(v, (int, float)) and not isinstance(v, bool)]
