@@ -335,9 +335,10 @@ def test_check_table_in_russian(tmp_path):
         assert r[0] == e[0] and list(r[1:5]) == [_comma(c) for c in e[1:5]] and r[5] == words[e[5]], (e, r)
     assert ru_rows[0][1:3] == ("180", "179,83")
     text = " ".join(ru.stdout.split())
-    assert "в допуске 2 из 4 ответов; вне допуска: 1; неизвестная величина: 1" in text
+    # the misspelt path answers no quantity: 3 answers, as summary.csv counts them
+    assert "в допуске 2 из 3 ответов; вне допуска: 1; неизвестная величина: 1" in text
     assert "путь не найден (kinematics[3].links.zz.omega: нет ключа «zz»)" in text
-    assert "2 of 4 answers within tolerance, 1 outside, 1 unknown_path" in " ".join(en.stdout.split())
+    assert "2 of 3 answers within tolerance, 1 outside, 1 unknown_path" in " ".join(en.stdout.split())
     csv = (tmp_path / "o" / "check.csv").read_text(encoding="utf-8")
     assert "outside" in csv and "вне допуска" not in csv
 
@@ -488,3 +489,20 @@ def test_checks_notes_are_said_in_the_language(lang, capsys, monkeypatch):
     summary.print_check(rows, "a.yaml", lang)
     out = capsys.readouterr().out
     assert localize(sign["note"].to_dict(), lang) in out and "wrong sign" not in out
+
+
+def test_an_invalid_answer_is_shown_as_written(capsys, monkeypatch):
+    """`tmm check --lang ru` shows an answer that is not a number as the student wrote it: its
+    points are not turned into decimal commas ('11.644,6' is not shown as '11,644,6')."""
+    from tmm_cli import summary
+    from tmm_cli.check import AnswerSet, grade
+    monkeypatch.setenv("COLUMNS", "120")
+    results = {"flywheel": {"J": 11644.6}}
+    aset = AnswerSet(source="a.yaml")
+    aset.invalid["flywheel.J"] = ("11.644,6", "x")
+    aset.answers["flywheel.J"] = None
+    rows = grade(results, aset, {})
+    assert rows[0]["status"] == "invalid"
+    summary.print_check(rows, "a.yaml", "ru")
+    out = capsys.readouterr().out
+    assert "11.644,6" in out and "11,644,6" not in out and "11645" in out

@@ -391,17 +391,22 @@ def print_check(rows: list[dict], source, lang: str = "en") -> None:
             note = in_lang(r["note"], lang)
             notes.append(note if r["note"].startswith(r["path"]) else f"{r['path']}: {note}")
         cells = [_f(r["answer"]), _f(r["reference"]), err, _tol_shown(r["tolerance"], zero_ref or r["note"] == "absolute error")]
-        t.add_row(Text(_short_path(r["path"], 26)), *(Text(typeset(c, lang)) for c in cells),
+        cells = [typeset(c, lang) for c in cells]
+        if st == "invalid":                   # what the student wrote, as written ('11.644,6' is no 11,644,6)
+            from .limits import printable
+            cells[0] = printable(str(r["answer"]))
+        t.add_row(Text(_short_path(r["path"], 26)), *(Text(c) for c in cells),
                   Text(str(status.get(st, st)), style=style))
     con.print(t)
     for n in notes:
         con.print(n, markup=False, highlight=False)
     c = counts(rows)
+    n = len(rows) - c.get("unknown_path", 0)          # a misspelt path answers no quantity (as summary.csv)
     if lang == "en":
-        con.print(f"{c['ok']} of {len(rows)} answers within tolerance"
+        con.print(f"{c['ok']} of {n} answers within tolerance"
                   + "".join(f", {v} {k}" for k, v in c.items() if v and k != "ok"), markup=False)
     else:
-        con.print(C["count"].format(ok=c["ok"], answers=plural(len(rows), C["answers"], lang))
+        con.print(C["count"].format(ok=c["ok"], answers=plural(n, C["answers"], lang))
                   + "".join(f"; {status.get(k, k)}: {v}" for k, v in c.items() if v and k != "ok"), markup=False)
 
 
