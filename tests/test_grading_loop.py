@@ -298,7 +298,8 @@ def test_copies_flagged_grades_and_a_moodle_gradebook(tmp_path):
         assert rows[name]["flags"] == ";".join(flags), name
     assert rows["Boris"]["flags"] == "same_as=Anna" and rows["Clara"]["flags"] == "key_of=3"
     html = (tmp_path / "o" / "summary.html").read_text(encoding="utf-8")
-    assert "key_of=3" in html and "same_as=Anna" in html
+    assert "key_of=3" in html and "same_as=Anna" in html                   # the flags' titles
+    assert "same answers as Anna" in html and "within tolerance of variant 3&#x27;s key" in html
     book = _csv(tmp_path / "o" / "gradebook-moodle.csv")
     assert list(book[0]) == ["Email address", "ID number", "Full name", "Group", "tmm grade", "Feedback"]
     assert {(b["Email address"], b["tmm grade"]) for b in book} == {
@@ -637,3 +638,14 @@ def test_check_against_a_folder_names_the_files_it_cannot_read(tmp_path):
     assert "None" not in text
     assert text.count("warning: not read: ") == 2 and "broken.yaml:" in text and "empty.yaml:" in text
     assert "1 of 1 answers within tolerance" in text and res.exit_code == 0
+
+
+def test_form_says_what_it_wrote_in_the_language(tmp_path):
+    """`tmm form --lang uk`: the line of what was written, in Ukrainian with the noun in the form
+    its count takes."""
+    src = tmp_path / "src"
+    for v in (1, 2):
+        _write(src, f"v{v}.yaml", GEARS.format(v=v, z1=14, z2=30))
+    res = runner.invoke(app, ["form", str(src), "--quantities", "gears", "--out", str(tmp_path / "f"), "--lang", "uk"])
+    assert res.exit_code == 0, res.output
+    assert f"записано 2 бланки і ключі до {tmp_path / 'f'}" in res.output

@@ -390,6 +390,10 @@ ENGLISH = [
      "is better held in degrees: `positions.phi0: {abs: 0.5}` for each, in the task's `tolerance` or in "
      "--tolerance FILE"),
     ('answers.not_read', {'reason': 'a.yaml: bad'}, 'not read: a.yaml: bad'),
+    ('batch.flag_same_as', {'who': 'Ivanov'}, 'same answers as Ivanov'),
+    ('batch.flag_key_of', {'variant': '17'}, "within tolerance of variant 17's key"),
+    ('batch.flag_repeat', {'files': ['a.yaml', 'b.yaml']}, 'another submission: a.yaml, b.yaml'),
+    ('form.wrote', {'n': 25, 'out': 'forms'}, 'wrote 25 forms and keys to forms'),
     ('answers.not_number_bool', {'value': 'true'}, 'true is a yes/no value, not a number: write the number'),
     ('answers.wrong_unit_latin', {'value': "'13,1 H'", 'written': 'H', 'cyr': '\u041d'},
      "'13,1 H' is not in a unit of this quantity: 'H' in Latin letters is another unit; did you mean '\u041d', in Cyrillic letters?"),

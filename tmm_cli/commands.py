@@ -540,18 +540,21 @@ def form(
             atomic_write(out / f"{name}.form.yaml", form_text(task, qp, None, lang))
             atomic_write(out / f"{name}.key.yaml", form_text(task, qp, results, lang))
             if name != task.name:
-                from .messages import Message
-                _err(Message("form.renamed", file=str(f), name=name))
+                _err(in_lang(Message("form.renamed", file=str(f), name=name), lang))
         except TaskError as exc:
             exc.file = exc.file or str(f)          # a quantity the results lack: name the task
-            _err(f"error: {exc.render()}")
+            coded = exc.coded() if lang != "en" else None
+            _err(f"{console.run_words(lang)['error']}: " + (in_lang(coded, lang) if coded is not None else exc.render()))
             code = max(code, EXIT_INVALID)
             continue
         except BaseException as exc:
             if isinstance(exc, KeyboardInterrupt):
                 raise
             c, _, msg = classify(exc)
-            _err(f"error: {f}: {msg}")
+            from .batch import stage_failure_message
+            coded = stage_failure_message(exc)
+            shown = in_lang(coded, lang) if coded is not None and str(coded) == msg else msg
+            _err(f"{console.run_words(lang)['error']}: {f}: {shown}")
             code = max(code, c)
             continue
         all_paths += [p for p in qp if p not in all_paths]
@@ -568,7 +571,7 @@ def form(
             atomic_write(out / "key.csv", csv_styled(forms_csv(krows, all_paths), csv_style))
         except OSError as exc:
             raise _fail_write(exc)
-    _err(f"wrote {len(frows)} form(s) and key(s) to {out}")
+    _err(in_lang(Message("form.wrote", n=len(frows), out=str(out)), lang))
     raise typer.Exit(code)
 
 

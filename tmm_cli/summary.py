@@ -500,6 +500,21 @@ COLOURS = {"ok": "#c8e6c9", "outside": "#ffcdd2", "sign": "#e1bee7", "missing": 
            "failed": "#ef9a9a", "computed": "#e3f2fd"}
 
 
+def flag_text(flag: str, lang: str = "en") -> str:
+    """A summary.csv flag as summary.html says it in ``lang``: 'same_as=Ivanov' -> "same answers as
+    Ivanov", 'key_of=17' -> "within tolerance of variant 17's key", 'repeat=a.yaml|b.yaml' ->
+    "another submission: a.yaml, b.yaml"; a flag of another kind as written."""
+    from .messages import Message, in_lang
+    kind, _, value = flag.partition("=")
+    if kind == "same_as":
+        return in_lang(Message("batch.flag_same_as", who=value), lang)
+    if kind == "key_of":
+        return in_lang(Message("batch.flag_key_of", variant=value), lang)
+    if kind == "repeat":
+        return in_lang(Message("batch.flag_repeat", files=value.split("|")), lang)
+    return flag
+
+
 def summary_html(rows: list[dict], paths: list[str], source: str, lang: str = "en",
                  written: set[str] | None = None) -> str:
     """summary.html: students x quantities, a colour per status, the score, links to each
@@ -536,7 +551,9 @@ def summary_html(rows: list[dict], paths: list[str], source: str, lang: str = "e
         if has_grade:
             tds += f"<td>{e(r.get('grade', ''))}</td>"
         flags = [f for f in str(r.get("flags") or "").split(";") if f]
-        tds += f"<td class='fl'>{'<br>'.join(e(f) for f in flags)}</td>"
+        # each in words, its summary.csv form in the title (what a script or a search of the page finds)
+        tds += "<td class='fl'>" + "<br>".join(f'<span title="{e(f)}">{e(flag_text(f, lang))}</span>'
+                                             for f in flags) + "</td>"
         for p in paths:
             ps = r.get(p, "")
             tds += (f'<td class="m" style="background:{COLOURS.get(ps, "#fff")}" title="{e(p)}: {e(T.get(ps, ps))}">'
