@@ -274,6 +274,17 @@ def test_z_min_and_x_min_generalised():
     # the exact limit: straight edge of the rack ends at ha m above the datum
     g = pair(0.003, 17, 40, 0.0, 0.0)
     assert g["x_min_exact1"] == pytest.approx(1 - 17 * math.sin(20 * RAD) ** 2 / 2, rel=1e-12)
+    # a property of the wheel's number of teeth, not of the shift it is given (it read x_min - x:
+    # z = 12 with x = 0.5 gave -0.20187 for 1 - 12 sin^2 20 / 2 = 0.29813; z = 200, x = 2 gave
+    # -12.698 for -10.698)
+    for z, x in ((12, 0.5), (12, -0.3), (200, 2.0), (40, 0.1)):
+        g = pair(0.002, z, 40, x, 0.0)
+        assert g["x_min_exact1"] == pytest.approx(1 - z * math.sin(20 * RAD) ** 2 / 2, rel=1e-12), (z, x)
+    assert round(pair(0.002, 12, 40, 0.5, 0.0)["x_min_exact1"], 5) == 0.29813
+    # with a fillet radius of its own (0.2 module) the straight edge ends at (ha + c) - rho_f (1 - sin a)
+    g = pair(0.002, 12, 40, 0.5, 0.0, rho_f=0.2)
+    h_l0 = (1.0 + 0.25) - 0.2 * (1 - math.sin(20 * RAD))            # modules above the datum
+    assert g["x_min_exact1"] == pytest.approx(h_l0 - 12 * math.sin(20 * RAD) ** 2 / 2, rel=1e-12)
 
 
 def test_results_are_json_and_have_spec_keys():

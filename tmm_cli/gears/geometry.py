@@ -192,7 +192,9 @@ def pair(m, z1, z2, x1, x2, alpha_deg=20.0, ha=1.0, c=0.25, rho_f=None):
                     f"h{i}": ra - rf, f"s{i}": s, f"e{i}": math.pi * m - s,
                     f"sb{i}": 2.0 * rb * psi0, f"sw{i}": sw, f"alpha_a{i}": aa, f"sa{i}": sa,
                     f"rho_l{i}": rho_l, f"x_min{i}": x_min_course(z, al, ha),
-                    f"x_min_exact{i}": h_l / m - z * math.sin(al) ** 2 / 2.0,
+                    # the least shift without undercut: the rack's straight edge ends h_l + x m
+                    # above its datum (h_l is measured from the shifted rack: it holds -x m)
+                    f"x_min_exact{i}": (h_l / m + x) - z * math.sin(al) ** 2 / 2.0,
                     f"NB{i}": rb * np.tan(aa)})
     g = aw * np.sin(aw_ang)                                # N1N2
     out["N1N2"] = g
