@@ -126,6 +126,18 @@ def test_plain_gear_module_in_metres_is_warned_about():
     assert _warnings("schema: tmm/1\ngears: {m: 0.003, z: [12, 42]}\n") == []
 
 
+def test_a_cams_plain_stroke_in_metres_is_warned_about_but_a_rockers_swing_is_not():
+    """cam.stroke is a length (m) for a translating, knife or flat follower and a swing (deg) for a
+    rocker: a plain 30 of the first is 30 m (r0 36.4 m), warned as any length over 10 m."""
+    cam = "schema: tmm/1\ncam:\n  follower: {f}\n  stroke: {h}\n{more}  phases: {{rise: 120, far_dwell: 30, return: 120}}\n"
+    for f in ("translating", "knife", "flat"):
+        w = _warnings(cam.format(f=f, h=30, more=""))
+        assert len(w) == 1 and "cam.stroke" in w[0] and "30 m" in w[0] and "'30 mm'" in w[0], (f, w)
+        assert _warnings(cam.format(f=f, h="30 mm", more="")) == []
+        assert _warnings(cam.format(f=f, h=0.03, more="")) == []
+    assert _warnings(cam.format(f="rocker", h=30, more="  rocker_length: 0.1\n")) == []
+
+
 def test_plain_number_warnings_reach_results():
     import yaml
     task = yaml.safe_load(SIXBAR.replace("speed: 5,", "speed: 100,"))

@@ -73,6 +73,14 @@ def _walk(ann, raw: Any, path: tuple, out: list[str]) -> None:
     elif isinstance(ann, type) and issubclass(ann, BaseModel):
         if not isinstance(raw, dict):
             return
+        # fields whose unit another field sets (a cam's stroke: a length but for a rocker's swing):
+        # the section names those that are lengths in this raw mapping
+        for key in getattr(ann, "plain_lengths", lambda _raw: ())(raw):
+            v = raw.get(key)
+            if isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v):
+                msg = _message("length", float(v), path + (key,))
+                if msg:
+                    out.append(msg)
         for name, f in ann.model_fields.items():
             key = f.alias or name
             if key in raw:

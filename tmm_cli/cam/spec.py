@@ -103,6 +103,13 @@ class CamSection(_Model):
     rho_min_allowed: Length = Field(0.0, ge=0)
     divisions: int = Field(8, ge=1, le=360)
 
+    @staticmethod
+    def plain_lengths(raw: dict) -> tuple[str, ...]:
+        """The fields of ``raw`` (the section as written) that are lengths though their type is a
+        plain number: the stroke, but for a rocker (its swing, deg). A plain number there is read
+        in m and warned about where it is no length in metres (input_notices)."""
+        return () if raw.get("follower") == "rocker" else ("stroke",)
+
     @field_validator("stroke", mode="before")
     @classmethod
     def _stroke(cls, v, info):
