@@ -400,3 +400,37 @@ def test_a_contact_ratio_with_interference_is_formal():
     assert any("by the formula is formal" in str(w) for w in res["warnings"])
     res = run(load_task({"schema": "tmm/1", "gears": {"m": 0.004, "z": [20, 40], "x": [0, 0]}}))
     assert res["gears"]["eps_alpha_formal"] is False and not any("formal" in str(w) for w in res.get("warnings", []))
+
+
+def test_a_tooth_pointed_below_its_tip_makes_the_contact_ratio_formal():
+    """z = [200, 5], x = [-1, 1], m = 3 mm: wheel 2's tooth is pointed (s_a < 0) below its tip
+    circle. Its flanks meet where the half angle psi0 - inv(alpha_y) is 0, psi0 = s/(2r) + inv 20:
+    the involute function inverted by bisection here; cut there, the tip meshes only up to it and the
+    contact ratio is the formula's with that radius for r_a2 (0.854 where the formula gives 1.01)."""
+    m, a = 0.003, 20 * RAD
+    g = pair(m, 200, 5, -1.0, 1.0)
+    assert g["sa2"] < 0
+    r2 = m * 5 / 2
+    rb2 = r2 * math.cos(a)
+    s2 = m * (math.pi / 2 + 2 * 1.0 * math.tan(a))
+    psi0 = s2 / (2 * r2) + math.tan(a) - a
+    lo, hi = 0.0, math.pi / 2 - 1e-9
+    for _ in range(200):                                  # inv(ap) = tan ap - ap = psi0
+        mid = (lo + hi) / 2
+        lo, hi = (mid, hi) if math.tan(mid) - mid < psi0 else (lo, mid)
+    ap = (lo + hi) / 2
+    r_point = rb2 / math.cos(ap)
+    assert g["r_point2"] == pytest.approx(r_point, rel=1e-12) and round(r_point * 1e3, 2) == 12.34
+    aw = g["alpha_w"]
+    aa1 = math.acos(g["rb1"] / g["ra1"])
+    aa2 = math.acos(rb2 / r_point)
+    eps = (200 * (math.tan(aa1) - math.tan(aw)) + 5 * (math.tan(aa2) - math.tan(aw))) / (2 * math.pi)
+    assert g["eps_cut"] == pytest.approx(eps, rel=1e-12) and round(eps, 3) == 0.854
+    d = analyze(gears(m=0.003, z=(200, 5), x=(-1.0, 1.0))).to_dict()
+    assert d["eps_alpha_formal"] is True and d["checks"]["interference"] is False
+    assert any(w.startswith("eps_alpha = 1.01 by the formula is formal: the tooth of wheel 2 comes to a point at "
+                            "r = 12.34 mm") for w in d["warnings"])
+    # a tooth that is not pointed: eps as the formula gives it, nothing formal
+    g = pair(m, 20, 40, 0.0, 0.0)
+    assert g["eps_cut"] == pytest.approx(g["eps"], rel=1e-15)
+    assert analyze(gears(m=0.003, z=(20, 40), x=(0.0, 0.0))).to_dict()["eps_alpha_formal"] is False

@@ -119,6 +119,9 @@ ENGLISH = [
      'gears: wheel 2 tip is too thin: sa = -0.1 mm < 0.25 m = 1 mm (pointed tooth)'),
     ('gears.interference', {'other': 1, 'wheel': 2, 'rho_p': 1.23456, 'rho_l': 2.3456},
      'gears: interference: the tip of wheel 1 reaches wheel 2 below the start of its involute (rho_p = 1.235 mm < rho_l = 2.346 mm)'),
+    ('gears.eps_pointed', {'eps': 1.0105, 'wheel': 2, 'r_point': 12.34, 'ra': 13.5, 'eps_cut': 0.8545},
+     'eps_alpha = 1.01 by the formula is formal: the tooth of wheel 2 comes to a point at r = 12.34 mm, below '
+     'its tip circle r_a = 13.5 mm, and meshes only up to it; with the tip there eps_alpha = 0.8545'),
     ('gears.eps_formal', {'eps': 1.2427, 'b': 14.67, 'n': 8.89},
      "eps_alpha = 1.243 by the formula is formal: with interference a tip works off the mate's involute, so part of "
      "the active line B1B2 = 14.670 mm (N1N2 = 8.890 mm) is no conjugate action and the teeth do not mesh "

@@ -91,8 +91,9 @@ def _summary_rows(results: dict, lang: str = "en") -> list[tuple[str, str]]:
         # above the tip): eps_alpha is a formal value, the pair cannot mesh (the warnings say why)
         formal = any(str(m.get("code", "")).startswith("gears.no_involute") for m in results.get("messages") or ()
                      if isinstance(m, dict))
-        add(T["eps"], f(g.get("eps_alpha")) + (T["formal_mesh"] if formal else T["formal_interfere"]
-                                               if g.get("eps_alpha_formal") else ""))
+        why = ("" if not g.get("eps_alpha_formal") else T["formal_mesh"] if formal
+               else T["formal_interfere"] if (g.get("checks") or {}).get("interference") else T["formal_pointed"])
+        add(T["eps"], f(g.get("eps_alpha")) + why)
     pl = results.get("planetary")
     if pl:
         add(T["planetary_z"], sep.join(f"{k}={v}" for k, v in (pl.get("z") or {}).items()))

@@ -256,8 +256,8 @@ def build(ctx) -> str | None:
     check_rows = [(t("gears.undercut"), yes if ch["undercut"][0] else no, yes if ch["undercut"][1] else no),
                   (t("gears.sharpening", k=g.get("sa_min", 0.25)), yes if ch["sharpening"][0] else no,
                    yes if ch["sharpening"][1] else no),
-                  (t("gears.contact"), t("gears.formal") if g.get("eps_alpha_formal")
-                   else yes if ch["contact_ratio_low"] else no, ""),
+                  (t("gears.contact"), (t("gears.formal") if ch["interference"] else t("gears.formal_pointed"))
+                   if g.get("eps_alpha_formal") else yes if ch["contact_ratio_low"] else no, ""),
                   (t("gears.interference"), *(yes if v else no for v in g["checks_detail"]["interference"]))]
     check_rows = [(_symbols(r[0]),) + tuple(r[1:]) for r in check_rows]
     figs = []
