@@ -289,3 +289,19 @@ def test_the_task_table_shows_a_rockers_fields_for_a_rocker_only(tmp_path, name,
     task = load_task(Path(__file__).resolve().parents[1] / "tasks" / f"{name}.yaml")
     html, _ = render_html(run(task), task, tmp_path, "en")
     assert ("rocker&#39;s turn on the rise" in html or "rocker's turn on the rise" in html) == shown
+
+
+@pytest.mark.parametrize("follower", ["translating", "flat"])
+def test_a_phase_of_few_grid_steps_is_told(follower):
+    """A rise or return shorter than 10 steps of the result's 1-degree grid is shown coarsely by the
+    tables, the diagrams and the profile's exports (a 0.5 deg rise not at all: the profile a circle):
+    each such phase is told, for a roller and a flat follower alike; a 10-degree phase is not."""
+    ph = fields(rise=5, far_dwell=20, return_=10, near_dwell=325)
+    kw = {"follower": follower, "phases": ph}
+    if follower == "flat":
+        kw.update(pressure_angle=None, roller=None)
+    r = synthesize(spec(**kw))
+    coarse = [w for w in r.warnings if getattr(w, "code", "") == "cam.phase_coarse"]
+    assert [w.params["phase"] for w in coarse] == ["rise"] and coarse[0].params["angle"] == 5.0
+    r = synthesize(spec(**{**kw, "phases": fields(rise=10, far_dwell=20, return_=10, near_dwell=320)}))
+    assert not [w for w in r.warnings if getattr(w, "code", "") == "cam.phase_coarse"]

@@ -122,6 +122,10 @@ ENGLISH = [
     ('gears.eps_pointed', {'eps': 1.0105, 'wheel': 2, 'r_point': 12.34, 'ra': 13.5, 'eps_cut': 0.8545},
      'eps_alpha = 1.01 by the formula is formal: the tooth of wheel 2 comes to a point at r = 12.34 mm, below '
      'its tip circle r_a = 13.5 mm, and meshes only up to it; with the tip there eps_alpha = 0.8545'),
+    ('cam.phase_coarse', {'phase': 'rise', 'angle': 0.5, 'step': 1.0, 'steps': 10},
+     'cam: the rise spans 0.5 deg, fewer than 10 steps of the 1 deg grid of the motion and profile tables, the '
+     'diagrams and cam_profile.csv/.dxf: they show it coarsely, or not at all below one step (r0, rho_min and the '
+     'pressure angles are found on the laws themselves)'),
     ('gears.eps_formal', {'eps': 1.2427, 'b': 14.67, 'n': 8.89},
      "eps_alpha = 1.243 by the formula is formal: with interference a tip works off the mate's involute, so part of "
      "the active line B1B2 = 14.670 mm (N1N2 = 8.890 mm) is no conjugate action and the teeth do not mesh "

@@ -185,6 +185,20 @@ class CamResult:
 PRESSURE_HIGH = 60.0
 
 
+GRID_DEG = 1.0          # the step of the result's arrays (the tables, the diagrams, the profile's exports)
+FEW_STEPS = 10          # a rise or return of fewer steps is shown coarsely: said
+
+
+def _coarse_phases(spec: CamSection, warnings: list) -> None:
+    """``cam.phase_coarse`` for a rise or return shorter than FEW_STEPS steps of the result's
+    grid: the arrays (tables, diagrams, cam_profile.csv and .dxf) show it coarsely, or miss it
+    below one step; r0, rho_min and the pressure angles are found on the laws themselves."""
+    for name, angle in (("rise", spec.phases.rise), ("return", spec.phases.return_)):
+        if angle < FEW_STEPS * GRID_DEG:
+            warnings.append(Message("cam.phase_coarse", phase=name, angle=float(angle), step=GRID_DEG,
+                                    steps=FEW_STEPS))
+
+
 def _limits(spec: CamSection) -> tuple[float, float]:
     """The allowed pressure angles on the rise and on the return, deg (the task model turns a
     single angle, a transmission angle or none into the pair)."""
@@ -377,6 +391,7 @@ def synthesize(spec: CamSection) -> CamResult:
         return _flat(spec, motion, stroke, r0_chosen, divisions)
     fams = _families(motion, th_rise, th_ret)
     warnings: list[Message] = []
+    _coarse_phases(spec, warnings)
     if max(th_rise, th_ret) > PRESSURE_HIGH:     # the cam is sized for it, and said to be no cam to build
         warnings.append(Message("cam.pressure_high", angle=max(th_rise, th_ret), usual=45.0 if rocker else 30.0,
                                 high=PRESSURE_HIGH, force=1 / math.cos(math.radians(max(th_rise, th_ret)))))
@@ -400,7 +415,7 @@ def synthesize(spec: CamSection) -> CamResult:
     roller, roller_given = _roller(spec, r0, rho_min, rho_phi, warnings)
 
     # ---- grid values
-    phi = np.arange(0.0, 360.0, 1.0)
+    phi = np.arange(0.0, 360.0, GRID_DEG)
     phr = np.radians(phi)
     s, s1, s2, s3 = motion.evaluate(phr)
     pa, _ = geom.pressure_angle(s, s1, O)
@@ -659,9 +674,10 @@ def _flat(spec: CamSection, motion: Motion, stroke: float, r0_chosen: float | No
     if not r0 > 1e-12 * stroke:
         raise StageError(STAGE, Message("cam.fail.zero_r0_flat"))
     warnings: list[str] = []
+    _coarse_phases(spec, warnings)
     speed, laws_info, impacts, phases = _laws_impacts(spec, motion, False, warnings)
     w_span, w_sym = flat.face_widths(motion)
-    phi = np.arange(0.0, 360.0, 1.0)
+    phi = np.arange(0.0, 360.0, GRID_DEG)
     phr = np.radians(phi)
     s, s1, s2, s3 = motion.evaluate(phr)
     prof = flat.profile(motion, r0, sigma, phr)
