@@ -296,12 +296,17 @@ def test_a_phase_of_few_grid_steps_is_told(follower):
     """A rise or return shorter than 10 steps of the result's 1-degree grid is shown coarsely by the
     tables, the diagrams and the profile's exports (a 0.5 deg rise not at all: the profile a circle):
     each such phase is told, for a roller and a flat follower alike; a 10-degree phase is not."""
-    ph = fields(rise=5, far_dwell=20, return_=10, near_dwell=325)
-    kw = {"follower": follower, "phases": ph}
-    if follower == "flat":
-        kw.update(pressure_angle=None, roller=None)
-    r = synthesize(spec(**kw))
-    coarse = [w for w in r.warnings if getattr(w, "code", "") == "cam.phase_coarse"]
-    assert [w.params["phase"] for w in coarse] == ["rise"] and coarse[0].params["angle"] == 5.0
-    r = synthesize(spec(**{**kw, "phases": fields(rise=10, far_dwell=20, return_=10, near_dwell=320)}))
-    assert not [w for w in r.warnings if getattr(w, "code", "") == "cam.phase_coarse"]
+    from cam_spec import section
+
+    def cam(rise):
+        d = dict(follower=follower, stroke=0.03, phases=fields(rise=rise, far_dwell=20, return_=10),
+                 laws=fields(rise="cosine", return_="cosine"))
+        if follower == "flat":
+            d["rho_min_allowed"] = 0.01
+        return synthesize(section("cam", d))
+
+    def coarse(r):
+        return [w for w in r.warnings if getattr(w, "code", "") == "cam.phase_coarse"]
+    said = coarse(cam(5))
+    assert [w.params["phase"] for w in said] == ["rise"] and said[0].params["angle"] == 5.0
+    assert not coarse(cam(10))
