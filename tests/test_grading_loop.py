@@ -304,6 +304,13 @@ def test_copies_flagged_grades_and_a_moodle_gradebook(tmp_path):
     assert list(book[0]) == ["Email address", "ID number", "Full name", "Group", "tmm grade", "Feedback"]
     assert {(b["Email address"], b["tmm grade"]) for b in book} == {
         (f"{n.lower()}@uni.example", rows[n]["grade"]) for n in answers}
+    assert "no email and no ID number" not in res.output               # every line has its email
+    # an answers file without an email or id: its line is told (Moodle cannot match it)
+    _write(ans, "anon.yaml", f"variant: 1\nanswers: {{gears.aw: {k1['gears.aw']}}}\n")
+    res = runner.invoke(app, ["batch", str(src), "--answers", str(ans), "--out", str(tmp_path / "o2"),
+                              "--gradebook", "moodle"])
+    text = " ".join(res.output.split())
+    assert "gradebook-moodle.csv: 1 line has no email and no ID number" in text and "(anon.yaml)" in text, text
 
 
 def test_feedback_pages_show_the_tolerance_the_unit_written_and_no_key_on_request(tmp_path):

@@ -397,6 +397,9 @@ ENGLISH = [
      "is better held in degrees: `positions.phi0: {abs: 0.5}` for each, in the task's `tolerance` or in "
      "--tolerance FILE"),
     ('answers.not_read', {'reason': 'a.yaml: bad'}, 'not read: a.yaml: bad'),
+    ('batch.gradebook_unmatched', {'file': 'gradebook-moodle.csv', 'n': 2, 'files': ['a.yaml', 'b.yaml'], 'more': ''},
+     "gradebook-moodle.csv: 2 lines have no email and no ID number, by which Moodle's import finds a student "
+     "(a.yaml, b.yaml): give `student: {email: ...}` or `id` in the answers"),
     ('batch.flag_same_as', {'who': 'Ivanov'}, 'same answers as Ivanov'),
     ('batch.flag_key_of', {'variant': '17'}, "within tolerance of variant 17's key"),
     ('batch.flag_repeat', {'files': ['a.yaml', 'b.yaml']}, 'another submission: a.yaml, b.yaml'),

@@ -937,6 +937,12 @@ def _run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = fro
     atomic_write(out / "summary.csv", csv_styled(csv_text(fields + paths, rows), csv_style))
     if gradebook:
         atomic_write(out / GRADEBOOK, csv_styled(gradebook_csv(rows, bool(grades)), csv_style))
+        # Moodle's import finds a student by the email or the ID number: a line with neither is told
+        unmatched = [r["_set"].answers_file for r in rows if r.get("_set") is not None and r.get("answers")
+                     and not (r["_set"].email or r["_set"].idnumber)]
+        if unmatched:
+            set_notes.append(Message("batch.gradebook_unmatched", file=GRADEBOOK, n=len(unmatched),
+                                     files=unmatched[:5], more=", ..." if len(unmatched) > 5 else ""))
     atomic_write(out / "check.csv", csv_styled(csv_text(CHECK_FIELDS, check_rows), csv_style))
     from .summary import summary_html
     atomic_write(out / "summary.html", summary_html(rows, paths, source, lang,
