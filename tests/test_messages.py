@@ -1189,14 +1189,14 @@ def test_no_language_literal_in_stage_modules():
 def _english_words(text: str, params: dict) -> set[str]:
     """Words of plain English letters in ``text``: not a symbol or a task-file name (with
     ``_``, ``.`` or in backticks, such as near_singular, `flywheel.resolution`, J_n), not a
-    parameter's own value (a link's name), not the unit the task file would take (rpm)."""
+    parameter's own value (a link's name), not the unit the task file would take (rpm), nor a proper name (YAML, Moodle)."""
     values = {w for v in params.values() for w in re.findall(r"\w+", str(v))}
     out = set()
     for tok in text.split():
         core = tok.strip("()[],;:'\"«»")
         if "_" in core or "." in core or "`" in tok:
             continue
-        if core.isascii() and core.isalpha() and len(core) >= 3 and core not in values | {"rpm", "YAML"}:
+        if core.isascii() and core.isalpha() and len(core) >= 3 and core not in values | {"rpm", "YAML", "Moodle"}:
             out.add(core)
     return out
 
