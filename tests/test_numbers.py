@@ -515,3 +515,19 @@ def test_a_yes_no_answer_is_no_number(tmp_path):
             answer_value(v, "positions.H")
         assert err.value.args[0].code == "answers.not_number_bool"
         assert str(err.value.args[0]).startswith(f"{str(v).lower()} is a yes/no value")
+
+
+def test_a_rockers_swing_answered_in_degrees_is_read_in_degrees():
+    """positions.H is the output's stroke: metres for a slider, degrees for a rocker's swing
+    (results.json holds every angle in degrees). An answer with an angle unit is read in degrees:
+    '45,6\u00b0' was read as 0.796 (radians, SI's base) and graded outside against 45.59; one with a
+    length unit in metres; a frequency stays what it was (no angle)."""
+    from tmm_cli.check import AnswerSet, grade
+    assert answer_value("45,6\u00b0", "positions.H") == pytest.approx(45.6)
+    assert answer_value("45,6 \u0433\u0440\u0430\u0434", "positions.H") == pytest.approx(45.6)
+    assert answer_value("0,8 rad", "positions.H") == pytest.approx(0.8 * 180 / math.pi)
+    assert answer_value("90 \u043c\u043c", "positions.H") == pytest.approx(0.09)
+    assert answer_value("5 rpm", "positions.H") == pytest.approx(5 * math.pi / 30)
+    aset = AnswerSet(source="a.yaml", answers={"positions.H": answer_value("45,6\u00b0", "positions.H")})
+    rows = grade({"positions": {"H": 45.59113734524769, "output_kind": "rocker"}}, aset, {})
+    assert rows[0]["status"] == "ok"

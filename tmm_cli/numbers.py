@@ -445,6 +445,13 @@ def answer(text: str, unit: str | None, *, angle: bool = False, angular: bool = 
         if target is None:
             if not _course_dimension(r.expression):      # 'MM' is pint's megamolar: 5 MM was 5e9
                 raise ValueError(Message("answers.unit_not_course", value=repr(r.text), unit=r.unit_text))
+            if len(r.unit) == 1 and r.unit[0][0] in ANGLE_NAMES and r.unit[0][1] == 1:
+                # an angle where the path's unit is open (a stroke H: m, or a rocker's swing): in
+                # degrees, as results.json holds every angle (SI's radian read 45,6 deg as 0.796)
+                try:
+                    return in_unit(r, "degree")[0]
+                except ValueError:          # rpm, rps: no angle (read in SI base units below)
+                    pass
             return r.value * _pint_base(r.expression)
         return in_unit(r, target, angular=angular)[0]
     except ValueError as exc:
