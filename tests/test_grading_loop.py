@@ -656,3 +656,19 @@ def test_form_says_what_it_wrote_in_the_language(tmp_path):
     res = runner.invoke(app, ["form", str(src), "--quantities", "gears", "--out", str(tmp_path / "f"), "--lang", "uk"])
     assert res.exit_code == 0, res.output
     assert f"записано 2 бланки і ключі до {tmp_path / 'f'}" in res.output
+
+
+def test_the_feedback_page_gives_the_stroke_its_unit():
+    """positions.H is a slider's stroke in m or a rocker's swing in degrees: the feedback page shows
+    the reference with the unit its mechanism gives it (it showed a bare 0,15022)."""
+    from types import SimpleNamespace
+
+    from tmm_cli.check import AnswerSet, grade
+    from tmm_cli.feedback import feedback_html
+    task = SimpleNamespace(title="t", name="t")
+    for kind, ref, answer, shown in (("slider", 0.15022, 0.15, "0,15022 м"), ("rocker", 45.591, 45.6, "45,591°")):
+        results = {"positions": {"H": ref, "output_kind": kind}}
+        rows = grade(results, AnswerSet(source="a.yaml", answers={"positions.H": answer}), {})
+        assert rows[0]["unit"] == ("m" if kind == "slider" else "deg") and rows[0]["status"] == "ok"
+        page = feedback_html(task, {"rows": rows, "student": "A", "group": "", "variant": 1}, "ru")
+        assert shown in page, (kind, page[page.find("positions.H"):][:600])

@@ -198,6 +198,11 @@ def _tokens(path: str) -> list:
         return []
 
 
+def _last_name(path: str) -> str:
+    toks = [t for t in _tokens(path) if isinstance(t, str)]
+    return toks[-1] if toks else ""
+
+
 def _is_angle(path: str) -> bool:
     try:
         toks = [t for t in parse_path(path) if isinstance(t, str)]
@@ -588,6 +593,8 @@ def grade(results: dict, aset: AnswerSet, tol: dict, required: list[str] | None 
                "note": "", "answers_file": aset.answers_file if aset.source else ""}
         if p in aset.written:
             row["written"] = aset.written[p]
+        if p.startswith("positions.") and _last_name(p) == "H":     # the stroke: a slider's m, a rocker's deg
+            row["unit"] = "deg" if (results.get("positions") or {}).get("output_kind") == "rocker" else "m"
         rows.append(row)
         try:
             ref = lookup(results, p)

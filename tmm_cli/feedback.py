@@ -116,7 +116,7 @@ def feedback_html(task, s: dict, lang: str = "en", key: bool = True) -> str:
     trs = []
     for r in rows:
         st = r["status"]
-        unit = unit_of(r["path"]) or ""
+        unit = r.get("unit") or unit_of(r["path"]) or ""       # the stroke's own: m, or a rocker's deg
         unit = {"deg": "°", "m or deg": ""}.get(unit, unit)
         unit = local_unit(unit, lang)
         err = "–"
