@@ -672,3 +672,20 @@ def test_the_feedback_page_gives_the_stroke_its_unit():
         assert rows[0]["unit"] == ("m" if kind == "slider" else "deg") and rows[0]["status"] == "ok"
         page = feedback_html(task, {"rows": rows, "student": "A", "group": "", "variant": 1}, "ru")
         assert shown in page, (kind, page[page.find("positions.H"):][:600])
+
+
+def test_an_answers_files_unknown_keys_all_named_and_a_keys_blanks_dropped(tmp_path):
+    """Every unknown top-level key of an answers file is named at its line (Cyrillic keys written for
+    `student` and `variant`: both, not the first); a path written with a trailing blank is the path
+    (it was an unknown path beside a missing one that looked the same)."""
+    src = tmp_path / "src"
+    key = gear_key(14, 30)
+    _write(src, "v4.yaml", GEARS.format(v=4, z1=14, z2=30))
+    bad = _write(tmp_path, "cyr.yaml", "\u0441\u0442\u0443\u0434\u0435\u043d\u0442: A\n"
+                                      "\u0432\u0430\u0440\u0456\u0430\u043d\u0442: 4\nanswers: {gears.aw: 1}\n")
+    res = runner.invoke(app, ["check", str(src / "v4.yaml"), "--answers", str(bad)])
+    lines = [x for x in res.output.splitlines() if "unknown key" in x]
+    assert [x.split(":")[1] for x in lines] == ["1", "2"] and res.exit_code == 2, res.output
+    ok = _write(tmp_path, "blank.yaml", f'variant: 4\nanswers:\n  "gears.aw ": {key["gears.aw"]}\n')
+    res = runner.invoke(app, ["check", str(src / "v4.yaml"), "--answers", str(ok), "--quantities", "gears.aw"])
+    assert "1 of 1 answers within tolerance" in " ".join(res.output.split()) and res.exit_code == 0, res.output

@@ -235,10 +235,10 @@ def load_answers_file(path: Path, keep_errors: bool = False) -> AnswerSet:
         # never echo the file's content: it may be anything
         raise TaskError(Message("answers.not_answers_file"), file=str(path), kind="answers file")
     unknown = set(map(str, data)) - {"answers", "tolerance", "student", "variant", "schema", "title"}
-    if unknown:
-        k = sorted(unknown)[0]
-        line, col = _mark(marks, (k,))
-        raise TaskError("unknown key", file=str(path), kind="answers file", issues=[(k, line, col, Message("answers.unknown_key", key=k))])
+    if unknown:                         # every one, each at its line (a file of Cyrillic keys has several)
+        issues = sorted(((k, *_mark(marks, (k,)), Message("answers.unknown_key", key=k)) for k in unknown),
+                        key=lambda i: (i[1] is None, i[1] or 0, i[0]))
+        raise TaskError("unknown key", file=str(path), kind="answers file", issues=issues)
     from .limits import text_issues
     bad_text = text_issues(data, marks)     # the task file's rule for every text
     if bad_text:
@@ -254,8 +254,8 @@ def load_answers_file(path: Path, keep_errors: bool = False) -> AnswerSet:
     aset.student, aset.group = printable(str(st.get("name") or "")), printable(str(st.get("group") or ""))
     aset.email, aset.idnumber = str(st.get("email") or ""), str(st.get("id") or "")
     for k, v in (data.get("answers") or {}).items():
-        k = str(k)
-        line, col = _mark(marks, ("answers", k))
+        line, col = _mark(marks, ("answers", str(k)))
+        k = str(k).strip()                  # 'kinematics[1].points.B.v ': a blank no path holds
         try:
             parse_path(k)
         except KeyError as exc:
