@@ -310,3 +310,19 @@ def test_a_phase_of_few_grid_steps_is_told(follower):
     said = coarse(cam(5))
     assert [w.params["phase"] for w in said] == ["rise"] and said[0].params["angle"] == 5.0
     assert not coarse(cam(10))
+
+
+def test_phases_a_hair_over_360_are_360_and_more_is_said_with_its_digits():
+    """rise + far dwell + return written to 7 places (133.3333333 + 93.3333334 + 133.3333334 =
+    360.0000001) is a full turn, as the sum of four phases is held to 1e-6; 360.00001 is over, and
+    the message shows the digits that make it so (it read '360 deg exceeds 360')."""
+    from tmm_cli.errors import TaskError
+    from tmm_cli.task import load_task
+
+    def task(r, f, t):
+        return {"schema": "tmm/1", "cam": {"stroke": 0.03, "phases": {"rise": r, "far_dwell": f, "return": t}}}
+    c = load_task(task(133.3333333, 93.3333334, 133.3333334)).cam
+    assert c.phases.near_dwell == 0.0
+    with pytest.raises(TaskError) as err:
+        load_task(task(133.33334, 93.33333, 133.33334))
+    assert "rise + far_dwell + return = 360.00001 deg exceeds 360" in err.value.render()

@@ -58,7 +58,7 @@ class PhasesSpec(_Model):
     def _sum(self):
         used = self.rise + self.far_dwell + self.return_
         if self.near_dwell is None:
-            if used > 360 + 1e-9:
+            if used > 360 + 1e-6:           # as the sum of four is held: 360.0000001 is 360 written to 7 places
                 raise ValueError(Message("input.phases_over", used=used))
             self.near_dwell = max(0.0, 360.0 - used)
         elif abs(used + self.near_dwell - 360) > 1e-6:
