@@ -49,6 +49,10 @@ ENGLISH = [
      "crank angle 270 deg: group II(2,3) (links block, rocker) is ill-conditioned there (normalised determinant 3.7e-17, below 0.001); v B, ω rocker are given as the limit by continuity (extrapolated from the neighbouring positions of the same branch)"),
     ('kinematics.no_limit', {'phi': 180.0, 'group': 'II(2,3)', 'links': ['coupler', 'rocker'], 'det': 3.4e-08, 'ill': 0.001, 'quantities': ['v B', 'ω rocker']},
      "crank angle 180 deg: group II(2,3) (links coupler, rocker) is ill-conditioned there (normalised determinant 3.4e-08, below 0.001); v B, ω rocker have no limit by continuity (the values from either side differ: the linkage may switch branch) and are null"),
+    ('positions.output_rests', {'link': 'slider', 'intervals': [[90.5, 269.5]], 'extreme': [98.0857, 0.0]},
+     "the output 'slider' stands still over \u03c6 = 90.5\u2026269.5\u00b0 (its coordinate constant, as on the branch a "
+     "change point folds it onto): its extreme positions there are no one angle, so the extremes taken (98.086, 0 "
+     "deg), the working and idle strokes, K and theta are one choice, not the mechanism's"),
     ('positions.quick_working', {'working': 'backward', 'link': 'rocker', 'K': 0.8781, 'slow': 'forward'},
      "positions.working = backward makes the working stroke of 'rocker' the quick one (K = 0.878 < 1): the slow "
      "stroke is the forward one; write working: forward if the working stroke is meant to be the slow one"),

@@ -7,6 +7,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
+
 import tmm_cli
 from tmm_cli.messages import render
 
@@ -41,19 +43,19 @@ def test_quick_working_stroke_names_the_slow_one(tmp_path):
 
 def test_a_k_just_below_one_is_not_shown_as_one():
     """K = 0.99962 with three digits would read "K = 1 < 1": as many digits as show it below 1."""
-    from tmm_cli.linkage.kinematics.positions import PositionsResult, quick_working
+    from tmm_cli.linkage.kinematics.positions import PositionsResult, stroke_warnings
     pos = PositionsResult.__new__(PositionsResult)
-    for name, value in (("K", 0.99962), ("working", "forward"), ("output", "slider")):
+    for name, value in (("K", 0.99962), ("working", "forward"), ("output", "slider"), ("rests", [])):
         object.__setattr__(pos, name, value)
-    (m,) = quick_working(pos)
+    (m,) = stroke_warnings(pos)
     assert "(K = 0.9996 < 1)" in m and "(K = 0,9996 < 1)" in render(m.code, m.params, "ru")
     assert m.params["K"] == 0.99962                             # the data as computed
     object.__setattr__(pos, "K", 0.5)
-    assert "(K = 0.5 < 1)" in quick_working(pos)[0]
+    assert "(K = 0.5 < 1)" in stroke_warnings(pos)[0]
     object.__setattr__(pos, "K", 1.0 - 3e-9)                    # below 1 only in the ninth digit
-    assert "(K = 0.999999997 < 1)" in quick_working(pos)[0]
+    assert "(K = 0.999999997 < 1)" in stroke_warnings(pos)[0]
     object.__setattr__(pos, "K", 1.0 - 1e-12)                   # 1 to round-off: no quick stroke
-    assert quick_working(pos) == []
+    assert stroke_warnings(pos) == []
 
 
 def test_links_without_mass_are_named_where_inertia_counts(tmp_path):
@@ -90,3 +92,40 @@ def test_misspelt_point_named_at_its_link(tmp_path):
     p = subprocess.run([sys.executable, "-m", "tmm_cli", "run", str(path), "--format", "json", "--out",
                         str(tmp_path / "out")], capture_output=True, text=True)
     assert p.returncode == 2 and "ground point 'Q' is used by no link" in p.stderr
+
+
+def test_an_output_that_stands_still_is_told(tmp_path):
+    """A central slider-crank whose rod equals its crank (r = l = 0.1 m) folds at its change point
+    (phi = 90 deg: B at O) onto the branch where B stays at O until 270 deg (x_B = r cos phi + l cos
+    psi with psi = pi - phi there: 0); its extreme positions there are no one angle, so K is one
+    choice and is told; the interval found on the 0.5-degree scan is 90..270 to a step. A
+    slider-crank with l = 2r moves everywhere but at its two dead centres: nothing told."""
+    import tmm_cli
+    from tmm_cli.linkage.kinematics.positions import rests
+    text = """schema: tmm/1
+mechanism:
+  ground: {O: [0, 0]}
+  links:
+    crank:  {points: [O, A], length: 0.1}
+    rod:    {points: [A, B], length: ROD}
+    slider: {slider: B, guide: {through: O, angle: 0}}
+drive: {link: crank, speed: 100 rpm}
+positions: {count: 12, zero: 0, output: slider}
+"""
+    f = tmp_path / "t.yaml"
+    f.write_text(text.replace("ROD", "0.1"), encoding="utf-8")
+    res = tmm_cli.run(tmm_cli.load_task(f))
+    (m,) = [w for w in res["messages"] if w["code"] == "positions.output_rests"]
+    (a, b), = m["params"]["intervals"]
+    assert abs(a - 90) <= 0.5 + 1e-9 and abs(b - 270) <= 0.5 + 1e-9
+    f.write_text(text.replace("ROD", "0.2"), encoding="utf-8")
+    res = tmm_cli.run(tmm_cli.load_task(f))
+    assert not [w for w in res["messages"] if w["code"] == "positions.output_rests"]
+    # the scan's rule on its own: a run of 1 deg or less is a dead centre, not a rest; one across 0 wraps
+    ds = np.sin(np.radians(np.arange(0, 360, 0.5)))
+    assert rests(ds) == []
+    ds[10:20] = 0.0
+    assert rests(ds) == [[5.0, 9.5]]
+    ds = np.ones(720)
+    ds[-4:], ds[:4] = 0.0, 0.0
+    assert rests(ds) == [[358.0, 1.5]]

@@ -182,7 +182,7 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explo
     validation built and checked over the cycle (else built and checked here)."""
     from .linkage import dynamics, kinematics, kinetostatics
     from .linkage.context import build
-    from .linkage.kinematics.positions import quick_working
+    from .linkage.kinematics.positions import stroke_warnings
     from .validation import check_detail, impossible_dimensions
     from .messages import Message
 
@@ -209,7 +209,7 @@ def _linkage(task: Task, results: dict, warnings: list, say, curve_n: int, explo
             return
         positions = value
         check_detail(task, positions)
-        warnings.extend(quick_working(positions))
+        warnings.extend(stroke_warnings(positions))
         warnings.extend(massless_links(task, mech))
         if over is not None:
             warnings.append(Message("positions.input_range", kind=over.kind, count=positions.count, start=float(over.start),

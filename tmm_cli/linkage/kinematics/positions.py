@@ -205,6 +205,7 @@ class PositionsResult:
     extreme_index: int | None = None  # index of the position at the end of the working stroke
     over: str = "cycle"              # 'cycle' | 'input_range' (the grid spread over a crank range)
     span: float | None = None        # the crank range, deg, signed (over 'input_range')
+    rests: list = field(default_factory=list)   # [from, to] deg where the output stands still (rests())
     _f: object = field(default=None, repr=False)
     _mech: object = field(default=None, repr=False)
     _strokes: dict = field(default_factory=dict, repr=False)
@@ -275,11 +276,13 @@ class PositionsResult:
                 **({} if self.over == "cycle" else {"over": self.over, "span": float(self.span)})}
 
 
-def _extremes(f, period=None) -> list[tuple[float, float]]:
+def _extremes(f, period=None, scan: dict | None = None) -> list[tuple[float, float]]:
     """(phi, s) of every root of ds/dphi over [0, 360); ``period`` (a rocker: 360 deg)
-    makes s continuous with the scan."""
+    makes s continuous with the scan; ``scan`` (a dict) receives the scan's ``ds``."""
     grid = np.arange(0.0, 360.0, SCAN_STEP)
     s, ds = f(grid)
+    if scan is not None:
+        scan["ds"] = np.asarray(ds, float)
     n = len(grid)
     out = []                       # (scan index, root), in the order of the scan
     lo, hi, at = [], [], []
@@ -308,6 +311,36 @@ def _extremes(f, period=None) -> list[tuple[float, float]]:
                 v += period * round((near - v) / period)
             item[1] = v
     return [(r, v) for r, v in res]
+
+
+REST = 1e-9             # |ds/dphi| below this share of its largest: the output does not move
+
+
+def rests(ds: np.ndarray) -> list[list[float]]:
+    """The crank-angle intervals [from, to] (deg, on the SCAN_STEP scan ``ds``) over which the
+    output stands still -- ds/dphi below REST of its largest over 1 deg or more, as a slider-crank
+    whose rod equals its crank on the branch folded at its change point, its slider at O from 90
+    to 270 deg: its extreme positions there are no one angle."""
+    ds = np.abs(np.asarray(ds, float))
+    top = float(ds.max()) if ds.size else 0.0
+    if not top > 0:
+        return []
+    still = ds <= REST * top
+    if still.all():
+        return [[0.0, 360.0]]
+    n, out = len(still), []
+    k0 = int(np.flatnonzero(~still)[0])                 # start the walk where it moves (wrap at 360)
+    run = None
+    for j in range(1, n + 1):
+        k = (k0 + j) % n
+        if still[k] and run is None:
+            run = k
+        elif not still[k] and run is not None:
+            steps = (k - run) % n
+            if steps * SCAN_STEP > 1.0:
+                out.append([run * SCAN_STEP, ((k - 1) % n) * SCAN_STEP])
+            run = None
+    return sorted(out)
 
 
 def _roots_in_brackets(f, a, b, *, ds_of, grid, maxiter: int = 100) -> np.ndarray:
@@ -389,7 +422,9 @@ def find_positions(mech: Mechanism, positions_section, sign: float, extra_added=
     kind, f = _output_coordinate(mech, out_name)
     if crank_range is not None:
         return _over_range(mech, sec, sign, crank_range, out_name, kind, f).with_added(extra_added)
-    ext = _extremes(f, 360.0 if kind == "rocker" else None)
+    scan: dict = {}
+    ext = _extremes(f, 360.0 if kind == "rocker" else None, scan)
+    still = rests(scan["ds"])
     extreme = wsa = isa = K = theta = H = s_ext = None
     if len(ext) >= 2:
         start, end, wsa = _working_stroke(ext, sec.working, sign)
@@ -418,7 +453,7 @@ def find_positions(mech: Mechanism, positions_section, sign: float, extra_added=
                            extreme=extreme, working_stroke_angle=wsa, idle_stroke_angle=isa, K=K, theta=theta,
                            output=out_name, output_kind=kind, H=H, s_extreme=s_ext, count=count,
                            direction=direction, sign=sign, working=sec.working, extreme_index=extreme_index, _f=f,
-                           _mech=mech, _phis=phis)
+                           _mech=mech, _phis=phis, rests=still)
     return base.with_added(extra_added) if len(extra_added) else base
 
 
@@ -455,24 +490,29 @@ def _phi_array(phis: list) -> np.ndarray:
     return np.array([0.0 if x >= 360.0 - 1e-12 else x for x in phis])
 
 
-def quick_working(pos: PositionsResult) -> list:
-    """A warning where the working stroke named is the quick one.
+def stroke_warnings(pos: PositionsResult) -> list:
+    """A warning where the output's strokes are not what they seem: it stands still over part of
+    the turn (its extreme positions no one angle: ``positions.output_rests``), or the working
+    stroke named is the quick one (``positions.quick_working``).
 
     Parameters
     ----------
     pos : PositionsResult
-        The positions (K and ``working``).
+        The positions (``rests``, K and ``working``).
 
     Returns
     -------
     list
-        The warning when ``positions.working`` names the quick stroke (K < 1), else empty.
+        The one warning that applies, else empty.
 
     References
     ----------
     Artobolevsky, *Theory of Mechanisms and Machines*: the working stroke of a machine is its
     slow one, K = working / idle crank angle >= 1.
     """
+    if pos.rests:           # its extreme positions no one angle: K and the strokes are one choice
+        return [Message("positions.output_rests", link=pos.output, intervals=pos.rests,
+                        extreme=pos.extreme or [])]
     if pos.K is None or pos.K >= 1.0 - 1e-9:
         return []
     slow = "backward" if pos.working == "forward" else "forward"
