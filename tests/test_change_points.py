@@ -462,3 +462,21 @@ def test_the_terminal_prints_a_change_point_as_one_warning_with_its_items(tmp_pa
     assert len(items) == 4 and all(len(s.rstrip()) <= 80 for s in lines)
     first = items[0]
     assert lines[first + 1].startswith("    ") and not lines[first + 1].startswith("     ")
+
+
+def test_an_entry_before_its_change_point_stays_alone_and_is_not_shown_twice():
+    """grouped() folds the *later* entries of a change point's angle under it (as its docstring
+    says): an entry of that angle and group written before the head is shown once, where it
+    stands, not both alone and again as the head's item."""
+    from tmm_cli.messages import Message, grouped
+
+    def m(code, **p):
+        return Message(code, **p).to_dict()
+    g23 = {"group": "II(2,3)", "links": ["coupler", "rocker"]}
+    dead = {"joint": "B", "recommended": 40.0}
+    entries = [m("kinematics.transmission_dead", phi=180.0, **g23, **dead),
+               m("kinematics.change_point", phi=180.0, **g23, near=1.0, blowup=10.0),
+               m("kinematics.transmission_dead", phi=180.0, **g23, **{**dead, "joint": "C"})]
+    g = grouped(entries)
+    shown = [(e["code"], [i["params"].get("joint") for i in items]) for e, items in g]
+    assert shown == [("kinematics.transmission_dead", []), ("kinematics.change_point", ["C"])]

@@ -260,7 +260,7 @@ def grouped(entries: list[dict]) -> list[tuple[dict, list[dict]]]:
     heads = [e for e in entries if e.get("code") == HEAD]
     out: list[tuple[dict, list[dict]]] = []
     taken: set[int] = set()
-    for e in entries:
+    for n, e in enumerate(entries):
         if id(e) in taken:
             continue
         p = e.get("params") or {}
@@ -270,7 +270,7 @@ def grouped(entries: list[dict]) -> list[tuple[dict, list[dict]]]:
             continue
         items: dict = {}
         if e.get("code") == HEAD:
-            for f in entries:
+            for f in entries[n + 1:]:           # its later entries: one before it was shown alone
                 q = f.get("params") or {}
                 if (f.get("code") in short and id(f) not in taken and _same_angle(q.get("phi"), p.get("phi"))
                         and q.get("group", p.get("group")) == p.get("group")):
