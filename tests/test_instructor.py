@@ -813,8 +813,8 @@ loads:
 BROKEN = [
     ("misspelt", ("length: 0.08", "lenght: 0.08"), "неизвестный ключ «lenght»; возможно, имелось в виду «length»?",
      "невідомий ключ «lenght»; можливо, малося на увазі «length»?"),
-    ("word", ("length: 0.35", "length: long"), "ожидается длина (m, mm, cm...), задано 'long'",
-     "очікується довжина (m, mm, cm...), задано 'long'"),
+    ("word", ("length: 0.35", "length: long"), "ожидается длина (m, mm, cm...), задано: 'long'",
+     "очікується довжина (m, mm, cm...), задано: 'long'"),
     ("negative", ("length: 0.08", "length: -0.08"), "длина звена `length` должна быть положительной",
      "довжина ланки `length` має бути додатною"),
     ("unit", ("90 rpm", "90 rmp"), "неизвестная единица измерения «rmp» в «90 rmp»; ожидается угловая скорость",
@@ -1020,7 +1020,7 @@ def test_summary_html_status_of_an_invalid_answers_file_does_not_blame_the_task(
     ("answers", "late.csv", "\n\nvariant,flywheel.J\n1,2\n", "заголовок таблицы должен быть в первой строке"),
     ("answers", "novar.csv", "student,flywheel.J\nA,2\n", "в таблице ответов нужен столбец `variant`"),
     ("answers", "bin.csv", b"\xff\xfe\x00\x81\x98", "это не текстовая таблица в кодировке UTF-8"),
-    ("answers", "list.yaml", "answers: [1, 2]\n", "ожидается таблица YAML (ключ: значение), задано список"),
+    ("answers", "list.yaml", "answers: [1, 2]\n", "ожидается таблица YAML (ключ: значение), задано: список"),
     ("answers", "dir", None, "это не обычный файл (файл ответов"),
     ("answers", "none.yaml", False, "такого файла или папки нет"),
 ])

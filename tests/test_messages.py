@@ -1386,3 +1386,24 @@ def test_every_short_form_is_a_messages_code_with_its_placeholders(lang):
     if lang == "en":
         assert (one, two) == ("kinetostatics, position 12: no balancing force or reactions",
                               "kinetostatics, positions 6, 12: no balancing force or reactions")
+
+
+@pytest.mark.parametrize("lang", ["ru", "uk"])
+@pytest.mark.parametrize("code, params", [("answers.not_mapping", {}), ("input.unit_expected", {"kind": "length"})])
+def test_a_yaml_type_is_named_after_a_colon_in_ru_uk(lang, code, params):
+    """"got a list" as "\u0437\u0430\u0434\u0430\u043d\u043e: \u0441\u043f\u0438\u0441\u043e\u043a": the impersonal
+    "\u0437\u0430\u0434\u0430\u043d\u043e" before a masculine or feminine noun (\u0441\u043f\u0438\u0441\u043e\u043a,
+    \u0442\u0430\u0431\u043b\u0438\u0446\u0430, \u0442\u0435\u043a\u0441\u0442) does not agree in Russian and wants
+    the accusative (\u0442\u0430\u0431\u043b\u0438\u0446\u044e) in Ukrainian: the type is named after a colon."""
+    for got in ("list", "dict", "str", "bool", "NoneType"):
+        word = catalogue(lang)["terms"]["yaml_type"][got]
+        assert f"\u0437\u0430\u0434\u0430\u043d\u043e: {word}" in render(code, {**params, "got": got}, lang), (got, lang)
+
+
+@pytest.mark.parametrize("lang, text", [("ru", "\u043f\u043e \u043c\u043e\u0434\u0443\u043b\u044e \u0432\u0435\u0440\u043d\u043e"),
+                                        ("uk", "\u0437\u0430 \u043c\u043e\u0434\u0443\u043b\u0435\u043c \u043f\u0440\u0430\u0432\u0438\u043b\u044c\u043d\u043e")])
+def test_a_wrong_signs_note_says_the_magnitude_is_right_not_the_quantity(lang, text):
+    """"right magnitude, wrong sign": the modulus (\u043c\u043e\u0434\u0443\u043b\u044c) is right; "\u0432\u0435\u043b\u0438\u0447\u0438\u043d\u0430"
+    is the check table's word for the quantity itself (\u043d\u0435\u0438\u0437\u0432\u0435\u0441\u0442\u043d\u0430\u044f
+    \u0432\u0435\u043b\u0438\u0447\u0438\u043d\u0430), so "\u0432\u0435\u043b\u0438\u0447\u0438\u043d\u0430 \u0432\u0435\u0440\u043d\u0430" read as the quantity being right."""
+    assert render("answers.note_sign", {}, lang).startswith(text)
