@@ -950,12 +950,12 @@ def _run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = fro
     written.update({"summary.csv", "summary.html", "check.csv"} | ({GRADEBOOK} if gradebook else set()))
     removed = _remove_stale(out, old_files, written)
     atomic_write(out / MANIFEST, json.dumps({"files": sorted(written)}, indent=1) + "\n")
+    from .check import variant_order
     from .summary import print_batch
     if skipped_sets:
         set_notes.append(Message("batch.answers_outside", count=len(skipped_sets),
-                                 variants=sorted({str(s.variant if s.variant not in (None, "") else s.stem)
-                                                  for s in skipped_sets},
-                                                 key=lambda v: (not v.isdigit(), int(v) if v.isdigit() else 0, v))))
+                                 variants=variant_order({str(s.variant if s.variant not in (None, "") else s.stem)
+                                                         for s in skipped_sets})))
     notes = dict.fromkeys(set_notes + [n for s in sets or [] for n in s.notes]       # each once, in order
                           + [n for o in outcomes.values() for n in o.get("notes", ())])
     print_batch(rows, out, skipped, removed, notes=list(notes), lang=lang)

@@ -138,6 +138,11 @@ class AnswerSet:
         return self.stem is not None and (self.stem == task.name or (tv is not None and _same(self.stem, tv)))
 
 
+def variant_order(names) -> list[str]:
+    """Variant names in their order: whole numbers by value (3 before 12), then the rest as text."""
+    return sorted(names, key=lambda v: (not v.isdigit(), int(v) if v.isdigit() else 0, v))
+
+
 def _same(a, b) -> bool:
     sa, sb = str(a).strip(), str(b).strip()
     if sa == sb:

@@ -260,7 +260,7 @@ def check(
     error and status (ok, sign, outside, missing, unknown_path, not_computed). Exit 1 if
     any answer is not ok (or there are none), 2 invalid input, 3 a stage failed."""
     from .check import (check_csv, grade, load_sources, load_tolerance_file, repeats, set_code, set_status,
-                        task_answer_set, tolerances)
+                        task_answer_set, tolerances, variant_order)
     from .orchestrate import compute, prepare
     from .pipeline import PartialResults
     _check_csv_style(csv_style)
@@ -287,7 +287,7 @@ def check(
                 mine = [a for a in readable if a.matches(task)]
                 if len(mine) < len(readable):   # a table or folder of the whole group: the others are not this task's
                     kept = {id(a) for a in mine}
-                    other = _variant_order({str(a.variant) if a.variant not in (None, "") else a.stem or "?"
+                    other = variant_order({str(a.variant) if a.variant not in (None, "") else a.stem or "?"
                                             for a in readable if id(a) not in kept})
                     _err(f"{note}: " + in_lang(Message("answers.other_variants", count=len(readable) - len(mine),
                                                                variants=other[:8], more=", ..." if len(other) > 8 else ""),
@@ -354,16 +354,6 @@ def check(
         except OSError as exc:
             raise _fail_write(exc)
     raise typer.Exit(code)
-
-
-def _variant_order(names) -> list[str]:
-    """Variant names in their order: numbers by value (3 before 12), then the rest as text."""
-    def key(v: str):
-        try:
-            return (0, float(v), v)
-        except ValueError:
-            return (1, 0.0, v)
-    return sorted(names, key=key)
 
 
 @app.command()

@@ -79,7 +79,7 @@ class GearResult:
             # (interference, or a flank with no involute): part of B1B2 is no conjugate action
             # (interference, or a flank with no involute), or where a tooth is pointed below its
             # tip circle (sa < 0: it ends at its point; the formula counts up to the tip circle)
-            "eps_alpha_formal": bool(any(ch["interference"]) or g["sa1"] <= 0 or g["sa2"] <= 0),
+            "eps_alpha_formal": bool(any(ch["interference"]) or g["sa1"] < 0 or g["sa2"] < 0),
             "m": self.m, "z": list(self.z), "x": [float(v) for v in self.x], "alpha": self.alpha,
             "ha": self.ha, "c": self.c, "rho_f": self.rho_f, "sa_min": self.sa_min, "rule": self.rule,
             "a": _f(g["a"]), "inv_alpha": _f(math.tan(math.radians(self.alpha)) - math.radians(self.alpha)),
@@ -265,7 +265,7 @@ def _check_warnings(g, ch, zz, xx, m, sa_min, rhol, warnings) -> None:
     if any(ch["interference"]):        # the formula counts the part of B1B2 off the involutes
         warnings.append(Message("gears.eps_formal", eps=g["eps"], b=g["ga"] * 1e3, n=g["N1N2"] * 1e3))
     for n in (1, 2):                   # a tip beyond the tooth's point: counted by the formula, not there
-        if g[f"sa{n}"] <= 0:
+        if g[f"sa{n}"] < 0:            # (pointed on the tip circle itself: eps as the formula gives it)
             warnings.append(Message("gears.eps_pointed", eps=g["eps"], wheel=n, r_point=g[f"r_point{n}"] * 1e3,
                                     ra=g[f"ra{n}"] * 1e3, eps_cut=g["eps_cut"]))
     if ch["contact_ratio_low"]:
