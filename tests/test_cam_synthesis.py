@@ -326,3 +326,16 @@ def test_phases_a_hair_over_360_are_360_and_more_is_said_with_its_digits():
     with pytest.raises(TaskError) as err:
         load_task(task(133.33334, 93.33333, 133.33334))
     assert "rise + far_dwell + return = 360.00001 deg exceeds 360" in err.value.render()
+
+
+def test_a_knife_edge_over_corners_is_told_without_a_roller():
+    """Constant velocity has velocity jumps at the rise's ends: the profile's corners are told; a
+    knife-edge follower's warning names its edge, not the roller rule it has no roller for."""
+    from cam_spec import section
+
+    def codes(follower):
+        d = dict(follower=follower, stroke=0.03, phases=fields(rise=120, far_dwell=30, return_=120),
+                 laws=fields(rise="constant_velocity", return_="cosine"))
+        return [getattr(w, "code", "") for w in synthesize(section("cam", d)).warnings]
+    assert "cam.profile_corners_knife" in codes("knife") and "cam.profile_corners" not in codes("knife")
+    assert "cam.profile_corners" in codes("translating")

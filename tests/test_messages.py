@@ -107,6 +107,9 @@ ENGLISH = [
      'rigid impact (jump of velocity, infinite acceleration) at phi = 123.5 deg (rise/far_dwell)'),
     ('cam.soft_impact', {'phi': 123.45678, 'where': 'rise/far_dwell'},
      'soft impact (finite jump of acceleration) at phi = 123.5 deg (rise/far_dwell)'),
+    ('cam.profile_corners_knife', {'phis': [0.0, 120.0]},
+     'the profile has corners where the velocity jumps (phi = 0, 120 deg): the knife edge rides over sharp edges '
+     'there; rho_min refers to the smooth parts'),
     ('cam.profile_corners', {'phis': [0.0, 120.00001]},
      'the pitch profile has corners where the velocity jumps (phi = 0, 120 deg): the working profile has sharp edges there; rho_min and the roller rule refer to the smooth parts'),
     ('gears.no_involute_above_tip', {'wheel': 1, 'z': 7, 'x': -0.5, 'r_start': 12.345678900000001, 'r_tip': 11.9},

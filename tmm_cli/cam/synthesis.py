@@ -426,7 +426,8 @@ def synthesize(spec: CamSection) -> CamResult:
     speed, laws_info, impacts, phases = _laws_impacts(spec, motion, rocker, warnings)
     corners = [e for e in impacts if e["kind"] == "rigid"]
     if corners:
-        warnings.append(Message("cam.profile_corners", phis=[e["phi"] for e in corners]))
+        warnings.append(Message("cam.profile_corners_knife" if follower == "knife" else "cam.profile_corners",
+                                phis=[e["phi"] for e in corners]))
 
     construction = _construction(motion, geom, fams, O, size.tangents, scale)
     extra = {"r0_min": _f(size.r0_min), "r0_given": r0_chosen is not None,
