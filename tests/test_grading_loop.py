@@ -300,6 +300,9 @@ def test_copies_flagged_grades_and_a_moodle_gradebook(tmp_path):
     html = (tmp_path / "o" / "summary.html").read_text(encoding="utf-8")
     assert "key_of=3" in html and "same_as=Anna" in html                   # the flags' titles
     assert "same answers as Anna" in html and "within tolerance of variant 3&#x27;s key" in html
+    # the evidence beside it: Anna's and Boris's two answers are both right (aw 1 % off, alpha_w 1 % off)
+    assert [rows[n]["gears.aw"] for n in ("Anna", "Boris")] == ["ok", "ok"]
+    assert "same answers as Anna (2 answers, all within tolerance: right results agree by themselves)" in html
     book = _csv(tmp_path / "o" / "gradebook-moodle.csv")
     assert list(book[0]) == ["Email address", "ID number", "Full name", "Group", "tmm grade", "Feedback"]
     assert {(b["Email address"], b["tmm grade"]) for b in book} == {
@@ -689,3 +692,15 @@ def test_an_answers_files_unknown_keys_all_named_and_a_keys_blanks_dropped(tmp_p
     ok = _write(tmp_path, "blank.yaml", f'variant: 4\nanswers:\n  "gears.aw ": {key["gears.aw"]}\n')
     res = runner.invoke(app, ["check", str(src / "v4.yaml"), "--answers", str(ok), "--quantities", "gears.aw"])
     assert "1 of 1 answers within tolerance" in " ".join(res.output.split()) and res.exit_code == 0, res.output
+
+
+def test_a_copy_flag_says_whether_the_agreement_is_in_mistakes():
+    """summary.html's same_as: the answers that agree, and how many of them are wrong (shared
+    mistakes are what suggests a copy; shared right results need not)."""
+    from tmm_cli.copies import agreed
+    from tmm_cli.summary import flag_text
+    assert sorted(agreed({"a": 1.0, "b": 2.0, "c": 3.0}, {"a": 1.0, "b": 2.0000001, "d": 3.0})) == ["a"]
+    assert flag_text("same_as=Anna", "en", {"Anna": (10, 3)}) == \
+        "same answers as Anna (10 answers, 3 of them outside tolerance: the same mistakes)"
+    assert flag_text("same_as=Anna", "en") == "same answers as Anna"
+    assert flag_text("key_of=3", "ru") == "\u0432 \u0434\u043e\u043f\u0443\u0441\u043a\u0435 \u043a\u043b\u044e\u0447\u0430 \u0432\u0430\u0440\u0438\u0430\u043d\u0442\u0430 3"

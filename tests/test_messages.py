@@ -408,6 +408,8 @@ ENGLISH = [
      "gradebook-moodle.csv: 2 lines have no email and no ID number, by which Moodle's import finds a student "
      "(a.yaml, b.yaml): give `student: {email: ...}` or `id` in the answers"),
     ('batch.flag_same_as', {'who': 'Ivanov'}, 'same answers as Ivanov'),
+    ('batch.same_right', {'n': 12}, '12 answers, all within tolerance: right results agree by themselves'),
+    ('batch.same_wrong', {'n': 12, 'wrong': 3}, '12 answers, 3 of them outside tolerance: the same mistakes'),
     ('batch.flag_key_of', {'variant': '17'}, "within tolerance of variant 17's key"),
     ('batch.flag_repeat', {'files': ['a.yaml', 'b.yaml']}, 'another submission: a.yaml, b.yaml'),
     ('form.wrote', {'n': 25, 'out': 'forms'}, 'wrote 25 forms and keys to forms'),

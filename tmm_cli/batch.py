@@ -964,14 +964,19 @@ def _run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = fro
 
 def _copies(rows: list[dict], keys: list[dict], variants: list[str]) -> None:
     """Add `same_as=<student>` and `key_of=<variant>` to the graded rows' `flags`."""
-    from .copies import KeyTable, key_of, same_as
+    from .copies import KeyTable, agreed, key_of, same_as
     graded = [r for r in rows if r.get("_set") is not None]
     nums = [{p: v for p, v in r["_set"].answers.items() if v is not None and p not in r["_set"].invalid}
             for r in graded]
-    for r, others in zip(graded, same_as(nums)):
+    for i, (r, others) in enumerate(zip(graded, same_as(nums))):
         for j in others:
             o = graded[j]
-            r["flags"] = ";".join(filter(None, [r["flags"], f"same_as={o['student'] or o['answers_file']}"]))
+            who = o['student'] or o['answers_file']
+            r["flags"] = ";".join(filter(None, [r["flags"], f"same_as={who}"]))
+            # the evidence summary.html gives beside the flag: how many answers agree, how many of
+            # them are wrong (the same mistakes say more than the same right results)
+            same = agreed(nums[i], nums[j])
+            r.setdefault("_same", {})[who] = (len(same), sum(r.get("per_path", {}).get(p) != "ok" for p in same))
     table = KeyTable(keys)
     for r, a in zip(graded, nums):
         k = key_of(a, r["_k"], r.get("ok", 0), table)

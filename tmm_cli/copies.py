@@ -20,6 +20,11 @@ def _agree(a: float, b: float) -> bool:
     return abs(a - b) <= SAME_REL * max(abs(a), abs(b))
 
 
+def agreed(a: dict[str, float], b: dict[str, float]) -> list[str]:
+    """The paths both sets answered with numbers that agree (to SAME_REL)."""
+    return [p for p in a.keys() & b.keys() if _agree(a[p], b[p])]
+
+
 def same_as(answers: list[dict[str, float]]) -> list[list[int]]:
     """For each set (path -> number), the indices of the other sets it agrees with."""
     out: list[list[int]] = [[] for _ in answers]
@@ -30,8 +35,7 @@ def same_as(answers: list[dict[str, float]]) -> list[list[int]]:
             both = ai.keys() & aj.keys()
             if not both:
                 continue
-            same = sum(_agree(ai[p], aj[p]) for p in both)
-            if same >= SAME_SHARE * len(both):
+            if len(agreed(ai, aj)) >= SAME_SHARE * len(both):
                 out[i].append(j)
                 out[j].append(i)
     return out

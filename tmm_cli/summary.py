@@ -501,14 +501,22 @@ COLOURS = {"ok": "#c8e6c9", "outside": "#ffcdd2", "sign": "#e1bee7", "missing": 
            "failed": "#ef9a9a", "computed": "#e3f2fd"}
 
 
-def flag_text(flag: str, lang: str = "en") -> str:
+def flag_text(flag: str, lang: str = "en", same: dict | None = None) -> str:
     """A summary.csv flag as summary.html says it in ``lang``: 'same_as=Ivanov' -> "same answers as
-    Ivanov", 'key_of=17' -> "within tolerance of variant 17's key", 'repeat=a.yaml|b.yaml' ->
-    "another submission: a.yaml, b.yaml"; a flag of another kind as written."""
+    Ivanov" (with ``same`` {who: (answers agreeing, of them wrong)}: how many agree and whether
+    they are the same mistakes or only the same right results), 'key_of=17' -> "within tolerance of
+    variant 17's key", 'repeat=a.yaml|b.yaml' -> "another submission: a.yaml, b.yaml"; a flag of
+    another kind as written."""
     from .messages import Message, in_lang
     kind, _, value = flag.partition("=")
     if kind == "same_as":
-        return in_lang(Message("batch.flag_same_as", who=value), lang)
+        text = in_lang(Message("batch.flag_same_as", who=value), lang)
+        if same and value in same:
+            n, wrong = same[value]
+            why = (Message("batch.same_wrong", n=n, wrong=wrong) if wrong
+                   else Message("batch.same_right", n=n))
+            text += f" ({in_lang(why, lang)})"
+        return text
     if kind == "key_of":
         return in_lang(Message("batch.flag_key_of", variant=value), lang)
     if kind == "repeat":
@@ -553,7 +561,7 @@ def summary_html(rows: list[dict], paths: list[str], source: str, lang: str = "e
             tds += f"<td>{e(r.get('grade', ''))}</td>"
         flags = [f for f in str(r.get("flags") or "").split(";") if f]
         # each in words, its summary.csv form in the title (what a script or a search of the page finds)
-        tds += "<td class='fl'>" + "<br>".join(f'<span title="{e(f)}">{e(flag_text(f, lang))}</span>'
+        tds += "<td class='fl'>" + "<br>".join(f'<span title="{e(f)}">{e(flag_text(f, lang, r.get("_same")))}</span>'
                                              for f in flags) + "</td>"
         for p in paths:
             ps = r.get(p, "")
