@@ -61,7 +61,11 @@ def test_grading_with_the_graphical_tolerance(forging):
     assert abs(ref - hand) > 3 * m
     assert compare(ref + abs(ref - hand), ref, t, False)[0] == "outside"
     assert compare(-ref, ref, t, False)[0] == "sign"
-    assert t.text == f"band {lo:.6g}..{hi:.6g}"
+    assert t.text == f"band {lo:.10g}..{hi:.10g}"
+    # sign: any keeps the band (the magnitude graded against it)
+    import dataclasses
+    both = dataclasses.replace(t, any_sign=True)
+    assert compare(-ref, ref, both, False)[0] == "ok" and compare(-3 * ref, ref, both, False)[0] == "outside"
 
 
 def test_the_graphical_flywheel_band_on_a_worked_case():
@@ -167,3 +171,18 @@ def test_a_misspelt_tolerance_key_is_told_even_as_a_section_name():
         ["default", "positions.ph0", "kinematcs", "gears", "positions.K", "kinematics", "zzz"], results)}
     assert said == {"positions.ph0": "did you mean 'positions.phi0'?", "kinematcs": "did you mean 'kinematics'?",
                     "zzz": "no such path in the results"}
+
+
+def test_a_batchs_angle_notes_are_one():
+    """Each variant of a batch gives its own note on angles graded with a share; the batch prints
+    one: the largest share and the paths of all (sorted), where the first note was."""
+    from tmm_cli.check import merged_angle_notes
+    from tmm_cli.messages import Message
+
+    def note(rel, paths):
+        return Message("answers.angle_relative", rel=rel, at90=90 * rel, paths=paths, more="", path=paths[0])
+    other = Message("answers.note_missing")
+    out = merged_angle_notes([other, note(0.05, ["positions.phi0"]), note(0.1, ["positions.theta", "positions.phi0"])])
+    assert [getattr(n, "code", None) for n in out] == ["answers.note_missing", "answers.angle_relative"]
+    assert out[1].params["rel"] == 0.1 and out[1].params["paths"] == ["positions.phi0", "positions.theta"]
+    assert merged_angle_notes([other]) == [other]

@@ -956,8 +956,9 @@ def _run_batch(source: str, out: Path, *, jobs: int = 1, formats: set[str] = fro
         set_notes.append(Message("batch.answers_outside", count=len(skipped_sets),
                                  variants=variant_order({str(s.variant if s.variant not in (None, "") else s.stem)
                                                          for s in skipped_sets})))
-    notes = dict.fromkeys(set_notes + [n for s in sets or [] for n in s.notes]       # each once, in order
-                          + [n for o in outcomes.values() for n in o.get("notes", ())])
+    from .check import merged_angle_notes
+    notes = dict.fromkeys(merged_angle_notes(                                        # each once, in order
+        set_notes + [n for s in sets or [] for n in s.notes] + [n for o in outcomes.values() for n in o.get("notes", ())]))
     print_batch(rows, out, skipped, removed, notes=list(notes), lang=lang)
     return max((r["code"] for r in rows), default=0)
 

@@ -9,6 +9,7 @@ or its worst status (an invalid answer counts as one outside: a wrong answer).
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 import re
 from dataclasses import dataclass, field
@@ -49,7 +50,7 @@ class Tol:
     @property
     def text(self) -> str:
         if self.band is not None:
-            return f"band {self.band[0]:.6g}..{self.band[1]:.6g}"
+            return f"band {self.band[0]:.10g}..{self.band[1]:.10g}"    # as graded, to 10 digits
         if self.plain:
             return f"{self.rel:g}"
         parts = ([f"rel {self.rel:g}"] if self.rel else []) + ([f"abs {self.abs:g}"] if self.abs else [])
@@ -534,6 +535,28 @@ def angle_tolerance_note(rows: list[dict], tol: dict) -> Message | None:
                    more="" if len(paths) <= 4 else ", ...", path=sorted(paths)[0])
 
 
+def merged_angle_notes(notes: list) -> list:
+    """``notes`` with every ``answers.angle_relative`` (one per variant of a batch, each naming its
+    own paths) made one, where the first was: the largest share, the paths of them all."""
+    found = [n for n in notes if getattr(n, "code", None) == "answers.angle_relative"]
+    if len(found) < 2:
+        return list(notes)
+    rel = max(n.params["rel"] for n in found)
+    paths = sorted({p for n in found for p in n.params["paths"]})
+    more = len(paths) > 4 or any(n.params.get("more") for n in found)
+    one = Message("answers.angle_relative", rel=rel, at90=90.0 * rel, paths=paths[:4], more=", ..." if more else "",
+                  path=paths[0])
+    out, done = [], False
+    for n in notes:
+        if getattr(n, "code", None) == "answers.angle_relative":
+            if not done:
+                out.append(one)
+                done = True
+            continue
+        out.append(n)
+    return out
+
+
 # ------------------------------------------------------------------ results paths
 # ------------------------------------------------------------------ grading
 def bound_of(ref: float, tol: Tol) -> tuple[float, str]:
@@ -558,7 +581,8 @@ def compare(student: float, ref: float, tol: Tol, angle: bool) -> tuple[str, flo
     """(status, error, kind of error: 'rel' | 'abs'). With ``tol.any_sign`` the magnitude
     is graded: the answer or its negation, whichever is nearer."""
     if tol.any_sign:
-        a, b = (compare(s, ref, Tol(tol.rel, tol.abs, tol.plain), angle) for s in (student, -student))
+        one = dataclasses.replace(tol, any_sign=False)          # the same tolerance (a band too), one sign
+        a, b = (compare(s, ref, one, angle) for s in (student, -student))
         return ("ok", b[1], b[2]) if b[0] == "ok" and a[0] != "ok" else a
 
     def diff(a):

@@ -129,7 +129,7 @@ def graphical_tolerance(results: dict) -> dict[str, float | tuple[float, float]]
     12-position (hand) value and the accurate one, widened by HAND_SHARE of the larger (the
     relative error of `graphical_error` where the results lack the hand values)."""
     g = results.get("graphical_error") or graphical_error(results) or {}
-    out: dict[str, float] = {}
+    out: dict[str, float | tuple[float, float]] = {}
     plans = g.get("plans") or {}
     if plans.get("positions"):
         # the reading error r = READ_MM mu / segment, as the hand solution's: HAND_SHARE v_A / segment
