@@ -692,6 +692,9 @@ def test_an_answers_files_unknown_keys_all_named_and_a_keys_blanks_dropped(tmp_p
     ok = _write(tmp_path, "blank.yaml", f'variant: 4\nanswers:\n  "gears.aw ": {key["gears.aw"]}\n')
     res = runner.invoke(app, ["check", str(src / "v4.yaml"), "--answers", str(ok), "--quantities", "gears.aw"])
     assert "1 of 1 answers within tolerance" in " ".join(res.output.split()) and res.exit_code == 0, res.output
+    both = _write(tmp_path, "both.yaml", f'variant: 4\nanswers:\n  gears.aw: 1\n  "gears.aw ": {key["gears.aw"]}\n')
+    res = runner.invoke(app, ["check", str(src / "v4.yaml"), "--answers", str(both)])
+    assert "gears.aw is answered twice" in " ".join(res.output.split()) and res.exit_code == 1, res.output
 
 
 def test_a_copy_flag_says_whether_the_agreement_is_in_mistakes():

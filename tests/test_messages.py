@@ -403,6 +403,7 @@ ENGLISH = [
      "4.5 deg either side; a swapped working and idle stroke can pass): positions.phi0, positions.theta. An angle "
      "is better held in degrees: `positions.phi0: {abs: 0.5}` for each, in the task's `tolerance` or in "
      "--tolerance FILE"),
+    ('answers.twice', {'path': 'gears.aw'}, 'gears.aw is answered twice (once with a blank around the path)'),
     ('answers.not_read', {'reason': 'a.yaml: bad'}, 'not read: a.yaml: bad'),
     ('batch.gradebook_unmatched', {'file': 'gradebook-moodle.csv', 'n': 2, 'files': ['a.yaml', 'b.yaml'], 'more': ''},
      "gradebook-moodle.csv: 2 lines have no email and no ID number, by which Moodle's import finds a student "

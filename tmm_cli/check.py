@@ -270,6 +270,10 @@ def load_answers_file(path: Path, keep_errors: bool = False) -> AnswerSet:
                 raise err from None
             aset.error = aset.error or err.coded() or err.render()
             continue
+        if k in aset.answers:             # 'gears.aw' and 'gears.aw ': which is meant is not known
+            aset.answers[k] = None
+            aset.invalid[k] = ("" if v is None else str(v), Message("answers.twice", path=k))
+            continue
         _add_answer(aset, k, v)
     if data.get("tolerance") is not None:    # the instructor's tolerances only: the student's is ignored
         line, _ = _mark(marks, ("tolerance",))
