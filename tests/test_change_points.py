@@ -480,3 +480,20 @@ def test_an_entry_before_its_change_point_stays_alone_and_is_not_shown_twice():
     g = grouped(entries)
     shown = [(e["code"], [i["params"].get("joint") for i in items]) for e, items in g]
     assert shown == [("kinematics.transmission_dead", []), ("kinematics.change_point", ["C"])]
+
+
+def test_the_reports_warnings_list_a_change_points_items_under_it(tmp_path):
+    """The report's list of warnings: the change point's warning with its four items in a list
+    inside its own item (the PDF takes the nested list as Typst's), in the report's language."""
+    import re as _re
+
+    import tmm_cli
+    from tmm_cli.report import render_html
+    f = tmp_path / "task.yaml"
+    f.write_text(LIMIT.replace("zero: extreme", "zero: 0"), encoding="utf-8")
+    task = tmm_cli.load_task(f)
+    html, _ = render_html(tmm_cli.run(task, kinematics_curve=0), task, tmp_path / "o", "uk")
+    sec = html[html.index('id="warnings"'):]
+    items = _re.findall(r"<li>([^<]*)<ul>(.*?)</ul></li>", sec, _re.S)
+    assert len(items) == 1 and items[0][0].startswith("\u043e\u0441\u043e\u0431\u043b\u0438\u0432\u0435")
+    assert items[0][1].count("<li>") == 4 and "\u043f\u043e\u043b\u043e\u0436\u0435\u043d\u043d\u044f 6; 12" in items[0][1]
