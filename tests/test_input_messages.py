@@ -305,3 +305,20 @@ def test_a_choice_misspelt_or_by_the_courses_other_name_is_suggested(tmp_path, l
     assert res.exit_code == 2 and f"did you mean '{meant}'?" in res.output, res.output
     res, f = _validate(tmp_path, text.replace(f"return: {law}", "return: zigzag"))
     assert res.exit_code == 2 and "did you mean" not in res.output
+
+
+def test_an_unclosed_bracket_names_the_line_it_was_opened_on(tmp_path):
+    """YAML notices a '{' left open only on a later line: the error says where it was opened
+    (line 2, column 10: `answers: {gears.aw: 1`), not only where it was noticed."""
+    from tmm_cli.errors import TaskError
+    from tmm_cli.yamlload import load_yaml
+    f = tmp_path / "a.yaml"
+    f.write_text("variant: 7\nanswers: {gears.aw: 1\nstudent: {name: A}\n", encoding="utf-8")
+    with pytest.raises(TaskError) as err:
+        load_yaml(f)
+    text = err.value.render()
+    assert ":3:" in text and "the bracket opened at line 2, column 10 is not closed" in text, text
+    f.write_text("variant: 7\nanswers: {gears.aw: 1 2: 3}\n", encoding="utf-8")     # noticed on its own line
+    with pytest.raises(TaskError) as err:
+        load_yaml(f)
+    assert "bracket opened" not in err.value.render()

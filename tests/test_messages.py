@@ -403,6 +403,7 @@ ENGLISH = [
      "4.5 deg either side; a swapped working and idle stroke can pass): positions.phi0, positions.theta. An angle "
      "is better held in degrees: `positions.phi0: {abs: 0.5}` for each, in the task's `tolerance` or in "
      "--tolerance FILE"),
+    ('input.flow_open_hint', {'line': 1, 'col': 10}, '; the bracket opened at line 1, column 10 is not closed'),
     ('answers.twice', {'path': 'gears.aw'}, 'gears.aw is answered twice (once with a blank around the path)'),
     ('answers.not_read', {'reason': 'a.yaml: bad'}, 'not read: a.yaml: bad'),
     ('batch.gradebook_unmatched', {'file': 'gradebook-moodle.csv', 'n': 2, 'files': ['a.yaml', 'b.yaml'], 'more': ''},

@@ -223,6 +223,15 @@ def _indent_hint(text: str, line: int | None) -> Message | str:
     return Message("input.indent_hint", prev=prev, line=line, col_prev=indent(prev) + 1, col_line=indent(line) + 1)
 
 
+def _open_bracket_hint(exc, line: int | None) -> Message | str:
+    """Where an unclosed '{' or '[' was opened, when YAML noticed it on a later line
+    (``answers: {gears.aw: 1`` then a line: the error is reported on the next line); else ''."""
+    ctx = exc.context_mark
+    if ctx is None or line is None or ctx.line + 1 >= line or "flow" not in str(exc.context or ""):
+        return ""
+    return Message("input.flow_open_hint", line=ctx.line + 1, col=ctx.column + 1)
+
+
 _PROBLEMS = (re.compile(r"^expected <block end>, but found '(.*)'$"),
              re.compile(r"^expected ',' or '(.)', but got '(.*)'$"),
              re.compile(r"^found character '(.)' that cannot start any token$"))
@@ -386,9 +395,10 @@ def load_yaml(source: str | Path, *, text: str | None = None) -> tuple[Any, dict
             # a stray comma ('speed: 1450 rpm,' then a line; '{a: 1,, b: 2}'): the mark is on it
             raise TaskError("YAML syntax error", file=file, issues=[("", line, col, Message(
                 "input.yaml_syntax", problem=Message("input.yaml_comma"), hint=Message("text", text="")))]) from None
+        hint = _indent_hint(text, line) or _open_bracket_hint(exc, line) or Message("text", text="")
         raise TaskError("YAML syntax error", file=file,
                         issues=[("", line, col, Message("input.yaml_syntax", problem=_problem(str(exc.problem or exc.context)),
-                                                        hint=_indent_hint(text, line) or Message("text", text="")))
+                                                        hint=hint))
                                 ]) from None
     except yaml.reader.ReaderError as exc:
         # a character YAML does not allow (a NUL, a control character): the reader gives
