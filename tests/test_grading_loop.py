@@ -707,3 +707,18 @@ def test_a_copy_flag_says_whether_the_agreement_is_in_mistakes():
         "same answers as Anna (10 answers, 3 of them outside tolerance: the same mistakes)"
     assert flag_text("same_as=Anna", "en") == "same answers as Anna"
     assert flag_text("key_of=3", "ru") == "\u0432 \u0434\u043e\u043f\u0443\u0441\u043a\u0435 \u043a\u043b\u044e\u0447\u0430 \u0432\u0430\u0440\u0438\u0430\u043d\u0442\u0430 3"
+
+
+def test_a_set_shows_its_tasks_variant(tmp_path):
+    """A set that answers a task shows the task's variant in summary.csv and check.csv: '04' that
+    matched variant 4 is 4 (it stood as 04 beside the others' 4), and a file matched by its name
+    (no `variant` in it) has the variant too (check.csv left it empty)."""
+    src, ans = tmp_path / "src", tmp_path / "ans"
+    key = gear_key(14, 30)
+    _write(src, "v4.yaml", GEARS.format(v=4, z1=14, z2=30))
+    _write(ans, "a.yaml", f"variant: '04'\nstudent: {{name: A}}\nanswers: {{gears.aw: {key['gears.aw']}}}\n")
+    _write(ans, "v4.yaml", f"student: {{name: B}}\nanswers: {{gears.aw: {key['gears.aw']}}}\n")
+    res = runner.invoke(app, ["batch", str(src), "--answers", str(ans), "--out", str(tmp_path / "o")])
+    assert res.exit_code == 0, res.output
+    assert {(r["student"], r["variant"]) for r in _csv(tmp_path / "o" / "summary.csv")} == {("A", "4"), ("B", "4")}
+    assert {(r["student"], r["variant"]) for r in _csv(tmp_path / "o" / "check.csv")} == {("A", "4"), ("B", "4")}

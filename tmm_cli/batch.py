@@ -166,11 +166,16 @@ def work(path: Path, out: Path, folder: str, formats: set[str], lang: str, sets:
                 from .forms import expand
                 required = expand(quantities, results, strict=False)
             rows = grade(results, aset, tol, required)
+            # the set answers this task: its variant as the task writes it ('07' matched 7; a file
+            # matched by its name had none in check.csv)
+            shown = task.variant if task.variant is not None else aset.variant
+            for r in rows:
+                r["variant"] = "" if shown is None else shown
             all_rows.extend(rows)
             sst = set_status(rows)
             res["sets"].append({"index": i, "status": sst, "rows": rows, "counts": counts(rows),
                                 "student": aset.student, "group": aset.group, "answers_file": aset.answers_file,
-                                "variant": aset.variant if aset.variant is not None else task.variant,
+                                "variant": shown,
                                 "message": _set_message(rows, sst, aset)})
         if mine:
             from .tables import csv_styled
