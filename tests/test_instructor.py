@@ -265,6 +265,12 @@ def test_variants_empty_cell_and_unused_column(tmp_path):
     assert f"{tab}:3: variant 2: empty cell in column n" in res.output
     assert f"{tab}: warning: column m2 used by no placeholder of tpl.yaml" in res.output
     assert sorted(p.name for p in (tmp_path / "o").glob("*.yaml")) == ["3.yaml"]
+    # in Ukrainian (--lang): the lines and the count, the noun as its number takes it
+    res = runner.invoke(app, ["variants", str(tpl), str(tab), "--out", str(tmp_path / "u"), "--lang", "uk"])
+    assert res.exit_code == 2, res.output
+    assert (f"{tab}:2: \u0432\u0430\u0440\u0456\u0430\u043d\u0442 1: \u043f\u043e\u0440\u043e\u0436\u043d\u044f "
+            f"\u043a\u043b\u0456\u0442\u0438\u043d\u043a\u0430 \u0432 \u0441\u0442\u043e\u0432\u043f\u0446\u0456 a") in res.output
+    assert "\u0437\u0430\u043f\u0438\u0441\u0430\u043d\u043e 1 \u0437 3" in res.output and "wrote" not in res.output
 
 
 @pytest.mark.parametrize("table,what", [("variant,a\n1,2\n", "placeholder {b} names no column"),

@@ -542,7 +542,9 @@ def angle_tolerance_note(rows: list[dict], tol: dict) -> Message | None:
 def merged_angle_notes(notes: list) -> list:
     """``notes`` with every ``answers.angle_relative`` (one per variant of a batch, each naming its
     own paths) made one, where the first was: the largest share, the paths of them all."""
-    found = [n for n in notes if getattr(n, "code", None) == "answers.angle_relative"]
+    def angle(n) -> bool:
+        return isinstance(n, Message) and n.code == "answers.angle_relative"
+    found = [n for n in notes if angle(n)]
     if len(found) < 2:
         return list(notes)
     rel = max(n.params["rel"] for n in found)
@@ -552,7 +554,7 @@ def merged_angle_notes(notes: list) -> list:
                   path=paths[0])
     out, done = [], False
     for n in notes:
-        if getattr(n, "code", None) == "answers.angle_relative":
+        if angle(n):
             if not done:
                 out.append(one)
                 done = True

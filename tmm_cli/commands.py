@@ -417,22 +417,25 @@ def variants(
     template: Path = typer.Argument(..., metavar="TEMPLATE.yaml", help="a task file with {column} placeholders"),
     table: Path = typer.Argument(..., metavar="TABLE.csv", help="one row per variant; a `variant` column"),
     out: Path = typer.Option(..., "--out", "-o", help="folder for <variant>.yaml and variants.csv"),
+    lang: str = typer.Option("en", "--lang", "-l", help="language of the messages on the terminal "
+                                                        "(variants.csv stays English): en | ru | uk"),
 ):
     """Write one validated task per table row (DIR/<variant>.yaml) and DIR/variants.csv.
     A row whose task is invalid or does not assemble over the cycle is reported as
     TABLE:<line>: variant <v>: <reason> and not written. Exit 0 when every row is
     written, else 2."""
     from .variants import make_variants
+    lang = _check_lang(lang)
     try:
         code, report, messages = make_variants(template, table, out)
     except TaskError as exc:
-        raise _fail_task(exc)
+        raise _fail_task(exc, lang)
     except OSError as exc:
         raise _fail_write(exc)
     for m in messages:
-        _err(m)
+        _err(in_lang(m, lang))
     n = sum(r["status"] == "written" for r in report)
-    _err(f"wrote {n} of {len(report)} variants to {out} (and {out / 'variants.csv'})")
+    _err(in_lang(Message("variants.wrote", n=n, total=len(report), out=str(out), csv=str(out / "variants.csv")), lang))
     raise typer.Exit(code)
 
 

@@ -75,7 +75,8 @@ def _walk(ann, raw: Any, path: tuple, out: list[str]) -> None:
             return
         # fields whose unit another field sets (a cam's stroke: a length but for a rocker's swing):
         # the section names those that are lengths in this raw mapping
-        for key in getattr(ann, "plain_lengths", lambda _raw: ())(raw):
+        named = ann.__dict__.get("plain_lengths")        # a staticmethod of the section's own class
+        for key in (named.__func__(raw) if isinstance(named, staticmethod) else ()):
             v = raw.get(key)
             if isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v):
                 msg = _message("length", float(v), path + (key,))

@@ -13,6 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from .errors import TaskError, dotted
+from .messages import Message
 
 _PLACE = re.compile(r"\{\{|\}\}|\{([^{}]*)\}")
 _HEADER_UNIT = re.compile(r"^\s*(?P<name>[^,\[\]]+?)\s*(?:,\s*(?P<u1>.+?)|\[(?P<u2>[^\]]+)\])\s*$")
@@ -128,8 +129,8 @@ def make_variants(template: Path, table: Path, out: Path) -> tuple[int, list[dic
     report, messages, code = [], [], 0
     unused = [n for n in cols if n != "variant" and n not in used]
     if unused:      # a column the instructor meant to vary but no placeholder takes
-        messages.append(f"{table}: warning: column{'s' if len(unused) > 1 else ''} "
-                        f"{', '.join(unused)} used by no placeholder of {Path(template).name}")
+        messages.append(Message("variants.unused_columns", table=str(table), columns=unused,
+                                template=Path(template).name))
     from .safepath import UniqueNames
     names_used = UniqueNames()       # "a" and "A": one file on Windows and macOS
     from rich.console import Console
@@ -143,15 +144,16 @@ def make_variants(template: Path, table: Path, out: Path) -> tuple[int, list[dic
             status, msg = "written", ""
             try:
                 if bad or raw_v == "":
-                    raise _RowError(bad or "empty `variant` cell")
+                    raise _RowError(bad or Message("variants.empty_variant"))
                 cells = {n: cell_value(row.get(h, "")) for n, (h, _) in cols.items()}
                 empty = [n for n in used if cells[n] == ""]
                 if empty:       # else '' or ' mm' reaches the field, a message about the field
-                    raise _RowError(f"empty cell{'s' if len(empty) > 1 else ''} in column"
-                                    f"{'s' if len(empty) > 1 else ''} {', '.join(empty)}")
+                    raise _RowError(Message("variants.empty_cells", columns=empty))
                 wordy = [n for n in used if units.get(n) and not isinstance(cells[n], (int, float))]
                 if wordy:       # else 'abc mm' reaches the field: "'abc' is not a unit"
-                    raise _RowError("; ".join(f"column {cols[n][0]}: {_not_a_number(cells[n])}" for n in wordy))
+                    raise _RowError(Message("variants.not_numbers", cells=[
+                        Message("variants.column_reason", column=cols[n][0], reason=_not_a_number(cells[n]))
+                        for n in wordy]))
                 task = substitute(data, cells, units)
                 if "variant" not in data:       # after schema and title, as in a hand-written task
                     items = list(task.items())
@@ -164,10 +166,15 @@ def make_variants(template: Path, table: Path, out: Path) -> tuple[int, list[dic
             except BaseException as exc:
                 if isinstance(exc, KeyboardInterrupt):
                     raise
-                c, _, m = (2, "invalid", str(exc)) if isinstance(exc, _RowError) else classify(exc)
-                status, msg, code = "invalid", _strip_file(m, target), max(code, 2)
+                if isinstance(exc, _RowError):      # the row's own reason, coded (said in --lang)
+                    why = exc.args[0] if isinstance(exc.args[0], Message) else Message("text", text=str(exc.args[0]))
+                else:                               # a stage's, coded; the task's as written, its file stripped
+                    from .batch import stage_failure_message
+                    m, coded = classify(exc)[2], stage_failure_message(exc)
+                    why = coded if coded is not None and str(coded) == m else Message("text", text=_strip_file(m, target))
+                status, msg, code = "invalid", str(why), max(code, 2)
                 _remove_generated(target)
-                messages.append(f"{table}:{line}: variant {raw_v or '?'}: {msg}")
+                messages.append(Message("variants.row", where=f"{table}:{line}", variant=raw_v or "?", reason=why))
             report.append({"line": line, "variant": raw_v, "file": target.name if status == "written" else "",
                            "status": status, "message": msg})
             advance()
@@ -186,15 +193,15 @@ def _unit_problem(unit: str):
     return None
 
 
-def _not_a_number(cell: str) -> str:
+def _not_a_number(cell: str) -> Message:
     """Why a cell of a column with a unit is no number: the grammar's reason ('1,2,3': more
     than one decimal mark), else (a unit of its own, a fraction) that it is not a number."""
     from .numbers import read
     try:
         read(cell)
     except ValueError as exc:
-        return str(exc.args[0])
-    return f"{cell!r} is not a number"
+        return exc.args[0] if isinstance(exc.args[0], Message) else Message("text", text=str(exc.args[0]))
+    return Message("input.number_not_number", text=cell)
 
 
 class _RowError(ValueError):
