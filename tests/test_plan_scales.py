@@ -255,3 +255,36 @@ def test_pdf_prints_the_plans_at_full_size(shared_once, name):
             assert abs(got - want) <= 0.5, (got, want)
             seen += 1
     assert seen >= 12
+
+
+WITH_FLYWHEEL = sorted(p.stem for p in (ROOT / "tasks").glob("*.yaml")
+                       if re.search(r"^flywheel:", p.read_text(encoding="utf-8"), re.M))
+
+
+@pytest.mark.parametrize("name", WITH_FLYWHEEL)
+def test_the_energy_mass_diagram_is_drawn_at_its_scale(shared_once, name):
+    """The energy-mass (Wittenbauer) diagram's axes are in millimetres of the drawing: a tick
+    label's value is its distance in mm on the page (both axes; it was stretched to its figure,
+    23 mm a 20-mm step), and the segment kl is as long as the caption says, so J = kl mu_T /
+    (omega_m^2 delta) can be measured with a ruler."""
+    out = report_out(shared_once, name, "en")
+    svg_path = out / "figures" / "energy-mass.svg"
+    if not svg_path.exists():
+        pytest.skip("no energy-mass diagram (another flywheel method)")
+    svg = svg_path.read_text(encoding="utf-8")
+    w_pt, vb_w = float(re.search(r'width="([\d.]+)pt"', svg).group(1)), float(re.search(r'viewBox="0 0 ([\d.]+)', svg).group(1))
+    assert w_pt / MM == pytest.approx(vb_w, abs=0.05)                      # one unit a millimetre
+    ticks = [(float(x), float(y), _num(v)) for x, y, v in
+             re.findall(r'<text x="([\d.]+)" y="([\d.]+)" font-size="[\d.]+" text-anchor="(?:middle|end)">(' + _NUM + r')</text>', svg)]
+    for axis in (0, 1):                    # x: the labels along one y; y: along one x
+        other = 1 - axis
+        line = [t for t in ticks if abs(t[other] - ticks[0 if axis == 0 else -1][other]) < 1e-6]
+        assert len(line) >= 3, (axis, ticks)
+        for a, b in zip(line, line[1:]):
+            step = abs(b[axis] - a[axis])
+            assert step == pytest.approx(abs(b[2] - a[2]), abs=0.02), (axis, a, b)
+    k = re.search(r'<path d="M([\d.]+) ([\d.]+)L([\d.]+) ([\d.]+)" fill="none" stroke="#1e8449"', svg)
+    drawn = abs(float(k.group(4)) - float(k.group(2)))
+    page = html_mod.unescape((out / "report.html").read_text(encoding="utf-8"))
+    said = _num(re.search(r"kl = (" + _NUM + ") mm", page).group(1))
+    assert drawn == pytest.approx(said, abs=0.06)

@@ -75,12 +75,22 @@ def _wittenbauer(ctx, d):
     ylo = min(float(np.nanmin(T)), k, l_)
     yhi = max(float(np.nanmax(T)), k, l_)
     span_T = max(yhi - ylo, 1e-300)
-    muJ = ctx.figures.nice_scale(Jmax / 90.0)
-    muT = ctx.figures.nice_scale(span_T / 110.0)
-    x = J / muJ
-    y = T / muT
     from ..svgchart import subplots
     fig, ax = subplots(120, 150)
+    # laid out first (the labels with a scale of their length), then the scales chosen for the
+    # axes' own length on the paper: a millimetre of the axes is a millimetre of the page, so
+    # kl and the tangents measure with a ruler as the caption states them (the axes were
+    # stretched to the figure: 23 mm a 20-mm grid)
+    ax.set_xlabel(ctx.t("dyn.witt_x", mu="0.0025"))
+    ax.set_ylabel(ctx.t("dyn.witt_y", mu="0.0025"))
+    fig.tight_layout()
+    pos = ax.get_position()
+    len_x = pos.width * fig.get_figwidth() * 25.4
+    len_y = pos.height * fig.get_figheight() * 25.4
+    muJ = ctx.figures.nice_scale(Jmax / len_x)
+    muT = ctx.figures.nice_scale(span_T * 1.08 / len_y)
+    x = J / muJ
+    y = T / muT
     ax.plot(x, y, color="k", lw=1.0)
     xe = Jmax / muJ
     xs = np.array([0.0, xe])
@@ -91,12 +101,14 @@ def _wittenbauer(ctx, d):
     ax.annotate("l", (0, l_ / muT), xytext=(3, 0), textcoords="offset points", color="#1e8449")
     ax.axhline(0, color="0.6", lw=0.5)
     ax.axvline(0, color="0.3", lw=0.6)
-    ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel(ctx.t("dyn.witt_x", mu=f"{muJ:g}"))
     ax.set_ylabel(ctx.t("dyn.witt_y", mu=f"{muT:g}"))
+    # the limits span the axes' length in mm (one unit a millimetre both ways), the data centred
+    ex, ey = (len_x - xe) / 2, (len_y - (yhi - ylo) / muT) / 2
+    ax.set_xlim(-ex, xe + ex)
+    ax.set_ylim(ylo / muT - ey, yhi / muT + ey)
     ax.grid(True, lw=0.3, alpha=0.5)
     ax.legend(loc="best")
-    fig.tight_layout()
     pmax = math.degrees(math.atan(muJ / muT * s_up))
     pmin = math.degrees(math.atan(muJ / muT * s_lo))
     kl = (k - l_) / muT
