@@ -102,6 +102,13 @@ def test_contents_conclusions_and_references(note):
     res = json.loads((note.parent / "results.json").read_text())
     J = res["flywheel"]["J"]
     assert f"J = {J:.4g}".replace(".", ",") + " кг·м²" in text.replace("\n", " ")
+    # the conclusions as typeset text: subscripts set (no raw a_w, ε_α, M_зр), the structure's
+    # arrow, and no colophon of the report (it was printed over the last page's title block)
+    start = text.rindex("Висновки")
+    concl = text[start:text.index("Список літератури", start)]
+    assert "_" not in concl and "->" not in concl and "→" in concl, concl
+    assert "ступенів рухомості механізму W = 1" in concl.replace("\n", " ")
+    assert "Розрахунок виконано програмою tmm" not in text
 
 
 def test_sheets_title_blocks_take_the_course_header(tmp_path):

@@ -54,7 +54,7 @@ def conclusions(results: dict, lang: str) -> list[str]:
     out = []
     st = results.get("structure")
     if st:
-        out.append(W["c_structure"].format(W=st.get("W"), formula=st.get("formula")))
+        out.append(W["c_structure"].format(W=st.get("W"), formula=str(st.get("formula")).replace("->", "\u2192")))
     pos = results.get("positions") or {}
     syn = results.get("synthesis") or {}
     if pos.get("over") == "input_range" and syn.get("structural_error"):
@@ -207,9 +207,26 @@ def _title_page(h: dict, lang: str) -> str:
 
 
 def _strip_head(html: str) -> str:
-    """The report's HTML less its own title block and contents (the note has its own)."""
+    """The report's HTML less its own title block and contents (the note has its own) and its
+    colophon (the report prints it in the bottom margin: on the note's page that is the title
+    block's top row)."""
     html = re.sub(r'<header class="report-head">.*?</header>', "", html, count=1, flags=re.S)
+    html = re.sub(r'<footer class="report-foot">.*?</footer>', "", html, count=1, flags=re.S)
     return re.sub(r'<nav class="toc">.*?</nav>', "", html, count=1, flags=re.S)
+
+
+_SUB = re.compile(r"(?<=\w)_(\w+)")
+
+
+def _par(text: str) -> str:
+    """A paragraph of the note's own text as Typst markup: a_w, eps_alpha (Greek letters), M_b (any script) with
+    their subscripts set as subscripts, the rest as written (Typst strings: nothing read as markup)."""
+    out, at = [], 0
+    for m in _SUB.finditer(text):
+        out.append(typst_pdf._s(text[at:m.start()]) + f"#sub({_q(m.group(1))})")
+        at = m.end()
+    out.append(typst_pdf._s(text[at:]))
+    return "#par[" + "".join(out) + "]"
 
 
 _FIGURE = re.compile(r"<figure\b[^>]*>.*?</figure>", re.S)
@@ -294,7 +311,7 @@ def to_typst(html: str, results: dict, task: Task | None, lang: str = "en") -> t
 """
     tail = rf"""
 #heading(numbering: none, {_q(W['conclusions'])})
-{''.join('#par(' + _q(c) + ')' + chr(10) for c in concl)}
+{''.join(_par(c) + chr(10) for c in concl)}
 #heading(numbering: none, {_q(W['biblio'])})
 #enum(numbering: "1.", {', '.join('[' + _q(b)[1:-1].replace('[', '(').replace(']', ')') + ']' for b in W['bibliography'])})
 #metadata("end") <note-end>
