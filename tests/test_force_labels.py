@@ -246,3 +246,15 @@ def test_a_tall_lever_drawn_larger():
             grown += 1
             assert mu < lever_scale(e, ke, FIG_W, LEVER_H)          # finer than in 110 mm
     assert grown >= 6
+
+
+def test_a_round_off_couple_is_not_drawn():
+    """An inertia couple at a dead centre is a round-off zero (-1.06e-15 N*m for a central
+    slider-crank's rod at position 0, where epsilon_2 = 0): the tables print 0 and the drawing
+    has no arrow for it; a real couple is drawn."""
+    from tmm_cli.drawings.forces import group_couples
+    e = {"couples": [{"name": "Mi1", "link": "crank", "M": 0.0, "kind": "inertia"},
+                     {"name": "Mi2", "link": "rod", "M": -1.06e-15, "kind": "inertia"},
+                     {"name": "Mi3", "link": "rod", "M": 2.5, "kind": "inertia"},
+                     {"name": "Mi4", "link": "other", "M": 3.0, "kind": "inertia"}]}
+    assert group_couples(e, {"crank", "rod"}) == [("Mi3", "rod", 2.5, "inertia")]

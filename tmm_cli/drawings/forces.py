@@ -97,8 +97,11 @@ def group_force_data(e: dict, info: dict, group_idx: set[int], index_by_name: di
 
 
 def group_couples(e: dict, group_names: set[str]):
+    """The couples on the group's links to draw: none that is a round-off zero (an inertia couple
+    at a dead centre, 1e-15 N*m, which the tables print as 0; results.reference's rule)."""
+    from ..results import reference
     return [(c["name"], c["link"], float(c["M"]), c["kind"]) for c in e.get("couples", [])
-            if c["link"] in group_names and c.get("M") is not None and abs(float(c["M"])) > 0]
+            if c["link"] in group_names and c.get("M") is not None and reference(float(c["M"])) != 0.0]
 
 
 def force_norms(forces) -> list[float]:
