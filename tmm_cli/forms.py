@@ -67,7 +67,7 @@ NOTATION: dict[str, tuple[str, str]] = {
     "delta": ("δ", ""),
     "omega_max": ("ω_max", "rad/s"),
     "omega_min": ("ω_min", "rad/s"),
-    "M_constant": ("M_c", "N*m"),
+    "M_constant": ("M_const", "N*m"),      # not M_c: the course writes the resistance moment so
     "diameter": ("D", "m"),
     "width": ("b", "m"),
     "mass": ("m", "kg"),
