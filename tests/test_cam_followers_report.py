@@ -35,7 +35,9 @@ def test_report_of_the_new_cams(name, lang, tmp_path):
     table = html[html.index(heading):]
     assert table.count("<tr") >= 2 * (n + 1)
     # the profile at a standard scale, stated
-    assert re.search(r"M (\d+(\.\d+)?:1|1:\d+(\.\d+)?)", html)
+    # (its mark as the language writes it: the Cyrillic capital Em in ru and uk, GOST 2.302)
+    mark = "M" if lang == "en" else "\u041c"
+    assert re.search(mark + r" (\d+(\.\d+)?:1|1:\d+(\.\d+)?)", html)
     if name == "cam_flat":
         assert "38.197" in html or "38,197" in html          # 2 max|ds/dphi| = 2 * 2h/P = 38.197 mm
     if name == "cam_chosen_size":

@@ -169,7 +169,7 @@ def test_cam_profile_is_the_tables_profile(tmp_path):
     html = (out / "report.html").read_text(encoding="utf-8")
     svg = (out / "figures" / "cam-profile.svg").read_text(encoding="utf-8")
     text = html_mod.unescape(re.sub(r"<[^>]+>", "", html))
-    unit = float(re.search(r"μl = ([\d.]+) mm/mm", text).group(1))       # real mm per paper mm
+    unit = 1000.0 * float(re.search(r"μl = ([\d.]+) m/mm", text).group(1))   # real mm per paper mm (stated in m/mm)
     # (the profile is that of the exact least base radius; the design radius is the one rounded up)
     r0 = _th(html, "Minimum base radius of the pitch profile r0 (exact; the profile is built on it), mm")
     e = _th(html, "Offset e (positive: lowers the rise pressure angle), mm")

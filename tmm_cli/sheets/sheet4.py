@@ -43,7 +43,7 @@ def draw_construction(cv, k, c, box, results: dict, task: Task | None, lang: str
     mm = TXT[lang]["mm"]
     cv.mtext(x0 + 5, y0 + h - 2, ctx.t("cam.construction_title"), 5.0, bold=True)
     cv.mtext(x0 + 5, y0 + h - 9, "μ", 3.5, sub="s", after=f" = μds/dφ = {unit / 1000.0:g} {TXT[lang]['m']}/{mm}"
-             f"   (M {label})")
+             f"   ({scale_mark(lang)} {label})")
     B0 = M(k["B0"])
     # the axes of the diagram through B0: s along the follower's path, ds/dφ across it
     cv.layer = "thin"

@@ -144,7 +144,7 @@ def draw_sliding(cv, g, box, lang="en") -> dict:
         curves.append((X, v, col))
     pts = draw_graph(cv, origin, curves, mu_x, mu_l, x_len=float(X.max()) / mu_x, y_up=LAMBDA_HI / mu_l + 4.0,
                      y_down=-LAMBDA_LO / mu_l + 2.0, x_sym="X", y_sym="λ",
-                     mu_text=f"μλ = {mu_l:g} 1/{T['mm']},  μX = {mu_x:g} {T['m']}/{T['mm']} (M {label})")
+                     mu_text=f"μλ = {mu_l:g} 1/{T['mm']},  μX = {mu_x:g} {T['m']}/{T['mm']} ({scale_mark(lang)} {label})")
     for p, (_, _, col), name in zip(pts, curves, ("1", "2")):
         if len(p):
             end = p[np.argmax(p[:, 0])] if name == "1" else p[np.argmin(p[:, 0])]

@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .. import locales
+from ..report.figures import scale_mark
 from .frame import FRAME, TB_H, length_scale, std_mu
 
 if TYPE_CHECKING:
@@ -57,7 +58,7 @@ def draw_train(cv, ctx, p, rows, a, heading: str, v_axis: str, lang: str) -> dic
     sx = x0f + 40.0
     ncol = max(c for *_, c, _ in rows) + 1
     cv.mtext(x0f + 5, y1f - 7, heading, 5.0, bold=True)
-    cv.mtext(x0f + 5, y1f - 14, "μ", 3.5, sub="l", after=f" = {unit / 1000.0:g} {U['m']}/{mm}   (M {label})")
+    cv.mtext(x0f + 5, y1f - 14, "μ", 3.5, sub="l", after=f" = {unit / 1000.0:g} {U['m']}/{mm}   ({scale_mark(lang)} {label})")
     cv.layer = "thin"
     right = sx + ncol * COL_W + 30.0
     cv.line((sx - 15.0, axis_y), (right + 10.0, axis_y), width=0.25, dash="6 1.5 1 1.5")

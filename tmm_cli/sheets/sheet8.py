@@ -13,6 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from ..drawings.balancing import counterweight_points
+from ..report.figures import scale_mark
 from .sheet1 import _xy
 from .frame import FRAME, TB_H, fit_text, length_scale, std_mu
 
@@ -40,7 +41,7 @@ def _linkage(cv, ctx, results, box) -> dict:
 
     cv.layer = "text"
     fit_text(cv, x0, y1 - 2.0, ctx.t("bal.sheet_linkage"), 5.0, x1 - x0, bold=True)
-    cv.mtext(x0, y1 - 9.0, "μ", 3.5, sub="l", after=f" = {unit / 1000.0:g} {ctx.t('bal.m_per_mm')}   (M {label})")
+    cv.mtext(x0, y1 - 9.0, "μ", 3.5, sub="l", after=f" = {unit / 1000.0:g} {ctx.t('bal.m_per_mm')}   ({scale_mark(ctx.lang)} {label})")
     cv.layer = "contour"
     for lk in links:
         q = [M(pts[p]) for p in lk["points"] if p in pts]

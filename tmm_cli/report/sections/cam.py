@@ -339,7 +339,9 @@ def _render(ctx, c, rows, method):
     pcap = {"flat": "cam.profile_flat_caption", "knife": "cam.profile_knife_caption"}.get(c["follower"],
                                                                                           "cam.profile_caption")
     fig, unit, label = profile_figure(ctx, c)
-    scale = f"M {label}" + _loc(ctx.lang, f" (μl = {f(unit, 4)} mm/mm)")
+    from ..figures import scale_mark
+    # μl in m/mm, as every other drawing of the report states it (unit: model mm per paper mm)
+    scale = f"{scale_mark(ctx.lang)} {label}" + _loc(ctx.lang, f" (μl = {f(unit / 1000.0, 4)} m/mm)")
     figs.append((ctx.svg(fig, "cam-profile"), t(pcap, scale=scale)))
     if not flat:
         figs.append((ctx.svg(pressure_figure(ctx, c), "cam-pressure-angle"), t("cam.pressure_caption")))
