@@ -918,3 +918,17 @@ def test_signer_names_as_the_title_block_writes_them(name, shown):
     assert char_w * narrow * len(got) <= 21.6 + 1e-9
     # narrower than NARROWEST only for a surname longer than the cell at NARROWEST
     assert narrow >= NARROWEST or (got == shown and char_w * NARROWEST * len(got) > 21.6)
+
+
+def test_gear_sheet_names_each_number_and_lists_as_the_language_does():
+    """The gear sheet's line of data names each wheel's number (z1, z2, x1, x2) and separates the
+    items with '; ' where the decimal comma is written ('x = 0,44944, -0,155323' read as one
+    list of three numbers)."""
+    from tmm_cli.sheets.prims import Text
+    res, cv, _ = _only_sheet("gears_shifted", 5, "ru")
+    g = res["gears"]
+    line = next(p.plain for p in cv.prims if isinstance(p, Text) and p.plain.startswith("m = "))
+    assert f"; z1 = {g['z'][0]}; z2 = {g['z'][1]}; x1 = " in line, line
+    res, cv, _ = _only_sheet("gears_shifted", 5, "en")
+    line = next(p.plain for p in cv.prims if isinstance(p, Text) and p.plain.startswith("m = "))
+    assert f", z1 = {g['z'][0]}, z2 = {g['z'][1]}, x1 = {g['x'][0]:g}, x2 = {g['x'][1]:g}," in line, line

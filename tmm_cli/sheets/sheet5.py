@@ -85,9 +85,14 @@ def build(cv, results: dict, task: Task | None, lang: str = "en") -> dict:
     cv.mtext(x0f + 5, y1f - 6, T["mesh"], 5.0, bold=True)
     mu_l = unit / 1000.0
     cv.mtext(x0f + 5, y1f - 13, "μ", 3.5, sub="l", after=f" = {mu_l:g} {T['m']}/{T['mm']}   ({scale_mark(lang)} {label})")
-    cv.mtext(x0f + 5, y1f - 19, f"m = {g['m'] * 1000:g} {T['mm']},  z = {g['z'][0]}, {g['z'][1]},  "
-             f"x = {g['x'][0]:g}, {g['x'][1]:g},  αw = {g['alpha_w']:.3f}°,  aw = {g['aw'] * 1000:.3f} {T['mm']},  "
-             f"εα = {g['eps_alpha']:.3f}", 3.5)
+    # each number named (z1, z2, x1, x2), the items apart as the language lists numbers ("; " where
+    # the decimal comma is written: "x = 0,44944, -0,155323" read as one list)
+    from ..numfmt import list_sep
+    sep = list_sep(lang)
+    cv.mtext(x0f + 5, y1f - 19, sep.join((
+        f"m = {g['m'] * 1000:g} {T['mm']}", f"z1 = {g['z'][0]}", f"z2 = {g['z'][1]}", f"x1 = {g['x'][0]:g}",
+        f"x2 = {g['x'][1]:g}", f"αw = {g['alpha_w']:.3f}°", f"aw = {g['aw'] * 1000:.3f} {T['mm']}",
+        f"εα = {g['eps_alpha']:.3f}")), 3.5)
     drawn = {}
     for i, (c, ax_ang, w) in enumerate(((c1, a1, w1), (c2, a2, w2))):
         cv.layer = "contour"
