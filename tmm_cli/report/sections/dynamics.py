@@ -130,7 +130,7 @@ def _motion(ctx, d, q):
     for key, ls in (("omega_max", "--"), ("omega_min", "--"), ("omega_m", ":")):
         if d.get(key) is not None:
             a1.axhline(sg * d[key], color="0.4", lw=0.6, ls=ls)
-            # the symbol as the language's table writes it (ω_ср in ru, as the text beside the figure)
+            # the symbol as the language's table writes it (the Russian mean speed as the text beside the figure)
             a1.annotate(Term(ctx.t(f"dyn.{key}").split(",")[0].strip()), (q[-1], sg * d[key]), xytext=(2, 0),
                         textcoords="offset points", fontsize=6, va="center")
     a1.set_ylabel(ctx.t("dyn.omega_axis"))
