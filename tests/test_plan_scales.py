@@ -288,3 +288,16 @@ def test_the_energy_mass_diagram_is_drawn_at_its_scale(shared_once, name):
     page = html_mod.unescape((out / "report.html").read_text(encoding="utf-8"))
     said = _num(re.search(r"kl = (" + _NUM + ") mm", page).group(1))
     assert drawn == pytest.approx(said, abs=0.06)
+
+
+@pytest.mark.parametrize("lang,middle", [("en", "the midpoint"), ("ru", "\u0441\u0435\u0440\u0435\u0434\u0438\u043d\u0430 \u0437\u0432\u0435\u043d\u0430")])
+def test_the_input_table_says_a_default_centre_of_mass(shared_once, lang, middle):
+    """The report's table of links gives each centre of mass, the defaults too (a blank read as
+    the middle of the crank while the crank's S is its pivot): the crank's pivot O, a bar's
+    midpoint, a slider's pin (the press's links give no `com`)."""
+    page = html_mod.unescape((report_out(shared_once, "press_offset_slider_crank", lang) / "report.html")
+                             .read_text(encoding="utf-8"))
+    rows = {m.group(1): m.group(2) for m in re.finditer(
+        r'<tr><td class="num">\d+</td><td>(\w+)</td><td>[^<]*</td>(?:<td[^>]*>[^<]*</td>){3}<td>([^<]*)</td>',
+        page)}
+    assert rows["crank"] == "O" and rows["rod"] == middle and rows["ram"] == "B", rows

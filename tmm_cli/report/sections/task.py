@@ -216,6 +216,8 @@ def _mechanism(ctx, mech: dict):
     """(ground rows, link rows, assembly text) of the mechanism section."""
     t = ctx.t
     ground = [(p, num(xy[0]), num(xy[1])) for p, xy in (mech.get("ground") or {}).items()]
+    drive = ((ctx.task.drive.link if ctx.task is not None and ctx.task.drive is not None else None)
+             if ctx.task is not None else None)
     links = []
     for i, (name, spec) in enumerate((mech.get("links") or {}).items(), start=1):
         pts = list(spec.get("points") or [])
@@ -244,6 +246,10 @@ def _mechanism(ctx, mech: dict):
         com = spec.get("com")
         com_txt = f"({num(com[0])}, {num(com[1])})" if isinstance(com, (list, tuple)) else \
             (str(com) if com else "")
+        if not com_txt:                   # the default, said (a crank's S at its pivot is no blank)
+            pivots = [p for p in pts if p in (mech.get("ground") or {})]
+            com_txt = (pivots[0] if name == drive and pivots else pts[0] if spec.get("slider") and pts
+                       else t("task.com_middle") if len(pts) == 2 else "")
         links.append((str(i), name, ", ".join(pts), num(spec["length"]) if spec.get("length") is not None else "",
                        num(spec["mass"]) if spec.get("mass") is not None else "",
                        num(spec["J"]) if spec.get("J") is not None else "", com_txt, "; ".join(other)))
