@@ -151,7 +151,7 @@ def mesh_figure(ctx, g):
 
 
 CONTOUR_STYLES = (("tab:blue", "-"), ("tab:red", "--"), ("tab:green", "-."), ("tab:purple", ":"),
-                  ("tab:orange", (0, (5, 1, 1, 1, 1, 1))), ("tab:brown", (0, (8, 2))),
+                  ("tab:orange", (0, (5, 1, 1, 1, 1, 1))), ("tab:olive", (0, (8, 2))),   # not brown: beside red dashes
                   ("tab:cyan", (0, (1, 1))), ("black", (0, (3, 1, 3, 1, 1, 1))))
 
 
