@@ -73,7 +73,7 @@ def diagrams_figure(ctx, c):
     fig.subplots_adjust(left=left, right=right, bottom=bottom, top=top, hspace=gap * 3)
     ax_w_mm = (right - left) * W
     mu_phi = fp.nice_scale(360.0 / ax_w_mm)
-    scales = [("μφ", _loc(ctx.lang, f"{ctx.fmt(mu_phi)} deg/mm"))]
+    scales = [(Term("μ_φ"), _loc(ctx.lang, f"{ctx.fmt(mu_phi)} deg/mm"))]
     for ax, (y, lab) in zip(axes, series):
         for k, a, b in _phase_spans(c):
             if b > a:
@@ -83,7 +83,11 @@ def diagrams_figure(ctx, c):
         mu = fp.std_axis(ax, float(np.min(y)), float(np.max(y)), pad=0.04)
         ax.set_ylabel(lab)
         ax.grid(True, lw=0.3)
-        scales.append((lab.split(",")[0], _loc(ctx.lang, f"{ctx.fmt(mu)} {lab.split(', ')[1]}/mm")))
+        # the scale as the course writes it: μ with its quantity as the subscript, a unit that is a
+        # quotient bracketed before the millimetre ((mm/rad)/mm, not mm/rad/mm)
+        sym, u = lab.split(",")[0], lab.split(", ")[1]
+        u = f"({u})" if "/" in u and not u.startswith("(") else u
+        scales.append((Term(f"μ_{{{sym}}}" if len(sym) > 1 else f"μ_{sym}"), _loc(ctx.lang, f"{ctx.fmt(mu)} {u}/mm")))
     axes[-1].set_xlim(0, mu_phi * ax_w_mm)
     axes[-1].set_xlabel(_loc(ctx.lang, "φ, deg"))
     for x in range(0, 361, 30):
