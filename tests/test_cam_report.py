@@ -42,6 +42,10 @@ def test_html_section(central, tmp_path, lang, word):
     assert 'id="cam"' in html and word in html
     assert html.count("<svg") >= 4 and "figure failed" not in html
     assert "ds/dφ" in html and "dphi" not in html          # the course's notation, as in the tables
+    # the diagrams' scales as the course writes them: μ with the quantity as its subscript, a
+    # quotient unit bracketed before the millimetre (it read "ds/dφ = 2,500 мм/рад/мм")
+    line = html[html.index("μ<sub>φ</sub>"):].split("</p>")[0]
+    assert "μ<sub>s</sub> = " in line and "μ<sub>ds/dφ</sub> = " in line and ")/" in line and "/рад/" not in line
     # r0 in mm with 6 significant digits, as computed from the closed form above
     h, P, t = 0.03, math.pi / 2, math.tan(math.radians(30))
     A = h * math.pi / (2 * P * t)
