@@ -932,3 +932,13 @@ def test_gear_sheet_names_each_number_and_lists_as_the_language_does():
     res, cv, _ = _only_sheet("gears_shifted", 5, "en")
     line = next(p.plain for p in cv.prims if isinstance(p, Text) and p.plain.startswith("m = "))
     assert f", z1 = {g['z'][0]}, z2 = {g['z'][1]}, x1 = {g['x'][0]:g}, x2 = {g['x'][1]:g}," in line, line
+
+
+def test_the_energy_mass_sheet_names_its_abscissa():
+    """Sheet 3's energy-mass diagram plots ΔT against the variable part of the reduced inertia
+    (Popov and Timofeev's form, its intercepts a, b): the abscissa says so, J with the report's
+    subscript for it (var; перем in ru), not a bare J."""
+    sheets = example_sheets("forging_sixbar")
+    for lang, sub in (("en", "var"), ("ru", "\u043f\u0435\u0440\u0435\u043c")):
+        (cv, info), = [(c, i) for c, i in sheets[lang] if i["number"] == 3]
+        assert any(isinstance(p, Text) and p.s == "J" and p.sub == sub for p in cv.prims), lang

@@ -14,7 +14,8 @@ def draw_graph(cv, origin, curves, mu_x: float, mu_y: float, *, x_len: float, y_
     cv.layer = "dimensions"
     cv.arrow((ox, oy), (ox + x_len + 8.0, oy), width=0.3, head=2.5)
     cv.arrow((ox, oy - y_down), (ox, oy + y_up), width=0.3, head=2.5)
-    cv.mtext(ox + x_len + 10.0, oy - 3.5, x_sym, 3.5, italic=True)
+    base, _, sub = x_sym.partition("_")          # 'J_var': the letter and its subscript
+    cv.mtext(ox + x_len + 10.0, oy - 3.5, base, 3.5, italic=True, sub=sub or None)
     cv.mtext(ox - 2.0, oy + y_up - 2.0, y_sym, 3.5, anchor="end", italic=True)
     cv.mtext(ox + 3.0, oy + y_up - 2.0, mu_text, 2.5)
     for xv, lab in ticks:

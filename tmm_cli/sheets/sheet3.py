@@ -84,7 +84,7 @@ def build(cv, results: dict, task: Task | None, lang: str = "en") -> dict:
     cv.mtext(bx0 + 5, y1f - 6, T["em"], 5.0, bold=True)
     pts, = draw_graph(cv, origin, [(J, dT, "#000")], mu_J, mu_T, x_len=float(J.max()) / mu_J + 10.0,
                       y_up=float(dT.max()) / mu_T + 12.0, y_down=-min(0.0, float(dT.min())) / mu_T + 5.0,
-                      x_sym="J", y_sym="ΔT",
+                      x_sym=locales.of("dynamics", "words", lang).get("dyn.Jvar", "J_var"), y_sym="ΔT",
                       mu_text=f"μT = {mu_T:g} {T['J']}/{mm},  μJ = {mu_J:g} {T['kgm2']}/{mm}")
     info["energy_mass"] = {"mu_T": mu_T, "mu_J": mu_J, "pts": pts, "origin": origin}
     # the tangents: ΔT = a + J ω_max²/2 and ΔT = b + J ω_min²/2 (Popov & Timofeev)
