@@ -722,3 +722,5 @@ def test_a_set_shows_its_tasks_variant(tmp_path):
     assert res.exit_code == 0, res.output
     assert {(r["student"], r["variant"]) for r in _csv(tmp_path / "o" / "summary.csv")} == {("A", "4"), ("B", "4")}
     assert {(r["student"], r["variant"]) for r in _csv(tmp_path / "o" / "check.csv")} == {("A", "4"), ("B", "4")}
+    res = runner.invoke(app, ["check", str(src / "v4.yaml"), "--answers", str(ans / "v4.yaml"), "--out", str(tmp_path / "c")])
+    assert res.exit_code == 0 and [r["variant"] for r in _csv(tmp_path / "c" / "check.csv")] == ["4"], res.output

@@ -337,6 +337,10 @@ def check(
             code = max(code, EXIT_INVALID)
             continue
         rows = grade(results, a, tol, required)
+        if task.variant is not None:        # a set matched by its file's name: the task's variant
+            for r in rows:
+                if r["variant"] in ("", None):
+                    r["variant"] = task.variant
         print_check(rows, a.source, lang)
         all_rows.extend(rows)
         code = max(code, set_code(set_status(rows)))
