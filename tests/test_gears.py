@@ -420,17 +420,19 @@ def test_a_tooth_pointed_below_its_tip_makes_the_contact_ratio_formal():
         lo, hi = (mid, hi) if math.tan(mid) - mid < psi0 else (lo, mid)
     ap = (lo + hi) / 2
     r_point = rb2 / math.cos(ap)
-    assert g["r_point2"] == pytest.approx(r_point, rel=1e-12) and round(r_point * 1e3, 2) == 12.34
+    from tmm_cli.gears.geometry import pointed_tips
+    cut = pointed_tips(g, 200, 5)
+    assert cut["r_point2"] == pytest.approx(r_point, rel=1e-12) and round(r_point * 1e3, 2) == 12.34
     aw = g["alpha_w"]
     aa1 = math.acos(g["rb1"] / g["ra1"])
     aa2 = math.acos(rb2 / r_point)
     eps = (200 * (math.tan(aa1) - math.tan(aw)) + 5 * (math.tan(aa2) - math.tan(aw))) / (2 * math.pi)
-    assert g["eps_cut"] == pytest.approx(eps, rel=1e-12) and round(eps, 3) == 0.854
+    assert cut["eps_cut"] == pytest.approx(eps, rel=1e-12) and round(eps, 3) == 0.854
     d = analyze(gears(m=0.003, z=(200, 5), x=(-1.0, 1.0))).to_dict()
     assert d["eps_alpha_formal"] is True and d["checks"]["interference"] is False
     assert any(w.startswith("eps_alpha = 1.01 by the formula is formal: the tooth of wheel 2 comes to a point at "
                             "r = 12.34 mm") for w in d["warnings"])
     # a tooth that is not pointed: eps as the formula gives it, nothing formal
     g = pair(m, 20, 40, 0.0, 0.0)
-    assert g["eps_cut"] == pytest.approx(g["eps"], rel=1e-15)
+    assert pointed_tips(g, 20, 40)["eps_cut"] == pytest.approx(g["eps"], rel=1e-12)
     assert analyze(gears(m=0.003, z=(20, 40), x=(0.0, 0.0))).to_dict()["eps_alpha_formal"] is False

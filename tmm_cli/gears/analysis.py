@@ -264,10 +264,13 @@ def _check_warnings(g, ch, zz, xx, m, sa_min, rhol, warnings) -> None:
                                     rho_l=rhol[i] * 1e3))
     if any(ch["interference"]):        # the formula counts the part of B1B2 off the involutes
         warnings.append(Message("gears.eps_formal", eps=g["eps"], b=g["ga"] * 1e3, n=g["N1N2"] * 1e3))
-    for n in (1, 2):                   # a tip beyond the tooth's point: counted by the formula, not there
-        if g[f"sa{n}"] < 0:            # (pointed on the tip circle itself: eps as the formula gives it)
-            warnings.append(Message("gears.eps_pointed", eps=g["eps"], wheel=n, r_point=g[f"r_point{n}"] * 1e3,
-                                    ra=g[f"ra{n}"] * 1e3, eps_cut=g["eps_cut"]))
+    if g["sa1"] < 0 or g["sa2"] < 0:   # a tip beyond the tooth's point: counted by the formula, not there
+        from .geometry import pointed_tips
+        cut = pointed_tips(g, zz[0], zz[1])
+        for n in (1, 2):               # (pointed on the tip circle itself: eps as the formula gives it)
+            if g[f"sa{n}"] < 0:
+                warnings.append(Message("gears.eps_pointed", eps=g["eps"], wheel=n, r_point=cut[f"r_point{n}"] * 1e3,
+                                        ra=g[f"ra{n}"] * 1e3, eps_cut=cut["eps_cut"]))
     if ch["contact_ratio_low"]:
         warnings.append(Message("gears.contact_ratio_course", eps=g["eps"], limit=COURSE_EPS))
     if ch["contact_ratio_below_absolute"]:

@@ -146,9 +146,9 @@ def pair(m, z1, z2, x1, x2, alpha_deg=20.0, ha=1.0, c=0.25, rho_f=None):
         the centre distances a, aw (m), alpha_w and inv alpha_w (rad), the shift and
         reduction coefficients y, dy, the thicknesses s, sa, sb, sw and spaces e (m), the
         pitches p, pb (m), the line of action N1N2, N1B1, N1P, N1B2, its active part ga (m),
-        the contact ratio eps (and eps_cut: a pointed tooth's tip at its point r_point, m),
-        the lowest active points rho_p (m), the least shifts x_min, x_min_exact and ``valid``;
-        the wheels' entries end in 1 and 2.  Entries
+        the contact ratio eps (a pointed tooth's: :func:`pointed_tips`), the lowest active
+        points rho_p (m), the least shifts x_min, x_min_exact and ``valid``; the wheels'
+        entries end in 1 and 2.  Entries
         where the working angle does not exist (inv alpha_w <= 0) are NaN.
 
     References
@@ -187,9 +187,6 @@ def pair(m, z1, z2, x1, x2, alpha_deg=20.0, ha=1.0, c=0.25, rho_f=None):
         aa = np.arccos(np.clip(rb / ra, -1.0, 1.0))
         sa = 2.0 * ra * (psi0 - inv(aa))
         sw = 2.0 * rw * (psi0 - inv(np.where(valid, aw_ang, al)))
-        # the radius where the flanks meet (the half angle psi0 - inv alpha_y = 0): a tooth whose
-        # sa < 0 is pointed there, below its tip circle, and meshes only up to it
-        r_point = rb / np.cos(ainv(np.maximum(psi0, 1e-12)))
         h_l = (ha + c - x) * m - rho_f * m * (1.0 - math.sin(al))
         rho_l = r * math.sin(al) - h_l / math.sin(al)
         out.update({f"r{i}": r, f"rb{i}": rb, f"rw{i}": rw, f"rf{i}": rf, f"ra{i}": ra,
@@ -199,9 +196,7 @@ def pair(m, z1, z2, x1, x2, alpha_deg=20.0, ha=1.0, c=0.25, rho_f=None):
                     # the least shift without undercut: the rack's straight edge ends h_l + x m
                     # above its datum (h_l is measured from the shifted rack: it holds -x m)
                     f"x_min_exact{i}": (h_l / m + x) - z * math.sin(al) ** 2 / 2.0,
-                    f"NB{i}": rb * np.tan(aa), f"r_point{i}": r_point,
-                    # the tip as far as the tooth reaches: its point where that is below r_a
-                    f"alpha_a_cut{i}": np.arccos(np.clip(rb / np.minimum(ra, r_point), -1.0, 1.0))})
+                    f"NB{i}": rb * np.tan(aa)})
     g = aw * np.sin(aw_ang)                                # N1N2
     out["N1N2"] = g
     out["N1P"] = out["rb1"] * tan_aw
@@ -213,10 +208,43 @@ def pair(m, z1, z2, x1, x2, alpha_deg=20.0, ha=1.0, c=0.25, rho_f=None):
     out["ga"] = out["NB1"] + out["NB2"] - g               # B1B2
     out["eps"] = (z1 * (np.tan(out["alpha_a1"]) - tan_aw)
                   + z2 * (np.tan(out["alpha_a2"]) - tan_aw)) / (2.0 * math.pi)
-    # the contact ratio of the teeth as they are cut (a pointed tip ends at its point)
-    out["eps_cut"] = (z1 * (np.tan(out["alpha_a_cut1"]) - tan_aw)
-                      + z2 * (np.tan(out["alpha_a_cut2"]) - tan_aw)) / (2.0 * math.pi)
     out["h"] = out["h1"]
+    return out
+
+
+def pointed_tips(g: dict, z1, z2) -> dict:
+    """Where a pair's teeth come to a point, and its contact ratio with the tips there.
+
+    Parameters
+    ----------
+    g : dict
+        :func:`pair`'s entries of the pair (r, rb, s, ra of each wheel, alpha, alpha_w).
+    z1, z2 : float
+        The numbers of teeth.
+
+    Returns
+    -------
+    dict
+        ``r_point1``, ``r_point2``: the radius where each tooth's flanks meet (m: the half
+        angle s/(2r) + inv alpha - inv alpha_y is 0 there); ``eps_cut``: the contact ratio with
+        each tip at min(r_a, r_point) -- a tooth pointed below its tip circle (s_a < 0) meshes
+        only up to its point; equal to ``eps`` where no tooth is.
+
+    Notes
+    -----
+    Kept apart from :func:`pair` (two inverse involutes of every grid point would be half again
+    its cost where the blocking contour evaluates it): computed for the pair chosen.
+    """
+    out = {}
+    tan_aw = np.tan(g["alpha_w"])
+    eps = 0.0
+    for i, z in ((1, z1), (2, z2)):
+        psi0 = g[f"s{i}"] / (2.0 * g[f"r{i}"]) + inv(g["alpha"])
+        rp = g[f"rb{i}"] / np.cos(ainv(np.maximum(psi0, 1e-12)))
+        aa = np.arccos(np.clip(g[f"rb{i}"] / np.minimum(g[f"ra{i}"], rp), -1.0, 1.0))
+        out[f"r_point{i}"] = rp
+        eps = eps + z * (np.tan(aa) - tan_aw)
+    out["eps_cut"] = eps / (2.0 * math.pi)
     return out
 
 
