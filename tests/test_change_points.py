@@ -69,6 +69,13 @@ def _run(tmp_path, text):
     return clean(tmm_cli.run(task))   # as written to results.json (NaN -> null)
 
 
+@pytest.fixture(scope="module")
+def limit_at_zero(tmp_path_factory):
+    """LIMIT with position 6 on the change point (zero: 0), as results.json has it: run once for
+    the tests of how its warnings are shown."""
+    return _run(tmp_path_factory.mktemp("limit0"), LIMIT.replace("zero: extreme", "zero: 0"))
+
+
 def _cp_warnings(res):
     return [w for w in res["warnings"] if w.startswith("change point at crank angle")]
 
@@ -359,7 +366,7 @@ def test_a_position_placed_at_the_change_point_is_said_to_be_one(tmp_path):
     assert all(e["inertia"]["coupler"]["Fy"] is None for e in at)
 
 
-def test_a_change_points_warnings_are_one_head_with_its_items(tmp_path):
+def test_a_change_points_warnings_are_one_head_with_its_items(tmp_path, limit_at_zero):
     """The Grashof-limit four-bar with position 6 on the change point (phi = 180 deg) and the rocker's
     extreme position 12 there too gives nine warnings for one angle in results.json (kept there,
     each with its code); the terminal and the report show them as the change point's warning with
@@ -367,7 +374,7 @@ def test_a_change_points_warnings_are_one_head_with_its_items(tmp_path):
     the kinetostatics of both positions in one item -- and leave out the group's list of singular
     angles (180 only: said by the head)."""
     from tmm_cli.messages import grouped, render_grouped
-    res = _run(tmp_path, LIMIT.replace("zero: extreme", "zero: 0"))
+    res = limit_at_zero
     codes = [m["code"] for m in res["messages"]]
     assert codes == ["positions.quick_working", "kinematics.singular_continuity", "kinematics.change_point",
                      "kinematics.by_continuity", "kinematics.no_limit", "kinematics.by_continuity",
@@ -438,7 +445,7 @@ def test_items_go_to_the_head_of_their_angle_and_group():
 
 
 @pytest.mark.parametrize("lang", ["en", "ru", "uk"])
-def test_the_terminal_prints_a_change_point_as_one_warning_with_its_items(tmp_path, lang, monkeypatch, capsys):
+def test_the_terminal_prints_a_change_point_as_one_warning_with_its_items(limit_at_zero, lang, monkeypatch, capsys):
     """The run summary prints the change point's warning once, its items indented under it ("  – ",
     a wrapped item's lines under its first word), each line inside 80 columns; the text written
     without Rich is Rich's, character for character."""
@@ -447,7 +454,7 @@ def test_the_terminal_prints_a_change_point_as_one_warning_with_its_items(tmp_pa
     from tmm_cli import summary
     for k in ("COLUMNS", "LINES", "FORCE_COLOR", "TTY_COMPATIBLE"):
         monkeypatch.delenv(k, raising=False)
-    res = _run(tmp_path, LIMIT.replace("zero: extreme", "zero: 0"))
+    res = limit_at_zero
     summary.print_summary(res, [P("out/results.json")], lang)
     plain = capsys.readouterr().out
     real = summary._plain_summary
@@ -482,7 +489,7 @@ def test_an_entry_before_its_change_point_stays_alone_and_is_not_shown_twice():
     assert shown == [("kinematics.transmission_dead", []), ("kinematics.change_point", ["C"])]
 
 
-def test_the_reports_warnings_list_a_change_points_items_under_it(tmp_path):
+def test_the_reports_warnings_list_a_change_points_items_under_it(tmp_path, limit_at_zero):
     """The report's list of warnings: the change point's warning with its four items in a list
     inside its own item (the PDF takes the nested list as Typst's), in the report's language."""
     import re as _re
@@ -492,7 +499,7 @@ def test_the_reports_warnings_list_a_change_points_items_under_it(tmp_path):
     f = tmp_path / "task.yaml"
     f.write_text(LIMIT.replace("zero: extreme", "zero: 0"), encoding="utf-8")
     task = tmm_cli.load_task(f)
-    html, _ = render_html(tmm_cli.run(task, kinematics_curve=0), task, tmp_path / "o", "uk")
+    html, _ = render_html(limit_at_zero, task, tmp_path / "o", "uk")
     sec = html[html.index('id="warnings"'):]
     items = _re.findall(r"<li>([^<]*)<ul>(.*?)</ul></li>", sec, _re.S)
     assert len(items) == 1 and items[0][0].startswith("\u043e\u0441\u043e\u0431\u043b\u0438\u0432\u0435")
