@@ -11,6 +11,7 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
+from test_cli import SLIDER_CRANK
 from test_instructor import _write
 from tmm_cli.cli import app
 
@@ -600,17 +601,9 @@ def test_what_students_write_degrees_minutes_percent_and_a_unit_left_off(tmp_pat
     assert "read in mm it is right" in rows["gears.aw"]["note"] and "read in mm" in " ".join(res.output.split())
 
 
-SHORT_ROD = """schema: tmm/1
-title: short rod
-variant: 5
-mechanism:
-  ground: {O: [0, 0]}
-  links:
-    crank: {points: [O, A], length: 0.1}
-    rod: {points: [A, B], length: 0.08}
-    slider: {slider: B, guide: {through: O, angle: 0}}
-drive: {link: crank, speed: 100 rpm}
-"""
+# test_cli's slider-crank with its rod shorter than its crank, as variant 5
+SHORT_ROD = (SLIDER_CRANK.replace("length: 0.4}", "length: 0.08}")
+             .replace("title: slider-crank\n", "title: short rod\nvariant: 5\n"))
 
 
 def test_a_student_of_a_variant_whose_task_failed_is_told_so(tmp_path):

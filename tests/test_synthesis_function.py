@@ -183,6 +183,19 @@ def test_known_fourbar_given_back_through_its_own_three_points():
         assert p["psi"] == pytest.approx(q, abs=1e-9) and p["psi_generated"] == pytest.approx(q, abs=1e-7)
 
 
+def _freudenstein_by_cramer(phi, psi):
+    """K1, K2, K3 of Freudenstein's equation K1 cos psi - K2 cos phi + K3 = cos(phi - psi) through
+    three points (phi, psi in degrees), by Cramer's rule written out (3 x 3 determinants)."""
+    M = [[math.cos(math.radians(q)), -math.cos(math.radians(f)), 1.0] for f, q in zip(phi, psi)]
+    rhs = [math.cos(math.radians(f - q)) for f, q in zip(phi, psi)]
+
+    def det3(m):
+        return (m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+                + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]))
+    D = det3(M)
+    return [det3([[rhs[i] if j == col else M[i][j] for j in range(3)] for i in range(3)]) / D for col in range(3)]
+
+
 def test_log10_generator_by_cramers_rule():
     """y = log10(x), 1 <= x <= 2 (the function of Freudenstein's 1955 paper, Trans. ASME 77,
     853-861; its printed ranges and results could not be obtained: the ranges here are
@@ -198,14 +211,7 @@ def test_log10_generator_by_cramers_rule():
     assert ys == pytest.approx([0.028159, 0.176091, 0.286235], abs=5e-7)
     phi = [90 + 90 * (x - 1) for x in xs]
     psi = [90 + 60 * y / math.log10(2) for y in ys]
-    M = [[math.cos(math.radians(q)), -math.cos(math.radians(f)), 1.0] for f, q in zip(phi, psi)]
-    rhs = [math.cos(math.radians(f - q)) for f, q in zip(phi, psi)]
-
-    def det3(m):
-        return (m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-                + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]))
-    D = det3(M)
-    K = [det3([[rhs[i] if j == col else M[i][j] for j in range(3)] for i in range(3)]) / D for col in range(3)]
+    K = _freudenstein_by_cramer(phi, psi)
     d = 0.3
     a, c = d / K[0], d / K[1]
     b = math.sqrt(a * a + c * c + d * d - 2 * a * c * K[2])
@@ -265,15 +271,7 @@ def test_negative_rocker_names_the_output_start_to_turn(tmp_path):
     xs = [0.75 - 0.75 * math.cos(math.pi / 6), 0.75, 0.75 + 0.75 * math.cos(math.pi / 6)]
     phi = [20 + 120 * x / 1.5 for x in xs]
     psi = [100 - 70 * math.sin(x) / math.sin(1.5) for x in xs]
-    M = [[math.cos(math.radians(q)), -math.cos(math.radians(f)), 1.0] for f, q in zip(phi, psi)]
-    rhs = [math.cos(math.radians(f - q)) for f, q in zip(phi, psi)]
-
-    def det3(m):
-        return (m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-                + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]))
-    D = det3(M)
-    K1, K2, K3 = (det3([[rhs[i] if j == col else M[i][j] for j in range(3)] for i in range(3)]) / D
-                  for col in range(3))
+    K1, K2, K3 = _freudenstein_by_cramer(phi, psi)
     d = 0.2
     a, c = d / K1, d / K2
     b = math.sqrt(a * a + c * c + d * d - 2 * a * c * K3)

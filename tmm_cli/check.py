@@ -210,11 +210,8 @@ def _last_name(path: str) -> str:
 
 
 def _is_angle(path: str) -> bool:
-    try:
-        toks = [t for t in parse_path(path) if isinstance(t, str)]
-    except KeyError:
-        return False
-    return bool(toks) and (toks[-1] in ANGLE_KEYS or toks[-1].endswith("_phi"))
+    last = _last_name(path)
+    return last in ANGLE_KEYS or last.endswith("_phi")
 
 
 def _mark(marks, key, default=(None, None)):
