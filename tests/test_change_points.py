@@ -504,3 +504,14 @@ def test_the_reports_warnings_list_a_change_points_items_under_it(tmp_path, limi
     items = _re.findall(r"<li>([^<]*)<ul>(.*?)</ul></li>", sec, _re.S)
     assert len(items) == 1 and items[0][0].startswith("\u043e\u0441\u043e\u0431\u043b\u0438\u0432\u0435")
     assert items[0][1].count("<li>") == 4 and "\u043f\u043e\u043b\u043e\u0436\u0435\u043d\u043d\u044f 6; 12" in items[0][1]
+
+
+def test_warnings_without_a_change_point_are_shown_without_grouping(monkeypatch):
+    """render_grouped reads no catalogue where nothing is to be grouped (a JSON run's summary
+    starts fast): English shows each entry's text, another language renders it."""
+    from tmm_cli import messages
+    entries = [messages.Message("answers.note_missing").to_dict()]
+    monkeypatch.setattr(messages, "grouped", lambda _e: (_ for _ in ()).throw(AssertionError("grouped")))
+    assert messages.render_grouped({"messages": entries}, "en") == [("no value given", [])]
+    assert messages.render_grouped({"messages": []}, "en") == []
+    assert messages.render_grouped({"messages": entries}, "ru")[0][0] != "no value given"

@@ -304,6 +304,8 @@ def render_grouped(section: dict, lang: str) -> list[tuple[str, list[str]]]:
     entries = section.get("messages")
     if entries is None:
         return [(str(w), []) for w in section.get("warnings") or []]
+    if not any(e.get("code") == HEAD for e in entries):      # nothing to group: no catalogue read for it
+        return [(str(e.get("text", "")) if lang == "en" else localize(e, lang), []) for e in entries]
     return [(localize(e, lang), [folded(f, lang) for f in items]) for e, items in grouped(entries)]
 
 
