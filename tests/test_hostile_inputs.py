@@ -280,17 +280,17 @@ def test_two_processes_into_one_folder_do_not_interleave(tmp_path):
     out = tmp_path / "res"
     holder = _holder(out, 30)
     try:
-        res = _tmm("run", "g.yaml", "--format", "json", "--out", "res", wait=1, cwd=tmp_path)
+        res = _tmm("run", "g.yaml", "--format", "json", "--out", "res", wait=0.3, cwd=tmp_path)
         assert res.returncode == 3, res.stderr
         assert "res" in res.stderr and "another tmm run or batch is writing into this folder" in res.stderr
         assert "Traceback" not in res.stderr
         assert not (out / "results.json").exists()
         _write(tmp_path, "v1.yaml", GEARS)
-        res = _tmm("batch", "v1.yaml", "--out", "res", wait=1, cwd=tmp_path)
+        res = _tmm("batch", "v1.yaml", "--out", "res", wait=0.3, cwd=tmp_path)
         assert res.returncode == 3 and "another tmm run or batch" in res.stderr, res.stderr
         assert not (out / "summary.csv").exists()
         _write(tmp_path, "c.yaml", GEARS + "answers: {gears.aw: 0.088}\n")
-        res = _tmm("check", "c.yaml", "--out", "res", wait=1, cwd=tmp_path)
+        res = _tmm("check", "c.yaml", "--out", "res", wait=0.3, cwd=tmp_path)
         assert res.returncode == 3 and "another tmm run or batch" in res.stderr, res.stderr
         assert not (out / "check.csv").exists()
     finally:
@@ -304,7 +304,7 @@ def test_two_processes_into_one_folder_do_not_interleave(tmp_path):
 def test_a_run_waits_for_the_folder(tmp_path):
     """Within the wait, the second run writes once the first is done."""
     _write(tmp_path, "g.yaml", GEARS)
-    holder = _holder(tmp_path / "res", 3)
+    holder = _holder(tmp_path / "res", 1.5)
     try:
         res = _tmm("run", "g.yaml", "--format", "json", "--out", "res", wait=60, cwd=tmp_path)
         assert res.returncode == 0, res.stderr

@@ -523,7 +523,7 @@ def test_batch_survives_dead_slow_and_greedy_workers(tmp_path, monkeypatch, star
         _write(src, f"{name}.yaml", GEARS.format(v=1))
     vm = int(open("/proc/self/status").read().split("VmSize:")[1].split()[0]) // 1024
     monkeypatch.setenv("TMM_TEST_SLEPT", str(tmp_path / "slept.log"))
-    res = runner.invoke(app, ["batch", str(src), "--out", str(tmp_path / "o"), "--jobs", "2", "--timeout", "4",
+    res = runner.invoke(app, ["batch", str(src), "--out", str(tmp_path / "o"), "--jobs", "2", "--timeout", "1.5",
                               "--memory", str(vm + 1500)])
     assert not (tmp_path / "slept.log").exists()        # the slow variant ended, not waited for (its 60 s)
     rows = {Path(r["file"]).stem: r for r in _csv(tmp_path / "o" / "summary.csv")}
@@ -674,7 +674,7 @@ def test_a_dying_slow_or_greedy_variant_in_a_long_run_fails_alone(tmp_path, monk
         _write(src, f"v{k}_{kind}.yaml", GEARS.format(v=k + 1))
     pids = _pid_logging_work(monkeypatch, tmp_path / "pids.log")
     monkeypatch.setenv("TMM_TEST_SLEPT", str(tmp_path / "slept.log"))
-    res = runner.invoke(app, ["batch", str(src), "--out", str(tmp_path / "o"), "--jobs", "1", "--timeout", "3",
+    res = runner.invoke(app, ["batch", str(src), "--out", str(tmp_path / "o"), "--jobs", "1", "--timeout", "1.5",
                               "--memory", "1024", "--format", "json"])
     assert not (tmp_path / "slept.log").exists()        # the slow variant ended, not waited for (its 60 s)
     assert res.exit_code == 3, res.output
