@@ -279,6 +279,40 @@ def test_check_table_tolerance_in_the_errors_terms(tmp_path):
     assert max(len(ln) for ln in lines) <= 80
 
 
+def test_check_table_breaks_a_long_path_after_its_dots(tmp_path):
+    """At 80 columns the quantity column is narrower than 'flywheel.moment_of_inertia': it
+    was folded mid-word ('moment_of_ine' / 'rtia'); now broken after the dot, each line of
+    the column a whole name. At 120 columns the path stays on one line."""
+    from tmm_cli.summary import _path_lines
+    assert _path_lines("kst[5].balancing_moment", 12) == "kst[5].\nbalancing_moment"
+    assert _path_lines("kin[3].B.vx", 20) == "kin[3].B.vx"
+    assert _path_lines("gears.r[0]", 6) == "gears.\nr[0]"
+    f = _write(tmp_path, "s.yaml", SLIDER_CRANK +
+               "answers: {flywheel.moment_of_inertia: 1, 'kinetostatics[2].balancing_moment': 1}\n")
+    res = runner.invoke(app, ["check", str(f)], env={"COLUMNS": "80"})
+    lines = [ln for ln in res.output.splitlines() if ln.startswith("│")]
+    cells = [ln.split("│")[1].strip() for ln in lines]
+    assert "flywheel." in cells and "moment_of_inertia" in cells, res.output
+    assert "kst[2].balancing_moment" in cells, res.output
+    assert max(len(ln) for ln in res.output.splitlines()) <= 80
+    wide = runner.invoke(app, ["check", str(f)], env={"COLUMNS": "120"})
+    assert any("│ flywheel.moment_of_inertia " in ln for ln in wide.output.splitlines()), wide.output
+
+
+@pytest.mark.parametrize("path, meant", [("kinematics[2].velocities.B", "kinematics[2].points.B.v"),
+                                         ("kinematics[2].v_B", "kinematics[2].points.B.v"),
+                                         ("kinematics[2].B.acceleration", "kinematics[2].points.B.a"),
+                                         ("kinematics[2].omega_rod", "kinematics[2].links.rod.omega"),
+                                         ("kinematics[2].points.B.velocity", "kinematics[2].points.B.v")])
+def test_a_path_in_a_students_words_is_told_the_results_path(tmp_path, path, meant):
+    """A path written in words ('velocities.B', 'v_B') was told the nearest spelling
+    ('kinematics[3].points.B.y', 'kinematics[3].phi'): the path holding every name of it, a
+    word read as the key it means (velocity v, acceleration a, omega), comes first."""
+    f = _write(tmp_path, "s.yaml", SLIDER_CRANK + f"answers: {{'{path}': 1}}\n")
+    res = runner.invoke(app, ["check", str(f)], env={"COLUMNS": "200"})
+    assert res.exit_code == 1 and f"did you mean '{meant}'" in res.output, res.output
+
+
 def test_validate_a_folder_and_a_quoted_pattern(tmp_path):
     """`tmm validate DIR` checks its task files (answers files skipped) and a quoted pattern
     the files it matches, as `tmm batch` takes them; a folder with no task file is exit 2

@@ -380,5 +380,28 @@ def did_you_mean(path: str, results: dict, leaves: list[str] | None = None) -> s
                                                if isinstance(v, (int, float))]
     sec = path.split(".")[0].split("[")[0]
     near = [c for c in cands if c.split(".")[0].split("[")[0] == sec] or cands
-    hit = difflib.get_close_matches(path, near, n=1, cutoff=0.5)
+    hit = _named_alike(path, near) or difflib.get_close_matches(path, near, n=1, cutoff=0.5)
     return Message("answers.did_you_mean", path=hit[0]) if hit else Message("answers.no_such_path")
+
+
+# the words a student writes for a quantity and the results' key of it ('velocities.B' is
+# 'points.B.v'): a path naming every one of its parts so is suggested before a spelling alike
+_SAID = {"velocity": "v", "velocities": "v", "speed": "v", "acceleration": "a", "accelerations": "a",
+         "angular_velocity": "omega", "angular_acceleration": "epsilon", "w": "omega", "e": "epsilon"}
+
+
+def _named_alike(path: str, near: list[str]) -> list[str]:
+    """The one path of ``near`` holding every name of ``path`` (its section and index, and
+    each other name or the results' key a student's word means), or none."""
+    import re
+    parts = re.findall(r"[^.\[\]]+|\[[^\]]*\]", path)
+    if len(parts) < 2:
+        return []
+    names = [set(re.findall(r"[^.\[\]]+|\[[^\]]*\]", c)) for c in near]
+    known = set().union(*names)
+    want = set()
+    for w in parts:          # a word no path has, written with '_' ('v_B'): its pieces
+        pieces = [w] if w in known or "_" not in w else w.split("_")
+        want |= {_SAID.get(x.lower(), x) for x in pieces}
+    hits = [c for c, n in zip(near, names) if want <= n]
+    return hits if len(hits) == 1 else []

@@ -343,6 +343,19 @@ def _short_path(p: str, n: int = 30) -> str:
     return s if len(s) <= n else "…" + s[-(n - 1):]
 
 
+def _path_lines(path: str, width: int) -> str:
+    """``path`` broken into lines of at most ``width`` characters after its dots and before
+    its brackets ('kst[5].balancing_moment' -> 'kst[5].' / 'balancing_moment'), as a
+    reader splits it; a single name longer than the line is left for the table to fold."""
+    import re
+    lines = [""]
+    for part in re.findall(r"[^.\[]*\.|\[[^\]]*\]\.?|[^.\[]+", path):
+        if lines[-1] and len(lines[-1]) + len(part) > width:
+            lines.append("")
+        lines[-1] += part
+    return "\n".join(lines)
+
+
 def _tol_shown(text: str, absolute: bool) -> str:
     """A tolerance as the terminal table shows it, in the error column's terms: a relative
     bound in percent ('0.05' -> '5 %'), a plain number against a zero reference as the
@@ -377,11 +390,12 @@ def print_check(rows: list[dict], source, lang: str = "en") -> None:
     who = " ".join(x for x in (rows[0].get("student"), rows[0].get("group")) if x) if rows else ""
     t = Table(title=Text(f"{C['title']}: {Path(str(source)).name}" + (f" - {who}" if who else "")),
               title_justify="left")
-    t.add_column(Text(C["quantity"]), overflow="fold", max_width=26)
-    for c in ("answer", "reference", "error", "tol"):
-        t.add_column(Text(C[c]), justify="right", no_wrap=True)
-    t.add_column(Text(C["status"]), no_wrap=True)
-    notes = []
+    heads = [C[c] for c in ("quantity", "answer", "reference", "error", "tol", "status")]
+    t.add_column(Text(heads[0]), overflow="fold", min_width=8, max_width=26)
+    for c in heads[1:-1]:
+        t.add_column(Text(c), justify="right", no_wrap=True)
+    t.add_column(Text(heads[-1]), no_wrap=True)
+    notes, table = [], []
     for r in rows:
         st = r["status"]
         zero_ref = r["reference"] == 0 and r["tolerance"].split()[0] not in ("rel", "abs")
@@ -396,8 +410,16 @@ def print_check(rows: list[dict], source, lang: str = "en") -> None:
         if st == "invalid":                   # what the student wrote, as written ('11.644,6' is no 11,644,6)
             from .limits import printable
             cells[0] = printable(str(r["answer"]))
-        t.add_row(Text(_short_path(r["path"], 26)), *(Text(c) for c in cells),
-                  Text(str(status.get(st, st)), style=style))
+        table.append((_short_path(r["path"], 26), cells, str(status.get(st, st)), style))
+    # the quantity column gets what the others leave of the terminal's width (a cell of
+    # padding either side and a rule between columns); a path longer than that is broken
+    # after its dots, not folded mid-word
+    others = [max([len(h)] + [len(c) for _, cells, _, _ in table for c in cells[k:k + 1]])
+              for k, h in enumerate(heads[1:-1])]
+    others.append(max([len(heads[-1])] + [len(w) for _, _, w, _ in table]))
+    room = max(8, con.width - sum(others) - 3 * len(heads) - 1)
+    for path, cells, word, style in table:
+        t.add_row(Text(_path_lines(path, room)), *(Text(c) for c in cells), Text(word, style=style))
     con.print(t)
     for n in notes:
         con.print(n, markup=False, highlight=False)
