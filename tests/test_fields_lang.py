@@ -25,9 +25,37 @@ def test_every_field_has_its_meaning_and_no_other(lang):
     for path, text in table.items():
         en = english[path]
         assert re.findall(r"`[^`]*`", text) == re.findall(r"`[^`]*`", en), path
-        assert sorted(re.findall(r"\d+(?:\.\d+)?", text)) == sorted(re.findall(r"\d+(?:\.\d+)?", en)), path
+        said = text.translate(SUPER)                     # 'кг·м²' says the 2 of 'kg*m^2'
+        assert sorted(re.findall(r"\d+(?:\.\d+)?", said)) == sorted(re.findall(r"\d+(?:\.\d+)?", en)), path
         if re.search(r"[a-z]{4}", re.sub(r"`[^`]*`|\{[^}]*\}|'[^']*'", "", en)):
             assert CYR.search(text), (path, text)     # prose translated, not left in English
+
+
+# the units the ru and uk meanings write, each with the English spelling it stands for and
+# the kind of field it is written for
+UNITS = {"ru": [("м", "m", "length"), ("мм", "mm", "length"), ("кг", "kg", "mass"),
+                ("кг·м²", "kg*m^2", "inertia"), ("кг/м³", "kg/m^3", "density"), ("Н", "N", "force"),
+                ("Н·м", "N*m", "moment"), ("Па", "Pa", "pressure"), ("м²", "m^2", "area"),
+                ("рад/с", "rad/s", "speed"), ("об/мин", "rpm", "speed"), ("град/с", "deg/s", "speed"),
+                ("м/с", "m/s", "linear_speed"), ("с", "s", "time")],
+         "uk": [("об/хв", "rpm", "speed")]}         # uk: the rest as ru
+SUPER = str.maketrans({"²": "^2", "³": "^3"})
+
+
+@pytest.mark.parametrize("lang", ["ru", "uk"])
+def test_the_meanings_write_units_as_the_language_does_and_the_task_file_reads_them(lang):
+    """`tmm fields --lang ru` wrote kg*m^2, N*m, rad/s, rpm in Russian prose: now кг·м²,
+    Н·м, рад/с, об/мин (об/хв in uk), each a spelling the task file reads as that unit."""
+    from tmm_cli.units import convert
+    text = " ".join(locales.topic(lang, "fields")["fields"].values())
+    text = re.sub(r"`[^`]*`", "", text)                            # field names and YAML stay as typed
+    latin = re.findall(r"\b(?:kg|N\*m|rad/s|rpm|m/s|deg/s|Pa|mm)\b", text)
+    assert not latin, latin
+    own = {english: word for word, english, _ in UNITS[lang]}
+    for word, english, kind in UNITS["ru"]:
+        word = own.get(english, word)                               # uk's own spelling where it has one
+        assert convert(f"3 {word}", kind) == convert(f"3 {english}", kind), word
+        assert re.search(rf"(?<![\w/·]){re.escape(word)}(?![\w/·²³])", text), (lang, word)
 
 
 @pytest.mark.parametrize("lang, head, required", [("ru", "по умолчанию", "обязательно"),
