@@ -260,6 +260,30 @@ def test_dynamics_sheet(forging):
     assert np.allclose(info["graphs"]["ω − ωm"]["values"][0] + fw["omega_m"], np.asarray(arr["omega"], float))
 
 
+@pytest.mark.parametrize("name", [n for n in TASKS if "\nflywheel:" in (ROOT / "tasks" / f"{n}.yaml").read_text(encoding="utf-8")])
+def test_dynamics_curves_span_their_axes_and_no_more(name):
+    """Each curve of the dynamics sheet runs the whole φ axis and stops at its end, left of
+    the energy-mass diagram, its ticks in degrees of the cycle: the four-stroke engine's
+    720° were drawn at 1 °/mm, their second turn 360 mm past the axis and across the
+    energy-mass diagram. Now μφ = 2 °/mm there (360 mm for the cycle)."""
+    cycles = 0
+    for lang, sheets in example_sheets(name).items():
+        for _, info in sheets:
+            if "energy_mass" not in info:
+                continue
+            cycles += 1
+            ox = {g["origin"][0] for g in info["graphs"].values()}
+            assert len(ox) == 1
+            ox = ox.pop()
+            end = ox + info["x_len"]
+            assert info["x_len"] == pytest.approx(360.0) and _mantissa_ok(info["mu_phi"])
+            for sym, g in info["graphs"].items():
+                for pts in g["pts"]:
+                    assert pts[:, 0].min() == pytest.approx(ox) and pts[:, 0].max() == pytest.approx(end), (lang, sym)
+            assert end + 40.0 < info["energy_mass"]["origin"][0]
+    assert cycles == 3
+
+
 def _only_sheet(name, number, lang):
     """(results, canvas, info) of the one sheet of an example task, its labels and its
     ГОСТ 2.302 length scale checked."""

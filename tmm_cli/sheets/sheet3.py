@@ -32,8 +32,14 @@ def build(cv, results: dict, task: Task | None, lang: str = "en") -> dict:
     mm = T["mm"]
     x0f, y0f, x1f, y1f = FRAME
     phi = np.asarray(a["phi_cycle"], float)
-    mu_phi = 1.0
-    ticks = [(30.0 * i, f"{30 * i}" if i < 12 else "") for i in range(13)]
+    # the φ axis 360 mm long over the cycle: μφ = 1 °/mm for a turn, 2 °/mm for a four-stroke
+    # engine's 720° (drawn at 1 °/mm, its second turn ran 360 mm past the axis, over the
+    # energy-mass diagram); a tick each 30 mm, labelled in degrees
+    span = float(phi[-1] - phi[0]) if len(phi) > 1 else 360.0
+    mu_phi = std_mu(span / 360.0)
+    x_len = span / mu_phi
+    ticks = [(30.0 * mu_phi * i, f"{30.0 * mu_phi * i:g}" if 30.0 * (i + 1) <= x_len else "")
+             for i in range(int(x_len // 30.0 + 1e-9) + 1)]
     rows = [("M", [("M_d", "#7a1f1f"), ("M_c", "#1f5fbf"), ("M_red", "#000")], T["Nm"]),
             ("A", [("A_d", "#7a1f1f"), ("A_c", "#1f5fbf")], T["J"]),
             ("ΔT", [("dT", "#000")], T["J"])]
@@ -46,7 +52,7 @@ def build(cv, results: dict, task: Task | None, lang: str = "en") -> dict:
     if a.get("omega") is not None:
         rows.append((T["omega_dev"], [("omega_dev", "#000")], T["rads"]))   # ω − ω_mean
     box_h = (y1f - y0f - 20.0) / len(rows)
-    info = {"mu_phi": mu_phi, "graphs": {}, "scale": "—"}   # diagrams only: no length scale
+    info = {"mu_phi": mu_phi, "x_len": x_len, "graphs": {}, "scale": "—"}   # diagrams only: no length scale
     cv.mtext(x0f + 5, y1f - 6, T["title"], 5.0, bold=True)
     for k, (sym, keys, unit) in enumerate(rows):
         ys = [np.asarray(arrays[key], float) for key, _ in keys]
@@ -59,7 +65,7 @@ def build(cv, results: dict, task: Task | None, lang: str = "en") -> dict:
         msym = "ω" if dev else sym.split()[0]
         mean = T["omega_mean"].format(w=f"{omega_m:.4g} {unit}") if dev else ""
         pts = draw_graph(cv, (x0f + 20.0, yc), [(phi, y, c) for y, (_, c) in zip(ys, keys)], mu_phi, mu,
-                         x_len=360.0 / mu_phi, y_up=hi / mu + 5.0, y_down=-lo / mu + 3.0, x_sym="φ",
+                         x_len=x_len, y_up=hi / mu + 5.0, y_down=-lo / mu + 3.0, x_sym="φ",
                          y_sym=sym, mu_text=f"{mu_text(msym, mu, unit, mm)},  μφ = {mu_phi:g} °/{mm}"
                          + mean, ticks=ticks)
         # the names of the curves at their right ends
@@ -68,7 +74,7 @@ def build(cv, results: dict, task: Task | None, lang: str = "en") -> dict:
         for yv, key in ends:
             yy = yv if last is None else min(yv, last - 4.0)
             base, _, low = curve_name(key, lang).partition("_")      # M with the subscript after "_"
-            cv.mtext(x0f + 20.0 + 360.0 / mu_phi + 15.0, yy, base, 2.5, sub=low or None)   # past φ
+            cv.mtext(x0f + 20.0 + x_len + 15.0, yy, base, 2.5, sub=low or None)   # past φ
             last = yy
         info["graphs"][sym] = {"mu": mu, "pts": pts, "origin": (x0f + 20.0, yc),
                                "values": [y for y in ys]}
