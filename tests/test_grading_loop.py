@@ -3,6 +3,7 @@
 a recomputation written in this file (involute gear geometry from the textbook formulas)."""
 from __future__ import annotations
 
+import json
 import csv
 import math
 import re
@@ -717,3 +718,29 @@ def test_a_set_shows_its_tasks_variant(tmp_path):
     assert {(r["student"], r["variant"]) for r in _csv(tmp_path / "o" / "check.csv")} == {("A", "4"), ("B", "4")}
     res = runner.invoke(app, ["check", str(src / "v4.yaml"), "--answers", str(ans / "v4.yaml"), "--out", str(tmp_path / "c")])
     assert res.exit_code == 0 and [r["variant"] for r in _csv(tmp_path / "c" / "check.csv")] == ["4"], res.output
+
+
+def test_swapped_strokes_are_outside_a_links_negated_angle_a_sign(tmp_path):
+    """An offset press's working and idle strokes (181.98 and 178.02 deg, summing to 360)
+    answered the other way round were graded "right magnitude, wrong sign": modulo 360,
+    -178.02 is 181.98. A stroke's arc is a size: its negation is not taken modulo 360, and the
+    swap is outside (its sign, -theta, still the wrong sign). A link's angle is a direction:
+    its negation is the wrong sign, and 360 less it the same angle."""
+    src = (Path(__file__).resolve().parents[1] / "tasks" / "press_offset_slider_crank.yaml").read_text(encoding="utf-8")
+    res = runner.invoke(app, ["run", str(_write(tmp_path, "p.yaml", src)), "--format", "json",
+                              "--out", str(tmp_path / "run")])
+    assert res.exit_code == 0, res.output
+    r = json.loads((tmp_path / "run" / "results.json").read_text(encoding="utf-8"))
+    work, idle = r["positions"]["working_stroke_angle"], r["positions"]["idle_stroke_angle"]
+    assert work + idle == pytest.approx(360.0) and abs(work - idle) > 1.0
+    rod = r["kinematics"][2]["links"]["rod"]["angle"]
+    answers = {"positions.working_stroke_angle": idle, "positions.idle_stroke_angle": work,
+               "positions.theta": -r["positions"]["theta"],
+               "kinematics[2].links.rod.angle": -rod, "kinematics[3].links.rod.angle": r["kinematics"][3]["links"]["rod"]["angle"] - 360.0}
+    task = _write(tmp_path, "a.yaml", src + "answers:\n" + "".join(f"  '{p}': {v!r}\n" for p, v in answers.items()))
+    tol = _write(tmp_path, "tol.yaml", "positions: {abs: 0.5}\nkinematics: {abs: 0.5}\n")
+    runner.invoke(app, ["check", str(task), "--tolerance", str(tol), "--out", str(tmp_path / "o")])
+    rows = {row["path"]: row["status"] for row in _csv(tmp_path / "o" / "check.csv")}
+    assert rows == {"positions.working_stroke_angle": "outside", "positions.idle_stroke_angle": "outside",
+                    "positions.theta": "sign", "kinematics[2].links.rod.angle": "sign",
+                    "kinematics[3].links.rod.angle": "ok"}, rows

@@ -205,8 +205,9 @@ def work(path: Path, out: Path, folder: str, formats: set[str], lang: str, sets:
 
 
 def variant_key(results: dict, paths: set[str], tol: dict) -> dict:
-    """path -> (reference, Tol, angle) of the paths that hold a number in ``results``."""
-    from .check import Tol, _is_angle, parse_tolerance, tolerance_for
+    """path -> (reference, Tol, angle: check.angle_kind) of the paths that hold a number in
+    ``results``."""
+    from .check import Tol, angle_kind, parse_tolerance, tolerance_for
     from .results import lookup
     key = {}
     for p in sorted(paths):
@@ -216,7 +217,7 @@ def variant_key(results: dict, paths: set[str], tol: dict) -> dict:
             continue
         if isinstance(v, (int, float)) and not isinstance(v, bool) and v == v:
             t = tolerance_for(p, tol, count=type(v) is int)
-            key[p] = (float(v), t if isinstance(t, Tol) else parse_tolerance(t, p), _is_angle(p))
+            key[p] = (float(v), t if isinstance(t, Tol) else parse_tolerance(t, p), angle_kind(p))
     return key
 
 

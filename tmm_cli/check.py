@@ -214,6 +214,23 @@ def _is_angle(path: str) -> bool:
     return last in ANGLE_KEYS or last.endswith("_phi")
 
 
+# angles that are sizes, not directions: the strokes' arcs of the cycle (working + idle = 360),
+# the overtravel angle, the mesh's pressure angle, the least transmission angle, the cam's
+# greatest pressure angles. An arc is still passed modulo 360 (-191.7 for 168.3: a difference of
+# two crank angles not wrapped), but its negation is not: modulo 360, -178.0 is 182.0, and an
+# idle stroke of 178.0 answered for the working stroke's 182.0 was "right magnitude, wrong sign"
+ARC_KEYS = {"working_stroke_angle", "idle_stroke_angle", "theta", "alpha_w", "gamma_min", "gamma",
+            "max_pressure_angle", "max_pressure_angle_rise", "max_pressure_angle_return"}
+
+
+def angle_kind(path: str) -> str | None:
+    """'direction' (graded modulo 360, its sign too), 'arc' (a size: modulo 360, its sign
+    not) or None (no angle)."""
+    if not _is_angle(path):
+        return None
+    return "arc" if _last_name(path) in ARC_KEYS else "direction"
+
+
 def _mark(marks, key, default=(None, None)):
     return marks.get(key, default)
 
@@ -580,17 +597,18 @@ def passed_interval(ref: float, tol: Tol) -> tuple[float, float]:
     return ref, bound_of(ref, tol)[0] + slack
 
 
-def compare(student: float, ref: float, tol: Tol, angle: bool) -> tuple[str, float, str]:
+def compare(student: float, ref: float, tol: Tol, angle: bool | str | None) -> tuple[str, float, str]:
     """(status, error, kind of error: 'rel' | 'abs'). With ``tol.any_sign`` the magnitude
-    is graded: the answer or its negation, whichever is nearer."""
+    is graded: the answer or its negation, whichever is nearer. ``angle`` (truthy): degrees,
+    the difference taken modulo 360; 'arc' (:func:`angle_kind`): the negation's not."""
     if tol.any_sign:
         one = dataclasses.replace(tol, any_sign=False)          # the same tolerance (a band too), one sign
         a, b = (compare(s, ref, one, angle) for s in (student, -student))
         return ("ok", b[1], b[2]) if b[0] == "ok" and a[0] != "ok" else a
 
-    def diff(a):
+    def diff(a, wrap=bool(angle)):
         d = a - ref
-        return (d + 180.0) % 360.0 - 180.0 if angle else d
+        return (d + 180.0) % 360.0 - 180.0 if wrap else d
     d = abs(diff(student))
     slack = 1e-12 * max(1.0, abs(ref))
     if tol.band is not None:             # an interval: inside it, or its mirror (the sign), or outside
@@ -606,7 +624,7 @@ def compare(student: float, ref: float, tol: Tol, angle: bool) -> tuple[str, flo
     err = d / abs(ref) if kind == "rel" else d
     if d <= bound + slack:
         return "ok", err, kind
-    if ref != 0 and abs(diff(-student)) <= bound + slack:
+    if ref != 0 and abs(diff(-student, wrap=bool(angle) and angle != "arc")) <= bound + slack:
         return "sign", err, kind
     return "outside", err, kind
 
@@ -665,7 +683,7 @@ def grade(results: dict, aset: AnswerSet, tol: dict, required: list[str] | None 
         if val is None:
             row["status"], row["note"] = "missing", Message("answers.note_missing")
             continue
-        status, err, kind = compare(float(val), float(ref), t, _is_angle(p))
+        status, err, kind = compare(float(val), float(ref), t, angle_kind(p))
         row["status"], row["error"] = status, err
         if status == "sign":
             row["note"] = Message("answers.note_sign")
