@@ -13,6 +13,11 @@ from tmm_cli.units import convert
 @pytest.mark.parametrize("value,kind,expected", [
     ("300 mm", "length", 0.3),
     ("50 rpm", "speed", 50 * 2 * math.pi / 60),
+    # revolutions as texts abbreviate them: rev/min, ISO 80000's r/min, and per second
+    ("50 rev/min", "speed", 50 * 2 * math.pi / 60),
+    ("50 r/min", "speed", 50 * 2 * math.pi / 60),
+    ("2 rev/s", "speed", 2 * 2 * math.pi),
+    ("2 r/s", "speed", 2 * 2 * math.pi),
     ("5.24 rad/s", "speed", 5.24),
     ("10 MPa", "pressure", 10e6),
     ("0.15 kg*m^2", "inertia", 0.15),
@@ -34,6 +39,8 @@ def test_convert(value, kind, expected):
     (True, "length", "got True"),
     ("abc", "dimensionless", "fraction"),
     ("nan", "length", "finite"),
+    ("50 rev", "speed", "'rev' is not defined"),       # a revolution is no speed
+    ("50 r", "speed", "'r' is not defined"),
 ])
 def test_convert_errors(value, kind, frag):
     with pytest.raises(ValueError) as e:

@@ -79,8 +79,11 @@ _FREQUENCY = {(("min", -1),): (2 * math.pi / 60, "input.reading_per_min"),
               (("second", -1),): (1.0, "input.reading_per_s")}
 _GRAD = ("grad", "degree")        # the course's Cyrillic "grad" (and its transliteration): degrees
 _SIGNS = {"\u00b0": "degree", "%": "percent"}
-# units spelt out that the unit table knows by their short name (revolutions per minute: rpm)
-_SAME = {(("revolution", 1), ("min", -1)): (("rpm", 1),)}
+# units spelt out that the unit table knows by their short name (revolutions per minute: rpm;
+# 'rev/min', and ISO 80000's and GOST 8.417's Latin 'r/min', 'r/s', as texts abbreviate them)
+_SAME = {(("revolution", 1), ("min", -1)): (("rpm", 1),), (("rev", 1), ("min", -1)): (("rpm", 1),),
+         (("r", 1), ("min", -1)): (("rpm", 1),), (("rev", 1), ("s", -1)): (("rps", 1),),
+         (("r", 1), ("s", -1)): (("rps", 1),)}
 
 
 @dataclass(frozen=True)
