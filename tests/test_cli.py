@@ -249,6 +249,17 @@ def test_a_students_tolerance_even_a_broken_one_is_ignored(tmp_path, text):
     assert "`tolerance` is ignored" in " ".join(res.output.split()) and "outside" in res.output
 
 
+@pytest.mark.parametrize("lang, head", [("en", "error: nothing to check"), ("ru", "\u041d\u0435\u0447\u0435\u0433\u043e"),
+                                        ("uk", "\u041d\u0456\u0447\u043e\u0433\u043e")])
+def test_check_with_nothing_to_check_is_no_invalid_task(tmp_path, lang, head):
+    """`tmm check` of a valid task without answers and without --answers was headed "error:
+    invalid task": the task is valid; nothing was given to check (exit 2, the remedy said)."""
+    task = _write(tmp_path, "g.yaml", GEARS)
+    res = runner.invoke(app, ["check", str(task), "--lang", lang])
+    assert res.exit_code == 2, res.output
+    assert res.output.startswith(head) and "invalid" not in res.output and "--answers" in res.output, res.output
+
+
 def test_an_infinite_answer_is_that_answers_invalid(tmp_path):
     task = _write(tmp_path, "g.yaml", GEARS)
     ans = _write(tmp_path, "a.yaml", "answers: {gears.aw: .inf}\n")

@@ -257,8 +257,9 @@ def check(
                                                         "(check.csv stays English): en | ru | uk"),
 ):
     """Compare a student's answers with the computed results: path, answer, reference,
-    error and status (ok, sign, outside, missing, unknown_path, not_computed). Exit 1 if
-    any answer is not ok (or there are none), 2 invalid input, 3 a stage failed."""
+    error and status (ok, sign, outside, missing, unknown_path, not_computed, invalid). Exit 1
+    if any answer is not ok (or an answers file holds none), 2 invalid input or no answers at
+    all (the task has no `answers:` and no --answers is given), 3 a stage failed."""
     from .check import (check_csv, grade, load_sources, load_tolerance_file, repeats, set_code, set_status,
                         task_answer_set, tolerances, variant_order)
     from .orchestrate import compute, prepare
@@ -273,7 +274,7 @@ def check(
         if answers is None:
             own = task_answer_set(task)
             if own is None:
-                raise TaskError(Message("answers.none_in_task"), file=str(task_file))
+                raise TaskError(Message("answers.none_in_task"), file=str(task_file), kind="no answers")
             sets = [own]
         else:
             sets = load_sources(answers)

@@ -41,7 +41,8 @@ Echo = Callable[..., None]
 
 
 # the invalid file's kind (TaskError.kind) -> the head of its errors in another language
-_INVALID = {"task": "invalid_task", "answers file": "invalid_answers", "tolerance file": "invalid_tolerance"}
+_INVALID = {"task": "invalid_task", "answers file": "invalid_answers", "tolerance file": "invalid_tolerance",
+            "no answers": "no_answers_head"}       # a valid task, `tmm check` given nothing to check
 
 
 def fail_task(exc: TaskError, echo: Echo = echo, lang: str = "en") -> int:
@@ -50,7 +51,7 @@ def fail_task(exc: TaskError, echo: Echo = echo, lang: str = "en") -> int:
     head = _INVALID.get(exc.kind)
     coded = exc.coded() if lang != "en" and head is not None else None
     if coded is None:
-        echo(f"error: invalid {exc.kind}\n{exc.render()}", err=True)
+        echo(f"error: {_word(head, 'en') if head else 'invalid ' + exc.kind}\n{exc.render()}", err=True)
     else:
         from .messages import localize
         echo(f"{_word(head, lang)}:\n{localize(coded.to_dict(), lang)}", err=True)
