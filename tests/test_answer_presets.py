@@ -253,3 +253,28 @@ def test_a_rocker_followers_curves_take_their_own_unit(tmp_path):
     assert answer_value("510 rad/s^2", "cam.a[10]") == pytest.approx(510.0)
     assert answer_value("2 rad/s", "kinematics_curve.v[100]") == pytest.approx(2.0)
     assert answer_value("1200 mm/s", "kinematics[1].points.B.v") == pytest.approx(1.2)
+
+
+def test_a_position_preset_asks_at_a_position_the_task_computes(tmp_path):
+    """The kinetostatics preset asked at position 1 only: with `kinetostatics: {positions: [3]}`
+    (the tutorial's kind of task) it found nothing and wrote no form. Now the first position the
+    task computes; 'kinetostatics[3]' (or 'kinematics[5]') asks at the position it names, and a
+    position not computed is an error naming those that are."""
+    from tmm_cli import load_task, run
+    from tmm_cli.errors import TaskError
+    from tmm_cli.forms import expand
+    src = (TASKS / "engine_slider_crank.yaml").read_text(encoding="utf-8")
+    assert "\nkinetostatics:\n  positions: all\n" in src
+    task = tmp_path / "e.yaml"
+    task.write_text(src.replace("\nkinetostatics:\n  positions: all\n", "\nkinetostatics:\n  positions: [3, 7]\n"),
+                    encoding="utf-8")
+    res = run(load_task(task))
+    assert [e["index"] for e in res["kinetostatics"]] == [3, 7]
+    got = expand("kinetostatics", res)
+    assert got and all(p.startswith("kinetostatics[3].") for p in got), got
+    assert "kinetostatics[3].balancing_moment" in got
+    assert all(p.startswith("kinetostatics[7].") for p in expand("kinetostatics[7]", res))
+    assert "kinematics[5].points.B.v" in expand("kinematics[5]", res)
+    assert "kinematics[1].points.B.v" in expand("kinematics", res)          # kinematics: position 1 is there
+    with pytest.raises(TaskError, match=r"no position \[5\] \(positions computed: 3, 7\)"):
+        expand("kinetostatics[5]", res)

@@ -322,6 +322,7 @@ def check(
         try:
             required = expand(quantities, results)
         except TaskError as exc:
+            exc.file, exc.kind = str(task_file), "quantities"      # the option's, of this task's results
             raise _fail_task(exc, lang)
     from .summary import print_check
     if not sets:

@@ -42,7 +42,8 @@ Echo = Callable[..., None]
 
 # the invalid file's kind (TaskError.kind) -> the head of its errors in another language
 _INVALID = {"task": "invalid_task", "answers file": "invalid_answers", "tolerance file": "invalid_tolerance",
-            "no answers": "no_answers_head"}       # a valid task, `tmm check` given nothing to check
+            "no answers": "no_answers_head",       # a valid task, `tmm check` given nothing to check
+            "quantities": "invalid_quantities"}    # `--quantities` asks what the task's results lack
 
 
 def fail_task(exc: TaskError, echo: Echo = echo, lang: str = "en") -> int:

@@ -12,6 +12,7 @@ import json
 import re
 
 from .errors import TaskError
+from .messages import Message
 
 PRESETS: dict[str, list[str]] = {
     "positions": ["positions.phi0", "positions.working_stroke_angle", "positions.idle_stroke_angle",
@@ -260,32 +261,59 @@ def expand(quantities: str | list[str], results: dict, *, strict: bool = True) -
     for raw in (i.strip() for i in items):
         if not raw:
             continue
-        if raw in PRESETS:
-            got = [p for pat in PRESETS[raw] for rx in (_pattern(pat),) for p in names if rx.match(p)
+        preset = _position_preset(raw, results)
+        if preset is not None:
+            name, pats = preset
+            got = [p for pat in pats for rx in (_pattern(pat),) for p in names if rx.match(p)
                    if not _zero_by_construction(p, results)]
+            if not got and strict and name != raw:
+                raise TaskError(Message("quantities.no_position", preset=raw, index=raw[len(name):],
+                                        computed=", ".join(map(str, _indices(results, name)))))
             if not got and strict:
-                raise TaskError(f"preset '{raw}': the task's results have none of its quantities (is its "
-                                f"section in the task?)")
+                raise TaskError(Message("quantities.preset_empty", preset=raw))
             out.extend(g for g in got if g not in out)
             continue
         if "." not in raw and "[" not in raw and raw not in results:
             import difflib
             near = difflib.get_close_matches(raw, list(PRESETS), n=1, cutoff=0.75)
             if near and strict:              # 'differntial': the preset meant, not a path
-                raise TaskError(f"quantity '{raw}' is neither a preset nor a path in the results; "
-                                f"did you mean the preset '{near[0]}'? (presets: {', '.join(PRESETS)})")
+                raise TaskError(Message("quantities.preset_meant", name=raw, preset=near[0],
+                                        presets=", ".join(PRESETS)))
         try:
             parse_path(raw)
             v = lookup(results, raw)
             if strict and (isinstance(v, (dict, list)) or v is None):
-                raise KeyError(f"'{raw}' holds no number")
+                raise KeyError(Message("quantities.no_number", name=raw))
         except KeyError as exc:
             if strict:
-                raise TaskError(f"quantity '{raw}' is not in the results: {exc.args[0] if exc.args else exc}; "
-                                f"{did_you_mean(raw, results, names)} (presets: {', '.join(PRESETS)})") from None
+                raise TaskError(Message("quantities.not_in_results", name=raw, why=exc.args[0] if exc.args else str(exc),
+                                        hint=did_you_mean(raw, results, names), presets=", ".join(PRESETS))) from None
         if raw not in out:
             out.append(raw)
     return out
+
+
+def _indices(results: dict, section: str) -> list[int]:
+    """The indices of the positions ``results[section]`` holds, in order."""
+    entries = results.get(section) or []
+    return [e["index"] for e in entries if isinstance(e, dict) and "index" in e]
+
+
+def _position_preset(raw: str, results: dict) -> tuple[str, list[str]] | None:
+    """(preset name, its path patterns) of ``raw``, or None when it names no preset. The
+    position presets ('kinematics', 'kinetostatics') ask at position 1, else at the first the
+    task computes (`kinetostatics: {positions: [3]}`: position 3); 'kinetostatics[3]' at the
+    position it names."""
+    m = re.fullmatch(r"(kinematics|kinetostatics)\[(\d+)\]", raw)
+    name = m.group(1) if m else raw
+    if name not in PRESETS:
+        return None
+    pats = PRESETS[name]
+    if name in ("kinematics", "kinetostatics"):
+        at = _indices(results, name)
+        index = int(m.group(2)) if m else (1 if 1 in at or not at else at[0])
+        pats = [q.replace("[1]", f"[{index}]", 1) for q in pats]
+    return name, pats
 
 
 _KIN_PATH = re.compile(r"^kinematics\[\d+\]\.(points|links)\.([^.]+)\.([^.\[]+)$")
