@@ -10,6 +10,7 @@ import re
 from pathlib import Path
 
 import pytest
+import yaml
 from typer.testing import CliRunner
 
 from tmm_cli.check import AnswerSet, Tol, answer_value, compare, grade, parse_tolerance, set_status
@@ -271,6 +272,35 @@ def test_variants_empty_cell_and_unused_column(tmp_path):
     assert (f"{tab}:2: \u0432\u0430\u0440\u0456\u0430\u043d\u0442 1: \u043f\u043e\u0440\u043e\u0436\u043d\u044f "
             f"\u043a\u043b\u0456\u0442\u0438\u043d\u043a\u0430 \u0432 \u0441\u0442\u043e\u0432\u043f\u0446\u0456 a") in res.output
     assert "\u0437\u0430\u043f\u0438\u0441\u0430\u043d\u043e 1 \u0437 3" in res.output and "wrote" not in res.output
+
+
+def test_a_tables_students_reach_their_tasks_and_forms(tmp_path):
+    """A variants table's student and group columns (recognised, then warned as used by no
+    placeholder) were dropped: the tasks had no `student`, the forms and form.csv an empty
+    name. Now a template without its own `student` gets the row's, and `tmm form` writes it
+    into the form, form.csv and key.csv; a template with its own keeps it (no warning either way
+    for the columns it uses)."""
+    tpl = _write(tmp_path, "tpl.yaml", TEMPLATE)
+    tab = _write(tmp_path, "tab.csv", "variant;a, mm;b, mm;n;student;group\n"
+                                      "1;100;300;10;Ann Lee;MT-21\n2;100;320;10;Bob Ray;\n3;100;340;10;;\n")
+    res = runner.invoke(app, ["variants", str(tpl), str(tab), "--out", str(tmp_path / "v")])
+    assert res.exit_code == 0 and "no placeholder" not in res.output, res.output
+    tasks = {p.stem: yaml.safe_load(p.read_text(encoding="utf-8")) for p in (tmp_path / "v").glob("*.yaml")}
+    assert tasks["1"]["student"] == {"name": "Ann Lee", "group": "MT-21"}
+    assert tasks["2"]["student"] == {"name": "Bob Ray"} and "student" not in tasks["3"]
+    assert list(tasks["1"])[:4] == ["schema", "title", "variant", "student"]
+    res = runner.invoke(app, ["form", str(tmp_path / "v"), "-q", "positions", "--out", str(tmp_path / "f")])
+    assert res.exit_code == 0, res.output
+    assert 'student: {name: "Ann Lee", group: "MT-21"}' in (tmp_path / "f" / "1.form.yaml").read_text(encoding="utf-8")
+    assert 'student: {name: "", group: ""}' in (tmp_path / "f" / "3.form.yaml").read_text(encoding="utf-8")
+    for table in ("form.csv", "key.csv"):
+        rows = _csv(tmp_path / "f" / table)
+        assert [(r["student"], r["group"], r["variant"]) for r in rows] == [
+            ("Ann Lee", "MT-21", "1"), ("Bob Ray", "", "2"), ("", "", "3")], table
+    own = _write(tmp_path, "own.yaml", TEMPLATE + "student: {name: '{student}'}\n")
+    res = runner.invoke(app, ["variants", str(own), str(tab), "--out", str(tmp_path / "w")])
+    assert yaml.safe_load((tmp_path / "w" / "1.yaml").read_text(encoding="utf-8"))["student"] == {"name": "Ann Lee"}
+    assert "column group used by no placeholder" in res.output, res.output
 
 
 @pytest.mark.parametrize("table,what", [("variant,a\n1,2\n", "placeholder {b} names no column"),

@@ -558,8 +558,10 @@ def form(
             continue
         all_paths += [p for p in qp if p not in all_paths]
         v = task.variant if task.variant is not None else task.name
-        frows.append({"student": "", "group": "", "variant": v})
-        krow = {"student": "", "group": "", "variant": v}
+        who = {"student": (task.student.name or "") if task.student else "",
+               "group": (task.student.group or "") if task.student else ""}
+        frows.append({**who, "variant": v})
+        krow = {**who, "variant": v}
         for p in qp:
             krow[p] = lookup(results, p)
         krows.append(krow)

@@ -390,6 +390,11 @@ def yaml_key(path: str) -> str:
 
 
 
+def _quoted(value: str | None) -> str:
+    """A student's name or group as a YAML string ('""' where the task has none)."""
+    return json.dumps(value or "", ensure_ascii=False)
+
+
 def form_text(task, paths: list[str], results: dict | None, lang: str) -> str:
     """The blank form (results None) or the key (results given) as commented YAML; a comment
     gives each quantity's symbol and unit as the language writes them (in ru and uk the units in
@@ -398,10 +403,11 @@ def form_text(task, paths: list[str], results: dict | None, lang: str) -> str:
     key = results is not None
     words = _text(lang, "text")
     head = words["key" if key else "form"]
+    st = task.student                            # a variants table's student and group, if it gave them
     lines = [f"# {head}: {task.title or task.name}".rstrip(),
              "# " + words["note"],
              f"variant: {json.dumps(task.variant if task.variant is not None else task.name, ensure_ascii=False)}",
-             'student: {name: "", group: ""}', "answers:"]
+             f"student: {{name: {_quoted(st and st.name)}, group: {_quoted(st and st.group)}}}", "answers:"]
     width = max((len(yaml_key(p)) for p in paths), default=0) + 2
     for p in paths:
         val = ""
