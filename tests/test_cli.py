@@ -260,6 +260,22 @@ def test_check_with_nothing_to_check_is_no_invalid_task(tmp_path, lang, head):
     assert res.output.startswith(head) and "invalid" not in res.output and "--answers" in res.output, res.output
 
 
+def test_a_tolerance_files_plain_tolerance_line_is_told_not_ignored(tmp_path):
+    """`tolerance: 0.02` in a --tolerance file (a task's section copied as a number) was taken
+    for a path named 'tolerance' matching no quantity: the answers were graded at the default
+    5 % with only a warning. Now the file is invalid at that line, the way to write it said;
+    `tolerance: {default: 0.02}` is read (0.0968 against 0.088 is outside either way, 0.0891 is
+    inside 5 % and outside 1 %)."""
+    task = _write(tmp_path, "g.yaml", GEARS + "answers: {gears.aw: 0.0891}\n")
+    bad = _write(tmp_path, "t.yaml", "tolerance: 0.01\n")
+    res = runner.invoke(app, ["check", str(task), "--tolerance", str(bad)])
+    assert res.exit_code == 2 and f"{bad}:1:1: field 'tolerance'" in res.output, res.output
+    assert "write `tolerance: {default: 0.05}`" in res.output and "Traceback" not in res.output
+    good = _write(tmp_path, "t2.yaml", "tolerance: {default: 0.01}\n")
+    res = runner.invoke(app, ["check", str(task), "--tolerance", str(good)], env={"COLUMNS": "120"})
+    assert res.exit_code == 1 and "outside" in res.output, res.output
+
+
 def test_an_infinite_answer_is_that_answers_invalid(tmp_path):
     task = _write(tmp_path, "g.yaml", GEARS)
     ans = _write(tmp_path, "a.yaml", "answers: {gears.aw: .inf}\n")

@@ -446,6 +446,11 @@ def load_tolerance_file(path: Path) -> dict:
     base = ()
     if isinstance(data, dict) and isinstance(data.get("tolerance"), dict):
         data, base = data["tolerance"], ("tolerance",)
+    elif isinstance(data, dict) and "tolerance" in data:     # `tolerance: 0.05`, as a task's section is
+        line, col = _mark(marks, ("tolerance",))            # never written: it graded at 5 % unsaid
+        raise TaskError("invalid tolerance file", file=str(path), kind="tolerance file",
+                        issues=[("tolerance", line, col, Message("input.tol_section_not_mapping",
+                                                                   got=repr(data["tolerance"])))])
     if not isinstance(data, dict):
         raise TaskError(Message("input.tol_not_mapping"), file=str(path), kind="tolerance file")
     out = {}
