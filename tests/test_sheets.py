@@ -254,10 +254,10 @@ def test_dynamics_sheet(forging):
     fw = res["flywheel"]
     assert sa == pytest.approx(fw["energy_mass"]["omega_max"] ** 2 / 2)
     # the course's dynamics sheet: J_red(φ) and ω(φ) (about ωm) beside M, A, ΔT, each at value / μ
-    assert list(info["graphs"]) == ["M", "A", "ΔT", "J", "ω − ωm"]
+    assert list(info["graphs"]) == ["M", "A", "ΔT", "J", "Δω"]
     arr = fw["arrays"]
     assert np.array_equal(info["graphs"]["J"]["values"][0], np.asarray(arr["J_red"], float))
-    assert np.allclose(info["graphs"]["ω − ωm"]["values"][0] + fw["omega_m"], np.asarray(arr["omega"], float))
+    assert np.allclose(info["graphs"]["Δω"]["values"][0] + fw["omega_m"], np.asarray(arr["omega"], float))
 
 
 @pytest.mark.parametrize("name", [n for n in TASKS if "\nflywheel:" in (ROOT / "tasks" / f"{n}.yaml").read_text(encoding="utf-8")])
@@ -281,6 +281,13 @@ def test_dynamics_curves_span_their_axes_and_no_more(name):
                 for pts in g["pts"]:
                     assert pts[:, 0].min() == pytest.approx(ox) and pts[:, 0].max() == pytest.approx(end), (lang, sym)
             assert end + 40.0 < info["energy_mass"]["origin"][0]
+            # ω about its own mean: a clockwise crank's (ω < 0) drew ω + ωm, 21 rad/s off its axis
+            dev = info["graphs"]["Δω"]["values"][0]
+            assert abs(np.nanmean(dev)) < np.nanmax(dev) - np.nanmin(dev), (lang, np.nanmean(dev))
+            # the lower tangent's intercept b on the ΔT axis, not below its end
+            em = info["energy_mass"]
+            (b, _), = em["tangents"][1:]
+            assert em["origin"][1] + b / em["mu_T"] > em["axis_low"], lang
     assert cycles == 3
 
 

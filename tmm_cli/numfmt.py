@@ -63,6 +63,11 @@ def list_sep(lang: str | None = None) -> str:
     return "; " if comma(lang) else ", "
 
 
+def superscript(s: str) -> str:
+    """Digits and signs raised: '-5' -> '⁻⁵' (a power of ten as typeset text writes it)."""
+    return s.translate(_SUP)
+
+
 def _typeset(m: re.Match) -> str:
     sign, whole, dec, esign, exp = m.groups()
     s = ("\u2212" if sign in ("-", "\u2212") else sign) + whole + ("," + dec if dec else "")

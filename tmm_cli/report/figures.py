@@ -15,6 +15,7 @@ from operator import itemgetter
 import numpy as np
 
 from .svgdraw import PT_PER_MM
+from ..numfmt import superscript
 
 MM = 1.0 / 25.4  # inch per mm
 _SUBS = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
@@ -124,11 +125,14 @@ def mu_text(sym: str, mu: float, unit: str, mm: str = "mm") -> str:
     """The scale in the course's form: 'μs = 0.002 m/mm', 'μv = 0.05 (m/s)/mm' (in Russian and
     Ukrainian the unit's numerator over the bracketed product with the millimetre, as the course
     writes it)."""
+    # a scale's power of ten as a drawing writes it in every language (2·10⁻⁵, not 2e-05)
+    m, _, e = f"{mu:g}".partition("e")
+    value = f"{m}·10{superscript(str(int(e)))}" if e else m
     if mm != "mm" and "/" in unit and not unit.startswith("("):   # ru, uk: m/(s·mm) in their letters
         num, den = unit.split("/", 1)
-        return f"μ{sym} = {mu:g} {num}/({den}·{mm})"
+        return f"μ{sym} = {value} {num}/({den}·{mm})"
     u = f"({unit})" if "/" in unit and not unit.startswith("(") else unit
-    return f"μ{sym} = {mu:g} {u}/{mm}"
+    return f"μ{sym} = {value} {u}/{mm}"
 
 
 def scale_mark(lang: str) -> str:

@@ -45,8 +45,12 @@ def build(cv, results: dict, task: Task | None, lang: str = "en") -> dict:
             ("ΔT", [("dT", "#000")], T["J"])]
     # the reduced moment of inertia J_red(φ) and the angular speed ω(φ) of the crank, drawn
     # about its mean ωm (its deviation is a few per cent of it)
-    omega_m = float(f.get("omega_m") or np.nanmean(a["omega"]))
-    arrays = dict(a, omega_dev=np.asarray(a["omega"], float) - omega_m)
+    # ω signed as the crank turns (negative clockwise), ωm its mean's magnitude: the mean taken
+    # away with ω's sign (a clockwise press drew ω + ωm, 21 rad/s below its axis)
+    omega = np.asarray(a["omega"], float) if a.get("omega") is not None else np.zeros(0)
+    turn = -1.0 if omega.size and np.nanmean(omega) < 0 else 1.0
+    omega_m = turn * abs(float(f.get("omega_m") or (np.nanmean(omega) if omega.size else 0.0)))
+    arrays = dict(a, omega_dev=omega - omega_m)
     if a.get("J_red") is not None:
         rows.append(("J", [("J_red", "#000")], T["kgm2"]))
     if a.get("omega") is not None:
@@ -74,7 +78,8 @@ def build(cv, results: dict, task: Task | None, lang: str = "en") -> dict:
         for yv, key in ends:
             yy = yv if last is None else min(yv, last - 4.0)
             base, _, low = curve_name(key, lang).partition("_")      # M with the subscript after "_"
-            cv.mtext(x0f + 20.0 + x_len + 15.0, yy, base, 2.5, sub=low or None)   # past φ
+            colour = dict(keys)[key]                        # the name in its curve's colour
+            cv.mtext(x0f + 20.0 + x_len + 15.0, yy, base, 2.5, sub=low or None, color=colour)   # past φ
             last = yy
         info["graphs"][sym] = {"mu": mu, "pts": pts, "origin": (x0f + 20.0, yc),
                                "values": [y for y in ys]}
@@ -84,15 +89,19 @@ def build(cv, results: dict, task: Task | None, lang: str = "en") -> dict:
     J = np.asarray(a["J_var"], float)
     em = f.get("energy_mass") or {}
     bx0, by0, bw, bh = 430.0, 80.0, 380.0, y1f - 80.0 - 10.0
-    mu_T = std_mu((float(dT.max()) - min(0.0, float(dT.min()))) / (bh - 40.0))
+    # the ΔT axis reaches down to the lower tangent's intercept b (b <= min ΔT): the segment ab
+    # on it is what the student measures (b lay below the axis's end, on nothing)
+    low = min(0.0, float(dT.min()), *([float(em["b"])] if em.get("b") is not None else []))
+    mu_T = std_mu((float(dT.max()) - low) / (bh - 40.0))
     mu_J = std_mu(float(J.max()) / (bw - 60.0))
-    origin = (bx0 + 20.0, by0 + 15.0 - min(0.0, float(dT.min())) / mu_T)
+    origin = (bx0 + 20.0, by0 + 15.0 - low / mu_T)
     cv.mtext(bx0 + 5, y1f - 6, T["em"], 5.0, bold=True)
     pts, = draw_graph(cv, origin, [(J, dT, "#000")], mu_J, mu_T, x_len=float(J.max()) / mu_J + 10.0,
-                      y_up=float(dT.max()) / mu_T + 12.0, y_down=-min(0.0, float(dT.min())) / mu_T + 5.0,
+                      y_up=float(dT.max()) / mu_T + 12.0, y_down=-low / mu_T + 5.0,
                       x_sym=locales.of("dynamics", "words", lang).get("dyn.Jvar", "J_var"), y_sym="ΔT",
                       mu_text=f"μT = {mu_T:g} {T['J']}/{mm},  μJ = {mu_J:g} {T['kgm2']}/{mm}")
-    info["energy_mass"] = {"mu_T": mu_T, "mu_J": mu_J, "pts": pts, "origin": origin}
+    info["energy_mass"] = {"mu_T": mu_T, "mu_J": mu_J, "pts": pts, "origin": origin,
+                           "axis_low": origin[1] - (-low / mu_T + 5.0)}
     # the tangents: ΔT = a + J ω_max²/2 and ΔT = b + J ω_min²/2 (Popov & Timofeev)
     if em.get("a") is not None and em.get("omega_max"):
         cv.layer = "thin"
