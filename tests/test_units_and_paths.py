@@ -18,6 +18,11 @@ from tmm_cli.units import convert
     ("50 r/min", "speed", 50 * 2 * math.pi / 60),
     ("2 rev/s", "speed", 2 * 2 * math.pi),
     ("2 r/s", "speed", 2 * 2 * math.pi),
+    # min^-1 printed with its superscript lost, as texts give n = 1450 min-1
+    ("180 min-1", "speed", 180 * 2 * math.pi / 60),
+    ("180 \u043c\u0438\u043d-1", "speed", 180 * 2 * math.pi / 60),
+    ("180 \u043c\u0438\u043d\u22121", "speed", 180 * 2 * math.pi / 60),
+    ("12.5 s-1", "speed", 12.5),
     ("5.24 rad/s", "speed", 5.24),
     ("10 MPa", "pressure", 10e6),
     ("0.15 kg*m^2", "inertia", 0.15),
@@ -41,6 +46,8 @@ def test_convert(value, kind, expected):
     ("nan", "length", "finite"),
     ("50 rev", "speed", "'rev' is not defined"),       # a revolution is no speed
     ("50 r", "speed", "'r' is not defined"),
+    ("3 m-1", "length", "cannot read the unit"),        # a bare -1 after a minute or second only
+    ("180 min-12", "speed", "cannot read the unit"),
 ])
 def test_convert_errors(value, kind, frag):
     with pytest.raises(ValueError) as e:

@@ -56,7 +56,11 @@ _NAME = re.compile(r"[A-Za-z\u00b5\u03bc\u0400-\u04ff]{1,16}\.?|\u00b0|%")
 # a power: ^2, **2, ^(-1), superscripts; and a bare 2 or 3 right after the name as students type
 # it ('\u043a\u0433\u00b7\u043c2', 'm/s2')
 _POWER = re.compile(r"(?:\^|\*\*)(?P<b>\(?)(?P<s>[-\u2212]?)(?P<d>[1-9])(?P<e>\)?)"
-                    r"|(?P<sup>\u207b?[\u00b9\u00b2\u00b3\u2074-\u2079])|(?P<bare>[23])(?![0-9])")
+                    r"|(?P<sup>\u207b?[\u00b9\u00b2\u00b3\u2074-\u2079])|(?P<bare>[23])(?![0-9])"
+                    r"|(?P<per>[-\u2212]1)(?![0-9])")
+# the units a bare -1 may follow: a speed in revolutions per minute as texts print it with its
+# superscript lost ('n = 1450 \u043c\u0438\u043d-1', 'min-1'), and per second
+_PER_BARE = frozenset({"min", "s"})
 # the units a bare 2 or 3 may follow (an area, a volume, an acceleration's s^2): lengths and the second
 _BARE_POWER = frozenset({"m", "mm", "cm", "dm", "km", "um", "s"})
 _TIMES = re.compile(r"\s*[*\u00b7\u22c5]\s*|\s+(?=[^\s/])")
@@ -254,12 +258,14 @@ def parse_unit(u: str, s: str = "") -> tuple[tuple, tuple]:
             elif p.group("bare") is not None:
                 power = int(p.group("bare"))
                 bare = True
+            elif p.group("per") is not None:
+                power, bare = -1, True
             else:
                 power = int(p.group("sup").translate(_SUP))
             pos = p.end()
         for latin, k in _latin(name, s):
-            if bare and latin not in _BARE_POWER:     # '30°2' is no squared degree (a minute mark left
-                raise ValueError(Message("input.number_unit_syntax", text=s, unit=u))   # off): refused
+            if bare and latin not in (_PER_BARE if power == -1 else _BARE_POWER):   # '30°2' is no squared
+                raise ValueError(Message("input.number_unit_syntax", text=s, unit=u))   # degree: refused
             if latin == _GRAD[0]:
                 latin = _GRAD[1]
                 # said for the Latin 'grad' only (pint's gradian): the Cyrillic word is degrees in
