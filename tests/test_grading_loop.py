@@ -744,3 +744,15 @@ def test_swapped_strokes_are_outside_a_links_negated_angle_a_sign(tmp_path):
     assert rows == {"positions.working_stroke_angle": "outside", "positions.idle_stroke_angle": "outside",
                     "positions.theta": "sign", "kinematics[2].links.rod.angle": "sign",
                     "kinematics[3].links.rod.angle": "ok"}, rows
+
+
+def test_the_angle_tolerance_advice_is_a_note_in_batch_as_in_check(tmp_path):
+    """The advice that angles were graded with a relative tolerance was printed as `note:` by
+    `tmm check` and as `warning:` by `tmm batch`: a note in both."""
+    key = gear_key(14, 30)
+    src = tmp_path / "src"
+    task = _write(src, "v1.yaml", GEARS.format(v=1, z1=14, z2=30) + f"answers: {{gears.alpha_w: {key['gears.alpha_w']}}}\n")
+    for cmd in (["batch", str(src)], ["check", str(task)]):
+        res = runner.invoke(app, [*cmd, "--out", str(tmp_path / cmd[0])], env={"COLUMNS": "200"})
+        lines = [ln for ln in res.output.splitlines() if "relative tolerance" in ln]
+        assert len(lines) == 1 and lines[0].startswith("note: angles were graded"), (cmd[0], res.output)

@@ -446,7 +446,7 @@ def print_batch(rows: list[dict], out: Path, skipped=(), removed=(), notes=(), l
     from rich.table import Table
     from rich.text import Text
 
-    from .messages import in_lang, localize
+    from .messages import Message, in_lang, localize
     from .numfmt import plural
     B = batch_words(lang)
     status = status_words(lang)
@@ -481,8 +481,9 @@ def print_batch(rows: list[dict], out: Path, skipped=(), removed=(), notes=(), l
                   markup=False)
     if removed:
         con.print(B["removed"].format(n=len(removed)), markup=False)
-    word = run_words(lang)["warning"]
-    for n in notes:
+    words = run_words(lang)
+    for n in notes:          # the advice on angles' tolerance a note, as `tmm check` prints it
+        word = words["note" if isinstance(n, Message) and n.code == "answers.angle_relative" else "warning"]
         con.print(f"{word}: {in_lang(n, lang)}", markup=False)
     con.print(B["wrote"].format(csv=out / "summary.csv"), markup=False)
 
