@@ -1,6 +1,7 @@
 """The README's "Examples:" block runs as written, command by command, in a fresh directory
 holding only the repository's tasks/ and examples/ (as a newcomer's clone has them): each
-command exits 0, or the code its comment names ("# exit 1: ..."), and writes what it says."""
+command exits 0, or the code its comment names ("# exit 1: ..."), and writes what it says (a
+`check` whose comment says how many answers are off has that many outside)."""
 from __future__ import annotations
 
 import re
@@ -49,6 +50,12 @@ def test_readme_example_runs(line: str, fresh: Path):
     assert p.returncode == want, f"{line!r}: exit {p.returncode}\n{p.stdout[-2000:]}\n{p.stderr[-2000:]}"
     assert "Traceback" not in p.stderr, p.stderr[-2000:]
     args = shlex.split(code[0])
+    if args[1] == "check" and len(code) == 2:
+        # "# exit 1: one answer is off": the table's count says so too
+        m = re.search(r"(\w+) answers? (?:is|are) off", code[1])
+        if m:
+            n = {"one": 1, "two": 2, "three": 3}.get(m.group(1), m.group(1))
+            assert f", {n} outside" in p.stdout, p.stdout[-2000:]
     if args[1] == "run":
         # the default folder: out/<task name>/
         out = fresh / (args[args.index("--out") + 1] if "--out" in args else f"out/{Path(args[2]).stem}")
