@@ -114,7 +114,8 @@ def write_outputs(task, results: dict, out: Path, formats: set[str], lang: str,
 
 @app.command()
 def run(
-    task_file: Path = typer.Argument(..., metavar="TASK.yaml", help="the task file (README: The task file)"),
+    task_file: Path = typer.Argument(..., metavar="TASK.yaml",
+                                     help="the task file (docs/task-file.md; every field: tmm fields)"),
     out: Optional[Path] = typer.Option(None, "--out", "-o", help="output folder (default: out/<task name>/)"),
     format: str = typer.Option("json,html,pdf", "--format", "-f",
                                help="comma-separated outputs: json, html, pdf, sheets (the A1 drawing sheets in "
@@ -257,9 +258,10 @@ def check(
                                                         "(check.csv stays English): en | ru | uk"),
 ):
     """Compare a student's answers with the computed results: path, answer, reference,
-    error and status (ok, sign, outside, missing, unknown_path, not_computed, invalid). Exit 1
-    if any answer is not ok (or an answers file holds none), 2 invalid input or no answers at
-    all (the task has no `answers:` and no --answers is given), 3 a stage failed."""
+    error and status (ok, sign, outside, missing, unknown_path, not_computed, invalid: an answer
+    that cannot be read). Exit 1 if any answer is not ok (or an answers file holds none), 2
+    invalid input or no answers at all (the task has no `answers:` and no --answers is given),
+    3 a stage failed."""
     from .check import (check_csv, grade, load_sources, load_tolerance_file, repeats, set_code, set_status,
                         task_answer_set, tolerances, variant_order)
     from .orchestrate import compute, prepare
