@@ -278,3 +278,27 @@ def test_a_position_preset_asks_at_a_position_the_task_computes(tmp_path):
     assert "kinematics[1].points.B.v" in expand("kinematics", res)          # kinematics: position 1 is there
     with pytest.raises(TaskError, match=r"no position \[5\] \(positions computed: 3, 7\)"):
         expand("kinetostatics[5]", res)
+
+
+def test_a_form_tells_the_crank_angle_of_each_position_it_asks_at(tmp_path):
+    """A form asking kinematics[3] and kinetostatics[7] did not say which crank angle position 3
+    is: a comment now gives the crank's angle at each, as results.json holds it (every
+    30 deg from position 0's phi0 for 12 positions, in the crank's sense)."""
+    src = (TASKS / "engine_slider_crank.yaml").read_text(encoding="utf-8")
+    task = tmp_path / "e.yaml"
+    task.write_text(src, encoding="utf-8")
+    res = runner.invoke(app, ["form", str(task), "-q", "kinematics[3].points.B.v,kinetostatics[7].balancing_moment",
+                              "--out", str(tmp_path / "f")])
+    assert res.exit_code == 0, res.output
+    from tmm_cli import load_task, run
+    r = run(load_task(task))
+    phi0 = r["positions"]["phi0"]
+    sense = 1.0 if r["positions"]["direction"] == "ccw" else -1.0
+    want = [(k, (phi0 + sense * 30.0 * k) % 360.0) for k in (3, 7)]
+    for name in ("e.form.yaml", "e.key.yaml"):
+        text = (tmp_path / "f" / name).read_text(encoding="utf-8")
+        line = next(ln for ln in text.splitlines() if "crank's angle" in ln)
+        got = [(int(k), float(v)) for k, v in re.findall(r"(\d+): \u03c6 = ([\d.]+)\u00b0", line)]
+        assert [k for k, _ in got] == [3, 7] and all(abs(g - w) < 0.051 for (_, g), (_, w) in zip(got, want)), line
+    plain = runner.invoke(app, ["form", str(task), "-q", "flywheel", "--out", str(tmp_path / "g")])
+    assert plain.exit_code == 0 and "crank's angle" not in (tmp_path / "g" / "e.form.yaml").read_text(encoding="utf-8")

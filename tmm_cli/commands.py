@@ -518,7 +518,7 @@ def form(
     """Write per task a blank answer form NAME.form.yaml and an answer key NAME.key.yaml,
     and for the set form.csv and key.csv."""
     from .batch import find_tasks
-    from .forms import expand, form_text, forms_csv
+    from .forms import expand, form_text, forms_csv, position_angles
     from .io import atomic_write
     from .orchestrate import classify, compute, prepare
     from .results import lookup
@@ -538,8 +538,9 @@ def form(
             results = compute(task)
             qp = expand(quantities, results)
             name = names.take(safe_name(task.name, "task"))
-            atomic_write(out / f"{name}.form.yaml", form_text(task, qp, None, lang))
-            atomic_write(out / f"{name}.key.yaml", form_text(task, qp, results, lang))
+            angles = position_angles(qp, results)
+            atomic_write(out / f"{name}.form.yaml", form_text(task, qp, None, lang, angles))
+            atomic_write(out / f"{name}.key.yaml", form_text(task, qp, results, lang, angles))
             if name != task.name:
                 _err(in_lang(Message("form.renamed", file=str(f), name=name), lang))
         except TaskError as exc:

@@ -395,10 +395,25 @@ def _quoted(value: str | None) -> str:
     return json.dumps(value or "", ensure_ascii=False)
 
 
-def form_text(task, paths: list[str], results: dict | None, lang: str) -> str:
+def position_angles(paths: list[str], results: dict) -> dict[int, float]:
+    """{position: crank angle φ, deg} of the positions the ``paths`` ask at ('kinematics[3]...',
+    'kinetostatics[3]...'), as results.json holds them."""
+    wanted = {int(m.group(2)) for p in paths if (m := re.match(r"(kinematics|kinetostatics)\[(\d+)\]", p))}
+    out = {}
+    for section in ("kinematics", "kinetostatics"):
+        for e in results.get(section) or []:
+            if isinstance(e, dict) and e.get("index") in wanted and e.get("phi") is not None:
+                out.setdefault(int(e["index"]), float(e["phi"]))
+    return dict(sorted(out.items()))
+
+
+def form_text(task, paths: list[str], results: dict | None, lang: str,
+              angles: dict[int, float] | None = None) -> str:
     """The blank form (results None) or the key (results given) as commented YAML; a comment
     gives each quantity's symbol and unit as the language writes them (in ru and uk the units in
-    Cyrillic, which the answers reader reads too: tmm_cli/numbers.py) and its name."""
+    Cyrillic, which the answers reader reads too: tmm_cli/numbers.py) and its name. ``angles``
+    ({position: φ}, :func:`position_angles`): a comment gives the crank's angle at each position
+    asked at (its number counts from position 0 as the task sets it; φ tells which it is)."""
     from .results import lookup, reference
     key = results is not None
     words = _text(lang, "text")
@@ -407,7 +422,12 @@ def form_text(task, paths: list[str], results: dict | None, lang: str) -> str:
     lines = [f"# {head}: {task.title or task.name}".rstrip(),
              "# " + words["note"],
              f"variant: {json.dumps(task.variant if task.variant is not None else task.name, ensure_ascii=False)}",
-             f"student: {{name: {_quoted(st and st.name)}, group: {_quoted(st and st.group)}}}", "answers:"]
+             f"student: {{name: {_quoted(st and st.name)}, group: {_quoted(st and st.group)}}}"]
+    if angles:
+        from .numfmt import list_sep, num
+        lines.insert(2, "# " + words["positions"].format(list=list_sep(lang).join(
+            f"{k}: φ = {num(v, '.1f', lang)}°" for k, v in angles.items())))
+    lines.append("answers:")
     width = max((len(yaml_key(p)) for p in paths), default=0) + 2
     for p in paths:
         val = ""
