@@ -751,6 +751,35 @@ def test_cam_sheet_r0_construction(name):
             assert abs(u[0] * w[1] - u[1] * w[0]) < 1e-6
 
 
+@pytest.mark.parametrize("name", ["cam_translating", "cam_chosen_size", "cam_knife", "cam_offset", "cam_rocker"])
+def test_cam_construction_as_large_as_the_sheet_allows_and_clear_of_the_title_block(name):
+    """The s - ds/dφ construction was fitted to the box above the title block only, anchored in
+    its corner: the central cam's tall diagram came out at 1:1 beside room for 2:1 left of the
+    title block. Now the larger of the two boxes' scales: at the next larger GOST 2.302 scale
+    the diagram would fit neither; every point drawn stays in the frame, clear of the title block."""
+    from tmm_cli.report.figures import GOST_ENLARGEMENTS, GOST_REDUCTIONS
+    from tmm_cli.sheets.frame import FRAME, TB_H, TB_W
+    res, cv, info = _only_sheet(name, 4, "en")
+    d, k = info["construction"], res["cam"]["construction"]
+    pts = np.vstack([*d["D"].values(), d["O"], d["B0"], *[np.asarray(t) for t in d["tangents"]]])
+    x0f, y0f, x1f, y1f = FRAME
+    assert (pts[:, 0] > x0f).all() and (pts[:, 0] < x1f).all() and (pts[:, 1] > y0f).all(), name
+    in_block = (pts[:, 0] > x1f - TB_W) & (pts[:, 1] < y0f + TB_H)
+    assert not in_block.any(), pts[in_block][:3]
+    # one step larger (the next smaller model-mm per sheet-mm): the D curves' extent too big for
+    # the taller box (left of the title block, up to the profile) and the wider one alike
+    scales = sorted({*GOST_REDUCTIONS, *(1.0 / n for n in GOST_ENLARGEMENTS)})
+    larger = max(u for u in scales if u < d["unit"] - 1e-12)
+    lo, hi = np.asarray(k["box"][:2], float), np.asarray(k["box"][2:], float)
+    if k.get("A") is not None:
+        lo, hi = np.minimum(lo, k["A"]), np.maximum(hi, k["A"])
+    size = (hi - lo) * 1000.0 / larger
+    # the two boxes (w, h) the sheet gives it below the profile (from y = 300 mm down): the whole
+    # width above the title block, and left of the title block down to the frame
+    boxes = [(x1f - 440.0 - 5.0, 300.0 - y0f - TB_H - 12.0), (x1f - TB_W - 440.0 - 5.0, 300.0 - y0f - 12.0)]
+    assert not any(size[0] <= w - 20.0 and size[1] <= h - 22.0 for w, h in boxes), (name, size, boxes)
+
+
 @pytest.mark.parametrize("name", ["forging_sixbar", "crank_rocker_fourbar"])
 def test_chord_method_check_on_sheet1(name):
     """The output's v (ω) and a (ε) diagrams carry the chord-method differentiation of the

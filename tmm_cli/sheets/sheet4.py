@@ -9,7 +9,7 @@ import numpy as np
 
 from .. import locales
 from ..report.figures import scale_mark
-from .frame import FRAME, TB_H, length_scale, std_mu
+from .frame import FRAME, TB_H, TB_W, length_scale, std_mu
 from .graph import draw_graph
 
 if TYPE_CHECKING:
@@ -17,6 +17,22 @@ if TYPE_CHECKING:
 
 GX = 28.0         # mm: the diagrams' φ axes start this far into the frame (room for d²s/dφ²)
 TXT = locales.table("sheets", "sheet4")
+
+
+def _extent(k: dict) -> tuple[np.ndarray, np.ndarray]:
+    """The s - ds/dφ construction's corners (m), a rocker's pivot A with it."""
+    lo, hi = np.asarray(k["box"][:2], float), np.asarray(k["box"][2:], float)
+    if k.get("A") is not None:      # a rocker's pivot A: on the drawing too
+        lo, hi = np.minimum(lo, np.asarray(k["A"], float)), np.maximum(hi, np.asarray(k["A"], float))
+    return lo, hi
+
+
+def _construction_scale(k: dict, box) -> tuple[float, str]:
+    """The GOST 2.302 scale (model mm per sheet mm, its label) at which the construction fills
+    ``box`` (x, y, w, h; room for its heading and margins)."""
+    lo, hi = _extent(k)
+    _, _, w, h = box
+    return length_scale(max((hi - lo)[0] * 1000.0 / (w - 20.0), (hi - lo)[1] * 1000.0 / (h - 22.0)))
 
 
 def draw_construction(cv, k, c, box, results: dict, task: Task | None, lang: str = "en") -> dict:
@@ -31,10 +47,8 @@ def draw_construction(cv, k, c, box, results: dict, task: Task | None, lang: str
     C = load("cam")                  # registers its texts in the three languages
     ctx = ReportContext(results=results, task=task, lang=lang, out_dir=Path("."), env=None)
     x0, y0, w, h = box
-    lo, hi = np.asarray(k["box"][:2], float), np.asarray(k["box"][2:], float)
-    if k.get("A") is not None:      # a rocker's pivot A: on the drawing too
-        lo, hi = np.minimum(lo, np.asarray(k["A"], float)), np.maximum(hi, np.asarray(k["A"], float))
-    unit, label = length_scale(max((hi - lo)[0] * 1000.0 / (w - 20.0), (hi - lo)[1] * 1000.0 / (h - 22.0)))
+    lo, hi = _extent(k)
+    unit, label = _construction_scale(k, box)
     O = np.array([x0 + 10.0, y0 + 6.0]) - lo * 1000.0 / unit
 
     def M(p):
@@ -118,8 +132,13 @@ def build(cv, results: dict, task: Task | None, lang: str = "en") -> dict:
     by0 = 300.0 if kc else 70.0
     bx0, bw, bh = 440.0, x1f - 440.0 - 5.0, y1f - by0 - 5.0
     if kc:
-        info["construction"] = draw_construction(cv, kc, c, (bx0, y0f + TB_H + 5.0, bw, by0 - y0f - TB_H - 12.0),
-                                                 results, task, lang)
+        # the construction over the whole width above the title block, or left of it down to the
+        # frame (taller, narrower): whichever draws it larger (a tall diagram drawn at 1:1 in the
+        # corner of the wide box missed 2:1 by 6 mm of height the left part had to spare)
+        wide = (bx0, y0f + TB_H + 5.0, bw, by0 - y0f - TB_H - 12.0)
+        tall = (bx0, y0f + 5.0, x1f - TB_W - bx0 - 5.0, by0 - y0f - 12.0)
+        box = min((wide, tall), key=lambda b: _construction_scale(kc, b)[0])
+        info["construction"] = draw_construction(cv, kc, c, box, results, task, lang)
     unit, label = length_scale(2 * R * 1000.0 / (min(bw, bh) - 50.0))
     O = np.array([bx0 + bw / 2, by0 + (bh - 20.0) / 2])
 
