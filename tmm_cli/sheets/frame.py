@@ -121,7 +121,7 @@ def draw_frame(cv, *, title: str, sheet_title: str, variant, student: str, group
     tmm = T["code"]                   # the course's code in the drawing's letters (Latin or Cyrillic)
     code = f"{base}.{n:02d}" if base else (f"{tmm}.{variant}.{n:02d}" if variant not in (None, "") else f"{tmm}.{n:02d}")
     fit_text(cv, rx + 60, by + 47.5, code, 7.0, 116, anchor="middle")
-    fit_lines(cv, rx + 35, by + 31, title, 5.0, 66, 14.0)
+    fit_lines(cv, rx + 35, by + 31.5, title, 5.0, 66, 12.5)   # its descenders clear of the sheet title
     fit_text(cv, rx + 35, by + 20, sheet_title, 3.5, 66, anchor="middle")
     fit_text(cv, rx + 35, by + 12, f"{T['variant']} {variant}" if variant not in (None, "") else "", 3.5, 66,
              anchor="middle")
