@@ -258,3 +258,49 @@ def test_a_round_off_couple_is_not_drawn():
                      {"name": "Mi3", "link": "rod", "M": 2.5, "kind": "inertia"},
                      {"name": "Mi4", "link": "other", "M": 3.0, "kind": "inertia"}]}
     assert group_couples(e, {"crank", "rod"}) == [("Mi3", "rod", 2.5, "inertia")]
+
+
+@pytest.mark.parametrize("name", ["balancing_fourbar", "forging_sixbar", "engine_slider_crank"])
+def test_every_lever_force_stands_on_a_drawn_ray_of_the_turned_plan(name):
+    """On Zhukovsky's lever a force is moved to the end of its point's turned velocity. The
+    crank's inertia force at its centre of mass beyond O (a counterweight) floated 124 mm from
+    p with no ray to it: every force's point now ends a drawn line of the plan (ps1, lettered
+    s1), at every position the task computes. (The point: rot90(v)/mu_v from the pole.)"""
+    import numpy as np
+
+    import tmm_cli
+    from tmm_cli.drawings import forces as K
+    from tmm_cli.drawings.words import Words
+    from tmm_cli.report.svgdraw import Canvas
+    from pathlib import Path
+    tasks = Path(__file__).resolve().parents[1] / "tasks"
+    r = tmm_cli.run(tmm_cli.load_task(tasks / f"{name}.yaml"), kinematics_curve=0)
+    lines, letters = [], []
+    line0, text0 = Canvas.line, Canvas.text
+
+    class Rec(Canvas):
+        def line(self, p, q, *a, **kw):
+            lines.append((np.asarray(p, float), np.asarray(q, float)))
+            return line0(self, p, q, *a, **kw)
+
+        def text(self, x, y, s, *a, sub=None, **kw):
+            letters.append(s + (sub or ""))
+            return text0(self, x, y, s, *a, sub=sub, **kw)
+    checked = 0
+    for e in r["kinetostatics"]:
+        if e.get("zhukovsky_moment") is None:
+            continue
+        ke = next(k for k in r["kinematics"] if k["index"] == e["index"])
+        lines.clear()
+        letters.clear()
+        box = (0.0, 0.0, 170.0, 110.0)
+        mu_v = K.lever_panel(Words("en"), Rec(170, 110), box, e, ke, None, (r.get("drive") or {}).get("omega"),
+                             r["kinetostatics_info"]["balance_kind"])
+        pole = lines[0][0]                      # the first ray starts at the pole
+        for f in e["loads"]:
+            if float(np.hypot(*f["F"])) == 0:
+                continue
+            q = pole + np.array([-f["v"][1], f["v"][0]]) / mu_v
+            assert any(K._on_segment(q, a, b, tol=0.3) for a, b in lines), (name, e["index"], f["name"])
+            checked += 1
+    assert checked > 0

@@ -654,6 +654,15 @@ def lever_height(e, kin_e, w: float, h_min: float, h_max: float) -> float:
     return min(max(h_min, math.ceil(need)), h_max)
 
 
+def _on_segment(q, a, b, tol: float = 0.3) -> bool:
+    """Whether the point ``q`` (mm) lies on the segment ab within ``tol`` mm."""
+    q, a, b = (np.asarray(x, float) for x in (q, a, b))
+    d = b - a
+    n = float(np.dot(d, d))
+    t = 0.0 if n == 0.0 else min(1.0, max(0.0, float(np.dot(q - a, d)) / n))
+    return float(np.hypot(*(a + t * d - q))) <= tol
+
+
 def lever_panel(words, cv, box, e, kin_e, pin, omega1, balance_kind):
     """Zhukovsky's lever: the velocity plan turned by +90 deg (ends rot90(v)/mu_v, mu_v
     lever_scale), the loads moved to the ends of the turned velocities with their arms
@@ -684,6 +693,15 @@ def lever_panel(words, cv, box, e, kin_e, pin, omega1, balance_kind):
     for f in loads:
         F = np.asarray(f["F"], float)
         q = end(np.array([-f["v"][1], f["v"][0]], float))
+        if not any(_on_segment(q, a, b) for a, b in segs):
+            # a point of no drawn ray (a crank's centre of mass beyond O, with its counterweight):
+            # its own turned velocity ps, so that the force stands on the lever, not beside it
+            cv.line(pole, q, "#9a9a9a", 0.3, z=1)
+            segs.append((pole, q))
+            cv.dot(q, 0.45, "#555", z=5)
+            m = re.fullmatch(r"(?:Fi|G)(\d+)", str(f.get("name", "")))
+            if m:                       # lettered as the plan's points: s1, the link's centre of mass
+                ends.setdefault(f"S{m.group(1)}", q)
         nF = float(np.hypot(*F))
         u = F / nF
         col = KIND_COLOR.get(f["kind"], "#000")
