@@ -42,6 +42,7 @@ ALLOWED = {
     "tmm_cli.drawings.balancing": "where the counterweights stand, from results' numbers",
     "tmm_cli.drawings.forces": "groups, force polygons, Zhukovsky's lever drawn",
     "tmm_cli.drawings.mesh": "a gear pair's wheels and line of action",
+    "tmm_cli.drawings.train": "a drive's gear train: its scheme, velocity picture and angular-velocity plan",
     "tmm_cli.drawings.words": "the drawings' terms and numbers in the report's language",
     "tmm_cli.drawings.titleblock": "a signer's name in its title-block cell (the note's form 2, as the sheets')",
     "tmm_cli.scales": "the standard series of the scale factors μ",

@@ -1002,3 +1002,70 @@ def test_the_energy_mass_sheet_names_its_abscissa():
     for lang, sub in (("en", "var"), ("ru", "\u043f\u0435\u0440\u0435\u043c")):
         (cv, info), = [(c, i) for c, i in sheets[lang] if i["number"] == 3]
         assert any(isinstance(p, Text) and p.s == "J" and p.sub == sub for p in cv.prims), lang
+
+
+def _prim_points(cv):
+    """Every point a canvas's primitives reach (text anchors included), as an (n, 2) array."""
+    from tmm_cli.sheets.prims import Arc, Circle, Line, Polyline, Text
+    pts = []
+    for q in cv.prims:
+        if isinstance(q, Line):
+            pts += [q.p, q.q]
+        elif isinstance(q, Polyline):
+            pts += list(q.pts)
+        elif isinstance(q, (Circle, Arc)):
+            pts += [(q.c[0] - q.r, q.c[1] - q.r), (q.c[0] + q.r, q.c[1] + q.r)]
+        elif isinstance(q, Text):
+            pts.append((q.x, q.y))
+    return np.asarray(pts, float)
+
+
+@pytest.mark.parametrize("name", ["planetary_pair_given", "press_drive_train"])
+def test_drive_train_sheet_draws_the_trains_plans_at_their_scales(name):
+    """A drive's gear train (pairs and a planetary stage from the motor) had no sheet at all
+    ('no linkage, cam or gear pair to draw'). Sheet 9 draws its scheme with the picture of
+    linear velocities and the plan of angular velocities: the plan's ray of each shaft cuts the
+    line at x = ω / μω from the pole's foot, ω the shaft's speed worked out here from the
+    motor's speed and the stages' tooth numbers (a pair -z2/z1 or +z2/z1 inside, a planetary
+    stage of scheme A 1 + z3/z1, B 1 + z2 z4/(z1 z3)); every drawing inside its own canvas (the
+    pair's driven wheel ran off the report's figure) and the sheet's frame."""
+    import math as m
+
+    from tmm_cli.pipeline import run
+    from tmm_cli.sheets import build_sheets
+    from tmm_cli.sheets.frame import FRAME
+    from tmm_cli.task import load_task
+    task = load_task(ROOT / "tasks" / f"{name}.yaml")
+    res = run(task)
+    info = next(i for _, i in build_sheets(res, task, "en") if i["number"] == 9)
+    sense = -1.0 if res["drive_train"]["motor_direction"] == "cw" else 1.0
+    speeds = [sense * float(task.drive_train.motor_speed)]          # rad/s, as the task gives it
+    for st in res["drive_train"]["stages"]:
+        z = st["z"]
+        if st["type"] == "pair":
+            u = z[1] / z[0] * (1 if st.get("internal") else -1)
+        elif st["scheme"] == "A":
+            u = 1 + z[2] / z[0]
+        else:
+            u = 1 + z[1] * z[3] / (z[0] * z[2])
+        speeds.append(speeds[-1] / u)
+    assert np.allclose(speeds, res["drive_train"]["shafts"], rtol=1e-9), (speeds, res["drive_train"]["shafts"])
+    px, py, plan = info["plan"]
+    pts = _prim_points(plan)
+    assert (pts >= -1e-6).all() and (pts[:, 0] <= plan.w + 1e-6).all() and (pts[:, 1] <= plan.h + 1e-6).all()
+    from tmm_cli.sheets.prims import Line
+    lines = [q for q in plan.prims if isinstance(q, Line)]
+    pole = max(((q.p, sum(1 for r in lines if r.p == q.p)) for q in lines), key=lambda t: t[1])[0]
+    ends = [q.q for q in lines if q.p == pole]
+    foot = [q.q for q in lines if q.p == pole and q.dash is not None and abs(q.q[0] - pole[0]) < 1e-9]
+    xs = [e[0] - pole[0] for e in ends]
+    for s in speeds:                                  # each shaft's ray where ω / μω puts it
+        assert min(abs(x - s / info["mu_omega"]) for x in xs) < 1e-6, (s, xs)
+    assert all(abs(e[1] - pole[1]) == pytest.approx(info["H"]) for e in ends if e not in foot)
+    sx, sy, scheme = info["scheme"]
+    pts = _prim_points(scheme)
+    assert (pts >= -1e-6).all() and (pts[:, 0] <= scheme.w + 1e-6).all() and (pts[:, 1] <= scheme.h + 1e-6).all()
+    x0f, y0f, x1f, y1f = FRAME
+    for (ox, oy, c) in (info["scheme"], info["plan"]):
+        assert x0f < ox and ox + c.w < x1f and y0f < oy and oy + c.h < y1f
+    assert _gost_length(info["mu_l"]) and _mantissa_ok(info["mu_omega"]) and m.isfinite(info["mu_v"])

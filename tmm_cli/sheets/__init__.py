@@ -18,7 +18,7 @@ def build_sheets(results: dict, task: Task | None, lang: str = "en") -> list[tup
     """[(PrimCanvas, info)] for each sheet whose section the results have."""
     from ..results import listed
     results = listed(results)        # the entries as lists: read many times
-    from . import sheet1, sheet2, sheet3, sheet4, sheet5, sheet6, sheet7, sheet8
+    from . import sheet1, sheet2, sheet3, sheet4, sheet5, sheet6, sheet7, sheet8, sheet9
     from .frame import SHEET_H, SHEET_W, draw_frame
     from .prims import PrimCanvas
     makers = []
@@ -36,6 +36,8 @@ def build_sheets(results: dict, task: Task | None, lang: str = "en") -> list[tup
         makers.append((6, sheet6.build))
     if (results.get("differential") or {}).get("velocity_plan"):
         makers.append((7, sheet7.build))
+    if (results.get("drive_train") or {}).get("velocity_plan"):
+        makers.append((9, sheet9.build))
     bal = results.get("balancing") or {}
     if bal.get("rotor") or (bal.get("shaking") and results.get("kinematics")):
         makers.append((8, sheet8.build))

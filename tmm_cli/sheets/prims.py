@@ -190,3 +190,23 @@ def is_halo(p) -> bool:
 def arc_points(c, r, a0, a1, n=24):
     t = np.radians(np.linspace(a0, a1, n))
     return [(c[0] + r * math.cos(a), c[1] + r * math.sin(a)) for a in t]
+
+
+def place(dst: PrimCanvas, src: PrimCanvas, dx: float, dy: float) -> None:
+    """The primitives drawn on ``src`` (a drawing made at its own origin) added to ``dst``,
+    moved by (dx, dy) mm: a drawing the report and a sheet share, put where the sheet wants it."""
+    import dataclasses
+
+    def m(p):
+        return (p[0] + dx, p[1] + dy)
+    for q in src.prims:
+        if isinstance(q, Line):
+            q = dataclasses.replace(q, p=m(q.p), q=m(q.q))
+        elif isinstance(q, Polyline):
+            q = dataclasses.replace(q, pts=tuple(m(t) for t in q.pts))
+        elif isinstance(q, (Circle, Arc)):
+            q = dataclasses.replace(q, c=m(q.c))
+        elif isinstance(q, Text):
+            q = dataclasses.replace(q, x=q.x + dx, y=q.y + dy)
+        dst.prims.append(q)
+
