@@ -1069,3 +1069,38 @@ def test_drive_train_sheet_draws_the_trains_plans_at_their_scales(name):
     for (ox, oy, c) in (info["scheme"], info["plan"]):
         assert x0f < ox and ox + c.w < x1f and y0f < oy and oy + c.h < y1f
     assert _gost_length(info["mu_l"]) and _mantissa_ok(info["mu_omega"]) and m.isfinite(info["mu_v"])
+
+
+def test_a_scotch_yokes_slot_is_drawn_and_the_numbers_clear_its_blocks():
+    """The Scotch yoke's block slides in a slot of the yoke: the group drawing showed the block
+    apart from the yoke (the slot not drawn), the kinematic scheme the yoke as a dash-dot line
+    only, and its position numbers on the blocks at the crank pin. The slot now runs from the
+    yoke's bar through the block (worked here: the bar along y = 0, the block at (0, -60) at
+    90 deg: the foot (0, 0), the far end 6 mm past the block), the yoke's bar is drawn at every
+    position, and no position number touches a block."""
+    from tmm_cli.drawings.forces import _slot
+    links = {"yoke": {"points": ["Y", "P"]}, "block": {"points": ["A"]}}
+    mp = {"Y": np.array([-40.0, 0.0]), "P": np.array([60.0, 0.0]), "A": np.array([0.0, -60.0])}
+    foot, end = _slot(mp["A"], np.array([0.0, 1.0]), links, {"link": "yoke"}, ["block", "yoke"], mp)
+    assert np.allclose(foot, [0.0, 0.0]) and np.allclose(end, [0.0, -66.0])
+    assert _slot(mp["A"], np.array([1.0, 0.0]), links, {"link": "yoke"}, ["block", "yoke"], mp) is None  # along it
+    assert _slot(mp["A"], np.array([0.0, 1.0]), links, {"link": "yoke"}, ["block"], mp) is None   # not in the group
+    assert _slot(mp["A"], np.array([0.0, 1.0]), links, {"link": None}, ["block", "yoke"], mp) is None
+    from tmm_cli.sheets.prims import Line, Polyline, Text
+    for lang, sheets in example_sheets("scotch_yoke_pump").items():
+        cv, info = next((c, i) for c, i in sheets if i["number"] == 1)
+        blocks = [q for q in cv.prims if isinstance(q, Polyline) and q.closed and len(q.pts) in (4, 5)
+                  and np.ptp(np.asarray(q.pts), axis=0).max() < 12.0]
+        assert len(blocks) >= 24, len(blocks)                 # the block and the yoke's, 12 positions
+        numbers = [q for q in cv.prims if isinstance(q, Text) and q.s.isdigit() and int(q.s) < 12]
+        assert {int(t.s) for t in numbers} == set(range(12))
+        for t in numbers:
+            x0, y0, x1, y1 = t.box()
+            for b in blocks:
+                bx0, by0 = np.asarray(b.pts).min(axis=0)
+                bx1, by1 = np.asarray(b.pts).max(axis=0)
+                assert min(x1, bx1) <= max(x0, bx0) or min(y1, by1) <= max(y0, by0), (lang, t.s)
+        # the yoke's bar Y-P at every position: 12 lines of its length on the scheme
+        bar = 0.25 * 1000.0 / info["mechanism"]["unit"]
+        bars = [q for q in cv.prims if isinstance(q, Line) and abs(np.hypot(*np.subtract(q.q, q.p)) - bar) < 1e-6]
+        assert len(bars) >= 12, (lang, len(bars))

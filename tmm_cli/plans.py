@@ -52,6 +52,7 @@ class LinkG:
     points: list[str]          # structural points (pairs + extras), in task order
     kind: str                  # 'bar' | 'slider'
     com: str | None = None     # 'S<i>' when reported
+    guide_link: str | None = None   # a slider's moving guide: the link its slot is on (a yoke's)
 
 
 @dataclass
@@ -101,7 +102,7 @@ def geometry(results: dict) -> Geometry | None:
     for l in sorted(st["links"], key=lambda l: l["index"]):
         links.append(LinkG(l["name"], int(l["index"]), [p for p in l.get("points", [])
                                                         if not re.fullmatch(r"S\d+", p)],
-                           l.get("kind", "bar")))
+                           l.get("kind", "bar"), guide_link=(l.get("guide") or {}).get("link")))
     for j in st.get("joints") or []:
         joints.append(JointG(j.get("kind", "R"), int(j["a"]), int(j["b"]), j.get("point")))
     ground = {j.point for j in joints if j.kind == "R" and j.a == 0 and j.point}

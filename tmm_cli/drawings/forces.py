@@ -291,6 +291,28 @@ def _off(x, a, b) -> float:
     return float(np.hypot(*(a + t * d - x)))
 
 
+def _slot(c, u, links, guide: dict, names, mp):
+    """(foot, far end) on the paper of the slot a block at ``c`` (direction ``u``) slides in
+    when its guide is a link of the group (a Scotch yoke's slot, a slotted lever drawn by its own
+    bar already): from where the slot meets the owner's bar, through the block and 6 mm beyond
+    it; None for a fixed guide, an owner outside the group or one with no bar drawn."""
+    owner = guide.get("link")
+    if owner is None or owner not in names:
+        return None
+    pts = [mp[p] for p in links[owner]["points"] if p in mp]
+    if len(pts) < 2:
+        return None
+    a, b = np.asarray(pts[0], float), np.asarray(pts[1], float)
+    d = b - a
+    den = u[0] * d[1] - u[1] * d[0]
+    if abs(den) < 1e-9 * (float(np.hypot(*d)) or 1.0):
+        return None                     # the slot along the bar: the bar is the slot
+    w = a - c
+    t = (w[0] * d[1] - w[1] * d[0]) / den          # c + t u on the bar's line
+    foot = c + t * u
+    return foot, c - np.sign(t or 1.0) * u * 6.0
+
+
 def group_panel(words, cv, box, kin_e, links, names, forces, couples, title, norms=None):
     """Free-body diagram of the links `names` inside box = (x0, y0, w, h) (mm); ``norms``:
     force_norms(forces) when already known."""
@@ -358,6 +380,11 @@ def group_panel(words, cv, box, kin_e, links, names, forces, couples, title, nor
                     segs.append((c, q))
                     cv.circle(q, 0.8, width=0.3, z=5)
                     avoid.append(q)
+                slot = _slot(c, u, links, lk.get("guide") or {}, names, mp)
+                if slot is not None:                   # its guide a slot of a link of the group (the yoke's)
+                    foot, far_end = slot
+                    cv.line(foot, far_end, "#000", 0.6, z=2)
+                    segs.append((foot, far_end))
             continue
         q = np.array([mp[p] for p in ps])
         if len(q) >= 3 and _area(q) > 1.0:

@@ -42,6 +42,18 @@ def course_positions(results: dict) -> list[int]:
     return [i for i in out if i in kin][:2]
 
 
+def _foot(a, b, c, ang_deg: float):
+    """Where the line through ``c`` at ``ang_deg`` meets the line ab (paper mm), or None when
+    they are parallel."""
+    u = np.array([math.cos(math.radians(ang_deg)), math.sin(math.radians(ang_deg))])
+    d = np.asarray(b, float) - np.asarray(a, float)
+    den = u[0] * d[1] - u[1] * d[0]
+    if abs(den) < 1e-9 * (float(np.hypot(*d)) or 1.0):
+        return None
+    w = np.asarray(a, float) - np.asarray(c, float)
+    return np.asarray(c, float) + (w[0] * d[1] - w[1] * d[0]) / den * u
+
+
 def draw_mechanism(cv, geom, entries, course: list[int], box, lang="en", traced_over=None,
                    closed: bool = True) -> dict:
     """Every position thin, the course positions as contour lines, at a GOST scale
@@ -80,7 +92,22 @@ def draw_mechanism(cv, geom, entries, course: list[int], box, lang="en", traced_
         for l in geom.links:
             if l.kind == "slider" and l.points[0] in e["points"]:
                 ang = float(e["links"][l.name]["angle"] or 0.0)
-                cv.block(M(_xy(e, l.points[0])), ang, 10.0, 6.0, width=0.7 if thick else 0.2)
+                c = M(_xy(e, l.points[0]))
+                cv.block(c, ang, 10.0, 6.0, width=0.7 if thick else 0.2)
+                for q in l.points[1:]:            # a slider carrying other points: its bar (a yoke's)
+                    if q in e["points"]:
+                        cv.line(c, M(_xy(e, q)), width=0.7 if thick else 0.2)
+                        if thick:
+                            segs.append((c, M(_xy(e, q))))
+                owner = geom.by_name(l.guide_link) if l.guide_link else None
+                if thick and owner is not None and owner.kind == "slider" and len(owner.points) > 1:
+                    # the slot the block slides in, on the owner's bar (a Scotch yoke's): from the
+                    # bar through the block and beyond it (a bar owner, a slotted lever, is its slot)
+                    foot = _foot(M(_xy(e, owner.points[0])), M(_xy(e, owner.points[1])), c, ang)
+                    if foot is not None:
+                        u = (c - foot) / (np.hypot(*(c - foot)) or 1.0)
+                        cv.line(foot, c + u * 8.0, width=0.7)
+                        segs.append((foot, c + u * 8.0))
         if thick:
             for p in e["points"]:
                 if p not in geom.ground and not p.startswith("S"):
@@ -109,10 +136,11 @@ def draw_mechanism(cv, geom, entries, course: list[int], box, lang="en", traced_
         curve = spline_through(xy, closed, 24 * (len(xy) if closed else len(xy) - 1) + 1)
         cv.polyline(curve, color="#1f5fbf" if q.startswith("S") else "#000", width=0.25, dash="3 1.5")
         paths[q] = {"nodes": xy, "curve": curve}
-    # guides of the sliders: dash-dot centre lines over the stroke
+    # guides of the sliders: dash-dot centre lines over the stroke (a fixed guide's: a moving
+    # one, a yoke's slot, moves with its link and is drawn with it)
     cv.layer = "thin"
     for l in geom.links:
-        if l.kind == "slider":
+        if l.kind == "slider" and not l.guide_link:
             ps = np.array([M(_xy(e, l.points[0])) for e in entries])
             ang = math.radians(float(entries[0]["links"][l.name]["angle"] or 0.0))
             u = np.array([math.cos(ang), math.sin(ang)])
@@ -142,13 +170,14 @@ def draw_mechanism(cv, geom, entries, course: list[int], box, lang="en", traced_
         cv.mtext(wq[0], wq[1], "ω", 3.5, anchor="middle", sub="1")
         labels_at.append(wq)
         numbers.append("ω1")
+        on_block = any(l.kind == "slider" and l.points and l.points[0] == pin for l in geom.links)
         for e in entries:
             if e.get("index") is None or e["index"] > 11 and len(entries) > 12 and e["index"] not in course:
                 continue
             d = M(_xy(e, pin)) - Oc
             d = d / (np.hypot(*d) or 1.0)
             s = position_label(e, len(over))          # an extra marked, as in the report's tables
-            q = Oc + d * (r + 5.0)
+            q = Oc + d * (r + (10.0 if on_block else 5.0))      # clear of a block at the pin
             # an extra position next to a grid one: its number further out
             while any(abs(q[0] - p[0]) < 0.3 * 3.5 * (len(s) + len(t)) + 0.5 and abs(q[1] - p[1]) < 4.0
                       for p, t in zip(labels_at, numbers)):
