@@ -67,3 +67,47 @@ def test_checker_finds_browser_invalid_values():
     bad = problems('<svg xmlns="http://www.w3.org/2000/svg"><path d="M0 0 L1 1" stroke="k" '
                    'fill="0.35"/><text style="fill: 0.5">a</text><path d="L 1"/></svg>')
     assert len(bad) == 4
+
+
+def ink_outside(svg: str) -> tuple[float, str]:
+    """How far (mm) the farthest point of the figure's drawing lies outside its viewBox: every
+    point of its paths (absolute M, L, C commands, as tmm's canvases write them) and every
+    text's anchor; with the element it belongs to."""
+    x0, y0, w, h = map(float, re.search(r'viewBox="([-\d.]+) ([-\d.]+) ([-\d.]+) ([-\d.]+)"', svg).groups())
+    worst, what = 0.0, ""
+    for el in re.findall(r"<(?:path|text)\b[^>]*>", svg):
+        pts = []
+        d = re.search(r'\sd="([^"]+)"', el)
+        if d:
+            pts = [(float(a), float(b)) for a, b in re.findall(r"[MLC]\s*([-\d.e]+)[ ,]([-\d.e]+)", d.group(1))]
+        elif el.startswith("<text"):
+            xy = re.search(r'\sx="([-\d.]+)"[^>]*\sy="([-\d.]+)"', el)
+            pts = [(float(xy.group(1)), float(xy.group(2)))] if xy else []
+        for x, y in pts:
+            out = max(x0 - x, x - x0 - w, y0 - y, y - y0 - h)
+            if out > worst:
+                worst, what = out, el[:160]
+    return worst, what
+
+
+@pytest.mark.parametrize("path", TASKS, ids=[p.stem for p in TASKS])
+def test_no_figure_is_cut_off_at_its_edge(path, shared_once):
+    """Every figure of every example draws inside its own frame, to half a millimetre (an arrow
+    head's side): the rocker cam's pivot A with its ground lay 54 mm left of the construction's
+    figure, the knife-edge cam's follower axes 19 mm past the profile's, a force arrow on
+    Zhukovsky's lever 8.6 mm below its figure, the drive train's driven wheel off the scheme
+    -- each cut off where the page shows the figure."""
+    out = report_out(shared_once, path.stem, "en")
+    bad = []
+    for f in sorted((out / "figures").glob("*.svg")):
+        far, what = ink_outside(f.read_text(encoding="utf-8"))
+        if far > 0.5:
+            bad.append(f"{f.name}: {far:.2f} mm outside: {what}")
+    assert not bad, "\n".join(bad)
+
+
+def test_the_cut_off_check_sees_a_line_past_the_edge():
+    svg = ('<svg viewBox="0 0 100 50"><path d="M10 10 L20 20"/><text x="50" y="25">a</text></svg>')
+    assert ink_outside(svg)[0] == 0.0
+    assert ink_outside(svg.replace("L20 20", "L20 53"))[0] == pytest.approx(3.0)
+    assert ink_outside(svg.replace('x="50"', 'x="-4"'))[0] == pytest.approx(4.0)

@@ -449,13 +449,13 @@ def group_panel(words, cv, box, kin_e, links, names, forces, couples, title, nor
             continue
         ux, uy = float(F[0]) / nF, float(F[1]) / nF
         L = _arrow_len_n(nF, Fmax)
-        ax, ay = along_line((ax, ay), (ux, uy), L, placed).tolist()
-        bx, by = ax + ux * L, ay + uy * L
+        q, b, name_at, name_u = _arrow_in((ax, ay), (ux, uy), L, placed, (x0, y0, x0 + w, y0 + h))
+        (ax, ay), (bx, by) = q.tolist(), b.tolist()
         placed.append((np.array([ax, ay]), np.array([bx, by]), np.array([ux, uy])))
         col = KIND_COLOR.get(kind, "#000")
         cv.arrow((ax, ay), (bx, by), col, 0.45 if kind == "reaction" else 0.4, head=2.2, z=3)
         segs.append(((ax, ay), (bx, by)))
-        arrows.append(((bx + ux * 0.6, by + uy * 0.6), (ux, uy), name, col))
+        arrows.append((tuple(name_at.tolist()), name_u, name, col))
     rings = []
     for name, link, Mv, kind in couples:
         lk = links.get(link)
@@ -681,6 +681,31 @@ def lever_height(e, kin_e, w: float, h_min: float, h_max: float) -> float:
     return min(max(h_min, math.ceil(need)), h_max)
 
 
+def _inside(p, box) -> bool:
+    """Whether the point ``p`` lies in ``box`` = (x0, y0, x1, y1)."""
+    return box[0] <= p[0] <= box[2] and box[1] <= p[1] <= box[3]
+
+
+def _arrow_in(at, u, L: float, placed: list, box):
+    """(start, tip, its name's anchor, the name's direction) of a force arrow of length L along
+    ``u`` at the point ``at`` (:func:`along_line` off the arrows ``placed``): drawn from the
+    point, or, where its tip would leave ``box`` (the figure's edge cut its head off), the
+    other way along its line of action, its tip at the point and its name at its tail."""
+    u = np.asarray(u, float)
+    q = along_line(at, u, L, placed)
+    b = q + u * L
+    if _inside(b, box):
+        return q, b, b + u * 0.6, tuple(u)
+    r = along_line(np.asarray(at, float) - u * L, u, L, placed)
+    if _inside(r, box) and _inside(r + u * L, box):
+        return r, r + u * L, r - u * 0.6, tuple(-u)
+    # pushed past the edge either way (off another arrow on its line): drawn from its place,
+    # shortened until its tip is in (3 mm at the least)
+    while L > 3.0 and not _inside(q + u * L, box):
+        L -= 0.5
+    return q, q + u * L, q + u * (L + 0.6), tuple(u)
+
+
 def _on_segment(q, a, b, tol: float = 0.3) -> bool:
     """Whether the point ``q`` (mm) lies on the segment ab within ``tol`` mm."""
     q, a, b = (np.asarray(x, float) for x in (q, a, b))
@@ -733,8 +758,7 @@ def lever_panel(words, cv, box, e, kin_e, pin, omega1, balance_kind):
         u = F / nF
         col = KIND_COLOR.get(f["kind"], "#000")
         L = 5.0 + 6.0 * math.sqrt(nF / Fmax)
-        q = along_line(q, u, L, placed)
-        b = q + u * L
+        q, b, name_at, name_u = _arrow_in(q, u, L, placed, (x0, y0, x0 + w, y0 + h))
         placed.append((q, b, u))
         cv.arrow(q, b, col, 0.4, head=1.9, z=3)
         segs.append((q, b))
@@ -747,7 +771,7 @@ def lever_panel(words, cv, box, e, kin_e, pin, omega1, balance_kind):
             d = foot - pole
             arms.append(((pole + foot) / 2, (-d[1], d[0]), "h\u0000" + "".join(label_parts(f["name"], words.lang)),
                          col, foot))
-        arrows.append((b + u * 0.6, tuple(u), f["name"], col))
+        arrows.append((name_at, name_u, f["name"], col))
     # the balancing force at the crank pin: its power P_b . v_A = M_b omega_1
     Mb = e.get("balancing_moment")
     if pin and pin in P and Mb is not None and balance_kind == "moment" and omega1:
@@ -756,12 +780,11 @@ def lever_panel(words, cv, box, e, kin_e, pin, omega1, balance_kind):
             Pb = (float(Mb) * float(omega1) / float(vA @ vA)) * vA
             q = end(np.array([-vA[1], vA[0]]))
             u = Pb / np.hypot(*Pb)
-            q = along_line(q, u, 10.0, placed)
-            b = q + u * 10.0
+            q, b, name_at, name_u = _arrow_in(q, u, 10.0, placed, (x0, y0, x0 + w, y0 + h))
             col = KIND_COLOR["balance"]
             cv.arrow(q, b, col, 0.5, head=2.2, z=3)
             segs.append((q, b))
-            arrows.append((b + u * 0.6, tuple(u), "P\u0000b", col))
+            arrows.append((name_at, name_u, "P\u0000b", col))
     cv.dot(pole, 0.7, z=6)
     taken = panel_title(cv, box, words.t("kst.lever"), f"μv = {mu_v:g} {words.t('kst.unit_v')}")
     # the balancing moment by the lever and by the groups

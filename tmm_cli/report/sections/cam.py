@@ -115,6 +115,10 @@ def construction_figure(ctx, c):
     k = c["construction"]
     box = k["box"]
     lo, hi = np.array(box[:2]) * MM, np.array(box[2:]) * MM
+    if k.get("A") is not None:      # a rocker's pivot A and its ground: in the figure too (it was cut off)
+        A = np.asarray(k["A"], float) * MM
+        pad = 0.06 * float(np.max(hi - lo))
+        lo, hi = np.minimum(lo, A - pad), np.maximum(hi, A + pad)
     unit, label = fp.drawing_scale(max((hi - lo)[0] / 134.0, (hi - lo)[1] / 134.0))
     fig, ax = fp.figure_at_scale(lo, hi, unit)
     reg = np.asarray(k.get("region") or [])
@@ -147,7 +151,9 @@ def construction_figure(ctx, c):
         ax.annotate("A", A, textcoords="offset points", xytext=(4, 4), fontsize=8)
         ax.plot([A[0], B0[0]], [A[1], B0[1]], color="0.3", lw=0.8)
     _diagram_axes(ax, B0, lo, hi, ctx)
-    ax.set_title(ctx.t("cam.construction_title"), fontsize=9, y=0.97, va="top")
+    # the title 3 mm below the figure's top edge whatever its height (at 0.97 of a short figure
+    # its letters reached over the edge)
+    ax.set_title(ctx.t("cam.construction_title"), fontsize=9, y=1.0 - 3.0 / (fig.get_figheight() * 25.4), va="top")
     ax.legend(loc="lower left", fontsize=7, frameon=False)
     return fig, unit, label
 
@@ -183,6 +189,12 @@ def profile_figure(ctx, c):
     if flat:
         pts.append(pitch + half)
         pts.append(pitch - half)
+    if not rocker:       # the follower's axis drawn out from each position's point: in the figure too
+        for a in angs:
+            u = np.array([-math.sin(-sigma * a), math.cos(-sigma * a)])
+            B = pitch[int(round(math.degrees(a))) % len(pitch)]
+            foot = B - np.dot(B, np.array([u[1], -u[0]])) * np.array([u[1], -u[0]]) if flat else B
+            pts.append((foot + u * (0.4 if flat else 0.6) * r0)[None, :])
     allp = np.vstack(pts)
     lo, hi = allp.min(axis=0) - rr, allp.max(axis=0) + rr
     unit, label = fp.drawing_scale(max((hi - lo)[0] / 134.0, (hi - lo)[1] / 154.0))
