@@ -1104,3 +1104,21 @@ def test_a_scotch_yokes_slot_is_drawn_and_the_numbers_clear_its_blocks():
         bar = 0.25 * 1000.0 / info["mechanism"]["unit"]
         bars = [q for q in cv.prims if isinstance(q, Line) and abs(np.hypot(*np.subtract(q.q, q.p)) - bar) < 1e-6]
         assert len(bars) >= 12, (lang, len(bars))
+
+
+@pytest.mark.parametrize("name, extra", [("press_offset_slider_crank", 13), ("balancing_fourbar", 12)])
+def test_an_extra_position_is_marked_on_every_sheet(name, extra):
+    """A named extra position (index >= the grid's 12: an extreme one) is '13*' in the report's
+    tables and on the scheme; the kinetostatics sheet headed it 'Position 13', the velocity
+    plans '(position 13)' and the balancing hodograph '12' between 6 and 7: marked everywhere."""
+    import re as _re
+
+    from tmm_cli.sheets.prims import Text
+    seen = 0
+    for cv, info in example_sheets(name)["en"]:
+        for t in (q.s for q in cv.prims if isinstance(q, Text)):
+            bare = _re.fullmatch(r"\d+", t) or _re.search(r"[Pp]osition (\d+)(?![\d*])", t)
+            num = int(bare.group(1) if bare and bare.groups() else (bare.group(0) if bare else -1))
+            assert num != extra, (info["number"], t)
+            seen += f"{extra}*" in t
+    assert seen >= 1

@@ -209,7 +209,16 @@ def _plan_note(plan, lang: str) -> str | None:
     return TXT[lang]["plan_undefined"].format(what=", ".join(plan.undefined)) if plan.undefined else None
 
 
-def draw_plans(cv, geom, entry, box, lang="en", kinds=("v", "a"), table_w: float = 0.0) -> dict:
+def shown_index(e: dict, n_grid: int | None) -> str:
+    """A position's number as the sheets and the report's tables write it: an extra position
+    (index >= the grid's count) marked '13*' (the kinetostatics sheet's heading said
+    'Position 13', the scheme '13*', the balancing hodograph '12')."""
+    from ..report.course import position_label
+    return position_label(e, n_grid) if n_grid else str(e["index"])
+
+
+def draw_plans(cv, geom, entry, box, lang="en", kinds=("v", "a"), table_w: float = 0.0,
+               n_grid: int | None = None) -> dict:
     """The velocity and acceleration plans (kinds) of one position side by side, each at a
     standard μ that fits its part of box at true size (the report's draw_plan); with table_w,
     each plan's segment table (segments.acceleration_table) in the right table_w mm of its part."""
@@ -230,7 +239,7 @@ def draw_plans(cv, geom, entry, box, lang="en", kinds=("v", "a"), table_w: float
         span = np.maximum(xy.max(axis=0) - xy.min(axis=0), 1e-12)
         mu = std_mu(max(span[0] / (bx[2] - 12.0), span[1] / (bx[3] - 30.0)))
         plan = build_plan(kind, entry, geom, mu)
-        scale = draw_plan(cv, plan, bx, f"{title} ({T['pos']} {entry['index']})", unit_txt, si, T["mm"],
+        scale = draw_plan(cv, plan, bx, f"{title} ({T['pos']} {shown_index(entry, n_grid)})", unit_txt, si, T["mm"],
                           note=_plan_note(plan, lang))
         out[kind] = {"plan": plan, "mu": mu, "k": scale}
         if table_w and not plan.undefined:
@@ -253,7 +262,7 @@ def chord_derivative(phase_deg, y, omega: float, n: int = 12, per_deg: bool = Fa
     return (q[:-1] + q[1:]) / 2, np.diff(yq) / math.radians(whole / n) * scale
 
 
-def draw_velocity_plans(cv, geom, entries, box, lang="en", ncol: int = 4) -> dict:
+def draw_velocity_plans(cv, geom, entries, box, lang="en", ncol: int = 4, n_grid: int | None = None) -> dict:
     """The velocity plans of the grid's positions (the course's 12) in a grid of cells of box,
     all at one standard μv, the smallest at which every plan fits its cell at true size."""
     from ..plans import build_plan
@@ -274,7 +283,8 @@ def draw_velocity_plans(cv, geom, entries, box, lang="en", ncol: int = 4) -> dic
         r, c = divmod(n, ncol)
         cell = (x0 + c * cw, y0 + h - (r + 1) * ch, cw - 2, ch)
         plan = build_plan("v", e, geom, mu)
-        k = draw_plan(cv, plan, cell, f"{T['vplan']} ({T['pos']} {e['index']})", T["unit_v"], U["m/s"], T["mm"],
+        k = draw_plan(cv, plan, cell, f"{T['vplan']} ({T['pos']} {shown_index(e, n_grid)})", T["unit_v"], U["m/s"],
+                      T["mm"],
                       note=_plan_note(plan, lang))
         out[e["index"]] = {"plan": plan, "mu": mu, "k": k, "box": cell}
     return out
@@ -358,16 +368,16 @@ def build(cv, results: dict, task: Task | None, lang: str = "en") -> dict:
     by_index = {e["index"]: e for e in entries}
     # the acceleration plans of the course positions side by side at the top, the velocity
     # plans of every grid position (the course's 12) under them, at one μv
+    from ..report.course import course_entries, grid_count, position_label
+    n_grid = grid_count(results, len(entries))
     for k, i in enumerate(course):
         info["plans"][i] = draw_plans(cv, geom, by_index[i], (430.0 + PLAN_BOX_W * k, 445.0, PLAN_BOX_W,
                                                                PLAN_BOX_H), lang, kinds=("a",),
-                                        table_w=TABLE_W)
-    from ..report.course import course_entries, grid_count, position_label
-    n_grid = grid_count(results, len(entries))
+                                        table_w=TABLE_W, n_grid=n_grid)
     grid = course_entries(entries[:n_grid], n_grid)          # the course's 12 of a finer grid
     grid += [by_index[i] for i in course if by_index[i] not in grid]     # a course extra after them
     info["vplans"] = draw_velocity_plans(cv, geom, grid, (430.0, fy0 + 62.0, fx1 - 430.0 - 3.0,
-                                                          440.0 - fy0 - 62.0), lang)
+                                                          440.0 - fy0 - 62.0), lang, n_grid=n_grid)
     for i in course:
         info["plans"][i]["v"] = info["vplans"][i]
     # the velocity plans' segments as drawn, at the sheet's μv: under the plans, left of the title block

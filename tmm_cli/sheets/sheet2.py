@@ -50,6 +50,9 @@ def build(cv, results: dict, task: Task | None, lang: str = "en") -> dict:
     pin = crank_pin(geom) if geom is not None else None
     x0f, y0f, x1f, y1f = FRAME
     course = positions(results)
+    from ..report.course import grid_count
+    from .sheet1 import shown_index
+    n_grid = grid_count(results, len(results.get("kinematics") or []))
     band_h = (y1f - y0f) / max(len(course), 1)
     out = {"positions": {}, "scale": "—"}
     for k, i in enumerate(course):
@@ -57,7 +60,8 @@ def build(cv, results: dict, task: Task | None, lang: str = "en") -> dict:
         top = y1f - k * band_h
         bottom = top - band_h
         cv.layer = "text"
-        cv.mtext(x0f + 4, top - 5.5, TXT[lang]["pos"].format(i=i, phi=float(e["phi"])), 5.0, bold=True)
+        cv.mtext(x0f + 4, top - 5.5, TXT[lang]["pos"].format(i=shown_index(e, n_grid), phi=float(e["phi"])), 5.0,
+                 bold=True)
         rows = K.position_rows(words, e, ke, info_k, links)
         n = len(rows)
         ncol, nrow = layout(n, x1f - x0f - LEVER_MIN_W)

@@ -104,11 +104,14 @@ def _hodograph(cv, ctx, results, box) -> dict:
     cv.polyline(curve, width=0.6)
     marks = {}
     idx = list((results.get("positions") or {}).get("index") or range(len(b["shaking"])))
+    from ..report.course import grid_size
+    from .sheet1 import shown_index
+    n_grid = grid_size(results)
     for i, s in zip(idx, b["shaking"]):
         p = o + np.array([float(s["Fx"]), float(s["Fy"])]) / mu
         cv.circle(p, 0.8, width=0.4, fill="#000")
         cv.layer = "text"
-        cv.mtext(p[0] + 1.8, p[1] + 1.8, str(i), 2.5)
+        cv.mtext(p[0] + 1.8, p[1] + 1.8, shown_index({"index": i}, n_grid), 2.5)     # an extra: '12*' 
         cv.layer = "contour"
         marks[i] = p
     after = None
