@@ -120,7 +120,7 @@ def _plan_titles(texts, word: str) -> dict[str, tuple[float, float]]:
     """{position: (x, y)} of the plans titled 'word (position i)'."""
     out = {}
     for x, y, s in texts:
-        m = re.fullmatch(rf"{re.escape(word)} \(\w+ (\d+)\)", s)
+        m = re.fullmatch(rf"{re.escape(word)} \(\w+ (\d+)\*?\)", s)      # an extra: 13*
         if m:
             out[m.group(1)] = (x, y)
     return out
