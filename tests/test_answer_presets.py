@@ -302,3 +302,20 @@ def test_a_form_tells_the_crank_angle_of_each_position_it_asks_at(tmp_path):
         assert [k for k, _ in got] == [3, 7] and all(abs(g - w) < 0.051 for (_, g), (_, w) in zip(got, want)), line
     plain = runner.invoke(app, ["form", str(task), "-q", "flywheel", "--out", str(tmp_path / "g")])
     assert plain.exit_code == 0 and "crank's angle" not in (tmp_path / "g" / "e.form.yaml").read_text(encoding="utf-8")
+
+
+def test_a_quantity_pattern_asks_every_path_it_matches():
+    """`-q 'kinetostatics[3].reactions.*.R'` was 'no key *': a pattern, as the presets write
+    theirs (`*` a name, `[*]` an index), asks each path of the results it matches, in their
+    order, each once; a pattern matching none is an error saying so."""
+    from tmm_cli import load_task, run
+    from tmm_cli.errors import TaskError
+    from tmm_cli.forms import expand
+    res = run(load_task(TASKS / "engine_slider_crank.yaml"))
+    want = [f"kinetostatics[3].reactions.{k}.R" for k in res["kinetostatics"][3]["reactions"]]
+    assert res["kinetostatics"][3]["index"] == 3 and len(want) >= 4
+    assert expand("kinetostatics[3].reactions.*.R", res) == want
+    assert expand(f"{want[0]},kinetostatics[3].reactions.*.R", res) == want          # each once
+    with pytest.raises(TaskError, match=r"pattern 'gears.r\[\*\]' matches no quantity"):
+        expand("gears.r[*]", res)
+    assert expand("gears.r[*]", res, strict=False) == []

@@ -273,6 +273,12 @@ def expand(quantities: str | list[str], results: dict, *, strict: bool = True) -
                 raise TaskError(Message("quantities.preset_empty", preset=raw))
             out.extend(g for g in got if g not in out)
             continue
+        if "*" in raw:                  # a pattern, as the presets write theirs: reactions.*.R, r[*]
+            got = [q for q in names if _pattern(raw).match(q) and q not in out]
+            if not got and strict:
+                raise TaskError(Message("quantities.pattern_empty", name=raw))
+            out.extend(got)
+            continue
         if "." not in raw and "[" not in raw and raw not in results:
             import difflib
             near = difflib.get_close_matches(raw, list(PRESETS), n=1, cutoff=0.75)
