@@ -1028,7 +1028,8 @@ def test_drive_train_sheet_draws_the_trains_plans_at_their_scales(name):
     line at x = ω / μω from the pole's foot, ω the shaft's speed worked out here from the
     motor's speed and the stages' tooth numbers (a pair -z2/z1 or +z2/z1 inside, a planetary
     stage of scheme A 1 + z3/z1, B 1 + z2 z4/(z1 z3)); every drawing inside its own canvas (the
-    pair's driven wheel ran off the report's figure) and the sheet's frame."""
+    pair's driven wheel ran off the report's figure) and the sheet's frame; the plan's scale the
+    picture's (its rays parallel to the picture's lines: μω = μv/(H μl), it was a scale of its own)."""
     import math as m
 
     from tmm_cli.pipeline import run
@@ -1063,12 +1064,20 @@ def test_drive_train_sheet_draws_the_trains_plans_at_their_scales(name):
         assert min(abs(x - s / info["mu_omega"]) for x in xs) < 1e-6, (s, xs)
     assert all(abs(e[1] - pole[1]) == pytest.approx(info["H"]) for e in ends if e not in foot)
     sx, sy, scheme = info["scheme"]
+    # the picture: each point's velocity a horizontal segment |v|/μv long from the axis
+    drawn = [abs(q.q[0] - q.p[0]) for q in scheme.prims if isinstance(q, Line) and q.color == "#555"]
+    for pt in res["drive_train"]["velocity_plan"]["points"]:
+        assert min(abs(x - abs(pt["v"]) / info["mu_v"]) for x in drawn) < 1e-6, pt["name"]
     pts = _prim_points(scheme)
     assert (pts >= -1e-6).all() and (pts[:, 0] <= scheme.w + 1e-6).all() and (pts[:, 1] <= scheme.h + 1e-6).all()
     x0f, y0f, x1f, y1f = FRAME
     for (ox, oy, c) in (info["scheme"], info["plan"]):
         assert x0f < ox and ox + c.w < x1f and y0f < oy and oy + c.h < y1f
-    assert _gost_length(info["mu_l"]) and _mantissa_ok(info["mu_omega"]) and m.isfinite(info["mu_v"])
+    # the plan built on the picture (Smirnov): rays parallel to the picture's lines, so that
+    # μω = μv / (H μl) with the picture's own scales, each a standard one
+    assert _gost_length(info["mu_l"]) and _mantissa_ok(info["mu_v"]) and _mantissa_ok(info["mu_omega"])
+    assert info["mu_omega"] == pytest.approx(info["mu_v"] / (info["H"] * info["mu_l"]))
+    assert m.isfinite(info["mu_omega"])
 
 
 def test_a_scotch_yokes_slot_is_drawn_and_the_numbers_clear_its_blocks():
