@@ -337,6 +337,7 @@ def build(ctx) -> str | None:
         # (the hand method's error: a plan drawn with the crank pin's vector about 100 mm)
         scale_rows.append((ctx.t("kin.reading"),
                            ctx.t("kin.reading_val", ev=written(gp["abs_v"], "g"), ea=written(gp["abs_a"], "g"),
+                                 mv=written(gp["mu_v"], "g"), ma=written(gp["mu_a"], "g"),
                                  med=ctx.fmt_fixed(100 * _median(rel), 2),
                                  top=ctx.fmt_fixed(100 * max(rel), 1))))
     pos_rows = []
