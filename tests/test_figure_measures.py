@@ -188,3 +188,28 @@ def test_cam_profile_is_the_tables_profile(tmp_path):
         assert _seg_dist(P, q) < 0.03, phi
         u = np.array([x, -y]) / R
         assert _ray_hit(P, O, u) * unit == pytest.approx(math.hypot(e, s0 + s), abs=0.02 * unit + 1e-3 * R), phi
+
+
+@pytest.mark.parametrize("values, low", [([300.0, 15000.0, 12000.0], "zero"), ([-40.0, -900.0], "top"),
+                                         ([-300.0, 140.0], "centred")])
+def test_a_magnitudes_axis_starts_at_zero(values, low):
+    """|R| over the cycle was drawn on an axis running down to -2500 (the data centred in the
+    standard scale's span): values of one sign now start the axis at 0 (end it at 0 when all are
+    negative), values of both signs stay centred; the span is still the standard μ times the
+    axis' length."""
+    from tmm_cli.report import figures
+    from tmm_cli.report.svgchart import subplots
+    fig, ax = subplots(170, 60)
+    ax.plot([0, 1, 2][:len(values)], values)
+    ax.set_ylabel("|R|, N")
+    fig.subplots_adjust(left=0.1, right=0.9, top=0.9, bottom=0.1)
+    mu = figures.std_axis(ax, min(values), max(values))
+    lo, hi = ax.get_ylim()
+    pos = ax.get_position()
+    assert hi - lo == pytest.approx(mu * pos.height * fig.get_figheight() * 25.4)
+    if low == "zero":
+        assert lo == 0.0 and hi >= max(values)
+    elif low == "top":
+        assert hi == 0.0 and lo <= min(values)
+    else:
+        assert lo < min(values) and hi > max(values) and (lo + hi) / 2 == pytest.approx((min(values) + max(values)) / 2)

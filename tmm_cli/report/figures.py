@@ -69,7 +69,13 @@ def std_axis(ax, lo: float, hi: float, axis: str = "y", pad: float = 0.04, zero:
     span = max(hi - lo, 1e-12 * max(abs(lo), abs(hi), 1e-300)) * (1 + 2 * pad)
     mu = nice_scale(span / length)
     extra = (mu * length - (hi - lo)) / 2
-    (ax.set_xlim if axis == "x" else ax.set_ylim)(lo - extra, hi + extra)
+    if zero and lo == 0.0 and axis == "y":       # values of one sign (magnitudes): the axis starts
+        extra_lo, extra_hi = 0.0, 2 * extra       # at 0 (|R| ran down to -2500)
+    elif zero and hi == 0.0 and axis == "y":
+        extra_lo, extra_hi = 2 * extra, 0.0
+    else:
+        extra_lo = extra_hi = extra
+    (ax.set_xlim if axis == "x" else ax.set_ylim)(lo - extra_lo, hi + extra_hi)
     return mu
 
 

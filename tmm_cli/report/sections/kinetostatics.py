@@ -200,7 +200,9 @@ def _cycle_fig(ctx, entries, phi0, sign, info):
         jk = j["key"]
         vals = [nan if (v := r[1]["reactions"][jk]["R"]) is None else v for r in rows]
         a2.plot(q, vals, f"{dot}-", label=f"$R_{{{j['key'][1:]}}}$", lw=0.8, ms=3)
-    a2.legend(ncol=1, fontsize=6.5, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)
+    # inside the axes, where the curves leave it room: right of them the standard μφ put the axes'
+    # end 9 mm from the figure's, and a PDF clipped the names there ('R01' read 'R0')
+    a2.legend(ncol=1, fontsize=6.5, loc="best", frameon=True)
     a2.set_ylabel("|R|, " + ctx.t("kst.N"))
     a2.set_xlabel(ctx.t("kst.rotation"))
     a2.set_xticks(np.arange(0, 361, 30))
