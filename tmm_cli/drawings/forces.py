@@ -41,11 +41,13 @@ def _label_parts(name: str, lang: str = "en") -> tuple[str, str]:
     writes it: 'R12' -> ('R', '12'); 'G2' -> ('G', '2'); 'Fi2' -> ('Φ', '2');
     'Mi2' -> ('M', 'Φ2'); 'Ff03' -> ('F', 'f03'), in ru and uk the subscript of friction of the
     words `kst.friction_sub`; 'F1' -> ('F', '1')."""
+    from .. import locales
+    words = locales.of("kinetostatics", "words", lang)
     if "\u0000" in name:                 # already split: 'M\0b' -> ('M', 'b')
         a, b = name.split("\u0000", 1)
-        return a, b
-    from .. import locales
-    fr = locales.of("kinetostatics", "words", lang).get("kst.friction_sub", "f")
+        # the balancing moment and force: M_b, P_b, in ru and uk with the course's subscript
+        return a, (words.get("kst.balance_sub", "b") if b == "b" else b)
+    fr = words.get("kst.friction_sub", "f")
     m = re.fullmatch(r"(Fi|Mi|Ff|Mf|[A-Za-z])(\d+)", name)
     if not m:
         return name, ""

@@ -270,6 +270,8 @@ class _Writer:
         self.ctx = ctx
         self.t = ctx.t
         self.u = UNITS.get(ctx.lang, UNITS["en"])
+        from ... import locales          # the balancing moment's subscript: M_b, in ru and uk the course's
+        self.b = locales.of("kinetostatics", "words", ctx.lang).get("kst.balance_sub", "b")
         self.num = Num(ctx)
         self.n = n
         res = ctx.results
@@ -901,8 +903,8 @@ class _Writer:
         self.p(self.t("worked.crank_eq"))
         self.loads_block(ks, [dl.index])
         terms, total = self.moment_terms(forces, couples, O)
-        self.f(mi("Σ"), sb("M", O), mo("="), sb("M", "b"), *terms, mo("="), ("mn", "0", "zero"), mo(";"),
-               sb("M", "b"), mo("="), num(ks["balancing_moment"], "Mb", signed=True), unit(self.u["Nm"]),
+        self.f(mi("Σ"), sb("M", O), mo("="), sb("M", self.b), *terms, mo("="), ("mn", "0", "zero"), mo(";"),
+               sb("M", self.b), mo("="), num(ks["balancing_moment"], "Mb", signed=True), unit(self.u["Nm"]),
                words("(" + self.sense(ks["balancing_moment"]) + ")"))
         j0 = next(j for j in g.joints if j.a == 0 and dl.index == j.b)
         key, rn0, _, F0 = self.reaction_on(ks, j0, dl.index)
@@ -942,11 +944,11 @@ class _Writer:
             terms += [brk(), mo("+" if m > 0 else "−"), num(M, f"M:{c['name']}"), mo("·"),
                       num(w, f"w:{c['link']}"), mo("/"), num.exact(mu, "mu_lev")]
         Pb = total / (vA / mu)
-        self.f(sb("P", "b"), mo("·"), seg("p", plan_label(A)), mo("="), *terms, mo("="),
+        self.f(sb("P", self.b), mo("·"), seg("p", plan_label(A)), mo("="), *terms, mo("="),
                num(total, "lev", signed=True), mo(";"),
-               sb("P", "b"), mo("="), frac(num(total, "lev", signed=True), num.mm(vA / mu, f"svl:{A}")), mo("="),
+               sb("P", self.b), mo("="), frac(num(total, "lev", signed=True), num.mm(vA / mu, f"svl:{A}")), mo("="),
                num(Pb, "Pbz", signed=True), unit(self.u["N"]))
-        self.f(sb("M", "b"), mo("="), sb("P", "b"), mo("·"), qty("l", self.O, A), mo("="),
+        self.f(sb("M", self.b), mo("="), sb("P", self.b), mo("·"), qty("l", self.O, A), mo("="),
                num(Pb, "Pbz", signed=True), mo("·"), self.lval(self.O, A), mo("="),
                num(ks["zhukovsky_moment"], "Mzh", signed=True), unit(self.u["Nm"]))
         self.blocks.append(("pn", self.t("worked.vs", mb="\u0001"), num(ks["balancing_moment"], "Mb", signed=True)))
