@@ -159,3 +159,29 @@ def test_only_extra_positions_are_starred(tmp_path, chosen, extra, marked):
     expect = {str(i) for i in chosen if i < 12} | marked
     assert cells == expect
     assert ("an extra position" in sec) == bool(marked)
+
+
+def test_each_position_figure_captions_what_it_shows(shared_once):
+    """A position's groups and its lever are two figures; the one caption under the lever
+    described both ('Left: the groups ... Bottom: Zhukovsky's lever') and the note, numbering
+    them, captioned the groups by the position only. Now each its own, headed by the position."""
+    import re as _re
+
+    from pdf_extent import report_out
+    html = (report_out(shared_once, "forging_sixbar", "en") / "report.html").read_text(encoding="utf-8")
+    kst = html[html.index('id="kinetostatics"'):]
+    kst = kst[kst.index('<div class="position">'):]
+    kst = kst[:kst.index("</section>")]
+    blocks = kst.split('<div class="position">')[1:]
+    pairs = [_re.findall(r'<figure[^>]*>.*?</figure>', b, _re.S) for b in blocks]
+    assert pairs and all(len(p) == 2 for p in pairs), [len(p) for p in pairs]
+    groups, levers = [p[0] for p in pairs], [p[1] for p in pairs]
+
+    def caption(f):
+        m = _re.search(r"<figcaption>(.*?)</figcaption>", f, _re.S)
+        return _re.sub(r"<[^>]+>", "", m.group(1)) if m else ""
+    for g, lv in zip(groups, levers):
+        cg, cl = caption(g), caption(lv)
+        assert cg.startswith("Position ") and "force polygons" in cg and "lever" not in cg, cg
+        assert cl.startswith("Position ") and "Zhukovsky" in cl and "groups" not in cl, cl
+        assert cg.split(".")[0] == cl.split(".")[0]            # the same position

@@ -374,7 +374,15 @@ def build(ctx) -> str | None:
             figs = []
         else:
             figs, _ = position_figures(ctx, e, ke, info, links, geom_pin, w1)
-        positions.append({"index": position_label(e, mark), "phi": e["phi"], "figs": figs})
+        # each figure its own caption (a note numbers them: the groups' said the lever's), the
+        # groups' on the last of them, headed by the position
+        head = ctx.t("kst.position_n", i=position_label(e, mark), phi=e["phi"])
+        caps = [None] * len(figs)
+        if figs:
+            caps[-1] = f"{head}. {ctx.t('kst.lever_caption')}"
+        if len(figs) > 1:
+            caps[-2] = f"{head}. {ctx.t('kst.fbd_caption')}"
+        positions.append({"index": position_label(e, mark), "phi": e["phi"], "figs": list(zip(figs, caps))})
     sing = ctx.results.get("singular") or []
     sing_figs = singular_figures(ctx, geom, ctx.results.get("kinematics") or [], info) \
         if sing and geom is not None else []
@@ -385,7 +393,6 @@ def build(ctx) -> str | None:
                       loads_hdr=loads_hdr, loads_rows=loads_rows,
                       loads_note=Markup(escape(ctx.t("kst.loads_note", const="\u0001"))).replace(
                           "\u0001", const or "—"),
-                      fbd_caption=ctx.t("kst.fbd_caption"),
                       fig_diagrams=_diagrams_fig(ctx, info, shown, mark),
                       fig_cycle=_cycle_fig(ctx, entries, phi0, sign, info),
                       singular=", ".join(ctx.fmt_fixed(s, 6) for s in sing), sing_figs=sing_figs,
