@@ -28,6 +28,7 @@ def _loc(lang: str, text: str) -> str:
     if lang != "en":
         text = re.sub(r"(?<![A-Za-z])mm(?![A-Za-z])", unit("mm", lang), text)
         text = re.sub(r"(?<![A-Za-z])rad(?![A-Za-z])", unit("rad", lang), text)
+        text = re.sub(r"(?<![A-Za-z])m/", unit("m", lang) + "/", text)      # μl's m/mm: м/мм
     return Term(text)          # a catalogue's name: its notation (r_r) with a subscript in the HTML
 
 
@@ -357,7 +358,8 @@ def _render(ctx, c, rows, method):
     fig, unit, label = profile_figure(ctx, c)
     from ..figures import scale_mark
     # μl in m/mm, as every other drawing of the report states it (unit: model mm per paper mm)
-    scale = f"{scale_mark(ctx.lang)} {label}" + _loc(ctx.lang, f" (μl = {f(unit / 1000.0, 4)} m/mm)")
+    from ...numfmt import localize
+    scale = f"{scale_mark(ctx.lang)} {label}" + _loc(ctx.lang, f" (μl = {localize(f'{unit / 1000.0:g}')} m/mm)")
     figs.append((ctx.svg(fig, "cam-profile"), t(pcap, scale=scale)))
     if not flat:
         figs.append((ctx.svg(pressure_figure(ctx, c), "cam-pressure-angle"), t("cam.pressure_caption")))
