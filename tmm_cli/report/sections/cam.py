@@ -28,7 +28,7 @@ def _loc(lang: str, text: str) -> str:
     if lang != "en":
         text = re.sub(r"(?<![A-Za-z])mm(?![A-Za-z])", unit("mm", lang), text)
         text = re.sub(r"(?<![A-Za-z])rad(?![A-Za-z])", unit("rad", lang), text)
-        text = re.sub(r"(?<![A-Za-z])m/", unit("m", lang) + "/", text)      # μl's m/mm: м/мм
+        text = re.sub(r"(?<![A-Za-z])m/", unit("m", lang) + "/", text)      # the m of a scale's m/mm
     return Term(text)          # a catalogue's name: its notation (r_r) with a subscript in the HTML
 
 
