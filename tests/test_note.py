@@ -109,6 +109,20 @@ def test_contents_conclusions_and_references(note):
     assert "_" not in concl and "->" not in concl and "→" in concl, concl
     assert "ступенів рухомості механізму W = 1" in concl.replace("\n", " ")
     assert "Розрахунок виконано програмою tmm" not in text
+    assert ".csv" not in text                  # 'All numbers: kinematics.csv': no folder beside a note
+
+
+def test_the_note_leaves_out_the_reports_files_and_warnings():
+    """The report tells its reader the files beside it and warns its user (the task file's keys,
+    what to write there): neither belongs in a text the student hands in."""
+    from tmm_cli.report.note import _strip_head
+    html = ('<section class="section" id="kinematics"><p class="note">Plans. <span class="files">All numbers: '
+            'kinematics.csv.</span></p><p class="note files">All arrays: flywheel.csv.</p><p class="files">Tables: '
+            '<code>cam_profile.csv</code></p><p>kept</p></section>\n<section class="section" id="warnings"><h2>Warnings'
+            '</h2><ul><li>positions.working = backward</li></ul></section>\n<section id="x">after</section>')
+    out = _strip_head(html)
+    assert ".csv" not in out and "Warnings" not in out and "working" not in out
+    assert '<p class="note">Plans.</p>' in out and "<p>kept</p>" in out and "after" in out
 
 
 def test_sheets_title_blocks_take_the_course_header(tmp_path):

@@ -207,11 +207,18 @@ def _title_page(h: dict, lang: str) -> str:
 
 
 def _strip_head(html: str) -> str:
-    """The report's HTML less its own title block and contents (the note has its own) and its
+    """The report's HTML less its own title block and contents (the note has its own), its
     colophon (the report prints it in the bottom margin: on the note's page that is the title
-    block's top row)."""
+    block's top row), its mentions of the files written beside it and its warnings section."""
     html = re.sub(r'<header class="report-head">.*?</header>', "", html, count=1, flags=re.S)
     html = re.sub(r'<footer class="report-foot">.*?</footer>', "", html, count=1, flags=re.S)
+    # the files the run wrote beside the report ('All numbers: kinematics.csv'): a handed-in
+    # note has no folder beside it
+    html = re.sub(r'<p class="(?:note )?files">.*?</p>\s*', "", html, flags=re.S)
+    html = re.sub(r'\s*<span class="files">.*?</span>', "", html, flags=re.S)
+    # the program's warnings to its user (the task file's keys, what to write there): the report's,
+    # not a text the student hands in
+    html = re.sub(r'<section class="section" id="warnings">.*?</section>\s*', "", html, count=1, flags=re.S)
     return re.sub(r'<nav class="toc">.*?</nav>', "", html, count=1, flags=re.S)
 
 
