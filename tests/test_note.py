@@ -191,3 +191,34 @@ def test_a_signers_name_fits_its_cell_of_form_2():
         m = re.fullmatch(r'cell\("(.*)", size: ([\d.]+)pt\)', _signer(name))
         assert m and m.group(1) == shown, _signer(name)
         assert width_mm(shown, float(m.group(2))) <= 23.0, (shown, m.group(2))
+
+
+def test_the_conclusions_name_a_drive_trains_ratio_and_round_off_deviations():
+    """A press driven through two pairs and a planetary stage had no word of its gear drive in
+    the conclusions; a ratio met exactly read 'deviation -1.23e-14 %'. Worked here: 36/18 x 44/20 x
+    (1 + 100/44) = 2 x 2.2 x 3.2727 = 14.4."""
+    from tmm_cli.report.note import conclusions
+    u = (36 / 18) * (44 / 20) * (1 + 100 / 44)
+    res = {"drive_train": {"ratio": u, "ratio_error": -1.23e-16, "stages": [{"z": [18, 36]}, {"z": [20, 44]},
+                                                                            {"z": [44, 28, 100]}],
+                           "motor_power": 950.71, "motor_power_computed": True},
+           "planetary": {"scheme": "A", "z": {"z1": 44, "z2": 28, "z3": 100}, "ratio": 1 + 100 / 44,
+                         "ratio_error": 3e-17}}
+    text = " ".join(conclusions(res, "en"))
+    assert "stages 18/36, 20/44, 44/28/100" in text and "U = 14.4 (0 % from the required)" in text, text
+    assert "the motor's power 950.7 W" in text and "e-1" not in text and "10⁻" not in text
+    ru = " ".join(conclusions(res, "ru"))
+    assert "18/36; 20/44; 44/28/100" in ru and "U = 14,4" in ru and "0 %" in ru
+
+
+def test_balancings_applied_counterweights_say_what_took_them(tmp_path):
+    """'the kinetostatics and the flywheel take the links with the counterweights' of a task with
+    no flywheel: now what the task computes."""
+    import tmm_cli
+    from tmm_cli.report import render_html
+    task = tmm_cli.load_task(ROOT / "tasks" / "balancing_fourbar.yaml")
+    res = tmm_cli.run(task, kinematics_curve=0, explore=False)
+    assert res.get("kinetostatics") and not res.get("flywheel") and res["balancing"].get("applied")
+    html = render_html(res, task, tmp_path, "en")[0]
+    i = html.index("The counterweights are applied")
+    assert html[i:].startswith("The counterweights are applied: the kinetostatics takes the links with them"), html[i:i + 120]

@@ -42,6 +42,13 @@ def _arr(items) -> str:
     return "(" + ", ".join(_q(x) for x in items) + ",)"
 
 
+def _pct(share, lang: str) -> str:
+    """A ratio's deviation in per cent, 3 digits; a round-off one (|share| < 1e-9) is 0 %
+    (it read -1.23e-14 %)."""
+    v = float(share or 0.0)
+    return localize(f"{100 * v:.3g} %" if abs(v) >= 1e-9 else "0 %", lang)
+
+
 def _num(x, lang: str, digits: int = 4) -> str:
     if x is None:
         return "—"
@@ -83,10 +90,15 @@ def conclusions(results: dict, lang: str) -> list[str]:
         out.append(W["c_gears"].format(aw=_num(1e3 * g["aw"], lang), eps=_num(g.get("eps_alpha"), lang)))
     pl = results.get("planetary")
     if pl and pl.get("ratio") is not None:
-        err = f"{100 * (pl.get('ratio_error') or 0):.3g} %"
         out.append(W["c_plan"].format(s=pl.get("scheme"), z=", ".join(str(v) for v in (pl.get("z") or {}).values()),
-                                      i=_num(pl["ratio"], lang, 6),
-                                      err=localize(err, lang)))
+                                      i=_num(pl["ratio"], lang, 6), err=_pct(pl.get("ratio_error"), lang)))
+    dt = results.get("drive_train")
+    if dt and dt.get("ratio") is not None:
+        from ..numfmt import list_sep
+        power = (W["c_train_power"].format(P=_num(dt["motor_power"], lang))
+                 if dt.get("motor_power_computed") and dt.get("motor_power") is not None else "")
+        out.append(W["c_train"].format(stages=list_sep(lang).join("/".join(str(v) for v in st["z"]) for st in dt["stages"]),
+                                       U=_num(dt["ratio"], lang, 6), err=_pct(dt.get("ratio_error"), lang), power=power))
     df = results.get("differential")
     if df:
         out.append(W["c_diff"].format(nH=_num(df["speeds_rpm"]["H"], lang), loss=_num(df.get("power_loss") or 0, lang)))

@@ -130,7 +130,13 @@ def build(ctx) -> str | None:
         cw_fig = counterweights_figure(ctx, b, ctx.results) if cw else None
         applied = b.get("applied")
         if applied:
-            parts.update(applied_text=t("bal.applied"), applied_rows=[
+            # what took them: the kinetostatics, the flywheel or both (it said both of a task with
+            # no flywheel)
+            res = ctx.results or {}
+            key = {(True, True): "bal.applied", (True, False): "bal.applied_kst",
+                   (False, True): "bal.applied_fly"}.get((bool(res.get("kinetostatics")), bool(res.get("flywheel"))),
+                                                         "bal.applied")
+            parts.update(applied_text=t(key), applied_rows=[
                 (f"{name} ({number.get(name, '')})", f(a["mass"]), f"({f(a['com'][0])}; {f(a['com'][1])})", f(a["J"]))
                 for name, a in applied.items()])
         parts.update(head=head, rows=rows, notes=notes, method=t("bal.method", about=b.get("about", "O")),
