@@ -222,3 +222,17 @@ def test_balancings_applied_counterweights_say_what_took_them(tmp_path):
     html = render_html(res, task, tmp_path, "en")[0]
     i = html.index("The counterweights are applied")
     assert html[i:].startswith("The counterweights are applied: the kinetostatics takes the links with them"), html[i:i + 120]
+
+
+def test_bare_tables_take_the_heading_they_stand_under():
+    """GOST 2.105 titles every table ('Table 4.1 - ...'); the report left many under a heading
+    that names them without a caption, and the note numbered only the captioned ones."""
+    from tmm_cli.report.note import _caption_bare_tables
+    html = ('<h3>Scales</h3><table class="info"><tr><td>1</td></tr></table>'
+            '<table><caption>Own</caption><tr><td>2</td></tr></table>'
+            '<h4>Gear <i>pair</i></h4><table class="data"><tr><td>3</td></tr></table>')
+    out = _caption_bare_tables(html)
+    assert out.count("<caption>") == 3
+    assert '<table class="info"><caption>Scales</caption>' in out and "<caption>Own</caption>" in out
+    assert '<table class="data"><caption>Gear pair</caption>' in out
+    assert _caption_bare_tables("<table><tr><td>0</td></tr></table>") == "<table><tr><td>0</td></tr></table>"

@@ -273,13 +273,36 @@ def _caption_bare_figures(html: str) -> str:
     return "".join(out)
 
 
+_TABLE = re.compile(r"<table\b[^>]*>(\s*<caption\b)?", re.S)
+
+
+def _caption_bare_tables(html: str) -> str:
+    """Every table of a text document has a title (GOST 2.105, the note numbers it "Table
+    4.1 -" in its language): a table the report leaves without a caption (under a heading that names it) takes
+    the text of the heading it stands under, as a bare figure does."""
+    out, last, heading = [], 0, None
+    marks = sorted([(m.start(), "h", m) for m in _HEADING.finditer(html)]
+                   + [(m.start(), "t", m) for m in _TABLE.finditer(html)], key=lambda t: t[0])
+    for _, kind, m in marks:
+        if kind == "h":
+            heading = re.sub(r"<[^>]+>", "", m.group(2)).strip()
+            continue
+        if m.group(1) or not heading:
+            continue
+        out.append(html[last:m.end()])
+        out.append(f"<caption>{heading}</caption>")
+        last = m.end()
+    out.append(html[last:])
+    return "".join(out)
+
+
 def to_typst(html: str, results: dict, task: Task | None, lang: str = "en") -> tuple[str, dict[str, bytes]]:
     """(Typst source, {file name: bytes}) of the explanatory note."""
     W = WORDS.get(lang, WORDS["en"])
     h = _header(task)
     # the report's body as report.pdf has it; its preamble (fonts, tables, headings) less its page,
     # figure and caption settings, which are the note's own
-    root, svgs = typst_pdf._parse(_caption_bare_figures(_strip_head(html)))
+    root, svgs = typst_pdf._parse(_caption_bare_tables(_caption_bare_figures(_strip_head(html))))
     w = typst_pdf._Writer(svgs, None)
     body, files = w.block(root), w.files
     # the report keeps a position's drawings on one page; the note's text area is shorter (the title
