@@ -252,25 +252,30 @@ _FIGURE = re.compile(r"<figure\b[^>]*>.*?</figure>", re.S)
 _HEADING = re.compile(r"<h([2-4])\b[^>]*>(.*?)</h\1>", re.S)
 
 
-def _caption_bare_figures(html: str) -> str:
-    """Every figure of a text document has a caption (GOST 2.105): a figure the report leaves
-    without one (a position's drawings under their heading "Position 3, φ = 96.42°", a diagram
-    under its subsection's heading) takes the text of the heading it stands under."""
+def _under_headings(html: str, rx: re.Pattern, caption) -> str:
+    """``html`` with ``caption(match, heading)`` -> (position, text) inserted for each match of
+    ``rx`` (None: nothing), ``heading`` the text of the last heading before it."""
     out, last, heading = [], 0, None
     marks = sorted([(m.start(), "h", m) for m in _HEADING.finditer(html)]
-                   + [(m.start(), "f", m) for m in _FIGURE.finditer(html)], key=lambda t: t[0])
+                   + [(m.start(), "x", m) for m in rx.finditer(html)], key=lambda t: t[0])
     for _, kind, m in marks:
         if kind == "h":
             heading = re.sub(r"<[^>]+>", "", m.group(2)).strip()
             continue
-        fig = m.group(0)
-        if "<figcaption" in fig or not heading:
-            continue
-        out.append(html[last:m.end() - len("</figure>")])
-        out.append(f"<figcaption>{heading}</figcaption></figure>")
-        last = m.end()
+        put = caption(m, heading) if heading else None
+        if put is not None:
+            out += [html[last:put[0]], put[1]]
+            last = put[0]
     out.append(html[last:])
     return "".join(out)
+
+
+def _caption_bare_figures(html: str) -> str:
+    """Every figure of a text document has a caption (GOST 2.105): a figure the report leaves
+    without one (a position's drawings under their heading "Position 3, φ = 96.42°", a diagram
+    under its subsection's heading) takes the text of the heading it stands under."""
+    return _under_headings(html, _FIGURE, lambda m, h: None if "<figcaption" in m.group(0) else
+                           (m.end() - len("</figure>"), f"<figcaption>{h}</figcaption>"))
 
 
 _TABLE = re.compile(r"<table\b[^>]*>(\s*<caption\b)?", re.S)
@@ -278,22 +283,9 @@ _TABLE = re.compile(r"<table\b[^>]*>(\s*<caption\b)?", re.S)
 
 def _caption_bare_tables(html: str) -> str:
     """Every table of a text document has a title (GOST 2.105, the note numbers it "Table
-    4.1 -" in its language): a table the report leaves without a caption (under a heading that names it) takes
-    the text of the heading it stands under, as a bare figure does."""
-    out, last, heading = [], 0, None
-    marks = sorted([(m.start(), "h", m) for m in _HEADING.finditer(html)]
-                   + [(m.start(), "t", m) for m in _TABLE.finditer(html)], key=lambda t: t[0])
-    for _, kind, m in marks:
-        if kind == "h":
-            heading = re.sub(r"<[^>]+>", "", m.group(2)).strip()
-            continue
-        if m.group(1) or not heading:
-            continue
-        out.append(html[last:m.end()])
-        out.append(f"<caption>{heading}</caption>")
-        last = m.end()
-    out.append(html[last:])
-    return "".join(out)
+    4.1 -" in its language): a table the report leaves without a caption (under a heading that
+    names it) takes the text of the heading it stands under, as a bare figure does."""
+    return _under_headings(html, _TABLE, lambda m, h: None if m.group(1) else (m.end(), f"<caption>{h}</caption>"))
 
 
 def to_typst(html: str, results: dict, task: Task | None, lang: str = "en") -> tuple[str, dict[str, bytes]]:
