@@ -19,8 +19,8 @@ ROWS = [{"path": "flywheel.J", "status": "ok", "answer": 58.46, "reference": 58.
          "tolerance": "rel 0.01", "note": ""}]
 
 
-@pytest.mark.parametrize("lang, words", [("ru", ["J_fly, кг·м² — момент инерции маховика", "M_b, Н·м —", "φ0, ° —"]),
-                                         ("uk", ["J_fly, кг·м² — момент інерції маховика", "M_b, Н·м —", "φ0, ° —"])])
+@pytest.mark.parametrize("lang, words", [("ru", ["J_fly, кг·м² — момент инерции маховика", "M_ур, Н·м —", "φ0, ° —"]),
+                                         ("uk", ["J_fly, кг·м² — момент інерції маховика", "M_зр, Н·м —", "φ0, ° —"])])
 def test_feedback_units_in_the_page_language(lang, words):
     task = SimpleNamespace(title="Crank press, variant 3", name="03")
     page = feedback_html(task, {"rows": ROWS, "student": "Иванов", "group": "МТ-21", "variant": 3}, lang)

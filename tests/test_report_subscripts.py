@@ -91,7 +91,7 @@ def test_forging_notation_in_subscripts(shared_once):
     """The tokens the forging press's Russian report wrote with an underscore, each now a subscript."""
     html = report_html(shared_once, "forging_sixbar", "ru")
     for base, sub in [("F", "тр"), ("J", "S"), ("J", "Мерцалов"), ("J", "пост"), ("J", "пр"), ("J", "точн"),
-                      ("M", "b"), ("M", "пр"), ("P", "b"), ("R", "ij"), ("R", "ji"), ("a", "S"), ("μ", "J"),
+                      ("M", "ур"), ("M", "пр"), ("P", "ур"), ("R", "ij"), ("R", "ji"), ("a", "S"), ("μ", "J"),
                       ("μ", "T"), ("ψ", "max"), ("ψ", "min"), ("ω", "i"), ("ω", "ср"), ("ω", "max")]:
         assert f"{base}<sub>{sub}</sub>" in html, (base, sub)
     # the CSV tables keep the plain text
