@@ -236,3 +236,19 @@ def test_bare_tables_take_the_heading_they_stand_under():
     assert '<table class="info"><caption>Scales</caption>' in out and "<caption>Own</caption>" in out
     assert '<table class="data"><caption>Gear pair</caption>' in out
     assert _caption_bare_tables("<table><tr><td>0</td></tr></table>") == "<table><tr><td>0</td></tr></table>"
+
+
+def test_the_references_are_the_ones_the_note_cites_as_written():
+    """A linkage's note listed the gear standard it never cites; '[и др.]' (GOST 7.1) was printed
+    '(и др.)'."""
+    from tmm_cli.report.note import WORDS, _books
+    books = WORDS["ru"]["bibliography"]
+    gear = [b for b in books if "16532" in b]
+    assert gear and not set(gear) & set(_books(books, {"kinematics": [1]}))
+    assert _books(books, {"gears": {"aw": 0.1}}) == books and _books(books, {"drive_train": {"ratio": 3}}) == books
+
+
+def test_the_references_keep_their_brackets(note):
+    text = subprocess.run(["pdftotext", str(note), "-"], capture_output=True, text=True, check=True).stdout
+    refs = text[text.rindex("Список літератури"):]
+    assert "[и др.]" in " ".join(refs.split()) and "(и др.)" not in refs

@@ -109,6 +109,14 @@ def conclusions(results: dict, lang: str) -> list[str]:
     return out
 
 
+def _books(books: list[str], results: dict) -> list[str]:
+    """The references a note cites: the gear standard (GOST 16532) only where gears are
+    designed (a linkage's note listed it uncited). Each as written ('[and others]' in its
+    brackets, GOST 7.1: a Typst string, not content, keeps them)."""
+    gears = any(results.get(k) for k in ("gears", "planetary", "drive_train", "differential"))
+    return [b for b in books if gears or "16532" not in b]
+
+
 def _parts(results: dict, lang: str) -> str:
     names = WORDS[lang]["parts"]
     order = ("synthesis", "structure", "kinematics", "kinetostatics", "flywheel", "balancing", "cam", "gears",
@@ -347,7 +355,7 @@ def to_typst(html: str, results: dict, task: Task | None, lang: str = "en") -> t
 #heading(numbering: none, {_q(W['conclusions'])})
 {''.join(_par(c) + chr(10) for c in concl)}
 #heading(numbering: none, {_q(W['biblio'])})
-#enum(numbering: "1.", {', '.join('[' + _q(b)[1:-1].replace('[', '(').replace(']', ')') + ']' for b in W['bibliography'])})
+#enum(numbering: "1.", {', '.join(_q(b) for b in _books(W['bibliography'], results))})
 #metadata("end") <note-end>
 """
     out = head + numbering + _title_page(h, lang) + contents + page + intro_block + body + tail
