@@ -289,6 +289,11 @@ def test_the_task_table_shows_a_rockers_fields_for_a_rocker_only(tmp_path, name,
     task = load_task(Path(__file__).resolve().parents[1] / "tasks" / f"{name}.yaml")
     html, _ = render_html(run(task), task, tmp_path, "en")
     assert ("rocker&#39;s turn on the rise" in html or "rocker's turn on the rise" in html) == shown
+    # a rocker's stroke is its swing (in degrees, named so), and it has no offset e to list
+    table = html[:html.index("</table>", html.index("stroke" if not shown else "swing of the rocker"))]
+    assert ("swing of the rocker" in table) == shown and ("stroke h" in table) == (not shown)
+    if shown:
+        assert "offset e" not in table
 
 
 @pytest.mark.parametrize("follower", ["translating", "flat"])

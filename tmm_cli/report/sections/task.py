@@ -166,8 +166,9 @@ def word_of(plain: str, value: str, lang: str) -> str | None:
     return own if own is not None else WORDS.get(lang, {}).get(value)
 
 
-# the cam fields that only a rocker follower has
+# the cam fields that only a rocker follower has, and the ones it has not (its stroke is a swing)
 _ROCKER_ONLY = ("cam.swing", "cam.rocker_length", "cam.center_distance")
+_TRANSLATING_ONLY = ("cam.offset",)
 
 
 def _rows(key: str, sec: Any, lang: str) -> list[tuple[str, str]]:
@@ -187,10 +188,13 @@ def _rows(key: str, sec: Any, lang: str) -> list[tuple[str, str]]:
             if isinstance(node, dict):
                 ctx.update(node)
         plain = re.sub(r"\[\d+\]", "", f"{key}.{k}")
-        if plain in _ROCKER_ONLY and sec.get("follower") != "rocker":
+        rocker = key == "cam" and sec.get("follower") == "rocker"
+        if (plain in _ROCKER_ONLY and not rocker) or (plain in _TRANSLATING_ONLY and rocker):
             continue                     # a rocker's default ('swing: auto') says nothing of another follower
         # a field given as a list may have a name of its own ('task.param.synthesis.points[]': path points)
         label = (isinstance(v, list) and _param(plain + "[]", lang)) or param_name(plain, lang)
+        if rocker and plain == "cam.stroke":        # a rocker's stroke is its swing, in degrees
+            label = param_name("cam.stroke_rocker", lang) or label
         if key == "synthesis":          # a field named by the type ('rocker': a crank-rocker's or a slotted link)
             label = PARAMS.get(lang, {}).get(f"{plain}.{sec.get('type')}") or label
         # a catalogue's name: its notation with subscripts in the HTML; a path of the task as written
