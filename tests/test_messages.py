@@ -379,6 +379,8 @@ ENGLISH = [
      "quantity 'flywheel.JJ' is not in the results: flywheel.JJ: no key 'JJ'; did you mean 'flywheel.J'? "
      "(presets: positions)"),
     ('quantities.no_number', {'name': 'flywheel'}, "'flywheel' holds no number"),
+    ('sheets.none', {}, "no sheets: the task has nothing the sheets draw (a linkage, a cam, a gear pair, a planetary "
+     "gear, a differential, a drive's gear train, balancing)"),
     ('quantities.pattern_empty', {'name': 'gears.q[*]'}, "pattern 'gears.q[*]' matches no quantity of the task's results"),
     ('input.file_not_found', {}, 'file not found'),
     ('input.unknown_keys', {'first': {'code': 'input.unknown_key', 'params': {'key': 'lenght', 'hint': 'length'}},

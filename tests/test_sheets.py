@@ -1131,3 +1131,17 @@ def test_an_extra_position_is_marked_on_every_sheet(name, extra):
             assert num != extra, (info["number"], t)
             seen += f"{extra}*" in t
     assert seen >= 1
+
+
+@pytest.mark.parametrize("lang, word", [("en", "no sheets: the task has nothing the sheets draw"),
+                                        ("uk", "\u0430\u0440\u043a\u0443\u0448\u0456\u0432 \u043d\u0435\u043c\u0430\u0454")])
+def test_a_task_with_nothing_to_draw_is_told_in_its_language(tmp_path, lang, word):
+    """`tmm sheets` of a task no sheet draws (a 2-DOF machine) said, in English only, that it had
+    'no linkage, cam or gear pair' (a drive train has a sheet now): the note in the language."""
+    from typer.testing import CliRunner
+
+    from tmm_cli.cli import app
+    res = CliRunner().invoke(app, ["sheets", str(ROOT / "tasks" / "impact_rotor.yaml"), "--out", str(tmp_path),
+                                   "--lang", lang])
+    assert res.exit_code == 0 and word in " ".join(res.output.split()), res.output
+    assert not list(tmp_path.glob("*.pdf"))

@@ -217,7 +217,7 @@ def sheets(
     except OSError as exc:
         raise _fail_write(exc)
     if not paths:
-        _err("note: no sheets: the task has no linkage, cam or gear pair to draw")
+        _err(f"{console.run_words(lang)['note']}: {in_lang(Message('sheets.none'), lang)}")
     for p in paths:
         typer.echo(str(p))
 
