@@ -314,6 +314,8 @@ def test_check_table_breaks_a_long_path_after_its_dots(tmp_path):
     assert _path_lines("kst[5].balancing_moment", 12) == "kst[5].\nbalancing_moment"
     assert _path_lines("kin[3].B.vx", 20) == "kin[3].B.vx"
     assert _path_lines("gears.r[0]", 6) == "gears.\nr[0]"
+    assert _path_lines("kin[1.B.v", 40) == "kin[1.B.v"                  # a student's unclosed bracket kept
+    assert _path_lines("kin[1.B.v", 4).replace("\n", "") == "kin[1.B.v"
     f = _write(tmp_path, "s.yaml", SLIDER_CRANK +
                "answers: {flywheel.moment_of_inertia: 1, 'kinetostatics[2].balancing_moment': 1}\n")
     res = runner.invoke(app, ["check", str(f)], env={"COLUMNS": "80"})
@@ -324,6 +326,17 @@ def test_check_table_breaks_a_long_path_after_its_dots(tmp_path):
     assert max(len(ln) for ln in res.output.splitlines()) <= 80
     wide = runner.invoke(app, ["check", str(f)], env={"COLUMNS": "120"})
     assert any("│ flywheel.moment_of_inertia " in ln for ln in wide.output.splitlines()), wide.output
+
+
+def test_a_point_named_like_a_word_is_that_point():
+    """'E' and 'W' are points of a linkage before they are a student's ε and ω: a path naming
+    point E is told point E's path (it was read as epsilon, and nothing suggested)."""
+    from tmm_cli.results import did_you_mean
+    results = {"kinematics": [{"index": 1, "points": {"E": {"v": 1.0, "a": 2.0}, "W": {"v": 3.0}},
+                               "links": {"rod": {"omega": 4.0, "epsilon": 5.0}}}]}
+    assert str(did_you_mean("kinematics[1].velocities.E", results)) == "did you mean 'kinematics[1].points.E.v'?"
+    assert str(did_you_mean("kinematics[1].v_W", results)) == "did you mean 'kinematics[1].points.W.v'?"
+    assert str(did_you_mean("kinematics[1].e_rod", results)) == "did you mean 'kinematics[1].links.rod.epsilon'?"
 
 
 @pytest.mark.parametrize("path, meant", [("kinematics[2].velocities.B", "kinematics[2].points.B.v"),

@@ -282,12 +282,14 @@ def test_a_tables_students_reach_their_tasks_and_forms(tmp_path):
     for the columns it uses)."""
     tpl = _write(tmp_path, "tpl.yaml", TEMPLATE)
     tab = _write(tmp_path, "tab.csv", "variant;a, mm;b, mm;n;student;group\n"
-                                      "1;100;300;10;Ann Lee;MT-21\n2;100;320;10;Bob Ray;\n3;100;340;10;;\n")
+                                      "1;100;300;10;Ann Lee;MT-21\n2;100;320;10;Bob Ray;\n3;100;340;10;;\n"
+                                      "4;100;360;10;007;0301\n")
     res = runner.invoke(app, ["variants", str(tpl), str(tab), "--out", str(tmp_path / "v")])
     assert res.exit_code == 0 and "no placeholder" not in res.output, res.output
     tasks = {p.stem: yaml.safe_load(p.read_text(encoding="utf-8")) for p in (tmp_path / "v").glob("*.yaml")}
     assert tasks["1"]["student"] == {"name": "Ann Lee", "group": "MT-21"}
     assert tasks["2"]["student"] == {"name": "Bob Ray"} and "student" not in tasks["3"]
+    assert tasks["4"]["student"] == {"name": "007", "group": "0301"}        # as written, not read as numbers
     assert list(tasks["1"])[:4] == ["schema", "title", "variant", "student"]
     res = runner.invoke(app, ["form", str(tmp_path / "v"), "-q", "positions", "--out", str(tmp_path / "f")])
     assert res.exit_code == 0, res.output
@@ -296,7 +298,7 @@ def test_a_tables_students_reach_their_tasks_and_forms(tmp_path):
     for table in ("form.csv", "key.csv"):
         rows = _csv(tmp_path / "f" / table)
         assert [(r["student"], r["group"], r["variant"]) for r in rows] == [
-            ("Ann Lee", "MT-21", "1"), ("Bob Ray", "", "2"), ("", "", "3")], table
+            ("Ann Lee", "MT-21", "1"), ("Bob Ray", "", "2"), ("", "", "3"), ("007", "0301", "4")], table
     own = _write(tmp_path, "own.yaml", TEMPLATE + "student: {name: '{student}'}\n")
     res = runner.invoke(app, ["variants", str(own), str(tab), "--out", str(tmp_path / "w")])
     assert yaml.safe_load((tmp_path / "w" / "1.yaml").read_text(encoding="utf-8"))["student"] == {"name": "Ann Lee"}

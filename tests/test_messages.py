@@ -368,8 +368,8 @@ ENGLISH = [
      'no answers to check: add an `answers:` section (paths into results.json) or give --answers FILE'),
     ('quantities.preset_empty', {'preset': 'cam'},
      "preset 'cam': the task's results have none of its quantities (is its section in the task?)"),
-    ('quantities.no_position', {'preset': 'kinetostatics[5]', 'index': '[5]', 'computed': '3, 7'},
-     "preset 'kinetostatics[5]': the task's results have no position [5] (positions computed: 3, 7)"),
+    ('quantities.no_position', {'preset': 'kinetostatics[5]', 'index': '5', 'computed': '3, 7'},
+     "preset 'kinetostatics[5]': the task's results have no position 5 (positions computed: 3, 7)"),
     ('quantities.preset_meant', {'name': 'kinematic', 'preset': 'kinematics', 'presets': 'positions, kinematics'},
      "quantity 'kinematic' is neither a preset nor a path in the results; did you mean the preset 'kinematics'? "
      "(presets: positions, kinematics)"),

@@ -269,8 +269,8 @@ def expand(quantities: str | list[str], results: dict, *, strict: bool = True) -
             name, pats = preset
             got = [p for pat in pats for rx in (_pattern(pat),) for p in names if rx.match(p)
                    if not _zero_by_construction(p, results)]
-            if not got and strict and name != raw:
-                raise TaskError(Message("quantities.no_position", preset=raw, index=raw[len(name):],
+            if not got and strict and name != raw and _indices(results, name):
+                raise TaskError(Message("quantities.no_position", preset=raw, index=raw[len(name) + 1:-1],
                                         computed=", ".join(map(str, _indices(results, name)))))
             if not got and strict:
                 raise TaskError(Message("quantities.preset_empty", preset=raw))

@@ -402,6 +402,6 @@ def _named_alike(path: str, near: list[str]) -> list[str]:
     want = set()
     for w in parts:          # a word no path has, written with '_' ('v_B'): its pieces
         pieces = [w] if w in known or "_" not in w else w.split("_")
-        want |= {_SAID.get(x.lower(), x) for x in pieces}
+        want |= {x if x in known else _SAID.get(x.lower(), x) for x in pieces}    # a point E is no epsilon
     hits = [c for c, n in zip(near, names) if want <= n]
     return hits if len(hits) == 1 else []

@@ -348,8 +348,11 @@ def _path_lines(path: str, width: int) -> str:
     its brackets ('kst[5].balancing_moment' -> 'kst[5].' / 'balancing_moment'), as a
     reader splits it; a single name longer than the line is left for the table to fold."""
     import re
+    parts = re.findall(r"[^.\[]*\.|\[[^\]]*\]\.?|[^.\[]+|\[", path)
+    if "".join(parts) != path:          # (every character kept: a student's '[1.v' as written)
+        return path
     lines = [""]
-    for part in re.findall(r"[^.\[]*\.|\[[^\]]*\]\.?|[^.\[]+", path):
+    for part in parts:
         if lines[-1] and len(lines[-1]) + len(part) > width:
             lines.append("")
         lines[-1] += part

@@ -162,7 +162,9 @@ def make_variants(template: Path, table: Path, out: Path) -> tuple[int, list[dic
                     items = list(task.items())
                     at = sum(1 for k, _ in items[:2] if k in ("schema", "title"))
                     task = dict(items[:at] + [("variant", cells["variant"])] + items[at:])
-                named = {("name" if n == "student" else n): str(cells[n]) for n in who if str(cells[n]).strip()}
+                # as written: a group '0301' or a name '007' is no number ('cells' reads them so)
+                named = {("name" if n == "student" else n): row.get(cols[n][0], "").strip() for n in who
+                         if row.get(cols[n][0], "").strip()}
                 if named:                       # after the variant
                     items = list(task.items())
                     at = [k for k, _ in items].index("variant") + 1 if "variant" in task else 0

@@ -293,6 +293,18 @@ def _off(x, a, b) -> float:
     return float(np.hypot(*(a + t * d - x)))
 
 
+def line_meet(c, u, a, b):
+    """Where the line through ``c`` along the unit vector ``u`` meets the line ab (paper mm), or
+    None when they are parallel."""
+    c, u, a, b = (np.asarray(x, float) for x in (c, u, a, b))
+    d = b - a
+    den = u[0] * d[1] - u[1] * d[0]
+    if abs(den) < 1e-9 * (float(np.hypot(*d)) or 1.0):
+        return None
+    w = a - c
+    return c + (w[0] * d[1] - w[1] * d[0]) / den * u
+
+
 def _slot(c, u, links, guide: dict, names, mp):
     """(foot, far end) on the paper of the slot a block at ``c`` (direction ``u``) slides in
     when its guide is a link of the group (a Scotch yoke's slot, a slotted lever drawn by its own
@@ -304,15 +316,11 @@ def _slot(c, u, links, guide: dict, names, mp):
     pts = [mp[p] for p in links[owner]["points"] if p in mp]
     if len(pts) < 2:
         return None
-    a, b = np.asarray(pts[0], float), np.asarray(pts[1], float)
-    d = b - a
-    den = u[0] * d[1] - u[1] * d[0]
-    if abs(den) < 1e-9 * (float(np.hypot(*d)) or 1.0):
-        return None                     # the slot along the bar: the bar is the slot
-    w = a - c
-    t = (w[0] * d[1] - w[1] * d[0]) / den          # c + t u on the bar's line
-    foot = c + t * u
-    return foot, c - np.sign(t or 1.0) * u * 6.0
+    foot = line_meet(c, u, pts[0], pts[1])     # None: the slot along the bar, the bar is the slot
+    if foot is None:
+        return None
+    t = float((foot - np.asarray(c, float)) @ np.asarray(u, float))
+    return foot, np.asarray(c, float) - np.sign(t or 1.0) * np.asarray(u, float) * 6.0
 
 
 def group_panel(words, cv, box, kin_e, links, names, forces, couples, title, norms=None):

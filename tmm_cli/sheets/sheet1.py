@@ -42,16 +42,11 @@ def course_positions(results: dict) -> list[int]:
     return [i for i in out if i in kin][:2]
 
 
-def _foot(a, b, c, ang_deg: float):
-    """Where the line through ``c`` at ``ang_deg`` meets the line ab (paper mm), or None when
-    they are parallel."""
-    u = np.array([math.cos(math.radians(ang_deg)), math.sin(math.radians(ang_deg))])
-    d = np.asarray(b, float) - np.asarray(a, float)
-    den = u[0] * d[1] - u[1] * d[0]
-    if abs(den) < 1e-9 * (float(np.hypot(*d)) or 1.0):
-        return None
-    w = np.asarray(a, float) - np.asarray(c, float)
-    return np.asarray(c, float) + (w[0] * d[1] - w[1] * d[0]) / den * u
+def _known(e: dict, p: str) -> bool:
+    """Whether the entry ``e`` holds the point ``p`` with numeric coordinates (not at a singular
+    position's undefined ones)."""
+    q = e["points"].get(p)
+    return q is not None and q.get("x") is not None and q.get("y") is not None
 
 
 def draw_mechanism(cv, geom, entries, course: list[int], box, lang="en", traced_over=None,
@@ -100,10 +95,13 @@ def draw_mechanism(cv, geom, entries, course: list[int], box, lang="en", traced_
                         if thick:
                             segs.append((c, M(_xy(e, q))))
                 owner = geom.by_name(l.guide_link) if l.guide_link else None
-                if thick and owner is not None and owner.kind == "slider" and len(owner.points) > 1:
+                if thick and owner is not None and owner.kind == "slider" and len(owner.points) > 1 \
+                        and all(_known(e, q) for q in owner.points[:2]):
                     # the slot the block slides in, on the owner's bar (a Scotch yoke's): from the
                     # bar through the block and beyond it (a bar owner, a slotted lever, is its slot)
-                    foot = _foot(M(_xy(e, owner.points[0])), M(_xy(e, owner.points[1])), c, ang)
+                    from ..drawings.forces import line_meet
+                    u_ = np.array([math.cos(math.radians(ang)), math.sin(math.radians(ang))])
+                    foot = line_meet(c, u_, M(_xy(e, owner.points[0])), M(_xy(e, owner.points[1])))
                     if foot is not None:
                         u = (c - foot) / (np.hypot(*(c - foot)) or 1.0)
                         cv.line(foot, c + u * 8.0, width=0.7)

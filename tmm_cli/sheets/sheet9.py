@@ -43,7 +43,7 @@ def build(cv, results: dict, task: Task | None, lang: str = "en") -> dict:
     table_top = y0f + TB_H + 8.0 + 6.0 * len(rows)
     plan, sp = train.angular_plan(make, d, frame=x1f - rx - 10.0, height=y1f - table_top - 30.0, scales=sc)
     px, py = rx + 5.0, y1f - 14.0 - plan.h
-    cv.mtext(rx, y1f - 7, W["train.plan"].split(":")[0], 5.0, bold=True)
+    cv.mtext(rx, y1f - 7, W["train.plan_title"], 5.0, bold=True)
     place(cv, plan, px, py)
     for k, line in enumerate(rows):          # left of the title block's width: a row is long
         cv.mtext(rx, table_top - 6.0 * (k + 1), line, 3.5)

@@ -374,14 +374,10 @@ def build(ctx) -> str | None:
             figs = []
         else:
             figs, _ = position_figures(ctx, e, ke, info, links, geom_pin, w1)
-        # each figure its own caption (a note numbers them: the groups' said the lever's), the
-        # groups' on the last of them, headed by the position
+        # each figure its own caption (a note numbers them: the groups' said the lever's), every
+        # page of groups (a six-bar's may fill two) and the lever, headed by the position
         head = ctx.t("kst.position_n", i=position_label(e, mark), phi=e["phi"])
-        caps = [None] * len(figs)
-        if figs:
-            caps[-1] = f"{head}. {ctx.t('kst.lever_caption')}"
-        if len(figs) > 1:
-            caps[-2] = f"{head}. {ctx.t('kst.fbd_caption')}"
+        caps = [f"{head}. {ctx.t('kst.fbd_caption')}"] * (len(figs) - 1) + [f"{head}. {ctx.t('kst.lever_caption')}"]
         positions.append({"index": position_label(e, mark), "phi": e["phi"], "figs": list(zip(figs, caps))})
     sing = ctx.results.get("singular") or []
     sing_figs = singular_figures(ctx, geom, ctx.results.get("kinematics") or [], info) \
