@@ -31,6 +31,12 @@ def _line_color(col, stage: int, satellite: bool) -> str:
     return col[(stage if satellite else stage + 1) % len(col)]
 
 
+def _aw(scheme: str, z, m: float) -> float:
+    """A planetary stage's centre distance (m): the sun and satellite 2's, or in scheme D ring
+    1's and satellite 2's (internal)."""
+    return (z[0] - z[1] if scheme == "D" else z[0] + z[1]) * m / 2
+
+
 def layout(d: dict, frame: float = FRAME, height: float | None = None, k_max: float = 1.0) -> dict:
     """Where the scheme and the picture go and at which scales: the scheme's factor ``k`` (its
     x spacing), its standard length scale ``mu_l`` (m/mm), the picture's standard velocity
@@ -47,7 +53,7 @@ def layout(d: dict, frame: float = FRAME, height: float | None = None, k_max: fl
             r1, r2 = (m * q / 2 for q in z[:2])
             ys += [a["y"] - r1, a["y"] + r1, a["y"] + (2 * r2 - r1 if s.get("internal") else r1 + 2 * r2)]
         else:          # a planetary stage: the top of its satellites (A: one wheel; B-D: the pair 2-3)
-            aw = (z[0] + z[1] if s["scheme"] != "D" else z[0] - z[1]) * m / 2
+            aw = _aw(s["scheme"], z, m)
             sat = z[1] if s["scheme"] == "A" else max(z[1], z[2])
             ys += [a["y"] + aw + m * sat / 2, a["y"] + (m * z[0] / 2 if s["scheme"] == "D" else 0.0)]
     y_lo, y_hi = min(ys), max(ys)
@@ -119,8 +125,7 @@ def scheme_and_picture(make, d: dict, frame: float = FRAME, height: float | None
             sch = s["scheme"]
             zd = dict(zip(("z1", "z2", "z3", "z4"), z))
             rr = {kk: r_mm(v) for kk, v in zd.items()}
-            aw_mm = {"A": (zd["z1"] + zd["z2"]), "B": (zd["z1"] + zd["z2"]), "C": (zd["z1"] + zd["z2"]),
-                     "D": (zd["z1"] - zd["z2"])}[sch] * vp["module"] / 2 / mu_l
+            aw_mm = _aw(sch, z, vp["module"]) / mu_l
             xh = xs + (9 if sch != "A" else 5) * k        # the carrier's arm, its output shaft from there
             # the input shaft to the sun 1 (to ring 1's disc in scheme D): it ends there; the
             # carrier's shaft, not wheel 1's, goes on to the next stage
