@@ -221,8 +221,8 @@ def notation(path: str, lang: str = "en", local_units: bool = False) -> str:
         return ""
     sym, unit, key = n
     if sym.startswith(("M_b", "P_b")):         # the balancing moment: M_b, in ru and uk the course's subscript
-        from . import locales
-        sym = sym[:2] + locales.of("kinetostatics", "words", lang).get("kst.balance_sub", "b") + sym[3:]
+        from .drawings.words import balance_sub
+        sym = sym[:2] + balance_sub(lang) + sym[3:]
     if local_units:
         unit = local_unit(unit, lang)
     return f"{sym}{', ' + unit if unit else ''} — {_text(lang, 'names').get(key) or _text('en', 'names')[key]}"

@@ -46,7 +46,8 @@ def _label_parts(name: str, lang: str = "en") -> tuple[str, str]:
     if "\u0000" in name:                 # already split: 'M\0b' -> ('M', 'b')
         a, b = name.split("\u0000", 1)
         # the balancing moment and force: M_b, P_b, in ru and uk with the course's subscript
-        return a, (words.get("kst.balance_sub", "b") if b == "b" else b)
+        from .words import balance_sub
+        return a, (balance_sub(lang) if b == "b" else b)
     fr = words.get("kst.friction_sub", "f")
     m = re.fullmatch(r"(Fi|Mi|Ff|Mf|[A-Za-z])(\d+)", name)
     if not m:

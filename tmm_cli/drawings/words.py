@@ -7,6 +7,13 @@ from dataclasses import dataclass
 from typing import Any
 
 
+def balance_sub(lang: str) -> str:
+    """The subscript of the balancing moment and force in ``lang``: M_b, P_b, and the course's
+    in Russian and Ukrainian (the kinetostatics words' ``kst.balance_sub``)."""
+    from .. import locales
+    return locales.of("kinetostatics", "words", lang).get("kst.balance_sub", "b")
+
+
 @dataclass(frozen=True)
 class Words:
     lang: str

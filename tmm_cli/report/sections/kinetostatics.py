@@ -195,7 +195,8 @@ def _cycle_fig(ctx, entries, phi0, sign, info):
     a1.set_ylabel(ctx.t("kst.moment_axis") if key == "balancing_moment" else ctx.t("kst.force_axis"))
     a1.grid(True, lw=0.3)
     a1.axhline(0, color="0.5", lw=0.5)
-    sub = ctx.t("kst.balance_sub")
+    from ...drawings.words import balance_sub
+    sub = balance_sub(ctx.lang)
     a1.set_title(f"$M_{{{sub}}}$" if key == "balancing_moment" else f"$P_{{{sub}}}$", fontsize=8)
     for j in info["joints"]:
         jk = j["key"]

@@ -270,8 +270,8 @@ class _Writer:
         self.ctx = ctx
         self.t = ctx.t
         self.u = UNITS.get(ctx.lang, UNITS["en"])
-        from ... import locales          # the balancing moment's subscript: M_b, in ru and uk the course's
-        self.b = locales.of("kinetostatics", "words", ctx.lang).get("kst.balance_sub", "b")
+        from ...drawings.words import balance_sub
+        self.b = balance_sub(ctx.lang)     # the balancing moment's subscript: M_b, in ru and uk the course's
         self.num = Num(ctx)
         self.n = n
         res = ctx.results
