@@ -122,9 +122,8 @@ def work(path: Path, out: Path, folder: str, formats: set[str], lang: str, sets:
     res: dict = {"task": None, "written": [], "sets": [], "code": 0, "status": "ok", "message": "", "notes": []}
     try:
         task, mechanism = checked(path, stage_errors=False)
-        st = task.student
         res["task"] = {"title": task.title, "variant": task.variant, "name": task.name,
-                       "student": (st.name or "") if st else "", "group": (st.group or "") if st else ""}
+                       "student": task.who[0], "group": task.who[1]}
         try:
             task, results, written = process(path, vout, formats, lang, task=task, mechanism=mechanism)
         except BaseException as exc:

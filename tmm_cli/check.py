@@ -422,9 +422,8 @@ def task_answer_set(task) -> AnswerSet | None:
     """The task's own `answers` section as a set (None when it has none)."""
     if not task.answers:
         return None
-    st = task.student
-    aset = AnswerSet(source=task.file or task.name, student=(st.name or "") if st else "",
-                     group=(st.group or "") if st else "", variant=task.variant, stem=task.name)
+    aset = AnswerSet(source=task.file or task.name, student=task.who[0], group=task.who[1], variant=task.variant,
+                     stem=task.name)
     for k, v in task.answers.items():      # read as an answers file's are ('8,8', '-200 N*m')
         _add_answer(aset, str(k), v)
     return aset

@@ -561,8 +561,7 @@ def form(
             continue
         all_paths += [p for p in qp if p not in all_paths]
         v = task.variant if task.variant is not None else task.name
-        who = {"student": (task.student.name or "") if task.student else "",
-               "group": (task.student.group or "") if task.student else ""}
+        who = dict(zip(("student", "group"), task.who))
         frows.append({**who, "variant": v})
         krow = {**who, "variant": v}
         for p in qp:

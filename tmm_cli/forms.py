@@ -399,9 +399,9 @@ def yaml_key(path: str) -> str:
 
 
 
-def _quoted(value: str | None) -> str:
+def _quoted(value: str) -> str:
     """A student's name or group as a YAML string ('""' where the task has none)."""
-    return json.dumps(value or "", ensure_ascii=False)
+    return json.dumps(value, ensure_ascii=False)
 
 
 def position_angles(paths: list[str], results: dict) -> dict[int, float]:
@@ -427,11 +427,11 @@ def form_text(task, paths: list[str], results: dict | None, lang: str,
     key = results is not None
     words = _text(lang, "text")
     head = words["key" if key else "form"]
-    st = task.student                            # a variants table's student and group, if it gave them
+    name, group = task.who                       # a variants table's student and group, if it gave them
     lines = [f"# {head}: {task.title or task.name}".rstrip(),
              "# " + words["note"],
              f"variant: {json.dumps(task.variant if task.variant is not None else task.name, ensure_ascii=False)}",
-             f"student: {{name: {_quoted(st and st.name)}, group: {_quoted(st and st.group)}}}"]
+             f"student: {{name: {_quoted(name)}, group: {_quoted(group)}}}"]
     if angles:
         from .numfmt import list_sep, num
         lines.insert(2, "# " + words["positions"].format(list=list_sep(lang).join(

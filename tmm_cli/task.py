@@ -205,6 +205,13 @@ class Task(_Model):
     def name(self) -> str:
         return Path(self._file).stem if self._file else (self.title or "task")
 
+    @property
+    def who(self) -> tuple[str, str]:
+        """(name, group) of the task's student, '' for what the task does not give (the title
+        blocks, the forms, the answer sets and the batch's rows read it here)."""
+        st = self.student
+        return ((st.name or "") if st else "", (st.group or "") if st else "")
+
     def line_of(self, path: tuple) -> tuple[int | None, int | None]:
         """(line, column) of a field path, or of its nearest given ancestor."""
         p = tuple(path)

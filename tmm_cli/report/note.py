@@ -126,7 +126,6 @@ def _parts(results: dict, lang: str) -> str:
 
 def _header(task: Task | None) -> dict:
     """The title page's fields: the task's ``student`` and ``course`` (each may be absent)."""
-    st = task.student if task is not None else None
     co = task.course if task is not None else None
     if co is None:
         university = department = supervisor = city = designation = year = None
@@ -135,8 +134,8 @@ def _header(task: Task | None) -> dict:
             co.university, co.department, co.supervisor, co.city, co.designation, co.year)
     return {"title": (task.title if task is not None else "") or "",
             "variant": task.variant if task is not None else None,
-            "student": (st.name if st is not None else None) or "",
-            "group": (st.group if st is not None else None) or "",
+            "student": task.who[0] if task is not None else "",
+            "group": task.who[1] if task is not None else "",
             "university": university or "", "department": department or "",
             "supervisor": supervisor or "", "city": city or "",
             "year": year or datetime.date.today().year, "designation": designation or ""}

@@ -42,9 +42,7 @@ def build_sheets(results: dict, task: Task | None, lang: str = "en") -> list[tup
     if bal.get("rotor") or (bal.get("shaking") and results.get("kinematics")):
         makers.append((8, sheet8.build))
     out = []
-    st = task.student if task is not None else None
-    student = (st.name if st is not None else None) or ""
-    group = (st.group if st is not None else None) or ""
+    student, group = task.who if task is not None else ("", "")
     meta = results.get("task") or {}
     course = task.course if task is not None else None
     supervisor, designation, university = ((course.supervisor, course.designation, course.university)
