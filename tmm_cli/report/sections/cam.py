@@ -190,12 +190,16 @@ def profile_figure(ctx, c):
     if flat:
         pts.append(pitch + half)
         pts.append(pitch - half)
+    # each position's point B on the pitch profile, the follower's axis u there, its normal n and
+    # where the drawn axis starts (a flat face's foot, else B): for the extent and the drawing
+    at = []
+    for a in angs:
+        B = pitch[int(round(math.degrees(a))) % len(pitch)]
+        u = np.array([-math.sin(-sigma * a), math.cos(-sigma * a)])
+        n = np.array([u[1], -u[0]])
+        at.append((B, u, n, B - np.dot(B, n) * n if flat else B))
     if not rocker:       # the follower's axis drawn out from each position's point: in the figure too
-        for a in angs:
-            u = np.array([-math.sin(-sigma * a), math.cos(-sigma * a)])
-            B = pitch[int(round(math.degrees(a))) % len(pitch)]
-            foot = B - np.dot(B, np.array([u[1], -u[0]])) * np.array([u[1], -u[0]]) if flat else B
-            pts.append((foot + u * (0.4 if flat else 0.6) * r0)[None, :])
+        pts += [(foot + u * (0.4 if flat else 0.6) * r0)[None, :] for _, u, _, foot in at]
     allp = np.vstack(pts)
     lo, hi = allp.min(axis=0) - rr, allp.max(axis=0) + rr
     unit, label = fp.drawing_scale(max((hi - lo)[0] / 134.0, (hi - lo)[1] / 154.0))
@@ -207,14 +211,9 @@ def profile_figure(ctx, c):
     ax.plot(*np.vstack([work, work[:1]]).T, color="k", lw=1.6)
     ax.plot(0, 0, "k+", ms=8)
     ax.annotate("O", (0, 0), textcoords="offset points", xytext=(4, 4), fontsize=8)
-    for i, a in enumerate(angs):
-        idx = int(round(math.degrees(a))) % len(pitch)
-        B = pitch[idx]
+    for i, (B, u, n, foot) in enumerate(at):
         if flat:
             # the face: perpendicular to the follower's axis through the contact point
-            u = np.array([-math.sin(-sigma * a), math.cos(-sigma * a)])
-            n = np.array([u[1], -u[0]])
-            foot = B - np.dot(B, n) * n
             ax.plot([foot[0] - half * n[0], foot[0] + half * n[0]], [foot[1] - half * n[1], foot[1] + half * n[1]],
                     color="tab:blue", lw=0.6)
             ax.plot([foot[0], foot[0] + u[0] * 0.4 * r0], [foot[1], foot[1] + u[1] * 0.4 * r0],
@@ -228,7 +227,6 @@ def profile_figure(ctx, c):
             ax.plot([Ai[0], B[0]], [Ai[1], B[1]], color="tab:blue", lw=0.5)
             ax.plot(*Ai, "o", color="tab:blue", ms=1.5)
         else:
-            u = np.array([-math.sin(-sigma * a), math.cos(-sigma * a)])
             ax.plot([B[0], B[0] + u[0] * 0.6 * r0], [B[1], B[1] + u[1] * 0.6 * r0], color="tab:blue", lw=0.5)
         ax.annotate(str(i), B, textcoords="offset points", xytext=(3, 3), fontsize=6, color="tab:blue")
     # direction of rotation
