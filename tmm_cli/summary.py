@@ -394,7 +394,7 @@ def print_check(rows: list[dict], source, lang: str = "en") -> None:
     t = Table(title=Text(f"{C['title']}: {Path(str(source)).name}" + (f" - {who}" if who else "")),
               title_justify="left")
     heads = [C[c] for c in ("quantity", "answer", "reference", "error", "tol", "status")]
-    t.add_column(Text(heads[0]), overflow="fold", min_width=8, max_width=26)
+    t.add_column(Text(heads[0]), overflow="fold", max_width=26)
     for c in heads[1:-1]:
         t.add_column(Text(c), justify="right", no_wrap=True)
     t.add_column(Text(heads[-1]), no_wrap=True)
