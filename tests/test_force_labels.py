@@ -301,6 +301,6 @@ def test_every_lever_force_stands_on_a_drawn_ray_of_the_turned_plan(name):
             if float(np.hypot(*f["F"])) == 0:
                 continue
             q = pole + np.array([-f["v"][1], f["v"][0]]) / mu_v
-            assert any(K._on_segment(q, a, b, tol=0.3) for a, b in lines), (name, e["index"], f["name"])
+            assert any(K._off(q, a, b) <= 0.3 for a, b in lines), (name, e["index"], f["name"])
             checked += 1
     assert checked > 0

@@ -717,15 +717,6 @@ def _arrow_in(at, u, L: float, placed: list, box):
     return q, q + u * L, q + u * (L + 0.6), tuple(u)
 
 
-def _on_segment(q, a, b, tol: float = 0.3) -> bool:
-    """Whether the point ``q`` (mm) lies on the segment ab within ``tol`` mm."""
-    q, a, b = (np.asarray(x, float) for x in (q, a, b))
-    d = b - a
-    n = float(np.dot(d, d))
-    t = 0.0 if n == 0.0 else min(1.0, max(0.0, float(np.dot(q - a, d)) / n))
-    return float(np.hypot(*(a + t * d - q))) <= tol
-
-
 def lever_panel(words, cv, box, e, kin_e, pin, omega1, balance_kind):
     """Zhukovsky's lever: the velocity plan turned by +90 deg (ends rot90(v)/mu_v, mu_v
     lever_scale), the loads moved to the ends of the turned velocities with their arms
@@ -756,7 +747,7 @@ def lever_panel(words, cv, box, e, kin_e, pin, omega1, balance_kind):
     for f in loads:
         F = np.asarray(f["F"], float)
         q = end(np.array([-f["v"][1], f["v"][0]], float))
-        if not any(_on_segment(q, a, b) for a, b in segs):
+        if not any(_off(q, a, b) <= 0.3 for a, b in segs):
             # a point of no drawn ray (a crank's centre of mass beyond O, with its counterweight):
             # its own turned velocity ps, so that the force stands on the lever, not beside it
             cv.line(pole, q, "#9a9a9a", 0.3, z=1)
