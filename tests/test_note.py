@@ -242,10 +242,12 @@ def test_the_references_are_the_ones_the_note_cites_as_written():
     """A linkage's note listed the gear standard it never cites; '[и др.]' (GOST 7.1) was printed
     '(и др.)'."""
     from tmm_cli.report.note import WORDS, _books
-    books = WORDS["ru"]["bibliography"]
-    gear = [b for b in books if "16532" in b]
-    assert gear and not set(gear) & set(_books(books, {"kinematics": [1]}))
-    assert _books(books, {"gears": {"aw": 0.1}}) == books and _books(books, {"drive_train": {"ratio": 3}}) == books
+    W = WORDS["ru"]
+    gear = [b for b in W["bibliography_gears"] if "16532" in b]
+    assert gear and not set(gear) & set(_books(W, {"kinematics": [1]}))
+    assert _books(W, {"kinematics": [1]}) == W["bibliography"]
+    for res in ({"gears": {"aw": 0.1}}, {"drive_train": {"ratio": 3}}):
+        assert _books(W, res) == W["bibliography"] + gear
 
 
 def test_the_references_keep_their_brackets(note):

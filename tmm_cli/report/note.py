@@ -109,12 +109,12 @@ def conclusions(results: dict, lang: str) -> list[str]:
     return out
 
 
-def _books(books: list[str], results: dict) -> list[str]:
-    """The references a note cites: the gear standard (GOST 16532) only where gears are
-    designed (a linkage's note listed it uncited). Each as written ('[and others]' in its
-    brackets, GOST 7.1: a Typst string, not content, keeps them)."""
+def _books(W: dict, results: dict) -> list[str]:
+    """The references a note cites: the catalogue's `bibliography`, and its `bibliography_gears`
+    (the gear standard) only where gears are designed (a linkage's note listed it uncited). Each
+    as written ('[and others]' in its brackets, GOST 7.1: a Typst string, not content, keeps them)."""
     gears = any(results.get(k) for k in ("gears", "planetary", "drive_train", "differential"))
-    return [b for b in books if gears or "16532" not in b]
+    return list(W["bibliography"]) + (list(W.get("bibliography_gears") or []) if gears else [])
 
 
 def _parts(results: dict, lang: str) -> str:
@@ -354,7 +354,7 @@ def to_typst(html: str, results: dict, task: Task | None, lang: str = "en") -> t
 #heading(numbering: none, {_q(W['conclusions'])})
 {''.join(_par(c) + chr(10) for c in concl)}
 #heading(numbering: none, {_q(W['biblio'])})
-#enum(numbering: "1.", {', '.join(_q(b) for b in _books(W['bibliography'], results))})
+#enum(numbering: "1.", {', '.join(_q(b) for b in _books(W, results))})
 #metadata("end") <note-end>
 """
     out = head + numbering + _title_page(h, lang) + contents + page + intro_block + body + tail
