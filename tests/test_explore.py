@@ -27,11 +27,11 @@ TASK = ROOT / "tasks" / "forging_sixbar.yaml"
 
 
 @pytest.fixture(scope="module")
-def run(tmp_path_factory):
-    out = tmp_path_factory.mktemp("explore")
-    subprocess.run([sys.executable, "-m", "tmm_cli", "run", str(TASK), "-o", str(out), "--format", "html"],
-                   check=True, capture_output=True, cwd=ROOT)
-    return out
+def run(shared_once):
+    # the folder `tmm run --format html,pdf` writes for the forging machine, made once per session
+    # (tests/pdf_extent.py: the explorer's labels and the report's pages are checked on the same)
+    from pdf_extent import report_out
+    return report_out(shared_once, TASK.stem, "en")
 
 
 @pytest.fixture(scope="module")
@@ -146,7 +146,7 @@ def test_play_moves_and_pause_stops(page):
     assert page.input_value("#ex-angle") == k
 
 
-def test_hidden_in_print_and_absent_from_the_pdf_html(page, run):
+def test_hidden_in_print_and_absent_from_the_pdf_html(page, run, tmp_path):
     page.emulate_media(media="print")
     assert not page.is_visible("#explore")
     page.emulate_media(media="screen")
@@ -154,7 +154,7 @@ def test_hidden_in_print_and_absent_from_the_pdf_html(page, run):
     from tmm_cli.report import render_html
     from tmm_cli.task import load_task
     res = json.loads((run / "results.json").read_text())
-    html, _ = render_html(res, load_task(TASK), run / "pdfhtml")
+    html, _ = render_html(res, load_task(TASK), tmp_path / "pdfhtml")
     assert 'id="ex-data"' not in html
 
 

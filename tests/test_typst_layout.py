@@ -41,15 +41,13 @@ def _lines(words) -> list[tuple[float, str]]:
 
 @pytest.fixture(scope="module", params=[("forging_sixbar", "en"), ("shaper_slotted_lever", "ru"),
                                         ("engine_slider_crank", "uk")])
-def report(request, tmp_path_factory):
-    from tmm_cli.pipeline import run
-    from tmm_cli.report import _pdf_bytes, render_html
-    from tmm_cli.task import load_task
+def report(request, shared_once):
+    # report.html and report.pdf as `tmm run --format html,pdf` writes them, made once per session
+    # (tests/pdf_extent.py: the pages' extents are measured on the same)
+    from pdf_extent import report_out
     name, lang = request.param
-    out = tmp_path_factory.mktemp(name)
-    task = load_task(ROOT / "tasks" / f"{name}.yaml")
-    page, _ = render_html(run(task), task, out, lang)
-    (out / "report.pdf").write_bytes(_pdf_bytes(page, lang))
+    out = report_out(shared_once, name, lang)
+    page = (out / "report.html").read_text(encoding="utf-8")
     heads = {re.sub(r"\s+", " ", H.unescape(re.sub(r"<[^>]+>", "", h))).strip()
              for h in re.findall(r"<h[2-4][^>]*>(.*?)</h[2-4]>", page, re.S)}
     return name, _pages(out / "report.pdf"), heads - {""}
