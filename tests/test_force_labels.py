@@ -193,17 +193,14 @@ def test_the_levers_lines_as_the_course_writes_them(balance):
 
 
 @pytest.mark.parametrize("name", LINKAGES)
-def test_force_names_beside_their_arrows(name, shared_once, monkeypatch):
-    from figure_record import ForceRecorder
+def test_force_names_beside_their_arrows(name, shared_once):
     from pdf_extent import recorded, results
     from test_figure_labels import problems as text_problems
-    from test_sheets import _check_texts
+    from test_sheets import example_drawn
 
-    from tmm_cli.sheets import build_sheets
     task, res = results(shared_once, name)
     if not res.get("kinetostatics"):
         pytest.skip("no kinetostatics")
-    rec = ForceRecorder(monkeypatch)
     bad = []
     for lang in ("en", "ru", "uk"):
         # the report `tmm run` writes, its figures recorded as they were drawn (pdf_extent.report_out)
@@ -211,11 +208,11 @@ def test_force_names_beside_their_arrows(name, shared_once, monkeypatch):
         bad += [f"{lang}: report: {b}" for b in text_problems(drawn["texts"])]
         assert drawn["panels"]
         bad += [f"{lang}: report: {b}" for b in problems(drawn["panels"])]
-        rec.panels.clear()
-        sheets = build_sheets(res, task, lang)
-        _check_texts(sheets)                         # every text of every sheet
-        assert rec.panels                            # sheet 2's groups, polygons and lever
-        bad += [f"{lang}: {b}" for b in problems(rec.panels)]
+        # the sheets, their force drawings recorded as they were drawn (every text of every
+        # sheet: tests/test_sheets.py, test_texts_of_every_examples_sheets)
+        panels = example_drawn(name)[lang][1]
+        assert panels                                # sheet 2's groups, polygons and lever
+        bad += [f"{lang}: {b}" for b in problems(panels)]
     assert not bad, f"{len(bad)} problems, e.g. {bad[:8]}"
 
 

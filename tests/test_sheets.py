@@ -154,17 +154,31 @@ TASKS = sorted(p.stem for p in (ROOT / "tasks").glob("*.yaml"))
 
 
 @functools.lru_cache(maxsize=None)
-def example_sheets(name: str) -> dict:
-    """{lang: build_sheets(run(task), task, lang)} of tasks/<name>.yaml for en, ru, uk (an
-    empty list: no sheets), made once per test process and shared by the tests that read
-    every example's sheets (a sheet's info holds local classes: not pickled to share them
-    between the processes)."""
+def example_drawn(name: str) -> dict:
+    """{lang: (sheets, panels)}: build_sheets(run(task), task, lang) of tasks/<name>.yaml for
+    en, ru, uk (an empty list: no sheets) and the force drawings' panels as the sheets drew
+    them (tests/figure_record.py's ForceRecorder: the groups, polygons and lever of sheet 2),
+    made once per test process and shared by the tests that read every example's sheets
+    (a sheet's info holds local classes: not pickled to share them between the processes)."""
+    from figure_record import ForceRecorder
+
     from tmm_cli.pipeline import run
     from tmm_cli.sheets import build_sheets
     from tmm_cli.task import load_task
     task = load_task(ROOT / "tasks" / f"{name}.yaml")
     res = run(task)
-    return {lang: build_sheets(res, task, lang) for lang in ("en", "ru", "uk")}
+    out = {}
+    for lang in ("en", "ru", "uk"):
+        with pytest.MonkeyPatch.context() as mp:
+            rec = ForceRecorder(mp)
+            out[lang] = (build_sheets(res, task, lang), rec.panels)
+    return out
+
+
+@functools.lru_cache(maxsize=None)
+def example_sheets(name: str) -> dict:
+    """{lang: the sheets of tasks/<name>.yaml} (:func:`example_drawn`)."""
+    return {lang: sheets for lang, (sheets, _) in example_drawn(name).items()}
 
 
 @pytest.mark.parametrize("name", TASKS)
