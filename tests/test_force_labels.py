@@ -210,7 +210,7 @@ def test_force_names_beside_their_arrows(name, shared_once):
         bad += [f"{lang}: report: {b}" for b in problems(drawn["panels"])]
         # the sheets, their force drawings recorded as they were drawn (every text of every
         # sheet: tests/test_sheets.py, test_texts_of_every_examples_sheets)
-        panels = example_drawn(name)[lang][1]
+        panels = example_drawn(name, shared_once)[lang][1]
         assert panels                                # sheet 2's groups, polygons and lever
         bad += [f"{lang}: {b}" for b in problems(panels)]
     assert not bad, f"{len(bad)} problems, e.g. {bad[:8]}"

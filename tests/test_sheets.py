@@ -154,19 +154,18 @@ TASKS = sorted(p.stem for p in (ROOT / "tasks").glob("*.yaml"))
 
 
 @functools.lru_cache(maxsize=None)
-def example_drawn(name: str) -> dict:
-    """{lang: (sheets, panels)}: build_sheets(run(task), task, lang) of tasks/<name>.yaml for
-    en, ru, uk (an empty list: no sheets) and the force drawings' panels as the sheets drew
-    them (tests/figure_record.py's ForceRecorder: the groups, polygons and lever of sheet 2),
-    made once per test process and shared by the tests that read every example's sheets
-    (a sheet's info holds local classes: not pickled to share them between the processes)."""
+def example_drawn(name: str, shared_once) -> dict:
+    """{lang: (sheets, panels)}: build_sheets(results, task, lang) of tasks/<name>.yaml for en,
+    ru, uk (an empty list: no sheets) and the force drawings' panels as the sheets drew them
+    (tests/figure_record.py's ForceRecorder: the groups, polygons and lever of sheet 2), made
+    once per test process and shared by the tests that read every example's sheets (a sheet's
+    info holds local classes: not pickled to share them between the processes); the results
+    `tmm run` computes, once per session (tests/pdf_extent.py)."""
     from figure_record import ForceRecorder
+    from pdf_extent import results
 
-    from tmm_cli.pipeline import run
     from tmm_cli.sheets import build_sheets
-    from tmm_cli.task import load_task
-    task = load_task(ROOT / "tasks" / f"{name}.yaml")
-    res = run(task)
+    task, res = results(shared_once, name)
     out = {}
     for lang in ("en", "ru", "uk"):
         with pytest.MonkeyPatch.context() as mp:
@@ -176,17 +175,17 @@ def example_drawn(name: str) -> dict:
 
 
 @functools.lru_cache(maxsize=None)
-def example_sheets(name: str) -> dict:
+def example_sheets(name: str, shared_once) -> dict:
     """{lang: the sheets of tasks/<name>.yaml} (:func:`example_drawn`)."""
-    return {lang: sheets for lang, (sheets, _) in example_drawn(name).items()}
+    return {lang: sheets for lang, (sheets, _) in example_drawn(name, shared_once).items()}
 
 
 @pytest.mark.parametrize("name", TASKS)
-def test_texts_of_every_examples_sheets(name):
+def test_texts_of_every_examples_sheets(name, shared_once):
     """Every sheet of every example task, in en, ru and uk (the kinetostatics sheet's lever
     and groups, the cam's and the gears' sheets included): no two texts overlap, none
     leaves the frame."""
-    for lang, sheets in example_sheets(name).items():
+    for lang, sheets in example_sheets(name, shared_once).items():
         _check_texts(sheets)
 
 
@@ -275,13 +274,13 @@ def test_dynamics_sheet(forging):
 
 
 @pytest.mark.parametrize("name", [n for n in TASKS if "\nflywheel:" in (ROOT / "tasks" / f"{n}.yaml").read_text(encoding="utf-8")])
-def test_dynamics_curves_span_their_axes_and_no_more(name):
+def test_dynamics_curves_span_their_axes_and_no_more(name, shared_once):
     """Each curve of the dynamics sheet runs the whole φ axis and stops at its end, left of
     the energy-mass diagram, its ticks in degrees of the cycle: the four-stroke engine's
     720° were drawn at 1 °/mm, their second turn 360 mm past the axis and across the
     energy-mass diagram. Now μφ = 2 °/mm there (360 mm for the cycle)."""
     cycles = 0
-    for lang, sheets in example_sheets(name).items():
+    for lang, sheets in example_sheets(name, shared_once).items():
         for _, info in sheets:
             if "energy_mass" not in info:
                 continue
@@ -525,9 +524,9 @@ def test_sheets_pdf_by_typst(forging, tmp_path):
 GOST_2304 = (2.5, 3.5, 5.0, 7.0, 10.0, 14.0)
 
 
-def test_most_examples_have_sheets():
+def test_most_examples_have_sheets(shared_once):
     """The lettering test below reads sheets: most example tasks have them (in every language)."""
-    have = [name for name in TASKS if all(example_sheets(name).values())]
+    have = [name for name in TASKS if all(example_sheets(name, shared_once).values())]
     assert len(have) >= 20, have
 
 
@@ -548,19 +547,19 @@ def _dxf_text_heights(text: str) -> list[float]:
     return out
 
 
-def test_dxf_text_heights_reads_what_ezdxf_reads():
+def test_dxf_text_heights_reads_what_ezdxf_reads(shared_once):
     """The reader of the lettering test against ezdxf's, on the forging machine's sheets."""
     import io
 
     import ezdxf
-    for cv, _ in example_sheets("forging_sixbar")["en"]:
+    for cv, _ in example_sheets("forging_sixbar", shared_once)["en"]:
         text = to_dxf(cv).decode()
         doc = ezdxf.read(io.StringIO(text))
         assert sorted(_dxf_text_heights(text)) == sorted(t.dxf.height for t in doc.modelspace().query("TEXT"))
 
 
 @pytest.mark.parametrize("name", TASKS)
-def test_lettering_in_gost_sizes(name):
+def test_lettering_in_gost_sizes(name, shared_once):
     """Every text of every sheet (its capitals) in a ГОСТ 2.304 size: measured in the SVG
     (font-size x the capitals of DejaVu Sans, 1493/2048 em), in the DXF (TEXT height) and
     in the primitives; a subscript 0.72 of its text: 1.8 mm (ГОСТ 2.304's size for
@@ -569,7 +568,7 @@ def test_lettering_in_gost_sizes(name):
 
     from tmm_cli.sheets.writers import to_svg
     cap = 1493.0 / 2048.0
-    for lang, sheets in example_sheets(name).items():
+    for lang, sheets in example_sheets(name, shared_once).items():
         for cv, info in sheets:
             where = (name, lang, info["number"])
             heights = {round(p.cap, 6) for p in cv.prims if isinstance(p, Text)}
@@ -1008,11 +1007,11 @@ def test_gear_sheet_names_each_number_and_lists_as_the_language_does():
     assert f", z1 = {g['z'][0]}, z2 = {g['z'][1]}, x1 = {g['x'][0]:g}, x2 = {g['x'][1]:g}," in line, line
 
 
-def test_the_energy_mass_sheet_names_its_abscissa():
+def test_the_energy_mass_sheet_names_its_abscissa(shared_once):
     """Sheet 3's energy-mass diagram plots ΔT against the variable part of the reduced inertia
     (Popov and Timofeev's form, its intercepts a, b): the abscissa says so, J with the report's
     subscript for it (var; перем in ru), not a bare J."""
-    sheets = example_sheets("forging_sixbar")
+    sheets = example_sheets("forging_sixbar", shared_once)
     for lang, sub in (("en", "var"), ("ru", "\u043f\u0435\u0440\u0435\u043c")):
         (cv, info), = [(c, i) for c, i in sheets[lang] if i["number"] == 3]
         assert any(isinstance(p, Text) and p.s == "J" and p.sub == sub for p in cv.prims), lang
@@ -1094,7 +1093,7 @@ def test_drive_train_sheet_draws_the_trains_plans_at_their_scales(name):
     assert m.isfinite(info["mu_omega"])
 
 
-def test_a_scotch_yokes_slot_is_drawn_and_the_numbers_clear_its_blocks():
+def test_a_scotch_yokes_slot_is_drawn_and_the_numbers_clear_its_blocks(shared_once):
     """The Scotch yoke's block slides in a slot of the yoke: the group drawing showed the block
     apart from the yoke (the slot not drawn), the kinematic scheme the yoke as a dash-dot line
     only, and its position numbers on the blocks at the crank pin. The slot now runs from the
@@ -1110,7 +1109,7 @@ def test_a_scotch_yokes_slot_is_drawn_and_the_numbers_clear_its_blocks():
     assert _slot(mp["A"], np.array([0.0, 1.0]), links, {"link": "yoke"}, ["block"], mp) is None   # not in the group
     assert _slot(mp["A"], np.array([0.0, 1.0]), links, {"link": None}, ["block", "yoke"], mp) is None
     from tmm_cli.sheets.prims import Line, Polyline, Text
-    for lang, sheets in example_sheets("scotch_yoke_pump").items():
+    for lang, sheets in example_sheets("scotch_yoke_pump", shared_once).items():
         cv, info = next((c, i) for c, i in sheets if i["number"] == 1)
         blocks = [q for q in cv.prims if isinstance(q, Polyline) and q.closed and len(q.pts) in (4, 5)
                   and np.ptp(np.asarray(q.pts), axis=0).max() < 12.0]
@@ -1130,7 +1129,7 @@ def test_a_scotch_yokes_slot_is_drawn_and_the_numbers_clear_its_blocks():
 
 
 @pytest.mark.parametrize("name, extra", [("press_offset_slider_crank", 13), ("balancing_fourbar", 12)])
-def test_an_extra_position_is_marked_on_every_sheet(name, extra):
+def test_an_extra_position_is_marked_on_every_sheet(name, extra, shared_once):
     """A named extra position (index >= the grid's 12: an extreme one) is '13*' in the report's
     tables and on the scheme; the kinetostatics sheet headed it 'Position 13', the velocity
     plans '(position 13)' and the balancing hodograph '12' between 6 and 7: marked everywhere."""
@@ -1138,7 +1137,7 @@ def test_an_extra_position_is_marked_on_every_sheet(name, extra):
 
     from tmm_cli.sheets.prims import Text
     seen = 0
-    for cv, info in example_sheets(name)["en"]:
+    for cv, info in example_sheets(name, shared_once)["en"]:
         for t in (q.s for q in cv.prims if isinstance(q, Text)):
             bare = _re.fullmatch(r"\d+", t) or _re.search(r"[Pp]osition (\d+)(?![\d*])", t)
             num = int(bare.group(1) if bare and bare.groups() else (bare.group(0) if bare else -1))
