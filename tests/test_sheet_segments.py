@@ -142,17 +142,16 @@ def _point_of(label: str, entry: dict):
 
 
 @pytest.mark.parametrize("name", LINKAGES)
-def test_sheet1_measures_what_its_tables_say(name):
-    from tmm_cli.pipeline import run
-    from tmm_cli.sheets import build_sheets
+def test_sheet1_measures_what_its_tables_say(name, shared_once):
+    # the results tmm run computes and every example's sheets, made once (tests/test_sheets.py)
+    from pdf_extent import results
+    from test_sheets import example_sheets
+
     from tmm_cli.sheets.sheet1 import TXT
     from tmm_cli.sheets.writers import to_svg
-    from tmm_cli.task import load_task
-    task = load_task(ROOT / "tasks" / f"{name}.yaml")
-    res = run(task)
+    _, res = results(shared_once, name)
     by_index = {str(e["index"]): e for e in res.get("kinematics") or []}
-    for lang in ("en", "ru", "uk"):
-        sheets = build_sheets(res, task, lang)
+    for lang, sheets in example_sheets(name, shared_once).items():
         sheet = [cv for cv, info in sheets if info["number"] == 1]
         if not sheet:
             pytest.skip("no sheet 1")
