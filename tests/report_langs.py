@@ -5,13 +5,10 @@ decimal comma (tests/test_decimal_comma.py): each report (task, language) is mad
 test session and shared by those files and the tests of the PDF (``shared_once``)."""
 from __future__ import annotations
 
-import pickle
 from pathlib import Path
 
-import tmm_cli
 from pdf_extent import report_out
 
-ROOT = Path(__file__).resolve().parents[1]
 
 
 def report_dir(shared_once, name: str, lang: str) -> Path:
@@ -24,14 +21,6 @@ def report_dir(shared_once, name: str, lang: str) -> Path:
 def report_html(shared_once, name: str, lang: str) -> str:
     """report.html's text of tasks/<name>.yaml in ``lang`` (:func:`report_dir`)."""
     return (report_dir(shared_once, name, lang) / "report.html").read_bytes().decode("utf-8")
-
-
-def results(shared_once, name: str) -> dict:
-    """tmm_cli.run's results of tasks/<name>.yaml without the kinematics curve, once per session."""
-    def build(d: Path) -> None:
-        r = tmm_cli.run(tmm_cli.load_task(ROOT / "tasks" / f"{name}.yaml"), kinematics_curve=0)
-        (d / "results.pickle").write_bytes(pickle.dumps(r))
-    return pickle.loads((shared_once(f"run-{name}", build) / "results.pickle").read_bytes())
 
 
 def render_pairs(shared_once, tasks, lang: str) -> dict:

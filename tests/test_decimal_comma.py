@@ -17,7 +17,7 @@ import tmm_cli
 from tmm_cli import numfmt
 from tmm_cli.report.typst_pdf import to_typst
 
-from report_langs import report_dir, report_html, results as shared_results
+from report_langs import report_dir, report_html
 
 ROOT = Path(__file__).resolve().parents[1]
 TASKS = sorted(p.stem for p in (ROOT / "tasks").glob("*.yaml"))
@@ -108,11 +108,12 @@ def test_localize(lang):
 @pytest.mark.parametrize("lang", ["ru", "uk"])
 def test_sheets_take_the_decimal_comma(shared_once, name, lang):
     """The A1 sheets' labels (scales, values, the title block) in ru and uk: the decimal comma."""
-    from tmm_cli.sheets import build_sheets
+    from test_sheets import example_sheets
+
     from tmm_cli.sheets.prims import Text
     task = tmm_cli.load_task(ROOT / "tasks" / f"{name}.yaml")
-    results = shared_results(shared_once, name)          # tmm_cli.run(task, kinematics_curve=0), once per session
-    texts = [" ".join(x for x in (t.s, t.sub, t.after) if x) for cv, _ in build_sheets(results, task, lang)
+    # every example's sheets, built once per worker from the session's results (tests/test_sheets.py)
+    texts = [" ".join(x for x in (t.s, t.sub, t.after) if x) for cv, _ in example_sheets(name, shared_once)[lang]
              for t in cv.prims if isinstance(t, Text)]
     bad = _bad("\n".join(texts).replace(getattr(task, "title", None) or "\0", ""))
     assert not bad, bad[:20]

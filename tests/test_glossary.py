@@ -147,13 +147,13 @@ def test_group_summary_title_and_row_count(lang, words):
 
 @pytest.mark.parametrize("lang, names", [("ru", {("M", "д"), ("M", "с"), ("M", "пр"), ("A", "д"), ("ΔT", None)}),
                                          ("uk", {("M", "р"), ("M", "о"), ("M", "зв"), ("A", "о"), ("ΔT", None)})])
-def test_dynamics_sheet_names_its_curves_in_the_language(lang, names):
+def test_dynamics_sheet_names_its_curves_in_the_language(lang, names, shared_once):
     """Sheet 3's curves are named as the course writes them (M_д, M_пр; uk M_р, M_зв), not
     'M d', 'M red', 'A c', 'dT'."""
-    from tmm_cli.sheets import build_sheets
+    from test_sheets import example_sheets
+
     from tmm_cli.sheets.prims import Text
-    task = tmm_cli.load_task(ROOT / "tasks" / "forging_sixbar.yaml")
-    sheets = build_sheets(tmm_cli.run(task, kinematics_curve=0), task, lang)
+    sheets = example_sheets("forging_sixbar", shared_once)[lang]       # built once (tests/test_sheets.py)
     (cv,) = [cv for cv, info in sheets if info["number"] == 3]
     texts = {(t.s, t.sub) for t in cv.prims if isinstance(t, Text)}
     assert names <= texts, names - texts

@@ -18,13 +18,11 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 @pytest.fixture(scope="module")
-def forging():
-    from tmm_cli.pipeline import run
-    from tmm_cli.sheets import build_sheets
-    from tmm_cli.task import load_task
-    task = load_task(ROOT / "tasks" / "forging_sixbar.yaml")
-    res = run(task)
-    return res, {lang: build_sheets(res, task, lang) for lang in ("en", "ru", "uk")}
+def forging(shared_once):
+    """(results, {lang: sheets}) of the forging machine: the session's shared ones
+    (:func:`example_sheets`)."""
+    from pdf_extent import results
+    return results(shared_once, "forging_sixbar")[1], example_sheets("forging_sixbar", shared_once)
 
 
 def _mantissa_ok(mu: float) -> bool:
