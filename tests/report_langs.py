@@ -10,7 +10,6 @@ from pathlib import Path
 from pdf_extent import report_out
 
 
-
 def report_dir(shared_once, name: str, lang: str) -> Path:
     """The folder `tmm run --format html,pdf --lang <lang>` writes for tasks/<name>.yaml, made
     once per session and shared with the tests of the PDF (:func:`pdf_extent.report_out`):
