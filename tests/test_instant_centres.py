@@ -23,8 +23,9 @@ def _cross(u, v):
 
 
 @pytest.mark.parametrize("name", LINKAGES)
-def test_kennedy_three_centres_on_a_line(name):
-    res = run(load_task(ROOT / "tasks" / f"{name}.yaml"))
+def test_kennedy_three_centres_on_a_line(name, shared_once):
+    from pdf_extent import results
+    _, res = results(shared_once, name)          # as tmm run computes them, once a session
     n = len(res["structure"]["links"])
     size = max(abs(c) for e in res["kinematics"] for p in e["points"].values() for c in (p["x"], p["y"]))
     checked, finite = 0, 0
