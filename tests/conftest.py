@@ -73,7 +73,10 @@ def pytest_collection(session):
         return
     import importlib
     from pathlib import Path
-    names = sorted(p.stem for p in Path(__file__).parent.glob("test_*.py"))
+    # the modules the session collects: those in or under the paths it was given
+    given = [(session.config.invocation_params.dir / a.split("::")[0]).resolve() for a in session.config.args]
+    names = sorted(p.stem for p in Path(__file__).resolve().parent.glob("test_*.py")
+                   if any(p == g or g in p.parents for g in given))
     k = int(worker[2:]) % count
     start = k * len(names) // count
     for name in names[start:] + names[:start]:
