@@ -197,7 +197,7 @@ def test_program_ends_at_once_unless_shutdown_has_work(tmp_path, command):
     multiprocessing's, tempfile's); `main()` called by a program that goes on or a running
     thread take the ordinary exit (which runs the finalizer). One test per command line
     (each runs its programs one after another)."""
-    good = str(ROOT / "tasks" / "forging_sixbar.yaml")
+    good = str(ROOT / "tasks" / "engine_slider_crank.yaml")   # a linkage with kinetostatics and a report
     bad = tmp_path / "bad.yaml"
     bad.write_text("schema: tmm/1\nmechanism:\n  ground: {O: [0, 0]}\n  linkz: {}\n", encoding="utf-8")
     head = ("import sys, atexit, threading\n"
