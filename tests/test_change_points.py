@@ -70,6 +70,15 @@ def _run(tmp_path, text):
 
 
 @pytest.fixture(scope="module")
+def limit(tmp_path_factory):
+    """(task, results as results.json has them) of LIMIT: run once for the tests that read them."""
+    import tmm_cli
+    d = tmp_path_factory.mktemp("limit")
+    res = _run(d, LIMIT)
+    return tmm_cli.load_task(d / "task.yaml"), res
+
+
+@pytest.fixture(scope="module")
 def limit_at_zero(tmp_path_factory):
     """LIMIT with position 6 on the change point (zero: 0), as results.json has it: run once for
     the tests of how its warnings are shown."""
@@ -105,8 +114,8 @@ def test_crank_angles_in_sentences_are_periodic_and_rounded():
     assert "кривошипа 12,5; 0°" in render("kinematics.singular_continuity", p, "uk")
 
 
-def test_grashof_limit_change_point_at_the_extreme(tmp_path):
-    res = _run(tmp_path, LIMIT)
+def test_grashof_limit_change_point_at_the_extreme(limit):
+    _, res = limit
     ws = _cp_warnings(res)
     assert len(ws) == 1 and ws[0].startswith("change point at crank angle 180 deg: group II(2,3)")
     # the rocker's extreme position at the change point is added as an extra position
@@ -260,7 +269,7 @@ def test_one_continuity_warning_a_group_with_every_runs_angles():
     assert "at crank angle(s) 0, 180 deg" in found[0]["text"]
 
 
-def test_no_plan_drawn_from_values_that_have_no_limit(tmp_path):
+def test_no_plan_drawn_from_values_that_have_no_limit(limit, tmp_path):
     """At the Grashof-limit four-bar's change point (phi = 180, the rocker's extreme position
     12*) v B, a B, omega of the coupler and rocker have no limit and are null: a plan built
     from them would draw each null as a zero (v B = 0, and aBA tau closing the plan at the
@@ -269,12 +278,7 @@ def test_no_plan_drawn_from_values_that_have_no_limit(tmp_path):
     position each segment is its value at the plan's scale (length x mu = value). The report
     gives the position its notes and no figure."""
     from tmm_cli.plans import build_plan, geometry
-    import tmm_cli
-    f = tmp_path / "task.yaml"
-    f.write_text(LIMIT, encoding="utf-8")
-    task = tmm_cli.load_task(f)
-    from tmm_cli.results import clean
-    res = clean(tmm_cli.run(task))
+    task, res = limit
     geom = geometry(res)
     seen = 0
     for e in res["kinematics"]:
@@ -307,19 +311,14 @@ def test_no_plan_drawn_from_values_that_have_no_limit(tmp_path):
     assert len(rows) >= 4 and not any("e-0" in r or "·10⁻" in r for r in rows), rows
 
 
-def test_no_inertia_load_from_accelerations_that_have_no_limit(tmp_path):
+def test_no_inertia_load_from_accelerations_that_have_no_limit(limit, tmp_path):
     """At the change point (position 12*, phi = 180) a S2, a S3 have no limit: the coupler's
     and the rocker's inertia forces have none either (null in results.json, '—' in the
     report's table of loads), where the singular solve's accelerations had given the coupler
     1.9e8 N. The crank's inertia (its centre at O: 0) and the weights stay; the velocities of
     the loads on the coupler and the rocker are null, the crank's are its own (0 at O). Every
     number written for that position is of the task's size (below 1e3 N)."""
-    import tmm_cli
-    from tmm_cli.results import clean
-    f = tmp_path / "task.yaml"
-    f.write_text(LIMIT, encoding="utf-8")
-    task = tmm_cli.load_task(f)
-    res = clean(tmm_cli.run(task))
+    task, res = limit
     (e,) = [k for k in res["kinetostatics"] if abs(k["phi"] - 180.0) < 1e-3]
     assert e["inertia"]["crank"] == {"Fx": 0.0, "Fy": 0.0, "M": 0.0}
     for link in ("coupler", "rocker"):
