@@ -13,8 +13,6 @@ from __future__ import annotations
 import json
 import math
 import re
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -210,13 +208,12 @@ def test_headings_in_the_courses_notation(page):
     assert ["Mb, N·m", "<span>M</span><sub>b</sub><span>, N·m</span>"] in [list(h) for h in heads]
 
 
-def test_numbers_with_the_decimal_comma_in_russian(browser, page, tmp_path):  # noqa: F811
+def test_numbers_with_the_decimal_comma_in_russian(browser, page, shared_once):  # noqa: F811
     """The panel's numbers as the Russian report's tables write them: 0,7854, 1,2·10⁴, −0,5 (the
     minus sign), never a decimal point, an e-exponent or a hyphen for minus; the same values as
     the English panel's."""
-    out = tmp_path / "ru"
-    subprocess.run([sys.executable, "-m", "tmm_cli", "run", str(TASK), "-o", str(out), "--format", "html",
-                    "--lang", "ru"], check=True, capture_output=True, cwd=ROOT)
+    from pdf_extent import report_out
+    out = report_out(shared_once, TASK.stem, "ru")      # as tmm run --lang ru writes it, once a session
     pg = browser.new_page(viewport={"width": 1300, "height": 900})
     try:
         pg.goto((out / "report.html").as_uri())
