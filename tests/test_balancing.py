@@ -360,27 +360,25 @@ def test_apply_without_counterweights_exit_2(tmp_path):
     assert "Traceback" not in out
 
 
-def test_counterweights_drawing_names_each_mass(tmp_path):
+def test_counterweights_drawing_names_each_mass(shared_once):
     """The report's drawing of the counterweights labels each disc with its mass in kg (the
     word `bal.kg` is '{m} kg'): the masses of results, as the report formats them."""
-    res = runner.invoke(app, ["run", str(ROOT / "tasks" / "balancing_fourbar.yaml"), "--format", "json,html",
-                              "--out", str(tmp_path / "o"), "--lang", "ru"])
-    assert res.exit_code == 0, res.output
-    svg = (tmp_path / "o" / "figures" / "balancing-counterweights.svg").read_text(encoding="utf-8")
-    cw = json.loads((tmp_path / "o" / "results.json").read_text())["balancing"]["counterweights"]
+    from pdf_extent import report_out
+    out = report_out(shared_once, "balancing_fourbar", "ru")      # as tmm run writes it, once a session
+    svg = (out / "figures" / "balancing-counterweights.svg").read_text(encoding="utf-8")
+    cw = json.loads((out / "results.json").read_text())["balancing"]["counterweights"]
     for c in cw.values():
         assert f"{c['m']:.4g}".replace(".", ",") + " кг" in svg
 
 
 @pytest.mark.parametrize("lang", ["en", "uk"])
-def test_task_table_counterweight_radii_alike(lang, tmp_path):
+def test_task_table_counterweight_radii_alike(lang, shared_once):
     """The task-data table writes both counterweights' radii alike: the names carry the unit
     (', m'), the values none — `rocker` is a link's name here, not the synthesis' rocker length."""
     import re as _re
-    res = runner.invoke(app, ["run", str(ROOT / "tasks" / "balancing_fourbar.yaml"), "--format", "json,html",
-                              "--out", str(tmp_path / "o"), "--lang", lang])
-    assert res.exit_code == 0, res.output
-    html = (tmp_path / "o" / "report.html").read_text(encoding="utf-8")
+
+    from pdf_extent import report_out
+    html = (report_out(shared_once, "balancing_fourbar", lang) / "report.html").read_text(encoding="utf-8")
     cells = _re.findall(r"<tr><td>([^<]*(?:crank|rocker|кривошип|коромисл)[^<]*(?:radius|радіус)[^<]*)</td>"
                         r"<td[^>]*>([^<]*)</td>", html)
     assert len(cells) == 2, cells
