@@ -67,10 +67,10 @@ def pytest_collection(session):
     clean clone (no cache yet) each worker rewrote every module, the same ones at the same time
     (6.5 s of a worker's start).  Each now rewrites its share and finds the others' in the
     cache; the collection then takes the modules imported (the same modules, in its own order)."""
-    worker = os.environ.get("PYTEST_XDIST_WORKER", "")
-    count = int(os.environ.get("PYTEST_XDIST_WORKER_COUNT", "1") or 1)
-    if not worker.startswith("gw") or count < 2:
+    info = getattr(session.config, "workerinput", None)     # pytest-xdist's worker, else None
+    if not info or int(info.get("workercount", 1)) < 2:
         return
+    worker, count = str(info.get("workerid", "gw0")), int(info["workercount"])
     import importlib
     from pathlib import Path
     # the modules the session collects: those in or under the paths it was given
