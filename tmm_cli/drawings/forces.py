@@ -42,13 +42,12 @@ def _label_parts(name: str, lang: str = "en") -> tuple[str, str]:
     'Mi2' -> ('M', 'Φ2'); 'Ff03' -> ('F', 'f03'), in ru and uk the subscript of friction of the
     words `kst.friction_sub`; 'F1' -> ('F', '1')."""
     from .. import locales
-    words = locales.of("kinetostatics", "words", lang)
     if "\u0000" in name:                 # already split: 'M\0b' -> ('M', 'b')
         a, b = name.split("\u0000", 1)
         # the balancing moment and force: M_b, P_b, in ru and uk with the course's subscript
         from .words import balance_sub
         return a, (balance_sub(lang) if b == "b" else b)
-    fr = words.get("kst.friction_sub", "f")
+    fr = locales.of("kinetostatics", "words", lang).get("kst.friction_sub", "f")
     m = re.fullmatch(r"(Fi|Mi|Ff|Mf|[A-Za-z])(\d+)", name)
     if not m:
         return name, ""

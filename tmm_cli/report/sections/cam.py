@@ -357,7 +357,7 @@ def _render(ctx, c, rows, method):
     from ..figures import scale_mark
     # μl in m/mm, as every other drawing of the report states it (unit: model mm per paper mm)
     from ...numfmt import localize
-    scale = f"{scale_mark(ctx.lang)} {label}" + _loc(ctx.lang, f" (μl = {localize(f'{unit / 1000.0:g}')} m/mm)")
+    scale = f"{scale_mark(ctx.lang)} {label}" + _loc(ctx.lang, f" (μl = {localize(f'{unit / 1000.0:g}', ctx.lang)} m/mm)")
     figs.append((ctx.svg(fig, "cam-profile"), t(pcap, scale=scale)))
     if not flat:
         figs.append((ctx.svg(pressure_figure(ctx, c), "cam-pressure-angle"), t("cam.pressure_caption")))
