@@ -5,8 +5,8 @@ give every shaft's speed and every ratio. Each draws onto the canvas ``make(w, h
 (the report's SVG canvas or a sheet's recording one) and returns it with its scales."""
 from __future__ import annotations
 
-
 from ..messages import unit
+from ..report import figures
 from ..report.figures import mu_text
 
 FRAME = 170.0        # mm: the width of a report page's figure
@@ -42,7 +42,6 @@ def layout(d: dict, frame: float = FRAME, height: float | None = None, k_max: fl
     x spacing), its standard length scale ``mu_l`` (m/mm), the picture's standard velocity
     scale ``mu_v`` ((m/s)/mm) -- the fastest point about ``vh`` mm from the axis, in the room the
     scheme leaves -- and the heights ``y_lo``, ``y_hi`` (m) the figure spans."""
-    from ..report import figures
     vp = d["velocity_plan"]
     st = d["stages"]
     m = vp["module"]
@@ -207,7 +206,6 @@ def angular_plan(make, d: dict, frame: float = FRAME, height: float | None = Non
     omegas = [r["x"] * vp["mu_omega"] for r in rays]      # each ray's ω (rad/s): x μω of the results
     span = (max(omegas + [0.0]) - min(omegas + [0.0])) * per
     room = min(h_max if height is None else height - 30.0, (frame - 30.0) / max(span, 1e-12))
-    from ..report import figures
     # μω from the standard series, the smallest whose H = μv/(μω μl) fits the room: every scale
     # stated a standard one, H what the three give (a whole or half millimetre, written exactly)
     mu_w = figures.nice_scale(sc["mu_v"] / (max(room, 5.0) * sc["mu_l"]))
