@@ -20,6 +20,63 @@ settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
 os.environ.pop("PYTHONDONTWRITEBYTECODE", None)
 sys.dont_write_bytecode = False
 
+# One BLAS thread in the test processes, as `tmm` sets it for itself (cli.single_blas_thread):
+# set here, before numpy is first imported in this process and before pytest-xdist's workers
+# start (they inherit it).  OpenBLAS otherwise starts a thread per core in each worker, and with
+# both workers busy those threads only wait for a core (the suite's user CPU 346 s -> 335 s,
+# side by side on one machine).
+from tmm_cli.cli import single_blas_thread  # noqa: E402  (after the bytecode setting above)
+
+single_blas_thread()
+
+
+
+# headless Chromium for the tests that look at report.html in a real browser (test_browser,
+# test_explore, test_worked): the system's, driven by playwright
+CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-background-networking", "--disable-component-update",
+                 "--no-first-run", "--disable-sync"]
+
+
+def _chromium() -> str | None:
+    env = os.environ.get("TMM_CHROMIUM")
+    if env:
+        return env
+    for name in ("chromium", "chromium-browser", "google-chrome"):
+        path = shutil.which(name)
+        if path:
+            return path
+    return None
+
+
+@pytest.fixture(scope="session")
+def browser():
+    """A Chromium browser (playwright's), launched once per test process for every module that
+    uses it (a launch with playwright's driver costs about a second of CPU); skipped, saying
+    which part is missing, where playwright, Chromium, pdftoppm or the PDF engine is not there."""
+    try:
+        from playwright.sync_api import Error, sync_playwright
+    except ImportError:
+        pytest.skip("browser test skipped: the playwright package is missing (pip install -e '.[test]')")
+    exe = _chromium()
+    if exe is None:
+        pytest.skip("browser test skipped: no Chromium found (Debian/Ubuntu: apt-get install chromium; "
+                    "or set TMM_CHROMIUM to a Chromium executable)")
+    if not shutil.which("pdftoppm"):
+        pytest.skip("browser test skipped: pdftoppm is missing (Debian/Ubuntu: apt-get install poppler-utils)")
+    try:
+        import typst  # noqa: F401
+    except (ImportError, OSError) as exc:
+        pytest.skip(f"browser test skipped: the PDF engine cannot run here ({exc})")
+    pw = sync_playwright().start()
+    try:
+        b = pw.chromium.launch(executable_path=exe, args=CHROMIUM_ARGS)
+    except Error as exc:
+        pw.stop()
+        first = (str(exc).strip().splitlines() or ["?"])[0]
+        pytest.skip(f"browser test skipped: Chromium ({exe}) cannot be launched here: {first}")
+    yield b
+    b.close()
+    pw.stop()
 
 
 @pytest.fixture(scope="session")

@@ -22,9 +22,7 @@ missing."""
 from __future__ import annotations
 
 import io
-import os
 import re
-import shutil
 import subprocess
 from pathlib import Path
 
@@ -38,49 +36,6 @@ TASKS = ["engine_slider_crank", "shaper_slotted_lever", "cam_rocker", "gears_shi
          "impact_rotor"]
 BAND = (0.85, 1.15)        # browser ink / PDF ink, per figure
 DPI = 192                  # the PDF raster; the browser draws at device scale 2 (192 dpi)
-ARGS = ["--no-sandbox", "--disable-gpu", "--disable-background-networking", "--disable-component-update",
-        "--no-first-run", "--disable-sync"]
-
-
-def _chromium() -> str | None:
-    env = os.environ.get("TMM_CHROMIUM")
-    if env:
-        return env
-    for name in ("chromium", "chromium-browser", "google-chrome"):
-        path = shutil.which(name)
-        if path:
-            return path
-    return None
-
-
-@pytest.fixture(scope="module")
-def browser():
-    try:
-        from playwright.sync_api import Error, sync_playwright
-    except ImportError:
-        pytest.skip("browser test skipped: the playwright package is missing (pip install -e '.[test]')")
-    exe = _chromium()
-    if exe is None:
-        pytest.skip("browser test skipped: no Chromium found (Debian/Ubuntu: apt-get install chromium; "
-                    "or set TMM_CHROMIUM to a Chromium executable)")
-    if not shutil.which("pdftoppm"):
-        pytest.skip("browser test skipped: pdftoppm is missing (Debian/Ubuntu: apt-get install poppler-utils)")
-    try:
-        import typst  # noqa: F401
-    except (ImportError, OSError) as exc:
-        pytest.skip(f"browser test skipped: the PDF engine cannot run here ({exc})")
-    pw = sync_playwright().start()
-    try:
-        b = pw.chromium.launch(executable_path=exe, args=ARGS)
-    except Error as exc:
-        pw.stop()
-        first = (str(exc).strip().splitlines() or ["?"])[0]
-        pytest.skip(f"browser test skipped: Chromium ({exe}) cannot be launched here: {first}")
-    yield b
-    b.close()
-    pw.stop()
-
-
 def _ink(png) -> float:
     """Mean darkness of an image: 0 all white, 1 all black."""
     import numpy as np

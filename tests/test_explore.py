@@ -18,7 +18,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from test_browser import browser  # noqa: F401  (the launch helper and its skip logic)
 
 ROOT = Path(__file__).resolve().parents[1]
 TASK = ROOT / "tasks" / "forging_sixbar.yaml"
@@ -33,7 +32,7 @@ def run(shared_once):
 
 
 @pytest.fixture(scope="module")
-def page(browser, run):  # noqa: F811
+def page(browser, run):
     pg = browser.new_page(viewport={"width": 1300, "height": 900})
     errors = []
     pg.on("pageerror", lambda e: errors.append(str(e)))
@@ -208,7 +207,7 @@ def test_headings_in_the_courses_notation(page):
     assert ["Mb, N·m", "<span>M</span><sub>b</sub><span>, N·m</span>"] in [list(h) for h in heads]
 
 
-def test_numbers_with_the_decimal_comma_in_russian(browser, page, shared_once):  # noqa: F811
+def test_numbers_with_the_decimal_comma_in_russian(browser, page, shared_once):
     """The panel's numbers as the Russian report's tables write them: 0,7854, 1,2·10⁴, −0,5 (the
     minus sign), never a decimal point, an e-exponent or a hyphen for minus; the same values as
     the English panel's."""

@@ -24,7 +24,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from test_browser import browser  # noqa: F401  (the launch helper and its skip logic)
 
 ROOT = Path(__file__).resolve().parents[1]
 TASK = ROOT / "tasks" / "forging_sixbar.yaml"
@@ -271,7 +270,7 @@ def _numbers(pg, print_: bool = False):
     return tagged, pg.eval_on_selector("#worked", STRIP, print_)
 
 
-def _page(browser, run, media="screen"):  # noqa: F811
+def _page(browser, run, media="screen"):
     out, _ = run
     pg = browser.new_page(viewport={"width": 1100, "height": 900})
     errors = []
@@ -282,7 +281,7 @@ def _page(browser, run, media="screen"):  # noqa: F811
     return pg
 
 
-def _check_section(browser, out: Path, task_path: Path, n: int, kinds: set[str]):  # noqa: F811
+def _check_section(browser, out: Path, task_path: Path, n: int, kinds: set[str]):
     from tmm_cli.task import load_task
     res = json.loads((out / "results.json").read_text())
     pg = _page(browser, (out, task_path))
@@ -316,7 +315,7 @@ def _check_section(browser, out: Path, task_path: Path, n: int, kinds: set[str])
     assert kinds <= seen, kinds - seen
 
 
-def test_every_number_of_the_section_is_a_result(browser, run):  # noqa: F811
+def test_every_number_of_the_section_is_a_result(browser, run):
     """Every step is there: velocities, accelerations, loads, moment equations, the
     polygon, the lever; every number equals its value from results.json."""
     out, task_path = run
@@ -325,7 +324,7 @@ def test_every_number_of_the_section_is_a_result(browser, run):  # noqa: F811
                     "Rt", "Rn", "Mt", "R", "Mb", "hl", "lev", "Pbz", "Mzh"})
 
 
-def test_slotted_lever_with_coriolis(browser, shared_once):  # noqa: F811
+def test_slotted_lever_with_coriolis(browser, shared_once):
     """The shaper's slotted lever (RPR): the coincident point A3 of the rocker, the
     relative and Coriolis accelerations (a^k = 2 omega_3 v_A3A), the block's reaction on
     the lever from the lever's moment equation about O1, at the default position."""
@@ -340,7 +339,7 @@ def test_slotted_lever_with_coriolis(browser, shared_once):  # noqa: F811
                     "sac", "Rm", "Mr", "h", "R", "Rt", "Rn", "Mb", "hl", "lev"})
 
 
-def test_the_print_version_has_the_same_numbers(browser, run):  # noqa: F811
+def test_the_print_version_has_the_same_numbers(browser, run):
     """In print (the PDF is made from it) the MathML is hidden and the same formulas are
     shown as HTML: the same tagged numbers in the same order."""
     screen = _page(browser, run)
