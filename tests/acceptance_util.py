@@ -94,6 +94,17 @@ class Linkage:
             p for p in allpts if p not in self.ground and p != self.A and p not in self.derived
         ]
         self._cache = {}
+        # the residuals' hot path (_resid) in plain floats: the ground points, the derived points
+        # in an order where each one's two points come first (as _points' three passes find them)
+        self._ground_f = {k: (float(v[0]), float(v[1])) for k, v in self.ground.items()}
+        known = set(self.ground) | {self.A} | set(self.unknown)
+        self._derived_order = []
+        for _ in range(3):
+            for pt, (ln, uv) in self.derived.items():
+                a, b = self.links[ln]["points"]
+                if pt not in known and a in known and b in known:
+                    self._derived_order.append((pt, a, b, float(uv[0]), float(uv[1])))
+                    known.add(pt)
         hints = self.task["mechanism"]["assembly"]
         x0 = np.concatenate([np.array(hints[p], float) for p in self.unknown])
         self._grid = {}  # phi (deg, int multiple of 4) -> solution
@@ -133,19 +144,52 @@ class Linkage:
         ang = math.radians(g["angle"])
         return T, np.array([math.cos(ang), math.sin(ang)])
 
+    def _points_f(self, x, phi):
+        """:meth:`_points` in plain floats {name: (x, y)} (Newton's residuals call it thousands
+        of times a position: numpy's two-element arrays cost more than their arithmetic)."""
+        P = dict(self._ground_f)
+        ox, oy = P[self.O]
+        P[self.A] = (ox + self.r * math.cos(phi), oy + self.r * math.sin(phi))
+        for i, p in enumerate(self.unknown):
+            P[p] = (float(x[2 * i]), float(x[2 * i + 1]))
+        for pt, a, b, u0, u1 in self._derived_order:
+            (ax, ay), (bx, by) = P[a], P[b]
+            n = math.hypot(bx - ax, by - ay)
+            ux, uy = (bx - ax) / n, (by - ay) / n
+            P[pt] = (ax + u0 * ux - u1 * uy, ay + u0 * uy + u1 * ux)
+        return P
+
+    def _guide_f(self, P, name):
+        """:meth:`guide_line` on :meth:`_points_f`'s points."""
+        g = self.links[name]["guide"]
+        if "link" in g:
+            a, b = self.links[g["link"]]["points"]
+            (ax, ay), (bx, by) = P[a], P[b]
+            n = math.hypot(bx - ax, by - ay)
+            vx, vy = (bx - ax) / n, (by - ay) / n
+            ang = math.radians(g.get("angle", 0.0))
+            c, s = math.cos(ang), math.sin(ang)
+            ux, uy = c * vx - s * vy, s * vx + c * vy
+            off = g.get("offset", 0.0)
+            return (ax - off * uy, ay + off * ux), (ux, uy)
+        t = g["through"]
+        T = self._ground_f[t] if isinstance(t, str) else (float(t[0]), float(t[1]))
+        ang = math.radians(g["angle"])
+        return T, (math.cos(ang), math.sin(ang))
+
     def _resid(self, x, phi):
-        P = self._points(x, phi)
+        P = self._points_f(x, phi)
         res = []
         for name, l in self.links.items():
             if name == self.crank:
                 continue
             if "points" in l:
                 a, b = l["points"]
-                res.append((np.hypot(*(P[b] - P[a])) - l["length"]))
+                res.append(math.hypot(P[b][0] - P[a][0], P[b][1] - P[a][1]) - l["length"])
             else:
-                T, u = self.guide_line(P, name)
-                d = P[l["slider"]] - T
-                res.append(u[0] * d[1] - u[1] * d[0])
+                T, u = self._guide_f(P, name)
+                sx, sy = P[l["slider"]]
+                res.append(u[0] * (sy - T[1]) - u[1] * (sx - T[0]))
         return np.array(res)
 
     def _newton(self, x, phi):
