@@ -81,10 +81,10 @@ def _sources(svg: str, monkeypatch):
 def _differ(a: np.ndarray, b: np.ndarray) -> int:
     """Pixels of ``a`` more than a quarter of the grey range outside the range of ``b``'s
     pixels within one pixel of them (sub-pixel placement of glyphs aside, 0.13 mm at 200 ppi)."""
+    from scipy.ndimage import maximum_filter, minimum_filter
     assert a.shape == b.shape
-    p = np.pad(b, 1, mode="edge")
-    near = [p[1 + i:p.shape[0] - 1 + i, 1 + j:p.shape[1] - 1 + j] for i in (-1, 0, 1) for j in (-1, 0, 1)]
-    lo, hi = np.minimum.reduce(near), np.maximum.reduce(near)
+    # the least and the greatest of each pixel's 3 x 3 neighbourhood (the edge repeated outside)
+    lo, hi = minimum_filter(b, size=3, mode="nearest"), maximum_filter(b, size=3, mode="nearest")
     return int(((lo - a > 64) | (a - hi > 64)).sum())
 
 
