@@ -21,10 +21,10 @@ os.environ.pop("PYTHONDONTWRITEBYTECODE", None)
 sys.dont_write_bytecode = False
 
 # One BLAS thread in the test processes, as `tmm` sets it for itself (cli.single_blas_thread):
-# set here, before numpy is first imported in this process and before pytest-xdist's workers
-# start (they inherit it).  OpenBLAS otherwise starts a thread per core in each worker, and with
-# both workers busy those threads only wait for a core (the suite's user CPU 346 s -> 335 s,
-# side by side on one machine).
+# the tests that call tmm's stages in-process run them as the program does.  Set here, before
+# numpy is first imported in this process and before pytest-xdist's workers start (they inherit
+# it).  Not a measurable saving: side by side on one machine the suite took 206 s (335 s of user
+# CPU) with it and 211 s (346 s) without, within the machine's noise.
 from tmm_cli.cli import single_blas_thread  # noqa: E402  (after the bytecode setting above)
 
 single_blas_thread()
