@@ -29,8 +29,6 @@ from tmm_cli.cli import single_blas_thread  # noqa: E402  (after the bytecode se
 
 single_blas_thread()
 
-
-
 # headless Chromium for the tests that look at report.html in a real browser (test_browser,
 # test_explore, test_worked): the system's, driven by playwright
 CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-background-networking", "--disable-component-update",

@@ -18,7 +18,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-
 ROOT = Path(__file__).resolve().parents[1]
 TASK = ROOT / "tasks" / "forging_sixbar.yaml"
 

@@ -24,7 +24,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-
 ROOT = Path(__file__).resolve().parents[1]
 TASK = ROOT / "tasks" / "forging_sixbar.yaml"
 NICE = (1, 1.5, 2, 2.5, 3, 4, 5, 6, 8)
