@@ -9,7 +9,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-from tmm_cli.report.course import COURSE_N, course_entries, course_indices
+from tmm_cli.report.course import COURSE_N, course_entries, course_indices, grid_count, grid_size
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -23,6 +23,16 @@ def test_course_indices():
     assert idx[:-1] == sorted(set(idx[:-1])) and all(i < 50 for i in idx[:-1])
     e = list(range(40))
     assert course_entries(e, 36) == [0, 3, 6, 9, 12, 15, 18, 21, 24, 27, 30, 33, 36, 37, 38, 39]
+
+
+def test_grid_size_and_the_grid_positions_among_the_entries():
+    """positions.count is the grid's size; of n entries (the grid's first, then the named
+    extras) min(count, n) are the grid's; where the results do not say, every entry is."""
+    twelve = {"positions": {"count": 12}}
+    assert grid_size(twelve) == 12 and grid_count(twelve, 14) == 12     # two extras
+    assert grid_count(twelve, 5) == 5                                  # kinetostatics of 5 chosen
+    for unsaid in ({}, {"positions": {}}, {"positions": {"count": 0}}, {"positions": {"count": "12"}}):
+        assert grid_size(unsaid) is None and grid_count(unsaid, 7) == 7
 
 
 def test_fine_grid_report_shows_course_positions(tmp_path):

@@ -57,9 +57,7 @@ def grid_size(results: dict) -> int | None:
 
 
 def grid_count(results: dict, n_entries: int) -> int:
-    """The number of grid positions among n_entries (results' ``positions.count``), the
-    rest being named extras; all of them when the results do not say."""
-    c = (results.get("positions") or {}).get("count")
-    if isinstance(c, int) and c > 0:
-        return min(c, n_entries)
-    return n_entries
+    """The number of grid positions among n_entries, the grid's first (:func:`grid_size`, at
+    most n_entries), the rest being named extras; all of them when the results do not say."""
+    size = grid_size(results)
+    return n_entries if size is None else min(size, n_entries)
