@@ -217,8 +217,9 @@ def angular_plan(make, d: dict, frame: float = FRAME, height: float | None = Non
     for x in xs[:-1]:
         lifts.append(2.5 + 3.2 * sum(1 for u in used if abs(u - x) < 6))
         used.append(x)
-    note = f"H = {Hh:.4g} {unit('mm')}, {mu_text('ω', mu_w, unit('rad/s'), unit('mm'))}"
-    c = make(max(max(xs) - x_lo + 30, figures.text_size(note, 6.5 * 25.4 / 72.0)[0] + 6.0),
+    # the note "H = 120 mm, μω = 0.05 (rad/s)/mm": measured as it is written (ω the subscript)
+    head, after = f"H = {Hh:.4g} {unit('mm')}, μ", _mu_after("ω", mu_w, "rad/s")
+    c = make(max(max(xs) - x_lo + 30, figures.text_size(head + after, 6.5 * 25.4 / 72.0, sub="ω")[0] + 6.0),
              Hh + 14 + max(lifts + [10.0]) + 2.0)
     px, py = 15 - x_lo, 8.0
     c.dot((px, py), 0.7)
@@ -231,6 +232,5 @@ def angular_plan(make, d: dict, frame: float = FRAME, height: float | None = Non
         color = _line_color(col, r["stage"], r["satellite"])
         c.line((px, py), q, color=color, width=0.4, dash="2,1" if r["satellite"] else None)
         c.text(q[0], q[1] + lift, r["name"], size=6, color=color, halo=True)
-    c.text(2.0, 4, "H = " + f"{Hh:.4g} {unit('mm')}, μ", sub="ω", after=_mu_after("ω", mu_w, "rad/s"),
-           anchor="start", size=6.5)
+    c.text(2.0, 4, head, sub="ω", after=after, anchor="start", size=6.5)
     return c, {"mu_omega": mu_w, "H": Hh}
