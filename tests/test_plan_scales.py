@@ -172,8 +172,8 @@ def check_scale_table(html: str, mu_v: float, mu_a: float) -> None:
     i = kin.index("μ<sub>l</sub>")
     rows = re.findall(r"<tr><th>(.*?)</th><td>(.*?)</td></tr>", kin[i - 200:i + 3000], re.S)[:3]
     mu_l = _num(re.match(_NUM, re.sub(r"<[^>]+>", "", rows[0][1])).group(0))
-    assert _num(re.findall(rf"→ ({_NUM})", rows[1][1])[0]) == mu_v
-    assert _num(re.findall(rf"→ ({_NUM})", rows[2][1])[0]) == mu_a
+    assert _num(re.findall(rf"≈ ({_NUM})", rows[1][1])[0]) == mu_v
+    assert _num(re.findall(rf"≈ ({_NUM})", rows[2][1])[0]) == mu_a
     # the plan of positions: its μl and M 1:k, the table's μl
     svg = re.search(r"<svg.*?</svg>", kin, re.S).group(0)
     title = html_mod.unescape(re.sub(r"<[^>]+>", "", re.search(r"<text[^>]*>(μ(?:l|<tspan[^>]*>l).*?)</text>",

@@ -250,8 +250,8 @@ def test_scales_hand_computation(results, task, html_en):
     # the slider-crank's do not (pa 62.8 mm turning with the crank, πa 65.8 mm): the next standard ones
     from tmm_cli.report.sections.kinematics import drawn_scales
     assert drawn_scales(results, geom)[:2] == (0.025, 0.25)
-    assert "1.257 / 50.27 → 0.025" in html_en      # pa = 1.256637/0.025 = 50.265 mm
-    assert "13.16 / 52.64 → 0.25" in html_en       # pi-a = 13.1595/0.25 = 52.638 mm
+    assert "1.257 / 50.27 ≈ 0.025" in html_en      # pa = 1.256637/0.025 = 50.265 mm
+    assert "13.16 / 52.64 ≈ 0.25" in html_en       # pi-a = 13.1595/0.25 = 52.638 mm
 
 
 @pytest.mark.parametrize("i", range(12))

@@ -327,9 +327,9 @@ def build(ctx) -> str | None:
     scale_rows = [
         (Markup(f"μ<sub>l</sub> — {ctx.t('kin.mu_l')}"), f"{written(mu_l, 'g')} {ctx.t('kin.unit_l')}"),
         (Markup("μ<sub>v</sub> = v<sub>{}</sub>/p{} — {}").format(pin, plan_label(pin), ctx.t('kin.mu_v')),
-         Markup(f"{ctx.fmt(vA)} / {ctx.fmt_fixed(vA / mu_v, 2)} → {written(mu_v, 'g')} {ctx.t('kin.unit_v')}")),
+         Markup(f"{ctx.fmt(vA)} / {ctx.fmt_fixed(vA / mu_v, 2)} ≈ {written(mu_v, 'g')} {ctx.t('kin.unit_v')}")),
         (Markup("μ<sub>a</sub> = a<sub>{}</sub>/π{} — {}").format(pin, plan_label(pin), ctx.t('kin.mu_a')),
-         Markup(f"{ctx.fmt(aA)} / {ctx.fmt_fixed(aA / mu_a, 2)} → {written(mu_a, 'g')} {ctx.t('kin.unit_a')}")),
+         Markup(f"{ctx.fmt(aA)} / {ctx.fmt_fixed(aA / mu_a, 2)} ≈ {written(mu_a, 'g')} {ctx.t('kin.unit_a')}")),
     ]
     gp = (ctx.results.get("graphical_error") or {}).get("plans") or {}
     rel = [r for e in gp.get("positions", []) for d in e["points"].values() for r in d.values() if r is not None]
