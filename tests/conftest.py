@@ -29,6 +29,22 @@ from tmm_cli.cli import single_blas_thread  # noqa: E402  (after the bytecode se
 
 single_blas_thread()
 
+# tmm's answers kept between runs (the path synthesis's searches, TMM_CACHE_DIR) in one folder
+# for the test session: shared by its workers and the processes they start, never the user's
+# cache, removed when the session ends (pytest_unconfigure).  The tests of the search itself
+# turn it off or point it elsewhere.
+if "TMM_CACHE_DIR" not in os.environ:
+    import tempfile
+    _SESSION_CACHE = os.environ["TMM_CACHE_DIR"] = tempfile.mkdtemp(prefix="tmm-tests-cache-")
+else:
+    _SESSION_CACHE = None
+
+
+def pytest_unconfigure(config):
+    if _SESSION_CACHE is not None:
+        shutil.rmtree(_SESSION_CACHE, ignore_errors=True)
+
+
 # headless Chromium for the tests that look at report.html in a real browser (test_browser,
 # test_explore, test_worked): the system's, driven by playwright
 CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-background-networking", "--disable-component-update",

@@ -105,9 +105,10 @@ def test_a_known_crank_rockers_own_points_recovered():
     assert r["max_deviation"] < 1e-4 * extent
 
 
-def test_reproducible(example):
+def test_reproducible(example, monkeypatch):
     from tmm_cli.linkage import synthesis_path
     synthesis_path._FOUND.clear()               # searched anew, not the remembered answer
+    monkeypatch.setenv(synthesis_path.CACHE_ENV, "off")     # nor the one kept on disk
     again = run(load_task(ROOT / "tasks" / "synthesis_path.yaml"))["synthesis"]
     assert again["lengths"] == example["lengths"] and again["deviations"] == example["deviations"]
 
@@ -166,3 +167,80 @@ def test_random_points_far_from_the_curve_warn():
     for lang in ("ru", "uk"):                           # catalogued: no English left
         text = localize(far[0], lang)
         assert "coupler" not in text and "`max_deviation`" in text
+
+
+def _search_counted(monkeypatch):
+    """synthesis_path.search wrapped to count its calls; this run's memory of answers emptied."""
+    from tmm_cli.linkage import synthesis_path as S
+    calls = []
+
+    def counted(*a, **k):
+        calls.append(a)
+        return real(*a, **k)
+    real = S.search
+    monkeypatch.setattr(S, "search", counted)
+    monkeypatch.setattr(S, "_FOUND", {})
+    return S, calls
+
+
+def test_an_answer_kept_on_disk_is_the_searched_one_bit_for_bit(tmp_path, monkeypatch):
+    """A second run (a new process: its memory of answers empty) reads the answer the first
+    kept in TMM_CACHE_DIR instead of searching: the same arrays, bit for bit, and the same
+    results; TMM_CACHE_DIR=off searches and keeps nothing."""
+    S, calls = _search_counted(monkeypatch)
+    monkeypatch.setenv(S.CACHE_ENV, str(tmp_path))
+    T = np.array(load_task(ROOT / "tasks" / "synthesis_path.yaml").synthesis.points, float)
+    first = S.searched(T, 30.0)
+    assert len(calls) == 1 and len(list((tmp_path / "path-synthesis").glob("*.npz"))) == 1
+    S._FOUND.clear()
+    again = S.searched(T, 30.0)
+    assert len(calls) == 1                                             # read, not searched
+    assert again[0].tobytes() == first[0].tobytes() and again[1].tobytes() == first[1].tobytes()
+    assert type(again[2]) is float and again[2] == first[2]
+    # another limit of the transmission angle is another answer
+    S._FOUND.clear()
+    S.searched(T, 35.0)
+    assert len(calls) == 2
+    monkeypatch.setenv(S.CACHE_ENV, "off")
+    S._FOUND.clear()
+    S.searched(T, 30.0)
+    assert len(calls) == 3 and len(list((tmp_path / "path-synthesis").glob("*.npz"))) == 2
+
+
+def test_a_broken_or_stale_kept_answer_is_searched_again(tmp_path, monkeypatch):
+    """A kept file cut short or not an answer is searched again and written anew; an answer
+    kept by another version of the search (its stamp: the module's source, numpy's and scipy's
+    versions) is never read; a folder that cannot be written costs only the next search."""
+    S, calls = _search_counted(monkeypatch)
+    monkeypatch.setenv(S.CACHE_ENV, str(tmp_path))
+    T = np.array([[0.0, 0.0], [1.0, 0.2], [1.5, 1.0], [0.8, 1.6], [-0.2, 1.0]])
+    want = S.searched(T, 30.0)
+    (f,) = (tmp_path / "path-synthesis").glob("*.npz")
+    for junk in (f.read_bytes()[:40], b"not an answer", b""):
+        f.write_bytes(junk)
+        S._FOUND.clear()
+        got = S.searched(T, 30.0)
+        assert got[0].tobytes() == want[0].tobytes()
+        assert S._kept(f)[0].tobytes() == want[0].tobytes()          # written anew
+    n = len(calls)
+    monkeypatch.setattr(S, "_STAMP", [b"another version of the search"])
+    S._FOUND.clear()
+    S.searched(T, 30.0)
+    assert len(calls) == n + 1 and len(list((tmp_path / "path-synthesis").glob("*.npz"))) == 2
+    (tmp_path / "file").write_text("x")
+    monkeypatch.setenv(S.CACHE_ENV, str(tmp_path / "file"))        # its folder cannot be made
+    S._FOUND.clear()
+    assert S.searched(T, 30.0)[0].tobytes() == want[0].tobytes()
+
+
+def test_no_linkage_found_is_kept_too(tmp_path, monkeypatch):
+    """A search that finds no linkage (None) is kept as such: the next run says the same
+    without searching."""
+    S, calls = _search_counted(monkeypatch)
+    monkeypatch.setenv(S.CACHE_ENV, str(tmp_path))
+    monkeypatch.setattr(S, "_STAMP", [b"a search that finds nothing"])
+    monkeypatch.setattr(S, "search", lambda *a, **k: (calls.append(a), None)[1])
+    T = np.array([[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [3.0, 0.0], [4.0, 0.1]])
+    assert S.searched(T, 30.0) is None
+    S._FOUND.clear()
+    assert S.searched(T, 30.0) is None and len(calls) == 1

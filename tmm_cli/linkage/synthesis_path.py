@@ -322,6 +322,106 @@ def search(T: np.ndarray, gamma_min: float, seed: int = SEED):
 
 _FOUND: dict = {}      # (points, gamma_min) -> search's answer: a task read again (validate, then run) searches once
 
+# the search's answers kept on disk between runs (`tmm validate`, then `tmm run`, `tmm check`, a
+# batch run again: one search of 1-2 s for them all): a file per (points, gamma_min, seed) in
+# the user's cache folder, or in $TMM_CACHE_DIR ("off": none), named by a hash of those and of
+# what the answer depends on -- this module's source, numpy's and scipy's versions, the Python
+# and the machine -- so a changed search never reads an old answer
+CACHE_ENV = "TMM_CACHE_DIR"
+
+
+def _cache_folder():
+    """The folder of the kept answers, or None (``TMM_CACHE_DIR=off``)."""
+    import os
+    from pathlib import Path
+    where = os.environ.get(CACHE_ENV, "").strip()
+    if where.lower() == "off":
+        return None
+    if where:
+        return Path(where) / "path-synthesis"
+    import platformdirs
+    return platformdirs.user_cache_path("tmm", appauthor=False) / "path-synthesis"
+
+
+_STAMP: list = []
+
+
+def _stamp() -> bytes | None:
+    """What a kept answer depends on besides its inputs (None: not known, nothing kept)."""
+    if not _STAMP:
+        import hashlib
+        import platform
+        import sys
+        from importlib import metadata
+        try:
+            parts = [hashlib.sha256(open(__file__, "rb").read()).hexdigest(), metadata.version("numpy"),
+                     metadata.version("scipy"), sys.version, platform.machine()]
+        except (OSError, metadata.PackageNotFoundError):
+            parts = None
+        _STAMP.append(None if parts is None else "|".join(parts).encode())
+    return _STAMP[0]
+
+
+def _cache_file(T: np.ndarray, gamma_min: float, seed: int):
+    import hashlib
+    folder, stamp = _cache_folder(), _stamp()
+    if folder is None or stamp is None:
+        return None
+    h = hashlib.sha256(stamp)
+    h.update(np.ascontiguousarray(T, "<f8").tobytes())
+    h.update(repr((T.shape, float(gamma_min), int(seed))).encode())
+    return folder / f"{h.hexdigest()[:40]}.npz"
+
+
+def _kept(path):
+    """The answer kept in ``path`` ((x, phi, e) or None), or ``False`` when there is none to read."""
+    try:
+        with np.load(path, allow_pickle=False) as f:
+            x, phi, e = f["x"], f["phi"], f["e"]
+    except Exception:  # noqa: BLE001 - absent, cut short or not ours: searched again and written anew
+        return False
+    if x.dtype != np.float64 or phi.dtype != np.float64 or e.shape != ():
+        return False
+    if x.size == 0:
+        return None
+    if x.shape != (10,) or phi.ndim != 1:
+        return False
+    return x, phi, float(e)
+
+
+def _keep(path, found) -> None:
+    """Write ``found`` (search's answer) to ``path`` atomically; a folder that cannot be written
+    only costs the next run its search."""
+    import io as _bytes
+
+    from ..io import atomic_write
+    x, phi, e = found if found is not None else (np.empty(0), np.empty(0), np.nan)
+    buf = _bytes.BytesIO()
+    np.savez(buf, x=np.asarray(x, np.float64), phi=np.asarray(phi, np.float64), e=np.float64(e))
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        atomic_write(path, buf.getvalue())
+    except OSError:
+        pass
+
+
+def searched(T: np.ndarray, gamma_min: float, seed: int = SEED):
+    """:func:`search`'s answer for the points T, from this run's memory, the disk's kept answers
+    (:data:`CACHE_ENV`) or a search (then kept in both)."""
+    key = (tuple(map(tuple, T.tolist())), float(gamma_min), seed)
+    if key in _FOUND:
+        return _FOUND[key]
+    path = _cache_file(T, gamma_min, seed)
+    found = _kept(path) if path is not None else False
+    if found is False:
+        found = search(T, gamma_min, seed)
+        if path is not None:
+            _keep(path, found)
+    _FOUND[key] = found
+    while len(_FOUND) > 64:                  # the oldest out
+        _FOUND.pop(next(iter(_FOUND)))
+    return found
+
 
 def design(sec, sign: float):
     """The crank-rocker whose coupler point M passes nearest the points.
@@ -350,12 +450,7 @@ def design(sec, sign: float):
 
     T = _points(sec)
     gmin = float(sec.gamma_min) if sec.gamma_min is not None else GAMMA_DEFAULT
-    key = (tuple(map(tuple, T.tolist())), gmin)
-    found = _FOUND.get(key)
-    if key not in _FOUND:
-        found = _FOUND[key] = search(T, gmin)
-        while len(_FOUND) > 64:                  # the oldest out
-            _FOUND.pop(next(iter(_FOUND)))
+    found = searched(T, gmin)
     if found is None:
         raise SynthesisImpossible(Message("synthesis.fail.path_none", gamma=gmin))
     x, phi, _ = found
