@@ -320,7 +320,7 @@ def search(T: np.ndarray, gamma_min: float, seed: int = SEED):
     return x, phi, e * ext * ext
 
 
-_FOUND: dict = {}      # (points, gamma_min) -> search's answer: a task read again (validate, then run) searches once
+_FOUND: dict = {}      # (points, gamma_min, seed) -> search's answer: a task read again in one run searches once
 
 # the search's answers kept on disk between runs (`tmm validate`, then `tmm run`, `tmm check`, a
 # batch run again: one search of 1-2 s for them all): a file per (points, gamma_min, seed) in
@@ -353,8 +353,9 @@ def _stamp() -> bytes | None:
         import platform
         import sys
         from importlib import metadata
+        from pathlib import Path
         try:
-            parts = [hashlib.sha256(open(__file__, "rb").read()).hexdigest(), metadata.version("numpy"),
+            parts = [hashlib.sha256(Path(__file__).read_bytes()).hexdigest(), metadata.version("numpy"),
                      metadata.version("scipy"), sys.version, platform.machine()]
         except (OSError, metadata.PackageNotFoundError):
             parts = None
