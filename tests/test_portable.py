@@ -54,6 +54,22 @@ def test_replace_over_a_held_file_is_tried_again(tmp_path, monkeypatch):
     assert [p.name for p in tmp_path.iterdir()] == ["report.pdf"]
 
 
+def test_a_kept_search_answer_is_written_once_or_not_at_all(tmp_path, monkeypatch):
+    """The path synthesis's kept answer (a cache): a file another program holds is tried once
+    (atomic_write's tries=1), not waited for, and the run goes on; no temporary file is left."""
+    import numpy as np
+
+    from tmm_cli.linkage import synthesis_path as S
+    calls = _held(monkeypatch, 10 ** 6)
+    found = (np.arange(10.0), np.arange(5.0), 0.5)
+    S._keep(tmp_path / "a.npz", found)
+    assert len(calls) == 1 and list(tmp_path.iterdir()) == []
+    monkeypatch.undo()
+    S._keep(tmp_path / "a.npz", found)
+    got = S._kept(tmp_path / "a.npz", 5)
+    assert got[0].tobytes() == found[0].tobytes() and got[1].tobytes() == found[1].tobytes() and got[2] == 0.5
+
+
 def test_a_file_held_for_good_is_named_no_traceback_no_temporary_left(tmp_path, monkeypatch):
     """`tmm run` whose results.json stays held: exit 3, the file named and why, the old
     file as it was, no temporary file left in the folder."""

@@ -221,7 +221,18 @@ def test_a_broken_or_stale_kept_answer_is_searched_again(tmp_path, monkeypatch):
         S._FOUND.clear()
         got = S.searched(T, 30.0)
         assert got[0].tobytes() == want[0].tobytes()
-        assert S._kept(f)[0].tobytes() == want[0].tobytes()          # written anew
+        assert S._kept(f, len(T))[0].tobytes() == want[0].tobytes()   # written anew
+    # files numpy reads whose arrays are not such an answer: searched again too
+    n = len(calls)
+    for bad in ({"x": want[0], "phi": want[1][:-1], "e": np.float64(want[2])},         # a point short
+                {"x": want[0], "phi": want[1], "e": np.complex128(want[2])},          # e not a float
+                {"x": np.full(10, np.nan), "phi": want[1], "e": np.float64(want[2])},  # no numbers
+                {"x": want[0].astype(np.float32), "phi": want[1], "e": np.float64(want[2])}):
+        with open(f, "wb") as fh:
+            np.savez(fh, **bad)
+        S._FOUND.clear()
+        assert S.searched(T, 30.0)[0].tobytes() == want[0].tobytes()
+    assert len(calls) == n + 4
     n = len(calls)
     monkeypatch.setattr(S, "_STAMP", [b"another version of the search"])
     S._FOUND.clear()
@@ -244,3 +255,29 @@ def test_no_linkage_found_is_kept_too(tmp_path, monkeypatch):
     assert S.searched(T, 30.0) is None
     S._FOUND.clear()
     assert S.searched(T, 30.0) is None and len(calls) == 1
+
+
+def test_kept_answers_are_told_apart_by_points_and_by_the_searchs_version(tmp_path, monkeypatch):
+    """Two sets of points, two files; the same points under another source of the search
+    module, or another numpy or scipy, another file (the stamp: the module's source as
+    imported, the versions this process runs)."""
+    import scipy
+
+    S, calls = _search_counted(monkeypatch)
+    monkeypatch.setenv(S.CACHE_ENV, str(tmp_path))
+    A = np.array([[0.0, 0.0], [1.0, 0.2], [1.5, 1.0], [0.8, 1.6], [-0.2, 1.0]])
+    B = A.copy()
+    B[2, 1] += 1e-9
+    names = {S._cache_file(A, 30.0, S.SEED).name, S._cache_file(B, 30.0, S.SEED).name,
+             S._cache_file(A, 30.0, S.SEED + 1).name}
+    assert len(names) == 3
+    stamp = S._stamp().decode()
+    assert stamp.split("|")[:3] == [S._SOURCE, np.__version__, scipy.__version__]
+    import hashlib
+    assert S._SOURCE == hashlib.sha256(Path(S.__file__).read_bytes()).hexdigest()
+    monkeypatch.setattr(S, "_SOURCE", "0" * 64)               # the module edited
+    monkeypatch.setattr(S, "_STAMP", [])
+    edited = S._cache_file(A, 30.0, S.SEED).name
+    monkeypatch.setattr(np, "__version__", "0.0")               # and another numpy
+    monkeypatch.setattr(S, "_STAMP", [])
+    assert len(names | {edited, S._cache_file(A, 30.0, S.SEED).name}) == 5

@@ -59,17 +59,18 @@ def file_mode() -> int:
 
 
 def atomic_write(path: str | os.PathLike, data: bytes | str | Callable[[Callable[[bytes], object]], None],
-                 encoding: str = "utf-8") -> Path:
+                 encoding: str = "utf-8", tries: int | None = None) -> Path:
     """Write ``data`` to ``path`` through a temporary file in the same folder and
     ``os.replace`` it into place, so readers see either the old or the new file.
     ``data`` may be a function given the temporary file's ``write`` (bytes), to write a
-    large file piece by piece."""
+    large file piece by piece. ``tries``: how many times the replace is tried while another
+    program holds ``path`` (:func:`replace`; default :data:`REPLACE_TRIES`)."""
     path = Path(path)
     raw = data.encode(encoding) if isinstance(data, str) else data
     fd, tmp = _open_temp(path)
     with _removed_on_error(tmp, path):
         _fill(fd, raw)
-        replace(tmp, path)
+        replace(tmp, path, tries)
     return path
 
 
@@ -80,19 +81,21 @@ REPLACE_TRIES = 5
 REPLACE_WAIT = 0.2
 
 
-def replace(tmp: str | os.PathLike, path: str | os.PathLike) -> None:
-    """``os.replace(tmp, path)``, tried again while ``path`` is held by another program
-    (PermissionError: the temporary file lies in the same folder, so the folder itself is
-    writable); then a PermissionError naming ``path`` and saying why, for the user."""
+def replace(tmp: str | os.PathLike, path: str | os.PathLike, tries: int | None = None) -> None:
+    """``os.replace(tmp, path)``, tried again (``tries`` times in all, :data:`REPLACE_TRIES`
+    by default) while ``path`` is held by another program (PermissionError: the temporary file
+    lies in the same folder, so the folder itself is writable); then a PermissionError naming
+    ``path`` and saying why, for the user."""
     delay = REPLACE_WAIT
-    for attempt in range(REPLACE_TRIES):
+    tries = REPLACE_TRIES if tries is None else max(1, tries)
+    for attempt in range(tries):
         try:
             os.replace(tmp, path)
             return
         except PermissionError as exc:
             if os.path.isdir(path):
                 raise
-            if attempt == REPLACE_TRIES - 1:
+            if attempt == tries - 1:
                 import errno
 
                 from .messages import Message

@@ -343,22 +343,28 @@ def _cache_folder():
     return platformdirs.user_cache_path("tmm", appauthor=False) / "path-synthesis"
 
 
+# this module's source as imported (not as the disk holds it later: a file changed under a
+# running batch must not have the old code's answers kept under the new code's stamp)
+try:
+    import hashlib as _hashlib
+    from pathlib import Path as _Path
+    _SOURCE = _hashlib.sha256(_Path(__file__).read_bytes()).hexdigest()
+except OSError:                 # no source file (a frozen install): nothing kept
+    _SOURCE = None
 _STAMP: list = []
 
 
 def _stamp() -> bytes | None:
-    """What a kept answer depends on besides its inputs (None: not known, nothing kept)."""
+    """What a kept answer depends on besides its inputs: this module's source as imported, the
+    numpy and scipy this process runs, the Python and the machine (None: not known, nothing
+    kept)."""
     if not _STAMP:
-        import hashlib
         import platform
         import sys
-        from importlib import metadata
-        from pathlib import Path
-        try:
-            parts = [hashlib.sha256(Path(__file__).read_bytes()).hexdigest(), metadata.version("numpy"),
-                     metadata.version("scipy"), sys.version, platform.machine()]
-        except (OSError, metadata.PackageNotFoundError):
-            parts = None
+
+        import scipy
+        parts = (None if _SOURCE is None else
+                 [_SOURCE, np.__version__, scipy.__version__, sys.version, platform.machine()])
         _STAMP.append(None if parts is None else "|".join(parts).encode())
     return _STAMP[0]
 
@@ -374,25 +380,27 @@ def _cache_file(T: np.ndarray, gamma_min: float, seed: int):
     return folder / f"{h.hexdigest()[:40]}.npz"
 
 
-def _kept(path):
-    """The answer kept in ``path`` ((x, phi, e) or None), or ``False`` when there is none to read."""
+def _kept(path, n: int):
+    """The answer kept in ``path`` for ``n`` points ((x, phi, e) or None: no linkage), or
+    ``False`` when there is none to read (absent, cut short, not such an answer)."""
     try:
         with np.load(path, allow_pickle=False) as f:
             x, phi, e = f["x"], f["phi"], f["e"]
     except Exception:  # noqa: BLE001 - absent, cut short or not ours: searched again and written anew
         return False
-    if x.dtype != np.float64 or phi.dtype != np.float64 or e.shape != ():
+    if not all(a.dtype == np.float64 for a in (x, phi, e)) or e.shape != ():
         return False
-    if x.size == 0:
+    if x.size == 0 and phi.size == 0:
         return None
-    if x.shape != (10,) or phi.ndim != 1:
+    if x.shape != (10,) or phi.shape != (n,) or not (np.isfinite(x).all() and np.isfinite(phi).all()):
         return False
     return x, phi, float(e)
 
 
 def _keep(path, found) -> None:
-    """Write ``found`` (search's answer) to ``path`` atomically; a folder that cannot be written
-    only costs the next run its search."""
+    """Write ``found`` (search's answer) to ``path`` atomically, tried once (a file another
+    program holds is not waited for); a folder that cannot be written only costs the next
+    run its search."""
     import io as _bytes
 
     from ..io import atomic_write
@@ -400,8 +408,7 @@ def _keep(path, found) -> None:
     buf = _bytes.BytesIO()
     np.savez(buf, x=np.asarray(x, np.float64), phi=np.asarray(phi, np.float64), e=np.float64(e))
     try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        atomic_write(path, buf.getvalue())
+        atomic_write(path, buf.getvalue(), tries=1)
     except OSError:
         pass
 
@@ -409,11 +416,12 @@ def _keep(path, found) -> None:
 def searched(T: np.ndarray, gamma_min: float, seed: int = SEED):
     """:func:`search`'s answer for the points T, from this run's memory, the disk's kept answers
     (:data:`CACHE_ENV`) or a search (then kept in both)."""
-    key = (tuple(map(tuple, T.tolist())), float(gamma_min), seed)
+    T = np.asarray(T, np.float64)
+    key = (tuple(map(tuple, T.tolist())), float(gamma_min), int(seed))
     if key in _FOUND:
         return _FOUND[key]
     path = _cache_file(T, gamma_min, seed)
-    found = _kept(path) if path is not None else False
+    found = _kept(path, len(T)) if path is not None else False
     if found is False:
         found = search(T, gamma_min, seed)
         if path is not None:
