@@ -170,15 +170,21 @@ def test_random_points_far_from_the_curve_warn():
 
 
 def _search_counted(monkeypatch):
-    """synthesis_path.search wrapped to count its calls; this run's memory of answers emptied."""
+    """synthesis_path.search replaced by a stand-in that counts its calls and answers as a
+    search does -- (x: 10 float64, phi: one per point, e: a float) -- with values made from the
+    points that a kept copy must give back bit for bit (a negative zero, a subnormal, the last
+    bits of a long fraction); this run's memory of answers emptied. (The kept answers' tests
+    are about keeping, not about searching: the real search is test_reproducible's.)"""
     from tmm_cli.linkage import synthesis_path as S
     calls = []
 
-    def counted(*a, **k):
-        calls.append(a)
-        return real(*a, **k)
-    real = S.search
-    monkeypatch.setattr(S, "search", counted)
+    def stand_in(T, gamma_min, seed=S.SEED):
+        calls.append((T, gamma_min, seed))
+        rng = np.random.default_rng(abs(hash((np.asarray(T).tobytes(), gamma_min, seed))))
+        x = rng.normal(size=10)
+        x[3], x[7] = -0.0, 5e-324
+        return x, rng.uniform(0, 2 * np.pi, len(T)), float(rng.random()) / 3.0
+    monkeypatch.setattr(S, "search", stand_in)
     monkeypatch.setattr(S, "_FOUND", {})
     return S, calls
 
