@@ -51,11 +51,6 @@ def angdiff(a, b):
     return d
 
 
-def _rot(v, ang):
-    c, s = math.cos(ang), math.sin(ang)
-    return np.array([c * v[0] - s * v[1], s * v[0] + c * v[1]])
-
-
 @dataclass
 class Linkage:
     """A linkage described like a tmm task (plain dict), solved independently."""
@@ -94,8 +89,8 @@ class Linkage:
             p for p in allpts if p not in self.ground and p != self.A and p not in self.derived
         ]
         self._cache = {}
-        # the residuals' hot path (_resid) in plain floats: the ground points, the derived points
-        # in an order where each one's two points come first (as _points' three passes find them)
+        # the geometry in plain floats (_points_f): the ground points, the derived points in an
+        # order where each one's two points come first (found in up to three passes)
         self._ground_f = {k: (float(v[0]), float(v[1])) for k, v in self.ground.items()}
         known = set(self.ground) | {self.A} | set(self.unknown)
         self._derived_order = []
@@ -116,37 +111,19 @@ class Linkage:
 
     # --- geometry -----------------------------------------------------------
     def _points(self, x, phi):
-        P = dict(self.ground)
-        P[self.A] = self.ground[self.O] + self.r * np.array([math.cos(phi), math.sin(phi)])
-        for i, p in enumerate(self.unknown):
-            P[p] = x[2 * i : 2 * i + 2]
-        for _ in range(3):  # derived points may depend on derived points
-            for pt, (ln, uv) in self.derived.items():
-                a, b = self.links[ln]["points"]
-                if a in P and b in P:
-                    d = P[b] - P[a]
-                    u = d / np.hypot(*d)
-                    P[pt] = P[a] + uv[0] * u + uv[1] * np.array([-u[1], u[0]])
-        return P
+        """Every point {name: array [x, y]} at crank angle phi (rad) for the unknowns x
+        (:meth:`_points_f`'s, as arrays)."""
+        return {k: np.array(v) for k, v in self._points_f(x, phi).items()}
 
     def guide_line(self, P, name):
-        """(point on line, unit direction) of the guide of slider `name`."""
-        g = self.links[name]["guide"]
-        if "link" in g:
-            a, b = self.links[g["link"]]["points"]
-            d = P[b] - P[a]
-            u = d / np.hypot(*d)
-            u = _rot(u, math.radians(g.get("angle", 0.0)))
-            n = np.array([-u[1], u[0]])
-            return P[a] + g.get("offset", 0.0) * n, u
-        t = g["through"]
-        T = self.ground[t] if isinstance(t, str) else np.array(t, float)
-        ang = math.radians(g["angle"])
-        return T, np.array([math.cos(ang), math.sin(ang)])
+        """(point on line, unit direction) of the guide of slider `name`, as arrays."""
+        T, u = self._guide_f(P, name)
+        return np.array(T, float), np.array(u, float)
 
     def _points_f(self, x, phi):
-        """:meth:`_points` in plain floats {name: (x, y)} (Newton's residuals call it thousands
-        of times a position: numpy's two-element arrays cost more than their arithmetic)."""
+        """Every point {name: (x, y)} at crank angle phi (rad) for the unknowns x, in plain floats
+        (Newton's residuals call it thousands of times a position: numpy's two-element arrays
+        cost more than their arithmetic). A derived (extra) point from its link's two points."""
         P = dict(self._ground_f)
         ox, oy = P[self.O]
         P[self.A] = (ox + self.r * math.cos(phi), oy + self.r * math.sin(phi))
@@ -160,7 +137,8 @@ class Linkage:
         return P
 
     def _guide_f(self, P, name):
-        """:meth:`guide_line` on :meth:`_points_f`'s points."""
+        """(point on line, unit direction) of the guide of slider `name` as float pairs, on the
+        points ``P`` (float pairs or arrays)."""
         g = self.links[name]["guide"]
         if "link" in g:
             a, b = self.links[g["link"]]["points"]

@@ -717,28 +717,6 @@ def test_shaper_moving_guide_offset_and_angle(guide):
     check_kinetostatics(res, L, "crank", [], inertia=True, gravity=True, ext=ext)
 
 
-@pytest.mark.parametrize("guide", [{"offset": 0.02}, {"angle": 3.0}], ids=["offset", "turned"])
-def test_reference_float_geometry_is_its_array_geometry(guide):
-    """The reference solver's Newton residuals use its geometry in plain floats
-    (acceptance_util.Linkage._points_f, _guide_f), its results the numpy one (_points,
-    guide_line): the two give the same points and guide lines on a four-bar with an extra
-    coupler point, a six-bar with a rocker's extra point and a shaper with a moving guide."""
-    shaped = shaper()
-    shaped["mechanism"]["links"]["block"]["guide"].update(guide)
-    for task in (fourbar(), sixbar(), shaped):
-        L = ref_linkage(task)
-        for phi in (0.0, 37.0, 161.0, 290.0):
-            x = L.solve(phi)
-            P, F = L._points(x, math.radians(phi)), L._points_f(x, math.radians(phi))
-            assert set(P) == set(F)
-            for p in P:
-                assert np.allclose(P[p], F[p], rtol=0, atol=1e-15), (p, P[p], F[p])
-            for name, lk in L.links.items():
-                if "guide" in lk:
-                    (T, u), (Tf, uf) = L.guide_line(P, name), L._guide_f(F, name)
-                    assert np.allclose(T, Tf, rtol=0, atol=1e-15) and np.allclose(u, uf, rtol=0, atol=1e-15)
-
-
 def test_inverted_slider_crank_PRR():
     """Rotating guide on the crank itself (block slides along O->A), rod O3-B: a PRR dyad.
     Position 0 given as a crank angle (`zero: 15`), 8 positions, speed as a number (rad/s)."""
