@@ -240,7 +240,7 @@ def test_a_broken_or_stale_kept_answer_is_searched_again(tmp_path, monkeypatch):
         assert S.searched(T, 30.0)[0].tobytes() == want[0].tobytes()
     assert len(calls) == n + 4
     n = len(calls)
-    monkeypatch.setattr(S, "_STAMP", [b"another version of the search"])
+    monkeypatch.setattr(S, "_stamp", lambda: b"another version of the search")
     S._FOUND.clear()
     S.searched(T, 30.0)
     assert len(calls) == n + 1 and len(list((tmp_path / "path-synthesis").glob("*.npz"))) == 2
@@ -255,7 +255,7 @@ def test_no_linkage_found_is_kept_too(tmp_path, monkeypatch):
     without searching."""
     S, calls = _search_counted(monkeypatch)
     monkeypatch.setenv(S.CACHE_ENV, str(tmp_path))
-    monkeypatch.setattr(S, "_STAMP", [b"a search that finds nothing"])
+    monkeypatch.setattr(S, "_stamp", lambda: b"a search that finds nothing")
     monkeypatch.setattr(S, "search", lambda *a, **k: (calls.append(a), None)[1])
     T = np.array([[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [3.0, 0.0], [4.0, 0.1]])
     assert S.searched(T, 30.0) is None
@@ -281,9 +281,13 @@ def test_kept_answers_are_told_apart_by_points_and_by_the_searchs_version(tmp_pa
     assert stamp.split("|")[:3] == [S._SOURCE, np.__version__, scipy.__version__]
     import hashlib
     assert S._SOURCE == hashlib.sha256(Path(S.__file__).read_bytes()).hexdigest()
-    monkeypatch.setattr(S, "_SOURCE", "0" * 64)               # the module edited
-    monkeypatch.setattr(S, "_STAMP", [])
-    edited = S._cache_file(A, 30.0, S.SEED).name
-    monkeypatch.setattr(np, "__version__", "0.0")               # and another numpy
-    monkeypatch.setattr(S, "_STAMP", [])
-    assert len(names | {edited, S._cache_file(A, 30.0, S.SEED).name}) == 5
+    try:
+        monkeypatch.setattr(S, "_SOURCE", "0" * 64)           # the module edited
+        S._stamp.cache_clear()
+        edited = S._cache_file(A, 30.0, S.SEED).name
+        monkeypatch.setattr(np, "__version__", "0.0")           # and another numpy
+        S._stamp.cache_clear()
+        assert len(names | {edited, S._cache_file(A, 30.0, S.SEED).name}) == 5
+    finally:
+        monkeypatch.undo()
+        S._stamp.cache_clear()                                  # this process's own again

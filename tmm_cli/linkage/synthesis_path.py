@@ -22,6 +22,7 @@ Storn & Price (1997), differential evolution; Artobolevsky, coupler curves.
 """
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -351,22 +352,18 @@ try:
     _SOURCE = _hashlib.sha256(_Path(__file__).read_bytes()).hexdigest()
 except OSError:                 # no source file (a frozen install): nothing kept
     _SOURCE = None
-_STAMP: list = []
-
-
+@functools.cache
 def _stamp() -> bytes | None:
     """What a kept answer depends on besides its inputs: this module's source as imported, the
     numpy and scipy this process runs, the Python and the machine (None: not known, nothing
     kept)."""
-    if not _STAMP:
-        import platform
-        import sys
+    if _SOURCE is None:
+        return None
+    import platform
+    import sys
 
-        import scipy
-        parts = (None if _SOURCE is None else
-                 [_SOURCE, np.__version__, scipy.__version__, sys.version, platform.machine()])
-        _STAMP.append(None if parts is None else "|".join(parts).encode())
-    return _STAMP[0]
+    import scipy
+    return "|".join([_SOURCE, np.__version__, scipy.__version__, sys.version, platform.machine()]).encode()
 
 
 def _cache_file(T: np.ndarray, gamma_min: float, seed: int):
