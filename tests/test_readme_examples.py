@@ -72,3 +72,15 @@ def test_readme_example_runs(line: str, fresh: Path):
         assert len(rows) - 1 == len(list((fresh / "tasks").glob("*.yaml")))
     if args[1] == "schema":
         assert (fresh / args[args.index("--out") + 1]).stat().st_size > 1000
+
+
+def test_ci_runs_exactly_the_quick_starts_test_command():
+    """`.ci/run` ends with the README's Quick start test command, character for character (after
+    the system packages), and the macOS line is the same command."""
+    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    quick = re.search(r"^Install and run the whole test suite.*?```sh\n(.*?)\n```", text, re.S | re.M).group(1)
+    assert quick.startswith("python3 -m venv .venv && ") and quick.endswith(" && .venv/bin/python -m pytest")
+    ci = [ln for ln in (ROOT / ".ci" / "run").read_text(encoding="utf-8").splitlines() if ln.strip()]
+    assert ci[-1] == quick
+    mac = re.search(r"^\*\*macOS\*\*.*?```sh\n(.*?)\n```", text, re.S | re.M).group(1).splitlines()
+    assert mac[-1] == quick
