@@ -352,6 +352,8 @@ try:
     _SOURCE = _hashlib.sha256(_Path(__file__).read_bytes()).hexdigest()
 except OSError:                 # no source file (a frozen install): nothing kept
     _SOURCE = None
+
+
 @functools.cache
 def _stamp() -> bytes | None:
     """What a kept answer depends on besides its inputs: this module's source as imported, the
@@ -398,11 +400,11 @@ def _keep(path, found) -> None:
     """Write ``found`` (search's answer) to ``path`` atomically, tried once (a file another
     program holds is not waited for); a folder that cannot be written only costs the next
     run its search."""
-    import io as _bytes
+    from io import BytesIO
 
     from ..io import atomic_write
     x, phi, e = found if found is not None else (np.empty(0), np.empty(0), np.nan)
-    buf = _bytes.BytesIO()
+    buf = BytesIO()
     np.savez(buf, x=np.asarray(x, np.float64), phi=np.asarray(phi, np.float64), e=np.float64(e))
     try:
         atomic_write(path, buf.getvalue(), tries=1)
