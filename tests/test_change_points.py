@@ -191,6 +191,11 @@ def test_deltoid_change_point_and_branch_jump(tmp_path):
     e0 = res["kinematics"][0]
     assert e0["phi"] == 0.0 and e0["near_singular"] is True
     assert all("near_singular" not in e for e in res["kinematics"][1:])
+    # the coupler and the rocker fold onto each other at 0 deg (A on O3): their sine touches 0
+    # there without changing its sign, and the least is that exact point (was 1.7e-9 deg, the
+    # line through a limit's -1e-10 and its neighbour)
+    (row,) = res["transmission"]
+    assert row["gamma_min"] == 0.0 and row["phi"] == 0.0
     # the rocker's curve jumps by 180 deg across the change point (the kite folds on one
     # side, A B and O3 B along the ground line; it opens on the other) - the warning says so
     import tmm_cli

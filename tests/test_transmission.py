@@ -385,6 +385,7 @@ def test_a_steep_dead_point_away_from_the_grids_least(monkeypatch):
         th = np.tanh(k * (p - t2))
         return f1 * th, df1 * th + f1 * k * (1 - th ** 2)
     monkeypatch.setattr(K, "solve", lambda mech, xs: SimpleNamespace(phi=np.asarray(xs, float)))
+    monkeypatch.setattr(K, "solve_raw", lambda mech, xs: SimpleNamespace(phi=np.asarray(xs, float)))
     monkeypatch.setattr(T, "sine", fake_sine)
     steep = T.DyadAngle(group=None, kind="RRP", middle="B", ends=("A", "B"))
     shallow = T.DyadAngle(group=None, kind="RRR", middle="B", ends=("A", "C"))

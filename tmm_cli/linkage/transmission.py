@@ -174,7 +174,7 @@ def least(mech: "Mechanism", ds: list[DyadAngle], start: float = 0.0, span: floa
     over the crank angles ``start`` .. ``start + span`` (deg; ``span`` signed, as a function
     generator's input range: a cw range is the same angles read from its other end; a full
     turn by default)."""
-    from .kinematics import solve
+    from .kinematics import solve, solve_raw
 
     if span < 0.0:
         start, span = start + span, -span
@@ -188,13 +188,20 @@ def least(mech: "Mechanism", ds: list[DyadAngle], start: float = 0.0, span: floa
         points nested in the bracket each finds (0.5 deg -> 0.004 -> 3e-5 -> 2e-7 -> 2e-9 deg),
         then the line between the ends of the last (a least near a dead point is sharp, its
         slope turning within 1e-3 deg: one grid's line put it 0.001 deg off, its angle a third
-        too large); None where no point of the first grid brackets it."""
+        too large); None where no point of the first grid brackets it.  A point where it is
+        exactly 0 is the zero (a sine that touches 0 without changing its sign: a deltoid's
+        change point, where the coupler and the rocker fold onto each other).  The grids are
+        the solver's own values (:func:`solve_raw`): smooth through a singular position, where
+        the limits by continuity would stand for each point near it (a search, not a report)."""
         f0 = f1 = None
         while x1 - x0 > 1e-8:
             xs = np.linspace(x0, x1, 129)
-            sv, dv = sine(d, solve(mech, xs))
+            sv, dv = sine(d, solve_raw(mech, xs))
             v = sv if which == 0 else np.sign(sv) * dv
             ch = np.flatnonzero(np.signbit(v[:-1]) != np.signbit(v[1:]))
+            zero = np.flatnonzero(v == 0.0)
+            if len(zero) and (not len(ch) or zero[0] <= ch[0]):
+                return float(xs[zero[0]])
             if not len(ch):
                 if f0 is None:
                     return None
