@@ -69,6 +69,71 @@ def test_loader_gives_copies():
     assert locales.table("cam", "words")["en"]["cam.title"] != "changed"
 
 
+@pytest.fixture
+def catalogues(tmp_path, monkeypatch):
+    """A copy of the catalogues the loader reads (its per-process memory emptied before and
+    after), bytecode written, no PYTHONPYCACHEPREFIX: the folder and the kept copies' place."""
+    import shutil
+    import sys
+    d = tmp_path / "locales"
+    for lang in locales.LANGS:
+        shutil.copytree(locales.DIR / lang, d / lang, ignore=shutil.ignore_patterns("__pycache__"))
+    monkeypatch.setattr(locales, "DIR", d)
+    monkeypatch.setattr(sys, "dont_write_bytecode", False)
+    monkeypatch.setattr(sys, "pycache_prefix", None)
+    locales._read.cache_clear()
+    yield d
+    locales._read.cache_clear()
+
+
+def _parsed(path):
+    import yaml
+    return yaml.safe_load(path.read_text(encoding="utf-8")) or {}
+
+
+def test_kept_catalogues_are_what_yaml_reads(catalogues, monkeypatch):
+    """Every catalogue read twice: parsed and kept (``__pycache__/<topic>.<python>.pickle``),
+    then read from the kept copy alone (PyYAML made to fail) -- the same tables as PyYAML's."""
+    import yaml
+    first = {(lang, name): locales._read(lang, name) for lang in locales.LANGS for name in locales.topics(lang)}
+    assert len(first) > 60
+    for (lang, name), data in first.items():
+        path = catalogues / lang / f"{name}.yaml"
+        assert data == _parsed(path) and data, (lang, name)
+        assert any((catalogues / lang / "__pycache__").glob(f"{name}.*.pickle")), (lang, name)
+    locales._read.cache_clear()
+    monkeypatch.setattr(yaml, "load", lambda *a, **k: (_ for _ in ()).throw(AssertionError("parsed again")))
+    for (lang, name), data in first.items():
+        assert locales._read(lang, name) == data, (lang, name)
+
+
+def test_a_changed_catalogue_is_read_again(catalogues):
+    """A kept copy stands for its file while the file's size and modification time are those it
+    was read with: an edit (a longer text; the same size, a new time) is read again, a copy that
+    cannot be unpickled is parsed over, and nothing is kept where bytecode is not written."""
+    import os
+    import sys
+    path = catalogues / "en" / "cam.yaml"
+    base = locales._read("en", "cam")
+    kept = next((catalogues / "en" / "__pycache__").glob("cam.*.pickle"))
+    text = path.read_text(encoding="utf-8")
+    path.write_text(text + "\nzz_added: [1]\n", encoding="utf-8")              # longer
+    locales._read.cache_clear()
+    assert locales._read("en", "cam") == {**base, "zz_added": [1]}
+    path.write_text(text + "\nzz_added: [2]\n", encoding="utf-8")            # the same size
+    st = path.stat()
+    os.utime(path, ns=(st.st_atime_ns, st.st_mtime_ns + 1_000_000))
+    locales._read.cache_clear()
+    assert locales._read("en", "cam")["zz_added"] == [2]
+    kept.write_bytes(b"not a pickle")
+    locales._read.cache_clear()
+    assert locales._read("en", "cam")["zz_added"] == [2]
+    assert kept.read_bytes() != b"not a pickle"                                 # kept whole again
+    sys.dont_write_bytecode = True              # (the fixture's monkeypatch restores it)
+    assert locales._read("uk", "cam") and not list((catalogues / "uk" / "__pycache__").glob("cam.*"))
+    assert not [p for p in catalogues.rglob("*.tmp")]
+
+
 def _split():
     import importlib.util
     spec = importlib.util.spec_from_file_location("split_catalogue", ROOT / "tools" / "split_catalogue.py")
