@@ -354,22 +354,26 @@ def lookup(results: dict, path: str) -> Any:
 def leaf_paths(results: dict) -> list[tuple[str, Any]]:
     """Every path to a number, bool or string in results (position lists by [index])."""
     out: list[tuple[str, Any]] = []
-
-    def walk(o, p):
-        if type(o).__module__ == "numpy" and not isinstance(o, (list, dict)):
-            o = o.item()             # a numpy scalar as the Python number it is (printed as such)
-        if isinstance(o, dict):
-            for k, v in o.items():
-                walk(v, f"{p}.{k}" if p else str(k))
-        elif isinstance(o, (list, LazyEntries)):
-            by_index = bool(o) and all(isinstance(e, dict) and "index" in e for e in o)
-            for i, v in enumerate(o):
-                walk(v, f"{p}[{v['index'] if by_index else i}]")
-        elif o is None or isinstance(o, (bool, int, float, str)):
-            if o is not None:
-                out.append((p, o))
-    walk(results, "")
+    _leaves(results, "", out)
     return out
+
+
+def _leaves(o, p: str, out: list) -> None:
+    """:func:`leaf_paths` of ``o`` at path ``p``, appended to ``out``.  (A function of the
+    module, not one nested in leaf_paths: a nested one that calls itself is a reference cycle,
+    which kept the ~10^4 paths of a variant alive until the cycle collector came.)"""
+    if type(o).__module__ == "numpy" and not isinstance(o, (list, dict)):
+        o = o.item()             # a numpy scalar as the Python number it is (printed as such)
+    if isinstance(o, dict):
+        for k, v in o.items():
+            _leaves(v, f"{p}.{k}" if p else str(k), out)
+    elif isinstance(o, (list, LazyEntries)):
+        by_index = bool(o) and all(isinstance(e, dict) and "index" in e for e in o)
+        for i, v in enumerate(o):
+            _leaves(v, f"{p}[{v['index'] if by_index else i}]", out)
+    elif o is None or isinstance(o, (bool, int, float, str)):
+        if o is not None:
+            out.append((p, o))
 
 
 def did_you_mean(path: str, results: dict, leaves: list[str] | None = None) -> str:

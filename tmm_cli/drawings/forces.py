@@ -154,6 +154,29 @@ def _covers(a, F, segs, tol: float) -> bool:
     return False
 
 
+def _apart_search(order: list, at: tuple, segs: list, rest: list, Fs: list, loads: set, tol: float,
+                  steps: list) -> list | None:
+    """:func:`apart_order`'s search, depth first: ``order`` extended by the forces of ``rest``
+    (loads first) so that no side lies along one drawn before (``segs``, from the point ``at``);
+    None where none does or after ``steps`` = [steps taken, limit].  (A function of the module,
+    not one nested in apart_order: a nested one that calls itself is a reference cycle.)"""
+    if not rest:
+        return order
+    steps[0] += 1
+    if steps[0] > steps[1]:
+        return None
+    pool = [i for i in rest if i in loads] or rest          # loads first
+    for i in pool:
+        F = Fs[i]
+        if _covers(at, F, segs, tol):
+            continue
+        got = _apart_search(order + [i], (at[0] + F[0], at[1] + F[1]), segs + [(at, F)], [j for j in rest if j != i],
+                            Fs, loads, tol, steps)
+        if got is not None:
+            return got
+    return None
+
+
 def apart_order(vecs, rel_tol: float = 0.01, limit: int = 4000) -> list:
     """The polygon's vectors [(name, F, kind)] in an order in which no side lies along another
     (two parallel forces one after the other the other way round -- a link's weight and its
@@ -169,25 +192,7 @@ def apart_order(vecs, rel_tol: float = 0.01, limit: int = 4000) -> list:
     tol = rel_tol * max(math.hypot(*F) for F in Fs)
     loads = [i for i in range(n) if vecs[i][2] != "reaction"]
     reactions = [i for i in range(n) if vecs[i][2] == "reaction"]
-    steps = [0]
-
-    def search(order, at, segs, rest):
-        if not rest:
-            return order
-        steps[0] += 1
-        if steps[0] > limit:
-            return None
-        pool = [i for i in rest if i in loads] or rest          # loads first
-        for i in pool:
-            F = Fs[i]
-            if _covers(at, F, segs, tol):
-                continue
-            got = search(order + [i], (at[0] + F[0], at[1] + F[1]), segs + [(at, F)], [j for j in rest if j != i])
-            if got is not None:
-                return got
-        return None
-
-    got = search([], (0.0, 0.0), [], loads + reactions)
+    got = _apart_search([], (0.0, 0.0), [], loads + reactions, Fs, set(loads), tol, [0, limit])
     if got is not None:
         return [vecs[i] for i in got]
     # no such order: the loads, then the reactions, each by their direction (forces in one

@@ -186,20 +186,22 @@ def _longest_cycle(nodes: list[int], edges: list[Joint]) -> int:
     for k, j in enumerate(edges):
         adj[j.a].append((j.b, k))
         adj[j.b].append((j.a, k))
+    return max((_cycle_through(adj, s, s, {s}, frozenset(), 0) for s in nodes), default=0)
+
+
+def _cycle_through(adj: dict, start: int, v: int, used_nodes: set, used_edges: frozenset, length: int) -> int:
+    """The longest simple cycle back to ``start`` that goes on from ``v`` (reached by ``length``
+    edges ``used_edges`` through ``used_nodes``) over nodes above ``start`` (each cycle found
+    once, from its least node); 0 if none.  (A function of the module, not one nested in
+    :func:`_longest_cycle`: a nested one that calls itself is a reference cycle.)"""
     best = 0
-
-    def dfs(start, v, used_nodes, used_edges, length):
-        nonlocal best
-        for w, k in adj[v]:
-            if k in used_edges:
-                continue
-            if w == start and length >= 1:
-                best = max(best, length + 1)
-            elif w not in used_nodes and w > start:
-                dfs(start, w, used_nodes | {w}, used_edges | {k}, length + 1)
-
-    for s in nodes:
-        dfs(s, s, {s}, frozenset(), 0)
+    for w, k in adj[v]:
+        if k in used_edges:
+            continue
+        if w == start and length >= 1:
+            best = max(best, length + 1)
+        elif w not in used_nodes and w > start:
+            best = max(best, _cycle_through(adj, start, w, used_nodes | {w}, used_edges | {k}, length + 1))
     return best
 
 

@@ -57,6 +57,25 @@ _TAG = re.compile(r"""<(?:([a-zA-Z][^\s/>]*)((?:[^>"'/]++|"[^"]*+"|'[^']*+'|/(?!
 _ATTR = re.compile(r"""([^\s"'>/=]+)(\s*=\s*(?:"([^"]*)"|'([^']*)'|([^\s>]+)))?""")
 
 
+def _table_parts(n: _Node, head: bool, rows: list) -> list[_Node]:
+    """The rows of table ``n`` appended to ``rows`` in order, as (in the head, its td/th cells),
+    through its thead, tbody and tfoot; its captions returned.  (A function of the module, not
+    one nested in the writer's method: a nested one that calls itself is a reference cycle.)"""
+    captions = []
+    for c in n:
+        if not isinstance(c, _Node):
+            continue
+        if c.tag == "caption":
+            captions.append(c)
+        elif c.tag == "thead":
+            captions += _table_parts(c, True, rows)
+        elif c.tag in ("tbody", "tfoot"):
+            captions += _table_parts(c, False, rows)
+        elif c.tag == "tr":
+            rows.append((head, [k for k in c if isinstance(k, _Node) and k.tag in ("td", "th")]))
+    return captions
+
+
 def _read(html: str) -> _Node:
     """The element tree of the report's HTML (which tmm's templates write: well formed, no
     <script>/<style> left, no <svg>), read by two regular expressions: element names and
@@ -715,22 +734,8 @@ class _Writer:
         compact = "compact" in node.classes
         kv = "kv" in node.classes
         wide = "wide" in node.classes or self.in_pair > 0
-
-        def collect(n, head):
-            for c in n:
-                if not isinstance(c, _Node):
-                    continue
-                if c.tag == "caption":
-                    nonlocal caption
-                    caption = self.inline(c).strip()
-                elif c.tag == "thead":
-                    collect(c, True)
-                elif c.tag in ("tbody", "tfoot"):
-                    collect(c, False)
-                elif c.tag == "tr":
-                    rows.append((head, [k for k in c if isinstance(k, _Node) and k.tag in ("td", "th")]))
-
-        collect(node, False)
+        for c in _table_parts(node, False, rows):
+            caption = self.inline(c).strip()
         # per row: its cells' (node, colspan, rowspan, stripped text, markup of a cell that is
         # one text, else None), that of one text remembered (numbers recur from table to table)
         info = []
