@@ -27,7 +27,8 @@ changes sign anywhere between neighbours the dyad passes a dead point: the least
 zero (a steep one can hide between points that are not the grid's least). Else at every least
 of its magnitude between neighbours that could be the least, the zero of its exact derivative
 (the kinematic analogues of velocity, d/dphi): grids of 129 points nested in the bracket each
-finds, to 2e-9 deg, then the line between its ends (a least near a dead point is sharp).
+finds, to 2e-9 deg, then the line between its ends (a least near a dead point is sharp); the
+nested grids read the solver's own values (``solve_raw``), smooth through a singular position.
 
 References
 ----------
