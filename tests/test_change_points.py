@@ -140,6 +140,26 @@ def test_grashof_limit_change_point_at_the_extreme(limit):
         assert ks[e["index"]]["near_singular"] is True
 
 
+def test_extreme_positions_at_change_points_are_the_change_points(tmp_path):
+    """A parallelogram four-bar at the Grashof limit (crank = rocker 0.1, coupler = ground 0.3) run
+    with the rocker as output: the rocker turns back at the change points 0 and 180 deg (the closure
+    keeps its branch, the linkage folds flat there).  Its extreme positions are those change points
+    exactly, so K = 1 and the working stroke is not called the quick one; the search's root was
+    1.1e-7 deg off 180 (the analogue's sign is round-off there), K = 0.9999999987 and a warning
+    that the working stroke is fast."""
+    text = ("schema: tmm/1\nmechanism: {ground: {O: [0, 0], O1: [0.3, 0]}, links: {crank: {points: [O, A], "
+            "length: 0.1}, rod: {points: [A, B], length: 0.3}, rocker: {points: [O1, B], length: 0.1}}, "
+            "assembly: {B: [0.3, 0.1]}}\ndrive: {link: crank, speed: 60 rpm}\npositions: {output: rocker}\n")
+    res = _run(tmp_path, text)
+    changes = sorted(m["params"]["phi"] for m in res["messages"] if m["code"] == "kinematics.change_point")
+    pos = res["positions"]
+    assert changes == [0.0, 180.0] and sorted(pos["extreme"]) == changes
+    assert pos["K"] == 1.0 and pos["theta"] == 0.0
+    assert "positions.quick_working" not in [m["code"] for m in res["messages"]]
+    (row,) = res["transmission"]
+    assert row["gamma_min"] == 0.0 and row["phi"] in changes
+
+
 def test_a_change_point_at_the_extreme_position_is_named_once(tmp_path):
     """Grashof limit a + b = c + d (0.1 + 0.3 = 0.25 + 0.15): coupler and rocker collinear at
     phi = 0, also the rocker's extreme position, so the course grid starts at phi0 ~ 5e-7 deg
@@ -371,18 +391,21 @@ def test_a_position_placed_at_the_change_point_is_said_to_be_one(tmp_path):
 
 
 def test_a_change_points_warnings_are_one_head_with_its_items(tmp_path, limit_at_zero):
-    """The Grashof-limit four-bar with position 6 on the change point (phi = 180 deg) and the rocker's
-    extreme position 12 there too gives nine warnings for one angle in results.json (kept there,
-    each with its code); the terminal and the report show them as the change point's warning with
-    four short items under it -- the continuity limits, the values without one, the dead point and
-    the kinetostatics of both positions in one item -- and leave out the group's list of singular
-    angles (180 only: said by the head)."""
-    from tmm_cli.messages import grouped, render_grouped
+    """The Grashof-limit four-bar with position 6 on the change point (phi = 180 deg), which is the
+    rocker's extreme position too (one position: the extreme found at the change point is the
+    change point, not a second position 1e-7 deg from it, as it was), gives seven warnings in
+    results.json (kept there, each with its code); the terminal and the report show them as the
+    change point's warning with four short items under it -- the continuity limits, the values
+    without one, the dead point and the kinetostatics -- and leave out the group's list of
+    singular angles (180 only: said by the head).  The kinetostatics of several positions at one
+    change point are one item."""
+    from tmm_cli.messages import Message, grouped, render_grouped
     res = limit_at_zero
+    pos = res["positions"]
+    assert pos["extreme"][1] == 180.0 and pos["extreme_index"] == 6 and pos["kinds"] == ["grid"] * 12
     codes = [m["code"] for m in res["messages"]]
     assert codes == ["positions.quick_working", "kinematics.singular_continuity", "kinematics.change_point",
-                     "kinematics.by_continuity", "kinematics.no_limit", "kinematics.by_continuity",
-                     "kinematics.no_limit", "kinematics.transmission_dead", "kinetostatics.no_kinematics",
+                     "kinematics.by_continuity", "kinematics.no_limit", "kinematics.transmission_dead",
                      "kinetostatics.no_kinematics"]
     assert len(res["warnings"]) == len(codes)
     g = grouped(res["messages"])
@@ -391,7 +414,7 @@ def test_a_change_points_warnings_are_one_head_with_its_items(tmp_path, limit_at
         ("kinematics.change_point", ["kinematics.by_continuity", "kinematics.no_limit",
                                      "kinematics.transmission_dead", "kinetostatics.no_kinematics"])]
     kin = g[1][1][3]
-    assert kin["params"]["position"] == [6, 12] and kin["params"]["balancing"] == "moment"
+    assert kin["params"]["position"] in (6, [6]) and kin["params"]["balancing"] == "moment"
     en = render_grouped(res, "en")
     assert en[1][0] == res["warnings"][2]                         # the head as results.json has it
     assert en[1][1] == [
@@ -401,12 +424,21 @@ def test_a_change_points_warnings_are_one_head_with_its_items(tmp_path, limit_at
         "from either side differ) and are null",
         "a dead point: the transmission angle is 0 (at joint B) and the forces in the group's joints "
         "have no bound; a lever mechanism is designed with a transmission angle of at least 40 deg",
-        "kinetostatics, positions 6, 12: no balancing moment or reactions"]
+        "kinetostatics, position 6: no balancing moment or reactions"]
     ru = render_grouped(res, "ru")[1][1]
-    assert ru[3] == "кинетостатика, положения 6; 12: конечного уравновешивающего момента нет, реакции не выводятся"
+    assert ru[3] == "кинетостатика, положение 6: конечного уравновешивающего момента нет, реакции не выводятся"
     assert render_grouped(res, "uk")[1][1][2].startswith("мертве положення: кут передачі дорівнює нулю (у шарнірі B)")
     one = _run(tmp_path, LIMIT)                       # the extreme position alone: its position, singular
     assert render_grouped(one, "en")[1][1][3] == "kinetostatics, position 12: no balancing moment or reactions"
+    # two positions at the change point: their kinetostatics one item
+    head = Message("kinematics.change_point", phi=180.0, group="II(2,3)", links=["coupler", "rocker"], near=1.0,
+                   blowup=10.0).to_dict()
+    kins = [Message("kinetostatics.no_kinematics", position=k, phi=180.0, link="crank", balancing="moment").to_dict()
+            for k in (6, 12)]
+    both = {"messages": [head] + kins, "warnings": [head["text"]] + [k["text"] for k in kins]}
+    assert render_grouped(both, "en")[0][1] == ["kinetostatics, positions 6, 12: no balancing moment or reactions"]
+    assert render_grouped(both, "ru")[0][1] == [
+        "кинетостатика, положения 6; 12: конечного уравновешивающего момента нет, реакции не выводятся"]
 
 
 def test_items_go_to_the_head_of_their_angle_and_group():
@@ -507,7 +539,7 @@ def test_the_reports_warnings_list_a_change_points_items_under_it(tmp_path, limi
     sec = html[html.index('id="warnings"'):]
     items = _re.findall(r"<li>([^<]*)<ul>(.*?)</ul></li>", sec, _re.S)
     assert len(items) == 1 and items[0][0].startswith("\u043e\u0441\u043e\u0431\u043b\u0438\u0432\u0435")
-    assert items[0][1].count("<li>") == 4 and "\u043f\u043e\u043b\u043e\u0436\u0435\u043d\u043d\u044f 6; 12" in items[0][1]
+    assert items[0][1].count("<li>") == 4 and "\u043f\u043e\u043b\u043e\u0436\u0435\u043d\u043d\u044f 6:" in items[0][1]
 
 
 def test_warnings_without_a_change_point_are_shown_without_grouping(monkeypatch):

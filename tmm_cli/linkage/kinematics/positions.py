@@ -36,6 +36,10 @@ from .solver import solve_raw
 
 SCAN_STEP = 0.5       # deg
 XTOL = 1e-11          # deg
+# an extreme position found this close to a change point (deg) is the change point: the output
+# reverses there by the jump of its branch, and within ~1e-6 deg of it the analogue's sign is
+# round-off (a Grashof-limit four-bar's rocker: an extreme 1.1e-7 deg off, K = 0.9999999987)
+AT_CHANGE_POINT = 1e-5
 
 
 def _output_coordinate(mech: Mechanism, name: str):
@@ -173,7 +177,7 @@ def link_stroke(mech: Mechanism, name: str, working: str, sign: float) -> Stroke
     docs/methods.md §2.
     """
     kind, f = _output_coordinate(mech, name)
-    ext = _extremes(f, 360.0 if kind == "rocker" else None)
+    ext = _extremes(f, 360.0 if kind == "rocker" else None, changes=_change_angles(mech))
     if len(ext) < 2:
         return None
     start, end, wsa = _working_stroke(ext, working, sign)
@@ -276,9 +280,11 @@ class PositionsResult:
                 **({} if self.over == "cycle" else {"over": self.over, "span": float(self.span)})}
 
 
-def _extremes(f, period=None, scan: dict | None = None) -> list[tuple[float, float]]:
+def _extremes(f, period=None, scan: dict | None = None, changes=()) -> list[tuple[float, float]]:
     """(phi, s) of every root of ds/dphi over [0, 360); ``period`` (a rocker: 360 deg)
-    makes s continuous with the scan; ``scan`` (a dict) receives the scan's ``ds``."""
+    makes s continuous with the scan; ``scan`` (a dict) receives the scan's ``ds``; a root
+    within AT_CHANGE_POINT of one of the ``changes`` (the change points' crank angles, deg)
+    is that change point."""
     grid = np.arange(0.0, 360.0, SCAN_STEP)
     s, ds = f(grid)
     if scan is not None:
@@ -298,6 +304,10 @@ def _extremes(f, period=None, scan: dict | None = None) -> list[tuple[float, flo
         roots = _roots_in_brackets(f, np.array(lo), np.array(hi), ds_of=ds, grid=grid)
         out += [(k, float(r) % 360.0) for k, r in zip(at, roots)]
     out = [r for _, r in sorted(out, key=lambda kr: kr[0])]
+    for i, r in enumerate(out):
+        for c in changes:
+            if abs(((r - c) + 180.0) % 360.0 - 180.0) <= AT_CHANGE_POINT:
+                out[i] = float(c) % 360.0
     res = []
     for r in out:
         if all(abs(((r - q) + 180) % 360 - 180) > 1e-7 for q, _ in res):
@@ -311,6 +321,14 @@ def _extremes(f, period=None, scan: dict | None = None) -> list[tuple[float, flo
                 v += period * round((near - v) / period)
             item[1] = v
     return [(r, v) for r, v in res]
+
+
+def _change_angles(mech: Mechanism) -> list[float]:
+    """The crank angles (deg) of the linkage's change points (:mod:`.changepoints`, cached on
+    its solver)."""
+    from .changepoints import change_points
+    from .solver import get_solver
+    return [float(c.phi) for c in change_points(get_solver(mech))]
 
 
 REST = 1e-9             # |ds/dphi| below this share of its largest: the output does not move
@@ -423,7 +441,7 @@ def find_positions(mech: Mechanism, positions_section, sign: float, extra_added=
     if crank_range is not None:
         return _over_range(mech, sec, sign, crank_range, out_name, kind, f).with_added(extra_added)
     scan: dict = {}
-    ext = _extremes(f, 360.0 if kind == "rocker" else None, scan)
+    ext = _extremes(f, 360.0 if kind == "rocker" else None, scan, _change_angles(mech))
     still = rests(scan["ds"])
     extreme = wsa = isa = K = theta = H = s_ext = None
     if len(ext) >= 2:
