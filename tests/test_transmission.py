@@ -158,6 +158,17 @@ def test_dead_point_is_zero_at_the_change_point():
     assert len(m["text"]) < 300 and m["params"]["phi"] == row["phi"]
 
 
+def test_a_dead_point_where_the_sine_touches_zero_is_zero():
+    """A slider-crank whose rod equals its crank: at 90 deg the rod folds onto the crank, square to
+    the guide (gamma = 0 exactly), and sin gamma touches 0 there without changing sign -- the
+    least was its round-off, 3.5e-15 deg, printed so in the run's summary; at or below DEAD a
+    least is a dead point, and 0."""
+    res = run(slider_crank(0.1, 0.1, [0, 0], 0, [0.2, 0]))
+    (row,) = res["transmission"]
+    assert row["gamma_min"] == 0.0 and row["phi"] in (90.0, 270.0)
+    assert "kinematics.transmission_dead" in codes(res)
+
+
 def test_warning_below_20_deg_names_the_group_and_angle():
     """A slider-crank with l = 1.05 r: gamma_min = arccos(1/1.05) = 17.75 deg, warned with the
     group, the angle and 1/sin gamma; none at 21 deg."""

@@ -174,7 +174,9 @@ def least(mech: "Mechanism", ds: list[DyadAngle], start: float = 0.0, span: floa
     """(gamma_min, deg; the crank angle where it is, deg in [0, 360)) of each dyad of ``ds``
     over the crank angles ``start`` .. ``start + span`` (deg; ``span`` signed, as a function
     generator's input range: a cw range is the same angles read from its other end; a full
-    turn by default)."""
+    turn by default).  A least at or below :data:`DEAD` is a dead point and is 0 (a sine that
+    touches 0 reads ~1e-16 where it does: a slider-crank whose rod equals its crank gave
+    3.5e-15 deg)."""
     from .kinematics import solve, solve_raw
 
     if span < 0.0:
@@ -240,7 +242,8 @@ def least(mech: "Mechanism", ds: list[DyadAngle], start: float = 0.0, span: floa
                 v = abs(float(sine(d, solve(mech, np.array([x])))[0][0]))
                 if v < best:
                     best_x, best = x, v
-        out.append((math.degrees(math.asin(min(1.0, best))), _turn(best_x)))
+        g = math.degrees(math.asin(min(1.0, best)))
+        out.append((0.0 if g <= DEAD else g, _turn(best_x)))       # a dead point: 0, not its round-off
     return out
 
 
