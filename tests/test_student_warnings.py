@@ -118,6 +118,12 @@ positions: {count: 12, zero: 0, output: slider}
     (m,) = [w for w in res["messages"] if w["code"] == "positions.output_rests"]
     (a, b), = m["params"]["intervals"]
     assert abs(a - 90) <= 0.5 + 1e-9 and abs(b - 270) <= 0.5 + 1e-9
+    # the extreme taken in the rest is where the crank brings the slider there, the change point
+    # (90 deg ccw, 270 cw), not one of the ~200 roots of the analogue's round-off inside it (98.09 deg)
+    assert m["params"]["extreme"] == res["positions"]["extreme"] == [90.0, 0.0]
+    f.write_text(text.replace("ROD", "0.1").replace("100 rpm}", "100 rpm, direction: cw}"), encoding="utf-8")
+    cw = tmm_cli.run(tmm_cli.load_task(f))
+    assert cw["positions"]["extreme"] == [270.0, 0.0]
     f.write_text(text.replace("ROD", "0.2"), encoding="utf-8")
     res = tmm_cli.run(tmm_cli.load_task(f))
     assert not [w for w in res["messages"] if w["code"] == "positions.output_rests"]

@@ -334,6 +334,26 @@ def _change_angles(mech: Mechanism) -> list[float]:
 REST = 1e-9             # |ds/dphi| below this share of its largest: the output does not move
 
 
+def _one_per_rest(ext: list[tuple[float, float]], still: list[list[float]], changes: list[float], sign: float,
+                  f, period=None) -> list[tuple[float, float]]:
+    """The extremes ``ext`` (:func:`_extremes`) with the roots inside each interval where the
+    output stands still (``still``: :func:`rests`) -- the round-off of an analogue that is 0
+    there, a different set on every machine -- replaced by one: where the crank brings the
+    output to its rest (the interval's start for a ccw crank, its end for a cw one), at the
+    change point there when one lies within a scan step of it (a slider-crank whose rod equals
+    its crank: its slider reaches O at 90 deg and stays to 270)."""
+    def inside(x, a, b):
+        return (x - a) % 360.0 <= (b - a) % 360.0 + 1e-9
+    out = [(x, v) for x, v in ext if not any(inside(x, a - 0.5 * SCAN_STEP, b + 0.5 * SCAN_STEP) for a, b in still)]
+    for a, b in still:
+        edge = a if sign > 0 else b
+        near = [c for c in changes if abs(((c - edge) + 180.0) % 360.0 - 180.0) <= SCAN_STEP + 1e-9]
+        x = float(near[0]) % 360.0 if near else float(edge) % 360.0
+        v = float(f(np.array([x]))[0][0])
+        out.append((x, v))
+    return sorted(out)
+
+
 def rests(ds: np.ndarray) -> list[list[float]]:
     """The crank-angle intervals [from, to] (deg, on the SCAN_STEP scan ``ds``) over which the
     output stands still -- ds/dphi below REST of its largest over 1 deg or more, as a slider-crank
@@ -441,8 +461,11 @@ def find_positions(mech: Mechanism, positions_section, sign: float, extra_added=
     if crank_range is not None:
         return _over_range(mech, sec, sign, crank_range, out_name, kind, f).with_added(extra_added)
     scan: dict = {}
-    ext = _extremes(f, 360.0 if kind == "rocker" else None, scan, _change_angles(mech))
+    changes = _change_angles(mech)
+    ext = _extremes(f, 360.0 if kind == "rocker" else None, scan, changes)
     still = rests(scan["ds"])
+    if still:
+        ext = _one_per_rest(ext, still, changes, sign, f, 360.0 if kind == "rocker" else None)
     extreme = wsa = isa = K = theta = H = s_ext = None
     if len(ext) >= 2:
         start, end, wsa = _working_stroke(ext, sec.working, sign)
