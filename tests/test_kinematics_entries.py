@@ -32,6 +32,13 @@ def _fin(v) -> float:
     return v + 0.0 if math.isfinite(v) else 0.0
 
 
+def _deg360(d: float) -> float:
+    """A crank angle (deg) as the entries give it: in [0, 360), a hair below 360 as 0 -- the
+    number given, not taken through radians and back (30 read 29.999999999999996)."""
+    d = d % 360.0
+    return 0.0 if d >= 360.0 - 1e-11 else d
+
+
 def _at(a, i: int) -> float:
     """The speed (or acceleration) of the crank at row i: a scalar, one value or N."""
     a = np.asarray(a, float).reshape(-1)
@@ -56,7 +63,7 @@ def reference_entry(kin, i: int, index: int) -> dict:
         links[lk] = {"angle": _fin(angle_deg(kin.angle[lk][i])), "omega": _fin(a1 * w),
                      "epsilon": _fin(a2 * w ** 2 + a1 * e), "i": _fin(a1), "iq2": _fin(a2)}
     near = kin.near is not None and bool(kin.near[i])
-    ent = {"index": index, "phi": _fin(angle_deg(math.radians(kin.phi[i]))), "points": points, "links": links,
+    ent = {"index": index, "phi": _fin(_deg360(float(kin.phi[i]))), "points": points, "links": links,
            "instant_centres": _centres(kin, i, w, near)}
     if kin.singular is not None and kin.singular[i]:
         ent["singular"] = True

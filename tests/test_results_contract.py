@@ -66,3 +66,25 @@ def test_every_spec_key_present():
         assert set(e["inertia"]) >= {"rod", "slider"}
         assert 0 < e["efficiency"] <= 1
     assert res["planetary"]["ratio_error"] == (res["planetary"]["ratio"] - 5.0) / 5.0
+
+
+def test_each_positions_crank_angle_is_the_same_number_everywhere(shared_once):
+    """The kinematics and kinetostatics entries carry each position's crank angle as
+    ``positions.phi`` has it, to the bit: the kinematics entries took it through radians and
+    back (a course grid from 0: 29.999999999999996, 119.99999999999999 in results.json and
+    kinematics.csv beside positions.phi's 30.0, 120.0)."""
+    import pdf_extent
+    tasks = sorted(p.stem for p in (ROOT / "tasks").glob("*.yaml"))
+    seen = 0
+    for name in tasks:
+        _, res = pdf_extent.results(shared_once, name)
+        if not res.get("kinematics"):
+            continue
+        phi = res["positions"]["phi"]
+        for section in ("kinematics", "kinetostatics"):
+            got = [e["phi"] for e in res.get(section) or []]
+            assert got == [phi[e["index"]] for e in res.get(section) or []], (name, section, got[:4], phi[:4])
+        seen += 1
+    assert seen >= 15
+    _, res = pdf_extent.results(shared_once, "static_gravity")          # a grid from 0 deg
+    assert [e["phi"] for e in res["kinematics"]][:5] == [0.0, 30.0, 60.0, 90.0, 120.0]

@@ -35,7 +35,12 @@ NULLED = {"v": ("vx", "vy", "v", "vqx", "vqy", "vq"), "a": ("ax", "ay", "a", "aq
 
 def angle_deg(rad) -> np.ndarray:
     """Angle in degrees in [0, 360)."""
-    d = np.mod(np.degrees(np.asarray(rad, float)), 360.0)
+    return deg360(np.degrees(np.asarray(rad, float)))
+
+
+def deg360(deg) -> np.ndarray:
+    """An angle in degrees taken into [0, 360) (a hair below 360: 0)."""
+    d = np.mod(np.asarray(deg, float), 360.0)
     return np.where(d >= 360.0 - 1e-11, 0.0, d)
 
 
@@ -68,7 +73,7 @@ def _table(kin, sl: slice, index: list[int]) -> tuple:
     k = len(idx)
     F = np.empty((1 + len(PKEYS) * len(kin.points) + len(LKEYS) * len(kin.links) + 2 * len(pairs(len(kin.links))),
                   k))
-    F[0] = angle_deg(np.radians(kin.phi[sl]))
+    F[0] = deg360(kin.phi[sl])            # the crank angles as given (through radians, 30 read 29.999999999999996)
     w, e = kin._w(), kin._e()
     w = w if w.ndim == 0 or w.shape[0] == 1 else w[sl]
     e = e if e.ndim == 0 or e.shape[0] == 1 else e[sl]
