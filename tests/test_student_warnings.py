@@ -124,6 +124,10 @@ positions: {count: 12, zero: 0, output: slider}
     f.write_text(text.replace("ROD", "0.1").replace("100 rpm}", "100 rpm, direction: cw}"), encoding="utf-8")
     cw = tmm_cli.run(tmm_cli.load_task(f))
     assert cw["positions"]["extreme"] == [270.0, 0.0]
+    # the same for another link's stroke (a stroke-dependent load's): its extremes as the output's
+    from tmm_cli.linkage.kinematics.positions import link_stroke
+    from tmm_cli.linkage.mechanism import build_mechanism
+    assert link_stroke(build_mechanism(tmm_cli.load_task(f)), "slider", "forward", -1.0).extreme == [270.0, 0.0]
     f.write_text(text.replace("ROD", "0.2"), encoding="utf-8")
     res = tmm_cli.run(tmm_cli.load_task(f))
     assert not [w for w in res["messages"] if w["code"] == "positions.output_rests"]

@@ -177,7 +177,13 @@ def link_stroke(mech: Mechanism, name: str, working: str, sign: float) -> Stroke
     docs/methods.md §2.
     """
     kind, f = _output_coordinate(mech, name)
-    ext = _extremes(f, 360.0 if kind == "rocker" else None, changes=_change_angles(mech))
+    period = 360.0 if kind == "rocker" else None
+    scan: dict = {}
+    changes = _change_angles(mech)
+    ext = _extremes(f, period, scan, changes)
+    still = rests(scan["ds"])
+    if still:
+        ext = _one_per_rest(ext, still, changes, sign, f, period)
     if len(ext) < 2:
         return None
     start, end, wsa = _working_stroke(ext, working, sign)
@@ -341,15 +347,19 @@ def _one_per_rest(ext: list[tuple[float, float]], still: list[list[float]], chan
     there, a different set on every machine -- replaced by one: where the crank brings the
     output to its rest (the interval's start for a ccw crank, its end for a cw one), at the
     change point there when one lies within a scan step of it (a slider-crank whose rod equals
-    its crank: its slider reaches O at 90 deg and stays to 270)."""
-    def inside(x, a, b):
-        return (x - a) % 360.0 <= (b - a) % 360.0 + 1e-9
-    out = [(x, v) for x, v in ext if not any(inside(x, a - 0.5 * SCAN_STEP, b + 0.5 * SCAN_STEP) for a, b in still)]
+    its crank: its slider reaches O at 90 deg and stays to 270).  ``period`` (a rocker: 360
+    deg): its value continuous with those of the roots it replaces."""
+    out = list(ext)
     for a, b in still:
+        lo, span = a - 0.5 * SCAN_STEP, (b - a) % 360.0 + SCAN_STEP
+        inside = [(x, v) for x, v in out if (x - lo) % 360.0 <= span + 1e-9]
+        out = [xv for xv in out if xv not in inside]
         edge = a if sign > 0 else b
         near = [c for c in changes if abs(((c - edge) + 180.0) % 360.0 - 180.0) <= SCAN_STEP + 1e-9]
         x = float(near[0]) % 360.0 if near else float(edge) % 360.0
         v = float(f(np.array([x]))[0][0])
+        if period and inside:
+            v += period * round((inside[0][1] - v) / period)
         out.append((x, v))
     return sorted(out)
 
