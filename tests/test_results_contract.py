@@ -88,3 +88,25 @@ def test_each_positions_crank_angle_is_the_same_number_everywhere(shared_once):
     assert seen >= 15
     _, res = pdf_extent.results(shared_once, "static_gravity")          # a grid from 0 deg
     assert [e["phi"] for e in res["kinematics"]][:5] == [0.0, 30.0, 60.0, 90.0, 120.0]
+
+
+def test_the_cam_constructions_crank_angles_are_the_phases_degrees(shared_once):
+    """The s - ds/dphi construction's points are labelled with the cam angles the phases give in
+    degrees -- 0, 1, ..., the rise; the return's start, ... -- exactly, as the task's numbers add
+    up, not as degrees of radians (149.99999999999997 for 150)."""
+    import pdf_extent
+    from tmm_cli.yamlload import load_yaml
+    seen = 0
+    for path in sorted((ROOT / "tasks").glob("cam_*.yaml")):
+        _, res = pdf_extent.results(shared_once, path.stem)
+        con = res["cam"]["construction"]
+        if con is None:
+            continue
+        ph = load_yaml(path)[0]["cam"]["phases"]
+        rise, far, ret = (float(ph[k]) for k in ("rise", "far_dwell", "return"))     # plain numbers there
+        n_r, n_t = len(con["phi_rise"]) - 1, len(con["phi_return"]) - 1
+        assert con["phi_rise"] == [rise * k / n_r for k in range(n_r + 1)], path.stem
+        assert con["phi_return"] == [rise + far + ret * k / n_t for k in range(n_t + 1)], path.stem
+        assert con["phi_rise"][-1] == rise and con["phi_return"][-1] == rise + far + ret
+        seen += 1
+    assert seen >= 4

@@ -38,6 +38,10 @@ class Motion:
     near_dwell: float
     law_rise: Law
     law_return: Law
+    # the phase angles as the task gives them, deg (rise, far dwell, return, near dwell): the
+    # crank angles told in degrees are sums of these, not degrees of the radians (150, not
+    # 149.99999999999997); None: from the radians
+    phases_deg: tuple[float, float, float, float] | None = None
 
     @classmethod
     def from_spec(cls, h: float, phases: PhasesSpec, laws: LawsSpec) -> "Motion":
@@ -61,9 +65,18 @@ class Motion:
         far = math.radians(float(phases.far_dwell))
         ret = math.radians(float(phases.return_))
         near = math.radians(float(phases.near_dwell))
-        return cls(float(h), rise, far, ret, max(near, 0.0), get_law(laws.rise), get_law(laws.return_))
+        deg = (float(phases.rise), float(phases.far_dwell), float(phases.return_), max(float(phases.near_dwell), 0.0))
+        return cls(float(h), rise, far, ret, max(near, 0.0), get_law(laws.rise), get_law(laws.return_), deg)
 
     # ------------------------------------------------------------------ bounds
+    @property
+    def starts_deg(self) -> tuple[float, float, float, float]:
+        """Start angles (deg) of rise, far dwell, return, near dwell: sums of the phases' degrees."""
+        if self.phases_deg is None:
+            return tuple(math.degrees(a) for a in self.starts)
+        r, f, t, _ = self.phases_deg
+        return 0.0, r, r + f, r + f + t
+
     @property
     def starts(self) -> tuple[float, float, float, float]:
         """Start angles (rad) of rise, far dwell, return, near dwell."""
