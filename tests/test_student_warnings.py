@@ -139,3 +139,16 @@ positions: {count: 12, zero: 0, output: slider}
     ds = np.ones(720)
     ds[-4:], ds[:4] = 0.0, 0.0
     assert rests(ds) == [[358.0, 1.5]]
+    # one extreme a rest, where the crank brings the output there (at a change point within a step
+    # of it); the roots of the round-off inside it gone, those outside kept; a rest across 0 and
+    # one over the whole turn
+    from tmm_cli.linkage.kinematics.positions import _one_per_rest
+
+    def f(x):
+        return np.full(len(x), 7.0), np.zeros(len(x))
+    ext = [(10.0, 1.0), (92.3, 0.0), (150.0, 0.0), (300.0, 2.0)]
+    assert _one_per_rest(ext, [[90.5, 269.5]], [90.0, 270.0], 1.0, f) == [(10.0, 1.0), (90.0, 7.0), (300.0, 2.0)]
+    assert _one_per_rest(ext, [[90.5, 269.5]], [], -1.0, f) == [(10.0, 1.0), (269.5, 7.0), (300.0, 2.0)]
+    assert _one_per_rest([(359.2, 0.0), (0.7, 0.0), (10.0, 1.0)], [[358.0, 1.5]], [], 1.0, f) == [(10.0, 1.0),
+                                                                                                 (358.0, 7.0)]
+    assert _one_per_rest(ext, [[0.0, 360.0]], [], 1.0, f) == [(0.0, 7.0)]

@@ -351,7 +351,8 @@ def _one_per_rest(ext: list[tuple[float, float]], still: list[list[float]], chan
     deg): its value continuous with those of the roots it replaces."""
     out = list(ext)
     for a, b in still:
-        lo, span = a - 0.5 * SCAN_STEP, (b - a) % 360.0 + SCAN_STEP
+        lo = a - 0.5 * SCAN_STEP
+        span = (b - a if b - a >= 360.0 else (b - a) % 360.0) + SCAN_STEP      # [0, 360]: the whole turn
         inside = [(x, v) for x, v in out if (x - lo) % 360.0 <= span + 1e-9]
         out = [xv for xv in out if xv not in inside]
         edge = a if sign > 0 else b
