@@ -177,13 +177,7 @@ def link_stroke(mech: Mechanism, name: str, working: str, sign: float) -> Stroke
     docs/methods.md §2.
     """
     kind, f = _output_coordinate(mech, name)
-    period = 360.0 if kind == "rocker" else None
-    scan: dict = {}
-    changes = _change_angles(mech)
-    ext = _extremes(f, period, scan, changes)
-    still = rests(scan["ds"])
-    if still:
-        ext = _one_per_rest(ext, still, changes, sign, f, period)
+    ext, _ = _extremes_and_rests(mech, f, kind, sign)
     if len(ext) < 2:
         return None
     start, end, wsa = _working_stroke(ext, working, sign)
@@ -329,6 +323,20 @@ def _extremes(f, period=None, scan: dict | None = None, changes=()) -> list[tupl
     return [(r, v) for r, v in res]
 
 
+def _extremes_and_rests(mech: Mechanism, f, kind: str, sign: float) -> tuple[list, list]:
+    """(the extremes (phi, s) of the coordinate ``f`` of a link of ``kind`` over a turn, the
+    intervals where it stands still): a root at a change point is the change point, and a rest
+    gives one extreme (:func:`_one_per_rest`)."""
+    period = 360.0 if kind == "rocker" else None
+    scan: dict = {}
+    changes = _change_angles(mech)
+    ext = _extremes(f, period, scan, changes)
+    still = rests(scan["ds"])
+    if still:
+        ext = _one_per_rest(ext, still, changes, sign, f, period)
+    return ext, still
+
+
 def _change_angles(mech: Mechanism) -> list[float]:
     """The crank angles (deg) of the linkage's change points (:mod:`.changepoints`, cached on
     its solver)."""
@@ -471,12 +479,7 @@ def find_positions(mech: Mechanism, positions_section, sign: float, extra_added=
     kind, f = _output_coordinate(mech, out_name)
     if crank_range is not None:
         return _over_range(mech, sec, sign, crank_range, out_name, kind, f).with_added(extra_added)
-    scan: dict = {}
-    changes = _change_angles(mech)
-    ext = _extremes(f, 360.0 if kind == "rocker" else None, scan, changes)
-    still = rests(scan["ds"])
-    if still:
-        ext = _one_per_rest(ext, still, changes, sign, f, 360.0 if kind == "rocker" else None)
+    ext, still = _extremes_and_rests(mech, f, kind, sign)
     extreme = wsa = isa = K = theta = H = s_ext = None
     if len(ext) >= 2:
         start, end, wsa = _working_stroke(ext, sec.working, sign)
