@@ -40,8 +40,8 @@ class Motion:
     law_return: Law
     # the phase angles as the task gives them, deg (rise, far dwell, return, near dwell): the
     # crank angles told in degrees are sums of these, not degrees of the radians (150, not
-    # 149.99999999999997); None: from the radians
-    phases_deg: tuple[float, float, float, float] | None = None
+    # 149.99999999999997)
+    phases_deg: tuple[float, float, float, float]
 
     @classmethod
     def from_spec(cls, h: float, phases: PhasesSpec, laws: LawsSpec) -> "Motion":
@@ -72,8 +72,6 @@ class Motion:
     @property
     def starts_deg(self) -> tuple[float, float, float, float]:
         """Start angles (deg) of rise, far dwell, return, near dwell: sums of the phases' degrees."""
-        if self.phases_deg is None:
-            return tuple(math.degrees(a) for a in self.starts)
         r, f, t, _ = self.phases_deg
         return 0.0, r, r + f, r + f + t
 

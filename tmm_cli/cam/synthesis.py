@@ -318,8 +318,8 @@ def _construction(motion, geom, fams, O, tangents: list[Tangent], scale):
         # the points' crank angles, deg: the phase's start and its n-th parts in degrees (through
         # radians a label read 149.99999999999997)
         k = 0 if ph == RISE else 2
-        span = motion.phases_deg[k] if motion.phases_deg is not None else math.degrees(P)
-        out[f"phi_{name}"] = [float(v) for v in motion.starts_deg[k] + span * np.arange(len(x)) / (len(x) - 1)]
+        out[f"phi_{name}"] = [float(v) for v in motion.starts_deg[k]
+                              + motion.phases_deg[k] * np.arange(len(x)) / (len(x) - 1)]
         pts.append(B - O)
         pts.append(D - O)
     lines = []
