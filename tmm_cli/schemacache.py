@@ -23,12 +23,15 @@ from functools import partial
 from pathlib import Path
 from types import MethodType
 
+from . import kept
+
 # the modules the task model (its fields, types, validators) is defined in
 # (every tmm_cli module `import tmm_cli.task` loads: tests/test_schema_cache.py)
 MODULES = ("tmm_cli", "tmm_cli.errors", "tmm_cli.limits", "tmm_cli.messages", "tmm_cli.modelbase", "tmm_cli.units",
            "tmm_cli.linkage", "tmm_cli.linkage.spec", "tmm_cli.cam", "tmm_cli.cam.spec", "tmm_cli.gears",
            "tmm_cli.gears.spec", "tmm_cli.trainspec", "tmm_cli.dof2", "tmm_cli.dof2.spec", "tmm_cli.differential", "tmm_cli.differential.spec",
-           "tmm_cli.balancing", "tmm_cli.balancing.spec", "tmm_cli.numfmt", "tmm_cli.locales", "tmm_cli.task")
+           "tmm_cli.balancing", "tmm_cli.balancing.spec", "tmm_cli.numfmt", "tmm_cli.kept", "tmm_cli.locales",
+           "tmm_cli.task")
 _FORMAT = 1
 
 
@@ -134,12 +137,11 @@ def _from_cache(model: type, make):
 def _schema(model: type):
     """(core schema, core config) of the model from the cache, or None (no cache, or a stale one)."""
     try:
-        with open(_path(model), "rb") as fh:
-            if pickle.load(fh) != _stamp(model):         # two pickles: the stamp, then the validator
-                return None
-            return pickle.load(fh)
-    except Exception:  # noqa: BLE001 - a cache that cannot be read is no cache: pydantic builds the model
+        path, stamp = _path(model), _stamp(model)
+    except Exception:  # noqa: BLE001 - a module file that cannot be read: no cache, pydantic builds the model
         return None
+    got = kept.read(path, stamp)
+    return None if got is kept.MISSING else got
 
 
 def load(model: type):
@@ -153,20 +155,13 @@ def save(model: type) -> None:
     written or would not give back the same schema."""
     if sys.dont_write_bytecode:
         return
-    tmp = None
     try:
         cls, (schema, config, *_) = model.__pydantic_validator__.__reduce__()
         data = (_strip(schema), config)
         blob = pickle.dumps(data, protocol=pickle.HIGHEST_PROTOCOL)
         if not same(pickle.loads(blob), data):
             return
-        path = _path(model)
-        path.parent.mkdir(parents=True, exist_ok=True)
-        tmp = path.with_name(f"{path.name}.{os.getpid()}.tmp")
-        with open(tmp, "wb") as fh:
-            pickle.dump(_stamp(model), fh, protocol=pickle.HIGHEST_PROTOCOL)
-            fh.write(blob)
-        os.replace(tmp, path)
-    except Exception:  # noqa: BLE001 - a cache that cannot be written is no cache: the next run builds again
-        if tmp is not None:
-            tmp.unlink(missing_ok=True)
+        path, stamp = _path(model), _stamp(model)
+    except Exception:  # noqa: BLE001 - a validator that cannot be pickled is not kept: the next run builds again
+        return
+    kept.write(path, stamp, pickled=blob)

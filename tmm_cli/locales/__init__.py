@@ -16,18 +16,18 @@ where present), and reads a file once per process.  What a file holds is kept be
 Python keeps bytecode: pickled beside it in ``__pycache__`` (or under ``PYTHONPYCACHEPREFIX``;
 nothing is written where bytecode is not), used while the file's size and modification time
 and the Python version are those it was read with (a report run reads 60-75 catalogues: the
-pickles load in a sixth of the time PyYAML takes to parse them).
+pickles load in a sixth of the time PyYAML takes to parse them; :mod:`tmm_cli.kept`).
 """
 from __future__ import annotations
 
 import copy
 import functools
-import os
-import pickle
 import sys
 from pathlib import Path
 from stat import S_ISREG
 from typing import Any
+
+from .. import kept
 
 DIR = Path(__file__).resolve().parent
 # the languages: one folder each, English first
@@ -58,16 +58,12 @@ def _read(lang: str, name: str) -> dict:
     if not S_ISREG(st.st_mode):
         return {}
     stamp = (_FORMAT, sys.version, st.st_size, st.st_mtime_ns)
-    kept = _kept_path(path)
-    try:
-        with open(kept, "rb") as fh:
-            if pickle.load(fh) == stamp:     # two pickles: the stamp, then the tables
-                return pickle.load(fh)
-    except Exception:  # noqa: BLE001 - a kept copy that cannot be read is none: the file is parsed
-        pass
-    import yaml
-    data = yaml.load(path.read_text(encoding="utf-8"), Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader)) or {}
-    _keep(kept, stamp, data)
+    path_kept = _kept_path(path)
+    data = kept.read(path_kept, stamp)
+    if data is kept.MISSING:
+        import yaml
+        data = yaml.load(path.read_text(encoding="utf-8"), Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader)) or {}
+        kept.write(path_kept, stamp, data)
     return data
 
 
@@ -76,25 +72,6 @@ def _kept_path(path: Path) -> Path:
     module (``<lang>/__pycache__/<topic>.<python>.pickle``)."""
     from importlib.util import cache_from_source
     return Path(cache_from_source(str(path.with_suffix(".py")))).with_suffix(".pickle")
-
-
-def _keep(kept: Path, stamp: tuple, data: dict) -> None:
-    """Write ``data`` (a catalogue's tables) with its ``stamp`` to ``kept``, whole or not at all
-    (a temporary file put in place); nothing where bytecode is not written or cannot be."""
-    if sys.dont_write_bytecode:
-        return
-    tmp = kept.with_name(f"{kept.name}.{os.getpid()}.tmp")
-    try:
-        kept.parent.mkdir(parents=True, exist_ok=True)
-        with open(tmp, "wb") as fh:
-            pickle.dump(stamp, fh, protocol=pickle.HIGHEST_PROTOCOL)
-            pickle.dump(data, fh, protocol=pickle.HIGHEST_PROTOCOL)
-        os.replace(tmp, kept)
-    except Exception:  # noqa: BLE001 - a copy that cannot be kept is none: the next run parses again
-        try:
-            tmp.unlink(missing_ok=True)
-        except OSError:
-            pass
 
 
 def topic(lang: str, name: str) -> dict[str, Any]:
